@@ -1,0 +1,49 @@
+# Project-wide helpers: warnings, sanitizers, tests and Verilog units.
+
+add_library(tessera_warnings INTERFACE)
+target_compile_options(tessera_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow=local
+                       $<$<BOOL:${TESSERA_WERROR}>:-Werror>)
+
+if(TESSERA_SANITIZE)
+  # SystemC switches coroutine stacks; ASan's use-after-return check mistakes that for
+  # use of freed stack memory, so it is compiled out.
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+                      --param=asan-use-after-return=0)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# tessera_add_test(NAME name SOURCES ... LIBS ... LABELS ... [TIMEOUT s] [NO_GTEST_MAIN])
+# One executable per module (the SystemC kernel cannot be reset, so each
+# executable has one elaboration). GoogleTest provides main() unless the test
+# brings its own sc_main.
+function(tessera_add_test)
+  cmake_parse_arguments(T "NO_GTEST_MAIN" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;ARGS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest tessera_warnings)
+  if(NOT T_NO_GTEST_MAIN)
+    target_link_libraries(${T_NAME} PRIVATE GTest::gtest_main)
+  endif()
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 120)
+  endif()
+  add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
+  set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
+                       ENVIRONMENT "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1;TESSERA_SOURCE_DIR=${PROJECT_SOURCE_DIR};TESSERA_BINARY_DIR=${PROJECT_BINARY_DIR}")
+endfunction()
+
+# tessera_add_rtl_unit(TARGET lib TOP module SOURCES file.sv ... ADAPTER adapter.cpp ...)
+# Each Verilog reference unit becomes its own static library, reached only
+# through the thin C++ adapter listed in ADAPTER.
+function(tessera_add_rtl_unit)
+  cmake_parse_arguments(U "" "TARGET;TOP" "SOURCES;ADAPTER;LIBS" ${ARGN})
+  add_library(${U_TARGET} STATIC ${U_ADAPTER})
+  verilate(${U_TARGET}
+    PREFIX V${U_TOP}
+    TOP_MODULE ${U_TOP}
+    SOURCES ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
+    VERILATOR_ARGS --cc --no-timing -Wall -O3)
+  target_include_directories(${U_TARGET} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(${U_TARGET} PUBLIC ${U_LIBS})
+  # Verilator's generated code is not ours to warn about.
+  target_compile_options(${U_TARGET} PRIVATE -w)
+endfunction()

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Installs the Debian packages tessera needs, skipping those already present.
+# Idempotent; runs as root or through sudo. Set TESSERA_SKIP_INSTALL=1 to skip.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libsystemc-dev          # SystemC 2.3 with TLM-2.0
+  libglm-dev              # vector maths for the GL front end
+  libopenimageio-dev      # PNG output of the display
+  libgtest-dev            # unit and TLM tests
+  verilator               # Verilog reference units
+  libosmesa6-dev          # Mesa off-screen renderer for reference images
+  nlohmann-json3-dev      # configuration and statistics files
+  libcli11-dev            # command-line parsing
+  libtinyobjloader-dev    # Wavefront OBJ loading
+  yosys                   # synthesis size report of the Verilog units
+  python3                 # helper scripts
+)
+
+if [[ "${TESSERA_SKIP_INSTALL:-0}" == "1" ]]; then
+  echo "setup: TESSERA_SKIP_INSTALL=1, not installing packages"
+  exit 0
+fi
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$pkg")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+if [[ $(id -u) -eq 0 ]]; then
+  SUDO=()
+elif command -v sudo >/dev/null 2>&1; then
+  SUDO=(sudo)
+else
+  echo "setup: missing packages (${missing[*]}) and neither root nor sudo is available" >&2
+  exit 1
+fi
+
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" apt-get update -qq
+"${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

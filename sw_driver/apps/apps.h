@@ -1,0 +1,29 @@
+// The built-in applications, by name.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+
+#include "device/app_environment.h"
+
+namespace tessera {
+
+using AppMain = std::function<int(AppEnvironment&)>;
+
+struct AppInfo {
+  AppMain main;
+  std::string description;
+};
+
+const std::map<std::string, AppInfo>& builtin_apps();
+
+// The application `name`, or throws std::invalid_argument listing the
+// built-in ones.
+const AppInfo& find_app(const std::string& name);
+
+int pattern_app(AppEnvironment& env);
+int calib_add_app(AppEnvironment& env);
+int calib_mul_app(AppEnvironment& env);
+
+}  // namespace tessera

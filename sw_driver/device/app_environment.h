@@ -1,0 +1,22 @@
+// What the simulator hands an application when it starts: the host to run
+// on, how many frames to draw, and where the frame buffers are (the boot
+// loader's memory layout).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/host_api.h"
+
+namespace tessera {
+
+struct AppEnvironment {
+  HostApi* host = nullptr;
+  unsigned frames = 1;
+  uint32_t frame_buffers[2] = {0, 0};
+  uint32_t memory_bytes = 0;  // system memory populated from address 0
+  std::vector<std::string> args;
+};
+
+}  // namespace tessera

@@ -1,0 +1,60 @@
+#include "device/display_driver.h"
+
+#include <algorithm>
+
+#include "display/display_regs.h"
+#include "soc/irq_map.h"
+#include "soc/memory_map.h"
+
+namespace tessera {
+
+namespace regs = display_regs;
+
+namespace {
+constexpr uint32_t reg(uint32_t offset) { return memory_map::display_regs.base + offset; }
+}  // namespace
+
+DisplayDriver::DisplayDriver(AppEnvironment& env)
+    : m_host(*env.host), m_buffers{env.frame_buffers[0], env.frame_buffers[1]} {
+  m_width = m_host.read32(reg(regs::WIDTH));
+  m_height = m_host.read32(reg(regs::HEIGHT));
+  m_rgb565 = m_host.read32(reg(regs::FORMAT)) == regs::FORMAT_RGB565;
+  m_bytes_per_pixel = m_rgb565 ? 2 : 4;
+  m_dma = m_host.read32(reg(regs::MODE)) == 1;
+  if (m_dma) {
+    m_host.write32(reg(regs::IRQ_ENABLE), regs::IRQ_SWAP_DONE);
+    m_host.write32(reg(regs::CTRL), regs::CTRL_ENABLE);
+  }
+}
+
+void DisplayDriver::present() {
+  const uint32_t buffer = m_buffers[m_back];
+  if (!m_dma) {
+    // Copy loop of LDM/STM with eight registers, as hand-written ARM code does.
+    const uint32_t bytes = m_width * m_height * m_bytes_per_pixel;
+    uint32_t words[8];
+    uint32_t offset = 0;
+    while (bytes - offset >= 4) {
+      const unsigned count = std::min<uint32_t>(8, (bytes - offset) / 4);
+      m_host.read_words(buffer + offset, words, count);
+      m_host.write_words(memory_map::display_port.base + offset, words, count);
+      m_host.compute(Op::alu, 2);
+      m_host.compute(Op::branch);
+      offset += 4 * count;
+    }
+    if (offset < bytes) m_host.write16(memory_map::display_port.base + offset, m_host.read16(buffer + offset));
+    m_host.write32(reg(regs::PRESENT), 1);
+    return;
+  }
+  m_host.write32(reg(regs::BACK_BASE), buffer);
+  m_host.write32(reg(regs::SWAP), 1);
+  for (;;) {
+    m_host.wait_irq(irq_map::display);
+    const uint32_t status = m_host.read32(reg(regs::IRQ_STATUS));
+    m_host.write32(reg(regs::IRQ_STATUS), status);
+    if (status & regs::IRQ_SWAP_DONE) break;
+  }
+  m_back ^= 1;
+}
+
+}  // namespace tessera

@@ -1,0 +1,46 @@
+#include "frame_writer.h"
+
+#include <memory>
+#include <stdexcept>
+
+#include <OpenImageIO/imageio.h>
+
+namespace tessera {
+
+void write_png(const std::string& path, unsigned width, unsigned height, const std::vector<uint8_t>& rgba) {
+  if (rgba.size() != size_t{width} * height * 4)
+    throw std::invalid_argument("write_png: " + path + ": pixel buffer does not match the size");
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot write " + path + ": " + OIIO::geterror());
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 4, OIIO::TypeDesc::UINT8);
+  // Our pixels are not premultiplied; without this OpenImageIO divides by alpha.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (!out->open(path, spec)) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+  const bool ok = out->write_image(OIIO::TypeDesc::UINT8, rgba.data());
+  const bool closed = out->close();
+  if (!ok || !closed) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+}
+
+Image read_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error("cannot read " + path + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.width = static_cast<unsigned>(spec.width);
+  image.height = static_cast<unsigned>(spec.height);
+  std::vector<uint8_t> raw(size_t{image.width} * image.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
+    throw std::runtime_error("cannot read " + path + ": " + in->geterror());
+  image.rgba.resize(size_t{image.width} * image.height * 4);
+  for (size_t i = 0; i < size_t{image.width} * image.height; ++i) {
+    for (int c = 0; c < 4; ++c) {
+      uint8_t v = 255;
+      if (c < spec.nchannels) v = raw[i * spec.nchannels + c];
+      else if (c < 3) v = raw[i * spec.nchannels];  // grey
+      image.rgba[i * 4 + c] = v;
+    }
+  }
+  return image;
+}
+
+}  // namespace tessera

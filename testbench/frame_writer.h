@@ -1,0 +1,23 @@
+// Writes displayed frames as PNG files through OpenImageIO, and reads PNG
+// files back (for tests and comparisons).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+// Writes 8-bit RGBA pixels (row 0 at the top). Throws std::runtime_error
+// naming the file on failure.
+void write_png(const std::string& path, unsigned width, unsigned height, const std::vector<uint8_t>& rgba);
+
+struct Image {
+  unsigned width = 0;
+  unsigned height = 0;
+  std::vector<uint8_t> rgba;
+};
+// Reads any image OpenImageIO knows as 8-bit RGBA. Throws on failure.
+Image read_image(const std::string& path);
+
+}  // namespace tessera

@@ -1,0 +1,300 @@
+// soc_sim: builds the SoC from the configuration, runs an application on the
+// host model, writes the displayed frames, statistics and (optionally) a VCD
+// trace, and prints a summary.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <systemc>
+
+#include "apps/apps.h"
+#include "common/log.h"
+#include "config/config.h"
+#include "frame_writer.h"
+#include "soc/soc.h"
+
+namespace fs = std::filesystem;
+using namespace tessera;
+
+namespace {
+
+constexpr int kExitUsage = 2;    // bad option, configuration or input file
+constexpr int kExitFailure = 1;  // the simulation itself failed
+
+struct Options {
+  std::vector<std::string> config_files;
+  std::vector<std::string> overrides;
+  std::string app;
+  std::string backend;
+  int frames = 0;
+  std::string out_dir = "out";
+  std::string vcd;
+  std::string stats;
+  bool quiet = false;
+  bool print_config = false;
+  bool config_reference = false;
+  bool list_apps = false;
+  std::vector<std::string> app_args;
+};
+
+std::string format_time(double seconds) {
+  char buffer[32];
+  if (seconds >= 1) std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
+  else if (seconds >= 1e-3) std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
+  else std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
+  return buffer;
+}
+
+// Creates `dir` if needed and proves it writable, or throws naming it.
+void prepare_output_dir(const std::string& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) throw std::runtime_error("output folder '" + dir + "' cannot be created: " + error.message());
+  const fs::path probe = fs::path(dir) / ".soc_sim_write_test";
+  std::ofstream file(probe);
+  if (!file) throw std::runtime_error("output folder '" + dir + "' is not writable");
+  file.close();
+  fs::remove(probe, error);
+}
+
+void check_writable_file(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw std::runtime_error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
+  std::ofstream file(path, std::ios::app);
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+}
+
+class Progress {
+ public:
+  Progress(bool enabled, unsigned total) : m_enabled(enabled), m_total(total) {}
+  void update(unsigned frames, double simulated, double wall) {
+    if (!m_enabled) return;
+    const unsigned width = 30;
+    const unsigned filled = m_total ? std::min(width, frames * width / m_total) : 0;
+    std::string bar(filled, '#');
+    bar.resize(width, '.');
+    std::fprintf(stderr, "\r[%s] frame %u/%u  simulated %s  %s simulated per second ", bar.c_str(), frames,
+                 m_total, format_time(simulated).c_str(), format_time(wall > 0 ? simulated / wall : 0).c_str());
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (m_enabled) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool m_enabled;
+  unsigned m_total;
+};
+
+void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
+                   const std::vector<std::string>& outputs) {
+  const double simulated = sc_core::sc_time_stamp().to_seconds();
+  const auto& host = stats["host"];
+  const auto& bus = stats["bus"];
+  const auto& memory = stats["memory"];
+  const auto& display = stats["display"];
+  std::printf("\ntessera soc_sim: application '%s', display %s mode\n", app.c_str(),
+              display["mode"].get<std::string>().c_str());
+  std::printf("  simulated time  %s\n  wall time       %s (%s simulated per wall second)\n",
+              format_time(simulated).c_str(), format_time(wall).c_str(),
+              format_time(wall > 0 ? simulated / wall : 0).c_str());
+  std::printf("\n  %-10s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
+  std::printf("  %-10s %14s %11.1f%%  stalled on bus %s, idle %s\n", "host",
+              format_time(host["busy_ns"].get<double>() * 1e-9).c_str(), host["utilisation"].get<double>() * 100,
+              format_time(host["stalled_on_bus_ns"].get<double>() * 1e-9).c_str(),
+              format_time(host["idle_ns"].get<double>() * 1e-9).c_str());
+  const double bus_period = 1e-6 / bus["clock_mhz"].get<double>();
+  std::printf("  %-10s %14s %11.1f%%  %s, %u-bit\n", "bus",
+              format_time(bus["busy_cycles"].get<double>() * bus_period).c_str(),
+              bus["utilisation"].get<double>() * 100, bus["arbitration"].get<std::string>().c_str(),
+              bus["width_bits"].get<unsigned>());
+  std::printf("  %-10s %14s %11.1f%%  %llu reads, %llu writes\n", "memory",
+              format_time(memory["busy_ns"].get<double>() * 1e-9).c_str(), memory["utilisation"].get<double>() * 100,
+              memory["reads"].get<unsigned long long>(), memory["writes"].get<unsigned long long>());
+  std::printf("  %-10s %14s %12s  %llu frames shown, %.1f frames/s achieved, %llu underrun lines\n", "display", "-",
+              "-", display["frames_shown"].get<unsigned long long>(), display["achieved_fps"].get<double>(),
+              display["underrun_lines"].get<unsigned long long>());
+  std::printf("\n  bus traffic per initiator\n  %-12s %12s %12s %12s %12s %12s\n", "initiator", "transactions",
+              "bytes", "busy cycles", "wait cycles", "utilisation");
+  for (const auto& [name, s] : bus["initiators"].items())
+    std::printf("  %-12s %12llu %12llu %12llu %12llu %11.1f%%\n", name.c_str(),
+                s["transactions"].get<unsigned long long>(), s["bytes"].get<unsigned long long>(),
+                s["busy_cycles"].get<unsigned long long>(), s["wait_cycles"].get<unsigned long long>(),
+                s["utilisation"].get<double>() * 100);
+  std::printf("\n  outputs\n");
+  for (const auto& line : outputs) std::printf("    %s\n", line.c_str());
+  (void)soc;
+}
+
+int run(int argc, char* argv[]) {
+  Options opt;
+  CLI::App cli{"tessera soc_sim: run an application on the virtual mobile graphics SoC"};
+  cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")->check(CLI::ExistingFile);
+  cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
+  cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
+  cli.add_option("--backend", opt.backend, "renderer back end (arm)");
+  cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
+  cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
+  cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
+  cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
+  cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
+  cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
+  cli.add_flag("--config-reference", opt.config_reference, "print the configuration reference (Markdown) and exit");
+  cli.add_flag("--list-apps", opt.list_apps, "list the built-in applications and exit");
+  cli.add_option("app_args", opt.app_args, "arguments passed to the application (after --)");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e) == 0 ? 0 : kExitUsage;
+  }
+
+  if (opt.config_reference) {
+    std::cout << Config::reference_markdown();
+    return 0;
+  }
+  if (opt.list_apps) {
+    for (const auto& [name, info] : builtin_apps()) std::cout << name << "  " << info.description << "\n";
+    return 0;
+  }
+
+  Config config;
+  try {
+    for (const auto& file : opt.config_files) config.load_file(file);
+    for (const auto& assignment : opt.overrides) config.apply_override(assignment);
+    if (!opt.app.empty()) config.set("sim.app", opt.app, "--app");
+    if (opt.frames > 0) config.set("sim.frames", opt.frames, "--frames");
+    if (!opt.backend.empty() && opt.backend != "arm")
+      throw ConfigError("unknown back end '" + opt.backend + "' (available: arm)");
+    if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
+    config.validate();
+  } catch (const ConfigError& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  if (opt.print_config) {
+    std::cout << config.to_json().dump(2) << "\n";
+    return 0;
+  }
+
+  const AppInfo* app = nullptr;
+  try {
+    app = &find_app(config.get_string("sim.app"));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return kExitUsage;
+  }
+
+  const std::string stats_path = opt.stats.empty() ? (fs::path(opt.out_dir) / "stats.json").string() : opt.stats;
+  try {
+    prepare_output_dir(opt.out_dir);
+    check_writable_file(stats_path);
+    if (!opt.vcd.empty()) check_writable_file(opt.vcd);
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return kExitUsage;
+  }
+
+  log::install(log::parse_level(config.get_string("sim.log_level")));
+  const unsigned frames = static_cast<unsigned>(config.get_uint("sim.frames"));
+  Soc soc("soc", config);
+  unsigned frames_written = 0;
+  soc.display.on_frame([&](const Frame& frame) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04u.png", frame.index);
+    write_png((fs::path(opt.out_dir) / name).string(), frame.width, frame.height, frame.rgba);
+    ++frames_written;
+  });
+
+  AppEnvironment env;
+  env.frames = frames;
+  env.frame_buffers[0] = soc.frame_buffer(0);
+  env.frame_buffers[1] = soc.frame_buffer(1);
+  env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
+  env.args = opt.app_args;
+  soc.set_program([&env, app](HostApi& host) {
+    env.host = &host;
+    return app->main(env);
+  });
+
+  std::string vcd_base = opt.vcd;
+  if (vcd_base.size() > 4 && vcd_base.substr(vcd_base.size() - 4) == ".vcd") vcd_base.resize(vcd_base.size() - 4);
+  if (!opt.vcd.empty()) soc.trace_to(vcd_base);
+
+  Progress progress(!opt.quiet && isatty(STDERR_FILENO), frames);
+  const auto wall_start = std::chrono::steady_clock::now();
+  auto wall_seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  const sc_core::sc_time limit(static_cast<double>(config.get_uint("sim.time_limit_ms")), sc_core::SC_MS);
+  const sc_core::sc_time slice(1, sc_core::SC_MS);
+  try {
+    while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
+      sc_core::sc_start(slice);
+      progress.update(frames_written, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
+    }
+  } catch (const std::exception& e) {
+    progress.finish();
+    std::cerr << "soc_sim: simulation failed: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  progress.finish();
+  soc.close_trace();
+  const double wall = wall_seconds();
+
+  int status = 0;
+  if (!soc.done()) {
+    std::cerr << "soc_sim: simulated-time limit of " << config.get_uint("sim.time_limit_ms")
+              << " ms reached before the application finished (sim.time_limit_ms)\n";
+    status = kExitFailure;
+  } else if (soc.host.exit_code() != 0) {
+    std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
+    status = kExitFailure;
+  }
+
+  nlohmann::json stats = soc.stats_json();
+  nlohmann::json document = {{"application", config.get_string("sim.app")},
+                             {"frames_written", frames_written},
+                             {"exit_status", status},
+                             {"config", config.to_json()},
+                             {"stats", stats}};
+  std::ofstream(stats_path) << document.dump(2) << "\n";
+
+  if (!opt.quiet) {
+    std::vector<std::string> outputs;
+    if (frames_written)
+      outputs.push_back(std::to_string(frames_written) + " frame(s): " +
+                        (fs::path(opt.out_dir) / "frame_0000.png").string() +
+                        (frames_written > 1 ? " ..." : ""));
+    outputs.push_back("statistics: " + stats_path);
+    if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
+    print_summary(soc, stats, config.get_string("sim.app"), wall, outputs);
+  }
+  return status;
+}
+
+}  // namespace
+
+int sc_main(int argc, char* argv[]) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+// SystemC prints its banner before sc_main; our own main silences it so that
+// stdout carries only soc_sim's output.
+int main(int argc, char* argv[]) {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+  return sc_core::sc_elab_and_sim(argc, argv);
+}

@@ -1,0 +1,243 @@
+#include "bus/ahb_bus.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "common/log.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+
+Arbitration parse_arbitration(const std::string& name) {
+  if (name == "fixed_priority") return Arbitration::fixed_priority;
+  if (name == "round_robin") return Arbitration::round_robin;
+  throw std::invalid_argument("unknown arbitration '" + name + "' (expected fixed_priority or round_robin)");
+}
+
+AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
+    : sc_core::sc_module(name), in("in"), out("out"), m_params(params),
+      m_period_ticks(params.clock_period.value()) {
+  if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
+  if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
+  in.register_b_transport(this, &AhbBus::b_transport);
+  in.register_transport_dbg(this, &AhbBus::transport_dbg);
+  in.register_get_direct_mem_ptr(this, &AhbBus::get_direct_mem_ptr);
+  out.register_invalidate_direct_mem_ptr(this, &AhbBus::invalidate_direct_mem_ptr);
+}
+
+void AhbBus::add_initiator(const std::string& initiator_name, unsigned priority) {
+  BusInitiatorStats stats;
+  stats.name = initiator_name;
+  stats.priority = priority;
+  m_stats.push_back(stats);
+  m_request_traces.push_back(std::make_unique<TimedTrace>((initiator_name + "_request").c_str()));
+  m_grant_traces.push_back(std::make_unique<TimedTrace>((initiator_name + "_grant").c_str()));
+}
+
+void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_name) {
+  if (size == 0) throw std::invalid_argument(std::string(name()) + ": region " + target_name + " has size 0");
+  for (const auto& r : m_regions)
+    if (base < r.base + r.size && r.base < base + size)
+      throw std::invalid_argument(std::string(name()) + ": region " + target_name + " at " + log::hex(base) +
+                                  " overlaps " + r.name + " at " + log::hex(r.base));
+  m_regions.push_back({base, size, target_name, static_cast<unsigned>(m_regions.size())});
+}
+
+const AhbBus::Region* AhbBus::decode(uint64_t address) const {
+  if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+  for (const auto& r : m_regions)
+    if (address >= r.base && address - r.base < r.size) return m_last_region = &r;
+  return nullptr;
+}
+
+void AhbBus::trace(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  for (size_t i = 0; i < m_stats.size(); ++i) {
+    sc_core::sc_trace(file, m_request_traces[i]->signal, std::string(name()) + "." + m_stats[i].name + "_request");
+    sc_core::sc_trace(file, m_grant_traces[i]->signal, std::string(name()) + "." + m_stats[i].name + "_grant");
+  }
+}
+
+uint64_t AhbBus::align_to_edge(uint64_t ticks) const {
+  return (ticks + m_period_ticks - 1) / m_period_ticks * m_period_ticks;
+}
+
+uint64_t AhbBus::reserve(uint64_t request_ticks, uint64_t length_ticks) {
+  // Nothing can be requested before the current time, so older reservations go.
+  const uint64_t now = sc_core::sc_time_stamp().value();
+  while (!m_reserved.empty() && m_reserved.begin()->second <= now) m_reserved.erase(m_reserved.begin());
+
+  uint64_t start = request_ticks;
+  auto it = m_reserved.upper_bound(start);
+  if (it != m_reserved.begin()) {
+    auto previous = std::prev(it);
+    if (previous->second > start) start = previous->second;
+  }
+  while (it != m_reserved.end() && it->first < start + length_ticks) {
+    start = std::max(start, it->second);
+    ++it;
+  }
+  // Merge with a reservation that ends exactly where this one starts, to keep
+  // the timeline short under back-to-back traffic.
+  auto before = m_reserved.lower_bound(start);
+  if (before != m_reserved.begin() && std::prev(before)->second == start)
+    std::prev(before)->second = start + length_ticks;
+  else
+    m_reserved.emplace(start, start + length_ticks);
+  m_busy_cycles += length_ticks / m_period_ticks;
+  return start;
+}
+
+void AhbBus::resolve_batch() {
+  const size_t count = m_stats.size();
+  auto rank = [&](const Request* r) -> uint64_t {
+    if (m_params.arbitration == Arbitration::fixed_priority)
+      return (static_cast<uint64_t>(m_stats[r->initiator].priority) << 32) | r->initiator;
+    return (r->initiator + count - m_last_granted - 1) % count;
+  };
+  std::stable_sort(m_batch.begin(), m_batch.end(), [&](const Request* a, const Request* b) {
+    if (a->request_ticks != b->request_ticks) return a->request_ticks < b->request_ticks;
+    return rank(a) < rank(b);
+  });
+  for (Request* r : m_batch) {
+    r->start_ticks = reserve(r->request_ticks, r->occupancy_ticks);
+    r->granted = true;
+    m_last_granted = r->initiator;
+  }
+  m_batch.clear();
+}
+
+void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats,
+                     const Request& request) {
+  BusInitiatorStats& s = m_stats[initiator];
+  ++s.transactions;
+  if (gp.is_read()) ++s.reads;
+  if (gp.is_write()) ++s.writes;
+  s.bytes += gp.get_data_length();
+  s.beats += beats;
+  s.busy_cycles += request.occupancy_ticks / m_period_ticks;
+  s.wait_cycles += (request.start_ticks - request.request_ticks) / m_period_ticks;
+  if (m_tracing) {
+    const uint64_t end = request.start_ticks + request.occupancy_ticks;
+    m_request_traces[initiator]->set_at(true, sc_time::from_value(request.request_ticks));
+    m_grant_traces[initiator]->set_at(true, sc_time::from_value(request.start_ticks));
+    m_request_traces[initiator]->set_at(false, sc_time::from_value(end));
+    m_grant_traces[initiator]->set_at(false, sc_time::from_value(end));
+  }
+}
+
+void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
+  const unsigned initiator = static_cast<unsigned>(id);
+  const uint64_t now = sc_core::sc_time_stamp().value();
+  const uint64_t address = gp.get_address();
+  Request request{initiator, align_to_edge(now + delay.value()), 0};
+  const uint64_t beats = std::max<uint64_t>(1, (gp.get_data_length() + m_params.width_bytes - 1) / m_params.width_bytes);
+
+  const Region* region = decode(address);
+  if (!region) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    request.occupancy_ticks = (m_params.address_cycles + m_params.error_cycles) * m_period_ticks;
+    ++m_stats[initiator].errors;
+    log::warning(name(), "unmapped " + std::string(gp.is_write() ? "write" : "read") + " by " +
+                             m_stats[initiator].name + " at " + log::hex(address));
+  } else {
+    gp.set_address(address - region->base);
+    sc_time target_delay = sc_core::SC_ZERO_TIME;
+    out[region->target_index]->b_transport(gp, target_delay);
+    gp.set_address(address);
+    const uint64_t data_ticks = std::max(align_to_edge(target_delay.value()), beats * m_period_ticks);
+    request.occupancy_ticks = m_params.address_cycles * m_period_ticks + data_ticks;
+    if (gp.is_response_error()) ++m_stats[initiator].errors;
+  }
+
+  if (delay == sc_core::SC_ZERO_TIME) {
+    // Synchronised request: let every request of this instant arrive, then
+    // the first to wake serves them all in arbitration order.
+    m_batch.push_back(&request);
+    wait(sc_core::SC_ZERO_TIME);
+    if (!request.granted) resolve_batch();
+  } else {
+    request.start_ticks = reserve(request.request_ticks, request.occupancy_ticks);
+    m_last_granted = initiator;
+  }
+  account(initiator, gp, beats, request);
+  delay = sc_time::from_value(request.start_ticks + request.occupancy_ticks - now);
+}
+
+unsigned AhbBus::transport_dbg(int id, tlm::tlm_generic_payload& gp) {
+  const uint64_t address = gp.get_address();
+  const Region* region = decode(address);
+  ++m_stats[static_cast<unsigned>(id)].debug_accesses;
+  if (!region) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    return 0;
+  }
+  gp.set_address(address - region->base);
+  unsigned count = out[region->target_index]->transport_dbg(gp);
+  gp.set_address(address);
+  return count;
+}
+
+bool AhbBus::get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
+  const uint64_t address = gp.get_address();
+  const Region* region = decode(address);
+  if (!region) {
+    dmi.allow_none();
+    dmi.set_start_address(0);
+    dmi.set_end_address(~sc_dt::uint64(0));
+    return false;
+  }
+  gp.set_address(address - region->base);
+  bool granted = out[region->target_index]->get_direct_mem_ptr(gp, dmi);
+  gp.set_address(address);
+  // Translate the target's range back into the bus address space, clipped to
+  // the region.
+  const uint64_t last = region->base + region->size - 1;
+  uint64_t start = dmi.get_start_address() + region->base;
+  uint64_t end = dmi.get_end_address() > region->size - 1 ? last : dmi.get_end_address() + region->base;
+  if (start < region->base) start = region->base;
+  if (granted) {
+    const uint64_t offset = start - (dmi.get_start_address() + region->base);
+    dmi.set_dmi_ptr(dmi.get_dmi_ptr() + offset);
+    ++m_stats[static_cast<unsigned>(id)].dmi_grants;
+    // The bus adds its address phase to the target's latencies.
+    const sc_time address_phase = m_params.clock_period * m_params.address_cycles;
+    dmi.set_read_latency(dmi.get_read_latency() + address_phase);
+    dmi.set_write_latency(dmi.get_write_latency() + address_phase);
+  }
+  dmi.set_start_address(start);
+  dmi.set_end_address(end);
+  return granted;
+}
+
+void AhbBus::invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end) {
+  for (const auto& r : m_regions) {
+    if (r.target_index != static_cast<unsigned>(id)) continue;
+    const uint64_t global_start = r.base + std::min<uint64_t>(start, r.size - 1);
+    const uint64_t global_end = end >= r.size - 1 ? r.base + r.size - 1 : r.base + end;
+    for (unsigned i = 0; i < in.size(); ++i) in[i]->invalidate_direct_mem_ptr(global_start, global_end);
+  }
+}
+
+nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
+  const double cycles = elapsed.value() / static_cast<double>(m_period_ticks);
+  nlohmann::json initiators = nlohmann::json::object();
+  for (const auto& s : m_stats) {
+    initiators[s.name] = {
+        {"priority", s.priority},     {"transactions", s.transactions}, {"reads", s.reads},
+        {"writes", s.writes},         {"bytes", s.bytes},               {"beats", s.beats},
+        {"busy_cycles", s.busy_cycles}, {"wait_cycles", s.wait_cycles}, {"errors", s.errors},
+        {"debug_accesses", s.debug_accesses}, {"dmi_grants", s.dmi_grants},
+        {"utilisation", cycles > 0 ? s.busy_cycles / cycles : 0.0},
+    };
+  }
+  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
+          {"width_bits", m_params.width_bytes * 8},
+          {"arbitration", m_params.arbitration == Arbitration::fixed_priority ? "fixed_priority" : "round_robin"},
+          {"busy_cycles", m_busy_cycles},
+          {"utilisation", cycles > 0 ? m_busy_cycles / cycles : 0.0},
+          {"initiators", initiators}};
+}
+
+}  // namespace tessera

@@ -1,0 +1,244 @@
+#include "config/config.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace tessera {
+namespace {
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::boolean: return "a boolean";
+    case ParamType::integer: return "an integer";
+    case ParamType::real: return "a number";
+    case ParamType::string: return "a string";
+    case ParamType::choice: return "one of";
+  }
+  return "?";
+}
+
+std::string format_number(double v) {
+  std::ostringstream out;
+  if (std::floor(v) == v && std::fabs(v) < 1e18)
+    out << static_cast<long long>(v);
+  else
+    out << v;
+  return out.str();
+}
+
+std::string expectation(const ParamSpec& spec) {
+  std::string text = type_name(spec.type);
+  if (spec.type == ParamType::choice) {
+    text += " ";
+    for (size_t i = 0; i < spec.choices.size(); ++i)
+      text += (i ? ", " : "") + spec.choices[i];
+  } else if (spec.type == ParamType::integer || spec.type == ParamType::real) {
+    text += " in [" + format_number(spec.min) + ", " + format_number(spec.max) + "]";
+  }
+  if (!spec.unit.empty() && (spec.type == ParamType::integer || spec.type == ParamType::real))
+    text += " (" + spec.unit + ")";
+  return text;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1u : 0u)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+void flatten(const nlohmann::json& node, const std::string& prefix,
+             std::vector<std::pair<std::string, nlohmann::json>>& out) {
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    if (it->is_object())
+      flatten(*it, key, out);
+    else
+      out.emplace_back(key, *it);
+  }
+}
+
+}  // namespace
+
+Config::Config() {
+  for (const auto& spec : parameter_specs()) m_values[spec.key] = spec.default_value;
+}
+
+const ParamSpec& Config::spec(const std::string& key, const std::string& source) const {
+  const auto& specs = parameter_specs();
+  auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.key == key; });
+  if (it != specs.end()) return *it;
+  std::string message = "configuration: unknown key '" + key + "'";
+  if (!source.empty()) message += " (from " + source + ")";
+  const ParamSpec* best = nullptr;
+  size_t best_distance = 4;
+  for (const auto& s : specs) {
+    size_t d = edit_distance(key, s.key);
+    if (d < best_distance) best = &s, best_distance = d;
+  }
+  if (best) message += "; did you mean '" + best->key + "'?";
+  else message += "; soc_sim --print-config lists the known keys";
+  throw ConfigError(message);
+}
+
+void Config::set(const std::string& key, const nlohmann::json& value, const std::string& source) {
+  const ParamSpec& s = spec(key, source);
+  auto fail = [&](const std::string& got) {
+    throw ConfigError("configuration: '" + key + "' expects " + expectation(s) + ", got " + got +
+                      " (from " + source + ")");
+  };
+  const std::string shown = value.dump();
+  switch (s.type) {
+    case ParamType::boolean:
+      if (!value.is_boolean()) fail(shown);
+      break;
+    case ParamType::integer: {
+      if (!value.is_number_integer()) fail(shown);
+      double v = value.is_number_unsigned() ? static_cast<double>(value.get<uint64_t>())
+                                            : static_cast<double>(value.get<int64_t>());
+      if (v < s.min || v > s.max) fail(shown);
+      break;
+    }
+    case ParamType::real: {
+      if (!value.is_number()) fail(shown);
+      double v = value.get<double>();
+      if (!std::isfinite(v) || v < s.min || v > s.max) fail(shown);
+      break;
+    }
+    case ParamType::string:
+      if (!value.is_string()) fail(shown);
+      break;
+    case ParamType::choice:
+      if (!value.is_string() ||
+          std::find(s.choices.begin(), s.choices.end(), value.get<std::string>()) == s.choices.end())
+        fail(shown);
+      break;
+  }
+  m_values[key] = value;
+}
+
+void Config::merge_json(const nlohmann::json& doc, const std::string& source) {
+  if (!doc.is_object())
+    throw ConfigError("configuration: " + source + " must hold a JSON object at the top level");
+  std::vector<std::pair<std::string, nlohmann::json>> entries;
+  flatten(doc, "", entries);
+  // Check everything before changing anything, so a bad file leaves the
+  // configuration as it was.
+  Config trial = *this;
+  for (const auto& [key, value] : entries) trial.set(key, value, source);
+  *this = std::move(trial);
+}
+
+void Config::load_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("configuration: cannot open '" + path + "': " + std::strerror(errno));
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ConfigError("configuration: '" + path + "' is not valid JSON: " + e.what());
+  }
+  merge_json(doc, path);
+}
+
+void Config::apply_override(const std::string& assignment) {
+  const std::string source = "--set " + assignment;
+  auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("configuration: '" + assignment + "' is not of the form key=value");
+  std::string key = assignment.substr(0, eq);
+  std::string text = assignment.substr(eq + 1);
+  const ParamSpec& s = spec(key, source);
+  nlohmann::json value;
+  switch (s.type) {
+    case ParamType::boolean:
+      if (text == "true" || text == "1" || text == "on") value = true;
+      else if (text == "false" || text == "0" || text == "off") value = false;
+      else value = text;  // rejected by set() with the key named
+      break;
+    case ParamType::integer: {
+      errno = 0;
+      char* end = nullptr;
+      long long v = std::strtoll(text.c_str(), &end, 0);
+      if (text.empty() || *end != '\0' || errno == ERANGE) value = text;
+      else value = static_cast<int64_t>(v);
+      break;
+    }
+    case ParamType::real: {
+      errno = 0;
+      char* end = nullptr;
+      double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || errno == ERANGE) value = text;
+      else value = v;
+      break;
+    }
+    case ParamType::string:
+    case ParamType::choice:
+      value = text;
+      break;
+  }
+  set(key, value, source);
+}
+
+const nlohmann::json& Config::value(const std::string& key, ParamType expected) const {
+  auto it = m_values.find(key);
+  const ParamSpec& s = spec(key, "");
+  if (s.type != expected && !(expected == ParamType::string && s.type == ParamType::choice))
+    throw std::logic_error("configuration: '" + key + "' read as the wrong type");
+  return it->second;
+}
+
+bool Config::get_bool(const std::string& key) const { return value(key, ParamType::boolean).get<bool>(); }
+int64_t Config::get_int(const std::string& key) const {
+  return value(key, ParamType::integer).get<int64_t>();
+}
+uint64_t Config::get_uint(const std::string& key) const {
+  int64_t v = get_int(key);
+  if (v < 0) throw std::logic_error("configuration: '" + key + "' is negative");
+  return static_cast<uint64_t>(v);
+}
+double Config::get_real(const std::string& key) const { return value(key, ParamType::real).get<double>(); }
+std::string Config::get_string(const std::string& key) const {
+  return value(key, ParamType::string).get<std::string>();
+}
+
+nlohmann::json Config::to_json() const {
+  nlohmann::json doc = nlohmann::json::object();
+  for (const auto& spec : parameter_specs()) {
+    nlohmann::json* node = &doc;
+    std::string rest = spec.key;
+    for (auto dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.')) {
+      node = &(*node)[rest.substr(0, dot)];
+      rest = rest.substr(dot + 1);
+    }
+    (*node)[rest] = m_values.at(spec.key);
+  }
+  return doc;
+}
+
+std::string Config::reference_markdown() {
+  std::ostringstream out;
+  out << "| key | type | default | description |\n| --- | --- | --- | --- |\n";
+  for (const auto& spec : parameter_specs()) {
+    std::string type = expectation(spec);
+    out << "| `" << spec.key << "` | " << type << " | `" << spec.default_value.dump() << "` | "
+        << spec.description << " |\n";
+  }
+  return out.str();
+}
+
+}  // namespace tessera

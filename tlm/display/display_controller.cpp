@@ -1,0 +1,260 @@
+#include "display/display_controller.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "common/log.h"
+#include "display/display_regs.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+namespace regs = display_regs;
+
+DisplayController::DisplayController(sc_core::sc_module_name name, const DisplayParams& params)
+    : sc_core::sc_module(name), in("in"), port_in("port_in"), dma_out("dma_out"), irq("irq"),
+      m_params(params), m_regs(this->name()), m_vblank("vblank") {
+  if (params.width == 0 || params.height == 0) throw std::invalid_argument(std::string(this->name()) + ": empty frame");
+  if (params.refresh_hz <= 0) throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
+  in.register_b_transport(this, &DisplayController::b_transport);
+  in.register_transport_dbg(this, &DisplayController::transport_dbg);
+  port_in.register_b_transport(this, &DisplayController::port_b_transport);
+  port_in.register_transport_dbg(this, &DisplayController::port_transport_dbg);
+
+#define TESSERA_DISPLAY_REG(name, offset, reset, access) \
+  const RegisterInfo name{#name, offset, reset, RegAccess::access};
+#include "display/display_regs.def"
+#undef TESSERA_DISPLAY_REG
+
+  m_regs.add(CTRL);
+  m_regs.add(STATUS, [this] {
+    return (in_vblank() ? regs::STATUS_VBLANK : 0u) | (m_swap_pending ? regs::STATUS_SWAP_PENDING : 0u);
+  });
+  m_regs.add(FRONT_BASE);
+  m_regs.add(BACK_BASE);
+  m_regs.add(SWAP, {}, [this](uint32_t value) {
+    if (!(value & 1)) return;
+    if (!m_params.dma) {
+      log::warning(this->name(), "SWAP written in port mode (display.dma=false); ignored, use PRESENT");
+      return;
+    }
+    m_swap_pending = true;
+  });
+  m_regs.add(IRQ_STATUS, {}, [this](uint32_t value) {
+    m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) & ~value);
+    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+  });
+  m_regs.add(IRQ_ENABLE, {}, [this](uint32_t value) {
+    m_regs.set(regs::IRQ_ENABLE, value);
+    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+  });
+  m_regs.add(PRESENT, {}, [this](uint32_t value) {
+    if (!(value & 1)) return;
+    if (m_params.dma) {
+      log::warning(this->name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
+      return;
+    }
+    show(m_port_frame);
+    raise(regs::IRQ_FRAME_PRESENTED);
+  });
+  m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames); });
+  m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes); });
+  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines); });
+  m_regs.add(WIDTH, [this] { return m_params.width; });
+  m_regs.add(HEIGHT, [this] { return m_params.height; });
+  m_regs.add(FORMAT, [this] {
+    return m_params.format == PixelFormat::rgb565 ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888;
+  });
+  m_regs.add(MODE, [this] { return m_params.dma ? 1u : 0u; });
+
+  m_port_frame.assign(frame_bytes(), 0);
+  m_scan_frame.assign(frame_bytes(), 0);
+
+  SC_METHOD(update_irq);
+  sensitive << m_irq_changed;
+  if (m_params.dma) SC_THREAD(scan_out);
+}
+
+void DisplayController::trace(sc_core::sc_trace_file* file) {
+  sc_core::sc_trace(file, m_vblank.signal, std::string(name()) + ".vblank");
+}
+
+bool DisplayController::in_vblank() const {
+  const sc_time now = sc_core::sc_time_stamp();
+  return m_params.dma && now >= m_frame_start && now < m_active_start;
+}
+
+bool DisplayController::frame_pending() const { return m_params.dma && (m_swap_pending || m_frame_in_scan); }
+
+void DisplayController::raise(uint32_t bits) {
+  m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
+  m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+}
+
+void DisplayController::update_irq() {
+  irq.write((m_regs.get(regs::IRQ_STATUS) & m_regs.get(regs::IRQ_ENABLE)) != 0);
+}
+
+void DisplayController::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  m_regs.transport(gp);
+  delay += m_params.clock_period;
+}
+
+unsigned DisplayController::transport_dbg(tlm::tlm_generic_payload& gp) { return m_regs.transport_dbg(gp); }
+
+void DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  const uint64_t address = gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  if (address >= m_port_frame.size() || length > m_port_frame.size() - address) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    log::warning(name(), "display port access outside the " + std::to_string(m_port_frame.size()) +
+                             "-byte frame at offset " + log::hex(address));
+    return;
+  }
+  if (gp.get_byte_enable_ptr() || gp.get_streaming_width() < length) {
+    gp.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+    return;
+  }
+  if (gp.is_write()) {
+    std::memcpy(&m_port_frame[address], gp.get_data_ptr(), length);
+    m_port_bytes += length;
+  } else if (gp.is_read()) {
+    std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
+  }
+  const uint64_t beats = (length + 3) / 4;
+  delay += m_params.clock_period * static_cast<double>(m_params.port_cycles * beats);
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {
+  const uint64_t address = gp.get_address();
+  if (address >= m_port_frame.size()) return 0;
+  const uint64_t length = std::min<uint64_t>(gp.get_data_length(), m_port_frame.size() - address);
+  if (gp.is_write()) std::memcpy(&m_port_frame[address], gp.get_data_ptr(), length);
+  else if (gp.is_read()) std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
+  return static_cast<unsigned>(length);
+}
+
+void DisplayController::show(const std::vector<uint8_t>& pixels) {
+  Frame frame{static_cast<unsigned>(m_frames), sc_core::sc_time_stamp().to_seconds(), m_params.width,
+              m_params.height, std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
+  const size_t count = size_t{m_params.width} * m_params.height;
+  if (m_params.format == PixelFormat::rgb565) {
+    for (size_t i = 0; i < count; ++i) {
+      const unsigned v = pixels[2 * i] | (pixels[2 * i + 1] << 8);
+      const unsigned r = (v >> 11) & 31, g = (v >> 5) & 63, b = v & 31;
+      // Bit replication: the exact expansion of 5 and 6 bits to 8.
+      frame.rgba[4 * i + 0] = static_cast<uint8_t>((r << 3) | (r >> 2));
+      frame.rgba[4 * i + 1] = static_cast<uint8_t>((g << 2) | (g >> 4));
+      frame.rgba[4 * i + 2] = static_cast<uint8_t>((b << 3) | (b >> 2));
+      frame.rgba[4 * i + 3] = 255;
+    }
+  } else {
+    std::memcpy(frame.rgba.data(), pixels.data(), count * 4);
+  }
+  if (m_frames == 0) m_first_frame_time = sc_core::sc_time_stamp();
+  m_last_frame_time = sc_core::sc_time_stamp();
+  ++m_frames;
+  if (m_sink) m_sink(frame);
+  m_frame_shown.notify(sc_core::SC_ZERO_TIME);
+}
+
+bool DisplayController::fetch_line(uint32_t address, uint8_t* line, const sc_time& deadline) {
+  const unsigned line_bytes = m_params.width * bytes_per_pixel();
+  sc_time delay = sc_core::SC_ZERO_TIME;
+  for (unsigned offset = 0; offset < line_bytes; offset += m_params.burst_bytes) {
+    const unsigned length = std::min(m_params.burst_bytes, line_bytes - offset);
+    m_payload.set_command(tlm::TLM_READ_COMMAND);
+    m_payload.set_address(address + offset);
+    m_payload.set_data_ptr(line + offset);
+    m_payload.set_data_length(length);
+    m_payload.set_streaming_width(length);
+    m_payload.set_byte_enable_ptr(nullptr);
+    m_payload.set_byte_enable_length(0);
+    m_payload.set_dmi_allowed(false);
+    m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    dma_out->b_transport(m_payload, delay);
+    if (m_payload.is_response_error()) {
+      ++m_bus_errors;
+      log::warning(name(), "display DMA read error at " + log::hex(address + offset) + " (" +
+                               m_payload.get_response_string() + ")");
+      std::memset(line + offset, 0, length);
+    }
+    m_fetch_bytes += length;
+  }
+  const sc_time done = sc_core::sc_time_stamp() + delay;
+  wait(delay);
+  return done <= deadline;
+}
+
+void DisplayController::scan_out() {
+  const sc_time period(1.0 / m_params.refresh_hz, sc_core::SC_SEC);
+  const sc_time line_time = period / static_cast<double>(m_params.height + m_params.vblank_lines);
+  const unsigned line_bytes = m_params.width * bytes_per_pixel();
+  const sc_time lead = line_time * static_cast<double>(m_params.fifo_lines);
+  std::vector<uint8_t> next(frame_bytes());
+  for (;;) {
+    // A refresh period: vertical blank, then the visible lines. A requested
+    // swap takes effect at the start of the blank.
+    m_frame_start = sc_core::sc_time_stamp();
+    m_active_start = m_frame_start + line_time * static_cast<double>(m_params.vblank_lines);
+    const sc_time frame_end = m_frame_start + period;
+    m_vblank.set_at(true, m_frame_start);
+    m_vblank.set_at(false, m_active_start);
+    bool new_frame = false;
+    if (m_swap_pending) {
+      m_regs.set(regs::FRONT_BASE, m_regs.get(regs::BACK_BASE));
+      m_swap_pending = false;
+      m_front_valid = true;
+      new_frame = true;
+      raise(regs::IRQ_SWAP_DONE);
+    }
+    raise(regs::IRQ_VBLANK);
+    const bool scanning = m_front_valid && (m_regs.get(regs::CTRL) & regs::CTRL_ENABLE);
+    m_frame_in_scan = scanning && new_frame;
+    bool underrun = false;
+    if (scanning) {
+      const uint32_t base = m_regs.get(regs::FRONT_BASE);
+      for (unsigned y = 0; y < m_params.height; ++y) {
+        // The line buffer holds fifo_lines lines: line y may be fetched once
+        // line y - fifo_lines has gone to the screen.
+        const sc_time due = m_active_start + line_time * static_cast<double>(y);
+        const sc_time earliest = due > lead ? due - lead : sc_core::SC_ZERO_TIME;
+        if (earliest > sc_core::sc_time_stamp()) wait(earliest - sc_core::sc_time_stamp());
+        if (!fetch_line(base + y * line_bytes, &next[size_t{y} * line_bytes], due)) {
+          ++m_underrun_lines;
+          underrun = true;
+        }
+      }
+    }
+    if (sc_core::sc_time_stamp() < frame_end) wait(frame_end - sc_core::sc_time_stamp());
+    if (underrun) ++m_underrun_frames;
+    ++m_refreshes;
+    if (m_frame_in_scan) show(next);
+    m_frame_in_scan = false;
+  }
+}
+
+nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {
+  double rate = 0;
+  if (m_frames > 1) {
+    const double span = (m_last_frame_time - m_first_frame_time).to_seconds();
+    if (span > 0) rate = (m_frames - 1) / span;
+  }
+  return {{"mode", m_params.dma ? "dma" : "port"},
+          {"width", m_params.width},
+          {"height", m_params.height},
+          {"format", m_params.format == PixelFormat::rgb565 ? "rgb565" : "rgba8888"},
+          {"frames_shown", m_frames},
+          {"achieved_fps", rate},
+          {"refreshes", m_refreshes},
+          {"refresh_hz", m_params.dma ? m_params.refresh_hz : 0.0},
+          {"underrun_lines", m_underrun_lines},
+          {"underrun_frames", m_underrun_frames},
+          {"port_bytes", m_port_bytes},
+          {"dma_bytes", m_fetch_bytes},
+          {"bus_errors", m_bus_errors},
+          {"elapsed_ns", elapsed.to_seconds() * 1e9}};
+}
+
+}  // namespace tessera

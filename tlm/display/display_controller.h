@@ -1,0 +1,118 @@
+// Display controller with two ways to get a frame on screen:
+//  - port mode (display.dma=false, as on the J2210): the host copies the
+//    finished frame into the display port window and writes PRESENT; the
+//    host's time for the copy is its own cost.
+//  - DMA mode (display.dma=true, the proposed hardware): a display DMA scans
+//    the front buffer out of system memory over the bus once per refresh
+//    period, line by line, into a line buffer of display.fifo_lines lines.
+//    The host draws into the back buffer and requests a SWAP, which takes
+//    effect at the next vertical blank. A line whose fetch completes after
+//    the time it is due on screen is an underrun.
+// Every distinct frame shown goes to the output port: a callback that
+// soc_sim turns into a PNG file.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/register_bank.h"
+#include "common/timed_trace.h"
+
+namespace tessera {
+
+enum class PixelFormat { rgb565, rgba8888 };
+
+struct DisplayParams {
+  unsigned width = 320;
+  unsigned height = 240;
+  PixelFormat format = PixelFormat::rgb565;
+  bool dma = false;
+  double refresh_hz = 60.0;
+  unsigned vblank_lines = 20;
+  unsigned burst_bytes = 64;
+  unsigned fifo_lines = 1;
+  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
+  unsigned port_cycles = 1;  // cycles per port write (besides the bus's)
+};
+
+struct Frame {
+  unsigned index;        // 0, 1, 2, ... in the order shown
+  double time_seconds;   // simulated time at which it was complete on screen
+  unsigned width;
+  unsigned height;
+  std::vector<uint8_t> rgba;  // width * height * 4, row 0 at the top
+};
+
+class DisplayController : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(DisplayController);
+
+  tlm_utils::simple_target_socket<DisplayController, 32> in;       // registers
+  tlm_utils::simple_target_socket<DisplayController, 32> port_in;  // display port window
+  tlm_utils::simple_initiator_socket<DisplayController, 32> dma_out;
+  sc_core::sc_out<bool> irq;
+
+  DisplayController(sc_core::sc_module_name name, const DisplayParams& params);
+
+  void on_frame(std::function<void(const Frame&)> sink) { m_sink = std::move(sink); }
+
+  unsigned bytes_per_pixel() const { return m_params.format == PixelFormat::rgb565 ? 2 : 4; }
+  uint64_t frame_bytes() const { return uint64_t{m_params.width} * m_params.height * bytes_per_pixel(); }
+  uint64_t frames_shown() const { return m_frames; }
+  uint64_t underruns() const { return m_underrun_lines; }
+  // True while a frame has been handed to the display but not yet shown.
+  bool frame_pending() const;
+  const sc_core::sc_event& frame_shown_event() const { return m_frame_shown; }
+
+  void trace(sc_core::sc_trace_file* file);
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
+
+  void scan_out();      // SC_THREAD, DMA mode
+  void update_irq();    // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
+  void raise(uint32_t bits);
+  void show(const std::vector<uint8_t>& pixels);
+  bool fetch_line(uint32_t address, uint8_t* line, const sc_core::sc_time& deadline);
+  bool in_vblank() const;
+
+  DisplayParams m_params;
+  RegisterBank m_regs;
+  std::function<void(const Frame&)> m_sink;
+  std::vector<uint8_t> m_port_frame;
+  std::vector<uint8_t> m_scan_frame;
+  sc_core::sc_event m_irq_changed;
+  sc_core::sc_event m_frame_shown;
+  tlm::tlm_generic_payload m_payload;
+
+  bool m_swap_pending = false;
+  bool m_front_valid = false;
+  bool m_frame_in_scan = false;  // a new frame is being scanned out, not yet shown
+  uint64_t m_frames = 0;
+  uint64_t m_refreshes = 0;
+  uint64_t m_underrun_lines = 0;
+  uint64_t m_underrun_frames = 0;
+  uint64_t m_port_bytes = 0;
+  uint64_t m_fetch_bytes = 0;
+  uint64_t m_bus_errors = 0;
+  TimedTrace m_vblank;  // for the VCD; in_vblank() answers from the times below
+  sc_core::sc_time m_frame_start;
+  sc_core::sc_time m_active_start;
+  sc_core::sc_time m_first_frame_time;
+  sc_core::sc_time m_last_frame_time;
+};
+
+}  // namespace tessera

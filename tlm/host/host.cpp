@@ -1,0 +1,353 @@
+#include "host/host.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/log.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+
+const char* op_name(Op op) {
+  switch (op) {
+    case Op::alu: return "alu";
+    case Op::load_use: return "load_use";
+    case Op::mul: return "mul";
+    case Op::branch: return "branch";
+    case Op::call: return "call";
+    case Op::fadd: return "fadd";
+    case Op::fmul: return "fmul";
+    case Op::fdiv: return "fdiv";
+    case Op::fsqrt: return "fsqrt";
+    case Op::fcmp: return "fcmp";
+    case Op::fconv: return "fconv";
+    case Op::count_: break;
+  }
+  return "?";
+}
+
+Host::Host(sc_core::sc_module_name name, const HostParams& params)
+    : sc_core::sc_module(name), out("out"), irq("irq", params.irq_lines), m_params(params),
+      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways), m_busy_trace("busy") {
+  out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
+  m_qk.reset();
+  SC_THREAD(run);
+}
+
+void Host::trace(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
+  for (unsigned i = 0; i < irq.size(); ++i) sc_core::sc_trace(file, irq[i], std::string(name()) + ".irq_" + std::to_string(i));
+}
+
+uint64_t Host::local_ticks() const {
+  return sc_core::sc_time_stamp().value() + m_qk.get_local_time().value();
+}
+
+void Host::maybe_sync() {
+  if (m_qk.need_sync()) m_qk.sync();
+}
+
+void Host::charge(uint64_t cycles) {
+  m_busy_cycles += cycles;
+  m_qk.inc(m_params.clock_period * static_cast<double>(cycles));
+  maybe_sync();
+}
+
+void Host::stall_until(uint64_t absolute_ticks) {
+  const uint64_t local = local_ticks();
+  if (absolute_ticks <= local) return;
+  m_stall_ticks += absolute_ticks - local;
+  m_qk.set(sc_time::from_value(absolute_ticks - sc_core::sc_time_stamp().value()));
+  maybe_sync();
+}
+
+void Host::compute(Op op, uint64_t count) {
+  const auto index = static_cast<size_t>(op);
+  if (index >= m_op_counts.size()) throw std::invalid_argument("host: unknown operation class");
+  m_op_counts[index] += count;
+  charge(m_params.op_cycles[index] * count);
+}
+
+double Host::now_seconds() const { return sc_time::from_value(local_ticks()).to_seconds(); }
+
+bool Host::cacheable(uint32_t address, unsigned bytes) const {
+  return address >= m_params.cacheable_base &&
+         static_cast<uint64_t>(address) + bytes <= static_cast<uint64_t>(m_params.cacheable_base) + m_params.cacheable_size;
+}
+
+uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
+                        uint64_t not_before_ticks) {
+  const uint64_t now = sc_core::sc_time_stamp().value();
+  const uint64_t issue = std::max(local_ticks(), not_before_ticks);
+  sc_time delay = sc_time::from_value(issue - now);
+  m_payload.set_command(command);
+  m_payload.set_address(address);
+  m_payload.set_data_ptr(data);
+  m_payload.set_data_length(bytes);
+  m_payload.set_streaming_width(bytes);
+  m_payload.set_byte_enable_ptr(nullptr);
+  m_payload.set_byte_enable_length(0);
+  m_payload.set_dmi_allowed(false);
+  m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  out->b_transport(m_payload, delay);
+  if (m_payload.is_response_error()) {
+    ++m_bus_errors;
+    const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +
+                                " of " + std::to_string(bytes) + " bytes at " + log::hex(address) + " (" +
+                                m_payload.get_response_string() + ")";
+    throw BusError(message, address);
+  }
+  return sc_core::sc_time_stamp().value() + delay.value();
+}
+
+uint8_t* Host::dmi_pointer(uint32_t address, unsigned bytes, bool write) {
+  if (!m_dmi_valid && !m_dmi_denied) {
+    tlm::tlm_generic_payload request;
+    request.set_command(tlm::TLM_READ_COMMAND);
+    request.set_address(address);
+    m_dmi.init();
+    m_dmi_valid = out->get_direct_mem_ptr(request, m_dmi) && m_dmi.is_read_write_allowed();
+    m_dmi_denied = !m_dmi_valid;
+  }
+  (void)write;
+  if (!m_dmi_valid || address < m_dmi.get_start_address() ||
+      static_cast<uint64_t>(address) + bytes - 1 > m_dmi.get_end_address())
+    return nullptr;
+  return m_dmi.get_dmi_ptr() + (address - m_dmi.get_start_address());
+}
+
+void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
+  if (m_dmi_valid && start <= m_dmi.get_end_address() && end >= m_dmi.get_start_address()) m_dmi_valid = false;
+  m_dmi_denied = false;
+}
+
+void Host::read_data(uint32_t address, void* data, unsigned bytes) {
+  ++m_loads;
+  charge(m_params.load_cycles);
+  if (cacheable(address, bytes) && m_dcache.enabled()) {
+    const DataCache::Result result = m_dcache.read(address);
+    if (!result.hit) {
+      const unsigned line = m_dcache.line_bytes();
+      if (result.evicted_dirty) {
+        std::vector<uint8_t> victim(line);
+        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim.data(), p, line);
+        post_write(result.evicted_address, victim.data(), line);
+      }
+      uint8_t fill[256];
+      stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(address), fill, line, 0));
+      std::memcpy(data, fill + (address - m_dcache.line_address(address)), bytes);
+      return;
+    }
+    if (const uint8_t* p = dmi_pointer(address, bytes, false)) {
+      std::memcpy(data, p, bytes);
+      return;
+    }
+    // No DMI: fetch the data without time (the cache hit has been charged).
+    tlm::tlm_generic_payload request;
+    request.set_command(tlm::TLM_READ_COMMAND);
+    request.set_address(address);
+    request.set_data_ptr(static_cast<uint8_t*>(data));
+    request.set_data_length(bytes);
+    request.set_streaming_width(bytes);
+    out->transport_dbg(request);
+    return;
+  }
+  // Uncached: the write buffer drains before a read goes out, so it cannot
+  // overtake earlier writes.
+  drain_write_buffer();
+  stall_until(transact(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes, 0));
+}
+
+void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
+  ++m_stores;
+  charge(m_params.store_cycles);
+  if (cacheable(address, bytes) && m_dcache.write(address)) {
+    if (uint8_t* p = dmi_pointer(address, bytes, true)) {
+      std::memcpy(p, data, bytes);
+      return;
+    }
+    tlm::tlm_generic_payload request;
+    request.set_command(tlm::TLM_WRITE_COMMAND);
+    request.set_address(address);
+    request.set_data_ptr(const_cast<uint8_t*>(static_cast<const uint8_t*>(data)));
+    request.set_data_length(bytes);
+    request.set_streaming_width(bytes);
+    out->transport_dbg(request);
+    return;
+  }
+  post_write(address, static_cast<const uint8_t*>(data), bytes);
+}
+
+void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes) {
+  const unsigned words = std::max(1u, (bytes + 3) / 4);
+  auto retire = [&] {
+    const uint64_t local = local_ticks();
+    while (!m_write_buffer.empty() && m_write_buffer.front().done_ticks <= local) {
+      m_write_buffer_words -= m_write_buffer.front().words;
+      m_write_buffer.pop_front();
+    }
+  };
+  retire();
+  while (!m_write_buffer.empty() && m_write_buffer_words + words > m_params.write_buffer_words) {
+    ++m_write_buffer_stalls;
+    stall_until(m_write_buffer.front().done_ticks);
+    retire();
+  }
+  std::vector<uint8_t> copy(data, data + bytes);
+  const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, copy.data(), bytes, m_write_buffer_free_ticks);
+  m_write_buffer_free_ticks = done;
+  m_write_buffer.push_back({done, words});
+  m_write_buffer_words += words;
+}
+
+void Host::drain_write_buffer() {
+  if (m_write_buffer.empty()) return;
+  stall_until(m_write_buffer_free_ticks);
+  m_write_buffer.clear();
+  m_write_buffer_words = 0;
+}
+
+namespace {
+void check_alignment(uint32_t address, unsigned bytes) {
+  if (address % bytes != 0)
+    throw std::invalid_argument("host: misaligned " + std::to_string(bytes * 8) + "-bit access at " +
+                                log::hex(address));
+}
+}  // namespace
+
+uint32_t Host::read32(uint32_t address) {
+  check_alignment(address, 4);
+  uint32_t value = 0;
+  read_data(address, &value, 4);
+  return value;
+}
+
+uint16_t Host::read16(uint32_t address) {
+  check_alignment(address, 2);
+  uint16_t value = 0;
+  read_data(address, &value, 2);
+  return value;
+}
+
+uint8_t Host::read8(uint32_t address) {
+  uint8_t value = 0;
+  read_data(address, &value, 1);
+  return value;
+}
+
+void Host::write32(uint32_t address, uint32_t value) {
+  check_alignment(address, 4);
+  write_data(address, &value, 4);
+}
+
+void Host::write16(uint32_t address, uint16_t value) {
+  check_alignment(address, 2);
+  write_data(address, &value, 2);
+}
+
+void Host::write8(uint32_t address, uint8_t value) { write_data(address, &value, 1); }
+
+void Host::read_words(uint32_t address, uint32_t* words, unsigned count) {
+  check_alignment(address, 4);
+  if (count == 0) return;
+  if (cacheable(address, count * 4) && m_dcache.enabled()) {
+    // LDM through the cache: one load per word, a line fill per missed line.
+    for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
+    return;
+  }
+  // LDM from an uncached address: one burst.
+  ++m_loads;
+  charge(m_params.load_cycles * count + 1);
+  drain_write_buffer();
+  stall_until(transact(tlm::TLM_READ_COMMAND, address, reinterpret_cast<uint8_t*>(words), count * 4, 0));
+}
+
+void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) {
+  check_alignment(address, 4);
+  if (count == 0) return;
+  ++m_stores;
+  charge(m_params.store_cycles * count + 1);
+  // STM: words hitting the cache are written there; the rest go out as one
+  // burst per contiguous run through the write buffer.
+  unsigned run_start = 0;
+  for (unsigned i = 0; i <= count; ++i) {
+    const bool hit = i < count && cacheable(address + 4 * i, 4) && m_dcache.write(address + 4 * i);
+    if (hit) {
+      if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) std::memcpy(p, &words[i], 4);
+    }
+    if (i == count || hit) {
+      while (run_start < i) {
+        const unsigned length = std::min(i - run_start, m_params.write_buffer_words);
+        post_write(address + 4 * run_start, reinterpret_cast<const uint8_t*>(&words[run_start]), length * 4);
+        run_start += length;
+      }
+      run_start = i + 1;
+    }
+  }
+}
+
+bool Host::irq_pending(unsigned line) {
+  if (line >= irq.size())
+    throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
+                            std::to_string(irq.size()) + ")");
+  m_qk.sync();
+  return irq[line].read();
+}
+
+void Host::wait_irq(unsigned line) {
+  if (line >= irq.size())
+    throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
+                            std::to_string(irq.size()) + ")");
+  m_qk.sync();
+  if (irq[line].read()) return;
+  const uint64_t start = sc_core::sc_time_stamp().value();
+  if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
+  while (!irq[line].read()) wait(irq[line].value_changed_event());
+  m_idle_ticks += sc_core::sc_time_stamp().value() - start;
+  if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
+}
+
+void Host::run() {
+  if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
+  try {
+    if (!m_program) throw std::logic_error("host: no program to run");
+    m_exit_code = m_program(*this);
+    drain_write_buffer();
+    if (m_exit_code != 0) m_failure = "program exited with status " + std::to_string(m_exit_code);
+  } catch (const sc_core::sc_unwind_exception&) {
+    throw;
+  } catch (const std::exception& e) {
+    m_exit_code = 1;
+    m_failure = e.what();
+    log::error(name(), m_failure);
+  }
+  m_qk.sync();
+  if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
+  m_finished = true;
+  if (m_on_finish) m_on_finish();
+}
+
+nlohmann::json Host::stats_json(const sc_time& elapsed) const {
+  const double elapsed_s = elapsed.to_seconds();
+  const double busy_s = busy_time().to_seconds();
+  const double stall_s = stall_time().to_seconds();
+  nlohmann::json ops = nlohmann::json::object();
+  for (size_t i = 0; i < m_op_counts.size(); ++i) ops[op_name(static_cast<Op>(i))] = m_op_counts[i];
+  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
+          {"busy_ns", busy_s * 1e9},
+          {"stalled_on_bus_ns", stall_s * 1e9},
+          {"idle_ns", std::max(0.0, elapsed_s - busy_s - stall_s) * 1e9},
+          {"waiting_for_irq_ns", idle_time().to_seconds() * 1e9},
+          {"utilisation", elapsed_s > 0 ? busy_s / elapsed_s : 0.0},
+          {"busy_cycles", m_busy_cycles},
+          {"loads", m_loads},
+          {"stores", m_stores},
+          {"operations", ops},
+          {"dcache", {{"hits", m_dcache.hits()}, {"misses", m_dcache.misses()}, {"writebacks", m_dcache.writebacks()}}},
+          {"write_buffer_stalls", m_write_buffer_stalls},
+          {"bus_errors", m_bus_errors}};
+}
+
+}  // namespace tessera

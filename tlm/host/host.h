@@ -1,0 +1,142 @@
+// The ARM922T host: runs application and driver code (host-compiled C++) in
+// an SC_THREAD and charges its time by a cost model in ARM cycles per
+// operation class, through a TLM-2.0 quantum keeper. Loads and stores go
+// through a tag model of the data cache (system memory is cacheable, devices
+// are not) and a posted-write buffer; misses, write-buffer drains and device
+// accesses are real bus transactions, so the host sees contention and its
+// traffic is measured. Cache hits read and write memory through DMI.
+//
+// Time is split into busy (executing), stalled (waiting on the bus: line
+// fills, full write buffer, device reads) and idle (waiting for an interrupt
+// or finished).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/tlm_quantumkeeper.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/timed_trace.h"
+#include "host/data_cache.h"
+#include "host/host_api.h"
+
+namespace tessera {
+
+struct HostParams {
+  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 192.0, sc_core::SC_NS);
+  std::array<unsigned, static_cast<size_t>(Op::count_)> op_cycles{};  // per Op
+  unsigned load_cycles = 1;
+  unsigned store_cycles = 1;
+  unsigned dcache_bytes = 8192;
+  unsigned dcache_line_bytes = 32;
+  unsigned dcache_ways = 64;
+  unsigned write_buffer_words = 16;
+  unsigned irq_lines = 8;
+  // Cacheable address range (system memory).
+  uint32_t cacheable_base = 0;
+  uint32_t cacheable_size = 0;
+};
+
+class Host : public sc_core::sc_module, public HostApi {
+ public:
+  SC_HAS_PROCESS(Host);
+
+  using Program = std::function<int(HostApi&)>;
+
+  tlm_utils::simple_initiator_socket<Host, 32> out;
+  sc_core::sc_vector<sc_core::sc_in<bool>> irq;
+
+  Host(sc_core::sc_module_name name, const HostParams& params);
+
+  void set_program(Program program) { m_program = std::move(program); }
+  // Called (in simulation) when the program returns or fails.
+  void on_finish(std::function<void()> callback) { m_on_finish = std::move(callback); }
+  bool finished() const { return m_finished; }
+  int exit_code() const { return m_exit_code; }
+  const std::string& failure() const { return m_failure; }
+
+  void trace(sc_core::sc_trace_file* file);
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles); }
+  sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
+  sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
+
+  // HostApi
+  void compute(Op op, uint64_t count = 1) override;
+  uint32_t read32(uint32_t address) override;
+  uint16_t read16(uint32_t address) override;
+  uint8_t read8(uint32_t address) override;
+  void write32(uint32_t address, uint32_t value) override;
+  void write16(uint32_t address, uint16_t value) override;
+  void write8(uint32_t address, uint8_t value) override;
+  void read_words(uint32_t address, uint32_t* words, unsigned count) override;
+  void write_words(uint32_t address, const uint32_t* words, unsigned count) override;
+  void wait_irq(unsigned line) override;
+  bool irq_pending(unsigned line) override;
+  double now_seconds() const override;
+  double clock_hz() const override { return 1.0 / m_params.clock_period.to_seconds(); }
+
+ private:
+  void run();
+  void charge(uint64_t cycles);
+  void stall_until(uint64_t absolute_ticks);
+  uint64_t local_ticks() const;
+  bool cacheable(uint32_t address, unsigned bytes) const;
+  // A bus transaction issued at the host's local time (or later, `not_before`);
+  // returns its completion time in absolute ticks. Throws BusError.
+  uint64_t transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
+                    uint64_t not_before_ticks);
+  void read_data(uint32_t address, void* data, unsigned bytes);
+  void write_data(uint32_t address, const void* data, unsigned bytes);
+  void post_write(uint32_t address, const uint8_t* data, unsigned bytes);
+  void drain_write_buffer();
+  uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
+  void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
+  void maybe_sync();
+
+  HostParams m_params;
+  Program m_program;
+  std::function<void()> m_on_finish;
+  tlm_utils::tlm_quantumkeeper m_qk;
+  DataCache m_dcache;
+  tlm::tlm_generic_payload m_payload;
+
+  tlm::tlm_dmi m_dmi;
+  bool m_dmi_valid = false;
+  bool m_dmi_denied = false;
+
+  struct PendingWrite {
+    uint64_t done_ticks;
+    unsigned words;
+  };
+  std::deque<PendingWrite> m_write_buffer;
+  unsigned m_write_buffer_words = 0;
+  uint64_t m_write_buffer_free_ticks = 0;  // when the buffer finishes its last write
+
+  bool m_finished = false;
+  int m_exit_code = 0;
+  std::string m_failure;
+
+  uint64_t m_busy_cycles = 0;
+  uint64_t m_stall_ticks = 0;
+  uint64_t m_idle_ticks = 0;
+  uint64_t m_write_buffer_stalls = 0;
+  uint64_t m_bus_errors = 0;
+  std::array<uint64_t, static_cast<size_t>(Op::count_)> m_op_counts{};
+  uint64_t m_loads = 0;
+  uint64_t m_stores = 0;
+
+  TimedTrace m_busy_trace;
+  bool m_tracing = false;
+};
+
+}  // namespace tessera

@@ -1,0 +1,69 @@
+// What software running on the host model sees: the device layer. Application
+// and driver code is host-compiled C++ that calls these functions for every
+// operation whose time matters; each call advances the host's local time by
+// the cost model (compute) or by the bus (memory and device accesses).
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace tessera {
+
+// Operation classes of the ARM922T cost model. Loads and stores are not
+// listed: they are charged by the memory functions below, which also model
+// the data cache and the write buffer.
+enum class Op {
+  alu,       // data processing (ADD, SUB, MOV, logic, shifts, compares)
+  load_use,  // interlock: a loaded value used by the next instruction
+  mul,       // MUL/MLA
+  branch,    // taken branch
+  call,      // function call and return
+  fadd,      // soft-float add/subtract
+  fmul,      // soft-float multiply
+  fdiv,      // soft-float divide
+  fsqrt,     // soft-float square root
+  fcmp,      // soft-float compare
+  fconv,     // soft-float int <-> float conversion
+  count_
+};
+
+const char* op_name(Op op);
+
+// Raised into the software when a bus access gets an error response.
+class BusError : public std::runtime_error {
+ public:
+  BusError(const std::string& what, uint32_t address) : std::runtime_error(what), m_address(address) {}
+  uint32_t address() const { return m_address; }
+
+ private:
+  uint32_t m_address;
+};
+
+class HostApi {
+ public:
+  virtual ~HostApi() = default;
+
+  virtual void compute(Op op, uint64_t count = 1) = 0;
+
+  virtual uint32_t read32(uint32_t address) = 0;
+  virtual uint16_t read16(uint32_t address) = 0;
+  virtual uint8_t read8(uint32_t address) = 0;
+  virtual void write32(uint32_t address, uint32_t value) = 0;
+  virtual void write16(uint32_t address, uint16_t value) = 0;
+  virtual void write8(uint32_t address, uint8_t value) = 0;
+  // LDM/STM of `count` words (one bus burst where the access misses the cache).
+  virtual void read_words(uint32_t address, uint32_t* words, unsigned count) = 0;
+  virtual void write_words(uint32_t address, const uint32_t* words, unsigned count) = 0;
+
+  // Sleeps until interrupt line `line` is high (level-sensitive); the time
+  // is counted as idle.
+  virtual void wait_irq(unsigned line) = 0;
+  virtual bool irq_pending(unsigned line) = 0;
+
+  // Host's local time in seconds (simulated time plus its quantum offset).
+  virtual double now_seconds() const = 0;
+  virtual double clock_hz() const = 0;
+};
+
+}  // namespace tessera

@@ -1,0 +1,117 @@
+#include "mem/memory.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "common/log.h"
+
+namespace tessera {
+
+Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
+    : sc_core::sc_module(name), in("in"), m_params(params), m_data(params.size_bytes, 0) {
+  if (params.size_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": size 0");
+  in.register_b_transport(this, &Memory::b_transport);
+  in.register_transport_dbg(this, &Memory::transport_dbg);
+  in.register_get_direct_mem_ptr(this, &Memory::get_direct_mem_ptr);
+}
+
+sc_core::sc_time Memory::access_time(uint64_t bytes) const {
+  const uint64_t beats = bytes == 0 ? 1 : (bytes + m_params.width_bytes - 1) / m_params.width_bytes;
+  return m_params.clock_period * static_cast<double>(m_params.first_access_cycles + beats * m_params.beat_cycles);
+}
+
+bool Memory::check(tlm::tlm_generic_payload& gp) const {
+  const uint64_t address = gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  if (address >= m_data.size() || length > m_data.size() - address) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    return false;
+  }
+  if (gp.get_streaming_width() < length) {
+    gp.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
+    return false;
+  }
+  return true;
+}
+
+void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  if (!check(gp)) {
+    ++m_errors;
+    log::warning(name(), std::string("access outside memory: ") + (gp.is_write() ? "write" : "read") + " of " +
+                             std::to_string(gp.get_data_length()) + " bytes at offset " +
+                             log::hex(gp.get_address()));
+    return;
+  }
+  uint8_t* memory = m_data.data() + gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  const uint8_t* enables = gp.get_byte_enable_ptr();
+  const unsigned enable_length = gp.get_byte_enable_length();
+  if (gp.is_read()) {
+    if (enables) {
+      for (uint64_t i = 0; i < length; ++i)
+        if (enables[i % enable_length] == TLM_BYTE_ENABLED) gp.get_data_ptr()[i] = memory[i];
+    } else {
+      std::memcpy(gp.get_data_ptr(), memory, length);
+    }
+    ++m_reads;
+    m_bytes_read += length;
+  } else if (gp.is_write()) {
+    if (enables) {
+      for (uint64_t i = 0; i < length; ++i)
+        if (enables[i % enable_length] == TLM_BYTE_ENABLED) memory[i] = gp.get_data_ptr()[i];
+    } else {
+      std::memcpy(memory, gp.get_data_ptr(), length);
+    }
+    ++m_writes;
+    m_bytes_written += length;
+  }
+  const sc_core::sc_time time = access_time(length);
+  m_busy_ticks += time.value();
+  delay += time;
+  gp.set_dmi_allowed(true);
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+unsigned Memory::transport_dbg(tlm::tlm_generic_payload& gp) {
+  const uint64_t address = gp.get_address();
+  if (address >= m_data.size()) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    return 0;
+  }
+  const uint64_t length = std::min<uint64_t>(gp.get_data_length(), m_data.size() - address);
+  if (gp.is_read()) std::memcpy(gp.get_data_ptr(), m_data.data() + address, length);
+  else if (gp.is_write()) std::memcpy(m_data.data() + address, gp.get_data_ptr(), length);
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  return static_cast<unsigned>(length);
+}
+
+bool Memory::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
+  if (gp.get_address() >= m_data.size()) {
+    dmi.allow_none();
+    return false;
+  }
+  dmi.allow_read_write();
+  dmi.set_dmi_ptr(m_data.data());
+  dmi.set_start_address(0);
+  dmi.set_end_address(m_data.size() - 1);
+  // Latency of one single-beat access; initiators add per-beat time for bursts.
+  dmi.set_read_latency(access_time(m_params.width_bytes));
+  dmi.set_write_latency(access_time(m_params.width_bytes));
+  return true;
+}
+
+void Memory::invalidate_dmi() { in->invalidate_direct_mem_ptr(0, m_data.size() - 1); }
+
+nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
+  const double busy = static_cast<double>(m_busy_ticks);
+  return {{"size_bytes", m_data.size()},
+          {"reads", m_reads},
+          {"writes", m_writes},
+          {"bytes_read", m_bytes_read},
+          {"bytes_written", m_bytes_written},
+          {"busy_ns", sc_core::sc_time::from_value(m_busy_ticks).to_seconds() * 1e9},
+          {"utilisation", elapsed.value() ? busy / static_cast<double>(elapsed.value()) : 0.0},
+          {"errors", m_errors}};
+}
+
+}  // namespace tessera

@@ -1,0 +1,62 @@
+// System memory (SDRAM): a TLM target with a first-access latency and a
+// per-beat burst latency in bus cycles, DMI for reads and writes, and debug
+// transport. Addresses are offsets into the memory (the bus subtracts the
+// region base). An access past the end is an address error.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_target_socket.h>
+
+#include <nlohmann/json.hpp>
+
+namespace tessera {
+
+struct MemoryParams {
+  uint64_t size_bytes = 16u << 20;
+  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
+  unsigned width_bytes = 4;         // one beat moves this much
+  unsigned first_access_cycles = 4;  // wait states before the first beat
+  unsigned beat_cycles = 1;          // cycles per beat
+};
+
+class Memory : public sc_core::sc_module {
+ public:
+  tlm_utils::simple_target_socket<Memory, 32> in;
+
+  Memory(sc_core::sc_module_name name, const MemoryParams& params);
+
+  // Revokes every DMI pointer handed out (e.g. before the host model's view of
+  // memory changes); initiators get invalidate_direct_mem_ptr.
+  void invalidate_dmi();
+
+  uint64_t size() const { return m_data.size(); }
+  // Direct view for the testbench (loading programs, checking results).
+  uint8_t* data() { return m_data.data(); }
+  // Data-phase time of an access of `bytes` bytes.
+  sc_core::sc_time access_time(uint64_t bytes) const;
+
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
+  // Checks range and attributes; sets the response status on failure.
+  bool check(tlm::tlm_generic_payload& gp) const;
+
+  MemoryParams m_params;
+  std::vector<uint8_t> m_data;
+  uint64_t m_reads = 0;
+  uint64_t m_writes = 0;
+  uint64_t m_bytes_read = 0;
+  uint64_t m_bytes_written = 0;
+  uint64_t m_busy_ticks = 0;
+  uint64_t m_errors = 0;
+};
+
+}  // namespace tessera

@@ -1,0 +1,72 @@
+// The SoC assembled from one Config: host, bus, system memory and display,
+// bound by the memory map (memory_map.def) and the interrupt map
+// (irq_map.def). Owns the statistics and the VCD trace.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <systemc>
+
+#include <nlohmann/json.hpp>
+
+#include "bus/ahb_bus.h"
+#include "config/config.h"
+#include "display/display_controller.h"
+#include "host/host.h"
+#include "mem/memory.h"
+#include "soc/irq_map.h"
+
+namespace tessera {
+
+// Bus priorities under fixed-priority arbitration (lower is served first):
+// the display DMA has a deadline every line, the host has none.
+struct BusPriority {
+  static constexpr unsigned display_dma = 0;
+  static constexpr unsigned host = 3;
+};
+
+class Soc : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(Soc);
+
+  Soc(sc_core::sc_module_name name, const Config& config);
+  ~Soc() override;
+
+  AhbBus bus;
+  Memory memory;
+  Host host;
+  DisplayController display;
+
+  // Runs the host program; the simulation stops when it has finished and
+  // the display has shown every frame handed to it.
+  void set_program(Host::Program program) { host.set_program(std::move(program)); }
+  bool done() const { return m_done; }
+
+  // Opens a VCD file (path without ".vcd") and traces the signals that
+  // matter. Call before sc_start.
+  void trace_to(const std::string& path_without_extension);
+  void close_trace();
+
+  nlohmann::json stats_json() const;
+
+  // Addresses of the two frame buffers in system memory (top of memory).
+  uint32_t frame_buffer(unsigned index) const;
+
+ private:
+  void finish();  // SC_THREAD
+  std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
+  sc_core::sc_event m_host_finished;
+  bool m_done = false;
+  sc_core::sc_trace_file* m_trace = nullptr;
+  std::string m_trace_path;
+  const Config& m_config;
+};
+
+BusParams bus_params(const Config& config);
+MemoryParams memory_params(const Config& config);
+HostParams host_params(const Config& config);
+DisplayParams display_params(const Config& config);
+
+}  // namespace tessera
