@@ -16,6 +16,7 @@ PACKAGES=(
   libtinyobjloader-dev    # Wavefront OBJ loading
   yosys                   # synthesis size report of the Verilog units
   python3                 # helper scripts
+  python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)
 )
 
 if [[ "${TESSERA_SKIP_INSTALL:-0}" == "1" ]]; then

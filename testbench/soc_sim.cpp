@@ -193,11 +193,14 @@ int run(int argc, char* argv[]) {
     return kExitUsage;
   }
 
+  // SystemC appends ".vcd" to the name it is given.
+  std::string vcd_base = opt.vcd;
+  if (vcd_base.size() > 4 && vcd_base.substr(vcd_base.size() - 4) == ".vcd") vcd_base.resize(vcd_base.size() - 4);
   const std::string stats_path = opt.stats.empty() ? (fs::path(opt.out_dir) / "stats.json").string() : opt.stats;
   try {
     prepare_output_dir(opt.out_dir);
     check_writable_file(stats_path);
-    if (!opt.vcd.empty()) check_writable_file(opt.vcd);
+    if (!opt.vcd.empty()) check_writable_file(vcd_base + ".vcd");
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return kExitUsage;
@@ -225,8 +228,6 @@ int run(int argc, char* argv[]) {
     return app->main(env);
   });
 
-  std::string vcd_base = opt.vcd;
-  if (vcd_base.size() > 4 && vcd_base.substr(vcd_base.size() - 4) == ".vcd") vcd_base.resize(vcd_base.size() - 4);
   if (!opt.vcd.empty()) soc.trace_to(vcd_base);
 
   Progress progress(!opt.quiet && isatty(STDERR_FILENO), frames);

@@ -9,6 +9,7 @@ const std::map<std::string, AppInfo>& builtin_apps() {
       {"pattern", {pattern_app, "moving test pattern drawn by the host into the frame buffer (default demo)"}},
       {"calib_add", {calib_add_app, "host calibration: loop of 16-bit additions, memory operands (calibration.md)"}},
       {"calib_mul", {calib_mul_app, "host calibration: loop of 16x8-bit multiplications, memory operands"}},
+      {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
   };
   return apps;
 }

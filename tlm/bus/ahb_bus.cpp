@@ -31,8 +31,11 @@ void AhbBus::add_initiator(const std::string& initiator_name, unsigned priority)
   stats.name = initiator_name;
   stats.priority = priority;
   m_stats.push_back(stats);
-  m_request_traces.push_back(std::make_unique<TimedTrace>((initiator_name + "_request").c_str()));
-  m_grant_traces.push_back(std::make_unique<TimedTrace>((initiator_name + "_grant").c_str()));
+  // attach() runs outside the bus's constructor, so these modules land in
+  // the caller's scope: the bus's name keeps them apart from another bus's.
+  const std::string prefix = std::string(basename()) + "_" + initiator_name;
+  m_request_traces.push_back(std::make_unique<TimedTrace>((prefix + "_request").c_str()));
+  m_grant_traces.push_back(std::make_unique<TimedTrace>((prefix + "_grant").c_str()));
 }
 
 void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_name) {
@@ -158,6 +161,9 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     wait(sc_core::SC_ZERO_TIME);
     if (!request.granted) resolve_batch();
   } else {
+    // Pending synchronised requests are for the current time, so no later
+    // than this one: they are served first.
+    if (!m_batch.empty()) resolve_batch();
     request.start_ticks = reserve(request.request_ticks, request.occupancy_ticks);
     m_last_granted = initiator;
   }

@@ -17,7 +17,9 @@
 //
 // Arbitration: requests that arrive at the same simulated time with no local
 // time offset (synchronised initiators) are collected for one delta cycle and
-// served in the order the policy gives. Requests from initiators ahead in
+// served in the order the policy gives (a request from an initiator ahead
+// in time that arrives during that delta cycle serves the collected ones
+// first, since they are earlier). Requests from initiators ahead in
 // their quantum are served in arrival order at their request times; the
 // quantum (sim.quantum_ns) bounds how far that order can differ from the
 // hardware's, and a quantum of 0 makes every request synchronised.

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <tlm>
+
 namespace tessera::log {
 namespace {
 
@@ -94,6 +96,19 @@ void error(const std::string& module, const std::string& message) {
 
 unsigned warning_count() { return g_warnings; }
 unsigned error_count() { return g_errors; }
+
+std::string response_text(int status) {
+  switch (static_cast<tlm::tlm_response_status>(status)) {
+    case tlm::TLM_OK_RESPONSE: return "ok";
+    case tlm::TLM_INCOMPLETE_RESPONSE: return "incomplete (no target answered)";
+    case tlm::TLM_GENERIC_ERROR_RESPONSE: return "generic error";
+    case tlm::TLM_ADDRESS_ERROR_RESPONSE: return "address error";
+    case tlm::TLM_COMMAND_ERROR_RESPONSE: return "command error";
+    case tlm::TLM_BURST_ERROR_RESPONSE: return "burst error";
+    case tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE: return "byte-enable error";
+  }
+  return "unknown response " + std::to_string(status);
+}
 
 std::string hex(uint64_t value, int digits) {
   char buffer[24];

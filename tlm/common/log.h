@@ -30,6 +30,9 @@ void error(const std::string& module, const std::string& message);
 unsigned warning_count();
 unsigned error_count();
 
+// "address error", "command error", ... for a TLM response status.
+std::string response_text(int tlm_response_status);
+
 // "0x0000abcd"
 std::string hex(uint64_t value, int digits = 8);
 

@@ -57,7 +57,7 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
     gp.set_response_status(status);
     log::warning(m_owner, std::string("bad register access: ") + (gp.is_write() ? "write" : "read") +
                               " of " + std::to_string(gp.get_data_length()) + " bytes at offset " +
-                              log::hex(gp.get_address()) + " (" + gp.get_response_string() + ")");
+                              log::hex(gp.get_address()) + " (" + log::response_text(gp.get_response_status()) + ")");
     return nullptr;
   }
   uint32_t data = 0;
@@ -77,8 +77,10 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
 unsigned RegisterBank::transport_dbg(tlm::tlm_generic_payload& gp) {
   Entry* entry = nullptr;
   if (check(gp, entry) != tlm::TLM_OK_RESPONSE && !(entry && gp.is_read())) return 0;
-  if (gp.is_read()) std::memcpy(gp.get_data_ptr(), &entry->value, 4);
-  else if (gp.is_write()) std::memcpy(&entry->value, gp.get_data_ptr(), 4);
+  if (gp.is_read()) {
+    const uint32_t value = entry->on_read ? entry->on_read() : entry->value;
+    std::memcpy(gp.get_data_ptr(), &value, 4);
+  } else if (gp.is_write()) std::memcpy(&entry->value, gp.get_data_ptr(), 4);
   return 4;
 }
 

@@ -35,7 +35,8 @@ class RegisterBank {
   explicit RegisterBank(std::string owner) : m_owner(std::move(owner)) {}
 
   // Declares a register. Without handlers it stores what is written
-  // (according to its access) and reads back its value.
+  // (according to its access) and reads back its value. A read handler
+  // computes the value without side effects: debug reads call it too.
   void add(const RegisterInfo& info, ReadHandler on_read = {}, WriteHandler on_write = {});
 
   // Hardware-side access to the stored value.

@@ -173,7 +173,9 @@ void Config::apply_override(const std::string& assignment) {
     case ParamType::integer: {
       errno = 0;
       char* end = nullptr;
-      long long v = std::strtoll(text.c_str(), &end, 0);
+      // Decimal, or hexadecimal with 0x; a leading zero is not octal.
+      const bool hexadecimal = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
+      long long v = std::strtoll(text.c_str(), &end, hexadecimal ? 16 : 10);
       if (text.empty() || *end != '\0' || errno == ERANGE) value = text;
       else value = static_cast<int64_t>(v);
       break;

@@ -102,9 +102,10 @@ void Config::validate() const {
   const uint64_t memory_bytes = get_uint("mem.size_mib") << 20;
   // Two frame buffers must fit in system memory, with room for everything else.
   if (2 * frame_bytes > memory_bytes / 2)
-    throw ConfigError("configuration: impossible combination: two " + std::to_string(get_uint("display.width")) +
-                      "x" + std::to_string(get_uint("display.height")) + " " + get_string("display.format") +
-                      " frame buffers need " + std::to_string(2 * frame_bytes) +
+    throw ConfigError("configuration: impossible combination: two frame buffers of display.width=" +
+                      std::to_string(get_uint("display.width")) + " x display.height=" +
+                      std::to_string(get_uint("display.height")) + " display.format=" +
+                      get_string("display.format") + " pixels need " + std::to_string(2 * frame_bytes) +
                       " bytes, more than half of mem.size_mib=" + std::to_string(get_uint("mem.size_mib")));
   const int64_t width = get_int("bus.width_bits");
   if (width != 32 && width != 64 && width != 128)

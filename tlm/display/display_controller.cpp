@@ -177,7 +177,7 @@ bool DisplayController::fetch_line(uint32_t address, uint8_t* line, const sc_tim
     if (m_payload.is_response_error()) {
       ++m_bus_errors;
       log::warning(name(), "display DMA read error at " + log::hex(address + offset) + " (" +
-                               m_payload.get_response_string() + ")");
+                               log::response_text(m_payload.get_response_status()) + ")");
       std::memset(line + offset, 0, length);
     }
     m_fetch_bytes += length;

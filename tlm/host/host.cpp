@@ -96,7 +96,7 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +
                                 " of " + std::to_string(bytes) + " bytes at " + log::hex(address) + " (" +
-                                m_payload.get_response_string() + ")";
+                                log::response_text(m_payload.get_response_status()) + ")";
     throw BusError(message, address);
   }
   return sc_core::sc_time_stamp().value() + delay.value();

@@ -1,0 +1,435 @@
+// Tests of tessera::Config: defaults, merging JSON documents and key=value
+// overrides, and the errors for every kind of bad input. An error must name
+// the key (or file) and what was expected, so the tests look for those words
+// in the message rather than for a copy of its whole text.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "config/config.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tessera::Config;
+using tessera::ConfigError;
+using tessera::ParamType;
+
+// The message of the ConfigError `action` throws; fails the test if it
+// throws nothing or something else.
+std::string config_error(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected ConfigError, got another exception: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected ConfigError, nothing was thrown";
+  return {};
+}
+
+#define EXPECT_MENTIONS(message, text) \
+  EXPECT_NE((message).find(text), std::string::npos) << "message: " << (message) << "\nlacks: " << (text)
+
+// A file in a fresh temporary folder, removed with the fixture.
+class ConfigFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "tessera_test_config_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    m_dir = pattern;
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(m_dir, ignored);
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path path = m_dir / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+  fs::path m_dir;
+};
+
+TEST(ConfigDefaults, EveryParameterHasItsDefaultWithItsType) {
+  const Config config;
+  for (const auto& spec : tessera::parameter_specs()) {
+    SCOPED_TRACE(spec.key);
+    switch (spec.type) {
+      case ParamType::boolean:
+        ASSERT_TRUE(spec.default_value.is_boolean());
+        EXPECT_EQ(config.get_bool(spec.key), spec.default_value.get<bool>());
+        break;
+      case ParamType::integer:
+        ASSERT_TRUE(spec.default_value.is_number_integer());
+        EXPECT_EQ(config.get_int(spec.key), spec.default_value.get<int64_t>());
+        EXPECT_GE(config.get_int(spec.key), spec.min);
+        EXPECT_LE(config.get_int(spec.key), spec.max);
+        break;
+      case ParamType::real:
+        ASSERT_TRUE(spec.default_value.is_number());
+        EXPECT_DOUBLE_EQ(config.get_real(spec.key), spec.default_value.get<double>());
+        EXPECT_GE(config.get_real(spec.key), spec.min);
+        EXPECT_LE(config.get_real(spec.key), spec.max);
+        break;
+      case ParamType::string:
+        ASSERT_TRUE(spec.default_value.is_string());
+        EXPECT_EQ(config.get_string(spec.key), spec.default_value.get<std::string>());
+        break;
+      case ParamType::choice: {
+        ASSERT_TRUE(spec.default_value.is_string());
+        const std::string value = config.get_string(spec.key);
+        EXPECT_NE(std::find(spec.choices.begin(), spec.choices.end(), value), spec.choices.end());
+        break;
+      }
+    }
+  }
+}
+
+TEST(ConfigDefaults, DocumentedDefaultsOfTheSoc) {
+  const Config config;
+  EXPECT_EQ(config.get_string("sim.app"), "pattern");
+  EXPECT_EQ(config.get_string("bus.arbitration"), "fixed_priority");
+  EXPECT_EQ(config.get_uint("display.width"), 320u);
+  EXPECT_EQ(config.get_uint("display.height"), 240u);
+  EXPECT_EQ(config.get_string("display.format"), "rgb565");
+  EXPECT_FALSE(config.get_bool("display.dma"));
+  EXPECT_NO_THROW(config.validate());
+}
+
+TEST(ConfigDefaults, KeysAreUniqueAndDotted) {
+  std::set<std::string> keys;
+  for (const auto& spec : tessera::parameter_specs()) {
+    EXPECT_TRUE(keys.insert(spec.key).second) << "duplicate key " << spec.key;
+    EXPECT_NE(spec.key.find('.'), std::string::npos) << spec.key;
+    EXPECT_FALSE(spec.description.empty()) << spec.key;
+  }
+}
+
+TEST(ConfigDefaults, ReadingAsTheWrongTypeIsAProgrammingError) {
+  const Config config;
+  EXPECT_THROW(config.get_bool("display.width"), std::logic_error);
+  EXPECT_THROW(config.get_int("display.dma"), std::logic_error);
+  // An unknown key read by code is reported as a ConfigError naming it.
+  EXPECT_MENTIONS(config_error([&] { config.get_int("display.widht"); }), "display.widht");
+}
+
+TEST(ConfigMerge, NestedObjectsAndDottedKeysBothMerge) {
+  Config config;
+  config.merge_json(json::parse(R"({"bus": {"arbitration": "round_robin", "clock_mhz": 133.0},
+                                    "display.width": 640,
+                                    "host": {"cycles.mul": 5, "dcache": {"size_bytes": 4096}}})"),
+                    "test");
+  EXPECT_EQ(config.get_string("bus.arbitration"), "round_robin");
+  EXPECT_DOUBLE_EQ(config.get_real("bus.clock_mhz"), 133.0);
+  EXPECT_EQ(config.get_int("display.width"), 640);
+  EXPECT_EQ(config.get_int("host.cycles.mul"), 5);
+  EXPECT_EQ(config.get_int("host.dcache.size_bytes"), 4096);
+  // Untouched parameters keep their defaults.
+  EXPECT_EQ(config.get_int("display.height"), 240);
+}
+
+TEST(ConfigMerge, LaterDocumentsOverrideEarlierOnes) {
+  Config config;
+  config.merge_json({{"display", {{"width", 640}}}}, "first");
+  config.merge_json({{"display.width", 800}}, "second");
+  EXPECT_EQ(config.get_int("display.width"), 800);
+}
+
+TEST(ConfigMerge, IntegerIsAcceptedForARealParameter) {
+  Config config;
+  config.set("host.clock_mhz", 200, "test");
+  EXPECT_DOUBLE_EQ(config.get_real("host.clock_mhz"), 200.0);
+}
+
+TEST(ConfigErrors, UnknownKeyIsNamedWithTheNearestKnownKey) {
+  Config config;
+  const std::string message =
+      config_error([&] { config.merge_json({{"bus", {{"arbitraton", "round_robin"}}}}, "my.json"); });
+  EXPECT_MENTIONS(message, "bus.arbitraton");
+  EXPECT_MENTIONS(message, "did you mean 'bus.arbitration'");
+  EXPECT_MENTIONS(message, "my.json");
+}
+
+TEST(ConfigErrors, UnknownKeyFarFromAnyKnownKeyGetsNoSuggestion) {
+  Config config;
+  const std::string message = config_error([&] { config.set("frobnicator.level", 3, "test"); });
+  EXPECT_MENTIONS(message, "frobnicator.level");
+  EXPECT_MENTIONS(message, "unknown key");
+  EXPECT_EQ(message.find("did you mean"), std::string::npos) << message;
+}
+
+TEST(ConfigErrors, WrongTypeNamesTheKeyAndTheExpectedType) {
+  struct Case {
+    const char* key;
+    json value;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"sim.frames", "many", "integer"},          // string for integer
+      {"sim.frames", 2.5, "integer"},             // real for integer
+      {"sim.frames", true, "integer"},            // boolean for integer
+      {"display.dma", 1, "boolean"},              // number for boolean
+      {"display.dma", "true", "boolean"},         // string for boolean
+      {"host.clock_mhz", "fast", "number"},       // string for real
+      {"sim.app", 7, "string"},                   // number for string
+      {"bus.arbitration", false, "round_robin"},  // boolean for choice: lists the choices
+      {"display.width", json::array({1, 2}), "integer"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.key) + " = " + c.value.dump());
+    Config config;
+    const std::string message = config_error([&] { config.set(c.key, c.value, "test"); });
+    EXPECT_MENTIONS(message, c.key);
+    EXPECT_MENTIONS(message, c.expected);
+  }
+}
+
+TEST(ConfigErrors, OutOfRangeNamesTheKeyAndTheRange) {
+  Config config;
+  std::string message = config_error([&] { config.set("mem.size_mib", 100000, "test"); });
+  EXPECT_MENTIONS(message, "mem.size_mib");
+  EXPECT_MENTIONS(message, "256");
+  EXPECT_MENTIONS(message, "100000");
+
+  message = config_error([&] { config.set("sim.frames", 0, "test"); });
+  EXPECT_MENTIONS(message, "sim.frames");
+  EXPECT_MENTIONS(message, "[1, ");
+
+  message = config_error([&] { config.set("sim.quantum_ns", -1, "test"); });
+  EXPECT_MENTIONS(message, "sim.quantum_ns");
+
+  message = config_error([&] { config.set("host.clock_mhz", 0.5, "test"); });
+  EXPECT_MENTIONS(message, "host.clock_mhz");
+  EXPECT_MENTIONS(message, "2000");
+
+  message = config_error([&] { config.set("display.refresh_hz", 1e6, "test"); });
+  EXPECT_MENTIONS(message, "display.refresh_hz");
+  EXPECT_MENTIONS(message, "240");
+
+  // Nothing was stored by the failed attempts.
+  EXPECT_EQ(config.get_int("mem.size_mib"), Config().get_int("mem.size_mib"));
+  EXPECT_DOUBLE_EQ(config.get_real("host.clock_mhz"), Config().get_real("host.clock_mhz"));
+}
+
+TEST(ConfigErrors, BadChoiceListsTheChoices) {
+  Config config;
+  const std::string message = config_error([&] { config.set("bus.arbitration", "lottery", "test"); });
+  EXPECT_MENTIONS(message, "bus.arbitration");
+  EXPECT_MENTIONS(message, "lottery");
+  EXPECT_MENTIONS(message, "fixed_priority");
+  EXPECT_MENTIONS(message, "round_robin");
+}
+
+TEST(ConfigOverride, ParsesEachType) {
+  Config config;
+  config.apply_override("display.dma=true");
+  EXPECT_TRUE(config.get_bool("display.dma"));
+  config.apply_override("display.dma=false");
+  EXPECT_FALSE(config.get_bool("display.dma"));
+  config.apply_override("display.dma=1");
+  EXPECT_TRUE(config.get_bool("display.dma"));
+  config.apply_override("display.dma=0");
+  EXPECT_FALSE(config.get_bool("display.dma"));
+
+  config.apply_override("sim.frames=7");
+  EXPECT_EQ(config.get_int("sim.frames"), 7);
+  config.apply_override("sim.frames=0x10");
+  EXPECT_EQ(config.get_int("sim.frames"), 16);
+
+  config.apply_override("host.clock_mhz=200.5");
+  EXPECT_DOUBLE_EQ(config.get_real("host.clock_mhz"), 200.5);
+  config.apply_override("host.clock_mhz=1e2");
+  EXPECT_DOUBLE_EQ(config.get_real("host.clock_mhz"), 100.0);
+  config.apply_override("host.clock_mhz=150");
+  EXPECT_DOUBLE_EQ(config.get_real("host.clock_mhz"), 150.0);
+
+  config.apply_override("bus.arbitration=round_robin");
+  EXPECT_EQ(config.get_string("bus.arbitration"), "round_robin");
+
+  config.apply_override("sim.app=/opt/apps/libdemo.so");
+  EXPECT_EQ(config.get_string("sim.app"), "/opt/apps/libdemo.so");
+  // Only the first '=' separates key from value.
+  config.apply_override("sim.app=a=b");
+  EXPECT_EQ(config.get_string("sim.app"), "a=b");
+}
+
+TEST(ConfigOverride, GarbageValuesNameTheKey) {
+  const char* garbage[] = {"display.dma=maybe", "display.dma=", "sim.frames=many", "sim.frames=12abc",
+                           "sim.frames=",       "sim.frames=3.5", "host.clock_mhz=fast", "host.clock_mhz=1.5x",
+                           "sim.frames=99999999999999999999999", "bus.arbitration=lottery"};
+  for (const char* assignment : garbage) {
+    SCOPED_TRACE(assignment);
+    Config config;
+    const std::string message = config_error([&] { config.apply_override(assignment); });
+    const std::string text(assignment);
+    EXPECT_MENTIONS(message, text.substr(0, text.find('=')));
+    EXPECT_MENTIONS(message, "expects");
+  }
+}
+
+TEST(ConfigOverride, OutOfRangeOverrideIsRejected) {
+  Config config;
+  const std::string message = config_error([&] { config.apply_override("mem.size_mib=100000"); });
+  EXPECT_MENTIONS(message, "mem.size_mib");
+  EXPECT_MENTIONS(message, "256");
+}
+
+TEST(ConfigOverride, UnknownKeySuggestsTheNearMiss) {
+  Config config;
+  const std::string message = config_error([&] { config.apply_override("bus.arbitraton=round_robin"); });
+  EXPECT_MENTIONS(message, "bus.arbitraton");
+  EXPECT_MENTIONS(message, "bus.arbitration");
+}
+
+TEST(ConfigOverride, AssignmentWithoutEqualsSignIsRejected) {
+  Config config;
+  std::string message = config_error([&] { config.apply_override("display.dma"); });
+  EXPECT_MENTIONS(message, "display.dma");
+  EXPECT_MENTIONS(message, "key=value");
+
+  message = config_error([&] { config.apply_override("=5"); });
+  EXPECT_MENTIONS(message, "key=value");
+}
+
+TEST_F(ConfigFiles, LoadsAFile) {
+  Config config;
+  config.load_file(write("good.json", R"({"display": {"width": 640, "height": 480}, "sim.frames": 2})"));
+  EXPECT_EQ(config.get_int("display.width"), 640);
+  EXPECT_EQ(config.get_int("display.height"), 480);
+  EXPECT_EQ(config.get_int("sim.frames"), 2);
+}
+
+TEST_F(ConfigFiles, MissingFileIsNamed) {
+  Config config;
+  const std::string path = (m_dir / "does_not_exist.json").string();
+  const std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, path);
+  EXPECT_MENTIONS(message, "No such file");
+}
+
+TEST_F(ConfigFiles, MalformedJsonIsNamedAsSuch) {
+  Config config;
+  const std::string path = write("broken.json", "{\"bus\": {\"arbitration\": \"round_robin\",\n");
+  const std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, "not valid JSON");
+  EXPECT_MENTIONS(message, path);
+}
+
+TEST_F(ConfigFiles, TopLevelArrayIsRejected) {
+  Config config;
+  const std::string path = write("array.json", R"([{"display.width": 640}])");
+  const std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, path);
+  EXPECT_MENTIONS(message, "object");
+  EXPECT_EQ(config.get_int("display.width"), 320);
+}
+
+TEST_F(ConfigFiles, BadFileLeavesTheConfigurationUnchanged) {
+  Config config;
+  config.apply_override("display.height=480");
+  const json before = config.to_json();
+  // Valid entries come before and after the bad ones in the document.
+  const char* bad_documents[] = {
+      R"({"display": {"width": 640}, "bus.arbitration": "lottery", "sim": {"frames": 9}})",
+      R"({"display": {"width": 640}, "bus": {"arbitraton": "round_robin"}, "sim": {"frames": 9}})",
+      R"({"display": {"width": 640}, "mem.size_mib": 100000})",
+  };
+  for (const char* document : bad_documents) {
+    SCOPED_TRACE(document);
+    const std::string path = write("bad.json", document);
+    const std::string message = config_error([&] { config.load_file(path); });
+    EXPECT_MENTIONS(message, path);
+    EXPECT_EQ(config.to_json(), before);
+  }
+  EXPECT_EQ(config.get_int("display.width"), 320);
+  EXPECT_EQ(config.get_int("display.height"), 480);
+}
+
+TEST(ConfigValidate, FrameBuffersLargerThanMemoryNameTheKeys) {
+  Config config;
+  for (const char* assignment :
+       {"display.width=2048", "display.height=2048", "display.format=rgba8888", "mem.size_mib=16"})
+    config.apply_override(assignment);  // each value is legal on its own
+  const std::string message = config_error([&] { config.validate(); });
+  EXPECT_MENTIONS(message, "impossible combination");
+  EXPECT_MENTIONS(message, "display.width");
+  EXPECT_MENTIONS(message, "display.height");
+  EXPECT_MENTIONS(message, "display.format");
+  EXPECT_MENTIONS(message, "mem.size_mib");
+
+  // Enough memory makes the same display possible.
+  config.apply_override("mem.size_mib=128");
+  EXPECT_NO_THROW(config.validate());
+}
+
+TEST(ConfigValidate, OtherImpossibleCombinationsNameTheKeys) {
+  struct Case {
+    std::vector<const char*> assignments;
+    const char* key;
+  };
+  const Case cases[] = {
+      {{"bus.width_bits=48"}, "bus.width_bits"},
+      {{"host.dcache.line_bytes=24"}, "host.dcache.line_bytes"},
+      {{"host.dcache.size_bytes=1000"}, "host.dcache.size_bytes"},
+      // 200-byte lines cannot be fetched in 64-byte bursts.
+      {{"display.dma=true", "display.width=100"}, "display.burst_beats"},
+  };
+  for (const auto& c : cases) {
+    Config config;
+    for (const char* assignment : c.assignments) config.apply_override(assignment);
+    SCOPED_TRACE(c.assignments.back());
+    EXPECT_MENTIONS(config_error([&] { config.validate(); }), c.key);
+  }
+}
+
+TEST(ConfigJson, ToJsonRoundTripsThroughMergeJson) {
+  Config changed;
+  for (const char* assignment : {"bus.arbitration=round_robin", "display.dma=true", "display.format=rgba8888",
+                                 "host.clock_mhz=166.5", "sim.frames=12", "sim.app=calib_add"})
+    changed.apply_override(assignment);
+  const json document = changed.to_json();
+  // Nested objects, one level per dot.
+  EXPECT_EQ(document.at("bus").at("arbitration"), "round_robin");
+  EXPECT_EQ(document.at("host").at("cycles").at("alu"), changed.get_int("host.cycles.alu"));
+
+  Config copy;
+  copy.merge_json(document, "round trip");
+  EXPECT_EQ(copy.to_json(), document);
+  EXPECT_EQ(copy.get_string("bus.arbitration"), "round_robin");
+  EXPECT_TRUE(copy.get_bool("display.dma"));
+  EXPECT_EQ(copy.get_string("display.format"), "rgba8888");
+  EXPECT_DOUBLE_EQ(copy.get_real("host.clock_mhz"), 166.5);
+  EXPECT_EQ(copy.get_int("sim.frames"), 12);
+  EXPECT_EQ(copy.get_string("sim.app"), "calib_add");
+
+  // And through text, as soc_sim --print-config output would be reloaded.
+  Config reparsed;
+  reparsed.merge_json(json::parse(document.dump(2)), "text");
+  EXPECT_EQ(reparsed.to_json(), document);
+}
+
+TEST(ConfigJson, ReferenceMarkdownListsEveryKey) {
+  const std::string reference = Config::reference_markdown();
+  EXPECT_EQ(reference.rfind("| key |", 0), 0u) << reference.substr(0, 80);
+  size_t rows = 0;
+  for (char c : reference) rows += c == '\n';
+  EXPECT_EQ(rows, tessera::parameter_specs().size() + 2);  // header and separator
+  for (const auto& spec : tessera::parameter_specs()) {
+    EXPECT_MENTIONS(reference, "`" + spec.key + "`");
+    EXPECT_MENTIONS(reference, spec.description);
+  }
+}
+
+}  // namespace

@@ -1,0 +1,86 @@
+// Edge-function evaluator of the rasterizer (Pineda edge functions, EASA
+// normalised distance for antialiasing coverage).
+//
+// Sources: J. Pineda, "A Parallel Algorithm for Polygon Rasterization",
+// SIGGRAPH '88; A. Schilling, "A New Simple and Efficient Antialiasing with
+// Subpixel Masks", SIGGRAPH '91 (EASA); Crisu et al., "Design Tradeoffs for
+// an Embedded OpenGL-Compliant Hardware Rasterizer", equation (1).
+//
+// Edge function. An edge runs from (x0, y0) to (x1, y1), all unsigned 9.4.
+// With dx = x1 - x0 and dy = y1 - y0 (signed 14-bit, 4 fraction bits)
+//     E(x, y) = (x - x0) * dy - (y - y0) * dx
+// evaluated at the pixel centre x = px + 1/2, y = py + 1/2 (9.4 code
+// 16 * px + 8). E is exact: a signed 29-bit integer with 8 fraction bits
+// (edge_value, q20.8). Bound: |x - x0| <= 8200 codes for px <= 512 and
+// |dy| <= 8191, so |E| <= 2 * 8200 * 8191 < 2^28.
+//
+// Stepping. E(x + 1, y) = E + 16 * dy and E(x, y + 1) = E - 16 * dx, exactly
+// equal to direct evaluation because nothing is rounded (the domain of px and
+// py is 0..512, so the step from the last pixel of a 511-wide screen is in
+// range too).
+//
+// Inside test and fill rule. The triangle's interior is the side where E > 0
+// for all three edges (triangle setup orients the edges so; Crisu Fig. 3:
+// the right side of each oriented edge in GL's y-up window coordinates).
+// A sample with E == 0 lies on the edge and belongs to it only if
+//     dy > 0, or dy == 0 and dx < 0.
+// The rule is antisymmetric: the same edge walked the other way by the
+// neighbouring triangle has (-dx, -dy) and takes the sample only when this one
+// does not, so a shared edge's samples are drawn exactly once (OpenGL 1.2
+// "Basic Polygon Rasterization"). In y-down tile/memory order this is the usual top-left rule.
+// A degenerate edge (dx = dy = 0) has E == 0 everywhere and is never inside.
+//
+// Normalised distance (EASA, L1 norm): d = E / (|dx| + |dy|). |dx| + |dy| is
+// unsigned 10.4 (edge_l1_length, at most 16382 codes, the reciprocal unit's
+// input); its reciprocal arrives as unsigned 5.16 (`recip`). The product
+// E * recip is signed with 24 fraction bits; it is rounded to 8 fraction bits
+// to nearest, ties towards +infinity ((p + 2^15) >> 16, arithmetic shift),
+// then clamped to signed 16-bit q7.8 (edge_distance, -128 .. 128 - 2^-8 pixel).
+//
+// Coverage (0.8) of one edge: c = clamp(1/2 + d, 0, 1), as unorm8
+// round(c * 255) with ties up: t = clamp(d_code + 128, 0, 256),
+// coverage = (255 * t + 128) >> 8. A pixel's antialiasing coverage is the
+// minimum over the three edges (triangle_coverage); the L1 distance is what
+// Schilling's EASA uses as the area estimate.
+#pragma once
+
+#include "fixed_point.h"
+
+namespace tessera::raster {
+
+using edge_value = sfixed<29, 8>;    // E, pixel^2, q20.8
+using edge_delta = sfixed<14, 4>;    // dx or dy of an edge, q9.4 signed
+using edge_distance = sfixed<16, 8>; // normalised distance, pixel, q7.8
+
+struct edge {
+    q9_4 x0, y0, x1, y1;
+};
+
+struct edge_evaluation {
+    edge_value value;        // E at (px + 1/2, py + 1/2)
+    edge_value value_next_x; // E at (px + 3/2, py + 1/2), by adding 16 * dy
+    edge_value value_next_y; // E at (px + 1/2, py + 3/2), by subtracting 16 * dx
+    bool inside;             // fill-rule decision at (px, py)
+    q10_4 l1_length;         // |dx| + |dy|, input of the reciprocal unit
+    edge_distance distance;  // E * recip, rounded and clamped
+    unorm8 coverage;         // clamp(1/2 + distance), 0.8
+};
+
+edge_delta edge_dx(const edge& e);
+edge_delta edge_dy(const edge& e);
+q10_4 edge_l1_length(const edge& e);
+
+// Direct evaluation at the centre of pixel (px, py), px and py in 0..512.
+edge_value edge_value_at(const edge& e, unsigned px, unsigned py);
+edge_value edge_step_x(const edge& e, edge_value value);
+edge_value edge_step_y(const edge& e, edge_value value);
+bool edge_inside(const edge& e, edge_value value);
+
+edge_distance edge_normalised_distance(edge_value value, q5_16 recip);
+unorm8 edge_coverage(edge_distance distance);
+unorm8 triangle_coverage(unorm8 c0, unorm8 c1, unorm8 c2);
+
+// Everything the Verilog unit edge_function.sv computes, in one call.
+edge_evaluation evaluate_edge(const edge& e, unsigned px, unsigned py, q5_16 recip);
+
+} // namespace tessera::raster

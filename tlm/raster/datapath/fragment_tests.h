@@ -1,0 +1,105 @@
+// Per-fragment tests of OpenGL 1.2 ("Per-Fragment Operations"): alpha test,
+// stencil test and stencil update, depth test.
+//
+// Formats (rasterizer interface): alpha and its reference unorm 0.8, depth
+// unorm 0.24, stencil 8.0. All comparisons are exact integer comparisons of
+// the codes (no rounding anywhere in this block).
+//
+// Compare functions, GL enum values NEVER 0x0200 .. ALWAYS 0x0207; the
+// hardware code is the value minus 0x0200 (3 bits). The incoming quantity is
+// on the left, as in the GL spec:
+//   alpha    alpha_fragment  func  alpha_ref
+//   stencil  (ref & value_mask)  func  (stored & value_mask)
+//   depth    z_fragment  func  z_stored
+// Stencil operations, GL enum values (ZERO 0, INVERT 0x150A, KEEP 0x1E00,
+// REPLACE 0x1E01, INCR 0x1E02, DECR 0x1E03); INCR and DECR saturate at 255
+// and 0 (GL 1.2 has no wrapping variants). The hardware code is KEEP 0,
+// ZERO 1, REPLACE 2, INCR 3, DECR 4, INVERT 5; codes 6 and 7 act as KEEP
+// (an unknown enum value gets code 7 and is kept by stencil_update too).
+// The result is written through the stencil write mask:
+//   new = (stored & ~write_mask) | (op(stored) & write_mask).
+//
+// Sequence (GL 1.2 alpha, stencil and depth buffer tests):
+//   - a disabled test passes;
+//   - a fragment that fails the alpha test is discarded and changes nothing;
+//   - with the stencil test enabled, a stencil failure applies sfail, else a
+//     depth failure applies dpfail, else dppass (with the depth test
+//     disabled the fragment counts as passing it, so dppass applies); with
+//     the stencil test disabled the stencil buffer is left alone;
+//   - the depth buffer is written (with the fragment's z) only when the depth
+//     test is enabled, the depth write mask is set and every test passed.
+#pragma once
+
+#include <cstdint>
+
+#include "fixed_point.h"
+
+namespace tessera::raster {
+
+enum class compare_func : uint16_t {
+    NEVER = 0x0200,
+    LESS = 0x0201,
+    EQUAL = 0x0202,
+    LEQUAL = 0x0203,
+    GREATER = 0x0204,
+    NOTEQUAL = 0x0205,
+    GEQUAL = 0x0206,
+    ALWAYS = 0x0207,
+};
+
+enum class stencil_op : uint16_t {
+    ZERO = 0x0000,
+    INVERT = 0x150A,
+    KEEP = 0x1E00,
+    REPLACE = 0x1E01,
+    INCR = 0x1E02,
+    DECR = 0x1E03,
+};
+
+// Hardware encodings of the enums (the Verilog unit's 3-bit fields).
+uint8_t compare_func_code(compare_func func);
+uint8_t stencil_op_code(stencil_op op);
+
+bool compare(compare_func func, uint32_t incoming, uint32_t stored);
+bool alpha_test(compare_func func, unorm8 alpha, unorm8 ref);
+bool depth_test(compare_func func, unorm24 incoming, unorm24 stored);
+bool stencil_test(compare_func func, stencil8 ref, uint8_t value_mask, stencil8 stored);
+stencil8 stencil_update(stencil_op op, stencil8 stored, stencil8 ref, uint8_t write_mask);
+
+struct fragment_test_state {
+    bool alpha_enable = false;
+    compare_func alpha_func = compare_func::ALWAYS;
+    unorm8 alpha_ref;
+    bool stencil_enable = false;
+    compare_func stencil_func = compare_func::ALWAYS;
+    stencil8 stencil_ref;
+    uint8_t stencil_value_mask = 0xff;
+    uint8_t stencil_write_mask = 0xff;
+    stencil_op sfail = stencil_op::KEEP;
+    stencil_op dpfail = stencil_op::KEEP;
+    stencil_op dppass = stencil_op::KEEP;
+    bool depth_enable = false;
+    compare_func depth_func = compare_func::LESS;
+    bool depth_write_mask = true;
+};
+
+struct fragment_test_input {
+    unorm8 alpha;
+    unorm24 depth;
+    unorm24 stored_depth;
+    stencil8 stored_stencil;
+};
+
+struct fragment_test_result {
+    bool alpha_pass = false;
+    bool stencil_pass = false;
+    bool depth_pass = false;
+    bool pass = false;         // all three: the fragment goes on to blending
+    stencil8 stencil;     // value to store (the old one when unchanged)
+    bool depth_write = false;  // store the fragment's depth
+};
+
+// Everything the Verilog unit fragment_tests.sv computes, in one call.
+fragment_test_result run_fragment_tests(const fragment_test_state& state, const fragment_test_input& in);
+
+} // namespace tessera::raster

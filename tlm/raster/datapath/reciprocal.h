@@ -1,0 +1,100 @@
+// Reciprocal unit of the rasterizer datapath: 1/X of an unsigned 10.4 operand.
+//
+// Functional core (plain C++, no SystemC) of the unit that the rasterizer uses
+// for the EASA edge normalisation 1/(|dx| + |dy|) and for the triangle-setup
+// denominator. Source: D. Crisu, S. Cotofana, S. Vassiliadis, P. Liuha,
+// "Design Tradeoffs for an Embedded OpenGL-Compliant Hardware Rasterizer",
+// Section IV, Methods 1-3 and Tables I-III. The Verilog reference of Method 3
+// is rtl_models/raster/recip_unit.sv; the two agree bit for bit on every
+// operand (tests/raster/test_raster_recip_cosim.cpp).
+//
+// Operand: X in unsigned 10.4 fixed point, raw 1..16383 (X = raw / 16).
+//
+// Methods (all truncate, none round):
+//   method1  16k-entry table of 1/X in unsigned 5.10 fixed point (Table I).
+//   method2  16k-entry table of 1/X in floating point: mantissa 1.6 with the
+//            leading one implied, 5-bit two's complement exponent (Table II).
+//   method3  prescaler + 1k-entry table (Table III, the paper's method): X is
+//            shifted left by s = 0..4 places while the top 4 bits of the 14-bit
+//            word hold leading zeros, the 4 LSBs are dropped and the remaining
+//            10 bits index a table of 1/index stored as a 1.6 mantissa and a
+//            4-bit inverted (non-negative) exponent k; the result exponent is
+//            s - k, formed in a 5-bit two's complement subtracter.
+//
+// Common output: unsigned 5.16 fixed point in 21 bits (q5_16). The smallest
+// Method 2/3 result, 1.000000 x 2^-10, has its LSB at 2^-16, so both
+// floating-point formats convert to it exactly; Method 1's 5.10 entry is
+// shifted left by 6. The largest result is 16.0 (X = 2^-4).
+//
+// Invalid operand (raw 0, or raw > 16383 which does not fit in 14 bits): no
+// exception, no crash. The result has invalid_operand = true and every field
+// saturated to all ones, like the unused entry 0 of Tables I-III:
+//   q5_16 = RECIP_Q5_16_SATURATED (0x1FFFFF, i.e. 32 - 2^-16),
+//   fixed_q5_10 = 0x7FFF (method 1), mantissa = 0x3F and exponent = -1
+//   (5-bit field 11111; methods 2 and 3).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "raster/datapath/fixed_point.h"
+
+namespace tessera::raster {
+
+enum class RecipMethod { method1, method2, method3 };
+
+// Accepts "1", "2", "3" and "method1", "method2", "method3"; anything else
+// gives std::nullopt.
+std::optional<RecipMethod> parse_recip_method(std::string_view text);
+// Prints "method1", "method2" or "method3" (accepted back by the parser).
+std::string_view to_string(RecipMethod method);
+
+constexpr uint16_t RECIP_OPERAND_MAX = 0x3FFF;  // 1023.9375 in 10.4
+constexpr unsigned RECIP_OPERAND_FRACTION_BITS = 4;
+constexpr unsigned RECIP_Q5_16_FRACTION_BITS = 16;
+constexpr unsigned RECIP_Q5_16_BITS = 21;
+constexpr uint32_t RECIP_Q5_16_SATURATED = (1u << RECIP_Q5_16_BITS) - 1;
+constexpr unsigned RECIP_MANTISSA_BITS = 6;  // fraction bits of 1.ffffff
+constexpr unsigned RECIP_EXPONENT_BITS = 5;  // two's complement
+
+struct ReciprocalResult {
+    RecipMethod method = RecipMethod::method3;
+    // 1/X in unsigned 5.16, the format the rest of the datapath multiplies by.
+    uint32_t q5_16 = 0;
+    bool invalid_operand = false;
+    // Method 1 only (0 otherwise): the 15-bit 5.10 table entry.
+    uint16_t fixed_q5_10 = 0;
+    // Methods 2 and 3 only (0 otherwise): 1/X = (1 + mantissa / 64) * 2^exponent.
+    uint8_t mantissa = 0;
+    int8_t exponent = 0;
+
+    // The exponent as the hardware's 5-bit two's complement field.
+    uint8_t exponent_field() const {
+        return static_cast<uint8_t>(exponent) & ((1u << RECIP_EXPONENT_BITS) - 1);
+    }
+};
+
+bool operator==(const ReciprocalResult& a, const ReciprocalResult& b);
+bool operator!=(const ReciprocalResult& a, const ReciprocalResult& b);
+
+// The result that any method gives for an invalid operand (see above).
+ReciprocalResult reciprocal_invalid_result(RecipMethod method);
+
+ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method);
+
+inline uint32_t reciprocal_q5_16(uint16_t x_q10_4, RecipMethod method) {
+    return reciprocal(x_q10_4, method).q5_16;
+}
+
+// The same in the datapath's fixed-point types; an invalid operand gives the
+// saturated code, as above.
+inline q5_16 reciprocal_fixed(q10_4 x, RecipMethod method) {
+    const uint16_t raw = x.raw > RECIP_OPERAND_MAX ? 0 : static_cast<uint16_t>(x.raw);
+    return q5_16::from_raw(reciprocal_q5_16(raw, method));
+}
+
+// The q5_16 result as a real number (32 - 2^-16 for an invalid operand).
+double reciprocal_value(uint16_t x_q10_4, RecipMethod method);
+
+}  // namespace tessera::raster

@@ -1,0 +1,54 @@
+// Bilinear texel filter and texture environment (OpenGL 1.2 "Texture
+// Minification" and "Texture Environments and Texture Functions"; RGBA
+// texture, environments REPLACE, MODULATE, DECAL) on RGBA8 (0.8) colour.
+//
+// Filter. The four texels of texel_address.h's footprint, (i0,j0), (i1,j0),
+// (i0,j1), (i1,j1), are weighted with the 8-bit weights a (of i1) and b (of
+// j1), both in 1/256:
+//     w00 = (256 - a)(256 - b), w10 = a(256 - b), w01 = (256 - a) b, w11 = a b
+// (sum 2^16), and each channel is (sum w * texel + 2^15) >> 16: the GL
+// bilinear formula with 8-bit weights, rounded once to nearest, ties up. With
+// NEAREST the weights are 0 and the result is texel (i0,j0) exactly, so the
+// filter needs no mode input.
+//
+// Environment, GL enum values REPLACE 0x1E01, MODULATE 0x2100,
+// DECAL 0x2101 (hardware code 0, 1, 2; code 3, which an unknown enum gets,
+// passes the fragment colour through untouched). f = fragment colour,
+// t = filtered texel colour, all 0.8 codes, "1 - x" is 255 - x:
+//     REPLACE   C = Ct                     A = At
+//     MODULATE  C = Cf * Ct                A = Af * At
+//     DECAL     C = Cf (1 - At) + Ct At    A = Af
+// Each product or sum of products x is divided by 255 with one exact
+// rounding to nearest (x <= 65025; 255 is odd, ties cannot occur):
+// t = x + 128, (t + (t >> 8)) >> 8 (the same divider as blending).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "fixed_point.h"
+
+namespace tessera::raster {
+
+enum class texture_env_mode : uint16_t { REPLACE = 0x1E01, MODULATE = 0x2100, DECAL = 0x2101 };
+
+// Hardware encoding (the Verilog unit's 2-bit field).
+uint8_t texture_env_mode_code(texture_env_mode mode);
+
+// Exact round(x / 255) for 0 <= x <= 65025.
+uint32_t div255_round(uint32_t x);
+
+// texels in the order (i0,j0), (i1,j0), (i0,j1), (i1,j1).
+rgba8 bilinear_filter(const std::array<rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t);
+rgba8 texture_environment(texture_env_mode mode, rgba8 fragment, rgba8 texel);
+
+struct texture_env_result {
+    rgba8 texel;    // filtered
+    rgba8 fragment; // after the environment
+};
+
+// Everything the Verilog unit texture_env.sv computes, in one call.
+texture_env_result texture_filter_env(texture_env_mode mode, const std::array<rgba8, 4>& texels, uint8_t weight_s,
+                                      uint8_t weight_t, rgba8 fragment);
+
+} // namespace tessera::raster
