@@ -39,6 +39,7 @@ struct Options {
   std::string vcd;
   std::string stats;
   bool quiet = false;
+  std::string log_level;
   bool print_config = false;
   bool config_reference = false;
   bool list_apps = false;
@@ -147,6 +148,7 @@ int run(int argc, char* argv[]) {
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
+  cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
   cli.add_flag("--config-reference", opt.config_reference, "print the configuration reference (Markdown) and exit");
   cli.add_flag("--list-apps", opt.list_apps, "list the built-in applications and exit");
@@ -174,6 +176,7 @@ int run(int argc, char* argv[]) {
     if (opt.frames > 0) config.set("sim.frames", opt.frames, "--frames");
     if (!opt.backend.empty() && opt.backend != "arm")
       throw ConfigError("unknown back end '" + opt.backend + "' (available: arm)");
+    if (!opt.log_level.empty()) config.set("sim.log_level", opt.log_level, "--log-level");
     if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
     config.validate();
   } catch (const ConfigError& e) {

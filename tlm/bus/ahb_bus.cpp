@@ -168,6 +168,11 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     m_last_granted = initiator;
   }
   account(initiator, gp, beats, request);
+  if (log::enabled(log::Level::debug))
+    log::debug(name(), m_stats[initiator].name + (gp.is_write() ? " write " : " read ") +
+                           std::to_string(gp.get_data_length()) + " bytes at " + log::hex(address) + ", granted " +
+                           sc_time::from_value(request.start_ticks).to_string() + ", " +
+                           std::to_string(request.occupancy_ticks / m_period_ticks) + " cycles");
   delay = sc_time::from_value(request.start_ticks + request.occupancy_ticks - now);
 }
 

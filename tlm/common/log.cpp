@@ -24,7 +24,10 @@ void handler(const sc_core::sc_report& report, const sc_core::sc_actions& action
   std::string type = report.get_msg_type();
   const std::string prefix = "tessera/";
   std::string module = type.rfind(prefix, 0) == 0 ? type.substr(prefix.size()) : type;
-  if (actions & sc_core::SC_DISPLAY) {
+  // SystemC's own informational messages ("simulation stopped by user") are
+  // not the model's.
+  const bool foreign_info = report.get_severity() == sc_core::SC_INFO && module == type;
+  if ((actions & sc_core::SC_DISPLAY) && !foreign_info) {
     const char* severity = "";
     switch (report.get_severity()) {
       case sc_core::SC_WARNING: severity = "warning: "; break;
@@ -67,6 +70,8 @@ void install(Level level) {
   // SystemC's own deprecation chatter is not a guest error.
   sc_report_handler::set_actions("/IEEE_Std_1666/deprecated", sc_core::SC_DO_NOTHING);
 }
+
+bool enabled(Level level) { return g_level >= level; }
 
 void info(const std::string& module, const std::string& message) {
   if (g_level >= Level::info)

@@ -20,6 +20,10 @@ void install(Level level);
 // Message type of a module: "tessera/" + module.
 inline std::string msg_type(const std::string& module) { return "tessera/" + module; }
 
+// True when messages of `level` are printed; guards messages that are
+// expensive to build.
+bool enabled(Level level);
+
 void info(const std::string& module, const std::string& message);
 void debug(const std::string& module, const std::string& message);
 void warning(const std::string& module, const std::string& message);

@@ -155,6 +155,7 @@ void DisplayController::show(const std::vector<uint8_t>& pixels) {
   if (m_frames == 0) m_first_frame_time = sc_core::sc_time_stamp();
   m_last_frame_time = sc_core::sc_time_stamp();
   ++m_frames;
+  log::info(name(), "frame " + std::to_string(frame.index) + " shown");
   if (m_sink) m_sink(frame);
   m_frame_shown.notify(sc_core::SC_ZERO_TIME);
 }

@@ -313,7 +313,9 @@ void Host::run() {
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
   try {
     if (!m_program) throw std::logic_error("host: no program to run");
+    log::info(name(), "program started");
     m_exit_code = m_program(*this);
+    log::info(name(), "program returned " + std::to_string(m_exit_code));
     drain_write_buffer();
     if (m_exit_code != 0) m_failure = "program exited with status " + std::to_string(m_exit_code);
   } catch (const sc_core::sc_unwind_exception&) {

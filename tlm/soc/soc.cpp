@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "common/log.h"
 #include "soc/memory_map.h"
 
 namespace tessera {
@@ -90,6 +91,10 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   bus.map(memory.in, memory_map::sysmem.base, memory_map::sysmem.size, memory_map::sysmem.name);
   bus.map(display.in, memory_map::display_regs.base, memory_map::display_regs.size, memory_map::display_regs.name);
   bus.map(display.port_in, memory_map::display_port.base, memory_map::display_port.size, memory_map::display_port.name);
+
+  for (const auto& region : memory_map::all_regions)
+    log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
+                              std::to_string(region.size) + " bytes");
 
   // Interrupts: every host line gets a signal; sources drive theirs.
   for (unsigned i = 0; i < host.irq.size(); ++i) {

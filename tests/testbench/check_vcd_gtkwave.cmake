@@ -1,0 +1,18 @@
+# Runs soc_sim with a VCD trace and has GTKWave's own reader (vcd2fst)
+# convert it: the trace must be one that GTKWave opens.
+set(dir ${WORK_DIR}/vcd_gtkwave)
+file(REMOVE_RECURSE ${dir})
+execute_process(COMMAND ${SOC_SIM} --quiet --frames 1 --set display.dma=true --out ${dir} --vcd ${dir}/trace.vcd
+                RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "soc_sim failed with status ${status}")
+endif()
+execute_process(COMMAND ${VCD2FST} ${dir}/trace.vcd ${dir}/trace.fst RESULT_VARIABLE status ERROR_VARIABLE errors)
+if(NOT status EQUAL 0 OR NOT EXISTS ${dir}/trace.fst)
+  message(FATAL_ERROR "vcd2fst could not read the trace (status ${status}): ${errors}")
+endif()
+file(SIZE ${dir}/trace.fst size)
+if(size LESS 100)
+  message(FATAL_ERROR "vcd2fst wrote only ${size} bytes")
+endif()
+message(STATUS "GTKWave's vcd2fst read the trace (${size}-byte FST)")
