@@ -9,6 +9,7 @@ PACKAGES=(
   libglm-dev              # vector maths for the GL front end
   libopenimageio-dev      # PNG output of the display
   libgtest-dev            # unit and TLM tests
+  libgles-dev libegl-dev  # Khronos GL ES / EGL headers: the conformance test compares ours with them
   verilator               # Verilog reference units
   libosmesa6-dev          # Mesa off-screen renderer for reference images
   nlohmann-json3-dev      # configuration and statistics files

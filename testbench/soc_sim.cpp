@@ -142,7 +142,7 @@ int run(int argc, char* argv[]) {
   cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
-  cli.add_option("--backend", opt.backend, "renderer back end (arm)");
+  cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm");
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
@@ -174,8 +174,7 @@ int run(int argc, char* argv[]) {
     for (const auto& assignment : opt.overrides) config.apply_override(assignment);
     if (!opt.app.empty()) config.set("sim.app", opt.app, "--app");
     if (opt.frames > 0) config.set("sim.frames", opt.frames, "--frames");
-    if (!opt.backend.empty() && opt.backend != "arm")
-      throw ConfigError("unknown back end '" + opt.backend + "' (available: arm)");
+    if (!opt.backend.empty()) config.set("driver.backend", opt.backend, "--backend");
     if (!opt.log_level.empty()) config.set("sim.log_level", opt.log_level, "--log-level");
     if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
     config.validate();
@@ -188,9 +187,9 @@ int run(int argc, char* argv[]) {
     return 0;
   }
 
-  const AppInfo* app = nullptr;
+  AppInfo app;
   try {
-    app = &find_app(config.get_string("sim.app"));
+    app = find_app(config.get_string("sim.app"));
   } catch (const std::invalid_argument& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return kExitUsage;
@@ -226,9 +225,14 @@ int run(int argc, char* argv[]) {
   env.frame_buffers[1] = soc.frame_buffer(1);
   env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   env.args = opt.app_args;
-  soc.set_program([&env, app](HostApi& host) {
+  env.backend = config.get_string("driver.backend");
+  // The driver's heap: from 4 MiB (below it, application data) up to the
+  // frame buffers at the top of memory.
+  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
+  env.heap_end = env.frame_buffers[0];
+  soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
-    return app->main(env);
+    return app.main(env);
   });
 
   if (!opt.vcd.empty()) soc.trace_to(vcd_base);
@@ -261,7 +265,9 @@ int run(int argc, char* argv[]) {
     status = kExitFailure;
   } else if (soc.host.exit_code() != 0) {
     std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
-    status = kExitFailure;
+    // An application reports bad input (an unreadable file, a bad argument)
+    // with status 2, like soc_sim itself.
+    status = soc.host.exit_code() == kExitUsage ? kExitUsage : kExitFailure;
   }
 
   nlohmann::json stats = soc.stats_json();

@@ -2,25 +2,41 @@
 
 #include <stdexcept>
 
+#include "apps/gl_apps.h"
+#include "scenes/scene.h"
+
 namespace tessera {
 
 const std::map<std::string, AppInfo>& builtin_apps() {
   static const std::map<std::string, AppInfo> apps = {
-      {"pattern", {pattern_app, "moving test pattern drawn by the host into the frame buffer (default demo)"}},
+      {"pattern", {pattern_app, "moving test pattern drawn by the host straight into the frame buffer (no GL)"}},
       {"calib_add", {calib_add_app, "host calibration: loop of 16-bit additions, memory operands (calibration.md)"}},
       {"calib_mul", {calib_mul_app, "host calibration: loop of 16x8-bit multiplications, memory operands"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
   };
-  return apps;
+  static const std::map<std::string, AppInfo> with_scenes = [] {
+    std::map<std::string, AppInfo> all = apps;
+    for (const scenes::Scene& scene : scenes::all_scenes())
+      all[scene.name] = {[&scene](AppEnvironment& env) { return run_scene_app(env, scene); },
+                         std::string(scene.description) + " (GL ES 1.1 scene)"};
+    return all;
+  }();
+  return with_scenes;
 }
 
-const AppInfo& find_app(const std::string& name) {
+AppInfo find_app(const std::string& name) {
   const auto& apps = builtin_apps();
   auto it = apps.find(name);
   if (it != apps.end()) return it->second;
+  if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
+    const GlMain main = load_app_library(name);
+    return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); },
+            "application library " + name};
+  }
   std::string known;
   for (const auto& [app_name, info] : apps) known += (known.empty() ? "" : ", ") + app_name;
-  throw std::invalid_argument("unknown application '" + name + "' (built-in: " + known + ")");
+  throw std::invalid_argument("unknown application '" + name + "' (built-in: " + known +
+                              "; or the path of a shared library exporting tessera_app_main)");
 }
 
 }  // namespace tessera

@@ -18,9 +18,10 @@ struct AppInfo {
 
 const std::map<std::string, AppInfo>& builtin_apps();
 
-// The application `name`, or throws std::invalid_argument listing the
-// built-in ones.
-const AppInfo& find_app(const std::string& name);
+// The application `name`: a built-in one, or a shared library given by its
+// path. Throws std::invalid_argument listing the built-in ones, or naming
+// what is wrong with the library.
+AppInfo find_app(const std::string& name);
 
 int pattern_app(AppEnvironment& env);
 int calib_add_app(AppEnvironment& env);

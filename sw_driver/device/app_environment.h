@@ -16,6 +16,10 @@ struct AppEnvironment {
   unsigned frames = 1;
   uint32_t frame_buffers[2] = {0, 0};
   uint32_t memory_bytes = 0;  // system memory populated from address 0
+  // System memory the driver may allocate (textures, depth buffers).
+  uint32_t heap_base = 0;
+  uint32_t heap_end = 0;
+  std::string backend = "arm";
   std::vector<std::string> args;
 };
 

@@ -99,7 +99,7 @@ TEST(ConfigDefaults, EveryParameterHasItsDefaultWithItsType) {
 
 TEST(ConfigDefaults, DocumentedDefaultsOfTheSoc) {
   const Config config;
-  EXPECT_EQ(config.get_string("sim.app"), "pattern");
+  EXPECT_EQ(config.get_string("sim.app"), "teapot");
   EXPECT_EQ(config.get_string("bus.arbitration"), "fixed_priority");
   EXPECT_EQ(config.get_uint("display.width"), 320u);
   EXPECT_EQ(config.get_uint("display.height"), 240u);

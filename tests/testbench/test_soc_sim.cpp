@@ -278,7 +278,7 @@ TEST(PatternDefinition, SquareMovesBetweenTheSampledFrames) {
 }
 
 TEST_F(SocSim, DefaultRunInRgba8888DrawsThePattern) {
-  const SimResult result = run({"--frames", "2", "--set", "display.format=rgba8888", "--out", "out"});
+  const SimResult result = run({"--app", "pattern", "--frames", "2", "--set", "display.format=rgba8888", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
   expect_pattern_frames(m_dir / "out", 2, false);
   {
@@ -309,7 +309,7 @@ TEST_F(SocSim, DefaultRunInRgba8888DrawsThePattern) {
 }
 
 TEST_F(SocSim, DefaultRgb565FramesAreQuantised) {
-  const SimResult result = run({"--frames", "2", "--out", "out"});
+  const SimResult result = run({"--app", "pattern", "--frames", "2", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
   expect_pattern_frames(m_dir / "out", 2, true);
   // Quantisation shows on the ramp: grey 127 at x = 160 keeps 5 bits of red
@@ -322,7 +322,7 @@ TEST_F(SocSim, DefaultRgb565FramesAreQuantised) {
 }
 
 TEST_F(SocSim, DisplayDmaShowsTheSameFramesOverTheBus) {
-  const SimResult result = run({"--set", "display.dma=true", "--frames", "2", "--out", "out"});
+  const SimResult result = run({"--app", "pattern", "--set", "display.dma=true", "--frames", "2", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
   expect_pattern_frames(m_dir / "out", 2, true);
   const json stats = read_stats(m_dir / "out/stats.json")["stats"];
@@ -469,7 +469,7 @@ TEST_F(SocSim, UnknownApplicationIsRejectedListingTheKnownOnes) {
 }
 
 TEST_F(SocSim, UnknownBackEndIsRejected) {
-  expect_rejected(run({"--backend", "foo", "--out", "out"}), EXIT_USAGE, {"back end", "foo"});
+  expect_rejected(run({"--backend", "foo", "--out", "out"}), EXIT_USAGE, {"driver.backend", "foo", "arm"});
 }
 
 TEST_F(SocSim, UnwritableOutputFolderIsRejected) {

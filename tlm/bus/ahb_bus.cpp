@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "common/transfer_train.h"
 
 namespace tessera {
 
@@ -89,6 +90,7 @@ uint64_t AhbBus::reserve(uint64_t request_ticks, uint64_t length_ticks) {
   else
     m_reserved.emplace(start, start + length_ticks);
   m_busy_cycles += length_ticks / m_period_ticks;
+  m_last_end_ticks = std::max(m_last_end_ticks, start + length_ticks);
   return start;
 }
 
@@ -114,9 +116,10 @@ void AhbBus::resolve_batch() {
 void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats,
                      const Request& request) {
   BusInitiatorStats& s = m_stats[initiator];
-  ++s.transactions;
-  if (gp.is_read()) ++s.reads;
-  if (gp.is_write()) ++s.writes;
+  const unsigned transfers = transfers_of(gp);
+  s.transactions += transfers;
+  if (gp.is_read()) s.reads += transfers;
+  if (gp.is_write()) s.writes += transfers;
   s.bytes += gp.get_data_length();
   s.beats += beats;
   s.busy_cycles += request.occupancy_ticks / m_period_ticks;
@@ -135,7 +138,10 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
   const uint64_t now = sc_core::sc_time_stamp().value();
   const uint64_t address = gp.get_address();
   Request request{initiator, align_to_edge(now + delay.value()), 0};
-  const uint64_t beats = std::max<uint64_t>(1, (gp.get_data_length() + m_params.width_bytes - 1) / m_params.width_bytes);
+  const unsigned transfers = transfers_of(gp);
+  const uint64_t transfer_bytes = gp.get_data_length() / transfers;
+  const uint64_t beats =
+      transfers * std::max<uint64_t>(1, (transfer_bytes + m_params.width_bytes - 1) / m_params.width_bytes);
 
   const Region* region = decode(address);
   if (!region) {
@@ -150,7 +156,7 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
     const uint64_t data_ticks = std::max(align_to_edge(target_delay.value()), beats * m_period_ticks);
-    request.occupancy_ticks = m_params.address_cycles * m_period_ticks + data_ticks;
+    request.occupancy_ticks = transfers * m_params.address_cycles * m_period_ticks + data_ticks;
     if (gp.is_response_error()) ++m_stats[initiator].errors;
   }
 
@@ -232,7 +238,10 @@ void AhbBus::invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint6
 }
 
 nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
-  const double cycles = elapsed.value() / static_cast<double>(m_period_ticks);
+  // Busy cycles are counted when a transfer is granted, so the period they
+  // are spread over runs to the end of the last granted transfer.
+  const uint64_t span = std::max<uint64_t>(elapsed.value(), m_last_end_ticks);
+  const double cycles = span / static_cast<double>(m_period_ticks);
   nlohmann::json initiators = nlohmann::json::object();
   for (const auto& s : m_stats) {
     initiators[s.name] = {

@@ -22,7 +22,9 @@
 // first, since they are earlier). Requests from initiators ahead in
 // their quantum are served in arrival order at their request times; the
 // quantum (sim.quantum_ns) bounds how far that order can differ from the
-// hardware's, and a quantum of 0 makes every request synchronised.
+// hardware's. A quantum of 0 synchronises the host before each of its own
+// accesses, but posted writes leaving its write buffer and a DMA's later
+// bursts of a line still carry a time offset.
 #pragma once
 
 #include <cstdint>
@@ -138,6 +140,7 @@ class AhbBus : public sc_core::sc_module {
   std::vector<Request*> m_batch;
   unsigned m_last_granted = 0;
   uint64_t m_busy_cycles = 0;
+  uint64_t m_last_end_ticks = 0;
   mutable const Region* m_last_region = nullptr;
   bool m_tracing = false;
   std::vector<std::unique_ptr<TimedTrace>> m_request_traces;

@@ -35,7 +35,7 @@ ParamSpec text(std::string key, std::string value, std::string description) {
 const std::vector<ParamSpec>& parameter_specs() {
   static const std::vector<ParamSpec> specs = {
       // Simulation
-      text("sim.app", "pattern", "application to run: a built-in name or a path to a shared library"),
+      text("sim.app", "teapot", "application to run: a built-in name or a path to a shared library"),
       integer("sim.frames", 3, 1, 100000, "frames", "frames the application draws before the simulation ends"),
       integer("sim.quantum_ns", 1000, 0, 1000000, "ns",
               "temporal-decoupling quantum of the loosely-timed initiators (0: synchronise on every access)"),
@@ -44,9 +44,12 @@ const std::vector<ParamSpec>& parameter_specs() {
       choice("sim.log_level", "warning", {"quiet", "error", "warning", "info", "debug"},
              "lowest severity of the log lines printed on stderr"),
 
+      // Software on the host
+      choice("driver.backend", "arm", {"arm"}, "renderer back end of the GL ES driver"),
+
       // Host: ARM922T
       real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
-      integer("host.irq_lines", 8, 1, 32, "lines", "interrupt inputs of the host"),
+      integer("host.irq_lines", 8, 4, 32, "lines", "interrupt inputs of the host"),
       integer("host.cycles.alu", 1, 0, 100, "cycles", "data-processing instruction (ARM9TDMI: 1)"),
       integer("host.cycles.load", 1, 0, 100, "cycles", "LDR/LDRH/LDRB issue, cache hit (ARM9TDMI: 1)"),
       integer("host.cycles.load_use", 1, 0, 100, "cycles",

@@ -29,6 +29,8 @@ class DataCache {
   // A write: hit marks the line dirty; a miss does not allocate.
   bool write(uint32_t address);
   void invalidate_all();
+  // Counts further hits on a line just looked up (a span's other elements).
+  void count_hits(uint64_t n) { m_hits += n; }
 
   uint64_t hits() const { return m_hits; }
   uint64_t misses() const { return m_misses; }

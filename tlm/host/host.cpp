@@ -31,6 +31,8 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
     : sc_core::sc_module(name), out("out"), irq("irq", params.irq_lines), m_params(params),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways), m_busy_trace("busy") {
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
+  m_train = new TransferTrain;
+  m_payload.set_extension(m_train);
   m_qk.reset();
   SC_THREAD(run);
 }
@@ -92,6 +94,7 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_dmi_allowed(false);
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   out->b_transport(m_payload, delay);
+  m_train->transfers = 1;
   if (m_payload.is_response_error()) {
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +
@@ -180,8 +183,8 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   post_write(address, static_cast<const uint8_t*>(data), bytes);
 }
 
-void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes) {
-  const unsigned words = std::max(1u, (bytes + 3) / 4);
+void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  const unsigned words = std::max(transfers, (bytes + 3) / 4);
   auto retire = [&] {
     const uint64_t local = local_ticks();
     while (!m_write_buffer.empty() && m_write_buffer.front().done_ticks <= local) {
@@ -190,16 +193,27 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes) {
     }
   };
   retire();
-  while (!m_write_buffer.empty() && m_write_buffer_words + words > m_params.write_buffer_words) {
+  while (!m_write_buffer.empty() && m_write_buffer_words + std::min(words, m_params.write_buffer_words) >
+                                        m_params.write_buffer_words) {
     ++m_write_buffer_stalls;
     stall_until(m_write_buffer.front().done_ticks);
     retire();
   }
   std::vector<uint8_t> copy(data, data + bytes);
+  const uint64_t issue = std::max(local_ticks(), m_write_buffer_free_ticks);
+  m_train->transfers = transfers;
   const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, copy.data(), bytes, m_write_buffer_free_ticks);
   m_write_buffer_free_ticks = done;
-  m_write_buffer.push_back({done, words});
-  m_write_buffer_words += words;
+  if (words > m_params.write_buffer_words) {
+    // A train longer than the buffer: the core waits until all but the
+    // buffer's worth of its transfers have left (they drain evenly).
+    const uint64_t per_word = (done - issue) / words;
+    ++m_write_buffer_stalls;
+    stall_until(done - per_word * m_params.write_buffer_words);
+  }
+  const unsigned held = std::min(words, m_params.write_buffer_words);
+  m_write_buffer.push_back({done, held});
+  m_write_buffer_words += held;
 }
 
 void Host::drain_write_buffer() {
@@ -275,7 +289,17 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
   for (unsigned i = 0; i <= count; ++i) {
     const bool hit = i < count && cacheable(address + 4 * i, 4) && m_dcache.write(address + 4 * i);
     if (hit) {
-      if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) std::memcpy(p, &words[i], 4);
+      if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) {
+        std::memcpy(p, &words[i], 4);
+      } else {
+        tlm::tlm_generic_payload request;
+        request.set_command(tlm::TLM_WRITE_COMMAND);
+        request.set_address(address + 4 * i);
+        request.set_data_ptr(reinterpret_cast<uint8_t*>(const_cast<uint32_t*>(&words[i])));
+        request.set_data_length(4);
+        request.set_streaming_width(4);
+        out->transport_dbg(request);
+      }
     }
     if (i == count || hit) {
       while (run_start < i) {
@@ -286,6 +310,86 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
       run_start = i + 1;
     }
   }
+}
+
+uint8_t* Host::span_pointer(uint32_t address, unsigned bytes) {
+  if (!cacheable(address, bytes))
+    throw std::invalid_argument("host: span access of " + std::to_string(bytes) + " bytes at " + log::hex(address) +
+                                " is not in system memory");
+  uint8_t* p = dmi_pointer(address, bytes, true);
+  if (!p) throw std::invalid_argument("host: span access at " + log::hex(address) + " without DMI to system memory");
+  return p;
+}
+
+const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) {
+  const unsigned bytes = size * count;
+  uint8_t* data = span_pointer(address, std::max(bytes, 1u));
+  if (count == 0) return data;
+  m_loads += count;
+  if (!m_dcache.enabled()) {
+    // No cache: one single transfer per element, back to back.
+    charge(uint64_t{m_params.load_cycles} * count);
+    drain_write_buffer();
+    std::vector<uint8_t> scratch(bytes);
+    m_train->transfers = count;
+    stall_until(transact(tlm::TLM_READ_COMMAND, address, scratch.data(), bytes, 0));
+    return data;
+  }
+  const unsigned line = m_dcache.line_bytes();
+  uint32_t cursor = address;
+  const uint32_t end = address + bytes;
+  while (cursor < end) {
+    const uint32_t line_end = m_dcache.line_address(cursor) + line;
+    const uint32_t piece_end = std::min(end, line_end);
+    const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
+    charge(uint64_t{m_params.load_cycles} * elements);
+    const DataCache::Result result = m_dcache.read(cursor);
+    if (!result.hit) {
+      if (result.evicted_dirty) {
+        std::vector<uint8_t> victim(line);
+        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim.data(), p, line);
+        post_write(result.evicted_address, victim.data(), line);
+      }
+      uint8_t fill[256];
+      stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(cursor), fill, line, 0));
+    }
+    m_dcache.count_hits(elements - 1);
+    cursor = piece_end;
+  }
+  return data;
+}
+
+uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
+  const unsigned bytes = size * count;
+  uint8_t* data = span_pointer(address, std::max(bytes, 1u));
+  if (count == 0) return data;
+  m_stores += count;
+  const unsigned line = m_dcache.enabled() ? m_dcache.line_bytes() : bytes;
+  uint32_t cursor = address;
+  const uint32_t end = address + bytes;
+  // Runs of elements that miss the cache leave as posted single stores.
+  uint32_t miss_start = 0;
+  unsigned miss_elements = 0;
+  auto post_misses = [&] {
+    if (miss_elements) post_write(miss_start, data + (miss_start - address), miss_elements * size, miss_elements);
+    miss_elements = 0;
+  };
+  while (cursor < end) {
+    const uint32_t line_end = m_dcache.enabled() ? m_dcache.line_address(cursor) + line : end;
+    const uint32_t piece_end = std::min(end, line_end);
+    const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
+    charge(uint64_t{m_params.store_cycles} * elements);
+    if (m_dcache.enabled() && m_dcache.write(cursor)) {
+      post_misses();
+      m_dcache.count_hits(elements - 1);
+    } else {
+      if (!miss_elements) miss_start = cursor;
+      miss_elements += elements;
+    }
+    cursor = piece_end;
+  }
+  post_misses();
+  return data;
 }
 
 bool Host::irq_pending(unsigned line) {
@@ -310,6 +414,8 @@ void Host::wait_irq(unsigned line) {
 }
 
 void Host::run() {
+  // The global quantum is set during elaboration, after this module was built.
+  m_qk.reset();
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
   try {
     if (!m_program) throw std::logic_error("host: no program to run");

@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/timed_trace.h"
+#include "common/transfer_train.h"
 #include "host/data_cache.h"
 #include "host/host_api.h"
 
@@ -80,6 +81,8 @@ class Host : public sc_core::sc_module, public HostApi {
   void write8(uint32_t address, uint8_t value) override;
   void read_words(uint32_t address, uint32_t* words, unsigned count) override;
   void write_words(uint32_t address, const uint32_t* words, unsigned count) override;
+  const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override;
+  uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override;
   void wait_irq(unsigned line) override;
   bool irq_pending(unsigned line) override;
   double now_seconds() const override;
@@ -97,7 +100,8 @@ class Host : public sc_core::sc_module, public HostApi {
                     uint64_t not_before_ticks);
   void read_data(uint32_t address, void* data, unsigned bytes);
   void write_data(uint32_t address, const void* data, unsigned bytes);
-  void post_write(uint32_t address, const uint8_t* data, unsigned bytes);
+  void post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers = 1);
+  uint8_t* span_pointer(uint32_t address, unsigned bytes);
   void drain_write_buffer();
   uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
   void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
@@ -109,6 +113,7 @@ class Host : public sc_core::sc_module, public HostApi {
   tlm_utils::tlm_quantumkeeper m_qk;
   DataCache m_dcache;
   tlm::tlm_generic_payload m_payload;
+  TransferTrain* m_train;  // owned by m_payload
 
   tlm::tlm_dmi m_dmi;
   bool m_dmi_valid = false;

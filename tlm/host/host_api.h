@@ -56,6 +56,16 @@ class HostApi {
   virtual void read_words(uint32_t address, uint32_t* words, unsigned count) = 0;
   virtual void write_words(uint32_t address, const uint32_t* words, unsigned count) = 0;
 
+  // Spans, for code that walks runs of consecutive elements (a software
+  // rasterizer's spans): charged as `count` loads (stores) of `size` bytes at
+  // consecutive addresses from `address`, through the cache and write buffer
+  // like the single accesses above, but accounted once per cache line. They
+  // return a pointer to the data in system memory, valid until the host's
+  // next call, through which the caller reads (writes) the elements.
+  // System memory only; anything else throws std::invalid_argument.
+  virtual const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) = 0;
+  virtual uint8_t* store_span(uint32_t address, unsigned size, unsigned count) = 0;
+
   // Sleeps until interrupt line `line` is high (level-sensitive); the time
   // is counted as idle.
   virtual void wait_irq(unsigned line) = 0;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "common/transfer_train.h"
 
 namespace tessera {
 
@@ -37,7 +38,10 @@ bool Memory::check(tlm::tlm_generic_payload& gp) const {
 void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   if (!check(gp)) {
     ++m_errors;
-    log::warning(name(), std::string("access outside memory: ") + (gp.is_write() ? "write" : "read") + " of " +
+    const char* what = gp.get_response_status() == tlm::TLM_BURST_ERROR_RESPONSE
+                           ? "streaming width shorter than the data (not supported): "
+                           : "access outside memory: ";
+    log::warning(name(), std::string(what) + (gp.is_write() ? "write" : "read") + " of " +
                              std::to_string(gp.get_data_length()) + " bytes at offset " +
                              log::hex(gp.get_address()));
     return;
@@ -53,19 +57,20 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
     } else {
       std::memcpy(gp.get_data_ptr(), memory, length);
     }
-    ++m_reads;
+    m_reads += transfers_of(gp);
     m_bytes_read += length;
   } else if (gp.is_write()) {
     if (enables) {
       for (uint64_t i = 0; i < length; ++i)
         if (enables[i % enable_length] == TLM_BYTE_ENABLED) memory[i] = gp.get_data_ptr()[i];
     } else {
-      std::memcpy(memory, gp.get_data_ptr(), length);
+      std::memmove(memory, gp.get_data_ptr(), length);
     }
-    ++m_writes;
+    m_writes += transfers_of(gp);
     m_bytes_written += length;
   }
-  const sc_core::sc_time time = access_time(length);
+  const unsigned transfers = transfers_of(gp);
+  const sc_core::sc_time time = access_time(length / transfers) * static_cast<double>(transfers);
   m_busy_ticks += time.value();
   delay += time;
   gp.set_dmi_allowed(true);

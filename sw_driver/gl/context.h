@@ -1,0 +1,237 @@
+// The GL ES 1.1 rendering context: all GL state, the vertex pipeline
+// (fetch, transform, lighting, primitive assembly, clipping, viewport,
+// culling) and the hand-over of triangles to the back end. The C entry
+// points in gl_api.cpp forward to the current context. Every call charges
+// the host's cost model (soft-float for the geometry), so the driver's time
+// on the ARM is part of the simulation.
+#pragma once
+
+#include <GLES/gl.h>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/geometry.h"
+#include "gl/renderer.h"
+#include "host/host_api.h"
+
+namespace tessera::gl {
+
+struct ArrayPointer {
+  bool enabled = false;
+  GLint size = 4;
+  GLenum type = GL_FLOAT;
+  GLsizei stride = 0;
+  const void* pointer = nullptr;
+  GLuint buffer = 0;  // bound GL_ARRAY_BUFFER when the pointer was set
+};
+
+struct TextureObject {
+  Texture texture;          // what the back ends see
+  bool defined = false;     // glTexImage2D has been called
+};
+
+struct BufferObject {
+  std::vector<uint8_t> data;
+  GLenum usage = GL_STATIC_DRAW;
+};
+
+class Context {
+ public:
+  // The renderer belongs to the EGL surface the context is current on.
+  Context(HostApi& host, Renderer& renderer);
+
+  HostApi& host() { return m_host; }
+  Renderer& renderer() { return *m_renderer; }
+
+  // Errors: the first one sticks until glGetError reads it.
+  void error(GLenum code);
+  GLenum get_error();
+
+  // Charges one GL call (argument checks, state update) to the host.
+  void charge_call(unsigned alu = 8);
+
+  // State commands
+  void enable(GLenum cap, bool on);
+  bool is_enabled(GLenum cap);
+  void enable_client_state(GLenum array, bool on);
+  void clear_color(float r, float g, float b, float a);
+  void clear_depth(float d);
+  void clear_stencil(GLint s);
+  void clear(GLbitfield mask);
+  void viewport(GLint x, GLint y, GLsizei w, GLsizei h);
+  void depth_range(float n, float f);
+  void scissor(GLint x, GLint y, GLsizei w, GLsizei h);
+  void depth_func(GLenum func);
+  void depth_mask(bool flag);
+  void alpha_func(GLenum func, float ref);
+  void stencil_func(GLenum func, GLint ref, GLuint mask);
+  void stencil_op(GLenum fail, GLenum zfail, GLenum zpass);
+  void stencil_mask(GLuint mask);
+  void blend_func(GLenum src, GLenum dst);
+  void logic_op(GLenum op);
+  void color_mask(bool r, bool g, bool b, bool a);
+  void shade_model(GLenum mode);
+  void cull_face(GLenum mode);
+  void front_face(GLenum mode);
+  void hint(GLenum target, GLenum mode);
+  void point_size(float size);
+  void line_width(float width);
+  void polygon_offset(float factor, float units);
+  void pixel_store(GLenum name, GLint value);
+  void sample_coverage(float value, bool invert);
+  void fog(GLenum name, const float* values, int count);
+  void clip_plane(GLenum plane, const float* equation);
+  void get_clip_plane(GLenum plane, float* equation);
+
+  // Matrices
+  void matrix_mode(GLenum mode);
+  void load_matrix(const glm::mat4& m);
+  void mult_matrix(const glm::mat4& m);
+  void push_matrix();
+  void pop_matrix();
+  void frustum(float l, float r, float b, float t, float n, float f);
+  void ortho(float l, float r, float b, float t, float n, float f);
+  glm::mat4& current_matrix();
+
+  // Current attributes and arrays
+  void color(float r, float g, float b, float a);
+  void normal(float x, float y, float z);
+  void tex_coord(GLenum unit, float s, float t, float r, float q);
+  void array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer,
+                     bool size_ok, bool type_ok);
+  ArrayPointer& vertex_array() { return m_vertex_array; }
+  ArrayPointer& color_array() { return m_color_array; }
+  ArrayPointer& normal_array() { return m_normal_array; }
+  ArrayPointer& texcoord_array() { return m_texcoord_array; }
+  void active_texture(GLenum unit, bool client);
+
+  // Lighting
+  void light(GLenum light, GLenum name, const float* values, int count);
+  void get_light(GLenum light, GLenum name, float* values);
+  void light_model(GLenum name, const float* values, int count);
+  void material(GLenum face, GLenum name, const float* values, int count);
+  void get_material(GLenum face, GLenum name, float* values);
+
+  // Textures
+  void gen_textures(GLsizei n, GLuint* names);
+  void delete_textures(GLsizei n, const GLuint* names);
+  void bind_texture(GLenum target, GLuint name);
+  bool is_texture(GLuint name);
+  void tex_image(GLenum target, GLint level, GLint internal_format, GLsizei width, GLsizei height, GLint border,
+                 GLenum format, GLenum type, const void* pixels);
+  void tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
+                     GLenum type, const void* pixels);
+  void tex_parameter(GLenum target, GLenum name, float value);
+  void get_tex_parameter(GLenum target, GLenum name, float* value);
+  void tex_env(GLenum target, GLenum name, const float* values, int count);
+  void get_tex_env(GLenum target, GLenum name, float* values);
+
+  // Buffer objects
+  void gen_buffers(GLsizei n, GLuint* names);
+  void delete_buffers(GLsizei n, const GLuint* names);
+  void bind_buffer(GLenum target, GLuint name);
+  bool is_buffer(GLuint name);
+  void buffer_data(GLenum target, GLsizeiptr size, const void* data, GLenum usage);
+  void buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, const void* data);
+  void get_buffer_parameter(GLenum target, GLenum name, GLint* value);
+
+  // Drawing
+  void draw_arrays(GLenum mode, GLint first, GLsizei count);
+  void draw_elements(GLenum mode, GLsizei count, GLenum type, const void* indices);
+  void read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type, void* pixels);
+  void flush();
+  void finish();
+
+  // Queries
+  void get_floats(GLenum name, float* values);  // also used for integers and booleans
+  int query_count(GLenum name);                 // number of values of `name`, 0 if unknown
+  const GLubyte* get_string(GLenum name);
+  void get_pointer(GLenum name, void** value);
+
+ private:
+  struct Vertex {
+    ClipVertex clip;
+    glm::vec4 eye;
+    bool valid;
+  };
+  bool fetch_and_transform(const std::vector<uint32_t>& indices, std::vector<Vertex>& out);
+  void draw(GLenum mode, const std::vector<uint32_t>& indices);
+  void emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color);
+  void emit_quad(const glm::vec2 corners[4], const Vertex& source, float depth_ndc_w_z, float w);
+  void flush_triangles();
+  RasterState raster_state() const;
+  const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
+  glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults);
+  TextureObject* bound_texture();
+  void charge(const FloatCost& cost, uint64_t times);
+
+  HostApi& m_host;
+  Renderer* m_renderer;
+  GLenum m_error = GL_NO_ERROR;
+
+  // Fragment and framebuffer state
+  RasterState m_raster;
+  bool m_depth_test = false, m_blend = false, m_alpha_test = false, m_stencil_test = false;
+  bool m_scissor_test = false, m_logic_op = false, m_texture_2d = false, m_dither = true;
+  bool m_cull = false, m_lighting = false, m_normalize = false, m_rescale_normal = false;
+  bool m_color_material = false, m_fog = false, m_multisample = true, m_polygon_offset_fill = false;
+  bool m_sample_alpha_to_coverage = false, m_sample_alpha_to_one = false, m_sample_coverage = false;
+  bool m_point_smooth = false, m_line_smooth = false, m_polygon_smooth = false;
+  std::array<bool, 6> m_clip_plane_enabled{};
+  std::array<glm::vec4, 6> m_clip_planes{};
+  GLenum m_cull_mode = GL_BACK, m_front_face = GL_CCW, m_shade_model = GL_SMOOTH;
+  float m_clear_color[4] = {0, 0, 0, 0};
+  float m_clear_depth = 1;
+  GLint m_clear_stencil = 0;
+  Viewport m_viewport;
+  GLint m_stencil_ref = 0;
+  float m_alpha_ref = 0;
+  float m_point_size = 1, m_line_width = 1;
+  float m_polygon_offset[2] = {0, 0};
+  GLint m_pack_alignment = 4, m_unpack_alignment = 4;
+  std::map<GLenum, GLenum> m_hints;
+  float m_sample_coverage_value = 1;
+  bool m_sample_coverage_invert = false;
+  GLenum m_fog_mode = GL_EXP;
+  float m_fog_density = 1, m_fog_start = 0, m_fog_end = 1, m_fog_color[4] = {0, 0, 0, 0};
+
+  // Transform state
+  GLenum m_matrix_mode = GL_MODELVIEW;
+  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)}, m_texture_matrix{glm::mat4(1)};
+
+  // Current vertex attributes and arrays
+  glm::vec4 m_color{1, 1, 1, 1};
+  glm::vec3 m_normal{0, 0, 1};
+  glm::vec4 m_texcoord{0, 0, 0, 1};
+  ArrayPointer m_vertex_array, m_color_array, m_normal_array, m_texcoord_array;
+  GLenum m_active_texture = GL_TEXTURE0, m_client_active_texture = GL_TEXTURE0;
+
+  // Lighting
+  LightingModel m_lighting_model;
+  Material m_front_material;
+  bool m_two_side = false;
+
+  // Textures and buffers
+  std::map<GLuint, TextureObject> m_textures;
+  GLuint m_next_texture = 1;
+  GLuint m_bound_texture = 0;
+  GLenum m_tex_env_mode = GL_MODULATE;
+  float m_tex_env_color[4] = {0, 0, 0, 0};
+  std::map<GLuint, BufferObject> m_buffers;
+  GLuint m_next_buffer = 1;
+  GLuint m_array_buffer = 0, m_element_buffer = 0;
+
+  std::vector<Triangle> m_batch;
+  std::vector<Vertex> m_vertices;
+};
+
+// The current context (eglMakeCurrent), or nullptr.
+Context* current_context();
+void set_current_context(Context* context);
+
+}  // namespace tessera::gl

@@ -1,0 +1,161 @@
+#include "gl/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tessera::gl {
+
+namespace {
+
+// Signed distance-like value of v from clip plane `plane` (>= 0: inside).
+float plane_value(const glm::vec4& p, int plane) {
+  switch (plane) {
+    case 0: return p.w + p.x;  // left
+    case 1: return p.w - p.x;  // right
+    case 2: return p.w + p.y;  // bottom
+    case 3: return p.w - p.y;  // top
+    case 4: return p.w + p.z;  // near
+    case 5: return p.w - p.z;  // far
+    default: return p.w - 1e-6f;  // w > 0: keeps the perspective division finite
+  }
+}
+
+ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
+  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t,
+          a.tex + (b.tex - a.tex) * t};
+}
+
+}  // namespace
+
+bool inside_view_volume(const ClipVertex& v) {
+  for (int plane = 0; plane < 7; ++plane)
+    if (!(plane_value(v.position, plane) >= 0)) return false;
+  return true;
+}
+
+std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon) {
+  std::vector<ClipVertex> current = polygon, next;
+  for (int plane = 0; plane < 7 && !current.empty(); ++plane) {
+    next.clear();
+    for (size_t i = 0; i < current.size(); ++i) {
+      const ClipVertex& a = current[i];
+      const ClipVertex& b = current[(i + 1) % current.size()];
+      const float da = plane_value(a.position, plane);
+      const float db = plane_value(b.position, plane);
+      if (da >= 0) next.push_back(a);
+      // An edge crossing the plane contributes its intersection; computing t
+      // from the inside end keeps shared edges of neighbours identical.
+      if ((da >= 0) != (db >= 0)) {
+        if (da >= 0) next.push_back(lerp(a, b, da / (da - db)));
+        else next.push_back(lerp(b, a, db / (db - da)));
+      }
+    }
+    current.swap(next);
+  }
+  if (current.size() < 3) current.clear();
+  return current;
+}
+
+uint8_t to_unorm8(float value) {
+  if (!(value > 0)) return 0;
+  if (value >= 1) return 255;
+  return static_cast<uint8_t>(std::lround(value * 255.0f));
+}
+
+uint32_t to_unorm24(float value) {
+  constexpr double kMax = (1u << 24) - 1;
+  if (!(value > 0)) return 0;
+  if (value >= 1) return static_cast<uint32_t>(kMax);
+  return static_cast<uint32_t>(std::llround(value * kMax));
+}
+
+bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
+  const glm::vec4& p = v.position;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w) || !(p.w > 0))
+    return false;
+  const double inv_w = 1.0 / p.w;
+  const double xn = p.x * inv_w, yn = p.y * inv_w, zn = p.z * inv_w;
+  const double xw = (xn + 1.0) * viewport.width * 0.5 + viewport.x;
+  const double yw = (yn + 1.0) * viewport.height * 0.5 + viewport.y;
+  const double zw = (zn * (viewport.far_depth - viewport.near_depth) + viewport.far_depth + viewport.near_depth) * 0.5;
+  const double xf = std::nearbyint(xw * (1 << kSubpixelBits));
+  const double yf = std::nearbyint(yw * (1 << kSubpixelBits));
+  if (!std::isfinite(xf) || !std::isfinite(yf) || xf < 0 || yf < 0 || xf > kMaxScreenCoordinate ||
+      yf > kMaxScreenCoordinate)
+    return false;
+  out->x = static_cast<int32_t>(xf);
+  out->y = static_cast<int32_t>(yf);
+  out->z = to_unorm24(static_cast<float>(zw));
+  out->inv_w = static_cast<float>(inv_w);
+  out->r = to_unorm8(v.color.r);
+  out->g = to_unorm8(v.color.g);
+  out->b = to_unorm8(v.color.b);
+  out->a = to_unorm8(v.color.a);
+  out->s = v.tex.x;
+  out->t = v.tex.y;
+  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y);
+}
+
+int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {
+  return static_cast<int64_t>(b.x - a.x) * (c.y - a.y) - static_cast<int64_t>(c.x - a.x) * (b.y - a.y);
+}
+
+glm::vec4 light_vertex(const LightingModel& model, const Material& material, const glm::vec4& eye,
+                       const glm::vec3& normal) {
+  glm::vec3 color = glm::vec3(material.emission) + glm::vec3(material.ambient) * glm::vec3(model.ambient);
+  const glm::vec3 position = glm::vec3(eye) / (eye.w != 0 ? eye.w : 1.0f);
+  for (const Light& light : model.lights) {
+    if (!light.enabled) continue;
+    glm::vec3 to_light;
+    float attenuation = 1;
+    if (light.position.w != 0) {
+      const glm::vec3 light_position = glm::vec3(light.position) / light.position.w;
+      to_light = light_position - position;
+      const float distance = glm::length(to_light);
+      attenuation = 1.0f / (light.constant_attenuation + light.linear_attenuation * distance +
+                            light.quadratic_attenuation * distance * distance);
+      to_light = distance > 0 ? to_light / distance : glm::vec3(0, 0, 1);
+    } else {
+      to_light = glm::normalize(glm::vec3(light.position));
+    }
+    float spot = 1;
+    if (light.spot_cutoff != 180) {
+      const float cos_angle = glm::dot(-to_light, glm::normalize(light.spot_direction));
+      const float cos_cutoff = std::cos(glm::radians(light.spot_cutoff));
+      spot = cos_angle < cos_cutoff ? 0.0f : std::pow(std::max(cos_angle, 0.0f), light.spot_exponent);
+    }
+    const float n_dot_l = glm::dot(normal, to_light);
+    glm::vec3 term = glm::vec3(material.ambient) * glm::vec3(light.ambient);
+    if (n_dot_l > 0) {
+      term += n_dot_l * glm::vec3(material.diffuse) * glm::vec3(light.diffuse);
+      // Infinite viewer (ES 1.1 has no local viewer): the eye direction is +z.
+      const glm::vec3 half = glm::normalize(to_light + glm::vec3(0, 0, 1));
+      const float n_dot_h = glm::dot(normal, half);
+      if (n_dot_h > 0) {
+        const float power = material.shininess == 0 ? 1.0f : std::pow(n_dot_h, material.shininess);
+        term += power * glm::vec3(material.specular) * glm::vec3(light.specular);
+      }
+    }
+    color += attenuation * spot * term;
+  }
+  color = glm::clamp(color, glm::vec3(0), glm::vec3(1));
+  return {color, std::clamp(material.diffuse.a, 0.0f, 1.0f)};
+}
+
+FloatCost transform_cost() { return {12, 16, 0, 0, 0, 0, 0}; }
+
+FloatCost lighting_cost(unsigned lights) {
+  FloatCost cost{6, 6, 0, 0, 0, 0, 0};
+  for (unsigned i = 0; i < lights; ++i) {
+    // direction, attenuation, n.l, half vector and its normalisation, n.h,
+    // the specular power (a pow() call) and the accumulation.
+    cost += FloatCost{20, 24, 2, 2, 3, 0, 1};
+  }
+  cost += FloatCost{0, 0, 0, 0, 6, 0, 0};  // clamp
+  return cost;
+}
+
+FloatCost clip_test_cost() { return {6, 0, 0, 0, 7, 0, 0}; }
+FloatCost screen_cost() { return {6, 8, 1, 0, 2, 3, 0}; }
+
+}  // namespace tessera::gl

@@ -1,0 +1,102 @@
+// The interface between the GL front end and the renderer back ends (arm,
+// raster, ap-tile, ap-pixel). The front end hands over triangles that are
+// already lit, clipped, projected, culled and in the rasterizer's interface
+// formats; each back end turns them into pixels its own way, so the same
+// application runs on every renderer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace tessera::gl {
+
+// A vertex in window coordinates. Pixel (i, j) covers [i, i+1) x [j, j+1)
+// with its centre at (i + 0.5, j + 0.5); j = 0 is the BOTTOM row, as in GL.
+struct ScreenVertex {
+  int32_t x, y;        // 9.4 fixed point
+  uint32_t z;          // 0.24 fixed point, 0 = near
+  float inv_w;         // 1 / w_clip, for perspective-correct texture coordinates
+  uint8_t r, g, b, a;  // 0.8
+  float s, t;          // texture coordinates (not divided by w)
+};
+
+// Either winding; v[2] is the provoking vertex for flat shading.
+struct Triangle {
+  ScreenVertex v[3];
+};
+
+// Enumerations in the order of their GL values (GL_NEVER + i, ...).
+enum class CompareFunc : uint8_t { never, less, equal, lequal, greater, notequal, gequal, always };
+enum class BlendFactor : uint8_t {
+  zero, one, src_color, one_minus_src_color, dst_color, one_minus_dst_color,
+  src_alpha, one_minus_src_alpha, dst_alpha, one_minus_dst_alpha, src_alpha_saturate
+};
+enum class StencilOp : uint8_t { keep, zero, replace, incr, decr, invert };
+enum class TexEnv : uint8_t { modulate, replace, decal };
+enum class TexFilter : uint8_t { nearest, linear };
+enum class TexWrap : uint8_t { repeat, clamp_to_edge };
+
+// A texture as the back ends see it: RGBA8 texels in system memory, row
+// t = 0 first, power-of-two sizes from 1 to 256.
+struct Texture {
+  uint32_t address = 0;
+  unsigned width = 0, height = 0;
+  TexFilter min_filter = TexFilter::nearest;  // mipmaps are not supported: a mipmap filter acts as its base
+  TexFilter mag_filter = TexFilter::linear;
+  TexWrap wrap_s = TexWrap::repeat, wrap_t = TexWrap::repeat;
+};
+
+struct RasterState {
+  bool flat_shading = false;
+  bool depth_test = false;
+  CompareFunc depth_func = CompareFunc::less;
+  bool depth_write = true;
+  bool alpha_test = false;
+  CompareFunc alpha_func = CompareFunc::always;
+  uint8_t alpha_ref = 0;
+  bool stencil_test = false;
+  CompareFunc stencil_func = CompareFunc::always;
+  uint8_t stencil_ref = 0, stencil_value_mask = 0xff, stencil_write_mask = 0xff;
+  StencilOp stencil_fail = StencilOp::keep, depth_fail = StencilOp::keep, depth_pass = StencilOp::keep;
+  bool blend = false;
+  BlendFactor blend_src = BlendFactor::one, blend_dst = BlendFactor::zero;
+  bool logic_op = false;
+  uint8_t logic_op_code = 3;  // GL_COPY - GL_CLEAR
+  bool color_mask[4] = {true, true, true, true};
+  bool scissor_test = false;
+  int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
+  bool texture = false;
+  Texture tex;
+  TexEnv tex_env = TexEnv::modulate;
+  bool polygon_smooth = false;  // antialiased edges (rasterizers that support it)
+};
+
+struct ClearRequest {
+  bool color = false, depth = false, stencil = false;
+  uint8_t rgba[4] = {0, 0, 0, 0};
+  uint32_t depth_value = 0xffffff;  // 0.24
+  uint8_t stencil_value = 0;
+  bool color_mask[4] = {true, true, true, true};
+  bool depth_write = true;
+  uint8_t stencil_write_mask = 0xff;
+  bool scissor_test = false;
+  int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual const char* name() const = 0;
+  virtual unsigned width() const = 0;
+  virtual unsigned height() const = 0;
+  virtual void clear(const ClearRequest& request) = 0;
+  virtual void draw(const RasterState& state, const Triangle* triangles, size_t count) = 0;
+  // RGBA8, rows from y upwards (GL order), w * h * 4 bytes.
+  virtual void read_pixels(int x, int y, int width, int height, uint8_t* rgba) = 0;
+  // Completes all drawing (glFinish).
+  virtual void finish() = 0;
+  // Shows the frame and moves drawing to the next buffer (eglSwapBuffers).
+  virtual void present() = 0;
+};
+
+}  // namespace tessera::gl

@@ -1,0 +1,793 @@
+// Scan conversion, span shading and the per-fragment operations of the arm
+// renderer; formats, rounding and the fill rule are stated in
+// arm_rasterizer.h, instruction counts in README.md.
+#include "renderers/arm/arm_rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace tessera::arm {
+
+namespace {
+
+using gl::BlendFactor;
+using gl::CompareFunc;
+using gl::StencilOp;
+
+// 9.4 coordinates beyond this magnitude would overflow the exact edge DDA.
+constexpr int64_t MAX_COORDINATE = int64_t{1} << 22;
+constexpr int COLOR_FRACTION_BITS = 16;
+constexpr int DEPTH_FRACTION_BITS = 7;    // interpolant = z24 << 7, fits in int32
+constexpr int Q_FRACTION_BITS = 30;       // normalised 1/w in (0, 1]
+constexpr int ST_FRACTION_BITS = 24;      // s * width * q
+constexpr double MAX_TEXELS = 32768.0;    // |s * width| is clamped to this
+
+int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  int64_t q = a / b;
+  if ((a % b) != 0 && a < 0) --q;
+  return q;
+}
+
+int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }  // b > 0
+
+// Exact round(x / 255) for 0 <= x <= 65025.
+inline uint32_t div255(uint32_t x) { return (x + 128 + ((x + 128) >> 8)) >> 8; }
+inline uint32_t mul8(uint32_t a, uint32_t b) { return div255(a * b); }
+
+template <typename T>
+inline bool compare(CompareFunc func, T incoming, T stored) {
+  switch (func) {
+    case CompareFunc::never: return false;
+    case CompareFunc::less: return incoming < stored;
+    case CompareFunc::equal: return incoming == stored;
+    case CompareFunc::lequal: return incoming <= stored;
+    case CompareFunc::greater: return incoming > stored;
+    case CompareFunc::notequal: return incoming != stored;
+    case CompareFunc::gequal: return incoming >= stored;
+    case CompareFunc::always: return true;
+  }
+  return false;
+}
+
+inline uint8_t stencil_apply(StencilOp op, uint8_t value, uint8_t ref, uint8_t write_mask) {
+  uint8_t result = value;
+  switch (op) {
+    case StencilOp::keep: return value;
+    case StencilOp::zero: result = 0; break;
+    case StencilOp::replace: result = ref; break;
+    case StencilOp::incr: result = value == 0xff ? value : uint8_t(value + 1); break;
+    case StencilOp::decr: result = value == 0 ? value : uint8_t(value - 1); break;
+    case StencilOp::invert: result = uint8_t(~value); break;
+  }
+  return uint8_t((value & ~write_mask) | (result & write_mask));
+}
+
+inline uint32_t pack(uint32_t rgba, ColorFormat format) {
+  if (format == ColorFormat::rgba8888) return rgba;
+  const uint32_t r = rgba & 0xff, g = (rgba >> 8) & 0xff, b = (rgba >> 16) & 0xff;
+  return ((r >> 3) << 11) | ((g >> 2) << 5) | (b >> 3);
+}
+
+inline uint32_t unpack(uint32_t packed, ColorFormat format) {
+  if (format == ColorFormat::rgba8888) return packed;
+  const uint32_t r5 = (packed >> 11) & 0x1f, g6 = (packed >> 5) & 0x3f, b5 = packed & 0x1f;
+  const uint32_t r = (r5 << 3) | (r5 >> 2), g = (g6 << 2) | (g6 >> 4), b = (b5 << 3) | (b5 >> 2);
+  return r | (g << 8) | (b << 16) | (0xffu << 24);
+}
+
+inline uint32_t read_packed(const uint8_t* p, unsigned bytes) {
+  return bytes == 2 ? uint32_t(p[0]) | uint32_t(p[1]) << 8
+                    : uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+inline void write_packed(uint8_t* p, unsigned bytes, uint32_t value) {
+  p[0] = uint8_t(value);
+  p[1] = uint8_t(value >> 8);
+  if (bytes == 4) {
+    p[2] = uint8_t(value >> 16);
+    p[3] = uint8_t(value >> 24);
+  }
+}
+
+inline uint32_t logic_op(unsigned code, uint32_t s, uint32_t d) {
+  switch (code & 15) {
+    case 0: return 0;
+    case 1: return s & d;
+    case 2: return s & ~d;
+    case 3: return s;
+    case 4: return ~s & d;
+    case 5: return d;
+    case 6: return s ^ d;
+    case 7: return s | d;
+    case 8: return ~(s | d);
+    case 9: return ~(s ^ d);
+    case 10: return ~d;
+    case 11: return s | ~d;
+    case 12: return ~s;
+    case 13: return ~s | d;
+    case 14: return ~(s & d);
+    default: return ~0u;
+  }
+}
+
+inline bool logic_op_reads_destination(unsigned code) {
+  code &= 15;
+  return code != 0 && code != 3 && code != 12 && code != 15;
+}
+
+inline bool factor_reads_destination(BlendFactor f) {
+  return f == BlendFactor::dst_color || f == BlendFactor::one_minus_dst_color || f == BlendFactor::dst_alpha ||
+         f == BlendFactor::one_minus_dst_alpha || f == BlendFactor::src_alpha_saturate;
+}
+
+// Blend factor for channel c (0..3 = r, g, b, a) as a 0.8 code.
+inline uint32_t blend_factor(BlendFactor f, const uint32_t s[4], const uint32_t d[4], int c) {
+  switch (f) {
+    case BlendFactor::zero: return 0;
+    case BlendFactor::one: return 255;
+    case BlendFactor::src_color: return s[c];
+    case BlendFactor::one_minus_src_color: return 255 - s[c];
+    case BlendFactor::dst_color: return d[c];
+    case BlendFactor::one_minus_dst_color: return 255 - d[c];
+    case BlendFactor::src_alpha: return s[3];
+    case BlendFactor::one_minus_src_alpha: return 255 - s[3];
+    case BlendFactor::dst_alpha: return d[3];
+    case BlendFactor::one_minus_dst_alpha: return 255 - d[3];
+    case BlendFactor::src_alpha_saturate: return c == 3 ? 255 : std::min(s[3], 255 - d[3]);
+  }
+  return 0;
+}
+
+inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t src, uint32_t dst) {
+  const uint32_t s[4] = {src & 0xff, (src >> 8) & 0xff, (src >> 16) & 0xff, src >> 24};
+  const uint32_t d[4] = {dst & 0xff, (dst >> 8) & 0xff, (dst >> 16) & 0xff, dst >> 24};
+  uint32_t out = 0;
+  for (int c = 0; c < 4; ++c) {
+    const uint32_t v = mul8(s[c], blend_factor(src_factor, s, d, c)) + mul8(d[c], blend_factor(dst_factor, s, d, c));
+    out |= std::min(v, 255u) << (8 * c);
+  }
+  return out;
+}
+
+inline int wrap(int i, unsigned size, gl::TexWrap mode) {
+  if (mode == gl::TexWrap::repeat) return i & int(size - 1);
+  return std::clamp(i, 0, int(size) - 1);
+}
+
+// One attribute's plane, in fixed point: value(x, y) = value0 + gx (x - x0) +
+// gy (y - y0), x and y in pixels. Values inside the triangle are convex
+// combinations of the vertex values, so every start value is clamped to
+// [lo, hi] and nudged so that stepping to the span's end stays there.
+struct Plane {
+  double value0 = 0, gx = 0, gy = 0, x0 = 0, y0 = 0;
+  int64_t lo = 0, hi = 0, step = 0;
+
+  void setup(const double value[3], const double x[3], const double y[3], double area, double scale, double bias) {
+    double v[3];
+    for (int k = 0; k < 3; ++k) v[k] = value[k] * scale + bias;
+    x0 = x[0];
+    y0 = y[0];
+    value0 = v[0];
+    gx = ((v[1] - v[0]) * (y[2] - y[0]) - (v[2] - v[0]) * (y[1] - y[0])) / area;
+    gy = ((v[2] - v[0]) * (x[1] - x[0]) - (v[1] - v[0]) * (x[2] - x[0])) / area;
+    lo = int64_t(std::floor(std::min({v[0], v[1], v[2]})));
+    hi = int64_t(std::floor(std::max({v[0], v[1], v[2]})));
+    const double range = double(hi - lo);
+    step = int64_t(std::llround(std::clamp(gx, -range, range)));
+  }
+
+  // Value at the centre of pixel (i, j), first of a span of n pixels.
+  int64_t start(int i, int j, int n) const {
+    const double v = value0 + gx * (i + 0.5 - x0) + gy * (j + 0.5 - y0);
+    int64_t s = v <= double(lo) ? lo : v >= double(hi) ? hi : int64_t(std::floor(v));
+    const int64_t end = s + step * (n - 1);
+    if (end < lo) s += lo - end;
+    if (end > hi) s -= end - hi;
+    return std::clamp(s, lo, hi);
+  }
+};
+
+}  // namespace
+
+struct ArmRasterizer::TriangleSetup {
+  Plane z, color[4], sq, tq, q;
+  uint32_t flat_rgba = 0;
+  bool perspective = false;
+  bool linear_filter = false;
+};
+
+struct ArmRasterizer::DrawContext {
+  const gl::RasterState* state = nullptr;
+  int clip_x0 = 0, clip_x1 = -1, clip_y0 = 0, clip_y1 = -1;  // inclusive, GL coordinates
+  bool depth_test = false, depth_write = false;
+  bool stencil_test = false, stencil_writes = false;
+  bool alpha_test = false, texture = false, gouraud = false;
+  bool late_tests = false;  // alpha test first, then stencil and depth
+  bool color_write = false, needs_destination = false, blend = false, logic_op = false;
+  uint32_t color_write_mask = 0;  // packed bits that are written
+  // Instructions per pixel of a span, per shaded pixel, per written pixel.
+  uint64_t pixel_alu = 0, pixel_branch = 0;
+  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0;
+  uint64_t write_alu = 0, write_mul = 0;
+  uint64_t span_alu = 0, span_mul = 0;
+  unsigned attributes = 0;
+};
+
+ArmRasterizer::ArmRasterizer(PixelMemory& memory, const FrameBuffers& buffers, const InstructionCounts& counts)
+    : m_memory(memory),
+      m_buffers(buffers),
+      m_counts(counts),
+      m_depth_old(buffers.width),
+      m_depth_new(buffers.width),
+      m_stencil_old(buffers.width),
+      m_stencil_new(buffers.width),
+      m_pass(buffers.width),
+      m_source(buffers.width) {}
+
+void ArmRasterizer::clear(const gl::ClearRequest& request) {
+  const int w = int(m_buffers.width), h = int(m_buffers.height);
+  int x0 = 0, x1 = w - 1, y0 = 0, y1 = h - 1;
+  if (request.scissor_test) {
+    x0 = std::max(x0, request.scissor_x);
+    y0 = std::max(y0, request.scissor_y);
+    x1 = std::min<int64_t>(x1, int64_t(request.scissor_x) + request.scissor_width - 1);
+    y1 = std::min<int64_t>(y1, int64_t(request.scissor_y) + request.scissor_height - 1);
+  }
+  if (x0 > x1 || y0 > y1) return;
+  const unsigned n = unsigned(x1 - x0 + 1);
+  // Rows y1 .. y0 are consecutive in memory (display order), so full-width
+  // rows are cleared as one block; a masked clear reads and merges row by
+  // row through the scratch row.
+  const bool whole_rows = x0 == 0 && x1 == w - 1;
+  auto fill = [&](uint32_t base, unsigned size, uint32_t value, uint32_t mask, uint32_t all_bits) {
+    if ((mask & all_bits) == 0) return;
+    const bool masked = (mask & all_bits) != all_bits;
+    const bool one_block = whole_rows && !masked;
+    const unsigned elements = one_block ? n * unsigned(y1 - y0 + 1) : n;
+    for (int y = y1; y >= (one_block ? y1 : y0); --y) {
+      const uint32_t address = base + (uint32_t(h - 1 - y) * m_buffers.width + uint32_t(x0)) * size;
+      if (masked) {
+        const uint8_t* old = m_memory.load(address, size, elements);
+        for (unsigned k = 0; k < elements; ++k)
+          m_source[k] = ((size == 1 ? old[k] : read_packed(old + k * size, size)) & ~mask) | (value & mask);
+        uint8_t* out = m_memory.store(address, size, elements);
+        for (unsigned k = 0; k < elements; ++k) {
+          if (size == 1) out[k] = uint8_t(m_source[k]);
+          else write_packed(out + k * size, size, m_source[k]);
+        }
+        m_memory.compute(Op::alu, uint64_t(elements) * m_counts.clear_masked_pixel_alu);
+      } else {
+        uint8_t* out = m_memory.store(address, size, elements);
+        if (size == 1) {
+          std::memset(out, int(value & 0xff), elements);
+        } else {
+          for (unsigned k = 0; k < elements; ++k) write_packed(out + k * size, size, value);
+        }
+        const uint64_t blocks = (uint64_t(elements) * size + 31) / 32;
+        m_memory.compute(Op::alu, blocks * m_counts.clear_block_alu);
+        m_memory.compute(Op::branch, blocks * m_counts.clear_block_branch);
+      }
+      m_memory.compute(Op::alu, m_counts.clear_row_alu);
+    }
+  };
+
+  const ColorFormat format = m_buffers.color_format;
+  const unsigned bpp = bytes_per_pixel(format);
+  const uint32_t all_color = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  if (request.color) {
+    uint32_t rgba = 0, mask_rgba = 0;
+    for (int c = 0; c < 4; ++c) {
+      rgba |= uint32_t(request.rgba[c]) << (8 * c);
+      if (request.color_mask[c]) mask_rgba |= 0xffu << (8 * c);
+    }
+    uint32_t mask = mask_rgba;
+    if (format == ColorFormat::rgb565) {
+      mask = (request.color_mask[0] ? 0xf800u : 0) | (request.color_mask[1] ? 0x07e0u : 0) |
+             (request.color_mask[2] ? 0x001fu : 0);
+    }
+    fill(m_buffers.color_address, bpp, pack(rgba, format), mask, all_color);
+  }
+  if (request.depth && request.depth_write) {
+    const uint32_t z16 = std::min<uint32_t>(request.depth_value, 0xffffff) >> 8;
+    fill(m_buffers.depth_address, 2, z16, 0xffff, 0xffff);
+  }
+  if (request.stencil) {
+    fill(m_buffers.stencil_address, 1, request.stencil_value, request.stencil_write_mask, 0xff);
+  }
+}
+
+void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  const InstructionCounts& k = m_counts;
+  DrawContext c;
+  c.state = &state;
+  c.clip_x0 = 0;
+  c.clip_y0 = 0;
+  c.clip_x1 = int(m_buffers.width) - 1;
+  c.clip_y1 = int(m_buffers.height) - 1;
+  if (state.scissor_test) {
+    c.clip_x0 = std::max(c.clip_x0, state.scissor_x);
+    c.clip_y0 = std::max(c.clip_y0, state.scissor_y);
+    c.clip_x1 = int(std::min<int64_t>(c.clip_x1, int64_t(state.scissor_x) + state.scissor_width - 1));
+    c.clip_y1 = int(std::min<int64_t>(c.clip_y1, int64_t(state.scissor_y) + state.scissor_height - 1));
+  }
+  if (c.clip_x0 > c.clip_x1 || c.clip_y0 > c.clip_y1 || triangles == nullptr) return;
+
+  const ColorFormat format = m_buffers.color_format;
+  c.depth_test = state.depth_test;
+  c.depth_write = state.depth_test && state.depth_write;
+  c.stencil_test = state.stencil_test;
+  c.stencil_writes = state.stencil_test && state.stencil_write_mask != 0 &&
+                     (state.stencil_fail != StencilOp::keep || state.depth_fail != StencilOp::keep ||
+                      state.depth_pass != StencilOp::keep);
+  c.alpha_test = state.alpha_test;
+  c.late_tests = state.alpha_test;
+  c.gouraud = !state.flat_shading;
+  const gl::Texture& tex = state.texture ? state.tex : gl::Texture{};
+  c.texture = state.texture && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
+              (tex.height & (tex.height - 1)) == 0;
+  if (format == ColorFormat::rgb565) {
+    c.color_write_mask = (state.color_mask[0] ? 0xf800u : 0) | (state.color_mask[1] ? 0x07e0u : 0) |
+                         (state.color_mask[2] ? 0x001fu : 0);
+  } else {
+    for (int ch = 0; ch < 4; ++ch)
+      if (state.color_mask[ch]) c.color_write_mask |= 0xffu << (8 * ch);
+  }
+  const uint32_t all_color = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  c.color_write = c.color_write_mask != 0;
+  c.logic_op = state.logic_op;
+  c.blend = state.blend && !state.logic_op &&
+            !(state.blend_src == BlendFactor::one && state.blend_dst == BlendFactor::zero);
+  c.needs_destination = c.color_write && ((c.blend && (state.blend_dst != BlendFactor::zero ||
+                                                        factor_reads_destination(state.blend_src))) ||
+                                          (c.logic_op && logic_op_reads_destination(state.logic_op_code)) ||
+                                          c.color_write_mask != all_color);
+
+  // Instruction counts for this state.
+  c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0);
+  c.pixel_alu = k.pixel_alu + (c.depth_test ? k.depth_step_test_alu : 0) + (c.stencil_test ? k.stencil_test_alu : 0) +
+                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0);
+  c.pixel_branch = k.pixel_branch;
+  c.shade_alu = c.alpha_test ? k.alpha_test_alu : 0;
+  if (c.texture) {
+    c.shade_alu += k.texel_nearest_alu;  // refined per triangle for linear filtering and perspective
+    c.shade_mul += k.texel_nearest_mul;
+    if (state.tex_env == gl::TexEnv::modulate) {
+      c.shade_alu += k.modulate_alu;
+      c.shade_mul += k.modulate_mul;
+    } else if (state.tex_env == gl::TexEnv::decal) {
+      c.shade_alu += k.decal_alu;
+      c.shade_mul += k.decal_mul;
+    }
+  }
+  if (c.color_write) {
+    c.write_alu += format == ColorFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
+    if (c.needs_destination) c.write_alu += format == ColorFormat::rgb565 ? k.unpack_rgb565_alu : k.unpack_rgba8888_alu;
+    if (c.blend) {
+      for (BlendFactor f : {state.blend_src, state.blend_dst}) {
+        if (f != BlendFactor::zero && f != BlendFactor::one) {
+          c.write_alu += k.blend_factor_alu;
+          c.write_mul += k.blend_factor_mul;
+        }
+      }
+      c.write_alu += k.blend_combine_alu;
+    }
+    if (c.logic_op) c.write_alu += k.logic_op_alu;
+    if (c.color_write_mask != all_color) c.write_alu += k.color_mask_alu;
+  }
+  if (c.depth_write) c.write_alu += k.depth_write_alu;
+  c.span_alu = k.span_alu + uint64_t(c.attributes) * k.span_attribute_alu;
+  c.span_mul = k.span_mul + uint64_t(c.attributes) * k.span_attribute_mul;
+
+  for (size_t i = 0; i < count; ++i) draw_triangle(c, triangles[i]);
+}
+
+namespace {
+
+// Exact DDA of one edge's crossing with the scanlines: f is the first pixel
+// whose centre is at or right of the crossing, ceil((x - 8) / 16) in 9.4
+// units, kept as quotient and remainder while stepping down one row.
+struct EdgeWalk {
+  int64_t f = 0, e = 0, q = 0, r = 0, m = 1;
+  int row = 0;
+
+  // Edge from (xt, yt) down to (xb, yb), yt > yb, at scanline j.
+  void init(int64_t xt, int64_t yt, int64_t xb, int64_t yb, int j) {
+    const int64_t d = yt - yb, dx = xb - xt, yc = int64_t(j) * 16 + 8;
+    m = 16 * d;
+    const int64_t n = (xt - 8) * d + (yt - yc) * dx;
+    f = ceil_div(n, m);
+    e = f * m - n;
+    q = floor_div(16 * dx, m);
+    r = 16 * dx - q * m;
+    row = j;
+  }
+
+  void step() {
+    f += q;
+    e -= r;
+    if (e < 0) {
+      ++f;
+      e += m;
+    }
+    --row;
+  }
+};
+
+}  // namespace
+
+void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri) {
+  const InstructionCounts& k = m_counts;
+  const gl::RasterState& state = *c.state;
+  for (const gl::ScreenVertex& v : tri.v) {
+    if (v.x > MAX_COORDINATE || v.x < -MAX_COORDINATE || v.y > MAX_COORDINATE || v.y < -MAX_COORDINATE) return;
+  }
+  m_memory.compute(Op::alu, k.triangle_alu);
+  m_memory.compute(Op::mul, k.triangle_mul);
+  m_memory.compute(Op::branch, k.triangle_branch);
+
+  const int64_t x[3] = {tri.v[0].x, tri.v[1].x, tri.v[2].x};
+  const int64_t y[3] = {tri.v[0].y, tri.v[1].y, tri.v[2].y};
+  const int64_t area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  if (area2 == 0) return;
+
+  // Top, middle, bottom by GL y (top = largest y = first display row).
+  int t = 0, mid = 1, b = 2;
+  if (y[t] < y[mid]) std::swap(t, mid);
+  if (y[mid] < y[b]) std::swap(mid, b);
+  if (y[t] < y[mid]) std::swap(t, mid);
+
+  const int64_t j_top = floor_div(y[t] - 8, 16);
+  const int64_t j_mid = floor_div(y[mid] - 8, 16);
+  const int64_t j_bottom = floor_div(y[b] - 8, 16) + 1;
+  const int64_t first_row = std::min<int64_t>(j_top, c.clip_y1);
+  const int64_t last_row = std::max<int64_t>(j_bottom, c.clip_y0);
+  if (first_row < last_row) return;
+
+  m_memory.compute(Op::call, k.triangle_divisions);
+  m_memory.compute(Op::alu, uint64_t(k.triangle_divisions) * k.division_alu);
+
+  TriangleSetup s;
+  {
+    double px[3], py[3];
+    for (int v = 0; v < 3; ++v) {
+      px[v] = double(x[v]) / 16.0;
+      py[v] = double(y[v]) / 16.0;
+    }
+    const double area = double(area2) / 256.0;
+    if (c.depth_test) {
+      const double z[3] = {double(std::min<uint32_t>(tri.v[0].z, 0xffffff)),
+                           double(std::min<uint32_t>(tri.v[1].z, 0xffffff)),
+                           double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
+      s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
+    }
+    if (c.gouraud) {
+      for (int ch = 0; ch < 4; ++ch) {
+        double value[3];
+        for (int v = 0; v < 3; ++v) {
+          const gl::ScreenVertex& sv = tri.v[v];
+          const uint8_t channels[4] = {sv.r, sv.g, sv.b, sv.a};
+          value[v] = channels[ch];
+        }
+        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), double(1 << (COLOR_FRACTION_BITS - 1)));
+      }
+    } else {
+      const gl::ScreenVertex& pv = tri.v[2];
+      s.flat_rgba = uint32_t(pv.r) | uint32_t(pv.g) << 8 | uint32_t(pv.b) << 16 | uint32_t(pv.a) << 24;
+    }
+    if (c.texture) {
+      const gl::Texture& tex = state.tex;
+      double inv_w[3], max_inv_w = 0;
+      for (int v = 0; v < 3; ++v) {
+        const float w = tri.v[v].inv_w;
+        inv_w[v] = (std::isfinite(w) && w > 0) ? double(w) : 1.0;
+        max_inv_w = std::max(max_inv_w, inv_w[v]);
+      }
+      s.perspective = !(inv_w[0] == inv_w[1] && inv_w[1] == inv_w[2]);
+      double sq[3], tq[3], q[3], su[3], tv[3];
+      for (int v = 0; v < 3; ++v) {
+        const double qn = s.perspective ? inv_w[v] / max_inv_w : 1.0;
+        su[v] = std::isfinite(tri.v[v].s) ? std::clamp(double(tri.v[v].s) * tex.width, -MAX_TEXELS, MAX_TEXELS) : 0.0;
+        tv[v] = std::isfinite(tri.v[v].t) ? std::clamp(double(tri.v[v].t) * tex.height, -MAX_TEXELS, MAX_TEXELS) : 0.0;
+        q[v] = std::max(qn * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
+        sq[v] = su[v] * qn;
+        tq[v] = tv[v] * qn;
+      }
+      s.sq.setup(sq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.tq.setup(tq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.q.setup(q, px, py, area, 1.0, 0.0);
+      // Minified when the triangle covers more texels than pixels.
+      const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
+      const bool minified = std::fabs(texel_area) > std::fabs(area);
+      s.linear_filter = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
+      m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
+      m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
+    }
+    m_memory.compute(Op::alu, uint64_t(c.attributes) * k.attribute_setup_alu);
+    m_memory.compute(Op::mul, uint64_t(c.attributes) * k.attribute_setup_mul);
+  }
+
+  // Is the middle vertex left of the long edge (top -> bottom)?
+  const int64_t cross = (x[t] - x[b]) * (y[mid] - y[b]) - (y[t] - y[b]) * (x[mid] - x[b]);
+  const bool short_is_left = cross > 0;
+
+  EdgeWalk long_edge, short_edge;
+  uint64_t rows = 0;
+  auto walk = [&](int64_t from, int64_t to, int short_top, int short_bottom) {
+    for (int64_t j = from; j >= to; --j) {
+      if (long_edge.row != j || rows == 0) long_edge.init(x[t], y[t], x[b], y[b], int(j));
+      if (j == from) short_edge.init(x[short_top], y[short_top], x[short_bottom], y[short_bottom], int(j));
+      const EdgeWalk& left = short_is_left ? short_edge : long_edge;
+      const EdgeWalk& right = short_is_left ? long_edge : short_edge;
+      const int64_t x_first = std::max<int64_t>(left.f, c.clip_x0);
+      const int64_t x_last = std::min<int64_t>(right.f - 1, c.clip_x1);
+      if (x_first <= x_last) shade_span(c, s, int(j), int(x_first), int(x_last));
+      long_edge.step();
+      short_edge.step();
+      ++rows;
+    }
+  };
+  // Upper part: y_mid < yc <= y_top; lower part: y_bottom < yc <= y_mid.
+  walk(first_row, std::max<int64_t>(j_mid + 1, last_row), t, mid);
+  walk(std::min<int64_t>(j_mid, first_row), last_row, mid, b);
+  m_memory.compute(Op::alu, rows * k.row_alu);
+  m_memory.compute(Op::branch, rows * k.row_branch);
+}
+
+void ArmRasterizer::fetch_texel(const DrawContext& c, int u8, int v8, bool linear, uint8_t out[4]) {
+  const gl::Texture& tex = c.state->tex;
+  const unsigned w = tex.width;
+  auto address = [&](int i, int j) { return tex.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
+  if (!linear) {
+    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, tex.height, tex.wrap_t);
+    std::memcpy(out, m_memory.load(address(i, j), 4, 1), 4);
+    return;
+  }
+  const int um = u8 - 128, vm = v8 - 128;
+  const uint32_t fu = uint32_t(um) & 255, fv = uint32_t(vm) & 255;
+  const int i0 = wrap(um >> 8, w, tex.wrap_s), i1 = wrap((um >> 8) + 1, w, tex.wrap_s);
+  const int j0 = wrap(vm >> 8, tex.height, tex.wrap_t), j1 = wrap((vm >> 8) + 1, tex.height, tex.wrap_t);
+  uint8_t texel[4][4];  // (i0, j0), (i1, j0), (i0, j1), (i1, j1)
+  const int rows[2] = {j0, j1};
+  for (int r = 0; r < 2; ++r) {
+    if (i1 == i0 + 1) {
+      std::memcpy(texel[2 * r], m_memory.load(address(i0, rows[r]), 4, 2), 8);
+    } else {
+      std::memcpy(texel[2 * r], m_memory.load(address(i0, rows[r]), 4, 1), 4);
+      std::memcpy(texel[2 * r + 1], m_memory.load(address(i1, rows[r]), 4, 1), 4);
+    }
+  }
+  for (int ch = 0; ch < 4; ++ch) {
+    const uint32_t top = texel[0][ch] * (256 - fu) + texel[1][ch] * fu;
+    const uint32_t bottom = texel[2][ch] * (256 - fu) + texel[3][ch] * fu;
+    out[ch] = uint8_t((top * (256 - fv) + bottom * fv + 32768) >> 16);
+  }
+}
+
+void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int j, int x_first, int x_last) {
+  const InstructionCounts& k = m_counts;
+  const gl::RasterState& state = *c.state;
+  const int n = x_last - x_first + 1;
+  const uint32_t row_offset = uint32_t(int(m_buffers.height) - 1 - j) * m_buffers.width;
+  const uint32_t first = row_offset + uint32_t(x_first);
+
+  if (c.depth_test) {
+    const uint8_t* p = m_memory.load(m_buffers.depth_address + first * 2, 2, unsigned(n));
+    for (int i = 0; i < n; ++i) m_depth_old[i] = uint16_t(p[2 * i] | p[2 * i + 1] << 8);
+  }
+  if (c.stencil_test) {
+    const uint8_t* p = m_memory.load(m_buffers.stencil_address + first, 1, unsigned(n));
+    std::memcpy(m_stencil_old.data(), p, size_t(n));
+    std::memcpy(m_stencil_new.data(), p, size_t(n));
+  }
+
+  int32_t z = 0, dz = 0;
+  if (c.depth_test) {
+    z = int32_t(s.z.start(x_first, j, n));
+    dz = int32_t(s.z.step);
+  }
+  int32_t color[4] = {0, 0, 0, 0}, dcolor[4] = {0, 0, 0, 0};
+  if (c.gouraud) {
+    for (int ch = 0; ch < 4; ++ch) {
+      color[ch] = int32_t(s.color[ch].start(x_first, j, n));
+      dcolor[ch] = int32_t(s.color[ch].step);
+    }
+  }
+  int64_t sq = 0, tq = 0, q = 1, dsq = 0, dtq = 0, dq = 0;
+  if (c.texture) {
+    sq = s.sq.start(x_first, j, n);
+    tq = s.tq.start(x_first, j, n);
+    q = s.q.start(x_first, j, n);
+    dsq = s.sq.step;
+    dtq = s.tq.step;
+    dq = s.q.step;
+  }
+
+  const uint8_t stencil_ref = state.stencil_ref, stencil_mask = state.stencil_value_mask;
+  const uint8_t stencil_write_mask = state.stencil_write_mask;
+  // Stencil and depth tests of pixel i; updates the stencil value.
+  auto fragment_tests = [&](int i, uint16_t z16) {
+    if (c.stencil_test) {
+      const uint8_t old = m_stencil_new[i];
+      if (!compare<uint8_t>(state.stencil_func, stencil_ref & stencil_mask, old & stencil_mask)) {
+        m_stencil_new[i] = stencil_apply(state.stencil_fail, old, stencil_ref, stencil_write_mask);
+        return false;
+      }
+      if (c.depth_test && !compare(state.depth_func, z16, m_depth_old[i])) {
+        m_stencil_new[i] = stencil_apply(state.depth_fail, old, stencil_ref, stencil_write_mask);
+        return false;
+      }
+      m_stencil_new[i] = stencil_apply(state.depth_pass, old, stencil_ref, stencil_write_mask);
+      return true;
+    }
+    return !c.depth_test || compare(state.depth_func, z16, m_depth_old[i]);
+  };
+
+  uint64_t shaded = 0, texel_calls = 0, passed = 0;
+  for (int i = 0; i < n; ++i) {
+    const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
+    bool alive = c.late_tests || fragment_tests(i, z16);
+    if (alive) {
+      ++shaded;
+      uint32_t rgba;
+      if (c.gouraud) {
+        rgba = uint32_t(color[0] >> COLOR_FRACTION_BITS) | uint32_t(color[1] >> COLOR_FRACTION_BITS) << 8 |
+               uint32_t(color[2] >> COLOR_FRACTION_BITS) << 16 | uint32_t(color[3] >> COLOR_FRACTION_BITS) << 24;
+      } else {
+        rgba = s.flat_rgba;
+      }
+      if (c.texture) {
+        int64_t u8, v8;
+        if (s.perspective) {
+          u8 = sq * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
+          v8 = tq * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
+          ++texel_calls;
+        } else {
+          u8 = sq >> (ST_FRACTION_BITS - 8);
+          v8 = tq >> (ST_FRACTION_BITS - 8);
+        }
+        uint8_t texel[4];
+        fetch_texel(c, int(u8), int(v8), s.linear_filter, texel);
+        const uint32_t f[4] = {rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24};
+        switch (state.tex_env) {
+          case gl::TexEnv::modulate:
+            rgba = mul8(f[0], texel[0]) | mul8(f[1], texel[1]) << 8 | mul8(f[2], texel[2]) << 16 |
+                   mul8(f[3], texel[3]) << 24;
+            break;
+          case gl::TexEnv::replace:
+            rgba = uint32_t(texel[0]) | uint32_t(texel[1]) << 8 | uint32_t(texel[2]) << 16 | uint32_t(texel[3]) << 24;
+            break;
+          case gl::TexEnv::decal: {
+            const uint32_t at = texel[3];
+            rgba = div255(f[0] * (255 - at) + texel[0] * at) | div255(f[1] * (255 - at) + texel[1] * at) << 8 |
+                   div255(f[2] * (255 - at) + texel[2] * at) << 16 | f[3] << 24;
+            break;
+          }
+        }
+      }
+      if (c.alpha_test && !compare<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
+        alive = false;
+      } else if (c.late_tests) {
+        alive = fragment_tests(i, z16);
+      }
+      m_source[i] = rgba;
+    }
+    m_pass[i] = alive;
+    m_depth_new[i] = z16;
+    passed += alive;
+    z += dz;
+    for (int ch = 0; ch < 4; ++ch) color[ch] += dcolor[ch];
+    sq += dsq;
+    tq += dtq;
+    q += dq;
+  }
+
+  // Stores, as runs of consecutive pixels.
+  auto for_each_run = [&](auto&& is_set, auto&& emit) {
+    int i = 0;
+    while (i < n) {
+      while (i < n && !is_set(i)) ++i;
+      const int begin = i;
+      while (i < n && is_set(i)) ++i;
+      if (begin < i) emit(begin, i);
+    }
+  };
+  if (c.stencil_writes) {
+    for_each_run([&](int i) { return m_stencil_new[i] != m_stencil_old[i]; },
+                 [&](int begin, int end) {
+                   uint8_t* p = m_memory.store(m_buffers.stencil_address + first + uint32_t(begin), 1, unsigned(end - begin));
+                   std::memcpy(p, m_stencil_new.data() + begin, size_t(end - begin));
+                 });
+  }
+  if (passed != 0) {
+    if (c.depth_write) {
+      for_each_run([&](int i) { return m_pass[i] != 0; },
+                   [&](int begin, int end) {
+                     uint8_t* p = m_memory.store(m_buffers.depth_address + (first + uint32_t(begin)) * 2, 2,
+                                                 unsigned(end - begin));
+                     for (int i = begin; i < end; ++i) {
+                       p[2 * (i - begin)] = uint8_t(m_depth_new[i]);
+                       p[2 * (i - begin) + 1] = uint8_t(m_depth_new[i] >> 8);
+                     }
+                   });
+    }
+    if (c.color_write) {
+      for_each_run([&](int i) { return m_pass[i] != 0; },
+                   [&](int begin, int end) { write_color_run(c, row_offset, x_first, begin, end); });
+    }
+  }
+
+  uint64_t shade_alu = c.shade_alu, shade_mul = c.shade_mul;
+  if (c.texture) {
+    if (s.linear_filter) {
+      shade_alu += k.texel_linear_alu - k.texel_nearest_alu;
+      shade_mul += k.texel_linear_mul - k.texel_nearest_mul;
+    }
+    if (s.perspective) {
+      shade_alu += k.perspective_alu;
+      shade_mul += k.perspective_mul;
+    }
+  }
+  const uint64_t step_alu =
+      c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
+  m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
+                                passed * c.write_alu + texel_calls * k.division_alu);
+  m_memory.compute(Op::mul, c.span_mul + shaded * shade_mul + passed * c.write_mul);
+  m_memory.compute(Op::branch, k.span_branch + uint64_t(n) * c.pixel_branch);
+  if (texel_calls != 0) m_memory.compute(Op::call, texel_calls);
+}
+
+void ArmRasterizer::write_color_run(const DrawContext& c, uint32_t row_offset, int x_begin, int begin, int end) {
+  const gl::RasterState& state = *c.state;
+  const ColorFormat format = m_buffers.color_format;
+  const unsigned bpp = bytes_per_pixel(format);
+  const unsigned count = unsigned(end - begin);
+  const uint32_t address = m_buffers.color_address + (row_offset + uint32_t(x_begin + begin)) * bpp;
+  const uint32_t all = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  if (c.needs_destination) {
+    const uint8_t* d = m_memory.load(address, bpp, count);
+    for (unsigned i = 0; i < count; ++i) {
+      const uint32_t dst = read_packed(d + i * bpp, bpp);
+      uint32_t src = m_source[begin + int(i)];
+      if (c.blend) src = blend(state.blend_src, state.blend_dst, src, unpack(dst, format));
+      uint32_t out = pack(src, format);
+      if (c.logic_op) out = logic_op(state.logic_op_code, out, dst) & all;
+      m_source[begin + int(i)] = (out & c.color_write_mask) | (dst & ~c.color_write_mask);
+    }
+  } else {
+    for (int i = begin; i < end; ++i) {
+      uint32_t out = pack(m_source[i], format);
+      if (c.logic_op) out = logic_op(state.logic_op_code, out, 0) & all;
+      m_source[i] = out;
+    }
+  }
+  uint8_t* p = m_memory.store(address, bpp, count);
+  for (unsigned i = 0; i < count; ++i) write_packed(p + i * bpp, bpp, m_source[begin + int(i)]);
+}
+
+void ArmRasterizer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
+  if (width <= 0 || height <= 0 || rgba == nullptr) return;
+  std::memset(rgba, 0, size_t(width) * size_t(height) * 4);
+  const ColorFormat format = m_buffers.color_format;
+  const unsigned bpp = bytes_per_pixel(format);
+  const int x0 = std::max(x, 0);
+  const int x1 = int(std::min<int64_t>(int64_t(x) + width, m_buffers.width));
+  if (x0 >= x1) return;
+  for (int row = 0; row < height; ++row) {
+    const int64_t gy = int64_t(y) + row;
+    if (gy < 0 || gy >= int64_t(m_buffers.height)) continue;
+    const uint32_t offset = uint32_t(int64_t(m_buffers.height) - 1 - gy) * m_buffers.width + uint32_t(x0);
+    const uint8_t* p = m_memory.load(m_buffers.color_address + offset * bpp, bpp, unsigned(x1 - x0));
+    uint8_t* out = rgba + (size_t(row) * size_t(width) + size_t(x0 - x)) * 4;
+    for (int i = 0; i < x1 - x0; ++i) {
+      const uint32_t v = unpack(read_packed(p + i * bpp, bpp), format);
+      out[4 * i] = uint8_t(v);
+      out[4 * i + 1] = uint8_t(v >> 8);
+      out[4 * i + 2] = uint8_t(v >> 16);
+      out[4 * i + 3] = uint8_t(v >> 24);
+    }
+    m_memory.compute(Op::alu, uint64_t(x1 - x0) * m_counts.read_pixel_alu);
+  }
+}
+
+}  // namespace tessera::arm

@@ -1,0 +1,92 @@
+#include "scenes/scene_common.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scenes/gles_compat.h"
+
+namespace tessera::scenes {
+
+namespace {
+
+constexpr float PI = 3.14159265358979f;
+constexpr float MESH_DISTANCE = 2.6f;
+constexpr float MESH_TILT_DEGREES = 20.0f;
+constexpr float MESH_DEGREES_PER_FRAME = 0.5f;
+
+}  // namespace
+
+float rotation_degrees(int frame, double degrees_per_frame) {
+  return static_cast<float>(std::fmod(frame * degrees_per_frame, 360.0));
+}
+
+bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error) {
+  if (args.empty()) return true;
+  *error = std::string(scene) + ": takes no arguments, got '" + args.front() + "'";
+  return false;
+}
+
+void set_perspective(int width, int height, float fovy_degrees, float near_plane, float far_plane) {
+  glViewport(0, 0, width, height);
+  const float aspect = float(std::max(width, 1)) / float(std::max(height, 1));
+  const float top = near_plane * std::tan(fovy_degrees * PI / 360.0f);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glFrustumf(-top * aspect, top * aspect, -top, top, near_plane, far_plane);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+}
+
+void set_up_lit_mesh(int width, int height, const float diffuse[4]) {
+  // At MESH_DISTANCE a 45-degree view is 2.15 units high: the unit sphere just fits.
+  set_perspective(width, height, 45.0f, 1.0f, 10.0f);
+  glClearColor(0.10f, 0.12f, 0.16f, 1.0f);
+  glClearDepthf(1.0f);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glShadeModel(GL_SMOOTH);
+  // The scenes' models may be open (the teapot's spout, the gap under its
+  // lid; OBJ files of any kind), so inner faces can show: no culling.
+  glDisable(GL_CULL_FACE);
+
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  // w = 0: a directional light from the upper left, behind the viewer. The
+  // modelview matrix is identity here, so the direction is in eye space and
+  // the light stays put while the model turns.
+  const float light_direction[4] = {-1.0f, 1.0f, 1.0f, 0.0f};
+  const float light_ambient[4] = {0.15f, 0.15f, 0.15f, 1.0f};
+  const float light_diffuse[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  const float light_specular[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  glLightfv(GL_LIGHT0, GL_POSITION, light_direction);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, light_ambient);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, light_diffuse);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, light_specular);
+
+  // GL ES 1.1 accepts only GL_FRONT_AND_BACK for materials.
+  const float material_ambient[4] = {0.3f * diffuse[0], 0.3f * diffuse[1], 0.3f * diffuse[2], 1.0f};
+  const float material_specular[4] = {0.7f, 0.7f, 0.7f, 1.0f};
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, material_ambient);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, diffuse);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, material_specular);
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 40.0f);
+}
+
+void draw_lit_mesh(const Mesh& mesh, int frame) {
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glTranslatef(0.0f, 0.0f, -MESH_DISTANCE);
+  glRotatef(MESH_TILT_DEGREES, 1.0f, 0.0f, 0.0f);
+  glRotatef(rotation_degrees(frame, MESH_DEGREES_PER_FRAME), 0.0f, 1.0f, 0.0f);
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
+  glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_SHORT, mesh.indices.data());
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+}
+
+}  // namespace tessera::scenes

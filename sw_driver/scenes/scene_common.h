@@ -1,0 +1,40 @@
+// What the built-in scenes share: their constructors, for the registry, and
+// a few GL ES 1.1 set-up steps that several of them repeat.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenes/mesh.h"
+#include "scenes/scene.h"
+
+namespace tessera::scenes {
+
+Scene triangle_scene();
+Scene cubes_scene();
+Scene fullscreen_rect_scene();
+Scene textured_quad_scene();
+Scene teapot_scene();
+Scene obj_viewer_scene();
+
+// For scenes that take no arguments: false with a message if there are any.
+bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error);
+
+// The angle after `frame` frames, reduced to (-360, 360) so that it keeps
+// its precision in float however long a scene runs.
+float rotation_degrees(int frame, double degrees_per_frame);
+
+// Viewport over the whole window and a symmetric perspective projection with
+// the given vertical field of view; leaves GL_MODELVIEW current and identity.
+void set_perspective(int width, int height, float fovy_degrees, float near_plane, float far_plane);
+
+// GL state for a mesh lit by one white directional light fixed in eye space,
+// depth-tested, with the given diffuse colour as its material.
+void set_up_lit_mesh(int width, int height, const float diffuse[4]);
+
+// Clears and draws `mesh`, which must fit the unit sphere, 2.6 units in
+// front of the eye, tilted towards the viewer and turned about the vertical
+// axis by half a degree per frame.
+void draw_lit_mesh(const Mesh& mesh, int frame);
+
+}  // namespace tessera::scenes

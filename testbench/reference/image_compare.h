@@ -1,0 +1,83 @@
+// Compares a frame tessera displayed with the reference Mesa rendered.
+//
+// Both images are first reduced to the display's output format, so that
+// precision our display does not have cannot count against us. Each pixel is
+// then judged twice:
+//  - coverage: is it background (equal to the clear colour after reduction)
+//    in one image and drawn in the other? Such a pixel is a rasterization
+//    difference (fill rule, clipping, culling), not a colour error, and is
+//    counted on its own. A drawn pixel that happens to have exactly the
+//    clear colour counts as background: scenes should avoid drawing in it.
+//  - colour: the largest absolute difference of its channels, on the 8-bit
+//    scale after reduction.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "frame_writer.h"
+
+namespace tessera::reference {
+
+enum class OutputFormat {
+  rgb565,   // each channel truncated to 5/6/5 bits, expanded by bit replication; alpha ignored
+  rgba8888  // compared as stored; alpha only if CompareOptions::compare_alpha
+};
+
+// "rgb565" / "rgba8888"; throws std::invalid_argument otherwise.
+OutputFormat parse_output_format(const std::string& name);
+const char* to_string(OutputFormat format);
+
+struct Rgba8 {
+  uint8_t r = 0, g = 0, b = 0, a = 255;
+};
+
+// What our display would show for `colour`: RGB565 keeps the top 5/6/5 bits
+// (truncation, as the display controller's scan-out does) and expands them
+// by replicating the top bits into the low ones, so 0 -> 0 and 31 -> 255.
+Rgba8 reduce(Rgba8 colour, OutputFormat format);
+
+struct CompareOptions {
+  OutputFormat format = OutputFormat::rgb565;
+  Rgba8 clear_colour;          // the scene's background
+  unsigned tolerance = 8;      // largest acceptable channel difference
+  bool compare_alpha = false;  // rgba8888 only: our frames carry no alpha
+};
+
+// The pass rule is separate from the measurement so that a test can state
+// documented exceptions (e.g. a known fill-rule difference on shared edges).
+struct PassRule {
+  size_t allowed_coverage_mismatches = 0;
+  double min_percent_within_tolerance = 99.0;
+};
+
+struct CompareResult {
+  unsigned width = 0, height = 0;
+  size_t pixels = 0;
+  size_t coverage_ours_only = 0;        // drawn by us, background in the reference
+  size_t coverage_reference_only = 0;   // background in ours, drawn by the reference
+  size_t within_tolerance = 0;          // same coverage and colour difference <= tolerance
+  unsigned max_colour_difference = 0;   // over pixels whose coverage agrees
+  // Red: coverage differs; yellow: colour beyond tolerance; grey: colour
+  // difference within tolerance, scaled so that the tolerance is white.
+  Image difference;
+
+  size_t coverage_mismatches() const { return coverage_ours_only + coverage_reference_only; }
+  double percent_within_tolerance() const;
+  bool passes(const PassRule& rule) const;
+  // One line for logs and ctest output.
+  std::string summary() const;
+};
+
+// Throws std::invalid_argument if the sizes differ or an image is malformed.
+CompareResult compare_images(const Image& ours, const Image& reference, const CompareOptions& options);
+
+// Writes <dir>/<prefix>ours.png, reference.png and difference.png (creating
+// dir) for a person to look at; ours and reference as reduced to the output
+// format, i.e. as they were compared. Returns the directory.
+std::string write_comparison_images(const std::string& dir, const std::string& prefix, const Image& ours,
+                                    const Image& reference, const CompareResult& result,
+                                    const CompareOptions& options);
+
+}  // namespace tessera::reference

@@ -1,0 +1,180 @@
+#include "image_compare.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+namespace tessera::reference {
+namespace {
+
+constexpr Rgba8 kBackground{26, 26, 64, 255};
+
+Image filled(unsigned width, unsigned height, Rgba8 colour) {
+  Image image;
+  image.width = width;
+  image.height = height;
+  for (unsigned i = 0; i < width * height; ++i) image.rgba.insert(image.rgba.end(), {colour.r, colour.g, colour.b, colour.a});
+  return image;
+}
+
+void set_pixel(Image& image, unsigned x, unsigned y, Rgba8 colour) {
+  uint8_t* p = &image.rgba[(size_t{y} * image.width + x) * 4];
+  p[0] = colour.r;
+  p[1] = colour.g;
+  p[2] = colour.b;
+  p[3] = colour.a;
+}
+
+CompareOptions options_for(OutputFormat format, unsigned tolerance) {
+  CompareOptions options;
+  options.format = format;
+  options.clear_colour = kBackground;
+  options.tolerance = tolerance;
+  return options;
+}
+
+TEST(ImageCompare, IdenticalImagesPass) {
+  Image image = filled(8, 4, kBackground);
+  set_pixel(image, 3, 2, {200, 100, 50, 255});
+  const CompareResult result = compare_images(image, image, options_for(OutputFormat::rgb565, 0));
+  EXPECT_EQ(result.pixels, 32u);
+  EXPECT_EQ(result.coverage_mismatches(), 0u);
+  EXPECT_EQ(result.within_tolerance, 32u);
+  EXPECT_EQ(result.max_colour_difference, 0u);
+  EXPECT_DOUBLE_EQ(result.percent_within_tolerance(), 100.0);
+  EXPECT_TRUE(result.passes(PassRule{}));
+}
+
+TEST(ImageCompare, OnePixelCoverageDifferenceIsCountedBothWays) {
+  const Image reference = filled(8, 4, kBackground);
+  Image ours = reference;
+  set_pixel(ours, 5, 1, {255, 255, 255, 255});
+  const CompareOptions options = options_for(OutputFormat::rgb565, 8);
+
+  const CompareResult extra = compare_images(ours, reference, options);
+  EXPECT_EQ(extra.coverage_ours_only, 1u);
+  EXPECT_EQ(extra.coverage_reference_only, 0u);
+  EXPECT_EQ(extra.within_tolerance, 31u);
+  EXPECT_EQ(extra.max_colour_difference, 0u) << "coverage differences are not colour differences";
+  EXPECT_FALSE(extra.passes(PassRule{0, 0.0}));
+  EXPECT_TRUE(extra.passes(PassRule{1, 95.0}));
+  EXPECT_FALSE(extra.passes(PassRule{1, 99.0})) << "31 of 32 is 96.9%";
+
+  const CompareResult missing = compare_images(reference, ours, options);
+  EXPECT_EQ(missing.coverage_ours_only, 0u);
+  EXPECT_EQ(missing.coverage_reference_only, 1u);
+}
+
+TEST(ImageCompare, ColourDifferenceBelowAndAboveTolerance) {
+  Image reference = filled(4, 1, kBackground);
+  set_pixel(reference, 0, 0, {100, 100, 100, 255});
+  set_pixel(reference, 1, 0, {100, 100, 100, 255});
+  Image ours = reference;
+  set_pixel(ours, 0, 0, {104, 100, 100, 255});  // 4 below the tolerance
+  set_pixel(ours, 1, 0, {100, 100, 120, 255});  // 20 above it
+  const CompareResult result = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 8));
+  EXPECT_EQ(result.coverage_mismatches(), 0u);
+  EXPECT_EQ(result.within_tolerance, 3u);
+  EXPECT_EQ(result.max_colour_difference, 20u);
+  EXPECT_DOUBLE_EQ(result.percent_within_tolerance(), 75.0);
+
+  const CompareResult looser = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 20));
+  EXPECT_EQ(looser.within_tolerance, 4u);
+}
+
+TEST(ImageCompare, AlphaIsComparedOnlyOnRequest) {
+  Image reference = filled(2, 1, kBackground);
+  set_pixel(reference, 0, 0, {10, 200, 10, 128});
+  Image ours = reference;
+  set_pixel(ours, 0, 0, {10, 200, 10, 255});
+  CompareOptions options = options_for(OutputFormat::rgba8888, 0);
+  EXPECT_EQ(compare_images(ours, reference, options).max_colour_difference, 0u);
+  options.compare_alpha = true;
+  EXPECT_EQ(compare_images(ours, reference, options).max_colour_difference, 127u);
+}
+
+TEST(ImageCompare, Rgb565TruncatesAndReplicatesBits) {
+  EXPECT_EQ(reduce({0, 0, 0, 7}, OutputFormat::rgb565).r, 0);
+  const Rgba8 white = reduce({255, 255, 255, 0}, OutputFormat::rgb565);
+  EXPECT_EQ(white.r, 255);
+  EXPECT_EQ(white.g, 255);
+  EXPECT_EQ(white.b, 255);
+  EXPECT_EQ(white.a, 255) << "the display has no alpha";
+  // 0x87 = 10000 111: 5-bit code 16, expanded to 10000 100.
+  EXPECT_EQ(reduce({0x87, 0, 0, 255}, OutputFormat::rgb565).r, 0x84);
+  // 0x83 = 100000 11: 6-bit code 32, expanded to 100000 10.
+  EXPECT_EQ(reduce({0, 0x83, 0, 255}, OutputFormat::rgb565).g, 0x82);
+  EXPECT_EQ(reduce({1, 2, 3, 4}, OutputFormat::rgba8888).b, 3);
+}
+
+TEST(ImageCompare, ValuesSharingA565CodeCompareEqual) {
+  Image reference = filled(3, 1, kBackground);
+  set_pixel(reference, 0, 0, {0x80, 0x80, 0x80, 255});
+  set_pixel(reference, 1, 0, {0x80, 0x80, 0x80, 255});
+  Image ours = reference;
+  set_pixel(ours, 0, 0, {0x87, 0x83, 0x87, 255});  // same 5/6/5 codes
+  set_pixel(ours, 1, 0, {0x88, 0x80, 0x80, 255});  // next red code: 0x84 vs 0x8c after expansion
+  const CompareResult in565 = compare_images(ours, reference, options_for(OutputFormat::rgb565, 0));
+  EXPECT_EQ(in565.within_tolerance, 2u);
+  EXPECT_EQ(in565.max_colour_difference, 8u);
+  const CompareResult in8888 = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 0));
+  EXPECT_EQ(in8888.within_tolerance, 1u);
+}
+
+TEST(ImageCompare, BackgroundIsJudgedAfterReduction) {
+  // Within the background's 5/6/5 codes, so not drawn as far as the display can tell.
+  Image ours = filled(2, 1, kBackground);
+  set_pixel(ours, 0, 0, {kBackground.r + 1, kBackground.g + 1, kBackground.b + 1, 255});
+  const Image reference = filled(2, 1, kBackground);
+  EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgb565, 0)).coverage_mismatches(), 0u);
+  EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgba8888, 0)).coverage_mismatches(), 1u);
+}
+
+TEST(ImageCompare, RejectsDifferentSizes) {
+  EXPECT_THROW(compare_images(filled(4, 4, kBackground), filled(4, 3, kBackground), CompareOptions{}),
+               std::invalid_argument);
+  Image truncated = filled(4, 4, kBackground);
+  truncated.rgba.pop_back();
+  EXPECT_THROW(compare_images(truncated, truncated, CompareOptions{}), std::invalid_argument);
+  EXPECT_THROW(parse_output_format("rgb555"), std::invalid_argument);
+  EXPECT_EQ(parse_output_format("rgba8888"), OutputFormat::rgba8888);
+}
+
+TEST(ImageCompare, WritesReadableDifferenceImage) {
+  Image reference = filled(6, 5, kBackground);
+  set_pixel(reference, 2, 2, {100, 100, 100, 255});
+  set_pixel(reference, 3, 2, {100, 100, 100, 255});
+  Image ours = reference;
+  set_pixel(ours, 0, 4, {255, 255, 255, 255});      // coverage
+  set_pixel(ours, 2, 2, {104, 100, 100, 255});      // within tolerance (4 of 8)
+  set_pixel(ours, 3, 2, {160, 100, 100, 255});      // beyond it
+  const CompareOptions options = options_for(OutputFormat::rgba8888, 8);
+  const CompareResult result = compare_images(ours, reference, options);
+
+  const char* binary_dir = std::getenv("TESSERA_BINARY_DIR");
+  const std::filesystem::path dir = std::filesystem::path(binary_dir ? binary_dir : std::filesystem::temp_directory_path().string()) /
+                                    "test_output" / "image_compare";
+  std::filesystem::remove_all(dir);
+  write_comparison_images(dir.string(), "case_", ours, reference, result, options);
+
+  EXPECT_TRUE(std::filesystem::exists(dir / "case_ours.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "case_reference.png"));
+  const Image difference = read_image((dir / "case_difference.png").string());
+  ASSERT_EQ(difference.width, 6u);
+  ASSERT_EQ(difference.height, 5u);
+  EXPECT_EQ(difference.rgba, result.difference.rgba);
+  const auto pixel = [&](unsigned x, unsigned y) { return &difference.rgba[(size_t{y} * 6 + x) * 4]; };
+  EXPECT_EQ(pixel(0, 4)[0], 255);  // red
+  EXPECT_EQ(pixel(0, 4)[1], 0);
+  EXPECT_EQ(pixel(3, 2)[0], 255);  // yellow
+  EXPECT_EQ(pixel(3, 2)[1], 255);
+  EXPECT_EQ(pixel(3, 2)[2], 0);
+  EXPECT_EQ(pixel(2, 2)[0], 127);  // grey: 4 of a tolerance of 8
+  EXPECT_EQ(pixel(2, 2)[2], 127);
+  EXPECT_EQ(pixel(1, 1)[0], 0);    // identical
+}
+
+}  // namespace
+}  // namespace tessera::reference

@@ -1,0 +1,860 @@
+// Unit tests of the arm renderer's functional core, run natively on a
+// NativeMemory. Expected values come from GL's definitions (edge functions in
+// doubles, barycentric interpolation, the texture environment and blending
+// equations), not from the implementation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "renderers/arm/arm_rasterizer.h"
+#include "renderers/arm/native_memory.h"
+
+namespace tessera::arm {
+namespace {
+
+constexpr unsigned GUARD = 256;  // untouched bytes around every buffer
+constexpr uint8_t GUARD_BYTE = 0xa5;
+
+struct Rgba {
+  int r, g, b, a;
+};
+
+// A frame of width x height with colour, depth and stencil buffers and room
+// for textures, each surrounded by a guard band.
+class Frame {
+ public:
+  Frame(unsigned width, unsigned height, ColorFormat format)
+      : width(width),
+        height(height),
+        format(format),
+        color_address(0x1000 + GUARD),
+        depth_address(color_address + width * height * bytes_per_pixel(format) + GUARD + 2),  // odd gap
+        stencil_address(depth_address + width * height * 2 + GUARD),
+        texture_address(stencil_address + width * height + GUARD),
+        memory(texture_address + TEXTURE_BYTES + GUARD - 0x1000, 0x1000) {
+    std::fill(memory.at(memory.base(), memory.size()), memory.at(memory.base(), memory.size()) + memory.size(),
+              GUARD_BYTE);
+    FrameBuffers fb;
+    fb.width = width;
+    fb.height = height;
+    fb.color_format = format;
+    fb.color_address = color_address;
+    fb.depth_address = depth_address;
+    fb.stencil_address = stencil_address;
+    rasterizer = std::make_unique<ArmRasterizer>(memory, fb);
+    gl::ClearRequest clear;
+    clear.color = clear.depth = clear.stencil = true;
+    rasterizer->clear(clear);
+  }
+
+  // Colour at GL pixel (x, y), decoded here from the documented formats.
+  Rgba color(int x, int y) {
+    const unsigned bpp = format == ColorFormat::rgb565 ? 2 : 4;
+    const uint8_t* p = memory.at(color_address + ((height - 1 - y) * width + x) * bpp, bpp);
+    if (format == ColorFormat::rgba8888) return {p[0], p[1], p[2], p[3]};
+    const int v = p[0] | p[1] << 8;
+    const int r5 = v >> 11, g6 = (v >> 5) & 63, b5 = v & 31;
+    return {r5 * 255 / 31, g6 * 255 / 63, b5 * 255 / 31, 255};
+  }
+  uint16_t packed565(int x, int y) {
+    const uint8_t* p = memory.at(color_address + ((height - 1 - y) * width + x) * 2, 2);
+    return uint16_t(p[0] | p[1] << 8);
+  }
+  uint16_t depth(int x, int y) {
+    const uint8_t* p = memory.at(depth_address + ((height - 1 - y) * width + x) * 2, 2);
+    return uint16_t(p[0] | p[1] << 8);
+  }
+  uint8_t stencil(int x, int y) { return *memory.at(stencil_address + (height - 1 - y) * width + x); }
+
+  // Writes a texture (RGBA8, row t = 0 first) and returns its descriptor.
+  gl::Texture texture(unsigned w, unsigned h, const std::vector<Rgba>& texels) {
+    uint8_t* p = memory.at(texture_address, w * h * 4);
+    for (unsigned i = 0; i < w * h; ++i) {
+      p[4 * i] = uint8_t(texels[i].r);
+      p[4 * i + 1] = uint8_t(texels[i].g);
+      p[4 * i + 2] = uint8_t(texels[i].b);
+      p[4 * i + 3] = uint8_t(texels[i].a);
+    }
+    gl::Texture tex;
+    tex.address = texture_address;
+    tex.width = w;
+    tex.height = h;
+    tex.min_filter = tex.mag_filter = gl::TexFilter::nearest;
+    return tex;
+  }
+
+  // Every byte outside the buffers and the texture still holds GUARD_BYTE.
+  bool guards_intact() {
+    const uint32_t bpp = format == ColorFormat::rgb565 ? 2 : 4;
+    const std::array<std::pair<uint32_t, uint32_t>, 4> used = {{{color_address, width * height * bpp},
+                                                                {depth_address, width * height * 2},
+                                                                {stencil_address, width * height},
+                                                                {texture_address, TEXTURE_BYTES}}};
+    for (uint32_t a = memory.base(); a < memory.base() + memory.size(); ++a) {
+      bool inside = false;
+      for (const auto& [start, bytes] : used) inside |= a >= start && a < start + bytes;
+      if (!inside && *memory.at(a) != GUARD_BYTE) return false;
+    }
+    return true;
+  }
+
+  void draw(const gl::RasterState& state, const std::vector<gl::Triangle>& triangles) {
+    rasterizer->draw(state, triangles.data(), triangles.size());
+  }
+
+  static constexpr uint32_t TEXTURE_BYTES = 64 * 64 * 4;
+  const unsigned width, height;
+  const ColorFormat format;
+  const uint32_t color_address, depth_address, stencil_address, texture_address;
+  NativeMemory memory;
+  std::unique_ptr<ArmRasterizer> rasterizer;
+};
+
+gl::ScreenVertex vertex(double x, double y, Rgba c = {255, 255, 255, 255}, double z = 0.5, float s = 0,
+                        float t = 0, float inv_w = 1) {
+  gl::ScreenVertex v{};
+  v.x = int32_t(std::lround(x * 16));
+  v.y = int32_t(std::lround(y * 16));
+  v.z = uint32_t(std::lround(z * 0xffffff));
+  v.r = uint8_t(c.r);
+  v.g = uint8_t(c.g);
+  v.b = uint8_t(c.b);
+  v.a = uint8_t(c.a);
+  v.s = s;
+  v.t = t;
+  v.inv_w = inv_w;
+  return v;
+}
+
+gl::Triangle triangle(gl::ScreenVertex a, gl::ScreenVertex b, gl::ScreenVertex c) { return gl::Triangle{{a, b, c}}; }
+
+// The reference: pixel centre (xc, yc) is covered if every edge function of
+// the counter-clockwise triangle is positive, or zero on a left edge (going
+// down) or a top edge (horizontal, going left).
+bool covers(const gl::Triangle& tri, double xc, double yc) {
+  double x[3], y[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = tri.v[k].x / 16.0;
+    y[k] = tri.v[k].y / 16.0;
+  }
+  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  if (area == 0) return false;
+  if (area < 0) {
+    std::swap(x[1], x[2]);
+    std::swap(y[1], y[2]);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const double ax = x[k], ay = y[k], dx = x[(k + 1) % 3] - ax, dy = y[(k + 1) % 3] - ay;
+    const double e = dx * (yc - ay) - dy * (xc - ax);
+    if (e > 0) continue;
+    if (e == 0 && (dy < 0 || (dy == 0 && dx < 0))) continue;
+    return false;
+  }
+  return true;
+}
+
+// Barycentric weights of (xc, yc).
+std::array<double, 3> barycentric(const gl::Triangle& tri, double xc, double yc) {
+  double x[3], y[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = tri.v[k].x / 16.0;
+    y[k] = tri.v[k].y / 16.0;
+  }
+  const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  const double w1 = ((xc - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (yc - y[0])) / area;
+  const double w2 = ((x[1] - x[0]) * (yc - y[0]) - (xc - x[0]) * (y[1] - y[0])) / area;
+  return {1 - w1 - w2, w1, w2};
+}
+
+gl::RasterState additive_state() {
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.blend = true;
+  state.blend_src = gl::BlendFactor::one;
+  state.blend_dst = gl::BlendFactor::one;
+  return state;
+}
+
+// --- Fill rule ---------------------------------------------------------------
+
+void check_fan(double cx, double cy, const std::vector<std::pair<double, double>>& rim) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  std::vector<gl::Triangle> fan;
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const auto [x0, y0] = rim[k];
+    const auto [x1, y1] = rim[(k + 1) % rim.size()];
+    const Rgba one{1, 0, 0, 0};
+    if (k % 2 == 0) fan.push_back(triangle(vertex(cx, cy, one), vertex(x0, y0, one), vertex(x1, y1, one)));
+    else fan.push_back(triangle(vertex(x1, y1, one), vertex(x0, y0, one), vertex(cx, cy, one)));
+  }
+  f.draw(additive_state(), fan);
+  int inside = 0;
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      int expected = 0;
+      for (const gl::Triangle& t : fan) expected += covers(t, x + 0.5, y + 0.5);
+      ASSERT_LE(expected, 1) << "reference overlap at " << x << "," << y;
+      // Strictly inside the (convex) rim polygon: covered exactly once.
+      bool strictly_inside = true, strictly_outside = false;
+      for (size_t k = 0; k < rim.size(); ++k) {
+        const auto [x0, y0] = rim[k];
+        const auto [x1, y1] = rim[(k + 1) % rim.size()];
+        const double e = (x1 - x0) * (y + 0.5 - y0) - (y1 - y0) * (x + 0.5 - x0);  // rim is counter-clockwise
+        strictly_inside &= e > 0;
+        strictly_outside |= e < 0;
+      }
+      if (strictly_inside) {
+        EXPECT_EQ(expected, 1);
+      }
+      if (strictly_outside) {
+        EXPECT_EQ(expected, 0);
+      }
+      EXPECT_EQ(f.color(x, y).r, expected) << "pixel " << x << "," << y;
+      inside += f.color(x, y).r;
+    }
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_TRUE(f.guards_intact());
+}
+
+TEST(ArmRasterizerFillRule, FanAroundPixelCentreWithEdgesThroughCentres) {
+  // Horizontal, vertical and diagonal edges through pixel centres, the centre
+  // of the fan on a pixel centre.
+  const double cx = 30.5, cy = 22.5;
+  std::vector<std::pair<double, double>> rim = {{cx + 12, cy},      {cx + 9, cy + 9},  {cx, cy + 12},
+                                                {cx - 9, cy + 9},   {cx - 12, cy},     {cx - 9, cy - 9},
+                                                {cx, cy - 12},      {cx + 9, cy - 9}};
+  check_fan(cx, cy, rim);
+}
+
+TEST(ArmRasterizerFillRule, FanAroundSubpixelCentre) {
+  const double cx = 31.3125, cy = 20.75;
+  std::vector<std::pair<double, double>> rim;
+  for (int k = 0; k < 13; ++k) {
+    const double angle = 2 * 3.14159265358979 * k / 13;
+    rim.emplace_back(std::round((cx + 17 * std::cos(angle)) * 16) / 16, std::round((cy + 15 * std::sin(angle)) * 16) / 16);
+  }
+  check_fan(cx, cy, rim);
+}
+
+void check_grid(bool jitter) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  const int nx = 6, ny = 5;
+  const double x0 = 4.5, dx = 7.5, y0 = 3.5, dy = 6.5;
+  std::mt19937 random(12345);
+  std::uniform_int_distribution<int> offset(-24, 24);  // +-1.5 pixels in 1/16
+  std::vector<std::vector<std::pair<double, double>>> p(nx + 1, std::vector<std::pair<double, double>>(ny + 1));
+  for (int i = 0; i <= nx; ++i) {
+    for (int j = 0; j <= ny; ++j) {
+      double x = x0 + i * dx, y = y0 + j * dy;
+      if (jitter && i > 0 && i < nx) x += offset(random) / 16.0;
+      if (jitter && j > 0 && j < ny) y += offset(random) / 16.0;
+      p[i][j] = {x, y};
+    }
+  }
+  std::vector<gl::Triangle> grid;
+  const Rgba one{0, 1, 0, 0};
+  auto v = [&](int i, int j) { return vertex(p[i][j].first, p[i][j].second, one); };
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      if ((i + j) % 2 == 0) {
+        grid.push_back(triangle(v(i, j), v(i + 1, j), v(i + 1, j + 1)));
+        grid.push_back(triangle(v(i, j), v(i, j + 1), v(i + 1, j + 1)));
+      } else {
+        grid.push_back(triangle(v(i + 1, j), v(i, j + 1), v(i, j)));
+        grid.push_back(triangle(v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)));
+      }
+    }
+  }
+  f.draw(additive_state(), grid);
+  const double x1 = x0 + nx * dx, y1 = y0 + ny * dy;
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const double xc = x + 0.5, yc = y + 0.5;
+      // The union is the rectangle; its left edge is drawn, its top edge
+      // (y1, not on a centre here) would be, its right and bottom are not.
+      const int expected = (xc >= x0 && xc < x1 && yc > y0 && yc <= y1) ? 1 : 0;
+      EXPECT_EQ(f.color(x, y).g, expected) << "pixel " << x << "," << y;
+    }
+  }
+  EXPECT_TRUE(f.guards_intact());
+}
+
+TEST(ArmRasterizerFillRule, GridOfQuadsOnPixelCentres) { check_grid(false); }
+TEST(ArmRasterizerFillRule, JitteredGridOfQuads) { check_grid(true); }
+
+TEST(ArmRasterizerFillRule, CoverageMatchesEdgeFunctionReference) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  std::mt19937 random(4711);
+  std::uniform_int_distribution<int> xs(-8 * 16, 72 * 16), ys(-8 * 16, 56 * 16), snap(0, 2);
+  auto coordinate = [&](std::uniform_int_distribution<int>& d) {
+    double c = d(random) / 16.0;
+    switch (snap(random)) {
+      case 0: return std::floor(c) + 0.5;  // on a pixel centre
+      case 1: return std::floor(c);        // on a pixel corner
+      default: return c;
+    }
+  };
+  gl::RasterState state;
+  state.flat_shading = true;
+  for (int n = 0; n < 300; ++n) {
+    gl::ClearRequest clear;
+    clear.color = true;
+    f.rasterizer->clear(clear);
+    const gl::Triangle t =
+        triangle(vertex(coordinate(xs), coordinate(ys)), vertex(coordinate(xs), coordinate(ys)),
+                 vertex(coordinate(xs), coordinate(ys), Rgba{255, 255, 255, 255}));
+    f.draw(state, {t});
+    int mismatches = 0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 64; ++x) mismatches += (f.color(x, y).r == 255) != covers(t, x + 0.5, y + 0.5);
+    ASSERT_EQ(mismatches, 0) << "triangle " << n;
+  }
+  EXPECT_TRUE(f.guards_intact());
+}
+
+// --- Depth ---------------------------------------------------------------------
+
+TEST(ArmRasterizerDepth, NearerHidesFartherInEitherOrder) {
+  const gl::Triangle near_red = triangle(vertex(5, 5, {255, 0, 0, 255}, 0.2), vertex(50, 10, {255, 0, 0, 255}, 0.4),
+                                         vertex(20, 40, {255, 0, 0, 255}, 0.3));
+  const gl::Triangle far_green = triangle(vertex(10, 30, {0, 255, 0, 255}, 0.8), vertex(60, 2, {0, 255, 0, 255}, 0.5),
+                                          vertex(58, 44, {0, 255, 0, 255}, 0.6));
+  gl::RasterState state;
+  state.depth_test = true;
+  state.depth_func = gl::CompareFunc::less;
+  for (bool near_first : {true, false}) {
+    Frame f(64, 48, ColorFormat::rgba8888);
+    if (near_first) {
+      f.draw(state, {near_red, far_green});
+    } else {
+      f.draw(state, {far_green, near_red});
+    }
+    for (int y = 0; y < 48; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        const bool in_near = covers(near_red, x + 0.5, y + 0.5), in_far = covers(far_green, x + 0.5, y + 0.5);
+        const Rgba c = f.color(x, y);
+        if (in_near) {
+          EXPECT_EQ(c.r, 255) << x << "," << y;
+        } else if (in_far) {
+          EXPECT_EQ(c.g, 255) << x << "," << y;
+        } else {
+          EXPECT_EQ(c.r + c.g + c.b, 0);
+        }
+      }
+    }
+  }
+}
+
+TEST(ArmRasterizerDepth, AllCompareFunctionsAgainstClearedDepth) {
+  const uint32_t cleared = 0x800000;  // 16 bits: 0x8000
+  // Top 16 bits of 0.24: 0x8000ff and 0x800000 compare equal.
+  for (uint32_t z24 : {0x7fff00u, 0x800000u, 0x8000ffu, 0x810000u}) {
+    for (int func = 0; func < 8; ++func) {
+      Frame f(16, 12, ColorFormat::rgba8888);
+      gl::ClearRequest clear;
+      clear.depth = true;
+      clear.depth_value = cleared;
+      f.rasterizer->clear(clear);
+      gl::RasterState state;
+      state.depth_test = true;
+      state.depth_func = gl::CompareFunc(func);
+      gl::Triangle t = triangle(vertex(-20, -20), vertex(60, -20), vertex(-20, 60));
+      for (auto& v : t.v) v.z = z24;
+      f.draw(state, {t});
+      const uint32_t in = z24 >> 8, stored = cleared >> 8;
+      const bool pass[8] = {false,         in < stored,   in == stored, in <= stored,
+                            in > stored,   in != stored,  in >= stored, true};
+      for (int y = 0; y < 12; ++y) {
+        for (int x = 0; x < 16; ++x) {
+          EXPECT_EQ(f.color(x, y).r == 255, pass[func]) << "func " << func << " z " << z24;
+          EXPECT_EQ(f.depth(x, y), pass[func] ? in : stored);
+        }
+      }
+    }
+  }
+}
+
+TEST(ArmRasterizerDepth, EqualRedrawsTheSameTriangleAndDepthMaskHolds) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  const Rgba white{255, 255, 255, 255};
+  const gl::Triangle t = triangle(vertex(3, 4, white, 0.1), vertex(60, 9, white, 0.9), vertex(30, 45, white, 0.5));
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.depth_test = true;
+  f.draw(state, {t});
+  std::vector<uint16_t> before;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) before.push_back(f.depth(x, y));
+  gl::Triangle blue = t;
+  for (auto& v : blue.v) v.r = v.g = 0;
+  state.depth_func = gl::CompareFunc::equal;
+  state.depth_write = false;
+  f.draw(state, {blue});
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const bool in = covers(t, x + 0.5, y + 0.5);
+      EXPECT_EQ(f.color(x, y).r, 0);  // white where drawn first, blue where redrawn
+      EXPECT_EQ(f.color(x, y).b, in ? 255 : 0);
+      EXPECT_EQ(f.depth(x, y), before[size_t(y * 64 + x)]);
+      if (in) {
+        const auto w = barycentric(t, x + 0.5, y + 0.5);
+        const double z24 = w[0] * t.v[0].z + w[1] * t.v[1].z + w[2] * t.v[2].z;
+        EXPECT_NEAR(f.depth(x, y), z24 / 256.0, 1.0);
+      }
+    }
+  }
+}
+
+// --- Shading -------------------------------------------------------------------
+
+TEST(ArmRasterizerShading, GouraudMatchesBarycentricInterpolation) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  const Rgba ca{0, 10, 250, 255}, cb{200, 100, 0, 128}, cc{50, 255, 60, 0};
+  const gl::Triangle t = triangle(vertex(10.5, 40.5, ca), vertex(50.5, 40.5, cb), vertex(30.5, 5.5, cc));
+  f.draw(gl::RasterState{}, {t});
+  // Vertex A is on the top edge and a left edge: drawn with A's colour.
+  const Rgba a = f.color(10, 40);
+  EXPECT_NEAR(a.r, ca.r, 1);
+  EXPECT_NEAR(a.g, ca.g, 1);
+  EXPECT_NEAR(a.b, ca.b, 1);
+  EXPECT_NEAR(a.a, ca.a, 1);
+  // Along the top edge A -> B red rises linearly by 5 per pixel.
+  for (int x = 10; x < 50; ++x) EXPECT_NEAR(f.color(x, 40).r, (x - 10) * 5.0, 1.0) << x;
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (!covers(t, x + 0.5, y + 0.5)) continue;
+      const auto w = barycentric(t, x + 0.5, y + 0.5);
+      const Rgba c = f.color(x, y);
+      EXPECT_NEAR(c.r, w[0] * ca.r + w[1] * cb.r + w[2] * cc.r, 1.0);
+      EXPECT_NEAR(c.g, w[0] * ca.g + w[1] * cb.g + w[2] * cc.g, 1.0);
+      EXPECT_NEAR(c.b, w[0] * ca.b + w[1] * cb.b + w[2] * cc.b, 1.0);
+      EXPECT_NEAR(c.a, w[0] * ca.a + w[1] * cb.a + w[2] * cc.a, 1.0);
+    }
+  }
+}
+
+TEST(ArmRasterizerShading, FlatUsesTheProvokingVertex) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  const gl::Triangle t = triangle(vertex(2, 2, {255, 0, 0, 255}), vertex(60, 5, {0, 255, 0, 255}),
+                                  vertex(30, 45, {1, 2, 3, 4}));
+  f.draw(state, {t});
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (!covers(t, x + 0.5, y + 0.5)) continue;
+      const Rgba c = f.color(x, y);
+      EXPECT_EQ(c.r, 1);
+      EXPECT_EQ(c.g, 2);
+      EXPECT_EQ(c.b, 3);
+      EXPECT_EQ(c.a, 4);
+    }
+  }
+}
+
+// --- Texturing -----------------------------------------------------------------
+
+const std::vector<Rgba> TEXELS_2X2 = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {200, 100, 50, 128}};
+
+// A square [8, 40) x [8, 40) mapped to s, t in [0, smax].
+std::vector<gl::Triangle> textured_square(double smax, Rgba c, double x0 = 8) {
+  const double x1 = x0 + 32;
+  const auto a = vertex(x0, x0, c, 0.5, 0, 0), b = vertex(x1, x0, c, 0.5, float(smax), 0),
+             d = vertex(x1, x1, c, 0.5, float(smax), float(smax)), e = vertex(x0, x1, c, 0.5, 0, float(smax));
+  return {triangle(a, b, d), triangle(a, d, e)};
+}
+
+int div255_round(int x) { return int(std::lround(x / 255.0)); }
+
+void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
+  Frame f(48, 48, ColorFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.texture = true;
+  state.tex = f.texture(2, 2, TEXELS_2X2);
+  state.tex.wrap_s = state.tex.wrap_t = wrap;
+  state.tex_env = env;
+  const Rgba cf{128, 255, 64, 200};
+  f.draw(state, textured_square(smax, cf));
+  for (int y = 8; y < 40; ++y) {
+    for (int x = 8; x < 40; ++x) {
+      // Texel coordinate u = s * 2, never an integer at a pixel centre here.
+      const double u = (x + 0.5 - 8) / 32 * smax * 2, v = (y + 0.5 - 8) / 32 * smax * 2;
+      int i = int(std::floor(u)), j = int(std::floor(v));
+      if (wrap == gl::TexWrap::repeat) {
+        i &= 1;
+        j &= 1;
+      } else {
+        i = std::min(i, 1);
+        j = std::min(j, 1);
+      }
+      const Rgba t = TEXELS_2X2[size_t(j * 2 + i)];
+      Rgba expected{};
+      switch (env) {
+        case gl::TexEnv::modulate:
+          expected = {div255_round(cf.r * t.r), div255_round(cf.g * t.g), div255_round(cf.b * t.b),
+                      div255_round(cf.a * t.a)};
+          break;
+        case gl::TexEnv::replace: expected = t; break;
+        case gl::TexEnv::decal:
+          expected = {div255_round(cf.r * (255 - t.a) + t.r * t.a), div255_round(cf.g * (255 - t.a) + t.g * t.a),
+                      div255_round(cf.b * (255 - t.a) + t.b * t.a), cf.a};
+          break;
+      }
+      const Rgba c = f.color(x, y);
+      ASSERT_EQ(c.r, expected.r) << x << "," << y;
+      ASSERT_EQ(c.g, expected.g) << x << "," << y;
+      ASSERT_EQ(c.b, expected.b) << x << "," << y;
+      ASSERT_EQ(c.a, expected.a) << x << "," << y;
+    }
+  }
+  EXPECT_TRUE(f.guards_intact());
+}
+
+TEST(ArmRasterizerTexture, NearestReplace) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::replace); }
+TEST(ArmRasterizerTexture, NearestRepeat) { check_texture(gl::TexWrap::repeat, 2, gl::TexEnv::replace); }
+TEST(ArmRasterizerTexture, NearestClampToEdge) { check_texture(gl::TexWrap::clamp_to_edge, 2, gl::TexEnv::replace); }
+TEST(ArmRasterizerTexture, Modulate) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::modulate); }
+TEST(ArmRasterizerTexture, Decal) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::decal); }
+
+TEST(ArmRasterizerTexture, BilinearAtTheTextureCentreAveragesFourTexels) {
+  Frame f(48, 48, ColorFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.texture = true;
+  state.tex = f.texture(2, 2, TEXELS_2X2);
+  state.tex.mag_filter = gl::TexFilter::linear;
+  state.tex.wrap_s = state.tex.wrap_t = gl::TexWrap::clamp_to_edge;
+  state.tex_env = gl::TexEnv::replace;
+  f.draw(state, textured_square(1, {255, 255, 255, 255}, 8.5));
+  // Pixel (24, 24) has its centre at s = t = 0.5: texel coordinate (1, 1).
+  const Rgba c = f.color(24, 24);
+  EXPECT_NEAR(c.r, (255 + 0 + 0 + 200) / 4.0, 1.0);
+  EXPECT_NEAR(c.g, (0 + 255 + 0 + 100) / 4.0, 1.0);
+  EXPECT_NEAR(c.b, (0 + 0 + 255 + 50) / 4.0, 1.0);
+  EXPECT_NEAR(c.a, (255 * 3 + 128) / 4.0, 1.0);
+  // Deep inside a texel's quarter, clamped: that texel alone.
+  const Rgba corner = f.color(9, 9);
+  EXPECT_EQ(corner.r, 255);
+  EXPECT_EQ(corner.g, 0);
+}
+
+TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
+  Frame f(64, 48, ColorFormat::rgba8888);
+  std::vector<Rgba> ramp(64);
+  for (int i = 0; i < 64; ++i) ramp[size_t(i)] = {i * 4, 0, 0, 255};
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.texture = true;
+  state.tex = f.texture(64, 1, ramp);
+  state.tex_env = gl::TexEnv::replace;
+  const gl::Triangle t = triangle(vertex(2, 2, {}, 0.5, 0.0f, 0.5f, 1.0f), vertex(62, 2, {}, 0.5, 0.999f, 0.5f, 0.25f),
+                                  vertex(2, 46, {}, 0.5, 0.0f, 0.5f, 1.0f));
+  f.draw(state, {t});
+  int checked = 0, far_from_affine = 0;
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (!covers(t, x + 0.5, y + 0.5)) continue;
+      const auto w = barycentric(t, x + 0.5, y + 0.5);
+      double sq = 0, q = 0, affine = 0;
+      for (int k = 0; k < 3; ++k) {
+        sq += w[k] * t.v[k].s * t.v[k].inv_w;
+        q += w[k] * t.v[k].inv_w;
+        affine += w[k] * t.v[k].s;
+      }
+      const double u = sq / q * 64;
+      const int texel = f.color(x, y).r / 4;
+      EXPECT_LE(std::abs(texel - std::floor(u)), 1.0) << x << "," << y << " u=" << u;
+      far_from_affine += std::abs(affine * 64 - u) > 4;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 500);
+  EXPECT_GT(far_from_affine, 100);
+}
+
+// --- Per-fragment operations -----------------------------------------------
+
+TEST(ArmRasterizerFragment, BlendSrcAlphaOneMinusSrcAlpha) {
+  Frame f(32, 32, ColorFormat::rgba8888);
+  gl::ClearRequest clear;
+  clear.color = true;
+  const uint8_t dst[4] = {200, 100, 50, 255};
+  std::copy(dst, dst + 4, clear.rgba);
+  f.rasterizer->clear(clear);
+  gl::RasterState state;
+  state.blend = true;
+  state.blend_src = gl::BlendFactor::src_alpha;
+  state.blend_dst = gl::BlendFactor::one_minus_src_alpha;
+  const Rgba src{100, 200, 0, 128};
+  f.draw(state, {triangle(vertex(-10, -10, src), vertex(60, -10, src), vertex(-10, 60, src))});
+  // result = round(S * As / 255) + round(D * (255 - As) / 255), clamped.
+  auto expect = [&](int s, int d, int as) { return std::min(255, div255_round(s * as) + div255_round(d * (255 - as))); };
+  const Rgba c = f.color(5, 5);
+  EXPECT_EQ(c.r, expect(src.r, dst[0], src.a));
+  EXPECT_EQ(c.g, expect(src.g, dst[1], src.a));
+  EXPECT_EQ(c.b, expect(src.b, dst[2], src.a));
+  EXPECT_EQ(c.a, expect(src.a, dst[3], src.a));
+}
+
+TEST(ArmRasterizerFragment, ScissorAndColorMask) {
+  Frame f(32, 32, ColorFormat::rgba8888);
+  gl::RasterState state;
+  state.scissor_test = true;
+  state.scissor_x = 5;
+  state.scissor_y = 7;
+  state.scissor_width = 10;
+  state.scissor_height = 4;
+  state.color_mask[0] = false;
+  state.color_mask[2] = false;
+  const Rgba c{255, 255, 255, 255};
+  f.draw(state, {triangle(vertex(-10, -10, c), vertex(80, -10, c), vertex(-10, 80, c))});
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      const bool in = x >= 5 && x < 15 && y >= 7 && y < 11;
+      const Rgba p = f.color(x, y);
+      EXPECT_EQ(p.r, 0);
+      EXPECT_EQ(p.g, in ? 255 : 0) << x << "," << y;
+      EXPECT_EQ(p.b, 0);
+      EXPECT_EQ(p.a, in ? 255 : 0);
+    }
+  }
+}
+
+TEST(ArmRasterizerFragment, AlphaTestAndStencil) {
+  Frame f(32, 32, ColorFormat::rgba8888);
+  gl::RasterState state;
+  state.alpha_test = true;
+  state.alpha_func = gl::CompareFunc::greater;
+  state.alpha_ref = 128;
+  const gl::Triangle small = triangle(vertex(4, 4, {255, 0, 0, 100}), vertex(20, 4, {255, 0, 0, 100}),
+                                      vertex(4, 20, {255, 0, 0, 100}));
+  f.draw(state, {small});
+  EXPECT_EQ(f.color(6, 6).r, 0);  // alpha 100 is not > 128
+
+  // Mark the small triangle in the stencil buffer without drawing colour.
+  state = gl::RasterState{};
+  state.stencil_test = true;
+  state.stencil_func = gl::CompareFunc::always;
+  state.stencil_ref = 1;
+  state.depth_pass = gl::StencilOp::replace;
+  for (bool& m : state.color_mask) m = false;
+  f.draw(state, {small});
+  // Then draw everything where the stencil equals 1.
+  state = gl::RasterState{};
+  state.stencil_test = true;
+  state.stencil_func = gl::CompareFunc::equal;
+  state.stencil_ref = 1;
+  state.depth_pass = gl::StencilOp::incr;
+  const Rgba g{0, 255, 0, 255};
+  f.draw(state, {triangle(vertex(-10, -10, g), vertex(80, -10, g), vertex(-10, 80, g))});
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      const bool in = covers(small, x + 0.5, y + 0.5);
+      EXPECT_EQ(f.color(x, y).g, in ? 255 : 0) << x << "," << y;
+      EXPECT_EQ(f.stencil(x, y), in ? 2 : 0);
+    }
+  }
+}
+
+TEST(ArmRasterizerFragment, LogicOpXor) {
+  Frame f(16, 16, ColorFormat::rgba8888);
+  gl::ClearRequest clear;
+  clear.color = true;
+  const uint8_t dst[4] = {0x0f, 0xf0, 0x55, 0xff};
+  std::copy(dst, dst + 4, clear.rgba);
+  f.rasterizer->clear(clear);
+  gl::RasterState state;
+  state.logic_op = true;
+  state.logic_op_code = 6;  // GL_XOR
+  state.blend = true;       // ignored while the logic op is enabled
+  const Rgba s{0xff, 0xff, 0x0f, 0x00};
+  f.draw(state, {triangle(vertex(-10, -10, s), vertex(60, -10, s), vertex(-10, 60, s))});
+  const Rgba c = f.color(3, 3);
+  EXPECT_EQ(c.r, 0xf0);
+  EXPECT_EQ(c.g, 0x0f);
+  EXPECT_EQ(c.b, 0x5a);
+  EXPECT_EQ(c.a, 0xff);
+}
+
+// --- Clear -------------------------------------------------------------------
+
+TEST(ArmRasterizerClear, MasksAndScissor) {
+  Frame f(32, 24, ColorFormat::rgba8888);
+  gl::ClearRequest all;
+  all.color = all.depth = all.stencil = true;
+  all.rgba[0] = 10;
+  all.rgba[1] = 20;
+  all.rgba[2] = 30;
+  all.rgba[3] = 40;
+  all.depth_value = 0x123456;
+  all.stencil_value = 0xf0;
+  f.rasterizer->clear(all);
+  gl::ClearRequest part;
+  part.color = part.depth = part.stencil = true;
+  part.rgba[0] = part.rgba[1] = part.rgba[2] = part.rgba[3] = 200;
+  part.color_mask[1] = false;
+  part.color_mask[3] = false;
+  part.depth_value = 0xabcdef;
+  part.stencil_value = 0x0f;
+  part.stencil_write_mask = 0x0c;
+  part.scissor_test = true;
+  part.scissor_x = 3;
+  part.scissor_y = 2;
+  part.scissor_width = 7;
+  part.scissor_height = 5;
+  f.rasterizer->clear(part);
+  for (int y = 0; y < 24; ++y) {
+    for (int x = 0; x < 32; ++x) {
+      const bool in = x >= 3 && x < 10 && y >= 2 && y < 7;
+      const Rgba c = f.color(x, y);
+      EXPECT_EQ(c.r, in ? 200 : 10);
+      EXPECT_EQ(c.g, 20);
+      EXPECT_EQ(c.b, in ? 200 : 30);
+      EXPECT_EQ(c.a, 40);
+      EXPECT_EQ(f.depth(x, y), in ? 0xabcd : 0x1234);
+      EXPECT_EQ(f.stencil(x, y), in ? ((0xf0 & ~0x0c) | (0x0f & 0x0c)) : 0xf0);
+    }
+  }
+  // Depth write disabled: depth untouched.
+  gl::ClearRequest no_depth;
+  no_depth.depth = true;
+  no_depth.depth_write = false;
+  no_depth.depth_value = 0;
+  f.rasterizer->clear(no_depth);
+  EXPECT_EQ(f.depth(0, 0), 0x1234);
+  EXPECT_TRUE(f.guards_intact());
+}
+
+// --- Robustness --------------------------------------------------------------
+
+TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) {
+  for (ColorFormat format : {ColorFormat::rgb565, ColorFormat::rgba8888}) {
+    Frame f(40, 30, format);
+    gl::RasterState state;
+    state.depth_test = true;
+    state.stencil_test = true;
+    state.depth_pass = gl::StencilOp::incr;
+    state.blend = true;
+    state.blend_src = gl::BlendFactor::one;
+    state.blend_dst = gl::BlendFactor::one;
+    state.texture = true;
+    state.tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
+    const Rgba c{1, 1, 1, 1};
+    const gl::Triangle huge = triangle(vertex(-100000, -50000, c, 0.1, -1000, 3, 0.5f),
+                                       vertex(200000, 30, c, 0.9, 5000, -7, 1.0f),
+                                       vertex(30, 150000, c, 0.5, 2, 9000, 0.01f));
+    std::vector<gl::Triangle> tris = {
+        huge,
+        triangle(vertex(5, 5, c), vertex(5, 5, c), vertex(5, 5, c)),        // a point
+        triangle(vertex(1, 1, c), vertex(20, 20, c), vertex(39, 39, c)),    // collinear
+        triangle(vertex(-5, 7.5, c), vertex(50, 7.5, c), vertex(20, 7.5, c)),  // zero height
+        triangle(vertex(-50, 10, c), vertex(-10, 10, c), vertex(-30, 25, c)),  // left of the screen
+        triangle(vertex(10, 31, c), vertex(30, 31, c), vertex(20, 60, c)),     // above the screen
+    };
+    gl::Triangle extreme = huge;
+    extreme.v[0].x = INT32_MIN;
+    extreme.v[1].y = INT32_MAX;
+    tris.push_back(extreme);
+    EXPECT_NO_THROW(f.draw(state, tris));
+    EXPECT_TRUE(f.guards_intact());
+    // The huge triangle covers exactly its reference pixels, once each.
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) EXPECT_EQ(f.stencil(x, y), covers(huge, x + 0.5, y + 0.5) ? 1 : 0);
+  }
+}
+
+// --- Formats and read-back -------------------------------------------------
+
+TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
+  Frame f565(64, 48, ColorFormat::rgb565), f8888(64, 48, ColorFormat::rgba8888);
+  const gl::Triangle t = triangle(vertex(3, 3, {255, 0, 17, 255}), vertex(60, 10, {0, 255, 99, 255}),
+                                  vertex(20, 45, {123, 45, 255, 255}));
+  f565.draw(gl::RasterState{}, {t});
+  f8888.draw(gl::RasterState{}, {t});
+  int drawn = 0;
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const Rgba c = f8888.color(x, y);
+      EXPECT_EQ(f565.packed565(x, y), ((c.r >> 3) << 11) | ((c.g >> 2) << 5) | (c.b >> 3)) << x << "," << y;
+      drawn += c.a != 0;
+    }
+  }
+  EXPECT_GT(drawn, 500);
+  // read_pixels widens 5 and 6 bits by replication, rows from y upwards.
+  std::vector<uint8_t> rgba(64 * 48 * 4);
+  f565.rasterizer->read_pixels(0, 0, 64, 48, rgba.data());
+  for (int y = 0; y < 48; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const int v = f565.packed565(x, y), r5 = v >> 11, g6 = (v >> 5) & 63, b5 = v & 31;
+      const uint8_t* p = &rgba[size_t((y * 64 + x) * 4)];
+      EXPECT_EQ(p[0], (r5 << 3) | (r5 >> 2));
+      EXPECT_EQ(p[1], (g6 << 2) | (g6 >> 4));
+      EXPECT_EQ(p[2], (b5 << 3) | (b5 >> 2));
+      EXPECT_EQ(p[3], 255);
+    }
+  }
+}
+
+TEST(ArmRasterizerFormats, ReadPixelsOutsideTheScreenReadsZero) {
+  Frame f(8, 8, ColorFormat::rgba8888);
+  gl::ClearRequest clear;
+  clear.color = true;
+  clear.rgba[0] = 9;
+  f.rasterizer->clear(clear);
+  std::vector<uint8_t> rgba(4 * 4 * 4, 0xee);
+  f.rasterizer->read_pixels(6, 6, 4, 4, rgba.data());
+  EXPECT_EQ(rgba[0], 9);                    // (6, 6)
+  EXPECT_EQ(rgba[(0 * 4 + 2) * 4], 0);      // (8, 6) is outside
+  EXPECT_EQ(rgba[(2 * 4 + 0) * 4], 0);      // (6, 8) is outside
+}
+
+TEST(ArmRasterizerFormats, DoubleBufferingMovesDrawing) {
+  Frame f(16, 16, ColorFormat::rgba8888);
+  const uint32_t front = f.color_address;
+  const uint32_t back = f.texture_address;  // any other buffer-sized area
+  f.rasterizer->set_color_address(back);
+  gl::ClearRequest clear;
+  clear.color = true;
+  clear.rgba[1] = 77;
+  f.rasterizer->clear(clear);
+  EXPECT_EQ(*f.memory.at(back + 1), 77);
+  EXPECT_EQ(*f.memory.at(front + 1), 0);
+  EXPECT_EQ(f.rasterizer->color_address(), back);
+}
+
+// --- Accesses and charges --------------------------------------------------
+
+TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
+  Frame f(64, 48, ColorFormat::rgb565);
+  gl::RasterState state;
+  state.depth_test = true;
+  f.memory.reset_counters();
+  const gl::Triangle t = triangle(vertex(2, 2), vertex(60, 3), vertex(30, 45));
+  f.draw(state, {t});
+  int pixels = 0, rows = 0;
+  for (int y = 0; y < 48; ++y) {
+    int in_row = 0;
+    for (int x = 0; x < 64; ++x) in_row += covers(t, x + 0.5, y + 0.5);
+    pixels += in_row;
+    rows += in_row > 0;
+  }
+  const NativeMemory::Counters& counters = f.memory.counters();
+  EXPECT_EQ(counters.load_calls, uint64_t(rows));       // depth
+  EXPECT_EQ(counters.store_calls, uint64_t(2 * rows));  // depth and colour
+  EXPECT_EQ(counters.load_elements, uint64_t(pixels));
+  EXPECT_EQ(counters.store_bytes, uint64_t(4 * pixels));
+  const InstructionCounts& k = f.rasterizer->instruction_counts();
+  EXPECT_GE(f.memory.ops(Op::alu), uint64_t(pixels) * (k.pixel_alu + k.depth_step_test_alu + k.color_step_alu));
+  EXPECT_GE(f.memory.ops(Op::branch), uint64_t(pixels));
+}
+
+}  // namespace
+}  // namespace tessera::arm
