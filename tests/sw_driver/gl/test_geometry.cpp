@@ -1,0 +1,283 @@
+// Unit tests of the GL front end's geometry stage: clipping against every
+// plane of the view volume, the viewport transform into 9.4 / 0.24 / 0.8,
+// non-finite and out-of-range vertices, orientation, and lighting.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "gl/geometry.h"
+
+using namespace tessera::gl;
+
+namespace {
+
+// A vertex whose colour's red channel carries its clip-space x and green its
+// y, so that after clipping each vertex must still satisfy r == x, g == y
+// (attributes are linear in clip space).
+ClipVertex vertex(float x, float y, float z, float w = 1) {
+  ClipVertex v;
+  v.position = {x, y, z, w};
+  v.color = {x, y, z, w};
+  v.tex = {x * 2, y * 3};
+  return v;
+}
+
+void expect_attributes_follow_positions(const std::vector<ClipVertex>& polygon) {
+  for (const auto& v : polygon) {
+    EXPECT_NEAR(v.color.r, v.position.x, 1e-5);
+    EXPECT_NEAR(v.color.g, v.position.y, 1e-5);
+    EXPECT_NEAR(v.color.b, v.position.z, 1e-5);
+    EXPECT_NEAR(v.tex.x, 2 * v.position.x, 1e-5);
+    EXPECT_NEAR(v.tex.y, 3 * v.position.y, 1e-5);
+  }
+}
+
+void expect_inside(const std::vector<ClipVertex>& polygon) {
+  for (const auto& v : polygon) {
+    const glm::vec4& p = v.position;
+    EXPECT_GE(p.w + p.x, -1e-5) << p.x << " " << p.w;
+    EXPECT_GE(p.w - p.x, -1e-5);
+    EXPECT_GE(p.w + p.y, -1e-5);
+    EXPECT_GE(p.w - p.y, -1e-5);
+    EXPECT_GE(p.w + p.z, -1e-5);
+    EXPECT_GE(p.w - p.z, -1e-5);
+  }
+}
+
+}  // namespace
+
+TEST(Clipping, TriangleInsideIsUnchanged) {
+  const std::vector<ClipVertex> in = {vertex(-0.5f, -0.5f, 0), vertex(0.5f, -0.5f, 0), vertex(0, 0.5f, 0)};
+  const auto out = clip_polygon(in);
+  ASSERT_EQ(out.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(out[i].position, in[i].position);
+  EXPECT_TRUE(inside_view_volume(in[0]));
+}
+
+// One vertex beyond each plane in turn: the result is a quadrilateral whose
+// two new vertices lie exactly on that plane.
+TEST(Clipping, EachPlaneCutsOffOneCorner) {
+  struct Case {
+    const char* plane;
+    ClipVertex outside;
+    int axis;     // 0 x, 1 y, 2 z
+    float sign;   // the plane is axis == sign * w
+  };
+  const Case cases[] = {
+      {"left", vertex(-3, 0, 0), 0, -1},  {"right", vertex(3, 0, 0), 0, 1},
+      {"bottom", vertex(0, -3, 0), 1, -1}, {"top", vertex(0, 3, 0), 1, 1},
+      {"near", vertex(0, 0, -3), 2, -1},  {"far", vertex(0, 0, 3), 2, 1},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.plane);
+    // The other two vertices are inside, offset perpendicular to the axis.
+    glm::vec3 a(0), b(0);
+    a[(c.axis + 1) % 3] = 0.5f;
+    b[(c.axis + 2) % 3] = 0.5f;
+    const std::vector<ClipVertex> in = {c.outside, vertex(a.x, a.y, a.z), vertex(b.x, b.y, b.z)};
+    EXPECT_FALSE(inside_view_volume(in[0]));
+    const auto out = clip_polygon(in);
+    ASSERT_EQ(out.size(), 4u);
+    expect_inside(out);
+    expect_attributes_follow_positions(out);
+    int on_plane = 0;
+    for (const auto& v : out) on_plane += std::fabs(v.position[c.axis] - c.sign * v.position.w) < 1e-5;
+    EXPECT_EQ(on_plane, 2);
+  }
+}
+
+TEST(Clipping, TriangleCrossingSeveralPlanes) {
+  // A large triangle covering the whole volume's cross-section: every side
+  // plane cuts it, leaving the square [-1,1]^2 at z = 0.
+  const std::vector<ClipVertex> in = {vertex(-10, -10, 0), vertex(10, -10, 0), vertex(0, 10, 0)};
+  const auto out = clip_polygon(in);
+  ASSERT_GE(out.size(), 4u);
+  expect_inside(out);
+  expect_attributes_follow_positions(out);
+  // The result's area is the area of the triangle inside the unit square.
+  double area = 0;
+  for (size_t i = 0; i < out.size(); ++i) {
+    const auto& p = out[i].position;
+    const auto& q = out[(i + 1) % out.size()].position;
+    area += p.x * q.y - q.x * p.y;
+  }
+  // Inside [-1,1]^2 the triangle's edges are x = +-(10 - y)/2, i.e. |x| <= 5.5 - y/2 >= 1 for y <= 1:
+  // the whole square is covered.
+  EXPECT_NEAR(std::fabs(area) / 2, 4.0, 1e-4);
+}
+
+TEST(Clipping, CornerCrossingTwoPlanesAtOnce) {
+  const std::vector<ClipVertex> in = {vertex(3, 3, 0), vertex(0, 0, 0), vertex(0.5f, -0.5f, 0)};
+  const auto out = clip_polygon(in);
+  ASSERT_GE(out.size(), 4u);
+  expect_inside(out);
+  expect_attributes_follow_positions(out);
+}
+
+TEST(Clipping, TriangleOutsideOrBehindTheEyeVanishes) {
+  EXPECT_TRUE(clip_polygon({vertex(2, 2, 0), vertex(3, 2, 0), vertex(2, 3, 0)}).empty());
+  // w <= 0 everywhere: behind the eye.
+  EXPECT_TRUE(clip_polygon({vertex(0, 0, 0, -1), vertex(0.1f, 0, 0, -1), vertex(0, 0.1f, 0, -1)}).empty());
+  // One vertex behind the eye: the rest is kept, with w > 0 everywhere.
+  const auto out = clip_polygon({vertex(0, 0, 0, -1), vertex(0.5f, 0, 0, 1), vertex(0, 0.5f, 0, 1)});
+  for (const auto& v : out) EXPECT_GT(v.position.w, 0);
+}
+
+TEST(Viewport, CentreOfTheViewportAndDepthMidpoint) {
+  Viewport viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  ScreenVertex s;
+  ClipVertex v = vertex(0, 0, 0);
+  v.color = {0.5f, 1.0f, 0.0f, 0.25f};
+  ASSERT_TRUE(to_screen(v, viewport, &s));
+  EXPECT_EQ(s.x, 160 * 16);  // 9.4: 160.0
+  EXPECT_EQ(s.y, 120 * 16);
+  // z_ndc 0 lies half way between near 0 and far 1: 0.5 * (2^24 - 1), rounded.
+  EXPECT_EQ(s.z, 8388608u);
+  EXPECT_EQ(s.r, 128);  // 127.5 rounds to nearest (half away from zero)
+  EXPECT_EQ(s.g, 255);
+  EXPECT_EQ(s.b, 0);
+  EXPECT_EQ(s.a, 64);   // 63.75
+  EXPECT_FLOAT_EQ(s.inv_w, 1.0f);
+}
+
+TEST(Viewport, CornersAndSubpixelRounding) {
+  Viewport viewport;
+  viewport.x = 10;
+  viewport.y = 20;
+  viewport.width = 100;
+  viewport.height = 50;
+  viewport.near_depth = 0.25f;
+  viewport.far_depth = 0.75f;
+  ScreenVertex s;
+  ASSERT_TRUE(to_screen(vertex(-1, -1, -1), viewport, &s));
+  EXPECT_EQ(s.x, 10 * 16);
+  EXPECT_EQ(s.y, 20 * 16);
+  EXPECT_EQ(s.z, static_cast<uint32_t>(std::llround(0.25 * 16777215)));
+  ASSERT_TRUE(to_screen(vertex(1, 1, 1), viewport, &s));
+  EXPECT_EQ(s.x, 110 * 16);
+  EXPECT_EQ(s.y, 70 * 16);
+  EXPECT_EQ(s.z, static_cast<uint32_t>(std::llround(0.75 * 16777215)));
+  // x_ndc = 0.00125 -> 60.0625 pixels = 961 sixteenths exactly; w = 2 halves it first.
+  ASSERT_TRUE(to_screen(vertex(0.0025f, 0, 0, 2), viewport, &s));
+  EXPECT_EQ(s.x, 961);
+  EXPECT_FLOAT_EQ(s.inv_w, 0.5f);
+}
+
+TEST(Viewport, NonFiniteHugeAndOffRangeVerticesAreRejected) {
+  Viewport viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  ScreenVertex s;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_FALSE(to_screen(vertex(nan, 0, 0), viewport, &s));
+  EXPECT_FALSE(to_screen(vertex(0, inf, 0), viewport, &s));
+  EXPECT_FALSE(to_screen(vertex(0, 0, 0, 0), viewport, &s));
+  EXPECT_FALSE(to_screen(vertex(0, 0, 0, -1), viewport, &s));
+  EXPECT_FALSE(to_screen(vertex(1e30f, 0, 0, 1), viewport, &s));
+  // Beyond the 9.4 range (511.9375) or below 0 after the viewport transform.
+  viewport.width = 2048;
+  EXPECT_FALSE(to_screen(vertex(1, 0, 0), viewport, &s));
+  viewport.x = -100;
+  viewport.width = 100;
+  EXPECT_FALSE(to_screen(vertex(-1, 0, 0), viewport, &s));
+  ClipVertex bad_tex = vertex(0, 0, 0);
+  bad_tex.tex.x = nan;
+  viewport = Viewport{};
+  viewport.width = viewport.height = 100;
+  EXPECT_FALSE(to_screen(bad_tex, viewport, &s));
+}
+
+TEST(Viewport, SignedAreaIsPositiveCounterClockwise) {
+  ScreenVertex a{}, b{}, c{};
+  a.x = 0, a.y = 0;
+  b.x = 160, b.y = 0;
+  c.x = 0, c.y = 160;
+  EXPECT_EQ(signed_area(a, b, c), 160 * 160);
+  EXPECT_EQ(signed_area(a, c, b), -160 * 160);
+  EXPECT_EQ(signed_area(a, a, c), 0);
+}
+
+TEST(FixedPoint, Unorm8AndUnorm24Clamp) {
+  EXPECT_EQ(to_unorm8(-1), 0);
+  EXPECT_EQ(to_unorm8(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(to_unorm8(2), 255);
+  EXPECT_EQ(to_unorm8(1.0f / 255), 1);
+  EXPECT_EQ(to_unorm24(1), 16777215u);
+  EXPECT_EQ(to_unorm24(0), 0u);
+  EXPECT_EQ(to_unorm24(1.0f / 16777215), 1u);
+}
+
+TEST(Lighting, DirectionalDiffuseAmbientAndSpecular) {
+  LightingModel model;
+  model.lights.resize(8);
+  Light& light = model.lights[0];
+  light.enabled = true;
+  light.diffuse = glm::vec4(1);
+  light.specular = glm::vec4(1);
+  light.position = {0, 0, 1, 0};
+  Material material;  // GL defaults: ambient 0.2, diffuse 0.8, no specular
+  const glm::vec4 eye(0, 0, -5, 1);
+  // Facing the light: emission 0 + 0.2 * 0.2 (scene ambient) + 0.8 * 1 (diffuse).
+  glm::vec4 c = light_vertex(model, material, eye, {0, 0, 1});
+  EXPECT_NEAR(c.r, 0.84f, 1e-5);
+  EXPECT_NEAR(c.a, 1.0f, 1e-6);  // alpha: the material's diffuse alpha, 1 by default
+  // At 60 degrees: n.l = 0.5.
+  c = light_vertex(model, material, eye, {std::sqrt(3.0f) / 2, 0, 0.5f});
+  EXPECT_NEAR(c.g, 0.04f + 0.4f, 1e-5);
+  // Facing away: ambient only.
+  c = light_vertex(model, material, eye, {0, 0, -1});
+  EXPECT_NEAR(c.b, 0.04f, 1e-6);
+  // Specular with shininess 8: half vector between l = +z and the viewer
+  // (+z) is +z, n.h = 1 for n = +z, so the full specular adds and clamps.
+  material.specular = {0.5f, 0.5f, 0.5f, 1};
+  material.shininess = 8;
+  c = light_vertex(model, material, eye, {0, 0, 1});
+  EXPECT_NEAR(c.r, 1.0f, 1e-6);  // 0.84 + 0.5, clamped
+  // Off-axis: n.l = cos 30 deg, half vector is +z, n.h = cos 30, power 8.
+  const glm::vec3 n(0.5f, 0, std::sqrt(3.0f) / 2);
+  c = light_vertex(model, material, eye, n);
+  const float expected = 0.04f + 0.8f * n.z + 0.5f * std::pow(n.z, 8.0f);
+  EXPECT_NEAR(c.r, expected, 1e-5);
+}
+
+TEST(Lighting, PositionalLightAttenuatesAndSpotCutsOff) {
+  LightingModel model;
+  model.ambient = glm::vec4(0);
+  model.lights.resize(8);
+  Light& light = model.lights[1];
+  light.enabled = true;
+  light.diffuse = glm::vec4(1);
+  light.position = {0, 0, 0, 1};  // at the eye
+  light.constant_attenuation = 1;
+  light.linear_attenuation = 0.5f;
+  Material material;
+  material.ambient = glm::vec4(0);
+  material.diffuse = glm::vec4(1);
+  // A surface 2 units in front of the light facing it: 1 / (1 + 0.5 * 2) = 0.5.
+  glm::vec4 c = light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1});
+  EXPECT_NEAR(c.r, 0.5f, 1e-5);
+  // A 10-degree spot pointing down -z: a point off to the side is dark.
+  light.spot_direction = {0, 0, -1};
+  light.spot_cutoff = 10;
+  c = light_vertex(model, material, {2, 0, -2, 1}, glm::normalize(glm::vec3(-1, 0, 1)));
+  EXPECT_NEAR(c.r, 0.0f, 1e-6);
+  // On the axis it is lit as before (exponent 0).
+  c = light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1});
+  EXPECT_NEAR(c.r, 0.5f, 1e-5);
+}
+
+TEST(Lighting, DisabledLightsContributeNothing) {
+  LightingModel model;
+  model.lights.resize(8);
+  model.lights[3].diffuse = glm::vec4(1);  // not enabled
+  Material material;
+  material.emission = {0.1f, 0.2f, 0.3f, 1};
+  const glm::vec4 c = light_vertex(model, material, {0, 0, -1, 1}, {0, 0, 1});
+  EXPECT_NEAR(c.r, 0.1f + 0.04f, 1e-6);
+  EXPECT_NEAR(c.g, 0.2f + 0.04f, 1e-6);
+  EXPECT_NEAR(c.b, 0.3f + 0.04f, 1e-6);
+}

@@ -1,0 +1,388 @@
+// Unit tests of the GL ES 1.1 and EGL entry points: the error codes the
+// specifications require for bad arguments, EGL misuse, and vertices that
+// must never reach a renderer (NaN, infinity, huge). A host that keeps
+// system memory in a vector and answers the display registers stands in for
+// the simulated SoC; a renderer that records what it is given stands in for
+// a back end.
+#include <EGL/egl.h>
+#include <GLES/gl.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "device/app_environment.h"
+#include "display/display_regs.h"
+#include "gl/context.h"
+#include "gl/runtime.h"
+#include "soc/memory_map.h"
+
+using namespace tessera;
+
+namespace {
+
+class VectorHost : public HostApi {
+ public:
+  VectorHost() : m_memory(16u << 20, 0) {}
+  void compute(Op, uint64_t count) override { m_operations += count; }
+  uint32_t read32(uint32_t address) override {
+    if (memory_map::display_regs.contains(address)) {
+      switch (address - memory_map::display_regs.base) {
+        case display_regs::WIDTH: return 64;
+        case display_regs::HEIGHT: return 48;
+        case display_regs::FORMAT: return display_regs::FORMAT_RGB565;
+        case display_regs::MODE: return 0;
+        default: return 0;
+      }
+    }
+    uint32_t v = 0;
+    std::memcpy(&v, at(address, 4), 4);
+    return v;
+  }
+  uint16_t read16(uint32_t address) override {
+    uint16_t v;
+    std::memcpy(&v, at(address, 2), 2);
+    return v;
+  }
+  uint8_t read8(uint32_t address) override { return *at(address, 1); }
+  void write32(uint32_t address, uint32_t value) override {
+    if (address < m_memory.size()) std::memcpy(at(address, 4), &value, 4);
+  }
+  void write16(uint32_t address, uint16_t value) override {
+    if (address < m_memory.size()) std::memcpy(at(address, 2), &value, 2);
+  }
+  void write8(uint32_t address, uint8_t value) override {
+    if (address < m_memory.size()) *at(address, 1) = value;
+  }
+  void read_words(uint32_t address, uint32_t* words, unsigned count) override {
+    for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
+  }
+  void write_words(uint32_t address, const uint32_t* words, unsigned count) override {
+    for (unsigned i = 0; i < count; ++i) write32(address + 4 * i, words[i]);
+  }
+  const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override {
+    return at(address, size * count);
+  }
+  uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override { return at(address, size * count); }
+  void wait_irq(unsigned) override {}
+  bool irq_pending(unsigned) override { return false; }
+  double now_seconds() const override { return 0; }
+  double clock_hz() const override { return 192e6; }
+  uint64_t operations() const { return m_operations; }
+
+ private:
+  uint8_t* at(uint32_t address, unsigned bytes) {
+    if (static_cast<uint64_t>(address) + bytes > m_memory.size())
+      throw std::out_of_range("test host: access outside memory");
+    return m_memory.data() + address;
+  }
+  std::vector<uint8_t> m_memory;
+  uint64_t m_operations = 0;
+};
+
+class RecordingRenderer : public gl::Renderer {
+ public:
+  const char* name() const override { return "recording"; }
+  unsigned width() const override { return 64; }
+  unsigned height() const override { return 48; }
+  void clear(const gl::ClearRequest&) override { ++clears; }
+  void draw(const gl::RasterState&, const gl::Triangle* t, size_t n) override {
+    triangles.insert(triangles.end(), t, t + n);
+  }
+  void read_pixels(int, int, int w, int h, uint8_t* rgba) override {
+    std::memset(rgba, 0x5a, static_cast<size_t>(w) * h * 4);
+  }
+  void finish() override {}
+  void present() override {}
+  std::vector<gl::Triangle> triangles;
+  int clears = 0;
+};
+
+// A current GL context over the recording renderer, for each test.
+class GlApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    env.host = &host;
+    env.heap_base = 4u << 20;
+    env.heap_end = 15u << 20;
+    env.frames = 1000;
+    gl::set_environment(&env);
+    context = std::make_unique<gl::Context>(host, renderer);
+    gl::set_current_context(context.get());
+  }
+  void TearDown() override {
+    gl::set_current_context(nullptr);
+    gl::set_environment(nullptr);
+  }
+  void draw_triangle(const float* positions) {
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glVertexPointer(3, GL_FLOAT, 0, positions);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  VectorHost host;
+  AppEnvironment env;
+  RecordingRenderer renderer;
+  std::unique_ptr<gl::Context> context;
+};
+
+}  // namespace
+
+TEST_F(GlApi, BadEnumsAreInvalidEnum) {
+  glEnable(0x1234);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glDepthFunc(GL_ADD);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glBlendFunc(GL_SRC_ALPHA, GL_DST_COLOR);  // DST_COLOR is not a destination factor
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glDrawArrays(0x20, 0, 3);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glMatrixMode(GL_COLOR_BUFFER_BIT);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glTexEnvf(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, static_cast<float>(GL_NEAREST));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  GLfloat value;
+  glGetFloatv(0xdead, &value);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  EXPECT_EQ(glGetString(0x1), nullptr);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+}
+
+TEST_F(GlApi, BadValuesAreInvalidValue) {
+  glViewport(0, 0, -1, 10);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glDrawArrays(GL_TRIANGLES, 0, -3);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glClear(0x1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  GLuint texture;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  std::vector<uint8_t> pixels(512 * 512 * 4);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 48, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // not a power of two
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 512, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // above 256
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 64, 64, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // border
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // formats differ
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 4, 4, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // nothing defined yet
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 60, 60, 8, 8, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // past the edge
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glFrustumf(-1, 1, -1, 1, 0, 10);  // near must be positive
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, 120);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 200);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glPointSize(0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glVertexPointer(5, GL_FLOAT, 0, nullptr);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+}
+
+TEST_F(GlApi, MatrixStackOverflowAndUnderflow) {
+  glMatrixMode(GL_MODELVIEW);
+  glPopMatrix();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_STACK_UNDERFLOW));
+  GLint depth = 0;
+  glGetIntegerv(GL_MAX_MODELVIEW_STACK_DEPTH, &depth);
+  EXPECT_GE(depth, 16);  // GL ES 1.1 minimum
+  for (GLint i = 1; i < depth; ++i) glPushMatrix();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glPushMatrix();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_STACK_OVERFLOW));
+  glMatrixMode(GL_PROJECTION);
+  glPushMatrix();
+  glPushMatrix();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_STACK_OVERFLOW));
+}
+
+TEST_F(GlApi, FirstErrorSticksUntilRead) {
+  glEnable(0x1234);                // INVALID_ENUM
+  glViewport(0, 0, -1, -1);        // INVALID_VALUE, not recorded
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST_F(GlApi, StateQueriesReadBackWhatWasSet) {
+  glClearColor(0.25f, 0.5f, 0.75f, 1.0f);
+  GLfloat color[4];
+  glGetFloatv(GL_COLOR_CLEAR_VALUE, color);
+  EXPECT_FLOAT_EQ(color[1], 0.5f);
+  glDepthFunc(GL_LEQUAL);
+  GLint func;
+  glGetIntegerv(GL_DEPTH_FUNC, &func);
+  EXPECT_EQ(func, GL_LEQUAL);
+  glTranslatef(1, 2, 3);
+  GLfloat m[16];
+  glGetFloatv(GL_MODELVIEW_MATRIX, m);
+  EXPECT_FLOAT_EQ(m[12], 1);
+  EXPECT_FLOAT_EQ(m[13], 2);
+  EXPECT_FLOAT_EQ(m[14], 3);
+  glEnable(GL_DEPTH_TEST);
+  EXPECT_EQ(glIsEnabled(GL_DEPTH_TEST), GL_TRUE);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST_F(GlApi, TriangleReachesTheRendererInScreenFormats) {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, -1, 1, 0};
+  draw_triangle(positions);
+  ASSERT_EQ(renderer.triangles.size(), 1u);
+  const gl::Triangle& t = renderer.triangles[0];
+  EXPECT_EQ(t.v[0].x, 0);
+  EXPECT_EQ(t.v[1].x, 64 * 16);
+  EXPECT_EQ(t.v[2].y, 48 * 16);
+  EXPECT_EQ(t.v[0].r, 255);  // current colour: white
+  EXPECT_GT(host.operations(), 0u);  // the geometry was charged to the host
+}
+
+TEST_F(GlApi, NonFiniteAndHugeVerticesDrawNothing) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const float with_nan[] = {nan, -1, 0, 1, -1, 0, -1, 1, 0};
+  const float with_inf[] = {-1, -1, 0, inf, -1, 0, -1, 1, 0};
+  const float huge[] = {-1e38f, -1e38f, 0, 1e38f, -1e38f, 0, -1e38f, 1e38f, 0};
+  const float degenerate[] = {0, 0, 0, 0.5f, 0.5f, 0, 1, 1, 0};
+  draw_triangle(with_nan);
+  draw_triangle(with_inf);
+  draw_triangle(degenerate);
+  EXPECT_TRUE(renderer.triangles.empty());
+  // A huge triangle is clipped to the view volume: whatever is drawn lies on screen.
+  draw_triangle(huge);
+  for (const auto& t : renderer.triangles)
+    for (const auto& v : t.v) {
+      EXPECT_GE(v.x, 0);
+      EXPECT_LE(v.x, 64 * 16);
+      EXPECT_GE(v.y, 0);
+      EXPECT_LE(v.y, 48 * 16);
+    }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST_F(GlApi, CullingDropsBackFaces) {
+  const float clockwise[] = {-1, -1, 0, -1, 1, 0, 1, -1, 0};
+  glEnable(GL_CULL_FACE);
+  draw_triangle(clockwise);
+  EXPECT_TRUE(renderer.triangles.empty());
+  glFrontFace(GL_CW);
+  draw_triangle(clockwise);
+  EXPECT_EQ(renderer.triangles.size(), 1u);
+}
+
+TEST_F(GlApi, PointsAndLinesBecomeTriangles) {
+  const float points[] = {0, 0, 0, 0.5f, 0.5f, 0};
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, points);
+  glPointSize(4);
+  glDrawArrays(GL_POINTS, 0, 2);
+  EXPECT_EQ(renderer.triangles.size(), 4u);
+  renderer.triangles.clear();
+  glDrawArrays(GL_LINES, 0, 2);
+  EXPECT_EQ(renderer.triangles.size(), 2u);
+  renderer.triangles.clear();
+  glDrawArrays(GL_LINE_LOOP, 0, 2);
+  EXPECT_EQ(renderer.triangles.size(), 4u);
+}
+
+TEST_F(GlApi, ReadPixelsChecksFormatAndType) {
+  uint8_t pixels[16];
+  glReadPixels(0, 0, 2, 2, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(pixels[0], 0x5a);
+  glReadPixels(0, 0, 2, 2, 0x81A5 /* GL_DEPTH_COMPONENT16 */, GL_UNSIGNED_BYTE, pixels);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glReadPixels(0, 0, -2, 2, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+}
+
+TEST(GlWithoutContext, CallsDoNothingAndQueriesReturnZero) {
+  gl::set_current_context(nullptr);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(glIsEnabled(GL_DEPTH_TEST), GL_FALSE);
+  EXPECT_EQ(glGetString(GL_VERSION), nullptr);
+}
+
+// EGL ------------------------------------------------------------------------
+
+TEST(Egl, MisuseGivesTheSpecifiedErrors) {
+  VectorHost host;
+  AppEnvironment env;
+  env.host = &host;
+  env.heap_base = 4u << 20;
+  env.heap_end = 15u << 20;
+  env.frame_buffers[0] = 15u << 20;
+  env.frame_buffers[1] = (15u << 20) + 0x10000;
+  env.frames = 2;
+  gl::set_environment(&env);
+
+  EXPECT_EQ(eglGetDisplay(reinterpret_cast<EGLNativeDisplayType>(0x1234)), EGL_NO_DISPLAY);
+  EXPECT_EQ(eglGetError(), EGL_BAD_PARAMETER);
+  EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+  ASSERT_NE(display, EGL_NO_DISPLAY);
+  EGLint count = 0;
+  // Before eglInitialize.
+  EXPECT_EQ(eglChooseConfig(display, nullptr, nullptr, 0, &count), EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_NOT_INITIALIZED);
+  EXPECT_EQ(eglInitialize(reinterpret_cast<EGLDisplay>(0x99), nullptr, nullptr), EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_DISPLAY);
+  EGLint major = 0, minor = 0;
+  ASSERT_EQ(eglInitialize(display, &major, &minor), EGL_TRUE);
+  EXPECT_EQ(major, 1);
+  EXPECT_EQ(minor, 4);
+  EXPECT_EQ(eglGetError(), EGL_SUCCESS);
+
+  const EGLint unknown_attribute[] = {0x7777, 1, EGL_NONE};
+  EXPECT_EQ(eglChooseConfig(display, unknown_attribute, nullptr, 0, &count), EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_ATTRIBUTE);
+  const EGLint too_many_samples[] = {EGL_SAMPLES, 4, EGL_NONE};
+  ASSERT_EQ(eglChooseConfig(display, too_many_samples, nullptr, 0, &count), EGL_TRUE);
+  EXPECT_EQ(count, 0);
+  EGLConfig config;
+  const EGLint wanted[] = {EGL_RED_SIZE, 5, EGL_DEPTH_SIZE, 16, EGL_NONE};
+  ASSERT_EQ(eglChooseConfig(display, wanted, &config, 1, &count), EGL_TRUE);
+  ASSERT_EQ(count, 1);
+
+  const EGLint es2[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
+  EXPECT_EQ(eglCreateContext(display, config, EGL_NO_CONTEXT, es2), EGL_NO_CONTEXT);
+  EXPECT_EQ(eglGetError(), EGL_BAD_MATCH);
+  EXPECT_EQ(eglCreateContext(display, reinterpret_cast<EGLConfig>(0x55), EGL_NO_CONTEXT, nullptr), EGL_NO_CONTEXT);
+  EXPECT_EQ(eglGetError(), EGL_BAD_CONFIG);
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
+  ASSERT_NE(context, EGL_NO_CONTEXT);
+
+  EXPECT_EQ(eglMakeCurrent(display, reinterpret_cast<EGLSurface>(0x77), reinterpret_cast<EGLSurface>(0x77), context),
+            EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_SURFACE);
+  EXPECT_EQ(eglSwapBuffers(display, reinterpret_cast<EGLSurface>(0x77)), EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_SURFACE);
+  EXPECT_EQ(eglBindAPI(EGL_OPENVG_API), EGL_FALSE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_PARAMETER);
+
+  EGLSurface surface = eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr);
+  ASSERT_NE(surface, EGL_NO_SURFACE) << eglGetError();
+  EXPECT_EQ(eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr), EGL_NO_SURFACE);
+  EXPECT_EQ(eglGetError(), EGL_BAD_ALLOC);  // one screen, one window surface
+  ASSERT_EQ(eglMakeCurrent(display, surface, surface, context), EGL_TRUE);
+  EGLint width = 0;
+  eglQuerySurface(display, surface, EGL_WIDTH, &width);
+  EXPECT_EQ(width, 64);
+  glClearColor(1, 0, 0, 1);
+  glClear(GL_COLOR_BUFFER_BIT);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  // The first swap returns; the second is the run's last frame and ends the program.
+  EXPECT_EQ(eglSwapBuffers(display, surface), EGL_TRUE);
+  EXPECT_THROW(eglSwapBuffers(display, surface), gl::FramesComplete);
+  EXPECT_EQ(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT), EGL_TRUE);
+  EXPECT_EQ(eglTerminate(display), EGL_TRUE);
+  gl::set_environment(nullptr);
+}
