@@ -15,7 +15,8 @@
 extern "C" {
 #endif
 
-int tessera_app_main(int argc, char** argv);
+/* Exported even when the application is built with -fvisibility=hidden. */
+__attribute__((visibility("default"))) int tessera_app_main(int argc, char** argv);
 
 #ifdef __cplusplus
 }

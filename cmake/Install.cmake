@@ -1,0 +1,42 @@
+# Install rules: soc_sim and its tools, and the SDK for out-of-tree
+# applications (the GL ES/EGL headers, <tessera/app.h> and the CMake package
+# `tessera`, see cmake/tesseraConfig.cmake.in and examples/mine).
+# Included at the end of the top-level CMakeLists.txt, once every target
+# exists. Everything installed is built by a plain `cmake --build` or is a
+# source file.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(TESSERA_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/tessera)
+
+set(tessera_installed_programs soc_sim)
+foreach(tool recip_table render_compare)
+  if(TARGET ${tool})
+    list(APPEND tessera_installed_programs ${tool})
+  endif()
+endforeach()
+# The programs link only static project libraries and system ones; a
+# dependency found outside the system directories keeps its folder in the
+# installed RPATH instead of failing at run time.
+set_target_properties(${tessera_installed_programs} PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+install(TARGETS ${tessera_installed_programs} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+set(tessera_sdk_headers ${PROJECT_SOURCE_DIR}/sw_driver/include)
+install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+install(FILES ${tessera_sdk_headers}/tessera/app.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tessera)
+
+# Paths in the package are relative to the prefix it is found in, so an
+# installed tree can be moved (`cmake --install build --prefix P` works for
+# any P).
+set(TESSERA_SOC_SIM_INSTALL_PATH ${CMAKE_INSTALL_BINDIR}/soc_sim)
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/tesseraConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/tesseraConfig.cmake
+  INSTALL_DESTINATION ${TESSERA_INSTALL_CMAKEDIR}
+  PATH_VARS CMAKE_INSTALL_INCLUDEDIR TESSERA_SOC_SIM_INSTALL_PATH)
+# Not ARCH_INDEPENDENT: the package names a soc_sim built for one
+# architecture, and applications are loaded into that process.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/tesseraConfig.cmake ${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake
+        DESTINATION ${TESSERA_INSTALL_CMAKEDIR})

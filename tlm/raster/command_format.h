@@ -1,0 +1,88 @@
+// The in-memory interface between the driver and the rasterizer (sort
+// middle): the driver writes, in system memory, a tile table with one
+// command list per tile, the triangle records and the state blocks they
+// refer to, then starts the rasterizer, which walks the tiles in order
+// (row-major from the TOP-LEFT tile), runs each tile's commands into its
+// tile buffers and writes the finished tile to the frame buffer.
+// All words are 32-bit little-endian. Coordinates are GL window
+// coordinates: y = 0 is the BOTTOM row; the frame buffer's first row in
+// memory is the TOP row (y = height - 1), as the display scans it.
+#pragma once
+
+#include <cstdint>
+
+namespace tessera::raster {
+
+// Tile table: tiles_x * tiles_y entries, row-major, tile (0, 0) at the top
+// left of the screen; tiles_x = ceil(width / tile_width) etc.
+struct TileEntry {
+  uint32_t list_address;  // first command word
+  uint32_t word_count;    // length of the list in words (0: the tile is left as it is in memory)
+};
+
+enum class Opcode : uint32_t {
+  clear = 1,     // [op | mask << 8] [rgba8888] [depth24] [stencil | color_mask << 8 | depth_write << 12 | stencil_write_mask << 16]
+                 //   mask bit 0 colour, bit 1 depth, bit 2 stencil; the scissor of the current state applies
+  state = 2,     // [op] [address of a StateBlock]
+  triangle = 3,  // [op] [address of a TriangleRecord]
+};
+
+// Triangle vertex as the driver's front end produced it (gl::ScreenVertex).
+struct VertexRecord {
+  uint32_t xy;     // x 9.4 in bits 0-15, y 9.4 in bits 16-31
+  uint32_t z;      // 0.24 depth in bits 0-23
+  uint32_t rgba;   // R bits 0-7, G 8-15, B 16-23, A 24-31 (0.8 each)
+  float s_over_w;  // texture coordinates divided by w, and 1/w: IEEE 754 single
+  float t_over_w;
+  float inv_w;
+};
+struct TriangleRecord {
+  VertexRecord v[3];  // v[2] is the provoking vertex for flat shading
+};
+static_assert(sizeof(TriangleRecord) == 72, "triangle records are 18 words");
+
+// Flags of StateBlock::flags.
+enum StateFlag : uint32_t {
+  depth_test = 1u << 0,
+  depth_write = 1u << 1,
+  alpha_test = 1u << 2,
+  stencil_test = 1u << 3,
+  blend = 1u << 4,
+  logic_op = 1u << 5,
+  scissor_test = 1u << 6,
+  texture = 1u << 7,
+  flat_shading = 1u << 8,
+  polygon_smooth = 1u << 9,  // antialiased edges from normalised edge functions (EASA)
+};
+
+// Enumerations are those of gl/renderer.h (CompareFunc, BlendFactor,
+// StencilOp, TexEnv, TexFilter, TexWrap): GL order, 0-based.
+struct StateBlock {
+  uint32_t flags;
+  uint32_t depth_func;       // CompareFunc
+  uint32_t alpha_func;       // CompareFunc in bits 0-7, alpha reference 0.8 in bits 8-15
+  uint32_t stencil_func;     // CompareFunc bits 0-7, ref 8-15, value mask 16-23, write mask 24-31
+  uint32_t stencil_ops;      // fail bits 0-7, depth fail 8-15, depth pass 16-23 (StencilOp)
+  uint32_t blend;            // source factor bits 0-7, destination 8-15 (BlendFactor); logic op code 16-19
+  uint32_t color_mask;       // bits 0-3: R, G, B, A writable
+  uint32_t scissor_xy;       // x bits 0-15, y bits 16-31 (GL window coordinates)
+  uint32_t scissor_size;     // width bits 0-15, height bits 16-31
+  uint32_t texture_address;  // RGBA8 texels, row t = 0 first
+  uint32_t texture_size;     // log2 width bits 0-7, log2 height 8-15 (0..8: 1..256 texels)
+  uint32_t texture_mode;     // min filter bit 0, mag filter bit 1 (1: linear), wrap s bits 2-3, wrap t 4-5, env bits 8-9
+};
+static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
+
+// ERROR_STATUS codes. On an error the rasterizer stops the run, sets
+// STATUS.error and IRQ_STATUS.error, and leaves the tiles not yet written
+// as they were in memory.
+enum class RasterError : uint32_t {
+  none = 0,
+  bus_error = 1,          // a fetch or a tile write got an error response (ERROR_ADDRESS: the address)
+  bad_opcode = 2,         // unknown command word (ERROR_ADDRESS: its address)
+  list_overrun = 3,       // a command runs past its tile's word_count
+  bad_texture = 4,        // texture size above 256 (log2 > 8) or texels outside memory
+  bad_reciprocal = 5,     // reciprocal operand 0 or above 2^14 - 1 reached the unit: the triangle is skipped, counted, not fatal
+};
+
+}  // namespace tessera::raster
