@@ -15,6 +15,9 @@ void write_png(const std::string& path, unsigned width, unsigned height, const s
   OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 4, OIIO::TypeDesc::UINT8);
   // Our pixels are not premultiplied; without this OpenImageIO divides by alpha.
   spec.attribute("oiio:UnassociatedAlpha", 1);
+  // Fast compression: frames are written during the simulation, and the
+  // default level costs more than simulating a frame (testbench/bench).
+  spec.attribute("png:compressionLevel", 1);
   if (!out->open(path, spec)) throw std::runtime_error("cannot write " + path + ": " + out->geterror());
   const bool ok = out->write_image(OIIO::TypeDesc::UINT8, rgba.data());
   const bool closed = out->close();

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace tessera::reference {
 
@@ -81,16 +82,17 @@ double CompareResult::percent_within_tolerance() const {
 
 bool CompareResult::passes(const PassRule& rule) const {
   return coverage_mismatches() <= rule.allowed_coverage_mismatches &&
+         (!rule.coverage_only_on_edges || coverage_off_edges == 0) &&
          percent_within_tolerance() >= rule.min_percent_within_tolerance;
 }
 
 std::string CompareResult::summary() const {
   char line[256];
   std::snprintf(line, sizeof line,
-                "%ux%u: coverage mismatches %zu (ours only %zu, reference only %zu); "
+                "%ux%u: coverage mismatches %zu (ours only %zu, reference only %zu, off the edges %zu); "
                 "within tolerance %zu of %zu (%.3f%%); max colour difference %u",
-                width, height, coverage_mismatches(), coverage_ours_only, coverage_reference_only, within_tolerance,
-                pixels, percent_within_tolerance(), max_colour_difference);
+                width, height, coverage_mismatches(), coverage_ours_only, coverage_reference_only, coverage_off_edges,
+                within_tolerance, pixels, percent_within_tolerance(), max_colour_difference);
   return line;
 }
 
@@ -114,20 +116,41 @@ CompareResult compare_images(const Image& ours, const Image& reference, const Co
   result.difference.height = ours.height;
   result.difference.rgba.assign(result.pixels * 4, 0);
 
+  std::vector<bool> reference_coverage(result.pixels);
+  for (size_t i = 0; i < result.pixels; ++i)
+    reference_coverage[i] = !same_colour(reduce(pixel_at(reference, i), options.format), background, with_alpha);
+  // Does the reference have a pixel covered as `covered` next to (x, y)?
+  const auto reference_has_neighbour = [&](unsigned x, unsigned y, bool covered) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const long nx = long{x} + dx, ny = long{y} + dy;
+        if ((dx || dy) && nx >= 0 && ny >= 0 && nx < long{ours.width} && ny < long{ours.height} &&
+            reference_coverage[size_t(ny) * ours.width + size_t(nx)] == covered)
+          return true;
+      }
+    return false;
+  };
+
   for (size_t i = 0; i < result.pixels; ++i) {
     const Rgba8 mine = reduce(pixel_at(ours, i), options.format);
     const Rgba8 theirs = reduce(pixel_at(reference, i), options.format);
     const bool drawn_by_us = !same_colour(mine, background, with_alpha);
-    const bool drawn_by_reference = !same_colour(theirs, background, with_alpha);
+    const bool drawn_by_reference = reference_coverage[i];
+    const unsigned difference = colour_difference(mine, theirs, with_alpha);
     uint8_t* out = &result.difference.rgba[i * 4];
     out[3] = 255;
 
     if (drawn_by_us != drawn_by_reference) {
-      ++(drawn_by_us ? result.coverage_ours_only : result.coverage_reference_only);
-      out[0] = 255;
-      continue;
+      if (difference <= options.tolerance) {
+        ++result.coverage_within_tolerance;
+      } else {
+        ++(drawn_by_us ? result.coverage_ours_only : result.coverage_reference_only);
+        if (!reference_has_neighbour(unsigned(i % ours.width), unsigned(i / ours.width), drawn_by_us))
+          ++result.coverage_off_edges;
+        out[0] = 255;
+        continue;
+      }
     }
-    const unsigned difference = colour_difference(mine, theirs, with_alpha);
     result.max_colour_difference = std::max(result.max_colour_difference, difference);
     if (difference <= options.tolerance) {
       ++result.within_tolerance;

@@ -8,6 +8,14 @@
 //    difference (fill rule, clipping, culling), not a colour error, and is
 //    counted on its own. A drawn pixel that happens to have exactly the
 //    clear colour counts as background: scenes should avoid drawing in it.
+//    Where the drawn colour is within the tolerance of the background, the
+//    two cannot be told apart, and the pixel is judged by colour instead
+//    (counted in coverage_within_tolerance): a dark face on a dark
+//    background must not turn a rounding difference into a coverage one.
+//    A coverage mismatch is "on an edge" when the reference has a pixel of
+//    the coverage ours has among its 8 neighbours, i.e. an edge of the
+//    reference moved by at most one pixel; anything else (a hole, a stray
+//    pixel, a missing triangle) is "off the edges".
 //  - colour: the largest absolute difference of its channels, on the 8-bit
 //    scale after reduction.
 #pragma once
@@ -50,6 +58,7 @@ struct CompareOptions {
 struct PassRule {
   size_t allowed_coverage_mismatches = 0;
   double min_percent_within_tolerance = 99.0;
+  bool coverage_only_on_edges = false;  // no coverage mismatch may lie off the reference's edges
 };
 
 struct CompareResult {
@@ -57,7 +66,9 @@ struct CompareResult {
   size_t pixels = 0;
   size_t coverage_ours_only = 0;        // drawn by us, background in the reference
   size_t coverage_reference_only = 0;   // background in ours, drawn by the reference
-  size_t within_tolerance = 0;          // same coverage and colour difference <= tolerance
+  size_t coverage_off_edges = 0;        // of the mismatches, those not next to an edge of the reference
+  size_t coverage_within_tolerance = 0;  // background in one, drawn within tolerance of it in the other
+  size_t within_tolerance = 0;          // colour difference <= tolerance (coverage_within_tolerance included)
   unsigned max_colour_difference = 0;   // over pixels whose coverage agrees
   // Red: coverage differs; yellow: colour beyond tolerance; grey: colour
   // difference within tolerance, scaled so that the tolerance is white.

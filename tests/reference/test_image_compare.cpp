@@ -176,5 +176,39 @@ TEST(ImageCompare, WritesReadableDifferenceImage) {
   EXPECT_EQ(pixel(1, 1)[0], 0);    // identical
 }
 
+TEST(ImageCompare, DrawnColourWithinToleranceOfTheBackgroundIsJudgedByColour) {
+  // One 5-bit red code above the background: after reduction, drawn in ours,
+  // background in the reference, but only 8 apart.
+  const Image reference = filled(2, 1, kBackground);
+  Image ours = reference;
+  set_pixel(ours, 0, 0, {kBackground.r + 8, kBackground.g, kBackground.b, 255});
+  const CompareResult within = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
+  EXPECT_EQ(within.coverage_mismatches(), 0u);
+  EXPECT_EQ(within.coverage_within_tolerance, 1u);
+  EXPECT_EQ(within.within_tolerance, 2u);
+  const CompareResult beyond = compare_images(ours, reference, options_for(OutputFormat::rgb565, 4));
+  EXPECT_EQ(beyond.coverage_ours_only, 1u);
+  EXPECT_EQ(beyond.coverage_within_tolerance, 0u);
+}
+
+TEST(ImageCompare, CoverageMismatchesAreOnEdgesOnlyNextToTheReferencesOtherSide) {
+  // The reference covers columns 0..3 of an 8x4 image.
+  Image reference = filled(8, 4, kBackground);
+  for (unsigned y = 0; y < 4; ++y)
+    for (unsigned x = 0; x < 4; ++x) set_pixel(reference, x, y, {200, 200, 200, 255});
+  Image ours = reference;
+  set_pixel(ours, 4, 1, {200, 200, 200, 255});  // the edge moved right by one pixel: on the edge
+  set_pixel(ours, 7, 2, {200, 200, 200, 255});  // a stray pixel: off the edges
+  set_pixel(ours, 1, 1, kBackground);           // a hole: off the edges
+  const CompareResult result = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
+  EXPECT_EQ(result.coverage_ours_only, 2u);
+  EXPECT_EQ(result.coverage_reference_only, 1u);
+  EXPECT_EQ(result.coverage_off_edges, 2u);
+  PassRule rule{3, 50.0};
+  EXPECT_TRUE(result.passes(rule));
+  rule.coverage_only_on_edges = true;
+  EXPECT_FALSE(result.passes(rule));
+}
+
 }  // namespace
 }  // namespace tessera::reference

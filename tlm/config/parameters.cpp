@@ -45,7 +45,8 @@ const std::vector<ParamSpec>& parameter_specs() {
              "lowest severity of the log lines printed on stderr"),
 
       // Software on the host
-      choice("driver.backend", "arm", {"arm"}, "renderer back end of the GL ES driver"),
+      choice("driver.backend", "arm", {"arm", "raster"},
+             "renderer back end of the GL ES driver: arm (software on the host) or raster (the rasterizer block)"),
 
       // Host: ARM922T
       real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
@@ -95,6 +96,30 @@ const std::vector<ParamSpec>& parameter_specs() {
       integer("display.burst_beats", 16, 1, 256, "beats", "burst length of the display DMA's fetches"),
       integer("display.fifo_lines", 1, 1, 16, "lines",
               "line buffer of the display DMA: how many lines ahead it may fetch"),
+
+      // Rasterizer. Its clock: the paper synthesised the reciprocal unit
+      // alone for one cycle at 250 MHz in 0.18 um; a whole pipeline with
+      // multipliers, tile buffers and a bus interface closes at a lower
+      // frequency, and 100 MHz keeps it on the order of the 96 MHz bus.
+      real("raster.clock_mhz", 100.0, 1, 1000, "MHz", "rasterizer pipeline clock"),
+      integer("raster.width", 320, 16, 2048, "pixels",
+              "screen width the rasterizer covers (must equal display.width with driver.backend=raster)"),
+      integer("raster.height", 240, 16, 2048, "lines",
+              "screen height the rasterizer covers (must equal display.height with driver.backend=raster)"),
+      integer("raster.tile_width", 32, 1, 256, "pixels", "tile buffer width (the paper: 32)"),
+      integer("raster.tile_height", 16, 1, 256, "lines", "tile buffer height (the paper: 16)"),
+      integer("raster.recip_method", 3, 1, 3, "",
+              "reciprocal unit at reset: 1 fixed-point table, 2 floating-point table, 3 the paper's Method 3"),
+      integer("raster.burst_beats", 16, 1, 256, "beats", "longest burst of the rasterizer's bus accesses"),
+      integer("raster.cycles.command", 1, 0, 1000, "cycles", "decoding one command word"),
+      integer("raster.cycles.setup", 8, 0, 1000, "cycles", "triangle setup (gradients, one reciprocal)"),
+      integer("raster.cycles.tile_start", 4, 0, 1000, "cycles", "starting a tile"),
+      integer("raster.cycles.tile_pixel_clear", 0, 0, 1000, "cycles",
+              "per pixel of a tile-buffer clear (0: the buffers clear in one go)"),
+      integer("raster.cycles.fragment", 1, 0, 1000, "cycles", "per fragment: one pixel pipeline, one per cycle"),
+      integer("raster.cycles.texel", 1, 0, 1000, "cycles", "per texel fetched"),
+      integer("raster.cycles.tile_write_word", 0, 0, 1000, "cycles",
+              "per word of a finished tile written back (besides the bus time)"),
   };
   return specs;
 }
@@ -129,6 +154,12 @@ void Config::validate() const {
       throw ConfigError("configuration: impossible combination: the data cache has " + std::to_string(sets) +
                         " sets; host.dcache.size_bytes / (line_bytes x ways) must be a power of two");
   }
+  if (get_string("driver.backend") == "raster" &&
+      (get_uint("raster.width") != get_uint("display.width") || get_uint("raster.height") != get_uint("display.height")))
+    throw ConfigError("configuration: impossible combination: driver.backend=raster draws the display's frame buffers, "
+                      "but raster.width x raster.height = " + std::to_string(get_uint("raster.width")) + " x " +
+                      std::to_string(get_uint("raster.height")) + " differs from display.width x display.height = " +
+                      std::to_string(get_uint("display.width")) + " x " + std::to_string(get_uint("display.height")));
   const uint64_t fetch_bytes = get_uint("display.burst_beats") * static_cast<uint64_t>(width / 8);
   const uint64_t line_bytes = get_uint("display.width") * bytes_per_pixel;
   if (get_bool("display.dma") && line_bytes % std::min(fetch_bytes, line_bytes) != 0)

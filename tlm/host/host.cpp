@@ -134,9 +134,9 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
     if (!result.hit) {
       const unsigned line = m_dcache.line_bytes();
       if (result.evicted_dirty) {
-        std::vector<uint8_t> victim(line);
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim.data(), p, line);
-        post_write(result.evicted_address, victim.data(), line);
+        uint8_t victim[256] = {};
+        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
+        post_write(result.evicted_address, victim, line);
       }
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(address), fill, line, 0));
@@ -199,10 +199,14 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
     stall_until(m_write_buffer.front().done_ticks);
     retire();
   }
-  std::vector<uint8_t> copy(data, data + bytes);
+  // The payload must not point into memory the target writes (a span's data
+  // is already in place through DMI), so it carries a copy.
+  if (m_post_data.size() < bytes) m_post_data.resize(bytes);
+  std::memcpy(m_post_data.data(), data, bytes);
   const uint64_t issue = std::max(local_ticks(), m_write_buffer_free_ticks);
   m_train->transfers = transfers;
-  const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, copy.data(), bytes, m_write_buffer_free_ticks);
+  const uint64_t done =
+      transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
   m_write_buffer_free_ticks = done;
   if (words > m_params.write_buffer_words) {
     // A train longer than the buffer: the core waits until all but the
@@ -330,9 +334,9 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     // No cache: one single transfer per element, back to back.
     charge(uint64_t{m_params.load_cycles} * count);
     drain_write_buffer();
-    std::vector<uint8_t> scratch(bytes);
+    if (m_post_data.size() < bytes) m_post_data.resize(bytes);
     m_train->transfers = count;
-    stall_until(transact(tlm::TLM_READ_COMMAND, address, scratch.data(), bytes, 0));
+    stall_until(transact(tlm::TLM_READ_COMMAND, address, m_post_data.data(), bytes, 0));
     return data;
   }
   const unsigned line = m_dcache.line_bytes();
@@ -346,9 +350,9 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     const DataCache::Result result = m_dcache.read(cursor);
     if (!result.hit) {
       if (result.evicted_dirty) {
-        std::vector<uint8_t> victim(line);
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim.data(), p, line);
-        post_write(result.evicted_address, victim.data(), line);
+        uint8_t victim[256] = {};
+        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
+        post_write(result.evicted_address, victim, line);
       }
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(cursor), fill, line, 0));

@@ -124,6 +124,7 @@ class Host : public sc_core::sc_module, public HostApi {
     unsigned words;
   };
   std::deque<PendingWrite> m_write_buffer;
+  std::vector<uint8_t> m_post_data;  // payload data of the write being posted
   unsigned m_write_buffer_words = 0;
   uint64_t m_write_buffer_free_ticks = 0;  // when the buffer finishes its last write
 

@@ -77,20 +77,46 @@ DisplayParams display_params(const Config& config) {
   return p;
 }
 
+RasterizerParams rasterizer_params(const Config& config) {
+  RasterizerParams p;
+  p.width = static_cast<unsigned>(config.get_uint("raster.width"));
+  p.height = static_cast<unsigned>(config.get_uint("raster.height"));
+  p.tile_width = static_cast<unsigned>(config.get_uint("raster.tile_width"));
+  p.tile_height = static_cast<unsigned>(config.get_uint("raster.tile_height"));
+  const uint64_t method = config.get_uint("raster.recip_method");
+  p.recip_method = method == 1 ? raster::RecipMethod::method1
+                   : method == 2 ? raster::RecipMethod::method2
+                                 : raster::RecipMethod::method3;
+  p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
+  auto cycles = [&](const char* key) { return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key)); };
+  p.costs.command = cycles("command");
+  p.costs.setup = cycles("setup");
+  p.costs.tile_start = cycles("tile_start");
+  p.costs.tile_pixel_clear = cycles("tile_pixel_clear");
+  p.costs.fragment = cycles("fragment");
+  p.costs.texel = cycles("texel");
+  p.costs.tile_write_word = cycles("tile_write_word");
+  p.clock_period = period_of_mhz(config.get_real("raster.clock_mhz"));
+  return p;
+}
+
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
     : sc_core::sc_module(name), bus("bus", bus_params(config)), memory("memory", memory_params(config)),
-      host("host", host_params(config)), display("display", display_params(config)), m_config(config) {
+      host("host", host_params(config)), display("display", display_params(config)), raster("raster", rasterizer_params(config)),
+      m_config(config) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
 
   // Initiators, in round-robin visiting order.
   bus.attach(host.out, "host", BusPriority::host);
   bus.attach(display.dma_out, "display_dma", BusPriority::display_dma);
+  bus.attach(raster.mem_out, "raster", BusPriority::raster);
 
   // Targets, by the memory map.
   bus.map(memory.in, memory_map::sysmem.base, memory_map::sysmem.size, memory_map::sysmem.name);
   bus.map(display.in, memory_map::display_regs.base, memory_map::display_regs.size, memory_map::display_regs.name);
   bus.map(display.port_in, memory_map::display_port.base, memory_map::display_port.size, memory_map::display_port.name);
+  bus.map(raster.in, memory_map::raster_regs.base, memory_map::raster_regs.size, memory_map::raster_regs.name);
 
   for (const auto& region : memory_map::all_regions)
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
@@ -102,8 +128,10 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     host.irq[i].bind(*m_irq_lines.back());
   }
   // host.irq_lines is at least 4 (parameters.cpp), so every source in irq_map.def has its line.
-  static_assert(irq_map::display < 4, "interrupt sources must use lines below host.irq_lines' minimum");
+  static_assert(irq_map::display < 4 && irq_map::raster < 4,
+                "interrupt sources must use lines below host.irq_lines' minimum");
   display.irq.bind(*m_irq_lines[irq_map::display]);
+  raster.irq.bind(*m_irq_lines[irq_map::raster]);
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);
@@ -132,6 +160,7 @@ void Soc::trace_to(const std::string& path_without_extension) {
   bus.trace(m_trace);
   host.trace(m_trace);
   display.trace(m_trace);
+  raster.trace(m_trace);
 }
 
 void Soc::close_trace() {
@@ -162,7 +191,8 @@ nlohmann::json Soc::stats_json() const {
           {"host", host.stats_json(elapsed)},
           {"bus", bus.stats_json(elapsed)},
           {"memory", memory.stats_json(elapsed)},
-          {"display", display.stats_json(elapsed)}};
+          {"display", display.stats_json(elapsed)},
+          {"raster", raster.stats_json(elapsed)}};
 }
 
 }  // namespace tessera

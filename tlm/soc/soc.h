@@ -1,5 +1,5 @@
-// The SoC assembled from one Config: host, bus, system memory and display,
-// bound by the memory map (memory_map.def) and the interrupt map
+// The SoC assembled from one Config: host, bus, system memory, display and
+// rasterizer, bound by the memory map (memory_map.def) and the interrupt map
 // (irq_map.def). Owns the statistics and the VCD trace.
 #pragma once
 
@@ -16,14 +16,17 @@
 #include "display/display_controller.h"
 #include "host/host.h"
 #include "mem/memory.h"
+#include "raster/rasterizer.h"
 #include "soc/irq_map.h"
 
 namespace tessera {
 
 // Bus priorities under fixed-priority arbitration (lower is served first):
-// the display DMA has a deadline every line, the host has none.
+// the display DMA has a deadline every line, the host has none; the
+// rasterizer's tile traffic comes between: the host waits for it anyway.
 struct BusPriority {
   static constexpr unsigned display_dma = 0;
+  static constexpr unsigned raster = 1;
   static constexpr unsigned host = 3;
 };
 
@@ -38,6 +41,7 @@ class Soc : public sc_core::sc_module {
   Memory memory;
   Host host;
   DisplayController display;
+  Rasterizer raster;
 
   // Runs the host program; the simulation stops when it has finished and
   // the display has shown every frame handed to it.
@@ -68,5 +72,6 @@ BusParams bus_params(const Config& config);
 MemoryParams memory_params(const Config& config);
 HostParams host_params(const Config& config);
 DisplayParams display_params(const Config& config);
+RasterizerParams rasterizer_params(const Config& config);
 
 }  // namespace tessera

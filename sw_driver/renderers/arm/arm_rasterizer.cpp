@@ -193,7 +193,8 @@ struct Plane {
 struct ArmRasterizer::TriangleSetup {
   Plane z, color[4], sq, tq, q;
   uint32_t flat_rgba = 0;
-  bool perspective = false;
+  bool perspective = false;        // the vertices' 1/w differ
+  bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
   bool linear_filter = false;
 };
 
@@ -461,22 +462,10 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
                            double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
       s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
     }
-    if (c.gouraud) {
-      for (int ch = 0; ch < 4; ++ch) {
-        double value[3];
-        for (int v = 0; v < 3; ++v) {
-          const gl::ScreenVertex& sv = tri.v[v];
-          const uint8_t channels[4] = {sv.r, sv.g, sv.b, sv.a};
-          value[v] = channels[ch];
-        }
-        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), double(1 << (COLOR_FRACTION_BITS - 1)));
-      }
-    } else {
-      const gl::ScreenVertex& pv = tri.v[2];
-      s.flat_rgba = uint32_t(pv.r) | uint32_t(pv.g) << 8 | uint32_t(pv.b) << 16 | uint32_t(pv.a) << 24;
-    }
-    if (c.texture) {
-      const gl::Texture& tex = state.tex;
+    // Normalised 1/w of each vertex: attributes are interpolated as a/w and
+    // 1/w and divided per pixel when the triangle is seen in perspective.
+    double qn[3] = {1.0, 1.0, 1.0};
+    if (c.gouraud || c.texture) {
       double inv_w[3], max_inv_w = 0;
       for (int v = 0; v < 3; ++v) {
         const float w = tri.v[v].inv_w;
@@ -484,18 +473,40 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         max_inv_w = std::max(max_inv_w, inv_w[v]);
       }
       s.perspective = !(inv_w[0] == inv_w[1] && inv_w[1] == inv_w[2]);
-      double sq[3], tq[3], q[3], su[3], tv[3];
+      if (s.perspective)
+        for (int v = 0; v < 3; ++v) qn[v] = inv_w[v] / max_inv_w;
+      double q[3];
+      for (int v = 0; v < 3; ++v) q[v] = std::max(qn[v] * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
+      s.q.setup(q, px, py, area, 1.0, 0.0);
+    }
+    if (c.gouraud) {
+      s.perspective_color = s.perspective;
+      for (int ch = 0; ch < 4; ++ch) {
+        double value[3];
+        for (int v = 0; v < 3; ++v) {
+          const gl::ScreenVertex& sv = tri.v[v];
+          const uint8_t channels[4] = {sv.r, sv.g, sv.b, sv.a};
+          value[v] = channels[ch] * qn[v];
+        }
+        // The rounding half is added after the division in the perspective case.
+        const double bias = s.perspective_color ? 0.0 : double(1 << (COLOR_FRACTION_BITS - 1));
+        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), bias);
+      }
+    } else {
+      const gl::ScreenVertex& pv = tri.v[2];
+      s.flat_rgba = uint32_t(pv.r) | uint32_t(pv.g) << 8 | uint32_t(pv.b) << 16 | uint32_t(pv.a) << 24;
+    }
+    if (c.texture) {
+      const gl::Texture& tex = state.tex;
+      double sq[3], tq[3], su[3], tv[3];
       for (int v = 0; v < 3; ++v) {
-        const double qn = s.perspective ? inv_w[v] / max_inv_w : 1.0;
         su[v] = std::isfinite(tri.v[v].s) ? std::clamp(double(tri.v[v].s) * tex.width, -MAX_TEXELS, MAX_TEXELS) : 0.0;
         tv[v] = std::isfinite(tri.v[v].t) ? std::clamp(double(tri.v[v].t) * tex.height, -MAX_TEXELS, MAX_TEXELS) : 0.0;
-        q[v] = std::max(qn * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
-        sq[v] = su[v] * qn;
-        tq[v] = tv[v] * qn;
+        sq[v] = su[v] * qn[v];
+        tq[v] = tv[v] * qn[v];
       }
       s.sq.setup(sq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
       s.tq.setup(tq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.q.setup(q, px, py, area, 1.0, 0.0);
       // Minified when the triangle covers more texels than pixels.
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
@@ -597,9 +608,11 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   if (c.texture) {
     sq = s.sq.start(x_first, j, n);
     tq = s.tq.start(x_first, j, n);
-    q = s.q.start(x_first, j, n);
     dsq = s.sq.step;
     dtq = s.tq.step;
+  }
+  if (c.texture || s.perspective_color) {
+    q = s.q.start(x_first, j, n);
     dq = s.q.step;
   }
 
@@ -623,14 +636,25 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     return !c.depth_test || compare(state.depth_func, z16, m_depth_old[i]);
   };
 
-  uint64_t shaded = 0, texel_calls = 0, passed = 0;
+  uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0;
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
     if (alive) {
       ++shaded;
       uint32_t rgba;
-      if (c.gouraud) {
+      if (s.perspective_color) {
+        // c/w over 1/w: one reciprocal of q per pixel (shared with the
+        // texture coordinates on the ARM), then a multiply per channel.
+        rgba = 0;
+        for (int ch = 0; ch < 4; ++ch) {
+          const int64_t value =
+              (int64_t{color[ch]} * (int64_t{1} << Q_FRACTION_BITS) / q + (1 << (COLOR_FRACTION_BITS - 1))) >>
+              COLOR_FRACTION_BITS;
+          rgba |= uint32_t(std::clamp<int64_t>(value, 0, 255)) << (8 * ch);
+        }
+        if (!c.texture) ++color_divisions;
+      } else if (c.gouraud) {
         rgba = uint32_t(color[0] >> COLOR_FRACTION_BITS) | uint32_t(color[1] >> COLOR_FRACTION_BITS) << 8 |
                uint32_t(color[2] >> COLOR_FRACTION_BITS) << 16 | uint32_t(color[3] >> COLOR_FRACTION_BITS) << 24;
       } else {
@@ -730,11 +754,13 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   }
   const uint64_t step_alu =
       c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
+  if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
+  const uint64_t divisions = texel_calls + color_divisions;
   m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
-                                passed * c.write_alu + texel_calls * k.division_alu);
+                                passed * c.write_alu + divisions * k.division_alu);
   m_memory.compute(Op::mul, c.span_mul + shaded * shade_mul + passed * c.write_mul);
   m_memory.compute(Op::branch, k.span_branch + uint64_t(n) * c.pixel_branch);
-  if (texel_calls != 0) m_memory.compute(Op::call, texel_calls);
+  if (divisions != 0) m_memory.compute(Op::call, divisions);
 }
 
 void ArmRasterizer::write_color_run(const DrawContext& c, uint32_t row_offset, int x_begin, int begin, int end) {

@@ -1,0 +1,350 @@
+#include "renderers/raster/raster_renderer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "gl/runtime.h"
+#include "raster/raster_regs.h"
+#include "soc/irq_map.h"
+#include "soc/memory_map.h"
+
+namespace tessera::raster_backend {
+
+namespace regs = raster_regs;
+using raster::Opcode;
+using raster::StateBlock;
+
+namespace {
+
+// The host charges for the binning loop, per unit of work, in ARM922T
+// operation classes (the stores of the lists are charged by write_words).
+constexpr uint64_t TRIANGLE_ALU = 24;     // bounding box (6 min/max), tile range, packing x/y/z/rgba
+constexpr uint64_t TRIANGLE_FMUL = 2;     // s/w, t/w
+constexpr uint64_t TILE_ENTRY_ALU = 4;    // append two words to a tile's list, bump its count
+constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
+constexpr unsigned STM_WORDS = 8;         // STM with eight registers
+
+// A StateBlock from the GL state, in command_format.h's encoding.
+StateBlock encode_state(const gl::RasterState& s) {
+  StateBlock b{};
+  auto flag = [&](bool on, uint32_t bit) { b.flags |= on ? bit : 0u; };
+  const bool texture = s.texture && s.tex.width > 0 && s.tex.height > 0;  // incomplete: texturing off (GL)
+  flag(s.depth_test, raster::depth_test);
+  flag(s.depth_write, raster::depth_write);
+  flag(s.alpha_test, raster::alpha_test);
+  flag(s.stencil_test, raster::stencil_test);
+  flag(s.blend, raster::blend);
+  flag(s.logic_op, raster::logic_op);
+  flag(s.scissor_test, raster::scissor_test);
+  flag(texture, raster::texture);
+  flag(s.flat_shading, raster::flat_shading);
+  flag(s.polygon_smooth, raster::polygon_smooth);
+  b.depth_func = static_cast<uint32_t>(s.depth_func);
+  b.alpha_func = static_cast<uint32_t>(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
+  b.stencil_func = static_cast<uint32_t>(s.stencil_func) | uint32_t{s.stencil_ref} << 8 |
+                   uint32_t{s.stencil_value_mask} << 16 | uint32_t{s.stencil_write_mask} << 24;
+  b.stencil_ops = static_cast<uint32_t>(s.stencil_fail) | static_cast<uint32_t>(s.depth_fail) << 8 |
+                  static_cast<uint32_t>(s.depth_pass) << 16;
+  b.blend = static_cast<uint32_t>(s.blend_src) | static_cast<uint32_t>(s.blend_dst) << 8 |
+            uint32_t{s.logic_op_code & 0xFu} << 16;
+  for (unsigned i = 0; i < 4; ++i) b.color_mask |= s.color_mask[i] ? 1u << i : 0u;
+  auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
+  b.scissor_xy = u16(s.scissor_x) | u16(s.scissor_y) << 16;
+  b.scissor_size = u16(s.scissor_width) | u16(s.scissor_height) << 16;
+  if (texture) {
+    auto log2 = [](unsigned v) {
+      uint32_t n = 0;
+      while ((1u << n) < v) ++n;
+      return n;
+    };
+    b.texture_address = s.tex.address;
+    b.texture_size = log2(s.tex.width) | log2(s.tex.height) << 8;
+    b.texture_mode = (s.tex.min_filter == gl::TexFilter::linear ? 1u : 0u) |
+                     (s.tex.mag_filter == gl::TexFilter::linear ? 2u : 0u) |
+                     static_cast<uint32_t>(s.tex.wrap_s) << 2 | static_cast<uint32_t>(s.tex.wrap_t) << 4 |
+                     static_cast<uint32_t>(s.tex_env) << 8;
+  }
+  return b;
+}
+
+bool same(const StateBlock& a, const StateBlock& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+raster::VertexRecord encode_vertex(const gl::ScreenVertex& v) {
+  auto q9_4 = [](int32_t c) { return static_cast<uint32_t>(std::clamp<int32_t>(c, 0, 0xFFFF)); };
+  raster::VertexRecord r;
+  r.xy = q9_4(v.x) | q9_4(v.y) << 16;
+  r.z = v.z & 0xFFFFFF;
+  r.rgba = uint32_t{v.r} | uint32_t{v.g} << 8 | uint32_t{v.b} << 16 | uint32_t{v.a} << 24;
+  r.s_over_w = v.s * v.inv_w;
+  r.t_over_w = v.t * v.inv_w;
+  r.inv_w = v.inv_w;
+  return r;
+}
+
+const char* error_name(uint32_t code) {
+  switch (static_cast<raster::RasterError>(code)) {
+    case raster::RasterError::none: return "none";
+    case raster::RasterError::bus_error: return "bus_error";
+    case raster::RasterError::bad_opcode: return "bad_opcode";
+    case raster::RasterError::list_overrun: return "list_overrun";
+    case raster::RasterError::bad_texture: return "bad_texture";
+    case raster::RasterError::bad_reciprocal: return "bad_reciprocal";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+RasterRenderer::RasterRenderer(AppEnvironment& env) : m_host(*env.host), m_display(env) {
+  const unsigned width = m_host.read32(reg(regs::WIDTH));
+  const unsigned height = m_host.read32(reg(regs::HEIGHT));
+  if (width != m_display.width() || height != m_display.height())
+    throw std::runtime_error("raster back end: the rasterizer covers " + std::to_string(width) + "x" +
+                             std::to_string(height) + " pixels but the display shows " +
+                             std::to_string(m_display.width()) + "x" + std::to_string(m_display.height()) +
+                             " (set raster.width and raster.height to the display's)");
+  m_tile_width = m_host.read32(reg(regs::TILE_WIDTH));
+  m_tile_height = m_host.read32(reg(regs::TILE_HEIGHT));
+  m_tiles_x = (width + m_tile_width - 1) / m_tile_width;
+  m_tiles_y = (height + m_tile_height - 1) / m_tile_height;
+  // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
+  m_depth_buffer = gl::allocate(width * height * 4);
+  m_last_draw_state = encode_state(gl::RasterState{});
+}
+
+uint32_t RasterRenderer::reg(uint32_t offset) const { return memory_map::raster_regs.base + offset; }
+
+uint32_t RasterRenderer::add_state(const StateBlock& block) {
+  m_host.compute(Op::alu, STATE_COMPARE_ALU);
+  if (m_states.empty() || !same(m_states.back(), block)) m_states.push_back(block);
+  return static_cast<uint32_t>(m_states.size() - 1);
+}
+
+void RasterRenderer::tile_range_of_pixels(int x0, int y0, int x1, int y1, Item& item) const {
+  const int w = static_cast<int>(m_display.width()), h = static_cast<int>(m_display.height());
+  x0 = std::clamp(x0, 0, w - 1), x1 = std::clamp(x1, 0, w - 1);
+  y0 = std::clamp(y0, 0, h - 1), y1 = std::clamp(y1, 0, h - 1);
+  // Tile rows count from the top; GL rows from the bottom.
+  item.tile_x0 = static_cast<unsigned>(x0) / m_tile_width;
+  item.tile_x1 = static_cast<unsigned>(x1) / m_tile_width;
+  item.tile_y0 = static_cast<unsigned>(h - 1 - y1) / m_tile_height;
+  item.tile_y1 = static_cast<unsigned>(h - 1 - y0) / m_tile_height;
+}
+
+void RasterRenderer::clear(const gl::ClearRequest& request) {
+  if (!request.color && !request.depth && !request.stencil) return;
+  // The clear's scissor is that of the state current in its tile, so the
+  // clear carries a state: the last draw state with the clear's scissor.
+  StateBlock block = m_last_draw_state;
+  block.flags = (block.flags & ~raster::scissor_test) | (request.scissor_test ? raster::scissor_test : 0u);
+  auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
+  block.scissor_xy = u16(request.scissor_x) | u16(request.scissor_y) << 16;
+  block.scissor_size = u16(request.scissor_width) | u16(request.scissor_height) << 16;
+  Item item{Opcode::clear, static_cast<uint32_t>(m_clears.size()), add_state(block), 0, 0, 0, 0};
+  if (request.scissor_test) {
+    if (request.scissor_width <= 0 || request.scissor_height <= 0) return;
+    tile_range_of_pixels(request.scissor_x, request.scissor_y, request.scissor_x + request.scissor_width - 1,
+                         request.scissor_y + request.scissor_height - 1, item);
+  } else {
+    tile_range_of_pixels(0, 0, static_cast<int>(width()) - 1, static_cast<int>(height()) - 1, item);
+  }
+  ClearWords clear{};
+  clear.words[0] = static_cast<uint32_t>(Opcode::clear) |
+                   ((request.color ? 1u : 0u) | (request.depth ? 2u : 0u) | (request.stencil ? 4u : 0u)) << 8;
+  clear.words[1] = uint32_t{request.rgba[0]} | uint32_t{request.rgba[1]} << 8 | uint32_t{request.rgba[2]} << 16 |
+                   uint32_t{request.rgba[3]} << 24;
+  clear.words[2] = request.depth_value & 0xFFFFFF;
+  uint32_t color_mask = 0;
+  for (unsigned i = 0; i < 4; ++i) color_mask |= request.color_mask[i] ? 1u << i : 0u;
+  clear.words[3] = uint32_t{request.stencil_value} | color_mask << 8 | (request.depth_write ? 1u : 0u) << 12 |
+                   uint32_t{request.stencil_write_mask} << 16;
+  m_clears.push_back(clear);
+  m_items.push_back(item);
+  m_host.compute(Op::alu, 16);
+  m_host.compute(Op::call);
+}
+
+void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  if (count == 0) return;
+  m_last_draw_state = encode_state(state);
+  const uint32_t state_index = add_state(m_last_draw_state);
+  // Antialiased edges reach into the pixels next to the box; one pixel of
+  // margin covers them and costs nothing for the tiles.
+  constexpr int MARGIN = 1;
+  for (size_t i = 0; i < count; ++i) {
+    const gl::Triangle& t = triangles[i];
+    raster::TriangleRecord record;
+    for (unsigned k = 0; k < 3; ++k) record.v[k] = encode_vertex(t.v[k]);
+    const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
+    const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
+    Item item{Opcode::triangle, static_cast<uint32_t>(m_triangles.size()), state_index, 0, 0, 0, 0};
+    tile_range_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN, (max_x >> 4) + MARGIN, (max_y >> 4) + MARGIN,
+                         item);
+    m_triangles.push_back(record);
+    m_items.push_back(item);
+  }
+  m_host.compute(Op::alu, TRIANGLE_ALU * count);
+  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count);
+  m_host.compute(Op::branch, count);
+  m_host.compute(Op::call);
+}
+
+uint32_t RasterRenderer::arena(uint32_t bytes) {
+  if (bytes > m_arena_bytes) {
+    // The heap is a bump allocator: grow by doubling, the old arena is lost.
+    uint32_t size = std::max<uint32_t>(m_arena_bytes * 2, 256u << 10);
+    while (size < bytes) size *= 2;
+    m_arena = gl::allocate(size, 64);
+    m_arena_bytes = size;
+  }
+  return m_arena;
+}
+
+void RasterRenderer::write_block(uint32_t address, const uint32_t* words, size_t count) {
+  for (size_t done = 0; done < count; done += STM_WORDS) {
+    const unsigned n = static_cast<unsigned>(std::min<size_t>(STM_WORDS, count - done));
+    m_host.write_words(address + static_cast<uint32_t>(4 * done), words + done, n);
+    m_host.compute(Op::alu, 2);
+    m_host.compute(Op::branch);
+  }
+}
+
+void RasterRenderer::flush() {
+  if (m_items.empty()) return;
+  const unsigned tiles = m_tiles_x * m_tiles_y;
+
+  // Bin: each command goes to every tile of its box, preceded by a STATE
+  // command where the tile's current state differs.
+  std::vector<std::vector<uint32_t>> lists(tiles);
+  std::vector<int64_t> tile_state(tiles, -1);
+  const uint32_t tile_table_bytes = tiles * sizeof(raster::TileEntry);
+  const uint32_t states_bytes = static_cast<uint32_t>(m_states.size() * sizeof(StateBlock));
+  const uint32_t triangles_bytes = static_cast<uint32_t>(m_triangles.size() * sizeof(raster::TriangleRecord));
+  uint64_t entries = 0;
+  for (const Item& item : m_items) {
+    for (unsigned ty = item.tile_y0; ty <= item.tile_y1; ++ty)
+      for (unsigned tx = item.tile_x0; tx <= item.tile_x1; ++tx) {
+        const unsigned tile = ty * m_tiles_x + tx;
+        std::vector<uint32_t>& list = lists[tile];
+        if (tile_state[tile] != item.state) {
+          list.push_back(static_cast<uint32_t>(Opcode::state));
+          list.push_back(item.state);  // an index for now; addresses once the layout is known
+          tile_state[tile] = item.state;
+          ++entries;
+        }
+        if (item.opcode == Opcode::clear) {
+          list.insert(list.end(), std::begin(m_clears[item.index].words), std::end(m_clears[item.index].words));
+        } else {
+          list.push_back(static_cast<uint32_t>(Opcode::triangle));
+          list.push_back(item.index);
+        }
+        ++entries;
+      }
+  }
+  m_host.compute(Op::alu, TILE_ENTRY_ALU * entries);
+  m_host.compute(Op::branch, entries);
+
+  // Layout in the arena: tile table, state blocks, triangle records, lists.
+  size_t list_words = 0;
+  for (const auto& list : lists) list_words += list.size();
+  const uint32_t total = tile_table_bytes + states_bytes + triangles_bytes + static_cast<uint32_t>(4 * list_words);
+  const uint32_t base = arena(total);
+  const uint32_t tile_table = base;
+  const uint32_t states = tile_table + tile_table_bytes;
+  const uint32_t records = states + states_bytes;
+  uint32_t next_list = records + triangles_bytes;
+
+  std::vector<uint32_t> table(2 * tiles, 0);
+  for (unsigned tile = 0; tile < tiles; ++tile) {
+    std::vector<uint32_t>& list = lists[tile];
+    for (size_t i = 0; i < list.size();) {
+      const Opcode op = static_cast<Opcode>(list[i] & 0xFF);  // a clear carries its mask in bits 8-10
+      if (op == Opcode::clear) {
+        i += 4;
+        continue;
+      }
+      list[i + 1] = op == Opcode::state ? states + list[i + 1] * static_cast<uint32_t>(sizeof(StateBlock))
+                                        : records + list[i + 1] * static_cast<uint32_t>(sizeof(raster::TriangleRecord));
+      i += 2;
+    }
+    table[2 * tile] = list.empty() ? 0 : next_list;
+    table[2 * tile + 1] = static_cast<uint32_t>(list.size());
+    write_block(next_list, list.data(), list.size());
+    next_list += static_cast<uint32_t>(4 * list.size());
+  }
+  write_block(states, reinterpret_cast<const uint32_t*>(m_states.data()), states_bytes / 4);
+  write_block(records, reinterpret_cast<const uint32_t*>(m_triangles.data()), triangles_bytes / 4);
+  write_block(tile_table, table.data(), table.size());
+
+  run_rasterizer(tile_table);
+
+  m_items.clear();
+  m_clears.clear();
+  m_triangles.clear();
+  m_states.clear();
+}
+
+void RasterRenderer::run_rasterizer(uint32_t tile_table) {
+  m_host.write32(reg(regs::TILE_TABLE), tile_table);
+  m_host.write32(reg(regs::COLOR_BASE), m_display.back_buffer());
+  m_host.write32(reg(regs::DEPTH_BASE), m_depth_buffer);
+  m_host.write32(reg(regs::FORMAT), m_display.rgb565() ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888);
+  m_host.write32(reg(regs::IRQ_ENABLE), regs::IRQ_DONE | regs::IRQ_ERROR);
+  m_host.write32(reg(regs::START), 1);
+  for (;;) {
+    m_host.wait_irq(irq_map::raster);
+    const uint32_t pending = m_host.read32(reg(regs::IRQ_STATUS));
+    m_host.write32(reg(regs::IRQ_STATUS), pending);
+    if (pending & (regs::IRQ_DONE | regs::IRQ_ERROR)) break;
+  }
+  const uint32_t status = m_host.read32(reg(regs::STATUS));
+  if (status & regs::STATUS_ERROR) {
+    const uint32_t code = m_host.read32(reg(regs::ERROR_STATUS));
+    const uint32_t address = m_host.read32(reg(regs::ERROR_ADDRESS));
+    char where[16];
+    std::snprintf(where, sizeof where, "0x%08x", static_cast<unsigned>(address));
+    throw std::runtime_error("raster back end: the rasterizer stopped with error " + std::to_string(code) + " (" +
+                             error_name(code) + ") at " + where);
+  }
+}
+
+void RasterRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
+  flush();
+  if (width <= 0 || height <= 0 || rgba == nullptr) return;
+  std::memset(rgba, 0, size_t(width) * size_t(height) * 4);
+  const int screen_w = static_cast<int>(m_display.width()), screen_h = static_cast<int>(m_display.height());
+  const unsigned bpp = m_display.bytes_per_pixel();
+  const int x0 = std::max(x, 0);
+  const int x1 = static_cast<int>(std::min<int64_t>(int64_t{x} + width, screen_w));
+  if (x0 >= x1) return;
+  for (int row = 0; row < height; ++row) {
+    const int64_t gy = int64_t{y} + row;
+    if (gy < 0 || gy >= screen_h) continue;
+    const uint32_t offset = static_cast<uint32_t>(screen_h - 1 - gy) * m_display.width() + static_cast<uint32_t>(x0);
+    const uint8_t* p = m_host.load_span(m_display.back_buffer() + offset * bpp, bpp, static_cast<unsigned>(x1 - x0));
+    uint8_t* out = rgba + (size_t(row) * size_t(width) + size_t(x0 - x)) * 4;
+    for (int i = 0; i < x1 - x0; ++i, p += bpp, out += 4) {
+      if (bpp == 4) {
+        std::memcpy(out, p, 4);
+        continue;
+      }
+      const unsigned v = p[0] | p[1] << 8;
+      const unsigned r = (v >> 11) & 31, g = (v >> 5) & 63, b = v & 31;
+      out[0] = static_cast<uint8_t>((r << 3) | (r >> 2));
+      out[1] = static_cast<uint8_t>((g << 2) | (g >> 4));
+      out[2] = static_cast<uint8_t>((b << 3) | (b >> 2));
+      out[3] = 255;
+    }
+    m_host.compute(Op::alu, uint64_t(x1 - x0) * 6);
+  }
+}
+
+void RasterRenderer::present() {
+  flush();
+  m_display.present();
+}
+
+}  // namespace tessera::raster_backend

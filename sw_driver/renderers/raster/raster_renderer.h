@@ -1,0 +1,72 @@
+// The `raster` back end: the GL front end's triangles drawn by the
+// fixed-function tile rasterizer (tlm/raster). The driver does the sort-middle
+// half of the work on the host: it records the frame's clears, state changes
+// and triangles, and when the frame is needed (present, finish, read_pixels)
+// bins them into one command list per tile, writes the lists, the triangle
+// records, the state blocks and the tile table into system memory
+// (raster/command_format.h) over the bus, starts the rasterizer and sleeps
+// until its interrupt. Presenting then goes through the display driver, as
+// for the arm back end.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "device/app_environment.h"
+#include "device/display_driver.h"
+#include "gl/renderer.h"
+#include "raster/command_format.h"
+
+namespace tessera::raster_backend {
+
+class RasterRenderer : public gl::Renderer {
+ public:
+  explicit RasterRenderer(AppEnvironment& env);
+
+  const char* name() const override { return "tessera raster (fixed-function tile rasterizer)"; }
+  unsigned width() const override { return m_display.width(); }
+  unsigned height() const override { return m_display.height(); }
+  void clear(const gl::ClearRequest& request) override;
+  void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override;
+  void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override;
+  void finish() override { flush(); }
+  void present() override;
+
+  // Runs the rasterizer over everything recorded since the last flush.
+  void flush();
+
+ private:
+  // One recorded command, in the order the application issued it. Every
+  // command carries the state it needs (a clear: the scissor).
+  struct Item {
+    raster::Opcode opcode;
+    uint32_t index;  // into m_clears (clear) or m_triangles (triangle)
+    uint32_t state;  // into m_states
+    // Tile range touched, inclusive; tile (0, 0) at the top left.
+    unsigned tile_x0, tile_y0, tile_x1, tile_y1;
+  };
+  struct ClearWords {
+    uint32_t words[4];
+  };
+
+  uint32_t add_state(const raster::StateBlock& block);
+  void tile_range_of_pixels(int x0, int y0, int x1, int y1, Item& item) const;  // GL pixels, inclusive
+  uint32_t arena(uint32_t bytes);
+  void write_block(uint32_t address, const uint32_t* words, size_t count);
+  void run_rasterizer(uint32_t tile_table);
+  uint32_t reg(uint32_t offset) const;
+
+  HostApi& m_host;
+  DisplayDriver m_display;
+  unsigned m_tile_width = 0, m_tile_height = 0, m_tiles_x = 0, m_tiles_y = 0;
+  uint32_t m_depth_buffer = 0;
+  uint32_t m_arena = 0, m_arena_bytes = 0;
+
+  std::vector<Item> m_items;
+  std::vector<raster::StateBlock> m_states;
+  std::vector<ClearWords> m_clears;
+  std::vector<raster::TriangleRecord> m_triangles;
+  raster::StateBlock m_last_draw_state{};
+};
+
+}  // namespace tessera::raster_backend

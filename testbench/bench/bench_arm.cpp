@@ -1,0 +1,374 @@
+// bench_arm: the benchmark of the `arm` back end. For every built-in scene it
+// measures, each in its own child process:
+//  - soc_sim (the scene on the simulated SoC): simulated time and wall time
+//    per frame, and the process's peak memory;
+//  - bench_arm_native (the same scene, GL front end and arm renderer run
+//    natively on a host that charges nothing): wall time per frame;
+//  - bench_arm_mesa (the same scene on Mesa softpipe): wall time per frame;
+// and prints one Markdown table with the ratios, then the peak memory of
+// soc_sim's default demo. See README.md for the method.
+//
+//   bench_arm [--frames N] [--repeat R] [--scene NAME ...] [--config FILE ...]
+//             [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "frame_writer.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Options {
+  unsigned frames = 100;
+  unsigned repeat = 2;
+  std::vector<std::string> scenes;
+  std::vector<std::string> config_files;
+  std::string obj_file = TESSERA_BENCH_OBJ_FILE;
+  std::string work_dir;
+  std::string soc_sim;
+  std::string native;
+  std::string mesa;
+};
+
+struct ChildResult {
+  double wall_s = 0;
+  long max_rss_kib = 0;
+  std::string output;  // stdout
+};
+
+// Runs `argv` with stdout captured in `output_file`, stderr shared with us.
+// Throws if it cannot start or does not exit with status 0.
+ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
+  std::vector<char*> args;
+  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) throw std::runtime_error("wait4 failed for " + argv[0]);
+  ChildResult result;
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.max_rss_kib = usage.ru_maxrss;
+  std::ifstream in(output_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  result.output = text.str();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string command;
+    for (const auto& arg : argv) command += arg + " ";
+    throw std::runtime_error("failed (status " + std::to_string(status) + "): " + command);
+  }
+  return result;
+}
+
+json read_json_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return json::parse(in);
+}
+
+std::string first_line_of(const fs::path& path, const std::string& prefix) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return line;
+  return "";
+}
+
+// The 1, 5 and 15 minute load averages: how busy the machine was.
+std::string load_average() {
+  std::istringstream fields(first_line_of("/proc/loadavg", ""));
+  std::string one, five, fifteen;
+  fields >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+std::string format_ms(double seconds) {
+  char text[32];
+  const double ms = seconds * 1e3;
+  std::snprintf(text, sizeof text, ms >= 100 ? "%.0f ms" : ms >= 10 ? "%.1f ms" : "%.2f ms", ms);
+  return text;
+}
+
+std::string format_ratio(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, ratio >= 10 ? "%.0f" : ratio >= 1 ? "%.1f" : "%.2f", ratio);
+  return text;
+}
+
+std::string format_mib(long kib) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f MiB", kib / 1024.0);
+  return text;
+}
+
+struct SceneResult {
+  std::string scene;
+  double simulated_per_frame_s = 0;
+  double soc_sim_wall_per_frame_s = 0;
+  double png_per_frame_s = 0;
+  double native_per_frame_s = 0;
+  double mesa_per_frame_s = 0;
+  long soc_sim_max_rss_kib = 0;
+};
+
+class Bench {
+ public:
+  explicit Bench(Options options) : m_opt(std::move(options)) {}
+
+  void run();
+
+ private:
+  std::vector<std::string> soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const;
+  std::vector<std::string> scene_args(const std::string& scene) const;
+  SceneResult measure(const std::string& scene);
+  double measure_png_write(const fs::path& frame_png);
+  void print_table(const std::vector<SceneResult>& results, long default_rss_kib) const;
+
+  Options m_opt;
+  json m_config;
+  fs::path m_work;
+  unsigned m_run = 0;
+};
+
+std::vector<std::string> Bench::scene_args(const std::string& scene) const {
+  if (scene == "obj_viewer") return {m_opt.obj_file};
+  return {};
+}
+
+std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames,
+                                                const fs::path& out) const {
+  std::vector<std::string> command = {m_opt.soc_sim};
+  for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
+  // Many frames of a heavy scene exceed the default simulated-time limit.
+  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(),
+                                 "--quiet", "--set", "sim.time_limit_ms=3600000"});
+  const auto args = scene_args(scene);
+  if (!args.empty()) {
+    command.push_back("--");
+    command.insert(command.end(), args.begin(), args.end());
+  }
+  return command;
+}
+
+// Wall time to write one frame as soc_sim does (write_png), the best of a few.
+double Bench::measure_png_write(const fs::path& frame_png) {
+  const tessera::Image image = tessera::read_image(frame_png.string());
+  double best = std::numeric_limits<double>::max();
+  for (int i = 0; i < 10; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    tessera::write_png((m_work / "png_probe.png").string(), image.width, image.height, image.rgba);
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+SceneResult Bench::measure(const std::string& scene) {
+  SceneResult result;
+  result.scene = scene;
+  const unsigned n = m_opt.frames;
+  const auto& display = m_config["display"];
+
+  // soc_sim: runs of N and 2N frames; their difference is frames N..2N-1,
+  // without start-up, elaboration and the scene's set-up. Best wall of R.
+  double wall[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  double simulated_ns[2] = {0, 0};
+  fs::path last_out;
+  for (unsigned r = 0; r < m_opt.repeat; ++r) {
+    for (unsigned k = 0; k < 2; ++k) {
+      const unsigned frames = (k + 1) * n;
+      const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
+      const ChildResult child = run_child(soc_sim_command(scene, frames, out), m_work / "soc_sim.stdout");
+      const json stats = read_json_file(out / "stats.json");
+      if (stats["exit_status"] != 0 || stats["frames_written"] != frames)
+        throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
+                                 std::to_string(frames) + " frames");
+      wall[k] = std::min(wall[k], child.wall_s);
+      simulated_ns[k] = stats["stats"]["simulated_ns"].get<double>();
+      result.soc_sim_max_rss_kib = std::max(result.soc_sim_max_rss_kib, child.max_rss_kib);
+      if (!last_out.empty()) fs::remove_all(last_out);
+      last_out = out;
+    }
+  }
+  result.simulated_per_frame_s = (simulated_ns[1] - simulated_ns[0]) * 1e-9 / n;
+  result.soc_sim_wall_per_frame_s = (wall[1] - wall[0]) / n;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04u.png", 2 * n - 1);
+  result.png_per_frame_s = measure_png_write(last_out / name);
+  fs::remove_all(last_out);
+
+  const auto args = scene_args(scene);
+  auto with_args = [&](std::vector<std::string> command) {
+    if (!args.empty()) {
+      command.push_back("--");
+      command.insert(command.end(), args.begin(), args.end());
+    }
+    return command;
+  };
+  const std::string width = std::to_string(display["width"].get<unsigned>());
+  const std::string height = std::to_string(display["height"].get<unsigned>());
+  const ChildResult mesa =
+      run_child(with_args({m_opt.mesa, "--scene", scene, "--frames", std::to_string(n), "--repeat",
+                           std::to_string(m_opt.repeat), "--width", width, "--height", height}),
+                m_work / "mesa.stdout");
+  result.mesa_per_frame_s = json::parse(mesa.output)["wall_per_frame_s"].get<double>();
+  result.native_per_frame_s = std::numeric_limits<double>::max();
+  for (unsigned r = 0; r < m_opt.repeat; ++r) {
+    const ChildResult native = run_child(
+        with_args({m_opt.native, "--scene", scene, "--frames", std::to_string(n), "--width", width, "--height",
+                   height, "--format", display["format"].get<std::string>(), "--dma",
+                   display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
+                   std::to_string(m_config["mem"]["size_mib"].get<unsigned>())}),
+        m_work / "native.stdout");
+    result.native_per_frame_s =
+        std::min(result.native_per_frame_s, json::parse(native.output)["wall_per_frame_s"].get<double>());
+  }
+  return result;
+}
+
+void Bench::print_table(const std::vector<SceneResult>& results, long default_rss_kib) const {
+  const auto& display = m_config["display"];
+  std::printf("| scene | simulated / frame | soc_sim wall / frame | of which PNG | simulated : wall "
+              "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (without PNG) | native / Mesa "
+              "| soc_sim max RSS |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+  for (const auto& r : results)
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(),
+                format_ms(r.simulated_per_frame_s).c_str(), format_ms(r.soc_sim_wall_per_frame_s).c_str(),
+                format_ms(r.png_per_frame_s).c_str(),
+                format_ratio(r.simulated_per_frame_s / r.soc_sim_wall_per_frame_s).c_str(),
+                format_ms(r.native_per_frame_s).c_str(), format_ms(r.mesa_per_frame_s).c_str(),
+                format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
+                format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str(),
+                format_ratio(r.native_per_frame_s / r.mesa_per_frame_s).c_str(),
+                format_mib(r.soc_sim_max_rss_kib).c_str());
+  std::printf("\nsoc_sim default demo (`soc_sim` with no options: teapot, %u frames): max RSS %s "
+              "(target < 200 MB)\n",
+              m_config["sim"]["frames"].get<unsigned>(), format_mib(default_rss_kib).c_str());
+  for (const auto& r : results)
+    if (r.scene == "teapot")
+      std::printf("teapot: soc_sim wall / native wall = %s, %s without writing the PNG frames (target <= 3)\n",
+                  format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
+                  format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str());
+  std::printf("\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u (runs of N=%u and 2N frames, "
+              "difference / N), wall times the best of %u run(s); \"of which PNG\" is write_png of the scene's last "
+              "frame timed in bench_arm, an estimate of what soc_sim spends writing each frame.\n",
+              display["width"].get<unsigned>(), display["height"].get<unsigned>(),
+              display["format"].get<std::string>().c_str(), display["dma"].get<bool>() ? "DMA" : "port",
+              m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
+}
+
+void Bench::run() {
+  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_arm_" + std::to_string(getpid()))
+                                  : fs::path(m_opt.work_dir);
+  fs::create_directories(m_work);
+
+  std::vector<std::string> print_config = {m_opt.soc_sim};
+  for (const auto& file : m_opt.config_files) print_config.insert(print_config.end(), {"--config", file});
+  print_config.push_back("--print-config");
+  m_config = json::parse(run_child(print_config, m_work / "config.json").output);
+
+  std::vector<std::string> scenes = m_opt.scenes;
+  if (scenes.empty()) {
+    std::istringstream names(run_child({m_opt.native, "--list"}, m_work / "scenes.txt").output);
+    for (std::string name; std::getline(names, name);)
+      if (!name.empty()) scenes.push_back(name);
+  }
+
+  std::string cpu = first_line_of("/proc/cpuinfo", "model name");
+  cpu = cpu.substr(cpu.find(':') == std::string::npos ? 0 : cpu.find(':') + 2);
+  const std::string load_before = load_average();
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<SceneResult> results;
+  for (const auto& scene : scenes) {
+    std::fprintf(stderr, "bench_arm: %s ...\n", scene.c_str());
+    results.push_back(measure(scene));
+  }
+  std::vector<std::string> default_demo = {m_opt.soc_sim};
+  for (const auto& file : m_opt.config_files) default_demo.insert(default_demo.end(), {"--config", file});
+  default_demo.insert(default_demo.end(), {"--out", (m_work / "default_demo").string(), "--quiet"});
+  const long default_rss_kib = run_child(default_demo, m_work / "default_demo.stdout").max_rss_kib;
+  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  print_table(results, default_rss_kib);
+  std::printf("Machine: %s, %u hardware threads, %s build; load average (1, 5, 15 min) %s before, %s after; "
+              "the benchmark took %.0f s.\n",
+              cpu.c_str(), std::thread::hardware_concurrency(), TESSERA_BENCH_BUILD_TYPE, load_before.c_str(),
+              load_average().c_str(), total_s);
+  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
+}
+
+// The build tree puts bench_arm and its two helpers in testbench/bench/ and
+// soc_sim in testbench/.
+fs::path own_directory() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  return error ? fs::current_path() : self.parent_path();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  CLI::App cli{"bench_arm: benchmark of the arm back end (soc_sim, native core, Mesa softpipe)"};
+  cli.add_option("--frames", opt.frames, "N: runs of N and 2N frames, frames N..2N-1 timed")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cli.add_option("--repeat", opt.repeat, "runs of each measurement; the best wall time is kept")
+      ->check(CLI::Range(1, 20))
+      ->capture_default_str();
+  cli.add_option("--scene", opt.scenes, "scene(s) to measure (default: all built-in scenes)");
+  cli.add_option("--config", opt.config_files, "soc_sim configuration file(s)")->check(CLI::ExistingFile);
+  cli.add_option("--obj", opt.obj_file, "OBJ file for obj_viewer")->check(CLI::ExistingFile)->capture_default_str();
+  cli.add_option("--work-dir", opt.work_dir, "folder for soc_sim's output (default: a temporary one, removed)");
+  cli.add_option("--soc-sim", opt.soc_sim, "soc_sim to run (default: the one in this build tree)");
+  CLI11_PARSE(cli, argc, argv);
+
+  const fs::path here = own_directory();
+  if (opt.soc_sim.empty()) opt.soc_sim = (here.parent_path() / "soc_sim").string();
+  opt.native = (here / "bench_arm_native").string();
+  opt.mesa = (here / "bench_arm_mesa").string();
+  for (const auto& program : {opt.soc_sim, opt.native, opt.mesa})
+    if (!fs::exists(program)) {
+      std::cerr << "bench_arm: " << program << " not found (build the bench_arm target)\n";
+      return 2;
+    }
+  try {
+    Bench(opt).run();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_arm: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

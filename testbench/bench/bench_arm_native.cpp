@@ -1,0 +1,118 @@
+// bench_arm_native: runs a built-in scene through tessera's GL ES driver and
+// the arm renderer natively, on a NativeHost (no SystemC, nothing charged),
+// and prints the wall time per frame as one line of JSON. bench_arm runs it
+// as a child process; it is not meant to be run by hand, but may be:
+//
+//   bench_arm_native --scene teapot --frames 20 [--width 320 --height 240
+//                    --format rgb565 --dma false --mem-mib 16] [-- scene args]
+//   bench_arm_native --list
+//
+// The scene draws 2N frames; the time reported is that of frames N..2N-1
+// (from the N-th present to the 2N-th, divided by N), the same frames that
+// bench_arm times on soc_sim and Mesa, so start-up and the scene's set-up
+// are not counted.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "apps/gl_apps.h"
+#include "native_host.h"
+#include "scenes/scene.h"
+
+namespace {
+
+using namespace tessera;
+
+// The boot loader's layout on the SoC (Soc::frame_buffer and soc_sim): the
+// two frame buffers, page-aligned, at the top of memory, and the driver's
+// heap from 4 MiB up to them.
+void lay_out_memory(AppEnvironment& env, const bench::NativeDisplay& display) {
+  const uint64_t frame_bytes = uint64_t{display.width} * display.height * (display.rgb565 ? 2 : 4);
+  const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
+  env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
+  env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);
+  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
+  env.heap_end = env.frame_buffers[0];
+}
+
+int run(int argc, char** argv) {
+  std::string scene_name;
+  unsigned frames = 10;
+  bench::NativeDisplay display;
+  std::string format = "rgb565";
+  unsigned memory_mib = 16;
+  bool list = false;
+  std::vector<std::string> scene_args;
+  CLI::App cli{"bench_arm_native: a built-in scene on the arm renderer, natively, timed per frame"};
+  cli.add_option("--scene", scene_name, "built-in scene");
+  cli.add_option("--frames", frames, "N: 2N frames are drawn, frames N..2N-1 are timed")
+      ->check(CLI::Range(1, 50000))
+      ->capture_default_str();
+  cli.add_option("--width", display.width, "display.width")->capture_default_str();
+  cli.add_option("--height", display.height, "display.height")->capture_default_str();
+  cli.add_option("--format", format, "display.format")
+      ->check(CLI::IsMember({"rgb565", "rgba8888"}))
+      ->capture_default_str();
+  cli.add_option("--dma", display.dma, "display.dma")->capture_default_str();
+  cli.add_option("--mem-mib", memory_mib, "mem.size_mib")->check(CLI::Range(1, 256))->capture_default_str();
+  cli.add_flag("--list", list, "print the built-in scenes' names and exit");
+  cli.add_option("scene_args", scene_args, "arguments passed to the scene (after --)");
+  CLI11_PARSE(cli, argc, argv);
+
+  if (list) {
+    for (const auto& scene : scenes::all_scenes()) std::printf("%s\n", scene.name);
+    return 0;
+  }
+  const scenes::Scene* scene = scenes::find_scene(scene_name);
+  if (!scene) {
+    std::cerr << "bench_arm_native: no built-in scene '" << scene_name << "' (see --list)\n";
+    return 2;
+  }
+  display.rgb565 = format == "rgb565";
+
+  bench::NativeHost host(memory_mib << 20, display);
+  AppEnvironment env;
+  env.host = &host;
+  env.frames = 2 * frames;
+  env.memory_bytes = memory_mib << 20;
+  env.args = scene_args;
+  lay_out_memory(env, display);
+
+  const auto start = bench::NativeHost::Clock::now();
+  const int status = run_scene_app(env, *scene);
+  const auto& presents = host.present_times();
+  if (status != 0 || presents.size() != 2 * frames) {
+    std::cerr << "bench_arm_native: scene '" << scene_name << "' ended with status " << status << " after "
+              << presents.size() << " of " << 2 * frames << " frames\n";
+    return 1;
+  }
+  auto seconds = [](auto from, auto to) { return std::chrono::duration<double>(to - from).count(); };
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const nlohmann::json result = {{"scene", scene_name},
+                                 {"timed_frames", frames},
+                                 {"wall_per_frame_s", seconds(presents[frames - 1], presents.back()) / frames},
+                                 {"first_frame_s", seconds(start, presents.front())},
+                                 {"max_rss_kib", usage.ru_maxrss}};
+  std::printf("%s\n", result.dump().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_arm_native: " << e.what() << "\n";
+    return 1;
+  }
+}

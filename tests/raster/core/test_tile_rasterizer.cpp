@@ -1,0 +1,625 @@
+// Unit tests of the tile rasterizer's functional core: command lists built by
+// hand in a plain memory, results checked against independent references
+// (edge functions with the GL fill rule, barycentric colours, the texture's
+// own texels) and against the error contract of command_format.h.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "raster/core/tile_rasterizer.h"
+
+using namespace tessera::raster;
+
+namespace {
+
+// RasterPort over a byte vector; accesses that touch [fail_begin, fail_end)
+// or leave the memory get an error response.
+class VectorPort : public RasterPort {
+ public:
+  explicit VectorPort(size_t size) : memory(size, 0) {}
+  bool read(uint32_t address, void* data, unsigned bytes) override {
+    if (!ok(address, bytes)) return false;
+    std::memcpy(data, memory.data() + address, bytes);
+    return true;
+  }
+  bool write(uint32_t address, const void* data, unsigned bytes) override {
+    if (!ok(address, bytes)) return false;
+    std::memcpy(memory.data() + address, data, bytes);
+    return true;
+  }
+  void cycles(uint64_t count) override { total_cycles += count; }
+
+  uint32_t word(uint32_t address) const {
+    uint32_t v;
+    std::memcpy(&v, memory.data() + address, 4);
+    return v;
+  }
+  void set_word(uint32_t address, uint32_t v) { std::memcpy(memory.data() + address, &v, 4); }
+
+  std::vector<uint8_t> memory;
+  uint32_t fail_begin = 0, fail_end = 0;
+  uint64_t total_cycles = 0;
+
+ private:
+  bool ok(uint32_t address, unsigned bytes) const {
+    const uint64_t end = uint64_t{address} + bytes;
+    if (end > memory.size()) return false;
+    return end <= fail_begin || address >= fail_end;
+  }
+};
+
+constexpr uint32_t TILE_TABLE = 0x1000;
+constexpr uint32_t COLOR_BASE = 0x10000;
+constexpr uint32_t DEPTH_BASE = 0x40000;
+constexpr uint32_t DATA_BASE = 0x80000;
+constexpr uint32_t TEXTURE_BASE = 0x180000;
+constexpr uint32_t MEMORY_SIZE = 0x200000;
+
+// Flags and codes as the driver writes them.
+constexpr uint32_t CLEAR_ALL = 1 | 7u << 8;
+constexpr uint32_t CLEAR_MASKS = 15u << 8 | 1u << 12 | 0xffu << 16;
+
+VertexRecord vertex(double x, double y, uint32_t rgba = 0xffffffff, uint32_t z = 0, float s = 0, float t = 0,
+                    float w = 1) {
+  VertexRecord v{};
+  v.xy = uint32_t(std::lround(x * 16)) | uint32_t(std::lround(y * 16)) << 16;
+  v.z = z;
+  v.rgba = rgba;
+  v.s_over_w = s / w;
+  v.t_over_w = t / w;
+  v.inv_w = 1 / w;
+  return v;
+}
+
+StateBlock default_state() {
+  StateBlock s{};
+  s.flags = depth_write;
+  s.depth_func = 1;     // less
+  s.alpha_func = 7;     // always
+  s.stencil_func = 7 | 0xffu << 16 | 0xffu << 24;
+  s.blend = 1;          // one, zero
+  s.blend |= 3u << 16;  // logic op copy
+  s.color_mask = 15;
+  return s;
+}
+
+// A frame: one command list per tile; every command goes to every tile (no
+// binning), so the rasterizer's own bounding-box test is exercised too.
+class Frame {
+ public:
+  Frame(VectorPort& port, unsigned width, unsigned height, bool rgba8888 = true) : m_port(port) {
+    config.width = width;
+    config.height = height;
+    config.tile_table = TILE_TABLE;
+    config.color_base = COLOR_BASE;
+    config.depth_base = DEPTH_BASE;
+    config.rgba8888 = rgba8888;
+    tiles_x = (width + config.tile_width - 1) / config.tile_width;
+    tiles_y = (height + config.tile_height - 1) / config.tile_height;
+    lists.resize(tiles_x * tiles_y);
+  }
+  uint32_t put(const void* data, unsigned bytes) {
+    const uint32_t address = m_next;
+    std::memcpy(m_port.memory.data() + address, data, bytes);
+    m_next += (bytes + 3) & ~3u;
+    return address;
+  }
+  void all(std::initializer_list<uint32_t> words) {
+    for (auto& list : lists) list.insert(list.end(), words);
+  }
+  void clear(uint32_t rgba, uint32_t depth = 0xffffff, uint32_t stencil = 0) {
+    all({CLEAR_ALL, rgba, depth, stencil | CLEAR_MASKS});
+  }
+  void state(const StateBlock& s) {
+    const uint32_t a = put(&s, sizeof s);
+    all({uint32_t(Opcode::state), a});
+  }
+  void triangle(const VertexRecord& a, const VertexRecord& b, const VertexRecord& c) {
+    const TriangleRecord t{{a, b, c}};
+    const uint32_t address = put(&t, sizeof t);
+    all({uint32_t(Opcode::triangle), address});
+  }
+  // Writes the lists and the tile table; word_count_extra lengthens none.
+  void finish() {
+    for (size_t i = 0; i < lists.size(); ++i) {
+      const uint32_t address = put(lists[i].data(), unsigned(lists[i].size() * 4));
+      m_port.set_word(TILE_TABLE + 8 * uint32_t(i), address);
+      m_port.set_word(TILE_TABLE + 8 * uint32_t(i) + 4, uint32_t(lists[i].size()));
+    }
+  }
+  uint32_t list_address(size_t tile) const { return m_port.word(TILE_TABLE + 8 * uint32_t(tile)); }
+  // Colour of GL pixel (x, y).
+  uint32_t pixel(unsigned x, unsigned y) const {
+    return m_port.word(COLOR_BASE + ((config.height - 1 - y) * config.width + x) * 4);
+  }
+  uint32_t depth_word(unsigned x, unsigned y) const {
+    return m_port.word(DEPTH_BASE + ((config.height - 1 - y) * config.width + x) * 4);
+  }
+
+  RunConfig config;
+  unsigned tiles_x = 0, tiles_y = 0;
+  std::vector<std::vector<uint32_t>> lists;
+
+ private:
+  VectorPort& m_port;
+  uint32_t m_next = DATA_BASE;
+};
+
+RunResult run(VectorPort& port, const RunConfig& config) {
+  TileRasterizer rasterizer(port);
+  const RunResult r = rasterizer.run(config);
+  EXPECT_EQ(r.setup_cycles + r.tile_cycles + r.fragment_cycles + r.texel_cycles, port.total_cycles);
+  return r;
+}
+
+// Independent coverage reference: GL window coordinates, 9.4 vertices,
+// centre (x + 1/2, y + 1/2). With the triangle turned counter-clockwise, a
+// sample is inside if it is strictly left of every edge, or on an edge that
+// is a left edge (going down) or a bottom edge (going +x) -- the rule Mesa
+// applies to window-system drawables.
+bool reference_inside(const VertexRecord (&v)[3], unsigned px, unsigned py) {
+  int64_t x[3], y[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = v[k].xy & 0xffff;
+    y[k] = v[k].xy >> 16;
+  }
+  const int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  if (area == 0) return false;
+  int order[3] = {0, 1, 2};
+  if (area < 0) std::swap(order[1], order[2]);
+  const int64_t sx = 16 * px + 8, sy = 16 * py + 8;
+  for (int k = 0; k < 3; ++k) {
+    const int a = order[k], b = order[(k + 1) % 3];
+    const int64_t dx = x[b] - x[a], dy = y[b] - y[a];
+    const int64_t cross = dx * (sy - y[a]) - dy * (sx - x[a]);
+    if (cross < 0) return false;
+    if (cross == 0 && !(dy < 0 || (dy == 0 && dx > 0))) return false;
+  }
+  return true;
+}
+
+TEST(TileRasterizer, ClearAndTriangleCoverageMatchEdgeFunctionReference) {
+  const VertexRecord shapes[][3] = {
+      {vertex(3.3, 2.7), vertex(70.9, 10.2), vertex(20.1, 45.6)},       // counter-clockwise
+      {vertex(80.5, 40.5), vertex(40.5, 40.5), vertex(40.5, 4.5)},      // clockwise, edges through centres
+      {vertex(10.5, 30.5), vertex(90.5, 30.5), vertex(50.5, 30.5 + 16)}, // horizontal edge on centres
+      {vertex(0, 0), vertex(95.9375, 0.0625), vertex(1, 47.9375)},      // screen-sized
+  };
+  for (const auto& tri : shapes) {
+    VectorPort port(MEMORY_SIZE);
+    Frame frame(port, 96, 48);
+    frame.clear(0xff000000);
+    frame.triangle(tri[0], tri[1], tri[2]);
+    frame.finish();
+    const RunResult r = run(port, frame.config);
+    ASSERT_EQ(r.error, RasterError::none);
+    EXPECT_EQ(r.tiles, 9u);
+    uint64_t covered = 0, mismatches = 0;
+    for (unsigned y = 0; y < 48; ++y) {
+      for (unsigned x = 0; x < 96; ++x) {
+        const bool expected = reference_inside(tri, x, y);
+        covered += expected;
+        mismatches += (frame.pixel(x, y) == 0xffffffffu) != expected;
+        EXPECT_EQ(frame.depth_word(x, y), 0xffffffu);  // depth test off: the clear stays
+      }
+    }
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_EQ(r.fragments, covered);
+    EXPECT_EQ(r.fragments_written, covered);
+  }
+}
+
+// A grid of quads (two triangles each, jittered inner vertices) across tile
+// borders drawn with additive blending: every pixel inside the grid's outer
+// rectangle is drawn exactly once.
+TEST(TileRasterizer, SharedEdgesDrawnOnceAcrossTiles) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= blend;
+  s.blend = 1 | 1u << 8 | 3u << 16;  // one, one
+  frame.state(s);
+  constexpr int NX = 7, NY = 4;
+  const double x0 = 2.3, x1 = 93.7, y0 = 1.8, y1 = 45.2;
+  double gx[NX + 1][NY + 1], gy[NX + 1][NY + 1];
+  for (int i = 0; i <= NX; ++i) {
+    for (int j = 0; j <= NY; ++j) {
+      const bool inner_x = i > 0 && i < NX, inner_y = j > 0 && j < NY;
+      gx[i][j] = x0 + (x1 - x0) * i / NX + (inner_x ? ((i * 7 + j * 3) % 5 - 2) * 0.8125 : 0);
+      gy[i][j] = y0 + (y1 - y0) * j / NY + (inner_y ? ((i * 5 + j * 11) % 7 - 3) * 0.5 : 0);
+      if (i == 3 && inner_y) gx[i][j] = 32.5;  // a vertical edge through pixel centres
+    }
+  }
+  for (int i = 0; i < NX; ++i) {
+    for (int j = 0; j < NY; ++j) {
+      const auto v = [&](int a, int b) { return vertex(gx[a][b], gy[a][b], 0x01010101); };
+      frame.triangle(v(i, j), v(i + 1, j), v(i + 1, j + 1));
+      frame.triangle(v(i, j), v(i + 1, j + 1), v(i, j + 1));
+    }
+  }
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  for (unsigned y = 0; y < 48; ++y) {
+    for (unsigned x = 0; x < 96; ++x) {
+      const double cx = x + 0.5, cy = y + 0.5;
+      const bool inside = cx > x0 && cx < x1 && cy > y0 && cy < y1;
+      EXPECT_EQ(frame.pixel(x, y), inside ? 0x01010101u : 0u) << "pixel " << x << "," << y;
+    }
+  }
+}
+
+TEST(TileRasterizer, DepthTestIsOrderIndependent) {
+  std::vector<uint32_t> images[2];
+  for (int order = 0; order < 2; ++order) {
+    VectorPort port(MEMORY_SIZE);
+    Frame frame(port, 96, 48);
+    frame.clear(0xff000000);
+    StateBlock s = default_state();
+    s.flags |= depth_test;
+    frame.state(s);
+    // Two slanted triangles that cross each other.
+    const VertexRecord a[3] = {vertex(5, 5, 0xff0000ff, 0x100000), vertex(90, 10, 0xff0000ff, 0xf00000),
+                               vertex(40, 44, 0xff0000ff, 0x800000)};
+    const VertexRecord b[3] = {vertex(8, 40, 0xff00ff00, 0xe00000), vertex(85, 42, 0xff00ff00, 0x200000),
+                               vertex(50, 2, 0xff00ff00, 0x700000)};
+    if (order == 0) {
+      frame.triangle(a[0], a[1], a[2]);
+      frame.triangle(b[0], b[1], b[2]);
+    } else {
+      frame.triangle(b[0], b[1], b[2]);
+      frame.triangle(a[0], a[1], a[2]);
+    }
+    frame.finish();
+    ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+    for (unsigned y = 0; y < 48; ++y)
+      for (unsigned x = 0; x < 96; ++x) images[order].push_back(frame.pixel(x, y));
+  }
+  EXPECT_EQ(images[0], images[1]);
+  EXPECT_NE(std::count(images[0].begin(), images[0].end(), 0xff0000ffu), 0);
+  EXPECT_NE(std::count(images[0].begin(), images[0].end(), 0xff00ff00u), 0);
+}
+
+TEST(TileRasterizer, GouraudMatchesBarycentricColours) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  const double px[3] = {4.5, 91.5, 30.5}, py[3] = {3.5, 3.5, 44.5};
+  const uint32_t rgba[3] = {0xff0000ff, 0x8000ff00, 0x40ff0000};
+  const VertexRecord tri[3] = {vertex(px[0], py[0], rgba[0]), vertex(px[1], py[1], rgba[1]),
+                               vertex(px[2], py[2], rgba[2])};
+  frame.triangle(tri[0], tri[1], tri[2]);
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  const double area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+  int worst = 0;
+  for (unsigned y = 0; y < 48; ++y) {
+    for (unsigned x = 0; x < 96; ++x) {
+      if (!reference_inside(tri, x, y)) continue;
+      const double cx = x + 0.5, cy = y + 0.5;
+      const double b1 = ((cx - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (cy - py[0])) / area;
+      const double b2 = ((px[1] - px[0]) * (cy - py[0]) - (cx - px[0]) * (py[1] - py[0])) / area;
+      const double b0 = 1 - b1 - b2;
+      const uint32_t got = frame.pixel(x, y);
+      for (int ch = 0; ch < 4; ++ch) {
+        const auto c = [&](int k) { return double((rgba[k] >> (8 * ch)) & 0xff); };
+        const int expected = int(std::lround(b0 * c(0) + b1 * c(1) + b2 * c(2)));
+        worst = std::max(worst, std::abs(int((got >> (8 * ch)) & 0xff) - expected));
+      }
+    }
+  }
+  EXPECT_LE(worst, 1);
+  // The vertex that lies on a pixel centre covered by the fill rule gets its
+  // own colour exactly.
+  EXPECT_TRUE(reference_inside(tri, 4, 3));
+  EXPECT_EQ(frame.pixel(4, 3), rgba[0]);
+}
+
+void put_texture(VectorPort& port, unsigned w, unsigned h) {
+  for (unsigned j = 0; j < h; ++j)
+    for (unsigned i = 0; i < w; ++i) port.set_word(TEXTURE_BASE + (j * w + i) * 4, 0xff000000u | j << 8 | i);
+}
+
+TEST(TileRasterizer, TextureNearestRepeat) {
+  VectorPort port(MEMORY_SIZE);
+  put_texture(port, 4, 4);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= texture;
+  s.texture_address = TEXTURE_BASE;
+  s.texture_size = 2 | 2u << 8;
+  s.texture_mode = 1u << 8;  // nearest, repeat, replace
+  frame.state(s);
+  // Quad [16, 48) x [8, 24): s from 0 to 2, t from 0 to 1.
+  const VertexRecord a = vertex(16, 8, ~0u, 0, 0, 0), b = vertex(48, 8, ~0u, 0, 2, 0),
+                     c = vertex(48, 24, ~0u, 0, 2, 1), d = vertex(16, 24, ~0u, 0, 0, 1);
+  frame.triangle(a, b, c);
+  frame.triangle(a, c, d);
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  EXPECT_EQ(r.texels, 32u * 16u);
+  for (unsigned y = 8; y < 24; ++y) {
+    for (unsigned x = 16; x < 48; ++x) {
+      const unsigned i = unsigned(std::floor((x - 16 + 0.5) / 32 * 2 * 4)) % 4;
+      const unsigned j = unsigned(std::floor((y - 8 + 0.5) / 16 * 4)) % 4;
+      EXPECT_EQ(frame.pixel(x, y), 0xff000000u | j << 8 | i) << x << "," << y;
+    }
+  }
+}
+
+// Perspective: 1/w varies across the quad; s must follow (s/w)/(1/w), not
+// the affine interpolation.
+TEST(TileRasterizer, TextureCoordinatesArePerspectiveCorrect) {
+  VectorPort port(MEMORY_SIZE);
+  put_texture(port, 256, 1);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= texture;
+  s.texture_address = TEXTURE_BASE;
+  s.texture_size = 8;
+  s.texture_mode = 1u << 8 | 1u << 2 | 1u << 4;  // nearest, clamp, replace
+  frame.state(s);
+  const float w_left = 1, w_right = 4;
+  const VertexRecord a = vertex(0, 0, ~0u, 0, 0, 0.5f, w_left), b = vertex(96, 0, ~0u, 0, 1, 0.5f, w_right),
+                     c = vertex(96, 48, ~0u, 0, 1, 0.5f, w_right), d = vertex(0, 48, ~0u, 0, 0, 0.5f, w_left);
+  frame.triangle(a, b, c);
+  frame.triangle(a, c, d);
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  unsigned off_by_more = 0;
+  for (unsigned x = 0; x < 96; ++x) {
+    const double f = (x + 0.5) / 96;
+    const double sv = (f / w_right) / ((1 - f) / w_left + f / w_right);
+    const int expected = std::min(255, int(std::floor(sv * 256)));
+    const int got = int(frame.pixel(x, 20) & 0xff);
+    off_by_more += std::abs(got - expected) > 1;
+  }
+  EXPECT_EQ(off_by_more, 0u);
+}
+
+TEST(TileRasterizer, BlendingSourceAlpha) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0xff0064c8);  // r 200, g 100, b 0, a 255
+  StateBlock s = default_state();
+  s.flags |= blend;
+  s.blend = 6 | 7u << 8 | 3u << 16;  // src_alpha, one_minus_src_alpha
+  frame.state(s);
+  frame.triangle(vertex(10, 10, 0x80ff0000), vertex(60, 10, 0x80ff0000), vertex(10, 40, 0x80ff0000));
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  const auto mul = [](unsigned a, unsigned b) { return unsigned(std::lround(a * b / 255.0)); };
+  const unsigned r = mul(0, 128) + mul(200, 127), g = mul(0, 128) + mul(100, 127), b = mul(255, 128) + mul(0, 127),
+                 a = std::min(255u, mul(128, 128) + mul(255, 127));
+  EXPECT_EQ(frame.pixel(20, 20), r | g << 8 | b << 16 | a << 24);
+  EXPECT_EQ(frame.pixel(80, 40), 0xff0064c8u);
+}
+
+TEST(TileRasterizer, Rgb565FrameBufferRoundTrips) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48, false);
+  frame.clear(0xff336699);  // r 0x99, g 0x66, b 0x33
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  uint16_t v;
+  std::memcpy(&v, port.memory.data() + COLOR_BASE + 2 * (5 * 96 + 7), 2);
+  const auto q = [](unsigned c, unsigned max) { return unsigned(std::lround(c * double(max) / 255)); };
+  EXPECT_EQ(v, q(0x99, 31) << 11 | q(0x66, 63) << 5 | q(0x33, 31));
+}
+
+// Errors: the run stops; tiles before the failing one are written, the
+// failing tile and those after it are left as they were.
+struct ErrorCase {
+  VectorPort port{MEMORY_SIZE};
+  Frame frame{port, 96, 48};
+  static constexpr uint32_t SENTINEL = 0x5a5a5a5a;
+  static constexpr size_t BAD_TILE = 4;
+
+  ErrorCase() {
+    for (uint32_t a = COLOR_BASE; a < COLOR_BASE + 96 * 48 * 4; a += 4) port.set_word(a, SENTINEL);
+    frame.clear(0xff112233);
+  }
+  RunResult run_and_check_tiles(size_t written_tiles) {
+    const RunResult r = run(port, frame.config);
+    for (size_t t = 0; t < frame.lists.size(); ++t) {
+      const unsigned x = unsigned(t % 3) * 32 + 5, row = unsigned(t / 3) * 16 + 3;
+      EXPECT_EQ(frame.pixel(x, 47 - row), t < written_tiles ? 0xff112233u : SENTINEL) << "tile " << t;
+    }
+    return r;
+  }
+};
+
+TEST(TileRasterizer, ListOverrunStopsTheRun) {
+  ErrorCase c;
+  c.frame.lists[ErrorCase::BAD_TILE].push_back(uint32_t(Opcode::triangle));  // its address word is missing
+  c.frame.finish();
+  const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+  EXPECT_EQ(r.error, RasterError::list_overrun);
+  EXPECT_EQ(r.error_address, c.frame.list_address(ErrorCase::BAD_TILE) + 16);
+  EXPECT_EQ(r.tiles, ErrorCase::BAD_TILE + 1);
+}
+
+TEST(TileRasterizer, BadOpcodeStopsTheRun) {
+  ErrorCase c;
+  c.frame.lists[ErrorCase::BAD_TILE].push_back(0x55);
+  c.frame.finish();
+  const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+  EXPECT_EQ(r.error, RasterError::bad_opcode);
+  EXPECT_EQ(r.error_address, c.frame.list_address(ErrorCase::BAD_TILE) + 16);
+}
+
+TEST(TileRasterizer, BusErrorOnARecordStopsTheRun) {
+  ErrorCase c;
+  const uint32_t bad = 0x1f0000;
+  c.port.fail_begin = bad;
+  c.port.fail_end = bad + 0x100;
+  c.frame.lists[ErrorCase::BAD_TILE].insert(c.frame.lists[ErrorCase::BAD_TILE].end(),
+                                            {uint32_t(Opcode::triangle), bad + 8});
+  c.frame.finish();
+  const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+  EXPECT_EQ(r.error, RasterError::bus_error);
+  EXPECT_EQ(r.error_address, bad + 8);
+}
+
+TEST(TileRasterizer, BusErrorOnTileWriteBack) {
+  ErrorCase c;
+  c.frame.finish();
+  // The first colour row of tile 4 (tile row 1, column 1) fails.
+  const uint32_t row_address = COLOR_BASE + (16 * 96 + 32) * 4;
+  c.port.fail_begin = row_address;
+  c.port.fail_end = row_address + 4;
+  const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+  EXPECT_EQ(r.error, RasterError::bus_error);
+  EXPECT_EQ(r.error_address, row_address);
+}
+
+TEST(TileRasterizer, BadTextureSizeAndTexelsOutsideMemory) {
+  for (int kind = 0; kind < 2; ++kind) {
+    ErrorCase c;
+    StateBlock s = default_state();
+    s.flags |= texture;
+    s.texture_address = kind == 0 ? TEXTURE_BASE : MEMORY_SIZE - 64;
+    s.texture_size = kind == 0 ? (9 | 2u << 8) : (4 | 4u << 8);
+    const uint32_t state_address = c.frame.put(&s, sizeof s);
+    const TriangleRecord t{{vertex(34, 20, ~0u, 0, 0, 0), vertex(60, 20, ~0u, 0, 1, 0), vertex(34, 30, ~0u, 0, 0, 1)}};
+    const uint32_t record = c.frame.put(&t, sizeof t);
+    c.frame.lists[ErrorCase::BAD_TILE].insert(c.frame.lists[ErrorCase::BAD_TILE].end(),
+                                              {uint32_t(Opcode::state), state_address, uint32_t(Opcode::triangle), record});
+    c.frame.finish();
+    const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+    EXPECT_EQ(r.error, RasterError::bad_texture);
+    if (kind == 0) {
+      EXPECT_EQ(r.error_address, state_address + 40);
+    } else {
+      EXPECT_GE(r.error_address, MEMORY_SIZE - 4);
+    }
+  }
+}
+
+TEST(TileRasterizer, ZeroAreaTriangleIsSkipped) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0xff000000);
+  frame.triangle(vertex(2.5, 2.5), vertex(12.5, 7.5), vertex(22.5, 12.5));  // collinear, inside tile (0, 2)
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  EXPECT_EQ(r.error, RasterError::none);
+  EXPECT_EQ(r.triangles, 0u);
+  EXPECT_EQ(r.triangles_skipped, 1u);
+  EXPECT_EQ(r.fragments, 0u);
+  for (unsigned y = 0; y < 48; ++y)
+    for (unsigned x = 0; x < 96; ++x) ASSERT_EQ(frame.pixel(x, y), 0xff000000u);
+}
+
+// EASA: alpha = coverage from the normalised edge functions. Method 1's
+// fixed-point table is far off for a long edge (|dx| + |dy| of hundreds of
+// pixels), Method 3 stays close to the exact reciprocal.
+TEST(TileRasterizer, ReciprocalMethodChangesAntialiasedEdges) {
+  const VertexRecord tri[3] = {vertex(1.3, 2.1), vertex(94.7, 17.9), vertex(6.2, 46.4)};
+  std::vector<int> alpha[2];
+  for (int m = 0; m < 2; ++m) {
+    VectorPort port(MEMORY_SIZE);
+    Frame frame(port, 96, 48);
+    frame.config.recip_method = m == 0 ? RecipMethod::method1 : RecipMethod::method3;
+    frame.clear(0);
+    StateBlock s = default_state();
+    s.flags |= polygon_smooth;
+    frame.state(s);
+    frame.triangle(tri[0], tri[1], tri[2]);
+    frame.finish();
+    ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+    for (unsigned y = 0; y < 48; ++y)
+      for (unsigned x = 0; x < 96; ++x) alpha[m].push_back(int(frame.pixel(x, y) >> 24));
+  }
+  // Exact L1-normalised coverage for comparison.
+  int error[2] = {0, 0};
+  unsigned partial = 0;
+  for (unsigned y = 0; y < 48; ++y) {
+    for (unsigned x = 0; x < 96; ++x) {
+      double c = 1;
+      for (int k = 0; k < 3; ++k) {
+        const int a = k, b = (k + 2) % 3;  // clockwise: 0 -> 2 -> 1
+        const double x0 = (tri[a].xy & 0xffff) / 16.0, y0 = (tri[a].xy >> 16) / 16.0;
+        const double x1 = (tri[b].xy & 0xffff) / 16.0, y1 = (tri[b].xy >> 16) / 16.0;
+        const double dx = x1 - x0, dy = y1 - y0;
+        const double e = (x + 0.5 - x0) * dy - (y + 0.5 - y0) * dx;
+        c = std::min(c, std::clamp(0.5 + e / (std::fabs(dx) + std::fabs(dy)), 0.0, 1.0));
+      }
+      const int exact = int(std::lround(c * 255));
+      if (exact > 0 && exact < 255) ++partial;
+      for (int m = 0; m < 2; ++m) error[m] = std::max(error[m], std::abs(alpha[m][y * 96 + x] - exact));
+    }
+  }
+  EXPECT_GT(partial, 50u);
+  EXPECT_NE(alpha[0], alpha[1]);
+  EXPECT_LE(error[1], 6);
+  EXPECT_GT(error[0], 3 * error[1]);
+}
+
+TEST(TileRasterizer, EmptyTilesAreLeftAloneAndCyclesAddUp) {
+  VectorPort port(MEMORY_SIZE);
+  for (uint32_t a = COLOR_BASE; a < COLOR_BASE + 96 * 48 * 4; a += 4) port.set_word(a, 0x77);
+  Frame frame(port, 96, 48);
+  frame.clear(0xff000000);
+  frame.triangle(vertex(3, 3), vertex(40, 5), vertex(10, 30));
+  frame.lists[8].clear();  // bottom-right tile: word_count 0
+  frame.finish();
+  CycleCosts costs;
+  costs.tile_pixel_clear = 1;
+  costs.tile_write_word = 1;
+  TileRasterizer rasterizer(port, costs);
+  const RunResult r = rasterizer.run(frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  EXPECT_EQ(r.tiles, 8u);
+  EXPECT_EQ(r.commands, 16u);
+  EXPECT_EQ(frame.pixel(90, 2), 0x77u);
+  EXPECT_EQ(frame.pixel(90, 40), 0xff000000u);
+  EXPECT_EQ(r.setup_cycles + r.tile_cycles + r.fragment_cycles + r.texel_cycles, port.total_cycles);
+  // 8 tiles of 32 x 16: start, commands, cleared pixels, written words.
+  EXPECT_EQ(r.tile_cycles, 8 * (4 + 2 + 512 + 512 + 512));
+  EXPECT_EQ(r.bytes_written, 8u * 512 * 8);
+}
+
+}  // namespace
+
+// Garbage everywhere: random tile table, lists, records and state blocks.
+// Whatever the outcome, the run ends without crashing (run under ASan/UBSan
+// in the sanitizer build).
+TEST(TileRasterizer, RandomInputNeverCrashes) {
+  std::mt19937 random(12345);
+  const auto next = [&random] { return uint32_t(random()); };
+  uint64_t commands = 0, errors = 0;
+  for (int round = 0; round < 40; ++round) {
+    VectorPort port(MEMORY_SIZE);
+    for (uint32_t a = DATA_BASE; a < DATA_BASE + 0x4000; a += 4) {
+      // Mostly valid opcodes and pointers into the data area, with noise.
+      const uint32_t r = next();
+      uint32_t v = next();
+      if (r % 16 < 8) v = (1 + r % 3) | (r & 0x700);
+      else if (r % 16 < 15) v = DATA_BASE + (next() % 0x4000 & ~3u);
+      port.set_word(a, v);
+    }
+    Frame frame(port, 96, 48);
+    frame.config.rgba8888 = round % 2 == 0;
+    frame.config.recip_method = static_cast<RecipMethod>(round % 3);
+    for (size_t t = 0; t < frame.lists.size(); ++t) {
+      port.set_word(TILE_TABLE + 8 * uint32_t(t), DATA_BASE + (next() % 0x3000 & ~3u));
+      port.set_word(TILE_TABLE + 8 * uint32_t(t) + 4, next() % 64);
+    }
+    TileRasterizer rasterizer(port);
+    const RunResult r = rasterizer.run(frame.config);
+    EXPECT_EQ(r.setup_cycles + r.tile_cycles + r.fragment_cycles + r.texel_cycles, port.total_cycles);
+    commands += r.commands;
+    errors += r.error != RasterError::none;
+  }
+  EXPECT_GT(commands, 20u);  // most runs stop at an early garbage word
+  EXPECT_GT(errors, 0u);
+}

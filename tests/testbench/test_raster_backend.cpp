@@ -1,0 +1,194 @@
+// System tests of the raster back end: soc_sim runs GL applications with
+// --backend raster, the driver bins their triangles into tile lists and the
+// rasterizer block draws them. Checks what a user sees: exit status, the
+// frames written, the rasterizer's statistics and bus traffic, the frame
+// against the arm back end's for the same scene, and the configuration that
+// cannot work (a rasterizer smaller than the display) rejected.
+//
+// Usage: test_raster_backend <path to soc_sim> [GoogleTest options]
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "frame_writer.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int EXIT_USAGE = 2;
+constexpr unsigned WIDTH = 320, HEIGHT = 240;
+
+std::string g_soc_sim;
+
+struct SimResult {
+  int status = -1;  // exit status, or 128 + signal
+  std::string out;
+  std::string err;
+};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+SimResult run_soc_sim(const fs::path& dir, const std::vector<std::string>& args) {
+  const fs::path out_path = dir / "soc_sim.stdout", err_path = dir / "soc_sim.stderr";
+  std::vector<char*> argv{const_cast<char*>(g_soc_sim.c_str())};
+  for (const auto& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || err < 0 || chdir(dir.c_str()) != 0) _exit(127);
+    dup2(out, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    close(out);
+    close(err);
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  SimResult run;
+  if (pid < 0) {
+    ADD_FAILURE() << "fork failed";
+    return run;
+  }
+  int wstatus = 0;
+  while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(wstatus)) run.status = WEXITSTATUS(wstatus);
+  else if (WIFSIGNALED(wstatus)) run.status = 128 + WTERMSIG(wstatus);
+  run.out = read_file(out_path);
+  run.err = read_file(err_path);
+  return run;
+}
+
+std::string describe(const SimResult& run) {
+  return "exit status " + std::to_string(run.status) + "\n--- stdout ---\n" + run.out + "--- stderr ---\n" + run.err;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+class RasterBackend : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_raster_backend <path to soc_sim>";
+    std::string pattern = (fs::temp_directory_path() / "tessera_test_raster_backend_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    m_dir = pattern;
+  }
+  void TearDown() override {
+    if (HasFailure()) {
+      std::cerr << "[ kept     ] " << m_dir.string() << "\n";
+      return;
+    }
+    std::error_code ignored;
+    fs::remove_all(m_dir, ignored);
+  }
+  SimResult run(const std::vector<std::string>& args) { return run_soc_sim(m_dir, args); }
+
+  // Runs `app` on the raster back end for two frames and checks the frames
+  // and the statistics; returns the statistics.
+  json run_app(const std::string& app, const std::string& folder) {
+    const SimResult result = run({"--backend", "raster", "--app", app, "--frames", "2", "--out", folder});
+    EXPECT_EQ(result.status, 0) << describe(result);
+    for (const char* frame : {"frame_0000.png", "frame_0001.png"}) {
+      const fs::path path = m_dir / folder / frame;
+      EXPECT_TRUE(fs::is_regular_file(path)) << path;
+      if (!fs::is_regular_file(path)) continue;
+      const tessera::Image image = tessera::read_image(path.string());
+      EXPECT_EQ(image.width, WIDTH);
+      EXPECT_EQ(image.height, HEIGHT);
+    }
+    EXPECT_FALSE(fs::exists(m_dir / folder / "frame_0002.png")) << "more frames than asked for";
+    std::ifstream in(m_dir / folder / "stats.json");
+    const json document = json::parse(in, nullptr, false);
+    EXPECT_FALSE(document.is_discarded()) << "stats.json is not valid JSON";
+    if (document.is_discarded()) return json::object();
+    const json& stats = document["stats"];
+    EXPECT_TRUE(stats.contains("raster")) << stats.dump(2);
+    const json& raster = stats["raster"];
+    // One rasterizer run per frame, every tile of the 10x15 grid visited.
+    EXPECT_EQ(raster["runs"], 2) << raster.dump(2);
+    EXPECT_EQ(raster["failed_runs"], 0) << raster.dump(2);
+    EXPECT_GT(raster["triangles"].get<double>(), 0) << raster.dump(2);
+    EXPECT_GT(raster["fragments"].get<double>(), 0) << raster.dump(2);
+    EXPECT_GT(raster["busy_ns"].get<double>(), 0) << raster.dump(2);
+    // Its traffic is real bus traffic: the bus counts it as an initiator.
+    const json& bus = stats["bus"]["initiators"]["raster"];
+    EXPECT_GT(bus["bytes"].get<double>(), 0) << stats["bus"].dump(2);
+    EXPECT_EQ(bus["errors"], 0) << stats["bus"].dump(2);
+    EXPECT_EQ(bus["bytes"].get<double>(),
+              raster["bus"]["bytes_read"].get<double>() + raster["bus"]["bytes_written"].get<double>());
+    EXPECT_EQ(stats["display"]["frames_shown"], 2);
+    return stats;
+  }
+
+  fs::path m_dir;
+};
+
+TEST_F(RasterBackend, TriangleRunsAndMatchesTheArmBackEnd) {
+  const json stats = run_app("triangle", "raster");
+  const SimResult arm = run({"--backend", "arm", "--app", "triangle", "--frames", "2", "--out", "arm"});
+  ASSERT_EQ(arm.status, 0) << describe(arm);
+  const tessera::Image ours = tessera::read_image((m_dir / "raster/frame_0001.png").string());
+  const tessera::Image reference = tessera::read_image((m_dir / "arm/frame_0001.png").string());
+  ASSERT_EQ(ours.rgba.size(), reference.rgba.size());
+  // Both back ends follow the same fill rule; colours may differ by one
+  // RGB565 step (the rasterizer rounds to 5/6 bits where the arm back end may
+  // truncate: 8 or 9 on the 8-bit scale), and a few pixels along the edges.
+  constexpr int ONE_RGB565_STEP = 9;
+  size_t differing = 0;
+  for (size_t i = 0; i < ours.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(int(ours.rgba[i + c]) - int(reference.rgba[i + c])) > ONE_RGB565_STEP) {
+        ++differing;
+        break;
+      }
+  EXPECT_LT(differing, size_t{WIDTH} * HEIGHT / 100) << "pixels differing from the arm back end's frame";
+  // The triangle is in the middle of the frame, the clear colour in the corner.
+  const uint8_t* centre = &ours.rgba[(size_t{HEIGHT} / 2 * WIDTH + WIDTH / 2) * 4];
+  const uint8_t* corner = &ours.rgba[0];
+  EXPECT_NE(std::vector<uint8_t>(centre, centre + 3), std::vector<uint8_t>(corner, corner + 3));
+}
+
+TEST_F(RasterBackend, TeapotRuns) {
+  const json stats = run_app("teapot", "out");
+  EXPECT_GT(stats["raster"]["triangles"].get<double>(), 100) << stats["raster"].dump(2);
+  EXPECT_EQ(stats["raster"]["tiles"], 2 * 10 * 15) << stats["raster"].dump(2);
+}
+
+TEST_F(RasterBackend, RasterizerSmallerThanTheDisplayIsRejected) {
+  const SimResult result = run({"--backend", "raster", "--set", "raster.width=256", "--out", "out"});
+  EXPECT_EQ(result.status, EXIT_USAGE) << describe(result);
+  EXPECT_LT(result.status, 128) << describe(result);
+  EXPECT_TRUE(contains(result.err, "impossible combination")) << describe(result);
+  EXPECT_TRUE(contains(result.err, "raster.width")) << describe(result);
+  // The arm back end does not use the rasterizer: the same sizes are fine.
+  const SimResult arm = run({"--backend", "arm", "--set", "raster.width=256", "--frames", "1", "--out", "arm"});
+  EXPECT_EQ(arm.status, 0) << describe(arm);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc >= 2) g_soc_sim = fs::absolute(argv[1]).string();
+  else if (const char* path = std::getenv("TESSERA_SOC_SIM")) g_soc_sim = path;
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,302 @@
+#include "raster/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "common/log.h"
+#include "raster/raster_regs.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+namespace regs = raster_regs;
+
+namespace {
+
+constexpr unsigned BEAT_BYTES = 4;  // the pipeline's bus interface is 32 bits wide
+
+uint32_t recip_method_number(raster::RecipMethod method) {
+  switch (method) {
+    case raster::RecipMethod::method1: return 1;
+    case raster::RecipMethod::method2: return 2;
+    case raster::RecipMethod::method3: return 3;
+  }
+  return 3;
+}
+
+raster::RecipMethod recip_method_of(uint32_t number) {
+  if (number == 1) return raster::RecipMethod::method1;
+  if (number == 2) return raster::RecipMethod::method2;
+  return raster::RecipMethod::method3;
+}
+
+const char* error_name(raster::RasterError error) {
+  switch (error) {
+    case raster::RasterError::none: return "none";
+    case raster::RasterError::bus_error: return "bus_error";
+    case raster::RasterError::bad_opcode: return "bad_opcode";
+    case raster::RasterError::list_overrun: return "list_overrun";
+    case raster::RasterError::bad_texture: return "bad_texture";
+    case raster::RasterError::bad_reciprocal: return "bad_reciprocal";
+  }
+  return "unknown";
+}
+
+// A triangle skipped for a bad reciprocal operand is counted, not fatal
+// (command_format.h): the run still completes.
+bool fatal(raster::RasterError error) {
+  return error != raster::RasterError::none && error != raster::RasterError::bad_reciprocal;
+}
+
+}  // namespace
+
+Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params)
+    : sc_core::sc_module(name), in("in"), mem_out("mem_out"), irq("irq"), m_params(params), m_regs(this->name()),
+      m_port(*this), m_busy_trace("busy") {
+  if (params.width == 0 || params.height == 0 || params.tile_width == 0 || params.tile_height == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": empty screen or tile");
+  if (params.burst_beats == 0) throw std::invalid_argument(std::string(this->name()) + ": burst_beats must be positive");
+  in.register_b_transport(this, &Rasterizer::b_transport);
+  in.register_transport_dbg(this, &Rasterizer::transport_dbg);
+
+#define TESSERA_RASTER_REG(name, offset, reset, access) \
+  const RegisterInfo name{#name, offset, reset, RegAccess::access};
+#include "raster/raster_regs.def"
+#undef TESSERA_RASTER_REG
+
+  m_regs.add(CTRL, [] { return 0u; }, [](uint32_t) {});
+  m_regs.add(STATUS, [this] {
+    return (m_busy ? regs::STATUS_BUSY : 0u) | (m_done ? regs::STATUS_DONE : 0u) | (m_error ? regs::STATUS_ERROR : 0u);
+  });
+  m_regs.add(START, {}, [this](uint32_t value) {
+    if (!(value & 1)) return;
+    m_busy = true;
+    m_done = false;
+    m_error = false;
+    // The run starts one clock after the write reaches the register (at
+    // the access's annotated time; the bus forwards with none).
+    m_start.notify(m_access_delay + m_params.clock_period);
+  });
+  m_regs.add(TILE_TABLE);
+  m_regs.add(COLOR_BASE);
+  m_regs.add(DEPTH_BASE);
+  m_regs.add(FORMAT);
+  m_regs.add(IRQ_STATUS, {}, [this](uint32_t value) {
+    m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) & ~value);
+    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+  });
+  m_regs.add(IRQ_ENABLE, {}, [this](uint32_t value) {
+    m_regs.set(regs::IRQ_ENABLE, value);
+    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+  });
+  m_regs.add(ERROR_STATUS);
+  m_regs.add(ERROR_ADDRESS);
+  m_regs.add(WIDTH, [this] { return m_params.width; });
+  m_regs.add(HEIGHT, [this] { return m_params.height; });
+  m_regs.add(TILE_WIDTH, [this] { return m_params.tile_width; });
+  m_regs.add(TILE_HEIGHT, [this] { return m_params.tile_height; });
+  m_regs.add({RECIP_METHOD.name, RECIP_METHOD.offset, recip_method_number(params.recip_method), RECIP_METHOD.access});
+  m_regs.add(TRIANGLES);
+  m_regs.add(FRAGMENTS);
+  m_regs.add(CYCLES);
+
+  SC_THREAD(run);
+  SC_METHOD(update_irq);
+  sensitive << m_irq_changed;
+}
+
+void Rasterizer::trace(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
+}
+
+void Rasterizer::raise(uint32_t bits) {
+  m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
+  m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Rasterizer::update_irq() {
+  irq.write((m_regs.get(regs::IRQ_STATUS) & m_regs.get(regs::IRQ_ENABLE)) != 0);
+}
+
+const char* Rasterizer::write_refusal(const tlm::tlm_generic_payload& gp) const {
+  if (!gp.is_write() || gp.get_data_length() != 4 || !gp.get_data_ptr()) return nullptr;
+  const uint64_t offset = gp.get_address();
+  if (m_busy && offset != regs::IRQ_STATUS && offset != regs::IRQ_ENABLE) return "written while busy";
+  uint32_t value = 0;
+  std::memcpy(&value, gp.get_data_ptr(), 4);
+  if (offset == regs::RECIP_METHOD && (value < 1 || value > 3)) return "RECIP_METHOD accepts 1, 2 or 3";
+  if (offset == regs::FORMAT && value > regs::FORMAT_RGBA8888) return "FORMAT accepts 0 (RGB565) or 1 (RGBA8888)";
+  return nullptr;
+}
+
+void Rasterizer::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  if (const char* refusal = write_refusal(gp)) {
+    ++m_refused_writes;
+    gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    log::warning(name(), "register write at offset " + log::hex(gp.get_address()) + " refused: " + refusal);
+  } else {
+    m_access_delay = delay;
+    m_regs.transport(gp);
+  }
+  delay += m_params.clock_period;
+}
+
+unsigned Rasterizer::transport_dbg(tlm::tlm_generic_payload& gp) { return m_regs.transport_dbg(gp); }
+
+bool Rasterizer::BusPort::read(uint32_t address, void* data, unsigned bytes) {
+  return m_owner.transfer(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes);
+}
+
+bool Rasterizer::BusPort::write(uint32_t address, const void* data, unsigned bytes) {
+  return m_owner.transfer(tlm::TLM_WRITE_COMMAND, address, static_cast<uint8_t*>(const_cast<void*>(data)), bytes);
+}
+
+void Rasterizer::BusPort::cycles(uint64_t count) {
+  m_owner.m_compute_cycles += count;
+  m_owner.m_qk.inc(m_owner.m_params.clock_period * static_cast<double>(count));
+  if (m_owner.m_qk.need_sync()) m_owner.m_qk.sync();
+}
+
+// One access of the core: bursts of at most burst_beats words, each issued
+// when the previous one has completed (the pipeline waits for its data).
+bool Rasterizer::transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
+  const unsigned max_bytes = m_params.burst_beats * BEAT_BYTES;
+  for (unsigned offset = 0; offset < bytes;) {
+    const unsigned length = std::min(max_bytes, bytes - offset);
+    m_payload.set_command(command);
+    m_payload.set_address(uint64_t{address} + offset);
+    m_payload.set_data_ptr(data + offset);
+    m_payload.set_data_length(length);
+    m_payload.set_streaming_width(length);
+    m_payload.set_byte_enable_ptr(nullptr);
+    m_payload.set_byte_enable_length(0);
+    m_payload.set_dmi_allowed(false);
+    m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    sc_time delay = m_qk.get_local_time();
+    mem_out->b_transport(m_payload, delay);
+    m_bus_time += delay - m_qk.get_local_time();
+    m_qk.set(delay);
+    ++m_bus_transactions;
+    if (m_payload.is_response_error()) {
+      ++m_bus_errors;
+      log::warning(name(), std::string(command == tlm::TLM_READ_COMMAND ? "read" : "write") + " of " +
+                               std::to_string(length) + " bytes at " + log::hex(address + offset) + " failed (" +
+                               log::response_text(m_payload.get_response_status()) + ")");
+      return false;
+    }
+    (command == tlm::TLM_READ_COMMAND ? m_bus_read_bytes : m_bus_write_bytes) += length;
+    if (m_qk.need_sync()) m_qk.sync();
+    offset += length;
+  }
+  return true;
+}
+
+void Rasterizer::run() {
+  for (;;) {
+    wait(m_start);
+    const sc_time start = sc_core::sc_time_stamp();
+    if (m_tracing) m_busy_trace.set_at(true, start);
+    raster::RunConfig config;
+    config.width = m_params.width;
+    config.height = m_params.height;
+    config.tile_width = m_params.tile_width;
+    config.tile_height = m_params.tile_height;
+    config.tile_table = m_regs.get(regs::TILE_TABLE);
+    config.color_base = m_regs.get(regs::COLOR_BASE);
+    config.depth_base = m_regs.get(regs::DEPTH_BASE);
+    config.rgba8888 = m_regs.get(regs::FORMAT) == regs::FORMAT_RGBA8888;
+    config.recip_method = recip_method_of(m_regs.get(regs::RECIP_METHOD));
+    log::info(name(), "run started: tile table at " + log::hex(config.tile_table) + ", colour buffer at " +
+                          log::hex(config.color_base));
+
+    m_qk.reset();
+    raster::TileRasterizer core(m_port, m_params.costs);
+    const raster::RunResult result = core.run(config);
+    m_qk.sync();
+    finish_run(result, start);
+  }
+}
+
+void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& start) {
+  const sc_time elapsed = sc_core::sc_time_stamp() - start;
+  m_last = result;
+  ++m_runs;
+  m_busy_time += elapsed;
+  auto add = [](uint64_t& total, uint64_t value) { total += value; };
+  add(m_total.tiles, result.tiles);
+  add(m_total.commands, result.commands);
+  add(m_total.triangles, result.triangles);
+  add(m_total.triangles_skipped, result.triangles_skipped);
+  add(m_total.fragments, result.fragments);
+  add(m_total.fragments_written, result.fragments_written);
+  add(m_total.texels, result.texels);
+  add(m_total.bytes_read, result.bytes_read);
+  add(m_total.bytes_written, result.bytes_written);
+  add(m_total.setup_cycles, result.setup_cycles);
+  add(m_total.tile_cycles, result.tile_cycles);
+  add(m_total.fragment_cycles, result.fragment_cycles);
+  add(m_total.texel_cycles, result.texel_cycles);
+
+  const uint64_t cycles = static_cast<uint64_t>(std::llround(elapsed / m_params.clock_period));
+  m_regs.set(regs::ERROR_STATUS, static_cast<uint32_t>(result.error));
+  m_regs.set(regs::ERROR_ADDRESS, result.error == raster::RasterError::none ? 0 : result.error_address);
+  m_regs.set(regs::TRIANGLES, static_cast<uint32_t>(result.triangles));
+  m_regs.set(regs::FRAGMENTS, static_cast<uint32_t>(result.fragments));
+  m_regs.set(regs::CYCLES, static_cast<uint32_t>(std::min<uint64_t>(cycles, UINT32_MAX)));
+  m_busy = false;
+  if (fatal(result.error)) {
+    ++m_failed_runs;
+    m_error = true;
+    log::warning(name(), std::string("run failed: ") + error_name(result.error) + " at " +
+                             log::hex(result.error_address));
+    raise(regs::IRQ_ERROR);
+  } else {
+    m_done = true;
+    log::info(name(), "run done: " + std::to_string(result.triangles) + " triangles, " +
+                          std::to_string(result.fragments) + " fragments, " + std::to_string(cycles) + " cycles");
+    raise(regs::IRQ_DONE);
+  }
+  if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
+  m_run_finished.notify(sc_core::SC_ZERO_TIME);
+}
+
+nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
+  const double elapsed_s = elapsed.to_seconds();
+  const double busy_s = m_busy_time.to_seconds();
+  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
+          {"width", m_params.width},
+          {"height", m_params.height},
+          {"tile_width", m_params.tile_width},
+          {"tile_height", m_params.tile_height},
+          {"runs", m_runs},
+          {"failed_runs", m_failed_runs},
+          {"tiles", m_total.tiles},
+          {"commands", m_total.commands},
+          {"triangles", m_total.triangles},
+          {"triangles_skipped", m_total.triangles_skipped},
+          {"fragments", m_total.fragments},
+          {"fragments_written", m_total.fragments_written},
+          {"texels", m_total.texels},
+          {"cycles",
+           {{"setup", m_total.setup_cycles},
+            {"tile", m_total.tile_cycles},
+            {"fragment", m_total.fragment_cycles},
+            {"texel", m_total.texel_cycles},
+            {"compute", m_compute_cycles},
+            {"busy", static_cast<uint64_t>(std::llround(m_busy_time / m_params.clock_period))}}},
+          {"busy_ns", busy_s * 1e9},
+          {"waiting_for_bus_ns", m_bus_time.to_seconds() * 1e9},
+          {"utilisation", elapsed_s > 0 ? busy_s / elapsed_s : 0.0},
+          {"bus",
+           {{"transactions", m_bus_transactions},
+            {"bytes_read", m_bus_read_bytes},
+            {"bytes_written", m_bus_write_bytes},
+            {"errors", m_bus_errors}}},
+          {"refused_register_writes", m_refused_writes},
+          {"elapsed_ns", elapsed_s * 1e9}};
+}
+
+}  // namespace tessera

@@ -1,0 +1,129 @@
+// The tile-based fixed-function rasterizer as a bus peripheral: a register
+// target (raster_regs.def), a bus initiator that fetches the driver's tile
+// table, command lists, triangle records, state blocks and texels from system
+// memory and writes the finished tiles back, and an interrupt line.
+//
+// The arithmetic is the functional core's (raster/core/tile_rasterizer.h,
+// plain C++); this module gives it time. The core reports its work through
+// RasterPort: every read and write becomes bus bursts issued at the
+// rasterizer's local time (temporal decoupling through a quantum keeper),
+// and every cycles(n) advances that local time by n periods of the
+// rasterizer clock. The pipeline waits for each bus access to complete, so a
+// run takes its compute cycles plus the bus time of its accesses, contention
+// with the host and the display DMA included.
+//
+// Writes to the registers while a run is in progress (STATUS.busy) are
+// rejected with a command error response, except IRQ_STATUS and IRQ_ENABLE,
+// which the interrupt handler must be able to use at any time.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <systemc>
+#include <tlm>
+#include <tlm_utils/simple_initiator_socket.h>
+#include <tlm_utils/simple_target_socket.h>
+#include <tlm_utils/tlm_quantumkeeper.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/register_bank.h"
+#include "common/timed_trace.h"
+#include "raster/core/raster_port.h"
+#include "raster/core/tile_rasterizer.h"
+
+namespace tessera {
+
+struct RasterizerParams {
+  unsigned width = 320;
+  unsigned height = 240;
+  unsigned tile_width = 32;
+  unsigned tile_height = 16;
+  raster::RecipMethod recip_method = raster::RecipMethod::method3;
+  raster::CycleCosts costs;
+  sc_core::sc_time clock_period = sc_core::sc_time(10, sc_core::SC_NS);
+  // Longest burst on the bus, in 32-bit beats (AHB's INCR16): a long tile
+  // write must not hold the bus for hundreds of cycles while the display
+  // DMA has a line due.
+  unsigned burst_beats = 16;
+};
+
+class Rasterizer : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(Rasterizer);
+
+  tlm_utils::simple_target_socket<Rasterizer, 32> in;         // registers
+  tlm_utils::simple_initiator_socket<Rasterizer, 32> mem_out;  // bus master
+  sc_core::sc_out<bool> irq;
+
+  Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params);
+
+  const RasterizerParams& params() const { return m_params; }
+  bool busy() const { return m_busy; }
+  // Notified when a run has ended (successfully or not) and the registers
+  // hold its results.
+  const sc_core::sc_event& run_finished_event() const { return m_run_finished; }
+  const raster::RunResult& last_result() const { return m_last; }
+
+  void trace(sc_core::sc_trace_file* file);
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+
+ private:
+  // The core's view of memory and time: bus bursts over mem_out at the
+  // local time of the quantum keeper.
+  class BusPort : public raster::RasterPort {
+   public:
+    explicit BusPort(Rasterizer& owner) : m_owner(owner) {}
+    bool read(uint32_t address, void* data, unsigned bytes) override;
+    bool write(uint32_t address, const void* data, unsigned bytes) override;
+    void cycles(uint64_t count) override;
+
+   private:
+    Rasterizer& m_owner;
+  };
+
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  // Why a register write must be refused (nullptr: accept it).
+  const char* write_refusal(const tlm::tlm_generic_payload& gp) const;
+
+  void run();         // SC_THREAD: one TileRasterizer::run per START
+  void update_irq();  // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
+  void raise(uint32_t bits);
+  bool transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes);
+  void finish_run(const raster::RunResult& result, const sc_core::sc_time& start);
+
+  RasterizerParams m_params;
+  RegisterBank m_regs;
+  BusPort m_port;
+  tlm_utils::tlm_quantumkeeper m_qk;
+  tlm::tlm_generic_payload m_payload;
+  sc_core::sc_event m_start;
+  sc_core::sc_event m_run_finished;
+  sc_core::sc_event m_irq_changed;
+  sc_core::sc_time m_access_delay;  // annotated time of the register access being handled
+
+  bool m_busy = false;
+  bool m_done = false;
+  bool m_error = false;
+  raster::RunResult m_last;
+
+  // Totals over every run, for stats_json.
+  uint64_t m_runs = 0;
+  uint64_t m_failed_runs = 0;
+  raster::RunResult m_total;
+  uint64_t m_compute_cycles = 0;   // cycles(n) of the core
+  uint64_t m_bus_transactions = 0;
+  uint64_t m_bus_read_bytes = 0;
+  uint64_t m_bus_write_bytes = 0;
+  uint64_t m_bus_errors = 0;
+  sc_core::sc_time m_bus_time;     // waiting for bus accesses, contention included
+  sc_core::sc_time m_busy_time;
+  uint64_t m_refused_writes = 0;
+
+  TimedTrace m_busy_trace;
+  bool m_tracing = false;
+};
+
+}  // namespace tessera
