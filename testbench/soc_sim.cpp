@@ -19,6 +19,7 @@
 #include "common/log.h"
 #include "config/config.h"
 #include "frame_writer.h"
+#include "png_writer_thread.h"
 #include "soc/soc.h"
 
 namespace fs = std::filesystem;
@@ -211,12 +212,13 @@ int run(int argc, char* argv[]) {
   log::install(log::parse_level(config.get_string("sim.log_level")));
   const unsigned frames = static_cast<unsigned>(config.get_uint("sim.frames"));
   Soc soc("soc", config);
-  unsigned frames_written = 0;
+  PngWriterThread png_writer;
+  unsigned frames_shown = 0;
   soc.display.on_frame([&](const Frame& frame) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04u.png", frame.index);
-    write_png((fs::path(opt.out_dir) / name).string(), frame.width, frame.height, frame.rgba);
-    ++frames_written;
+    png_writer.write((fs::path(opt.out_dir) / name).string(), frame.width, frame.height, frame.rgba);
+    ++frames_shown;
   });
 
   AppEnvironment env;
@@ -247,7 +249,7 @@ int run(int argc, char* argv[]) {
   try {
     while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
       sc_core::sc_start(slice);
-      progress.update(frames_written, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
+      progress.update(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
     }
   } catch (const std::exception& e) {
     progress.finish();
@@ -256,10 +258,15 @@ int run(int argc, char* argv[]) {
   }
   progress.finish();
   soc.close_trace();
+  const std::string png_error = png_writer.finish();
+  const unsigned frames_written = png_writer.written();
   const double wall = wall_seconds();
 
   int status = 0;
-  if (!soc.done()) {
+  if (!png_error.empty()) {
+    std::cerr << "soc_sim: " << png_error << "\n";
+    status = kExitFailure;
+  } else if (!soc.done()) {
     std::cerr << "soc_sim: simulated-time limit of " << config.get_uint("sim.time_limit_ms")
               << " ms reached before the application finished (sim.time_limit_ms)\n";
     status = kExitFailure;

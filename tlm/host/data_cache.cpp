@@ -8,14 +8,17 @@ DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
   while ((1u << m_line_shift) < line_bytes) ++m_line_shift;
   m_lines.resize(static_cast<size_t>(m_sets) * m_ways);
   m_victim.resize(m_sets, 0);
+  m_hints.assign(kHints, nullptr);
 }
 
 DataCache::Line* DataCache::find(uint32_t address) {
   const uint32_t tag = address >> m_line_shift;
   if (m_last && m_last->valid && m_last->tag == tag) return m_last;
+  Line*& hint = m_hints[tag & (kHints - 1)];
+  if (hint && hint->valid && hint->tag == tag) return m_last = hint;
   Line* set = &m_lines[static_cast<size_t>(tag & (m_sets - 1)) * m_ways];
   for (unsigned way = 0; way < m_ways; ++way)
-    if (set[way].valid && set[way].tag == tag) return m_last = &set[way];
+    if (set[way].valid && set[way].tag == tag) return m_last = hint = &set[way];
   return nullptr;
 }
 
@@ -41,7 +44,7 @@ DataCache::Result DataCache::read(uint32_t address) {
     ++m_writebacks;
   }
   victim = {tag, true, false};
-  m_last = &victim;
+  m_last = m_hints[tag & (kHints - 1)] = &victim;
   return result;
 }
 
@@ -57,6 +60,7 @@ bool DataCache::write(uint32_t address) {
 void DataCache::invalidate_all() {
   for (auto& line : m_lines) line = Line{};
   m_last = nullptr;
+  m_hints.assign(kHints, nullptr);
 }
 
 }  // namespace tessera

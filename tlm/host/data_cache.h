@@ -51,6 +51,10 @@ class DataCache {
   std::vector<Line> m_lines;       // set-major
   std::vector<unsigned> m_victim;  // round-robin pointer per set
   Line* m_last = nullptr;          // most recently used line, checked first
+  // A line's last known place by tag, checked before the set is searched:
+  // the model's speed, not the cache's behaviour (a stale hint is ignored).
+  static constexpr unsigned kHints = 1024;
+  std::vector<Line*> m_hints;
   uint64_t m_hits = 0;
   uint64_t m_misses = 0;
   uint64_t m_writebacks = 0;

@@ -29,6 +29,7 @@ const char* op_name(Op op) {
 
 Host::Host(sc_core::sc_module_name name, const HostParams& params)
     : sc_core::sc_module(name), out("out"), irq("irq", params.irq_lines), m_params(params),
+      m_period_ticks(params.clock_period.value()),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways), m_busy_trace("busy") {
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
   m_train = new TransferTrain;
@@ -53,7 +54,7 @@ void Host::maybe_sync() {
 
 void Host::charge(uint64_t cycles) {
   m_busy_cycles += cycles;
-  m_qk.inc(m_params.clock_period * static_cast<double>(cycles));
+  m_qk.inc(sc_time::from_value(cycles * m_period_ticks));
   maybe_sync();
 }
 

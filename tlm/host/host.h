@@ -108,6 +108,7 @@ class Host : public sc_core::sc_module, public HostApi {
   void maybe_sync();
 
   HostParams m_params;
+  uint64_t m_period_ticks;  // clock period in kernel time units
   Program m_program;
   std::function<void()> m_on_finish;
   tlm_utils::tlm_quantumkeeper m_qk;

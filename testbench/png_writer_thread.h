@@ -1,0 +1,47 @@
+// Writes PNG files on a thread of its own, so that encoding a frame does not
+// hold up the simulation (on this machine it costs about as much as
+// simulating a frame of a simple scene). Files are the same as if written
+// in line; the first error is kept and reported by finish().
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace tessera {
+
+class PngWriterThread {
+ public:
+  PngWriterThread();
+  ~PngWriterThread();  // finishes the queue
+
+  // Queues an RGBA8 image; blocks while `max_queued` images wait, to bound memory.
+  void write(std::string path, unsigned width, unsigned height, std::vector<uint8_t> rgba);
+  // Waits until every queued image is written; returns the first error ("" if none).
+  std::string finish();
+  unsigned written() const;
+
+ private:
+  struct Job {
+    std::string path;
+    unsigned width, height;
+    std::vector<uint8_t> rgba;
+  };
+  void run();
+
+  static constexpr size_t max_queued = 8;
+  mutable std::mutex m_mutex;
+  std::condition_variable m_changed;
+  std::deque<Job> m_jobs;
+  bool m_busy = false;
+  bool m_stop = false;
+  unsigned m_written = 0;
+  std::string m_error;
+  std::thread m_thread;
+};
+
+}  // namespace tessera
