@@ -76,3 +76,14 @@ inline void get_clip_planef(GLenum plane, GLfloat* equation) {
 #include <GLES/gl.h>
 
 #endif
+
+// Polygon antialiasing is desktop GL only (GL_POLYGON_SMOOTH, 0x0B41).
+// tessera's driver accepts the same value in glEnable/glDisable/glIsEnabled
+// and passes it to the back ends (RasterState::polygon_smooth): the raster
+// back end computes edge coverage (EASA), the arm back end ignores it. One
+// name for both builds, so that a scene can ask for it.
+#if defined(TESSERA_GL_REFERENCE)
+#define TESSERA_POLYGON_SMOOTH GL_POLYGON_SMOOTH
+#else
+#define TESSERA_POLYGON_SMOOTH 0x0B41
+#endif

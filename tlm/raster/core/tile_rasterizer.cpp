@@ -207,6 +207,9 @@ struct TriangleSetup {
   attribute_plane s, t, q;  // s/w, t/w, 1/w, normalised (README.md, "Texture coordinates")
   int ref_x = 0, ref_y = 0; // the pixel the planes' start values belong to
   bool flat = false;
+  // Gouraud colour seen in perspective: `color` holds c/w (normalised like
+  // q) and each pixel divides by q, as GL interpolates (README.md, "Colour").
+  bool perspective_color = false;
   rgba8 flat_color;
 };
 
@@ -244,6 +247,7 @@ class TileRun {
   bool setup(const std::array<Vertex, 3>& v, TriangleSetup& setup);
   void shade(const TriangleSetup& setup, int px, int py, unorm8 coverage);
   void texture_coords(attribute_sum s, attribute_sum t, attribute_sum q, q15_16& s_out, q15_16& t_out) const;
+  rgba8 perspective_color(const TriangleSetup& setup, int dx, int dy) const;
   bool sample_texture(const TriangleSetup& setup, int dx, int dy, rgba8 fragment, rgba8& out);
 
   unsigned index(int px, int py) const {  // tile buffer index of GL pixel (px, py)
@@ -565,42 +569,73 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
 
   ts.flat = (m_state.flags & StateFlag::flat_shading) != 0;
   ts.flat_color = vin[2].color;
+  ts.depth = plane(attribute_kind::DEPTH, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
+
+  // 1/w of the vertices scaled by one power of two so that the largest lies
+  // in [1/2, 1): every ratio a = (a/w) / (1/w) is unchanged and the scaling
+  // is exact.
+  const bool texture = (m_state.flags & StateFlag::texture) != 0;
+  bool usable_w = true;
+  double max_inv_w = 0;
+  for (const Vertex& v : vin) {
+    usable_w = usable_w && std::isfinite(v.inv_w) && v.inv_w > 0;
+    max_inv_w = std::max(max_inv_w, double(v.inv_w));
+  }
+  int exponent = 0;
+  std::frexp(max_inv_w, &exponent);
+  const auto scaled = [&](float value) { return std::ldexp(double(value), -exponent); };
+  std::array<int64_t, 3> q{};
+  for (unsigned k = 0; k < 3 && usable_w; ++k) q[k] = std::llround(std::ldexp(scaled(vin[k].inv_w), TEXCOORD_FRACTION_BITS));
+  if (usable_w) ts.q = plane(attribute_kind::TEXCOORD, q);
+
+  // Gouraud colours are perspective-correct (GL 1.5 equation 3.6) when the
+  // vertices' 1/w differ; with equal 1/w (orthographic) c/w over 1/w is c,
+  // and the plain planes give it without a division. A triangle without
+  // usable 1/w keeps screen-linear colours rather than being lost.
+  ts.perspective_color = !ts.flat && usable_w && !(vin[0].inv_w == vin[1].inv_w && vin[1].inv_w == vin[2].inv_w);
   if (!ts.flat) {
     for (unsigned ch = 0; ch < 4; ++ch) {
-      const auto channel = [&](unsigned k) { return int64_t{(vin[k].color.pack() >> (8 * ch)) & 0xff} << 16; };
+      const auto channel = [&](unsigned k) {
+        const int64_t code = (vin[k].color.pack() >> (8 * ch)) & 0xff;
+        // c/w in colour words: code * 2^16 * (q_k / 2^24), rounded.
+        if (ts.perspective_color) return int64_t((int128(code) * q[k] + (int64_t{1} << 7)) >> 8);
+        return code << 16;
+      };
       ts.color[ch] = plane(attribute_kind::COLOR, {channel(0), channel(1), channel(2)});
     }
   }
-  ts.depth = plane(attribute_kind::DEPTH, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
 
-  if (m_state.flags & StateFlag::texture) {
-    // s/w, t/w and 1/w scaled by one power of two so that the largest 1/w
-    // lies in [1/2, 1): the ratio s = (s/w) / (1/w) is unchanged and the
-    // scaling is exact.
-    double max_inv_w = 0;
-    for (const Vertex& v : vin) {
-      if (!std::isfinite(v.inv_w) || !(v.inv_w > 0) || !std::isfinite(v.s_over_w) || !std::isfinite(v.t_over_w))
-        return false;
-      max_inv_w = std::max(max_inv_w, double(v.inv_w));
-    }
-    int exponent = 0;
-    std::frexp(max_inv_w, &exponent);
-    std::array<int64_t, 3> s, t, q;
+  if (texture) {
+    if (!usable_w) return false;
+    for (const Vertex& v : vin)
+      if (!std::isfinite(v.s_over_w) || !std::isfinite(v.t_over_w)) return false;
+    std::array<int64_t, 3> s, t;
     for (unsigned k = 0; k < 3; ++k) {
-      const double values[3] = {std::ldexp(double(vin[k].s_over_w), -exponent),
-                                std::ldexp(double(vin[k].t_over_w), -exponent),
-                                std::ldexp(double(vin[k].inv_w), -exponent)};
+      const double values[3] = {scaled(vin[k].s_over_w), scaled(vin[k].t_over_w), scaled(vin[k].inv_w)};
       for (double value : values)
         if (std::fabs(value) > TEXCOORD_LIMIT) return false;
       s[k] = std::llround(std::ldexp(values[0], TEXCOORD_FRACTION_BITS));
       t[k] = std::llround(std::ldexp(values[1], TEXCOORD_FRACTION_BITS));
-      q[k] = std::llround(std::ldexp(values[2], TEXCOORD_FRACTION_BITS));
     }
     ts.s = plane(attribute_kind::TEXCOORD, s);
     ts.t = plane(attribute_kind::TEXCOORD, t);
-    ts.q = plane(attribute_kind::TEXCOORD, q);
   }
   return true;
+}
+
+// Perspective-correct Gouraud colour: c = (c/w) / (1/w) per channel, the
+// c/w sum in colour words (16 fraction bits, scaled by the normalised q) and
+// q with 24 fraction bits, divided by the refined reciprocal of q into
+// colour words and converted by the interpolator's output rule.
+rgba8 TileRun::perspective_color(const TriangleSetup& ts, int dx, int dy) const {
+  const attribute_sum q = attribute_at(ts.q, dx, dy);
+  Reciprocal inv_q;
+  refined_reciprocal(uint64_t(std::max<int64_t>(q.raw, 1)), m_config.recip_method, inv_q);
+  const auto channel = [&](unsigned ch) {
+    const int128 c = divide(attribute_at(ts.color[ch], dx, dy).raw, inv_q, false, -int(TEXCOORD_FRACTION_BITS));
+    return attribute_to_color(attribute_sum{int64_t(std::clamp<int128>(c, -ATTRIBUTE_WORD_MAX - 1, ATTRIBUTE_WORD_MAX))});
+  };
+  return {channel(0), channel(1), channel(2), channel(3)};
 }
 
 // Perspective division: s = (s/w) / (1/w) from the interpolators' exact
@@ -658,7 +693,9 @@ bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, rgba8 frag
 void TileRun::shade(const TriangleSetup& ts, int px, int py, unorm8 coverage) {
   const int dx = px - ts.ref_x, dy = py - ts.ref_y;
   rgba8 color = ts.flat_color;
-  if (!ts.flat) {
+  if (ts.perspective_color) {
+    color = perspective_color(ts, dx, dy);
+  } else if (!ts.flat) {
     color = {attribute_to_color(attribute_at(ts.color[0], dx, dy)), attribute_to_color(attribute_at(ts.color[1], dx, dy)),
              attribute_to_color(attribute_at(ts.color[2], dx, dy)), attribute_to_color(attribute_at(ts.color[3], dx, dy))};
   }
