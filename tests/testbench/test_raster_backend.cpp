@@ -20,6 +20,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "support/soc_sim_runner.h"
 #include <nlohmann/json.hpp>
 
 #include "frame_writer.h"
@@ -34,55 +36,14 @@ constexpr unsigned WIDTH = 320, HEIGHT = 240;
 
 std::string g_soc_sim;
 
-struct SimResult {
-  int status = -1;  // exit status, or 128 + signal
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using tessera::test::contains;
+using tessera::test::describe;
+using tessera::test::read_file;
+using tessera::test::SimResult;
 
 SimResult run_soc_sim(const fs::path& dir, const std::vector<std::string>& args) {
-  const fs::path out_path = dir / "soc_sim.stdout", err_path = dir / "soc_sim.stderr";
-  std::vector<char*> argv{const_cast<char*>(g_soc_sim.c_str())};
-  for (const auto& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (out < 0 || err < 0 || chdir(dir.c_str()) != 0) _exit(127);
-    dup2(out, STDOUT_FILENO);
-    dup2(err, STDERR_FILENO);
-    close(out);
-    close(err);
-    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  SimResult run;
-  if (pid < 0) {
-    ADD_FAILURE() << "fork failed";
-    return run;
-  }
-  int wstatus = 0;
-  while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(wstatus)) run.status = WEXITSTATUS(wstatus);
-  else if (WIFSIGNALED(wstatus)) run.status = 128 + WTERMSIG(wstatus);
-  run.out = read_file(out_path);
-  run.err = read_file(err_path);
-  return run;
+  return tessera::test::run_soc_sim(g_soc_sim, dir, args);
 }
-
-std::string describe(const SimResult& run) {
-  return "exit status " + std::to_string(run.status) + "\n--- stdout ---\n" + run.out + "--- stderr ---\n" + run.err;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 class RasterBackend : public ::testing::Test {
  protected:

@@ -1,0 +1,75 @@
+// Runs soc_sim as a child process for the system tests: stdout and stderr go
+// to files in the run's folder (no pipes to drain, so no deadlock however
+// much it prints), and the exit status comes back with both texts.
+#pragma once
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace tessera::test {
+
+struct SimResult {
+  int status = -1;  // exit status, or 128 + signal
+  std::string out;
+  std::string err;
+};
+
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Runs `soc_sim` with `args` in the folder `dir`.
+inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::path& dir,
+                             const std::vector<std::string>& args) {
+  const std::filesystem::path out_path = dir / "soc_sim.stdout";
+  const std::filesystem::path err_path = dir / "soc_sim.stderr";
+  std::vector<char*> argv{const_cast<char*>(soc_sim.c_str())};
+  for (const auto& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || err < 0 || chdir(dir.c_str()) != 0) _exit(127);
+    dup2(out, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    close(out);
+    close(err);
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  SimResult run;
+  if (pid < 0) {
+    ADD_FAILURE() << "fork failed";
+    return run;
+  }
+  int wstatus = 0;
+  while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(wstatus)) run.status = WEXITSTATUS(wstatus);
+  else if (WIFSIGNALED(wstatus)) run.status = 128 + WTERMSIG(wstatus);
+  run.out = read_file(out_path);
+  run.err = read_file(err_path);
+  return run;
+}
+
+inline std::string describe(const SimResult& run) {
+  return "exit status " + std::to_string(run.status) + "\n--- stdout ---\n" + run.out + "--- stderr ---\n" + run.err;
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace tessera::test
