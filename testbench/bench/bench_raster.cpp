@@ -1,0 +1,642 @@
+// bench_raster: the benchmark of the rasterizer (the `raster` back end, the
+// SystemC module tlm/raster/rasterizer.{h,cpp} and its functional core).
+// Three tables, each measurement in child processes:
+//  1. fragments per wall-clock second of soc_sim --backend raster
+//     (teapot and fullscreen_rect by default), beside the functional core
+//     (TileRasterizer) run natively under the same driver (this program again,
+//     with --native-core);
+//  2. the datapath's C++ units against their Verilated RTL (bench_rtl,
+//     printed as it comes);
+//  3. simulated time per frame of every scene on `raster` beside `arm`.
+// Then the configuration, the machine and its load average. See README.md
+// for the method.
+//
+//   bench_raster [--frames N] [--repeat R] [--wall-scene NAME ...] [--scene NAME ...]
+//                [--vectors V] [--config FILE ...] [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "apps/gl_apps.h"
+#include "native_host.h"
+#include "raster/core/tile_rasterizer.h"
+#include "raster/raster_regs.h"
+#include "scenes/scene.h"
+#include "soc/irq_map.h"
+#include "soc/memory_map.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The built-in scenes, from the driver's registry that soc_sim is built with.
+std::vector<std::string> all_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& scene : tessera::scenes::all_scenes()) names.push_back(scene.name);
+  return names;
+}
+
+struct Options {
+  unsigned frames = 100;
+  unsigned repeat = 3;
+  std::vector<std::string> wall_scenes = {"teapot", "fullscreen_rect"};
+  std::vector<std::string> scenes = all_scene_names();
+  uint64_t vectors = 1'000'000;
+  std::vector<std::string> config_files;
+  std::string obj_file = TESSERA_BENCH_OBJ_FILE;
+  std::string work_dir;
+  std::string soc_sim;
+  std::string bench_rtl;
+  std::string self;
+  std::string native_core;  // child mode: run this scene's core natively, print JSON
+};
+
+struct ChildResult {
+  double wall_s = 0;
+  std::string output;  // stdout
+};
+
+// Runs `argv` with stdout captured in `output_file`, stderr shared with us.
+// Throws if it cannot start or does not exit with status 0.
+ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
+  std::vector<char*> args;
+  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) throw std::runtime_error("waitpid failed for " + argv[0]);
+  ChildResult result;
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ifstream in(output_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  result.output = text.str();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string command;
+    for (const auto& arg : argv) command += arg + " ";
+    throw std::runtime_error("failed (status " + std::to_string(status) + "): " + command);
+  }
+  return result;
+}
+
+json read_json_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return json::parse(in);
+}
+
+std::string first_line_of(const fs::path& path, const std::string& prefix) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return line;
+  return "";
+}
+
+// The 1, 5 and 15 minute load averages: how busy the machine was.
+std::string load_average() {
+  std::istringstream fields(first_line_of("/proc/loadavg", ""));
+  std::string one, five, fifteen;
+  fields >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+std::string format_ms(double seconds) {
+  char text[32];
+  const double ms = seconds * 1e3;
+  std::snprintf(text, sizeof text, ms >= 100 ? "%.0f ms" : ms >= 10 ? "%.1f ms" : "%.2f ms", ms);
+  return text;
+}
+
+std::string format_ratio(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, ratio >= 10 ? "%.0f" : ratio >= 1 ? "%.1f" : "%.2f", ratio);
+  return text;
+}
+
+std::string format_count(double count) {
+  char text[32];
+  if (count >= 1e6)
+    std::snprintf(text, sizeof text, "%.2f M", count / 1e6);
+  else if (count >= 1e3)
+    std::snprintf(text, sizeof text, "%.1f k", count / 1e3);
+  else
+    std::snprintf(text, sizeof text, "%.0f", count);
+  return text;
+}
+
+// ---------------------------------------------------------------------------
+// The functional core natively: the scene runs through the GL front end and
+// the raster back end on a NativeHost, and the rasterizer's registers are
+// answered here by a TileRasterizer over the same memory. Only the core's
+// run() calls are timed, so this is the core's speed without SystemC, the
+// host model or the driver.
+
+// A RasterPort straight into the native host's memory.
+class NativeRasterPort : public tessera::raster::RasterPort {
+ public:
+  explicit NativeRasterPort(tessera::bench::NativeHost& host) : m_host(host) {}
+
+  bool read(uint32_t address, void* data, unsigned bytes) override {
+    try {
+      std::memcpy(data, m_host.load_span(address, 1, bytes), bytes);
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  bool write(uint32_t address, const void* data, unsigned bytes) override {
+    try {
+      std::memcpy(m_host.store_span(address, 1, bytes), data, bytes);
+      return true;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  void cycles(uint64_t) override {}
+
+ private:
+  tessera::bench::NativeHost& m_host;
+};
+
+// NativeHost with the rasterizer's register window (raster_regs.def) in
+// front of it. START runs the core at once; the interrupt it raises has
+// always happened by the time the driver waits for it.
+class RasterNativeHost : public tessera::HostApi {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  RasterNativeHost(tessera::bench::NativeHost& host, const tessera::raster::RunConfig& geometry, unsigned timed_after)
+      : m_host(host), m_port(host), m_core(m_port), m_config(geometry), m_timed_after(timed_after) {}
+
+  void compute(tessera::Op op, uint64_t count) override { m_host.compute(op, count); }
+  uint32_t read32(uint32_t address) override { return is_reg(address) ? read_reg(address) : m_host.read32(address); }
+  uint16_t read16(uint32_t address) override { return m_host.read16(address); }
+  uint8_t read8(uint32_t address) override { return m_host.read8(address); }
+  void write32(uint32_t address, uint32_t value) override {
+    if (is_reg(address))
+      write_reg(address, value);
+    else
+      m_host.write32(address, value);
+  }
+  void write16(uint32_t address, uint16_t value) override { m_host.write16(address, value); }
+  void write8(uint32_t address, uint8_t value) override { m_host.write8(address, value); }
+  void read_words(uint32_t address, uint32_t* words, unsigned count) override {
+    m_host.read_words(address, words, count);
+  }
+  void write_words(uint32_t address, const uint32_t* words, unsigned count) override {
+    m_host.write_words(address, words, count);
+  }
+  const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override {
+    return m_host.load_span(address, size, count);
+  }
+  uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override {
+    return m_host.store_span(address, size, count);
+  }
+  void wait_irq(unsigned line) override { m_host.wait_irq(line); }
+  bool irq_pending(unsigned line) override { return m_host.irq_pending(line); }
+  double now_seconds() const override { return 0.0; }
+  double clock_hz() const override { return 0.0; }
+
+  // Frames N..2N-1: runs started after the N-th present.
+  double timed_s = 0;
+  uint64_t timed_fragments = 0, timed_runs = 0;
+
+ private:
+  static bool is_reg(uint32_t address) {
+    return address - tessera::memory_map::raster_regs.base < tessera::memory_map::raster_regs.size;
+  }
+
+  uint32_t read_reg(uint32_t address) {
+    namespace regs = tessera::raster_regs;
+    switch (address - tessera::memory_map::raster_regs.base) {
+      case regs::STATUS:
+        return m_status;
+      case regs::IRQ_STATUS:
+        return m_irq_status;
+      case regs::ERROR_STATUS:
+        return static_cast<uint32_t>(m_last.error);
+      case regs::ERROR_ADDRESS:
+        return m_last.error_address;
+      case regs::WIDTH:
+        return m_config.width;
+      case regs::HEIGHT:
+        return m_config.height;
+      case regs::TILE_WIDTH:
+        return m_config.tile_width;
+      case regs::TILE_HEIGHT:
+        return m_config.tile_height;
+      case regs::FRAGMENTS:
+        return static_cast<uint32_t>(m_last.fragments);
+      case regs::TRIANGLES:
+        return static_cast<uint32_t>(m_last.triangles);
+      default:
+        return 0;
+    }
+  }
+
+  void write_reg(uint32_t address, uint32_t value) {
+    namespace regs = tessera::raster_regs;
+    switch (address - tessera::memory_map::raster_regs.base) {
+      case regs::TILE_TABLE:
+        m_config.tile_table = value;
+        break;
+      case regs::COLOR_BASE:
+        m_config.color_base = value;
+        break;
+      case regs::DEPTH_BASE:
+        m_config.depth_base = value;
+        break;
+      case regs::FORMAT:
+        m_config.rgba8888 = value == regs::FORMAT_RGBA8888;
+        break;
+      case regs::IRQ_STATUS:
+        m_irq_status &= ~value;
+        break;
+      case regs::START:
+        if (value & 1) start();
+        break;
+      default:
+        break;
+    }
+  }
+
+  void start() {
+    const bool timed = m_host.present_times().size() >= m_timed_after;
+    const auto begin = Clock::now();
+    m_last = m_core.run(m_config);
+    if (timed) {
+      timed_s += std::chrono::duration<double>(Clock::now() - begin).count();
+      timed_fragments += m_last.fragments;
+      ++timed_runs;
+    }
+    const bool error = m_last.error != tessera::raster::RasterError::none;
+    m_status = error ? tessera::raster_regs::STATUS_ERROR : tessera::raster_regs::STATUS_DONE;
+    m_irq_status |= error ? tessera::raster_regs::IRQ_ERROR : tessera::raster_regs::IRQ_DONE;
+  }
+
+  tessera::bench::NativeHost& m_host;
+  NativeRasterPort m_port;
+  tessera::raster::TileRasterizer m_core;
+  tessera::raster::RunConfig m_config;
+  unsigned m_timed_after;
+  tessera::raster::RunResult m_last;
+  uint32_t m_status = 0, m_irq_status = 0;
+};
+
+struct CoreResult {
+  double seconds = 0;
+  uint64_t fragments = 0, runs = 0;
+};
+
+// Runs `scene` for 2N frames on the raster back end natively, with the
+// display, memory and rasterizer geometry of soc_sim's configuration (the
+// boot loader's memory layout, as bench_arm_native), and returns the core's
+// time and fragments over frames N..2N-1.
+CoreResult run_core_natively(const std::string& scene_name, unsigned n, const json& config,
+                             const std::vector<std::string>& scene_args) {
+  const tessera::scenes::Scene* scene = tessera::scenes::find_scene(scene_name);
+  if (!scene) throw std::runtime_error("no built-in scene " + scene_name);
+  const json& display_config = config["display"];
+  const json& raster_config = config["raster"];
+  tessera::bench::NativeDisplay display;
+  display.width = display_config["width"].get<unsigned>();
+  display.height = display_config["height"].get<unsigned>();
+  display.rgb565 = display_config["format"].get<std::string>() == "rgb565";
+  display.dma = display_config["dma"].get<bool>();
+  const uint32_t memory_bytes = config["mem"]["size_mib"].get<uint32_t>() << 20;
+  tessera::raster::RunConfig geometry;
+  geometry.width = raster_config["width"].get<unsigned>();
+  geometry.height = raster_config["height"].get<unsigned>();
+  geometry.tile_width = raster_config["tile_width"].get<unsigned>();
+  geometry.tile_height = raster_config["tile_height"].get<unsigned>();
+  const auto method =
+      tessera::raster::parse_recip_method(std::to_string(raster_config["recip_method"].get<unsigned>()));
+  if (method) geometry.recip_method = *method;
+
+  tessera::bench::NativeHost native(memory_bytes, display);
+  RasterNativeHost host(native, geometry, n);
+  tessera::AppEnvironment env;
+  env.host = &host;
+  env.frames = 2 * n;
+  env.memory_bytes = memory_bytes;
+  env.backend = "raster";
+  env.args = scene_args;
+  const uint64_t frame_bytes = uint64_t{display.width} * display.height * (display.rgb565 ? 2 : 4);
+  const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
+  env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
+  env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);
+  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
+  env.heap_end = env.frame_buffers[0];
+  const int status = tessera::run_scene_app(env, *scene);
+  if (status != 0 || native.present_times().size() != 2 * n)
+    throw std::runtime_error("native raster run of " + scene_name + " ended with status " + std::to_string(status) +
+                             " after " + std::to_string(native.present_times().size()) + " frames");
+  return CoreResult{host.timed_s, host.timed_fragments, host.timed_runs};
+}
+
+// What one soc_sim run reports that the tables use.
+struct RunFigures {
+  double simulated_ns = 0;
+  double raster_busy_ns = 0;
+  double fragments = 0;
+  double fragments_written = 0;
+  double triangles = 0;
+};
+
+// Frames N..2N-1 of one scene on one back end: the 2N run minus the N run.
+struct SceneRuns {
+  RunFigures n, two_n;
+  double wall_s[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+
+  double per_frame(double RunFigures::*field, unsigned frames) const { return (two_n.*field - n.*field) / frames; }
+  double wall_per_frame_s(unsigned frames) const { return (wall_s[1] - wall_s[0]) / frames; }
+};
+
+class Bench {
+ public:
+  explicit Bench(Options options) : m_opt(std::move(options)) {}
+
+  void run();
+
+ private:
+  std::vector<std::string> soc_sim_command(const std::string& backend, const std::string& scene, unsigned frames,
+                                           const fs::path& out) const;
+  SceneRuns measure(const std::string& backend, const std::string& scene, unsigned repeat);
+  void print_fragment_table() const;
+  void print_frame_time_table() const;
+
+  Options m_opt;
+  fs::path m_work;
+  unsigned m_run = 0;
+  json m_config;
+  std::map<std::string, SceneRuns> m_raster, m_arm;
+  std::map<std::string, CoreResult> m_core;  // the functional core natively, best of R
+};
+
+std::vector<std::string> Bench::soc_sim_command(const std::string& backend, const std::string& scene, unsigned frames,
+                                                const fs::path& out) const {
+  std::vector<std::string> command = {m_opt.soc_sim};
+  for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
+  // Many frames of a heavy scene exceed the default simulated-time limit.
+  command.insert(command.end(), {"--backend", backend, "--app", scene, "--frames", std::to_string(frames), "--out",
+                                 out.string(), "--quiet", "--set", "sim.time_limit_ms=3600000"});
+  if (scene == "obj_viewer") command.insert(command.end(), {"--", m_opt.obj_file});
+  return command;
+}
+
+SceneRuns Bench::measure(const std::string& backend, const std::string& scene, unsigned repeat) {
+  std::fprintf(stderr, "bench_raster: %s on %s ...\n", scene.c_str(), backend.c_str());
+  SceneRuns runs;
+  // Alternating N and 2N runs, so that a change in the machine's load hits both.
+  for (unsigned r = 0; r < repeat; ++r) {
+    for (unsigned k = 0; k < 2; ++k) {
+      const unsigned frames = (k + 1) * m_opt.frames;
+      const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
+      const ChildResult child = run_child(soc_sim_command(backend, scene, frames, out), m_work / "soc_sim.stdout");
+      const json stats = read_json_file(out / "stats.json");
+      if (stats["exit_status"] != 0 || stats["frames_written"] != frames)
+        throw std::runtime_error("soc_sim " + backend + " " + scene + ": wrote " + stats["frames_written"].dump() +
+                                 " of " + std::to_string(frames) + " frames");
+      const json& s = stats["stats"];
+      RunFigures figures;
+      figures.simulated_ns = s["simulated_ns"].get<double>();
+      if (s.contains("raster")) {
+        const json& raster = s["raster"];
+        figures.raster_busy_ns = raster["busy_ns"].get<double>();
+        figures.fragments = raster["fragments"].get<double>();
+        figures.fragments_written = raster["fragments_written"].get<double>();
+        figures.triangles = raster["triangles"].get<double>();
+      }
+      (k == 0 ? runs.n : runs.two_n) = figures;
+      runs.wall_s[k] = std::min(runs.wall_s[k], child.wall_s);
+      fs::remove_all(out);
+    }
+  }
+  return runs;
+}
+
+void Bench::print_fragment_table() const {
+  const unsigned n = m_opt.frames;
+  std::printf("### 1. SystemC rasterizer: fragments per wall-clock second (soc_sim --backend raster)\n\n");
+  std::printf(
+      "| scene | fragments / frame | written / frame | triangles / frame | soc_sim wall / frame "
+      "| fragments / wall s | simulated : wall | core natively: fragments / s | core / soc_sim |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+  for (const auto& scene : m_opt.wall_scenes) {
+    const SceneRuns& r = m_raster.at(scene);
+    const double wall = r.wall_per_frame_s(n);
+    const double fragments = r.per_frame(&RunFigures::fragments, n);
+    // With few frames on a busy machine the difference can drown in noise.
+    const bool valid = wall > 0;
+    const CoreResult& core = m_core.at(scene);
+    const double core_rate = static_cast<double>(core.fragments) / core.seconds;
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", scene.c_str(), format_count(fragments).c_str(),
+                format_count(r.per_frame(&RunFigures::fragments_written, n)).c_str(),
+                format_count(r.per_frame(&RunFigures::triangles, n)).c_str(), valid ? format_ms(wall).c_str() : "noise",
+                valid ? format_count(fragments / wall).c_str() : "-",
+                valid ? format_ratio(r.per_frame(&RunFigures::simulated_ns, n) * 1e-9 / wall).c_str() : "-",
+                format_count(core_rate).c_str(), valid ? format_ratio(core_rate / (fragments / wall)).c_str() : "-");
+    if (static_cast<double>(core.fragments) != fragments * n)
+      std::printf("\n(%s: the native core generated %llu fragments in frames %u..%u, soc_sim %.0f)\n", scene.c_str(),
+                  static_cast<unsigned long long>(core.fragments), n, 2 * n - 1, fragments * n);
+  }
+  std::printf(
+      "\nWall time is the whole soc_sim process (host CPU model, bus, memory, display, PNG writing of "
+      "every frame, and the rasterizer), not the rasterizer alone. \"fragments\" are those the "
+      "rasterizer generated (stats raster.fragments), \"written\" those that passed the tests. "
+      "\"core natively\": TileRasterizer::run alone, timed over the same frames with the same driver "
+      "on a native host (no SystemC), best of %u.\n\n",
+      m_opt.repeat);
+}
+
+void Bench::print_frame_time_table() const {
+  const unsigned n = m_opt.frames;
+  std::printf("### 3. Simulated time per frame: raster beside arm\n\n");
+  std::printf(
+      "| scene | raster: simulated / frame | arm: simulated / frame | arm / raster "
+      "| rasterizer busy / frame | rasterizer busy share |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|\n");
+  for (const auto& scene : m_opt.scenes) {
+    const SceneRuns& raster = m_raster.at(scene);
+    const SceneRuns& arm = m_arm.at(scene);
+    const double raster_frame = raster.per_frame(&RunFigures::simulated_ns, n) * 1e-9;
+    const double arm_frame = arm.per_frame(&RunFigures::simulated_ns, n) * 1e-9;
+    const double busy = raster.per_frame(&RunFigures::raster_busy_ns, n) * 1e-9;
+    char share[16];
+    std::snprintf(share, sizeof share, "%.0f %%", 100.0 * busy / raster_frame);
+    std::printf("| %s | %s | %s | %s | %s | %s |\n", scene.c_str(), format_ms(raster_frame).c_str(),
+                format_ms(arm_frame).c_str(), format_ratio(arm_frame / raster_frame).c_str(), format_ms(busy).c_str(),
+                share);
+  }
+  std::printf(
+      "\narm / raster above 1: the rasterizer draws the frame in less simulated time than the arm "
+      "renderer. \"rasterizer busy\" is raster.busy_ns per frame (the time the rasterizer ran command "
+      "lists, its bus waits included); the rest of the frame the host (geometry, binning) and the "
+      "display transfer set the pace.\n\n");
+}
+
+void Bench::run() {
+  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_raster_" + std::to_string(getpid()))
+                                  : fs::path(m_opt.work_dir);
+  fs::create_directories(m_work);
+
+  std::vector<std::string> print_config = {m_opt.soc_sim};
+  for (const auto& file : m_opt.config_files) print_config.insert(print_config.end(), {"--config", file});
+  print_config.push_back("--print-config");
+  m_config = json::parse(run_child(print_config, m_work / "config.json").output);
+  const json& config = m_config;
+
+  std::string cpu = first_line_of("/proc/cpuinfo", "model name");
+  cpu = cpu.substr(cpu.find(':') == std::string::npos ? 0 : cpu.find(':') + 2);
+  const std::string load_before = load_average();
+  const auto start = std::chrono::steady_clock::now();
+
+  // Wall-timed scenes first, R times each; the others once (simulated time is
+  // deterministic), on both back ends.
+  for (const auto& scene : m_opt.wall_scenes) m_raster[scene] = measure("raster", scene, m_opt.repeat);
+  for (const auto& scene : m_opt.scenes) {
+    if (!m_raster.count(scene)) m_raster[scene] = measure("raster", scene, 1);
+    m_arm[scene] = measure("arm", scene, 1);
+  }
+  for (const auto& scene : m_opt.wall_scenes) {
+    std::fprintf(stderr, "bench_raster: %s, functional core natively ...\n", scene.c_str());
+    CoreResult best;
+    best.seconds = std::numeric_limits<double>::max();
+    const std::vector<std::string> args =
+        scene == "obj_viewer" ? std::vector<std::string>{m_opt.obj_file} : std::vector<std::string>{};
+    // A child each time: the GL driver's EGL state lives as long as the process.
+    std::vector<std::string> command = {m_opt.self, "--native-core", scene, "--frames", std::to_string(m_opt.frames)};
+    for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
+    if (!args.empty()) command.insert(command.end(), {"--obj", args.front()});
+    for (unsigned r = 0; r < m_opt.repeat; ++r) {
+      const json out = json::parse(run_child(command, m_work / "core.stdout").output);
+      const CoreResult core{out["seconds"].get<double>(), out["fragments"].get<uint64_t>(),
+                            out["runs"].get<uint64_t>()};
+      if (core.seconds < best.seconds) best = core;
+    }
+    m_core[scene] = best;
+  }
+  std::fprintf(stderr, "bench_raster: datapath C++ against RTL ...\n");
+  const ChildResult rtl =
+      run_child({m_opt.bench_rtl, "--vectors", std::to_string(m_opt.vectors), "--repeat", std::to_string(m_opt.repeat)},
+                m_work / "bench_rtl.stdout");
+  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const json& display = config["display"];
+  const json& raster = config["raster"];
+  if (!m_opt.wall_scenes.empty()) print_fragment_table();
+  std::printf("### 2. Datapath units: C++ model against Verilated RTL (bench_rtl)\n\n%s\n", rtl.output.c_str());
+  if (!m_opt.scenes.empty()) print_frame_time_table();
+  std::printf(
+      "Display %ux%u %s, %s mode; rasterizer %u MHz, tiles %ux%u, reciprocal method %u. Per-frame values are "
+      "frames %u..%u (runs of N=%u and 2N frames, difference / N); wall times the best of %u run(s) of each "
+      "(tables 1 and 2), simulated times from one run (deterministic).\n",
+      display["width"].get<unsigned>(), display["height"].get<unsigned>(), display["format"].get<std::string>().c_str(),
+      display["dma"].get<bool>() ? "DMA" : "port", static_cast<unsigned>(raster["clock_mhz"].get<double>()),
+      raster["tile_width"].get<unsigned>(), raster["tile_height"].get<unsigned>(),
+      raster["recip_method"].get<unsigned>(), m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
+  std::printf(
+      "Machine: %s, %u hardware threads, %s build; load average (1, 5, 15 min) %s before, %s after; "
+      "the benchmark took %.0f s.\n",
+      cpu.c_str(), std::thread::hardware_concurrency(), TESSERA_BENCH_BUILD_TYPE, load_before.c_str(),
+      load_average().c_str(), total_s);
+  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
+}
+
+// The build tree puts bench_raster and bench_rtl in testbench/bench/ and
+// soc_sim in testbench/.
+fs::path own_directory() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  return error ? fs::current_path() : self.parent_path();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  CLI::App cli{"bench_raster: benchmark of the rasterizer (soc_sim raster and arm back ends, datapath C++ vs RTL)"};
+  cli.add_option("--frames", opt.frames, "N: runs of N and 2N frames, frames N..2N-1 measured")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cli.add_option("--repeat", opt.repeat, "runs of each wall-time measurement; the best is kept")
+      ->check(CLI::Range(1, 20))
+      ->capture_default_str();
+  cli.add_option("--wall-scene", opt.wall_scenes, "scene(s) for the fragments-per-second table")
+      ->check(CLI::IsMember(all_scene_names()))
+      ->capture_default_str();
+  cli.add_option("--scene", opt.scenes, "scene(s) for the raster-beside-arm table")
+      ->check(CLI::IsMember(all_scene_names()))
+      ->capture_default_str();
+  cli.add_option("--vectors", opt.vectors, "random vectors per datapath unit (bench_rtl)")
+      ->check(CLI::Range(uint64_t{1000}, uint64_t{100'000'000}))
+      ->capture_default_str();
+  cli.add_option("--config", opt.config_files, "soc_sim configuration file(s)")->check(CLI::ExistingFile);
+  cli.add_option("--obj", opt.obj_file, "OBJ file for obj_viewer")->check(CLI::ExistingFile)->capture_default_str();
+  cli.add_option("--work-dir", opt.work_dir, "folder for soc_sim's output (default: a temporary one, removed)");
+  cli.add_option("--soc-sim", opt.soc_sim, "soc_sim to run (default: the one in this build tree)");
+  cli.add_option("--native-core", opt.native_core, "(used by bench_raster itself) time the core natively on SCENE")
+      ->check(CLI::IsMember(all_scene_names()))
+      ->group("");
+  CLI11_PARSE(cli, argc, argv);
+
+  const fs::path here = own_directory();
+  opt.self = (here / "bench_raster").string();
+  if (opt.soc_sim.empty()) opt.soc_sim = (here.parent_path() / "soc_sim").string();
+  opt.bench_rtl = (here / "bench_rtl").string();
+  for (const auto& program : {opt.soc_sim, opt.bench_rtl})
+    if (!fs::exists(program)) {
+      std::cerr << "bench_raster: " << program << " not found (build the bench_raster target)\n";
+      return 2;
+    }
+  try {
+    if (!opt.native_core.empty()) {
+      std::vector<std::string> print_config = {opt.soc_sim};
+      for (const auto& file : opt.config_files) print_config.insert(print_config.end(), {"--config", file});
+      print_config.push_back("--print-config");
+      const fs::path config_file = fs::temp_directory_path() / ("bench_raster_config_" + std::to_string(getpid()));
+      const json config = json::parse(run_child(print_config, config_file).output);
+      fs::remove(config_file);
+      const std::vector<std::string> args =
+          opt.native_core == "obj_viewer" ? std::vector<std::string>{opt.obj_file} : std::vector<std::string>{};
+      const CoreResult core = run_core_natively(opt.native_core, opt.frames, config, args);
+      std::printf("%s\n",
+                  json{{"seconds", core.seconds}, {"fragments", core.fragments}, {"runs", core.runs}}.dump().c_str());
+      return 0;
+    }
+    Bench(opt).run();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_raster: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
