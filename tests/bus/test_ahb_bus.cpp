@@ -3,6 +3,8 @@
 // transport, statistics. A base-protocol checker sits on every socket.
 #include <memory>
 
+#include <tlm_utils/simple_target_socket.h>
+
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
 #include "mem/memory.h"
@@ -22,12 +24,28 @@ constexpr uint64_t kFastBase = 0x0000;
 constexpr uint64_t kSlowBase = 0x10000;
 constexpr uint64_t kSlowPopulated = 0x4000;  // the slow window is 0x10000 bytes, only 16 KiB populated
 constexpr uint64_t kUnmapped = 0xF0000000;
+constexpr uint64_t kProbeBase = 0x20000;
+
+// A target that notes the delay each access arrives with and adds one cycle.
+struct ProbeTarget : sc_core::sc_module {
+  tlm_utils::simple_target_socket<ProbeTarget, 32> in;
+  std::vector<sc_time> arrivals;  // sc_time_stamp() + delay at each call
+  explicit ProbeTarget(sc_core::sc_module_name name) : sc_core::sc_module(name), in("in") {
+    in.register_b_transport(this, &ProbeTarget::b_transport);
+  }
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+    arrivals.push_back(sc_core::sc_time_stamp() + delay);
+    delay += kCycle;
+    gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+};
 
 // Three initiators (A highest priority) and two memories, every socket
 // behind a protocol checker.
 struct Bench {
   AhbBus bus;
   Memory fast, slow;
+  ProbeTarget probe;
   TestInitiator a, b, c;
   protocol_checker<32> check_a, check_b, check_c, check_fast, check_slow;
 
@@ -35,6 +53,7 @@ struct Bench {
       : bus((std::string(name) + "_bus").c_str(), params(arbitration)),
         fast((std::string(name) + "_fast").c_str(), memory(0x10000, kFastWait)),
         slow((std::string(name) + "_slow").c_str(), memory(kSlowPopulated, kSlowWait)),
+        probe((std::string(name) + "_probe").c_str()),
         a((std::string(name) + "_a").c_str()), b((std::string(name) + "_b").c_str()),
         c((std::string(name) + "_c").c_str()),
         check_a((std::string(name) + "_check_a").c_str()), check_b((std::string(name) + "_check_b").c_str()),
@@ -49,6 +68,7 @@ struct Bench {
     bus.attach(check_c.out, "c", 2);
     bus.map(check_fast.in, kFastBase, 0x10000, "fast");
     bus.map(check_slow.in, kSlowBase, 0x10000, "slow");
+    bus.map(probe.in, kProbeBase, 0x100, "probe");
     check_fast.out.bind(fast.in);
     check_slow.out.bind(slow.in);
   }
@@ -216,6 +236,27 @@ TEST(AhbBus, InitiatorAheadInTimeDoesNotBlockOneBehind) {
   });
   EXPECT_EQ(done_a, start + kCycle * 50.0 + access(kFastWait, 1));
   EXPECT_EQ(done_b, start + kCycle * 10.0 + access(kFastWait, 1));
+}
+
+// A loosely-timed target must see an access at the initiator's local time
+// (a register write that starts something starts then), not at the kernel's
+// time, which lags by up to a quantum.
+TEST(AhbBus, TargetSeesTheAccessAtTheInitiatorsAnnotatedTime) {
+  Bench& bench = *g_fixed;
+  bench.probe.arrivals.clear();
+  sc_time start, done;
+  test::run_thread([&] {
+    start = sc_core::sc_time_stamp();
+    uint32_t value = 1;
+    // 35 ns ahead: the request is at the next bus edge, 40 ns.
+    const auto r = bench.a.write(kProbeBase, reinterpret_cast<uint8_t*>(&value), 4, sc_time(35, SC_NS));
+    EXPECT_EQ(r.status, tlm::TLM_OK_RESPONSE);
+    done = start + r.delay;
+  });
+  ASSERT_EQ(bench.probe.arrivals.size(), 1u);
+  EXPECT_EQ(bench.probe.arrivals[0], start + sc_time(40, SC_NS));
+  // Address phase and the target's one cycle (one beat), after the request.
+  EXPECT_EQ(done, start + sc_time(40, SC_NS) + 2 * kCycle);
 }
 
 TEST(AhbBus, UnmappedAddressGetsAddressErrorAndAWarningNamingInitiator) {

@@ -70,25 +70,32 @@ uint64_t AhbBus::align_to_edge(uint64_t ticks) const {
 uint64_t AhbBus::reserve(uint64_t request_ticks, uint64_t length_ticks) {
   // Nothing can be requested before the current time, so older reservations go.
   const uint64_t now = sc_core::sc_time_stamp().value();
-  while (!m_reserved.empty() && m_reserved.begin()->second <= now) m_reserved.erase(m_reserved.begin());
-
-  uint64_t start = request_ticks;
-  auto it = m_reserved.upper_bound(start);
-  if (it != m_reserved.begin()) {
-    auto previous = std::prev(it);
-    if (previous->second > start) start = previous->second;
+  while (m_reserved_head < m_reserved.size() && m_reserved[m_reserved_head].end <= now) ++m_reserved_head;
+  if (m_reserved_head > 256 && m_reserved_head * 2 > m_reserved.size()) {
+    m_reserved.erase(m_reserved.begin(), m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head));
+    m_reserved_head = 0;
   }
-  while (it != m_reserved.end() && it->first < start + length_ticks) {
-    start = std::max(start, it->second);
+  const auto first = m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head);
+  const auto by_start = [](uint64_t t, const Interval& i) { return t < i.start; };
+
+  // The first interval starting after the request; the one before it may
+  // still be running at the request time.
+  uint64_t start = request_ticks;
+  auto it = std::upper_bound(first, m_reserved.end(), start, by_start);
+  if (it != first && std::prev(it)->end > start) start = std::prev(it)->end;
+  // Skip every interval the transfer would overlap.
+  while (it != m_reserved.end() && it->start < start + length_ticks) {
+    start = std::max(start, it->end);
     ++it;
   }
-  // Merge with a reservation that ends exactly where this one starts, to keep
-  // the timeline short under back-to-back traffic.
-  auto before = m_reserved.lower_bound(start);
-  if (before != m_reserved.begin() && std::prev(before)->second == start)
-    std::prev(before)->second = start + length_ticks;
+  // `it` is now the first interval starting at or after the transfer's end,
+  // so the transfer goes just before it; it joins an interval that ends
+  // exactly where it starts, to keep the timeline short under back-to-back
+  // traffic.
+  if (it != first && std::prev(it)->end == start)
+    std::prev(it)->end = start + length_ticks;
   else
-    m_reserved.emplace(start, start + length_ticks);
+    m_reserved.insert(it, Interval{start, start + length_ticks});
   m_busy_cycles += length_ticks / m_period_ticks;
   m_last_end_ticks = std::max(m_last_end_ticks, start + length_ticks);
   return start;
@@ -152,10 +159,15 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
                              m_stats[initiator].name + " at " + log::hex(address));
   } else {
     gp.set_address(address - region->base);
-    sc_time target_delay = sc_core::SC_ZERO_TIME;
+    // The target sees the access at the time it is requested (the
+    // initiator's local time, as loosely-timed targets expect) and adds
+    // its latency, which sets the data phase.
+    const uint64_t request_offset = request.request_ticks - now;
+    sc_time target_delay = sc_time::from_value(request_offset);
     out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
-    const uint64_t data_ticks = std::max(align_to_edge(target_delay.value()), beats * m_period_ticks);
+    const uint64_t target_ticks = target_delay.value() - request_offset;
+    const uint64_t data_ticks = std::max(align_to_edge(target_ticks), beats * m_period_ticks);
     request.occupancy_ticks = transfers * m_params.address_cycles * m_period_ticks + data_ticks;
     if (gp.is_response_error()) ++m_stats[initiator].errors;
   }

@@ -136,7 +136,16 @@ class AhbBus : public sc_core::sc_module {
   uint64_t m_period_ticks;
   std::vector<Region> m_regions;
   std::vector<BusInitiatorStats> m_stats;
-  std::map<uint64_t, uint64_t> m_reserved;  // start ticks -> end ticks
+  // The reservation timeline: disjoint [start, end) intervals in ticks,
+  // sorted, from m_reserved_head on (the ones before it have ended). A sorted
+  // vector rather than a map: requests arrive nearly in time order, so
+  // almost every reservation extends or follows the last interval.
+  struct Interval {
+    uint64_t start;
+    uint64_t end;
+  };
+  std::vector<Interval> m_reserved;
+  size_t m_reserved_head = 0;
   std::vector<Request*> m_batch;
   unsigned m_last_granted = 0;
   uint64_t m_busy_cycles = 0;

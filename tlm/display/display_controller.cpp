@@ -54,8 +54,8 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
       log::warning(this->name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
       return;
     }
-    show(m_port_frame);
-    raise(regs::IRQ_FRAME_PRESENTED);
+    show(m_port_frame, m_access_delay);
+    raise(regs::IRQ_FRAME_PRESENTED, m_access_delay);
   });
   m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames); });
   m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes); });
@@ -86,9 +86,9 @@ bool DisplayController::in_vblank() const {
 
 bool DisplayController::frame_pending() const { return m_params.dma && (m_swap_pending || m_frame_in_scan); }
 
-void DisplayController::raise(uint32_t bits) {
+void DisplayController::raise(uint32_t bits, const sc_time& delay) {
   m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
-  m_irq_changed.notify(sc_core::SC_ZERO_TIME);
+  m_irq_changed.notify(delay);
 }
 
 void DisplayController::update_irq() {
@@ -96,6 +96,7 @@ void DisplayController::update_irq() {
 }
 
 void DisplayController::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  m_access_delay = delay;
   m_regs.transport(gp);
   delay += m_params.clock_period;
 }
@@ -135,8 +136,9 @@ unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {
   return static_cast<unsigned>(length);
 }
 
-void DisplayController::show(const std::vector<uint8_t>& pixels) {
-  Frame frame{static_cast<unsigned>(m_frames), sc_core::sc_time_stamp().to_seconds(), m_params.width,
+void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& delay) {
+  const sc_time when = sc_core::sc_time_stamp() + delay;
+  Frame frame{static_cast<unsigned>(m_frames), when.to_seconds(), m_params.width,
               m_params.height, std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
   const size_t count = size_t{m_params.width} * m_params.height;
   if (m_params.format == PixelFormat::rgb565) {
@@ -152,12 +154,12 @@ void DisplayController::show(const std::vector<uint8_t>& pixels) {
   } else {
     std::memcpy(frame.rgba.data(), pixels.data(), count * 4);
   }
-  if (m_frames == 0) m_first_frame_time = sc_core::sc_time_stamp();
-  m_last_frame_time = sc_core::sc_time_stamp();
+  if (m_frames == 0) m_first_frame_time = when;
+  m_last_frame_time = when;
   ++m_frames;
   log::info(name(), "frame " + std::to_string(frame.index) + " shown");
   if (m_sink) m_sink(frame);
-  m_frame_shown.notify(sc_core::SC_ZERO_TIME);
+  m_frame_shown.notify(delay);
 }
 
 bool DisplayController::fetch_line(uint32_t address, uint8_t* line, const sc_time& deadline) {

@@ -84,8 +84,10 @@ class DisplayController : public sc_core::sc_module {
 
   void scan_out();      // SC_THREAD, DMA mode
   void update_irq();    // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
-  void raise(uint32_t bits);
-  void show(const std::vector<uint8_t>& pixels);
+  // Sets interrupt status bits; the line follows `delay` after the kernel's time.
+  void raise(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
+  // Shows a frame `delay` after the kernel's time (a register write's annotated time).
+  void show(const std::vector<uint8_t>& pixels, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
   bool fetch_line(uint32_t address, uint8_t* line, const sc_core::sc_time& deadline);
   bool in_vblank() const;
 
@@ -96,6 +98,7 @@ class DisplayController : public sc_core::sc_module {
   std::vector<uint8_t> m_scan_frame;
   sc_core::sc_event m_irq_changed;
   sc_core::sc_event m_frame_shown;
+  sc_core::sc_time m_access_delay;  // annotated time of the register access being served
   tlm::tlm_generic_payload m_payload;
 
   bool m_swap_pending = false;

@@ -1,5 +1,7 @@
 #include "host/data_cache.h"
 
+#include <algorithm>
+
 namespace tessera {
 
 DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
@@ -8,18 +10,26 @@ DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
   while ((1u << m_line_shift) < line_bytes) ++m_line_shift;
   m_lines.resize(static_cast<size_t>(m_sets) * m_ways);
   m_victim.resize(m_sets, 0);
-  m_hints.assign(kHints, nullptr);
 }
 
 DataCache::Line* DataCache::find(uint32_t address) {
   const uint32_t tag = address >> m_line_shift;
-  if (m_last && m_last->valid && m_last->tag == tag) return m_last;
-  Line*& hint = m_hints[tag & (kHints - 1)];
-  if (hint && hint->valid && hint->tag == tag) return m_last = hint;
+  if (tag < m_where.size()) return m_where[tag] ? &m_lines[m_where[tag] - 1] : nullptr;
+  if (tag < kIndexedTags) return nullptr;  // an allocated tag this low would be in the table
   Line* set = &m_lines[static_cast<size_t>(tag & (m_sets - 1)) * m_ways];
   for (unsigned way = 0; way < m_ways; ++way)
-    if (set[way].valid && set[way].tag == tag) return m_last = hint = &set[way];
+    if (set[way].valid && set[way].tag == tag) return &set[way];
   return nullptr;
+}
+
+void DataCache::forget(const Line& line) {
+  if (line.valid && line.tag < m_where.size()) m_where[line.tag] = 0;
+}
+
+void DataCache::remember(const Line& line, size_t index) {
+  if (line.tag >= kIndexedTags) return;
+  if (line.tag >= m_where.size()) m_where.resize(std::min<size_t>(kIndexedTags, (size_t{line.tag} + 1) * 2), 0);
+  m_where[line.tag] = static_cast<uint32_t>(index + 1);
 }
 
 DataCache::Result DataCache::read(uint32_t address) {
@@ -36,15 +46,17 @@ DataCache::Result DataCache::read(uint32_t address) {
   ++m_misses;
   const uint32_t tag = address >> m_line_shift;
   const unsigned set_index = tag & (m_sets - 1);
-  Line& victim = m_lines[static_cast<size_t>(set_index) * m_ways + m_victim[set_index]];
+  const size_t index = static_cast<size_t>(set_index) * m_ways + m_victim[set_index];
+  Line& victim = m_lines[index];
   m_victim[set_index] = (m_victim[set_index] + 1) % m_ways;
   if (victim.valid && victim.dirty) {
     result.evicted_dirty = true;
     result.evicted_address = victim.tag << m_line_shift;
     ++m_writebacks;
   }
+  forget(victim);
   victim = {tag, true, false};
-  m_last = m_hints[tag & (kHints - 1)] = &victim;
+  remember(victim, index);
   return result;
 }
 
@@ -58,9 +70,10 @@ bool DataCache::write(uint32_t address) {
 }
 
 void DataCache::invalidate_all() {
-  for (auto& line : m_lines) line = Line{};
-  m_last = nullptr;
-  m_hints.assign(kHints, nullptr);
+  for (auto& line : m_lines) {
+    forget(line);
+    line = Line{};
+  }
 }
 
 }  // namespace tessera

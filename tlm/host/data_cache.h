@@ -50,11 +50,15 @@ class DataCache {
   unsigned m_line_shift;
   std::vector<Line> m_lines;       // set-major
   std::vector<unsigned> m_victim;  // round-robin pointer per set
-  Line* m_last = nullptr;          // most recently used line, checked first
-  // A line's last known place by tag, checked before the set is searched:
-  // the model's speed, not the cache's behaviour (a stale hint is ignored).
-  static constexpr unsigned kHints = 1024;
-  std::vector<Line*> m_hints;
+  // Where each resident line is, by tag (line number + 1, 0: absent): the
+  // model's speed, not the cache's behaviour. Lookups, hits and misses alike,
+  // cost one load instead of a search of a 64-way set. The table covers the
+  // tags below kIndexedTags (128 MiB with 32-byte lines) and grows with the
+  // highest tag allocated; lines above it are found by searching their set.
+  static constexpr uint32_t kIndexedTags = 1u << 22;
+  std::vector<uint32_t> m_where;
+  void forget(const Line& line);
+  void remember(const Line& line, size_t index);
   uint64_t m_hits = 0;
   uint64_t m_misses = 0;
   uint64_t m_writebacks = 0;

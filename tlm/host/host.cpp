@@ -29,7 +29,7 @@ const char* op_name(Op op) {
 
 Host::Host(sc_core::sc_module_name name, const HostParams& params)
     : sc_core::sc_module(name), out("out"), irq("irq", params.irq_lines), m_params(params),
-      m_period_ticks(params.clock_period.value()),
+      m_period_ticks(params.clock_period.value()), m_run_ahead_ticks(params.run_ahead.value()),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways), m_busy_trace("busy") {
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
   m_train = new TransferTrain;
@@ -44,26 +44,51 @@ void Host::trace(sc_core::sc_trace_file* file) {
   for (unsigned i = 0; i < irq.size(); ++i) sc_core::sc_trace(file, irq[i], std::string(name()) + ".irq_" + std::to_string(i));
 }
 
-uint64_t Host::local_ticks() const {
-  return sc_core::sc_time_stamp().value() + m_qk.get_local_time().value();
+uint64_t Host::local_ticks() const { return sc_core::sc_time_stamp().value() + m_local_ticks; }
+
+void Host::restart_quantum() {
+  m_qk.reset();
+  m_local_ticks = 0;
+  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - sc_core::sc_time_stamp().value();
 }
 
-void Host::maybe_sync() {
-  if (m_qk.need_sync()) m_qk.sync();
+void Host::sync() {
+  ++m_syncs;
+  m_qk.set(sc_time::from_value(m_local_ticks));
+  m_qk.sync();
+  m_local_ticks = 0;
+  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - sc_core::sc_time_stamp().value();
+}
+
+void Host::quantum_used_up() {
+  // Synchronising lets the other processes run up to the host's local time.
+  // While none of them has anything at all scheduled within the run-ahead
+  // window, the wait would only resume the host, so it runs on instead, to
+  // the window's end. Any bus access ends the run-ahead (transact), since it
+  // may have woken another process; the next check then sees that process.
+  // When something is scheduled, the host synchronises at the quantum as a
+  // plain quantum keeper does, so timing is exactly that of run_ahead = 0.
+  if (m_local_ticks < m_run_ahead_ticks &&
+      sc_core::sc_time_to_pending_activity().value() >= m_run_ahead_ticks) {
+    ++m_run_aheads;
+    m_budget_ticks = m_run_ahead_ticks;
+    return;
+  }
+  sync();
 }
 
 void Host::charge(uint64_t cycles) {
   m_busy_cycles += cycles;
-  m_qk.inc(sc_time::from_value(cycles * m_period_ticks));
-  maybe_sync();
+  m_local_ticks += cycles * m_period_ticks;
+  if (m_local_ticks >= m_budget_ticks) quantum_used_up();
 }
 
 void Host::stall_until(uint64_t absolute_ticks) {
   const uint64_t local = local_ticks();
   if (absolute_ticks <= local) return;
   m_stall_ticks += absolute_ticks - local;
-  m_qk.set(sc_time::from_value(absolute_ticks - sc_core::sc_time_stamp().value()));
-  maybe_sync();
+  m_local_ticks += absolute_ticks - local;
+  if (m_local_ticks >= m_budget_ticks) quantum_used_up();
 }
 
 void Host::compute(Op op, uint64_t count) {
@@ -96,6 +121,7 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   out->b_transport(m_payload, delay);
   m_train->transfers = 1;
+  m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
   if (m_payload.is_response_error()) {
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +
@@ -401,7 +427,7 @@ bool Host::irq_pending(unsigned line) {
   if (line >= irq.size())
     throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
                             std::to_string(irq.size()) + ")");
-  m_qk.sync();
+  sync();
   return irq[line].read();
 }
 
@@ -409,18 +435,19 @@ void Host::wait_irq(unsigned line) {
   if (line >= irq.size())
     throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
                             std::to_string(irq.size()) + ")");
-  m_qk.sync();
+  sync();
   if (irq[line].read()) return;
   const uint64_t start = sc_core::sc_time_stamp().value();
   if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
   while (!irq[line].read()) wait(irq[line].value_changed_event());
+  restart_quantum();
   m_idle_ticks += sc_core::sc_time_stamp().value() - start;
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
 }
 
 void Host::run() {
   // The global quantum is set during elaboration, after this module was built.
-  m_qk.reset();
+  restart_quantum();
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
   try {
     if (!m_program) throw std::logic_error("host: no program to run");
@@ -436,7 +463,7 @@ void Host::run() {
     m_failure = e.what();
     log::error(name(), m_failure);
   }
-  m_qk.sync();
+  sync();
   if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
   m_finished = true;
   if (m_on_finish) m_on_finish();
@@ -460,7 +487,9 @@ nlohmann::json Host::stats_json(const sc_time& elapsed) const {
           {"operations", ops},
           {"dcache", {{"hits", m_dcache.hits()}, {"misses", m_dcache.misses()}, {"writebacks", m_dcache.writebacks()}}},
           {"write_buffer_stalls", m_write_buffer_stalls},
-          {"bus_errors", m_bus_errors}};
+          {"bus_errors", m_bus_errors},
+          {"synchronisations", m_syncs},
+          {"run_aheads", m_run_aheads}};
 }
 
 }  // namespace tessera

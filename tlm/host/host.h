@@ -45,6 +45,10 @@ struct HostParams {
   // Cacheable address range (system memory).
   uint32_t cacheable_base = 0;
   uint32_t cacheable_size = 0;
+  // How far past the kernel's time the host may run on when its quantum is
+  // used up but no other process has anything scheduled before its local
+  // time (zero: always synchronise at the quantum).
+  sc_core::sc_time run_ahead = sc_core::SC_ZERO_TIME;
 };
 
 class Host : public sc_core::sc_module, public HostApi {
@@ -105,13 +109,28 @@ class Host : public sc_core::sc_module, public HostApi {
   void drain_write_buffer();
   uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
   void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
-  void maybe_sync();
+  // Hands the host's local time to the quantum keeper and waits for it.
+  void sync();
 
   HostParams m_params;
   uint64_t m_period_ticks;  // clock period in kernel time units
   Program m_program;
   std::function<void()> m_on_finish;
-  tlm_utils::tlm_quantumkeeper m_qk;
+  // The quantum keeper with its next synchronisation point readable, so that
+  // charging time is an addition and a compare in ticks (the hot path); the
+  // keeper is handed the local time when the host synchronises.
+  struct QuantumKeeper : tlm_utils::tlm_quantumkeeper {
+    uint64_t next_sync_ticks() const { return m_next_sync_point.value(); }
+  };
+  QuantumKeeper m_qk;
+  uint64_t m_local_ticks = 0;    // local time: ahead of the kernel's time by this much
+  uint64_t m_quantum_ticks = 0;  // local time at which the quantum is used up
+  uint64_t m_budget_ticks = 0;   // local time at which to look again: the quantum's end, or later (run-ahead)
+  uint64_t m_run_ahead_ticks;    // params.run_ahead
+  uint64_t m_run_aheads = 0;     // synchronisations skipped
+  uint64_t m_syncs = 0;          // synchronisations made
+  void restart_quantum();
+  void quantum_used_up();
   DataCache m_dcache;
   tlm::tlm_generic_payload m_payload;
   TransferTrain* m_train;  // owned by m_payload

@@ -75,8 +75,8 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
     m_busy = true;
     m_done = false;
     m_error = false;
-    // The run starts one clock after the write reaches the register (at
-    // the access's annotated time; the bus forwards with none).
+    // The run starts one clock after the write reaches the register, at
+    // the access's annotated time (the bus forwards the initiator's).
     m_start.notify(m_access_delay + m_params.clock_period);
   });
   m_regs.add(TILE_TABLE);

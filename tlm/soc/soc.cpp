@@ -60,6 +60,9 @@ HostParams host_params(const Config& config) {
   p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
   p.cacheable_base = memory_map::sysmem.base;
   p.cacheable_size = static_cast<uint32_t>(config.get_uint("mem.size_mib") << 20);
+  // A quantum of zero asks for synchronisation on every access: no run-ahead.
+  if (config.get_uint("sim.quantum_ns") != 0)
+    p.run_ahead = sc_core::sc_time(static_cast<double>(config.get_uint("sim.run_ahead_us")), sc_core::SC_US);
   return p;
 }
 
