@@ -143,7 +143,7 @@ int run(int argc, char* argv[]) {
   cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
-  cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm");
+  cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm or raster");
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
