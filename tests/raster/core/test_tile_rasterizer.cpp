@@ -385,6 +385,34 @@ TEST(TileRasterizer, TextureCoordinatesArePerspectiveCorrect) {
   EXPECT_EQ(off_by_more, 0u);
 }
 
+// Gouraud colours in perspective follow (c/w)/(1/w) too (GL 1.5 eq. 3.6,
+// as Mesa does): red from 0 at the near edge to 255 at the far one is well
+// below the affine ramp in the middle of the quad.
+TEST(TileRasterizer, GouraudColoursArePerspectiveCorrect) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  const float w_left = 1, w_right = 4;
+  const uint32_t black = 0xff000000u, red = 0xff0000ffu;
+  const VertexRecord a = vertex(0, 0, black, 0, 0, 0, w_left), b = vertex(96, 0, red, 0, 0, 0, w_right),
+                     c = vertex(96, 48, red, 0, 0, 0, w_right), d = vertex(0, 48, black, 0, 0, 0, w_left);
+  frame.triangle(a, b, c);
+  frame.triangle(a, c, d);
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  int worst = 0;
+  for (unsigned y : {5u, 20u, 40u}) {
+    for (unsigned x = 0; x < 96; ++x) {
+      const double f = (x + 0.5) / 96;
+      const double r = 255 * (f / w_right) / ((1 - f) / w_left + f / w_right);
+      worst = std::max(worst, std::abs(int(frame.pixel(x, y) & 0xff) - int(std::lround(r))));
+    }
+  }
+  EXPECT_LE(worst, 1);
+  // The affine ramp would give 128 at the middle; the perspective one 52.
+  EXPECT_NEAR(int(frame.pixel(48, 20) & 0xff), 52, 1);
+}
+
 TEST(TileRasterizer, BlendingSourceAlpha) {
   VectorPort port(MEMORY_SIZE);
   Frame frame(port, 96, 48);
