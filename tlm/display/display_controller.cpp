@@ -195,7 +195,9 @@ void DisplayController::scan_out() {
   const sc_time line_time = period / static_cast<double>(m_params.height + m_params.vblank_lines);
   const unsigned line_bytes = m_params.width * bytes_per_pixel();
   const sc_time lead = line_time * static_cast<double>(m_params.fifo_lines);
-  std::vector<uint8_t> next(frame_bytes());
+  // The frame being fetched is a member, not a local: this thread never
+  // returns, and its stack is not unwound at the end of the simulation.
+  std::vector<uint8_t>& next = m_scan_frame;
   for (;;) {
     // A refresh period: vertical blank, then the visible lines. A requested
     // swap takes effect at the start of the blank.

@@ -95,7 +95,7 @@ class DisplayController : public sc_core::sc_module {
   RegisterBank m_regs;
   std::function<void(const Frame&)> m_sink;
   std::vector<uint8_t> m_port_frame;
-  std::vector<uint8_t> m_scan_frame;
+  std::vector<uint8_t> m_scan_frame;  // the frame scan_out is fetching
   sc_core::sc_event m_irq_changed;
   sc_core::sc_event m_frame_shown;
   sc_core::sc_time m_access_delay;  // annotated time of the register access being served
