@@ -40,8 +40,8 @@ const std::vector<ParamSpec>& parameter_specs() {
       integer("sim.quantum_ns", 1000, 0, 1000000, "ns",
               "temporal-decoupling quantum of the loosely-timed initiators (0: synchronise on every access)"),
       integer("sim.run_ahead_us", 1000, 0, 1000000, "us",
-              "how far the host may run past its quantum while no other process has anything scheduled "
-              "before its local time (0: always synchronise at the end of the quantum)"),
+              "how far ahead of the kernel the host may run past its quantum while no other process has "
+              "anything scheduled that soon (0: always synchronise at the end of the quantum)"),
       integer("sim.time_limit_ms", 60000, 1, 3600000, "ms",
               "simulated-time limit; a run that reaches it stops with an error"),
       choice("sim.log_level", "warning", {"quiet", "error", "warning", "info", "debug"},

@@ -46,8 +46,8 @@ struct HostParams {
   uint32_t cacheable_base = 0;
   uint32_t cacheable_size = 0;
   // How far past the kernel's time the host may run on when its quantum is
-  // used up but no other process has anything scheduled before its local
-  // time (zero: always synchronise at the quantum).
+  // used up but no other process has anything scheduled within that window
+  // (zero: always synchronise at the quantum).
   sc_core::sc_time run_ahead = sc_core::SC_ZERO_TIME;
 };
 
