@@ -125,6 +125,12 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
   std::printf("  %-10s %14s %12s  %llu frames shown, %.1f frames/s achieved, %llu underrun lines\n", "display", "-",
               "-", display["frames_shown"].get<unsigned long long>(), display["achieved_fps"].get<double>(),
               display["underrun_lines"].get<unsigned long long>());
+  const auto& raster = stats["raster"];
+  std::printf("  %-10s %14s %11.1f%%  %llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)\n",
+              "raster", format_time(raster["busy_ns"].get<double>() * 1e-9).c_str(),
+              raster["utilisation"].get<double>() * 100, raster["runs"].get<unsigned long long>(),
+              raster["triangles"].get<unsigned long long>(), raster["tiles"].get<unsigned long long>(),
+              raster["fragments"].get<unsigned long long>(), raster["fragments_written"].get<unsigned long long>());
   std::printf("\n  bus traffic per initiator\n  %-12s %12s %12s %12s %12s %12s\n", "initiator", "transactions",
               "bytes", "busy cycles", "wait cycles", "utilisation");
   for (const auto& [name, s] : bus["initiators"].items())

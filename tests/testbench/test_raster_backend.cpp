@@ -97,6 +97,10 @@ class RasterBackend : public ::testing::Test {
     EXPECT_EQ(bus["bytes"].get<double>(),
               raster["bus"]["bytes_read"].get<double>() + raster["bus"]["bytes_written"].get<double>());
     EXPECT_EQ(stats["display"]["frames_shown"], 2);
+    // The summary on stdout has the rasterizer's row with the same counts.
+    const std::string row = "2 runs, " + std::to_string(raster["triangles"].get<unsigned long long>()) +
+                            " triangles, " + std::to_string(raster["tiles"].get<unsigned long long>()) + " tiles";
+    EXPECT_TRUE(contains(result.out, row)) << "no '" << row << "' in the summary:\n" << result.out;
     return stats;
   }
 
