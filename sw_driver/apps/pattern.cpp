@@ -1,4 +1,4 @@
-// The default demo until the GL driver exists: the host draws a moving test
+// A diagnostic application without the GL driver: the host draws a moving test
 // pattern -- eight colour bars, a grey ramp and a white square that moves
 // with the frame number -- into the back buffer over the bus, and presents it.
 #include <vector>
