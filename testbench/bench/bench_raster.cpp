@@ -13,9 +13,7 @@
 //
 //   bench_raster [--frames N] [--repeat R] [--wall-scene NAME ...] [--scene NAME ...]
 //                [--vectors V] [--config FILE ...] [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,11 +28,12 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+
+#include "bench_support.h"
 
 #include "apps/gl_apps.h"
 #include "native_host.h"
@@ -44,12 +43,11 @@
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using namespace tessera::bench;
 
 // The built-in scenes, from the driver's registry that soc_sim is built with.
 std::vector<std::string> all_scene_names() {
@@ -72,75 +70,6 @@ struct Options {
   std::string self;
   std::string native_core;  // child mode: run this scene's core natively, print JSON
 };
-
-struct ChildResult {
-  double wall_s = 0;
-  std::string output;  // stdout
-};
-
-// Runs `argv` with stdout captured in `output_file`, stderr shared with us.
-// Throws if it cannot start or does not exit with status 0.
-ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
-  std::vector<char*> args;
-  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) throw std::runtime_error("waitpid failed for " + argv[0]);
-  ChildResult result;
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::ifstream in(output_file);
-  std::stringstream text;
-  text << in.rdbuf();
-  result.output = text.str();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string command;
-    for (const auto& arg : argv) command += arg + " ";
-    throw std::runtime_error("failed (status " + std::to_string(status) + "): " + command);
-  }
-  return result;
-}
-
-json read_json_file(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  return json::parse(in);
-}
-
-std::string first_line_of(const fs::path& path, const std::string& prefix) {
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind(prefix, 0) == 0) return line;
-  return "";
-}
-
-// The 1, 5 and 15 minute load averages: how busy the machine was.
-std::string load_average() {
-  std::istringstream fields(first_line_of("/proc/loadavg", ""));
-  std::string one, five, fifteen;
-  fields >> one >> five >> fifteen;
-  return one + " " + five + " " + fifteen;
-}
-
-std::string format_ms(double seconds) {
-  char text[32];
-  const double ms = seconds * 1e3;
-  std::snprintf(text, sizeof text, ms >= 100 ? "%.0f ms" : ms >= 10 ? "%.1f ms" : "%.2f ms", ms);
-  return text;
-}
-
-std::string format_ratio(double ratio) {
-  char text[32];
-  std::snprintf(text, sizeof text, ratio >= 10 ? "%.0f" : ratio >= 1 ? "%.1f" : "%.2f", ratio);
-  return text;
-}
 
 std::string format_count(double count) {
   char text[32];
@@ -515,8 +444,6 @@ void Bench::run() {
   m_config = json::parse(run_child(print_config, m_work / "config.json").output);
   const json& config = m_config;
 
-  std::string cpu = first_line_of("/proc/cpuinfo", "model name");
-  cpu = cpu.substr(cpu.find(':') == std::string::npos ? 0 : cpu.find(':') + 2);
   const std::string load_before = load_average();
   const auto start = std::chrono::steady_clock::now();
 
@@ -564,20 +491,8 @@ void Bench::run() {
       display["dma"].get<bool>() ? "DMA" : "port", static_cast<unsigned>(raster["clock_mhz"].get<double>()),
       raster["tile_width"].get<unsigned>(), raster["tile_height"].get<unsigned>(),
       raster["recip_method"].get<unsigned>(), m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
-  std::printf(
-      "Machine: %s, %u hardware threads, %s build; load average (1, 5, 15 min) %s before, %s after; "
-      "the benchmark took %.0f s.\n",
-      cpu.c_str(), std::thread::hardware_concurrency(), TESSERA_BENCH_BUILD_TYPE, load_before.c_str(),
-      load_average().c_str(), total_s);
+  std::printf("%s\n", machine_summary(load_before, total_s).c_str());
   if (m_opt.work_dir.empty()) fs::remove_all(m_work);
-}
-
-// The build tree puts bench_raster and bench_rtl in testbench/bench/ and
-// soc_sim in testbench/.
-fs::path own_directory() {
-  std::error_code error;
-  const fs::path self = fs::read_symlink("/proc/self/exe", error);
-  return error ? fs::current_path() : self.parent_path();
 }
 
 }  // namespace

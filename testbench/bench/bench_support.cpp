@@ -1,0 +1,108 @@
+#include "bench_support.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace tessera::bench {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string first_line_of(const fs::path& path, const std::string& prefix) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return line;
+  return "";
+}
+
+}  // namespace
+
+ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
+  std::vector<char*> args;
+  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) throw std::runtime_error("wait4 failed for " + argv[0]);
+  ChildResult result;
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.max_rss_kib = usage.ru_maxrss;
+  std::ifstream in(output_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  result.output = text.str();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string command;
+    for (const auto& arg : argv) command += arg + " ";
+    throw std::runtime_error("failed (status " + std::to_string(status) + "): " + command);
+  }
+  return result;
+}
+
+nlohmann::json read_json_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return nlohmann::json::parse(in);
+}
+
+fs::path own_directory() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  return error ? fs::current_path() : self.parent_path();
+}
+
+std::string load_average() {
+  std::istringstream fields(first_line_of("/proc/loadavg", ""));
+  std::string one, five, fifteen;
+  fields >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+std::string machine_summary(const std::string& load_before, double total_s) {
+  std::string cpu = first_line_of("/proc/cpuinfo", "model name");
+  cpu = cpu.substr(cpu.find(':') == std::string::npos ? 0 : cpu.find(':') + 2);
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "Machine: %s, %u hardware threads, %s build; load average (1, 5, 15 min) %s before, %s after; "
+                "the benchmark took %.0f s.",
+                cpu.c_str(), std::thread::hardware_concurrency(), TESSERA_BENCH_BUILD_TYPE, load_before.c_str(),
+                load_average().c_str(), total_s);
+  return text;
+}
+
+std::string format_ms(double seconds) {
+  char text[32];
+  const double ms = seconds * 1e3;
+  std::snprintf(text, sizeof text, ms >= 100 ? "%.0f ms" : ms >= 10 ? "%.1f ms" : "%.2f ms", ms);
+  return text;
+}
+
+std::string format_ratio(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, ratio >= 10 ? "%.0f" : ratio >= 1 ? "%.1f" : "%.2f", ratio);
+  return text;
+}
+
+}  // namespace tessera::bench

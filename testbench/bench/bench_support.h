@@ -1,0 +1,40 @@
+// What the benchmark drivers (bench_arm, bench_raster) share: running a child
+// process with its stdout in a file and its wall time and peak memory
+// measured, reading JSON, formatting figures, and describing the machine.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tessera::bench {
+
+struct ChildResult {
+  double wall_s = 0;
+  long max_rss_kib = 0;  // ru_maxrss of the child
+  std::string output;    // its stdout
+};
+
+// Runs `argv` with stdout captured in `output_file`, stderr shared with us.
+// Throws if it cannot start or does not exit with status 0.
+ChildResult run_child(const std::vector<std::string>& argv, const std::filesystem::path& output_file);
+
+nlohmann::json read_json_file(const std::filesystem::path& path);
+
+// The folder of the running executable (the build tree puts the benchmarks
+// in testbench/bench/ and soc_sim in testbench/).
+std::filesystem::path own_directory();
+
+// The 1, 5 and 15 minute load averages: how busy the machine was.
+std::string load_average();
+
+// "Machine: <cpu>, <n> hardware threads, <build type> build; load average
+// ... before, ... after; the benchmark took <s> s."
+std::string machine_summary(const std::string& load_before, double total_s);
+
+std::string format_ms(double seconds);  // 3 significant digits
+std::string format_ratio(double ratio);
+
+}  // namespace tessera::bench
