@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <string>
 #include <vector>
@@ -71,5 +72,28 @@ inline std::string describe(const SimResult& run) {
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A fixture with a fresh folder per test (m_dir, under the temporary folder,
+// named after the test suite), removed after a passing test and kept, with
+// its path printed, after a failing one so that a person can look.
+class ScratchFolderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string suite = ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name();
+    std::string pattern = (std::filesystem::temp_directory_path() / ("tessera_" + suite + "_XXXXXX")).string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr) << "cannot create " << pattern;
+    m_dir = pattern;
+  }
+  void TearDown() override {
+    if (HasFailure()) {
+      std::cerr << "[ kept     ] " << m_dir.string() << "\n";
+      return;
+    }
+    std::error_code ignored;
+    std::filesystem::remove_all(m_dir, ignored);
+  }
+
+  std::filesystem::path m_dir;
+};
 
 }  // namespace tessera::test

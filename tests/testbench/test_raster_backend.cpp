@@ -45,21 +45,11 @@ SimResult run_soc_sim(const fs::path& dir, const std::vector<std::string>& args)
   return tessera::test::run_soc_sim(g_soc_sim, dir, args);
 }
 
-class RasterBackend : public ::testing::Test {
+class RasterBackend : public tessera::test::ScratchFolderTest {
  protected:
   void SetUp() override {
     ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_raster_backend <path to soc_sim>";
-    std::string pattern = (fs::temp_directory_path() / "tessera_test_raster_backend_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    m_dir = pattern;
-  }
-  void TearDown() override {
-    if (HasFailure()) {
-      std::cerr << "[ kept     ] " << m_dir.string() << "\n";
-      return;
-    }
-    std::error_code ignored;
-    fs::remove_all(m_dir, ignored);
+    ScratchFolderTest::SetUp();
   }
   SimResult run(const std::vector<std::string>& args) { return run_soc_sim(m_dir, args); }
 
@@ -103,8 +93,6 @@ class RasterBackend : public ::testing::Test {
     EXPECT_TRUE(contains(result.out, row)) << "no '" << row << "' in the summary:\n" << result.out;
     return stats;
   }
-
-  fs::path m_dir;
 };
 
 TEST_F(RasterBackend, TriangleRunsAndMatchesTheArmBackEnd) {

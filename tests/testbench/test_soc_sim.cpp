@@ -116,22 +116,12 @@ unsigned alpha(const tessera::Image& image, unsigned x, unsigned y) {
   return image.rgba[(size_t{y} * image.width + x) * 4 + 3];
 }
 
-class SocSim : public ::testing::Test {
+class SocSim : public tessera::test::ScratchFolderTest {
  protected:
   void SetUp() override {
     ASSERT_FALSE(g_soc_sim.empty()) << "usage: test_soc_sim <path to soc_sim>";
     ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << g_soc_sim;
-    std::string pattern = (fs::temp_directory_path() / "tessera_test_soc_sim_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    m_dir = pattern;
-  }
-  void TearDown() override {
-    if (HasFailure()) {
-      std::cerr << "[ kept     ] " << m_dir.string() << "\n";
-      return;
-    }
-    std::error_code ignored;
-    fs::remove_all(m_dir, ignored);
+    ScratchFolderTest::SetUp();
   }
 
   SimResult run(const std::vector<std::string>& args) { return run_soc_sim(m_dir, args); }
@@ -222,8 +212,6 @@ class SocSim : public ::testing::Test {
       return json::object();
     }
   }
-
-  fs::path m_dir;
 };
 
 // The square moves by 16 pixels a frame: at x = 70 (yellow bar) the square
