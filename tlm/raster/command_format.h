@@ -85,4 +85,18 @@ enum class RasterError : uint32_t {
   bad_reciprocal = 5,     // reciprocal operand 0 or above 2^14 - 1 reached the unit: the triangle is skipped, counted, not fatal
 };
 
+// The name of an ERROR_STATUS code, for messages of the model and the driver.
+inline const char* error_name(uint32_t code) {
+  switch (static_cast<RasterError>(code)) {
+    case RasterError::none: return "none";
+    case RasterError::bus_error: return "bus_error";
+    case RasterError::bad_opcode: return "bad_opcode";
+    case RasterError::list_overrun: return "list_overrun";
+    case RasterError::bad_texture: return "bad_texture";
+    case RasterError::bad_reciprocal: return "bad_reciprocal";
+  }
+  return "unknown";
+}
+inline const char* error_name(RasterError error) { return error_name(static_cast<uint32_t>(error)); }
+
 }  // namespace tessera::raster

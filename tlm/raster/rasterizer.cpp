@@ -32,18 +32,6 @@ raster::RecipMethod recip_method_of(uint32_t number) {
   return raster::RecipMethod::method3;
 }
 
-const char* error_name(raster::RasterError error) {
-  switch (error) {
-    case raster::RasterError::none: return "none";
-    case raster::RasterError::bus_error: return "bus_error";
-    case raster::RasterError::bad_opcode: return "bad_opcode";
-    case raster::RasterError::list_overrun: return "list_overrun";
-    case raster::RasterError::bad_texture: return "bad_texture";
-    case raster::RasterError::bad_reciprocal: return "bad_reciprocal";
-  }
-  return "unknown";
-}
-
 // A triangle skipped for a bad reciprocal operand is counted, not fatal
 // (command_format.h): the run still completes.
 bool fatal(raster::RasterError error) {
@@ -250,7 +238,7 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
   if (fatal(result.error)) {
     ++m_failed_runs;
     m_error = true;
-    log::warning(name(), std::string("run failed: ") + error_name(result.error) + " at " +
+    log::warning(name(), std::string("run failed: ") + raster::error_name(result.error) + " at " +
                              log::hex(result.error_address));
     raise(regs::IRQ_ERROR);
   } else {

@@ -84,18 +84,6 @@ raster::VertexRecord encode_vertex(const gl::ScreenVertex& v) {
   return r;
 }
 
-const char* error_name(uint32_t code) {
-  switch (static_cast<raster::RasterError>(code)) {
-    case raster::RasterError::none: return "none";
-    case raster::RasterError::bus_error: return "bus_error";
-    case raster::RasterError::bad_opcode: return "bad_opcode";
-    case raster::RasterError::list_overrun: return "list_overrun";
-    case raster::RasterError::bad_texture: return "bad_texture";
-    case raster::RasterError::bad_reciprocal: return "bad_reciprocal";
-  }
-  return "unknown";
-}
-
 }  // namespace
 
 RasterRenderer::RasterRenderer(AppEnvironment& env) : m_host(*env.host), m_display(env) {
@@ -307,7 +295,7 @@ void RasterRenderer::run_rasterizer(uint32_t tile_table) {
     char where[16];
     std::snprintf(where, sizeof where, "0x%08x", static_cast<unsigned>(address));
     throw std::runtime_error("raster back end: the rasterizer stopped with error " + std::to_string(code) + " (" +
-                             error_name(code) + ") at " + where);
+                             raster::error_name(code) + ") at " + where);
   }
 }
 
