@@ -3,29 +3,24 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <random>
 
 #include "attr_interp_adapter.h"
+#include "cosim_support.h"
 #include "raster/datapath/attribute_interpolator.h"
 
 namespace tessera::raster {
 namespace {
 
-constexpr uint64_t RANDOM_VECTORS = 1'000'000;
-
-struct checker {
+struct checker : cosim_tally {
     attr_interp_rtl rtl;
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
 
     void check(const attribute_plane& p, int dx, int dy) {
         const attribute_evaluation want = evaluate_attribute(p, dx, dy);
         const attribute_evaluation got = rtl.evaluate(p, dx, dy);
-        ++vectors;
         const bool same = want.value == got.value && want.value_next_x == got.value_next_x &&
                           want.value_next_y == got.value_next_y && want.output == got.output;
-        if (!same && ++mismatches <= 10) {
+        if (count(same)) {
             ADD_FAILURE() << "kind " << int(p.kind) << " start " << p.start << " gx " << p.grad_x << " gy "
                           << p.grad_y << " offset " << dx << "," << dy << ": value " << want.value.raw << "/"
                           << got.value.raw << " next_x " << want.value_next_x.raw << "/" << got.value_next_x.raw
@@ -64,11 +59,7 @@ TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
         c.check(attribute_plane{kind, s, gx, gy}, static_cast<int>(o & 0x3ff) - 512,
                 static_cast<int>((o >> 10) & 0x3ff) - 512);
     }
-    std::printf("attr_interp cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n",
-                static_cast<unsigned long long>(c.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(RANDOM_VECTORS), static_cast<unsigned long long>(c.mismatches));
-    EXPECT_EQ(c.mismatches, 0u);
-    EXPECT_GE(c.vectors, 1'000'000u);
+    report_cosim("attr_interp", c, corner_vectors);
 }
 
 } // namespace

@@ -4,31 +4,26 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <random>
 
-#include "raster/datapath/edge_function.h"
+#include "cosim_support.h"
 #include "edge_function_adapter.h"
+#include "raster/datapath/edge_function.h"
 
 namespace tessera::raster {
 namespace {
 
-constexpr uint64_t RANDOM_VECTORS = 1'000'000;
-
-struct checker {
+struct checker : cosim_tally {
     edge_function_rtl rtl;
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
 
     void check(const edge& e, unsigned px, unsigned py, q5_16 recip) {
         const edge_evaluation want = evaluate_edge(e, px, py, recip);
         const edge_evaluation got = rtl.evaluate(e, px, py, recip);
-        ++vectors;
         const bool same = want.value == got.value && want.value_next_x == got.value_next_x &&
                           want.value_next_y == got.value_next_y && want.inside == got.inside &&
                           want.l1_length == got.l1_length && want.distance == got.distance &&
                           want.coverage == got.coverage;
-        if (!same && ++mismatches <= 10) {
+        if (count(same)) {
             ADD_FAILURE() << "edge (" << e.x0.raw << "," << e.y0.raw << ")->(" << e.x1.raw << "," << e.y1.raw
                           << ") pixel " << px << "," << py << " recip " << recip.raw << ": value "
                           << want.value.raw << "/" << got.value.raw << " next_x " << want.value_next_x.raw << "/"
@@ -83,11 +78,7 @@ TEST(EdgeFunctionCosim, CornerAndRandomVectorsMatchBitForBit) {
             c.check(e, px, py, q5_16::from_raw(static_cast<uint32_t>(more >> 42)));
         }
     }
-    std::printf("edge_function cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n",
-                static_cast<unsigned long long>(c.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(RANDOM_VECTORS), static_cast<unsigned long long>(c.mismatches));
-    EXPECT_EQ(c.mismatches, 0u);
-    EXPECT_GE(c.vectors, 1'000'000u);
+    report_cosim("edge_function", c, corner_vectors);
 }
 
 } // namespace

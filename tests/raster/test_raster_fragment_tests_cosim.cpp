@@ -3,16 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <random>
 
-#include "raster/datapath/fragment_tests.h"
+#include "cosim_support.h"
 #include "fragment_tests_adapter.h"
+#include "raster/datapath/fragment_tests.h"
 
 namespace tessera::raster {
 namespace {
-
-constexpr uint64_t RANDOM_VECTORS = 1'000'000;
 
 constexpr std::array<compare_func, 8> ALL_FUNCS{compare_func::NEVER,   compare_func::LESS,     compare_func::EQUAL,
                                                 compare_func::LEQUAL,  compare_func::GREATER,  compare_func::NOTEQUAL,
@@ -22,19 +20,16 @@ constexpr std::array<stencil_op, 7> ALL_OPS{stencil_op::KEEP, stencil_op::ZERO, 
                                             stencil_op::INCR, stencil_op::DECR,   stencil_op::INVERT,
                                             static_cast<stencil_op>(0x1E04)};
 
-struct checker {
+struct checker : cosim_tally {
     fragment_tests_rtl rtl;
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
 
     void check(const fragment_test_state& s, const fragment_test_input& in) {
         const fragment_test_result want = run_fragment_tests(s, in);
         const fragment_test_result got = rtl.run(s, in);
-        ++vectors;
         const bool same = want.alpha_pass == got.alpha_pass && want.stencil_pass == got.stencil_pass &&
                           want.depth_pass == got.depth_pass && want.pass == got.pass &&
                           want.stencil == got.stencil && want.depth_write == got.depth_write;
-        if (!same && ++mismatches <= 10) {
+        if (count(same)) {
             ADD_FAILURE() << "vector " << vectors << ": alpha " << want.alpha_pass << "/" << got.alpha_pass
                           << " stencil " << want.stencil_pass << "/" << got.stencil_pass << " depth "
                           << want.depth_pass << "/" << got.depth_pass << " pass " << want.pass << "/" << got.pass
@@ -112,11 +107,7 @@ TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
         }
         c.check(s, in);
     }
-    std::printf("fragment_tests cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n",
-                static_cast<unsigned long long>(c.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(RANDOM_VECTORS), static_cast<unsigned long long>(c.mismatches));
-    EXPECT_EQ(c.mismatches, 0u);
-    EXPECT_GE(c.vectors, 1'000'000u);
+    report_cosim("fragment_tests", c, corner_vectors);
 }
 
 } // namespace

@@ -3,31 +3,26 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <random>
 
+#include "cosim_support.h"
 #include "raster/datapath/texel_address.h"
 #include "texel_address_adapter.h"
 
 namespace tessera::raster {
 namespace {
 
-constexpr uint64_t RANDOM_VECTORS = 1'000'000;
-
-struct checker {
+struct checker : cosim_tally {
     texel_address_rtl rtl;
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
 
     void check(const texture_state& st, q15_16 s, q15_16 t) {
         const texel_footprint want = texel_lookup(st, s, t);
         const texel_footprint got = rtl.lookup(st, s, t);
-        ++vectors;
         const auto same_axis = [](const texel_axis& a, const texel_axis& b) {
             return a.index0 == b.index0 && a.index1 == b.index1 && a.weight == b.weight;
         };
         const bool same = same_axis(want.s, got.s) && same_axis(want.t, got.t) && want.address == got.address;
-        if (!same && ++mismatches <= 10) {
+        if (count(same)) {
             ADD_FAILURE() << "s " << s.raw << " t " << t.raw << " log2 " << int(st.log2_width) << "x"
                           << int(st.log2_height) << " wrap " << static_cast<unsigned>(st.wrap_s) << "/"
                           << static_cast<unsigned>(st.wrap_t) << " filter " << static_cast<unsigned>(st.filter)
@@ -87,11 +82,7 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
         };
         c.check(st, q15_16{pick(b)}, q15_16{pick(b >> 32)});
     }
-    std::printf("texel_address cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n",
-                static_cast<unsigned long long>(c.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(RANDOM_VECTORS), static_cast<unsigned long long>(c.mismatches));
-    EXPECT_EQ(c.mismatches, 0u);
-    EXPECT_GE(c.vectors, 1'000'000u);
+    report_cosim("texel_address", c, corner_vectors);
 }
 
 } // namespace

@@ -3,31 +3,26 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <random>
 
+#include "cosim_support.h"
 #include "raster/datapath/texture_env.h"
 #include "texture_env_adapter.h"
 
 namespace tessera::raster {
 namespace {
 
-constexpr uint64_t RANDOM_VECTORS = 1'000'000;
-
 // Every environment, plus an undefined enum value (fragment passes on both sides).
 constexpr std::array<texture_env_mode, 4> ALL_MODES{texture_env_mode::REPLACE, texture_env_mode::MODULATE,
                                                     texture_env_mode::DECAL, static_cast<texture_env_mode>(0x2102)};
 
-struct checker {
+struct checker : cosim_tally {
     texture_env_rtl rtl;
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
 
     void check(texture_env_mode mode, const std::array<rgba8, 4>& texels, uint8_t ws, uint8_t wt, rgba8 fragment) {
         const texture_env_result want = texture_filter_env(mode, texels, ws, wt, fragment);
         const texture_env_result got = rtl.run(mode, texels, ws, wt, fragment);
-        ++vectors;
-        if ((want.texel != got.texel || want.fragment != got.fragment) && ++mismatches <= 10) {
+        if (count(want.texel == got.texel && want.fragment == got.fragment)) {
             ADD_FAILURE() << std::hex << "mode " << static_cast<unsigned>(mode) << " texels " << texels[0].pack()
                           << " " << texels[1].pack() << " " << texels[2].pack() << " " << texels[3].pack()
                           << " weights " << unsigned(ws) << "," << unsigned(wt) << " fragment " << fragment.pack()
@@ -66,11 +61,7 @@ TEST(TextureEnvCosim, CornerAndRandomVectorsMatchBitForBit) {
         c.check(ALL_MODES[d & 3], texels, static_cast<uint8_t>(d >> 8), static_cast<uint8_t>(d >> 16),
                 rgba8::unpack(static_cast<uint32_t>(d >> 32)));
     }
-    std::printf("texture_env cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n",
-                static_cast<unsigned long long>(c.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(RANDOM_VECTORS), static_cast<unsigned long long>(c.mismatches));
-    EXPECT_EQ(c.mismatches, 0u);
-    EXPECT_GE(c.vectors, 1'000'000u);
+    report_cosim("texture_env", c, corner_vectors);
 }
 
 } // namespace
