@@ -7,7 +7,7 @@ Runs the recip_table command once per method and writes, into the output
 folder, one PNG per method (fig4_method1.png, fig5_method2.png,
 fig7_method3.png) and all three on one page (reciprocal_error_all.png).
 
-    scripts/plot_reciprocal_error.py build/default/testbench/recip_table out/recip
+    scripts/plot_reciprocal_error.py build/default/bin/recip_table out/recip
 
 Needs matplotlib (Debian: python3-matplotlib).
 """

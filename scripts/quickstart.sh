@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset default
 cmake --build --preset default
-build/default/testbench/soc_sim "$@"
+build/default/bin/soc_sim "$@"

@@ -3,7 +3,7 @@
 # table (soc_sim --config-reference), between the two marker lines.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sim=${1:-build/default/testbench/soc_sim}
+sim=${1:-build/default/bin/soc_sim}
 table=$("$sim" --config-reference)
 python3 - "$table" <<'PY'
 import sys

@@ -3,7 +3,7 @@
 // Normally that is tessera's OpenGL ES 1.1 (<GLES/gl.h> from sw_driver/include).
 // The reference images come from compiling the same scene sources a second
 // time with TESSERA_GL_REFERENCE defined, against Mesa's desktop <GL/gl.h>
-// (testbench/reference/CMakeLists.txt, tessera_add_reference_scenes). Desktop
+// (tools/reference/CMakeLists.txt, tessera_add_reference_scenes). Desktop
 // GL has every ES 1.1 common-profile float entry point except the ones ES
 // renamed to single precision; those are mapped onto their double-precision
 // originals below, so a scene calls them by their ES names in both builds.

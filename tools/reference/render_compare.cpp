@@ -77,16 +77,15 @@ std::string known_scene_names() {
   return names;
 }
 
-// The build tree puts render_compare in testbench/reference/ and soc_sim in
-// testbench/; an installation may put them side by side.
+// The build tree and an installation both put render_compare and soc_sim
+// side by side in bin/.
 fs::path default_soc_sim() {
   std::error_code error;
   const fs::path self = fs::read_symlink("/proc/self/exe", error);
   if (error) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + error.message());
-  for (const fs::path& candidate : {self.parent_path() / "soc_sim", self.parent_path().parent_path() / "soc_sim"})
-    if (fs::is_regular_file(candidate)) return candidate;
-  throw std::runtime_error("no soc_sim next to " + self.string() + " or in " + self.parent_path().parent_path().string() +
-                           "; name one with --soc-sim");
+  const fs::path candidate = self.parent_path() / "soc_sim";
+  if (fs::is_regular_file(candidate)) return candidate;
+  throw std::runtime_error("no soc_sim next to " + self.string() + "; name one with --soc-sim");
 }
 
 std::string last_lines(const fs::path& file, size_t count) {

@@ -24,7 +24,7 @@ ChildResult run_child(const std::vector<std::string>& argv, const std::filesyste
 nlohmann::json read_json_file(const std::filesystem::path& path);
 
 // The folder of the running executable (the build tree puts the benchmarks
-// in testbench/bench/ and soc_sim in testbench/).
+// and soc_sim side by side in bin/).
 std::filesystem::path own_directory();
 
 // The 1, 5 and 15 minute load averages: how busy the machine was.

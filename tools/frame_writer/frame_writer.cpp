@@ -16,7 +16,7 @@ void write_png(const std::string& path, unsigned width, unsigned height, const s
   // Our pixels are not premultiplied; without this OpenImageIO divides by alpha.
   spec.attribute("oiio:UnassociatedAlpha", 1);
   // Fast compression: frames are written during the simulation, and the
-  // default level costs more than simulating a frame (testbench/bench).
+  // default level costs more than simulating a frame (bench/).
   spec.attribute("png:compressionLevel", 1);
   // No row filter (PNG_FILTER_NONE): libpng's adaptive choice tries all five
   // per row and costs more than the compression; rendered frames with flat

@@ -526,7 +526,7 @@ int main(int argc, char** argv) {
 
   const fs::path here = own_directory();
   opt.self = (here / "bench_raster").string();
-  if (opt.soc_sim.empty()) opt.soc_sim = (here.parent_path() / "soc_sim").string();
+  if (opt.soc_sim.empty()) opt.soc_sim = (here / "soc_sim").string();
   opt.bench_rtl = (here / "bench_rtl").string();
   for (const auto& program : {opt.soc_sim, opt.bench_rtl})
     if (!fs::exists(program)) {

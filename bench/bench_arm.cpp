@@ -267,7 +267,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(cli, argc, argv);
 
   const fs::path here = own_directory();
-  if (opt.soc_sim.empty()) opt.soc_sim = (here.parent_path() / "soc_sim").string();
+  if (opt.soc_sim.empty()) opt.soc_sim = (here / "soc_sim").string();
   opt.native = (here / "bench_arm_native").string();
   opt.mesa = (here / "bench_arm_mesa").string();
   for (const auto& program : {opt.soc_sim, opt.native, opt.mesa})
