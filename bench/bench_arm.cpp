@@ -91,13 +91,12 @@ std::vector<std::string> Bench::scene_args(const std::string& scene) const {
   return {};
 }
 
-std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames,
-                                                const fs::path& out) const {
+std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
   // Many frames of a heavy scene exceed the default simulated-time limit.
-  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(),
-                                 "--quiet", "--set", "sim.time_limit_ms=3600000"});
+  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet",
+                                 "--set", "sim.time_limit_ms=3600000"});
   const auto args = scene_args(scene);
   if (!args.empty()) {
     command.push_back("--");
@@ -162,19 +161,18 @@ SceneResult Bench::measure(const std::string& scene) {
   };
   const std::string width = std::to_string(display["width"].get<unsigned>());
   const std::string height = std::to_string(display["height"].get<unsigned>());
-  const ChildResult mesa =
-      run_child(with_args({m_opt.mesa, "--scene", scene, "--frames", std::to_string(n), "--repeat",
-                           std::to_string(m_opt.repeat), "--width", width, "--height", height}),
-                m_work / "mesa.stdout");
+  const ChildResult mesa = run_child(with_args({m_opt.mesa, "--scene", scene, "--frames", std::to_string(n), "--repeat",
+                                                std::to_string(m_opt.repeat), "--width", width, "--height", height}),
+                                     m_work / "mesa.stdout");
   result.mesa_per_frame_s = json::parse(mesa.output)["wall_per_frame_s"].get<double>();
   result.native_per_frame_s = std::numeric_limits<double>::max();
   for (unsigned r = 0; r < m_opt.repeat; ++r) {
-    const ChildResult native = run_child(
-        with_args({m_opt.native, "--scene", scene, "--frames", std::to_string(n), "--width", width, "--height",
-                   height, "--format", display["format"].get<std::string>(), "--dma",
-                   display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
-                   std::to_string(m_config["mem"]["size_mib"].get<unsigned>())}),
-        m_work / "native.stdout");
+    const ChildResult native =
+        run_child(with_args({m_opt.native, "--scene", scene, "--frames", std::to_string(n), "--width", width,
+                             "--height", height, "--format", display["format"].get<std::string>(), "--dma",
+                             display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
+                             std::to_string(m_config["mem"]["size_mib"].get<unsigned>())}),
+                  m_work / "native.stdout");
     result.native_per_frame_s =
         std::min(result.native_per_frame_s, json::parse(native.output)["wall_per_frame_s"].get<double>());
   }
@@ -183,9 +181,10 @@ SceneResult Bench::measure(const std::string& scene) {
 
 void Bench::print_table(const std::vector<SceneResult>& results, long default_rss_kib) const {
   const auto& display = m_config["display"];
-  std::printf("| scene | simulated / frame | soc_sim wall / frame | of which PNG | simulated : wall "
-              "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (without PNG) | native / Mesa "
-              "| soc_sim max RSS |\n");
+  std::printf(
+      "| scene | simulated / frame | soc_sim wall / frame | of which PNG | simulated : wall "
+      "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (without PNG) | native / Mesa "
+      "| soc_sim max RSS |\n");
   std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   for (const auto& r : results)
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(),
@@ -197,20 +196,21 @@ void Bench::print_table(const std::vector<SceneResult>& results, long default_rs
                 format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str(),
                 format_ratio(r.native_per_frame_s / r.mesa_per_frame_s).c_str(),
                 format_mib(r.soc_sim_max_rss_kib).c_str());
-  std::printf("\nsoc_sim default demo (`soc_sim` with no options: teapot, %u frames): max RSS %s "
-              "(target < 200 MB)\n",
-              m_config["sim"]["frames"].get<unsigned>(), format_mib(default_rss_kib).c_str());
+  std::printf(
+      "\nsoc_sim default demo (`soc_sim` with no options: teapot, %u frames): max RSS %s "
+      "(target < 200 MB)\n",
+      m_config["sim"]["frames"].get<unsigned>(), format_mib(default_rss_kib).c_str());
   for (const auto& r : results)
     if (r.scene == "teapot")
       std::printf("teapot: soc_sim wall / native wall = %s, %s without writing the PNG frames (target <= 3)\n",
                   format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
                   format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str());
-  std::printf("\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u (runs of N=%u and 2N frames, "
-              "difference / N), wall times the best of %u run(s); \"of which PNG\" is write_png of the scene's last "
-              "frame timed in bench_arm, an estimate of what soc_sim spends writing each frame.\n",
-              display["width"].get<unsigned>(), display["height"].get<unsigned>(),
-              display["format"].get<std::string>().c_str(), display["dma"].get<bool>() ? "DMA" : "port",
-              m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
+  std::printf(
+      "\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u (runs of N=%u and 2N frames, "
+      "difference / N), wall times the best of %u run(s); \"of which PNG\" is write_png of the scene's last "
+      "frame timed in bench_arm, an estimate of what soc_sim spends writing each frame.\n",
+      display["width"].get<unsigned>(), display["height"].get<unsigned>(), display["format"].get<std::string>().c_str(),
+      display["dma"].get<bool>() ? "DMA" : "port", m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
 }
 
 void Bench::run() {
@@ -250,7 +250,7 @@ void Bench::run() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_arm: benchmark of the arm back end (soc_sim, native core, Mesa softpipe)"};
   cli.add_option("--frames", opt.frames, "N: runs of N and 2N frames, frames N..2N-1 timed")
@@ -282,4 +282,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// Nothing may escape main: an unexpected exception is reported as a failure.
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_arm: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "bench_arm: unknown exception\n";
+  }
+  return 1;
 }

@@ -57,8 +57,7 @@ int run(int argc, char** argv) {
     request.frame = last_frame;
     const auto start = std::chrono::steady_clock::now();
     const reference::ReferenceFrame frame = reference::render_with_mesa(*scene, request);
-    return std::pair{std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                     frame.renderer};
+    return std::pair{std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), frame.renderer};
   };
   const std::string renderer = timed_render(0).second;
   double short_run = std::numeric_limits<double>::max();

@@ -167,54 +167,32 @@ class RasterNativeHost : public tessera::HostApi {
   uint32_t read_reg(uint32_t address) {
     namespace regs = tessera::raster_regs;
     switch (address - tessera::memory_map::raster_regs.base) {
-      case regs::STATUS:
-        return m_status;
-      case regs::IRQ_STATUS:
-        return m_irq_status;
-      case regs::ERROR_STATUS:
-        return static_cast<uint32_t>(m_last.error);
-      case regs::ERROR_ADDRESS:
-        return m_last.error_address;
-      case regs::WIDTH:
-        return m_config.width;
-      case regs::HEIGHT:
-        return m_config.height;
-      case regs::TILE_WIDTH:
-        return m_config.tile_width;
-      case regs::TILE_HEIGHT:
-        return m_config.tile_height;
-      case regs::FRAGMENTS:
-        return static_cast<uint32_t>(m_last.fragments);
-      case regs::TRIANGLES:
-        return static_cast<uint32_t>(m_last.triangles);
-      default:
-        return 0;
+      case regs::STATUS: return m_status;
+      case regs::IRQ_STATUS: return m_irq_status;
+      case regs::ERROR_STATUS: return static_cast<uint32_t>(m_last.error);
+      case regs::ERROR_ADDRESS: return m_last.error_address;
+      case regs::WIDTH: return m_config.width;
+      case regs::HEIGHT: return m_config.height;
+      case regs::TILE_WIDTH: return m_config.tile_width;
+      case regs::TILE_HEIGHT: return m_config.tile_height;
+      case regs::FRAGMENTS: return static_cast<uint32_t>(m_last.fragments);
+      case regs::TRIANGLES: return static_cast<uint32_t>(m_last.triangles);
+      default: return 0;
     }
   }
 
   void write_reg(uint32_t address, uint32_t value) {
     namespace regs = tessera::raster_regs;
     switch (address - tessera::memory_map::raster_regs.base) {
-      case regs::TILE_TABLE:
-        m_config.tile_table = value;
-        break;
-      case regs::COLOR_BASE:
-        m_config.color_base = value;
-        break;
-      case regs::DEPTH_BASE:
-        m_config.depth_base = value;
-        break;
-      case regs::FORMAT:
-        m_config.rgba8888 = value == regs::FORMAT_RGBA8888;
-        break;
-      case regs::IRQ_STATUS:
-        m_irq_status &= ~value;
-        break;
+      case regs::TILE_TABLE: m_config.tile_table = value; break;
+      case regs::COLOR_BASE: m_config.color_base = value; break;
+      case regs::DEPTH_BASE: m_config.depth_base = value; break;
+      case regs::FORMAT: m_config.rgba8888 = value == regs::FORMAT_RGBA8888; break;
+      case regs::IRQ_STATUS: m_irq_status &= ~value; break;
       case regs::START:
         if (value & 1) start();
         break;
-      default:
-        break;
+      default: break;
     }
   }
 
@@ -497,7 +475,7 @@ void Bench::run() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_raster: benchmark of the rasterizer (soc_sim raster and arm back ends, datapath C++ vs RTL)"};
   cli.add_option("--frames", opt.frames, "N: runs of N and 2N frames, frames N..2N-1 measured")
@@ -554,4 +532,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// Nothing may escape main: an unexpected exception is reported as a failure.
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_raster: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "bench_raster: unknown exception\n";
+  }
+  return 1;
 }

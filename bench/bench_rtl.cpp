@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <string>
@@ -64,7 +65,7 @@ uint64_t fold(uint64_t sum, const ReciprocalResult& r) {
   return fold(sum, r.exponent_field());
 }
 
-uint64_t fold(uint64_t sum, const edge_evaluation& r) {
+uint64_t fold(uint64_t sum, const EdgeEvaluation& r) {
   sum = fold(sum, static_cast<uint64_t>(r.value.raw));
   sum = fold(sum, static_cast<uint64_t>(r.value_next_x.raw));
   sum = fold(sum, static_cast<uint64_t>(r.value_next_y.raw));
@@ -74,61 +75,61 @@ uint64_t fold(uint64_t sum, const edge_evaluation& r) {
   return fold(sum, r.coverage.raw);
 }
 
-uint64_t fold(uint64_t sum, const attribute_evaluation& r) {
+uint64_t fold(uint64_t sum, const AttributeEvaluation& r) {
   sum = fold(sum, static_cast<uint64_t>(r.value.raw));
   sum = fold(sum, static_cast<uint64_t>(r.value_next_x.raw));
   sum = fold(sum, static_cast<uint64_t>(r.value_next_y.raw));
   return fold(sum, r.output);
 }
 
-uint64_t fold(uint64_t sum, const fragment_test_result& r) {
+uint64_t fold(uint64_t sum, const FragmentTestResult& r) {
   const uint64_t flags = uint64_t{r.alpha_pass} | uint64_t{r.stencil_pass} << 1 | uint64_t{r.depth_pass} << 2 |
                          uint64_t{r.pass} << 3 | uint64_t{r.depth_write} << 4;
   return fold(fold(sum, flags), r.stencil.raw);
 }
 
-uint64_t fold(uint64_t sum, const texel_footprint& r) {
+uint64_t fold(uint64_t sum, const TexelFootprint& r) {
   sum = fold(sum, uint64_t{r.s.index0} | uint64_t{r.s.index1} << 8 | uint64_t{r.s.weight} << 16);
   sum = fold(sum, uint64_t{r.t.index0} | uint64_t{r.t.index1} << 8 | uint64_t{r.t.weight} << 16);
   for (uint32_t address : r.address) sum = fold(sum, address);
   return sum;
 }
 
-uint64_t fold(uint64_t sum, const texture_env_result& r) {
+uint64_t fold(uint64_t sum, const TextureEnvResult& r) {
   return fold(sum, uint64_t{r.texel.pack()} | uint64_t{r.fragment.pack()} << 32);
 }
 
-uint64_t fold(uint64_t sum, rgba8 r) {
+uint64_t fold(uint64_t sum, Rgba8 r) {
   return fold(sum, r.pack());
 }
 
 // One vector per unit: the arguments of the C++ call and of the adapter.
 struct EdgeVector {
-  edge e;
+  Edge e;
   unsigned px, py;
   q5_16 recip;
 };
 struct AttrVector {
-  attribute_plane plane;
+  AttributePlane plane;
   int dx, dy;
 };
 struct FragmentVector {
-  fragment_test_state state;
-  fragment_test_input in;
+  FragmentTestState state;
+  FragmentTestInput in;
 };
 struct BlendVector {
-  blend_state state;
-  rgba8 src, dst;
+  BlendState state;
+  Rgba8 src, dst;
 };
 struct TexelVector {
-  texture_state state;
+  TextureState state;
   q15_16 s, t;
 };
 struct TexEnvVector {
-  texture_env_mode mode;
-  std::array<rgba8, 4> texels;
+  TextureEnvMode mode;
+  std::array<Rgba8, 4> texels;
   uint8_t weight_s, weight_t;
-  rgba8 fragment;
+  Rgba8 fragment;
 };
 
 // The generators follow the random halves of the cosim tests, so that every
@@ -149,12 +150,12 @@ std::vector<EdgeVector> edge_vectors(std::mt19937_64& rng, uint64_t count) {
     if (more >> 63) {  // a short edge near the pixel: distance and coverage leave their clamps
       const uint32_t cx = x.px * 16 + static_cast<uint32_t>((more >> 18) & 0x3f) - 32;
       const uint32_t cy = x.py * 16 + static_cast<uint32_t>((more >> 24) & 0x3f) - 32;
-      x.e = edge{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
+      x.e = Edge{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
                  q9_4::from_raw(cy + ((more >> 37) & 0x7f) - 64)};
       const uint32_t l1 = edge_l1_length(x.e).raw;
       x.recip = q5_16::from_raw(l1 == 0 ? 0 : static_cast<uint32_t>((uint64_t{1} << 20) / l1));
     } else {
-      x.e = edge{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
+      x.e = Edge{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
                  q9_4::from_raw(static_cast<uint32_t>(bits >> 26)), q9_4::from_raw(static_cast<uint32_t>(bits >> 39))};
       x.recip = q5_16::from_raw(static_cast<uint32_t>(more >> 42));
     }
@@ -166,9 +167,9 @@ std::vector<AttrVector> attr_vectors(std::mt19937_64& rng, uint64_t count) {
   std::vector<AttrVector> v(count);
   auto word = [&rng]() { return sign_extend(rng(), 1 + static_cast<unsigned>(rng() % 40)); };
   for (auto& x : v) {
-    const auto kind = static_cast<attribute_kind>(rng() & 3);  // 3: undefined kind
+    const auto kind = static_cast<AttributeKind>(rng() & 3);  // 3: undefined kind
     const int64_t start = word(), grad_x = word(), grad_y = word();
-    x.plane = attribute_plane{kind, start, grad_x, grad_y};
+    x.plane = AttributePlane{kind, start, grad_x, grad_y};
     const uint64_t offsets = rng();
     x.dx = static_cast<int>(offsets & 0x3ff) - 512;
     x.dy = static_cast<int>((offsets >> 10) & 0x3ff) - 512;
@@ -177,31 +178,31 @@ std::vector<AttrVector> attr_vectors(std::mt19937_64& rng, uint64_t count) {
 }
 
 std::vector<FragmentVector> fragment_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<compare_func, 8> funcs{
-      compare_func::NEVER,   compare_func::LESS,     compare_func::EQUAL,  compare_func::LEQUAL,
-      compare_func::GREATER, compare_func::NOTEQUAL, compare_func::GEQUAL, compare_func::ALWAYS};
-  static constexpr std::array<stencil_op, 7> ops{stencil_op::KEEP,
-                                                 stencil_op::ZERO,
-                                                 stencil_op::REPLACE,
-                                                 stencil_op::INCR,
-                                                 stencil_op::DECR,
-                                                 stencil_op::INVERT,
-                                                 static_cast<stencil_op>(0x1E04)};
+  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::NEVER,  CompareFunc::LESS,    CompareFunc::EQUAL,
+                                                    CompareFunc::LEQUAL, CompareFunc::GREATER, CompareFunc::NOTEQUAL,
+                                                    CompareFunc::GEQUAL, CompareFunc::ALWAYS};
+  static constexpr std::array<StencilOp, 7> OPS{StencilOp::KEEP,
+                                                StencilOp::ZERO,
+                                                StencilOp::REPLACE,
+                                                StencilOp::INCR,
+                                                StencilOp::DECR,
+                                                StencilOp::INVERT,
+                                                static_cast<StencilOp>(0x1E04)};
   std::vector<FragmentVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
     const uint64_t b = rng();
-    fragment_test_state& s = x.state;
+    FragmentTestState& s = x.state;
     s.alpha_enable = a & 1;
     s.stencil_enable = (a >> 1) & 1;
     s.depth_enable = (a >> 2) & 1;
     s.depth_write_mask = (a >> 3) & 1;
-    s.alpha_func = funcs[(a >> 4) & 7];
-    s.stencil_func = funcs[(a >> 7) & 7];
-    s.depth_func = funcs[(a >> 10) & 7];
-    s.sfail = ops[((a >> 13) & 0xff) % ops.size()];
-    s.dpfail = ops[((a >> 21) & 0xff) % ops.size()];
-    s.dppass = ops[((a >> 29) & 0xff) % ops.size()];
+    s.alpha_func = FUNCS[(a >> 4) & 7];
+    s.stencil_func = FUNCS[(a >> 7) & 7];
+    s.depth_func = FUNCS[(a >> 10) & 7];
+    s.sfail = OPS[((a >> 13) & 0xff) % OPS.size()];
+    s.dpfail = OPS[((a >> 21) & 0xff) % OPS.size()];
+    s.dppass = OPS[((a >> 29) & 0xff) % OPS.size()];
     s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
     s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
     s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
@@ -215,37 +216,37 @@ std::vector<FragmentVector> fragment_vectors(std::mt19937_64& rng, uint64_t coun
 }
 
 std::vector<BlendVector> blend_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<blend_factor, 12> factors{blend_factor::ZERO,
-                                                        blend_factor::ONE,
-                                                        blend_factor::SRC_COLOR,
-                                                        blend_factor::ONE_MINUS_SRC_COLOR,
-                                                        blend_factor::SRC_ALPHA,
-                                                        blend_factor::ONE_MINUS_SRC_ALPHA,
-                                                        blend_factor::DST_ALPHA,
-                                                        blend_factor::ONE_MINUS_DST_ALPHA,
-                                                        blend_factor::DST_COLOR,
-                                                        blend_factor::ONE_MINUS_DST_COLOR,
-                                                        blend_factor::SRC_ALPHA_SATURATE,
-                                                        static_cast<blend_factor>(0x0309)};
+  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::ZERO,
+                                                       BlendFactor::ONE,
+                                                       BlendFactor::SRC_COLOR,
+                                                       BlendFactor::ONE_MINUS_SRC_COLOR,
+                                                       BlendFactor::SRC_ALPHA,
+                                                       BlendFactor::ONE_MINUS_SRC_ALPHA,
+                                                       BlendFactor::DST_ALPHA,
+                                                       BlendFactor::ONE_MINUS_DST_ALPHA,
+                                                       BlendFactor::DST_COLOR,
+                                                       BlendFactor::ONE_MINUS_DST_COLOR,
+                                                       BlendFactor::SRC_ALPHA_SATURATE,
+                                                       static_cast<BlendFactor>(0x0309)};
   std::vector<BlendVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
     const uint64_t b = rng();
     x.state.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
     x.state.logic_op_enable = ((a >> 2) & 7) == 0;
-    x.state.src_factor = factors[((a >> 5) & 0xff) % factors.size()];
-    x.state.dst_factor = factors[((a >> 13) & 0xff) % factors.size()];
-    x.state.op = static_cast<logic_op>(0x1500 + ((a >> 21) & 15));
+    x.state.src_factor = FACTORS[((a >> 5) & 0xff) % FACTORS.size()];
+    x.state.dst_factor = FACTORS[((a >> 13) & 0xff) % FACTORS.size()];
+    x.state.op = static_cast<LogicOp>(0x1500 + ((a >> 21) & 15));
     x.state.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
-    x.src = rgba8::unpack(static_cast<uint32_t>(b));
-    x.dst = rgba8::unpack(static_cast<uint32_t>(b >> 32));
+    x.src = Rgba8::unpack(static_cast<uint32_t>(b));
+    x.dst = Rgba8::unpack(static_cast<uint32_t>(b >> 32));
   }
   return v;
 }
 
 std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<texture_wrap, 2> wraps{texture_wrap::REPEAT, texture_wrap::CLAMP_TO_EDGE};
-  static constexpr std::array<texture_filter, 2> filters{texture_filter::NEAREST, texture_filter::LINEAR};
+  static constexpr std::array<TextureWrap, 2> WRAPS{TextureWrap::REPEAT, TextureWrap::CLAMP_TO_EDGE};
+  static constexpr std::array<TextureFilter, 2> FILTERS{TextureFilter::NEAREST, TextureFilter::LINEAR};
   std::vector<TexelVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
@@ -253,9 +254,9 @@ std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
     x.state.base = static_cast<uint32_t>(a >> 32);
     x.state.log2_width = static_cast<uint8_t>(a % 10);
     x.state.log2_height = static_cast<uint8_t>((a >> 4) % 10);
-    x.state.wrap_s = wraps[(a >> 8) & 1];
-    x.state.wrap_t = wraps[(a >> 9) & 1];
-    x.state.filter = filters[(a >> 10) & 1];
+    x.state.wrap_s = WRAPS[(a >> 8) & 1];
+    x.state.wrap_t = WRAPS[(a >> 9) & 1];
+    x.state.filter = FILTERS[(a >> 10) & 1];
     // Mostly coordinates within a few repetitions, some across the whole range.
     const unsigned bits = ((a >> 11) & 7) != 0 ? 20 : 32;
     x.s = q15_16{sign_extend(b, bits)};
@@ -265,19 +266,19 @@ std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
 }
 
 std::vector<TexEnvVector> texenv_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<texture_env_mode, 4> modes{texture_env_mode::REPLACE, texture_env_mode::MODULATE,
-                                                         texture_env_mode::DECAL, static_cast<texture_env_mode>(0)};
+  static constexpr std::array<TextureEnvMode, 4> MODES{TextureEnvMode::REPLACE, TextureEnvMode::MODULATE,
+                                                       TextureEnvMode::DECAL, static_cast<TextureEnvMode>(0)};
   std::vector<TexEnvVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
     const uint64_t b = rng();
     const uint64_t d = rng();
-    x.mode = modes[d & 3];
-    x.texels = {rgba8::unpack(static_cast<uint32_t>(a)), rgba8::unpack(static_cast<uint32_t>(a >> 32)),
-                rgba8::unpack(static_cast<uint32_t>(b)), rgba8::unpack(static_cast<uint32_t>(b >> 32))};
+    x.mode = MODES[d & 3];
+    x.texels = {Rgba8::unpack(static_cast<uint32_t>(a)), Rgba8::unpack(static_cast<uint32_t>(a >> 32)),
+                Rgba8::unpack(static_cast<uint32_t>(b)), Rgba8::unpack(static_cast<uint32_t>(b >> 32))};
     x.weight_s = static_cast<uint8_t>(d >> 8);
     x.weight_t = static_cast<uint8_t>(d >> 16);
-    x.fragment = rgba8::unpack(static_cast<uint32_t>(d >> 32));
+    x.fragment = Rgba8::unpack(static_cast<uint32_t>(d >> 32));
   }
   return v;
 }
@@ -357,7 +358,7 @@ int run(const Options& opt) {
   }
   {
     const auto vectors = edge_vectors(rng, n);
-    edge_function_rtl rtl;
+    EdgeFunctionRtl rtl;
     results.push_back(measure(
         "edge function", vectors, opt.repeat,
         [](const EdgeVector& v) { return evaluate_edge(v.e, v.px, v.py, v.recip); },
@@ -365,7 +366,7 @@ int run(const Options& opt) {
   }
   {
     const auto vectors = attr_vectors(rng, n);
-    attr_interp_rtl rtl;
+    AttrInterpRtl rtl;
     results.push_back(measure(
         "attribute interpolator", vectors, opt.repeat,
         [](const AttrVector& v) { return evaluate_attribute(v.plane, v.dx, v.dy); },
@@ -373,7 +374,7 @@ int run(const Options& opt) {
   }
   {
     const auto vectors = fragment_vectors(rng, n);
-    fragment_tests_rtl rtl;
+    FragmentTestsRtl rtl;
     results.push_back(measure(
         "fragment tests", vectors, opt.repeat,
         [](const FragmentVector& v) { return run_fragment_tests(v.state, v.in); },
@@ -381,7 +382,7 @@ int run(const Options& opt) {
   }
   {
     const auto vectors = blend_vectors(rng, n);
-    blend_logic_op_rtl rtl;
+    BlendLogicOpRtl rtl;
     results.push_back(measure(
         "blend / logic op", vectors, opt.repeat,
         [](const BlendVector& v) { return blend_logic_op(v.state, v.src, v.dst); },
@@ -389,14 +390,14 @@ int run(const Options& opt) {
   }
   {
     const auto vectors = texel_vectors(rng, n);
-    texel_address_rtl rtl;
+    TexelAddressRtl rtl;
     results.push_back(measure(
         "texel address", vectors, opt.repeat, [](const TexelVector& v) { return texel_lookup(v.state, v.s, v.t); },
         [&rtl](const TexelVector& v) { return rtl.lookup(v.state, v.s, v.t); }));
   }
   {
     const auto vectors = texenv_vectors(rng, n);
-    texture_env_rtl rtl;
+    TextureEnvRtl rtl;
     results.push_back(measure(
         "texture env (filter + env)", vectors, opt.repeat,
         [](const TexEnvVector& v) { return texture_filter_env(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); },
@@ -432,7 +433,7 @@ int run(const Options& opt) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_rtl: C++ datapath units of the rasterizer against their Verilated RTL, same vectors"};
   cli.add_option("--vectors", opt.vectors, "random vectors per unit")
@@ -444,4 +445,16 @@ int main(int argc, char** argv) {
   cli.add_option("--seed", opt.seed, "seed of the vector generator")->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
   return run(opt);
+}
+
+// Nothing may escape main: an unexpected exception is reported as a failure.
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_rtl: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "bench_rtl: unknown exception\n";
+  }
+  return 1;
 }

@@ -33,6 +33,7 @@ std::string first_line_of(const fs::path& path, const std::string& prefix) {
 
 ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
   args.push_back(nullptr);
   posix_spawn_file_actions_t actions;

@@ -69,12 +69,24 @@ void NativeHost::write(uint32_t address, uint64_t value, unsigned bytes) {
   if (uint8_t* data = memory_at(address, bytes)) std::memcpy(data, &value, bytes);
 }
 
-uint32_t NativeHost::read32(uint32_t address) { return static_cast<uint32_t>(read(address, 4)); }
-uint16_t NativeHost::read16(uint32_t address) { return static_cast<uint16_t>(read(address, 2)); }
-uint8_t NativeHost::read8(uint32_t address) { return static_cast<uint8_t>(read(address, 1)); }
-void NativeHost::write32(uint32_t address, uint32_t value) { write(address, value, 4); }
-void NativeHost::write16(uint32_t address, uint16_t value) { write(address, value, 2); }
-void NativeHost::write8(uint32_t address, uint8_t value) { write(address, value, 1); }
+uint32_t NativeHost::read32(uint32_t address) {
+  return static_cast<uint32_t>(read(address, 4));
+}
+uint16_t NativeHost::read16(uint32_t address) {
+  return static_cast<uint16_t>(read(address, 2));
+}
+uint8_t NativeHost::read8(uint32_t address) {
+  return static_cast<uint8_t>(read(address, 1));
+}
+void NativeHost::write32(uint32_t address, uint32_t value) {
+  write(address, value, 4);
+}
+void NativeHost::write16(uint32_t address, uint16_t value) {
+  write(address, value, 2);
+}
+void NativeHost::write8(uint32_t address, uint8_t value) {
+  write(address, value, 1);
+}
 
 void NativeHost::read_words(uint32_t address, uint32_t* words, unsigned count) {
   const uint8_t* data = memory_at(address, uint64_t{count} * 4);

@@ -16,6 +16,7 @@ PACKAGES=(
   libcli11-dev            # command-line parsing
   libtinyobjloader-dev    # Wavefront OBJ loading
   yosys                   # synthesis size report of the Verilog units
+  clang-format clang-tidy # the lint tests: one code dialect (tests/lint)
   gtkwave                 # viewing VCD traces; its vcd2fst checks them in the tests
   python3                 # helper scripts
   python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)

@@ -67,8 +67,7 @@ int tessera_app_main(int argc, char** argv) {
   }
   EGLSurface surface = eglCreateWindowSurface(display, config, (EGLNativeWindowType)0, NULL);
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, NULL);
-  if (surface == EGL_NO_SURFACE || context == EGL_NO_CONTEXT ||
-      !eglMakeCurrent(display, surface, surface, context)) {
+  if (surface == EGL_NO_SURFACE || context == EGL_NO_CONTEXT || !eglMakeCurrent(display, surface, surface, context)) {
     fprintf(stderr, "mine: EGL set-up failed (0x%x)\n", (unsigned)eglGetError());
     return 1;
   }

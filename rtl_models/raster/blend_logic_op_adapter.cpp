@@ -6,24 +6,26 @@
 
 namespace tessera::raster {
 
-blend_logic_op_rtl::blend_logic_op_rtl()
+BlendLogicOpRtl::BlendLogicOpRtl()
     : m_context(std::make_unique<VerilatedContext>()),
       m_model(std::make_unique<Vblend_logic_op>(m_context.get(), "blend_logic_op")) {}
 
-blend_logic_op_rtl::~blend_logic_op_rtl() { m_model->final(); }
-
-rgba8 blend_logic_op_rtl::run(const blend_state& state, rgba8 src, rgba8 dst) {
-    Vblend_logic_op& m = *m_model;
-    m.src_i = src.pack();
-    m.dst_i = dst.pack();
-    m.blend_enable_i = state.blend_enable;
-    m.src_factor_i = blend_factor_code(state.src_factor);
-    m.dst_factor_i = blend_factor_code(state.dst_factor);
-    m.logic_op_enable_i = state.logic_op_enable;
-    m.logic_op_i = logic_op_code(state.op);
-    m.color_mask_i = state.color_mask & COLOR_MASK_ALL;
-    m.eval();
-    return rgba8::unpack(m.rgba_o);
+BlendLogicOpRtl::~BlendLogicOpRtl() {
+  m_model->final();
 }
 
-} // namespace tessera::raster
+Rgba8 BlendLogicOpRtl::run(const BlendState& state, Rgba8 src, Rgba8 dst) {
+  Vblend_logic_op& m = *m_model;
+  m.src_i = src.pack();
+  m.dst_i = dst.pack();
+  m.blend_enable_i = state.blend_enable;
+  m.src_factor_i = blend_factor_code(state.src_factor);
+  m.dst_factor_i = blend_factor_code(state.dst_factor);
+  m.logic_op_enable_i = state.logic_op_enable;
+  m.logic_op_i = logic_op_code(state.op);
+  m.color_mask_i = state.color_mask & COLOR_MASK_ALL;
+  m.eval();
+  return Rgba8::unpack(m.rgba_o);
+}
+
+}  // namespace tessera::raster

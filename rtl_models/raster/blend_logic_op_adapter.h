@@ -11,18 +11,18 @@ class Vblend_logic_op;
 
 namespace tessera::raster {
 
-class blend_logic_op_rtl {
-public:
-    blend_logic_op_rtl();
-    ~blend_logic_op_rtl();
-    blend_logic_op_rtl(const blend_logic_op_rtl&) = delete;
-    blend_logic_op_rtl& operator=(const blend_logic_op_rtl&) = delete;
+class BlendLogicOpRtl {
+ public:
+  BlendLogicOpRtl();
+  ~BlendLogicOpRtl();
+  BlendLogicOpRtl(const BlendLogicOpRtl&) = delete;
+  BlendLogicOpRtl& operator=(const BlendLogicOpRtl&) = delete;
 
-    rgba8 run(const blend_state& state, rgba8 src, rgba8 dst);
+  Rgba8 run(const BlendState& state, Rgba8 src, Rgba8 dst);
 
-private:
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vblend_logic_op> m_model;
+ private:
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vblend_logic_op> m_model;
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

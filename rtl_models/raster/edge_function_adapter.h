@@ -12,19 +12,19 @@ class Vedge_function;
 
 namespace tessera::raster {
 
-class edge_function_rtl {
-public:
-    edge_function_rtl();
-    ~edge_function_rtl();
-    edge_function_rtl(const edge_function_rtl&) = delete;
-    edge_function_rtl& operator=(const edge_function_rtl&) = delete;
+class EdgeFunctionRtl {
+ public:
+  EdgeFunctionRtl();
+  ~EdgeFunctionRtl();
+  EdgeFunctionRtl(const EdgeFunctionRtl&) = delete;
+  EdgeFunctionRtl& operator=(const EdgeFunctionRtl&) = delete;
 
-    // px and py are 9-bit port values (0..511).
-    edge_evaluation evaluate(const edge& e, unsigned px, unsigned py, q5_16 recip);
+  // px and py are 9-bit port values (0..511).
+  EdgeEvaluation evaluate(const Edge& e, unsigned px, unsigned py, q5_16 recip);
 
-private:
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vedge_function> m_model;
+ private:
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vedge_function> m_model;
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -11,18 +11,18 @@ class Vfragment_tests;
 
 namespace tessera::raster {
 
-class fragment_tests_rtl {
-public:
-    fragment_tests_rtl();
-    ~fragment_tests_rtl();
-    fragment_tests_rtl(const fragment_tests_rtl&) = delete;
-    fragment_tests_rtl& operator=(const fragment_tests_rtl&) = delete;
+class FragmentTestsRtl {
+ public:
+  FragmentTestsRtl();
+  ~FragmentTestsRtl();
+  FragmentTestsRtl(const FragmentTestsRtl&) = delete;
+  FragmentTestsRtl& operator=(const FragmentTestsRtl&) = delete;
 
-    fragment_test_result run(const fragment_test_state& state, const fragment_test_input& in);
+  FragmentTestResult run(const FragmentTestState& state, const FragmentTestInput& in);
 
-private:
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vfragment_tests> m_model;
+ private:
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vfragment_tests> m_model;
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -16,34 +16,34 @@ class Vrecip_unit;
 namespace tessera::raster {
 
 class RecipUnitRtl {
-public:
-    // Cycles from valid_i to valid_o (the result is registered once).
-    static constexpr unsigned LATENCY_CYCLES = 1;
+ public:
+  // Cycles from valid_i to valid_o (the result is registered once).
+  static constexpr unsigned LATENCY_CYCLES = 1;
 
-    // Builds the model and applies reset.
-    RecipUnitRtl();
-    ~RecipUnitRtl();
-    RecipUnitRtl(const RecipUnitRtl&) = delete;
-    RecipUnitRtl& operator=(const RecipUnitRtl&) = delete;
+  // Builds the model and applies reset.
+  RecipUnitRtl();
+  ~RecipUnitRtl();
+  RecipUnitRtl(const RecipUnitRtl&) = delete;
+  RecipUnitRtl& operator=(const RecipUnitRtl&) = delete;
 
-    // One operand through the unit: drive it with valid_i, clock once, read
-    // the registered outputs. The port is 14 bits wide, so an operand above
-    // RECIP_OPERAND_MAX never reaches the RTL; it gets the core's invalid
-    // result instead of being silently truncated.
-    ReciprocalResult evaluate(uint16_t x_q10_4);
-    uint32_t evaluate_q5_16(uint16_t x_q10_4) { return evaluate(x_q10_4).q5_16; }
+  // One operand through the unit: drive it with valid_i, clock once, read
+  // the registered outputs. The port is 14 bits wide, so an operand above
+  // RECIP_OPERAND_MAX never reaches the RTL; it gets the core's invalid
+  // result instead of being silently truncated.
+  ReciprocalResult evaluate(uint16_t x_q10_4);
+  uint32_t evaluate_q5_16(uint16_t x_q10_4) { return evaluate(x_q10_4).q5_16; }
 
-    // One rising clock edge with the given inputs; returns the outputs when
-    // valid_o is set after the edge. For tests of the handshake and latency.
-    std::optional<ReciprocalResult> clock(bool valid, uint16_t x_q10_4);
+  // One rising clock edge with the given inputs; returns the outputs when
+  // valid_o is set after the edge. For tests of the handshake and latency.
+  std::optional<ReciprocalResult> clock(bool valid, uint16_t x_q10_4);
 
-    void reset();
+  void reset();
 
-private:
-    ReciprocalResult read_outputs() const;
+ private:
+  ReciprocalResult read_outputs() const;
 
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vrecip_unit> m_model;
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vrecip_unit> m_model;
 };
 
 }  // namespace tessera::raster

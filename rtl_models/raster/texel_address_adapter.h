@@ -11,19 +11,19 @@ class Vtexel_address;
 
 namespace tessera::raster {
 
-class texel_address_rtl {
-public:
-    texel_address_rtl();
-    ~texel_address_rtl();
-    texel_address_rtl(const texel_address_rtl&) = delete;
-    texel_address_rtl& operator=(const texel_address_rtl&) = delete;
+class TexelAddressRtl {
+ public:
+  TexelAddressRtl();
+  ~TexelAddressRtl();
+  TexelAddressRtl(const TexelAddressRtl&) = delete;
+  TexelAddressRtl& operator=(const TexelAddressRtl&) = delete;
 
-    // log2 sizes are 4-bit port values (0..15).
-    texel_footprint lookup(const texture_state& state, q15_16 s, q15_16 t);
+  // log2 sizes are 4-bit port values (0..15).
+  TexelFootprint lookup(const TextureState& state, q15_16 s, q15_16 t);
 
-private:
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vtexel_address> m_model;
+ private:
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vtexel_address> m_model;
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

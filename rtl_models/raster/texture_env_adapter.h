@@ -12,19 +12,19 @@ class Vtexture_env;
 
 namespace tessera::raster {
 
-class texture_env_rtl {
-public:
-    texture_env_rtl();
-    ~texture_env_rtl();
-    texture_env_rtl(const texture_env_rtl&) = delete;
-    texture_env_rtl& operator=(const texture_env_rtl&) = delete;
+class TextureEnvRtl {
+ public:
+  TextureEnvRtl();
+  ~TextureEnvRtl();
+  TextureEnvRtl(const TextureEnvRtl&) = delete;
+  TextureEnvRtl& operator=(const TextureEnvRtl&) = delete;
 
-    texture_env_result run(texture_env_mode mode, const std::array<rgba8, 4>& texels, uint8_t weight_s,
-                           uint8_t weight_t, rgba8 fragment);
+  TextureEnvResult run(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
+                       Rgba8 fragment);
 
-private:
-    std::unique_ptr<VerilatedContext> m_context;
-    std::unique_ptr<Vtexture_env> m_model;
+ private:
+  std::unique_ptr<VerilatedContext> m_context;
+  std::unique_ptr<Vtexture_env> m_model;
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -30,8 +30,7 @@ AppInfo find_app(const std::string& name) {
   if (it != apps.end()) return it->second;
   if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
     const GlMain main = load_app_library(name);
-    return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); },
-            "application library " + name};
+    return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); }, "application library " + name};
   }
   std::string known;
   for (const auto& [app_name, info] : apps) known += (known.empty() ? "" : ", ") + app_name;

@@ -19,27 +19,29 @@ namespace tessera {
 
 namespace {
 
-constexpr unsigned kIterations = 65536;
-constexpr double kMeasuredMillionsPerSecond = 13.9;
+constexpr unsigned ITERATIONS = 65536;
+constexpr double MEASURED_MILLIONS_PER_SECOND = 13.9;
 
 int run_loop(AppEnvironment& env, bool multiply) {
   HostApi& host = *env.host;
-  // Three arrays of kIterations elements at 1 MiB, 2 MiB and 3 MiB.
+  // Three arrays of ITERATIONS elements at 1 MiB, 2 MiB and 3 MiB.
   const uint32_t a = 1u << 20, b = 2u << 20, c = 3u << 20;
-  if (env.memory_bytes < c + 2 * kIterations) {
-    std::fprintf(stderr, "calibration: needs at least %u bytes of system memory\n", c + 2 * kIterations);
+  if (env.memory_bytes < c + 2 * ITERATIONS) {
+    std::fprintf(stderr, "calibration: needs at least %u bytes of system memory\n", c + 2 * ITERATIONS);
     return 1;
   }
   // Operands: a[i] = 3i + 1, b[i] = i mod 251 (written before timing starts;
   // plain stores do not allocate cache lines, so the loop starts cold).
-  for (unsigned i = 0; i < kIterations; ++i) {
+  for (unsigned i = 0; i < ITERATIONS; ++i) {
     host.write16(a + 2 * i, static_cast<uint16_t>(3 * i + 1));
-    if (multiply) host.write8(b + i, static_cast<uint8_t>(i % 251));
-    else host.write16(b + 2 * i, static_cast<uint16_t>(i % 251));
+    if (multiply)
+      host.write8(b + i, static_cast<uint8_t>(i % 251));
+    else
+      host.write16(b + 2 * i, static_cast<uint16_t>(i % 251));
   }
   const double start = host.now_seconds();
   uint32_t checksum = 0;
-  for (unsigned i = 0; i < kIterations; ++i) {
+  for (unsigned i = 0; i < ITERATIONS; ++i) {
     const uint16_t x = host.read16(a + 2 * i);
     uint16_t result;
     if (multiply) {
@@ -59,18 +61,23 @@ int run_loop(AppEnvironment& env, bool multiply) {
     checksum += result;
   }
   const double seconds = host.now_seconds() - start;
-  const double rate = kIterations / seconds / 1e6;
-  std::printf("host calibration: %s loop of %u iterations: model %.2f million/s, measured %.1f million/s "
-              "(%+.1f%%)\n",
-              multiply ? "16x8-bit multiplication" : "16-bit addition", kIterations, rate,
-              kMeasuredMillionsPerSecond, (rate / kMeasuredMillionsPerSecond - 1) * 100);
+  const double rate = ITERATIONS / seconds / 1e6;
+  std::printf(
+      "host calibration: %s loop of %u iterations: model %.2f million/s, measured %.1f million/s "
+      "(%+.1f%%)\n",
+      multiply ? "16x8-bit multiplication" : "16-bit addition", ITERATIONS, rate, MEASURED_MILLIONS_PER_SECOND,
+      (rate / MEASURED_MILLIONS_PER_SECOND - 1) * 100);
   std::printf("host calibration: checksum %u\n", checksum);
   return 0;
 }
 
 }  // namespace
 
-int calib_add_app(AppEnvironment& env) { return run_loop(env, false); }
-int calib_mul_app(AppEnvironment& env) { return run_loop(env, true); }
+int calib_add_app(AppEnvironment& env) {
+  return run_loop(env, false);
+}
+int calib_mul_app(AppEnvironment& env) {
+  return run_loop(env, true);
+}
 
 }  // namespace tessera

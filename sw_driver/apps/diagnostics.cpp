@@ -17,7 +17,7 @@ namespace {
 constexpr uint32_t UNMAPPED_ADDRESS = 0x80000000u;
 
 constexpr bool mapped(uint32_t address) {
-  for (const auto& region : memory_map::all_regions)
+  for (const auto& region : memory_map::ALL_REGIONS)
     if (region.contains(address)) return true;
   return false;
 }

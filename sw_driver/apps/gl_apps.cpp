@@ -26,8 +26,8 @@ int scene_main(int argc, char** argv) {
     std::fprintf(stderr, "%s: eglInitialize failed (0x%x)\n", scene.name, static_cast<unsigned>(eglGetError()));
     return 1;
   }
-  const EGLint wanted[] = {EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES_BIT,
-                           EGL_DEPTH_SIZE,   16,             EGL_NONE};
+  const EGLint wanted[] = {EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES_BIT, EGL_DEPTH_SIZE, 16,
+                           EGL_NONE};
   EGLConfig config;
   EGLint configs = 0;
   if (!eglChooseConfig(display, wanted, &config, 1, &configs) || configs != 1) {
@@ -36,8 +36,7 @@ int scene_main(int argc, char** argv) {
   }
   EGLSurface surface = eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr);
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
-  if (surface == EGL_NO_SURFACE || context == EGL_NO_CONTEXT ||
-      !eglMakeCurrent(display, surface, surface, context)) {
+  if (surface == EGL_NO_SURFACE || context == EGL_NO_CONTEXT || !eglMakeCurrent(display, surface, surface, context)) {
     std::fprintf(stderr, "%s: EGL set-up failed (0x%x)\n", scene.name, static_cast<unsigned>(eglGetError()));
     return 1;
   }
@@ -64,6 +63,7 @@ int run_gl_app(AppEnvironment& env, GlMain main, const std::string& name) {
   strings.push_back(name);
   strings.insert(strings.end(), env.args.begin(), env.args.end());
   std::vector<char*> argv;
+  argv.reserve(strings.size() + 1);
   for (auto& s : strings) argv.push_back(s.data());
   argv.push_back(nullptr);
   try {
@@ -85,8 +85,7 @@ GlMain load_app_library(const std::string& path) {
   void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw std::invalid_argument(std::string("cannot load application library: ") + dlerror());
   void* symbol = dlsym(handle, "tessera_app_main");
-  if (!symbol)
-    throw std::invalid_argument("application library '" + path + "' does not export tessera_app_main");
+  if (!symbol) throw std::invalid_argument("application library '" + path + "' does not export tessera_app_main");
   return reinterpret_cast<GlMain>(symbol);
 }
 

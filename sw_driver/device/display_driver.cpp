@@ -12,7 +12,9 @@ namespace tessera {
 namespace regs = display_regs;
 
 namespace {
-constexpr uint32_t reg(uint32_t offset) { return memory_map::display_regs.base + offset; }
+constexpr uint32_t reg(uint32_t offset) {
+  return memory_map::display_regs.base + offset;
+}
 }  // namespace
 
 DisplayDriver::DisplayDriver(AppEnvironment& env)

@@ -16,12 +16,12 @@ namespace {
 
 Context* g_current = nullptr;
 
-constexpr size_t kMaxModelviewDepth = 16;
-constexpr size_t kMaxProjectionDepth = 2;
-constexpr size_t kMaxTextureDepth = 2;
-constexpr unsigned kMaxLights = 8;
-constexpr GLsizei kMaxTextureSize = 256;
-constexpr size_t kBatchTriangles = 256;
+constexpr size_t MAX_MODELVIEW_DEPTH = 16;
+constexpr size_t MAX_PROJECTION_DEPTH = 2;
+constexpr size_t MAX_TEXTURE_DEPTH = 2;
+constexpr unsigned MAX_LIGHTS = 8;
+constexpr GLsizei MAX_TEXTURE_SIZE = 256;
+constexpr size_t BATCH_TRIANGLES = 256;
 
 bool compare_func(GLenum func, CompareFunc* out) {
   if (func < GL_NEVER || func > GL_ALWAYS) return false;
@@ -58,7 +58,9 @@ bool blend_factor(GLenum factor, bool source, BlendFactor* out) {
   }
 }
 
-float clamp01(float v) { return std::clamp(v, 0.0f, 1.0f); }
+float clamp01(float v) {
+  return std::clamp(v, 0.0f, 1.0f);
+}
 
 size_t type_size(GLenum type) {
   switch (type) {
@@ -72,19 +74,25 @@ size_t type_size(GLenum type) {
   }
 }
 
-bool is_power_of_two(GLsizei v) { return v > 0 && (v & (v - 1)) == 0; }
+bool is_power_of_two(GLsizei v) {
+  return v > 0 && (v & (v - 1)) == 0;
+}
 
 }  // namespace
 
-Context* current_context() { return g_current; }
-void set_current_context(Context* context) { g_current = context; }
+Context* current_context() {
+  return g_current;
+}
+void set_current_context(Context* context) {
+  g_current = context;
+}
 
 Context::Context(HostApi& host, Renderer& renderer) : m_host(host), m_renderer(&renderer) {
   m_viewport.width = static_cast<int>(m_renderer->width());
   m_viewport.height = static_cast<int>(m_renderer->height());
   m_raster.scissor_width = m_viewport.width;
   m_raster.scissor_height = m_viewport.height;
-  m_lighting_model.lights.resize(kMaxLights);
+  m_lighting_model.lights.resize(MAX_LIGHTS);
   m_lighting_model.lights[0].diffuse = glm::vec4(1);
   m_lighting_model.lights[0].specular = glm::vec4(1);
 }
@@ -119,7 +127,7 @@ void Context::charge(const FloatCost& cost, uint64_t times) {
 
 void Context::enable(GLenum cap, bool on) {
   charge_call();
-  if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + kMaxLights) {
+  if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + MAX_LIGHTS) {
     m_lighting_model.lights[cap - GL_LIGHT0].enabled = on;
     return;
   }
@@ -156,7 +164,7 @@ void Context::enable(GLenum cap, bool on) {
 
 bool Context::is_enabled(GLenum cap) {
   charge_call();
-  if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + kMaxLights) return m_lighting_model.lights[cap - GL_LIGHT0].enabled;
+  if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + MAX_LIGHTS) return m_lighting_model.lights[cap - GL_LIGHT0].enabled;
   if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + 6) return m_clip_plane_enabled[cap - GL_CLIP_PLANE0];
   switch (cap) {
     case GL_DEPTH_TEST: return m_depth_test;
@@ -208,8 +216,12 @@ void Context::clear_color(float r, float g, float b, float a) {
   m_clear_color[0] = clamp01(r), m_clear_color[1] = clamp01(g), m_clear_color[2] = clamp01(b),
   m_clear_color[3] = clamp01(a);
 }
-void Context::clear_depth(float d) { charge_call(), m_clear_depth = clamp01(d); }
-void Context::clear_stencil(GLint s) { charge_call(), m_clear_stencil = s; }
+void Context::clear_depth(float d) {
+  charge_call(), m_clear_depth = clamp01(d);
+}
+void Context::clear_stencil(GLint s) {
+  charge_call(), m_clear_stencil = s;
+}
 
 void Context::clear(GLbitfield mask) {
   charge_call();
@@ -257,7 +269,9 @@ void Context::depth_func(GLenum func) {
   charge_call();
   if (!compare_func(func, &m_raster.depth_func)) error(GL_INVALID_ENUM);
 }
-void Context::depth_mask(bool flag) { charge_call(), m_raster.depth_write = flag; }
+void Context::depth_mask(bool flag) {
+  charge_call(), m_raster.depth_write = flag;
+}
 
 void Context::alpha_func(GLenum func, float ref) {
   charge_call();
@@ -282,7 +296,9 @@ void Context::stencil_op(GLenum fail, GLenum zfail, GLenum zpass) {
   m_raster.stencil_fail = a, m_raster.depth_fail = b, m_raster.depth_pass = c;
 }
 
-void Context::stencil_mask(GLuint mask) { charge_call(), m_raster.stencil_write_mask = static_cast<uint8_t>(mask); }
+void Context::stencil_mask(GLuint mask) {
+  charge_call(), m_raster.stencil_write_mask = static_cast<uint8_t>(mask);
+}
 
 void Context::blend_func(GLenum src, GLenum dst) {
   charge_call();
@@ -428,17 +444,21 @@ void Context::mult_matrix(const glm::mat4& m) {
 
 void Context::push_matrix() {
   charge_call(16);
-  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection : m_matrix_mode == GL_TEXTURE ? m_texture_matrix : m_modelview;
-  const size_t limit = m_matrix_mode == GL_PROJECTION ? kMaxProjectionDepth
-                       : m_matrix_mode == GL_TEXTURE  ? kMaxTextureDepth
-                                                      : kMaxModelviewDepth;
+  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
+                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                                               : m_modelview;
+  const size_t limit = m_matrix_mode == GL_PROJECTION ? MAX_PROJECTION_DEPTH
+                       : m_matrix_mode == GL_TEXTURE  ? MAX_TEXTURE_DEPTH
+                                                      : MAX_MODELVIEW_DEPTH;
   if (stack.size() >= limit) return error(GL_STACK_OVERFLOW);
   stack.push_back(stack.back());
 }
 
 void Context::pop_matrix() {
   charge_call();
-  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection : m_matrix_mode == GL_TEXTURE ? m_texture_matrix : m_modelview;
+  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
+                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                                               : m_modelview;
   if (stack.size() <= 1) return error(GL_STACK_UNDERFLOW);
   stack.pop_back();
 }
@@ -491,16 +511,22 @@ void Context::active_texture(GLenum unit, bool client) {
 
 void Context::light(GLenum which, GLenum name, const float* v, int count) {
   charge_call(8);
-  if (which < GL_LIGHT0 || which >= GL_LIGHT0 + kMaxLights) return error(GL_INVALID_ENUM);
+  if (which < GL_LIGHT0 || which >= GL_LIGHT0 + MAX_LIGHTS) return error(GL_INVALID_ENUM);
   Light& l = m_lighting_model.lights[which - GL_LIGHT0];
   auto need = [&](int n) {
     if (count < n) error(GL_INVALID_ENUM);
     return count >= n;
   };
   switch (name) {
-    case GL_AMBIENT: if (need(4)) l.ambient = {v[0], v[1], v[2], v[3]}; break;
-    case GL_DIFFUSE: if (need(4)) l.diffuse = {v[0], v[1], v[2], v[3]}; break;
-    case GL_SPECULAR: if (need(4)) l.specular = {v[0], v[1], v[2], v[3]}; break;
+    case GL_AMBIENT:
+      if (need(4)) l.ambient = {v[0], v[1], v[2], v[3]};
+      break;
+    case GL_DIFFUSE:
+      if (need(4)) l.diffuse = {v[0], v[1], v[2], v[3]};
+      break;
+    case GL_SPECULAR:
+      if (need(4)) l.specular = {v[0], v[1], v[2], v[3]};
+      break;
     case GL_POSITION:
       if (need(4)) l.position = m_modelview.back() * glm::vec4(v[0], v[1], v[2], v[3]);
       break;
@@ -529,7 +555,7 @@ void Context::light(GLenum which, GLenum name, const float* v, int count) {
 
 void Context::get_light(GLenum which, GLenum name, float* v) {
   charge_call();
-  if (which < GL_LIGHT0 || which >= GL_LIGHT0 + kMaxLights) return error(GL_INVALID_ENUM);
+  if (which < GL_LIGHT0 || which >= GL_LIGHT0 + MAX_LIGHTS) return error(GL_INVALID_ENUM);
   const Light& l = m_lighting_model.lights[which - GL_LIGHT0];
   auto put = [&](const glm::vec4& x, int n) {
     for (int i = 0; i < n; ++i) v[i] = x[i];
@@ -668,14 +694,14 @@ void expand_texel(GLenum format, const uint8_t* in, uint8_t* out) {
 
 }  // namespace
 
-void Context::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei width, GLsizei height,
-                        GLint border, GLenum format, GLenum type, const void* pixels) {
+void Context::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei width, GLsizei height, GLint border,
+                        GLenum format, GLenum type, const void* pixels) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   bool format_ok, type_ok;
   pixel_bytes(format, type, &format_ok, &type_ok);
   if (!format_ok || !type_ok) return error(GL_INVALID_ENUM);
-  if (level < 0 || border != 0 || width < 0 || height < 0 || width > kMaxTextureSize || height > kMaxTextureSize ||
+  if (level < 0 || border != 0 || width < 0 || height < 0 || width > MAX_TEXTURE_SIZE || height > MAX_TEXTURE_SIZE ||
       (width && !is_power_of_two(width)) || (height && !is_power_of_two(height)))
     return error(GL_INVALID_VALUE);
   if (static_cast<GLenum>(internal_format) != format) return error(GL_INVALID_OPERATION);
@@ -687,8 +713,8 @@ void Context::tex_image(GLenum target, GLint level, GLint internal_format, GLsiz
     return;
   }
   // Stored as RGBA8 in system memory, where every back end fetches it.
-  if (object->texture.width != static_cast<unsigned>(width) || object->texture.height != static_cast<unsigned>(height) ||
-      object->texture.address == 0)
+  if (object->texture.width != static_cast<unsigned>(width) ||
+      object->texture.height != static_cast<unsigned>(height) || object->texture.address == 0)
     object->texture.address = allocate(texel_bytes);
   object->texture.width = static_cast<unsigned>(width);
   object->texture.height = static_cast<unsigned>(height);
@@ -696,8 +722,8 @@ void Context::tex_image(GLenum target, GLint level, GLint internal_format, GLsiz
   if (pixels) tex_sub_image(target, 0, 0, 0, width, height, format, type, pixels);
 }
 
-void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height,
-                            GLenum format, GLenum type, const void* pixels) {
+void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
+                            GLenum type, const void* pixels) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   bool format_ok, type_ok;
@@ -706,7 +732,8 @@ void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsize
   TextureObject* object = bound_texture();
   if (!object->defined) return error(GL_INVALID_OPERATION);
   if (level < 0 || x < 0 || y < 0 || width < 0 || height < 0 ||
-      static_cast<unsigned>(x + width) > object->texture.width || static_cast<unsigned>(y + height) > object->texture.height)
+      static_cast<unsigned>(x + width) > object->texture.width ||
+      static_cast<unsigned>(y + height) > object->texture.height)
     return error(GL_INVALID_VALUE);
   if (level > 0 || !pixels) return;
   const auto* in = static_cast<const uint8_t*>(pixels);
@@ -731,21 +758,30 @@ void Context::tex_parameter(GLenum target, GLenum name, float value) {
   const GLenum v = static_cast<GLenum>(value);
   switch (name) {
     case GL_TEXTURE_MIN_FILTER:
-      if (v == GL_NEAREST || v == GL_NEAREST_MIPMAP_NEAREST || v == GL_NEAREST_MIPMAP_LINEAR) t.min_filter = TexFilter::nearest;
-      else if (v == GL_LINEAR || v == GL_LINEAR_MIPMAP_NEAREST || v == GL_LINEAR_MIPMAP_LINEAR) t.min_filter = TexFilter::linear;
-      else error(GL_INVALID_ENUM);
+      if (v == GL_NEAREST || v == GL_NEAREST_MIPMAP_NEAREST || v == GL_NEAREST_MIPMAP_LINEAR)
+        t.min_filter = TexFilter::nearest;
+      else if (v == GL_LINEAR || v == GL_LINEAR_MIPMAP_NEAREST || v == GL_LINEAR_MIPMAP_LINEAR)
+        t.min_filter = TexFilter::linear;
+      else
+        error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_MAG_FILTER:
-      if (v == GL_NEAREST) t.mag_filter = TexFilter::nearest;
-      else if (v == GL_LINEAR) t.mag_filter = TexFilter::linear;
-      else error(GL_INVALID_ENUM);
+      if (v == GL_NEAREST)
+        t.mag_filter = TexFilter::nearest;
+      else if (v == GL_LINEAR)
+        t.mag_filter = TexFilter::linear;
+      else
+        error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_WRAP_S:
     case GL_TEXTURE_WRAP_T: {
       TexWrap wrap;
-      if (v == GL_REPEAT) wrap = TexWrap::repeat;
-      else if (v == GL_CLAMP_TO_EDGE) wrap = TexWrap::clamp_to_edge;
-      else return error(GL_INVALID_ENUM);
+      if (v == GL_REPEAT)
+        wrap = TexWrap::repeat;
+      else if (v == GL_CLAMP_TO_EDGE)
+        wrap = TexWrap::clamp_to_edge;
+      else
+        return error(GL_INVALID_ENUM);
       (name == GL_TEXTURE_WRAP_S ? t.wrap_s : t.wrap_t) = wrap;
       break;
     }
@@ -790,9 +826,12 @@ void Context::tex_env(GLenum target, GLenum name, const float* values, int count
 void Context::get_tex_env(GLenum target, GLenum name, float* values) {
   charge_call();
   if (target != GL_TEXTURE_ENV) return error(GL_INVALID_ENUM);
-  if (name == GL_TEXTURE_ENV_MODE) values[0] = static_cast<float>(m_tex_env_mode);
-  else if (name == GL_TEXTURE_ENV_COLOR) std::copy(m_tex_env_color, m_tex_env_color + 4, values);
-  else error(GL_INVALID_ENUM);
+  if (name == GL_TEXTURE_ENV_MODE)
+    values[0] = static_cast<float>(m_tex_env_mode);
+  else if (name == GL_TEXTURE_ENV_COLOR)
+    std::copy(m_tex_env_color, m_tex_env_color + 4, values);
+  else
+    error(GL_INVALID_ENUM);
 }
 
 // ---------------------------------------------------------------- buffers
@@ -993,7 +1032,7 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     if (signed_area(t.v[0], t.v[1], t.v[2]) == 0) continue;
     m_batch.push_back(t);
   }
-  if (m_batch.size() >= kBatchTriangles) flush_triangles();
+  if (m_batch.size() >= BATCH_TRIANGLES) flush_triangles();
 }
 
 RasterState Context::raster_state() const {
@@ -1009,7 +1048,9 @@ RasterState Context::raster_state() const {
   auto it = m_textures.find(m_bound_texture);
   s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
   if (s.texture) s.tex = it->second.texture;
-  s.tex_env = m_tex_env_mode == GL_REPLACE ? TexEnv::replace : m_tex_env_mode == GL_DECAL ? TexEnv::decal : TexEnv::modulate;
+  s.tex_env = m_tex_env_mode == GL_REPLACE ? TexEnv::replace
+              : m_tex_env_mode == GL_DECAL ? TexEnv::decal
+                                           : TexEnv::modulate;
   return s;
 }
 
@@ -1076,8 +1117,10 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices) {
       break;
     case GL_TRIANGLE_STRIP:
       for (size_t i = 0; i + 2 < n; ++i) {
-        if (i % 2 == 0) triangle(i, i + 1, i + 2, i + 2);
-        else triangle(i + 1, i, i + 2, i + 2);
+        if (i % 2 == 0)
+          triangle(i, i + 1, i + 2, i + 2);
+        else
+          triangle(i + 1, i, i + 2, i + 2);
       }
       break;
     case GL_TRIANGLE_FAN:
@@ -1132,7 +1175,8 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
   }
   std::vector<uint32_t> indices(static_cast<size_t>(count));
   for (GLsizei i = 0; i < count; ++i) {
-    if (size == 1) indices[i] = base[i];
+    if (size == 1)
+      indices[i] = base[i];
     else {
       uint16_t x;
       std::memcpy(&x, base + 2 * i, 2);
@@ -1197,28 +1241,81 @@ int Context::query_count(GLenum name) {
     case GL_MODELVIEW_MATRIX:
     case GL_PROJECTION_MATRIX:
     case GL_TEXTURE_MATRIX: return 16;
-    case GL_DEPTH_CLEAR_VALUE: case GL_STENCIL_CLEAR_VALUE: case GL_DEPTH_FUNC: case GL_DEPTH_WRITEMASK:
-    case GL_ALPHA_TEST_FUNC: case GL_ALPHA_TEST_REF: case GL_STENCIL_FUNC: case GL_STENCIL_REF:
-    case GL_STENCIL_VALUE_MASK: case GL_STENCIL_WRITEMASK: case GL_STENCIL_FAIL:
-    case GL_STENCIL_PASS_DEPTH_FAIL: case GL_STENCIL_PASS_DEPTH_PASS: case GL_BLEND_SRC: case GL_BLEND_DST:
-    case GL_LOGIC_OP_MODE: case GL_SHADE_MODEL: case GL_CULL_FACE_MODE: case GL_FRONT_FACE:
-    case GL_MATRIX_MODE: case GL_MODELVIEW_STACK_DEPTH: case GL_PROJECTION_STACK_DEPTH:
-    case GL_TEXTURE_STACK_DEPTH: case GL_MAX_MODELVIEW_STACK_DEPTH: case GL_MAX_PROJECTION_STACK_DEPTH:
-    case GL_MAX_TEXTURE_STACK_DEPTH: case GL_MAX_LIGHTS: case GL_MAX_TEXTURE_SIZE: case GL_MAX_TEXTURE_UNITS:
-    case GL_MAX_CLIP_PLANES: case GL_TEXTURE_BINDING_2D: case GL_ARRAY_BUFFER_BINDING:
-    case GL_ELEMENT_ARRAY_BUFFER_BINDING: case GL_RED_BITS: case GL_GREEN_BITS: case GL_BLUE_BITS:
-    case GL_ALPHA_BITS: case GL_DEPTH_BITS: case GL_STENCIL_BITS: case GL_SUBPIXEL_BITS:
-    case GL_POINT_SIZE: case GL_LINE_WIDTH: case GL_PACK_ALIGNMENT: case GL_UNPACK_ALIGNMENT:
-    case GL_ACTIVE_TEXTURE: case GL_CLIENT_ACTIVE_TEXTURE: case GL_VERTEX_ARRAY_SIZE: case GL_VERTEX_ARRAY_TYPE:
-    case GL_VERTEX_ARRAY_STRIDE: case GL_COLOR_ARRAY_SIZE: case GL_COLOR_ARRAY_TYPE: case GL_COLOR_ARRAY_STRIDE:
-    case GL_NORMAL_ARRAY_TYPE: case GL_NORMAL_ARRAY_STRIDE: case GL_TEXTURE_COORD_ARRAY_SIZE:
-    case GL_TEXTURE_COORD_ARRAY_TYPE: case GL_TEXTURE_COORD_ARRAY_STRIDE: case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES:
-    case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES: case GL_NUM_COMPRESSED_TEXTURE_FORMATS:
-    case GL_FOG_MODE: case GL_FOG_DENSITY: case GL_FOG_START: case GL_FOG_END:
-    case GL_SAMPLE_BUFFERS: case GL_SAMPLES: case GL_SAMPLE_COVERAGE_VALUE: case GL_SAMPLE_COVERAGE_INVERT:
-    case GL_POLYGON_OFFSET_UNITS: case GL_LIGHT_MODEL_TWO_SIDE: case GL_PERSPECTIVE_CORRECTION_HINT:
-    case GL_POINT_SMOOTH_HINT: case GL_LINE_SMOOTH_HINT: case GL_FOG_HINT: case GL_GENERATE_MIPMAP_HINT:
-      return 1;
+    case GL_DEPTH_CLEAR_VALUE:
+    case GL_STENCIL_CLEAR_VALUE:
+    case GL_DEPTH_FUNC:
+    case GL_DEPTH_WRITEMASK:
+    case GL_ALPHA_TEST_FUNC:
+    case GL_ALPHA_TEST_REF:
+    case GL_STENCIL_FUNC:
+    case GL_STENCIL_REF:
+    case GL_STENCIL_VALUE_MASK:
+    case GL_STENCIL_WRITEMASK:
+    case GL_STENCIL_FAIL:
+    case GL_STENCIL_PASS_DEPTH_FAIL:
+    case GL_STENCIL_PASS_DEPTH_PASS:
+    case GL_BLEND_SRC:
+    case GL_BLEND_DST:
+    case GL_LOGIC_OP_MODE:
+    case GL_SHADE_MODEL:
+    case GL_CULL_FACE_MODE:
+    case GL_FRONT_FACE:
+    case GL_MATRIX_MODE:
+    case GL_MODELVIEW_STACK_DEPTH:
+    case GL_PROJECTION_STACK_DEPTH:
+    case GL_TEXTURE_STACK_DEPTH:
+    case GL_MAX_MODELVIEW_STACK_DEPTH:
+    case GL_MAX_PROJECTION_STACK_DEPTH:
+    case GL_MAX_TEXTURE_STACK_DEPTH:
+    case GL_MAX_LIGHTS:
+    case GL_MAX_TEXTURE_SIZE:
+    case GL_MAX_TEXTURE_UNITS:
+    case GL_MAX_CLIP_PLANES:
+    case GL_TEXTURE_BINDING_2D:
+    case GL_ARRAY_BUFFER_BINDING:
+    case GL_ELEMENT_ARRAY_BUFFER_BINDING:
+    case GL_RED_BITS:
+    case GL_GREEN_BITS:
+    case GL_BLUE_BITS:
+    case GL_ALPHA_BITS:
+    case GL_DEPTH_BITS:
+    case GL_STENCIL_BITS:
+    case GL_SUBPIXEL_BITS:
+    case GL_POINT_SIZE:
+    case GL_LINE_WIDTH:
+    case GL_PACK_ALIGNMENT:
+    case GL_UNPACK_ALIGNMENT:
+    case GL_ACTIVE_TEXTURE:
+    case GL_CLIENT_ACTIVE_TEXTURE:
+    case GL_VERTEX_ARRAY_SIZE:
+    case GL_VERTEX_ARRAY_TYPE:
+    case GL_VERTEX_ARRAY_STRIDE:
+    case GL_COLOR_ARRAY_SIZE:
+    case GL_COLOR_ARRAY_TYPE:
+    case GL_COLOR_ARRAY_STRIDE:
+    case GL_NORMAL_ARRAY_TYPE:
+    case GL_NORMAL_ARRAY_STRIDE:
+    case GL_TEXTURE_COORD_ARRAY_SIZE:
+    case GL_TEXTURE_COORD_ARRAY_TYPE:
+    case GL_TEXTURE_COORD_ARRAY_STRIDE:
+    case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES:
+    case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES:
+    case GL_NUM_COMPRESSED_TEXTURE_FORMATS:
+    case GL_FOG_MODE:
+    case GL_FOG_DENSITY:
+    case GL_FOG_START:
+    case GL_FOG_END:
+    case GL_SAMPLE_BUFFERS:
+    case GL_SAMPLES:
+    case GL_SAMPLE_COVERAGE_VALUE:
+    case GL_SAMPLE_COVERAGE_INVERT:
+    case GL_POLYGON_OFFSET_UNITS:
+    case GL_LIGHT_MODEL_TWO_SIDE:
+    case GL_PERSPECTIVE_CORRECTION_HINT:
+    case GL_POINT_SMOOTH_HINT:
+    case GL_LINE_SMOOTH_HINT:
+    case GL_FOG_HINT:
+    case GL_GENERATE_MIPMAP_HINT: return 1;
     default: return 0;
   }
 }
@@ -1233,15 +1330,28 @@ void Context::get_floats(GLenum name, float* v) {
   const bool rgb565 = true;
   switch (name) {
     case GL_COLOR_CLEAR_VALUE: std::copy(m_clear_color, m_clear_color + 4, v); break;
-    case GL_VIEWPORT: v[0] = m_viewport.x, v[1] = m_viewport.y, v[2] = m_viewport.width, v[3] = m_viewport.height; break;
-    case GL_SCISSOR_BOX:
-      v[0] = m_raster.scissor_x, v[1] = m_raster.scissor_y, v[2] = m_raster.scissor_width, v[3] = m_raster.scissor_height;
+    case GL_VIEWPORT:
+      v[0] = m_viewport.x, v[1] = m_viewport.y, v[2] = m_viewport.width, v[3] = m_viewport.height;
       break;
-    case GL_COLOR_WRITEMASK: for (int i = 0; i < 4; ++i) v[i] = m_raster.color_mask[i]; break;
-    case GL_CURRENT_COLOR: for (int i = 0; i < 4; ++i) v[i] = m_color[i]; break;
-    case GL_CURRENT_TEXTURE_COORDS: for (int i = 0; i < 4; ++i) v[i] = m_texcoord[i]; break;
-    case GL_CURRENT_NORMAL: for (int i = 0; i < 3; ++i) v[i] = m_normal[i]; break;
-    case GL_LIGHT_MODEL_AMBIENT: for (int i = 0; i < 4; ++i) v[i] = m_lighting_model.ambient[i]; break;
+    case GL_SCISSOR_BOX:
+      v[0] = m_raster.scissor_x, v[1] = m_raster.scissor_y, v[2] = m_raster.scissor_width,
+      v[3] = m_raster.scissor_height;
+      break;
+    case GL_COLOR_WRITEMASK:
+      for (int i = 0; i < 4; ++i) v[i] = m_raster.color_mask[i];
+      break;
+    case GL_CURRENT_COLOR:
+      for (int i = 0; i < 4; ++i) v[i] = m_color[i];
+      break;
+    case GL_CURRENT_TEXTURE_COORDS:
+      for (int i = 0; i < 4; ++i) v[i] = m_texcoord[i];
+      break;
+    case GL_CURRENT_NORMAL:
+      for (int i = 0; i < 3; ++i) v[i] = m_normal[i];
+      break;
+    case GL_LIGHT_MODEL_AMBIENT:
+      for (int i = 0; i < 4; ++i) v[i] = m_lighting_model.ambient[i];
+      break;
     case GL_LIGHT_MODEL_TWO_SIDE: v[0] = m_two_side; break;
     case GL_FOG_COLOR: std::copy(m_fog_color, m_fog_color + 4, v); break;
     case GL_FOG_MODE: v[0] = static_cast<float>(m_fog_mode); break;
@@ -1274,22 +1384,23 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_MODELVIEW_STACK_DEPTH: v[0] = static_cast<float>(m_modelview.size()); break;
     case GL_PROJECTION_STACK_DEPTH: v[0] = static_cast<float>(m_projection.size()); break;
     case GL_TEXTURE_STACK_DEPTH: v[0] = static_cast<float>(m_texture_matrix.size()); break;
-    case GL_MAX_MODELVIEW_STACK_DEPTH: v[0] = kMaxModelviewDepth; break;
-    case GL_MAX_PROJECTION_STACK_DEPTH: v[0] = kMaxProjectionDepth; break;
-    case GL_MAX_TEXTURE_STACK_DEPTH: v[0] = kMaxTextureDepth; break;
-    case GL_MAX_LIGHTS: v[0] = kMaxLights; break;
-    case GL_MAX_TEXTURE_SIZE: v[0] = kMaxTextureSize; break;
+    case GL_MAX_MODELVIEW_STACK_DEPTH: v[0] = MAX_MODELVIEW_DEPTH; break;
+    case GL_MAX_PROJECTION_STACK_DEPTH: v[0] = MAX_PROJECTION_DEPTH; break;
+    case GL_MAX_TEXTURE_STACK_DEPTH: v[0] = MAX_TEXTURE_DEPTH; break;
+    case GL_MAX_LIGHTS: v[0] = MAX_LIGHTS; break;
+    case GL_MAX_TEXTURE_SIZE: v[0] = MAX_TEXTURE_SIZE; break;
     case GL_MAX_TEXTURE_UNITS: v[0] = 2; break;
     case GL_MAX_CLIP_PLANES: v[0] = 6; break;
     case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(m_bound_texture); break;
     case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
     case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
-    case GL_RED_BITS: case GL_BLUE_BITS: v[0] = rgb565 ? 5 : 8; break;
+    case GL_RED_BITS:
+    case GL_BLUE_BITS: v[0] = rgb565 ? 5 : 8; break;
     case GL_GREEN_BITS: v[0] = rgb565 ? 6 : 8; break;
     case GL_ALPHA_BITS: v[0] = 0; break;
     case GL_DEPTH_BITS: v[0] = 16; break;
     case GL_STENCIL_BITS: v[0] = 8; break;
-    case GL_SUBPIXEL_BITS: v[0] = kSubpixelBits; break;
+    case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
     case GL_POINT_SIZE: v[0] = m_point_size; break;
     case GL_LINE_WIDTH: v[0] = m_line_width; break;
     case GL_PACK_ALIGNMENT: v[0] = static_cast<float>(m_pack_alignment); break;
@@ -1316,22 +1427,38 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_SAMPLE_COVERAGE_INVERT: v[0] = m_sample_coverage_invert; break;
     case GL_POLYGON_OFFSET_FACTOR: v[0] = m_polygon_offset[0]; break;
     case GL_POLYGON_OFFSET_UNITS: v[0] = m_polygon_offset[1]; break;
-    case GL_BLEND_SRC: case GL_BLEND_DST: {
-      static const GLenum factors[] = {GL_ZERO, GL_ONE, GL_SRC_COLOR, GL_ONE_MINUS_SRC_COLOR, GL_DST_COLOR,
-                                       GL_ONE_MINUS_DST_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_DST_ALPHA,
-                                       GL_ONE_MINUS_DST_ALPHA, GL_SRC_ALPHA_SATURATE};
-      v[0] = static_cast<float>(factors[static_cast<int>(name == GL_BLEND_SRC ? m_raster.blend_src : m_raster.blend_dst)]);
+    case GL_BLEND_SRC:
+    case GL_BLEND_DST: {
+      static const GLenum factors[] = {GL_ZERO,
+                                       GL_ONE,
+                                       GL_SRC_COLOR,
+                                       GL_ONE_MINUS_SRC_COLOR,
+                                       GL_DST_COLOR,
+                                       GL_ONE_MINUS_DST_COLOR,
+                                       GL_SRC_ALPHA,
+                                       GL_ONE_MINUS_SRC_ALPHA,
+                                       GL_DST_ALPHA,
+                                       GL_ONE_MINUS_DST_ALPHA,
+                                       GL_SRC_ALPHA_SATURATE};
+      v[0] =
+          static_cast<float>(factors[static_cast<int>(name == GL_BLEND_SRC ? m_raster.blend_src : m_raster.blend_dst)]);
       break;
     }
     case GL_LOGIC_OP_MODE: v[0] = static_cast<float>(GL_CLEAR + m_raster.logic_op_code); break;
-    case GL_STENCIL_FAIL: case GL_STENCIL_PASS_DEPTH_FAIL: case GL_STENCIL_PASS_DEPTH_PASS: {
+    case GL_STENCIL_FAIL:
+    case GL_STENCIL_PASS_DEPTH_FAIL:
+    case GL_STENCIL_PASS_DEPTH_PASS: {
       static const GLenum ops[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT};
-      const StencilOp op = name == GL_STENCIL_FAIL ? m_raster.stencil_fail
-                           : name == GL_STENCIL_PASS_DEPTH_FAIL ? m_raster.depth_fail : m_raster.depth_pass;
+      const StencilOp op = name == GL_STENCIL_FAIL              ? m_raster.stencil_fail
+                           : name == GL_STENCIL_PASS_DEPTH_FAIL ? m_raster.depth_fail
+                                                                : m_raster.depth_pass;
       v[0] = static_cast<float>(ops[static_cast<int>(op)]);
       break;
     }
-    case GL_PERSPECTIVE_CORRECTION_HINT: case GL_POINT_SMOOTH_HINT: case GL_LINE_SMOOTH_HINT: case GL_FOG_HINT:
+    case GL_PERSPECTIVE_CORRECTION_HINT:
+    case GL_POINT_SMOOTH_HINT:
+    case GL_LINE_SMOOTH_HINT:
+    case GL_FOG_HINT:
     case GL_GENERATE_MIPMAP_HINT: v[0] = hint_value(name); break;
     default: error(GL_INVALID_ENUM);
   }

@@ -31,8 +31,8 @@ struct ArrayPointer {
 };
 
 struct TextureObject {
-  Texture texture;          // what the back ends see
-  bool defined = false;     // glTexImage2D has been called
+  Texture texture;       // what the back ends see
+  bool defined = false;  // glTexImage2D has been called
 };
 
 struct BufferObject {
@@ -102,8 +102,8 @@ class Context {
   void color(float r, float g, float b, float a);
   void normal(float x, float y, float z);
   void tex_coord(GLenum unit, float s, float t, float r, float q);
-  void array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer,
-                     bool size_ok, bool type_ok);
+  void array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer, bool size_ok,
+                     bool type_ok);
   ArrayPointer& vertex_array() { return m_vertex_array; }
   ArrayPointer& color_array() { return m_color_array; }
   ArrayPointer& normal_array() { return m_normal_array; }

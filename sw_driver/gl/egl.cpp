@@ -43,9 +43,11 @@ Surface* g_current_surface = nullptr;
 unsigned g_swaps = 0;
 
 // The one configuration: its id is 1.
-EGLConfig const kConfig = reinterpret_cast<EGLConfig>(1);
+EGLConfig const CONFIG = reinterpret_cast<EGLConfig>(1);
 
-EGLDisplay display_handle() { return reinterpret_cast<EGLDisplay>(&g_display); }
+EGLDisplay display_handle() {
+  return reinterpret_cast<EGLDisplay>(&g_display);
+}
 
 template <typename T>
 T fail(EGLint code, T value) {
@@ -79,19 +81,32 @@ EGLint config_attribute(EGLint attribute, bool* known) {
     case EGL_GREEN_SIZE: return r565 ? 6 : 8;
     case EGL_BLUE_SIZE: return r565 ? 5 : 8;
     case EGL_ALPHA_SIZE: return r565 ? 0 : 8;
-    case EGL_LUMINANCE_SIZE: case EGL_ALPHA_MASK_SIZE: case EGL_SAMPLES: case EGL_SAMPLE_BUFFERS:
-    case EGL_MAX_SWAP_INTERVAL: case EGL_MIN_SWAP_INTERVAL: case EGL_TRANSPARENT_RED_VALUE:
-    case EGL_TRANSPARENT_GREEN_VALUE: case EGL_TRANSPARENT_BLUE_VALUE: case EGL_LEVEL:
-    case EGL_BIND_TO_TEXTURE_RGB: case EGL_BIND_TO_TEXTURE_RGBA: case EGL_NATIVE_VISUAL_ID:
-    case EGL_NATIVE_VISUAL_TYPE: case EGL_MAX_PBUFFER_WIDTH: case EGL_MAX_PBUFFER_HEIGHT:
-    case EGL_MAX_PBUFFER_PIXELS: return attribute == EGL_MAX_SWAP_INTERVAL || attribute == EGL_MIN_SWAP_INTERVAL ? 1 : 0;
+    case EGL_LUMINANCE_SIZE:
+    case EGL_ALPHA_MASK_SIZE:
+    case EGL_SAMPLES:
+    case EGL_SAMPLE_BUFFERS:
+    case EGL_MAX_SWAP_INTERVAL:
+    case EGL_MIN_SWAP_INTERVAL:
+    case EGL_TRANSPARENT_RED_VALUE:
+    case EGL_TRANSPARENT_GREEN_VALUE:
+    case EGL_TRANSPARENT_BLUE_VALUE:
+    case EGL_LEVEL:
+    case EGL_BIND_TO_TEXTURE_RGB:
+    case EGL_BIND_TO_TEXTURE_RGBA:
+    case EGL_NATIVE_VISUAL_ID:
+    case EGL_NATIVE_VISUAL_TYPE:
+    case EGL_MAX_PBUFFER_WIDTH:
+    case EGL_MAX_PBUFFER_HEIGHT:
+    case EGL_MAX_PBUFFER_PIXELS:
+      return attribute == EGL_MAX_SWAP_INTERVAL || attribute == EGL_MIN_SWAP_INTERVAL ? 1 : 0;
     case EGL_DEPTH_SIZE: return 16;
     case EGL_STENCIL_SIZE: return 8;
     case EGL_CONFIG_ID: return 1;
     case EGL_CONFIG_CAVEAT: return EGL_NONE;
     case EGL_COLOR_BUFFER_TYPE: return EGL_RGB_BUFFER;
     case EGL_NATIVE_RENDERABLE: return EGL_TRUE;
-    case EGL_RENDERABLE_TYPE: case EGL_CONFORMANT: return EGL_OPENGL_ES_BIT;
+    case EGL_RENDERABLE_TYPE:
+    case EGL_CONFORMANT: return EGL_OPENGL_ES_BIT;
     case EGL_SURFACE_TYPE: return EGL_WINDOW_BIT;
     case EGL_TRANSPARENT_TYPE: return EGL_NONE;
     default: *known = false; return 0;
@@ -105,14 +120,22 @@ bool satisfies(EGLint attribute, EGLint value, bool* known) {
   if (!*known) return false;
   if (value == EGL_DONT_CARE) return true;
   switch (attribute) {
-    case EGL_BUFFER_SIZE: case EGL_RED_SIZE: case EGL_GREEN_SIZE: case EGL_BLUE_SIZE: case EGL_ALPHA_SIZE:
-    case EGL_LUMINANCE_SIZE: case EGL_ALPHA_MASK_SIZE: case EGL_DEPTH_SIZE: case EGL_STENCIL_SIZE:
-    case EGL_SAMPLES: case EGL_SAMPLE_BUFFERS: case EGL_LEVEL:
-      return have >= value;
-    case EGL_RENDERABLE_TYPE: case EGL_SURFACE_TYPE: case EGL_CONFORMANT:
-      return (have & value) == value;
-    default:
-      return have == value;
+    case EGL_BUFFER_SIZE:
+    case EGL_RED_SIZE:
+    case EGL_GREEN_SIZE:
+    case EGL_BLUE_SIZE:
+    case EGL_ALPHA_SIZE:
+    case EGL_LUMINANCE_SIZE:
+    case EGL_ALPHA_MASK_SIZE:
+    case EGL_DEPTH_SIZE:
+    case EGL_STENCIL_SIZE:
+    case EGL_SAMPLES:
+    case EGL_SAMPLE_BUFFERS:
+    case EGL_LEVEL: return have >= value;
+    case EGL_RENDERABLE_TYPE:
+    case EGL_SURFACE_TYPE:
+    case EGL_CONFORMANT: return (have & value) == value;
+    default: return have == value;
   }
 }
 
@@ -144,12 +167,16 @@ EGLAPI EGLBoolean EGLAPIENTRY eglTerminate(EGLDisplay dpy) {
   if (dpy != display_handle()) return fail(EGL_BAD_DISPLAY, EGL_FALSE);
   // Resources still current stay alive until released (EGL 1.4, 3.2).
   for (auto it = g_contexts.begin(); it != g_contexts.end();) {
-    if (*it != g_current) delete *it, it = g_contexts.erase(it);
-    else ++it;
+    if (*it != g_current)
+      delete *it, it = g_contexts.erase(it);
+    else
+      ++it;
   }
   for (auto it = g_surfaces.begin(); it != g_surfaces.end();) {
-    if (*it != g_current_surface) delete *it, it = g_surfaces.erase(it);
-    else ++it;
+    if (*it != g_current_surface)
+      delete *it, it = g_surfaces.erase(it);
+    else
+      ++it;
   }
   g_display.initialized = false;
   return ok();
@@ -167,18 +194,21 @@ EGLAPI const char* EGLAPIENTRY eglQueryString(EGLDisplay dpy, EGLint name) {
   }
 }
 
-EGLAPI __eglMustCastToProperFunctionPointerType EGLAPIENTRY eglGetProcAddress(const char*) { return nullptr; }
+EGLAPI __eglMustCastToProperFunctionPointerType EGLAPIENTRY eglGetProcAddress(const char*) {
+  return nullptr;
+}
 
-EGLAPI EGLBoolean EGLAPIENTRY eglGetConfigs(EGLDisplay dpy, EGLConfig* configs, EGLint config_size, EGLint* num_config) {
+EGLAPI EGLBoolean EGLAPIENTRY eglGetConfigs(EGLDisplay dpy, EGLConfig* configs, EGLint config_size,
+                                            EGLint* num_config) {
   if (!valid_display(dpy)) return EGL_FALSE;
   if (!num_config) return fail(EGL_BAD_PARAMETER, EGL_FALSE);
   *num_config = configs ? (config_size > 0 ? 1 : 0) : 1;
-  if (configs && config_size > 0) configs[0] = kConfig;
+  if (configs && config_size > 0) configs[0] = CONFIG;
   return ok();
 }
 
 EGLAPI EGLBoolean EGLAPIENTRY eglChooseConfig(EGLDisplay dpy, const EGLint* attrib_list, EGLConfig* configs,
-                                             EGLint config_size, EGLint* num_config) {
+                                              EGLint config_size, EGLint* num_config) {
   if (!valid_display(dpy)) return EGL_FALSE;
   if (!num_config) return fail(EGL_BAD_PARAMETER, EGL_FALSE);
   bool match = true;
@@ -194,13 +224,13 @@ EGLAPI EGLBoolean EGLAPIENTRY eglChooseConfig(EGLDisplay dpy, const EGLint* attr
     }
   }
   *num_config = match ? (configs ? (config_size > 0 ? 1 : 0) : 1) : 0;
-  if (match && configs && config_size > 0) configs[0] = kConfig;
+  if (match && configs && config_size > 0) configs[0] = CONFIG;
   return ok();
 }
 
 EGLAPI EGLBoolean EGLAPIENTRY eglGetConfigAttrib(EGLDisplay dpy, EGLConfig config, EGLint attribute, EGLint* value) {
   if (!valid_display(dpy)) return EGL_FALSE;
-  if (config != kConfig) return fail(EGL_BAD_CONFIG, EGL_FALSE);
+  if (config != CONFIG) return fail(EGL_BAD_CONFIG, EGL_FALSE);
   bool known = false;
   const EGLint v = config_attribute(attribute, &known);
   if (!known) return fail(EGL_BAD_ATTRIBUTE, EGL_FALSE);
@@ -211,7 +241,7 @@ EGLAPI EGLBoolean EGLAPIENTRY eglGetConfigAttrib(EGLDisplay dpy, EGLConfig confi
 EGLAPI EGLSurface EGLAPIENTRY eglCreateWindowSurface(EGLDisplay dpy, EGLConfig config, EGLNativeWindowType,
                                                      const EGLint* attrib_list) {
   if (!valid_display(dpy)) return EGL_NO_SURFACE;
-  if (config != kConfig) return fail(EGL_BAD_CONFIG, EGL_NO_SURFACE);
+  if (config != CONFIG) return fail(EGL_BAD_CONFIG, EGL_NO_SURFACE);
   for (const EGLint* a = attrib_list; a && *a != EGL_NONE; a += 2)
     if (a[0] != EGL_RENDER_BUFFER || (a[1] != EGL_BACK_BUFFER && a[1] != EGL_SINGLE_BUFFER))
       return fail(EGL_BAD_ATTRIBUTE, EGL_NO_SURFACE);
@@ -288,12 +318,14 @@ EGLAPI EGLBoolean EGLAPIENTRY eglBindAPI(EGLenum api) {
   g_api = api;
   return ok();
 }
-EGLAPI EGLenum EGLAPIENTRY eglQueryAPI(void) { return g_api; }
+EGLAPI EGLenum EGLAPIENTRY eglQueryAPI(void) {
+  return g_api;
+}
 
 EGLAPI EGLContext EGLAPIENTRY eglCreateContext(EGLDisplay dpy, EGLConfig config, EGLContext share_context,
                                                const EGLint* attrib_list) {
   if (!valid_display(dpy)) return EGL_NO_CONTEXT;
-  if (config != kConfig) return fail(EGL_BAD_CONFIG, EGL_NO_CONTEXT);
+  if (config != CONFIG) return fail(EGL_BAD_CONFIG, EGL_NO_CONTEXT);
   if (share_context != EGL_NO_CONTEXT) return fail(EGL_BAD_MATCH, EGL_NO_CONTEXT);  // no sharing
   for (const EGLint* a = attrib_list; a && *a != EGL_NONE; a += 2) {
     if (a[0] != EGL_CONTEXT_CLIENT_VERSION) return fail(EGL_BAD_ATTRIBUTE, EGL_NO_CONTEXT);
@@ -337,12 +369,16 @@ EGLAPI EGLBoolean EGLAPIENTRY eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EG
   return ok();
 }
 
-EGLAPI EGLContext EGLAPIENTRY eglGetCurrentContext(void) { return g_current ? g_current : EGL_NO_CONTEXT; }
+EGLAPI EGLContext EGLAPIENTRY eglGetCurrentContext(void) {
+  return g_current ? g_current : EGL_NO_CONTEXT;
+}
 EGLAPI EGLSurface EGLAPIENTRY eglGetCurrentSurface(EGLint readdraw) {
   if (readdraw != EGL_READ && readdraw != EGL_DRAW) return fail(EGL_BAD_PARAMETER, EGL_NO_SURFACE);
   return g_current_surface ? g_current_surface : EGL_NO_SURFACE;
 }
-EGLAPI EGLDisplay EGLAPIENTRY eglGetCurrentDisplay(void) { return g_current ? display_handle() : EGL_NO_DISPLAY; }
+EGLAPI EGLDisplay EGLAPIENTRY eglGetCurrentDisplay(void) {
+  return g_current ? display_handle() : EGL_NO_DISPLAY;
+}
 
 EGLAPI EGLBoolean EGLAPIENTRY eglQueryContext(EGLDisplay dpy, EGLContext ctx, EGLint attribute, EGLint* value) {
   if (!valid_display(dpy)) return EGL_FALSE;
@@ -368,7 +404,9 @@ EGLAPI EGLBoolean EGLAPIENTRY eglWaitClient(void) {
   if (g_current && g_current->gl) g_current->gl->finish();
   return ok();
 }
-EGLAPI EGLBoolean EGLAPIENTRY eglWaitGL(void) { return eglWaitClient(); }
+EGLAPI EGLBoolean EGLAPIENTRY eglWaitGL(void) {
+  return eglWaitClient();
+}
 EGLAPI EGLBoolean EGLAPIENTRY eglWaitNative(EGLint engine) {
   if (engine != EGL_CORE_NATIVE_ENGINE) return fail(EGL_BAD_PARAMETER, EGL_FALSE);
   return ok();

@@ -10,19 +10,18 @@ namespace {
 // Signed distance-like value of v from clip plane `plane` (>= 0: inside).
 float plane_value(const glm::vec4& p, int plane) {
   switch (plane) {
-    case 0: return p.w + p.x;  // left
-    case 1: return p.w - p.x;  // right
-    case 2: return p.w + p.y;  // bottom
-    case 3: return p.w - p.y;  // top
-    case 4: return p.w + p.z;  // near
-    case 5: return p.w - p.z;  // far
+    case 0: return p.w + p.x;     // left
+    case 1: return p.w - p.x;     // right
+    case 2: return p.w + p.y;     // bottom
+    case 3: return p.w - p.y;     // top
+    case 4: return p.w + p.z;     // near
+    case 5: return p.w - p.z;     // far
     default: return p.w - 1e-6f;  // w > 0: keeps the perspective division finite
   }
 }
 
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
-  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t,
-          a.tex + (b.tex - a.tex) * t};
+  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t, a.tex + (b.tex - a.tex) * t};
 }
 
 }  // namespace
@@ -46,8 +45,10 @@ std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon) {
       // An edge crossing the plane contributes its intersection; computing t
       // from the inside end keeps shared edges of neighbours identical.
       if ((da >= 0) != (db >= 0)) {
-        if (da >= 0) next.push_back(lerp(a, b, da / (da - db)));
-        else next.push_back(lerp(b, a, db / (db - da)));
+        if (da >= 0)
+          next.push_back(lerp(a, b, da / (da - db)));
+        else
+          next.push_back(lerp(b, a, db / (db - da)));
       }
     }
     current.swap(next);
@@ -63,10 +64,10 @@ uint8_t to_unorm8(float value) {
 }
 
 uint32_t to_unorm24(float value) {
-  constexpr double kMax = (1u << 24) - 1;
+  constexpr double MAX = (1u << 24) - 1;
   if (!(value > 0)) return 0;
-  if (value >= 1) return static_cast<uint32_t>(kMax);
-  return static_cast<uint32_t>(std::llround(value * kMax));
+  if (value >= 1) return static_cast<uint32_t>(MAX);
+  return static_cast<uint32_t>(std::llround(value * MAX));
 }
 
 bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
@@ -78,10 +79,10 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   const double xw = (xn + 1.0) * viewport.width * 0.5 + viewport.x;
   const double yw = (yn + 1.0) * viewport.height * 0.5 + viewport.y;
   const double zw = (zn * (viewport.far_depth - viewport.near_depth) + viewport.far_depth + viewport.near_depth) * 0.5;
-  const double xf = std::nearbyint(xw * (1 << kSubpixelBits));
-  const double yf = std::nearbyint(yw * (1 << kSubpixelBits));
-  if (!std::isfinite(xf) || !std::isfinite(yf) || xf < 0 || yf < 0 || xf > kMaxScreenCoordinate ||
-      yf > kMaxScreenCoordinate)
+  const double xf = std::nearbyint(xw * (1 << SUBPIXEL_BITS));
+  const double yf = std::nearbyint(yw * (1 << SUBPIXEL_BITS));
+  if (!std::isfinite(xf) || !std::isfinite(yf) || xf < 0 || yf < 0 || xf > MAX_SCREEN_COORDINATE ||
+      yf > MAX_SCREEN_COORDINATE)
     return false;
   out->x = static_cast<int32_t>(xf);
   out->y = static_cast<int32_t>(yf);
@@ -142,7 +143,9 @@ glm::vec4 light_vertex(const LightingModel& model, const Material& material, con
   return {color, std::clamp(material.diffuse.a, 0.0f, 1.0f)};
 }
 
-FloatCost transform_cost() { return {12, 16, 0, 0, 0, 0, 0}; }
+FloatCost transform_cost() {
+  return {12, 16, 0, 0, 0, 0, 0};
+}
 
 FloatCost lighting_cost(unsigned lights) {
   FloatCost cost{6, 6, 0, 0, 0, 0, 0};
@@ -155,7 +158,11 @@ FloatCost lighting_cost(unsigned lights) {
   return cost;
 }
 
-FloatCost clip_test_cost() { return {6, 0, 0, 0, 7, 0, 0}; }
-FloatCost screen_cost() { return {6, 8, 1, 0, 2, 3, 0}; }
+FloatCost clip_test_cost() {
+  return {6, 0, 0, 0, 7, 0, 0};
+}
+FloatCost screen_cost() {
+  return {6, 8, 1, 0, 2, 3, 0};
+}
 
 }  // namespace tessera::gl

@@ -43,8 +43,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
 // counter-clockwise with y up).
 int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
 
-inline constexpr int kSubpixelBits = 4;
-inline constexpr int32_t kMaxScreenCoordinate = (1 << (9 + kSubpixelBits)) - 1;  // 9.4 unsigned
+inline constexpr int SUBPIXEL_BITS = 4;
+inline constexpr int32_t MAX_SCREEN_COORDINATE = (1 << (9 + SUBPIXEL_BITS)) - 1;  // 9.4 unsigned
 
 uint8_t to_unorm8(float value);
 uint32_t to_unorm24(float value);
@@ -54,7 +54,7 @@ uint32_t to_unorm24(float value);
 struct Light {
   bool enabled = false;
   glm::vec4 ambient{0, 0, 0, 1};
-  glm::vec4 diffuse{0, 0, 0, 1};   // light 0 defaults to white (set by the context)
+  glm::vec4 diffuse{0, 0, 0, 1};  // light 0 defaults to white (set by the context)
   glm::vec4 specular{0, 0, 0, 1};
   glm::vec4 position{0, 0, 1, 0};  // eye coordinates (transformed when specified)
   glm::vec3 spot_direction{0, 0, -1};
@@ -90,9 +90,9 @@ struct FloatCost {
     return *this;
   }
 };
-FloatCost transform_cost();                 // one 4x4 matrix times a vector
-FloatCost lighting_cost(unsigned lights);   // light_vertex with `lights` enabled lights
-FloatCost clip_test_cost();                 // inside_view_volume
-FloatCost screen_cost();                    // to_screen
+FloatCost transform_cost();                // one 4x4 matrix times a vector
+FloatCost lighting_cost(unsigned lights);  // light_vertex with `lights` enabled lights
+FloatCost clip_test_cost();                // inside_view_volume
+FloatCost screen_cost();                   // to_screen
 
 }  // namespace tessera::gl

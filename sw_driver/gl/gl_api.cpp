@@ -14,8 +14,8 @@
 using tessera::gl::Context;
 using tessera::gl::current_context;
 
-#define WITH_CONTEXT(...)             \
-  Context* c = current_context();     \
+#define WITH_CONTEXT(...)         \
+  Context* c = current_context(); \
   if (!c) return __VA_ARGS__;
 
 namespace {
@@ -39,8 +39,13 @@ bool is_color_query(GLenum name) {
 
 int light_param_count(GLenum name) {
   switch (name) {
-    case GL_AMBIENT: case GL_DIFFUSE: case GL_SPECULAR: case GL_POSITION: case GL_EMISSION:
-    case GL_AMBIENT_AND_DIFFUSE: case GL_LIGHT_MODEL_AMBIENT: return 4;
+    case GL_AMBIENT:
+    case GL_DIFFUSE:
+    case GL_SPECULAR:
+    case GL_POSITION:
+    case GL_EMISSION:
+    case GL_AMBIENT_AND_DIFFUSE:
+    case GL_LIGHT_MODEL_AMBIENT: return 4;
     case GL_SPOT_DIRECTION: return 3;
     default: return 1;
   }
@@ -58,11 +63,21 @@ GL_API const GLubyte* GL_APIENTRY glGetString(GLenum name) {
   WITH_CONTEXT(nullptr)
   return c->get_string(name);
 }
-GL_API void GL_APIENTRY glFinish(void) { WITH_CONTEXT() c->finish(); }
-GL_API void GL_APIENTRY glFlush(void) { WITH_CONTEXT() c->flush(); }
-GL_API void GL_APIENTRY glHint(GLenum target, GLenum mode) { WITH_CONTEXT() c->hint(target, mode); }
-GL_API void GL_APIENTRY glEnable(GLenum cap) { WITH_CONTEXT() c->enable(cap, true); }
-GL_API void GL_APIENTRY glDisable(GLenum cap) { WITH_CONTEXT() c->enable(cap, false); }
+GL_API void GL_APIENTRY glFinish(void) {
+  WITH_CONTEXT() c->finish();
+}
+GL_API void GL_APIENTRY glFlush(void) {
+  WITH_CONTEXT() c->flush();
+}
+GL_API void GL_APIENTRY glHint(GLenum target, GLenum mode) {
+  WITH_CONTEXT() c->hint(target, mode);
+}
+GL_API void GL_APIENTRY glEnable(GLenum cap) {
+  WITH_CONTEXT() c->enable(cap, true);
+}
+GL_API void GL_APIENTRY glDisable(GLenum cap) {
+  WITH_CONTEXT() c->enable(cap, false);
+}
 GL_API GLboolean GL_APIENTRY glIsEnabled(GLenum cap) {
   WITH_CONTEXT(GL_FALSE)
   return c->is_enabled(cap) ? GL_TRUE : GL_FALSE;
@@ -88,12 +103,22 @@ GL_API void GL_APIENTRY glGetIntegerv(GLenum pname, GLint* data) {
     data[i] = is_color_query(pname) ? static_cast<GLint>(std::lround(v[i] * 2147483647.0))
                                     : static_cast<GLint>(std::lround(v[i]));
 }
-GL_API void GL_APIENTRY glGetPointerv(GLenum pname, void** params) { WITH_CONTEXT() c->get_pointer(pname, params); }
+GL_API void GL_APIENTRY glGetPointerv(GLenum pname, void** params) {
+  WITH_CONTEXT() c->get_pointer(pname, params);
+}
 
-GL_API void GL_APIENTRY glEnableClientState(GLenum array) { WITH_CONTEXT() c->enable_client_state(array, true); }
-GL_API void GL_APIENTRY glDisableClientState(GLenum array) { WITH_CONTEXT() c->enable_client_state(array, false); }
-GL_API void GL_APIENTRY glClientActiveTexture(GLenum texture) { WITH_CONTEXT() c->active_texture(texture, true); }
-GL_API void GL_APIENTRY glActiveTexture(GLenum texture) { WITH_CONTEXT() c->active_texture(texture, false); }
+GL_API void GL_APIENTRY glEnableClientState(GLenum array) {
+  WITH_CONTEXT() c->enable_client_state(array, true);
+}
+GL_API void GL_APIENTRY glDisableClientState(GLenum array) {
+  WITH_CONTEXT() c->enable_client_state(array, false);
+}
+GL_API void GL_APIENTRY glClientActiveTexture(GLenum texture) {
+  WITH_CONTEXT() c->active_texture(texture, true);
+}
+GL_API void GL_APIENTRY glActiveTexture(GLenum texture) {
+  WITH_CONTEXT() c->active_texture(texture, false);
+}
 
 GL_API void GL_APIENTRY glVertexPointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
   WITH_CONTEXT()
@@ -124,24 +149,34 @@ GL_API void GL_APIENTRY glDrawElements(GLenum mode, GLsizei count, GLenum type, 
   c->draw_elements(mode, count, type, indices);
 }
 
-GL_API void GL_APIENTRY glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a) { WITH_CONTEXT() c->color(r, g, b, a); }
+GL_API void GL_APIENTRY glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {
+  WITH_CONTEXT() c->color(r, g, b, a);
+}
 GL_API void GL_APIENTRY glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a) {
   WITH_CONTEXT()
   c->color(r / 255.0f, g / 255.0f, b / 255.0f, a / 255.0f);
 }
-GL_API void GL_APIENTRY glNormal3f(GLfloat x, GLfloat y, GLfloat z) { WITH_CONTEXT() c->normal(x, y, z); }
+GL_API void GL_APIENTRY glNormal3f(GLfloat x, GLfloat y, GLfloat z) {
+  WITH_CONTEXT() c->normal(x, y, z);
+}
 GL_API void GL_APIENTRY glMultiTexCoord4f(GLenum target, GLfloat s, GLfloat t, GLfloat r, GLfloat q) {
   WITH_CONTEXT()
   c->tex_coord(target, s, t, r, q);
 }
 
-GL_API void GL_APIENTRY glGenBuffers(GLsizei n, GLuint* buffers) { WITH_CONTEXT() c->gen_buffers(n, buffers); }
-GL_API void GL_APIENTRY glDeleteBuffers(GLsizei n, const GLuint* buffers) { WITH_CONTEXT() c->delete_buffers(n, buffers); }
+GL_API void GL_APIENTRY glGenBuffers(GLsizei n, GLuint* buffers) {
+  WITH_CONTEXT() c->gen_buffers(n, buffers);
+}
+GL_API void GL_APIENTRY glDeleteBuffers(GLsizei n, const GLuint* buffers) {
+  WITH_CONTEXT() c->delete_buffers(n, buffers);
+}
 GL_API GLboolean GL_APIENTRY glIsBuffer(GLuint buffer) {
   WITH_CONTEXT(GL_FALSE)
   return c->is_buffer(buffer) ? GL_TRUE : GL_FALSE;
 }
-GL_API void GL_APIENTRY glBindBuffer(GLenum target, GLuint buffer) { WITH_CONTEXT() c->bind_buffer(target, buffer); }
+GL_API void GL_APIENTRY glBindBuffer(GLenum target, GLuint buffer) {
+  WITH_CONTEXT() c->bind_buffer(target, buffer);
+}
 GL_API void GL_APIENTRY glBufferData(GLenum target, GLsizeiptr size, const void* data, GLenum usage) {
   WITH_CONTEXT()
   c->buffer_data(target, size, data, usage);
@@ -155,18 +190,30 @@ GL_API void GL_APIENTRY glGetBufferParameteriv(GLenum target, GLenum pname, GLin
   c->get_buffer_parameter(target, pname, params);
 }
 
-GL_API void GL_APIENTRY glMatrixMode(GLenum mode) { WITH_CONTEXT() c->matrix_mode(mode); }
-GL_API void GL_APIENTRY glLoadIdentity(void) { WITH_CONTEXT() c->load_matrix(glm::mat4(1)); }
-GL_API void GL_APIENTRY glLoadMatrixf(const GLfloat* m) { WITH_CONTEXT() c->load_matrix(glm::make_mat4(m)); }
-GL_API void GL_APIENTRY glMultMatrixf(const GLfloat* m) { WITH_CONTEXT() c->mult_matrix(glm::make_mat4(m)); }
-GL_API void GL_APIENTRY glPushMatrix(void) { WITH_CONTEXT() c->push_matrix(); }
-GL_API void GL_APIENTRY glPopMatrix(void) { WITH_CONTEXT() c->pop_matrix(); }
+GL_API void GL_APIENTRY glMatrixMode(GLenum mode) {
+  WITH_CONTEXT() c->matrix_mode(mode);
+}
+GL_API void GL_APIENTRY glLoadIdentity(void) {
+  WITH_CONTEXT() c->load_matrix(glm::mat4(1));
+}
+GL_API void GL_APIENTRY glLoadMatrixf(const GLfloat* m) {
+  WITH_CONTEXT() c->load_matrix(glm::make_mat4(m));
+}
+GL_API void GL_APIENTRY glMultMatrixf(const GLfloat* m) {
+  WITH_CONTEXT() c->mult_matrix(glm::make_mat4(m));
+}
+GL_API void GL_APIENTRY glPushMatrix(void) {
+  WITH_CONTEXT() c->push_matrix();
+}
+GL_API void GL_APIENTRY glPopMatrix(void) {
+  WITH_CONTEXT() c->pop_matrix();
+}
 GL_API void GL_APIENTRY glRotatef(GLfloat angle, GLfloat x, GLfloat y, GLfloat z) {
   WITH_CONTEXT()
   const glm::vec3 axis(x, y, z);
   const float length = glm::length(axis);
   if (!(length > 0)) return c->charge_call();  // a zero axis rotates by nothing
-  c->host().compute(tessera::Op::call, 2);  // sin and cos
+  c->host().compute(tessera::Op::call, 2);     // sin and cos
   c->mult_matrix(glm::rotate(glm::mat4(1), glm::radians(angle), axis / length));
 }
 GL_API void GL_APIENTRY glScalef(GLfloat x, GLfloat y, GLfloat z) {
@@ -189,13 +236,19 @@ GL_API void GL_APIENTRY glViewport(GLint x, GLint y, GLsizei width, GLsizei heig
   WITH_CONTEXT()
   c->viewport(x, y, width, height);
 }
-GL_API void GL_APIENTRY glDepthRangef(GLfloat n, GLfloat f) { WITH_CONTEXT() c->depth_range(n, f); }
-GL_API void GL_APIENTRY glClipPlanef(GLenum plane, const GLfloat* equation) { WITH_CONTEXT() c->clip_plane(plane, equation); }
+GL_API void GL_APIENTRY glDepthRangef(GLfloat n, GLfloat f) {
+  WITH_CONTEXT() c->depth_range(n, f);
+}
+GL_API void GL_APIENTRY glClipPlanef(GLenum plane, const GLfloat* equation) {
+  WITH_CONTEXT() c->clip_plane(plane, equation);
+}
 GL_API void GL_APIENTRY glGetClipPlanef(GLenum plane, GLfloat* equation) {
   WITH_CONTEXT()
   c->get_clip_plane(plane, equation);
 }
-GL_API void GL_APIENTRY glShadeModel(GLenum mode) { WITH_CONTEXT() c->shade_model(mode); }
+GL_API void GL_APIENTRY glShadeModel(GLenum mode) {
+  WITH_CONTEXT() c->shade_model(mode);
+}
 
 GL_API void GL_APIENTRY glLightf(GLenum light, GLenum pname, GLfloat param) {
   WITH_CONTEXT()
@@ -241,7 +294,9 @@ GL_API void GL_APIENTRY glFogfv(GLenum pname, const GLfloat* params) {
   WITH_CONTEXT()
   c->fog(pname, params, pname == GL_FOG_COLOR ? 4 : 1);
 }
-GL_API void GL_APIENTRY glPointSize(GLfloat size) { WITH_CONTEXT() c->point_size(size); }
+GL_API void GL_APIENTRY glPointSize(GLfloat size) {
+  WITH_CONTEXT() c->point_size(size);
+}
 GL_API void GL_APIENTRY glPointParameterf(GLenum pname, GLfloat param) {
   WITH_CONTEXT()
   c->charge_call();
@@ -255,10 +310,18 @@ GL_API void GL_APIENTRY glPointParameterfv(GLenum pname, const GLfloat* params) 
   if (pname == GL_POINT_DISTANCE_ATTENUATION) return;
   glPointParameterf(pname, params[0]);
 }
-GL_API void GL_APIENTRY glLineWidth(GLfloat width) { WITH_CONTEXT() c->line_width(width); }
-GL_API void GL_APIENTRY glCullFace(GLenum mode) { WITH_CONTEXT() c->cull_face(mode); }
-GL_API void GL_APIENTRY glFrontFace(GLenum mode) { WITH_CONTEXT() c->front_face(mode); }
-GL_API void GL_APIENTRY glPolygonOffset(GLfloat factor, GLfloat units) { WITH_CONTEXT() c->polygon_offset(factor, units); }
+GL_API void GL_APIENTRY glLineWidth(GLfloat width) {
+  WITH_CONTEXT() c->line_width(width);
+}
+GL_API void GL_APIENTRY glCullFace(GLenum mode) {
+  WITH_CONTEXT() c->cull_face(mode);
+}
+GL_API void GL_APIENTRY glFrontFace(GLenum mode) {
+  WITH_CONTEXT() c->front_face(mode);
+}
+GL_API void GL_APIENTRY glPolygonOffset(GLfloat factor, GLfloat units) {
+  WITH_CONTEXT() c->polygon_offset(factor, units);
+}
 GL_API void GL_APIENTRY glSampleCoverage(GLfloat value, GLboolean invert) {
   WITH_CONTEXT()
   c->sample_coverage(value, invert != GL_FALSE);
@@ -267,39 +330,69 @@ GL_API void GL_APIENTRY glScissor(GLint x, GLint y, GLsizei width, GLsizei heigh
   WITH_CONTEXT()
   c->scissor(x, y, width, height);
 }
-GL_API void GL_APIENTRY glAlphaFunc(GLenum func, GLfloat ref) { WITH_CONTEXT() c->alpha_func(func, ref); }
-GL_API void GL_APIENTRY glStencilFunc(GLenum func, GLint ref, GLuint mask) { WITH_CONTEXT() c->stencil_func(func, ref, mask); }
+GL_API void GL_APIENTRY glAlphaFunc(GLenum func, GLfloat ref) {
+  WITH_CONTEXT() c->alpha_func(func, ref);
+}
+GL_API void GL_APIENTRY glStencilFunc(GLenum func, GLint ref, GLuint mask) {
+  WITH_CONTEXT() c->stencil_func(func, ref, mask);
+}
 GL_API void GL_APIENTRY glStencilOp(GLenum fail, GLenum zfail, GLenum zpass) {
   WITH_CONTEXT()
   c->stencil_op(fail, zfail, zpass);
 }
-GL_API void GL_APIENTRY glDepthFunc(GLenum func) { WITH_CONTEXT() c->depth_func(func); }
-GL_API void GL_APIENTRY glBlendFunc(GLenum sfactor, GLenum dfactor) { WITH_CONTEXT() c->blend_func(sfactor, dfactor); }
-GL_API void GL_APIENTRY glLogicOp(GLenum opcode) { WITH_CONTEXT() c->logic_op(opcode); }
+GL_API void GL_APIENTRY glDepthFunc(GLenum func) {
+  WITH_CONTEXT() c->depth_func(func);
+}
+GL_API void GL_APIENTRY glBlendFunc(GLenum sfactor, GLenum dfactor) {
+  WITH_CONTEXT() c->blend_func(sfactor, dfactor);
+}
+GL_API void GL_APIENTRY glLogicOp(GLenum opcode) {
+  WITH_CONTEXT() c->logic_op(opcode);
+}
 GL_API void GL_APIENTRY glColorMask(GLboolean r, GLboolean g, GLboolean b, GLboolean a) {
   WITH_CONTEXT()
   c->color_mask(r != GL_FALSE, g != GL_FALSE, b != GL_FALSE, a != GL_FALSE);
 }
-GL_API void GL_APIENTRY glDepthMask(GLboolean flag) { WITH_CONTEXT() c->depth_mask(flag != GL_FALSE); }
-GL_API void GL_APIENTRY glStencilMask(GLuint mask) { WITH_CONTEXT() c->stencil_mask(mask); }
-GL_API void GL_APIENTRY glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a) { WITH_CONTEXT() c->clear_color(r, g, b, a); }
-GL_API void GL_APIENTRY glClearDepthf(GLfloat depth) { WITH_CONTEXT() c->clear_depth(depth); }
-GL_API void GL_APIENTRY glClearStencil(GLint s) { WITH_CONTEXT() c->clear_stencil(s); }
-GL_API void GL_APIENTRY glClear(GLbitfield mask) { WITH_CONTEXT() c->clear(mask); }
-GL_API void GL_APIENTRY glPixelStorei(GLenum pname, GLint param) { WITH_CONTEXT() c->pixel_store(pname, param); }
+GL_API void GL_APIENTRY glDepthMask(GLboolean flag) {
+  WITH_CONTEXT() c->depth_mask(flag != GL_FALSE);
+}
+GL_API void GL_APIENTRY glStencilMask(GLuint mask) {
+  WITH_CONTEXT() c->stencil_mask(mask);
+}
+GL_API void GL_APIENTRY glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {
+  WITH_CONTEXT() c->clear_color(r, g, b, a);
+}
+GL_API void GL_APIENTRY glClearDepthf(GLfloat depth) {
+  WITH_CONTEXT() c->clear_depth(depth);
+}
+GL_API void GL_APIENTRY glClearStencil(GLint s) {
+  WITH_CONTEXT() c->clear_stencil(s);
+}
+GL_API void GL_APIENTRY glClear(GLbitfield mask) {
+  WITH_CONTEXT() c->clear(mask);
+}
+GL_API void GL_APIENTRY glPixelStorei(GLenum pname, GLint param) {
+  WITH_CONTEXT() c->pixel_store(pname, param);
+}
 GL_API void GL_APIENTRY glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type,
                                      void* pixels) {
   WITH_CONTEXT()
   c->read_pixels(x, y, width, height, format, type, pixels);
 }
 
-GL_API void GL_APIENTRY glGenTextures(GLsizei n, GLuint* textures) { WITH_CONTEXT() c->gen_textures(n, textures); }
-GL_API void GL_APIENTRY glDeleteTextures(GLsizei n, const GLuint* textures) { WITH_CONTEXT() c->delete_textures(n, textures); }
+GL_API void GL_APIENTRY glGenTextures(GLsizei n, GLuint* textures) {
+  WITH_CONTEXT() c->gen_textures(n, textures);
+}
+GL_API void GL_APIENTRY glDeleteTextures(GLsizei n, const GLuint* textures) {
+  WITH_CONTEXT() c->delete_textures(n, textures);
+}
 GL_API GLboolean GL_APIENTRY glIsTexture(GLuint texture) {
   WITH_CONTEXT(GL_FALSE)
   return c->is_texture(texture) ? GL_TRUE : GL_FALSE;
 }
-GL_API void GL_APIENTRY glBindTexture(GLenum target, GLuint texture) { WITH_CONTEXT() c->bind_texture(target, texture); }
+GL_API void GL_APIENTRY glBindTexture(GLenum target, GLuint texture) {
+  WITH_CONTEXT() c->bind_texture(target, texture);
+}
 GL_API void GL_APIENTRY glTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLsizei height,
                                      GLint border, GLenum format, GLenum type, const void* pixels) {
   WITH_CONTEXT()

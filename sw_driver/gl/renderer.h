@@ -28,8 +28,17 @@ struct Triangle {
 // Enumerations in the order of their GL values (GL_NEVER + i, ...).
 enum class CompareFunc : uint8_t { never, less, equal, lequal, greater, notequal, gequal, always };
 enum class BlendFactor : uint8_t {
-  zero, one, src_color, one_minus_src_color, dst_color, one_minus_dst_color,
-  src_alpha, one_minus_src_alpha, dst_alpha, one_minus_dst_alpha, src_alpha_saturate
+  zero,
+  one,
+  src_color,
+  one_minus_src_color,
+  dst_color,
+  one_minus_dst_color,
+  src_alpha,
+  one_minus_src_alpha,
+  dst_alpha,
+  one_minus_dst_alpha,
+  src_alpha_saturate
 };
 enum class StencilOp : uint8_t { keep, zero, replace, incr, decr, invert };
 enum class TexEnv : uint8_t { modulate, replace, decal };

@@ -24,9 +24,8 @@ uint32_t allocate(uint32_t bytes, uint32_t alignment) {
   AppEnvironment& env = environment();
   const uint64_t start = (static_cast<uint64_t>(g_heap_next) + alignment - 1) / alignment * alignment;
   if (start + bytes > env.heap_end)
-    throw std::runtime_error("GL driver: out of system memory allocating " + std::to_string(bytes) +
-                             " bytes (heap " + std::to_string(env.heap_end - env.heap_base) +
-                             " bytes; raise mem.size_mib)");
+    throw std::runtime_error("GL driver: out of system memory allocating " + std::to_string(bytes) + " bytes (heap " +
+                             std::to_string(env.heap_end - env.heap_base) + " bytes; raise mem.size_mib)");
   g_heap_next = static_cast<uint32_t>(start + bytes);
   return static_cast<uint32_t>(start);
 }

@@ -89,8 +89,9 @@ void draw(int /*frame*/) {
 }  // namespace
 
 Scene aapoly_scene() {
-  return {"aapoly", "A wheel of thin flat-coloured spokes drawn with polygon antialiasing (after the Red Book's aapoly)",
-          init, draw};
+  return {"aapoly",
+          "A wheel of thin flat-coloured spokes drawn with polygon antialiasing (after the Red Book's aapoly)", init,
+          draw};
 }
 
 }  // namespace tessera::scenes

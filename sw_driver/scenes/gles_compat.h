@@ -38,8 +38,12 @@ inline void orthof(GLfloat left, GLfloat right, GLfloat bottom, GLfloat top, GLf
 }
 // glClearDepthf and glDepthRangef exist in GL 4.1, but an OSMesa context
 // need not offer them; the GL 1.0 originals always work.
-inline void clear_depthf(GLfloat depth) { glClearDepth(depth); }
-inline void depth_rangef(GLfloat near_val, GLfloat far_val) { glDepthRange(near_val, far_val); }
+inline void clear_depthf(GLfloat depth) {
+  glClearDepth(depth);
+}
+inline void depth_rangef(GLfloat near_val, GLfloat far_val) {
+  glDepthRange(near_val, far_val);
+}
 inline void clip_planef(GLenum plane, const GLfloat* equation) {
   const GLdouble widened[4] = {equation[0], equation[1], equation[2], equation[3]};
   glClipPlane(plane, widened);

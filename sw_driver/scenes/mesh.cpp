@@ -13,15 +13,21 @@ Vec3 position(const Mesh& mesh, std::size_t vertex) {
   return {mesh.positions[3 * vertex], mesh.positions[3 * vertex + 1], mesh.positions[3 * vertex + 2]};
 }
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-double dot(const Vec3& a, const Vec3& b) { return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]; }
+double dot(const Vec3& a, const Vec3& b) {
+  return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+}
 
-double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+double length(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 double angle_between(const Vec3& a, const Vec3& b) {
   const double lengths = length(a) * length(b);

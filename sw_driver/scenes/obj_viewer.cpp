@@ -28,7 +28,9 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
   return true;
 }
 
-void draw(int frame) { draw_lit_mesh(g_model, frame); }
+void draw(int frame) {
+  draw_lit_mesh(g_model, frame);
+}
 
 }  // namespace
 

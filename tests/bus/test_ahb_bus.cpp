@@ -11,20 +11,20 @@
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
-using test::TestInitiator;
-using sc_core::sc_time;
 using sc_core::SC_NS;
+using sc_core::sc_time;
+using test::TestInitiator;
 
 namespace {
 
-const sc_time kCycle(10, SC_NS);  // 100 MHz bus: times are easy to read
-constexpr unsigned kFastWait = 2;  // wait states of the fast memory
-constexpr unsigned kSlowWait = 5;
-constexpr uint64_t kFastBase = 0x0000;
-constexpr uint64_t kSlowBase = 0x10000;
-constexpr uint64_t kSlowPopulated = 0x4000;  // the slow window is 0x10000 bytes, only 16 KiB populated
-constexpr uint64_t kUnmapped = 0xF0000000;
-constexpr uint64_t kProbeBase = 0x20000;
+const sc_time CYCLE(10, SC_NS);    // 100 MHz bus: times are easy to read
+constexpr unsigned FAST_WAIT = 2;  // wait states of the fast memory
+constexpr unsigned SLOW_WAIT = 5;
+constexpr uint64_t FAST_BASE = 0x0000;
+constexpr uint64_t SLOW_BASE = 0x10000;
+constexpr uint64_t SLOW_POPULATED = 0x4000;  // the slow window is 0x10000 bytes, only 16 KiB populated
+constexpr uint64_t UNMAPPED = 0xF0000000;
+constexpr uint64_t PROBE_BASE = 0x20000;
 
 // A target that notes the delay each access arrives with and adds one cycle.
 struct ProbeTarget : sc_core::sc_module {
@@ -35,7 +35,7 @@ struct ProbeTarget : sc_core::sc_module {
   }
   void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
     arrivals.push_back(sc_core::sc_time_stamp() + delay);
-    delay += kCycle;
+    delay += CYCLE;
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
 };
@@ -47,16 +47,18 @@ struct Bench {
   Memory fast, slow;
   ProbeTarget probe;
   TestInitiator a, b, c;
-  protocol_checker<32> check_a, check_b, check_c, check_fast, check_slow;
+  ProtocolChecker<32> check_a, check_b, check_c, check_fast, check_slow;
 
   Bench(const char* name, Arbitration arbitration)
       : bus((std::string(name) + "_bus").c_str(), params(arbitration)),
-        fast((std::string(name) + "_fast").c_str(), memory(0x10000, kFastWait)),
-        slow((std::string(name) + "_slow").c_str(), memory(kSlowPopulated, kSlowWait)),
+        fast((std::string(name) + "_fast").c_str(), memory(0x10000, FAST_WAIT)),
+        slow((std::string(name) + "_slow").c_str(), memory(SLOW_POPULATED, SLOW_WAIT)),
         probe((std::string(name) + "_probe").c_str()),
-        a((std::string(name) + "_a").c_str()), b((std::string(name) + "_b").c_str()),
+        a((std::string(name) + "_a").c_str()),
+        b((std::string(name) + "_b").c_str()),
         c((std::string(name) + "_c").c_str()),
-        check_a((std::string(name) + "_check_a").c_str()), check_b((std::string(name) + "_check_b").c_str()),
+        check_a((std::string(name) + "_check_a").c_str()),
+        check_b((std::string(name) + "_check_b").c_str()),
         check_c((std::string(name) + "_check_c").c_str()),
         check_fast((std::string(name) + "_check_fast").c_str()),
         check_slow((std::string(name) + "_check_slow").c_str()) {
@@ -66,15 +68,15 @@ struct Bench {
     bus.attach(check_a.out, "a", 0);
     bus.attach(check_b.out, "b", 1);
     bus.attach(check_c.out, "c", 2);
-    bus.map(check_fast.in, kFastBase, 0x10000, "fast");
-    bus.map(check_slow.in, kSlowBase, 0x10000, "slow");
-    bus.map(probe.in, kProbeBase, 0x100, "probe");
+    bus.map(check_fast.in, FAST_BASE, 0x10000, "fast");
+    bus.map(check_slow.in, SLOW_BASE, 0x10000, "slow");
+    bus.map(probe.in, PROBE_BASE, 0x100, "probe");
     check_fast.out.bind(fast.in);
     check_slow.out.bind(slow.in);
   }
   static BusParams params(Arbitration arbitration) {
     BusParams p;
-    p.clock_period = kCycle;
+    p.clock_period = CYCLE;
     p.arbitration = arbitration;
     p.width_bytes = 4;
     p.address_cycles = 1;
@@ -84,7 +86,7 @@ struct Bench {
   static MemoryParams memory(uint64_t size, unsigned wait) {
     MemoryParams p;
     p.size_bytes = size;
-    p.clock_period = kCycle;
+    p.clock_period = CYCLE;
     p.width_bytes = 4;
     p.first_access_cycles = wait;
     p.beat_cycles = 1;
@@ -100,7 +102,9 @@ Bench* g_fixed = nullptr;
 Bench* g_round_robin = nullptr;
 
 // Cycles of one access: address phase + wait states + one per beat.
-sc_time access(unsigned wait, unsigned beats) { return kCycle * static_cast<double>(1 + wait + beats); }
+sc_time access(unsigned wait, unsigned beats) {
+  return CYCLE * static_cast<double>(1 + wait + beats);
+}
 
 }  // namespace
 
@@ -109,12 +113,12 @@ TEST(AhbBus, SingleReadTakesAddressPhaseWaitStatesAndOneBeat) {
   sc_time done;
   const sc_time start = test::run_thread([&] {
     uint32_t value = 0;
-    auto r = bench.a.read(kFastBase + 0x100, reinterpret_cast<uint8_t*>(&value), 4);
+    auto r = bench.a.read(FAST_BASE + 0x100, reinterpret_cast<uint8_t*>(&value), 4);
     EXPECT_EQ(r.status, tlm::TLM_OK_RESPONSE);
     sc_core::wait(r.delay);
     done = sc_core::sc_time_stamp();
   });
-  EXPECT_EQ(done, start + access(kFastWait, 1));
+  EXPECT_EQ(done, start + access(FAST_WAIT, 1));
   EXPECT_EQ(bench.violations(), 0u);
 }
 
@@ -124,16 +128,16 @@ TEST(AhbBus, BurstTakesOneCyclePerBeatAndTargetWaitStates) {
   uint8_t data[32];
   for (unsigned i = 0; i < 32; ++i) data[i] = static_cast<uint8_t>(i * 7);
   const sc_time start = test::run_thread([&] {
-    auto w = bench.a.write(kFastBase + 0x200, data, 32);
+    auto w = bench.a.write(FAST_BASE + 0x200, data, 32);
     EXPECT_EQ(w.status, tlm::TLM_OK_RESPONSE);
     sc_core::wait(w.delay);
     fast_done = sc_core::sc_time_stamp();
-    auto s = bench.a.write(kSlowBase + 0x40, data, 32);
+    auto s = bench.a.write(SLOW_BASE + 0x40, data, 32);
     sc_core::wait(s.delay);
     slow_done = sc_core::sc_time_stamp();
   });
-  EXPECT_EQ(fast_done, start + access(kFastWait, 8));
-  EXPECT_EQ(slow_done, fast_done + access(kSlowWait, 8));
+  EXPECT_EQ(fast_done, start + access(FAST_WAIT, 8));
+  EXPECT_EQ(slow_done, fast_done + access(SLOW_WAIT, 8));
   EXPECT_EQ(std::memcmp(bench.fast.data() + 0x200, data, 32), 0);
   EXPECT_EQ(std::memcmp(bench.slow.data() + 0x40, data, 32), 0);
 }
@@ -146,7 +150,7 @@ TEST(AhbBus, FixedPriorityServesSimultaneousRequestsByPriority) {
     auto issue = [](TestInitiator& initiator, sc_time& done) {
       return [&initiator, &done] {
         uint32_t v;
-        auto r = initiator.read(kFastBase, reinterpret_cast<uint8_t*>(&v), 4);
+        auto r = initiator.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4);
         sc_core::wait(r.delay);
         done = sc_core::sc_time_stamp();
       };
@@ -155,7 +159,7 @@ TEST(AhbBus, FixedPriorityServesSimultaneousRequestsByPriority) {
     sc_core::sc_spawn(issue(bench.b, done_b));
     sc_core::sc_spawn(issue(bench.a, done_a));
   });
-  const sc_time one = access(kFastWait, 1);
+  const sc_time one = access(FAST_WAIT, 1);
   EXPECT_EQ(done_a, start + one);
   EXPECT_EQ(done_b, start + one * 2.0);
   EXPECT_EQ(done_c, start + one * 3.0);
@@ -169,7 +173,7 @@ TEST(AhbBus, RoundRobinRotatesPastTheLastGrantedInitiator) {
     auto issue = [&order](TestInitiator& initiator, const char* name) {
       return [&initiator, &order, name] {
         uint32_t v;
-        auto r = initiator.read(kFastBase, reinterpret_cast<uint8_t*>(&v), 4);
+        auto r = initiator.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4);
         sc_core::wait(r.delay);
         order.push_back(name);
       };
@@ -181,7 +185,7 @@ TEST(AhbBus, RoundRobinRotatesPastTheLastGrantedInitiator) {
   auto alone = [&](TestInitiator& initiator) {
     test::run_thread([&] {
       uint32_t v;
-      sc_core::wait(initiator.read(kFastBase, reinterpret_cast<uint8_t*>(&v), 4).delay);
+      sc_core::wait(initiator.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4).delay);
     });
   };
   alone(bench.a);  // a was granted last: b is next in turn
@@ -201,24 +205,24 @@ TEST(AhbBus, ContendingInitiatorWaitsForTheBusAndIsCharged) {
   const sc_time start = test::run_thread([&] {
     sc_core::sc_spawn([&] {
       uint8_t data[32] = {};
-      auto r = bench.a.read(kFastBase, data, 32);  // 8 beats from the start
+      auto r = bench.a.read(FAST_BASE, data, 32);  // 8 beats from the start
       sc_core::wait(r.delay);
       done_a = sc_core::sc_time_stamp();
     });
     sc_core::sc_spawn([&] {
       // b runs 2 cycles ahead in its quantum and wants the bus while a has it.
       uint32_t v;
-      auto r = bench.b.read(kFastBase + 4, reinterpret_cast<uint8_t*>(&v), 4, kCycle * 2.0);
+      auto r = bench.b.read(FAST_BASE + 4, reinterpret_cast<uint8_t*>(&v), 4, CYCLE * 2.0);
       sc_core::wait(r.delay);
       done_b = sc_core::sc_time_stamp();
     });
   });
-  EXPECT_EQ(done_a, start + access(kFastWait, 8));
-  EXPECT_EQ(done_b, done_a + access(kFastWait, 1));
+  EXPECT_EQ(done_a, start + access(FAST_WAIT, 8));
+  EXPECT_EQ(done_b, done_a + access(FAST_WAIT, 1));
   const BusInitiatorStats& after_b = bench.bus.initiator_stats()[1];
   EXPECT_EQ(after_b.transactions - before_b.transactions, 1u);
-  EXPECT_EQ(after_b.wait_cycles - before_b.wait_cycles, 1 + kFastWait + 8 - 2);
-  EXPECT_EQ(after_b.busy_cycles - before_b.busy_cycles, 1 + kFastWait + 1);
+  EXPECT_EQ(after_b.wait_cycles - before_b.wait_cycles, 1 + FAST_WAIT + 8 - 2);
+  EXPECT_EQ(after_b.busy_cycles - before_b.busy_cycles, 1 + FAST_WAIT + 1);
 }
 
 TEST(AhbBus, InitiatorAheadInTimeDoesNotBlockOneBehind) {
@@ -229,13 +233,13 @@ TEST(AhbBus, InitiatorAheadInTimeDoesNotBlockOneBehind) {
     const sc_time now = sc_core::sc_time_stamp();
     // a is 50 cycles ahead; b's later call is for an earlier time and fits
     // in the idle bus before a's transfer.
-    auto ra = bench.a.read(kFastBase, reinterpret_cast<uint8_t*>(&v), 4, kCycle * 50.0);
-    auto rb = bench.b.read(kFastBase, reinterpret_cast<uint8_t*>(&v), 4, kCycle * 10.0);
+    auto ra = bench.a.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4, CYCLE * 50.0);
+    auto rb = bench.b.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4, CYCLE * 10.0);
     done_a = now + ra.delay;
     done_b = now + rb.delay;
   });
-  EXPECT_EQ(done_a, start + kCycle * 50.0 + access(kFastWait, 1));
-  EXPECT_EQ(done_b, start + kCycle * 10.0 + access(kFastWait, 1));
+  EXPECT_EQ(done_a, start + CYCLE * 50.0 + access(FAST_WAIT, 1));
+  EXPECT_EQ(done_b, start + CYCLE * 10.0 + access(FAST_WAIT, 1));
 }
 
 // A loosely-timed target must see an access at the initiator's local time
@@ -249,14 +253,14 @@ TEST(AhbBus, TargetSeesTheAccessAtTheInitiatorsAnnotatedTime) {
     start = sc_core::sc_time_stamp();
     uint32_t value = 1;
     // 35 ns ahead: the request is at the next bus edge, 40 ns.
-    const auto r = bench.a.write(kProbeBase, reinterpret_cast<uint8_t*>(&value), 4, sc_time(35, SC_NS));
+    const auto r = bench.a.write(PROBE_BASE, reinterpret_cast<uint8_t*>(&value), 4, sc_time(35, SC_NS));
     EXPECT_EQ(r.status, tlm::TLM_OK_RESPONSE);
     done = start + r.delay;
   });
   ASSERT_EQ(bench.probe.arrivals.size(), 1u);
   EXPECT_EQ(bench.probe.arrivals[0], start + sc_time(40, SC_NS));
   // Address phase and the target's one cycle (one beat), after the request.
-  EXPECT_EQ(done, start + sc_time(40, SC_NS) + 2 * kCycle);
+  EXPECT_EQ(done, start + sc_time(40, SC_NS) + 2 * CYCLE);
 }
 
 TEST(AhbBus, UnmappedAddressGetsAddressErrorAndAWarningNamingInitiator) {
@@ -267,13 +271,13 @@ TEST(AhbBus, UnmappedAddressGetsAddressErrorAndAWarningNamingInitiator) {
   sc_time done;
   const sc_time start = test::run_thread([&] {
     uint32_t v;
-    auto r = bench.c.read(kUnmapped, reinterpret_cast<uint8_t*>(&v), 4);
+    auto r = bench.c.read(UNMAPPED, reinterpret_cast<uint8_t*>(&v), 4);
     status = r.status;
     sc_core::wait(r.delay);
     done = sc_core::sc_time_stamp();
   });
   EXPECT_EQ(status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
-  EXPECT_EQ(done, start + kCycle * 3.0);  // address phase + two-cycle error response
+  EXPECT_EQ(done, start + CYCLE * 3.0);  // address phase + two-cycle error response
   EXPECT_EQ(bench.bus.initiator_stats()[2].errors - errors_before, 1u);
   EXPECT_TRUE(reports.contains("unmapped read by c at 0xf0000000")) << testing::PrintToString(reports.messages());
 }
@@ -284,7 +288,7 @@ TEST(AhbBus, TargetErrorInsideAMappedWindowIsPassedBack) {
   tlm::tlm_response_status status = tlm::TLM_INCOMPLETE_RESPONSE;
   test::run_thread([&] {
     uint32_t v = 0;
-    status = bench.a.write(kSlowBase + kSlowPopulated, reinterpret_cast<uint8_t*>(&v), 4).status;
+    status = bench.a.write(SLOW_BASE + SLOW_POPULATED, reinterpret_cast<uint8_t*>(&v), 4).status;
   });
   EXPECT_EQ(status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
   EXPECT_EQ(bench.violations(), 0u);
@@ -294,24 +298,24 @@ TEST(AhbBus, DmiIsTranslatedToBusAddressesAndInvalidationReachesInitiators) {
   Bench& bench = *g_fixed;
   tlm::tlm_generic_payload gp;
   gp.set_command(tlm::TLM_READ_COMMAND);
-  gp.set_address(kSlowBase + 0x123);
+  gp.set_address(SLOW_BASE + 0x123);
   tlm::tlm_dmi dmi;
   ASSERT_TRUE(bench.a.out->get_direct_mem_ptr(gp, dmi));
-  EXPECT_EQ(gp.get_address(), kSlowBase + 0x123);  // the bus restores the address
-  EXPECT_EQ(dmi.get_start_address(), kSlowBase);
-  EXPECT_EQ(dmi.get_end_address(), kSlowBase + kSlowPopulated - 1);
+  EXPECT_EQ(gp.get_address(), SLOW_BASE + 0x123);  // the bus restores the address
+  EXPECT_EQ(dmi.get_start_address(), SLOW_BASE);
+  EXPECT_EQ(dmi.get_end_address(), SLOW_BASE + SLOW_POPULATED - 1);
   EXPECT_EQ(dmi.get_dmi_ptr(), bench.slow.data());
   EXPECT_TRUE(dmi.is_read_write_allowed());
   // Latency of a single beat: wait states + beat, plus the bus's address phase.
-  EXPECT_EQ(dmi.get_read_latency(), access(kSlowWait, 1));
+  EXPECT_EQ(dmi.get_read_latency(), access(SLOW_WAIT, 1));
 
   bench.b.invalidations.clear();
   bench.slow.invalidate_dmi();
   ASSERT_EQ(bench.b.invalidations.size(), 1u);
-  EXPECT_EQ(bench.b.invalidations[0].first, kSlowBase);
-  EXPECT_EQ(bench.b.invalidations[0].second, kSlowBase + kSlowPopulated - 1);
+  EXPECT_EQ(bench.b.invalidations[0].first, SLOW_BASE);
+  EXPECT_EQ(bench.b.invalidations[0].second, SLOW_BASE + SLOW_POPULATED - 1);
 
-  gp.set_address(kUnmapped);
+  gp.set_address(UNMAPPED);
   EXPECT_FALSE(bench.a.out->get_direct_mem_ptr(gp, dmi));
   EXPECT_EQ(bench.violations(), 0u);
 }
@@ -320,12 +324,12 @@ TEST(AhbBus, DebugTransportReachesTargetWithoutTime) {
   Bench& bench = *g_fixed;
   const sc_time before = sc_core::sc_time_stamp();
   uint8_t in[8] = {1, 2, 3, 4, 5, 6, 7, 8};
-  EXPECT_EQ(bench.a.debug(tlm::TLM_WRITE_COMMAND, kSlowBase + 0x80, in, 8), 8u);
+  EXPECT_EQ(bench.a.debug(tlm::TLM_WRITE_COMMAND, SLOW_BASE + 0x80, in, 8), 8u);
   uint8_t out[8] = {};
-  EXPECT_EQ(bench.c.debug(tlm::TLM_READ_COMMAND, kSlowBase + 0x80, out, 8), 8u);
+  EXPECT_EQ(bench.c.debug(tlm::TLM_READ_COMMAND, SLOW_BASE + 0x80, out, 8), 8u);
   EXPECT_EQ(std::memcmp(in, out, 8), 0);
   EXPECT_EQ(std::memcmp(bench.slow.data() + 0x80, in, 8), 0);
-  EXPECT_EQ(bench.a.debug(tlm::TLM_READ_COMMAND, kUnmapped, out, 8), 0u);
+  EXPECT_EQ(bench.a.debug(tlm::TLM_READ_COMMAND, UNMAPPED, out, 8), 0u);
   EXPECT_EQ(sc_core::sc_time_stamp(), before);
 }
 
@@ -335,8 +339,8 @@ TEST(AhbBus, StatisticsCountTransactionsBytesAndUtilisation) {
   const uint64_t bus_busy_before = bus.busy_cycles();
   test::run_thread([&] {
     uint8_t data[16] = {};
-    for (int i = 0; i < 3; ++i) sc_core::wait(g_fixed->a.write(kFastBase + 0x400, data, 16).delay);
-    sc_core::wait(g_fixed->a.read(kFastBase + 0x400, data, 16).delay);
+    for (int i = 0; i < 3; ++i) sc_core::wait(g_fixed->a.write(FAST_BASE + 0x400, data, 16).delay);
+    sc_core::wait(g_fixed->a.read(FAST_BASE + 0x400, data, 16).delay);
   });
   const BusInitiatorStats& after = bus.initiator_stats()[0];
   EXPECT_EQ(after.transactions - before.transactions, 4u);
@@ -344,8 +348,8 @@ TEST(AhbBus, StatisticsCountTransactionsBytesAndUtilisation) {
   EXPECT_EQ(after.reads - before.reads, 1u);
   EXPECT_EQ(after.bytes - before.bytes, 64u);
   EXPECT_EQ(after.beats - before.beats, 16u);
-  EXPECT_EQ(after.busy_cycles - before.busy_cycles, 4u * (1 + kFastWait + 4));
-  EXPECT_EQ(bus.busy_cycles() - bus_busy_before, 4u * (1 + kFastWait + 4));
+  EXPECT_EQ(after.busy_cycles - before.busy_cycles, 4u * (1 + FAST_WAIT + 4));
+  EXPECT_EQ(bus.busy_cycles() - bus_busy_before, 4u * (1 + FAST_WAIT + 4));
   const auto json = bus.stats_json(sc_core::sc_time_stamp());
   const double utilisation = json["initiators"]["a"]["utilisation"].get<double>();
   EXPECT_GT(utilisation, 0.0);

@@ -155,8 +155,9 @@ TEST(ConfigMerge, IntegerIsAcceptedForARealParameter) {
 
 TEST(ConfigErrors, UnknownKeyIsNamedWithTheNearestKnownKey) {
   Config config;
-  const std::string message =
-      config_error([&] { config.merge_json({{"bus", {{"arbitraton", "round_robin"}}}}, "my.json"); });
+  const std::string message = config_error([&] {
+    config.merge_json({{"bus", {{"arbitraton", "round_robin"}}}}, "my.json");
+  });
   EXPECT_MENTIONS(message, "bus.arbitraton");
   EXPECT_MENTIONS(message, "did you mean 'bus.arbitration'");
   EXPECT_MENTIONS(message, "my.json");
@@ -266,9 +267,10 @@ TEST(ConfigOverride, ParsesEachType) {
 }
 
 TEST(ConfigOverride, GarbageValuesNameTheKey) {
-  const char* garbage[] = {"display.dma=maybe", "display.dma=", "sim.frames=many", "sim.frames=12abc",
-                           "sim.frames=",       "sim.frames=3.5", "host.clock_mhz=fast", "host.clock_mhz=1.5x",
-                           "sim.frames=99999999999999999999999", "bus.arbitration=lottery"};
+  const char* garbage[] = {"display.dma=maybe",      "display.dma=",        "sim.frames=many",
+                           "sim.frames=12abc",       "sim.frames=",         "sim.frames=3.5",
+                           "host.clock_mhz=fast",    "host.clock_mhz=1.5x", "sim.frames=99999999999999999999999",
+                           "bus.arbitration=lottery"};
   for (const char* assignment : garbage) {
     SCOPED_TRACE(assignment);
     Config config;

@@ -17,29 +17,29 @@ namespace regs = display_regs;
 
 namespace {
 
-const sc_time kCycle(10, sc_core::SC_NS);
-constexpr unsigned kWidth = 32, kHeight = 16, kVblank = 4;
-constexpr double kRefreshHz = 1000.0;  // a 1 ms period keeps the tests short
-constexpr uint32_t kRegs = 0x40000000, kFrameBuffer = 0x1000;
+const sc_time CYCLE(10, sc_core::SC_NS);
+constexpr unsigned WIDTH = 32, HEIGHT = 16, VBLANK = 4;
+constexpr double REFRESH_HZ = 1000.0;  // a 1 ms period keeps the tests short
+constexpr uint32_t REGS_BASE = 0x40000000, FRAME_BUFFER_ADDRESS = 0x1000;
 
 DisplayParams display_params(bool dma) {
   DisplayParams p;
-  p.width = kWidth;
-  p.height = kHeight;
+  p.width = WIDTH;
+  p.height = HEIGHT;
   p.format = PixelFormat::rgb565;
   p.dma = dma;
-  p.refresh_hz = kRefreshHz;
-  p.vblank_lines = kVblank;
+  p.refresh_hz = REFRESH_HZ;
+  p.vblank_lines = VBLANK;
   p.burst_bytes = 16;
   p.fifo_lines = 1;
-  p.clock_period = kCycle;
+  p.clock_period = CYCLE;
   return p;
 }
 
 // Port-mode display driven directly by a test initiator.
 struct PortBench {
   test::TestInitiator regs_initiator{"port_regs_initiator"}, port_initiator{"port_initiator"};
-  protocol_checker<32> check_regs{"port_check_regs"}, check_port{"port_check_port"};
+  ProtocolChecker<32> check_regs{"port_check_regs"}, check_port{"port_check_port"};
   DisplayController display{"port_display", display_params(false)};
   sc_core::sc_signal<bool> irq{"port_irq"};
   std::vector<Frame> frames;
@@ -64,25 +64,29 @@ struct PortBench {
 // DMA-mode display reading a frame buffer from memory over a bus.
 struct DmaBench {
   test::TestInitiator host;
-  protocol_checker<32> check_host, check_dma, check_memory, check_regs;
+  ProtocolChecker<32> check_host, check_dma, check_memory, check_regs;
   AhbBus bus;
   Memory memory;
   DisplayController display;
   sc_core::sc_signal<bool> irq;
   std::vector<Frame> frames;
   DmaBench(const std::string& name, unsigned memory_wait)
-      : host((name + "_host").c_str()), check_host((name + "_check_host").c_str()),
-        check_dma((name + "_check_dma").c_str()), check_memory((name + "_check_memory").c_str()),
-        check_regs((name + "_check_regs").c_str()), bus((name + "_bus").c_str(), bus_params()),
+      : host((name + "_host").c_str()),
+        check_host((name + "_check_host").c_str()),
+        check_dma((name + "_check_dma").c_str()),
+        check_memory((name + "_check_memory").c_str()),
+        check_regs((name + "_check_regs").c_str()),
+        bus((name + "_bus").c_str(), bus_params()),
         memory((name + "_memory").c_str(), memory_params(memory_wait)),
-        display((name + "_display").c_str(), display_params(true)), irq((name + "_irq").c_str()) {
+        display((name + "_display").c_str(), display_params(true)),
+        irq((name + "_irq").c_str()) {
     host.out.bind(check_host.in);
     bus.attach(check_dma.out, "display_dma", 0);
     bus.attach(check_host.out, "host", 3);
     display.dma_out.bind(check_dma.in);
     bus.map(check_memory.in, 0, 0x10000, "memory");
-    bus.map(check_regs.in, kRegs, 0x1000, "display_regs");
-    bus.map(display.port_in, kRegs + 0x100000, 0x100000, "display_port");
+    bus.map(check_regs.in, REGS_BASE, 0x1000, "display_regs");
+    bus.map(display.port_in, REGS_BASE + 0x100000, 0x100000, "display_port");
     check_memory.out.bind(memory.in);
     check_regs.out.bind(display.in);
     display.irq.bind(irq);
@@ -90,13 +94,13 @@ struct DmaBench {
   }
   static BusParams bus_params() {
     BusParams p;
-    p.clock_period = kCycle;
+    p.clock_period = CYCLE;
     return p;
   }
   static MemoryParams memory_params(unsigned wait) {
     MemoryParams p;
     p.size_bytes = 0x10000;
-    p.clock_period = kCycle;
+    p.clock_period = CYCLE;
     p.first_access_cycles = wait;
     return p;
   }
@@ -111,18 +115,18 @@ DmaBench* g_dma = nullptr;
 DmaBench* g_starved = nullptr;
 DmaBench* g_rate = nullptr;
 
-const sc_time kPeriod(1.0 / kRefreshHz, sc_core::SC_SEC);
+const sc_time PERIOD(1.0 / REFRESH_HZ, sc_core::SC_SEC);
 
 sc_time next_period_boundary(const sc_time& t) {
-  const uint64_t p = kPeriod.value();
+  const uint64_t p = PERIOD.value();
   return sc_time::from_value((t.value() / p + 1) * p);
 }
 
 void fill_frame_buffer(Memory& memory, uint16_t base_value) {
-  for (unsigned i = 0; i < kWidth * kHeight; ++i) {
+  for (unsigned i = 0; i < WIDTH * HEIGHT; ++i) {
     const uint16_t v = static_cast<uint16_t>(base_value + i);
-    memory.data()[kFrameBuffer + 2 * i] = v & 0xff;
-    memory.data()[kFrameBuffer + 2 * i + 1] = v >> 8;
+    memory.data()[FRAME_BUFFER_ADDRESS + 2 * i] = v & 0xff;
+    memory.data()[FRAME_BUFFER_ADDRESS + 2 * i + 1] = v >> 8;
   }
 }
 
@@ -130,8 +134,8 @@ void fill_frame_buffer(Memory& memory, uint16_t base_value) {
 
 TEST(Display, GeometryRegistersReadBackTheConfiguration) {
   auto& r = g_port->regs_initiator;
-  EXPECT_EQ(r.read32(regs::WIDTH), kWidth);
-  EXPECT_EQ(r.read32(regs::HEIGHT), kHeight);
+  EXPECT_EQ(r.read32(regs::WIDTH), WIDTH);
+  EXPECT_EQ(r.read32(regs::HEIGHT), HEIGHT);
   EXPECT_EQ(r.read32(regs::FORMAT), regs::FORMAT_RGB565);
   EXPECT_EQ(r.read32(regs::MODE), 0u);
 }
@@ -140,7 +144,7 @@ TEST(Display, BadRegisterAccessesGetErrorResponses) {
   test::ReportCapture reports;
   auto& r = g_port->regs_initiator;
   EXPECT_EQ(r.write32(regs::WIDTH, 1).status, tlm::TLM_COMMAND_ERROR_RESPONSE);
-  EXPECT_EQ(r.read32(regs::WIDTH), kWidth);
+  EXPECT_EQ(r.read32(regs::WIDTH), WIDTH);
   test::TestInitiator::Result result;
   r.read32(regs::SWAP, &result);
   EXPECT_EQ(result.status, tlm::TLM_COMMAND_ERROR_RESPONSE);
@@ -156,18 +160,18 @@ TEST(Display, BadRegisterAccessesGetErrorResponses) {
 TEST(Display, PortModeShowsTheFrameWrittenToThePortOnPresent) {
   // Pure primaries, white, black and a mid grey in the first pixels.
   const uint16_t pixels[6] = {0xF800, 0x07E0, 0x001F, 0xFFFF, 0x0000, 0x8410};
-  std::vector<uint16_t> frame(kWidth * kHeight, 0x0000);
+  std::vector<uint16_t> frame(WIDTH * HEIGHT, 0x0000);
   std::copy(pixels, pixels + 6, frame.begin());
   frame.back() = 0xFFFF;
   auto& port = g_port->port_initiator;
-  EXPECT_EQ(port.write(0, reinterpret_cast<const uint8_t*>(frame.data()), kWidth * kHeight * 2).status,
+  EXPECT_EQ(port.write(0, reinterpret_cast<const uint8_t*>(frame.data()), WIDTH * HEIGHT * 2).status,
             tlm::TLM_OK_RESPONSE);
   EXPECT_TRUE(g_port->frames.empty());
   g_port->regs_initiator.write32(regs::PRESENT, 1);
   ASSERT_EQ(g_port->frames.size(), 1u);
   const Frame& f = g_port->frames[0];
-  EXPECT_EQ(f.width, kWidth);
-  EXPECT_EQ(f.height, kHeight);
+  EXPECT_EQ(f.width, WIDTH);
+  EXPECT_EQ(f.height, HEIGHT);
   auto pixel = [&](unsigned i) {
     return std::vector<int>{f.rgba[4 * i], f.rgba[4 * i + 1], f.rgba[4 * i + 2], f.rgba[4 * i + 3]};
   };
@@ -180,7 +184,7 @@ TEST(Display, PortModeShowsTheFrameWrittenToThePortOnPresent) {
   EXPECT_NEAR(pixel(5)[0], 16 * 255.0 / 31, 1.0);
   EXPECT_NEAR(pixel(5)[1], 32 * 255.0 / 63, 1.0);
   EXPECT_NEAR(pixel(5)[2], 16 * 255.0 / 31, 1.0);
-  EXPECT_EQ(pixel(kWidth * kHeight - 1), (std::vector<int>{255, 255, 255, 255}));
+  EXPECT_EQ(pixel(WIDTH * HEIGHT - 1), (std::vector<int>{255, 255, 255, 255}));
   EXPECT_EQ(g_port->regs_initiator.read32(regs::FRAMES), 1u);
   EXPECT_TRUE(g_port->regs_initiator.read32(regs::IRQ_STATUS) & regs::IRQ_FRAME_PRESENTED);
   g_port->regs_initiator.write32(regs::IRQ_STATUS, regs::IRQ_FRAME_PRESENTED);
@@ -190,7 +194,7 @@ TEST(Display, PortModeShowsTheFrameWrittenToThePortOnPresent) {
 TEST(Display, PortWriteOutsideTheFrameIsAnAddressError) {
   test::ReportCapture reports;
   uint32_t v = 0;
-  EXPECT_EQ(g_port->port_initiator.write(kWidth * kHeight * 2, reinterpret_cast<uint8_t*>(&v), 4).status,
+  EXPECT_EQ(g_port->port_initiator.write(WIDTH * HEIGHT * 2, reinterpret_cast<uint8_t*>(&v), 4).status,
             tlm::TLM_ADDRESS_ERROR_RESPONSE);
   EXPECT_TRUE(reports.contains("outside"));
 }
@@ -209,35 +213,35 @@ TEST(Display, SwapTakesEffectAtVerticalBlankAndTheFrameIsShownOnePeriodLater) {
   test::run_thread(
       [&] {
         // Request in the middle of a refresh period.
-        sc_core::wait(kPeriod / 2.0);
-        bench.host.write32(kRegs + regs::BACK_BASE, kFrameBuffer);
-        bench.host.write32(kRegs + regs::IRQ_ENABLE, regs::IRQ_SWAP_DONE);
-        bench.host.write32(kRegs + regs::CTRL, regs::CTRL_ENABLE);
+        sc_core::wait(PERIOD / 2.0);
+        bench.host.write32(REGS_BASE + regs::BACK_BASE, FRAME_BUFFER_ADDRESS);
+        bench.host.write32(REGS_BASE + regs::IRQ_ENABLE, regs::IRQ_SWAP_DONE);
+        bench.host.write32(REGS_BASE + regs::CTRL, regs::CTRL_ENABLE);
         swap_requested = sc_core::sc_time_stamp();
-        bench.host.write32(kRegs + regs::SWAP, 1);
-        EXPECT_TRUE(bench.host.read32(kRegs + regs::STATUS) & regs::STATUS_SWAP_PENDING);
+        bench.host.write32(REGS_BASE + regs::SWAP, 1);
+        EXPECT_TRUE(bench.host.read32(REGS_BASE + regs::STATUS) & regs::STATUS_SWAP_PENDING);
         sc_core::wait(bench.irq.posedge_event());
         sc_core::wait(sc_time(1, sc_core::SC_US));
         status_in_vblank = sc_core::sc_time_stamp();
-        status_bits = bench.host.read32(kRegs + regs::STATUS);
-        bench.host.write32(kRegs + regs::IRQ_STATUS, regs::IRQ_SWAP_DONE);
+        status_bits = bench.host.read32(REGS_BASE + regs::STATUS);
+        bench.host.write32(REGS_BASE + regs::IRQ_STATUS, regs::IRQ_SWAP_DONE);
       },
-      kPeriod * 4.0);
+      PERIOD * 4.0);
   const sc_time vblank = next_period_boundary(swap_requested);
   EXPECT_EQ(irq_rose, vblank);
   EXPECT_TRUE(status_bits & regs::STATUS_VBLANK);
   EXPECT_FALSE(status_bits & regs::STATUS_SWAP_PENDING);
   EXPECT_FALSE(bench.irq.read());
   ASSERT_EQ(bench.frames.size(), 1u);
-  EXPECT_DOUBLE_EQ(bench.frames[0].time_seconds, (vblank + kPeriod).to_seconds());
+  EXPECT_DOUBLE_EQ(bench.frames[0].time_seconds, (vblank + PERIOD).to_seconds());
   // The frame buffer held 0x1234 + i at pixel i; check two pixels exactly.
   auto expand5 = [](unsigned v) { return static_cast<int>(std::lround(v * 255.0 / 31)); };
-  const uint16_t first = 0x1234, last = static_cast<uint16_t>(0x1234 + kWidth * kHeight - 1);
+  const uint16_t first = 0x1234, last = static_cast<uint16_t>(0x1234 + WIDTH * HEIGHT - 1);
   EXPECT_NEAR(bench.frames[0].rgba[0], expand5(first >> 11), 1);
   EXPECT_NEAR(bench.frames[0].rgba[2], expand5(first & 31), 1);
-  EXPECT_NEAR(bench.frames[0].rgba[4 * (kWidth * kHeight - 1) + 2], expand5(last & 31), 1);
-  EXPECT_EQ(bench.host.peek32(kRegs + regs::FRONT_BASE), kFrameBuffer);
-  EXPECT_EQ(bench.host.peek32(kRegs + regs::UNDERRUNS), 0u);
+  EXPECT_NEAR(bench.frames[0].rgba[4 * (WIDTH * HEIGHT - 1) + 2], expand5(last & 31), 1);
+  EXPECT_EQ(bench.host.peek32(REGS_BASE + regs::FRONT_BASE), FRAME_BUFFER_ADDRESS);
+  EXPECT_EQ(bench.host.peek32(REGS_BASE + regs::UNDERRUNS), 0u);
   EXPECT_EQ(bench.violations(), 0u);
 }
 
@@ -246,24 +250,24 @@ TEST(Display, SwappingEveryPeriodAchievesTheRefreshRate) {
   const size_t before = bench.frames.size();
   test::run_thread(
       [&] {
-        bench.host.write32(kRegs + regs::IRQ_ENABLE, regs::IRQ_SWAP_DONE);
-        bench.host.write32(kRegs + regs::CTRL, regs::CTRL_ENABLE);
+        bench.host.write32(REGS_BASE + regs::IRQ_ENABLE, regs::IRQ_SWAP_DONE);
+        bench.host.write32(REGS_BASE + regs::CTRL, regs::CTRL_ENABLE);
         for (unsigned frame = 0; frame < 4; ++frame) {
           fill_frame_buffer(bench.memory, static_cast<uint16_t>(frame * 1000));
-          bench.host.write32(kRegs + regs::BACK_BASE, kFrameBuffer);
-          bench.host.write32(kRegs + regs::SWAP, 1);
-          while (!(bench.host.read32(kRegs + regs::IRQ_STATUS) & regs::IRQ_SWAP_DONE))
+          bench.host.write32(REGS_BASE + regs::BACK_BASE, FRAME_BUFFER_ADDRESS);
+          bench.host.write32(REGS_BASE + regs::SWAP, 1);
+          while (!(bench.host.read32(REGS_BASE + regs::IRQ_STATUS) & regs::IRQ_SWAP_DONE))
             sc_core::wait(bench.irq.posedge_event());
-          bench.host.write32(kRegs + regs::IRQ_STATUS, regs::IRQ_SWAP_DONE);
+          bench.host.write32(REGS_BASE + regs::IRQ_STATUS, regs::IRQ_SWAP_DONE);
         }
       },
-      kPeriod * 8.0);
+      PERIOD * 8.0);
   ASSERT_EQ(bench.frames.size() - before, 4u);
   for (size_t i = before + 1; i < bench.frames.size(); ++i)
-    EXPECT_NEAR(bench.frames[i].time_seconds - bench.frames[i - 1].time_seconds, kPeriod.to_seconds(), 1e-12);
+    EXPECT_NEAR(bench.frames[i].time_seconds - bench.frames[i - 1].time_seconds, PERIOD.to_seconds(), 1e-12);
   const auto stats = bench.display.stats_json(sc_core::sc_time_stamp());
-  EXPECT_NEAR(stats["achieved_fps"].get<double>(), kRefreshHz, 1.0);
-  EXPECT_GT(stats["dma_bytes"].get<uint64_t>(), 4u * kWidth * kHeight * 2 - 1);
+  EXPECT_NEAR(stats["achieved_fps"].get<double>(), REFRESH_HZ, 1.0);
+  EXPECT_GT(stats["dma_bytes"].get<uint64_t>(), 4u * WIDTH * HEIGHT * 2 - 1);
   EXPECT_EQ(bench.bus.initiator_stats()[0].name, "display_dma");
   EXPECT_GT(bench.bus.initiator_stats()[0].bytes, 0u);
 }
@@ -273,14 +277,14 @@ TEST(Display, SlowMemoryCausesUnderruns) {
   fill_frame_buffer(bench.memory, 0);
   test::run_thread(
       [&] {
-        bench.host.write32(kRegs + regs::BACK_BASE, kFrameBuffer);
-        bench.host.write32(kRegs + regs::CTRL, regs::CTRL_ENABLE);
-        bench.host.write32(kRegs + regs::SWAP, 1);
+        bench.host.write32(REGS_BASE + regs::BACK_BASE, FRAME_BUFFER_ADDRESS);
+        bench.host.write32(REGS_BASE + regs::CTRL, regs::CTRL_ENABLE);
+        bench.host.write32(REGS_BASE + regs::SWAP, 1);
       },
-      kPeriod * 3.0);
+      PERIOD * 3.0);
   // A 64-byte line in 16-byte bursts, each 1 + 2000 + 4 cycles, is 80 us
   // of fetching for a 50 us line time.
-  EXPECT_GT(bench.host.peek32(kRegs + regs::UNDERRUNS), 0u);
+  EXPECT_GT(bench.host.peek32(REGS_BASE + regs::UNDERRUNS), 0u);
   const auto stats = bench.display.stats_json(sc_core::sc_time_stamp());
   EXPECT_GT(stats["underrun_frames"].get<uint64_t>(), 0u);
 }

@@ -10,12 +10,14 @@ using tessera::DataCache;
 namespace {
 
 // 8 KiB, 32-byte lines, 64 ways: 4 sets; set = (address / 32) % 4.
-constexpr unsigned kLine = 32;
-constexpr unsigned kSets = 4;
-constexpr unsigned kWays = 64;
-constexpr uint32_t kWay = kLine * kSets;  // addresses this far apart share a set
+constexpr unsigned LINE = 32;
+constexpr unsigned SETS = 4;
+constexpr unsigned WAYS = 64;
+constexpr uint32_t WAY = LINE * SETS;  // addresses this far apart share a set
 
-DataCache arm922t() { return DataCache(8192, kLine, kWays); }
+DataCache arm922t() {
+  return DataCache(8192, LINE, WAYS);
+}
 
 }  // namespace
 
@@ -38,25 +40,25 @@ TEST(DataCache, WriteMissDoesNotAllocate) {
 
 TEST(DataCache, SixtyFifthLineOfASetEvictsTheFirstRoundRobin) {
   DataCache cache = arm922t();
-  for (uint32_t i = 0; i < kWays; ++i) EXPECT_FALSE(cache.read(i * kWay).hit) << i;
-  for (uint32_t i = 0; i < kWays; ++i) EXPECT_TRUE(cache.read(i * kWay).hit) << i;
+  for (uint32_t i = 0; i < WAYS; ++i) EXPECT_FALSE(cache.read(i * WAY).hit) << i;
+  for (uint32_t i = 0; i < WAYS; ++i) EXPECT_TRUE(cache.read(i * WAY).hit) << i;
   // The other sets are untouched by this one's traffic.
-  EXPECT_FALSE(cache.read(kLine).hit);
+  EXPECT_FALSE(cache.read(LINE).hit);
   // The 65th line replaces way 0 (the first allocated), then way 1.
-  EXPECT_FALSE(cache.read(kWays * kWay).hit);
+  EXPECT_FALSE(cache.read(WAYS * WAY).hit);
   EXPECT_FALSE(cache.read(0).hit) << "way 0 was the victim";
-  EXPECT_TRUE(cache.read(2 * kWay).hit) << "way 2 not yet replaced";
+  EXPECT_TRUE(cache.read(2 * WAY).hit) << "way 2 not yet replaced";
 }
 
 TEST(DataCache, DirtyVictimIsWrittenBackWithItsAddress) {
   DataCache cache = arm922t();
-  for (uint32_t i = 0; i < kWays; ++i) cache.read(0x40 + i * kWay);
-  EXPECT_TRUE(cache.write(0x40 + 0 * kWay + 8));  // way 0 dirty
-  const DataCache::Result first = cache.read(0x40 + kWays * kWay);
+  for (uint32_t i = 0; i < WAYS; ++i) cache.read(0x40 + i * WAY);
+  EXPECT_TRUE(cache.write(0x40 + 0 * WAY + 8));  // way 0 dirty
+  const DataCache::Result first = cache.read(0x40 + WAYS * WAY);
   EXPECT_FALSE(first.hit);
   EXPECT_TRUE(first.evicted_dirty);
   EXPECT_EQ(first.evicted_address, 0x40u);
-  const DataCache::Result second = cache.read(0x40 + (kWays + 1) * kWay);
+  const DataCache::Result second = cache.read(0x40 + (WAYS + 1) * WAY);
   EXPECT_FALSE(second.evicted_dirty) << "way 1 was clean";
   EXPECT_EQ(cache.writebacks(), 1u);
 }
@@ -75,20 +77,20 @@ TEST(DataCache, HighAddressesBehaveLikeLowOnes) {
   for (uint32_t base : {0x00000000u, 0x08000000u, 0xF0000000u}) {
     SCOPED_TRACE(base);
     DataCache cache = arm922t();
-    for (uint32_t i = 0; i < kWays; ++i) EXPECT_FALSE(cache.read(base + i * kWay).hit);
-    EXPECT_TRUE(cache.write(base + 5 * kWay));
-    EXPECT_FALSE(cache.write(base + kWays * kWay)) << "absent line";
-    const DataCache::Result r = cache.read(base + kWays * kWay);
+    for (uint32_t i = 0; i < WAYS; ++i) EXPECT_FALSE(cache.read(base + i * WAY).hit);
+    EXPECT_TRUE(cache.write(base + 5 * WAY));
+    EXPECT_FALSE(cache.write(base + WAYS * WAY)) << "absent line";
+    const DataCache::Result r = cache.read(base + WAYS * WAY);
     EXPECT_FALSE(r.hit);
     EXPECT_FALSE(cache.read(base).hit) << "way 0 replaced";
-    for (uint32_t i = 2; i < kWays; ++i) EXPECT_TRUE(cache.read(base + i * kWay).hit) << i;
+    for (uint32_t i = 2; i < WAYS; ++i) EXPECT_TRUE(cache.read(base + i * WAY).hit) << i;
     cache.invalidate_all();
-    EXPECT_FALSE(cache.read(base + 5 * kWay).hit);
+    EXPECT_FALSE(cache.read(base + 5 * WAY).hit);
   }
 }
 
 TEST(DataCache, SizeZeroMissesEverythingAndAllocatesNothing) {
-  DataCache cache(0, kLine, kWays);
+  DataCache cache(0, LINE, WAYS);
   EXPECT_FALSE(cache.enabled());
   EXPECT_FALSE(cache.read(0).hit);
   EXPECT_FALSE(cache.read(0).hit);

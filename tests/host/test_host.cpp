@@ -11,22 +11,22 @@
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
-using sc_core::sc_time;
 using sc_core::SC_NS;
+using sc_core::sc_time;
 
 namespace {
 
-const sc_time kHostCycle(5, SC_NS);  // 200 MHz: round numbers
-const sc_time kBusCycle(10, SC_NS);
-constexpr unsigned kMemWait = 3;
-constexpr unsigned kDevWait = 1;
-constexpr uint32_t kMemSize = 1u << 20;
-constexpr uint32_t kDevBase = 0x40000000;
-constexpr uint32_t kUnmapped = 0x90000000;
+const sc_time HOST_CYCLE(5, SC_NS);  // 200 MHz: round numbers
+const sc_time BUS_CYCLE(10, SC_NS);
+constexpr unsigned MEM_WAIT = 3;
+constexpr unsigned DEV_WAIT = 1;
+constexpr uint32_t MEM_SIZE = 1u << 20;
+constexpr uint32_t DEV_BASE = 0x40000000;
+constexpr uint32_t UNMAPPED = 0x90000000;
 
 HostParams host_params() {
   HostParams p;
-  p.clock_period = kHostCycle;
+  p.clock_period = HOST_CYCLE;
   p.op_cycles.fill(1);
   p.op_cycles[static_cast<size_t>(Op::branch)] = 3;
   p.op_cycles[static_cast<size_t>(Op::fdiv)] = 130;
@@ -38,14 +38,14 @@ HostParams host_params() {
   p.write_buffer_words = 16;
   p.irq_lines = 4;
   p.cacheable_base = 0;
-  p.cacheable_size = kMemSize;
+  p.cacheable_size = MEM_SIZE;
   return p;
 }
 
 MemoryParams memory_params(uint32_t size, unsigned wait) {
   MemoryParams p;
   p.size_bytes = size;
-  p.clock_period = kBusCycle;
+  p.clock_period = BUS_CYCLE;
   p.width_bytes = 4;
   p.first_access_cycles = wait;
   p.beat_cycles = 1;
@@ -54,7 +54,7 @@ MemoryParams memory_params(uint32_t size, unsigned wait) {
 
 BusParams bus_params() {
   BusParams p;
-  p.clock_period = kBusCycle;
+  p.clock_period = BUS_CYCLE;
   return p;
 }
 
@@ -65,7 +65,7 @@ struct Bench : sc_core::sc_module {
   Host host;
   AhbBus bus;
   Memory memory, device;
-  protocol_checker<32> check_host, check_memory, check_device;
+  ProtocolChecker<32> check_host, check_memory, check_device;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> irq_lines;
 
   std::function<void(HostApi&)> body;
@@ -73,13 +73,18 @@ struct Bench : sc_core::sc_module {
   bool body_done = false;
 
   explicit Bench(sc_core::sc_module_name name)
-      : sc_core::sc_module(name), host("host", host_params()), bus("bus", bus_params()),
-        memory("memory", memory_params(kMemSize, kMemWait)), device("device", memory_params(4096, kDevWait)),
-        check_host("check_host"), check_memory("check_memory"), check_device("check_device") {
+      : sc_core::sc_module(name),
+        host("host", host_params()),
+        bus("bus", bus_params()),
+        memory("memory", memory_params(MEM_SIZE, MEM_WAIT)),
+        device("device", memory_params(4096, DEV_WAIT)),
+        check_host("check_host"),
+        check_memory("check_memory"),
+        check_device("check_device") {
     host.out.bind(check_host.in);
     bus.attach(check_host.out, "host", 0);
-    bus.map(check_memory.in, 0, kMemSize, "memory");
-    bus.map(check_device.in, kDevBase, 4096, "device");
+    bus.map(check_memory.in, 0, MEM_SIZE, "memory");
+    bus.map(check_device.in, DEV_BASE, 4096, "device");
     check_memory.out.bind(memory.in);
     check_device.out.bind(device.in);
     for (unsigned i = 0; i < host.irq.size(); ++i) {
@@ -121,7 +126,7 @@ struct FailingBench {
     for (unsigned i = 0; i < 4; ++i) host.irq[i].bind(irq_line[i]);
     host.set_program([](HostApi& api) {
       api.compute(Op::alu, 10);
-      return static_cast<int>(api.read32(kUnmapped));
+      return static_cast<int>(api.read32(UNMAPPED));
     });
   }
 };
@@ -129,10 +134,12 @@ struct FailingBench {
 Bench* g_bench = nullptr;
 FailingBench* g_failing = nullptr;
 
-sc_time seconds(double s) { return sc_time(s, sc_core::SC_SEC); }
+sc_time seconds(double s) {
+  return sc_time(s, sc_core::SC_SEC);
+}
 // Rounds a time up to the next bus clock edge.
 sc_time bus_edge(const sc_time& t) {
-  const uint64_t period = kBusCycle.value();
+  const uint64_t period = BUS_CYCLE.value();
   return sc_time::from_value((t.value() + period - 1) / period * period);
 }
 
@@ -147,7 +154,7 @@ TEST(Host, ComputeChargesCyclesOfEachOperationClass) {
     api.compute(Op::fdiv, 2);
     elapsed = api.now_seconds() - t0;
   });
-  EXPECT_EQ(seconds(elapsed), kHostCycle * (100.0 + 30.0 + 260.0));
+  EXPECT_EQ(seconds(elapsed), HOST_CYCLE * (100.0 + 30.0 + 260.0));
 }
 
 TEST(Host, CacheMissFillsALineOverTheBusAndLaterHitsCostOneCycle) {
@@ -164,9 +171,9 @@ TEST(Host, CacheMissFillsALineOverTheBusAndLaterHitsCostOneCycle) {
     hit_cost = seconds(api.now_seconds() - t);
   });
   // One load cycle, then a line fill: address phase, wait states, 8 beats.
-  const sc_time fill = kBusCycle * static_cast<double>(1 + kMemWait + 8);
-  EXPECT_EQ(miss_done, bus_edge(start_local + kHostCycle) + fill);
-  EXPECT_EQ(hit_cost, kHostCycle * 2.0);
+  const sc_time fill = BUS_CYCLE * static_cast<double>(1 + MEM_WAIT + 8);
+  EXPECT_EQ(miss_done, bus_edge(start_local + HOST_CYCLE) + fill);
+  EXPECT_EQ(hit_cost, HOST_CYCLE * 2.0);
   EXPECT_EQ(g_bench->bus.initiator_stats()[0].reads - fills_before, 1u);
 }
 
@@ -175,16 +182,16 @@ TEST(Host, PostedWritesDoNotStallUntilTheWriteBufferIsFull) {
   const sc_time stall_before = g_bench->host.stall_time();
   g_bench->run([&](HostApi& api) {
     double t = api.now_seconds();
-    for (unsigned i = 0; i < 16; ++i) api.write32(kDevBase + 4 * i, i);
+    for (unsigned i = 0; i < 16; ++i) api.write32(DEV_BASE + 4 * i, i);
     sixteen = api.now_seconds() - t;
     t = api.now_seconds();
-    for (unsigned i = 0; i < 64; ++i) api.write32(kDevBase + 4 * i, 100 + i);
+    for (unsigned i = 0; i < 64; ++i) api.write32(DEV_BASE + 4 * i, 100 + i);
     sixty_four = api.now_seconds() - t;
   });
-  EXPECT_EQ(seconds(sixteen), kHostCycle * 16.0);
+  EXPECT_EQ(seconds(sixteen), HOST_CYCLE * 16.0);
   // Draining one word costs 1 + wait + 1 bus cycles; once the buffer is full
   // the host proceeds at the drain rate.
-  const sc_time drain = kBusCycle * static_cast<double>(1 + kDevWait + 1);
+  const sc_time drain = BUS_CYCLE * static_cast<double>(1 + DEV_WAIT + 1);
   EXPECT_GE(seconds(sixty_four), drain * 48.0);
   EXPECT_GT(g_bench->host.stall_time(), stall_before);
   uint32_t last = 0;
@@ -197,12 +204,12 @@ TEST(Host, UncachedReadWaitsForEarlierPostedWrites) {
   double elapsed = 0;
   g_bench->run([&](HostApi& api) {
     const double t = api.now_seconds();
-    for (unsigned i = 0; i < 8; ++i) api.write32(kDevBase + 0x100, 0xa0 + i);
-    value = api.read32(kDevBase + 0x100);
+    for (unsigned i = 0; i < 8; ++i) api.write32(DEV_BASE + 0x100, 0xa0 + i);
+    value = api.read32(DEV_BASE + 0x100);
     elapsed = api.now_seconds() - t;
   });
   EXPECT_EQ(value, 0xa7u);
-  const sc_time access = kBusCycle * static_cast<double>(1 + kDevWait + 1);
+  const sc_time access = BUS_CYCLE * static_cast<double>(1 + DEV_WAIT + 1);
   EXPECT_GE(seconds(elapsed), access * 9.0);
 }
 
@@ -229,10 +236,10 @@ TEST(Host, BusErrorReachesTheSoftwareWithTheAddress) {
   bool caught = false;
   g_bench->run([&](HostApi& api) {
     try {
-      api.read32(kUnmapped);
+      api.read32(UNMAPPED);
     } catch (const BusError& e) {
       caught = true;
-      EXPECT_EQ(e.address(), kUnmapped);
+      EXPECT_EQ(e.address(), UNMAPPED);
       EXPECT_NE(std::string(e.what()).find("0x90000000"), std::string::npos) << e.what();
     }
   });
@@ -274,8 +281,8 @@ TEST(Host, StatisticsSplitBusyStalledAndIdle) {
   EXPECT_GT(stats["dcache"]["hits"].get<uint64_t>(), 0u);
   EXPECT_GT(stats["dcache"]["misses"].get<uint64_t>(), 0u);
   EXPECT_EQ(stats["operations"]["fdiv"].get<uint64_t>(), 2u);
-  const double total = stats["busy_ns"].get<double>() + stats["stalled_on_bus_ns"].get<double>() +
-                       stats["idle_ns"].get<double>();
+  const double total =
+      stats["busy_ns"].get<double>() + stats["stalled_on_bus_ns"].get<double>() + stats["idle_ns"].get<double>();
   EXPECT_NEAR(total, sc_core::sc_time_stamp().to_seconds() * 1e9, 1e-3);
 }
 

@@ -22,9 +22,18 @@ _Static_assert(sizeof(EGLint) == 4 && sizeof(EGLBoolean) == 4 && sizeof(EGLenum)
 int tessera_header_check_draw(void);
 
 int tessera_header_check_draw(void) {
-  static const EGLint config_attributes[] = {EGL_RED_SIZE,     5, EGL_GREEN_SIZE,      6,
-                                             EGL_BLUE_SIZE,    5, EGL_DEPTH_SIZE,      16,
-                                             EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES_BIT,
+  static const EGLint config_attributes[] = {EGL_RED_SIZE,
+                                             5,
+                                             EGL_GREEN_SIZE,
+                                             6,
+                                             EGL_BLUE_SIZE,
+                                             5,
+                                             EGL_DEPTH_SIZE,
+                                             16,
+                                             EGL_SURFACE_TYPE,
+                                             EGL_WINDOW_BIT,
+                                             EGL_RENDERABLE_TYPE,
+                                             EGL_OPENGL_ES_BIT,
                                              EGL_NONE};
   static const GLfloat triangle[] = {-1.0f, -1.0f, 0.0f, 1.0f, -1.0f, 0.0f, 0.0f, 1.0f, 0.0f};
   static const GLubyte colours[] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255};

@@ -9,14 +9,14 @@ using sc_core::sc_time;
 
 namespace {
 
-const sc_time kCycle(10, sc_core::SC_NS);
-constexpr unsigned kFirst = 3;
-constexpr unsigned kBeat = 2;
-constexpr uint64_t kSize = 4096;
+const sc_time CYCLE(10, sc_core::SC_NS);
+constexpr unsigned FIRST = 3;
+constexpr unsigned BEAT = 2;
+constexpr uint64_t SIZE = 4096;
 
 struct Bench {
   test::TestInitiator initiator{"initiator"};
-  protocol_checker<32> checker{"checker"};
+  ProtocolChecker<32> checker{"checker"};
   Memory memory{"memory", params()};
   Bench() {
     initiator.out.bind(checker.in);
@@ -24,11 +24,11 @@ struct Bench {
   }
   static MemoryParams params() {
     MemoryParams p;
-    p.size_bytes = kSize;
-    p.clock_period = kCycle;
+    p.size_bytes = SIZE;
+    p.clock_period = CYCLE;
     p.width_bytes = 4;
-    p.first_access_cycles = kFirst;
-    p.beat_cycles = kBeat;
+    p.first_access_cycles = FIRST;
+    p.beat_cycles = BEAT;
     return p;
   }
 };
@@ -39,17 +39,17 @@ Bench* g_bench = nullptr;
 TEST(Memory, SingleAccessTakesFirstAccessLatencyPlusOneBeat) {
   auto r = g_bench->initiator.write32(0x10, 0xdeadbeef);
   EXPECT_EQ(r.status, tlm::TLM_OK_RESPONSE);
-  EXPECT_EQ(r.delay, kCycle * static_cast<double>(kFirst + kBeat));
+  EXPECT_EQ(r.delay, CYCLE * static_cast<double>(FIRST + BEAT));
   test::TestInitiator::Result read;
   EXPECT_EQ(g_bench->initiator.read32(0x10, &read), 0xdeadbeefu);
-  EXPECT_EQ(read.delay, kCycle * static_cast<double>(kFirst + kBeat));
+  EXPECT_EQ(read.delay, CYCLE * static_cast<double>(FIRST + BEAT));
 }
 
 TEST(Memory, BurstAddsOneBeatTimePerWord) {
   uint8_t data[64];
   for (unsigned i = 0; i < 64; ++i) data[i] = static_cast<uint8_t>(255 - i);
   auto r = g_bench->initiator.write(0x100, data, 64);
-  EXPECT_EQ(r.delay, kCycle * static_cast<double>(kFirst + 16 * kBeat));
+  EXPECT_EQ(r.delay, CYCLE * static_cast<double>(FIRST + 16 * BEAT));
   uint8_t back[64] = {};
   g_bench->initiator.read(0x100, back, 64);
   EXPECT_EQ(std::memcmp(data, back, 64), 0);
@@ -59,7 +59,7 @@ TEST(Memory, OffsetDelayIsKeptAndExtended) {
   const sc_time offset(123, sc_core::SC_NS);
   auto r = g_bench->initiator.write32(0x20, 1);
   auto r2 = g_bench->initiator.transport(tlm::TLM_READ_COMMAND, 0x20, reinterpret_cast<uint8_t*>(&r), 4, offset);
-  EXPECT_EQ(r2.delay, offset + kCycle * static_cast<double>(kFirst + kBeat));
+  EXPECT_EQ(r2.delay, offset + CYCLE * static_cast<double>(FIRST + BEAT));
 }
 
 TEST(Memory, ByteEnablesWriteOnlyEnabledBytes) {
@@ -82,10 +82,10 @@ TEST(Memory, ByteEnablesWriteOnlyEnabledBytes) {
 
 TEST(Memory, AccessPastTheEndIsAnAddressErrorAndChangesNothing) {
   test::ReportCapture reports;
-  std::vector<uint8_t> before(g_bench->memory.data(), g_bench->memory.data() + kSize);
+  std::vector<uint8_t> before(g_bench->memory.data(), g_bench->memory.data() + SIZE);
   uint8_t data[8] = {1, 2, 3, 4, 5, 6, 7, 8};
-  EXPECT_EQ(g_bench->initiator.write(kSize - 4, data, 8).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
-  EXPECT_EQ(g_bench->initiator.write(kSize, data, 4).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  EXPECT_EQ(g_bench->initiator.write(SIZE - 4, data, 8).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  EXPECT_EQ(g_bench->initiator.write(SIZE, data, 4).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
   EXPECT_EQ(g_bench->initiator.read(~uint64_t{0} - 2, data, 4).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
   EXPECT_TRUE(std::equal(before.begin(), before.end(), g_bench->memory.data()));
   EXPECT_TRUE(reports.contains("access outside memory"));
@@ -98,15 +98,15 @@ TEST(Memory, DmiCoversTheWholeMemoryWithSingleBeatLatency) {
   tlm::tlm_dmi dmi;
   ASSERT_TRUE(g_bench->initiator.out->get_direct_mem_ptr(gp, dmi));
   EXPECT_EQ(dmi.get_start_address(), 0u);
-  EXPECT_EQ(dmi.get_end_address(), kSize - 1);
+  EXPECT_EQ(dmi.get_end_address(), SIZE - 1);
   EXPECT_TRUE(dmi.is_read_write_allowed());
-  EXPECT_EQ(dmi.get_read_latency(), kCycle * static_cast<double>(kFirst + kBeat));
+  EXPECT_EQ(dmi.get_read_latency(), CYCLE * static_cast<double>(FIRST + BEAT));
   dmi.get_dmi_ptr()[0x80] = 0x5a;
   uint8_t value = 0;
   EXPECT_EQ(g_bench->initiator.debug(tlm::TLM_READ_COMMAND, 0x80, &value, 1), 1u);
   EXPECT_EQ(value, 0x5a);
 
-  gp.set_address(kSize);
+  gp.set_address(SIZE);
   EXPECT_FALSE(g_bench->initiator.out->get_direct_mem_ptr(gp, dmi));
 }
 
@@ -114,16 +114,18 @@ TEST(Memory, InvalidationReachesTheInitiatorForTheWholeRange) {
   g_bench->initiator.invalidations.clear();
   g_bench->memory.invalidate_dmi();
   ASSERT_EQ(g_bench->initiator.invalidations.size(), 1u);
-  EXPECT_EQ(g_bench->initiator.invalidations[0], std::make_pair(uint64_t{0}, kSize - 1));
+  EXPECT_EQ(g_bench->initiator.invalidations[0], std::make_pair(uint64_t{0}, SIZE - 1));
 }
 
 TEST(Memory, DebugTransportIsClippedAtTheEnd) {
   uint8_t data[16] = {};
-  EXPECT_EQ(g_bench->initiator.debug(tlm::TLM_READ_COMMAND, kSize - 4, data, 16), 4u);
-  EXPECT_EQ(g_bench->initiator.debug(tlm::TLM_READ_COMMAND, kSize, data, 16), 0u);
+  EXPECT_EQ(g_bench->initiator.debug(tlm::TLM_READ_COMMAND, SIZE - 4, data, 16), 4u);
+  EXPECT_EQ(g_bench->initiator.debug(tlm::TLM_READ_COMMAND, SIZE, data, 16), 0u);
 }
 
-TEST(Memory, NoProtocolViolations) { EXPECT_EQ(g_bench->checker.violation_count(), 0u); }
+TEST(Memory, NoProtocolViolations) {
+  EXPECT_EQ(g_bench->checker.violation_count(), 0u);
+}
 
 int sc_main(int argc, char* argv[]) {
   g_bench = new Bench();

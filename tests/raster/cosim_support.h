@@ -13,25 +13,25 @@ namespace tessera::raster {
 // At least a million random vectors per unit, besides the corner cases.
 constexpr uint64_t RANDOM_VECTORS = 1'000'000;
 
-struct cosim_tally {
-    uint64_t vectors = 0;
-    uint64_t mismatches = 0;
+struct CosimTally {
+  uint64_t vectors = 0;
+  uint64_t mismatches = 0;
 
-    // Counts one vector; true when it mismatched and is among the first ten,
-    // which the caller reports in full.
-    bool count(bool same) {
-        ++vectors;
-        return !same && ++mismatches <= 10;
-    }
+  // Counts one vector; true when it mismatched and is among the first ten,
+  // which the caller reports in full.
+  bool count(bool same) {
+    ++vectors;
+    return !same && ++mismatches <= 10;
+  }
 };
 
-inline void report_cosim(const char* unit, const cosim_tally& tally, uint64_t corner_vectors) {
-    std::printf("%s cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n", unit,
-                static_cast<unsigned long long>(tally.vectors), static_cast<unsigned long long>(corner_vectors),
-                static_cast<unsigned long long>(tally.vectors - corner_vectors),
-                static_cast<unsigned long long>(tally.mismatches));
-    EXPECT_EQ(tally.mismatches, 0u);
-    EXPECT_GE(tally.vectors - corner_vectors, RANDOM_VECTORS);
+inline void report_cosim(const char* unit, const CosimTally& tally, uint64_t corner_vectors) {
+  std::printf("%s cosim: %llu vectors (%llu corner, %llu random), %llu mismatches\n", unit,
+              static_cast<unsigned long long>(tally.vectors), static_cast<unsigned long long>(corner_vectors),
+              static_cast<unsigned long long>(tally.vectors - corner_vectors),
+              static_cast<unsigned long long>(tally.mismatches));
+  EXPECT_EQ(tally.mismatches, 0u);
+  EXPECT_GE(tally.vectors - corner_vectors, RANDOM_VECTORS);
 }
 
 }  // namespace tessera::raster

@@ -8,93 +8,95 @@
 namespace tessera::raster {
 namespace {
 
-rgba8 colour(uint32_t r, uint32_t g, uint32_t b, uint32_t a) { return {unorm8{r}, unorm8{g}, unorm8{b}, unorm8{a}}; }
+Rgba8 colour(uint32_t r, uint32_t g, uint32_t b, uint32_t a) {
+  return {unorm8{r}, unorm8{g}, unorm8{b}, unorm8{a}};
+}
 
-blend_state blending(blend_factor sf, blend_factor df) {
-    blend_state s;
-    s.blend_enable = true;
-    s.src_factor = sf;
-    s.dst_factor = df;
-    return s;
+BlendState blending(BlendFactor sf, BlendFactor df) {
+  BlendState s;
+  s.blend_enable = true;
+  s.src_factor = sf;
+  s.dst_factor = df;
+  return s;
 }
 
 TEST(BlendLogicOp, MultiplyIsExactlyRoundedEverywhere) {
-    for (uint32_t a = 0; a < 256; ++a) {
-        for (uint32_t b = 0; b < 256; ++b) {
-            // Integer round-half-up of a*b/255 (ties cannot occur).
-            const uint32_t expected = (2 * a * b + 255) / 510;
-            ASSERT_EQ(mul_unorm8(unorm8{a}, unorm8{b}).raw, expected) << a << "*" << b;
-        }
+  for (uint32_t a = 0; a < 256; ++a) {
+    for (uint32_t b = 0; b < 256; ++b) {
+      // Integer round-half-up of a*b/255 (ties cannot occur).
+      const uint32_t expected = (2 * a * b + 255) / 510;
+      ASSERT_EQ(mul_unorm8(unorm8{a}, unorm8{b}).raw, expected) << a << "*" << b;
     }
-    EXPECT_EQ(mul_unorm8(unorm8{200}, unorm8{255}).raw, 200u);
-    EXPECT_EQ(mul_unorm8(unorm8{128}, unorm8{128}).raw, 64u); // 64.25
+  }
+  EXPECT_EQ(mul_unorm8(unorm8{200}, unorm8{255}).raw, 200u);
+  EXPECT_EQ(mul_unorm8(unorm8{128}, unorm8{128}).raw, 64u);  // 64.25
 }
 
 TEST(BlendLogicOp, OneOneSaturates) {
-    const rgba8 r = blend_logic_op(blending(blend_factor::ONE, blend_factor::ONE), colour(200, 100, 0, 255),
-                                   colour(100, 100, 0, 1));
-    EXPECT_EQ(r, colour(255, 200, 0, 255));
+  const Rgba8 r =
+      blend_logic_op(blending(BlendFactor::ONE, BlendFactor::ONE), colour(200, 100, 0, 255), colour(100, 100, 0, 1));
+  EXPECT_EQ(r, colour(255, 200, 0, 255));
 }
 
 TEST(BlendLogicOp, ClassicAlphaBlend) {
-    // SRC_ALPHA, ONE_MINUS_SRC_ALPHA with alpha 0.5 (code 128): 255*128/255 +
-    // 0*127/255 = 128; 0 + 255*127/255 = 127.
-    const rgba8 r = blend_logic_op(blending(blend_factor::SRC_ALPHA, blend_factor::ONE_MINUS_SRC_ALPHA),
-                                   colour(255, 0, 60, 128), colour(0, 255, 60, 255));
-    EXPECT_EQ(r.r.raw, 128u);
-    EXPECT_EQ(r.g.raw, 127u);
-    EXPECT_EQ(r.b.raw, 60u); // round(60*128/255) + round(60*127/255) = 30 + 30
-    EXPECT_EQ(r.a.raw, 191u); // 64 + 127 (round(128*128/255) = 64.25 -> 64)
+  // SRC_ALPHA, ONE_MINUS_SRC_ALPHA with alpha 0.5 (code 128): 255*128/255 +
+  // 0*127/255 = 128; 0 + 255*127/255 = 127.
+  const Rgba8 r = blend_logic_op(blending(BlendFactor::SRC_ALPHA, BlendFactor::ONE_MINUS_SRC_ALPHA),
+                                 colour(255, 0, 60, 128), colour(0, 255, 60, 255));
+  EXPECT_EQ(r.r.raw, 128u);
+  EXPECT_EQ(r.g.raw, 127u);
+  EXPECT_EQ(r.b.raw, 60u);   // round(60*128/255) + round(60*127/255) = 30 + 30
+  EXPECT_EQ(r.a.raw, 191u);  // 64 + 127 (round(128*128/255) = 64.25 -> 64)
 }
 
 TEST(BlendLogicOp, FactorsByHand) {
-    const rgba8 src = colour(10, 20, 30, 200);
-    const rgba8 dst = colour(40, 50, 60, 100);
-    EXPECT_EQ(blend_factor_value(blend_factor::ZERO, 0, src, dst).raw, 0u);
-    EXPECT_EQ(blend_factor_value(blend_factor::ONE, 0, src, dst).raw, 255u);
-    EXPECT_EQ(blend_factor_value(blend_factor::SRC_COLOR, 1, src, dst).raw, 20u);
-    EXPECT_EQ(blend_factor_value(blend_factor::ONE_MINUS_SRC_COLOR, 1, src, dst).raw, 235u);
-    EXPECT_EQ(blend_factor_value(blend_factor::SRC_ALPHA, 0, src, dst).raw, 200u);
-    EXPECT_EQ(blend_factor_value(blend_factor::ONE_MINUS_SRC_ALPHA, 0, src, dst).raw, 55u);
-    EXPECT_EQ(blend_factor_value(blend_factor::DST_ALPHA, 2, src, dst).raw, 100u);
-    EXPECT_EQ(blend_factor_value(blend_factor::ONE_MINUS_DST_ALPHA, 2, src, dst).raw, 155u);
-    EXPECT_EQ(blend_factor_value(blend_factor::DST_COLOR, 2, src, dst).raw, 60u);
-    EXPECT_EQ(blend_factor_value(blend_factor::ONE_MINUS_DST_COLOR, 2, src, dst).raw, 195u);
-    // SRC_ALPHA_SATURATE: min(As, 1 - Ad) = min(200, 155) for RGB, 1 for A.
-    EXPECT_EQ(blend_factor_value(blend_factor::SRC_ALPHA_SATURATE, 0, src, dst).raw, 155u);
-    EXPECT_EQ(blend_factor_value(blend_factor::SRC_ALPHA_SATURATE, 3, src, dst).raw, 255u);
-    EXPECT_EQ(blend_factor_code(blend_factor::SRC_ALPHA_SATURATE), 10);
-    EXPECT_EQ(blend_factor_code(static_cast<blend_factor>(0x0309)), 15);
+  const Rgba8 src = colour(10, 20, 30, 200);
+  const Rgba8 dst = colour(40, 50, 60, 100);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ZERO, 0, src, dst).raw, 0u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ONE, 0, src, dst).raw, 255u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::SRC_COLOR, 1, src, dst).raw, 20u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ONE_MINUS_SRC_COLOR, 1, src, dst).raw, 235u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::SRC_ALPHA, 0, src, dst).raw, 200u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ONE_MINUS_SRC_ALPHA, 0, src, dst).raw, 55u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::DST_ALPHA, 2, src, dst).raw, 100u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ONE_MINUS_DST_ALPHA, 2, src, dst).raw, 155u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::DST_COLOR, 2, src, dst).raw, 60u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::ONE_MINUS_DST_COLOR, 2, src, dst).raw, 195u);
+  // SRC_ALPHA_SATURATE: min(As, 1 - Ad) = min(200, 155) for RGB, 1 for A.
+  EXPECT_EQ(blend_factor_value(BlendFactor::SRC_ALPHA_SATURATE, 0, src, dst).raw, 155u);
+  EXPECT_EQ(blend_factor_value(BlendFactor::SRC_ALPHA_SATURATE, 3, src, dst).raw, 255u);
+  EXPECT_EQ(blend_factor_code(BlendFactor::SRC_ALPHA_SATURATE), 10);
+  EXPECT_EQ(blend_factor_code(static_cast<BlendFactor>(0x0309)), 15);
 }
 
 TEST(BlendLogicOp, LogicOpsInGlOrder) {
-    const unorm8 s{0xCA};
-    const unorm8 d{0x5F};
-    const uint32_t expected[16] = {0x00, 0x4A, 0x80, 0xCA, 0x15, 0x5F, 0x95, 0xDF,
-                                   0x20, 0x6A, 0xA0, 0xEA, 0x35, 0x7F, 0xB5, 0xFF};
-    for (uint16_t i = 0; i < 16; ++i) {
-        const auto op = static_cast<logic_op>(0x1500 + i);
-        EXPECT_EQ(apply_logic_op(op, s, d).raw, expected[i]) << i;
-        EXPECT_EQ(logic_op_code(op), i);
-    }
+  const unorm8 s{0xCA};
+  const unorm8 d{0x5F};
+  const uint32_t expected[16] = {0x00, 0x4A, 0x80, 0xCA, 0x15, 0x5F, 0x95, 0xDF,
+                                 0x20, 0x6A, 0xA0, 0xEA, 0x35, 0x7F, 0xB5, 0xFF};
+  for (uint16_t i = 0; i < 16; ++i) {
+    const auto op = static_cast<LogicOp>(0x1500 + i);
+    EXPECT_EQ(apply_logic_op(op, s, d).raw, expected[i]) << i;
+    EXPECT_EQ(logic_op_code(op), i);
+  }
 }
 
 TEST(BlendLogicOp, LogicOpReplacesBlendingAndMaskKeepsDestination) {
-    blend_state st = blending(blend_factor::ONE, blend_factor::ONE);
-    st.logic_op_enable = true;
-    st.op = logic_op::XOR;
-    const rgba8 src = colour(0xff, 0x0f, 0x00, 0xaa);
-    const rgba8 dst = colour(0x0f, 0x0f, 0x33, 0x55);
-    EXPECT_EQ(blend_logic_op(st, src, dst), colour(0xf0, 0x00, 0x33, 0xff));
-    st.color_mask = COLOR_MASK_R | COLOR_MASK_A;
-    EXPECT_EQ(blend_logic_op(st, src, dst), colour(0xf0, 0x0f, 0x33, 0xff));
-    // Neither blending nor logic op: the source is written, through the mask.
-    blend_state plain;
-    plain.color_mask = COLOR_MASK_G;
-    EXPECT_EQ(blend_logic_op(plain, src, dst), colour(0x0f, 0x0f, 0x33, 0x55));
-    plain.color_mask = COLOR_MASK_ALL;
-    EXPECT_EQ(blend_logic_op(plain, src, dst), src);
+  BlendState st = blending(BlendFactor::ONE, BlendFactor::ONE);
+  st.logic_op_enable = true;
+  st.op = LogicOp::XOR;
+  const Rgba8 src = colour(0xff, 0x0f, 0x00, 0xaa);
+  const Rgba8 dst = colour(0x0f, 0x0f, 0x33, 0x55);
+  EXPECT_EQ(blend_logic_op(st, src, dst), colour(0xf0, 0x00, 0x33, 0xff));
+  st.color_mask = COLOR_MASK_R | COLOR_MASK_A;
+  EXPECT_EQ(blend_logic_op(st, src, dst), colour(0xf0, 0x0f, 0x33, 0xff));
+  // Neither blending nor logic op: the source is written, through the mask.
+  BlendState plain;
+  plain.color_mask = COLOR_MASK_G;
+  EXPECT_EQ(blend_logic_op(plain, src, dst), colour(0x0f, 0x0f, 0x33, 0x55));
+  plain.color_mask = COLOR_MASK_ALL;
+  EXPECT_EQ(blend_logic_op(plain, src, dst), src);
 }
 
-} // namespace
-} // namespace tessera::raster
+}  // namespace
+}  // namespace tessera::raster

@@ -13,73 +13,79 @@ namespace tessera::raster {
 namespace {
 
 // Every factor, plus an undefined enum value (must act as ZERO on both sides).
-constexpr std::array<blend_factor, 12> ALL_FACTORS{
-    blend_factor::ZERO,      blend_factor::ONE,        blend_factor::SRC_COLOR,
-    blend_factor::ONE_MINUS_SRC_COLOR, blend_factor::SRC_ALPHA, blend_factor::ONE_MINUS_SRC_ALPHA,
-    blend_factor::DST_ALPHA, blend_factor::ONE_MINUS_DST_ALPHA, blend_factor::DST_COLOR,
-    blend_factor::ONE_MINUS_DST_COLOR, blend_factor::SRC_ALPHA_SATURATE, static_cast<blend_factor>(0x0309)};
+constexpr std::array<BlendFactor, 12> ALL_FACTORS{BlendFactor::ZERO,
+                                                  BlendFactor::ONE,
+                                                  BlendFactor::SRC_COLOR,
+                                                  BlendFactor::ONE_MINUS_SRC_COLOR,
+                                                  BlendFactor::SRC_ALPHA,
+                                                  BlendFactor::ONE_MINUS_SRC_ALPHA,
+                                                  BlendFactor::DST_ALPHA,
+                                                  BlendFactor::ONE_MINUS_DST_ALPHA,
+                                                  BlendFactor::DST_COLOR,
+                                                  BlendFactor::ONE_MINUS_DST_COLOR,
+                                                  BlendFactor::SRC_ALPHA_SATURATE,
+                                                  static_cast<BlendFactor>(0x0309)};
 
-struct checker : cosim_tally {
-    blend_logic_op_rtl rtl;
+struct Checker : CosimTally {
+  BlendLogicOpRtl rtl;
 
-    void check(const blend_state& s, rgba8 src, rgba8 dst) {
-        const rgba8 want = blend_logic_op(s, src, dst);
-        const rgba8 got = rtl.run(s, src, dst);
-        if (count(want == got)) {
-            ADD_FAILURE() << std::hex << "src " << src.pack() << " dst " << dst.pack() << " blend "
-                          << s.blend_enable << " sf " << static_cast<unsigned>(s.src_factor) << " df "
-                          << static_cast<unsigned>(s.dst_factor) << " logic " << s.logic_op_enable << " op "
-                          << static_cast<unsigned>(s.op) << " mask " << unsigned(s.color_mask) << ": "
-                          << want.pack() << "/" << got.pack();
-        }
+  void check(const BlendState& s, Rgba8 src, Rgba8 dst) {
+    const Rgba8 want = blend_logic_op(s, src, dst);
+    const Rgba8 got = rtl.run(s, src, dst);
+    if (count(want == got)) {
+      ADD_FAILURE() << std::hex << "src " << src.pack() << " dst " << dst.pack() << " blend " << s.blend_enable
+                    << " sf " << static_cast<unsigned>(s.src_factor) << " df " << static_cast<unsigned>(s.dst_factor)
+                    << " logic " << s.logic_op_enable << " op " << static_cast<unsigned>(s.op) << " mask "
+                    << unsigned(s.color_mask) << ": " << want.pack() << "/" << got.pack();
     }
+  }
 };
 
 TEST(BlendLogicOpCosim, CornerAndRandomVectorsMatchBitForBit) {
-    checker c;
-    const std::array<uint32_t, 6> colours{0x00000000, 0xffffffff, 0x807f0180, 0x01fe7f00, 0xff00ff80, 0x7f80fe01};
-    for (blend_factor sf : ALL_FACTORS)
-        for (blend_factor df : ALL_FACTORS)
-            for (uint32_t enables = 0; enables < 4; ++enables)
-                for (uint8_t mask : {uint8_t{0}, uint8_t{5}, uint8_t{15}})
-                    for (uint32_t sc : colours)
-                        for (uint32_t dc : colours) {
-                            blend_state s;
-                            s.blend_enable = enables & 1;
-                            s.logic_op_enable = enables & 2;
-                            s.src_factor = sf;
-                            s.dst_factor = df;
-                            s.op = static_cast<logic_op>(0x1500 + (c.vectors % 16));
-                            s.color_mask = mask;
-                            c.check(s, rgba8::unpack(sc), rgba8::unpack(dc));
-                        }
-    for (uint16_t op = 0; op < 16; ++op)
-        for (uint8_t mask = 0; mask < 16; ++mask)
-            for (uint32_t sc : colours)
-                for (uint32_t dc : colours) {
-                    blend_state s;
-                    s.logic_op_enable = true;
-                    s.op = static_cast<logic_op>(0x1500 + op);
-                    s.color_mask = mask;
-                    c.check(s, rgba8::unpack(sc), rgba8::unpack(dc));
-                }
-    const uint64_t corner_vectors = c.vectors;
+  Checker c;
+  const std::array<uint32_t, 6> colours{0x00000000, 0xffffffff, 0x807f0180, 0x01fe7f00, 0xff00ff80, 0x7f80fe01};
+  for (BlendFactor sf : ALL_FACTORS)
+    for (BlendFactor df : ALL_FACTORS)
+      for (uint32_t enables = 0; enables < 4; ++enables)
+        for (uint8_t mask : {uint8_t{0}, uint8_t{5}, uint8_t{15}})
+          for (uint32_t sc : colours)
+            for (uint32_t dc : colours) {
+              BlendState s;
+              s.blend_enable = enables & 1;
+              s.logic_op_enable = enables & 2;
+              s.src_factor = sf;
+              s.dst_factor = df;
+              s.op = static_cast<LogicOp>(0x1500 + (c.vectors % 16));
+              s.color_mask = mask;
+              c.check(s, Rgba8::unpack(sc), Rgba8::unpack(dc));
+            }
+  for (uint16_t op = 0; op < 16; ++op)
+    for (uint8_t mask = 0; mask < 16; ++mask)
+      for (uint32_t sc : colours)
+        for (uint32_t dc : colours) {
+          BlendState s;
+          s.logic_op_enable = true;
+          s.op = static_cast<LogicOp>(0x1500 + op);
+          s.color_mask = mask;
+          c.check(s, Rgba8::unpack(sc), Rgba8::unpack(dc));
+        }
+  const uint64_t corner_vectors = c.vectors;
 
-    std::mt19937_64 rng(0xb1e4d);
-    for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
-        const uint64_t a = rng();
-        const uint64_t b = rng();
-        blend_state s;
-        s.blend_enable = (a & 3) != 0; // mostly blending: it has the arithmetic
-        s.logic_op_enable = ((a >> 2) & 7) == 0;
-        s.src_factor = ALL_FACTORS[((a >> 5) & 0xff) % ALL_FACTORS.size()];
-        s.dst_factor = ALL_FACTORS[((a >> 13) & 0xff) % ALL_FACTORS.size()];
-        s.op = static_cast<logic_op>(0x1500 + ((a >> 21) & 15));
-        s.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
-        c.check(s, rgba8::unpack(static_cast<uint32_t>(b)), rgba8::unpack(static_cast<uint32_t>(b >> 32)));
-    }
-    report_cosim("blend_logic_op", c, corner_vectors);
+  std::mt19937_64 rng(0xb1e4d);
+  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+    const uint64_t a = rng();
+    const uint64_t b = rng();
+    BlendState s;
+    s.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
+    s.logic_op_enable = ((a >> 2) & 7) == 0;
+    s.src_factor = ALL_FACTORS[((a >> 5) & 0xff) % ALL_FACTORS.size()];
+    s.dst_factor = ALL_FACTORS[((a >> 13) & 0xff) % ALL_FACTORS.size()];
+    s.op = static_cast<LogicOp>(0x1500 + ((a >> 21) & 15));
+    s.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
+    c.check(s, Rgba8::unpack(static_cast<uint32_t>(b)), Rgba8::unpack(static_cast<uint32_t>(b >> 32)));
+  }
+  report_cosim("blend_logic_op", c, corner_vectors);
 }
 
-} // namespace
-} // namespace tessera::raster
+}  // namespace
+}  // namespace tessera::raster

@@ -12,103 +12,106 @@
 namespace tessera::raster {
 namespace {
 
-constexpr std::array<compare_func, 8> ALL_FUNCS{compare_func::NEVER,   compare_func::LESS,     compare_func::EQUAL,
-                                                compare_func::LEQUAL,  compare_func::GREATER,  compare_func::NOTEQUAL,
-                                                compare_func::GEQUAL,  compare_func::ALWAYS};
+constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::NEVER,  CompareFunc::LESS,    CompareFunc::EQUAL,
+                                               CompareFunc::LEQUAL, CompareFunc::GREATER, CompareFunc::NOTEQUAL,
+                                               CompareFunc::GEQUAL, CompareFunc::ALWAYS};
 // Every operation, plus an undefined enum value (kept on both sides).
-constexpr std::array<stencil_op, 7> ALL_OPS{stencil_op::KEEP, stencil_op::ZERO,   stencil_op::REPLACE,
-                                            stencil_op::INCR, stencil_op::DECR,   stencil_op::INVERT,
-                                            static_cast<stencil_op>(0x1E04)};
+constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::KEEP,
+                                           StencilOp::ZERO,
+                                           StencilOp::REPLACE,
+                                           StencilOp::INCR,
+                                           StencilOp::DECR,
+                                           StencilOp::INVERT,
+                                           static_cast<StencilOp>(0x1E04)};
 
-struct checker : cosim_tally {
-    fragment_tests_rtl rtl;
+struct Checker : CosimTally {
+  FragmentTestsRtl rtl;
 
-    void check(const fragment_test_state& s, const fragment_test_input& in) {
-        const fragment_test_result want = run_fragment_tests(s, in);
-        const fragment_test_result got = rtl.run(s, in);
-        const bool same = want.alpha_pass == got.alpha_pass && want.stencil_pass == got.stencil_pass &&
-                          want.depth_pass == got.depth_pass && want.pass == got.pass &&
-                          want.stencil == got.stencil && want.depth_write == got.depth_write;
-        if (count(same)) {
-            ADD_FAILURE() << "vector " << vectors << ": alpha " << want.alpha_pass << "/" << got.alpha_pass
-                          << " stencil " << want.stencil_pass << "/" << got.stencil_pass << " depth "
-                          << want.depth_pass << "/" << got.depth_pass << " pass " << want.pass << "/" << got.pass
-                          << " stencil value " << want.stencil.raw << "/" << got.stencil.raw << " depth write "
-                          << want.depth_write << "/" << got.depth_write;
-        }
+  void check(const FragmentTestState& s, const FragmentTestInput& in) {
+    const FragmentTestResult want = run_fragment_tests(s, in);
+    const FragmentTestResult got = rtl.run(s, in);
+    const bool same = want.alpha_pass == got.alpha_pass && want.stencil_pass == got.stencil_pass &&
+                      want.depth_pass == got.depth_pass && want.pass == got.pass && want.stencil == got.stencil &&
+                      want.depth_write == got.depth_write;
+    if (count(same)) {
+      ADD_FAILURE() << "vector " << vectors << ": alpha " << want.alpha_pass << "/" << got.alpha_pass << " stencil "
+                    << want.stencil_pass << "/" << got.stencil_pass << " depth " << want.depth_pass << "/"
+                    << got.depth_pass << " pass " << want.pass << "/" << got.pass << " stencil value "
+                    << want.stencil.raw << "/" << got.stencil.raw << " depth write " << want.depth_write << "/"
+                    << got.depth_write;
     }
+  }
 };
 
 TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
-    checker c;
-    std::mt19937_64 rng(0xf7a6);
+  Checker c;
+  std::mt19937_64 rng(0xf7a6);
 
-    // Every compare function on every test against below/equal/above at the
-    // format extremes, and every stencil operation in every slot.
-    const std::array<uint32_t, 3> alpha_refs{0, 128, 255};
-    const std::array<uint32_t, 5> depths{0, 1, 0x7fffff, 0xfffffe, 0xffffff};
-    const std::array<uint32_t, 4> stencils{0, 1, 0x80, 0xff};
-    for (compare_func af : ALL_FUNCS)
-        for (compare_func sf : ALL_FUNCS)
-            for (compare_func df : ALL_FUNCS)
-                for (stencil_op op : ALL_OPS)
-                    for (uint32_t enables = 0; enables < 8; ++enables)
-                        for (uint32_t k = 0; k < 6; ++k) {
-                            fragment_test_state s;
-                            s.alpha_enable = enables & 1;
-                            s.stencil_enable = enables & 2;
-                            s.depth_enable = enables & 4;
-                            s.alpha_func = af;
-                            s.stencil_func = sf;
-                            s.depth_func = df;
-                            s.alpha_ref = unorm8{alpha_refs[k % 3]};
-                            s.stencil_ref = stencil8{stencils[k % 4]};
-                            s.stencil_value_mask = k < 3 ? 0xff : 0x0f;
-                            s.stencil_write_mask = k & 1 ? 0xff : 0x3c;
-                            s.sfail = op;
-                            s.dpfail = ALL_OPS[(static_cast<size_t>(k) + 1) % ALL_OPS.size()];
-                            s.dppass = ALL_OPS[(static_cast<size_t>(k) + 2) % ALL_OPS.size()];
-                            s.depth_write_mask = k != 5;
-                            for (uint32_t v = 0; v < 5; ++v) {
-                                const fragment_test_input in{unorm8{alpha_refs[v % 3]}, unorm24{depths[v]},
-                                                             unorm24{depths[(v + k) % 5]},
-                                                             stencil8{stencils[(v + k) % 4]}};
-                                c.check(s, in);
-                            }
-                        }
-    const uint64_t corner_vectors = c.vectors;
+  // Every compare function on every test against below/equal/above at the
+  // format extremes, and every stencil operation in every slot.
+  const std::array<uint32_t, 3> alpha_refs{0, 128, 255};
+  const std::array<uint32_t, 5> depths{0, 1, 0x7fffff, 0xfffffe, 0xffffff};
+  const std::array<uint32_t, 4> stencils{0, 1, 0x80, 0xff};
+  for (CompareFunc af : ALL_FUNCS)
+    for (CompareFunc sf : ALL_FUNCS)
+      for (CompareFunc df : ALL_FUNCS)
+        for (StencilOp op : ALL_OPS)
+          for (uint32_t enables = 0; enables < 8; ++enables)
+            for (uint32_t k = 0; k < 6; ++k) {
+              FragmentTestState s;
+              s.alpha_enable = enables & 1;
+              s.stencil_enable = enables & 2;
+              s.depth_enable = enables & 4;
+              s.alpha_func = af;
+              s.stencil_func = sf;
+              s.depth_func = df;
+              s.alpha_ref = unorm8{alpha_refs[k % 3]};
+              s.stencil_ref = stencil8{stencils[k % 4]};
+              s.stencil_value_mask = k < 3 ? 0xff : 0x0f;
+              s.stencil_write_mask = k & 1 ? 0xff : 0x3c;
+              s.sfail = op;
+              s.dpfail = ALL_OPS[(static_cast<size_t>(k) + 1) % ALL_OPS.size()];
+              s.dppass = ALL_OPS[(static_cast<size_t>(k) + 2) % ALL_OPS.size()];
+              s.depth_write_mask = k != 5;
+              for (uint32_t v = 0; v < 5; ++v) {
+                const FragmentTestInput in{unorm8{alpha_refs[v % 3]}, unorm24{depths[v]}, unorm24{depths[(v + k) % 5]},
+                                           stencil8{stencils[(v + k) % 4]}};
+                c.check(s, in);
+              }
+            }
+  const uint64_t corner_vectors = c.vectors;
 
-    for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
-        const uint64_t a = rng();
-        const uint64_t b = rng();
-        fragment_test_state s;
-        s.alpha_enable = a & 1;
-        s.stencil_enable = (a >> 1) & 1;
-        s.depth_enable = (a >> 2) & 1;
-        s.depth_write_mask = (a >> 3) & 1;
-        s.alpha_func = ALL_FUNCS[(a >> 4) & 7];
-        s.stencil_func = ALL_FUNCS[(a >> 7) & 7];
-        s.depth_func = ALL_FUNCS[(a >> 10) & 7];
-        s.sfail = ALL_OPS[((a >> 13) & 0xff) % ALL_OPS.size()];
-        s.dpfail = ALL_OPS[((a >> 21) & 0xff) % ALL_OPS.size()];
-        s.dppass = ALL_OPS[((a >> 29) & 0xff) % ALL_OPS.size()];
-        s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
-        s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
-        s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
-        s.stencil_write_mask = static_cast<uint8_t>(b);
-        fragment_test_input in;
-        in.alpha = unorm8::from_raw(static_cast<uint32_t>(b >> 8));
-        in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(b >> 16));
-        in.depth = unorm24::from_raw(static_cast<uint32_t>(b >> 24));
-        // A quarter of the vectors compare equal values, which random ones never would.
-        in.stored_depth = ((b >> 62) == 0) ? in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
-        if ((b >> 61) & 1) {
-            in.alpha = s.alpha_ref;
-        }
-        c.check(s, in);
+  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+    const uint64_t a = rng();
+    const uint64_t b = rng();
+    FragmentTestState s;
+    s.alpha_enable = a & 1;
+    s.stencil_enable = (a >> 1) & 1;
+    s.depth_enable = (a >> 2) & 1;
+    s.depth_write_mask = (a >> 3) & 1;
+    s.alpha_func = ALL_FUNCS[(a >> 4) & 7];
+    s.stencil_func = ALL_FUNCS[(a >> 7) & 7];
+    s.depth_func = ALL_FUNCS[(a >> 10) & 7];
+    s.sfail = ALL_OPS[((a >> 13) & 0xff) % ALL_OPS.size()];
+    s.dpfail = ALL_OPS[((a >> 21) & 0xff) % ALL_OPS.size()];
+    s.dppass = ALL_OPS[((a >> 29) & 0xff) % ALL_OPS.size()];
+    s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
+    s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
+    s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
+    s.stencil_write_mask = static_cast<uint8_t>(b);
+    FragmentTestInput in;
+    in.alpha = unorm8::from_raw(static_cast<uint32_t>(b >> 8));
+    in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(b >> 16));
+    in.depth = unorm24::from_raw(static_cast<uint32_t>(b >> 24));
+    // A quarter of the vectors compare equal values, which random ones never would.
+    in.stored_depth = ((b >> 62) == 0) ? in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
+    if ((b >> 61) & 1) {
+      in.alpha = s.alpha_ref;
     }
-    report_cosim("fragment_tests", c, corner_vectors);
+    c.check(s, in);
+  }
+  report_cosim("fragment_tests", c, corner_vectors);
 }
 
-} // namespace
-} // namespace tessera::raster
+}  // namespace
+}  // namespace tessera::raster

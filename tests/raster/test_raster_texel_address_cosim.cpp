@@ -12,78 +12,76 @@
 namespace tessera::raster {
 namespace {
 
-struct checker : cosim_tally {
-    texel_address_rtl rtl;
+struct Checker : CosimTally {
+  TexelAddressRtl rtl;
 
-    void check(const texture_state& st, q15_16 s, q15_16 t) {
-        const texel_footprint want = texel_lookup(st, s, t);
-        const texel_footprint got = rtl.lookup(st, s, t);
-        const auto same_axis = [](const texel_axis& a, const texel_axis& b) {
-            return a.index0 == b.index0 && a.index1 == b.index1 && a.weight == b.weight;
-        };
-        const bool same = same_axis(want.s, got.s) && same_axis(want.t, got.t) && want.address == got.address;
-        if (count(same)) {
-            ADD_FAILURE() << "s " << s.raw << " t " << t.raw << " log2 " << int(st.log2_width) << "x"
-                          << int(st.log2_height) << " wrap " << static_cast<unsigned>(st.wrap_s) << "/"
-                          << static_cast<unsigned>(st.wrap_t) << " filter " << static_cast<unsigned>(st.filter)
-                          << ": i " << int(want.s.index0) << "," << int(want.s.index1) << "/" << int(got.s.index0)
-                          << "," << int(got.s.index1) << " j " << int(want.t.index0) << "," << int(want.t.index1)
-                          << "/" << int(got.t.index0) << "," << int(got.t.index1) << " weights "
-                          << int(want.s.weight) << "," << int(want.t.weight) << "/" << int(got.s.weight) << ","
-                          << int(got.t.weight) << " addr00 " << want.address[0] << "/" << got.address[0];
-        }
+  void check(const TextureState& st, q15_16 s, q15_16 t) {
+    const TexelFootprint want = texel_lookup(st, s, t);
+    const TexelFootprint got = rtl.lookup(st, s, t);
+    const auto same_axis = [](const TexelAxis& a, const TexelAxis& b) {
+      return a.index0 == b.index0 && a.index1 == b.index1 && a.weight == b.weight;
+    };
+    const bool same = same_axis(want.s, got.s) && same_axis(want.t, got.t) && want.address == got.address;
+    if (count(same)) {
+      ADD_FAILURE() << "s " << s.raw << " t " << t.raw << " log2 " << int(st.log2_width) << "x" << int(st.log2_height)
+                    << " wrap " << static_cast<unsigned>(st.wrap_s) << "/" << static_cast<unsigned>(st.wrap_t)
+                    << " filter " << static_cast<unsigned>(st.filter) << ": i " << int(want.s.index0) << ","
+                    << int(want.s.index1) << "/" << int(got.s.index0) << "," << int(got.s.index1) << " j "
+                    << int(want.t.index0) << "," << int(want.t.index1) << "/" << int(got.t.index0) << ","
+                    << int(got.t.index1) << " weights " << int(want.s.weight) << "," << int(want.t.weight) << "/"
+                    << int(got.s.weight) << "," << int(got.t.weight) << " addr00 " << want.address[0] << "/"
+                    << got.address[0];
     }
+  }
 };
 
 TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
-    checker c;
-    // Coordinates at the format extremes, at 0, +-1/2 texel and +-1 around 0
-    // and 1, for every size (and the oversized log2 values), both wraps on
-    // each axis, both filters.
-    const std::array<int64_t, 15> coords{q15_16::min_raw, q15_16::max_raw, 0,      1,      -1,
-                                         0x8000,          -0x8000,         0xffff, 0x10000, 0x10001,
-                                         0x7fff,          -0x10000,        0x180,  0xff80,  0x12345678};
-    const std::array<texture_wrap, 2> wraps{texture_wrap::REPEAT, texture_wrap::CLAMP_TO_EDGE};
-    const std::array<texture_filter, 2> filters{texture_filter::NEAREST, texture_filter::LINEAR};
-    for (uint8_t lw = 0; lw < 16; ++lw)
-        for (uint8_t lh : {uint8_t{0}, uint8_t{3}, uint8_t{8}, uint8_t{9}})
-            for (texture_wrap ws : wraps)
-                for (texture_wrap wt : wraps)
-                    for (texture_filter f : filters)
-                        for (int64_t s : coords)
-                            for (int64_t t : coords) {
-                                texture_state st;
-                                st.base = (s & 1) ? 0xffff'fff0u : 0x0010'0000u;
-                                st.log2_width = lw;
-                                st.log2_height = lh;
-                                st.wrap_s = ws;
-                                st.wrap_t = wt;
-                                st.filter = f;
-                                c.check(st, q15_16{s}, q15_16{t});
-                            }
-    const uint64_t corner_vectors = c.vectors;
+  Checker c;
+  // Coordinates at the format extremes, at 0, +-1/2 texel and +-1 around 0
+  // and 1, for every size (and the oversized log2 values), both wraps on
+  // each axis, both filters.
+  const std::array<int64_t, 15> coords{q15_16::MIN_RAW, q15_16::MAX_RAW, 0,      1,       -1,
+                                       0x8000,          -0x8000,         0xffff, 0x10000, 0x10001,
+                                       0x7fff,          -0x10000,        0x180,  0xff80,  0x12345678};
+  const std::array<TextureWrap, 2> wraps{TextureWrap::REPEAT, TextureWrap::CLAMP_TO_EDGE};
+  const std::array<TextureFilter, 2> filters{TextureFilter::NEAREST, TextureFilter::LINEAR};
+  for (uint8_t lw = 0; lw < 16; ++lw)
+    for (uint8_t lh : {uint8_t{0}, uint8_t{3}, uint8_t{8}, uint8_t{9}})
+      for (TextureWrap ws : wraps)
+        for (TextureWrap wt : wraps)
+          for (TextureFilter f : filters)
+            for (int64_t s : coords)
+              for (int64_t t : coords) {
+                TextureState st;
+                st.base = (s & 1) ? 0xffff'fff0u : 0x0010'0000u;
+                st.log2_width = lw;
+                st.log2_height = lh;
+                st.wrap_s = ws;
+                st.wrap_t = wt;
+                st.filter = f;
+                c.check(st, q15_16{s}, q15_16{t});
+              }
+  const uint64_t corner_vectors = c.vectors;
 
-    std::mt19937_64 rng(0x7e8e1);
-    for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
-        const uint64_t a = rng();
-        const uint64_t b = rng();
-        texture_state st;
-        st.base = static_cast<uint32_t>(a >> 32);
-        st.log2_width = static_cast<uint8_t>(a % 10);
-        st.log2_height = static_cast<uint8_t>((a >> 4) % 10);
-        st.wrap_s = wraps[(a >> 8) & 1];
-        st.wrap_t = wraps[(a >> 9) & 1];
-        st.filter = filters[(a >> 10) & 1];
-        // Mostly coordinates within a few repetitions, where wrap and clamp
-        // decisions happen; some across the whole range.
-        const bool small = ((a >> 11) & 7) != 0;
-        const auto pick = [small](uint64_t bits) {
-            return small ? sign_extend(bits, 20) : sign_extend(bits, 32);
-        };
-        c.check(st, q15_16{pick(b)}, q15_16{pick(b >> 32)});
-    }
-    report_cosim("texel_address", c, corner_vectors);
+  std::mt19937_64 rng(0x7e8e1);
+  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+    const uint64_t a = rng();
+    const uint64_t b = rng();
+    TextureState st;
+    st.base = static_cast<uint32_t>(a >> 32);
+    st.log2_width = static_cast<uint8_t>(a % 10);
+    st.log2_height = static_cast<uint8_t>((a >> 4) % 10);
+    st.wrap_s = wraps[(a >> 8) & 1];
+    st.wrap_t = wraps[(a >> 9) & 1];
+    st.filter = filters[(a >> 10) & 1];
+    // Mostly coordinates within a few repetitions, where wrap and clamp
+    // decisions happen; some across the whole range.
+    const bool small = ((a >> 11) & 7) != 0;
+    const auto pick = [small](uint64_t bits) { return small ? sign_extend(bits, 20) : sign_extend(bits, 32); };
+    c.check(st, q15_16{pick(b)}, q15_16{pick(b >> 32)});
+  }
+  report_cosim("texel_address", c, corner_vectors);
 }
 
-} // namespace
-} // namespace tessera::raster
+}  // namespace
+}  // namespace tessera::raster

@@ -60,8 +60,10 @@ inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::
   int wstatus = 0;
   while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
   }
-  if (WIFEXITED(wstatus)) run.status = WEXITSTATUS(wstatus);
-  else if (WIFSIGNALED(wstatus)) run.status = 128 + WTERMSIG(wstatus);
+  if (WIFEXITED(wstatus))
+    run.status = WEXITSTATUS(wstatus);
+  else if (WIFSIGNALED(wstatus))
+    run.status = 128 + WTERMSIG(wstatus);
   run.out = read_file(out_path);
   run.err = read_file(err_path);
   return run;
@@ -71,7 +73,9 @@ inline std::string describe(const SimResult& run) {
   return "exit status " + std::to_string(run.status) + "\n--- stdout ---\n" + run.out + "--- stderr ---\n" + run.err;
 }
 
-inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 // A fixture with a fresh folder per test (m_dir, under the temporary folder,
 // named after the test suite), removed after a passing test and kept, with

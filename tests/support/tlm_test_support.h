@@ -13,9 +13,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tlm_utils/simple_initiator_socket.h>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_initiator_socket.h>
 
 namespace tessera::test {
 
@@ -89,16 +89,17 @@ class TestInitiator : public sc_core::sc_module {
 // time so that the previous test's bus reservations have expired, and
 // simulates until nothing is left to do (or for `limit` if given, for
 // benches with free-running processes). Returns the start time of the body.
-inline sc_core::sc_time run_thread(std::function<void()> body,
-                                   sc_core::sc_time limit = sc_core::SC_ZERO_TIME,
+inline sc_core::sc_time run_thread(const std::function<void()>& body, sc_core::sc_time limit = sc_core::SC_ZERO_TIME,
                                    sc_core::sc_time settle = sc_core::sc_time(100, sc_core::SC_US)) {
   const sc_core::sc_time start = sc_core::sc_time_stamp() + settle;
   sc_core::sc_spawn([=] {
     sc_core::wait(settle);
     body();
   });
-  if (limit == sc_core::SC_ZERO_TIME) sc_core::sc_start();
-  else sc_core::sc_start(settle + limit);
+  if (limit == sc_core::SC_ZERO_TIME)
+    sc_core::sc_start();
+  else
+    sc_core::sc_start(settle + limit);
   return start;
 }
 

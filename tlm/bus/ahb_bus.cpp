@@ -17,8 +17,7 @@ Arbitration parse_arbitration(const std::string& name) {
 }
 
 AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
-    : sc_core::sc_module(name), in("in"), out("out"), m_params(params),
-      m_period_ticks(params.clock_period.value()) {
+    : sc_core::sc_module(name), in("in"), out("out"), m_params(params), m_period_ticks(params.clock_period.value()) {
   if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
   in.register_b_transport(this, &AhbBus::b_transport);
@@ -55,7 +54,7 @@ const AhbBus::Region* AhbBus::decode(uint64_t address) const {
   return nullptr;
 }
 
-void AhbBus::trace(sc_core::sc_trace_file* file) {
+void AhbBus::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   for (size_t i = 0; i < m_stats.size(); ++i) {
     sc_core::sc_trace(file, m_request_traces[i]->signal, std::string(name()) + "." + m_stats[i].name + "_request");
@@ -120,8 +119,7 @@ void AhbBus::resolve_batch() {
   m_batch.clear();
 }
 
-void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats,
-                     const Request& request) {
+void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request) {
   BusInitiatorStats& s = m_stats[initiator];
   const unsigned transfers = transfers_of(gp);
   s.transactions += transfers;
@@ -257,10 +255,17 @@ nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
   nlohmann::json initiators = nlohmann::json::object();
   for (const auto& s : m_stats) {
     initiators[s.name] = {
-        {"priority", s.priority},     {"transactions", s.transactions}, {"reads", s.reads},
-        {"writes", s.writes},         {"bytes", s.bytes},               {"beats", s.beats},
-        {"busy_cycles", s.busy_cycles}, {"wait_cycles", s.wait_cycles}, {"errors", s.errors},
-        {"debug_accesses", s.debug_accesses}, {"dmi_grants", s.dmi_grants},
+        {"priority", s.priority},
+        {"transactions", s.transactions},
+        {"reads", s.reads},
+        {"writes", s.writes},
+        {"bytes", s.bytes},
+        {"beats", s.beats},
+        {"busy_cycles", s.busy_cycles},
+        {"wait_cycles", s.wait_cycles},
+        {"errors", s.errors},
+        {"debug_accesses", s.debug_accesses},
+        {"dmi_grants", s.dmi_grants},
         {"utilisation", cycles > 0 ? s.busy_cycles / cycles : 0.0},
     };
   }

@@ -33,10 +33,10 @@
 #include <string>
 #include <vector>
 
-#include <systemc>
-#include <tlm>
 #include <tlm_utils/multi_passthrough_initiator_socket.h>
 #include <tlm_utils/multi_passthrough_target_socket.h>
+#include <systemc>
+#include <tlm>
 
 #include <nlohmann/json.hpp>
 
@@ -93,7 +93,7 @@ class AhbBus : public sc_core::sc_module {
   }
 
   // Traces request and grant of every initiator (call before simulation).
-  void trace(sc_core::sc_trace_file* file);
+  void trace_signals(sc_core::sc_trace_file* file);
 
   const BusParams& params() const { return m_params; }
   const std::vector<BusInitiatorStats>& initiator_stats() const { return m_stats; }
@@ -129,8 +129,7 @@ class AhbBus : public sc_core::sc_module {
   // Earliest start >= request at which [start, start + length) is free; reserves it.
   uint64_t reserve(uint64_t request_ticks, uint64_t length_ticks);
   void resolve_batch();
-  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats,
-               const Request& request);
+  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request);
 
   BusParams m_params;
   uint64_t m_period_ticks;

@@ -36,14 +36,13 @@ void handler(const sc_core::sc_report& report, const sc_core::sc_actions& action
       default: break;
     }
     std::ostringstream line;
-    line << "[" << format_time(sc_core::sc_time_stamp()) << "] " << module << ": " << severity
-         << report.get_msg() << "\n";
+    line << "[" << format_time(sc_core::sc_time_stamp()) << "] " << module << ": " << severity << report.get_msg()
+         << "\n";
     std::cerr << line.str() << std::flush;
   }
   // Everything but display and logging is left to SystemC's default handler
   // (throwing, stopping, aborting).
-  sc_core::sc_report_handler::default_handler(
-      report, actions & ~(sc_core::SC_DISPLAY | sc_core::SC_LOG));
+  sc_core::sc_report_handler::default_handler(report, actions & ~(sc_core::SC_DISPLAY | sc_core::SC_LOG));
 }
 
 }  // namespace
@@ -54,16 +53,14 @@ Level parse_level(const std::string& name) {
   if (name == "warning") return Level::warning;
   if (name == "info") return Level::info;
   if (name == "debug") return Level::debug;
-  throw std::invalid_argument("unknown log level '" + name +
-                              "' (expected quiet, error, warning, info or debug)");
+  throw std::invalid_argument("unknown log level '" + name + "' (expected quiet, error, warning, info or debug)");
 }
 
 void install(Level level) {
   g_level = level;
   sc_core::sc_report_handler::set_handler(handler);
   using sc_core::sc_report_handler;
-  sc_report_handler::set_actions(sc_core::SC_INFO,
-                                 level >= Level::info ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
+  sc_report_handler::set_actions(sc_core::SC_INFO, level >= Level::info ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
   sc_report_handler::set_actions(sc_core::SC_WARNING,
                                  level >= Level::warning ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
   sc_report_handler::set_verbosity_level(level >= Level::debug ? sc_core::SC_DEBUG : sc_core::SC_MEDIUM);
@@ -71,16 +68,16 @@ void install(Level level) {
   sc_report_handler::set_actions("/IEEE_Std_1666/deprecated", sc_core::SC_DO_NOTHING);
 }
 
-bool enabled(Level level) { return g_level >= level; }
+bool enabled(Level level) {
+  return g_level >= level;
+}
 
 void info(const std::string& module, const std::string& message) {
-  if (g_level >= Level::info)
-    SC_REPORT_INFO_VERB(msg_type(module).c_str(), message.c_str(), sc_core::SC_MEDIUM);
+  if (g_level >= Level::info) SC_REPORT_INFO_VERB(msg_type(module).c_str(), message.c_str(), sc_core::SC_MEDIUM);
 }
 
 void debug(const std::string& module, const std::string& message) {
-  if (g_level >= Level::debug)
-    SC_REPORT_INFO_VERB(msg_type(module).c_str(), message.c_str(), sc_core::SC_DEBUG);
+  if (g_level >= Level::debug) SC_REPORT_INFO_VERB(msg_type(module).c_str(), message.c_str(), sc_core::SC_DEBUG);
 }
 
 void warning(const std::string& module, const std::string& message) {
@@ -94,13 +91,16 @@ void error(const std::string& module, const std::string& message) {
   // Display it like a warning-level line but flagged as an error, without the
   // throw that SC_REPORT_ERROR would cause inside a process.
   sc_core::sc_report_handler::set_actions(type.c_str(), sc_core::SC_ERROR,
-                                          g_level >= Level::error ? sc_core::SC_DISPLAY
-                                                                  : sc_core::SC_DO_NOTHING);
+                                          g_level >= Level::error ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
   SC_REPORT_ERROR(type.c_str(), message.c_str());
 }
 
-unsigned warning_count() { return g_warnings; }
-unsigned error_count() { return g_errors; }
+unsigned warning_count() {
+  return g_warnings;
+}
+unsigned error_count() {
+  return g_errors;
+}
 
 std::string response_text(int status) {
   switch (static_cast<tlm::tlm_response_status>(status)) {

@@ -18,7 +18,9 @@ Level parse_level(const std::string& name);
 void install(Level level);
 
 // Message type of a module: "tessera/" + module.
-inline std::string msg_type(const std::string& module) { return "tessera/" + module; }
+inline std::string msg_type(const std::string& module) {
+  return "tessera/" + module;
+}
 
 // True when messages of `level` are printed; guards messages that are
 // expensive to build.

@@ -55,9 +55,9 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
   auto status = check(gp, entry);
   if (status != tlm::TLM_OK_RESPONSE) {
     gp.set_response_status(status);
-    log::warning(m_owner, std::string("bad register access: ") + (gp.is_write() ? "write" : "read") +
-                              " of " + std::to_string(gp.get_data_length()) + " bytes at offset " +
-                              log::hex(gp.get_address()) + " (" + log::response_text(gp.get_response_status()) + ")");
+    log::warning(m_owner, std::string("bad register access: ") + (gp.is_write() ? "write" : "read") + " of " +
+                              std::to_string(gp.get_data_length()) + " bytes at offset " + log::hex(gp.get_address()) +
+                              " (" + log::response_text(gp.get_response_status()) + ")");
     return nullptr;
   }
   uint32_t data = 0;
@@ -66,9 +66,12 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
     std::memcpy(gp.get_data_ptr(), &data, 4);
   } else if (gp.is_write()) {
     std::memcpy(&data, gp.get_data_ptr(), 4);
-    if (entry->on_write) entry->on_write(data);
-    else if (entry->info.access == RegAccess::w1c) entry->value &= ~data;
-    else entry->value = data;
+    if (entry->on_write)
+      entry->on_write(data);
+    else if (entry->info.access == RegAccess::w1c)
+      entry->value &= ~data;
+    else
+      entry->value = data;
   }
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
   return entry->info.name;
@@ -80,7 +83,8 @@ unsigned RegisterBank::transport_dbg(tlm::tlm_generic_payload& gp) {
   if (gp.is_read()) {
     const uint32_t value = entry->on_read ? entry->on_read() : entry->value;
     std::memcpy(gp.get_data_ptr(), &value, 4);
-  } else if (gp.is_write()) std::memcpy(&entry->value, gp.get_data_ptr(), 4);
+  } else if (gp.is_write())
+    std::memcpy(&entry->value, gp.get_data_ptr(), 4);
   return 4;
 }
 

@@ -36,8 +36,7 @@ std::string expectation(const ParamSpec& spec) {
   std::string text = type_name(spec.type);
   if (spec.type == ParamType::choice) {
     text += " ";
-    for (size_t i = 0; i < spec.choices.size(); ++i)
-      text += (i ? ", " : "") + spec.choices[i];
+    for (size_t i = 0; i < spec.choices.size(); ++i) text += (i ? ", " : "") + spec.choices[i];
   } else if (spec.type == ParamType::integer || spec.type == ParamType::real) {
     text += " in [" + format_number(spec.min) + ", " + format_number(spec.max) + "]";
   }
@@ -90,16 +89,18 @@ const ParamSpec& Config::spec(const std::string& key, const std::string& source)
     size_t d = edit_distance(key, s.key);
     if (d < best_distance) best = &s, best_distance = d;
   }
-  if (best) message += "; did you mean '" + best->key + "'?";
-  else message += "; soc_sim --print-config lists the known keys";
+  if (best)
+    message += "; did you mean '" + best->key + "'?";
+  else
+    message += "; soc_sim --print-config lists the known keys";
   throw ConfigError(message);
 }
 
 void Config::set(const std::string& key, const nlohmann::json& value, const std::string& source) {
   const ParamSpec& s = spec(key, source);
   auto fail = [&](const std::string& got) {
-    throw ConfigError("configuration: '" + key + "' expects " + expectation(s) + ", got " + got +
-                      " (from " + source + ")");
+    throw ConfigError("configuration: '" + key + "' expects " + expectation(s) + ", got " + got + " (from " + source +
+                      ")");
   };
   const std::string shown = value.dump();
   switch (s.type) {
@@ -132,8 +133,7 @@ void Config::set(const std::string& key, const nlohmann::json& value, const std:
 }
 
 void Config::merge_json(const nlohmann::json& doc, const std::string& source) {
-  if (!doc.is_object())
-    throw ConfigError("configuration: " + source + " must hold a JSON object at the top level");
+  if (!doc.is_object()) throw ConfigError("configuration: " + source + " must hold a JSON object at the top level");
   std::vector<std::pair<std::string, nlohmann::json>> entries;
   flatten(doc, "", entries);
   // Check everything before changing anything, so a bad file leaves the
@@ -166,9 +166,12 @@ void Config::apply_override(const std::string& assignment) {
   nlohmann::json value;
   switch (s.type) {
     case ParamType::boolean:
-      if (text == "true" || text == "1" || text == "on") value = true;
-      else if (text == "false" || text == "0" || text == "off") value = false;
-      else value = text;  // rejected by set() with the key named
+      if (text == "true" || text == "1" || text == "on")
+        value = true;
+      else if (text == "false" || text == "0" || text == "off")
+        value = false;
+      else
+        value = text;  // rejected by set() with the key named
       break;
     case ParamType::integer: {
       errno = 0;
@@ -176,22 +179,24 @@ void Config::apply_override(const std::string& assignment) {
       // Decimal, or hexadecimal with 0x; a leading zero is not octal.
       const bool hexadecimal = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
       long long v = std::strtoll(text.c_str(), &end, hexadecimal ? 16 : 10);
-      if (text.empty() || *end != '\0' || errno == ERANGE) value = text;
-      else value = static_cast<int64_t>(v);
+      if (text.empty() || *end != '\0' || errno == ERANGE)
+        value = text;
+      else
+        value = static_cast<int64_t>(v);
       break;
     }
     case ParamType::real: {
       errno = 0;
       char* end = nullptr;
       double v = std::strtod(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || errno == ERANGE) value = text;
-      else value = v;
+      if (text.empty() || *end != '\0' || errno == ERANGE)
+        value = text;
+      else
+        value = v;
       break;
     }
     case ParamType::string:
-    case ParamType::choice:
-      value = text;
-      break;
+    case ParamType::choice: value = text; break;
   }
   set(key, value, source);
 }
@@ -204,7 +209,9 @@ const nlohmann::json& Config::value(const std::string& key, ParamType expected) 
   return it->second;
 }
 
-bool Config::get_bool(const std::string& key) const { return value(key, ParamType::boolean).get<bool>(); }
+bool Config::get_bool(const std::string& key) const {
+  return value(key, ParamType::boolean).get<bool>();
+}
 int64_t Config::get_int(const std::string& key) const {
   return value(key, ParamType::integer).get<int64_t>();
 }
@@ -213,7 +220,9 @@ uint64_t Config::get_uint(const std::string& key) const {
   if (v < 0) throw std::logic_error("configuration: '" + key + "' is negative");
   return static_cast<uint64_t>(v);
 }
-double Config::get_real(const std::string& key) const { return value(key, ParamType::real).get<double>(); }
+double Config::get_real(const std::string& key) const {
+  return value(key, ParamType::real).get<double>();
+}
 std::string Config::get_string(const std::string& key) const {
   return value(key, ParamType::string).get<std::string>();
 }
@@ -237,8 +246,8 @@ std::string Config::reference_markdown() {
   out << "| key | type | default | description |\n| --- | --- | --- | --- |\n";
   for (const auto& spec : parameter_specs()) {
     std::string type = expectation(spec);
-    out << "| `" << spec.key << "` | " << type << " | `" << spec.default_value.dump() << "` | "
-        << spec.description << " |\n";
+    out << "| `" << spec.key << "` | " << type << " | `" << spec.default_value.dump() << "` | " << spec.description
+        << " |\n";
   }
   return out.str();
 }

@@ -13,18 +13,14 @@ namespace {
 ParamSpec boolean(std::string key, bool value, std::string description) {
   return {std::move(key), ParamType::boolean, value, std::move(description), "", 0, 0, {}};
 }
-ParamSpec integer(std::string key, int64_t value, double min, double max, std::string unit,
-                  std::string description) {
+ParamSpec integer(std::string key, int64_t value, double min, double max, std::string unit, std::string description) {
   return {std::move(key), ParamType::integer, value, std::move(description), std::move(unit), min, max, {}};
 }
-ParamSpec real(std::string key, double value, double min, double max, std::string unit,
-               std::string description) {
+ParamSpec real(std::string key, double value, double min, double max, std::string unit, std::string description) {
   return {std::move(key), ParamType::real, value, std::move(description), std::move(unit), min, max, {}};
 }
-ParamSpec choice(std::string key, std::string value, std::vector<std::string> choices,
-                 std::string description) {
-  return {std::move(key), ParamType::choice, std::move(value), std::move(description), "", 0, 0,
-          std::move(choices)};
+ParamSpec choice(std::string key, std::string value, std::vector<std::string> choices, std::string description) {
+  return {std::move(key), ParamType::choice, std::move(value), std::move(description), "", 0, 0, std::move(choices)};
 }
 ParamSpec text(std::string key, std::string value, std::string description) {
   return {std::move(key), ParamType::string, std::move(value), std::move(description), "", 0, 0, {}};
@@ -93,7 +89,8 @@ const std::vector<ParamSpec>& parameter_specs() {
       integer("display.height", 240, 16, 2048, "lines", "visible lines"),
       choice("display.format", "rgb565", {"rgb565", "rgba8888"}, "frame-buffer pixel format"),
       boolean("display.dma", false,
-              "true: a display DMA scans the front buffer out over the bus; false: the host copies each frame to the display port"),
+              "true: a display DMA scans the front buffer out over the bus; false: the host copies each frame to the "
+              "display port"),
       real("display.refresh_hz", 60.0, 1, 240, "Hz", "refresh rate of the display DMA"),
       integer("display.vblank_lines", 20, 1, 1000, "lines", "vertical blanking interval, in line times"),
       integer("display.burst_beats", 16, 1, 256, "beats", "burst length of the display DMA's fetches"),
@@ -133,42 +130,43 @@ void Config::validate() const {
   const uint64_t memory_bytes = get_uint("mem.size_mib") << 20;
   // Two frame buffers must fit in system memory, with room for everything else.
   if (2 * frame_bytes > memory_bytes / 2)
-    throw ConfigError("configuration: impossible combination: two frame buffers of display.width=" +
-                      std::to_string(get_uint("display.width")) + " x display.height=" +
-                      std::to_string(get_uint("display.height")) + " display.format=" +
-                      get_string("display.format") + " pixels need " + std::to_string(2 * frame_bytes) +
-                      " bytes, more than half of mem.size_mib=" + std::to_string(get_uint("mem.size_mib")));
+    throw ConfigError(
+        "configuration: impossible combination: two frame buffers of display.width=" +
+        std::to_string(get_uint("display.width")) + " x display.height=" + std::to_string(get_uint("display.height")) +
+        " display.format=" + get_string("display.format") + " pixels need " + std::to_string(2 * frame_bytes) +
+        " bytes, more than half of mem.size_mib=" + std::to_string(get_uint("mem.size_mib")));
   const int64_t width = get_int("bus.width_bits");
   if (width != 32 && width != 64 && width != 128)
     throw ConfigError("configuration: 'bus.width_bits' expects 32, 64 or 128, got " + std::to_string(width));
   const int64_t line = get_int("host.dcache.line_bytes");
   if (line & (line - 1))
-    throw ConfigError("configuration: 'host.dcache.line_bytes' expects a power of two, got " +
-                      std::to_string(line));
+    throw ConfigError("configuration: 'host.dcache.line_bytes' expects a power of two, got " + std::to_string(line));
   const int64_t cache = get_int("host.dcache.size_bytes");
   const int64_t ways = get_int("host.dcache.ways");
   if (cache != 0 && (cache % (line * ways) != 0))
-    throw ConfigError("configuration: impossible combination: host.dcache.size_bytes=" + std::to_string(cache) +
-                      " is not a multiple of host.dcache.line_bytes x host.dcache.ways = " +
-                      std::to_string(line * ways));
+    throw ConfigError(
+        "configuration: impossible combination: host.dcache.size_bytes=" + std::to_string(cache) +
+        " is not a multiple of host.dcache.line_bytes x host.dcache.ways = " + std::to_string(line * ways));
   if (cache != 0) {
     const int64_t sets = cache / (line * ways);
     if (sets & (sets - 1))
       throw ConfigError("configuration: impossible combination: the data cache has " + std::to_string(sets) +
                         " sets; host.dcache.size_bytes / (line_bytes x ways) must be a power of two");
   }
-  if (get_string("driver.backend") == "raster" &&
-      (get_uint("raster.width") != get_uint("display.width") || get_uint("raster.height") != get_uint("display.height")))
-    throw ConfigError("configuration: impossible combination: driver.backend=raster draws the display's frame buffers, "
-                      "but raster.width x raster.height = " + std::to_string(get_uint("raster.width")) + " x " +
-                      std::to_string(get_uint("raster.height")) + " differs from display.width x display.height = " +
-                      std::to_string(get_uint("display.width")) + " x " + std::to_string(get_uint("display.height")));
+  if (get_string("driver.backend") == "raster" && (get_uint("raster.width") != get_uint("display.width") ||
+                                                   get_uint("raster.height") != get_uint("display.height")))
+    throw ConfigError(
+        "configuration: impossible combination: driver.backend=raster draws the display's frame buffers, "
+        "but raster.width x raster.height = " +
+        std::to_string(get_uint("raster.width")) + " x " + std::to_string(get_uint("raster.height")) +
+        " differs from display.width x display.height = " + std::to_string(get_uint("display.width")) + " x " +
+        std::to_string(get_uint("display.height")));
   const uint64_t fetch_bytes = get_uint("display.burst_beats") * static_cast<uint64_t>(width / 8);
   const uint64_t line_bytes = get_uint("display.width") * bytes_per_pixel;
   if (get_bool("display.dma") && line_bytes % std::min(fetch_bytes, line_bytes) != 0)
     throw ConfigError("configuration: impossible combination: a display line of " + std::to_string(line_bytes) +
-                      " bytes is not a whole number of display.burst_beats bursts (" +
-                      std::to_string(fetch_bytes) + " bytes)");
+                      " bytes is not a whole number of display.burst_beats bursts (" + std::to_string(fetch_bytes) +
+                      " bytes)");
 }
 
 }  // namespace tessera

@@ -12,10 +12,17 @@ using sc_core::sc_time;
 namespace regs = display_regs;
 
 DisplayController::DisplayController(sc_core::sc_module_name name, const DisplayParams& params)
-    : sc_core::sc_module(name), in("in"), port_in("port_in"), dma_out("dma_out"), irq("irq"),
-      m_params(params), m_regs(this->name()), m_vblank("vblank") {
+    : sc_core::sc_module(name),
+      in("in"),
+      port_in("port_in"),
+      dma_out("dma_out"),
+      irq("irq"),
+      m_params(params),
+      m_regs(this->name()),
+      m_vblank("vblank") {
   if (params.width == 0 || params.height == 0) throw std::invalid_argument(std::string(this->name()) + ": empty frame");
-  if (params.refresh_hz <= 0) throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
+  if (params.refresh_hz <= 0)
+    throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
   in.register_b_transport(this, &DisplayController::b_transport);
   in.register_transport_dbg(this, &DisplayController::transport_dbg);
   port_in.register_b_transport(this, &DisplayController::port_b_transport);
@@ -62,9 +69,8 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines); });
   m_regs.add(WIDTH, [this] { return m_params.width; });
   m_regs.add(HEIGHT, [this] { return m_params.height; });
-  m_regs.add(FORMAT, [this] {
-    return m_params.format == PixelFormat::rgb565 ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888;
-  });
+  m_regs.add(FORMAT,
+             [this] { return m_params.format == PixelFormat::rgb565 ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888; });
   m_regs.add(MODE, [this] { return m_params.dma ? 1u : 0u; });
 
   m_port_frame.assign(frame_bytes(), 0);
@@ -75,7 +81,7 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   if (m_params.dma) SC_THREAD(scan_out);
 }
 
-void DisplayController::trace(sc_core::sc_trace_file* file) {
+void DisplayController::trace_signals(sc_core::sc_trace_file* file) {
   sc_core::sc_trace(file, m_vblank.signal, std::string(name()) + ".vblank");
 }
 
@@ -84,7 +90,9 @@ bool DisplayController::in_vblank() const {
   return m_params.dma && now >= m_frame_start && now < m_active_start;
 }
 
-bool DisplayController::frame_pending() const { return m_params.dma && (m_swap_pending || m_frame_in_scan); }
+bool DisplayController::frame_pending() const {
+  return m_params.dma && (m_swap_pending || m_frame_in_scan);
+}
 
 void DisplayController::raise(uint32_t bits, const sc_time& delay) {
   m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
@@ -101,7 +109,9 @@ void DisplayController::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay
   delay += m_params.clock_period;
 }
 
-unsigned DisplayController::transport_dbg(tlm::tlm_generic_payload& gp) { return m_regs.transport_dbg(gp); }
+unsigned DisplayController::transport_dbg(tlm::tlm_generic_payload& gp) {
+  return m_regs.transport_dbg(gp);
+}
 
 void DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   const uint64_t address = gp.get_address();
@@ -131,15 +141,17 @@ unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {
   const uint64_t address = gp.get_address();
   if (address >= m_port_frame.size()) return 0;
   const uint64_t length = std::min<uint64_t>(gp.get_data_length(), m_port_frame.size() - address);
-  if (gp.is_write()) std::memcpy(&m_port_frame[address], gp.get_data_ptr(), length);
-  else if (gp.is_read()) std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
+  if (gp.is_write())
+    std::memcpy(&m_port_frame[address], gp.get_data_ptr(), length);
+  else if (gp.is_read())
+    std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
   return static_cast<unsigned>(length);
 }
 
 void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& delay) {
   const sc_time when = sc_core::sc_time_stamp() + delay;
-  Frame frame{static_cast<unsigned>(m_frames), when.to_seconds(), m_params.width,
-              m_params.height, std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
+  Frame frame{static_cast<unsigned>(m_frames), when.to_seconds(), m_params.width, m_params.height,
+              std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
   const size_t count = size_t{m_params.width} * m_params.height;
   if (m_params.format == PixelFormat::rgb565) {
     for (size_t i = 0; i < count; ++i) {

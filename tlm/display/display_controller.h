@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include <systemc>
-#include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
+#include <systemc>
+#include <tlm>
 
 #include <nlohmann/json.hpp>
 
@@ -45,8 +45,8 @@ struct DisplayParams {
 };
 
 struct Frame {
-  unsigned index;        // 0, 1, 2, ... in the order shown
-  double time_seconds;   // simulated time at which it was complete on screen
+  unsigned index;       // 0, 1, 2, ... in the order shown
+  double time_seconds;  // simulated time at which it was complete on screen
   unsigned width;
   unsigned height;
   std::vector<uint8_t> rgba;  // width * height * 4, row 0 at the top
@@ -73,7 +73,7 @@ class DisplayController : public sc_core::sc_module {
   bool frame_pending() const;
   const sc_core::sc_event& frame_shown_event() const { return m_frame_shown; }
 
-  void trace(sc_core::sc_trace_file* file);
+  void trace_signals(sc_core::sc_trace_file* file);
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
 
  private:
@@ -82,8 +82,8 @@ class DisplayController : public sc_core::sc_module {
   void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
-  void scan_out();      // SC_THREAD, DMA mode
-  void update_irq();    // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
+  void scan_out();    // SC_THREAD, DMA mode
+  void update_irq();  // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
   // Sets interrupt status bits; the line follows `delay` after the kernel's time.
   void raise(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
   // Shows a frame `delay` after the kernel's time (a register write's annotated time).

@@ -5,8 +5,10 @@
 namespace tessera {
 
 DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
-    : m_line_bytes(line_bytes), m_ways(ways),
-      m_sets(size_bytes == 0 ? 0 : size_bytes / (line_bytes * ways)), m_line_shift(0) {
+    : m_line_bytes(line_bytes),
+      m_ways(ways),
+      m_sets(size_bytes == 0 ? 0 : size_bytes / (line_bytes * ways)),
+      m_line_shift(0) {
   while ((1u << m_line_shift) < line_bytes) ++m_line_shift;
   m_lines.resize(static_cast<size_t>(m_sets) * m_ways);
   m_victim.resize(m_sets, 0);
@@ -15,7 +17,7 @@ DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
 DataCache::Line* DataCache::find(uint32_t address) {
   const uint32_t tag = address >> m_line_shift;
   if (tag < m_where.size()) return m_where[tag] ? &m_lines[m_where[tag] - 1] : nullptr;
-  if (tag < kIndexedTags) return nullptr;  // an allocated tag this low would be in the table
+  if (tag < INDEXED_TAGS) return nullptr;  // an allocated tag this low would be in the table
   Line* set = &m_lines[static_cast<size_t>(tag & (m_sets - 1)) * m_ways];
   for (unsigned way = 0; way < m_ways; ++way)
     if (set[way].valid && set[way].tag == tag) return &set[way];
@@ -27,8 +29,8 @@ void DataCache::forget(const Line& line) {
 }
 
 void DataCache::remember(const Line& line, size_t index) {
-  if (line.tag >= kIndexedTags) return;
-  if (line.tag >= m_where.size()) m_where.resize(std::min<size_t>(kIndexedTags, (size_t{line.tag} + 1) * 2), 0);
+  if (line.tag >= INDEXED_TAGS) return;
+  if (line.tag >= m_where.size()) m_where.resize(std::min<size_t>(INDEXED_TAGS, (size_t{line.tag} + 1) * 2), 0);
   m_where[line.tag] = static_cast<uint32_t>(index + 1);
 }
 

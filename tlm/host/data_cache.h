@@ -13,7 +13,7 @@ class DataCache {
  public:
   struct Result {
     bool hit;
-    bool evicted_dirty;       // a dirty line must be written back
+    bool evicted_dirty;        // a dirty line must be written back
     uint32_t evicted_address;  // its address
   };
 
@@ -53,9 +53,9 @@ class DataCache {
   // Where each resident line is, by tag (line number + 1, 0: absent): the
   // model's speed, not the cache's behaviour. Lookups, hits and misses alike,
   // cost one load instead of a search of a 64-way set. The table covers the
-  // tags below kIndexedTags (128 MiB with 32-byte lines) and grows with the
+  // tags below INDEXED_TAGS (128 MiB with 32-byte lines) and grows with the
   // highest tag allocated; lines above it are found by searching their set.
-  static constexpr uint32_t kIndexedTags = 1u << 22;
+  static constexpr uint32_t INDEXED_TAGS = 1u << 22;
   std::vector<uint32_t> m_where;
   void forget(const Line& line);
   void remember(const Line& line, size_t index);

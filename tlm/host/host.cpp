@@ -28,9 +28,14 @@ const char* op_name(Op op) {
 }
 
 Host::Host(sc_core::sc_module_name name, const HostParams& params)
-    : sc_core::sc_module(name), out("out"), irq("irq", params.irq_lines), m_params(params),
-      m_period_ticks(params.clock_period.value()), m_run_ahead_ticks(params.run_ahead.value()),
-      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways), m_busy_trace("busy") {
+    : sc_core::sc_module(name),
+      out("out"),
+      irq("irq", params.irq_lines),
+      m_params(params),
+      m_period_ticks(params.clock_period.value()),
+      m_run_ahead_ticks(params.run_ahead.value()),
+      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways),
+      m_busy_trace("busy") {
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
   m_train = new TransferTrain;
   m_payload.set_extension(m_train);
@@ -38,13 +43,16 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
   SC_THREAD(run);
 }
 
-void Host::trace(sc_core::sc_trace_file* file) {
+void Host::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
-  for (unsigned i = 0; i < irq.size(); ++i) sc_core::sc_trace(file, irq[i], std::string(name()) + ".irq_" + std::to_string(i));
+  for (unsigned i = 0; i < irq.size(); ++i)
+    sc_core::sc_trace(file, irq[i], std::string(name()) + ".irq_" + std::to_string(i));
 }
 
-uint64_t Host::local_ticks() const { return sc_core::sc_time_stamp().value() + m_local_ticks; }
+uint64_t Host::local_ticks() const {
+  return sc_core::sc_time_stamp().value() + m_local_ticks;
+}
 
 void Host::restart_quantum() {
   m_qk.reset();
@@ -68,8 +76,7 @@ void Host::quantum_used_up() {
   // may have woken another process; the next check then sees that process.
   // When something is scheduled, the host synchronises at the quantum as a
   // plain quantum keeper does, so timing is exactly that of run_ahead = 0.
-  if (m_local_ticks < m_run_ahead_ticks &&
-      sc_core::sc_time_to_pending_activity().value() >= m_run_ahead_ticks) {
+  if (m_local_ticks < m_run_ahead_ticks && sc_core::sc_time_to_pending_activity().value() >= m_run_ahead_ticks) {
     ++m_run_aheads;
     m_budget_ticks = m_run_ahead_ticks;
     return;
@@ -98,11 +105,14 @@ void Host::compute(Op op, uint64_t count) {
   charge(m_params.op_cycles[index] * count);
 }
 
-double Host::now_seconds() const { return sc_time::from_value(local_ticks()).to_seconds(); }
+double Host::now_seconds() const {
+  return sc_time::from_value(local_ticks()).to_seconds();
+}
 
 bool Host::cacheable(uint32_t address, unsigned bytes) const {
   return address >= m_params.cacheable_base &&
-         static_cast<uint64_t>(address) + bytes <= static_cast<uint64_t>(m_params.cacheable_base) + m_params.cacheable_size;
+         static_cast<uint64_t>(address) + bytes <=
+             static_cast<uint64_t>(m_params.cacheable_base) + m_params.cacheable_size;
 }
 
 uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
@@ -220,8 +230,8 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
     }
   };
   retire();
-  while (!m_write_buffer.empty() && m_write_buffer_words + std::min(words, m_params.write_buffer_words) >
-                                        m_params.write_buffer_words) {
+  while (!m_write_buffer.empty() &&
+         m_write_buffer_words + std::min(words, m_params.write_buffer_words) > m_params.write_buffer_words) {
     ++m_write_buffer_stalls;
     stall_until(m_write_buffer.front().done_ticks);
     retire();
@@ -232,8 +242,7 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
   std::memcpy(m_post_data.data(), data, bytes);
   const uint64_t issue = std::max(local_ticks(), m_write_buffer_free_ticks);
   m_train->transfers = transfers;
-  const uint64_t done =
-      transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
+  const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
   m_write_buffer_free_ticks = done;
   if (words > m_params.write_buffer_words) {
     // A train longer than the buffer: the core waits until all but the
@@ -292,7 +301,9 @@ void Host::write16(uint32_t address, uint16_t value) {
   write_data(address, &value, 2);
 }
 
-void Host::write8(uint32_t address, uint8_t value) { write_data(address, &value, 1); }
+void Host::write8(uint32_t address, uint8_t value) {
+  write_data(address, &value, 1);
+}
 
 void Host::read_words(uint32_t address, uint32_t* words, unsigned count) {
   check_alignment(address, 4);
@@ -425,16 +436,16 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
 
 bool Host::irq_pending(unsigned line) {
   if (line >= irq.size())
-    throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
-                            std::to_string(irq.size()) + ")");
+    throw std::out_of_range("host: interrupt line " + std::to_string(line) +
+                            " does not exist (host.irq_lines=" + std::to_string(irq.size()) + ")");
   sync();
   return irq[line].read();
 }
 
 void Host::wait_irq(unsigned line) {
   if (line >= irq.size())
-    throw std::out_of_range("host: interrupt line " + std::to_string(line) + " does not exist (host.irq_lines=" +
-                            std::to_string(irq.size()) + ")");
+    throw std::out_of_range("host: interrupt line " + std::to_string(line) +
+                            " does not exist (host.irq_lines=" + std::to_string(irq.size()) + ")");
   sync();
   if (irq[line].read()) return;
   const uint64_t start = sc_core::sc_time_stamp().value();

@@ -18,10 +18,10 @@
 #include <memory>
 #include <string>
 
-#include <systemc>
-#include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/tlm_quantumkeeper.h>
+#include <systemc>
+#include <tlm>
 
 #include <nlohmann/json.hpp>
 
@@ -69,7 +69,7 @@ class Host : public sc_core::sc_module, public HostApi {
   int exit_code() const { return m_exit_code; }
   const std::string& failure() const { return m_failure; }
 
-  void trace(sc_core::sc_trace_file* file);
+  void trace_signals(sc_core::sc_trace_file* file);
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
   sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles); }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }

@@ -42,8 +42,7 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
                            ? "streaming width shorter than the data (not supported): "
                            : "access outside memory: ";
     log::warning(name(), std::string(what) + (gp.is_write() ? "write" : "read") + " of " +
-                             std::to_string(gp.get_data_length()) + " bytes at offset " +
-                             log::hex(gp.get_address()));
+                             std::to_string(gp.get_data_length()) + " bytes at offset " + log::hex(gp.get_address()));
     return;
   }
   uint8_t* memory = m_data.data() + gp.get_address();
@@ -84,8 +83,10 @@ unsigned Memory::transport_dbg(tlm::tlm_generic_payload& gp) {
     return 0;
   }
   const uint64_t length = std::min<uint64_t>(gp.get_data_length(), m_data.size() - address);
-  if (gp.is_read()) std::memcpy(gp.get_data_ptr(), m_data.data() + address, length);
-  else if (gp.is_write()) std::memcpy(m_data.data() + address, gp.get_data_ptr(), length);
+  if (gp.is_read())
+    std::memcpy(gp.get_data_ptr(), m_data.data() + address, length);
+  else if (gp.is_write())
+    std::memcpy(m_data.data() + address, gp.get_data_ptr(), length);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
   return static_cast<unsigned>(length);
 }
@@ -105,7 +106,9 @@ bool Memory::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi)
   return true;
 }
 
-void Memory::invalidate_dmi() { in->invalidate_direct_mem_ptr(0, m_data.size() - 1); }
+void Memory::invalidate_dmi() {
+  in->invalidate_direct_mem_ptr(0, m_data.size() - 1);
+}
 
 nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
   const double busy = static_cast<double>(m_busy_ticks);

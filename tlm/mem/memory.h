@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_target_socket.h>
 
 #include <nlohmann/json.hpp>
 
@@ -19,7 +19,7 @@ namespace tessera {
 struct MemoryParams {
   uint64_t size_bytes = 16u << 20;
   sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
-  unsigned width_bytes = 4;         // one beat moves this much
+  unsigned width_bytes = 4;          // one beat moves this much
   unsigned first_access_cycles = 4;  // wait states before the first beat
   unsigned beat_cycles = 1;          // cycles per beat
 };

@@ -21,7 +21,8 @@ struct TileEntry {
 };
 
 enum class Opcode : uint32_t {
-  clear = 1,     // [op | mask << 8] [rgba8888] [depth24] [stencil | color_mask << 8 | depth_write << 12 | stencil_write_mask << 16]
+  clear = 1,     // [op | mask << 8] [rgba8888] [depth24] [stencil | color_mask << 8 | depth_write << 12 |
+                 // stencil_write_mask << 16]
                  //   mask bit 0 colour, bit 1 depth, bit 2 stencil; the scissor of the current state applies
   state = 2,     // [op] [address of a StateBlock]
   triangle = 3,  // [op] [address of a TriangleRecord]
@@ -69,7 +70,7 @@ struct StateBlock {
   uint32_t scissor_size;     // width bits 0-15, height bits 16-31
   uint32_t texture_address;  // RGBA8 texels, row t = 0 first
   uint32_t texture_size;     // log2 width bits 0-7, log2 height 8-15 (0..8: 1..256 texels)
-  uint32_t texture_mode;     // min filter bit 0, mag filter bit 1 (1: linear), wrap s bits 2-3, wrap t 4-5, env bits 8-9
+  uint32_t texture_mode;  // min filter bit 0, mag filter bit 1 (1: linear), wrap s bits 2-3, wrap t 4-5, env bits 8-9
 };
 static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
 
@@ -78,11 +79,12 @@ static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
 // as they were in memory.
 enum class RasterError : uint32_t {
   none = 0,
-  bus_error = 1,          // a fetch or a tile write got an error response (ERROR_ADDRESS: the address)
-  bad_opcode = 2,         // unknown command word (ERROR_ADDRESS: its address)
-  list_overrun = 3,       // a command runs past its tile's word_count
-  bad_texture = 4,        // texture size above 256 (log2 > 8) or texels outside memory
-  bad_reciprocal = 5,     // reciprocal operand 0 or above 2^14 - 1 reached the unit: the triangle is skipped, counted, not fatal
+  bus_error = 1,     // a fetch or a tile write got an error response (ERROR_ADDRESS: the address)
+  bad_opcode = 2,    // unknown command word (ERROR_ADDRESS: its address)
+  list_overrun = 3,  // a command runs past its tile's word_count
+  bad_texture = 4,   // texture size above 256 (log2 > 8) or texels outside memory
+  bad_reciprocal =
+      5,  // reciprocal operand 0 or above 2^14 - 1 reached the unit: the triangle is skipped, counted, not fatal
 };
 
 // The name of an ERROR_STATUS code, for messages of the model and the driver.
@@ -97,6 +99,8 @@ inline const char* error_name(uint32_t code) {
   }
   return "unknown";
 }
-inline const char* error_name(RasterError error) { return error_name(static_cast<uint32_t>(error)); }
+inline const char* error_name(RasterError error) {
+  return error_name(static_cast<uint32_t>(error));
+}
 
 }  // namespace tessera::raster

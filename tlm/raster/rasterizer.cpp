@@ -41,11 +41,18 @@ bool fatal(raster::RasterError error) {
 }  // namespace
 
 Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params)
-    : sc_core::sc_module(name), in("in"), mem_out("mem_out"), irq("irq"), m_params(params), m_regs(this->name()),
-      m_port(*this), m_busy_trace("busy") {
+    : sc_core::sc_module(name),
+      in("in"),
+      mem_out("mem_out"),
+      irq("irq"),
+      m_params(params),
+      m_regs(this->name()),
+      m_port(*this),
+      m_busy_trace("busy") {
   if (params.width == 0 || params.height == 0 || params.tile_width == 0 || params.tile_height == 0)
     throw std::invalid_argument(std::string(this->name()) + ": empty screen or tile");
-  if (params.burst_beats == 0) throw std::invalid_argument(std::string(this->name()) + ": burst_beats must be positive");
+  if (params.burst_beats == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": burst_beats must be positive");
   in.register_b_transport(this, &Rasterizer::b_transport);
   in.register_transport_dbg(this, &Rasterizer::transport_dbg);
 
@@ -54,7 +61,8 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
 #include "raster/raster_regs.def"
 #undef TESSERA_RASTER_REG
 
-  m_regs.add(CTRL, [] { return 0u; }, [](uint32_t) {});
+  m_regs.add(
+      CTRL, [] { return 0u; }, [](uint32_t) {});
   m_regs.add(STATUS, [this] {
     return (m_busy ? regs::STATUS_BUSY : 0u) | (m_done ? regs::STATUS_DONE : 0u) | (m_error ? regs::STATUS_ERROR : 0u);
   });
@@ -95,7 +103,7 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
   sensitive << m_irq_changed;
 }
 
-void Rasterizer::trace(sc_core::sc_trace_file* file) {
+void Rasterizer::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
 }
@@ -132,7 +140,9 @@ void Rasterizer::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   delay += m_params.clock_period;
 }
 
-unsigned Rasterizer::transport_dbg(tlm::tlm_generic_payload& gp) { return m_regs.transport_dbg(gp); }
+unsigned Rasterizer::transport_dbg(tlm::tlm_generic_payload& gp) {
+  return m_regs.transport_dbg(gp);
+}
 
 bool Rasterizer::BusPort::read(uint32_t address, void* data, unsigned bytes) {
   return m_owner.transfer(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes);

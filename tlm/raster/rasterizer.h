@@ -20,11 +20,11 @@
 #include <cstdint>
 #include <string>
 
-#include <systemc>
-#include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 #include <tlm_utils/tlm_quantumkeeper.h>
+#include <systemc>
+#include <tlm>
 
 #include <nlohmann/json.hpp>
 
@@ -53,7 +53,7 @@ class Rasterizer : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Rasterizer);
 
-  tlm_utils::simple_target_socket<Rasterizer, 32> in;         // registers
+  tlm_utils::simple_target_socket<Rasterizer, 32> in;          // registers
   tlm_utils::simple_initiator_socket<Rasterizer, 32> mem_out;  // bus master
   sc_core::sc_out<bool> irq;
 
@@ -66,7 +66,7 @@ class Rasterizer : public sc_core::sc_module {
   const sc_core::sc_event& run_finished_event() const { return m_run_finished; }
   const raster::RunResult& last_result() const { return m_last; }
 
-  void trace(sc_core::sc_trace_file* file);
+  void trace_signals(sc_core::sc_trace_file* file);
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
 
  private:
@@ -113,12 +113,12 @@ class Rasterizer : public sc_core::sc_module {
   uint64_t m_runs = 0;
   uint64_t m_failed_runs = 0;
   raster::RunResult m_total;
-  uint64_t m_compute_cycles = 0;   // cycles(n) of the core
+  uint64_t m_compute_cycles = 0;  // cycles(n) of the core
   uint64_t m_bus_transactions = 0;
   uint64_t m_bus_read_bytes = 0;
   uint64_t m_bus_write_bytes = 0;
   uint64_t m_bus_errors = 0;
-  sc_core::sc_time m_bus_time;     // waiting for bus accesses, contention included
+  sc_core::sc_time m_bus_time;  // waiting for bus accesses, contention included
   sc_core::sc_time m_busy_time;
   uint64_t m_refused_writes = 0;
 

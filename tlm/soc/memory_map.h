@@ -17,7 +17,7 @@ struct Region {
 #include "soc/memory_map.def"
 #undef TESSERA_REGION
 
-inline constexpr Region all_regions[] = {
+inline constexpr Region ALL_REGIONS[] = {
 #define TESSERA_REGION(name, base, size, description) name,
 #include "soc/memory_map.def"
 #undef TESSERA_REGION

@@ -11,7 +11,9 @@ namespace tessera {
 using sc_core::sc_time;
 
 namespace {
-sc_time period_of_mhz(double mhz) { return sc_time(1e3 / mhz, sc_core::SC_NS); }
+sc_time period_of_mhz(double mhz) {
+  return sc_time(1e3 / mhz, sc_core::SC_NS);
+}
 }  // namespace
 
 BusParams bus_params(const Config& config) {
@@ -87,11 +89,13 @@ RasterizerParams rasterizer_params(const Config& config) {
   p.tile_width = static_cast<unsigned>(config.get_uint("raster.tile_width"));
   p.tile_height = static_cast<unsigned>(config.get_uint("raster.tile_height"));
   const uint64_t method = config.get_uint("raster.recip_method");
-  p.recip_method = method == 1 ? raster::RecipMethod::method1
+  p.recip_method = method == 1   ? raster::RecipMethod::method1
                    : method == 2 ? raster::RecipMethod::method2
                                  : raster::RecipMethod::method3;
   p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
-  auto cycles = [&](const char* key) { return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key)); };
+  auto cycles = [&](const char* key) {
+    return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key));
+  };
   p.costs.command = cycles("command");
   p.costs.setup = cycles("setup");
   p.costs.tile_start = cycles("tile_start");
@@ -104,16 +108,20 @@ RasterizerParams rasterizer_params(const Config& config) {
 }
 
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
-    : sc_core::sc_module(name), bus("bus", bus_params(config)), memory("memory", memory_params(config)),
-      host("host", host_params(config)), display("display", display_params(config)), raster("raster", rasterizer_params(config)),
-      m_config(config) {
+    : sc_core::sc_module(name),
+      bus("bus", bus_params(config)),
+      memory("memory", memory_params(config)),
+      host("host", host_params(config)),
+      display("display", display_params(config)),
+      raster("raster", rasterizer_params(config)) {
   config.validate();
-  tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
+  tlm_utils::tlm_quantumkeeper::set_global_quantum(
+      sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
 
   // Initiators, in round-robin visiting order.
-  bus.attach(host.out, "host", BusPriority::host);
-  bus.attach(display.dma_out, "display_dma", BusPriority::display_dma);
-  bus.attach(raster.mem_out, "raster", BusPriority::raster);
+  bus.attach(host.out, "host", BusPriority::HOST);
+  bus.attach(display.dma_out, "display_dma", BusPriority::DISPLAY_DMA);
+  bus.attach(raster.mem_out, "raster", BusPriority::RASTER);
 
   // Targets, by the memory map.
   bus.map(memory.in, memory_map::sysmem.base, memory_map::sysmem.size, memory_map::sysmem.name);
@@ -121,7 +129,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   bus.map(display.port_in, memory_map::display_port.base, memory_map::display_port.size, memory_map::display_port.name);
   bus.map(raster.in, memory_map::raster_regs.base, memory_map::raster_regs.size, memory_map::raster_regs.name);
 
-  for (const auto& region : memory_map::all_regions)
+  for (const auto& region : memory_map::ALL_REGIONS)
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
                               std::to_string(region.size) + " bytes");
 
@@ -140,7 +148,9 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   SC_THREAD(finish);
 }
 
-Soc::~Soc() { close_trace(); }
+Soc::~Soc() {
+  close_trace();
+}
 
 uint32_t Soc::frame_buffer(unsigned index) const {
   const uint64_t memory_bytes = memory.size();
@@ -160,10 +170,10 @@ void Soc::trace_to(const std::string& path_without_extension) {
   m_trace = sc_core::sc_create_vcd_trace_file(path_without_extension.c_str());
   if (!m_trace) throw std::runtime_error("cannot create VCD file " + m_trace_path);
   m_trace->set_time_unit(1, sc_core::SC_PS);
-  bus.trace(m_trace);
-  host.trace(m_trace);
-  display.trace(m_trace);
-  raster.trace(m_trace);
+  bus.trace_signals(m_trace);
+  host.trace_signals(m_trace);
+  display.trace_signals(m_trace);
+  raster.trace_signals(m_trace);
 }
 
 void Soc::close_trace() {

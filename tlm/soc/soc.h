@@ -25,9 +25,9 @@ namespace tessera {
 // the display DMA has a deadline every line, the host has none; the
 // rasterizer's tile traffic comes between: the host waits for it anyway.
 struct BusPriority {
-  static constexpr unsigned display_dma = 0;
-  static constexpr unsigned raster = 1;
-  static constexpr unsigned host = 3;
+  static constexpr unsigned DISPLAY_DMA = 0;
+  static constexpr unsigned RASTER = 1;
+  static constexpr unsigned HOST = 3;
 };
 
 class Soc : public sc_core::sc_module {
@@ -65,7 +65,6 @@ class Soc : public sc_core::sc_module {
   bool m_done = false;
   sc_core::sc_trace_file* m_trace = nullptr;
   std::string m_trace_path;
-  const Config& m_config;
 };
 
 BusParams bus_params(const Config& config);

@@ -42,8 +42,10 @@ Image read_image(const std::string& path) {
   for (size_t i = 0; i < size_t{image.width} * image.height; ++i) {
     for (int c = 0; c < 4; ++c) {
       uint8_t v = 255;
-      if (c < spec.nchannels) v = raw[i * spec.nchannels + c];
-      else if (c < 3) v = raw[i * spec.nchannels];  // grey
+      if (c < spec.nchannels)
+        v = raw[i * spec.nchannels + c];
+      else if (c < 3)
+        v = raw[i * spec.nchannels];  // grey
       image.rgba[i * 4 + c] = v;
     }
   }

@@ -69,7 +69,9 @@ OutputFormat parse_output_format(const std::string& name) {
   throw std::invalid_argument("unknown output format '" + name + "' (rgb565 or rgba8888)");
 }
 
-const char* to_string(OutputFormat format) { return format == OutputFormat::rgb565 ? "rgb565" : "rgba8888"; }
+const char* to_string(OutputFormat format) {
+  return format == OutputFormat::rgb565 ? "rgb565" : "rgba8888";
+}
 
 Rgba8 reduce(Rgba8 colour, OutputFormat format) {
   if (format == OutputFormat::rgba8888) return colour;

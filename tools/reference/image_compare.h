@@ -64,12 +64,12 @@ struct PassRule {
 struct CompareResult {
   unsigned width = 0, height = 0;
   size_t pixels = 0;
-  size_t coverage_ours_only = 0;        // drawn by us, background in the reference
-  size_t coverage_reference_only = 0;   // background in ours, drawn by the reference
-  size_t coverage_off_edges = 0;        // of the mismatches, those not next to an edge of the reference
+  size_t coverage_ours_only = 0;         // drawn by us, background in the reference
+  size_t coverage_reference_only = 0;    // background in ours, drawn by the reference
+  size_t coverage_off_edges = 0;         // of the mismatches, those not next to an edge of the reference
   size_t coverage_within_tolerance = 0;  // background in one, drawn within tolerance of it in the other
-  size_t within_tolerance = 0;          // colour difference <= tolerance (coverage_within_tolerance included)
-  unsigned max_colour_difference = 0;   // over pixels whose coverage agrees
+  size_t within_tolerance = 0;           // colour difference <= tolerance (coverage_within_tolerance included)
+  unsigned max_colour_difference = 0;    // over pixels whose coverage agrees
   // Red: coverage differs; yellow: colour beyond tolerance; grey: colour
   // difference within tolerance, scaled so that the tolerance is white.
   Image difference;
@@ -88,7 +88,6 @@ CompareResult compare_images(const Image& ours, const Image& reference, const Co
 // dir) for a person to look at; ours and reference as reduced to the output
 // format, i.e. as they were compared. Returns the directory.
 std::string write_comparison_images(const std::string& dir, const std::string& prefix, const Image& ours,
-                                    const Image& reference, const CompareResult& result,
-                                    const CompareOptions& options);
+                                    const Image& reference, const CompareResult& result, const CompareOptions& options);
 
 }  // namespace tessera::reference

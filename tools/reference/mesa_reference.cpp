@@ -52,9 +52,17 @@ ReferenceFrame render_with_mesa(const scenes::Scene& scene, const ReferenceReque
 
   // RGBA8 colour with 24-bit depth and 8-bit stencil: at least what tessera
   // offers, so no scene is limited by the reference.
-  const int attributes[] = {OSMESA_FORMAT,       OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
-                            OSMESA_STENCIL_BITS, 8,           OSMESA_ACCUM_BITS, 0,
-                            OSMESA_PROFILE,      OSMESA_COMPAT_PROFILE, 0};
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            24,
+                            OSMESA_STENCIL_BITS,
+                            8,
+                            OSMESA_ACCUM_BITS,
+                            0,
+                            OSMESA_PROFILE,
+                            OSMESA_COMPAT_PROFILE,
+                            0};
   // Declared before the context: OSMesa writes to it until the context is
   // released, so it must be destroyed after the context.
   std::vector<uint8_t> colour_buffer(size_t{request.width} * request.height * 4);

@@ -27,6 +27,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -56,7 +57,7 @@ struct Options {
   size_t allowed_coverage = 0;
   bool allow_coverage_off_edges = false;
   std::string out_dir;
-  std::vector<std::string> scene_args;  // after --
+  std::vector<std::string> scene_args;         // after --
   std::vector<std::string> scene_arg_options;  // --scene-arg, the older spelling; these come first
 };
 
@@ -83,7 +84,7 @@ fs::path default_soc_sim() {
   std::error_code error;
   const fs::path self = fs::read_symlink("/proc/self/exe", error);
   if (error) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + error.message());
-  const fs::path candidate = self.parent_path() / "soc_sim";
+  fs::path candidate = self.parent_path() / "soc_sim";
   if (fs::is_regular_file(candidate)) return candidate;
   throw std::runtime_error("no soc_sim next to " + self.string() + "; name one with --soc-sim");
 }
@@ -93,7 +94,8 @@ std::string last_lines(const fs::path& file, size_t count) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   std::string text;
-  for (size_t i = lines.size() > count ? lines.size() - count : 0; i < lines.size(); ++i) text += "  " + lines[i] + "\n";
+  for (size_t i = lines.size() > count ? lines.size() - count : 0; i < lines.size(); ++i)
+    text += "  " + lines[i] + "\n";
   return text;
 }
 
@@ -105,18 +107,20 @@ int run_process(const std::vector<std::string>& command, const fs::path& log) {
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<char*> argv;
+  argv.reserve(command.size() + 1);
   for (const std::string& word : command) argv.push_back(const_cast<char*>(word.c_str()));
   argv.push_back(nullptr);
   pid_t pid = 0;
   const int spawn_error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) throw std::runtime_error(std::string("cannot start ") + argv[0] + ": " + std::strerror(spawn_error));
+  if (spawn_error != 0)
+    throw std::runtime_error(std::string("cannot start ") + argv[0] + ": " + std::strerror(spawn_error));
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw std::runtime_error(std::string("waiting for soc_sim: ") + std::strerror(errno));
   if (WIFSIGNALED(status))
-    throw std::runtime_error("soc_sim died from signal " + std::to_string(WTERMSIG(status)) + "; the end of its output:\n" +
-                             last_lines(log, 20));
+    throw std::runtime_error("soc_sim died from signal " + std::to_string(WTERMSIG(status)) +
+                             "; the end of its output:\n" + last_lines(log, 20));
   return WEXITSTATUS(status);
 }
 
@@ -159,7 +163,8 @@ Image render_on_soc(const Options& options, const fs::path& frames_dir) {
     throw std::runtime_error("soc_sim exited with status " + std::to_string(status) + "; the end of its output:\n" +
                              last_lines(log, 20));
   if (!fs::is_regular_file(frame_png))
-    throw std::runtime_error("soc_sim wrote no " + frame_png.string() + "; the end of its output:\n" + last_lines(log, 20));
+    throw std::runtime_error("soc_sim wrote no " + frame_png.string() + "; the end of its output:\n" +
+                             last_lines(log, 20));
   return read_image(frame_png.string());
 }
 
@@ -173,7 +178,8 @@ class FramesFolder {
       return;
     }
     std::string pattern = (fs::temp_directory_path() / "render_compare.XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder: " + std::string(std::strerror(errno)));
+    if (!mkdtemp(pattern.data()))
+      throw std::runtime_error("cannot create a temporary folder: " + std::string(std::strerror(errno)));
     m_path = pattern;
     m_temporary = true;
   }
@@ -240,7 +246,7 @@ int run(const Options& options) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run_main(int argc, char** argv) {
   Options options;
   CLI::App app{"Renders a built-in scene on the simulated SoC and with Mesa, and compares the two frames"};
   app.add_option("--scene", options.scene, "built-in scene name")->required();
@@ -249,7 +255,8 @@ int main(int argc, char** argv) {
   app.add_option("--soc-sim", options.soc_sim, "soc_sim to run (default: the one in this build tree)")
       ->check(CLI::ExistingFile);
   app.add_option("--frame", options.frame, "frame to compare (frames 0..N are drawn)")->check(CLI::NonNegativeNumber);
-  app.add_option("--format", options.format, "display format: soc_sim's display.format, and what both images are reduced to")
+  app.add_option("--format", options.format,
+                 "display format: soc_sim's display.format, and what both images are reduced to")
       ->check(CLI::IsMember({"rgb565", "rgba8888"}))
       ->capture_default_str();
   app.add_option("--backend", options.backend, "soc_sim's renderer back end")->capture_default_str();
@@ -260,7 +267,8 @@ int main(int argc, char** argv) {
   app.add_option("--allowed-coverage", options.allowed_coverage, "coverage mismatches allowed")->capture_default_str();
   app.add_flag("--allow-coverage-off-edges", options.allow_coverage_off_edges,
                "accept coverage mismatches away from the reference's edges (holes, stray pixels)");
-  app.add_option("--out", options.out_dir, "write ours.png, reference.png and difference.png (and soc_sim's frames in ours/) here");
+  app.add_option("--out", options.out_dir,
+                 "write ours.png, reference.png and difference.png (and soc_sim's frames in ours/) here");
   app.add_option("--scene-arg", options.scene_arg_options, "argument passed to the scene's init (repeatable)");
   app.add_option("scene_args", options.scene_args, "arguments passed to the scene, after --");
   try {
@@ -276,4 +284,16 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "render_compare: %s\n", e.what());
     return 2;
   }
+}
+
+// Nothing may escape main: an unexpected exception is reported as a failure.
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "render_compare: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "render_compare: unknown exception\n";
+  }
+  return 1;
 }

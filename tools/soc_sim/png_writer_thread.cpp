@@ -20,7 +20,7 @@ PngWriterThread::~PngWriterThread() {
 
 void PngWriterThread::write(std::string path, unsigned width, unsigned height, std::vector<uint8_t> rgba) {
   std::unique_lock<std::mutex> lock(m_mutex);
-  m_changed.wait(lock, [this] { return m_jobs.size() < max_queued; });
+  m_changed.wait(lock, [this] { return m_jobs.size() < MAX_QUEUED; });
   m_jobs.push_back({std::move(path), width, height, std::move(rgba)});
   m_changed.notify_all();
 }
@@ -54,8 +54,10 @@ void PngWriterThread::run() {
     }
     lock.lock();
     m_busy = false;
-    if (error.empty()) ++m_written;
-    else if (m_error.empty()) m_error = error;
+    if (error.empty())
+      ++m_written;
+    else if (m_error.empty())
+      m_error = error;
     m_changed.notify_all();
   }
 }

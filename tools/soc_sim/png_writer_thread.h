@@ -33,7 +33,7 @@ class PngWriterThread {
   };
   void run();
 
-  static constexpr size_t max_queued = 8;
+  static constexpr size_t MAX_QUEUED = 8;
   mutable std::mutex m_mutex;
   std::condition_variable m_changed;
   std::deque<Job> m_jobs;

@@ -27,8 +27,8 @@ using namespace tessera;
 
 namespace {
 
-constexpr int kExitUsage = 2;    // bad option, configuration or input file
-constexpr int kExitFailure = 1;  // the simulation itself failed
+constexpr int EXIT_USAGE = 2;       // bad option, configuration or input file
+constexpr int EXIT_SIM_FAILED = 1;  // the simulation itself failed
 
 struct Options {
   std::vector<std::string> config_files;
@@ -49,9 +49,12 @@ struct Options {
 
 std::string format_time(double seconds) {
   char buffer[32];
-  if (seconds >= 1) std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
-  else if (seconds >= 1e-3) std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
-  else std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
+  if (seconds >= 1)
+    std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
+  else if (seconds >= 1e-3)
+    std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
+  else
+    std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
   return buffer;
 }
 
@@ -84,8 +87,8 @@ class Progress {
     const unsigned filled = m_total ? std::min(width, frames * width / m_total) : 0;
     std::string bar(filled, '#');
     bar.resize(width, '.');
-    std::fprintf(stderr, "\r[%s] frame %u/%u  simulated %s  %s simulated per second ", bar.c_str(), frames,
-                 m_total, format_time(simulated).c_str(), format_time(wall > 0 ? simulated / wall : 0).c_str());
+    std::fprintf(stderr, "\r[%s] frame %u/%u  simulated %s  %s simulated per second ", bar.c_str(), frames, m_total,
+                 format_time(simulated).c_str(), format_time(wall > 0 ? simulated / wall : 0).c_str());
     std::fflush(stderr);
   }
   void finish() {
@@ -126,13 +129,13 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
               "-", display["frames_shown"].get<unsigned long long>(), display["achieved_fps"].get<double>(),
               display["underrun_lines"].get<unsigned long long>());
   const auto& raster = stats["raster"];
-  std::printf("  %-10s %14s %11.1f%%  %llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)\n",
-              "raster", format_time(raster["busy_ns"].get<double>() * 1e-9).c_str(),
-              raster["utilisation"].get<double>() * 100, raster["runs"].get<unsigned long long>(),
-              raster["triangles"].get<unsigned long long>(), raster["tiles"].get<unsigned long long>(),
-              raster["fragments"].get<unsigned long long>(), raster["fragments_written"].get<unsigned long long>());
-  std::printf("\n  bus traffic per initiator\n  %-12s %12s %12s %12s %12s %12s\n", "initiator", "transactions",
-              "bytes", "busy cycles", "wait cycles", "utilisation");
+  std::printf("  %-10s %14s %11.1f%%  %llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)\n", "raster",
+              format_time(raster["busy_ns"].get<double>() * 1e-9).c_str(), raster["utilisation"].get<double>() * 100,
+              raster["runs"].get<unsigned long long>(), raster["triangles"].get<unsigned long long>(),
+              raster["tiles"].get<unsigned long long>(), raster["fragments"].get<unsigned long long>(),
+              raster["fragments_written"].get<unsigned long long>());
+  std::printf("\n  bus traffic per initiator\n  %-12s %12s %12s %12s %12s %12s\n", "initiator", "transactions", "bytes",
+              "busy cycles", "wait cycles", "utilisation");
   for (const auto& [name, s] : bus["initiators"].items())
     std::printf("  %-12s %12llu %12llu %12llu %12llu %11.1f%%\n", name.c_str(),
                 s["transactions"].get<unsigned long long>(), s["bytes"].get<unsigned long long>(),
@@ -146,7 +149,8 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
 int run(int argc, char* argv[]) {
   Options opt;
   CLI::App cli{"tessera soc_sim: run an application on the virtual mobile graphics SoC"};
-  cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")->check(CLI::ExistingFile);
+  cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")
+      ->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
   cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm or raster");
@@ -163,7 +167,7 @@ int run(int argc, char* argv[]) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e) == 0 ? 0 : kExitUsage;
+    return cli.exit(e) == 0 ? 0 : EXIT_USAGE;
   }
 
   if (opt.config_reference) {
@@ -187,7 +191,7 @@ int run(int argc, char* argv[]) {
     config.validate();
   } catch (const ConfigError& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
-    return kExitUsage;
+    return EXIT_USAGE;
   }
   if (opt.print_config) {
     std::cout << config.to_json().dump(2) << "\n";
@@ -199,7 +203,7 @@ int run(int argc, char* argv[]) {
     app = find_app(config.get_string("sim.app"));
   } catch (const std::invalid_argument& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
-    return kExitUsage;
+    return EXIT_USAGE;
   }
 
   // SystemC appends ".vcd" to the name it is given.
@@ -212,7 +216,7 @@ int run(int argc, char* argv[]) {
     if (!opt.vcd.empty()) check_writable_file(vcd_base + ".vcd");
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
-    return kExitUsage;
+    return EXIT_USAGE;
   }
 
   log::install(log::parse_level(config.get_string("sim.log_level")));
@@ -260,7 +264,7 @@ int run(int argc, char* argv[]) {
   } catch (const std::exception& e) {
     progress.finish();
     std::cerr << "soc_sim: simulation failed: " << e.what() << "\n";
-    return kExitFailure;
+    return EXIT_SIM_FAILED;
   }
   progress.finish();
   soc.close_trace();
@@ -271,16 +275,16 @@ int run(int argc, char* argv[]) {
   int status = 0;
   if (!png_error.empty()) {
     std::cerr << "soc_sim: " << png_error << "\n";
-    status = kExitFailure;
+    status = EXIT_SIM_FAILED;
   } else if (!soc.done()) {
     std::cerr << "soc_sim: simulated-time limit of " << config.get_uint("sim.time_limit_ms")
               << " ms reached before the application finished (sim.time_limit_ms)\n";
-    status = kExitFailure;
+    status = EXIT_SIM_FAILED;
   } else if (soc.host.exit_code() != 0) {
     std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
     // An application reports bad input (an unreadable file, a bad argument)
     // with status 2, like soc_sim itself.
-    status = soc.host.exit_code() == kExitUsage ? kExitUsage : kExitFailure;
+    status = soc.host.exit_code() == EXIT_USAGE ? EXIT_USAGE : EXIT_SIM_FAILED;
   }
 
   nlohmann::json stats = soc.stats_json();
@@ -295,8 +299,7 @@ int run(int argc, char* argv[]) {
     std::vector<std::string> outputs;
     if (frames_written)
       outputs.push_back(std::to_string(frames_written) + " frame(s): " +
-                        (fs::path(opt.out_dir) / "frame_0000.png").string() +
-                        (frames_written > 1 ? " ..." : ""));
+                        (fs::path(opt.out_dir) / "frame_0000.png").string() + (frames_written > 1 ? " ..." : ""));
     outputs.push_back("statistics: " + stats_path);
     if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
     print_summary(soc, stats, config.get_string("sim.app"), wall, outputs);
@@ -311,7 +314,7 @@ int sc_main(int argc, char* argv[]) {
     return run(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
-    return kExitFailure;
+    return EXIT_SIM_FAILED;
   }
 }
 

@@ -18,10 +18,10 @@ using gl::StencilOp;
 // 9.4 coordinates beyond this magnitude would overflow the exact edge DDA.
 constexpr int64_t MAX_COORDINATE = int64_t{1} << 22;
 constexpr int COLOR_FRACTION_BITS = 16;
-constexpr int DEPTH_FRACTION_BITS = 7;    // interpolant = z24 << 7, fits in int32
-constexpr int Q_FRACTION_BITS = 30;       // normalised 1/w in (0, 1]
-constexpr int ST_FRACTION_BITS = 24;      // s * width * q
-constexpr double MAX_TEXELS = 32768.0;    // |s * width| is clamped to this
+constexpr int DEPTH_FRACTION_BITS = 7;  // interpolant = z24 << 7, fits in int32
+constexpr int Q_FRACTION_BITS = 30;     // normalised 1/w in (0, 1]
+constexpr int ST_FRACTION_BITS = 24;    // s * width * q
+constexpr double MAX_TEXELS = 32768.0;  // |s * width| is clamped to this
 
 int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   int64_t q = a / b;
@@ -29,11 +29,17 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   return q;
 }
 
-int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }  // b > 0
+int64_t ceil_div(int64_t a, int64_t b) {
+  return -floor_div(-a, b);
+}  // b > 0
 
 // Exact round(x / 255) for 0 <= x <= 65025.
-inline uint32_t div255(uint32_t x) { return (x + 128 + ((x + 128) >> 8)) >> 8; }
-inline uint32_t mul8(uint32_t a, uint32_t b) { return div255(a * b); }
+inline uint32_t div255(uint32_t x) {
+  return (x + 128 + ((x + 128) >> 8)) >> 8;
+}
+inline uint32_t mul8(uint32_t a, uint32_t b) {
+  return div255(a * b);
+}
 
 template <typename T>
 inline bool compare(CompareFunc func, T incoming, T stored) {
@@ -254,8 +260,10 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
           m_source[k] = ((size == 1 ? old[k] : read_packed(old + k * size, size)) & ~mask) | (value & mask);
         uint8_t* out = m_memory.store(address, size, elements);
         for (unsigned k = 0; k < elements; ++k) {
-          if (size == 1) out[k] = uint8_t(m_source[k]);
-          else write_packed(out + k * size, size, m_source[k]);
+          if (size == 1)
+            out[k] = uint8_t(m_source[k]);
+          else
+            write_packed(out + k * size, size, m_source[k]);
         }
         m_memory.compute(Op::alu, uint64_t(elements) * m_counts.clear_masked_pixel_alu);
       } else {
@@ -328,8 +336,8 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   c.texture = state.texture && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
               (tex.height & (tex.height - 1)) == 0;
   if (format == ColorFormat::rgb565) {
-    c.color_write_mask = (state.color_mask[0] ? 0xf800u : 0) | (state.color_mask[1] ? 0x07e0u : 0) |
-                         (state.color_mask[2] ? 0x001fu : 0);
+    c.color_write_mask =
+        (state.color_mask[0] ? 0xf800u : 0) | (state.color_mask[1] ? 0x07e0u : 0) | (state.color_mask[2] ? 0x001fu : 0);
   } else {
     for (int ch = 0; ch < 4; ++ch)
       if (state.color_mask[ch]) c.color_write_mask |= 0xffu << (8 * ch);
@@ -337,12 +345,12 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   const uint32_t all_color = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
   c.color_write = c.color_write_mask != 0;
   c.logic_op = state.logic_op;
-  c.blend = state.blend && !state.logic_op &&
-            !(state.blend_src == BlendFactor::one && state.blend_dst == BlendFactor::zero);
-  c.needs_destination = c.color_write && ((c.blend && (state.blend_dst != BlendFactor::zero ||
-                                                        factor_reads_destination(state.blend_src))) ||
-                                          (c.logic_op && logic_op_reads_destination(state.logic_op_code)) ||
-                                          c.color_write_mask != all_color);
+  c.blend =
+      state.blend && !state.logic_op && !(state.blend_src == BlendFactor::one && state.blend_dst == BlendFactor::zero);
+  c.needs_destination =
+      c.color_write &&
+      ((c.blend && (state.blend_dst != BlendFactor::zero || factor_reads_destination(state.blend_src))) ||
+       (c.logic_op && logic_op_reads_destination(state.logic_op_code)) || c.color_write_mask != all_color);
 
   // Instruction counts for this state.
   c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0);
@@ -719,7 +727,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   if (c.stencil_writes) {
     for_each_run([&](int i) { return m_stencil_new[i] != m_stencil_old[i]; },
                  [&](int begin, int end) {
-                   uint8_t* p = m_memory.store(m_buffers.stencil_address + first + uint32_t(begin), 1, unsigned(end - begin));
+                   uint8_t* p =
+                       m_memory.store(m_buffers.stencil_address + first + uint32_t(begin), 1, unsigned(end - begin));
                    std::memcpy(p, m_stencil_new.data() + begin, size_t(end - begin));
                  });
   }

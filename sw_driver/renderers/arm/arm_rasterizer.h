@@ -62,7 +62,9 @@ namespace tessera::arm {
 
 enum class ColorFormat : uint8_t { rgb565, rgba8888 };
 
-constexpr unsigned bytes_per_pixel(ColorFormat format) { return format == ColorFormat::rgb565 ? 2 : 4; }
+constexpr unsigned bytes_per_pixel(ColorFormat format) {
+  return format == ColorFormat::rgb565 ? 2 : 4;
+}
 
 // ARM922T instructions the core charges, by where they are executed. The
 // defaults are the counts of a hand-scheduled ARM implementation, justified
@@ -73,7 +75,7 @@ struct InstructionCounts {
   // Per triangle: sorting, area, edge set-up, the gradient divisions.
   unsigned triangle_alu = 70, triangle_mul = 10, triangle_branch = 8, triangle_divisions = 4;
   unsigned division_alu = 20;
-  unsigned attribute_setup_alu = 8, attribute_setup_mul = 4;  // per interpolated attribute
+  unsigned attribute_setup_alu = 8, attribute_setup_mul = 4;   // per interpolated attribute
   unsigned texture_vertex_fconv = 3, texture_vertex_fmul = 4;  // per vertex, soft float -> fixed
   // Per scanline walked: two edge DDAs, the span clip, the loop.
   unsigned row_alu = 12, row_branch = 1;

@@ -11,13 +11,11 @@ NativeMemory::NativeMemory(size_t size, uint32_t base) : m_base(base), m_bytes(s
 uint8_t* NativeMemory::checked(uint32_t address, uint64_t bytes) {
   const uint64_t offset = uint64_t(address) - m_base;
   if (address < m_base || offset + bytes > m_bytes.size()) {
-    throw std::out_of_range("NativeMemory: access of " + std::to_string(bytes) + " bytes at 0x" +
-                            [&] {
-                              char text[16];
-                              std::snprintf(text, sizeof text, "%08x", address);
-                              return std::string(text);
-                            }() +
-                            " is outside the address space");
+    throw std::out_of_range("NativeMemory: access of " + std::to_string(bytes) + " bytes at 0x" + [&] {
+      char text[16];
+      std::snprintf(text, sizeof text, "%08x", address);
+      return std::string(text);
+    }() + " is outside the address space");
   }
   return m_bytes.data() + offset;
 }
@@ -41,6 +39,8 @@ void NativeMemory::compute(Op op, uint64_t count) {
   if (index < m_counters.ops.size()) m_counters.ops[index] += count;
 }
 
-uint8_t* NativeMemory::at(uint32_t address, size_t bytes) { return checked(address, bytes); }
+uint8_t* NativeMemory::at(uint32_t address, size_t bytes) {
+  return checked(address, bytes);
+}
 
 }  // namespace tessera::arm

@@ -21,11 +21,11 @@ namespace {
 
 // The host charges for the binning loop, per unit of work, in ARM922T
 // operation classes (the stores of the lists are charged by write_words).
-constexpr uint64_t TRIANGLE_ALU = 24;     // bounding box (6 min/max), tile range, packing x/y/z/rgba
-constexpr uint64_t TRIANGLE_FMUL = 2;     // s/w, t/w
-constexpr uint64_t TILE_ENTRY_ALU = 4;    // append two words to a tile's list, bump its count
+constexpr uint64_t TRIANGLE_ALU = 24;       // bounding box (6 min/max), tile range, packing x/y/z/rgba
+constexpr uint64_t TRIANGLE_FMUL = 2;       // s/w, t/w
+constexpr uint64_t TILE_ENTRY_ALU = 4;      // append two words to a tile's list, bump its count
 constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
-constexpr unsigned STM_WORDS = 8;         // STM with eight registers
+constexpr unsigned STM_WORDS = 8;           // STM with eight registers
 
 // A StateBlock from the GL state, in command_format.h's encoding.
 StateBlock encode_state(const gl::RasterState& s) {
@@ -63,14 +63,15 @@ StateBlock encode_state(const gl::RasterState& s) {
     b.texture_address = s.tex.address;
     b.texture_size = log2(s.tex.width) | log2(s.tex.height) << 8;
     b.texture_mode = (s.tex.min_filter == gl::TexFilter::linear ? 1u : 0u) |
-                     (s.tex.mag_filter == gl::TexFilter::linear ? 2u : 0u) |
-                     static_cast<uint32_t>(s.tex.wrap_s) << 2 | static_cast<uint32_t>(s.tex.wrap_t) << 4 |
-                     static_cast<uint32_t>(s.tex_env) << 8;
+                     (s.tex.mag_filter == gl::TexFilter::linear ? 2u : 0u) | static_cast<uint32_t>(s.tex.wrap_s) << 2 |
+                     static_cast<uint32_t>(s.tex.wrap_t) << 4 | static_cast<uint32_t>(s.tex_env) << 8;
   }
   return b;
 }
 
-bool same(const StateBlock& a, const StateBlock& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same(const StateBlock& a, const StateBlock& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 raster::VertexRecord encode_vertex(const gl::ScreenVertex& v) {
   auto q9_4 = [](int32_t c) { return static_cast<uint32_t>(std::clamp<int32_t>(c, 0, 0xFFFF)); };
@@ -103,7 +104,9 @@ RasterRenderer::RasterRenderer(AppEnvironment& env) : m_host(*env.host), m_displ
   m_last_draw_state = encode_state(gl::RasterState{});
 }
 
-uint32_t RasterRenderer::reg(uint32_t offset) const { return memory_map::raster_regs.base + offset; }
+uint32_t RasterRenderer::reg(uint32_t offset) const {
+  return memory_map::raster_regs.base + offset;
+}
 
 uint32_t RasterRenderer::add_state(const StateBlock& block) {
   m_host.compute(Op::alu, STATE_COMPARE_ALU);

@@ -78,8 +78,8 @@ VertexRecord vertex(double x, double y, uint32_t rgba = 0xffffffff, uint32_t z =
 StateBlock default_state() {
   StateBlock s{};
   s.flags = depth_write;
-  s.depth_func = 1;     // less
-  s.alpha_func = 7;     // always
+  s.depth_func = 1;  // less
+  s.alpha_func = 7;  // always
   s.stencil_func = 7 | 0xffu << 16 | 0xffu << 24;
   s.blend = 1;          // one, zero
   s.blend |= 3u << 16;  // logic op copy
@@ -184,10 +184,10 @@ bool reference_inside(const VertexRecord (&v)[3], unsigned px, unsigned py) {
 
 TEST(TileRasterizer, ClearAndTriangleCoverageMatchEdgeFunctionReference) {
   const VertexRecord shapes[][3] = {
-      {vertex(3.3, 2.7), vertex(70.9, 10.2), vertex(20.1, 45.6)},       // counter-clockwise
-      {vertex(80.5, 40.5), vertex(40.5, 40.5), vertex(40.5, 4.5)},      // clockwise, edges through centres
-      {vertex(10.5, 30.5), vertex(90.5, 30.5), vertex(50.5, 30.5 + 16)}, // horizontal edge on centres
-      {vertex(0, 0), vertex(95.9375, 0.0625), vertex(1, 47.9375)},      // screen-sized
+      {vertex(3.3, 2.7), vertex(70.9, 10.2), vertex(20.1, 45.6)},         // counter-clockwise
+      {vertex(80.5, 40.5), vertex(40.5, 40.5), vertex(40.5, 4.5)},        // clockwise, edges through centres
+      {vertex(10.5, 30.5), vertex(90.5, 30.5), vertex(50.5, 30.5 + 16)},  // horizontal edge on centres
+      {vertex(0, 0), vertex(95.9375, 0.0625), vertex(1, 47.9375)},        // screen-sized
   };
   for (const auto& tri : shapes) {
     VectorPort port(MEMORY_SIZE);
@@ -229,7 +229,7 @@ TEST(TileRasterizer, SharedEdgesDrawnOnceAcrossTiles) {
   double gx[NX + 1][NY + 1], gy[NX + 1][NY + 1];
   for (int i = 0; i <= NX; ++i) {
     for (int j = 0; j <= NY; ++j) {
-      const bool inner_x = i > 0 && i < NX, inner_y = j > 0 && j < NY;
+      const bool inner_x = i > 0 && i<NX, inner_y = j> 0 && j < NY;
       gx[i][j] = x0 + (x1 - x0) * i / NX + (inner_x ? ((i * 7 + j * 3) % 5 - 2) * 0.8125 : 0);
       gy[i][j] = y0 + (y1 - y0) * j / NY + (inner_y ? ((i * 5 + j * 11) % 7 - 3) * 0.5 : 0);
       if (i == 3 && inner_y) gx[i][j] = 32.5;  // a vertical edge through pixel centres
@@ -337,8 +337,8 @@ TEST(TileRasterizer, TextureNearestRepeat) {
   s.texture_mode = 1u << 8;  // nearest, repeat, replace
   frame.state(s);
   // Quad [16, 48) x [8, 24): s from 0 to 2, t from 0 to 1.
-  const VertexRecord a = vertex(16, 8, ~0u, 0, 0, 0), b = vertex(48, 8, ~0u, 0, 2, 0),
-                     c = vertex(48, 24, ~0u, 0, 2, 1), d = vertex(16, 24, ~0u, 0, 0, 1);
+  const VertexRecord a = vertex(16, 8, ~0u, 0, 0, 0), b = vertex(48, 8, ~0u, 0, 2, 0), c = vertex(48, 24, ~0u, 0, 2, 1),
+                     d = vertex(16, 24, ~0u, 0, 0, 1);
   frame.triangle(a, b, c);
   frame.triangle(a, c, d);
   frame.finish();
@@ -519,8 +519,9 @@ TEST(TileRasterizer, BadTextureSizeAndTexelsOutsideMemory) {
     const uint32_t state_address = c.frame.put(&s, sizeof s);
     const TriangleRecord t{{vertex(34, 20, ~0u, 0, 0, 0), vertex(60, 20, ~0u, 0, 1, 0), vertex(34, 30, ~0u, 0, 0, 1)}};
     const uint32_t record = c.frame.put(&t, sizeof t);
-    c.frame.lists[ErrorCase::BAD_TILE].insert(c.frame.lists[ErrorCase::BAD_TILE].end(),
-                                              {uint32_t(Opcode::state), state_address, uint32_t(Opcode::triangle), record});
+    c.frame.lists[ErrorCase::BAD_TILE].insert(
+        c.frame.lists[ErrorCase::BAD_TILE].end(),
+        {uint32_t(Opcode::state), state_address, uint32_t(Opcode::triangle), record});
     c.frame.finish();
     const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
     EXPECT_EQ(r.error, RasterError::bad_texture);
@@ -631,8 +632,10 @@ TEST(TileRasterizer, RandomInputNeverCrashes) {
       // Mostly valid opcodes and pointers into the data area, with noise.
       const uint32_t r = next();
       uint32_t v = next();
-      if (r % 16 < 8) v = (1 + r % 3) | (r & 0x700);
-      else if (r % 16 < 15) v = DATA_BASE + (next() % 0x4000 & ~3u);
+      if (r % 16 < 8)
+        v = (1 + r % 3) | (r & 0x700);
+      else if (r % 16 < 15)
+        v = DATA_BASE + (next() % 0x4000 & ~3u);
       port.set_word(a, v);
     }
     Frame frame(port, 96, 48);

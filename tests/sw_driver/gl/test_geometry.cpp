@@ -61,13 +61,12 @@ TEST(Clipping, EachPlaneCutsOffOneCorner) {
   struct Case {
     const char* plane;
     ClipVertex outside;
-    int axis;     // 0 x, 1 y, 2 z
-    float sign;   // the plane is axis == sign * w
+    int axis;    // 0 x, 1 y, 2 z
+    float sign;  // the plane is axis == sign * w
   };
   const Case cases[] = {
-      {"left", vertex(-3, 0, 0), 0, -1},  {"right", vertex(3, 0, 0), 0, 1},
-      {"bottom", vertex(0, -3, 0), 1, -1}, {"top", vertex(0, 3, 0), 1, 1},
-      {"near", vertex(0, 0, -3), 2, -1},  {"far", vertex(0, 0, 3), 2, 1},
+      {"left", vertex(-3, 0, 0), 0, -1}, {"right", vertex(3, 0, 0), 0, 1},  {"bottom", vertex(0, -3, 0), 1, -1},
+      {"top", vertex(0, 3, 0), 1, 1},    {"near", vertex(0, 0, -3), 2, -1}, {"far", vertex(0, 0, 3), 2, 1},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.plane);
@@ -139,7 +138,7 @@ TEST(Viewport, CentreOfTheViewportAndDepthMidpoint) {
   EXPECT_EQ(s.r, 128);  // 127.5 rounds to nearest (half away from zero)
   EXPECT_EQ(s.g, 255);
   EXPECT_EQ(s.b, 0);
-  EXPECT_EQ(s.a, 64);   // 63.75
+  EXPECT_EQ(s.a, 64);  // 63.75
   EXPECT_FLOAT_EQ(s.inv_w, 1.0f);
 }
 

@@ -206,8 +206,8 @@ TEST_F(GlApi, MatrixStackOverflowAndUnderflow) {
 }
 
 TEST_F(GlApi, FirstErrorSticksUntilRead) {
-  glEnable(0x1234);                // INVALID_ENUM
-  glViewport(0, 0, -1, -1);        // INVALID_VALUE, not recorded
+  glEnable(0x1234);          // INVALID_ENUM
+  glViewport(0, 0, -1, -1);  // INVALID_VALUE, not recorded
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
@@ -240,7 +240,7 @@ TEST_F(GlApi, TriangleReachesTheRendererInScreenFormats) {
   EXPECT_EQ(t.v[0].x, 0);
   EXPECT_EQ(t.v[1].x, 64 * 16);
   EXPECT_EQ(t.v[2].y, 48 * 16);
-  EXPECT_EQ(t.v[0].r, 255);  // current colour: white
+  EXPECT_EQ(t.v[0].r, 255);          // current colour: white
   EXPECT_GT(host.operations(), 0u);  // the geometry was charged to the host
 }
 

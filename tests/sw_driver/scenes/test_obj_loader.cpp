@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -13,7 +14,9 @@
 namespace tessera::scenes {
 namespace {
 
-std::string data_file(const std::string& name) { return std::string(TESSERA_SCENE_TEST_DATA) + "/" + name; }
+std::string data_file(const std::string& name) {
+  return std::string(TESSERA_SCENE_TEST_DATA) + "/" + name;
+}
 
 void expect_unit_normals(const Mesh& mesh) {
   ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
@@ -110,8 +113,8 @@ INSTANTIATE_TEST_SUITE_P(MalformedFiles, ObjLoaderRejects,
 class TemporaryObj {
  public:
   explicit TemporaryObj(const std::string& text) {
-    char name[] = "/tmp/tessera_test_obj_XXXXXX";
-    const int fd = mkstemp(name);
+    std::string name = (std::filesystem::temp_directory_path() / "tessera_test_obj_XXXXXX").string();
+    const int fd = mkstemp(name.data());
     if (fd >= 0) close(fd);
     m_path = name;
     std::ofstream(m_path) << text;

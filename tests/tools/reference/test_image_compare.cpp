@@ -9,13 +9,14 @@
 namespace tessera::reference {
 namespace {
 
-constexpr Rgba8 kBackground{26, 26, 64, 255};
+constexpr Rgba8 BACKGROUND{26, 26, 64, 255};
 
 Image filled(unsigned width, unsigned height, Rgba8 colour) {
   Image image;
   image.width = width;
   image.height = height;
-  for (unsigned i = 0; i < width * height; ++i) image.rgba.insert(image.rgba.end(), {colour.r, colour.g, colour.b, colour.a});
+  for (unsigned i = 0; i < width * height; ++i)
+    image.rgba.insert(image.rgba.end(), {colour.r, colour.g, colour.b, colour.a});
   return image;
 }
 
@@ -30,13 +31,13 @@ void set_pixel(Image& image, unsigned x, unsigned y, Rgba8 colour) {
 CompareOptions options_for(OutputFormat format, unsigned tolerance) {
   CompareOptions options;
   options.format = format;
-  options.clear_colour = kBackground;
+  options.clear_colour = BACKGROUND;
   options.tolerance = tolerance;
   return options;
 }
 
 TEST(ImageCompare, IdenticalImagesPass) {
-  Image image = filled(8, 4, kBackground);
+  Image image = filled(8, 4, BACKGROUND);
   set_pixel(image, 3, 2, {200, 100, 50, 255});
   const CompareResult result = compare_images(image, image, options_for(OutputFormat::rgb565, 0));
   EXPECT_EQ(result.pixels, 32u);
@@ -48,7 +49,7 @@ TEST(ImageCompare, IdenticalImagesPass) {
 }
 
 TEST(ImageCompare, OnePixelCoverageDifferenceIsCountedBothWays) {
-  const Image reference = filled(8, 4, kBackground);
+  const Image reference = filled(8, 4, BACKGROUND);
   Image ours = reference;
   set_pixel(ours, 5, 1, {255, 255, 255, 255});
   const CompareOptions options = options_for(OutputFormat::rgb565, 8);
@@ -68,7 +69,7 @@ TEST(ImageCompare, OnePixelCoverageDifferenceIsCountedBothWays) {
 }
 
 TEST(ImageCompare, ColourDifferenceBelowAndAboveTolerance) {
-  Image reference = filled(4, 1, kBackground);
+  Image reference = filled(4, 1, BACKGROUND);
   set_pixel(reference, 0, 0, {100, 100, 100, 255});
   set_pixel(reference, 1, 0, {100, 100, 100, 255});
   Image ours = reference;
@@ -85,7 +86,7 @@ TEST(ImageCompare, ColourDifferenceBelowAndAboveTolerance) {
 }
 
 TEST(ImageCompare, AlphaIsComparedOnlyOnRequest) {
-  Image reference = filled(2, 1, kBackground);
+  Image reference = filled(2, 1, BACKGROUND);
   set_pixel(reference, 0, 0, {10, 200, 10, 128});
   Image ours = reference;
   set_pixel(ours, 0, 0, {10, 200, 10, 255});
@@ -110,7 +111,7 @@ TEST(ImageCompare, Rgb565TruncatesAndReplicatesBits) {
 }
 
 TEST(ImageCompare, ValuesSharingA565CodeCompareEqual) {
-  Image reference = filled(3, 1, kBackground);
+  Image reference = filled(3, 1, BACKGROUND);
   set_pixel(reference, 0, 0, {0x80, 0x80, 0x80, 255});
   set_pixel(reference, 1, 0, {0x80, 0x80, 0x80, 255});
   Image ours = reference;
@@ -125,17 +126,17 @@ TEST(ImageCompare, ValuesSharingA565CodeCompareEqual) {
 
 TEST(ImageCompare, BackgroundIsJudgedAfterReduction) {
   // Within the background's 5/6/5 codes, so not drawn as far as the display can tell.
-  Image ours = filled(2, 1, kBackground);
-  set_pixel(ours, 0, 0, {kBackground.r + 1, kBackground.g + 1, kBackground.b + 1, 255});
-  const Image reference = filled(2, 1, kBackground);
+  Image ours = filled(2, 1, BACKGROUND);
+  set_pixel(ours, 0, 0, {BACKGROUND.r + 1, BACKGROUND.g + 1, BACKGROUND.b + 1, 255});
+  const Image reference = filled(2, 1, BACKGROUND);
   EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgb565, 0)).coverage_mismatches(), 0u);
   EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgba8888, 0)).coverage_mismatches(), 1u);
 }
 
 TEST(ImageCompare, RejectsDifferentSizes) {
-  EXPECT_THROW(compare_images(filled(4, 4, kBackground), filled(4, 3, kBackground), CompareOptions{}),
+  EXPECT_THROW(compare_images(filled(4, 4, BACKGROUND), filled(4, 3, BACKGROUND), CompareOptions{}),
                std::invalid_argument);
-  Image truncated = filled(4, 4, kBackground);
+  Image truncated = filled(4, 4, BACKGROUND);
   truncated.rgba.pop_back();
   EXPECT_THROW(compare_images(truncated, truncated, CompareOptions{}), std::invalid_argument);
   EXPECT_THROW(parse_output_format("rgb555"), std::invalid_argument);
@@ -143,19 +144,20 @@ TEST(ImageCompare, RejectsDifferentSizes) {
 }
 
 TEST(ImageCompare, WritesReadableDifferenceImage) {
-  Image reference = filled(6, 5, kBackground);
+  Image reference = filled(6, 5, BACKGROUND);
   set_pixel(reference, 2, 2, {100, 100, 100, 255});
   set_pixel(reference, 3, 2, {100, 100, 100, 255});
   Image ours = reference;
-  set_pixel(ours, 0, 4, {255, 255, 255, 255});      // coverage
-  set_pixel(ours, 2, 2, {104, 100, 100, 255});      // within tolerance (4 of 8)
-  set_pixel(ours, 3, 2, {160, 100, 100, 255});      // beyond it
+  set_pixel(ours, 0, 4, {255, 255, 255, 255});  // coverage
+  set_pixel(ours, 2, 2, {104, 100, 100, 255});  // within tolerance (4 of 8)
+  set_pixel(ours, 3, 2, {160, 100, 100, 255});  // beyond it
   const CompareOptions options = options_for(OutputFormat::rgba8888, 8);
   const CompareResult result = compare_images(ours, reference, options);
 
   const char* binary_dir = std::getenv("TESSERA_BINARY_DIR");
-  const std::filesystem::path dir = std::filesystem::path(binary_dir ? binary_dir : std::filesystem::temp_directory_path().string()) /
-                                    "test_output" / "image_compare";
+  const std::filesystem::path dir =
+      std::filesystem::path(binary_dir ? binary_dir : std::filesystem::temp_directory_path().string()) / "test_output" /
+      "image_compare";
   std::filesystem::remove_all(dir);
   write_comparison_images(dir.string(), "case_", ours, reference, result, options);
 
@@ -173,15 +175,15 @@ TEST(ImageCompare, WritesReadableDifferenceImage) {
   EXPECT_EQ(pixel(3, 2)[2], 0);
   EXPECT_EQ(pixel(2, 2)[0], 127);  // grey: 4 of a tolerance of 8
   EXPECT_EQ(pixel(2, 2)[2], 127);
-  EXPECT_EQ(pixel(1, 1)[0], 0);    // identical
+  EXPECT_EQ(pixel(1, 1)[0], 0);  // identical
 }
 
 TEST(ImageCompare, DrawnColourWithinToleranceOfTheBackgroundIsJudgedByColour) {
   // One 5-bit red code above the background: after reduction, drawn in ours,
   // background in the reference, but only 8 apart.
-  const Image reference = filled(2, 1, kBackground);
+  const Image reference = filled(2, 1, BACKGROUND);
   Image ours = reference;
-  set_pixel(ours, 0, 0, {kBackground.r + 8, kBackground.g, kBackground.b, 255});
+  set_pixel(ours, 0, 0, {BACKGROUND.r + 8, BACKGROUND.g, BACKGROUND.b, 255});
   const CompareResult within = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
   EXPECT_EQ(within.coverage_mismatches(), 0u);
   EXPECT_EQ(within.coverage_within_tolerance, 1u);
@@ -193,13 +195,13 @@ TEST(ImageCompare, DrawnColourWithinToleranceOfTheBackgroundIsJudgedByColour) {
 
 TEST(ImageCompare, CoverageMismatchesAreOnEdgesOnlyNextToTheReferencesOtherSide) {
   // The reference covers columns 0..3 of an 8x4 image.
-  Image reference = filled(8, 4, kBackground);
+  Image reference = filled(8, 4, BACKGROUND);
   for (unsigned y = 0; y < 4; ++y)
     for (unsigned x = 0; x < 4; ++x) set_pixel(reference, x, y, {200, 200, 200, 255});
   Image ours = reference;
   set_pixel(ours, 4, 1, {200, 200, 200, 255});  // the edge moved right by one pixel: on the edge
   set_pixel(ours, 7, 2, {200, 200, 200, 255});  // a stray pixel: off the edges
-  set_pixel(ours, 1, 1, kBackground);           // a hole: off the edges
+  set_pixel(ours, 1, 1, BACKGROUND);            // a hole: off the edges
   const CompareResult result = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
   EXPECT_EQ(result.coverage_ours_only, 2u);
   EXPECT_EQ(result.coverage_reference_only, 1u);

@@ -18,7 +18,9 @@ ReferenceRequest request(unsigned width, unsigned height, int frame) {
   return r;
 }
 
-const uint8_t* pixel(const Image& image, unsigned x, unsigned y) { return &image.rgba[(size_t{y} * image.width + x) * 4]; }
+const uint8_t* pixel(const Image& image, unsigned x, unsigned y) {
+  return &image.rgba[(size_t{y} * image.width + x) * 4];
+}
 
 TEST(MesaReference, RendersTheSameBytesTwiceWithSoftpipe) {
   // The reference overrides the caller's choice of driver.

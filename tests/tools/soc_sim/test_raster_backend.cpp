@@ -21,8 +21,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/soc_sim_runner.h"
 #include <nlohmann/json.hpp>
+#include "support/soc_sim_runner.h"
 
 #include "frame_writer.h"
 
@@ -141,7 +141,9 @@ TEST_F(RasterBackend, RasterizerSmallerThanTheDisplayIsRejected) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (argc >= 2) g_soc_sim = fs::absolute(argv[1]).string();
-  else if (const char* path = std::getenv("TESSERA_SOC_SIM")) g_soc_sim = path;
+  if (argc >= 2)
+    g_soc_sim = fs::absolute(argv[1]).string();
+  else if (const char* path = std::getenv("TESSERA_SOC_SIM"))
+    g_soc_sim = path;
   return RUN_ALL_TESTS();
 }

@@ -29,8 +29,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/soc_sim_runner.h"
 #include <nlohmann/json.hpp>
+#include "support/soc_sim_runner.h"
 
 #include "frame_writer.h"
 
@@ -222,7 +222,8 @@ TEST(PatternDefinition, SquareMovesBetweenTheSampledFrames) {
 }
 
 TEST_F(SocSim, DefaultRunInRgba8888DrawsThePattern) {
-  const SimResult result = run({"--app", "pattern", "--frames", "2", "--set", "display.format=rgba8888", "--out", "out"});
+  const SimResult result =
+      run({"--app", "pattern", "--frames", "2", "--set", "display.format=rgba8888", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
   expect_pattern_frames(m_dir / "out", 2, false);
   {
@@ -283,8 +284,8 @@ TEST_F(SocSim, IdenticalRunsGiveIdenticalFiles) {
   // The same arguments, run in two folders.
   for (const char* folder : {"a", "b"}) {
     fs::create_directory(m_dir / folder);
-    const SimResult result = run_soc_sim(m_dir / folder, {"--frames", "2", "--set", "display.dma=true", "--out",
-                                                          "out", "--vcd", "out/trace.vcd", "--quiet"});
+    const SimResult result = run_soc_sim(m_dir / folder, {"--frames", "2", "--set", "display.dma=true", "--out", "out",
+                                                          "--vcd", "out/trace.vcd", "--quiet"});
     ASSERT_EQ(result.status, 0) << describe(result);
   }
   for (const char* file : {"frame_0000.png", "frame_0001.png", "trace.vcd", "stats.json"}) {
@@ -316,10 +317,9 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
     for (int run_ahead = 0; run_ahead < 2; ++run_ahead) {
       const fs::path folder = m_dir / (std::string(c.name) + "_ra" + std::to_string(run_ahead));
       fs::create_directory(folder);
-      const SimResult result =
-          run_soc_sim(folder, {"--frames", "2", "--backend", c.backend, "--set", std::string("display.dma=") + c.dma,
-                               "--set", run_ahead ? "sim.run_ahead_us=1000" : "sim.run_ahead_us=0", "--out", "out",
-                               "--quiet"});
+      const SimResult result = run_soc_sim(
+          folder, {"--frames", "2", "--backend", c.backend, "--set", std::string("display.dma=") + c.dma, "--set",
+                   run_ahead ? "sim.run_ahead_us=1000" : "sim.run_ahead_us=0", "--out", "out", "--quiet"});
       ASSERT_EQ(result.status, 0) << describe(result);
       stats[run_ahead] = read_stats(folder / "out/stats.json");
     }
@@ -364,13 +364,16 @@ Vcd parse_vcd(const std::string& text) {
     std::vector<std::string> w{std::istream_iterator<std::string>(words), std::istream_iterator<std::string>()};
     if (w.empty()) continue;
     if (definitions) {
-      if (w[0] == "$scope" && w.size() >= 3) scopes.push_back(w[2]);
-      else if (w[0] == "$upscope") scopes.pop_back();
+      if (w[0] == "$scope" && w.size() >= 3)
+        scopes.push_back(w[2]);
+      else if (w[0] == "$upscope")
+        scopes.pop_back();
       else if (w[0] == "$var" && w.size() >= 5) {
         std::string name;
         for (const auto& scope : scopes) name += scope + ".";
         vcd.ids[name + w[4]] = w[3];
-      } else if (w[0] == "$enddefinitions") definitions = false;
+      } else if (w[0] == "$enddefinitions")
+        definitions = false;
       continue;
     }
     if (w[0][0] == '#') {
@@ -401,8 +404,8 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
   };
   std::string declared;
   for (const auto& [name, id] : vcd.ids) declared += " " + name;
-  const char* signals[] = {"soc.bus.host_request",        "soc.bus.host_grant", "soc.bus.display_dma_request",
-                           "soc.bus.display_dma_grant",   "soc.host.busy",      "soc.host.irq_0",
+  const char* signals[] = {"soc.bus.host_request",      "soc.bus.host_grant", "soc.bus.display_dma_request",
+                           "soc.bus.display_dma_grant", "soc.host.busy",      "soc.host.irq_0",
                            "soc.display.vblank"};
   for (const char* signal : signals) EXPECT_FALSE(id_of(signal).empty()) << signal << " not in" << declared;
   unsigned irq_lines = 0;
@@ -411,8 +414,8 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
 
   EXPECT_GT(vcd.timestamps, 2u);
   // In display DMA mode every one of these toggles during a frame.
-  for (const char* signal : {"soc.bus.host_grant", "soc.bus.display_dma_grant", "soc.display.vblank",
-                             "soc.host.busy"}) {
+  for (const char* signal :
+       {"soc.bus.host_grant", "soc.bus.display_dma_grant", "soc.display.vblank", "soc.host.busy"}) {
     const std::string id = id_of(signal);
     EXPECT_GT(vcd.changes.count(id) ? vcd.changes.at(id) : 0u, 0u) << signal << " never changes";
   }
@@ -521,8 +524,7 @@ TEST_F(SocSim, ListAppsDescribesTheDiagnostic) {
 void expect_calibrated(const SimResult& result) {
   ASSERT_EQ(result.status, 0) << describe(result);
   std::smatch match;
-  ASSERT_TRUE(std::regex_search(result.out, match, std::regex(R"(model ([0-9]+(\.[0-9]+)?) million/s)")))
-      << result.out;
+  ASSERT_TRUE(std::regex_search(result.out, match, std::regex(R"(model ([0-9]+(\.[0-9]+)?) million/s)"))) << result.out;
   const double rate = std::stod(match[1]);
   EXPECT_NEAR(rate, 13.9, 13.9 * 0.05) << result.out;
 }
@@ -552,8 +554,10 @@ TEST_F(SocSim, PrintConfigShowsTheEffectiveConfiguration) {
 void collect_keys(const json& node, const std::string& prefix, std::vector<std::string>& keys) {
   for (auto it = node.begin(); it != node.end(); ++it) {
     const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
-    if (it->is_object()) collect_keys(*it, key, keys);
-    else keys.push_back(key);
+    if (it->is_object())
+      collect_keys(*it, key, keys);
+    else
+      keys.push_back(key);
   }
 }
 
@@ -583,7 +587,9 @@ TEST_F(SocSim, ConfigReferenceHasARowForEveryKey) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (argc >= 2) g_soc_sim = fs::absolute(argv[1]).string();
-  else if (const char* path = std::getenv("TESSERA_SOC_SIM")) g_soc_sim = path;
+  if (argc >= 2)
+    g_soc_sim = fs::absolute(argv[1]).string();
+  else if (const char* path = std::getenv("TESSERA_SOC_SIM"))
+    g_soc_sim = path;
   return RUN_ALL_TESTS();
 }

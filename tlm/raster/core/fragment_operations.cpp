@@ -13,35 +13,37 @@ namespace {
 // Enumerations of gl/renderer.h (0-based) to the datapath's GL enum values.
 // A field is cut to its hardware width; a code with no meaning takes the
 // datapath's "unknown" behaviour (stencil KEEP, blend factor ZERO).
-compare_func to_compare_func(uint32_t code) { return static_cast<compare_func>(0x0200 + (code & 7)); }
+CompareFunc to_compare_func(uint32_t code) {
+  return static_cast<CompareFunc>(0x0200 + (code & 7));
+}
 
-stencil_op to_stencil_op(uint32_t code) {
-  constexpr stencil_op OPS[] = {stencil_op::KEEP, stencil_op::ZERO, stencil_op::REPLACE,
-                                stencil_op::INCR, stencil_op::DECR, stencil_op::INVERT};
-  return code < std::size(OPS) ? OPS[code] : stencil_op::KEEP;
+StencilOp to_stencil_op(uint32_t code) {
+  constexpr StencilOp OPS[] = {StencilOp::KEEP, StencilOp::ZERO, StencilOp::REPLACE,
+                               StencilOp::INCR, StencilOp::DECR, StencilOp::INVERT};
+  return code < std::size(OPS) ? OPS[code] : StencilOp::KEEP;
 }
 
 // gl::BlendFactor's order, which is not the order of the GL enum values.
-blend_factor to_blend_factor(uint32_t code) {
-  constexpr blend_factor FACTORS[] = {blend_factor::ZERO,
-                                      blend_factor::ONE,
-                                      blend_factor::SRC_COLOR,
-                                      blend_factor::ONE_MINUS_SRC_COLOR,
-                                      blend_factor::DST_COLOR,
-                                      blend_factor::ONE_MINUS_DST_COLOR,
-                                      blend_factor::SRC_ALPHA,
-                                      blend_factor::ONE_MINUS_SRC_ALPHA,
-                                      blend_factor::DST_ALPHA,
-                                      blend_factor::ONE_MINUS_DST_ALPHA,
-                                      blend_factor::SRC_ALPHA_SATURATE};
-  return code < std::size(FACTORS) ? FACTORS[code] : blend_factor::ZERO;
+BlendFactor to_blend_factor(uint32_t code) {
+  constexpr BlendFactor FACTORS[] = {BlendFactor::ZERO,
+                                     BlendFactor::ONE,
+                                     BlendFactor::SRC_COLOR,
+                                     BlendFactor::ONE_MINUS_SRC_COLOR,
+                                     BlendFactor::DST_COLOR,
+                                     BlendFactor::ONE_MINUS_DST_COLOR,
+                                     BlendFactor::SRC_ALPHA,
+                                     BlendFactor::ONE_MINUS_SRC_ALPHA,
+                                     BlendFactor::DST_ALPHA,
+                                     BlendFactor::ONE_MINUS_DST_ALPHA,
+                                     BlendFactor::SRC_ALPHA_SATURATE};
+  return code < std::size(FACTORS) ? FACTORS[code] : BlendFactor::ZERO;
 }
 
 }  // namespace
 
-FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, rgba8 fragment, unorm24 depth,
-                                             rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil) {
-  fragment_test_state tests;
+FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, Rgba8 fragment, unorm24 depth,
+                                             Rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil) {
+  FragmentTestState tests;
   tests.depth_enable = state.depth_test;
   tests.depth_func = to_compare_func(state.depth_func);
   tests.depth_write_mask = state.depth_write;
@@ -57,8 +59,7 @@ FragmentOperationsResult fragment_operations(const FragmentOperationsState& stat
   tests.dpfail = to_stencil_op((state.stencil_ops >> 8) & 0xff);
   tests.dppass = to_stencil_op((state.stencil_ops >> 16) & 0xff);
 
-  const fragment_test_result tested =
-      run_fragment_tests(tests, {fragment.a, depth, stored_depth, stored_stencil});
+  const FragmentTestResult tested = run_fragment_tests(tests, {fragment.a, depth, stored_depth, stored_stencil});
   FragmentOperationsResult result;
   result.pass = tested.pass;
   result.depth_write = tested.depth_write;
@@ -66,12 +67,12 @@ FragmentOperationsResult fragment_operations(const FragmentOperationsState& stat
   result.color = stored_color;
   if (!tested.pass) return result;
 
-  blend_state blending;
+  BlendState blending;
   blending.blend_enable = state.blend;
   blending.src_factor = to_blend_factor(state.blend_func & 0xff);
   blending.dst_factor = to_blend_factor((state.blend_func >> 8) & 0xff);
   blending.logic_op_enable = state.logic_op;
-  blending.op = static_cast<logic_op>(0x1500 + ((state.blend_func >> 16) & 15));
+  blending.op = static_cast<LogicOp>(0x1500 + ((state.blend_func >> 16) & 15));
   blending.color_mask = uint8_t(state.color_mask & COLOR_MASK_ALL);
   result.color = blend_logic_op(blending, fragment, stored_color);
   return result;

@@ -21,11 +21,11 @@ namespace tessera::raster {
 struct FragmentOperationsState {
   bool depth_test = false, depth_write = true, alpha_test = false, stencil_test = false, blend = false,
        logic_op = false;
-  uint32_t depth_func = 1;            // gl::CompareFunc::less
-  uint32_t alpha_func = 7;            // func bits 0-7, reference bits 8-15
-  uint32_t stencil_func = 0xffff0007; // func, ref, value mask, write mask
-  uint32_t stencil_ops = 0;           // keep, keep, keep
-  uint32_t blend_func = 0x00030001;   // one, zero; logic op copy
+  uint32_t depth_func = 1;             // gl::CompareFunc::less
+  uint32_t alpha_func = 7;             // func bits 0-7, reference bits 8-15
+  uint32_t stencil_func = 0xffff0007;  // func, ref, value mask, write mask
+  uint32_t stencil_ops = 0;            // keep, keep, keep
+  uint32_t blend_func = 0x00030001;    // one, zero; logic op copy
   uint32_t color_mask = 15;
 };
 
@@ -33,10 +33,10 @@ struct FragmentOperationsResult {
   bool pass = false;         // the colour buffer takes `color`
   bool depth_write = false;  // the depth buffer takes the fragment's depth
   uint8_t stencil = 0;       // the stencil buffer's new value
-  rgba8 color;
+  Rgba8 color;
 };
 
-FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, rgba8 fragment, unorm24 depth,
-                                             rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil);
+FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, Rgba8 fragment, unorm24 depth,
+                                             Rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil);
 
 }  // namespace tessera::raster

@@ -60,25 +60,33 @@ float load_float(const uint8_t* p) {
 // gl::TexEnv, gl::TexWrap, gl::TexFilter codes to the datapath's GL enum
 // values; an environment code with no meaning passes the fragment through
 // (texture_env.h).
-texture_env_mode to_texture_env(uint32_t code) {
-  constexpr texture_env_mode MODES[] = {texture_env_mode::MODULATE, texture_env_mode::REPLACE, texture_env_mode::DECAL};
-  return code < std::size(MODES) ? MODES[code] : static_cast<texture_env_mode>(0xffff);
+TextureEnvMode to_texture_env(uint32_t code) {
+  constexpr TextureEnvMode MODES[] = {TextureEnvMode::MODULATE, TextureEnvMode::REPLACE, TextureEnvMode::DECAL};
+  return code < std::size(MODES) ? MODES[code] : static_cast<TextureEnvMode>(0xffff);
 }
 
-texture_wrap to_wrap(uint32_t code) { return code == 1 ? texture_wrap::CLAMP_TO_EDGE : texture_wrap::REPEAT; }
-texture_filter to_filter(uint32_t bit) { return bit ? texture_filter::LINEAR : texture_filter::NEAREST; }
+TextureWrap to_wrap(uint32_t code) {
+  return code == 1 ? TextureWrap::CLAMP_TO_EDGE : TextureWrap::REPEAT;
+}
+TextureFilter to_filter(uint32_t bit) {
+  return bit ? TextureFilter::LINEAR : TextureFilter::NEAREST;
+}
 
 // RGB565 frame buffer: GL's unorm conversion round(c * (2^n - 1) / 255) on
 // the way out, bit replication on the way in, alpha reads as 1.
-uint32_t expand5(uint32_t v) { return (v << 3) | (v >> 2); }
-uint32_t expand6(uint32_t v) { return (v << 2) | (v >> 4); }
+uint32_t expand5(uint32_t v) {
+  return (v << 3) | (v >> 2);
+}
+uint32_t expand6(uint32_t v) {
+  return (v << 2) | (v >> 4);
+}
 
-uint16_t to_rgb565(rgba8 c) {
+uint16_t to_rgb565(Rgba8 c) {
   return uint16_t(div255_round(c.r.raw * 31) << 11 | div255_round(c.g.raw * 63) << 5 | div255_round(c.b.raw * 31));
 }
 
-rgba8 from_rgb565(uint32_t v) {
-  return rgba8::unpack(expand5((v >> 11) & 31) | expand6((v >> 5) & 63) << 8 | expand5(v & 31) << 16 | 0xffu << 24);
+Rgba8 from_rgb565(uint32_t v) {
+  return Rgba8::unpack(expand5((v >> 11) & 31) | expand6((v >> 5) & 63) << 8 | expand5(v & 31) << 16 | 0xffu << 24);
 }
 
 // A positive integer as f * 2^n with f in [1/2, 1), f held in Q30.
@@ -138,10 +146,10 @@ struct DrawState {
   FragmentOperationsState operations;
   bool scissor = false;
   int scissor_x0 = 0, scissor_y0 = 0, scissor_x1 = 0, scissor_y1 = 0;  // GL window, ends exclusive
-  texture_state texture;
+  TextureState texture;
   unsigned log2_width = 0, log2_height = 0;  // as stored, checked at use
-  texture_filter min_filter = texture_filter::NEAREST, mag_filter = texture_filter::NEAREST;
-  texture_env_mode env = texture_env_mode::MODULATE;
+  TextureFilter min_filter = TextureFilter::NEAREST, mag_filter = TextureFilter::NEAREST;
+  TextureEnvMode env = TextureEnvMode::MODULATE;
 };
 
 DrawState decode_state(uint32_t address, const uint8_t* b) {
@@ -194,23 +202,23 @@ struct Rect {  // pixels x0 <= x < x1, y0 <= y < y1 (GL window coordinates)
 struct Vertex {
   uint32_t x = 0, y = 0;  // 9.4 codes
   uint32_t z = 0;         // 0.24
-  rgba8 color;
+  Rgba8 color;
   float s_over_w = 0, t_over_w = 0, inv_w = 0;
 };
 
 // Everything triangle setup hands to the traversal.
 struct TriangleSetup {
-  std::array<edge, 3> edges;
+  std::array<Edge, 3> edges;
   std::array<q5_16, 3> edge_recip;  // EASA: 1/(|dx| + |dy|) from the reciprocal unit
-  std::array<attribute_plane, 4> color;
-  attribute_plane depth;
-  attribute_plane s, t, q;  // s/w, t/w, 1/w, normalised (README.md, "Texture coordinates")
-  int ref_x = 0, ref_y = 0; // the pixel the planes' start values belong to
+  std::array<AttributePlane, 4> color;
+  AttributePlane depth;
+  AttributePlane s, t, q;    // s/w, t/w, 1/w, normalised (README.md, "Texture coordinates")
+  int ref_x = 0, ref_y = 0;  // the pixel the planes' start values belong to
   bool flat = false;
   // Gouraud colour seen in perspective: `color` holds c/w (normalised like
   // q) and each pixel divides by q, as GL interpolates (README.md, "Colour").
   bool perspective_color = false;
-  rgba8 flat_color;
+  Rgba8 flat_color;
 };
 
 class TileRun {
@@ -247,14 +255,14 @@ class TileRun {
   bool setup(const std::array<Vertex, 3>& v, TriangleSetup& setup);
   void shade(const TriangleSetup& setup, int px, int py, unorm8 coverage);
   void texture_coords(attribute_sum s, attribute_sum t, attribute_sum q, q15_16& s_out, q15_16& t_out) const;
-  rgba8 perspective_color(const TriangleSetup& setup, int dx, int dy) const;
-  bool sample_texture(const TriangleSetup& setup, int dx, int dy, rgba8 fragment, rgba8& out);
+  Rgba8 perspective_color(const TriangleSetup& setup, int dx, int dy) const;
+  bool sample_texture(const TriangleSetup& setup, int dx, int dy, Rgba8 fragment, Rgba8& out);
 
   unsigned index(int px, int py) const {  // tile buffer index of GL pixel (px, py)
     const unsigned row = m_config.height - 1 - unsigned(py);
     return (row - m_row0) * m_config.tile_width + (unsigned(px) - unsigned(m_tile.x0));
   }
-  rgba8 quantise(rgba8 c) const { return m_config.rgba8888 ? c : from_rgb565(to_rgb565(c)); }
+  Rgba8 quantise(Rgba8 c) const { return m_config.rgba8888 ? c : from_rgb565(to_rgb565(c)); }
 
   RasterPort& m_port;
   const CycleCosts& m_costs;
@@ -262,10 +270,10 @@ class TileRun {
   RunResult m_result;
   uint64_t m_pending_cycles = 0;
 
-  Rect m_tile;            // GL window coordinates
-  unsigned m_row0 = 0;    // first memory row (top) of the tile
+  Rect m_tile;          // GL window coordinates
+  unsigned m_row0 = 0;  // first memory row (top) of the tile
   DrawState m_state;
-  std::vector<rgba8> m_color;
+  std::vector<Rgba8> m_color;
   std::vector<uint32_t> m_depth;  // 0.24
   std::vector<uint8_t> m_stencil;
   std::vector<uint8_t> m_row_bytes;
@@ -386,7 +394,7 @@ void TileRun::load_tile() {
     if (!read(color_address, m_row_bytes.data(), width * bpp)) return;
     for (unsigned x = 0; x < width; ++x) {
       const uint8_t* p = m_row_bytes.data() + x * bpp;
-      m_color[r * c.tile_width + x] = c.rgba8888 ? rgba8::unpack(load_le32(p)) : from_rgb565(p[0] | p[1] << 8);
+      m_color[r * c.tile_width + x] = c.rgba8888 ? Rgba8::unpack(load_le32(p)) : from_rgb565(p[0] | p[1] << 8);
     }
     const uint32_t depth_address = c.depth_base + (row * c.width + unsigned(m_tile.x0)) * 4;
     if (!read(depth_address, m_row_bytes.data(), width * 4)) return;
@@ -406,7 +414,7 @@ void TileRun::write_tile() {
   for (unsigned r = 0; r < rows; ++r) {
     for (unsigned x = 0; x < width; ++x) {
       uint8_t* p = m_row_bytes.data() + x * bpp;
-      const rgba8 color = m_color[r * c.tile_width + x];
+      const Rgba8 color = m_color[r * c.tile_width + x];
       if (c.rgba8888) {
         store_le32(p, color.pack());
       } else {
@@ -432,7 +440,7 @@ void TileRun::write_tile() {
 
 void TileRun::clear(const uint32_t* words) {
   const uint32_t mask = (words[0] >> 8) & 7;
-  const rgba8 color = quantise(rgba8::unpack(words[1]));
+  const Rgba8 color = quantise(Rgba8::unpack(words[1]));
   const uint32_t depth = words[2] & 0xffffff;
   const uint8_t stencil = uint8_t(words[3]);
   const uint32_t color_mask = (words[3] >> 8) & 15;
@@ -445,12 +453,13 @@ void TileRun::clear(const uint32_t* words) {
   const bool clear_depth = (mask & 2) && depth_write;
   const bool clear_stencil = (mask & 4) && stencil_mask != 0;
   Rect area = m_tile;
-  if (m_state.scissor) area = area.intersect({m_state.scissor_x0, m_state.scissor_y0, m_state.scissor_x1, m_state.scissor_y1});
+  if (m_state.scissor)
+    area = area.intersect({m_state.scissor_x0, m_state.scissor_y0, m_state.scissor_x1, m_state.scissor_y1});
   if (area.empty() || !(clear_color || clear_depth || clear_stencil)) return;
   for (int y = area.y0; y < area.y1; ++y) {
     for (int x = area.x0; x < area.x1; ++x) {
       const unsigned i = index(x, y);
-      if (clear_color) m_color[i] = rgba8::unpack((m_color[i].pack() & ~channel_bits) | (color.pack() & channel_bits));
+      if (clear_color) m_color[i] = Rgba8::unpack((m_color[i].pack() & ~channel_bits) | (color.pack() & channel_bits));
       if (clear_depth) m_depth[i] = depth;
       if (clear_stencil) m_stencil[i] = uint8_t((m_stencil[i] & ~stencil_mask) | (stencil & stencil_mask));
     }
@@ -469,11 +478,11 @@ void TileRun::draw_triangle(uint32_t record_address) {
     v[k].x = xy & 0xffff;
     v[k].y = xy >> 16;
     v[k].z = load_le32(p + 4) & 0xffffff;
-    v[k].color = rgba8::unpack(load_le32(p + 8));
+    v[k].color = Rgba8::unpack(load_le32(p + 8));
     v[k].s_over_w = load_float(p + 12);
     v[k].t_over_w = load_float(p + 16);
     v[k].inv_w = load_float(p + 20);
-    if (v[k].x > q9_4::max_raw || v[k].y > q9_4::max_raw) {  // not a 9.4 coordinate
+    if (v[k].x > q9_4::MAX_RAW || v[k].y > q9_4::MAX_RAW) {  // not a 9.4 coordinate
       ++m_result.triangles_skipped;
       return;
     }
@@ -489,7 +498,8 @@ void TileRun::draw_triangle(uint32_t record_address) {
   if (int(max_x) < 8) box.x1 = margin;
   if (int(max_y) < 8) box.y1 = margin;
   box = box.intersect(m_tile);
-  if (m_state.scissor) box = box.intersect({m_state.scissor_x0, m_state.scissor_y0, m_state.scissor_x1, m_state.scissor_y1});
+  if (m_state.scissor)
+    box = box.intersect({m_state.scissor_x0, m_state.scissor_y0, m_state.scissor_x1, m_state.scissor_y1});
   if (box.empty()) return;
 
   const bool texture = (m_state.flags & StateFlag::texture) != 0;
@@ -512,7 +522,7 @@ void TileRun::draw_triangle(uint32_t record_address) {
       bool inside = true;
       unorm8 edge_cov[3];
       for (unsigned k = 0; k < 3; ++k) {
-        const edge_evaluation e = evaluate_edge(ts.edges[k], unsigned(px), unsigned(py), ts.edge_recip[k]);
+        const EdgeEvaluation e = evaluate_edge(ts.edges[k], unsigned(px), unsigned(py), ts.edge_recip[k]);
         inside = inside && e.inside;
         edge_cov[k] = e.coverage;
       }
@@ -531,10 +541,10 @@ void TileRun::draw_triangle(uint32_t record_address) {
 
 bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
   const RecipMethod method = m_config.recip_method;
-  const auto X = [&](unsigned k) { return int64_t{vin[k].x}; };
-  const auto Y = [&](unsigned k) { return int64_t{vin[k].y}; };
+  const auto vx = [&](unsigned k) { return int64_t{vin[k].x}; };
+  const auto vy = [&](unsigned k) { return int64_t{vin[k].y}; };
   // Twice the signed area, 9.4 x 9.4 = 8 fraction bits; > 0 is counter-clockwise.
-  const int64_t area = (X(1) - X(0)) * (Y(2) - Y(0)) - (X(2) - X(0)) * (Y(1) - Y(0));
+  const int64_t area = (vx(1) - vx(0)) * (vy(2) - vy(0)) - (vx(2) - vx(0)) * (vy(1) - vy(0));
   const uint64_t magnitude = uint64_t(area < 0 ? -area : area);
   Reciprocal inv_area;
   if (!refined_reciprocal(magnitude, method, inv_area)) return false;  // zero area: operand 0
@@ -553,14 +563,14 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
 
   ts.ref_x = int(vin[0].x >> 4);
   ts.ref_y = int(vin[0].y >> 4);
-  const int64_t ref_dx = 16 * ts.ref_x + 8 - X(0), ref_dy = 16 * ts.ref_y + 8 - Y(0);
+  const int64_t ref_dx = 16 * ts.ref_x + 8 - vx(0), ref_dy = 16 * ts.ref_y + 8 - vy(0);
   const bool negative = area < 0;
   // Plane through the three vertex words (in the kind's fraction): gradient
   // = 16 N / area (N in word x 9.4 units), start at the reference pixel
   // centre; every quotient is one multiplication by the refined reciprocal.
-  const auto plane = [&](attribute_kind kind, const std::array<int64_t, 3>& w) {
-    const int128 nx = int128(w[1] - w[0]) * (Y(2) - Y(0)) - int128(w[2] - w[0]) * (Y(1) - Y(0));
-    const int128 ny = int128(w[2] - w[0]) * (X(1) - X(0)) - int128(w[1] - w[0]) * (X(2) - X(0));
+  const auto plane = [&](AttributeKind kind, const std::array<int64_t, 3>& w) {
+    const int128 nx = int128(w[1] - w[0]) * (vy(2) - vy(0)) - int128(w[2] - w[0]) * (vy(1) - vy(0));
+    const int128 ny = int128(w[2] - w[0]) * (vx(1) - vx(0)) - int128(w[1] - w[0]) * (vx(2) - vx(0));
     const int64_t grad_x = saturate_word(divide(nx * 16, inv_area, negative));
     const int64_t grad_y = saturate_word(divide(ny * 16, inv_area, negative));
     const int64_t start = saturate_word(int128(w[0]) + divide(nx * ref_dx + ny * ref_dy, inv_area, negative));
@@ -569,7 +579,7 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
 
   ts.flat = (m_state.flags & StateFlag::flat_shading) != 0;
   ts.flat_color = vin[2].color;
-  ts.depth = plane(attribute_kind::DEPTH, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
+  ts.depth = plane(AttributeKind::DEPTH, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
 
   // 1/w of the vertices scaled by one power of two so that the largest lies
   // in [1/2, 1): every ratio a = (a/w) / (1/w) is unchanged and the scaling
@@ -585,8 +595,9 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
   std::frexp(max_inv_w, &exponent);
   const auto scaled = [&](float value) { return std::ldexp(double(value), -exponent); };
   std::array<int64_t, 3> q{};
-  for (unsigned k = 0; k < 3 && usable_w; ++k) q[k] = std::llround(std::ldexp(scaled(vin[k].inv_w), TEXCOORD_FRACTION_BITS));
-  if (usable_w) ts.q = plane(attribute_kind::TEXCOORD, q);
+  for (unsigned k = 0; k < 3 && usable_w; ++k)
+    q[k] = std::llround(std::ldexp(scaled(vin[k].inv_w), TEXCOORD_FRACTION_BITS));
+  if (usable_w) ts.q = plane(AttributeKind::TEXCOORD, q);
 
   // Gouraud colours are perspective-correct (GL 1.5 equation 3.6) when the
   // vertices' 1/w differ; with equal 1/w (orthographic) c/w over 1/w is c,
@@ -601,7 +612,7 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
         if (ts.perspective_color) return int64_t((int128(code) * q[k] + (int64_t{1} << 7)) >> 8);
         return code << 16;
       };
-      ts.color[ch] = plane(attribute_kind::COLOR, {channel(0), channel(1), channel(2)});
+      ts.color[ch] = plane(AttributeKind::COLOR, {channel(0), channel(1), channel(2)});
     }
   }
 
@@ -617,8 +628,8 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
       s[k] = std::llround(std::ldexp(values[0], TEXCOORD_FRACTION_BITS));
       t[k] = std::llround(std::ldexp(values[1], TEXCOORD_FRACTION_BITS));
     }
-    ts.s = plane(attribute_kind::TEXCOORD, s);
-    ts.t = plane(attribute_kind::TEXCOORD, t);
+    ts.s = plane(AttributeKind::TEXCOORD, s);
+    ts.t = plane(AttributeKind::TEXCOORD, t);
   }
   return true;
 }
@@ -627,13 +638,14 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
 // c/w sum in colour words (16 fraction bits, scaled by the normalised q) and
 // q with 24 fraction bits, divided by the refined reciprocal of q into
 // colour words and converted by the interpolator's output rule.
-rgba8 TileRun::perspective_color(const TriangleSetup& ts, int dx, int dy) const {
+Rgba8 TileRun::perspective_color(const TriangleSetup& ts, int dx, int dy) const {
   const attribute_sum q = attribute_at(ts.q, dx, dy);
   Reciprocal inv_q;
   refined_reciprocal(uint64_t(std::max<int64_t>(q.raw, 1)), m_config.recip_method, inv_q);
   const auto channel = [&](unsigned ch) {
     const int128 c = divide(attribute_at(ts.color[ch], dx, dy).raw, inv_q, false, -int(TEXCOORD_FRACTION_BITS));
-    return attribute_to_color(attribute_sum{int64_t(std::clamp<int128>(c, -ATTRIBUTE_WORD_MAX - 1, ATTRIBUTE_WORD_MAX))});
+    return attribute_to_color(
+        attribute_sum{int64_t(std::clamp<int128>(c, -ATTRIBUTE_WORD_MAX - 1, ATTRIBUTE_WORD_MAX))});
   };
   return {channel(0), channel(1), channel(2), channel(3)};
 }
@@ -647,19 +659,19 @@ void TileRun::texture_coords(attribute_sum s, attribute_sum t, attribute_sum q, 
   refined_reciprocal(uint64_t(std::max<int64_t>(q.raw, 1)), m_config.recip_method, inv_q);
   const auto to_q15_16 = [&](attribute_sum v) {
     const int128 r = divide(v.raw, inv_q, false, -16);
-    return q15_16{int64_t(std::clamp<int128>(r, q15_16::min_raw, q15_16::max_raw))};
+    return q15_16{int64_t(std::clamp<int128>(r, q15_16::MIN_RAW, q15_16::MAX_RAW))};
   };
   s_out = to_q15_16(s);
   t_out = to_q15_16(t);
 }
 
-bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, rgba8 fragment, rgba8& out) {
-  const attribute_evaluation s = evaluate_attribute(ts.s, dx, dy);
-  const attribute_evaluation t = evaluate_attribute(ts.t, dx, dy);
-  const attribute_evaluation q = evaluate_attribute(ts.q, dx, dy);
+bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, Rgba8 fragment, Rgba8& out) {
+  const AttributeEvaluation s = evaluate_attribute(ts.s, dx, dy);
+  const AttributeEvaluation t = evaluate_attribute(ts.t, dx, dy);
+  const AttributeEvaluation q = evaluate_attribute(ts.q, dx, dy);
   q15_16 sc, tc;
   texture_coords(s.value, t.value, q.value, sc, tc);
-  texture_state tex = m_state.texture;
+  TextureState tex = m_state.texture;
   tex.filter = m_state.mag_filter;
   if (m_state.min_filter != m_state.mag_filter) {
     // GL's scale factor rho from the texel-space differences to the next
@@ -673,13 +685,13 @@ bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, rgba8 frag
     const int128 rho2 = std::max(dux * dux + dvx * dvx, duy * duy + dvy * dvy);
     if (rho2 > (int128{1} << 32)) tex.filter = m_state.min_filter;
   }
-  const texel_footprint footprint = texel_lookup(tex, sc, tc);
-  const unsigned fetches = tex.filter == texture_filter::LINEAR ? 4 : 1;
-  std::array<rgba8, 4> texels;
+  const TexelFootprint footprint = texel_lookup(tex, sc, tc);
+  const unsigned fetches = tex.filter == TextureFilter::LINEAR ? 4 : 1;
+  std::array<Rgba8, 4> texels;
   for (unsigned k = 0; k < fetches; ++k) {
     uint8_t raw[4];
     if (!read(footprint.address[k], raw, 4, RasterError::bad_texture)) return false;
-    texels[k] = rgba8::unpack(load_le32(raw));
+    texels[k] = Rgba8::unpack(load_le32(raw));
   }
   for (unsigned k = fetches; k < 4; ++k) texels[k] = texels[0];
   m_result.texels += fetches;
@@ -692,12 +704,13 @@ bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, rgba8 frag
 // in GL order (the scissor already bounds the traversal).
 void TileRun::shade(const TriangleSetup& ts, int px, int py, unorm8 coverage) {
   const int dx = px - ts.ref_x, dy = py - ts.ref_y;
-  rgba8 color = ts.flat_color;
+  Rgba8 color = ts.flat_color;
   if (ts.perspective_color) {
     color = perspective_color(ts, dx, dy);
   } else if (!ts.flat) {
-    color = {attribute_to_color(attribute_at(ts.color[0], dx, dy)), attribute_to_color(attribute_at(ts.color[1], dx, dy)),
-             attribute_to_color(attribute_at(ts.color[2], dx, dy)), attribute_to_color(attribute_at(ts.color[3], dx, dy))};
+    color = {
+        attribute_to_color(attribute_at(ts.color[0], dx, dy)), attribute_to_color(attribute_at(ts.color[1], dx, dy)),
+        attribute_to_color(attribute_at(ts.color[2], dx, dy)), attribute_to_color(attribute_at(ts.color[3], dx, dy))};
   }
   if (m_state.flags & StateFlag::texture) {
     if (!sample_texture(ts, dx, dy, color, color)) return;
@@ -706,9 +719,8 @@ void TileRun::shade(const TriangleSetup& ts, int px, int py, unorm8 coverage) {
 
   const unsigned i = index(px, py);
   const unorm24 depth = attribute_to_depth(attribute_at(ts.depth, dx, dy));
-  const FragmentOperationsResult out =
-      fragment_operations(m_state.operations, color, depth, m_color[i], unorm24::from_raw(m_depth[i]),
-                          stencil8::from_raw(m_stencil[i]));
+  const FragmentOperationsResult out = fragment_operations(
+      m_state.operations, color, depth, m_color[i], unorm24::from_raw(m_depth[i]), stencil8::from_raw(m_stencil[i]));
   m_stencil[i] = out.stencil;
   if (out.depth_write) m_depth[i] = depth.raw;
   if (!out.pass) return;
@@ -720,6 +732,8 @@ void TileRun::shade(const TriangleSetup& ts, int px, int py, unorm8 coverage) {
 
 TileRasterizer::TileRasterizer(RasterPort& port, const CycleCosts& costs) : m_port(port), m_costs(costs) {}
 
-RunResult TileRasterizer::run(const RunConfig& config) { return TileRun(m_port, m_costs, config).execute(); }
+RunResult TileRasterizer::run(const RunConfig& config) {
+  return TileRun(m_port, m_costs, config).execute();
+}
 
 }  // namespace tessera::raster

@@ -44,44 +44,44 @@
 
 namespace tessera::raster {
 
-enum class attribute_kind : uint8_t { COLOR = 0, DEPTH = 1, TEXCOORD = 2 };
+enum class AttributeKind : uint8_t { COLOR = 0, DEPTH = 1, TEXCOORD = 2 };
 
-using color_attr = sfixed<40, 16>;
-using depth_attr = sfixed<40, 8>;
-using texcoord_attr = sfixed<40, 24>;
-using attribute_sum = sfixed<51, 0>; // the kind's fraction, wider integer part
+using color_attr = SFixed<40, 16>;
+using depth_attr = SFixed<40, 8>;
+using texcoord_attr = SFixed<40, 24>;
+using attribute_sum = SFixed<51, 0>;  // the kind's fraction, wider integer part
 
 // Raw 40-bit words in the fraction of `kind` (see above).
-struct attribute_plane {
-    attribute_kind kind = attribute_kind::COLOR;
-    int64_t start = 0;
-    int64_t grad_x = 0;
-    int64_t grad_y = 0;
+struct AttributePlane {
+  AttributeKind kind = AttributeKind::COLOR;
+  int64_t start = 0;
+  int64_t grad_x = 0;
+  int64_t grad_y = 0;
 };
 
-struct attribute_evaluation {
-    attribute_sum value;        // at (dx, dy)
-    attribute_sum value_next_x; // at (dx + 1, dy), by adding grad_x
-    attribute_sum value_next_y; // at (dx, dy + 1), by adding grad_y
-    uint32_t output = 0;        // attribute_output(kind, value)
+struct AttributeEvaluation {
+  attribute_sum value;         // at (dx, dy)
+  attribute_sum value_next_x;  // at (dx + 1, dy), by adding grad_x
+  attribute_sum value_next_y;  // at (dx, dy + 1), by adding grad_y
+  uint32_t output = 0;         // attribute_output(kind, value)
 };
 
 constexpr int ATTRIBUTE_OFFSET_MIN = -512;
 constexpr int ATTRIBUTE_OFFSET_MAX = 511;
 
 // Cuts the plane's words to 40 bits, as the input registers would.
-attribute_plane attribute_plane_from_raw(attribute_kind kind, int64_t start, int64_t grad_x, int64_t grad_y);
+AttributePlane attribute_plane_from_raw(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y);
 
-attribute_sum attribute_at(const attribute_plane& plane, int dx, int dy);
-attribute_sum attribute_step_x(const attribute_plane& plane, attribute_sum value);
-attribute_sum attribute_step_y(const attribute_plane& plane, attribute_sum value);
-uint32_t attribute_output(attribute_kind kind, attribute_sum value);
+attribute_sum attribute_at(const AttributePlane& plane, int dx, int dy);
+attribute_sum attribute_step_x(const AttributePlane& plane, attribute_sum value);
+attribute_sum attribute_step_y(const AttributePlane& plane, attribute_sum value);
+uint32_t attribute_output(AttributeKind kind, attribute_sum value);
 
 unorm8 attribute_to_color(attribute_sum value);
 unorm24 attribute_to_depth(attribute_sum value);
 q15_16 attribute_to_texcoord(attribute_sum value);
 
 // Everything the Verilog unit attr_interp.sv computes, in one call.
-attribute_evaluation evaluate_attribute(const attribute_plane& plane, int dx, int dy);
+AttributeEvaluation evaluate_attribute(const AttributePlane& plane, int dx, int dy);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

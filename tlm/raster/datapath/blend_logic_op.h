@@ -38,37 +38,37 @@
 
 namespace tessera::raster {
 
-enum class blend_factor : uint16_t {
-    ZERO = 0x0000,
-    ONE = 0x0001,
-    SRC_COLOR = 0x0300,
-    ONE_MINUS_SRC_COLOR = 0x0301,
-    SRC_ALPHA = 0x0302,
-    ONE_MINUS_SRC_ALPHA = 0x0303,
-    DST_ALPHA = 0x0304,
-    ONE_MINUS_DST_ALPHA = 0x0305,
-    DST_COLOR = 0x0306,
-    ONE_MINUS_DST_COLOR = 0x0307,
-    SRC_ALPHA_SATURATE = 0x0308,
+enum class BlendFactor : uint16_t {
+  ZERO = 0x0000,
+  ONE = 0x0001,
+  SRC_COLOR = 0x0300,
+  ONE_MINUS_SRC_COLOR = 0x0301,
+  SRC_ALPHA = 0x0302,
+  ONE_MINUS_SRC_ALPHA = 0x0303,
+  DST_ALPHA = 0x0304,
+  ONE_MINUS_DST_ALPHA = 0x0305,
+  DST_COLOR = 0x0306,
+  ONE_MINUS_DST_COLOR = 0x0307,
+  SRC_ALPHA_SATURATE = 0x0308,
 };
 
-enum class logic_op : uint16_t {
-    CLEAR = 0x1500,
-    AND = 0x1501,
-    AND_REVERSE = 0x1502,
-    COPY = 0x1503,
-    AND_INVERTED = 0x1504,
-    NOOP = 0x1505,
-    XOR = 0x1506,
-    OR = 0x1507,
-    NOR = 0x1508,
-    EQUIV = 0x1509,
-    INVERT = 0x150A,
-    OR_REVERSE = 0x150B,
-    COPY_INVERTED = 0x150C,
-    OR_INVERTED = 0x150D,
-    NAND = 0x150E,
-    SET = 0x150F,
+enum class LogicOp : uint16_t {
+  CLEAR = 0x1500,
+  AND = 0x1501,
+  AND_REVERSE = 0x1502,
+  COPY = 0x1503,
+  AND_INVERTED = 0x1504,
+  NOOP = 0x1505,
+  XOR = 0x1506,
+  OR = 0x1507,
+  NOR = 0x1508,
+  EQUIV = 0x1509,
+  INVERT = 0x150A,
+  OR_REVERSE = 0x150B,
+  COPY_INVERTED = 0x150C,
+  OR_INVERTED = 0x150D,
+  NAND = 0x150E,
+  SET = 0x150F,
 };
 
 constexpr uint8_t COLOR_MASK_R = 1;
@@ -77,27 +77,27 @@ constexpr uint8_t COLOR_MASK_B = 4;
 constexpr uint8_t COLOR_MASK_A = 8;
 constexpr uint8_t COLOR_MASK_ALL = 15;
 
-struct blend_state {
-    bool blend_enable = false;
-    blend_factor src_factor = blend_factor::ONE;
-    blend_factor dst_factor = blend_factor::ZERO;
-    bool logic_op_enable = false;
-    logic_op op = logic_op::COPY;
-    uint8_t color_mask = COLOR_MASK_ALL;
+struct BlendState {
+  bool blend_enable = false;
+  BlendFactor src_factor = BlendFactor::ONE;
+  BlendFactor dst_factor = BlendFactor::ZERO;
+  bool logic_op_enable = false;
+  LogicOp op = LogicOp::COPY;
+  uint8_t color_mask = COLOR_MASK_ALL;
 };
 
 // Hardware encodings (the Verilog unit's 4-bit fields).
-uint8_t blend_factor_code(blend_factor factor);
-uint8_t logic_op_code(logic_op op);
+uint8_t blend_factor_code(BlendFactor factor);
+uint8_t logic_op_code(LogicOp op);
 
 // round(a * b / 255).
 unorm8 mul_unorm8(unorm8 a, unorm8 b);
 // The factor for `channel` (0 R, 1 G, 2 B, 3 A).
-unorm8 blend_factor_value(blend_factor factor, unsigned channel, rgba8 src, rgba8 dst);
-unorm8 apply_logic_op(logic_op op, unorm8 src, unorm8 dst);
-rgba8 blend(blend_factor src_factor, blend_factor dst_factor, rgba8 src, rgba8 dst);
+unorm8 blend_factor_value(BlendFactor factor, unsigned channel, Rgba8 src, Rgba8 dst);
+unorm8 apply_logic_op(LogicOp op, unorm8 src, unorm8 dst);
+Rgba8 blend(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src, Rgba8 dst);
 
 // Everything the Verilog unit blend_logic_op.sv computes, in one call.
-rgba8 blend_logic_op(const blend_state& state, rgba8 src, rgba8 dst);
+Rgba8 blend_logic_op(const BlendState& state, Rgba8 src, Rgba8 dst);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -48,39 +48,39 @@
 
 namespace tessera::raster {
 
-using edge_value = sfixed<29, 8>;    // E, pixel^2, q20.8
-using edge_delta = sfixed<14, 4>;    // dx or dy of an edge, q9.4 signed
-using edge_distance = sfixed<16, 8>; // normalised distance, pixel, q7.8
+using edge_value = SFixed<29, 8>;     // E, pixel^2, q20.8
+using edge_delta = SFixed<14, 4>;     // dx or dy of an edge, q9.4 signed
+using edge_distance = SFixed<16, 8>;  // normalised distance, pixel, q7.8
 
-struct edge {
-    q9_4 x0, y0, x1, y1;
+struct Edge {
+  q9_4 x0, y0, x1, y1;
 };
 
-struct edge_evaluation {
-    edge_value value;        // E at (px + 1/2, py + 1/2)
-    edge_value value_next_x; // E at (px + 3/2, py + 1/2), by adding 16 * dy
-    edge_value value_next_y; // E at (px + 1/2, py + 3/2), by subtracting 16 * dx
-    bool inside;             // fill-rule decision at (px, py)
-    q10_4 l1_length;         // |dx| + |dy|, input of the reciprocal unit
-    edge_distance distance;  // E * recip, rounded and clamped
-    unorm8 coverage;         // clamp(1/2 + distance), 0.8
+struct EdgeEvaluation {
+  edge_value value;         // E at (px + 1/2, py + 1/2)
+  edge_value value_next_x;  // E at (px + 3/2, py + 1/2), by adding 16 * dy
+  edge_value value_next_y;  // E at (px + 1/2, py + 3/2), by subtracting 16 * dx
+  bool inside;              // fill-rule decision at (px, py)
+  q10_4 l1_length;          // |dx| + |dy|, input of the reciprocal unit
+  edge_distance distance;   // E * recip, rounded and clamped
+  unorm8 coverage;          // clamp(1/2 + distance), 0.8
 };
 
-edge_delta edge_dx(const edge& e);
-edge_delta edge_dy(const edge& e);
-q10_4 edge_l1_length(const edge& e);
+edge_delta edge_dx(const Edge& e);
+edge_delta edge_dy(const Edge& e);
+q10_4 edge_l1_length(const Edge& e);
 
 // Direct evaluation at the centre of pixel (px, py), px and py in 0..512.
-edge_value edge_value_at(const edge& e, unsigned px, unsigned py);
-edge_value edge_step_x(const edge& e, edge_value value);
-edge_value edge_step_y(const edge& e, edge_value value);
-bool edge_inside(const edge& e, edge_value value);
+edge_value edge_value_at(const Edge& e, unsigned px, unsigned py);
+edge_value edge_step_x(const Edge& e, edge_value value);
+edge_value edge_step_y(const Edge& e, edge_value value);
+bool edge_inside(const Edge& e, edge_value value);
 
 edge_distance edge_normalised_distance(edge_value value, q5_16 recip);
 unorm8 edge_coverage(edge_distance distance);
 unorm8 triangle_coverage(unorm8 c0, unorm8 c1, unorm8 c2);
 
 // Everything the Verilog unit edge_function.sv computes, in one call.
-edge_evaluation evaluate_edge(const edge& e, unsigned px, unsigned py, q5_16 recip);
+EdgeEvaluation evaluate_edge(const Edge& e, unsigned px, unsigned py, q5_16 recip);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -20,88 +20,90 @@ namespace tessera::raster {
 
 // Unsigned fixed point with IntBits integer and FracBits fraction bits.
 template <unsigned IntBits, unsigned FracBits>
-struct ufixed {
-    static constexpr unsigned int_bits = IntBits;
-    static constexpr unsigned frac_bits = FracBits;
-    static constexpr unsigned width = IntBits + FracBits;
-    static_assert(width <= 32, "ufixed is stored in 32 bits");
-    static constexpr uint32_t max_raw = width == 32 ? 0xffffffffu : (uint32_t{1} << width) - 1;
+struct UFixed {
+  static constexpr unsigned INT_BITS = IntBits;
+  static constexpr unsigned FRAC_BITS = FracBits;
+  static constexpr unsigned WIDTH = IntBits + FracBits;
+  static_assert(WIDTH <= 32, "ufixed is stored in 32 bits");
+  static constexpr uint32_t MAX_RAW = WIDTH == 32 ? 0xffffffffu : (uint32_t{1} << WIDTH) - 1;
 
-    uint32_t raw = 0;
+  uint32_t raw = 0;
 
-    // The code is cut to the format's width, as a register of that width would.
-    static constexpr ufixed from_raw(uint32_t code) { return ufixed{code & max_raw}; }
-    double to_double() const { return static_cast<double>(raw) / static_cast<double>(uint64_t{1} << FracBits); }
+  // The code is cut to the format's width, as a register of that width would.
+  static constexpr UFixed from_raw(uint32_t code) { return UFixed{code & MAX_RAW}; }
+  double to_double() const { return static_cast<double>(raw) / static_cast<double>(uint64_t{1} << FracBits); }
 
-    friend constexpr bool operator==(ufixed a, ufixed b) { return a.raw == b.raw; }
-    friend constexpr bool operator!=(ufixed a, ufixed b) { return a.raw != b.raw; }
+  friend constexpr bool operator==(UFixed a, UFixed b) { return a.raw == b.raw; }
+  friend constexpr bool operator!=(UFixed a, UFixed b) { return a.raw != b.raw; }
 };
 
 // Two's complement signed fixed point, Width bits in all, FracBits of them
 // fraction. Held sign-extended in an int64_t.
 template <unsigned Width, unsigned FracBits>
-struct sfixed {
-    static constexpr unsigned width = Width;
-    static constexpr unsigned frac_bits = FracBits;
-    static_assert(Width >= 2 && Width <= 63, "sfixed is held in an int64_t");
-    static constexpr int64_t min_raw = -(int64_t{1} << (Width - 1));
-    static constexpr int64_t max_raw = (int64_t{1} << (Width - 1)) - 1;
+struct SFixed {
+  static constexpr unsigned WIDTH = Width;
+  static constexpr unsigned FRAC_BITS = FracBits;
+  static_assert(Width >= 2 && Width <= 63, "sfixed is held in an int64_t");
+  static constexpr int64_t MIN_RAW = -(int64_t{1} << (Width - 1));
+  static constexpr int64_t MAX_RAW = (int64_t{1} << (Width - 1)) - 1;
 
-    int64_t raw = 0;
+  int64_t raw = 0;
 
-    // Wraps to Width bits, as a register of that width would.
-    static constexpr sfixed from_raw(int64_t code);
-    double to_double() const { return static_cast<double>(raw) / static_cast<double>(int64_t{1} << FracBits); }
+  // Wraps to Width bits, as a register of that width would.
+  static constexpr SFixed from_raw(int64_t code);
+  double to_double() const { return static_cast<double>(raw) / static_cast<double>(int64_t{1} << FracBits); }
 
-    friend constexpr bool operator==(sfixed a, sfixed b) { return a.raw == b.raw; }
-    friend constexpr bool operator!=(sfixed a, sfixed b) { return a.raw != b.raw; }
+  friend constexpr bool operator==(SFixed a, SFixed b) { return a.raw == b.raw; }
+  friend constexpr bool operator!=(SFixed a, SFixed b) { return a.raw != b.raw; }
 };
 
 // Sign-extends the low `width` bits of `value`.
 constexpr int64_t sign_extend(uint64_t value, unsigned width) {
-    const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
-    const uint64_t sign = uint64_t{1} << (width - 1);
-    const uint64_t v = value & mask;
-    return static_cast<int64_t>((v ^ sign) - sign);
+  const uint64_t mask = width >= 64 ? ~uint64_t{0} : (uint64_t{1} << width) - 1;
+  const uint64_t sign = uint64_t{1} << (width - 1);
+  const uint64_t v = value & mask;
+  return static_cast<int64_t>((v ^ sign) - sign);
 }
 
 template <unsigned Width, unsigned FracBits>
-constexpr sfixed<Width, FracBits> sfixed<Width, FracBits>::from_raw(int64_t code) {
-    return sfixed{sign_extend(static_cast<uint64_t>(code), Width)};
+constexpr SFixed<Width, FracBits> SFixed<Width, FracBits>::from_raw(int64_t code) {
+  return SFixed{sign_extend(static_cast<uint64_t>(code), Width)};
 }
 
-constexpr int64_t clamp_i64(int64_t v, int64_t lo, int64_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
+constexpr int64_t clamp_i64(int64_t v, int64_t lo, int64_t hi) {
+  return v < lo ? lo : (v > hi ? hi : v);
+}
 
 // Arithmetic shift right rounding to nearest, ties towards +infinity
 // (add half an output unit, then floor). `shift` must be at least 1.
 constexpr int64_t round_shift_right(int64_t v, unsigned shift) {
-    return (v + (int64_t{1} << (shift - 1))) >> shift;
+  return (v + (int64_t{1} << (shift - 1))) >> shift;
 }
 
 // Interface formats.
-using q9_4 = ufixed<9, 4>;     // screen x, y
-using q10_4 = ufixed<10, 4>;   // |dx| + |dy| of an edge, input of the reciprocal unit
-using q5_16 = ufixed<5, 16>;   // reciprocal 1/(|dx|+|dy|)
-using unorm8 = ufixed<0, 8>;   // colour channel, alpha, coverage
-using unorm24 = ufixed<0, 24>; // depth
-using stencil8 = ufixed<8, 0>;  // stencil value
+using q9_4 = UFixed<9, 4>;      // screen x, y
+using q10_4 = UFixed<10, 4>;    // |dx| + |dy| of an edge, input of the reciprocal unit
+using q5_16 = UFixed<5, 16>;    // reciprocal 1/(|dx|+|dy|)
+using unorm8 = UFixed<0, 8>;    // colour channel, alpha, coverage
+using unorm24 = UFixed<0, 24>;  // depth
+using stencil8 = UFixed<8, 0>;  // stencil value
 
 // Texture coordinate as the interpolator hands it to texel addressing:
 // signed 15.16 in 32 bits; 1.0 spans the texture once, so REPEAT sees up to
 // +-32768 repetitions and the 16 fraction bits resolve 8 bits of texel index
 // for a 256-texel texture plus 8 bits of bilinear weight.
-using q15_16 = sfixed<32, 16>;
+using q15_16 = SFixed<32, 16>;
 
-struct rgba8 {
-    unorm8 r, g, b, a;
+struct Rgba8 {
+  unorm8 r, g, b, a;
 
-    // Port packing used by the Verilog units: R in bits 7:0, A in 31:24.
-    constexpr uint32_t pack() const { return r.raw | (g.raw << 8) | (b.raw << 16) | (a.raw << 24); }
-    static constexpr rgba8 unpack(uint32_t v) {
-        return {unorm8::from_raw(v), unorm8::from_raw(v >> 8), unorm8::from_raw(v >> 16), unorm8::from_raw(v >> 24)};
-    }
-    friend constexpr bool operator==(rgba8 x, rgba8 y) { return x.pack() == y.pack(); }
-    friend constexpr bool operator!=(rgba8 x, rgba8 y) { return x.pack() != y.pack(); }
+  // Port packing used by the Verilog units: R in bits 7:0, A in 31:24.
+  constexpr uint32_t pack() const { return r.raw | (g.raw << 8) | (b.raw << 16) | (a.raw << 24); }
+  static constexpr Rgba8 unpack(uint32_t v) {
+    return {unorm8::from_raw(v), unorm8::from_raw(v >> 8), unorm8::from_raw(v >> 16), unorm8::from_raw(v >> 24)};
+  }
+  friend constexpr bool operator==(Rgba8 x, Rgba8 y) { return x.pack() == y.pack(); }
+  friend constexpr bool operator!=(Rgba8 x, Rgba8 y) { return x.pack() != y.pack(); }
 };
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

@@ -36,70 +36,70 @@
 
 namespace tessera::raster {
 
-enum class compare_func : uint16_t {
-    NEVER = 0x0200,
-    LESS = 0x0201,
-    EQUAL = 0x0202,
-    LEQUAL = 0x0203,
-    GREATER = 0x0204,
-    NOTEQUAL = 0x0205,
-    GEQUAL = 0x0206,
-    ALWAYS = 0x0207,
+enum class CompareFunc : uint16_t {
+  NEVER = 0x0200,
+  LESS = 0x0201,
+  EQUAL = 0x0202,
+  LEQUAL = 0x0203,
+  GREATER = 0x0204,
+  NOTEQUAL = 0x0205,
+  GEQUAL = 0x0206,
+  ALWAYS = 0x0207,
 };
 
-enum class stencil_op : uint16_t {
-    ZERO = 0x0000,
-    INVERT = 0x150A,
-    KEEP = 0x1E00,
-    REPLACE = 0x1E01,
-    INCR = 0x1E02,
-    DECR = 0x1E03,
+enum class StencilOp : uint16_t {
+  ZERO = 0x0000,
+  INVERT = 0x150A,
+  KEEP = 0x1E00,
+  REPLACE = 0x1E01,
+  INCR = 0x1E02,
+  DECR = 0x1E03,
 };
 
 // Hardware encodings of the enums (the Verilog unit's 3-bit fields).
-uint8_t compare_func_code(compare_func func);
-uint8_t stencil_op_code(stencil_op op);
+uint8_t compare_func_code(CompareFunc func);
+uint8_t stencil_op_code(StencilOp op);
 
-bool compare(compare_func func, uint32_t incoming, uint32_t stored);
-bool alpha_test(compare_func func, unorm8 alpha, unorm8 ref);
-bool depth_test(compare_func func, unorm24 incoming, unorm24 stored);
-bool stencil_test(compare_func func, stencil8 ref, uint8_t value_mask, stencil8 stored);
-stencil8 stencil_update(stencil_op op, stencil8 stored, stencil8 ref, uint8_t write_mask);
+bool compare(CompareFunc func, uint32_t incoming, uint32_t stored);
+bool alpha_test(CompareFunc func, unorm8 alpha, unorm8 ref);
+bool depth_test(CompareFunc func, unorm24 incoming, unorm24 stored);
+bool stencil_test(CompareFunc func, stencil8 ref, uint8_t value_mask, stencil8 stored);
+stencil8 stencil_update(StencilOp op, stencil8 stored, stencil8 ref, uint8_t write_mask);
 
-struct fragment_test_state {
-    bool alpha_enable = false;
-    compare_func alpha_func = compare_func::ALWAYS;
-    unorm8 alpha_ref;
-    bool stencil_enable = false;
-    compare_func stencil_func = compare_func::ALWAYS;
-    stencil8 stencil_ref;
-    uint8_t stencil_value_mask = 0xff;
-    uint8_t stencil_write_mask = 0xff;
-    stencil_op sfail = stencil_op::KEEP;
-    stencil_op dpfail = stencil_op::KEEP;
-    stencil_op dppass = stencil_op::KEEP;
-    bool depth_enable = false;
-    compare_func depth_func = compare_func::LESS;
-    bool depth_write_mask = true;
+struct FragmentTestState {
+  bool alpha_enable = false;
+  CompareFunc alpha_func = CompareFunc::ALWAYS;
+  unorm8 alpha_ref;
+  bool stencil_enable = false;
+  CompareFunc stencil_func = CompareFunc::ALWAYS;
+  stencil8 stencil_ref;
+  uint8_t stencil_value_mask = 0xff;
+  uint8_t stencil_write_mask = 0xff;
+  StencilOp sfail = StencilOp::KEEP;
+  StencilOp dpfail = StencilOp::KEEP;
+  StencilOp dppass = StencilOp::KEEP;
+  bool depth_enable = false;
+  CompareFunc depth_func = CompareFunc::LESS;
+  bool depth_write_mask = true;
 };
 
-struct fragment_test_input {
-    unorm8 alpha;
-    unorm24 depth;
-    unorm24 stored_depth;
-    stencil8 stored_stencil;
+struct FragmentTestInput {
+  unorm8 alpha;
+  unorm24 depth;
+  unorm24 stored_depth;
+  stencil8 stored_stencil;
 };
 
-struct fragment_test_result {
-    bool alpha_pass = false;
-    bool stencil_pass = false;
-    bool depth_pass = false;
-    bool pass = false;         // all three: the fragment goes on to blending
-    stencil8 stencil;     // value to store (the old one when unchanged)
-    bool depth_write = false;  // store the fragment's depth
+struct FragmentTestResult {
+  bool alpha_pass = false;
+  bool stencil_pass = false;
+  bool depth_pass = false;
+  bool pass = false;         // all three: the fragment goes on to blending
+  stencil8 stencil;          // value to store (the old one when unchanged)
+  bool depth_write = false;  // store the fragment's depth
 };
 
 // Everything the Verilog unit fragment_tests.sv computes, in one call.
-fragment_test_result run_fragment_tests(const fragment_test_state& state, const fragment_test_input& in);
+FragmentTestResult run_fragment_tests(const FragmentTestState& state, const FragmentTestInput& in);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

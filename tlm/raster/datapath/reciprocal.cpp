@@ -26,168 +26,161 @@ constexpr unsigned Q5_10_TO_Q5_16_SHIFT = 6;
 // 1/d as (1 + mantissa/64) * 2^-k with the mantissa truncated, for d >= 1.
 // k = ceil(log2 d) puts 2^(k + 6) / d in [64, 128).
 struct FloatEntry {
-    uint8_t mantissa;
-    uint8_t negated_exponent;
+  uint8_t mantissa;
+  uint8_t negated_exponent;
 };
 
 FloatEntry truncated_reciprocal(uint32_t d) {
-    uint8_t k = 0;
-    while ((1u << k) < d) {
-        ++k;
-    }
-    const uint32_t significand = (1u << (k + RECIP_MANTISSA_BITS)) / d;
-    return {static_cast<uint8_t>(significand & MANTISSA_MASK), k};
+  uint8_t k = 0;
+  while ((1u << k) < d) {
+    ++k;
+  }
+  const uint32_t significand = (1u << (k + RECIP_MANTISSA_BITS)) / d;
+  return {static_cast<uint8_t>(significand & MANTISSA_MASK), k};
 }
 
 uint32_t float_to_q5_16(uint8_t mantissa, int exponent) {
-    return (IMPLIED_ONE | mantissa) << (exponent + Q5_16_SHIFT_BIAS);
+  return (IMPLIED_ONE | mantissa) << (exponent + Q5_16_SHIFT_BIAS);
 }
 
 // Table I: 1/X = 16/raw in 5.10, i.e. floor(2^14 / raw).
 const std::array<uint16_t, RECIP_OPERAND_MAX + 1>& method1_table() {
-    static const auto table = [] {
-        std::array<uint16_t, RECIP_OPERAND_MAX + 1> t{};
-        t[0] = 0x7FFF;
-        for (uint32_t raw = 1; raw <= RECIP_OPERAND_MAX; ++raw) {
-            t[raw] = static_cast<uint16_t>((1u << (OPERAND_BITS)) / raw);
-        }
-        return t;
-    }();
-    return table;
+  static const auto table = [] {
+    std::array<uint16_t, RECIP_OPERAND_MAX + 1> t{};
+    t[0] = 0x7FFF;
+    for (uint32_t raw = 1; raw <= RECIP_OPERAND_MAX; ++raw) {
+      t[raw] = static_cast<uint16_t>((1u << (OPERAND_BITS)) / raw);
+    }
+    return t;
+  }();
+  return table;
 }
 
 // Table II: 1/X = 2^4/raw, so the exponent is 4 - ceil(log2 raw).
 const std::array<FloatEntry, RECIP_OPERAND_MAX + 1>& method2_table() {
-    static const auto table = [] {
-        std::array<FloatEntry, RECIP_OPERAND_MAX + 1> t{};
-        t[0] = {MANTISSA_MASK, 0};  // never read: raw 0 is rejected first
-        for (uint32_t raw = 1; raw <= RECIP_OPERAND_MAX; ++raw) {
-            t[raw] = truncated_reciprocal(raw);
-        }
-        return t;
-    }();
-    return table;
+  static const auto table = [] {
+    std::array<FloatEntry, RECIP_OPERAND_MAX + 1> t{};
+    t[0] = {MANTISSA_MASK, 0};  // never read: raw 0 is rejected first
+    for (uint32_t raw = 1; raw <= RECIP_OPERAND_MAX; ++raw) {
+      t[raw] = truncated_reciprocal(raw);
+    }
+    return t;
+  }();
+  return table;
 }
 
 // Table III: 1/index for the integers 1..1023; entry 0 is the unused all-ones
 // pattern of the paper.
 const std::array<FloatEntry, TABLE3_ENTRIES>& method3_table() {
-    static const auto table = [] {
-        std::array<FloatEntry, TABLE3_ENTRIES> t{};
-        t[0] = {MANTISSA_MASK, 0xF};
-        for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) {
-            t[index] = truncated_reciprocal(index);
-        }
-        return t;
-    }();
-    return table;
+  static const auto table = [] {
+    std::array<FloatEntry, TABLE3_ENTRIES> t{};
+    t[0] = {MANTISSA_MASK, 0xF};
+    for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) {
+      t[index] = truncated_reciprocal(index);
+    }
+    return t;
+  }();
+  return table;
 }
 
 ReciprocalResult method1(uint16_t raw) {
-    ReciprocalResult r;
-    r.method = RecipMethod::method1;
-    r.fixed_q5_10 = method1_table()[raw];
-    r.q5_16 = static_cast<uint32_t>(r.fixed_q5_10) << Q5_10_TO_Q5_16_SHIFT;
-    return r;
+  ReciprocalResult r;
+  r.method = RecipMethod::method1;
+  r.fixed_q5_10 = method1_table()[raw];
+  r.q5_16 = static_cast<uint32_t>(r.fixed_q5_10) << Q5_10_TO_Q5_16_SHIFT;
+  return r;
 }
 
 ReciprocalResult method2(uint16_t raw) {
-    const FloatEntry e = method2_table()[raw];
-    ReciprocalResult r;
-    r.method = RecipMethod::method2;
-    r.mantissa = e.mantissa;
-    r.exponent = static_cast<int8_t>(RECIP_OPERAND_FRACTION_BITS - e.negated_exponent);
-    r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
-    return r;
+  const FloatEntry e = method2_table()[raw];
+  ReciprocalResult r;
+  r.method = RecipMethod::method2;
+  r.mantissa = e.mantissa;
+  r.exponent = static_cast<int8_t>(RECIP_OPERAND_FRACTION_BITS - e.negated_exponent);
+  r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
+  return r;
 }
 
 ReciprocalResult method3(uint16_t raw) {
-    // Prescaler: 1/X = 2^s * 16/(raw << s), and with the 4 LSBs of raw << s
-    // dropped the table index approximates (raw << s) / 16.
-    unsigned shift = 0;
-    uint16_t scaled = raw;
-    while (shift < PRESCALE_MAX && (scaled & OPERAND_MSB) == 0) {
-        scaled = static_cast<uint16_t>(scaled << 1);
-        ++shift;
-    }
-    const unsigned index = (scaled >> RECIP_OPERAND_FRACTION_BITS) & (TABLE3_ENTRIES - 1);
-    const FloatEntry e = method3_table()[index];
-    ReciprocalResult r;
-    r.method = RecipMethod::method3;
-    r.mantissa = e.mantissa;
-    r.exponent = static_cast<int8_t>(static_cast<int>(shift) - e.negated_exponent);
-    r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
-    return r;
+  // Prescaler: 1/X = 2^s * 16/(raw << s), and with the 4 LSBs of raw << s
+  // dropped the table index approximates (raw << s) / 16.
+  unsigned shift = 0;
+  uint16_t scaled = raw;
+  while (shift < PRESCALE_MAX && (scaled & OPERAND_MSB) == 0) {
+    scaled = static_cast<uint16_t>(scaled << 1);
+    ++shift;
+  }
+  const unsigned index = (scaled >> RECIP_OPERAND_FRACTION_BITS) & (TABLE3_ENTRIES - 1);
+  const FloatEntry e = method3_table()[index];
+  ReciprocalResult r;
+  r.method = RecipMethod::method3;
+  r.mantissa = e.mantissa;
+  r.exponent = static_cast<int8_t>(static_cast<int>(shift) - e.negated_exponent);
+  r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
+  return r;
 }
 
 }  // namespace
 
 std::optional<RecipMethod> parse_recip_method(std::string_view text) {
-    if (text == "1" || text == "method1") {
-        return RecipMethod::method1;
-    }
-    if (text == "2" || text == "method2") {
-        return RecipMethod::method2;
-    }
-    if (text == "3" || text == "method3") {
-        return RecipMethod::method3;
-    }
-    return std::nullopt;
+  if (text == "1" || text == "method1") {
+    return RecipMethod::method1;
+  }
+  if (text == "2" || text == "method2") {
+    return RecipMethod::method2;
+  }
+  if (text == "3" || text == "method3") {
+    return RecipMethod::method3;
+  }
+  return std::nullopt;
 }
 
 std::string_view to_string(RecipMethod method) {
-    switch (method) {
-    case RecipMethod::method1:
-        return "method1";
-    case RecipMethod::method2:
-        return "method2";
-    case RecipMethod::method3:
-        return "method3";
-    }
-    return "unknown";
+  switch (method) {
+    case RecipMethod::method1: return "method1";
+    case RecipMethod::method2: return "method2";
+    case RecipMethod::method3: return "method3";
+  }
+  return "unknown";
 }
 
 bool operator==(const ReciprocalResult& a, const ReciprocalResult& b) {
-    return a.method == b.method && a.q5_16 == b.q5_16 && a.invalid_operand == b.invalid_operand &&
-           a.fixed_q5_10 == b.fixed_q5_10 && a.mantissa == b.mantissa && a.exponent == b.exponent;
+  return a.method == b.method && a.q5_16 == b.q5_16 && a.invalid_operand == b.invalid_operand &&
+         a.fixed_q5_10 == b.fixed_q5_10 && a.mantissa == b.mantissa && a.exponent == b.exponent;
 }
 
 bool operator!=(const ReciprocalResult& a, const ReciprocalResult& b) {
-    return !(a == b);
+  return !(a == b);
 }
 
 ReciprocalResult reciprocal_invalid_result(RecipMethod method) {
-    ReciprocalResult r;
-    r.method = method;
-    r.q5_16 = RECIP_Q5_16_SATURATED;
-    r.invalid_operand = true;
-    if (method == RecipMethod::method1) {
-        r.fixed_q5_10 = method1_table()[0];
-    } else {
-        r.mantissa = MANTISSA_MASK;
-        r.exponent = -1;
-    }
-    return r;
+  ReciprocalResult r;
+  r.method = method;
+  r.q5_16 = RECIP_Q5_16_SATURATED;
+  r.invalid_operand = true;
+  if (method == RecipMethod::method1) {
+    r.fixed_q5_10 = method1_table()[0];
+  } else {
+    r.mantissa = MANTISSA_MASK;
+    r.exponent = -1;
+  }
+  return r;
 }
 
 ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method) {
-    if (x_q10_4 == 0 || x_q10_4 > RECIP_OPERAND_MAX) {
-        return reciprocal_invalid_result(method);
-    }
-    switch (method) {
-    case RecipMethod::method1:
-        return method1(x_q10_4);
-    case RecipMethod::method2:
-        return method2(x_q10_4);
-    case RecipMethod::method3:
-        return method3(x_q10_4);
-    }
+  if (x_q10_4 == 0 || x_q10_4 > RECIP_OPERAND_MAX) {
     return reciprocal_invalid_result(method);
+  }
+  switch (method) {
+    case RecipMethod::method1: return method1(x_q10_4);
+    case RecipMethod::method2: return method2(x_q10_4);
+    case RecipMethod::method3: return method3(x_q10_4);
+  }
+  return reciprocal_invalid_result(method);
 }
 
 double reciprocal_value(uint16_t x_q10_4, RecipMethod method) {
-    return static_cast<double>(reciprocal_q5_16(x_q10_4, method)) /
-           static_cast<double>(1u << RECIP_Q5_16_FRACTION_BITS);
+  return static_cast<double>(reciprocal_q5_16(x_q10_4, method)) / static_cast<double>(1u << RECIP_Q5_16_FRACTION_BITS);
 }
 
 }  // namespace tessera::raster

@@ -59,20 +59,18 @@ constexpr unsigned RECIP_MANTISSA_BITS = 6;  // fraction bits of 1.ffffff
 constexpr unsigned RECIP_EXPONENT_BITS = 5;  // two's complement
 
 struct ReciprocalResult {
-    RecipMethod method = RecipMethod::method3;
-    // 1/X in unsigned 5.16, the format the rest of the datapath multiplies by.
-    uint32_t q5_16 = 0;
-    bool invalid_operand = false;
-    // Method 1 only (0 otherwise): the 15-bit 5.10 table entry.
-    uint16_t fixed_q5_10 = 0;
-    // Methods 2 and 3 only (0 otherwise): 1/X = (1 + mantissa / 64) * 2^exponent.
-    uint8_t mantissa = 0;
-    int8_t exponent = 0;
+  RecipMethod method = RecipMethod::method3;
+  // 1/X in unsigned 5.16, the format the rest of the datapath multiplies by.
+  uint32_t q5_16 = 0;
+  bool invalid_operand = false;
+  // Method 1 only (0 otherwise): the 15-bit 5.10 table entry.
+  uint16_t fixed_q5_10 = 0;
+  // Methods 2 and 3 only (0 otherwise): 1/X = (1 + mantissa / 64) * 2^exponent.
+  uint8_t mantissa = 0;
+  int8_t exponent = 0;
 
-    // The exponent as the hardware's 5-bit two's complement field.
-    uint8_t exponent_field() const {
-        return static_cast<uint8_t>(exponent) & ((1u << RECIP_EXPONENT_BITS) - 1);
-    }
+  // The exponent as the hardware's 5-bit two's complement field.
+  uint8_t exponent_field() const { return static_cast<uint8_t>(exponent) & ((1u << RECIP_EXPONENT_BITS) - 1); }
 };
 
 bool operator==(const ReciprocalResult& a, const ReciprocalResult& b);
@@ -84,14 +82,14 @@ ReciprocalResult reciprocal_invalid_result(RecipMethod method);
 ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method);
 
 inline uint32_t reciprocal_q5_16(uint16_t x_q10_4, RecipMethod method) {
-    return reciprocal(x_q10_4, method).q5_16;
+  return reciprocal(x_q10_4, method).q5_16;
 }
 
 // The same in the datapath's fixed-point types; an invalid operand gives the
 // saturated code, as above.
 inline q5_16 reciprocal_fixed(q10_4 x, RecipMethod method) {
-    const uint16_t raw = x.raw > RECIP_OPERAND_MAX ? 0 : static_cast<uint16_t>(x.raw);
-    return q5_16::from_raw(reciprocal_q5_16(raw, method));
+  const uint16_t raw = x.raw > RECIP_OPERAND_MAX ? 0 : static_cast<uint16_t>(x.raw);
+  return q5_16::from_raw(reciprocal_q5_16(raw, method));
 }
 
 // The q5_16 result as a real number (32 - 2^-16 for an invalid operand).

@@ -36,37 +36,37 @@
 
 namespace tessera::raster {
 
-enum class texture_wrap : uint16_t { REPEAT = 0x2901, CLAMP_TO_EDGE = 0x812F };
-enum class texture_filter : uint16_t { NEAREST = 0x2600, LINEAR = 0x2601 };
+enum class TextureWrap : uint16_t { REPEAT = 0x2901, CLAMP_TO_EDGE = 0x812F };
+enum class TextureFilter : uint16_t { NEAREST = 0x2600, LINEAR = 0x2601 };
 
 constexpr unsigned TEXTURE_MAX_LOG2 = 8;
 
-struct texture_state {
-    uint32_t base = 0;
-    uint8_t log2_width = 0;
-    uint8_t log2_height = 0;
-    texture_wrap wrap_s = texture_wrap::REPEAT;
-    texture_wrap wrap_t = texture_wrap::REPEAT;
-    texture_filter filter = texture_filter::NEAREST;
+struct TextureState {
+  uint32_t base = 0;
+  uint8_t log2_width = 0;
+  uint8_t log2_height = 0;
+  TextureWrap wrap_s = TextureWrap::REPEAT;
+  TextureWrap wrap_t = TextureWrap::REPEAT;
+  TextureFilter filter = TextureFilter::NEAREST;
 };
 
-struct texel_axis {
-    uint8_t index0 = 0;
-    uint8_t index1 = 0;
-    uint8_t weight = 0; // of index1, in 1/256
+struct TexelAxis {
+  uint8_t index0 = 0;
+  uint8_t index1 = 0;
+  uint8_t weight = 0;  // of index1, in 1/256
 };
 
-struct texel_footprint {
-    texel_axis s; // i0, i1, alpha
-    texel_axis t; // j0, j1, beta
-    // (i0,j0), (i1,j0), (i0,j1), (i1,j1)
-    std::array<uint32_t, 4> address{};
+struct TexelFootprint {
+  TexelAxis s;  // i0, i1, alpha
+  TexelAxis t;  // j0, j1, beta
+  // (i0,j0), (i1,j0), (i0,j1), (i1,j1)
+  std::array<uint32_t, 4> address{};
 };
 
-texel_axis texel_axis_for(q15_16 coord, unsigned log2_size, texture_wrap wrap, texture_filter filter);
+TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TextureWrap wrap, TextureFilter filter);
 uint32_t texel_address(uint32_t base, unsigned log2_width, uint8_t i, uint8_t j);
 
 // Everything the Verilog unit texel_address.sv computes, in one call.
-texel_footprint texel_lookup(const texture_state& state, q15_16 s, q15_16 t);
+TexelFootprint texel_lookup(const TextureState& state, q15_16 s, q15_16 t);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

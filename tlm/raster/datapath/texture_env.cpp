@@ -5,74 +5,71 @@ namespace tessera::raster {
 
 namespace {
 
-std::array<uint32_t, 4> channels(rgba8 c) { return {c.r.raw, c.g.raw, c.b.raw, c.a.raw}; }
-
-rgba8 from_channels(const std::array<uint32_t, 4>& c) {
-    return {unorm8::from_raw(c[0]), unorm8::from_raw(c[1]), unorm8::from_raw(c[2]), unorm8::from_raw(c[3])};
+std::array<uint32_t, 4> channels(Rgba8 c) {
+  return {c.r.raw, c.g.raw, c.b.raw, c.a.raw};
 }
 
-} // namespace
+Rgba8 from_channels(const std::array<uint32_t, 4>& c) {
+  return {unorm8::from_raw(c[0]), unorm8::from_raw(c[1]), unorm8::from_raw(c[2]), unorm8::from_raw(c[3])};
+}
 
-uint8_t texture_env_mode_code(texture_env_mode mode) {
-    switch (mode) {
-    case texture_env_mode::REPLACE:
-        return 0;
-    case texture_env_mode::MODULATE:
-        return 1;
-    case texture_env_mode::DECAL:
-        return 2;
-    }
-    return 3;
+}  // namespace
+
+uint8_t texture_env_mode_code(TextureEnvMode mode) {
+  switch (mode) {
+    case TextureEnvMode::REPLACE: return 0;
+    case TextureEnvMode::MODULATE: return 1;
+    case TextureEnvMode::DECAL: return 2;
+  }
+  return 3;
 }
 
 uint32_t div255_round(uint32_t x) {
-    const uint32_t t = x + 128;
-    return (t + (t >> 8)) >> 8;
+  const uint32_t t = x + 128;
+  return (t + (t >> 8)) >> 8;
 }
 
-rgba8 bilinear_filter(const std::array<rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t) {
-    const uint32_t a = weight_s;
-    const uint32_t b = weight_t;
-    const std::array<uint32_t, 4> w{(256 - a) * (256 - b), a * (256 - b), (256 - a) * b, a * b};
-    std::array<uint32_t, 4> out{};
-    for (unsigned c = 0; c < 4; ++c) {
-        uint32_t sum = 0;
-        for (unsigned k = 0; k < 4; ++k) {
-            sum += w[k] * channels(texels[k])[c];
-        }
-        out[c] = (sum + (1u << 15)) >> 16;
+Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t) {
+  const uint32_t a = weight_s;
+  const uint32_t b = weight_t;
+  const std::array<uint32_t, 4> w{(256 - a) * (256 - b), a * (256 - b), (256 - a) * b, a * b};
+  std::array<uint32_t, 4> out{};
+  for (unsigned c = 0; c < 4; ++c) {
+    uint32_t sum = 0;
+    for (unsigned k = 0; k < 4; ++k) {
+      sum += w[k] * channels(texels[k])[c];
     }
-    return from_channels(out);
+    out[c] = (sum + (1u << 15)) >> 16;
+  }
+  return from_channels(out);
 }
 
-rgba8 texture_environment(texture_env_mode mode, rgba8 fragment, rgba8 texel) {
-    const auto f = channels(fragment);
-    const auto t = channels(texel);
-    std::array<uint32_t, 4> out = f;
-    switch (mode) {
-    case texture_env_mode::REPLACE:
-        out = t;
-        break;
-    case texture_env_mode::MODULATE:
-        for (unsigned c = 0; c < 4; ++c) {
-            out[c] = div255_round(f[c] * t[c]);
-        }
-        break;
-    case texture_env_mode::DECAL:
-        for (unsigned c = 0; c < 3; ++c) {
-            out[c] = div255_round(f[c] * (255 - t[3]) + t[c] * t[3]);
-        }
-        break;
-    }
-    return from_channels(out);
+Rgba8 texture_environment(TextureEnvMode mode, Rgba8 fragment, Rgba8 texel) {
+  const auto f = channels(fragment);
+  const auto t = channels(texel);
+  std::array<uint32_t, 4> out = f;
+  switch (mode) {
+    case TextureEnvMode::REPLACE: out = t; break;
+    case TextureEnvMode::MODULATE:
+      for (unsigned c = 0; c < 4; ++c) {
+        out[c] = div255_round(f[c] * t[c]);
+      }
+      break;
+    case TextureEnvMode::DECAL:
+      for (unsigned c = 0; c < 3; ++c) {
+        out[c] = div255_round(f[c] * (255 - t[3]) + t[c] * t[3]);
+      }
+      break;
+  }
+  return from_channels(out);
 }
 
-texture_env_result texture_filter_env(texture_env_mode mode, const std::array<rgba8, 4>& texels, uint8_t weight_s,
-                                      uint8_t weight_t, rgba8 fragment) {
-    texture_env_result r;
-    r.texel = bilinear_filter(texels, weight_s, weight_t);
-    r.fragment = texture_environment(mode, fragment, r.texel);
-    return r;
+TextureEnvResult texture_filter_env(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s,
+                                    uint8_t weight_t, Rgba8 fragment) {
+  TextureEnvResult r;
+  r.texel = bilinear_filter(texels, weight_s, weight_t);
+  r.fragment = texture_environment(mode, fragment, r.texel);
+  return r;
 }
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

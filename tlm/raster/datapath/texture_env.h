@@ -30,25 +30,25 @@
 
 namespace tessera::raster {
 
-enum class texture_env_mode : uint16_t { REPLACE = 0x1E01, MODULATE = 0x2100, DECAL = 0x2101 };
+enum class TextureEnvMode : uint16_t { REPLACE = 0x1E01, MODULATE = 0x2100, DECAL = 0x2101 };
 
 // Hardware encoding (the Verilog unit's 2-bit field).
-uint8_t texture_env_mode_code(texture_env_mode mode);
+uint8_t texture_env_mode_code(TextureEnvMode mode);
 
 // Exact round(x / 255) for 0 <= x <= 65025.
 uint32_t div255_round(uint32_t x);
 
 // texels in the order (i0,j0), (i1,j0), (i0,j1), (i1,j1).
-rgba8 bilinear_filter(const std::array<rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t);
-rgba8 texture_environment(texture_env_mode mode, rgba8 fragment, rgba8 texel);
+Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t);
+Rgba8 texture_environment(TextureEnvMode mode, Rgba8 fragment, Rgba8 texel);
 
-struct texture_env_result {
-    rgba8 texel;    // filtered
-    rgba8 fragment; // after the environment
+struct TextureEnvResult {
+  Rgba8 texel;     // filtered
+  Rgba8 fragment;  // after the environment
 };
 
 // Everything the Verilog unit texture_env.sv computes, in one call.
-texture_env_result texture_filter_env(texture_env_mode mode, const std::array<rgba8, 4>& texels, uint8_t weight_s,
-                                      uint8_t weight_t, rgba8 fragment);
+TextureEnvResult texture_filter_env(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s,
+                                    uint8_t weight_t, Rgba8 fragment);
 
-} // namespace tessera::raster
+}  // namespace tessera::raster

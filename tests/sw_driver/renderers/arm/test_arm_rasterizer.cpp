@@ -116,8 +116,8 @@ class Frame {
   std::unique_ptr<ArmRasterizer> rasterizer;
 };
 
-gl::ScreenVertex vertex(double x, double y, Rgba c = {255, 255, 255, 255}, double z = 0.5, float s = 0,
-                        float t = 0, float inv_w = 1) {
+gl::ScreenVertex vertex(double x, double y, Rgba c = {255, 255, 255, 255}, double z = 0.5, float s = 0, float t = 0,
+                        float inv_w = 1) {
   gl::ScreenVertex v{};
   v.x = int32_t(std::lround(x * 16));
   v.y = int32_t(std::lround(y * 16));
@@ -132,7 +132,9 @@ gl::ScreenVertex vertex(double x, double y, Rgba c = {255, 255, 255, 255}, doubl
   return v;
 }
 
-gl::Triangle triangle(gl::ScreenVertex a, gl::ScreenVertex b, gl::ScreenVertex c) { return gl::Triangle{{a, b, c}}; }
+gl::Triangle triangle(gl::ScreenVertex a, gl::ScreenVertex b, gl::ScreenVertex c) {
+  return gl::Triangle{{a, b, c}};
+}
 
 // The reference: pixel centre (xc, yc) is covered if every edge function of
 // the counter-clockwise triangle is positive, or zero on a left edge (going
@@ -190,8 +192,10 @@ void check_fan(double cx, double cy, const std::vector<std::pair<double, double>
     const auto [x0, y0] = rim[k];
     const auto [x1, y1] = rim[(k + 1) % rim.size()];
     const Rgba one{1, 0, 0, 0};
-    if (k % 2 == 0) fan.push_back(triangle(vertex(cx, cy, one), vertex(x0, y0, one), vertex(x1, y1, one)));
-    else fan.push_back(triangle(vertex(x1, y1, one), vertex(x0, y0, one), vertex(cx, cy, one)));
+    if (k % 2 == 0)
+      fan.push_back(triangle(vertex(cx, cy, one), vertex(x0, y0, one), vertex(x1, y1, one)));
+    else
+      fan.push_back(triangle(vertex(x1, y1, one), vertex(x0, y0, one), vertex(cx, cy, one)));
   }
   f.draw(additive_state(), fan);
   int inside = 0;
@@ -227,9 +231,8 @@ TEST(ArmRasterizerFillRule, FanAroundPixelCentreWithEdgesThroughCentres) {
   // Horizontal, vertical and diagonal edges through pixel centres, the centre
   // of the fan on a pixel centre.
   const double cx = 30.5, cy = 22.5;
-  std::vector<std::pair<double, double>> rim = {{cx + 12, cy},      {cx + 9, cy + 9},  {cx, cy + 12},
-                                                {cx - 9, cy + 9},   {cx - 12, cy},     {cx - 9, cy - 9},
-                                                {cx, cy - 12},      {cx + 9, cy - 9}};
+  std::vector<std::pair<double, double>> rim = {{cx + 12, cy}, {cx + 9, cy + 9}, {cx, cy + 12}, {cx - 9, cy + 9},
+                                                {cx - 12, cy}, {cx - 9, cy - 9}, {cx, cy - 12}, {cx + 9, cy - 9}};
   check_fan(cx, cy, rim);
 }
 
@@ -238,7 +241,8 @@ TEST(ArmRasterizerFillRule, FanAroundSubpixelCentre) {
   std::vector<std::pair<double, double>> rim;
   for (int k = 0; k < 13; ++k) {
     const double angle = 2 * 3.14159265358979 * k / 13;
-    rim.emplace_back(std::round((cx + 17 * std::cos(angle)) * 16) / 16, std::round((cy + 15 * std::sin(angle)) * 16) / 16);
+    rim.emplace_back(std::round((cx + 17 * std::cos(angle)) * 16) / 16,
+                     std::round((cy + 15 * std::sin(angle)) * 16) / 16);
   }
   check_fan(cx, cy, rim);
 }
@@ -286,8 +290,12 @@ void check_grid(bool jitter) {
   EXPECT_TRUE(f.guards_intact());
 }
 
-TEST(ArmRasterizerFillRule, GridOfQuadsOnPixelCentres) { check_grid(false); }
-TEST(ArmRasterizerFillRule, JitteredGridOfQuads) { check_grid(true); }
+TEST(ArmRasterizerFillRule, GridOfQuadsOnPixelCentres) {
+  check_grid(false);
+}
+TEST(ArmRasterizerFillRule, JitteredGridOfQuads) {
+  check_grid(true);
+}
 
 TEST(ArmRasterizerFillRule, CoverageMatchesEdgeFunctionReference) {
   Frame f(64, 48, ColorFormat::rgba8888);
@@ -307,9 +315,8 @@ TEST(ArmRasterizerFillRule, CoverageMatchesEdgeFunctionReference) {
     gl::ClearRequest clear;
     clear.color = true;
     f.rasterizer->clear(clear);
-    const gl::Triangle t =
-        triangle(vertex(coordinate(xs), coordinate(ys)), vertex(coordinate(xs), coordinate(ys)),
-                 vertex(coordinate(xs), coordinate(ys), Rgba{255, 255, 255, 255}));
+    const gl::Triangle t = triangle(vertex(coordinate(xs), coordinate(ys)), vertex(coordinate(xs), coordinate(ys)),
+                                    vertex(coordinate(xs), coordinate(ys), Rgba{255, 255, 255, 255}));
     f.draw(state, {t});
     int mismatches = 0;
     for (int y = 0; y < 48; ++y)
@@ -369,8 +376,7 @@ TEST(ArmRasterizerDepth, AllCompareFunctionsAgainstClearedDepth) {
       for (auto& v : t.v) v.z = z24;
       f.draw(state, {t});
       const uint32_t in = z24 >> 8, stored = cleared >> 8;
-      const bool pass[8] = {false,         in < stored,   in == stored, in <= stored,
-                            in > stored,   in != stored,  in >= stored, true};
+      const bool pass[8] = {false, in<stored, in == stored, in <= stored, in> stored, in != stored, in >= stored, true};
       for (int y = 0; y < 12; ++y) {
         for (int x = 0; x < 16; ++x) {
           EXPECT_EQ(f.color(x, y).r == 255, pass[func]) << "func " << func << " z " << z24;
@@ -444,8 +450,8 @@ TEST(ArmRasterizerShading, FlatUsesTheProvokingVertex) {
   Frame f(64, 48, ColorFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
-  const gl::Triangle t = triangle(vertex(2, 2, {255, 0, 0, 255}), vertex(60, 5, {0, 255, 0, 255}),
-                                  vertex(30, 45, {1, 2, 3, 4}));
+  const gl::Triangle t =
+      triangle(vertex(2, 2, {255, 0, 0, 255}), vertex(60, 5, {0, 255, 0, 255}), vertex(30, 45, {1, 2, 3, 4}));
   f.draw(state, {t});
   for (int y = 0; y < 48; ++y) {
     for (int x = 0; x < 64; ++x) {
@@ -471,7 +477,9 @@ std::vector<gl::Triangle> textured_square(double smax, Rgba c, double x0 = 8) {
   return {triangle(a, b, d), triangle(a, d, e)};
 }
 
-int div255_round(int x) { return int(std::lround(x / 255.0)); }
+int div255_round(int x) {
+  return int(std::lround(x / 255.0));
+}
 
 void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
   Frame f(48, 48, ColorFormat::rgba8888);
@@ -495,7 +503,7 @@ void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
         i = std::min(i, 1);
         j = std::min(j, 1);
       }
-      const Rgba t = TEXELS_2X2[size_t(j * 2 + i)];
+      const Rgba t = TEXELS_2X2[size_t(j) * 2 + size_t(i)];
       Rgba expected{};
       switch (env) {
         case gl::TexEnv::modulate:
@@ -518,11 +526,21 @@ void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
   EXPECT_TRUE(f.guards_intact());
 }
 
-TEST(ArmRasterizerTexture, NearestReplace) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::replace); }
-TEST(ArmRasterizerTexture, NearestRepeat) { check_texture(gl::TexWrap::repeat, 2, gl::TexEnv::replace); }
-TEST(ArmRasterizerTexture, NearestClampToEdge) { check_texture(gl::TexWrap::clamp_to_edge, 2, gl::TexEnv::replace); }
-TEST(ArmRasterizerTexture, Modulate) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::modulate); }
-TEST(ArmRasterizerTexture, Decal) { check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::decal); }
+TEST(ArmRasterizerTexture, NearestReplace) {
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::replace);
+}
+TEST(ArmRasterizerTexture, NearestRepeat) {
+  check_texture(gl::TexWrap::repeat, 2, gl::TexEnv::replace);
+}
+TEST(ArmRasterizerTexture, NearestClampToEdge) {
+  check_texture(gl::TexWrap::clamp_to_edge, 2, gl::TexEnv::replace);
+}
+TEST(ArmRasterizerTexture, Modulate) {
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::modulate);
+}
+TEST(ArmRasterizerTexture, Decal) {
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::decal);
+}
 
 TEST(ArmRasterizerTexture, BilinearAtTheTextureCentreAveragesFourTexels) {
   Frame f(48, 48, ColorFormat::rgba8888);
@@ -596,7 +614,9 @@ TEST(ArmRasterizerFragment, BlendSrcAlphaOneMinusSrcAlpha) {
   const Rgba src{100, 200, 0, 128};
   f.draw(state, {triangle(vertex(-10, -10, src), vertex(60, -10, src), vertex(-10, 60, src))});
   // result = round(S * As / 255) + round(D * (255 - As) / 255), clamped.
-  auto expect = [&](int s, int d, int as) { return std::min(255, div255_round(s * as) + div255_round(d * (255 - as))); };
+  auto expect = [&](int s, int d, int as) {
+    return std::min(255, div255_round(s * as) + div255_round(d * (255 - as)));
+  };
   const Rgba c = f.color(5, 5);
   EXPECT_EQ(c.r, expect(src.r, dst[0], src.a));
   EXPECT_EQ(c.g, expect(src.g, dst[1], src.a));
@@ -634,8 +654,8 @@ TEST(ArmRasterizerFragment, AlphaTestAndStencil) {
   state.alpha_test = true;
   state.alpha_func = gl::CompareFunc::greater;
   state.alpha_ref = 128;
-  const gl::Triangle small = triangle(vertex(4, 4, {255, 0, 0, 100}), vertex(20, 4, {255, 0, 0, 100}),
-                                      vertex(4, 20, {255, 0, 0, 100}));
+  const gl::Triangle small =
+      triangle(vertex(4, 4, {255, 0, 0, 100}), vertex(20, 4, {255, 0, 0, 100}), vertex(4, 20, {255, 0, 0, 100}));
   f.draw(state, {small});
   EXPECT_EQ(f.color(6, 6).r, 0);  // alpha 100 is not > 128
 
@@ -748,13 +768,13 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
     state.texture = true;
     state.tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
     const Rgba c{1, 1, 1, 1};
-    const gl::Triangle huge = triangle(vertex(-100000, -50000, c, 0.1, -1000, 3, 0.5f),
-                                       vertex(200000, 30, c, 0.9, 5000, -7, 1.0f),
-                                       vertex(30, 150000, c, 0.5, 2, 9000, 0.01f));
+    const gl::Triangle huge =
+        triangle(vertex(-100000, -50000, c, 0.1, -1000, 3, 0.5f), vertex(200000, 30, c, 0.9, 5000, -7, 1.0f),
+                 vertex(30, 150000, c, 0.5, 2, 9000, 0.01f));
     std::vector<gl::Triangle> tris = {
         huge,
-        triangle(vertex(5, 5, c), vertex(5, 5, c), vertex(5, 5, c)),        // a point
-        triangle(vertex(1, 1, c), vertex(20, 20, c), vertex(39, 39, c)),    // collinear
+        triangle(vertex(5, 5, c), vertex(5, 5, c), vertex(5, 5, c)),           // a point
+        triangle(vertex(1, 1, c), vertex(20, 20, c), vertex(39, 39, c)),       // collinear
         triangle(vertex(-5, 7.5, c), vertex(50, 7.5, c), vertex(20, 7.5, c)),  // zero height
         triangle(vertex(-50, 10, c), vertex(-10, 10, c), vertex(-30, 25, c)),  // left of the screen
         triangle(vertex(10, 31, c), vertex(30, 31, c), vertex(20, 60, c)),     // above the screen
@@ -775,8 +795,8 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
 
 TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
   Frame f565(64, 48, ColorFormat::rgb565), f8888(64, 48, ColorFormat::rgba8888);
-  const gl::Triangle t = triangle(vertex(3, 3, {255, 0, 17, 255}), vertex(60, 10, {0, 255, 99, 255}),
-                                  vertex(20, 45, {123, 45, 255, 255}));
+  const gl::Triangle t =
+      triangle(vertex(3, 3, {255, 0, 17, 255}), vertex(60, 10, {0, 255, 99, 255}), vertex(20, 45, {123, 45, 255, 255}));
   f565.draw(gl::RasterState{}, {t});
   f8888.draw(gl::RasterState{}, {t});
   int drawn = 0;
@@ -794,7 +814,7 @@ TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
   for (int y = 0; y < 48; ++y) {
     for (int x = 0; x < 64; ++x) {
       const int v = f565.packed565(x, y), r5 = v >> 11, g6 = (v >> 5) & 63, b5 = v & 31;
-      const uint8_t* p = &rgba[size_t((y * 64 + x) * 4)];
+      const uint8_t* p = &rgba[(size_t(y) * 64 + size_t(x)) * 4];
       EXPECT_EQ(p[0], (r5 << 3) | (r5 >> 2));
       EXPECT_EQ(p[1], (g6 << 2) | (g6 >> 4));
       EXPECT_EQ(p[2], (b5 << 3) | (b5 >> 2));
@@ -811,9 +831,9 @@ TEST(ArmRasterizerFormats, ReadPixelsOutsideTheScreenReadsZero) {
   f.rasterizer->clear(clear);
   std::vector<uint8_t> rgba(4 * 4 * 4, 0xee);
   f.rasterizer->read_pixels(6, 6, 4, 4, rgba.data());
-  EXPECT_EQ(rgba[0], 9);                    // (6, 6)
-  EXPECT_EQ(rgba[(0 * 4 + 2) * 4], 0);      // (8, 6) is outside
-  EXPECT_EQ(rgba[(2 * 4 + 0) * 4], 0);      // (6, 8) is outside
+  EXPECT_EQ(rgba[0], 9);                // (6, 6)
+  EXPECT_EQ(rgba[(0 * 4 + 2) * 4], 0);  // (8, 6) is outside
+  EXPECT_EQ(rgba[(2 * 4 + 0) * 4], 0);  // (6, 8) is outside
 }
 
 TEST(ArmRasterizerFormats, DoubleBufferingMovesDrawing) {
