@@ -1,0 +1,86 @@
+// Buffer objects (vertex and index data).
+#include "gl/context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context_internal.h"
+#include "gl/runtime.h"
+
+namespace tessera::gl {
+
+void Context::gen_buffers(GLsizei n, GLuint* names) {
+  charge_call();
+  if (n < 0) return error(GL_INVALID_VALUE);
+  for (GLsizei i = 0; i < n; ++i) {
+    while (m_buffers.count(m_next_buffer)) ++m_next_buffer;
+    names[i] = m_next_buffer;
+    m_buffers[m_next_buffer++] = BufferObject{};
+  }
+}
+
+void Context::delete_buffers(GLsizei n, const GLuint* names) {
+  charge_call();
+  if (n < 0) return error(GL_INVALID_VALUE);
+  for (GLsizei i = 0; i < n; ++i) {
+    m_buffers.erase(names[i]);
+    if (m_array_buffer == names[i]) m_array_buffer = 0;
+    if (m_element_buffer == names[i]) m_element_buffer = 0;
+  }
+}
+
+void Context::bind_buffer(GLenum target, GLuint name) {
+  charge_call();
+  if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
+  if (name != 0 && !m_buffers.count(name)) m_buffers[name] = BufferObject{};
+  (target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer) = name;
+}
+
+bool Context::is_buffer(GLuint name) {
+  charge_call();
+  return name != 0 && m_buffers.count(name) != 0;
+}
+
+void Context::buffer_data(GLenum target, GLsizeiptr size, const void* data, GLenum usage) {
+  charge_call();
+  if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
+  if (usage != GL_STATIC_DRAW && usage != GL_DYNAMIC_DRAW) return error(GL_INVALID_ENUM);
+  if (size < 0) return error(GL_INVALID_VALUE);
+  const GLuint name = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  if (name == 0) return error(GL_INVALID_OPERATION);
+  BufferObject& b = m_buffers[name];
+  b.usage = usage;
+  b.data.assign(static_cast<size_t>(size), 0);
+  if (data) std::memcpy(b.data.data(), data, static_cast<size_t>(size));
+  m_host.compute(Op::alu, static_cast<uint64_t>(size) / 4);
+}
+
+void Context::buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, const void* data) {
+  charge_call();
+  if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
+  const GLuint name = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  if (name == 0) return error(GL_INVALID_OPERATION);
+  BufferObject& b = m_buffers[name];
+  if (offset < 0 || size < 0 || static_cast<size_t>(offset + size) > b.data.size()) return error(GL_INVALID_VALUE);
+  if (data) std::memcpy(b.data.data() + offset, data, static_cast<size_t>(size));
+}
+
+void Context::get_buffer_parameter(GLenum target, GLenum name, GLint* value) {
+  charge_call();
+  if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
+  const GLuint buffer = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  if (buffer == 0) return error(GL_INVALID_OPERATION);
+  const BufferObject& b = m_buffers[buffer];
+  switch (name) {
+    case GL_BUFFER_SIZE: *value = static_cast<GLint>(b.data.size()); break;
+    case GL_BUFFER_USAGE: *value = static_cast<GLint>(b.usage); break;
+    default: error(GL_INVALID_ENUM);
+  }
+}
+
+}  // namespace tessera::gl

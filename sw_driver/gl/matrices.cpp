@@ -1,0 +1,73 @@
+// The matrix stacks: modelview, projection and texture.
+#include "gl/context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context_internal.h"
+#include "gl/runtime.h"
+
+namespace tessera::gl {
+
+void Context::matrix_mode(GLenum mode) {
+  charge_call();
+  if (mode != GL_MODELVIEW && mode != GL_PROJECTION && mode != GL_TEXTURE) return error(GL_INVALID_ENUM);
+  m_matrix_mode = mode;
+}
+
+glm::mat4& Context::current_matrix() {
+  switch (m_matrix_mode) {
+    case GL_PROJECTION: return m_projection.back();
+    case GL_TEXTURE: return m_texture_matrix.back();
+    default: return m_modelview.back();
+  }
+}
+
+void Context::load_matrix(const glm::mat4& m) {
+  charge_call(16);
+  current_matrix() = m;
+}
+
+void Context::mult_matrix(const glm::mat4& m) {
+  charge_call();
+  charge({48, 64, 0, 0, 0, 0, 0}, 1);
+  current_matrix() = current_matrix() * m;
+}
+
+void Context::push_matrix() {
+  charge_call(16);
+  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
+                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                                               : m_modelview;
+  const size_t limit = m_matrix_mode == GL_PROJECTION ? MAX_PROJECTION_DEPTH
+                       : m_matrix_mode == GL_TEXTURE  ? MAX_TEXTURE_DEPTH
+                                                      : MAX_MODELVIEW_DEPTH;
+  if (stack.size() >= limit) return error(GL_STACK_OVERFLOW);
+  stack.push_back(stack.back());
+}
+
+void Context::pop_matrix() {
+  charge_call();
+  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
+                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                                               : m_modelview;
+  if (stack.size() <= 1) return error(GL_STACK_UNDERFLOW);
+  stack.pop_back();
+}
+
+void Context::frustum(float l, float r, float b, float t, float n, float f) {
+  if (!(n > 0) || !(f > 0) || l == r || b == t || n == f) return charge_call(), error(GL_INVALID_VALUE);
+  mult_matrix(glm::frustum(l, r, b, t, n, f));
+}
+
+void Context::ortho(float l, float r, float b, float t, float n, float f) {
+  if (l == r || b == t || n == f) return charge_call(), error(GL_INVALID_VALUE);
+  mult_matrix(glm::ortho(l, r, b, t, n, f));
+}
+
+}  // namespace tessera::gl

@@ -1,0 +1,283 @@
+// glGet*, glGetString and glGetPointerv.
+#include "gl/context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context_internal.h"
+#include "gl/runtime.h"
+
+namespace tessera::gl {
+
+int Context::query_count(GLenum name) {
+  switch (name) {
+    case GL_COLOR_CLEAR_VALUE:
+    case GL_VIEWPORT:
+    case GL_SCISSOR_BOX:
+    case GL_COLOR_WRITEMASK:
+    case GL_CURRENT_COLOR:
+    case GL_CURRENT_TEXTURE_COORDS:
+    case GL_LIGHT_MODEL_AMBIENT:
+    case GL_FOG_COLOR: return 4;
+    case GL_CURRENT_NORMAL: return 3;
+    case GL_DEPTH_RANGE:
+    case GL_MAX_VIEWPORT_DIMS:
+    case GL_ALIASED_POINT_SIZE_RANGE:
+    case GL_ALIASED_LINE_WIDTH_RANGE:
+    case GL_SMOOTH_POINT_SIZE_RANGE:
+    case GL_SMOOTH_LINE_WIDTH_RANGE:
+    case GL_POLYGON_OFFSET_FACTOR: return name == GL_POLYGON_OFFSET_FACTOR ? 1 : 2;
+    case GL_MODELVIEW_MATRIX:
+    case GL_PROJECTION_MATRIX:
+    case GL_TEXTURE_MATRIX: return 16;
+    case GL_DEPTH_CLEAR_VALUE:
+    case GL_STENCIL_CLEAR_VALUE:
+    case GL_DEPTH_FUNC:
+    case GL_DEPTH_WRITEMASK:
+    case GL_ALPHA_TEST_FUNC:
+    case GL_ALPHA_TEST_REF:
+    case GL_STENCIL_FUNC:
+    case GL_STENCIL_REF:
+    case GL_STENCIL_VALUE_MASK:
+    case GL_STENCIL_WRITEMASK:
+    case GL_STENCIL_FAIL:
+    case GL_STENCIL_PASS_DEPTH_FAIL:
+    case GL_STENCIL_PASS_DEPTH_PASS:
+    case GL_BLEND_SRC:
+    case GL_BLEND_DST:
+    case GL_LOGIC_OP_MODE:
+    case GL_SHADE_MODEL:
+    case GL_CULL_FACE_MODE:
+    case GL_FRONT_FACE:
+    case GL_MATRIX_MODE:
+    case GL_MODELVIEW_STACK_DEPTH:
+    case GL_PROJECTION_STACK_DEPTH:
+    case GL_TEXTURE_STACK_DEPTH:
+    case GL_MAX_MODELVIEW_STACK_DEPTH:
+    case GL_MAX_PROJECTION_STACK_DEPTH:
+    case GL_MAX_TEXTURE_STACK_DEPTH:
+    case GL_MAX_LIGHTS:
+    case GL_MAX_TEXTURE_SIZE:
+    case GL_MAX_TEXTURE_UNITS:
+    case GL_MAX_CLIP_PLANES:
+    case GL_TEXTURE_BINDING_2D:
+    case GL_ARRAY_BUFFER_BINDING:
+    case GL_ELEMENT_ARRAY_BUFFER_BINDING:
+    case GL_RED_BITS:
+    case GL_GREEN_BITS:
+    case GL_BLUE_BITS:
+    case GL_ALPHA_BITS:
+    case GL_DEPTH_BITS:
+    case GL_STENCIL_BITS:
+    case GL_SUBPIXEL_BITS:
+    case GL_POINT_SIZE:
+    case GL_LINE_WIDTH:
+    case GL_PACK_ALIGNMENT:
+    case GL_UNPACK_ALIGNMENT:
+    case GL_ACTIVE_TEXTURE:
+    case GL_CLIENT_ACTIVE_TEXTURE:
+    case GL_VERTEX_ARRAY_SIZE:
+    case GL_VERTEX_ARRAY_TYPE:
+    case GL_VERTEX_ARRAY_STRIDE:
+    case GL_COLOR_ARRAY_SIZE:
+    case GL_COLOR_ARRAY_TYPE:
+    case GL_COLOR_ARRAY_STRIDE:
+    case GL_NORMAL_ARRAY_TYPE:
+    case GL_NORMAL_ARRAY_STRIDE:
+    case GL_TEXTURE_COORD_ARRAY_SIZE:
+    case GL_TEXTURE_COORD_ARRAY_TYPE:
+    case GL_TEXTURE_COORD_ARRAY_STRIDE:
+    case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES:
+    case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES:
+    case GL_NUM_COMPRESSED_TEXTURE_FORMATS:
+    case GL_FOG_MODE:
+    case GL_FOG_DENSITY:
+    case GL_FOG_START:
+    case GL_FOG_END:
+    case GL_SAMPLE_BUFFERS:
+    case GL_SAMPLES:
+    case GL_SAMPLE_COVERAGE_VALUE:
+    case GL_SAMPLE_COVERAGE_INVERT:
+    case GL_POLYGON_OFFSET_UNITS:
+    case GL_LIGHT_MODEL_TWO_SIDE:
+    case GL_PERSPECTIVE_CORRECTION_HINT:
+    case GL_POINT_SMOOTH_HINT:
+    case GL_LINE_SMOOTH_HINT:
+    case GL_FOG_HINT:
+    case GL_GENERATE_MIPMAP_HINT: return 1;
+    default: return 0;
+  }
+}
+
+void Context::get_floats(GLenum name, float* v) {
+  charge_call();
+  auto mat = [&](const glm::mat4& m) { std::memcpy(v, glm::value_ptr(m), 16 * sizeof(float)); };
+  auto hint_value = [&](GLenum target) {
+    auto it = m_hints.find(target);
+    return static_cast<float>(it == m_hints.end() ? GL_DONT_CARE : it->second);
+  };
+  const bool rgb565 = true;
+  switch (name) {
+    case GL_COLOR_CLEAR_VALUE: std::copy(m_clear_color, m_clear_color + 4, v); break;
+    case GL_VIEWPORT:
+      v[0] = m_viewport.x, v[1] = m_viewport.y, v[2] = m_viewport.width, v[3] = m_viewport.height;
+      break;
+    case GL_SCISSOR_BOX:
+      v[0] = m_raster.scissor_x, v[1] = m_raster.scissor_y, v[2] = m_raster.scissor_width,
+      v[3] = m_raster.scissor_height;
+      break;
+    case GL_COLOR_WRITEMASK:
+      for (int i = 0; i < 4; ++i) v[i] = m_raster.color_mask[i];
+      break;
+    case GL_CURRENT_COLOR:
+      for (int i = 0; i < 4; ++i) v[i] = m_color[i];
+      break;
+    case GL_CURRENT_TEXTURE_COORDS:
+      for (int i = 0; i < 4; ++i) v[i] = m_texcoord[i];
+      break;
+    case GL_CURRENT_NORMAL:
+      for (int i = 0; i < 3; ++i) v[i] = m_normal[i];
+      break;
+    case GL_LIGHT_MODEL_AMBIENT:
+      for (int i = 0; i < 4; ++i) v[i] = m_lighting_model.ambient[i];
+      break;
+    case GL_LIGHT_MODEL_TWO_SIDE: v[0] = m_two_side; break;
+    case GL_FOG_COLOR: std::copy(m_fog_color, m_fog_color + 4, v); break;
+    case GL_FOG_MODE: v[0] = static_cast<float>(m_fog_mode); break;
+    case GL_FOG_DENSITY: v[0] = m_fog_density; break;
+    case GL_FOG_START: v[0] = m_fog_start; break;
+    case GL_FOG_END: v[0] = m_fog_end; break;
+    case GL_DEPTH_RANGE: v[0] = m_viewport.near_depth, v[1] = m_viewport.far_depth; break;
+    case GL_MAX_VIEWPORT_DIMS: v[0] = v[1] = 512; break;
+    case GL_ALIASED_POINT_SIZE_RANGE:
+    case GL_SMOOTH_POINT_SIZE_RANGE:
+    case GL_ALIASED_LINE_WIDTH_RANGE:
+    case GL_SMOOTH_LINE_WIDTH_RANGE: v[0] = 1, v[1] = 64; break;
+    case GL_MODELVIEW_MATRIX: mat(m_modelview.back()); break;
+    case GL_PROJECTION_MATRIX: mat(m_projection.back()); break;
+    case GL_TEXTURE_MATRIX: mat(m_texture_matrix.back()); break;
+    case GL_DEPTH_CLEAR_VALUE: v[0] = m_clear_depth; break;
+    case GL_STENCIL_CLEAR_VALUE: v[0] = static_cast<float>(m_clear_stencil); break;
+    case GL_DEPTH_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.depth_func)); break;
+    case GL_DEPTH_WRITEMASK: v[0] = m_raster.depth_write; break;
+    case GL_ALPHA_TEST_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.alpha_func)); break;
+    case GL_ALPHA_TEST_REF: v[0] = m_alpha_ref; break;
+    case GL_STENCIL_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.stencil_func)); break;
+    case GL_STENCIL_REF: v[0] = static_cast<float>(m_stencil_ref); break;
+    case GL_STENCIL_VALUE_MASK: v[0] = m_raster.stencil_value_mask; break;
+    case GL_STENCIL_WRITEMASK: v[0] = m_raster.stencil_write_mask; break;
+    case GL_SHADE_MODEL: v[0] = static_cast<float>(m_shade_model); break;
+    case GL_CULL_FACE_MODE: v[0] = static_cast<float>(m_cull_mode); break;
+    case GL_FRONT_FACE: v[0] = static_cast<float>(m_front_face); break;
+    case GL_MATRIX_MODE: v[0] = static_cast<float>(m_matrix_mode); break;
+    case GL_MODELVIEW_STACK_DEPTH: v[0] = static_cast<float>(m_modelview.size()); break;
+    case GL_PROJECTION_STACK_DEPTH: v[0] = static_cast<float>(m_projection.size()); break;
+    case GL_TEXTURE_STACK_DEPTH: v[0] = static_cast<float>(m_texture_matrix.size()); break;
+    case GL_MAX_MODELVIEW_STACK_DEPTH: v[0] = MAX_MODELVIEW_DEPTH; break;
+    case GL_MAX_PROJECTION_STACK_DEPTH: v[0] = MAX_PROJECTION_DEPTH; break;
+    case GL_MAX_TEXTURE_STACK_DEPTH: v[0] = MAX_TEXTURE_DEPTH; break;
+    case GL_MAX_LIGHTS: v[0] = MAX_LIGHTS; break;
+    case GL_MAX_TEXTURE_SIZE: v[0] = MAX_TEXTURE_SIZE; break;
+    case GL_MAX_TEXTURE_UNITS: v[0] = 2; break;
+    case GL_MAX_CLIP_PLANES: v[0] = 6; break;
+    case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(m_bound_texture); break;
+    case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
+    case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
+    case GL_RED_BITS:
+    case GL_BLUE_BITS: v[0] = rgb565 ? 5 : 8; break;
+    case GL_GREEN_BITS: v[0] = rgb565 ? 6 : 8; break;
+    case GL_ALPHA_BITS: v[0] = 0; break;
+    case GL_DEPTH_BITS: v[0] = 16; break;
+    case GL_STENCIL_BITS: v[0] = 8; break;
+    case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
+    case GL_POINT_SIZE: v[0] = m_point_size; break;
+    case GL_LINE_WIDTH: v[0] = m_line_width; break;
+    case GL_PACK_ALIGNMENT: v[0] = static_cast<float>(m_pack_alignment); break;
+    case GL_UNPACK_ALIGNMENT: v[0] = static_cast<float>(m_unpack_alignment); break;
+    case GL_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_active_texture); break;
+    case GL_CLIENT_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_client_active_texture); break;
+    case GL_VERTEX_ARRAY_SIZE: v[0] = static_cast<float>(m_vertex_array.size); break;
+    case GL_VERTEX_ARRAY_TYPE: v[0] = static_cast<float>(m_vertex_array.type); break;
+    case GL_VERTEX_ARRAY_STRIDE: v[0] = static_cast<float>(m_vertex_array.stride); break;
+    case GL_COLOR_ARRAY_SIZE: v[0] = static_cast<float>(m_color_array.size); break;
+    case GL_COLOR_ARRAY_TYPE: v[0] = static_cast<float>(m_color_array.type); break;
+    case GL_COLOR_ARRAY_STRIDE: v[0] = static_cast<float>(m_color_array.stride); break;
+    case GL_NORMAL_ARRAY_TYPE: v[0] = static_cast<float>(m_normal_array.type); break;
+    case GL_NORMAL_ARRAY_STRIDE: v[0] = static_cast<float>(m_normal_array.stride); break;
+    case GL_TEXTURE_COORD_ARRAY_SIZE: v[0] = static_cast<float>(m_texcoord_array.size); break;
+    case GL_TEXTURE_COORD_ARRAY_TYPE: v[0] = static_cast<float>(m_texcoord_array.type); break;
+    case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(m_texcoord_array.stride); break;
+    case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES: v[0] = GL_UNSIGNED_BYTE; break;
+    case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES: v[0] = GL_RGBA; break;
+    case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = 0; break;
+    case GL_SAMPLE_BUFFERS: v[0] = 0; break;
+    case GL_SAMPLES: v[0] = 0; break;
+    case GL_SAMPLE_COVERAGE_VALUE: v[0] = m_sample_coverage_value; break;
+    case GL_SAMPLE_COVERAGE_INVERT: v[0] = m_sample_coverage_invert; break;
+    case GL_POLYGON_OFFSET_FACTOR: v[0] = m_polygon_offset[0]; break;
+    case GL_POLYGON_OFFSET_UNITS: v[0] = m_polygon_offset[1]; break;
+    case GL_BLEND_SRC:
+    case GL_BLEND_DST: {
+      static const GLenum factors[] = {GL_ZERO,
+                                       GL_ONE,
+                                       GL_SRC_COLOR,
+                                       GL_ONE_MINUS_SRC_COLOR,
+                                       GL_DST_COLOR,
+                                       GL_ONE_MINUS_DST_COLOR,
+                                       GL_SRC_ALPHA,
+                                       GL_ONE_MINUS_SRC_ALPHA,
+                                       GL_DST_ALPHA,
+                                       GL_ONE_MINUS_DST_ALPHA,
+                                       GL_SRC_ALPHA_SATURATE};
+      v[0] =
+          static_cast<float>(factors[static_cast<int>(name == GL_BLEND_SRC ? m_raster.blend_src : m_raster.blend_dst)]);
+      break;
+    }
+    case GL_LOGIC_OP_MODE: v[0] = static_cast<float>(GL_CLEAR + m_raster.logic_op_code); break;
+    case GL_STENCIL_FAIL:
+    case GL_STENCIL_PASS_DEPTH_FAIL:
+    case GL_STENCIL_PASS_DEPTH_PASS: {
+      static const GLenum ops[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT};
+      const StencilOp op = name == GL_STENCIL_FAIL              ? m_raster.stencil_fail
+                           : name == GL_STENCIL_PASS_DEPTH_FAIL ? m_raster.depth_fail
+                                                                : m_raster.depth_pass;
+      v[0] = static_cast<float>(ops[static_cast<int>(op)]);
+      break;
+    }
+    case GL_PERSPECTIVE_CORRECTION_HINT:
+    case GL_POINT_SMOOTH_HINT:
+    case GL_LINE_SMOOTH_HINT:
+    case GL_FOG_HINT:
+    case GL_GENERATE_MIPMAP_HINT: v[0] = hint_value(name); break;
+    default: error(GL_INVALID_ENUM);
+  }
+}
+
+const GLubyte* Context::get_string(GLenum name) {
+  charge_call();
+  switch (name) {
+    case GL_VENDOR: return reinterpret_cast<const GLubyte*>("tessera");
+    case GL_RENDERER: return reinterpret_cast<const GLubyte*>(m_renderer->name());
+    case GL_VERSION: return reinterpret_cast<const GLubyte*>("OpenGL ES-CM 1.1");
+    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("");
+    default: error(GL_INVALID_ENUM); return nullptr;
+  }
+}
+
+void Context::get_pointer(GLenum name, void** value) {
+  charge_call();
+  switch (name) {
+    case GL_VERTEX_ARRAY_POINTER: *value = const_cast<void*>(m_vertex_array.pointer); break;
+    case GL_COLOR_ARRAY_POINTER: *value = const_cast<void*>(m_color_array.pointer); break;
+    case GL_NORMAL_ARRAY_POINTER: *value = const_cast<void*>(m_normal_array.pointer); break;
+    case GL_TEXTURE_COORD_ARRAY_POINTER: *value = const_cast<void*>(m_texcoord_array.pointer); break;
+    default: error(GL_INVALID_ENUM);
+  }
+}
+
+}  // namespace tessera::gl

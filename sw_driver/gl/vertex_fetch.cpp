@@ -1,0 +1,114 @@
+// Vertex fetch and transform: reading the arrays, transforming and lighting
+// each vertex, and what that costs the ARM in soft-float.
+#include "gl/context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/context_internal.h"
+#include "gl/runtime.h"
+
+namespace tessera::gl {
+
+const uint8_t* Context::array_element(const ArrayPointer& array, uint32_t index, size_t element_size) {
+  const size_t stride = array.stride ? static_cast<size_t>(array.stride) : element_size;
+  const size_t offset = stride * index;
+  if (array.buffer) {
+    auto it = m_buffers.find(array.buffer);
+    const size_t start = reinterpret_cast<size_t>(array.pointer);
+    if (it == m_buffers.end() || start + offset + element_size > it->second.data.size()) return nullptr;
+    return it->second.data.data() + start + offset;
+  }
+  if (!array.pointer) return nullptr;
+  return static_cast<const uint8_t*>(array.pointer) + offset;
+}
+
+glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults) {
+  const size_t component = type_size(array.type);
+  const uint8_t* p = array_element(array, index, component * static_cast<size_t>(array.size));
+  glm::vec4 value = defaults;
+  if (!p) return glm::vec4(std::numeric_limits<float>::quiet_NaN());
+  for (int c = 0; c < array.size; ++c) {
+    const uint8_t* q = p + c * component;
+    float v = 0;
+    switch (array.type) {
+      case GL_FLOAT: std::memcpy(&v, q, 4); break;
+      case GL_FIXED: {
+        int32_t x;
+        std::memcpy(&x, q, 4);
+        v = static_cast<float>(x) / 65536.0f;
+        break;
+      }
+      case GL_SHORT: {
+        int16_t x;
+        std::memcpy(&x, q, 2);
+        v = x;
+        break;
+      }
+      case GL_BYTE: v = static_cast<int8_t>(*q); break;
+      case GL_UNSIGNED_BYTE: v = *q / 255.0f; break;  // colours: normalised
+      default: break;
+    }
+    value[c] = v;
+  }
+  return value;
+}
+
+bool Context::fetch_and_transform(const std::vector<uint32_t>& indices, std::vector<Vertex>& out) {
+  out.resize(indices.size());
+  const glm::mat4& modelview = m_modelview.back();
+  const glm::mat4& projection = m_projection.back();
+  const glm::mat4& texture = m_texture_matrix.back();
+  const bool texturing = m_texture_2d && m_textures.count(m_bound_texture) && m_textures[m_bound_texture].defined;
+  glm::mat3 normal_matrix(1);
+  if (m_lighting) normal_matrix = glm::transpose(glm::inverse(glm::mat3(modelview)));
+  unsigned lights = 0;
+  for (const Light& l : m_lighting_model.lights) lights += l.enabled;
+  Material material = m_front_material;
+  for (size_t i = 0; i < indices.size(); ++i) {
+    const uint32_t index = indices[i];
+    Vertex& v = out[i];
+    glm::vec4 position = read_attribute(m_vertex_array, index, {0, 0, 0, 1});
+    glm::vec4 color = m_color_array.enabled ? read_attribute(m_color_array, index, {0, 0, 0, 1}) : m_color;
+    v.eye = modelview * position;
+    v.clip.position = projection * v.eye;
+    if (m_lighting) {
+      glm::vec3 n = m_normal_array.enabled ? glm::vec3(read_attribute(m_normal_array, index, {0, 0, 1, 0})) : m_normal;
+      n = normal_matrix * n;
+      if (m_normalize || m_rescale_normal) {
+        const float length = glm::length(n);
+        if (length > 0) n /= length;
+      }
+      if (m_color_material) material.ambient = material.diffuse = color;
+      v.clip.color = light_vertex(m_lighting_model, material, v.eye, n);
+    } else {
+      v.clip.color = glm::clamp(color, glm::vec4(0), glm::vec4(1));
+    }
+    if (texturing) {
+      glm::vec4 tc = m_texcoord_array.enabled ? read_attribute(m_texcoord_array, index, {0, 0, 0, 1}) : m_texcoord;
+      tc = texture * tc;
+      v.clip.tex = tc.w != 0 ? glm::vec2(tc) / tc.w : glm::vec2(tc);
+    } else {
+      v.clip.tex = {0, 0};
+    }
+    const glm::vec4& p = v.clip.position;
+    v.valid = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w) &&
+              std::isfinite(v.clip.color.r) && std::isfinite(v.clip.tex.x) && std::isfinite(v.clip.tex.y);
+  }
+  // The geometry's soft-float work on the ARM, per vertex.
+  FloatCost per_vertex = transform_cost();
+  per_vertex += transform_cost();
+  if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
+  if (texturing) per_vertex += transform_cost();
+  per_vertex += clip_test_cost();
+  charge(per_vertex, indices.size());
+  m_host.compute(Op::alu, 20 * indices.size());  // fetch, conversions, loop overhead
+  return true;
+}
+
+}  // namespace tessera::gl
