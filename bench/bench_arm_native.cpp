@@ -35,7 +35,7 @@ using namespace tessera;
 // two frame buffers, page-aligned, at the top of memory, and the driver's
 // heap from 4 MiB up to them.
 void lay_out_memory(AppEnvironment& env, const bench::NativeDisplay& display) {
-  const uint64_t frame_bytes = uint64_t{display.width} * display.height * (display.rgb565 ? 2 : 4);
+  const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
   const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
   env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
   env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);
@@ -59,7 +59,9 @@ int run(int argc, char** argv) {
   cli.add_option("--width", display.width, "display.width")->capture_default_str();
   cli.add_option("--height", display.height, "display.height")->capture_default_str();
   cli.add_option("--format", format, "display.format")
-      ->check(CLI::IsMember({"rgb565", "rgba8888"}))
+      ->check([](const std::string& name) {
+        return pixel_format_from_name(name) ? "" : "expects one of " + pixel_format_names();
+      })
       ->capture_default_str();
   cli.add_option("--dma", display.dma, "display.dma")->capture_default_str();
   cli.add_option("--mem-mib", memory_mib, "mem.size_mib")->check(CLI::Range(1, 256))->capture_default_str();
@@ -76,7 +78,7 @@ int run(int argc, char** argv) {
     std::cerr << "bench_arm_native: no built-in scene '" << scene_name << "' (see --list)\n";
     return 2;
   }
-  display.rgb565 = format == "rgb565";
+  display.format = *pixel_format_from_name(format);
 
   bench::NativeHost host(memory_mib << 20, display);
   AppEnvironment env;

@@ -48,6 +48,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace tessera::bench;
+using tessera::bytes_per_pixel;
+using tessera::pixel_format_from_code;
+using tessera::pixel_format_from_name;
+using tessera::PixelFormat;
 
 // The built-in scenes, from the driver's registry that soc_sim is built with.
 std::vector<std::string> all_scene_names() {
@@ -187,7 +191,7 @@ class RasterNativeHost : public tessera::HostApi {
       case regs::TILE_TABLE: m_config.tile_table = value; break;
       case regs::COLOR_BASE: m_config.color_base = value; break;
       case regs::DEPTH_BASE: m_config.depth_base = value; break;
-      case regs::FORMAT: m_config.rgba8888 = value == regs::FORMAT_RGBA8888; break;
+      case regs::FORMAT: m_config.color_format = pixel_format_from_code(value).value_or(PixelFormat::rgb565); break;
       case regs::IRQ_STATUS: m_irq_status &= ~value; break;
       case regs::START:
         if (value & 1) start();
@@ -237,7 +241,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   tessera::bench::NativeDisplay display;
   display.width = display_config["width"].get<unsigned>();
   display.height = display_config["height"].get<unsigned>();
-  display.rgb565 = display_config["format"].get<std::string>() == "rgb565";
+  display.format = pixel_format_from_name(display_config["format"].get<std::string>()).value_or(PixelFormat::rgb565);
   display.dma = display_config["dma"].get<bool>();
   const uint32_t memory_bytes = config["mem"]["size_mib"].get<uint32_t>() << 20;
   tessera::raster::RunConfig geometry;
@@ -257,7 +261,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   env.memory_bytes = memory_bytes;
   env.backend = "raster";
   env.args = scene_args;
-  const uint64_t frame_bytes = uint64_t{display.width} * display.height * (display.rgb565 ? 2 : 4);
+  const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
   const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
   env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
   env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);

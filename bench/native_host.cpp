@@ -41,7 +41,7 @@ uint32_t NativeHost::read_display_reg(uint32_t offset) const {
   switch (offset) {
     case regs::WIDTH: return m_display.width;
     case regs::HEIGHT: return m_display.height;
-    case regs::FORMAT: return m_display.rgb565 ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888;
+    case regs::FORMAT: return static_cast<uint32_t>(m_display.format);
     case regs::MODE: return m_display.dma ? 1 : 0;
     case regs::IRQ_STATUS: return regs::IRQ_SWAP_DONE | regs::IRQ_FRAME_PRESENTED;
     case regs::FRAMES: return static_cast<uint32_t>(m_present_times.size());

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/pixel_format.h"
 #include "host/host_api.h"
 
 namespace tessera::bench {
@@ -17,7 +18,7 @@ namespace tessera::bench {
 struct NativeDisplay {
   unsigned width = 320;
   unsigned height = 240;
-  bool rgb565 = true;
+  PixelFormat format = PixelFormat::rgb565;
   bool dma = false;
 };
 

@@ -40,16 +40,8 @@ int pattern_app(AppEnvironment& env) {
       uint8_t* bytes = reinterpret_cast<uint8_t*>(row.data());
       for (unsigned x = 0; x < width; ++x) {
         const Rgb c = pattern_pixel(x, y, width, height, frame);
-        if (display.rgb565()) {
-          const uint16_t v = static_cast<uint16_t>(((c.r >> 3) << 11) | ((c.g >> 2) << 5) | (c.b >> 3));
-          bytes[2 * x] = v & 0xff;
-          bytes[2 * x + 1] = v >> 8;
-        } else {
-          bytes[4 * x] = static_cast<uint8_t>(c.r);
-          bytes[4 * x + 1] = static_cast<uint8_t>(c.g);
-          bytes[4 * x + 2] = static_cast<uint8_t>(c.b);
-          bytes[4 * x + 3] = 255;
-        }
+        const uint32_t rgba = c.r | c.g << 8 | c.b << 16 | 0xffu << 24;
+        store_pixel(display.format(), bytes + x * display.bytes_per_pixel(), pack_pixel(display.format(), rgba));
       }
       // Per pixel: region compares, a table look-up and the packing shifts.
       host.compute(Op::alu, 8ull * width);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "display/display_regs.h"
 #include "soc/irq_map.h"
@@ -21,8 +24,12 @@ DisplayDriver::DisplayDriver(AppEnvironment& env)
     : m_host(*env.host), m_buffers{env.frame_buffers[0], env.frame_buffers[1]} {
   m_width = m_host.read32(reg(regs::WIDTH));
   m_height = m_host.read32(reg(regs::HEIGHT));
-  m_rgb565 = m_host.read32(reg(regs::FORMAT)) == regs::FORMAT_RGB565;
-  m_bytes_per_pixel = m_rgb565 ? 2 : 4;
+  const uint32_t format = m_host.read32(reg(regs::FORMAT));
+  const std::optional<PixelFormat> known = pixel_format_from_code(format);
+  if (!known)
+    throw std::runtime_error("display driver: the display reports pixel format code " + std::to_string(format) +
+                             ", which this driver does not know (" + pixel_format_names() + ")");
+  m_format = *known;
   m_dma = m_host.read32(reg(regs::MODE)) == 1;
   if (m_dma) {
     m_host.write32(reg(regs::IRQ_ENABLE), regs::IRQ_SWAP_DONE);
@@ -34,7 +41,7 @@ void DisplayDriver::present() {
   const uint32_t buffer = m_buffers[m_back];
   if (!m_dma) {
     // Copy loop of LDM/STM with eight registers, as hand-written ARM code does.
-    const uint32_t bytes = m_width * m_height * m_bytes_per_pixel;
+    const uint32_t bytes = m_width * m_height * bytes_per_pixel();
     uint32_t words[8];
     uint32_t offset = 0;
     while (bytes - offset >= 4) {

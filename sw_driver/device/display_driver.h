@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "common/pixel_format.h"
 #include "device/app_environment.h"
 
 namespace tessera {
@@ -19,12 +20,12 @@ class DisplayDriver {
 
   unsigned width() const { return m_width; }
   unsigned height() const { return m_height; }
-  unsigned bytes_per_pixel() const { return m_bytes_per_pixel; }
-  bool rgb565() const { return m_rgb565; }
+  unsigned bytes_per_pixel() const { return tessera::bytes_per_pixel(m_format); }
+  PixelFormat format() const { return m_format; }
   bool dma() const { return m_dma; }
   // The buffer to draw the next frame into.
   uint32_t back_buffer() const { return m_buffers[m_back]; }
-  uint32_t stride() const { return m_width * m_bytes_per_pixel; }
+  uint32_t stride() const { return m_width * bytes_per_pixel(); }
 
   // Shows the back buffer; returns when the buffer may be drawn again.
   void present();
@@ -35,8 +36,7 @@ class DisplayDriver {
   unsigned m_back = 0;
   unsigned m_width;
   unsigned m_height;
-  unsigned m_bytes_per_pixel;
-  bool m_rgb565;
+  PixelFormat m_format;
   bool m_dma;
 };
 

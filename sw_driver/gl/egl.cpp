@@ -7,8 +7,12 @@
 
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <set>
+#include <stdexcept>
+#include <string>
 
+#include "common/pixel_format.h"
 #include "display/display_regs.h"
 #include "gl/context.h"
 #include "gl/runtime.h"
@@ -67,20 +71,24 @@ bool valid_display(EGLDisplay dpy) {
   return true;
 }
 
-bool rgb565() {
+// The display's frame-buffer format, from its FORMAT register.
+const tessera::PixelFormatInfo& display_format() {
   const uint32_t format = tessera::memory_map::display_regs.base + tessera::display_regs::FORMAT;
-  return tessera::gl::environment().host->read32(format) == tessera::display_regs::FORMAT_RGB565;
+  const uint32_t code = tessera::gl::environment().host->read32(format);
+  const std::optional<tessera::PixelFormat> known = tessera::pixel_format_from_code(code);
+  if (!known) throw std::runtime_error("EGL: the display reports an unknown pixel format code " + std::to_string(code));
+  return tessera::pixel_format_info(*known);
 }
 
 EGLint config_attribute(EGLint attribute, bool* known) {
   *known = true;
-  const bool r565 = rgb565();
+  const tessera::PixelFormatInfo& format = display_format();
   switch (attribute) {
-    case EGL_BUFFER_SIZE: return r565 ? 16 : 32;
-    case EGL_RED_SIZE: return r565 ? 5 : 8;
-    case EGL_GREEN_SIZE: return r565 ? 6 : 8;
-    case EGL_BLUE_SIZE: return r565 ? 5 : 8;
-    case EGL_ALPHA_SIZE: return r565 ? 0 : 8;
+    case EGL_BUFFER_SIZE: return static_cast<EGLint>(8 * format.bytes);
+    case EGL_RED_SIZE: return static_cast<EGLint>(format.red_bits);
+    case EGL_GREEN_SIZE: return static_cast<EGLint>(format.green_bits);
+    case EGL_BLUE_SIZE: return static_cast<EGLint>(format.blue_bits);
+    case EGL_ALPHA_SIZE: return static_cast<EGLint>(format.alpha_bits);
     case EGL_LUMINANCE_SIZE:
     case EGL_ALPHA_MASK_SIZE:
     case EGL_SAMPLES:

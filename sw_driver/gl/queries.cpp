@@ -121,7 +121,7 @@ void Context::get_floats(GLenum name, float* v) {
     auto it = m_hints.find(target);
     return static_cast<float>(it == m_hints.end() ? GL_DONT_CARE : it->second);
   };
-  const bool rgb565 = true;
+  const PixelFormatInfo& format = pixel_format_info(m_renderer->color_format());
   switch (name) {
     case GL_COLOR_CLEAR_VALUE: std::copy(m_clear_color, m_clear_color + 4, v); break;
     case GL_VIEWPORT:
@@ -188,10 +188,10 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(m_bound_texture); break;
     case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
     case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
-    case GL_RED_BITS:
-    case GL_BLUE_BITS: v[0] = rgb565 ? 5 : 8; break;
-    case GL_GREEN_BITS: v[0] = rgb565 ? 6 : 8; break;
-    case GL_ALPHA_BITS: v[0] = 0; break;
+    case GL_RED_BITS: v[0] = static_cast<float>(format.red_bits); break;
+    case GL_GREEN_BITS: v[0] = static_cast<float>(format.green_bits); break;
+    case GL_BLUE_BITS: v[0] = static_cast<float>(format.blue_bits); break;
+    case GL_ALPHA_BITS: v[0] = static_cast<float>(format.alpha_bits); break;
     case GL_DEPTH_BITS: v[0] = 16; break;
     case GL_STENCIL_BITS: v[0] = 8; break;
     case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/pixel_format.h"
+
 namespace tessera::gl {
 
 // A vertex in window coordinates. Pixel (i, j) covers [i, i+1) x [j, j+1)
@@ -98,6 +100,8 @@ class Renderer {
   virtual const char* name() const = 0;
   virtual unsigned width() const = 0;
   virtual unsigned height() const = 0;
+  // The colour buffer's format (the display's).
+  virtual PixelFormat color_format() const = 0;
   virtual void clear(const ClearRequest& request) = 0;
   virtual void draw(const RasterState& state, const Triangle* triangles, size_t count) = 0;
   // RGBA8, rows from y upwards (GL order), w * h * 4 bytes.

@@ -136,7 +136,7 @@ TEST(Display, GeometryRegistersReadBackTheConfiguration) {
   auto& r = g_port->regs_initiator;
   EXPECT_EQ(r.read32(regs::WIDTH), WIDTH);
   EXPECT_EQ(r.read32(regs::HEIGHT), HEIGHT);
-  EXPECT_EQ(r.read32(regs::FORMAT), regs::FORMAT_RGB565);
+  EXPECT_EQ(r.read32(regs::FORMAT), static_cast<uint32_t>(PixelFormat::rgb565));
   EXPECT_EQ(r.read32(regs::MODE), 0u);
 }
 

@@ -106,7 +106,7 @@ struct Bench {
     host.write32(REGS_BASE + regs::TILE_TABLE, tile_table);
     host.write32(REGS_BASE + regs::COLOR_BASE, COLOR_BUFFER);
     host.write32(REGS_BASE + regs::DEPTH_BASE, DEPTH_BUFFER);
-    host.write32(REGS_BASE + regs::FORMAT, regs::FORMAT_RGB565);
+    host.write32(REGS_BASE + regs::FORMAT, static_cast<uint32_t>(PixelFormat::rgb565));
     host.write32(REGS_BASE + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
     // The test initiator does not wait for its writes; let the bus finish them.
     sc_core::wait(CYCLE * 20.0);
@@ -186,8 +186,9 @@ TEST(Rasterizer, RegistersReadBackAndBadAccessesGetErrorResponses) {
       EXPECT_EQ(b.host.write32(REGS_BASE + reg, 0x1234560 + reg).status, tlm::TLM_OK_RESPONSE);
       EXPECT_EQ(b.host.read32(REGS_BASE + reg), 0x1234560 + reg);
     }
-    EXPECT_EQ(b.host.write32(REGS_BASE + regs::FORMAT, regs::FORMAT_RGBA8888).status, tlm::TLM_OK_RESPONSE);
-    EXPECT_EQ(b.host.read32(REGS_BASE + regs::FORMAT), regs::FORMAT_RGBA8888);
+    EXPECT_EQ(b.host.write32(REGS_BASE + regs::FORMAT, static_cast<uint32_t>(PixelFormat::rgba8888)).status,
+              tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(b.host.read32(REGS_BASE + regs::FORMAT), static_cast<uint32_t>(PixelFormat::rgba8888));
     EXPECT_EQ(b.host.write32(REGS_BASE + regs::RECIP_METHOD, 1).status, tlm::TLM_OK_RESPONSE);
     EXPECT_EQ(b.host.read32(REGS_BASE + regs::RECIP_METHOD), 1u);
 
@@ -208,7 +209,7 @@ TEST(Rasterizer, RegistersReadBackAndBadAccessesGetErrorResponses) {
               tlm::TLM_BURST_ERROR_RESPONSE);
 
     b.host.write32(REGS_BASE + regs::RECIP_METHOD, 3);
-    b.host.write32(REGS_BASE + regs::FORMAT, regs::FORMAT_RGB565);
+    b.host.write32(REGS_BASE + regs::FORMAT, static_cast<uint32_t>(PixelFormat::rgb565));
   });
   EXPECT_TRUE(reports.contains("RECIP_METHOD accepts 1, 2 or 3"));
   EXPECT_TRUE(reports.contains("bad register access"));

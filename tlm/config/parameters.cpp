@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/pixel_format.h"
 #include "config/config.h"
 
 namespace tessera {
@@ -24,6 +25,12 @@ ParamSpec choice(std::string key, std::string value, std::vector<std::string> ch
 }
 ParamSpec text(std::string key, std::string value, std::string description) {
   return {std::move(key), ParamType::string, std::move(value), std::move(description), "", 0, 0, {}};
+}
+
+std::vector<std::string> pixel_format_name_list() {
+  std::vector<std::string> names;
+  for (const PixelFormatInfo& info : PIXEL_FORMATS) names.emplace_back(info.name);
+  return names;
 }
 
 }  // namespace
@@ -87,7 +94,7 @@ const std::vector<ParamSpec>& parameter_specs() {
       // Display
       integer("display.width", 320, 16, 2048, "pixels", "visible pixels per line"),
       integer("display.height", 240, 16, 2048, "lines", "visible lines"),
-      choice("display.format", "rgb565", {"rgb565", "rgba8888"}, "frame-buffer pixel format"),
+      choice("display.format", "rgb565", pixel_format_name_list(), "frame-buffer pixel format"),
       boolean("display.dma", false,
               "true: a display DMA scans the front buffer out over the bus; false: the host copies each frame to the "
               "display port"),
@@ -125,7 +132,7 @@ const std::vector<ParamSpec>& parameter_specs() {
 }
 
 void Config::validate() const {
-  const uint64_t bytes_per_pixel = get_string("display.format") == "rgb565" ? 2 : 4;
+  const uint64_t bytes_per_pixel = tessera::bytes_per_pixel(*pixel_format_from_name(get_string("display.format")));
   const uint64_t frame_bytes = get_uint("display.width") * get_uint("display.height") * bytes_per_pixel;
   const uint64_t memory_bytes = get_uint("mem.size_mib") << 20;
   // Two frame buffers must fit in system memory, with room for everything else.

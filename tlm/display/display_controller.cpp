@@ -69,8 +69,7 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines); });
   m_regs.add(WIDTH, [this] { return m_params.width; });
   m_regs.add(HEIGHT, [this] { return m_params.height; });
-  m_regs.add(FORMAT,
-             [this] { return m_params.format == PixelFormat::rgb565 ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888; });
+  m_regs.add(FORMAT, [this] { return static_cast<uint32_t>(m_params.format); });
   m_regs.add(MODE, [this] { return m_params.dma ? 1u : 0u; });
 
   m_port_frame.assign(frame_bytes(), 0);
@@ -153,18 +152,10 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
   Frame frame{static_cast<unsigned>(m_frames), when.to_seconds(), m_params.width, m_params.height,
               std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
   const size_t count = size_t{m_params.width} * m_params.height;
-  if (m_params.format == PixelFormat::rgb565) {
-    for (size_t i = 0; i < count; ++i) {
-      const unsigned v = pixels[2 * i] | (pixels[2 * i + 1] << 8);
-      const unsigned r = (v >> 11) & 31, g = (v >> 5) & 63, b = v & 31;
-      // Bit replication: the exact expansion of 5 and 6 bits to 8.
-      frame.rgba[4 * i + 0] = static_cast<uint8_t>((r << 3) | (r >> 2));
-      frame.rgba[4 * i + 1] = static_cast<uint8_t>((g << 2) | (g >> 4));
-      frame.rgba[4 * i + 2] = static_cast<uint8_t>((b << 3) | (b >> 2));
-      frame.rgba[4 * i + 3] = 255;
-    }
-  } else {
-    std::memcpy(frame.rgba.data(), pixels.data(), count * 4);
+  const unsigned bpp = bytes_per_pixel();
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t rgba = unpack_pixel(m_params.format, load_pixel(m_params.format, &pixels[i * bpp]));
+    for (unsigned c = 0; c < 4; ++c) frame.rgba[4 * i + c] = static_cast<uint8_t>(rgba >> (8 * c));
   }
   if (m_frames == 0) m_first_frame_time = when;
   m_last_frame_time = when;
@@ -261,7 +252,7 @@ nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {
   return {{"mode", m_params.dma ? "dma" : "port"},
           {"width", m_params.width},
           {"height", m_params.height},
-          {"format", m_params.format == PixelFormat::rgb565 ? "rgb565" : "rgba8888"},
+          {"format", pixel_format_name(m_params.format)},
           {"frames_shown", m_frames},
           {"achieved_fps", rate},
           {"refreshes", m_refreshes},

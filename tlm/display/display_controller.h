@@ -24,12 +24,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/pixel_format.h"
 #include "common/register_bank.h"
 #include "common/timed_trace.h"
 
 namespace tessera {
-
-enum class PixelFormat { rgb565, rgba8888 };
 
 struct DisplayParams {
   unsigned width = 320;
@@ -65,7 +64,7 @@ class DisplayController : public sc_core::sc_module {
 
   void on_frame(std::function<void(const Frame&)> sink) { m_sink = std::move(sink); }
 
-  unsigned bytes_per_pixel() const { return m_params.format == PixelFormat::rgb565 ? 2 : 4; }
+  unsigned bytes_per_pixel() const { return tessera::bytes_per_pixel(m_params.format); }
   uint64_t frame_bytes() const { return uint64_t{m_params.width} * m_params.height * bytes_per_pixel(); }
   uint64_t frames_shown() const { return m_frames; }
   uint64_t underruns() const { return m_underrun_lines; }

@@ -15,7 +15,5 @@ inline constexpr uint32_t STATUS_SWAP_PENDING = 1u << 1;
 inline constexpr uint32_t IRQ_VBLANK = 1u << 0;
 inline constexpr uint32_t IRQ_SWAP_DONE = 1u << 1;
 inline constexpr uint32_t IRQ_FRAME_PRESENTED = 1u << 2;
-inline constexpr uint32_t FORMAT_RGB565 = 0;
-inline constexpr uint32_t FORMAT_RGBA8888 = 1;
 
 }  // namespace tessera::display_regs

@@ -14,7 +14,5 @@ inline constexpr uint32_t STATUS_DONE = 1u << 1;
 inline constexpr uint32_t STATUS_ERROR = 1u << 2;
 inline constexpr uint32_t IRQ_DONE = 1u << 0;
 inline constexpr uint32_t IRQ_ERROR = 1u << 1;
-inline constexpr uint32_t FORMAT_RGB565 = 0;
-inline constexpr uint32_t FORMAT_RGBA8888 = 1;
 
 }  // namespace tessera::raster_regs

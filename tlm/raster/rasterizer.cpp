@@ -124,7 +124,8 @@ const char* Rasterizer::write_refusal(const tlm::tlm_generic_payload& gp) const 
   uint32_t value = 0;
   std::memcpy(&value, gp.get_data_ptr(), 4);
   if (offset == regs::RECIP_METHOD && (value < 1 || value > 3)) return "RECIP_METHOD accepts 1, 2 or 3";
-  if (offset == regs::FORMAT && value > regs::FORMAT_RGBA8888) return "FORMAT accepts 0 (RGB565) or 1 (RGBA8888)";
+  if (offset == regs::FORMAT && !pixel_format_from_code(value))
+    return "FORMAT accepts a pixel format code (0 RGB565, 1 RGBA8888)";
   return nullptr;
 }
 
@@ -205,7 +206,7 @@ void Rasterizer::run() {
     config.tile_table = m_regs.get(regs::TILE_TABLE);
     config.color_base = m_regs.get(regs::COLOR_BASE);
     config.depth_base = m_regs.get(regs::DEPTH_BASE);
-    config.rgba8888 = m_regs.get(regs::FORMAT) == regs::FORMAT_RGBA8888;
+    config.color_format = *pixel_format_from_code(m_regs.get(regs::FORMAT));
     config.recip_method = recip_method_of(m_regs.get(regs::RECIP_METHOD));
     log::info(name(), "run started: tile table at " + log::hex(config.tile_table) + ", colour buffer at " +
                           log::hex(config.color_base));

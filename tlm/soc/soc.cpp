@@ -72,7 +72,7 @@ DisplayParams display_params(const Config& config) {
   DisplayParams p;
   p.width = static_cast<unsigned>(config.get_uint("display.width"));
   p.height = static_cast<unsigned>(config.get_uint("display.height"));
-  p.format = config.get_string("display.format") == "rgb565" ? PixelFormat::rgb565 : PixelFormat::rgba8888;
+  p.format = *pixel_format_from_name(config.get_string("display.format"));
   p.dma = config.get_bool("display.dma");
   p.refresh_hz = config.get_real("display.refresh_hz");
   p.vblank_lines = static_cast<unsigned>(config.get_uint("display.vblank_lines"));

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -11,23 +12,13 @@ namespace tessera::reference {
 
 namespace {
 
-uint8_t expand5(uint8_t value) {
-  const uint8_t bits = value >> 3;
-  return static_cast<uint8_t>((bits << 3) | (bits >> 2));
-}
-
-uint8_t expand6(uint8_t value) {
-  const uint8_t bits = value >> 2;
-  return static_cast<uint8_t>((bits << 2) | (bits >> 4));
-}
-
 Rgba8 pixel_at(const Image& image, size_t index) {
   const uint8_t* p = &image.rgba[index * 4];
   return {p[0], p[1], p[2], p[3]};
 }
 
 bool uses_alpha(const CompareOptions& options) {
-  return options.format == OutputFormat::rgba8888 && options.compare_alpha;
+  return options.format == PixelFormat::rgba8888 && options.compare_alpha;
 }
 
 bool same_colour(Rgba8 a, Rgba8 b, bool with_alpha) {
@@ -48,7 +39,7 @@ void check_image(const Image& image, const char* which) {
                                 std::to_string(image.height) + " RGBA pixels");
 }
 
-Image reduced(const Image& image, OutputFormat format) {
+Image reduced(const Image& image, PixelFormat format) {
   Image out = image;
   for (size_t i = 0; i < size_t{image.width} * image.height; ++i) {
     const Rgba8 colour = reduce(pixel_at(image, i), format);
@@ -63,19 +54,16 @@ Image reduced(const Image& image, OutputFormat format) {
 
 }  // namespace
 
-OutputFormat parse_output_format(const std::string& name) {
-  if (name == "rgb565") return OutputFormat::rgb565;
-  if (name == "rgba8888") return OutputFormat::rgba8888;
-  throw std::invalid_argument("unknown output format '" + name + "' (rgb565 or rgba8888)");
+PixelFormat parse_output_format(const std::string& name) {
+  if (const std::optional<PixelFormat> format = pixel_format_from_name(name)) return *format;
+  throw std::invalid_argument("unknown output format '" + name + "' (" + pixel_format_names() + ")");
 }
 
-const char* to_string(OutputFormat format) {
-  return format == OutputFormat::rgb565 ? "rgb565" : "rgba8888";
-}
-
-Rgba8 reduce(Rgba8 colour, OutputFormat format) {
-  if (format == OutputFormat::rgba8888) return colour;
-  return {expand5(colour.r), expand6(colour.g), expand5(colour.b), 255};
+Rgba8 reduce(Rgba8 colour, PixelFormat format) {
+  const uint32_t word = colour.r | colour.g << 8 | colour.b << 16 | uint32_t{colour.a} << 24;
+  const uint32_t shown = quantize_color(format, word);
+  return {static_cast<uint8_t>(shown), static_cast<uint8_t>(shown >> 8), static_cast<uint8_t>(shown >> 16),
+          static_cast<uint8_t>(shown >> 24)};
 }
 
 double CompareResult::percent_within_tolerance() const {

@@ -24,30 +24,28 @@
 #include <cstdint>
 #include <string>
 
+#include "common/pixel_format.h"
 #include "frame_writer.h"
 
 namespace tessera::reference {
 
-enum class OutputFormat {
-  rgb565,   // each channel truncated to 5/6/5 bits, expanded by bit replication; alpha ignored
-  rgba8888  // compared as stored; alpha only if CompareOptions::compare_alpha
-};
-
+// The display format the images are compared in: the display's pixel
+// formats (common/pixel_format.h). RGB565 ignores alpha; RGBA8888 compares
+// alpha only if CompareOptions::compare_alpha.
 // "rgb565" / "rgba8888"; throws std::invalid_argument otherwise.
-OutputFormat parse_output_format(const std::string& name);
-const char* to_string(OutputFormat format);
+PixelFormat parse_output_format(const std::string& name);
 
 struct Rgba8 {
   uint8_t r = 0, g = 0, b = 0, a = 255;
 };
 
-// What our display would show for `colour`: RGB565 keeps the top 5/6/5 bits
-// (truncation, as the display controller's scan-out does) and expands them
-// by replicating the top bits into the low ones, so 0 -> 0 and 31 -> 255.
-Rgba8 reduce(Rgba8 colour, OutputFormat format);
+// What our display would show for `colour`: the format's one rounding rule
+// (pixel_format.h: round to nearest, as Mesa reduces colours, then bit
+// replication back to 8 bits, so 0 -> 0 and 31 -> 255).
+Rgba8 reduce(Rgba8 colour, PixelFormat format);
 
 struct CompareOptions {
-  OutputFormat format = OutputFormat::rgb565;
+  PixelFormat format = PixelFormat::rgb565;
   Rgba8 clear_colour;          // the scene's background
   unsigned tolerance = 8;      // largest acceptable channel difference
   bool compare_alpha = false;  // rgba8888 only: our frames carry no alpha

@@ -231,7 +231,7 @@ int run(const Options& options) {
   const bool passed = result.passes(rule);
 
   std::printf("scene %s frame %d, %s, tolerance %u, reference %s\n", scene->name, options.frame,
-              reference::to_string(compare.format), compare.tolerance, mesa.renderer.c_str());
+              pixel_format_name(compare.format), compare.tolerance, mesa.renderer.c_str());
   std::printf("%s\n", result.summary().c_str());
   if (!options.out_dir.empty()) {
     reference::write_comparison_images(options.out_dir, "", ours, mesa.image, result, compare);

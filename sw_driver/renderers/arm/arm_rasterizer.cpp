@@ -69,25 +69,13 @@ inline uint8_t stencil_apply(StencilOp op, uint8_t value, uint8_t ref, uint8_t w
   return uint8_t((value & ~write_mask) | (result & write_mask));
 }
 
-inline uint32_t pack(uint32_t rgba, ColorFormat format) {
-  if (format == ColorFormat::rgba8888) return rgba;
-  const uint32_t r = rgba & 0xff, g = (rgba >> 8) & 0xff, b = (rgba >> 16) & 0xff;
-  return ((r >> 3) << 11) | ((g >> 2) << 5) | (b >> 3);
-}
-
-inline uint32_t unpack(uint32_t packed, ColorFormat format) {
-  if (format == ColorFormat::rgba8888) return packed;
-  const uint32_t r5 = (packed >> 11) & 0x1f, g6 = (packed >> 5) & 0x3f, b5 = packed & 0x1f;
-  const uint32_t r = (r5 << 3) | (r5 >> 2), g = (g6 << 2) | (g6 >> 4), b = (b5 << 3) | (b5 >> 2);
-  return r | (g << 8) | (b << 16) | (0xffu << 24);
-}
-
-inline uint32_t read_packed(const uint8_t* p, unsigned bytes) {
+// Depth (16 bits) and colour words of a clear, little-endian, 2 or 4 bytes.
+inline uint32_t load_le(const uint8_t* p, unsigned bytes) {
   return bytes == 2 ? uint32_t(p[0]) | uint32_t(p[1]) << 8
                     : uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
-inline void write_packed(uint8_t* p, unsigned bytes, uint32_t value) {
+inline void store_le(uint8_t* p, unsigned bytes, uint32_t value) {
   p[0] = uint8_t(value);
   p[1] = uint8_t(value >> 8);
   if (bytes == 4) {
@@ -257,13 +245,13 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
       if (masked) {
         const uint8_t* old = m_memory.load(address, size, elements);
         for (unsigned k = 0; k < elements; ++k)
-          m_source[k] = ((size == 1 ? old[k] : read_packed(old + k * size, size)) & ~mask) | (value & mask);
+          m_source[k] = ((size == 1 ? old[k] : load_le(old + k * size, size)) & ~mask) | (value & mask);
         uint8_t* out = m_memory.store(address, size, elements);
         for (unsigned k = 0; k < elements; ++k) {
           if (size == 1)
             out[k] = uint8_t(m_source[k]);
           else
-            write_packed(out + k * size, size, m_source[k]);
+            store_le(out + k * size, size, m_source[k]);
         }
         m_memory.compute(Op::alu, uint64_t(elements) * m_counts.clear_masked_pixel_alu);
       } else {
@@ -271,7 +259,7 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
         if (size == 1) {
           std::memset(out, int(value & 0xff), elements);
         } else {
-          for (unsigned k = 0; k < elements; ++k) write_packed(out + k * size, size, value);
+          for (unsigned k = 0; k < elements; ++k) store_le(out + k * size, size, value);
         }
         const uint64_t blocks = (uint64_t(elements) * size + 31) / 32;
         m_memory.compute(Op::alu, blocks * m_counts.clear_block_alu);
@@ -281,21 +269,17 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
     }
   };
 
-  const ColorFormat format = m_buffers.color_format;
+  const PixelFormat format = m_buffers.color_format;
   const unsigned bpp = bytes_per_pixel(format);
-  const uint32_t all_color = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  const uint32_t all_color = channel_bits(format, 0xf);
   if (request.color) {
-    uint32_t rgba = 0, mask_rgba = 0;
-    for (int c = 0; c < 4; ++c) {
-      rgba |= uint32_t(request.rgba[c]) << (8 * c);
-      if (request.color_mask[c]) mask_rgba |= 0xffu << (8 * c);
+    uint32_t rgba = 0;
+    unsigned color_mask = 0;
+    for (unsigned ch = 0; ch < 4; ++ch) {
+      rgba |= uint32_t(request.rgba[ch]) << (8 * ch);
+      color_mask |= request.color_mask[ch] ? 1u << ch : 0u;
     }
-    uint32_t mask = mask_rgba;
-    if (format == ColorFormat::rgb565) {
-      mask = (request.color_mask[0] ? 0xf800u : 0) | (request.color_mask[1] ? 0x07e0u : 0) |
-             (request.color_mask[2] ? 0x001fu : 0);
-    }
-    fill(m_buffers.color_address, bpp, pack(rgba, format), mask, all_color);
+    fill(m_buffers.color_address, bpp, pack_pixel(format, rgba), channel_bits(format, color_mask), all_color);
   }
   if (request.depth && request.depth_write) {
     const uint32_t z16 = std::min<uint32_t>(request.depth_value, 0xffffff) >> 8;
@@ -322,7 +306,7 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   }
   if (c.clip_x0 > c.clip_x1 || c.clip_y0 > c.clip_y1 || triangles == nullptr) return;
 
-  const ColorFormat format = m_buffers.color_format;
+  const PixelFormat format = m_buffers.color_format;
   c.depth_test = state.depth_test;
   c.depth_write = state.depth_test && state.depth_write;
   c.stencil_test = state.stencil_test;
@@ -335,14 +319,10 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   const gl::Texture& tex = state.texture ? state.tex : gl::Texture{};
   c.texture = state.texture && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
               (tex.height & (tex.height - 1)) == 0;
-  if (format == ColorFormat::rgb565) {
-    c.color_write_mask =
-        (state.color_mask[0] ? 0xf800u : 0) | (state.color_mask[1] ? 0x07e0u : 0) | (state.color_mask[2] ? 0x001fu : 0);
-  } else {
-    for (int ch = 0; ch < 4; ++ch)
-      if (state.color_mask[ch]) c.color_write_mask |= 0xffu << (8 * ch);
-  }
-  const uint32_t all_color = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  unsigned color_mask = 0;
+  for (unsigned ch = 0; ch < 4; ++ch) color_mask |= state.color_mask[ch] ? 1u << ch : 0u;
+  c.color_write_mask = channel_bits(format, color_mask);
+  const uint32_t all_color = channel_bits(format, 0xf);
   c.color_write = c.color_write_mask != 0;
   c.logic_op = state.logic_op;
   c.blend =
@@ -370,8 +350,9 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
     }
   }
   if (c.color_write) {
-    c.write_alu += format == ColorFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
-    if (c.needs_destination) c.write_alu += format == ColorFormat::rgb565 ? k.unpack_rgb565_alu : k.unpack_rgba8888_alu;
+    c.write_alu += format == PixelFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
+    if (format == PixelFormat::rgb565) c.write_mul += k.pack_rgb565_mul;
+    if (c.needs_destination) c.write_alu += format == PixelFormat::rgb565 ? k.unpack_rgb565_alu : k.unpack_rgba8888_alu;
     if (c.blend) {
       for (BlendFactor f : {state.blend_src, state.blend_dst}) {
         if (f != BlendFactor::zero && f != BlendFactor::one) {
@@ -774,36 +755,36 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
 
 void ArmRasterizer::write_color_run(const DrawContext& c, uint32_t row_offset, int x_begin, int begin, int end) {
   const gl::RasterState& state = *c.state;
-  const ColorFormat format = m_buffers.color_format;
+  const PixelFormat format = m_buffers.color_format;
   const unsigned bpp = bytes_per_pixel(format);
   const unsigned count = unsigned(end - begin);
   const uint32_t address = m_buffers.color_address + (row_offset + uint32_t(x_begin + begin)) * bpp;
-  const uint32_t all = format == ColorFormat::rgb565 ? 0xffffu : 0xffffffffu;
+  const uint32_t all = channel_bits(format, 0xf);
   if (c.needs_destination) {
     const uint8_t* d = m_memory.load(address, bpp, count);
     for (unsigned i = 0; i < count; ++i) {
-      const uint32_t dst = read_packed(d + i * bpp, bpp);
+      const uint32_t dst = load_pixel(format, d + i * bpp);
       uint32_t src = m_source[begin + int(i)];
-      if (c.blend) src = blend(state.blend_src, state.blend_dst, src, unpack(dst, format));
-      uint32_t out = pack(src, format);
+      if (c.blend) src = blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
+      uint32_t out = pack_pixel(format, src);
       if (c.logic_op) out = logic_op(state.logic_op_code, out, dst) & all;
       m_source[begin + int(i)] = (out & c.color_write_mask) | (dst & ~c.color_write_mask);
     }
   } else {
     for (int i = begin; i < end; ++i) {
-      uint32_t out = pack(m_source[i], format);
+      uint32_t out = pack_pixel(format, m_source[i]);
       if (c.logic_op) out = logic_op(state.logic_op_code, out, 0) & all;
       m_source[i] = out;
     }
   }
   uint8_t* p = m_memory.store(address, bpp, count);
-  for (unsigned i = 0; i < count; ++i) write_packed(p + i * bpp, bpp, m_source[begin + int(i)]);
+  for (unsigned i = 0; i < count; ++i) store_pixel(format, p + i * bpp, m_source[begin + int(i)]);
 }
 
 void ArmRasterizer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
   if (width <= 0 || height <= 0 || rgba == nullptr) return;
   std::memset(rgba, 0, size_t(width) * size_t(height) * 4);
-  const ColorFormat format = m_buffers.color_format;
+  const PixelFormat format = m_buffers.color_format;
   const unsigned bpp = bytes_per_pixel(format);
   const int x0 = std::max(x, 0);
   const int x1 = int(std::min<int64_t>(int64_t(x) + width, m_buffers.width));
@@ -815,7 +796,7 @@ void ArmRasterizer::read_pixels(int x, int y, int width, int height, uint8_t* rg
     const uint8_t* p = m_memory.load(m_buffers.color_address + offset * bpp, bpp, unsigned(x1 - x0));
     uint8_t* out = rgba + (size_t(row) * size_t(width) + size_t(x0 - x)) * 4;
     for (int i = 0; i < x1 - x0; ++i) {
-      const uint32_t v = unpack(read_packed(p + i * bpp, bpp), format);
+      const uint32_t v = unpack_pixel(format, load_pixel(format, p + i * bpp));
       out[4 * i] = uint8_t(v);
       out[4 * i + 1] = uint8_t(v >> 8);
       out[4 * i + 2] = uint8_t(v >> 16);

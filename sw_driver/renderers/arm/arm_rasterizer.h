@@ -17,10 +17,10 @@
 //   bits (z24 >> 8, truncation). Depth is interpolated as z24 * 2^7 and the
 //   16-bit value is the interpolant >> 15.
 // - Colour channels are interpolated with 16 fraction bits and rounded to
-//   nearest (the 0.5 is added once per span). To RGB565 the 8-bit channels
-//   are truncated (r >> 3, g >> 2, b >> 3, as Mesa packs 8-bit to 565); from
-//   RGB565 they are widened by bit replication ((r << 3) | (r >> 2)); the
-//   RGB565 buffer has no alpha, destination alpha reads as 255.
+//   nearest (the 0.5 is added once per span). To and from RGB565 they go by
+//   the one rule of common/pixel_format.h: rounded to nearest on the way in,
+//   widened by bit replication on the way out; the RGB565 buffer has no
+//   alpha, destination alpha reads as 255.
 // - Products of two 0.8 codes (modulate, decal, blending) are rounded to
 //   nearest exactly: mul(a, b) = (a * b + 127) / 255, computed as
 //   (x + 128 + ((x + 128) >> 8)) >> 8 with x = a * b.
@@ -55,16 +55,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/pixel_format.h"
 #include "gl/renderer.h"
 #include "renderers/arm/pixel_memory.h"
 
 namespace tessera::arm {
-
-enum class ColorFormat : uint8_t { rgb565, rgba8888 };
-
-constexpr unsigned bytes_per_pixel(ColorFormat format) {
-  return format == ColorFormat::rgb565 ? 2 : 4;
-}
 
 // ARM922T instructions the core charges, by where they are executed. The
 // defaults are the counts of a hand-scheduled ARM implementation, justified
@@ -96,7 +91,9 @@ struct InstructionCounts {
   unsigned alpha_test_alu = 2;
   // Per pixel written.
   unsigned depth_write_alu = 1;
-  unsigned pack_rgb565_alu = 5, pack_rgba8888_alu = 3;
+  // Packing to RGB565 rounds each channel to nearest (common/pixel_format.h):
+  // one multiply-accumulate and one shift per channel, then two ORRs.
+  unsigned pack_rgb565_alu = 5, pack_rgb565_mul = 3, pack_rgba8888_alu = 3;
   unsigned unpack_rgb565_alu = 6, unpack_rgba8888_alu = 3;
   unsigned blend_factor_alu = 12, blend_factor_mul = 4, blend_combine_alu = 8;  // per factor other than ZERO/ONE
   unsigned logic_op_alu = 2, color_mask_alu = 3;
@@ -109,7 +106,7 @@ struct InstructionCounts {
 // Where the buffers are and what they look like.
 struct FrameBuffers {
   unsigned width = 0, height = 0;
-  ColorFormat color_format = ColorFormat::rgb565;
+  PixelFormat color_format = PixelFormat::rgb565;
   uint32_t color_address = 0;
   uint32_t depth_address = 0;
   uint32_t stencil_address = 0;

@@ -8,7 +8,7 @@ ArmRenderer::ArmRenderer(AppEnvironment& env) : m_display(env), m_memory(*env.ho
   FrameBuffers buffers;
   buffers.width = m_display.width();
   buffers.height = m_display.height();
-  buffers.color_format = m_display.rgb565() ? ColorFormat::rgb565 : ColorFormat::rgba8888;
+  buffers.color_format = m_display.format();
   buffers.color_address = m_display.back_buffer();
   buffers.depth_address = gl::allocate(buffers.width * buffers.height * 2);
   buffers.stencil_address = gl::allocate(buffers.width * buffers.height);

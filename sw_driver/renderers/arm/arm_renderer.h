@@ -39,6 +39,7 @@ class ArmRenderer : public gl::Renderer {
   const char* name() const override { return "tessera arm (software, ARM922T)"; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
+  PixelFormat color_format() const override { return m_display.format(); }
   void clear(const gl::ClearRequest& request) override { m_core->clear(request); }
   void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override {
     m_core->draw(state, triangles, count);

@@ -282,7 +282,7 @@ void RasterRenderer::run_rasterizer(uint32_t tile_table) {
   m_host.write32(reg(regs::TILE_TABLE), tile_table);
   m_host.write32(reg(regs::COLOR_BASE), m_display.back_buffer());
   m_host.write32(reg(regs::DEPTH_BASE), m_depth_buffer);
-  m_host.write32(reg(regs::FORMAT), m_display.rgb565() ? regs::FORMAT_RGB565 : regs::FORMAT_RGBA8888);
+  m_host.write32(reg(regs::FORMAT), static_cast<uint32_t>(m_display.format()));
   m_host.write32(reg(regs::IRQ_ENABLE), regs::IRQ_DONE | regs::IRQ_ERROR);
   m_host.write32(reg(regs::START), 1);
   for (;;) {
@@ -318,16 +318,8 @@ void RasterRenderer::read_pixels(int x, int y, int width, int height, uint8_t* r
     const uint8_t* p = m_host.load_span(m_display.back_buffer() + offset * bpp, bpp, static_cast<unsigned>(x1 - x0));
     uint8_t* out = rgba + (size_t(row) * size_t(width) + size_t(x0 - x)) * 4;
     for (int i = 0; i < x1 - x0; ++i, p += bpp, out += 4) {
-      if (bpp == 4) {
-        std::memcpy(out, p, 4);
-        continue;
-      }
-      const unsigned v = p[0] | p[1] << 8;
-      const unsigned r = (v >> 11) & 31, g = (v >> 5) & 63, b = v & 31;
-      out[0] = static_cast<uint8_t>((r << 3) | (r >> 2));
-      out[1] = static_cast<uint8_t>((g << 2) | (g >> 4));
-      out[2] = static_cast<uint8_t>((b << 3) | (b >> 2));
-      out[3] = 255;
+      const uint32_t color = unpack_pixel(m_display.format(), load_pixel(m_display.format(), p));
+      for (unsigned c = 0; c < 4; ++c) out[c] = static_cast<uint8_t>(color >> (8 * c));
     }
     m_host.compute(Op::alu, uint64_t(x1 - x0) * 6);
   }

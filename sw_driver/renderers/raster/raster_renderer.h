@@ -26,6 +26,7 @@ class RasterRenderer : public gl::Renderer {
   const char* name() const override { return "tessera raster (fixed-function tile rasterizer)"; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
+  PixelFormat color_format() const override { return m_display.format(); }
   void clear(const gl::ClearRequest& request) override;
   void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override;
   void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override;

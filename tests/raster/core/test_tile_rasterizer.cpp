@@ -97,7 +97,7 @@ class Frame {
     config.tile_table = TILE_TABLE;
     config.color_base = COLOR_BASE;
     config.depth_base = DEPTH_BASE;
-    config.rgba8888 = rgba8888;
+    config.color_format = rgba8888 ? tessera::PixelFormat::rgba8888 : tessera::PixelFormat::rgb565;
     tiles_x = (width + config.tile_width - 1) / config.tile_width;
     tiles_y = (height + config.tile_height - 1) / config.tile_height;
     lists.resize(tiles_x * tiles_y);
@@ -639,7 +639,7 @@ TEST(TileRasterizer, RandomInputNeverCrashes) {
       port.set_word(a, v);
     }
     Frame frame(port, 96, 48);
-    frame.config.rgba8888 = round % 2 == 0;
+    frame.config.color_format = round % 2 == 0 ? tessera::PixelFormat::rgba8888 : tessera::PixelFormat::rgb565;
     frame.config.recip_method = static_cast<RecipMethod>(round % 3);
     for (size_t t = 0; t < frame.lists.size(); ++t) {
       port.set_word(TILE_TABLE + 8 * uint32_t(t), DATA_BASE + (next() % 0x3000 & ~3u));

@@ -33,7 +33,7 @@ class VectorHost : public HostApi {
       switch (address - memory_map::display_regs.base) {
         case display_regs::WIDTH: return 64;
         case display_regs::HEIGHT: return 48;
-        case display_regs::FORMAT: return display_regs::FORMAT_RGB565;
+        case display_regs::FORMAT: return static_cast<uint32_t>(PixelFormat::rgb565);
         case display_regs::MODE: return 0;
         default: return 0;
       }
@@ -88,6 +88,7 @@ class RecordingRenderer : public gl::Renderer {
   const char* name() const override { return "recording"; }
   unsigned width() const override { return 64; }
   unsigned height() const override { return 48; }
+  PixelFormat color_format() const override { return PixelFormat::rgb565; }
   void clear(const gl::ClearRequest&) override { ++clears; }
   void draw(const gl::RasterState&, const gl::Triangle* t, size_t n) override {
     triangles.insert(triangles.end(), t, t + n);

@@ -28,7 +28,7 @@ void set_pixel(Image& image, unsigned x, unsigned y, Rgba8 colour) {
   p[3] = colour.a;
 }
 
-CompareOptions options_for(OutputFormat format, unsigned tolerance) {
+CompareOptions options_for(PixelFormat format, unsigned tolerance) {
   CompareOptions options;
   options.format = format;
   options.clear_colour = BACKGROUND;
@@ -39,7 +39,7 @@ CompareOptions options_for(OutputFormat format, unsigned tolerance) {
 TEST(ImageCompare, IdenticalImagesPass) {
   Image image = filled(8, 4, BACKGROUND);
   set_pixel(image, 3, 2, {200, 100, 50, 255});
-  const CompareResult result = compare_images(image, image, options_for(OutputFormat::rgb565, 0));
+  const CompareResult result = compare_images(image, image, options_for(PixelFormat::rgb565, 0));
   EXPECT_EQ(result.pixels, 32u);
   EXPECT_EQ(result.coverage_mismatches(), 0u);
   EXPECT_EQ(result.within_tolerance, 32u);
@@ -52,7 +52,7 @@ TEST(ImageCompare, OnePixelCoverageDifferenceIsCountedBothWays) {
   const Image reference = filled(8, 4, BACKGROUND);
   Image ours = reference;
   set_pixel(ours, 5, 1, {255, 255, 255, 255});
-  const CompareOptions options = options_for(OutputFormat::rgb565, 8);
+  const CompareOptions options = options_for(PixelFormat::rgb565, 8);
 
   const CompareResult extra = compare_images(ours, reference, options);
   EXPECT_EQ(extra.coverage_ours_only, 1u);
@@ -75,13 +75,13 @@ TEST(ImageCompare, ColourDifferenceBelowAndAboveTolerance) {
   Image ours = reference;
   set_pixel(ours, 0, 0, {104, 100, 100, 255});  // 4 below the tolerance
   set_pixel(ours, 1, 0, {100, 100, 120, 255});  // 20 above it
-  const CompareResult result = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 8));
+  const CompareResult result = compare_images(ours, reference, options_for(PixelFormat::rgba8888, 8));
   EXPECT_EQ(result.coverage_mismatches(), 0u);
   EXPECT_EQ(result.within_tolerance, 3u);
   EXPECT_EQ(result.max_colour_difference, 20u);
   EXPECT_DOUBLE_EQ(result.percent_within_tolerance(), 75.0);
 
-  const CompareResult looser = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 20));
+  const CompareResult looser = compare_images(ours, reference, options_for(PixelFormat::rgba8888, 20));
   EXPECT_EQ(looser.within_tolerance, 4u);
 }
 
@@ -90,24 +90,26 @@ TEST(ImageCompare, AlphaIsComparedOnlyOnRequest) {
   set_pixel(reference, 0, 0, {10, 200, 10, 128});
   Image ours = reference;
   set_pixel(ours, 0, 0, {10, 200, 10, 255});
-  CompareOptions options = options_for(OutputFormat::rgba8888, 0);
+  CompareOptions options = options_for(PixelFormat::rgba8888, 0);
   EXPECT_EQ(compare_images(ours, reference, options).max_colour_difference, 0u);
   options.compare_alpha = true;
   EXPECT_EQ(compare_images(ours, reference, options).max_colour_difference, 127u);
 }
 
-TEST(ImageCompare, Rgb565TruncatesAndReplicatesBits) {
-  EXPECT_EQ(reduce({0, 0, 0, 7}, OutputFormat::rgb565).r, 0);
-  const Rgba8 white = reduce({255, 255, 255, 0}, OutputFormat::rgb565);
+TEST(ImageCompare, Rgb565RoundsToNearestAndReplicatesBits) {
+  EXPECT_EQ(reduce({0, 0, 0, 7}, PixelFormat::rgb565).r, 0);
+  // 7 * 31 / 255 = 0.85 rounds to code 1, widened to 8 (truncation would give 0).
+  EXPECT_EQ(reduce({7, 0, 0, 255}, PixelFormat::rgb565).r, 8);
+  const Rgba8 white = reduce({255, 255, 255, 0}, PixelFormat::rgb565);
   EXPECT_EQ(white.r, 255);
   EXPECT_EQ(white.g, 255);
   EXPECT_EQ(white.b, 255);
   EXPECT_EQ(white.a, 255) << "the display has no alpha";
-  // 0x87 = 10000 111: 5-bit code 16, expanded to 10000 100.
-  EXPECT_EQ(reduce({0x87, 0, 0, 255}, OutputFormat::rgb565).r, 0x84);
-  // 0x83 = 100000 11: 6-bit code 32, expanded to 100000 10.
-  EXPECT_EQ(reduce({0, 0x83, 0, 255}, OutputFormat::rgb565).g, 0x82);
-  EXPECT_EQ(reduce({1, 2, 3, 4}, OutputFormat::rgba8888).b, 3);
+  // 0x87 = 135: 135 * 31 / 255 = 16.4, code 16 = 10000, expanded to 10000 100.
+  EXPECT_EQ(reduce({0x87, 0, 0, 255}, PixelFormat::rgb565).r, 0x84);
+  // 0x83 = 131: 131 * 63 / 255 = 32.4, code 32 = 100000, expanded to 100000 10.
+  EXPECT_EQ(reduce({0, 0x83, 0, 255}, PixelFormat::rgb565).g, 0x82);
+  EXPECT_EQ(reduce({1, 2, 3, 4}, PixelFormat::rgba8888).b, 3);
 }
 
 TEST(ImageCompare, ValuesSharingA565CodeCompareEqual) {
@@ -117,20 +119,22 @@ TEST(ImageCompare, ValuesSharingA565CodeCompareEqual) {
   Image ours = reference;
   set_pixel(ours, 0, 0, {0x87, 0x83, 0x87, 255});  // same 5/6/5 codes
   set_pixel(ours, 1, 0, {0x88, 0x80, 0x80, 255});  // next red code: 0x84 vs 0x8c after expansion
-  const CompareResult in565 = compare_images(ours, reference, options_for(OutputFormat::rgb565, 0));
+  const CompareResult in565 = compare_images(ours, reference, options_for(PixelFormat::rgb565, 0));
   EXPECT_EQ(in565.within_tolerance, 2u);
   EXPECT_EQ(in565.max_colour_difference, 8u);
-  const CompareResult in8888 = compare_images(ours, reference, options_for(OutputFormat::rgba8888, 0));
+  const CompareResult in8888 = compare_images(ours, reference, options_for(PixelFormat::rgba8888, 0));
   EXPECT_EQ(in8888.within_tolerance, 1u);
 }
 
 TEST(ImageCompare, BackgroundIsJudgedAfterReduction) {
   // Within the background's 5/6/5 codes, so not drawn as far as the display can tell.
   Image ours = filled(2, 1, BACKGROUND);
-  set_pixel(ours, 0, 0, {BACKGROUND.r + 1, BACKGROUND.g + 1, BACKGROUND.b + 1, 255});
+  // Codes: red 27 * 31 / 255 = 3.3 (26: 3.2), green 25 * 63 / 255 = 6.2 (26: 6.4),
+  // blue 65 * 31 / 255 = 7.9 (64: 7.8).
+  set_pixel(ours, 0, 0, {BACKGROUND.r + 1, BACKGROUND.g - 1, BACKGROUND.b + 1, 255});
   const Image reference = filled(2, 1, BACKGROUND);
-  EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgb565, 0)).coverage_mismatches(), 0u);
-  EXPECT_EQ(compare_images(ours, reference, options_for(OutputFormat::rgba8888, 0)).coverage_mismatches(), 1u);
+  EXPECT_EQ(compare_images(ours, reference, options_for(PixelFormat::rgb565, 0)).coverage_mismatches(), 0u);
+  EXPECT_EQ(compare_images(ours, reference, options_for(PixelFormat::rgba8888, 0)).coverage_mismatches(), 1u);
 }
 
 TEST(ImageCompare, RejectsDifferentSizes) {
@@ -140,7 +144,7 @@ TEST(ImageCompare, RejectsDifferentSizes) {
   truncated.rgba.pop_back();
   EXPECT_THROW(compare_images(truncated, truncated, CompareOptions{}), std::invalid_argument);
   EXPECT_THROW(parse_output_format("rgb555"), std::invalid_argument);
-  EXPECT_EQ(parse_output_format("rgba8888"), OutputFormat::rgba8888);
+  EXPECT_EQ(parse_output_format("rgba8888"), PixelFormat::rgba8888);
 }
 
 TEST(ImageCompare, WritesReadableDifferenceImage) {
@@ -151,7 +155,7 @@ TEST(ImageCompare, WritesReadableDifferenceImage) {
   set_pixel(ours, 0, 4, {255, 255, 255, 255});  // coverage
   set_pixel(ours, 2, 2, {104, 100, 100, 255});  // within tolerance (4 of 8)
   set_pixel(ours, 3, 2, {160, 100, 100, 255});  // beyond it
-  const CompareOptions options = options_for(OutputFormat::rgba8888, 8);
+  const CompareOptions options = options_for(PixelFormat::rgba8888, 8);
   const CompareResult result = compare_images(ours, reference, options);
 
   const char* binary_dir = std::getenv("TESSERA_BINARY_DIR");
@@ -184,11 +188,11 @@ TEST(ImageCompare, DrawnColourWithinToleranceOfTheBackgroundIsJudgedByColour) {
   const Image reference = filled(2, 1, BACKGROUND);
   Image ours = reference;
   set_pixel(ours, 0, 0, {BACKGROUND.r + 8, BACKGROUND.g, BACKGROUND.b, 255});
-  const CompareResult within = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
+  const CompareResult within = compare_images(ours, reference, options_for(PixelFormat::rgb565, 9));
   EXPECT_EQ(within.coverage_mismatches(), 0u);
   EXPECT_EQ(within.coverage_within_tolerance, 1u);
   EXPECT_EQ(within.within_tolerance, 2u);
-  const CompareResult beyond = compare_images(ours, reference, options_for(OutputFormat::rgb565, 4));
+  const CompareResult beyond = compare_images(ours, reference, options_for(PixelFormat::rgb565, 4));
   EXPECT_EQ(beyond.coverage_ours_only, 1u);
   EXPECT_EQ(beyond.coverage_within_tolerance, 0u);
 }
@@ -202,7 +206,7 @@ TEST(ImageCompare, CoverageMismatchesAreOnEdgesOnlyNextToTheReferencesOtherSide)
   set_pixel(ours, 4, 1, {200, 200, 200, 255});  // the edge moved right by one pixel: on the edge
   set_pixel(ours, 7, 2, {200, 200, 200, 255});  // a stray pixel: off the edges
   set_pixel(ours, 1, 1, BACKGROUND);            // a hole: off the edges
-  const CompareResult result = compare_images(ours, reference, options_for(OutputFormat::rgb565, 9));
+  const CompareResult result = compare_images(ours, reference, options_for(PixelFormat::rgb565, 9));
   EXPECT_EQ(result.coverage_ours_only, 2u);
   EXPECT_EQ(result.coverage_reference_only, 1u);
   EXPECT_EQ(result.coverage_off_edges, 2u);

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -95,11 +96,15 @@ Rgb pattern_colour(unsigned x, unsigned y, unsigned frame) {
   return {grey, grey, grey};
 }
 
-// What an RGB565 frame buffer gives back as 8 bits per channel: truncated to
-// 5/6/5 bits, widened again by replicating the top bits.
+// What an RGB565 frame buffer gives back as 8 bits per channel: rounded to
+// the nearest of the 2^n codes (GL's conversion), the code widened again by
+// repeating its top bits below it.
+unsigned through_bits(unsigned c, unsigned bits) {
+  const auto code = static_cast<unsigned>(std::lround(c * double((1u << bits) - 1) / 255.0));
+  return (code << (8 - bits)) | (code >> (2 * bits - 8));
+}
 Rgb through_rgb565(Rgb c) {
-  const unsigned r = c.r >> 3, g = c.g >> 2, b = c.b >> 3;
-  return {(r << 3) | (r >> 2), (g << 2) | (g >> 4), (b << 3) | (b >> 2)};
+  return {through_bits(c.r, 5), through_bits(c.g, 6), through_bits(c.b, 5)};
 }
 
 Rgb expected_colour(unsigned x, unsigned y, unsigned frame, bool rgb565) {

@@ -72,23 +72,6 @@ TextureFilter to_filter(uint32_t bit) {
   return bit ? TextureFilter::LINEAR : TextureFilter::NEAREST;
 }
 
-// RGB565 frame buffer: GL's unorm conversion round(c * (2^n - 1) / 255) on
-// the way out, bit replication on the way in, alpha reads as 1.
-uint32_t expand5(uint32_t v) {
-  return (v << 3) | (v >> 2);
-}
-uint32_t expand6(uint32_t v) {
-  return (v << 2) | (v >> 4);
-}
-
-uint16_t to_rgb565(Rgba8 c) {
-  return uint16_t(div255_round(c.r.raw * 31) << 11 | div255_round(c.g.raw * 63) << 5 | div255_round(c.b.raw * 31));
-}
-
-Rgba8 from_rgb565(uint32_t v) {
-  return Rgba8::unpack(expand5((v >> 11) & 31) | expand6((v >> 5) & 63) << 8 | expand5(v & 31) << 16 | 0xffu << 24);
-}
-
 // A positive integer as f * 2^n with f in [1/2, 1), f held in Q30.
 struct Normalised {
   uint64_t f_q30 = 0;
@@ -262,7 +245,7 @@ class TileRun {
     const unsigned row = m_config.height - 1 - unsigned(py);
     return (row - m_row0) * m_config.tile_width + (unsigned(px) - unsigned(m_tile.x0));
   }
-  Rgba8 quantise(Rgba8 c) const { return m_config.rgba8888 ? c : from_rgb565(to_rgb565(c)); }
+  Rgba8 quantise(Rgba8 c) const { return Rgba8::unpack(quantize_color(m_config.color_format, c.pack())); }
 
   RasterPort& m_port;
   const CycleCosts& m_costs;
@@ -387,14 +370,14 @@ void TileRun::run_tile(const TileEntry& entry) {
 void TileRun::load_tile() {
   const RunConfig& c = m_config;
   const unsigned width = unsigned(m_tile.x1 - m_tile.x0), rows = unsigned(m_tile.y1 - m_tile.y0);
-  const unsigned bpp = c.rgba8888 ? 4 : 2;
+  const unsigned bpp = bytes_per_pixel(c.color_format);
   for (unsigned r = 0; r < rows; ++r) {
     const unsigned row = m_row0 + r;
     const uint32_t color_address = c.color_base + (row * c.width + unsigned(m_tile.x0)) * bpp;
     if (!read(color_address, m_row_bytes.data(), width * bpp)) return;
     for (unsigned x = 0; x < width; ++x) {
       const uint8_t* p = m_row_bytes.data() + x * bpp;
-      m_color[r * c.tile_width + x] = c.rgba8888 ? Rgba8::unpack(load_le32(p)) : from_rgb565(p[0] | p[1] << 8);
+      m_color[r * c.tile_width + x] = Rgba8::unpack(unpack_pixel(c.color_format, load_pixel(c.color_format, p)));
     }
     const uint32_t depth_address = c.depth_base + (row * c.width + unsigned(m_tile.x0)) * 4;
     if (!read(depth_address, m_row_bytes.data(), width * 4)) return;
@@ -410,19 +393,11 @@ void TileRun::load_tile() {
 void TileRun::write_tile() {
   const RunConfig& c = m_config;
   const unsigned width = unsigned(m_tile.x1 - m_tile.x0), rows = unsigned(m_tile.y1 - m_tile.y0);
-  const unsigned bpp = c.rgba8888 ? 4 : 2;
+  const unsigned bpp = bytes_per_pixel(c.color_format);
   for (unsigned r = 0; r < rows; ++r) {
-    for (unsigned x = 0; x < width; ++x) {
-      uint8_t* p = m_row_bytes.data() + x * bpp;
-      const Rgba8 color = m_color[r * c.tile_width + x];
-      if (c.rgba8888) {
-        store_le32(p, color.pack());
-      } else {
-        const uint16_t v = to_rgb565(color);
-        p[0] = uint8_t(v);
-        p[1] = uint8_t(v >> 8);
-      }
-    }
+    for (unsigned x = 0; x < width; ++x)
+      store_pixel(c.color_format, m_row_bytes.data() + x * bpp,
+                  pack_pixel(c.color_format, m_color[r * c.tile_width + x].pack()));
     const uint32_t address = c.color_base + ((m_row0 + r) * c.width + unsigned(m_tile.x0)) * bpp;
     if (!write(address, m_row_bytes.data(), width * bpp)) return;
     charge(m_result.tile_cycles, uint64_t{m_costs.tile_write_word} * ((width * bpp + 3) / 4));

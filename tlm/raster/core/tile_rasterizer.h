@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "common/pixel_format.h"
 #include "raster/command_format.h"
 #include "raster/core/raster_port.h"
 #include "raster/datapath/reciprocal.h"
@@ -22,7 +23,7 @@ struct CycleCosts {
 struct RunConfig {
   unsigned width = 320, height = 240, tile_width = 32, tile_height = 16;
   uint32_t tile_table = 0, color_base = 0, depth_base = 0;
-  bool rgba8888 = false;
+  PixelFormat color_format = PixelFormat::rgb565;
   RecipMethod recip_method = RecipMethod::method3;
 };
 

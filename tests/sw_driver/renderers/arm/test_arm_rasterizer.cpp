@@ -29,7 +29,7 @@ struct Rgba {
 // for textures, each surrounded by a guard band.
 class Frame {
  public:
-  Frame(unsigned width, unsigned height, ColorFormat format)
+  Frame(unsigned width, unsigned height, PixelFormat format)
       : width(width),
         height(height),
         format(format),
@@ -55,9 +55,9 @@ class Frame {
 
   // Colour at GL pixel (x, y), decoded here from the documented formats.
   Rgba color(int x, int y) {
-    const unsigned bpp = format == ColorFormat::rgb565 ? 2 : 4;
+    const unsigned bpp = format == PixelFormat::rgb565 ? 2 : 4;
     const uint8_t* p = memory.at(color_address + ((height - 1 - y) * width + x) * bpp, bpp);
-    if (format == ColorFormat::rgba8888) return {p[0], p[1], p[2], p[3]};
+    if (format == PixelFormat::rgba8888) return {p[0], p[1], p[2], p[3]};
     const int v = p[0] | p[1] << 8;
     const int r5 = v >> 11, g6 = (v >> 5) & 63, b5 = v & 31;
     return {r5 * 255 / 31, g6 * 255 / 63, b5 * 255 / 31, 255};
@@ -91,7 +91,7 @@ class Frame {
 
   // Every byte outside the buffers and the texture still holds GUARD_BYTE.
   bool guards_intact() {
-    const uint32_t bpp = format == ColorFormat::rgb565 ? 2 : 4;
+    const uint32_t bpp = format == PixelFormat::rgb565 ? 2 : 4;
     const std::array<std::pair<uint32_t, uint32_t>, 4> used = {{{color_address, width * height * bpp},
                                                                 {depth_address, width * height * 2},
                                                                 {stencil_address, width * height},
@@ -110,7 +110,7 @@ class Frame {
 
   static constexpr uint32_t TEXTURE_BYTES = 64 * 64 * 4;
   const unsigned width, height;
-  const ColorFormat format;
+  const PixelFormat format;
   const uint32_t color_address, depth_address, stencil_address, texture_address;
   NativeMemory memory;
   std::unique_ptr<ArmRasterizer> rasterizer;
@@ -186,7 +186,7 @@ gl::RasterState additive_state() {
 // --- Fill rule ---------------------------------------------------------------
 
 void check_fan(double cx, double cy, const std::vector<std::pair<double, double>>& rim) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   std::vector<gl::Triangle> fan;
   for (size_t k = 0; k < rim.size(); ++k) {
     const auto [x0, y0] = rim[k];
@@ -248,7 +248,7 @@ TEST(ArmRasterizerFillRule, FanAroundSubpixelCentre) {
 }
 
 void check_grid(bool jitter) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   const int nx = 6, ny = 5;
   const double x0 = 4.5, dx = 7.5, y0 = 3.5, dy = 6.5;
   std::mt19937 random(12345);
@@ -298,7 +298,7 @@ TEST(ArmRasterizerFillRule, JitteredGridOfQuads) {
 }
 
 TEST(ArmRasterizerFillRule, CoverageMatchesEdgeFunctionReference) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   std::mt19937 random(4711);
   std::uniform_int_distribution<int> xs(-8 * 16, 72 * 16), ys(-8 * 16, 56 * 16), snap(0, 2);
   auto coordinate = [&](std::uniform_int_distribution<int>& d) {
@@ -337,7 +337,7 @@ TEST(ArmRasterizerDepth, NearerHidesFartherInEitherOrder) {
   state.depth_test = true;
   state.depth_func = gl::CompareFunc::less;
   for (bool near_first : {true, false}) {
-    Frame f(64, 48, ColorFormat::rgba8888);
+    Frame f(64, 48, PixelFormat::rgba8888);
     if (near_first) {
       f.draw(state, {near_red, far_green});
     } else {
@@ -364,7 +364,7 @@ TEST(ArmRasterizerDepth, AllCompareFunctionsAgainstClearedDepth) {
   // Top 16 bits of 0.24: 0x8000ff and 0x800000 compare equal.
   for (uint32_t z24 : {0x7fff00u, 0x800000u, 0x8000ffu, 0x810000u}) {
     for (int func = 0; func < 8; ++func) {
-      Frame f(16, 12, ColorFormat::rgba8888);
+      Frame f(16, 12, PixelFormat::rgba8888);
       gl::ClearRequest clear;
       clear.depth = true;
       clear.depth_value = cleared;
@@ -388,7 +388,7 @@ TEST(ArmRasterizerDepth, AllCompareFunctionsAgainstClearedDepth) {
 }
 
 TEST(ArmRasterizerDepth, EqualRedrawsTheSameTriangleAndDepthMaskHolds) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   const Rgba white{255, 255, 255, 255};
   const gl::Triangle t = triangle(vertex(3, 4, white, 0.1), vertex(60, 9, white, 0.9), vertex(30, 45, white, 0.5));
   gl::RasterState state;
@@ -421,7 +421,7 @@ TEST(ArmRasterizerDepth, EqualRedrawsTheSameTriangleAndDepthMaskHolds) {
 // --- Shading -------------------------------------------------------------------
 
 TEST(ArmRasterizerShading, GouraudMatchesBarycentricInterpolation) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   const Rgba ca{0, 10, 250, 255}, cb{200, 100, 0, 128}, cc{50, 255, 60, 0};
   const gl::Triangle t = triangle(vertex(10.5, 40.5, ca), vertex(50.5, 40.5, cb), vertex(30.5, 5.5, cc));
   f.draw(gl::RasterState{}, {t});
@@ -447,7 +447,7 @@ TEST(ArmRasterizerShading, GouraudMatchesBarycentricInterpolation) {
 }
 
 TEST(ArmRasterizerShading, FlatUsesTheProvokingVertex) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
   const gl::Triangle t =
@@ -482,7 +482,7 @@ int div255_round(int x) {
 }
 
 void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
-  Frame f(48, 48, ColorFormat::rgba8888);
+  Frame f(48, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
   state.texture = true;
@@ -543,7 +543,7 @@ TEST(ArmRasterizerTexture, Decal) {
 }
 
 TEST(ArmRasterizerTexture, BilinearAtTheTextureCentreAveragesFourTexels) {
-  Frame f(48, 48, ColorFormat::rgba8888);
+  Frame f(48, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
   state.texture = true;
@@ -565,7 +565,7 @@ TEST(ArmRasterizerTexture, BilinearAtTheTextureCentreAveragesFourTexels) {
 }
 
 TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
-  Frame f(64, 48, ColorFormat::rgba8888);
+  Frame f(64, 48, PixelFormat::rgba8888);
   std::vector<Rgba> ramp(64);
   for (int i = 0; i < 64; ++i) ramp[size_t(i)] = {i * 4, 0, 0, 255};
   gl::RasterState state;
@@ -601,7 +601,7 @@ TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
 // --- Per-fragment operations -----------------------------------------------
 
 TEST(ArmRasterizerFragment, BlendSrcAlphaOneMinusSrcAlpha) {
-  Frame f(32, 32, ColorFormat::rgba8888);
+  Frame f(32, 32, PixelFormat::rgba8888);
   gl::ClearRequest clear;
   clear.color = true;
   const uint8_t dst[4] = {200, 100, 50, 255};
@@ -625,7 +625,7 @@ TEST(ArmRasterizerFragment, BlendSrcAlphaOneMinusSrcAlpha) {
 }
 
 TEST(ArmRasterizerFragment, ScissorAndColorMask) {
-  Frame f(32, 32, ColorFormat::rgba8888);
+  Frame f(32, 32, PixelFormat::rgba8888);
   gl::RasterState state;
   state.scissor_test = true;
   state.scissor_x = 5;
@@ -649,7 +649,7 @@ TEST(ArmRasterizerFragment, ScissorAndColorMask) {
 }
 
 TEST(ArmRasterizerFragment, AlphaTestAndStencil) {
-  Frame f(32, 32, ColorFormat::rgba8888);
+  Frame f(32, 32, PixelFormat::rgba8888);
   gl::RasterState state;
   state.alpha_test = true;
   state.alpha_func = gl::CompareFunc::greater;
@@ -685,7 +685,7 @@ TEST(ArmRasterizerFragment, AlphaTestAndStencil) {
 }
 
 TEST(ArmRasterizerFragment, LogicOpXor) {
-  Frame f(16, 16, ColorFormat::rgba8888);
+  Frame f(16, 16, PixelFormat::rgba8888);
   gl::ClearRequest clear;
   clear.color = true;
   const uint8_t dst[4] = {0x0f, 0xf0, 0x55, 0xff};
@@ -707,7 +707,7 @@ TEST(ArmRasterizerFragment, LogicOpXor) {
 // --- Clear -------------------------------------------------------------------
 
 TEST(ArmRasterizerClear, MasksAndScissor) {
-  Frame f(32, 24, ColorFormat::rgba8888);
+  Frame f(32, 24, PixelFormat::rgba8888);
   gl::ClearRequest all;
   all.color = all.depth = all.stencil = true;
   all.rgba[0] = 10;
@@ -756,7 +756,7 @@ TEST(ArmRasterizerClear, MasksAndScissor) {
 // --- Robustness --------------------------------------------------------------
 
 TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) {
-  for (ColorFormat format : {ColorFormat::rgb565, ColorFormat::rgba8888}) {
+  for (PixelFormat format : {PixelFormat::rgb565, PixelFormat::rgba8888}) {
     Frame f(40, 30, format);
     gl::RasterState state;
     state.depth_test = true;
@@ -793,8 +793,13 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
 
 // --- Formats and read-back -------------------------------------------------
 
-TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
-  Frame f565(64, 48, ColorFormat::rgb565), f8888(64, 48, ColorFormat::rgba8888);
+// GL's conversion of an 8-bit channel to `bits` bits: round(c * (2^bits - 1) / 255).
+int to_bits(int c, int bits) {
+  return int(std::lround(c * double((1 << bits) - 1) / 255.0));
+}
+
+TEST(ArmRasterizerFormats, Rgb565IsTheRgba8888PictureRoundedToNearest) {
+  Frame f565(64, 48, PixelFormat::rgb565), f8888(64, 48, PixelFormat::rgba8888);
   const gl::Triangle t =
       triangle(vertex(3, 3, {255, 0, 17, 255}), vertex(60, 10, {0, 255, 99, 255}), vertex(20, 45, {123, 45, 255, 255}));
   f565.draw(gl::RasterState{}, {t});
@@ -803,7 +808,8 @@ TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
   for (int y = 0; y < 48; ++y) {
     for (int x = 0; x < 64; ++x) {
       const Rgba c = f8888.color(x, y);
-      EXPECT_EQ(f565.packed565(x, y), ((c.r >> 3) << 11) | ((c.g >> 2) << 5) | (c.b >> 3)) << x << "," << y;
+      EXPECT_EQ(f565.packed565(x, y), (to_bits(c.r, 5) << 11) | (to_bits(c.g, 6) << 5) | to_bits(c.b, 5))
+          << x << "," << y;
       drawn += c.a != 0;
     }
   }
@@ -824,7 +830,7 @@ TEST(ArmRasterizerFormats, Rgb565IsTheTruncatedRgba8888Picture) {
 }
 
 TEST(ArmRasterizerFormats, ReadPixelsOutsideTheScreenReadsZero) {
-  Frame f(8, 8, ColorFormat::rgba8888);
+  Frame f(8, 8, PixelFormat::rgba8888);
   gl::ClearRequest clear;
   clear.color = true;
   clear.rgba[0] = 9;
@@ -837,7 +843,7 @@ TEST(ArmRasterizerFormats, ReadPixelsOutsideTheScreenReadsZero) {
 }
 
 TEST(ArmRasterizerFormats, DoubleBufferingMovesDrawing) {
-  Frame f(16, 16, ColorFormat::rgba8888);
+  Frame f(16, 16, PixelFormat::rgba8888);
   const uint32_t front = f.color_address;
   const uint32_t back = f.texture_address;  // any other buffer-sized area
   f.rasterizer->set_color_address(back);
@@ -853,7 +859,7 @@ TEST(ArmRasterizerFormats, DoubleBufferingMovesDrawing) {
 // --- Accesses and charges --------------------------------------------------
 
 TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
-  Frame f(64, 48, ColorFormat::rgb565);
+  Frame f(64, 48, PixelFormat::rgb565);
   gl::RasterState state;
   state.depth_test = true;
   f.memory.reset_counters();
