@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/activity_counters.h"
 #include "host/host_api.h"
 
 namespace tessera {
@@ -21,6 +22,9 @@ struct AppEnvironment {
   uint32_t heap_end = 0;
   std::string backend = "arm";
   std::vector<std::string> args;
+  // The driver's own statistics (vertex cache, ...), kept by the software
+  // on the host; soc_sim writes them to stats.json as "driver". May be null.
+  ActivityCounters* counters = nullptr;
 };
 
 }  // namespace tessera

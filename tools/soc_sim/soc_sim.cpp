@@ -16,6 +16,7 @@
 #include <systemc>
 
 #include "apps/apps.h"
+#include "common/activity_json.h"
 #include "common/log.h"
 #include "config/config.h"
 #include "frame_writer.h"
@@ -237,6 +238,8 @@ int run(int argc, char* argv[]) {
   env.frame_buffers[1] = soc.frame_buffer(1);
   env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   env.args = opt.app_args;
+  ActivityCounters driver_counters;
+  env.counters = &driver_counters;
   env.backend = config.get_string("driver.backend");
   // The driver's heap: from 4 MiB (below it, application data) up to the
   // frame buffers at the top of memory.
@@ -288,6 +291,7 @@ int run(int argc, char* argv[]) {
   }
 
   nlohmann::json stats = soc.stats_json();
+  stats["driver"] = to_json(driver_counters);
   nlohmann::json document = {{"application", config.get_string("sim.app")},
                              {"frames_written", frames_written},
                              {"exit_status", status},
