@@ -75,7 +75,7 @@ struct Bench {
     check_slow.out.bind(slow.in);
   }
   static BusParams params(Arbitration arbitration) {
-    BusParams p;
+    BusParams p = BusParams::defaults();
     p.clock_period = CYCLE;
     p.arbitration = arbitration;
     p.width_bytes = 4;
@@ -84,7 +84,7 @@ struct Bench {
     return p;
   }
   static MemoryParams memory(uint64_t size, unsigned wait) {
-    MemoryParams p;
+    MemoryParams p = MemoryParams::defaults();
     p.size_bytes = size;
     p.clock_period = CYCLE;
     p.width_bytes = 4;

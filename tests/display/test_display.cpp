@@ -23,7 +23,7 @@ constexpr double REFRESH_HZ = 1000.0;  // a 1 ms period keeps the tests short
 constexpr uint32_t REGS_BASE = 0x40000000, FRAME_BUFFER_ADDRESS = 0x1000;
 
 DisplayParams display_params(bool dma) {
-  DisplayParams p;
+  DisplayParams p = DisplayParams::defaults();
   p.width = WIDTH;
   p.height = HEIGHT;
   p.format = PixelFormat::rgb565;
@@ -93,14 +93,15 @@ struct DmaBench {
     display.on_frame([this](const Frame& f) { frames.push_back(f); });
   }
   static BusParams bus_params() {
-    BusParams p;
+    BusParams p = BusParams::defaults();
     p.clock_period = CYCLE;
     return p;
   }
   static MemoryParams memory_params(unsigned wait) {
-    MemoryParams p;
+    MemoryParams p = MemoryParams::defaults();
     p.size_bytes = 0x10000;
     p.clock_period = CYCLE;
+    p.width_bytes = 4;
     p.first_access_cycles = wait;
     return p;
   }

@@ -25,7 +25,7 @@ constexpr uint32_t DEV_BASE = 0x40000000;
 constexpr uint32_t UNMAPPED = 0x90000000;
 
 HostParams host_params() {
-  HostParams p;
+  HostParams p = HostParams::defaults();
   p.clock_period = HOST_CYCLE;
   p.op_cycles.fill(1);
   p.op_cycles[static_cast<size_t>(Op::branch)] = 3;
@@ -43,7 +43,7 @@ HostParams host_params() {
 }
 
 MemoryParams memory_params(uint32_t size, unsigned wait) {
-  MemoryParams p;
+  MemoryParams p = MemoryParams::defaults();
   p.size_bytes = size;
   p.clock_period = BUS_CYCLE;
   p.width_bytes = 4;
@@ -53,7 +53,7 @@ MemoryParams memory_params(uint32_t size, unsigned wait) {
 }
 
 BusParams bus_params() {
-  BusParams p;
+  BusParams p = BusParams::defaults();
   p.clock_period = BUS_CYCLE;
   return p;
 }

@@ -23,7 +23,7 @@ struct Bench {
     checker.out.bind(memory.in);
   }
   static MemoryParams params() {
-    MemoryParams p;
+    MemoryParams p = MemoryParams::defaults();
     p.size_bytes = SIZE;
     p.clock_period = CYCLE;
     p.width_bytes = 4;

@@ -70,19 +70,20 @@ struct Bench {
     raster.irq.bind(irq);
   }
   static BusParams bus_params() {
-    BusParams p;
+    BusParams p = BusParams::defaults();
     p.clock_period = CYCLE;
     return p;
   }
   static MemoryParams memory_params() {
-    MemoryParams p;
+    MemoryParams p = MemoryParams::defaults();
     p.size_bytes = MEMORY_SIZE;
     p.clock_period = CYCLE;
+    p.width_bytes = 4;
     p.first_access_cycles = MEMORY_WAIT;
     return p;
   }
   static RasterizerParams raster_params() {
-    RasterizerParams p;
+    RasterizerParams p = RasterizerParams::defaults();
     p.width = WIDTH;
     p.height = HEIGHT;
     p.costs = test_costs();

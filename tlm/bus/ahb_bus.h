@@ -41,17 +41,26 @@
 #include <nlohmann/json.hpp>
 
 #include "common/timed_trace.h"
+#include "config/config.h"
 
 namespace tessera {
 
 enum class Arbitration { fixed_priority, round_robin };
 
 struct BusParams {
-  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
+  sc_core::sc_time clock_period;
   Arbitration arbitration = Arbitration::fixed_priority;
-  unsigned width_bytes = 4;
-  unsigned address_cycles = 1;
-  unsigned error_cycles = 2;
+  unsigned width_bytes = 0;
+  unsigned address_cycles = 0;
+  unsigned error_cycles = 0;
+
+  // The parameters this block owns (the one place their defaults live),
+  // read back from a configuration that holds them; fields marked "set by the
+  // SoC" are other blocks' values and stay zero here.
+  static ParamGroup parameters();
+  static BusParams from_config(const Config& config);
+  // from_config of the defaults alone.
+  static BusParams defaults();
 };
 
 struct BusInitiatorStats {

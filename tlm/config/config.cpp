@@ -73,14 +73,50 @@ void flatten(const nlohmann::json& node, const std::string& prefix,
 
 }  // namespace
 
-Config::Config() {
-  for (const auto& spec : parameter_specs()) m_values[spec.key] = spec.default_value;
+namespace param {
+
+ParamSpec boolean(std::string key, bool value, std::string description) {
+  return {std::move(key), ParamType::boolean, value, std::move(description), "", 0, 0, {}};
+}
+ParamSpec integer(std::string key, int64_t value, double min, double max, std::string unit, std::string description) {
+  return {std::move(key), ParamType::integer, value, std::move(description), std::move(unit), min, max, {}};
+}
+ParamSpec real(std::string key, double value, double min, double max, std::string unit, std::string description) {
+  return {std::move(key), ParamType::real, value, std::move(description), std::move(unit), min, max, {}};
+}
+ParamSpec choice(std::string key, std::string value, std::vector<std::string> choices, std::string description) {
+  return {std::move(key), ParamType::choice, std::move(value), std::move(description), "", 0, 0, std::move(choices)};
+}
+ParamSpec text(std::string key, std::string value, std::string description) {
+  return {std::move(key), ParamType::string, std::move(value), std::move(description), "", 0, 0, {}};
+}
+
+}  // namespace param
+
+Config::Config(std::vector<ParamGroup> groups) : m_groups(std::move(groups)) {
+  std::map<std::string, std::string> owners;
+  for (const ParamGroup& group : m_groups) {
+    for (const ParamSpec& spec : group.specs) {
+      const auto [it, fresh] = owners.emplace(spec.key, group.owner);
+      if (!fresh)
+        throw std::logic_error("configuration: '" + spec.key + "' is declared by both " + it->second + " and " +
+                               group.owner);
+      m_index[spec.key] = m_specs.size();
+      m_specs.push_back(spec);
+      m_values[spec.key] = spec.default_value;
+    }
+  }
+}
+
+void Config::validate() const {
+  for (const ParamGroup& group : m_groups)
+    if (group.validate) group.validate(*this);
 }
 
 const ParamSpec& Config::spec(const std::string& key, const std::string& source) const {
-  const auto& specs = parameter_specs();
-  auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.key == key; });
-  if (it != specs.end()) return *it;
+  const auto it = m_index.find(key);
+  if (it != m_index.end()) return m_specs[it->second];
+  const auto& specs = m_specs;
   std::string message = "configuration: unknown key '" + key + "'";
   if (!source.empty()) message += " (from " + source + ")";
   const ParamSpec* best = nullptr;
@@ -229,7 +265,7 @@ std::string Config::get_string(const std::string& key) const {
 
 nlohmann::json Config::to_json() const {
   nlohmann::json doc = nlohmann::json::object();
-  for (const auto& spec : parameter_specs()) {
+  for (const auto& spec : m_specs) {
     nlohmann::json* node = &doc;
     std::string rest = spec.key;
     for (auto dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.')) {
@@ -241,10 +277,10 @@ nlohmann::json Config::to_json() const {
   return doc;
 }
 
-std::string Config::reference_markdown() {
+std::string Config::reference_markdown() const {
   std::ostringstream out;
   out << "| key | type | default | description |\n| --- | --- | --- | --- |\n";
-  for (const auto& spec : parameter_specs()) {
+  for (const auto& spec : m_specs) {
     std::string type = expectation(spec);
     out << "| `" << spec.key << "` | " << type << " | `" << spec.default_value.dump() << "` | " << spec.description
         << " |\n";

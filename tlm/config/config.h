@@ -1,10 +1,13 @@
-// The SoC's configuration: every parameter declared once (parameters.cpp)
-// with its type, default, range and description; values merged from a JSON
-// file and from "key=value" overrides; every bad value rejected with an error
-// that names the key and what was expected.
+// The SoC's configuration: every parameter declared once, by the block that
+// owns it (a ParamGroup of specs with type, default, range and description,
+// next to the block's parameter struct), the groups put together by the
+// program that builds the SoC; values merged from JSON files and from
+// "key=value" overrides; every bad value rejected with an error that names
+// the key and what was expected.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -32,13 +35,31 @@ struct ParamSpec {
   std::vector<std::string> choices;  // choice only
 };
 
-// The parameter table; defined in parameters.cpp, the one place defaults live.
-const std::vector<ParamSpec>& parameter_specs();
+// Declaring a parameter: the one place its default lives.
+namespace param {
+ParamSpec boolean(std::string key, bool value, std::string description);
+ParamSpec integer(std::string key, int64_t value, double min, double max, std::string unit, std::string description);
+ParamSpec real(std::string key, double value, double min, double max, std::string unit, std::string description);
+ParamSpec choice(std::string key, std::string value, std::vector<std::string> choices, std::string description);
+ParamSpec text(std::string key, std::string value, std::string description);
+}  // namespace param
+
+class Config;
+
+// The parameters one block (or program) owns, and the check of combinations
+// of them that are individually legal but impossible together. `validate`
+// throws ConfigError naming the keys; it may read other groups' keys.
+struct ParamGroup {
+  std::string owner;  // "display", "soc_sim": names the group in messages
+  std::vector<ParamSpec> specs;
+  std::function<void(const Config&)> validate;
+};
 
 class Config {
  public:
-  // All parameters at their defaults.
-  Config();
+  // All parameters of `groups` at their defaults. A key declared twice is a
+  // programming error (std::logic_error naming the key and both owners).
+  explicit Config(std::vector<ParamGroup> groups);
 
   // Merges a JSON document of nested objects ({"bus": {"arbitration": ...}})
   // or dotted keys. `source` names where it came from, for error messages.
@@ -49,8 +70,13 @@ class Config {
   // Sets one parameter from a JSON value, checking type and range.
   void set(const std::string& key, const nlohmann::json& value, const std::string& source);
 
-  // Checks combinations of parameters that are individually legal.
+  // Checks combinations of parameters that are individually legal: every
+  // group's validate, in order.
   void validate() const;
+
+  // Every parameter, in the order of the groups.
+  const std::vector<ParamSpec>& specs() const { return m_specs; }
+  bool has(const std::string& key) const { return m_values.count(key) != 0; }
 
   bool get_bool(const std::string& key) const;
   int64_t get_int(const std::string& key) const;
@@ -62,12 +88,15 @@ class Config {
   nlohmann::json to_json() const;
 
   // Markdown table of every parameter (for the README's reference).
-  static std::string reference_markdown();
+  std::string reference_markdown() const;
 
  private:
   const ParamSpec& spec(const std::string& key, const std::string& source) const;
   const nlohmann::json& value(const std::string& key, ParamType expected) const;
 
+  std::vector<ParamGroup> m_groups;
+  std::vector<ParamSpec> m_specs;
+  std::map<std::string, size_t> m_index;  // key -> position in m_specs
   std::map<std::string, nlohmann::json> m_values;
 };
 

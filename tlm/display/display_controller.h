@@ -27,20 +27,30 @@
 #include "common/pixel_format.h"
 #include "common/register_bank.h"
 #include "common/timed_trace.h"
+#include "config/config.h"
 
 namespace tessera {
 
 struct DisplayParams {
-  unsigned width = 320;
-  unsigned height = 240;
+  unsigned width = 0;
+  unsigned height = 0;
   PixelFormat format = PixelFormat::rgb565;
   bool dma = false;
-  double refresh_hz = 60.0;
-  unsigned vblank_lines = 20;
-  unsigned burst_bytes = 64;
-  unsigned fifo_lines = 1;
-  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
-  unsigned port_cycles = 1;  // cycles per port write (besides the bus's)
+  double refresh_hz = 0;
+  unsigned vblank_lines = 0;
+  unsigned burst_beats = 0;
+  unsigned burst_bytes = 0;  // set by the SoC: burst_beats bus words
+  unsigned fifo_lines = 0;
+  sc_core::sc_time clock_period;  // set by the SoC: the bus clock
+  unsigned port_cycles = 0;       // cycles per 32-bit word written to the display port (besides the bus's)
+
+  // The parameters this block owns (the one place their defaults live),
+  // read back from a configuration that holds them; fields marked "set by the
+  // SoC" are other blocks' values and stay zero here.
+  static ParamGroup parameters();
+  static DisplayParams from_config(const Config& config);
+  // from_config of the defaults alone.
+  static DisplayParams defaults();
 };
 
 struct Frame {

@@ -27,28 +27,38 @@
 
 #include "common/timed_trace.h"
 #include "common/transfer_train.h"
+#include "config/config.h"
 #include "host/data_cache.h"
 #include "host/host_api.h"
 
 namespace tessera {
 
 struct HostParams {
-  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 192.0, sc_core::SC_NS);
+  sc_core::sc_time clock_period;
   std::array<unsigned, static_cast<size_t>(Op::count_)> op_cycles{};  // per Op
-  unsigned load_cycles = 1;
-  unsigned store_cycles = 1;
-  unsigned dcache_bytes = 8192;
-  unsigned dcache_line_bytes = 32;
-  unsigned dcache_ways = 64;
-  unsigned write_buffer_words = 16;
-  unsigned irq_lines = 8;
-  // Cacheable address range (system memory).
+  unsigned load_cycles = 0;
+  unsigned store_cycles = 0;
+  unsigned dcache_bytes = 0;
+  unsigned dcache_line_bytes = 0;
+  unsigned dcache_ways = 0;
+  unsigned write_buffer_words = 0;
+  unsigned irq_lines = 0;
+  // Cacheable address range (set by the SoC: system memory).
   uint32_t cacheable_base = 0;
   uint32_t cacheable_size = 0;
   // How far past the kernel's time the host may run on when its quantum is
   // used up but no other process has anything scheduled within that window
-  // (zero: always synchronise at the quantum).
+  // (zero: always synchronise at the quantum). Set by the SoC, which owns
+  // the simulation's timing policy (sim.quantum_ns, sim.run_ahead_us).
   sc_core::sc_time run_ahead = sc_core::SC_ZERO_TIME;
+
+  // The parameters this block owns (the one place their defaults live),
+  // read back from a configuration that holds them; fields marked "set by the
+  // SoC" are other blocks' values and stay zero here.
+  static ParamGroup parameters();
+  static HostParams from_config(const Config& config);
+  // from_config of the defaults alone.
+  static HostParams defaults();
 };
 
 class Host : public sc_core::sc_module, public HostApi {

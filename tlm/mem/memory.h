@@ -14,14 +14,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/config.h"
+
 namespace tessera {
 
 struct MemoryParams {
-  uint64_t size_bytes = 16u << 20;
-  sc_core::sc_time clock_period = sc_core::sc_time(1e3 / 96.0, sc_core::SC_NS);
-  unsigned width_bytes = 4;          // one beat moves this much
-  unsigned first_access_cycles = 4;  // wait states before the first beat
-  unsigned beat_cycles = 1;          // cycles per beat
+  uint64_t size_bytes = 0;
+  sc_core::sc_time clock_period;    // set by the SoC: the bus clock
+  unsigned width_bytes = 0;         // set by the SoC: one beat moves the bus width
+  unsigned first_access_cycles = 0;  // wait states before the first beat
+  unsigned beat_cycles = 0;          // cycles per beat
+
+  // The parameters this block owns (the one place their defaults live),
+  // read back from a configuration that holds them; fields marked "set by the
+  // SoC" are other blocks' values and stay zero here.
+  static ParamGroup parameters();
+  static MemoryParams from_config(const Config& config);
+  // from_config of the defaults alone.
+  static MemoryParams defaults();
 };
 
 class Memory : public sc_core::sc_module {

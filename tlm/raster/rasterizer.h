@@ -30,23 +30,32 @@
 
 #include "common/register_bank.h"
 #include "common/timed_trace.h"
+#include "config/config.h"
 #include "raster/core/raster_port.h"
 #include "raster/core/tile_rasterizer.h"
 
 namespace tessera {
 
 struct RasterizerParams {
-  unsigned width = 320;
-  unsigned height = 240;
-  unsigned tile_width = 32;
-  unsigned tile_height = 16;
+  unsigned width = 0;
+  unsigned height = 0;
+  unsigned tile_width = 0;
+  unsigned tile_height = 0;
   raster::RecipMethod recip_method = raster::RecipMethod::method3;
   raster::CycleCosts costs;
-  sc_core::sc_time clock_period = sc_core::sc_time(10, sc_core::SC_NS);
+  sc_core::sc_time clock_period;
   // Longest burst on the bus, in 32-bit beats (AHB's INCR16): a long tile
   // write must not hold the bus for hundreds of cycles while the display
   // DMA has a line due.
-  unsigned burst_beats = 16;
+  unsigned burst_beats = 0;
+
+  // The parameters this block owns (the one place their defaults live),
+  // read back from a configuration that holds them; fields marked "set by the
+  // SoC" are other blocks' values and stay zero here.
+  static ParamGroup parameters();
+  static RasterizerParams from_config(const Config& config);
+  // from_config of the defaults alone.
+  static RasterizerParams defaults();
 };
 
 class Rasterizer : public sc_core::sc_module {

@@ -11,57 +11,23 @@ namespace tessera {
 using sc_core::sc_time;
 
 namespace {
-sc_time period_of_mhz(double mhz) {
-  return sc_time(1e3 / mhz, sc_core::SC_NS);
-}
-}  // namespace
 
 BusParams bus_params(const Config& config) {
-  BusParams p;
-  p.clock_period = period_of_mhz(config.get_real("bus.clock_mhz"));
-  p.arbitration = parse_arbitration(config.get_string("bus.arbitration"));
-  p.width_bytes = static_cast<unsigned>(config.get_uint("bus.width_bits") / 8);
-  p.address_cycles = static_cast<unsigned>(config.get_uint("bus.address_cycles"));
-  p.error_cycles = static_cast<unsigned>(config.get_uint("bus.error_cycles"));
-  return p;
+  return BusParams::from_config(config);
 }
 
 MemoryParams memory_params(const Config& config) {
-  MemoryParams p;
-  p.size_bytes = config.get_uint("mem.size_mib") << 20;
-  p.clock_period = period_of_mhz(config.get_real("bus.clock_mhz"));
-  p.width_bytes = static_cast<unsigned>(config.get_uint("bus.width_bits") / 8);
-  p.first_access_cycles = static_cast<unsigned>(config.get_uint("mem.first_access_cycles"));
-  p.beat_cycles = static_cast<unsigned>(config.get_uint("mem.beat_cycles"));
+  MemoryParams p = MemoryParams::from_config(config);
+  const BusParams bus = BusParams::from_config(config);
+  p.clock_period = bus.clock_period;
+  p.width_bytes = bus.width_bytes;
   return p;
 }
 
 HostParams host_params(const Config& config) {
-  HostParams p;
-  p.clock_period = period_of_mhz(config.get_real("host.clock_mhz"));
-  auto cycles = [&](Op op, const char* key) {
-    p.op_cycles[static_cast<size_t>(op)] = static_cast<unsigned>(config.get_uint(std::string("host.cycles.") + key));
-  };
-  cycles(Op::alu, "alu");
-  cycles(Op::load_use, "load_use");
-  cycles(Op::mul, "mul");
-  cycles(Op::branch, "branch");
-  cycles(Op::call, "call");
-  cycles(Op::fadd, "fadd");
-  cycles(Op::fmul, "fmul");
-  cycles(Op::fdiv, "fdiv");
-  cycles(Op::fsqrt, "fsqrt");
-  cycles(Op::fcmp, "fcmp");
-  cycles(Op::fconv, "fconv");
-  p.load_cycles = static_cast<unsigned>(config.get_uint("host.cycles.load"));
-  p.store_cycles = static_cast<unsigned>(config.get_uint("host.cycles.store"));
-  p.dcache_bytes = static_cast<unsigned>(config.get_uint("host.dcache.size_bytes"));
-  p.dcache_line_bytes = static_cast<unsigned>(config.get_uint("host.dcache.line_bytes"));
-  p.dcache_ways = static_cast<unsigned>(config.get_uint("host.dcache.ways"));
-  p.write_buffer_words = static_cast<unsigned>(config.get_uint("host.write_buffer.entries"));
-  p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
+  HostParams p = HostParams::from_config(config);
   p.cacheable_base = memory_map::sysmem.base;
-  p.cacheable_size = static_cast<uint32_t>(config.get_uint("mem.size_mib") << 20);
+  p.cacheable_size = static_cast<uint32_t>(MemoryParams::from_config(config).size_bytes);
   // A quantum of zero asks for synchronisation on every access: no run-ahead.
   if (config.get_uint("sim.quantum_ns") != 0)
     p.run_ahead = sc_core::sc_time(static_cast<double>(config.get_uint("sim.run_ahead_us")), sc_core::SC_US);
@@ -69,42 +35,49 @@ HostParams host_params(const Config& config) {
 }
 
 DisplayParams display_params(const Config& config) {
-  DisplayParams p;
-  p.width = static_cast<unsigned>(config.get_uint("display.width"));
-  p.height = static_cast<unsigned>(config.get_uint("display.height"));
-  p.format = *pixel_format_from_name(config.get_string("display.format"));
-  p.dma = config.get_bool("display.dma");
-  p.refresh_hz = config.get_real("display.refresh_hz");
-  p.vblank_lines = static_cast<unsigned>(config.get_uint("display.vblank_lines"));
-  p.burst_bytes = static_cast<unsigned>(config.get_uint("display.burst_beats") * config.get_uint("bus.width_bits") / 8);
-  p.fifo_lines = static_cast<unsigned>(config.get_uint("display.fifo_lines"));
-  p.clock_period = period_of_mhz(config.get_real("bus.clock_mhz"));
+  DisplayParams p = DisplayParams::from_config(config);
+  const BusParams bus = BusParams::from_config(config);
+  p.burst_bytes = p.burst_beats * bus.width_bytes;
+  p.clock_period = bus.clock_period;
   return p;
 }
 
-RasterizerParams rasterizer_params(const Config& config) {
-  RasterizerParams p;
-  p.width = static_cast<unsigned>(config.get_uint("raster.width"));
-  p.height = static_cast<unsigned>(config.get_uint("raster.height"));
-  p.tile_width = static_cast<unsigned>(config.get_uint("raster.tile_width"));
-  p.tile_height = static_cast<unsigned>(config.get_uint("raster.tile_height"));
-  const uint64_t method = config.get_uint("raster.recip_method");
-  p.recip_method = method == 1   ? raster::RecipMethod::method1
-                   : method == 2 ? raster::RecipMethod::method2
-                                 : raster::RecipMethod::method3;
-  p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
-  auto cycles = [&](const char* key) {
-    return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key));
-  };
-  p.costs.command = cycles("command");
-  p.costs.setup = cycles("setup");
-  p.costs.tile_start = cycles("tile_start");
-  p.costs.tile_pixel_clear = cycles("tile_pixel_clear");
-  p.costs.fragment = cycles("fragment");
-  p.costs.texel = cycles("texel");
-  p.costs.tile_write_word = cycles("tile_write_word");
-  p.clock_period = period_of_mhz(config.get_real("raster.clock_mhz"));
-  return p;
+}  // namespace
+
+std::vector<ParamGroup> Soc::parameter_groups() {
+  ParamGroup soc{
+      "soc",
+      {
+          param::integer("sim.quantum_ns", 1000, 0, 1000000, "ns",
+                         "temporal-decoupling quantum of the loosely-timed initiators (0: synchronise on every "
+                         "access)"),
+          param::integer("sim.run_ahead_us", 1000, 0, 1000000, "us",
+                         "how far ahead of the kernel the host may run past its quantum while no other process has "
+                         "anything scheduled that soon (0: always synchronise at the end of the quantum)"),
+      },
+      [](const Config& config) {
+        const DisplayParams display = display_params(config);
+        const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
+        const uint64_t memory_bytes = MemoryParams::from_config(config).size_bytes;
+        // Two frame buffers must fit in system memory, with room for everything else.
+        if (2 * frame_bytes > memory_bytes / 2)
+          throw ConfigError("configuration: impossible combination: two frame buffers of display.width=" +
+                            std::to_string(display.width) + " x display.height=" + std::to_string(display.height) +
+                            " display.format=" + pixel_format_name(display.format) + " pixels need " +
+                            std::to_string(2 * frame_bytes) +
+                            " bytes, more than half of mem.size_mib=" + std::to_string(memory_bytes >> 20));
+        const uint64_t line_bytes = uint64_t{display.width} * bytes_per_pixel(display.format);
+        if (display.dma && line_bytes % std::min<uint64_t>(display.burst_bytes, line_bytes) != 0)
+          throw ConfigError("configuration: impossible combination: a display line of " + std::to_string(line_bytes) +
+                            " bytes is not a whole number of display.burst_beats bursts (" +
+                            std::to_string(display.burst_bytes) + " bytes)");
+      }};
+  return {soc,
+          HostParams::parameters(),
+          BusParams::parameters(),
+          MemoryParams::parameters(),
+          DisplayParams::parameters(),
+          RasterizerParams::parameters()};
 }
 
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
@@ -113,7 +86,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       memory("memory", memory_params(config)),
       host("host", host_params(config)),
       display("display", display_params(config)),
-      raster("raster", rasterizer_params(config)) {
+      raster("raster", RasterizerParams::from_config(config)) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -138,7 +111,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     m_irq_lines.push_back(std::make_unique<sc_core::sc_signal<bool>>(("irq_line_" + std::to_string(i)).c_str(), false));
     host.irq[i].bind(*m_irq_lines.back());
   }
-  // host.irq_lines is at least 4 (parameters.cpp), so every source in irq_map.def has its line.
+  // host.irq_lines is at least 4 (host_params.cpp), so every source in irq_map.def has its line.
   static_assert(irq_map::display < 4 && irq_map::raster < 4,
                 "interrupt sources must use lines below host.irq_lines' minimum");
   display.irq.bind(*m_irq_lines[irq_map::display]);
@@ -150,12 +123,6 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
 
 Soc::~Soc() {
   close_trace();
-}
-
-uint32_t Soc::frame_buffer(unsigned index) const {
-  const uint64_t memory_bytes = memory.size();
-  const uint64_t frame = (display.frame_bytes() + 4095) / 4096 * 4096;
-  return static_cast<uint32_t>(memory_map::sysmem.base + memory_bytes - frame * (2 - index));
 }
 
 void Soc::finish() {

@@ -34,7 +34,12 @@ class Soc : public sc_core::sc_module {
  public:
   SC_HAS_PROCESS(Soc);
 
+  // The configuration must hold parameter_groups(); it is validated here.
   Soc(sc_core::sc_module_name name, const Config& config);
+
+  // The SoC's parameters: its own (the simulation's timing) and every
+  // block's, in the order of the configuration reference.
+  static std::vector<ParamGroup> parameter_groups();
   ~Soc() override;
 
   AhbBus bus;
@@ -55,9 +60,6 @@ class Soc : public sc_core::sc_module {
 
   nlohmann::json stats_json() const;
 
-  // Addresses of the two frame buffers in system memory (top of memory).
-  uint32_t frame_buffer(unsigned index) const;
-
  private:
   void finish();  // SC_THREAD
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
@@ -66,11 +68,5 @@ class Soc : public sc_core::sc_module {
   sc_core::sc_trace_file* m_trace = nullptr;
   std::string m_trace_path;
 };
-
-BusParams bus_params(const Config& config);
-MemoryParams memory_params(const Config& config);
-HostParams host_params(const Config& config);
-DisplayParams display_params(const Config& config);
-RasterizerParams rasterizer_params(const Config& config);
 
 }  // namespace tessera

@@ -21,7 +21,9 @@
 #include "config/config.h"
 #include "frame_writer.h"
 #include "png_writer_thread.h"
+#include "renderers/backend_parameters.h"
 #include "soc/soc.h"
+#include "soc/software_layout.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -147,6 +149,28 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
   (void)soc;
 }
 
+// soc_sim's own parameters (sim.*): what to run and how the run is watched.
+ParamGroup runner_parameters() {
+  return {"soc_sim",
+          {
+              param::text("sim.app", "teapot", "application to run: a built-in name or a path to a shared library"),
+              param::integer("sim.frames", 3, 1, 100000, "frames",
+                             "frames the application draws before the simulation ends"),
+              param::integer("sim.time_limit_ms", 60000, 1, 3600000, "ms",
+                             "simulated-time limit; a run that reaches it stops with an error"),
+              param::choice("sim.log_level", "warning", {"quiet", "error", "warning", "info", "debug"},
+                            "lowest severity of the log lines printed on stderr"),
+          },
+          {}};
+}
+
+// Every parameter of a run: soc_sim's, the driver's, the SoC's and its blocks'.
+std::vector<ParamGroup> all_parameters() {
+  std::vector<ParamGroup> groups = {runner_parameters(), driver_parameters()};
+  for (ParamGroup& group : Soc::parameter_groups()) groups.push_back(std::move(group));
+  return groups;
+}
+
 int run(int argc, char* argv[]) {
   Options opt;
   CLI::App cli{"tessera soc_sim: run an application on the virtual mobile graphics SoC"};
@@ -172,7 +196,7 @@ int run(int argc, char* argv[]) {
   }
 
   if (opt.config_reference) {
-    std::cout << Config::reference_markdown();
+    std::cout << Config(all_parameters()).reference_markdown();
     return 0;
   }
   if (opt.list_apps) {
@@ -180,7 +204,7 @@ int run(int argc, char* argv[]) {
     return 0;
   }
 
-  Config config;
+  Config config(all_parameters());
   try {
     for (const auto& file : opt.config_files) config.load_file(file);
     for (const auto& assignment : opt.overrides) config.apply_override(assignment);
@@ -234,17 +258,16 @@ int run(int argc, char* argv[]) {
 
   AppEnvironment env;
   env.frames = frames;
-  env.frame_buffers[0] = soc.frame_buffer(0);
-  env.frame_buffers[1] = soc.frame_buffer(1);
+  const software_layout::Layout layout = software_layout::layout(soc.memory.size(), soc.display.frame_bytes());
+  env.frame_buffers[0] = layout.frame_buffers[0];
+  env.frame_buffers[1] = layout.frame_buffers[1];
+  env.heap_base = layout.heap_base;
+  env.heap_end = layout.heap_end;
   env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   env.args = opt.app_args;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
   env.backend = config.get_string("driver.backend");
-  // The driver's heap: from 4 MiB (below it, application data) up to the
-  // frame buffers at the top of memory.
-  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
-  env.heap_end = env.frame_buffers[0];
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);

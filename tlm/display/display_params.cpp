@@ -1,0 +1,58 @@
+// The display's parameters: display.*.
+#include <string>
+#include <vector>
+
+#include "display/display_controller.h"
+
+namespace tessera {
+
+namespace {
+
+std::vector<std::string> pixel_format_name_list() {
+  std::vector<std::string> names;
+  for (const PixelFormatInfo& info : PIXEL_FORMATS) names.emplace_back(info.name);
+  return names;
+}
+
+}  // namespace
+
+ParamGroup DisplayParams::parameters() {
+  using param::integer;
+  return {"display",
+          {
+              integer("display.width", 320, 16, 2048, "pixels", "visible pixels per line"),
+              integer("display.height", 240, 16, 2048, "lines", "visible lines"),
+              param::choice("display.format", "rgb565", pixel_format_name_list(), "frame-buffer pixel format"),
+              param::boolean("display.dma", false,
+                             "true: a display DMA scans the front buffer out over the bus; false: the host copies "
+                             "each frame to the display port"),
+              param::real("display.refresh_hz", 60.0, 1, 240, "Hz", "refresh rate of the display DMA"),
+              integer("display.vblank_lines", 20, 1, 1000, "lines", "vertical blanking interval, in line times"),
+              integer("display.burst_beats", 16, 1, 256, "beats", "burst length of the display DMA's fetches"),
+              integer("display.fifo_lines", 1, 1, 16, "lines",
+                      "line buffer of the display DMA: how many lines ahead it may fetch"),
+              integer("display.port_cycles", 1, 0, 100000, "bus cycles",
+                      "cost of one 32-bit word written to the display port, besides the bus's (host copy mode)"),
+          },
+          {}};
+}
+
+DisplayParams DisplayParams::from_config(const Config& config) {
+  DisplayParams p;
+  p.width = static_cast<unsigned>(config.get_uint("display.width"));
+  p.height = static_cast<unsigned>(config.get_uint("display.height"));
+  p.format = *pixel_format_from_name(config.get_string("display.format"));
+  p.dma = config.get_bool("display.dma");
+  p.refresh_hz = config.get_real("display.refresh_hz");
+  p.vblank_lines = static_cast<unsigned>(config.get_uint("display.vblank_lines"));
+  p.burst_beats = static_cast<unsigned>(config.get_uint("display.burst_beats"));
+  p.fifo_lines = static_cast<unsigned>(config.get_uint("display.fifo_lines"));
+  p.port_cycles = static_cast<unsigned>(config.get_uint("display.port_cycles"));
+  return p;
+}
+
+DisplayParams DisplayParams::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+}  // namespace tessera

@@ -1,0 +1,93 @@
+// The host's parameters: host.* (the ARM922T's clock, its cost model per
+// operation class, the data cache and the write buffer).
+#include <string>
+
+#include "host/host.h"
+
+namespace tessera {
+
+namespace {
+
+// Operation classes of the cost model and their keys under host.cycles.
+struct OpKey {
+  Op op;
+  const char* key;
+};
+constexpr OpKey OP_KEYS[] = {
+    {Op::alu, "alu"},     {Op::load_use, "load_use"}, {Op::mul, "mul"},     {Op::branch, "branch"},
+    {Op::call, "call"},   {Op::fadd, "fadd"},         {Op::fmul, "fmul"},   {Op::fdiv, "fdiv"},
+    {Op::fsqrt, "fsqrt"}, {Op::fcmp, "fcmp"},         {Op::fconv, "fconv"},
+};
+
+}  // namespace
+
+ParamGroup HostParams::parameters() {
+  using param::integer;
+  using param::real;
+  return {
+      "host",
+      {
+          real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
+          integer("host.irq_lines", 8, 4, 32, "lines", "interrupt inputs of the host"),
+          integer("host.cycles.alu", 1, 0, 100, "cycles", "data-processing instruction (ARM9TDMI: 1)"),
+          integer("host.cycles.load", 1, 0, 100, "cycles", "LDR/LDRH/LDRB issue, cache hit (ARM9TDMI: 1)"),
+          integer("host.cycles.load_use", 1, 0, 100, "cycles",
+                  "interlock when a loaded value is used by the next instruction (ARM9TDMI: 1)"),
+          integer("host.cycles.store", 1, 0, 100, "cycles", "STR/STRH/STRB issue (ARM9TDMI: 1)"),
+          integer("host.cycles.mul", 3, 0, 100, "cycles",
+                  "MUL with a 16-bit multiplier (ARM9TDMI: 8 bits per cycle, early termination)"),
+          integer("host.cycles.branch", 3, 0, 100, "cycles", "taken branch, pipeline refill (ARM9TDMI: 3)"),
+          integer("host.cycles.fadd", 60, 0, 10000, "cycles", "soft-float single add/subtract"),
+          integer("host.cycles.fmul", 50, 0, 10000, "cycles", "soft-float single multiply"),
+          integer("host.cycles.fdiv", 130, 0, 10000, "cycles", "soft-float single divide"),
+          integer("host.cycles.fsqrt", 200, 0, 10000, "cycles", "soft-float single square root"),
+          integer("host.cycles.fcmp", 30, 0, 10000, "cycles", "soft-float compare"),
+          integer("host.cycles.fconv", 30, 0, 10000, "cycles", "soft-float conversion to or from integer"),
+          integer("host.cycles.call", 4, 0, 100, "cycles", "function call and return overhead"),
+          integer("host.dcache.size_bytes", 8192, 0, 1048576, "bytes", "data cache size (0: no data cache)"),
+          integer("host.dcache.line_bytes", 32, 4, 256, "bytes", "data cache line"),
+          integer("host.dcache.ways", 64, 1, 1024, "ways", "data cache associativity (ARM922T: 64)"),
+          integer("host.write_buffer.entries", 16, 1, 256, "entries", "posted-write buffer depth (ARM922T: 16)"),
+      },
+      [](const Config& config) {
+        const int64_t line = config.get_int("host.dcache.line_bytes");
+        if (line & (line - 1))
+          throw ConfigError("configuration: 'host.dcache.line_bytes' expects a power of two, got " +
+                            std::to_string(line));
+        const int64_t cache = config.get_int("host.dcache.size_bytes");
+        const int64_t ways = config.get_int("host.dcache.ways");
+        if (cache != 0 && (cache % (line * ways) != 0))
+          throw ConfigError("configuration: impossible combination: host.dcache.size_bytes=" + std::to_string(cache) +
+                            " is not a multiple of host.dcache.line_bytes x "
+                            "host.dcache.ways = " +
+                            std::to_string(line * ways));
+        if (cache != 0) {
+          const int64_t sets = cache / (line * ways);
+          if (sets & (sets - 1))
+            throw ConfigError("configuration: impossible combination: the data cache has " + std::to_string(sets) +
+                              " sets; host.dcache.size_bytes / (line_bytes x ways) must be a power of two");
+        }
+      }};
+}
+
+HostParams HostParams::from_config(const Config& config) {
+  HostParams p;
+  p.clock_period = sc_core::sc_time(1e3 / config.get_real("host.clock_mhz"), sc_core::SC_NS);
+  for (const OpKey& k : OP_KEYS)
+    p.op_cycles[static_cast<size_t>(k.op)] =
+        static_cast<unsigned>(config.get_uint(std::string("host.cycles.") + k.key));
+  p.load_cycles = static_cast<unsigned>(config.get_uint("host.cycles.load"));
+  p.store_cycles = static_cast<unsigned>(config.get_uint("host.cycles.store"));
+  p.dcache_bytes = static_cast<unsigned>(config.get_uint("host.dcache.size_bytes"));
+  p.dcache_line_bytes = static_cast<unsigned>(config.get_uint("host.dcache.line_bytes"));
+  p.dcache_ways = static_cast<unsigned>(config.get_uint("host.dcache.ways"));
+  p.write_buffer_words = static_cast<unsigned>(config.get_uint("host.write_buffer.entries"));
+  p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
+  return p;
+}
+
+HostParams HostParams::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+}  // namespace tessera

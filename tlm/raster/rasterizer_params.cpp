@@ -1,0 +1,69 @@
+// The rasterizer's parameters: raster.*.
+#include <string>
+
+#include "raster/rasterizer.h"
+
+namespace tessera {
+
+ParamGroup RasterizerParams::parameters() {
+  using param::integer;
+  // The clock: the paper synthesised the reciprocal unit alone for one cycle
+  // at 250 MHz in 0.18 um; a whole pipeline with multipliers, tile buffers
+  // and a bus interface closes at a lower frequency, and 100 MHz keeps it
+  // on the order of the 96 MHz bus.
+  return {
+      "raster",
+      {
+          param::real("raster.clock_mhz", 100.0, 1, 1000, "MHz", "rasterizer pipeline clock"),
+          integer("raster.width", 320, 16, 2048, "pixels",
+                  "screen width the rasterizer covers (must equal display.width with driver.backend=raster)"),
+          integer("raster.height", 240, 16, 2048, "lines",
+                  "screen height the rasterizer covers (must equal display.height with driver.backend=raster)"),
+          integer("raster.tile_width", 32, 1, 256, "pixels", "tile buffer width (the paper: 32)"),
+          integer("raster.tile_height", 16, 1, 256, "lines", "tile buffer height (the paper: 16)"),
+          integer("raster.recip_method", 3, 1, 3, "",
+                  "reciprocal unit at reset: 1 fixed-point table, 2 floating-point table, 3 the paper's Method 3"),
+          integer("raster.burst_beats", 16, 1, 256, "beats", "longest burst of the rasterizer's bus accesses"),
+          integer("raster.cycles.command", 1, 0, 1000, "cycles", "decoding one command word"),
+          integer("raster.cycles.setup", 8, 0, 1000, "cycles", "triangle setup (gradients, one reciprocal)"),
+          integer("raster.cycles.tile_start", 4, 0, 1000, "cycles", "starting a tile"),
+          integer("raster.cycles.tile_pixel_clear", 0, 0, 1000, "cycles",
+                  "per pixel of a tile-buffer clear (0: the buffers clear in one go)"),
+          integer("raster.cycles.fragment", 1, 0, 1000, "cycles", "per fragment: one pixel pipeline, one per cycle"),
+          integer("raster.cycles.texel", 1, 0, 1000, "cycles", "per texel fetched"),
+          integer("raster.cycles.tile_write_word", 0, 0, 1000, "cycles",
+                  "per word of a finished tile written back (besides the bus time)"),
+      },
+      {}};
+}
+
+RasterizerParams RasterizerParams::from_config(const Config& config) {
+  RasterizerParams p;
+  p.width = static_cast<unsigned>(config.get_uint("raster.width"));
+  p.height = static_cast<unsigned>(config.get_uint("raster.height"));
+  p.tile_width = static_cast<unsigned>(config.get_uint("raster.tile_width"));
+  p.tile_height = static_cast<unsigned>(config.get_uint("raster.tile_height"));
+  const uint64_t method = config.get_uint("raster.recip_method");
+  p.recip_method = method == 1   ? raster::RecipMethod::method1
+                   : method == 2 ? raster::RecipMethod::method2
+                                 : raster::RecipMethod::method3;
+  p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
+  auto cycles = [&](const char* key) {
+    return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key));
+  };
+  p.costs.command = cycles("command");
+  p.costs.setup = cycles("setup");
+  p.costs.tile_start = cycles("tile_start");
+  p.costs.tile_pixel_clear = cycles("tile_pixel_clear");
+  p.costs.fragment = cycles("fragment");
+  p.costs.texel = cycles("texel");
+  p.costs.tile_write_word = cycles("tile_write_word");
+  p.clock_period = sc_core::sc_time(1e3 / config.get_real("raster.clock_mhz"), sc_core::SC_NS);
+  return p;
+}
+
+RasterizerParams RasterizerParams::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+}  // namespace tessera
