@@ -7,6 +7,12 @@
 // with run_thread(), which starts after the previous test's traffic is over.
 #pragma once
 
+// run_thread() spawns a process: SystemC declares sc_spawn only when asked,
+// and <systemc> may already have been included without it.
+#ifndef SC_INCLUDE_DYNAMIC_PROCESSES
+#define SC_INCLUDE_DYNAMIC_PROCESSES
+#endif
+
 #include <cstring>
 #include <functional>
 #include <string>

@@ -50,7 +50,7 @@ tlm::tlm_response_status RegisterBank::check(const tlm::tlm_generic_payload& gp,
   return tlm::TLM_OK_RESPONSE;
 }
 
-const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
+const char* RegisterBank::transport(tlm::tlm_generic_payload& gp, const sc_core::sc_time& delay) {
   Entry* entry = nullptr;
   auto status = check(gp, entry);
   if (status != tlm::TLM_OK_RESPONSE) {
@@ -61,6 +61,7 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
     return nullptr;
   }
   uint32_t data = 0;
+  m_access_delay = delay;
   if (gp.is_read()) {
     data = entry->on_read ? entry->on_read() : entry->value;
     std::memcpy(gp.get_data_ptr(), &data, 4);
@@ -73,6 +74,7 @@ const char* RegisterBank::transport(tlm::tlm_generic_payload& gp) {
     else
       entry->value = data;
   }
+  m_access_delay = sc_core::SC_ZERO_TIME;
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
   return entry->info.name;
 }

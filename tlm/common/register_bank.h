@@ -44,14 +44,18 @@ class RegisterBank {
   void set(uint32_t offset, uint32_t value);
   void reset();
 
-  // Handles one bus access: 32-bit, aligned, no byte enables.
-  // Sets the response status; returns the name of the register touched
-  // (nullptr on error).
-  const char* transport(tlm::tlm_generic_payload& gp);
+  // Handles one bus access: 32-bit, aligned, no byte enables. `delay` is the
+  // access's annotated time (offset from the kernel's time); handlers read
+  // it through access_delay() to make what they start happen then. Sets the
+  // response status; returns the name of the register touched (nullptr on
+  // error). Adds no latency: that is the owner's.
+  const char* transport(tlm::tlm_generic_payload& gp, const sc_core::sc_time& delay);
   // Debug access: same checks, reads without side effects, writes store.
   unsigned transport_dbg(tlm::tlm_generic_payload& gp);
 
   const std::string& owner() const { return m_owner; }
+  // The annotated time of the access being handled (zero outside transport).
+  const sc_core::sc_time& access_delay() const { return m_access_delay; }
 
  private:
   struct Entry {
@@ -66,6 +70,7 @@ class RegisterBank {
 
   std::string m_owner;
   std::vector<Entry> m_entries;
+  sc_core::sc_time m_access_delay;
 };
 
 }  // namespace tessera

@@ -61,8 +61,8 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
       log::warning(this->name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
       return;
     }
-    show(m_port_frame, m_access_delay);
-    raise(regs::IRQ_FRAME_PRESENTED, m_access_delay);
+    show(m_port_frame, m_regs.access_delay());
+    raise(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
   });
   m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames); });
   m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes); });
@@ -103,8 +103,7 @@ void DisplayController::update_irq() {
 }
 
 void DisplayController::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
-  m_access_delay = delay;
-  m_regs.transport(gp);
+  m_regs.transport(gp, delay);
   delay += m_params.clock_period;
 }
 

@@ -107,7 +107,6 @@ class DisplayController : public sc_core::sc_module {
   std::vector<uint8_t> m_scan_frame;  // the frame scan_out is fetching
   sc_core::sc_event m_irq_changed;
   sc_core::sc_event m_frame_shown;
-  sc_core::sc_time m_access_delay;  // annotated time of the register access being served
   tlm::tlm_generic_payload m_payload;
 
   bool m_swap_pending = false;

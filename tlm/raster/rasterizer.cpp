@@ -73,7 +73,7 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
     m_error = false;
     // The run starts one clock after the write reaches the register, at
     // the access's annotated time (the bus forwards the initiator's).
-    m_start.notify(m_access_delay + m_params.clock_period);
+    m_start.notify(m_regs.access_delay() + m_params.clock_period);
   });
   m_regs.add(TILE_TABLE);
   m_regs.add(COLOR_BASE);
@@ -135,8 +135,7 @@ void Rasterizer::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
     gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
     log::warning(name(), "register write at offset " + log::hex(gp.get_address()) + " refused: " + refusal);
   } else {
-    m_access_delay = delay;
-    m_regs.transport(gp);
+    m_regs.transport(gp, delay);
   }
   delay += m_params.clock_period;
 }

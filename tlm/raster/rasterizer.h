@@ -111,7 +111,6 @@ class Rasterizer : public sc_core::sc_module {
   sc_core::sc_event m_start;
   sc_core::sc_event m_run_finished;
   sc_core::sc_event m_irq_changed;
-  sc_core::sc_time m_access_delay;  // annotated time of the register access being handled
 
   bool m_busy = false;
   bool m_done = false;
