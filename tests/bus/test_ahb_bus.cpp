@@ -8,6 +8,7 @@
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
 #include "mem/memory.h"
+#include "support/bench_params.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -83,15 +84,7 @@ struct Bench {
     p.error_cycles = 2;
     return p;
   }
-  static MemoryParams memory(uint64_t size, unsigned wait) {
-    MemoryParams p = MemoryParams::defaults();
-    p.size_bytes = size;
-    p.clock_period = CYCLE;
-    p.width_bytes = 4;
-    p.first_access_cycles = wait;
-    p.beat_cycles = 1;
-    return p;
-  }
+  static MemoryParams memory(uint64_t size, unsigned wait) { return test::bench_memory_params(size, CYCLE, wait); }
   unsigned violations() {
     return check_a.violation_count() + check_b.violation_count() + check_c.violation_count() +
            check_fast.violation_count() + check_slow.violation_count();

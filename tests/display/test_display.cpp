@@ -9,6 +9,7 @@
 #include "display/display_controller.h"
 #include "display/display_regs.h"
 #include "mem/memory.h"
+#include "support/bench_params.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -76,8 +77,8 @@ struct DmaBench {
         check_dma((name + "_check_dma").c_str()),
         check_memory((name + "_check_memory").c_str()),
         check_regs((name + "_check_regs").c_str()),
-        bus((name + "_bus").c_str(), bus_params()),
-        memory((name + "_memory").c_str(), memory_params(memory_wait)),
+        bus((name + "_bus").c_str(), test::bench_bus_params(CYCLE)),
+        memory((name + "_memory").c_str(), test::bench_memory_params(0x10000, CYCLE, memory_wait)),
         display((name + "_display").c_str(), display_params(true)),
         irq((name + "_irq").c_str()) {
     host.out.bind(check_host.in);
@@ -91,19 +92,6 @@ struct DmaBench {
     check_regs.out.bind(display.in);
     display.irq.bind(irq);
     display.on_frame([this](const Frame& f) { frames.push_back(f); });
-  }
-  static BusParams bus_params() {
-    BusParams p = BusParams::defaults();
-    p.clock_period = CYCLE;
-    return p;
-  }
-  static MemoryParams memory_params(unsigned wait) {
-    MemoryParams p = MemoryParams::defaults();
-    p.size_bytes = 0x10000;
-    p.clock_period = CYCLE;
-    p.width_bytes = 4;
-    p.first_access_cycles = wait;
-    return p;
   }
   unsigned violations() {
     return check_host.violation_count() + check_dma.violation_count() + check_memory.violation_count() +

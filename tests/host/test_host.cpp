@@ -8,6 +8,7 @@
 #include "checker/protocol_checker.h"
 #include "host/host.h"
 #include "mem/memory.h"
+#include "support/bench_params.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -43,19 +44,11 @@ HostParams host_params() {
 }
 
 MemoryParams memory_params(uint32_t size, unsigned wait) {
-  MemoryParams p = MemoryParams::defaults();
-  p.size_bytes = size;
-  p.clock_period = BUS_CYCLE;
-  p.width_bytes = 4;
-  p.first_access_cycles = wait;
-  p.beat_cycles = 1;
-  return p;
+  return test::bench_memory_params(size, BUS_CYCLE, wait);
 }
 
 BusParams bus_params() {
-  BusParams p = BusParams::defaults();
-  p.clock_period = BUS_CYCLE;
-  return p;
+  return test::bench_bus_params(BUS_CYCLE);
 }
 
 // A host whose program runs test bodies on request, a bus, system memory

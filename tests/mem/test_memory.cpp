@@ -2,6 +2,7 @@
 // enables, out-of-range accesses, DMI and its invalidation, debug transport.
 #include "checker/protocol_checker.h"
 #include "mem/memory.h"
+#include "support/bench_params.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -22,15 +23,7 @@ struct Bench {
     initiator.out.bind(checker.in);
     checker.out.bind(memory.in);
   }
-  static MemoryParams params() {
-    MemoryParams p = MemoryParams::defaults();
-    p.size_bytes = SIZE;
-    p.clock_period = CYCLE;
-    p.width_bytes = 4;
-    p.first_access_cycles = FIRST;
-    p.beat_cycles = BEAT;
-    return p;
-  }
+  static MemoryParams params() { return test::bench_memory_params(SIZE, CYCLE, FIRST, BEAT); }
 };
 Bench* g_bench = nullptr;
 

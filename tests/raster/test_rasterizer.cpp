@@ -17,6 +17,7 @@
 #include "raster/command_format.h"
 #include "raster/raster_regs.h"
 #include "raster/rasterizer.h"
+#include "support/bench_params.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -53,8 +54,8 @@ struct Bench {
   test::TestInitiator host{"host"};
   ProtocolChecker<32> check_host{"check_host"}, check_mem_out{"check_mem_out"}, check_memory{"check_memory"},
       check_regs{"check_regs"};
-  AhbBus bus{"bus", bus_params()};
-  Memory memory{"memory", memory_params()};
+  AhbBus bus{"bus", test::bench_bus_params(CYCLE)};
+  Memory memory{"memory", test::bench_memory_params(MEMORY_SIZE, CYCLE, MEMORY_WAIT)};
   Rasterizer raster{"raster", raster_params()};
   sc_core::sc_signal<bool> irq{"irq"};
 
@@ -68,19 +69,6 @@ struct Bench {
     check_memory.out.bind(memory.in);
     check_regs.out.bind(raster.in);
     raster.irq.bind(irq);
-  }
-  static BusParams bus_params() {
-    BusParams p = BusParams::defaults();
-    p.clock_period = CYCLE;
-    return p;
-  }
-  static MemoryParams memory_params() {
-    MemoryParams p = MemoryParams::defaults();
-    p.size_bytes = MEMORY_SIZE;
-    p.clock_period = CYCLE;
-    p.width_bytes = 4;
-    p.first_access_cycles = MEMORY_WAIT;
-    return p;
   }
   static RasterizerParams raster_params() {
     RasterizerParams p = RasterizerParams::defaults();

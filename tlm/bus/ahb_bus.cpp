@@ -17,7 +17,12 @@ Arbitration parse_arbitration(const std::string& name) {
 }
 
 AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
-    : sc_core::sc_module(name), in("in"), out("out"), m_params(params), m_period_ticks(params.clock_period.value()) {
+    : Block(name),
+      in("in"),
+      out("out"),
+      m_params(params),
+      m_period_ticks(params.clock_period.value()),
+      m_busy_cycles(counter("busy_cycles", "bus cycles reserved by transfers, all initiators")) {
   if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
   in.register_b_transport(this, &AhbBus::b_transport);
@@ -247,11 +252,21 @@ void AhbBus::invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint6
   }
 }
 
-nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
+double AhbBus::span_cycles(const sc_time& elapsed) const {
   // Busy cycles are counted when a transfer is granted, so the period they
   // are spread over runs to the end of the last granted transfer.
   const uint64_t span = std::max<uint64_t>(elapsed.value(), m_last_end_ticks);
-  const double cycles = span / static_cast<double>(m_period_ticks);
+  return span / static_cast<double>(m_period_ticks);
+}
+
+uint64_t AhbBus::bytes() const {
+  uint64_t total = 0;
+  for (const auto& s : m_stats) total += s.bytes;
+  return total;
+}
+
+nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
+  const double cycles = span_cycles(elapsed);
   nlohmann::json initiators = nlohmann::json::object();
   for (const auto& s : m_stats) {
     initiators[s.name] = {
@@ -269,12 +284,33 @@ nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
         {"utilisation", cycles > 0 ? s.busy_cycles / cycles : 0.0},
     };
   }
-  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
-          {"width_bits", m_params.width_bytes * 8},
-          {"arbitration", m_params.arbitration == Arbitration::fixed_priority ? "fixed_priority" : "round_robin"},
-          {"busy_cycles", m_busy_cycles},
-          {"utilisation", cycles > 0 ? m_busy_cycles / cycles : 0.0},
-          {"initiators", initiators}};
+  nlohmann::json stats = Block::stats_json(elapsed);
+  stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
+  stats["width_bits"] = m_params.width_bytes * 8;
+  stats["arbitration"] = m_params.arbitration == Arbitration::fixed_priority ? "fixed_priority" : "round_robin";
+  stats["utilisation"] = cycles > 0 ? m_busy_cycles.value / cycles : 0.0;
+  stats["initiators"] = initiators;
+  return stats;
+}
+
+SummaryRow AhbBus::summary_row(const sc_time& elapsed) const {
+  const double cycles = span_cycles(elapsed);
+  return {m_params.clock_period * static_cast<double>(m_busy_cycles.value),
+          cycles > 0 ? m_busy_cycles.value / cycles : 0.0,
+          std::string(m_params.arbitration == Arbitration::fixed_priority ? "fixed_priority" : "round_robin") + ", " +
+              std::to_string(m_params.width_bytes * 8) + "-bit"};
+}
+
+std::vector<SummaryTable> AhbBus::summary_tables(const sc_time& elapsed) const {
+  const double cycles = span_cycles(elapsed);
+  SummaryTable table{"bus traffic per initiator",
+                     {"initiator", "transactions", "bytes", "busy cycles", "wait cycles", "utilisation"},
+                     {}};
+  for (const auto& s : m_stats)
+    table.rows.push_back({s.name, std::to_string(s.transactions), std::to_string(s.bytes),
+                          std::to_string(s.busy_cycles), std::to_string(s.wait_cycles),
+                          format_percent(cycles > 0 ? s.busy_cycles / cycles : 0.0)});
+  return {table};
 }
 
 }  // namespace tessera

@@ -40,6 +40,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/block.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -78,7 +79,7 @@ struct BusInitiatorStats {
   uint64_t dmi_grants = 0;
 };
 
-class AhbBus : public sc_core::sc_module {
+class AhbBus : public Block {
  public:
   tlm_utils::multi_passthrough_target_socket<AhbBus, 32> in;      // initiators bind here
   tlm_utils::multi_passthrough_initiator_socket<AhbBus, 32> out;  // bound to targets
@@ -102,13 +103,18 @@ class AhbBus : public sc_core::sc_module {
   }
 
   // Traces request and grant of every initiator (call before simulation).
-  void trace_signals(sc_core::sc_trace_file* file);
+  void trace_signals(sc_core::sc_trace_file* file) override;
 
   const BusParams& params() const { return m_params; }
   const std::vector<BusInitiatorStats>& initiator_stats() const { return m_stats; }
-  uint64_t busy_cycles() const { return m_busy_cycles; }
+  uint64_t busy_cycles() const { return m_busy_cycles.value; }
+  // Bytes moved by every initiator so far.
+  uint64_t bytes() const;
   // Statistics as JSON, utilisation computed over `elapsed`.
-  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  // Traffic per initiator.
+  std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const override;
 
  private:
   struct Region {
@@ -139,6 +145,9 @@ class AhbBus : public sc_core::sc_module {
   uint64_t reserve(uint64_t request_ticks, uint64_t length_ticks);
   void resolve_batch();
   void account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request);
+  // Bus cycles over which utilisation is computed: `elapsed`, or up to the
+  // end of the last granted transfer if that is later.
+  double span_cycles(const sc_core::sc_time& elapsed) const;
 
   BusParams m_params;
   uint64_t m_period_ticks;
@@ -156,7 +165,7 @@ class AhbBus : public sc_core::sc_module {
   size_t m_reserved_head = 0;
   std::vector<Request*> m_batch;
   unsigned m_last_granted = 0;
-  uint64_t m_busy_cycles = 0;
+  ActivityCounter& m_busy_cycles;
   uint64_t m_last_end_ticks = 0;
   mutable const Region* m_last_region = nullptr;
   bool m_tracing = false;

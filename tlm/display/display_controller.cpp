@@ -1,5 +1,6 @@
 #include "display/display_controller.h"
 
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -12,19 +13,20 @@ using sc_core::sc_time;
 namespace regs = display_regs;
 
 DisplayController::DisplayController(sc_core::sc_module_name name, const DisplayParams& params)
-    : sc_core::sc_module(name),
-      in("in"),
+    : Peripheral(name, params.clock_period),
       port_in("port_in"),
-      dma_out("dma_out"),
-      irq("irq"),
+      dma_out("dma_out", activity()),
       m_params(params),
-      m_regs(this->name()),
+      m_frames(counter("frames_shown", "distinct frames shown")),
+      m_refreshes(counter("refreshes", "refresh periods completed (DMA mode)")),
+      m_underrun_lines(counter("underrun_lines", "lines fetched after they were due (DMA mode)")),
+      m_underrun_frames(counter("underrun_frames", "refresh periods with an underrun line (DMA mode)")),
+      m_port_bytes(counter("port_bytes", "bytes written to the display port (port mode)")),
       m_vblank("vblank") {
   if (params.width == 0 || params.height == 0) throw std::invalid_argument(std::string(this->name()) + ": empty frame");
   if (params.refresh_hz <= 0)
     throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
-  in.register_b_transport(this, &DisplayController::b_transport);
-  in.register_transport_dbg(this, &DisplayController::transport_dbg);
+  if (params.dma) dma_out.configure(params.burst_bytes, BusMaster::OnError::zeros_and_continue);
   port_in.register_b_transport(this, &DisplayController::port_b_transport);
   port_in.register_transport_dbg(this, &DisplayController::port_transport_dbg);
 
@@ -47,14 +49,7 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
     }
     m_swap_pending = true;
   });
-  m_regs.add(IRQ_STATUS, {}, [this](uint32_t value) {
-    m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) & ~value);
-    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
-  });
-  m_regs.add(IRQ_ENABLE, {}, [this](uint32_t value) {
-    m_regs.set(regs::IRQ_ENABLE, value);
-    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
-  });
+  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
   m_regs.add(PRESENT, {}, [this](uint32_t value) {
     if (!(value & 1)) return;
     if (m_params.dma) {
@@ -62,11 +57,11 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
       return;
     }
     show(m_port_frame, m_regs.access_delay());
-    raise(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
+    raise_irq(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
   });
-  m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames); });
-  m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes); });
-  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines); });
+  m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames.value); });
+  m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes.value); });
+  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines.value); });
   m_regs.add(WIDTH, [this] { return m_params.width; });
   m_regs.add(HEIGHT, [this] { return m_params.height; });
   m_regs.add(FORMAT, [this] { return static_cast<uint32_t>(m_params.format); });
@@ -75,8 +70,6 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   m_port_frame.assign(frame_bytes(), 0);
   m_scan_frame.assign(frame_bytes(), 0);
 
-  SC_METHOD(update_irq);
-  sensitive << m_irq_changed;
   if (m_params.dma) SC_THREAD(scan_out);
 }
 
@@ -91,24 +84,6 @@ bool DisplayController::in_vblank() const {
 
 bool DisplayController::frame_pending() const {
   return m_params.dma && (m_swap_pending || m_frame_in_scan);
-}
-
-void DisplayController::raise(uint32_t bits, const sc_time& delay) {
-  m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
-  m_irq_changed.notify(delay);
-}
-
-void DisplayController::update_irq() {
-  irq.write((m_regs.get(regs::IRQ_STATUS) & m_regs.get(regs::IRQ_ENABLE)) != 0);
-}
-
-void DisplayController::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
-  m_regs.transport(gp, delay);
-  delay += m_params.clock_period;
-}
-
-unsigned DisplayController::transport_dbg(tlm::tlm_generic_payload& gp) {
-  return m_regs.transport_dbg(gp);
 }
 
 void DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
@@ -148,7 +123,7 @@ unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {
 
 void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& delay) {
   const sc_time when = sc_core::sc_time_stamp() + delay;
-  Frame frame{static_cast<unsigned>(m_frames), when.to_seconds(), m_params.width, m_params.height,
+  Frame frame{static_cast<unsigned>(m_frames.value), when.to_seconds(), m_params.width, m_params.height,
               std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
   const size_t count = size_t{m_params.width} * m_params.height;
   const unsigned bpp = bytes_per_pixel();
@@ -156,7 +131,7 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
     const uint32_t rgba = unpack_pixel(m_params.format, load_pixel(m_params.format, &pixels[i * bpp]));
     for (unsigned c = 0; c < 4; ++c) frame.rgba[4 * i + c] = static_cast<uint8_t>(rgba >> (8 * c));
   }
-  if (m_frames == 0) m_first_frame_time = when;
+  if (m_frames.value == 0) m_first_frame_time = when;
   m_last_frame_time = when;
   ++m_frames;
   log::info(name(), "frame " + std::to_string(frame.index) + " shown");
@@ -165,28 +140,8 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
 }
 
 bool DisplayController::fetch_line(uint32_t address, uint8_t* line, const sc_time& deadline) {
-  const unsigned line_bytes = m_params.width * bytes_per_pixel();
   sc_time delay = sc_core::SC_ZERO_TIME;
-  for (unsigned offset = 0; offset < line_bytes; offset += m_params.burst_bytes) {
-    const unsigned length = std::min(m_params.burst_bytes, line_bytes - offset);
-    m_payload.set_command(tlm::TLM_READ_COMMAND);
-    m_payload.set_address(address + offset);
-    m_payload.set_data_ptr(line + offset);
-    m_payload.set_data_length(length);
-    m_payload.set_streaming_width(length);
-    m_payload.set_byte_enable_ptr(nullptr);
-    m_payload.set_byte_enable_length(0);
-    m_payload.set_dmi_allowed(false);
-    m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    dma_out->b_transport(m_payload, delay);
-    if (m_payload.is_response_error()) {
-      ++m_bus_errors;
-      log::warning(name(), "display DMA read error at " + log::hex(address + offset) + " (" +
-                               log::response_text(m_payload.get_response_status()) + ")");
-      std::memset(line + offset, 0, length);
-    }
-    m_fetch_bytes += length;
-  }
+  dma_out.transfer(tlm::TLM_READ_COMMAND, address, line, m_params.width * bytes_per_pixel(), delay);
   const sc_time done = sc_core::sc_time_stamp() + delay;
   wait(delay);
   return done <= deadline;
@@ -214,9 +169,9 @@ void DisplayController::scan_out() {
       m_swap_pending = false;
       m_front_valid = true;
       new_frame = true;
-      raise(regs::IRQ_SWAP_DONE);
+      raise_irq(regs::IRQ_SWAP_DONE);
     }
-    raise(regs::IRQ_VBLANK);
+    raise_irq(regs::IRQ_VBLANK);
     const bool scanning = m_front_valid && (m_regs.get(regs::CTRL) & regs::CTRL_ENABLE);
     m_frame_in_scan = scanning && new_frame;
     bool underrun = false;
@@ -244,24 +199,31 @@ void DisplayController::scan_out() {
 
 nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {
   double rate = 0;
-  if (m_frames > 1) {
+  if (m_frames.value > 1) {
     const double span = (m_last_frame_time - m_first_frame_time).to_seconds();
-    if (span > 0) rate = (m_frames - 1) / span;
+    if (span > 0) rate = (m_frames.value - 1) / span;
   }
-  return {{"mode", m_params.dma ? "dma" : "port"},
-          {"width", m_params.width},
-          {"height", m_params.height},
-          {"format", pixel_format_name(m_params.format)},
-          {"frames_shown", m_frames},
-          {"achieved_fps", rate},
-          {"refreshes", m_refreshes},
-          {"refresh_hz", m_params.dma ? m_params.refresh_hz : 0.0},
-          {"underrun_lines", m_underrun_lines},
-          {"underrun_frames", m_underrun_frames},
-          {"port_bytes", m_port_bytes},
-          {"dma_bytes", m_fetch_bytes},
-          {"bus_errors", m_bus_errors},
-          {"elapsed_ns", elapsed.to_seconds() * 1e9}};
+  nlohmann::json stats = Peripheral::stats_json(elapsed);
+  stats["mode"] = m_params.dma ? "dma" : "port";
+  stats["width"] = m_params.width;
+  stats["height"] = m_params.height;
+  stats["format"] = pixel_format_name(m_params.format);
+  stats["achieved_fps"] = rate;
+  stats["refresh_hz"] = m_params.dma ? m_params.refresh_hz : 0.0;
+  stats["elapsed_ns"] = elapsed.to_seconds() * 1e9;
+  stats["dma_bytes"] = stats["bus"]["bytes_read"];
+  stats["bus_errors"] = stats["bus"]["errors"];
+  stats.erase("bus");
+  return stats;
+}
+
+SummaryRow DisplayController::summary_row(const sc_time& elapsed) const {
+  const nlohmann::json stats = stats_json(elapsed);
+  char notes[128];
+  std::snprintf(notes, sizeof notes, "%llu frames shown, %.1f frames/s achieved, %llu underrun lines",
+                static_cast<unsigned long long>(m_frames.value), stats["achieved_fps"].get<double>(),
+                static_cast<unsigned long long>(m_underrun_lines.value));
+  return {std::nullopt, std::nullopt, notes};
 }
 
 }  // namespace tessera

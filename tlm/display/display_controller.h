@@ -17,15 +17,15 @@
 #include <string>
 #include <vector>
 
-#include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
 
 #include <nlohmann/json.hpp>
 
+#include "common/bus_master.h"
+#include "common/peripheral.h"
 #include "common/pixel_format.h"
-#include "common/register_bank.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -61,14 +61,13 @@ struct Frame {
   std::vector<uint8_t> rgba;  // width * height * 4, row 0 at the top
 };
 
-class DisplayController : public sc_core::sc_module {
+class DisplayController : public Peripheral {
  public:
   SC_HAS_PROCESS(DisplayController);
 
-  tlm_utils::simple_target_socket<DisplayController, 32> in;       // registers
+  // Registers on `in` and the interrupt on `irq` (Peripheral).
   tlm_utils::simple_target_socket<DisplayController, 32> port_in;  // display port window
-  tlm_utils::simple_initiator_socket<DisplayController, 32> dma_out;
-  sc_core::sc_out<bool> irq;
+  BusMaster dma_out;
 
   DisplayController(sc_core::sc_module_name name, const DisplayParams& params);
 
@@ -76,49 +75,40 @@ class DisplayController : public sc_core::sc_module {
 
   unsigned bytes_per_pixel() const { return tessera::bytes_per_pixel(m_params.format); }
   uint64_t frame_bytes() const { return uint64_t{m_params.width} * m_params.height * bytes_per_pixel(); }
-  uint64_t frames_shown() const { return m_frames; }
-  uint64_t underruns() const { return m_underrun_lines; }
+  uint64_t frames_shown() const { return m_frames.value; }
+  uint64_t underruns() const { return m_underrun_lines.value; }
   // True while a frame has been handed to the display but not yet shown.
   bool frame_pending() const;
   const sc_core::sc_event& frame_shown_event() const { return m_frame_shown; }
 
-  void trace_signals(sc_core::sc_trace_file* file);
-  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
   void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
-  void scan_out();    // SC_THREAD, DMA mode
-  void update_irq();  // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
-  // Sets interrupt status bits; the line follows `delay` after the kernel's time.
-  void raise(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
+  void scan_out();  // SC_THREAD, DMA mode
   // Shows a frame `delay` after the kernel's time (a register write's annotated time).
   void show(const std::vector<uint8_t>& pixels, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
   bool fetch_line(uint32_t address, uint8_t* line, const sc_core::sc_time& deadline);
   bool in_vblank() const;
 
   DisplayParams m_params;
-  RegisterBank m_regs;
   std::function<void(const Frame&)> m_sink;
   std::vector<uint8_t> m_port_frame;
   std::vector<uint8_t> m_scan_frame;  // the frame scan_out is fetching
-  sc_core::sc_event m_irq_changed;
   sc_core::sc_event m_frame_shown;
-  tlm::tlm_generic_payload m_payload;
 
   bool m_swap_pending = false;
   bool m_front_valid = false;
   bool m_frame_in_scan = false;  // a new frame is being scanned out, not yet shown
-  uint64_t m_frames = 0;
-  uint64_t m_refreshes = 0;
-  uint64_t m_underrun_lines = 0;
-  uint64_t m_underrun_frames = 0;
-  uint64_t m_port_bytes = 0;
-  uint64_t m_fetch_bytes = 0;
-  uint64_t m_bus_errors = 0;
+  ActivityCounter& m_frames;
+  ActivityCounter& m_refreshes;
+  ActivityCounter& m_underrun_lines;
+  ActivityCounter& m_underrun_frames;
+  ActivityCounter& m_port_bytes;
   TimedTrace m_vblank;  // for the VCD; in_vblank() answers from the times below
   sc_core::sc_time m_frame_start;
   sc_core::sc_time m_active_start;

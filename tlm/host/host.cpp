@@ -28,14 +28,25 @@ const char* op_name(Op op) {
 }
 
 Host::Host(sc_core::sc_module_name name, const HostParams& params)
-    : sc_core::sc_module(name),
+    : Block(name),
       out("out"),
       irq("irq", params.irq_lines),
       m_params(params),
       m_period_ticks(params.clock_period.value()),
       m_run_ahead_ticks(params.run_ahead.value()),
+      m_run_aheads(counter("run_aheads", "quantum ends at which the host ran on (nothing else was scheduled)")),
+      m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways),
+      m_busy_cycles(counter("busy_cycles", "host cycles charged")),
+      m_write_buffer_stalls(counter("write_buffer_stalls", "waits for a write-buffer entry")),
+      m_bus_errors(counter("bus_errors", "bus transactions that got an error response")),
+      m_loads(counter("loads", "load instructions (an LDM counts once)")),
+      m_stores(counter("stores", "store instructions (an STM counts once)")),
       m_busy_trace("busy") {
+  for (size_t i = 0; i < m_op_counts.size(); ++i) {
+    const Op op = static_cast<Op>(i);
+    m_op_counts[i] = &counter(std::string("operations.") + op_name(op), "operations charged of this class");
+  }
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
   m_train = new TransferTrain;
   m_payload.set_extension(m_train);
@@ -101,7 +112,7 @@ void Host::stall_until(uint64_t absolute_ticks) {
 void Host::compute(Op op, uint64_t count) {
   const auto index = static_cast<size_t>(op);
   if (index >= m_op_counts.size()) throw std::invalid_argument("host: unknown operation class");
-  m_op_counts[index] += count;
+  *m_op_counts[index] += count;
   charge(m_params.op_cycles[index] * count);
 }
 
@@ -484,23 +495,24 @@ nlohmann::json Host::stats_json(const sc_time& elapsed) const {
   const double elapsed_s = elapsed.to_seconds();
   const double busy_s = busy_time().to_seconds();
   const double stall_s = stall_time().to_seconds();
-  nlohmann::json ops = nlohmann::json::object();
-  for (size_t i = 0; i < m_op_counts.size(); ++i) ops[op_name(static_cast<Op>(i))] = m_op_counts[i];
-  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
-          {"busy_ns", busy_s * 1e9},
-          {"stalled_on_bus_ns", stall_s * 1e9},
-          {"idle_ns", std::max(0.0, elapsed_s - busy_s - stall_s) * 1e9},
-          {"waiting_for_irq_ns", idle_time().to_seconds() * 1e9},
-          {"utilisation", elapsed_s > 0 ? busy_s / elapsed_s : 0.0},
-          {"busy_cycles", m_busy_cycles},
-          {"loads", m_loads},
-          {"stores", m_stores},
-          {"operations", ops},
-          {"dcache", {{"hits", m_dcache.hits()}, {"misses", m_dcache.misses()}, {"writebacks", m_dcache.writebacks()}}},
-          {"write_buffer_stalls", m_write_buffer_stalls},
-          {"bus_errors", m_bus_errors},
-          {"synchronisations", m_syncs},
-          {"run_aheads", m_run_aheads}};
+  nlohmann::json stats = Block::stats_json(elapsed);
+  stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
+  stats["busy_ns"] = busy_s * 1e9;
+  stats["stalled_on_bus_ns"] = stall_s * 1e9;
+  stats["idle_ns"] = std::max(0.0, elapsed_s - busy_s - stall_s) * 1e9;
+  stats["waiting_for_irq_ns"] = idle_time().to_seconds() * 1e9;
+  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
+  stats["dcache"] = {{"hits", m_dcache.hits()}, {"misses", m_dcache.misses()}, {"writebacks", m_dcache.writebacks()}};
+  return stats;
+}
+
+SummaryRow Host::summary_row(const sc_time& elapsed) const {
+  const double elapsed_s = elapsed.to_seconds();
+  const double busy_s = busy_time().to_seconds();
+  const double stall_s = stall_time().to_seconds();
+  return {busy_time(), elapsed_s > 0 ? busy_s / elapsed_s : 0.0,
+          "stalled on bus " + format_duration(stall_s) + ", idle " +
+              format_duration(std::max(0.0, elapsed_s - busy_s - stall_s))};
 }
 
 }  // namespace tessera

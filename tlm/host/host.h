@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/block.h"
 #include "common/timed_trace.h"
 #include "common/transfer_train.h"
 #include "config/config.h"
@@ -61,7 +62,7 @@ struct HostParams {
   static HostParams defaults();
 };
 
-class Host : public sc_core::sc_module, public HostApi {
+class Host : public Block, public HostApi {
  public:
   SC_HAS_PROCESS(Host);
 
@@ -79,9 +80,10 @@ class Host : public sc_core::sc_module, public HostApi {
   int exit_code() const { return m_exit_code; }
   const std::string& failure() const { return m_failure; }
 
-  void trace_signals(sc_core::sc_trace_file* file);
-  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
-  sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles); }
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles.value); }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
   sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
 
@@ -133,12 +135,12 @@ class Host : public sc_core::sc_module, public HostApi {
     uint64_t next_sync_ticks() const { return m_next_sync_point.value(); }
   };
   QuantumKeeper m_qk;
-  uint64_t m_local_ticks = 0;    // local time: ahead of the kernel's time by this much
-  uint64_t m_quantum_ticks = 0;  // local time at which the quantum is used up
-  uint64_t m_budget_ticks = 0;   // local time at which to look again: the quantum's end, or later (run-ahead)
-  uint64_t m_run_ahead_ticks;    // params.run_ahead
-  uint64_t m_run_aheads = 0;     // synchronisations skipped
-  uint64_t m_syncs = 0;          // synchronisations made
+  uint64_t m_local_ticks = 0;     // local time: ahead of the kernel's time by this much
+  uint64_t m_quantum_ticks = 0;   // local time at which the quantum is used up
+  uint64_t m_budget_ticks = 0;    // local time at which to look again: the quantum's end, or later (run-ahead)
+  uint64_t m_run_ahead_ticks;     // params.run_ahead
+  ActivityCounter& m_run_aheads;  // synchronisations skipped
+  ActivityCounter& m_syncs;       // synchronisations made
   void restart_quantum();
   void quantum_used_up();
   DataCache m_dcache;
@@ -162,14 +164,14 @@ class Host : public sc_core::sc_module, public HostApi {
   int m_exit_code = 0;
   std::string m_failure;
 
-  uint64_t m_busy_cycles = 0;
+  ActivityCounter& m_busy_cycles;
   uint64_t m_stall_ticks = 0;
   uint64_t m_idle_ticks = 0;
-  uint64_t m_write_buffer_stalls = 0;
-  uint64_t m_bus_errors = 0;
-  std::array<uint64_t, static_cast<size_t>(Op::count_)> m_op_counts{};
-  uint64_t m_loads = 0;
-  uint64_t m_stores = 0;
+  ActivityCounter& m_write_buffer_stalls;
+  ActivityCounter& m_bus_errors;
+  std::array<ActivityCounter*, static_cast<size_t>(Op::count_)> m_op_counts{};
+  ActivityCounter& m_loads;
+  ActivityCounter& m_stores;
 
   TimedTrace m_busy_trace;
   bool m_tracing = false;

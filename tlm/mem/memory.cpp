@@ -9,7 +9,15 @@
 namespace tessera {
 
 Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
-    : sc_core::sc_module(name), in("in"), m_params(params), m_data(params.size_bytes, 0) {
+    : Block(name),
+      in("in"),
+      m_params(params),
+      m_data(params.size_bytes, 0),
+      m_reads(counter("reads", "read transfers")),
+      m_writes(counter("writes", "write transfers")),
+      m_bytes_read(counter("bytes_read", "bytes read")),
+      m_bytes_written(counter("bytes_written", "bytes written")),
+      m_errors(counter("errors", "accesses answered with an error")) {
   if (params.size_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": size 0");
   in.register_b_transport(this, &Memory::b_transport);
   in.register_transport_dbg(this, &Memory::transport_dbg);
@@ -112,14 +120,18 @@ void Memory::invalidate_dmi() {
 
 nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
   const double busy = static_cast<double>(m_busy_ticks);
-  return {{"size_bytes", m_data.size()},
-          {"reads", m_reads},
-          {"writes", m_writes},
-          {"bytes_read", m_bytes_read},
-          {"bytes_written", m_bytes_written},
-          {"busy_ns", sc_core::sc_time::from_value(m_busy_ticks).to_seconds() * 1e9},
-          {"utilisation", elapsed.value() ? busy / static_cast<double>(elapsed.value()) : 0.0},
-          {"errors", m_errors}};
+  nlohmann::json stats = Block::stats_json(elapsed);
+  stats["size_bytes"] = m_data.size();
+  stats["busy_ns"] = sc_core::sc_time::from_value(m_busy_ticks).to_seconds() * 1e9;
+  stats["utilisation"] = elapsed.value() ? busy / static_cast<double>(elapsed.value()) : 0.0;
+  return stats;
+}
+
+SummaryRow Memory::summary_row(const sc_core::sc_time& elapsed) const {
+  const double busy = static_cast<double>(m_busy_ticks);
+  return {sc_core::sc_time::from_value(m_busy_ticks),
+          elapsed.value() ? busy / static_cast<double>(elapsed.value()) : 0.0,
+          std::to_string(m_reads.value) + " reads, " + std::to_string(m_writes.value) + " writes"};
 }
 
 }  // namespace tessera

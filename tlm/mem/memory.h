@@ -14,14 +14,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/block.h"
 #include "config/config.h"
 
 namespace tessera {
 
 struct MemoryParams {
   uint64_t size_bytes = 0;
-  sc_core::sc_time clock_period;    // set by the SoC: the bus clock
-  unsigned width_bytes = 0;         // set by the SoC: one beat moves the bus width
+  sc_core::sc_time clock_period;     // set by the SoC: the bus clock
+  unsigned width_bytes = 0;          // set by the SoC: one beat moves the bus width
   unsigned first_access_cycles = 0;  // wait states before the first beat
   unsigned beat_cycles = 0;          // cycles per beat
 
@@ -34,7 +35,7 @@ struct MemoryParams {
   static MemoryParams defaults();
 };
 
-class Memory : public sc_core::sc_module {
+class Memory : public Block {
  public:
   tlm_utils::simple_target_socket<Memory, 32> in;
 
@@ -50,7 +51,8 @@ class Memory : public sc_core::sc_module {
   // Data-phase time of an access of `bytes` bytes.
   sc_core::sc_time access_time(uint64_t bytes) const;
 
-  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
@@ -61,12 +63,12 @@ class Memory : public sc_core::sc_module {
 
   MemoryParams m_params;
   std::vector<uint8_t> m_data;
-  uint64_t m_reads = 0;
-  uint64_t m_writes = 0;
-  uint64_t m_bytes_read = 0;
-  uint64_t m_bytes_written = 0;
+  ActivityCounter& m_reads;
+  ActivityCounter& m_writes;
+  ActivityCounter& m_bytes_read;
+  ActivityCounter& m_bytes_written;
+  ActivityCounter& m_errors;
   uint64_t m_busy_ticks = 0;
-  uint64_t m_errors = 0;
 };
 
 }  // namespace tessera

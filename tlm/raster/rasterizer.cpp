@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -41,20 +42,30 @@ bool fatal(raster::RasterError error) {
 }  // namespace
 
 Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params)
-    : sc_core::sc_module(name),
-      in("in"),
-      mem_out("mem_out"),
-      irq("irq"),
+    : Peripheral(name, params.clock_period),
+      mem_out("mem_out", activity()),
       m_params(params),
-      m_regs(this->name()),
       m_port(*this),
+      m_runs(counter("runs", "runs started (one per START)")),
+      m_failed_runs(counter("failed_runs", "runs that stopped with an error")),
+      m_tiles(counter("tiles", "tiles rasterized")),
+      m_commands(counter("commands", "commands decoded")),
+      m_triangles(counter("triangles", "triangles set up")),
+      m_triangles_skipped(counter("triangles_skipped", "triangles skipped (zero area, bad reciprocal operand)")),
+      m_fragments(counter("fragments", "fragments generated")),
+      m_fragments_written(counter("fragments_written", "fragments that passed the tests and were written")),
+      m_texels(counter("texels", "texels fetched")),
+      m_setup_cycles(counter("cycles.setup", "cycles of triangle setup")),
+      m_tile_cycles(counter("cycles.tile", "cycles of tile starts, clears and write-back")),
+      m_fragment_cycles(counter("cycles.fragment", "cycles of the fragment pipeline")),
+      m_texel_cycles(counter("cycles.texel", "cycles of texel fetches")),
+      m_compute_cycles(counter("cycles.compute", "compute cycles the core charged, all stages")),
       m_busy_trace("busy") {
   if (params.width == 0 || params.height == 0 || params.tile_width == 0 || params.tile_height == 0)
     throw std::invalid_argument(std::string(this->name()) + ": empty screen or tile");
   if (params.burst_beats == 0)
     throw std::invalid_argument(std::string(this->name()) + ": burst_beats must be positive");
-  in.register_b_transport(this, &Rasterizer::b_transport);
-  in.register_transport_dbg(this, &Rasterizer::transport_dbg);
+  mem_out.configure(params.burst_beats * BEAT_BYTES, BusMaster::OnError::stop);
 
 #define TESSERA_RASTER_REG(name, offset, reset, access) \
   const RegisterInfo name{#name, offset, reset, RegAccess::access};
@@ -79,14 +90,7 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
   m_regs.add(COLOR_BASE);
   m_regs.add(DEPTH_BASE);
   m_regs.add(FORMAT);
-  m_regs.add(IRQ_STATUS, {}, [this](uint32_t value) {
-    m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) & ~value);
-    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
-  });
-  m_regs.add(IRQ_ENABLE, {}, [this](uint32_t value) {
-    m_regs.set(regs::IRQ_ENABLE, value);
-    m_irq_changed.notify(sc_core::SC_ZERO_TIME);
-  });
+  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
   m_regs.add(ERROR_STATUS);
   m_regs.add(ERROR_ADDRESS);
   m_regs.add(WIDTH, [this] { return m_params.width; });
@@ -99,22 +103,11 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
   m_regs.add(CYCLES);
 
   SC_THREAD(run);
-  SC_METHOD(update_irq);
-  sensitive << m_irq_changed;
 }
 
 void Rasterizer::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
-}
-
-void Rasterizer::raise(uint32_t bits) {
-  m_regs.set(regs::IRQ_STATUS, m_regs.get(regs::IRQ_STATUS) | bits);
-  m_irq_changed.notify(sc_core::SC_ZERO_TIME);
-}
-
-void Rasterizer::update_irq() {
-  irq.write((m_regs.get(regs::IRQ_STATUS) & m_regs.get(regs::IRQ_ENABLE)) != 0);
 }
 
 const char* Rasterizer::write_refusal(const tlm::tlm_generic_payload& gp) const {
@@ -127,21 +120,6 @@ const char* Rasterizer::write_refusal(const tlm::tlm_generic_payload& gp) const 
   if (offset == regs::FORMAT && !pixel_format_from_code(value))
     return "FORMAT accepts a pixel format code (0 RGB565, 1 RGBA8888)";
   return nullptr;
-}
-
-void Rasterizer::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
-  if (const char* refusal = write_refusal(gp)) {
-    ++m_refused_writes;
-    gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
-    log::warning(name(), "register write at offset " + log::hex(gp.get_address()) + " refused: " + refusal);
-  } else {
-    m_regs.transport(gp, delay);
-  }
-  delay += m_params.clock_period;
-}
-
-unsigned Rasterizer::transport_dbg(tlm::tlm_generic_payload& gp) {
-  return m_regs.transport_dbg(gp);
 }
 
 bool Rasterizer::BusPort::read(uint32_t address, void* data, unsigned bytes) {
@@ -158,38 +136,11 @@ void Rasterizer::BusPort::cycles(uint64_t count) {
   if (m_owner.m_qk.need_sync()) m_owner.m_qk.sync();
 }
 
-// One access of the core: bursts of at most burst_beats words, each issued
+// One access of the core: bursts of at most burst_beats beats, each issued
 // when the previous one has completed (the pipeline waits for its data).
 bool Rasterizer::transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
-  const unsigned max_bytes = m_params.burst_beats * BEAT_BYTES;
-  for (unsigned offset = 0; offset < bytes;) {
-    const unsigned length = std::min(max_bytes, bytes - offset);
-    m_payload.set_command(command);
-    m_payload.set_address(uint64_t{address} + offset);
-    m_payload.set_data_ptr(data + offset);
-    m_payload.set_data_length(length);
-    m_payload.set_streaming_width(length);
-    m_payload.set_byte_enable_ptr(nullptr);
-    m_payload.set_byte_enable_length(0);
-    m_payload.set_dmi_allowed(false);
-    m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
-    sc_time delay = m_qk.get_local_time();
-    mem_out->b_transport(m_payload, delay);
-    m_bus_time += delay - m_qk.get_local_time();
-    m_qk.set(delay);
-    ++m_bus_transactions;
-    if (m_payload.is_response_error()) {
-      ++m_bus_errors;
-      log::warning(name(), std::string(command == tlm::TLM_READ_COMMAND ? "read" : "write") + " of " +
-                               std::to_string(length) + " bytes at " + log::hex(address + offset) + " failed (" +
-                               log::response_text(m_payload.get_response_status()) + ")");
-      return false;
-    }
-    (command == tlm::TLM_READ_COMMAND ? m_bus_read_bytes : m_bus_write_bytes) += length;
-    if (m_qk.need_sync()) m_qk.sync();
-    offset += length;
-  }
-  return true;
+  sc_time local = m_qk.get_local_time();
+  return mem_out.transfer(command, address, data, bytes, local, &m_qk);
 }
 
 void Rasterizer::run() {
@@ -223,20 +174,17 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
   m_last = result;
   ++m_runs;
   m_busy_time += elapsed;
-  auto add = [](uint64_t& total, uint64_t value) { total += value; };
-  add(m_total.tiles, result.tiles);
-  add(m_total.commands, result.commands);
-  add(m_total.triangles, result.triangles);
-  add(m_total.triangles_skipped, result.triangles_skipped);
-  add(m_total.fragments, result.fragments);
-  add(m_total.fragments_written, result.fragments_written);
-  add(m_total.texels, result.texels);
-  add(m_total.bytes_read, result.bytes_read);
-  add(m_total.bytes_written, result.bytes_written);
-  add(m_total.setup_cycles, result.setup_cycles);
-  add(m_total.tile_cycles, result.tile_cycles);
-  add(m_total.fragment_cycles, result.fragment_cycles);
-  add(m_total.texel_cycles, result.texel_cycles);
+  m_tiles += result.tiles;
+  m_commands += result.commands;
+  m_triangles += result.triangles;
+  m_triangles_skipped += result.triangles_skipped;
+  m_fragments += result.fragments;
+  m_fragments_written += result.fragments_written;
+  m_texels += result.texels;
+  m_setup_cycles += result.setup_cycles;
+  m_tile_cycles += result.tile_cycles;
+  m_fragment_cycles += result.fragment_cycles;
+  m_texel_cycles += result.texel_cycles;
 
   const uint64_t cycles = static_cast<uint64_t>(std::llround(elapsed / m_params.clock_period));
   m_regs.set(regs::ERROR_STATUS, static_cast<uint32_t>(result.error));
@@ -250,12 +198,12 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
     m_error = true;
     log::warning(name(), std::string("run failed: ") + raster::error_name(result.error) + " at " +
                              log::hex(result.error_address));
-    raise(regs::IRQ_ERROR);
+    raise_irq(regs::IRQ_ERROR);
   } else {
     m_done = true;
     log::info(name(), "run done: " + std::to_string(result.triangles) + " triangles, " +
                           std::to_string(result.fragments) + " fragments, " + std::to_string(cycles) + " cycles");
-    raise(regs::IRQ_DONE);
+    raise_irq(regs::IRQ_DONE);
   }
   if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
   m_run_finished.notify(sc_core::SC_ZERO_TIME);
@@ -264,37 +212,28 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
 nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
   const double elapsed_s = elapsed.to_seconds();
   const double busy_s = m_busy_time.to_seconds();
-  return {{"clock_mhz", 1e-6 / m_params.clock_period.to_seconds()},
-          {"width", m_params.width},
-          {"height", m_params.height},
-          {"tile_width", m_params.tile_width},
-          {"tile_height", m_params.tile_height},
-          {"runs", m_runs},
-          {"failed_runs", m_failed_runs},
-          {"tiles", m_total.tiles},
-          {"commands", m_total.commands},
-          {"triangles", m_total.triangles},
-          {"triangles_skipped", m_total.triangles_skipped},
-          {"fragments", m_total.fragments},
-          {"fragments_written", m_total.fragments_written},
-          {"texels", m_total.texels},
-          {"cycles",
-           {{"setup", m_total.setup_cycles},
-            {"tile", m_total.tile_cycles},
-            {"fragment", m_total.fragment_cycles},
-            {"texel", m_total.texel_cycles},
-            {"compute", m_compute_cycles},
-            {"busy", static_cast<uint64_t>(std::llround(m_busy_time / m_params.clock_period))}}},
-          {"busy_ns", busy_s * 1e9},
-          {"waiting_for_bus_ns", m_bus_time.to_seconds() * 1e9},
-          {"utilisation", elapsed_s > 0 ? busy_s / elapsed_s : 0.0},
-          {"bus",
-           {{"transactions", m_bus_transactions},
-            {"bytes_read", m_bus_read_bytes},
-            {"bytes_written", m_bus_write_bytes},
-            {"errors", m_bus_errors}}},
-          {"refused_register_writes", m_refused_writes},
-          {"elapsed_ns", elapsed_s * 1e9}};
+  nlohmann::json stats = Peripheral::stats_json(elapsed);
+  stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
+  stats["width"] = m_params.width;
+  stats["height"] = m_params.height;
+  stats["tile_width"] = m_params.tile_width;
+  stats["tile_height"] = m_params.tile_height;
+  stats["cycles"]["busy"] = static_cast<uint64_t>(std::llround(m_busy_time / m_params.clock_period));
+  stats["busy_ns"] = busy_s * 1e9;
+  stats["waiting_for_bus_ns"] = mem_out.bus_time().to_seconds() * 1e9;
+  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
+  stats["elapsed_ns"] = elapsed_s * 1e9;
+  return stats;
+}
+
+SummaryRow Rasterizer::summary_row(const sc_time& elapsed) const {
+  const double elapsed_s = elapsed.to_seconds();
+  char notes[160];
+  std::snprintf(notes, sizeof notes, "%llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)",
+                static_cast<unsigned long long>(m_runs.value), static_cast<unsigned long long>(m_triangles.value),
+                static_cast<unsigned long long>(m_tiles.value), static_cast<unsigned long long>(m_fragments.value),
+                static_cast<unsigned long long>(m_fragments_written.value));
+  return {m_busy_time, elapsed_s > 0 ? m_busy_time.to_seconds() / elapsed_s : 0.0, notes};
 }
 
 }  // namespace tessera

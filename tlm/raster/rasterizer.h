@@ -20,15 +20,15 @@
 #include <cstdint>
 #include <string>
 
-#include <tlm_utils/simple_initiator_socket.h>
-#include <tlm_utils/simple_target_socket.h>
-#include <tlm_utils/tlm_quantumkeeper.h>
 #include <systemc>
 #include <tlm>
 
+#include <tlm_utils/tlm_quantumkeeper.h>
+
 #include <nlohmann/json.hpp>
 
-#include "common/register_bank.h"
+#include "common/bus_master.h"
+#include "common/peripheral.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 #include "raster/core/raster_port.h"
@@ -58,13 +58,12 @@ struct RasterizerParams {
   static RasterizerParams defaults();
 };
 
-class Rasterizer : public sc_core::sc_module {
+class Rasterizer : public Peripheral {
  public:
   SC_HAS_PROCESS(Rasterizer);
 
-  tlm_utils::simple_target_socket<Rasterizer, 32> in;          // registers
-  tlm_utils::simple_initiator_socket<Rasterizer, 32> mem_out;  // bus master
-  sc_core::sc_out<bool> irq;
+  // Registers on `in` and the interrupt on `irq` (Peripheral).
+  BusMaster mem_out;
 
   Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params);
 
@@ -75,8 +74,9 @@ class Rasterizer : public sc_core::sc_module {
   const sc_core::sc_event& run_finished_event() const { return m_run_finished; }
   const raster::RunResult& last_result() const { return m_last; }
 
-  void trace_signals(sc_core::sc_trace_file* file);
-  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
 
  private:
   // The core's view of memory and time: bus bursts over mem_out at the
@@ -92,25 +92,17 @@ class Rasterizer : public sc_core::sc_module {
     Rasterizer& m_owner;
   };
 
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
-  // Why a register write must be refused (nullptr: accept it).
-  const char* write_refusal(const tlm::tlm_generic_payload& gp) const;
+  const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
 
-  void run();         // SC_THREAD: one TileRasterizer::run per START
-  void update_irq();  // SC_METHOD: irq = IRQ_STATUS & IRQ_ENABLE
-  void raise(uint32_t bits);
+  void run();  // SC_THREAD: one TileRasterizer::run per START
   bool transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes);
   void finish_run(const raster::RunResult& result, const sc_core::sc_time& start);
 
   RasterizerParams m_params;
-  RegisterBank m_regs;
   BusPort m_port;
   tlm_utils::tlm_quantumkeeper m_qk;
-  tlm::tlm_generic_payload m_payload;
   sc_core::sc_event m_start;
   sc_core::sc_event m_run_finished;
-  sc_core::sc_event m_irq_changed;
 
   bool m_busy = false;
   bool m_done = false;
@@ -118,17 +110,21 @@ class Rasterizer : public sc_core::sc_module {
   raster::RunResult m_last;
 
   // Totals over every run, for stats_json.
-  uint64_t m_runs = 0;
-  uint64_t m_failed_runs = 0;
-  raster::RunResult m_total;
-  uint64_t m_compute_cycles = 0;  // cycles(n) of the core
-  uint64_t m_bus_transactions = 0;
-  uint64_t m_bus_read_bytes = 0;
-  uint64_t m_bus_write_bytes = 0;
-  uint64_t m_bus_errors = 0;
-  sc_core::sc_time m_bus_time;  // waiting for bus accesses, contention included
+  ActivityCounter& m_runs;
+  ActivityCounter& m_failed_runs;
+  ActivityCounter& m_tiles;
+  ActivityCounter& m_commands;
+  ActivityCounter& m_triangles;
+  ActivityCounter& m_triangles_skipped;
+  ActivityCounter& m_fragments;
+  ActivityCounter& m_fragments_written;
+  ActivityCounter& m_texels;
+  ActivityCounter& m_setup_cycles;
+  ActivityCounter& m_tile_cycles;
+  ActivityCounter& m_fragment_cycles;
+  ActivityCounter& m_texel_cycles;
+  ActivityCounter& m_compute_cycles;  // cycles(n) of the core
   sc_core::sc_time m_busy_time;
-  uint64_t m_refused_writes = 0;
 
   TimedTrace m_busy_trace;
   bool m_tracing = false;

@@ -117,6 +117,8 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   display.irq.bind(*m_irq_lines[irq_map::display]);
   raster.irq.bind(*m_irq_lines[irq_map::raster]);
 
+  m_blocks = {&host, &bus, &memory, &display, &raster};
+
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);
 }
@@ -137,10 +139,7 @@ void Soc::trace_to(const std::string& path_without_extension) {
   m_trace = sc_core::sc_create_vcd_trace_file(path_without_extension.c_str());
   if (!m_trace) throw std::runtime_error("cannot create VCD file " + m_trace_path);
   m_trace->set_time_unit(1, sc_core::SC_PS);
-  bus.trace_signals(m_trace);
-  host.trace_signals(m_trace);
-  display.trace_signals(m_trace);
-  raster.trace_signals(m_trace);
+  for (Block* block : m_blocks) block->trace_signals(m_trace);
 }
 
 void Soc::close_trace() {
@@ -167,12 +166,9 @@ void Soc::close_trace() {
 
 nlohmann::json Soc::stats_json() const {
   const sc_time elapsed = sc_core::sc_time_stamp();
-  return {{"simulated_ns", elapsed.to_seconds() * 1e9},
-          {"host", host.stats_json(elapsed)},
-          {"bus", bus.stats_json(elapsed)},
-          {"memory", memory.stats_json(elapsed)},
-          {"display", display.stats_json(elapsed)},
-          {"raster", raster.stats_json(elapsed)}};
+  nlohmann::json stats = {{"simulated_ns", elapsed.to_seconds() * 1e9}};
+  for (const Block* block : m_blocks) stats[block->basename()] = block->stats_json(elapsed);
+  return stats;
 }
 
 }  // namespace tessera

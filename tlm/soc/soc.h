@@ -53,15 +53,22 @@ class Soc : public sc_core::sc_module {
   void set_program(Host::Program program) { host.set_program(std::move(program)); }
   bool done() const { return m_done; }
 
-  // Opens a VCD file (path without ".vcd") and traces the signals that
-  // matter. Call before sc_start.
+  // Every block, in the order of the statistics and the summary. The SoC
+  // gathers statistics and traces over this list, and soc_sim prints the
+  // summary from it, so neither names a block.
+  const std::vector<Block*>& blocks() const { return m_blocks; }
+
+  // Opens a VCD file (path without ".vcd") and traces every block's
+  // signals. Call before sc_start.
   void trace_to(const std::string& path_without_extension);
   void close_trace();
 
+  // simulated_ns and each block's statistics under its name.
   nlohmann::json stats_json() const;
 
  private:
   void finish();  // SC_THREAD
+  std::vector<Block*> m_blocks;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
   sc_core::sc_event m_host_finished;
   bool m_done = false;

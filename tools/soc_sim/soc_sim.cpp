@@ -51,14 +51,7 @@ struct Options {
 };
 
 std::string format_time(double seconds) {
-  char buffer[32];
-  if (seconds >= 1)
-    std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
-  else if (seconds >= 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
-  return buffer;
+  return format_duration(seconds);
 }
 
 // Creates `dir` if needed and proves it writable, or throws naming it.
@@ -103,50 +96,39 @@ class Progress {
   unsigned m_total;
 };
 
+// The summary: run, block table (each block's own row), the blocks' own
+// tables (the bus's traffic per initiator), outputs. It names no block.
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
                    const std::vector<std::string>& outputs) {
-  const double simulated = sc_core::sc_time_stamp().to_seconds();
-  const auto& host = stats["host"];
-  const auto& bus = stats["bus"];
-  const auto& memory = stats["memory"];
-  const auto& display = stats["display"];
+  const sc_core::sc_time elapsed = sc_core::sc_time_stamp();
+  const double simulated = elapsed.to_seconds();
   std::printf("\ntessera soc_sim: application '%s', display %s mode\n", app.c_str(),
-              display["mode"].get<std::string>().c_str());
+              stats["display"]["mode"].get<std::string>().c_str());
   std::printf("  simulated time  %s\n  wall time       %s (%s simulated per wall second)\n",
               format_time(simulated).c_str(), format_time(wall).c_str(),
               format_time(wall > 0 ? simulated / wall : 0).c_str());
-  std::printf("\n  %-10s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
-  std::printf("  %-10s %14s %11.1f%%  stalled on bus %s, idle %s\n", "host",
-              format_time(host["busy_ns"].get<double>() * 1e-9).c_str(), host["utilisation"].get<double>() * 100,
-              format_time(host["stalled_on_bus_ns"].get<double>() * 1e-9).c_str(),
-              format_time(host["idle_ns"].get<double>() * 1e-9).c_str());
-  const double bus_period = 1e-6 / bus["clock_mhz"].get<double>();
-  std::printf("  %-10s %14s %11.1f%%  %s, %u-bit\n", "bus",
-              format_time(bus["busy_cycles"].get<double>() * bus_period).c_str(),
-              bus["utilisation"].get<double>() * 100, bus["arbitration"].get<std::string>().c_str(),
-              bus["width_bits"].get<unsigned>());
-  std::printf("  %-10s %14s %11.1f%%  %llu reads, %llu writes\n", "memory",
-              format_time(memory["busy_ns"].get<double>() * 1e-9).c_str(), memory["utilisation"].get<double>() * 100,
-              memory["reads"].get<unsigned long long>(), memory["writes"].get<unsigned long long>());
-  std::printf("  %-10s %14s %12s  %llu frames shown, %.1f frames/s achieved, %llu underrun lines\n", "display", "-",
-              "-", display["frames_shown"].get<unsigned long long>(), display["achieved_fps"].get<double>(),
-              display["underrun_lines"].get<unsigned long long>());
-  const auto& raster = stats["raster"];
-  std::printf("  %-10s %14s %11.1f%%  %llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)\n", "raster",
-              format_time(raster["busy_ns"].get<double>() * 1e-9).c_str(), raster["utilisation"].get<double>() * 100,
-              raster["runs"].get<unsigned long long>(), raster["triangles"].get<unsigned long long>(),
-              raster["tiles"].get<unsigned long long>(), raster["fragments"].get<unsigned long long>(),
-              raster["fragments_written"].get<unsigned long long>());
-  std::printf("\n  bus traffic per initiator\n  %-12s %12s %12s %12s %12s %12s\n", "initiator", "transactions", "bytes",
-              "busy cycles", "wait cycles", "utilisation");
-  for (const auto& [name, s] : bus["initiators"].items())
-    std::printf("  %-12s %12llu %12llu %12llu %12llu %11.1f%%\n", name.c_str(),
-                s["transactions"].get<unsigned long long>(), s["bytes"].get<unsigned long long>(),
-                s["busy_cycles"].get<unsigned long long>(), s["wait_cycles"].get<unsigned long long>(),
-                s["utilisation"].get<double>() * 100);
+  std::printf("\n  %-12s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
+  std::vector<SummaryTable> tables;
+  for (const Block* block : soc.blocks()) {
+    const SummaryRow row = block->summary_row(elapsed);
+    std::printf("  %-12s %14s %12s  %s\n", block->basename(),
+                row.busy ? format_time(row.busy->to_seconds()).c_str() : "-",
+                row.utilisation ? format_percent(*row.utilisation).c_str() : "-", row.notes.c_str());
+    for (SummaryTable& table : block->summary_tables(elapsed)) tables.push_back(std::move(table));
+  }
+  for (const SummaryTable& table : tables) {
+    std::printf("\n  %s\n ", table.title.c_str());
+    for (size_t i = 0; i < table.columns.size(); ++i)
+      std::printf(i == 0 ? " %-12s" : " %12s", table.columns[i].c_str());
+    std::printf("\n");
+    for (const auto& row : table.rows) {
+      std::printf(" ");
+      for (size_t i = 0; i < row.size(); ++i) std::printf(i == 0 ? " %-12s" : " %12s", row[i].c_str());
+      std::printf("\n");
+    }
+  }
   std::printf("\n  outputs\n");
   for (const auto& line : outputs) std::printf("    %s\n", line.c_str());
-  (void)soc;
 }
 
 // soc_sim's own parameters (sim.*): what to run and how the run is watched.

@@ -285,6 +285,45 @@ TEST_F(SocSim, DisplayDmaShowsTheSameFramesOverTheBus) {
   EXPECT_GT(stats["host"]["busy_ns"].get<double>(), 0);
 }
 
+// The summary's block table is printed from the blocks' own rows: every
+// section of the statistics but the run's own has its row, with the busy
+// time the block reports, and the bus adds its traffic table, one row per
+// initiator it counted.
+TEST_F(SocSim, SummaryHasARowForEveryBlockAndTheBusTraffic) {
+  const SimResult result = run({"--app", "pattern", "--set", "display.dma=true", "--frames", "1", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json stats = read_stats(m_dir / "out/stats.json")["stats"];
+  std::map<std::string, std::vector<std::string>> rows;
+  std::istringstream lines(result.out);
+  bool in_blocks = false, in_traffic = false;
+  std::set<std::string> initiators;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::vector<std::string> w{std::istream_iterator<std::string>(words), std::istream_iterator<std::string>()};
+    if (w.empty()) {
+      in_blocks = in_traffic = false;
+      continue;
+    }
+    if (w[0] == "block") in_blocks = true;
+    if (w[0] == "initiator") in_traffic = true;
+    if (in_blocks && w[0] != "block") rows[w[0]] = w;
+    if (in_traffic && w[0] != "initiator") initiators.insert(w[0]);
+  }
+  for (const auto& [section, value] : stats.items()) {
+    if (!value.is_object() || section == "driver") continue;
+    EXPECT_EQ(rows.count(section), 1u) << "no summary row for " << section << "\n" << result.out;
+  }
+  ASSERT_EQ(rows.count("host"), 1u) << result.out;
+  // "host  4.625 ms  27.8%  stalled on bus ...": the busy time in stats.json.
+  ASSERT_GE(rows["host"].size(), 3u) << result.out;
+  const double busy_ns = stats["host"]["busy_ns"].get<double>();
+  const double scale = rows["host"][2] == "s" ? 1e9 : rows["host"][2] == "ms" ? 1e6 : 1e3;
+  EXPECT_NEAR(std::stod(rows["host"][1]) * scale, busy_ns, scale * 0.0005) << result.out;
+  EXPECT_TRUE(contains(result.out, "stalled on bus")) << result.out;
+  for (const auto& [name, counts] : stats["bus"]["initiators"].items())
+    EXPECT_EQ(initiators.count(name), 1u) << "no traffic row for " << name << "\n" << result.out;
+}
+
 TEST_F(SocSim, IdenticalRunsGiveIdenticalFiles) {
   // The same arguments, run in two folders.
   for (const char* folder : {"a", "b"}) {

@@ -1,0 +1,40 @@
+#include "common/block.h"
+
+#include <cstdio>
+
+#include "common/activity_json.h"
+
+namespace tessera {
+
+nlohmann::json Block::stats_json(const sc_core::sc_time& elapsed) const {
+  (void)elapsed;
+  return to_json(m_counters);
+}
+
+void Block::trace_signals(sc_core::sc_trace_file* file) {
+  (void)file;
+}
+
+std::vector<SummaryTable> Block::summary_tables(const sc_core::sc_time& elapsed) const {
+  (void)elapsed;
+  return {};
+}
+
+std::string format_duration(double seconds) {
+  char buffer[32];
+  if (seconds >= 1)
+    std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
+  else if (seconds >= 1e-3)
+    std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
+  else
+    std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
+  return buffer;
+}
+
+std::string format_percent(double fraction) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f%%", fraction * 100);
+  return buffer;
+}
+
+}  // namespace tessera

@@ -1,0 +1,73 @@
+// The shape every block of the SoC shares. A Block is an sc_module with
+// typed activity counters and the hooks the SoC calls over its list of
+// blocks, so that the statistics, the VCD trace and soc_sim's summary name no
+// block: stats_json (the block's section of stats.json), trace_signals (its
+// signals in a VCD), summary_row (its row in the summary's block table) and
+// summary_tables (a table of its own, such as the bus's traffic per
+// initiator). A block with registers and an interrupt line derives from
+// Peripheral (peripheral.h); a block that masters the bus has a BusMaster
+// socket (bus_master.h). docs/how_to_add_a_block.md walks through a new one.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <systemc>
+
+#include <nlohmann/json.hpp>
+
+#include "common/activity_counters.h"
+
+namespace tessera {
+
+// A block's row in the summary: busy time and utilisation where the block
+// has them (printed "-" otherwise), and notes.
+struct SummaryRow {
+  std::optional<sc_core::sc_time> busy;
+  std::optional<double> utilisation;  // a fraction: 0.25 prints as 25.0%
+  std::string notes;
+};
+
+// A table a block adds to the summary, below the block table.
+struct SummaryTable {
+  std::string title;
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;  // one text per column
+};
+
+class Block : public sc_core::sc_module {
+ public:
+  // The block's statistics over `elapsed` of simulated time: by default its
+  // activity counters (a dotted name nests: "bus.errors" is
+  // {"bus": {"errors": n}}); blocks add what they derive from them.
+  virtual nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  // Adds the block's signals to a VCD file; called before the simulation
+  // starts. By default the block has none.
+  virtual void trace_signals(sc_core::sc_trace_file* file);
+  virtual SummaryRow summary_row(const sc_core::sc_time& elapsed) const = 0;
+  // By default none.
+  virtual std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const;
+
+  const ActivityCounters& counters() const { return m_counters; }
+
+ protected:
+  explicit Block(sc_core::sc_module_name name) : sc_core::sc_module(name) {}
+
+  // The set the block's counters live in, for the block itself and for the
+  // parts that count on its behalf (its BusMaster).
+  ActivityCounters& activity() { return m_counters; }
+  ActivityCounter& counter(const std::string& name, const std::string& description) {
+    return m_counters.counter(name, description);
+  }
+
+ private:
+  ActivityCounters m_counters;
+};
+
+// The summary's wording of a duration ("13.874 ms", "5.208 us", "1.250 s")
+// and of a fraction ("4.6%").
+std::string format_duration(double seconds);
+std::string format_percent(double fraction);
+
+}  // namespace tessera

@@ -1,0 +1,73 @@
+// A block with memory-mapped registers and an interrupt line. Peripheral
+// gives it the register target socket `in` (the register bank answers; an
+// access costs one cycle of the block's clock as target latency), the
+// interrupt registers every peripheral has (a status register whose bits
+// the block raises and software clears by writing 1s, and an enable
+// register) and the `irq` output, which follows status & enable != 0. What
+// a peripheral adds is its own registers, declared once from its .def file
+// into m_regs, with their handlers.
+//
+// Timing: a register write takes effect at the access's annotated time
+// (RegisterBank::access_delay()), not at the kernel's time, which may be a
+// quantum behind the initiator. Register values change when the access is
+// made (a later access by the same initiator must see them); the interrupt
+// line, which other processes see at the kernel's time, changes at the
+// annotated time.
+#pragma once
+
+#include <cstdint>
+#include <set>
+
+#include <tlm_utils/simple_target_socket.h>
+#include <systemc>
+#include <tlm>
+
+#include "common/block.h"
+#include "common/register_bank.h"
+
+namespace tessera {
+
+class Peripheral : public Block {
+ public:
+  SC_HAS_PROCESS(Peripheral);
+
+  tlm_utils::simple_target_socket<Peripheral, 32> in;  // registers
+  sc_core::sc_out<bool> irq;                           // status & enable != 0
+
+ protected:
+  Peripheral(sc_core::sc_module_name name, sc_core::sc_time clock_period);
+
+  // Declares the interrupt registers of the block's map: `status` (w1c) and
+  // `enable` (rw). Writes to either move the line at the access's time.
+  void add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable);
+  // Sets status bits; the line follows `delay` after the kernel's time.
+  void raise_irq(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
+  uint32_t irq_status() const { return m_regs.get(m_irq_status_offset); }
+
+  // Why a register write must be refused with a command error (nullptr:
+  // accept it). Each refusal is counted (refused_register_writes) and
+  // reported as a warning naming the offset and the reason.
+  virtual const char* write_refusal(const tlm::tlm_generic_payload& gp) const;
+
+  const sc_core::sc_time& clock_period() const { return m_clock_period; }
+
+  RegisterBank m_regs;
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  // The line is evaluated again `delay` after the kernel's time.
+  void schedule_irq_update(const sc_core::sc_time& delay);
+  void update_irq();  // SC_METHOD
+
+  sc_core::sc_time m_clock_period;
+  ActivityCounter& m_refused_writes;
+  uint32_t m_irq_status_offset = 0;
+  uint32_t m_irq_enable_offset = 0;
+  // Times at which the line is due to be evaluated: an event keeps only its
+  // earliest notification, so the later ones wait here.
+  std::set<sc_core::sc_time> m_irq_updates;
+  sc_core::sc_event m_irq_update;
+};
+
+}  // namespace tessera
