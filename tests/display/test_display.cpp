@@ -1,7 +1,8 @@
 // TLM tests of the display controller: register access and its errors, port
-// mode (host copies, PRESENT shows), DMA mode (swap at vertical blank, frame
-// shown after one refresh period, interrupt, achieved frame rate) and
-// underruns when the bus cannot keep up.
+// mode (host copies, PRESENT shows), DMA mode with its display DMA (swap at
+// vertical blank, frame shown after one refresh period, interrupt, achieved
+// frame rate) and underruns when the bus cannot keep up. The display DMA on
+// its own: test_display_dma.cpp.
 #include <cmath>
 
 #include "bus/ahb_bus.h"
@@ -31,9 +32,16 @@ DisplayParams display_params(bool dma) {
   p.dma = dma;
   p.refresh_hz = REFRESH_HZ;
   p.vblank_lines = VBLANK;
+  p.clock_period = CYCLE;
+  return p;
+}
+
+DisplayDmaParams dma_params() {
+  DisplayDmaParams p = DisplayDmaParams::defaults();
   p.burst_bytes = 16;
   p.fifo_lines = 1;
-  p.clock_period = CYCLE;
+  p.line_bytes = WIDTH * 2;
+  p.lines = HEIGHT;
   return p;
 }
 
@@ -44,19 +52,11 @@ struct PortBench {
   DisplayController display{"port_display", display_params(false)};
   sc_core::sc_signal<bool> irq{"port_irq"};
   std::vector<Frame> frames;
-  struct Sink : sc_core::sc_module {
-    tlm_utils::simple_target_socket<Sink, 32> in{"in"};
-    explicit Sink(sc_core::sc_module_name n) : sc_core::sc_module(n) {
-      in.register_b_transport(this, &Sink::b_transport);
-    }
-    void b_transport(tlm::tlm_generic_payload& gp, sc_time&) { gp.set_response_status(tlm::TLM_OK_RESPONSE); }
-  } dma_sink{"port_dma_sink"};
   PortBench() {
     regs_initiator.out.bind(check_regs.in);
     check_regs.out.bind(display.in);
     port_initiator.out.bind(check_port.in);
     check_port.out.bind(display.port_in);
-    display.dma_out.bind(dma_sink.in);
     display.irq.bind(irq);
     display.on_frame([this](const Frame& f) { frames.push_back(f); });
   }
@@ -69,6 +69,7 @@ struct DmaBench {
   AhbBus bus;
   Memory memory;
   DisplayController display;
+  DisplayDma dma;
   sc_core::sc_signal<bool> irq;
   std::vector<Frame> frames;
   DmaBench(const std::string& name, unsigned memory_wait)
@@ -80,11 +81,13 @@ struct DmaBench {
         bus((name + "_bus").c_str(), test::bench_bus_params(CYCLE)),
         memory((name + "_memory").c_str(), test::bench_memory_params(0x10000, CYCLE, memory_wait)),
         display((name + "_display").c_str(), display_params(true)),
+        dma((name + "_display_dma").c_str(), dma_params()),
         irq((name + "_irq").c_str()) {
     host.out.bind(check_host.in);
     bus.attach(check_dma.out, "display_dma", 0);
     bus.attach(check_host.out, "host", 3);
-    display.dma_out.bind(check_dma.in);
+    dma.out.bind(check_dma.in);
+    display.connect_dma(dma);
     bus.map(check_memory.in, 0, 0x10000, "memory");
     bus.map(check_regs.in, REGS_BASE, 0x1000, "display_regs");
     bus.map(display.port_in, REGS_BASE + 0x100000, 0x100000, "display_port");
@@ -256,7 +259,8 @@ TEST(Display, SwappingEveryPeriodAchievesTheRefreshRate) {
     EXPECT_NEAR(bench.frames[i].time_seconds - bench.frames[i - 1].time_seconds, PERIOD.to_seconds(), 1e-12);
   const auto stats = bench.display.stats_json(sc_core::sc_time_stamp());
   EXPECT_NEAR(stats["achieved_fps"].get<double>(), REFRESH_HZ, 1.0);
-  EXPECT_GT(stats["dma_bytes"].get<uint64_t>(), 4u * WIDTH * HEIGHT * 2 - 1);
+  const auto dma = bench.dma.stats_json(sc_core::sc_time_stamp());
+  EXPECT_GT(dma["bus"]["bytes_read"].get<uint64_t>(), 4u * WIDTH * HEIGHT * 2 - 1);
   EXPECT_EQ(bench.bus.initiator_stats()[0].name, "display_dma");
   EXPECT_GT(bench.bus.initiator_stats()[0].bytes, 0u);
 }
@@ -274,8 +278,9 @@ TEST(Display, SlowMemoryCausesUnderruns) {
   // A 64-byte line in 16-byte bursts, each 1 + 2000 + 4 cycles, is 80 us
   // of fetching for a 50 us line time.
   EXPECT_GT(bench.host.peek32(REGS_BASE + regs::UNDERRUNS), 0u);
-  const auto stats = bench.display.stats_json(sc_core::sc_time_stamp());
+  const auto stats = bench.dma.stats_json(sc_core::sc_time_stamp());
   EXPECT_GT(stats["underrun_frames"].get<uint64_t>(), 0u);
+  EXPECT_EQ(stats["underrun_lines"], bench.host.peek32(REGS_BASE + regs::UNDERRUNS));
 }
 
 int sc_main(int argc, char* argv[]) {

@@ -102,7 +102,7 @@ TEST(SocParameters, OtherImpossibleCombinationsNameTheKeys) {
       {{"host.dcache.line_bytes=24"}, "host.dcache.line_bytes"},
       {{"host.dcache.size_bytes=1000"}, "host.dcache.size_bytes"},
       // 200-byte lines cannot be fetched in 64-byte bursts.
-      {{"display.dma=true", "display.width=100"}, "display.burst_beats"},
+      {{"display.dma=true", "display.width=100"}, "display_dma.burst_beats"},
   };
   for (const auto& c : cases) {
     Config config = soc_config();

@@ -65,6 +65,10 @@ class Block : public sc_core::sc_module {
   ActivityCounters m_counters;
 };
 
+// The row of a block that is busy for `busy` of `elapsed`: utilisation is
+// their ratio (0 before any time has passed).
+SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes);
+
 // The summary's wording of a duration ("13.874 ms", "5.208 us", "1.250 s")
 // and of a fraction ("4.6%").
 std::string format_duration(double seconds);

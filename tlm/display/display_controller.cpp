@@ -15,18 +15,14 @@ namespace regs = display_regs;
 DisplayController::DisplayController(sc_core::sc_module_name name, const DisplayParams& params)
     : Peripheral(name, params.clock_period),
       port_in("port_in"),
-      dma_out("dma_out", activity()),
       m_params(params),
       m_frames(counter("frames_shown", "distinct frames shown")),
       m_refreshes(counter("refreshes", "refresh periods completed (DMA mode)")),
-      m_underrun_lines(counter("underrun_lines", "lines fetched after they were due (DMA mode)")),
-      m_underrun_frames(counter("underrun_frames", "refresh periods with an underrun line (DMA mode)")),
       m_port_bytes(counter("port_bytes", "bytes written to the display port (port mode)")),
       m_vblank("vblank") {
   if (params.width == 0 || params.height == 0) throw std::invalid_argument(std::string(this->name()) + ": empty frame");
   if (params.refresh_hz <= 0)
     throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
-  if (params.dma) dma_out.configure(params.burst_bytes, BusMaster::OnError::zeros_and_continue);
   port_in.register_b_transport(this, &DisplayController::port_b_transport);
   port_in.register_transport_dbg(this, &DisplayController::port_transport_dbg);
 
@@ -61,16 +57,15 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   });
   m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames.value); });
   m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes.value); });
-  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(m_underrun_lines.value); });
+  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(underruns()); });
   m_regs.add(WIDTH, [this] { return m_params.width; });
   m_regs.add(HEIGHT, [this] { return m_params.height; });
   m_regs.add(FORMAT, [this] { return static_cast<uint32_t>(m_params.format); });
   m_regs.add(MODE, [this] { return m_params.dma ? 1u : 0u; });
 
   m_port_frame.assign(frame_bytes(), 0);
-  m_scan_frame.assign(frame_bytes(), 0);
 
-  if (m_params.dma) SC_THREAD(scan_out);
+  if (m_params.dma) SC_THREAD(refresh);
 }
 
 void DisplayController::trace_signals(sc_core::sc_trace_file* file) {
@@ -139,22 +134,21 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
   m_frame_shown.notify(delay);
 }
 
-bool DisplayController::fetch_line(uint32_t address, uint8_t* line, const sc_time& deadline) {
-  sc_time delay = sc_core::SC_ZERO_TIME;
-  dma_out.transfer(tlm::TLM_READ_COMMAND, address, line, m_params.width * bytes_per_pixel(), delay);
-  const sc_time done = sc_core::sc_time_stamp() + delay;
-  wait(delay);
-  return done <= deadline;
+void DisplayController::connect_dma(DisplayDma& dma) {
+  if (dma.params().line_bytes != m_params.width * bytes_per_pixel() || dma.params().lines != m_params.height)
+    throw std::invalid_argument(std::string(name()) + ": the display DMA " + dma.name() +
+                                " fetches frames of another size than this display's");
+  m_dma = &dma;
 }
 
-void DisplayController::scan_out() {
+void DisplayController::end_of_elaboration() {
+  if (m_params.dma && !m_dma)
+    throw std::logic_error(std::string(name()) + ": DMA mode without a display DMA (connect_dma)");
+}
+
+void DisplayController::refresh() {
   const sc_time period(1.0 / m_params.refresh_hz, sc_core::SC_SEC);
   const sc_time line_time = period / static_cast<double>(m_params.height + m_params.vblank_lines);
-  const unsigned line_bytes = m_params.width * bytes_per_pixel();
-  const sc_time lead = line_time * static_cast<double>(m_params.fifo_lines);
-  // The frame being fetched is a member, not a local: this thread never
-  // returns, and its stack is not unwound at the end of the simulation.
-  std::vector<uint8_t>& next = m_scan_frame;
   for (;;) {
     // A refresh period: vertical blank, then the visible lines. A requested
     // swap takes effect at the start of the blank.
@@ -174,25 +168,13 @@ void DisplayController::scan_out() {
     raise_irq(regs::IRQ_VBLANK);
     const bool scanning = m_front_valid && (m_regs.get(regs::CTRL) & regs::CTRL_ENABLE);
     m_frame_in_scan = scanning && new_frame;
-    bool underrun = false;
     if (scanning) {
-      const uint32_t base = m_regs.get(regs::FRONT_BASE);
-      for (unsigned y = 0; y < m_params.height; ++y) {
-        // The line buffer holds fifo_lines lines: line y may be fetched once
-        // line y - fifo_lines has gone to the screen.
-        const sc_time due = m_active_start + line_time * static_cast<double>(y);
-        const sc_time earliest = due > lead ? due - lead : sc_core::SC_ZERO_TIME;
-        if (earliest > sc_core::sc_time_stamp()) wait(earliest - sc_core::sc_time_stamp());
-        if (!fetch_line(base + y * line_bytes, &next[size_t{y} * line_bytes], due)) {
-          ++m_underrun_lines;
-          underrun = true;
-        }
-      }
+      m_dma->start_frame(m_regs.get(regs::FRONT_BASE), m_active_start, line_time);
+      wait(m_dma->frame_fetched_event());
     }
     if (sc_core::sc_time_stamp() < frame_end) wait(frame_end - sc_core::sc_time_stamp());
-    if (underrun) ++m_underrun_frames;
     ++m_refreshes;
-    if (m_frame_in_scan) show(next);
+    if (m_frame_in_scan) show(m_dma->frame());
     m_frame_in_scan = false;
   }
 }
@@ -211,9 +193,6 @@ nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {
   stats["achieved_fps"] = rate;
   stats["refresh_hz"] = m_params.dma ? m_params.refresh_hz : 0.0;
   stats["elapsed_ns"] = elapsed.to_seconds() * 1e9;
-  stats["dma_bytes"] = stats["bus"]["bytes_read"];
-  stats["bus_errors"] = stats["bus"]["errors"];
-  stats.erase("bus");
   return stats;
 }
 
@@ -222,7 +201,7 @@ SummaryRow DisplayController::summary_row(const sc_time& elapsed) const {
   char notes[128];
   std::snprintf(notes, sizeof notes, "%llu frames shown, %.1f frames/s achieved, %llu underrun lines",
                 static_cast<unsigned long long>(m_frames.value), stats["achieved_fps"].get<double>(),
-                static_cast<unsigned long long>(m_underrun_lines.value));
+                static_cast<unsigned long long>(underruns()));
   return {std::nullopt, std::nullopt, notes};
 }
 

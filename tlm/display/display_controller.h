@@ -1,13 +1,14 @@
-// Display controller with two ways to get a frame on screen:
+// Display controller: the display's registers, its port and its frame
+// output, with two ways to get a frame on screen:
 //  - port mode (display.dma=false, as on the J2210): the host copies the
 //    finished frame into the display port window and writes PRESENT; the
 //    host's time for the copy is its own cost.
-//  - DMA mode (display.dma=true, the proposed hardware): a display DMA scans
-//    the front buffer out of system memory over the bus once per refresh
-//    period, line by line, into a line buffer of display.fifo_lines lines.
-//    The host draws into the back buffer and requests a SWAP, which takes
-//    effect at the next vertical blank. A line whose fetch completes after
-//    the time it is due on screen is an underrun.
+//  - DMA mode (display.dma=true, the proposed hardware): the controller
+//    times the refresh periods (vertical blank, then the visible lines) and
+//    has the display DMA (display_dma.h), its scan-out engine, fetch the
+//    front buffer over the bus once per period. The host draws into the
+//    back buffer and requests a SWAP, which takes effect at the next
+//    vertical blank.
 // Every distinct frame shown goes to the output port: a callback that
 // soc_sim turns into a PNG file.
 #pragma once
@@ -23,11 +24,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/bus_master.h"
 #include "common/peripheral.h"
 #include "common/pixel_format.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
+#include "display/display_dma.h"
 
 namespace tessera {
 
@@ -38,9 +39,6 @@ struct DisplayParams {
   bool dma = false;
   double refresh_hz = 0;
   unsigned vblank_lines = 0;
-  unsigned burst_beats = 0;
-  unsigned burst_bytes = 0;  // set by the SoC: burst_beats bus words
-  unsigned fifo_lines = 0;
   sc_core::sc_time clock_period;  // set by the SoC: the bus clock
   unsigned port_cycles = 0;       // cycles per 32-bit word written to the display port (besides the bus's)
 
@@ -67,16 +65,17 @@ class DisplayController : public Peripheral {
 
   // Registers on `in` and the interrupt on `irq` (Peripheral).
   tlm_utils::simple_target_socket<DisplayController, 32> port_in;  // display port window
-  BusMaster dma_out;
 
   DisplayController(sc_core::sc_module_name name, const DisplayParams& params);
 
   void on_frame(std::function<void(const Frame&)> sink) { m_sink = std::move(sink); }
+  // The scan-out engine of DMA mode; its geometry must be this display's.
+  void connect_dma(DisplayDma& dma);
 
   unsigned bytes_per_pixel() const { return tessera::bytes_per_pixel(m_params.format); }
   uint64_t frame_bytes() const { return uint64_t{m_params.width} * m_params.height * bytes_per_pixel(); }
   uint64_t frames_shown() const { return m_frames.value; }
-  uint64_t underruns() const { return m_underrun_lines.value; }
+  uint64_t underruns() const { return m_dma ? m_dma->underrun_lines() : 0; }
   // True while a frame has been handed to the display but not yet shown.
   bool frame_pending() const;
   const sc_core::sc_event& frame_shown_event() const { return m_frame_shown; }
@@ -89,16 +88,16 @@ class DisplayController : public Peripheral {
   void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
-  void scan_out();  // SC_THREAD, DMA mode
+  void end_of_elaboration() override;
+  void refresh();  // SC_THREAD, DMA mode: one refresh period after another
   // Shows a frame `delay` after the kernel's time (a register write's annotated time).
   void show(const std::vector<uint8_t>& pixels, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
-  bool fetch_line(uint32_t address, uint8_t* line, const sc_core::sc_time& deadline);
   bool in_vblank() const;
 
   DisplayParams m_params;
+  DisplayDma* m_dma = nullptr;
   std::function<void(const Frame&)> m_sink;
   std::vector<uint8_t> m_port_frame;
-  std::vector<uint8_t> m_scan_frame;  // the frame scan_out is fetching
   sc_core::sc_event m_frame_shown;
 
   bool m_swap_pending = false;
@@ -106,8 +105,6 @@ class DisplayController : public Peripheral {
   bool m_frame_in_scan = false;  // a new frame is being scanned out, not yet shown
   ActivityCounter& m_frames;
   ActivityCounter& m_refreshes;
-  ActivityCounter& m_underrun_lines;
-  ActivityCounter& m_underrun_frames;
   ActivityCounter& m_port_bytes;
   TimedTrace m_vblank;  // for the VCD; in_vblank() answers from the times below
   sc_core::sc_time m_frame_start;

@@ -28,9 +28,6 @@ ParamGroup DisplayParams::parameters() {
                              "each frame to the display port"),
               param::real("display.refresh_hz", 60.0, 1, 240, "Hz", "refresh rate of the display DMA"),
               integer("display.vblank_lines", 20, 1, 1000, "lines", "vertical blanking interval, in line times"),
-              integer("display.burst_beats", 16, 1, 256, "beats", "burst length of the display DMA's fetches"),
-              integer("display.fifo_lines", 1, 1, 16, "lines",
-                      "line buffer of the display DMA: how many lines ahead it may fetch"),
               integer("display.port_cycles", 1, 0, 100000, "bus cycles",
                       "cost of one 32-bit word written to the display port, besides the bus's (host copy mode)"),
           },
@@ -45,8 +42,6 @@ DisplayParams DisplayParams::from_config(const Config& config) {
   p.dma = config.get_bool("display.dma");
   p.refresh_hz = config.get_real("display.refresh_hz");
   p.vblank_lines = static_cast<unsigned>(config.get_uint("display.vblank_lines"));
-  p.burst_beats = static_cast<unsigned>(config.get_uint("display.burst_beats"));
-  p.fifo_lines = static_cast<unsigned>(config.get_uint("display.fifo_lines"));
   p.port_cycles = static_cast<unsigned>(config.get_uint("display.port_cycles"));
   return p;
 }

@@ -510,9 +510,9 @@ SummaryRow Host::summary_row(const sc_time& elapsed) const {
   const double elapsed_s = elapsed.to_seconds();
   const double busy_s = busy_time().to_seconds();
   const double stall_s = stall_time().to_seconds();
-  return {busy_time(), elapsed_s > 0 ? busy_s / elapsed_s : 0.0,
-          "stalled on bus " + format_duration(stall_s) + ", idle " +
-              format_duration(std::max(0.0, elapsed_s - busy_s - stall_s))};
+  return busy_row(busy_time(), elapsed,
+                  "stalled on bus " + format_duration(stall_s) + ", idle " +
+                      format_duration(std::max(0.0, elapsed_s - busy_s - stall_s)));
 }
 
 }  // namespace tessera

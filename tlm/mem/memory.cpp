@@ -128,10 +128,8 @@ nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
 }
 
 SummaryRow Memory::summary_row(const sc_core::sc_time& elapsed) const {
-  const double busy = static_cast<double>(m_busy_ticks);
-  return {sc_core::sc_time::from_value(m_busy_ticks),
-          elapsed.value() ? busy / static_cast<double>(elapsed.value()) : 0.0,
-          std::to_string(m_reads.value) + " reads, " + std::to_string(m_writes.value) + " writes"};
+  return busy_row(sc_core::sc_time::from_value(m_busy_ticks), elapsed,
+                  std::to_string(m_reads.value) + " reads, " + std::to_string(m_writes.value) + " writes");
 }
 
 }  // namespace tessera

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -227,13 +226,10 @@ nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
 }
 
 SummaryRow Rasterizer::summary_row(const sc_time& elapsed) const {
-  const double elapsed_s = elapsed.to_seconds();
-  char notes[160];
-  std::snprintf(notes, sizeof notes, "%llu runs, %llu triangles, %llu tiles, %llu fragments (%llu written)",
-                static_cast<unsigned long long>(m_runs.value), static_cast<unsigned long long>(m_triangles.value),
-                static_cast<unsigned long long>(m_tiles.value), static_cast<unsigned long long>(m_fragments.value),
-                static_cast<unsigned long long>(m_fragments_written.value));
-  return {m_busy_time, elapsed_s > 0 ? m_busy_time.to_seconds() / elapsed_s : 0.0, notes};
+  return busy_row(m_busy_time, elapsed,
+                  std::to_string(m_runs.value) + " runs, " + std::to_string(m_triangles.value) + " triangles, " +
+                      std::to_string(m_tiles.value) + " tiles, " + std::to_string(m_fragments.value) + " fragments (" +
+                      std::to_string(m_fragments_written.value) + " written)");
 }
 
 }  // namespace tessera

@@ -36,9 +36,16 @@ HostParams host_params(const Config& config) {
 
 DisplayParams display_params(const Config& config) {
   DisplayParams p = DisplayParams::from_config(config);
-  const BusParams bus = BusParams::from_config(config);
-  p.burst_bytes = p.burst_beats * bus.width_bytes;
-  p.clock_period = bus.clock_period;
+  p.clock_period = BusParams::from_config(config).clock_period;
+  return p;
+}
+
+DisplayDmaParams display_dma_params(const Config& config) {
+  DisplayDmaParams p = DisplayDmaParams::from_config(config);
+  const DisplayParams display = DisplayParams::from_config(config);
+  p.burst_bytes = p.burst_beats * BusParams::from_config(config).width_bytes;
+  p.line_bytes = display.width * bytes_per_pixel(display.format);
+  p.lines = display.height;
   return p;
 }
 
@@ -66,17 +73,19 @@ std::vector<ParamGroup> Soc::parameter_groups() {
                             " display.format=" + pixel_format_name(display.format) + " pixels need " +
                             std::to_string(2 * frame_bytes) +
                             " bytes, more than half of mem.size_mib=" + std::to_string(memory_bytes >> 20));
-        const uint64_t line_bytes = uint64_t{display.width} * bytes_per_pixel(display.format);
-        if (display.dma && line_bytes % std::min<uint64_t>(display.burst_bytes, line_bytes) != 0)
-          throw ConfigError("configuration: impossible combination: a display line of " + std::to_string(line_bytes) +
-                            " bytes is not a whole number of display.burst_beats bursts (" +
-                            std::to_string(display.burst_bytes) + " bytes)");
+        const DisplayDmaParams dma = display_dma_params(config);
+        if (display.dma && dma.line_bytes % std::min(dma.burst_bytes, dma.line_bytes) != 0)
+          throw ConfigError("configuration: impossible combination: a display line of " +
+                            std::to_string(dma.line_bytes) +
+                            " bytes is not a whole number of display_dma.burst_beats bursts (" +
+                            std::to_string(dma.burst_bytes) + " bytes)");
       }};
   return {soc,
           HostParams::parameters(),
           BusParams::parameters(),
           MemoryParams::parameters(),
           DisplayParams::parameters(),
+          DisplayDmaParams::parameters(),
           RasterizerParams::parameters()};
 }
 
@@ -86,6 +95,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       memory("memory", memory_params(config)),
       host("host", host_params(config)),
       display("display", display_params(config)),
+      display_dma("display_dma", display_dma_params(config)),
       raster("raster", RasterizerParams::from_config(config)) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
@@ -93,7 +103,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
 
   // Initiators, in round-robin visiting order.
   bus.attach(host.out, "host", BusPriority::HOST);
-  bus.attach(display.dma_out, "display_dma", BusPriority::DISPLAY_DMA);
+  bus.attach(display_dma.out, "display_dma", BusPriority::DISPLAY_DMA);
   bus.attach(raster.mem_out, "raster", BusPriority::RASTER);
 
   // Targets, by the memory map.
@@ -117,7 +127,9 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   display.irq.bind(*m_irq_lines[irq_map::display]);
   raster.irq.bind(*m_irq_lines[irq_map::raster]);
 
-  m_blocks = {&host, &bus, &memory, &display, &raster};
+  display.connect_dma(display_dma);
+
+  m_blocks = {&host, &bus, &memory, &display, &display_dma, &raster};
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);

@@ -14,6 +14,7 @@
 #include "bus/ahb_bus.h"
 #include "config/config.h"
 #include "display/display_controller.h"
+#include "display/display_dma.h"
 #include "host/host.h"
 #include "mem/memory.h"
 #include "raster/rasterizer.h"
@@ -46,6 +47,7 @@ class Soc : public sc_core::sc_module {
   Memory memory;
   Host host;
   DisplayController display;
+  DisplayDma display_dma;
   Rasterizer raster;
 
   // Runs the host program; the simulation stops when it has finished and

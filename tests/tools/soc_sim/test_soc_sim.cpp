@@ -283,6 +283,13 @@ TEST_F(SocSim, DisplayDmaShowsTheSameFramesOverTheBus) {
   // At least the two frames shown were fetched: 320 x 240 x 2 bytes each.
   EXPECT_GE(dma["bytes"].get<double>(), 2.0 * WIDTH * HEIGHT * 2) << dma.dump(2);
   EXPECT_GT(stats["host"]["busy_ns"].get<double>(), 0);
+  // The display DMA's own statistics count the same traffic, a whole
+  // number of frames of HEIGHT lines, none of them late.
+  const json& engine = stats["display_dma"];
+  EXPECT_EQ(engine["bus"]["bytes_read"], dma["bytes"]) << engine.dump(2);
+  EXPECT_EQ(engine["bus"]["transactions"], dma["transactions"]) << engine.dump(2);
+  EXPECT_EQ(engine["lines_fetched"].get<unsigned>(), engine["frames_fetched"].get<unsigned>() * HEIGHT);
+  EXPECT_EQ(engine["underrun_lines"], 0) << engine.dump(2);
 }
 
 // The summary's block table is printed from the blocks' own rows: every
