@@ -8,6 +8,7 @@
 // rasterizer registers; rasterizer mem_out -> checker -> bus. Bus, memory and
 // rasterizer run at 100 MHz, so every time below is a whole number of 10 ns
 // cycles.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -50,16 +51,25 @@ raster::CycleCosts test_costs() {
   return c;
 }
 
+// A bench whose bus, memory and rasterizer interface are `beat_bytes` wide.
 struct Bench {
-  test::TestInitiator host{"host"};
-  ProtocolChecker<32> check_host{"check_host"}, check_mem_out{"check_mem_out"}, check_memory{"check_memory"},
-      check_regs{"check_regs"};
-  AhbBus bus{"bus", test::bench_bus_params(CYCLE)};
-  Memory memory{"memory", test::bench_memory_params(MEMORY_SIZE, CYCLE, MEMORY_WAIT)};
-  Rasterizer raster{"raster", raster_params()};
-  sc_core::sc_signal<bool> irq{"irq"};
+  test::TestInitiator host;
+  ProtocolChecker<32> check_host, check_mem_out, check_memory, check_regs;
+  AhbBus bus;
+  Memory memory;
+  Rasterizer raster;
+  sc_core::sc_signal<bool> irq;
 
-  Bench() {
+  Bench(const std::string& name, unsigned beat_bytes)
+      : host((name + "_host").c_str()),
+        check_host((name + "_check_host").c_str()),
+        check_mem_out((name + "_check_mem_out").c_str()),
+        check_memory((name + "_check_memory").c_str()),
+        check_regs((name + "_check_regs").c_str()),
+        bus((name + "_bus").c_str(), bus_params(beat_bytes)),
+        memory((name + "_memory").c_str(), memory_params(beat_bytes)),
+        raster((name + "_raster").c_str(), raster_params(beat_bytes)),
+        irq((name + "_irq").c_str()) {
     bus.attach(check_mem_out.out, "raster", 1);
     bus.attach(check_host.out, "host", 3);
     host.out.bind(check_host.in);
@@ -70,8 +80,19 @@ struct Bench {
     check_regs.out.bind(raster.in);
     raster.irq.bind(irq);
   }
-  static RasterizerParams raster_params() {
+  static BusParams bus_params(unsigned beat_bytes) {
+    BusParams p = test::bench_bus_params(CYCLE);
+    p.width_bytes = beat_bytes;
+    return p;
+  }
+  static MemoryParams memory_params(unsigned beat_bytes) {
+    MemoryParams p = test::bench_memory_params(MEMORY_SIZE, CYCLE, MEMORY_WAIT);
+    p.width_bytes = beat_bytes;
+    return p;
+  }
+  static RasterizerParams raster_params(unsigned beat_bytes) {
     RasterizerParams p = RasterizerParams::defaults();
+    p.beat_bytes = beat_bytes;
     p.width = WIDTH;
     p.height = HEIGHT;
     p.costs = test_costs();
@@ -105,6 +126,7 @@ struct Bench {
 };
 
 Bench* g_bench = nullptr;
+Bench* g_wide = nullptr;  // a 64-bit bus and rasterizer interface
 
 raster::VertexRecord vertex(unsigned x_q4, unsigned y_q4, uint32_t rgba) {
   return {x_q4 | y_q4 << 16, 0x800000, rgba, 0.0f, 0.0f, 1.0f};
@@ -281,6 +303,49 @@ TEST(Rasterizer, RunDrawsTheClearAndTheTriangleInTheExpectedTime) {
   EXPECT_EQ(b.violations(), 0u);
 }
 
+// The same run with a 64-bit interface (raster.beat_bytes = 8) on a 64-bit
+// bus: bursts of 16 beats are 128 bytes, so a depth row (128 bytes) and the
+// triangle record (72) each take one burst instead of two, and every burst
+// moves 8 bytes per beat. The pixels are the same.
+TEST(Rasterizer, AWiderInterfaceMovesTheSameDataInFewerLongerBeats) {
+  Bench& b = *g_wide;
+  write_scene(b);
+  const BusInitiatorStats before = b.raster_bus();
+  RunTimes times;
+  uint32_t cycles = 0;
+  test::run_thread([&] {
+    b.program(TILE_TABLE_ADDRESS);
+    times = start_and_wait(b);
+    cycles = b.host.read32(REGS_BASE + regs::CYCLES);
+    b.acknowledge();
+  });
+  unsigned wrong = 0;
+  for (unsigned y = 0; y < HEIGHT; ++y)
+    for (unsigned x = 0; x < WIDTH; ++x) wrong += b.color565(x, y) != (x + y <= 11 ? RED565 : BLUE565);
+  EXPECT_EQ(wrong, 0u);
+  // The core's accesses, in bytes (as in the test above), and what each
+  // costs in bursts of at most 128 bytes and in 8-byte beats.
+  std::vector<unsigned> accesses = {8, 4, 12, 4, 4, 4, 4, sizeof(raster::StateBlock), sizeof(raster::TriangleRecord)};
+  for (unsigned row = 0; row < HEIGHT; ++row) accesses.push_back(WIDTH * 2);
+  for (unsigned row = 0; row < HEIGHT; ++row) accesses.push_back(WIDTH * 4);
+  uint64_t bursts = 0, beats = 0;
+  for (unsigned bytes : accesses) {
+    for (unsigned offset = 0; offset < bytes; offset += 128) {
+      ++bursts;
+      beats += (std::min(128u, bytes - offset) + 7) / 8;
+    }
+  }
+  const BusInitiatorStats& after = b.raster_bus();
+  EXPECT_EQ(after.transactions - before.transactions, bursts);
+  EXPECT_EQ(bursts, 1u + 6 + 1 + 1 + HEIGHT + HEIGHT);
+  const uint64_t bus = bursts * (1 + MEMORY_WAIT) + beats;
+  EXPECT_EQ(after.busy_cycles - before.busy_cycles, bus);
+  const uint64_t run_cycles = 1 + (3 * 1 + 8 + 4 + TRIANGLE_BOX_PIXELS * 1) + bus;
+  EXPECT_EQ(cycles, run_cycles);
+  EXPECT_EQ(times.irq_rose, times.started + CYCLE * static_cast<double>(1 + run_cycles));
+  EXPECT_EQ(b.violations(), 0u);
+}
+
 TEST(Rasterizer, WritesWhileBusyAreRefusedExceptTheInterruptRegisters) {
   Bench& b = *g_bench;
   write_scene(b);
@@ -369,7 +434,8 @@ TEST(Rasterizer, UnknownOpcodeIsBadOpcodeWithItsAddress) {
 }
 
 int sc_main(int argc, char* argv[]) {
-  g_bench = new Bench();
+  g_bench = new Bench("narrow", 4);
+  g_wide = new Bench("wide", 8);
   sc_core::sc_start(sc_core::SC_ZERO_TIME);
   return test::run_all_tests(argc, argv);
 }

@@ -74,6 +74,8 @@ TEST(SocParameters, EachBlockReadsItsDeclaredDefaults) {
   EXPECT_EQ(tessera::DisplayParams::defaults().port_cycles, config.get_uint("display.port_cycles"));
   EXPECT_EQ(tessera::RasterizerParams::defaults().costs.setup, config.get_uint("raster.cycles.setup"));
   EXPECT_EQ(tessera::RasterizerParams::defaults().burst_beats, config.get_uint("raster.burst_beats"));
+  EXPECT_EQ(tessera::RasterizerParams::defaults().beat_bytes, 4u);
+  EXPECT_EQ(tessera::RasterizerParams::defaults().beat_bytes, config.get_uint("raster.beat_bytes"));
 }
 
 TEST(SocParameters, FrameBuffersLargerThanMemoryNameTheKeys) {
@@ -103,6 +105,9 @@ TEST(SocParameters, OtherImpossibleCombinationsNameTheKeys) {
       {{"host.dcache.size_bytes=1000"}, "host.dcache.size_bytes"},
       // 200-byte lines cannot be fetched in 64-byte bursts.
       {{"display.dma=true", "display.width=100"}, "display_dma.burst_beats"},
+      {{"raster.beat_bytes=12"}, "raster.beat_bytes"},
+      // A 64-bit rasterizer interface on the default 32-bit bus.
+      {{"raster.beat_bytes=8"}, "bus.width_bits"},
   };
   for (const auto& c : cases) {
     Config config = soc_config();
@@ -110,6 +115,11 @@ TEST(SocParameters, OtherImpossibleCombinationsNameTheKeys) {
     SCOPED_TRACE(c.assignments.back());
     EXPECT_MENTIONS(config_error([&] { config.validate(); }), c.key);
   }
+  // The same 64-bit interface on a 64-bit bus is fine.
+  Config wide = soc_config();
+  wide.apply_override("raster.beat_bytes=8");
+  wide.apply_override("bus.width_bits=64");
+  EXPECT_NO_THROW(wide.validate());
 }
 
 }  // namespace

@@ -15,8 +15,6 @@ namespace regs = raster_regs;
 
 namespace {
 
-constexpr unsigned BEAT_BYTES = 4;  // the pipeline's bus interface is 32 bits wide
-
 uint32_t recip_method_number(raster::RecipMethod method) {
   switch (method) {
     case raster::RecipMethod::method1: return 1;
@@ -62,9 +60,9 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
       m_busy_trace("busy") {
   if (params.width == 0 || params.height == 0 || params.tile_width == 0 || params.tile_height == 0)
     throw std::invalid_argument(std::string(this->name()) + ": empty screen or tile");
-  if (params.burst_beats == 0)
-    throw std::invalid_argument(std::string(this->name()) + ": burst_beats must be positive");
-  mem_out.configure(params.burst_beats * BEAT_BYTES, BusMaster::OnError::stop);
+  if (params.burst_beats == 0 || params.beat_bytes == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": burst_beats and beat_bytes must be positive");
+  mem_out.configure(params.burst_beats * params.beat_bytes, BusMaster::OnError::stop);
 
 #define TESSERA_RASTER_REG(name, offset, reset, access) \
   const RegisterInfo name{#name, offset, reset, RegAccess::access};
@@ -135,7 +133,7 @@ void Rasterizer::BusPort::cycles(uint64_t count) {
   if (m_owner.m_qk.need_sync()) m_owner.m_qk.sync();
 }
 
-// One access of the core: bursts of at most burst_beats beats, each issued
+// One access of the core: bursts of at most burst_beats beats of beat_bytes, each issued
 // when the previous one has completed (the pipeline waits for its data).
 bool Rasterizer::transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
   sc_time local = m_qk.get_local_time();

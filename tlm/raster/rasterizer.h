@@ -44,10 +44,12 @@ struct RasterizerParams {
   raster::RecipMethod recip_method = raster::RecipMethod::method3;
   raster::CycleCosts costs;
   sc_core::sc_time clock_period;
-  // Longest burst on the bus, in 32-bit beats (AHB's INCR16): a long tile
-  // write must not hold the bus for hundreds of cycles while the display
-  // DMA has a line due.
+  // Longest burst on the bus, in beats (AHB's INCR16): a long tile write
+  // must not hold the bus for hundreds of cycles while the display DMA has a
+  // line due.
   unsigned burst_beats = 0;
+  // Width of the pipeline's bus interface: bytes per beat.
+  unsigned beat_bytes = 0;
 
   // The parameters this block owns (the one place their defaults live),
   // read back from a configuration that holds them; fields marked "set by the

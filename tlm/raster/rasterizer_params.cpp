@@ -24,6 +24,9 @@ ParamGroup RasterizerParams::parameters() {
           integer("raster.recip_method", 3, 1, 3, "",
                   "reciprocal unit at reset: 1 fixed-point table, 2 floating-point table, 3 the paper's Method 3"),
           integer("raster.burst_beats", 16, 1, 256, "beats", "longest burst of the rasterizer's bus accesses"),
+          integer("raster.beat_bytes", 4, 4, 16, "bytes",
+                  "bytes per beat of the rasterizer's bus interface, its data width: 4, 8 or 16, at most "
+                  "bus.width_bits / 8"),
           integer("raster.cycles.command", 1, 0, 1000, "cycles", "decoding one command word"),
           integer("raster.cycles.setup", 8, 0, 1000, "cycles", "triangle setup (gradients, one reciprocal)"),
           integer("raster.cycles.tile_start", 4, 0, 1000, "cycles", "starting a tile"),
@@ -34,7 +37,16 @@ ParamGroup RasterizerParams::parameters() {
           integer("raster.cycles.tile_write_word", 0, 0, 1000, "cycles",
                   "per word of a finished tile written back (besides the bus time)"),
       },
-      {}};
+      [](const Config& config) {
+        const uint64_t beat = config.get_uint("raster.beat_bytes");
+        if (beat != 4 && beat != 8 && beat != 16)
+          throw ConfigError("configuration: 'raster.beat_bytes' expects 4, 8 or 16, got " + std::to_string(beat));
+        // A master cannot be wider than the bus it drives.
+        const uint64_t bus_bits = config.get_uint("bus.width_bits");
+        if (beat * 8 > bus_bits)
+          throw ConfigError("configuration: impossible combination: raster.beat_bytes=" + std::to_string(beat) +
+                            " is wider than the bus (bus.width_bits=" + std::to_string(bus_bits) + ")");
+      }};
 }
 
 RasterizerParams RasterizerParams::from_config(const Config& config) {
@@ -48,6 +60,7 @@ RasterizerParams RasterizerParams::from_config(const Config& config) {
                    : method == 2 ? raster::RecipMethod::method2
                                  : raster::RecipMethod::method3;
   p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
+  p.beat_bytes = static_cast<unsigned>(config.get_uint("raster.beat_bytes"));
   auto cycles = [&](const char* key) {
     return static_cast<unsigned>(config.get_uint(std::string("raster.cycles.") + key));
   };
