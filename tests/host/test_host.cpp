@@ -9,6 +9,7 @@
 #include "host/host.h"
 #include "mem/memory.h"
 #include "support/bench_params.h"
+#include "support/host_program_runner.h"
 #include "support/tlm_test_support.h"
 
 using namespace tessera;
@@ -61,9 +62,7 @@ struct Bench : sc_core::sc_module {
   ProtocolChecker<32> check_host, check_memory, check_device;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> irq_lines;
 
-  std::function<void(HostApi&)> body;
-  sc_core::sc_event next;
-  bool body_done = false;
+  test::HostProgramRunner runner;
 
   explicit Bench(sc_core::sc_module_name name)
       : sc_core::sc_module(name),
@@ -84,27 +83,11 @@ struct Bench : sc_core::sc_module {
       irq_lines.push_back(std::make_unique<sc_core::sc_signal<bool>>(("irq" + std::to_string(i)).c_str()));
       host.irq[i].bind(*irq_lines.back());
     }
-    host.set_program([this](HostApi& api) {
-      for (;;) {
-        sc_core::wait(next);
-        body(api);
-        api.irq_pending(0);  // synchronises the host's local time
-        body_done = true;
-      }
-      return 0;
-    });
+    host.set_program(runner.program());
   }
 
   // Runs `test_body` on the host; returns the simulated time it started.
-  sc_time run(std::function<void(HostApi&)> test_body) {
-    body = std::move(test_body);
-    body_done = false;
-    sc_core::sc_start(sc_time(100, sc_core::SC_US));  // previous traffic settles
-    const sc_time start = sc_core::sc_time_stamp();
-    next.notify();
-    while (!body_done) sc_core::sc_start(sc_time(1, sc_core::SC_MS));
-    return start;
-  }
+  sc_time run(test::HostProgramRunner::Body test_body) { return runner.run(std::move(test_body)); }
 };
 
 // A host whose program fails on an unmapped read it does not catch.
@@ -190,6 +173,31 @@ TEST(Host, PostedWritesDoNotStallUntilTheWriteBufferIsFull) {
   uint32_t last = 0;
   std::memcpy(&last, g_bench->device.data() + 4 * 63, 4);
   EXPECT_EQ(last, 163u);
+}
+
+// A span of stores that miss the cache is a train of single 16-bit writes.
+// It leaves the write buffer a buffer's worth (16) per bus request, each
+// issued when the buffer has room, so that arbitration can serve another
+// initiator between two requests; the first request takes the remainder, so
+// the core resumes when the last 16 stores are in the buffer. On an idle
+// bus the stores are back to back: 1000 stores of 1 + 3 + 1 bus cycles.
+TEST(Host, ALongTrainOfStoresLeavesTheBufferABuffersWorthAtATime) {
+  const auto stalls_before = g_bench->host.stats_json(sc_core::sc_time_stamp())["write_buffer_stalls"].get<uint64_t>();
+  const uint64_t writes_before = g_bench->bus.initiator_stats()[0].writes;
+  sc_time start, end;
+  g_bench->run([&](HostApi& api) {
+    start = seconds(api.now_seconds());
+    uint8_t* data = api.store_span(0x40000, 2, 1000);
+    std::memset(data, 0x5a, 2000);
+    end = seconds(api.now_seconds());
+  });
+  const sc_time store = BUS_CYCLE * static_cast<double>(1 + MEM_WAIT + 1);
+  EXPECT_EQ(end, bus_edge(start + HOST_CYCLE * 1000.0) + store * (1000.0 - 16));
+  EXPECT_EQ(g_bench->bus.initiator_stats()[0].writes - writes_before, 1000u);
+  // Requests of 8 + 62 x 16 stores: the core waited before each of the 62.
+  const auto stalls = g_bench->host.stats_json(sc_core::sc_time_stamp())["write_buffer_stalls"].get<uint64_t>();
+  EXPECT_EQ(stalls - stalls_before, 62u);
+  EXPECT_EQ(g_bench->memory.data()[0x40000 + 1999], 0x5a);
 }
 
 TEST(Host, UncachedReadWaitsForEarlierPostedWrites) {

@@ -231,7 +231,28 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   post_write(address, static_cast<const uint8_t*>(data), bytes);
 }
 
+unsigned Host::transfers_per_request(unsigned bytes_each) const {
+  return std::max(1u, m_params.write_buffer_words / std::max(1u, (bytes_each + 3) / 4));
+}
+
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  const unsigned each = bytes / transfers;
+  const unsigned per_request = transfers_per_request(each);
+  if (transfers <= per_request) {
+    post_request(address, data, bytes, transfers);
+    return;
+  }
+  // The buffer fills as the core stores and drains one entry at a time; the
+  // bus sees the train a buffer's worth at a time, each request issued when
+  // the buffer has room for it. The first request takes the remainder, so
+  // that the core resumes, as it would, when the last buffer's worth of the
+  // train is in the buffer.
+  unsigned count = transfers % per_request ? transfers % per_request : per_request;
+  for (unsigned done = 0; done < transfers; done += count, count = per_request)
+    post_request(address + done * each, data + done * each, count * each, count);
+}
+
+void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
   const unsigned words = std::max(transfers, (bytes + 3) / 4);
   auto retire = [&] {
     const uint64_t local = local_ticks();
@@ -256,8 +277,9 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
   const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
   m_write_buffer_free_ticks = done;
   if (words > m_params.write_buffer_words) {
-    // A train longer than the buffer: the core waits until all but the
-    // buffer's worth of its transfers have left (they drain evenly).
+    // A burst longer than the buffer (a victim line of a buffer smaller
+    // than a line): the core waits until all but the buffer's worth of its
+    // words have left (they drain evenly).
     const uint64_t per_word = (done - issue) / words;
     ++m_write_buffer_stalls;
     stall_until(done - per_word * m_params.write_buffer_words);
@@ -380,12 +402,18 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
   if (count == 0) return data;
   m_loads += count;
   if (!m_dcache.enabled()) {
-    // No cache: one single transfer per element, back to back.
+    // No cache: one single transfer per element, back to back, as bus
+    // requests of at most a buffer's worth (as posted stores are), each
+    // issued when the one before has completed.
     charge(uint64_t{m_params.load_cycles} * count);
     drain_write_buffer();
     if (m_post_data.size() < bytes) m_post_data.resize(bytes);
-    m_train->transfers = count;
-    stall_until(transact(tlm::TLM_READ_COMMAND, address, m_post_data.data(), bytes, 0));
+    const unsigned per_request = transfers_per_request(size);
+    for (unsigned done = 0; done < count; done += per_request) {
+      const unsigned transfers = std::min(per_request, count - done);
+      m_train->transfers = transfers;
+      stall_until(transact(tlm::TLM_READ_COMMAND, address + done * size, m_post_data.data(), transfers * size, 0));
+    }
     return data;
   }
   const unsigned line = m_dcache.line_bytes();

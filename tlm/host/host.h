@@ -116,7 +116,15 @@ class Host : public Block, public HostApi {
                     uint64_t not_before_ticks);
   void read_data(uint32_t address, void* data, unsigned bytes);
   void write_data(uint32_t address, const void* data, unsigned bytes);
+  // Posts `transfers` single transfers (a train) or one burst (transfers =
+  // 1) to the write buffer. A train leaves it as bus requests of at most a
+  // buffer's worth of transfers, so that arbitration can serve other
+  // initiators between them (tlm/bus/README.md, "Fairness").
   void post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers = 1);
+  // One bus request through the write buffer.
+  void post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers);
+  // Transfers of `bytes_each` that one bus request may carry: a buffer's worth.
+  unsigned transfers_per_request(unsigned bytes_each) const;
   uint8_t* span_pointer(uint32_t address, unsigned bytes);
   void drain_write_buffer();
   uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
