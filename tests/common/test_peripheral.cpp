@@ -140,6 +140,58 @@ TEST(Peripheral, DisablingAPendingInterruptDropsTheLine) {
   EXPECT_EQ(b.edges[1], std::make_pair(start + sc_time(1, sc_core::SC_US), false));
 }
 
+// An initiator ahead of the kernel (a host in its quantum) clears the
+// interrupt in the same time step in which it rose: the line must still
+// fall at the write's own time, so that the pulse exists, in a trace too.
+TEST(Peripheral, AClearMovesTheLineAtTheWritesAnnotatedTime) {
+  auto& b = *g_bench;
+  b.edges.clear();
+  const sc_time offset(500, sc_core::SC_NS);
+  const sc_time start = test::run_thread([&] {
+    b.cpu.write32(IRQ_ENABLE, IRQ_DONE);
+    b.cpu.write32(GO, 1);
+    sc_core::wait(sc_core::SC_ZERO_TIME);
+    sc_core::wait(sc_core::SC_ZERO_TIME);
+    EXPECT_TRUE(b.irq.read());
+    uint32_t bits = IRQ_DONE | IRQ_LATE;
+    b.cpu.write(IRQ_STATUS, reinterpret_cast<uint8_t*>(&bits), 4, offset);
+    // The status register changed at once (a later access must see it)...
+    EXPECT_EQ(b.cpu.read32(IRQ_STATUS), 0u);
+    // ...the line at the write's time.
+    EXPECT_TRUE(b.irq.read());
+    sc_core::wait(sc_time(1, sc_core::SC_US));
+    b.cpu.write32(IRQ_ENABLE, 0);
+  });
+  ASSERT_EQ(b.edges.size(), 2u);
+  EXPECT_EQ(b.edges[0], std::make_pair(start, true));
+  EXPECT_EQ(b.edges[1], std::make_pair(start + offset, false));
+}
+
+// Changes made out of time order: a clear ahead of the kernel (at +500 ns),
+// then, in a later call, a raise at the kernel's time. The registers hold
+// what was done last (the bit is pending); once no change is left to come,
+// the line agrees with them, so the interrupt is not lost.
+TEST(Peripheral, WhenChangesAreMadeOutOfTimeOrderTheLineEndsAsTheRegistersRead) {
+  auto& b = *g_bench;
+  b.edges.clear();
+  const sc_time start = test::run_thread([&] {
+    b.cpu.write32(IRQ_ENABLE, IRQ_DONE);
+    b.cpu.write32(GO, 1);
+    sc_core::wait(sc_time(1, sc_core::SC_US));
+    uint32_t bits = IRQ_DONE;
+    b.cpu.write(IRQ_STATUS, reinterpret_cast<uint8_t*>(&bits), 4, sc_time(500, sc_core::SC_NS));
+    b.cpu.write32(GO, 1);
+    sc_core::wait(sc_time(1, sc_core::SC_US));
+    EXPECT_EQ(b.cpu.read32(IRQ_STATUS) & IRQ_DONE, IRQ_DONE);
+    EXPECT_TRUE(b.irq.read());
+    b.cpu.write32(IRQ_ENABLE, 0);
+    b.cpu.write32(IRQ_STATUS, IRQ_DONE | IRQ_LATE);
+  });
+  ASSERT_EQ(b.edges.size(), 2u);
+  EXPECT_EQ(b.edges[0], std::make_pair(start, true));
+  EXPECT_EQ(b.edges[1], std::make_pair(start + sc_time(2, sc_core::SC_US), false));
+}
+
 TEST(Peripheral, RefusedWritesAreCommandErrorsCountedAndReported) {
   auto& b = *g_bench;
   test::ReportCapture reports;

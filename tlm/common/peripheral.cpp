@@ -21,31 +21,55 @@ Peripheral::Peripheral(sc_core::sc_module_name name, sc_core::sc_time clock_peri
 void Peripheral::add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable) {
   m_irq_status_offset = status.offset;
   m_irq_enable_offset = enable.offset;
+  // The line follows a write at the access's time. At the kernel's time it
+  // would fall in the very time step in which it rose whenever the host
+  // (ahead of the kernel in its quantum) answers at once, and a trace,
+  // which records one value per time step, would never show the pulse.
+  m_line_status = status.reset;
+  m_line_enable = enable.reset;
   m_regs.add(status, {}, [this](uint32_t value) {
     m_regs.set(m_irq_status_offset, m_regs.get(m_irq_status_offset) & ~value);
-    schedule_irq_update(sc_core::SC_ZERO_TIME);
+    schedule_irq_change({IrqChange::Kind::clear_status, value}, m_regs.access_delay());
   });
   m_regs.add(enable, {}, [this](uint32_t value) {
     m_regs.set(m_irq_enable_offset, value);
-    schedule_irq_update(sc_core::SC_ZERO_TIME);
+    schedule_irq_change({IrqChange::Kind::write_enable, value}, m_regs.access_delay());
   });
 }
 
 void Peripheral::raise_irq(uint32_t bits, const sc_core::sc_time& delay) {
   m_regs.set(m_irq_status_offset, m_regs.get(m_irq_status_offset) | bits);
-  schedule_irq_update(delay);
+  schedule_irq_change({IrqChange::Kind::set_status, bits}, delay);
 }
 
-void Peripheral::schedule_irq_update(const sc_core::sc_time& delay) {
-  m_irq_updates.insert(sc_core::sc_time_stamp() + delay);
+void Peripheral::schedule_irq_change(IrqChange change, const sc_core::sc_time& delay) {
+  m_irq_changes.emplace(sc_core::sc_time_stamp() + delay, change);
   m_irq_update.notify(delay);
 }
 
 void Peripheral::update_irq() {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
-  while (!m_irq_updates.empty() && *m_irq_updates.begin() <= now) m_irq_updates.erase(m_irq_updates.begin());
-  irq.write((m_regs.get(m_irq_status_offset) & m_regs.get(m_irq_enable_offset)) != 0);
-  if (!m_irq_updates.empty()) m_irq_update.notify(*m_irq_updates.begin() - now);
+  // Changes due by now, in time order (equal times in the order made).
+  auto it = m_irq_changes.begin();
+  for (; it != m_irq_changes.end() && it->first <= now; ++it) {
+    const IrqChange& change = it->second;
+    switch (change.kind) {
+      case IrqChange::Kind::set_status: m_line_status |= change.bits; break;
+      case IrqChange::Kind::clear_status: m_line_status &= ~change.bits; break;
+      case IrqChange::Kind::write_enable: m_line_enable = change.bits; break;
+    }
+  }
+  m_irq_changes.erase(m_irq_changes.begin(), it);
+  if (m_irq_changes.empty()) {
+    // Nothing is pending: the line's view is the registers as software
+    // reads them. They differ only where two changes were made out of time
+    // order (a clear ahead of the kernel, then a raise at the kernel's
+    // time), and then what software reads wins.
+    m_line_status = m_regs.get(m_irq_status_offset);
+    m_line_enable = m_regs.get(m_irq_enable_offset);
+  }
+  irq.write((m_line_status & m_line_enable) != 0);
+  if (!m_irq_changes.empty()) m_irq_update.notify(m_irq_changes.begin()->first - now);
 }
 
 const char* Peripheral::write_refusal(const tlm::tlm_generic_payload& gp) const {

@@ -16,7 +16,7 @@
 #pragma once
 
 #include <cstdint>
-#include <set>
+#include <map>
 
 #include <tlm_utils/simple_target_socket.h>
 #include <systemc>
@@ -38,7 +38,8 @@ class Peripheral : public Block {
   Peripheral(sc_core::sc_module_name name, sc_core::sc_time clock_period);
 
   // Declares the interrupt registers of the block's map: `status` (w1c) and
-  // `enable` (rw). Writes to either move the line at the access's time.
+  // `enable` (rw). A write to either moves the line at the access's
+  // annotated time.
   void add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable);
   // Sets status bits; the line follows `delay` after the kernel's time.
   void raise_irq(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
@@ -56,17 +57,25 @@ class Peripheral : public Block {
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned transport_dbg(tlm::tlm_generic_payload& gp);
-  // The line is evaluated again `delay` after the kernel's time.
-  void schedule_irq_update(const sc_core::sc_time& delay);
-  void update_irq();  // SC_METHOD
+  // A change of the interrupt registers as the line sees it, at its time.
+  struct IrqChange {
+    enum class Kind { set_status, clear_status, write_enable } kind;
+    uint32_t bits;
+  };
+  void schedule_irq_change(IrqChange change, const sc_core::sc_time& delay);
+  void update_irq();  // SC_METHOD: applies the changes that are due
 
   sc_core::sc_time m_clock_period;
   ActivityCounter& m_refused_writes;
   uint32_t m_irq_status_offset = 0;
   uint32_t m_irq_enable_offset = 0;
-  // Times at which the line is due to be evaluated: an event keeps only its
-  // earliest notification, so the later ones wait here.
-  std::set<sc_core::sc_time> m_irq_updates;
+  // The registers change when they are accessed; the line follows each
+  // change at its own time, in time order, through its own copy of the two
+  // registers. (An event keeps only its earliest notification, so the later
+  // changes wait here.)
+  std::multimap<sc_core::sc_time, IrqChange> m_irq_changes;
+  uint32_t m_line_status = 0;
+  uint32_t m_line_enable = 0;
   sc_core::sc_event m_irq_update;
 };
 

@@ -480,10 +480,36 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
   EXPECT_GT(vcd.timestamps, 2u);
   // In display DMA mode every one of these toggles during a frame.
   for (const char* signal :
-       {"soc.bus.host_grant", "soc.bus.display_dma_grant", "soc.display.vblank", "soc.host.busy"}) {
+       {"soc.bus.host_grant", "soc.bus.display_dma_grant", "soc.display.vblank", "soc.host.busy", "soc.host.irq_0"}) {
     const std::string id = id_of(signal);
     EXPECT_GT(vcd.changes.count(id) ? vcd.changes.at(id) : 0u, 0u) << signal << " never changes";
   }
+}
+
+// The interrupt lines drive these runs, and the trace shows every pulse:
+// the display raises swap-done at each vertical blank that takes a frame
+// (line 0), the rasterizer raises done at the end of each run (line 1), and
+// the driver's write to IRQ_STATUS drops the line at that write's time, a
+// little later. (The clear used to take effect at the kernel's time, in
+// the very time step of the rise, so the lines never changed in the VCD.)
+TEST_F(SocSim, InterruptLinesToggleInTheVcd) {
+  const SimResult result = run({"--backend", "raster", "--app", "triangle", "--frames", "2", "--set",
+                                "display.dma=true", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json stats = read_stats(m_dir / "out/stats.json")["stats"];
+  const Vcd vcd = parse_vcd(read_file(m_dir / "out/trace.vcd"));
+  auto changes = [&](const std::string& name) -> unsigned {
+    for (const auto& [declared, id] : vcd.ids)
+      if (declared.size() >= name.size() && declared.compare(declared.size() - name.size(), name.size(), name) == 0)
+        return vcd.changes.count(id) ? vcd.changes.at(id) : 0;
+    ADD_FAILURE() << name << " is not declared";
+    return 0;
+  };
+  // A rise and a fall per interrupt.
+  EXPECT_EQ(changes("soc.host.irq_0"), 2 * stats["display"]["frames_shown"].get<unsigned>());
+  EXPECT_EQ(changes("soc.host.irq_1"), 2 * stats["raster"]["runs"].get<unsigned>());
+  EXPECT_EQ(stats["raster"]["runs"], 2);
+  for (unsigned line = 2; line < 8; ++line) EXPECT_EQ(changes("soc.host.irq_" + std::to_string(line)), 0u);
 }
 
 TEST_F(SocSim, MalformedJsonConfigIsRejected) {
