@@ -72,6 +72,7 @@ struct DmaBench {
   DisplayDma dma;
   sc_core::sc_signal<bool> irq;
   std::vector<Frame> frames;
+  std::vector<sc_time> requests;
   DmaBench(const std::string& name, unsigned memory_wait)
       : host((name + "_host").c_str()),
         check_host((name + "_check_host").c_str()),
@@ -95,6 +96,7 @@ struct DmaBench {
     check_regs.out.bind(display.in);
     display.irq.bind(irq);
     display.on_frame([this](const Frame& f) { frames.push_back(f); });
+    display.on_request([this](const sc_time& when) { requests.push_back(when); });
   }
   unsigned violations() {
     return check_host.violation_count() + check_dma.violation_count() + check_memory.violation_count() +
@@ -164,6 +166,7 @@ TEST(Display, PortModeShowsTheFrameWrittenToThePortOnPresent) {
   const Frame& f = g_port->frames[0];
   EXPECT_EQ(f.width, WIDTH);
   EXPECT_EQ(f.height, HEIGHT);
+  EXPECT_EQ(f.requested_seconds, f.time_seconds);
   auto pixel = [&](unsigned i) {
     return std::vector<int>{f.rgba[4 * i], f.rgba[4 * i + 1], f.rgba[4 * i + 2], f.rgba[4 * i + 3]};
   };
@@ -226,6 +229,10 @@ TEST(Display, SwapTakesEffectAtVerticalBlankAndTheFrameIsShownOnePeriodLater) {
   EXPECT_FALSE(bench.irq.read());
   ASSERT_EQ(bench.frames.size(), 1u);
   EXPECT_DOUBLE_EQ(bench.frames[0].time_seconds, (vblank + PERIOD).to_seconds());
+  // The frame remembers when it was requested; request receivers heard of it then.
+  EXPECT_DOUBLE_EQ(bench.frames[0].requested_seconds, swap_requested.to_seconds());
+  ASSERT_EQ(bench.requests.size(), 1u);
+  EXPECT_EQ(bench.requests[0], swap_requested);
   // The frame buffer held 0x1234 + i at pixel i; check two pixels exactly.
   auto expand5 = [](unsigned v) { return static_cast<int>(std::lround(v * 255.0 / 31)); };
   const uint16_t first = 0x1234, last = static_cast<uint16_t>(0x1234 + WIDTH * HEIGHT - 1);

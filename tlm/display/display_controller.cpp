@@ -44,6 +44,8 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
       return;
     }
     m_swap_pending = true;
+    m_swap_requested = sc_core::sc_time_stamp() + m_regs.access_delay();
+    requested(m_swap_requested);
   });
   add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
   m_regs.add(PRESENT, {}, [this](uint32_t value) {
@@ -52,7 +54,8 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
       log::warning(this->name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
       return;
     }
-    show(m_port_frame, m_regs.access_delay());
+    requested(sc_core::sc_time_stamp() + m_regs.access_delay());
+    show(m_port_frame, sc_core::sc_time_stamp() + m_regs.access_delay(), m_regs.access_delay());
     raise_irq(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
   });
   m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames.value); });
@@ -116,9 +119,17 @@ unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {
   return static_cast<unsigned>(length);
 }
 
-void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& delay) {
+void DisplayController::requested(const sc_time& when) {
+  for (const auto& receiver : m_request_receivers) receiver(when);
+}
+
+void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& requested, const sc_time& delay) {
   const sc_time when = sc_core::sc_time_stamp() + delay;
-  Frame frame{static_cast<unsigned>(m_frames.value), when.to_seconds(), m_params.width, m_params.height,
+  Frame frame{static_cast<unsigned>(m_frames.value),
+              when.to_seconds(),
+              requested.to_seconds(),
+              m_params.width,
+              m_params.height,
               std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
   const size_t count = size_t{m_params.width} * m_params.height;
   const unsigned bpp = bytes_per_pixel();
@@ -130,7 +141,7 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
   m_last_frame_time = when;
   ++m_frames;
   log::info(name(), "frame " + std::to_string(frame.index) + " shown");
-  if (m_sink) m_sink(frame);
+  for (const auto& receiver : m_receivers) receiver(frame);
   m_frame_shown.notify(delay);
 }
 
@@ -161,6 +172,7 @@ void DisplayController::refresh() {
     if (m_swap_pending) {
       m_regs.set(regs::FRONT_BASE, m_regs.get(regs::BACK_BASE));
       m_swap_pending = false;
+      m_scan_requested = m_swap_requested;
       m_front_valid = true;
       new_frame = true;
       raise_irq(regs::IRQ_SWAP_DONE);
@@ -174,7 +186,7 @@ void DisplayController::refresh() {
     }
     if (sc_core::sc_time_stamp() < frame_end) wait(frame_end - sc_core::sc_time_stamp());
     ++m_refreshes;
-    if (m_frame_in_scan) show(m_dma->frame());
+    if (m_frame_in_scan) show(m_dma->frame(), m_scan_requested);
     m_frame_in_scan = false;
   }
 }

@@ -54,6 +54,10 @@ struct DisplayParams {
 struct Frame {
   unsigned index;       // 0, 1, 2, ... in the order shown
   double time_seconds;  // simulated time at which it was complete on screen
+  // When software handed it to the display: the time of the SWAP write (DMA
+  // mode; the last one before the vertical blank that took it) or of the
+  // PRESENT write (port mode, the same as time_seconds).
+  double requested_seconds;
   unsigned width;
   unsigned height;
   std::vector<uint8_t> rgba;  // width * height * 4, row 0 at the top
@@ -68,7 +72,15 @@ class DisplayController : public Peripheral {
 
   DisplayController(sc_core::sc_module_name name, const DisplayParams& params);
 
-  void on_frame(std::function<void(const Frame&)> sink) { m_sink = std::move(sink); }
+  // Adds a receiver of the output port: every receiver gets every frame
+  // shown, in the order they were added.
+  void on_frame(std::function<void(const Frame&)> receiver) { m_receivers.push_back(std::move(receiver)); }
+  // Adds a receiver of requests: called, from within the write, whenever
+  // software hands the display a frame (SWAP in DMA mode, PRESENT in port
+  // mode), with the write's annotated time, the Frame's requested time.
+  void on_request(std::function<void(const sc_core::sc_time&)> receiver) {
+    m_request_receivers.push_back(std::move(receiver));
+  }
   // The scan-out engine of DMA mode; its geometry must be this display's.
   void connect_dma(DisplayDma& dma);
 
@@ -89,18 +101,24 @@ class DisplayController : public Peripheral {
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
   void end_of_elaboration() override;
+  void requested(const sc_core::sc_time& when);
   void refresh();  // SC_THREAD, DMA mode: one refresh period after another
-  // Shows a frame `delay` after the kernel's time (a register write's annotated time).
-  void show(const std::vector<uint8_t>& pixels, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
+  // Shows a frame `delay` after the kernel's time (a register write's
+  // annotated time), requested at `requested`.
+  void show(const std::vector<uint8_t>& pixels, const sc_core::sc_time& requested,
+            const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
   bool in_vblank() const;
 
   DisplayParams m_params;
   DisplayDma* m_dma = nullptr;
-  std::function<void(const Frame&)> m_sink;
+  std::vector<std::function<void(const Frame&)>> m_receivers;
+  std::vector<std::function<void(const sc_core::sc_time&)>> m_request_receivers;
   std::vector<uint8_t> m_port_frame;
   sc_core::sc_event m_frame_shown;
 
   bool m_swap_pending = false;
+  sc_core::sc_time m_swap_requested;  // annotated time of the pending SWAP
+  sc_core::sc_time m_scan_requested;  // ... of the SWAP whose frame is being scanned out
   bool m_front_valid = false;
   bool m_frame_in_scan = false;  // a new frame is being scanned out, not yet shown
   ActivityCounter& m_frames;

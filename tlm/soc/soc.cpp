@@ -128,6 +128,8 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   raster.irq.bind(*m_irq_lines[irq_map::raster]);
 
   display.connect_dma(display_dma);
+  display.on_request([this](const sc_time& when) { record_request(when); });
+  display.on_frame([this](const Frame& frame) { record_frame(frame); });
 
   m_blocks = {&host, &bus, &memory, &display, &display_dma, &raster};
 
@@ -176,10 +178,49 @@ void Soc::close_trace() {
   }
 }
 
+void Soc::record_request(const sc_time& when) {
+  // The host's busy time is exact here: the request is the host's own
+  // write. The bus has counted the host's transfers up to its time and the
+  // DMAs' up to the kernel's, at most a quantum (sim.quantum_ns) behind.
+  m_requests.push_back({when.to_seconds(), host.busy_time(), bus.bytes()});
+}
+
+void Soc::record_frame(const Frame& frame) {
+  // A frame comes from the last request before the vertical blank that took
+  // it (DMA mode) or from its PRESENT (port mode); requests it replaced are
+  // dropped.
+  while (m_requests.size() > 1 && m_requests.front().seconds < frame.requested_seconds) m_requests.pop_front();
+  if (m_requests.empty() || m_requests.front().seconds != frame.requested_seconds) {
+    // Only software that bypasses the display's registers gets here.
+    m_frames.push_back({frame.time_seconds, {frame.requested_seconds, host.busy_time(), bus.bytes()}});
+    return;
+  }
+  m_frames.push_back({frame.time_seconds, m_requests.front()});
+  m_requests.pop_front();
+}
+
+nlohmann::json Soc::frames_json() const {
+  nlohmann::json frames = nlohmann::json::array();
+  FrameRecord previous{0, {0, sc_core::SC_ZERO_TIME, 0}};
+  for (size_t i = 0; i < m_frames.size(); ++i) {
+    const FrameRecord& f = m_frames[i];
+    frames.push_back({{"index", i},
+                      {"time_ns", f.shown_seconds * 1e9},
+                      {"interval_ns", (f.shown_seconds - previous.shown_seconds) * 1e9},
+                      {"requested_ns", f.request.seconds * 1e9},
+                      {"render_ns", (f.request.seconds - previous.request.seconds) * 1e9},
+                      {"host_busy_ns", (f.request.host_busy - previous.request.host_busy).to_seconds() * 1e9},
+                      {"bus_bytes", f.request.bus_bytes - previous.request.bus_bytes}});
+    previous = f;
+  }
+  return frames;
+}
+
 nlohmann::json Soc::stats_json() const {
   const sc_time elapsed = sc_core::sc_time_stamp();
   nlohmann::json stats = {{"simulated_ns", elapsed.to_seconds() * 1e9}};
   for (const Block* block : m_blocks) stats[block->basename()] = block->stats_json(elapsed);
+  stats["frames"] = frames_json();
   return stats;
 }
 

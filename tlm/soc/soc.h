@@ -3,6 +3,7 @@
 // (irq_map.def). Owns the statistics and the VCD trace.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -65,12 +66,32 @@ class Soc : public sc_core::sc_module {
   void trace_to(const std::string& path_without_extension);
   void close_trace();
 
-  // simulated_ns and each block's statistics under its name.
+  // simulated_ns, each block's statistics under its name, and `frames`: for
+  // every frame shown, its time, when it was requested (SWAP or PRESENT),
+  // its render time (from the previous frame's request to this one) and the
+  // host's busy time and the bus bytes over that render time.
   nlohmann::json stats_json() const;
 
  private:
   void finish();  // SC_THREAD
+  void record_request(const sc_core::sc_time& when);
+  void record_frame(const Frame& frame);
+  nlohmann::json frames_json() const;
+
   std::vector<Block*> m_blocks;
+  // Totals since the start when a frame was requested (sampled from within
+  // the request, a write the host makes: at the host's own time).
+  struct Request {
+    double seconds;
+    sc_core::sc_time host_busy;
+    uint64_t bus_bytes;
+  };
+  std::deque<Request> m_requests;  // not yet shown
+  struct FrameRecord {
+    double shown_seconds;
+    Request request;
+  };
+  std::vector<FrameRecord> m_frames;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
   sc_core::sc_event m_host_finished;
   bool m_done = false;

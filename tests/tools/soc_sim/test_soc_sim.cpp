@@ -345,6 +345,64 @@ TEST_F(SocSim, DisplayDmaMeetsItsDeadlinesWhileTheHostClears) {
   EXPECT_EQ(stats["display"]["frames_shown"], 2);
 }
 
+// stats.json has a record per frame shown: its time, when software
+// requested it (PRESENT or SWAP) and its render time from the previous
+// request, with the host's busy time and the bus bytes over that render
+// time. In port mode a frame is shown when it is requested; with the
+// display DMA it is shown at the end of the refresh period after the
+// vertical blank that took it, so its time moves in whole periods while its
+// render time is the host's.
+TEST_F(SocSim, StatisticsPerFrameInBothDisplayModes) {
+  constexpr double PERIOD_NS = 1e9 / 60;  // display.refresh_hz
+  constexpr double FRAME_BYTES = WIDTH * HEIGHT * 2;
+  for (const bool dma : {false, true}) {
+    SCOPED_TRACE(dma ? "display DMA" : "port");
+    const std::string folder = dma ? "dma" : "port";
+    const SimResult result = run({"--app", "pattern", "--frames", "3", "--set",
+                                  std::string("display.dma=") + (dma ? "true" : "false"), "--out", folder, "--quiet"});
+    ASSERT_EQ(result.status, 0) << describe(result);
+    const json stats = read_stats(m_dir / folder / "stats.json")["stats"];
+    const json& frames = stats["frames"];
+    ASSERT_TRUE(frames.is_array()) << stats.dump(2);
+    ASSERT_EQ(frames.size(), stats["display"]["frames_shown"].get<size_t>());
+    ASSERT_EQ(frames.size(), 3u);
+    double previous_time = 0, previous_request = 0, host_busy = 0, bus_bytes = 0;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      SCOPED_TRACE("frame " + std::to_string(i));
+      const json& f = frames[i];
+      EXPECT_EQ(f["index"], i);
+      const double time = f["time_ns"].get<double>(), requested = f["requested_ns"].get<double>();
+      EXPECT_GT(time, previous_time);
+      EXPECT_NEAR(f["interval_ns"].get<double>(), time - previous_time, 1e-3);
+      EXPECT_NEAR(f["render_ns"].get<double>(), requested - previous_request, 1e-3);
+      EXPECT_GT(f["host_busy_ns"].get<double>(), 0);
+      EXPECT_LE(f["host_busy_ns"].get<double>(), f["render_ns"].get<double>());
+      if (dma) {
+        // Shown at a period boundary, one to two periods after the request;
+        // the bus carried at least the drawing of the frame (the pattern
+        // stores every pixel).
+        EXPECT_NEAR(std::remainder(time, PERIOD_NS), 0, 1e-3 * (i + 2));
+        EXPECT_GE(time - requested, PERIOD_NS - 1e-3);
+        EXPECT_LE(time - requested, 2 * PERIOD_NS);
+        EXPECT_GE(f["bus_bytes"].get<double>(), FRAME_BYTES);
+      } else {
+        EXPECT_DOUBLE_EQ(requested, time);
+        // The host read the frame and copied it to the port.
+        EXPECT_GE(f["bus_bytes"].get<double>(), 2 * FRAME_BYTES);
+      }
+      previous_time = time;
+      previous_request = requested;
+      host_busy += f["host_busy_ns"].get<double>();
+      bus_bytes += f["bus_bytes"].get<double>();
+    }
+    EXPECT_LE(host_busy, stats["host"]["busy_ns"].get<double>());
+    double total_bytes = 0;
+    for (const auto& [name, initiator] : stats["bus"]["initiators"].items())
+      total_bytes += initiator["bytes"].get<double>();
+    EXPECT_LE(bus_bytes, total_bytes);
+  }
+}
+
 TEST_F(SocSim, IdenticalRunsGiveIdenticalFiles) {
   // The same arguments, run in two folders.
   for (const char* folder : {"a", "b"}) {
