@@ -12,6 +12,10 @@ const std::map<std::string, AppInfo>& builtin_apps() {
       {"pattern", {pattern_app, "moving test pattern drawn by the host straight into the frame buffer (no GL)"}},
       {"calib_add", {calib_add_app, "host calibration: loop of 16-bit additions, memory operands (calibration.md)"}},
       {"calib_mul", {calib_mul_app, "host calibration: loop of 16x8-bit multiplications, memory operands"}},
+      {"calib_display_port",
+       {calib_display_port_app,
+        "display port calibration: the host copies one 192x144 16-bit frame to the display port "
+        "(--set display.width=192 --set display.height=144)"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
   };
   static const std::map<std::string, AppInfo> with_scenes = [] {

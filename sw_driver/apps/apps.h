@@ -26,6 +26,7 @@ AppInfo find_app(const std::string& name);
 int pattern_app(AppEnvironment& env);
 int calib_add_app(AppEnvironment& env);
 int calib_mul_app(AppEnvironment& env);
+int calib_display_port_app(AppEnvironment& env);
 int unmapped_access_app(AppEnvironment& env);
 
 }  // namespace tessera

@@ -63,6 +63,9 @@ TEST(SocParameters, DocumentedDefaultsOfTheSoc) {
   EXPECT_EQ(config.get_uint("raster.tile_width"), 32u);
   EXPECT_EQ(config.get_uint("raster.tile_height"), 16u);
   EXPECT_EQ(config.get_uint("raster.recip_method"), 3u);
+  // docs/calibration.md: the board copies a 192x144 16-bit frame to the
+  // display port in 36 ms.
+  EXPECT_EQ(config.get_uint("display.port_cycles"), 248u);
 }
 
 TEST(SocParameters, EachBlockReadsItsDeclaredDefaults) {

@@ -40,7 +40,7 @@ struct DisplayParams {
   double refresh_hz = 0;
   unsigned vblank_lines = 0;
   sc_core::sc_time clock_period;  // set by the SoC: the bus clock
-  unsigned port_cycles = 0;       // cycles per 32-bit word written to the display port (besides the bus's)
+  unsigned port_cycles = 0;       // cycles the display port takes per 32-bit word written (the data phase)
 
   // The parameters this block owns (the one place their defaults live),
   // read back from a configuration that holds them; fields marked "set by the

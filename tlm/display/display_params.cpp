@@ -28,8 +28,9 @@ ParamGroup DisplayParams::parameters() {
                              "each frame to the display port"),
               param::real("display.refresh_hz", 60.0, 1, 240, "Hz", "refresh rate of the display DMA"),
               integer("display.vblank_lines", 20, 1, 1000, "lines", "vertical blanking interval, in line times"),
-              integer("display.port_cycles", 1, 0, 100000, "bus cycles",
-                      "cost of one 32-bit word written to the display port, besides the bus's (host copy mode)"),
+              integer("display.port_cycles", 248, 0, 100000, "bus cycles",
+                      "time the display port takes to accept one 32-bit word: the data phase of a port write, "
+                      "at least the bus's one cycle per beat (host copy mode; calibrated, see docs/calibration.md)"),
           },
           {}};
 }

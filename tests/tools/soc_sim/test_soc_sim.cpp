@@ -663,7 +663,7 @@ TEST_F(SocSim, UnmappedAccessFailsTheSimulationNamingTheAddress) {
 TEST_F(SocSim, ListAppsDescribesTheDiagnostic) {
   const SimResult result = run({"--list-apps"});
   EXPECT_EQ(result.status, 0) << describe(result);
-  for (const char* app : {"pattern", "calib_add", "calib_mul", "unmapped_access"})
+  for (const char* app : {"pattern", "calib_add", "calib_mul", "calib_display_port", "unmapped_access"})
     EXPECT_TRUE(contains(result.out, app)) << result.out;
   EXPECT_TRUE(contains(result.out, "diagnostic: reads an unmapped address to show the bus error path")) << result.out;
 }
@@ -684,6 +684,28 @@ TEST_F(SocSim, AdditionLoopMatchesTheMeasuredRate) {
 
 TEST_F(SocSim, MultiplicationLoopMatchesTheMeasuredRate) {
   expect_calibrated(run({"--app", "calib_mul", "--out", "out"}));
+}
+
+// docs/spec/calibration.md: the board's host copies one finished 192x144
+// 16-bit frame to the display port in 36 ms; display.port_cycles is
+// calibrated to it (docs/calibration.md), within the same 5%.
+TEST_F(SocSim, DisplayPortCopyMatchesTheMeasuredTime) {
+  const SimResult result =
+      run({"--app", "calib_display_port", "--set", "display.width=192", "--set", "display.height=144", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(result.out, match, std::regex(R"(model ([0-9]+\.[0-9]+) ms, measured 36 ms)")))
+      << result.out;
+  EXPECT_NEAR(std::stod(match[1]), 36.0, 36.0 * 0.05) << result.out;
+  EXPECT_TRUE(fs::is_regular_file(m_dir / "out/frame_0000.png"));
+}
+
+TEST_F(SocSim, DisplayPortCalibrationOnAnotherDisplayIsRejected) {
+  expect_rejected(run({"--app", "calib_display_port", "--out", "out"}), EXIT_USAGE,
+                  {"calib_display_port", "192x144", "display.width=192", "display.height=144"});
+  expect_rejected(run({"--app", "calib_display_port", "--set", "display.width=192", "--set", "display.height=144",
+                       "--set", "display.dma=true", "--out", "out"}),
+                  EXIT_USAGE, {"DMA mode"});
 }
 
 TEST_F(SocSim, PrintConfigShowsTheEffectiveConfiguration) {
