@@ -16,6 +16,7 @@
 #include <systemc>
 
 #include "apps/apps.h"
+#include "build_info.h"
 #include "common/log.h"
 #include "config/config.h"
 #include "frame_writer.h"
@@ -164,6 +165,9 @@ int run(int argc, char* argv[]) {
   cli.add_flag("--config-reference", opt.config_reference, "print the configuration reference (Markdown) and exit");
   cli.add_flag("--list-apps", opt.list_apps, "list the built-in applications and exit");
   cli.add_option("app_args", opt.app_args, "arguments passed to the application (after --)");
+  cli.set_version_flag("--version",
+                       std::string("soc_sim (tessera) ") + build_info::version() + ", commit " + build_info::commit(),
+                       "print the version and the git commit soc_sim was built from, and exit");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -289,6 +293,9 @@ int run(int argc, char* argv[]) {
 
   nlohmann::json stats = soc.stats_json();
   nlohmann::json document = {{"application", config.get_string("sim.app")},
+                             {"version", build_info::version()},
+                             {"commit", build_info::commit()},
+                             {"command_line", std::vector<std::string>(argv, argv + argc)},
                              {"frames_written", frames_written},
                              {"exit_status", status},
                              {"config", config.to_json()},

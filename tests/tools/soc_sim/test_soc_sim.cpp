@@ -253,6 +253,31 @@ TEST_F(SocSim, DefaultRunInRgba8888DrawsThePattern) {
   EXPECT_TRUE(contains(result.out, "pattern")) << result.out;
 }
 
+// --version: the program, the project's version and the commit it was built
+// from ("unknown" outside a git checkout); stats.json records the same and
+// the command line, so a result can be traced to the binary and the run.
+TEST_F(SocSim, VersionNamesTheProgramTheVersionAndTheCommit) {
+  const SimResult version = run({"--version"});
+  ASSERT_EQ(version.status, 0) << describe(version);
+  std::smatch match;
+  ASSERT_TRUE(std::regex_match(version.out, match,
+                               std::regex(R"(soc_sim \(tessera\) ([0-9.]+), commit ([0-9A-Za-z._/+-]+)\n)")))
+      << version.out;
+  EXPECT_EQ(match[1], TESSERA_PROJECT_VERSION);
+  const std::string commit = match[2];
+  EXPECT_TRUE(commit == "unknown" || std::regex_match(commit, std::regex(R"(.*[0-9a-f]{7,}(-dirty)?)"))) << commit;
+
+  const std::vector<std::string> args = {"--app", "pattern", "--frames", "1", "--out", "out", "--quiet"};
+  const SimResult result = run(args);
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json document = read_stats(m_dir / "out/stats.json");
+  EXPECT_EQ(document["version"], TESSERA_PROJECT_VERSION);
+  EXPECT_EQ(document["commit"], commit);
+  std::vector<std::string> command_line{g_soc_sim};
+  command_line.insert(command_line.end(), args.begin(), args.end());
+  EXPECT_EQ(document["command_line"], json(command_line));
+}
+
 TEST_F(SocSim, DefaultRgb565FramesAreQuantised) {
   const SimResult result = run({"--app", "pattern", "--frames", "2", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
@@ -335,6 +360,7 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
       (*s)["stats"]["host"].erase("run_aheads");
       (*s)["stats"]["host"].erase("synchronisations");
       (*s)["config"]["sim"].erase("run_ahead_us");
+      s->erase("command_line");
     }
     EXPECT_EQ(stats[0], stats[1]) << "statistics differ with and without run-ahead";
     for (const char* file : {"frame_0000.png", "frame_0001.png"}) {
