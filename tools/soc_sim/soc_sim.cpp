@@ -11,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 #include <systemc>
@@ -164,14 +165,42 @@ int run(int argc, char* argv[]) {
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
   cli.add_flag("--config-reference", opt.config_reference, "print the configuration reference (Markdown) and exit");
   cli.add_flag("--list-apps", opt.list_apps, "list the built-in applications and exit");
-  cli.add_option("app_args", opt.app_args, "arguments passed to the application (after --)");
+  // Left-over arguments are rejected below, with advice for a stray word:
+  // "soc_sim cubes" means "--app cubes" more often than not.
+  cli.allow_extras();
   cli.set_version_flag("--version",
                        std::string("soc_sim (tessera) ") + build_info::version() + ", commit " + build_info::commit(),
                        "print the version and the git commit soc_sim was built from, and exit");
+  cli.footer(
+      "Arguments after -- go to the application, e.g. soc_sim --app obj_viewer -- model.obj\n"
+      "(AppEnvironment::args); soc_sim itself takes no positional arguments.");
+  // CLI11 sees only what comes before the first "--": the rest belongs to
+  // the application, so a word before it is an error, not an argument.
+  int own_argc = argc;
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--") {
+      own_argc = i;
+      opt.app_args.assign(argv + i + 1, argv + argc);
+      break;
+    }
   try {
-    cli.parse(argc, argv);
+    cli.parse(own_argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e) == 0 ? 0 : EXIT_USAGE;
+  }
+  if (!cli.remaining().empty()) {
+    const std::string word = cli.remaining().front();
+    if (word.size() > 1 && word[0] == '-') {
+      std::cerr << "soc_sim: unknown option '" << word << "' (soc_sim --help lists the options)\n";
+      return EXIT_USAGE;
+    }
+    std::cerr << "soc_sim: unexpected argument '" << word << "' before '--': ";
+    if (builtin_apps().count(word))
+      std::cerr << "to run the application '" << word << "', use --app " << word;
+    else
+      std::cerr << "choose the application with --app NAME (soc_sim --list-apps)";
+    std::cerr << "; arguments for the application go after '--', e.g. soc_sim --app obj_viewer -- model.obj\n";
+    return EXIT_USAGE;
   }
 
   if (opt.config_reference) {

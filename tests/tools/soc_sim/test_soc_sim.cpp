@@ -486,6 +486,24 @@ TEST_F(SocSim, UnknownOptionIsRejected) {
   expect_rejected(run({"--frobnicate", "--out", "out"}), EXIT_USAGE, {"--frobnicate"});
 }
 
+// "soc_sim cubes": a word before "--" is not passed to the application, it
+// is rejected with what to write instead.
+TEST_F(SocSim, StrayWordBeforeDoubleDashIsRejectedWithAdvice) {
+  expect_rejected(run({"cubes", "--out", "out"}), EXIT_USAGE,
+                  {"unexpected argument 'cubes'", "--app cubes", "after '--'"});
+  EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+  expect_rejected(run({"--frames", "1", "model.obj", "--out", "out"}), EXIT_USAGE,
+                  {"unexpected argument 'model.obj'", "--app NAME", "after '--'"});
+}
+
+// Everything after "--" is the application's, even what looks like one of
+// soc_sim's options: obj_viewer gets it as the file to open.
+TEST_F(SocSim, ArgumentsAfterDoubleDashGoToTheApplication) {
+  const SimResult result = run({"--app", "obj_viewer", "--frames", "1", "--out", "out", "--", "--frames.obj"});
+  expect_rejected(result, EXIT_USAGE, {"obj_viewer: --frames.obj: cannot open"});
+  EXPECT_FALSE(contains(result.err, "unexpected argument")) << describe(result);
+}
+
 TEST_F(SocSim, UnknownApplicationIsRejectedListingTheKnownOnes) {
   expect_rejected(run({"--app", "no_such_app", "--out", "out"}), EXIT_USAGE, {"no_such_app", "pattern"});
 }
