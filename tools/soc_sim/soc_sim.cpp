@@ -1,6 +1,7 @@
 // soc_sim: builds the SoC from the configuration, runs an application on the
 // host model, writes the displayed frames, statistics and (optionally) a VCD
 // trace, and prints a summary.
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -22,6 +23,7 @@
 #include "config/config.h"
 #include "frame_writer.h"
 #include "png_writer_thread.h"
+#include "progress_line.h"
 #include "soc/soc.h"
 
 namespace fs = std::filesystem;
@@ -49,17 +51,6 @@ struct Options {
   std::vector<std::string> app_args;
 };
 
-std::string format_time(double seconds) {
-  char buffer[32];
-  if (seconds >= 1)
-    std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
-  else if (seconds >= 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
-  return buffer;
-}
-
 // Creates `dir` if needed and proves it writable, or throws naming it.
 void prepare_output_dir(const std::string& dir) {
   std::error_code error;
@@ -80,26 +71,37 @@ void check_writable_file(const std::string& path) {
   if (!file) throw std::runtime_error("cannot write '" + path + "'");
 }
 
+// The progress line on stderr (progress_line.h): redrawn at most every
+// PROGRESS_REDRAW_SECONDS of wall time, at the terminal's current width, and
+// once more at the end with the final state.
 class Progress {
  public:
   Progress(bool enabled, unsigned total) : m_enabled(enabled), m_total(total) {}
   void update(unsigned frames, double simulated, double wall) {
-    if (!m_enabled) return;
-    const unsigned width = 30;
-    const unsigned filled = m_total ? std::min(width, frames * width / m_total) : 0;
-    std::string bar(filled, '#');
-    bar.resize(width, '.');
-    std::fprintf(stderr, "\r[%s] frame %u/%u  simulated %s  %s simulated per second ", bar.c_str(), frames, m_total,
-                 format_time(simulated).c_str(), format_time(wall > 0 ? simulated / wall : 0).c_str());
-    std::fflush(stderr);
+    if (!m_enabled || (m_drawn && wall - m_last_draw < PROGRESS_REDRAW_SECONDS)) return;
+    draw(frames, simulated, wall);
   }
-  void finish() {
-    if (m_enabled) std::fprintf(stderr, "\n");
+  void finish(unsigned frames, double simulated, double wall) {
+    if (!m_enabled) return;
+    draw(frames, simulated, wall);
+    std::fputc('\n', stderr);
   }
 
  private:
+  void draw(unsigned frames, double simulated, double wall) {
+    winsize size{};
+    const unsigned reported = ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 ? size.ws_col : 0;
+    const unsigned columns = choose_columns(reported, std::getenv("COLUMNS"));
+    std::fprintf(stderr, "\r%s", progress_line({frames, m_total, simulated, wall}, columns).c_str());
+    std::fflush(stderr);
+    m_drawn = true;
+    m_last_draw = wall;
+  }
+
   bool m_enabled;
   unsigned m_total;
+  bool m_drawn = false;
+  double m_last_draw = 0;
 };
 
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
@@ -295,11 +297,11 @@ int run(int argc, char* argv[]) {
       progress.update(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
     }
   } catch (const std::exception& e) {
-    progress.finish();
+    progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
     std::cerr << "soc_sim: simulation failed: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
   }
-  progress.finish();
+  progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
   soc.close_trace();
   const std::string png_error = png_writer.finish();
   const unsigned frames_written = png_writer.written();

@@ -12,7 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -369,6 +371,82 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
           << file << " differs with and without run-ahead";
     }
   }
+}
+
+// What soc_sim drew on the terminal: each redraw starts with "\r", and the
+// lines between "\r" and "\n" are what the terminal showed.
+struct TerminalOutput {
+  unsigned redraws = 0;
+  size_t longest_line = 0;
+  std::string last_line;
+};
+
+TerminalOutput read_terminal(const std::string& text) {
+  TerminalOutput output;
+  std::string line;
+  for (const char c : text) {
+    if (c == '\r' || c == '\n') {
+      output.redraws += c == '\r';
+      if (!line.empty()) output.last_line = line;
+      line.clear();
+    } else {
+      line += c;
+      output.longest_line = std::max(output.longest_line, line.size());
+    }
+  }
+  return output;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// On a terminal 60 columns wide, 100 teapot frames (16.8 s simulated, about
+// half a second of wall time) redraw the progress line at most 4 times per
+// wall second plus the first and the last drawing -- not once per simulated
+// millisecond (16,800 lines in a terminal's scrollback) -- and never reach
+// the last column.
+TEST_F(SocSim, ProgressOnATerminalFitsTheWidthAndRedrawsAtMostFourTimesASecond) {
+  const auto start = std::chrono::steady_clock::now();
+  const SimResult result =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "100", "--out", "out"}, 60);
+  const double wall = seconds_since(start);
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const TerminalOutput terminal = read_terminal(result.err);
+  EXPECT_GE(terminal.redraws, 1u) << result.err;
+  EXPECT_LE(terminal.redraws, static_cast<unsigned>(4 * wall) + 2) << "in " << wall << " s:\n" << result.err;
+  EXPECT_LE(terminal.longest_line, 59u) << result.err;
+  EXPECT_TRUE(contains(terminal.last_line, "frame 100/100")) << terminal.last_line;
+  EXPECT_TRUE(contains(terminal.last_line, "ETA 0:00")) << terminal.last_line;
+  EXPECT_TRUE(contains(result.out, "100 frame(s)")) << result.out;
+}
+
+// A terminal that reports no size: $COLUMNS, then 80.
+TEST_F(SocSim, ProgressUsesColumnsWhenTheTerminalReportsNoWidth) {
+  SimResult result =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a"}, 0, {"COLUMNS=45"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  TerminalOutput terminal = read_terminal(result.err);
+  EXPECT_EQ(terminal.longest_line, 44u) << result.err;
+  EXPECT_TRUE(contains(terminal.last_line, "frame 1/1")) << result.err;
+
+  result = tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "b"}, 0,
+                                                  {"COLUMNS=not a number"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  terminal = read_terminal(result.err);
+  EXPECT_EQ(terminal.longest_line, 79u) << result.err;
+}
+
+// --quiet, or stderr that is not a terminal: no progress line at all.
+TEST_F(SocSim, NoProgressWhenQuietOrNotOnATerminal) {
+  const SimResult quiet =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a", "--quiet"}, 80);
+  ASSERT_EQ(quiet.status, 0) << describe(quiet);
+  EXPECT_EQ(quiet.err, "");
+  const SimResult piped = run({"--frames", "1", "--out", "b"});
+  ASSERT_EQ(piped.status, 0) << describe(piped);
+  EXPECT_FALSE(contains(piped.err, "\r")) << piped.err;
+  EXPECT_FALSE(contains(piped.err, "ETA")) << piped.err;
 }
 
 // Declared signals by hierarchical name ("soc.bus.host_request") -> VCD id,
