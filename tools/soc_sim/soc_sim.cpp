@@ -24,6 +24,7 @@
 #include "frame_writer.h"
 #include "png_writer_thread.h"
 #include "progress_line.h"
+#include "run_outputs.h"
 #include "soc/soc.h"
 
 namespace fs = std::filesystem;
@@ -44,6 +45,8 @@ struct Options {
   std::string vcd;
   std::string stats;
   bool quiet = false;
+  bool force = false;
+  bool no_frames = false;
   std::string log_level;
   bool print_config = false;
   bool config_reference = false;
@@ -63,12 +66,37 @@ void prepare_output_dir(const std::string& dir) {
   fs::remove(probe, error);
 }
 
+// Proves that `path` can be written without changing it: a file that was
+// not there is removed again, so a run refused later leaves nothing behind.
 void check_writable_file(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw std::runtime_error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
-  std::ofstream file(path, std::ios::app);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  std::error_code error;
+  const bool existed = fs::exists(path, error);
+  if (!std::ofstream(path, std::ios::app)) throw std::runtime_error("cannot write '" + path + "'");
+  if (!existed) fs::remove(path, error);
+}
+
+// Refuses to mix this run's outputs with an earlier run's (run_outputs.h);
+// with --force removes the earlier ones. Throws with the message to print.
+void clear_earlier_outputs(const OutputPaths& paths, bool force) {
+  const EarlierOutputs earlier = find_earlier_outputs(paths);
+  for (const auto& file : earlier.foreign) {
+    const bool stats = file == paths.stats;
+    throw std::runtime_error("'" + file.string() + "' was not written by soc_sim (it is not " +
+                             (stats ? "a statistics file" : "a VCD trace") + " of soc_sim), and this run would " +
+                             "overwrite it with its " + (stats ? "statistics" : "trace") +
+                             "; soc_sim never overwrites such a file, even with --force: move it, or choose another " +
+                             (stats ? "path with --stats or --out" : "path with --vcd"));
+  }
+  if (earlier.empty()) return;
+  if (!force)
+    throw std::runtime_error("output folder '" + paths.out_dir.string() + "' already holds the outputs of an " +
+                             "earlier run: " + describe_outputs(earlier, paths.out_dir) +
+                             "; a new run would mix its outputs with them: add --force to remove them first, or " +
+                             "choose another folder with --out");
+  remove_earlier_outputs(earlier);
 }
 
 // The progress line on stderr (progress_line.h): redrawn at most every
@@ -160,8 +188,11 @@ int run(int argc, char* argv[]) {
   cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm or raster");
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
-  cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
+  cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
+  cli.add_flag("--force", opt.force,
+               "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
+  cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
   cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
@@ -249,6 +280,8 @@ int run(int argc, char* argv[]) {
     prepare_output_dir(opt.out_dir);
     check_writable_file(stats_path);
     if (!opt.vcd.empty()) check_writable_file(vcd_base + ".vcd");
+    clear_earlier_outputs({opt.out_dir, stats_path, opt.vcd.empty() ? fs::path() : fs::path(vcd_base + ".vcd")},
+                          opt.force);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -260,9 +293,9 @@ int run(int argc, char* argv[]) {
   PngWriterThread png_writer;
   unsigned frames_shown = 0;
   soc.display.on_frame([&](const Frame& frame) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04u.png", frame.index);
-    png_writer.write((fs::path(opt.out_dir) / name).string(), frame.width, frame.height, frame.rgba);
+    if (!opt.no_frames)
+      png_writer.write((fs::path(opt.out_dir) / frame_file_name(frame.index)).string(), frame.width, frame.height,
+                       frame.rgba);
     ++frames_shown;
   });
 
@@ -327,6 +360,7 @@ int run(int argc, char* argv[]) {
                              {"version", build_info::version()},
                              {"commit", build_info::commit()},
                              {"command_line", std::vector<std::string>(argv, argv + argc)},
+                             {"frames_shown", frames_shown},
                              {"frames_written", frames_written},
                              {"exit_status", status},
                              {"config", config.to_json()},
@@ -337,7 +371,8 @@ int run(int argc, char* argv[]) {
     std::vector<std::string> outputs;
     if (frames_written)
       outputs.push_back(std::to_string(frames_written) + " frame(s): " +
-                        (fs::path(opt.out_dir) / "frame_0000.png").string() + (frames_written > 1 ? " ..." : ""));
+                        (fs::path(opt.out_dir) / frame_file_name(0)).string() + (frames_written > 1 ? " ..." : ""));
+    if (opt.no_frames) outputs.push_back(std::to_string(frames_shown) + " frame(s) shown, none written (--no-frames)");
     outputs.push_back("statistics: " + stats_path);
     if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
     print_summary(soc, stats, config.get_string("sim.app"), wall, outputs);

@@ -373,6 +373,80 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
   }
 }
 
+// A second run into a folder that holds an earlier run's outputs would mix
+// the two (a new stats.json beside the frames of the older, longer run): it
+// is refused, naming the folder and what is there, and changes nothing.
+TEST_F(SocSim, SecondRunIntoTheSameFolderIsRefusedNamingWhatIsThere) {
+  ASSERT_EQ(run({"--app", "pattern", "--frames", "3", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"}).status, 0);
+  const std::string stats_before = read_file(m_dir / "out/stats.json");
+  const std::string frame_before = read_file(m_dir / "out/frame_0002.png");
+  const SimResult again = run({"--app", "pattern", "--frames", "1", "--out", "out", "--quiet"});
+  expect_rejected(again, EXIT_USAGE,
+                  {"output folder 'out'", "earlier run", "3 frames (frame_0000.png ... frame_0002.png)", "stats.json",
+                   "trace.vcd", "--force", "--out"});
+  EXPECT_EQ(read_file(m_dir / "out/stats.json"), stats_before);
+  EXPECT_EQ(read_file(m_dir / "out/frame_0002.png"), frame_before);
+  // The same with --no-frames: old frames would still sit beside new statistics.
+  expect_rejected(run({"--app", "pattern", "--frames", "1", "--out", "out", "--no-frames", "--quiet"}), EXIT_USAGE,
+                  {"earlier run", "frame_0000.png"});
+}
+
+// --force removes exactly what soc_sim wrote there before -- frames,
+// statistics, traces -- and nothing else in the folder.
+TEST_F(SocSim, ForceRemovesExactlyTheEarlierOutputs) {
+  ASSERT_EQ(run({"--app", "pattern", "--frames", "3", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"}).status, 0);
+  const std::map<std::string, std::string> unrelated = {
+      {"notes.txt", "my notes\n"},
+      {"frame_final.png", "not a frame soc_sim names\n"},
+      {"results.json", "{\"mine\": true}\n"},
+      {"other.vcd", "$date\n today\n$end\n$version\n another simulator\n$end\n"},
+      {"sub/frame_0000.png", "a folder below is not the output folder\n"}};
+  fs::create_directory(m_dir / "out/sub");
+  for (const auto& [name, text] : unrelated) std::ofstream(m_dir / "out" / name) << text;
+
+  const SimResult result = run({"--app", "pattern", "--frames", "1", "--out", "out", "--force", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  EXPECT_TRUE(fs::exists(m_dir / "out/frame_0000.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0001.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0002.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/trace.vcd"));
+  EXPECT_EQ(read_stats(m_dir / "out/stats.json")["frames_written"], 1);
+  for (const auto& [name, text] : unrelated) EXPECT_EQ(read_file(m_dir / "out" / name), text) << name;
+}
+
+// A file soc_sim did not write, where this run would write its statistics or
+// trace, is never overwritten, even with --force.
+TEST_F(SocSim, FilesSocSimDidNotWriteAreNeverOverwritten) {
+  fs::create_directory(m_dir / "out");
+  std::ofstream(m_dir / "out/stats.json") << "my own statistics\n";
+  expect_rejected(run({"--frames", "1", "--out", "out", "--force"}), EXIT_USAGE,
+                  {"'out/stats.json'", "not written by soc_sim", "--stats"});
+  EXPECT_EQ(read_file(m_dir / "out/stats.json"), "my own statistics\n");
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0000.png"));
+
+  std::ofstream(m_dir / "README.md") << "# my notes\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--stats", "README.md", "--force"}), EXIT_USAGE,
+                  {"'README.md'", "not written by soc_sim"});
+  std::ofstream(m_dir / "mine.vcd") << "$date\n today\n$end\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--vcd", "mine.vcd", "--force"}), EXIT_USAGE,
+                  {"'mine.vcd'", "VCD trace", "--vcd"});
+  EXPECT_EQ(read_file(m_dir / "README.md"), "# my notes\n");
+  EXPECT_EQ(read_file(m_dir / "mine.vcd"), "$date\n today\n$end\n");
+}
+
+// --no-frames for sweeps: no PNG, the frames still counted.
+TEST_F(SocSim, NoFramesWritesNoPngButCountsTheFrames) {
+  const SimResult result = run({"--app", "pattern", "--frames", "3", "--out", "out", "--no-frames"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  for (const auto& entry : fs::directory_iterator(m_dir / "out"))
+    EXPECT_NE(entry.path().extension(), ".png") << entry.path();
+  const json document = read_stats(m_dir / "out/stats.json");
+  EXPECT_EQ(document["frames_written"], 0);
+  EXPECT_EQ(document["frames_shown"], 3);
+  EXPECT_EQ(document["stats"]["display"]["frames_shown"], 3);
+  EXPECT_TRUE(contains(result.out, "3 frame(s) shown, none written (--no-frames)")) << result.out;
+}
+
 // What soc_sim drew on the terminal: each redraw starts with "\r", and the
 // lines between "\r" and "\n" are what the terminal showed.
 struct TerminalOutput {
