@@ -94,9 +94,8 @@ std::vector<std::string> Bench::scene_args(const std::string& scene) const {
 std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  // Many frames of a heavy scene exceed the default simulated-time limit.
-  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet",
-                                 "--force", "--set", "sim.time_limit_ms=3600000"});
+  command.insert(command.end(),
+                 {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet", "--force"});
   const auto args = scene_args(scene);
   if (!args.empty()) {
     command.push_back("--");

@@ -26,6 +26,7 @@
 #include "progress_line.h"
 #include "run_outputs.h"
 #include "soc/soc.h"
+#include "time_limit.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -132,8 +133,21 @@ class Progress {
   double m_last_draw = 0;
 };
 
+// Whether a --config file or a --set gave sim.time_limit_ms. The parameter
+// table (tlm/config/parameters.cpp) has a fixed default and no "not set",
+// so the same files and overrides are applied to a configuration that
+// starts from another value of the key: the two agree only if they set it.
+bool time_limit_given(const Options& opt, const Config& config) {
+  const char* key = "sim.time_limit_ms";
+  Config probe;
+  probe.set(key, Config().get_uint(key) == 1 ? 2 : 1, "soc_sim");
+  for (const auto& file : opt.config_files) probe.load_file(file);
+  for (const auto& assignment : opt.overrides) probe.apply_override(assignment);
+  return probe.get_uint(key) == config.get_uint(key);
+}
+
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
-                   const std::vector<std::string>& outputs) {
+                   const TimeLimit& time_limit, const std::vector<std::string>& outputs) {
   const double simulated = sc_core::sc_time_stamp().to_seconds();
   const auto& host = stats["host"];
   const auto& bus = stats["bus"];
@@ -144,6 +158,7 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
   std::printf("  simulated time  %s\n  wall time       %s (%s simulated per wall second)\n",
               format_time(simulated).c_str(), format_time(wall).c_str(),
               format_time(wall > 0 ? simulated / wall : 0).c_str());
+  std::printf("  time limit      %s\n", time_limit.describe().c_str());
   std::printf("\n  %-10s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
   std::printf("  %-10s %14s %11.1f%%  stalled on bus %s, idle %s\n", "host",
               format_time(host["busy_ns"].get<double>() * 1e-9).c_str(), host["utilisation"].get<double>() * 100,
@@ -204,9 +219,15 @@ int run(int argc, char* argv[]) {
   cli.set_version_flag("--version",
                        std::string("soc_sim (tessera) ") + build_info::version() + ", commit " + build_info::commit(),
                        "print the version and the git commit soc_sim was built from, and exit");
+  const uint64_t default_frames = Config().get_uint("sim.frames");
   cli.footer(
       "Arguments after -- go to the application, e.g. soc_sim --app obj_viewer -- model.obj\n"
-      "(AppEnvironment::args); soc_sim itself takes no positional arguments.");
+      "(AppEnvironment::args); soc_sim itself takes no positional arguments.\n\n"
+      "Simulated-time limit (sim.time_limit_ms): the value a --config file or --set gives;\n"
+      "otherwise automatic, " +
+      TimeLimit::automatic_rule() + " (" + std::to_string(choose_time_limit(default_frames, 0).ms / 1000) +
+      " s for the default " + std::to_string(default_frames) +
+      " frames).\nThe summary and stats.json show the limit in effect; reaching it is an error (status 1).");
   // CLI11 sees only what comes before the first "--": the rest belongs to
   // the application, so a word before it is an error, not an argument.
   int own_argc = argc;
@@ -259,6 +280,8 @@ int run(int argc, char* argv[]) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
   }
+  const TimeLimit time_limit = choose_time_limit(
+      config.get_uint("sim.frames"), time_limit_given(opt, config) ? config.get_uint("sim.time_limit_ms") : 0);
   if (opt.print_config) {
     std::cout << config.to_json().dump(2) << "\n";
     return 0;
@@ -322,7 +345,7 @@ int run(int argc, char* argv[]) {
   auto wall_seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
-  const sc_core::sc_time limit(static_cast<double>(config.get_uint("sim.time_limit_ms")), sc_core::SC_MS);
+  const sc_core::sc_time limit(static_cast<double>(time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
   try {
     while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
@@ -344,9 +367,17 @@ int run(int argc, char* argv[]) {
   if (!png_error.empty()) {
     std::cerr << "soc_sim: " << png_error << "\n";
     status = EXIT_SIM_FAILED;
+  } else if (!soc.done() && sc_core::sc_time_stamp() >= limit) {
+    std::cerr << "soc_sim: simulated-time limit reached: sim.time_limit_ms = " << time_limit.ms << " ms ("
+              << (time_limit.automatic ? "automatic, " + TimeLimit::automatic_rule() : std::string("given")) << ") "
+              << "stopped the run after " << frames_shown << " of " << frames << " frames; "
+              << (time_limit.automatic ? "set sim.time_limit_ms to a larger value (--set sim.time_limit_ms=N)"
+                                       : "raise it, or leave sim.time_limit_ms unset for the automatic limit")
+              << "\n";
+    status = EXIT_SIM_FAILED;
   } else if (!soc.done()) {
-    std::cerr << "soc_sim: simulated-time limit of " << config.get_uint("sim.time_limit_ms")
-              << " ms reached before the application finished (sim.time_limit_ms)\n";
+    std::cerr << "soc_sim: the simulation stopped after " << frames_shown << " of " << frames
+              << " frames, before the application finished\n";
     status = EXIT_SIM_FAILED;
   } else if (soc.host.exit_code() != 0) {
     std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
@@ -360,6 +391,8 @@ int run(int argc, char* argv[]) {
                              {"version", build_info::version()},
                              {"commit", build_info::commit()},
                              {"command_line", std::vector<std::string>(argv, argv + argc)},
+                             {"time_limit_ms", time_limit.ms},
+                             {"time_limit_automatic", time_limit.automatic},
                              {"frames_shown", frames_shown},
                              {"frames_written", frames_written},
                              {"exit_status", status},
@@ -375,7 +408,7 @@ int run(int argc, char* argv[]) {
     if (opt.no_frames) outputs.push_back(std::to_string(frames_shown) + " frame(s) shown, none written (--no-frames)");
     outputs.push_back("statistics: " + stats_path);
     if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
-    print_summary(soc, stats, config.get_string("sim.app"), wall, outputs);
+    print_summary(soc, stats, config.get_string("sim.app"), wall, time_limit, outputs);
   }
   return status;
 }
