@@ -83,7 +83,8 @@ void check_writable_file(const std::string& path) {
 // with --force removes the earlier ones. Throws with the message to print.
 void clear_earlier_outputs(const OutputPaths& paths, bool force) {
   const EarlierOutputs earlier = find_earlier_outputs(paths);
-  for (const auto& file : earlier.foreign) {
+  if (!earlier.foreign.empty()) {
+    const fs::path& file = earlier.foreign.front();
     const bool stats = file == paths.stats;
     throw std::runtime_error("'" + file.string() + "' was not written by soc_sim (it is not " +
                              (stats ? "a statistics file" : "a VCD trace") + " of soc_sim), and this run would " +
