@@ -94,9 +94,8 @@ std::vector<std::string> Bench::scene_args(const std::string& scene) const {
 std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  // Many frames of a heavy scene exceed the default simulated-time limit.
-  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet",
-                                 "--set", "sim.time_limit_ms=3600000"});
+  command.insert(command.end(),
+                 {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet", "--force"});
   const auto args = scene_args(scene);
   if (!args.empty()) {
     command.push_back("--");
@@ -239,7 +238,7 @@ void Bench::run() {
   }
   std::vector<std::string> default_demo = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) default_demo.insert(default_demo.end(), {"--config", file});
-  default_demo.insert(default_demo.end(), {"--out", (m_work / "default_demo").string(), "--quiet"});
+  default_demo.insert(default_demo.end(), {"--out", (m_work / "default_demo").string(), "--quiet", "--force"});
   const long default_rss_kib = run_child(default_demo, m_work / "default_demo.stdout").max_rss_kib;
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -317,9 +317,8 @@ std::vector<std::string> Bench::soc_sim_command(const std::string& backend, cons
                                                 const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  // Many frames of a heavy scene exceed the default simulated-time limit.
   command.insert(command.end(), {"--backend", backend, "--app", scene, "--frames", std::to_string(frames), "--out",
-                                 out.string(), "--quiet", "--set", "sim.time_limit_ms=3600000"});
+                                 out.string(), "--quiet", "--force"});
   if (scene == "obj_viewer") command.insert(command.end(), {"--", m_opt.obj_file});
   return command;
 }
