@@ -32,6 +32,7 @@
 
 #include "bench_support.h"
 #include "frame_writer.h"
+#include "guarded_main.h"
 
 namespace {
 
@@ -283,14 +284,6 @@ static int run_main(int argc, char** argv) {
   return 0;
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_arm: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_arm: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_arm", [&] { return run_main(argc, argv); });
 }

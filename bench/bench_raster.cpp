@@ -34,6 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
+#include "guarded_main.h"
 
 #include "apps/gl_apps.h"
 #include "native_host.h"
@@ -537,14 +538,6 @@ static int run_main(int argc, char** argv) {
   return 0;
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_raster: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_raster: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_raster", [&] { return run_main(argc, argv); });
 }

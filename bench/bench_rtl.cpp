@@ -31,6 +31,7 @@
 #include "blend_logic_op_adapter.h"
 #include "edge_function_adapter.h"
 #include "fragment_tests_adapter.h"
+#include "guarded_main.h"
 #include "raster/datapath/attribute_interpolator.h"
 #include "raster/datapath/blend_logic_op.h"
 #include "raster/datapath/edge_function.h"
@@ -447,14 +448,6 @@ static int run_main(int argc, char** argv) {
   return run(opt);
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_rtl: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_rtl: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_rtl", [&] { return run_main(argc, argv); });
 }

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "frame_writer.h"
+#include "guarded_main.h"
 #include "image_compare.h"
 
 namespace {
@@ -81,10 +82,6 @@ int run_main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "image_diff: " << e.what() << "\n";
-  }
-  return EXIT_USAGE;
+  return tessera::guarded_main(
+      "image_diff", [&] { return run_main(argc, argv); }, EXIT_USAGE);
 }

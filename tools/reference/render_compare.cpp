@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "frame_writer.h"
+#include "guarded_main.h"
 #include "image_compare.h"
 #include "mesa_reference.h"
 #include "test_scene.h"
@@ -280,14 +281,6 @@ static int run_main(int argc, char** argv) {
   }
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "render_compare: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "render_compare: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("render_compare", [&] { return run_main(argc, argv); });
 }
