@@ -20,8 +20,8 @@ namespace tessera {
 
 struct MemoryParams {
   uint64_t size_bytes = 0;
-  sc_core::sc_time clock_period;    // set by the SoC: the bus clock
-  unsigned width_bytes = 0;         // set by the SoC: one beat moves the bus width
+  sc_core::sc_time clock_period;     // set by the SoC: the bus clock
+  unsigned width_bytes = 0;          // set by the SoC: one beat moves the bus width
   unsigned first_access_cycles = 0;  // wait states before the first beat
   unsigned beat_cycles = 0;          // cycles per beat
 
