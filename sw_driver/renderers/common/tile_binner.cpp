@@ -15,8 +15,8 @@ TileBinner::TileBinner(const TileGrid& grid) : m_grid(grid) {
 }
 
 TileRange TileBinner::tiles_of_pixels(int x0, int y0, int x1, int y1) const {
-  if (x1 < x0 || y1 < y0) return {};
   const int w = static_cast<int>(m_grid.width), h = static_cast<int>(m_grid.height);
+  if (x1 < x0 || y1 < y0 || x1 < 0 || y1 < 0 || x0 >= w || y0 >= h) return {};
   x0 = std::clamp(x0, 0, w - 1), x1 = std::clamp(x1, 0, w - 1);
   y0 = std::clamp(y0, 0, h - 1), y1 = std::clamp(y1, 0, h - 1);
   // Tile rows count from the top; GL rows from the bottom.

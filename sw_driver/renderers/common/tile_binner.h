@@ -57,10 +57,10 @@ class TileBinner {
   const TileGrid& grid() const { return m_grid; }
 
   // The tiles that the pixels [x0, x1] x [y0, y1] (inclusive, in GL's window
-  // coordinates: row 0 at the BOTTOM of the screen) touch. The box is
-  // clamped to the screen first, so a box that reaches past an edge (a
-  // triangle's bounding box with its margin) takes the tiles along that
-  // edge; an inverted box (x1 < x0 or y1 < y0) touches none.
+  // coordinates: row 0 at the BOTTOM of the screen) touch. A box that
+  // reaches past an edge (a triangle's bounding box with its margin) is
+  // clamped to the screen and takes the tiles along that edge; a box wholly
+  // off the screen, or inverted (x1 < x0 or y1 < y0), touches none.
   TileRange tiles_of_pixels(int x0, int y0, int x1, int y1) const;
 
   // Records the next command: it needs state `state` and goes to `tiles`

@@ -9,6 +9,7 @@
 
 #include <ostream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "renderers/common/tile_binner.h"
@@ -119,6 +120,34 @@ TEST(TileBinner, BoxesReachingPastAnEdgeAreClampedToIt) {
   EXPECT_EQ(raster.tiles_of_pixels(-1000, -1000, 1000, 1000), tiles(0, 0, 9, 14));
   const TileBinner ap(AP_TILE);
   EXPECT_EQ(ap.tiles_of_pixels(-5, 100, 3, 200), tiles(0, 0, 0, 1));
+}
+
+// A triangle wholly off the screen (possible with a viewport that reaches
+// past it: GL clips to the view volume, not to the screen) draws nothing, so
+// it goes to no tile, whatever side of the screen it is on; so does a
+// scissor box off the screen.
+TEST(TileBinner, BoxesWhollyOffTheScreenTouchNothing) {
+  for (const TileGrid& grid : {RASTER, AP_TILE, TileGrid{100, 50, 32, 16}}) {
+    const TileBinner binner(grid);
+    const int w = static_cast<int>(grid.width), h = static_cast<int>(grid.height);
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    EXPECT_TRUE(binner.tiles_of_pixels(-20, 10, -1, 20).empty());        // left
+    EXPECT_TRUE(binner.tiles_of_pixels(w, 10, w + 20, 20).empty());      // right
+    EXPECT_TRUE(binner.tiles_of_pixels(10, -20, 20, -1).empty());        // below
+    EXPECT_TRUE(binner.tiles_of_pixels(10, h, 20, h + 20).empty());      // above
+    EXPECT_TRUE(binner.tiles_of_pixels(-20, -20, -1, -1).empty());       // bottom left
+    EXPECT_TRUE(binner.tiles_of_pixels(w, h, w + 5, h + 5).empty());     // top right
+    EXPECT_TRUE(binner.tiles_of_pixels(-20, h, -1, h + 20).empty());     // top left
+    EXPECT_TRUE(binner.tiles_of_pixels(w, -20, w + 20, -1).empty());     // bottom right
+    EXPECT_TRUE(binner.tiles_of_pixels(-100, -5, w + 100, -1).empty());  // wide, below
+    // One pixel inside is enough.
+    EXPECT_FALSE(binner.tiles_of_pixels(-20, -20, 0, 0).empty());
+    EXPECT_FALSE(binner.tiles_of_pixels(w - 1, h - 1, w + 20, h + 20).empty());
+  }
+  TileBinner raster(RASTER);
+  raster.add(0, raster.tiles_of_pixels(-50, 100, -10, 120));
+  raster.add(0, raster.tiles_of_pixels(400, 100, 420, 120));
+  for (const List& list : raster.bin()) EXPECT_TRUE(list.empty());
 }
 
 TEST(TileBinner, InvertedBoxesTouchNothing) {
