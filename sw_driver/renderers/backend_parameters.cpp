@@ -1,5 +1,6 @@
 #include "renderers/backend_parameters.h"
 
+#include <iterator>
 #include <string>
 #include <vector>
 
