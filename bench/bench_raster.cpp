@@ -40,6 +40,7 @@
 #include "native_host.h"
 #include "raster/core/tile_rasterizer.h"
 #include "raster/raster_regs.h"
+#include "renderers/backends.h"
 #include "scenes/scene.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
@@ -260,7 +261,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   env.host = &host;
   env.frames = 2 * n;
   env.memory_bytes = memory_bytes;
-  env.backend = "raster";
+  env.make_renderer = tessera::backends::backend("raster").make_renderer;
   env.args = scene_args;
   const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
   const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;

@@ -47,3 +47,29 @@ function(tessera_add_rtl_unit)
   # Verilator's generated code is not ours to warn about.
   target_compile_options(${U_TARGET} PRIVATE -w)
 endfunction()
+
+# tessera_backends(IDS_VAR NAMES_VAR)
+# The renderer back ends, in the order of sw_driver/renderers/backends.def,
+# the one table of them: their ids (folder, library tessera_backend_<id>,
+# test names) and their names (driver.backend, --backend). Changing the
+# table reconfigures the build.
+function(tessera_backends ids_var names_var)
+  set(table ${PROJECT_SOURCE_DIR}/sw_driver/renderers/backends.def)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${table})
+  file(STRINGS ${table} lines REGEX "^TESSERA_BACKEND\\(")
+  set(ids)
+  set(names)
+  foreach(line IN LISTS lines)
+    if(NOT line MATCHES "^TESSERA_BACKEND\\(([a-z][a-z0-9_]*), \"([a-z][a-z0-9-]*)\", ")
+      message(FATAL_ERROR "${table}: cannot read '${line}': expected TESSERA_BACKEND(id, \"name\", ...) on one line, "
+                          "id in [a-z0-9_], name in [a-z0-9-]")
+    endif()
+    list(APPEND ids ${CMAKE_MATCH_1})
+    list(APPEND names ${CMAKE_MATCH_2})
+  endforeach()
+  if(NOT ids)
+    message(FATAL_ERROR "${table} lists no back end")
+  endif()
+  set(${ids_var} ${ids} PARENT_SCOPE)
+  set(${names_var} ${names} PARENT_SCOPE)
+endfunction()

@@ -257,7 +257,11 @@ EGLAPI EGLSurface EGLAPIENTRY eglCreateWindowSurface(EGLDisplay dpy, EGLConfig c
   if (!g_surfaces.empty()) return fail(EGL_BAD_ALLOC, EGL_NO_SURFACE);
   auto& env = tessera::gl::environment();
   auto surface = std::make_unique<Surface>();
-  surface->renderer = tessera::gl::make_renderer(env.backend, env);
+  // The launcher hands the back end over (AppEnvironment::make_renderer);
+  // the front end knows none by name.
+  if (!env.make_renderer)
+    throw std::logic_error("EGL: no renderer back end was handed to the driver (AppEnvironment::make_renderer)");
+  surface->renderer = env.make_renderer(env);
   surface->config = config;
   Surface* handle = surface.release();
   g_surfaces.insert(handle);

@@ -26,6 +26,7 @@
 #include "png_writer_thread.h"
 #include "progress_line.h"
 #include "renderers/backend_parameters.h"
+#include "renderers/backends.h"
 #include "run_outputs.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
@@ -214,7 +215,8 @@ int run(int argc, char* argv[]) {
       ->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
-  cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm or raster");
+  cli.add_option("--backend", opt.backend,
+                 "renderer back end (driver.backend): " + backends::backend_names(", ", " or "));
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
@@ -346,7 +348,7 @@ int run(int argc, char* argv[]) {
   env.args = opt.app_args;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
-  env.backend = config.get_string("driver.backend");
+  env.make_renderer = backends::backend(config.get_string("driver.backend")).make_renderer;
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);

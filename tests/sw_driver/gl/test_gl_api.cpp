@@ -324,6 +324,7 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
   env.frame_buffers[0] = 15u << 20;
   env.frame_buffers[1] = (15u << 20) + 0x10000;
   env.frames = 2;
+  env.make_renderer = [](AppEnvironment&) { return std::make_unique<RecordingRenderer>(); };
   gl::set_environment(&env);
 
   EXPECT_EQ(eglGetDisplay(reinterpret_cast<EGLNativeDisplayType>(0x1234)), EGL_NO_DISPLAY);
