@@ -57,21 +57,6 @@ float load_float(const uint8_t* p) {
   return f;
 }
 
-// gl::TexEnv, gl::TexWrap, gl::TexFilter codes to the datapath's GL enum
-// values; an environment code with no meaning passes the fragment through
-// (texture_env.h).
-TextureEnvMode to_texture_env(uint32_t code) {
-  constexpr TextureEnvMode MODES[] = {TextureEnvMode::MODULATE, TextureEnvMode::REPLACE, TextureEnvMode::DECAL};
-  return code < std::size(MODES) ? MODES[code] : static_cast<TextureEnvMode>(0xffff);
-}
-
-TextureWrap to_wrap(uint32_t code) {
-  return code == 1 ? TextureWrap::CLAMP_TO_EDGE : TextureWrap::REPEAT;
-}
-TextureFilter to_filter(uint32_t bit) {
-  return bit ? TextureFilter::LINEAR : TextureFilter::NEAREST;
-}
-
 // A positive integer as f * 2^n with f in [1/2, 1), f held in Q30.
 struct Normalised {
   uint64_t f_q30 = 0;
@@ -131,8 +116,8 @@ struct DrawState {
   int scissor_x0 = 0, scissor_y0 = 0, scissor_x1 = 0, scissor_y1 = 0;  // GL window, ends exclusive
   TextureState texture;
   unsigned log2_width = 0, log2_height = 0;  // as stored, checked at use
-  TextureFilter min_filter = TextureFilter::NEAREST, mag_filter = TextureFilter::NEAREST;
-  TextureEnvMode env = TextureEnvMode::MODULATE;
+  TexFilter min_filter = TexFilter::nearest, mag_filter = TexFilter::nearest;
+  TexEnv env = TexEnv::modulate;
 };
 
 DrawState decode_state(uint32_t address, const uint8_t* b) {
@@ -147,12 +132,21 @@ DrawState decode_state(uint32_t address, const uint8_t* b) {
   o.stencil_test = (s.flags & StateFlag::stencil_test) != 0;
   o.blend = (s.flags & StateFlag::blend) != 0;
   o.logic_op = (s.flags & StateFlag::logic_op) != 0;
-  o.depth_func = word(1);
-  o.alpha_func = word(2);
-  o.stencil_func = word(3);
-  o.stencil_ops = word(4);
-  o.blend_func = word(5);
-  o.color_mask = word(6);
+  const uint32_t alpha = word(2), stencil = word(3), ops = word(4), blend = word(5);
+  o.depth_func = from_code<CompareFunc>(word(1));
+  o.alpha_func = from_code<CompareFunc>(alpha);
+  o.alpha_ref = uint8_t(alpha >> 8);
+  o.stencil_func = from_code<CompareFunc>(stencil);
+  o.stencil_ref = uint8_t(stencil >> 8);
+  o.stencil_value_mask = uint8_t(stencil >> 16);
+  o.stencil_write_mask = uint8_t(stencil >> 24);
+  o.stencil_fail = from_code<StencilOp>(ops >> STENCIL_FAIL_SHIFT);
+  o.depth_fail = from_code<StencilOp>(ops >> STENCIL_DEPTH_FAIL_SHIFT);
+  o.depth_pass = from_code<StencilOp>(ops >> STENCIL_DEPTH_PASS_SHIFT);
+  o.blend_src = from_code<BlendFactor>(blend >> BLEND_SRC_SHIFT);
+  o.blend_dst = from_code<BlendFactor>(blend >> BLEND_DST_SHIFT);
+  o.logic_op_mode = from_code<LogicOp>(blend >> BLEND_LOGIC_OP_SHIFT);
+  o.color_mask = uint8_t(word(6) & 15);
   s.scissor = (s.flags & StateFlag::scissor_test) != 0;
   const uint32_t xy = word(7), size = word(8);
   s.scissor_x0 = int16_t(xy & 0xffff);
@@ -165,11 +159,11 @@ DrawState decode_state(uint32_t address, const uint8_t* b) {
   s.texture.base = word(9);
   s.texture.log2_width = uint8_t(std::min(s.log2_width, TEXTURE_MAX_LOG2));
   s.texture.log2_height = uint8_t(std::min(s.log2_height, TEXTURE_MAX_LOG2));
-  s.texture.wrap_s = to_wrap((mode >> 2) & 3);
-  s.texture.wrap_t = to_wrap((mode >> 4) & 3);
-  s.min_filter = to_filter(mode & 1);
-  s.mag_filter = to_filter((mode >> 1) & 1);
-  s.env = to_texture_env((mode >> 8) & 3);
+  s.texture.wrap_s = from_code<TexWrap>(mode >> TEXTURE_WRAP_S_SHIFT);
+  s.texture.wrap_t = from_code<TexWrap>(mode >> TEXTURE_WRAP_T_SHIFT);
+  s.min_filter = from_code<TexFilter>(mode >> TEXTURE_MIN_FILTER_SHIFT);
+  s.mag_filter = from_code<TexFilter>(mode >> TEXTURE_MAG_FILTER_SHIFT);
+  s.env = from_code<TexEnv>(mode >> TEXTURE_ENV_SHIFT);
   return s;
 }
 
@@ -661,7 +655,7 @@ bool TileRun::sample_texture(const TriangleSetup& ts, int dx, int dy, Rgba8 frag
     if (rho2 > (int128{1} << 32)) tex.filter = m_state.min_filter;
   }
   const TexelFootprint footprint = texel_lookup(tex, sc, tc);
-  const unsigned fetches = tex.filter == TextureFilter::LINEAR ? 4 : 1;
+  const unsigned fetches = tex.filter == TexFilter::linear ? 4 : 1;
   std::array<Rgba8, 4> texels;
   for (unsigned k = 0; k < fetches; ++k) {
     uint8_t raw[4];
