@@ -548,7 +548,7 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
 
   ts.flat = (m_state.flags & StateFlag::flat_shading) != 0;
   ts.flat_color = vin[2].color;
-  ts.depth = plane(AttributeKind::DEPTH, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
+  ts.depth = plane(AttributeKind::depth, {int64_t{vin[0].z} << 8, int64_t{vin[1].z} << 8, int64_t{vin[2].z} << 8});
 
   // 1/w of the vertices scaled by one power of two so that the largest lies
   // in [1/2, 1): every ratio a = (a/w) / (1/w) is unchanged and the scaling
@@ -566,7 +566,7 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
   std::array<int64_t, 3> q{};
   for (unsigned k = 0; k < 3 && usable_w; ++k)
     q[k] = std::llround(std::ldexp(scaled(vin[k].inv_w), TEXCOORD_FRACTION_BITS));
-  if (usable_w) ts.q = plane(AttributeKind::TEXCOORD, q);
+  if (usable_w) ts.q = plane(AttributeKind::texcoord, q);
 
   // Gouraud colours are perspective-correct (GL 1.5 equation 3.6) when the
   // vertices' 1/w differ; with equal 1/w (orthographic) c/w over 1/w is c,
@@ -581,7 +581,7 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
         if (ts.perspective_color) return int64_t((int128(code) * q[k] + (int64_t{1} << 7)) >> 8);
         return code << 16;
       };
-      ts.color[ch] = plane(AttributeKind::COLOR, {channel(0), channel(1), channel(2)});
+      ts.color[ch] = plane(AttributeKind::color, {channel(0), channel(1), channel(2)});
     }
   }
 
@@ -597,8 +597,8 @@ bool TileRun::setup(const std::array<Vertex, 3>& vin, TriangleSetup& ts) {
       s[k] = std::llround(std::ldexp(values[0], TEXCOORD_FRACTION_BITS));
       t[k] = std::llround(std::ldexp(values[1], TEXCOORD_FRACTION_BITS));
     }
-    ts.s = plane(AttributeKind::TEXCOORD, s);
-    ts.t = plane(AttributeKind::TEXCOORD, t);
+    ts.s = plane(AttributeKind::texcoord, s);
+    ts.t = plane(AttributeKind::texcoord, t);
   }
   return true;
 }
