@@ -12,7 +12,7 @@
 namespace tessera::raster {
 namespace {
 
-// Every factor, plus an undefined enum value (must act as ZERO on both sides).
+// Every factor, plus a code without an entry (must act as ZERO on both sides).
 constexpr std::array<BlendFactor, 12> ALL_FACTORS{BlendFactor::zero,
                                                   BlendFactor::one,
                                                   BlendFactor::src_color,

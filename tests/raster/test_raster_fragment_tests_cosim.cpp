@@ -15,7 +15,7 @@ namespace {
 constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
                                                CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
                                                CompareFunc::gequal, CompareFunc::always};
-// Every operation, plus an undefined enum value (kept on both sides).
+// Every operation, plus a code without an entry (kept on both sides).
 constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
                                            StencilOp::incr,          StencilOp::decr, StencilOp::invert,
                                            static_cast<StencilOp>(7)};

@@ -12,7 +12,7 @@
 namespace tessera::raster {
 namespace {
 
-// Every environment, plus an undefined enum value (fragment passes on both sides).
+// Every environment, plus a code without an entry (fragment passes on both sides).
 constexpr std::array<TexEnv, 4> ALL_MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal, static_cast<TexEnv>(3)};
 
 struct Checker : CosimTally {
