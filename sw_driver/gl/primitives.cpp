@@ -61,9 +61,7 @@ RasterState Context::raster_state() const {
   auto it = m_textures.find(m_bound_texture);
   s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
   if (s.texture) s.tex = it->second.texture;
-  s.tex_env = m_tex_env_mode == GL_REPLACE ? TexEnv::replace
-              : m_tex_env_mode == GL_DECAL ? TexEnv::decal
-                                           : TexEnv::modulate;
+  s.tex_env = tex_env_value(m_tex_env_mode);
   return s;
 }
 

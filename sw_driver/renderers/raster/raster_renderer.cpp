@@ -27,7 +27,8 @@ constexpr uint64_t TILE_ENTRY_ALU = 4;      // append two words to a tile's list
 constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
 constexpr unsigned STM_WORDS = 8;           // STM with eight registers
 
-// A StateBlock from the GL state, in command_format.h's encoding.
+// A StateBlock from the GL state, in command_format.h's encoding: the state
+// already holds the hardware codes (common/fixed_function.def).
 StateBlock encode_state(const gl::RasterState& s) {
   StateBlock b{};
   auto flag = [&](bool on, uint32_t bit) { b.flags |= on ? bit : 0u; };
@@ -42,14 +43,15 @@ StateBlock encode_state(const gl::RasterState& s) {
   flag(texture, raster::texture);
   flag(s.flat_shading, raster::flat_shading);
   flag(s.polygon_smooth, raster::polygon_smooth);
-  b.depth_func = static_cast<uint32_t>(s.depth_func);
-  b.alpha_func = static_cast<uint32_t>(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
-  b.stencil_func = static_cast<uint32_t>(s.stencil_func) | uint32_t{s.stencil_ref} << 8 |
-                   uint32_t{s.stencil_value_mask} << 16 | uint32_t{s.stencil_write_mask} << 24;
-  b.stencil_ops = static_cast<uint32_t>(s.stencil_fail) | static_cast<uint32_t>(s.depth_fail) << 8 |
-                  static_cast<uint32_t>(s.depth_pass) << 16;
-  b.blend = static_cast<uint32_t>(s.blend_src) | static_cast<uint32_t>(s.blend_dst) << 8 |
-            uint32_t{s.logic_op_code & 0xFu} << 16;
+  b.depth_func = code_of(s.depth_func);
+  b.alpha_func = code_of(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
+  b.stencil_func = code_of(s.stencil_func) | uint32_t{s.stencil_ref} << 8 | uint32_t{s.stencil_value_mask} << 16 |
+                   uint32_t{s.stencil_write_mask} << 24;
+  b.stencil_ops = code_of(s.stencil_fail) << raster::STENCIL_FAIL_SHIFT |
+                  code_of(s.depth_fail) << raster::STENCIL_DEPTH_FAIL_SHIFT |
+                  code_of(s.depth_pass) << raster::STENCIL_DEPTH_PASS_SHIFT;
+  b.blend = code_of(s.blend_src) << raster::BLEND_SRC_SHIFT | code_of(s.blend_dst) << raster::BLEND_DST_SHIFT |
+            code_of(s.logic_op_mode) << raster::BLEND_LOGIC_OP_SHIFT;
   for (unsigned i = 0; i < 4; ++i) b.color_mask |= s.color_mask[i] ? 1u << i : 0u;
   auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
   b.scissor_xy = u16(s.scissor_x) | u16(s.scissor_y) << 16;
@@ -62,9 +64,11 @@ StateBlock encode_state(const gl::RasterState& s) {
     };
     b.texture_address = s.tex.address;
     b.texture_size = log2(s.tex.width) | log2(s.tex.height) << 8;
-    b.texture_mode = (s.tex.min_filter == gl::TexFilter::linear ? 1u : 0u) |
-                     (s.tex.mag_filter == gl::TexFilter::linear ? 2u : 0u) | static_cast<uint32_t>(s.tex.wrap_s) << 2 |
-                     static_cast<uint32_t>(s.tex.wrap_t) << 4 | static_cast<uint32_t>(s.tex_env) << 8;
+    b.texture_mode = code_of(s.tex.min_filter) << raster::TEXTURE_MIN_FILTER_SHIFT |
+                     code_of(s.tex.mag_filter) << raster::TEXTURE_MAG_FILTER_SHIFT |
+                     code_of(s.tex.wrap_s) << raster::TEXTURE_WRAP_S_SHIFT |
+                     code_of(s.tex.wrap_t) << raster::TEXTURE_WRAP_T_SHIFT |
+                     code_of(s.tex_env) << raster::TEXTURE_ENV_SHIFT;
   }
   return b;
 }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "device/app_environment.h"
@@ -90,7 +91,8 @@ class RecordingRenderer : public gl::Renderer {
   unsigned height() const override { return 48; }
   PixelFormat color_format() const override { return PixelFormat::rgb565; }
   void clear(const gl::ClearRequest&) override { ++clears; }
-  void draw(const gl::RasterState&, const gl::Triangle* t, size_t n) override {
+  void draw(const gl::RasterState& s, const gl::Triangle* t, size_t n) override {
+    state = s;
     triangles.insert(triangles.end(), t, t + n);
   }
   void read_pixels(int, int, int w, int h, uint8_t* rgba) override {
@@ -99,6 +101,7 @@ class RecordingRenderer : public gl::Renderer {
   void finish() override {}
   void present() override {}
   std::vector<gl::Triangle> triangles;
+  gl::RasterState state;  // of the last draw
   int clears = 0;
 };
 
@@ -231,6 +234,58 @@ TEST_F(GlApi, StateQueriesReadBackWhatWasSet) {
   glEnable(GL_DEPTH_TEST);
   EXPECT_EQ(glIsEnabled(GL_DEPTH_TEST), GL_TRUE);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// The GL enums become the hardware codes of common/fixed_function.def on
+// their way to the back end, and glGet gives the GL enums back.
+TEST_F(GlApi, FixedFunctionStateReachesTheRendererAsTableCodes) {
+  glBlendFunc(GL_DST_COLOR, GL_ONE_MINUS_SRC_ALPHA);
+  glStencilOp(GL_INVERT, GL_INCR, GL_REPLACE);
+  glStencilFunc(GL_GEQUAL, 3, 0xff);
+  glLogicOp(GL_XOR);
+  glAlphaFunc(GL_NOTEQUAL, 0.5f);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_DECAL);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const float positions[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
+  draw_triangle(positions);
+  glFinish();
+  const gl::RasterState& s = renderer.state;
+  EXPECT_EQ(code_of(s.blend_src), 8u);  // dst_color
+  EXPECT_EQ(code_of(s.blend_dst), 5u);  // one_minus_src_alpha
+  EXPECT_EQ(s.stencil_fail, StencilOp::invert);
+  EXPECT_EQ(code_of(s.depth_fail), 3u);
+  EXPECT_EQ(s.depth_pass, StencilOp::replace);
+  EXPECT_EQ(code_of(s.stencil_func), 6u);
+  EXPECT_EQ(s.logic_op_mode, LogicOp::xor_);
+  EXPECT_EQ(code_of(s.alpha_func), 5u);
+  EXPECT_EQ(code_of(s.tex_env), 2u);
+  const std::pair<GLenum, GLint> queries[] = {{GL_BLEND_SRC, GL_DST_COLOR},
+                                              {GL_BLEND_DST, GL_ONE_MINUS_SRC_ALPHA},
+                                              {GL_STENCIL_FAIL, GL_INVERT},
+                                              {GL_STENCIL_PASS_DEPTH_FAIL, GL_INCR},
+                                              {GL_STENCIL_PASS_DEPTH_PASS, GL_REPLACE},
+                                              {GL_STENCIL_FUNC, GL_GEQUAL},
+                                              {GL_LOGIC_OP_MODE, GL_XOR},
+                                              {GL_ALPHA_TEST_FUNC, GL_NOTEQUAL}};
+  for (const auto& [name, value] : queries) {
+    GLint got = 0;
+    glGetIntegerv(name, &got);
+    EXPECT_EQ(got, value) << std::hex << name;
+  }
+  // What GL does not accept leaves the state as it was.
+  glBlendFunc(GL_SRC_COLOR, GL_ZERO);  // SRC_COLOR is not a source factor
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glBlendFunc(GL_ONE, GL_SRC_ALPHA_SATURATE);  // nor SRC_ALPHA_SATURATE a destination factor
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glLogicOp(GL_SET + 1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glStencilOp(GL_KEEP, GL_KEEP, GL_DECR + 1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  GLint src = 0, op = 0;
+  glGetIntegerv(GL_BLEND_SRC, &src);
+  glGetIntegerv(GL_LOGIC_OP_MODE, &op);
+  EXPECT_EQ(src, GL_DST_COLOR);
+  EXPECT_EQ(op, GL_XOR);
 }
 
 TEST_F(GlApi, TriangleReachesTheRendererInScreenFormats) {
