@@ -268,6 +268,42 @@ TEST_F(GlApi, NonFiniteAndHugeVerticesDrawNothing) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// Vertices on the line y = x / 2, collinear in float, which snapping to 9.4
+// moves apart into a sliver. No such triangle may reach the back end,
+// whatever the matrices, while a thin but real one still does.
+TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
+  const float collinear[] = {-0.9f, -0.45f, 0, 0.13f, 0.065f, 0, 0.77f, 0.385f, 0};
+  gl::Viewport viewport;
+  viewport.width = 64;
+  viewport.height = 48;
+  gl::ScreenVertex snapped[3];
+  for (int i = 0; i < 3; ++i) {
+    gl::ClipVertex v;
+    v.position = {collinear[3 * i], collinear[3 * i + 1], 0, 1};
+    ASSERT_TRUE(gl::to_screen(v, viewport, &snapped[i]));
+  }
+  ASSERT_NE(gl::signed_area(snapped[0], snapped[1], snapped[2]), 0) << "snapping keeps these on one line";
+  draw_triangle(collinear);
+  EXPECT_TRUE(renderer.triangles.empty());
+  // Through a perspective projection and a rotated, translated modelview
+  // the vertices stay on one line, up to float rounding.
+  glMatrixMode(GL_PROJECTION);
+  glFrustumf(-1, 1, -0.75f, 0.75f, 1, 10);
+  glMatrixMode(GL_MODELVIEW);
+  glTranslatef(0.1f, -0.2f, -3);
+  glRotatef(37, 0.3f, 1, 0.2f);
+  draw_triangle(collinear);
+  EXPECT_TRUE(renderer.triangles.empty());
+  glLoadIdentity();
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  // Half a pixel thick (0.02 of 24 pixels per unit): drawn.
+  const float thin[] = {-0.9f, -0.45f, 0, 0.13f, 0.085f, 0, 0.77f, 0.385f, 0};
+  draw_triangle(thin);
+  EXPECT_EQ(renderer.triangles.size(), 1u);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(GlApi, CullingDropsBackFaces) {
   const float clockwise[] = {-1, -1, 0, -1, 1, 0, 1, -1, 0};
   glEnable(GL_CULL_FACE);
