@@ -1,6 +1,7 @@
 // EGL 1.4 on the simulated SoC: one display (the SoC's), one configuration
-// matching the display controller's pixel format, one window surface (the
-// screen) owning the back end's renderer, and GL ES 1.x contexts.
+// matching the display controller's pixel format and the back end's depth
+// and stencil buffers, one window surface (the screen) owning the back
+// end's renderer, and GL ES 1.x contexts.
 // eglSwapBuffers presents through the back end and ends the application
 // once the run's frame count has been shown.
 #include <EGL/egl.h>
@@ -80,6 +81,12 @@ const tessera::PixelFormatInfo& display_format() {
   return tessera::pixel_format_info(*known);
 }
 
+// What the run's back end stores: the configuration is offered before the
+// surface that makes the renderer exists.
+tessera::gl::RendererCapabilities back_end_capabilities() {
+  return tessera::gl::renderer_capabilities(tessera::gl::environment().backend);
+}
+
 EGLint config_attribute(EGLint attribute, bool* known) {
   *known = true;
   const tessera::PixelFormatInfo& format = display_format();
@@ -107,8 +114,8 @@ EGLint config_attribute(EGLint attribute, bool* known) {
     case EGL_MAX_PBUFFER_HEIGHT:
     case EGL_MAX_PBUFFER_PIXELS:
       return attribute == EGL_MAX_SWAP_INTERVAL || attribute == EGL_MIN_SWAP_INTERVAL ? 1 : 0;
-    case EGL_DEPTH_SIZE: return 16;
-    case EGL_STENCIL_SIZE: return 8;
+    case EGL_DEPTH_SIZE: return static_cast<EGLint>(back_end_capabilities().depth_bits);
+    case EGL_STENCIL_SIZE: return static_cast<EGLint>(back_end_capabilities().stencil_bits);
     case EGL_CONFIG_ID: return 1;
     case EGL_CONFIG_CAVEAT: return EGL_NONE;
     case EGL_COLOR_BUFFER_TYPE: return EGL_RGB_BUFFER;

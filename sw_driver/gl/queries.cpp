@@ -192,8 +192,8 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_GREEN_BITS: v[0] = static_cast<float>(format.green_bits); break;
     case GL_BLUE_BITS: v[0] = static_cast<float>(format.blue_bits); break;
     case GL_ALPHA_BITS: v[0] = static_cast<float>(format.alpha_bits); break;
-    case GL_DEPTH_BITS: v[0] = 16; break;
-    case GL_STENCIL_BITS: v[0] = 8; break;
+    case GL_DEPTH_BITS: v[0] = static_cast<float>(m_renderer->capabilities().depth_bits); break;
+    case GL_STENCIL_BITS: v[0] = static_cast<float>(m_renderer->capabilities().stencil_bits); break;
     case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
     case GL_POINT_SIZE: v[0] = m_point_size; break;
     case GL_LINE_WIDTH: v[0] = m_line_width; break;

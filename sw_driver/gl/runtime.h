@@ -26,6 +26,9 @@ AppEnvironment& environment();  // throws std::logic_error when none is set
 // std::runtime_error when the heap is exhausted.
 uint32_t allocate(uint32_t bytes, uint32_t alignment = 32);
 
+// The back end called `backend` (driver.backend), and what it stores
+// without making one. Both throw std::invalid_argument for an unknown name.
 std::unique_ptr<Renderer> make_renderer(const std::string& backend, AppEnvironment& env);
+RendererCapabilities renderer_capabilities(const std::string& backend);
 
 }  // namespace tessera::gl

@@ -36,7 +36,11 @@ class ArmRenderer : public gl::Renderer {
  public:
   explicit ArmRenderer(AppEnvironment& env);
 
+  // Depth as uint16 and stencil as uint8 per pixel (arm_rasterizer.h).
+  static constexpr gl::RendererCapabilities CAPABILITIES{16, 8};
+
   const char* name() const override { return "tessera arm (software, ARM922T)"; }
+  gl::RendererCapabilities capabilities() const override { return CAPABILITIES; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
   PixelFormat color_format() const override { return m_display.format(); }

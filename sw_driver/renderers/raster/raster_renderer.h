@@ -23,7 +23,12 @@ class RasterRenderer : public gl::Renderer {
  public:
   explicit RasterRenderer(AppEnvironment& env);
 
+  // One word per pixel: depth in bits 0-23, stencil in 24-31 (DEPTH_BASE in
+  // raster_regs.def).
+  static constexpr gl::RendererCapabilities CAPABILITIES{24, 8};
+
   const char* name() const override { return "tessera raster (fixed-function tile rasterizer)"; }
+  gl::RendererCapabilities capabilities() const override { return CAPABILITIES; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
   PixelFormat color_format() const override { return m_display.format(); }

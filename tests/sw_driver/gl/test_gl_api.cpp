@@ -12,13 +12,18 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "device/app_environment.h"
 #include "display/display_regs.h"
 #include "gl/context.h"
 #include "gl/runtime.h"
+#include "raster/raster_regs.h"
 #include "soc/memory_map.h"
+#include "support/back_ends.h"
 
 using namespace tessera;
 
@@ -35,6 +40,16 @@ class VectorHost : public HostApi {
         case display_regs::HEIGHT: return 48;
         case display_regs::FORMAT: return static_cast<uint32_t>(PixelFormat::rgb565);
         case display_regs::MODE: return 0;
+        default: return 0;
+      }
+    }
+    // The rasterizer covers the display, in tiles of 32x16 (the raster back end reads these).
+    if (memory_map::raster_regs.contains(address)) {
+      switch (address - memory_map::raster_regs.base) {
+        case raster_regs::WIDTH: return 64;
+        case raster_regs::HEIGHT: return 48;
+        case raster_regs::TILE_WIDTH: return 32;
+        case raster_regs::TILE_HEIGHT: return 16;
         default: return 0;
       }
     }
@@ -86,6 +101,7 @@ class VectorHost : public HostApi {
 class RecordingRenderer : public gl::Renderer {
  public:
   const char* name() const override { return "recording"; }
+  gl::RendererCapabilities capabilities() const override { return {12, 4}; }
   unsigned width() const override { return 64; }
   unsigned height() const override { return 48; }
   PixelFormat color_format() const override { return PixelFormat::rgb565; }
@@ -422,4 +438,71 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
   EXPECT_EQ(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT), EGL_TRUE);
   EXPECT_EQ(eglTerminate(display), EGL_TRUE);
   gl::set_environment(nullptr);
+}
+
+// What EGL offers before a surface exists, and what GL reports once the
+// back end's renderer is made, are what the back end stores: 16-bit depth
+// on arm, 24 on raster, 8-bit stencil on both.
+TEST(Egl, DepthAndStencilBitsAreTheBackEndsOwn) {
+  const std::map<std::string, gl::RendererCapabilities> stored = {{"arm", {16, 8}}, {"raster", {24, 8}}};
+  for (const std::string& backend : test::back_end_names()) {
+    SCOPED_TRACE(backend);
+    ASSERT_TRUE(stored.count(backend)) << "say what the new back end stores";
+    VectorHost host;
+    AppEnvironment env;
+    env.host = &host;
+    env.heap_base = 4u << 20;
+    env.heap_end = 15u << 20;
+    env.frame_buffers[0] = 15u << 20;
+    env.frame_buffers[1] = (15u << 20) + 0x10000;
+    env.backend = backend;
+    gl::set_environment(&env);
+    const gl::RendererCapabilities expected = stored.at(backend);
+    EXPECT_EQ(gl::renderer_capabilities(backend).depth_bits, expected.depth_bits);
+    EXPECT_EQ(gl::renderer_capabilities(backend).stencil_bits, expected.stencil_bits);
+
+    EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    ASSERT_EQ(eglInitialize(display, nullptr, nullptr), EGL_TRUE);
+    EGLConfig config;
+    EGLint count = 0;
+    ASSERT_EQ(eglChooseConfig(display, nullptr, &config, 1, &count), EGL_TRUE);
+    ASSERT_EQ(count, 1);
+    EGLint depth = 0, stencil = 0;
+    ASSERT_EQ(eglGetConfigAttrib(display, config, EGL_DEPTH_SIZE, &depth), EGL_TRUE);
+    ASSERT_EQ(eglGetConfigAttrib(display, config, EGL_STENCIL_SIZE, &stencil), EGL_TRUE);
+    EXPECT_EQ(depth, static_cast<EGLint>(expected.depth_bits));
+    EXPECT_EQ(stencil, static_cast<EGLint>(expected.stencil_bits));
+    // Sizes are minimums: one bit more than stored matches no configuration.
+    const EGLint deeper[] = {EGL_DEPTH_SIZE, depth + 1, EGL_NONE};
+    ASSERT_EQ(eglChooseConfig(display, deeper, &config, 1, &count), EGL_TRUE);
+    EXPECT_EQ(count, 0);
+    const EGLint exact[] = {EGL_DEPTH_SIZE, depth, EGL_STENCIL_SIZE, stencil, EGL_NONE};
+    ASSERT_EQ(eglChooseConfig(display, exact, &config, 1, &count), EGL_TRUE);
+    ASSERT_EQ(count, 1);
+
+    EGLSurface surface = eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr);
+    ASSERT_NE(surface, EGL_NO_SURFACE) << eglGetError();
+    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
+    ASSERT_EQ(eglMakeCurrent(display, surface, surface, context), EGL_TRUE);
+    GLint depth_bits = 0, stencil_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    glGetIntegerv(GL_STENCIL_BITS, &stencil_bits);
+    EXPECT_EQ(depth_bits, depth);
+    EXPECT_EQ(stencil_bits, stencil);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    EXPECT_EQ(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT), EGL_TRUE);
+    EXPECT_EQ(eglDestroyContext(display, context), EGL_TRUE);
+    EXPECT_EQ(eglDestroySurface(display, surface), EGL_TRUE);
+    EXPECT_EQ(eglTerminate(display), EGL_TRUE);
+    gl::set_environment(nullptr);
+  }
+  EXPECT_THROW(gl::renderer_capabilities("ap-tile"), std::invalid_argument);
+}
+
+TEST_F(GlApi, DepthAndStencilBitsComeFromTheRenderer) {
+  GLint bits = 0;
+  glGetIntegerv(GL_DEPTH_BITS, &bits);
+  EXPECT_EQ(bits, 12);
+  glGetIntegerv(GL_STENCIL_BITS, &bits);
+  EXPECT_EQ(bits, 4);
 }
