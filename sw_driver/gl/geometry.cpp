@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace tessera::gl {
 
@@ -93,6 +94,21 @@ bool is_degenerate(const std::vector<WindowPoint>& polygon) {
   }
   // height = |twice_area| / longest <= DEGENERATE_HEIGHT, without the square root.
   return twice_area * twice_area <= DEGENERATE_HEIGHT * DEGENERATE_HEIGHT * longest_squared;
+}
+
+// In units of 1/16 pixel: snapping moves each vertex by at most 1/2 in x and
+// in y, so each snapped edge e' = e + d with |d|max <= 1. The unsnapped twice
+// area T = cross(e1' - d1, e2' - d2) differs from the snapped T' by at most
+// |e1'|1 + |e2'|1 + 2 (|cross(u, v)| <= |u|1 |v|max). The unsnapped
+// triangle is degenerate when |T| <= H L with H = 1/64 pixel = 1/4 unit and
+// L its longest edge, at most max |e'|1 + 2 <= |e1'|1 + |e2'|1 + 2. So
+// 4 |T'| > 5 (|e1'|1 + |e2'|1) + 10 rules degeneracy out.
+bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {
+  const int64_t twice_area = std::llabs(signed_area(a, b, c));
+  const int64_t edges = std::llabs(int64_t{b.x} - a.x) + std::llabs(int64_t{b.y} - a.y) +
+                        std::llabs(int64_t{c.x} - a.x) + std::llabs(int64_t{c.y} - a.y);
+  static_assert(DEGENERATE_HEIGHT * (1 << SUBPIXEL_BITS) == 0.25, "the bound assumes H = 1/4 of a 9.4 unit");
+  return 4 * twice_area > 5 * edges + 10;
 }
 
 bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {

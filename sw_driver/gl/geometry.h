@@ -56,6 +56,12 @@ inline constexpr double DEGENERATE_HEIGHT = 1.0 / 64;  // pixels
 // than three vertices included) has no area in the sense above.
 bool is_degenerate(const std::vector<WindowPoint>& polygon);
 
+// True when the snapped triangle's area is so large against its edges that
+// the unsnapped triangle cannot be degenerate: a few integer operations
+// that spare all but thin triangles the floating-point test on the host.
+bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
+inline constexpr unsigned SURELY_HAS_AREA_ALU = 10;  // its cost beside signed_area
+
 // Window coordinates in 9.4 fixed point (rounded to nearest), depth in 0.24,
 // colour in 0.8 (rounded to nearest, clamped). Returns false for a vertex
 // whose coordinates are not finite or fall outside the 9.4 range (the caller

@@ -27,13 +27,6 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     charge({12, 12, 1, 0, 7, 0, 0}, polygon.size());
     if (polygon.size() < 3) return;
   }
-  // Whether the polygon has any area is decided before snapping, which
-  // would turn collinear vertices into a sliver (geometry.h).
-  std::vector<WindowPoint> window(polygon.size());
-  for (size_t i = 0; i < polygon.size(); ++i)
-    if (!to_window(polygon[i].position, m_viewport, &window[i])) return;
-  charge(degeneracy_cost(window.size()), 1);
-  if (is_degenerate(window)) return;
   std::vector<ScreenVertex> screen(polygon.size());
   for (size_t i = 0; i < polygon.size(); ++i)
     if (!to_screen(polygon[i], m_viewport, &screen[i])) return;
@@ -41,7 +34,17 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
   // Orientation from the whole polygon, so that clipping cannot flip a face.
   int64_t area = 0;
   for (size_t i = 1; i + 1 < screen.size(); ++i) area += signed_area(screen[0], screen[i], screen[i + 1]);
-  m_host.compute(Op::alu, 12);
+  m_host.compute(Op::alu, 12 + SURELY_HAS_AREA_ALU);
+  // Whether the polygon has any area is decided before snapping, which
+  // would turn collinear vertices into a sliver (geometry.h); an integer
+  // bound settles it for every triangle but the thin ones.
+  if (screen.size() != 3 || !surely_has_area(screen[0], screen[1], screen[2])) {
+    std::vector<WindowPoint> window(polygon.size());
+    for (size_t i = 0; i < polygon.size(); ++i)
+      if (!to_window(polygon[i].position, m_viewport, &window[i])) return;
+    charge(degeneracy_cost(window.size()), 1);
+    if (is_degenerate(window)) return;
+  }
   if (area == 0) return;  // a thin polygon whose vertices snapped onto one line
   const bool front = (area > 0) == (m_front_face == GL_CCW);
   if (m_cull && (m_cull_mode == GL_FRONT_AND_BACK || (m_cull_mode == GL_BACK) != front)) return;

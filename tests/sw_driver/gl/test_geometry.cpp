@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "gl/geometry.h"
 
@@ -233,6 +235,47 @@ TEST(Degeneracy, HeightAcrossTheLongestEdgeAgainstAQuarterOfTheSnappingStep) {
   // A clipped polygon: a unit square is not degenerate, a flattened one is.
   EXPECT_FALSE(is_degenerate({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
   EXPECT_TRUE(is_degenerate({{0, 0}, {1, 0}, {2, 0.001}, {0.5, 0.0005}}));
+}
+
+// The integer shortcut may only vouch for triangles the unsnapped test
+// keeps: random triangles, many of them thin, in a 320x240 viewport.
+TEST(Degeneracy, IntegerShortcutNeverVouchesForADegenerateTriangle) {
+  Viewport viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  std::mt19937 random(1234);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f), thickness(-0.002f, 0.002f);
+  unsigned vouched = 0, degenerate = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // Two free vertices and a third near (or on) the line through them.
+    const glm::vec2 p0(coordinate(random), coordinate(random)), p1(coordinate(random), coordinate(random));
+    const float along = (coordinate(random) + 1) * 0.5f;
+    const glm::vec2 p2 =
+        p0 + (p1 - p0) * along + glm::vec2(-(p1 - p0).y, (p1 - p0).x) * (i % 2 ? thickness(random) : 0);
+    std::vector<WindowPoint> window(3);
+    ScreenVertex screen[3];
+    const glm::vec2 points[3] = {p0, p1, p2};
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      ok = ok && to_window({points[k], 0, 1}, viewport, &window[k]) &&
+           to_screen(vertex(points[k].x, points[k].y, 0), viewport, &screen[k]);
+    }
+    if (!ok) continue;
+    const bool is_flat = is_degenerate(window);
+    degenerate += is_flat;
+    if (surely_has_area(screen[0], screen[1], screen[2])) {
+      ++vouched;
+      EXPECT_FALSE(is_flat) << "triangle " << i;
+    }
+  }
+  EXPECT_GT(degenerate, 1000u);
+  EXPECT_GT(vouched, 2000u);
+  // An ordinary triangle takes the shortcut; collinear vertices never do.
+  ScreenVertex a{}, b{}, c{};
+  a.x = 0, a.y = 0, b.x = 160, b.y = 0, c.x = 0, c.y = 160;
+  EXPECT_TRUE(surely_has_area(a, b, c));
+  c.x = 320, c.y = 0;
+  EXPECT_FALSE(surely_has_area(a, b, c));
 }
 
 TEST(FixedPoint, Unorm8AndUnorm24Clamp) {
