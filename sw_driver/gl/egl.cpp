@@ -376,7 +376,10 @@ EGLAPI EGLBoolean EGLAPIENTRY eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EG
   if (!g_contexts.count(c)) return fail(EGL_BAD_CONTEXT, EGL_FALSE);
   if (!g_surfaces.count(d) || read != draw) return fail(EGL_BAD_SURFACE, EGL_FALSE);
   if (c->surface && c->surface != d) return fail(EGL_BAD_MATCH, EGL_FALSE);
-  if (!c->gl) c->gl = std::make_unique<Context>(*tessera::gl::environment().host, *d->renderer);
+  if (!c->gl) {
+    auto& env = tessera::gl::environment();
+    c->gl = std::make_unique<Context>(*env.host, *d->renderer, env.counters);
+  }
   c->surface = d;
   g_current = c;
   g_current_surface = d;

@@ -99,9 +99,9 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, float,
   emit_triangle(v[0], v[2], v[3], nullptr);
 }
 
-void Context::draw(GLenum mode, const std::vector<uint32_t>& indices) {
+void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
-  fetch_and_transform(indices, m_vertices);
+  fetch_and_transform(indices, indexed, m_vertices);
   const std::vector<Vertex>& v = m_vertices;
   const size_t n = v.size();
   const bool flat = m_shade_model == GL_FLAT;
@@ -178,7 +178,7 @@ void Context::draw_arrays(GLenum mode, GLint first, GLsizei count) {
   if (count < 0 || first < 0) return error(GL_INVALID_VALUE);
   std::vector<uint32_t> indices(static_cast<size_t>(count));
   for (GLsizei i = 0; i < count; ++i) indices[i] = static_cast<uint32_t>(first + i);
-  draw(mode, indices);
+  draw(mode, indices, false);
 }
 
 void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void* pointer) {
@@ -207,7 +207,7 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
     }
   }
   m_host.compute(Op::alu, 2ull * static_cast<uint64_t>(count));
-  draw(mode, indices);
+  draw(mode, indices, true);
 }
 
 void Context::read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type, void* pixels) {

@@ -320,6 +320,71 @@ TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// glDrawElements transforms each distinct vertex of a call once (the
+// post-transform vertex cache) and charges the host for those alone, and
+// draws exactly what the same triangles drawn from an unindexed array draw.
+TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
+  ActivityCounters counters;
+  context = std::make_unique<gl::Context>(host, renderer, &counters);
+  gl::set_current_context(context.get());
+  // A 3x3 grid of vertices, two triangles per cell: 9 vertices, 24 indices.
+  std::vector<float> grid;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) grid.insert(grid.end(), {x * 0.8f - 0.8f, y * 0.8f - 0.8f, 0.1f * x});
+  std::vector<GLushort> indices;
+  for (GLushort y = 0; y < 2; ++y)
+    for (GLushort x = 0; x < 2; ++x) {
+      const GLushort a = y * 3 + x, b = a + 1, c = a + 3, d = c + 1;
+      indices.insert(indices.end(), {a, b, c, c, b, d});
+    }
+  const float normal[3] = {0, 0, 1};
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  glNormal3f(normal[0], normal[1], normal[2]);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, grid.data());
+
+  uint64_t start = host.operations();
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_SHORT, indices.data());
+  const uint64_t indexed_cost = host.operations() - start;
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
+  const std::vector<gl::Triangle> indexed = renderer.triangles;
+  ASSERT_EQ(indexed.size(), 8u);
+
+  // The same triangles from an unindexed array: every vertex transformed,
+  // no cache look-ups, and the same screen triangles.
+  std::vector<float> expanded;
+  for (GLushort index : indices) expanded.insert(expanded.end(), &grid[3 * index], &grid[3 * index] + 3);
+  renderer.triangles.clear();
+  glVertexPointer(3, GL_FLOAT, 0, expanded.data());
+  start = host.operations();
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(indices.size()));
+  const uint64_t unindexed_cost = host.operations() - start;
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u + 24u);
+  EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
+  ASSERT_EQ(renderer.triangles.size(), indexed.size());
+  for (size_t t = 0; t < indexed.size(); ++t)
+    EXPECT_EQ(std::memcmp(&renderer.triangles[t], &indexed[t], sizeof(gl::Triangle)), 0) << "triangle " << t;
+  EXPECT_LT(indexed_cost * 2, unindexed_cost);
+
+  // Every call starts with an empty cache: the next one transforms its
+  // vertices again, with the state of its own time.
+  renderer.triangles.clear();
+  glVertexPointer(3, GL_FLOAT, 0, grid.data());
+  glDisable(GL_LIGHTING);
+  glColor4f(1, 0, 0, 1);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_SHORT, indices.data());
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u + 24u + 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 30u);
+  ASSERT_EQ(renderer.triangles.size(), 8u);
+  for (const gl::Triangle& t : renderer.triangles)
+    for (const gl::ScreenVertex& v : t.v) EXPECT_EQ(std::vector<int>({v.r, v.g, v.b}), std::vector<int>({255, 0, 0}));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(GlApi, CullingDropsBackFaces) {
   const float clockwise[] = {-1, -1, 0, -1, 1, 0, 1, -1, 0};
   glEnable(GL_CULL_FACE);

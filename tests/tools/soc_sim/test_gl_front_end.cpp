@@ -5,12 +5,17 @@
 // Usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so> [GoogleTest options]
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "frame_writer.h"
+#include "scenes/teapot_mesh.h"
 #include "support/back_ends.h"
 #include "support/soc_sim_runner.h"
 
@@ -52,6 +57,30 @@ TEST_F(GlFrontEnd, CollinearTrianglesDrawNothingOnEveryBackEnd) {
     const tessera::Image frame = tessera::read_image((m_dir / backend / "frame_0000.png").string());
     ASSERT_GT(frame.rgba.size(), 0u);
     EXPECT_EQ(pixels_other_than(frame, clear_blue), 0u) << backend << ": pixels drawn by zero-area triangles";
+  }
+}
+
+// The teapot draws its mesh with one glDrawElements a frame; the vertex
+// cache transforms each vertex the mesh uses once and finds it for the
+// other indices (stats.json, "driver"), on every back end alike.
+TEST_F(GlFrontEnd, TeapotTransformsEachVertexOncePerFrame) {
+  const tessera::scenes::Mesh mesh = tessera::scenes::teapot_mesh(4);  // as sw_driver/scenes/teapot.cpp draws it
+  const std::set<uint16_t> used(mesh.indices.begin(), mesh.indices.end());
+  const uint64_t frames = 2, indices = mesh.indices.size(), vertices = used.size();
+  for (const std::string& backend : tessera::test::back_end_names()) {
+    const SimResult result = run({"--backend", backend, "--app", "teapot", "--frames", "2", "--out", backend});
+    ASSERT_EQ(result.status, 0) << backend << ": " << describe(result);
+    std::ifstream in(m_dir / backend / "stats.json");
+    const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+    ASSERT_FALSE(document.is_discarded()) << backend << ": stats.json is not valid JSON";
+    const nlohmann::json& driver = document["stats"]["driver"];
+    ASSERT_TRUE(driver.contains("vertex_cache")) << backend << ": " << driver.dump(2);
+    const uint64_t hits = driver["vertex_cache"]["hits"], misses = driver["vertex_cache"]["misses"];
+    EXPECT_EQ(misses, frames * vertices) << backend;
+    EXPECT_EQ(hits, frames * (indices - vertices)) << backend;
+    EXPECT_EQ(driver["vertices_transformed"].get<uint64_t>(), misses) << backend;
+    // 2,976 indices and 792 vertices used: 73% of the look-ups hit.
+    EXPECT_GT(static_cast<double>(hits) / static_cast<double>(hits + misses), 0.73) << backend;
   }
 }
 
