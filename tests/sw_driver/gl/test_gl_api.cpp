@@ -246,7 +246,12 @@ TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
   EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
   ASSERT_EQ(renderer.triangles.size(), indexed.size());
   for (size_t t = 0; t < indexed.size(); ++t)
-    EXPECT_EQ(std::memcmp(&renderer.triangles[t], &indexed[t], sizeof(gl::Triangle)), 0) << "triangle " << t;
+    for (int k = 0; k < 3; ++k) {
+      const gl::ScreenVertex &a = renderer.triangles[t].v[k], &b = indexed[t].v[k];
+      EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z && a.inv_w == b.inv_w && a.r == b.r && a.g == b.g &&
+                  a.b == b.b && a.a == b.a && a.s == b.s && a.t == b.t)
+          << "triangle " << t << ", vertex " << k;
+    }
   EXPECT_LT(indexed_cost * 2, unindexed_cost);
 
   // Every call starts with an empty cache: the next one transforms its
