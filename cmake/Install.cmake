@@ -22,7 +22,7 @@ set_target_properties(${tessera_installed_programs} PROPERTIES INSTALL_RPATH_USE
 install(TARGETS ${tessera_installed_programs} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 set(tessera_sdk_headers ${PROJECT_SOURCE_DIR}/sw_driver/include)
-install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL
+install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL ${tessera_sdk_headers}/KHR
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 install(FILES ${tessera_sdk_headers}/tessera/app.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tessera)
 

@@ -28,7 +28,8 @@ endfunction()
 
 run_step("installing ${BUILD_DIR} into ${prefix} (has `cmake --build ${BUILD_DIR}` built everything?)"
          ${CMAKE_COMMAND} --install ${BUILD_DIR} --config ${CONFIG} --prefix ${prefix})
-foreach(file bin/soc_sim include/GLES/gl.h include/EGL/egl.h include/tessera/app.h
+foreach(file bin/soc_sim include/GLES/gl.h include/GLES/glext.h include/KHR/khrplatform.h include/EGL/egl.h
+        include/tessera/app.h
         lib/cmake/tessera/tesseraConfig.cmake lib/cmake/tessera/tesseraConfigVersion.cmake
         lib/cmake/tessera/TesseraApp.cmake)
   if(NOT EXISTS ${prefix}/${file})

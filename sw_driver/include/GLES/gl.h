@@ -9,10 +9,12 @@
  *
  * Every entry point of the common profile is declared, the fixed-point
  * ("x") ones included: they take S15.16 values (GLfixed) where the float
- * ones take GLfloat. The enums of the four extensions that an
- * ES 1.1 implementation must or usually offers (read_format,
- * compressed_paletted_texture, point_size_array, point_sprite) are defined
- * so that code querying them compiles; glPointSizePointerOES is not declared
+ * ones take GLfloat. The enums of the four extensions the Khronos gl.h
+ * carries (read_format, compressed_paletted_texture, point_size_array,
+ * point_sprite) are defined so that code naming them compiles; of their
+ * extension macros only GL_OES_read_format is, the one the driver
+ * implements (<GLES/glext.h> lists what it implements, as does
+ * glGetString(GL_EXTENSIONS)). glPointSizePointerOES is not declared
  * because the driver does not implement point size arrays. */
 #ifndef TESSERA_GLES_GL_H
 #define TESSERA_GLES_GL_H
@@ -441,12 +443,17 @@ typedef long GLsizeiptr;
 #define GL_COLOR_ARRAY_POINTER 0x8090
 #define GL_TEXTURE_COORD_ARRAY_POINTER 0x8092
 
-/* ---- Extensions that are part of every ES 1.1 implementation ----------- */
+/* ---- ES 1.1's required extensions -------------------------------------- */
+/* Implemented (GL_EXTENSIONS lists it; <GLES/glext.h> has the same block). */
+#ifndef GL_OES_read_format
 #define GL_OES_read_format 1
 #define GL_IMPLEMENTATION_COLOR_READ_TYPE_OES 0x8B9A
 #define GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES 0x8B9B
+#endif
 
-#define GL_OES_compressed_paletted_texture 1
+/* Not implemented: values only, so that code naming them compiles; the
+ * driver reports no compressed formats, rejects glEnable of point sprites
+ * and has no glPointSizePointerOES. */
 #define GL_PALETTE4_RGB8_OES 0x8B90
 #define GL_PALETTE4_RGBA8_OES 0x8B91
 #define GL_PALETTE4_R5_G6_B5_OES 0x8B92
@@ -457,12 +464,8 @@ typedef long GLsizeiptr;
 #define GL_PALETTE8_R5_G6_B5_OES 0x8B97
 #define GL_PALETTE8_RGBA4_OES 0x8B98
 #define GL_PALETTE8_RGB5_A1_OES 0x8B99
-
-#define GL_OES_point_sprite 1
 #define GL_POINT_SPRITE_OES 0x8861
 #define GL_COORD_REPLACE_OES 0x8862
-
-/* Values only: see the note at the top about glPointSizePointerOES. */
 #define GL_POINT_SIZE_ARRAY_TYPE_OES 0x898A
 #define GL_POINT_SIZE_ARRAY_STRIDE_OES 0x898B
 #define GL_POINT_SIZE_ARRAY_POINTER_OES 0x898C

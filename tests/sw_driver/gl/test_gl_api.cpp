@@ -4,13 +4,19 @@
 // gl_test_fixture.h.
 #include <EGL/egl.h>
 #include <GLES/gl.h>
+#include <GLES/glext.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -292,6 +298,39 @@ TEST_F(GlApi, PointsAndLinesBecomeTriangles) {
   renderer.triangles.clear();
   glDrawArrays(GL_LINE_LOOP, 0, 2);
   EXPECT_EQ(renderer.triangles.size(), 4u);
+}
+
+// GL_EXTENSIONS names exactly the extensions whose macros the SDK's
+// headers define (GL_OES_read_format, ...), and the driver answers what
+// each promises.
+TEST_F(GlApi, ExtensionStringMatchesTheHeaders) {
+  const char* source = std::getenv("TESSERA_SOURCE_DIR");
+  ASSERT_NE(source, nullptr) << "run through ctest, which sets TESSERA_SOURCE_DIR";
+  const std::regex extension_macro(R"(\s*#\s*define\s+(GL_[A-Z]+_[a-z][A-Za-z0-9_]*)\s+1\s*)");
+  std::set<std::string> declared;
+  for (const char* header : {"GLES/gl.h", "GLES/glext.h"}) {
+    std::ifstream in(std::string(source) + "/sw_driver/include/" + header);
+    ASSERT_TRUE(in) << header;
+    std::smatch match;
+    for (std::string line; std::getline(in, line);)
+      if (std::regex_match(line, match, extension_macro)) declared.insert(match[1]);
+  }
+  const GLubyte* text = glGetString(GL_EXTENSIONS);
+  ASSERT_NE(text, nullptr);
+  std::istringstream words(reinterpret_cast<const char*>(text));
+  std::set<std::string> listed;
+  for (std::string word; words >> word;) listed.insert(word);
+  EXPECT_EQ(listed, declared);
+  EXPECT_EQ(listed.count("GL_OES_read_format"), 1u);
+
+  GLint format = 0, type = 0;
+  glGetIntegerv(GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES, &format);
+  glGetIntegerv(GL_IMPLEMENTATION_COLOR_READ_TYPE_OES, &type);
+  uint8_t pixel[4];
+  glReadPixels(0, 0, 1, 1, static_cast<GLenum>(format), static_cast<GLenum>(type), pixel);
+  EXPECT_EQ(format, GL_RGBA);
+  EXPECT_EQ(type, GL_UNSIGNED_BYTE);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST_F(GlApi, ReadPixelsChecksFormatAndType) {
