@@ -87,7 +87,7 @@ int run(int argc, char** argv) {
   env.frames = 2 * frames;
   env.memory_bytes = memory_mib << 20;
   env.args = scene_args;
-  env.make_renderer = backends::backend("arm").make_renderer;
+  backends::hand_over(backends::backend("arm"), env);
   lay_out_memory(env, display);
 
   const auto start = bench::NativeHost::Clock::now();

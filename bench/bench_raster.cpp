@@ -261,7 +261,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   env.host = &host;
   env.frames = 2 * n;
   env.memory_bytes = memory_bytes;
-  env.make_renderer = tessera::backends::backend("raster").make_renderer;
+  tessera::backends::hand_over(tessera::backends::backend("raster"), env);
   env.args = scene_args;
   const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
   const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;

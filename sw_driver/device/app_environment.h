@@ -11,13 +11,10 @@
 #include <vector>
 
 #include "common/activity_counters.h"
+#include "gl/renderer.h"
 #include "host/host_api.h"
 
 namespace tessera {
-
-namespace gl {
-class Renderer;
-}
 
 struct AppEnvironment;
 
@@ -37,6 +34,9 @@ struct AppEnvironment {
   // Empty for applications that do not use GL; EGL refuses to make a
   // surface without one.
   RendererFactory make_renderer;
+  // What that back end's buffers hold, for EGL's configuration, which is
+  // chosen before any surface (and so any renderer) exists.
+  gl::RendererCapabilities capabilities;
   std::vector<std::string> args;
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.

@@ -192,8 +192,8 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_GREEN_BITS: v[0] = static_cast<float>(format.green_bits); break;
     case GL_BLUE_BITS: v[0] = static_cast<float>(format.blue_bits); break;
     case GL_ALPHA_BITS: v[0] = static_cast<float>(format.alpha_bits); break;
-    case GL_DEPTH_BITS: v[0] = 16; break;
-    case GL_STENCIL_BITS: v[0] = 8; break;
+    case GL_DEPTH_BITS: v[0] = static_cast<float>(m_renderer->capabilities().depth_bits); break;
+    case GL_STENCIL_BITS: v[0] = static_cast<float>(m_renderer->capabilities().stencil_bits); break;
     case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
     case GL_POINT_SIZE: v[0] = m_point_size; break;
     case GL_LINE_WIDTH: v[0] = m_line_width; break;
@@ -242,7 +242,8 @@ const GLubyte* Context::get_string(GLenum name) {
     case GL_VENDOR: return reinterpret_cast<const GLubyte*>("tessera");
     case GL_RENDERER: return reinterpret_cast<const GLubyte*>(m_renderer->name());
     case GL_VERSION: return reinterpret_cast<const GLubyte*>("OpenGL ES-CM 1.1");
-    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("");
+    // Those <GLES/glext.h> declares (test_gl_api checks that the two agree).
+    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("GL_OES_read_format");
     default: error(GL_INVALID_ENUM); return nullptr;
   }
 }

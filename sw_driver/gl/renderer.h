@@ -86,10 +86,20 @@ struct ClearRequest {
   int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
 };
 
+// What a back end's buffers hold. EGL offers configurations before any
+// surface (and so any renderer) exists, so the back-end table states them
+// (sw_driver/renderers/backends.def) and the launcher hands them over with
+// the factory (AppEnvironment::capabilities).
+struct RendererCapabilities {
+  unsigned depth_bits = 0;
+  unsigned stencil_bits = 0;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
   virtual const char* name() const = 0;
+  virtual RendererCapabilities capabilities() const = 0;
   virtual unsigned width() const = 0;
   virtual unsigned height() const = 0;
   // The colour buffer's format (the display's).

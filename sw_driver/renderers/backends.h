@@ -16,25 +16,18 @@
 
 namespace tessera::backends {
 
-// What a back end's buffers hold, known before a surface exists (EGL
-// reports it in its configuration).
-struct Capabilities {
-  unsigned depth_bits;
-  unsigned stencil_bits;
-};
-
 struct Backend {
   const char* id;    // folder, library tessera_backend_<id>, namespace
   const char* name;  // driver.backend, --backend
   const char* description;
-  Capabilities capabilities;
+  gl::RendererCapabilities capabilities;
   std::unique_ptr<gl::Renderer> (*make_renderer)(AppEnvironment& env);
   void (*check_configuration)(const Config& config);
 };
 
 inline constexpr Backend BACKENDS[] = {
 #define TESSERA_BACKEND(id, name, depth_bits, stencil_bits, description) \
-  {#id, name, description, {depth_bits, stencil_bits}, &id::make_renderer, &id::check_configuration},
+  {#id, name, description, id::CAPABILITIES, &id::make_renderer, &id::check_configuration},
 #include "renderers/backends.def"
 #undef TESSERA_BACKEND
 };
@@ -44,6 +37,13 @@ const Backend* find_backend(std::string_view name);
 // The back end called `name`; throws std::invalid_argument naming it and
 // listing the known ones.
 const Backend& backend(std::string_view name);
+
+// Hands the back end to an application: its factory and what its buffers
+// hold, for the GL driver's EGL.
+inline void hand_over(const Backend& backend, AppEnvironment& env) {
+  env.make_renderer = backend.make_renderer;
+  env.capabilities = backend.capabilities;
+}
 
 // The names in the table's order: "arm, raster" (with `last_separator`,
 // the last two are joined by it: "arm or raster").

@@ -21,4 +21,11 @@ inline std::vector<BackendEntry> backend_table() {
   };
 }
 
+// The names soc_sim accepts (--backend), in the table's order.
+inline std::vector<std::string> back_end_names() {
+  std::vector<std::string> names;
+  for (const BackendEntry& entry : backend_table()) names.push_back(entry.name);
+  return names;
+}
+
 }  // namespace tessera::test

@@ -348,7 +348,7 @@ int run(int argc, char* argv[]) {
   env.args = opt.app_args;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
-  env.make_renderer = backends::backend(config.get_string("driver.backend")).make_renderer;
+  backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);

@@ -16,6 +16,7 @@
 #include "device/display_driver.h"
 #include "gl/renderer.h"
 #include "raster/command_format.h"
+#include "renderers/backend_entry_points.h"
 #include "renderers/common/tile_binner.h"
 
 namespace tessera::raster_backend {
@@ -24,7 +25,11 @@ class RasterRenderer : public gl::Renderer {
  public:
   explicit RasterRenderer(AppEnvironment& env);
 
+  // One word per pixel: depth in bits 0-23, stencil in 24-31 (DEPTH_BASE in
+  // raster_regs.def).
+
   const char* name() const override { return "tessera raster (fixed-function tile rasterizer)"; }
+  gl::RendererCapabilities capabilities() const override { return backends::raster::CAPABILITIES; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
   PixelFormat color_format() const override { return m_display.format(); }

@@ -185,6 +185,7 @@ namespace {
 class StubRenderer : public gl::Renderer {
  public:
   const char* name() const override { return "stub"; }
+  gl::RendererCapabilities capabilities() const override { return {16, 8}; }
   unsigned width() const override { return 40; }
   unsigned height() const override { return 30; }
   PixelFormat color_format() const override { return PixelFormat::rgb565; }

@@ -458,22 +458,22 @@ TEST_F(SocSim, NoFramesWritesNoPngButCountsTheFrames) {
   EXPECT_TRUE(contains(result.out, "3 frame(s) shown, none written (--no-frames)")) << result.out;
 }
 
-// 400 teapot frames take 67 s of simulated time (about 2 s of wall time
-// without PNGs): the automatic limit, 60 s + 10 s per frame, lets them
-// finish, where the fixed 60 s default used to stop them after 355.
+// 1000 teapot frames take 73 s of simulated time (a few seconds of wall
+// time without PNGs): the automatic limit, 60 s + 10 s per frame, lets them
+// finish, where the fixed 60 s default would stop them.
 TEST_F(SocSim, LongRunIsNotCutByTheAutomaticTimeLimit) {
-  const SimResult result = run({"--app", "teapot", "--frames", "400", "--no-frames", "--out", "out"});
+  const SimResult result = run({"--app", "teapot", "--frames", "1000", "--no-frames", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
   const json document = read_stats(m_dir / "out/stats.json");
-  EXPECT_EQ(document["frames_shown"], 400);
+  EXPECT_EQ(document["frames_shown"], 1000);
   EXPECT_GT(document["stats"]["simulated_ns"].get<double>(), 60e9);
-  EXPECT_EQ(document["time_limit_ms"], 4060000);
+  EXPECT_EQ(document["time_limit_ms"], 10060000);
   EXPECT_EQ(document["time_limit_automatic"], true);
-  EXPECT_TRUE(contains(result.out, "time limit      4060.000 s (automatic: 60 s + 10 s x 400 frames)")) << result.out;
+  EXPECT_TRUE(contains(result.out, "time limit      10060.000 s (automatic: 60 s + 10 s x 1000 frames)"))
+      << result.out;
 }
 
-// A limit the user gives is kept, even one equal to the parameter table's
-// default, and reaching it is an error that names the key, the limit and
+// A limit the user gives is kept, and reaching it is an error that names the key, the limit and
 // the frames reached.
 TEST_F(SocSim, GivenTimeLimitIsKeptAndReachingItIsAnError) {
   SimResult result = run({"--app", "pattern", "--set", "display.dma=true", "--frames", "3", "--set",
@@ -490,11 +490,11 @@ TEST_F(SocSim, GivenTimeLimitIsKeptAndReachingItIsAnError) {
                 "b", "--quiet"});
   expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 20 ms"});
 
-  result = run({"--app", "teapot", "--frames", "400", "--set", "sim.time_limit_ms=60000", "--no-frames", "--out", "c",
-                "--quiet"});
-  expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 60000 ms", "of 400 frames"});
+  result = run({"--app", "teapot", "--frames", "1000", "--set", "sim.time_limit_ms=60000", "--no-frames", "--out",
+                "c", "--quiet"});
+  expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 60000 ms", "of 1000 frames"});
   document = read_stats(m_dir / "c/stats.json");
-  EXPECT_LT(document["frames_shown"].get<unsigned>(), 400u);
+  EXPECT_LT(document["frames_shown"].get<unsigned>(), 1000u);
   EXPECT_EQ(document["time_limit_automatic"], false);
 }
 
