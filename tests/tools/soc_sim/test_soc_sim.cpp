@@ -469,8 +469,7 @@ TEST_F(SocSim, LongRunIsNotCutByTheAutomaticTimeLimit) {
   EXPECT_GT(document["stats"]["simulated_ns"].get<double>(), 60e9);
   EXPECT_EQ(document["time_limit_ms"], 10060000);
   EXPECT_EQ(document["time_limit_automatic"], true);
-  EXPECT_TRUE(contains(result.out, "time limit      10060.000 s (automatic: 60 s + 10 s x 1000 frames)"))
-      << result.out;
+  EXPECT_TRUE(contains(result.out, "time limit      10060.000 s (automatic: 60 s + 10 s x 1000 frames)")) << result.out;
 }
 
 // A limit the user gives is kept, and reaching it is an error that names the key, the limit and
@@ -490,8 +489,8 @@ TEST_F(SocSim, GivenTimeLimitIsKeptAndReachingItIsAnError) {
                 "b", "--quiet"});
   expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 20 ms"});
 
-  result = run({"--app", "teapot", "--frames", "1000", "--set", "sim.time_limit_ms=60000", "--no-frames", "--out",
-                "c", "--quiet"});
+  result = run({"--app", "teapot", "--frames", "1000", "--set", "sim.time_limit_ms=60000", "--no-frames", "--out", "c",
+                "--quiet"});
   expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 60000 ms", "of 1000 frames"});
   document = read_stats(m_dir / "c/stats.json");
   EXPECT_LT(document["frames_shown"].get<unsigned>(), 1000u);
