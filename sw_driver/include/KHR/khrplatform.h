@@ -58,10 +58,13 @@ typedef khronos_int64_t khronos_stime_nanoseconds_t;
 /* The largest enum value, which keeps enums 32 bits wide. */
 #define KHRONOS_MAX_ENUM 0x7FFFFFFF
 
+/* The names are the ones Khronos gives; the house's naming check does not apply. */
+/* NOLINTBEGIN(readability-identifier-naming) */
 typedef enum {
   KHRONOS_FALSE = 0,
   KHRONOS_TRUE = 1,
   KHRONOS_BOOLEAN_ENUM_FORCE_SIZE = KHRONOS_MAX_ENUM
 } khronos_boolean_enum_t;
+/* NOLINTEND(readability-identifier-naming) */
 
 #endif
