@@ -32,6 +32,7 @@
 
 #include "bench_support.h"
 #include "frame_writer.h"
+#include "guarded_main.h"
 
 namespace {
 
@@ -94,9 +95,8 @@ std::vector<std::string> Bench::scene_args(const std::string& scene) const {
 std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  // Many frames of a heavy scene exceed the default simulated-time limit.
-  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet",
-                                 "--set", "sim.time_limit_ms=3600000"});
+  command.insert(command.end(),
+                 {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet", "--force"});
   const auto args = scene_args(scene);
   if (!args.empty()) {
     command.push_back("--");
@@ -239,7 +239,7 @@ void Bench::run() {
   }
   std::vector<std::string> default_demo = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) default_demo.insert(default_demo.end(), {"--config", file});
-  default_demo.insert(default_demo.end(), {"--out", (m_work / "default_demo").string(), "--quiet"});
+  default_demo.insert(default_demo.end(), {"--out", (m_work / "default_demo").string(), "--quiet", "--force"});
   const long default_rss_kib = run_child(default_demo, m_work / "default_demo.stdout").max_rss_kib;
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -284,14 +284,6 @@ static int run_main(int argc, char** argv) {
   return 0;
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_arm: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_arm: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_arm", [&] { return run_main(argc, argv); });
 }

@@ -25,6 +25,7 @@
 
 #include "apps/gl_apps.h"
 #include "native_host.h"
+#include "renderers/backends.h"
 #include "scenes/scene.h"
 
 namespace {
@@ -86,6 +87,7 @@ int run(int argc, char** argv) {
   env.frames = 2 * frames;
   env.memory_bytes = memory_mib << 20;
   env.args = scene_args;
+  backends::hand_over(backends::backend("arm"), env);
   lay_out_memory(env, display);
 
   const auto start = bench::NativeHost::Clock::now();

@@ -34,11 +34,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
+#include "guarded_main.h"
 
 #include "apps/gl_apps.h"
 #include "native_host.h"
 #include "raster/core/tile_rasterizer.h"
 #include "raster/raster_regs.h"
+#include "renderers/backends.h"
 #include "scenes/scene.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
@@ -259,7 +261,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   env.host = &host;
   env.frames = 2 * n;
   env.memory_bytes = memory_bytes;
-  env.backend = "raster";
+  tessera::backends::hand_over(tessera::backends::backend("raster"), env);
   env.args = scene_args;
   const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
   const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
@@ -317,9 +319,8 @@ std::vector<std::string> Bench::soc_sim_command(const std::string& backend, cons
                                                 const fs::path& out) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  // Many frames of a heavy scene exceed the default simulated-time limit.
   command.insert(command.end(), {"--backend", backend, "--app", scene, "--frames", std::to_string(frames), "--out",
-                                 out.string(), "--quiet", "--set", "sim.time_limit_ms=3600000"});
+                                 out.string(), "--quiet", "--force"});
   if (scene == "obj_viewer") command.insert(command.end(), {"--", m_opt.obj_file});
   return command;
 }
@@ -538,14 +539,6 @@ static int run_main(int argc, char** argv) {
   return 0;
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_raster: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_raster: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_raster", [&] { return run_main(argc, argv); });
 }

@@ -31,6 +31,7 @@
 #include "blend_logic_op_adapter.h"
 #include "edge_function_adapter.h"
 #include "fragment_tests_adapter.h"
+#include "guarded_main.h"
 #include "raster/datapath/attribute_interpolator.h"
 #include "raster/datapath/blend_logic_op.h"
 #include "raster/datapath/edge_function.h"
@@ -45,6 +46,13 @@
 namespace {
 
 using namespace tessera::raster;
+using tessera::BlendFactor;
+using tessera::CompareFunc;
+using tessera::LogicOp;
+using tessera::StencilOp;
+using tessera::TexEnv;
+using tessera::TexFilter;
+using tessera::TexWrap;
 
 struct Options {
   uint64_t vectors = 1'000'000;
@@ -126,7 +134,7 @@ struct TexelVector {
   q15_16 s, t;
 };
 struct TexEnvVector {
-  TextureEnvMode mode;
+  TexEnv mode;
   std::array<Rgba8, 4> texels;
   uint8_t weight_s, weight_t;
   Rgba8 fragment;
@@ -178,16 +186,12 @@ std::vector<AttrVector> attr_vectors(std::mt19937_64& rng, uint64_t count) {
 }
 
 std::vector<FragmentVector> fragment_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::NEVER,  CompareFunc::LESS,    CompareFunc::EQUAL,
-                                                    CompareFunc::LEQUAL, CompareFunc::GREATER, CompareFunc::NOTEQUAL,
-                                                    CompareFunc::GEQUAL, CompareFunc::ALWAYS};
-  static constexpr std::array<StencilOp, 7> OPS{StencilOp::KEEP,
-                                                StencilOp::ZERO,
-                                                StencilOp::REPLACE,
-                                                StencilOp::INCR,
-                                                StencilOp::DECR,
-                                                StencilOp::INVERT,
-                                                static_cast<StencilOp>(0x1E04)};
+  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
+                                                    CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
+                                                    CompareFunc::gequal, CompareFunc::always};
+  static constexpr std::array<StencilOp, 7> OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
+                                                StencilOp::incr,          StencilOp::decr, StencilOp::invert,
+                                                static_cast<StencilOp>(7)};
   std::vector<FragmentVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
@@ -216,18 +220,18 @@ std::vector<FragmentVector> fragment_vectors(std::mt19937_64& rng, uint64_t coun
 }
 
 std::vector<BlendVector> blend_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::ZERO,
-                                                       BlendFactor::ONE,
-                                                       BlendFactor::SRC_COLOR,
-                                                       BlendFactor::ONE_MINUS_SRC_COLOR,
-                                                       BlendFactor::SRC_ALPHA,
-                                                       BlendFactor::ONE_MINUS_SRC_ALPHA,
-                                                       BlendFactor::DST_ALPHA,
-                                                       BlendFactor::ONE_MINUS_DST_ALPHA,
-                                                       BlendFactor::DST_COLOR,
-                                                       BlendFactor::ONE_MINUS_DST_COLOR,
-                                                       BlendFactor::SRC_ALPHA_SATURATE,
-                                                       static_cast<BlendFactor>(0x0309)};
+  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::zero,
+                                                       BlendFactor::one,
+                                                       BlendFactor::src_color,
+                                                       BlendFactor::one_minus_src_color,
+                                                       BlendFactor::src_alpha,
+                                                       BlendFactor::one_minus_src_alpha,
+                                                       BlendFactor::dst_alpha,
+                                                       BlendFactor::one_minus_dst_alpha,
+                                                       BlendFactor::dst_color,
+                                                       BlendFactor::one_minus_dst_color,
+                                                       BlendFactor::src_alpha_saturate,
+                                                       static_cast<BlendFactor>(15)};
   std::vector<BlendVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
@@ -236,7 +240,7 @@ std::vector<BlendVector> blend_vectors(std::mt19937_64& rng, uint64_t count) {
     x.state.logic_op_enable = ((a >> 2) & 7) == 0;
     x.state.src_factor = FACTORS[((a >> 5) & 0xff) % FACTORS.size()];
     x.state.dst_factor = FACTORS[((a >> 13) & 0xff) % FACTORS.size()];
-    x.state.op = static_cast<LogicOp>(0x1500 + ((a >> 21) & 15));
+    x.state.op = static_cast<LogicOp>((a >> 21) & 15);
     x.state.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
     x.src = Rgba8::unpack(static_cast<uint32_t>(b));
     x.dst = Rgba8::unpack(static_cast<uint32_t>(b >> 32));
@@ -245,8 +249,8 @@ std::vector<BlendVector> blend_vectors(std::mt19937_64& rng, uint64_t count) {
 }
 
 std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<TextureWrap, 2> WRAPS{TextureWrap::REPEAT, TextureWrap::CLAMP_TO_EDGE};
-  static constexpr std::array<TextureFilter, 2> FILTERS{TextureFilter::NEAREST, TextureFilter::LINEAR};
+  static constexpr std::array<TexWrap, 2> WRAPS{TexWrap::repeat, TexWrap::clamp_to_edge};
+  static constexpr std::array<TexFilter, 2> FILTERS{TexFilter::nearest, TexFilter::linear};
   std::vector<TexelVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
@@ -266,8 +270,8 @@ std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
 }
 
 std::vector<TexEnvVector> texenv_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<TextureEnvMode, 4> MODES{TextureEnvMode::REPLACE, TextureEnvMode::MODULATE,
-                                                       TextureEnvMode::DECAL, static_cast<TextureEnvMode>(0)};
+  static constexpr std::array<TexEnv, 4> MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal,
+                                               static_cast<TexEnv>(3)};
   std::vector<TexEnvVector> v(count);
   for (auto& x : v) {
     const uint64_t a = rng();
@@ -447,14 +451,6 @@ static int run_main(int argc, char** argv) {
   return run(opt);
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_rtl: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "bench_rtl: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("bench_rtl", [&] { return run_main(argc, argv); });
 }

@@ -22,7 +22,7 @@ set_target_properties(${tessera_installed_programs} PROPERTIES INSTALL_RPATH_USE
 install(TARGETS ${tessera_installed_programs} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
 set(tessera_sdk_headers ${PROJECT_SOURCE_DIR}/sw_driver/include)
-install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL
+install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL ${tessera_sdk_headers}/KHR
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 install(FILES ${tessera_sdk_headers}/tessera/app.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tessera)
 
@@ -39,4 +39,5 @@ configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/tesseraConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/tesseraConfig.cmake ${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/TesseraApp.cmake
         DESTINATION ${TESSERA_INSTALL_CMAKEDIR})

@@ -31,19 +31,52 @@ function(tessera_add_test)
                        ENVIRONMENT "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1;TESSERA_SOURCE_DIR=${PROJECT_SOURCE_DIR};TESSERA_BINARY_DIR=${PROJECT_BINARY_DIR}")
 endfunction()
 
+# The RTL's view of tlm/common/fixed_function.def (the fixed-function state
+# codes), generated at build time by the target rtl_fixed_function_pkg
+# (rtl_models/CMakeLists.txt) with cmake/fixed_function_pkg.cmake.
+set(TESSERA_FIXED_FUNCTION_PKG ${PROJECT_BINARY_DIR}/rtl_models/fixed_function_pkg.sv)
+
 # tessera_add_rtl_unit(TARGET lib TOP module SOURCES file.sv ... ADAPTER adapter.cpp ...)
 # Each Verilog reference unit becomes its own static library, reached only
-# through the thin C++ adapter listed in ADAPTER.
+# through the thin C++ adapter listed in ADAPTER. Every unit reads the
+# generated fixed_function_pkg first.
 function(tessera_add_rtl_unit)
   cmake_parse_arguments(U "" "TARGET;TOP" "SOURCES;ADAPTER;LIBS" ${ARGN})
   add_library(${U_TARGET} STATIC ${U_ADAPTER})
+  add_dependencies(${U_TARGET} rtl_fixed_function_pkg)
   verilate(${U_TARGET}
     PREFIX V${U_TOP}
     TOP_MODULE ${U_TOP}
-    SOURCES ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
+    SOURCES ${TESSERA_FIXED_FUNCTION_PKG} ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
     VERILATOR_ARGS --cc --no-timing -Wall -O3)
   target_include_directories(${U_TARGET} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${U_TARGET} PUBLIC ${U_LIBS})
   # Verilator's generated code is not ours to warn about.
   target_compile_options(${U_TARGET} PRIVATE -w)
+endfunction()
+
+# tessera_backends(IDS_VAR NAMES_VAR)
+# The renderer back ends, in the order of sw_driver/renderers/backends.def,
+# the one table of them: their ids (folder, library tessera_backend_<id>,
+# test names) and their names (driver.backend, --backend). Changing the
+# table reconfigures the build.
+function(tessera_backends ids_var names_var)
+  set(table ${PROJECT_SOURCE_DIR}/sw_driver/renderers/backends.def)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${table})
+  file(STRINGS ${table} lines REGEX "^TESSERA_BACKEND\\(")
+  set(ids)
+  set(names)
+  foreach(line IN LISTS lines)
+    if(NOT line MATCHES "^TESSERA_BACKEND\\(([a-z][a-z0-9_]*), \"([a-z][a-z0-9-]*)\", ")
+      message(FATAL_ERROR "${table}: cannot read '${line}': expected TESSERA_BACKEND(id, \"name\", ...) on one line, "
+                          "id in [a-z0-9_], name in [a-z0-9-]")
+    endif()
+    list(APPEND ids ${CMAKE_MATCH_1})
+    list(APPEND names ${CMAKE_MATCH_2})
+  endforeach()
+  if(NOT ids)
+    message(FATAL_ERROR "${table} lists no back end")
+  endif()
+  set(${ids_var} ${ids} PARENT_SCOPE)
+  set(${names_var} ${names} PARENT_SCOPE)
 endfunction()

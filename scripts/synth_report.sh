@@ -16,6 +16,9 @@
 set -euo pipefail
 
 # top module | sources under rtl_models/raster/ (space separated) | paper's cell count or -
+# Every unit also reads fixed_function_pkg.sv, which this script generates
+# from tlm/common/fixed_function.def with cmake/fixed_function_pkg.cmake, as
+# the build does for Verilator.
 UNITS=(
   "recip_unit|recip_unit.sv|1615"
   "edge_function|edge_function.sv|-"
@@ -44,6 +47,12 @@ fi
 LOG_DIR="$(mktemp -d)"
 trap 'rm -rf "$LOG_DIR"' EXIT
 
+PKG="$LOG_DIR/fixed_function_pkg.sv"
+if ! cmake -DDEF="$ROOT/tlm/common/fixed_function.def" -DOUT="$PKG" -P "$ROOT/cmake/fixed_function_pkg.cmake"; then
+  echo "synth_report: cannot generate fixed_function_pkg.sv" >&2
+  exit 1
+fi
+
 status=0
 printf '%-20s %8s %8s %6s  %s\n' "unit" "cells" "cmos4" "flops" "paper (Table IV)"
 cmos4_cmds=""
@@ -55,7 +64,7 @@ for entry in "${UNITS[@]}"; do
   if [[ $# -gt 0 && ! " $* " =~ " $top " ]]; then
     continue
   fi
-  read_cmds=""
+  read_cmds="read_verilog -sv $PKG; "
   for src in $sources; do
     read_cmds+="read_verilog -sv $RTL_DIR/$src; "
   done

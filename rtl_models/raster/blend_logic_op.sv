@@ -2,22 +2,20 @@
 // Verilog reference of tlm/raster/datapath/blend_logic_op.h.
 //
 // Combinational (no latency). Colours are packed R in [7:0], G [15:8],
-// B [23:16], A [31:24], each unorm 0.8. Factor codes: ZERO 0, ONE 1,
-// SRC_COLOR 2, ONE_MINUS_SRC_COLOR 3, SRC_ALPHA 4, ONE_MINUS_SRC_ALPHA 5,
-// DST_ALPHA 6, ONE_MINUS_DST_ALPHA 7, DST_COLOR 8, ONE_MINUS_DST_COLOR 9,
-// SRC_ALPHA_SATURATE 10 (GL enum - 0x0300 + 2), 11..15 act as ZERO.
+// B [23:16], A [31:24], each unorm 0.8. Blend factors and logic ops are the
+// codes of fixed_function_pkg (blend_factor_e, logic_op_e), generated from
+// tlm/common/fixed_function.def; factor codes without an entry act as ZERO.
 // Products are round(a * b / 255), exact: t = a * b + 128,
-// (t + (t >> 8)) >> 8; the sum saturates at 255. Logic op codes are the GL
-// enum minus 0x1500 (CLEAR 0 .. SET 15); an enabled logic op replaces
-// blending. color_mask_i bit c keeps channel c of dst_i when clear.
+// (t + (t >> 8)) >> 8; the sum saturates at 255. An enabled logic op
+// replaces blending. color_mask_i bit c keeps channel c of dst_i when clear.
 module blend_logic_op (
   input  logic [31:0] src_i,
   input  logic [31:0] dst_i,
   input  logic        blend_enable_i,
-  input  logic [3:0]  src_factor_i,
-  input  logic [3:0]  dst_factor_i,
+  input  fixed_function_pkg::blend_factor_e src_factor_i,
+  input  fixed_function_pkg::blend_factor_e dst_factor_i,
   input  logic        logic_op_enable_i,
-  input  logic [3:0]  logic_op_i,
+  input  fixed_function_pkg::logic_op_e     logic_op_i,
   input  logic [3:0]  color_mask_i,
   output logic [31:0] rgba_o
 );
@@ -25,47 +23,49 @@ module blend_logic_op (
   // RGBA: the alpha channel (index 3) differs only in SRC_ALPHA_SATURATE.
   localparam int unsigned NumChannels = 4;
 
-  function automatic logic [7:0] factor(input logic [3:0] code, input logic [7:0] s,
-                                        input logic [7:0] d, input logic [7:0] src_alpha,
-                                        input logic [7:0] dst_alpha, input logic is_alpha);
+  function automatic logic [7:0] factor(input fixed_function_pkg::blend_factor_e code,
+                                        input logic [7:0] s, input logic [7:0] d,
+                                        input logic [7:0] src_alpha, input logic [7:0] dst_alpha,
+                                        input logic is_alpha);
     // Assigned through the function name: yosys 0.23 has no `return`.
     factor = 8'd0;
     unique case (code)
-      4'd0:  factor = 8'd0;
-      4'd1:  factor = 8'd255;
-      4'd2:  factor = s;
-      4'd3:  factor = ~s;
-      4'd4:  factor = src_alpha;
-      4'd5:  factor = ~src_alpha;
-      4'd6:  factor = dst_alpha;
-      4'd7:  factor = ~dst_alpha;
-      4'd8:  factor = d;
-      4'd9:  factor = ~d;
-      4'd10: factor = is_alpha ? 8'd255 : ((src_alpha < ~dst_alpha) ? src_alpha : ~dst_alpha);
+      fixed_function_pkg::BlendFactorZero:             factor = 8'd0;
+      fixed_function_pkg::BlendFactorOne:              factor = 8'd255;
+      fixed_function_pkg::BlendFactorSrcColor:         factor = s;
+      fixed_function_pkg::BlendFactorOneMinusSrcColor: factor = ~s;
+      fixed_function_pkg::BlendFactorSrcAlpha:         factor = src_alpha;
+      fixed_function_pkg::BlendFactorOneMinusSrcAlpha: factor = ~src_alpha;
+      fixed_function_pkg::BlendFactorDstAlpha:         factor = dst_alpha;
+      fixed_function_pkg::BlendFactorOneMinusDstAlpha: factor = ~dst_alpha;
+      fixed_function_pkg::BlendFactorDstColor:         factor = d;
+      fixed_function_pkg::BlendFactorOneMinusDstColor: factor = ~d;
+      fixed_function_pkg::BlendFactorSrcAlphaSaturate:
+        factor = is_alpha ? 8'd255 : ((src_alpha < ~dst_alpha) ? src_alpha : ~dst_alpha);
       default: factor = 8'd0;
     endcase
   endfunction
 
-  function automatic logic [7:0] logic_result(input logic [3:0] op, input logic [7:0] s,
-                                              input logic [7:0] d);
+  function automatic logic [7:0] logic_result(input fixed_function_pkg::logic_op_e op,
+                                              input logic [7:0] s, input logic [7:0] d);
     logic_result = 8'd0;
     unique case (op)
-      4'd0:  logic_result = 8'd0;
-      4'd1:  logic_result = s & d;
-      4'd2:  logic_result = s & ~d;
-      4'd3:  logic_result = s;
-      4'd4:  logic_result = ~s & d;
-      4'd5:  logic_result = d;
-      4'd6:  logic_result = s ^ d;
-      4'd7:  logic_result = s | d;
-      4'd8:  logic_result = ~(s | d);
-      4'd9:  logic_result = ~(s ^ d);
-      4'd10: logic_result = ~d;
-      4'd11: logic_result = s | ~d;
-      4'd12: logic_result = ~s;
-      4'd13: logic_result = ~s | d;
-      4'd14: logic_result = ~(s & d);
-      4'd15: logic_result = 8'hff;
+      fixed_function_pkg::LogicOpClear:        logic_result = 8'd0;
+      fixed_function_pkg::LogicOpAnd:          logic_result = s & d;
+      fixed_function_pkg::LogicOpAndReverse:   logic_result = s & ~d;
+      fixed_function_pkg::LogicOpCopy:         logic_result = s;
+      fixed_function_pkg::LogicOpAndInverted:  logic_result = ~s & d;
+      fixed_function_pkg::LogicOpNoop:         logic_result = d;
+      fixed_function_pkg::LogicOpXor:          logic_result = s ^ d;
+      fixed_function_pkg::LogicOpOr:           logic_result = s | d;
+      fixed_function_pkg::LogicOpNor:          logic_result = ~(s | d);
+      fixed_function_pkg::LogicOpEquiv:        logic_result = ~(s ^ d);
+      fixed_function_pkg::LogicOpInvert:       logic_result = ~d;
+      fixed_function_pkg::LogicOpOrReverse:    logic_result = s | ~d;
+      fixed_function_pkg::LogicOpCopyInverted: logic_result = ~s;
+      fixed_function_pkg::LogicOpOrInverted:   logic_result = ~s | d;
+      fixed_function_pkg::LogicOpNand:         logic_result = ~(s & d);
+      fixed_function_pkg::LogicOpSet:          logic_result = 8'hff;
       default: logic_result = 8'd0;
     endcase
   endfunction

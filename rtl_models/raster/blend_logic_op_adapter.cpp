@@ -19,10 +19,10 @@ Rgba8 BlendLogicOpRtl::run(const BlendState& state, Rgba8 src, Rgba8 dst) {
   m.src_i = src.pack();
   m.dst_i = dst.pack();
   m.blend_enable_i = state.blend_enable;
-  m.src_factor_i = blend_factor_code(state.src_factor);
-  m.dst_factor_i = blend_factor_code(state.dst_factor);
+  m.src_factor_i = code_of(state.src_factor);
+  m.dst_factor_i = code_of(state.dst_factor);
   m.logic_op_enable_i = state.logic_op_enable;
-  m.logic_op_i = logic_op_code(state.op);
+  m.logic_op_i = code_of(state.op);
   m.color_mask_i = state.color_mask & COLOR_MASK_ALL;
   m.eval();
   return Rgba8::unpack(m.rgba_o);

@@ -1,31 +1,30 @@
 // Per-fragment alpha, stencil and depth tests: Verilog reference of
 // tlm/raster/datapath/fragment_tests.h.
 //
-// Combinational (no latency). Compare function fields hold the GL enum minus
-// 0x0200 (NEVER 0, LESS 1, EQUAL 2, LEQUAL 3, GREATER 4, NOTEQUAL 5,
-// GEQUAL 6, ALWAYS 7); the incoming value is the left operand:
+// Combinational (no latency). Compare functions and stencil operations are
+// the codes of fixed_function_pkg (compare_func_e, stencil_op_e), generated
+// from tlm/common/fixed_function.def; stencil codes without an entry keep the
+// stored value. The incoming value is the left operand of a compare:
 // alpha_i func alpha_ref_i, (stencil_ref_i & mask) func (stencil_i & mask),
-// depth_i func stored_depth_i. Stencil operation fields: KEEP 0, ZERO 1,
-// REPLACE 2, INCR 3 (saturating), DECR 4 (saturating), INVERT 5, 6 and 7 act
-// as KEEP. stencil_o is the value to store (through stencil_write_mask_i);
-// depth_we_o says whether depth_i is to be stored. GL 1.2 sequencing is
-// described in fragment_tests.h.
+// depth_i func stored_depth_i. INCR and DECR saturate. stencil_o is the value
+// to store (through stencil_write_mask_i); depth_we_o says whether depth_i is
+// to be stored. GL 1.2 sequencing is described in fragment_tests.h.
 module fragment_tests (
   input  logic        alpha_enable_i,
-  input  logic [2:0]  alpha_func_i,
+  input  fixed_function_pkg::compare_func_e alpha_func_i,
   input  logic [7:0]  alpha_ref_i,
   input  logic [7:0]  alpha_i,
   input  logic        stencil_enable_i,
-  input  logic [2:0]  stencil_func_i,
+  input  fixed_function_pkg::compare_func_e stencil_func_i,
   input  logic [7:0]  stencil_ref_i,
   input  logic [7:0]  stencil_value_mask_i,
   input  logic [7:0]  stencil_write_mask_i,
-  input  logic [2:0]  stencil_sfail_i,
-  input  logic [2:0]  stencil_dpfail_i,
-  input  logic [2:0]  stencil_dppass_i,
+  input  fixed_function_pkg::stencil_op_e   stencil_sfail_i,
+  input  fixed_function_pkg::stencil_op_e   stencil_dpfail_i,
+  input  fixed_function_pkg::stencil_op_e   stencil_dppass_i,
   input  logic [7:0]  stencil_i,
   input  logic        depth_enable_i,
-  input  logic [2:0]  depth_func_i,
+  input  fixed_function_pkg::compare_func_e depth_func_i,
   input  logic        depth_write_mask_i,
   input  logic [23:0] depth_i,
   input  logic [23:0] stored_depth_i,
@@ -41,20 +40,20 @@ module fragment_tests (
   // zero-extended to it so that one comparator function serves all three.
   localparam int unsigned CompareWidth = 24;
 
-  function automatic logic compare(input logic [2:0] func,
+  function automatic logic compare(input fixed_function_pkg::compare_func_e func,
                                    input logic [CompareWidth-1:0] incoming,
                                    input logic [CompareWidth-1:0] stored);
     // Assigned through the function name: yosys 0.23 has no `return`.
     compare = 1'b0;
     unique case (func)
-      3'd0: compare = 1'b0;
-      3'd1: compare = incoming < stored;
-      3'd2: compare = incoming == stored;
-      3'd3: compare = incoming <= stored;
-      3'd4: compare = incoming > stored;
-      3'd5: compare = incoming != stored;
-      3'd6: compare = incoming >= stored;
-      3'd7: compare = 1'b1;
+      fixed_function_pkg::CompareFuncNever:    compare = 1'b0;
+      fixed_function_pkg::CompareFuncLess:     compare = incoming < stored;
+      fixed_function_pkg::CompareFuncEqual:    compare = incoming == stored;
+      fixed_function_pkg::CompareFuncLequal:   compare = incoming <= stored;
+      fixed_function_pkg::CompareFuncGreater:  compare = incoming > stored;
+      fixed_function_pkg::CompareFuncNotequal: compare = incoming != stored;
+      fixed_function_pkg::CompareFuncGequal:   compare = incoming >= stored;
+      fixed_function_pkg::CompareFuncAlways:   compare = 1'b1;
       default: compare = 1'b0;
     endcase
   endfunction
@@ -76,7 +75,7 @@ module fragment_tests (
   assign pass_o = alpha_pass && stencil_pass && depth_pass;
   assign depth_we_o = alpha_pass && stencil_pass && depth_pass && depth_enable_i && depth_write_mask_i;
 
-  logic [2:0] op;
+  fixed_function_pkg::stencil_op_e op;
   always_comb begin
     op = stencil_dppass_i;
     if (!stencil_pass) begin
@@ -90,12 +89,12 @@ module fragment_tests (
   always_comb begin
     op_result = stencil_i;
     unique case (op)
-      3'd0: op_result = stencil_i;
-      3'd1: op_result = 8'd0;
-      3'd2: op_result = stencil_ref_i;
-      3'd3: op_result = (stencil_i == 8'hff) ? 8'hff : stencil_i + 8'd1;
-      3'd4: op_result = (stencil_i == 8'h00) ? 8'h00 : stencil_i - 8'd1;
-      3'd5: op_result = ~stencil_i;
+      fixed_function_pkg::StencilOpKeep:    op_result = stencil_i;
+      fixed_function_pkg::StencilOpZero:    op_result = 8'd0;
+      fixed_function_pkg::StencilOpReplace: op_result = stencil_ref_i;
+      fixed_function_pkg::StencilOpIncr:    op_result = (stencil_i == 8'hff) ? 8'hff : stencil_i + 8'd1;
+      fixed_function_pkg::StencilOpDecr:    op_result = (stencil_i == 8'h00) ? 8'h00 : stencil_i - 8'd1;
+      fixed_function_pkg::StencilOpInvert:  op_result = ~stencil_i;
       default: op_result = stencil_i;
     endcase
   end

@@ -41,7 +41,7 @@ void RecipUnitRtl::reset() {
 
 std::optional<ReciprocalResult> RecipUnitRtl::clock(bool valid, uint16_t x_q10_4) {
   m_model->valid_i = valid ? 1 : 0;
-  m_model->x_i = x_q10_4 & RECIP_OPERAND_MAX;
+  m_model->x_i = x_q10_4;
   // Settle the inputs while the clock is low, so the rising edge samples
   // them as a register in a real design would, free of any input/clock race.
   m_model->eval();
@@ -56,9 +56,6 @@ std::optional<ReciprocalResult> RecipUnitRtl::clock(bool valid, uint16_t x_q10_4
 }
 
 ReciprocalResult RecipUnitRtl::evaluate(uint16_t x_q10_4) {
-  if (x_q10_4 > RECIP_OPERAND_MAX) {
-    return reciprocal_invalid_result(RecipMethod::method3);
-  }
   const std::optional<ReciprocalResult> result = clock(true, x_q10_4);
   if (!result) {
     throw std::logic_error("recip_unit: valid_o not set one cycle after valid_i");

@@ -27,9 +27,9 @@ class RecipUnitRtl {
   RecipUnitRtl& operator=(const RecipUnitRtl&) = delete;
 
   // One operand through the unit: drive it with valid_i, clock once, read
-  // the registered outputs. The port is 14 bits wide, so an operand above
-  // RECIP_OPERAND_MAX never reaches the RTL; it gets the core's invalid
-  // result instead of being silently truncated.
+  // the registered outputs. The port is 16 bits wide, as the core's operand:
+  // every operand reaches the RTL, 0 and those above RECIP_OPERAND_MAX
+  // included, and the RTL flags the invalid ones itself.
   ReciprocalResult evaluate(uint16_t x_q10_4);
   uint32_t evaluate_q5_16(uint16_t x_q10_4) { return evaluate(x_q10_4).q5_16; }
 

@@ -3,22 +3,23 @@
 //
 // Combinational (no latency). s_i and t_i are signed q15.16 texture
 // coordinates; log2_width_i / log2_height_i give the power-of-two size
-// (values above 8 act as 8); wrap_*_i is 0 for REPEAT, 1 for CLAMP_TO_EDGE;
-// linear_i selects LINEAR (bilinear) over NEAREST. Per axis: u = coord * N
-// (16 fraction bits, exact); CLAMP_TO_EDGE limits u to [1/2, N - 1/2];
-// LINEAR subtracts 1/2, takes i0 = floor, i1 = i0 + 1 and the weight of i1
-// as the 8 fraction bits below the index (truncated); REPEAT masks the
-// indices with N - 1, CLAMP_TO_EDGE limits i1 to N - 1. NEAREST gives
-// i1 = i0 and weight 0. Byte addresses: base + ((j << log2 width) + i) * 4
+// (values above 8 act as 8); wrap_*_i and filter_i are codes of
+// fixed_function_pkg (tex_wrap_e, tex_filter_e, generated from
+// tlm/common/fixed_function.def), wrap codes without an entry act as REPEAT.
+// Per axis: u = coord * N (16 fraction bits, exact); CLAMP_TO_EDGE limits u
+// to [1/2, N - 1/2]; LINEAR subtracts 1/2, takes i0 = floor, i1 = i0 + 1 and
+// the weight of i1 as the 8 fraction bits below the index (truncated);
+// REPEAT masks the indices with N - 1, CLAMP_TO_EDGE limits i1 to N - 1.
+// NEAREST gives i1 = i0 and weight 0. Byte addresses: base + ((j << log2 width) + i) * 4
 // for (i0,j0), (i1,j0), (i0,j1), (i1,j1), modulo 2^32.
 module texel_address (
   input  logic [31:0] s_i,
   input  logic [31:0] t_i,
   input  logic [3:0]  log2_width_i,
   input  logic [3:0]  log2_height_i,
-  input  logic        wrap_s_i,
-  input  logic        wrap_t_i,
-  input  logic        linear_i,
+  input  fixed_function_pkg::tex_wrap_e   wrap_s_i,
+  input  fixed_function_pkg::tex_wrap_e   wrap_t_i,
+  input  fixed_function_pkg::tex_filter_e filter_i,
   input  logic [31:0] base_i,
   output logic [7:0]  i0_o,
   output logic [7:0]  i1_o,
@@ -42,12 +43,15 @@ module texel_address (
   logic [63:0] coord;
   logic [7:0]  log2_in;
   logic [1:0]  clamp;
+  logic        linear;
   logic [15:0] index0, index1, weight;
   logic [3:0]  log2_width;
 
   assign coord = {t_i, s_i};
   assign log2_in = {log2_height_i, log2_width_i};
-  assign clamp = {wrap_t_i, wrap_s_i};
+  assign clamp = {wrap_t_i == fixed_function_pkg::TexWrapClampToEdge,
+                  wrap_s_i == fixed_function_pkg::TexWrapClampToEdge};
+  assign linear = filter_i == fixed_function_pkg::TexFilterLinear;
 
   for (genvar a = 0; a < 2; a++) begin : g_axis
     logic [3:0] log2n;
@@ -72,9 +76,9 @@ module texel_address (
       end
     end
 
-    assign v = linear_i ? u_clamped - 40'sd32768 : u_clamped;
+    assign v = linear ? u_clamped - 40'sd32768 : u_clamped;
     assign i0_full = v[TexelCoordWidth-1:16];
-    assign i1_full = linear_i ? i0_full + 24'sd1 : i0_full;
+    assign i1_full = linear ? i0_full + 24'sd1 : i0_full;
 
     always_comb begin
       index0[8*a +: 8] = i0_full[7:0] & size_mask[7:0];
@@ -85,7 +89,7 @@ module texel_address (
       end
     end
 
-    assign weight[8*a +: 8] = linear_i ? v[15:8] : 8'd0;
+    assign weight[8*a +: 8] = linear ? v[15:8] : 8'd0;
 
     logic unused_axis;
     assign unused_axis = ^{v[7:0], size_mask[8]};

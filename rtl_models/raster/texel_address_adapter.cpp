@@ -20,9 +20,9 @@ TexelFootprint TexelAddressRtl::lookup(const TextureState& state, q15_16 s, q15_
   m.t_i = static_cast<uint32_t>(t.raw);
   m.log2_width_i = state.log2_width & 0xf;
   m.log2_height_i = state.log2_height & 0xf;
-  m.wrap_s_i = state.wrap_s == TextureWrap::CLAMP_TO_EDGE;
-  m.wrap_t_i = state.wrap_t == TextureWrap::CLAMP_TO_EDGE;
-  m.linear_i = state.filter == TextureFilter::LINEAR;
+  m.wrap_s_i = code_of(state.wrap_s);
+  m.wrap_t_i = code_of(state.wrap_t);
+  m.filter_i = code_of(state.filter);
   m.base_i = state.base;
   m.eval();
 

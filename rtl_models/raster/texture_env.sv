@@ -6,8 +6,9 @@
 // (i1,j1); weight_s_i / weight_t_i the weights of i1 / j1 in 1/256 (0 for
 // NEAREST, which then returns texel00_i). Each filtered channel is
 // (sum w * texel + 2^15) >> 16 with w00 = (256-a)(256-b), w10 = a(256-b),
-// w01 = (256-a)b, w11 = ab. env_mode_i: 0 REPLACE, 1 MODULATE, 2 DECAL,
-// 3 passes fragment_i through. Products are divided by 255 with exact
+// w01 = (256-a)b, w11 = ab. env_mode_i is a code of fixed_function_pkg
+// (tex_env_e, generated from tlm/common/fixed_function.def); a code without
+// an entry passes fragment_i through. Products are divided by 255 with exact
 // rounding: t = x + 128, (t + (t >> 8)) >> 8.
 module texture_env (
   input  logic [31:0] texel00_i,
@@ -17,7 +18,7 @@ module texture_env (
   input  logic [7:0]  weight_s_i,
   input  logic [7:0]  weight_t_i,
   input  logic [31:0] fragment_i,
-  input  logic [1:0]  env_mode_i,
+  input  fixed_function_pkg::tex_env_e env_mode_i,
   output logic [31:0] texel_o,
   output logic [31:0] rgba_o
 );
@@ -71,9 +72,9 @@ module texture_env (
     always_comb begin
       rgba_o[8*c +: 8] = f;
       unique case (env_mode_i)
-        2'd0: rgba_o[8*c +: 8] = t;
-        2'd1: rgba_o[8*c +: 8] = modulate_q[15:8];
-        2'd2: rgba_o[8*c +: 8] = (c == 3) ? f : decal_q[15:8];
+        fixed_function_pkg::TexEnvReplace:  rgba_o[8*c +: 8] = t;
+        fixed_function_pkg::TexEnvModulate: rgba_o[8*c +: 8] = modulate_q[15:8];
+        fixed_function_pkg::TexEnvDecal:    rgba_o[8*c +: 8] = (c == 3) ? f : decal_q[15:8];
         default: rgba_o[8*c +: 8] = f;
       endcase
     end

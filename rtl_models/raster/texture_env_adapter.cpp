@@ -14,8 +14,8 @@ TextureEnvRtl::~TextureEnvRtl() {
   m_model->final();
 }
 
-TextureEnvResult TextureEnvRtl::run(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s,
-                                    uint8_t weight_t, Rgba8 fragment) {
+TextureEnvResult TextureEnvRtl::run(TexEnv mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
+                                    Rgba8 fragment) {
   Vtexture_env& m = *m_model;
   m.texel00_i = texels[0].pack();
   m.texel10_i = texels[1].pack();
@@ -24,7 +24,7 @@ TextureEnvResult TextureEnvRtl::run(TextureEnvMode mode, const std::array<Rgba8,
   m.weight_s_i = weight_s;
   m.weight_t_i = weight_t;
   m.fragment_i = fragment.pack();
-  m.env_mode_i = texture_env_mode_code(mode);
+  m.env_mode_i = code_of(mode);
   m.eval();
   return TextureEnvResult{Rgba8::unpack(m.texel_o), Rgba8::unpack(m.rgba_o)};
 }

@@ -19,7 +19,7 @@ class TextureEnvRtl {
   TextureEnvRtl(const TextureEnvRtl&) = delete;
   TextureEnvRtl& operator=(const TextureEnvRtl&) = delete;
 
-  TextureEnvResult run(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
+  TextureEnvResult run(TexEnv mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
                        Rgba8 fragment);
 
  private:

@@ -39,7 +39,7 @@ AppInfo find_app(const std::string& name) {
   std::string known;
   for (const auto& [app_name, info] : apps) known += (known.empty() ? "" : ", ") + app_name;
   throw std::invalid_argument("unknown application '" + name + "' (built-in: " + known +
-                              "; or the path of a shared library exporting tessera_app_main)");
+                              "; or the path of a shared library exporting tessera_app_main or main)");
 }
 
 }  // namespace tessera

@@ -1,6 +1,6 @@
 // Applications written against GL ES 1.1 / EGL: the built-in scenes (each
-// runs in the standard EGL loop of scene_app.cpp) and shared libraries that
-// export tessera_app_main.
+// runs in the standard EGL loop of scene_main in gl_apps.cpp) and shared
+// libraries that export tessera_app_main or, as an ordinary program, main.
 #pragma once
 
 #include <string>
@@ -20,7 +20,8 @@ int run_gl_app(AppEnvironment& env, GlMain main, const std::string& name);
 // The EGL loop around a built-in scene.
 int run_scene_app(AppEnvironment& env, const scenes::Scene& scene);
 
-// Loads a shared library and returns its tessera_app_main; throws
+// Loads a shared library and returns its tessera_app_main, or its main if
+// it has none (defined in the library itself); throws
 // std::invalid_argument naming the file and what is wrong with it.
 GlMain load_app_library(const std::string& path);
 

@@ -1,16 +1,27 @@
 // What the simulator hands an application when it starts: the host to run
-// on, how many frames to draw, and where the frame buffers are (the boot
-// loader's memory layout).
+// on, how many frames to draw, where the frame buffers are (the boot
+// loader's memory layout), and the renderer back end the GL driver draws
+// with.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/activity_counters.h"
+#include "gl/renderer.h"
 #include "host/host_api.h"
 
 namespace tessera {
+
+struct AppEnvironment;
+
+// Builds the renderer of the window surface (eglCreateWindowSurface). The
+// launcher takes it from the back-end registry (sw_driver/renderers/
+// backends.h) by driver.backend; the GL front end only calls it.
+using RendererFactory = std::function<std::unique_ptr<gl::Renderer>(AppEnvironment& env)>;
 
 struct AppEnvironment {
   HostApi* host = nullptr;
@@ -20,7 +31,12 @@ struct AppEnvironment {
   // System memory the driver may allocate (textures, depth buffers).
   uint32_t heap_base = 0;
   uint32_t heap_end = 0;
-  std::string backend = "arm";
+  // Empty for applications that do not use GL; EGL refuses to make a
+  // surface without one.
+  RendererFactory make_renderer;
+  // What that back end's buffers hold, for EGL's configuration, which is
+  // chosen before any surface (and so any renderer) exists.
+  gl::RendererCapabilities capabilities;
   std::vector<std::string> args;
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.

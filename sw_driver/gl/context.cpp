@@ -27,7 +27,15 @@ void set_current_context(Context* context) {
   g_current = context;
 }
 
-Context::Context(HostApi& host, Renderer& renderer) : m_host(host), m_renderer(&renderer) {
+Context::Context(HostApi& host, Renderer& renderer, ActivityCounters* counters) : m_host(host), m_renderer(&renderer) {
+  if (counters) {
+    m_cache_hits = &counters->counter("vertex_cache.hits",
+                                      "glDrawElements indices whose vertex was in the post-transform vertex cache");
+    m_cache_misses = &counters->counter("vertex_cache.misses",
+                                        "glDrawElements indices whose vertex had to be fetched and transformed");
+    m_vertices_transformed = &counters->counter(
+        "vertices_transformed", "vertices fetched, transformed and lit (cache misses and glDrawArrays vertices)");
+  }
   m_viewport.width = static_cast<int>(m_renderer->width());
   m_viewport.height = static_cast<int>(m_renderer->height());
   m_raster.scissor_width = m_viewport.width;

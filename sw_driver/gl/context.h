@@ -15,8 +15,10 @@
 
 #include <glm/glm.hpp>
 
+#include "common/activity_counters.h"
 #include "gl/geometry.h"
 #include "gl/renderer.h"
+#include "gl/vertex_cache.h"
 #include "host/host_api.h"
 
 namespace tessera::gl {
@@ -42,8 +44,9 @@ struct BufferObject {
 
 class Context {
  public:
-  // The renderer belongs to the EGL surface the context is current on.
-  Context(HostApi& host, Renderer& renderer);
+  // The renderer belongs to the EGL surface the context is current on. The
+  // driver's statistics (vertex cache) go to `counters` if there are any.
+  Context(HostApi& host, Renderer& renderer, ActivityCounters* counters = nullptr);
 
   HostApi& host() { return m_host; }
   Renderer& renderer() { return *m_renderer; }
@@ -159,8 +162,10 @@ class Context {
     glm::vec4 eye;
     bool valid;
   };
-  bool fetch_and_transform(const std::vector<uint32_t>& indices, std::vector<Vertex>& out);
-  void draw(GLenum mode, const std::vector<uint32_t>& indices);
+  // `indexed`: the indices come from glDrawElements and may repeat, so
+  // they go through the vertex cache; glDrawArrays' never repeat.
+  void fetch_and_transform(const std::vector<uint32_t>& indices, bool indexed, std::vector<Vertex>& out);
+  void draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed);
   void emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color);
   void emit_quad(const glm::vec2 corners[4], const Vertex& source, float depth_ndc_w_z, float w);
   void flush_triangles();
@@ -228,6 +233,12 @@ class Context {
 
   std::vector<Triangle> m_batch;
   std::vector<Vertex> m_vertices;
+  VertexCache<Vertex> m_vertex_cache;
+
+  // Driver statistics, null without counters.
+  ActivityCounter* m_cache_hits = nullptr;
+  ActivityCounter* m_cache_misses = nullptr;
+  ActivityCounter* m_vertices_transformed = nullptr;
 };
 
 // The current context (eglMakeCurrent), or nullptr.

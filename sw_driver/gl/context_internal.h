@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 
+#include "common/fixed_function.h"
 #include "gl/renderer.h"
 
 namespace tessera::gl {
@@ -20,39 +22,59 @@ inline constexpr unsigned MAX_LIGHTS = 8;
 inline constexpr GLsizei MAX_TEXTURE_SIZE = 256;
 inline constexpr size_t BATCH_TRIANGLES = 256;
 
+// GL enums to the hardware codes of common/fixed_function.def, with GL's
+// rules on which values each call accepts; false for an enum GL rejects
+// there (the caller raises GL_INVALID_ENUM and keeps its state).
+template <typename E>
+inline bool fixed_function_value(GLenum value, E* out) {
+  const std::optional<E> code = from_gl_enum<E>(value);
+  if (code) *out = *code;
+  return code.has_value();
+}
+
 inline bool compare_func(GLenum func, CompareFunc* out) {
-  if (func < GL_NEVER || func > GL_ALWAYS) return false;
-  *out = static_cast<CompareFunc>(func - GL_NEVER);
-  return true;
+  return fixed_function_value(func, out);
 }
 
 inline bool stencil_op_value(GLenum op, StencilOp* out) {
-  switch (op) {
-    case GL_KEEP: *out = StencilOp::keep; return true;
-    case GL_ZERO: *out = StencilOp::zero; return true;
-    case GL_REPLACE: *out = StencilOp::replace; return true;
-    case GL_INCR: *out = StencilOp::incr; return true;
-    case GL_DECR: *out = StencilOp::decr; return true;
-    case GL_INVERT: *out = StencilOp::invert; return true;
-    default: return false;
-  }
+  return fixed_function_value(op, out);
 }
 
+inline bool logic_op_value(GLenum op, LogicOp* out) {
+  return fixed_function_value(op, out);
+}
+
+// glBlendFunc: the source and destination factors are different sets.
 inline bool blend_factor(GLenum factor, bool source, BlendFactor* out) {
-  switch (factor) {
-    case GL_ZERO: *out = BlendFactor::zero; return true;
-    case GL_ONE: *out = BlendFactor::one; return true;
-    case GL_SRC_COLOR: *out = BlendFactor::src_color; return !source;
-    case GL_ONE_MINUS_SRC_COLOR: *out = BlendFactor::one_minus_src_color; return !source;
-    case GL_DST_COLOR: *out = BlendFactor::dst_color; return source;
-    case GL_ONE_MINUS_DST_COLOR: *out = BlendFactor::one_minus_dst_color; return source;
-    case GL_SRC_ALPHA: *out = BlendFactor::src_alpha; return true;
-    case GL_ONE_MINUS_SRC_ALPHA: *out = BlendFactor::one_minus_src_alpha; return true;
-    case GL_DST_ALPHA: *out = BlendFactor::dst_alpha; return true;
-    case GL_ONE_MINUS_DST_ALPHA: *out = BlendFactor::one_minus_dst_alpha; return true;
-    case GL_SRC_ALPHA_SATURATE: *out = BlendFactor::src_alpha_saturate; return source;
-    default: return false;
-  }
+  const std::optional<BlendFactor> code =
+      blend_factor_from_gl_enum(factor, source ? BlendSide::source : BlendSide::destination);
+  if (code) *out = *code;
+  return code.has_value();
+}
+
+// There are no mipmaps: a mipmap minification filter acts as the filter
+// within its base level.
+inline bool tex_filter_value(GLenum filter, bool minification, TexFilter* out) {
+  if (minification && (filter == GL_NEAREST_MIPMAP_NEAREST || filter == GL_NEAREST_MIPMAP_LINEAR)) filter = GL_NEAREST;
+  if (minification && (filter == GL_LINEAR_MIPMAP_NEAREST || filter == GL_LINEAR_MIPMAP_LINEAR)) filter = GL_LINEAR;
+  return fixed_function_value(filter, out);
+}
+
+inline bool tex_wrap_value(GLenum wrap, TexWrap* out) {
+  return fixed_function_value(wrap, out);
+}
+
+// GL_TEXTURE_ENV_MODE as drawn: BLEND, ADD and COMBINE are accepted and
+// stored (textures.cpp) but have no entry in the table yet, and are drawn as
+// MODULATE.
+inline TexEnv tex_env_value(GLenum mode) {
+  return from_gl_enum<TexEnv>(mode).value_or(TexEnv::modulate);
+}
+
+// The GL enum of a code the state holds, for glGet.
+template <typename E>
+inline GLenum gl_value(E code) {
+  return static_cast<GLenum>(gl_enum_of(code).value_or(0));
 }
 
 inline float clamp01(float v) {

@@ -1,6 +1,7 @@
 // EGL 1.4 on the simulated SoC: one display (the SoC's), one configuration
-// matching the display controller's pixel format, one window surface (the
-// screen) owning the back end's renderer, and GL ES 1.x contexts.
+// matching the display controller's pixel format and the back end's depth
+// and stencil buffers, one window surface (the screen) owning the back
+// end's renderer, and GL ES 1.x contexts.
 // eglSwapBuffers presents through the back end and ends the application
 // once the run's frame count has been shown.
 #include <EGL/egl.h>
@@ -80,6 +81,12 @@ const tessera::PixelFormatInfo& display_format() {
   return tessera::pixel_format_info(*known);
 }
 
+// What the run's back end stores: the configuration is offered before the
+// surface that makes the renderer exists.
+tessera::gl::RendererCapabilities back_end_capabilities() {
+  return tessera::gl::environment().capabilities;
+}
+
 EGLint config_attribute(EGLint attribute, bool* known) {
   *known = true;
   const tessera::PixelFormatInfo& format = display_format();
@@ -107,8 +114,8 @@ EGLint config_attribute(EGLint attribute, bool* known) {
     case EGL_MAX_PBUFFER_HEIGHT:
     case EGL_MAX_PBUFFER_PIXELS:
       return attribute == EGL_MAX_SWAP_INTERVAL || attribute == EGL_MIN_SWAP_INTERVAL ? 1 : 0;
-    case EGL_DEPTH_SIZE: return 16;
-    case EGL_STENCIL_SIZE: return 8;
+    case EGL_DEPTH_SIZE: return static_cast<EGLint>(back_end_capabilities().depth_bits);
+    case EGL_STENCIL_SIZE: return static_cast<EGLint>(back_end_capabilities().stencil_bits);
     case EGL_CONFIG_ID: return 1;
     case EGL_CONFIG_CAVEAT: return EGL_NONE;
     case EGL_COLOR_BUFFER_TYPE: return EGL_RGB_BUFFER;
@@ -257,7 +264,11 @@ EGLAPI EGLSurface EGLAPIENTRY eglCreateWindowSurface(EGLDisplay dpy, EGLConfig c
   if (!g_surfaces.empty()) return fail(EGL_BAD_ALLOC, EGL_NO_SURFACE);
   auto& env = tessera::gl::environment();
   auto surface = std::make_unique<Surface>();
-  surface->renderer = tessera::gl::make_renderer(env.backend, env);
+  // The launcher hands the back end over (AppEnvironment::make_renderer);
+  // the front end knows none by name.
+  if (!env.make_renderer)
+    throw std::logic_error("EGL: no renderer back end was handed to the driver (AppEnvironment::make_renderer)");
+  surface->renderer = env.make_renderer(env);
   surface->config = config;
   Surface* handle = surface.release();
   g_surfaces.insert(handle);
@@ -369,7 +380,10 @@ EGLAPI EGLBoolean EGLAPIENTRY eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EG
   if (!g_contexts.count(c)) return fail(EGL_BAD_CONTEXT, EGL_FALSE);
   if (!g_surfaces.count(d) || read != draw) return fail(EGL_BAD_SURFACE, EGL_FALSE);
   if (c->surface && c->surface != d) return fail(EGL_BAD_MATCH, EGL_FALSE);
-  if (!c->gl) c->gl = std::make_unique<Context>(*tessera::gl::environment().host, *d->renderer);
+  if (!c->gl) {
+    auto& env = tessera::gl::environment();
+    c->gl = std::make_unique<Context>(*env.host, *d->renderer, env.counters);
+  }
   c->surface = d;
   g_current = c;
   g_current_surface = d;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace tessera::gl {
 
@@ -70,17 +71,55 @@ uint32_t to_unorm24(float value) {
   return static_cast<uint32_t>(std::llround(value * MAX));
 }
 
-bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
-  const glm::vec4& p = v.position;
+bool to_window(const glm::vec4& p, const Viewport& viewport, WindowPoint* out) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.w) || !(p.w > 0))
     return false;
   const double inv_w = 1.0 / p.w;
-  const double xn = p.x * inv_w, yn = p.y * inv_w, zn = p.z * inv_w;
-  const double xw = (xn + 1.0) * viewport.width * 0.5 + viewport.x;
-  const double yw = (yn + 1.0) * viewport.height * 0.5 + viewport.y;
+  out->x = (p.x * inv_w + 1.0) * viewport.width * 0.5 + viewport.x;
+  out->y = (p.y * inv_w + 1.0) * viewport.height * 0.5 + viewport.y;
+  return std::isfinite(out->x) && std::isfinite(out->y);
+}
+
+bool is_degenerate(const std::vector<WindowPoint>& polygon) {
+  if (polygon.size() < 3) return true;
+  const WindowPoint& origin = polygon[0];
+  double twice_area = 0, longest_squared = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const WindowPoint& a = polygon[i];
+    const WindowPoint& b = polygon[(i + 1) % polygon.size()];
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    longest_squared = std::max(longest_squared, dx * dx + dy * dy);
+    if (i > 0 && i + 1 < polygon.size())
+      twice_area += (a.x - origin.x) * (b.y - origin.y) - (b.x - origin.x) * (a.y - origin.y);
+  }
+  // height = |twice_area| / longest <= DEGENERATE_HEIGHT, without the square root.
+  return twice_area * twice_area <= DEGENERATE_HEIGHT * DEGENERATE_HEIGHT * longest_squared;
+}
+
+// In units of 1/16 pixel: snapping moves each vertex by at most 1/2 in x and
+// in y, so each snapped edge e' = e + d with |d|max <= 1. The unsnapped twice
+// area T = cross(e1' - d1, e2' - d2) differs from the snapped T' by at most
+// |e1'|1 + |e2'|1 + 2 (|cross(u, v)| <= |u|1 |v|max). The unsnapped
+// triangle is degenerate when |T| <= H L with H = 1/64 pixel = 1/4 unit and
+// L its longest edge, at most max |e'|1 + 2 <= |e1'|1 + |e2'|1 + 2. So
+// 4 |T'| > 5 (|e1'|1 + |e2'|1) + 10 rules degeneracy out.
+bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {
+  const int64_t twice_area = std::llabs(signed_area(a, b, c));
+  const int64_t edges = std::llabs(int64_t{b.x} - a.x) + std::llabs(int64_t{b.y} - a.y) +
+                        std::llabs(int64_t{c.x} - a.x) + std::llabs(int64_t{c.y} - a.y);
+  static_assert(DEGENERATE_HEIGHT * (1 << SUBPIXEL_BITS) == 0.25, "the bound assumes H = 1/4 of a 9.4 unit");
+  return 4 * twice_area > 5 * edges + 10;
+}
+
+bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
+  const glm::vec4& p = v.position;
+  WindowPoint window;
+  if (!to_window(p, viewport, &window)) return false;
+  const double inv_w = 1.0 / p.w;
+  const double zn = p.z * inv_w;
   const double zw = (zn * (viewport.far_depth - viewport.near_depth) + viewport.far_depth + viewport.near_depth) * 0.5;
-  const double xf = std::nearbyint(xw * (1 << SUBPIXEL_BITS));
-  const double yf = std::nearbyint(yw * (1 << SUBPIXEL_BITS));
+  const double xf = std::nearbyint(window.x * (1 << SUBPIXEL_BITS));
+  const double yf = std::nearbyint(window.y * (1 << SUBPIXEL_BITS));
   if (!std::isfinite(xf) || !std::isfinite(yf) || xf < 0 || yf < 0 || xf > MAX_SCREEN_COORDINATE ||
       yf > MAX_SCREEN_COORDINATE)
     return false;
@@ -163,6 +202,16 @@ FloatCost clip_test_cost() {
 }
 FloatCost screen_cost() {
   return {6, 8, 1, 0, 2, 3, 0};
+}
+
+FloatCost degeneracy_cost(size_t vertices) {
+  // Per edge its vector, squared length and the running maximum; per fan
+  // triangle a cross product and the sum; then the final comparison.
+  const uint64_t n = vertices, fan = n >= 2 ? n - 2 : 0;
+  FloatCost cost{3 * n, 2 * n, 0, 0, n, 0, 0};
+  cost += FloatCost{4 * fan, 2 * fan, 0, 0, 0, 0, 0};
+  cost += FloatCost{0, 3, 0, 0, 1, 0, 0};
+  return cost;
 }
 
 }  // namespace tessera::gl

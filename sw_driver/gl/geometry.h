@@ -33,6 +33,35 @@ struct Viewport {
   float near_depth = 0.0f, far_depth = 1.0f;  // glDepthRangef
 };
 
+// A vertex's window coordinates before snapping: pixels, y up, computed in
+// double precision from the float clip coordinates as to_screen does.
+struct WindowPoint {
+  double x = 0, y = 0;
+};
+
+// False for a position that is not finite or has w <= 0.
+bool to_window(const glm::vec4& clip, const Viewport& viewport, WindowPoint* out);
+
+// Whether a polygon has no area is decided before snapping to 9.4: snapping
+// moves each vertex by up to 1/32 pixel, which turns three collinear
+// vertices into a sliver that covers pixels. A polygon counts as degenerate
+// when its height across its longest edge (twice its area over that edge's
+// length) is at most a quarter of the snapping step. The float transform
+// leaves collinear vertices within about 1e-4 pixel of their line on a
+// 512-pixel screen, far inside this; and a triangle thinner than it would
+// only cover what rounding to 1/16 pixel makes of it.
+inline constexpr double DEGENERATE_HEIGHT = 1.0 / 64;  // pixels
+
+// True when the convex polygon (window coordinates before snapping, fewer
+// than three vertices included) has no area in the sense above.
+bool is_degenerate(const std::vector<WindowPoint>& polygon);
+
+// True when the snapped triangle's area is so large against its edges that
+// the unsnapped triangle cannot be degenerate: a few integer operations
+// that spare all but thin triangles the floating-point test on the host.
+bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
+inline constexpr unsigned SURELY_HAS_AREA_ALU = 10;  // its cost beside signed_area
+
 // Window coordinates in 9.4 fixed point (rounded to nearest), depth in 0.24,
 // colour in 0.8 (rounded to nearest, clamped). Returns false for a vertex
 // whose coordinates are not finite or fall outside the 9.4 range (the caller
@@ -90,9 +119,10 @@ struct FloatCost {
     return *this;
   }
 };
-FloatCost transform_cost();                // one 4x4 matrix times a vector
-FloatCost lighting_cost(unsigned lights);  // light_vertex with `lights` enabled lights
-FloatCost clip_test_cost();                // inside_view_volume
-FloatCost screen_cost();                   // to_screen
+FloatCost transform_cost();                  // one 4x4 matrix times a vector
+FloatCost lighting_cost(unsigned lights);    // light_vertex with `lights` enabled lights
+FloatCost clip_test_cost();                  // inside_view_volume
+FloatCost screen_cost();                     // to_screen
+FloatCost degeneracy_cost(size_t vertices);  // is_degenerate of a polygon of `vertices`
 
 }  // namespace tessera::gl

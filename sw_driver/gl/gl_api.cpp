@@ -10,13 +10,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
+#include "gl/entry_point.h"
 
 using tessera::gl::Context;
-using tessera::gl::current_context;
-
-#define WITH_CONTEXT(...)         \
-  Context* c = current_context(); \
-  if (!c) return __VA_ARGS__;
 
 namespace {
 

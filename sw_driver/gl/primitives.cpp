@@ -34,8 +34,18 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
   // Orientation from the whole polygon, so that clipping cannot flip a face.
   int64_t area = 0;
   for (size_t i = 1; i + 1 < screen.size(); ++i) area += signed_area(screen[0], screen[i], screen[i + 1]);
-  m_host.compute(Op::alu, 12);
-  if (area == 0) return;  // degenerate after snapping to 9.4
+  m_host.compute(Op::alu, 12 + SURELY_HAS_AREA_ALU);
+  // Whether the polygon has any area is decided before snapping, which
+  // would turn collinear vertices into a sliver (geometry.h); an integer
+  // bound settles it for every triangle but the thin ones.
+  if (screen.size() != 3 || !surely_has_area(screen[0], screen[1], screen[2])) {
+    std::vector<WindowPoint> window(polygon.size());
+    for (size_t i = 0; i < polygon.size(); ++i)
+      if (!to_window(polygon[i].position, m_viewport, &window[i])) return;
+    charge(degeneracy_cost(window.size()), 1);
+    if (is_degenerate(window)) return;
+  }
+  if (area == 0) return;  // a thin polygon whose vertices snapped onto one line
   const bool front = (area > 0) == (m_front_face == GL_CCW);
   if (m_cull && (m_cull_mode == GL_FRONT_AND_BACK || (m_cull_mode == GL_BACK) != front)) return;
   for (size_t i = 1; i + 1 < screen.size(); ++i) {
@@ -61,9 +71,7 @@ RasterState Context::raster_state() const {
   auto it = m_textures.find(m_bound_texture);
   s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
   if (s.texture) s.tex = it->second.texture;
-  s.tex_env = m_tex_env_mode == GL_REPLACE ? TexEnv::replace
-              : m_tex_env_mode == GL_DECAL ? TexEnv::decal
-                                           : TexEnv::modulate;
+  s.tex_env = tex_env_value(m_tex_env_mode);
   return s;
 }
 
@@ -89,9 +97,9 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, float,
   emit_triangle(v[0], v[2], v[3], nullptr);
 }
 
-void Context::draw(GLenum mode, const std::vector<uint32_t>& indices) {
+void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
-  fetch_and_transform(indices, m_vertices);
+  fetch_and_transform(indices, indexed, m_vertices);
   const std::vector<Vertex>& v = m_vertices;
   const size_t n = v.size();
   const bool flat = m_shade_model == GL_FLAT;
@@ -168,7 +176,7 @@ void Context::draw_arrays(GLenum mode, GLint first, GLsizei count) {
   if (count < 0 || first < 0) return error(GL_INVALID_VALUE);
   std::vector<uint32_t> indices(static_cast<size_t>(count));
   for (GLsizei i = 0; i < count; ++i) indices[i] = static_cast<uint32_t>(first + i);
-  draw(mode, indices);
+  draw(mode, indices, false);
 }
 
 void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void* pointer) {
@@ -197,7 +205,7 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
     }
   }
   m_host.compute(Op::alu, 2ull * static_cast<uint64_t>(count));
-  draw(mode, indices);
+  draw(mode, indices, true);
 }
 
 void Context::read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type, void* pixels) {

@@ -163,11 +163,11 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_TEXTURE_MATRIX: mat(m_texture_matrix.back()); break;
     case GL_DEPTH_CLEAR_VALUE: v[0] = m_clear_depth; break;
     case GL_STENCIL_CLEAR_VALUE: v[0] = static_cast<float>(m_clear_stencil); break;
-    case GL_DEPTH_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.depth_func)); break;
+    case GL_DEPTH_FUNC: v[0] = static_cast<float>(gl_value(m_raster.depth_func)); break;
     case GL_DEPTH_WRITEMASK: v[0] = m_raster.depth_write; break;
-    case GL_ALPHA_TEST_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.alpha_func)); break;
+    case GL_ALPHA_TEST_FUNC: v[0] = static_cast<float>(gl_value(m_raster.alpha_func)); break;
     case GL_ALPHA_TEST_REF: v[0] = m_alpha_ref; break;
-    case GL_STENCIL_FUNC: v[0] = static_cast<float>(GL_NEVER + static_cast<int>(m_raster.stencil_func)); break;
+    case GL_STENCIL_FUNC: v[0] = static_cast<float>(gl_value(m_raster.stencil_func)); break;
     case GL_STENCIL_REF: v[0] = static_cast<float>(m_stencil_ref); break;
     case GL_STENCIL_VALUE_MASK: v[0] = m_raster.stencil_value_mask; break;
     case GL_STENCIL_WRITEMASK: v[0] = m_raster.stencil_write_mask; break;
@@ -192,8 +192,8 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_GREEN_BITS: v[0] = static_cast<float>(format.green_bits); break;
     case GL_BLUE_BITS: v[0] = static_cast<float>(format.blue_bits); break;
     case GL_ALPHA_BITS: v[0] = static_cast<float>(format.alpha_bits); break;
-    case GL_DEPTH_BITS: v[0] = 16; break;
-    case GL_STENCIL_BITS: v[0] = 8; break;
+    case GL_DEPTH_BITS: v[0] = static_cast<float>(m_renderer->capabilities().depth_bits); break;
+    case GL_STENCIL_BITS: v[0] = static_cast<float>(m_renderer->capabilities().stencil_bits); break;
     case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
     case GL_POINT_SIZE: v[0] = m_point_size; break;
     case GL_LINE_WIDTH: v[0] = m_line_width; break;
@@ -221,34 +221,12 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_SAMPLE_COVERAGE_INVERT: v[0] = m_sample_coverage_invert; break;
     case GL_POLYGON_OFFSET_FACTOR: v[0] = m_polygon_offset[0]; break;
     case GL_POLYGON_OFFSET_UNITS: v[0] = m_polygon_offset[1]; break;
-    case GL_BLEND_SRC:
-    case GL_BLEND_DST: {
-      static const GLenum factors[] = {GL_ZERO,
-                                       GL_ONE,
-                                       GL_SRC_COLOR,
-                                       GL_ONE_MINUS_SRC_COLOR,
-                                       GL_DST_COLOR,
-                                       GL_ONE_MINUS_DST_COLOR,
-                                       GL_SRC_ALPHA,
-                                       GL_ONE_MINUS_SRC_ALPHA,
-                                       GL_DST_ALPHA,
-                                       GL_ONE_MINUS_DST_ALPHA,
-                                       GL_SRC_ALPHA_SATURATE};
-      v[0] =
-          static_cast<float>(factors[static_cast<int>(name == GL_BLEND_SRC ? m_raster.blend_src : m_raster.blend_dst)]);
-      break;
-    }
-    case GL_LOGIC_OP_MODE: v[0] = static_cast<float>(GL_CLEAR + m_raster.logic_op_code); break;
-    case GL_STENCIL_FAIL:
-    case GL_STENCIL_PASS_DEPTH_FAIL:
-    case GL_STENCIL_PASS_DEPTH_PASS: {
-      static const GLenum ops[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT};
-      const StencilOp op = name == GL_STENCIL_FAIL              ? m_raster.stencil_fail
-                           : name == GL_STENCIL_PASS_DEPTH_FAIL ? m_raster.depth_fail
-                                                                : m_raster.depth_pass;
-      v[0] = static_cast<float>(ops[static_cast<int>(op)]);
-      break;
-    }
+    case GL_BLEND_SRC: v[0] = static_cast<float>(gl_value(m_raster.blend_src)); break;
+    case GL_BLEND_DST: v[0] = static_cast<float>(gl_value(m_raster.blend_dst)); break;
+    case GL_LOGIC_OP_MODE: v[0] = static_cast<float>(gl_value(m_raster.logic_op_mode)); break;
+    case GL_STENCIL_FAIL: v[0] = static_cast<float>(gl_value(m_raster.stencil_fail)); break;
+    case GL_STENCIL_PASS_DEPTH_FAIL: v[0] = static_cast<float>(gl_value(m_raster.depth_fail)); break;
+    case GL_STENCIL_PASS_DEPTH_PASS: v[0] = static_cast<float>(gl_value(m_raster.depth_pass)); break;
     case GL_PERSPECTIVE_CORRECTION_HINT:
     case GL_POINT_SMOOTH_HINT:
     case GL_LINE_SMOOTH_HINT:
@@ -264,7 +242,8 @@ const GLubyte* Context::get_string(GLenum name) {
     case GL_VENDOR: return reinterpret_cast<const GLubyte*>("tessera");
     case GL_RENDERER: return reinterpret_cast<const GLubyte*>(m_renderer->name());
     case GL_VERSION: return reinterpret_cast<const GLubyte*>("OpenGL ES-CM 1.1");
-    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("");
+    // Those <GLES/glext.h> declares (test_gl_api checks that the two agree).
+    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("GL_OES_read_format");
     default: error(GL_INVALID_ENUM); return nullptr;
   }
 }

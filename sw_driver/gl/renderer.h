@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/fixed_function.h"
 #include "common/pixel_format.h"
 
 namespace tessera::gl {
@@ -27,25 +28,16 @@ struct Triangle {
   ScreenVertex v[3];
 };
 
-// Enumerations in the order of their GL values (GL_NEVER + i, ...).
-enum class CompareFunc : uint8_t { never, less, equal, lequal, greater, notequal, gequal, always };
-enum class BlendFactor : uint8_t {
-  zero,
-  one,
-  src_color,
-  one_minus_src_color,
-  dst_color,
-  one_minus_dst_color,
-  src_alpha,
-  one_minus_src_alpha,
-  dst_alpha,
-  one_minus_dst_alpha,
-  src_alpha_saturate
-};
-enum class StencilOp : uint8_t { keep, zero, replace, incr, decr, invert };
-enum class TexEnv : uint8_t { modulate, replace, decal };
-enum class TexFilter : uint8_t { nearest, linear };
-enum class TexWrap : uint8_t { repeat, clamp_to_edge };
+// The fixed-function state in the hardware codes of
+// common/fixed_function.def, the numbers every back end and the rasterizer's
+// state blocks take; the GL front end converts GL enums with that table.
+using tessera::BlendFactor;
+using tessera::CompareFunc;
+using tessera::LogicOp;
+using tessera::StencilOp;
+using tessera::TexEnv;
+using tessera::TexFilter;
+using tessera::TexWrap;
 
 // A texture as the back ends see it: RGBA8 texels in system memory, row
 // t = 0 first, power-of-two sizes from 1 to 256.
@@ -72,7 +64,7 @@ struct RasterState {
   bool blend = false;
   BlendFactor blend_src = BlendFactor::one, blend_dst = BlendFactor::zero;
   bool logic_op = false;
-  uint8_t logic_op_code = 3;  // GL_COPY - GL_CLEAR
+  LogicOp logic_op_mode = LogicOp::copy;
   bool color_mask[4] = {true, true, true, true};
   bool scissor_test = false;
   int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
@@ -94,10 +86,20 @@ struct ClearRequest {
   int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
 };
 
+// What a back end's buffers hold. EGL offers configurations before any
+// surface (and so any renderer) exists, so the back-end table states them
+// (sw_driver/renderers/backends.def) and the launcher hands them over with
+// the factory (AppEnvironment::capabilities).
+struct RendererCapabilities {
+  unsigned depth_bits = 0;
+  unsigned stencil_bits = 0;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
   virtual const char* name() const = 0;
+  virtual RendererCapabilities capabilities() const = 0;
   virtual unsigned width() const = 0;
   virtual unsigned height() const = 0;
   // The colour buffer's format (the display's).

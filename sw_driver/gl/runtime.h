@@ -1,7 +1,8 @@
 // What connects the standard GL ES / EGL entry points (plain C functions
 // with no context argument) to the simulated SoC: the application's
-// environment on the host model, the back end chosen for this run, and the
-// memory the driver allocates (textures, depth buffers) in system memory.
+// environment on the host model (which carries the factory of the back end
+// chosen for this run) and the memory the driver allocates (textures, depth
+// buffers) in system memory.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,5 @@ AppEnvironment& environment();  // throws std::logic_error when none is set
 // Bump allocator over [heap_base, heap_end) of system memory. Throws
 // std::runtime_error when the heap is exhausted.
 uint32_t allocate(uint32_t bytes, uint32_t alignment = 32);
-
-std::unique_ptr<Renderer> make_renderer(const std::string& backend, AppEnvironment& env);
 
 }  // namespace tessera::gl

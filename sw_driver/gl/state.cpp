@@ -199,8 +199,7 @@ void Context::blend_func(GLenum src, GLenum dst) {
 
 void Context::logic_op(GLenum op) {
   charge_call();
-  if (op < GL_CLEAR || op > GL_SET) return error(GL_INVALID_ENUM);
-  m_raster.logic_op_code = static_cast<uint8_t>(op - GL_CLEAR);
+  if (!logic_op_value(op, &m_raster.logic_op_mode)) error(GL_INVALID_ENUM);
 }
 
 void Context::color_mask(bool r, bool g, bool b, bool a) {

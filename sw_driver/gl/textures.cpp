@@ -143,33 +143,17 @@ void Context::tex_parameter(GLenum target, GLenum name, float value) {
   const GLenum v = static_cast<GLenum>(value);
   switch (name) {
     case GL_TEXTURE_MIN_FILTER:
-      if (v == GL_NEAREST || v == GL_NEAREST_MIPMAP_NEAREST || v == GL_NEAREST_MIPMAP_LINEAR)
-        t.min_filter = TexFilter::nearest;
-      else if (v == GL_LINEAR || v == GL_LINEAR_MIPMAP_NEAREST || v == GL_LINEAR_MIPMAP_LINEAR)
-        t.min_filter = TexFilter::linear;
-      else
-        error(GL_INVALID_ENUM);
+      if (!tex_filter_value(v, true, &t.min_filter)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_MAG_FILTER:
-      if (v == GL_NEAREST)
-        t.mag_filter = TexFilter::nearest;
-      else if (v == GL_LINEAR)
-        t.mag_filter = TexFilter::linear;
-      else
-        error(GL_INVALID_ENUM);
+      if (!tex_filter_value(v, false, &t.mag_filter)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_WRAP_S:
-    case GL_TEXTURE_WRAP_T: {
-      TexWrap wrap;
-      if (v == GL_REPEAT)
-        wrap = TexWrap::repeat;
-      else if (v == GL_CLAMP_TO_EDGE)
-        wrap = TexWrap::clamp_to_edge;
-      else
-        return error(GL_INVALID_ENUM);
-      (name == GL_TEXTURE_WRAP_S ? t.wrap_s : t.wrap_t) = wrap;
+      if (!tex_wrap_value(v, &t.wrap_s)) error(GL_INVALID_ENUM);
       break;
-    }
+    case GL_TEXTURE_WRAP_T:
+      if (!tex_wrap_value(v, &t.wrap_t)) error(GL_INVALID_ENUM);
+      break;
     case GL_GENERATE_MIPMAP: break;
     default: error(GL_INVALID_ENUM);
   }
@@ -180,10 +164,10 @@ void Context::get_tex_parameter(GLenum target, GLenum name, float* value) {
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   const Texture& t = bound_texture()->texture;
   switch (name) {
-    case GL_TEXTURE_MIN_FILTER: *value = t.min_filter == TexFilter::nearest ? GL_NEAREST : GL_LINEAR; break;
-    case GL_TEXTURE_MAG_FILTER: *value = t.mag_filter == TexFilter::nearest ? GL_NEAREST : GL_LINEAR; break;
-    case GL_TEXTURE_WRAP_S: *value = t.wrap_s == TexWrap::repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE; break;
-    case GL_TEXTURE_WRAP_T: *value = t.wrap_t == TexWrap::repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE; break;
+    case GL_TEXTURE_MIN_FILTER: *value = static_cast<float>(gl_value(t.min_filter)); break;
+    case GL_TEXTURE_MAG_FILTER: *value = static_cast<float>(gl_value(t.mag_filter)); break;
+    case GL_TEXTURE_WRAP_S: *value = static_cast<float>(gl_value(t.wrap_s)); break;
+    case GL_TEXTURE_WRAP_T: *value = static_cast<float>(gl_value(t.wrap_t)); break;
     case GL_GENERATE_MIPMAP: *value = GL_FALSE; break;
     default: error(GL_INVALID_ENUM);
   }

@@ -1,5 +1,6 @@
 // Vertex fetch and transform: reading the arrays, transforming and lighting
-// each vertex, and what that costs the ARM in soft-float.
+// each vertex (once per index of glDrawElements that misses the vertex
+// cache, vertex_cache.h), and what that costs the ARM in soft-float.
 #include "gl/context.h"
 
 #include <algorithm>
@@ -59,7 +60,7 @@ glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, con
   return value;
 }
 
-bool Context::fetch_and_transform(const std::vector<uint32_t>& indices, std::vector<Vertex>& out) {
+void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool indexed, std::vector<Vertex>& out) {
   out.resize(indices.size());
   const glm::mat4& modelview = m_modelview.back();
   const glm::mat4& projection = m_projection.back();
@@ -70,9 +71,7 @@ bool Context::fetch_and_transform(const std::vector<uint32_t>& indices, std::vec
   unsigned lights = 0;
   for (const Light& l : m_lighting_model.lights) lights += l.enabled;
   Material material = m_front_material;
-  for (size_t i = 0; i < indices.size(); ++i) {
-    const uint32_t index = indices[i];
-    Vertex& v = out[i];
+  auto transform = [&](uint32_t index, Vertex& v) {
     glm::vec4 position = read_attribute(m_vertex_array, index, {0, 0, 0, 1});
     glm::vec4 color = m_color_array.enabled ? read_attribute(m_color_array, index, {0, 0, 0, 1}) : m_color;
     v.eye = modelview * position;
@@ -99,16 +98,42 @@ bool Context::fetch_and_transform(const std::vector<uint32_t>& indices, std::vec
     const glm::vec4& p = v.clip.position;
     v.valid = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w) &&
               std::isfinite(v.clip.color.r) && std::isfinite(v.clip.tex.x) && std::isfinite(v.clip.tex.y);
+  };
+
+  uint64_t transformed = 0;
+  if (indexed) {
+    // Each index is looked up; only a miss is fetched and transformed.
+    m_vertex_cache.invalidate();
+    for (size_t i = 0; i < indices.size(); ++i) {
+      if (const Vertex* cached = m_vertex_cache.find(indices[i])) {
+        out[i] = *cached;
+        continue;
+      }
+      Vertex& slot = m_vertex_cache.insert(indices[i]);
+      transform(indices[i], slot);
+      out[i] = slot;
+      ++transformed;
+    }
+    const uint64_t hits = indices.size() - transformed;
+    m_host.compute(
+        Op::alu, VERTEX_CACHE_ENTRIES + VERTEX_CACHE_LOOKUP_ALU * indices.size() + VERTEX_CACHE_FILL_ALU * transformed);
+    m_host.compute(Op::branch, VERTEX_CACHE_LOOKUP_BRANCHES * indices.size());
+    if (m_cache_hits) *m_cache_hits += hits;
+    if (m_cache_misses) *m_cache_misses += transformed;
+  } else {
+    for (size_t i = 0; i < indices.size(); ++i) transform(indices[i], out[i]);
+    transformed = indices.size();
   }
-  // The geometry's soft-float work on the ARM, per vertex.
+  if (m_vertices_transformed) *m_vertices_transformed += transformed;
+
+  // The geometry's soft-float work on the ARM, per vertex transformed.
   FloatCost per_vertex = transform_cost();
   per_vertex += transform_cost();
   if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
   if (texturing) per_vertex += transform_cost();
   per_vertex += clip_test_cost();
-  charge(per_vertex, indices.size());
-  m_host.compute(Op::alu, 20 * indices.size());  // fetch, conversions, loop overhead
-  return true;
+  charge(per_vertex, transformed);
+  m_host.compute(Op::alu, 20 * transformed);  // fetch, conversions, loop overhead
 }
 
 }  // namespace tessera::gl

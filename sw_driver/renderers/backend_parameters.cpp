@@ -1,27 +1,29 @@
 #include "renderers/backend_parameters.h"
 
+#include <iterator>
 #include <string>
+#include <vector>
+
+#include "renderers/backends.h"
 
 namespace tessera {
 
 ParamGroup driver_parameters() {
+  std::vector<std::string> names;
+  std::string description = "renderer back end of the GL ES driver: ";
+  for (const backends::Backend& entry : backends::BACKENDS) {
+    if (!names.empty()) description += names.size() + 1 == std::size(backends::BACKENDS) ? " or " : ", ";
+    description += std::string(entry.name) + " (" + entry.description + ")";
+    names.emplace_back(entry.name);
+  }
   return {"driver",
           {
-              param::choice("driver.backend", "arm", {"arm", "raster"},
-                            "renderer back end of the GL ES driver: arm (software on the host) or raster (the "
-                            "rasterizer block)"),
+              param::choice("driver.backend", "arm", names, description),
           },
           [](const Config& config) {
-            if (config.get_string("driver.backend") == "raster" &&
-                (config.get_uint("raster.width") != config.get_uint("display.width") ||
-                 config.get_uint("raster.height") != config.get_uint("display.height")))
-              throw ConfigError(
-                  "configuration: impossible combination: driver.backend=raster draws the display's frame buffers, "
-                  "but raster.width x raster.height = " +
-                  std::to_string(config.get_uint("raster.width")) + " x " +
-                  std::to_string(config.get_uint("raster.height")) +
-                  " differs from display.width x display.height = " + std::to_string(config.get_uint("display.width")) +
-                  " x " + std::to_string(config.get_uint("display.height")));
+            // The choice has been checked against the same names already.
+            if (const backends::Backend* chosen = backends::find_backend(config.get_string("driver.backend")))
+              chosen->check_configuration(config);
           }};
 }
 

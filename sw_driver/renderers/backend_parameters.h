@@ -1,5 +1,6 @@
 // The driver's parameters (driver.*): which renderer back end the GL driver
-// uses, and the checks a back end makes of the rest of the configuration.
+// uses (one of backends.def's names), and the check the chosen back end
+// makes of the rest of the configuration (its check_configuration).
 #pragma once
 
 #include "config/config.h"

@@ -1,5 +1,5 @@
 # cmake -DSOC_SIM=... -DLIBRARY_WITHOUT_ENTRY=... -DWORK_DIR=... -P check_bad_app.cmake
-# soc_sim --app with a library that has no tessera_app_main, a file that is
+# soc_sim --app with a library that has no entry point, a file that is
 # not a library and a path that does not exist: each must exit with status 2
 # and name the file.
 foreach(var SOC_SIM LIBRARY_WITHOUT_ENTRY WORK_DIR)

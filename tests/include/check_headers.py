@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Checks tessera's GLES/gl.h and EGL/egl.h against the Khronos headers.
+"""Checks tessera's GLES/gl.h, GLES/glext.h and EGL/egl.h against Khronos'.
 
 For every GL_*/EGL_* macro defined in both, the values must agree; every
-OpenGL ES 1.1 enum and float entry point of the Khronos GLES/gl.h, and every
-EGL 1.0-1.4 enum and entry point of the Khronos EGL/egl.h, must be in ours;
-every macro of ours must be known to Khronos (which catches misspelt names);
-and prototypes present in both must have the same return and parameter types.
+OpenGL ES 1.1 enum and entry point (float and fixed point) of the Khronos
+GLES/gl.h, and every EGL 1.0-1.4 enum and entry point of the Khronos
+EGL/egl.h, must be in ours; every macro of ours must be known to Khronos
+(which catches misspelt names); and prototypes present in both must have the
+same return and parameter types. Our GLES/glext.h, which declares only the
+extensions the driver implements, is held to the same values, names and
+prototypes, with nothing required.
 
 Only the subset of C that these headers use is understood: object-like
 macros, #include of headers under the same root, and one-line-or-more
@@ -22,7 +25,6 @@ import sys
 GL_CORE_BLOCK = "GL_VERSION_ES_CM_1_0"
 EGL_REQUIRED_BLOCKS = {f"EGL_VERSION_1_{minor}" for minor in range(5)}
 EXTENSION_SUFFIX = re.compile(r"_?(OES|EXT|KHR|ARB|NV|AMD|IMG|QCOM|ARM|APPLE|ANGLE|MESA|INTEL)$")
-FIXED_POINT_TYPES = {"GLfixed", "GLclampx"}
 TYPE_QUALIFIERS = {"const", "volatile", "struct", "unsigned", "signed"}
 API_PREFIXES = ("GL_", "EGL_")
 # Linkage, not API values: each implementation defines them its own way.
@@ -132,11 +134,6 @@ def is_extension(name):
     return bool(EXTENSION_SUFFIX.search(name))
 
 
-def is_fixed_point(signature):
-    return_type, params = signature
-    return any(word in FIXED_POINT_TYPES for t in [return_type, *params] for word in t.split())
-
-
 def check(khronos, ours, prefix, required, errors):
     khronos_names = {n for n in khronos.macros if n.startswith(prefix)}
     our_names = {n for n in ours.macros if n.startswith(prefix)}
@@ -158,8 +155,7 @@ def check(khronos, ours, prefix, required, errors):
         if not name.startswith(fn_prefix):
             continue
         if name not in ours.functions:
-            if (required(khronos.function_block.get(name)) and not is_extension(name)
-                    and not is_fixed_point(signature)):
+            if required(khronos.function_block.get(name)) and not is_extension(name):
                 errors.append(f"{name}: function missing from ours")
             continue
         if ours.functions[name] != signature:
@@ -183,16 +179,21 @@ def main():
 
     errors = []
     counts = []
-    for api, prefix, required in (
-        ("GLES/gl.h", "GL_", lambda block: block == GL_CORE_BLOCK),
-        ("EGL/egl.h", "EGL_", lambda block: block in EGL_REQUIRED_BLOCKS),
+    # Our glext.h declares only extensions, none of them required; Khronos
+    # keeps ES 1.1's required ones in gl.h, so it is compared with both.
+    for api, prefix, required, khronos_apis in (
+        ("GLES/gl.h", "GL_", lambda block: block == GL_CORE_BLOCK, ["GLES/gl.h"]),
+        ("GLES/glext.h", "GL_", lambda block: False, ["GLES/gl.h", "GLES/glext.h"]),
+        ("EGL/egl.h", "EGL_", lambda block: block in EGL_REQUIRED_BLOCKS, ["EGL/egl.h"]),
     ):
         khronos_path = os.path.join(args.khronos, api)
         our_path = os.path.join(args.ours, api)
         if not os.path.isfile(khronos_path):
             print(f"SKIP: {khronos_path} is not installed")
             return 77
-        khronos = parse(khronos_path, args.khronos)
+        khronos = Header()
+        for khronos_api in khronos_apis:
+            parse(os.path.join(args.khronos, khronos_api), args.khronos, khronos)
         ours = parse(our_path, args.ours)
         if not khronos.functions or not khronos.macros:
             errors.append(f"{khronos_path}: parsed no macros or prototypes; the parser needs updating")

@@ -4,10 +4,16 @@
  * never linked, so the entry points need not exist yet. */
 #include <EGL/egl.h>
 #include <GLES/gl.h>
+#include <GLES/glext.h>
+#include <KHR/khrplatform.h>
 #include <stddef.h>
 
-#if !defined(TESSERA_GLES_GL_H) || !defined(TESSERA_EGL_EGL_H)
+#if !defined(TESSERA_GLES_GL_H) || !defined(TESSERA_EGL_EGL_H) || !defined(TESSERA_GLES_GLEXT_H) || \
+    !defined(TESSERA_KHR_KHRPLATFORM_H)
 #error "the Khronos headers shadowed ours: check the include path"
+#endif
+#ifndef GL_OES_read_format
+#error "<GLES/glext.h> must declare the extensions the driver implements"
 #endif
 
 _Static_assert(sizeof(GLfloat) == 4, "GLfloat is IEEE single precision");
@@ -18,6 +24,10 @@ _Static_assert(sizeof(GLint) == 4 && sizeof(GLuint) == 4 && sizeof(GLsizei) == 4
 _Static_assert(sizeof(GLenum) == 4 && sizeof(GLbitfield) == 4, "32-bit enums");
 _Static_assert(sizeof(GLintptr) == sizeof(void*) && sizeof(GLsizeiptr) == sizeof(void*), "pointer-sized");
 _Static_assert(sizeof(EGLint) == 4 && sizeof(EGLBoolean) == 4 && sizeof(EGLenum) == 4, "EGL 32-bit types");
+_Static_assert(sizeof(khronos_uint64_t) == 8 && sizeof(khronos_int64_t) == 8, "64-bit Khronos types");
+_Static_assert(sizeof(khronos_intptr_t) == sizeof(void*) && sizeof(khronos_usize_t) == sizeof(size_t),
+               "pointer-sized Khronos types");
+_Static_assert(sizeof(khronos_boolean_enum_t) == 4, "Khronos enums are 32 bits");
 
 int tessera_header_check_draw(void);
 
@@ -57,6 +67,12 @@ int tessera_header_check_draw(void) {
   eglSwapInterval(display, 1);
   (void)eglQueryString(display, EGL_VENDOR);
   (void)glGetString(GL_RENDERER);
+#ifdef GL_OES_read_format
+  {
+    GLint read_format = 0;
+    glGetIntegerv(GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES, &read_format);
+  }
+#endif
 
   glViewport(0, 0, 320, 240);
   glMatrixMode(GL_PROJECTION);

@@ -15,7 +15,7 @@ constexpr int64_t colour_units(double codes) {
 
 TEST(AttributeInterpolator, GouraudColourByHand) {
   // start 10.5 codes, +1.25 per pixel in x, -0.5 per row.
-  const AttributePlane p{AttributeKind::COLOR, colour_units(10.5), colour_units(1.25), colour_units(-0.5)};
+  const AttributePlane p{AttributeKind::color, colour_units(10.5), colour_units(1.25), colour_units(-0.5)};
   EXPECT_EQ(attribute_at(p, 4, 3).raw, colour_units(14.0));
   EXPECT_EQ(evaluate_attribute(p, 4, 3).output, 14u);
   EXPECT_EQ(evaluate_attribute(p, 1, 0).output, 12u);  // 11.75
@@ -36,18 +36,18 @@ TEST(AttributeInterpolator, DepthRoundsAndClamps) {
   EXPECT_EQ(attribute_to_depth(attribute_sum{-1}).raw, 0u);
   // A plane from depth 0.25 to 0.75 over 256 pixels reaches 0.75 exactly.
   const int64_t quarter = int64_t{1} << 30;  // 0.25 * 2^24 codes * 2^8
-  const AttributePlane p{AttributeKind::DEPTH, quarter, (2 * quarter) / 256, 0};
+  const AttributePlane p{AttributeKind::depth, quarter, (2 * quarter) / 256, 0};
   EXPECT_EQ(evaluate_attribute(p, 256, 7).output, 3u << 22);
 }
 
 TEST(AttributeInterpolator, TexcoordKeepsSignAndSaturates) {
   // -0.25 in q15.24 is -0.25 in q15.16.
-  const AttributePlane p{AttributeKind::TEXCOORD, -(int64_t{1} << 22), 0, 0};
+  const AttributePlane p{AttributeKind::texcoord, -(int64_t{1} << 22), 0, 0};
   EXPECT_EQ(static_cast<int32_t>(evaluate_attribute(p, 0, 0).output), -(1 << 14));
   EXPECT_EQ(attribute_to_texcoord(attribute_sum{int64_t{1} << 45}).raw, q15_16::MAX_RAW);
   EXPECT_EQ(attribute_to_texcoord(attribute_sum{-(int64_t{1} << 45)}).raw, q15_16::MIN_RAW);
   // s = 2.5 across 10 pixels at 0.125 per pixel: 3.75.
-  const AttributePlane q{AttributeKind::TEXCOORD, int64_t{5} << 23, int64_t{1} << 21, 0};
+  const AttributePlane q{AttributeKind::texcoord, int64_t{5} << 23, int64_t{1} << 21, 0};
   EXPECT_EQ(evaluate_attribute(q, 10, 0).output, 0x3c000u);
 }
 
@@ -65,7 +65,7 @@ TEST(AttributeInterpolator, ExtremesAreExact) {
         for (int dx : {-512, 511})
           for (int dy : {-512, 511}) {
             const double expected = double(s) + double(gx) * dx + double(gy) * dy;
-            const AttributePlane p{AttributeKind::DEPTH, s, gx, gy};
+            const AttributePlane p{AttributeKind::depth, s, gx, gy};
             EXPECT_EQ(double(attribute_at(p, dx, dy).raw), expected);
           }
 }

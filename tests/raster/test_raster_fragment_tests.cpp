@@ -8,17 +8,17 @@
 namespace tessera::raster {
 namespace {
 
-constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::NEVER,  CompareFunc::LESS,    CompareFunc::EQUAL,
-                                               CompareFunc::LEQUAL, CompareFunc::GREATER, CompareFunc::NOTEQUAL,
-                                               CompareFunc::GEQUAL, CompareFunc::ALWAYS};
+constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
+                                               CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
+                                               CompareFunc::gequal, CompareFunc::always};
 
-TEST(FragmentTests, EnumsHaveGlValues) {
-  EXPECT_EQ(static_cast<uint16_t>(CompareFunc::NEVER), 0x0200);
-  EXPECT_EQ(static_cast<uint16_t>(CompareFunc::ALWAYS), 0x0207);
-  EXPECT_EQ(static_cast<uint16_t>(StencilOp::KEEP), 0x1E00);
-  EXPECT_EQ(static_cast<uint16_t>(StencilOp::INVERT), 0x150A);
+TEST(FragmentTests, CompareFunctionsAreCodedInGlOrder) {
+  EXPECT_EQ(gl_enum_of(CompareFunc::never), 0x0200u);
+  EXPECT_EQ(gl_enum_of(StencilOp::keep), 0x1E00u);
+  EXPECT_EQ(gl_enum_of(StencilOp::invert), 0x150Au);
   for (size_t i = 0; i < ALL_FUNCS.size(); ++i) {
-    EXPECT_EQ(compare_func_code(ALL_FUNCS[i]), i);
+    EXPECT_EQ(code_of(ALL_FUNCS[i]), i);
+    EXPECT_EQ(gl_enum_of(ALL_FUNCS[i]), 0x0200u + i);
   }
 }
 
@@ -38,59 +38,59 @@ TEST(FragmentTests, DepthCompareTruthTable) {
     EXPECT_EQ(depth_test(ALL_FUNCS[f], mid, mid), table[f][1]) << f;
     EXPECT_EQ(depth_test(ALL_FUNCS[f], unorm24::from_raw(0x800001), mid), table[f][2]) << f;
   }
-  EXPECT_FALSE(depth_test(CompareFunc::LESS, mid, mid));
-  EXPECT_TRUE(depth_test(CompareFunc::LESS, unorm24::from_raw(0), unorm24::from_raw(0xffffff)));
-  EXPECT_FALSE(depth_test(CompareFunc::GREATER, unorm24::from_raw(0xffffff), unorm24::from_raw(0xffffff)));
+  EXPECT_FALSE(depth_test(CompareFunc::less, mid, mid));
+  EXPECT_TRUE(depth_test(CompareFunc::less, unorm24::from_raw(0), unorm24::from_raw(0xffffff)));
+  EXPECT_FALSE(depth_test(CompareFunc::greater, unorm24::from_raw(0xffffff), unorm24::from_raw(0xffffff)));
 }
 
 TEST(FragmentTests, AlphaCompareAgainstReference) {
-  EXPECT_TRUE(alpha_test(CompareFunc::GEQUAL, unorm8{128}, unorm8{128}));
-  EXPECT_FALSE(alpha_test(CompareFunc::GREATER, unorm8{128}, unorm8{128}));
-  EXPECT_TRUE(alpha_test(CompareFunc::GREATER, unorm8{129}, unorm8{128}));
-  EXPECT_FALSE(alpha_test(CompareFunc::LESS, unorm8{0}, unorm8{0}));
+  EXPECT_TRUE(alpha_test(CompareFunc::gequal, unorm8{128}, unorm8{128}));
+  EXPECT_FALSE(alpha_test(CompareFunc::greater, unorm8{128}, unorm8{128}));
+  EXPECT_TRUE(alpha_test(CompareFunc::greater, unorm8{129}, unorm8{128}));
+  EXPECT_FALSE(alpha_test(CompareFunc::less, unorm8{0}, unorm8{0}));
 }
 
 TEST(FragmentTests, StencilCompareUsesValueMaskOnBothSides) {
   // ref 0x13 & 0x0f = 3, stored 0xf3 & 0x0f = 3: EQUAL despite different high bits.
-  EXPECT_TRUE(stencil_test(CompareFunc::EQUAL, stencil8{0x13}, 0x0f, stencil8{0xf3}));
-  EXPECT_FALSE(stencil_test(CompareFunc::EQUAL, stencil8{0x13}, 0xff, stencil8{0xf3}));
+  EXPECT_TRUE(stencil_test(CompareFunc::equal, stencil8{0x13}, 0x0f, stencil8{0xf3}));
+  EXPECT_FALSE(stencil_test(CompareFunc::equal, stencil8{0x13}, 0xff, stencil8{0xf3}));
   // GL: LESS passes when ref < stored.
-  EXPECT_TRUE(stencil_test(CompareFunc::LESS, stencil8{1}, 0xff, stencil8{2}));
-  EXPECT_FALSE(stencil_test(CompareFunc::LESS, stencil8{2}, 0xff, stencil8{1}));
+  EXPECT_TRUE(stencil_test(CompareFunc::less, stencil8{1}, 0xff, stencil8{2}));
+  EXPECT_FALSE(stencil_test(CompareFunc::less, stencil8{2}, 0xff, stencil8{1}));
   // Mask 0: everything compares equal.
-  EXPECT_TRUE(stencil_test(CompareFunc::EQUAL, stencil8{0xaa}, 0x00, stencil8{0x55}));
+  EXPECT_TRUE(stencil_test(CompareFunc::equal, stencil8{0xaa}, 0x00, stencil8{0x55}));
 }
 
 TEST(FragmentTests, StencilOperationsSaturateAndMask) {
   const stencil8 ref{0x5a};
-  EXPECT_EQ(stencil_update(StencilOp::KEEP, stencil8{0x12}, ref, 0xff).raw, 0x12u);
-  EXPECT_EQ(stencil_update(StencilOp::ZERO, stencil8{0x12}, ref, 0xff).raw, 0x00u);
-  EXPECT_EQ(stencil_update(StencilOp::REPLACE, stencil8{0x12}, ref, 0xff).raw, 0x5au);
-  EXPECT_EQ(stencil_update(StencilOp::INCR, stencil8{0x12}, ref, 0xff).raw, 0x13u);
-  EXPECT_EQ(stencil_update(StencilOp::INCR, stencil8{0xff}, ref, 0xff).raw, 0xffu);
-  EXPECT_EQ(stencil_update(StencilOp::DECR, stencil8{0x12}, ref, 0xff).raw, 0x11u);
-  EXPECT_EQ(stencil_update(StencilOp::DECR, stencil8{0x00}, ref, 0xff).raw, 0x00u);
-  EXPECT_EQ(stencil_update(StencilOp::INVERT, stencil8{0x12}, ref, 0xff).raw, 0xedu);
+  EXPECT_EQ(stencil_update(StencilOp::keep, stencil8{0x12}, ref, 0xff).raw, 0x12u);
+  EXPECT_EQ(stencil_update(StencilOp::zero, stencil8{0x12}, ref, 0xff).raw, 0x00u);
+  EXPECT_EQ(stencil_update(StencilOp::replace, stencil8{0x12}, ref, 0xff).raw, 0x5au);
+  EXPECT_EQ(stencil_update(StencilOp::incr, stencil8{0x12}, ref, 0xff).raw, 0x13u);
+  EXPECT_EQ(stencil_update(StencilOp::incr, stencil8{0xff}, ref, 0xff).raw, 0xffu);
+  EXPECT_EQ(stencil_update(StencilOp::decr, stencil8{0x12}, ref, 0xff).raw, 0x11u);
+  EXPECT_EQ(stencil_update(StencilOp::decr, stencil8{0x00}, ref, 0xff).raw, 0x00u);
+  EXPECT_EQ(stencil_update(StencilOp::invert, stencil8{0x12}, ref, 0xff).raw, 0xedu);
   // Write mask 0x0f: only the low nibble changes.
-  EXPECT_EQ(stencil_update(StencilOp::INVERT, stencil8{0x12}, ref, 0x0f).raw, 0x1du);
-  EXPECT_EQ(stencil_update(StencilOp::REPLACE, stencil8{0xf0}, ref, 0x0f).raw, 0xfau);
-  EXPECT_EQ(stencil_update(StencilOp::INCR, stencil8{0x0f}, ref, 0x0f).raw, 0x00u);  // 0x10 masked
-  EXPECT_EQ(stencil_update(StencilOp::ZERO, stencil8{0xff}, ref, 0x00).raw, 0xffu);
+  EXPECT_EQ(stencil_update(StencilOp::invert, stencil8{0x12}, ref, 0x0f).raw, 0x1du);
+  EXPECT_EQ(stencil_update(StencilOp::replace, stencil8{0xf0}, ref, 0x0f).raw, 0xfau);
+  EXPECT_EQ(stencil_update(StencilOp::incr, stencil8{0x0f}, ref, 0x0f).raw, 0x00u);  // 0x10 masked
+  EXPECT_EQ(stencil_update(StencilOp::zero, stencil8{0xff}, ref, 0x00).raw, 0xffu);
 }
 
 TEST(FragmentTests, SequenceFollowsGl) {
   FragmentTestState s;
   s.alpha_enable = true;
-  s.alpha_func = CompareFunc::GREATER;
+  s.alpha_func = CompareFunc::greater;
   s.alpha_ref = unorm8{100};
   s.stencil_enable = true;
-  s.stencil_func = CompareFunc::EQUAL;
+  s.stencil_func = CompareFunc::equal;
   s.stencil_ref = stencil8{1};
-  s.sfail = StencilOp::INCR;
-  s.dpfail = StencilOp::ZERO;
-  s.dppass = StencilOp::REPLACE;
+  s.sfail = StencilOp::incr;
+  s.dpfail = StencilOp::zero;
+  s.dppass = StencilOp::replace;
   s.depth_enable = true;
-  s.depth_func = CompareFunc::LESS;
+  s.depth_func = CompareFunc::less;
   FragmentTestInput in{unorm8{200}, unorm24{10}, unorm24{20}, stencil8{1}};
 
   FragmentTestResult r = run_fragment_tests(s, in);
@@ -119,7 +119,7 @@ TEST(FragmentTests, SequenceFollowsGl) {
   s.alpha_enable = false;
   s.depth_enable = false;
   in = FragmentTestInput{unorm8{0}, unorm24{30}, unorm24{20}, stencil8{1}};
-  s.dppass = StencilOp::INVERT;
+  s.dppass = StencilOp::invert;
   r = run_fragment_tests(s, in);
   EXPECT_TRUE(r.pass);
   EXPECT_FALSE(r.depth_write);

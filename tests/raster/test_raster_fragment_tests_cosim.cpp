@@ -12,17 +12,13 @@
 namespace tessera::raster {
 namespace {
 
-constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::NEVER,  CompareFunc::LESS,    CompareFunc::EQUAL,
-                                               CompareFunc::LEQUAL, CompareFunc::GREATER, CompareFunc::NOTEQUAL,
-                                               CompareFunc::GEQUAL, CompareFunc::ALWAYS};
-// Every operation, plus an undefined enum value (kept on both sides).
-constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::KEEP,
-                                           StencilOp::ZERO,
-                                           StencilOp::REPLACE,
-                                           StencilOp::INCR,
-                                           StencilOp::DECR,
-                                           StencilOp::INVERT,
-                                           static_cast<StencilOp>(0x1E04)};
+constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
+                                               CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
+                                               CompareFunc::gequal, CompareFunc::always};
+// Every operation, plus a code without an entry (kept on both sides).
+constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
+                                           StencilOp::incr,          StencilOp::decr, StencilOp::invert,
+                                           static_cast<StencilOp>(7)};
 
 struct Checker : CosimTally {
   FragmentTestsRtl rtl;

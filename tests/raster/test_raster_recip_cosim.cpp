@@ -1,10 +1,12 @@
-// Reciprocal unit co-simulation: every 14-bit operand through the functional
-// core (Method 3) and the Verilated recip_unit.sv, every output bit compared.
+// Reciprocal unit co-simulation: every 16-bit operand (the 16,383 legal
+// ones, 0 and those above 2^14 - 1) through the functional core (Method 3)
+// and the Verilated recip_unit.sv, every output bit compared.
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <iostream>
+#include <cstdio>
 
+#include "cosim_support.h"
 #include "raster/datapath/reciprocal.h"
 #include "recip_unit_adapter.h"
 
@@ -13,30 +15,38 @@ namespace {
 
 TEST(RecipUnitCosim, EveryOperandMatchesTheFunctionalCoreBitForBit) {
   RecipUnitRtl rtl;
-  unsigned compared = 0;
-  unsigned mismatches = 0;
-  // 0 included: the RTL defines its result (invalid_o, all ones).
-  for (uint32_t raw = 0; raw <= RECIP_OPERAND_MAX; ++raw) {
+  CosimTally legal;
+  CosimTally invalid;
+  // Every value of the 16-bit operand: the 16,383 legal ones, and 0 and the
+  // 49,152 above RECIP_OPERAND_MAX, which the RTL must flag itself (invalid_o,
+  // every other field all ones) as the core does.
+  for (uint32_t raw = 0; raw <= 0xFFFF; ++raw) {
     const auto x = static_cast<uint16_t>(raw);
     const ReciprocalResult expected = reciprocal(x, RecipMethod::method3);
     const ReciprocalResult actual = rtl.evaluate(x);
-    ++compared;
     // The ports bit for bit, then the whole struct: the adapter's sign
     // extension must give back the core's exponent too.
-    if (actual.q5_16 != expected.q5_16 || actual.mantissa != expected.mantissa ||
-        actual.exponent_field() != expected.exponent_field() || actual.invalid_operand != expected.invalid_operand ||
-        actual != expected) {
-      if (++mismatches <= 10) {
-        ADD_FAILURE() << "raw " << raw << ": rtl q5_16 " << actual.q5_16 << " mantissa " << unsigned{actual.mantissa}
-                      << " exponent " << int{actual.exponent} << " invalid " << actual.invalid_operand
-                      << ", core q5_16 " << expected.q5_16 << " mantissa " << unsigned{expected.mantissa}
-                      << " exponent " << int{expected.exponent} << " invalid " << expected.invalid_operand;
-      }
+    const bool same = actual.q5_16 == expected.q5_16 && actual.mantissa == expected.mantissa &&
+                      actual.exponent_field() == expected.exponent_field() &&
+                      actual.invalid_operand == expected.invalid_operand && actual == expected;
+    CosimTally& tally = raw == 0 || raw > RECIP_OPERAND_MAX ? invalid : legal;
+    if (tally.count(same)) {
+      ADD_FAILURE() << "raw " << raw << ": rtl q5_16 " << actual.q5_16 << " mantissa " << unsigned{actual.mantissa}
+                    << " exponent " << int{actual.exponent} << " invalid " << actual.invalid_operand << ", core q5_16 "
+                    << expected.q5_16 << " mantissa " << unsigned{expected.mantissa} << " exponent "
+                    << int{expected.exponent} << " invalid " << expected.invalid_operand;
     }
   }
-  std::cout << "compared " << compared << " vectors (16383 legal operands and 0), " << mismatches << " mismatches\n";
-  EXPECT_EQ(compared, 16384u);
-  EXPECT_EQ(mismatches, 0u);
+  std::printf(
+      "recip_unit cosim: %llu legal operands, %llu mismatches; %llu invalid operands (0 and above %u), %llu "
+      "mismatches\n",
+      static_cast<unsigned long long>(legal.vectors), static_cast<unsigned long long>(legal.mismatches),
+      static_cast<unsigned long long>(invalid.vectors), unsigned{RECIP_OPERAND_MAX},
+      static_cast<unsigned long long>(invalid.mismatches));
+  EXPECT_EQ(legal.vectors, 16383u);
+  EXPECT_EQ(invalid.vectors, 65536u - 16383u);
+  EXPECT_EQ(legal.mismatches, 0u);
+  EXPECT_EQ(invalid.mismatches, 0u);
 }
 
 TEST(RecipUnitCosim, ResultAppearsOneCycleAfterValidAndHoldsWhileIdle) {
@@ -60,10 +70,23 @@ TEST(RecipUnitCosim, ResultAppearsOneCycleAfterValidAndHoldsWhileIdle) {
   EXPECT_FALSE(rtl.clock(false, 0).has_value());
 }
 
-TEST(RecipUnitCosim, OperandsWiderThanThePortGetTheInvalidResult) {
+TEST(RecipUnitCosim, OperandsAboveFourteenBitsAreFlaggedByTheRtl) {
+  // Not cut to the low 14 bits: 16385 would otherwise look like 1 and give
+  // 16.0.
   RecipUnitRtl rtl;
-  EXPECT_EQ(rtl.evaluate(16384), reciprocal(16384, RecipMethod::method3));
-  EXPECT_EQ(rtl.evaluate(0xFFFF), reciprocal_invalid_result(RecipMethod::method3));
+  for (const uint16_t x : {uint16_t{16384}, uint16_t{16385}, uint16_t{0x8001}, uint16_t{0xFFFF}}) {
+    const ReciprocalResult result = rtl.evaluate(x);
+    EXPECT_TRUE(result.invalid_operand) << x;
+    EXPECT_EQ(result.q5_16, RECIP_Q5_16_SATURATED) << x;
+    EXPECT_EQ(result, reciprocal_invalid_result(RecipMethod::method3)) << x;
+  }
+  // The same through the clocked interface, between two legal operands.
+  const uint16_t operands[] = {1, 16385, 16383};
+  for (const uint16_t x : operands) {
+    const auto result = rtl.clock(true, x);
+    ASSERT_TRUE(result.has_value());
+    EXPECT_EQ(*result, reciprocal(x, RecipMethod::method3)) << x;
+  }
 }
 
 }  // namespace

@@ -43,13 +43,13 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
   const std::array<int64_t, 15> coords{q15_16::MIN_RAW, q15_16::MAX_RAW, 0,      1,       -1,
                                        0x8000,          -0x8000,         0xffff, 0x10000, 0x10001,
                                        0x7fff,          -0x10000,        0x180,  0xff80,  0x12345678};
-  const std::array<TextureWrap, 2> wraps{TextureWrap::REPEAT, TextureWrap::CLAMP_TO_EDGE};
-  const std::array<TextureFilter, 2> filters{TextureFilter::NEAREST, TextureFilter::LINEAR};
+  const std::array<TexWrap, 2> wraps{TexWrap::repeat, TexWrap::clamp_to_edge};
+  const std::array<TexFilter, 2> filters{TexFilter::nearest, TexFilter::linear};
   for (uint8_t lw = 0; lw < 16; ++lw)
     for (uint8_t lh : {uint8_t{0}, uint8_t{3}, uint8_t{8}, uint8_t{9}})
-      for (TextureWrap ws : wraps)
-        for (TextureWrap wt : wraps)
-          for (TextureFilter f : filters)
+      for (TexWrap ws : wraps)
+        for (TexWrap wt : wraps)
+          for (TexFilter f : filters)
             for (int64_t s : coords)
               for (int64_t t : coords) {
                 TextureState st;
@@ -81,6 +81,35 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
     c.check(st, q15_16{pick(b)}, q15_16{pick(b >> 32)});
   }
   report_cosim("texel_address", c, corner_vectors);
+}
+
+// Wrap codes without an entry in fixed_function.def (2, 3) act as REPEAT in
+// both models: the same footprint as REPEAT, bit for bit.
+TEST(TexelAddressCosim, UnknownWrapCodesActAsRepeat) {
+  Checker c;
+  TexelAddressRtl reference;
+  std::mt19937_64 rng(0x3a9);
+  for (uint32_t code = 2; code < 4; ++code) {
+    for (int i = 0; i < 10000; ++i) {
+      const uint64_t a = rng();
+      TextureState st;
+      st.log2_width = static_cast<uint8_t>(a % 9);
+      st.log2_height = static_cast<uint8_t>((a >> 4) % 9);
+      st.filter = from_code<TexFilter>(static_cast<uint32_t>(a >> 8));
+      st.wrap_s = from_code<TexWrap>(code);
+      st.wrap_t = from_code<TexWrap>(code);
+      const q15_16 s{sign_extend(a >> 12, 20)}, t{sign_extend(a >> 32, 20)};
+      c.check(st, s, t);
+      TextureState repeat = st;
+      repeat.wrap_s = repeat.wrap_t = TexWrap::repeat;
+      const TexelFootprint want = reference.lookup(repeat, s, t);
+      const TexelFootprint got = reference.lookup(st, s, t);
+      ASSERT_EQ(got.address, want.address) << code;
+      ASSERT_EQ(got.s.weight, want.s.weight) << code;
+    }
+  }
+  EXPECT_EQ(c.vectors, 20000u);
+  EXPECT_EQ(c.mismatches, 0u);
 }
 
 }  // namespace

@@ -55,18 +55,18 @@ TEST(TextureEnv, BilinearMatchesRealArithmetic) {
 TEST(TextureEnv, EnvironmentsFollowGlTable) {
   const Rgba8 f = colour(200, 100, 50, 128);
   const Rgba8 t = colour(255, 128, 0, 64);
-  EXPECT_EQ(texture_environment(TextureEnvMode::REPLACE, f, t), t);
+  EXPECT_EQ(texture_environment(TexEnv::replace, f, t), t);
   // MODULATE: 200, round(100*128/255 = 50.196) = 50, 0, round(128*64/255 = 32.125) = 32.
-  EXPECT_EQ(texture_environment(TextureEnvMode::MODULATE, f, t), colour(200, 50, 0, 32));
+  EXPECT_EQ(texture_environment(TexEnv::modulate, f, t), colour(200, 50, 0, 32));
   // DECAL: C = (Cf (255 - 64) + Ct 64) / 255; A = Af.
   // R: (200*191 + 255*64)/255 = 213.80 -> 214; G: (100*191 + 128*64)/255 = 107.02 -> 107;
   // B: 50*191/255 = 37.45 -> 37.
-  EXPECT_EQ(texture_environment(TextureEnvMode::DECAL, f, t), colour(214, 107, 37, 128));
+  EXPECT_EQ(texture_environment(TexEnv::decal, f, t), colour(214, 107, 37, 128));
   // Unknown mode: fragment unchanged.
-  EXPECT_EQ(texture_environment(static_cast<TextureEnvMode>(0x2102), f, t), f);
-  EXPECT_EQ(texture_env_mode_code(static_cast<TextureEnvMode>(0x2102)), 3);
+  EXPECT_EQ(texture_environment(static_cast<TexEnv>(3), f, t), f);
+  EXPECT_EQ(code_of(static_cast<TexEnv>(3)), 3u);
   // MODULATE with white is the identity.
-  EXPECT_EQ(texture_environment(TextureEnvMode::MODULATE, f, colour(255, 255, 255, 255)), f);
+  EXPECT_EQ(texture_environment(TexEnv::modulate, f, colour(255, 255, 255, 255)), f);
 }
 
 }  // namespace

@@ -12,14 +12,13 @@
 namespace tessera::raster {
 namespace {
 
-// Every environment, plus an undefined enum value (fragment passes on both sides).
-constexpr std::array<TextureEnvMode, 4> ALL_MODES{TextureEnvMode::REPLACE, TextureEnvMode::MODULATE,
-                                                  TextureEnvMode::DECAL, static_cast<TextureEnvMode>(0x2102)};
+// Every environment, plus a code without an entry (fragment passes on both sides).
+constexpr std::array<TexEnv, 4> ALL_MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal, static_cast<TexEnv>(3)};
 
 struct Checker : CosimTally {
   TextureEnvRtl rtl;
 
-  void check(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t ws, uint8_t wt, Rgba8 fragment) {
+  void check(TexEnv mode, const std::array<Rgba8, 4>& texels, uint8_t ws, uint8_t wt, Rgba8 fragment) {
     const TextureEnvResult want = texture_filter_env(mode, texels, ws, wt, fragment);
     const TextureEnvResult got = rtl.run(mode, texels, ws, wt, fragment);
     if (count(want.texel == got.texel && want.fragment == got.fragment)) {
@@ -36,7 +35,7 @@ TEST(TextureEnvCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
   const std::array<uint32_t, 5> colours{0x00000000, 0xffffffff, 0x80ff7f01, 0x01807fff, 0xff000080};
   const std::array<uint8_t, 5> weights{0, 1, 128, 254, 255};
-  for (TextureEnvMode mode : ALL_MODES)
+  for (TexEnv mode : ALL_MODES)
     for (uint32_t t0 : colours)
       for (uint32_t t1 : colours)
         for (uint32_t t2 : colours)

@@ -4,7 +4,10 @@
 #pragma once
 
 #include <fcntl.h>
+#include <pty.h>
+#include <sys/ioctl.h>
 #include <sys/wait.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -66,6 +69,81 @@ inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::
     run.status = 128 + WTERMSIG(wstatus);
   run.out = read_file(out_path);
   run.err = read_file(err_path);
+  return run;
+}
+
+// Runs `soc_sim` with `args` in the folder `dir` with its stderr on a
+// pseudo-terminal `columns` wide (0: a terminal that reports no size), as a
+// user at a terminal sees it; stdout goes to a file as in run_soc_sim.
+// `environment` ("NAME=value") is added to the child's. SimResult::err is
+// every byte the terminal received, output post-processing off (no "\r"
+// added before "\n"), so that what soc_sim wrote can be counted.
+// Needs -lutil (openpty).
+inline SimResult run_soc_sim_on_terminal(const std::string& soc_sim, const std::filesystem::path& dir,
+                                         const std::vector<std::string>& args, unsigned short columns,
+                                         const std::vector<std::string>& environment = {}) {
+  SimResult run;
+  int terminal = -1, child_side = -1;
+  winsize size{};
+  size.ws_row = 24;
+  size.ws_col = columns;
+  if (openpty(&terminal, &child_side, nullptr, nullptr, &size) != 0) {
+    ADD_FAILURE() << "openpty failed";
+    return run;
+  }
+  termios modes{};
+  tcgetattr(child_side, &modes);
+  modes.c_oflag &= ~static_cast<tcflag_t>(OPOST);
+  tcsetattr(child_side, TCSANOW, &modes);
+
+  const std::filesystem::path out_path = dir / "soc_sim.stdout";
+  std::vector<char*> argv{const_cast<char*>(soc_sim.c_str())};
+  for (const auto& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int in = open("/dev/null", O_RDONLY);
+    if (out < 0 || in < 0 || chdir(dir.c_str()) != 0) _exit(127);
+    dup2(in, STDIN_FILENO);
+    dup2(out, STDOUT_FILENO);
+    dup2(child_side, STDERR_FILENO);
+    close(in);
+    close(out);
+    close(child_side);
+    close(terminal);
+    setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+    for (const auto& variable : environment) putenv(const_cast<char*>(variable.c_str()));
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(child_side);
+  if (pid < 0) {
+    close(terminal);
+    ADD_FAILURE() << "fork failed";
+    return run;
+  }
+  // Read until the child's side is closed (EIO): the terminal's buffer is
+  // small, and a child that cannot write would never finish.
+  char buffer[4096];
+  for (;;) {
+    const ssize_t count = read(terminal, buffer, sizeof buffer);
+    if (count > 0)
+      run.err.append(buffer, static_cast<size_t>(count));
+    else if (count < 0 && errno == EINTR)
+      continue;
+    else
+      break;
+  }
+  close(terminal);
+  int wstatus = 0;
+  while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(wstatus))
+    run.status = WEXITSTATUS(wstatus);
+  else if (WIFSIGNALED(wstatus))
+    run.status = 128 + WTERMSIG(wstatus);
+  run.out = read_file(out_path);
   return run;
 }
 

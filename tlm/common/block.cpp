@@ -1,7 +1,5 @@
 #include "common/block.h"
 
-#include <cstdio>
-
 #include "common/activity_json.h"
 
 namespace tessera {
@@ -23,23 +21,6 @@ std::vector<SummaryTable> Block::summary_tables(const sc_core::sc_time& elapsed)
 SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes) {
   const double elapsed_s = elapsed.to_seconds();
   return {busy, elapsed_s > 0 ? busy.to_seconds() / elapsed_s : 0.0, std::move(notes)};
-}
-
-std::string format_duration(double seconds) {
-  char buffer[32];
-  if (seconds >= 1)
-    std::snprintf(buffer, sizeof buffer, "%.3f s", seconds);
-  else if (seconds >= 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.3f ms", seconds * 1e3);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.3f us", seconds * 1e6);
-  return buffer;
-}
-
-std::string format_percent(double fraction) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f%%", fraction * 100);
-  return buffer;
 }
 
 }  // namespace tessera

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/activity_counters.h"
+#include "common/text_format.h"
 
 namespace tessera {
 
@@ -68,10 +69,5 @@ class Block : public sc_core::sc_module {
 // The row of a block that is busy for `busy` of `elapsed`: utilisation is
 // their ratio (0 before any time has passed).
 SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes);
-
-// The summary's wording of a duration ("13.874 ms", "5.208 us", "1.250 s")
-// and of a fraction ("4.6%").
-std::string format_duration(double seconds);
-std::string format_percent(double fraction);
 
 }  // namespace tessera

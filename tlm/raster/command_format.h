@@ -11,6 +11,8 @@
 
 #include <cstdint>
 
+#include "common/fixed_function.h"
+
 namespace tessera::raster {
 
 // Tile table: tiles_x * tiles_y entries, row-major, tile (0, 0) at the top
@@ -56,23 +58,48 @@ enum StateFlag : uint32_t {
   polygon_smooth = 1u << 9,  // antialiased edges from normalised edge functions (EASA)
 };
 
-// Enumerations are those of gl/renderer.h (CompareFunc, BlendFactor,
-// StencilOp, TexEnv, TexFilter, TexWrap): GL order, 0-based.
+// Compare functions, stencil ops, blend factors, logic ops, texture filters,
+// wraps and environments are the hardware codes of common/fixed_function.def
+// (CompareFunc, StencilOp, BlendFactor, LogicOp, TexFilter, TexWrap, TexEnv),
+// at the positions below. The rasterizer cuts each field to the width of its
+// code (a code without an entry does what the table says); the bits between
+// fields are reserved and ignored.
 struct StateBlock {
   uint32_t flags;
   uint32_t depth_func;       // CompareFunc
   uint32_t alpha_func;       // CompareFunc in bits 0-7, alpha reference 0.8 in bits 8-15
   uint32_t stencil_func;     // CompareFunc bits 0-7, ref 8-15, value mask 16-23, write mask 24-31
-  uint32_t stencil_ops;      // fail bits 0-7, depth fail 8-15, depth pass 16-23 (StencilOp)
-  uint32_t blend;            // source factor bits 0-7, destination 8-15 (BlendFactor); logic op code 16-19
+  uint32_t stencil_ops;      // StencilOp: fail bits 0-7, depth fail 8-15, depth pass 16-23
+  uint32_t blend;            // BlendFactor: source bits 0-7, destination 8-15; LogicOp bits 16-19
   uint32_t color_mask;       // bits 0-3: R, G, B, A writable
   uint32_t scissor_xy;       // x bits 0-15, y bits 16-31 (GL window coordinates)
   uint32_t scissor_size;     // width bits 0-15, height bits 16-31
   uint32_t texture_address;  // RGBA8 texels, row t = 0 first
   uint32_t texture_size;     // log2 width bits 0-7, log2 height 8-15 (0..8: 1..256 texels)
-  uint32_t texture_mode;  // min filter bit 0, mag filter bit 1 (1: linear), wrap s bits 2-3, wrap t 4-5, env bits 8-9
+  uint32_t texture_mode;     // TexFilter: min bit 0, mag bit 1; TexWrap: s bits 2-3, t 4-5; TexEnv bits 8-9
 };
 static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
+
+// Positions of the codes in their StateBlock words (the compare functions
+// sit at bit 0 of depth_func, alpha_func and stencil_func).
+constexpr unsigned STENCIL_FAIL_SHIFT = 0, STENCIL_DEPTH_FAIL_SHIFT = 8, STENCIL_DEPTH_PASS_SHIFT = 16;
+constexpr unsigned BLEND_SRC_SHIFT = 0, BLEND_DST_SHIFT = 8, BLEND_LOGIC_OP_SHIFT = 16;
+constexpr unsigned TEXTURE_MIN_FILTER_SHIFT = 0, TEXTURE_MAG_FILTER_SHIFT = 1, TEXTURE_WRAP_S_SHIFT = 2,
+                   TEXTURE_WRAP_T_SHIFT = 4, TEXTURE_ENV_SHIFT = 8;
+
+// A table of fixed_function.def that outgrows its field here needs a new
+// StateBlock layout (and the driver's and the rasterizer's versions of it).
+static_assert(FixedFunction<CompareFunc>::BITS <= 8, "compare function codes fit bits 0-7");
+static_assert(FixedFunction<StencilOp>::BITS <= 8, "stencil op codes fit 8-bit fields");
+static_assert(FixedFunction<BlendFactor>::BITS <= 8, "blend factor codes fit 8-bit fields");
+static_assert(FixedFunction<LogicOp>::BITS <= 4, "logic op codes fit bits 16-19");
+static_assert(TEXTURE_MIN_FILTER_SHIFT + FixedFunction<TexFilter>::BITS <= TEXTURE_MAG_FILTER_SHIFT &&
+                  TEXTURE_MAG_FILTER_SHIFT + FixedFunction<TexFilter>::BITS <= TEXTURE_WRAP_S_SHIFT,
+              "filter codes fit bits 0 and 1");
+static_assert(TEXTURE_WRAP_S_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_WRAP_T_SHIFT &&
+                  TEXTURE_WRAP_T_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_ENV_SHIFT,
+              "wrap codes fit bits 2-3 and 4-5");
+static_assert(FixedFunction<TexEnv>::BITS <= 2, "texture environment codes fit bits 8-9");
 
 // ERROR_STATUS codes. On an error the rasterizer stops the run, sets
 // STATUS.error and IRQ_STATUS.error, and leaves the tiles not yet written

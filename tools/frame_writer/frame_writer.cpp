@@ -29,7 +29,12 @@ void write_png(const std::string& path, unsigned width, unsigned height, const s
 }
 
 Image read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
+  // The pixels as stored, as write_png stores them: by default OpenImageIO
+  // multiplies colour by alpha, which changes every pixel whose alpha is not
+  // 255 (an antialiased fringe) and hides the colour where alpha is 0.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw std::runtime_error("cannot read " + path + ": " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   Image image;

@@ -17,7 +17,8 @@ struct Image {
   unsigned height = 0;
   std::vector<uint8_t> rgba;
 };
-// Reads any image OpenImageIO knows as 8-bit RGBA. Throws on failure.
+// Reads any image OpenImageIO knows as 8-bit RGBA, the values as stored
+// (colour not multiplied by alpha). Throws on failure.
 Image read_image(const std::string& path);
 
 }  // namespace tessera

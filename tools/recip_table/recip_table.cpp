@@ -18,6 +18,7 @@
 #include <iostream>
 #include <string>
 
+#include "guarded_main.h"
 #include "raster/datapath/reciprocal.h"
 
 namespace {
@@ -71,14 +72,6 @@ static int run_main(int argc, char** argv) {
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "recip_table: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "recip_table: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("recip_table", [&] { return run_main(argc, argv); });
 }

@@ -153,6 +153,39 @@ CompareResult compare_images(const Image& ours, const Image& reference, const Co
   return result;
 }
 
+double PixelDifference::percent_differing() const {
+  return pixels == 0 ? 0.0 : 100.0 * static_cast<double>(differing) / static_cast<double>(pixels);
+}
+
+std::string PixelDifference::summary() const {
+  char line[160];
+  std::snprintf(line, sizeof line, "%ux%u: %zu of %zu pixels differ (%.2f%%), max difference %u, mean %.3f per pixel",
+                width, height, differing, pixels, percent_differing(), max_difference, mean_difference);
+  return line;
+}
+
+PixelDifference diff_pixels(const Image& a, const Image& b) {
+  check_image(a, "first");
+  check_image(b, "second");
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("image comparison: the first image is " + std::to_string(a.width) + "x" +
+                                std::to_string(a.height) + ", the second " + std::to_string(b.width) + "x" +
+                                std::to_string(b.height));
+  PixelDifference result;
+  result.width = a.width;
+  result.height = a.height;
+  result.pixels = size_t{a.width} * a.height;
+  uint64_t total = 0;
+  for (size_t i = 0; i < result.pixels; ++i) {
+    const unsigned difference = colour_difference(pixel_at(a, i), pixel_at(b, i), true);
+    result.differing += difference != 0;
+    result.max_difference = std::max(result.max_difference, difference);
+    total += difference;
+  }
+  result.mean_difference = result.pixels == 0 ? 0.0 : static_cast<double>(total) / static_cast<double>(result.pixels);
+  return result;
+}
+
 std::string write_comparison_images(const std::string& dir, const std::string& prefix, const Image& ours,
                                     const Image& reference, const CompareResult& result,
                                     const CompareOptions& options) {

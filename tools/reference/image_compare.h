@@ -82,6 +82,25 @@ struct CompareResult {
 // Throws std::invalid_argument if the sizes differ or an image is malformed.
 CompareResult compare_images(const Image& ours, const Image& reference, const CompareOptions& options);
 
+// How two images of the same size differ, pixel by pixel, as stored (no
+// reduction, alpha included): for two renders of our own, where neither is a
+// reference and there is no background to judge coverage by (image_diff).
+// A pixel's difference is the largest absolute difference of its channels.
+struct PixelDifference {
+  unsigned width = 0, height = 0;
+  size_t pixels = 0;
+  size_t differing = 0;         // pixels whose difference is not 0
+  unsigned max_difference = 0;  // over all pixels
+  double mean_difference = 0;   // over all pixels
+
+  double percent_differing() const;
+  // One line for logs and ctest output.
+  std::string summary() const;
+};
+
+// Throws std::invalid_argument if the sizes differ or an image is malformed.
+PixelDifference diff_pixels(const Image& a, const Image& b);
+
 // Writes <dir>/<prefix>ours.png, reference.png and difference.png (creating
 // dir) for a person to look at; ours and reference as reduced to the output
 // format, i.e. as they were compared. Returns the directory.

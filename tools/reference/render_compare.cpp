@@ -7,7 +7,7 @@
 //   render_compare --scene NAME --ours frame.png [...]
 //
 // Without --ours, soc_sim runs as a child process (`--app NAME --frames N+1
-// --out DIR/ours --set display.format=F --backend B -- scene args`) and frame
+// --out DIR/ours --set display.format=F --backend B --force -- scene args`) and frame
 // N is taken from what it wrote. It must stay a separate process: Mesa and
 // our driver export the same gl* symbols. The soc_sim next to this program in
 // the build tree is used unless --soc-sim names another.
@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "frame_writer.h"
+#include "guarded_main.h"
 #include "image_compare.h"
 #include "mesa_reference.h"
 #include "test_scene.h"
@@ -137,17 +138,11 @@ Image render_on_soc(const Options& options, const fs::path& frames_dir) {
   // A frame left by an earlier run must not stand in for one this run failed to write.
   const fs::path frame_png = frames_dir / frame_file_name(options.frame);
   fs::remove(frame_png);
-  std::vector<std::string> command = {soc_sim.string(),
-                                      "--app",
-                                      options.scene,
-                                      "--frames",
-                                      std::to_string(options.frame + 1),
-                                      "--out",
-                                      frames_dir.string(),
-                                      "--set",
-                                      "display.format=" + options.format,
-                                      "--backend",
-                                      options.backend};
+  std::vector<std::string> command = {soc_sim.string(), "--app", options.scene, "--frames",
+                                      std::to_string(options.frame + 1), "--out", frames_dir.string(), "--set",
+                                      "display.format=" + options.format, "--backend", options.backend,
+                                      // DIR/ours is render_compare's: a rerun replaces the frames it holds.
+                                      "--force"};
   if (!options.scene_args.empty()) {
     command.push_back("--");
     command.insert(command.end(), options.scene_args.begin(), options.scene_args.end());
@@ -286,14 +281,6 @@ static int run_main(int argc, char** argv) {
   }
 }
 
-// Nothing may escape main: an unexpected exception is reported as a failure.
 int main(int argc, char** argv) {
-  try {
-    return run_main(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "render_compare: " << e.what() << "\n";
-  } catch (...) {
-    std::cerr << "render_compare: unknown exception\n";
-  }
-  return 1;
+  return tessera::guarded_main("render_compare", [&] { return run_main(argc, argv); });
 }

@@ -1,6 +1,7 @@
 // soc_sim: builds the SoC from the configuration, runs an application on the
 // host model, writes the displayed frames, statistics and (optionally) a VCD
 // trace, and prints a summary.
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -11,19 +12,25 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 #include <systemc>
 
 #include "apps/apps.h"
+#include "build_info.h"
 #include "common/activity_json.h"
 #include "common/log.h"
 #include "config/config.h"
 #include "frame_writer.h"
 #include "png_writer_thread.h"
+#include "progress_line.h"
 #include "renderers/backend_parameters.h"
+#include "renderers/backends.h"
+#include "run_outputs.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
+#include "time_limit.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -43,16 +50,14 @@ struct Options {
   std::string vcd;
   std::string stats;
   bool quiet = false;
+  bool force = false;
+  bool no_frames = false;
   std::string log_level;
   bool print_config = false;
   bool config_reference = false;
   bool list_apps = false;
   std::vector<std::string> app_args;
 };
-
-std::string format_time(double seconds) {
-  return format_duration(seconds);
-}
 
 // Creates `dir` if needed and proves it writable, or throws naming it.
 void prepare_output_dir(const std::string& dir) {
@@ -66,53 +71,91 @@ void prepare_output_dir(const std::string& dir) {
   fs::remove(probe, error);
 }
 
+// Proves that `path` can be written without changing it: a file that was
+// not there is removed again, so a run refused later leaves nothing behind.
 void check_writable_file(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw std::runtime_error("cannot write '" + path + "': folder '" + parent.string() + "' does not exist");
-  std::ofstream file(path, std::ios::app);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  std::error_code error;
+  const bool existed = fs::exists(path, error);
+  if (!std::ofstream(path, std::ios::app)) throw std::runtime_error("cannot write '" + path + "'");
+  if (!existed) fs::remove(path, error);
 }
 
+// Refuses to mix this run's outputs with an earlier run's (run_outputs.h);
+// with --force removes the earlier ones. Throws with the message to print.
+void clear_earlier_outputs(const OutputPaths& paths, bool force) {
+  const EarlierOutputs earlier = find_earlier_outputs(paths);
+  if (!earlier.foreign.empty()) {
+    const fs::path& file = earlier.foreign.front();
+    const bool stats = file == paths.stats;
+    throw std::runtime_error("'" + file.string() + "' was not written by soc_sim (it is not " +
+                             (stats ? "a statistics file" : "a VCD trace") + " of soc_sim), and this run would " +
+                             "overwrite it with its " + (stats ? "statistics" : "trace") +
+                             "; soc_sim never overwrites such a file, even with --force: move it, or choose another " +
+                             (stats ? "path with --stats or --out" : "path with --vcd"));
+  }
+  if (earlier.empty()) return;
+  if (!force)
+    throw std::runtime_error("output folder '" + paths.out_dir.string() + "' already holds the outputs of an " +
+                             "earlier run: " + describe_outputs(earlier, paths.out_dir) +
+                             "; a new run would mix its outputs with them: add --force to remove them first, or " +
+                             "choose another folder with --out");
+  remove_earlier_outputs(earlier);
+}
+
+// The progress line on stderr (progress_line.h): redrawn at most every
+// PROGRESS_REDRAW_SECONDS of wall time, at the terminal's current width, and
+// once more at the end with the final state.
 class Progress {
  public:
   Progress(bool enabled, unsigned total) : m_enabled(enabled), m_total(total) {}
   void update(unsigned frames, double simulated, double wall) {
-    if (!m_enabled) return;
-    const unsigned width = 30;
-    const unsigned filled = m_total ? std::min(width, frames * width / m_total) : 0;
-    std::string bar(filled, '#');
-    bar.resize(width, '.');
-    std::fprintf(stderr, "\r[%s] frame %u/%u  simulated %s  %s simulated per second ", bar.c_str(), frames, m_total,
-                 format_time(simulated).c_str(), format_time(wall > 0 ? simulated / wall : 0).c_str());
-    std::fflush(stderr);
+    if (!m_enabled || (m_drawn && wall - m_last_draw < PROGRESS_REDRAW_SECONDS)) return;
+    draw(frames, simulated, wall);
   }
-  void finish() {
-    if (m_enabled) std::fprintf(stderr, "\n");
+  void finish(unsigned frames, double simulated, double wall) {
+    if (!m_enabled) return;
+    draw(frames, simulated, wall);
+    std::fputc('\n', stderr);
   }
 
  private:
+  void draw(unsigned frames, double simulated, double wall) {
+    winsize size{};
+    const unsigned reported = ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 ? size.ws_col : 0;
+    const unsigned columns = choose_columns(reported, std::getenv("COLUMNS"));
+    std::fprintf(stderr, "\r%s", progress_line({frames, m_total, simulated, wall}, columns).c_str());
+    std::fflush(stderr);
+    m_drawn = true;
+    m_last_draw = wall;
+  }
+
   bool m_enabled;
   unsigned m_total;
+  bool m_drawn = false;
+  double m_last_draw = 0;
 };
 
 // The summary: run, block table (each block's own row), the blocks' own
 // tables (the bus's traffic per initiator), outputs. It names no block.
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
-                   const std::vector<std::string>& outputs) {
+                   const TimeLimit& time_limit, const std::vector<std::string>& outputs) {
   const sc_core::sc_time elapsed = sc_core::sc_time_stamp();
   const double simulated = elapsed.to_seconds();
   std::printf("\ntessera soc_sim: application '%s', display %s mode\n", app.c_str(),
               stats["display"]["mode"].get<std::string>().c_str());
   std::printf("  simulated time  %s\n  wall time       %s (%s simulated per wall second)\n",
-              format_time(simulated).c_str(), format_time(wall).c_str(),
-              format_time(wall > 0 ? simulated / wall : 0).c_str());
+              format_duration(simulated).c_str(), format_duration(wall).c_str(),
+              format_duration(wall > 0 ? simulated / wall : 0).c_str());
+  std::printf("  time limit      %s\n", time_limit.describe().c_str());
   std::printf("\n  %-12s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
   std::vector<SummaryTable> tables;
   for (const Block* block : soc.blocks()) {
     const SummaryRow row = block->summary_row(elapsed);
     std::printf("  %-12s %14s %12s  %s\n", block->basename(),
-                row.busy ? format_time(row.busy->to_seconds()).c_str() : "-",
+                row.busy ? format_duration(row.busy->to_seconds()).c_str() : "-",
                 row.utilisation ? format_percent(*row.utilisation).c_str() : "-", row.notes.c_str());
     for (SummaryTable& table : block->summary_tables(elapsed)) tables.push_back(std::move(table));
   }
@@ -138,8 +181,9 @@ ParamGroup runner_parameters() {
               param::text("sim.app", "teapot", "application to run: a built-in name or a path to a shared library"),
               param::integer("sim.frames", 3, 1, 100000, "frames",
                              "frames the application draws before the simulation ends"),
-              param::integer("sim.time_limit_ms", 60000, 1, 3600000, "ms",
-                             "simulated-time limit; a run that reaches it stops with an error"),
+              param::integer("sim.time_limit_ms", 0, 0, 3600000, "ms",
+                             "simulated-time limit; a run that reaches it stops with an error (0: automatic, " +
+                                 TimeLimit::automatic_rule() + ")"),
               param::choice("sim.log_level", "warning", {"quiet", "error", "warning", "info", "debug"},
                             "lowest severity of the log lines printed on stderr"),
           },
@@ -160,21 +204,62 @@ int run(int argc, char* argv[]) {
       ->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
-  cli.add_option("--backend", opt.backend, "renderer back end (driver.backend): arm or raster");
+  cli.add_option("--backend", opt.backend,
+                 "renderer back end (driver.backend): " + backends::backend_names(", ", " or "));
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
-  cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
+  cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
+  cli.add_flag("--force", opt.force,
+               "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
+  cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
   cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
   cli.add_flag("--config-reference", opt.config_reference, "print the configuration reference (Markdown) and exit");
   cli.add_flag("--list-apps", opt.list_apps, "list the built-in applications and exit");
-  cli.add_option("app_args", opt.app_args, "arguments passed to the application (after --)");
+  // Left-over arguments are rejected below, with advice for a stray word:
+  // "soc_sim cubes" means "--app cubes" more often than not.
+  cli.allow_extras();
+  cli.set_version_flag("--version",
+                       std::string("soc_sim (tessera) ") + build_info::version() + ", commit " + build_info::commit(),
+                       "print the version and the git commit soc_sim was built from, and exit");
+  const uint64_t default_frames = Config(all_parameters()).get_uint("sim.frames");
+  cli.footer(
+      "Arguments after -- go to the application, e.g. soc_sim --app obj_viewer -- model.obj\n"
+      "(AppEnvironment::args); soc_sim itself takes no positional arguments.\n\n"
+      "Simulated-time limit (sim.time_limit_ms): the value a --config file or --set gives;\n"
+      "0 (the default): automatic, " +
+      TimeLimit::automatic_rule() + " (" + std::to_string(choose_time_limit(default_frames, 0).ms / 1000) +
+      " s for the default " + std::to_string(default_frames) +
+      " frames).\nThe summary and stats.json show the limit in effect; reaching it is an error (status 1).");
+  // CLI11 sees only what comes before the first "--": the rest belongs to
+  // the application, so a word before it is an error, not an argument.
+  int own_argc = argc;
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--") {
+      own_argc = i;
+      opt.app_args.assign(argv + i + 1, argv + argc);
+      break;
+    }
   try {
-    cli.parse(argc, argv);
+    cli.parse(own_argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e) == 0 ? 0 : EXIT_USAGE;
+  }
+  if (!cli.remaining().empty()) {
+    const std::string word = cli.remaining().front();
+    if (word.size() > 1 && word[0] == '-') {
+      std::cerr << "soc_sim: unknown option '" << word << "' (soc_sim --help lists the options)\n";
+      return EXIT_USAGE;
+    }
+    std::cerr << "soc_sim: unexpected argument '" << word << "' before '--': ";
+    if (builtin_apps().count(word))
+      std::cerr << "to run the application '" << word << "', use --app " << word;
+    else
+      std::cerr << "choose the application with --app NAME (soc_sim --list-apps)";
+    std::cerr << "; arguments for the application go after '--', e.g. soc_sim --app obj_viewer -- model.obj\n";
+    return EXIT_USAGE;
   }
 
   if (opt.config_reference) {
@@ -200,6 +285,7 @@ int run(int argc, char* argv[]) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
   }
+  const TimeLimit time_limit = choose_time_limit(config.get_uint("sim.frames"), config.get_uint("sim.time_limit_ms"));
   if (opt.print_config) {
     std::cout << config.to_json().dump(2) << "\n";
     return 0;
@@ -221,6 +307,8 @@ int run(int argc, char* argv[]) {
     prepare_output_dir(opt.out_dir);
     check_writable_file(stats_path);
     if (!opt.vcd.empty()) check_writable_file(vcd_base + ".vcd");
+    clear_earlier_outputs({opt.out_dir, stats_path, opt.vcd.empty() ? fs::path() : fs::path(vcd_base + ".vcd")},
+                          opt.force);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -232,9 +320,9 @@ int run(int argc, char* argv[]) {
   PngWriterThread png_writer;
   unsigned frames_shown = 0;
   soc.display.on_frame([&](const Frame& frame) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04u.png", frame.index);
-    png_writer.write((fs::path(opt.out_dir) / name).string(), frame.width, frame.height, frame.rgba);
+    if (!opt.no_frames)
+      png_writer.write((fs::path(opt.out_dir) / frame_file_name(frame.index)).string(), frame.width, frame.height,
+                       frame.rgba);
     ++frames_shown;
   });
 
@@ -249,7 +337,7 @@ int run(int argc, char* argv[]) {
   env.args = opt.app_args;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
-  env.backend = config.get_string("driver.backend");
+  backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);
@@ -262,7 +350,7 @@ int run(int argc, char* argv[]) {
   auto wall_seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
-  const sc_core::sc_time limit(static_cast<double>(config.get_uint("sim.time_limit_ms")), sc_core::SC_MS);
+  const sc_core::sc_time limit(static_cast<double>(time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
   try {
     while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
@@ -270,11 +358,11 @@ int run(int argc, char* argv[]) {
       progress.update(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
     }
   } catch (const std::exception& e) {
-    progress.finish();
+    progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
     std::cerr << "soc_sim: simulation failed: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
   }
-  progress.finish();
+  progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
   soc.close_trace();
   const std::string png_error = png_writer.finish();
   const unsigned frames_written = png_writer.written();
@@ -284,9 +372,17 @@ int run(int argc, char* argv[]) {
   if (!png_error.empty()) {
     std::cerr << "soc_sim: " << png_error << "\n";
     status = EXIT_SIM_FAILED;
+  } else if (!soc.done() && sc_core::sc_time_stamp() >= limit) {
+    std::cerr << "soc_sim: simulated-time limit reached: sim.time_limit_ms = " << time_limit.ms << " ms ("
+              << (time_limit.automatic ? "automatic, " + TimeLimit::automatic_rule() : std::string("given")) << ") "
+              << "stopped the run after " << frames_shown << " of " << frames << " frames; "
+              << (time_limit.automatic ? "set sim.time_limit_ms to a larger value (--set sim.time_limit_ms=N)"
+                                       : "raise it, or leave sim.time_limit_ms unset for the automatic limit")
+              << "\n";
+    status = EXIT_SIM_FAILED;
   } else if (!soc.done()) {
-    std::cerr << "soc_sim: simulated-time limit of " << config.get_uint("sim.time_limit_ms")
-              << " ms reached before the application finished (sim.time_limit_ms)\n";
+    std::cerr << "soc_sim: the simulation stopped after " << frames_shown << " of " << frames
+              << " frames, before the application finished\n";
     status = EXIT_SIM_FAILED;
   } else if (soc.host.exit_code() != 0) {
     std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
@@ -298,6 +394,12 @@ int run(int argc, char* argv[]) {
   nlohmann::json stats = soc.stats_json();
   stats["driver"] = to_json(driver_counters);
   nlohmann::json document = {{"application", config.get_string("sim.app")},
+                             {"version", build_info::version()},
+                             {"commit", build_info::commit()},
+                             {"command_line", std::vector<std::string>(argv, argv + argc)},
+                             {"time_limit_ms", time_limit.ms},
+                             {"time_limit_automatic", time_limit.automatic},
+                             {"frames_shown", frames_shown},
                              {"frames_written", frames_written},
                              {"exit_status", status},
                              {"config", config.to_json()},
@@ -308,10 +410,11 @@ int run(int argc, char* argv[]) {
     std::vector<std::string> outputs;
     if (frames_written)
       outputs.push_back(std::to_string(frames_written) + " frame(s): " +
-                        (fs::path(opt.out_dir) / "frame_0000.png").string() + (frames_written > 1 ? " ..." : ""));
+                        (fs::path(opt.out_dir) / frame_file_name(0)).string() + (frames_written > 1 ? " ..." : ""));
+    if (opt.no_frames) outputs.push_back(std::to_string(frames_shown) + " frame(s) shown, none written (--no-frames)");
     outputs.push_back("statistics: " + stats_path);
     if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
-    print_summary(soc, stats, config.get_string("sim.app"), wall, outputs);
+    print_summary(soc, stats, config.get_string("sim.app"), wall, time_limit, outputs);
   }
   return status;
 }

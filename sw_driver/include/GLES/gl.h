@@ -7,11 +7,14 @@
  * than listed alphabetically. tests/include checks every value and prototype
  * against the Khronos header installed on the build machine.
  *
- * The fixed-point ("x") entry points of the common profile are omitted: the
- * driver implements the float ones. The enums of the four extensions that an
- * ES 1.1 implementation must or usually offers (read_format,
- * compressed_paletted_texture, point_size_array, point_sprite) are defined
- * so that code querying them compiles; glPointSizePointerOES is not declared
+ * Every entry point of the common profile is declared, the fixed-point
+ * ("x") ones included: they take S15.16 values (GLfixed) where the float
+ * ones take GLfloat. The enums of the four extensions the Khronos gl.h
+ * carries (read_format, compressed_paletted_texture, point_size_array,
+ * point_sprite) are defined so that code naming them compiles; of their
+ * extension macros only GL_OES_read_format is, the one the driver
+ * implements (<GLES/glext.h> lists what it implements, as does
+ * glGetString(GL_EXTENSIONS)). glPointSizePointerOES is not declared
  * because the driver does not implement point size arrays. */
 #ifndef TESSERA_GLES_GL_H
 #define TESSERA_GLES_GL_H
@@ -440,12 +443,17 @@ typedef long GLsizeiptr;
 #define GL_COLOR_ARRAY_POINTER 0x8090
 #define GL_TEXTURE_COORD_ARRAY_POINTER 0x8092
 
-/* ---- Extensions that are part of every ES 1.1 implementation ----------- */
+/* ---- ES 1.1's required extensions -------------------------------------- */
+/* Implemented (GL_EXTENSIONS lists it; <GLES/glext.h> has the same block). */
+#ifndef GL_OES_read_format
 #define GL_OES_read_format 1
 #define GL_IMPLEMENTATION_COLOR_READ_TYPE_OES 0x8B9A
 #define GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES 0x8B9B
+#endif
 
-#define GL_OES_compressed_paletted_texture 1
+/* Not implemented: values only, so that code naming them compiles; the
+ * driver reports no compressed formats, rejects glEnable of point sprites
+ * and has no glPointSizePointerOES. */
 #define GL_PALETTE4_RGB8_OES 0x8B90
 #define GL_PALETTE4_RGBA8_OES 0x8B91
 #define GL_PALETTE4_R5_G6_B5_OES 0x8B92
@@ -456,12 +464,8 @@ typedef long GLsizeiptr;
 #define GL_PALETTE8_R5_G6_B5_OES 0x8B97
 #define GL_PALETTE8_RGBA4_OES 0x8B98
 #define GL_PALETTE8_RGB5_A1_OES 0x8B99
-
-#define GL_OES_point_sprite 1
 #define GL_POINT_SPRITE_OES 0x8861
 #define GL_COORD_REPLACE_OES 0x8862
-
-/* Values only: see the note at the top about glPointSizePointerOES. */
 #define GL_POINT_SIZE_ARRAY_TYPE_OES 0x898A
 #define GL_POINT_SIZE_ARRAY_STRIDE_OES 0x898B
 #define GL_POINT_SIZE_ARRAY_POINTER_OES 0x898C
@@ -608,6 +612,49 @@ GL_API void GL_APIENTRY glTexEnvi(GLenum target, GLenum pname, GLint param);
 GL_API void GL_APIENTRY glTexEnviv(GLenum target, GLenum pname, const GLint* params);
 GL_API void GL_APIENTRY glGetTexEnvfv(GLenum target, GLenum pname, GLfloat* params);
 GL_API void GL_APIENTRY glGetTexEnviv(GLenum target, GLenum pname, GLint* params);
+
+/* Fixed point: the float commands above with S15.16 arguments and results.
+ * Parameters that name an enum (a texture filter, the texture environment
+ * mode, the fog mode) carry the enum's value unscaled. */
+GL_API void GL_APIENTRY glGetFixedv(GLenum pname, GLfixed* params);
+GL_API void GL_APIENTRY glColor4x(GLfixed red, GLfixed green, GLfixed blue, GLfixed alpha);
+GL_API void GL_APIENTRY glNormal3x(GLfixed nx, GLfixed ny, GLfixed nz);
+GL_API void GL_APIENTRY glMultiTexCoord4x(GLenum texture, GLfixed s, GLfixed t, GLfixed r, GLfixed q);
+GL_API void GL_APIENTRY glLoadMatrixx(const GLfixed* m);
+GL_API void GL_APIENTRY glMultMatrixx(const GLfixed* m);
+GL_API void GL_APIENTRY glRotatex(GLfixed angle, GLfixed x, GLfixed y, GLfixed z);
+GL_API void GL_APIENTRY glScalex(GLfixed x, GLfixed y, GLfixed z);
+GL_API void GL_APIENTRY glTranslatex(GLfixed x, GLfixed y, GLfixed z);
+GL_API void GL_APIENTRY glFrustumx(GLfixed l, GLfixed r, GLfixed b, GLfixed t, GLfixed n, GLfixed f);
+GL_API void GL_APIENTRY glOrthox(GLfixed l, GLfixed r, GLfixed b, GLfixed t, GLfixed n, GLfixed f);
+GL_API void GL_APIENTRY glDepthRangex(GLfixed n, GLfixed f);
+GL_API void GL_APIENTRY glClipPlanex(GLenum plane, const GLfixed* equation);
+GL_API void GL_APIENTRY glGetClipPlanex(GLenum plane, GLfixed* equation);
+GL_API void GL_APIENTRY glLightx(GLenum light, GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glLightxv(GLenum light, GLenum pname, const GLfixed* params);
+GL_API void GL_APIENTRY glGetLightxv(GLenum light, GLenum pname, GLfixed* params);
+GL_API void GL_APIENTRY glLightModelx(GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glLightModelxv(GLenum pname, const GLfixed* param);
+GL_API void GL_APIENTRY glMaterialx(GLenum face, GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glMaterialxv(GLenum face, GLenum pname, const GLfixed* param);
+GL_API void GL_APIENTRY glGetMaterialxv(GLenum face, GLenum pname, GLfixed* params);
+GL_API void GL_APIENTRY glFogx(GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glFogxv(GLenum pname, const GLfixed* param);
+GL_API void GL_APIENTRY glPointSizex(GLfixed size);
+GL_API void GL_APIENTRY glPointParameterx(GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glPointParameterxv(GLenum pname, const GLfixed* params);
+GL_API void GL_APIENTRY glLineWidthx(GLfixed width);
+GL_API void GL_APIENTRY glPolygonOffsetx(GLfixed factor, GLfixed units);
+GL_API void GL_APIENTRY glSampleCoveragex(GLclampx value, GLboolean invert);
+GL_API void GL_APIENTRY glAlphaFuncx(GLenum func, GLfixed ref);
+GL_API void GL_APIENTRY glClearColorx(GLfixed red, GLfixed green, GLfixed blue, GLfixed alpha);
+GL_API void GL_APIENTRY glClearDepthx(GLfixed depth);
+GL_API void GL_APIENTRY glTexEnvx(GLenum target, GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glTexEnvxv(GLenum target, GLenum pname, const GLfixed* params);
+GL_API void GL_APIENTRY glGetTexEnvxv(GLenum target, GLenum pname, GLfixed* params);
+GL_API void GL_APIENTRY glTexParameterx(GLenum target, GLenum pname, GLfixed param);
+GL_API void GL_APIENTRY glTexParameterxv(GLenum target, GLenum pname, const GLfixed* params);
+GL_API void GL_APIENTRY glGetTexParameterxv(GLenum target, GLenum pname, GLfixed* params);
 
 #ifdef __cplusplus
 }

@@ -2,12 +2,13 @@
  *
  * Applications include <GLES/gl.h>; this file exists because portable code
  * sometimes includes it directly. The macros can be predefined by a build
- * that needs different linkage (as with the Khronos headers). Tessera does
- * not ship a KHR/khrplatform.h: the few fixed-size types it would provide
- * come from <stdint.h>, so our include directory never shadows the system's
- * copy for other GL/EGL headers. */
+ * that needs different linkage (as with the Khronos headers). Like the
+ * Khronos glplatform.h it brings in <KHR/khrplatform.h>, the SDK's own copy,
+ * for code that expects the khronos_* types after including the GL. */
 #ifndef TESSERA_GLES_GLPLATFORM_H
 #define TESSERA_GLES_GLPLATFORM_H
+
+#include <KHR/khrplatform.h>
 
 #ifndef GL_API
 #if defined(__GNUC__)

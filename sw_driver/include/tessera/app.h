@@ -7,7 +7,12 @@
  * "--" (argv[0] is the library's path) and ends the simulation after
  * --frames calls of eglSwapBuffers (the last one does not return) or when
  * tessera_app_main returns. Return 0 on success, 2 for a bad input (a file
- * that cannot be read, a bad argument), anything else for a failure. */
+ * that cannot be read, a bad argument), anything else for a failure.
+ *
+ * An ordinary program needs neither this header nor this function: a
+ * library without tessera_app_main that defines int main(int argc, char**
+ * argv) has its main called the same way. With both, tessera_app_main is
+ * the one called. */
 #ifndef TESSERA_APP_H
 #define TESSERA_APP_H
 

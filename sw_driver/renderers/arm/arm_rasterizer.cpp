@@ -13,6 +13,7 @@ namespace {
 
 using gl::BlendFactor;
 using gl::CompareFunc;
+using gl::LogicOp;
 using gl::StencilOp;
 
 // 9.4 coordinates beyond this magnitude would overflow the exact edge DDA.
@@ -84,30 +85,31 @@ inline void store_le(uint8_t* p, unsigned bytes, uint32_t value) {
   }
 }
 
-inline uint32_t logic_op(unsigned code, uint32_t s, uint32_t d) {
-  switch (code & 15) {
-    case 0: return 0;
-    case 1: return s & d;
-    case 2: return s & ~d;
-    case 3: return s;
-    case 4: return ~s & d;
-    case 5: return d;
-    case 6: return s ^ d;
-    case 7: return s | d;
-    case 8: return ~(s | d);
-    case 9: return ~(s ^ d);
-    case 10: return ~d;
-    case 11: return s | ~d;
-    case 12: return ~s;
-    case 13: return ~s | d;
-    case 14: return ~(s & d);
-    default: return ~0u;
+// On packed pixel words; the caller masks the result to the format's bits.
+inline uint32_t logic_op(LogicOp op, uint32_t s, uint32_t d) {
+  switch (op) {
+    case LogicOp::clear: return 0;
+    case LogicOp::and_: return s & d;
+    case LogicOp::and_reverse: return s & ~d;
+    case LogicOp::copy: return s;
+    case LogicOp::and_inverted: return ~s & d;
+    case LogicOp::noop: return d;
+    case LogicOp::xor_: return s ^ d;
+    case LogicOp::or_: return s | d;
+    case LogicOp::nor: return ~(s | d);
+    case LogicOp::equiv: return ~(s ^ d);
+    case LogicOp::invert: return ~d;
+    case LogicOp::or_reverse: return s | ~d;
+    case LogicOp::copy_inverted: return ~s;
+    case LogicOp::or_inverted: return ~s | d;
+    case LogicOp::nand: return ~(s & d);
+    case LogicOp::set: return ~0u;
   }
+  return 0;  // not reached: every 4-bit code is an operation (fixed_function.def)
 }
 
-inline bool logic_op_reads_destination(unsigned code) {
-  code &= 15;
-  return code != 0 && code != 3 && code != 12 && code != 15;
+inline bool logic_op_reads_destination(LogicOp op) {
+  return op != LogicOp::clear && op != LogicOp::copy && op != LogicOp::copy_inverted && op != LogicOp::set;
 }
 
 inline bool factor_reads_destination(BlendFactor f) {
@@ -144,9 +146,10 @@ inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t s
   return out;
 }
 
+// A wrap code without an entry acts as repeat (fixed_function.def).
 inline int wrap(int i, unsigned size, gl::TexWrap mode) {
-  if (mode == gl::TexWrap::repeat) return i & int(size - 1);
-  return std::clamp(i, 0, int(size) - 1);
+  if (mode == gl::TexWrap::clamp_to_edge) return std::clamp(i, 0, int(size) - 1);
+  return i & int(size - 1);
 }
 
 // One attribute's plane, in fixed point: value(x, y) = value0 + gx (x - x0) +
@@ -330,7 +333,7 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   c.needs_destination =
       c.color_write &&
       ((c.blend && (state.blend_dst != BlendFactor::zero || factor_reads_destination(state.blend_src))) ||
-       (c.logic_op && logic_op_reads_destination(state.logic_op_code)) || c.color_write_mask != all_color);
+       (c.logic_op && logic_op_reads_destination(state.logic_op_mode)) || c.color_write_mask != all_color);
 
   // Instruction counts for this state.
   c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0);
@@ -767,13 +770,13 @@ void ArmRasterizer::write_color_run(const DrawContext& c, uint32_t row_offset, i
       uint32_t src = m_source[begin + int(i)];
       if (c.blend) src = blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
       uint32_t out = pack_pixel(format, src);
-      if (c.logic_op) out = logic_op(state.logic_op_code, out, dst) & all;
+      if (c.logic_op) out = logic_op(state.logic_op_mode, out, dst) & all;
       m_source[begin + int(i)] = (out & c.color_write_mask) | (dst & ~c.color_write_mask);
     }
   } else {
     for (int i = begin; i < end; ++i) {
       uint32_t out = pack_pixel(format, m_source[i]);
-      if (c.logic_op) out = logic_op(state.logic_op_code, out, 0) & all;
+      if (c.logic_op) out = logic_op(state.logic_op_mode, out, 0) & all;
       m_source[i] = out;
     }
   }

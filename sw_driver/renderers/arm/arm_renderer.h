@@ -13,6 +13,7 @@
 #include "gl/renderer.h"
 #include "renderers/arm/arm_rasterizer.h"
 #include "renderers/arm/pixel_memory.h"
+#include "renderers/backend_entry_points.h"
 
 namespace tessera::arm {
 
@@ -36,7 +37,10 @@ class ArmRenderer : public gl::Renderer {
  public:
   explicit ArmRenderer(AppEnvironment& env);
 
+  // Depth as uint16 and stencil as uint8 per pixel (arm_rasterizer.h).
+
   const char* name() const override { return "tessera arm (software, ARM922T)"; }
+  gl::RendererCapabilities capabilities() const override { return backends::arm::CAPABILITIES; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
   PixelFormat color_format() const override { return m_display.format(); }

@@ -27,7 +27,8 @@ constexpr uint64_t TILE_ENTRY_ALU = 4;      // append two words to a tile's list
 constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
 constexpr unsigned STM_WORDS = 8;           // STM with eight registers
 
-// A StateBlock from the GL state, in command_format.h's encoding.
+// A StateBlock from the GL state, in command_format.h's encoding: the state
+// already holds the hardware codes (common/fixed_function.def).
 StateBlock encode_state(const gl::RasterState& s) {
   StateBlock b{};
   auto flag = [&](bool on, uint32_t bit) { b.flags |= on ? bit : 0u; };
@@ -42,14 +43,15 @@ StateBlock encode_state(const gl::RasterState& s) {
   flag(texture, raster::texture);
   flag(s.flat_shading, raster::flat_shading);
   flag(s.polygon_smooth, raster::polygon_smooth);
-  b.depth_func = static_cast<uint32_t>(s.depth_func);
-  b.alpha_func = static_cast<uint32_t>(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
-  b.stencil_func = static_cast<uint32_t>(s.stencil_func) | uint32_t{s.stencil_ref} << 8 |
-                   uint32_t{s.stencil_value_mask} << 16 | uint32_t{s.stencil_write_mask} << 24;
-  b.stencil_ops = static_cast<uint32_t>(s.stencil_fail) | static_cast<uint32_t>(s.depth_fail) << 8 |
-                  static_cast<uint32_t>(s.depth_pass) << 16;
-  b.blend = static_cast<uint32_t>(s.blend_src) | static_cast<uint32_t>(s.blend_dst) << 8 |
-            uint32_t{s.logic_op_code & 0xFu} << 16;
+  b.depth_func = code_of(s.depth_func);
+  b.alpha_func = code_of(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
+  b.stencil_func = code_of(s.stencil_func) | uint32_t{s.stencil_ref} << 8 | uint32_t{s.stencil_value_mask} << 16 |
+                   uint32_t{s.stencil_write_mask} << 24;
+  b.stencil_ops = code_of(s.stencil_fail) << raster::STENCIL_FAIL_SHIFT |
+                  code_of(s.depth_fail) << raster::STENCIL_DEPTH_FAIL_SHIFT |
+                  code_of(s.depth_pass) << raster::STENCIL_DEPTH_PASS_SHIFT;
+  b.blend = code_of(s.blend_src) << raster::BLEND_SRC_SHIFT | code_of(s.blend_dst) << raster::BLEND_DST_SHIFT |
+            code_of(s.logic_op_mode) << raster::BLEND_LOGIC_OP_SHIFT;
   for (unsigned i = 0; i < 4; ++i) b.color_mask |= s.color_mask[i] ? 1u << i : 0u;
   auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
   b.scissor_xy = u16(s.scissor_x) | u16(s.scissor_y) << 16;
@@ -62,9 +64,11 @@ StateBlock encode_state(const gl::RasterState& s) {
     };
     b.texture_address = s.tex.address;
     b.texture_size = log2(s.tex.width) | log2(s.tex.height) << 8;
-    b.texture_mode = (s.tex.min_filter == gl::TexFilter::linear ? 1u : 0u) |
-                     (s.tex.mag_filter == gl::TexFilter::linear ? 2u : 0u) | static_cast<uint32_t>(s.tex.wrap_s) << 2 |
-                     static_cast<uint32_t>(s.tex.wrap_t) << 4 | static_cast<uint32_t>(s.tex_env) << 8;
+    b.texture_mode = code_of(s.tex.min_filter) << raster::TEXTURE_MIN_FILTER_SHIFT |
+                     code_of(s.tex.mag_filter) << raster::TEXTURE_MAG_FILTER_SHIFT |
+                     code_of(s.tex.wrap_s) << raster::TEXTURE_WRAP_S_SHIFT |
+                     code_of(s.tex.wrap_t) << raster::TEXTURE_WRAP_T_SHIFT |
+                     code_of(s.tex_env) << raster::TEXTURE_ENV_SHIFT;
   }
   return b;
 }
@@ -85,22 +89,29 @@ raster::VertexRecord encode_vertex(const gl::ScreenVertex& v) {
   return r;
 }
 
+// The rasterizer's screen and tiles, from its registers; it must cover the
+// display it draws into.
+renderers::TileGrid read_grid(HostApi& host, const DisplayDriver& display) {
+  auto reg = [&host](uint32_t offset) { return host.read32(memory_map::raster_regs.base + offset); };
+  renderers::TileGrid grid;
+  grid.width = reg(regs::WIDTH);
+  grid.height = reg(regs::HEIGHT);
+  if (grid.width != display.width() || grid.height != display.height())
+    throw std::runtime_error("raster back end: the rasterizer covers " + std::to_string(grid.width) + "x" +
+                             std::to_string(grid.height) + " pixels but the display shows " +
+                             std::to_string(display.width()) + "x" + std::to_string(display.height()) +
+                             " (set raster.width and raster.height to the display's)");
+  grid.tile_width = reg(regs::TILE_WIDTH);
+  grid.tile_height = reg(regs::TILE_HEIGHT);
+  return grid;
+}
+
 }  // namespace
 
-RasterRenderer::RasterRenderer(AppEnvironment& env) : m_host(*env.host), m_display(env) {
-  const unsigned width = m_host.read32(reg(regs::WIDTH));
-  const unsigned height = m_host.read32(reg(regs::HEIGHT));
-  if (width != m_display.width() || height != m_display.height())
-    throw std::runtime_error("raster back end: the rasterizer covers " + std::to_string(width) + "x" +
-                             std::to_string(height) + " pixels but the display shows " +
-                             std::to_string(m_display.width()) + "x" + std::to_string(m_display.height()) +
-                             " (set raster.width and raster.height to the display's)");
-  m_tile_width = m_host.read32(reg(regs::TILE_WIDTH));
-  m_tile_height = m_host.read32(reg(regs::TILE_HEIGHT));
-  m_tiles_x = (width + m_tile_width - 1) / m_tile_width;
-  m_tiles_y = (height + m_tile_height - 1) / m_tile_height;
+RasterRenderer::RasterRenderer(AppEnvironment& env)
+    : m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
-  m_depth_buffer = gl::allocate(width * height * 4);
+  m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
   m_last_draw_state = encode_state(gl::RasterState{});
 }
 
@@ -114,17 +125,6 @@ uint32_t RasterRenderer::add_state(const StateBlock& block) {
   return static_cast<uint32_t>(m_states.size() - 1);
 }
 
-void RasterRenderer::tile_range_of_pixels(int x0, int y0, int x1, int y1, Item& item) const {
-  const int w = static_cast<int>(m_display.width()), h = static_cast<int>(m_display.height());
-  x0 = std::clamp(x0, 0, w - 1), x1 = std::clamp(x1, 0, w - 1);
-  y0 = std::clamp(y0, 0, h - 1), y1 = std::clamp(y1, 0, h - 1);
-  // Tile rows count from the top; GL rows from the bottom.
-  item.tile_x0 = static_cast<unsigned>(x0) / m_tile_width;
-  item.tile_x1 = static_cast<unsigned>(x1) / m_tile_width;
-  item.tile_y0 = static_cast<unsigned>(h - 1 - y1) / m_tile_height;
-  item.tile_y1 = static_cast<unsigned>(h - 1 - y0) / m_tile_height;
-}
-
 void RasterRenderer::clear(const gl::ClearRequest& request) {
   if (!request.color && !request.depth && !request.stencil) return;
   // The clear's scissor is that of the state current in its tile, so the
@@ -134,13 +134,15 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
   auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
   block.scissor_xy = u16(request.scissor_x) | u16(request.scissor_y) << 16;
   block.scissor_size = u16(request.scissor_width) | u16(request.scissor_height) << 16;
-  Item item{Opcode::clear, static_cast<uint32_t>(m_clears.size()), add_state(block), 0, 0, 0, 0};
+  const uint32_t state = add_state(block);
+  renderers::TileRange tiles;
   if (request.scissor_test) {
     if (request.scissor_width <= 0 || request.scissor_height <= 0) return;
-    tile_range_of_pixels(request.scissor_x, request.scissor_y, request.scissor_x + request.scissor_width - 1,
-                         request.scissor_y + request.scissor_height - 1, item);
+    tiles =
+        m_binner.tiles_of_pixels(request.scissor_x, request.scissor_y, request.scissor_x + request.scissor_width - 1,
+                                 request.scissor_y + request.scissor_height - 1);
   } else {
-    tile_range_of_pixels(0, 0, static_cast<int>(width()) - 1, static_cast<int>(height()) - 1, item);
+    tiles = m_binner.tiles_of_pixels(0, 0, static_cast<int>(width()) - 1, static_cast<int>(height()) - 1);
   }
   ClearWords clear{};
   clear.words[0] = static_cast<uint32_t>(Opcode::clear) |
@@ -152,8 +154,9 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
   for (unsigned i = 0; i < 4; ++i) color_mask |= request.color_mask[i] ? 1u << i : 0u;
   clear.words[3] = uint32_t{request.stencil_value} | color_mask << 8 | (request.depth_write ? 1u : 0u) << 12 |
                    uint32_t{request.stencil_write_mask} << 16;
+  m_binner.add(state, tiles);
+  m_commands.push_back({Opcode::clear, static_cast<uint32_t>(m_clears.size())});
   m_clears.push_back(clear);
-  m_items.push_back(item);
   m_host.compute(Op::alu, 16);
   m_host.compute(Op::call);
 }
@@ -171,11 +174,10 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     for (unsigned k = 0; k < 3; ++k) record.v[k] = encode_vertex(t.v[k]);
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
     const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
-    Item item{Opcode::triangle, static_cast<uint32_t>(m_triangles.size()), state_index, 0, 0, 0, 0};
-    tile_range_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN, (max_x >> 4) + MARGIN, (max_y >> 4) + MARGIN,
-                         item);
+    m_binner.add(state_index, m_binner.tiles_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN,
+                                                       (max_x >> 4) + MARGIN, (max_y >> 4) + MARGIN));
+    m_commands.push_back({Opcode::triangle, static_cast<uint32_t>(m_triangles.size())});
     m_triangles.push_back(record);
-    m_items.push_back(item);
   }
   m_host.compute(Op::alu, TRIANGLE_ALU * count);
   m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count);
@@ -204,36 +206,32 @@ void RasterRenderer::write_block(uint32_t address, const uint32_t* words, size_t
 }
 
 void RasterRenderer::flush() {
-  if (m_items.empty()) return;
-  const unsigned tiles = m_tiles_x * m_tiles_y;
+  if (m_commands.empty()) return;
+  const unsigned tiles = m_binner.grid().tiles();
 
-  // Bin: each command goes to every tile of its box, preceded by a STATE
-  // command where the tile's current state differs.
+  // Bin (common/tile_binner.h): each command goes to every tile of its box,
+  // preceded by a STATE command where the tile's current state differs;
+  // then each entry in command_format.h's words.
+  const std::vector<std::vector<renderers::BinEntry>> bins = m_binner.bin();
   std::vector<std::vector<uint32_t>> lists(tiles);
-  std::vector<int64_t> tile_state(tiles, -1);
   const uint32_t tile_table_bytes = tiles * sizeof(raster::TileEntry);
   const uint32_t states_bytes = static_cast<uint32_t>(m_states.size() * sizeof(StateBlock));
   const uint32_t triangles_bytes = static_cast<uint32_t>(m_triangles.size() * sizeof(raster::TriangleRecord));
   uint64_t entries = 0;
-  for (const Item& item : m_items) {
-    for (unsigned ty = item.tile_y0; ty <= item.tile_y1; ++ty)
-      for (unsigned tx = item.tile_x0; tx <= item.tile_x1; ++tx) {
-        const unsigned tile = ty * m_tiles_x + tx;
-        std::vector<uint32_t>& list = lists[tile];
-        if (tile_state[tile] != item.state) {
-          list.push_back(static_cast<uint32_t>(Opcode::state));
-          list.push_back(item.state);  // an index for now; addresses once the layout is known
-          tile_state[tile] = item.state;
-          ++entries;
-        }
-        if (item.opcode == Opcode::clear) {
-          list.insert(list.end(), std::begin(m_clears[item.index].words), std::end(m_clears[item.index].words));
-        } else {
-          list.push_back(static_cast<uint32_t>(Opcode::triangle));
-          list.push_back(item.index);
-        }
-        ++entries;
+  for (unsigned tile = 0; tile < tiles; ++tile) {
+    std::vector<uint32_t>& list = lists[tile];
+    for (const renderers::BinEntry& entry : bins[tile]) {
+      if (entry.kind == renderers::BinEntry::Kind::state) {
+        list.push_back(static_cast<uint32_t>(Opcode::state));
+        list.push_back(entry.index);  // an index for now; addresses once the layout is known
+      } else if (const Command& command = m_commands[entry.index]; command.opcode == Opcode::clear) {
+        list.insert(list.end(), std::begin(m_clears[command.index].words), std::end(m_clears[command.index].words));
+      } else {
+        list.push_back(static_cast<uint32_t>(Opcode::triangle));
+        list.push_back(command.index);
       }
+    }
+    entries += bins[tile].size();
   }
   m_host.compute(Op::alu, TILE_ENTRY_ALU * entries);
   m_host.compute(Op::branch, entries);
@@ -272,7 +270,8 @@ void RasterRenderer::flush() {
 
   run_rasterizer(tile_table);
 
-  m_items.clear();
+  m_binner.clear();
+  m_commands.clear();
   m_clears.clear();
   m_triangles.clear();
   m_states.clear();

@@ -16,6 +16,8 @@
 #include "device/display_driver.h"
 #include "gl/renderer.h"
 #include "raster/command_format.h"
+#include "renderers/backend_entry_points.h"
+#include "renderers/common/tile_binner.h"
 
 namespace tessera::raster_backend {
 
@@ -23,7 +25,11 @@ class RasterRenderer : public gl::Renderer {
  public:
   explicit RasterRenderer(AppEnvironment& env);
 
+  // One word per pixel: depth in bits 0-23, stencil in 24-31 (DEPTH_BASE in
+  // raster_regs.def).
+
   const char* name() const override { return "tessera raster (fixed-function tile rasterizer)"; }
+  gl::RendererCapabilities capabilities() const override { return backends::raster::CAPABILITIES; }
   unsigned width() const override { return m_display.width(); }
   unsigned height() const override { return m_display.height(); }
   PixelFormat color_format() const override { return m_display.format(); }
@@ -37,21 +43,17 @@ class RasterRenderer : public gl::Renderer {
   void flush();
 
  private:
-  // One recorded command, in the order the application issued it. Every
-  // command carries the state it needs (a clear: the scissor).
-  struct Item {
+  // One recorded command, numbered in issue order as m_binner numbers it;
+  // the binner keeps its state (into m_states) and its tile range.
+  struct Command {
     raster::Opcode opcode;
     uint32_t index;  // into m_clears (clear) or m_triangles (triangle)
-    uint32_t state;  // into m_states
-    // Tile range touched, inclusive; tile (0, 0) at the top left.
-    unsigned tile_x0, tile_y0, tile_x1, tile_y1;
   };
   struct ClearWords {
     uint32_t words[4];
   };
 
   uint32_t add_state(const raster::StateBlock& block);
-  void tile_range_of_pixels(int x0, int y0, int x1, int y1, Item& item) const;  // GL pixels, inclusive
   uint32_t arena(uint32_t bytes);
   void write_block(uint32_t address, const uint32_t* words, size_t count);
   void run_rasterizer(uint32_t tile_table);
@@ -59,11 +61,11 @@ class RasterRenderer : public gl::Renderer {
 
   HostApi& m_host;
   DisplayDriver m_display;
-  unsigned m_tile_width = 0, m_tile_height = 0, m_tiles_x = 0, m_tiles_y = 0;
+  renderers::TileBinner m_binner;  // the rasterizer's screen and tile size
   uint32_t m_depth_buffer = 0;
   uint32_t m_arena = 0, m_arena_bytes = 0;
 
-  std::vector<Item> m_items;
+  std::vector<Command> m_commands;
   std::vector<raster::StateBlock> m_states;
   std::vector<ClearWords> m_clears;
   std::vector<raster::TriangleRecord> m_triangles;

@@ -13,6 +13,12 @@
 #include "raster/core/tile_rasterizer.h"
 
 using namespace tessera::raster;
+using tessera::BlendFactor;
+using tessera::code_of;
+using tessera::CompareFunc;
+using tessera::LogicOp;
+using tessera::TexEnv;
+using tessera::TexWrap;
 
 namespace {
 
@@ -75,14 +81,19 @@ VertexRecord vertex(double x, double y, uint32_t rgba = 0xffffffff, uint32_t z =
   return v;
 }
 
+// StateBlock::blend with the logic op COPY.
+uint32_t blend_codes(BlendFactor src, BlendFactor dst) {
+  return code_of(src) << BLEND_SRC_SHIFT | code_of(dst) << BLEND_DST_SHIFT |
+         code_of(LogicOp::copy) << BLEND_LOGIC_OP_SHIFT;
+}
+
 StateBlock default_state() {
   StateBlock s{};
   s.flags = depth_write;
-  s.depth_func = 1;  // less
-  s.alpha_func = 7;  // always
-  s.stencil_func = 7 | 0xffu << 16 | 0xffu << 24;
-  s.blend = 1;          // one, zero
-  s.blend |= 3u << 16;  // logic op copy
+  s.depth_func = code_of(CompareFunc::less);
+  s.alpha_func = code_of(CompareFunc::always);
+  s.stencil_func = code_of(CompareFunc::always) | 0xffu << 16 | 0xffu << 24;
+  s.blend = blend_codes(BlendFactor::one, BlendFactor::zero);
   s.color_mask = 15;
   return s;
 }
@@ -222,7 +233,7 @@ TEST(TileRasterizer, SharedEdgesDrawnOnceAcrossTiles) {
   frame.clear(0);
   StateBlock s = default_state();
   s.flags |= blend;
-  s.blend = 1 | 1u << 8 | 3u << 16;  // one, one
+  s.blend = blend_codes(BlendFactor::one, BlendFactor::one);
   frame.state(s);
   constexpr int NX = 7, NY = 4;
   const double x0 = 2.3, x1 = 93.7, y0 = 1.8, y1 = 45.2;
@@ -334,7 +345,7 @@ TEST(TileRasterizer, TextureNearestRepeat) {
   s.flags |= texture;
   s.texture_address = TEXTURE_BASE;
   s.texture_size = 2 | 2u << 8;
-  s.texture_mode = 1u << 8;  // nearest, repeat, replace
+  s.texture_mode = code_of(TexEnv::replace) << TEXTURE_ENV_SHIFT;  // nearest, repeat
   frame.state(s);
   // Quad [16, 48) x [8, 24): s from 0 to 2, t from 0 to 1.
   const VertexRecord a = vertex(16, 8, ~0u, 0, 0, 0), b = vertex(48, 8, ~0u, 0, 2, 0), c = vertex(48, 24, ~0u, 0, 2, 1),
@@ -365,7 +376,9 @@ TEST(TileRasterizer, TextureCoordinatesArePerspectiveCorrect) {
   s.flags |= texture;
   s.texture_address = TEXTURE_BASE;
   s.texture_size = 8;
-  s.texture_mode = 1u << 8 | 1u << 2 | 1u << 4;  // nearest, clamp, replace
+  s.texture_mode = code_of(TexEnv::replace) << TEXTURE_ENV_SHIFT |
+                   code_of(TexWrap::clamp_to_edge) << TEXTURE_WRAP_S_SHIFT |
+                   code_of(TexWrap::clamp_to_edge) << TEXTURE_WRAP_T_SHIFT;  // nearest
   frame.state(s);
   const float w_left = 1, w_right = 4;
   const VertexRecord a = vertex(0, 0, ~0u, 0, 0, 0.5f, w_left), b = vertex(96, 0, ~0u, 0, 1, 0.5f, w_right),
@@ -419,7 +432,7 @@ TEST(TileRasterizer, BlendingSourceAlpha) {
   frame.clear(0xff0064c8);  // r 200, g 100, b 0, a 255
   StateBlock s = default_state();
   s.flags |= blend;
-  s.blend = 6 | 7u << 8 | 3u << 16;  // src_alpha, one_minus_src_alpha
+  s.blend = blend_codes(BlendFactor::src_alpha, BlendFactor::one_minus_src_alpha);
   frame.state(s);
   frame.triangle(vertex(10, 10, 0x80ff0000), vertex(60, 10, 0x80ff0000), vertex(10, 40, 0x80ff0000));
   frame.finish();

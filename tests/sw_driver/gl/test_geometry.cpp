@@ -1,10 +1,13 @@
 // Unit tests of the GL front end's geometry stage: clipping against every
 // plane of the view volume, the viewport transform into 9.4 / 0.24 / 0.8,
-// non-finite and out-of-range vertices, orientation, and lighting.
+// non-finite and out-of-range vertices, degeneracy before snapping,
+// orientation, and lighting.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "gl/geometry.h"
 
@@ -198,6 +201,81 @@ TEST(Viewport, SignedAreaIsPositiveCounterClockwise) {
   EXPECT_EQ(signed_area(a, b, c), 160 * 160);
   EXPECT_EQ(signed_area(a, c, b), -160 * 160);
   EXPECT_EQ(signed_area(a, a, c), 0);
+}
+
+// Three vertices on the line y = x / 2 (exact in float: halving only moves
+// the exponent) lie on one line in window coordinates too, but snapping
+// each to 1/16 pixel moves them off it.
+TEST(Degeneracy, CollinearVerticesHaveNoAreaBeforeSnappingButSomeAfter) {
+  Viewport viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  std::vector<WindowPoint> window(3);
+  ScreenVertex screen[3];
+  const float xs[3] = {-0.9f, 0.13f, 0.77f};
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(to_window(vertex(xs[i], xs[i] * 0.5f, 0).position, viewport, &window[i]));
+    ASSERT_TRUE(to_screen(vertex(xs[i], xs[i] * 0.5f, 0), viewport, &screen[i]));
+  }
+  EXPECT_TRUE(is_degenerate(window));
+  EXPECT_NE(signed_area(screen[0], screen[1], screen[2]), 0) << "snapping no longer moves these off their line";
+}
+
+TEST(Degeneracy, HeightAcrossTheLongestEdgeAgainstAQuarterOfTheSnappingStep) {
+  auto triangle = [](double height) { return std::vector<WindowPoint>{{10, 10}, {110, 10}, {40, 10 + height}}; };
+  EXPECT_TRUE(is_degenerate(triangle(0)));
+  EXPECT_TRUE(is_degenerate(triangle(DEGENERATE_HEIGHT / 2)));
+  EXPECT_FALSE(is_degenerate(triangle(DEGENERATE_HEIGHT * 2)));
+  EXPECT_FALSE(is_degenerate(triangle(-0.5)));  // either winding
+  // A needle: long, with its third vertex off the line by less than the limit.
+  EXPECT_TRUE(is_degenerate({{0, 0}, {400, 300}, {200, 150.005}}));
+  // Fewer than three vertices, or all in one place.
+  EXPECT_TRUE(is_degenerate({{0, 0}, {5, 5}}));
+  EXPECT_TRUE(is_degenerate({{3, 3}, {3, 3}, {3, 3}}));
+  // A clipped polygon: a unit square is not degenerate, a flattened one is.
+  EXPECT_FALSE(is_degenerate({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+  EXPECT_TRUE(is_degenerate({{0, 0}, {1, 0}, {2, 0.001}, {0.5, 0.0005}}));
+}
+
+// The integer shortcut may only vouch for triangles the unsnapped test
+// keeps: random triangles, many of them thin, in a 320x240 viewport.
+TEST(Degeneracy, IntegerShortcutNeverVouchesForADegenerateTriangle) {
+  Viewport viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  std::mt19937 random(1234);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f), thickness(-0.002f, 0.002f);
+  unsigned vouched = 0, degenerate = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // Two free vertices and a third near (or on) the line through them.
+    const glm::vec2 p0(coordinate(random), coordinate(random)), p1(coordinate(random), coordinate(random));
+    const float along = (coordinate(random) + 1) * 0.5f;
+    const glm::vec2 p2 =
+        p0 + (p1 - p0) * along + glm::vec2(-(p1 - p0).y, (p1 - p0).x) * (i % 2 ? thickness(random) : 0);
+    std::vector<WindowPoint> window(3);
+    ScreenVertex screen[3];
+    const glm::vec2 points[3] = {p0, p1, p2};
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      ok = ok && to_window({points[k], 0, 1}, viewport, &window[k]) &&
+           to_screen(vertex(points[k].x, points[k].y, 0), viewport, &screen[k]);
+    }
+    if (!ok) continue;
+    const bool is_flat = is_degenerate(window);
+    degenerate += is_flat;
+    if (surely_has_area(screen[0], screen[1], screen[2])) {
+      ++vouched;
+      EXPECT_FALSE(is_flat) << "triangle " << i;
+    }
+  }
+  EXPECT_GT(degenerate, 1000u);
+  EXPECT_GT(vouched, 2000u);
+  // An ordinary triangle takes the shortcut; collinear vertices never do.
+  ScreenVertex a{}, b{}, c{};
+  a.x = 0, a.y = 0, b.x = 160, b.y = 0, c.x = 0, c.y = 160;
+  EXPECT_TRUE(surely_has_area(a, b, c));
+  c.x = 320, c.y = 0;
+  EXPECT_FALSE(surely_has_area(a, b, c));
 }
 
 TEST(FixedPoint, Unorm8AndUnorm24Clamp) {

@@ -1,135 +1,37 @@
 // Unit tests of the GL ES 1.1 and EGL entry points: the error codes the
 // specifications require for bad arguments, EGL misuse, and vertices that
-// must never reach a renderer (NaN, infinity, huge). A host that keeps
-// system memory in a vector and answers the display registers stands in for
-// the simulated SoC; a renderer that records what it is given stands in for
-// a back end.
+// must never reach a renderer (NaN, infinity, huge), on the stand-ins of
+// gl_test_fixture.h.
 #include <EGL/egl.h>
 #include <GLES/gl.h>
+#include <GLES/glext.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <limits>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "device/app_environment.h"
-#include "display/display_regs.h"
 #include "gl/context.h"
 #include "gl/runtime.h"
-#include "soc/memory_map.h"
+#include "gl_test_fixture.h"
+#include "renderers/backends.h"
+#include "support/backend_table.h"
 
 using namespace tessera;
-
-namespace {
-
-class VectorHost : public HostApi {
- public:
-  VectorHost() : m_memory(16u << 20, 0) {}
-  void compute(Op, uint64_t count) override { m_operations += count; }
-  uint32_t read32(uint32_t address) override {
-    if (memory_map::display_regs.contains(address)) {
-      switch (address - memory_map::display_regs.base) {
-        case display_regs::WIDTH: return 64;
-        case display_regs::HEIGHT: return 48;
-        case display_regs::FORMAT: return static_cast<uint32_t>(PixelFormat::rgb565);
-        case display_regs::MODE: return 0;
-        default: return 0;
-      }
-    }
-    uint32_t v = 0;
-    std::memcpy(&v, at(address, 4), 4);
-    return v;
-  }
-  uint16_t read16(uint32_t address) override {
-    uint16_t v;
-    std::memcpy(&v, at(address, 2), 2);
-    return v;
-  }
-  uint8_t read8(uint32_t address) override { return *at(address, 1); }
-  void write32(uint32_t address, uint32_t value) override {
-    if (address < m_memory.size()) std::memcpy(at(address, 4), &value, 4);
-  }
-  void write16(uint32_t address, uint16_t value) override {
-    if (address < m_memory.size()) std::memcpy(at(address, 2), &value, 2);
-  }
-  void write8(uint32_t address, uint8_t value) override {
-    if (address < m_memory.size()) *at(address, 1) = value;
-  }
-  void read_words(uint32_t address, uint32_t* words, unsigned count) override {
-    for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
-  }
-  void write_words(uint32_t address, const uint32_t* words, unsigned count) override {
-    for (unsigned i = 0; i < count; ++i) write32(address + 4 * i, words[i]);
-  }
-  const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override {
-    return at(address, size * count);
-  }
-  uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override { return at(address, size * count); }
-  void wait_irq(unsigned) override {}
-  bool irq_pending(unsigned) override { return false; }
-  double now_seconds() const override { return 0; }
-  double clock_hz() const override { return 192e6; }
-  uint64_t operations() const { return m_operations; }
-
- private:
-  uint8_t* at(uint32_t address, unsigned bytes) {
-    if (static_cast<uint64_t>(address) + bytes > m_memory.size())
-      throw std::out_of_range("test host: access outside memory");
-    return m_memory.data() + address;
-  }
-  std::vector<uint8_t> m_memory;
-  uint64_t m_operations = 0;
-};
-
-class RecordingRenderer : public gl::Renderer {
- public:
-  const char* name() const override { return "recording"; }
-  unsigned width() const override { return 64; }
-  unsigned height() const override { return 48; }
-  PixelFormat color_format() const override { return PixelFormat::rgb565; }
-  void clear(const gl::ClearRequest&) override { ++clears; }
-  void draw(const gl::RasterState&, const gl::Triangle* t, size_t n) override {
-    triangles.insert(triangles.end(), t, t + n);
-  }
-  void read_pixels(int, int, int w, int h, uint8_t* rgba) override {
-    std::memset(rgba, 0x5a, static_cast<size_t>(w) * h * 4);
-  }
-  void finish() override {}
-  void present() override {}
-  std::vector<gl::Triangle> triangles;
-  int clears = 0;
-};
-
-// A current GL context over the recording renderer, for each test.
-class GlApi : public ::testing::Test {
- protected:
-  void SetUp() override {
-    env.host = &host;
-    env.heap_base = 4u << 20;
-    env.heap_end = 15u << 20;
-    env.frames = 1000;
-    gl::set_environment(&env);
-    context = std::make_unique<gl::Context>(host, renderer);
-    gl::set_current_context(context.get());
-  }
-  void TearDown() override {
-    gl::set_current_context(nullptr);
-    gl::set_environment(nullptr);
-  }
-  void draw_triangle(const float* positions) {
-    glEnableClientState(GL_VERTEX_ARRAY);
-    glVertexPointer(3, GL_FLOAT, 0, positions);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
-  VectorHost host;
-  AppEnvironment env;
-  RecordingRenderer renderer;
-  std::unique_ptr<gl::Context> context;
-};
-
-}  // namespace
+using test::GlApi;
+using test::RecordingRenderer;
+using test::VectorHost;
 
 TEST_F(GlApi, BadEnumsAreInvalidEnum) {
   glEnable(0x1234);
@@ -233,6 +135,58 @@ TEST_F(GlApi, StateQueriesReadBackWhatWasSet) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// The GL enums become the hardware codes of common/fixed_function.def on
+// their way to the back end, and glGet gives the GL enums back.
+TEST_F(GlApi, FixedFunctionStateReachesTheRendererAsTableCodes) {
+  glBlendFunc(GL_DST_COLOR, GL_ONE_MINUS_SRC_ALPHA);
+  glStencilOp(GL_INVERT, GL_INCR, GL_REPLACE);
+  glStencilFunc(GL_GEQUAL, 3, 0xff);
+  glLogicOp(GL_XOR);
+  glAlphaFunc(GL_NOTEQUAL, 0.5f);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_DECAL);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const float positions[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
+  draw_triangle(positions);
+  glFinish();
+  const gl::RasterState& s = renderer.state;
+  EXPECT_EQ(code_of(s.blend_src), 8u);  // dst_color
+  EXPECT_EQ(code_of(s.blend_dst), 5u);  // one_minus_src_alpha
+  EXPECT_EQ(s.stencil_fail, StencilOp::invert);
+  EXPECT_EQ(code_of(s.depth_fail), 3u);
+  EXPECT_EQ(s.depth_pass, StencilOp::replace);
+  EXPECT_EQ(code_of(s.stencil_func), 6u);
+  EXPECT_EQ(s.logic_op_mode, LogicOp::xor_);
+  EXPECT_EQ(code_of(s.alpha_func), 5u);
+  EXPECT_EQ(code_of(s.tex_env), 2u);
+  const std::pair<GLenum, GLint> queries[] = {{GL_BLEND_SRC, GL_DST_COLOR},
+                                              {GL_BLEND_DST, GL_ONE_MINUS_SRC_ALPHA},
+                                              {GL_STENCIL_FAIL, GL_INVERT},
+                                              {GL_STENCIL_PASS_DEPTH_FAIL, GL_INCR},
+                                              {GL_STENCIL_PASS_DEPTH_PASS, GL_REPLACE},
+                                              {GL_STENCIL_FUNC, GL_GEQUAL},
+                                              {GL_LOGIC_OP_MODE, GL_XOR},
+                                              {GL_ALPHA_TEST_FUNC, GL_NOTEQUAL}};
+  for (const auto& [name, value] : queries) {
+    GLint got = 0;
+    glGetIntegerv(name, &got);
+    EXPECT_EQ(got, value) << std::hex << name;
+  }
+  // What GL does not accept leaves the state as it was.
+  glBlendFunc(GL_SRC_COLOR, GL_ZERO);  // SRC_COLOR is not a source factor
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glBlendFunc(GL_ONE, GL_SRC_ALPHA_SATURATE);  // nor SRC_ALPHA_SATURATE a destination factor
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glLogicOp(GL_SET + 1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  glStencilOp(GL_KEEP, GL_KEEP, GL_DECR + 1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  GLint src = 0, op = 0;
+  glGetIntegerv(GL_BLEND_SRC, &src);
+  glGetIntegerv(GL_LOGIC_OP_MODE, &op);
+  EXPECT_EQ(src, GL_DST_COLOR);
+  EXPECT_EQ(op, GL_XOR);
+}
+
 TEST_F(GlApi, TriangleReachesTheRendererInScreenFormats) {
   const float positions[] = {-1, -1, 0, 1, -1, 0, -1, 1, 0};
   draw_triangle(positions);
@@ -268,6 +222,112 @@ TEST_F(GlApi, NonFiniteAndHugeVerticesDrawNothing) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// Vertices on the line y = x / 2, collinear in float, which snapping to 9.4
+// moves apart into a sliver. No such triangle may reach the back end,
+// whatever the matrices, while a thin but real one still does.
+TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
+  const float collinear[] = {-0.9f, -0.45f, 0, 0.13f, 0.065f, 0, 0.77f, 0.385f, 0};
+  gl::Viewport viewport;
+  viewport.width = 64;
+  viewport.height = 48;
+  gl::ScreenVertex snapped[3];
+  for (int i = 0; i < 3; ++i) {
+    gl::ClipVertex v;
+    v.position = {collinear[3 * i], collinear[3 * i + 1], 0, 1};
+    ASSERT_TRUE(gl::to_screen(v, viewport, &snapped[i]));
+  }
+  ASSERT_NE(gl::signed_area(snapped[0], snapped[1], snapped[2]), 0) << "snapping keeps these on one line";
+  draw_triangle(collinear);
+  EXPECT_TRUE(renderer.triangles.empty());
+  // Through a perspective projection and a rotated, translated modelview
+  // the vertices stay on one line, up to float rounding.
+  glMatrixMode(GL_PROJECTION);
+  glFrustumf(-1, 1, -0.75f, 0.75f, 1, 10);
+  glMatrixMode(GL_MODELVIEW);
+  glTranslatef(0.1f, -0.2f, -3);
+  glRotatef(37, 0.3f, 1, 0.2f);
+  draw_triangle(collinear);
+  EXPECT_TRUE(renderer.triangles.empty());
+  glLoadIdentity();
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  // Half a pixel thick (0.02 of 24 pixels per unit): drawn.
+  const float thin[] = {-0.9f, -0.45f, 0, 0.13f, 0.085f, 0, 0.77f, 0.385f, 0};
+  draw_triangle(thin);
+  EXPECT_EQ(renderer.triangles.size(), 1u);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// glDrawElements transforms each distinct vertex of a call once (the
+// post-transform vertex cache) and charges the host for those alone, and
+// draws exactly what the same triangles drawn from an unindexed array draw.
+TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
+  ActivityCounters counters;
+  context = std::make_unique<gl::Context>(host, renderer, &counters);
+  gl::set_current_context(context.get());
+  // A 3x3 grid of vertices, two triangles per cell: 9 vertices, 24 indices.
+  std::vector<float> grid;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) grid.insert(grid.end(), {x * 0.8f - 0.8f, y * 0.8f - 0.8f, 0.1f * x});
+  std::vector<GLushort> indices;
+  for (GLushort y = 0; y < 2; ++y)
+    for (GLushort x = 0; x < 2; ++x) {
+      const GLushort a = y * 3 + x, b = a + 1, c = a + 3, d = c + 1;
+      indices.insert(indices.end(), {a, b, c, c, b, d});
+    }
+  const float normal[3] = {0, 0, 1};
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  glNormal3f(normal[0], normal[1], normal[2]);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, grid.data());
+
+  uint64_t start = host.operations();
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_SHORT, indices.data());
+  const uint64_t indexed_cost = host.operations() - start;
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
+  const std::vector<gl::Triangle> indexed = renderer.triangles;
+  ASSERT_EQ(indexed.size(), 8u);
+
+  // The same triangles from an unindexed array: every vertex transformed,
+  // no cache look-ups, and the same screen triangles.
+  std::vector<float> expanded;
+  for (GLushort index : indices) expanded.insert(expanded.end(), &grid[3 * index], &grid[3 * index] + 3);
+  renderer.triangles.clear();
+  glVertexPointer(3, GL_FLOAT, 0, expanded.data());
+  start = host.operations();
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(indices.size()));
+  const uint64_t unindexed_cost = host.operations() - start;
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u + 24u);
+  EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
+  ASSERT_EQ(renderer.triangles.size(), indexed.size());
+  for (size_t t = 0; t < indexed.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const gl::ScreenVertex &a = renderer.triangles[t].v[k], &b = indexed[t].v[k];
+      EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z && a.inv_w == b.inv_w && a.r == b.r && a.g == b.g &&
+                  a.b == b.b && a.a == b.a && a.s == b.s && a.t == b.t)
+          << "triangle " << t << ", vertex " << k;
+    }
+  EXPECT_LT(indexed_cost * 2, unindexed_cost);
+
+  // Every call starts with an empty cache: the next one transforms its
+  // vertices again, with the state of its own time.
+  renderer.triangles.clear();
+  glVertexPointer(3, GL_FLOAT, 0, grid.data());
+  glDisable(GL_LIGHTING);
+  glColor4f(1, 0, 0, 1);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_SHORT, indices.data());
+  EXPECT_EQ(counters.value("vertices_transformed"), 9u + 24u + 9u);
+  EXPECT_EQ(counters.value("vertex_cache.hits"), 30u);
+  ASSERT_EQ(renderer.triangles.size(), 8u);
+  for (const gl::Triangle& t : renderer.triangles)
+    for (const gl::ScreenVertex& v : t.v) EXPECT_EQ(std::vector<int>({v.r, v.g, v.b}), std::vector<int>({255, 0, 0}));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(GlApi, CullingDropsBackFaces) {
   const float clockwise[] = {-1, -1, 0, -1, 1, 0, 1, -1, 0};
   glEnable(GL_CULL_FACE);
@@ -291,6 +351,39 @@ TEST_F(GlApi, PointsAndLinesBecomeTriangles) {
   renderer.triangles.clear();
   glDrawArrays(GL_LINE_LOOP, 0, 2);
   EXPECT_EQ(renderer.triangles.size(), 4u);
+}
+
+// GL_EXTENSIONS names exactly the extensions whose macros the SDK's
+// headers define (GL_OES_read_format, ...), and the driver answers what
+// each promises.
+TEST_F(GlApi, ExtensionStringMatchesTheHeaders) {
+  const char* source = std::getenv("TESSERA_SOURCE_DIR");
+  ASSERT_NE(source, nullptr) << "run through ctest, which sets TESSERA_SOURCE_DIR";
+  const std::regex extension_macro(R"(\s*#\s*define\s+(GL_[A-Z]+_[a-z][A-Za-z0-9_]*)\s+1\s*)");
+  std::set<std::string> declared;
+  for (const char* header : {"GLES/gl.h", "GLES/glext.h"}) {
+    std::ifstream in(std::string(source) + "/sw_driver/include/" + header);
+    ASSERT_TRUE(in) << header;
+    std::smatch match;
+    for (std::string line; std::getline(in, line);)
+      if (std::regex_match(line, match, extension_macro)) declared.insert(match[1]);
+  }
+  const GLubyte* text = glGetString(GL_EXTENSIONS);
+  ASSERT_NE(text, nullptr);
+  std::istringstream words(reinterpret_cast<const char*>(text));
+  std::set<std::string> listed;
+  for (std::string word; words >> word;) listed.insert(word);
+  EXPECT_EQ(listed, declared);
+  EXPECT_EQ(listed.count("GL_OES_read_format"), 1u);
+
+  GLint format = 0, type = 0;
+  glGetIntegerv(GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES, &format);
+  glGetIntegerv(GL_IMPLEMENTATION_COLOR_READ_TYPE_OES, &type);
+  uint8_t pixel[4];
+  glReadPixels(0, 0, 1, 1, static_cast<GLenum>(format), static_cast<GLenum>(type), pixel);
+  EXPECT_EQ(format, GL_RGBA);
+  EXPECT_EQ(type, GL_UNSIGNED_BYTE);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST_F(GlApi, ReadPixelsChecksFormatAndType) {
@@ -324,6 +417,8 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
   env.frame_buffers[0] = 15u << 20;
   env.frame_buffers[1] = (15u << 20) + 0x10000;
   env.frames = 2;
+  env.make_renderer = [](AppEnvironment&) { return std::make_unique<RecordingRenderer>(); };
+  env.capabilities = {16, 8};
   gl::set_environment(&env);
 
   EXPECT_EQ(eglGetDisplay(reinterpret_cast<EGLNativeDisplayType>(0x1234)), EGL_NO_DISPLAY);
@@ -386,4 +481,68 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
   EXPECT_EQ(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT), EGL_TRUE);
   EXPECT_EQ(eglTerminate(display), EGL_TRUE);
   gl::set_environment(nullptr);
+}
+
+// What EGL offers before a surface exists, and what GL reports once the
+// back end's renderer is made, are what the back end stores: 16-bit depth
+// on arm, 24 on raster, 8-bit stencil on both.
+TEST(Egl, DepthAndStencilBitsAreTheBackEndsOwn) {
+  const std::map<std::string, gl::RendererCapabilities> stored = {{"arm", {16, 8}}, {"raster", {24, 8}}};
+  for (const std::string& backend : test::back_end_names()) {
+    SCOPED_TRACE(backend);
+    ASSERT_TRUE(stored.count(backend)) << "say what the new back end stores";
+    VectorHost host;
+    AppEnvironment env;
+    env.host = &host;
+    env.heap_base = 4u << 20;
+    env.heap_end = 15u << 20;
+    env.frame_buffers[0] = 15u << 20;
+    env.frame_buffers[1] = (15u << 20) + 0x10000;
+    backends::hand_over(backends::backend(backend), env);
+    gl::set_environment(&env);
+    const gl::RendererCapabilities expected = stored.at(backend);
+
+    EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    ASSERT_EQ(eglInitialize(display, nullptr, nullptr), EGL_TRUE);
+    EGLConfig config;
+    EGLint count = 0;
+    ASSERT_EQ(eglChooseConfig(display, nullptr, &config, 1, &count), EGL_TRUE);
+    ASSERT_EQ(count, 1);
+    EGLint depth = 0, stencil = 0;
+    ASSERT_EQ(eglGetConfigAttrib(display, config, EGL_DEPTH_SIZE, &depth), EGL_TRUE);
+    ASSERT_EQ(eglGetConfigAttrib(display, config, EGL_STENCIL_SIZE, &stencil), EGL_TRUE);
+    EXPECT_EQ(depth, static_cast<EGLint>(expected.depth_bits));
+    EXPECT_EQ(stencil, static_cast<EGLint>(expected.stencil_bits));
+    // Sizes are minimums: one bit more than stored matches no configuration.
+    const EGLint deeper[] = {EGL_DEPTH_SIZE, depth + 1, EGL_NONE};
+    ASSERT_EQ(eglChooseConfig(display, deeper, &config, 1, &count), EGL_TRUE);
+    EXPECT_EQ(count, 0);
+    const EGLint exact[] = {EGL_DEPTH_SIZE, depth, EGL_STENCIL_SIZE, stencil, EGL_NONE};
+    ASSERT_EQ(eglChooseConfig(display, exact, &config, 1, &count), EGL_TRUE);
+    ASSERT_EQ(count, 1);
+
+    EGLSurface surface = eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr);
+    ASSERT_NE(surface, EGL_NO_SURFACE) << eglGetError();
+    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
+    ASSERT_EQ(eglMakeCurrent(display, surface, surface, context), EGL_TRUE);
+    GLint depth_bits = 0, stencil_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    glGetIntegerv(GL_STENCIL_BITS, &stencil_bits);
+    EXPECT_EQ(depth_bits, depth);
+    EXPECT_EQ(stencil_bits, stencil);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    EXPECT_EQ(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT), EGL_TRUE);
+    EXPECT_EQ(eglDestroyContext(display, context), EGL_TRUE);
+    EXPECT_EQ(eglDestroySurface(display, surface), EGL_TRUE);
+    EXPECT_EQ(eglTerminate(display), EGL_TRUE);
+    gl::set_environment(nullptr);
+  }
+}
+
+TEST_F(GlApi, DepthAndStencilBitsComeFromTheRenderer) {
+  GLint bits = 0;
+  glGetIntegerv(GL_DEPTH_BITS, &bits);
+  EXPECT_EQ(bits, 12);
+  glGetIntegerv(GL_STENCIL_BITS, &bits);
+  EXPECT_EQ(bits, 4);
 }

@@ -216,5 +216,29 @@ TEST(ImageCompare, CoverageMismatchesAreOnEdgesOnlyNextToTheReferencesOtherSide)
   EXPECT_FALSE(result.passes(rule));
 }
 
+TEST(PixelDifference, CountsPixelsWithAnyChannelDifferentAlphaIncluded) {
+  const Image a = filled(4, 2, BACKGROUND);
+  Image b = a;
+  set_pixel(b, 0, 0, {BACKGROUND.r, BACKGROUND.g, BACKGROUND.b, 254});           // alpha only: 1
+  set_pixel(b, 3, 1, {BACKGROUND.r + 40, BACKGROUND.g + 2, BACKGROUND.b, 255});  // 40
+  const PixelDifference result = diff_pixels(a, b);
+  EXPECT_EQ(result.width, 4u);
+  EXPECT_EQ(result.height, 2u);
+  EXPECT_EQ(result.pixels, 8u);
+  EXPECT_EQ(result.differing, 2u);
+  EXPECT_EQ(result.max_difference, 40u);
+  EXPECT_DOUBLE_EQ(result.mean_difference, 41.0 / 8);
+  EXPECT_DOUBLE_EQ(result.percent_differing(), 25.0);
+  EXPECT_EQ(result.summary(), "4x2: 2 of 8 pixels differ (25.00%), max difference 40, mean 5.125 per pixel");
+  EXPECT_EQ(diff_pixels(a, a).differing, 0u);
+}
+
+TEST(PixelDifference, DifferentSizesAreAnError) {
+  EXPECT_THROW(diff_pixels(filled(4, 2, BACKGROUND), filled(2, 4, BACKGROUND)), std::invalid_argument);
+  Image truncated = filled(4, 2, BACKGROUND);
+  truncated.rgba.pop_back();
+  EXPECT_THROW(diff_pixels(truncated, filled(4, 2, BACKGROUND)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace tessera::reference

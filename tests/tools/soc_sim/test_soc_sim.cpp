@@ -12,7 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -31,6 +33,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include "support/backend_table.h"
 #include "support/soc_sim_runner.h"
 
 #include "frame_writer.h"
@@ -258,6 +261,31 @@ TEST_F(SocSim, DefaultRunInRgba8888DrawsThePattern) {
   EXPECT_TRUE(contains(result.out, "pattern")) << result.out;
 }
 
+// --version: the program, the project's version and the commit it was built
+// from ("unknown" outside a git checkout); stats.json records the same and
+// the command line, so a result can be traced to the binary and the run.
+TEST_F(SocSim, VersionNamesTheProgramTheVersionAndTheCommit) {
+  const SimResult version = run({"--version"});
+  ASSERT_EQ(version.status, 0) << describe(version);
+  std::smatch match;
+  ASSERT_TRUE(std::regex_match(version.out, match,
+                               std::regex(R"(soc_sim \(tessera\) ([0-9.]+), commit ([0-9A-Za-z._/+-]+)\n)")))
+      << version.out;
+  EXPECT_EQ(match[1], TESSERA_PROJECT_VERSION);
+  const std::string commit = match[2];
+  EXPECT_TRUE(commit == "unknown" || std::regex_match(commit, std::regex(R"(.*[0-9a-f]{7,}(-dirty)?)"))) << commit;
+
+  const std::vector<std::string> args = {"--app", "pattern", "--frames", "1", "--out", "out", "--quiet"};
+  const SimResult result = run(args);
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json document = read_stats(m_dir / "out/stats.json");
+  EXPECT_EQ(document["version"], TESSERA_PROJECT_VERSION);
+  EXPECT_EQ(document["commit"], commit);
+  std::vector<std::string> command_line{g_soc_sim};
+  command_line.insert(command_line.end(), args.begin(), args.end());
+  EXPECT_EQ(document["command_line"], json(command_line));
+}
+
 TEST_F(SocSim, DefaultRgb565FramesAreQuantised) {
   const SimResult result = run({"--app", "pattern", "--frames", "2", "--out", "out"});
   ASSERT_EQ(result.status, 0) << describe(result);
@@ -428,13 +456,18 @@ TEST_F(SocSim, IdenticalRunsGiveIdenticalFiles) {
 // beside the host.
 TEST_F(SocSim, RunAheadChangesNoResult) {
   struct Case {
-    const char* name;
-    const char* backend;
-    const char* dma;
+    std::string name;
+    std::string backend;
+    std::string dma;
     bool mostly_ahead;
   };
-  for (const Case& c : {Case{"arm_port", "arm", "false", true}, Case{"arm_dma", "arm", "true", false},
-                        Case{"raster_port", "raster", "false", true}}) {
+  // Every back end in port mode, the first of the table with the DMA too.
+  std::vector<Case> cases;
+  for (const tessera::test::BackendEntry& backend : tessera::test::backend_table())
+    cases.push_back({backend.id + "_port", backend.name, "false", true});
+  cases.push_back(
+      {tessera::test::backend_table().front().id + "_dma", tessera::test::backend_table().front().name, "true", false});
+  for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     json stats[2];
     for (int run_ahead = 0; run_ahead < 2; ++run_ahead) {
@@ -458,6 +491,7 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
       (*s)["stats"]["host"].erase("run_aheads");
       (*s)["stats"]["host"].erase("synchronisations");
       (*s)["config"]["sim"].erase("run_ahead_us");
+      s->erase("command_line");
     }
     EXPECT_EQ(stats[0], stats[1]) << "statistics differ with and without run-ahead";
     for (const char* file : {"frame_0000.png", "frame_0001.png"}) {
@@ -466,6 +500,195 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
           << file << " differs with and without run-ahead";
     }
   }
+}
+
+// A second run into a folder that holds an earlier run's outputs would mix
+// the two (a new stats.json beside the frames of the older, longer run): it
+// is refused, naming the folder and what is there, and changes nothing.
+TEST_F(SocSim, SecondRunIntoTheSameFolderIsRefusedNamingWhatIsThere) {
+  ASSERT_EQ(run({"--app", "pattern", "--frames", "3", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"}).status, 0);
+  const std::string stats_before = read_file(m_dir / "out/stats.json");
+  const std::string frame_before = read_file(m_dir / "out/frame_0002.png");
+  const SimResult again = run({"--app", "pattern", "--frames", "1", "--out", "out", "--quiet"});
+  expect_rejected(again, EXIT_USAGE,
+                  {"output folder 'out'", "earlier run", "3 frames (frame_0000.png ... frame_0002.png)", "stats.json",
+                   "trace.vcd", "--force", "--out"});
+  EXPECT_EQ(read_file(m_dir / "out/stats.json"), stats_before);
+  EXPECT_EQ(read_file(m_dir / "out/frame_0002.png"), frame_before);
+  // The same with --no-frames: old frames would still sit beside new statistics.
+  expect_rejected(run({"--app", "pattern", "--frames", "1", "--out", "out", "--no-frames", "--quiet"}), EXIT_USAGE,
+                  {"earlier run", "frame_0000.png"});
+}
+
+// --force removes exactly what soc_sim wrote there before -- frames,
+// statistics, traces -- and nothing else in the folder.
+TEST_F(SocSim, ForceRemovesExactlyTheEarlierOutputs) {
+  ASSERT_EQ(run({"--app", "pattern", "--frames", "3", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"}).status, 0);
+  const std::map<std::string, std::string> unrelated = {
+      {"notes.txt", "my notes\n"},
+      {"frame_final.png", "not a frame soc_sim names\n"},
+      {"results.json", "{\"mine\": true}\n"},
+      {"other.vcd", "$date\n today\n$end\n$version\n another simulator\n$end\n"},
+      {"sub/frame_0000.png", "a folder below is not the output folder\n"}};
+  fs::create_directory(m_dir / "out/sub");
+  for (const auto& [name, text] : unrelated) std::ofstream(m_dir / "out" / name) << text;
+
+  const SimResult result = run({"--app", "pattern", "--frames", "1", "--out", "out", "--force", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  EXPECT_TRUE(fs::exists(m_dir / "out/frame_0000.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0001.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0002.png"));
+  EXPECT_FALSE(fs::exists(m_dir / "out/trace.vcd"));
+  EXPECT_EQ(read_stats(m_dir / "out/stats.json")["frames_written"], 1);
+  for (const auto& [name, text] : unrelated) EXPECT_EQ(read_file(m_dir / "out" / name), text) << name;
+}
+
+// A file soc_sim did not write, where this run would write its statistics or
+// trace, is never overwritten, even with --force.
+TEST_F(SocSim, FilesSocSimDidNotWriteAreNeverOverwritten) {
+  fs::create_directory(m_dir / "out");
+  std::ofstream(m_dir / "out/stats.json") << "my own statistics\n";
+  expect_rejected(run({"--frames", "1", "--out", "out", "--force"}), EXIT_USAGE,
+                  {"'out/stats.json'", "not written by soc_sim", "--stats"});
+  EXPECT_EQ(read_file(m_dir / "out/stats.json"), "my own statistics\n");
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0000.png"));
+
+  std::ofstream(m_dir / "README.md") << "# my notes\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--stats", "README.md", "--force"}), EXIT_USAGE,
+                  {"'README.md'", "not written by soc_sim"});
+  std::ofstream(m_dir / "mine.vcd") << "$date\n today\n$end\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--vcd", "mine.vcd", "--force"}), EXIT_USAGE,
+                  {"'mine.vcd'", "VCD trace", "--vcd"});
+  EXPECT_EQ(read_file(m_dir / "README.md"), "# my notes\n");
+  EXPECT_EQ(read_file(m_dir / "mine.vcd"), "$date\n today\n$end\n");
+}
+
+// --no-frames for sweeps: no PNG, the frames still counted.
+TEST_F(SocSim, NoFramesWritesNoPngButCountsTheFrames) {
+  const SimResult result = run({"--app", "pattern", "--frames", "3", "--out", "out", "--no-frames"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  for (const auto& entry : fs::directory_iterator(m_dir / "out"))
+    EXPECT_NE(entry.path().extension(), ".png") << entry.path();
+  const json document = read_stats(m_dir / "out/stats.json");
+  EXPECT_EQ(document["frames_written"], 0);
+  EXPECT_EQ(document["frames_shown"], 3);
+  EXPECT_EQ(document["stats"]["display"]["frames_shown"], 3);
+  EXPECT_TRUE(contains(result.out, "3 frame(s) shown, none written (--no-frames)")) << result.out;
+}
+
+// 1000 teapot frames take 73 s of simulated time (a few seconds of wall
+// time without PNGs): the automatic limit, 60 s + 10 s per frame, lets them
+// finish, where the fixed 60 s default would stop them.
+TEST_F(SocSim, LongRunIsNotCutByTheAutomaticTimeLimit) {
+  const SimResult result = run({"--app", "teapot", "--frames", "1000", "--no-frames", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json document = read_stats(m_dir / "out/stats.json");
+  EXPECT_EQ(document["frames_shown"], 1000);
+  EXPECT_GT(document["stats"]["simulated_ns"].get<double>(), 60e9);
+  EXPECT_EQ(document["time_limit_ms"], 10060000);
+  EXPECT_EQ(document["time_limit_automatic"], true);
+  EXPECT_TRUE(contains(result.out, "time limit      10060.000 s (automatic: 60 s + 10 s x 1000 frames)")) << result.out;
+}
+
+// A limit the user gives is kept, and reaching it is an error that names the key, the limit and
+// the frames reached.
+TEST_F(SocSim, GivenTimeLimitIsKeptAndReachingItIsAnError) {
+  SimResult result = run({"--app", "pattern", "--set", "display.dma=true", "--frames", "3", "--set",
+                          "sim.time_limit_ms=20", "--out", "a"});
+  expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 20 ms", "after 0 of 3 frames"});
+  EXPECT_TRUE(contains(result.out, "time limit      20.000 ms (sim.time_limit_ms)")) << result.out;
+  json document = read_stats(m_dir / "a/stats.json");
+  EXPECT_EQ(document["exit_status"], EXIT_FAILED);
+  EXPECT_EQ(document["time_limit_ms"], 20);
+  EXPECT_EQ(document["time_limit_automatic"], false);
+
+  std::ofstream(m_dir / "limit.json") << R"({"sim": {"time_limit_ms": 20}})";
+  result = run({"--app", "pattern", "--set", "display.dma=true", "--frames", "3", "--config", "limit.json", "--out",
+                "b", "--quiet"});
+  expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 20 ms"});
+
+  result = run({"--app", "teapot", "--frames", "1000", "--set", "sim.time_limit_ms=60000", "--no-frames", "--out", "c",
+                "--quiet"});
+  expect_rejected(result, EXIT_FAILED, {"sim.time_limit_ms = 60000 ms", "of 1000 frames"});
+  document = read_stats(m_dir / "c/stats.json");
+  EXPECT_LT(document["frames_shown"].get<unsigned>(), 1000u);
+  EXPECT_EQ(document["time_limit_automatic"], false);
+}
+
+// What soc_sim drew on the terminal: each redraw starts with "\r", and the
+// lines between "\r" and "\n" are what the terminal showed.
+struct TerminalOutput {
+  unsigned redraws = 0;
+  size_t longest_line = 0;
+  std::string last_line;
+};
+
+TerminalOutput read_terminal(const std::string& text) {
+  TerminalOutput output;
+  std::string line;
+  for (const char c : text) {
+    if (c == '\r' || c == '\n') {
+      output.redraws += c == '\r';
+      if (!line.empty()) output.last_line = line;
+      line.clear();
+    } else {
+      line += c;
+      output.longest_line = std::max(output.longest_line, line.size());
+    }
+  }
+  return output;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// On a terminal 60 columns wide, 100 teapot frames (16.8 s simulated, about
+// half a second of wall time) redraw the progress line at most 4 times per
+// wall second plus the first and the last drawing -- not once per simulated
+// millisecond (16,800 lines in a terminal's scrollback) -- and never reach
+// the last column.
+TEST_F(SocSim, ProgressOnATerminalFitsTheWidthAndRedrawsAtMostFourTimesASecond) {
+  const auto start = std::chrono::steady_clock::now();
+  const SimResult result =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "100", "--out", "out"}, 60);
+  const double wall = seconds_since(start);
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const TerminalOutput terminal = read_terminal(result.err);
+  EXPECT_GE(terminal.redraws, 1u) << result.err;
+  EXPECT_LE(terminal.redraws, static_cast<unsigned>(4 * wall) + 2) << "in " << wall << " s:\n" << result.err;
+  EXPECT_LE(terminal.longest_line, 59u) << result.err;
+  EXPECT_TRUE(contains(terminal.last_line, "frame 100/100")) << terminal.last_line;
+  EXPECT_TRUE(contains(terminal.last_line, "ETA 0:00")) << terminal.last_line;
+  EXPECT_TRUE(contains(result.out, "100 frame(s)")) << result.out;
+}
+
+// A terminal that reports no size: $COLUMNS, then 80.
+TEST_F(SocSim, ProgressUsesColumnsWhenTheTerminalReportsNoWidth) {
+  SimResult result =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a"}, 0, {"COLUMNS=45"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  TerminalOutput terminal = read_terminal(result.err);
+  EXPECT_EQ(terminal.longest_line, 44u) << result.err;
+  EXPECT_TRUE(contains(terminal.last_line, "frame 1/1")) << result.err;
+
+  result = tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "b"}, 0,
+                                                  {"COLUMNS=not a number"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  terminal = read_terminal(result.err);
+  EXPECT_EQ(terminal.longest_line, 79u) << result.err;
+}
+
+// --quiet, or stderr that is not a terminal: no progress line at all.
+TEST_F(SocSim, NoProgressWhenQuietOrNotOnATerminal) {
+  const SimResult quiet =
+      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a", "--quiet"}, 80);
+  ASSERT_EQ(quiet.status, 0) << describe(quiet);
+  EXPECT_EQ(quiet.err, "");
+  const SimResult piped = run({"--frames", "1", "--out", "b"});
+  ASSERT_EQ(piped.status, 0) << describe(piped);
+  EXPECT_FALSE(contains(piped.err, "\r")) << piped.err;
+  EXPECT_FALSE(contains(piped.err, "ETA")) << piped.err;
 }
 
 // Declared signals by hierarchical name ("soc.bus.host_request") -> VCD id,
@@ -609,6 +832,24 @@ TEST_F(SocSim, UnknownOptionIsRejected) {
   expect_rejected(run({"--frobnicate", "--out", "out"}), EXIT_USAGE, {"--frobnicate"});
 }
 
+// "soc_sim cubes": a word before "--" is not passed to the application, it
+// is rejected with what to write instead.
+TEST_F(SocSim, StrayWordBeforeDoubleDashIsRejectedWithAdvice) {
+  expect_rejected(run({"cubes", "--out", "out"}), EXIT_USAGE,
+                  {"unexpected argument 'cubes'", "--app cubes", "after '--'"});
+  EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+  expect_rejected(run({"--frames", "1", "model.obj", "--out", "out"}), EXIT_USAGE,
+                  {"unexpected argument 'model.obj'", "--app NAME", "after '--'"});
+}
+
+// Everything after "--" is the application's, even what looks like one of
+// soc_sim's options: obj_viewer gets it as the file to open.
+TEST_F(SocSim, ArgumentsAfterDoubleDashGoToTheApplication) {
+  const SimResult result = run({"--app", "obj_viewer", "--frames", "1", "--out", "out", "--", "--frames.obj"});
+  expect_rejected(result, EXIT_USAGE, {"obj_viewer: --frames.obj: cannot open"});
+  EXPECT_FALSE(contains(result.err, "unexpected argument")) << describe(result);
+}
+
 TEST_F(SocSim, UnknownApplicationIsRejectedListingTheKnownOnes) {
   expect_rejected(run({"--app", "no_such_app", "--out", "out"}), EXIT_USAGE, {"no_such_app", "pattern"});
 }
@@ -704,7 +945,7 @@ TEST_F(SocSim, DisplayPortCalibrationOnAnotherDisplayIsRejected) {
   expect_rejected(run({"--app", "calib_display_port", "--out", "out"}), EXIT_USAGE,
                   {"calib_display_port", "192x144", "display.width=192", "display.height=144"});
   expect_rejected(run({"--app", "calib_display_port", "--set", "display.width=192", "--set", "display.height=144",
-                       "--set", "display.dma=true", "--out", "out"}),
+                       "--set", "display.dma=true", "--out", "out_dma"}),
                   EXIT_USAGE, {"DMA mode"});
 }
 

@@ -12,21 +12,26 @@
 
 #include <cstdint>
 
+#include "common/fixed_function.h"
 #include "raster/datapath/fixed_point.h"
 
 namespace tessera::raster {
 
-// The StateBlock words that the operations read, as stored (command_format.h),
-// and the enable flags already decoded from StateBlock::flags.
+// The state the operations read, decoded from the StateBlock
+// (command_format.h) with the codes of common/fixed_function.def; the
+// defaults are GL's.
 struct FragmentOperationsState {
   bool depth_test = false, depth_write = true, alpha_test = false, stencil_test = false, blend = false,
        logic_op = false;
-  uint32_t depth_func = 1;             // gl::CompareFunc::less
-  uint32_t alpha_func = 7;             // func bits 0-7, reference bits 8-15
-  uint32_t stencil_func = 0xffff0007;  // func, ref, value mask, write mask
-  uint32_t stencil_ops = 0;            // keep, keep, keep
-  uint32_t blend_func = 0x00030001;    // one, zero; logic op copy
-  uint32_t color_mask = 15;
+  CompareFunc depth_func = CompareFunc::less;
+  CompareFunc alpha_func = CompareFunc::always;
+  uint8_t alpha_ref = 0;
+  CompareFunc stencil_func = CompareFunc::always;
+  uint8_t stencil_ref = 0, stencil_value_mask = 0xff, stencil_write_mask = 0xff;
+  StencilOp stencil_fail = StencilOp::keep, depth_fail = StencilOp::keep, depth_pass = StencilOp::keep;
+  BlendFactor blend_src = BlendFactor::one, blend_dst = BlendFactor::zero;
+  LogicOp logic_op_mode = LogicOp::copy;
+  uint8_t color_mask = 15;
 };
 
 struct FragmentOperationsResult {

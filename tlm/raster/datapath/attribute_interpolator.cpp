@@ -41,9 +41,9 @@ q15_16 attribute_to_texcoord(attribute_sum value) {
 
 uint32_t attribute_output(AttributeKind kind, attribute_sum value) {
   switch (kind) {
-    case AttributeKind::COLOR: return attribute_to_color(value).raw;
-    case AttributeKind::DEPTH: return attribute_to_depth(value).raw;
-    case AttributeKind::TEXCOORD: return static_cast<uint32_t>(attribute_to_texcoord(value).raw);
+    case AttributeKind::color: return attribute_to_color(value).raw;
+    case AttributeKind::depth: return attribute_to_depth(value).raw;
+    case AttributeKind::texcoord: return static_cast<uint32_t>(attribute_to_texcoord(value).raw);
   }
   return 0;
 }

@@ -10,12 +10,12 @@
 // conversion. Start value and gradients are signed 40-bit words whose
 // fraction depends on the kind (the value is in units of the output code so
 // that the conversion is a rounding shift and a clamp):
-//   COLOR     color_attr    q23.16  one 0.8 colour code = 2^16; 16 fraction
+//   color     color_attr    q23.16  one 0.8 colour code = 2^16; 16 fraction
 //                                   bits keep Gouraud steps of 1/256 code
 //                                   exact over a 511-pixel span
-//   DEPTH     depth_attr    q31.8   one 0.24 depth code = 2^8 (8 bits beyond
+//   depth     depth_attr    q31.8   one 0.24 depth code = 2^8 (8 bits beyond
 //                                   the depth buffer's LSB)
-//   TEXCOORD  texcoord_attr q15.24  s or t, 1.0 = one texture repetition;
+//   texcoord  texcoord_attr q15.24  s or t, 1.0 = one texture repetition;
 //                                   8 bits beyond the q15.16 output
 // The 40-bit range leaves room for values extrapolated outside the triangle
 // (the reference pixel may be a tile corner): +-2^23 colour codes,
@@ -31,9 +31,9 @@
 //
 // Output conversion (attribute_output), rounding to nearest with ties
 // towards +infinity ((A + half) >> shift, arithmetic), then clamping:
-//   COLOR     (A + 2^15) >> 16, clamped to [0, 255]           -> unorm8
-//   DEPTH     (A + 2^7) >> 8,   clamped to [0, 2^24 - 1]      -> unorm24
-//   TEXCOORD  (A + 2^7) >> 8,   clamped to [-2^31, 2^31 - 1]  -> q15_16
+//   color     (A + 2^15) >> 16, clamped to [0, 255]           -> unorm8
+//   depth     (A + 2^7) >> 8,   clamped to [0, 2^24 - 1]      -> unorm24
+//   texcoord  (A + 2^7) >> 8,   clamped to [-2^31, 2^31 - 1]  -> q15_16
 // returned as the raw 32-bit port value (q15_16 in two's complement).
 // An undefined kind code (3) gives 0, as the Verilog unit's default branch.
 #pragma once
@@ -44,7 +44,7 @@
 
 namespace tessera::raster {
 
-enum class AttributeKind : uint8_t { COLOR = 0, DEPTH = 1, TEXCOORD = 2 };
+enum class AttributeKind : uint8_t { color = 0, depth = 1, texcoord = 2 };
 
 using color_attr = SFixed<40, 16>;
 using depth_attr = SFixed<40, 8>;
@@ -53,7 +53,7 @@ using attribute_sum = SFixed<51, 0>;  // the kind's fraction, wider integer part
 
 // Raw 40-bit words in the fraction of `kind` (see above).
 struct AttributePlane {
-  AttributeKind kind = AttributeKind::COLOR;
+  AttributeKind kind = AttributeKind::color;
   int64_t start = 0;
   int64_t grad_x = 0;
   int64_t grad_y = 0;

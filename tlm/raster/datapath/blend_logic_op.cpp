@@ -17,21 +17,6 @@ unorm8 one_minus(unorm8 v) {
 
 }  // namespace
 
-uint8_t blend_factor_code(BlendFactor factor) {
-  const auto v = static_cast<uint16_t>(factor);
-  if (v <= 1) {
-    return static_cast<uint8_t>(v);
-  }
-  if (v >= 0x0300 && v <= 0x0308) {
-    return static_cast<uint8_t>(v - 0x0300 + 2);
-  }
-  return 15;
-}
-
-uint8_t logic_op_code(LogicOp op) {
-  return static_cast<uint8_t>(static_cast<uint16_t>(op) - 0x1500) & 15;
-}
-
 unorm8 mul_unorm8(unorm8 a, unorm8 b) {
   const uint32_t t = a.raw * b.raw + 128;
   return unorm8::from_raw((t + (t >> 8)) >> 8);
@@ -41,20 +26,20 @@ unorm8 blend_factor_value(BlendFactor factor, unsigned channel, Rgba8 src, Rgba8
   const unorm8 s = channels(src)[channel];
   const unorm8 d = channels(dst)[channel];
   switch (factor) {
-    case BlendFactor::ZERO: return unorm8{0};
-    case BlendFactor::ONE: return unorm8{255};
-    case BlendFactor::SRC_COLOR: return s;
-    case BlendFactor::ONE_MINUS_SRC_COLOR: return one_minus(s);
-    case BlendFactor::SRC_ALPHA: return src.a;
-    case BlendFactor::ONE_MINUS_SRC_ALPHA: return one_minus(src.a);
-    case BlendFactor::DST_ALPHA: return dst.a;
-    case BlendFactor::ONE_MINUS_DST_ALPHA: return one_minus(dst.a);
-    case BlendFactor::DST_COLOR: return d;
-    case BlendFactor::ONE_MINUS_DST_COLOR: return one_minus(d);
-    case BlendFactor::SRC_ALPHA_SATURATE:
+    case BlendFactor::zero: return unorm8{0};
+    case BlendFactor::one: return unorm8{255};
+    case BlendFactor::src_color: return s;
+    case BlendFactor::one_minus_src_color: return one_minus(s);
+    case BlendFactor::src_alpha: return src.a;
+    case BlendFactor::one_minus_src_alpha: return one_minus(src.a);
+    case BlendFactor::dst_alpha: return dst.a;
+    case BlendFactor::one_minus_dst_alpha: return one_minus(dst.a);
+    case BlendFactor::dst_color: return d;
+    case BlendFactor::one_minus_dst_color: return one_minus(d);
+    case BlendFactor::src_alpha_saturate:
       return channel == 3 ? unorm8{255} : unorm8{std::min(src.a.raw, one_minus(dst.a).raw)};
   }
-  return unorm8{0};
+  return unorm8{0};  // a code without an entry acts as ZERO
 }
 
 unorm8 apply_logic_op(LogicOp op, unorm8 src, unorm8 dst) {
@@ -62,22 +47,22 @@ unorm8 apply_logic_op(LogicOp op, unorm8 src, unorm8 dst) {
   const uint32_t d = dst.raw;
   uint32_t r = 0;
   switch (op) {
-    case LogicOp::CLEAR: r = 0; break;
-    case LogicOp::AND: r = s & d; break;
-    case LogicOp::AND_REVERSE: r = s & ~d; break;
-    case LogicOp::COPY: r = s; break;
-    case LogicOp::AND_INVERTED: r = ~s & d; break;
-    case LogicOp::NOOP: r = d; break;
-    case LogicOp::XOR: r = s ^ d; break;
-    case LogicOp::OR: r = s | d; break;
-    case LogicOp::NOR: r = ~(s | d); break;
-    case LogicOp::EQUIV: r = ~(s ^ d); break;
-    case LogicOp::INVERT: r = ~d; break;
-    case LogicOp::OR_REVERSE: r = s | ~d; break;
-    case LogicOp::COPY_INVERTED: r = ~s; break;
-    case LogicOp::OR_INVERTED: r = ~s | d; break;
-    case LogicOp::NAND: r = ~(s & d); break;
-    case LogicOp::SET: r = 0xff; break;
+    case LogicOp::clear: r = 0; break;
+    case LogicOp::and_: r = s & d; break;
+    case LogicOp::and_reverse: r = s & ~d; break;
+    case LogicOp::copy: r = s; break;
+    case LogicOp::and_inverted: r = ~s & d; break;
+    case LogicOp::noop: r = d; break;
+    case LogicOp::xor_: r = s ^ d; break;
+    case LogicOp::or_: r = s | d; break;
+    case LogicOp::nor: r = ~(s | d); break;
+    case LogicOp::equiv: r = ~(s ^ d); break;
+    case LogicOp::invert: r = ~d; break;
+    case LogicOp::or_reverse: r = s | ~d; break;
+    case LogicOp::copy_inverted: r = ~s; break;
+    case LogicOp::or_inverted: r = ~s | d; break;
+    case LogicOp::nand: r = ~(s & d); break;
+    case LogicOp::set: r = 0xff; break;
   }
   return unorm8::from_raw(r);
 }

@@ -3,32 +3,16 @@
 
 namespace tessera::raster {
 
-uint8_t compare_func_code(CompareFunc func) {
-  return static_cast<uint8_t>(static_cast<uint16_t>(func) - 0x0200) & 7;
-}
-
-uint8_t stencil_op_code(StencilOp op) {
-  switch (op) {
-    case StencilOp::KEEP: return 0;
-    case StencilOp::ZERO: return 1;
-    case StencilOp::REPLACE: return 2;
-    case StencilOp::INCR: return 3;
-    case StencilOp::DECR: return 4;
-    case StencilOp::INVERT: return 5;
-  }
-  return 7;  // undefined: the Verilog unit keeps the value, as stencil_update does
-}
-
 bool compare(CompareFunc func, uint32_t incoming, uint32_t stored) {
   switch (func) {
-    case CompareFunc::NEVER: return false;
-    case CompareFunc::LESS: return incoming < stored;
-    case CompareFunc::EQUAL: return incoming == stored;
-    case CompareFunc::LEQUAL: return incoming <= stored;
-    case CompareFunc::GREATER: return incoming > stored;
-    case CompareFunc::NOTEQUAL: return incoming != stored;
-    case CompareFunc::GEQUAL: return incoming >= stored;
-    case CompareFunc::ALWAYS: return true;
+    case CompareFunc::never: return false;
+    case CompareFunc::less: return incoming < stored;
+    case CompareFunc::equal: return incoming == stored;
+    case CompareFunc::lequal: return incoming <= stored;
+    case CompareFunc::greater: return incoming > stored;
+    case CompareFunc::notequal: return incoming != stored;
+    case CompareFunc::gequal: return incoming >= stored;
+    case CompareFunc::always: return true;
   }
   return false;
 }
@@ -46,14 +30,14 @@ bool stencil_test(CompareFunc func, stencil8 ref, uint8_t value_mask, stencil8 s
 }
 
 stencil8 stencil_update(StencilOp op, stencil8 stored, stencil8 ref, uint8_t write_mask) {
-  uint32_t result = stored.raw;
+  uint32_t result = stored.raw;  // also for a code without an entry
   switch (op) {
-    case StencilOp::KEEP: break;
-    case StencilOp::ZERO: result = 0; break;
-    case StencilOp::REPLACE: result = ref.raw; break;
-    case StencilOp::INCR: result = stored.raw == 0xff ? 0xff : stored.raw + 1; break;
-    case StencilOp::DECR: result = stored.raw == 0 ? 0 : stored.raw - 1; break;
-    case StencilOp::INVERT: result = ~stored.raw & 0xff; break;
+    case StencilOp::keep: break;
+    case StencilOp::zero: result = 0; break;
+    case StencilOp::replace: result = ref.raw; break;
+    case StencilOp::incr: result = stored.raw == 0xff ? 0xff : stored.raw + 1; break;
+    case StencilOp::decr: result = stored.raw == 0 ? 0 : stored.raw - 1; break;
+    case StencilOp::invert: result = ~stored.raw & 0xff; break;
   }
   return stencil8::from_raw((stored.raw & ~uint32_t{write_mask}) | (result & write_mask));
 }

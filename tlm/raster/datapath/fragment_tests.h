@@ -5,17 +5,15 @@
 // unorm 0.24, stencil 8.0. All comparisons are exact integer comparisons of
 // the codes (no rounding anywhere in this block).
 //
-// Compare functions, GL enum values NEVER 0x0200 .. ALWAYS 0x0207; the
-// hardware code is the value minus 0x0200 (3 bits). The incoming quantity is
-// on the left, as in the GL spec:
+// Compare functions and stencil operations are the codes of
+// common/fixed_function.def (CompareFunc, StencilOp), the numbers the Verilog
+// unit's 3-bit fields take. The incoming quantity is on the left, as in the
+// GL spec:
 //   alpha    alpha_fragment  func  alpha_ref
 //   stencil  (ref & value_mask)  func  (stored & value_mask)
 //   depth    z_fragment  func  z_stored
-// Stencil operations, GL enum values (ZERO 0, INVERT 0x150A, KEEP 0x1E00,
-// REPLACE 0x1E01, INCR 0x1E02, DECR 0x1E03); INCR and DECR saturate at 255
-// and 0 (GL 1.2 has no wrapping variants). The hardware code is KEEP 0,
-// ZERO 1, REPLACE 2, INCR 3, DECR 4, INVERT 5; codes 6 and 7 act as KEEP
-// (an unknown enum value gets code 7 and is kept by stencil_update too).
+// INCR and DECR saturate at 255 and 0 (GL 1.2 has no wrapping variants); a
+// stencil code without an entry (6, 7) keeps the stored value.
 // The result is written through the stencil write mask:
 //   new = (stored & ~write_mask) | (op(stored) & write_mask).
 //
@@ -32,33 +30,10 @@
 
 #include <cstdint>
 
+#include "common/fixed_function.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
-
-enum class CompareFunc : uint16_t {
-  NEVER = 0x0200,
-  LESS = 0x0201,
-  EQUAL = 0x0202,
-  LEQUAL = 0x0203,
-  GREATER = 0x0204,
-  NOTEQUAL = 0x0205,
-  GEQUAL = 0x0206,
-  ALWAYS = 0x0207,
-};
-
-enum class StencilOp : uint16_t {
-  ZERO = 0x0000,
-  INVERT = 0x150A,
-  KEEP = 0x1E00,
-  REPLACE = 0x1E01,
-  INCR = 0x1E02,
-  DECR = 0x1E03,
-};
-
-// Hardware encodings of the enums (the Verilog unit's 3-bit fields).
-uint8_t compare_func_code(CompareFunc func);
-uint8_t stencil_op_code(StencilOp op);
 
 bool compare(CompareFunc func, uint32_t incoming, uint32_t stored);
 bool alpha_test(CompareFunc func, unorm8 alpha, unorm8 ref);
@@ -68,18 +43,18 @@ stencil8 stencil_update(StencilOp op, stencil8 stored, stencil8 ref, uint8_t wri
 
 struct FragmentTestState {
   bool alpha_enable = false;
-  CompareFunc alpha_func = CompareFunc::ALWAYS;
+  CompareFunc alpha_func = CompareFunc::always;
   unorm8 alpha_ref;
   bool stencil_enable = false;
-  CompareFunc stencil_func = CompareFunc::ALWAYS;
+  CompareFunc stencil_func = CompareFunc::always;
   stencil8 stencil_ref;
   uint8_t stencil_value_mask = 0xff;
   uint8_t stencil_write_mask = 0xff;
-  StencilOp sfail = StencilOp::KEEP;
-  StencilOp dpfail = StencilOp::KEEP;
-  StencilOp dppass = StencilOp::KEEP;
+  StencilOp sfail = StencilOp::keep;
+  StencilOp dpfail = StencilOp::keep;
+  StencilOp dppass = StencilOp::keep;
   bool depth_enable = false;
-  CompareFunc depth_func = CompareFunc::LESS;
+  CompareFunc depth_func = CompareFunc::less;
   bool depth_write_mask = true;
 };
 

@@ -13,11 +13,11 @@ unsigned saturate_log2(unsigned log2_size) {
 
 }  // namespace
 
-TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TextureWrap wrap, TextureFilter filter) {
+TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TexWrap wrap, TexFilter filter) {
   const unsigned log2n = saturate_log2(log2_size);
   const int64_t size = int64_t{1} << log2n;
-  const bool clamp = wrap == TextureWrap::CLAMP_TO_EDGE;
-  const bool linear = filter == TextureFilter::LINEAR;
+  const bool clamp = wrap == TexWrap::clamp_to_edge;
+  const bool linear = filter == TexFilter::linear;
 
   int64_t u = coord.raw * size;  // exact: |s| < 2^31, size <= 2^8
   if (clamp) {

@@ -24,20 +24,18 @@
 //   address    base + ((j << log2 width) + i) * 4, modulo 2^32, for the four
 //              texels (i0,j0), (i1,j0), (i0,j1), (i1,j1); with NEAREST all
 //              four are the same texel.
-// Hardware codes: wrap 0 = REPEAT, 1 = CLAMP_TO_EDGE (any enum other than
-// CLAMP_TO_EDGE is taken as REPEAT, the GL default); filter 0 = NEAREST,
-// 1 = LINEAR (any other enum is taken as NEAREST).
+// Wraps and filters are the codes of common/fixed_function.def (TexWrap,
+// TexFilter), the numbers the Verilog unit's fields take; a wrap code without
+// an entry (2, 3) is taken as REPEAT, the GL default.
 #pragma once
 
 #include <array>
 #include <cstdint>
 
+#include "common/fixed_function.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
-
-enum class TextureWrap : uint16_t { REPEAT = 0x2901, CLAMP_TO_EDGE = 0x812F };
-enum class TextureFilter : uint16_t { NEAREST = 0x2600, LINEAR = 0x2601 };
 
 constexpr unsigned TEXTURE_MAX_LOG2 = 8;
 
@@ -45,9 +43,9 @@ struct TextureState {
   uint32_t base = 0;
   uint8_t log2_width = 0;
   uint8_t log2_height = 0;
-  TextureWrap wrap_s = TextureWrap::REPEAT;
-  TextureWrap wrap_t = TextureWrap::REPEAT;
-  TextureFilter filter = TextureFilter::NEAREST;
+  TexWrap wrap_s = TexWrap::repeat;
+  TexWrap wrap_t = TexWrap::repeat;
+  TexFilter filter = TexFilter::nearest;
 };
 
 struct TexelAxis {
@@ -63,7 +61,7 @@ struct TexelFootprint {
   std::array<uint32_t, 4> address{};
 };
 
-TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TextureWrap wrap, TextureFilter filter);
+TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TexWrap wrap, TexFilter filter);
 uint32_t texel_address(uint32_t base, unsigned log2_width, uint8_t i, uint8_t j);
 
 // Everything the Verilog unit texel_address.sv computes, in one call.

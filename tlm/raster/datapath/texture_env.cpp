@@ -15,15 +15,6 @@ Rgba8 from_channels(const std::array<uint32_t, 4>& c) {
 
 }  // namespace
 
-uint8_t texture_env_mode_code(TextureEnvMode mode) {
-  switch (mode) {
-    case TextureEnvMode::REPLACE: return 0;
-    case TextureEnvMode::MODULATE: return 1;
-    case TextureEnvMode::DECAL: return 2;
-  }
-  return 3;
-}
-
 uint32_t div255_round(uint32_t x) {
   const uint32_t t = x + 128;
   return (t + (t >> 8)) >> 8;
@@ -44,18 +35,18 @@ Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint
   return from_channels(out);
 }
 
-Rgba8 texture_environment(TextureEnvMode mode, Rgba8 fragment, Rgba8 texel) {
+Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel) {
   const auto f = channels(fragment);
   const auto t = channels(texel);
-  std::array<uint32_t, 4> out = f;
+  std::array<uint32_t, 4> out = f;  // also for a code without an entry
   switch (mode) {
-    case TextureEnvMode::REPLACE: out = t; break;
-    case TextureEnvMode::MODULATE:
+    case TexEnv::replace: out = t; break;
+    case TexEnv::modulate:
       for (unsigned c = 0; c < 4; ++c) {
         out[c] = div255_round(f[c] * t[c]);
       }
       break;
-    case TextureEnvMode::DECAL:
+    case TexEnv::decal:
       for (unsigned c = 0; c < 3; ++c) {
         out[c] = div255_round(f[c] * (255 - t[3]) + t[c] * t[3]);
       }
@@ -64,8 +55,8 @@ Rgba8 texture_environment(TextureEnvMode mode, Rgba8 fragment, Rgba8 texel) {
   return from_channels(out);
 }
 
-TextureEnvResult texture_filter_env(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s,
-                                    uint8_t weight_t, Rgba8 fragment) {
+TextureEnvResult texture_filter_env(TexEnv mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
+                                    Rgba8 fragment) {
   TextureEnvResult r;
   r.texel = bilinear_filter(texels, weight_s, weight_t);
   r.fragment = texture_environment(mode, fragment, r.texel);

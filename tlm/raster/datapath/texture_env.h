@@ -11,10 +11,10 @@
 // NEAREST the weights are 0 and the result is texel (i0,j0) exactly, so the
 // filter needs no mode input.
 //
-// Environment, GL enum values REPLACE 0x1E01, MODULATE 0x2100,
-// DECAL 0x2101 (hardware code 0, 1, 2; code 3, which an unknown enum gets,
-// passes the fragment colour through untouched). f = fragment colour,
-// t = filtered texel colour, all 0.8 codes, "1 - x" is 255 - x:
+// Environment: the codes of common/fixed_function.def (TexEnv), the numbers
+// the Verilog unit's 2-bit field takes; a code without an entry (3) passes
+// the fragment colour through untouched. f = fragment colour, t = filtered
+// texel colour, all 0.8 codes, "1 - x" is 255 - x:
 //     REPLACE   C = Ct                     A = At
 //     MODULATE  C = Cf * Ct                A = Af * At
 //     DECAL     C = Cf (1 - At) + Ct At    A = Af
@@ -26,21 +26,17 @@
 #include <array>
 #include <cstdint>
 
+#include "common/fixed_function.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
-
-enum class TextureEnvMode : uint16_t { REPLACE = 0x1E01, MODULATE = 0x2100, DECAL = 0x2101 };
-
-// Hardware encoding (the Verilog unit's 2-bit field).
-uint8_t texture_env_mode_code(TextureEnvMode mode);
 
 // Exact round(x / 255) for 0 <= x <= 65025.
 uint32_t div255_round(uint32_t x);
 
 // texels in the order (i0,j0), (i1,j0), (i0,j1), (i1,j1).
 Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t);
-Rgba8 texture_environment(TextureEnvMode mode, Rgba8 fragment, Rgba8 texel);
+Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel);
 
 struct TextureEnvResult {
   Rgba8 texel;     // filtered
@@ -48,7 +44,7 @@ struct TextureEnvResult {
 };
 
 // Everything the Verilog unit texture_env.sv computes, in one call.
-TextureEnvResult texture_filter_env(TextureEnvMode mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s,
-                                    uint8_t weight_t, Rgba8 fragment);
+TextureEnvResult texture_filter_env(TexEnv mode, const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t,
+                                    Rgba8 fragment);
 
 }  // namespace tessera::raster

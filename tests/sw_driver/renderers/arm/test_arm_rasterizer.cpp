@@ -693,8 +693,8 @@ TEST(ArmRasterizerFragment, LogicOpXor) {
   f.rasterizer->clear(clear);
   gl::RasterState state;
   state.logic_op = true;
-  state.logic_op_code = 6;  // GL_XOR
-  state.blend = true;       // ignored while the logic op is enabled
+  state.logic_op_mode = gl::LogicOp::xor_;
+  state.blend = true;  // ignored while the logic op is enabled
   const Rgba s{0xff, 0xff, 0x0f, 0x00};
   f.draw(state, {triangle(vertex(-10, -10, s), vertex(60, -10, s), vertex(-10, 60, s))});
   const Rgba c = f.color(3, 3);

@@ -1,0 +1,25 @@
+// What each back end's folder defines for the registry (backends.h), one
+// pair per line of backends.def, in namespace tessera::backends::<id>,
+// beside CAPABILITIES, the table's depth and stencil bits, which the back
+// end's renderer also reports:
+//  - make_renderer: builds the back end's renderer for an application
+//    (the factory the launcher hands to the GL driver in AppEnvironment);
+//  - check_configuration: throws ConfigError for a configuration the back
+//    end cannot run with (called when driver.backend names it).
+// A back end that forgets one fails to link, naming the function.
+#pragma once
+
+#include <memory>
+
+#include "config/config.h"
+#include "device/app_environment.h"
+#include "gl/renderer.h"
+
+#define TESSERA_BACKEND(id, name, depth_bits, stencil_bits, description)            \
+  namespace tessera::backends::id {                                                 \
+  inline constexpr gl::RendererCapabilities CAPABILITIES{depth_bits, stencil_bits}; \
+  std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env);                 \
+  void check_configuration(const Config& config);                                   \
+  }
+#include "renderers/backends.def"
+#undef TESSERA_BACKEND

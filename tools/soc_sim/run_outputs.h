@@ -1,0 +1,55 @@
+// The files a run of soc_sim writes, and what an earlier run left where this
+// one would write. soc_sim does not mix the outputs of two runs (a new
+// stats.json beside the frames of an older, longer run would misdescribe
+// them): it refuses to start, and with --force removes exactly what an
+// earlier run wrote there, never another file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+// "frame_0012.png": the name of the frame shown with that index.
+std::string frame_file_name(unsigned index);
+// The names frame_file_name gives: "frame_", 4 or more digits, ".png".
+bool is_frame_file_name(const std::string& name);
+// A statistics file soc_sim wrote: a JSON object with "config", "stats" and
+// "exit_status".
+bool is_soc_sim_stats(const std::filesystem::path& path);
+// A VCD trace soc_sim wrote: SystemC's header and the SoC ("soc") as the
+// first module under SystemC's top scope.
+bool is_soc_sim_trace(const std::filesystem::path& path);
+
+// Where this run writes.
+struct OutputPaths {
+  std::filesystem::path out_dir;  // frames, and statistics unless --stats says otherwise
+  std::filesystem::path stats;
+  std::filesystem::path trace;  // empty without --vcd
+};
+
+struct EarlierOutputs {
+  std::vector<std::filesystem::path> frames;  // frame_NNNN.png in out_dir, sorted
+  std::vector<std::filesystem::path> files;   // statistics and traces soc_sim wrote, in out_dir or at this run's paths
+  // Files at this run's statistics or trace path that soc_sim did not write:
+  // never removed, never overwritten.
+  std::vector<std::filesystem::path> foreign;
+
+  bool empty() const { return frames.empty() && files.empty(); }
+};
+
+// Looks in out_dir (not below it) for frames, the default stats.json and
+// traces, and at the statistics and trace paths of this run. An empty file
+// at one of this run's paths holds nothing to lose and is not listed.
+EarlierOutputs find_earlier_outputs(const OutputPaths& paths);
+
+// For messages: "3 frames (frame_0000.png ... frame_0002.png), stats.json,
+// trace.vcd"; names in out_dir relative to it, others as found.
+std::string describe_outputs(const EarlierOutputs& outputs, const std::filesystem::path& out_dir);
+
+// Removes outputs.frames and outputs.files (never outputs.foreign). Throws
+// std::runtime_error naming the first file it cannot remove.
+void remove_earlier_outputs(const EarlierOutputs& outputs);
+
+}  // namespace tessera
