@@ -209,4 +209,36 @@ constexpr std::optional<BlendFactor> blend_factor_from_gl_enum(uint32_t gl_enum,
   return factor;
 }
 
+// What GL says a compare function and a stencil operation do, for every
+// renderer (the rasterizer's datapath, the arm back end's inner loop) to share.
+// A compare code without an entry fails, as NEVER; a stencil code without one
+// keeps the value, as KEEP. The stencil result is merged under write_mask.
+template <typename T>
+constexpr bool compare_passes(CompareFunc func, T incoming, T stored) {
+  switch (func) {
+    case CompareFunc::never: return false;
+    case CompareFunc::less: return incoming < stored;
+    case CompareFunc::equal: return incoming == stored;
+    case CompareFunc::lequal: return incoming <= stored;
+    case CompareFunc::greater: return incoming > stored;
+    case CompareFunc::notequal: return incoming != stored;
+    case CompareFunc::gequal: return incoming >= stored;
+    case CompareFunc::always: return true;
+  }
+  return false;
+}
+
+constexpr uint8_t stencil_op_result(StencilOp op, uint8_t stored, uint8_t ref, uint8_t write_mask) {
+  uint8_t result = stored;
+  switch (op) {
+    case StencilOp::keep: break;
+    case StencilOp::zero: result = 0; break;
+    case StencilOp::replace: result = ref; break;
+    case StencilOp::incr: result = stored == 0xff ? stored : static_cast<uint8_t>(stored + 1); break;
+    case StencilOp::decr: result = stored == 0 ? stored : static_cast<uint8_t>(stored - 1); break;
+    case StencilOp::invert: result = static_cast<uint8_t>(~stored); break;
+  }
+  return static_cast<uint8_t>((stored & ~write_mask) | (result & write_mask));
+}
+
 }  // namespace tessera

@@ -42,34 +42,6 @@ inline uint32_t mul8(uint32_t a, uint32_t b) {
   return div255(a * b);
 }
 
-template <typename T>
-inline bool compare(CompareFunc func, T incoming, T stored) {
-  switch (func) {
-    case CompareFunc::never: return false;
-    case CompareFunc::less: return incoming < stored;
-    case CompareFunc::equal: return incoming == stored;
-    case CompareFunc::lequal: return incoming <= stored;
-    case CompareFunc::greater: return incoming > stored;
-    case CompareFunc::notequal: return incoming != stored;
-    case CompareFunc::gequal: return incoming >= stored;
-    case CompareFunc::always: return true;
-  }
-  return false;
-}
-
-inline uint8_t stencil_apply(StencilOp op, uint8_t value, uint8_t ref, uint8_t write_mask) {
-  uint8_t result = value;
-  switch (op) {
-    case StencilOp::keep: return value;
-    case StencilOp::zero: result = 0; break;
-    case StencilOp::replace: result = ref; break;
-    case StencilOp::incr: result = value == 0xff ? value : uint8_t(value + 1); break;
-    case StencilOp::decr: result = value == 0 ? value : uint8_t(value - 1); break;
-    case StencilOp::invert: result = uint8_t(~value); break;
-  }
-  return uint8_t((value & ~write_mask) | (result & write_mask));
-}
-
 // Depth (16 bits) and colour words of a clear, little-endian, 2 or 4 bytes.
 inline uint32_t load_le(const uint8_t* p, unsigned bytes) {
   return bytes == 2 ? uint32_t(p[0]) | uint32_t(p[1]) << 8
@@ -614,18 +586,18 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   auto fragment_tests = [&](int i, uint16_t z16) {
     if (c.stencil_test) {
       const uint8_t old = m_stencil_new[i];
-      if (!compare<uint8_t>(state.stencil_func, stencil_ref & stencil_mask, old & stencil_mask)) {
-        m_stencil_new[i] = stencil_apply(state.stencil_fail, old, stencil_ref, stencil_write_mask);
+      if (!compare_passes<uint8_t>(state.stencil_func, stencil_ref & stencil_mask, old & stencil_mask)) {
+        m_stencil_new[i] = stencil_op_result(state.stencil_fail, old, stencil_ref, stencil_write_mask);
         return false;
       }
-      if (c.depth_test && !compare(state.depth_func, z16, m_depth_old[i])) {
-        m_stencil_new[i] = stencil_apply(state.depth_fail, old, stencil_ref, stencil_write_mask);
+      if (c.depth_test && !compare_passes(state.depth_func, z16, m_depth_old[i])) {
+        m_stencil_new[i] = stencil_op_result(state.depth_fail, old, stencil_ref, stencil_write_mask);
         return false;
       }
-      m_stencil_new[i] = stencil_apply(state.depth_pass, old, stencil_ref, stencil_write_mask);
+      m_stencil_new[i] = stencil_op_result(state.depth_pass, old, stencil_ref, stencil_write_mask);
       return true;
     }
-    return !c.depth_test || compare(state.depth_func, z16, m_depth_old[i]);
+    return !c.depth_test || compare_passes(state.depth_func, z16, m_depth_old[i]);
   };
 
   uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0;
@@ -681,7 +653,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
           }
         }
       }
-      if (c.alpha_test && !compare<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
+      if (c.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
         alive = false;
       } else if (c.late_tests) {
         alive = fragment_tests(i, z16);

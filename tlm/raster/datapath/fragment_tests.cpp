@@ -4,17 +4,7 @@
 namespace tessera::raster {
 
 bool compare(CompareFunc func, uint32_t incoming, uint32_t stored) {
-  switch (func) {
-    case CompareFunc::never: return false;
-    case CompareFunc::less: return incoming < stored;
-    case CompareFunc::equal: return incoming == stored;
-    case CompareFunc::lequal: return incoming <= stored;
-    case CompareFunc::greater: return incoming > stored;
-    case CompareFunc::notequal: return incoming != stored;
-    case CompareFunc::gequal: return incoming >= stored;
-    case CompareFunc::always: return true;
-  }
-  return false;
+  return compare_passes(func, incoming, stored);
 }
 
 bool alpha_test(CompareFunc func, unorm8 alpha, unorm8 ref) {
@@ -30,16 +20,8 @@ bool stencil_test(CompareFunc func, stencil8 ref, uint8_t value_mask, stencil8 s
 }
 
 stencil8 stencil_update(StencilOp op, stencil8 stored, stencil8 ref, uint8_t write_mask) {
-  uint32_t result = stored.raw;  // also for a code without an entry
-  switch (op) {
-    case StencilOp::keep: break;
-    case StencilOp::zero: result = 0; break;
-    case StencilOp::replace: result = ref.raw; break;
-    case StencilOp::incr: result = stored.raw == 0xff ? 0xff : stored.raw + 1; break;
-    case StencilOp::decr: result = stored.raw == 0 ? 0 : stored.raw - 1; break;
-    case StencilOp::invert: result = ~stored.raw & 0xff; break;
-  }
-  return stencil8::from_raw((stored.raw & ~uint32_t{write_mask}) | (result & write_mask));
+  return stencil8::from_raw(
+      stencil_op_result(op, static_cast<uint8_t>(stored.raw), static_cast<uint8_t>(ref.raw), write_mask));
 }
 
 FragmentTestResult run_fragment_tests(const FragmentTestState& state, const FragmentTestInput& in) {
