@@ -52,6 +52,7 @@ struct Options {
   bool quiet = false;
   bool force = false;
   bool no_frames = false;
+  bool wall_clock = false;
   std::string log_level;
   bool print_config = false;
   bool config_reference = false;
@@ -213,6 +214,9 @@ int run(int argc, char* argv[]) {
   cli.add_flag("--force", opt.force,
                "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
   cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");
+  cli.add_flag("--wall-clock", opt.wall_clock,
+               "add each frame's wall-clock time (wall_ns) to stats.json, for benchmarks; the file then differs "
+               "from run to run");
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
   cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
@@ -319,7 +323,16 @@ int run(int argc, char* argv[]) {
   Soc soc("soc", config);
   PngWriterThread png_writer;
   unsigned frames_shown = 0;
+  // The wall clock from the start of the simulation; each frame's reading is
+  // its wall_ns in stats.json with --wall-clock, so a benchmark times frames
+  // N..2N-1 within one run instead of subtracting one run from another.
+  auto wall_start = std::chrono::steady_clock::now();
+  auto wall_seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  std::vector<double> frame_wall_seconds;
   soc.display.on_frame([&](const Frame& frame) {
+    frame_wall_seconds.push_back(wall_seconds());
     if (!opt.no_frames)
       png_writer.write((fs::path(opt.out_dir) / frame_file_name(frame.index)).string(), frame.width, frame.height,
                        frame.rgba);
@@ -346,10 +359,7 @@ int run(int argc, char* argv[]) {
   if (!opt.vcd.empty()) soc.trace_to(vcd_base);
 
   Progress progress(!opt.quiet && isatty(STDERR_FILENO), frames);
-  const auto wall_start = std::chrono::steady_clock::now();
-  auto wall_seconds = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  };
+  wall_start = std::chrono::steady_clock::now();
   const sc_core::sc_time limit(static_cast<double>(time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
   try {
@@ -393,6 +403,9 @@ int run(int argc, char* argv[]) {
 
   nlohmann::json stats = soc.stats_json();
   stats["driver"] = to_json(driver_counters);
+  // The display hands each frame shown to soc_sim and to the SoC's record.
+  if (opt.wall_clock && stats["frames"].size() == frame_wall_seconds.size())
+    for (size_t i = 0; i < frame_wall_seconds.size(); ++i) stats["frames"][i]["wall_ns"] = frame_wall_seconds[i] * 1e9;
   nlohmann::json document = {{"application", config.get_string("sim.app")},
                              {"version", build_info::version()},
                              {"commit", build_info::commit()},

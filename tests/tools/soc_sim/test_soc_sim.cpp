@@ -576,8 +576,29 @@ TEST_F(SocSim, NoFramesWritesNoPngButCountsTheFrames) {
   EXPECT_TRUE(contains(result.out, "3 frame(s) shown, none written (--no-frames)")) << result.out;
 }
 
-// 1000 teapot frames take 73 s of simulated time (a few seconds of wall
-// time without PNGs): the automatic limit, 60 s + 10 s per frame, lets them
+// --wall-clock: each frame's wall-clock time in stats.json (for benchmarks),
+// rising from frame to frame; without it the file has none, so that
+// identical runs write identical files.
+TEST_F(SocSim, WallClockPerFrameOnlyWhenAskedFor) {
+  SimResult result = run({"--app", "pattern", "--frames", "3", "--out", "a", "--no-frames", "--quiet", "--wall-clock"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  json frames = read_stats(m_dir / "a/stats.json")["stats"]["frames"];
+  ASSERT_EQ(frames.size(), 3u);
+  double previous = 0;
+  for (const json& frame : frames) {
+    ASSERT_TRUE(frame.contains("wall_ns")) << frame.dump();
+    EXPECT_GT(frame["wall_ns"].get<double>(), previous);
+    previous = frame["wall_ns"].get<double>();
+  }
+  result = run({"--app", "pattern", "--frames", "3", "--out", "b", "--no-frames", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  frames = read_stats(m_dir / "b/stats.json")["stats"]["frames"];
+  ASSERT_EQ(frames.size(), 3u);
+  for (const json& frame : frames) EXPECT_FALSE(frame.contains("wall_ns")) << frame.dump();
+}
+
+// 1000 teapot frames take 172 s of simulated time in port mode (a few
+// seconds of wall time without PNGs): the automatic limit, 60 s + 10 s per frame, lets them
 // finish, where the fixed 60 s default would stop them.
 TEST_F(SocSim, LongRunIsNotCutByTheAutomaticTimeLimit) {
   const SimResult result = run({"--app", "teapot", "--frames", "1000", "--no-frames", "--out", "out"});
