@@ -31,7 +31,6 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
-#include "frame_writer.h"
 #include "guarded_main.h"
 
 namespace {
@@ -61,8 +60,8 @@ std::string format_mib(long kib) {
 struct SceneResult {
   std::string scene;
   double simulated_per_frame_s = 0;
-  double soc_sim_wall_per_frame_s = 0;
-  double png_per_frame_s = 0;
+  double soc_sim_wall_per_frame_s = 0;  // writing every frame as PNG, as soc_sim does by default
+  double no_png_wall_per_frame_s = 0;   // with --no-frames
   double native_per_frame_s = 0;
   double mesa_per_frame_s = 0;
   long soc_sim_max_rss_kib = 0;
@@ -75,10 +74,10 @@ class Bench {
   void run();
 
  private:
-  std::vector<std::string> soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const;
+  std::vector<std::string> soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out,
+                                           bool png) const;
   std::vector<std::string> scene_args(const std::string& scene) const;
   SceneResult measure(const std::string& scene);
-  double measure_png_write(const fs::path& frame_png);
   void print_table(const std::vector<SceneResult>& results, long default_rss_kib) const;
 
   Options m_opt;
@@ -92,11 +91,13 @@ std::vector<std::string> Bench::scene_args(const std::string& scene) const {
   return {};
 }
 
-std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out) const {
+std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsigned frames, const fs::path& out,
+                                                bool png) const {
   std::vector<std::string> command = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) command.insert(command.end(), {"--config", file});
-  command.insert(command.end(),
-                 {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet", "--force"});
+  command.insert(command.end(), {"--app", scene, "--frames", std::to_string(frames), "--out", out.string(), "--quiet",
+                                 "--force", "--wall-clock"});
+  if (!png) command.push_back("--no-frames");
   const auto args = scene_args(scene);
   if (!args.empty()) {
     command.push_back("--");
@@ -105,51 +106,32 @@ std::vector<std::string> Bench::soc_sim_command(const std::string& scene, unsign
   return command;
 }
 
-// Wall time to write one frame as soc_sim does (write_png), the best of a few.
-double Bench::measure_png_write(const fs::path& frame_png) {
-  const tessera::Image image = tessera::read_image(frame_png.string());
-  double best = std::numeric_limits<double>::max();
-  for (int i = 0; i < 10; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    tessera::write_png((m_work / "png_probe.png").string(), image.width, image.height, image.rgba);
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return best;
-}
-
 SceneResult Bench::measure(const std::string& scene) {
   SceneResult result;
   result.scene = scene;
   const unsigned n = m_opt.frames;
   const auto& display = m_config["display"];
 
-  // soc_sim: runs of N and 2N frames; their difference is frames N..2N-1,
-  // without start-up, elaboration and the scene's set-up. Best wall of R.
-  double wall[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  double simulated_ns[2] = {0, 0};
-  fs::path last_out;
+  // soc_sim: runs of 2N frames with --wall-clock, writing PNG frames and
+  // not (--no-frames), alternating so that a change in the machine's load
+  // hits both; frames N..2N-1 timed within each run, the best of R.
+  result.soc_sim_wall_per_frame_s = std::numeric_limits<double>::max();
+  result.no_png_wall_per_frame_s = std::numeric_limits<double>::max();
   for (unsigned r = 0; r < m_opt.repeat; ++r) {
-    for (unsigned k = 0; k < 2; ++k) {
-      const unsigned frames = (k + 1) * n;
+    for (const bool png : {true, false}) {
       const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
-      const ChildResult child = run_child(soc_sim_command(scene, frames, out), m_work / "soc_sim.stdout");
+      const ChildResult child = run_child(soc_sim_command(scene, 2 * n, out, png), m_work / "soc_sim.stdout");
       const json stats = read_json_file(out / "stats.json");
-      if (stats["exit_status"] != 0 || stats["frames_written"] != frames)
+      if (stats["exit_status"] != 0 || stats["frames_written"] != (png ? 2 * n : 0))
         throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
-                                 std::to_string(frames) + " frames");
-      wall[k] = std::min(wall[k], child.wall_s);
-      simulated_ns[k] = stats["stats"]["simulated_ns"].get<double>();
+                                 std::to_string(2 * n) + " frames");
+      double& wall = png ? result.soc_sim_wall_per_frame_s : result.no_png_wall_per_frame_s;
+      wall = std::min(wall, per_frame_seconds(stats, n, "wall_ns"));
+      result.simulated_per_frame_s = per_frame_seconds(stats, n, "time_ns");
       result.soc_sim_max_rss_kib = std::max(result.soc_sim_max_rss_kib, child.max_rss_kib);
-      if (!last_out.empty()) fs::remove_all(last_out);
-      last_out = out;
+      fs::remove_all(out);
     }
   }
-  result.simulated_per_frame_s = (simulated_ns[1] - simulated_ns[0]) * 1e-9 / n;
-  result.soc_sim_wall_per_frame_s = (wall[1] - wall[0]) / n;
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04u.png", 2 * n - 1);
-  result.png_per_frame_s = measure_png_write(last_out / name);
-  fs::remove_all(last_out);
 
   const auto args = scene_args(scene);
   auto with_args = [&](std::vector<std::string> command) {
@@ -182,18 +164,18 @@ SceneResult Bench::measure(const std::string& scene) {
 void Bench::print_table(const std::vector<SceneResult>& results, long default_rss_kib) const {
   const auto& display = m_config["display"];
   std::printf(
-      "| scene | simulated / frame | soc_sim wall / frame | of which PNG | simulated : wall "
-      "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (without PNG) | native / Mesa "
+      "| scene | simulated / frame | soc_sim wall / frame | (--no-frames) | simulated : wall "
+      "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (--no-frames) | native / Mesa "
       "| soc_sim max RSS |\n");
   std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   for (const auto& r : results)
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(),
                 format_ms(r.simulated_per_frame_s).c_str(), format_ms(r.soc_sim_wall_per_frame_s).c_str(),
-                format_ms(r.png_per_frame_s).c_str(),
+                format_ms(r.no_png_wall_per_frame_s).c_str(),
                 format_ratio(r.simulated_per_frame_s / r.soc_sim_wall_per_frame_s).c_str(),
                 format_ms(r.native_per_frame_s).c_str(), format_ms(r.mesa_per_frame_s).c_str(),
                 format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
-                format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str(),
+                format_ratio(r.no_png_wall_per_frame_s / r.native_per_frame_s).c_str(),
                 format_ratio(r.native_per_frame_s / r.mesa_per_frame_s).c_str(),
                 format_mib(r.soc_sim_max_rss_kib).c_str());
   std::printf(
@@ -202,15 +184,15 @@ void Bench::print_table(const std::vector<SceneResult>& results, long default_rs
       m_config["sim"]["frames"].get<unsigned>(), format_mib(default_rss_kib).c_str());
   for (const auto& r : results)
     if (r.scene == "teapot")
-      std::printf("teapot: soc_sim wall / native wall = %s, %s without writing the PNG frames (target <= 3)\n",
+      std::printf("teapot: soc_sim wall / native wall = %s writing PNG frames, %s with --no-frames (target <= 3)\n",
                   format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
-                  format_ratio((r.soc_sim_wall_per_frame_s - r.png_per_frame_s) / r.native_per_frame_s).c_str());
+                  format_ratio(r.no_png_wall_per_frame_s / r.native_per_frame_s).c_str());
   std::printf(
-      "\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u (runs of N=%u and 2N frames, "
-      "difference / N), wall times the best of %u run(s); \"of which PNG\" is write_png of the scene's last "
-      "frame timed in bench_arm, an estimate of what soc_sim spends writing each frame.\n",
+      "\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u of runs of 2N=%u frames, timed within each "
+      "run (soc_sim --wall-clock, the native run's presents, Mesa after each frame's glFinish); wall times the best "
+      "of %u run(s).\n",
       display["width"].get<unsigned>(), display["height"].get<unsigned>(), display["format"].get<std::string>().c_str(),
-      display["dma"].get<bool>() ? "DMA" : "port", m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
+      display["dma"].get<bool>() ? "DMA" : "port", m_opt.frames, 2 * m_opt.frames - 1, 2 * m_opt.frames, m_opt.repeat);
 }
 
 void Bench::run() {
@@ -253,7 +235,7 @@ void Bench::run() {
 static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_arm: benchmark of the arm back end (soc_sim, native core, Mesa softpipe)"};
-  cli.add_option("--frames", opt.frames, "N: runs of N and 2N frames, frames N..2N-1 timed")
+  cli.add_option("--frames", opt.frames, "N: runs of 2N frames, frames N..2N-1 timed")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   cli.add_option("--repeat", opt.repeat, "runs of each measurement; the best wall time is kept")

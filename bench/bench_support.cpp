@@ -93,6 +93,17 @@ std::string machine_summary(const std::string& load_before, double total_s) {
   return text;
 }
 
+double per_frame_seconds(const nlohmann::json& document, unsigned n, const std::string& key) {
+  const nlohmann::json& frames = document.at("stats").at("frames");
+  if (n == 0 || frames.size() < 2 * size_t{n})
+    throw std::runtime_error("soc_sim showed " + std::to_string(frames.size()) + " frames, " + std::to_string(2 * n) +
+                             " needed");
+  const nlohmann::json &first = frames[n - 1], &last = frames[2 * n - 1];
+  if (!first.contains(key) || !last.contains(key))
+    throw std::runtime_error("soc_sim's frame records have no '" + key + "' (run it with --wall-clock)");
+  return (last[key].get<double>() - first[key].get<double>()) * 1e-9 / n;
+}
+
 std::string format_ms(double seconds) {
   char text[32];
   const double ms = seconds * 1e3;

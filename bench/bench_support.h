@@ -34,6 +34,14 @@ std::string load_average();
 // ... before, ... after; the benchmark took <s> s."
 std::string machine_summary(const std::string& load_before, double total_s);
 
+// Per frame over frames N..2N-1 of one soc_sim run of 2N frames with
+// --wall-clock, from stats.json's frame records: (record 2N-1 minus record
+// N-1) / N of `key` ("wall_ns" or "time_ns"), in seconds. Both readings come
+// from the same process, so start-up, elaboration and the scene's set-up are
+// left out without subtracting one run from another. Throws if the run has
+// fewer than 2N records or lacks the key.
+double per_frame_seconds(const nlohmann::json& document, unsigned n, const std::string& key);
+
 std::string format_ms(double seconds);  // 3 significant digits
 std::string format_ratio(double ratio);
 

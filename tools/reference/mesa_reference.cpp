@@ -79,7 +79,13 @@ ReferenceFrame render_with_mesa(const scenes::Scene& scene, const ReferenceReque
   std::string error;
   if (!scene.init(static_cast<int>(request.width), static_cast<int>(request.height), request.args, &error))
     throw std::runtime_error(std::string("reference: scene ") + scene.name + ": " + error);
-  for (int frame = 0; frame <= request.frame; ++frame) scene.draw(frame);
+  for (int frame = 0; frame <= request.frame; ++frame) {
+    scene.draw(frame);
+    if (request.after_frame) {
+      glFinish();
+      request.after_frame(frame);
+    }
+  }
   glFinish();
 
   // Read through GL rather than from colour_buffer, so the result does not

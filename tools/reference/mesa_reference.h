@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct ReferenceRequest {
   // returned: a scene may depend on state left by earlier frames.
   int frame = 0;
   std::vector<std::string> args;  // passed to scene.init
+  // When set, called after each frame has been drawn and finished
+  // (glFinish), with the frame's number: a benchmark times frames with it.
+  std::function<void(int frame)> after_frame;
 };
 
 struct ReferenceFrame {
