@@ -169,6 +169,44 @@ bool query_succeeds(Context* c, Query query) {
   return error == GL_NO_ERROR;
 }
 
+// A vector setter's values: `count` of them read and converted (0 when the
+// parameter's name is not one: the float command reports it). False, with
+// GL_INVALID_VALUE, for a null pointer where values are read.
+bool read_fixed_values(Context* c, const GLfixed* params, int count, std::array<float, 4>& values) {
+  if (count <= 0) return true;
+  if (!params) {
+    c->error(GL_INVALID_VALUE);
+    return false;
+  }
+  charge_conversions(c, static_cast<unsigned>(count));
+  values = from_fixed(params, count);
+  return true;
+}
+
+// As read_fixed_values, for a parameter whose one value is an enum or a
+// boolean (`as_value`: carried as it is, not scaled) rather than a number.
+bool read_fixed_or_enum(Context* c, const GLfixed* params, int count, bool as_value, std::array<float, 4>& values) {
+  if (!as_value || count <= 0) return read_fixed_values(c, params, count, values);
+  if (!params) {
+    c->error(GL_INVALID_VALUE);
+    return false;
+  }
+  charge_conversions(c, 0, 1);
+  values[0] = parameter(params[0], true);
+  return true;
+}
+
+// A vector query's answer in fixed point: `query` fills up to four floats;
+// when it succeeds, `count` of them are converted into `params`.
+template <typename Query>
+void answer_in_fixed(Context* c, GLfixed* params, int count, Query query) {
+  std::array<float, 4> values{};
+  if (!query_succeeds(c, [&] { query(values.data()); })) return;
+  if (!params) return c->error(GL_INVALID_VALUE);
+  charge_conversions(c, static_cast<unsigned>(count));
+  put_fixed(values.data(), count, params);
+}
+
 }  // namespace
 
 extern "C" {
@@ -259,11 +297,7 @@ GL_API void GL_APIENTRY glClipPlanex(GLenum plane, const GLfixed* equation) {
 
 GL_API void GL_APIENTRY glGetClipPlanex(GLenum plane, GLfixed* equation) {
   WITH_CONTEXT()
-  std::array<float, 4> f{};
-  if (!query_succeeds(c, [&] { glGetClipPlanef(plane, f.data()); })) return;
-  if (!equation) return c->error(GL_INVALID_VALUE);
-  charge_conversions(c, 4);
-  put_fixed(f.data(), 4, equation);
+  answer_in_fixed(c, equation, 4, [&](GLfloat* f) { glGetClipPlanef(plane, f); });
 }
 
 // ---- Lighting and fog ---------------------------------------------------
@@ -276,24 +310,14 @@ GL_API void GL_APIENTRY glLightx(GLenum light, GLenum pname, GLfixed param) {
 
 GL_API void GL_APIENTRY glLightxv(GLenum light, GLenum pname, const GLfixed* params) {
   WITH_CONTEXT()
-  const int count = light_values(pname);  // 0: the float command reports the name
   std::array<float, 4> f{};
-  if (count > 0) {
-    if (!params) return c->error(GL_INVALID_VALUE);
-    charge_conversions(c, static_cast<unsigned>(count));
-    f = from_fixed(params, count);
-  }
+  if (!read_fixed_values(c, params, light_values(pname), f)) return;
   glLightfv(light, pname, f.data());
 }
 
 GL_API void GL_APIENTRY glGetLightxv(GLenum light, GLenum pname, GLfixed* params) {
   WITH_CONTEXT()
-  std::array<float, 4> f{};
-  if (!query_succeeds(c, [&] { glGetLightfv(light, pname, f.data()); })) return;
-  if (!params) return c->error(GL_INVALID_VALUE);
-  const int count = light_values(pname);
-  charge_conversions(c, static_cast<unsigned>(count));
-  put_fixed(f.data(), count, params);
+  answer_in_fixed(c, params, light_values(pname), [&](GLfloat* f) { glGetLightfv(light, pname, f); });
 }
 
 GL_API void GL_APIENTRY glLightModelx(GLenum pname, GLfixed param) {
@@ -307,16 +331,7 @@ GL_API void GL_APIENTRY glLightModelxv(GLenum pname, const GLfixed* params) {
   WITH_CONTEXT()
   const int count = pname == GL_LIGHT_MODEL_AMBIENT ? 4 : pname == GL_LIGHT_MODEL_TWO_SIDE ? 1 : 0;
   std::array<float, 4> f{};
-  if (count > 0) {
-    if (!params) return c->error(GL_INVALID_VALUE);
-    if (pname == GL_LIGHT_MODEL_TWO_SIDE) {
-      charge_conversions(c, 0, 1);
-      f[0] = parameter(params[0], true);
-    } else {
-      charge_conversions(c, 4);
-      f = from_fixed(params, 4);
-    }
-  }
+  if (!read_fixed_or_enum(c, params, count, pname == GL_LIGHT_MODEL_TWO_SIDE, f)) return;
   glLightModelfv(pname, f.data());
 }
 
@@ -328,24 +343,14 @@ GL_API void GL_APIENTRY glMaterialx(GLenum face, GLenum pname, GLfixed param) {
 
 GL_API void GL_APIENTRY glMaterialxv(GLenum face, GLenum pname, const GLfixed* params) {
   WITH_CONTEXT()
-  const int count = material_values(pname);  // 0: the float command reports the name
   std::array<float, 4> f{};
-  if (count > 0) {
-    if (!params) return c->error(GL_INVALID_VALUE);
-    charge_conversions(c, static_cast<unsigned>(count));
-    f = from_fixed(params, count);
-  }
+  if (!read_fixed_values(c, params, material_values(pname), f)) return;
   glMaterialfv(face, pname, f.data());
 }
 
 GL_API void GL_APIENTRY glGetMaterialxv(GLenum face, GLenum pname, GLfixed* params) {
   WITH_CONTEXT()
-  std::array<float, 4> f{};
-  if (!query_succeeds(c, [&] { glGetMaterialfv(face, pname, f.data()); })) return;
-  if (!params) return c->error(GL_INVALID_VALUE);
-  const int count = material_values(pname);
-  charge_conversions(c, static_cast<unsigned>(count));
-  put_fixed(f.data(), count, params);
+  answer_in_fixed(c, params, material_values(pname), [&](GLfloat* f) { glGetMaterialfv(face, pname, f); });
 }
 
 GL_API void GL_APIENTRY glFogx(GLenum pname, GLfixed param) {
@@ -357,18 +362,8 @@ GL_API void GL_APIENTRY glFogx(GLenum pname, GLfixed param) {
 
 GL_API void GL_APIENTRY glFogxv(GLenum pname, const GLfixed* params) {
   WITH_CONTEXT()
-  const int count = fog_values(pname);
   std::array<float, 4> f{};
-  if (count > 0) {
-    if (!params) return c->error(GL_INVALID_VALUE);
-    if (pname == GL_FOG_MODE) {
-      charge_conversions(c, 0, 1);
-      f[0] = parameter(params[0], true);
-    } else {
-      charge_conversions(c, static_cast<unsigned>(count));
-      f = from_fixed(params, count);
-    }
-  }
+  if (!read_fixed_or_enum(c, params, fog_values(pname), pname == GL_FOG_MODE, f)) return;
   glFogfv(pname, f.data());
 }
 
