@@ -25,6 +25,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "guarded_main.h"
 #include "mesa_reference.h"
 #include "scenes/scene.h"
 
@@ -78,10 +79,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_arm_mesa: " << e.what() << "\n";
-    return 1;
-  }
+  return tessera::guarded_main("bench_arm_mesa", [&] { return run(argc, argv); });
 }

@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/gl_apps.h"
+#include "guarded_main.h"
 #include "native_host.h"
 #include "renderers/backends.h"
 #include "scenes/scene.h"
@@ -113,10 +114,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_arm_native: " << e.what() << "\n";
-    return 1;
-  }
+  return tessera::guarded_main("bench_arm_native", [&] { return run(argc, argv); });
 }
