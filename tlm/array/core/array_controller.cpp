@@ -1,0 +1,135 @@
+#include "array/core/array_controller.h"
+
+namespace tessera::ap {
+
+CycleTable CycleTable::defaults() {
+  CycleTable table;
+  for (const OpInfo& info : all_ops()) table.cycles[static_cast<unsigned>(info.opcode)] = info.cycles;
+  table.cmem_operand = 1;
+  return table;
+}
+
+unsigned CycleTable::cost(const Instruction& instruction) const {
+  const OpInfo& info = op_info(instruction.opcode);
+  unsigned total = cycles[static_cast<unsigned>(instruction.opcode)];
+  if (info.forms == Forms::RM && instruction.any_cmem()) total += cmem_operand;
+  return total;
+}
+
+ArrayController::ArrayController(const ArrayGeometry& geometry, const CycleTable& cycles, unsigned program_words,
+                                 uint64_t max_program_cycles)
+    : m_geometry(geometry),
+      m_cycles(cycles),
+      m_max_cycles(max_program_cycles),
+      m_array(geometry),
+      m_words(program_words, 0),
+      m_slots(program_words) {
+  m_activity.word_cycles.assign(program_words, 0);
+  m_activity.word_executions.assign(program_words, 0);
+  for (unsigned i = 0; i < program_words; ++i) decode_slot(i);
+}
+
+void ArrayController::decode_slot(unsigned index) {
+  Slot& slot = m_slots[index];
+  Decoded decoded = decode(m_words[index]);
+  slot.instruction = decoded.instruction;
+  slot.error = decoded.error;
+  if (slot.error.empty()) slot.error = check_limits(slot.instruction, m_geometry.registers, m_geometry.cmem_bytes);
+  slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
+}
+
+bool ArrayController::write_word(unsigned index, uint64_t word) {
+  if (index >= m_words.size()) return false;
+  m_words[index] = word;
+  decode_slot(index);
+  return true;
+}
+
+bool ArrayController::load(unsigned first, const std::vector<uint64_t>& words) {
+  if (first > m_words.size() || words.size() > m_words.size() - first) return false;
+  for (size_t i = 0; i < words.size(); ++i) write_word(first + static_cast<unsigned>(i), words[i]);
+  return true;
+}
+
+RunResult ArrayController::run(unsigned entry) {
+  struct Loop {
+    unsigned body;
+    unsigned step;
+  };
+  RunResult result;
+  std::array<Loop, LOOP_LEVELS> loops{};
+  LoopVariables variables{};
+  unsigned depth = 0;
+  unsigned pc = entry;
+  const auto fail = [&](const std::string& why) {
+    result.ok = false;
+    result.error_pc = pc;
+    result.error = "program word " + std::to_string(pc) + ": " + why;
+  };
+  ++m_activity.programs;
+  while (true) {
+    if (pc >= m_slots.size()) {
+      fail("past the end of program memory (" + std::to_string(m_slots.size()) + " words) without a halt");
+      break;
+    }
+    const Slot& slot = m_slots[pc];
+    if (!slot.error.empty()) {
+      fail(slot.error);
+      break;
+    }
+    const Instruction& in = slot.instruction;
+    unsigned next = pc + 1;
+    bool halted = false;
+    switch (in.opcode) {
+      case Opcode::op_nop: break;
+      case Opcode::op_halt: halted = true; break;
+      case Opcode::op_loop:
+        if (in.loop_level() != depth) {
+          fail("loop at nesting level " + std::to_string(in.loop_level()) + " where " + std::to_string(depth) +
+               " loops are running");
+          break;
+        }
+        loops[depth] = {pc + 1, in.loop_step()};
+        variables[depth] = static_cast<int>(in.loop_start());
+        ++depth;
+        break;
+      case Opcode::op_endloop: {
+        if (depth == 0) {
+          fail("endloop with no loop running");
+          break;
+        }
+        Loop& loop = loops[depth - 1];
+        variables[depth - 1] -= static_cast<int>(loop.step);
+        if (variables[depth - 1] >= 0)
+          next = loop.body;
+        else
+          --depth;
+        break;
+      }
+      default: {
+        std::string error = m_array.execute(in, variables, depth);
+        if (!error.empty()) fail(error);
+        break;
+      }
+    }
+    if (!result.ok) break;
+    result.cycles += slot.cost;
+    ++result.instructions;
+    ++m_activity.instruction_mix[static_cast<unsigned>(in.opcode)];
+    m_activity.stage_cycles[static_cast<unsigned>(in.stage)] += slot.cost;
+    m_activity.word_cycles[pc] += slot.cost;
+    ++m_activity.word_executions[pc];
+    if (halted) break;
+    if (result.cycles > m_max_cycles) {
+      fail("the program ran for more than array.max_program_cycles (" + std::to_string(m_max_cycles) + ") cycles");
+      break;
+    }
+    pc = next;
+  }
+  m_activity.cycles += result.cycles;
+  m_activity.instructions += result.instructions;
+  if (!result.ok) ++m_activity.failed_programs;
+  return result;
+}
+
+}  // namespace tessera::ap

@@ -1,0 +1,99 @@
+// The whole CU array's architectural state and one broadcast instruction at
+// a time, in plain C++ (no SystemC).
+//
+// State is laid out structure-of-arrays: one row of `lanes` bytes per CMEM
+// address, per register and per flag (C, Z, S, M), rows `stride` bytes
+// apart. An operand, register or CMEM address, is then a pointer to a row,
+// and an instruction is one loop over the lanes that the compiler
+// vectorises. Lane l is the CU at row l / columns, column l % columns (row
+// 0 at the top, column 0 at the left).
+//
+// Semantics are those of datapath/cu_alu.h, lane by lane; where a CMEM
+// write lands only in lanes whose mask M is set, registers and flags are
+// written in every lane (the spec: a masked CU does not store).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "array/datapath/cu_alu.h"
+#include "array/isa/ap_isa.h"
+
+namespace tessera::ap {
+
+struct ArrayGeometry {
+  unsigned columns = 24;
+  unsigned rows = 4;
+  unsigned registers = 8;
+  unsigned cmem_bytes = 4096;
+  unsigned lanes() const { return columns * rows; }
+};
+
+using LoopVariables = std::array<int, LOOP_LEVELS>;
+
+// What the array did, summed over every instruction it executed. Lane
+// counts are lanes x instructions; CMEM counts are bytes accessed in all
+// lanes together.
+struct ArrayActivity {
+  uint64_t lane_operations = 0;      // lanes x instructions that did lane work
+  uint64_t useful_operations = 0;    // of those, lanes whose mask was set
+  uint64_t cmem_reads = 0;           // bytes read from CMEM, all lanes
+  uint64_t cmem_writes = 0;          // bytes written to CMEM (unmasked lanes only)
+  uint64_t neighbour_transfers = 0;  // lanes that read a neighbour (not counting reads beyond the edge)
+};
+
+class CuArray {
+ public:
+  explicit CuArray(const ArrayGeometry& geometry);
+
+  const ArrayGeometry& geometry() const { return m_geometry; }
+  unsigned lanes() const { return m_lanes; }
+
+  // Every register, flag and CMEM byte 0, every mask set.
+  void reset();
+
+  uint8_t cmem(unsigned lane, unsigned address) const { return m_storage[row_offset(address) + lane]; }
+  void set_cmem(unsigned lane, unsigned address, uint8_t value) { m_storage[row_offset(address) + lane] = value; }
+  uint8_t reg(unsigned lane, unsigned index) const { return m_storage[row_offset(m_reg_row + index) + lane]; }
+  void set_reg(unsigned lane, unsigned index, uint8_t value) {
+    m_storage[row_offset(m_reg_row + index) + lane] = value;
+  }
+  CuFlags flags(unsigned lane) const;
+  void set_flags(unsigned lane, const CuFlags& flags);
+  bool mask(unsigned lane) const { return m_storage[row_offset(m_flag_row + 3) + lane] != 0; }
+  void set_mask(unsigned lane, bool mask);
+  unsigned active_lanes() const { return m_active; }
+
+  // Executes one instruction that does lane work (not nop, halt, loop or
+  // endloop). Returns an empty string, or why it could not run (a CMEM
+  // address plus loop variable beyond CMEM, a loop variable of a loop that
+  // is not running), in which case no state has changed.
+  std::string execute(const Instruction& instruction, const LoopVariables& loop_variables, unsigned active_loops);
+
+  const ArrayActivity& activity() const { return m_activity; }
+
+ private:
+  size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
+  uint8_t* row(unsigned index) { return m_storage.data() + row_offset(index); }
+  // The row of byte `byte` of `operand`, or nullptr (and `error` set) when
+  // it is beyond CMEM.
+  uint8_t* operand_row(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
+                       unsigned active_loops, std::string& error);
+  void count_active();
+
+  ArrayGeometry m_geometry;
+  unsigned m_lanes;
+  size_t m_stride;
+  unsigned m_reg_row, m_flag_row, m_scratch_row;
+  std::vector<uint8_t> m_storage;
+  // Per direction, 0xff where the lane has a neighbour that way, else 0.
+  std::array<std::vector<uint8_t>, 4> m_has_neighbour;
+  std::array<int, 4> m_neighbour_step{};
+  std::array<unsigned, 4> m_lanes_with_neighbour{};
+  unsigned m_active = 0;
+  ArrayActivity m_activity;
+};
+
+}  // namespace tessera::ap

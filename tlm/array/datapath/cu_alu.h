@@ -1,0 +1,48 @@
+// One CU's datapath, bit-exact, one lane at a time: the 8-bit ALU with its
+// flags, the 16 x 8 signed multiplier and the mask conditions. This is the
+// reference the vectorised array core (core/cu_array.h) and the Verilog
+// twin (rtl_models/array/cu_datapath.sv) are both checked against.
+//
+// Flags: C is the carry out of an addition and "no borrow" after a
+// subtraction (a - b is computed as a + ~b + 1, ARM style), so a >= b
+// unsigned leaves C set; Z is set when the 8-bit result is 0; S is bit 7 of
+// the result. Logic operations and moves leave C as it was.
+#pragma once
+
+#include <cstdint>
+
+#include "array/isa/ap_isa.h"
+
+namespace tessera::ap {
+
+struct CuFlags {
+  bool c = false, z = false, s = false;
+  bool operator==(const CuFlags& other) const { return c == other.c && z == other.z && s == other.s; }
+};
+
+struct AluResult {
+  uint8_t value = 0;
+  CuFlags flags;
+  bool writes = true;  // false for the compares, which only set flags
+};
+
+// The 8-bit ALU instructions: add, adc, sub, sbc, and, or, xor, not, mov,
+// shl, shr, asr, rol, ror, cmp, cmpc. `b` is ignored by the one-source ones.
+// Returns the flags unchanged and writes == false for any other opcode.
+AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags);
+
+// True for the opcodes cu_alu() computes.
+bool is_alu_opcode(Opcode opcode);
+
+// The signed 16 x 8 multiply (mul, mulm): the 24-bit two's complement
+// product, computed as the hardware does it, by shift-and-add over the 8
+// bits of the multiplier (the last step subtracts: bit 7 weighs -128).
+struct MulResult {
+  uint32_t product = 0;  // 24 bits
+  CuFlags flags;         // C = 0, Z = product == 0, S = bit 23
+};
+MulResult cu_mul(uint16_t multiplicand, uint8_t multiplier);
+
+bool cond_holds(Cond cond, const CuFlags& flags);
+
+}  // namespace tessera::ap
