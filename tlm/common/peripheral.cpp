@@ -78,6 +78,7 @@ const char* Peripheral::write_refusal(const tlm::tlm_generic_payload& gp) const 
 }
 
 void Peripheral::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  m_access_delay = delay;
   if (const char* refusal = write_refusal(gp)) {
     ++m_refused_writes;
     gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
@@ -85,6 +86,7 @@ void Peripheral::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& del
   } else {
     m_regs.transport(gp, delay);
   }
+  m_access_delay = sc_core::SC_ZERO_TIME;
   delay += m_clock_period;
 }
 

@@ -51,6 +51,9 @@ class Peripheral : public Block {
   virtual const char* write_refusal(const tlm::tlm_generic_payload& gp) const;
 
   const sc_core::sc_time& clock_period() const { return m_clock_period; }
+  // The time of the register access being handled (the kernel's time plus
+  // its annotated delay), for write_refusal() and the handlers.
+  sc_core::sc_time access_time() const { return sc_core::sc_time_stamp() + m_access_delay; }
 
   RegisterBank m_regs;
 
@@ -66,6 +69,7 @@ class Peripheral : public Block {
   void update_irq();  // SC_METHOD: applies the changes that are due
 
   sc_core::sc_time m_clock_period;
+  sc_core::sc_time m_access_delay;
   ActivityCounter& m_refused_writes;
   uint32_t m_irq_status_offset = 0;
   uint32_t m_irq_enable_offset = 0;

@@ -2,13 +2,15 @@
 
 namespace tessera {
 
-TimedTrace::TimedTrace(sc_core::sc_module_name name) : sc_core::sc_module(name), signal("signal") {
+template <class T>
+TimedSignal<T>::TimedSignal(sc_core::sc_module_name name) : sc_core::sc_module(name), signal("signal") {
   SC_METHOD(apply);
   sensitive << m_wake;
   dont_initialize();
 }
 
-void TimedTrace::set_at(bool value, const sc_core::sc_time& when) {
+template <class T>
+void TimedSignal<T>::set_at(T value, const sc_core::sc_time& when) {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   const sc_core::sc_time at = when < now ? now : when;
   m_pending.emplace(at, value);
@@ -16,11 +18,12 @@ void TimedTrace::set_at(bool value, const sc_core::sc_time& when) {
   m_wake.notify(at - now);
 }
 
-void TimedTrace::apply() {
+template <class T>
+void TimedSignal<T>::apply() {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   auto it = m_pending.begin();
   bool have_value = false;
-  bool value = false;
+  T value{};
   while (it != m_pending.end() && it->first <= now) {
     value = it->second;
     have_value = true;
@@ -29,5 +32,8 @@ void TimedTrace::apply() {
   if (have_value) signal.write(value);
   if (!m_pending.empty()) m_wake.notify(m_pending.begin()->first - now);
 }
+
+template class TimedSignal<bool>;
+template class TimedSignal<uint32_t>;
 
 }  // namespace tessera

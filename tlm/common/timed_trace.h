@@ -1,32 +1,42 @@
-// A traced boolean whose changes may be scheduled at future times. Loosely
+// A traced signal whose changes may be scheduled at future times. Loosely
 // timed initiators run ahead of simulated time, so the bus knows when a
 // request, grant or release happens before the kernel gets there; this module
 // replays those edges at their own times so a VCD shows them where they are.
-// Owners only schedule edges while tracing is on, so it costs nothing otherwise.
+// Owners only schedule changes while tracing is on, so it costs nothing otherwise.
+// TimedTrace carries a bit (busy, request); TimedWord a value (a program
+// id, a stage code).
 #pragma once
 
+#include <cstdint>
 #include <map>
 
 #include <systemc>
 
 namespace tessera {
 
-class TimedTrace : public sc_core::sc_module {
+template <class T>
+class TimedSignal : public sc_core::sc_module {
  public:
-  SC_HAS_PROCESS(TimedTrace);
+  SC_HAS_PROCESS(TimedSignal);
 
-  sc_core::sc_signal<bool> signal;
+  sc_core::sc_signal<T> signal;
 
-  explicit TimedTrace(sc_core::sc_module_name name);
+  explicit TimedSignal(sc_core::sc_module_name name);
 
   // Schedules `value` at absolute time `when` (now if `when` is in the past).
-  void set_at(bool value, const sc_core::sc_time& when);
+  void set_at(T value, const sc_core::sc_time& when);
 
  private:
   void apply();
 
-  std::multimap<sc_core::sc_time, bool> m_pending;
+  std::multimap<sc_core::sc_time, T> m_pending;
   sc_core::sc_event m_wake;
 };
+
+using TimedTrace = TimedSignal<bool>;
+using TimedWord = TimedSignal<uint32_t>;
+
+extern template class TimedSignal<bool>;
+extern template class TimedSignal<uint32_t>;
 
 }  // namespace tessera

@@ -49,6 +49,12 @@ DisplayDmaParams display_dma_params(const Config& config) {
   return p;
 }
 
+CiuParams ciu_params(const Config& config) {
+  CiuParams p = CiuParams::from_config(config);
+  p.clock_period = ArrayParams::from_config(config).clock_period;
+  return p;
+}
+
 }  // namespace
 
 std::vector<ParamGroup> Soc::parameter_groups() {
@@ -86,7 +92,9 @@ std::vector<ParamGroup> Soc::parameter_groups() {
           MemoryParams::parameters(),
           DisplayParams::parameters(),
           DisplayDmaParams::parameters(),
-          RasterizerParams::parameters()};
+          RasterizerParams::parameters(),
+          ArrayParams::parameters(),
+          CiuParams::parameters()};
 }
 
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
@@ -96,7 +104,9 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       host("host", host_params(config)),
       display("display", display_params(config)),
       display_dma("display_dma", display_dma_params(config)),
-      raster("raster", RasterizerParams::from_config(config)) {
+      raster("raster", RasterizerParams::from_config(config)),
+      array("array", ArrayParams::from_config(config)),
+      ciu("ciu", ciu_params(config), array) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -111,6 +121,10 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   bus.map(display.in, memory_map::display_regs.base, memory_map::display_regs.size, memory_map::display_regs.name);
   bus.map(display.port_in, memory_map::display_port.base, memory_map::display_port.size, memory_map::display_port.name);
   bus.map(raster.in, memory_map::raster_regs.base, memory_map::raster_regs.size, memory_map::raster_regs.name);
+  bus.map(array.in, memory_map::array_regs.base, memory_map::array_regs.size, memory_map::array_regs.name);
+  bus.map(array.program_in, memory_map::array_program.base, memory_map::array_program.size,
+          memory_map::array_program.name);
+  bus.map(ciu.in, memory_map::array_cmem.base, memory_map::array_cmem.size, memory_map::array_cmem.name);
 
   for (const auto& region : memory_map::ALL_REGIONS)
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
@@ -122,16 +136,17 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     host.irq[i].bind(*m_irq_lines.back());
   }
   // host.irq_lines is at least 4 (host_params.cpp), so every source in irq_map.def has its line.
-  static_assert(irq_map::display < 4 && irq_map::raster < 4,
+  static_assert(irq_map::display < 4 && irq_map::raster < 4 && irq_map::array < 4,
                 "interrupt sources must use lines below host.irq_lines' minimum");
   display.irq.bind(*m_irq_lines[irq_map::display]);
   raster.irq.bind(*m_irq_lines[irq_map::raster]);
+  array.irq.bind(*m_irq_lines[irq_map::array]);
 
   display.connect_dma(display_dma);
   display.on_request([this](const sc_time& when) { record_request(when); });
   display.on_frame([this](const Frame& frame) { record_frame(frame); });
 
-  m_blocks = {&host, &bus, &memory, &display, &display_dma, &raster};
+  m_blocks = {&host, &bus, &memory, &display, &display_dma, &raster, &array, &ciu};
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);

@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "array/array_processor.h"
+#include "array/ciu.h"
 #include "bus/ahb_bus.h"
 #include "config/config.h"
 #include "display/display_controller.h"
@@ -50,6 +52,8 @@ class Soc : public sc_core::sc_module {
   DisplayController display;
   DisplayDma display_dma;
   Rasterizer raster;
+  ArrayProcessor array;
+  Ciu ciu;
 
   // Runs the host program; the simulation stops when it has finished and
   // the display has shown every frame handed to it.

@@ -51,6 +51,18 @@ bool ArrayController::load(unsigned first, const std::vector<uint64_t>& words) {
   return true;
 }
 
+const char* run_error_name(RunError error) {
+  switch (error) {
+    case RunError::none: return "none";
+    case RunError::bad_word: return "bad instruction word";
+    case RunError::loop: return "loop the AC cannot run";
+    case RunError::cmem_address: return "CMEM address out of range";
+    case RunError::past_end: return "past the end of program memory";
+    case RunError::too_long: return "longer than array.max_program_cycles";
+  }
+  return "unknown";
+}
+
 RunResult ArrayController::run(unsigned entry) {
   struct Loop {
     unsigned body;
@@ -61,20 +73,23 @@ RunResult ArrayController::run(unsigned entry) {
   LoopVariables variables{};
   unsigned depth = 0;
   unsigned pc = entry;
-  const auto fail = [&](const std::string& why) {
+  const auto fail = [&](RunError kind, const std::string& why) {
     result.ok = false;
+    result.kind = kind;
     result.error_pc = pc;
     result.error = "program word " + std::to_string(pc) + ": " + why;
   };
   ++m_activity.programs;
+  m_stage_changes.clear();
   while (true) {
     if (pc >= m_slots.size()) {
-      fail("past the end of program memory (" + std::to_string(m_slots.size()) + " words) without a halt");
+      fail(RunError::past_end,
+           "past the end of program memory (" + std::to_string(m_slots.size()) + " words) without a halt");
       break;
     }
     const Slot& slot = m_slots[pc];
     if (!slot.error.empty()) {
-      fail(slot.error);
+      fail(RunError::bad_word, slot.error);
       break;
     }
     const Instruction& in = slot.instruction;
@@ -85,8 +100,8 @@ RunResult ArrayController::run(unsigned entry) {
       case Opcode::op_halt: halted = true; break;
       case Opcode::op_loop:
         if (in.loop_level() != depth) {
-          fail("loop at nesting level " + std::to_string(in.loop_level()) + " where " + std::to_string(depth) +
-               " loops are running");
+          fail(RunError::loop, "loop at nesting level " + std::to_string(in.loop_level()) + " where " +
+                                   std::to_string(depth) + " loops are running");
           break;
         }
         loops[depth] = {pc + 1, in.loop_step()};
@@ -95,7 +110,7 @@ RunResult ArrayController::run(unsigned entry) {
         break;
       case Opcode::op_endloop: {
         if (depth == 0) {
-          fail("endloop with no loop running");
+          fail(RunError::loop, "endloop with no loop running");
           break;
         }
         Loop& loop = loops[depth - 1];
@@ -108,11 +123,13 @@ RunResult ArrayController::run(unsigned entry) {
       }
       default: {
         std::string error = m_array.execute(in, variables, depth);
-        if (!error.empty()) fail(error);
+        if (!error.empty()) fail(RunError::cmem_address, error);
         break;
       }
     }
     if (!result.ok) break;
+    if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
+      m_stage_changes.push_back({result.cycles, in.stage});
     result.cycles += slot.cost;
     ++result.instructions;
     ++m_activity.instruction_mix[static_cast<unsigned>(in.opcode)];
@@ -121,7 +138,8 @@ RunResult ArrayController::run(unsigned entry) {
     ++m_activity.word_executions[pc];
     if (halted) break;
     if (result.cycles > m_max_cycles) {
-      fail("the program ran for more than array.max_program_cycles (" + std::to_string(m_max_cycles) + ") cycles");
+      fail(RunError::too_long,
+           "the program ran for more than array.max_program_cycles (" + std::to_string(m_max_cycles) + ") cycles");
       break;
     }
     pc = next;

@@ -28,8 +28,13 @@ struct CycleTable {
   unsigned cost(const Instruction& instruction) const;
 };
 
+// Why a program stopped early; the AC's ERROR_CODE register holds the value.
+enum class RunError : uint8_t { none = 0, bad_word = 1, loop = 2, cmem_address = 3, past_end = 4, too_long = 5 };
+const char* run_error_name(RunError error);
+
 struct RunResult {
   bool ok = true;
+  RunError kind = RunError::none;
   uint64_t cycles = 0;
   uint64_t instructions = 0;
   std::string error;  // when !ok: what went wrong, naming the program word
@@ -71,6 +76,17 @@ class ArrayController {
 
   const ControllerActivity& activity() const { return m_activity; }
 
+  // With recording on, run() keeps where the stage changed (the cycle, from
+  // the program's start, at which an instruction of a new stage began), for
+  // the VCD's stage signal. Off by default: a loop that alternates stages
+  // changes them millions of times.
+  struct StageChange {
+    uint64_t cycle;
+    Stage stage;
+  };
+  void record_stages(bool on) { m_record_stages = on; }
+  const std::vector<StageChange>& stage_changes() const { return m_stage_changes; }
+
  private:
   struct Slot {
     Instruction instruction;
@@ -86,6 +102,8 @@ class ArrayController {
   std::vector<uint64_t> m_words;
   std::vector<Slot> m_slots;
   ControllerActivity m_activity;
+  bool m_record_stages = false;
+  std::vector<StageChange> m_stage_changes;
 };
 
 }  // namespace tessera::ap

@@ -1,0 +1,366 @@
+// TLM tests of the array controller (tlm/array/array_processor.h) and the
+// CIU (tlm/array/ciu.h) on a bus: the CIU's WriteMem32 layout byte for byte,
+// a program loaded over the bus, started, and its interrupt at the time its
+// cycles give; host accesses while it runs (CMEM waits, writes to the AC are
+// refused); every bad access and bad program; statistics and summary rows.
+//
+// Bench: initiator -> checker -> bus (100 MHz) -> AC registers at 0,
+// program memory at 0x10000, CIU window at 0x1000000. The array clock is
+// also 100 MHz so expected times are whole nanoseconds.
+#include <cstring>
+
+#include "array/array_processor.h"
+#include "array/array_regs.h"
+#include "array/ciu.h"
+#include "bus/ahb_bus.h"
+#include "checker/protocol_checker.h"
+#include "support/bench_params.h"
+#include "support/tlm_test_support.h"
+
+using namespace tessera;
+using sc_core::sc_time;
+namespace regs = array_regs;
+
+namespace {
+
+const sc_time CYCLE(10, sc_core::SC_NS);
+constexpr uint64_t AC = 0x0, PROGRAM = 0x10000, CMEM = 0x1000000;
+constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
+constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24, ROWS = 4;
+
+ArrayParams array_params() {
+  ArrayParams p = ArrayParams::defaults();
+  p.clock_period = CYCLE;
+  p.program_words = 256;
+  p.max_program_cycles = 100000;
+  return p;
+}
+
+CiuParams ciu_params() {
+  CiuParams p = CiuParams::defaults();
+  p.write_cycles = WRITE_CYCLES;
+  p.read_cycles = READ_CYCLES;
+  p.clock_period = CYCLE;
+  return p;
+}
+
+struct Bench : sc_core::sc_module {
+  test::TestInitiator host;
+  ProtocolChecker<32> check_host;
+  AhbBus bus;
+  ArrayProcessor array;
+  Ciu ciu;
+  sc_core::sc_signal<bool> irq;
+  explicit Bench(sc_core::sc_module_name name)
+      : sc_core::sc_module(name),
+        host("host"),
+        check_host("check_host"),
+        bus("bus", test::bench_bus_params(CYCLE)),
+        array("array", array_params()),
+        ciu("ciu", ciu_params(), array) {
+    host.out.bind(check_host.in);
+    bus.attach(check_host.out, "host", 0);
+    bus.map(array.in, AC, 0x1000, "array_regs");
+    bus.map(array.program_in, PROGRAM, 0x10000, "array_program");
+    bus.map(ciu.in, CMEM, 0x1000000, "array_cmem");
+    array.irq.bind(irq);
+  }
+};
+
+Bench* g_bench = nullptr;
+
+// Instructions, built field by field.
+ap::Operand reg(unsigned index) {
+  return {false, static_cast<uint16_t>(index), 0};
+}
+ap::Operand mem(unsigned address, unsigned loop = 0) {
+  return {true, static_cast<uint16_t>(address), static_cast<uint8_t>(loop)};
+}
+uint64_t op(ap::Opcode opcode, ap::Operand d = {}, ap::Operand a = {}, ap::Operand b = {}) {
+  ap::Instruction in;
+  in.opcode = opcode;
+  in.d = d;
+  in.a = a;
+  in.b = b;
+  return ap::encode(in);
+}
+uint64_t loop(unsigned level, unsigned start, unsigned step) {
+  return op(ap::Opcode::op_loop, reg(level), reg(start), reg(step));
+}
+
+// Group (i, j), CMEM address a, as the CIU maps it.
+uint64_t cmem_address(unsigned i, unsigned j, unsigned a) {
+  return CMEM + regs::cmem_offset(j * (COLUMNS / 4) + i, a, CMEM_BYTES);
+}
+
+// The host waits for every access to complete (no temporal decoupling),
+// so each one starts on an idle bus.
+tlm::tlm_response_status write32(Bench& b, uint64_t address, uint32_t value) {
+  const auto result = b.host.write32(address, value);
+  sc_core::wait(result.delay);
+  return result.status;
+}
+uint32_t read32(Bench& b, uint64_t address) {
+  test::TestInitiator::Result result{};
+  const uint32_t value = b.host.read32(address, &result);
+  sc_core::wait(result.delay);
+  return value;
+}
+
+void load(Bench& b, unsigned at, const std::vector<uint64_t>& words) {
+  for (size_t w = 0; w < words.size(); ++w) {
+    const uint64_t address = PROGRAM + (at + w) * regs::PROGRAM_WORD_BYTES;
+    ASSERT_EQ(write32(b, address, static_cast<uint32_t>(words[w])), tlm::TLM_OK_RESPONSE);
+    ASSERT_EQ(write32(b, address + 4, static_cast<uint32_t>(words[w] >> 32)), tlm::TLM_OK_RESPONSE);
+  }
+}
+
+// Writes START and returns the time the write reached the AC: the bus
+// forwards it at once and adds its address phase to the response.
+sc_time start(Bench& b, unsigned entry) {
+  write32(b, AC + regs::ENTRY, entry);
+  const sc_time at = sc_core::sc_time_stamp();
+  EXPECT_EQ(write32(b, AC + regs::START, 1), tlm::TLM_OK_RESPONSE);
+  return at;
+}
+
+void wait_irq(Bench& b) {
+  if (!b.irq.read()) sc_core::wait(b.irq.posedge_event());
+}
+
+void clear_irq(Bench& b) {
+  write32(b, AC + regs::IRQ_STATUS, regs::IRQ_DONE | regs::IRQ_ERROR);
+  sc_core::wait(CYCLE);
+}
+
+}  // namespace
+
+TEST(Ciu, AWordLandsOneByteInEachOfFourAdjacentCusOfItsRow) {
+  Bench& b = *g_bench;
+  ap::CuArray& cus = b.array.core().array();
+  test::run_thread([&] {
+    EXPECT_EQ(b.host.write32(cmem_address(0, 0, 5), 0xffffffffu).status, tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(b.host.write32(cmem_address(2, 1, 7), 0x44332211u).status, tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(b.host.write32(cmem_address(5, 3, 4095), 0xa0b0c0d0u).status, tlm::TLM_OK_RESPONSE);
+  });
+  for (unsigned lane = 0; lane < 4; ++lane) EXPECT_EQ(cus.cmem(lane, 5), 0xff) << lane;
+  EXPECT_EQ(cus.cmem(4, 5), 0);
+  EXPECT_EQ(cus.cmem(COLUMNS, 5), 0);  // row 1 untouched
+  // Group (2, 1): row 1, columns 8..11; byte 0 (0x11) in column 8.
+  EXPECT_EQ(cus.cmem(COLUMNS + 8, 7), 0x11);
+  EXPECT_EQ(cus.cmem(COLUMNS + 9, 7), 0x22);
+  EXPECT_EQ(cus.cmem(COLUMNS + 10, 7), 0x33);
+  EXPECT_EQ(cus.cmem(COLUMNS + 11, 7), 0x44);
+  EXPECT_EQ(cus.cmem(COLUMNS + 12, 7), 0);
+  // The last group of the last row, the last address.
+  EXPECT_EQ(cus.cmem(3 * COLUMNS + 20, 4095), 0xd0);
+  EXPECT_EQ(cus.cmem(3 * COLUMNS + 23, 4095), 0xa0);
+  cus.set_cmem(COLUMNS + 10, 7, 0x99);
+  test::run_thread([&] { EXPECT_EQ(b.host.read32(cmem_address(2, 1, 7)), 0x44992211u); });
+}
+
+TEST(Ciu, EachWordCostsItsCyclesOfTheArrayClock) {
+  Bench& b = *g_bench;
+  test::run_thread([&] {
+    const auto write = b.host.write32(cmem_address(1, 1, 1), 1);
+    sc_core::wait(write.delay);
+    test::TestInitiator::Result read{};
+    b.host.read32(cmem_address(1, 1, 1), &read);
+    // The bus's address phase (one cycle), then the CIU's latency.
+    EXPECT_EQ(write.delay, CYCLE * (1.0 + WRITE_CYCLES));
+    EXPECT_EQ(read.delay, CYCLE * (1.0 + READ_CYCLES));
+  });
+}
+
+TEST(Ciu, BadAccessesAreErrorsNamingTheAddress) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  const uint64_t errors = b.ciu.counters().value("errors");
+  test::run_thread([&] {
+    uint16_t half = 0;
+    EXPECT_EQ(b.host.read(cmem_address(0, 0, 0), reinterpret_cast<uint8_t*>(&half), 2).status,
+              tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    EXPECT_EQ(b.host.write32(cmem_address(0, 0, 0) + 2, 0).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    // Beyond the last group: 96 CUs x 4096 bytes.
+    EXPECT_EQ(b.host.write32(CMEM + 96u * CMEM_BYTES, 0).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  });
+  EXPECT_EQ(b.ciu.counters().value("errors"), errors + 3);
+  EXPECT_TRUE(capture.contains("60000")) << "the log names the offset beyond CMEM";
+}
+
+TEST(ArrayProcessor, RunsALoadedProgramAndRaisesItsInterruptAfterItsCycles) {
+  Bench& b = *g_bench;
+  ap::CuArray& cus = b.array.core().array();
+  // c = a + b, 16-bit big-endian at 0x100 (a), 0x102 (b), 0x104 (c), over
+  // 4 passes at 0x100 + 8k (loop k = 24, 16, 8, 0).
+  const std::vector<uint64_t> program = {
+      loop(0, 24, 8),
+      op(ap::Opcode::op_add, mem(0x105, 1), mem(0x101, 1), mem(0x103, 1)),
+      op(ap::Opcode::op_adc, mem(0x104, 1), mem(0x100, 1), mem(0x102, 1)),
+      op(ap::Opcode::op_endloop),
+      op(ap::Opcode::op_halt),
+  };
+  // 1 (loop) + 4 x (3 + 3 + 0) + 1 (halt)
+  const unsigned cycles = 1 + 4 * 6 + 1;
+  for (unsigned lane = 0; lane < cus.lanes(); ++lane)
+    for (unsigned k = 0; k < 4; ++k) {
+      const unsigned base = 0x100 + 8 * k;
+      const uint16_t x = static_cast<uint16_t>(lane * 300 + k * 7000), y = static_cast<uint16_t>(lane * 211 + 999);
+      cus.set_cmem(lane, base, x >> 8);
+      cus.set_cmem(lane, base + 1, x & 0xff);
+      cus.set_cmem(lane, base + 2, y >> 8);
+      cus.set_cmem(lane, base + 3, y & 0xff);
+    }
+  sc_time started, raised, read_done;
+  uint32_t busy_status = 0;
+  test::run_thread([&] {
+    load(b, 16, program);
+    write32(b, AC + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
+    started = start(b, 16);
+    busy_status = read32(b, AC + regs::STATUS);
+    wait_irq(b);
+    raised = sc_core::sc_time_stamp();
+    EXPECT_EQ(read32(b, AC + regs::IRQ_STATUS), regs::IRQ_DONE);
+    EXPECT_EQ(read32(b, AC + regs::STATUS) & (regs::STATUS_BUSY | regs::STATUS_DONE), regs::STATUS_DONE);
+    EXPECT_EQ(read32(b, AC + regs::CYCLES), cycles);
+    EXPECT_EQ(read32(b, AC + regs::STAGE_CYCLES0), cycles);  // no stage markers: all "other"
+    clear_irq(b);
+    EXPECT_FALSE(b.irq.read());
+  });
+  EXPECT_EQ(busy_status & regs::STATUS_BUSY, regs::STATUS_BUSY);
+  // The run begins one array clock after START reaches the AC and lasts its cycles.
+  const sc_time run_begins = started + CYCLE;
+  EXPECT_EQ(raised, run_begins + CYCLE * static_cast<double>(cycles));
+  for (unsigned lane = 0; lane < cus.lanes(); ++lane)
+    for (unsigned k = 0; k < 4; ++k) {
+      const unsigned base = 0x100 + 8 * k;
+      const auto x = static_cast<uint16_t>(lane * 300 + k * 7000), y = static_cast<uint16_t>(lane * 211 + 999);
+      const auto sum = static_cast<uint16_t>(x + y);
+      ASSERT_EQ(cus.cmem(lane, base + 4), sum >> 8) << lane << " " << k;
+      ASSERT_EQ(cus.cmem(lane, base + 5), sum & 0xff) << lane << " " << k;
+    }
+}
+
+TEST(ArrayProcessor, WhileAProgramRunsCmemWaitsAndTheAcRefusesWrites) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  // 1 + 100 x 40 + 1 cycles of multiplies.
+  const std::vector<uint64_t> program = {
+      loop(0, 99, 1),
+      op(ap::Opcode::op_mul, reg(0), reg(3), reg(5)),
+      op(ap::Opcode::op_endloop),
+      op(ap::Opcode::op_halt),
+  };
+  const unsigned cycles = 1 + 100 * 40 + 1;
+  test::run_thread([&] {
+    load(b, 40, program);
+    const sc_time started = start(b, 40);
+    const sc_time run_end = started + CYCLE + CYCLE * static_cast<double>(cycles);
+    EXPECT_EQ(write32(b, AC + regs::START, 1), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_EQ(write32(b, AC + regs::ENTRY, 0), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_EQ(write32(b, PROGRAM, 0), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_NE(read32(b, AC + regs::STATUS) & regs::STATUS_REFUSED, 0u);
+    // A CMEM read waits for the program's end, then takes its own time
+    // and the bus's address phase.
+    const sc_time arrival = sc_core::sc_time_stamp();
+    EXPECT_LT(arrival, run_end);
+    test::TestInitiator::Result read{};
+    b.host.read32(cmem_address(0, 0, 0), &read);
+    EXPECT_EQ(arrival + read.delay, run_end + CYCLE * (READ_CYCLES + 1.0));
+    if (sc_core::sc_time_stamp() < run_end) {
+      wait_irq(b);
+      EXPECT_EQ(sc_core::sc_time_stamp(), run_end);
+    }
+    EXPECT_TRUE(b.irq.read());
+    EXPECT_EQ(read32(b, AC + regs::CYCLES), cycles);
+    clear_irq(b);
+    // After the run the AC takes writes again.
+    EXPECT_EQ(write32(b, AC + regs::ENTRY, 40), tlm::TLM_OK_RESPONSE);
+  });
+  EXPECT_TRUE(capture.contains("written while a program runs"));
+  EXPECT_TRUE(capture.contains("refused: a program runs"));
+  EXPECT_GE(b.ciu.counters().value("stalled_accesses"), 1u);
+  EXPECT_EQ(b.array.counters().value("program_memory.refused_writes"), 1u);
+}
+
+TEST(ArrayProcessor, BadProgramsStopWithAnErrorCodeAndTheWord) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  struct Case {
+    std::vector<uint64_t> words;
+    ap::RunError error;
+    unsigned pc;  // relative to the load address
+    const char* logged;
+  };
+  const std::vector<Case> cases = {
+      // Loop variable up to 4095 + 4095 beyond CMEM.
+      {{loop(0, 4095, 1), op(ap::Opcode::op_mov, reg(0), mem(4095, 1)), op(ap::Opcode::op_endloop),
+        op(ap::Opcode::op_halt)},
+       ap::RunError::cmem_address,
+       1,
+       "CMEM address 8190 is beyond the 4096 bytes"},
+      {{uint64_t{1} << 63}, ap::RunError::bad_word, 0, "reserved bits"},
+      {{op(ap::Opcode::op_endloop)}, ap::RunError::loop, 0, "endloop with no loop"},
+      // A loop of 200 x 200 iterations of mul: past max_program_cycles.
+      {{loop(0, 199, 1), loop(1, 199, 1), op(ap::Opcode::op_mul, reg(0), reg(3), reg(5)), op(ap::Opcode::op_endloop),
+        op(ap::Opcode::op_endloop), op(ap::Opcode::op_halt)},
+       ap::RunError::too_long,
+       2,
+       "array.max_program_cycles"},
+  };
+  test::run_thread([&] {
+    for (const Case& c : cases) {
+      load(b, 100, c.words);
+      start(b, 100);
+      wait_irq(b);
+      EXPECT_EQ(read32(b, AC + regs::IRQ_STATUS), regs::IRQ_ERROR);
+      EXPECT_EQ(read32(b, AC + regs::ERROR_CODE), static_cast<uint32_t>(c.error)) << c.logged;
+      EXPECT_EQ(read32(b, AC + regs::ERROR_PC), 100 + c.pc) << c.logged;
+      EXPECT_NE(read32(b, AC + regs::STATUS) & regs::STATUS_ERROR, 0u);
+      EXPECT_TRUE(capture.contains(c.logged)) << c.logged;
+      clear_irq(b);
+    }
+    // A start with no program: program memory's zeros are nops, and the
+    // AC runs off the end of its memory.
+    start(b, 200);
+    wait_irq(b);
+    EXPECT_EQ(read32(b, AC + regs::ERROR_CODE), static_cast<uint32_t>(ap::RunError::past_end));
+    clear_irq(b);
+    // Program memory beyond its 256 words, and half words.
+    EXPECT_EQ(write32(b, PROGRAM + 256 * 8, 0), tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    uint16_t half = 0;
+    EXPECT_EQ(b.host.write(PROGRAM, reinterpret_cast<uint8_t*>(&half), 2).status, tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  });
+  EXPECT_TRUE(capture.contains("past the end of program memory"));
+  EXPECT_TRUE(capture.contains("outside the 2048-byte program memory"));
+}
+
+TEST(ArrayProcessor, StatisticsAndSummaryRows) {
+  Bench& b = *g_bench;
+  const sc_time now = sc_core::sc_time_stamp();
+  const auto stats = b.array.stats_json(now);
+  EXPECT_EQ(stats["programs"], b.array.counters().value("programs"));
+  EXPECT_GE(stats["mix"]["mul"].get<uint64_t>(), 100u);
+  EXPECT_GT(stats["cmem"]["bytes_written"].get<uint64_t>(), 0u);
+  EXPECT_EQ(stats["programs_by_entry"]["16"]["cycles"], 26);
+  // The profile names each word that ran, with its instruction.
+  bool found = false;
+  for (const auto& line : stats["profile"])
+    if (line["word"] == 41) {
+      found = true;
+      EXPECT_EQ(line["instruction"], "mul r0, r3, r5");
+      EXPECT_EQ(line["cycles"].get<uint64_t>() % 40, 0u);
+    }
+  EXPECT_TRUE(found);
+  const SummaryRow row = b.array.summary_row(now);
+  EXPECT_NE(row.notes.find("programs"), std::string::npos);
+  const auto ciu = b.ciu.stats_json(now);
+  EXPECT_GE(ciu["writes"].get<uint64_t>(), 3u);
+  EXPECT_GT(ciu["stall_ns"].get<double>(), 0.0);
+  EXPECT_EQ(b.check_host.violation_count(), 0u);
+}
+
+int sc_main(int argc, char* argv[]) {
+  g_bench = new Bench("bench");
+  return test::run_all_tests(argc, argv);
+}

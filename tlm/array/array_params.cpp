@@ -1,0 +1,58 @@
+// The array processor's parameters: array.*. The four calibrated cycle
+// counts (add, adc, mul, mulm and cmem_operand; docs/calibration.md) have
+// their defaults in isa/ap_isa.def with every other instruction's.
+#include <string>
+
+#include "array/array_processor.h"
+
+namespace tessera {
+
+ParamGroup ArrayParams::parameters() {
+  using param::integer;
+  std::vector<ParamSpec> specs = {
+      param::real("array.clock_mhz", 96.0, 1, 1000, "MHz", "array clock: the AC and the CUs (the J2210: 96 MHz)"),
+      integer("array.columns", 24, 4, 64, "CUs",
+              "CU grid columns; a multiple of 4, the CUs one 32-bit CIU access reaches"),
+      integer("array.rows", 4, 1, 16, "CUs", "CU grid rows"),
+      integer("array.registers", 8, 3, 16, "registers",
+              "8-bit registers per CU (the multiply needs 3 for its product)"),
+      integer("array.cmem_bytes", 4096, 16, 16384, "bytes", "CMEM per CU (the J2210: 4 KB)"),
+      integer("array.program_words", 4096, 16, 8192, "words", "AC program memory, in 64-bit instruction words"),
+      integer("array.max_program_cycles", 1000000000, 1000, 1e15, "cycles",
+              "a program running longer stops with an error (a watchdog for runaway loops)"),
+      integer("array.cycles.cmem_operand", 1, 0, 1000, "cycles",
+              "extra cycles of an instruction of form RM with an operand in CMEM (calibrated: docs/calibration.md)"),
+  };
+  for (const ap::OpInfo& info : ap::all_ops())
+    specs.push_back(integer("array.cycles." + std::string(info.mnemonic), info.cycles, 0, 100000, "cycles",
+                            std::string(info.mnemonic) + ": " + std::string(info.description)));
+  return {"array", std::move(specs), [](const Config& config) {
+            if (config.get_uint("array.columns") % 4 != 0)
+              throw ConfigError(
+                  "configuration: 'array.columns' must be a multiple of 4 (one CIU word reaches 4 "
+                  "CUs of a row), got " +
+                  std::to_string(config.get_uint("array.columns")));
+          }};
+}
+
+ArrayParams ArrayParams::from_config(const Config& config) {
+  ArrayParams p;
+  p.geometry.columns = static_cast<unsigned>(config.get_uint("array.columns"));
+  p.geometry.rows = static_cast<unsigned>(config.get_uint("array.rows"));
+  p.geometry.registers = static_cast<unsigned>(config.get_uint("array.registers"));
+  p.geometry.cmem_bytes = static_cast<unsigned>(config.get_uint("array.cmem_bytes"));
+  p.program_words = static_cast<unsigned>(config.get_uint("array.program_words"));
+  p.max_program_cycles = config.get_uint("array.max_program_cycles");
+  p.cycles.cmem_operand = static_cast<unsigned>(config.get_uint("array.cycles.cmem_operand"));
+  for (const ap::OpInfo& info : ap::all_ops())
+    p.cycles.cycles[static_cast<unsigned>(info.opcode)] =
+        static_cast<unsigned>(config.get_uint("array.cycles." + std::string(info.mnemonic)));
+  p.clock_period = sc_core::sc_time(1e3 / config.get_real("array.clock_mhz"), sc_core::SC_NS);
+  return p;
+}
+
+ArrayParams ArrayParams::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+}  // namespace tessera

@@ -1,0 +1,286 @@
+#include "array/array_processor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "array/array_regs.h"
+#include "common/log.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+namespace regs = array_regs;
+
+namespace {
+
+uint32_t low32(uint64_t value) {
+  return static_cast<uint32_t>(std::min<uint64_t>(value, UINT32_MAX));
+}
+
+}  // namespace
+
+ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& params)
+    : Peripheral(name, params.clock_period),
+      program_in("program_in"),
+      m_params(params),
+      m_core(params.geometry, params.cycles, params.program_words, params.max_program_cycles),
+      m_programs(counter("programs", "programs started (one per START)")),
+      m_failed_programs(counter("failed_programs", "programs that stopped with an error")),
+      m_instructions(counter("instructions", "instructions the AC broadcast (each loop iteration's counted)")),
+      m_cycles(counter("cycles.total", "array clock cycles of every program")),
+      m_lane_operations(counter("lanes.operations", "lane operations: CUs x instructions that did lane work")),
+      m_useful_operations(counter("lanes.useful", "lane operations in CUs whose mask was set")),
+      m_cmem_reads(counter("cmem.bytes_read", "bytes the CUs read from CMEM, all CUs together")),
+      m_cmem_writes(counter("cmem.bytes_written", "bytes the CUs stored in CMEM (unmasked CUs only)")),
+      m_neighbour_transfers(counter("neighbour_transfers", "CUs x nget instructions that read a neighbour")),
+      m_program_writes(counter("program_memory.writes", "32-bit writes into program memory")),
+      m_refused_program_writes(
+          counter("program_memory.refused_writes", "program memory writes refused while a program ran")),
+      m_busy_trace("busy"),
+      m_program_trace("program"),
+      m_stage_trace("stage") {
+  const ap::ArrayGeometry& g = params.geometry;
+  if (g.columns == 0 || g.rows == 0 || g.columns % regs::CUS_PER_GROUP != 0 || g.registers < 3 ||
+      g.registers > ap::MAX_REGISTERS || g.cmem_bytes == 0 || g.cmem_bytes > (1u << ap::ADDRESS_BITS) ||
+      params.program_words == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": impossible array geometry");
+  for (const ap::OpInfo& info : ap::all_ops())
+    m_mix[static_cast<unsigned>(info.opcode)] =
+        &counter("mix." + std::string(info.mnemonic), "executions of " + std::string(info.mnemonic));
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) {
+    const std::string stage_name(ap::stage_name(static_cast<ap::Stage>(stage)));
+    m_stage_cycles[stage] = &counter("cycles." + stage_name, "cycles of instructions of stage " + stage_name);
+  }
+  program_in.register_b_transport(this, &ArrayProcessor::program_b_transport);
+  program_in.register_transport_dbg(this, &ArrayProcessor::program_transport_dbg);
+
+#define TESSERA_ARRAY_REG(name, offset, reset, access) const RegisterInfo name{#name, offset, reset, RegAccess::access};
+#include "array/array_regs.def"
+#undef TESSERA_ARRAY_REG
+
+  m_regs.add(STATUS, [this] {
+    const sc_time now = access_time();
+    const bool busy = busy_at(now);
+    const ap::RunResult& shown = shown_result(now);
+    const bool ran = m_programs.value > (busy ? 1u : 0u);
+    return (busy ? regs::STATUS_BUSY : 0u) | (ran && shown.ok ? regs::STATUS_DONE : 0u) |
+           (ran && !shown.ok ? regs::STATUS_ERROR : 0u) | (m_refused ? regs::STATUS_REFUSED : 0u);
+  });
+  m_regs.add(ENTRY);
+  m_regs.add(START, {}, [this](uint32_t value) {
+    if ((value & 1u) != 0) start(access_time());
+  });
+  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  m_regs.add(ERROR_CODE, [this] { return static_cast<uint32_t>(shown_result(access_time()).kind); });
+  m_regs.add(ERROR_PC, [this] {
+    const ap::RunResult& shown = shown_result(access_time());
+    return shown.ok ? 0u : shown.error_pc;
+  });
+  m_regs.add(CYCLES, [this] { return low32(shown_result(access_time()).cycles); });
+  m_regs.add(TOTAL_CYCLES, [this] {
+    // Only programs that have finished by the access count.
+    const uint64_t running = busy_at(access_time()) ? m_current.cycles : 0;
+    return static_cast<uint32_t>(m_core.activity().cycles - running);
+  });
+  m_regs.add(PROGRAMS, [this] { return static_cast<uint32_t>(m_programs.value); });
+  m_regs.add(COLUMNS, [this] { return m_params.geometry.columns; });
+  m_regs.add(ROWS, [this] { return m_params.geometry.rows; });
+  m_regs.add(CMEM_BYTES, [this] { return m_params.geometry.cmem_bytes; });
+  m_regs.add(REGISTERS, [this] { return m_params.geometry.registers; });
+  m_regs.add(PROGRAM_WORDS, [this] { return m_params.program_words; });
+  const RegisterInfo stage_registers[ap::STAGE_COUNT] = {STAGE_CYCLES0, STAGE_CYCLES1, STAGE_CYCLES2, STAGE_CYCLES3,
+                                                         STAGE_CYCLES4, STAGE_CYCLES5, STAGE_CYCLES6, STAGE_CYCLES7};
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage)
+    m_regs.add(stage_registers[stage], [this, stage] {
+      return low32(busy_at(access_time()) ? m_previous_stages[stage] : m_current_stages[stage]);
+    });
+}
+
+const ap::RunResult& ArrayProcessor::shown_result(const sc_time& when) const {
+  return busy_at(when) ? m_previous : m_current;
+}
+
+const char* ArrayProcessor::write_refusal(const tlm::tlm_generic_payload& gp) const {
+  if (!gp.is_write()) return nullptr;
+  const uint64_t offset = gp.get_address();
+  if (offset == regs::IRQ_STATUS || offset == regs::IRQ_ENABLE || !busy_at(access_time())) return nullptr;
+  m_refused = true;
+  return "written while a program runs";
+}
+
+void ArrayProcessor::start(const sc_time& access_time) {
+  const unsigned entry = m_regs.get(regs::ENTRY);
+  // The run starts one clock after the write reaches the register.
+  const sc_time begin = access_time + m_params.clock_period;
+  m_previous = m_current;
+  m_previous_stages = m_current_stages;
+  m_refused = false;
+  const ap::ControllerActivity& before = m_core.activity();
+  const std::array<uint64_t, ap::STAGE_COUNT> stages_before = before.stage_cycles;
+  m_core.record_stages(m_tracing);
+  m_current = m_core.run(entry);
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage)
+    m_current_stages[stage] = m_core.activity().stage_cycles[stage] - stages_before[stage];
+  const sc_time length = m_params.clock_period * static_cast<double>(m_current.cycles);
+  m_busy_until = begin + length;
+  m_busy_time += length;
+  EntryTotals& totals = m_by_entry[entry];
+  ++totals.runs;
+  totals.cycles += m_current.cycles;
+  copy_counters();
+
+  if (m_tracing) {
+    m_busy_trace.set_at(true, begin);
+    m_program_trace.set_at(entry, begin);
+    for (const auto& change : m_core.stage_changes())
+      m_stage_trace.set_at(static_cast<uint32_t>(change.stage),
+                           begin + m_params.clock_period * static_cast<double>(change.cycle));
+    m_busy_trace.set_at(false, m_busy_until);
+  }
+  const sc_time until_end = m_busy_until - sc_core::sc_time_stamp();
+  if (m_current.ok) {
+    log::info(name(), "program at word " + std::to_string(entry) + ": " + std::to_string(m_current.cycles) +
+                          " cycles, " + std::to_string(m_current.instructions) + " instructions");
+    raise_irq(regs::IRQ_DONE, until_end);
+  } else {
+    log::warning(name(), "program at word " + std::to_string(entry) + " stopped: " + m_current.error);
+    raise_irq(regs::IRQ_ERROR, until_end);
+  }
+}
+
+void ArrayProcessor::copy_counters() {
+  const ap::ControllerActivity& core = m_core.activity();
+  const ap::ArrayActivity& lanes = m_core.array().activity();
+  m_programs.value = core.programs;
+  m_failed_programs.value = core.failed_programs;
+  m_instructions.value = core.instructions;
+  m_cycles.value = core.cycles;
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) m_stage_cycles[stage]->value = core.stage_cycles[stage];
+  for (unsigned op = 0; op < ap::OPCODE_COUNT; ++op) m_mix[op]->value = core.instruction_mix[op];
+  m_lane_operations.value = lanes.lane_operations;
+  m_useful_operations.value = lanes.useful_operations;
+  m_cmem_reads.value = lanes.cmem_reads;
+  m_cmem_writes.value = lanes.cmem_writes;
+  m_neighbour_transfers.value = lanes.neighbour_transfers;
+}
+
+void ArrayProcessor::program_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  const uint64_t address = gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  const uint64_t size = uint64_t{m_params.program_words} * regs::PROGRAM_WORD_BYTES;
+  if (address % 4 != 0 || length == 0 || length % 4 != 0 || address >= size || length > size - address) {
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    log::warning(name(), "program memory access of " + std::to_string(length) + " bytes at offset " +
+                             log::hex(address) + " outside the " + std::to_string(size) +
+                             "-byte program memory or not whole aligned words");
+    return;
+  }
+  if (gp.get_byte_enable_ptr() || gp.get_streaming_width() < length) {
+    gp.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+    return;
+  }
+  const sc_time when = sc_core::sc_time_stamp() + delay;
+  if (gp.is_write() && busy_at(when)) {
+    ++m_refused_program_writes;
+    m_refused = true;
+    gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    log::warning(name(), "program memory write at offset " + log::hex(address) + " refused: a program runs");
+    delay += m_params.clock_period;
+    return;
+  }
+  uint8_t* data = gp.get_data_ptr();
+  for (uint64_t offset = 0; offset < length; offset += 4) {
+    const auto word_index = static_cast<unsigned>((address + offset) / regs::PROGRAM_WORD_BYTES);
+    const bool high = ((address + offset) % regs::PROGRAM_WORD_BYTES) != 0;
+    uint64_t word = m_core.word(word_index);
+    uint32_t half = 0;
+    if (gp.is_write()) {
+      std::memcpy(&half, data + offset, 4);
+      word = high ? (word & 0xffffffffull) | (uint64_t{half} << 32) : (word & ~0xffffffffull) | half;
+      m_core.write_word(word_index, word);
+      ++m_program_writes;
+    } else if (gp.is_read()) {
+      half = static_cast<uint32_t>(high ? word >> 32 : word);
+      std::memcpy(data + offset, &half, 4);
+    }
+  }
+  delay += m_params.clock_period * static_cast<double>(length / 4);
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+unsigned ArrayProcessor::program_transport_dbg(tlm::tlm_generic_payload& gp) {
+  const uint64_t address = gp.get_address();
+  const uint64_t size = uint64_t{m_params.program_words} * regs::PROGRAM_WORD_BYTES;
+  if (address >= size) return 0;
+  const uint64_t length = std::min<uint64_t>(gp.get_data_length(), size - address);
+  for (uint64_t i = 0; i < length; ++i) {
+    const auto word_index = static_cast<unsigned>((address + i) / regs::PROGRAM_WORD_BYTES);
+    const unsigned shift = 8 * static_cast<unsigned>((address + i) % regs::PROGRAM_WORD_BYTES);
+    uint64_t word = m_core.word(word_index);
+    if (gp.is_write()) {
+      word = (word & ~(0xffull << shift)) | (uint64_t{gp.get_data_ptr()[i]} << shift);
+      m_core.write_word(word_index, word);
+    } else {
+      gp.get_data_ptr()[i] = static_cast<uint8_t>(word >> shift);
+    }
+  }
+  return static_cast<unsigned>(length);
+}
+
+void ArrayProcessor::trace_signals(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  const std::string prefix = std::string(name()) + ".";
+  sc_core::sc_trace(file, m_busy_trace.signal, prefix + "busy");
+  sc_core::sc_trace(file, m_program_trace.signal, prefix + "program");
+  sc_core::sc_trace(file, m_stage_trace.signal, prefix + "stage");
+  sc_core::sc_trace(file, irq, prefix + "irq");
+}
+
+nlohmann::json ArrayProcessor::stats_json(const sc_time& elapsed) const {
+  nlohmann::json stats = Peripheral::stats_json(elapsed);
+  const double elapsed_s = elapsed.to_seconds();
+  const double busy_s = m_busy_time.to_seconds();
+  stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
+  stats["columns"] = m_params.geometry.columns;
+  stats["rows"] = m_params.geometry.rows;
+  stats["cmem_bytes"] = m_params.geometry.cmem_bytes;
+  stats["registers"] = m_params.geometry.registers;
+  stats["busy_ns"] = busy_s * 1e9;
+  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
+  stats["elapsed_ns"] = elapsed_s * 1e9;
+  stats["cu_utilisation"] =
+      m_lane_operations.value > 0 ? static_cast<double>(m_useful_operations.value) / m_lane_operations.value : 0.0;
+  nlohmann::json by_entry = nlohmann::json::object();
+  for (const auto& [entry, totals] : m_by_entry)
+    by_entry[std::to_string(entry)] = {{"runs", totals.runs}, {"cycles", totals.cycles}};
+  stats["programs_by_entry"] = by_entry;
+  // The profile: every program word that ran, with its instruction, its
+  // stage, how often it ran and the cycles it took.
+  nlohmann::json profile = nlohmann::json::array();
+  const ap::ControllerActivity& core = m_core.activity();
+  for (unsigned word = 0; word < core.word_cycles.size(); ++word) {
+    if (core.word_executions[word] == 0) continue;
+    const ap::Decoded decoded = ap::decode(m_core.word(word));
+    profile.push_back({{"word", word},
+                       {"instruction", decoded.error.empty() ? ap::format_instruction(decoded.instruction)
+                                                             : "(bad word: " + decoded.error + ")"},
+                       {"stage", std::string(ap::stage_name(decoded.instruction.stage))},
+                       {"executions", core.word_executions[word]},
+                       {"cycles", core.word_cycles[word]}});
+  }
+  stats["profile"] = profile;
+  return stats;
+}
+
+SummaryRow ArrayProcessor::summary_row(const sc_time& elapsed) const {
+  const double utilisation =
+      m_lane_operations.value > 0 ? static_cast<double>(m_useful_operations.value) / m_lane_operations.value : 0.0;
+  return busy_row(m_busy_time, elapsed,
+                  std::to_string(m_programs.value) + " programs, " + std::to_string(m_cycles.value) + " cycles, " +
+                      std::to_string(m_instructions.value) + " instructions, CUs useful " +
+                      format_percent(utilisation));
+}
+
+}  // namespace tessera

@@ -1,0 +1,113 @@
+// The array controller (AC) with its CU array, as a bus peripheral: the
+// register target `in` (array_regs.def), the program memory target
+// `program_in`, and the interrupt `irq` raised when a program finishes.
+//
+// A program runs as a whole on the functional core (core/array_controller.h)
+// when START is written: the core executes every instruction at once and
+// counts the cycles, and the AC is busy for that many periods of the array
+// clock from one clock after the write, when its interrupt rises. The CIU
+// (ciu.h) holds host accesses to CMEM back until then, so the host never
+// sees a result before the array would have produced it. While busy, writes
+// to ENTRY, START and program memory are refused (a command error response,
+// a warning naming the address, STATUS.refused); reads are answered, and
+// CYCLES and the stage counters keep the previous program's figures until
+// the running one has finished.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include <tlm_utils/simple_target_socket.h>
+#include <systemc>
+#include <tlm>
+
+#include <nlohmann/json.hpp>
+
+#include "array/core/array_controller.h"
+#include "common/peripheral.h"
+#include "common/timed_trace.h"
+#include "config/config.h"
+
+namespace tessera {
+
+struct ArrayParams {
+  ap::ArrayGeometry geometry;
+  ap::CycleTable cycles;
+  unsigned program_words = 0;
+  uint64_t max_program_cycles = 0;
+  sc_core::sc_time clock_period;
+
+  // The parameters this block owns, the one place their defaults live.
+  static ParamGroup parameters();
+  static ArrayParams from_config(const Config& config);
+  static ArrayParams defaults();
+};
+
+class ArrayProcessor : public Peripheral {
+ public:
+  SC_HAS_PROCESS(ArrayProcessor);
+
+  // Registers on `in` and the interrupt on `irq` (Peripheral).
+  tlm_utils::simple_target_socket<ArrayProcessor, 32> program_in;
+
+  ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& params);
+
+  const ArrayParams& params() const { return m_params; }
+  ap::ArrayController& core() { return m_core; }
+  const ap::ArrayController& core() const { return m_core; }
+  // When the running program finishes (a time not later than now when none runs).
+  const sc_core::sc_time& busy_until() const { return m_busy_until; }
+  bool busy_at(const sc_core::sc_time& when) const { return when < m_busy_until; }
+  const ap::RunResult& last_result() const { return m_current; }
+
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+
+ private:
+  const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
+  void start(const sc_core::sc_time& access_time);
+  // The result the registers show at `when`: the running program's only
+  // once it has finished.
+  const ap::RunResult& shown_result(const sc_core::sc_time& when) const;
+  void program_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned program_transport_dbg(tlm::tlm_generic_payload& gp);
+  void copy_counters();
+
+  ArrayParams m_params;
+  ap::ArrayController m_core;
+  sc_core::sc_time m_busy_until;
+  sc_core::sc_time m_busy_time;
+  // Set by write_refusal(), which the bus calls through a const path.
+  mutable bool m_refused = false;
+  ap::RunResult m_current, m_previous;
+  std::array<uint64_t, ap::STAGE_COUNT> m_current_stages{}, m_previous_stages{};
+  // Runs and cycles per entry word: the programs a frame ran.
+  struct EntryTotals {
+    uint64_t runs = 0;
+    uint64_t cycles = 0;
+  };
+  std::map<unsigned, EntryTotals> m_by_entry;
+
+  ActivityCounter& m_programs;
+  ActivityCounter& m_failed_programs;
+  ActivityCounter& m_instructions;
+  ActivityCounter& m_cycles;
+  ActivityCounter& m_lane_operations;
+  ActivityCounter& m_useful_operations;
+  ActivityCounter& m_cmem_reads;
+  ActivityCounter& m_cmem_writes;
+  ActivityCounter& m_neighbour_transfers;
+  ActivityCounter& m_program_writes;
+  ActivityCounter& m_refused_program_writes;
+  std::array<ActivityCounter*, ap::STAGE_COUNT> m_stage_cycles{};
+  std::array<ActivityCounter*, ap::OPCODE_COUNT> m_mix{};
+
+  TimedTrace m_busy_trace;
+  TimedWord m_program_trace;
+  TimedWord m_stage_trace;
+  bool m_tracing = false;
+};
+
+}  // namespace tessera

@@ -1,0 +1,142 @@
+#include "array/ciu.h"
+
+#include <algorithm>
+
+#include "array/array_regs.h"
+#include "common/log.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+
+Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& array)
+    : Block(name),
+      in("in"),
+      m_params(params),
+      m_array(array),
+      m_writes(counter("writes", "32-bit words written into CMEM (one byte in each of 4 CUs)")),
+      m_reads(counter("reads", "32-bit words read from CMEM")),
+      m_bytes_written(counter("bytes_written", "bytes written into CMEM")),
+      m_bytes_read(counter("bytes_read", "bytes read from CMEM")),
+      m_stalled(counter("stalled_accesses", "accesses that waited for a running program to finish")),
+      m_errors(counter("errors", "accesses answered with an error (outside CMEM, not whole aligned words)")),
+      m_access_trace("access") {
+  in.register_b_transport(this, &Ciu::b_transport);
+  in.register_transport_dbg(this, &Ciu::transport_dbg);
+}
+
+uint64_t Ciu::window_bytes() const {
+  const ap::ArrayGeometry& g = m_array.params().geometry;
+  return uint64_t{g.lanes()} * g.cmem_bytes;
+}
+
+void Ciu::locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const {
+  const ap::ArrayGeometry& g = m_array.params().geometry;
+  const uint64_t word = offset / 4;
+  const auto group = static_cast<unsigned>(word / g.cmem_bytes);
+  address = static_cast<unsigned>(word % g.cmem_bytes);
+  const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
+  const unsigned row = group / groups_per_row;
+  const unsigned column = (group % groups_per_row) * array_regs::CUS_PER_GROUP + k;
+  lane = row * g.columns + column;
+}
+
+void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  const uint64_t offset = gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  const uint64_t size = window_bytes();
+  if (offset % 4 != 0 || length == 0 || length % 4 != 0 || offset >= size || length > size - offset) {
+    ++m_errors;
+    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+    log::warning(name(), "access of " + std::to_string(length) + " bytes at offset " + log::hex(offset) +
+                             ": the CIU takes whole aligned 32-bit words within the " + std::to_string(size) +
+                             "-byte CMEM window");
+    return;
+  }
+  if (gp.get_byte_enable_ptr() || gp.get_streaming_width() < length) {
+    ++m_errors;
+    gp.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
+    log::warning(name(), "access at offset " + log::hex(offset) + " with byte enables: the CIU takes whole words");
+    return;
+  }
+  // The CUs own CMEM while a program runs: wait for its end.
+  const sc_time arrival = sc_core::sc_time_stamp() + delay;
+  if (m_array.busy_at(arrival)) {
+    const sc_time wait = m_array.busy_until() - arrival;
+    ++m_stalled;
+    m_stall_time += wait;
+    delay += wait;
+  }
+  ap::CuArray& cus = m_array.core().array();
+  uint8_t* data = gp.get_data_ptr();
+  const uint64_t words = length / 4;
+  for (uint64_t w = 0; w < words; ++w)
+    for (unsigned k = 0; k < 4; ++k) {
+      unsigned lane = 0, address = 0;
+      locate(offset + 4 * w, k, lane, address);
+      if (gp.is_write())
+        cus.set_cmem(lane, address, data[4 * w + k]);
+      else if (gp.is_read())
+        data[4 * w + k] = cus.cmem(lane, address);
+    }
+  const unsigned cycles = gp.is_write() ? m_params.write_cycles : m_params.read_cycles;
+  const sc_time latency = m_params.clock_period * static_cast<double>(cycles * words);
+  if (m_tracing) {
+    const sc_time start = sc_core::sc_time_stamp() + delay;
+    m_access_trace.set_at(true, start);
+    m_access_trace.set_at(false, start + latency);
+  }
+  delay += latency;
+  m_access_time += latency;
+  if (gp.is_write()) {
+    m_writes += words;
+    m_bytes_written += length;
+  } else {
+    m_reads += words;
+    m_bytes_read += length;
+  }
+  gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+unsigned Ciu::transport_dbg(tlm::tlm_generic_payload& gp) {
+  const uint64_t offset = gp.get_address();
+  const uint64_t size = window_bytes();
+  if (offset >= size) return 0;
+  const uint64_t length = std::min<uint64_t>(gp.get_data_length(), size - offset);
+  ap::CuArray& cus = m_array.core().array();
+  for (uint64_t i = 0; i < length; ++i) {
+    unsigned lane = 0, address = 0;
+    locate((offset + i) & ~uint64_t{3}, static_cast<unsigned>((offset + i) % 4), lane, address);
+    if (gp.is_write())
+      cus.set_cmem(lane, address, gp.get_data_ptr()[i]);
+    else
+      gp.get_data_ptr()[i] = cus.cmem(lane, address);
+  }
+  return static_cast<unsigned>(length);
+}
+
+void Ciu::trace_signals(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  sc_core::sc_trace(file, m_access_trace.signal, std::string(name()) + ".access");
+}
+
+nlohmann::json Ciu::stats_json(const sc_time& elapsed) const {
+  nlohmann::json stats = Block::stats_json(elapsed);
+  stats["write_cycles"] = m_params.write_cycles;
+  stats["read_cycles"] = m_params.read_cycles;
+  stats["access_ns"] = m_access_time.to_seconds() * 1e9;
+  stats["stall_ns"] = m_stall_time.to_seconds() * 1e9;
+  // What the initiators waited on the CIU: its latency and the stalls.
+  stats["host_wait_ns"] = (m_access_time + m_stall_time).to_seconds() * 1e9;
+  stats["elapsed_ns"] = elapsed.to_seconds() * 1e9;
+  return stats;
+}
+
+SummaryRow Ciu::summary_row(const sc_time& elapsed) const {
+  return busy_row(m_access_time, elapsed,
+                  std::to_string(m_writes.value) + " words written, " + std::to_string(m_reads.value) + " read, " +
+                      std::to_string(m_stalled.value) + " waited for the array (" +
+                      format_duration(m_stall_time.to_seconds()) + ")");
+}
+
+}  // namespace tessera

@@ -1,0 +1,73 @@
+// The CMEM interface unit (CIU): the host's only way into CMEM, as a bus
+// target mapping every CU's CMEM with the J2210's WriteMem32 layout
+// (array_regs.h, cmem_offset): a 32-bit word at CMEM address a of CU group
+// (i, j) is one byte in each of the four CUs of row j, columns 4i..4i+3,
+// byte 0 in column 4i. Only whole 32-bit words: any other access is an
+// error response.
+//
+// Timing: each word costs ciu.write_cycles or ciu.read_cycles of the array
+// clock as target latency (calibrated with the host's address computation to
+// the board's 488 ns and 830 ns, docs/calibration.md). An access that
+// arrives while the AC runs a program waits until the program has finished
+// (the CUs own CMEM while they run), and the wait is counted.
+#pragma once
+
+#include <cstdint>
+
+#include <tlm_utils/simple_target_socket.h>
+#include <systemc>
+#include <tlm>
+
+#include <nlohmann/json.hpp>
+
+#include "array/array_processor.h"
+#include "common/block.h"
+#include "common/timed_trace.h"
+#include "config/config.h"
+
+namespace tessera {
+
+struct CiuParams {
+  unsigned write_cycles = 0;
+  unsigned read_cycles = 0;
+  sc_core::sc_time clock_period;  // set by the SoC: the array clock
+
+  static ParamGroup parameters();
+  static CiuParams from_config(const Config& config);
+  static CiuParams defaults();
+};
+
+class Ciu : public Block {
+ public:
+  tlm_utils::simple_target_socket<Ciu, 32> in;
+
+  Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& array);
+
+  // Bytes of the window that map CMEM: every group's every address.
+  uint64_t window_bytes() const;
+
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  // The CU lane and CMEM address of byte `k` of the word at `offset`.
+  void locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const;
+
+  CiuParams m_params;
+  ArrayProcessor& m_array;
+  ActivityCounter& m_writes;
+  ActivityCounter& m_reads;
+  ActivityCounter& m_bytes_written;
+  ActivityCounter& m_bytes_read;
+  ActivityCounter& m_stalled;
+  ActivityCounter& m_errors;
+  sc_core::sc_time m_access_time;  // latency charged, all accesses
+  sc_core::sc_time m_stall_time;   // waiting for a running program
+  TimedTrace m_access_trace;
+  bool m_tracing = false;
+};
+
+}  // namespace tessera

@@ -1,0 +1,32 @@
+// The CIU's parameters: ciu.*. Both latencies are calibrated
+// (docs/calibration.md): with the bus's address phase and the host's
+// address computation they give the board's 488 ns per write and 830 ns
+// per read.
+#include "array/ciu.h"
+
+namespace tessera {
+
+ParamGroup CiuParams::parameters() {
+  using param::integer;
+  return {"ciu",
+          {
+              integer("ciu.write_cycles", 40, 0, 10000, "array cycles",
+                      "latency of one 32-bit CMEM write through the CIU (calibrated: docs/calibration.md)"),
+              integer("ciu.read_cycles", 70, 0, 10000, "array cycles",
+                      "latency of one 32-bit CMEM read through the CIU (calibrated: docs/calibration.md)"),
+          },
+          {}};
+}
+
+CiuParams CiuParams::from_config(const Config& config) {
+  CiuParams p;
+  p.write_cycles = static_cast<unsigned>(config.get_uint("ciu.write_cycles"));
+  p.read_cycles = static_cast<unsigned>(config.get_uint("ciu.read_cycles"));
+  return p;
+}
+
+CiuParams CiuParams::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+}  // namespace tessera
