@@ -90,6 +90,8 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
   m_regs.add(CMEM_BYTES, [this] { return m_params.geometry.cmem_bytes; });
   m_regs.add(REGISTERS, [this] { return m_params.geometry.registers; });
   m_regs.add(PROGRAM_WORDS, [this] { return m_params.program_words; });
+  m_regs.add(CLOCK_KHZ,
+             [this] { return static_cast<uint32_t>(std::llround(1e-3 / m_params.clock_period.to_seconds())); });
   const RegisterInfo stage_registers[ap::STAGE_COUNT] = {STAGE_CYCLES0, STAGE_CYCLES1, STAGE_CYCLES2, STAGE_CYCLES3,
                                                          STAGE_CYCLES4, STAGE_CYCLES5, STAGE_CYCLES6, STAGE_CYCLES7};
   for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage)

@@ -1,0 +1,202 @@
+#include "device/array_driver.h"
+
+#include <algorithm>
+
+#include "array/array_regs.h"
+#include "soc/irq_map.h"
+#include "soc/memory_map.h"
+
+namespace tessera {
+
+namespace regs = array_regs;
+
+namespace {
+
+constexpr uint32_t AC = memory_map::array_regs.base;
+
+}  // namespace
+
+ArrayDriver::ArrayDriver(AppEnvironment& env)
+    : m_host(*env.host),
+      m_columns(m_host.read32(AC + regs::COLUMNS)),
+      m_rows(m_host.read32(AC + regs::ROWS)),
+      m_cmem_bytes(m_host.read32(AC + regs::CMEM_BYTES)),
+      m_program_words(m_host.read32(AC + regs::PROGRAM_WORDS)),
+      m_clock_khz(m_host.read32(AC + regs::CLOCK_KHZ)) {}
+
+void ArrayDriver::load(const std::vector<uint64_t>& words, unsigned at) {
+  if (at > m_program_words || words.size() > m_program_words - at)
+    throw std::invalid_argument("array program of " + std::to_string(words.size()) + " words at word " +
+                                std::to_string(at) + " does not fit the AC's " + std::to_string(m_program_words) +
+                                " words of program memory");
+  // STM of up to four instruction words (eight registers) at a time.
+  uint32_t halves[8];
+  for (size_t first = 0; first < words.size(); first += 4) {
+    const size_t count = std::min<size_t>(4, words.size() - first);
+    for (size_t k = 0; k < count; ++k) {
+      halves[2 * k] = static_cast<uint32_t>(words[first + k]);
+      halves[2 * k + 1] = static_cast<uint32_t>(words[first + k] >> 32);
+    }
+    m_host.write_words(memory_map::array_program.base + static_cast<uint32_t>((at + first) * regs::PROGRAM_WORD_BYTES),
+                       halves, static_cast<unsigned>(2 * count));
+  }
+}
+
+void ArrayDriver::start(unsigned entry) {
+  if (!m_irq_enabled) {
+    m_host.write32(AC + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
+    m_irq_enabled = true;
+  }
+  m_host.write32(AC + regs::ENTRY, entry);
+  m_host.write32(AC + regs::START, 1);
+}
+
+namespace {
+
+uint32_t finish(HostApi& host, uint32_t irq_status) {
+  host.write32(AC + regs::IRQ_STATUS, irq_status);
+  if ((irq_status & regs::IRQ_ERROR) != 0) {
+    const uint32_t code = host.read32(AC + regs::ERROR_CODE);
+    const uint32_t pc = host.read32(AC + regs::ERROR_PC);
+    throw ArrayError("array program stopped with error " + std::to_string(code) + " at program word " +
+                         std::to_string(pc) + " (the simulator's log says why)",
+                     code, pc);
+  }
+  return host.read32(AC + regs::CYCLES);
+}
+
+}  // namespace
+
+uint32_t ArrayDriver::wait() {
+  m_host.wait_irq(irq_map::array);
+  return finish(m_host, m_host.read32(AC + regs::IRQ_STATUS));
+}
+
+uint32_t ArrayDriver::poll() {
+  while ((m_host.read32(AC + regs::STATUS) & regs::STATUS_BUSY) != 0) {
+  }
+  return finish(m_host, m_host.read32(AC + regs::IRQ_STATUS));
+}
+
+void ArrayDriver::check_group(unsigned i, unsigned j, unsigned a, unsigned bytes) const {
+  if (i >= groups_per_row() || j >= m_rows || a + bytes > m_cmem_bytes)
+    throw std::out_of_range("CMEM access at group (" + std::to_string(i) + ", " + std::to_string(j) + "), address " +
+                            std::to_string(a) + " is outside the array (" + std::to_string(groups_per_row()) + "x" +
+                            std::to_string(m_rows) + " groups, " + std::to_string(m_cmem_bytes) + " bytes)");
+}
+
+uint32_t ArrayDriver::cmem_address(unsigned i, unsigned j, unsigned a) const {
+  return memory_map::array_cmem.base + regs::cmem_offset(j * groups_per_row() + i, a, m_cmem_bytes);
+}
+
+// The ARM's address computation for one access: MLA for the group number,
+// then an ADD with the address shifted in and one with the base (the
+// calibrated CIU latency assumes exactly this, docs/calibration.md).
+void ArrayDriver::write32(unsigned i, unsigned j, unsigned a, uint32_t value) {
+  check_group(i, j, a, 1);
+  m_host.compute(Op::mul);
+  m_host.compute(Op::alu, 2);
+  m_host.write32(cmem_address(i, j, a), value);
+}
+
+uint32_t ArrayDriver::read32(unsigned i, unsigned j, unsigned a) {
+  check_group(i, j, a, 1);
+  m_host.compute(Op::mul);
+  m_host.compute(Op::alu, 2);
+  return m_host.read32(cmem_address(i, j, a));
+}
+
+// Packing four values into a word of their high bytes and one of their low
+// bytes: per value an AND (or a shift) and an ORR with a shift, 7 ALU
+// operations per word.
+void ArrayDriver::write16(unsigned i, unsigned j, unsigned a, const std::array<uint16_t, 4>& values) {
+  check_group(i, j, a, 2);
+  uint32_t high = 0, low = 0;
+  for (unsigned k = 0; k < 4; ++k) {
+    high |= uint32_t{static_cast<uint8_t>(values[k] >> 8)} << (8 * k);
+    low |= uint32_t{static_cast<uint8_t>(values[k])} << (8 * k);
+  }
+  m_host.compute(Op::alu, 14);
+  write32(i, j, a, high);
+  write32(i, j, a + 1, low);
+}
+
+std::array<uint16_t, 4> ArrayDriver::read16(unsigned i, unsigned j, unsigned a) {
+  check_group(i, j, a, 2);
+  const uint32_t high = read32(i, j, a);
+  const uint32_t low = read32(i, j, a + 1);
+  std::array<uint16_t, 4> values{};
+  for (unsigned k = 0; k < 4; ++k)
+    values[k] = static_cast<uint16_t>(((high >> (8 * k)) & 0xffu) << 8 | ((low >> (8 * k)) & 0xffu));
+  m_host.compute(Op::alu, 14);
+  return values;
+}
+
+void ArrayDriver::write_all8(unsigned a, const std::vector<uint8_t>& per_cu) {
+  if (per_cu.size() != cus()) throw std::invalid_argument("write_all8: one value per CU expected");
+  for (unsigned j = 0; j < m_rows; ++j)
+    for (unsigned i = 0; i < groups_per_row(); ++i) {
+      uint32_t word = 0;
+      for (unsigned k = 0; k < 4; ++k) word |= uint32_t{per_cu[j * m_columns + 4 * i + k]} << (8 * k);
+      m_host.compute(Op::alu, 7);
+      write32(i, j, a, word);
+    }
+}
+
+void ArrayDriver::write_all16(unsigned a, const std::vector<uint16_t>& per_cu) {
+  if (per_cu.size() != cus()) throw std::invalid_argument("write_all16: one value per CU expected");
+  for (unsigned j = 0; j < m_rows; ++j)
+    for (unsigned i = 0; i < groups_per_row(); ++i) {
+      std::array<uint16_t, 4> values{};
+      for (unsigned k = 0; k < 4; ++k) values[k] = per_cu[j * m_columns + 4 * i + k];
+      write16(i, j, a, values);
+    }
+}
+
+std::vector<uint8_t> ArrayDriver::read_all8(unsigned a) {
+  std::vector<uint8_t> values(cus());
+  for (unsigned j = 0; j < m_rows; ++j)
+    for (unsigned i = 0; i < groups_per_row(); ++i) {
+      const uint32_t word = read32(i, j, a);
+      for (unsigned k = 0; k < 4; ++k) values[j * m_columns + 4 * i + k] = static_cast<uint8_t>(word >> (8 * k));
+      m_host.compute(Op::alu, 7);
+    }
+  return values;
+}
+
+std::vector<uint16_t> ArrayDriver::read_all16(unsigned a) {
+  std::vector<uint16_t> values(cus());
+  for (unsigned j = 0; j < m_rows; ++j)
+    for (unsigned i = 0; i < groups_per_row(); ++i) {
+      const std::array<uint16_t, 4> group = read16(i, j, a);
+      for (unsigned k = 0; k < 4; ++k) values[j * m_columns + 4 * i + k] = group[k];
+    }
+  return values;
+}
+
+void ArrayDriver::fill8(unsigned a, uint8_t value) {
+  const uint32_t word = value * 0x01010101u;
+  for (unsigned j = 0; j < m_rows; ++j)
+    for (unsigned i = 0; i < groups_per_row(); ++i) write32(i, j, a, word);
+}
+
+void ArrayDriver::write_constants(const Constants& constants) {
+  if (constants.xpos >= 0) {
+    std::vector<uint8_t> columns(cus());
+    for (unsigned lane = 0; lane < cus(); ++lane) columns[lane] = static_cast<uint8_t>(lane % m_columns);
+    write_all8(static_cast<unsigned>(constants.xpos), columns);
+  }
+  if (constants.ypos >= 0) {
+    std::vector<uint8_t> rows(cus());
+    for (unsigned lane = 0; lane < cus(); ++lane) rows[lane] = static_cast<uint8_t>(lane / m_columns);
+    write_all8(static_cast<unsigned>(constants.ypos), rows);
+  }
+  if (constants.one >= 0) fill8(static_cast<unsigned>(constants.one), 0x01);
+  if (constants.ones >= 0) fill8(static_cast<unsigned>(constants.ones), 0xff);
+  for (unsigned k = 0; constants.x_counter >= 0 && k < constants.x_counter_length; ++k)
+    fill8(static_cast<unsigned>(constants.x_counter) + k, static_cast<uint8_t>(k));
+  for (unsigned k = 0; constants.y_counter >= 0 && k < constants.y_counter_length; ++k)
+    fill8(static_cast<unsigned>(constants.y_counter) + k, static_cast<uint8_t>(k));
+}
+
+}  // namespace tessera

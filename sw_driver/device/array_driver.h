@@ -1,0 +1,102 @@
+// Driver of the array processor: the AC (program load, start, wait) and the
+// CIU (CMEM reads and writes with the J2210's WriteMem32 layout and the
+// host-side packing the study needed). Every access is a bus transaction of
+// the host model, and the address computation and packing the ARM does
+// around it are charged to the host's cost model, so what a renderer pays
+// to talk to the array is what the board paid.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "device/app_environment.h"
+
+namespace tessera {
+
+// A program that stopped with an error: the AC's code and word.
+class ArrayError : public std::runtime_error {
+ public:
+  ArrayError(const std::string& what, uint32_t code, uint32_t pc) : std::runtime_error(what), m_code(code), m_pc(pc) {}
+  uint32_t code() const { return m_code; }
+  uint32_t pc() const { return m_pc; }
+
+ private:
+  uint32_t m_code;
+  uint32_t m_pc;
+};
+
+class ArrayDriver {
+ public:
+  // Reads the array's geometry from the AC's registers.
+  explicit ArrayDriver(AppEnvironment& env);
+
+  unsigned columns() const { return m_columns; }
+  unsigned rows() const { return m_rows; }
+  unsigned cus() const { return m_columns * m_rows; }
+  unsigned groups_per_row() const { return m_columns / 4; }
+  unsigned cmem_bytes() const { return m_cmem_bytes; }
+  unsigned program_words() const { return m_program_words; }
+  double clock_hz() const { return m_clock_khz * 1e3; }
+
+  // Writes an image into program memory from word `at`. Throws
+  // std::invalid_argument if it does not fit.
+  void load(const std::vector<uint64_t>& words, unsigned at = 0);
+  // Starts the program at word `entry` (the AC must be idle).
+  void start(unsigned entry);
+  // Sleeps until the AC's interrupt, clears it, and returns the program's
+  // array cycles; throws ArrayError naming the code and word if it failed.
+  uint32_t wait();
+  // Polls STATUS until the AC is idle instead of sleeping (the host keeps
+  // working between polls in a real driver; here each poll is a bus read).
+  uint32_t poll();
+  uint32_t run(unsigned entry) {
+    start(entry);
+    return wait();
+  }
+
+  // The bus address of CMEM address `a` of CU group (i, j).
+  uint32_t cmem_address(unsigned i, unsigned j, unsigned a) const;
+
+  // WriteMem32 / ReadMem32: one word, byte k to/from CU column 4i+k of row
+  // j, with the ARM's address computation charged.
+  void write32(unsigned i, unsigned j, unsigned a, uint32_t value);
+  uint32_t read32(unsigned i, unsigned j, unsigned a);
+
+  // Four 16-bit values, one per CU of group (i, j), big-endian at a, a+1:
+  // packed by the host into a word of high bytes (at a) and one of low
+  // bytes (at a+1), as the study did.
+  void write16(unsigned i, unsigned j, unsigned a, const std::array<uint16_t, 4>& values);
+  std::array<uint16_t, 4> read16(unsigned i, unsigned j, unsigned a);
+
+  // Every CU at once, in CU order (row by row): one value per CU.
+  void write_all8(unsigned a, const std::vector<uint8_t>& per_cu);
+  void write_all16(unsigned a, const std::vector<uint16_t>& per_cu);
+  std::vector<uint8_t> read_all8(unsigned a);
+  std::vector<uint16_t> read_all16(unsigned a);
+  // The same byte in every CU (a constant the array cannot load itself).
+  void fill8(unsigned a, uint8_t value);
+
+  // The per-CU constants of the study, at the addresses a program declares
+  // for them (a negative address: the program has none): the CU's column
+  // (XPOS) and row (YPOS), 0x01, 0xff, and counter tables 0..n-1.
+  struct Constants {
+    int xpos = -1, ypos = -1, one = -1, ones = -1;
+    int x_counter = -1;
+    unsigned x_counter_length = 0;
+    int y_counter = -1;
+    unsigned y_counter_length = 0;
+  };
+  void write_constants(const Constants& constants);
+
+ private:
+  void check_group(unsigned i, unsigned j, unsigned a, unsigned bytes) const;
+
+  HostApi& m_host;
+  unsigned m_columns, m_rows, m_cmem_bytes, m_program_words, m_clock_khz;
+  bool m_irq_enabled = false;
+};
+
+}  // namespace tessera
