@@ -59,6 +59,32 @@ void shift_lanes(size_t n, const uint8_t* a, uint8_t* __restrict out, uint8_t* _
   }
 }
 
+// cond_holds() of every lane, as 0/1 bytes: one branch-free loop per
+// condition.
+void condition_lanes(Cond cond, size_t n, const uint8_t* __restrict c, const uint8_t* __restrict z,
+                     const uint8_t* __restrict s, uint8_t* __restrict out) {
+  switch (cond) {
+    case Cond::c: std::memcpy(out, c, n); return;
+    case Cond::nc:
+      for (size_t l = 0; l < n; ++l) out[l] = c[l] ^ 1u;
+      return;
+    case Cond::z: std::memcpy(out, z, n); return;
+    case Cond::nz:
+      for (size_t l = 0; l < n; ++l) out[l] = z[l] ^ 1u;
+      return;
+    case Cond::s: std::memcpy(out, s, n); return;
+    case Cond::ns:
+      for (size_t l = 0; l < n; ++l) out[l] = s[l] ^ 1u;
+      return;
+    case Cond::hi:
+      for (size_t l = 0; l < n; ++l) out[l] = c[l] & (z[l] ^ 1u);
+      return;
+    case Cond::ls:
+      for (size_t l = 0; l < n; ++l) out[l] = (c[l] ^ 1u) | z[l];
+      return;
+  }
+}
+
 void store_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __restrict destination,
                  const uint8_t* __restrict mask, bool masked) {
   if (!masked) {
@@ -164,14 +190,14 @@ std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_va
     case Opcode::op_mmov:
     case Opcode::op_mand:
     case Opcode::op_mor: {
-      for (size_t l = 0; l < n; ++l) {
-        const bool holds = cond_holds(in.cond(), {c[l] != 0, z[l] != 0, s[l] != 0});
-        const bool old = m[l] != 0;
-        const bool result = in.opcode == Opcode::op_mmov   ? holds
-                            : in.opcode == Opcode::op_mand ? old && holds
-                                                           : old || holds;
-        m[l] = result ? 1 : 0;
-      }
+      uint8_t* holds = row(m_scratch_row + SCRATCH_RESULT);
+      condition_lanes(in.cond(), n, c, z, s, holds);
+      if (in.opcode == Opcode::op_mmov)
+        std::memcpy(m, holds, n);
+      else if (in.opcode == Opcode::op_mand)
+        for (size_t l = 0; l < n; ++l) m[l] &= holds[l];
+      else
+        for (size_t l = 0; l < n; ++l) m[l] |= holds[l];
       count_active();
       return {};
     }
