@@ -208,6 +208,7 @@ TEST(Errors, LoopVariablesOnlyAddToAddresses) {
 TEST(Errors, Registers) {
   expect_error("main:\nmov r8, r0\nhalt\n", 2, "register r8 is beyond r7, the last of 8 registers");
   expect_error("main:\nmov r0, r16\nhalt\n", 2, "'r16' is not a register (r0..r15)", {16, 4096, 4096});
+  expect_error("main:\nmov r0, r123456789012\nhalt\n", 2, "'r123456789012' is not a register");
   expect_error("main:\nmul r6, r0, r1\nhalt\n", 2, "operand d of mul covers r6..r8, beyond r7");
   expect_error("main:\nmul r0, r7, r3\nhalt\n", 2, "operand a of mul covers r7..r8, beyond r7");
   expect_error("main:\nmov r3, r0\nhalt\n", 2, "beyond r2, the last of 3 registers", {3, 4096, 4096});
@@ -274,6 +275,12 @@ TEST(Files, UnreadableFileIsNamed) {
   } catch (const AsmError& error) {
     EXPECT_EQ(std::string(error.what()), "/nonexistent/program.s: cannot read the file");
     EXPECT_EQ(error.line(), 0u);
+  }
+  try {
+    assemble_file("/");
+    ADD_FAILURE() << "no error";
+  } catch (const AsmError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("/: cannot read the file", 0), 0u) << error.what();
   }
 }
 

@@ -68,11 +68,12 @@ std::vector<std::string_view> operand_names(OperandPattern pattern) {
 }
 
 std::optional<unsigned> register_number(const std::string& name) {
-  if (name.size() < 2 || name[0] != 'r' || name.size() > 4) return std::nullopt;
+  if (name.size() < 2 || name[0] != 'r') return std::nullopt;
   unsigned number = 0;
   for (size_t i = 1; i < name.size(); ++i) {
     if (name[i] < '0' || name[i] > '9') return std::nullopt;
-    number = number * 10 + static_cast<unsigned>(name[i] - '0');
+    // Any rN is a register name; a number that large is only ever refused.
+    number = std::min(number * 10 + static_cast<unsigned>(name[i] - '0'), 1000000u);
   }
   return number;
 }
@@ -526,10 +527,19 @@ Program assemble(std::string_view source, const std::string& source_name, const 
 }
 
 Program assemble_file(const std::string& path, const AsmLimits& limits) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw AsmError(path, 0, "cannot read the file");
-  const std::string source((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw AsmError(path, 0, "cannot read the file");
+  std::string source;
+  try {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw AsmError(path, 0, "cannot read the file");
+    source.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw AsmError(path, 0, "cannot read the file");
+  } catch (const AsmError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // libstdc++ reports a read error (a folder, say) by throwing from the
+    // stream buffer, whatever the stream's exception mask.
+    throw AsmError(path, 0, std::string("cannot read the file (") + e.what() + ")");
+  }
   return assemble(source, path, limits);
 }
 
