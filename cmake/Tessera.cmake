@@ -80,3 +80,39 @@ function(tessera_backends ids_var names_var)
   set(${ids_var} ${ids} PARENT_SCOPE)
   set(${names_var} ${names} PARENT_SCOPE)
 endfunction()
+
+# tessera_add_array_programs(TARGET lib SOURCES prog.s ... [ASM_OPTIONS --registers 16 ...])
+# Array programs assembled at build time into the static library `lib`: for
+# each prog.s, `ap_asm --emit-cpp prog` writes the definition of
+# tessera::ap::programs::prog() and its declaration in the header
+# ap_programs/prog.h, on lib's public include path. An assembly error fails
+# the build with the source's file:line. ASM_OPTIONS are ap_asm's limits of
+# the array the programs must fit (the defaults are array.* defaults).
+function(tessera_add_array_programs)
+  cmake_parse_arguments(P "" "TARGET" "SOURCES;ASM_OPTIONS" ${ARGN})
+  set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/${P_TARGET})
+  set(generated)
+  foreach(source IN LISTS P_SOURCES)
+    get_filename_component(path ${source} ABSOLUTE)
+    get_filename_component(name ${source} NAME_WE)
+    # The name the messages and Program::source_name give: relative to the
+    # project, so that the image does not depend on where the tree is.
+    file(RELATIVE_PATH shown ${PROJECT_SOURCE_DIR} ${path})
+    if(shown MATCHES "^\\.\\./")
+      set(shown ${path})
+    endif()
+    set(cpp ${out_dir}/${name}.cpp)
+    set(header ${out_dir}/include/ap_programs/${name}.h)
+    add_custom_command(OUTPUT ${cpp} ${header}
+                       COMMAND ap_asm ${P_ASM_OPTIONS} --emit-cpp ${name} ${shown} -o ${cpp} --header ${header}
+                       DEPENDS ${path} ap_asm
+                       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+                       COMMENT "Assembling the array program ${shown}"
+                       VERBATIM)
+    list(APPEND generated ${cpp} ${header})
+  endforeach()
+  file(MAKE_DIRECTORY ${out_dir}/include/ap_programs)
+  add_library(${P_TARGET} STATIC ${generated})
+  target_include_directories(${P_TARGET} PUBLIC ${out_dir}/include ${PROJECT_SOURCE_DIR}/tlm)
+  target_link_libraries(${P_TARGET} PRIVATE tessera_warnings)
+endfunction()

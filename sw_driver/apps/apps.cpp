@@ -16,6 +16,16 @@ const std::map<std::string, AppInfo>& builtin_apps() {
        {calib_display_port_app,
         "display port calibration: the host copies one 192x144 16-bit frame to the display port "
         "(--set display.width=192 --set display.height=144)"}},
+      {"calib_array_add",
+       {calib_array_add_app, "array calibration: 16-bit addition at register level (calibration.md)"}},
+      {"calib_array_mul",
+       {calib_array_mul_app, "array calibration: signed 16 x 8-bit multiplication at register level"}},
+      {"calib_array_add_cmem",
+       {calib_array_add_cmem_app, "array calibration: 16-bit addition of CMEM operands stored back, one pass"}},
+      {"calib_array_mul_cmem",
+       {calib_array_mul_cmem_app,
+        "array calibration: 16 x 8-bit multiplication of CMEM operands stored back, one pass"}},
+      {"calib_ciu", {calib_ciu_app, "CIU calibration: the host's 32-bit CMEM writes and reads through the CIU"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
   };
   static const std::map<std::string, AppInfo> with_scenes = [] {

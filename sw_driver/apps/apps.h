@@ -27,6 +27,11 @@ int pattern_app(AppEnvironment& env);
 int calib_add_app(AppEnvironment& env);
 int calib_mul_app(AppEnvironment& env);
 int calib_display_port_app(AppEnvironment& env);
+int calib_array_add_app(AppEnvironment& env);
+int calib_array_mul_app(AppEnvironment& env);
+int calib_array_add_cmem_app(AppEnvironment& env);
+int calib_array_mul_cmem_app(AppEnvironment& env);
+int calib_ciu_app(AppEnvironment& env);
 int unmapped_access_app(AppEnvironment& env);
 
 }  // namespace tessera

@@ -10,9 +10,9 @@ ParamGroup CiuParams::parameters() {
   using param::integer;
   return {"ciu",
           {
-              integer("ciu.write_cycles", 40, 0, 10000, "array cycles",
+              integer("ciu.write_cycles", 46, 0, 10000, "array cycles",
                       "latency of one 32-bit CMEM write through the CIU (calibrated: docs/calibration.md)"),
-              integer("ciu.read_cycles", 70, 0, 10000, "array cycles",
+              integer("ciu.read_cycles", 75, 0, 10000, "array cycles",
                       "latency of one 32-bit CMEM read through the CIU (calibrated: docs/calibration.md)"),
           },
           {}};

@@ -962,6 +962,82 @@ TEST_F(SocSim, DisplayPortCopyMatchesTheMeasuredTime) {
   EXPECT_TRUE(fs::is_regular_file(m_dir / "out/frame_0000.png"));
 }
 
+// docs/spec/calibration.md's array figures. Each scenario runs real array
+// programs and checks every CU's result itself (exit status 1 otherwise);
+// the model's figure must be within `tolerance` of the board's.
+namespace {
+
+void expect_array_figure(const SimResult& result, const std::string& what, double measured, double tolerance) {
+  ASSERT_EQ(result.status, 0) << describe(result);
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(result.out, match, std::regex(what + R"(: model ([0-9]+\.[0-9]+) )"))) << result.out;
+  EXPECT_NEAR(std::stod(match[1]), measured, measured * tolerance) << result.out;
+}
+
+}  // namespace
+
+TEST_F(SocSim, ArrayRegisterAdditionTakesTheMeasuredCycles) {
+  expect_array_figure(run({"--app", "calib_array_add", "--out", "out"}), "16-bit addition, register level", 4, 0.01);
+}
+
+TEST_F(SocSim, ArrayRegisterMultiplicationTakesTheMeasuredCycles) {
+  expect_array_figure(run({"--app", "calib_array_mul", "--out", "out"}),
+                      "signed 16 x 8-bit multiplication, register level", 40, 0.01);
+}
+
+TEST_F(SocSim, ArrayCmemAdditionPassMatchesTheMeasuredTime) {
+  // 64.0 ns is 6.144 array cycles: the whole cycles of the ISA give 62.5 ns.
+  expect_array_figure(run({"--app", "calib_array_add_cmem", "--out", "out"}),
+                      "16-bit addition of two CMEM operands stored back, one pass of all CUs", 64.0, 0.03);
+}
+
+TEST_F(SocSim, ArrayCmemMultiplicationPassMatchesTheMeasuredTime) {
+  expect_array_figure(run({"--app", "calib_array_mul_cmem", "--out", "out"}),
+                      "signed 16 x 8-bit multiplication of CMEM operands stored back, one pass of all CUs", 1093.44,
+                      0.01);
+}
+
+TEST_F(SocSim, CiuWritesAndReadsMatchTheMeasuredTimes) {
+  const SimResult result = run({"--app", "calib_ciu", "--out", "out"});
+  expect_array_figure(result, "one 32-bit CIU write from the ARM, address computation included", 488, 0.02);
+  expect_array_figure(result, "one 32-bit CIU read from the ARM, address computation included", 830, 0.02);
+}
+
+TEST_F(SocSim, ArrayStatisticsProfileAndTraceOfACalibrationRun) {
+  const SimResult result = run({"--app", "calib_array_add", "--vcd", "out/trace.vcd", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const json stats = read_stats(m_dir / "out/stats.json")["stats"];
+  const json& array = stats["array"];
+  EXPECT_EQ(array["programs"], 2);
+  EXPECT_EQ(array["failed_programs"], 0);
+  // 1000 and 2000 iterations of add and adc in the "shade" stage, 2 cycles each.
+  EXPECT_EQ(array["cycles"]["shade"], 3000 * 4 + 2);
+  EXPECT_EQ(array["mix"]["adc"], 3000);
+  EXPECT_GT(array["cu_utilisation"].get<double>(), 0.99);
+  bool found_add = false;
+  for (const json& line : array["profile"])
+    if (line["instruction"] == "add r1, r1, r3") {
+      found_add = true;
+      EXPECT_EQ(line["stage"], "shade");
+      EXPECT_EQ(line["cycles"].get<uint64_t>(), 2 * line["executions"].get<uint64_t>());
+    }
+  EXPECT_TRUE(found_add) << array["profile"].dump();
+  const json& ciu = stats["ciu"];
+  EXPECT_GT(ciu["writes"].get<uint64_t>(), 0u);
+  EXPECT_GT(ciu["host_wait_ns"].get<double>(), 0.0);
+  EXPECT_NE(result.out.find("array "), std::string::npos) << result.out;
+  const std::string vcd = tessera::test::read_file(m_dir / "out/trace.vcd");
+  // The VCD nests signals in a scope per block.
+  const size_t array_scope = vcd.find("$scope module array $end");
+  const size_t ciu_scope = vcd.find("$scope module ciu $end");
+  ASSERT_NE(array_scope, std::string::npos);
+  ASSERT_NE(ciu_scope, std::string::npos);
+  const std::string array_vars = vcd.substr(array_scope, vcd.find("$upscope", array_scope) - array_scope);
+  for (const char* signal : {" busy ", " program [31:0] ", " stage [31:0] ", " irq "})
+    EXPECT_NE(array_vars.find(signal), std::string::npos) << signal << "\n" << array_vars;
+  EXPECT_NE(vcd.find(" access ", ciu_scope), std::string::npos);
+}
+
 TEST_F(SocSim, DisplayPortCalibrationOnAnotherDisplayIsRejected) {
   expect_rejected(run({"--app", "calib_display_port", "--out", "out"}), EXIT_USAGE,
                   {"calib_display_port", "192x144", "display.width=192", "display.height=144"});

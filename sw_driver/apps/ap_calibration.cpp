@@ -1,0 +1,201 @@
+// The array processor's calibration micro-benchmarks (docs/spec/
+// calibration.md): a 16-bit addition and a signed 16 x 8 multiplication at
+// register level, and the same two on CMEM operands with the result stored
+// back, one pass of every CU. Each runs the real programs of
+// kernels/ap_calibration.s on the model: the host writes the operands
+// through the CIU with the study's packing, runs a long and a short
+// version of the program and takes the difference of their AC cycle counts
+// (so loads, stores and loop set-up cancel), reads every result back and
+// checks it in every CU, and prints the model's figure beside the board's.
+//
+// calib_ciu times the host's 32-bit writes and reads through the CIU,
+// including the ARM's address computation, beside the board's 488 ns and
+// 830 ns.
+#include <cstdio>
+#include <string>
+
+#include "ap_programs/ap_calibration.h"
+#include "apps/apps.h"
+#include "array/asm/program.h"
+#include "device/array_driver.h"
+
+namespace tessera {
+
+namespace {
+
+constexpr unsigned RECORDS = 128, RECORD = 6;
+
+const ap::Program& program() {
+  return ap::programs::ap_calibration();
+}
+
+unsigned address_of(const char* name) {
+  return program().variables.at(name).address;
+}
+
+unsigned entry_of(const std::string& name) {
+  return program().entries.at(name);
+}
+
+// Deterministic operands per CU and record.
+uint16_t operand_a(unsigned cu, unsigned record) {
+  return static_cast<uint16_t>(cu * 677 + record * 3001 + 17);
+}
+uint16_t operand_b(unsigned cu, unsigned record) {
+  return static_cast<uint16_t>(cu * 1291 + record * 97 + 40000);
+}
+
+void report(const char* what, double model, double measured, const char* unit, const std::string& extra = "") {
+  std::printf("array calibration: %s: model %.2f %s%s, measured %.2f %s (%+.1f%%)\n", what, model, unit, extra.c_str(),
+              measured, unit, (model / measured - 1) * 100);
+}
+
+int mismatch(const char* what, unsigned cu, unsigned record, long got, long expected) {
+  std::fprintf(stderr, "array calibration: %s: CU %u record %u holds %ld, expected %ld\n", what, cu, record, got,
+               expected);
+  return 1;
+}
+
+int register_level(AppEnvironment& env, bool multiply) {
+  ArrayDriver array(env);
+  array.load(program().words);
+  const unsigned n = array.cus();
+  std::vector<uint16_t> first(n), second(n);
+  std::vector<uint8_t> multipliers(n);
+  for (unsigned cu = 0; cu < n; ++cu) {
+    first[cu] = operand_a(cu, 0);
+    second[cu] = operand_b(cu, 0);
+    multipliers[cu] = static_cast<uint8_t>(cu * 37 + 128);
+  }
+  if (multiply) {
+    array.write_all16(address_of("multiplicand"), first);
+    array.write_all8(address_of("multiplier"), multipliers);
+  } else {
+    array.write_all16(address_of("sum"), first);
+    array.write_all16(address_of("increment"), second);
+  }
+  const std::string name = multiply ? "mul_registers_" : "add_registers_";
+  const uint32_t short_run = array.run(entry_of(name + "1000"));
+  const uint32_t long_run = array.run(entry_of(name + "2000"));
+  const double cycles = (long_run - short_run) / 1000.0;
+
+  // Every CU's result, byte for byte through the CIU.
+  if (multiply) {
+    const std::vector<uint16_t> high_middle = array.read_all16(address_of("product"));
+    const std::vector<uint8_t> low = array.read_all8(address_of("product") + 2);
+    for (unsigned cu = 0; cu < n; ++cu) {
+      const int32_t expected = int32_t{static_cast<int16_t>(first[cu])} * static_cast<int8_t>(multipliers[cu]);
+      const uint32_t got = (uint32_t{high_middle[cu]} << 8) | low[cu];
+      if (got != (static_cast<uint32_t>(expected) & 0xffffffu))
+        return mismatch("register multiply", cu, 0, static_cast<long>(got), expected);
+    }
+    report("signed 16 x 8-bit multiplication, register level", cycles, 40, "cycles");
+  } else {
+    const std::vector<uint16_t> sums = array.read_all16(address_of("sum"));
+    for (unsigned cu = 0; cu < n; ++cu) {
+      // 1000 additions, then 2000 more from that result.
+      const auto expected = static_cast<uint16_t>(first[cu] + 3000u * second[cu]);
+      if (sums[cu] != expected) return mismatch("register addition", cu, 0, sums[cu], expected);
+    }
+    report("16-bit addition, register level", cycles, 4, "cycles");
+  }
+  return 0;
+}
+
+int cmem_level(AppEnvironment& env, bool multiply) {
+  ArrayDriver array(env);
+  array.load(program().words);
+  const unsigned n = array.cus();
+  const unsigned records = address_of("records");
+  std::vector<uint16_t> values(n);
+  std::vector<uint8_t> bytes(n);
+  for (unsigned r = 0; r < RECORDS; ++r) {
+    for (unsigned cu = 0; cu < n; ++cu) values[cu] = operand_a(cu, r);
+    array.write_all16(records + RECORD * r, values);
+    if (multiply) {
+      for (unsigned cu = 0; cu < n; ++cu) bytes[cu] = static_cast<uint8_t>(operand_b(cu, r));
+      array.write_all8(records + RECORD * r + 2, bytes);
+    } else {
+      for (unsigned cu = 0; cu < n; ++cu) values[cu] = operand_b(cu, r);
+      array.write_all16(records + RECORD * r + 2, values);
+    }
+  }
+  const std::string name = multiply ? "mul_cmem_" : "add_cmem_";
+  const uint32_t half = array.run(entry_of(name + "half"));
+  const uint32_t all = array.run(entry_of(name + "all"));
+  const double cycles = static_cast<double>(all - half) / (RECORDS - RECORDS / 2);
+  const double ns = cycles / array.clock_hz() * 1e9;
+
+  for (unsigned r = 0; r < RECORDS; ++r) {
+    if (multiply) {
+      const std::vector<uint16_t> high_middle = array.read_all16(records + RECORD * r + 3);
+      const std::vector<uint8_t> low = array.read_all8(records + RECORD * r + 5);
+      for (unsigned cu = 0; cu < n; ++cu) {
+        const int32_t expected = int32_t{static_cast<int16_t>(operand_a(cu, r))} *
+                                 static_cast<int8_t>(static_cast<uint8_t>(operand_b(cu, r)));
+        const uint32_t got = (uint32_t{high_middle[cu]} << 8) | low[cu];
+        if (got != (static_cast<uint32_t>(expected) & 0xffffffu))
+          return mismatch("CMEM multiply", cu, r, static_cast<long>(got), expected);
+      }
+    } else {
+      const std::vector<uint16_t> sums = array.read_all16(records + RECORD * r + 4);
+      for (unsigned cu = 0; cu < n; ++cu) {
+        const auto expected = static_cast<uint16_t>(operand_a(cu, r) + operand_b(cu, r));
+        if (sums[cu] != expected) return mismatch("CMEM addition", cu, r, sums[cu], expected);
+      }
+    }
+  }
+  char extra[64];
+  std::snprintf(extra, sizeof extra, " (%.2f cycles)", cycles);
+  if (multiply)
+    report("signed 16 x 8-bit multiplication of CMEM operands stored back, one pass of all CUs", ns, 1093.44, "ns",
+           extra);
+  else
+    report("16-bit addition of two CMEM operands stored back, one pass of all CUs", ns, 64.0, "ns", extra);
+  return 0;
+}
+
+}  // namespace
+
+int calib_array_add_app(AppEnvironment& env) {
+  return register_level(env, false);
+}
+int calib_array_mul_app(AppEnvironment& env) {
+  return register_level(env, true);
+}
+int calib_array_add_cmem_app(AppEnvironment& env) {
+  return cmem_level(env, false);
+}
+int calib_array_mul_cmem_app(AppEnvironment& env) {
+  return cmem_level(env, true);
+}
+
+int calib_ciu_app(AppEnvironment& env) {
+  HostApi& host = *env.host;
+  ArrayDriver array(env);
+  constexpr unsigned ACCESSES = 4096;
+  // Writes to every group in turn, at consecutive addresses, as a loop
+  // filling CMEM would; then reads of the same words.
+  const unsigned groups = array.groups_per_row() * array.rows();
+  double start = host.now_seconds();
+  for (unsigned k = 0; k < ACCESSES; ++k)
+    array.write32(k % array.groups_per_row(), (k / array.groups_per_row()) % array.rows(), k / groups, k * 2654435761u);
+  // The last write has left the host's write buffer when a read can pass.
+  const double write_ns = (host.now_seconds() - start) / ACCESSES * 1e9;
+  start = host.now_seconds();
+  uint32_t checksum = 0, expected = 0;
+  for (unsigned k = 0; k < ACCESSES; ++k) {
+    checksum += array.read32(k % array.groups_per_row(), (k / array.groups_per_row()) % array.rows(), k / groups);
+    expected += k * 2654435761u;
+  }
+  const double read_ns = (host.now_seconds() - start) / ACCESSES * 1e9;
+  report("one 32-bit CIU write from the ARM, address computation included", write_ns, 488, "ns");
+  report("one 32-bit CIU read from the ARM, address computation included", read_ns, 830, "ns");
+  if (checksum != expected) {
+    std::fprintf(stderr, "calib_ciu: read back checksum %u, expected %u\n", checksum, expected);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace tessera

@@ -1,0 +1,46 @@
+// The array processor's assembler: source text (the language is described in
+// tlm/array/README.md, "The assembly language") to a Program. Every word it
+// emits has passed decode(), so the AC never refuses an assembled program,
+// and every address it emits, with the largest value of the loop variable
+// added, lies inside the CMEM of the limits it was given.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "array/asm/program.h"
+
+namespace tessera::ap {
+
+// The array configuration a program must fit (array.registers,
+// array.cmem_bytes, array.program_words).
+struct AsmLimits {
+  unsigned registers = 8;
+  unsigned cmem_bytes = 4096;
+  unsigned program_words = 4096;
+};
+
+// A problem in a source, as "file:line: problem" (or "file: problem" when no
+// line is to blame, e.g. an unreadable file), so editors and the build jump
+// to it.
+class AsmError : public std::runtime_error {
+ public:
+  AsmError(const std::string& file, unsigned line, const std::string& problem);
+
+  const std::string& file() const { return m_file; }
+  unsigned line() const { return m_line; }  // 0 when the whole file is to blame
+  const std::string& problem() const { return m_problem; }
+
+ private:
+  std::string m_file;
+  unsigned m_line;
+  std::string m_problem;
+};
+
+// Throws AsmError on the first problem; std::invalid_argument when the
+// limits themselves are not an array the ISA can address.
+Program assemble(std::string_view source, const std::string& source_name, const AsmLimits& limits = {});
+Program assemble_file(const std::string& path, const AsmLimits& limits = {});
+
+}  // namespace tessera::ap
