@@ -26,7 +26,7 @@ namespace {
 const sc_time CYCLE(10, sc_core::SC_NS);
 constexpr uint64_t AC = 0x0, PROGRAM = 0x10000, CMEM = 0x1000000;
 constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
-constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24, ROWS = 4;
+constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24;
 
 ArrayParams array_params() {
   ArrayParams p = ArrayParams::defaults();

@@ -208,7 +208,7 @@ void ArrayProcessor::program_b_transport(tlm::tlm_generic_payload& gp, sc_time& 
       std::memcpy(data + offset, &half, 4);
     }
   }
-  delay += m_params.clock_period * static_cast<double>(length / 4);
+  delay += m_params.clock_period * static_cast<double>(length) / 4.0;
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 

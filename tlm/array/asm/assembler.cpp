@@ -411,7 +411,7 @@ class Assembler {
     const std::optional<unsigned> reg =
         end - begin == 1 && tokens[begin].kind == TokenKind::name ? register_number(tokens[begin].text) : std::nullopt;
     if (reg) {
-      if (info.forms == Forms::M)
+      if (info.forms == Forms::m)
         fail(what + " must be a CMEM address: " + std::string(info.mnemonic) + " takes no registers");
       if (*reg >= MAX_REGISTERS)
         fail("'" + tokens[begin].text + "' is not a register (r0..r" + std::to_string(MAX_REGISTERS - 1) + ")");
@@ -427,12 +427,12 @@ class Assembler {
       return operand;
     }
     if (!tokens[begin].is('[') || !tokens[end - 1].is(']') || end - begin < 2) {
-      const std::string kinds = info.forms == Forms::R   ? "a register r0..r15"
-                                : info.forms == Forms::M ? "a CMEM address [expression]"
+      const std::string kinds = info.forms == Forms::r   ? "a register r0..r15"
+                                : info.forms == Forms::m ? "a CMEM address [expression]"
                                                          : "a register r0..r15 or a CMEM address [expression]";
       fail(what + " must be " + kinds + ", not " + describe(tokens[begin]));
     }
-    if (info.forms == Forms::R)
+    if (info.forms == Forms::r)
       fail(what + " must be a register: " + std::string(info.mnemonic) + " takes no CMEM address");
     const Value value = expression(tokens, begin + 1, end - 1, "the address of " + what, true);
     if (value.number < 0) fail(what + ": CMEM address " + std::to_string(value.number) + " is negative");

@@ -34,10 +34,10 @@ std::string_view operand_syntax(OperandPattern pattern) {
 
 std::string_view forms_name(Forms forms) {
   switch (forms) {
-    case Forms::R: return "R";
-    case Forms::M: return "M";
-    case Forms::RM: return "RM";
-    case Forms::C: return "C";
+    case Forms::r: return "R";
+    case Forms::m: return "M";
+    case Forms::rm: return "RM";
+    case Forms::c: return "C";
   }
   return "";
 }

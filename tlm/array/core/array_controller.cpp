@@ -12,7 +12,7 @@ CycleTable CycleTable::defaults() {
 unsigned CycleTable::cost(const Instruction& instruction) const {
   const OpInfo& info = op_info(instruction.opcode);
   unsigned total = cycles[static_cast<unsigned>(instruction.opcode)];
-  if (info.forms == Forms::RM && instruction.any_cmem()) total += cmem_operand;
+  if (info.forms == Forms::rm && instruction.any_cmem()) total += cmem_operand;
   return total;
 }
 

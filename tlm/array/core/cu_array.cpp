@@ -15,7 +15,7 @@ constexpr size_t ROW_ALIGN = 64;
 // neighbour's bytes, and the multiply's three product bytes.
 constexpr unsigned SCRATCH_RESULT = 0, SCRATCH_NEIGHBOUR = 1, SCRATCH_PRODUCT = 2, SCRATCH_ROWS = 5;
 
-enum FlagRow : unsigned { FLAG_C = 0, FLAG_Z = 1, FLAG_S = 2, FLAG_M = 3, FLAG_ROWS = 4 };
+enum FlagRow : unsigned { flag_c = 0, flag_z = 1, flag_s = 2, flag_m = 3, flag_rows = 4 };
 
 // The lane loops. Each writes the result into `out` (scratch, never an
 // operand) and the flags; the caller then stores `out` into the destination.
@@ -102,7 +102,7 @@ CuArray::CuArray(const ArrayGeometry& geometry)
       m_stride((geometry.lanes() + ROW_ALIGN - 1) / ROW_ALIGN * ROW_ALIGN),
       m_reg_row(geometry.cmem_bytes),
       m_flag_row(geometry.cmem_bytes + geometry.registers),
-      m_scratch_row(geometry.cmem_bytes + geometry.registers + FLAG_ROWS) {
+      m_scratch_row(geometry.cmem_bytes + geometry.registers + flag_rows) {
   // One guard row before and after: a neighbour read at the array's first
   // or last lane touches them (and is then masked to 0).
   m_storage.assign((size_t{m_scratch_row} + SCRATCH_ROWS + 2) * m_stride, 0);
@@ -124,28 +124,28 @@ CuArray::CuArray(const ArrayGeometry& geometry)
 
 void CuArray::reset() {
   std::fill(m_storage.begin(), m_storage.end(), 0);
-  std::fill_n(row(m_flag_row + FLAG_M), m_lanes, 1);
+  std::fill_n(row(m_flag_row + flag_m), m_lanes, 1);
   m_active = m_lanes;
 }
 
 CuFlags CuArray::flags(unsigned lane) const {
   const auto flag = [&](unsigned which) { return m_storage[row_offset(m_flag_row + which) + lane] != 0; };
-  return {flag(FLAG_C), flag(FLAG_Z), flag(FLAG_S)};
+  return {flag(flag_c), flag(flag_z), flag(flag_s)};
 }
 
 void CuArray::set_flags(unsigned lane, const CuFlags& flags) {
-  m_storage[row_offset(m_flag_row + FLAG_C) + lane] = flags.c ? 1 : 0;
-  m_storage[row_offset(m_flag_row + FLAG_Z) + lane] = flags.z ? 1 : 0;
-  m_storage[row_offset(m_flag_row + FLAG_S) + lane] = flags.s ? 1 : 0;
+  m_storage[row_offset(m_flag_row + flag_c) + lane] = flags.c ? 1 : 0;
+  m_storage[row_offset(m_flag_row + flag_z) + lane] = flags.z ? 1 : 0;
+  m_storage[row_offset(m_flag_row + flag_s) + lane] = flags.s ? 1 : 0;
 }
 
 void CuArray::set_mask(unsigned lane, bool mask) {
-  m_storage[row_offset(m_flag_row + FLAG_M) + lane] = mask ? 1 : 0;
+  m_storage[row_offset(m_flag_row + flag_m) + lane] = mask ? 1 : 0;
   count_active();
 }
 
 void CuArray::count_active() {
-  const uint8_t* m = row(m_flag_row + FLAG_M);
+  const uint8_t* m = row(m_flag_row + flag_m);
   unsigned active = 0;
   for (unsigned l = 0; l < m_lanes; ++l) active += m[l];
   m_active = active;
@@ -172,10 +172,10 @@ uint8_t* CuArray::operand_row(const Operand& operand, unsigned byte, const LoopV
 
 std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops) {
   const size_t n = m_lanes;
-  uint8_t* c = row(m_flag_row + FLAG_C);
-  uint8_t* z = row(m_flag_row + FLAG_Z);
-  uint8_t* s = row(m_flag_row + FLAG_S);
-  uint8_t* m = row(m_flag_row + FLAG_M);
+  uint8_t* c = row(m_flag_row + flag_c);
+  uint8_t* z = row(m_flag_row + flag_z);
+  uint8_t* s = row(m_flag_row + flag_s);
+  uint8_t* m = row(m_flag_row + flag_m);
   uint8_t* out = row(m_scratch_row + SCRATCH_RESULT);
 
   switch (in.opcode) {

@@ -167,11 +167,11 @@ Decoded decode(uint64_t word) {
       if (operand.in_cmem) result.error = name + ": operand field " + which + " cannot be a CMEM address";
       return operand.in_cmem;
     }
-    if (info->forms == Forms::R && operand.in_cmem) {
+    if (info->forms == Forms::r && operand.in_cmem) {
       result.error = name + " takes registers only (operand " + which + " is a CMEM address)";
       return true;
     }
-    if (info->forms == Forms::M && !operand.in_cmem) {
+    if (info->forms == Forms::m && !operand.in_cmem) {
       result.error = name + " takes CMEM addresses only (operand " + which + " is a register)";
       return true;
     }

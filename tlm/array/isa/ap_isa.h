@@ -38,31 +38,34 @@ namespace tessera::ap {
 
 // Enumerators are op_<mnemonic>: `and`, `or`, `xor` and `not` are C++ keywords.
 enum class Opcode : uint8_t {
-#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) op_##mnemonic = opcode,
+#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) op_##mnemonic = (opcode),
 #include "array/isa/ap_isa.def"
 #undef TESSERA_AP_OP
 };
 
 enum class Cond : uint8_t {
-#define TESSERA_AP_COND(name, code, description) name = code,
+#define TESSERA_AP_COND(name, code, description) name = (code),
 #include "array/isa/ap_cond.def"
 #undef TESSERA_AP_COND
 };
 
 enum class Stage : uint8_t {
-#define TESSERA_AP_STAGE(name, code, description) name = code,
+#define TESSERA_AP_STAGE(name, code, description) name = (code),
 #include "array/isa/ap_stage.def"
 #undef TESSERA_AP_STAGE
 };
 
 enum class OperandPattern : uint8_t { none, dab, da, ab, d, dna, cond, loop };
-enum class Forms : uint8_t { R, M, RM, C };
+// The forms column of ap_isa.def, lower-cased (r: registers only, m: CMEM
+// only, rm: either per operand, c: the AC's own).
+enum class Forms : uint8_t { r, m, rm, c };
 
 // A neighbour, as the grid is drawn: row 0 at the top, column 0 at the left.
 enum class Direction : uint8_t { left = 0, right = 1, up = 2, down = 3 };
 
 inline constexpr unsigned OPCODE_COUNT = 0
-#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) +1
+#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) \
+  +1  // NOLINT(bugprone-macro-parentheses)
 #include "array/isa/ap_isa.def"
 #undef TESSERA_AP_OP
     ;
