@@ -1,0 +1,108 @@
+#include "cu_datapath_adapter.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "Vcu_datapath.h"
+#include "verilated.h"
+
+namespace tessera::ap {
+
+namespace {
+
+// More edges than the multiply needs: done_o missing by then is a bug.
+constexpr unsigned MAX_EDGES = 2 * CuDatapathRtl::MUL_CYCLES;
+constexpr unsigned REGISTER_MASK = CuDatapathRtl::REGISTERS - 1;
+static_assert((CuDatapathRtl::REGISTERS & REGISTER_MASK) == 0, "the register port is log2(REGISTERS) bits wide");
+
+}  // namespace
+
+CuDatapathRtl::CuDatapathRtl()
+    : m_context(std::make_unique<VerilatedContext>()),
+      m_model(std::make_unique<Vcu_datapath>(m_context.get(), "cu_datapath")) {
+  reset();
+}
+
+CuDatapathRtl::~CuDatapathRtl() {
+  m_model->final();
+}
+
+// The reset is asynchronous on the falling edge of rst_ni, and a new model's
+// inputs are all 0: raise rst_ni first so that lowering it is an edge.
+void CuDatapathRtl::reset() {
+  m_model->clk_i = 0;
+  m_model->valid_i = 0;
+  m_model->rst_ni = 1;
+  m_model->eval();
+  m_model->rst_ni = 0;
+  m_model->eval();
+  m_model->rst_ni = 1;
+  m_model->eval();
+  m_last_cycles = 0;
+}
+
+// Inputs are set while the clock is low; lowering it and evaluating first
+// settles them, so the rising edge samples them free of any input/clock race.
+void CuDatapathRtl::clock_edge() {
+  m_model->clk_i = 0;
+  m_model->eval();
+  m_model->clk_i = 1;
+  m_model->eval();
+}
+
+CuCmemWrite CuDatapathRtl::execute(const Instruction& in, const CuOperandBytes& operands,
+                                   const CuNeighbours& neighbours) {
+  Vcu_datapath& m = *m_model;
+  if (!m.ready_o) throw std::logic_error("cu_datapath: not ready for an instruction");
+  m.valid_i = 1;
+  m.opcode_i = static_cast<uint8_t>(in.opcode);
+  m.cond_i = static_cast<uint8_t>(in.cond());
+  m.direction_i = static_cast<uint8_t>(in.direction());
+  m.d_is_cmem_i = in.d.in_cmem ? 1 : 0;
+  m.a_is_cmem_i = in.a.in_cmem ? 1 : 0;
+  m.b_is_cmem_i = in.b.in_cmem ? 1 : 0;
+  m.d_reg_i = in.d.value & REGISTER_MASK;
+  m.a_reg_i = in.a.value & REGISTER_MASK;
+  m.b_reg_i = in.b.value & REGISTER_MASK;
+  m.a_cmem_i = static_cast<uint16_t>(operands.a[0] << 8 | operands.a[1]);
+  m.b_cmem_i = operands.b;
+  uint32_t neighbour_bytes = 0;
+  uint8_t present = 0;
+  for (unsigned k = 0; k < 4; ++k) {
+    neighbour_bytes |= uint32_t{neighbours.value[k]} << (8 * k);
+    present |= static_cast<uint8_t>((neighbours.present[k] ? 1u : 0u) << k);
+  }
+  m.neighbour_i = neighbour_bytes;
+  m.neighbour_present_i = present;
+  clock_edge();
+  m.valid_i = 0;
+  unsigned edges = 1;
+  while (!m.done_o) {
+    if (edges == MAX_EDGES) throw std::logic_error("cu_datapath: no done_o after " + std::to_string(edges) + " edges");
+    clock_edge();
+    ++edges;
+  }
+  m_last_cycles = edges;
+  CuCmemWrite write;
+  // Byte lane i (address d + i) is bits [23 - 8i : 16 - 8i]: big-endian.
+  for (unsigned i = 0; i < 3; ++i) {
+    write.data[i] = static_cast<uint8_t>(m.cmem_wdata_o >> (16 - 8 * i));
+    write.enable[i] = ((m.cmem_we_o >> (2 - i)) & 1u) != 0;
+  }
+  return write;
+}
+
+uint8_t CuDatapathRtl::reg(unsigned index) const {
+  if (index >= REGISTERS) throw std::out_of_range("cu_datapath: register " + std::to_string(index));
+  return static_cast<uint8_t>(m_model->regs_o >> (8 * index));
+}
+
+CuFlags CuDatapathRtl::flags() const {
+  return {m_model->flag_c_o != 0, m_model->flag_z_o != 0, m_model->flag_s_o != 0};
+}
+
+bool CuDatapathRtl::mask() const {
+  return m_model->mask_o != 0;
+}
+
+}  // namespace tessera::ap
