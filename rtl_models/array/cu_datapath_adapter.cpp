@@ -15,7 +15,43 @@ constexpr unsigned MAX_EDGES = 2 * CuDatapathRtl::MUL_CYCLES;
 constexpr unsigned REGISTER_MASK = CuDatapathRtl::REGISTERS - 1;
 static_assert((CuDatapathRtl::REGISTERS & REGISTER_MASK) == 0, "the register port is log2(REGISTERS) bits wide");
 
+// The CMEM byte at `operand` + `byte` in `lane`, or 0 beyond CMEM or for a
+// register operand.
+uint8_t cmem_byte(const CuArray& array, unsigned lane, const Operand& operand, unsigned byte,
+                  const LoopVariables& loop_variables) {
+  if (!operand.in_cmem) return 0;
+  const long address = long{operand.value} + byte + (operand.loop != 0 ? loop_variables[operand.loop - 1] : 0);
+  if (address < 0 || address >= static_cast<long>(array.geometry().cmem_bytes)) return 0;
+  return array.cmem(lane, static_cast<unsigned>(address));
+}
+
 }  // namespace
+
+CuLaneInputs cu_lane_inputs(const CuArray& array, unsigned lane, const Instruction& in,
+                            const LoopVariables& loop_variables) {
+  CuLaneInputs inputs;
+  inputs.operands.a = {cmem_byte(array, lane, in.a, 0, loop_variables),
+                       cmem_byte(array, lane, in.a, 1, loop_variables)};
+  inputs.operands.b = cmem_byte(array, lane, in.b, 0, loop_variables);
+  if (in.opcode != Opcode::op_nget) return inputs;
+  const unsigned columns = array.geometry().columns, rows = array.geometry().rows;
+  const unsigned column = lane % columns, row = lane / columns;
+  for (unsigned k = 0; k < 4; ++k) {
+    bool present = false;
+    unsigned other = 0;
+    switch (static_cast<Direction>(k)) {
+      case Direction::left: present = column > 0, other = lane - 1; break;
+      case Direction::right: present = column + 1 < columns, other = lane + 1; break;
+      case Direction::up: present = row > 0, other = lane - columns; break;
+      case Direction::down: present = row + 1 < rows, other = lane + columns; break;
+    }
+    inputs.neighbours.present[k] = present;
+    if (!present) continue;
+    inputs.neighbours.value[k] =
+        in.a.in_cmem ? cmem_byte(array, other, in.a, 0, loop_variables) : array.reg(other, in.a.value);
+  }
+  return inputs;
+}
 
 CuDatapathRtl::CuDatapathRtl()
     : m_context(std::make_unique<VerilatedContext>()),

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "array/core/cu_array.h"
 #include "array/datapath/cu_alu.h"
 #include "array/isa/ap_isa.h"
 
@@ -39,6 +40,18 @@ struct CuCmemWrite {
   std::array<uint8_t, 3> data{};
   std::array<bool, 3> enable{};
 };
+
+// What the array hands CU `lane` of `array` for `instruction`, read from the
+// state before it runs: the CMEM bytes at the operand addresses (loop
+// variables added; 0 for a byte beyond CMEM or an operand in a register) and,
+// for nget, the neighbours' register a or CMEM byte at a (0 and absent
+// beyond the grid's edge).
+struct CuLaneInputs {
+  CuOperandBytes operands;
+  CuNeighbours neighbours;
+};
+CuLaneInputs cu_lane_inputs(const CuArray& array, unsigned lane, const Instruction& instruction,
+                            const LoopVariables& loop_variables);
 
 class CuDatapathRtl {
  public:

@@ -48,14 +48,6 @@ bool uses_d(const Instruction& in) {
   const OperandPattern p = op_info(in.opcode).operands;
   return p == OperandPattern::dab || p == OperandPattern::da || p == OperandPattern::d || p == OperandPattern::dna;
 }
-bool uses_a(const Instruction& in) {
-  const OperandPattern p = op_info(in.opcode).operands;
-  return p == OperandPattern::dab || p == OperandPattern::da || p == OperandPattern::ab || p == OperandPattern::dna;
-}
-bool uses_b(const Instruction& in) {
-  const OperandPattern p = op_info(in.opcode).operands;
-  return p == OperandPattern::dab || p == OperandPattern::ab;
-}
 bool is_mul(Opcode opcode) {
   return opcode == Opcode::op_mul || opcode == Opcode::op_mulm;
 }
@@ -80,8 +72,6 @@ class LockStep {
                              : -1;
     };
     const int d_address = uses_d(in) ? resolve(in.d) : -1;
-    const int a_address = uses_a(in) ? resolve(in.a) : -1;
-    const int b_address = uses_b(in) ? resolve(in.b) : -1;
     const unsigned d_width = operand_width(in.opcode, 'd');
     const auto cmem_or_zero = [&](unsigned lane, int address) -> uint8_t {
       return address >= 0 && address < static_cast<int>(CMEM_BYTES) ? m_array.cmem(lane, address) : 0;
@@ -94,23 +84,14 @@ class LockStep {
     std::vector<std::array<uint8_t, 3>> d_before(n);
     std::vector<bool> mask_before(n);
     for (unsigned lane = 0; lane < n; ++lane) {
-      operands[lane].a = {cmem_or_zero(lane, a_address), cmem_or_zero(lane, a_address + 1)};
-      operands[lane].b = cmem_or_zero(lane, b_address);
+      const CuLaneInputs inputs = cu_lane_inputs(m_array, lane, in, variables);
+      operands[lane] = inputs.operands;
+      neighbours[lane] = inputs.neighbours;
+      // Beyond the edge the byte is junk: the CU must make the 0 itself.
+      for (unsigned k = 0; k < 4; ++k)
+        if (!neighbours[lane].present[k]) neighbours[lane].value[k] = ABSENT_NEIGHBOUR_JUNK;
       for (unsigned i = 0; i < 3; ++i) d_before[lane][i] = cmem_or_zero(lane, d_address + static_cast<int>(i));
       mask_before[lane] = m_array.mask(lane);
-      if (in.opcode == Opcode::op_nget) {
-        for (unsigned k = 0; k < 4; ++k) {
-          const int other = neighbour_lane(lane, static_cast<Direction>(k));
-          neighbours[lane].present[k] = other >= 0;
-          // Beyond the edge the byte is junk: the CU must make the 0 itself.
-          if (other < 0) {
-            neighbours[lane].value[k] = ABSENT_NEIGHBOUR_JUNK;
-            continue;
-          }
-          const auto o = static_cast<unsigned>(other);
-          neighbours[lane].value[k] = in.a.in_cmem ? cmem_or_zero(o, a_address) : m_array.reg(o, in.a.value);
-        }
-      }
     }
 
     const std::string error = m_array.execute(in, variables, active_loops);
@@ -146,18 +127,6 @@ class LockStep {
     return "instruction " + std::to_string(m_instructions) + " '" + format_instruction(in) + "' (i0..i2 " +
            std::to_string(variables[0]) + " " + std::to_string(variables[1]) + " " + std::to_string(variables[2]) +
            ", " + std::to_string(active_loops) + " loops): " + why.str();
-  }
-
-  // The lane that way, or -1 beyond the grid's edge.
-  static int neighbour_lane(unsigned lane, Direction direction) {
-    const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
-    switch (direction) {
-      case Direction::left: return column > 0 ? static_cast<int>(lane - 1) : -1;
-      case Direction::right: return column + 1 < COLUMNS ? static_cast<int>(lane + 1) : -1;
-      case Direction::up: return row > 0 ? static_cast<int>(lane - COLUMNS) : -1;
-      case Direction::down: return row + 1 < ROWS ? static_cast<int>(lane + COLUMNS) : -1;
-    }
-    return -1;
   }
 
  private:
