@@ -36,18 +36,20 @@ endfunction()
 # (rtl_models/CMakeLists.txt) with cmake/fixed_function_pkg.cmake.
 set(TESSERA_FIXED_FUNCTION_PKG ${PROJECT_BINARY_DIR}/rtl_models/fixed_function_pkg.sv)
 
-# tessera_add_rtl_unit(TARGET lib TOP module SOURCES file.sv ... ADAPTER adapter.cpp ...)
+# tessera_add_rtl_unit(TARGET lib TOP module SOURCES file.sv ... ADAPTER adapter.cpp ...
+#                      [PACKAGES pkg.sv ... PACKAGE_TARGETS target ...])
 # Each Verilog reference unit becomes its own static library, reached only
 # through the thin C++ adapter listed in ADAPTER. Every unit reads the
-# generated fixed_function_pkg first.
+# generated fixed_function_pkg first, then any other generated PACKAGES
+# (made by PACKAGE_TARGETS).
 function(tessera_add_rtl_unit)
-  cmake_parse_arguments(U "" "TARGET;TOP" "SOURCES;ADAPTER;LIBS" ${ARGN})
+  cmake_parse_arguments(U "" "TARGET;TOP" "SOURCES;ADAPTER;LIBS;PACKAGES;PACKAGE_TARGETS" ${ARGN})
   add_library(${U_TARGET} STATIC ${U_ADAPTER})
-  add_dependencies(${U_TARGET} rtl_fixed_function_pkg)
+  add_dependencies(${U_TARGET} rtl_fixed_function_pkg ${U_PACKAGE_TARGETS})
   verilate(${U_TARGET}
     PREFIX V${U_TOP}
     TOP_MODULE ${U_TOP}
-    SOURCES ${TESSERA_FIXED_FUNCTION_PKG} ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
+    SOURCES ${TESSERA_FIXED_FUNCTION_PKG} ${U_PACKAGES} ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
     VERILATOR_ARGS --cc --no-timing -Wall -O3)
   target_include_directories(${U_TARGET} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${U_TARGET} PUBLIC ${U_LIBS})

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Synthesis size of the rasterizer's Verilog reference units: yosys maps each
+# Synthesis size of the Verilog reference units (the rasterizer's datapath and
+# the array processor's CU): yosys maps each
 # unit to its generic gate library (synth -top <unit>; stat) and this prints
 # one line per unit with the cell count, beside the paper's figure where
 # Crisu et al. give one (Table IV: Method 3 reciprocal, 1615 standard cells in
@@ -15,22 +16,24 @@
 #   scripts/synth_report.sh --cmos4 recip_unit  # also the cmos4 count
 set -euo pipefail
 
-# top module | sources under rtl_models/raster/ (space separated) | paper's cell count or -
-# Every unit also reads fixed_function_pkg.sv, which this script generates
-# from tlm/common/fixed_function.def with cmake/fixed_function_pkg.cmake, as
-# the build does for Verilator.
+# top module | sources under rtl_models/ (space separated) | paper's cell count or -
+# Every unit also reads fixed_function_pkg.sv and ap_isa_pkg.sv, which this
+# script generates from tlm/common/fixed_function.def and tlm/array/isa/ with
+# cmake/fixed_function_pkg.cmake and cmake/ap_isa_pkg.cmake, as the build
+# does for Verilator.
 UNITS=(
-  "recip_unit|recip_unit.sv|1615"
-  "edge_function|edge_function.sv|-"
-  "attr_interp|attr_interp.sv|-"
-  "fragment_tests|fragment_tests.sv|-"
-  "blend_logic_op|blend_logic_op.sv|-"
-  "texel_address|texel_address.sv|-"
-  "texture_env|texture_env.sv|-"
+  "recip_unit|raster/recip_unit.sv|1615"
+  "edge_function|raster/edge_function.sv|-"
+  "attr_interp|raster/attr_interp.sv|-"
+  "fragment_tests|raster/fragment_tests.sv|-"
+  "blend_logic_op|raster/blend_logic_op.sv|-"
+  "texel_address|raster/texel_address.sv|-"
+  "texture_env|raster/texture_env.sv|-"
+  "cu_datapath|array/cu_datapath.sv|-"
 )
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-RTL_DIR="$ROOT/rtl_models/raster"
+RTL_DIR="$ROOT/rtl_models"
 YOSYS="${YOSYS:-yosys}"
 
 if ! command -v "$YOSYS" >/dev/null 2>&1; then
@@ -52,6 +55,11 @@ if ! cmake -DDEF="$ROOT/tlm/common/fixed_function.def" -DOUT="$PKG" -P "$ROOT/cm
   echo "synth_report: cannot generate fixed_function_pkg.sv" >&2
   exit 1
 fi
+AP_PKG="$LOG_DIR/ap_isa_pkg.sv"
+if ! cmake -DISA_DIR="$ROOT/tlm/array/isa" -DOUT="$AP_PKG" -P "$ROOT/cmake/ap_isa_pkg.cmake"; then
+  echo "synth_report: cannot generate ap_isa_pkg.sv" >&2
+  exit 1
+fi
 
 status=0
 printf '%-20s %8s %8s %6s  %s\n' "unit" "cells" "cmos4" "flops" "paper (Table IV)"
@@ -64,7 +72,7 @@ for entry in "${UNITS[@]}"; do
   if [[ $# -gt 0 && ! " $* " =~ " $top " ]]; then
     continue
   fi
-  read_cmds="read_verilog -sv $PKG; "
+  read_cmds="read_verilog -sv $PKG; read_verilog -sv $AP_PKG; "
   for src in $sources; do
     read_cmds+="read_verilog -sv $RTL_DIR/$src; "
   done

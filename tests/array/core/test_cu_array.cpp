@@ -1,0 +1,406 @@
+// The array's functional core (tlm/array/core): CuArray against a scalar
+// model of every lane written here from the one-lane reference
+// (datapath/cu_alu.h), and ArrayController's loops, halt, cycle counts and
+// errors, with the expected values worked out by hand from ap_isa.def.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "array/core/array_controller.h"
+#include "array/core/cu_array.h"
+#include "array/datapath/cu_alu.h"
+#include "array/isa/ap_isa.h"
+#include "random_instruction.h"
+
+namespace tessera::ap {
+namespace {
+
+// The full grid, with a small CMEM so that random operands alias.
+constexpr unsigned COLUMNS = 24, ROWS = 4, REGISTERS = 8, CMEM_BYTES = 64;
+constexpr uint64_t RANDOM_INSTRUCTIONS = 100'000;
+
+ArrayGeometry small_cmem_geometry() {
+  ArrayGeometry geometry;
+  geometry.columns = COLUMNS;
+  geometry.rows = ROWS;
+  geometry.registers = REGISTERS;
+  geometry.cmem_bytes = CMEM_BYTES;
+  return geometry;
+}
+
+// One lane as plain state, and the array as a vector of them, executed one
+// lane after the other from a copy of the state before the instruction
+// (neighbour reads see the old values, as in hardware).
+struct Lane {
+  std::array<uint8_t, REGISTERS> regs{};
+  std::array<uint8_t, CMEM_BYTES> cmem{};
+  CuFlags flags;
+  bool mask = true;
+};
+
+class ScalarArray {
+ public:
+  ScalarArray() : m_lanes(COLUMNS * ROWS) {}
+  std::vector<Lane>& lanes() { return m_lanes; }
+
+  void execute(const Instruction& in, const LoopVariables& variables) {
+    const std::vector<Lane> before = m_lanes;
+    for (unsigned l = 0; l < m_lanes.size(); ++l) execute_lane(in, variables, before, l);
+  }
+
+ private:
+  static unsigned address(const Operand& operand, const LoopVariables& variables) {
+    return operand.value + (operand.loop != 0 ? static_cast<unsigned>(variables[operand.loop - 1]) : 0);
+  }
+  static uint8_t read(const Lane& lane, const Operand& operand, unsigned byte, const LoopVariables& variables) {
+    return operand.in_cmem ? lane.cmem[address(operand, variables) + byte] : lane.regs[operand.value + byte];
+  }
+  static void write(Lane& lane, const Operand& operand, unsigned byte, uint8_t value, const LoopVariables& variables,
+                    bool mask) {
+    if (!operand.in_cmem)
+      lane.regs[operand.value + byte] = value;
+    else if (mask)
+      lane.cmem[address(operand, variables) + byte] = value;
+  }
+  // The lane that way, or -1 beyond the grid: row 0 at the top.
+  static int neighbour(unsigned lane, Direction direction) {
+    const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
+    switch (direction) {
+      case Direction::left: return column == 0 ? -1 : static_cast<int>(lane) - 1;
+      case Direction::right: return column == COLUMNS - 1 ? -1 : static_cast<int>(lane) + 1;
+      case Direction::up: return row == 0 ? -1 : static_cast<int>(lane - COLUMNS);
+      case Direction::down: return row == ROWS - 1 ? -1 : static_cast<int>(lane + COLUMNS);
+    }
+    return -1;
+  }
+
+  void execute_lane(const Instruction& in, const LoopVariables& v, const std::vector<Lane>& before, unsigned l) {
+    Lane& lane = m_lanes[l];
+    const Lane& old = before[l];
+    const bool mask = old.mask;
+    switch (in.opcode) {
+      case Opcode::op_mset: lane.mask = true; return;
+      case Opcode::op_mclr: lane.mask = false; return;
+      case Opcode::op_mmov: lane.mask = cond_holds(in.cond(), old.flags); return;
+      case Opcode::op_mand: lane.mask = mask && cond_holds(in.cond(), old.flags); return;
+      case Opcode::op_mor: lane.mask = mask || cond_holds(in.cond(), old.flags); return;
+      case Opcode::op_getm: write(lane, in.d, 0, mask ? 0xff : 0x00, v, mask); return;
+      case Opcode::op_nget: {
+        const int other = neighbour(l, in.direction());
+        const uint8_t value = other < 0 ? 0 : read(before[static_cast<unsigned>(other)], in.a, 0, v);
+        write(lane, in.d, 0, value, v, mask);
+        return;
+      }
+      case Opcode::op_mul:
+      case Opcode::op_mulm: {
+        const auto multiplicand = static_cast<uint16_t>(read(old, in.a, 0, v) << 8 | read(old, in.a, 1, v));
+        const MulResult product = cu_mul(multiplicand, read(old, in.b, 0, v));
+        for (unsigned byte = 0; byte < 3; ++byte)
+          write(lane, in.d, byte, static_cast<uint8_t>(product.product >> (16 - 8 * byte)), v, mask);
+        lane.flags = product.flags;
+        return;
+      }
+      default: {
+        const bool two_sources = op_info(in.opcode).operands != OperandPattern::da;
+        const AluResult result =
+            cu_alu(in.opcode, read(old, in.a, 0, v), two_sources ? read(old, in.b, 0, v) : 0, old.flags);
+        lane.flags = result.flags;
+        if (result.writes) write(lane, in.d, 0, result.value, v, mask);
+        return;
+      }
+    }
+  }
+
+  std::vector<Lane> m_lanes;
+};
+
+TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
+  std::mt19937_64 rng(0xa77a);
+  CuArray array(small_cmem_geometry());
+  ScalarArray model;
+  ASSERT_EQ(array.lanes(), COLUMNS * ROWS);
+  for (unsigned l = 0; l < array.lanes(); ++l)
+    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
+      const auto value = static_cast<uint8_t>(rng());
+      array.set_cmem(l, a, value);
+      model.lanes()[l].cmem[a] = value;
+    }
+  uint64_t refused = 0;
+  for (uint64_t i = 0; i < RANDOM_INSTRUCTIONS; ++i) {
+    RandomInstruction r = random_instruction(rng, REGISTERS, CMEM_BYTES);
+    const Instruction& in = r.instruction;
+    // Now and then an address the loop variable pushes beyond CMEM: refused,
+    // nothing changes.
+    const bool beyond = in.d.in_cmem && rng() % 64 == 0;
+    if (beyond) {
+      r.active_loops = std::max(r.active_loops, 1u);
+      Instruction bad = in;
+      bad.d.loop = 1;
+      r.variables[0] = static_cast<int>(CMEM_BYTES);
+      const std::string error = array.execute(bad, r.variables, r.active_loops);
+      EXPECT_NE(error.find("beyond"), std::string::npos) << format_instruction(bad) << ": " << error;
+      ++refused;
+    } else {
+      ASSERT_EQ(array.execute(in, r.variables, r.active_loops), "") << format_instruction(in);
+      model.execute(in, r.variables);
+    }
+    unsigned active = 0;
+    for (unsigned l = 0; l < array.lanes(); ++l) {
+      const Lane& lane = model.lanes()[l];
+      bool same = array.flags(l) == lane.flags && array.mask(l) == lane.mask;
+      for (unsigned k = 0; k < REGISTERS; ++k) same = same && array.reg(l, k) == lane.regs[k];
+      // CMEM in full every 256 instructions, else where the store went.
+      if (in.d.in_cmem && i % 256 != 0) {
+        const unsigned d = in.d.value + (in.d.loop != 0 ? static_cast<unsigned>(r.variables[in.d.loop - 1]) : 0);
+        for (unsigned b = 0; b < operand_width(in.opcode, 'd') && d + b < CMEM_BYTES; ++b)
+          same = same && array.cmem(l, d + b) == lane.cmem[d + b];
+      } else if (i % 256 == 0) {
+        for (unsigned a = 0; a < CMEM_BYTES; ++a) same = same && array.cmem(l, a) == lane.cmem[a];
+      }
+      ASSERT_TRUE(same) << "instruction " << i << " '" << format_instruction(in) << "', lane " << l;
+      active += lane.mask ? 1 : 0;
+    }
+    ASSERT_EQ(array.active_lanes(), active);
+  }
+  EXPECT_GT(refused, 0u);
+}
+
+TEST(CuArray, LoopVariableOfALoopThatIsNotRunningIsRefused) {
+  CuArray array(small_cmem_geometry());
+  const std::string error = array.execute(make(Opcode::op_mov, mem(0, 2), reg(0)), {0, 0, 0}, 1);
+  EXPECT_NE(error.find("outside its loop"), std::string::npos) << error;
+  EXPECT_NE(array.execute(make(Opcode::op_loop), {}, 0).find("does no lane work"), std::string::npos);
+}
+
+// --- ArrayController -------------------------------------------------------
+
+constexpr unsigned PROGRAM_WORDS = 64;
+constexpr uint64_t MAX_CYCLES = 1'000'000;
+
+Instruction loop(unsigned level, unsigned start, unsigned step) {
+  return make(Opcode::op_loop, reg(level), reg(start), reg(step));
+}
+
+struct Program {
+  ArrayController controller{small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, MAX_CYCLES};
+
+  explicit Program(const std::vector<Instruction>& instructions) {
+    std::vector<uint64_t> words;
+    words.reserve(instructions.size());
+    for (const Instruction& in : instructions) words.push_back(encode(in));
+    EXPECT_TRUE(controller.load(0, words));
+  }
+  CuArray& array() { return controller.array(); }
+};
+
+TEST(ArrayController, CycleTableDefaultsByHand) {
+  const CycleTable table = CycleTable::defaults();
+  // Register ALU ops 2, one more with a CMEM operand; mul 40, mulm 105
+  // (always in CMEM: no extra); mask ops, loop, halt, nop 1; endloop 0.
+  EXPECT_EQ(table.cost(make(Opcode::op_add, reg(0), reg(1), reg(2))), 2u);
+  EXPECT_EQ(table.cost(make(Opcode::op_add, reg(0), mem(1), reg(2))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_add, mem(0), mem(1), mem(2))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_ror, mem(0), reg(1))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_cmpc, {}, reg(1), reg(2))), 2u);
+  EXPECT_EQ(table.cost(make(Opcode::op_nget, reg(0), reg(1), reg(3))), 2u);
+  EXPECT_EQ(table.cost(make(Opcode::op_nget, reg(0), mem(1), reg(3))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_getm, mem(0))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_mul, reg(0), reg(3), reg(5))), 40u);
+  EXPECT_EQ(table.cost(make(Opcode::op_mulm, mem(0), mem(3), mem(5))), 105u);
+  for (Opcode opcode : {Opcode::op_mset, Opcode::op_mclr, Opcode::op_nop, Opcode::op_halt})
+    EXPECT_EQ(table.cost(make(opcode)), 1u) << op_info(opcode).mnemonic;
+  for (Opcode opcode : {Opcode::op_mmov, Opcode::op_mand, Opcode::op_mor})
+    EXPECT_EQ(table.cost(make_cond(opcode, Cond::hi)), 1u) << op_info(opcode).mnemonic;
+  EXPECT_EQ(table.cost(loop(0, 5, 1)), 1u);
+  EXPECT_EQ(table.cost(make(Opcode::op_endloop)), 0u);
+}
+
+TEST(ArrayController, StraightLineProgramCountsEveryInstruction) {
+  Program p({
+      make(Opcode::op_mov, reg(1), mem(0)),           // 3
+      make(Opcode::op_add, reg(2), reg(1), reg(1)),   // 2
+      make(Opcode::op_mul, reg(3), reg(1), reg(2)),   // 40
+      make(Opcode::op_mulm, mem(8), mem(0), mem(2)),  // 105
+      make_cond(Opcode::op_mmov, Cond::z),            // 1
+      make(Opcode::op_nop),                           // 1
+      make(Opcode::op_halt),                          // 1
+      make(Opcode::op_add, reg(2), reg(1), reg(1)),   // after the halt: never runs
+  });
+  p.array().set_cmem(0, 0, 3);
+  const RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 3u + 2 + 40 + 105 + 1 + 1 + 1);
+  EXPECT_EQ(result.instructions, 7u);
+  EXPECT_EQ(p.array().reg(0, 2), 6);
+  EXPECT_EQ(p.controller.activity().instruction_mix[static_cast<unsigned>(Opcode::op_add)], 1u);
+}
+
+TEST(ArrayController, LoopRunsWhileItsVariableIsNonNegativeAndAddressesMoveWithIt) {
+  // r1 = 1; for (i0 = 3; i0 >= 0; i0 -= 1) { r0 += r1; [20 + i0] = r0; }
+  Program p({
+      make(Opcode::op_mov, reg(1), mem(0)),          // 3
+      loop(0, 3, 1),                                 // 1
+      make(Opcode::op_add, reg(0), reg(0), reg(1)),  // 2, 4 times
+      make(Opcode::op_mov, mem(20, 1), reg(0)),      // 3, 4 times
+      make(Opcode::op_endloop),                      // 0
+      make(Opcode::op_halt),                         // 1
+  });
+  for (unsigned l = 0; l < COLUMNS * ROWS; ++l) p.array().set_cmem(l, 0, 1);
+  const RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 3u + 1 + 4 * (2 + 3 + 0) + 1);
+  EXPECT_EQ(result.instructions, 1u + 1 + 4 * 3 + 1);
+  for (unsigned l : {0u, 95u}) {
+    EXPECT_EQ(p.array().cmem(l, 23), 1);
+    EXPECT_EQ(p.array().cmem(l, 22), 2);
+    EXPECT_EQ(p.array().cmem(l, 21), 3);
+    EXPECT_EQ(p.array().cmem(l, 20), 4);
+    EXPECT_EQ(p.array().reg(l, 0), 4);
+  }
+}
+
+TEST(ArrayController, LoopWithAStepAboveOne) {
+  // i0 = 6, 3, 0: three passes.
+  Program p({
+      make(Opcode::op_mov, reg(1), mem(0)),
+      loop(0, 6, 3),
+      make(Opcode::op_add, reg(0), reg(0), reg(1)),
+      make(Opcode::op_mov, mem(20, 1), reg(0)),
+      make(Opcode::op_endloop),
+      make(Opcode::op_halt),
+  });
+  for (unsigned l = 0; l < COLUMNS * ROWS; ++l) {
+    p.array().set_cmem(l, 0, 1);
+    for (unsigned a = 20; a < 28; ++a) p.array().set_cmem(l, a, 0xee);
+  }
+  const RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 3u + 1 + 3 * 5 + 1);
+  EXPECT_EQ(p.array().cmem(7, 26), 1);
+  EXPECT_EQ(p.array().cmem(7, 23), 2);
+  EXPECT_EQ(p.array().cmem(7, 20), 3);
+  for (unsigned a : {21u, 22u, 24u, 25u, 27u}) EXPECT_EQ(p.array().cmem(7, a), 0xee) << a;
+}
+
+TEST(ArrayController, NestedLoopsEachWithItsOwnVariable) {
+  Program p({
+      make(Opcode::op_mov, reg(1), mem(0)),          // 0: 3
+      loop(0, 1, 1),                                 // 1: 1; i0 = 1, 0
+      loop(1, 2, 1),                                 // 2: 1 per outer pass; i1 = 2, 1, 0
+      make(Opcode::op_add, reg(0), reg(0), reg(1)),  // 3: 2
+      make(Opcode::op_mov, mem(30, 2), reg(0)),      // 4: 3
+      make(Opcode::op_endloop),                      // 5: 0
+      make(Opcode::op_mov, mem(40, 1), reg(0)),      // 6: 3
+      make(Opcode::op_endloop),                      // 7: 0
+      make(Opcode::op_halt),                         // 8: 1
+  });
+  for (unsigned l = 0; l < COLUMNS * ROWS; ++l) p.array().set_cmem(l, 0, 1);
+  const RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 3u + 1 + 2 * (1 + 3 * (2 + 3 + 0) + 3 + 0) + 1);
+  EXPECT_EQ(result.instructions, 1u + 1 + 2 * (1 + 3 * 3 + 2) + 1);
+  // Second outer pass overwrites the inner stores: 4, 5, 6 at 32, 31, 30.
+  EXPECT_EQ(p.array().cmem(50, 32), 4);
+  EXPECT_EQ(p.array().cmem(50, 31), 5);
+  EXPECT_EQ(p.array().cmem(50, 30), 6);
+  EXPECT_EQ(p.array().cmem(50, 41), 3);
+  EXPECT_EQ(p.array().cmem(50, 40), 6);
+  const ControllerActivity& activity = p.controller.activity();
+  EXPECT_EQ(activity.word_executions[3], 6u);
+  EXPECT_EQ(activity.word_executions[2], 2u);
+  EXPECT_EQ(activity.word_cycles[4], 18u);
+}
+
+TEST(ArrayController, UndecodableWordStopsTheRunThere) {
+  Program p({make(Opcode::op_mset), make(Opcode::op_nop)});
+  ASSERT_TRUE(p.controller.write_word(1, 0x3f));  // opcode 63: none
+  RunResult result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 1u);
+  EXPECT_NE(result.error.find("unknown opcode"), std::string::npos) << result.error;
+  EXPECT_EQ(result.cycles, 1u);
+  // Reserved bits 63:60.
+  ASSERT_TRUE(p.controller.write_word(1, encode(make(Opcode::op_nop)) | uint64_t{1} << 60));
+  result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_NE(result.error.find("reserved"), std::string::npos) << result.error;
+  // A register beyond the CU's file (r8 of 8) is refused by the limits.
+  ASSERT_TRUE(p.controller.write_word(1, encode(make(Opcode::op_mov, reg(8), reg(0)))));
+  result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 1u);
+}
+
+TEST(ArrayController, AddressPlusLoopVariableBeyondCmemStopsTheRun) {
+  // i0 = 10 first: [60 + 10] is beyond the 64 bytes; the store before runs.
+  Program p({
+      make(Opcode::op_mov, mem(1), reg(0)),
+      loop(0, 10, 1),
+      make(Opcode::op_mov, mem(60, 1), reg(0)),
+      make(Opcode::op_endloop),
+      make(Opcode::op_halt),
+  });
+  p.array().set_cmem(0, 1, 0x55);
+  const RunResult result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 2u);
+  EXPECT_NE(result.error.find("CMEM address 70"), std::string::npos) << result.error;
+  EXPECT_EQ(result.cycles, 3u + 1);
+  EXPECT_EQ(p.array().cmem(0, 1), 0);
+  EXPECT_EQ(p.controller.activity().failed_programs, 1u);
+}
+
+TEST(ArrayController, EndloopWithNoLoopAndLoopAtTheWrongLevelAreErrors) {
+  Program endloop({make(Opcode::op_nop), make(Opcode::op_endloop), make(Opcode::op_halt)});
+  RunResult result = endloop.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 1u);
+  EXPECT_NE(result.error.find("endloop with no loop"), std::string::npos) << result.error;
+
+  Program level({loop(1, 2, 1), make(Opcode::op_endloop), make(Opcode::op_halt)});
+  result = level.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 0u);
+}
+
+TEST(ArrayController, RunningPastProgramMemoryIsAnError) {
+  // Program memory is all nop (word 0) until written: 64 nops, no halt.
+  Program p({});
+  const RunResult result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, PROGRAM_WORDS);
+  EXPECT_NE(result.error.find("past the end"), std::string::npos) << result.error;
+  EXPECT_EQ(result.cycles, PROGRAM_WORDS);
+  // An entry point beyond it fails at once.
+  EXPECT_FALSE(p.controller.run(PROGRAM_WORDS + 3).ok);
+}
+
+TEST(ArrayController, MaxProgramCyclesStopsARunaway) {
+  ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, 100);
+  ASSERT_TRUE(controller.load(0, {encode(loop(0, MAX_LOOP_START, 1)), encode(make(Opcode::op_nop)),
+                                  encode(make(Opcode::op_endloop)), encode(make(Opcode::op_halt))}));
+  // loop 1 cycle, then 1 per nop: the 100th nop brings the total to 101.
+  const RunResult result = controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.error_pc, 1u);
+  EXPECT_EQ(result.cycles, 101u);
+  EXPECT_NE(result.error.find("max_program_cycles"), std::string::npos) << result.error;
+}
+
+TEST(ArrayController, ProgramMemoryBounds) {
+  ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), 4, MAX_CYCLES);
+  EXPECT_TRUE(controller.write_word(3, 1));
+  EXPECT_FALSE(controller.write_word(4, 1));
+  EXPECT_EQ(controller.word(3), 1u);
+  EXPECT_FALSE(controller.load(2, {0, 0, 0}));
+  EXPECT_EQ(controller.word(2), 0u);
+  EXPECT_TRUE(controller.load(1, {0, 0, 1}));
+}
+
+}  // namespace
+}  // namespace tessera::ap
