@@ -64,7 +64,8 @@ void clear(HostApi& api, uint32_t address, unsigned pixels, uint16_t colour) {
 TEST(Soc, BlocksAreListedOnceEachUnderTheirNames) {
   std::set<std::string> names;
   for (const Block* block : g_bench->soc.blocks()) EXPECT_TRUE(names.insert(block->basename()).second);
-  EXPECT_EQ(names, (std::set<std::string>{"host", "bus", "memory", "display", "display_dma", "raster", "array", "ciu"}));
+  EXPECT_EQ(names,
+            (std::set<std::string>{"host", "bus", "memory", "display", "display_dma", "raster", "array", "ciu"}));
   const auto stats = g_bench->soc.stats_json();
   for (const auto& name : names) EXPECT_TRUE(stats.contains(name)) << name;
 }
