@@ -123,8 +123,10 @@ int cmem_level(AppEnvironment& env, bool multiply) {
   const std::string name = multiply ? "mul_cmem_" : "add_cmem_";
   const uint32_t half = array.run(entry_of(name + "half"));
   const uint32_t all = array.run(entry_of(name + "all"));
-  const double cycles = static_cast<double>(all - half) /
-                        static_cast<double>(RECORDS / 2);  // "all" makes RECORDS passes, "half" RECORDS / 2
+  // "all" makes RECORDS passes, "half" RECORDS / 2 (RECORDS is even).
+  static_assert(RECORDS % 2 == 0);
+  const unsigned passes = RECORDS / 2;
+  const double cycles = static_cast<double>(all - half) / passes;
   const double ns = cycles / array.clock_hz() * 1e9;
 
   for (unsigned r = 0; r < RECORDS; ++r) {
