@@ -1,6 +1,8 @@
 // The assembler and the disassembler (tlm/array/asm): encodings checked by
 // hand against the bit layout of ap_isa.h, every static check with the line
-// it names, and the disassembler's round trip over every opcode.
+// it names, products and parentheses in expressions, .rept blocks against
+// the same program written out by hand, and the disassembler's round trip
+// over every opcode.
 #include "array/asm/assembler.h"
 
 #include <gtest/gtest.h>
@@ -178,7 +180,7 @@ TEST(Errors, Operands) {
   expect_error("main:\nmul [0], r0, r1\nhalt\n", 2, "operand d of mul must be a register");
   expect_error("main:\nmulm r0, [3], [5]\nhalt\n", 2, "operand d of mulm must be a CMEM address");
   expect_error("main:\nadd 5, r1, r2\nhalt\n", 2, "operand d of add must be a register r0..r15 or a CMEM address");
-  expect_error("main:\nmov r0, [3]]\nhalt\n", 2, "expected + or -");
+  expect_error("main:\nmov r0, [3]]\nhalt\n", 2, "expected +, - or * in the address of operand a of mov, not ']'");
 }
 
 TEST(Errors, UndefinedNames) {
@@ -196,6 +198,92 @@ TEST(Errors, DuplicateNames) {
   expect_error("main:\nloop y, 2, 1\nloop y, 2, 1\n", 3, "already the variable of the enclosing loop (line 2)");
   expect_error(".var k 4\nmain:\nloop k, 2, 1\n", 3, "duplicate name 'k': already a variable");
   expect_error(".const r2 1\n", 1, "'r2' is a register");
+}
+
+TEST(Expressions, ProductsBindTighterThanSums) {
+  const Program program = assemble_text(
+      ".var buf 8 @ 16\n"
+      ".const A 2 + 3 * 4\n"
+      ".const B 2 * 3 + 4\n"
+      ".const C 10 - 2 * 3\n"
+      ".const D -2 * 3\n"
+      ".const E 2 * -3\n"
+      ".const F 3 * 4 * 5 - 0x10 * 2\n"
+      ".const G buf * 2 + 1\n"
+      ".const H A * B\n"
+      ".const I 46340 * 46340\n"
+      ".const J -2147483647 * 1\n");
+  EXPECT_EQ(program.constants.at("A"), 14);
+  EXPECT_EQ(program.constants.at("B"), 10);
+  EXPECT_EQ(program.constants.at("C"), 4);
+  EXPECT_EQ(program.constants.at("D"), -6);
+  EXPECT_EQ(program.constants.at("E"), -6);
+  EXPECT_EQ(program.constants.at("F"), 28);
+  // A variable stands for its address, a number like any other.
+  EXPECT_EQ(program.constants.at("G"), 33);
+  EXPECT_EQ(program.constants.at("H"), 140);
+  EXPECT_EQ(program.constants.at("I"), 2147395600);
+  EXPECT_EQ(program.constants.at("J"), -2147483647);
+}
+
+TEST(Expressions, Parentheses) {
+  const Program program = assemble_text(
+      ".const P (2 + 3) * 4\n"
+      ".const Q 2 * (10 - (3 + 4))\n"
+      ".const R -(2 + 3)\n"
+      ".const S 10 - (4 - 1)\n"
+      ".const T ((7))\n");
+  EXPECT_EQ(program.constants.at("P"), 20);
+  EXPECT_EQ(program.constants.at("Q"), 6);
+  EXPECT_EQ(program.constants.at("R"), -5);
+  EXPECT_EQ(program.constants.at("S"), 7);
+  EXPECT_EQ(program.constants.at("T"), 7);
+}
+
+TEST(Expressions, ScaledAddressPlusLoopVariable) {
+  const std::string header =
+      ".const X 2\n"
+      ".var pad 3\n"
+      ".var buf 256\n"
+      "main:\n"
+      "loop v, 35, 1\n";
+  const Program scaled = assemble_text(header +
+                                       "  mov r0, [buf + 36 * X + v]\n"
+                                       "  mov [(buf + 1) * 2 + v], r1\n"
+                                       "  mov [buf - (1 - v) + 1], r2\n"
+                                       "endloop\nhalt\n");
+  const Program by_hand = assemble_text(header +
+                                        "  mov r0, [75 + v]\n"
+                                        "  mov [8 + v], r1\n"
+                                        "  mov [3 + v], r2\n"
+                                        "endloop\nhalt\n");
+  EXPECT_EQ(scaled.words, by_hand.words);
+  const Instruction first = decode(scaled.words[1]).instruction;
+  EXPECT_EQ(first.a.value, 3 + 36 * 2);
+  EXPECT_EQ(first.a.loop, 1);
+}
+
+TEST(Errors, Products) {
+  expect_error("main:\nloop v, 3, 1\nmov r0, [2 * v]\n", 3,
+               "loop variable 'v' cannot be scaled: the AC adds it to the address of operand a of mov as it is");
+  expect_error("main:\nloop v, 3, 1\nmov r0, [10 + v * 2]\n", 3, "loop variable 'v' cannot be scaled");
+  expect_error("main:\nloop v, 3, 1\nmov r0, [2 * (v + 1)]\n", 3, "loop variable 'v' cannot be scaled");
+  expect_error("main:\nloop v, 3, 1\nmov r0, [9 - (v + 1)]\n", 3, "loop variable 'v' subtracted");
+  expect_error("main:\nloop v, 3, 1\n.const C 2 * v\n", 3, "only added to CMEM addresses");
+  expect_error(".const A 65536 * 65536\n", 1,
+               "the product 65536 * 65536 in the value of constant 'A' is beyond 2147483647 in magnitude");
+  expect_error(".const A 46341 * 46341\n", 1, "is beyond 2147483647 in magnitude");
+  expect_error(".const A -65536 * 65536\n", 1, "the product -65536 * 65536");
+  // The factors of a product may be large sums; the check must not overflow.
+  expect_error(".const A (2147483647 + 2147483647) * 2147483647\n", 1,
+               "the product 4294967294 * 2147483647 in the value of constant 'A' is beyond");
+  expect_error(".const A 2 * 1073741824 * 0\n", 1, "the product 2 * 1073741824");
+  expect_error(".const A 2 *\n", 1, "ends with an operator");
+  expect_error(".const A * 2\n", 1, "expected a number, a name or '(' in the value of constant 'A', not '*'");
+  expect_error(".const A 2 3\n", 1, "expected +, - or * in the value of constant 'A', not '3'");
+  expect_error(".const A (2 + 3\n", 1, "'(' without a matching ')' in the value of constant 'A'");
+  expect_error(".const A 2 + 3)\n", 1, "')' without a matching '(' in the value of constant 'A'");
+  expect_error(".const A ()\n", 1, "expected a number, a name or '(' in the value of constant 'A', not ')'");
 }
 
 TEST(Errors, LoopVariablesOnlyAddToAddresses) {
@@ -282,6 +370,237 @@ TEST(Files, UnreadableFileIsNamed) {
   } catch (const AsmError& error) {
     EXPECT_EQ(std::string(error.what()).rfind("/: cannot read the file", 0), 0u) << error.what();
   }
+}
+
+// The words of `with_rept` must be those of `by_hand`, the same program
+// written out.
+void expect_same_words(const std::string& with_rept, const std::string& by_hand) {
+  SCOPED_TRACE(with_rept);
+  const Program repeated = assemble_text(with_rept);
+  const Program written = assemble_text(by_hand);
+  EXPECT_FALSE(repeated.words.empty());
+  EXPECT_EQ(repeated.words, written.words);
+  EXPECT_EQ(repeated.entries, written.entries);
+  EXPECT_EQ(repeated.variables, written.variables);
+  EXPECT_EQ(repeated.constants, written.constants);
+}
+
+TEST(Rept, CountsUp) {
+  expect_same_words(
+      ".var buf 64\n"
+      "main:\n"
+      ".rept i, 0, 3\n"
+      "  mov [buf + 2 * i], r0\n"
+      "  add r1, [buf + 2 * i + 1], r1\n"
+      ".endr\n"
+      "halt\n",
+      ".var buf 64\n"
+      "main:\n"
+      "mov [0], r0\nadd r1, [1], r1\n"
+      "mov [2], r0\nadd r1, [3], r1\n"
+      "mov [4], r0\nadd r1, [5], r1\n"
+      "mov [6], r0\nadd r1, [7], r1\n"
+      "halt\n");
+}
+
+TEST(Rept, CountsDownAndThroughZero) {
+  expect_same_words(
+      "main:\n"
+      ".rept i, 3, 0\n"
+      "  mov [10 * i], r0\n"
+      ".endr\n"
+      ".rept k, -1, 1\n"
+      "  mov [5 + k], r1\n"
+      ".endr\n"
+      ".rept one, 7, 7\n"
+      "  mov [one], r2\n"
+      ".endr\n"
+      "halt\n",
+      "main:\n"
+      "mov [30], r0\nmov [20], r0\nmov [10], r0\nmov [0], r0\n"
+      "mov [4], r1\nmov [5], r1\nmov [6], r1\n"
+      "mov [7], r2\n"
+      "halt\n");
+}
+
+TEST(Rept, BoundsAreConstantExpressions) {
+  expect_same_words(
+      ".const N 3\n"
+      ".var v 4 @ 100\n"
+      "main:\n"
+      ".rept i, N - 1, 2 * N - 2\n"
+      "  mov [v + i], r0\n"
+      ".endr\n"
+      "halt\n",
+      ".const N 3\n"
+      ".var v 4 @ 100\n"
+      "main:\n"
+      "mov [102], r0\nmov [103], r0\nmov [104], r0\n"
+      "halt\n");
+}
+
+TEST(Rept, NestsThreeDeepAndInnerBlocksSeeOuterNames) {
+  // The inner bound uses the outer name: x runs 0..1 when y = 0, 0..2 when y = 1.
+  const std::string with_rept =
+      ".var tile 64 @ 0\n"
+      "main:\n"
+      ".rept y, 0, 1\n"
+      "  .rept x, 0, y + 1\n"
+      "    .rept c, 2, 0\n"
+      "      mov [tile + 16 * y + 4 * x + c], r0\n"
+      "    .endr\n"
+      "  .endr\n"
+      ".endr\n"
+      "halt\n";
+  std::string by_hand = ".var tile 64 @ 0\nmain:\n";
+  for (const int address : {2, 1, 0, 6, 5, 4, 18, 17, 16, 22, 21, 20, 26, 25, 24})
+    by_hand += "mov [" + std::to_string(address) + "], r0\n";
+  by_hand += "halt\n";
+  expect_same_words(with_rept, by_hand);
+  // Every word keeps the line it came from.
+  const Program program = assemble_text(with_rept);
+  std::vector<unsigned> lines(15, 6);
+  lines.push_back(10);
+  EXPECT_EQ(program.lines, lines);
+}
+
+TEST(Rept, LoopsAndStagesInsideBodies) {
+  // Sibling blocks reuse k; a loop opened in one block and closed in a
+  // later one is checked on the expanded lines like any other.
+  expect_same_words(
+      "main:\n"
+      ".stage depth\n"
+      "loop v, 7, 1\n"
+      ".rept k, 0, 2\n"
+      "  add [16 * k + v], [64 + 16 * k + v], r1\n"
+      ".endr\n"
+      "endloop\n"
+      ".rept k, 0, 1\n"
+      "  .stage colour\n"
+      "  loop w, 3, 1\n"
+      "    mov [128 + 8 * k + w], r2\n"
+      "  endloop\n"
+      ".endr\n"
+      ".rept k, 0, 0\n"
+      "  loop u, 1, 1\n"
+      ".endr\n"
+      "mov [u], r3\n"
+      ".rept k, 0, 0\n"
+      "  endloop\n"
+      ".endr\n"
+      "halt\n",
+      "main:\n"
+      ".stage depth\n"
+      "loop v, 7, 1\n"
+      "  add [v], [64 + v], r1\n"
+      "  add [16 + v], [80 + v], r1\n"
+      "  add [32 + v], [96 + v], r1\n"
+      "endloop\n"
+      ".stage colour\n"
+      "loop w, 3, 1\n  mov [128 + w], r2\nendloop\n"
+      "loop w, 3, 1\n  mov [136 + w], r2\nendloop\n"
+      "loop u, 1, 1\n"
+      "mov [u], r3\n"
+      "endloop\n"
+      "halt\n");
+}
+
+TEST(Rept, NameIsFreeAfterEndrAndNeverAConstant) {
+  const Program program = assemble_text(
+      "main:\n"
+      ".rept k, 0, 1\n"
+      "  nop\n"
+      ".endr\n"
+      "halt\n"
+      ".const k 9\n");
+  EXPECT_EQ(program.constants, (std::map<std::string, int>{{"k", 9}}));
+  EXPECT_EQ(program.words.size(), 3u);
+}
+
+TEST(Rept, EmptyBodyCostsNothing) {
+  EXPECT_EQ(words_of(".rept x, 0, 2147483647\n.endr\n.rept y, -2147483647, 2147483647\n.endr").size(), 1u);
+}
+
+TEST(Rept, DisassemblyAssemblesToTheSameWords) {
+  const Program program = assemble_text(
+      ".var buf 32\n"
+      "main:\n"
+      ".rept i, 0, 3\n"
+      "  loop v, 3, 1\n"
+      "    add [buf + 4 * i + v], [buf + 16 + v], r0\n"
+      "  endloop\n"
+      ".endr\n"
+      "halt\n");
+  EXPECT_EQ(assemble(disassemble(program), "again.s", {}).words, program.words);
+}
+
+TEST(Errors, ReptNamesTheLineAndTheRepetition) {
+  try {
+    assemble_text("main:\n.rept x, 0, 3\nnop\nfoo\n.endr\nhalt\n");
+    ADD_FAILURE() << "no error";
+  } catch (const AsmError& error) {
+    EXPECT_EQ(std::string(error.what()), "test.s:4: (in .rept x = 0) unknown mnemonic 'foo'");
+    EXPECT_EQ(error.line(), 4u);
+  }
+  // Only the last repetition reaches beyond CMEM.
+  expect_error("main:\n.rept x, 0, 3\nmov r0, [4093 + x]\n.endr\nhalt\n", 3,
+               "(in .rept x = 3) operand a of mov: CMEM address 4096 reaches byte 4096");
+  expect_error("main:\n.rept a, 0, 1\n.rept b, 0, 1\nmov r0, [4094 + a + b]\n.endr\n.endr\nhalt\n", 4,
+               "(in .rept a = 1, b = 1) operand a of mov: CMEM address 4096");
+  expect_error("main:\n.rept x, 0, 3\nnop\n.endr\nhalt\n", 3, "(in .rept x = 3) the program is longer than the 3 words",
+               {8, 4096, 3});
+  // The loop checks apply to the expanded lines.
+  expect_error("main:\n.rept x, 0, 1\nloop v, 3, 1\n.endr\n", 3,
+               "(in .rept x = 1) duplicate name 'v': already the variable of the enclosing loop (line 3)");
+  expect_error("main:\nloop v, 1, 1\n.rept x, 0, 1\nendloop\n.endr\nhalt\n", 4,
+               "(in .rept x = 1) endloop without a loop");
+  // A syntax error is the line's whatever the repetition: it is found once, when the line is read.
+  expect_error("main:\n.rept x, 0, 3\nnop $\n.endr\n", 3, "unexpected character '$'");
+}
+
+TEST(Errors, ReptStructure) {
+  expect_error("main:\n.endr\nhalt\n", 2, ".endr without a .rept");
+  expect_error("main:\n.rept x, 0, 1\nnop\n.endr x\nhalt\n", 4, "nothing may follow .endr on its line");
+  expect_error("main:\n.rept x, 0, 1\nnop\n", 2, ".rept is not closed by .endr before the end of the file");
+  expect_error("main:\n.rept x, 0, 1\n.rept y, 0, 1\nnop\n.endr\n", 2, ".rept is not closed by .endr");
+  // The innermost open block is the one named.
+  expect_error("main:\n.rept x, 0, 1\n.rept y, 0, 1\n.rept z, 0, 1\n.endr\nnop\n", 3, ".rept is not closed by .endr");
+  expect_error("main:\n.rept x, 0\n", 2, ".rept takes 3 operands (name, first, last), not 2");
+  expect_error("main:\n.rept x 0 1\n", 2, ".rept takes 3 operands (name, first, last), not 1");
+  expect_error("main:\n.rept\n", 2, ".rept takes 3 operands (name, first, last), not 0");
+  expect_error("main:\n.rept 3, 0, 1\n", 2, ".rept: expected the name of the .rept counter");
+  expect_error("main:\n.rept x y, 0, 1\n", 2, ".rept: expected the name of the .rept counter, not 'x'");
+  expect_error("main:\n.rept r1, 0, 1\n", 2, "'r1' is a register and cannot name a .rept counter");
+  expect_error("main:\n.rept x, 0, y\n", 2, "undefined name 'y' in the last value of .rept 'x'");
+  expect_error("main:\n.rept x, , 1\n", 2, "expected the first value of .rept 'x'");
+  expect_error("main:\nloop v, 3, 1\n.rept x, v, 1\n", 3,
+               "loop variable 'v' in the first value of .rept 'x': loop variables are only added");
+  expect_error("main:\n.rept x, 0, 2147483647 + 1\n", 2, "has last value 2147483648, beyond 2147483647");
+}
+
+TEST(Errors, ReptNames) {
+  expect_error(".const N 4\nmain:\n.rept N, 0, 1\n", 3, "duplicate name 'N': already a constant (line 1)");
+  expect_error("main:\nloop v, 1, 1\n.rept v, 0, 1\n", 3, "already the variable of the enclosing loop (line 2)");
+  expect_error("main:\n.rept x, 0, 1\n.rept x, 0, 1\n.endr\n.endr\nhalt\n", 3,
+               "(in .rept x = 0) duplicate name 'x': already the counter of the enclosing .rept (line 2)");
+  expect_error("main:\n.rept x, 0, 1\nloop x, 1, 1\nendloop\n.endr\nhalt\n", 3,
+               "already the counter of the enclosing .rept (line 2)");
+  expect_error("main:\n.rept x, 0, 1\nnop\n.endr\nmov r0, [x]\nhalt\n", 5, "undefined name 'x'");
+  expect_error("main:\n.rept x, 0, 1\ninner:\n.endr\n", 3,
+               "(in .rept x = 0) label 'inner' inside the body of .rept 'x' (line 2): it would be defined once per "
+               "repetition");
+  expect_error(
+      ".rept x, 0, 1\n.const C x\n.endr\n", 2,
+      "(in .rept x = 0) .const inside the body of .rept 'x' (line 1): it would be defined once per repetition");
+  expect_error(".rept x, 0, 1\n.var v 1\n.endr\n", 2, ".var inside the body of .rept 'x' (line 1)");
+}
+
+TEST(Errors, ReptRunaway) {
+  expect_error("main:\n.rept x, 0, 2000000\n.stage fill\n.endr\n", 2,
+               ".rept 'x' would replay more than 1000000 lines in all");
+  // The lines of the inner blocks count as well: 2 lines a pass of a.
+  expect_error("main:\n.rept a, 0, 999999\n.rept b, 0, 999999\n.endr\n.endr\nhalt\n", 2,
+               ".rept 'a' would replay more than 1000000 lines in all");
 }
 
 // Every opcode, each data operand as a register and as an address where

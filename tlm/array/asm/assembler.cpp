@@ -35,8 +35,14 @@ struct Token {
 using Tokens = std::vector<Token>;
 
 // A literal beyond an int is a typing mistake, and keeping every literal
-// below 2^31 keeps the sums of a line far from int64_t's range.
+// and every product below 2^31 keeps the sums of a line far from int64_t's
+// range.
 constexpr int64_t LITERAL_LIMIT = INT_MAX;
+
+// .rept bodies replayed beyond this many lines in all are a runaway (a
+// mistyped count), far beyond any program memory the array is configured
+// with, and would keep the assembler busy for minutes.
+constexpr int64_t MAX_EXPANDED_LINES = 1000000;
 
 struct LoopScope {
   std::string variable;
@@ -46,11 +52,58 @@ struct LoopScope {
 };
 
 // An expression's value: a number, plus (only inside a CMEM operand) the
-// loop variable added to it.
+// loop variable added to it. The sign is kept while the expression is read,
+// so `a - (b - y)` adds y; only the whole expression must add it.
 struct Value {
   int64_t number = 0;
   std::optional<unsigned> loop_level;
+  int loop_sign = 1;
 };
+
+// A source line that holds something, tokenized once: a .rept body is kept
+// as these and replayed.
+struct SourceLine {
+  unsigned number;
+  Tokens tokens;
+};
+
+// The name a .rept binds, while its body is replayed.
+struct RepeatScope {
+  std::string name;
+  int64_t value;
+  unsigned line;
+};
+
+// A .rept whose body is being read, up to its .endr. Inner .rept blocks
+// stay in the body as lines; the replay expands them.
+struct RepeatCapture {
+  std::string name;
+  int64_t first;
+  int64_t last;
+  unsigned line;
+  std::vector<SourceLine> body;
+  // The lines of the inner .rept blocks open at this point of the body.
+  std::vector<unsigned> open_inner;
+};
+
+// tokens[1, end) split at the commas into [begin, end) ranges; none when
+// nothing follows tokens[0].
+std::vector<std::pair<size_t, size_t>> split_operands(const Tokens& tokens) {
+  std::vector<std::pair<size_t, size_t>> operands;
+  if (tokens.size() > 1) {
+    size_t begin = 1;
+    for (size_t i = 1; i <= tokens.size(); ++i)
+      if (i == tokens.size() || tokens[i].is(',')) {
+        operands.emplace_back(begin, i);
+        begin = i + 1;
+      }
+  }
+  return operands;
+}
+
+bool is_directive(const Tokens& tokens, std::string_view name) {
+  return tokens[0].kind == TokenKind::name && tokens[0].text == name;
+}
 
 // The operand fields of each pattern, as the error messages name them.
 std::vector<std::string_view> operand_names(OperandPattern pattern) {
@@ -103,21 +156,106 @@ class Assembler {
   }
 
   Program run(std::string_view source) {
+    unsigned number = 0;
     while (!source.empty()) {
       const size_t newline = source.find('\n');
       std::string_view text = source.substr(0, newline);
       source = newline == std::string_view::npos ? std::string_view{} : source.substr(newline + 1);
-      ++m_line;
+      m_line = ++number;
       const size_t comment = std::min(text.find(';'), text.find("//"));
-      const Tokens tokens = tokenize(text.substr(0, comment));
-      if (!tokens.empty()) statement(tokens);
+      Tokens tokens = tokenize(text.substr(0, comment));
+      if (!tokens.empty()) feed({number, std::move(tokens)});
     }
     finish();
     return std::move(m_program);
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) const { throw AsmError(m_program.source_name, m_line, problem); }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw AsmError(m_program.source_name, m_line, repetition() + problem);
+  }
+
+  // "(in .rept x = 3, y = 0) " while a .rept body is replayed: the line
+  // alone does not say which pass failed.
+  std::string repetition() const {
+    if (m_repeats.empty()) return "";
+    std::string text = "(in .rept ";
+    for (size_t i = 0; i < m_repeats.size(); ++i)
+      text += (i == 0 ? "" : ", ") + m_repeats[i].name + " = " + std::to_string(m_repeats[i].value);
+    return text + ") ";
+  }
+
+  // One line, from the file or from a .rept body being replayed: kept while
+  // a .rept body is read, else assembled.
+  void feed(const SourceLine& line) {
+    if (m_capture) {
+      RepeatCapture& capture = *m_capture;
+      if (is_directive(line.tokens, ".rept")) {
+        capture.open_inner.push_back(line.number);
+      } else if (is_directive(line.tokens, ".endr")) {
+        if (capture.open_inner.empty()) {
+          m_line = line.number;
+          if (line.tokens.size() > 1) fail("nothing may follow .endr on its line");
+          RepeatCapture closed = std::move(capture);
+          m_capture.reset();
+          repeat(closed);
+          return;
+        }
+        capture.open_inner.pop_back();
+      }
+      capture.body.push_back(line);
+      return;
+    }
+    m_line = line.number;
+    if (is_directive(line.tokens, ".rept")) {
+      open_repeat(line.tokens);
+    } else if (is_directive(line.tokens, ".endr")) {
+      fail(".endr without a .rept");
+    } else {
+      statement(line.tokens);
+    }
+  }
+
+  // `.rept NAME, FIRST, LAST`: the bounds are read here, where every name
+  // the body sees from outside is defined.
+  void open_repeat(const Tokens& tokens) {
+    const std::vector<std::pair<size_t, size_t>> operands = split_operands(tokens);
+    if (operands.size() != 3)
+      fail(".rept takes 3 operands (name, first, last), not " + std::to_string(operands.size()));
+    if (operands[0].second - operands[0].first != 1)
+      fail(".rept: expected the name of the .rept counter, not " + describe(tokens[operands[0].first]));
+    const std::string name = new_name(tokens, ".rept counter");
+    const auto bound = [&](size_t index, const std::string& which) {
+      const int64_t value = expression(tokens, operands[index].first, operands[index].second,
+                                       "the " + which + " value of .rept '" + name + "'", false)
+                                .number;
+      if (value < -LITERAL_LIMIT || value > LITERAL_LIMIT)
+        fail(".rept '" + name + "' has " + which + " value " + std::to_string(value) + ", beyond " +
+             std::to_string(LITERAL_LIMIT) + " in magnitude");
+      return value;
+    };
+    const int64_t first = bound(1, "first");
+    const int64_t last = bound(2, "last");
+    m_capture = RepeatCapture{name, first, last, m_line, {}, {}};
+  }
+
+  // The body of a closed .rept, once per value of its name.
+  void repeat(const RepeatCapture& capture) {
+    if (capture.body.empty()) return;
+    const int64_t step = capture.first <= capture.last ? 1 : -1;
+    for (int64_t value = capture.first;; value += step) {
+      m_expanded_lines += static_cast<int64_t>(capture.body.size());
+      if (m_expanded_lines > MAX_EXPANDED_LINES) {
+        m_line = capture.line;
+        fail(".rept '" + capture.name + "' would replay more than " + std::to_string(MAX_EXPANDED_LINES) +
+             " lines in all (the limit of the .rept blocks of a file)");
+      }
+      m_repeats.push_back({capture.name, value, capture.line});
+      for (const SourceLine& line : capture.body) feed(line);
+      m_repeats.pop_back();
+      if (value == capture.last) break;
+    }
+  }
 
   Tokens tokenize(std::string_view text) const {
     Tokens tokens;
@@ -134,7 +272,7 @@ class Assembler {
         const size_t begin = i;
         while (i < text.size() && is_name_char(text[i])) ++i;
         tokens.push_back(number(text.substr(begin, i - begin)));
-      } else if (std::string_view(",[]+-@:").find(c) != std::string_view::npos) {
+      } else if (std::string_view(",[]()+-*@:").find(c) != std::string_view::npos) {
         tokens.push_back({TokenKind::punct, std::string(1, c)});
         ++i;
       } else {
@@ -178,6 +316,9 @@ class Assembler {
   }
 
   void label(const std::string& name) {
+    if (!m_repeats.empty())
+      fail("label '" + name + "' inside the body of .rept '" + m_repeats.back().name + "' (line " +
+           std::to_string(m_repeats.back().line) + "): it would be defined once per repetition");
     if (!m_loops.empty())
       fail("label '" + name + "' inside the body of loop '" + m_loops.back().variable + "' (line " +
            std::to_string(m_loops.back().line) + "): a label is an entry point, close the loop with endloop first");
@@ -191,6 +332,10 @@ class Assembler {
 
   void directive(const Tokens& tokens) {
     const std::string& name = tokens[0].text;
+    if ((name == ".const" || name == ".var") && !m_repeats.empty())
+      fail(name + " inside the body of .rept '" + m_repeats.back().name + "' (line " +
+           std::to_string(m_repeats.back().line) +
+           "): it would be defined once per repetition; define it before the .rept");
     if (name == ".const") {
       const std::string& constant = new_name(tokens, "constant");
       const Value value = expression(tokens, 2, tokens.size(), "the value of constant '" + constant + "'", false);
@@ -225,6 +370,9 @@ class Assembler {
     for (const LoopScope& loop : m_loops)
       if (loop.variable == name)
         fail("duplicate name '" + name + "': already the variable of the enclosing loop" + first_at(loop.line));
+    for (const RepeatScope& scope : m_repeats)
+      if (scope.name == name)
+        fail("duplicate name '" + name + "': already the counter of the enclosing .rept" + first_at(scope.line));
     return name;
   }
 
@@ -266,47 +414,113 @@ class Assembler {
     m_name_lines[name] = m_line;
   }
 
-  // tokens[begin, end): a sum and difference of numbers and names; inside a
-  // CMEM operand (`in_address`) one loop variable may be added.
+  // An expression being read: tokens[at, end).
+  struct Cursor {
+    const Tokens& tokens;
+    size_t at;
+    size_t end;
+    const std::string& what;
+    bool in_address;
+
+    bool next_is(char punct) const { return at < end && tokens[at].is(punct); }
+  };
+
+  // tokens[begin, end): sums, differences and products of numbers and
+  // names, in parentheses where needed; inside a CMEM operand
+  // (`in_address`) one loop variable may be added, unscaled.
   Value expression(const Tokens& tokens, size_t begin, size_t end, const std::string& what, bool in_address) const {
     if (begin >= end) fail("expected " + what);
-    Value value;
-    size_t i = begin;
-    int sign = 1;
-    while (true) {
-      while (i < end && (tokens[i].is('+') || tokens[i].is('-'))) sign *= tokens[i++].is('-') ? -1 : 1;
-      if (i == end) fail(what + " ends with an operator");
-      const Token& term = tokens[i++];
-      if (term.kind == TokenKind::number) {
-        value.number += sign * term.number;
-      } else if (term.kind == TokenKind::name) {
-        term_value(term.text, sign, what, in_address, value);
-      } else {
-        fail("expected a number or a name in " + what + ", not " + describe(term));
-      }
-      if (i == end) return value;
-      if (!tokens[i].is('+') && !tokens[i].is('-')) fail("expected + or - in " + what + ", not " + describe(tokens[i]));
-      sign = tokens[i++].is('-') ? -1 : 1;
+    Cursor cursor{tokens, begin, end, what, in_address};
+    const Value value = sum(cursor);
+    if (cursor.at != end) {
+      if (tokens[cursor.at].is(')')) fail("')' without a matching '(' in " + what);
+      fail("expected +, - or * in " + what + ", not " + describe(tokens[cursor.at]));
     }
+    if (value.loop_level && value.loop_sign < 0)
+      fail("loop variable '" + m_loops[*value.loop_level].variable + "' subtracted in " + what +
+           ": it can only be added");
+    return value;
   }
 
-  void term_value(const std::string& name, int sign, const std::string& what, bool in_address, Value& value) const {
+  Value sum(Cursor& cursor) const {
+    Value value = product(cursor);
+    while (cursor.next_is('+') || cursor.next_is('-')) {
+      const bool minus = cursor.tokens[cursor.at++].is('-');
+      const Value term = product(cursor);
+      if (term.loop_level) {
+        if (value.loop_level) fail("two loop variables in " + cursor.what + ": an address adds at most one");
+        value.loop_level = term.loop_level;
+        value.loop_sign = minus ? -term.loop_sign : term.loop_sign;
+      }
+      value.number += minus ? -term.number : term.number;
+    }
+    return value;
+  }
+
+  Value product(Cursor& cursor) const {
+    Value value = factor(cursor);
+    while (cursor.next_is('*')) {
+      ++cursor.at;
+      const Value other = factor(cursor);
+      const std::optional<unsigned> scaled = value.loop_level ? value.loop_level : other.loop_level;
+      if (scaled)
+        fail("loop variable '" + m_loops[*scaled].variable + "' cannot be scaled: the AC adds it to " + cursor.what +
+             " as it is");
+      // |a * b| <= limit exactly when |b| <= limit / |a|, with no overflow.
+      const int64_t a = value.number < 0 ? -value.number : value.number;
+      const int64_t b = other.number < 0 ? -other.number : other.number;
+      if (a != 0 && b > LITERAL_LIMIT / a)
+        fail("the product " + std::to_string(value.number) + " * " + std::to_string(other.number) + " in " +
+             cursor.what + " is beyond " + std::to_string(LITERAL_LIMIT) + " in magnitude");
+      value.number *= other.number;
+    }
+    return value;
+  }
+
+  // A number, a name or a parenthesised expression, after any signs.
+  Value factor(Cursor& cursor) const {
+    int sign = 1;
+    while (cursor.next_is('+') || cursor.next_is('-')) sign *= cursor.tokens[cursor.at++].is('-') ? -1 : 1;
+    if (cursor.at == cursor.end) fail(cursor.what + " ends with an operator");
+    const Token& token = cursor.tokens[cursor.at++];
+    Value value;
+    if (token.kind == TokenKind::number) {
+      value.number = token.number;
+    } else if (token.kind == TokenKind::name) {
+      value = name_value(token.text, cursor.what, cursor.in_address);
+    } else if (token.is('(')) {
+      value = sum(cursor);
+      if (!cursor.next_is(')')) fail("'(' without a matching ')' in " + cursor.what);
+      ++cursor.at;
+    } else {
+      fail("expected a number, a name or '(' in " + cursor.what + ", not " + describe(token));
+    }
+    value.number *= sign;
+    value.loop_sign *= sign;
+    return value;
+  }
+
+  Value name_value(const std::string& name, const std::string& what, bool in_address) const {
+    Value value;
     if (const auto constant = m_program.constants.find(name); constant != m_program.constants.end()) {
-      value.number += sign * int64_t{constant->second};
-      return;
+      value.number = constant->second;
+      return value;
     }
     if (const auto variable = m_program.variables.find(name); variable != m_program.variables.end()) {
-      value.number += sign * int64_t{variable->second.address};
-      return;
+      value.number = variable->second.address;
+      return value;
     }
+    for (const RepeatScope& scope : m_repeats)
+      if (scope.name == name) {
+        value.number = scope.value;
+        return value;
+      }
     for (const LoopScope& loop : m_loops) {
       if (loop.variable != name) continue;
       if (!in_address)
         fail("loop variable '" + name + "' in " + what + ": loop variables are only added to CMEM addresses");
-      if (sign < 0) fail("loop variable '" + name + "' subtracted in " + what + ": it can only be added");
-      if (value.loop_level) fail("two loop variables in " + what + ": an address adds at most one");
       value.loop_level = loop.level;
-      return;
+      return value;
     }
     if (m_closed_loops.count(name) != 0) fail("loop variable '" + name + "' used outside its loop");
     if (m_label_lines.count(name) != 0) fail("'" + name + "' is a label, not a constant or variable");
@@ -317,15 +531,7 @@ class Assembler {
   void instruction(const OpInfo& info, const Tokens& tokens) {
     const std::string mnemonic(info.mnemonic);
     const std::vector<std::string_view> names = operand_names(info.operands);
-    std::vector<std::pair<size_t, size_t>> operands;
-    if (tokens.size() > 1) {
-      size_t begin = 1;
-      for (size_t i = 1; i <= tokens.size(); ++i)
-        if (i == tokens.size() || tokens[i].is(',')) {
-          operands.emplace_back(begin, i);
-          begin = i + 1;
-        }
-    }
+    const std::vector<std::pair<size_t, size_t>> operands = split_operands(tokens);
     if (operands.size() != names.size()) {
       std::string expected;
       for (const std::string_view name : names) expected += (expected.empty() ? "" : ", ") + std::string(name);
@@ -495,6 +701,10 @@ class Assembler {
   }
 
   void finish() {
+    if (m_capture) {
+      m_line = m_capture->open_inner.empty() ? m_capture->line : m_capture->open_inner.back();
+      fail(".rept is not closed by .endr before the end of the file");
+    }
     if (!m_loops.empty()) {
       m_line = m_loops.back().line;
       fail("loop '" + m_loops.back().variable + "' is not closed by endloop before the end of the file");
@@ -513,6 +723,11 @@ class Assembler {
   std::set<std::string> m_closed_loops;
   std::map<std::string, unsigned> m_label_lines;
   std::map<std::string, unsigned> m_name_lines;
+  // The .rept whose body is being read, and those being replayed, outermost
+  // first.
+  std::optional<RepeatCapture> m_capture;
+  std::vector<RepeatScope> m_repeats;
+  int64_t m_expanded_lines = 0;
   // The first label since the last halt: its code has not reached a halt yet.
   std::optional<std::pair<std::string, unsigned>> m_open_entry;
   // Whether a label precedes the next instruction with no halt between.
