@@ -41,6 +41,9 @@ struct AppEnvironment {
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.
   ActivityCounters* counters = nullptr;
+  // Warnings of the driver (state a back end does not support, ...): soc_sim
+  // logs them as the blocks' warnings. Null: they go to standard error.
+  std::function<void(const std::string& source, const std::string& message)> warn;
 };
 
 }  // namespace tessera

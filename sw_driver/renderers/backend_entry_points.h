@@ -4,6 +4,9 @@
 // end's renderer also reports:
 //  - make_renderer: builds the back end's renderer for an application
 //    (the factory the launcher hands to the GL driver in AppEnvironment);
+//  - adjust_configuration: sets what the back end needs where the user set
+//    nothing (Config::is_set), before the configuration is validated (the
+//    array back ends: the display's size to the array's frame);
 //  - check_configuration: throws ConfigError for a configuration the back
 //    end cannot run with (called when driver.backend names it).
 // A back end that forgets one fails to link, naming the function.
@@ -19,6 +22,7 @@
   namespace tessera::backends::id {                                                 \
   inline constexpr gl::RendererCapabilities CAPABILITIES{depth_bits, stencil_bits}; \
   std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env);                 \
+  void adjust_configuration(Config& config);                                        \
   void check_configuration(const Config& config);                                   \
   }
 #include "renderers/backends.def"

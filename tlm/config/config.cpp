@@ -166,6 +166,7 @@ void Config::set(const std::string& key, const nlohmann::json& value, const std:
       break;
   }
   m_values[key] = value;
+  m_set.insert(key);
 }
 
 void Config::merge_json(const nlohmann::json& doc, const std::string& source) {

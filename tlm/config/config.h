@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -77,6 +78,9 @@ class Config {
   // Every parameter, in the order of the groups.
   const std::vector<ParamSpec>& specs() const { return m_specs; }
   bool has(const std::string& key) const { return m_values.count(key) != 0; }
+  // True when a file, an override or the program set `key` (even to its
+  // default value); false while it holds the default it was declared with.
+  bool is_set(const std::string& key) const { return m_set.count(key) != 0; }
 
   bool get_bool(const std::string& key) const;
   int64_t get_int(const std::string& key) const;
@@ -98,6 +102,7 @@ class Config {
   std::vector<ParamSpec> m_specs;
   std::map<std::string, size_t> m_index;  // key -> position in m_specs
   std::map<std::string, nlohmann::json> m_values;
+  std::set<std::string> m_set;
 };
 
 }  // namespace tessera

@@ -284,6 +284,9 @@ int run(int argc, char* argv[]) {
     if (!opt.backend.empty()) config.set("driver.backend", opt.backend, "--backend");
     if (!opt.log_level.empty()) config.set("sim.log_level", opt.log_level, "--log-level");
     if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
+    // The chosen back end fills in what it needs that the user left unset.
+    if (const backends::Backend* chosen = backends::find_backend(config.get_string("driver.backend")))
+      chosen->adjust_configuration(config);
     config.validate();
   } catch (const ConfigError& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
@@ -350,6 +353,7 @@ int run(int argc, char* argv[]) {
   env.args = opt.app_args;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
+  env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;

@@ -9,7 +9,9 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
 }
 
 // The arm back end draws into the display's frame buffers with buffers of
-// its own in system memory: every configuration the SoC accepts suits it.
+// its own in system memory: every configuration the SoC accepts suits it,
+// and it needs nothing set.
+void adjust_configuration(Config&) {}
 void check_configuration(const Config&) {}
 
 }  // namespace tessera::backends::arm

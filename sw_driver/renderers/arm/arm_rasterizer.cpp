@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderers/common/texturing.h"
+
 namespace tessera::arm {
 
 namespace {
@@ -35,12 +37,8 @@ int64_t ceil_div(int64_t a, int64_t b) {
 }  // b > 0
 
 // Exact round(x / 255) for 0 <= x <= 65025.
-inline uint32_t div255(uint32_t x) {
-  return (x + 128 + ((x + 128) >> 8)) >> 8;
-}
-inline uint32_t mul8(uint32_t a, uint32_t b) {
-  return div255(a * b);
-}
+using renderers::div255;
+using renderers::mul8;
 
 // Depth (16 bits) and colour words of a clear, little-endian, 2 or 4 bytes.
 inline uint32_t load_le(const uint8_t* p, unsigned bytes) {
@@ -120,8 +118,7 @@ inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t s
 
 // A wrap code without an entry acts as repeat (fixed_function.def).
 inline int wrap(int i, unsigned size, gl::TexWrap mode) {
-  if (mode == gl::TexWrap::clamp_to_edge) return std::clamp(i, 0, int(size) - 1);
-  return i & int(size - 1);
+  return renderers::wrap_texel(i, size, mode);
 }
 
 // One attribute's plane, in fixed point: value(x, y) = value0 + gx (x - x0) +
@@ -532,11 +529,7 @@ void ArmRasterizer::fetch_texel(const DrawContext& c, int u8, int v8, bool linea
       std::memcpy(texel[2 * r + 1], m_memory.load(address(i1, rows[r]), 4, 1), 4);
     }
   }
-  for (int ch = 0; ch < 4; ++ch) {
-    const uint32_t top = texel[0][ch] * (256 - fu) + texel[1][ch] * fu;
-    const uint32_t bottom = texel[2][ch] * (256 - fu) + texel[3][ch] * fu;
-    out[ch] = uint8_t((top * (256 - fv) + bottom * fv + 32768) >> 16);
-  }
+  renderers::bilinear(texel, fu, fv, out);
 }
 
 void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int j, int x_first, int x_last) {
@@ -636,22 +629,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         }
         uint8_t texel[4];
         fetch_texel(c, int(u8), int(v8), s.linear_filter, texel);
-        const uint32_t f[4] = {rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24};
-        switch (state.tex_env) {
-          case gl::TexEnv::modulate:
-            rgba = mul8(f[0], texel[0]) | mul8(f[1], texel[1]) << 8 | mul8(f[2], texel[2]) << 16 |
-                   mul8(f[3], texel[3]) << 24;
-            break;
-          case gl::TexEnv::replace:
-            rgba = uint32_t(texel[0]) | uint32_t(texel[1]) << 8 | uint32_t(texel[2]) << 16 | uint32_t(texel[3]) << 24;
-            break;
-          case gl::TexEnv::decal: {
-            const uint32_t at = texel[3];
-            rgba = div255(f[0] * (255 - at) + texel[0] * at) | div255(f[1] * (255 - at) + texel[1] * at) << 8 |
-                   div255(f[2] * (255 - at) + texel[2] * at) << 16 | f[3] << 24;
-            break;
-          }
-        }
+        rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
       }
       if (c.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
         alive = false;

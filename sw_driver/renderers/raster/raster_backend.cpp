@@ -10,6 +10,9 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   return std::make_unique<raster_backend::RasterRenderer>(env);
 }
 
+// The rasterizer's size is the user's to choose (the check below).
+void adjust_configuration(Config&) {}
+
 // The rasterizer draws straight into the display's frame buffers, so it
 // must cover the display exactly (RasterRenderer checks it again against
 // the registers).

@@ -485,9 +485,14 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
 
 // What EGL offers before a surface exists, and what GL reports once the
 // back end's renderer is made, are what the back end stores: 16-bit depth
-// on arm, 24 on raster, 8-bit stencil on both.
+// on arm, 24 on raster, 8-bit stencil on both; ap-tile keeps 16-bit depth
+// in CMEM and no stencil. Making ap-tile's renderer needs the array
+// processor, which this host without devices lacks, so for it only EGL's
+// side is checked here (its renderer reports the same CAPABILITIES).
 TEST(Egl, DepthAndStencilBitsAreTheBackEndsOwn) {
-  const std::map<std::string, gl::RendererCapabilities> stored = {{"arm", {16, 8}}, {"raster", {24, 8}}};
+  const std::map<std::string, gl::RendererCapabilities> stored = {
+      {"arm", {16, 8}}, {"raster", {24, 8}}, {"ap-tile", {16, 0}}};
+  const std::set<std::string> needs_devices = {"ap-tile"};
   for (const std::string& backend : test::back_end_names()) {
     SCOPED_TRACE(backend);
     ASSERT_TRUE(stored.count(backend)) << "say what the new back end stores";
@@ -520,6 +525,11 @@ TEST(Egl, DepthAndStencilBitsAreTheBackEndsOwn) {
     const EGLint exact[] = {EGL_DEPTH_SIZE, depth, EGL_STENCIL_SIZE, stencil, EGL_NONE};
     ASSERT_EQ(eglChooseConfig(display, exact, &config, 1, &count), EGL_TRUE);
     ASSERT_EQ(count, 1);
+    if (needs_devices.count(backend) != 0) {
+      EXPECT_EQ(eglTerminate(display), EGL_TRUE);
+      gl::set_environment(nullptr);
+      continue;
+    }
 
     EGLSurface surface = eglCreateWindowSurface(display, config, static_cast<EGLNativeWindowType>(0), nullptr);
     ASSERT_NE(surface, EGL_NO_SURFACE) << eglGetError();

@@ -138,14 +138,19 @@ ParamGroup screen_parameters() {
               param::integer("display.height", 240, 16, 2048, "lines", "display height"),
               param::integer("raster.width", 320, 16, 2048, "pixels", "rasterizer width"),
               param::integer("raster.height", 240, 16, 2048, "lines", "rasterizer height"),
+              param::integer("array.columns", 24, 4, 64, "CUs", "array columns"),
+              param::integer("array.rows", 4, 1, 64, "CUs", "array rows"),
           },
           {}};
 }
 
+// As soc_sim builds it: the user's settings, then what the chosen back end
+// fills in where the user set nothing.
 Config configuration(const std::string& backend, const std::vector<std::string>& overrides) {
   Config config({driver_parameters(), screen_parameters()});
   config.set("driver.backend", backend, "test");
   for (const std::string& assignment : overrides) config.apply_override(assignment);
+  backends::backend(backend).adjust_configuration(config);
   return config;
 }
 

@@ -1,0 +1,48 @@
+// The ap-tile back end's entry points for the registry (backends.def).
+#include <string>
+
+#include "ap_programs/ap_tile.h"
+#include "renderers/ap_tile/ap_tile_renderer.h"
+#include "renderers/backend_entry_points.h"
+
+namespace tessera::backends::ap_tile {
+
+namespace {
+
+// The frame the array holds: one tile of the program's TILE_W x TILE_H
+// pixels per CU.
+unsigned frame_width(const Config& config) {
+  return static_cast<unsigned>(config.get_uint("array.columns")) *
+         static_cast<unsigned>(ap::programs::ap_tile().constants.at("TILE_W"));
+}
+unsigned frame_height(const Config& config) {
+  return static_cast<unsigned>(config.get_uint("array.rows")) *
+         static_cast<unsigned>(ap::programs::ap_tile().constants.at("TILE_H"));
+}
+
+}  // namespace
+
+std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
+  return std::make_unique<tessera::ap_tile::ApTileRenderer>(env);
+}
+
+// The display shows the array's frame (192 x 144 for the 24 x 4 array)
+// unless the user chose its size.
+void adjust_configuration(Config& config) {
+  if (!config.is_set("display.width")) config.set("display.width", frame_width(config), "driver.backend=ap-tile");
+  if (!config.is_set("display.height")) config.set("display.height", frame_height(config), "driver.backend=ap-tile");
+}
+
+// The array holds exactly its tiles: the display must show that frame.
+void check_configuration(const Config& config) {
+  if (config.get_uint("display.width") != frame_width(config) ||
+      config.get_uint("display.height") != frame_height(config))
+    throw ConfigError("configuration: impossible combination: driver.backend=ap-tile draws the array's frame of " +
+                      std::to_string(frame_width(config)) + " x " + std::to_string(frame_height(config)) +
+                      " pixels (array.columns x array.rows tiles of 8 x 36), but display.width x display.height = " +
+                      std::to_string(config.get_uint("display.width")) + " x " +
+                      std::to_string(config.get_uint("display.height")) +
+                      "; leave the display's size unset or change the array's grid");
+}
+
+}  // namespace tessera::backends::ap_tile

@@ -1,0 +1,379 @@
+#include "renderers/ap_tile/ap_tile_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <stdexcept>
+
+#include "ap_programs/ap_tile.h"
+#include "common/pixel_format.h"
+#include "renderers/common/texturing.h"
+
+namespace tessera::ap_tile {
+
+namespace {
+
+// Accumulates the host time between its construction and its end into one
+// of HostTime's fields.
+class Timed {
+ public:
+  Timed(HostApi& host, double& total) : m_host(host), m_total(total), m_start(host.now_seconds()) {}
+  ~Timed() { m_total += m_host.now_seconds() - m_start; }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  HostApi& m_host;
+  double& m_total;
+  double m_start;
+};
+
+// The depth a clear stores: the value the depth plane gives that depth
+// (tile_setup.cpp: z24 * 65535 / 65536 / 256, rounded).
+uint16_t clear_depth16(uint32_t z24) {
+  return static_cast<uint16_t>((uint64_t{z24} * 65535 + 65536 * 128) / (65536 * 256));
+}
+
+constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord};
+
+}  // namespace
+
+ApTileRenderer::ApTileRenderer(AppEnvironment& env)
+    : m_env(env), m_host(*env.host), m_display(env), m_array(env), m_layout(CmemLayout::of(ap::programs::ap_tile())) {
+  m_frame.columns = m_array.columns();
+  m_frame.rows = m_array.rows();
+  m_frame.tile_width = m_layout.tile_width;
+  m_frame.tile_height = m_layout.tile_height;
+  if (m_display.width() != m_frame.width() || m_display.height() != m_frame.height())
+    throw std::invalid_argument(
+        "ap-tile: the array's " + std::to_string(m_frame.columns) + " x " + std::to_string(m_frame.rows) +
+        " tiles of " + std::to_string(m_frame.tile_width) + " x " + std::to_string(m_frame.tile_height) +
+        " pixels cover " + std::to_string(m_frame.width()) + " x " + std::to_string(m_frame.height()) +
+        ", but the display is " + std::to_string(m_display.width()) + " x " + std::to_string(m_display.height()));
+  const ap::Program& program = ap::programs::ap_tile();
+  m_array.load(program.words, m_program_base);
+  for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
+                          TileStage::clear_colour, TileStage::clear_depth})
+    m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
+  // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
+  for (unsigned l = 0; l < m_frame.tile_height; ++l)
+    m_array.fill8(m_layout.yc + l, static_cast<uint8_t>(m_frame.tile_height - 1 - l));
+  m_array.fill8(m_layout.zero, 0);
+  m_array.fill8(m_layout.live, 0);
+  m_queues.resize(m_frame.cus());
+  m_live.assign(m_frame.cus(), false);
+  m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
+}
+
+void ApTileRenderer::unsupported(const std::string& what) {
+  if (!m_unsupported.insert(what).second) return;
+  const std::string message = "ap-tile does not support " + what + " (reported once per frame)";
+  if (m_env.warn)
+    m_env.warn("ap-tile", message);
+  else
+    std::cerr << "warning: " << message << "\n";
+}
+
+uint8_t ApTileRenderer::texture_number(const gl::RasterState& state) {
+  for (size_t k = 0; k < m_textures.size(); ++k) {
+    const gl::Texture& t = m_textures[k].texture;
+    if (t.address == state.tex.address && t.width == state.tex.width && t.height == state.tex.height &&
+        t.min_filter == state.tex.min_filter && t.mag_filter == state.tex.mag_filter && t.wrap_s == state.tex.wrap_s &&
+        t.wrap_t == state.tex.wrap_t && m_textures[k].env == state.tex_env)
+      return static_cast<uint8_t>(k + 1);
+  }
+  if (m_textures.size() == 255) {
+    unsupported("more than 255 textures between colour clears (the last one is reused)");
+    return 255;
+  }
+  m_textures.push_back({state.tex, state.tex_env});
+  return static_cast<uint8_t>(m_textures.size());
+}
+
+void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  Timed timed(m_host, m_time.compute);
+  if (state.blend) unsupported("blending (GL_BLEND): drawn without it");
+  if (state.alpha_test) unsupported("the alpha test (GL_ALPHA_TEST): drawn without it");
+  if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
+  if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
+  if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
+  if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
+    unsupported("colour masks (glColorMask): drawn with every channel");
+  DrawFlags flags;
+  flags.flat = state.flat_shading;
+  flags.depth_test = state.depth_test;
+  flags.depth_write = state.depth_write;
+  if (state.depth_test) {
+    switch (state.depth_func) {
+      case gl::CompareFunc::less: break;
+      case gl::CompareFunc::lequal: flags.depth_lequal = true; break;
+      case gl::CompareFunc::never: return;
+      case gl::CompareFunc::always:
+        flags.depth_test = false;
+        if (state.depth_write) unsupported("depth writes with GL_ALWAYS: the depth buffer keeps its values");
+        break;
+      default: unsupported("depth functions other than GL_LESS, GL_LEQUAL, GL_ALWAYS and GL_NEVER: drawn as GL_LESS");
+    }
+  }
+  if (state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
+      state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
+      (state.tex.height & (state.tex.height - 1)) == 0) {
+    flags.tex = texture_number(state);
+    flags.tex_width = state.tex.width;
+    flags.tex_height = state.tex.height;
+    m_frame_textured = true;
+  }
+  const HostCosts& k = m_costs;
+  for (size_t t = 0; t < count; ++t) {
+    m_host.compute(Op::alu, k.triangle_alu + k.triangle_divisions * k.division_alu);
+    m_host.compute(Op::mul, k.triangle_mul);
+    m_host.compute(Op::call, k.triangle_divisions);
+    TriangleSetup setup(triangles[t], flags, m_frame);
+    if (!setup.valid()) continue;
+    const std::vector<unsigned> tiles = setup.tiles();
+    m_host.compute(Op::alu, uint64_t{k.tile_test_alu} * std::max<size_t>(tiles.size(), 1));
+    if (tiles.empty()) continue;
+    const auto index = static_cast<uint32_t>(m_triangles.size());
+    m_triangles.push_back(setup);
+    for (unsigned tile : tiles) m_queues[tile].push_back(index);
+    ++m_triangles_drawn;
+  }
+}
+
+void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* records) {
+  std::vector<uint8_t> bytes(size_t{m_layout.record_bytes} * 4);
+  for (unsigned k = 0; k < 4; ++k) encode_record(records[k], m_layout, bytes.data() + k * m_layout.record_bytes);
+  for (unsigned b = 0; b < m_layout.record_bytes; ++b) {
+    uint32_t word = 0;
+    for (unsigned k = 0; k < 4; ++k) word |= uint32_t{bytes[k * m_layout.record_bytes + b]} << (8 * k);
+    m_host.compute(Op::alu, m_costs.pack_alu);
+    m_array.write32(i, j, m_layout.record_first + b, word);
+    ++m_words_written;
+  }
+}
+
+void ApTileRenderer::run_stage(TileStage stage) {
+  Timed timed(m_host, m_time.array_wait);
+  m_stage_cycles[static_cast<int>(stage)] += m_array.run(m_entry[static_cast<int>(stage)]);
+}
+
+void ApTileRenderer::flush() {
+  size_t passes = 0;
+  for (const auto& queue : m_queues) passes = std::max(passes, queue.size());
+  if (passes == 0) {
+    m_triangles.clear();
+    return;
+  }
+  ++m_flushes;
+  const unsigned groups = m_frame.columns / 4;
+  for (size_t pass = 0; pass < passes; ++pass) {
+    bool depth = false, textured = m_frame_textured;
+    for (unsigned j = 0; j < m_frame.rows; ++j)
+      for (unsigned i = 0; i < groups; ++i) {
+        TileRecord records[4];
+        bool any = false, was_live = false;
+        {
+          Timed timed(m_host, m_time.compute);
+          for (unsigned k = 0; k < 4; ++k) {
+            const unsigned c = 4 * i + k, lane = j * m_frame.columns + c;
+            was_live = was_live || m_live[lane];
+            if (pass >= m_queues[lane].size()) continue;
+            const TriangleSetup& setup = m_triangles[m_queues[lane][pass]];
+            records[k] = setup.record(c, j);
+            m_host.compute(Op::alu, m_costs.record_alu);
+            m_host.compute(Op::mul, m_costs.record_mul);
+            any = true;
+            ++m_cu_triangles;
+            depth = depth || !records[k].zoff;
+          }
+        }
+        if (!any && !was_live) continue;
+        Timed timed(m_host, m_time.array_write);
+        if (any) {
+          write_group(i, j, records);
+        } else {
+          m_array.write32(i, j, m_layout.live, 0);
+          ++m_words_written;
+        }
+        for (unsigned k = 0; k < 4; ++k) m_live[j * m_frame.columns + 4 * i + k] = records[k].live;
+      }
+    for (TileStage stage : PASS_STAGES) {
+      if (stage == TileStage::depth && !depth) continue;
+      if (stage == TileStage::texcoord && !textured) continue;
+      run_stage(stage);
+    }
+    ++m_passes;
+  }
+  m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
+  m_busiest = std::max<uint64_t>(m_busiest, passes);
+  m_triangles.clear();
+  for (auto& queue : m_queues) queue.clear();
+  publish_statistics();
+}
+
+void ApTileRenderer::clear(const gl::ClearRequest& request) {
+  flush();
+  if (request.scissor_test) unsupported("scissored clears: the whole frame is cleared");
+  if (request.color && (!request.color_mask[0] || !request.color_mask[1] || !request.color_mask[2]))
+    unsupported("masked colour clears: every channel is cleared");
+  if (request.color) {
+    const uint32_t rgba = uint32_t{request.rgba[0]} | uint32_t{request.rgba[1]} << 8 | uint32_t{request.rgba[2]} << 16 |
+                          uint32_t{request.rgba[3]} << 24;
+    const auto packed = static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, rgba));
+    {
+      Timed timed(m_host, m_time.array_write);
+      m_array.fill8(m_layout.clear_c, static_cast<uint8_t>(packed >> 8));
+      m_array.fill8(m_layout.clear_c + 1, static_cast<uint8_t>(packed));
+      m_words_written += 2 * m_frame.cus() / 4;
+    }
+    run_stage(TileStage::clear_colour);
+    m_textures.clear();
+    m_frame_textured = false;
+  }
+  if (request.depth && request.depth_write) {
+    const uint16_t z = clear_depth16(request.depth_value);
+    {
+      Timed timed(m_host, m_time.array_write);
+      m_array.fill8(m_layout.clear_z, static_cast<uint8_t>(z >> 8));
+      m_array.fill8(m_layout.clear_z + 1, static_cast<uint8_t>(z));
+      m_words_written += 2 * m_frame.cus() / 4;
+    }
+    run_stage(TileStage::clear_depth);
+  }
+}
+
+void ApTileRenderer::read_back() {
+  flush();
+  const unsigned groups = m_frame.columns / 4, width = m_frame.width();
+  const HostCosts& k = m_costs;
+  for (unsigned j = 0; j < m_frame.rows; ++j)
+    for (unsigned i = 0; i < groups; ++i)
+      for (unsigned x = 0; x < m_frame.tile_width; ++x)
+        for (unsigned l = 0; l < m_frame.tile_height; ++l) {
+          uint32_t hi, lo, tid = 0, s_hi = 0, s_lo = 0, t_hi = 0, t_lo = 0;
+          {
+            Timed timed(m_host, m_time.array_read);
+            hi = m_array.read32(i, j, m_layout.pixel(m_layout.chi, x, l));
+            lo = m_array.read32(i, j, m_layout.pixel(m_layout.clo, x, l));
+            m_words_read += 2;
+            if (m_frame_textured) {
+              tid = m_array.read32(i, j, m_layout.pixel(m_layout.tid, x, l));
+              if (tid != 0) {
+                s_hi = m_array.read32(i, j, m_layout.pixel(m_layout.shi, x, l));
+                s_lo = m_array.read32(i, j, m_layout.pixel(m_layout.slo, x, l));
+                t_hi = m_array.read32(i, j, m_layout.pixel(m_layout.thi, x, l));
+                t_lo = m_array.read32(i, j, m_layout.pixel(m_layout.tlo, x, l));
+                m_words_read += 4;
+              }
+              ++m_words_read;
+            }
+          }
+          Timed timed(m_host, m_time.compute);
+          for (unsigned b = 0; b < 4; ++b) {
+            const unsigned shift = 8 * b;
+            const uint32_t packed = ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff);
+            uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
+            m_host.compute(Op::alu, k.pixel_alu);
+            const unsigned number = (tid >> shift) & 0xff;
+            if (number != 0 && number <= m_textures.size()) {
+              const TextureEntry& entry = m_textures[number - 1];
+              const gl::Texture& tex = entry.texture;
+              const int u8 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
+              const int v8 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
+              auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
+                std::memcpy(
+                    out,
+                    m_host.load_span(
+                        tex.address + (static_cast<uint32_t>(tj) * tex.width + static_cast<uint32_t>(ti)) * 4, 4, 1),
+                    4);
+              };
+              uint8_t texel[4];
+              if (tex.mag_filter == gl::TexFilter::nearest) {
+                texel_at(renderers::wrap_texel(u8 >> 8, tex.width, tex.wrap_s),
+                         renderers::wrap_texel(v8 >> 8, tex.height, tex.wrap_t), texel);
+                m_host.compute(Op::alu, k.texel_nearest_alu);
+                m_host.compute(Op::mul, k.texel_nearest_mul);
+              } else {
+                const int um = u8 - 128, vm = v8 - 128;
+                const int i0 = renderers::wrap_texel(um >> 8, tex.width, tex.wrap_s);
+                const int i1 = renderers::wrap_texel((um >> 8) + 1, tex.width, tex.wrap_s);
+                const int j0 = renderers::wrap_texel(vm >> 8, tex.height, tex.wrap_t);
+                const int j1 = renderers::wrap_texel((vm >> 8) + 1, tex.height, tex.wrap_t);
+                uint8_t four[4][4];
+                texel_at(i0, j0, four[0]);
+                texel_at(i1, j0, four[1]);
+                texel_at(i0, j1, four[2]);
+                texel_at(i1, j1, four[3]);
+                renderers::bilinear(four, static_cast<uint32_t>(um) & 255, static_cast<uint32_t>(vm) & 255, texel);
+                m_host.compute(Op::alu, k.texel_linear_alu);
+                m_host.compute(Op::mul, k.texel_linear_mul);
+              }
+              rgba = renderers::apply_tex_env(entry.env, rgba, texel);
+              m_host.compute(Op::alu, k.tex_env_alu);
+              m_host.compute(Op::mul, k.tex_env_mul);
+            }
+            const unsigned column = (4 * i + b) * m_frame.tile_width + x;
+            const unsigned row = j * m_frame.tile_height + l;
+            m_rgba[size_t{row} * width + column] = rgba;
+          }
+        }
+}
+
+void ApTileRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
+  read_back();
+  const int w = static_cast<int>(m_frame.width()), h = static_cast<int>(m_frame.height());
+  for (int row = 0; row < height; ++row)
+    for (int column = 0; column < width; ++column) {
+      const int gx = x + column, gy = y + row;
+      uint32_t value = 0;
+      if (gx >= 0 && gx < w && gy >= 0 && gy < h)
+        value = quantize_color(m_display.format(), m_rgba[static_cast<size_t>(h - 1 - gy) * w + gx]);
+      std::memcpy(rgba + (static_cast<size_t>(row) * width + column) * 4, &value, 4);
+    }
+}
+
+void ApTileRenderer::present() {
+  read_back();
+  {
+    Timed timed(m_host, m_time.frame_out);
+    const PixelFormat format = m_display.format();
+    const unsigned bytes = bytes_per_pixel(format), width = m_frame.width();
+    for (unsigned row = 0; row < m_frame.height(); ++row) {
+      uint8_t* out = m_host.store_span(m_display.back_buffer() + row * m_display.stride(), bytes, width);
+      for (unsigned column = 0; column < width; ++column)
+        store_pixel(format, out + column * bytes, pack_pixel(format, m_rgba[size_t{row} * width + column]));
+      m_host.compute(Op::alu, uint64_t{width} * m_costs.pixel_alu / 2);
+    }
+    m_display.present();
+  }
+  m_unsupported.clear();
+  m_frame_busiest = 0;
+  publish_statistics();
+}
+
+void ApTileRenderer::publish_statistics() {
+  if (m_env.counters == nullptr) return;
+  ActivityCounters& c = *m_env.counters;
+  auto set = [&](const char* name, const char* description, uint64_t value) {
+    c.counter(std::string("ap_tile.") + name, description).value = value;
+  };
+  auto ns = [](double seconds) { return static_cast<uint64_t>(std::llround(seconds * 1e9)); };
+  set("host_compute_ns", "host time setting up, binning, packing and texturing", ns(m_time.compute));
+  set("host_write_ns", "host time writing the array (triangle records, clear values)", ns(m_time.array_write));
+  set("host_read_ns", "host time reading the frame back from the array", ns(m_time.array_read));
+  set("host_wait_ns", "host time waiting for the array's programs", ns(m_time.array_wait));
+  set("host_frame_out_ns", "host time writing the frame out to the display", ns(m_time.frame_out));
+  set("triangles", "triangles binned to at least one CU", m_triangles_drawn);
+  set("cu_triangles", "triangle records written (one per CU per triangle)", m_cu_triangles);
+  set("passes", "passes run (every CU at most one triangle per pass)", m_passes);
+  set("busiest_cu_triangles", "most triangles one CU drew in one flush (the passes that flush needed)", m_busiest);
+  set("ciu_words_written", "CMEM words the host wrote", m_words_written);
+  set("ciu_words_read", "CMEM words the host read", m_words_read);
+  for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
+                          TileStage::clear_colour, TileStage::clear_depth})
+    c.counter(std::string("ap_tile.cycles.") + stage_entry(stage), "array cycles of the program's stage").value =
+        m_stage_cycles[static_cast<int>(stage)];
+}
+
+}  // namespace tessera::ap_tile

@@ -1,0 +1,95 @@
+// The `ap-tile` back end: the study's tile algorithm with the array
+// processor as an intelligent frame buffer (README.md). The host sets up
+// each triangle (tile_setup.h), bins it to the CUs whose tiles it overlaps,
+// and at a flush (clear, finish, read-back, present) writes the triangle
+// records through the CIU and runs the array program's stages pass by
+// pass; at present it reads the colour (and texture coordinates) back,
+// textures on the host and writes the frame out through the display driver.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "device/app_environment.h"
+#include "device/array_driver.h"
+#include "device/display_driver.h"
+#include "gl/renderer.h"
+#include "renderers/ap_tile/tile_reference.h"
+#include "renderers/ap_tile/tile_setup.h"
+#include "renderers/backend_entry_points.h"
+
+namespace tessera::ap_tile {
+
+// ARM922T instructions the host is charged around the array (README.md,
+// "Host work"), per item.
+struct HostCosts {
+  unsigned triangle_alu = 150, triangle_mul = 40, triangle_divisions = 18, division_alu = 20;
+  unsigned tile_test_alu = 16;                // per candidate tile: 3 edges at 4 corners
+  unsigned record_alu = 40, record_mul = 18;  // per CU record: start values at the tile's corner
+  unsigned pack_alu = 7;                      // per CIU word: four bytes shifted into place
+  unsigned pixel_alu = 8;                     // per pixel read back: unpack RGB565, pack for the display
+  unsigned texel_nearest_alu = 8, texel_nearest_mul = 1, texel_linear_alu = 30, texel_linear_mul = 9;
+  unsigned tex_env_alu = 12, tex_env_mul = 4;
+};
+
+// Where the host's time went, in seconds of host time.
+struct HostTime {
+  double compute = 0, array_write = 0, array_read = 0, array_wait = 0, frame_out = 0;
+};
+
+class ApTileRenderer : public gl::Renderer {
+ public:
+  explicit ApTileRenderer(AppEnvironment& env);
+
+  const char* name() const override { return "tessera ap-tile (array processor, one tile per CU)"; }
+  gl::RendererCapabilities capabilities() const override { return backends::ap_tile::CAPABILITIES; }
+  unsigned width() const override { return m_frame.width(); }
+  unsigned height() const override { return m_frame.height(); }
+  PixelFormat color_format() const override { return m_display.format(); }
+  void clear(const gl::ClearRequest& request) override;
+  void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override;
+  void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override;
+  void finish() override { flush(); }
+  void present() override;
+
+ private:
+  struct TextureEntry {
+    gl::Texture texture;
+    gl::TexEnv env;
+  };
+
+  void flush();
+  void run_stage(TileStage stage);
+  void write_group(unsigned i, unsigned j, const TileRecord* records);
+  void read_back();
+  uint8_t texture_number(const gl::RasterState& state);
+  void unsupported(const std::string& what);
+  void publish_statistics();
+
+  AppEnvironment& m_env;
+  HostApi& m_host;
+  DisplayDriver m_display;
+  ArrayDriver m_array;
+  CmemLayout m_layout;
+  FrameGeometry m_frame;
+  HostCosts m_costs;
+  unsigned m_entry[6]{};
+  unsigned m_program_base = 0;
+
+  std::vector<TriangleSetup> m_triangles;       // drawn since the last flush
+  std::vector<std::vector<uint32_t>> m_queues;  // per CU: its triangles, in order
+  std::vector<bool> m_live;                     // per CU: the live byte last written
+  std::vector<TextureEntry> m_textures;         // texture number - 1
+  bool m_frame_textured = false;                // some pixel may carry a texture number
+  std::vector<uint32_t> m_rgba;                 // the frame read back, row 0 at the top
+  std::set<std::string> m_unsupported;          // reported this frame
+
+  HostTime m_time;
+  uint64_t m_passes = 0, m_flushes = 0, m_cu_triangles = 0, m_busiest = 0, m_frame_busiest = 0;
+  uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
+};
+
+}  // namespace tessera::ap_tile

@@ -1,0 +1,326 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "ap_programs/ap_tile.h"
+#include "array/core/array_controller.h"
+#include "renderers/ap_tile/tile_reference.h"
+#include "renderers/ap_tile/tile_setup.h"
+
+namespace tessera::ap_tile {
+namespace {
+
+using ap::ArrayController;
+using ap::ArrayGeometry;
+using ap::CuArray;
+using ap::CycleTable;
+using ap::RunResult;
+
+const ap::Program& program() {
+  return ap::programs::ap_tile();
+}
+
+// One CU's CMEM with the constants the host writes once (row heights, 0).
+std::vector<uint8_t> fresh_cmem(const CmemLayout& layout) {
+  std::vector<uint8_t> cmem(4096, 0);
+  for (unsigned l = 0; l < layout.tile_height; ++l)
+    cmem[layout.yc + l] = static_cast<uint8_t>(layout.tile_height - 1 - l);
+  return cmem;
+}
+
+// Scratch the program keeps between rows and the reference does not.
+bool scratch(unsigned address) {
+  for (const char* name : {"erow", "crow", "strow"}) {
+    const ap::Variable& v = program().variables.at(name);
+    if (address >= v.address && address < v.address + v.size) return true;
+  }
+  return false;
+}
+
+gl::Triangle triangle(int x0, int y0, int x1, int y1, int x2, int y2) {
+  gl::Triangle t{};
+  const int xy[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
+  for (unsigned i = 0; i < 3; ++i) {
+    t.v[i].x = xy[i][0];
+    t.v[i].y = xy[i][1];
+    t.v[i].z = 0x800000;
+    t.v[i].r = t.v[i].g = t.v[i].b = t.v[i].a = 255;
+    t.v[i].inv_w = 1;
+  }
+  return t;
+}
+
+gl::Triangle random_triangle(std::mt19937& rng, const FrameGeometry& frame) {
+  std::uniform_int_distribution<int> x(-16 * 40, 16 * (static_cast<int>(frame.width()) + 40));
+  std::uniform_int_distribution<int> y(-16 * 40, 16 * (static_cast<int>(frame.height()) + 40));
+  std::uniform_int_distribution<int> small(-16 * 12, 16 * 12);
+  std::uniform_int_distribution<uint32_t> z(0, 0xffffff), byte(0, 255);
+  std::uniform_real_distribution<float> st(-2.0f, 3.0f);
+  gl::Triangle t{};
+  const bool tiny = byte(rng) < 128;
+  const int cx = x(rng), cy = y(rng);
+  for (auto& v : t.v) {
+    v.x = tiny ? cx + small(rng) : x(rng);
+    v.y = tiny ? cy + small(rng) : y(rng);
+    v.z = z(rng);
+    v.r = static_cast<uint8_t>(byte(rng));
+    v.g = static_cast<uint8_t>(byte(rng));
+    v.b = static_cast<uint8_t>(byte(rng));
+    v.a = 255;
+    v.s = st(rng);
+    v.t = st(rng);
+    v.inv_w = 1;
+  }
+  return t;
+}
+
+// The array program on the AC's functional core and the reference on 96
+// CMEM images, driven with the same records pass after pass, stay equal
+// byte for byte in every CU's CMEM.
+TEST(ApTileProgram, MatchesTheReferenceBitForBit) {
+  const CmemLayout layout = CmemLayout::of(program());
+  const FrameGeometry frame;
+  ArrayGeometry geometry;
+  ArrayController controller(geometry, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program().words));
+  CuArray& array = controller.array();
+  const unsigned lanes = array.lanes(), bytes = geometry.cmem_bytes;
+  std::vector<std::vector<uint8_t>> reference(lanes, std::vector<uint8_t>(bytes));
+  std::mt19937 rng(2210);
+  // Random buffers to start with, the same in both, and the constants.
+  for (unsigned lane = 0; lane < lanes; ++lane)
+    for (unsigned a = 0; a < bytes; ++a) {
+      auto value = static_cast<uint8_t>(rng());
+      if (a >= layout.yc && a < layout.yc + layout.tile_height)
+        value = static_cast<uint8_t>(layout.tile_height - 1 - (a - layout.yc));
+      if (a == layout.zero) value = 0;
+      array.set_cmem(lane, a, value);
+      reference[lane][a] = value;
+    }
+  auto run = [&](TileStage stage) {
+    const RunResult result = controller.run(program().entries.at(stage_entry(stage)));
+    ASSERT_TRUE(result.ok) << result.error;
+    for (unsigned lane = 0; lane < lanes; ++lane) run_reference(stage, layout, reference[lane].data());
+  };
+  std::vector<uint8_t> record(layout.record_bytes);
+  unsigned drawn_lanes = 0;
+  for (unsigned pass = 0; pass < 12; ++pass) {
+    for (unsigned lane = 0; lane < lanes; ++lane) {
+      DrawFlags flags;
+      flags.depth_test = rng() % 4 != 0;
+      flags.depth_lequal = rng() % 2 != 0;
+      flags.depth_write = rng() % 4 != 0;
+      flags.flat = rng() % 5 == 0;
+      flags.tex = static_cast<uint8_t>(rng() % 3);
+      flags.tex_width = 64;
+      flags.tex_height = 32;
+      const TriangleSetup setup(random_triangle(rng, frame), flags, frame);
+      const TileRecord r = setup.record(lane % frame.columns, lane / frame.columns);
+      drawn_lanes += r.live;
+      encode_record(r, layout, record.data());
+      for (unsigned b = 0; b < layout.record_bytes; ++b) {
+        array.set_cmem(lane, layout.record_first + b, record[b]);
+        reference[lane][layout.record_first + b] = record[b];
+      }
+    }
+    if (pass == 5) {
+      for (unsigned lane = 0; lane < lanes; ++lane)
+        for (unsigned a : {layout.clear_c, static_cast<uint16_t>(layout.clear_c + 1), layout.clear_z,
+                           static_cast<uint16_t>(layout.clear_z + 1)}) {
+          const auto value = static_cast<uint8_t>(rng());
+          array.set_cmem(lane, a, value);
+          reference[lane][a] = value;
+        }
+      run(TileStage::clear_colour);
+      run(TileStage::clear_depth);
+    }
+    for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord}) run(stage);
+    for (unsigned lane = 0; lane < lanes; ++lane)
+      for (unsigned a = 0; a < bytes; ++a)
+        if (!scratch(a)) {
+          ASSERT_EQ(array.cmem(lane, a), reference[lane][a]) << "pass " << pass << ", CU " << lane << ", address " << a;
+        }
+  }
+  EXPECT_GT(drawn_lanes, 100u);  // the random triangles reached many CUs
+}
+
+// Every pixel the reference draws for a triangle lies in a tile the set-up
+// binned it to, and a binned tile's box meets the triangle's box.
+TEST(ApTileSetup, BinsEveryTileItDrawsIn) {
+  const CmemLayout layout = CmemLayout::of(program());
+  const FrameGeometry frame;
+  std::mt19937 rng(7);
+  std::vector<uint8_t> cmem = fresh_cmem(layout);
+  unsigned checked = 0;
+  for (unsigned n = 0; n < 300; ++n) {
+    const gl::Triangle t = random_triangle(rng, frame);
+    const TriangleSetup setup(t, DrawFlags{}, frame);
+    const std::vector<unsigned> tiles = setup.tiles();
+    for (unsigned r = 0; r < frame.rows; ++r)
+      for (unsigned c = 0; c < frame.columns; ++c) {
+        // The reference run with the record the tile would get if binned.
+        TileRecord record = setup.record(c, r);
+        const bool binned = std::find(tiles.begin(), tiles.end(), r * frame.columns + c) != tiles.end();
+        EXPECT_EQ(record.live, binned);
+        if (!binned) continue;
+        encode_record(record, layout, cmem.data() + layout.record_first);
+        run_reference(TileStage::fill, layout, cmem.data());
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 100u);
+}
+
+// Pixel centres decide coverage as in the arm back end (top-left rule):
+// two triangles sharing an edge draw every pixel of their union exactly
+// once, and a pixel well inside (or outside) is drawn (or not).
+TEST(ApTileSetup, SharedEdgesDrawEveryPixelOnce) {
+  const CmemLayout layout = CmemLayout::of(program());
+  const FrameGeometry frame;
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> x(0, 16 * static_cast<int>(frame.width())),
+      y(0, 16 * static_cast<int>(frame.height()));
+  std::vector<uint8_t> cmem = fresh_cmem(layout);
+  for (unsigned n = 0; n < 40; ++n) {
+    const int ax = x(rng), ay = y(rng), bx = x(rng), by = y(rng), cx = x(rng), cy = y(rng), dx = x(rng), dy = y(rng);
+    // a-b is the shared edge; c and d on opposite sides of it.
+    const auto side = [&](int px, int py) {
+      return static_cast<int64_t>(bx - ax) * (py - ay) - static_cast<int64_t>(by - ay) * (px - ax);
+    };
+    if (side(cx, cy) == 0 || side(dx, dy) == 0 || (side(cx, cy) > 0) == (side(dx, dy) > 0)) continue;
+    const TriangleSetup first(triangle(ax, ay, bx, by, cx, cy), DrawFlags{}, frame);
+    const TriangleSetup second(triangle(bx, by, ax, ay, dx, dy), DrawFlags{}, frame);
+    std::vector<int> count(size_t{frame.width()} * frame.height(), 0);
+    for (const TriangleSetup* setup : {&first, &second})
+      for (unsigned tile : setup->tiles()) {
+        const unsigned c = tile % frame.columns, r = tile / frame.columns;
+        encode_record(setup->record(c, r), layout, cmem.data() + layout.record_first);
+        run_reference(TileStage::fill, layout, cmem.data());
+        for (unsigned tx = 0; tx < frame.tile_width; ++tx)
+          for (unsigned l = 0; l < frame.tile_height; ++l)
+            if (cmem[layout.pixel(layout.we, tx, l)] != 0)
+              ++count[size_t{r * frame.tile_height + l} * frame.width() + c * frame.tile_width + tx];
+      }
+    // Every pixel of the quadrilateral's inside (by exact distance) is drawn
+    // exactly once, and no pixel twice.
+    for (unsigned row = 0; row < frame.height(); ++row)
+      for (unsigned column = 0; column < frame.width(); ++column) {
+        const int n_drawn = count[size_t{row} * frame.width() + column];
+        ASSERT_LE(n_drawn, 1) << "pixel " << column << ", " << row << " drawn twice";
+      }
+  }
+}
+
+TEST(ApTileSetup, DegenerateAndOffScreenTrianglesReachNoCu) {
+  const FrameGeometry frame;
+  EXPECT_FALSE(TriangleSetup(triangle(0, 0, 160, 160, 320, 320), DrawFlags{}, frame).valid());
+  const TriangleSetup off(triangle(-1600, -1600, -800, -1600, -800, -800), DrawFlags{}, frame);
+  EXPECT_TRUE(off.valid());
+  EXPECT_TRUE(off.tiles().empty());
+  EXPECT_FALSE(TriangleSetup(triangle(0, 0, 1 << 23, 0, 0, 160), DrawFlags{}, frame).valid());
+}
+
+// A small triangle in one tile reaches that CU only; the full frame's two
+// triangles reach all 96.
+TEST(ApTileSetup, BinsSmallAndFullFrameTriangles) {
+  const FrameGeometry frame;
+  // Pixels 1..6 of tile (2, 3): x 17..22, GL rows 1..6 (the bottom tile row).
+  const TriangleSetup small(triangle(16 * 17, 16 * 1, 16 * 22, 16 * 1, 16 * 17, 16 * 6), DrawFlags{}, frame);
+  EXPECT_EQ(small.tiles(), std::vector<unsigned>{3 * frame.columns + 2});
+  const int w = 16 * static_cast<int>(frame.width()), h = 16 * static_cast<int>(frame.height());
+  const TriangleSetup lower(triangle(0, 0, w, 0, w, h), DrawFlags{}, frame);
+  const TriangleSetup upper(triangle(0, 0, w, h, 0, h), DrawFlags{}, frame);
+  std::vector<bool> reached(frame.cus(), false);
+  for (const TriangleSetup* s : {&lower, &upper})
+    for (unsigned tile : s->tiles()) reached[tile] = true;
+  EXPECT_EQ(std::count(reached.begin(), reached.end(), true), static_cast<long>(frame.cus()));
+}
+
+// The record's bytes land where the program reads them, big-endian.
+TEST(ApTileRecord, PacksBigEndianAtTheProgramsAddresses) {
+  const CmemLayout layout = CmemLayout::of(program());
+  TileRecord record;
+  record.live = true;
+  record.e0 = {0x1234, -2, 0};
+  record.edu = {0, 0x0102, 0};
+  record.edv = {0, 0, -512};
+  record.z0 = 0xabcdef;
+  record.c0 = {0x1f80, 0, 0};
+  record.st0 = {0, 0x4321};
+  record.tex = 7;
+  record.zlequal = true;
+  record.zwrite = false;
+  std::vector<uint8_t> cmem(4096, 0x55);
+  encode_record(record, layout, cmem.data() + layout.record_first);
+  EXPECT_EQ(cmem[layout.live], 0xff);
+  EXPECT_EQ(cmem[layout.e0], 0x12);
+  EXPECT_EQ(cmem[layout.e0 + 1], 0x34);
+  EXPECT_EQ(cmem[layout.e0 + 2], 0xff);
+  EXPECT_EQ(cmem[layout.e0 + 3], 0xfe);
+  EXPECT_EQ(cmem[layout.edu + 2], 0x01);
+  EXPECT_EQ(cmem[layout.edu + 3], 0x02);
+  EXPECT_EQ(cmem[layout.edv + 4], 0xfe);
+  EXPECT_EQ(cmem[layout.edv + 5], 0x00);
+  EXPECT_EQ(cmem[layout.z0], 0xab);
+  EXPECT_EQ(cmem[layout.z0 + 1], 0xcd);
+  EXPECT_EQ(cmem[layout.z0 + 2], 0xef);
+  EXPECT_EQ(cmem[layout.c0], 0x1f);
+  EXPECT_EQ(cmem[layout.c0 + 1], 0x80);
+  EXPECT_EQ(cmem[layout.st0 + 2], 0x43);
+  EXPECT_EQ(cmem[layout.st0 + 3], 0x21);
+  EXPECT_EQ(cmem[layout.tex], 7);
+  EXPECT_EQ(cmem[layout.zlequal], 0xff);
+  EXPECT_EQ(cmem[layout.zoff], 0x00);
+  EXPECT_EQ(cmem[layout.zwrite], 0x00);
+  // Nothing outside the record.
+  EXPECT_EQ(cmem[layout.record_first - 1], 0x55);
+  EXPECT_EQ(cmem[layout.record_first + layout.record_bytes], 0x55);
+  EXPECT_EQ(layout.record_bytes, 62u);
+}
+
+// A pixel centre inside by more than a twentieth of a pixel is drawn, one
+// outside by as much is not: the fixed point moves edges by less.
+TEST(ApTileSetup, CoverageMatchesTheExactEdgesAwayFromThem) {
+  const CmemLayout layout = CmemLayout::of(program());
+  const FrameGeometry frame;
+  std::mt19937 rng(3);
+  std::vector<uint8_t> cmem = fresh_cmem(layout);
+  unsigned inside = 0;
+  for (unsigned n = 0; n < 100; ++n) {
+    const gl::Triangle t = random_triangle(rng, frame);
+    const TriangleSetup setup(t, DrawFlags{}, frame);
+    if (!setup.valid()) continue;
+    for (unsigned tile : setup.tiles()) {
+      const unsigned c = tile % frame.columns, r = tile / frame.columns;
+      encode_record(setup.record(c, r), layout, cmem.data() + layout.record_first);
+      run_reference(TileStage::fill, layout, cmem.data());
+      for (unsigned tx = 0; tx < frame.tile_width; ++tx)
+        for (unsigned l = 0; l < frame.tile_height; ++l) {
+          const double px = 16.0 * (c * frame.tile_width + tx) + 8;
+          const double py = 16.0 * (frame.height() - 1 - (r * frame.tile_height + l)) + 8;
+          double nearest = 1e30;
+          bool all_inside = true;
+          for (unsigned i = 0; i < 3; ++i) {
+            const gl::ScreenVertex &a = t.v[i], &b = t.v[(i + 1) % 3];
+            const double ex = b.x - a.x, ey = b.y - a.y;
+            double d = ((px - a.x) * ey - (py - a.y) * ex) / std::hypot(ex, ey) / 16.0;
+            if (setup.edges()[i].sign < 0) d = -d;
+            nearest = std::min(nearest, std::fabs(d));
+            all_inside = all_inside && d > 0;
+          }
+          if (nearest < 0.05) continue;
+          const bool drawn = cmem[layout.pixel(layout.we, tx, l)] != 0;
+          EXPECT_EQ(drawn, all_inside) << "tile " << c << "," << r << " pixel " << tx << "," << l;
+          inside += drawn;
+        }
+    }
+  }
+  EXPECT_GT(inside, 1000u);
+}
+
+}  // namespace
+}  // namespace tessera::ap_tile
