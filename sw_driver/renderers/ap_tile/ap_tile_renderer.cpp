@@ -142,7 +142,8 @@ void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
 }
 
 void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* records) {
-  std::vector<uint8_t> bytes(size_t{m_layout.record_bytes} * 4);
+  std::vector<uint8_t>& bytes = m_record_bytes;
+  bytes.resize(size_t{m_layout.record_bytes} * 4);
   for (unsigned k = 0; k < 4; ++k) encode_record(records[k], m_layout, bytes.data() + k * m_layout.record_bytes);
   for (unsigned b = 0; b < m_layout.record_bytes; ++b) {
     uint32_t word = 0;
@@ -165,7 +166,6 @@ void ApTileRenderer::flush() {
     m_triangles.clear();
     return;
   }
-  ++m_flushes;
   const unsigned groups = m_frame.columns / 4;
   for (size_t pass = 0; pass < passes; ++pass) {
     bool depth = false, textured = m_frame_textured;
@@ -205,7 +205,6 @@ void ApTileRenderer::flush() {
     }
     ++m_passes;
   }
-  m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
   m_busiest = std::max<uint64_t>(m_busiest, passes);
   m_triangles.clear();
   for (auto& queue : m_queues) queue.clear();
@@ -348,7 +347,6 @@ void ApTileRenderer::present() {
     m_display.present();
   }
   m_unsupported.clear();
-  m_frame_busiest = 0;
   publish_statistics();
 }
 

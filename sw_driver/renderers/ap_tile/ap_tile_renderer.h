@@ -86,9 +86,10 @@ class ApTileRenderer : public gl::Renderer {
   bool m_frame_textured = false;                // some pixel may carry a texture number
   std::vector<uint32_t> m_rgba;                 // the frame read back, row 0 at the top
   std::set<std::string> m_unsupported;          // reported this frame
+  std::vector<uint8_t> m_record_bytes;          // four CUs' records, packed into words
 
   HostTime m_time;
-  uint64_t m_passes = 0, m_flushes = 0, m_cu_triangles = 0, m_busiest = 0, m_frame_busiest = 0;
+  uint64_t m_passes = 0, m_cu_triangles = 0, m_busiest = 0;
   uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
 };
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace tessera::ap_tile {
 
@@ -201,14 +203,24 @@ int64_t TriangleSetup::edge_at(const Edge& edge, int64_t x16, int64_t y16) const
   return edge.top_left ? value : value - 1;
 }
 
-bool TriangleSetup::edge_excludes(const Edge& edge, unsigned c, unsigned r) const {
-  const int64_t x16 = 16 * int64_t{(c + 1) * m_frame.tile_width - 1} + 8;
-  const int64_t y16 = 16 * int64_t{m_frame.height() - (r + 1) * m_frame.tile_height} + 8;
-  const int64_t e0 = edge_at(edge, x16, y16);
-  const int64_t du = -int64_t{edge.a}, dv = edge.b;
+int64_t TriangleSetup::corner_x16(unsigned c) const {
+  return 16 * int64_t{(c + 1) * m_frame.tile_width - 1} + 8;
+}
+
+int64_t TriangleSetup::corner_y16(unsigned r) const {
+  return 16 * int64_t{m_frame.height() - (r + 1) * m_frame.tile_height} + 8;
+}
+
+TriangleSetup::EdgeInTile TriangleSetup::edge_in_tile(const Edge& edge, unsigned c, unsigned r) const {
+  EdgeInTile t;
+  t.e0 = edge_at(edge, corner_x16(c), corner_y16(r));
+  t.du = -int64_t{edge.a};
+  t.dv = edge.b;
   const int64_t last_u = m_frame.tile_width - 1, last_v = m_frame.tile_height - 1;
-  const int64_t top = std::max({e0, e0 + last_u * du, e0 + last_v * dv, e0 + last_u * du + last_v * dv});
-  return top < 0;
+  const int64_t corners[] = {t.e0, t.e0 + last_u * t.du, t.e0 + last_v * t.dv, t.e0 + last_u * t.du + last_v * t.dv};
+  t.low = *std::min_element(std::begin(corners), std::end(corners));
+  t.high = *std::max_element(std::begin(corners), std::end(corners));
+  return t;
 }
 
 bool TriangleSetup::overlaps(unsigned c, unsigned r) const {
@@ -218,7 +230,7 @@ bool TriangleSetup::overlaps(unsigned c, unsigned r) const {
   const int y1 = y0 + static_cast<int>(m_frame.tile_height) - 1;
   if (x1 < m_x_min || x0 > m_x_max || y1 < m_y_min || y0 > m_y_max) return false;
   for (const Edge& edge : m_edges)
-    if (edge_excludes(edge, c, r)) return false;
+    if (edge_in_tile(edge, c, r).high < 0) return false;
   return true;
 }
 
@@ -236,19 +248,25 @@ std::vector<unsigned> TriangleSetup::tiles() const {
   return result;
 }
 
-int64_t TriangleSetup::plane_at(const Plane& plane, int64_t x16, int64_t y16) const {
+namespace {
+
+// The plane's numerators: value = v0 + (cx (x - x0) + cy (y - y0)) / area.
+std::pair<Wide, Wide> plane_numerators(const Plane& plane, const int64_t* x, const int64_t* y) {
   const Wide dv1 = plane.v[1] - plane.v[0], dv2 = plane.v[2] - plane.v[0];
-  const Wide cx = dv1 * (m_y[2] - m_y[0]) - dv2 * (m_y[1] - m_y[0]);
-  const Wide cy = dv2 * (m_x[1] - m_x[0]) - dv1 * (m_x[2] - m_x[0]);
+  return {dv1 * (y[2] - y[0]) - dv2 * (y[1] - y[0]), dv2 * (x[1] - x[0]) - dv1 * (x[2] - x[0])};
+}
+
+}  // namespace
+
+int64_t TriangleSetup::plane_at(const Plane& plane, int64_t x16, int64_t y16) const {
+  const auto [cx, cy] = plane_numerators(plane, m_x, m_y);
   const Wide numerator =
       (Wide{plane.v[0]} * m_area + cx * (x16 - m_x[0]) + cy * (y16 - m_y[0])) * plane.num * (Wide{1} << plane.fraction);
   return round_div(numerator, Wide{plane.den} * m_area) + plane.bias;
 }
 
 int64_t TriangleSetup::plane_step(const Plane& plane, int64_t dx16, int64_t dy16) const {
-  const Wide dv1 = plane.v[1] - plane.v[0], dv2 = plane.v[2] - plane.v[0];
-  const Wide cx = dv1 * (m_y[2] - m_y[0]) - dv2 * (m_y[1] - m_y[0]);
-  const Wide cy = dv2 * (m_x[1] - m_x[0]) - dv1 * (m_x[2] - m_x[0]);
+  const auto [cx, cy] = plane_numerators(plane, m_x, m_y);
   return round_div((cx * dx16 + cy * dy16) * plane.num * (Wide{1} << plane.fraction), Wide{plane.den} * m_area);
 }
 
@@ -276,20 +294,15 @@ TileRecord TriangleSetup::record(unsigned c, unsigned r) const {
   TileRecord record;
   if (!overlaps(c, r)) return record;
   record.live = true;
-  const int64_t x16 = 16 * int64_t{(c + 1) * m_frame.tile_width - 1} + 8;
-  const int64_t y16 = 16 * int64_t{m_frame.height() - (r + 1) * m_frame.tile_height} + 8;
-  const int64_t last_u = m_frame.tile_width - 1, last_v = m_frame.tile_height - 1;
+  const int64_t x16 = corner_x16(c), y16 = corner_y16(r);
   for (unsigned e = 0; e < 3; ++e) {
-    const Edge& edge = m_edges[e];
-    const int64_t e0 = edge_at(edge, x16, y16);
-    const int64_t du = -int64_t{edge.a}, dv = edge.b;
-    const int64_t bottom = std::min({e0, e0 + last_u * du, e0 + last_v * dv, e0 + last_u * du + last_v * dv});
-    if (bottom >= 0) continue;  // the whole tile is inside this edge: E = 0 everywhere
+    const EdgeInTile t = edge_in_tile(m_edges[e], c, r);
+    if (t.low >= 0) continue;  // the whole tile is inside this edge: E = 0 everywhere
     // The edge crosses the tile, so every value in it lies within the
     // tile's span of the function: |E| <= 7 * 512 + 35 * 512 < 2^15.
-    record.e0[e] = static_cast<int16_t>(e0);
-    record.edu[e] = static_cast<int16_t>(du);
-    record.edv[e] = static_cast<int16_t>(dv);
+    record.e0[e] = static_cast<int16_t>(t.e0);
+    record.edu[e] = static_cast<int16_t>(t.du);
+    record.edv[e] = static_cast<int16_t>(t.dv);
   }
   record.z0 = static_cast<uint32_t>(plane_at(m_z, x16, y16)) & 0xffffffu;
   record.zdu = static_cast<uint32_t>(plane_step(m_z, -16, 0)) & 0xffffffu;

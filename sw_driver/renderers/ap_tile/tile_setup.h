@@ -110,10 +110,20 @@ class TriangleSetup {
   const std::array<Edge, 3>& edges() const { return m_edges; }
 
  private:
+  // An edge over tile (c, r) as the CU steps it: the value at the
+  // bottom-right pixel, the steps left and up, and the least and greatest
+  // value at the tile's four corner pixels.
+  struct EdgeInTile {
+    int64_t e0 = 0, du = 0, dv = 0, low = 0, high = 0;
+  };
+
   // The edge function at a pixel centre (sixteenths), rounded, with the
-  // tie bias; and at the tile's corners.
+  // tie bias.
   int64_t edge_at(const Edge& edge, int64_t x16, int64_t y16) const;
-  bool edge_excludes(const Edge& edge, unsigned c, unsigned r) const;
+  EdgeInTile edge_in_tile(const Edge& edge, unsigned c, unsigned r) const;
+  // The centre of tile column c's / row r's bottom-right pixel, 1/16 pixel.
+  int64_t corner_x16(unsigned c) const;
+  int64_t corner_y16(unsigned r) const;
   int64_t plane_at(const Plane& plane, int64_t x16, int64_t y16) const;
   int64_t plane_step(const Plane& plane, int64_t dx16, int64_t dy16) const;
   double texture_at(unsigned k, double x16, double y16) const;
