@@ -16,6 +16,7 @@
 
 namespace tessera {
 
+class Config;
 struct AppEnvironment;
 
 // Builds the renderer of the window surface (eglCreateWindowSurface). The
@@ -38,6 +39,10 @@ struct AppEnvironment {
   // chosen before any surface (and so any renderer) exists.
   gl::RendererCapabilities capabilities;
   std::vector<std::string> args;
+  // The run's configuration, for back ends with parameters of their own
+  // (ap.pixel.block, ...). Null where the launcher has none (the native
+  // benchmarks): the back end takes its defaults.
+  const Config* config = nullptr;
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.
   ActivityCounters* counters = nullptr;

@@ -19,6 +19,9 @@ ParamGroup driver_parameters() {
   return {"driver",
           {
               param::choice("driver.backend", "arm", names, description),
+              param::integer("ap.pixel.block", 1, 1, 5, "pixels",
+                             "ap-pixel: each CU shades a block of k x k pixels (one full evaluation, the others "
+                             "by adding gradients)"),
           },
           [](const Config& config) {
             // The choice has been checked against the same names already.

@@ -351,6 +351,7 @@ int run(int argc, char* argv[]) {
   env.heap_end = layout.heap_end;
   env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   env.args = opt.app_args;
+  env.config = &config;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
   env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };

@@ -8,26 +8,14 @@
 
 #include "ap_programs/ap_tile.h"
 #include "common/pixel_format.h"
+#include "renderers/common/host_time.h"
 #include "renderers/common/texturing.h"
 
 namespace tessera::ap_tile {
 
 namespace {
 
-// Accumulates the host time between its construction and its end into one
-// of HostTime's fields.
-class Timed {
- public:
-  Timed(HostApi& host, double& total) : m_host(host), m_total(total), m_start(host.now_seconds()) {}
-  ~Timed() { m_total += m_host.now_seconds() - m_start; }
-  Timed(const Timed&) = delete;
-  Timed& operator=(const Timed&) = delete;
-
- private:
-  HostApi& m_host;
-  double& m_total;
-  double m_start;
-};
+using Timed = renderers::TimedScope;
 
 // The depth a clear stores: the value the depth plane gives that depth
 // (tile_setup.cpp: z24 * 65535 / 65536 / 256, rounded).
@@ -288,25 +276,12 @@ void ApTileRenderer::read_back() {
                     4);
               };
               uint8_t texel[4];
-              if (tex.mag_filter == gl::TexFilter::nearest) {
-                texel_at(renderers::wrap_texel(u8 >> 8, tex.width, tex.wrap_s),
-                         renderers::wrap_texel(v8 >> 8, tex.height, tex.wrap_t), texel);
-                m_host.compute(Op::alu, k.texel_nearest_alu);
-                m_host.compute(Op::mul, k.texel_nearest_mul);
-              } else {
-                const int um = u8 - 128, vm = v8 - 128;
-                const int i0 = renderers::wrap_texel(um >> 8, tex.width, tex.wrap_s);
-                const int i1 = renderers::wrap_texel((um >> 8) + 1, tex.width, tex.wrap_s);
-                const int j0 = renderers::wrap_texel(vm >> 8, tex.height, tex.wrap_t);
-                const int j1 = renderers::wrap_texel((vm >> 8) + 1, tex.height, tex.wrap_t);
-                uint8_t four[4][4];
-                texel_at(i0, j0, four[0]);
-                texel_at(i1, j0, four[1]);
-                texel_at(i0, j1, four[2]);
-                texel_at(i1, j1, four[3]);
-                renderers::bilinear(four, static_cast<uint32_t>(um) & 255, static_cast<uint32_t>(vm) & 255, texel);
+              if (renderers::sample_texture(tex, u8, v8, texel_at, texel)) {
                 m_host.compute(Op::alu, k.texel_linear_alu);
                 m_host.compute(Op::mul, k.texel_linear_mul);
+              } else {
+                m_host.compute(Op::alu, k.texel_nearest_alu);
+                m_host.compute(Op::mul, k.texel_nearest_mul);
               }
               rgba = renderers::apply_tex_env(entry.env, rgba, texel);
               m_host.compute(Op::alu, k.tex_env_alu);
@@ -356,12 +331,7 @@ void ApTileRenderer::publish_statistics() {
   auto set = [&](const char* name, const char* description, uint64_t value) {
     c.counter(std::string("ap_tile.") + name, description).value = value;
   };
-  auto ns = [](double seconds) { return static_cast<uint64_t>(std::llround(seconds * 1e9)); };
-  set("host_compute_ns", "host time setting up, binning, packing and texturing", ns(m_time.compute));
-  set("host_write_ns", "host time writing the array (triangle records, clear values)", ns(m_time.array_write));
-  set("host_read_ns", "host time reading the frame back from the array", ns(m_time.array_read));
-  set("host_wait_ns", "host time waiting for the array's programs", ns(m_time.array_wait));
-  set("host_frame_out_ns", "host time writing the frame out to the display", ns(m_time.frame_out));
+  renderers::publish_host_time(c, "ap_tile", m_time, "host time setting up, binning, packing and texturing");
   set("triangles", "triangles binned to at least one CU", m_triangles_drawn);
   set("cu_triangles", "triangle records written (one per CU per triangle)", m_cu_triangles);
   set("passes", "passes run (every CU at most one triangle per pass)", m_passes);

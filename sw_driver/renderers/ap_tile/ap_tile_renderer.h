@@ -20,6 +20,7 @@
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/backend_entry_points.h"
+#include "renderers/common/host_time.h"
 
 namespace tessera::ap_tile {
 
@@ -33,11 +34,6 @@ struct HostCosts {
   unsigned pixel_alu = 8;                     // per pixel read back: unpack RGB565, pack for the display
   unsigned texel_nearest_alu = 8, texel_nearest_mul = 1, texel_linear_alu = 30, texel_linear_mul = 9;
   unsigned tex_env_alu = 12, tex_env_mul = 4;
-};
-
-// Where the host's time went, in seconds of host time.
-struct HostTime {
-  double compute = 0, array_write = 0, array_read = 0, array_wait = 0, frame_out = 0;
 };
 
 class ApTileRenderer : public gl::Renderer {
@@ -88,7 +84,7 @@ class ApTileRenderer : public gl::Renderer {
   std::set<std::string> m_unsupported;          // reported this frame
   std::vector<uint8_t> m_record_bytes;          // four CUs' records, packed into words
 
-  HostTime m_time;
+  renderers::HostTime m_time;
   uint64_t m_passes = 0, m_cu_triangles = 0, m_busiest = 0;
   uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
 };

@@ -30,20 +30,11 @@ int64_t floor_div(int64_t n, int64_t d) {
 constexpr int64_t COORDINATE_LIMIT = int64_t{1} << 22;  // 2^18 pixels in 1/16
 
 uint16_t variable(const ap::Program& program, const char* name, unsigned size) {
-  const auto it = program.variables.find(name);
-  if (it == program.variables.end())
-    throw std::invalid_argument(program.source_name + ": the ap-tile program has no CMEM variable '" + name + "'");
-  if (it->second.size != size)
-    throw std::invalid_argument(program.source_name + ": CMEM variable '" + name + "' is " +
-                                std::to_string(it->second.size) + " bytes, the host expects " + std::to_string(size));
-  return it->second.address;
+  return ap::variable_address(program, name, size);
 }
 
 int constant(const ap::Program& program, const char* name) {
-  const auto it = program.constants.find(name);
-  if (it == program.constants.end())
-    throw std::invalid_argument(program.source_name + ": the ap-tile program has no constant '" + name + "'");
-  return it->second;
+  return ap::constant_value(program, name);
 }
 
 void put16(uint8_t* at, uint16_t value) {

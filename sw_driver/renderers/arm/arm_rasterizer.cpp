@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
 
 namespace tessera::arm {
@@ -37,8 +38,6 @@ int64_t ceil_div(int64_t a, int64_t b) {
 }  // b > 0
 
 // Exact round(x / 255) for 0 <= x <= 65025.
-using renderers::div255;
-using renderers::mul8;
 
 // Depth (16 bits) and colour words of a clear, little-endian, 2 or 4 bytes.
 inline uint32_t load_le(const uint8_t* p, unsigned bytes) {
@@ -55,66 +54,10 @@ inline void store_le(uint8_t* p, unsigned bytes, uint32_t value) {
   }
 }
 
-// On packed pixel words; the caller masks the result to the format's bits.
-inline uint32_t logic_op(LogicOp op, uint32_t s, uint32_t d) {
-  switch (op) {
-    case LogicOp::clear: return 0;
-    case LogicOp::and_: return s & d;
-    case LogicOp::and_reverse: return s & ~d;
-    case LogicOp::copy: return s;
-    case LogicOp::and_inverted: return ~s & d;
-    case LogicOp::noop: return d;
-    case LogicOp::xor_: return s ^ d;
-    case LogicOp::or_: return s | d;
-    case LogicOp::nor: return ~(s | d);
-    case LogicOp::equiv: return ~(s ^ d);
-    case LogicOp::invert: return ~d;
-    case LogicOp::or_reverse: return s | ~d;
-    case LogicOp::copy_inverted: return ~s;
-    case LogicOp::or_inverted: return ~s | d;
-    case LogicOp::nand: return ~(s & d);
-    case LogicOp::set: return ~0u;
-  }
-  return 0;  // not reached: every 4-bit code is an operation (fixed_function.def)
-}
-
-inline bool logic_op_reads_destination(LogicOp op) {
-  return op != LogicOp::clear && op != LogicOp::copy && op != LogicOp::copy_inverted && op != LogicOp::set;
-}
-
-inline bool factor_reads_destination(BlendFactor f) {
-  return f == BlendFactor::dst_color || f == BlendFactor::one_minus_dst_color || f == BlendFactor::dst_alpha ||
-         f == BlendFactor::one_minus_dst_alpha || f == BlendFactor::src_alpha_saturate;
-}
-
-// Blend factor for channel c (0..3 = r, g, b, a) as a 0.8 code.
-inline uint32_t blend_factor(BlendFactor f, const uint32_t s[4], const uint32_t d[4], int c) {
-  switch (f) {
-    case BlendFactor::zero: return 0;
-    case BlendFactor::one: return 255;
-    case BlendFactor::src_color: return s[c];
-    case BlendFactor::one_minus_src_color: return 255 - s[c];
-    case BlendFactor::dst_color: return d[c];
-    case BlendFactor::one_minus_dst_color: return 255 - d[c];
-    case BlendFactor::src_alpha: return s[3];
-    case BlendFactor::one_minus_src_alpha: return 255 - s[3];
-    case BlendFactor::dst_alpha: return d[3];
-    case BlendFactor::one_minus_dst_alpha: return 255 - d[3];
-    case BlendFactor::src_alpha_saturate: return c == 3 ? 255 : std::min(s[3], 255 - d[3]);
-  }
-  return 0;
-}
-
-inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t src, uint32_t dst) {
-  const uint32_t s[4] = {src & 0xff, (src >> 8) & 0xff, (src >> 16) & 0xff, src >> 24};
-  const uint32_t d[4] = {dst & 0xff, (dst >> 8) & 0xff, (dst >> 16) & 0xff, dst >> 24};
-  uint32_t out = 0;
-  for (int c = 0; c < 4; ++c) {
-    const uint32_t v = mul8(s[c], blend_factor(src_factor, s, d, c)) + mul8(d[c], blend_factor(dst_factor, s, d, c));
-    out |= std::min(v, 255u) << (8 * c);
-  }
-  return out;
-}
+using renderers::blend;
+using renderers::factor_reads_destination;
+using renderers::logic_op;
+using renderers::logic_op_reads_destination;
 
 // A wrap code without an entry acts as repeat (fixed_function.def).
 inline int wrap(int i, unsigned size, gl::TexWrap mode) {

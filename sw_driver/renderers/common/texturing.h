@@ -55,4 +55,28 @@ inline uint32_t apply_tex_env(gl::TexEnv env, uint32_t rgba, const uint8_t texel
   return rgba;
 }
 
+// The colour of `tex` at texel coordinates (u8, v8) with 8 fraction bits,
+// for the back ends that texture without mipmaps (ap-tile, ap-pixel):
+// nearest (the magnification filter) takes texel floor(u); bilinear blends
+// texels floor(u - 0.5) and the next with 8-bit weights. fetch(i, j, out)
+// reads texel (i, j), already wrapped, as RGBA8. Returns whether the blend
+// was bilinear (four fetches) rather than nearest (one).
+template <typename Fetch>
+bool sample_texture(const gl::Texture& tex, int u8, int v8, Fetch&& fetch, uint8_t out[4]) {
+  if (tex.mag_filter == gl::TexFilter::nearest) {
+    fetch(wrap_texel(u8 >> 8, tex.width, tex.wrap_s), wrap_texel(v8 >> 8, tex.height, tex.wrap_t), out);
+    return false;
+  }
+  const int um = u8 - 128, vm = v8 - 128;
+  const int i0 = wrap_texel(um >> 8, tex.width, tex.wrap_s), i1 = wrap_texel((um >> 8) + 1, tex.width, tex.wrap_s);
+  const int j0 = wrap_texel(vm >> 8, tex.height, tex.wrap_t), j1 = wrap_texel((vm >> 8) + 1, tex.height, tex.wrap_t);
+  uint8_t four[4][4];
+  fetch(i0, j0, four[0]);
+  fetch(i1, j0, four[1]);
+  fetch(i0, j1, four[2]);
+  fetch(i1, j1, four[3]);
+  bilinear(four, static_cast<uint32_t>(um) & 255, static_cast<uint32_t>(vm) & 255, out);
+  return true;
+}
+
 }  // namespace tessera::renderers

@@ -115,7 +115,7 @@ TEST(Backends, NamesAreJoinedInTheTablesOrder) {
 
 TEST(DriverParameters, BackendChoicesAndDescriptionComeFromTheTable) {
   const ParamGroup group = driver_parameters();
-  ASSERT_EQ(group.specs.size(), 1u);
+  ASSERT_FALSE(group.specs.empty());
   const ParamSpec& spec = group.specs[0];
   EXPECT_EQ(spec.key, "driver.backend");
   EXPECT_EQ(spec.type, ParamType::choice);
@@ -124,6 +124,23 @@ TEST(DriverParameters, BackendChoicesAndDescriptionComeFromTheTable) {
   for (const backends::Backend& entry : backends::BACKENDS) {
     const std::string part = std::string(entry.name) + " (" + entry.description + ")";
     EXPECT_NE(spec.description.find(part), std::string::npos) << spec.description;
+  }
+}
+
+// The array back ends' own keys are the driver's too: ap-pixel's block
+// size, 1 to 5 (its program has an entry per size).
+TEST(DriverParameters, ApPixelBlockIsOneToFive) {
+  Config config({driver_parameters()});
+  EXPECT_EQ(config.get_uint("ap.pixel.block"), 1u);
+  config.set("ap.pixel.block", 5, "test");
+  EXPECT_EQ(config.get_uint("ap.pixel.block"), 5u);
+  for (int bad : {0, 6}) {
+    try {
+      config.set("ap.pixel.block", bad, "test");
+      ADD_FAILURE() << "accepted ap.pixel.block=" << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("ap.pixel.block"), std::string::npos) << e.what();
+    }
   }
 }
 

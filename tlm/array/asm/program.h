@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,5 +32,36 @@ struct Program {
   // The source line of each word, so a profile per word reads per line.
   std::vector<unsigned> lines;
 };
+
+// The address of `program`'s variable `name`, which the host expects to be
+// `size` bytes; throws std::invalid_argument naming the program, the
+// variable and the sizes otherwise.
+inline uint16_t variable_address(const Program& program, const std::string& name, unsigned size) {
+  const auto it = program.variables.find(name);
+  if (it == program.variables.end())
+    throw std::invalid_argument(program.source_name + ": the program has no CMEM variable '" + name + "'");
+  if (it->second.size != size)
+    throw std::invalid_argument(program.source_name + ": CMEM variable '" + name + "' is " +
+                                std::to_string(it->second.size) + " bytes, the host expects " + std::to_string(size));
+  return it->second.address;
+}
+
+// The value of `program`'s constant `name`; throws std::invalid_argument if
+// it has none.
+inline int constant_value(const Program& program, const std::string& name) {
+  const auto it = program.constants.find(name);
+  if (it == program.constants.end())
+    throw std::invalid_argument(program.source_name + ": the program has no constant '" + name + "'");
+  return it->second;
+}
+
+// The word of `program`'s entry point `name`; throws std::invalid_argument
+// if it has none.
+inline unsigned entry_word(const Program& program, const std::string& name) {
+  const auto it = program.entries.find(name);
+  if (it == program.entries.end())
+    throw std::invalid_argument(program.source_name + ": the program has no entry point '" + name + "'");
+  return it->second;
+}
 
 }  // namespace tessera::ap

@@ -1,0 +1,41 @@
+// The ap-pixel back end's entry points for the registry (backends.def).
+#include <string>
+
+#include "renderers/ap_pixel/ap_pixel_renderer.h"
+#include "renderers/backend_entry_points.h"
+
+namespace tessera::backends::ap_pixel {
+
+namespace {
+
+// The study's frame: the array's 24 x 4 CUs as tiles of 8 x 36 pixels,
+// 192 x 144 (ap-pixel has no tiles, but draws the frame ap-tile does).
+constexpr unsigned TILE_WIDTH = 8, TILE_HEIGHT = 36, MAX_FRAME = 256;
+
+}  // namespace
+
+std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
+  return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(env);
+}
+
+// The display shows the study's frame (192 x 144 for the 24 x 4 array)
+// unless the user chose its size.
+void adjust_configuration(Config& config) {
+  if (!config.is_set("display.width"))
+    config.set("display.width", config.get_uint("array.columns") * TILE_WIDTH, "driver.backend=ap-pixel");
+  if (!config.is_set("display.height"))
+    config.set("display.height", config.get_uint("array.rows") * TILE_HEIGHT, "driver.backend=ap-pixel");
+}
+
+// A CU's block offsets are signed bytes: frames up to 256 x 256.
+void check_configuration(const Config& config) {
+  const uint64_t width = config.get_uint("display.width"), height = config.get_uint("display.height");
+  if (width > MAX_FRAME || height > MAX_FRAME)
+    throw ConfigError("configuration: impossible combination: driver.backend=ap-pixel draws frames of at most " +
+                      std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
+                      " pixels (a CU's block offsets from the triangle's origin are signed bytes), but "
+                      "display.width x display.height = " +
+                      std::to_string(width) + " x " + std::to_string(height));
+}
+
+}  // namespace tessera::backends::ap_pixel

@@ -1,0 +1,410 @@
+#include "renderers/ap_pixel/ap_pixel_renderer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+#include <stdexcept>
+
+#include "ap_programs/ap_pixel.h"
+#include "common/fixed_function.h"
+#include "common/pixel_format.h"
+#include "config/config.h"
+#include "gl/runtime.h"
+#include "renderers/common/fragment_ops.h"
+#include "renderers/common/texturing.h"
+
+namespace tessera::ap_pixel {
+
+namespace {
+
+using renderers::TimedScope;
+
+// The offsets a CU multiplies by are signed bytes, so every block of a
+// triangle lies within 128 pixels of its origin: frames up to this size.
+constexpr unsigned MAX_FRAME = 256;
+
+}  // namespace
+
+ApPixelRenderer::ApPixelRenderer(AppEnvironment& env)
+    : m_env(env),
+      m_host(*env.host),
+      m_display(env),
+      m_memory(*env.host),
+      m_array(env),
+      m_layout(PixelLayout::of(ap::programs::ap_pixel())) {
+  m_buffers.width = m_display.width();
+  m_buffers.height = m_display.height();
+  if (m_buffers.width > MAX_FRAME || m_buffers.height > MAX_FRAME)
+    throw std::invalid_argument("ap-pixel: the display is " + std::to_string(m_buffers.width) + " x " +
+                                std::to_string(m_buffers.height) + ", but a CU's block offsets are signed bytes, so " +
+                                "the back end draws frames of at most " + std::to_string(MAX_FRAME) + " x " +
+                                std::to_string(MAX_FRAME) + " pixels");
+  m_buffers.color_format = m_display.format();
+  m_buffers.color_address = m_display.back_buffer();
+  m_buffers.depth_address = gl::allocate(m_buffers.width * m_buffers.height * 2);
+  m_buffers.stencil_address = gl::allocate(m_buffers.width * m_buffers.height);
+  m_buffers_core = std::make_unique<arm::ArmRasterizer>(m_memory, m_buffers);
+  if (env.config != nullptr) m_block = static_cast<unsigned>(env.config->get_uint("ap.pixel.block"));
+  if (m_block < 1 || m_block > m_layout.max_block)
+    throw std::invalid_argument("ap-pixel: block size " + std::to_string(m_block) + " is outside 1.." +
+                                std::to_string(m_layout.max_block));
+  m_array.load(ap::programs::ap_pixel().words, m_program_base);
+  const unsigned across = (m_buffers.width + m_block - 1) / m_block, up = (m_buffers.height + m_block - 1) / m_block;
+  m_block_index.assign(size_t{across} * up, -1);
+}
+
+void ApPixelRenderer::unsupported(const std::string& what) {
+  if (!m_unsupported.insert(what).second) return;
+  const std::string message = "ap-pixel does not support " + what + " (reported once per frame)";
+  if (m_env.warn)
+    m_env.warn("ap-pixel", message);
+  else
+    std::cerr << "warning: " << message << "\n";
+}
+
+void ApPixelRenderer::clear(const gl::ClearRequest& request) {
+  TimedScope timed(m_host, m_time.compute);
+  m_buffers_core->clear(request);
+}
+
+void ApPixelRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
+  TimedScope timed(m_host, m_time.compute);
+  m_buffers_core->read_pixels(x, y, width, height, rgba);
+}
+
+void ApPixelRenderer::present() {
+  {
+    TimedScope timed(m_host, m_time.frame_out);
+    m_display.present();
+  }
+  m_buffers.color_address = m_display.back_buffer();
+  m_buffers_core->set_color_address(m_buffers.color_address);
+  m_unsupported.clear();
+  publish_statistics();
+}
+
+void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  // Everything the host does here is computing except the array's own
+  // parts, which their scopes charge.
+  const double start = m_host.now_seconds();
+  const renderers::HostTime before = m_time;
+  if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): drawn without it");
+  const bool textured = state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
+                        state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
+                        (state.tex.height & (state.tex.height - 1)) == 0;
+  if (state.texture && !textured)
+    unsupported("textures that are not a power of two up to 256 texels: drawn untextured");
+  Reads reads;
+  reads.colour = !state.flat_shading;
+  reads.alpha = reads.colour && (state.alpha_test || state.blend || m_buffers.color_format != PixelFormat::rgb565 ||
+                                 (textured && state.tex_env != gl::TexEnv::replace));
+  reads.texcoords = textured;
+  gl::RasterState effective = state;
+  effective.texture = textured;
+  for (size_t t = 0; t < count; ++t) draw_triangle(effective, triangles[t], reads);
+  const double elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
+                           (m_time.array_wait - before.array_wait);
+  m_time.compute += m_host.now_seconds() - start - elsewhere;
+}
+
+void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads) {
+  const HostCosts& k = m_costs;
+  m_host.compute(Op::alu, k.triangle_alu + k.triangle_divisions * k.division_alu);
+  m_host.compute(Op::mul, k.triangle_mul);
+  m_host.compute(Op::call, k.triangle_divisions);
+  PixelBox box{0, 0, static_cast<int>(m_buffers.width) - 1, static_cast<int>(m_buffers.height) - 1};
+  if (state.scissor_test) {
+    box.x0 = std::max(box.x0, state.scissor_x);
+    box.y0 = std::max(box.y0, state.scissor_y);
+    box.x1 = static_cast<int>(std::min<int64_t>(box.x1, int64_t{state.scissor_x} + state.scissor_width - 1));
+    box.y1 = static_cast<int>(std::min<int64_t>(box.y1, int64_t{state.scissor_y} + state.scissor_height - 1));
+  }
+  const PixelTriangle setup(triangle, state.flat_shading, state.texture ? state.tex.width : 0,
+                            state.texture ? state.tex.height : 0, box);
+  if (!setup.valid()) return;
+
+  // Scan conversion and the depth test, on the host.
+  m_pixels.clear();
+  m_blocks.clear();
+  const unsigned b = m_block, across = (m_buffers.width + b - 1) / b;
+  std::vector<uint16_t> depth_row;
+  for (int j = setup.y_first(); j <= setup.y_last(); ++j) {
+    m_host.compute(Op::alu, k.row_alu);
+    int first = 0, last = -1;
+    if (!setup.span(j, first, last)) continue;
+    const auto n = static_cast<unsigned>(last - first + 1);
+    m_host.compute(Op::alu, uint64_t{n} * k.pixel_alu);
+    m_host.compute(Op::branch, uint64_t{n} * k.pixel_branch);
+    const uint32_t row = (m_buffers.height - 1 - static_cast<uint32_t>(j)) * m_buffers.width;
+    if (state.depth_test) {
+      const uint8_t* p = m_host.load_span(m_buffers.depth_address + (row + static_cast<uint32_t>(first)) * 2, 2, n);
+      depth_row.resize(n);
+      for (unsigned i = 0; i < n; ++i) depth_row[i] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
+    }
+    for (unsigned i = 0; i < n; ++i) {
+      const int x = first + static_cast<int>(i);
+      const uint16_t z = setup.depth16(x, j);
+      if (state.depth_test && !compare_passes(state.depth_func, z, depth_row[i])) continue;
+      const size_t key = size_t{static_cast<unsigned>(j) / b} * across + static_cast<unsigned>(x) / b;
+      if (m_block_index[key] < 0) {
+        m_block_index[key] = static_cast<int32_t>(m_blocks.size());
+        m_blocks.push_back(
+            {x / static_cast<int>(b) * static_cast<int>(b), j / static_cast<int>(b) * static_cast<int>(b)});
+      }
+      m_pixels.push_back({x, j, z, static_cast<uint32_t>(m_block_index[key])});
+    }
+  }
+  for (const Block& block : m_blocks)
+    m_block_index[size_t{static_cast<unsigned>(block.y) / b} * across + static_cast<unsigned>(block.x) / b] = -1;
+  m_host.compute(Op::alu, uint64_t{k.visible_alu} * m_pixels.size());
+  if (m_pixels.empty()) return;
+  ++m_triangles;
+  m_visible += m_pixels.size();
+
+  if (!reads.any()) {
+    // Flat and untextured: the host knows every pixel's colour.
+    const gl::ScreenVertex& v = triangle.v[2];
+    const uint32_t rgba = uint32_t{v.r} | uint32_t{v.g} << 8 | uint32_t{v.b} << 16 | uint32_t{v.a} << 24;
+    for (const Pixel& pixel : m_pixels) write_pixel(state, pixel, rgba, nullptr, false);
+    return;
+  }
+
+  // Each block's pixels.
+  m_block_pixels.assign(m_blocks.size(), {});
+  for (size_t p = 0; p < m_pixels.size(); ++p) m_block_pixels[m_pixels[p].block].push_back(static_cast<uint32_t>(p));
+
+  // The origin: the middle of the blocks, so that every offset fits a
+  // signed byte.
+  int x_lo = m_blocks[0].x, x_hi = x_lo, y_lo = m_blocks[0].y, y_hi = y_lo;
+  for (const Block& block : m_blocks) {
+    x_lo = std::min(x_lo, block.x);
+    x_hi = std::max(x_hi, block.x);
+    y_lo = std::min(y_lo, block.y);
+    y_hi = std::max(y_hi, block.y);
+  }
+  const int ox = (x_lo + x_hi + 1) / 2, oy = (y_lo + y_hi + 1) / 2;
+  const TriangleValues values = setup.values(ox, oy);
+  bool representable = true;
+  for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue, Attribute::alpha})
+    representable = representable && (!reads.colour || !values.clamped[static_cast<unsigned>(a)]);
+  for (Attribute a : {Attribute::s, Attribute::t})
+    representable = representable && (!reads.texcoords || !values.clamped[static_cast<unsigned>(a)]);
+  if (!representable) {
+    // A sliver whose gradients 8.8 cannot hold: the host evaluates the
+    // planes at each pixel itself (README.md, "Slivers").
+    ++m_host_shaded;
+    for (const Pixel& pixel : m_pixels) {
+      const TriangleValues at = setup.values(pixel.x, pixel.y);
+      m_host.compute(Op::alu, uint64_t{k.host_shade_alu} * ATTRIBUTES);
+      m_host.compute(Op::mul, uint64_t{k.host_shade_mul} * ATTRIBUTES);
+      std::array<int32_t, ATTRIBUTES> r{};
+      for (unsigned a = 0; a < ATTRIBUTES; ++a) r[a] = static_cast<int32_t>(at.c0[a] << 8) >> 8;
+      write_shaded(state, triangle, reads, pixel, r);
+    }
+    return;
+  }
+  {
+    TimedScope timed(m_host, m_time.array_write);
+    for_each_value_byte(values, m_layout, [&](unsigned address, uint8_t byte) {
+      m_host.compute(Op::alu, k.value_alu);
+      m_array.fill8(address, byte);
+      m_words_written += m_array.cus() / 4;
+    });
+  }
+  for (size_t first = 0; first < m_blocks.size(); first += m_array.cus())
+    run_batch(state, triangle, reads, first, std::min<size_t>(m_array.cus(), m_blocks.size() - first), ox, oy);
+}
+
+void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                                size_t first_block, size_t blocks, int ox, int oy) {
+  const HostCosts& k = m_costs;
+  const unsigned columns = m_array.columns(), b = m_block;
+  const unsigned groups = static_cast<unsigned>((blocks + 3) / 4);  // groups holding a block, in CU order
+  auto lane_block = [&](unsigned group, unsigned byte) -> const Block* {
+    const size_t lane = size_t{group} * 4 + byte;
+    return lane < blocks ? &m_blocks[first_block + lane] : nullptr;
+  };
+  // The blocks' offsets: one word of dx and one of dy per group of four CUs.
+  {
+    TimedScope timed(m_host, m_time.array_write);
+    for (unsigned g = 0; g < groups; ++g) {
+      uint32_t dx = 0, dy = 0;
+      for (unsigned byte = 0; byte < 4; ++byte)
+        if (const Block* block = lane_block(g, byte)) {
+          dx |= uint32_t{static_cast<uint8_t>(block->x - ox)} << (8 * byte);
+          dy |= uint32_t{static_cast<uint8_t>(block->y - oy)} << (8 * byte);
+        }
+      const unsigned i = g % (columns / 4), j = g / (columns / 4);
+      m_host.compute(Op::alu, 2 * k.pack_alu);
+      m_array.write32(i, j, m_layout.dx, dx);
+      m_array.write32(i, j, m_layout.dy, dy);
+      m_words_written += 2;
+    }
+  }
+  {
+    TimedScope timed(m_host, m_time.array_wait);
+    m_cycles += m_array.run(m_program_base + m_layout.entry[b]);
+  }
+  ++m_batches;
+  m_blocks_sent += blocks;
+
+  // What comes back: per pixel of the block that the host drew, the
+  // attributes it needs, byte by byte (README.md, "What the host reads").
+  struct Needed {
+    Attribute attribute;
+    unsigned bytes;
+  };
+  std::vector<Needed> needed;
+  if (reads.colour)
+    for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed.push_back({a, 2});
+  if (reads.alpha) needed.push_back({Attribute::alpha, 2});
+  if (reads.texcoords) {
+    needed.push_back({Attribute::s, 3});
+    needed.push_back({Attribute::t, 3});
+  }
+  m_results.resize(m_pixels.size());
+  for (unsigned g = 0; g < groups; ++g) {
+    const unsigned i = g % (columns / 4), j = g / (columns / 4);
+    // The group's pixels by place: slot v * b + u of each of its four CUs.
+    int32_t slot_pixel[4][25];
+    std::fill(&slot_pixel[0][0], &slot_pixel[0][0] + 4 * 25, -1);
+    uint32_t used = 0;
+    for (unsigned byte = 0; byte < 4; ++byte) {
+      if (lane_block(g, byte) == nullptr) continue;
+      const size_t index = first_block + size_t{g} * 4 + byte;
+      const Block& block = m_blocks[index];
+      for (uint32_t p : m_block_pixels[index]) {
+        const unsigned slot =
+            static_cast<unsigned>(m_pixels[p].y - block.y) * b + static_cast<unsigned>(m_pixels[p].x - block.x);
+        slot_pixel[byte][slot] = static_cast<int32_t>(p);
+        used |= 1u << slot;
+      }
+    }
+    for (unsigned v = 0; v < b; ++v)
+      for (unsigned u = 0; u < b; ++u) {
+        if ((used & (1u << (v * b + u))) == 0) continue;
+        for (const Needed& need : needed) {
+          uint32_t word[3] = {0, 0, 0};
+          {
+            TimedScope timed(m_host, m_time.array_read);
+            for (unsigned byte = 0; byte < need.bytes; ++byte)
+              word[byte] = m_array.read32(i, j, m_layout.result(u, v, need.attribute) + byte);
+            m_words_read += need.bytes;
+          }
+          for (unsigned lane = 0; lane < 4; ++lane) {
+            const int32_t p = slot_pixel[lane][v * b + u];
+            if (p < 0) continue;
+            uint32_t value = 0;
+            for (unsigned byte = 0; byte < 3; ++byte)
+              value = value << 8 | (byte < need.bytes ? (word[byte] >> (8 * lane)) & 0xff : 0);
+            // Sign-extended from 24 bits.
+            m_results[static_cast<size_t>(p)][static_cast<unsigned>(need.attribute)] =
+                static_cast<int32_t>(value << 8) >> 8;
+            m_host.compute(Op::alu, uint64_t{k.unpack_alu} * need.bytes);
+          }
+        }
+      }
+  }
+
+  // The pixels, into the frame buffer.
+  for (size_t index = first_block; index < first_block + blocks; ++index)
+    for (uint32_t p : m_block_pixels[index]) write_shaded(state, triangle, reads, m_pixels[p], m_results[p]);
+}
+
+void ApPixelRenderer::write_shaded(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                                   const Pixel& pixel, const std::array<int32_t, ATTRIBUTES>& r) {
+  uint32_t rgba;
+  if (reads.colour) {
+    // The integer part of 16.8, clamped.
+    auto channel = [&](Attribute a) {
+      return static_cast<uint32_t>(std::clamp(r[static_cast<unsigned>(a)] >> 8, 0, 255));
+    };
+    rgba = channel(Attribute::red) | channel(Attribute::green) << 8 | channel(Attribute::blue) << 16 |
+           (reads.alpha ? channel(Attribute::alpha) : 255u) << 24;
+  } else {
+    const gl::ScreenVertex& provoking = triangle.v[2];
+    rgba =
+        uint32_t{provoking.r} | uint32_t{provoking.g} << 8 | uint32_t{provoking.b} << 16 | uint32_t{provoking.a} << 24;
+  }
+  const int st[2] = {r[static_cast<unsigned>(Attribute::s)], r[static_cast<unsigned>(Attribute::t)]};
+  write_pixel(state, pixel, rgba, st, reads.texcoords);
+}
+
+void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pixel, uint32_t rgba, const int st[2],
+                                  bool textured) {
+  const HostCosts& k = m_costs;
+  if (textured) {
+    const gl::Texture& tex = state.tex;
+    auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
+      std::memcpy(
+          out,
+          m_host.load_span(tex.address + (static_cast<uint32_t>(tj) * tex.width + static_cast<uint32_t>(ti)) * 4, 4, 1),
+          4);
+    };
+    uint8_t texel[4];
+    if (renderers::sample_texture(tex, st[0], st[1], texel_at, texel)) {
+      m_host.compute(Op::alu, k.texel_linear_alu);
+      m_host.compute(Op::mul, k.texel_linear_mul);
+    } else {
+      m_host.compute(Op::alu, k.texel_nearest_alu);
+      m_host.compute(Op::mul, k.texel_nearest_mul);
+    }
+    rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
+    m_host.compute(Op::alu, k.tex_env_alu);
+    m_host.compute(Op::mul, k.tex_env_mul);
+  }
+  if (state.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) return;
+  m_host.compute(Op::alu, k.write_alu);
+  m_host.compute(Op::mul, k.write_mul);
+  const uint32_t offset =
+      (m_buffers.height - 1 - static_cast<uint32_t>(pixel.y)) * m_buffers.width + static_cast<uint32_t>(pixel.x);
+  if (state.depth_test && state.depth_write) {
+    uint8_t* p = m_host.store_span(m_buffers.depth_address + offset * 2, 2, 1);
+    p[0] = static_cast<uint8_t>(pixel.z);
+    p[1] = static_cast<uint8_t>(pixel.z >> 8);
+  }
+  const PixelFormat format = m_buffers.color_format;
+  unsigned mask4 = 0;
+  for (unsigned ch = 0; ch < 4; ++ch) mask4 |= state.color_mask[ch] ? 1u << ch : 0u;
+  const uint32_t write_mask = channel_bits(format, mask4), all = channel_bits(format, 0xf);
+  if (write_mask == 0) return;
+  const unsigned bpp = bytes_per_pixel(format);
+  const uint32_t address = m_buffers.color_address + offset * bpp;
+  uint32_t out;
+  if (state.blend || state.logic_op || write_mask != all) {
+    const uint32_t dst = load_pixel(format, m_host.load_span(address, bpp, 1));
+    uint32_t src = rgba;
+    if (state.blend) {
+      src = renderers::blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
+      m_host.compute(Op::alu, k.blend_alu);
+      m_host.compute(Op::mul, k.blend_mul);
+    }
+    out = pack_pixel(format, src);
+    if (state.logic_op) out = renderers::logic_op(state.logic_op_mode, out, dst) & all;
+    out = (out & write_mask) | (dst & ~write_mask);
+  } else {
+    out = pack_pixel(format, rgba);
+  }
+  store_pixel(format, m_host.store_span(address, bpp, 1), out);
+}
+
+void ApPixelRenderer::publish_statistics() {
+  if (m_env.counters == nullptr) return;
+  ActivityCounters& c = *m_env.counters;
+  auto set = [&](const char* name, const char* description, uint64_t value) {
+    c.counter(std::string("ap_pixel.") + name, description).value = value;
+  };
+  renderers::publish_host_time(c, "ap_pixel", m_time,
+                               "host time setting up, scan converting, depth testing, packing, texturing and writing "
+                               "the pixels");
+  set("triangles", "triangles with at least one visible pixel", m_triangles);
+  set("visible_pixels", "pixels the host found inside and passing the depth test", m_visible);
+  set("blocks", "blocks sent to a CU (each k x k pixels)", m_blocks_sent);
+  set("passes", "array program runs (one block per CU each)", m_batches);
+  set("cycles", "array cycles of the shading program", m_cycles);
+  set("host_shaded_triangles", "slivers whose gradients 8.8 cannot hold, shaded by the host", m_host_shaded);
+  set("ciu_words_written", "CMEM words the host wrote", m_words_written);
+  set("ciu_words_read", "CMEM words the host read", m_words_read);
+}
+
+}  // namespace tessera::ap_pixel

@@ -1,0 +1,116 @@
+// The `ap-pixel` back end: the study's pixel algorithm with the array
+// processor as a 96-wide ALU (README.md). The host scan-converts each
+// triangle and depth-tests it against the depth buffer in system memory,
+// writes the triangle's 21 values into every CU, and then, batch by batch,
+// gives each CU the position of one k x k block of visible pixels, runs the
+// program, reads the attributes back, textures, and writes the pixels into
+// the frame buffer in system memory. Clears, read-back and the buffers'
+// formats are the arm back end's (its rasterizer does them).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "device/app_environment.h"
+#include "device/array_driver.h"
+#include "device/display_driver.h"
+#include "gl/renderer.h"
+#include "renderers/ap_pixel/pixel_setup.h"
+#include "renderers/arm/arm_rasterizer.h"
+#include "renderers/arm/arm_renderer.h"
+#include "renderers/backend_entry_points.h"
+#include "renderers/common/host_time.h"
+
+namespace tessera::ap_pixel {
+
+// ARM922T instructions the host is charged (README.md, "Host work").
+struct HostCosts {
+  unsigned triangle_alu = 150, triangle_mul = 40, triangle_divisions = 18, division_alu = 20;
+  unsigned row_alu = 12;                     // per row: the span's ends from the three edges
+  unsigned pixel_alu = 4, pixel_branch = 1;  // per pixel of a span: depth step, test, loop
+  unsigned visible_alu = 6;                  // per visible pixel: its block, first-seen test, list entry
+  unsigned value_alu = 3;                    // per byte of the 21 values: shifted out of its value
+  unsigned pack_alu = 7;                     // per CIU word of block positions: four bytes shifted into place
+  unsigned unpack_alu = 3;                   // per attribute byte read back: shifted out of its word
+  unsigned texel_nearest_alu = 8, texel_nearest_mul = 1, texel_linear_alu = 30, texel_linear_mul = 9;
+  unsigned tex_env_alu = 12, tex_env_mul = 4;
+  unsigned write_alu = 8, write_mul = 3;  // per pixel written: clamp, pack, store colour and depth
+  unsigned blend_alu = 20, blend_mul = 8;
+  unsigned host_shade_alu = 4, host_shade_mul = 2;  // per attribute per pixel of a sliver the host shades
+};
+
+class ApPixelRenderer : public gl::Renderer {
+ public:
+  explicit ApPixelRenderer(AppEnvironment& env);
+
+  const char* name() const override { return "tessera ap-pixel (array processor as a 96-wide ALU)"; }
+  gl::RendererCapabilities capabilities() const override { return backends::ap_pixel::CAPABILITIES; }
+  unsigned width() const override { return m_buffers.width; }
+  unsigned height() const override { return m_buffers.height; }
+  PixelFormat color_format() const override { return m_buffers.color_format; }
+  void clear(const gl::ClearRequest& request) override;
+  void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override;
+  void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override;
+  void finish() override {}
+  void present() override;
+
+  unsigned block() const { return m_block; }
+
+ private:
+  // A pixel the host found visible: its place, depth, and where its block
+  // went in the batch.
+  struct Pixel {
+    int x = 0, y = 0;
+    uint16_t z = 0;
+    uint32_t block = 0;  // index into m_blocks
+  };
+  struct Block {
+    int x = 0, y = 0;  // its bottom-left pixel
+  };
+  // What the host needs back per pixel (README.md, "What the host reads").
+  struct Reads {
+    bool colour = false, alpha = false, texcoords = false;
+    bool any() const { return colour || texcoords; }
+  };
+
+  void draw_triangle(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads);
+  void run_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads, size_t first_block,
+                 size_t blocks, int ox, int oy);
+  void write_shaded(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads, const Pixel& pixel,
+                    const std::array<int32_t, ATTRIBUTES>& values);
+  void write_pixel(const gl::RasterState& state, const Pixel& pixel, uint32_t rgba, const int st[2], bool textured);
+  void unsupported(const std::string& what);
+  void publish_statistics();
+
+  AppEnvironment& m_env;
+  HostApi& m_host;
+  DisplayDriver m_display;
+  arm::HostPixelMemory m_memory;
+  arm::FrameBuffers m_buffers;
+  std::unique_ptr<arm::ArmRasterizer> m_buffers_core;  // clears and read-back
+  ArrayDriver m_array;
+  PixelLayout m_layout;
+  unsigned m_block = 1;
+  unsigned m_program_base = 0;
+  HostCosts m_costs;
+
+  // The triangle being drawn: its visible pixels in scan order, its blocks
+  // in first-seen order, and per block of the frame its index (or -1).
+  std::vector<Pixel> m_pixels;
+  std::vector<Block> m_blocks;
+  std::vector<int32_t> m_block_index;
+  std::vector<std::vector<uint32_t>> m_block_pixels;  // per block in the batch: its pixels
+  // Per pixel of a batch, the attribute values read back (16.8).
+  std::vector<std::array<int32_t, ATTRIBUTES>> m_results;
+  std::set<std::string> m_unsupported;  // reported this frame
+
+  renderers::HostTime m_time;
+  uint64_t m_host_shaded = 0;
+  uint64_t m_triangles = 0, m_batches = 0, m_visible = 0, m_blocks_sent = 0, m_cycles = 0;
+  uint64_t m_words_written = 0, m_words_read = 0;
+};
+
+}  // namespace tessera::ap_pixel

@@ -1,0 +1,120 @@
+// The host's side of the ap-pixel algorithm, plain C++: the CMEM layout the
+// array program declares, a triangle's exact coverage and depth (the host's
+// scan conversion and depth test), its 21 attribute values at an origin
+// pixel in the program's fixed point, and the reference of what a CU
+// computes from them. The formats are in README.md ("Fixed point"); the
+// array program is ap_pixel.s.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "array/asm/program.h"
+#include "gl/renderer.h"
+
+namespace tessera::ap_pixel {
+
+// The attributes every CU evaluates, in the program's order.
+enum class Attribute : unsigned { red, green, blue, alpha, s, t, z };
+constexpr unsigned ATTRIBUTES = 7;
+
+// Where everything lives in a CU's CMEM, read from the program's variables
+// (ap_pixel.s is the one place the layout is written).
+struct PixelLayout {
+  unsigned max_block = 0;  // MAX_BLOCK: the largest k
+  uint16_t c0 = 0, gx = 0, gy = 0, dx = 0, dy = 0, out = 0;
+  std::array<unsigned, 6> entry{};  // entry[k]: block k's entry word, k = 1..5
+
+  // The first (high) byte of attribute `a` of the block's pixel (u, v).
+  unsigned result(unsigned u, unsigned v, Attribute a) const {
+    return out + 3 * ATTRIBUTES * (max_block * v + u) + 3 * static_cast<unsigned>(a);
+  }
+
+  // Throws std::invalid_argument naming a variable, constant or entry the
+  // program lacks or sizes differently.
+  static PixelLayout of(const ap::Program& program);
+};
+
+// A triangle's 21 values at its origin pixel: per attribute the value at the
+// origin's centre (16.8, modulo 2^24) and its steps per pixel right and up
+// (8.8, signed).
+struct TriangleValues {
+  std::array<uint32_t, ATTRIBUTES> c0{};
+  std::array<int16_t, ATTRIBUTES> gx{}, gy{};
+  // Per attribute: a gradient steeper than 8.8 can hold (above 128 units
+  // per pixel, on slivers) was clamped, so the array's values are wrong.
+  std::array<bool, ATTRIBUTES> clamped{};
+};
+
+// What CU arithmetic gives pixel (u, v) of a block whose first pixel is
+// (dx, dy) from the origin: the program's sum, modulo 2^24.
+inline uint32_t shade_reference(const TriangleValues& values, Attribute a, int dx, int dy, unsigned u, unsigned v) {
+  const auto i = static_cast<unsigned>(a);
+  const int64_t value = int64_t{values.c0[i]} + int64_t{dx + static_cast<int>(u)} * values.gx[i] +
+                        int64_t{dy + static_cast<int>(v)} * values.gy[i];
+  return static_cast<uint32_t>(value) & 0xffffffu;
+}
+
+// The bytes the host writes for `values` (the program's c0, gx, gy without
+// the sign bytes, which the program makes): `write(address, byte)` once per
+// byte, 7 * ATTRIBUTES of them.
+template <typename Write>
+void for_each_value_byte(const TriangleValues& values, const PixelLayout& layout, Write&& write) {
+  for (unsigned i = 0; i < ATTRIBUTES; ++i) {
+    const unsigned a = 3 * i;
+    write(layout.c0 + a, static_cast<uint8_t>(values.c0[i] >> 16));
+    write(layout.c0 + a + 1, static_cast<uint8_t>(values.c0[i] >> 8));
+    write(layout.c0 + a + 2, static_cast<uint8_t>(values.c0[i]));
+    const auto gx = static_cast<uint16_t>(values.gx[i]), gy = static_cast<uint16_t>(values.gy[i]);
+    write(layout.gx + a + 1, static_cast<uint8_t>(gx >> 8));
+    write(layout.gx + a + 2, static_cast<uint8_t>(gx));
+    write(layout.gy + a + 1, static_cast<uint8_t>(gy >> 8));
+    write(layout.gy + a + 2, static_cast<uint8_t>(gy));
+  }
+}
+
+// The pixels the host may draw: the frame, narrowed by a scissor box.
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive, GL rows (0 at the bottom)
+};
+
+class PixelTriangle {
+ public:
+  // flat: every vertex takes v[2]'s colour; tex_width, tex_height: the
+  // texture's size in texels (S and T are in texels), 0 when untextured.
+  PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned tex_width, unsigned tex_height, const PixelBox& box);
+
+  // False for a triangle that draws nothing (zero area, a vertex beyond
+  // +-2^18 pixels as in the other back ends, or wholly outside the box).
+  bool valid() const { return m_valid; }
+  // The rows with pixel centres in the triangle's bounding box, in the box.
+  int y_first() const { return m_y_min; }
+  int y_last() const { return m_y_max; }
+  // The pixels of row j whose centres are inside (the top-left rule of the
+  // arm back end, exactly), in the box: [first, last]; false if none.
+  bool span(int j, int& first, int& last) const;
+  // The 16-bit depth at pixel (i, j)'s centre: the exact 0.24 depth,
+  // truncated to its top 16 bits.
+  uint16_t depth16(int i, int j) const;
+  // The 21 values with the origin at pixel (ox, oy) (README.md, "Fixed
+  // point": colour rounded by a half in C0, gradients clamped to 8.8).
+  TriangleValues values(int ox, int oy) const;
+
+ private:
+  struct Edge {
+    int64_t a = 0, b = 0, c = 0;  // E = a x16 + b y16 + c, inside > 0 (or = 0 on a top-left edge)
+    bool top_left = false;
+  };
+
+  PixelBox m_box;
+  bool m_valid = false;
+  int64_t m_area = 0;  // |twice the area|, 1/256 pixel^2: the sum of the three edge functions
+  std::array<Edge, 3> m_edges{};
+  // Per attribute, its value at the three vertices, 16.8 units.
+  std::array<std::array<double, 3>, ATTRIBUTES> m_vertex{};
+  std::array<double, 3> m_x{}, m_y{};  // vertices in pixels
+  std::array<uint32_t, 3> m_z{};       // 0.24 depth
+  int m_y_min = 0, m_y_max = -1;
+};
+
+}  // namespace tessera::ap_pixel

@@ -1,0 +1,268 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "ap_programs/ap_pixel.h"
+#include "array/core/array_controller.h"
+#include "renderers/ap_pixel/pixel_setup.h"
+
+namespace tessera::ap_pixel {
+namespace {
+
+using ap::ArrayController;
+using ap::ArrayGeometry;
+using ap::CuArray;
+using ap::CycleTable;
+using ap::RunResult;
+
+const ap::Program& program() {
+  return ap::programs::ap_pixel();
+}
+
+constexpr Attribute ALL[] = {Attribute::red, Attribute::green, Attribute::blue, Attribute::alpha,
+                             Attribute::s,   Attribute::t,     Attribute::z};
+
+gl::Triangle triangle(int x0, int y0, int x1, int y1, int x2, int y2) {
+  gl::Triangle t{};
+  const int xy[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
+  for (unsigned i = 0; i < 3; ++i) {
+    t.v[i].x = xy[i][0];
+    t.v[i].y = xy[i][1];
+    t.v[i].z = 0x400000u * (i + 1);
+    t.v[i].r = static_cast<uint8_t>(100 * i);
+    t.v[i].g = static_cast<uint8_t>(255 - 100 * i);
+    t.v[i].b = 77;
+    t.v[i].a = 255;
+    t.v[i].s = 0.5f * static_cast<float>(i);
+    t.v[i].t = 1.0f - 0.25f * static_cast<float>(i);
+    t.v[i].inv_w = 1;
+  }
+  return t;
+}
+
+// Whether pixel (i, j)'s centre is inside, by the rule written in
+// arm_rasterizer.h: sample at (i + 0.5 + e, j + 0.5 - e^2) for a tiny e,
+// evaluated exactly in rationals (sixteenths scaled by 2^20).
+bool inside_brute_force(const gl::Triangle& t, int i, int j) {
+  const int64_t s = int64_t{1} << 20;
+  const int64_t px = (16 * int64_t{i} + 8) * s + 1, py = (16 * int64_t{j} + 8) * s;
+  __extension__ typedef __int128 Wide;
+  Wide e[3];
+  for (unsigned k = 0; k < 3; ++k) {
+    const gl::ScreenVertex &a = t.v[k], &b = t.v[(k + 1) % 3];
+    e[k] = Wide{px - int64_t{a.x} * s} * (int64_t{b.y} - a.y) - Wide{py - int64_t{a.y} * s} * (int64_t{b.x} - a.x);
+    // py - tiny^2: a second-order nudge below, applied as a tie-break.
+    if (e[k] == 0) e[k] = Wide{int64_t{b.x} - a.x};  // d/dy of -(y)(dx) with y lowered
+  }
+  return (e[0] > 0 && e[1] > 0 && e[2] > 0) || (e[0] < 0 && e[1] < 0 && e[2] < 0);
+}
+
+// The program, for every block size, on 96 CUs with random triangle values
+// and block offsets written as the host writes them, leaves in every CU's
+// results what the reference computes, byte for byte, and writes nothing
+// outside its results and scratch.
+TEST(ApPixelProgram, EveryBlockSizeMatchesTheReference) {
+  const PixelLayout layout = PixelLayout::of(program());
+  ASSERT_EQ(layout.max_block, 5u);
+  ArrayGeometry geometry;
+  ArrayController controller(geometry, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program().words));
+  CuArray& array = controller.array();
+  const unsigned lanes = array.lanes();
+  std::mt19937 rng(2210);
+  std::uniform_int_distribution<int> offset(-128, 127), gradient(-32768, 32767);
+  std::uniform_int_distribution<uint32_t> start(0, 0xffffff);
+  for (unsigned k = 1; k <= 5; ++k)
+    for (unsigned trial = 0; trial < 20; ++trial) {
+      SCOPED_TRACE("block " + std::to_string(k) + ", trial " + std::to_string(trial));
+      TriangleValues values;
+      for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+        values.c0[a] = start(rng);
+        // Small gradients half of the time: sums that stay in range too.
+        const int limit = trial % 2 == 0 ? 32767 : 300;
+        values.gx[a] = static_cast<int16_t>(std::clamp(gradient(rng), -limit, limit));
+        values.gy[a] = static_cast<int16_t>(std::clamp(gradient(rng), -limit, limit));
+      }
+      for (unsigned lane = 0; lane < lanes; ++lane)
+        for (unsigned a = 0; a < geometry.cmem_bytes; ++a) array.set_cmem(lane, a, 0x5a);
+      for_each_value_byte(values, layout, [&](unsigned address, uint8_t byte) {
+        for (unsigned lane = 0; lane < lanes; ++lane) array.set_cmem(lane, address, byte);
+      });
+      std::vector<int> dx(lanes), dy(lanes);
+      for (unsigned lane = 0; lane < lanes; ++lane) {
+        dx[lane] = offset(rng);
+        dy[lane] = offset(rng);
+        array.set_cmem(lane, layout.dx, static_cast<uint8_t>(dx[lane]));
+        array.set_cmem(lane, layout.dy, static_cast<uint8_t>(dy[lane]));
+      }
+      const RunResult result = controller.run(layout.entry[k]);
+      ASSERT_TRUE(result.ok) << result.error;
+      for (unsigned lane = 0; lane < lanes; ++lane) {
+        for (unsigned v = 0; v < k; ++v)
+          for (unsigned u = 0; u < k; ++u)
+            for (Attribute a : ALL) {
+              const uint32_t expected = shade_reference(values, a, dx[lane], dy[lane], u, v);
+              const unsigned at = layout.result(u, v, a);
+              const uint32_t got = uint32_t{array.cmem(lane, at)} << 16 | uint32_t{array.cmem(lane, at + 1)} << 8 |
+                                   array.cmem(lane, at + 2);
+              ASSERT_EQ(got, expected) << "CU " << lane << ", pixel (" << u << ", " << v << "), attribute "
+                                       << static_cast<unsigned>(a);
+            }
+        // Outside the block's pixels the results keep their old bytes.
+        for (unsigned v = 0; v < layout.max_block; ++v) {
+          for (unsigned u = 0; u < layout.max_block; ++u) {
+            if (u >= k || v >= k) {
+              ASSERT_EQ(array.cmem(lane, layout.result(u, v, Attribute::red)), 0x5a);
+            }
+          }
+        }
+      }
+    }
+}
+
+// A bigger block costs more cycles, but less than a full evaluation per
+// pixel: the neighbours come from additions.
+TEST(ApPixelProgram, BlocksShareTheFullEvaluation) {
+  const PixelLayout layout = PixelLayout::of(program());
+  ArrayController controller(ArrayGeometry{}, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program().words));
+  uint64_t cycles[6] = {};
+  for (unsigned k = 1; k <= 5; ++k) {
+    const RunResult result = controller.run(layout.entry[k]);
+    ASSERT_TRUE(result.ok) << result.error;
+    cycles[k] = result.cycles;
+  }
+  for (unsigned k = 2; k <= 5; ++k) {
+    EXPECT_GT(cycles[k], cycles[k - 1]);
+    EXPECT_LT(cycles[k], cycles[1] * k * k) << "block " << k;
+  }
+}
+
+// The host's coverage is the fill rule exactly: against a brute-force test
+// of every pixel, for random triangles of every size and winding.
+TEST(ApPixelCoverage, SpansAreTheFillRule) {
+  std::mt19937 rng(96);
+  std::uniform_int_distribution<int> x(-16 * 20, 16 * 212), y(-16 * 20, 16 * 164), small(-16 * 6, 16 * 6);
+  const PixelBox box{0, 0, 191, 143};
+  for (unsigned n = 0; n < 400; ++n) {
+    gl::Triangle t = triangle(x(rng), y(rng), x(rng), y(rng), x(rng), y(rng));
+    if (n % 2 == 0) {
+      const int cx = x(rng), cy = y(rng);
+      for (auto& v : t.v) {
+        v.x = cx + small(rng);
+        v.y = cy + small(rng);
+      }
+    }
+    if (n % 7 == 0) t.v[1].y = t.v[0].y;  // horizontal edges
+    if (n % 5 == 0) t.v[2].x = t.v[1].x;  // vertical edges
+    const PixelTriangle setup(t, false, 0, 0, box);
+    for (int j = box.y0; j <= box.y1; ++j) {
+      int first = 0, last = -1;
+      const bool any = setup.span(j, first, last);
+      for (int i = box.x0; i <= box.x1; ++i) {
+        const bool expected = inside_brute_force(t, i, j);
+        const bool got = any && i >= first && i <= last;
+        ASSERT_EQ(got, expected) << "triangle " << n << ", pixel (" << i << ", " << j << ")";
+      }
+    }
+  }
+}
+
+// Two triangles sharing an edge (both windings) cover every pixel of their
+// union exactly once.
+TEST(ApPixelCoverage, SharedEdgesAreDrawnOnce) {
+  const PixelBox box{0, 0, 191, 143};
+  const gl::Triangle a = triangle(16 * 10, 16 * 10, 16 * 150 + 3, 16 * 20 + 8, 16 * 60 + 8, 16 * 130);
+  const gl::Triangle b = triangle(16 * 150 + 3, 16 * 20 + 8, 16 * 180, 16 * 120, 16 * 60 + 8, 16 * 130);
+  const PixelTriangle sa(a, false, 0, 0, box), sb(b, false, 0, 0, box);
+  std::vector<int> count(192 * 144, 0);
+  for (const PixelTriangle* s : {&sa, &sb})
+    for (int j = 0; j < 144; ++j) {
+      int first = 0, last = -1;
+      if (s->span(j, first, last))
+        for (int i = first; i <= last; ++i) ++count[j * 192 + i];
+    }
+  int drawn = 0;
+  for (int c : count) {
+    ASSERT_LE(c, 1);
+    drawn += c;
+  }
+  EXPECT_GT(drawn, 5000);
+}
+
+// Zero-area and far-away triangles draw nothing; a triangle wholly outside
+// the box, or a box narrowed by a scissor, clips the spans.
+TEST(ApPixelCoverage, DegenerateAndOffScreenTriangles) {
+  const PixelBox box{0, 0, 191, 143};
+  EXPECT_FALSE(PixelTriangle(triangle(0, 0, 160, 160, 320, 320), false, 0, 0, box).valid());
+  EXPECT_FALSE(PixelTriangle(triangle(16, 16, 16, 16, 400, 30), false, 0, 0, box).valid());
+  EXPECT_FALSE(PixelTriangle(triangle(16 << 19, 0, 0, 16, 16, 0), false, 0, 0, box).valid());
+  EXPECT_FALSE(
+      PixelTriangle(triangle(16 * 10, -16 * 50, 16 * 100, -16 * 40, 16 * 50, -16 * 10), false, 0, 0, box).valid());
+  const gl::Triangle big = triangle(-16 * 500, -16 * 500, 16 * 900, -16 * 500, 16 * 100, 16 * 900);
+  const PixelBox scissor{20, 30, 39, 49};
+  const PixelTriangle clipped(big, false, 0, 0, scissor);
+  ASSERT_TRUE(clipped.valid());
+  EXPECT_EQ(clipped.y_first(), 30);
+  EXPECT_EQ(clipped.y_last(), 49);
+  int first = 0, last = -1;
+  ASSERT_TRUE(clipped.span(40, first, last));
+  EXPECT_EQ(first, 20);
+  EXPECT_EQ(last, 39);
+  EXPECT_FALSE(clipped.span(29, first, last));
+}
+
+// Depth is the exact 0.24 plane at the centre, truncated to 16 bits; the
+// 21 values reproduce the planes at pixel centres within the rounding of
+// their gradients (half an 8.8 step per pixel of distance).
+TEST(ApPixelSetup, DepthAndValuesFollowThePlanes) {
+  const gl::Triangle t = triangle(16 * 5, 16 * 7, 16 * 170 + 5, 16 * 20 + 11, 16 * 80 + 3, 16 * 135 + 2);
+  const PixelTriangle setup(t, false, 64, 32, PixelBox{0, 0, 191, 143});
+  ASSERT_TRUE(setup.valid());
+  // The plane through the vertices, in doubles, at a pixel centre.
+  auto plane = [&](int i, int j, double v0, double v1, double v2) {
+    const double x[3] = {t.v[0].x / 16.0, t.v[1].x / 16.0, t.v[2].x / 16.0};
+    const double y[3] = {t.v[0].y / 16.0, t.v[1].y / 16.0, t.v[2].y / 16.0};
+    const double det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    const double gx = ((v1 - v0) * (y[2] - y[0]) - (v2 - v0) * (y[1] - y[0])) / det;
+    const double gy = ((v2 - v0) * (x[1] - x[0]) - (v1 - v0) * (x[2] - x[0])) / det;
+    return v0 + gx * (i + 0.5 - x[0]) + gy * (j + 0.5 - y[0]);
+  };
+  const int ox = 90, oy = 60;
+  const TriangleValues values = setup.values(ox, oy);
+  for (int j = 20; j < 120; j += 7) {
+    int first = 0, last = -1;
+    if (!setup.span(j, first, last)) continue;
+    for (int i = first; i <= last; i += 3) {
+      const double z = plane(i, j, t.v[0].z, t.v[1].z, t.v[2].z);
+      EXPECT_NEAR(setup.depth16(i, j), std::floor(z / 256.0), 1.0) << i << ", " << j;
+      const double distance = std::abs(i - ox) + std::abs(j - oy);
+      const double red = plane(i, j, t.v[0].r, t.v[1].r, t.v[2].r);
+      const auto r = static_cast<int32_t>(shade_reference(values, Attribute::red, i - ox, j - oy, 0, 0));
+      EXPECT_NEAR((r - 128) / 256.0, red, 0.5 + distance / 512.0) << i << ", " << j;
+      const double s = plane(i, j, 0.0, 0.5 * 64, 1.0 * 64);
+      const auto sv = static_cast<int32_t>(shade_reference(values, Attribute::s, i - ox, j - oy, 0, 0) << 8) >> 8;
+      EXPECT_NEAR(sv / 256.0, s, 0.5 / 256 + distance / 512.0) << i << ", " << j;
+    }
+  }
+}
+
+// A program that lacks what the host expects is refused, naming it.
+TEST(ApPixelSetup, LayoutNamesWhatTheProgramLacks) {
+  ap::Program broken = program();
+  broken.variables.erase("gy");
+  try {
+    PixelLayout::of(broken);
+    FAIL() << "accepted a program without gy";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'gy'"), std::string::npos) << e.what();
+  }
+  broken = program();
+  broken.entries.erase("block3");
+  EXPECT_THROW(PixelLayout::of(broken), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tessera::ap_pixel
