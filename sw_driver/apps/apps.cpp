@@ -26,6 +26,14 @@ const std::map<std::string, AppInfo>& builtin_apps() {
        {calib_array_mul_cmem_app,
         "array calibration: 16 x 8-bit multiplication of CMEM operands stored back, one pass"}},
       {"calib_ciu", {calib_ciu_app, "CIU calibration: the host's 32-bit CMEM writes and reads through the CIU"}},
+      {"study_shading",
+       {study_shading_app,
+        "the study's pixel shading: single-pixel shades, each its own attribute set, on the host (--backend arm) "
+        "or the array (--backend ap-pixel); -- --shades N (default 192000)"}},
+      {"study_patches",
+       {study_patches_app,
+        "the study's patch sizes: square and line patches of 1 to 40 pixels sharing an attribute set, on the host "
+        "(--backend arm) or the array (--backend ap-pixel, ap.pixel.block); -- --max-pixels N"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
   };
   static const std::map<std::string, AppInfo> with_scenes = [] {

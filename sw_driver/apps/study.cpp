@@ -1,0 +1,369 @@
+// The study's pixel experiments (docs/experiments.md), as applications that
+// run on the host model with `--backend arm` (the host computes) or
+// `--backend ap-pixel` (the array computes, through ap-pixel's program and
+// layout, sw_driver/renderers/ap_pixel):
+//
+//  - study_shading: N single-pixel shades (default 192,000), each with its
+//    own attribute set, as the study's shading loop: C = C0 + x dC/dx +
+//    y dC/dy for R, G, B, A, S, T, Z. On the array a pass gives each of the
+//    96 CUs its own 21 values and position and reads the seven results back.
+//  - study_patches: patches of pixels sharing one attribute set, squares of
+//    1 x 1 to 6 x 6 and lines of 1 to 40 pixels: the host steps the
+//    attributes incrementally (arm), or sends the 21 values to every CU and
+//    one block of ap.pixel.block x ap.pixel.block pixels per CU, runs the
+//    program and reads the pixels back (ap-pixel).
+//
+// The figures go to stats.json's driver section (study.*), in host time
+// from the first input load to the last result stored, and every result is
+// checked against the same arithmetic done natively (a mismatch is an
+// error, status 1).
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ap_programs/ap_pixel.h"
+#include "apps/apps.h"
+#include "config/config.h"
+#include "device/array_driver.h"
+#include "renderers/ap_pixel/pixel_setup.h"
+#include "renderers/common/host_time.h"
+
+namespace tessera {
+
+namespace {
+
+using ap_pixel::Attribute;
+using ap_pixel::ATTRIBUTES;
+using ap_pixel::TriangleValues;
+
+// Where the study's applications run: the host alone, or with the array.
+enum class Target { host, array };
+
+Target target_of(const AppEnvironment& env, const char* app) {
+  const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
+  if (backend == "arm") return Target::host;
+  if (backend == "ap-pixel") return Target::array;
+  throw std::invalid_argument(std::string(app) + " runs on --backend arm (the host computes) or --backend ap-pixel " +
+                              "(the array computes), not on " + backend);
+}
+
+unsigned option(const AppEnvironment& env, const char* app, const std::string& name, unsigned fallback, unsigned low,
+                unsigned high) {
+  for (size_t i = 0; i + 1 < env.args.size(); ++i)
+    if (env.args[i] == name) {
+      size_t used = 0;
+      unsigned long value = 0;
+      try {
+        value = std::stoul(env.args[i + 1], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != env.args[i + 1].size() || value < low || value > high)
+        throw std::invalid_argument(std::string(app) + ": " + name + " takes a whole number from " +
+                                    std::to_string(low) + " to " + std::to_string(high) + ", not '" + env.args[i + 1] +
+                                    "'");
+      return static_cast<unsigned>(value);
+    }
+  for (const std::string& arg : env.args)
+    if (arg.rfind("--", 0) == 0 && arg != name)
+      throw std::invalid_argument(std::string(app) + ": unknown option '" + arg + "'");
+  return fallback;
+}
+
+// The attribute set of shade (or patch) n: deterministic, gradients within
+// 8.8, values within 16.8.
+TriangleValues attribute_set(uint32_t n) {
+  TriangleValues v;
+  for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+    const uint32_t h = (n + 1) * 2654435761u + a * 40503u;
+    v.c0[a] = (h >> 8) & 0xffff00u;
+    v.gx[a] = static_cast<int16_t>(static_cast<int32_t>(h % 1021) - 510);
+    v.gy[a] = static_cast<int16_t>(static_cast<int32_t>((h >> 12) % 1021) - 510);
+  }
+  return v;
+}
+
+// The integer part of a 16.8 result, as the host keeps it.
+uint16_t integer_part(uint32_t value) {
+  return static_cast<uint16_t>(value >> 8);
+}
+
+// The ARM922T instructions of the host's own evaluation (the arm back end's
+// counts, sw_driver/renderers/arm/README.md): a full evaluation is two
+// multiplies and two additions per attribute; a step one addition.
+constexpr unsigned FULL_ALU = 2, FULL_MUL = 2, STEP_ALU = 1, LOOP_ALU = 1, LOOP_BRANCH = 1;
+constexpr unsigned INPUT_WORDS = 3 * ATTRIBUTES + 1;  // per set: c0, gx, gy per attribute; x, y packed
+
+void publish(AppEnvironment& env, const std::string& name, const char* description, uint64_t value) {
+  if (env.counters != nullptr) env.counters->counter("study." + name, description).value = value;
+}
+
+uint64_t ns(double seconds) {
+  return static_cast<uint64_t>(seconds * 1e9 + 0.5);
+}
+
+// Inputs as the host keeps them: per set 22 words in system memory.
+void store_inputs(HostApi& host, uint32_t address, const TriangleValues& v, int x, int y) {
+  uint8_t* p = host.store_span(address, 4, INPUT_WORDS);
+  auto put = [&](unsigned word, uint32_t value) {
+    for (unsigned b = 0; b < 4; ++b) p[4 * word + b] = static_cast<uint8_t>(value >> (8 * b));
+  };
+  for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+    put(3 * a, v.c0[a]);
+    put(3 * a + 1, static_cast<uint16_t>(v.gx[a]));
+    put(3 * a + 2, static_cast<uint16_t>(v.gy[a]));
+  }
+  put(3 * ATTRIBUTES, static_cast<uint32_t>(static_cast<uint8_t>(x)) | static_cast<uint32_t>(static_cast<uint8_t>(y))
+                                                                           << 8);
+}
+
+TriangleValues load_inputs(HostApi& host, uint32_t address, int& x, int& y) {
+  const uint8_t* p = host.load_span(address, 4, INPUT_WORDS);
+  auto get = [&](unsigned word) {
+    return uint32_t{p[4 * word]} | uint32_t{p[4 * word + 1]} << 8 | uint32_t{p[4 * word + 2]} << 16 |
+           uint32_t{p[4 * word + 3]} << 24;
+  };
+  TriangleValues v;
+  for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+    v.c0[a] = get(3 * a);
+    v.gx[a] = static_cast<int16_t>(get(3 * a + 1));
+    v.gy[a] = static_cast<int16_t>(get(3 * a + 2));
+  }
+  const uint32_t xy = get(3 * ATTRIBUTES);
+  x = static_cast<int8_t>(xy & 0xff);
+  y = static_cast<int8_t>(xy >> 8);
+  return v;
+}
+
+int mismatch(const char* app, const std::string& where, unsigned attribute, unsigned got, unsigned expected) {
+  std::fprintf(stderr, "%s: %s, attribute %u: %u, expected %u\n", app, where.c_str(), attribute, got, expected);
+  return 1;
+}
+
+}  // namespace
+
+int study_shading_app(AppEnvironment& env) {
+  const char* app = "study_shading";
+  const Target target = target_of(env, app);
+  const unsigned shades = option(env, app, "--shades", 192000, 1, 10000000);
+  HostApi& host = *env.host;
+  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
+  std::unique_ptr<ArrayDriver> array;
+  if (target == Target::array) {
+    array = std::make_unique<ArrayDriver>(env);
+    array->load(ap::programs::ap_pixel().words);
+  }
+  const unsigned per_pass = array ? array->cus() : 96;
+  // One pass of inputs in system memory, rewritten for every pass (not
+  // timed), and the results.
+  const uint32_t inputs = env.heap_base, results = inputs + per_pass * INPUT_WORDS * 4;
+  renderers::HostTime time;
+  uint64_t passes = 0, cycles = 0;
+  double total = 0;
+  for (unsigned first = 0; first < shades; first += per_pass) {
+    const unsigned n = std::min(per_pass, shades - first);
+    for (unsigned i = 0; i < n; ++i) {
+      const uint32_t s = first + i;
+      store_inputs(host, inputs + i * INPUT_WORDS * 4, attribute_set(s), static_cast<int>(s % 192) - 96,
+                   static_cast<int>(s / 192 % 144) - 72);
+    }
+    const double start = host.now_seconds();
+    std::vector<TriangleValues> sets(n);
+    std::vector<int> xs(n), ys(n);
+    std::vector<std::array<uint16_t, ATTRIBUTES>> got(n);
+    if (target == Target::host) {
+      renderers::TimedScope timed(host, time.compute);
+      for (unsigned i = 0; i < n; ++i) {
+        sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
+        host.compute(Op::alu, ATTRIBUTES * FULL_ALU + LOOP_ALU);
+        host.compute(Op::mul, ATTRIBUTES * FULL_MUL);
+        host.compute(Op::branch, LOOP_BRANCH);
+        uint8_t* out = host.store_span(results + i * ATTRIBUTES * 2, 2, ATTRIBUTES);
+        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+          got[i][a] = integer_part(ap_pixel::shade_reference(sets[i], static_cast<Attribute>(a), xs[i], ys[i], 0, 0));
+          out[2 * a] = static_cast<uint8_t>(got[i][a]);
+          out[2 * a + 1] = static_cast<uint8_t>(got[i][a] >> 8);
+        }
+      }
+    } else {
+      // Every CU its own 49 bytes and position, a run, seven 16-bit reads.
+      {
+        renderers::TimedScope timed(host, time.array_write);
+        for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
+        std::vector<uint8_t> column(array->cus(), 0);
+        std::vector<std::pair<unsigned, std::vector<uint8_t>>> planes;
+        for (unsigned i = 0; i < n; ++i) {
+          unsigned k = 0;
+          ap_pixel::for_each_value_byte(sets[i], layout, [&](unsigned address, uint8_t byte) {
+            if (planes.size() <= k) planes.emplace_back(address, std::vector<uint8_t>(array->cus(), 0));
+            planes[k++].second[i] = byte;
+          });
+        }
+        for (const auto& [address, plane] : planes) array->write_all8(address, plane);
+        for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(xs[i]);
+        array->write_all8(layout.dx, column);
+        for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(ys[i]);
+        array->write_all8(layout.dy, column);
+      }
+      {
+        renderers::TimedScope timed(host, time.array_wait);
+        cycles += array->run(layout.entry[1]);
+      }
+      {
+        renderers::TimedScope timed(host, time.array_read);
+        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+          const std::vector<uint16_t> values = array->read_all16(layout.result(0, 0, static_cast<Attribute>(a)));
+          for (unsigned i = 0; i < n; ++i) got[i][a] = values[i];
+        }
+      }
+    }
+    total += host.now_seconds() - start;
+    ++passes;
+    for (unsigned i = 0; i < n; ++i)
+      for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+        const uint16_t expected =
+            integer_part(ap_pixel::shade_reference(sets[i], static_cast<Attribute>(a), xs[i], ys[i], 0, 0));
+        if (got[i][a] != expected) return mismatch(app, "shade " + std::to_string(first + i), a, got[i][a], expected);
+      }
+  }
+  publish(env, "shades", "single-pixel shades computed", shades);
+  publish(env, "passes", "array passes (96 shades each), or groups of 96 on the host", passes);
+  publish(env, "array_cycles", "array cycles of the shading program", cycles);
+  publish(env, "total_ns", "host time from the first input load to the last result", ns(total));
+  publish(env, "compute_ns", "host time computing the shades itself", ns(time.compute));
+  publish(env, "write_ns", "host time writing inputs to the array", ns(time.array_write));
+  publish(env, "wait_ns", "host time waiting for the array", ns(time.array_wait));
+  publish(env, "read_ns", "host time reading results from the array", ns(time.array_read));
+  std::printf("%s: %u shades on the %s: %.3f ms\n", app, shades, target == Target::host ? "host" : "array",
+              total * 1e3);
+  return 0;
+}
+
+int study_patches_app(AppEnvironment& env) {
+  const char* app = "study_patches";
+  const Target target = target_of(env, app);
+  const unsigned max_pixels = option(env, app, "--max-pixels", 40, 1, 400);
+  HostApi& host = *env.host;
+  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
+  std::unique_ptr<ArrayDriver> array;
+  unsigned block = 1;
+  if (target == Target::array) {
+    array = std::make_unique<ArrayDriver>(env);
+    array->load(ap::programs::ap_pixel().words);
+    if (env.config != nullptr) block = static_cast<unsigned>(env.config->get_uint("ap.pixel.block"));
+  }
+  const uint32_t inputs = env.heap_base, results = inputs + INPUT_WORDS * 4;
+  struct Shape {
+    const char* name;
+    unsigned width, height;
+  };
+  std::vector<Shape> shapes;
+  for (unsigned side = 1; side * side <= max_pixels; ++side) shapes.push_back({"square", side, side});
+  for (unsigned n = 1; n <= max_pixels; ++n) shapes.push_back({"line", n, 1});
+  unsigned patch = 0;
+  for (const Shape& shape : shapes) {
+    const TriangleValues values = attribute_set(patch++);
+    const int ox = -static_cast<int>(shape.width) / 2, oy = -static_cast<int>(shape.height) / 2;
+    store_inputs(host, inputs, values, ox, oy);
+    std::vector<std::array<uint16_t, ATTRIBUTES>> got(size_t{shape.width} * shape.height);
+    // Twice, the second timed: the first warms the caches.
+    double elapsed = 0;
+    for (unsigned round = 0; round < 2; ++round) {
+      const double start = host.now_seconds();
+      int x0 = 0, y0 = 0;
+      const TriangleValues v = load_inputs(host, inputs, x0, y0);
+      if (target == Target::host) {
+        // Start values per attribute, then one addition per pixel and
+        // attribute, row by row.
+        host.compute(Op::alu, ATTRIBUTES * (FULL_ALU + 2));
+        host.compute(Op::mul, ATTRIBUTES * FULL_MUL);
+        for (unsigned r = 0; r < shape.height; ++r) {
+          host.compute(Op::alu, ATTRIBUTES * STEP_ALU + 4);
+          uint8_t* out = host.store_span(results + r * shape.width * ATTRIBUTES * 2, 2, shape.width * ATTRIBUTES);
+          host.compute(Op::alu, uint64_t{shape.width} * (ATTRIBUTES * STEP_ALU + LOOP_ALU));
+          host.compute(Op::branch, uint64_t{shape.width} * LOOP_BRANCH);
+          for (unsigned c = 0; c < shape.width; ++c)
+            for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+              const uint16_t value =
+                  integer_part(ap_pixel::shade_reference(v, static_cast<Attribute>(a), x0, y0, c, r));
+              got[r * shape.width + c][a] = value;
+              out[2 * (c * ATTRIBUTES + a)] = static_cast<uint8_t>(value);
+              out[2 * (c * ATTRIBUTES + a) + 1] = static_cast<uint8_t>(value >> 8);
+            }
+        }
+      } else {
+        // The 21 values to every CU; blocks of block x block pixels, one
+        // per CU, row by row; the pixels of the patch read back.
+        ap_pixel::for_each_value_byte(v, layout, [&](unsigned address, uint8_t byte) { array->fill8(address, byte); });
+        const unsigned across = (shape.width + block - 1) / block, up = (shape.height + block - 1) / block;
+        const unsigned blocks = across * up, cus = array->cus();
+        for (unsigned first = 0; first < blocks; first += cus) {
+          const unsigned n = std::min(cus, blocks - first);
+          const unsigned groups = (n + 3) / 4, per_row = array->groups_per_row();
+          for (unsigned g = 0; g < groups; ++g) {
+            uint32_t dx = 0, dy = 0;
+            for (unsigned b = 0; b < 4 && 4 * g + b < n; ++b) {
+              const unsigned index = first + 4 * g + b;
+              dx |= uint32_t{static_cast<uint8_t>(x0 + static_cast<int>(index % across * block))} << (8 * b);
+              dy |= uint32_t{static_cast<uint8_t>(y0 + static_cast<int>(index / across * block))} << (8 * b);
+            }
+            host.compute(Op::alu, 14);
+            array->write32(g % per_row, g / per_row, layout.dx, dx);
+            array->write32(g % per_row, g / per_row, layout.dy, dy);
+          }
+          array->run(layout.entry[block]);
+          for (unsigned g = 0; g < groups; ++g)
+            for (unsigned v_in = 0; v_in < block; ++v_in)
+              for (unsigned u_in = 0; u_in < block; ++u_in) {
+                // Read this place only if one of the group's blocks has a
+                // pixel of the patch there.
+                bool any = false;
+                for (unsigned b = 0; b < 4 && 4 * g + b < n; ++b) {
+                  const unsigned index = first + 4 * g + b;
+                  any = any ||
+                        (index % across * block + u_in < shape.width && index / across * block + v_in < shape.height);
+                }
+                if (!any) continue;
+                for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+                  const unsigned address = layout.result(u_in, v_in, static_cast<Attribute>(a));
+                  const uint32_t hi = array->read32(g % per_row, g / per_row, address);
+                  const uint32_t mid = array->read32(g % per_row, g / per_row, address + 1);
+                  host.compute(Op::alu, 6);
+                  for (unsigned b = 0; b < 4 && 4 * g + b < n; ++b) {
+                    const unsigned index = first + 4 * g + b;
+                    const unsigned c = index % across * block + u_in, r = index / across * block + v_in;
+                    if (c >= shape.width || r >= shape.height) continue;
+                    got[r * shape.width + c][a] =
+                        static_cast<uint16_t>(((hi >> (8 * b)) & 0xff) << 8 | ((mid >> (8 * b)) & 0xff));
+                  }
+                }
+              }
+        }
+      }
+      elapsed = host.now_seconds() - start;
+    }
+    for (unsigned r = 0; r < shape.height; ++r)
+      for (unsigned c = 0; c < shape.width; ++c)
+        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+          const uint16_t expected =
+              integer_part(ap_pixel::shade_reference(values, static_cast<Attribute>(a), ox, oy, c, r));
+          if (got[r * shape.width + c][a] != expected)
+            return mismatch(app,
+                            std::string(shape.name) + " " + std::to_string(shape.width) + "x" +
+                                std::to_string(shape.height) + " pixel (" + std::to_string(c) + ", " +
+                                std::to_string(r) + ")",
+                            a, got[r * shape.width + c][a], expected);
+        }
+    publish(env, std::string("patch.") + shape.name + "." + std::to_string(shape.width * shape.height) + "_ns",
+            "host time for one patch of that many pixels, all seven attributes", ns(elapsed));
+  }
+  publish(env, "block", "pixels per side of a CU's block (1 on the host)", block);
+  std::printf("%s: %zu patches on the %s\n", app, shapes.size(), target == Target::host ? "host" : "array");
+  return 0;
+}
+
+}  // namespace tessera
