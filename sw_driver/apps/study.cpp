@@ -19,6 +19,7 @@
 // error, status 1).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -103,7 +104,7 @@ void publish(AppEnvironment& env, const std::string& name, const char* descripti
 }
 
 uint64_t ns(double seconds) {
-  return static_cast<uint64_t>(seconds * 1e9 + 0.5);
+  return static_cast<uint64_t>(std::llround(seconds * 1e9));
 }
 
 // Inputs as the host keeps them: per set 22 words in system memory.
@@ -134,8 +135,9 @@ TriangleValues load_inputs(HostApi& host, uint32_t address, int& x, int& y) {
     v.gy[a] = static_cast<int16_t>(get(3 * a + 2));
   }
   const uint32_t xy = get(3 * ATTRIBUTES);
-  x = static_cast<int8_t>(xy & 0xff);
-  y = static_cast<int8_t>(xy >> 8);
+  // Signed bytes.
+  x = static_cast<int>(xy & 0xff) - ((xy & 0x80) != 0 ? 256 : 0);
+  y = static_cast<int>((xy >> 8) & 0xff) - ((xy & 0x8000) != 0 ? 256 : 0);
   return v;
 }
 
