@@ -46,6 +46,10 @@ struct AppEnvironment {
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.
   ActivityCounters* counters = nullptr;
+  // Per-frame figures of the back end (passes, host time split, ...), one
+  // call per frame presented, in order: soc_sim puts the i-th call's
+  // figures in stats.json's i-th frame record as "driver". May be empty.
+  std::function<void(const std::vector<std::pair<std::string, double>>& figures)> frame_statistics;
   // Warnings of the driver (state a back end does not support, ...): soc_sim
   // logs them as the blocks' warnings. Null: they go to standard error.
   std::function<void(const std::string& source, const std::string& message)> warn;

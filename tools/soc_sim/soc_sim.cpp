@@ -4,12 +4,14 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string_view>
@@ -139,6 +141,38 @@ class Progress {
   double m_last_draw = 0;
 };
 
+// The back ends' own figures: for each driver section with a host-time
+// split (the array back ends), where the host's time went, and the
+// averages of the per-frame figures the back end gave (the frame records'
+// "driver").
+void print_driver_summary(const nlohmann::json& stats) {
+  const nlohmann::json& driver = stats["driver"];
+  const double simulated = stats["simulated_ns"].get<double>() * 1e-9;
+  for (const auto& [section, counters] : driver.items()) {
+    if (!counters.is_object() || !counters.contains("host_compute_ns")) continue;
+    std::printf("\n  %s: host time          total  of simulated\n", section.c_str());
+    for (const char* part : {"compute", "write", "read", "wait", "frame_out"}) {
+      const std::string key = std::string("host_") + part + "_ns";
+      if (!counters.contains(key)) continue;
+      const double seconds = counters[key].get<double>() * 1e-9;
+      std::printf("    %-12s %14s %12s\n", part, format_duration(seconds).c_str(),
+                  format_percent(simulated > 0 ? seconds / simulated : 0).c_str());
+    }
+    std::map<std::string, double> sums;
+    size_t frames = 0;
+    for (const nlohmann::json& frame : stats["frames"]) {
+      if (!frame.contains("driver")) continue;
+      ++frames;
+      for (const auto& [name, value] : frame["driver"].items())
+        if (value.is_number() && name.rfind("host_", 0) != 0) sums[name] += value.get<double>();
+    }
+    if (frames == 0) continue;
+    std::printf("  %s: per frame (mean of %zu)\n", section.c_str(), frames);
+    for (const auto& [name, sum] : sums)
+      std::printf("    %-28s %14.3f\n", name.c_str(), sum / static_cast<double>(frames));
+  }
+}
+
 // The summary: run, block table (each block's own row), the blocks' own
 // tables (the bus's traffic per initiator), outputs. It names no block.
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
@@ -171,6 +205,7 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
       std::printf("\n");
     }
   }
+  print_driver_summary(stats);
   std::printf("\n  outputs\n");
   for (const auto& line : outputs) std::printf("    %s\n", line.c_str());
 }
@@ -355,6 +390,12 @@ int run(int argc, char* argv[]) {
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
   env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };
+  std::vector<nlohmann::json> frame_driver_figures;
+  env.frame_statistics = [&frame_driver_figures](const std::vector<std::pair<std::string, double>>& figures) {
+    nlohmann::json record = nlohmann::json::object();
+    for (const auto& [name, value] : figures) record[name] = value;
+    frame_driver_figures.push_back(std::move(record));
+  };
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
@@ -408,6 +449,8 @@ int run(int argc, char* argv[]) {
 
   nlohmann::json stats = soc.stats_json();
   stats["driver"] = to_json(driver_counters);
+  for (size_t i = 0; i < frame_driver_figures.size() && i < stats["frames"].size(); ++i)
+    stats["frames"][i]["driver"] = frame_driver_figures[i];
   // The display hands each frame shown to soc_sim and to the SoC's record.
   if (opt.wall_clock && stats["frames"].size() == frame_wall_seconds.size())
     for (size_t i = 0; i < frame_wall_seconds.size(); ++i) stats["frames"][i]["wall_ns"] = frame_wall_seconds[i] * 1e9;

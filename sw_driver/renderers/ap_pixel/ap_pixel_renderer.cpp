@@ -81,6 +81,16 @@ void ApPixelRenderer::present() {
   m_buffers_core->set_color_address(m_buffers.color_address);
   m_unsupported.clear();
   publish_statistics();
+  renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles)},
+                                             {"visible_pixels", static_cast<double>(m_visible)},
+                                             {"blocks", static_cast<double>(m_blocks_sent)},
+                                             {"passes", static_cast<double>(m_batches)},
+                                             {"cycles", static_cast<double>(m_cycles)},
+                                             {"host_shaded_triangles", static_cast<double>(m_host_shaded)},
+                                             {"ciu_words_written", static_cast<double>(m_words_written)},
+                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+  renderers::add_host_time(totals, m_time);
+  m_frame_figures.emit(m_env, totals, {});
 }
 
 void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {

@@ -108,6 +108,7 @@ class ApPixelRenderer : public gl::Renderer {
   std::set<std::string> m_unsupported;  // reported this frame
 
   renderers::HostTime m_time;
+  renderers::FrameFigures m_frame_figures;
   uint64_t m_host_shaded = 0;
   uint64_t m_triangles = 0, m_batches = 0, m_visible = 0, m_blocks_sent = 0, m_cycles = 0;
   uint64_t m_words_written = 0, m_words_read = 0;

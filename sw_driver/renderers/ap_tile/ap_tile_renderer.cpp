@@ -194,6 +194,7 @@ void ApTileRenderer::flush() {
     ++m_passes;
   }
   m_busiest = std::max<uint64_t>(m_busiest, passes);
+  m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
   m_triangles.clear();
   for (auto& queue : m_queues) queue.clear();
   publish_statistics();
@@ -323,6 +324,27 @@ void ApTileRenderer::present() {
   }
   m_unsupported.clear();
   publish_statistics();
+  // This frame's figures: the totals' changes, and the busiest CU and the
+  // CUs' occupancy (CUs with a triangle per pass) of this frame.
+  renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles_drawn)},
+                                             {"cu_triangles", static_cast<double>(m_cu_triangles)},
+                                             {"passes", static_cast<double>(m_passes)},
+                                             {"ciu_words_written", static_cast<double>(m_words_written)},
+                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+  for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
+                          TileStage::clear_colour, TileStage::clear_depth})
+    totals.emplace_back(std::string("cycles.") + stage_entry(stage),
+                        static_cast<double>(m_stage_cycles[static_cast<int>(stage)]));
+  renderers::add_host_time(totals, m_time);
+  const double passes = static_cast<double>(m_passes - m_frame_passes_before);
+  const double cu_triangles = static_cast<double>(m_cu_triangles - m_frame_cu_triangles_before);
+  m_frame_figures.emit(m_env, totals,
+                       {{"busiest_cu_triangles", static_cast<double>(m_frame_busiest)},
+                        {"triangles_per_pass", passes > 0 ? cu_triangles / passes : 0.0},
+                        {"cu_occupancy", passes > 0 ? cu_triangles / (passes * m_frame.cus()) : 0.0}});
+  m_frame_busiest = 0;
+  m_frame_passes_before = m_passes;
+  m_frame_cu_triangles_before = m_cu_triangles;
 }
 
 void ApTileRenderer::publish_statistics() {

@@ -7,7 +7,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "device/app_environment.h"
 
 #include "common/activity_counters.h"
 #include "host/host_api.h"
@@ -44,6 +49,35 @@ inline void publish_host_time(ActivityCounters& counters, const std::string& pre
   set("host_read_ns", "host time reading results back from the array through the CIU", time.array_read);
   set("host_wait_ns", "host time waiting for the array's programs", time.array_wait);
   set("host_frame_out_ns", "host time showing the frame (the copy to the display port, or the swap)", time.frame_out);
+}
+
+// A back end's figures per frame (AppEnvironment::frame_statistics): at each
+// present, the change of each running total since the previous present,
+// and figures that are already per frame as they are.
+class FrameFigures {
+ public:
+  using Figures = std::vector<std::pair<std::string, double>>;
+
+  void emit(AppEnvironment& env, const Figures& totals, Figures per_frame) {
+    for (const auto& [name, total] : totals) {
+      double& previous = m_previous[name];
+      per_frame.emplace_back(name, total - previous);
+      previous = total;
+    }
+    if (env.frame_statistics) env.frame_statistics(per_frame);
+  }
+
+ private:
+  std::map<std::string, double> m_previous;
+};
+
+// The host-time split as running totals in nanoseconds, for FrameFigures.
+inline void add_host_time(FrameFigures::Figures& totals, const HostTime& time) {
+  totals.emplace_back("host_compute_ns", time.compute * 1e9);
+  totals.emplace_back("host_write_ns", time.array_write * 1e9);
+  totals.emplace_back("host_read_ns", time.array_read * 1e9);
+  totals.emplace_back("host_wait_ns", time.array_wait * 1e9);
+  totals.emplace_back("host_frame_out_ns", time.frame_out * 1e9);
 }
 
 }  // namespace tessera::renderers
