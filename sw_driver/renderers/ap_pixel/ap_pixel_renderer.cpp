@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iostream>
 #include <stdexcept>
 
 #include "ap_programs/ap_pixel.h"
@@ -54,12 +53,7 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env)
 }
 
 void ApPixelRenderer::unsupported(const std::string& what) {
-  if (!m_unsupported.insert(what).second) return;
-  const std::string message = "ap-pixel does not support " + what + " (reported once per frame)";
-  if (m_env.warn)
-    m_env.warn("ap-pixel", message);
-  else
-    std::cerr << "warning: " << message << "\n";
+  m_unsupported.report(m_env, what);
 }
 
 void ApPixelRenderer::clear(const gl::ClearRequest& request) {
@@ -79,7 +73,7 @@ void ApPixelRenderer::present() {
   }
   m_buffers.color_address = m_display.back_buffer();
   m_buffers_core->set_color_address(m_buffers.color_address);
-  m_unsupported.clear();
+  m_unsupported.new_frame();
   publish_statistics();
   renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles)},
                                              {"visible_pixels", static_cast<double>(m_visible)},

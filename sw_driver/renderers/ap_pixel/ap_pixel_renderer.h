@@ -10,7 +10,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -23,6 +22,7 @@
 #include "renderers/arm/arm_renderer.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/host_time.h"
+#include "renderers/common/unsupported_state.h"
 
 namespace tessera::ap_pixel {
 
@@ -105,7 +105,7 @@ class ApPixelRenderer : public gl::Renderer {
   std::vector<std::vector<uint32_t>> m_block_pixels;  // per block in the batch: its pixels
   // Per pixel of a batch, the attribute values read back (16.8).
   std::vector<std::array<int32_t, ATTRIBUTES>> m_results;
-  std::set<std::string> m_unsupported;  // reported this frame
+  renderers::UnsupportedState m_unsupported{"ap-pixel"};
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <iostream>
 #include <stdexcept>
 
 #include "ap_programs/ap_tile.h"
@@ -55,12 +54,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env)
 }
 
 void ApTileRenderer::unsupported(const std::string& what) {
-  if (!m_unsupported.insert(what).second) return;
-  const std::string message = "ap-tile does not support " + what + " (reported once per frame)";
-  if (m_env.warn)
-    m_env.warn("ap-tile", message);
-  else
-    std::cerr << "warning: " << message << "\n";
+  m_unsupported.report(m_env, what);
 }
 
 uint8_t ApTileRenderer::texture_number(const gl::RasterState& state) {
@@ -322,7 +316,7 @@ void ApTileRenderer::present() {
     }
     m_display.present();
   }
-  m_unsupported.clear();
+  m_unsupported.new_frame();
   publish_statistics();
   // This frame's figures: the totals' changes, and the busiest CU and the
   // CUs' occupancy (CUs with a triangle per pass) of this frame.

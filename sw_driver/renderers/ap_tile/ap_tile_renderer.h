@@ -9,7 +9,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -21,6 +20,7 @@
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/host_time.h"
+#include "renderers/common/unsupported_state.h"
 
 namespace tessera::ap_tile {
 
@@ -81,7 +81,7 @@ class ApTileRenderer : public gl::Renderer {
   std::vector<TextureEntry> m_textures;         // texture number - 1
   bool m_frame_textured = false;                // some pixel may carry a texture number
   std::vector<uint32_t> m_rgba;                 // the frame read back, row 0 at the top
-  std::set<std::string> m_unsupported;          // reported this frame
+  renderers::UnsupportedState m_unsupported{"ap-tile"};
   std::vector<uint8_t> m_record_bytes;          // four CUs' records, packed into words
 
   renderers::HostTime m_time;
