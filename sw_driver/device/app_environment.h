@@ -17,6 +17,7 @@
 namespace tessera {
 
 struct AppEnvironment;
+class Config;
 
 // Builds the renderer of the window surface (eglCreateWindowSurface). The
 // launcher takes it from the back-end registry (sw_driver/renderers/
@@ -37,6 +38,10 @@ struct AppEnvironment {
   // What that back end's buffers hold, for EGL's configuration, which is
   // chosen before any surface (and so any renderer) exists.
   gl::RendererCapabilities capabilities;
+  // The run's configuration, where the back end's make_renderer reads its
+  // own keys (backend_entry_points.h, `parameters`). Null where a launcher
+  // has none (native benchmarks, unit tests): the back end's defaults.
+  const Config* config = nullptr;
   std::vector<std::string> args;
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.

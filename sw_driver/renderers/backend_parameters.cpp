@@ -2,6 +2,7 @@
 
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderers/backends.h"
@@ -25,6 +26,15 @@ ParamGroup driver_parameters() {
             if (const backends::Backend* chosen = backends::find_backend(config.get_string("driver.backend")))
               chosen->check_configuration(config);
           }};
+}
+
+std::vector<ParamGroup> driver_parameter_groups() {
+  std::vector<ParamGroup> groups = {driver_parameters()};
+  for (const backends::Backend& entry : backends::BACKENDS) {
+    ParamGroup group = entry.parameters();
+    if (!group.specs.empty()) groups.push_back(std::move(group));
+  }
+  return groups;
 }
 
 }  // namespace tessera

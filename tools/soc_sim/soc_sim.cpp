@@ -191,9 +191,11 @@ ParamGroup runner_parameters() {
           {}};
 }
 
-// Every parameter of a run: soc_sim's, the driver's, the SoC's and its blocks'.
+// Every parameter of a run: soc_sim's, the driver's and its back ends', the
+// SoC's and its blocks'.
 std::vector<ParamGroup> all_parameters() {
-  std::vector<ParamGroup> groups = {runner_parameters(), driver_parameters()};
+  std::vector<ParamGroup> groups = {runner_parameters()};
+  for (ParamGroup& group : driver_parameter_groups()) groups.push_back(std::move(group));
   for (ParamGroup& group : Soc::parameter_groups()) groups.push_back(std::move(group));
   return groups;
 }
@@ -351,6 +353,7 @@ int run(int argc, char* argv[]) {
   env.heap_end = layout.heap_end;
   env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   env.args = opt.app_args;
+  env.config = &config;
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
   env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };

@@ -40,9 +40,14 @@ struct HostTime {
   double compute = 0, array_write = 0, array_read = 0, array_wait = 0, frame_out = 0;
 };
 
+// The back end's configuration (ap.tile.*, declared in ap_tile_backend.cpp).
+struct Settings {
+  bool texcoords_always = false;  // the texcoord stage in every pass, textured or not
+};
+
 class ApTileRenderer : public gl::Renderer {
  public:
-  explicit ApTileRenderer(AppEnvironment& env);
+  explicit ApTileRenderer(AppEnvironment& env, Settings settings = {});
 
   const char* name() const override { return "tessera ap-tile (array processor, one tile per CU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_tile::CAPABILITIES; }
@@ -70,6 +75,7 @@ class ApTileRenderer : public gl::Renderer {
   void publish_statistics();
 
   AppEnvironment& m_env;
+  Settings m_settings;
   HostApi& m_host;
   DisplayDriver m_display;
   ArrayDriver m_array;
