@@ -61,7 +61,10 @@ void draw(int /*frame*/) {
 }  // namespace
 
 Scene fullscreen_rect_scene() {
-  return {"fullscreen_rect", "Two triangles covering the viewport exactly, with a linear colour gradient", init, draw};
+  return {"fullscreen_rect",
+          "Two triangles covering the viewport exactly, with a linear colour gradient (argument: depth, to "
+          "depth-test every pixel)",
+          init, draw};
 }
 
 }  // namespace tessera::scenes
