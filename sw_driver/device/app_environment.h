@@ -38,11 +38,11 @@ struct AppEnvironment {
   // What that back end's buffers hold, for EGL's configuration, which is
   // chosen before any surface (and so any renderer) exists.
   gl::RendererCapabilities capabilities;
-  std::vector<std::string> args;
-  // The run's configuration, for back ends with parameters of their own
-  // (ap.pixel.block, ...). Null where the launcher has none (the native
-  // benchmarks): the back end takes its defaults.
+  // The run's configuration, where the back end's make_renderer reads its
+  // own keys (backend_entry_points.h, `parameters`). Null where a launcher
+  // has none (native benchmarks, unit tests): the back end's defaults.
   const Config* config = nullptr;
+  std::vector<std::string> args;
   // The driver's own statistics (vertex cache, ...), kept by the software
   // on the host; soc_sim writes them to stats.json as "driver". May be null.
   ActivityCounters* counters = nullptr;

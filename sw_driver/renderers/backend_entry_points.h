@@ -8,7 +8,11 @@
 //    nothing (Config::is_set), before the configuration is validated (the
 //    array back ends: the display's size to the array's frame);
 //  - check_configuration: throws ConfigError for a configuration the back
-//    end cannot run with (called when driver.backend names it).
+//    end cannot run with (called when driver.backend names it);
+//  - parameters: the back end's own keys (ap-tile: ap.tile.*), declared
+//    once with their defaults and put in every configuration beside
+//    driver.backend; a back end without any returns an empty group. Its
+//    make_renderer reads them from AppEnvironment::config.
 // A back end that forgets one fails to link, naming the function.
 #pragma once
 
@@ -24,6 +28,7 @@
   std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env);                 \
   void adjust_configuration(Config& config);                                        \
   void check_configuration(const Config& config);                                   \
+  ParamGroup parameters();                                                          \
   }
 #include "renderers/backends.def"
 #undef TESSERA_BACKEND

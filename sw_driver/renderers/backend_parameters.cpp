@@ -2,6 +2,7 @@
 
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderers/backends.h"
@@ -19,15 +20,21 @@ ParamGroup driver_parameters() {
   return {"driver",
           {
               param::choice("driver.backend", "arm", names, description),
-              param::integer("ap.pixel.block", 1, 1, 5, "pixels",
-                             "ap-pixel: each CU shades a block of k x k pixels (one full evaluation, the others "
-                             "by adding gradients)"),
           },
           [](const Config& config) {
             // The choice has been checked against the same names already.
             if (const backends::Backend* chosen = backends::find_backend(config.get_string("driver.backend")))
               chosen->check_configuration(config);
           }};
+}
+
+std::vector<ParamGroup> driver_parameter_groups() {
+  std::vector<ParamGroup> groups = {driver_parameters()};
+  for (const backends::Backend& entry : backends::BACKENDS) {
+    ParamGroup group = entry.parameters();
+    if (!group.specs.empty()) groups.push_back(std::move(group));
+  }
+  return groups;
 }
 
 }  // namespace tessera

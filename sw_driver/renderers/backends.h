@@ -24,11 +24,19 @@ struct Backend {
   std::unique_ptr<gl::Renderer> (*make_renderer)(AppEnvironment& env);
   void (*adjust_configuration)(Config& config);
   void (*check_configuration)(const Config& config);
+  ParamGroup (*parameters)();
 };
 
 inline constexpr Backend BACKENDS[] = {
 #define TESSERA_BACKEND(id, name, depth_bits, stencil_bits, description) \
-  {#id, name, description, id::CAPABILITIES, &id::make_renderer, &id::adjust_configuration, &id::check_configuration},
+  {#id,                                                                  \
+   name,                                                                 \
+   description,                                                          \
+   id::CAPABILITIES,                                                     \
+   &id::make_renderer,                                                   \
+   &id::adjust_configuration,                                            \
+   &id::check_configuration,                                             \
+   &id::parameters},
 #include "renderers/backends.def"
 #undef TESSERA_BACKEND
 };

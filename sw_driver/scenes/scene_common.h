@@ -16,6 +16,7 @@ Scene fullscreen_rect_scene();
 Scene textured_quad_scene();
 Scene teapot_scene();
 Scene obj_viewer_scene();
+Scene tile_grid_scene();
 
 // For scenes that take no arguments: false with a message if there are any.
 bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error);

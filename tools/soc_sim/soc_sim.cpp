@@ -226,9 +226,11 @@ ParamGroup runner_parameters() {
           {}};
 }
 
-// Every parameter of a run: soc_sim's, the driver's, the SoC's and its blocks'.
+// Every parameter of a run: soc_sim's, the driver's and its back ends', the
+// SoC's and its blocks'.
 std::vector<ParamGroup> all_parameters() {
-  std::vector<ParamGroup> groups = {runner_parameters(), driver_parameters()};
+  std::vector<ParamGroup> groups = {runner_parameters()};
+  for (ParamGroup& group : driver_parameter_groups()) groups.push_back(std::move(group));
   for (ParamGroup& group : Soc::parameter_groups()) groups.push_back(std::move(group));
   return groups;
 }

@@ -14,8 +14,21 @@ constexpr unsigned TILE_WIDTH = 8, TILE_HEIGHT = 36, MAX_FRAME = 256;
 
 }  // namespace
 
+ParamGroup parameters() {
+  return {"ap-pixel",
+          {
+              param::integer("ap.pixel.block", 1, 1, 5, "pixels",
+                             "ap-pixel: each CU shades a block of k x k pixels (one full evaluation, the others "
+                             "by adding gradients)"),
+          },
+          {}};
+}
+
 std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
-  return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(env);
+  const Config defaults({parameters()});
+  const Config& config = env.config != nullptr ? *env.config : defaults;
+  return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(env,
+                                                             static_cast<unsigned>(config.get_uint("ap.pixel.block")));
 }
 
 // The display shows the study's frame (192 x 144 for the 24 x 4 array)

@@ -7,7 +7,6 @@
 #include "ap_programs/ap_pixel.h"
 #include "common/fixed_function.h"
 #include "common/pixel_format.h"
-#include "config/config.h"
 #include "gl/runtime.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
@@ -24,13 +23,14 @@ constexpr unsigned MAX_FRAME = 256;
 
 }  // namespace
 
-ApPixelRenderer::ApPixelRenderer(AppEnvironment& env)
+ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
     : m_env(env),
       m_host(*env.host),
       m_display(env),
       m_memory(*env.host),
       m_array(env),
-      m_layout(PixelLayout::of(ap::programs::ap_pixel())) {
+      m_layout(PixelLayout::of(ap::programs::ap_pixel())),
+      m_block(block) {
   m_buffers.width = m_display.width();
   m_buffers.height = m_display.height();
   if (m_buffers.width > MAX_FRAME || m_buffers.height > MAX_FRAME)
@@ -43,7 +43,6 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env)
   m_buffers.depth_address = gl::allocate(m_buffers.width * m_buffers.height * 2);
   m_buffers.stencil_address = gl::allocate(m_buffers.width * m_buffers.height);
   m_buffers_core = std::make_unique<arm::ArmRasterizer>(m_memory, m_buffers);
-  if (env.config != nullptr) m_block = static_cast<unsigned>(env.config->get_uint("ap.pixel.block"));
   if (m_block < 1 || m_block > m_layout.max_block)
     throw std::invalid_argument("ap-pixel: block size " + std::to_string(m_block) + " is outside 1.." +
                                 std::to_string(m_layout.max_block));

@@ -44,7 +44,8 @@ struct HostCosts {
 
 class ApPixelRenderer : public gl::Renderer {
  public:
-  explicit ApPixelRenderer(AppEnvironment& env);
+  // block: the side of the block each CU shades (ap.pixel.block), 1 to 5.
+  ApPixelRenderer(AppEnvironment& env, unsigned block);
 
   const char* name() const override { return "tessera ap-pixel (array processor as a 96-wide ALU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_pixel::CAPABILITIES; }

@@ -22,8 +22,24 @@ unsigned frame_height(const Config& config) {
 
 }  // namespace
 
+// The back end's keys, with their defaults: the one place they are declared.
+ParamGroup parameters() {
+  return {"ap-tile",
+          {
+              param::choice("ap.tile.texcoords", "textured", {"textured", "always"},
+                            "when ap-tile runs its texcoord stage: textured (in the passes after a textured triangle "
+                            "since the last colour clear) or always (in every pass, as the study measured it: "
+                            "texture coordinates computed even where no texture is applied)"),
+          },
+          {}};
+}
+
 std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
-  return std::make_unique<tessera::ap_tile::ApTileRenderer>(env);
+  const Config defaults({parameters()});
+  const Config& config = env.config != nullptr ? *env.config : defaults;
+  tessera::ap_tile::Settings settings;
+  settings.texcoords_always = config.get_string("ap.tile.texcoords") == "always";
+  return std::make_unique<tessera::ap_tile::ApTileRenderer>(env, settings);
 }
 
 // The display shows the array's frame (192 x 144 for the 24 x 4 array)

@@ -26,8 +26,13 @@ constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStag
 
 }  // namespace
 
-ApTileRenderer::ApTileRenderer(AppEnvironment& env)
-    : m_env(env), m_host(*env.host), m_display(env), m_array(env), m_layout(CmemLayout::of(ap::programs::ap_tile())) {
+ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
+    : m_env(env),
+      m_settings(settings),
+      m_host(*env.host),
+      m_display(env),
+      m_array(env),
+      m_layout(CmemLayout::of(ap::programs::ap_tile())) {
   m_frame.columns = m_array.columns();
   m_frame.rows = m_array.rows();
   m_frame.tile_width = m_layout.tile_width;
@@ -150,7 +155,7 @@ void ApTileRenderer::flush() {
   }
   const unsigned groups = m_frame.columns / 4;
   for (size_t pass = 0; pass < passes; ++pass) {
-    bool depth = false, textured = m_frame_textured;
+    bool depth = false, texcoords = m_frame_textured || m_settings.texcoords_always;
     for (unsigned j = 0; j < m_frame.rows; ++j)
       for (unsigned i = 0; i < groups; ++i) {
         TileRecord records[4];
@@ -182,7 +187,7 @@ void ApTileRenderer::flush() {
       }
     for (TileStage stage : PASS_STAGES) {
       if (stage == TileStage::depth && !depth) continue;
-      if (stage == TileStage::texcoord && !textured) continue;
+      if (stage == TileStage::texcoord && !texcoords) continue;
       run_stage(stage);
     }
     ++m_passes;

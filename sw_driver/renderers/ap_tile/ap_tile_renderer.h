@@ -36,9 +36,14 @@ struct HostCosts {
   unsigned tex_env_alu = 12, tex_env_mul = 4;
 };
 
+// The back end's configuration (ap.tile.*, declared in ap_tile_backend.cpp).
+struct Settings {
+  bool texcoords_always = false;  // the texcoord stage in every pass, textured or not
+};
+
 class ApTileRenderer : public gl::Renderer {
  public:
-  explicit ApTileRenderer(AppEnvironment& env);
+  explicit ApTileRenderer(AppEnvironment& env, Settings settings = {});
 
   const char* name() const override { return "tessera ap-tile (array processor, one tile per CU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_tile::CAPABILITIES; }
@@ -66,6 +71,7 @@ class ApTileRenderer : public gl::Renderer {
   void publish_statistics();
 
   AppEnvironment& m_env;
+  Settings m_settings;
   HostApi& m_host;
   DisplayDriver m_display;
   ArrayDriver m_array;

@@ -10,8 +10,11 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
 
 // The arm back end draws into the display's frame buffers with buffers of
 // its own in system memory: every configuration the SoC accepts suits it,
-// and it needs nothing set.
+// and it needs nothing set. It has no keys of its own.
 void adjust_configuration(Config&) {}
 void check_configuration(const Config&) {}
+ParamGroup parameters() {
+  return {"arm", {}, {}};
+}
 
 }  // namespace tessera::backends::arm

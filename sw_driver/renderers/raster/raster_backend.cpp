@@ -27,4 +27,9 @@ void check_configuration(const Config& config) {
         std::to_string(config.get_uint("display.height")));
 }
 
+// The rasterizer's keys (raster.*) are the block's; the back end has none.
+ParamGroup parameters() {
+  return {"raster", {}, {}};
+}
+
 }  // namespace tessera::backends::raster

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iterator>
@@ -54,6 +55,7 @@ TEST(Backends, EveryLineOfTheTableIsRegisteredInOrder) {
     EXPECT_TRUE(unique_names.insert(entry.name).second) << "name listed twice";
     EXPECT_NE(entry.make_renderer, nullptr);
     EXPECT_NE(entry.check_configuration, nullptr);
+    EXPECT_NE(entry.parameters, nullptr);
     EXPECT_FALSE(std::string(entry.description).empty());
     EXPECT_GE(entry.capabilities.depth_bits, 1u);
     EXPECT_LE(entry.capabilities.depth_bits, 32u);
@@ -127,10 +129,10 @@ TEST(DriverParameters, BackendChoicesAndDescriptionComeFromTheTable) {
   }
 }
 
-// The array back ends' own keys are the driver's too: ap-pixel's block
-// size, 1 to 5 (its program has an entry per size).
+// ap-pixel's own key: the block size, 1 to 5 (its program has an entry per
+// size).
 TEST(DriverParameters, ApPixelBlockIsOneToFive) {
-  Config config({driver_parameters()});
+  Config config(driver_parameter_groups());
   EXPECT_EQ(config.get_uint("ap.pixel.block"), 1u);
   config.set("ap.pixel.block", 5, "test");
   EXPECT_EQ(config.get_uint("ap.pixel.block"), 5u);
@@ -172,6 +174,42 @@ Config configuration(const std::string& backend, const std::vector<std::string>&
 }
 
 }  // namespace
+
+// A back end's own keys live under its name, a dash read as a dot
+// (ap-tile: ap.tile.*), so that no two back ends (and no block) share one.
+TEST(DriverParameters, EachBackEndsKeysAreUnderItsName) {
+  for (const backends::Backend& entry : backends::BACKENDS) {
+    SCOPED_TRACE(entry.name);
+    std::string prefix = entry.name;
+    std::replace(prefix.begin(), prefix.end(), '-', '.');
+    prefix += '.';
+    for (const ParamSpec& spec : entry.parameters().specs) EXPECT_EQ(spec.key.rfind(prefix, 0), 0u) << spec.key;
+  }
+}
+
+TEST(DriverParameters, GroupsAreTheDriversAndEveryBackEndsWithKeys) {
+  const std::vector<ParamGroup> groups = driver_parameter_groups();
+  ASSERT_FALSE(groups.empty());
+  EXPECT_EQ(groups[0].specs.size(), 1u);
+  EXPECT_EQ(groups[0].specs[0].key, "driver.backend");
+  size_t with_keys = 0;
+  for (const backends::Backend& entry : backends::BACKENDS) with_keys += entry.parameters().specs.empty() ? 0 : 1;
+  EXPECT_EQ(groups.size(), 1 + with_keys);
+  for (const ParamGroup& group : groups) EXPECT_FALSE(group.specs.empty()) << group.owner;
+  // No key is declared twice (Config throws std::logic_error if one is).
+  EXPECT_NO_THROW(Config(groups).specs());
+}
+
+TEST(DriverParameters, ApTileTexcoordsIsAChoiceOfTexturedOrAlways) {
+  Config config(driver_parameter_groups());
+  EXPECT_EQ(config.get_string("ap.tile.texcoords"), "textured");
+  config.apply_override("ap.tile.texcoords=always");
+  EXPECT_EQ(config.get_string("ap.tile.texcoords"), "always");
+  const std::string message = what_of([&] { config.apply_override("ap.tile.texcoords=sometimes"); });
+  for (const char* part : {"ap.tile.texcoords", "sometimes", "textured", "always"})
+    EXPECT_NE(message.find(part), std::string::npos) << part << ": " << message;
+  EXPECT_EQ(config.get_string("ap.tile.texcoords"), "always");
+}
 
 TEST(DriverParameters, EveryBackEndAcceptsTheDefaults) {
   for (const backends::Backend& entry : backends::BACKENDS) {

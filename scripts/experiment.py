@@ -1,0 +1,560 @@
+#!/usr/bin/python3
+"""Runs one of the study's experiments and prints its table.
+
+An experiment is a JSON file, configs/experiments/<name>.json, that lists
+soc_sim runs (back end, application and its arguments, frames, configuration
+settings) and the table's columns (statistics of stats.json, configuration
+values, or figures computed from them). This script runs soc_sim once per
+run, reads each run's stats.json, prints the table in Markdown and writes,
+in the output folder (default out/experiments/<name>):
+
+    <name>.md   the table
+    <name>.csv  the same values, unrounded, one row per run
+    <name>.png  the plot the experiment asks for (matplotlib)
+    runs/<run>/ each run's frames and stats.json
+
+    scripts/experiment.py --list
+    scripts/experiment.py fullscreen_rect
+    scripts/experiment.py teapot --frames 1 --out out/quick
+    scripts/experiment.py my_experiment.json --soc-sim build/sanitize/bin/soc_sim
+
+docs/experiments.md describes each experiment, its columns, the file format
+and how to add an experiment. The script runs under Debian's python3, the
+one scripts/setup.sh installs python3-matplotlib for.
+
+Exit status: 0 on success; 2 for a bad command line, an unknown experiment,
+a malformed experiment file, a missing soc_sim or a missing matplotlib; 1
+when a soc_sim run fails or its statistics lack a figure the table needs.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+EXPERIMENTS = ROOT / "configs" / "experiments"
+DEFAULT_SOC_SIM = ROOT / "build" / "default" / "bin" / "soc_sim"
+
+EXIT_FAILED = 1
+EXIT_USAGE = 2
+
+
+class UsageError(Exception):
+    """Bad input: the command line, an experiment file, a missing tool (status 2)."""
+
+
+class RunError(Exception):
+    """A soc_sim run failed or gave statistics the table cannot use (status 1)."""
+
+
+# ---------------------------------------------------------------------------
+# Figures computed from a run's statistics ("value" columns). Each takes the
+# run's result, the column and every run's result (for figures relative to
+# another run) and returns a number, or None where the run has no such
+# figure. docs/experiments.md lists them.
+
+
+def stat(result, path, required=True):
+    """The statistic at the dotted `path` of stats.json's "stats"."""
+    node = result.stats
+    for part in path.split("."):
+        if not isinstance(node, dict) or part not in node:
+            if required:
+                raise RunError(f"run '{result.label}' has no statistic '{path}' in {result.stats_path}")
+            return None
+        node = node[part]
+    if isinstance(node, bool) or not isinstance(node, (int, float)):
+        raise RunError(f"run '{result.label}': statistic '{path}' is not a number in {result.stats_path}")
+    return node
+
+
+def frame_time_ms(result, column, results):
+    """Mean simulated time per frame: the frames' render_ns (request to request), in ms."""
+    frames = result.stats["frames"]
+    return sum(frame["render_ns"] for frame in frames) / len(frames) / 1e6
+
+
+def frames_per_second(result, column, results):
+    """Frames per simulated second, from frame_time_ms."""
+    return 1000.0 / frame_time_ms(result, column, results)
+
+
+def speedup(result, column, results):
+    """The baseline run's frame_time_ms over this run's (column "baseline": the run's label)."""
+    baseline = next(r for r in results if r.label == column["baseline"])
+    return frame_time_ms(baseline, column, results) / frame_time_ms(result, column, results)
+
+
+AP_TILE_PASS_STAGES = ("fill", "depth", "colour", "texcoord")
+
+
+def ap_tile_pass_cycles(result, column, results):
+    """Array cycles of one ap-tile pass: the four pass stages' cycles over the passes (clears excluded)."""
+    cycles = sum(stat(result, f"driver.ap_tile.cycles.{stage}") for stage in AP_TILE_PASS_STAGES)
+    return cycles / stat(result, "driver.ap_tile.passes")
+
+
+def ap_tile_pass_us(result, column, results):
+    """ap_tile_pass_cycles at the array's clock (array.clock_mhz), in microseconds."""
+    return ap_tile_pass_cycles(result, column, results) / config(result, "array.clock_mhz")
+
+
+def ap_tile_passes_per_second(result, column, results):
+    """The array's clock over ap_tile_pass_cycles: passes per second with the host never in the way."""
+    return config(result, "array.clock_mhz") * 1e6 / ap_tile_pass_cycles(result, column, results)
+
+
+def ap_tile_cus_per_pass(result, column, results):
+    """CUs with a triangle, per pass: triangle records (driver.ap_tile.cu_triangles) over passes."""
+    return stat(result, "driver.ap_tile.cu_triangles") / stat(result, "driver.ap_tile.passes")
+
+
+def ap_tile_peak_triangles_per_second(result, column, results):
+    """ap_tile_cus_per_pass x ap_tile_passes_per_second: one triangle per busy CU per pass."""
+    return ap_tile_cus_per_pass(result, column, results) * ap_tile_passes_per_second(result, column, results)
+
+
+COMPUTED = {
+    function.__name__: function
+    for function in (
+        frame_time_ms,
+        frames_per_second,
+        speedup,
+        ap_tile_pass_cycles,
+        ap_tile_pass_us,
+        ap_tile_passes_per_second,
+        ap_tile_cus_per_pass,
+        ap_tile_peak_triangles_per_second,
+    )
+}
+
+
+def config(result, key):
+    """The effective configuration's value of the dotted `key` (stats.json's "config")."""
+    node = result.config
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            raise RunError(f"run '{result.label}' has no configuration key '{key}' in {result.stats_path}")
+        node = node[part]
+    return node
+
+
+# ---------------------------------------------------------------------------
+# The experiment file.
+
+TOP_KEYS = {"title", "description", "frames", "set", "runs", "label_header", "columns", "plot"}
+RUN_KEYS = {"label", "backend", "app", "args", "set", "frames"}
+COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline"}
+PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log"}
+
+
+def check_keys(where, given, allowed):
+    unknown = sorted(set(given) - allowed)
+    if unknown:
+        raise UsageError(f"{where}: unknown key(s) {', '.join(unknown)} (allowed: {', '.join(sorted(allowed))})")
+
+
+def check_settings(where, settings):
+    if not isinstance(settings, dict):
+        raise UsageError(f"{where}: 'set' must be an object of configuration keys and values")
+    for key, value in settings.items():
+        if isinstance(value, (dict, list)) or value is None:
+            raise UsageError(f"{where}: 'set' value of '{key}' must be a string, a number or a boolean")
+
+
+def positive_int(where, value):
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise UsageError(f"{where} must be a positive integer, got {json.dumps(value)}")
+    return value
+
+
+def load_experiment(path):
+    """The experiment at `path`, checked; UsageError naming the file and what is wrong."""
+    try:
+        spec = json.loads(path.read_text())
+    except OSError as error:
+        raise UsageError(f"cannot read {path}: {error.strerror}") from error
+    except json.JSONDecodeError as error:
+        raise UsageError(f"{path} is not valid JSON: {error}") from error
+    where = str(path)
+    if not isinstance(spec, dict):
+        raise UsageError(f"{where}: the top level must be an object")
+    check_keys(where, spec, TOP_KEYS)
+    for key in ("title", "runs", "columns"):
+        if key not in spec:
+            raise UsageError(f"{where}: '{key}' is missing")
+    positive_int(f"{where}: 'frames'", spec.setdefault("frames", 1))
+    check_settings(where, spec.setdefault("set", {}))
+    spec.setdefault("description", "")
+    spec.setdefault("label_header", "run")
+
+    if not isinstance(spec["runs"], list) or not spec["runs"]:
+        raise UsageError(f"{where}: 'runs' must be a non-empty list")
+    labels, folders = set(), set()
+    for index, run in enumerate(spec["runs"]):
+        run_where = f"{where}: runs[{index}]"
+        if not isinstance(run, dict):
+            raise UsageError(f"{run_where} must be an object")
+        check_keys(run_where, run, RUN_KEYS)
+        for key in ("label", "backend", "app"):
+            if not isinstance(run.get(key), str) or not run[key]:
+                raise UsageError(f"{run_where}: '{key}' must be a non-empty string")
+        if run["label"] in labels or run_folder_name(run["label"]) in folders:
+            raise UsageError(f"{run_where}: label '{run['label']}' is used twice (or names the same folder as "
+                             "another: runs/" + run_folder_name(run["label"]) + ")")
+        labels.add(run["label"])
+        folders.add(run_folder_name(run["label"]))
+        run.setdefault("args", [])
+        if not isinstance(run["args"], list) or not all(isinstance(a, str) for a in run["args"]):
+            raise UsageError(f"{run_where}: 'args' must be a list of strings")
+        check_settings(run_where, run.setdefault("set", {}))
+        if "frames" in run:
+            positive_int(f"{run_where}: 'frames'", run["frames"])
+
+    if not isinstance(spec["columns"], list) or not spec["columns"]:
+        raise UsageError(f"{where}: 'columns' must be a non-empty list")
+    keys = set()
+    for index, column in enumerate(spec["columns"]):
+        column_where = f"{where}: columns[{index}]"
+        if not isinstance(column, dict):
+            raise UsageError(f"{column_where} must be an object")
+        check_keys(column_where, column, COLUMN_KEYS)
+        key = column.get("key")
+        if not isinstance(key, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", key):
+            raise UsageError(f"{column_where}: 'key' must be a name of [a-z0-9_] (the CSV's column)")
+        if key in keys or key == "run":
+            raise UsageError(f"{column_where}: key '{key}' is used twice (or is 'run', the label's column)")
+        keys.add(key)
+        column.setdefault("header", key)
+        sources = [source for source in ("stat", "config", "value") if source in column]
+        if len(sources) != 1:
+            raise UsageError(f"{column_where} ('{key}') needs exactly one of 'stat', 'config' and 'value'")
+        if "value" in column and column["value"] not in COMPUTED:
+            raise UsageError(f"{column_where} ('{key}'): unknown value '{column['value']}' "
+                             f"(known: {', '.join(COMPUTED)})")
+        if column.get("value") == "speedup" and column.get("baseline") not in labels:
+            raise UsageError(f"{column_where} ('{key}'): 'baseline' must be the label of a run "
+                             f"({', '.join(sorted(labels))})")
+        if "per" in column and "stat" not in column:
+            raise UsageError(f"{column_where} ('{key}'): 'per' applies to a 'stat' column only")
+        if "scale" in column and (isinstance(column["scale"], bool) or not isinstance(column["scale"], (int, float))):
+            raise UsageError(f"{column_where} ('{key}'): 'scale' must be a number")
+        if "format" in column:
+            try:
+                format(1.5, column["format"])
+            except (TypeError, ValueError) as error:
+                raise UsageError(f"{column_where} ('{key}'): bad 'format' {json.dumps(column['format'])} "
+                                 "(a Python format for a number, e.g. \",.2f\")") from error
+        if "backends" in column and (not isinstance(column["backends"], list) or not column["backends"]):
+            raise UsageError(f"{column_where} ('{key}'): 'backends' must be a non-empty list of back-end names")
+
+    plot = spec.setdefault("plot", {})
+    if not isinstance(plot, dict):
+        raise UsageError(f"{where}: 'plot' must be an object")
+    check_keys(f"{where}: plot", plot, PLOT_KEYS)
+    plot.setdefault("columns", [spec["columns"][0]["key"]])
+    for key in plot["columns"] + ([plot["x"]] if "x" in plot else []):
+        if key not in keys:
+            raise UsageError(f"{where}: plot: '{key}' is not a column key ({', '.join(sorted(keys))})")
+    return spec
+
+
+def experiment_path(name):
+    """The file of the experiment called `name`, or `name` itself if it is a path to a JSON file."""
+    if name.endswith(".json"):
+        return pathlib.Path(name)
+    path = EXPERIMENTS / f"{name}.json"
+    if not path.is_file():
+        known = ", ".join(p.stem for p in sorted(EXPERIMENTS.glob("*.json")))
+        raise UsageError(f"unknown experiment '{name}' (known: {known}; or the path of a .json file)")
+    return path
+
+
+# ---------------------------------------------------------------------------
+# Running soc_sim.
+
+
+class RunResult:
+    def __init__(self, run, stats_path, document):
+        self.label = run["label"]
+        self.backend = run["backend"]
+        self.stats_path = stats_path
+        self.stats = document["stats"]
+        self.config = document["config"]
+
+
+def setting_text(value):
+    """A JSON value as soc_sim's --set key=value reads it."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+def run_folder_name(label):
+    return re.sub(r"[^A-Za-z0-9.-]+", "_", label).strip("_") or "run"
+
+
+def soc_sim_command(soc_sim, spec, run, frames, folder):
+    command = [str(soc_sim), "--backend", run["backend"], "--app", run["app"], "--frames", str(frames),
+               "--out", str(folder), "--force", "--quiet"]
+    for key, value in {**spec["set"], **run["set"]}.items():
+        command += ["--set", f"{key}={setting_text(value)}"]
+    if run["args"]:
+        command += ["--"] + run["args"]
+    return command
+
+
+def run_all(spec, name, soc_sim, out, frames_override, quiet):
+    results = []
+    for run in spec["runs"]:
+        frames = frames_override or run.get("frames", spec["frames"])
+        folder = out / "runs" / run_folder_name(run["label"])
+        folder.mkdir(parents=True, exist_ok=True)
+        command = soc_sim_command(soc_sim, spec, run, frames, folder)
+        if not quiet:
+            print(f"[{name}] {run['label']}: {' '.join(command)}", file=sys.stderr, flush=True)
+        start = time.monotonic()
+        try:
+            done = subprocess.run(command, capture_output=True, text=True, check=False,
+                                  env={**os.environ, "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE": "1"})
+        except OSError as error:
+            raise UsageError(f"cannot run {soc_sim}: {error.strerror}") from error
+        if done.returncode != 0:
+            message = (done.stderr.strip() or done.stdout.strip()).splitlines()[-5:]
+            raise RunError(f"run '{run['label']}' failed (soc_sim exit status {done.returncode}): "
+                           f"{' '.join(command)}\n  " + "\n  ".join(message))
+        stats_path = folder / "stats.json"
+        try:
+            document = json.loads(stats_path.read_text())
+        except (OSError, json.JSONDecodeError) as error:
+            raise RunError(f"run '{run['label']}': cannot read {stats_path}: {error}") from error
+        shown = len(document.get("stats", {}).get("frames", []))
+        if shown != frames:
+            raise RunError(f"run '{run['label']}': {shown} frames shown of the {frames} requested ({stats_path})")
+        if not quiet:
+            print(f"[{name}] {run['label']}: done in {time.monotonic() - start:.1f} s", file=sys.stderr, flush=True)
+        results.append(RunResult(run, stats_path, document))
+    return results
+
+
+# ---------------------------------------------------------------------------
+# The table.
+
+
+def cell_value(column, result, results):
+    """The column's number for one run, or None where the column does not apply to its back end."""
+    if "backends" in column and result.backend not in column["backends"]:
+        return None
+    if "stat" in column:
+        value = stat(result, column["stat"])
+        per = column.get("per")
+        if per == "frame":
+            value = value / len(result.stats["frames"])
+        elif per is not None:
+            divisor = stat(result, per)
+            if divisor == 0:
+                raise RunError(f"run '{result.label}': '{per}' is 0, so '{column['stat']}' per it is undefined")
+            value = value / divisor
+    elif "config" in column:
+        value = config(result, column["config"])
+    else:
+        value = COMPUTED[column["value"]](result, column, results)
+    if "scale" in column and value is not None:
+        value = value * column["scale"]
+    return value
+
+
+def format_cell(column, value):
+    if value is None:
+        return "-"
+    if isinstance(value, str):
+        return value
+    if "format" in column:
+        return format(value, column["format"])
+    if isinstance(value, bool):
+        return str(value).lower()
+    return format(value, ",") if isinstance(value, int) else format(value, ",.2f")
+
+
+def build_table(spec, results):
+    """Rows of (label, [value per column]) in the runs' order."""
+    return [(result.label, [cell_value(column, result, results) for column in spec["columns"]]) for result in results]
+
+
+def markdown(spec, rows):
+    headers = [spec["label_header"]] + [column["header"] for column in spec["columns"]]
+    lines = ["| " + " | ".join(headers) + " |",
+             "|" + "---|" + "".join("--:|" for _ in spec["columns"])]
+    for label, values in rows:
+        cells = [format_cell(column, value) for column, value in zip(spec["columns"], values)]
+        lines.append("| " + " | ".join([label] + cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def csv_text(value):
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return str(value).lower()
+    if isinstance(value, float):
+        return format(value, ".10g")
+    return str(value)
+
+
+def write_csv(spec, rows, path):
+    with path.open("w", newline="") as file:
+        writer = csv.writer(file)
+        writer.writerow(["run"] + [column["key"] for column in spec["columns"]])
+        for label, values in rows:
+            writer.writerow([label] + [csv_text(value) for value in values])
+
+
+# ---------------------------------------------------------------------------
+# The plot.
+
+
+def import_pyplot():
+    try:
+        import matplotlib
+    except ImportError as error:
+        raise UsageError(f"matplotlib is missing for {sys.executable}: install python3-matplotlib "
+                         "(scripts/setup.sh) or run the script with Debian's python3") from error
+    matplotlib.use("Agg")  # files only, no display needed
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot(spec, rows, path, plt):
+    settings = spec["plot"]
+    columns = {column["key"]: (index, column) for index, column in enumerate(spec["columns"])}
+    labels = [label for label, _ in rows]
+
+    def series(key):
+        index, _ = columns[key]
+        return [values[index] for _, values in rows]
+
+    figure, axes = plt.subplots(figsize=(max(6.0, 1.6 * len(labels) + 2.5), 4.5))
+    keys = settings["columns"]
+    if "x" in settings:
+        x = series(settings["x"])
+        for key in keys:
+            y = [math.nan if v is None else v for v in series(key)]
+            axes.plot(x, y, marker="o", label=columns[key][1]["header"])
+        axes.set_xlabel(columns[settings["x"]][1]["header"])
+    else:
+        positions = list(range(len(labels)))
+        stacked = settings.get("stacked", False)
+        width = 0.6 if stacked else 0.8 / len(keys)
+        bottom = [0.0] * len(labels)
+        for number, key in enumerate(keys):
+            values = [0.0 if v is None else float(v) for v in series(key)]
+            offset = 0.0 if stacked else (number - (len(keys) - 1) / 2) * width
+            bars = axes.bar([p + offset for p in positions], values, width, bottom=bottom if stacked else None,
+                            label=columns[key][1]["header"])
+            column = columns[key][1]
+            axes.bar_label(bars, labels=[format_cell(column, v) if v else "" for v in values], fontsize=8,
+                           label_type="center" if stacked else "edge")
+            if stacked:
+                bottom = [b + v for b, v in zip(bottom, values)]
+        # Room above the tallest bar for its label and the legend.
+        tallest = max(bottom) if stacked else max(max(0.0 if v is None else float(v) for v in series(k)) for k in keys)
+        if tallest > 0 and not settings.get("log"):
+            axes.set_ylim(0, tallest * 1.25)
+        axes.set_xticks(positions)
+        axes.set_xticklabels(labels)
+        axes.set_xlabel(spec["label_header"])
+    if settings.get("log"):
+        axes.set_yscale("log")
+    axes.set_ylabel(settings.get("ylabel", columns[keys[0]][1]["header"] if len(keys) == 1 else ""))
+    axes.set_title(spec["title"], fontsize=10)
+    axes.grid(True, axis="y", linewidth=0.3)
+    if len(keys) > 1:
+        axes.legend(fontsize=8)
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
+# ---------------------------------------------------------------------------
+
+
+def list_experiments():
+    for path in sorted(EXPERIMENTS.glob("*.json")):
+        try:
+            title = load_experiment(path)["title"]
+        except UsageError as error:
+            title = f"(malformed: {error})"
+        print(f"{path.stem}  {title}")
+
+
+def run_experiment(name, args):
+    path = experiment_path(name)
+    spec = load_experiment(path)
+    name = path.stem
+    soc_sim = pathlib.Path(args.soc_sim) if args.soc_sim else DEFAULT_SOC_SIM
+    if not soc_sim.is_file():
+        raise UsageError(f"soc_sim not found at {soc_sim}: build it (cmake --preset default && "
+                         "cmake --build --preset default) or give its path with --soc-sim")
+    plt = import_pyplot()
+    out = pathlib.Path(args.out) if args.out else ROOT / "out" / "experiments" / name
+    if len(args.experiments) > 1 and args.out:
+        out = out / name
+    out.mkdir(parents=True, exist_ok=True)
+
+    try:
+        results = run_all(spec, name, soc_sim, out, args.frames, args.quiet)
+        rows = build_table(spec, results)
+    except RunError as error:
+        raise RunError(f"experiment '{name}': {error}") from error
+    table = markdown(spec, rows)
+    (out / f"{name}.md").write_text(f"{spec['title']}\n\n{table}")
+    write_csv(spec, rows, out / f"{name}.csv")
+    plot(spec, rows, out / f"{name}.png", plt)
+    print(f"## {spec['title']}\n")
+    if spec["description"]:
+        print(f"{spec['description']}\n")
+    print(table)
+    print(f"table {out / (name + '.md')}, CSV {out / (name + '.csv')}, plot {out / (name + '.png')}\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("experiments", nargs="*", metavar="EXPERIMENT",
+                        help="an experiment's name (configs/experiments/<name>.json) or a .json file")
+    parser.add_argument("--list", action="store_true", help="list the experiments and exit")
+    parser.add_argument("--soc-sim", help=f"the soc_sim to run (default: {DEFAULT_SOC_SIM.relative_to(ROOT)})")
+    parser.add_argument("--out", help="output folder (default: out/experiments/<name>; with several "
+                                      "experiments, one folder per experiment inside it)")
+    parser.add_argument("--frames", type=int, help="frames of every run instead of the experiment's own "
+                                                   "(e.g. 1 for a quick check)")
+    parser.add_argument("--quiet", "-q", action="store_true", help="print the tables only, not each soc_sim run")
+    args = parser.parse_args()
+    try:
+        if args.list:
+            list_experiments()
+            return 0
+        if not args.experiments:
+            raise UsageError("name an experiment (--list lists them)")
+        if args.frames is not None:
+            positive_int("--frames", args.frames)
+        for name in args.experiments:
+            run_experiment(name, args)
+    except UsageError as error:
+        print(f"experiment.py: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except RunError as error:
+        print(f"experiment.py: {error}", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,120 @@
+// System tests of the ap-tile back end's own configuration through soc_sim:
+// ap.tile.texcoords=always runs the texcoord stage in every pass of a frame
+// that has no texture, and changes no pixel; the default skips the stage; a
+// value it does not know is rejected naming the key and the values allowed.
+//
+// Usage: test_ap_tile_backend <path to soc_sim> [GoogleTest options]
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include "support/soc_sim_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tessera::test::contains;
+using tessera::test::describe;
+using tessera::test::read_file;
+using tessera::test::SimResult;
+
+constexpr int EXIT_USAGE = 2;
+
+std::string g_soc_sim;
+
+class ApTileBackend : public tessera::test::ScratchFolderTest {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_ap_tile_backend <path to soc_sim>";
+    ScratchFolderTest::SetUp();
+  }
+  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
+
+  // One frame of the untextured teapot (many passes) on ap-tile with the
+  // extra settings; the run's stats.json.
+  json teapot(const std::string& folder, const std::vector<std::string>& settings) {
+    std::vector<std::string> args = {"--backend", "ap-tile", "--app", "teapot", "--frames", "1", "--out", folder};
+    for (const std::string& setting : settings) args.insert(args.end(), {"--set", setting});
+    const SimResult result = run(args);
+    EXPECT_EQ(result.status, 0) << describe(result);
+    std::ifstream in(m_dir / folder / "stats.json");
+    return json::parse(in, nullptr, false);
+  }
+};
+
+// How many times the array ran the stage: the executions of its first
+// instruction in the array's profile (0 when it never ran).
+uint64_t stage_runs(const json& stats, const std::string& stage) {
+  uint64_t first_word = UINT64_MAX, runs = 0;
+  for (const json& entry : stats["stats"]["array"]["profile"])
+    if (entry["stage"] == stage && entry["word"].get<uint64_t>() < first_word) {
+      first_word = entry["word"].get<uint64_t>();
+      runs = entry["executions"].get<uint64_t>();
+    }
+  return runs;
+}
+
+TEST_F(ApTileBackend, TexcoordsAlwaysRunsTheStageInEveryPassAndChangesNoPixel) {
+  const json textured = teapot("textured", {});
+  const json always = teapot("always", {"ap.tile.texcoords=always"});
+  ASSERT_FALSE(textured.is_discarded());
+  ASSERT_FALSE(always.is_discarded());
+  EXPECT_EQ(textured["config"]["ap"]["tile"]["texcoords"], "textured");
+  EXPECT_EQ(always["config"]["ap"]["tile"]["texcoords"], "always");
+
+  const json& counters_textured = textured["stats"]["driver"]["ap_tile"];
+  const json& counters_always = always["stats"]["driver"]["ap_tile"];
+  const uint64_t passes = counters_always["passes"].get<uint64_t>();
+  EXPECT_GT(passes, 1u);
+  EXPECT_EQ(counters_textured["passes"], passes);
+  // The teapot has no texture: by default the stage never runs.
+  EXPECT_EQ(counters_textured["cycles"]["texcoord"], 0);
+  EXPECT_EQ(stage_runs(textured, "texcoord"), 0u);
+  EXPECT_GT(counters_always["cycles"]["texcoord"].get<uint64_t>(), 0u);
+  EXPECT_EQ(stage_runs(always, "texcoord"), passes);
+  EXPECT_EQ(stage_runs(always, "fill"), passes);
+  // The other stages are untouched; the extra stage only costs time.
+  for (const char* stage : {"fill", "depth", "colour", "clear_colour", "clear_depth"})
+    EXPECT_EQ(counters_always["cycles"][stage], counters_textured["cycles"][stage]) << stage;
+  EXPECT_GT(always["stats"]["frames"][0]["render_ns"].get<double>(),
+            textured["stats"]["frames"][0]["render_ns"].get<double>());
+  // Computed, not applied: the frame is the same picture.
+  const std::string frame_textured = read_file(m_dir / "textured/frame_0000.png");
+  EXPECT_FALSE(frame_textured.empty());
+  EXPECT_EQ(frame_textured, read_file(m_dir / "always/frame_0000.png"));
+}
+
+TEST_F(ApTileBackend, UnknownTexcoordsValueNamesTheKeyAndTheValues) {
+  const SimResult result =
+      run({"--backend", "ap-tile", "--app", "triangle", "--set", "ap.tile.texcoords=sometimes", "--out", "out"});
+  EXPECT_EQ(result.status, EXIT_USAGE) << describe(result);
+  for (const char* part : {"ap.tile.texcoords", "sometimes", "textured", "always"})
+    EXPECT_TRUE(contains(result.err, part)) << part << "\n" << describe(result);
+  EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+}
+
+// The key belongs to the configuration whichever back end runs, so that one
+// configuration file serves every back end of an experiment.
+TEST_F(ApTileBackend, TheKeyIsAcceptedWithAnotherBackEnd) {
+  const SimResult result = run({"--backend", "arm", "--app", "triangle", "--frames", "1", "--set",
+                                "ap.tile.texcoords=always", "--no-frames", "--out", "out"});
+  EXPECT_EQ(result.status, 0) << describe(result);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc >= 2)
+    g_soc_sim = fs::absolute(argv[1]).string();
+  else if (const char* path = std::getenv("TESSERA_SOC_SIM"))
+    g_soc_sim = path;
+  return RUN_ALL_TESTS();
+}
