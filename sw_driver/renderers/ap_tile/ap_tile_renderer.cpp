@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "ap_programs/ap_tile.h"
 #include "common/pixel_format.h"
 #include "renderers/common/host_time.h"
-#include "renderers/common/texturing.h"
 
 namespace tessera::ap_tile {
 
@@ -32,7 +32,8 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
       m_host(*env.host),
       m_display(env),
       m_array(env),
-      m_layout(CmemLayout::of(ap::programs::ap_tile())) {
+      m_layout(CmemLayout::of(ap::programs::ap_tile())),
+      m_bins(m_array.cus()) {
   m_frame.columns = m_array.columns();
   m_frame.rows = m_array.rows();
   m_frame.tile_width = m_layout.tile_width;
@@ -53,7 +54,6 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
     m_array.fill8(m_layout.yc + l, static_cast<uint8_t>(m_frame.tile_height - 1 - l));
   m_array.fill8(m_layout.zero, 0);
   m_array.fill8(m_layout.live, 0);
-  m_queues.resize(m_frame.cus());
   m_live.assign(m_frame.cus(), false);
   m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
 }
@@ -62,68 +62,23 @@ void ApTileRenderer::unsupported(const std::string& what) {
   m_unsupported.report(m_env, what);
 }
 
-uint8_t ApTileRenderer::texture_number(const gl::RasterState& state) {
-  for (size_t k = 0; k < m_textures.size(); ++k) {
-    const gl::Texture& t = m_textures[k].texture;
-    if (t.address == state.tex.address && t.width == state.tex.width && t.height == state.tex.height &&
-        t.min_filter == state.tex.min_filter && t.mag_filter == state.tex.mag_filter && t.wrap_s == state.tex.wrap_s &&
-        t.wrap_t == state.tex.wrap_t && m_textures[k].env == state.tex_env)
-      return static_cast<uint8_t>(k + 1);
-  }
-  if (m_textures.size() == 255) {
-    unsupported("more than 255 textures between colour clears (the last one is reused)");
-    return 255;
-  }
-  m_textures.push_back({state.tex, state.tex_env});
-  return static_cast<uint8_t>(m_textures.size());
-}
-
 void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   Timed timed(m_host, m_time.compute);
-  if (state.blend) unsupported("blending (GL_BLEND): drawn without it");
-  if (state.alpha_test) unsupported("the alpha test (GL_ALPHA_TEST): drawn without it");
-  if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
-  if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
-  if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
-  if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
-    unsupported("colour masks (glColorMask): drawn with every channel");
-  DrawFlags flags;
-  flags.flat = state.flat_shading;
-  flags.depth_test = state.depth_test;
-  flags.depth_write = state.depth_write;
-  if (state.depth_test) {
-    switch (state.depth_func) {
-      case gl::CompareFunc::less: break;
-      case gl::CompareFunc::lequal: flags.depth_lequal = true; break;
-      case gl::CompareFunc::never: return;
-      case gl::CompareFunc::always:
-        flags.depth_test = false;
-        if (state.depth_write) unsupported("depth writes with GL_ALWAYS: the depth buffer keeps its values");
-        break;
-      default: unsupported("depth functions other than GL_LESS, GL_LEQUAL, GL_ALWAYS and GL_NEVER: drawn as GL_LESS");
-    }
-  }
-  if (state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
-      state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
-      (state.tex.height & (state.tex.height - 1)) == 0) {
-    flags.tex = texture_number(state);
-    flags.tex_width = state.tex.width;
-    flags.tex_height = state.tex.height;
-    m_frame_textured = true;
-  }
+  const std::optional<DrawFlags> flags =
+      draw_flags(state, m_textures, [this](const std::string& what) { unsupported(what); });
+  if (!flags) return;
+  if (flags->tex != 0) m_frame_textured = true;
   const HostCosts& k = m_costs;
   for (size_t t = 0; t < count; ++t) {
     m_host.compute(Op::alu, k.triangle_alu + k.triangle_divisions * k.division_alu);
     m_host.compute(Op::mul, k.triangle_mul);
     m_host.compute(Op::call, k.triangle_divisions);
-    TriangleSetup setup(triangles[t], flags, m_frame);
+    TriangleSetup setup(triangles[t], *flags, m_frame);
     if (!setup.valid()) continue;
     const std::vector<unsigned> tiles = setup.tiles();
     m_host.compute(Op::alu, uint64_t{k.tile_test_alu} * std::max<size_t>(tiles.size(), 1));
     if (tiles.empty()) continue;
-    const auto index = static_cast<uint32_t>(m_triangles.size());
-    m_triangles.push_back(setup);
-    for (unsigned tile : tiles) m_queues[tile].push_back(index);
+    m_bins.add(setup, tiles);
     ++m_triangles_drawn;
   }
 }
@@ -147,10 +102,9 @@ void ApTileRenderer::run_stage(TileStage stage) {
 }
 
 void ApTileRenderer::flush() {
-  size_t passes = 0;
-  for (const auto& queue : m_queues) passes = std::max(passes, queue.size());
+  const size_t passes = m_bins.passes();
   if (passes == 0) {
-    m_triangles.clear();
+    m_bins.clear();
     return;
   }
   const unsigned groups = m_frame.columns / 4;
@@ -165,9 +119,9 @@ void ApTileRenderer::flush() {
           for (unsigned k = 0; k < 4; ++k) {
             const unsigned c = 4 * i + k, lane = j * m_frame.columns + c;
             was_live = was_live || m_live[lane];
-            if (pass >= m_queues[lane].size()) continue;
-            const TriangleSetup& setup = m_triangles[m_queues[lane][pass]];
-            records[k] = setup.record(c, j);
+            const TriangleSetup* setup = m_bins.at(lane, pass);
+            if (setup == nullptr) continue;
+            records[k] = setup->record(c, j);
             m_host.compute(Op::alu, m_costs.record_alu);
             m_host.compute(Op::mul, m_costs.record_mul);
             any = true;
@@ -194,8 +148,7 @@ void ApTileRenderer::flush() {
   }
   m_busiest = std::max<uint64_t>(m_busiest, passes);
   m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
-  m_triangles.clear();
-  for (auto& queue : m_queues) queue.clear();
+  m_bins.clear();
   publish_statistics();
 }
 
@@ -262,28 +215,18 @@ void ApTileRenderer::read_back() {
             const uint32_t packed = ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff);
             uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
             m_host.compute(Op::alu, k.pixel_alu);
-            const unsigned number = (tid >> shift) & 0xff;
-            if (number != 0 && number <= m_textures.size()) {
-              const TextureEntry& entry = m_textures[number - 1];
-              const gl::Texture& tex = entry.texture;
-              const int u8 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
-              const int v8 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
-              auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
-                std::memcpy(
-                    out,
-                    m_host.load_span(
-                        tex.address + (static_cast<uint32_t>(tj) * tex.width + static_cast<uint32_t>(ti)) * 4, 4, 1),
-                    4);
-              };
-              uint8_t texel[4];
-              if (renderers::sample_texture(tex, u8, v8, texel_at, texel)) {
-                m_host.compute(Op::alu, k.texel_linear_alu);
-                m_host.compute(Op::mul, k.texel_linear_mul);
-              } else {
+            if (const TextureEntry* entry = m_textures.find((tid >> shift) & 0xff)) {
+              const auto s16 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
+              const auto t16 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
+              rgba = texture_pixel(*entry, rgba, s16, t16,
+                                   [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
+              if (entry->texture.mag_filter == gl::TexFilter::nearest) {
                 m_host.compute(Op::alu, k.texel_nearest_alu);
                 m_host.compute(Op::mul, k.texel_nearest_mul);
+              } else {
+                m_host.compute(Op::alu, k.texel_linear_alu);
+                m_host.compute(Op::mul, k.texel_linear_mul);
               }
-              rgba = renderers::apply_tex_env(entry.env, rgba, texel);
               m_host.compute(Op::alu, k.tex_env_alu);
               m_host.compute(Op::mul, k.tex_env_mul);
             }

@@ -16,6 +16,7 @@
 #include "device/array_driver.h"
 #include "device/display_driver.h"
 #include "gl/renderer.h"
+#include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/backend_entry_points.h"
@@ -57,16 +58,10 @@ class ApTileRenderer : public gl::Renderer {
   void present() override;
 
  private:
-  struct TextureEntry {
-    gl::Texture texture;
-    gl::TexEnv env;
-  };
-
   void flush();
   void run_stage(TileStage stage);
   void write_group(unsigned i, unsigned j, const TileRecord* records);
   void read_back();
-  uint8_t texture_number(const gl::RasterState& state);
   void unsupported(const std::string& what);
   void publish_statistics();
 
@@ -81,14 +76,13 @@ class ApTileRenderer : public gl::Renderer {
   unsigned m_entry[6]{};
   unsigned m_program_base = 0;
 
-  std::vector<TriangleSetup> m_triangles;       // drawn since the last flush
-  std::vector<std::vector<uint32_t>> m_queues;  // per CU: its triangles, in order
-  std::vector<bool> m_live;                     // per CU: the live byte last written
-  std::vector<TextureEntry> m_textures;         // texture number - 1
-  bool m_frame_textured = false;                // some pixel may carry a texture number
-  std::vector<uint32_t> m_rgba;                 // the frame read back, row 0 at the top
+  TileBins m_bins;                // drawn since the last flush
+  std::vector<bool> m_live;       // per CU: the live byte last written
+  TextureTable m_textures;        // since the last colour clear
+  bool m_frame_textured = false;  // some pixel may carry a texture number
+  std::vector<uint32_t> m_rgba;   // the frame read back, row 0 at the top
   renderers::UnsupportedState m_unsupported{"ap-tile"};
-  std::vector<uint8_t> m_record_bytes;          // four CUs' records, packed into words
+  std::vector<uint8_t> m_record_bytes;  // four CUs' records, packed into words
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;

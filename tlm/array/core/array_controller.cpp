@@ -1,5 +1,7 @@
 #include "array/core/array_controller.h"
 
+#include <algorithm>
+
 namespace tessera::ap {
 
 CycleTable CycleTable::defaults() {
@@ -26,6 +28,7 @@ ArrayController::ArrayController(const ArrayGeometry& geometry, const CycleTable
       m_slots(program_words) {
   m_activity.word_cycles.assign(program_words, 0);
   m_activity.word_executions.assign(program_words, 0);
+  m_run_executions.assign(program_words, 0);
   for (unsigned i = 0; i < program_words; ++i) decode_slot(i);
 }
 
@@ -73,6 +76,8 @@ RunResult ArrayController::run(unsigned entry) {
   LoopVariables variables{};
   unsigned depth = 0;
   unsigned pc = entry;
+  unsigned last_pc = entry;  // the furthest word executed (every one is from entry on)
+  std::string error;         // set by an instruction that cannot run
   const auto fail = [&](RunError kind, const std::string& why) {
     result.ok = false;
     result.kind = kind;
@@ -121,21 +126,17 @@ RunResult ArrayController::run(unsigned entry) {
           --depth;
         break;
       }
-      default: {
-        std::string error = m_array.execute(in, variables, depth);
-        if (!error.empty()) fail(RunError::cmem_address, error);
+      default:
+        if (!m_array.execute(in, variables, depth, error)) fail(RunError::cmem_address, error);
         break;
-      }
     }
     if (!result.ok) break;
     if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
       m_stage_changes.push_back({result.cycles, in.stage});
     result.cycles += slot.cost;
     ++result.instructions;
-    ++m_activity.instruction_mix[static_cast<unsigned>(in.opcode)];
-    m_activity.stage_cycles[static_cast<unsigned>(in.stage)] += slot.cost;
-    m_activity.word_cycles[pc] += slot.cost;
-    ++m_activity.word_executions[pc];
+    ++m_run_executions[pc];
+    last_pc = std::max(last_pc, pc);
     if (halted) break;
     if (result.cycles > m_max_cycles) {
       fail(RunError::too_long,
@@ -143,6 +144,18 @@ RunResult ArrayController::run(unsigned entry) {
       break;
     }
     pc = next;
+  }
+  // The per-word, per-opcode and per-stage totals from the run's counts per
+  // word (each word's cost and instruction are fixed during a run).
+  for (unsigned word = entry; word <= last_pc && word < m_slots.size(); ++word) {
+    const uint64_t executions = m_run_executions[word];
+    if (executions == 0) continue;
+    m_run_executions[word] = 0;
+    const Slot& slot = m_slots[word];
+    m_activity.word_executions[word] += executions;
+    m_activity.word_cycles[word] += executions * slot.cost;
+    m_activity.instruction_mix[static_cast<unsigned>(slot.instruction.opcode)] += executions;
+    m_activity.stage_cycles[static_cast<unsigned>(slot.instruction.stage)] += executions * slot.cost;
   }
   m_activity.cycles += result.cycles;
   m_activity.instructions += result.instructions;

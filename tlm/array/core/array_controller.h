@@ -102,6 +102,7 @@ class ArrayController {
   std::vector<uint64_t> m_words;
   std::vector<Slot> m_slots;
   ControllerActivity m_activity;
+  std::vector<uint64_t> m_run_executions;  // per word, during run(): executions so far, folded in at its end
   bool m_record_stages = false;
   std::vector<StageChange> m_stage_changes;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace tessera::ap {
 
@@ -10,9 +11,13 @@ namespace {
 // Rows are padded to a multiple of this so every row starts aligned for
 // the widest vector unit the compiler may use.
 constexpr size_t ROW_ALIGN = 64;
+// copy_row's block: a divisor of ROW_ALIGN, so that a row's copy never
+// leaves it.
+constexpr size_t COPY_BLOCK = 32;
+static_assert(ROW_ALIGN % COPY_BLOCK == 0);
 
-// Scratch rows: the result of the instruction before it is stored, the
-// neighbour's bytes, and the multiply's three product bytes.
+// Scratch (spare) rows: the result of the instruction before it is stored,
+// the neighbour's bytes, and the multiply's three product bytes.
 constexpr unsigned SCRATCH_RESULT = 0, SCRATCH_NEIGHBOUR = 1, SCRATCH_PRODUCT = 2, SCRATCH_ROWS = 5;
 
 enum FlagRow : unsigned { flag_c = 0, flag_z = 1, flag_s = 2, flag_m = 3, flag_rows = 4 };
@@ -24,12 +29,16 @@ enum FlagRow : unsigned { flag_c = 0, flag_z = 1, flag_s = 2, flag_m = 3, flag_r
 template <bool kInvert, bool kCarryFromFlag>
 void add_lanes(size_t n, const uint8_t* a, const uint8_t* b, bool carry_in, uint8_t* __restrict out,
                uint8_t* __restrict c, uint8_t* __restrict z, uint8_t* __restrict s) {
+  // In bytes throughout (the carry from two unsigned compares, the carry in
+  // being 0 or 1), so that the vectorised loop needs no wider lanes.
   for (size_t l = 0; l < n; ++l) {
-    const unsigned addend = kInvert ? static_cast<uint8_t>(~b[l]) : b[l];
-    const unsigned sum = unsigned{a[l]} + addend + (kCarryFromFlag ? unsigned{c[l]} : unsigned{carry_in});
-    const auto value = static_cast<uint8_t>(sum);
+    const uint8_t x = a[l];
+    const auto addend = static_cast<uint8_t>(kInvert ? ~b[l] : b[l]);
+    const uint8_t carry = kCarryFromFlag ? c[l] : static_cast<uint8_t>(carry_in);
+    const auto partial = static_cast<uint8_t>(x + addend);
+    const auto value = static_cast<uint8_t>(partial + carry);
     out[l] = value;
-    c[l] = static_cast<uint8_t>(sum >> 8);
+    c[l] = static_cast<uint8_t>((partial < x ? 1 : 0) | (value < partial ? 1 : 0));
     z[l] = value == 0 ? 1 : 0;
     s[l] = value >> 7;
   }
@@ -59,39 +68,41 @@ void shift_lanes(size_t n, const uint8_t* a, uint8_t* __restrict out, uint8_t* _
   }
 }
 
-// cond_holds() of every lane, as 0/1 bytes: one branch-free loop per
-// condition.
-void condition_lanes(Cond cond, size_t n, const uint8_t* __restrict c, const uint8_t* __restrict z,
-                     const uint8_t* __restrict s, uint8_t* __restrict out) {
+// cond_holds() of every lane, as 0/1 bytes: the flag's own row for c, z
+// and s, else `out`, filled by one branch-free loop per condition.
+const uint8_t* condition_lanes(Cond cond, size_t n, const uint8_t* __restrict c, const uint8_t* __restrict z,
+                               const uint8_t* __restrict s, uint8_t* __restrict out) {
   switch (cond) {
-    case Cond::c: std::memcpy(out, c, n); return;
+    case Cond::c: return c;
     case Cond::nc:
       for (size_t l = 0; l < n; ++l) out[l] = c[l] ^ 1u;
-      return;
-    case Cond::z: std::memcpy(out, z, n); return;
+      return out;
+    case Cond::z: return z;
     case Cond::nz:
       for (size_t l = 0; l < n; ++l) out[l] = z[l] ^ 1u;
-      return;
-    case Cond::s: std::memcpy(out, s, n); return;
+      return out;
+    case Cond::s: return s;
     case Cond::ns:
       for (size_t l = 0; l < n; ++l) out[l] = s[l] ^ 1u;
-      return;
+      return out;
     case Cond::hi:
       for (size_t l = 0; l < n; ++l) out[l] = c[l] & (z[l] ^ 1u);
-      return;
+      return out;
     case Cond::ls:
       for (size_t l = 0; l < n; ++l) out[l] = (c[l] ^ 1u) | z[l];
-      return;
+      return out;
   }
+  return out;
 }
 
-void store_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __restrict destination,
-                 const uint8_t* __restrict mask, bool masked) {
-  if (!masked) {
-    std::memcpy(destination, value, n);
-    return;
+// The masked store: `value` into `destination` where the lane's mask is set.
+void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __restrict destination,
+                        const uint8_t* __restrict mask) {
+  // Branch-free, so that it vectorises: the mask's lanes are random.
+  for (size_t l = 0; l < n; ++l) {
+    const auto keep = static_cast<uint8_t>(mask[l] != 0 ? 0xff : 0);
+    destination[l] = static_cast<uint8_t>((value[l] & keep) | (destination[l] & ~keep));
   }
-  for (size_t l = 0; l < n; ++l) destination[l] = mask[l] != 0 ? value[l] : destination[l];
 }
 
 }  // namespace
@@ -100,6 +111,7 @@ CuArray::CuArray(const ArrayGeometry& geometry)
     : m_geometry(geometry),
       m_lanes(geometry.lanes()),
       m_stride((geometry.lanes() + ROW_ALIGN - 1) / ROW_ALIGN * ROW_ALIGN),
+      m_copy_bytes((geometry.lanes() + COPY_BLOCK - 1) / COPY_BLOCK * COPY_BLOCK),
       m_reg_row(geometry.cmem_bytes),
       m_flag_row(geometry.cmem_bytes + geometry.registers),
       m_scratch_row(geometry.cmem_bytes + geometry.registers + flag_rows) {
@@ -119,13 +131,24 @@ CuArray::CuArray(const ArrayGeometry& geometry)
       m_lanes_with_neighbour[direction] += has ? 1 : 0;
     }
   }
+  for (const OpInfo& info : all_ops()) {
+    OpLanes& op = m_op_lanes[static_cast<unsigned>(info.opcode)];
+    op.d_width = static_cast<uint8_t>(operand_width(info.opcode, 'd'));
+    op.a_width = static_cast<uint8_t>(operand_width(info.opcode, 'a'));
+    op.uses_d = info.operands != OperandPattern::ab;
+    op.uses_b = info.operands == OperandPattern::dab || info.operands == OperandPattern::ab;
+    op.uses_a = info.operands != OperandPattern::d;
+  }
   reset();
 }
 
 void CuArray::reset() {
   std::fill(m_storage.begin(), m_storage.end(), 0);
+  for (unsigned r = 0; r < m_reg_rows.size(); ++r) m_reg_rows[r] = m_reg_row + r;
+  for (unsigned k = 0; k < SCRATCH_ROWS; ++k) m_spare_rows[k] = m_scratch_row + k;
   std::fill_n(row(m_flag_row + flag_m), m_lanes, 1);
   m_active = m_lanes;
+  m_active_stale = false;
 }
 
 CuFlags CuArray::flags(unsigned lane) const {
@@ -141,92 +164,133 @@ void CuArray::set_flags(unsigned lane, const CuFlags& flags) {
 
 void CuArray::set_mask(unsigned lane, bool mask) {
   m_storage[row_offset(m_flag_row + flag_m) + lane] = mask ? 1 : 0;
-  count_active();
+  m_active_stale = true;
 }
 
-void CuArray::count_active() {
-  const uint8_t* m = row(m_flag_row + flag_m);
-  unsigned active = 0;
-  for (unsigned l = 0; l < m_lanes; ++l) active += m[l];
+void CuArray::count_active() const {
+  const uint8_t* m = m_storage.data() + row_offset(m_flag_row + flag_m);
+  // Eight 0/1 bytes at a time: their sum is the top byte of the word times
+  // 0x0101010101010101 (at most 8, so no byte overflows).
+  unsigned active = 0, l = 0;
+  for (; l + 8 <= m_lanes; l += 8) {
+    uint64_t word;
+    std::memcpy(&word, m + l, 8);
+    active += static_cast<unsigned>((word * 0x0101010101010101u) >> 56);
+  }
+  for (; l < m_lanes; ++l) active += m[l];
   m_active = active;
+  m_active_stale = false;
 }
 
-uint8_t* CuArray::operand_row(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
-                              unsigned active_loops, std::string& error) {
-  if (!operand.in_cmem) return row(m_reg_row + operand.value + byte);
+inline uint8_t* CuArray::operand_row(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
+                                     unsigned active_loops) {
+  if (!operand.in_cmem) return row(m_reg_rows[operand.value + byte]);
   long address = long{operand.value} + byte;
   if (operand.loop != 0) {
-    if (operand.loop > active_loops) {
-      error = "operand uses loop variable i" + std::to_string(operand.loop - 1) + " outside its loop";
-      return nullptr;
-    }
+    if (operand.loop > active_loops) return nullptr;
     address += loop_variables[operand.loop - 1];
   }
-  if (address < 0 || address >= static_cast<long>(m_geometry.cmem_bytes)) {
-    error = "CMEM address " + std::to_string(address) + " is beyond the " + std::to_string(m_geometry.cmem_bytes) +
-            " bytes of CMEM";
-    return nullptr;
-  }
+  if (address < 0 || address >= static_cast<long>(m_geometry.cmem_bytes)) return nullptr;
   return row(static_cast<unsigned>(address));
 }
 
+std::string CuArray::operand_error(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
+                                   unsigned active_loops) const {
+  long address = long{operand.value} + byte;
+  if (operand.loop != 0) {
+    if (operand.loop > active_loops)
+      return "operand uses loop variable i" + std::to_string(operand.loop - 1) + " outside its loop";
+    address += loop_variables[operand.loop - 1];
+  }
+  return "CMEM address " + std::to_string(address) + " is beyond the " + std::to_string(m_geometry.cmem_bytes) +
+         " bytes of CMEM";
+}
+
+inline void CuArray::copy_row(uint8_t* __restrict destination, const uint8_t* __restrict source) const {
+  for (size_t i = 0; i < m_copy_bytes; i += COPY_BLOCK) std::memcpy(destination + i, source + i, COPY_BLOCK);
+}
+
 std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops) {
+  std::string error;
+  execute(in, loop_variables, active_loops, error);
+  return error;
+}
+
+bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops,
+                      std::string& error) {
   const size_t n = m_lanes;
   uint8_t* c = row(m_flag_row + flag_c);
   uint8_t* z = row(m_flag_row + flag_z);
   uint8_t* s = row(m_flag_row + flag_s);
   uint8_t* m = row(m_flag_row + flag_m);
-  uint8_t* out = row(m_scratch_row + SCRATCH_RESULT);
+  uint8_t* out = row(m_spare_rows[SCRATCH_RESULT]);
 
   switch (in.opcode) {
     case Opcode::op_mset:
       std::fill_n(m, n, 1);
       m_active = m_lanes;
-      return {};
+      m_active_stale = false;
+      return true;
     case Opcode::op_mclr:
       std::fill_n(m, n, 0);
       m_active = 0;
-      return {};
+      m_active_stale = false;
+      return true;
     case Opcode::op_mmov:
     case Opcode::op_mand:
     case Opcode::op_mor: {
-      uint8_t* holds = row(m_scratch_row + SCRATCH_RESULT);
-      condition_lanes(in.cond(), n, c, z, s, holds);
+      const uint8_t* holds = condition_lanes(in.cond(), n, c, z, s, out);
       if (in.opcode == Opcode::op_mmov)
-        std::memcpy(m, holds, n);
+        copy_row(m, holds);
       else if (in.opcode == Opcode::op_mand)
         for (size_t l = 0; l < n; ++l) m[l] &= holds[l];
       else
         for (size_t l = 0; l < n; ++l) m[l] |= holds[l];
-      count_active();
-      return {};
+      m_active_stale = true;
+      return true;
     }
     default: break;
   }
 
   // Resolve every operand row first, so an instruction with a bad address
   // changes nothing.
-  std::string error;
-  const unsigned d_width = operand_width(in.opcode, 'd'), a_width = operand_width(in.opcode, 'a');
-  const OpInfo& info = op_info(in.opcode);
-  const bool uses_d = info.operands != OperandPattern::ab;
-  const bool uses_b = info.operands == OperandPattern::dab || info.operands == OperandPattern::ab;
-  const bool uses_a = info.operands != OperandPattern::d;
+  const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
+  const unsigned d_width = op.d_width, a_width = op.a_width;
+  const bool uses_d = op.uses_d, uses_a = op.uses_a, uses_b = op.uses_b;
   std::array<uint8_t*, 3> d_rows{}, a_rows{};
   uint8_t* b_row = nullptr;
   for (unsigned i = 0; uses_d && i < d_width; ++i)
-    if ((d_rows[i] = operand_row(in.d, i, loop_variables, active_loops, error)) == nullptr) return error;
+    if ((d_rows[i] = operand_row(in.d, i, loop_variables, active_loops)) == nullptr) {
+      error = operand_error(in.d, i, loop_variables, active_loops);
+      return false;
+    }
   for (unsigned i = 0; uses_a && i < a_width; ++i)
-    if ((a_rows[i] = operand_row(in.a, i, loop_variables, active_loops, error)) == nullptr) return error;
-  if (uses_b && (b_row = operand_row(in.b, 0, loop_variables, active_loops, error)) == nullptr) return error;
+    if ((a_rows[i] = operand_row(in.a, i, loop_variables, active_loops)) == nullptr) {
+      error = operand_error(in.a, i, loop_variables, active_loops);
+      return false;
+    }
+  if (uses_b && (b_row = operand_row(in.b, 0, loop_variables, active_loops)) == nullptr) {
+    error = operand_error(in.b, 0, loop_variables, active_loops);
+    return false;
+  }
 
   m_activity.lane_operations += n;
-  m_activity.useful_operations += m_active;
+  const unsigned active_lanes = active();
+  m_activity.useful_operations += active_lanes;
   m_activity.cmem_reads += n * ((in.a.in_cmem && uses_a ? a_width : 0) + (in.b.in_cmem && uses_b ? 1 : 0));
   const bool d_masked = in.d.in_cmem;
-  const auto store = [&](const uint8_t* value, uint8_t* destination) {
-    store_lanes(n, value, destination, m, d_masked);
-    if (d_masked) m_activity.cmem_writes += m_active;
+  // Byte `byte` of d from spare row `spare`: a masked store into CMEM, or
+  // the spare row renamed to the register.
+  const auto store = [&](unsigned spare, unsigned byte, uint8_t* destination) {
+    const uint8_t* value = row(m_spare_rows[spare]);
+    if (d_masked) {
+      store_masked_lanes(n, value, destination, m);
+      m_activity.cmem_writes += active_lanes;
+    } else if (const unsigned r = in.d.value + byte; r < m_geometry.registers) {
+      std::swap(m_reg_rows[r], m_spare_rows[spare]);
+    } else {
+      copy_row(destination, value);
+    }
   };
 
   const uint8_t* a = a_rows[0];
@@ -265,9 +329,9 @@ std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_va
       break;
     case Opcode::op_mul:
     case Opcode::op_mulm: {
-      uint8_t* high = row(m_scratch_row + SCRATCH_PRODUCT);
-      uint8_t* middle = high + m_stride;
-      uint8_t* low = middle + m_stride;
+      uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
+      uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
+      uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
       const uint8_t* a_high = a_rows[0];
       const uint8_t* a_low = a_rows[1];
       for (size_t l = 0; l < n; ++l) {
@@ -280,28 +344,28 @@ std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_va
         z[l] = (product & 0xffffffu) == 0 ? 1 : 0;
         s[l] = static_cast<uint8_t>((product >> 23) & 1u);
       }
-      store(high, d_rows[0]);
-      store(middle, d_rows[1]);
-      store(low, d_rows[2]);
-      return {};
+      store(SCRATCH_PRODUCT, 0, d_rows[0]);
+      store(SCRATCH_PRODUCT + 1, 1, d_rows[1]);
+      store(SCRATCH_PRODUCT + 2, 2, d_rows[2]);
+      return true;
     }
     case Opcode::op_nget: {
       const auto direction = static_cast<unsigned>(in.direction());
-      uint8_t* neighbour = row(m_scratch_row + SCRATCH_NEIGHBOUR);
+      uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
       const uint8_t* has = m_has_neighbour[direction].data();
       const uint8_t* source = a + m_neighbour_step[direction];
       for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
       m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
-      store(neighbour, d_rows[0]);
-      return {};
+      store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+      return true;
     }
     case Opcode::op_getm:
       for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
       break;
-    default: return "instruction " + std::string(info.mnemonic) + " does no lane work";
+    default: error = "instruction " + std::string(op_info(in.opcode).mnemonic) + " does no lane work"; return false;
   }
-  if (uses_d) store(out, d_rows[0]);
-  return {};
+  if (uses_d) store(SCRATCH_RESULT, 0, d_rows[0]);
+  return true;
 }
 
 }  // namespace tessera::ap

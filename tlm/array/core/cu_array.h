@@ -56,44 +56,76 @@ class CuArray {
 
   uint8_t cmem(unsigned lane, unsigned address) const { return m_storage[row_offset(address) + lane]; }
   void set_cmem(unsigned lane, unsigned address, uint8_t value) { m_storage[row_offset(address) + lane] = value; }
-  uint8_t reg(unsigned lane, unsigned index) const { return m_storage[row_offset(m_reg_row + index) + lane]; }
+  uint8_t reg(unsigned lane, unsigned index) const { return m_storage[row_offset(m_reg_rows[index]) + lane]; }
   void set_reg(unsigned lane, unsigned index, uint8_t value) {
-    m_storage[row_offset(m_reg_row + index) + lane] = value;
+    m_storage[row_offset(m_reg_rows[index]) + lane] = value;
   }
   CuFlags flags(unsigned lane) const;
   void set_flags(unsigned lane, const CuFlags& flags);
   bool mask(unsigned lane) const { return m_storage[row_offset(m_flag_row + 3) + lane] != 0; }
   void set_mask(unsigned lane, bool mask);
-  unsigned active_lanes() const { return m_active; }
+  unsigned active_lanes() const { return active(); }
 
   // Executes one instruction that does lane work (not nop, halt, loop or
   // endloop). Returns an empty string, or why it could not run (a CMEM
   // address plus loop variable beyond CMEM, a loop variable of a loop that
   // is not running), in which case no state has changed.
   std::string execute(const Instruction& instruction, const LoopVariables& loop_variables, unsigned active_loops);
+  // The same, for the AC's run loop: true, or false with `error` set.
+  bool execute(const Instruction& instruction, const LoopVariables& loop_variables, unsigned active_loops,
+               std::string& error);
 
   const ArrayActivity& activity() const { return m_activity; }
 
  private:
   size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
   uint8_t* row(unsigned index) { return m_storage.data() + row_offset(index); }
-  // The row of byte `byte` of `operand`, or nullptr (and `error` set) when
-  // it is beyond CMEM.
+  // The row of byte `byte` of `operand`, or nullptr when it is beyond CMEM
+  // or uses a loop variable of a loop that is not running;
+  // operand_error() then says which.
   uint8_t* operand_row(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
-                       unsigned active_loops, std::string& error);
-  void count_active();
+                       unsigned active_loops);
+  std::string operand_error(const Operand& operand, unsigned byte, const LoopVariables& loop_variables,
+                            unsigned active_loops) const;
+  // Copies a whole row (the lanes and the padding after them, which no lane
+  // reads) in fixed-size blocks the compiler keeps inline.
+  void copy_row(uint8_t* __restrict destination, const uint8_t* __restrict source) const;
+  // The lanes whose mask is set, counted when first needed after a mask
+  // instruction (several often follow each other).
+  unsigned active() const {
+    if (m_active_stale) count_active();
+    return m_active;
+  }
+  void count_active() const;
+
+  // What execute() needs of each opcode, from the ISA's tables.
+  struct OpLanes {
+    uint8_t d_width = 0, a_width = 0;
+    bool uses_d = false, uses_a = false, uses_b = false;
+  };
 
   ArrayGeometry m_geometry;
   unsigned m_lanes;
   size_t m_stride;
+  size_t m_copy_bytes;  // the lanes rounded up to copy_row's block, at most m_stride
   unsigned m_reg_row, m_flag_row, m_scratch_row;
+  // Registers are renamed: an instruction computes its result into a spare
+  // row, which then becomes the destination register's row (the register's
+  // old row the spare), instead of being copied. m_reg_rows[r] is register
+  // r's row; beyond the register file (an instruction check_limits refuses)
+  // the rows after it, as without renaming. m_spare_rows are the spare rows:
+  // the result, the neighbour's bytes, the multiply's three product bytes.
+  std::array<unsigned, MAX_REGISTERS + 3> m_reg_rows{};
+  std::array<unsigned, 5> m_spare_rows{};
   std::vector<uint8_t> m_storage;
   // Per direction, 0xff where the lane has a neighbour that way, else 0.
   std::array<std::vector<uint8_t>, 4> m_has_neighbour;
   std::array<int, 4> m_neighbour_step{};
   std::array<unsigned, 4> m_lanes_with_neighbour{};
-  unsigned m_active = 0;
+  mutable unsigned m_active = 0;
+  mutable bool m_active_stale = false;
   ArrayActivity m_activity;
+  std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
 };
 
 }  // namespace tessera::ap

@@ -1,0 +1,75 @@
+#include "renderers/ap_tile/tile_host.h"
+
+#include <algorithm>
+
+namespace tessera::ap_tile {
+
+uint8_t TextureTable::number(const gl::RasterState& state, const Unsupported& unsupported) {
+  for (size_t k = 0; k < m_entries.size(); ++k) {
+    const gl::Texture& t = m_entries[k].texture;
+    if (t.address == state.tex.address && t.width == state.tex.width && t.height == state.tex.height &&
+        t.min_filter == state.tex.min_filter && t.mag_filter == state.tex.mag_filter && t.wrap_s == state.tex.wrap_s &&
+        t.wrap_t == state.tex.wrap_t && m_entries[k].env == state.tex_env)
+      return static_cast<uint8_t>(k + 1);
+  }
+  if (m_entries.size() == 255) {
+    unsupported("more than 255 textures between colour clears (the last one is reused)");
+    return 255;
+  }
+  m_entries.push_back({state.tex, state.tex_env});
+  return static_cast<uint8_t>(m_entries.size());
+}
+
+std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& textures,
+                                    const Unsupported& unsupported) {
+  if (state.blend) unsupported("blending (GL_BLEND): drawn without it");
+  if (state.alpha_test) unsupported("the alpha test (GL_ALPHA_TEST): drawn without it");
+  if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
+  if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
+  if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
+  if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
+    unsupported("colour masks (glColorMask): drawn with every channel");
+  DrawFlags flags;
+  flags.flat = state.flat_shading;
+  flags.depth_test = state.depth_test;
+  flags.depth_write = state.depth_write;
+  if (state.depth_test) {
+    switch (state.depth_func) {
+      case gl::CompareFunc::less: break;
+      case gl::CompareFunc::lequal: flags.depth_lequal = true; break;
+      case gl::CompareFunc::never: return std::nullopt;
+      case gl::CompareFunc::always:
+        flags.depth_test = false;
+        if (state.depth_write) unsupported("depth writes with GL_ALWAYS: the depth buffer keeps its values");
+        break;
+      default: unsupported("depth functions other than GL_LESS, GL_LEQUAL, GL_ALWAYS and GL_NEVER: drawn as GL_LESS");
+    }
+  }
+  if (state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
+      state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
+      (state.tex.height & (state.tex.height - 1)) == 0) {
+    flags.tex = textures.number(state, unsupported);
+    flags.tex_width = state.tex.width;
+    flags.tex_height = state.tex.height;
+  }
+  return flags;
+}
+
+void TileBins::add(const TriangleSetup& setup, const std::vector<unsigned>& tiles) {
+  const auto index = static_cast<uint32_t>(m_triangles.size());
+  m_triangles.push_back(setup);
+  for (unsigned tile : tiles) m_queues[tile].push_back(index);
+}
+
+size_t TileBins::passes() const {
+  size_t passes = 0;
+  for (const auto& queue : m_queues) passes = std::max(passes, queue.size());
+  return passes;
+}
+
+void TileBins::clear() {
+  m_triangles.clear();
+  for (auto& queue : m_queues) queue.clear();
+}
+
+}  // namespace tessera::ap_tile
