@@ -366,7 +366,7 @@ def cell_value(column, result, results):
         value = config(result, column["config"])
     else:
         value = COMPUTED[column["value"]](result, column, results)
-    if "scale" in column and value is not None:
+    if "scale" in column and isinstance(value, (int, float)) and not isinstance(value, bool):
         value = value * column["scale"]
     return value
 
