@@ -121,6 +121,32 @@ def ap_tile_peak_triangles_per_second(result, column, results):
     return ap_tile_cus_per_pass(result, column, results) * ap_tile_passes_per_second(result, column, results)
 
 
+def study_shades_per_second(result, column, results):
+    """Shades per second of host time, per result: driver.study.shades over driver.study.total_ns (inputs loaded,
+    shades computed or sent, run and read back)."""
+    return stat(result, "driver.study.shades") / (stat(result, "driver.study.total_ns") * 1e-9)
+
+
+def study_shades_per_second_per_pass(result, column, results):
+    """Shades per second of array time alone: driver.study.shades over driver.study.array_cycles at the array's
+    clock (array.clock_mhz), the host's traffic not counted."""
+    seconds = stat(result, "driver.study.array_cycles") / (config(result, "array.clock_mhz") * 1e6)
+    return stat(result, "driver.study.shades") / seconds
+
+
+def patch_break_even(result, column, results):
+    """The smallest patch of the column's "shape" (line or square) at which the baseline run (column "baseline",
+    the host) takes longer than this run: driver.study.patch.<shape>.<pixels>_ns compared size by size; inf when
+    the baseline is faster at every size measured."""
+    baseline = next(r for r in results if r.label == column["baseline"])
+    sizes = sorted(int(key[: -len("_ns")]) for key in result.stats["driver"]["study"]["patch"][column["shape"]])
+    for pixels in sizes:
+        path = f"driver.study.patch.{column['shape']}.{pixels}_ns"
+        if stat(baseline, path) > stat(result, path):
+            return float(pixels)
+    return math.inf
+
+
 COMPUTED = {
     function.__name__: function
     for function in (
@@ -132,6 +158,9 @@ COMPUTED = {
         ap_tile_passes_per_second,
         ap_tile_cus_per_pass,
         ap_tile_peak_triangles_per_second,
+        study_shades_per_second,
+        study_shades_per_second_per_pass,
+        patch_break_even,
     )
 }
 
@@ -150,8 +179,8 @@ def config(result, key):
 # The experiment file.
 
 TOP_KEYS = {"title", "description", "frames", "set", "runs", "label_header", "columns", "plot"}
-RUN_KEYS = {"label", "backend", "app", "args", "set", "frames"}
-COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline"}
+RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames"}
+COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline", "shape"}
 PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log"}
 
 
@@ -239,9 +268,11 @@ def load_experiment(path):
         if "value" in column and column["value"] not in COMPUTED:
             raise UsageError(f"{column_where} ('{key}'): unknown value '{column['value']}' "
                              f"(known: {', '.join(COMPUTED)})")
-        if column.get("value") == "speedup" and column.get("baseline") not in labels:
+        if column.get("value") in ("speedup", "patch_break_even") and column.get("baseline") not in labels:
             raise UsageError(f"{column_where} ('{key}'): 'baseline' must be the label of a run "
                              f"({', '.join(sorted(labels))})")
+        if column.get("value") == "patch_break_even" and column.get("shape") not in ("line", "square"):
+            raise UsageError(f"{column_where} ('{key}'): 'shape' must be line or square")
         if "per" in column and "stat" not in column:
             raise UsageError(f"{column_where} ('{key}'): 'per' applies to a 'stat' column only")
         if "scale" in column and (isinstance(column["scale"], bool) or not isinstance(column["scale"], (int, float))):
@@ -336,8 +367,10 @@ def run_all(spec, name, soc_sim, out, frames_override, quiet):
         except (OSError, json.JSONDecodeError) as error:
             raise RunError(f"run '{run['label']}': cannot read {stats_path}: {error}") from error
         shown = len(document.get("stats", {}).get("frames", []))
-        if shown != frames:
-            raise RunError(f"run '{run['label']}': {shown} frames shown of the {frames} requested ({stats_path})")
+        # An application that is not a scene (study_shading, ...) shows none.
+        expected = frames if run.get("shows_frames", True) else 0
+        if shown != expected:
+            raise RunError(f"run '{run['label']}': {shown} frames shown, {expected} expected ({stats_path})")
         if not quiet:
             print(f"[{name}] {run['label']}: done in {time.monotonic() - start:.1f} s", file=sys.stderr, flush=True)
         results.append(RunResult(run, stats_path, document))

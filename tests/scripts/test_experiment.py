@@ -49,11 +49,12 @@ def describe(status, out, err):
 
 
 def positive_number(text):
+    """A number above 0; "inf" counts (patch_break_even: no size at which the other run is slower), NaN does not."""
     try:
         value = float(text.replace(",", ""))
     except ValueError:
         return False
-    return math.isfinite(value) and value > 0
+    return not math.isnan(value) and value > 0
 
 
 def test_run(name, soc_sim, work):
