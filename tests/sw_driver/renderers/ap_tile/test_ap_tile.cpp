@@ -8,6 +8,7 @@
 
 #include "ap_programs/ap_tile.h"
 #include "array/core/array_controller.h"
+#include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
 
@@ -173,6 +174,47 @@ TEST(ApTileSetup, BinsEveryTileItDrawsIn) {
       }
   }
   EXPECT_GT(checked, 100u);
+}
+
+// Pass scheduling and serialisation: pass p gives every CU the p-th
+// triangle binned to it, in the order drawn; a flush needs as many passes
+// as its busiest CU has triangles. Twelve small triangles stacked in tile
+// (3, 1), one in tile (20, 2) and one covering the frame: the stacked tile
+// serialises 13 passes, the others take 1 or 2.
+TEST(ApTileBins, PassesAreTheBusiestCusTrianglesInOrder) {
+  const FrameGeometry frame;
+  TileBins bins(frame.cus());
+  std::vector<gl::Triangle> drawn;
+  auto pixel = [](int x) { return 16 * x; };
+  // Tile (3, 1): pixels x 24..31, display rows 36..71 (GL y 72..107).
+  for (int k = 0; k < 12; ++k)
+    drawn.push_back(triangle(pixel(25), pixel(80 + k), pixel(30), pixel(80 + k), pixel(27), pixel(90 + k)));
+  drawn.push_back(triangle(pixel(161), pixel(40), pixel(166), pixel(40), pixel(163), pixel(50)));       // tile (20, 2)
+  drawn.push_back(triangle(-pixel(400), -pixel(400), pixel(800), -pixel(400), pixel(96), pixel(800)));  // every tile
+  std::vector<TriangleSetup> setups;
+  for (const gl::Triangle& t : drawn) setups.emplace_back(t, DrawFlags{}, frame);
+  for (const TriangleSetup& setup : setups) bins.add(setup, setup.tiles());
+  const unsigned stacked = 1 * frame.columns + 3, single = 2 * frame.columns + 20, other = 0;
+  ASSERT_EQ(bins.passes(), 13u);
+  for (size_t pass = 0; pass < 13; ++pass) {
+    const TriangleSetup* got = bins.at(stacked, pass);
+    ASSERT_NE(got, nullptr) << "pass " << pass;
+    // The p-th triangle drawn into the tile (the twelve, then the full
+    // frame's): the same edges.
+    const size_t expected = pass < 12 ? pass : 13;
+    EXPECT_EQ(got->edges()[0].py, setups[expected].edges()[0].py) << "pass " << pass;
+    EXPECT_EQ(got->edges()[0].px, setups[expected].edges()[0].px) << "pass " << pass;
+  }
+  EXPECT_EQ(bins.at(stacked, 13), nullptr);
+  ASSERT_NE(bins.at(single, 0), nullptr);
+  EXPECT_EQ(bins.at(single, 0)->edges()[0].px, setups[12].edges()[0].px);
+  ASSERT_NE(bins.at(single, 1), nullptr);  // then the full-frame triangle
+  EXPECT_EQ(bins.at(single, 1)->edges()[0].px, setups[13].edges()[0].px);
+  EXPECT_EQ(bins.at(single, 2), nullptr);
+  ASSERT_NE(bins.at(other, 0), nullptr);
+  EXPECT_EQ(bins.at(other, 1), nullptr);
+  bins.clear();
+  EXPECT_EQ(bins.passes(), 0u);
 }
 
 // Pixel centres decide coverage as in the arm back end (top-left rule):
