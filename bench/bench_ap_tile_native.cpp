@@ -23,9 +23,7 @@
 // The scene draws 2N frames; the time reported is that of frames N..2N-1
 // (from the N-th present to the 2N-th, divided by N), the frames bench_ap_tile
 // times on soc_sim.
-#include <sys/resource.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -40,11 +38,11 @@
 #include <nlohmann/json.hpp>
 
 #include "ap_programs/ap_tile.h"
-#include "apps/gl_apps.h"
 #include "device/display_driver.h"
 #include "frame_writer.h"
 #include "guarded_main.h"
 #include "native_host.h"
+#include "native_scene.h"
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
@@ -275,15 +273,6 @@ class NativeApTileRenderer : public gl::Renderer {
 // The boot loader's layout on the SoC (as bench_arm_native): the two frame
 // buffers, page-aligned, at the top of memory, and the driver's heap from
 // 4 MiB up to them.
-void lay_out_memory(AppEnvironment& env, const bench::NativeDisplay& display) {
-  const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
-  const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
-  env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
-  env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);
-  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
-  env.heap_end = env.frame_buffers[0];
-}
-
 int run(int argc, char** argv) {
   std::string scene_name;
   unsigned frames = 10;
@@ -348,27 +337,10 @@ int run(int argc, char** argv) {
   env.make_renderer = [&options](AppEnvironment& e) -> std::unique_ptr<gl::Renderer> {
     return std::make_unique<NativeApTileRenderer>(e, options);
   };
-  lay_out_memory(env, display);
+  bench::lay_out_memory(env, display);
 
-  const auto start = bench::NativeHost::Clock::now();
-  const int status = run_scene_app(env, *scene);
-  const auto& presents = host.present_times();
-  if (status != 0 || presents.size() != 2 * frames) {
-    std::cerr << "bench_ap_tile_native: scene '" << scene_name << "' ended with status " << status << " after "
-              << presents.size() << " of " << 2 * frames << " frames\n";
-    return 1;
-  }
-  auto seconds = [](auto from, auto to) { return std::chrono::duration<double>(to - from).count(); };
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const nlohmann::json result = {{"scene", scene_name},
-                                 {"timed_frames", frames},
-                                 {"idle_cus", idle_cus},
-                                 {"wall_per_frame_s", seconds(presents[frames - 1], presents.back()) / frames},
-                                 {"first_frame_s", seconds(start, presents.front())},
-                                 {"max_rss_kib", usage.ru_maxrss}};
-  std::printf("%s\n", result.dump().c_str());
-  return 0;
+  return bench::run_timed_scene("bench_ap_tile_native", env, host, *scene, scene_name, frames,
+                                nlohmann::json::object({{"idle_cus", idle_cus}}));
 }
 
 }  // namespace

@@ -11,9 +11,7 @@
 // (from the N-th present to the 2N-th, divided by N), the same frames that
 // bench_arm times on soc_sim and Mesa, so start-up and the scene's set-up
 // are not counted.
-#include <sys/resource.h>
 
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -23,27 +21,15 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "apps/gl_apps.h"
 #include "guarded_main.h"
 #include "native_host.h"
+#include "native_scene.h"
 #include "renderers/backends.h"
 #include "scenes/scene.h"
 
 namespace {
 
 using namespace tessera;
-
-// The boot loader's layout on the SoC (Soc::frame_buffer and soc_sim): the
-// two frame buffers, page-aligned, at the top of memory, and the driver's
-// heap from 4 MiB up to them.
-void lay_out_memory(AppEnvironment& env, const bench::NativeDisplay& display) {
-  const uint64_t frame_bytes = uint64_t{display.width} * display.height * bytes_per_pixel(display.format);
-  const uint64_t frame = (frame_bytes + 4095) / 4096 * 4096;
-  env.frame_buffers[0] = static_cast<uint32_t>(env.memory_bytes - 2 * frame);
-  env.frame_buffers[1] = static_cast<uint32_t>(env.memory_bytes - frame);
-  env.heap_base = std::min<uint32_t>(4u << 20, env.frame_buffers[0]);
-  env.heap_end = env.frame_buffers[0];
-}
 
 int run(int argc, char** argv) {
   std::string scene_name;
@@ -89,26 +75,9 @@ int run(int argc, char** argv) {
   env.memory_bytes = memory_mib << 20;
   env.args = scene_args;
   backends::hand_over(backends::backend("arm"), env);
-  lay_out_memory(env, display);
+  bench::lay_out_memory(env, display);
 
-  const auto start = bench::NativeHost::Clock::now();
-  const int status = run_scene_app(env, *scene);
-  const auto& presents = host.present_times();
-  if (status != 0 || presents.size() != 2 * frames) {
-    std::cerr << "bench_arm_native: scene '" << scene_name << "' ended with status " << status << " after "
-              << presents.size() << " of " << 2 * frames << " frames\n";
-    return 1;
-  }
-  auto seconds = [](auto from, auto to) { return std::chrono::duration<double>(to - from).count(); };
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const nlohmann::json result = {{"scene", scene_name},
-                                 {"timed_frames", frames},
-                                 {"wall_per_frame_s", seconds(presents[frames - 1], presents.back()) / frames},
-                                 {"first_frame_s", seconds(start, presents.front())},
-                                 {"max_rss_kib", usage.ru_maxrss}};
-  std::printf("%s\n", result.dump().c_str());
-  return 0;
+  return bench::run_timed_scene("bench_arm_native", env, host, *scene, scene_name, frames);
 }
 
 }  // namespace
