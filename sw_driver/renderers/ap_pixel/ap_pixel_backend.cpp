@@ -28,7 +28,7 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   const Config defaults({parameters()});
   const Config& config = env.config != nullptr ? *env.config : defaults;
   return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(env,
-                                                             static_cast<unsigned>(config.get_uint("ap.pixel.block")));
+                                                              static_cast<unsigned>(config.get_uint("ap.pixel.block")));
 }
 
 // The display shows the study's frame (192 x 144 for the 24 x 4 array)
