@@ -148,7 +148,9 @@ int mismatch(const char* app, const std::string& where, unsigned attribute, unsi
 
 }  // namespace
 
-int study_shading_app(AppEnvironment& env) {
+namespace {
+
+int study_shading(AppEnvironment& env) {
   const char* app = "study_shading";
   const Target target = target_of(env, app);
   const unsigned shades = option(env, app, "--shades", 192000, 1, 10000000);
@@ -245,10 +247,12 @@ int study_shading_app(AppEnvironment& env) {
   return 0;
 }
 
-int study_patches_app(AppEnvironment& env) {
+int study_patches(AppEnvironment& env) {
   const char* app = "study_patches";
   const Target target = target_of(env, app);
-  const unsigned max_pixels = option(env, app, "--max-pixels", 40, 1, 400);
+  // A line of 255 pixels centred on its origin keeps every block's offset
+  // within a CU's signed byte.
+  const unsigned max_pixels = option(env, app, "--max-pixels", 40, 1, 255);
   HostApi& host = *env.host;
   const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
   std::unique_ptr<ArrayDriver> array;
@@ -366,6 +370,27 @@ int study_patches_app(AppEnvironment& env) {
   publish(env, "block", "pixels per side of a CU's block (1 on the host)", block);
   std::printf("%s: %zu patches on the %s\n", app, shapes.size(), target == Target::host ? "host" : "array");
   return 0;
+}
+
+// A bad argument or back end is a usage error (status 2, as soc_sim's own),
+// named on standard error.
+int usage_guarded(AppEnvironment& env, int (*run)(AppEnvironment&)) {
+  try {
+    return run(env);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace
+
+int study_shading_app(AppEnvironment& env) {
+  return usage_guarded(env, study_shading);
+}
+
+int study_patches_app(AppEnvironment& env) {
+  return usage_guarded(env, study_patches);
 }
 
 }  // namespace tessera
