@@ -12,6 +12,10 @@
 // a warning naming the address, STATUS.refused); reads are answered, and
 // CYCLES and the stage counters keep the previous program's figures until
 // the running one has finished.
+//
+// CmemAccess is the direct CMEM path of the system/array DMA (tlm/dma): it
+// reads and writes CU bytes without the CIU and waits, as the CIU does, for
+// a running program to finish.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "array/cmem_access.h"
 #include "array/core/array_controller.h"
 #include "common/peripheral.h"
 #include "common/timed_trace.h"
@@ -44,7 +49,7 @@ struct ArrayParams {
   static ArrayParams defaults();
 };
 
-class ArrayProcessor : public Peripheral {
+class ArrayProcessor : public Peripheral, public CmemAccess {
  public:
   SC_HAS_PROCESS(ArrayProcessor);
 
@@ -60,6 +65,16 @@ class ArrayProcessor : public Peripheral {
   const sc_core::sc_time& busy_until() const { return m_busy_until; }
   bool busy_at(const sc_core::sc_time& when) const { return when < m_busy_until; }
   const ap::RunResult& last_result() const { return m_current; }
+
+  // CmemAccess: the DMA's path into CMEM.
+  const ap::ArrayGeometry& cmem_geometry() const override { return m_params.geometry; }
+  sc_core::sc_time cmem_free_from(const sc_core::sc_time& arrival) const override {
+    return busy_at(arrival) ? m_busy_until : arrival;
+  }
+  uint8_t read_cmem(unsigned lane, unsigned address) const override { return m_core.array().cmem(lane, address); }
+  void write_cmem(unsigned lane, unsigned address, uint8_t value) override {
+    m_core.array().set_cmem(lane, address, value);
+  }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;

@@ -55,6 +55,17 @@ CiuParams ciu_params(const Config& config) {
   return p;
 }
 
+DmaParams dma_params(const Config& config) {
+  DmaParams p = DmaParams::from_config(config);
+  const BusParams bus = BusParams::from_config(config);
+  p.burst_bytes = p.burst_beats * bus.width_bytes;
+  p.clock_period = bus.clock_period;
+  p.cmem_clock_period = ArrayParams::from_config(config).clock_period;
+  p.memory_base = memory_map::sysmem.base;
+  p.memory_bytes = MemoryParams::from_config(config).size_bytes;
+  return p;
+}
+
 }  // namespace
 
 std::vector<ParamGroup> Soc::parameter_groups() {
@@ -94,7 +105,8 @@ std::vector<ParamGroup> Soc::parameter_groups() {
           DisplayDmaParams::parameters(),
           RasterizerParams::parameters(),
           ArrayParams::parameters(),
-          CiuParams::parameters()};
+          CiuParams::parameters(),
+          DmaParams::parameters()};
 }
 
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
@@ -126,9 +138,11 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
           memory_map::array_program.name);
   bus.map(ciu.in, memory_map::array_cmem.base, memory_map::array_cmem.size, memory_map::array_cmem.name);
 
-  for (const auto& region : memory_map::ALL_REGIONS)
+  for (const auto& region : memory_map::ALL_REGIONS) {
+    if (region.base == memory_map::dma_regs.base && !config.get_bool("dma.enabled")) continue;
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
                               std::to_string(region.size) + " bytes");
+  }
 
   // Interrupts: every host line gets a signal; sources drive theirs.
   for (unsigned i = 0; i < host.irq.size(); ++i) {
@@ -136,7 +150,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     host.irq[i].bind(*m_irq_lines.back());
   }
   // host.irq_lines is at least 4 (host_params.cpp), so every source in irq_map.def has its line.
-  static_assert(irq_map::display < 4 && irq_map::raster < 4 && irq_map::array < 4,
+  static_assert(irq_map::display < 4 && irq_map::raster < 4 && irq_map::array < 4 && irq_map::dma < 4,
                 "interrupt sources must use lines below host.irq_lines' minimum");
   display.irq.bind(*m_irq_lines[irq_map::display]);
   raster.irq.bind(*m_irq_lines[irq_map::raster]);
@@ -147,6 +161,17 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   display.on_frame([this](const Frame& frame) { record_frame(frame); });
 
   m_blocks = {&host, &bus, &memory, &display, &display_dma, &raster, &array, &ciu};
+
+  if (config.get_bool("dma.enabled")) {
+    dma = std::make_unique<Dma>("dma", dma_params(config));
+    bus.attach(dma->out, "dma", BusPriority::DMA);
+    bus.map(dma->in, memory_map::dma_regs.base, memory_map::dma_regs.size, memory_map::dma_regs.name);
+    dma->irq.bind(*m_irq_lines[irq_map::dma]);
+    dma->connect_cmem(array);
+    const size_t initiator = bus.initiator_stats().size() - 1;
+    dma->set_bus_wait_probe([this, initiator] { return bus.initiator_stats()[initiator].wait_cycles; });
+    m_blocks.push_back(dma.get());
+  }
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);

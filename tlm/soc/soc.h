@@ -18,6 +18,7 @@
 #include "config/config.h"
 #include "display/display_controller.h"
 #include "display/display_dma.h"
+#include "dma/dma.h"
 #include "host/host.h"
 #include "mem/memory.h"
 #include "raster/rasterizer.h"
@@ -31,6 +32,9 @@ namespace tessera {
 struct BusPriority {
   static constexpr unsigned DISPLAY_DMA = 0;
   static constexpr unsigned RASTER = 1;
+  // The system/array DMA feeds and drains the array for the host, which
+  // waits for it; but the rasterizer's tile stream stalls a pipeline.
+  static constexpr unsigned DMA = 2;
   static constexpr unsigned HOST = 3;
 };
 
@@ -54,6 +58,9 @@ class Soc : public sc_core::sc_module {
   Rasterizer raster;
   ArrayProcessor array;
   Ciu ciu;
+  // The system/array DMA, built only when dma.enabled (otherwise the SoC is
+  // exactly what it was without it: no bus initiator, no statistics).
+  std::unique_ptr<Dma> dma;
 
   // Runs the host program; the simulation stops when it has finished and
   // the display has shown every frame handed to it.

@@ -1,0 +1,215 @@
+#include "dma/core/dma_descriptor.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace tessera::dma {
+
+const char* error_text(Error error) {
+  switch (error) {
+#define TESSERA_DMA_ERROR(name, code, text) \
+  case Error::name:                         \
+    return text;
+#include "dma/core/dma_errors.def"
+#undef TESSERA_DMA_ERROR
+  }
+  return "unknown error";
+}
+
+const char* kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::mem_to_cmem: return "mem_to_cmem";
+    case Kind::cmem_to_mem: return "cmem_to_mem";
+    case Kind::mem_to_mem: return "mem_to_mem";
+    case Kind::broadcast: return "broadcast";
+  }
+  return "unknown";
+}
+
+unsigned Descriptor::element_bytes() const {
+  const unsigned field = (ctrl & CTRL_ELEMENT_MASK) >> CTRL_ELEMENT_SHIFT;
+  return field == 0 ? 1 : field;
+}
+
+std::array<uint32_t, DESCRIPTOR_WORDS> encode(const Descriptor& d) {
+  return {d.ctrl, d.src, d.dst, d.length, d.src_stride, d.dst_stride, d.next, d.mask};
+}
+
+Descriptor decode(const std::array<uint32_t, DESCRIPTOR_WORDS>& w) {
+  return {w[0], w[1], w[2], w[3], w[4], w[5], w[6], w[7]};
+}
+
+Descriptor decode_bytes(const uint8_t* bytes) {
+  std::array<uint32_t, DESCRIPTOR_WORDS> words{};
+  for (unsigned i = 0; i < DESCRIPTOR_WORDS; ++i)
+    words[i] = uint32_t{bytes[4 * i]} | uint32_t{bytes[4 * i + 1]} << 8 | uint32_t{bytes[4 * i + 2]} << 16 |
+               uint32_t{bytes[4 * i + 3]} << 24;
+  return decode(words);
+}
+
+void encode_bytes(const Descriptor& d, uint8_t* bytes) {
+  const auto words = encode(d);
+  for (unsigned i = 0; i < DESCRIPTOR_WORDS; ++i)
+    for (unsigned b = 0; b < 4; ++b) bytes[4 * i + b] = static_cast<uint8_t>(words[i] >> (8 * b));
+}
+
+unsigned Reshuffle::row_elements(uint64_t r) const {
+  const uint64_t first = r * lanes;
+  return static_cast<unsigned>(std::min<uint64_t>(lanes, elements - first));
+}
+
+Reshuffle reshuffle_of(const Descriptor& d, unsigned lanes) {
+  Reshuffle r;
+  r.element = d.element_bytes();
+  r.lanes = lanes;
+  r.elements = d.length / r.element;
+  const bool to_cmem = d.kind() == Kind::mem_to_cmem;
+  const uint32_t mem = to_cmem ? d.src : d.dst;
+  const uint32_t mem_stride = to_cmem ? d.src_stride : d.dst_stride;
+  const uint32_t cmem = to_cmem ? d.dst : d.src;
+  const uint32_t cmem_stride = to_cmem ? d.dst_stride : d.src_stride;
+  r.memory = mem;
+  r.memory_stride = mem_stride == 0 ? lanes * r.element : mem_stride;
+  r.cmem = cmem;
+  r.cmem_stride = cmem_stride == 0 ? r.element : cmem_stride;
+  return r;
+}
+
+namespace {
+
+// [first, end) within memory? The offending address otherwise: the first
+// byte below memory or the last byte beyond it.
+bool in_memory(uint64_t first, uint64_t end, const Limits& limits, uint64_t& offending) {
+  const uint64_t limit = limits.memory_base + limits.memory_bytes;
+  if (first < limits.memory_base) {
+    offending = first;
+    return false;
+  }
+  if (end > limit) {
+    offending = end - 1;
+    return false;
+  }
+  return true;
+}
+
+Fault check_reshuffle(const Descriptor& d, const Limits& limits) {
+  const unsigned e = d.element_bytes();
+  const bool to_cmem = d.kind() == Kind::mem_to_cmem;
+  const Reshuffle r = reshuffle_of(d, limits.lanes);
+  if (d.length % e != 0) return {Error::misaligned_length, d.length};
+  if (r.memory % e != 0 || r.memory_stride % e != 0) return {Error::misaligned_length, r.memory};
+  const uint64_t rows = r.rows();
+  const unsigned last = r.row_elements(rows - 1);
+  // The memory side's highest byte: the end of a full row before the last, or of the last.
+  uint64_t end = r.memory + (rows - 1) * uint64_t{r.memory_stride} + uint64_t{last} * e;
+  if (rows > 1) end = std::max(end, r.memory + (rows - 2) * uint64_t{r.memory_stride} + uint64_t{r.lanes} * e);
+  uint64_t offending = 0;
+  if (!in_memory(r.memory, end, limits, offending))
+    return {to_cmem ? Error::src_outside_memory : Error::dst_outside_memory, offending};
+  const uint64_t cmem_last = r.cmem + (rows - 1) * uint64_t{r.cmem_stride} + e - 1;
+  if (cmem_last >= limits.cmem_bytes) return {to_cmem ? Error::dst_outside_cmem : Error::src_outside_cmem, cmem_last};
+  return {};
+}
+
+}  // namespace
+
+Fault validate(const Descriptor& d, const Limits& limits) {
+  if (d.kind_code() > static_cast<uint32_t>(Kind::broadcast)) return {Error::bad_descriptor, d.ctrl};
+  if (d.length == 0) return {Error::zero_length, 0};
+  uint64_t offending = 0;
+  switch (d.kind()) {
+    case Kind::mem_to_cmem:
+    case Kind::cmem_to_mem: {
+      const unsigned field = (d.ctrl & CTRL_ELEMENT_MASK) >> CTRL_ELEMENT_SHIFT;
+      if (field > 2) return {Error::bad_descriptor, d.ctrl};
+      if (limits.lanes == 0 || limits.cmem_bytes == 0)
+        return {Error::no_array, d.kind() == Kind::mem_to_cmem ? d.dst : d.src};
+      return check_reshuffle(d, limits);
+    }
+    case Kind::mem_to_mem:
+      if (d.src_stride != 0 || d.dst_stride != 0) return {Error::bad_descriptor, d.ctrl};
+      if (d.length % 4 != 0) return {Error::misaligned_length, d.length};
+      if (d.src % 4 != 0) return {Error::misaligned_length, d.src};
+      if (d.dst % 4 != 0) return {Error::misaligned_length, d.dst};
+      if (!in_memory(d.src, uint64_t{d.src} + d.length, limits, offending))
+        return {Error::src_outside_memory, offending};
+      if (!in_memory(d.dst, uint64_t{d.dst} + d.length, limits, offending))
+        return {Error::dst_outside_memory, offending};
+      return {};
+    case Kind::broadcast: {
+      if (limits.lanes == 0 || limits.cmem_bytes == 0) return {Error::no_array, d.dst};
+      if (!in_memory(d.src, uint64_t{d.src} + d.length, limits, offending))
+        return {Error::src_outside_memory, offending};
+      const uint64_t cmem_last = d.dst + uint64_t{d.length - 1} * broadcast_step(d);
+      if (cmem_last >= limits.cmem_bytes) return {Error::dst_outside_cmem, cmem_last};
+      if (d.mask != 0 && !in_memory(d.mask, uint64_t{d.mask} + mask_bytes(limits.lanes), limits, offending))
+        return {Error::mask_outside_memory, offending};
+      return {};
+    }
+  }
+  return {Error::bad_descriptor, d.ctrl};
+}
+
+Fault validate_descriptor_address(uint32_t address, const Limits& limits) {
+  uint64_t offending = 0;
+  if (address % 4 != 0) return {Error::descriptor_outside_memory, address};
+  if (!in_memory(address, uint64_t{address} + DESCRIPTOR_BYTES, limits, offending))
+    return {Error::descriptor_outside_memory, offending};
+  return {};
+}
+
+Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, DmaPort& port, uint64_t& moved) {
+  moved = 0;
+  std::vector<uint8_t> buffer(buffer_bytes);
+  switch (d.kind()) {
+    case Kind::mem_to_cmem:
+    case Kind::cmem_to_mem: {
+      const Reshuffle r = reshuffle_of(d, limits.lanes);
+      for (uint64_t row = 0; row < r.rows(); ++row) {
+        const uint64_t k = row * r.lanes;
+        const unsigned count = r.row_elements(row);
+        const unsigned bytes = count * r.element;
+        const auto mem = static_cast<uint32_t>(r.memory_address(k));
+        const auto cmem = static_cast<uint32_t>(r.cmem_address(k));
+        if (d.kind() == Kind::mem_to_cmem) {
+          if (!port.read_memory(mem, buffer.data(), bytes)) return {Error::bus_error, mem};
+          port.write_cmem_row(count, cmem, r.element, buffer.data());
+        } else {
+          port.read_cmem_row(count, cmem, r.element, buffer.data());
+          if (!port.write_memory(mem, buffer.data(), bytes)) return {Error::bus_error, mem};
+        }
+        moved += bytes;
+      }
+      return {};
+    }
+    case Kind::mem_to_mem:
+      for (uint32_t done = 0; done < d.length;) {
+        const unsigned bytes = std::min(buffer_bytes, d.length - done);
+        if (!port.read_memory(d.src + done, buffer.data(), bytes)) return {Error::bus_error, d.src + done};
+        if (!port.write_memory(d.dst + done, buffer.data(), bytes)) return {Error::bus_error, d.dst + done};
+        done += bytes;
+        moved += bytes;
+      }
+      return {};
+    case Kind::broadcast: {
+      std::vector<uint8_t> mask;
+      if (d.mask != 0) {
+        mask.resize(mask_bytes(limits.lanes));
+        if (!port.read_memory(d.mask, mask.data(), static_cast<unsigned>(mask.size())))
+          return {Error::bus_error, d.mask};
+      }
+      const uint32_t step = broadcast_step(d);
+      for (uint32_t done = 0; done < d.length;) {
+        const unsigned bytes = std::min(buffer_bytes, d.length - done);
+        if (!port.read_memory(d.src + done, buffer.data(), bytes)) return {Error::bus_error, d.src + done};
+        port.broadcast_cmem(mask, d.dst + done * step, step, buffer.data(), bytes);
+        done += bytes;
+        moved += bytes;
+      }
+      return {};
+    }
+  }
+  return {Error::bad_descriptor, d.ctrl};
+}
+
+}  // namespace tessera::dma

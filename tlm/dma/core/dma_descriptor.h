@@ -1,0 +1,140 @@
+// The system/array DMA's functional core, plain C++ (no SystemC): the
+// descriptor (its eight 32-bit words, as in memory and in a channel's
+// registers), its validation against system memory and CMEM, the
+// reshuffle and broadcast address arithmetic, and execute(), which moves one
+// validated descriptor through a DmaPort. The SystemC block (dma.h) supplies
+// the port: the bus for memory, the array's direct CMEM access for CMEM,
+// with the timing. README.md walks through the layout.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace tessera::dma {
+
+enum class Kind : uint32_t {
+  mem_to_cmem = 0,  // reshuffle: a plain array in CU order lands array-ready
+  cmem_to_mem = 1,  // the reverse
+  mem_to_mem = 2,   // a plain copy
+  broadcast = 3,    // the same bytes into every CU of a mask, in one pass
+};
+
+enum class Error : uint32_t {
+#define TESSERA_DMA_ERROR(name, code, text) name = (code),
+#include "dma/core/dma_errors.def"
+#undef TESSERA_DMA_ERROR
+};
+
+const char* error_text(Error error);
+const char* kind_name(Kind kind);
+
+inline constexpr unsigned DESCRIPTOR_WORDS = 8;
+inline constexpr unsigned DESCRIPTOR_BYTES = 4 * DESCRIPTOR_WORDS;
+// CTRL word fields.
+inline constexpr uint32_t CTRL_KIND_MASK = 0x7;
+inline constexpr unsigned CTRL_ELEMENT_SHIFT = 4;
+inline constexpr uint32_t CTRL_ELEMENT_MASK = 0x3u << CTRL_ELEMENT_SHIFT;
+
+// Word order: the same in memory (little-endian words) and in registers.
+struct Descriptor {
+  uint32_t ctrl = 0;
+  uint32_t src = 0;
+  uint32_t dst = 0;
+  uint32_t length = 0;
+  uint32_t src_stride = 0;
+  uint32_t dst_stride = 0;
+  uint32_t next = 0;  // next descriptor in memory, 0: the end
+  uint32_t mask = 0;  // broadcast: CU mask in memory, 0: every CU
+
+  uint32_t kind_code() const { return ctrl & CTRL_KIND_MASK; }
+  Kind kind() const { return static_cast<Kind>(kind_code()); }
+  // 1 or 2 for a valid reshuffle (0 in the field reads as 1).
+  unsigned element_bytes() const;
+
+  static uint32_t make_ctrl(Kind kind, unsigned element_bytes = 1) {
+    return static_cast<uint32_t>(kind) | (element_bytes << CTRL_ELEMENT_SHIFT);
+  }
+};
+
+std::array<uint32_t, DESCRIPTOR_WORDS> encode(const Descriptor& d);
+Descriptor decode(const std::array<uint32_t, DESCRIPTOR_WORDS>& words);
+// From / to 32 bytes of memory (little-endian words, the host's order).
+Descriptor decode_bytes(const uint8_t* bytes);
+void encode_bytes(const Descriptor& d, uint8_t* bytes);
+
+// What a descriptor may address.
+struct Limits {
+  uint64_t memory_base = 0;
+  uint64_t memory_bytes = 0;
+  unsigned lanes = 0;       // CUs, 0: no array (CMEM kinds are refused)
+  unsigned cmem_bytes = 0;  // per CU
+};
+
+// A validation or transfer failure: what and the offending address (or length).
+struct Fault {
+  Error error = Error::none;
+  uint64_t address = 0;
+  bool ok() const { return error == Error::none; }
+};
+
+// The whole descriptor checked before anything moves: ranges (every byte
+// it would read or write), length, alignment, fields.
+Fault validate(const Descriptor& d, const Limits& limits);
+// A descriptor's own address in a chain: 4-aligned, its 32 bytes in memory.
+Fault validate_descriptor_address(uint32_t address, const Limits& limits);
+
+// Bytes of the CU mask in memory: ceil(lanes / 8).
+inline unsigned mask_bytes(unsigned lanes) {
+  return (lanes + 7) / 8;
+}
+
+// The reshuffle arithmetic (mem_to_cmem, cmem_to_mem): element k of the
+// plain array is lane k mod lanes, row k / lanes.
+struct Reshuffle {
+  uint32_t memory = 0;         // plain array
+  uint32_t memory_stride = 0;  // between rows (resolved: 0 became lanes x element)
+  uint32_t cmem = 0;           // CMEM address of row 0
+  uint32_t cmem_stride = 0;    // between rows (resolved: 0 became element)
+  unsigned element = 1;
+  uint64_t elements = 0;
+  unsigned lanes = 0;
+
+  uint64_t rows() const { return (elements + lanes - 1) / lanes; }
+  // Elements of row r (lanes except, perhaps, the last row).
+  unsigned row_elements(uint64_t r) const;
+  uint64_t memory_address(uint64_t k) const { return memory + (k / lanes) * memory_stride + (k % lanes) * element; }
+  uint64_t cmem_address(uint64_t k) const { return cmem + (k / lanes) * cmem_stride; }
+};
+Reshuffle reshuffle_of(const Descriptor& d, unsigned lanes);
+
+// CMEM address of broadcast byte j: dst + j x step (step 0 became 1).
+inline uint32_t broadcast_step(const Descriptor& d) {
+  return d.dst_stride == 0 ? 1 : d.dst_stride;
+}
+
+// The engine's two sides. Memory accesses return false on a bus error.
+// CMEM accesses are passes over the CUs' shared data lines.
+class DmaPort {
+ public:
+  virtual ~DmaPort() = default;
+  virtual bool read_memory(uint32_t address, uint8_t* data, unsigned bytes) = 0;
+  virtual bool write_memory(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
+  // Lanes 0..count-1: lane l's element (data[l e .. l e + e), most
+  // significant byte first) to / from CMEM address..address+e-1.
+  virtual void write_cmem_row(unsigned count, uint32_t address, unsigned element, const uint8_t* data) = 0;
+  virtual void read_cmem_row(unsigned count, uint32_t address, unsigned element, uint8_t* data) = 0;
+  // Byte j of data to CMEM address + j x step of every lane whose mask bit
+  // is set (an empty mask: every lane).
+  virtual void broadcast_cmem(const std::vector<uint8_t>& mask, uint32_t address, uint32_t step, const uint8_t* data,
+                              unsigned bytes) = 0;
+};
+
+// Moves one descriptor that validate() accepted, in rows: a reshuffle row
+// is `lanes` elements, a copy or a broadcast moves chunks of at most
+// `buffer_bytes` (which must hold a reshuffle row). Returns the first
+// failed memory access (bus_error) or success; `moved` gets the bytes
+// delivered.
+Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, DmaPort& port, uint64_t& moved);
+
+}  // namespace tessera::dma

@@ -1,0 +1,320 @@
+#include "dma/dma.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "common/log.h"
+#include "dma/dma_regs.h"
+
+namespace tessera {
+
+using sc_core::sc_time;
+namespace regs = dma_regs;
+
+// The engine's two sides for the core: memory over the bus master (the
+// engine waits for each transfer, so its bursts are timed at the kernel's
+// time), CMEM through the array's direct path at dma.cmem_bytes_per_cycle.
+class Dma::Port : public dma::DmaPort {
+ public:
+  Port(Dma& dma, Channel& channel) : m_dma(dma), m_channel(channel) {}
+
+  bool read_memory(uint32_t address, uint8_t* data, unsigned bytes) override {
+    return transfer(tlm::TLM_READ_COMMAND, address, data, bytes);
+  }
+  bool write_memory(uint32_t address, const uint8_t* data, unsigned bytes) override {
+    return transfer(tlm::TLM_WRITE_COMMAND, address, const_cast<uint8_t*>(data), bytes);
+  }
+  void write_cmem_row(unsigned count, uint32_t address, unsigned element, const uint8_t* data) override {
+    pass(count * element);
+    for (unsigned lane = 0; lane < count; ++lane)
+      for (unsigned b = 0; b < element; ++b) m_dma.m_cmem->write_cmem(lane, address + b, data[lane * element + b]);
+    m_dma.m_cmem_written += uint64_t{count} * element;
+  }
+  void read_cmem_row(unsigned count, uint32_t address, unsigned element, uint8_t* data) override {
+    pass(count * element);
+    for (unsigned lane = 0; lane < count; ++lane)
+      for (unsigned b = 0; b < element; ++b) data[lane * element + b] = m_dma.m_cmem->read_cmem(lane, address + b);
+    m_dma.m_cmem_read += uint64_t{count} * element;
+  }
+  void broadcast_cmem(const std::vector<uint8_t>& mask, uint32_t address, uint32_t step, const uint8_t* data,
+                      unsigned bytes) override {
+    // Every CU latches the shared data lines: one pass whatever the CUs.
+    pass(bytes);
+    const unsigned lanes = m_dma.m_cmem->cmem_geometry().lanes();
+    for (unsigned lane = 0; lane < lanes; ++lane) {
+      if (!mask.empty() && ((mask[lane / 8] >> (lane % 8)) & 1u) == 0) continue;
+      for (unsigned j = 0; j < bytes; ++j) m_dma.m_cmem->write_cmem(lane, address + j * step, data[j]);
+      m_dma.m_cmem_written += bytes;
+    }
+  }
+
+ private:
+  bool transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
+    const uint64_t wait_before = m_dma.m_bus_wait_probe ? m_dma.m_bus_wait_probe() : 0;
+    sc_time local = sc_core::SC_ZERO_TIME;
+    const bool ok = m_dma.out.transfer(command, address, data, bytes, local);
+    if (m_dma.m_bus_wait_probe)
+      m_channel.bus_wait += m_dma.m_params.clock_period * static_cast<double>(m_dma.m_bus_wait_probe() - wait_before);
+    sc_core::wait(local);
+    return ok;
+  }
+  // A CMEM pass of `line_bytes` on the data lines, once the CUs let go of CMEM.
+  void pass(unsigned line_bytes) {
+    const sc_time now = sc_core::sc_time_stamp();
+    const sc_time free = m_dma.m_cmem->cmem_free_from(now);
+    if (free > now) {
+      ++m_dma.m_cmem_stalls;
+      m_dma.m_cmem_stall += free - now;
+      sc_core::wait(free - now);
+    }
+    const unsigned rate = m_dma.m_params.cmem_bytes_per_cycle;
+    const unsigned cycles = (line_bytes + rate - 1) / rate;
+    ++m_dma.m_cmem_passes;
+    m_dma.m_cmem_cycles += cycles;
+    sc_core::wait(m_dma.m_params.cmem_clock_period * static_cast<double>(cycles));
+  }
+
+  Dma& m_dma;
+  Channel& m_channel;
+};
+
+Dma::Dma(sc_core::sc_module_name name, const DmaParams& params)
+    : Peripheral(name, params.clock_period),
+      out("out", activity()),
+      m_params(params),
+      m_cmem_written(counter("cmem.bytes_written", "bytes stored into CMEM, all CUs together")),
+      m_cmem_read(counter("cmem.bytes_read", "bytes read from CMEM, all CUs together")),
+      m_cmem_passes(counter("cmem.passes",
+                            "passes over the CUs' shared data lines (one reshuffle row or broadcast "
+                            "chunk each)")),
+      m_cmem_cycles(counter("cmem.cycles", "array cycles of the CMEM passes")),
+      m_cmem_stalls(counter("cmem_stalls", "CMEM passes that waited for a running program")),
+      m_descriptor_fetches(counter("descriptor_fetches", "descriptors read from system memory")) {
+  if (params.channels == 0 || params.channels > regs::MAX_CHANNELS)
+    throw std::invalid_argument(std::string(this->name()) + ": channels must be 1.." +
+                                std::to_string(regs::MAX_CHANNELS));
+  if (params.cmem_bytes_per_cycle == 0 || params.burst_bytes == 0 || params.row_buffer_bytes == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": zero rate, burst or row buffer");
+  out.configure(params.burst_bytes, BusMaster::OnError::stop);
+  m_channels.resize(params.channels);
+
+#define TESSERA_DMA_REG(name, offset, reset, access) const RegisterInfo name{#name, offset, reset, RegAccess::access};
+#define TESSERA_DMA_CHANNEL_REG(name, offset, reset, access)
+#include "dma/dma_regs.def"
+#undef TESSERA_DMA_CHANNEL_REG
+#undef TESSERA_DMA_REG
+  m_regs.add(ID);
+  m_regs.add(CHANNELS, [this] { return m_params.channels; });
+  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  m_regs.add(CMEM_BYTES_PER_CYCLE, [this] { return m_params.cmem_bytes_per_cycle; });
+
+  for (unsigned c = 0; c < params.channels; ++c) {
+    Channel& ch = m_channels[c];
+    const std::string prefix = "ch" + std::to_string(c) + ".";
+    ch.descriptors = &counter(prefix + "descriptors", "descriptors completed by channel " + std::to_string(c));
+    ch.bytes = &counter(prefix + "bytes", "bytes delivered by channel " + std::to_string(c));
+    ch.errors = &counter(prefix + "errors", "starts of channel " + std::to_string(c) + " stopped by an error");
+    ch.busy_trace = std::make_unique<TimedTrace>(("ch" + std::to_string(c) + "_busy").c_str());
+    const uint32_t base = regs::channel_base(c);
+#define TESSERA_DMA_REG(name, offset, reset, access)
+#define TESSERA_DMA_CHANNEL_REG(name, offset, reset, access) \
+  const RegisterInfo name{#name, base + (offset), reset, RegAccess::access};
+#include "dma/dma_regs.def"
+#undef TESSERA_DMA_CHANNEL_REG
+#undef TESSERA_DMA_REG
+    for (const RegisterInfo& info : {D_CTRL, D_SRC, D_DST, D_LENGTH, D_SRC_STRIDE, D_DST_STRIDE, D_NEXT, D_MASK})
+      m_regs.add(info);
+    m_regs.add(START, {}, [this, c](uint32_t value) { start(c, value); });
+    m_regs.add(STATUS, [this, c] {
+      const Channel& s = m_channels[c];
+      return (s.busy ? regs::STATUS_BUSY : 0u) | (s.done ? regs::STATUS_DONE : 0u) |
+             (s.error ? regs::STATUS_ERROR : 0u) | (s.refused ? regs::STATUS_REFUSED : 0u);
+    });
+    m_regs.add(ERROR_CODE, [this, c] { return m_channels[c].error_code; });
+    m_regs.add(ERROR_DESC, [this, c] { return m_channels[c].error_desc; });
+    m_regs.add(ERROR_ADDR, [this, c] { return m_channels[c].error_addr; });
+    m_regs.add(DESCRIPTORS, [this, c] { return static_cast<uint32_t>(m_channels[c].descriptors->value); });
+    m_regs.add(BYTES, [this, c] { return static_cast<uint32_t>(m_channels[c].bytes->value); });
+  }
+  SC_THREAD(engine);
+}
+
+Dma::~Dma() = default;
+
+void Dma::connect_cmem(CmemAccess& cmem) {
+  m_cmem = &cmem;
+}
+
+dma::Limits Dma::limits() const {
+  dma::Limits l;
+  l.memory_base = m_params.memory_base;
+  l.memory_bytes = m_params.memory_bytes;
+  if (m_cmem) {
+    l.lanes = m_cmem->cmem_geometry().lanes();
+    l.cmem_bytes = m_cmem->cmem_geometry().cmem_bytes;
+  }
+  return l;
+}
+
+dma::Descriptor Dma::register_descriptor(unsigned channel) const {
+  std::array<uint32_t, dma::DESCRIPTOR_WORDS> words{};
+  for (unsigned i = 0; i < dma::DESCRIPTOR_WORDS; ++i) words[i] = m_regs.get(regs::channel_base(channel) + 4 * i);
+  return dma::decode(words);
+}
+
+const char* Dma::write_refusal(const tlm::tlm_generic_payload& gp) const {
+  if (!gp.is_write() || gp.get_address() < regs::CHANNEL_BASE) return nullptr;
+  const uint64_t channel = (gp.get_address() - regs::CHANNEL_BASE) / regs::CHANNEL_STRIDE;
+  if (channel >= m_channels.size() || !m_channels[channel].busy) return nullptr;
+  // The bus calls this through a const path; the flag is the channel's state.
+  const_cast<Channel&>(m_channels[channel]).refused = true;
+  return "written while the channel runs";
+}
+
+void Dma::start(unsigned channel, uint32_t value) {
+  if ((value & regs::START_GO) == 0) return;
+  Channel& ch = m_channels[channel];
+  ch.busy = true;
+  ch.queued = true;
+  ch.done = ch.error = ch.refused = false;
+  ch.error_code = ch.error_desc = ch.error_addr = 0;
+  ch.registers_first = (value & regs::START_CHAIN_ONLY) == 0;
+  ch.next = ch.registers_first ? 0 : m_regs.get(regs::channel_base(channel) + regs::CH_D_NEXT);
+  ch.visited.clear();
+  ch.ready_at = access_time();
+  if (m_tracing) ch.busy_trace->set_at(true, ch.ready_at);
+  m_wake.notify(m_regs.access_delay());
+}
+
+void Dma::engine() {
+  for (;;) {
+    const sc_time now = sc_core::sc_time_stamp();
+    int chosen = -1;
+    sc_time earliest = sc_core::SC_ZERO_TIME;
+    bool any = false;
+    for (unsigned i = 0; i < m_channels.size(); ++i) {
+      const unsigned c = (m_round_robin + i) % m_channels.size();
+      const Channel& ch = m_channels[c];
+      if (!ch.queued) continue;
+      if (ch.ready_at <= now) {
+        chosen = static_cast<int>(c);
+        break;
+      }
+      if (!any || ch.ready_at < earliest) earliest = ch.ready_at;
+      any = true;
+    }
+    if (chosen < 0) {
+      if (any)
+        wait(earliest - now, m_wake);
+      else
+        wait(m_wake);
+      continue;
+    }
+    m_round_robin = (static_cast<unsigned>(chosen) + 1) % m_channels.size();
+    const sc_time begin = sc_core::sc_time_stamp();
+    step(static_cast<unsigned>(chosen));
+    m_engine_busy += sc_core::sc_time_stamp() - begin;
+  }
+}
+
+void Dma::step(unsigned channel) {
+  Channel& ch = m_channels[channel];
+  const dma::Limits lim = limits();
+  dma::Descriptor d;
+  uint32_t where = regs::ERROR_DESC_REGISTERS;
+  if (ch.registers_first) {
+    ch.registers_first = false;
+    d = register_descriptor(channel);
+  } else {
+    where = ch.next;
+    dma::Fault fault = dma::validate_descriptor_address(where, lim);
+    if (!fault.ok()) return fail(channel, where, fault);
+    if (!ch.visited.insert(where).second) return fail(channel, where, {dma::Error::chain_loop, where});
+    uint8_t bytes[dma::DESCRIPTOR_BYTES] = {};
+    Port port(*this, ch);
+    ++m_descriptor_fetches;
+    if (!port.read_memory(where, bytes, dma::DESCRIPTOR_BYTES))
+      return fail(channel, where, {dma::Error::bus_error, where});
+    d = dma::decode_bytes(bytes);
+  }
+  ch.next = d.next;
+  dma::Fault fault = dma::validate(d, lim);
+  if (fault.ok() && !m_cmem && d.kind() != dma::Kind::mem_to_mem) fault = {dma::Error::no_array, d.dst};
+  if (!fault.ok()) return fail(channel, where, fault);
+  Port port(*this, ch);
+  uint64_t moved = 0;
+  fault = dma::execute(d, lim, m_params.row_buffer_bytes, port, moved);
+  *ch.bytes += moved;
+  if (!fault.ok()) return fail(channel, where, fault);
+  ++*ch.descriptors;
+  if (log::enabled(log::Level::debug))
+    log::debug(name(), "channel " + std::to_string(channel) + ": " + dma::kind_name(d.kind()) + " of " +
+                           std::to_string(d.length) + " bytes from " + log::hex(d.src) + " to " + log::hex(d.dst));
+  if (ch.next == 0) finish(channel);
+}
+
+void Dma::finish(unsigned channel) {
+  Channel& ch = m_channels[channel];
+  const sc_time now = sc_core::sc_time_stamp();
+  ch.queued = false;
+  ch.busy = false;
+  ch.done = !ch.error;
+  ch.busy_time += now - ch.ready_at;
+  if (m_tracing) ch.busy_trace->set_at(false, now);
+  raise_irq(ch.error ? regs::irq_error(channel) : regs::irq_done(channel));
+  m_finished.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Dma::fail(unsigned channel, uint32_t descriptor, const dma::Fault& fault) {
+  Channel& ch = m_channels[channel];
+  ch.error = true;
+  ch.error_code = static_cast<uint32_t>(fault.error);
+  ch.error_desc = descriptor;
+  ch.error_addr = static_cast<uint32_t>(fault.address);
+  ++*ch.errors;
+  const std::string at =
+      descriptor == regs::ERROR_DESC_REGISTERS ? std::string("in registers") : "at " + log::hex(descriptor);
+  log::warning(name(), "channel " + std::to_string(channel) + ": descriptor " + at + ": " +
+                           dma::error_text(fault.error) + " at " + log::hex(fault.address) + "; channel stopped");
+  finish(channel);
+}
+
+void Dma::trace_signals(sc_core::sc_trace_file* file) {
+  m_tracing = true;
+  const std::string prefix = std::string(name()) + ".";
+  for (unsigned c = 0; c < m_channels.size(); ++c)
+    sc_core::sc_trace(file, m_channels[c].busy_trace->signal, prefix + "ch" + std::to_string(c) + ".busy");
+  sc_core::sc_trace(file, irq, prefix + "irq");
+}
+
+nlohmann::json Dma::stats_json(const sc_time& elapsed) const {
+  nlohmann::json stats = Peripheral::stats_json(elapsed);
+  const double elapsed_s = elapsed.to_seconds();
+  stats["channels"] = m_params.channels;
+  stats["burst_bytes"] = m_params.burst_bytes;
+  stats["cmem_bytes_per_cycle"] = m_params.cmem_bytes_per_cycle;
+  stats["cmem_stall_ns"] = m_cmem_stall.to_seconds() * 1e9;
+  for (unsigned c = 0; c < m_channels.size(); ++c) {
+    nlohmann::json& ch = stats["ch" + std::to_string(c)];
+    ch["busy_ns"] = m_channels[c].busy_time.to_seconds() * 1e9;
+    ch["bus_wait_ns"] = m_channels[c].bus_wait.to_seconds() * 1e9;
+  }
+  stats["busy_ns"] = m_engine_busy.to_seconds() * 1e9;
+  stats["utilisation"] = elapsed_s > 0 ? m_engine_busy.to_seconds() / elapsed_s : 0.0;
+  stats["elapsed_ns"] = elapsed_s * 1e9;
+  return stats;
+}
+
+SummaryRow Dma::summary_row(const sc_time& elapsed) const {
+  uint64_t descriptors = 0, bytes = 0, errors = 0;
+  for (const Channel& ch : m_channels) {
+    descriptors += ch.descriptors->value;
+    bytes += ch.bytes->value;
+    errors += ch.errors->value;
+  }
+  return busy_row(m_engine_busy, elapsed,
+                  std::to_string(descriptors) + " descriptors, " + std::to_string(bytes) + " bytes, " +
+                      std::to_string(errors) + " errors");
+}
+
+}  // namespace tessera

@@ -1,0 +1,121 @@
+// The system/array DMA (README.md): a peripheral whose channels run
+// descriptors (in their registers or chained in system memory) that move
+// data between system memory, over its own bus-master socket, and CMEM,
+// through the array's direct CMEM path (array/cmem_access.h) at its own
+// rate, not the host's CIU. One engine thread serves the channels
+// round-robin, a descriptor at a time; each descriptor is validated as a
+// whole (core/dma_descriptor.h) before a byte moves, and a bad one stops its
+// channel with an error code, an interrupt and a warning.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include <systemc>
+
+#include <nlohmann/json.hpp>
+
+#include "array/cmem_access.h"
+#include "common/bus_master.h"
+#include "common/peripheral.h"
+#include "common/timed_trace.h"
+#include "config/config.h"
+#include "dma/core/dma_descriptor.h"
+
+namespace tessera {
+
+struct DmaParams {
+  bool enabled = false;
+  bool broadcast = false;  // a renderer switch; the block does not read it
+  unsigned channels = 0;
+  unsigned burst_beats = 0;
+  unsigned cmem_bytes_per_cycle = 0;
+  unsigned row_buffer_bytes = 0;
+  unsigned burst_bytes = 0;            // set by the SoC: burst_beats words of the bus
+  sc_core::sc_time clock_period;       // set by the SoC: the system (bus) clock
+  sc_core::sc_time cmem_clock_period;  // set by the SoC: the array clock
+  uint64_t memory_base = 0;            // set by the SoC: system memory
+  uint64_t memory_bytes = 0;
+
+  static ParamGroup parameters();
+  static DmaParams from_config(const Config& config);
+  static DmaParams defaults();
+};
+
+class Dma : public Peripheral {
+ public:
+  SC_HAS_PROCESS(Dma);
+
+  // Registers on `in`, the interrupt on `irq` (Peripheral).
+  BusMaster out;  // bus initiator dma
+
+  Dma(sc_core::sc_module_name name, const DmaParams& params);
+  ~Dma() override;
+
+  const DmaParams& params() const { return m_params; }
+  // The array's direct CMEM path; without one, CMEM descriptors fail (no_array).
+  void connect_cmem(CmemAccess& cmem);
+  // Where the bus's arbitration wait of this initiator is read (cycles of
+  // the bus clock so far), for the per-channel bus wait. Optional.
+  void set_bus_wait_probe(std::function<uint64_t()> wait_cycles) { m_bus_wait_probe = std::move(wait_cycles); }
+
+  bool channel_busy(unsigned channel) const { return m_channels.at(channel).busy; }
+  // Notified whenever a channel finishes (done or error).
+  const sc_core::sc_event& channel_finished_event() const { return m_finished; }
+
+  void trace_signals(sc_core::sc_trace_file* file) override;
+  nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+
+ private:
+  class Port;
+  struct Channel {
+    bool busy = false;
+    bool queued = false;
+    bool registers_first = false;  // the register descriptor still to run
+    uint32_t next = 0;             // the next descriptor in memory
+    std::unordered_set<uint32_t> visited;
+    bool done = false, error = false, refused = false;
+    uint32_t error_code = 0, error_desc = 0, error_addr = 0;
+    sc_core::sc_time ready_at;  // the START's time
+    sc_core::sc_time busy_time;
+    sc_core::sc_time bus_wait;
+    ActivityCounter* descriptors = nullptr;
+    ActivityCounter* bytes = nullptr;
+    ActivityCounter* errors = nullptr;
+    std::unique_ptr<TimedTrace> busy_trace;
+  };
+
+  const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
+  void start(unsigned channel, uint32_t value);
+  void engine();  // SC_THREAD
+  // Runs the channel's next descriptor.
+  void step(unsigned channel);
+  void finish(unsigned channel);
+  void fail(unsigned channel, uint32_t descriptor, const dma::Fault& fault);
+  dma::Limits limits() const;
+  dma::Descriptor register_descriptor(unsigned channel) const;
+
+  DmaParams m_params;
+  CmemAccess* m_cmem = nullptr;
+  std::function<uint64_t()> m_bus_wait_probe;
+  std::vector<Channel> m_channels;
+  unsigned m_round_robin = 0;
+  sc_core::sc_event m_wake;
+  sc_core::sc_event m_finished;
+  sc_core::sc_time m_engine_busy;
+  sc_core::sc_time m_cmem_stall;
+  ActivityCounter& m_cmem_written;
+  ActivityCounter& m_cmem_read;
+  ActivityCounter& m_cmem_passes;
+  ActivityCounter& m_cmem_cycles;
+  ActivityCounter& m_cmem_stalls;
+  ActivityCounter& m_descriptor_fetches;
+  bool m_tracing = false;
+};
+
+}  // namespace tessera
