@@ -185,6 +185,7 @@ TEST(ApTileBins, PassesAreTheBusiestCusTrianglesInOrder) {
   const FrameGeometry frame;
   TileBins bins(frame.cus());
   std::vector<gl::Triangle> drawn;
+  drawn.reserve(14);
   auto pixel = [](int x) { return 16 * x; };
   // Tile (3, 1): pixels x 24..31, display rows 36..71 (GL y 72..107).
   for (int k = 0; k < 12; ++k)
@@ -192,6 +193,7 @@ TEST(ApTileBins, PassesAreTheBusiestCusTrianglesInOrder) {
   drawn.push_back(triangle(pixel(161), pixel(40), pixel(166), pixel(40), pixel(163), pixel(50)));       // tile (20, 2)
   drawn.push_back(triangle(-pixel(400), -pixel(400), pixel(800), -pixel(400), pixel(96), pixel(800)));  // every tile
   std::vector<TriangleSetup> setups;
+  setups.reserve(drawn.size());
   for (const gl::Triangle& t : drawn) setups.emplace_back(t, DrawFlags{}, frame);
   for (const TriangleSetup& setup : setups) bins.add(setup, setup.tiles());
   const unsigned stacked = 1 * frame.columns + 3, single = 2 * frame.columns + 20, other = 0;
