@@ -130,7 +130,7 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
   m_pixels.clear();
   m_blocks.clear();
   const unsigned b = m_block, across = (m_buffers.width + b - 1) / b;
-  std::vector<uint16_t> depth_row;
+  std::vector<uint16_t>& depth_row = m_depth_row;
   for (int j = setup.y_first(); j <= setup.y_last(); ++j) {
     m_host.compute(Op::alu, k.row_alu);
     int first = 0, last = -1;
@@ -257,13 +257,14 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
     Attribute attribute;
     unsigned bytes;
   };
-  std::vector<Needed> needed;
+  Needed needed[6];
+  unsigned needs = 0;
   if (reads.colour)
-    for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed.push_back({a, 2});
-  if (reads.alpha) needed.push_back({Attribute::alpha, 2});
+    for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed[needs++] = {a, 2};
+  if (reads.alpha) needed[needs++] = {Attribute::alpha, 2};
   if (reads.texcoords) {
-    needed.push_back({Attribute::s, 3});
-    needed.push_back({Attribute::t, 3});
+    needed[needs++] = {Attribute::s, 3};
+    needed[needs++] = {Attribute::t, 3};
   }
   m_results.resize(m_pixels.size());
   for (unsigned g = 0; g < groups; ++g) {
@@ -286,7 +287,8 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
     for (unsigned v = 0; v < b; ++v)
       for (unsigned u = 0; u < b; ++u) {
         if ((used & (1u << (v * b + u))) == 0) continue;
-        for (const Needed& need : needed) {
+        for (unsigned n = 0; n < needs; ++n) {
+          const Needed& need = needed[n];
           uint32_t word[3] = {0, 0, 0};
           {
             TimedScope timed(m_host, m_time.array_read);

@@ -103,6 +103,7 @@ class ApPixelRenderer : public gl::Renderer {
   std::vector<Pixel> m_pixels;
   std::vector<Block> m_blocks;
   std::vector<int32_t> m_block_index;
+  std::vector<uint16_t> m_depth_row;                  // the depth buffer's values under the current span
   std::vector<std::vector<uint32_t>> m_block_pixels;  // per block in the batch: its pixels
   // Per pixel of a batch, the attribute values read back (16.8).
   std::vector<std::array<int32_t, ATTRIBUTES>> m_results;

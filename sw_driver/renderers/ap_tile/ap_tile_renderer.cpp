@@ -278,15 +278,13 @@ void ApTileRenderer::present() {
     totals.emplace_back(std::string("cycles.") + stage_entry(stage),
                         static_cast<double>(m_stage_cycles[static_cast<int>(stage)]));
   renderers::add_host_time(totals, m_time);
-  const double passes = static_cast<double>(m_passes - m_frame_passes_before);
-  const double cu_triangles = static_cast<double>(m_cu_triangles - m_frame_cu_triangles_before);
+  const double passes = m_frame_figures.change("passes", static_cast<double>(m_passes));
+  const double cu_triangles = m_frame_figures.change("cu_triangles", static_cast<double>(m_cu_triangles));
   m_frame_figures.emit(m_env, totals,
                        {{"busiest_cu_triangles", static_cast<double>(m_frame_busiest)},
                         {"triangles_per_pass", passes > 0 ? cu_triangles / passes : 0.0},
                         {"cu_occupancy", passes > 0 ? cu_triangles / (passes * m_frame.cus()) : 0.0}});
   m_frame_busiest = 0;
-  m_frame_passes_before = m_passes;
-  m_frame_cu_triangles_before = m_cu_triangles;
 }
 
 void ApTileRenderer::publish_statistics() {

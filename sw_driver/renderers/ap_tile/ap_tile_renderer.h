@@ -87,7 +87,6 @@ class ApTileRenderer : public gl::Renderer {
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;
   uint64_t m_frame_busiest = 0;  // the most passes one flush of this frame needed
-  uint64_t m_frame_passes_before = 0, m_frame_cu_triangles_before = 0;
   uint64_t m_passes = 0, m_cu_triangles = 0, m_busiest = 0;
   uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
 };

@@ -58,6 +58,12 @@ class FrameFigures {
  public:
   using Figures = std::vector<std::pair<std::string, double>>;
 
+  // The change of the running total `name` since the last emit.
+  double change(const std::string& name, double total) const {
+    const auto it = m_previous.find(name);
+    return it == m_previous.end() ? total : total - it->second;
+  }
+
   void emit(AppEnvironment& env, const Figures& totals, Figures per_frame) {
     for (const auto& [name, total] : totals) {
       double& previous = m_previous[name];
