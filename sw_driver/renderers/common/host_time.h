@@ -45,8 +45,10 @@ inline void publish_host_time(ActivityCounters& counters, const std::string& pre
     counters.counter(prefix + "." + name, description).value = static_cast<uint64_t>(std::llround(seconds * 1e9));
   };
   set("host_compute_ns", compute_description, time.compute);
-  set("host_write_ns", "host time writing the array through the CIU", time.array_write);
-  set("host_read_ns", "host time reading results back from the array through the CIU", time.array_read);
+  set("host_write_ns", "host time writing the array (CIU accesses, or building DMA descriptors and waiting for them)",
+      time.array_write);
+  set("host_read_ns", "host time reading results back from the array (CIU accesses, or waiting for the DMA)",
+      time.array_read);
   set("host_wait_ns", "host time waiting for the array's programs", time.array_wait);
   set("host_frame_out_ns", "host time showing the frame (the copy to the display port, or the swap)", time.frame_out);
 }
