@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 
 #include "config/config.h"
 #include "device/app_environment.h"
@@ -19,11 +20,17 @@ struct DmaUse {
   bool broadcast = false;  // and writes values common to every CU once, by broadcast
 };
 
-// Asks the SoC (the DMA's ID register) and the run's configuration.
+// The run's configuration says whether the SoC has the DMA (dma.enabled;
+// no configuration: it has none) and whether to broadcast (dma.broadcast);
+// the DMA's ID register must agree. Without a DMA the back end never
+// touches its registers, so its bus traffic is what it was before the DMA.
 inline DmaUse dma_use(AppEnvironment& env, DmaDriver& dma) {
   DmaUse use;
-  use.enabled = dma.present();
-  use.broadcast = use.enabled && env.config != nullptr && env.config->get_bool("dma.broadcast");
+  if (env.config == nullptr || !env.config->get_bool("dma.enabled")) return use;
+  if (!dma.present())
+    throw std::runtime_error("dma.enabled=true, but the DMA's ID register does not read as the DMA's");
+  use.enabled = true;
+  use.broadcast = env.config->get_bool("dma.broadcast");
   return use;
 }
 
