@@ -38,7 +38,7 @@ class DmaDriver {
 
   // Descriptor builders (README.md, "The descriptor").
   // `count` values of `element_bytes` (1 or 2), one per CU in CU order, from
-  // the plain array at `src` to CMEM address `cmem` (high byte first).
+  // the plain array at `src` (the host's little-endian values) to CMEM address `cmem` (high byte first).
   static dma::Descriptor to_cmem(uint32_t src, uint32_t cmem, unsigned count, unsigned element_bytes);
   // The reverse: CMEM address `cmem` of each CU out to a plain array at `dst`.
   static dma::Descriptor from_cmem(uint32_t cmem, uint32_t dst, unsigned count, unsigned element_bytes);

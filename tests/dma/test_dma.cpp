@@ -139,8 +139,8 @@ TEST(Dma, ReshuffleLandsEachValueByteForByteInItsCuAndTheCostIsTheRate) {
   Bench& b = *g_bench;
   for (unsigned k = 0; k < 2 * LANES; ++k) {
     const auto value = static_cast<uint16_t>(0x4000 + 13 * k);
-    b.memory.data()[0x1000 + 2 * k] = static_cast<uint8_t>(value >> 8);
-    b.memory.data()[0x1000 + 2 * k + 1] = static_cast<uint8_t>(value);
+    b.memory.data()[0x1000 + 2 * k] = static_cast<uint8_t>(value);  // the host's little-endian uint16_t
+    b.memory.data()[0x1000 + 2 * k + 1] = static_cast<uint8_t>(value >> 8);
   }
   const uint64_t cycles = b.count("cmem.cycles");
   sc_time start, done;
@@ -185,8 +185,9 @@ TEST(Dma, CmemToMemoryReadsACuVariableOutToAPlainArray) {
     clear_irq(b);
   });
   for (unsigned l = 0; l < LANES; ++l) {
-    ASSERT_EQ(b.memory.data()[0x3000 + 2 * l], l);
-    ASSERT_EQ(b.memory.data()[0x3000 + 2 * l + 1], static_cast<uint8_t>(~l));
+    // CMEM's high byte first becomes the host's little-endian uint16_t.
+    ASSERT_EQ(b.memory.data()[0x3000 + 2 * l], static_cast<uint8_t>(~l));
+    ASSERT_EQ(b.memory.data()[0x3000 + 2 * l + 1], l);
   }
   EXPECT_EQ(b.memory.data()[0x3000 + 2 * LANES], 0xee);
 }

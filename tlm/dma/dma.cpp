@@ -27,13 +27,15 @@ class Dma::Port : public dma::DmaPort {
   void write_cmem_row(unsigned count, uint32_t address, unsigned element, const uint8_t* data) override {
     pass(count * element);
     for (unsigned lane = 0; lane < count; ++lane)
-      for (unsigned b = 0; b < element; ++b) m_dma.m_cmem->write_cmem(lane, address + b, data[lane * element + b]);
+      for (unsigned b = 0; b < element; ++b)  // little-endian in memory, high byte first in CMEM
+        m_dma.m_cmem->write_cmem(lane, address + element - 1 - b, data[lane * element + b]);
     m_dma.m_cmem_written += uint64_t{count} * element;
   }
   void read_cmem_row(unsigned count, uint32_t address, unsigned element, uint8_t* data) override {
     pass(count * element);
     for (unsigned lane = 0; lane < count; ++lane)
-      for (unsigned b = 0; b < element; ++b) data[lane * element + b] = m_dma.m_cmem->read_cmem(lane, address + b);
+      for (unsigned b = 0; b < element; ++b)
+        data[lane * element + b] = m_dma.m_cmem->read_cmem(lane, address + element - 1 - b);
     m_dma.m_cmem_read += uint64_t{count} * element;
   }
   void broadcast_cmem(const std::vector<uint8_t>& mask, uint32_t address, uint32_t step, const uint8_t* data,
