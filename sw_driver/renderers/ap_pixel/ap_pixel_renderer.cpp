@@ -29,6 +29,7 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
       m_display(env),
       m_memory(*env.host),
       m_array(env),
+      m_dma(env),
       m_layout(PixelLayout::of(ap::programs::ap_pixel())),
       m_block(block) {
   m_buffers.width = m_display.width();
@@ -49,6 +50,27 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
   m_array.load(ap::programs::ap_pixel().words, m_program_base);
   const unsigned across = (m_buffers.width + m_block - 1) / m_block, up = (m_buffers.height + m_block - 1) / m_block;
   m_block_index.assign(size_t{across} * up, -1);
+
+  m_dma_use = renderers::dma_use(env, m_dma);
+  if (m_dma_use.enabled) {
+    // The values' ranges, merged where the program's variables touch.
+    for (unsigned start : {unsigned{m_layout.c0}, unsigned{m_layout.gx}, unsigned{m_layout.gy}}) {
+      if (!m_value_ranges.empty() && m_value_ranges.back().cmem + m_value_ranges.back().bytes == start)
+        m_value_ranges.back().bytes += 3 * ATTRIBUTES;
+      else
+        m_value_ranges.push_back({start, 3 * ATTRIBUTES});
+      m_value_bytes += 3 * ATTRIBUTES;
+    }
+    const unsigned cus = m_array.cus(), slots = m_layout.max_block * m_layout.max_block;
+    m_stage_values = gl::allocate(m_value_bytes * cus);
+    for (unsigned buffer = 0; buffer < 2; ++buffer) {
+      m_stage_offsets[buffer] = gl::allocate(2 * cus);
+      m_stage_results[buffer] = gl::allocate(slots * 3 * ATTRIBUTES * cus);
+    }
+    m_chain_in = gl::allocate(static_cast<uint32_t>((m_value_ranges.size() + 2) * dma::DESCRIPTOR_BYTES));
+    m_chain_out = gl::allocate(slots * dma::DESCRIPTOR_BYTES);
+    m_out_channel = m_dma.channels() >= 2 ? 1 : 0;
+  }
 }
 
 void ApPixelRenderer::unsupported(const std::string& what) {
@@ -81,9 +103,14 @@ void ApPixelRenderer::present() {
                                              {"cycles", static_cast<double>(m_cycles)},
                                              {"host_shaded_triangles", static_cast<double>(m_host_shaded)},
                                              {"ciu_words_written", static_cast<double>(m_words_written)},
-                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+                                             {"ciu_words_read", static_cast<double>(m_words_read)},
+                                             {"values_written", static_cast<double>(m_traffic.values_written)},
+                                             {"values_read", static_cast<double>(m_traffic.values_read)},
+                                             {"dma_descriptors", static_cast<double>(m_dma_descriptors)}};
   renderers::add_host_time(totals, m_time);
-  m_frame_figures.emit(m_env, totals, {});
+  const double triangles = m_frame_figures.change("triangles", static_cast<double>(m_triangles));
+  const double written = m_frame_figures.change("values_written", static_cast<double>(m_traffic.values_written));
+  m_frame_figures.emit(m_env, totals, {{"values_written_per_triangle", triangles > 0 ? written / triangles : 0.0}});
 }
 
 void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
@@ -206,12 +233,17 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
     }
     return;
   }
+  if (m_dma_use.enabled) {
+    draw_batches_dma(state, triangle, reads, values, ox, oy);
+    return;
+  }
   {
     TimedScope timed(m_host, m_time.array_write);
     for_each_value_byte(values, m_layout, [&](unsigned address, uint8_t byte) {
       m_host.compute(Op::alu, k.value_alu);
       m_array.fill8(address, byte);
       m_words_written += m_array.cus() / 4;
+      m_traffic.values_written += m_array.cus();
     });
   }
   for (size_t first = 0; first < m_blocks.size(); first += m_array.cus())
@@ -242,6 +274,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
       m_array.write32(i, j, m_layout.dx, dx);
       m_array.write32(i, j, m_layout.dy, dy);
       m_words_written += 2;
+      m_traffic.values_written += 8;
     }
   }
   {
@@ -253,19 +286,8 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
 
   // What comes back: per pixel of the block that the host drew, the
   // attributes it needs, byte by byte (README.md, "What the host reads").
-  struct Needed {
-    Attribute attribute;
-    unsigned bytes;
-  };
   Needed needed[6];
-  unsigned needs = 0;
-  if (reads.colour)
-    for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed[needs++] = {a, 2};
-  if (reads.alpha) needed[needs++] = {Attribute::alpha, 2};
-  if (reads.texcoords) {
-    needed[needs++] = {Attribute::s, 3};
-    needed[needs++] = {Attribute::t, 3};
-  }
+  const unsigned needs = needed_reads(reads, needed);
   m_results.resize(m_pixels.size());
   for (unsigned g = 0; g < groups; ++g) {
     const unsigned i = g % (columns / 4), j = g / (columns / 4);
@@ -295,6 +317,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
             for (unsigned byte = 0; byte < need.bytes; ++byte)
               word[byte] = m_array.read32(i, j, m_layout.result(u, v, need.attribute) + byte);
             m_words_read += need.bytes;
+            m_traffic.values_read += 4 * need.bytes;
           }
           for (unsigned lane = 0; lane < 4; ++lane) {
             const int32_t p = slot_pixel[lane][v * b + u];
@@ -313,6 +336,210 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
 
   // The pixels, into the frame buffer.
   for (size_t index = first_block; index < first_block + blocks; ++index)
+    for (uint32_t p : m_block_pixels[index]) write_shaded(state, triangle, reads, m_pixels[p], m_results[p]);
+}
+
+unsigned ApPixelRenderer::needed_reads(const Reads& reads, Needed needed[6]) const {
+  unsigned needs = 0;
+  if (reads.colour)
+    for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed[needs++] = {a, 2};
+  if (reads.alpha) needed[needs++] = {Attribute::alpha, 2};
+  if (reads.texcoords) {
+    needed[needs++] = {Attribute::s, 3};
+    needed[needs++] = {Attribute::t, 3};
+  }
+  return needs;
+}
+
+// The batches of one triangle through the DMA (README.md, "With the DMA"):
+// the host stages batch n's offsets while the array runs batch n - 1, the
+// DMA brings batch n - 1's results out as soon as the array has finished,
+// the host starts batch n and then unpacks and writes batch n - 1's pixels
+// while batch n runs. A triangle's batches drain before the next triangle
+// is scan-converted, whose depth test needs this one's depths.
+void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                                       const TriangleValues& values, int ox, int oy) {
+  const HostCosts& k = m_costs;
+  const unsigned cus = m_array.cus(), b = m_block;
+  Needed needed[6];
+  const unsigned needs = needed_reads(reads, needed);
+  unsigned first_byte = 3 * ATTRIBUTES, last_byte = 0;
+  for (unsigned n = 0; n < needs; ++n) {
+    const unsigned at = 3 * static_cast<unsigned>(needed[n].attribute);
+    first_byte = std::min(first_byte, at);
+    last_byte = std::max(last_byte, at + needed[n].bytes - 1);
+  }
+  const unsigned rows = last_byte - first_byte + 1;  // bytes of a slot brought out per CU
+
+  std::vector<dma::Descriptor> in;
+  {
+    // The 21 values, once per triangle: by broadcast, or replicated for
+    // every CU and reshuffled.
+    TimedScope timed(m_host, m_time.array_write);
+    std::vector<uint8_t> bytes(m_value_bytes, 0);
+    for_each_value_byte(values, m_layout, [&](unsigned address, uint8_t byte) {
+      m_host.compute(Op::alu, k.value_alu);
+      unsigned offset = 0;
+      for (const Range& range : m_value_ranges) {
+        if (address >= range.cmem && address < range.cmem + range.bytes) bytes[offset + address - range.cmem] = byte;
+        offset += range.bytes;
+      }
+    });
+    unsigned offset = 0;
+    if (m_dma_use.broadcast) {
+      std::memcpy(m_host.store_span(m_stage_values, 1, m_value_bytes), bytes.data(), m_value_bytes);
+      for (const Range& range : m_value_ranges) {
+        in.push_back(DmaDriver::broadcast(m_stage_values + offset, range.cmem, range.bytes));
+        offset += range.bytes;
+        m_traffic.values_written += range.bytes;
+      }
+    } else {
+      uint8_t* out = m_host.store_span(m_stage_values, 4, m_value_bytes * cus / 4);
+      for (unsigned row = 0; row < m_value_bytes; ++row) std::memset(out + size_t{row} * cus, bytes[row], cus);
+      m_host.compute(Op::alu, uint64_t{k.replicate_alu} * m_value_bytes * cus / 4);
+      for (const Range& range : m_value_ranges) {
+        in.push_back(DmaDriver::to_cmem(m_stage_values + offset * cus, range.cmem, range.bytes * cus, 1));
+        offset += range.bytes;
+        m_traffic.values_written += uint64_t{range.bytes} * cus;
+      }
+    }
+  }
+
+  DmaBatch running;  // the batch on the array, its results on their way out
+  bool pending = false;
+  auto finish = [&](const DmaBatch& batch) {
+    {
+      TimedScope timed(m_host, m_time.array_wait);
+      m_cycles += m_array.wait();
+    }
+    if (batch.slot_row.empty()) return;
+    {
+      TimedScope timed(m_host, m_time.array_read);
+      m_dma.wait(m_out_channel);
+    }
+    collect_dma_batch(state, triangle, reads, batch);
+  };
+  for (size_t first = 0, n = 0; first < m_blocks.size(); first += cus, ++n) {
+    DmaBatch batch;
+    batch.first_block = first;
+    batch.blocks = std::min<size_t>(cus, m_blocks.size() - first);
+    batch.buffer = static_cast<unsigned>(n % 2);
+    {
+      // The blocks' offsets, dx of every CU and then dy, in CU order.
+      TimedScope timed(m_host, m_time.array_write);
+      uint8_t* p = m_host.store_span(m_stage_offsets[batch.buffer], 1, 2 * cus);
+      std::memset(p, 0, 2 * cus);
+      for (size_t lane = 0; lane < batch.blocks; ++lane) {
+        const Block& block = m_blocks[first + lane];
+        p[lane] = static_cast<uint8_t>(block.x - ox);
+        p[cus + lane] = static_cast<uint8_t>(block.y - oy);
+      }
+      m_host.compute(Op::alu, uint64_t{k.stage_alu} * batch.blocks);
+      if (m_layout.dy == m_layout.dx + 1) {
+        in.push_back(DmaDriver::to_cmem(m_stage_offsets[batch.buffer], m_layout.dx, 2 * cus, 1));
+      } else {
+        in.push_back(DmaDriver::to_cmem(m_stage_offsets[batch.buffer], m_layout.dx, cus, 1));
+        in.push_back(DmaDriver::to_cmem(m_stage_offsets[batch.buffer] + cus, m_layout.dy, cus, 1));
+      }
+      m_traffic.values_written += 2 * cus;
+    }
+    if (pending) {
+      // The previous batch's results must be out of CMEM before this
+      // batch's program overwrites them (the host then unpacks them while
+      // this batch runs).
+      {
+        TimedScope timed(m_host, m_time.array_wait);
+        m_cycles += m_array.wait();
+      }
+      if (!running.slot_row.empty()) {
+        TimedScope timed(m_host, m_time.array_read);
+        m_dma.wait(m_out_channel);
+      }
+    }
+    {
+      TimedScope timed(m_host, m_time.array_write);
+      m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * in.size());
+      m_dma_descriptors += in.size();
+      m_dma.write_chain(m_chain_in, in);
+      m_dma.start_chain(0, m_chain_in);
+      m_dma.wait(0);
+      in.clear();
+    }
+    m_array.start(m_program_base + m_layout.entry[b]);
+    ++m_batches;
+    m_blocks_sent += batch.blocks;
+
+    // The results of the slots some block of the batch uses, one
+    // descriptor per slot: its bytes of every CU, row by row.
+    std::vector<bool> used(size_t{b} * b, false);
+    for (size_t index = first; index < first + batch.blocks; ++index)
+      for (uint32_t p : m_block_pixels[index]) {
+        const Pixel& pixel = m_pixels[p];
+        used[static_cast<size_t>(pixel.y - m_blocks[index].y) * b + static_cast<size_t>(pixel.x - m_blocks[index].x)] =
+            true;
+      }
+    if (needs > 0) {
+      TimedScope timed(m_host, m_time.array_read);
+      std::vector<dma::Descriptor> out;
+      batch.slot_row.assign(size_t{b} * b, -1);
+      for (unsigned v = 0; v < b; ++v)
+        for (unsigned u = 0; u < b; ++u) {
+          if (!used[size_t{v} * b + u]) continue;
+          const auto row = static_cast<int32_t>(out.size() * rows);
+          batch.slot_row[size_t{v} * b + u] = row;
+          out.push_back(DmaDriver::from_cmem(m_layout.result(u, v, Attribute::red) + first_byte,
+                                             m_stage_results[batch.buffer] + static_cast<uint32_t>(row) * cus,
+                                             rows * cus, 1));
+          m_traffic.values_read += uint64_t{rows} * cus;
+        }
+      m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * out.size());
+      m_dma_descriptors += out.size();
+      m_dma.write_chain(m_chain_out, out);
+      m_dma.start_chain(m_out_channel, m_chain_out);
+    }
+    if (pending) collect_dma_batch(state, triangle, reads, running);
+    running = std::move(batch);
+    pending = true;
+  }
+  if (pending) finish(running);
+}
+
+// Unpacks a batch's results from the staging buffer (one byte per CU per
+// row, README.md) and writes its pixels.
+void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                                        const DmaBatch& batch) {
+  const HostCosts& k = m_costs;
+  const unsigned cus = m_array.cus(), b = m_block;
+  Needed needed[6];
+  const unsigned needs = needed_reads(reads, needed);
+  unsigned first_byte = 3 * ATTRIBUTES;
+  for (unsigned n = 0; n < needs; ++n)
+    first_byte = std::min(first_byte, 3 * static_cast<unsigned>(needed[n].attribute));
+  const uint32_t base = m_stage_results[batch.buffer];
+  m_results.resize(m_pixels.size());
+  for (size_t lane = 0; lane < batch.blocks; ++lane) {
+    const size_t index = batch.first_block + lane;
+    const Block& block = m_blocks[index];
+    for (uint32_t p : m_block_pixels[index]) {
+      const Pixel& pixel = m_pixels[p];
+      const unsigned slot = static_cast<unsigned>(pixel.y - block.y) * b + static_cast<unsigned>(pixel.x - block.x);
+      const auto row0 = static_cast<uint32_t>(batch.slot_row[slot]);
+      for (unsigned n = 0; n < needs; ++n) {
+        const Needed& need = needed[n];
+        const unsigned at = 3 * static_cast<unsigned>(need.attribute) - first_byte;
+        uint32_t value = 0;
+        for (unsigned byte = 0; byte < 3; ++byte) {
+          uint32_t got = 0;
+          if (byte < need.bytes)
+            got = *m_host.load_span(base + (row0 + at + byte) * cus + static_cast<uint32_t>(lane), 1, 1);
+          value = value << 8 | got;
+        }
+        m_results[p][static_cast<unsigned>(need.attribute)] = static_cast<int32_t>(value << 8) >> 8;
+        m_host.compute(Op::alu, uint64_t{k.unpack_alu} * need.bytes);
+      }
+    }
+  }
+  for (size_t index = batch.first_block; index < batch.first_block + batch.blocks; ++index)
     for (uint32_t p : m_block_pixels[index]) write_shaded(state, triangle, reads, m_pixels[p], m_results[p]);
 }
 
@@ -410,6 +637,10 @@ void ApPixelRenderer::publish_statistics() {
   set("host_shaded_triangles", "slivers whose gradients 8.8 cannot hold, shaded by the host", m_host_shaded);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
+  set("values_written", "bytes the array's data lines carried into CMEM (a broadcast byte once)",
+      m_traffic.values_written);
+  set("values_read", "bytes the array's data lines carried out of CMEM", m_traffic.values_read);
+  set("dma_descriptors", "system/array DMA descriptors the back end ran", m_dma_descriptors);
 }
 
 }  // namespace tessera::ap_pixel

@@ -16,11 +16,13 @@
 #include "device/app_environment.h"
 #include "device/array_driver.h"
 #include "device/display_driver.h"
+#include "device/dma_driver.h"
 #include "gl/renderer.h"
 #include "renderers/ap_pixel/pixel_setup.h"
 #include "renderers/arm/arm_rasterizer.h"
 #include "renderers/arm/arm_renderer.h"
 #include "renderers/backend_entry_points.h"
+#include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
 #include "renderers/common/unsupported_state.h"
 
@@ -40,6 +42,10 @@ struct HostCosts {
   unsigned write_alu = 8, write_mul = 3;  // per pixel written: clamp, pack, store colour and depth
   unsigned blend_alu = 20, blend_mul = 8;
   unsigned host_shade_alu = 4, host_shade_mul = 2;  // per attribute per pixel of a sliver the host shades
+  // With the DMA (README.md, "With the DMA"):
+  unsigned stage_alu = 3;        // per block: its two offsets stored into the staging array
+  unsigned replicate_alu = 1;    // per word of the values replicated for every CU (no broadcast)
+  unsigned descriptor_alu = 12;  // per descriptor built and linked
 };
 
 class ApPixelRenderer : public gl::Renderer {
@@ -76,10 +82,27 @@ class ApPixelRenderer : public gl::Renderer {
     bool colour = false, alpha = false, texcoords = false;
     bool any() const { return colour || texcoords; }
   };
+  // An attribute read back and how many of its bytes (high first).
+  struct Needed {
+    Attribute attribute;
+    unsigned bytes;
+  };
+  // A batch whose results the DMA brings out of CMEM: its blocks, the
+  // staging buffer, and per slot v * k + u its first row there (-1: none).
+  struct DmaBatch {
+    size_t first_block = 0, blocks = 0;
+    unsigned buffer = 0;
+    std::vector<int32_t> slot_row;
+  };
 
   void draw_triangle(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads);
   void run_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads, size_t first_block,
                  size_t blocks, int ox, int oy);
+  void draw_batches_dma(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                        const TriangleValues& values, int ox, int oy);
+  void collect_dma_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
+                         const DmaBatch& batch);
+  unsigned needed_reads(const Reads& reads, Needed needed[6]) const;
   void write_shaded(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads, const Pixel& pixel,
                     const std::array<int32_t, ATTRIBUTES>& values);
   void write_pixel(const gl::RasterState& state, const Pixel& pixel, uint32_t rgba, const int st[2], bool textured);
@@ -93,6 +116,8 @@ class ApPixelRenderer : public gl::Renderer {
   arm::FrameBuffers m_buffers;
   std::unique_ptr<arm::ArmRasterizer> m_buffers_core;  // clears and read-back
   ArrayDriver m_array;
+  DmaDriver m_dma;
+  renderers::DmaUse m_dma_use;
   PixelLayout m_layout;
   unsigned m_block = 1;
   unsigned m_program_base = 0;
@@ -108,6 +133,20 @@ class ApPixelRenderer : public gl::Renderer {
   // Per pixel of a batch, the attribute values read back (16.8).
   std::vector<std::array<int32_t, ATTRIBUTES>> m_results;
   renderers::UnsupportedState m_unsupported{"ap-pixel"};
+
+  // With the DMA: the CMEM ranges of the 21 values (with the gradients'
+  // sign bytes, which the program overwrites), the staging buffers in
+  // system memory, the chains, and the channel of the results.
+  struct Range {
+    unsigned cmem = 0, bytes = 0;
+  };
+  std::vector<Range> m_value_ranges;
+  unsigned m_value_bytes = 0;
+  uint32_t m_stage_values = 0, m_stage_offsets[2] = {0, 0}, m_stage_results[2] = {0, 0};
+  uint32_t m_chain_in = 0, m_chain_out = 0;
+  unsigned m_out_channel = 0;
+  renderers::ArrayTraffic m_traffic;
+  uint64_t m_dma_descriptors = 0;
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;
