@@ -1,0 +1,145 @@
+// System tests of the array back ends with the system/array DMA, through
+// soc_sim (the teapot, one frame, three ways: the CIU (dma.enabled=false),
+// the DMA, the DMA with its broadcast): the frames are the same file byte
+// for byte; without the DMA the SoC has no DMA and the back end ran no
+// descriptor; with it the host wrote and read no CIU word, the DMA block
+// ran exactly the descriptors the back end says it started, and the values
+// the array's data lines carried are the study's count (ap-pixel: per
+// triangle its 63 value bytes -- 21 values with the gradients' sign bytes --
+// once by broadcast or once per CU, and per pass two offsets per CU); the
+// host's time writing the array falls with each step.
+//
+// Usage: test_dma_backends <path to soc_sim> [GoogleTest options]
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include "support/soc_sim_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tessera::test::describe;
+using tessera::test::SimResult;
+
+std::string g_soc_sim;
+
+enum Path { ciu, dma, broadcast };
+const char* const PATH_NAMES[] = {"ciu", "dma", "broadcast"};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// One back end's three runs, made once for the suite.
+class DmaBackend : public tessera::test::ScratchFolderTest {
+ protected:
+  // The run's stats.json and its frame's file.
+  using Run = std::pair<json, std::string>;
+
+  const Run& run(const std::string& backend, Path path) {
+    const std::string key = backend + "/" + PATH_NAMES[path];
+    auto found = s_runs.find(key);
+    if (found != s_runs.end()) return found->second;
+    std::vector<std::string> args = {"--backend", backend, "--app", "teapot", "--frames", "1", "--out", key, "-q"};
+    if (path != ciu) args.insert(args.end(), {"--set", "dma.enabled=true"});
+    if (path == broadcast) args.insert(args.end(), {"--set", "dma.broadcast=true"});
+    const SimResult result = tessera::test::run_soc_sim(g_soc_sim, m_dir, args);
+    EXPECT_EQ(result.status, 0) << describe(result);
+    std::ifstream in(m_dir / key / "stats.json");
+    Run r(json::parse(in, nullptr, false), read_file(m_dir / key / "frame_0000.png"));
+    EXPECT_FALSE(r.first.is_discarded()) << key << ": stats.json is not valid JSON";
+    EXPECT_FALSE(r.second.empty()) << key;
+    return s_runs.emplace(key, std::move(r)).first->second;
+  }
+
+  static std::map<std::string, Run> s_runs;
+};
+
+std::map<std::string, DmaBackend::Run> DmaBackend::s_runs;
+
+// The driver's statistic `name` ("ap_pixel.passes": stats.driver.ap_pixel.passes).
+double driver(const json& stats, const std::string& name) {
+  std::string pointer = "/stats/driver/" + name;
+  for (char& c : pointer)
+    if (c == '.') c = '/';
+  const json::json_pointer at(pointer);
+  const bool found = stats.contains(at) && stats.at(at).is_number();
+  EXPECT_TRUE(found) << "driver." << name << " missing";
+  return found ? stats.at(at).get<double>() : -1;
+}
+
+TEST_F(DmaBackend, ApPixelFramesAreTheSameByteForByte) {
+  const std::string& reference = run("ap-pixel", ciu).second;
+  for (Path path : {dma, broadcast}) EXPECT_EQ(run("ap-pixel", path).second, reference) << PATH_NAMES[path];
+}
+
+TEST_F(DmaBackend, ApPixelWithoutTheDmaTouchesNone) {
+  const json& stats = run("ap-pixel", ciu).first;
+  EXPECT_FALSE(stats["stats"].contains("dma"));
+  EXPECT_EQ(driver(stats, "ap_pixel.dma_descriptors"), 0);
+  EXPECT_GT(driver(stats, "ap_pixel.ciu_words_written"), 0);
+  EXPECT_GT(driver(stats, "ap_pixel.ciu_words_read"), 0);
+}
+
+TEST_F(DmaBackend, ApPixelWithTheDmaUsesNoCiuWordAndTheBlockRanItsDescriptors) {
+  for (Path path : {dma, broadcast}) {
+    SCOPED_TRACE(PATH_NAMES[path]);
+    const json& stats = run("ap-pixel", path).first;
+    EXPECT_EQ(driver(stats, "ap_pixel.ciu_words_written"), 0);
+    EXPECT_EQ(driver(stats, "ap_pixel.ciu_words_read"), 0);
+    const json& block = stats["stats"]["dma"];
+    ASSERT_TRUE(block.is_object());
+    const double ran = block["ch0"]["descriptors"].get<double>() + block["ch1"]["descriptors"].get<double>();
+    EXPECT_GT(ran, 0);
+    EXPECT_EQ(ran, driver(stats, "ap_pixel.dma_descriptors"));
+    EXPECT_EQ(block["ch0"]["errors"], 0);
+    EXPECT_EQ(block["ch1"]["errors"], 0);
+    // What the block put on the data lines out of CMEM is what the back end counted.
+    EXPECT_EQ(block["cmem"]["bytes_read"].get<double>(), driver(stats, "ap_pixel.values_read"));
+  }
+}
+
+TEST_F(DmaBackend, ApPixelValuesWrittenAreTheStudysCount) {
+  constexpr double CUS = 96, VALUE_BYTES = 63, OFFSETS = 2;
+  for (Path path : {dma, broadcast}) {
+    SCOPED_TRACE(PATH_NAMES[path]);
+    const json& stats = run("ap-pixel", path).first;
+    // The teapot is smooth-shaded: every triangle drawn goes to the array
+    // but the slivers the host shades itself.
+    const double on_array = driver(stats, "ap_pixel.triangles") - driver(stats, "ap_pixel.host_shaded_triangles");
+    const double passes = driver(stats, "ap_pixel.passes");
+    const double per_triangle = path == broadcast ? VALUE_BYTES : VALUE_BYTES * CUS;
+    EXPECT_EQ(driver(stats, "ap_pixel.values_written"), on_array * per_triangle + passes * OFFSETS * CUS);
+  }
+}
+
+TEST_F(DmaBackend, ApPixelHostTimeWritingTheArrayFallsWithEachStep) {
+  const double ciu_ns = driver(run("ap-pixel", ciu).first, "ap_pixel.host_write_ns");
+  const double dma_ns = driver(run("ap-pixel", dma).first, "ap_pixel.host_write_ns");
+  const double broadcast_ns = driver(run("ap-pixel", broadcast).first, "ap_pixel.host_write_ns");
+  EXPECT_LT(dma_ns, ciu_ns);
+  EXPECT_LT(broadcast_ns, dma_ns);
+  EXPECT_LT(driver(run("ap-pixel", dma).first, "ap_pixel.host_read_ns"),
+            driver(run("ap-pixel", ciu).first, "ap_pixel.host_read_ns"));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc >= 2)
+    g_soc_sim = fs::absolute(argv[1]).string();
+  else if (const char* path = std::getenv("TESSERA_SOC_SIM"))
+    g_soc_sim = path;
+  return RUN_ALL_TESTS();
+}
