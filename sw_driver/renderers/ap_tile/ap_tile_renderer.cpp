@@ -24,6 +24,19 @@ uint16_t clear_depth16(uint32_t z24) {
 
 constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord};
 
+// The planes read back, per row of a chunk: chi, clo, tid, shi, slo, thi, tlo.
+constexpr unsigned READ_PLANES = 7;
+
+// Whether the DMA carries the CMEM traffic. dma_use asks the DMA's ID
+// register, a bus access; on a SoC without the DMA (dma.enabled=false)
+// that address is not mapped and the read is a bus error, so the
+// configuration is asked first: without the DMA the renderer makes no
+// access it did not make before.
+renderers::DmaUse dma_use(AppEnvironment& env, DmaDriver& dma) {
+  if (env.config == nullptr || !env.config->get_bool("dma.enabled")) return {};
+  return renderers::dma_use(env, dma);
+}
+
 }  // namespace
 
 ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
@@ -32,6 +45,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
       m_host(*env.host),
       m_display(env),
       m_array(env),
+      m_dma(env),
       m_layout(CmemLayout::of(ap::programs::ap_tile())),
       m_bins(m_array.cus()) {
   m_frame.columns = m_array.columns();
@@ -50,10 +64,22 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
   // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
-  for (unsigned l = 0; l < m_frame.tile_height; ++l)
-    m_array.fill8(m_layout.yc + l, static_cast<uint8_t>(m_frame.tile_height - 1 - l));
-  m_array.fill8(m_layout.zero, 0);
-  m_array.fill8(m_layout.live, 0);
+  const renderers::DmaUse use = dma_use(env, m_dma);
+  if (use.enabled) {
+    m_tile_dma = std::make_unique<TileDma>(env, m_dma, m_layout, m_frame, use.broadcast);
+    std::vector<uint8_t> yc(m_frame.tile_height);
+    for (unsigned l = 0; l < m_frame.tile_height; ++l) yc[l] = static_cast<uint8_t>(m_frame.tile_height - 1 - l);
+    m_tile_dma->send_constants({{m_layout.yc, yc}, {m_layout.zero, {0}}, {m_layout.live, {0}}});
+    m_has_record.assign(m_frame.cus(), false);
+    m_record_bytes.resize(size_t{m_layout.record_bytes} * m_frame.cus());
+    m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
+  } else {
+    for (unsigned l = 0; l < m_frame.tile_height; ++l)
+      m_array.fill8(m_layout.yc + l, static_cast<uint8_t>(m_frame.tile_height - 1 - l));
+    m_array.fill8(m_layout.zero, 0);
+    m_array.fill8(m_layout.live, 0);
+    m_ciu_traffic.values_written += uint64_t{m_frame.cus()} * (m_frame.tile_height + 2);
+  }
   m_live.assign(m_frame.cus(), false);
   m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
 }
@@ -93,6 +119,7 @@ void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* recor
     m_host.compute(Op::alu, m_costs.pack_alu);
     m_array.write32(i, j, m_layout.record_first + b, word);
     ++m_words_written;
+    m_ciu_traffic.values_written += 4;
   }
 }
 
@@ -101,15 +128,36 @@ void ApTileRenderer::run_stage(TileStage stage) {
   m_stage_cycles[static_cast<int>(stage)] += m_array.run(m_entry[static_cast<int>(stage)]);
 }
 
+void ApTileRenderer::run_pass(bool depth) {
+  const bool texcoords = m_frame_textured || m_settings.texcoords_always;
+  for (TileStage stage : PASS_STAGES) {
+    if (stage == TileStage::depth && !depth) continue;
+    if (stage == TileStage::texcoord && !texcoords) continue;
+    run_stage(stage);
+  }
+  ++m_passes;
+}
+
 void ApTileRenderer::flush() {
   const size_t passes = m_bins.passes();
   if (passes == 0) {
     m_bins.clear();
     return;
   }
+  if (m_tile_dma)
+    flush_by_dma(passes);
+  else
+    flush_by_ciu(passes);
+  m_busiest = std::max<uint64_t>(m_busiest, passes);
+  m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
+  m_bins.clear();
+  publish_statistics();
+}
+
+void ApTileRenderer::flush_by_ciu(size_t passes) {
   const unsigned groups = m_frame.columns / 4;
   for (size_t pass = 0; pass < passes; ++pass) {
-    bool depth = false, texcoords = m_frame_textured || m_settings.texcoords_always;
+    bool depth = false;
     for (unsigned j = 0; j < m_frame.rows; ++j)
       for (unsigned i = 0; i < groups; ++i) {
         TileRecord records[4];
@@ -136,20 +184,62 @@ void ApTileRenderer::flush() {
         } else {
           m_array.write32(i, j, m_layout.live, 0);
           ++m_words_written;
+          m_ciu_traffic.values_written += 4;
         }
         for (unsigned k = 0; k < 4; ++k) m_live[j * m_frame.columns + 4 * i + k] = records[k].live;
       }
-    for (TileStage stage : PASS_STAGES) {
-      if (stage == TileStage::depth && !depth) continue;
-      if (stage == TileStage::texcoord && !texcoords) continue;
-      run_stage(stage);
-    }
-    ++m_passes;
+    run_pass(depth);
   }
-  m_busiest = std::max<uint64_t>(m_busiest, passes);
-  m_frame_busiest = std::max<uint64_t>(m_frame_busiest, passes);
-  m_bins.clear();
-  publish_statistics();
+}
+
+// Pass p's records are staged in buffer p % 2 while the DMA moves pass
+// p - 1's out of the other; a buffer is staged again only after the DMA
+// that read it has finished (its pass's stages ran after that DMA's
+// interrupt), and a pass's stages start only after its records' DMA has.
+void ApTileRenderer::flush_by_dma(size_t passes) {
+  bool depth[2] = {stage_pass(0, 0), false};
+  {
+    Timed timed(m_host, m_time.array_write);
+    m_tile_dma->start_records(0);
+  }
+  for (size_t pass = 0; pass < passes; ++pass) {
+    const unsigned buffer = pass % 2, next = 1 - buffer;
+    if (pass + 1 < passes) depth[next] = stage_pass(pass + 1, next);
+    {
+      Timed timed(m_host, m_time.array_write);
+      m_tile_dma->wait_input();
+    }
+    run_pass(depth[buffer]);
+    if (pass + 1 < passes) {
+      Timed timed(m_host, m_time.array_write);
+      m_tile_dma->start_records(next);
+    }
+  }
+}
+
+// Every CU's record of pass `pass` computed (as on the CIU path) and staged
+// in buffer `buffer`; whether a record tests depth.
+bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
+  bool depth = false;
+  {
+    Timed timed(m_host, m_time.compute);
+    for (unsigned j = 0; j < m_frame.rows; ++j)
+      for (unsigned c = 0; c < m_frame.columns; ++c) {
+        const unsigned lane = j * m_frame.columns + c;
+        const TriangleSetup* setup = m_bins.at(lane, pass);
+        m_has_record[lane] = setup != nullptr;
+        if (setup == nullptr) continue;
+        const TileRecord record = setup->record(c, j);
+        m_host.compute(Op::alu, m_costs.record_alu);
+        m_host.compute(Op::mul, m_costs.record_mul);
+        encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+        ++m_cu_triangles;
+        depth = depth || !record.zoff;
+      }
+  }
+  Timed timed(m_host, m_time.array_write);
+  m_tile_dma->stage_records(buffer, m_record_bytes, m_has_record);
+  return depth;
 }
 
 void ApTileRenderer::clear(const gl::ClearRequest& request) {
@@ -163,9 +253,15 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const auto packed = static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, rgba));
     {
       Timed timed(m_host, m_time.array_write);
-      m_array.fill8(m_layout.clear_c, static_cast<uint8_t>(packed >> 8));
-      m_array.fill8(m_layout.clear_c + 1, static_cast<uint8_t>(packed));
-      m_words_written += 2 * m_frame.cus() / 4;
+      if (m_tile_dma) {
+        m_tile_dma->send_constants(
+            {{m_layout.clear_c, {static_cast<uint8_t>(packed >> 8), static_cast<uint8_t>(packed)}}});
+      } else {
+        m_array.fill8(m_layout.clear_c, static_cast<uint8_t>(packed >> 8));
+        m_array.fill8(m_layout.clear_c + 1, static_cast<uint8_t>(packed));
+        m_words_written += 2 * m_frame.cus() / 4;
+        m_ciu_traffic.values_written += 2 * m_frame.cus();
+      }
     }
     run_stage(TileStage::clear_colour);
     m_textures.clear();
@@ -175,18 +271,45 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const uint16_t z = clear_depth16(request.depth_value);
     {
       Timed timed(m_host, m_time.array_write);
-      m_array.fill8(m_layout.clear_z, static_cast<uint8_t>(z >> 8));
-      m_array.fill8(m_layout.clear_z + 1, static_cast<uint8_t>(z));
-      m_words_written += 2 * m_frame.cus() / 4;
+      if (m_tile_dma) {
+        m_tile_dma->send_constants({{m_layout.clear_z, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
+      } else {
+        m_array.fill8(m_layout.clear_z, static_cast<uint8_t>(z >> 8));
+        m_array.fill8(m_layout.clear_z + 1, static_cast<uint8_t>(z));
+        m_words_written += 2 * m_frame.cus() / 4;
+        m_ciu_traffic.values_written += 2 * m_frame.cus();
+      }
     }
     run_stage(TileStage::clear_depth);
   }
 }
 
+uint32_t ApTileRenderer::shade_pixel(uint32_t packed, unsigned tid, int16_t s, int16_t t) {
+  const HostCosts& k = m_costs;
+  uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
+  m_host.compute(Op::alu, k.pixel_alu);
+  if (const TextureEntry* entry = m_textures.find(tid)) {
+    rgba = texture_pixel(*entry, rgba, s, t, [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
+    if (entry->texture.mag_filter == gl::TexFilter::nearest) {
+      m_host.compute(Op::alu, k.texel_nearest_alu);
+      m_host.compute(Op::mul, k.texel_nearest_mul);
+    } else {
+      m_host.compute(Op::alu, k.texel_linear_alu);
+      m_host.compute(Op::mul, k.texel_linear_mul);
+    }
+    m_host.compute(Op::alu, k.tex_env_alu);
+    m_host.compute(Op::mul, k.tex_env_mul);
+  }
+  return rgba;
+}
+
 void ApTileRenderer::read_back() {
   flush();
+  if (m_tile_dma) {
+    read_back_by_dma();
+    return;
+  }
   const unsigned groups = m_frame.columns / 4, width = m_frame.width();
-  const HostCosts& k = m_costs;
   for (unsigned j = 0; j < m_frame.rows; ++j)
     for (unsigned i = 0; i < groups; ++i)
       for (unsigned x = 0; x < m_frame.tile_width; ++x)
@@ -197,6 +320,7 @@ void ApTileRenderer::read_back() {
             hi = m_array.read32(i, j, m_layout.pixel(m_layout.chi, x, l));
             lo = m_array.read32(i, j, m_layout.pixel(m_layout.clo, x, l));
             m_words_read += 2;
+            m_ciu_traffic.values_read += 8;
             if (m_frame_textured) {
               tid = m_array.read32(i, j, m_layout.pixel(m_layout.tid, x, l));
               if (tid != 0) {
@@ -205,36 +329,89 @@ void ApTileRenderer::read_back() {
                 t_hi = m_array.read32(i, j, m_layout.pixel(m_layout.thi, x, l));
                 t_lo = m_array.read32(i, j, m_layout.pixel(m_layout.tlo, x, l));
                 m_words_read += 4;
+                m_ciu_traffic.values_read += 16;
               }
               ++m_words_read;
+              m_ciu_traffic.values_read += 4;
             }
           }
           Timed timed(m_host, m_time.compute);
           for (unsigned b = 0; b < 4; ++b) {
             const unsigned shift = 8 * b;
             const uint32_t packed = ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff);
-            uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
-            m_host.compute(Op::alu, k.pixel_alu);
-            if (const TextureEntry* entry = m_textures.find((tid >> shift) & 0xff)) {
-              const auto s16 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
-              const auto t16 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
-              rgba = texture_pixel(*entry, rgba, s16, t16,
-                                   [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
-              if (entry->texture.mag_filter == gl::TexFilter::nearest) {
-                m_host.compute(Op::alu, k.texel_nearest_alu);
-                m_host.compute(Op::mul, k.texel_nearest_mul);
-              } else {
-                m_host.compute(Op::alu, k.texel_linear_alu);
-                m_host.compute(Op::mul, k.texel_linear_mul);
-              }
-              m_host.compute(Op::alu, k.tex_env_alu);
-              m_host.compute(Op::mul, k.tex_env_mul);
-            }
+            const auto s16 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
+            const auto t16 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
+            const uint32_t rgba = shade_pixel(packed, (tid >> shift) & 0xff, s16, t16);
             const unsigned column = (4 * i + b) * m_frame.tile_width + x;
             const unsigned row = j * m_frame.tile_height + l;
             m_rgba[size_t{row} * width + column] = rgba;
           }
         }
+}
+
+// Chunk x + 1 (and x + 2) on the DMA while the host converts chunk x:
+// two chunks in flight, one per channel.
+void ApTileRenderer::read_back_by_dma() {
+  const unsigned chunks = m_tile_dma->chunks();
+  {
+    Timed timed(m_host, m_time.array_read);
+    for (unsigned x = 0; x < std::min(chunks, 2u); ++x) m_tile_dma->start_chunk(x, m_frame_textured);
+  }
+  for (unsigned x = 0; x < chunks; ++x) {
+    {
+      Timed timed(m_host, m_time.array_read);
+      m_tile_dma->wait_chunk(x);
+    }
+    convert_chunk(x);
+    if (x + 2 < chunks) {
+      Timed timed(m_host, m_time.array_read);
+      m_tile_dma->start_chunk(x + 2, m_frame_textured);
+    }
+  }
+}
+
+// Tile column x of every tile from the staging frame: per row of the tile
+// the bytes of every CU (LDRB each, no unpacking of CIU words), then the
+// pixels shaded as on the CIU path. s and t are loaded only for rows with
+// a textured pixel, as the CIU path reads them only for such groups.
+void ApTileRenderer::convert_chunk(unsigned x) {
+  const unsigned cus = m_frame.cus(), width = m_frame.width();
+  uint8_t* hi = m_rows.data();
+  uint8_t* lo = hi + cus;
+  uint8_t* tid = lo + cus;
+  uint8_t* s_hi = tid + cus;
+  uint8_t* s_lo = s_hi + cus;
+  uint8_t* t_hi = s_lo + cus;
+  uint8_t* t_lo = t_hi + cus;
+  std::fill(tid, hi + READ_PLANES * cus, 0);
+  auto load = [&](uint16_t plane, unsigned l, uint8_t* out) {
+    std::memcpy(out, m_host.load_span(m_tile_dma->staged_row(plane, x, l), 1, cus), cus);
+  };
+  for (unsigned l = 0; l < m_frame.tile_height; ++l) {
+    {
+      Timed timed(m_host, m_time.array_read);
+      load(m_layout.chi, l, hi);
+      load(m_layout.clo, l, lo);
+      if (m_frame_textured) {
+        load(m_layout.tid, l, tid);
+        if (std::any_of(tid, tid + cus, [](uint8_t t) { return t != 0; })) {
+          load(m_layout.shi, l, s_hi);
+          load(m_layout.slo, l, s_lo);
+          load(m_layout.thi, l, t_hi);
+          load(m_layout.tlo, l, t_lo);
+        }
+      }
+    }
+    Timed timed(m_host, m_time.compute);
+    for (unsigned lane = 0; lane < cus; ++lane) {
+      const auto s16 = static_cast<int16_t>(s_hi[lane] << 8 | s_lo[lane]);
+      const auto t16 = static_cast<int16_t>(t_hi[lane] << 8 | t_lo[lane]);
+      const uint32_t rgba = shade_pixel(uint32_t{hi[lane]} << 8 | lo[lane], tid[lane], s16, t16);
+      const unsigned column = (lane % m_frame.columns) * m_frame.tile_width + x;
+      const unsigned row = (lane / m_frame.columns) * m_frame.tile_height + l;
+      m_rgba[size_t{row} * width + column] = rgba;
+    }
+  }
 }
 
 void ApTileRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
@@ -268,11 +445,15 @@ void ApTileRenderer::present() {
   publish_statistics();
   // This frame's figures: the totals' changes, and the busiest CU and the
   // CUs' occupancy (CUs with a triangle per pass) of this frame.
+  const renderers::ArrayTraffic traffic = this->traffic();
   renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles_drawn)},
                                              {"cu_triangles", static_cast<double>(m_cu_triangles)},
                                              {"passes", static_cast<double>(m_passes)},
                                              {"ciu_words_written", static_cast<double>(m_words_written)},
-                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+                                             {"ciu_words_read", static_cast<double>(m_words_read)},
+                                             {"values_written", static_cast<double>(traffic.values_written)},
+                                             {"values_read", static_cast<double>(traffic.values_read)},
+                                             {"dma_descriptors", static_cast<double>(dma_descriptors())}};
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     totals.emplace_back(std::string("cycles.") + stage_entry(stage),
@@ -280,11 +461,23 @@ void ApTileRenderer::present() {
   renderers::add_host_time(totals, m_time);
   const double passes = m_frame_figures.change("passes", static_cast<double>(m_passes));
   const double cu_triangles = m_frame_figures.change("cu_triangles", static_cast<double>(m_cu_triangles));
+  const double triangles = m_frame_figures.change("triangles", static_cast<double>(m_triangles_drawn));
+  const double values_written = m_frame_figures.change("values_written", static_cast<double>(traffic.values_written));
   m_frame_figures.emit(m_env, totals,
                        {{"busiest_cu_triangles", static_cast<double>(m_frame_busiest)},
                         {"triangles_per_pass", passes > 0 ? cu_triangles / passes : 0.0},
-                        {"cu_occupancy", passes > 0 ? cu_triangles / (passes * m_frame.cus()) : 0.0}});
+                        {"cu_occupancy", passes > 0 ? cu_triangles / (passes * m_frame.cus()) : 0.0},
+                        {"values_written_per_triangle", triangles > 0 ? values_written / triangles : 0.0}});
   m_frame_busiest = 0;
+}
+
+renderers::ArrayTraffic ApTileRenderer::traffic() const {
+  renderers::ArrayTraffic traffic = m_ciu_traffic;
+  if (m_tile_dma) {
+    traffic.values_written += m_tile_dma->traffic().values_written;
+    traffic.values_read += m_tile_dma->traffic().values_read;
+  }
+  return traffic;
 }
 
 void ApTileRenderer::publish_statistics() {
@@ -300,6 +493,13 @@ void ApTileRenderer::publish_statistics() {
   set("busiest_cu_triangles", "most triangles one CU drew in one flush (the passes that flush needed)", m_busiest);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
+  const renderers::ArrayTraffic traffic = this->traffic();
+  set("values_written",
+      "bytes the array's data lines carried into CMEM (CIU word 4, reshuffled byte 1, broadcast byte 1)",
+      traffic.values_written);
+  set("values_read", "bytes the array's data lines carried out of CMEM (CIU word 4, reshuffled byte 1)",
+      traffic.values_read);
+  set("dma_descriptors", "DMA descriptors the renderer started (0 without the DMA)", dma_descriptors());
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     c.counter(std::string("ap_tile.cycles.") + stage_entry(stage), "array cycles of the program's stage").value =

@@ -5,6 +5,9 @@
 // records through the CIU and runs the array program's stages pass by
 // pass; at present it reads the colour (and texture coordinates) back,
 // textures on the host and writes the frame out through the display driver.
+// When the SoC has the system/array DMA, the records, the constants and the
+// read-back go through it instead of the CIU (tile_dma.h, README.md "With
+// the DMA").
 #pragma once
 
 #include <cstdint>
@@ -15,11 +18,14 @@
 #include "device/app_environment.h"
 #include "device/array_driver.h"
 #include "device/display_driver.h"
+#include "device/dma_driver.h"
 #include "gl/renderer.h"
+#include "renderers/ap_tile/tile_dma.h"
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/backend_entry_points.h"
+#include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
 #include "renderers/common/unsupported_state.h"
 
@@ -59,9 +65,22 @@ class ApTileRenderer : public gl::Renderer {
 
  private:
   void flush();
+  void flush_by_ciu(size_t passes);
+  void run_pass(bool depth);
   void run_stage(TileStage stage);
   void write_group(unsigned i, unsigned j, const TileRecord* records);
   void read_back();
+  // A pixel read back: its RGB565 colour, textured on the host when `tid`
+  // names a texture of the frame.
+  uint32_t shade_pixel(uint32_t packed, unsigned tid, int16_t s, int16_t t);
+  // With the DMA: the passes' records double-buffered in system memory, the
+  // frame read back in chunks on two channels.
+  void flush_by_dma(size_t passes);
+  bool stage_pass(size_t pass, unsigned buffer);
+  void read_back_by_dma();
+  void convert_chunk(unsigned x);
+  renderers::ArrayTraffic traffic() const;
+  uint64_t dma_descriptors() const { return m_tile_dma ? m_tile_dma->descriptors() : 0; }
   void unsupported(const std::string& what);
   void publish_statistics();
 
@@ -70,6 +89,7 @@ class ApTileRenderer : public gl::Renderer {
   HostApi& m_host;
   DisplayDriver m_display;
   ArrayDriver m_array;
+  DmaDriver m_dma;
   CmemLayout m_layout;
   FrameGeometry m_frame;
   HostCosts m_costs;
@@ -82,13 +102,18 @@ class ApTileRenderer : public gl::Renderer {
   bool m_frame_textured = false;  // some pixel may carry a texture number
   std::vector<uint32_t> m_rgba;   // the frame read back, row 0 at the top
   renderers::UnsupportedState m_unsupported{"ap-tile"};
-  std::vector<uint8_t> m_record_bytes;  // four CUs' records, packed into words
+  std::vector<uint8_t> m_record_bytes;  // four CUs' records, packed into words (with the DMA: every CU's)
+
+  std::unique_ptr<TileDma> m_tile_dma;  // null: the CIU carries everything
+  std::vector<bool> m_has_record;       // per CU: a record in the pass being staged
+  std::vector<uint8_t> m_rows;          // a chunk row of every read-back plane, copied from the staging
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;
   uint64_t m_frame_busiest = 0;  // the most passes one flush of this frame needed
   uint64_t m_passes = 0, m_cu_triangles = 0, m_busiest = 0;
   uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
+  renderers::ArrayTraffic m_ciu_traffic;  // the CIU's share (the DMA's: m_tile_dma)
 };
 
 }  // namespace tessera::ap_tile
