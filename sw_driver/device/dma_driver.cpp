@@ -76,6 +76,7 @@ void DmaDriver::write_chain(uint32_t address, std::vector<dma::Descriptor> descr
 
 void DmaDriver::enable_irq(unsigned channel) {
   const uint32_t bits = regs::irq_done(channel) | regs::irq_error(channel);
+  m_latched &= ~bits;  // a new start: what was kept belonged to the previous one
   if ((m_enabled & bits) == bits) return;
   m_enabled |= bits;
   m_host.write32(BASE + regs::IRQ_ENABLE, m_enabled);
@@ -99,7 +100,6 @@ bool DmaDriver::busy(unsigned channel) {
 }
 
 void DmaDriver::finish(unsigned channel) {
-  m_host.write32(BASE + regs::IRQ_STATUS, regs::irq_done(channel) | regs::irq_error(channel));
   if ((m_host.read32(channel_reg(channel, regs::CH_STATUS)) & regs::STATUS_ERROR) == 0) return;
   const uint32_t code = m_host.read32(channel_reg(channel, regs::CH_ERROR_CODE));
   const uint32_t descriptor = m_host.read32(channel_reg(channel, regs::CH_ERROR_DESC));
@@ -110,14 +110,30 @@ void DmaDriver::finish(unsigned channel) {
 }
 
 void DmaDriver::wait(unsigned channel) {
+  // The line is shared by the channels and level-sensitive: what is
+  // pending is acknowledged at once and remembered, as an interrupt
+  // handler would, so that another channel's pending interrupt does not
+  // turn this wait into a poll of IRQ_STATUS.
   const uint32_t bits = regs::irq_done(channel) | regs::irq_error(channel);
-  while ((m_host.read32(BASE + regs::IRQ_STATUS) & bits) == 0) m_host.wait_irq(irq_map::dma);
+  while ((m_latched & bits) == 0) {
+    const uint32_t pending = m_host.read32(BASE + regs::IRQ_STATUS) & m_enabled;
+    if (pending != 0) {
+      m_host.write32(BASE + regs::IRQ_STATUS, pending);
+      m_latched |= pending;
+    } else {
+      m_host.wait_irq(irq_map::dma);
+    }
+  }
+  m_latched &= ~bits;
   finish(channel);
 }
 
 void DmaDriver::poll(unsigned channel) {
   while (busy(channel)) {
   }
+  const uint32_t bits = regs::irq_done(channel) | regs::irq_error(channel);
+  m_host.write32(BASE + regs::IRQ_STATUS, bits);
+  m_latched &= ~bits;
   finish(channel);
 }
 

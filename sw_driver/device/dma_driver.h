@@ -55,7 +55,9 @@ class DmaDriver {
   // Runs the chain written at `address`.
   void start_chain(unsigned channel, uint32_t address);
   // Sleeps until the channel's interrupt (done or error), clears it;
-  // throws DmaError when the channel stopped with an error.
+  // throws DmaError when the channel stopped with an error. Other
+  // channels' interrupts seen meanwhile are acknowledged and kept for
+  // their own wait().
   void wait(unsigned channel);
   // Polls STATUS instead of sleeping.
   void poll(unsigned channel);
@@ -67,6 +69,7 @@ class DmaDriver {
 
   HostApi& m_host;
   uint32_t m_enabled = 0;
+  uint32_t m_latched = 0;  // interrupts acknowledged but not yet waited for
 };
 
 }  // namespace tessera

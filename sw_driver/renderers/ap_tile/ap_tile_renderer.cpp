@@ -27,16 +27,6 @@ constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStag
 // The planes read back, per row of a chunk: chi, clo, tid, shi, slo, thi, tlo.
 constexpr unsigned READ_PLANES = 7;
 
-// Whether the DMA carries the CMEM traffic. dma_use asks the DMA's ID
-// register, a bus access; on a SoC without the DMA (dma.enabled=false)
-// that address is not mapped and the read is a bus error, so the
-// configuration is asked first: without the DMA the renderer makes no
-// access it did not make before.
-renderers::DmaUse dma_use(AppEnvironment& env, DmaDriver& dma) {
-  if (env.config == nullptr || !env.config->get_bool("dma.enabled")) return {};
-  return renderers::dma_use(env, dma);
-}
-
 }  // namespace
 
 ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
@@ -64,7 +54,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
   // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
-  const renderers::DmaUse use = dma_use(env, m_dma);
+  const renderers::DmaUse use = renderers::dma_use(env, m_dma);
   if (use.enabled) {
     m_tile_dma = std::make_unique<TileDma>(env, m_dma, m_layout, m_frame, use.broadcast);
     std::vector<uint8_t> yc(m_frame.tile_height);
