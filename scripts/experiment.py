@@ -3,10 +3,11 @@
 
 An experiment is a JSON file, configs/experiments/<name>.json, that lists
 soc_sim runs (back end, application and its arguments, frames, configuration
-settings) and the table's columns (statistics of stats.json, configuration
-values, or figures computed from them). This script runs soc_sim once per
-run, reads each run's stats.json, prints the table in Markdown and writes,
-in the output folder (default out/experiments/<name>):
+settings), or a matrix of them (applications x back ends x every combination
+of some switches), and the table's columns (statistics of stats.json,
+configuration values, or figures computed from them). This script runs
+soc_sim once per run, reads each run's stats.json, prints the table in
+Markdown and writes, in the output folder (default out/experiments/<name>):
 
     <name>.md   the table
     <name>.csv  the same values, unrounded, one row per run
@@ -29,6 +30,7 @@ when a soc_sim run fails or its statistics lack a figure the table needs.
 
 import argparse
 import csv
+import itertools
 import json
 import math
 import os
@@ -75,10 +77,65 @@ def stat(result, path, required=True):
     return node
 
 
+def stats_required(column):
+    """Whether the column's statistics must exist ("required", default true): false tolerates a run that lacks one
+    (an empty cell), e.g. a block that only exists with a switch on."""
+    return column.get("required", True)
+
+
+def frames_drawn(result):
+    """The divisor of "per frame": the frames shown; a run of an application that shows none (study_shading, ...)
+    counts as one, so its figures "per frame" are per run."""
+    return len(result.stats["frames"]) if result.shows_frames else 1
+
+
 def frame_time_ms(result, column, results):
     """Mean simulated time per frame: the frames' render_ns (request to request), in ms."""
     frames = result.stats["frames"]
+    if not frames:
+        raise RunError(f"run '{result.label}' shows no frame, so it has no time per frame ({result.stats_path})")
     return sum(frame["render_ns"] for frame in frames) / len(frames) / 1e6
+
+
+def frame_or_run_time_ms(result, column, results):
+    """frame_time_ms for a scene; for a study application, which shows no frame, its whole host time
+    (driver.study.total_ns), in ms."""
+    if result.shows_frames:
+        return frame_time_ms(result, column, results)
+    return stat(result, "driver.study.total_ns") / 1e6
+
+
+def renderer_section(result):
+    """The path of the back end's statistics in stats.json: driver.ap_tile for ap-tile, ..."""
+    return "driver." + result.backend.replace("-", "_")
+
+
+HOST_PARTS = ("compute", "write", "read", "wait", "frame_out")
+
+
+def host_time_ms(result, column, results):
+    """One part (column "part": compute, write, read, wait or frame_out) of the host's time, in ms per frame: an
+    array back end's host_<part>_ns (driver.ap_tile, driver.ap_pixel), or for a study application the whole run's
+    driver.study.<part>_ns (frame_out: none, the study shows no frame)."""
+    if result.shows_frames:
+        path = f"{renderer_section(result)}.host_{column['part']}_ns"
+    else:
+        path = f"driver.study.{column['part']}_ns"
+    value = stat(result, path, stats_required(column))
+    return None if value is None else value / frames_drawn(result) / 1e6
+
+
+def values_written_per_triangle(result, column, results):
+    """Values the array's data lines carried into CMEM per triangle: the back end's values_written over its
+    triangles (driver.ap_tile, driver.ap_pixel)."""
+    section = renderer_section(result)
+    written = stat(result, f"{section}.values_written", stats_required(column))
+    triangles = stat(result, f"{section}.triangles", stats_required(column))
+    if written is None or triangles is None:
+        return None
+    if triangles == 0:
+        raise RunError(f"run '{result.label}': '{section}.triangles' is 0, so values per triangle is undefined")
+    return written / triangles
 
 
 def frames_per_second(result, column, results):
@@ -151,6 +208,7 @@ COMPUTED = {
     function.__name__: function
     for function in (
         frame_time_ms,
+        frame_or_run_time_ms,
         frames_per_second,
         speedup,
         ap_tile_pass_cycles,
@@ -161,6 +219,8 @@ COMPUTED = {
         study_shades_per_second,
         study_shades_per_second_per_pass,
         patch_break_even,
+        host_time_ms,
+        values_written_per_triangle,
     )
 }
 
@@ -178,10 +238,14 @@ def config(result, key):
 # ---------------------------------------------------------------------------
 # The experiment file.
 
-TOP_KEYS = {"title", "description", "frames", "set", "runs", "label_header", "columns", "plot"}
+TOP_KEYS = {"title", "description", "frames", "set", "runs", "matrix", "label_header", "columns", "plot"}
 RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames"}
-COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline", "shape"}
-PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log"}
+MATRIX_KEYS = {"switches", "skip", "runs"}
+SWITCH_KEYS = {"key", "name", "values", "backends"}
+MATRIX_RUN_KEYS = (RUN_KEYS - {"backend"}) | {"backends"}
+COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline", "shape",
+               "part", "required", "may_be_zero"}
+PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log", "groups"}
 
 
 def check_keys(where, given, allowed):
@@ -204,6 +268,140 @@ def positive_int(where, value):
     return value
 
 
+def is_setting_value(value):
+    return isinstance(value, (str, int, float))
+
+
+def same_value(a, b):
+    """Equality that keeps false apart from 0 and true from 1 (JSON's booleans are Python ints)."""
+    return type(a) is type(b) and a == b
+
+
+def non_empty_strings(value):
+    return isinstance(value, list) and bool(value) and all(isinstance(v, str) and v for v in value)
+
+
+def switch_label(switch, value):
+    """A switch's part of a run's label: a boolean switch's name when it is true, nothing when it is false; any
+    other value as name=value."""
+    if isinstance(value, bool):
+        return switch["name"] if value else ""
+    return f"{switch['name']}={setting_text(value)}"
+
+
+def load_switches(where, switches):
+    if not isinstance(switches, list):
+        raise UsageError(f"{where}: 'switches' must be a list of switches")
+    keys, names = set(), set()
+    for index, switch in enumerate(switches):
+        switch_where = f"{where}: switches[{index}]"
+        if not isinstance(switch, dict):
+            raise UsageError(f"{switch_where} must be an object")
+        check_keys(switch_where, switch, SWITCH_KEYS)
+        if not isinstance(switch.get("key"), str) or not switch["key"]:
+            raise UsageError(f"{switch_where}: 'key' must be a configuration key (e.g. \"dma.enabled\")")
+        if switch["key"] in keys:
+            raise UsageError(f"{switch_where}: '{switch['key']}' is switched twice")
+        keys.add(switch["key"])
+        switch.setdefault("name", switch["key"])
+        if not isinstance(switch["name"], str) or not re.fullmatch(r"[A-Za-z0-9._-]+", switch["name"]):
+            raise UsageError(f"{switch_where}: 'name' (the run labels' word for it) must be a word of letters, "
+                             "digits, '.', '_' and '-'")
+        if switch["name"] in names:
+            raise UsageError(f"{switch_where}: name '{switch['name']}' is used twice (the labels would not tell "
+                             "the switches apart)")
+        names.add(switch["name"])
+        values = switch.setdefault("values", [False, True])
+        if not isinstance(values, list) or not values or not all(is_setting_value(v) for v in values):
+            raise UsageError(f"{switch_where} ('{switch['key']}'): 'values' must be a non-empty list of strings, "
+                             "numbers or booleans")
+        if any(same_value(a, b) for i, a in enumerate(values) for b in values[i + 1:]):
+            raise UsageError(f"{switch_where} ('{switch['key']}'): a value is listed twice")
+        if "backends" in switch and not non_empty_strings(switch["backends"]):
+            raise UsageError(f"{switch_where} ('{switch['key']}'): 'backends' must be a non-empty list of back-end "
+                             "names")
+
+
+def load_skips(where, skips, switches):
+    by_key = {switch["key"]: switch for switch in switches}
+    if not isinstance(skips, list):
+        raise UsageError(f"{where}: 'skip' must be a list of objects of switch keys and values")
+    for index, skip in enumerate(skips):
+        skip_where = f"{where}: skip[{index}]"
+        if not isinstance(skip, dict) or not skip:
+            raise UsageError(f"{skip_where} must be a non-empty object of switch keys and values")
+        for key, value in skip.items():
+            if key not in by_key:
+                raise UsageError(f"{skip_where}: '{key}' is not a switch of the matrix "
+                                 f"({', '.join(by_key) or 'it has none'})")
+            if not any(same_value(value, v) for v in by_key[key]["values"]):
+                raise UsageError(f"{skip_where}: {json.dumps(value)} is not one of the values of '{key}' "
+                                 f"({', '.join(json.dumps(v) for v in by_key[key]['values'])}), so it skips nothing")
+
+
+def skipped(settings, skips):
+    """Whether a combination of switch settings matches every key of one of the "skip" objects."""
+    return any(all(key in settings and same_value(settings[key], value) for key, value in skip.items())
+               for skip in skips)
+
+
+def load_matrix(where, matrix, common_settings):
+    """The runs a "matrix" stands for, checked: for each of its runs, each of the run's back ends and each
+    combination of the switches that apply to that back end (in the order listed, the last switch changing
+    fastest), less the combinations a "skip" object matches. Each run's label is "<label> <back end>" and the
+    names of the switches that are on (name=value for a switch that is not boolean). Returns the runs, where each
+    is (for messages), and per label its group ("<label> <back end>") and variant (the switches' part)."""
+    where = f"{where}: matrix"
+    if not isinstance(matrix, dict):
+        raise UsageError(f"{where} must be an object with 'runs', 'switches' and 'skip'")
+    check_keys(where, matrix, MATRIX_KEYS)
+    switches = matrix.setdefault("switches", [])
+    load_switches(where, switches)
+    skips = matrix.setdefault("skip", [])
+    load_skips(where, skips, switches)
+    for switch in switches:
+        if switch["key"] in common_settings:
+            raise UsageError(f"{where}: the experiment's 'set' sets '{switch['key']}', which the matrix switches")
+    if not isinstance(matrix.get("runs"), list) or not matrix["runs"]:
+        raise UsageError(f"{where}: 'runs' must be a non-empty list (each with a label, an app and its backends)")
+
+    runs, wheres, cells = [], [], {}
+    for index, template in enumerate(matrix["runs"]):
+        run_where = f"{where}: runs[{index}]"
+        if not isinstance(template, dict):
+            raise UsageError(f"{run_where} must be an object")
+        check_keys(run_where, template, MATRIX_RUN_KEYS)
+        for key in ("label", "app"):
+            if not isinstance(template.get(key), str) or not template[key]:
+                raise UsageError(f"{run_where}: '{key}' must be a non-empty string")
+        backends = template.get("backends")
+        if not non_empty_strings(backends) or len(set(backends)) != len(backends):
+            raise UsageError(f"{run_where}: 'backends' must be a non-empty list of distinct back-end names")
+        check_settings(run_where, template.setdefault("set", {}))
+        for switch in switches:
+            if switch["key"] in template["set"]:
+                raise UsageError(f"{run_where}: 'set' sets '{switch['key']}', which the matrix switches")
+        for backend in template["backends"]:
+            applying = [switch for switch in switches if backend in switch.get("backends", [backend])]
+            group = f"{template['label']} {backend}"
+            combinations = [dict(zip((switch["key"] for switch in applying), values))
+                            for values in itertools.product(*(switch["values"] for switch in applying))]
+            kept = [settings for settings in combinations if not skipped(settings, skips)]
+            if not kept:
+                raise UsageError(f"{run_where}: 'skip' leaves no combination of the switches for back end "
+                                 f"'{backend}'")
+            for settings in kept:
+                variant = " ".join(part for part in (switch_label(switch, settings[switch["key"]])
+                                                     for switch in applying) if part)
+                label = f"{group} {variant}" if variant else group
+                run = {key: value for key, value in template.items() if key != "backends"}
+                run.update(label=label, backend=backend, set={**template["set"], **settings})
+                runs.append(run)
+                wheres.append(f"{run_where} ('{label}')")
+                cells[label] = (group, variant)
+    return runs, wheres, cells
+
+
 def load_experiment(path):
     """The experiment at `path`, checked; UsageError naming the file and what is wrong."""
     try:
@@ -216,19 +414,30 @@ def load_experiment(path):
     if not isinstance(spec, dict):
         raise UsageError(f"{where}: the top level must be an object")
     check_keys(where, spec, TOP_KEYS)
-    for key in ("title", "runs", "columns"):
+    for key in ("title", "columns"):
         if key not in spec:
             raise UsageError(f"{where}: '{key}' is missing")
+    if "runs" not in spec and "matrix" not in spec:
+        raise UsageError(f"{where}: 'runs' is missing (or give a 'matrix')")
     positive_int(f"{where}: 'frames'", spec.setdefault("frames", 1))
     check_settings(where, spec.setdefault("set", {}))
     spec.setdefault("description", "")
     spec.setdefault("label_header", "run")
 
-    if not isinstance(spec["runs"], list) or not spec["runs"]:
+    runs = spec.setdefault("runs", [])
+    if not isinstance(runs, list) or not (runs or "matrix" in spec):
         raise UsageError(f"{where}: 'runs' must be a non-empty list")
+    run_wheres = [f"{where}: runs[{index}]" for index in range(len(runs))]
+    # The matrix's runs follow the listed ones; each listed run is a group of its own in a grouped plot.
+    spec["run_groups"] = {run["label"]: (run["label"], "") for run in runs if isinstance(run, dict)
+                      and isinstance(run.get("label"), str)}
+    if "matrix" in spec:
+        matrix_runs, matrix_wheres, groups = load_matrix(where, spec["matrix"], spec["set"])
+        runs += matrix_runs
+        run_wheres += matrix_wheres
+        spec["run_groups"].update(groups)
     labels, folders = set(), set()
-    for index, run in enumerate(spec["runs"]):
-        run_where = f"{where}: runs[{index}]"
+    for run, run_where in zip(runs, run_wheres):
         if not isinstance(run, dict):
             raise UsageError(f"{run_where} must be an object")
         check_keys(run_where, run, RUN_KEYS)
@@ -285,6 +494,13 @@ def load_experiment(path):
                                  "(a Python format for a number, e.g. \",.2f\")") from error
         if "backends" in column and (not isinstance(column["backends"], list) or not column["backends"]):
             raise UsageError(f"{column_where} ('{key}'): 'backends' must be a non-empty list of back-end names")
+        for flag in ("required", "may_be_zero"):
+            if flag in column and not isinstance(column[flag], bool):
+                raise UsageError(f"{column_where} ('{key}'): '{flag}' must be true or false")
+        if (column.get("value") == "host_time_ms") != ("part" in column):
+            raise UsageError(f"{column_where} ('{key}'): 'part' goes with the value host_time_ms, which needs it")
+        if "part" in column and column["part"] not in HOST_PARTS:
+            raise UsageError(f"{column_where} ('{key}'): 'part' must be one of {', '.join(HOST_PARTS)}")
 
     plot = spec.setdefault("plot", {})
     if not isinstance(plot, dict):
@@ -294,6 +510,11 @@ def load_experiment(path):
     for key in plot["columns"] + ([plot["x"]] if "x" in plot else []):
         if key not in keys:
             raise UsageError(f"{where}: plot: '{key}' is not a column key ({', '.join(sorted(keys))})")
+    if plot.get("groups"):
+        if "matrix" not in spec:
+            raise UsageError(f"{where}: plot: 'groups' draws a matrix's runs grouped, and there is no 'matrix'")
+        if len(plot["columns"]) != 1 or "x" in plot or plot.get("stacked"):
+            raise UsageError(f"{where}: plot: 'groups' plots one column, without 'x' or 'stacked'")
     return spec
 
 
@@ -316,6 +537,7 @@ class RunResult:
     def __init__(self, run, stats_path, document):
         self.label = run["label"]
         self.backend = run["backend"]
+        self.shows_frames = run.get("shows_frames", True)
         self.stats_path = stats_path
         self.stats = document["stats"]
         self.config = document["config"]
@@ -386,15 +608,17 @@ def cell_value(column, result, results):
     if "backends" in column and result.backend not in column["backends"]:
         return None
     if "stat" in column:
-        value = stat(result, column["stat"])
+        value = stat(result, column["stat"], stats_required(column))
         per = column.get("per")
-        if per == "frame":
-            value = value / len(result.stats["frames"])
+        if value is None:
+            pass
+        elif per == "frame":
+            value = value / frames_drawn(result)
         elif per is not None:
-            divisor = stat(result, per)
+            divisor = stat(result, per, stats_required(column))
             if divisor == 0:
                 raise RunError(f"run '{result.label}': '{per}' is 0, so '{column['stat']}' per it is undefined")
-            value = value / divisor
+            value = None if divisor is None else value / divisor
     elif "config" in column:
         value = config(result, column["config"])
     else:
@@ -465,6 +689,21 @@ def import_pyplot():
     return plt
 
 
+def plot_groups(spec, rows, index, groups, axes):
+    """The column at `index` as bars grouped by the matrix's run and back end, one bar per switch combination, in
+    the same colour in every group; a group without a combination has a gap there."""
+    variants = list(dict.fromkeys(spec["run_groups"][label][1] for label, _ in rows))
+    values = {spec["run_groups"][label]: row[index] for label, row in rows}
+    width = 0.8 / len(variants)
+    for number, variant in enumerate(variants):
+        offset = (number - (len(variants) - 1) / 2) * width
+        bars = [(position + offset, float(values[(group, variant)])) for position, group in enumerate(groups)
+                if values.get((group, variant)) is not None]
+        axes.bar([x for x, _ in bars], [y for _, y in bars], width, label=variant or "none")
+    axes.set_xticks(list(range(len(groups))))
+    axes.set_xticklabels(groups, rotation=30, ha="right", fontsize=8)
+
+
 def plot(spec, rows, path, plt):
     settings = spec["plot"]
     columns = {column["key"]: (index, column) for index, column in enumerate(spec["columns"])}
@@ -474,15 +713,20 @@ def plot(spec, rows, path, plt):
         index, _ = columns[key]
         return [values[index] for _, values in rows]
 
-    figure, axes = plt.subplots(figsize=(max(6.0, 1.6 * len(labels) + 2.5), 4.5))
     keys = settings["columns"]
-    if "x" in settings:
+    if settings.get("groups"):
+        groups = list(dict.fromkeys(spec["run_groups"][label][0] for label in labels))
+        figure, axes = plt.subplots(figsize=(max(6.0, 1.2 * len(groups) + 2.5), 5.0))
+        plot_groups(spec, rows, columns[keys[0]][0], groups, axes)
+    elif "x" in settings:
+        figure, axes = plt.subplots(figsize=(max(6.0, 1.6 * len(labels) + 2.5), 4.5))
         x = series(settings["x"])
         for key in keys:
             y = [math.nan if v is None else v for v in series(key)]
             axes.plot(x, y, marker="o", label=columns[key][1]["header"])
         axes.set_xlabel(columns[settings["x"]][1]["header"])
     else:
+        figure, axes = plt.subplots(figsize=(max(6.0, 1.6 * len(labels) + 2.5), 4.5))
         positions = list(range(len(labels)))
         stacked = settings.get("stacked", False)
         width = 0.6 if stacked else 0.8 / len(keys)
@@ -509,7 +753,9 @@ def plot(spec, rows, path, plt):
     axes.set_ylabel(settings.get("ylabel", columns[keys[0]][1]["header"] if len(keys) == 1 else ""))
     axes.set_title(spec["title"], fontsize=10)
     axes.grid(True, axis="y", linewidth=0.3)
-    if len(keys) > 1:
+    if settings.get("groups"):
+        axes.legend(fontsize=8, title="switches on", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    elif len(keys) > 1:
         axes.legend(fontsize=8)
     figure.tight_layout()
     figure.savefig(path, dpi=120)

@@ -4,7 +4,8 @@
         runs the experiment NAME with one frame per run and checks what it
         writes: the table printed with the experiment's headers, the CSV with
         its column keys and one row per run, every figure a positive number
-        (empty only where the column names back ends that exclude the run's),
+        (empty only where the column names back ends that exclude the run's or
+        does not require its statistics; 0 only where it may be zero),
         the Markdown table and a PNG. It never checks a figure's value: none
         is known in advance.
 
@@ -12,6 +13,13 @@
         the script's messages and exit statuses for --list, an unknown
         experiment, a missing soc_sim, a malformed experiment file and a
         soc_sim run that fails.
+
+    test_experiment.py matrix --work DIR
+        the experiment file's "matrix" (runs x back ends x combinations of
+        switches): the runs it expands to, their labels, settings and groups,
+        and the loader's message for each mistake; the figures the what-if
+        columns compute (host_time_ms, values_written_per_triangle, ...) and
+        "required" and "per frame" on statistics written here. No soc_sim.
 
 Exit status 0 when every check passes; 1, with each failure printed, when
 one does not.
@@ -29,6 +37,10 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
 SCRIPT = ROOT / "scripts" / "experiment.py"
 EXPERIMENTS = ROOT / "configs" / "experiments"
+
+# The script's loader and figures (standard library only; matplotlib is imported when it plots).
+sys.path.insert(0, str(SCRIPT.parent))
+import experiment  # noqa: E402
 
 FAILURES = []
 
@@ -57,8 +69,17 @@ def positive_number(text):
     return not math.isnan(value) and value > 0
 
 
+def non_negative_number(text):
+    try:
+        value = float(text.replace(",", ""))
+    except ValueError:
+        return False
+    return not math.isnan(value) and value >= 0
+
+
 def test_run(name, soc_sim, work):
-    spec = json.loads((EXPERIMENTS / f"{name}.json").read_text())
+    # Loaded as the script loads it: a matrix's runs listed, the columns' defaults filled in.
+    spec = experiment.load_experiment(EXPERIMENTS / f"{name}.json")
     out = work / name
     shutil.rmtree(out, ignore_errors=True)
     status, stdout, stderr = run_script(name, "--frames", "1", "--soc-sim", soc_sim, "--out", out, "--quiet")
@@ -89,10 +110,14 @@ def test_run(name, soc_sim, work):
         for column, cell in zip(columns, row[1:]):
             applies = run["backend"] in column.get("backends", [run["backend"]])
             where = f"{name}: run '{run['label']}', column '{column['key']}'"
-            if applies:
-                check(positive_number(cell), f"{where}: '{cell}' is not a positive number")
-            else:
+            if not applies:
                 check(cell == "", f"{where}: '{cell}' where the column does not apply to {run['backend']}")
+            elif cell == "":
+                check(not column.get("required", True), f"{where}: empty, and the column requires its statistics")
+            elif column.get("may_be_zero"):
+                check(non_negative_number(cell), f"{where}: '{cell}' is not a number of 0 or more")
+            else:
+                check(positive_number(cell), f"{where}: '{cell}' is not a positive number")
     # The table shows the same runs, each figure or '-' where the CSV is empty.
     for row in rows[1:]:
         table_rows = [line for line in stdout.splitlines() if line.startswith(f"| {row[0]} |")]
@@ -149,19 +174,224 @@ def test_errors(soc_sim, work):
           "a statistic a run lacks must be status 1 naming the run and the statistic\n" + describe(status, out, err))
 
 
+MATRIX_SPEC = {
+    "title": "matrix",
+    "set": {"display.width": 192},
+    "runs": [{"label": "listed", "backend": "arm", "app": "triangle"}],
+    "matrix": {
+        "switches": [
+            {"key": "dma.enabled", "name": "dma", "backends": ["ap-tile"]},
+            {"key": "dma.broadcast", "name": "bc", "backends": ["ap-tile"]},
+            {"key": "display.dma", "name": "ddma"},
+            {"key": "ap.pixel.block", "name": "block", "values": [1, 3], "backends": ["ap-pixel"]},
+        ],
+        "skip": [{"dma.enabled": False, "dma.broadcast": True}],
+        "runs": [
+            {"label": "tea", "app": "teapot", "args": ["x"], "frames": 2, "set": {"ap.tile.texcoords": "always"},
+             "backends": ["arm", "ap-tile"]},
+            {"label": "px", "app": "study_shading", "shows_frames": False, "backends": ["ap-pixel"]},
+        ],
+    },
+    "columns": [{"key": "frame_ms", "value": "frame_time_ms"}],
+    "plot": {"columns": ["frame_ms"], "groups": True},
+}
+
+
+def load_spec(work, name, spec):
+    """experiment.load_experiment of `spec` written to work/name.json: (the spec, None) or (None, the message)."""
+    path = work / f"{name}.json"
+    path.write_text(json.dumps(spec))
+    try:
+        return experiment.load_experiment(path), None
+    except experiment.UsageError as error:
+        return None, str(error)
+
+
+def mutated(change):
+    """A deep copy of MATRIX_SPEC with `change` applied to it."""
+    spec = json.loads(json.dumps(MATRIX_SPEC))
+    change(spec)
+    return spec
+
+
+def test_matrix_expansion(work):
+    spec, error = load_spec(work, "expansion", MATRIX_SPEC)
+    if not check(error is None, f"matrix: the example does not load: {error}"):
+        return
+    labels = [run["label"] for run in spec["runs"]]
+    expected = ["listed",
+                "tea arm", "tea arm ddma",
+                "tea ap-tile", "tea ap-tile ddma", "tea ap-tile dma", "tea ap-tile dma ddma", "tea ap-tile dma bc",
+                "tea ap-tile dma bc ddma",
+                "px ap-pixel block=1", "px ap-pixel block=3", "px ap-pixel ddma block=1", "px ap-pixel ddma block=3"]
+    check(labels == expected, f"matrix: runs {labels}, expected {expected}")
+    runs = {run["label"]: run for run in spec["runs"]}
+    run = runs.get("tea ap-tile dma bc", {})
+    check(run.get("backend") == "ap-tile" and run.get("app") == "teapot" and run.get("args") == ["x"]
+          and run.get("frames") == 2, f"matrix: 'tea ap-tile dma bc' lost its template's fields: {run}")
+    settings = {"ap.tile.texcoords": "always", "dma.enabled": True, "dma.broadcast": True, "display.dma": False}
+    check(run.get("set") == settings, f"matrix: 'tea ap-tile dma bc' sets {run.get('set')}, expected {settings}")
+    check(runs.get("tea arm ddma", {}).get("set") == {"ap.tile.texcoords": "always", "display.dma": True},
+          f"matrix: a switch for other back ends must not be set on arm: {runs.get('tea arm ddma')}")
+    check(runs.get("px ap-pixel ddma block=3", {}).get("set") == {"display.dma": True, "ap.pixel.block": 3}
+          and runs["px ap-pixel ddma block=3"].get("shows_frames") is False,
+          f"matrix: 'px ap-pixel ddma block=3' is {runs.get('px ap-pixel ddma block=3')}")
+    groups = spec["run_groups"]
+    check(groups.get("listed") == ("listed", "") and groups.get("tea ap-tile dma bc") == ("tea ap-tile", "dma bc")
+          and groups.get("tea arm") == ("tea arm", ""),
+          f"matrix: groups {groups}")
+    command = experiment.soc_sim_command("soc_sim", spec, runs["tea ap-tile dma bc"], 2, pathlib.Path("out"))
+    for setting in ("display.width=192", "ap.tile.texcoords=always", "dma.enabled=true", "dma.broadcast=true",
+                    "display.dma=false"):
+        check(setting in command, f"matrix: the soc_sim command {command} lacks --set {setting}")
+    check(command[-2:] == ["--", "x"], f"matrix: the soc_sim command {command} lacks the application's arguments")
+
+    # No switches: one run per back end; no listed runs: the matrix's alone; false and 0 are different values.
+    spec, error = load_spec(work, "plain", {"title": "t", "matrix": {"runs": [
+        {"label": "a", "app": "triangle", "backends": ["arm", "raster"]}]},
+        "columns": [{"key": "frame_ms", "value": "frame_time_ms"}]})
+    check(error is None and [run["label"] for run in spec["runs"]] == ["a arm", "a raster"],
+          f"matrix: without switches, one run per back end: {error or spec['runs']}")
+    spec, error = load_spec(work, "values", mutated(lambda s: s["matrix"]["switches"][3].update(values=[0, False])))
+    check(error is None and "px ap-pixel block=0" in [run["label"] for run in spec["runs"]],
+          f"matrix: 0 and false are two values: {error}")
+
+
+MATRIX_ERRORS = [
+    ("neither runs nor matrix", lambda s: (s.pop("runs"), s.pop("matrix"), s.pop("plot")),
+     "'runs' is missing (or give a 'matrix')"),
+    ("a misspelt matrix key", lambda s: s["matrix"].update(switch=[]), "matrix: unknown key(s) switch"),
+    ("a switch without a key", lambda s: s["matrix"]["switches"][0].pop("key"),
+     "matrix: switches[0]: 'key' must be a configuration key"),
+    ("a key switched twice", lambda s: s["matrix"]["switches"][1].update(key="dma.enabled"),
+     "switches[1]: 'dma.enabled' is switched twice"),
+    ("a name used twice", lambda s: s["matrix"]["switches"][1].update(name="dma"),
+     "switches[1]: name 'dma' is used twice"),
+    ("a name that is not a word", lambda s: s["matrix"]["switches"][1].update(name="two words"),
+     "switches[1]: 'name' (the run labels' word for it) must be a word"),
+    ("no values", lambda s: s["matrix"]["switches"][2].update(values=[]),
+     "switches[2] ('display.dma'): 'values' must be a non-empty list"),
+    ("a value twice", lambda s: s["matrix"]["switches"][2].update(values=[True, True]),
+     "switches[2] ('display.dma'): a value is listed twice"),
+    ("a skip naming no switch", lambda s: s["matrix"]["skip"].append({"dma.enable": True}),
+     "matrix: skip[1]: 'dma.enable' is not a switch of the matrix"),
+    ("a skip of a value never switched", lambda s: s["matrix"]["skip"].append({"ap.pixel.block": 2}),
+     "matrix: skip[1]: 2 is not one of the values of 'ap.pixel.block' (1, 3), so it skips nothing"),
+    ("a skip of everything", lambda s: s["matrix"]["skip"].extend([{"display.dma": False}, {"display.dma": True}]),
+     "matrix: runs[0]: 'skip' leaves no combination of the switches for back end 'arm'"),
+    ("a run without back ends", lambda s: s["matrix"]["runs"][0].pop("backends"),
+     "matrix: runs[0]: 'backends' must be a non-empty list of distinct back-end names"),
+    ("a back end twice", lambda s: s["matrix"]["runs"][0].update(backends=["arm", "arm"]),
+     "matrix: runs[0]: 'backends' must be a non-empty list of distinct back-end names"),
+    ("'backend' for 'backends'", lambda s: s["matrix"]["runs"][1].update(backend="arm"),
+     "matrix: runs[1]: unknown key(s) backend"),
+    ("a run setting a switch", lambda s: s["matrix"]["runs"][1].update(set={"display.dma": True}),
+     "matrix: runs[1]: 'set' sets 'display.dma', which the matrix switches"),
+    ("the experiment setting a switch", lambda s: s["set"].update({"dma.broadcast": True}),
+     "matrix: the experiment's 'set' sets 'dma.broadcast', which the matrix switches"),
+    ("a listed run's label made by the matrix", lambda s: s["runs"][0].update(label="tea arm"),
+     "label 'tea arm' is used twice"),
+    ("a bad frames in a template", lambda s: s["matrix"]["runs"][0].update(frames=0),
+     "matrix: runs[0] ('tea arm'): 'frames' must be a positive integer"),
+    ("groups without a matrix", lambda s: s.pop("matrix"), "plot: 'groups' draws a matrix's runs grouped"),
+    ("groups of two columns", lambda s: (s["columns"].append({"key": "fps", "value": "frames_per_second"}),
+                                         s["plot"].update(columns=["frame_ms", "fps"])),
+     "plot: 'groups' plots one column"),
+    ("host_time_ms without part", lambda s: s["columns"].append({"key": "w", "value": "host_time_ms"}),
+     "columns[1] ('w'): 'part' goes with the value host_time_ms"),
+    ("a part that is not one", lambda s: s["columns"].append({"key": "w", "value": "host_time_ms", "part": "idle"}),
+     "columns[1] ('w'): 'part' must be one of compute, write, read, wait, frame_out"),
+    ("required not a boolean", lambda s: s["columns"][0].update(required="no"),
+     "columns[0] ('frame_ms'): 'required' must be true or false"),
+]
+
+
+def test_matrix_errors(work):
+    for index, (what, change, message) in enumerate(MATRIX_ERRORS):
+        spec, error = load_spec(work, f"error_{index}", mutated(change))
+        if check(error is not None, f"matrix: {what}: loaded without an error"):
+            check(message in error and str(work / f"error_{index}.json") in error,
+                  f"matrix: {what}: the message must name the file and say \"{message}\", it says: {error}")
+    # From the command line: status 2 and the message, before any soc_sim runs.
+    path = work / "error_cli.json"
+    path.write_text(json.dumps(mutated(lambda s: s["matrix"]["switches"][2].update(values=[]))))
+    status, out, err = run_script(path, "--soc-sim", work / "no_soc_sim_needed", "--out", work / "cli")
+    check(status == 2 and str(path) in err and "'values' must be a non-empty list" in err,
+          "matrix: a malformed matrix must be status 2 naming the file\n" + describe(status, out, err))
+
+
+def test_what_if_figures():
+    """The figures of the what-if columns on statistics written here, as a soc_sim run's stats.json holds them."""
+    def result(backend, stats, shows_frames=True):
+        run = {"label": f"{backend} run", "backend": backend, "shows_frames": shows_frames}
+        return experiment.RunResult(run, pathlib.Path("stats.json"), {"stats": stats, "config": {}})
+
+    scene = result("ap-tile", {
+        "frames": [{"render_ns": 2e6}, {"render_ns": 4e6}],
+        "bus": {"initiators": {"host": {"bytes": 1000}}},
+        "driver": {"ap_tile": {"values_written": 300, "triangles": 3, "host_write_ns": 4e6, "host_frame_out_ns": 1e6}},
+    })
+    study = result("ap-pixel", {"frames": [], "driver": {"study": {"total_ns": 7e6, "write_ns": 5e6}}},
+                   shows_frames=False)
+    bare = result("ap-pixel", {"frames": [{"render_ns": 1e6}], "driver": {"ap_pixel": {"triangles": 2}}})
+
+    def value(column, run):
+        try:
+            return experiment.cell_value(column, run, [run])
+        except experiment.RunError as error:
+            return f"RunError: {error}"
+
+    cases = [
+        ("time per frame", {"value": "frame_or_run_time_ms"}, scene, 3.0),
+        ("a study's time per run", {"value": "frame_or_run_time_ms"}, study, 7.0),
+        ("host write per frame", {"value": "host_time_ms", "part": "write"}, scene, 2.0),
+        ("frame out per frame", {"value": "host_time_ms", "part": "frame_out"}, scene, 0.5),
+        ("a study's host write per run", {"value": "host_time_ms", "part": "write"}, study, 5.0),
+        ("a study's frame out, not required", {"value": "host_time_ms", "part": "frame_out", "required": False},
+         study, None),
+        ("values per triangle", {"value": "values_written_per_triangle"}, scene, 100.0),
+        ("values per triangle unpublished, not required",
+         {"value": "values_written_per_triangle", "required": False}, bare, None),
+        ("bytes per frame", {"stat": "bus.initiators.host.bytes", "per": "frame"}, scene, 500.0),
+        ("an absent initiator, not required", {"stat": "bus.initiators.dma.bytes", "per": "frame", "required": False},
+         scene, None),
+        ("a study's bytes per frame: per run", {"stat": "driver.study.write_ns", "per": "frame"}, study, 5e6),
+    ]
+    for what, column, run, expected in cases:
+        got = value(column, run)
+        check(got == expected, f"what-if figures: {what}: {got}, expected {expected}")
+    for what, column, run, message in [
+        ("an absent initiator, required", {"stat": "bus.initiators.dma.bytes"}, scene,
+         "run 'ap-tile run' has no statistic 'bus.initiators.dma.bytes'"),
+        ("values per triangle unpublished, required", {"value": "values_written_per_triangle"}, bare,
+         "run 'ap-pixel run' has no statistic 'driver.ap_pixel.values_written'"),
+        ("a study's time per frame", {"value": "frame_time_ms"}, study, "shows no frame"),
+    ]:
+        got = value(column, run)
+        check(isinstance(got, str) and message in got, f"what-if figures: {what}: {got}, expected \"{message}\"")
+    check(experiment.format_cell({}, None) == "-", "what-if figures: a missing figure must show as '-'")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=("run", "errors"))
+    parser.add_argument("what", choices=("run", "errors", "matrix"))
     parser.add_argument("name", nargs="?")
-    parser.add_argument("--soc-sim", required=True)
+    parser.add_argument("--soc-sim", help="the soc_sim to run (run and errors)")
     parser.add_argument("--work", required=True, type=pathlib.Path)
     args = parser.parse_args()
+    if args.what != "matrix" and not args.soc_sim:
+        parser.error(f"{args.what} needs --soc-sim")
     if args.what == "run":
         if not args.name:
             parser.error("run needs an experiment's name")
         test_run(args.name, args.soc_sim, args.work)
-    else:
+    elif args.what == "errors":
         test_errors(args.soc_sim, args.work)
+    else:
+        args.work.mkdir(parents=True, exist_ok=True)
+        test_matrix_expansion(args.work)
+        test_matrix_errors(args.work)
+        test_what_if_figures()
     for failure in FAILURES:
         print(f"FAIL: {failure}\n")
     print("FAILED" if FAILURES else "PASSED")
