@@ -6,7 +6,10 @@
 //  - study_shading: N single-pixel shades (default 192,000), each with its
 //    own attribute set, as the study's shading loop: C = C0 + x dC/dx +
 //    y dC/dy for R, G, B, A, S, T, Z. On the array a pass gives each of the
-//    96 CUs its own 21 values and position and reads the seven results back.
+//    96 CUs its own 21 values and position and reads the seven results back
+//    (through the CIU, or with dma.enabled=true through the system/array
+//    DMA: plain arrays reshuffled in and out; no broadcast, since no two
+//    CUs share a value).
 //  - study_patches: patches of pixels sharing one attribute set, squares of
 //    1 x 1 to 6 x 6 and lines of 1 to 40 pixels: the host steps the
 //    attributes incrementally (arm), or sends the 21 values to every CU and
@@ -30,7 +33,9 @@
 #include "apps/apps.h"
 #include "config/config.h"
 #include "device/array_driver.h"
+#include "device/dma_driver.h"
 #include "renderers/ap_pixel/pixel_setup.h"
+#include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
 
 namespace tessera {
@@ -157,11 +162,37 @@ int study_shading(AppEnvironment& env) {
   HostApi& host = *env.host;
   const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
   std::unique_ptr<ArrayDriver> array;
+  DmaDriver dma(env);
+  renderers::DmaUse use;
   if (target == Target::array) {
     array = std::make_unique<ArrayDriver>(env);
     array->load(ap::programs::ap_pixel().words);
+    use = renderers::dma_use(env, dma);
   }
   const unsigned per_pass = array ? array->cus() : 96;
+  // With the DMA: the values c0 .. gy + 20 of every CU (63 rows of one
+  // byte per CU, the gradients' sign bytes 0: the program makes them), dx
+  // and dy (2 rows), and the results (7 rows of 16-bit integer parts), in
+  // system memory, and the two chains. Each shade has its own values, so
+  // a broadcast has nothing to carry here (dma.broadcast changes nothing).
+  const unsigned value_rows = 3 * 3 * ATTRIBUTES;
+  const uint32_t staged_values = env.heap_base + 2 * per_pass * INPUT_WORDS * 4 + 4096;
+  const uint32_t staged_offsets = staged_values + value_rows * per_pass;
+  const uint32_t staged_results = staged_offsets + 2 * per_pass;
+  const uint32_t chain_in = staged_results + 2 * ATTRIBUTES * per_pass;
+  const uint32_t chain_out = chain_in + 2 * dma::DESCRIPTOR_BYTES;
+  if (use.enabled && (layout.gx != layout.c0 + 3 * ATTRIBUTES || layout.gy != layout.gx + 3 * ATTRIBUTES ||
+                      layout.dy != layout.dx + 1))
+    throw std::logic_error(std::string(app) + ": the program's c0, gx, gy (or dx, dy) are not adjacent");
+  if (use.enabled) {
+    std::vector<dma::Descriptor> out;
+    for (unsigned a = 0; a < ATTRIBUTES; ++a)
+      out.push_back(DmaDriver::from_cmem(layout.result(0, 0, static_cast<Attribute>(a)),
+                                         staged_results + 2 * a * per_pass, per_pass, 2));
+    dma.write_chain(chain_in, {DmaDriver::to_cmem(staged_values, layout.c0, value_rows * per_pass, 1),
+                               DmaDriver::to_cmem(staged_offsets, layout.dx, 2 * per_pass, 1)});
+    dma.write_chain(chain_out, out);
+  }
   // One pass of inputs in system memory, rewritten for every pass (not
   // timed), and the results.
   const uint32_t inputs = env.heap_base, results = inputs + per_pass * INPUT_WORDS * 4;
@@ -191,6 +222,43 @@ int study_shading(AppEnvironment& env) {
           got[i][a] = integer_part(ap_pixel::shade_reference(sets[i], static_cast<Attribute>(a), xs[i], ys[i], 0, 0));
           out[2 * a] = static_cast<uint8_t>(got[i][a]);
           out[2 * a + 1] = static_cast<uint8_t>(got[i][a] >> 8);
+        }
+      }
+    } else if (use.enabled) {
+      // Through the DMA: the host stores every CU's 63 bytes and position
+      // into plain arrays (2 ALU a byte: shifted out of its value and
+      // stored), one chain reshuffles them in; a run; one chain brings the
+      // seven 16-bit integer parts of every CU out, which the host loads.
+      {
+        renderers::TimedScope timed(host, time.array_write);
+        for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
+        uint8_t* values = host.store_span(staged_values, 1, value_rows * per_pass);
+        std::fill(values, values + size_t{value_rows} * per_pass, 0);
+        for (unsigned i = 0; i < n; ++i)
+          ap_pixel::for_each_value_byte(sets[i], layout, [&](unsigned address, uint8_t byte) {
+            values[size_t{address - layout.c0} * per_pass + i] = byte;
+          });
+        uint8_t* offsets = host.store_span(staged_offsets, 1, 2 * per_pass);
+        std::fill(offsets, offsets + 2 * per_pass, 0);
+        for (unsigned i = 0; i < n; ++i) {
+          offsets[i] = static_cast<uint8_t>(xs[i]);
+          offsets[per_pass + i] = static_cast<uint8_t>(ys[i]);
+        }
+        host.compute(Op::alu, 2ull * n * (7 * ATTRIBUTES + 2));
+        dma.start_chain(0, chain_in);
+        dma.wait(0);
+      }
+      {
+        renderers::TimedScope timed(host, time.array_wait);
+        cycles += array->run(layout.entry[1]);
+      }
+      {
+        renderers::TimedScope timed(host, time.array_read);
+        dma.start_chain(0, chain_out);
+        dma.wait(0);
+        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+          const uint8_t* p = host.load_span(staged_results + 2 * a * per_pass, 2, n);
+          for (unsigned i = 0; i < n; ++i) got[i][a] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
         }
       }
     } else {
