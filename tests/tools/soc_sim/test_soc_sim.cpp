@@ -1003,6 +1003,44 @@ TEST_F(SocSim, CiuWritesAndReadsMatchTheMeasuredTimes) {
   expect_array_figure(result, "one 32-bit CIU read from the ARM, address computation included", 830, 0.02);
 }
 
+// docs/spec/calibration.md's power table: the two calibration scenarios
+// print each group's average power beside the board's; the fit
+// (scripts/fit_energy.py, docs/calibration.md) states its largest residual,
+// ENERGY_FIT_RESIDUAL, and the scenarios must come within it.
+namespace {
+
+constexpr double ENERGY_FIT_RESIDUAL = 0.01;
+
+void expect_power(const SimResult& result, const std::string& what, double measured_mw) {
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(result.out, match,
+                                std::regex("energy calibration: " + what + R"(: model ([0-9]+\.[0-9]+) mW)")))
+      << result.out;
+  EXPECT_NEAR(std::stod(match[1]), measured_mw, measured_mw * ENERGY_FIT_RESIDUAL) << what << "\n" << result.out;
+}
+
+}  // namespace
+
+TEST_F(SocSim, TileRendererPowerMatchesTheBoard) {
+  const SimResult result = run({"--app", "teapot", "--backend", "ap-tile", "--frames", "1", "--no-frames", "--set",
+                                "power.calibration=tile_renderer", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  expect_power(result, "tile_renderer: ARM922T", 57.5);
+  expect_power(result, "tile_renderer: AC \\+ CIU", 37.92);
+  expect_power(result, "tile_renderer: CUs \\+ CMEM", 33.24);
+  expect_power(result, "ARM922T idling on NOPs", 43.5 * 1.2);
+  expect_power(result, "leakage, clocks stopped", 3.0 * 1.2);
+}
+
+TEST_F(SocSim, PixelShadingPowerMatchesTheBoard) {
+  const SimResult result = run({"--app", "study_shading", "--backend", "ap-pixel", "--no-frames", "--set",
+                                "power.calibration=pixel_shading", "--out", "out"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  expect_power(result, "pixel_shading: ARM922T", 62.76);
+  expect_power(result, "pixel_shading: AC \\+ CIU", 12.96);
+  expect_power(result, "pixel_shading: CUs \\+ CMEM", 29.28);
+}
+
 // stats.energy: every unit's total is its static energy plus its events',
 // the total is the units' sum, and the frames' energies add up to the
 // energy from the start to the last frame's request.
