@@ -285,4 +285,15 @@ SummaryRow ArrayProcessor::summary_row(const sc_time& elapsed) const {
                       format_percent(utilisation));
 }
 
+EnergyActivity ArrayProcessor::energy_activity(const sc_time& now) const {
+  (void)now;
+  const double lanes = static_cast<double>(m_params.geometry.columns) * m_params.geometry.rows;
+  return {{"array_controller", {{"instructions", static_cast<double>(m_instructions.value)}}},
+          {"cu_array",
+           {{"cu_cycles", lanes * static_cast<double>(m_cycles.value)},
+            {"cmem_bytes_read", static_cast<double>(m_cmem_reads.value)},
+            {"cmem_bytes_written", static_cast<double>(m_cmem_writes.value)},
+            {"neighbour_transfers", static_cast<double>(m_neighbour_transfers.value)}}}};
+}
+
 }  // namespace tessera

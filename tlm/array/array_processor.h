@@ -79,6 +79,7 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;

@@ -313,4 +313,11 @@ std::vector<SummaryTable> AhbBus::summary_tables(const sc_time& elapsed) const {
   return {table};
 }
 
+EnergyActivity AhbBus::energy_activity(const sc_time& now) const {
+  (void)now;
+  uint64_t beats = 0;
+  for (const BusInitiatorStats& s : m_stats) beats += s.beats;
+  return {{"bus", {{"beats", static_cast<double>(beats)}}}};
+}
+
 }  // namespace tessera

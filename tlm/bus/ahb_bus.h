@@ -113,6 +113,7 @@ class AhbBus : public Block {
   // Statistics as JSON, utilisation computed over `elapsed`.
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
   // Traffic per initiator.
   std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const override;
 

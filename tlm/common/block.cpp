@@ -18,6 +18,11 @@ std::vector<SummaryTable> Block::summary_tables(const sc_core::sc_time& elapsed)
   return {};
 }
 
+EnergyActivity Block::energy_activity(const sc_core::sc_time& now) const {
+  (void)now;
+  return {};
+}
+
 SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes) {
   const double elapsed_s = elapsed.to_seconds();
   return {busy, elapsed_s > 0 ? busy.to_seconds() / elapsed_s : 0.0, std::move(notes)};

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/activity_counters.h"
+#include "common/energy_activity.h"
 #include "common/text_format.h"
 
 namespace tessera {
@@ -49,6 +50,10 @@ class Block : public sc_core::sc_module {
   virtual SummaryRow summary_row(const sc_core::sc_time& elapsed) const = 0;
   // By default none.
   virtual std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const;
+  // The block's activity for the energy model (tlm/power/) from the start
+  // of the run to `now`: one entry per energy unit the block holds, one count
+  // per event class of energy_params.def. By default none.
+  virtual EnergyActivity energy_activity(const sc_core::sc_time& now) const;
 
   const ActivityCounters& counters() const { return m_counters; }
 

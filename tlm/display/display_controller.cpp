@@ -217,4 +217,9 @@ SummaryRow DisplayController::summary_row(const sc_time& elapsed) const {
   return {std::nullopt, std::nullopt, notes};
 }
 
+EnergyActivity DisplayController::energy_activity(const sc_time& now) const {
+  (void)now;
+  return {{"display", {{"port_bytes", static_cast<double>(m_port_bytes.value)}}}};
+}
+
 }  // namespace tessera

@@ -95,6 +95,7 @@ class DisplayController : public Peripheral {
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
   void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);

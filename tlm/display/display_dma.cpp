@@ -84,4 +84,9 @@ SummaryRow DisplayDma::summary_row(const sc_time& elapsed) const {
                       " lines, " + std::to_string(m_underrun_lines.value) + " underrun lines");
 }
 
+EnergyActivity DisplayDma::energy_activity(const sc_time& now) const {
+  (void)now;
+  return {{"display_dma", {{"bytes", static_cast<double>(counters().value("bus.bytes_read"))}}}};
+}
+
 }  // namespace tessera

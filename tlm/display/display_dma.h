@@ -60,6 +60,7 @@ class DisplayDma : public Block {
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
   void scan_out();  // SC_THREAD: one frame per start_frame

@@ -70,6 +70,7 @@ class Dma : public Peripheral {
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
   class Port;

@@ -543,4 +543,14 @@ SummaryRow Host::summary_row(const sc_time& elapsed) const {
                       format_duration(std::max(0.0, elapsed_s - busy_s - stall_s)));
 }
 
+EnergyActivity Host::energy_activity(const sc_time& now) const {
+  const double period = m_params.clock_period.to_seconds();
+  const double busy_s = busy_time().to_seconds();
+  const double stall_s = stall_time().to_seconds();
+  return {{"host",
+           {{"busy_cycles", static_cast<double>(m_busy_cycles.value)},
+            {"stalled_cycles", stall_s / period},
+            {"idle_cycles", std::max(0.0, now.to_seconds() - busy_s - stall_s) / period}}}};
+}
+
 }  // namespace tessera

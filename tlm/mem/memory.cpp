@@ -132,4 +132,9 @@ SummaryRow Memory::summary_row(const sc_core::sc_time& elapsed) const {
                   std::to_string(m_reads.value) + " reads, " + std::to_string(m_writes.value) + " writes");
 }
 
+EnergyActivity Memory::energy_activity(const sc_core::sc_time& now) const {
+  (void)now;
+  return {{"memory", {{"transfers", static_cast<double>(m_reads.value + m_writes.value)}}}};
+}
+
 }  // namespace tessera

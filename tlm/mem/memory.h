@@ -53,6 +53,7 @@ class Memory : public Block {
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);

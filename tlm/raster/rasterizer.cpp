@@ -230,4 +230,13 @@ SummaryRow Rasterizer::summary_row(const sc_time& elapsed) const {
                       std::to_string(m_fragments_written.value) + " written)");
 }
 
+EnergyActivity Rasterizer::energy_activity(const sc_time& now) const {
+  (void)now;
+  return {{"raster",
+           {{"compute_cycles", static_cast<double>(m_compute_cycles.value)},
+            {"fragments", static_cast<double>(m_fragments.value)},
+            {"texels", static_cast<double>(m_texels.value)},
+            {"tiles", static_cast<double>(m_tiles.value)}}}};
+}
+
 }  // namespace tessera

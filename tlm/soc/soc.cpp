@@ -66,6 +66,25 @@ DmaParams dma_params(const Config& config) {
   return p;
 }
 
+// Energy in joules and average power in watts over `seconds`: the total and
+// each unit's, with each event class's energy when `events`.
+nlohmann::json energy_json(const std::vector<UnitEnergy>& energy, double seconds, bool events) {
+  const auto watts = [seconds](double joules) { return seconds > 0 ? joules / seconds : 0.0; };
+  nlohmann::json units = nlohmann::json::object();
+  double total = 0;
+  for (const UnitEnergy& unit : energy) {
+    nlohmann::json& u = units[unit.unit];
+    u = {{"total_j", unit.total_joules()},
+         {"static_j", unit.static_joules},
+         {"dynamic_j", unit.dynamic_joules()},
+         {"average_w", watts(unit.total_joules())}};
+    if (events)
+      for (const auto& [event, joules] : unit.event_joules) u["events"][event]["j"] = joules;
+    total += unit.total_joules();
+  }
+  return {{"total_j", total}, {"average_w", watts(total)}, {"units", units}};
+}
+
 }  // namespace
 
 std::vector<ParamGroup> Soc::parameter_groups() {
@@ -106,7 +125,8 @@ std::vector<ParamGroup> Soc::parameter_groups() {
           RasterizerParams::parameters(),
           ArrayParams::parameters(),
           CiuParams::parameters(),
-          DmaParams::parameters()};
+          DmaParams::parameters(),
+          EnergyModel::parameters()};
 }
 
 Soc::Soc(sc_core::sc_module_name name, const Config& config)
@@ -118,7 +138,8 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       display_dma("display_dma", display_dma_params(config)),
       raster("raster", RasterizerParams::from_config(config)),
       array("array", ArrayParams::from_config(config)),
-      ciu("ciu", ciu_params(config), array) {
+      ciu("ciu", ciu_params(config), array),
+      m_energy_model(EnergyModel::from_config(config)) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -222,7 +243,7 @@ void Soc::record_request(const sc_time& when) {
   // The host's busy time is exact here: the request is the host's own
   // write. The bus has counted the host's transfers up to its time and the
   // DMAs' up to the kernel's, at most a quantum (sim.quantum_ns) behind.
-  m_requests.push_back({when.to_seconds(), host.busy_time(), bus.bytes()});
+  m_requests.push_back({when.to_seconds(), host.busy_time(), bus.bytes(), energy_activity(when)});
 }
 
 void Soc::record_frame(const Frame& frame) {
@@ -232,7 +253,9 @@ void Soc::record_frame(const Frame& frame) {
   while (m_requests.size() > 1 && m_requests.front().seconds < frame.requested_seconds) m_requests.pop_front();
   if (m_requests.empty() || m_requests.front().seconds != frame.requested_seconds) {
     // Only software that bypasses the display's registers gets here.
-    m_frames.push_back({frame.time_seconds, {frame.requested_seconds, host.busy_time(), bus.bytes()}});
+    m_frames.push_back(
+        {frame.time_seconds,
+         {frame.requested_seconds, host.busy_time(), bus.bytes(), energy_activity(sc_core::sc_time_stamp())}});
     return;
   }
   m_frames.push_back({frame.time_seconds, m_requests.front()});
@@ -241,25 +264,42 @@ void Soc::record_frame(const Frame& frame) {
 
 nlohmann::json Soc::frames_json() const {
   nlohmann::json frames = nlohmann::json::array();
-  FrameRecord previous{0, {0, sc_core::SC_ZERO_TIME, 0}};
+  FrameRecord previous{0, {0, sc_core::SC_ZERO_TIME, 0, {}}};
   for (size_t i = 0; i < m_frames.size(); ++i) {
     const FrameRecord& f = m_frames[i];
+    const double render_seconds = f.request.seconds - previous.request.seconds;
+    const std::vector<UnitEnergy> energy = m_energy_model.unit_energies(
+        activity_difference(f.request.activity, previous.request.activity), render_seconds);
     frames.push_back({{"index", i},
                       {"time_ns", f.shown_seconds * 1e9},
                       {"interval_ns", (f.shown_seconds - previous.shown_seconds) * 1e9},
                       {"requested_ns", f.request.seconds * 1e9},
-                      {"render_ns", (f.request.seconds - previous.request.seconds) * 1e9},
+                      {"render_ns", render_seconds * 1e9},
                       {"host_busy_ns", (f.request.host_busy - previous.request.host_busy).to_seconds() * 1e9},
-                      {"bus_bytes", f.request.bus_bytes - previous.request.bus_bytes}});
+                      {"bus_bytes", f.request.bus_bytes - previous.request.bus_bytes},
+                      {"energy", energy_json(energy, render_seconds, false)}});
     previous = f;
   }
   return frames;
+}
+
+EnergyActivity Soc::energy_activity(const sc_time& now) const {
+  EnergyActivity activity;
+  for (const Block* block : m_blocks)
+    for (UnitActivity& unit : block->energy_activity(now)) activity.push_back(std::move(unit));
+  return activity;
 }
 
 nlohmann::json Soc::stats_json() const {
   const sc_time elapsed = sc_core::sc_time_stamp();
   nlohmann::json stats = {{"simulated_ns", elapsed.to_seconds() * 1e9}};
   for (const Block* block : m_blocks) stats[block->basename()] = block->stats_json(elapsed);
+  const EnergyActivity activity = energy_activity(elapsed);
+  stats["energy"] =
+      energy_json(m_energy_model.unit_energies(activity, elapsed.to_seconds()), elapsed.to_seconds(), true);
+  for (const UnitActivity& unit : activity)
+    for (const auto& [event, count] : unit.counts)
+      stats["energy"]["units"][unit.unit]["events"][event]["count"] = count;
   stats["frames"] = frames_json();
   return stats;
 }

@@ -21,6 +21,7 @@
 #include "dma/dma.h"
 #include "host/host.h"
 #include "mem/memory.h"
+#include "power/energy_model.h"
 #include "raster/rasterizer.h"
 #include "soc/irq_map.h"
 
@@ -77,11 +78,17 @@ class Soc : public sc_core::sc_module {
   void trace_to(const std::string& path_without_extension);
   void close_trace();
 
-  // simulated_ns, each block's statistics under its name, and `frames`: for
-  // every frame shown, its time, when it was requested (SWAP or PRESENT),
-  // its render time (from the previous frame's request to this one) and the
-  // host's busy time and the bus bytes over that render time.
+  // simulated_ns, each block's statistics under its name, `energy` (every
+  // energy unit's energy and average power over the run, and the total) and
+  // `frames`: for every frame shown, its time, when it was requested (SWAP or
+  // PRESENT), its render time (from the previous frame's request to this one)
+  // and the host's busy time, the bus bytes and the energy over that render
+  // time.
   nlohmann::json stats_json() const;
+
+  // Every block's activity for the energy model, from the start to `now`.
+  EnergyActivity energy_activity(const sc_core::sc_time& now) const;
+  const EnergyModel& energy_model() const { return m_energy_model; }
 
  private:
   void finish();  // SC_THREAD
@@ -90,12 +97,14 @@ class Soc : public sc_core::sc_module {
   nlohmann::json frames_json() const;
 
   std::vector<Block*> m_blocks;
+  EnergyModel m_energy_model;
   // Totals since the start when a frame was requested (sampled from within
   // the request, a write the host makes: at the host's own time).
   struct Request {
     double seconds;
     sc_core::sc_time host_busy;
     uint64_t bus_bytes;
+    EnergyActivity activity;
   };
   std::deque<Request> m_requests;  // not yet shown
   struct FrameRecord {

@@ -173,6 +173,58 @@ void print_driver_summary(const nlohmann::json& stats) {
   }
 }
 
+// Each energy unit's energy over the run, its average power and its mean
+// energy per frame shown (tlm/power/).
+void print_energy_summary(const nlohmann::json& stats) {
+  const nlohmann::json& energy = stats["energy"];
+  const nlohmann::json& frames = stats["frames"];
+  std::printf("\n  %-18s %12s %12s %14s\n", "energy (1.2 V)", "total", "average", "per frame");
+  const auto row = [&frames](const std::string& name, const nlohmann::json& unit,
+                             const nlohmann::json::json_pointer& per_frame) {
+    std::string mean = "-";
+    if (!frames.empty()) {
+      double sum = 0;
+      for (const nlohmann::json& frame : frames) sum += frame["energy"].value(per_frame, 0.0);
+      mean = format_energy(sum / static_cast<double>(frames.size()));
+    }
+    std::printf("  %-18s %12s %12s %14s\n", name.c_str(), format_energy(unit["total_j"].get<double>()).c_str(),
+                format_power(unit["average_w"].get<double>()).c_str(), mean.c_str());
+  };
+  for (const auto& [name, unit] : energy["units"].items())
+    row(name, unit, nlohmann::json::json_pointer("/units/" + name + "/total_j"));
+  row("total", energy, nlohmann::json::json_pointer("/total_j"));
+}
+
+// With power.calibration set: each group of units of that scenario of the
+// calibration table, its average power over the run beside the board's,
+// and the host's idle and leakage power beside the board's figures.
+void print_energy_calibration(const Config& config, const Soc& soc, const nlohmann::json& stats) {
+  const std::string name = config.get_string("power.calibration");
+  const auto line = [](const std::string& what, double model_mw, double measured_mw) {
+    std::printf("energy calibration: %s: model %.2f mW, measured %.2f mW (%+.1f%%)\n", what.c_str(), model_mw,
+                measured_mw, 100.0 * (model_mw - measured_mw) / measured_mw);
+  };
+  for (const CalibrationScenario& scenario : calibration_scenarios()) {
+    if (scenario.name != name) continue;
+    for (const CalibrationGroup& group : scenario.groups) {
+      double watts = 0;
+      for (const std::string& unit : group.units) watts += stats["energy"]["units"][unit]["average_w"].get<double>();
+      line(scenario.name + ": " + group.name, watts * 1e3, group.measured_milliwatts);
+    }
+  }
+  // The board's figures at 1.2 V: 43.5 mA idling on NOPs, 3 mA with clocks stopped.
+  double idle_pj = 0;
+  double leakage_mw = 0;
+  for (const UnitEnergyParams& unit : soc.energy_model().units()) {
+    if (unit.unit != "host") continue;
+    leakage_mw = unit.static_milliwatts;
+    for (const EventEnergy& e : unit.events)
+      if (e.event == "idle_cycles") idle_pj = e.picojoules;
+  }
+  line("ARM922T idling on NOPs", idle_pj * 1e-9 * config.get_real("host.clock_mhz") * 1e6 + leakage_mw, 43.5 * 1.2);
+  line("leakage, clocks stopped", leakage_mw, 3.0 * 1.2);
+}
+
 // The summary: run, block table (each block's own row), the blocks' own
 // tables (the bus's traffic per initiator), outputs. It names no block.
 void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
@@ -205,6 +257,7 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
       std::printf("\n");
     }
   }
+  print_energy_summary(stats);
   print_driver_summary(stats);
   std::printf("\n  outputs\n");
   for (const auto& line : outputs) std::printf("    %s\n", line.c_str());
@@ -468,6 +521,7 @@ int run(int argc, char* argv[]) {
                              {"config", config.to_json()},
                              {"stats", stats}};
   std::ofstream(stats_path) << document.dump(2) << "\n";
+  if (config.get_string("power.calibration") != "none") print_energy_calibration(config, soc, stats);
 
   if (!opt.quiet) {
     std::vector<std::string> outputs;

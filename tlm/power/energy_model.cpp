@@ -1,0 +1,153 @@
+#include "power/energy_model.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+
+std::string event_key(const std::string& unit, const std::string& event) {
+  return "power." + unit + "." + event + "_pj";
+}
+
+std::string static_key(const std::string& unit) {
+  return "power." + unit + ".static_mw";
+}
+
+void check_value(const std::string& key, double value, const char* unit) {
+  if (!std::isfinite(value) || value < 0)
+    throw ConfigError("configuration: '" + key + "' must be a finite, non-negative energy in " + unit + ", got " +
+                      std::to_string(value));
+}
+
+// The table as (unit, event or "" for the static power, default, description).
+struct Entry {
+  const char* unit;
+  const char* event;
+  double value;
+  const char* source;
+  const char* description;
+};
+
+const std::vector<Entry>& table() {
+  static const std::vector<Entry> entries = {
+#define POWER_EVENT(unit, event, pj, source, description) {#unit, #event, pj, #source, description},
+#define POWER_STATIC(unit, mw, source, description) {#unit, "", mw, #source, description},
+#include "power/energy_params.def"
+#undef POWER_EVENT
+#undef POWER_STATIC
+  };
+  return entries;
+}
+
+// A parameter's largest legal value: far above any real figure, so that the
+// range check only catches typing errors.
+constexpr double MAX_PICOJOULES = 1e9;
+constexpr double MAX_MILLIWATTS = 1e6;
+
+}  // namespace
+
+double UnitEnergy::dynamic_joules() const {
+  double sum = 0;
+  for (const auto& [event, joules] : event_joules) sum += joules;
+  return sum;
+}
+
+const std::vector<CalibrationScenario>& calibration_scenarios() {
+  // docs/spec/calibration.md, "Power".
+  static const std::vector<CalibrationScenario> scenarios = {
+      {"tile_renderer",
+       "the tile-based renderer on the array (--app teapot --backend ap-tile)",
+       {{"ARM922T", {"host"}, 57.5},
+        {"AC + CIU", {"array_controller", "ciu"}, 37.92},
+        {"CUs + CMEM", {"cu_array"}, 33.24}}},
+      {"pixel_shading",
+       "the pixel shading loop (--app study_shading --backend ap-pixel)",
+       {{"ARM922T", {"host"}, 62.76},
+        {"AC + CIU", {"array_controller", "ciu"}, 12.96},
+        {"CUs + CMEM", {"cu_array"}, 29.28}}},
+  };
+  return scenarios;
+}
+
+EnergyModel::EnergyModel(std::vector<UnitEnergyParams> units) : m_units(std::move(units)) {
+  for (const UnitEnergyParams& u : m_units) {
+    for (const EventEnergy& e : u.events) check_value(event_key(u.unit, e.event), e.picojoules, "pJ");
+    check_value(static_key(u.unit), u.static_milliwatts, "mW");
+  }
+}
+
+ParamGroup EnergyModel::parameters() {
+  std::vector<ParamSpec> specs;
+  for (const Entry& e : table()) {
+    const std::string source = std::string(" [") + e.source + "]";
+    if (*e.event)
+      specs.push_back(
+          param::real(event_key(e.unit, e.event), e.value, 0, MAX_PICOJOULES, "pJ", e.description + source));
+    else
+      specs.push_back(param::real(static_key(e.unit), e.value, 0, MAX_MILLIWATTS, "mW", e.description + source));
+  }
+  specs.push_back(param::choice("power.calibration", "none", {"none", "tile_renderer", "pixel_shading"},
+                                "after the run, print each unit's average power beside the board's for this "
+                                "scenario of the calibration table (docs/calibration.md)"));
+  return {"power", std::move(specs), nullptr};
+}
+
+EnergyModel EnergyModel::from_config(const Config& config) {
+  std::vector<UnitEnergyParams> units;
+  for (const Entry& e : table()) {
+    if (units.empty() || units.back().unit != e.unit) units.push_back({e.unit, {}, 0});
+    if (*e.event)
+      units.back().events.push_back({e.event, config.get_real(event_key(e.unit, e.event))});
+    else
+      units.back().static_milliwatts = config.get_real(static_key(e.unit));
+  }
+  return EnergyModel(std::move(units));
+}
+
+EnergyModel EnergyModel::defaults() {
+  return from_config(Config({parameters()}));
+}
+
+const UnitEnergyParams& EnergyModel::unit(const std::string& name) const {
+  for (const UnitEnergyParams& u : m_units)
+    if (u.unit == name) return u;
+  throw std::logic_error("energy model: no unit '" + name + "' (tlm/power/energy_params.def)");
+}
+
+UnitEnergy EnergyModel::energy(const UnitActivity& activity, double seconds) const {
+  const UnitEnergyParams& params = unit(activity.unit);
+  UnitEnergy result{activity.unit, {}, params.static_milliwatts * 1e-3 * seconds};
+  for (const auto& [event, count] : activity.counts) {
+    const EventEnergy* found = nullptr;
+    for (const EventEnergy& e : params.events)
+      if (e.event == event) found = &e;
+    if (!found)
+      throw std::logic_error("energy model: unit '" + activity.unit + "' has no event class '" + event +
+                             "' (tlm/power/energy_params.def)");
+    result.event_joules[event] = count * found->picojoules * 1e-12;
+  }
+  return result;
+}
+
+std::vector<UnitEnergy> EnergyModel::unit_energies(const EnergyActivity& activity, double seconds) const {
+  std::vector<UnitEnergy> result;
+  for (const UnitActivity& a : activity) result.push_back(energy(a, seconds));
+  return result;
+}
+
+EnergyActivity activity_difference(const EnergyActivity& later, const EnergyActivity& earlier) {
+  EnergyActivity result = later;
+  for (UnitActivity& unit : result)
+    for (const UnitActivity& before : earlier)
+      if (before.unit == unit.unit)
+        for (auto& [event, count] : unit.counts) {
+          const auto it = before.counts.find(event);
+          if (it != before.counts.end()) count -= it->second;
+        }
+  return result;
+}
+
+}  // namespace tessera
