@@ -143,6 +143,27 @@ def frames_per_second(result, column, results):
     return 1000.0 / frame_time_ms(result, column, results)
 
 
+def energy_per_frame_mj(result, column, results):
+    """Mean energy per frame of the energy model (tlm/power/README.md): the frames' own energy.total_j (request to
+    request, start-up excluded), in mJ; for a study application, which shows no frame, the whole run's
+    energy.total_j."""
+    if result.shows_frames:
+        frames = result.stats["frames"]
+        if not frames:
+            raise RunError(f"run '{result.label}' shows no frame, so it has no energy per frame ({result.stats_path})")
+        if any(not isinstance(frame.get("energy", {}).get("total_j"), (int, float)) for frame in frames):
+            raise RunError(f"run '{result.label}': a frame record has no energy.total_j in {result.stats_path}")
+        return sum(frame["energy"]["total_j"] for frame in frames) / len(frames) * 1e3
+    return stat(result, "energy.total_j") * 1e3
+
+
+def energy_ratio(result, column, results):
+    """The baseline run's energy_per_frame_mj over this run's (column "baseline": the run's label): how many times
+    less energy this run spends on a frame (on the whole run for a study application)."""
+    baseline = next(r for r in results if r.label == column["baseline"])
+    return energy_per_frame_mj(baseline, column, results) / energy_per_frame_mj(result, column, results)
+
+
 def speedup(result, column, results):
     """The baseline run's frame_time_ms over this run's (column "baseline": the run's label)."""
     baseline = next(r for r in results if r.label == column["baseline"])
@@ -211,6 +232,8 @@ COMPUTED = {
         frame_or_run_time_ms,
         frames_per_second,
         speedup,
+        energy_per_frame_mj,
+        energy_ratio,
         ap_tile_pass_cycles,
         ap_tile_pass_us,
         ap_tile_passes_per_second,
@@ -477,7 +500,7 @@ def load_experiment(path):
         if "value" in column and column["value"] not in COMPUTED:
             raise UsageError(f"{column_where} ('{key}'): unknown value '{column['value']}' "
                              f"(known: {', '.join(COMPUTED)})")
-        if column.get("value") in ("speedup", "patch_break_even") and column.get("baseline") not in labels:
+        if column.get("value") in ("speedup", "energy_ratio", "patch_break_even") and column.get("baseline") not in labels:
             raise UsageError(f"{column_where} ('{key}'): 'baseline' must be the label of a run "
                              f"({', '.join(sorted(labels))})")
         if column.get("value") == "patch_break_even" and column.get("shape") not in ("line", "square"):
