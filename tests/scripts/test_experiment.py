@@ -371,6 +371,31 @@ def test_what_if_figures():
         check(isinstance(got, str) and message in got, f"what-if figures: {what}: {got}, expected \"{message}\"")
     check(experiment.format_cell({}, None) == "-", "what-if figures: a missing figure must show as '-'")
 
+    # Energy: the frame records' own energy (start-up excluded), a study's whole run, and the ratio to a baseline.
+    def labelled(label, run):
+        run.label = label
+        return run
+
+    arm = labelled("arm", result("arm", {"frames": [{"render_ns": 1e6, "energy": {"total_j": 0.002}},
+                                                    {"render_ns": 1e6, "energy": {"total_j": 0.004}}],
+                                         "energy": {"total_j": 1.0}}))
+    array = labelled("array", result("ap-tile", {"frames": [{"render_ns": 1e6, "energy": {"total_j": 0.012}}],
+                                                 "energy": {"total_j": 1.0}}))
+    shading = labelled("shading", result("ap-pixel", {"frames": [], "energy": {"total_j": 0.25}}, shows_frames=False))
+    no_energy = labelled("old", result("arm", {"frames": [{"render_ns": 1e6}]}))
+    per_frame = {"value": "energy_per_frame_mj"}
+    ratio = {"value": "energy_ratio", "baseline": "arm"}
+    for what, got, expected in [
+        ("energy per frame: the frames' mean", experiment.cell_value(per_frame, arm, [arm]), 3.0),
+        ("a study's energy: the whole run", experiment.cell_value(per_frame, shading, [shading]), 250.0),
+        ("energy ratio over arm", experiment.cell_value(ratio, array, [arm, array]), 0.25),
+        ("arm's own energy ratio", experiment.cell_value(ratio, arm, [arm, array]), 1.0),
+    ]:
+        check(abs(got - expected) < 1e-9, f"what-if figures: {what}: {got}, expected {expected}")
+    got = value(per_frame, no_energy)
+    check(isinstance(got, str) and "has no energy.total_j" in got,
+          f"what-if figures: frames without energy: {got}, expected a RunError")
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
