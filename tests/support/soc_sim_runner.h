@@ -35,6 +35,15 @@ inline std::string read_file(const std::filesystem::path& path) {
 }
 
 // Runs `soc_sim` with `args` in the folder `dir`.
+// A system test's main: GoogleTest's options out of argv, then the soc_sim
+// to run (the first remaining argument, else TESSERA_SOC_SIM; empty: none).
+inline std::string init_soc_sim_test(int& argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc >= 2) return std::filesystem::absolute(argv[1]).string();
+  const char* path = std::getenv("TESSERA_SOC_SIM");
+  return path != nullptr ? path : "";
+}
+
 inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::path& dir,
                              const std::vector<std::string>& args) {
   const std::filesystem::path out_path = dir / "soc_sim.stdout";

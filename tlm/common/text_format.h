@@ -25,28 +25,25 @@ inline std::string format_percent(double fraction) {
   return buffer;
 }
 
-// Energy ("2.345 mJ") and power ("57.500 mW"), in the largest unit that
-// keeps the figure at 1 or more (down to micro- and nano-).
-inline std::string format_energy(double joules) {
+// A figure in `unit` (J, W) with the largest prefix that keeps it at 1 or
+// more, down to micro: "2.345 mJ", "57.500 mW".
+inline std::string format_scaled(double value, const char* unit) {
   char buffer[32];
-  if (joules >= 1)
-    std::snprintf(buffer, sizeof buffer, "%.3f J", joules);
-  else if (joules >= 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.3f mJ", joules * 1e3);
+  if (value >= 1)
+    std::snprintf(buffer, sizeof buffer, "%.3f %s", value, unit);
+  else if (value >= 1e-3)
+    std::snprintf(buffer, sizeof buffer, "%.3f m%s", value * 1e3, unit);
   else
-    std::snprintf(buffer, sizeof buffer, "%.3f uJ", joules * 1e6);
+    std::snprintf(buffer, sizeof buffer, "%.3f u%s", value * 1e6, unit);
   return buffer;
 }
 
+inline std::string format_energy(double joules) {
+  return format_scaled(joules, "J");
+}
+
 inline std::string format_power(double watts) {
-  char buffer[32];
-  if (watts >= 1)
-    std::snprintf(buffer, sizeof buffer, "%.3f W", watts);
-  else if (watts >= 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.3f mW", watts * 1e3);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.3f uW", watts * 1e6);
-  return buffer;
+  return format_scaled(watts, "W");
 }
 
 }  // namespace tessera

@@ -85,10 +85,6 @@ TEST_F(SocSimBackends, ConfigurationNamesEveryBackEnd) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  if (argc >= 2)
-    g_soc_sim = fs::absolute(argv[1]).string();
-  else if (const char* path = std::getenv("TESSERA_SOC_SIM"))
-    g_soc_sim = path;
+  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
   return RUN_ALL_TESTS();
 }
