@@ -46,6 +46,8 @@ const std::vector<Entry>& table() {
 // range check only catches typing errors.
 constexpr double MAX_PICOJOULES = 1e9;
 constexpr double MAX_MILLIWATTS = 1e6;
+// A window of a second already spans several frames.
+constexpr double MAX_TRACE_WINDOW_MICROSECONDS = 1e6;
 
 }  // namespace
 
@@ -92,6 +94,9 @@ ParamGroup EnergyModel::parameters() {
   specs.push_back(param::choice("power.calibration", "none", {"none", "tile_renderer", "pixel_shading"},
                                 "after the run, print each unit's average power beside the board's for this "
                                 "scenario of the calibration table (docs/calibration.md)"));
+  specs.push_back(param::real("power.trace_window_us", 100, 0, MAX_TRACE_WINDOW_MICROSECONDS, "us",
+                              "with a VCD trace (--vcd), each energy unit's average power in mW over consecutive "
+                              "windows of this length, under the scope power (0: no power signals)"));
   return {"power", std::move(specs), nullptr};
 }
 

@@ -1,5 +1,6 @@
 #include "soc/soc.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -139,7 +140,8 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       raster("raster", RasterizerParams::from_config(config)),
       array("array", ArrayParams::from_config(config)),
       ciu("ciu", ciu_params(config), array),
-      m_energy_model(EnergyModel::from_config(config)) {
+      m_energy_model(EnergyModel::from_config(config)),
+      m_power_window(config.get_real("power.trace_window_us"), sc_core::SC_US) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -196,6 +198,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });
   SC_THREAD(finish);
+  SC_THREAD(trace_power);
 }
 
 Soc::~Soc() {
@@ -206,6 +209,7 @@ void Soc::finish() {
   wait(m_host_finished);
   while (host.exit_code() == 0 && display.frame_pending()) wait(display.frame_shown_event());
   m_done = true;
+  close_power_window();
   sc_core::sc_stop();
 }
 
@@ -215,6 +219,38 @@ void Soc::trace_to(const std::string& path_without_extension) {
   if (!m_trace) throw std::runtime_error("cannot create VCD file " + m_trace_path);
   m_trace->set_time_unit(1, sc_core::SC_PS);
   for (Block* block : m_blocks) block->trace_signals(m_trace);
+  // A window below the time resolution would never advance.
+  if (m_power_window == sc_core::SC_ZERO_TIME) return;
+  m_power_trace = std::make_unique<PowerTrace>(m_energy_model);
+  const EnergyActivity units = energy_activity(sc_core::SC_ZERO_TIME);
+  m_power_milliwatts.assign(units.size() + 1, 0.0);
+  const std::string scope = std::string(name()) + ".power.";
+  for (size_t i = 0; i < units.size(); ++i) sc_core::sc_trace(m_trace, m_power_milliwatts[i], scope + units[i].unit);
+  sc_core::sc_trace(m_trace, m_power_milliwatts.back(), scope + "total");
+}
+
+void Soc::trace_power() {
+  if (!m_power_trace) return;
+  for (;;) {
+    wait(m_power_window);
+    close_power_window();
+  }
+}
+
+void Soc::close_power_window() {
+  if (!m_power_trace) return;
+  const sc_time now = sc_core::sc_time_stamp();
+  // The simulation may finish exactly at a window's end: no empty window.
+  if (now.to_seconds() <= m_power_trace->last_window().end_seconds) return;
+  // A window's power is known at its end: the trace shows it from there to
+  // the next window's end, one window after the activity.
+  // Traced to the nanowatt: rounding noise would otherwise change a steady
+  // power in every window.
+  const auto traced = [](double milliwatts) { return std::round(milliwatts * 1e6) / 1e6; };
+  const PowerWindow& window = m_power_trace->close_window(energy_activity(now), now.to_seconds());
+  for (size_t i = 0; i < window.units.size(); ++i)
+    m_power_milliwatts[i] = traced(window.milliwatts(window.units[i].total_joules()));
+  m_power_milliwatts.back() = traced(window.milliwatts(window.total_joules()));
 }
 
 void Soc::close_trace() {

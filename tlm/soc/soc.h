@@ -22,6 +22,7 @@
 #include "host/host.h"
 #include "mem/memory.h"
 #include "power/energy_model.h"
+#include "power/power_trace.h"
 #include "raster/rasterizer.h"
 #include "soc/irq_map.h"
 
@@ -74,9 +75,18 @@ class Soc : public sc_core::sc_module {
   const std::vector<Block*>& blocks() const { return m_blocks; }
 
   // Opens a VCD file (path without ".vcd") and traces every block's
-  // signals. Call before sc_start.
+  // signals and, unless power.trace_window_us is 0, every energy unit's
+  // average power per window (soc.power.<unit>, soc.power.total, in mW).
+  // Call before sc_start.
   void trace_to(const std::string& path_without_extension);
   void close_trace();
+
+  // The power trace's windows so far (null without a power trace).
+  const PowerTrace* power_trace() const { return m_power_trace.get(); }
+  // Closes the power trace's current window at the kernel's time, so that
+  // the windows cover the run up to now; the SoC does so when the
+  // simulation finishes. Nothing without a power trace.
+  void close_power_window();
 
   // simulated_ns, each block's statistics under its name, `energy` (every
   // energy unit's energy and average power over the run, and the total) and
@@ -91,7 +101,8 @@ class Soc : public sc_core::sc_module {
   const EnergyModel& energy_model() const { return m_energy_model; }
 
  private:
-  void finish();  // SC_THREAD
+  void finish();       // SC_THREAD
+  void trace_power();  // SC_THREAD: ends at once without a power trace
   void record_request(const sc_core::sc_time& when);
   void record_frame(const Frame& frame);
   nlohmann::json frames_json() const;
@@ -117,6 +128,11 @@ class Soc : public sc_core::sc_module {
   bool m_done = false;
   sc_core::sc_trace_file* m_trace = nullptr;
   std::string m_trace_path;
+  sc_core::sc_time m_power_window;
+  std::unique_ptr<PowerTrace> m_power_trace;
+  // The traced powers in mW: one per energy unit, in the order of
+  // energy_activity(), then the total. Sized once: the VCD holds their addresses.
+  std::vector<double> m_power_milliwatts;
 };
 
 }  // namespace tessera

@@ -1,11 +1,17 @@
 # Runs soc_sim with a VCD trace and has GTKWave's own reader (vcd2fst)
-# convert it: the trace must be one that GTKWave opens.
+# convert it: the trace must be one that GTKWave opens, power signals
+# (real-valued, under the scope power) included.
 set(dir ${WORK_DIR}/vcd_gtkwave)
 file(REMOVE_RECURSE ${dir})
 execute_process(COMMAND ${SOC_SIM} --quiet --frames 1 --set display.dma=true --out ${dir} --vcd ${dir}/trace.vcd
                 RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "soc_sim failed with status ${status}")
+endif()
+file(STRINGS ${dir}/trace.vcd power_scope REGEX "scope module power")
+file(STRINGS ${dir}/trace.vcd power_total REGEX "var real +1 +[^ ]+ +total ")
+if(NOT power_scope OR NOT power_total)
+  message(FATAL_ERROR "the trace declares no power signals (scope power, real total)")
 endif()
 execute_process(COMMAND ${VCD2FST} ${dir}/trace.vcd ${dir}/trace.fst RESULT_VARIABLE status ERROR_VARIABLE errors)
 if(NOT status EQUAL 0 OR NOT EXISTS ${dir}/trace.fst)

@@ -748,6 +748,8 @@ Vcd parse_vcd(const std::string& text) {
       after_zero = std::stoull(w[0].substr(1)) > 0;
     } else if (after_zero && (w[0][0] == '0' || w[0][0] == '1')) {
       ++vcd.changes[w[0].substr(1)];
+    } else if (after_zero && w[0][0] == 'r' && w.size() >= 2) {
+      ++vcd.changes[w[1]];
     }
   }
   return vcd;
@@ -786,6 +788,25 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
     const std::string id = id_of(signal);
     EXPECT_GT(vcd.changes.count(id) ? vcd.changes.at(id) : 0u, 0u) << signal << " never changes";
   }
+  // The power trace (power.trace_window_us): one real per energy unit and
+  // the total, each changing at the end of every window with activity.
+  for (const char* unit :
+       {"host", "bus", "memory", "array_controller", "cu_array", "ciu", "display_dma", "display", "raster", "total"}) {
+    const std::string id = id_of(std::string("soc.power.") + unit);
+    EXPECT_FALSE(id.empty()) << "soc.power." << unit << " not in" << declared;
+    if (std::string(unit) == "host" || std::string(unit) == "bus" || std::string(unit) == "total") {
+      EXPECT_GT(vcd.changes.count(id) ? vcd.changes.at(id) : 0u, 0u) << unit << "'s power never changes";
+    }
+  }
+  EXPECT_TRUE(contains(text, "$var real")) << "the powers are real-valued";
+}
+
+// power.trace_window_us=0 leaves the power signals out.
+TEST_F(SocSim, NoPowerSignalsWithAZeroWindow) {
+  const SimResult result =
+      run({"--frames", "1", "--set", "power.trace_window_us=0", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  EXPECT_FALSE(contains(read_file(m_dir / "out/trace.vcd"), "power")) << "power signals traced";
 }
 
 // The interrupt lines drive these runs, and the trace shows every pulse:
