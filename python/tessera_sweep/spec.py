@@ -10,7 +10,7 @@
     zip:                     # ... and of each zip group, whose lists go in step
       display.width: [192, 320]
       display.height: [144, 240]
-    metrics: [stats.host.cycles]   # to plot (not yet used)
+    metrics: [stats.host.busy_cycles]   # to plot (not yet used)
     output: out/sweeps/NAME
 
 Every key is a soc_sim configuration key (soc_sim --print-config), dotted.
