@@ -35,13 +35,17 @@ SWEEP_VENV="$(cd "$(dirname "$0")/.." && pwd)/build/venv"
 PYARROW_VERSION=14.0.2  # the last with wheels built against numpy 1.x, Debian 12's numpy
 
 setup_sweep_venv() {
-  if [[ -x "$SWEEP_VENV/bin/python3" ]] &&
+  if [[ -x "$SWEEP_VENV/bin/tessera-sweep" ]] &&
      "$SWEEP_VENV/bin/python3" -c "import pyarrow, sys; sys.exit(pyarrow.__version__ != '$PYARROW_VERSION')" 2>/dev/null; then
     return
   fi
-  echo "setup: sweep venv in $SWEEP_VENV (pyarrow $PYARROW_VERSION)"
+  echo "setup: sweep venv in $SWEEP_VENV (pyarrow $PYARROW_VERSION, tessera-sweep)"
   /usr/bin/python3 -m venv --system-site-packages "$SWEEP_VENV"
-  "$SWEEP_VENV/bin/python3" -m pip install -q --disable-pip-version-check "pyarrow==$PYARROW_VERSION"
+  local pip=("$SWEEP_VENV/bin/python3" -m pip install -q --disable-pip-version-check)
+  "${pip[@]}" "pyarrow==$PYARROW_VERSION"
+  # Editable: build/venv/bin/tessera-sweep runs python/tessera_sweep as it is
+  # in this work tree; its dependencies are the Debian packages above.
+  "${pip[@]}" --no-deps --no-build-isolation -e "$(dirname "$SWEEP_VENV")/../python"
 }
 
 if [[ "${TESSERA_SKIP_INSTALL:-0}" == "1" ]]; then
