@@ -65,33 +65,42 @@ def progress(done: int, total: int, record: dict, out=sys.stderr) -> None:
 def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | None = None,
               workers: int | None = None, retry_failed: bool = False):
     """Checks every point, runs the missing ones and writes the table; returns
-    (table, number of points run)."""
+    (table, number of soc_sim runs). Points with the same effective
+    configuration share one run."""
     from dask.distributed import as_completed
 
     points = expand(spec)
     configs = check(points, simulator)
     output.mkdir(parents=True, exist_ok=True)
-    records: list[dict | None] = []
-    todo: list[tuple[int, Point, Path, dict]] = []
-    for index, (point, config) in enumerate(zip(points, configs)):
-        key = point_key(config, point, spec, simulator.version)
-        point_dir = output / "points" / key
-        record = cached_record(point_dir, retry_failed)
-        records.append(record)
-        if record is None:
-            todo.append((index, point, point_dir,
-                         {"point": key, "axes": point.axes, "sim_version": simulator.version}))
-    print(f"tessera-sweep: {len(points)} points, {len(points) - len(todo)} cached, "
-          f"{len(todo)} to run", file=sys.stderr)
+    keys = [point_key(config, point, spec, simulator.version) for point, config in zip(points, configs)]
+    records: dict[str, dict | None] = {}
+    todo: dict[str, Point] = {}
+    for key, point in zip(keys, points):
+        if key not in records:
+            records[key] = cached_record(output / "points" / key, retry_failed)
+            if records[key] is None:
+                todo[key] = point
+    cached = sum(records[key] is not None for key in keys)
+    print(f"tessera-sweep: {len(points)} points, {cached} cached, {len(todo)} to run", file=sys.stderr)
     if todo:
         with connect(scheduler, workers) as client:
-            futures = {client.submit(run_point, str(simulator.path), str(point_dir.resolve()),
-                                     point.settings, list(point.args), spec.write_frames, base,
-                                     key=f"point-{base['point']}", pure=False): index
-                       for index, point, point_dir, base in todo}
+            futures = {}
+            for key, point in todo.items():
+                base = {"point": key, "axes": point.axes, "sim_version": simulator.version}
+                future = client.submit(run_point, str(simulator.path),
+                                       str((output / "points" / key).resolve()), point.settings,
+                                       list(point.args), spec.write_frames, base,
+                                       key=f"point-{key}", pure=False)
+                futures[future] = base
             for done, future in enumerate(as_completed(futures), 1):
-                record = future.result()
-                records[futures[future]] = record
+                base = futures[future]
+                try:
+                    record = future.result()
+                except Exception as error:  # the worker, not soc_sim, failed: not cached
+                    record = dict(base, status=-1, error=f"{type(error).__name__}: {error}",
+                                  wall_s=float("nan"))
+                records[base["point"]] = record
                 progress(done, len(todo), record)
-    rows = [table.row(record, output / "points" / record["point"]) for record in records]
+    rows = [table.row(point.axes, records[key], output / "points" / key)
+            for key, point in zip(keys, points)]
     return table.write(rows, output), len(todo)

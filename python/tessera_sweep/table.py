@@ -26,11 +26,11 @@ def numeric_leaves(tree, prefix: str = "") -> dict:
     return leaves
 
 
-def row(record: dict, point_dir: Path) -> dict:
+def row(axes: dict, record: dict, point_dir: Path) -> dict:
     """A point's axes, run record and statistics. Axes keep their dotted
     configuration keys; statistics sit under stats.json's own top-level
     names (config., stats., ...), so the two cannot collide."""
-    values = dict(record["axes"])
+    values = dict(axes)
     values.update(point=record["point"], sim_version=record["sim_version"],
                   status=record["status"], error=record["error"], wall_s=record["wall_s"])
     stats_file = point_dir / "stats.json"

@@ -96,6 +96,17 @@ def test_retry_failed_runs_the_failed_points_again(first_run, spec, simulator, t
     assert ran == 2
 
 
+def test_points_with_the_same_configuration_share_one_run(simulator, tmp_path):
+    from conftest import TINY
+
+    # 60 and 60.0 are the same display.refresh_hz once soc_sim has read them
+    spec = parse_spec(dict(TINY, axes={"display.refresh_hz": [60, 60.0]}))
+    table, ran = run_sweep(spec, simulator, tmp_path, workers=1)
+    assert ran == 1
+    assert list(table["status"]) == [0, 0]
+    assert table["point"].nunique() == 1
+
+
 def tessera_sweep_command(*args):
     return subprocess.run([sys.executable, "-m", "tessera_sweep", *args], capture_output=True, text=True)
 
