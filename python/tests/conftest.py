@@ -1,3 +1,4 @@
+import json
 import os
 from pathlib import Path
 
@@ -28,8 +29,6 @@ def tiny():
 
 
 def write_spec(folder: Path, data: dict, name: str = "spec.json") -> Path:
-    import json
-
     path = folder / name
     path.write_text(json.dumps(data))
     return path

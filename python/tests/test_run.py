@@ -13,15 +13,13 @@ import tessera_sweep
 from tessera_sweep.runner import run_sweep
 from tessera_sweep.spec import parse_spec
 
-from conftest import write_spec
+from conftest import TINY, write_spec
 
 AXES = {"driver.backend": ["arm", "raster"], "sim.time_limit_ms": [0, 1]}
 
 
 @pytest.fixture(scope="module")
 def spec():
-    from conftest import TINY
-
     return parse_spec(dict(TINY, axes=AXES))
 
 
@@ -97,8 +95,6 @@ def test_retry_failed_runs_the_failed_points_again(first_run, spec, simulator, t
 
 
 def test_points_with_the_same_configuration_share_one_run(simulator, tmp_path):
-    from conftest import TINY
-
     # 60 and 60.0 are the same display.refresh_hz once soc_sim has read them
     spec = parse_spec(dict(TINY, axes={"display.refresh_hz": [60, 60.0]}))
     table, ran = run_sweep(spec, simulator, tmp_path, workers=1)
@@ -112,8 +108,6 @@ def tessera_sweep_command(*args):
 
 
 def test_command_reports_failed_points_with_exit_status_1(first_run, simulator, tmp_path):
-    from conftest import TINY
-
     out, _, _ = first_run
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
     done = tessera_sweep_command(str(spec_file), "--out", str(out), "--soc-sim", str(simulator.path))
@@ -123,8 +117,6 @@ def test_command_reports_failed_points_with_exit_status_1(first_run, simulator, 
 
 
 def test_command_refuses_a_bad_spec_naming_the_key(simulator, tmp_path):
-    from conftest import TINY
-
     spec_file = write_spec(tmp_path, dict(TINY, axes={"array.columns": [24, 1000]}))
     done = tessera_sweep_command(str(spec_file), "--out", str(tmp_path / "out"),
                                  "--soc-sim", str(simulator.path))
@@ -134,8 +126,6 @@ def test_command_refuses_a_bad_spec_naming_the_key(simulator, tmp_path):
 
 
 def test_command_check_runs_nothing(simulator, tmp_path):
-    from conftest import TINY
-
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
     done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path))
     assert done.returncode == 0, done.stderr
