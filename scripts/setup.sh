@@ -20,7 +20,33 @@ PACKAGES=(
   gtkwave                 # viewing VCD traces; its vcd2fst checks them in the tests
   python3                 # helper scripts
   python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)
+  python3-dask python3-distributed  # tessera-sweep: runs a sweep's points on a Dask cluster
+  python3-pandas          # tessera-sweep: the results table
+  python3-jinja2          # tessera-sweep: the HTML report
+  python3-yaml            # tessera-sweep: YAML sweep specs
+  python3-pytest          # tessera-sweep's tests (python/tests)
+  python3-venv python3-pip  # the sweep venv below
 )
+
+# Debian 12 has no pyarrow (pandas' Parquet engine): it comes from PyPI, pinned,
+# into a venv that sees Debian's packages. build/ is not in git, so the venv is
+# per work tree; CMake looks for it there (TESSERA_SWEEP_PYTHON).
+SWEEP_VENV="$(cd "$(dirname "$0")/.." && pwd)/build/venv"
+PYARROW_VERSION=14.0.2  # the last with wheels built against numpy 1.x, Debian 12's numpy
+
+setup_sweep_venv() {
+  if [[ -x "$SWEEP_VENV/bin/tessera-sweep" ]] &&
+     "$SWEEP_VENV/bin/python3" -c "import pyarrow, sys; sys.exit(pyarrow.__version__ != '$PYARROW_VERSION')" 2>/dev/null; then
+    return
+  fi
+  echo "setup: sweep venv in $SWEEP_VENV (pyarrow $PYARROW_VERSION, tessera-sweep)"
+  /usr/bin/python3 -m venv --system-site-packages "$SWEEP_VENV"
+  local pip=("$SWEEP_VENV/bin/python3" -m pip install -q --disable-pip-version-check)
+  "${pip[@]}" "pyarrow==$PYARROW_VERSION"
+  # Editable: build/venv/bin/tessera-sweep runs python/tessera_sweep as it is
+  # in this work tree; its dependencies are the Debian packages above.
+  "${pip[@]}" --no-deps --no-build-isolation -e "$(dirname "$SWEEP_VENV")/../python"
+}
 
 if [[ "${TESSERA_SKIP_INSTALL:-0}" == "1" ]]; then
   echo "setup: TESSERA_SKIP_INSTALL=1, not installing packages"
@@ -36,6 +62,7 @@ done
 
 if [[ ${#missing[@]} -eq 0 ]]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
+  setup_sweep_venv
   exit 0
 fi
 
@@ -52,3 +79,4 @@ echo "setup: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${SUDO[@]}" apt-get update -qq
 "${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+setup_sweep_venv

@@ -1,0 +1,49 @@
+"""tessera-sweep SPEC: checks every point of a sweep spec, runs those not yet
+run and writes OUTPUT/results.parquet and results.csv."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from .runner import run_sweep
+from .simulator import Simulator, SimulatorError
+from .spec import SpecError, check, expand, load_spec
+
+# python/tessera_sweep/ -> the repository's default build
+DEFAULT_SOC_SIM = Path(__file__).resolve().parents[2] / "build" / "default" / "bin" / "soc_sim"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="tessera-sweep", description=__doc__)
+    parser.add_argument("spec", type=Path, help="sweep spec, YAML or JSON")
+    parser.add_argument("--out", type=Path, help="output folder (default: the spec's 'output')")
+    parser.add_argument("--soc-sim", default=os.environ.get("TESSERA_SOC_SIM", DEFAULT_SOC_SIM),
+                        help="soc_sim to run (default: $TESSERA_SOC_SIM, else build/default/bin/soc_sim)")
+    parser.add_argument("--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT "
+                        "(default: a local cluster)")
+    parser.add_argument("--workers", type=int, help="local cluster's workers (default: one per core)")
+    parser.add_argument("--retry-failed", action="store_true", help="run failed points again")
+    parser.add_argument("--check", action="store_true", help="check the spec and every point, run nothing")
+    options = parser.parse_args(argv)
+    try:
+        spec = load_spec(options.spec)
+        simulator = Simulator(options.soc_sim)
+        if options.check:
+            points = expand(spec)
+            check(points, simulator)
+            print(f"tessera-sweep: {len(points)} points, all valid")
+            return 0
+        output = options.out or spec.output
+        if output is None:
+            raise SpecError("no output folder: give 'output' in the spec or --out")
+        results, _ = run_sweep(spec, simulator, output, options.scheduler, options.workers,
+                               options.retry_failed)
+    except (SpecError, SimulatorError, OSError) as error:
+        print(f"tessera-sweep: {error}", file=sys.stderr)
+        return 2
+    failed = int((results["status"] != 0).sum())
+    print(f"tessera-sweep: {len(results)} points in {output}/results.parquet, {failed} failed")
+    return 1 if failed else 0

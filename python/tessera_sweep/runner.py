@@ -1,0 +1,106 @@
+"""Runs a sweep's points on a Dask cluster, each point one soc_sim process
+in its own folder, skipping those whose result is already there."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import logging
+import os
+import sys
+from pathlib import Path
+
+from . import table
+from .simulator import Simulator
+from .spec import Point, Spec, check, expand, point_key
+
+RESULT = "result.json"
+
+
+def run_point(soc_sim: str, point_dir: str, settings: dict, args: list, write_frames: bool,
+              record: dict) -> dict:
+    """One point, on a worker: its record, also left in point_dir/result.json
+    (written last and atomically, so a half-run point is not cached)."""
+    point_dir = Path(point_dir)
+    point_dir.mkdir(parents=True, exist_ok=True)
+    result = Simulator(soc_sim).run(settings, args, point_dir, write_frames)
+    record = dict(record, status=result.status, error=result.error, wall_s=result.wall_s)
+    partial = point_dir / (RESULT + ".part")
+    partial.write_text(json.dumps(record, indent=2))
+    partial.replace(point_dir / RESULT)
+    return record
+
+
+def cached_record(point_dir: Path, retry_failed: bool) -> dict | None:
+    try:
+        record = json.loads((point_dir / RESULT).read_text())
+    except (OSError, json.JSONDecodeError):
+        return None
+    if record.get("status") != 0 and retry_failed:
+        return None
+    return record
+
+
+@contextlib.contextmanager
+def connect(scheduler: str | None, workers: int | None):
+    """A client of the given scheduler, or of a local cluster of one
+    single-threaded worker process per core, closed client first."""
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        with Client(scheduler) as client:
+            yield client
+        return
+    with LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
+                      dashboard_address=None, silence_logs=logging.ERROR) as cluster:
+        with Client(cluster) as client:
+            yield client
+
+
+def progress(done: int, total: int, record: dict, out=sys.stderr) -> None:
+    outcome = "ok" if record["status"] == 0 else f"FAILED (exit status {record['status']})"
+    print(f"[{done}/{total}] {record['axes']} {outcome} {record['wall_s']:.2f} s", file=out, flush=True)
+
+
+def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | None = None,
+              workers: int | None = None, retry_failed: bool = False):
+    """Checks every point, runs the missing ones and writes the table; returns
+    (table, number of soc_sim runs). Points with the same effective
+    configuration share one run."""
+    from dask.distributed import as_completed
+
+    points = expand(spec)
+    configs = check(points, simulator)
+    output.mkdir(parents=True, exist_ok=True)
+    keys = [point_key(config, point, spec, simulator.version) for point, config in zip(points, configs)]
+    records: dict[str, dict | None] = {}
+    todo: dict[str, Point] = {}
+    for key, point in zip(keys, points):
+        if key not in records:
+            records[key] = cached_record(output / "points" / key, retry_failed)
+            if records[key] is None:
+                todo[key] = point
+    cached = sum(records[key] is not None for key in keys)
+    print(f"tessera-sweep: {len(points)} points, {cached} cached, {len(todo)} to run", file=sys.stderr)
+    if todo:
+        with connect(scheduler, workers) as client:
+            futures = {}
+            for key, point in todo.items():
+                base = {"point": key, "axes": point.axes, "sim_version": simulator.version}
+                future = client.submit(run_point, str(simulator.path),
+                                       str((output / "points" / key).resolve()), point.settings,
+                                       list(point.args), spec.write_frames, base,
+                                       key=f"point-{key}", pure=False)
+                futures[future] = base
+            for done, future in enumerate(as_completed(futures), 1):
+                base = futures[future]
+                try:
+                    record = future.result()
+                except Exception as error:  # the worker, not soc_sim, failed: not cached
+                    record = dict(base, status=-1, error=f"{type(error).__name__}: {error}",
+                                  wall_s=float("nan"))
+                records[base["point"]] = record
+                progress(done, len(todo), record)
+    rows = [table.row(point.axes, records[key], output / "points" / key)
+            for key, point in zip(keys, points)]
+    return table.write(rows, output), len(todo)

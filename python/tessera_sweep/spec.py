@@ -1,0 +1,157 @@
+"""A sweep spec (YAML or JSON), its expansion into points and their check.
+
+    app: triangle            # shorthands for sim.app, driver.backend, sim.frames
+    backend: arm
+    frames: 1
+    args: []                 # after -- on soc_sim's command line
+    config: {display.width: 192, display.height: 144}   # base --set values
+    axes:                    # product of these ...
+      driver.backend: [arm, raster]
+    zip:                     # ... and of each zip group, whose lists go in step
+      display.width: [192, 320]
+      display.height: [144, 240]
+    metrics: [stats.host.busy_cycles]   # to plot (not yet used)
+    output: out/sweeps/NAME
+
+Every key is a soc_sim configuration key (soc_sim --print-config), dotted.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yaml
+
+from .simulator import Simulator, SimulatorError, flatten
+
+ALIASES = {"app": "sim.app", "backend": "driver.backend", "frames": "sim.frames"}
+FIELDS = {"app", "backend", "frames", "args", "config", "axes", "zip", "metrics", "output", "write_frames"}
+
+
+class SpecError(ValueError):
+    pass
+
+
+@dataclass(frozen=True)
+class Point:
+    axes: dict
+    settings: dict
+    args: tuple = ()
+
+
+@dataclass
+class Spec:
+    base: dict
+    axes: dict
+    zips: list
+    args: list = field(default_factory=list)
+    metrics: list = field(default_factory=list)
+    output: Path | None = None
+    write_frames: bool = False
+
+    @property
+    def axis_keys(self) -> list[str]:
+        return list(self.axes) + [key for group in self.zips for key in group]
+
+
+def _keys(mapping, where: str) -> dict:
+    if mapping is None:
+        return {}
+    if not isinstance(mapping, dict):
+        raise SpecError(f"'{where}' must be a mapping of configuration keys")
+    return {ALIASES.get(key, key): value for key, value in flatten(mapping).items()}
+
+
+def _axis(key: str, values, where: str) -> list:
+    if not isinstance(values, list) or not values:
+        raise SpecError(f"axis '{key}' (in {where}) needs a non-empty list of values")
+    return values
+
+
+def parse_spec(data: dict) -> Spec:
+    if not isinstance(data, dict):
+        raise SpecError("a sweep spec is a mapping")
+    unknown = sorted(set(data) - FIELDS)
+    if unknown:
+        raise SpecError(f"unknown spec field '{unknown[0]}' (known: {', '.join(sorted(FIELDS))})")
+    base = {ALIASES[name]: data[name] for name in ("app", "backend", "frames") if name in data}
+    base.update(_keys(data.get("config"), "config"))
+    axes = {key: _axis(key, values, "axes") for key, values in _keys(data.get("axes"), "axes").items()}
+    zip_groups = data.get("zip") or []
+    if isinstance(zip_groups, dict):
+        zip_groups = [zip_groups]
+    zips = []
+    for group in zip_groups:
+        group = {key: _axis(key, values, "zip") for key, values in _keys(group, "zip").items()}
+        lengths = {key: len(values) for key, values in group.items()}
+        if len(set(lengths.values())) > 1:
+            raise SpecError(f"zip axes differ in length: {lengths}")
+        zips.append(group)
+    seen = set()
+    for key in list(axes) + [key for group in zips for key in group]:
+        if key in seen:
+            raise SpecError(f"axis '{key}' given twice")
+        seen.add(key)
+    args = data.get("args") or []
+    if not isinstance(args, list):
+        raise SpecError("'args' must be a list")
+    output = data.get("output")
+    return Spec(base=base, axes=axes, zips=zips, args=[str(a) for a in args],
+                metrics=list(data.get("metrics") or []),
+                output=Path(output) if output else None,
+                write_frames=bool(data.get("write_frames", False)))
+
+
+def load_spec(path: str | Path) -> Spec:
+    path = Path(path)
+    text = path.read_text()
+    try:
+        data = json.loads(text) if path.suffix == ".json" else yaml.safe_load(text)
+    except (json.JSONDecodeError, yaml.YAMLError) as error:
+        raise SpecError(f"{path}: {error}") from None
+    return parse_spec(data)
+
+
+def expand(spec: Spec) -> list[Point]:
+    """The product of the axes and zip groups, the last axis varying fastest."""
+    groups = [[{key: value} for value in values] for key, values in spec.axes.items()]
+    for group in spec.zips:
+        groups.append([dict(zip(group, values)) for values in zip(*group.values())])
+    points = []
+    for combination in itertools.product(*groups):
+        axes = {}
+        for part in combination:
+            axes.update(part)
+        points.append(Point(axes=axes, settings={**spec.base, **axes}, args=tuple(spec.args)))
+    return points
+
+
+def check(points: list[Point], simulator: Simulator) -> list[dict]:
+    """Each point's effective configuration; SpecError naming the key at the
+    first unknown key, unknown application or value soc_sim refuses."""
+    known = set(flatten(simulator.default_config))
+    for point in points:
+        for key in point.settings:
+            if key not in known:
+                raise SpecError(f"unknown configuration key '{key}' (soc_sim --print-config lists them)")
+    configs = []
+    for point in points:
+        app = point.settings.get("sim.app")
+        if app is not None and app not in simulator.apps and not Path(str(app)).is_file():
+            raise SpecError(f"'sim.app': unknown application '{app}' (soc_sim --list-apps)")
+        try:
+            configs.append(simulator.config(point.settings))
+        except SimulatorError as error:
+            raise SpecError(f"point {point.axes}: {error}") from None
+    return configs
+
+
+def point_key(config: dict, point: Point, spec: Spec, version: str) -> str:
+    """The cache key: everything that decides a run's statistics."""
+    payload = {"config": config, "args": list(point.args), "write_frames": spec.write_frames,
+               "simulator": version}
+    return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]

@@ -1,0 +1,86 @@
+"""Spec loading, expansion and the up-front check of every point."""
+
+import json
+
+import pytest
+import yaml
+
+from tessera_sweep.spec import SpecError, check, expand, load_spec, parse_spec, point_key
+
+
+def test_yaml_and_json_specs_are_the_same(tmp_path, tiny):
+    tiny["axes"] = {"driver.backend": ["arm", "raster"]}
+    (tmp_path / "a.yaml").write_text(yaml.safe_dump(tiny))
+    (tmp_path / "a.json").write_text(json.dumps(tiny))
+    assert load_spec(tmp_path / "a.yaml") == load_spec(tmp_path / "a.json")
+
+
+def test_shorthands_and_nested_config_become_dotted_keys():
+    spec = parse_spec({"app": "cubes", "backend": "raster", "frames": 2,
+                       "config": {"display": {"width": 192}}})
+    assert spec.base == {"sim.app": "cubes", "driver.backend": "raster", "sim.frames": 2,
+                         "display.width": 192}
+
+
+def test_product_of_axes_last_varies_fastest(tiny):
+    tiny["axes"] = {"driver.backend": ["arm", "raster"], "app": ["triangle", "cubes", "teapot"]}
+    points = expand(parse_spec(tiny))
+    assert [tuple(p.axes.values()) for p in points] == [
+        ("arm", "triangle"), ("arm", "cubes"), ("arm", "teapot"),
+        ("raster", "triangle"), ("raster", "cubes"), ("raster", "teapot")]
+    assert all(p.settings["display.width"] == 192 and p.settings["sim.frames"] == 1 for p in points)
+    assert points[4].settings["sim.app"] == "cubes"
+
+
+def test_zip_axes_go_in_step_and_multiply_the_rest(tiny):
+    tiny["axes"] = {"driver.backend": ["arm", "ap-tile"]}
+    tiny["zip"] = {"display.width": [192, 320], "display.height": [144, 240]}
+    points = expand(parse_spec(tiny))
+    assert [p.axes for p in points] == [
+        {"driver.backend": "arm", "display.width": 192, "display.height": 144},
+        {"driver.backend": "arm", "display.width": 320, "display.height": 240},
+        {"driver.backend": "ap-tile", "display.width": 192, "display.height": 144},
+        {"driver.backend": "ap-tile", "display.width": 320, "display.height": 240}]
+
+
+@pytest.mark.parametrize("data, message", [
+    ({"axis": {"a.b": [1]}}, "unknown spec field 'axis'"),
+    ({"axes": {"array.columns": []}}, "axis 'array.columns'"),
+    ({"axes": {"array.columns": 12}}, "axis 'array.columns'"),
+    ({"zip": {"display.width": [192, 320], "display.height": [144]}}, "differ in length"),
+    ({"axes": {"driver.backend": ["arm"]}, "zip": {"backend": ["raster"]}}, "'driver.backend' given twice"),
+])
+def test_malformed_specs_are_refused(data, message):
+    with pytest.raises(SpecError, match=message):
+        parse_spec(data)
+
+
+@pytest.mark.parametrize("axes, message", [
+    ({"array.colums": [12]}, "unknown configuration key 'array.colums'"),
+    ({"array.columns": [12, 99]}, "'array.columns' expects an integer"),
+    ({"driver.backend": ["arm", "vulkan"]}, "'driver.backend' expects one of"),
+    ({"app": ["triangle", "no_such_app"]}, "'sim.app': unknown application 'no_such_app'"),
+])
+def test_check_names_the_bad_key_before_anything_runs(simulator, tiny, axes, message):
+    tiny["axes"] = axes
+    with pytest.raises(SpecError, match=message):
+        check(expand(parse_spec(tiny)), simulator)
+
+
+def test_check_refuses_an_impossible_combination(simulator, tiny):
+    # the raster back end needs the raster's size to equal the display's
+    tiny["config"] = {"display.width": 192, "display.height": 144}
+    tiny["axes"] = {"driver.backend": ["arm", "raster"]}
+    with pytest.raises(SpecError, match="driver.backend=raster"):
+        check(expand(parse_spec(tiny)), simulator)
+
+
+def test_cache_key_covers_configuration_and_simulator_version(simulator, tiny):
+    tiny["axes"] = {"array.columns": [12, 24]}
+    spec = parse_spec(tiny)
+    points = expand(spec)
+    configs = check(points, simulator)
+    keys = {point_key(c, p, spec, "v1") for c, p in zip(configs, points)}
+    assert len(keys) == 2
+    assert point_key(configs[0], points[0], spec, "v1") != point_key(configs[0], points[0], spec, "v2")
+    assert point_key(configs[0], points[0], spec, "v1") == point_key(configs[0], points[0], spec, "v1")
