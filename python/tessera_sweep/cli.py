@@ -1,5 +1,6 @@
 """tessera-sweep SPEC: checks every point of a sweep spec, runs those not yet
-run and writes OUTPUT/results.parquet and results.csv."""
+run and writes OUTPUT/results.parquet and results.csv, the plots (OUTPUT/plots/)
+and OUTPUT/report.html."""
 
 from __future__ import annotations
 
@@ -8,6 +9,8 @@ import os
 import sys
 from pathlib import Path
 
+from . import table
+from .report import write_report
 from .runner import run_sweep
 from .simulator import Simulator, SimulatorError
 from .spec import SpecError, check, expand, load_spec
@@ -27,6 +30,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, help="local cluster's workers (default: one per core)")
     parser.add_argument("--retry-failed", action="store_true", help="run failed points again")
     parser.add_argument("--check", action="store_true", help="check the spec and every point, run nothing")
+    parser.add_argument("--report-only", action="store_true",
+                        help="rebuild the plots and report.html from the output's results table, run nothing")
     options = parser.parse_args(argv)
     try:
         spec = load_spec(options.spec)
@@ -39,6 +44,10 @@ def main(argv: list[str] | None = None) -> int:
         output = options.out or spec.output
         if output is None:
             raise SpecError("no output folder: give 'output' in the spec or --out")
+        if options.report_only:
+            report = write_report(spec, table.load(output), output)
+            print(f"tessera-sweep: {report}")
+            return 0
         results, _ = run_sweep(spec, simulator, output, options.scheduler, options.workers,
                                options.retry_failed)
     except (SpecError, SimulatorError, OSError) as error:

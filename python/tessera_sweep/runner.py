@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 from . import table
+from .report import write_report
 from .simulator import Simulator
 from .spec import Point, Spec, check, expand, point_key
 
@@ -64,7 +65,8 @@ def progress(done: int, total: int, record: dict, out=sys.stderr) -> None:
 
 def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | None = None,
               workers: int | None = None, retry_failed: bool = False):
-    """Checks every point, runs the missing ones and writes the table; returns
+    """Checks every point, runs the missing ones and writes the table, the
+    plots and the report; returns
     (table, number of soc_sim runs). Points with the same effective
     configuration share one run."""
     from dask.distributed import as_completed
@@ -103,4 +105,6 @@ def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | N
                 progress(done, len(todo), record)
     rows = [table.row(point.axes, records[key], output / "points" / key)
             for key, point in zip(keys, points)]
-    return table.write(rows, output), len(todo)
+    results = table.write(rows, output)
+    write_report(spec, results, output)
+    return results, len(todo)

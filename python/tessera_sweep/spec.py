@@ -10,7 +10,7 @@
     zip:                     # ... and of each zip group, whose lists go in step
       display.width: [192, 320]
       display.height: [144, 240]
-    metrics: [stats.host.busy_cycles]   # to plot (not yet used)
+    metrics: [stats.host.busy_cycles]   # results-table columns to plot, against each axis
     output: out/sweeps/NAME
 
 Every key is a soc_sim configuration key (soc_sim --print-config), dotted.
@@ -52,6 +52,7 @@ class Spec:
     metrics: list = field(default_factory=list)
     output: Path | None = None
     write_frames: bool = False
+    source: str = field(default="", compare=False)  # the spec as given, for the report
 
     @property
     def axis_keys(self) -> list[str]:
@@ -99,11 +100,14 @@ def parse_spec(data: dict) -> Spec:
     args = data.get("args") or []
     if not isinstance(args, list):
         raise SpecError("'args' must be a list")
+    metrics = data.get("metrics") or []
+    if not isinstance(metrics, list) or not all(isinstance(m, str) for m in metrics):
+        raise SpecError("'metrics' must be a list of results-table columns")
     output = data.get("output")
     return Spec(base=base, axes=axes, zips=zips, args=[str(a) for a in args],
-                metrics=list(data.get("metrics") or []),
-                output=Path(output) if output else None,
-                write_frames=bool(data.get("write_frames", False)))
+                metrics=list(metrics), output=Path(output) if output else None,
+                write_frames=bool(data.get("write_frames", False)),
+                source=yaml.safe_dump(data, sort_keys=False))
 
 
 def load_spec(path: str | Path) -> Spec:
@@ -113,7 +117,9 @@ def load_spec(path: str | Path) -> Spec:
         data = json.loads(text) if path.suffix == ".json" else yaml.safe_load(text)
     except (json.JSONDecodeError, yaml.YAMLError) as error:
         raise SpecError(f"{path}: {error}") from None
-    return parse_spec(data)
+    spec = parse_spec(data)
+    spec.source = text
+    return spec
 
 
 def expand(spec: Spec) -> list[Point]:

@@ -1,33 +1,15 @@
 """Runs on a local Dask cluster with the real soc_sim: the table, the cache
-and a failing point. Half the points fail on purpose: a 1 ms simulated-time
-limit is a valid configuration that stops the run with exit status 1."""
+and a failing point (conftest's first_run: half its points fail on purpose)."""
 
 import shutil
-import subprocess
-import sys
 
 import pandas as pd
-import pytest
 
 import tessera_sweep
 from tessera_sweep.runner import run_sweep
 from tessera_sweep.spec import parse_spec
 
-from conftest import TINY, write_spec
-
-AXES = {"driver.backend": ["arm", "raster"], "sim.time_limit_ms": [0, 1]}
-
-
-@pytest.fixture(scope="module")
-def spec():
-    return parse_spec(dict(TINY, axes=AXES))
-
-
-@pytest.fixture(scope="module")
-def first_run(spec, simulator, tmp_path_factory):
-    out = tmp_path_factory.mktemp("sweep")
-    table, ran = run_sweep(spec, simulator, out, workers=2)
-    return out, table, ran
+from conftest import AXES, METRICS, TINY, tessera_sweep_command, write_spec
 
 
 def test_every_point_runs_and_has_a_row(first_run, simulator):
@@ -103,13 +85,9 @@ def test_points_with_the_same_configuration_share_one_run(simulator, tmp_path):
     assert table["point"].nunique() == 1
 
 
-def tessera_sweep_command(*args):
-    return subprocess.run([sys.executable, "-m", "tessera_sweep", *args], capture_output=True, text=True)
-
-
 def test_command_reports_failed_points_with_exit_status_1(first_run, simulator, tmp_path):
     out, _, _ = first_run
-    spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
+    spec_file = write_spec(tmp_path, dict(TINY, axes=AXES, metrics=METRICS))
     done = tessera_sweep_command(str(spec_file), "--out", str(out), "--soc-sim", str(simulator.path))
     assert done.returncode == 1, done.stderr
     assert "4 points, 4 cached, 0 to run" in done.stderr

@@ -1,0 +1,134 @@
+"""The sweep's plots and HTML report, from the results table.
+
+For each metric of the spec and each axis: the metric against that axis (a
+line plot for a numeric axis, grouped bars for a categorical one), one series
+per combination of the other axes' values, as OUTPUT/plots/NAME.png and .svg.
+An axis's zip partners vary in step with it, so they do not split series.
+Failed points are left out of the plots. OUTPUT/report.html stands alone: the
+spec as given, the table, every plot as inline SVG and the failed points."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from .spec import Spec
+
+PLOTS = "plots"
+REPORT = "report.html"
+
+
+@dataclass
+class Plot:
+    metric: str
+    axis: str
+    name: str  # file stem under plots/
+    points: int
+    svg: str  # the SVG's own markup, for inlining
+
+
+def plot_name(metric: str, axis: str) -> str:
+    return re.sub(r"[^A-Za-z0-9._-]", "_", f"{metric}-by-{axis}")
+
+
+def is_numeric_axis(column: pd.Series) -> bool:
+    return pd.api.types.is_numeric_dtype(column) and not pd.api.types.is_bool_dtype(column)
+
+
+def series_axes(spec: Spec, axis: str, table: pd.DataFrame) -> list[str]:
+    """The axes that split the series of a plot against axis: all others but
+    axis's zip partners."""
+    partners = next((set(group) for group in spec.zips if axis in group), {axis})
+    return [key for key in spec.axis_keys if key not in partners and key in table.columns]
+
+
+def _series(rows: pd.DataFrame, others: list[str]):
+    if not others:
+        yield "", rows
+        return
+    by = others if len(others) > 1 else others[0]  # pandas 1.5 and 2 agree on a scalar's keys
+    for values, group in rows.groupby(by, sort=False, dropna=False):
+        values = values if isinstance(values, tuple) else (values,)
+        yield ", ".join(f"{key}={value}" for key, value in zip(others, values)), group
+
+
+def _draw(rows: pd.DataFrame, metric: str, axis: str, others: list[str], numeric: bool, stem: Path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    # Text as text, not glyph paths: smaller SVGs, and the report can be searched.
+    with matplotlib.rc_context({"svg.fonttype": "none"}):
+        figure, axes = plt.subplots(figsize=(6.4, 4.0), layout="constrained")
+        series = list(_series(rows, others))
+        if numeric:
+            for label, group in series:
+                group = group.sort_values(axis)
+                axes.plot(group[axis], group[metric], marker="o", label=label or metric)
+        else:
+            categories = list(dict.fromkeys(rows[axis]))
+            width = 0.8 / len(series)
+            for index, (label, group) in enumerate(series):
+                heights = [group.loc[group[axis] == c, metric].mean() for c in categories]
+                offsets = [i - 0.4 + width * (index + 0.5) for i in range(len(categories))]
+                axes.bar(offsets, heights, width, label=label or metric)
+            axes.set_xticks(range(len(categories)), [str(c) for c in categories])
+        axes.set_xlabel(axis)
+        axes.set_ylabel(metric)
+        axes.set_title(f"{metric} by {axis}")
+        if others:
+            axes.legend(fontsize="small")
+        figure.savefig(f"{stem}.png", dpi=100)  # not with_suffix: a dotted key is in the stem
+        figure.savefig(f"{stem}.svg")
+        plt.close(figure)
+
+
+def make_plots(spec: Spec, table: pd.DataFrame, output: Path) -> tuple[list[Plot], list[str]]:
+    """The plots, and a note for each metric or axis there is nothing to plot for."""
+    folder = output / PLOTS
+    folder.mkdir(parents=True, exist_ok=True)
+    ok = table[table["status"] == 0]
+    plots, notes = [], []
+    for metric in spec.metrics:
+        if metric not in ok.columns or ok[metric].isna().all():
+            notes.append(f"metric '{metric}': no value in the results table (not a column, "
+                         "or no point succeeded)")
+            continue
+        for axis in spec.axis_keys:
+            if axis not in table.columns:
+                notes.append(f"axis '{axis}': not in the results table")
+                continue
+            rows = ok.dropna(subset=[metric])
+            name = plot_name(metric, axis)
+            _draw(rows, metric, axis, series_axes(spec, axis, table), is_numeric_axis(table[axis]),
+                  folder / name)
+            svg = (folder / f"{name}.svg").read_text()
+            plots.append(Plot(metric, axis, name, len(rows), svg[svg.index("<svg"):]))
+    return plots, notes
+
+
+def write_report(spec: Spec, table: pd.DataFrame, output: Path) -> Path:
+    """Plots every metric against every axis and writes OUTPUT/report.html."""
+    import jinja2
+
+    plots, notes = make_plots(spec, table, output)
+    metrics = [m for m in spec.metrics if m in table.columns]
+    axes = [key for key in spec.axis_keys if key in table.columns]
+    shown = table[axes + ["status"] + metrics]
+    failed = table[table["status"] != 0]
+    environment = jinja2.Environment(loader=jinja2.PackageLoader("tessera_sweep", "templates"),
+                                     autoescape=jinja2.select_autoescape(["html", "j2"]))
+    html = environment.get_template("report.html.j2").render(
+        spec=spec, output=output, plots=plots, notes=notes,
+        table=shown.to_html(index=False, na_rep="", classes="results", border=0),
+        failed=[{"axes": {key: row[key] for key in axes}, "status": int(row["status"]),
+                 "error": row["error"] if isinstance(row["error"], str) else ""}
+                for _, row in failed.iterrows()],
+        points=len(table))
+    path = output / REPORT
+    path.write_text(html)
+    return path
