@@ -1,6 +1,7 @@
 """Spec loading, expansion and the up-front check of every point."""
 
 import json
+from pathlib import Path
 
 import pytest
 import yaml
@@ -84,3 +85,13 @@ def test_cache_key_covers_configuration_and_simulator_version(simulator, tiny):
     assert len(keys) == 2
     assert point_key(configs[0], points[0], spec, "v1") != point_key(configs[0], points[0], spec, "v2")
     assert point_key(configs[0], points[0], spec, "v1") == point_key(configs[0], points[0], spec, "v1")
+
+
+EXAMPLES = sorted((Path(__file__).resolve().parents[2] / "configs" / "sweeps").glob("*.yaml"))
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[path.stem for path in EXAMPLES])
+def test_example_sweeps_are_valid_and_name_metrics(path, simulator):
+    spec = load_spec(path)
+    assert spec.metrics and spec.output
+    check(expand(spec), simulator)
