@@ -91,6 +91,9 @@ def make_plots(spec: Spec, table: pd.DataFrame, output: Path) -> tuple[list[Plot
     """The plots, and a note for each metric or axis there is nothing to plot for."""
     folder = output / PLOTS
     folder.mkdir(parents=True, exist_ok=True)
+    for old in folder.glob("*"):  # a metric or axis since dropped from the spec
+        if old.suffix in (".png", ".svg"):
+            old.unlink()
     ok = table[table["status"] == 0]
     plots, notes = [], []
     for metric in spec.metrics:

@@ -4,7 +4,7 @@ fail), and --report-only."""
 import shutil
 from html.parser import HTMLParser
 
-from tessera_sweep.report import plot_name, series_axes
+from tessera_sweep.report import plot_name, series_axes, write_report
 from tessera_sweep.spec import parse_spec
 
 from conftest import AXES, METRICS, TINY, tessera_sweep_command, write_spec
@@ -97,16 +97,29 @@ def test_report_only_rebuilds_from_the_table_and_runs_nothing(first_run, simulat
     out, _, _ = first_run
     copy = tmp_path / "copy"
     shutil.copytree(out, copy)
-    shutil.rmtree(copy / "plots")
     (copy / "report.html").unlink()
     shutil.rmtree(copy / "points")  # a run would recreate them
-    spec_file = write_spec(tmp_path, dict(TINY, axes=AXES, metrics=METRICS))
+    # one metric fewer: its plots go too
+    spec_file = write_spec(tmp_path, dict(TINY, axes=AXES, metrics=METRICS[:1]))
     done = tessera_sweep_command(str(spec_file), "--report-only", "--out", str(copy),
                                  "--soc-sim", str(simulator.path))
     assert done.returncode == 0, done.stderr
     assert not (copy / "points").exists()
-    report = Report((copy / "report.html").read_text())
-    assert set(report.figures) == {f"plot-{name}" for name in expected_plots()}
+    names = [plot_name(METRICS[0], axis) for axis in AXES]
+    assert set(Report((copy / "report.html").read_text()).figures) == {f"plot-{n}" for n in names}
+    assert sorted(p.name for p in (copy / "plots").iterdir()) == sorted(
+        f"{name}.{suffix}" for name in names for suffix in ("png", "svg"))
+
+
+def test_a_sweep_where_every_point_failed_has_a_report_without_plots(first_run, spec, tmp_path):
+    _, table, _ = first_run
+    failed = table[table["status"] != 0].dropna(axis="columns", how="all")
+    write_report(spec, failed, tmp_path)
+    text = (tmp_path / "report.html").read_text()
+    report = Report(text)
+    assert report.figures == {}
+    assert len(report.failed_cells) == 3 * len(failed)
+    assert all(f"metric &#39;{metric}&#39;: no value" in text for metric in METRICS)
 
 
 def test_report_only_without_a_table_exits_2(simulator, tmp_path):
