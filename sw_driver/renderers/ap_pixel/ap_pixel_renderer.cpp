@@ -103,14 +103,12 @@ void ApPixelRenderer::present() {
                                              {"cycles", static_cast<double>(m_cycles)},
                                              {"host_shaded_triangles", static_cast<double>(m_host_shaded)},
                                              {"ciu_words_written", static_cast<double>(m_words_written)},
-                                             {"ciu_words_read", static_cast<double>(m_words_read)},
-                                             {"values_written", static_cast<double>(m_traffic.values_written)},
-                                             {"values_read", static_cast<double>(m_traffic.values_read)},
-                                             {"dma_descriptors", static_cast<double>(m_dma_descriptors)}};
+                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+  renderers::add_traffic(totals, m_traffic);
   renderers::add_host_time(totals, m_time);
-  const double triangles = m_frame_figures.change("triangles", static_cast<double>(m_triangles));
-  const double written = m_frame_figures.change("values_written", static_cast<double>(m_traffic.values_written));
-  m_frame_figures.emit(m_env, totals, {{"values_written_per_triangle", triangles > 0 ? written / triangles : 0.0}});
+  m_frame_figures.emit(m_env, totals,
+                       {{"values_written_per_triangle",
+                         renderers::values_written_per_triangle(m_frame_figures, m_triangles, m_traffic)}});
 }
 
 void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
@@ -459,7 +457,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
     {
       TimedScope timed(m_host, m_time.array_write);
       m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * in.size());
-      m_dma_descriptors += in.size();
+      m_traffic.dma_descriptors += in.size();
       m_dma.write_chain(m_chain_in, in);
       m_dma.start_chain(0, m_chain_in);
       m_dma.wait(0);
@@ -493,7 +491,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
           m_traffic.values_read += uint64_t{rows} * cus;
         }
       m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * out.size());
-      m_dma_descriptors += out.size();
+      m_traffic.dma_descriptors += out.size();
       m_dma.write_chain(m_chain_out, out);
       m_dma.start_chain(m_out_channel, m_chain_out);
     }
@@ -637,10 +635,7 @@ void ApPixelRenderer::publish_statistics() {
   set("host_shaded_triangles", "slivers whose gradients 8.8 cannot hold, shaded by the host", m_host_shaded);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
-  set("values_written", "bytes the array's data lines carried into CMEM (a broadcast byte once)",
-      m_traffic.values_written);
-  set("values_read", "bytes the array's data lines carried out of CMEM", m_traffic.values_read);
-  set("dma_descriptors", "system/array DMA descriptors the back end ran", m_dma_descriptors);
+  renderers::publish_traffic(c, "ap_pixel", m_traffic);
 }
 
 }  // namespace tessera::ap_pixel

@@ -146,7 +146,6 @@ class ApPixelRenderer : public gl::Renderer {
   uint32_t m_chain_in = 0, m_chain_out = 0;
   unsigned m_out_channel = 0;
   renderers::ArrayTraffic m_traffic;
-  uint64_t m_dma_descriptors = 0;
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;

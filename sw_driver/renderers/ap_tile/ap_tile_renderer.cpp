@@ -406,15 +406,7 @@ void ApTileRenderer::convert_chunk(unsigned x) {
 
 void ApTileRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
   read_back();
-  const int w = static_cast<int>(m_frame.width()), h = static_cast<int>(m_frame.height());
-  for (int row = 0; row < height; ++row)
-    for (int column = 0; column < width; ++column) {
-      const int gx = x + column, gy = y + row;
-      uint32_t value = 0;
-      if (gx >= 0 && gx < w && gy >= 0 && gy < h)
-        value = quantize_color(m_display.format(), m_rgba[static_cast<size_t>(h - 1 - gy) * w + gx]);
-      std::memcpy(rgba + (static_cast<size_t>(row) * width + column) * 4, &value, 4);
-    }
+  read_frame_pixels(m_rgba, m_frame.width(), m_frame.height(), m_display.format(), x, y, width, height, rgba);
 }
 
 void ApTileRenderer::present() {
@@ -440,10 +432,8 @@ void ApTileRenderer::present() {
                                              {"cu_triangles", static_cast<double>(m_cu_triangles)},
                                              {"passes", static_cast<double>(m_passes)},
                                              {"ciu_words_written", static_cast<double>(m_words_written)},
-                                             {"ciu_words_read", static_cast<double>(m_words_read)},
-                                             {"values_written", static_cast<double>(traffic.values_written)},
-                                             {"values_read", static_cast<double>(traffic.values_read)},
-                                             {"dma_descriptors", static_cast<double>(dma_descriptors())}};
+                                             {"ciu_words_read", static_cast<double>(m_words_read)}};
+  renderers::add_traffic(totals, traffic);
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     totals.emplace_back(std::string("cycles.") + stage_entry(stage),
@@ -451,22 +441,18 @@ void ApTileRenderer::present() {
   renderers::add_host_time(totals, m_time);
   const double passes = m_frame_figures.change("passes", static_cast<double>(m_passes));
   const double cu_triangles = m_frame_figures.change("cu_triangles", static_cast<double>(m_cu_triangles));
-  const double triangles = m_frame_figures.change("triangles", static_cast<double>(m_triangles_drawn));
-  const double values_written = m_frame_figures.change("values_written", static_cast<double>(traffic.values_written));
+  const double per_triangle = renderers::values_written_per_triangle(m_frame_figures, m_triangles_drawn, traffic);
   m_frame_figures.emit(m_env, totals,
                        {{"busiest_cu_triangles", static_cast<double>(m_frame_busiest)},
                         {"triangles_per_pass", passes > 0 ? cu_triangles / passes : 0.0},
                         {"cu_occupancy", passes > 0 ? cu_triangles / (passes * m_frame.cus()) : 0.0},
-                        {"values_written_per_triangle", triangles > 0 ? values_written / triangles : 0.0}});
+                        {"values_written_per_triangle", per_triangle}});
   m_frame_busiest = 0;
 }
 
 renderers::ArrayTraffic ApTileRenderer::traffic() const {
   renderers::ArrayTraffic traffic = m_ciu_traffic;
-  if (m_tile_dma) {
-    traffic.values_written += m_tile_dma->traffic().values_written;
-    traffic.values_read += m_tile_dma->traffic().values_read;
-  }
+  if (m_tile_dma) traffic += m_tile_dma->traffic();
   return traffic;
 }
 
@@ -483,13 +469,7 @@ void ApTileRenderer::publish_statistics() {
   set("busiest_cu_triangles", "most triangles one CU drew in one flush (the passes that flush needed)", m_busiest);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
-  const renderers::ArrayTraffic traffic = this->traffic();
-  set("values_written",
-      "bytes the array's data lines carried into CMEM (CIU word 4, reshuffled byte 1, broadcast byte 1)",
-      traffic.values_written);
-  set("values_read", "bytes the array's data lines carried out of CMEM (CIU word 4, reshuffled byte 1)",
-      traffic.values_read);
-  set("dma_descriptors", "DMA descriptors the renderer started (0 without the DMA)", dma_descriptors());
+  renderers::publish_traffic(c, "ap_tile", traffic());
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     c.counter(std::string("ap_tile.cycles.") + stage_entry(stage), "array cycles of the program's stage").value =

@@ -80,7 +80,6 @@ class ApTileRenderer : public gl::Renderer {
   void read_back_by_dma();
   void convert_chunk(unsigned x);
   renderers::ArrayTraffic traffic() const;
-  uint64_t dma_descriptors() const { return m_tile_dma ? m_tile_dma->descriptors() : 0; }
   void unsupported(const std::string& what);
   void publish_statistics();
 

@@ -90,7 +90,7 @@ void TileDma::send_constants(const std::vector<Constant>& constants) {
   }
   m_dma.write_chain(m_constant_chain, chain);
   m_dma.start_chain(INPUT, m_constant_chain);
-  m_descriptors += chain.size();
+  m_traffic.dma_descriptors += chain.size();
   wait(INPUT);
 }
 
@@ -113,7 +113,7 @@ void TileDma::stage_records(unsigned buffer, const std::vector<uint8_t>& bytes, 
 
 void TileDma::start_records(unsigned buffer) {
   m_dma.start_chain(INPUT, m_record_chains[buffer]);
-  ++m_descriptors;
+  ++m_traffic.dma_descriptors;
   m_traffic.values_written += uint64_t{m_cus} * m_layout.record_bytes;
 }
 
@@ -125,7 +125,7 @@ uint32_t TileDma::chunk_chain(unsigned x, bool textured) const {
 void TileDma::start_chunk(unsigned x, bool textured) {
   const unsigned planes = textured ? READ_PLANES : COLOUR_PLANES;
   m_dma.start_chain(x % 2, chunk_chain(x, textured));
-  m_descriptors += planes;
+  m_traffic.dma_descriptors += planes;
   m_traffic.values_read += uint64_t{planes} * m_cus * m_frame.tile_height;
 }
 

@@ -53,7 +53,6 @@ class TileDma {
   // tlo) landed: one byte per CU, in CU order.
   uint32_t staged_row(uint16_t plane, unsigned x, unsigned l) const;
 
-  uint64_t descriptors() const { return m_descriptors; }
   const renderers::ArrayTraffic& traffic() const { return m_traffic; }
 
  private:
@@ -82,7 +81,6 @@ class TileDma {
   uint32_t m_constant_chain = 0;       // the constants' descriptors
   std::vector<bool> m_staged_live[2];  // per buffer and CU: its slot's live byte is set
 
-  uint64_t m_descriptors = 0;
   renderers::ArrayTraffic m_traffic;
 };
 

@@ -8,10 +8,12 @@
 
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "config/config.h"
 #include "device/app_environment.h"
 #include "device/dma_driver.h"
+#include "renderers/common/host_time.h"
 
 namespace tessera::renderers {
 
@@ -36,9 +38,48 @@ inline DmaUse dma_use(AppEnvironment& env, DmaDriver& dma) {
 
 // Bytes the array's data lines carried into and out of CMEM: a CIU word is
 // four (one per CU of its group), a reshuffled element byte is one, and a
-// broadcast byte is one whatever the number of CUs that latch it.
+// broadcast byte is one whatever the number of CUs that latch it; and the
+// DMA descriptors the back end ran (0 through the CIU).
 struct ArrayTraffic {
-  uint64_t values_written = 0, values_read = 0;
+  uint64_t values_written = 0, values_read = 0, dma_descriptors = 0;
+
+  ArrayTraffic& operator+=(const ArrayTraffic& other) {
+    values_written += other.values_written;
+    values_read += other.values_read;
+    dma_descriptors += other.dma_descriptors;
+    return *this;
+  }
 };
+
+// The traffic as counters <prefix>.values_written, values_read, dma_descriptors.
+inline void publish_traffic(ActivityCounters& counters, const std::string& prefix, const ArrayTraffic& traffic) {
+  counters
+      .counter(prefix + ".values_written",
+               "bytes the array's data lines carried into CMEM (CIU word 4, reshuffled byte 1, broadcast byte once)")
+      .value = traffic.values_written;
+  counters
+      .counter(prefix + ".values_read",
+               "bytes the array's data lines carried out of CMEM (CIU word 4, reshuffled byte 1)")
+      .value = traffic.values_read;
+  counters.counter(prefix + ".dma_descriptors", "system/array DMA descriptors the back end ran (0 without the DMA)")
+      .value = traffic.dma_descriptors;
+}
+
+// The traffic's running totals for FrameFigures.
+inline void add_traffic(FrameFigures::Figures& totals, const ArrayTraffic& traffic) {
+  totals.emplace_back("values_written", static_cast<double>(traffic.values_written));
+  totals.emplace_back("values_read", static_cast<double>(traffic.values_read));
+  totals.emplace_back("dma_descriptors", static_cast<double>(traffic.dma_descriptors));
+}
+
+// This frame's values written per triangle (0 without a triangle), from the
+// running totals of triangles (the figure "triangles") and of the traffic,
+// before FrameFigures::emit.
+inline double values_written_per_triangle(const FrameFigures& figures, uint64_t triangles,
+                                          const ArrayTraffic& traffic) {
+  const double drawn = figures.change("triangles", static_cast<double>(triangles));
+  const double written = figures.change("values_written", static_cast<double>(traffic.values_written));
+  return drawn > 0 ? written / drawn : 0.0;
+}
 
 }  // namespace tessera::renderers
