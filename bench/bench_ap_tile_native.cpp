@@ -142,15 +142,7 @@ class NativeApTileRenderer : public gl::Renderer {
 
   void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override {
     read_back();
-    const int w = static_cast<int>(m_frame.width()), h = static_cast<int>(m_frame.height());
-    for (int row = 0; row < height; ++row)
-      for (int column = 0; column < width; ++column) {
-        const int gx = x + column, gy = y + row;
-        uint32_t value = 0;
-        if (gx >= 0 && gx < w && gy >= 0 && gy < h)
-          value = quantize_color(m_display.format(), m_rgba[static_cast<size_t>(h - 1 - gy) * w + gx]);
-        std::memcpy(rgba + (static_cast<size_t>(row) * width + column) * 4, &value, 4);
-      }
+    read_frame_pixels(m_rgba, m_frame.width(), m_frame.height(), m_display.format(), x, y, width, height, rgba);
   }
 
   void finish() override { flush(); }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/pixel_format.h"
 #include "gl/renderer.h"
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/common/texturing.h"
@@ -90,6 +91,23 @@ uint32_t texture_pixel(const TextureEntry& entry, uint32_t rgba, int16_t s, int1
   uint8_t texel[4];
   renderers::sample_texture(tex, s, t, texel_at, texel);
   return renderers::apply_tex_env(entry.env, rgba, texel);
+}
+
+// glReadPixels from a frame read back out of the array (`frame`: RGBA,
+// row 0 at the top, `width` x `height`): the rectangle (x, y, w, h) in GL
+// rows (0 at the bottom), each pixel as the display's `format` holds it,
+// 0 outside the frame.
+inline void read_frame_pixels(const std::vector<uint32_t>& frame, unsigned width, unsigned height, PixelFormat format,
+                              int x, int y, int w, int h, uint8_t* rgba) {
+  const int fw = static_cast<int>(width), fh = static_cast<int>(height);
+  for (int row = 0; row < h; ++row)
+    for (int column = 0; column < w; ++column) {
+      const int gx = x + column, gy = y + row;
+      uint32_t value = 0;
+      if (gx >= 0 && gx < fw && gy >= 0 && gy < fh)
+        value = quantize_color(format, frame[static_cast<size_t>(fh - 1 - gy) * fw + gx]);
+      std::memcpy(rgba + (static_cast<size_t>(row) * w + column) * 4, &value, 4);
+    }
 }
 
 }  // namespace tessera::ap_tile
