@@ -48,11 +48,14 @@ def main(argv: list[str] | None = None) -> int:
             report = write_report(spec, table.load(output), output)
             print(f"tessera-sweep: {report}")
             return 0
+        phases = {}
         results, _ = run_sweep(spec, simulator, output, options.scheduler, options.workers,
-                               options.retry_failed)
+                               options.retry_failed, phases)
     except (SpecError, SimulatorError, OSError) as error:
         print(f"tessera-sweep: {error}", file=sys.stderr)
         return 2
     failed = int((results["status"] != 0).sum())
-    print(f"tessera-sweep: {len(results)} points in {output}/results.parquet, {failed} failed")
+    timing = ", ".join(f"{name} {phases[key]:.1f} s" for key, name in
+                       (("check_s", "check"), ("runs_s", "runs"), ("total_s", "total")) if key in phases)
+    print(f"tessera-sweep: {len(results)} points in {output}/results.parquet, {failed} failed ({timing})")
     return 1 if failed else 0

@@ -3,7 +3,9 @@
 For each metric of the spec and each axis: the metric against that axis (a
 line plot for a numeric axis, grouped bars for a categorical one), one series
 per combination of the other axes' values, as OUTPUT/plots/NAME.png and .svg.
-An axis's zip partners vary in step with it, so they do not split series.
+A zip group of several keys is one axis of the plots: grouped bars, one per
+tuple of values in the zip's order, since its keys move in step and none of
+them alone orders the points.
 Failed points are left out of the plots. OUTPUT/report.html stands alone: the
 spec as given, the table, every plot as inline SVG and the failed points."""
 
@@ -30,8 +32,17 @@ class Plot:
     svg: str  # the SVG's own markup, for inlining
 
 
-def plot_name(metric: str, axis: str) -> str:
-    return re.sub(r"[^A-Za-z0-9._-]", "_", f"{metric}-by-{axis}")
+def plot_name(metric: str, axis: str | tuple[str, ...]) -> str:
+    """The file stem: METRIC-by-KEY, or METRIC-by-KEY1+KEY2 for a zip group."""
+    keys = (axis,) if isinstance(axis, str) else axis
+    return re.sub(r"[^A-Za-z0-9._+-]", "_", f"{metric}-by-{'+'.join(keys)}")
+
+
+def plot_axes(spec: Spec) -> list[tuple[tuple[str, ...], dict]]:
+    """What the plots are drawn against, with their values: each product
+    axis, and each zip group as one (a group of one key is a plain axis)."""
+    return [((key,), {key: values}) for key, values in spec.axes.items()] + [
+        (tuple(group), group) for group in spec.zips]
 
 
 def is_numeric_axis(column: pd.Series) -> bool:
@@ -55,7 +66,26 @@ def _series(rows: pd.DataFrame, others: list[str]):
         yield ", ".join(f"{key}={value}" for key, value in zip(others, values)), group
 
 
-def _draw(rows: pd.DataFrame, metric: str, axis: str, others: list[str], numeric: bool, stem: Path):
+ZIP_COLUMN = "__zip__"  # a zip group's values as one label, for its plots
+
+
+def zip_labels(rows: pd.DataFrame, group: dict) -> tuple[pd.Series, list[str]]:
+    """Each row's values of a zip group's keys as one label ("24, 4"), and
+    the labels in the zip's order."""
+    order = list(zip(*group.values()))
+
+    def position(values) -> int:
+        return next((i for i, step in enumerate(order) if all(a == b for a, b in zip(step, values))), len(order))
+
+    keys = list(group)
+    labels = rows[keys].astype(str).agg(", ".join, axis=1)
+    positions = [position(values) for values in rows[keys].itertuples(index=False)]
+    ordered = list(dict.fromkeys(label for _, label in sorted(zip(positions, labels), key=lambda p: p[0])))
+    return labels, ordered
+
+
+def _draw(rows: pd.DataFrame, metric: str, axis: str, axis_label: str, others: list[str], numeric: bool,
+          stem: Path, categories: list | None = None):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -70,16 +100,16 @@ def _draw(rows: pd.DataFrame, metric: str, axis: str, others: list[str], numeric
                 group = group.sort_values(axis)
                 axes.plot(group[axis], group[metric], marker="o", label=label or metric)
         else:
-            categories = list(dict.fromkeys(rows[axis]))
+            categories = categories or list(dict.fromkeys(rows[axis]))
             width = 0.8 / len(series)
             for index, (label, group) in enumerate(series):
                 heights = [group.loc[group[axis] == c, metric].mean() for c in categories]
                 offsets = [i - 0.4 + width * (index + 0.5) for i in range(len(categories))]
                 axes.bar(offsets, heights, width, label=label or metric)
             axes.set_xticks(range(len(categories)), [str(c) for c in categories])
-        axes.set_xlabel(axis)
+        axes.set_xlabel(axis_label)
         axes.set_ylabel(metric)
-        axes.set_title(f"{metric} by {axis}")
+        axes.set_title(f"{metric} by {axis_label}")
         if others:
             axes.legend(fontsize="small")
         figure.savefig(f"{stem}.png", dpi=100)  # not with_suffix: a dotted key is in the stem
@@ -101,16 +131,22 @@ def make_plots(spec: Spec, table: pd.DataFrame, output: Path) -> tuple[list[Plot
             notes.append(f"metric '{metric}': no value in the results table (not a column, "
                          "or no point succeeded)")
             continue
-        for axis in spec.axis_keys:
-            if axis not in table.columns:
-                notes.append(f"axis '{axis}': not in the results table")
+        for keys, group in plot_axes(spec):
+            missing = [key for key in keys if key not in table.columns]
+            if missing:
+                notes.extend(f"axis '{key}': not in the results table" for key in missing)
                 continue
             rows = ok.dropna(subset=[metric])
-            name = plot_name(metric, axis)
-            _draw(rows, metric, axis, series_axes(spec, axis, table), is_numeric_axis(table[axis]),
-                  folder / name)
+            name, label = plot_name(metric, keys), ", ".join(keys)
+            others = series_axes(spec, keys[0], table)
+            if len(keys) == 1:
+                _draw(rows, metric, keys[0], label, others, is_numeric_axis(table[keys[0]]), folder / name)
+            else:
+                labels, ordered = zip_labels(rows, group)
+                _draw(rows.assign(**{ZIP_COLUMN: labels}), metric, ZIP_COLUMN, label, others, False,
+                      folder / name, ordered)
             svg = (folder / f"{name}.svg").read_text()
-            plots.append(Plot(metric, axis, name, len(rows), svg[svg.index("<svg"):]))
+            plots.append(Plot(metric, label, name, len(rows), svg[svg.index("<svg"):]))
     return plots, notes
 
 

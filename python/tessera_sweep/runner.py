@@ -8,6 +8,7 @@ import json
 import logging
 import os
 import sys
+import time
 from pathlib import Path
 
 from . import table
@@ -64,15 +65,20 @@ def progress(done: int, total: int, record: dict, out=sys.stderr) -> None:
 
 
 def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | None = None,
-              workers: int | None = None, retry_failed: bool = False):
+              workers: int | None = None, retry_failed: bool = False, phases: dict | None = None):
     """Checks every point, runs the missing ones and writes the table, the
     plots and the report; returns
     (table, number of soc_sim runs). Points with the same effective
-    configuration share one run."""
+    configuration share one run. If given, phases receives the wall seconds
+    of the check, the cluster's start, the runs (first submission to last
+    result) and the whole call."""
     from dask.distributed import as_completed
 
+    phases = {} if phases is None else phases
+    start = time.perf_counter()
     points = expand(spec)
     configs = check(points, simulator)
+    phases["check_s"] = time.perf_counter() - start
     output.mkdir(parents=True, exist_ok=True)
     keys = [point_key(config, point, spec, simulator.version) for point, config in zip(points, configs)]
     records: dict[str, dict | None] = {}
@@ -85,7 +91,10 @@ def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | N
     cached = sum(records[key] is not None for key in keys)
     print(f"tessera-sweep: {len(points)} points, {cached} cached, {len(todo)} to run", file=sys.stderr)
     if todo:
+        cluster_start = time.perf_counter()
         with connect(scheduler, workers) as client:
+            runs_start = time.perf_counter()
+            phases["cluster_start_s"] = runs_start - cluster_start
             futures = {}
             for key, point in todo.items():
                 base = {"point": key, "axes": point.axes, "sim_version": simulator.version}
@@ -103,8 +112,10 @@ def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | N
                                   wall_s=float("nan"))
                 records[base["point"]] = record
                 progress(done, len(todo), record)
+            phases["runs_s"] = time.perf_counter() - runs_start
     rows = [table.row(point.axes, records[key], output / "points" / key)
             for key, point in zip(keys, points)]
     results = table.write(rows, output)
     write_report(spec, results, output)
+    phases["total_s"] = time.perf_counter() - start
     return results, len(todo)

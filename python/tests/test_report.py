@@ -93,6 +93,22 @@ def test_series_are_split_by_the_other_axes_but_not_by_zip_partners(first_run):
     assert series_axes(spec, "sim.time_limit_ms", table) == ["driver.backend"]
 
 
+def test_a_zip_group_is_one_axis_with_a_bar_per_tuple_in_zip_order(first_run, tmp_path):
+    _, table, _ = first_run
+    spec = parse_spec(dict(TINY, axes={"sim.time_limit_ms": [0, 1]}, metrics=METRICS[:1],
+                           zip={"driver.backend": ["raster", "arm"], "display.refresh_hz": [50, 60]}))
+    table = table.assign(**{"display.refresh_hz": table["driver.backend"].map({"arm": 60, "raster": 50})})
+    write_report(spec, table, tmp_path)
+    zip_plot = plot_name(METRICS[0], ("driver.backend", "display.refresh_hz"))
+    assert zip_plot == f"{METRICS[0]}-by-driver.backend+display.refresh_hz"
+    names = {plot_name(METRICS[0], "sim.time_limit_ms"), zip_plot}
+    assert set(Report((tmp_path / "report.html").read_text()).figures) == {f"plot-{n}" for n in names}
+    svg = (tmp_path / "plots" / f"{zip_plot}.svg").read_text()
+    # the tuples as tick labels, in the zip's order (raster first), not the table's
+    assert 0 <= svg.index("raster, 50") < svg.index("arm, 60")
+    assert "by driver.backend, display.refresh_hz" in svg
+
+
 def test_report_only_rebuilds_from_the_table_and_runs_nothing(first_run, simulator, tmp_path):
     out, _, _ = first_run
     copy = tmp_path / "copy"
