@@ -13,6 +13,10 @@ target_link_libraries(tessera_systemc INTERFACE PkgConfig::SYSTEMC PkgConfig::TL
 # its pkg-config file does not.
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 
+# Unicorn (QEMU's CPU emulation as a library): the reference the ISS runs
+# in lock-step with in its tests.
+pkg_check_modules(UNICORN REQUIRED IMPORTED_TARGET unicorn)
+
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(GTest REQUIRED)

@@ -15,6 +15,7 @@ PACKAGES=(
   nlohmann-json3-dev      # configuration and statistics files
   libcli11-dev            # command-line parsing
   libtinyobjloader-dev    # Wavefront OBJ loading
+  libunicorn-dev          # an independent ARM emulator: the ISS lock-step test
   yosys                   # synthesis size report of the Verilog units
   clang-format clang-tidy # the lint tests: one code dialect (tests/lint)
   gtkwave                 # viewing VCD traces; its vcd2fst checks them in the tests

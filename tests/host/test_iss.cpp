@@ -1,0 +1,266 @@
+// The ISS's modes, banked registers, exceptions and the ARMv4/ARM9TDMI
+// behaviours the lock-step test leaves out (test_iss_lockstep.cpp), on
+// hand-encoded instructions with their assembly beside them; expected
+// values worked out from the ARM Architecture Reference Manual (ARMv4T).
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "host/iss/arm_core.h"
+
+namespace {
+
+using tessera::iss::ArmCore;
+using tessera::iss::Coprocessors;
+using tessera::iss::IssError;
+using tessera::iss::IssMemory;
+using tessera::iss::Mode;
+namespace psr = tessera::iss::psr;
+
+class Memory : public IssMemory {
+ public:
+  std::vector<uint8_t> bytes = std::vector<uint8_t>(0x10000);
+  uint32_t abort_from = 0xffffffffu;  // accesses at or above this address abort
+  bool read(uint32_t address, unsigned size, uint32_t& value) override {
+    if (address >= abort_from || address + size > bytes.size()) return false;
+    value = 0;
+    for (unsigned i = 0; i < size; ++i) value |= uint32_t{bytes[address + i]} << (8 * i);
+    return true;
+  }
+  bool write(uint32_t address, unsigned size, uint32_t value) override {
+    if (address >= abort_from || address + size > bytes.size()) return false;
+    for (unsigned i = 0; i < size; ++i) bytes[address + i] = static_cast<uint8_t>(value >> (8 * i));
+    return true;
+  }
+  uint32_t word(uint32_t address) {
+    uint32_t value = 0;
+    read(address, 4, value);
+    return value;
+  }
+  void program(uint32_t address, std::initializer_list<uint32_t> words) {
+    for (uint32_t w : words) {
+      write(address, 4, w);
+      address += 4;
+    }
+  }
+};
+
+constexpr uint32_t SYS = 0x1f, USR = 0x10;
+
+struct Iss : ::testing::Test {
+  Memory memory;
+  ArmCore core{memory};
+  void start(uint32_t pc, uint32_t cpsr) {
+    core.set_cpsr(cpsr);
+    core.set_reg(15, pc);
+  }
+  void run(int steps) {
+    for (int i = 0; i < steps; ++i) core.step();
+  }
+};
+
+TEST_F(Iss, ResetEntersSupervisorModeAtVectorZeroWithInterruptsMasked) {
+  start(0x400, USR);
+  core.reset();
+  EXPECT_EQ(core.mode(), Mode::svc);
+  EXPECT_EQ(core.reg(15), 0u);
+  EXPECT_EQ(core.cpsr() & (psr::I | psr::F | psr::T), psr::I | psr::F);
+  core.set_high_vectors(true);
+  core.reset();
+  EXPECT_EQ(core.reg(15), 0xffff0000u);
+}
+
+TEST_F(Iss, AnUnalignedWordLoadRotatesTheAlignedWord) {
+  memory.program(0x100, {0xe5901001,    // ldr r1, [r0, #1]
+                         0xe5902003});  // ldr r2, [r0, #3]
+  memory.write(0x8000, 4, 0x44332211);
+  start(0x100, SYS);
+  core.set_reg(0, 0x8000);
+  run(2);
+  EXPECT_EQ(core.reg(1), 0x11443322u);
+  EXPECT_EQ(core.reg(2), 0x33221144u);
+}
+
+TEST_F(Iss, AStoredPcIsTheInstructionsAddressPlus12) {
+  memory.program(0x100, {0xe580f000,                 // str pc, [r0]
+                         0xe8800000 | (1u << 15)});  // stmia r0, {pc}
+  start(0x100, SYS);
+  core.set_reg(0, 0x8000);
+  run(1);
+  EXPECT_EQ(memory.word(0x8000), 0x10cu);
+  run(1);
+  EXPECT_EQ(memory.word(0x8000), 0x110u);
+}
+
+TEST_F(Iss, SwiEntersSupervisorModeAndMovsPcLrReturns) {
+  memory.program(0x100, {0xef000012});  // swi 0x12
+  memory.program(0x008, {0xe1b0f00e});  // movs pc, lr
+  const uint32_t user = USR | psr::Z | psr::C;
+  start(0x100, user);
+  core.set_reg(13, 0x1111);
+  core.set_reg(14, 0x2222);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::svc);
+  EXPECT_EQ(core.reg(15), 0x08u);
+  EXPECT_EQ(core.reg(14), 0x104u);
+  EXPECT_EQ(core.spsr(), user);
+  EXPECT_TRUE(core.cpsr() & psr::I);
+  EXPECT_EQ(core.banked(Mode::usr, 13), 0x1111u);
+  run(1);
+  EXPECT_EQ(core.cpsr(), user);
+  EXPECT_EQ(core.reg(15), 0x104u);
+  EXPECT_EQ(core.reg(13), 0x1111u);  // the user bank again
+  EXPECT_EQ(core.reg(14), 0x2222u);
+}
+
+TEST_F(Iss, AnIrqIsTakenBetweenInstructionsWhenUnmaskedAndReturnsWithSubs) {
+  memory.program(0x100, {0xe1a00000, 0xe1a00000});  // nop; nop
+  memory.program(0x018, {0xe25ef004});              // subs pc, lr, #4
+  start(0x100, SYS | psr::I);
+  core.set_irq(true);
+  run(1);  // masked: the nop runs
+  EXPECT_EQ(core.reg(15), 0x104u);
+  core.set_cpsr(SYS);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::irq);
+  EXPECT_EQ(core.reg(15), 0x18u);
+  EXPECT_EQ(core.reg(14), 0x108u);
+  core.set_irq(false);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::sys);
+  EXPECT_EQ(core.reg(15), 0x104u);  // the instruction that had not run
+}
+
+TEST_F(Iss, FiqBanksR8ToR14AndHasPriorityOverIrq) {
+  memory.program(0x100, {0xe1a00000});
+  memory.program(0x01c, {0xe3a08001});  // mov r8, #1
+  start(0x100, SYS);
+  for (unsigned n = 8; n < 15; ++n) core.set_reg(n, 0x80 + n);
+  core.set_irq(true);
+  core.set_fiq(true);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::fiq);
+  EXPECT_TRUE(core.cpsr() & psr::F);
+  EXPECT_TRUE(core.cpsr() & psr::I);
+  run(1);
+  EXPECT_EQ(core.reg(8), 1u);
+  EXPECT_EQ(core.banked(Mode::usr, 8), 0x88u);
+  EXPECT_EQ(core.banked(Mode::usr, 12), 0x8cu);
+  EXPECT_EQ(core.banked(Mode::sys, 14), 0x8eu);
+}
+
+TEST_F(Iss, ADataAbortLeavesTheBaseAsItWas) {
+  memory.program(0x100, {0xe5b32004});  // ldr r2, [r3, #4]!
+  memory.abort_from = 0x9000;
+  start(0x100, SYS | psr::N);
+  core.set_reg(2, 0x2222);
+  core.set_reg(3, 0x9000);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::abt);
+  EXPECT_EQ(core.reg(15), 0x10u);
+  EXPECT_EQ(core.reg(14), 0x108u);  // the aborted instruction + 8
+  EXPECT_EQ(core.spsr(), SYS | psr::N);
+  EXPECT_EQ(core.reg(3), 0x9000u);
+  EXPECT_EQ(core.reg(2), 0x2222u);
+}
+
+TEST_F(Iss, APrefetchAbortReturnsToTheInstructionPlus4) {
+  memory.abort_from = 0x9000;
+  start(0x9000, SYS);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::abt);
+  EXPECT_EQ(core.reg(15), 0x0cu);
+  EXPECT_EQ(core.reg(14), 0x9004u);
+}
+
+TEST_F(Iss, UndefinedInstructionsAndCoprocessorsWithoutAHandler) {
+  memory.program(0x100, {0xe7f000f0,    // an undefined encoding
+                         0xee100f10});  // mrc p15, 0, r0, c0, c0, 0
+  start(0x100, SYS);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::und);
+  EXPECT_EQ(core.reg(15), 0x04u);
+  EXPECT_EQ(core.reg(14), 0x104u);
+  start(0x104, SYS);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::und);
+  EXPECT_EQ(core.reg(14), 0x108u);
+}
+
+struct IdRegister : Coprocessors {
+  bool mrc(unsigned cp, unsigned op1, unsigned crn, unsigned crm, unsigned op2, bool privileged,
+           uint32_t& value) override {
+    if (cp != 15 || op1 || crn || crm || op2 || !privileged) return false;
+    value = 0x41129200;
+    return true;
+  }
+  bool mcr(unsigned, unsigned, unsigned, unsigned, unsigned, bool, uint32_t) override { return false; }
+};
+
+TEST_F(Iss, MrcReadsACoprocessorRegisterOnlyWhenPrivileged) {
+  IdRegister cp15;
+  ArmCore with_cp15(memory, &cp15);
+  memory.program(0x100, {0xee100f10});  // mrc p15, 0, r0, c0, c0, 0
+  with_cp15.set_cpsr(SYS);
+  with_cp15.set_reg(15, 0x100);
+  with_cp15.step();
+  EXPECT_EQ(with_cp15.reg(0), 0x41129200u);
+  with_cp15.set_cpsr(USR);
+  with_cp15.set_reg(15, 0x100);
+  with_cp15.step();
+  EXPECT_EQ(with_cp15.mode(), Mode::und);
+}
+
+TEST_F(Iss, UserModeMsrChangesTheFlagsButNotTheMode) {
+  memory.program(0x100, {0xe329f013});  // msr cpsr_cf, #0x13
+  start(0x100, USR);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::usr);
+  start(0x100, SYS);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::svc);
+}
+
+TEST_F(Iss, LdmWithThePcAndCaretRestoresTheCpsrFromTheSpsr) {
+  memory.program(0x100, {0xe8fd8000});  // ldmia sp!, {pc}^
+  memory.write(0x8000, 4, 0x200);
+  start(0x100, static_cast<uint32_t>(Mode::svc));
+  core.set_spsr(USR | psr::V);
+  core.set_reg(13, 0x8000);
+  run(1);
+  EXPECT_EQ(core.cpsr(), USR | psr::V);
+  EXPECT_EQ(core.reg(15), 0x200u);
+  EXPECT_EQ(core.banked(Mode::svc, 13), 0x8004u);
+}
+
+TEST_F(Iss, StmWithCaretStoresTheUserRegisters) {
+  memory.program(0x100, {0xe8c06000});  // stmia r0, {sp, lr}^
+  start(0x100, SYS);
+  core.set_reg(13, 0x1313);
+  core.set_reg(14, 0x1414);
+  core.set_cpsr(static_cast<uint32_t>(Mode::irq));
+  core.set_reg(0, 0x8000);
+  core.set_reg(13, 0xaaaa);
+  core.set_reg(14, 0xbbbb);
+  core.set_reg(15, 0x100);
+  run(1);
+  EXPECT_EQ(memory.word(0x8000), 0x1313u);
+  EXPECT_EQ(memory.word(0x8004), 0x1414u);
+}
+
+TEST_F(Iss, ThumbStateIsAClearErrorNotASilentSkip) {
+  memory.program(0x100, {0xe12fff10});  // bx r0
+  start(0x100, SYS);
+  core.set_reg(0, 0x201);
+  run(1);
+  EXPECT_TRUE(core.thumb());
+  EXPECT_EQ(core.reg(15), 0x200u);
+  try {
+    core.step();
+    FAIL() << "no error";
+  } catch (const IssError& error) {
+    EXPECT_NE(std::string(error.what()).find("Thumb state at 0x00000200"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace

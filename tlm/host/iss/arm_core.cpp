@@ -1,0 +1,584 @@
+#include "host/iss/arm_core.h"
+
+#include <cstdio>
+
+namespace tessera::iss {
+
+namespace {
+
+constexpr uint32_t bit(uint32_t insn, unsigned n) {
+  return (insn >> n) & 1u;
+}
+constexpr uint32_t bits(uint32_t insn, unsigned high, unsigned low) {
+  return (insn >> low) & ((1u << (high - low + 1)) - 1u);
+}
+constexpr uint32_t ror(uint32_t value, unsigned amount) {
+  amount &= 31;
+  return amount == 0 ? value : (value >> amount) | (value << (32 - amount));
+}
+
+// Vector offsets, by Exception.
+constexpr uint32_t VECTOR_OFFSET[] = {0x00, 0x10, 0x1c, 0x18, 0x0c, 0x04, 0x08};
+constexpr Mode VECTOR_MODE[] = {Mode::svc, Mode::abt, Mode::fiq, Mode::irq, Mode::abt, Mode::und, Mode::svc};
+
+uint32_t nz(uint32_t result) {
+  return (result & psr::N) | (result == 0 ? psr::Z : 0);
+}
+
+}  // namespace
+
+ArmCore::ArmCore(IssMemory& memory, Coprocessors* coprocessors) : m_memory(memory), m_coprocessors(coprocessors) {
+  m_cpsr = static_cast<uint32_t>(Mode::svc) | psr::I | psr::F;
+}
+
+unsigned ArmCore::bank_of(Mode mode) {
+  switch (mode) {
+    case Mode::fiq: return 1;
+    case Mode::irq: return 2;
+    case Mode::svc: return 3;
+    case Mode::abt: return 4;
+    case Mode::und: return 5;
+    default: return 0;  // usr, sys and (unpredictable) reserved modes
+  }
+}
+
+void ArmCore::switch_bank(unsigned from, unsigned to) {
+  if (from == to) return;
+  m_r13_14[from] = {m_r[13], m_r[14]};
+  if (from == 1 || to == 1) {  // FIQ banks r8..r12 too
+    auto& save = from == 1 ? m_fiq_r8_12 : m_user_r8_12;
+    const auto& load = to == 1 ? m_fiq_r8_12 : m_user_r8_12;
+    for (unsigned i = 0; i < 5; ++i) save[i] = m_r[8 + i];
+    for (unsigned i = 0; i < 5; ++i) m_r[8 + i] = load[i];
+  }
+  m_r[13] = m_r13_14[to][0];
+  m_r[14] = m_r13_14[to][1];
+}
+
+void ArmCore::set_cpsr(uint32_t value) {
+  switch_bank(bank_of(mode()), bank_of(static_cast<Mode>(value & psr::MODE_MASK)));
+  m_cpsr = value;
+}
+
+uint32_t ArmCore::spsr() const {
+  const unsigned bank = bank_of(mode());
+  return bank == 0 ? 0 : m_spsr[bank];
+}
+
+void ArmCore::set_spsr(uint32_t value) {
+  const unsigned bank = bank_of(mode());
+  if (bank != 0) m_spsr[bank] = value;
+}
+
+uint32_t ArmCore::banked(Mode m, unsigned n) const {
+  const unsigned want = bank_of(m);
+  const unsigned now = bank_of(mode());
+  if (n == 15) return m_pc;
+  if (n < 8 || (n < 13 && (want == 1) == (now == 1)) || (n >= 13 && want == now)) return m_r[n];
+  if (n < 13) return want == 1 ? m_fiq_r8_12[n - 8] : m_user_r8_12[n - 8];
+  return m_r13_14[want][n - 13];
+}
+
+void ArmCore::set_reg(unsigned n, uint32_t value) {
+  if (n == 15)
+    m_pc = value;
+  else
+    m_r[n] = value;
+}
+
+void ArmCore::reset() {
+  set_cpsr(static_cast<uint32_t>(Mode::svc) | psr::I | psr::F);
+  m_pc = m_high_vectors ? 0xffff0000u : 0;
+}
+
+void ArmCore::enter(Exception exception, uint32_t return_address) {
+  const auto index = static_cast<unsigned>(exception);
+  const uint32_t old = m_cpsr;
+  uint32_t cpsr = (old & ~(psr::MODE_MASK | psr::T)) | static_cast<uint32_t>(VECTOR_MODE[index]) | psr::I;
+  if (exception == Exception::reset || exception == Exception::fiq) cpsr |= psr::F;
+  set_cpsr(cpsr);
+  m_spsr[bank_of(VECTOR_MODE[index])] = old;
+  m_r[14] = return_address;
+  m_pc = (m_high_vectors ? 0xffff0000u : 0) + VECTOR_OFFSET[index];
+  m_branched = true;
+}
+
+bool ArmCore::condition(uint32_t cond) const {
+  const bool n = m_cpsr & psr::N, z = m_cpsr & psr::Z, c = m_cpsr & psr::C, v = m_cpsr & psr::V;
+  switch (cond) {
+    case 0x0: return z;
+    case 0x1: return !z;
+    case 0x2: return c;
+    case 0x3: return !c;
+    case 0x4: return n;
+    case 0x5: return !n;
+    case 0x6: return v;
+    case 0x7: return !v;
+    case 0x8: return c && !z;
+    case 0x9: return !c || z;
+    case 0xa: return n == v;
+    case 0xb: return n != v;
+    case 0xc: return !z && n == v;
+    case 0xd: return z || n != v;
+    case 0xe: return true;
+    default: return false;  // NV: never, on ARMv4
+  }
+}
+
+void ArmCore::step() {
+  // Interrupts are sampled between instructions; the handler returns with
+  // SUBS pc, lr, #4 to the instruction that would have run.
+  if (m_fiq_line && !(m_cpsr & psr::F)) {
+    enter(Exception::fiq, m_pc + 4);
+    return;
+  }
+  if (m_irq_line && !(m_cpsr & psr::I)) {
+    enter(Exception::irq, m_pc + 4);
+    return;
+  }
+  if (thumb()) unsupported("Thumb state");
+  m_current = m_pc;
+  uint32_t insn = 0;
+  if (!m_memory.fetch(m_current, 4, insn)) {
+    enter(Exception::prefetch_abort, m_current + 4);
+    return;
+  }
+  ++m_instructions;
+  m_r[15] = m_current + 8;
+  m_branched = false;
+  if (condition(insn >> 28)) {
+    switch (bits(insn, 27, 25)) {
+      case 0:
+        if ((insn & 0x0ffffff0u) == 0x012fff10u) {  // BX
+          const uint32_t target = operand(bits(insn, 3, 0));
+          m_cpsr = (m_cpsr & ~psr::T) | (target & 1u ? psr::T : 0);
+          write_pc(target & (target & 1u ? ~1u : ~3u));
+        } else if ((insn & 0x0fc000f0u) == 0x00000090u) {
+          multiply(insn);
+        } else if ((insn & 0x0f8000f0u) == 0x00800090u) {
+          multiply_long(insn);
+        } else if ((insn & 0x0fb00ff0u) == 0x01000090u) {
+          swap(insn);
+        } else if ((insn & 0x0e000090u) == 0x00000090u) {
+          halfword_transfer(insn);
+        } else if ((insn & 0x01900000u) == 0x01000000u) {  // TST..CMN without S: MRS/MSR
+          status_transfer(insn);
+        } else {
+          data_processing(insn);
+        }
+        break;
+      case 1:
+        if ((insn & 0x01900000u) == 0x01000000u)
+          status_transfer(insn);
+        else
+          data_processing(insn);
+        break;
+      case 2: single_transfer(insn); break;
+      case 3:
+        if (bit(insn, 4))
+          undefined();
+        else
+          single_transfer(insn);
+        break;
+      case 4: block_transfer(insn); break;
+      case 5: {  // B, BL
+        const int32_t offset = static_cast<int32_t>(insn << 8) >> 6;
+        if (bit(insn, 24)) m_r[14] = m_current + 4;
+        write_pc(m_r[15] + static_cast<uint32_t>(offset));
+        break;
+      }
+      case 6:  // LDC/STC: no coprocessor of the ARM922T has them
+        undefined();
+        break;
+      default:
+        if (bit(insn, 24))
+          enter(Exception::swi, m_current + 4);
+        else if (bit(insn, 4))
+          coprocessor_transfer(insn);
+        else
+          undefined();  // CDP
+        break;
+    }
+  }
+  if (!m_branched) m_pc = m_current + 4;
+}
+
+void ArmCore::undefined() {
+  enter(Exception::undefined, m_current + 4);
+}
+
+void ArmCore::unsupported(const std::string& what) const {
+  char text[96];
+  std::snprintf(text, sizeof text, "ISS: %s at 0x%08x is not executed yet", what.c_str(), m_pc);
+  throw IssError(text);
+}
+
+// The shifter operand of a register form: Rm shifted by an immediate or by
+// Rs's bottom byte, with the shifter's carry-out.
+uint32_t ArmCore::shifted_register(uint32_t insn, bool& carry) const {
+  const unsigned rm = bits(insn, 3, 0);
+  const unsigned type = bits(insn, 6, 5);
+  const bool by_register = bit(insn, 4);
+  // With a register shift, the instruction is a cycle longer and r15 reads +12.
+  const uint32_t value = operand(rm) + (by_register && rm == 15 ? 4 : 0);
+  const bool c = m_cpsr & psr::C;
+  if (!by_register) {
+    const unsigned amount = bits(insn, 11, 7);
+    switch (type) {
+      case 0: carry = amount == 0 ? c : (value >> (32 - amount)) & 1u; return amount == 0 ? value : value << amount;
+      case 1:  // LSR #0 means #32
+        carry = amount == 0 ? value >> 31 : (value >> (amount - 1)) & 1u;
+        return amount == 0 ? 0 : value >> amount;
+      case 2:  // ASR #0 means #32
+        carry = amount == 0 ? value >> 31 : (value >> (amount - 1)) & 1u;
+        return amount == 0 ? (value & psr::N ? ~0u : 0) : static_cast<uint32_t>(static_cast<int32_t>(value) >> amount);
+      default:
+        if (amount == 0) {  // RRX
+          carry = value & 1u;
+          return (c ? psr::N : 0) | (value >> 1);
+        }
+        carry = (value >> (amount - 1)) & 1u;
+        return ror(value, amount);
+    }
+  }
+  const unsigned amount = operand(bits(insn, 11, 8)) & 0xffu;
+  if (amount == 0) {
+    carry = c;
+    return value;
+  }
+  switch (type) {
+    case 0:
+      carry = amount < 32 ? (value >> (32 - amount)) & 1u : amount == 32 ? value & 1u : 0;
+      return amount < 32 ? value << amount : 0;
+    case 1:
+      carry = amount < 32 ? (value >> (amount - 1)) & 1u : amount == 32 ? value >> 31 : 0;
+      return amount < 32 ? value >> amount : 0;
+    case 2:
+      if (amount >= 32) {
+        carry = value >> 31;
+        return value & psr::N ? ~0u : 0;
+      }
+      carry = (value >> (amount - 1)) & 1u;
+      return static_cast<uint32_t>(static_cast<int32_t>(value) >> amount);
+    default:
+      if ((amount & 31) == 0) {
+        carry = value >> 31;
+        return value;
+      }
+      carry = (value >> ((amount & 31) - 1)) & 1u;
+      return ror(value, amount);
+  }
+}
+
+void ArmCore::data_processing(uint32_t insn) {
+  bool shifter_carry = m_cpsr & psr::C;
+  uint32_t op2;
+  if (bit(insn, 25)) {
+    const unsigned rotate = bits(insn, 11, 8) * 2;
+    op2 = ror(bits(insn, 7, 0), rotate);
+    if (rotate != 0) shifter_carry = op2 >> 31;
+  } else {
+    op2 = shifted_register(insn, shifter_carry);
+  }
+  const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12), opcode = bits(insn, 24, 21);
+  const bool set_flags = bit(insn, 20);
+  const uint32_t a = operand(rn) + (!bit(insn, 25) && bit(insn, 4) && rn == 15 ? 4 : 0);
+  const bool c_in = m_cpsr & psr::C;
+  uint32_t result = 0;
+  bool logical = false, carry = false, overflow = false;
+  // a + b + carry_in, with the flags of the addition.
+  auto add = [&](uint32_t x, uint32_t y, bool cin) {
+    const uint64_t wide = uint64_t{x} + y + (cin ? 1 : 0);
+    const auto sum = static_cast<uint32_t>(wide);
+    carry = wide >> 32;
+    overflow = (~(x ^ y) & (x ^ sum)) >> 31;
+    return sum;
+  };
+  switch (opcode) {
+    case 0x0:
+    case 0x8:  // AND, TST
+      result = a & op2;
+      logical = true;
+      break;
+    case 0x1:
+    case 0x9:  // EOR, TEQ
+      result = a ^ op2;
+      logical = true;
+      break;
+    case 0x2:
+    case 0xa:  // SUB, CMP
+      result = add(a, ~op2, true);
+      break;
+    case 0x3:  // RSB
+      result = add(op2, ~a, true);
+      break;
+    case 0x4:
+    case 0xb:  // ADD, CMN
+      result = add(a, op2, false);
+      break;
+    case 0x5:  // ADC
+      result = add(a, op2, c_in);
+      break;
+    case 0x6:  // SBC
+      result = add(a, ~op2, c_in);
+      break;
+    case 0x7:  // RSC
+      result = add(op2, ~a, c_in);
+      break;
+    case 0xc:  // ORR
+      result = a | op2;
+      logical = true;
+      break;
+    case 0xd:  // MOV
+      result = op2;
+      logical = true;
+      break;
+    case 0xe:  // BIC
+      result = a & ~op2;
+      logical = true;
+      break;
+    default:  // MVN
+      result = ~op2;
+      logical = true;
+      break;
+  }
+  const bool test_only = opcode >= 0x8 && opcode <= 0xb;
+  if (set_flags) {
+    if (rd == 15 && !test_only) {  // SUBS pc, lr, ...: return from an exception
+      set_cpsr(spsr());
+    } else {
+      uint32_t flags = nz(result);
+      if (logical)
+        flags |= (shifter_carry ? psr::C : 0) | (m_cpsr & psr::V);
+      else
+        flags |= (carry ? psr::C : 0) | (overflow ? psr::V : 0);
+      m_cpsr = (m_cpsr & ~psr::FLAGS) | flags;
+    }
+  }
+  if (!test_only) {
+    if (rd == 15)
+      write_pc(result & (thumb() ? ~1u : ~3u));
+    else
+      m_r[rd] = result;
+  }
+}
+
+void ArmCore::multiply(uint32_t insn) {
+  const unsigned rd = bits(insn, 19, 16), rn = bits(insn, 15, 12), rs = bits(insn, 11, 8), rm = bits(insn, 3, 0);
+  uint32_t result = operand(rm) * operand(rs);
+  if (bit(insn, 21)) result += operand(rn);
+  if (bit(insn, 20))  // N and Z; C is left as it was (ARMv4: meaningless), V unchanged
+    m_cpsr = (m_cpsr & ~(psr::N | psr::Z)) | nz(result);
+  write_reg(rd, result);
+}
+
+void ArmCore::multiply_long(uint32_t insn) {
+  const unsigned hi = bits(insn, 19, 16), lo = bits(insn, 15, 12), rs = bits(insn, 11, 8), rm = bits(insn, 3, 0);
+  uint64_t result;
+  if (bit(insn, 22))
+    result = static_cast<uint64_t>(static_cast<int64_t>(static_cast<int32_t>(operand(rm))) *
+                                   static_cast<int32_t>(operand(rs)));
+  else
+    result = uint64_t{operand(rm)} * operand(rs);
+  if (bit(insn, 21)) result += (uint64_t{operand(hi)} << 32) | operand(lo);
+  if (bit(insn, 20))
+    m_cpsr =
+        (m_cpsr & ~(psr::N | psr::Z)) | (static_cast<uint32_t>(result >> 32) & psr::N) | (result == 0 ? psr::Z : 0);
+  write_reg(lo, static_cast<uint32_t>(result));
+  write_reg(hi, static_cast<uint32_t>(result >> 32));
+}
+
+void ArmCore::single_transfer(uint32_t insn) {
+  const bool pre = bit(insn, 24), up = bit(insn, 23), byte = bit(insn, 22), writeback = bit(insn, 21) || !pre;
+  const bool load = bit(insn, 20);
+  const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12);
+  uint32_t offset;
+  if (bit(insn, 25)) {
+    bool unused = false;
+    offset = shifted_register(insn & ~0x10u, unused);  // immediate shifts only
+  } else {
+    offset = bits(insn, 11, 0);
+  }
+  const uint32_t base = operand(rn);
+  const uint32_t moved = up ? base + offset : base - offset;
+  const uint32_t address = pre ? moved : base;
+  if (load) {
+    uint32_t value = 0;
+    if (!m_memory.read(byte ? address : address & ~3u, byte ? 1 : 4, value)) {
+      enter(Exception::data_abort, m_current + 8);  // base restored: no register changed
+      return;
+    }
+    if (!byte) value = ror(value, (address & 3u) * 8);  // ARMv4: an unaligned word load rotates
+    if (writeback) write_reg(rn, moved);
+    write_reg(rd, value);
+  } else {
+    // A stored r15 is the instruction's address + 12 (ARM9TDMI).
+    const uint32_t value = rd == 15 ? m_current + 12 : operand(rd);
+    if (!m_memory.write(byte ? address : address & ~3u, byte ? 1 : 4, byte ? value & 0xffu : value)) {
+      enter(Exception::data_abort, m_current + 8);
+      return;
+    }
+    if (writeback) write_reg(rn, moved);
+  }
+}
+
+void ArmCore::halfword_transfer(uint32_t insn) {
+  const bool pre = bit(insn, 24), up = bit(insn, 23), writeback = bit(insn, 21) || !pre, load = bit(insn, 20);
+  const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12), kind = bits(insn, 6, 5);
+  if (!load && kind != 1) {  // LDRD/STRD are ARMv5TE
+    undefined();
+    return;
+  }
+  const uint32_t offset = bit(insn, 22) ? (bits(insn, 11, 8) << 4) | bits(insn, 3, 0) : operand(bits(insn, 3, 0));
+  const uint32_t base = operand(rn);
+  const uint32_t moved = up ? base + offset : base - offset;
+  const uint32_t address = pre ? moved : base;
+  if (load) {
+    const bool half = kind != 2;
+    uint32_t value = 0;
+    if (!m_memory.read(half ? address & ~1u : address, half ? 2 : 1, value)) {
+      enter(Exception::data_abort, m_current + 8);
+      return;
+    }
+    if (kind == 2)
+      value = static_cast<uint32_t>(static_cast<int32_t>(static_cast<int8_t>(value & 0xffu)));
+    else if (kind == 3)
+      value = static_cast<uint32_t>(static_cast<int16_t>(value));
+    if (writeback) write_reg(rn, moved);
+    write_reg(rd, value);
+  } else {
+    const uint32_t value = rd == 15 ? m_current + 12 : operand(rd);
+    if (!m_memory.write(address & ~1u, 2, value & 0xffffu)) {
+      enter(Exception::data_abort, m_current + 8);
+      return;
+    }
+    if (writeback) write_reg(rn, moved);
+  }
+}
+
+void ArmCore::block_transfer(uint32_t insn) {
+  const bool pre = bit(insn, 24), up = bit(insn, 23), user_bank = bit(insn, 22), writeback = bit(insn, 21);
+  const bool load = bit(insn, 20);
+  const unsigned rn = bits(insn, 19, 16);
+  const uint32_t list = bits(insn, 15, 0);
+  if (list == 0) unsupported("LDM/STM with an empty register list");
+  const auto count = static_cast<uint32_t>(__builtin_popcount(list));
+  const uint32_t base = operand(rn);
+  // The lowest register goes to the lowest address, whatever the direction.
+  uint32_t address = up ? base + (pre ? 4 : 0) : base - 4 * count + (pre ? 0 : 4);
+  const uint32_t final_base = up ? base + 4 * count : base - 4 * count;
+  const bool loads_pc = load && (list & 0x8000u);
+  // S without r15 loaded: the user-mode registers (r8..r14 of usr).
+  const bool user_registers = user_bank && !loads_pc;
+  const unsigned bank = bank_of(mode());
+  auto user_reg = [&](unsigned n) -> uint32_t& {
+    if (n >= 8 && n < 13 && bank == 1) return m_user_r8_12[n - 8];
+    if (n >= 13 && n < 15 && bank != 0) return m_r13_14[0][n - 13];
+    return m_r[n];
+  };
+  std::array<uint32_t, 16> loaded{};
+  bool first = true;
+  for (unsigned n = 0; n < 16; ++n) {
+    if (!(list & (1u << n))) continue;
+    if (load) {
+      if (!m_memory.read(address, 4, loaded[n])) {
+        enter(Exception::data_abort, m_current + 8);
+        return;
+      }
+    } else {
+      uint32_t value;
+      if (n == 15)
+        value = m_current + 12;
+      else if (user_registers)
+        value = user_reg(n);
+      else if (n == rn && writeback && !first)  // ARM9TDMI: the base after write-back
+        value = final_base;
+      else
+        value = operand(n);
+      if (!m_memory.write(address, 4, value)) {
+        enter(Exception::data_abort, m_current + 8);
+        return;
+      }
+    }
+    first = false;
+    address += 4;
+  }
+  if (writeback) m_r[rn] = final_base;  // rn == 15 is unpredictable; never the PC here
+  if (load) {
+    for (unsigned n = 0; n < 15; ++n)
+      if (list & (1u << n)) (user_registers ? user_reg(n) : m_r[n]) = loaded[n];
+    if (loads_pc) {
+      if (user_bank) set_cpsr(spsr());  // LDM ..^ with the PC: return from an exception
+      write_pc(loaded[15] & (thumb() ? ~1u : ~3u));
+    }
+  }
+}
+
+void ArmCore::swap(uint32_t insn) {
+  const bool byte = bit(insn, 22);
+  const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12), rm = bits(insn, 3, 0);
+  const uint32_t address = operand(rn);
+  uint32_t old = 0;
+  if (!m_memory.read(byte ? address : address & ~3u, byte ? 1 : 4, old) ||
+      !m_memory.write(byte ? address : address & ~3u, byte ? 1 : 4, byte ? operand(rm) & 0xffu : operand(rm))) {
+    enter(Exception::data_abort, m_current + 8);
+    return;
+  }
+  write_reg(rd, byte ? old : ror(old, (address & 3u) * 8));
+}
+
+void ArmCore::status_transfer(uint32_t insn) {
+  const bool use_spsr = bit(insn, 22);
+  if (!bit(insn, 21)) {  // MRS
+    if ((insn & 0x0fbf0fffu) != 0x010f0000u) {
+      undefined();
+      return;
+    }
+    write_reg(bits(insn, 15, 12), use_spsr ? spsr() : m_cpsr);
+    return;
+  }
+  uint32_t value;
+  if (bit(insn, 25))
+    value = ror(bits(insn, 7, 0), bits(insn, 11, 8) * 2);
+  else
+    value = operand(bits(insn, 3, 0));
+  uint32_t mask = 0;
+  const uint32_t fields = bits(insn, 19, 16);
+  if (fields & 8u) mask |= 0xff000000u;
+  if (fields & 4u) mask |= 0x00ff0000u;
+  if (fields & 2u) mask |= 0x0000ff00u;
+  if (fields & 1u) mask |= 0x000000ffu;
+  const bool privileged = mode() != Mode::usr;
+  if (use_spsr) {
+    set_spsr((spsr() & ~mask) | (value & mask));
+    return;
+  }
+  if (!privileged) mask &= psr::FLAGS;  // user mode writes the flags only
+  mask &= ~psr::T;                      // MSR does not change the state (ARMv4T)
+  set_cpsr((m_cpsr & ~mask) | (value & mask));
+}
+
+void ArmCore::coprocessor_transfer(uint32_t insn) {
+  const unsigned cp = bits(insn, 11, 8), op1 = bits(insn, 23, 21), crn = bits(insn, 19, 16);
+  const unsigned rd = bits(insn, 15, 12), op2 = bits(insn, 7, 5), crm = bits(insn, 3, 0);
+  const bool privileged = mode() != Mode::usr;
+  if (m_coprocessors == nullptr) {
+    undefined();
+    return;
+  }
+  if (bit(insn, 20)) {  // MRC
+    uint32_t value = 0;
+    if (!m_coprocessors->mrc(cp, op1, crn, crm, op2, privileged, value)) {
+      undefined();
+      return;
+    }
+    if (rd == 15)  // flags from the value
+      m_cpsr = (m_cpsr & ~psr::FLAGS) | (value & psr::FLAGS);
+    else
+      m_r[rd] = value;
+  } else if (!m_coprocessors->mcr(cp, op1, crn, crm, op2, privileged, rd == 15 ? m_current + 12 : operand(rd))) {
+    undefined();
+  }
+}
+
+}  // namespace tessera::iss

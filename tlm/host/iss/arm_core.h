@@ -1,0 +1,152 @@
+// ArmCore: the ARMv4T programmer's model and ARM-state execution, plain C++
+// (no SystemC). Memory and CP15 are reached through small ports; timing is
+// not here (tlm/host/iss/README.md: the layers).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace tessera::iss {
+
+// Processor modes, the CPSR's M[4:0] values.
+enum class Mode : uint8_t {
+  usr = 0x10,
+  fiq = 0x11,
+  irq = 0x12,
+  svc = 0x13,
+  abt = 0x17,
+  und = 0x1b,
+  sys = 0x1f,
+};
+
+// Exceptions in priority order (highest first, the ARM ARM's table), with
+// their vector offsets.
+enum class Exception : uint8_t { reset, data_abort, fiq, irq, prefetch_abort, undefined, swi };
+
+namespace psr {
+constexpr uint32_t N = 1u << 31, Z = 1u << 30, C = 1u << 29, V = 1u << 28;
+constexpr uint32_t I = 1u << 7, F = 1u << 6, T = 1u << 5;
+constexpr uint32_t MODE_MASK = 0x1f;
+constexpr uint32_t FLAGS = 0xf0000000u;
+}  // namespace psr
+
+// What the core reads and writes. Addresses of 2- and 4-byte accesses are
+// aligned by the core (ARMv4 ignores the low bits; a word load rotates).
+// false is an abort (the bus answered with an error).
+class IssMemory {
+ public:
+  virtual ~IssMemory() = default;
+  virtual bool read(uint32_t address, unsigned bytes, uint32_t& value) = 0;
+  virtual bool write(uint32_t address, unsigned bytes, uint32_t value) = 0;
+  // Instruction fetch (the I side); by default the same as a read.
+  virtual bool fetch(uint32_t address, unsigned bytes, uint32_t& value) { return read(address, bytes, value); }
+};
+
+// Coprocessor register transfers (MRC/MCR). false: no such register or not
+// allowed; the core takes the undefined-instruction exception.
+class Coprocessors {
+ public:
+  virtual ~Coprocessors() = default;
+  virtual bool mrc(unsigned cp, unsigned op1, unsigned crn, unsigned crm, unsigned op2, bool privileged,
+                   uint32_t& value) = 0;
+  virtual bool mcr(unsigned cp, unsigned op1, unsigned crn, unsigned crm, unsigned op2, bool privileged,
+                   uint32_t value) = 0;
+};
+
+// An instruction the ISS does not execute yet (Thumb state, for now): an
+// error naming the address and the encoding, never a silent skip.
+class IssError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ArmCore {
+ public:
+  // coprocessors may be null: every MRC/MCR is then undefined.
+  ArmCore(IssMemory& memory, Coprocessors* coprocessors = nullptr);
+
+  // Reset: supervisor mode, ARM state, IRQ and FIQ masked, PC at the reset
+  // vector (0, or 0xffff0000 with high vectors).
+  void reset();
+
+  // Executes one instruction, or enters a pending interrupt's handler.
+  void step();
+
+  // Registers as the current mode sees them; r15 is the address of the
+  // next instruction to execute (not the +8 an instruction reads).
+  uint32_t reg(unsigned n) const { return n == 15 ? m_pc : m_r[n]; }
+  void set_reg(unsigned n, uint32_t value);
+  uint32_t cpsr() const { return m_cpsr; }
+  void set_cpsr(uint32_t value);  // switches the register bank with the mode
+  // The current mode's SPSR (none in user and system modes: 0, and a write is ignored).
+  uint32_t spsr() const;
+  void set_spsr(uint32_t value);
+  // A banked register of a given mode, e.g. (Mode::irq, 13).
+  uint32_t banked(Mode mode, unsigned n) const;
+
+  Mode mode() const { return static_cast<Mode>(m_cpsr & psr::MODE_MASK); }
+  bool thumb() const { return (m_cpsr & psr::T) != 0; }
+
+  // Interrupt inputs (level-sensitive, taken before the next instruction
+  // when not masked).
+  void set_irq(bool level) { m_irq_line = level; }
+  void set_fiq(bool level) { m_fiq_line = level; }
+  // Exception vectors at 0xffff0000 (CP15 control bit V).
+  void set_high_vectors(bool high) { m_high_vectors = high; }
+
+  uint64_t instructions() const { return m_instructions; }
+
+ private:
+  static unsigned bank_of(Mode mode);
+  void switch_bank(unsigned from, unsigned to);
+  void enter(Exception exception, uint32_t return_address);
+
+  // Operand reads during execution: r15 reads as the instruction's address + 8.
+  uint32_t operand(unsigned n) const { return m_r[n]; }
+  void write_pc(uint32_t address) {
+    m_pc = address;
+    m_branched = true;
+  }
+  void write_reg(unsigned n, uint32_t value) {
+    if (n == 15)
+      write_pc(value & ~3u);
+    else
+      m_r[n] = value;
+  }
+  bool condition(uint32_t cond) const;
+  uint32_t shifted_register(uint32_t insn, bool& carry) const;
+
+  void data_processing(uint32_t insn);
+  void multiply(uint32_t insn);
+  void multiply_long(uint32_t insn);
+  void single_transfer(uint32_t insn);
+  void halfword_transfer(uint32_t insn);
+  void block_transfer(uint32_t insn);
+  void swap(uint32_t insn);
+  void status_transfer(uint32_t insn);
+  void coprocessor_transfer(uint32_t insn);
+  void undefined();
+  [[noreturn]] void unsupported(const std::string& what) const;
+
+  IssMemory& m_memory;
+  Coprocessors* m_coprocessors;
+  std::array<uint32_t, 16> m_r{};  // the current mode's view; m_r[15] = instruction + 8 while executing
+  uint32_t m_pc = 0;               // the next instruction's address
+  uint32_t m_cpsr = 0;
+  uint32_t m_current = 0;  // address of the executing instruction
+  bool m_branched = false;
+  // Banked copies: r13/r14 per bank (usr/sys, fiq, irq, svc, abt, und),
+  // r8..r12 for user and FIQ, SPSR per exception mode.
+  std::array<std::array<uint32_t, 2>, 6> m_r13_14{};
+  std::array<uint32_t, 5> m_user_r8_12{};
+  std::array<uint32_t, 5> m_fiq_r8_12{};
+  std::array<uint32_t, 6> m_spsr{};
+  bool m_irq_line = false;
+  bool m_fiq_line = false;
+  bool m_high_vectors = false;
+  uint64_t m_instructions = 0;
+};
+
+}  // namespace tessera::iss
