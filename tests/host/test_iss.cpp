@@ -248,18 +248,51 @@ TEST_F(Iss, StmWithCaretStoresTheUserRegisters) {
   EXPECT_EQ(memory.word(0x8004), 0x1414u);
 }
 
-TEST_F(Iss, ThumbStateIsAClearErrorNotASilentSkip) {
+TEST_F(Iss, BxEntersAndLeavesThumbStateAndPopPcStaysInThumb) {
   memory.program(0x100, {0xe12fff10});  // bx r0
+  memory.write(0x200, 2, 0xbd00);       // pop {pc}
+  memory.write(0x240, 2, 0x4708);       // bx r1
   start(0x100, SYS);
   core.set_reg(0, 0x201);
+  core.set_reg(1, 0x300);
+  core.set_reg(13, 0x8000);
+  memory.write(0x8000, 4, 0x241);  // ARMv4T: POP {pc} ignores bit 0 and stays in Thumb
   run(1);
   EXPECT_TRUE(core.thumb());
   EXPECT_EQ(core.reg(15), 0x200u);
+  run(1);
+  EXPECT_TRUE(core.thumb());
+  EXPECT_EQ(core.reg(15), 0x240u);
+  EXPECT_EQ(core.reg(13), 0x8004u);
+  run(1);
+  EXPECT_FALSE(core.thumb());
+  EXPECT_EQ(core.reg(15), 0x300u);
+}
+
+TEST_F(Iss, ThumbSwiAndUndefinedReturnToTheNextHalfwordInArmState) {
+  memory.write(0x200, 2, 0xdf05);  // swi 5
+  memory.write(0x202, 2, 0xde00);  // an undefined encoding (B with condition AL)
+  start(0x200, SYS | psr::T);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::svc);
+  EXPECT_FALSE(core.thumb());
+  EXPECT_EQ(core.reg(14), 0x202u);
+  EXPECT_EQ(core.spsr(), SYS | psr::T);
+  start(0x202, SYS | psr::T);
+  run(1);
+  EXPECT_EQ(core.mode(), Mode::und);
+  EXPECT_EQ(core.reg(14), 0x204u);
+  EXPECT_EQ(core.reg(15), 0x04u);
+}
+
+TEST_F(Iss, AnEmptyRegisterListIsAClearErrorNotASilentSkip) {
+  memory.program(0x100, {0xe8900000});  // ldmia r0, {}
+  start(0x100, SYS);
   try {
     core.step();
     FAIL() << "no error";
   } catch (const IssError& error) {
-    EXPECT_NE(std::string(error.what()).find("Thumb state at 0x00000200"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("empty register list at 0x00000100"), std::string::npos) << error.what();
   }
 }
 

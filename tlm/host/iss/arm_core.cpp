@@ -136,8 +136,20 @@ void ArmCore::step() {
     enter(Exception::irq, m_pc + 4);
     return;
   }
-  if (thumb()) unsupported("Thumb state");
   m_current = m_pc;
+  m_branched = false;
+  if (thumb()) {
+    uint32_t half = 0;
+    if (!m_memory.fetch(m_current, 2, half)) {
+      enter(Exception::prefetch_abort, m_current + 4);
+      return;
+    }
+    ++m_instructions;
+    m_r[15] = m_current + 4;
+    execute_thumb(half);
+    if (!m_branched) m_pc = m_current + 2;
+    return;
+  }
   uint32_t insn = 0;
   if (!m_memory.fetch(m_current, 4, insn)) {
     enter(Exception::prefetch_abort, m_current + 4);
@@ -145,7 +157,11 @@ void ArmCore::step() {
   }
   ++m_instructions;
   m_r[15] = m_current + 8;
-  m_branched = false;
+  execute_arm(insn);
+  if (!m_branched) m_pc = m_current + 4;
+}
+
+void ArmCore::execute_arm(uint32_t insn) {
   if (condition(insn >> 28)) {
     switch (bits(insn, 27, 25)) {
       case 0:
@@ -200,16 +216,204 @@ void ArmCore::step() {
         break;
     }
   }
-  if (!m_branched) m_pc = m_current + 4;
 }
 
+namespace {
+
+// ARM encodings the Thumb instructions are executed as (condition AL).
+constexpr uint32_t AL = 0xe0000000u;
+constexpr uint32_t dp(uint32_t opcode, bool set_flags, uint32_t rn, uint32_t rd, uint32_t operand2) {
+  return AL | (opcode << 21) | (set_flags ? 1u << 20 : 0) | (rn << 16) | (rd << 12) | operand2;
+}
+constexpr uint32_t IMMEDIATE = 1u << 25;
+constexpr uint32_t shift_by_register(uint32_t rs, uint32_t type, uint32_t rm) {
+  return (rs << 8) | (type << 5) | (1u << 4) | rm;
+}
+// Data-processing opcodes.
+enum DpOpcode : uint32_t { and_ = 0, eor, sub, rsb, add, adc, sbc, rsc, tst, teq, cmp, cmn, orr, mov, bic, mvn };
+
+}  // namespace
+
+// Thumb (ARMv4T): each instruction is executed as the ARM instruction it
+// stands for, r15 reading as the instruction's address + 4; the branches,
+// the PC- and SP-relative additions and SWI are done here.
+void ArmCore::execute_thumb(uint32_t insn) {
+  const uint32_t rd = bits(insn, 2, 0), rs = bits(insn, 5, 3);
+  switch (bits(insn, 15, 11)) {
+    case 0x00:
+    case 0x01:
+    case 0x02:  // LSL, LSR, ASR Rd, Rs, #imm5
+      data_processing(dp(mov, true, 0, rd, (bits(insn, 10, 6) << 7) | (bits(insn, 12, 11) << 5) | rs));
+      return;
+    case 0x03: {  // add, sub Rd, Rs, Rn / #imm3
+      const uint32_t operand2 = bit(insn, 10) ? IMMEDIATE | bits(insn, 8, 6) : bits(insn, 8, 6);
+      data_processing(dp(bit(insn, 9) ? sub : add, true, rs, rd, operand2));
+      return;
+    }
+    case 0x04:
+    case 0x05:
+    case 0x06:
+    case 0x07: {  // mov, cmp, add, sub Rd, #imm8
+      static constexpr uint32_t IMMEDIATE_OPS[] = {mov, cmp, add, sub};
+      const uint32_t r = bits(insn, 10, 8);
+      data_processing(dp(IMMEDIATE_OPS[bits(insn, 12, 11)], true, r, bits(insn, 12, 11) == 1 ? 0 : r,
+                         IMMEDIATE | bits(insn, 7, 0)));
+      return;
+    }
+    case 0x08:
+      if (!bit(insn, 10)) {  // ALU operations
+        const uint32_t op = bits(insn, 9, 6);
+        switch (op) {
+          case 0x2:  // LSL, LSR, ASR, ROR by register
+          case 0x3:
+          case 0x4:
+          case 0x7: {
+            const uint32_t type = op == 0x7 ? 3 : op - 2;
+            data_processing(dp(mov, true, 0, rd, shift_by_register(rs, type, rd)));
+            return;
+          }
+          case 0x9:  // NEG
+            data_processing(dp(rsb, true, rs, rd, IMMEDIATE));
+            return;
+          case 0xd:  // MUL Rd, Rs: Rd = Rs x Rd
+            multiply(AL | (1u << 20) | (rd << 16) | (rd << 8) | 0x90u | rs);
+            return;
+          case 0xf:  // MVN
+            data_processing(dp(mvn, true, 0, rd, rs));
+            return;
+          default: {
+            static constexpr uint32_t ALU_OPS[] = {and_, eor, 0, 0, 0, adc, sbc, 0, tst, 0, cmp, cmn, orr, 0, bic, 0};
+            const bool test_only = op == 0x8 || op == 0xa || op == 0xb;
+            data_processing(dp(ALU_OPS[op], true, rd, test_only ? 0 : rd, rs));
+            return;
+          }
+        }
+      } else {  // high-register add, cmp, MOV; BX
+        const uint32_t hd = rd | (bit(insn, 7) << 3), hs = bits(insn, 6, 3);
+        switch (bits(insn, 9, 8)) {
+          case 0: data_processing(dp(add, false, hd, hd, hs)); return;
+          case 1: data_processing(dp(cmp, true, hd, 0, hs)); return;
+          case 2: data_processing(dp(mov, false, 0, hd, hs)); return;
+          default: {
+            const uint32_t target = operand(hs);
+            m_cpsr = (m_cpsr & ~psr::T) | (target & 1u ? psr::T : 0);
+            write_pc(target & (target & 1u ? ~1u : ~3u));
+            return;
+          }
+        }
+      }
+    case 0x09:  // LDR Rd, [PC, #imm8 x 4]: the PC word-aligned
+      m_r[15] = (m_current + 4) & ~3u;
+      single_transfer(AL | (1u << 26) | (1u << 24) | (1u << 23) | (1u << 20) | (15u << 16) | (bits(insn, 10, 8) << 12) |
+                      (bits(insn, 7, 0) << 2));
+      return;
+    case 0x0a:
+    case 0x0b: {
+      const uint32_t ro = bits(insn, 8, 6);
+      if (!bit(insn, 9)) {  // STR, STRB, LDR, LDRB Rd, [Rb, Ro]
+        single_transfer(AL | (3u << 25) | (1u << 24) | (1u << 23) | (bit(insn, 10) << 22) | (bit(insn, 11) << 20) |
+                        (rs << 16) | (rd << 12) | ro);
+      } else {                                            // STRH, LDRH, LDRSB, LDRSH Rd, [Rb, Ro]
+        static constexpr uint32_t KIND[] = {1, 2, 1, 3};  // H S: 00 STRH, 01 LDRSB, 10 LDRH, 11 LDRSH
+        const uint32_t hs = bits(insn, 11, 10);
+        halfword_transfer(AL | (1u << 24) | (1u << 23) | ((hs != 0) ? 1u << 20 : 0) | (rs << 16) | (rd << 12) | 0x90u |
+                          (KIND[hs] << 5) | ro);
+      }
+      return;
+    }
+    case 0x0c:
+    case 0x0d:
+    case 0x0e:
+    case 0x0f: {  // STR, LDR, STRB, LDRB Rd, [Rb, #imm5 (x 4 for words)]
+      const bool byte = bit(insn, 12);
+      const uint32_t offset = bits(insn, 10, 6) << (byte ? 0 : 2);
+      single_transfer(AL | (1u << 26) | (1u << 24) | (1u << 23) | (byte ? 1u << 22 : 0) | (bit(insn, 11) << 20) |
+                      (rs << 16) | (rd << 12) | offset);
+      return;
+    }
+    case 0x10:
+    case 0x11: {  // STRH, LDRH Rd, [Rb, #imm5 x 2]
+      const uint32_t offset = bits(insn, 10, 6) << 1;
+      halfword_transfer(AL | (1u << 24) | (1u << 23) | (1u << 22) | (bit(insn, 11) << 20) | (rs << 16) | (rd << 12) |
+                        ((offset >> 4) << 8) | 0xb0u | (offset & 15u));
+      return;
+    }
+    case 0x12:
+    case 0x13:  // STR, LDR Rd, [SP, #imm8 x 4]
+      single_transfer(AL | (1u << 26) | (1u << 24) | (1u << 23) | (bit(insn, 11) << 20) | (13u << 16) |
+                      (bits(insn, 10, 8) << 12) | (bits(insn, 7, 0) << 2));
+      return;
+    case 0x14:
+    case 0x15: {  // add Rd, PC / SP, #imm8 x 4 (the PC word-aligned; no flags)
+      const uint32_t base = bit(insn, 11) ? m_r[13] : (m_current + 4) & ~3u;
+      m_r[bits(insn, 10, 8)] = base + (bits(insn, 7, 0) << 2);
+      return;
+    }
+    case 0x16:
+    case 0x17:
+      if (bits(insn, 10, 8) == 0) {  // add SP, #+-imm7 x 4
+        const uint32_t offset = bits(insn, 6, 0) << 2;
+        m_r[13] = bit(insn, 7) ? m_r[13] - offset : m_r[13] + offset;
+      } else if (bits(insn, 10, 9) == 2) {  // PUSH {rlist, LR}, POP {rlist, PC}
+        const uint32_t list = bits(insn, 7, 0) | (bit(insn, 8) << (bit(insn, 11) ? 15 : 14));
+        if (list == 0) {
+          undefined();
+          return;
+        }
+        block_transfer(bit(insn, 11) ? AL | (4u << 25) | (1u << 23) | (1u << 21) | (1u << 20) | (13u << 16) | list
+                                     : AL | (4u << 25) | (1u << 24) | (1u << 21) | (13u << 16) | list);
+      } else {
+        undefined();
+      }
+      return;
+    case 0x18:
+    case 0x19: {  // STMIA, LDMIA Rb!, {rlist}
+      const uint32_t rb = bits(insn, 10, 8), list = bits(insn, 7, 0);
+      if (list == 0) {
+        undefined();
+        return;
+      }
+      block_transfer(AL | (4u << 25) | (1u << 23) | (1u << 21) | (bit(insn, 11) << 20) | (rb << 16) | list);
+      return;
+    }
+    case 0x1a:
+    case 0x1b: {  // B<cond>, SWI
+      const uint32_t cond = bits(insn, 11, 8);
+      if (cond == 0xf) {
+        enter(Exception::swi, m_current + 2);
+      } else if (cond == 0xe) {
+        undefined();
+      } else if (condition(cond)) {
+        write_pc(m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 24) >> 23));
+      }
+      return;
+    }
+    case 0x1c:  // B
+      write_pc(m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 21) >> 20));
+      return;
+    case 0x1e:  // BL, first half: LR = PC + (offset << 12)
+      m_r[14] = m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 21) >> 9);
+      return;
+    case 0x1f: {  // BL, second half
+      const uint32_t target = m_r[14] + (bits(insn, 10, 0) << 1);
+      m_r[14] = (m_current + 2) | 1u;
+      write_pc(target & ~1u);
+      return;
+    }
+    default:  // 11101: BLX (ARMv5)
+      undefined();
+      return;
+  }
+}
+
+// LR = the next instruction: + 4 in ARM state, + 2 in Thumb.
 void ArmCore::undefined() {
-  enter(Exception::undefined, m_current + 4);
+  enter(Exception::undefined, m_current + (thumb() ? 2 : 4));
 }
 
-void ArmCore::unsupported(const std::string& what) const {
+void ArmCore::unpredictable(const std::string& what) const {
   char text[96];
-  std::snprintf(text, sizeof text, "ISS: %s at 0x%08x is not executed yet", what.c_str(), m_pc);
+  std::snprintf(text, sizeof text, "ISS: %s at 0x%08x: unpredictable on ARMv4T, not executed", what.c_str(), m_pc);
   throw IssError(text);
 }
 
@@ -461,7 +665,7 @@ void ArmCore::block_transfer(uint32_t insn) {
   const bool load = bit(insn, 20);
   const unsigned rn = bits(insn, 19, 16);
   const uint32_t list = bits(insn, 15, 0);
-  if (list == 0) unsupported("LDM/STM with an empty register list");
+  if (list == 0) unpredictable("LDM/STM with an empty register list");
   const auto count = static_cast<uint32_t>(__builtin_popcount(list));
   const uint32_t base = operand(rn);
   // The lowest register goes to the lowest address, whatever the direction.

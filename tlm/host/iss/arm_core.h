@@ -1,4 +1,4 @@
-// ArmCore: the ARMv4T programmer's model and ARM-state execution, plain C++
+// ArmCore: the ARMv4T programmer's model, ARM and Thumb execution, plain C++
 // (no SystemC). Memory and CP15 are reached through small ports; timing is
 // not here (tlm/host/iss/README.md: the layers).
 #pragma once
@@ -55,8 +55,9 @@ class Coprocessors {
                    uint32_t value) = 0;
 };
 
-// An instruction the ISS does not execute yet (Thumb state, for now): an
-// error naming the address and the encoding, never a silent skip.
+// An instruction the ISS will not execute (one whose result ARMv4T leaves
+// unpredictable, e.g. LDM/STM with no registers): an error naming the
+// address, never a silent guess.
 class IssError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -118,6 +119,8 @@ class ArmCore {
   bool condition(uint32_t cond) const;
   uint32_t shifted_register(uint32_t insn, bool& carry) const;
 
+  void execute_arm(uint32_t insn);
+  void execute_thumb(uint32_t insn);
   void data_processing(uint32_t insn);
   void multiply(uint32_t insn);
   void multiply_long(uint32_t insn);
@@ -128,7 +131,7 @@ class ArmCore {
   void status_transfer(uint32_t insn);
   void coprocessor_transfer(uint32_t insn);
   void undefined();
-  [[noreturn]] void unsupported(const std::string& what) const;
+  [[noreturn]] void unpredictable(const std::string& what) const;
 
   IssMemory& m_memory;
   Coprocessors* m_coprocessors;
