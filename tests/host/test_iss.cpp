@@ -7,11 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "host/iss/arm_core.h"
+#include "host/iss/cp15.h"
 
 namespace {
 
 using tessera::iss::ArmCore;
+using tessera::iss::CacheMaintenance;
 using tessera::iss::Coprocessors;
+using tessera::iss::Cp15;
 using tessera::iss::IssError;
 using tessera::iss::IssMemory;
 using tessera::iss::Mode;
@@ -294,6 +297,87 @@ TEST_F(Iss, AnEmptyRegisterListIsAClearErrorNotASilentSkip) {
   } catch (const IssError& error) {
     EXPECT_NE(std::string(error.what()).find("empty register list at 0x00000100"), std::string::npos) << error.what();
   }
+}
+
+// MRC/MCR p15, 0, Rd, CRn, CRm, op2
+constexpr uint32_t mrc(unsigned rd, unsigned crn, unsigned crm, unsigned op2) {
+  return 0xee100f10u | (crn << 16) | (rd << 12) | (op2 << 5) | crm;
+}
+constexpr uint32_t mcr(unsigned rd, unsigned crn, unsigned crm, unsigned op2) {
+  return 0xee000f10u | (crn << 16) | (rd << 12) | (op2 << 5) | crm;
+}
+
+struct Recorder : CacheMaintenance {
+  std::vector<std::string> calls;
+  void invalidate_instruction_cache() override { calls.push_back("invalidate I"); }
+  void invalidate_data_line(uint32_t address) override { calls.push_back("invalidate D " + std::to_string(address)); }
+  void clean_data_line(uint32_t address, bool invalidate) override {
+    calls.push_back(std::string(invalidate ? "clean+invalidate D " : "clean D ") + std::to_string(address));
+  }
+  void drain_write_buffer() override { calls.push_back("drain"); }
+};
+
+TEST_F(Iss, Cp15IdentifiesAnArm922tWithTwo8KbCaches) {
+  Cp15 cp15(core);
+  core.set_coprocessors(&cp15);
+  ArmCore& cpu = core;
+  memory.program(0x100, {mrc(0, 0, 0, 0), mrc(1, 0, 0, 1)});
+  cpu.set_cpsr(SYS);
+  cpu.set_reg(15, 0x100);
+  cpu.step();
+  cpu.step();
+  const uint32_t id = cpu.reg(0), type = cpu.reg(1);
+  EXPECT_EQ(id >> 24, 0x41u);        // ARM
+  EXPECT_EQ((id >> 16) & 0xfu, 2u);  // ARMv4T
+  EXPECT_EQ((id >> 4) & 0xfffu, 0x922u);
+  EXPECT_EQ((type >> 24) & 1u, 1u);                 // separate I and D caches
+  for (const uint32_t side : {type >> 12, type}) {  // D, then I
+    const uint32_t size = (side >> 6) & 7u, assoc = (side >> 3) & 7u, m = (side >> 2) & 1u, len = side & 3u;
+    EXPECT_EQ(m, 0u);
+    EXPECT_EQ(512u << size, 8192u);  // bytes (M = 0)
+    EXPECT_EQ(1u << assoc, 64u);     // ways
+    EXPECT_EQ(8u << len, 32u);       // bytes per line: 8 words
+  }
+}
+
+TEST_F(Iss, Cp15ControlRegisterKeepsWritableBitsAndMovesTheVectors) {
+  Cp15 cp15(core);
+  core.set_coprocessors(&cp15);
+  ArmCore& cpu = core;
+  memory.program(0x100, {mrc(2, 1, 0, 0), mcr(0, 1, 0, 0), mrc(3, 1, 0, 0), 0xef000000});  // ..., swi 0
+  cpu.set_cpsr(SYS);
+  cpu.set_reg(0, 0xffffffffu);
+  cpu.set_reg(15, 0x100);
+  for (int i = 0; i < 4; ++i) cpu.step();
+  EXPECT_EQ(cpu.reg(2), 0x00000078u);  // bits 6:3 should-be-one, everything off
+  // M A C, SBO 6:3, S R, I V RR, nF iA: not B (little-endian only)
+  EXPECT_EQ(cpu.reg(3), 0x7u | 0x78u | 0x300u | 0x7000u | 0xc0000000u);
+  EXPECT_TRUE(cp15.instruction_cache_enabled());
+  EXPECT_TRUE(cp15.data_cache_enabled());
+  EXPECT_EQ(cpu.reg(15), 0xffff0008u);  // SWI through the high vectors
+}
+
+TEST_F(Iss, Cp15CacheOperationsReachTheCachesAndUserModeIsRefused) {
+  Recorder recorder;
+  Cp15 cp15(core, &recorder);
+  core.set_coprocessors(&cp15);
+  ArmCore& cpu = core;
+  memory.program(0x100, {mcr(0, 7, 5, 0),     // invalidate the I-cache
+                         mcr(1, 7, 6, 1),     // invalidate the D line of r1
+                         mcr(1, 7, 10, 1),    // clean the D line of r1
+                         mcr(1, 7, 14, 1),    // clean and invalidate it
+                         mcr(0, 7, 10, 4)});  // drain the write buffer
+  cpu.set_cpsr(SYS);
+  cpu.set_reg(1, 0x8020);
+  cpu.set_reg(15, 0x100);
+  for (int i = 0; i < 5; ++i) cpu.step();
+  EXPECT_EQ(recorder.calls, (std::vector<std::string>{"invalidate I", "invalidate D 32800", "clean D 32800",
+                                                      "clean+invalidate D 32800", "drain"}));
+  cpu.set_cpsr(USR);
+  cpu.set_reg(15, 0x100);
+  cpu.step();
+  EXPECT_EQ(cpu.mode(), Mode::und);
+  EXPECT_EQ(recorder.calls.size(), 5u);
 }
 
 }  // namespace

@@ -68,6 +68,9 @@ class ArmCore {
   // coprocessors may be null: every MRC/MCR is then undefined.
   ArmCore(IssMemory& memory, Coprocessors* coprocessors = nullptr);
 
+  // The coprocessors may need the core (CP15 sets the vectors): attach them after.
+  void set_coprocessors(Coprocessors* coprocessors) { m_coprocessors = coprocessors; }
+
   // Reset: supervisor mode, ARM state, IRQ and FIQ masked, PC at the reset
   // vector (0, or 0xffff0000 with high vectors).
   void reset();
