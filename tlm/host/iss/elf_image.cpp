@@ -1,0 +1,96 @@
+#include "host/iss/elf_image.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+namespace tessera::iss {
+
+namespace {
+
+constexpr unsigned HEADER_BYTES = 52, PROGRAM_HEADER_BYTES = 32;
+constexpr uint16_t EXECUTABLE = 2, MACHINE_ARM = 40;
+constexpr uint32_t LOAD = 1, FLAG_EXECUTE = 1;
+
+uint32_t u32(const std::vector<uint8_t>& b, uint64_t at) {
+  return uint32_t{b[at]} | uint32_t{b[at + 1]} << 8 | uint32_t{b[at + 2]} << 16 | uint32_t{b[at + 3]} << 24;
+}
+uint16_t u16(const std::vector<uint8_t>& b, uint64_t at) {
+  return static_cast<uint16_t>(b[at] | b[at + 1] << 8);
+}
+
+std::string hex(uint64_t value) {
+  char text[24];
+  std::snprintf(text, sizeof text, "0x%08llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+}  // namespace
+
+ElfImage read_elf(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw ElfError(path + ": cannot open the ARM executable");
+  const auto size = static_cast<uint64_t>(in.tellg());
+  if (size > MAX_ELF_BYTES)
+    throw ElfError(path + ": " + std::to_string(size) + " bytes, more than an executable for the SoC can be (" +
+                   std::to_string(MAX_ELF_BYTES) + ")");
+  in.seekg(0);
+  std::vector<uint8_t> file(size);
+  if (!in.read(reinterpret_cast<char*>(file.data()), static_cast<std::streamsize>(size)))
+    throw ElfError(path + ": read failed");
+  return parse_elf(file, path);
+}
+
+ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
+  auto fail = [&](const std::string& what) { throw ElfError(path + ": not an ARM executable: " + what); };
+  if (file.size() < HEADER_BYTES || file[0] != 0x7f || file[1] != 'E' || file[2] != 'L' || file[3] != 'F')
+    fail("no ELF header");
+  if (file[4] != 1) fail("not a 32-bit ELF");
+  if (file[5] != 1) fail("not little-endian");
+  if (u16(file, 16) != EXECUTABLE) fail("ELF type " + std::to_string(u16(file, 16)) + ", not an executable (2)");
+  if (u16(file, 18) != MACHINE_ARM) fail("machine " + std::to_string(u16(file, 18)) + ", not ARM (40)");
+  ElfImage image;
+  image.path = path;
+  image.entry = u32(file, 24);
+  const uint64_t table = u32(file, 28);
+  const unsigned entry_size = u16(file, 42), count = u16(file, 44);
+  if (count == 0) fail("no program headers");
+  if (entry_size < PROGRAM_HEADER_BYTES || table + uint64_t{entry_size} * count > file.size())
+    fail("program headers outside the file");
+  bool entry_covered = false;
+  for (unsigned i = 0; i < count; ++i) {
+    const uint64_t at = table + uint64_t{entry_size} * i;
+    if (u32(file, at) != LOAD) continue;
+    const uint64_t offset = u32(file, at + 4), address = u32(file, at + 12);
+    const uint64_t file_size = u32(file, at + 16), memory_size = u32(file, at + 20);
+    if (file_size > memory_size) fail("segment " + std::to_string(i) + " has more file bytes than memory bytes");
+    if (offset + file_size > file.size()) fail("segment " + std::to_string(i) + " extends past the end of the file");
+    if (address + memory_size > (1ull << 32))
+      fail("segment " + std::to_string(i) + " at " + hex(address) + " wraps past 4 GiB");
+    if (memory_size > MAX_ELF_BYTES)
+      fail("segment " + std::to_string(i) + " of " + std::to_string(memory_size) + " bytes");
+    if (memory_size == 0) continue;
+    ElfSegment segment;
+    segment.address = static_cast<uint32_t>(address);
+    segment.executable = (u32(file, at + 24) & FLAG_EXECUTE) != 0;
+    segment.bytes.assign(file.begin() + static_cast<std::ptrdiff_t>(offset),
+                         file.begin() + static_cast<std::ptrdiff_t>(offset + file_size));
+    segment.bytes.resize(memory_size, 0);
+    entry_covered |= segment.executable && image.entry >= address && image.entry < address + memory_size;
+    image.segments.push_back(std::move(segment));
+  }
+  if (image.segments.empty()) fail("no loadable segment");
+  if (!entry_covered) fail("entry point " + hex(image.entry) + " is not in an executable segment");
+  return image;
+}
+
+void ElfImage::check_fits(uint32_t base, uint64_t size, const std::string& what) const {
+  for (const ElfSegment& segment : segments) {
+    const uint64_t end = uint64_t{segment.address} + segment.bytes.size();
+    if (segment.address < base || end > base + size)
+      throw ElfError(path + ": segment " + hex(segment.address) + ".." + hex(end) + " falls outside " + what + " (" +
+                     hex(base) + ".." + hex(base + size) + ")");
+  }
+}
+
+}  // namespace tessera::iss
