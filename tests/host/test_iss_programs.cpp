@@ -10,49 +10,15 @@
 #include <gtest/gtest.h>
 
 #include "host/iss/arm_core.h"
+#include "host/iss/bare_machine.h"
 #include "host/iss/elf_image.h"
 
 namespace {
 
 using tessera::iss::ArmCore;
 using tessera::iss::ElfError;
-using tessera::iss::IssMemory;
 
 std::string g_arm_elf, g_thumb_elf, g_native;
-
-constexpr uint32_t RAM_BYTES = 1u << 20;
-constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
-
-// The test machine of iss_programs/test.ld: 1 MiB of RAM, a console byte
-// register and an exit register.
-class TestMachine : public IssMemory {
- public:
-  std::vector<uint8_t> ram = std::vector<uint8_t>(RAM_BYTES);
-  std::string console;
-  bool exited = false;
-  uint32_t status = 0;
-
-  bool read(uint32_t address, unsigned size, uint32_t& value) override {
-    if (uint64_t{address} + size > ram.size()) return false;
-    value = 0;
-    for (unsigned i = 0; i < size; ++i) value |= uint32_t{ram[address + i]} << (8 * i);
-    return true;
-  }
-  bool write(uint32_t address, unsigned size, uint32_t value) override {
-    if (address == CONSOLE) {
-      console += static_cast<char>(value);
-      return true;
-    }
-    if (address == EXIT) {
-      exited = true;
-      status = value;
-      return true;
-    }
-    if (uint64_t{address} + size > ram.size()) return false;
-    for (unsigned i = 0; i < size; ++i) ram[address + i] = static_cast<uint8_t>(value >> (8 * i));
-    return true;
-  }
-};
 
 struct IssRun {
   std::string console;
@@ -61,18 +27,12 @@ struct IssRun {
 };
 
 IssRun run_on_iss(const std::string& path) {
-  const tessera::iss::ElfImage image = tessera::iss::read_elf(path);
-  image.check_fits(0, RAM_BYTES, "the test machine's RAM");
-  TestMachine machine;
-  for (const auto& segment : image.segments)
-    std::copy(segment.bytes.begin(), segment.bytes.end(), machine.ram.begin() + segment.address);
+  tessera::iss::BareMachine machine;
   ArmCore core(machine);
-  core.reset();
-  core.set_reg(15, image.entry);
-  for (uint64_t i = 0; !machine.exited && i < 50'000'000; ++i) core.step();
-  EXPECT_TRUE(machine.exited) << path << ": no exit after " << core.instructions() << " instructions, pc "
-                              << core.reg(15);
-  return {machine.console, machine.status, core.instructions()};
+  machine.load(tessera::iss::read_elf(path), core);
+  EXPECT_TRUE(machine.run(core, 50'000'000))
+      << path << ": no exit after " << core.instructions() << " instructions, pc " << core.reg(15);
+  return {machine.console(), machine.status(), core.instructions()};
 }
 
 std::string run_natively(const std::string& path) {

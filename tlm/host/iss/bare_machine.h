@@ -1,0 +1,69 @@
+// BareMachine: the ISS alone on a flat RAM with a console byte register and
+// an exit register (tests/host/iss_programs/test.ld's machine), no SystemC,
+// no timing: what the ISS's functional tests and its speed benchmark run.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/iss/arm_core.h"
+#include "host/iss/elf_image.h"
+
+namespace tessera::iss {
+
+class BareMachine : public IssMemory {
+ public:
+  static constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
+
+  explicit BareMachine(uint32_t ram_bytes = 1u << 20) : m_ram(ram_bytes) {}
+
+  // Loads the image (ElfError if it does not fit) and resets the core at its entry.
+  void load(const ElfImage& image, ArmCore& core) {
+    image.check_fits(0, m_ram.size(), "the bare machine's RAM");
+    for (const ElfSegment& segment : image.segments)
+      std::copy(segment.bytes.begin(), segment.bytes.end(), m_ram.begin() + segment.address);
+    core.reset();
+    core.set_reg(15, image.entry);
+  }
+
+  // Steps until the program writes the exit register or the limit is reached;
+  // true if it exited.
+  bool run(ArmCore& core, uint64_t instruction_limit) {
+    for (uint64_t i = 0; !m_exited && i < instruction_limit; ++i) core.step();
+    return m_exited;
+  }
+
+  const std::string& console() const { return m_console; }
+  bool exited() const { return m_exited; }
+  uint32_t status() const { return m_status; }
+
+  bool read(uint32_t address, unsigned size, uint32_t& value) override {
+    if (uint64_t{address} + size > m_ram.size()) return false;
+    value = 0;
+    for (unsigned i = 0; i < size; ++i) value |= uint32_t{m_ram[address + i]} << (8 * i);
+    return true;
+  }
+  bool write(uint32_t address, unsigned size, uint32_t value) override {
+    if (address == CONSOLE) {
+      m_console += static_cast<char>(value);
+      return true;
+    }
+    if (address == EXIT) {
+      m_exited = true;
+      m_status = value;
+      return true;
+    }
+    if (uint64_t{address} + size > m_ram.size()) return false;
+    for (unsigned i = 0; i < size; ++i) m_ram[address + i] = static_cast<uint8_t>(value >> (8 * i));
+    return true;
+  }
+
+ private:
+  std::vector<uint8_t> m_ram;
+  std::string m_console;
+  bool m_exited = false;
+  uint32_t m_status = 0;
+};
+
+}  // namespace tessera::iss
