@@ -28,7 +28,7 @@ Timed run_once(const tessera::iss::ElfImage& image) {
   const auto start = std::chrono::steady_clock::now();
   const bool exited = machine.run(core, 100'000'000);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!exited || machine.status() != 42) throw std::runtime_error(image.path + ": did not run to its end");
+  if (!exited || machine.status() != 0) throw std::runtime_error(image.path + ": did not run to its end");
   return {seconds, core.instructions()};
 }
 

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "apps/gl_apps.h"
+#include "apps/iss_app.h"
 #include "scenes/scene.h"
 
 namespace tessera {
@@ -50,6 +51,8 @@ AppInfo find_app(const std::string& name) {
   const auto& apps = builtin_apps();
   auto it = apps.find(name);
   if (it != apps.end()) return it->second;
+  if (is_elf_app(name))
+    return {[name](AppEnvironment& env) { return run_elf_app(env, name); }, "ARM executable " + name + " on the ISS"};
   if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
     const GlMain main = load_app_library(name);
     return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); }, "application library " + name};

@@ -92,6 +92,10 @@ void ArmCore::reset() {
 }
 
 void ArmCore::enter(Exception exception, uint32_t return_address) {
+  if (m_exception_hook) {
+    const bool interrupt = exception == Exception::irq || exception == Exception::fiq;
+    m_exception_hook(exception, interrupt || exception == Exception::reset ? m_pc : m_current);
+  }
   const auto index = static_cast<unsigned>(exception);
   const uint32_t old = m_cpsr;
   uint32_t cpsr = (old & ~(psr::MODE_MASK | psr::T)) | static_cast<uint32_t>(VECTOR_MODE[index]) | psr::I;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -97,6 +98,12 @@ class ArmCore {
   // when not masked).
   void set_irq(bool level) { m_irq_line = level; }
   void set_fiq(bool level) { m_fiq_line = level; }
+  // Called on every exception entry, before the core changes mode, with the
+  // address of the instruction that caused it (for interrupts: the next
+  // one). A launcher that has no handlers to vector to throws from it.
+  using ExceptionHook = std::function<void(Exception exception, uint32_t pc)>;
+  void on_exception(ExceptionHook hook) { m_exception_hook = std::move(hook); }
+
   // Exception vectors at 0xffff0000 (CP15 control bit V).
   void set_high_vectors(bool high) { m_high_vectors = high; }
 
@@ -153,6 +160,7 @@ class ArmCore {
   bool m_fiq_line = false;
   bool m_high_vectors = false;
   uint64_t m_instructions = 0;
+  ExceptionHook m_exception_hook;
 };
 
 }  // namespace tessera::iss

@@ -1,0 +1,177 @@
+#include "apps/iss_app.h"
+
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+#include <vector>
+
+#include "host/iss/arm_core.h"
+#include "host/iss/elf_image.h"
+
+namespace tessera {
+
+namespace {
+
+// The console and exit registers the test programs write (BareMachine's,
+// tlm/host/iss/bare_machine.h): taken by the launcher, not on the bus yet.
+constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
+// Instructions whose one-cycle charges are added up before the host is
+// told (the host's time moves in these steps between memory accesses).
+constexpr uint64_t CHARGE_BATCH = 256;
+
+std::string hex(uint32_t value) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%08x", value);
+  return text;
+}
+
+// The ISS's memory port over the host's device layer. Data accesses are the
+// host's (charged by its cache, write buffer and bus); instruction fetches
+// read a private copy of the executable segments (an ideal instruction
+// cache: no fetch is charged yet), kept in step with the program's own
+// stores into them.
+class HostMemory : public iss::IssMemory {
+ public:
+  HostMemory(HostApi& host, const iss::ElfImage& image) : m_host(host) {
+    for (const iss::ElfSegment& segment : image.segments)
+      if (segment.executable) m_code.push_back({segment.address, segment.bytes});
+  }
+
+  void charge(uint64_t cycles) { m_pending += cycles; }
+  void flush() {
+    if (m_pending != 0) {
+      m_host.compute(Op::alu, m_pending);
+      m_pending = 0;
+    }
+  }
+  uint64_t pending() const { return m_pending; }
+
+  bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
+    for (const Code& code : m_code)
+      if (address >= code.base && address - code.base + bytes <= code.bytes.size()) {
+        value = 0;
+        for (unsigned i = 0; i < bytes; ++i) value |= uint32_t{code.bytes[address - code.base + i]} << (8 * i);
+        return true;
+      }
+    return read(address, bytes, value);  // code outside the image: through the data side
+  }
+
+  bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
+    flush();
+    try {
+      value = bytes == 4 ? m_host.read32(address) : bytes == 2 ? m_host.read16(address) : m_host.read8(address);
+      return true;
+    } catch (const BusError&) {
+      m_fault_address = address;
+      return false;
+    }
+  }
+
+  bool write(uint32_t address, unsigned bytes, uint32_t value) override {
+    if (address == CONSOLE) {
+      m_console += static_cast<char>(value);
+      if (static_cast<char>(value) == '\n') {
+        std::cout << m_console << std::flush;
+        m_console.clear();
+      }
+      return true;
+    }
+    if (address == EXIT) {
+      m_exited = true;
+      m_status = value;
+      return true;
+    }
+    flush();
+    try {
+      if (bytes == 4)
+        m_host.write32(address, value);
+      else if (bytes == 2)
+        m_host.write16(address, static_cast<uint16_t>(value));
+      else
+        m_host.write8(address, static_cast<uint8_t>(value));
+    } catch (const BusError&) {
+      m_fault_address = address;
+      return false;
+    }
+    for (Code& code : m_code)  // a store into the code: the copy follows
+      if (address >= code.base && address - code.base + bytes <= code.bytes.size())
+        for (unsigned i = 0; i < bytes; ++i)
+          code.bytes[address - code.base + i] = static_cast<uint8_t>(value >> (8 * i));
+    return true;
+  }
+
+  bool exited() const { return m_exited; }
+  uint32_t status() const { return m_status; }
+  uint32_t fault_address() const { return m_fault_address; }
+  void flush_console() {
+    if (!m_console.empty()) std::cout << m_console << std::flush;
+    m_console.clear();
+  }
+
+ private:
+  struct Code {
+    uint32_t base;
+    std::vector<uint8_t> bytes;
+  };
+  HostApi& m_host;
+  std::vector<Code> m_code;
+  uint64_t m_pending = 0;
+  std::string m_console;
+  bool m_exited = false;
+  uint32_t m_status = 0;
+  uint32_t m_fault_address = 0;
+};
+
+}  // namespace
+
+bool is_elf_app(const std::string& name) {
+  return name.size() > 4 && name.compare(name.size() - 4, 4, ".elf") == 0;
+}
+
+int run_elf_app(AppEnvironment& env, const std::string& path) {
+  HostApi& host = *env.host;
+  const iss::ElfImage image = iss::read_elf(path);
+  image.check_fits(0, env.memory_bytes, "the populated system memory (mem.size_mib)");
+  // The boot loader's copy of the image into system memory, charged as the
+  // host's stores (a word at a time).
+  for (const iss::ElfSegment& segment : image.segments) {
+    size_t i = 0;
+    for (; i + 4 <= segment.bytes.size(); i += 4)
+      host.write32(segment.address + static_cast<uint32_t>(i),
+                   uint32_t{segment.bytes[i]} | uint32_t{segment.bytes[i + 1]} << 8 |
+                       uint32_t{segment.bytes[i + 2]} << 16 | uint32_t{segment.bytes[i + 3]} << 24);
+    for (; i < segment.bytes.size(); ++i) host.write8(segment.address + static_cast<uint32_t>(i), segment.bytes[i]);
+  }
+  HostMemory memory(host, image);
+  iss::ArmCore core(memory);
+  core.on_exception([&](iss::Exception exception, uint32_t pc) {
+    const char* what = nullptr;
+    switch (exception) {
+      case iss::Exception::undefined: what = "undefined instruction"; break;
+      case iss::Exception::prefetch_abort: what = "prefetch abort (no memory at the PC)"; break;
+      case iss::Exception::data_abort: what = "data abort"; break;
+      default: return;  // SWI and interrupts go to the program's vectors
+    }
+    memory.flush_console();
+    std::string text = path + ": " + what + " at pc " + hex(pc);
+    if (exception == iss::Exception::data_abort) text += ", address " + hex(memory.fault_address());
+    throw std::runtime_error(text + " (the program has no handler: the ISS launcher stops it)");
+  });
+  core.reset();
+  core.set_reg(15, image.entry);
+  try {
+    while (!memory.exited()) {
+      core.step();
+      memory.charge(1);
+      if (memory.pending() >= CHARGE_BATCH) memory.flush();
+    }
+  } catch (const iss::IssError& error) {
+    memory.flush_console();
+    throw std::runtime_error(path + ": " + error.what());
+  }
+  memory.flush();
+  memory.flush_console();
+  return static_cast<int>(memory.status());
+}
+
+}  // namespace tessera
