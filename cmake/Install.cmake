@@ -10,7 +10,7 @@ include(CMakePackageConfigHelpers)
 set(TESSERA_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/tessera)
 
 set(tessera_installed_programs soc_sim)
-foreach(tool recip_table render_compare ap_asm)
+foreach(tool recip_table render_compare ap_asm iss_run)
   if(TARGET ${tool})
     list(APPEND tessera_installed_programs ${tool})
   endif()

@@ -1,0 +1,89 @@
+// iss_run: an ARM executable on the ISS alone (BareMachine: 1 MiB of RAM at
+// 0, the console byte register at 0xf0000000, the exit register at
+// 0xf0000004; no SystemC, no timing), optionally under GDB.
+//
+//   iss_run program.elf [--limit N] [--gdb PORT [--gdb-port-file FILE]]
+//
+// Prints the program's console output and exits with its exit status; an
+// undefined instruction, an abort or a runaway program (--limit) is an error
+// naming the file and the PC (exit status 3); bad input exits 2.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "guarded_main.h"
+#include "host/iss/bare_machine.h"
+#include "host/iss/gdb_server.h"
+
+namespace {
+
+std::string hex(uint32_t value) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%08x", value);
+  return text;
+}
+
+}  // namespace
+
+int run_main(int argc, char** argv) {
+  CLI::App app{"iss_run: an ARM executable on the instruction-set simulator alone"};
+  std::string elf, port_file;
+  uint64_t limit = 1'000'000'000;
+  int gdb_port = -1;
+  app.add_option("program", elf, "the ARM executable (ELF)")->required();
+  app.add_option("--limit", limit, "instructions before the run is stopped as runaway")->check(CLI::PositiveNumber);
+  app.add_option("--gdb", gdb_port, "serve GDB's remote protocol on 127.0.0.1:PORT (0: any free port) and wait")
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--gdb-port-file", port_file, "write the GDB port here once listening");
+  CLI11_PARSE(app, argc, argv);
+  using namespace tessera::iss;
+  try {
+    BareMachine machine;
+    ArmCore core(machine);
+    machine.load(read_elf(elf), core);
+    core.on_exception([&](Exception exception, uint32_t pc) {
+      if (exception == Exception::undefined) throw IssError(elf + ": undefined instruction at pc " + hex(pc));
+      if (exception == Exception::prefetch_abort) throw IssError(elf + ": prefetch abort (no memory) at pc " + hex(pc));
+      if (exception == Exception::data_abort)
+        throw IssError(elf + ": data abort (no memory at the address) at pc " + hex(pc));
+    });
+    try {
+      if (gdb_port >= 0) {
+        GdbServer server({core, machine, [&] { return machine.exited(); }, [&] { return machine.status(); }});
+        const unsigned port = server.listen(static_cast<unsigned>(gdb_port));
+        std::cerr << "iss_run: waiting for GDB on 127.0.0.1:" << port << "\n";
+        if (!port_file.empty() && !(std::ofstream(port_file) << port << "\n"))
+          throw std::runtime_error("cannot write the port to " + port_file);
+        if (!server.serve(limit)) {
+          std::cout << machine.console();
+          std::cerr << "iss_run: killed by GDB at pc " << hex(core.reg(15)) << "\n";
+          return 3;
+        }
+      }
+      const bool exited = machine.run(core, limit - std::min(limit, core.instructions()));
+      std::cout << machine.console() << std::flush;
+      if (!exited) {
+        std::cerr << "iss_run: " << elf << ": no exit after " << core.instructions() << " instructions (--limit), pc "
+                  << hex(core.reg(15)) << "\n";
+        return 3;
+      }
+      return static_cast<int>(machine.status() & 0xffu);
+    } catch (const IssError& error) {
+      std::cout << machine.console() << std::flush;
+      std::cerr << "iss_run: " << error.what() << "\n";
+      return 3;
+    }
+  } catch (const std::exception& error) {
+    std::cerr << "iss_run: " << error.what() << "\n";
+    return 2;
+  }
+}
+
+int main(int argc, char** argv) {
+  return tessera::guarded_main(
+      "iss_run", [&] { return run_main(argc, argv); }, 2);
+}
