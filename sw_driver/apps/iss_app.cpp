@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "host/iss/arm_core.h"
+#include "host/iss/cp15.h"
 #include "host/iss/elf_image.h"
 
 namespace tessera {
@@ -144,6 +145,8 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
   }
   HostMemory memory(host, image);
   iss::ArmCore core(memory);
+  iss::Cp15 cp15(core);  // ID, cache type, control; cache operations reach no caches yet
+  core.set_coprocessors(&cp15);
   core.on_exception([&](iss::Exception exception, uint32_t pc) {
     const char* what = nullptr;
     switch (exception) {

@@ -17,6 +17,7 @@
 
 #include "guarded_main.h"
 #include "host/iss/bare_machine.h"
+#include "host/iss/cp15.h"
 #include "host/iss/gdb_server.h"
 
 namespace {
@@ -44,6 +45,8 @@ int run_main(int argc, char** argv) {
   try {
     BareMachine machine;
     ArmCore core(machine);
+    Cp15 cp15(core);
+    core.set_coprocessors(&cp15);
     machine.load(read_elf(elf), core);
     core.on_exception([&](Exception exception, uint32_t pc) {
       if (exception == Exception::undefined) throw IssError(elf + ": undefined instruction at pc " + hex(pc));
