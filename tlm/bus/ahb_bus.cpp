@@ -55,8 +55,7 @@ void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_
   m_regions.push_back({base, size, target_name, static_cast<unsigned>(m_regions.size())});
 }
 
-const AhbBus::Region* AhbBus::decode(uint64_t address) const {
-  if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+const AhbBus::Region* AhbBus::decode_other(uint64_t address) const {
   for (const auto& r : m_regions)
     if (address >= r.base && address - r.base < r.size) return m_last_region = &r;
   return nullptr;
@@ -70,9 +69,8 @@ void AhbBus::trace_signals(sc_core::sc_trace_file* file) {
   }
 }
 
-uint64_t AhbBus::reserve(uint64_t request_cycle, uint64_t length_cycles) {
+uint64_t AhbBus::reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles) {
   // Nothing can be requested before the current time, so older reservations go.
-  const uint64_t now = sc_core::sc_time_stamp().value();
   while (m_reserved_head < m_reserved.size() && m_reserved[m_reserved_head].end * m_period_ticks <= now)
     ++m_reserved_head;
   if (m_reserved_head == m_reserved.size()) {
@@ -123,21 +121,30 @@ void AhbBus::resolve_batch() {
       return (static_cast<uint64_t>(m_stats[r->initiator].priority) << 32) | r->initiator;
     return (r->initiator + count - m_last_granted - 1) % count;
   };
-  std::stable_sort(m_batch.begin(), m_batch.end(), [&](const Request* a, const Request* b) {
+  const auto before = [&](const Request* a, const Request* b) {
     if (a->request_cycle != b->request_cycle) return a->request_cycle < b->request_cycle;
     return rank(a) < rank(b);
-  });
+  };
+  // A stable insertion sort: a batch holds at most one request per
+  // initiator, and std::stable_sort would allocate a buffer each time.
+  for (size_t i = 1; i < m_batch.size(); ++i) {
+    Request* r = m_batch[i];
+    size_t j = i;
+    for (; j > 0 && before(r, m_batch[j - 1]); --j) m_batch[j] = m_batch[j - 1];
+    m_batch[j] = r;
+  }
+  const uint64_t now = sc_core::sc_time_stamp().value();
   for (Request* r : m_batch) {
-    r->start_cycle = reserve(r->request_cycle, r->occupancy_cycles);
+    r->start_cycle = reserve(now, r->request_cycle, r->occupancy_cycles);
     r->granted = true;
     m_last_granted = r->initiator;
   }
   m_batch.clear();
 }
 
-void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request) {
+void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
+                     const Request& request) {
   BusInitiatorStats& s = m_stats[initiator];
-  const unsigned transfers = transfers_of(gp);
   s.transactions += transfers;
   if (gp.is_read()) s.reads += transfers;
   if (gp.is_write()) s.writes += transfers;
@@ -178,7 +185,7 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     // initiator's local time, as loosely-timed targets expect) and adds
     // its latency, which sets the data phase.
     const uint64_t request_offset = request_ticks - now;
-    sc_time target_delay = sc_time::from_value(request_offset);
+    sc_time target_delay = request_offset == delay.value() ? delay : sc_time::from_value(request_offset);
     out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
     const uint64_t target_ticks = target_delay.value() - request_offset;
@@ -197,10 +204,10 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     // Pending synchronised requests are for the current time, so no later
     // than this one: they are served first.
     if (!m_batch.empty()) resolve_batch();
-    request.start_cycle = reserve(request.request_cycle, request.occupancy_cycles);
+    request.start_cycle = reserve(now, request.request_cycle, request.occupancy_cycles);
     m_last_granted = initiator;
   }
-  account(initiator, gp, beats, request);
+  account(initiator, gp, transfers, beats, request);
   if (log::enabled(log::Level::debug))
     log::debug(name(), m_stats[initiator].name + (gp.is_write() ? " write " : " read ") +
                            std::to_string(gp.get_data_length()) + " bytes at " + log::hex(address) + ", granted " +

@@ -138,17 +138,23 @@ class AhbBus : public Block {
 
   void add_initiator(const std::string& name, unsigned priority);
   void add_region(uint64_t base, uint64_t size, const std::string& name);
-  const Region* decode(uint64_t address) const;
+  const Region* decode(uint64_t address) const {
+    if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+    return decode_other(address);
+  }
+  const Region* decode_other(uint64_t address) const;  // and remembers it
 
   void b_transport(int id, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned transport_dbg(int id, tlm::tlm_generic_payload& gp);
   bool get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);
 
-  // Earliest start >= request at which [start, start + length) is free; reserves it.
-  uint64_t reserve(uint64_t request_cycle, uint64_t length_cycles);
+  // Earliest start >= request at which [start, start + length) is free;
+  // reserves it. `now`: the kernel's time in ticks.
+  uint64_t reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles);
   void resolve_batch();
-  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request);
+  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
+               const Request& request);
   // Bus cycles over which utilisation is computed: `elapsed`, or up to the
   // end of the last granted transfer if that is later.
   double span_cycles(const sc_core::sc_time& elapsed) const;

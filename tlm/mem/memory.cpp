@@ -80,7 +80,8 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
   // Integer ticks: every transfer of a train takes the time of one access.
   const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
   m_busy_ticks += ticks;
-  delay += sc_core::sc_time::from_value(ticks);
+  if (ticks != m_last_access.value()) m_last_access = sc_core::sc_time::from_value(ticks);
+  delay += m_last_access;
   gp.set_dmi_allowed(true);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }

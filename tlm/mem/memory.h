@@ -73,6 +73,7 @@ class Memory : public Block {
   FixedDivider m_beats;  // bytes to beats (the width)
   uint64_t m_first_access_ticks;
   uint64_t m_beat_ticks;
+  sc_core::sc_time m_last_access;  // the time of the access before, kept as an sc_time
   ActivityCounter& m_reads;
   ActivityCounter& m_writes;
   ActivityCounter& m_bytes_read;
