@@ -56,8 +56,8 @@ struct FloorTarget : sc_core::sc_module {
   std::vector<uint8_t> data;
   sc_time latency;
 
-  FloorTarget(sc_core::sc_module_name name, sc_time latency_)
-      : sc_module(name), in("in"), data(MEMORY_BYTES), latency(latency_) {
+  FloorTarget(sc_core::sc_module_name name, sc_time initial_latency)
+      : sc_module(name), in("in"), data(MEMORY_BYTES), latency(initial_latency) {
     in.register_b_transport(this, &FloorTarget::b_transport);
   }
 
@@ -112,7 +112,9 @@ struct Driver : sc_core::sc_module {
   Timings timings;
   std::string error;
 
-  Driver(sc_core::sc_module_name name, const Options& options_) : sc_module(name), options(options_) { SC_THREAD(run); }
+  Driver(sc_core::sc_module_name name, const Options& driver_options) : sc_module(name), options(driver_options) {
+    SC_THREAD(run);
+  }
 
   // The memory's data phase for `kind`; the floor adds the bus's address
   // phase, so every path annotates the same time per transaction.
