@@ -22,6 +22,9 @@ AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
       out("out"),
       m_params(params),
       m_period_ticks(params.clock_period.value()),
+      // Checked below, with the bus's name in the message.
+      m_cycles(std::max<uint64_t>(1, m_period_ticks)),
+      m_beats(std::max(1u, params.width_bytes)),
       m_busy_cycles(counter("busy_cycles", "bus cycles reserved by transfers, all initiators")) {
   if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
@@ -52,8 +55,7 @@ void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_
   m_regions.push_back({base, size, target_name, static_cast<unsigned>(m_regions.size())});
 }
 
-const AhbBus::Region* AhbBus::decode(uint64_t address) const {
-  if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+const AhbBus::Region* AhbBus::decode_other(uint64_t address) const {
   for (const auto& r : m_regions)
     if (address >= r.base && address - r.base < r.size) return m_last_region = &r;
   return nullptr;
@@ -67,41 +69,48 @@ void AhbBus::trace_signals(sc_core::sc_trace_file* file) {
   }
 }
 
-uint64_t AhbBus::align_to_edge(uint64_t ticks) const {
-  return (ticks + m_period_ticks - 1) / m_period_ticks * m_period_ticks;
-}
-
-uint64_t AhbBus::reserve(uint64_t request_ticks, uint64_t length_ticks) {
+uint64_t AhbBus::reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles) {
   // Nothing can be requested before the current time, so older reservations go.
-  const uint64_t now = sc_core::sc_time_stamp().value();
-  while (m_reserved_head < m_reserved.size() && m_reserved[m_reserved_head].end <= now) ++m_reserved_head;
-  if (m_reserved_head > 256 && m_reserved_head * 2 > m_reserved.size()) {
+  while (m_reserved_head < m_reserved.size() && m_reserved[m_reserved_head].end * m_period_ticks <= now)
+    ++m_reserved_head;
+  if (m_reserved_head == m_reserved.size()) {
+    m_reserved.clear();
+    m_reserved_head = 0;
+  } else if (m_reserved_head > 256 && m_reserved_head * 2 > m_reserved.size()) {
     m_reserved.erase(m_reserved.begin(), m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head));
     m_reserved_head = 0;
   }
-  const auto first = m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head);
-  const auto by_start = [](uint64_t t, const Interval& i) { return t < i.start; };
-
-  // The first interval starting after the request; the one before it may
-  // still be running at the request time.
-  uint64_t start = request_ticks;
-  auto it = std::upper_bound(first, m_reserved.end(), start, by_start);
-  if (it != first && std::prev(it)->end > start) start = std::prev(it)->end;
-  // Skip every interval the transfer would overlap.
-  while (it != m_reserved.end() && it->start < start + length_ticks) {
-    start = std::max(start, it->end);
-    ++it;
+  uint64_t start = request_cycle;
+  if (m_reserved_head == m_reserved.size() || m_reserved.back().end <= start) {
+    // At or after the end of every reservation, as almost every request is:
+    // no search. It joins the last interval if that ends where it starts.
+    if (m_reserved_head < m_reserved.size() && m_reserved.back().end == start)
+      m_reserved.back().end = start + length_cycles;
+    else
+      m_reserved.push_back(Interval{start, start + length_cycles});
+  } else {
+    const auto first = m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head);
+    const auto by_start = [](uint64_t t, const Interval& i) { return t < i.start; };
+    // The first interval starting after the request; the one before it may
+    // still be running at the request time.
+    auto it = std::upper_bound(first, m_reserved.end(), start, by_start);
+    if (it != first && std::prev(it)->end > start) start = std::prev(it)->end;
+    // Skip every interval the transfer would overlap.
+    while (it != m_reserved.end() && it->start < start + length_cycles) {
+      start = std::max(start, it->end);
+      ++it;
+    }
+    // `it` is now the first interval starting at or after the transfer's
+    // end, so the transfer goes just before it; it joins an interval that
+    // ends exactly where it starts, to keep the timeline short under
+    // back-to-back traffic.
+    if (it != first && std::prev(it)->end == start)
+      std::prev(it)->end = start + length_cycles;
+    else
+      m_reserved.insert(it, Interval{start, start + length_cycles});
   }
-  // `it` is now the first interval starting at or after the transfer's end,
-  // so the transfer goes just before it; it joins an interval that ends
-  // exactly where it starts, to keep the timeline short under back-to-back
-  // traffic.
-  if (it != first && std::prev(it)->end == start)
-    std::prev(it)->end = start + length_ticks;
-  else
-    m_reserved.insert(it, Interval{start, start + length_ticks});
-  m_busy_cycles += length_ticks / m_period_ticks;
-  m_last_end_ticks = std::max(m_last_end_ticks, start + length_ticks);
+  m_busy_cycles += length_cycles;
+  m_last_end_cycle = std::max(m_last_end_cycle, start + length_cycles);
   return start;
 }
 
@@ -112,32 +121,41 @@ void AhbBus::resolve_batch() {
       return (static_cast<uint64_t>(m_stats[r->initiator].priority) << 32) | r->initiator;
     return (r->initiator + count - m_last_granted - 1) % count;
   };
-  std::stable_sort(m_batch.begin(), m_batch.end(), [&](const Request* a, const Request* b) {
-    if (a->request_ticks != b->request_ticks) return a->request_ticks < b->request_ticks;
+  const auto before = [&](const Request* a, const Request* b) {
+    if (a->request_cycle != b->request_cycle) return a->request_cycle < b->request_cycle;
     return rank(a) < rank(b);
-  });
+  };
+  // A stable insertion sort: a batch holds at most one request per
+  // initiator, and std::stable_sort would allocate a buffer each time.
+  for (size_t i = 1; i < m_batch.size(); ++i) {
+    Request* r = m_batch[i];
+    size_t j = i;
+    for (; j > 0 && before(r, m_batch[j - 1]); --j) m_batch[j] = m_batch[j - 1];
+    m_batch[j] = r;
+  }
+  const uint64_t now = sc_core::sc_time_stamp().value();
   for (Request* r : m_batch) {
-    r->start_ticks = reserve(r->request_ticks, r->occupancy_ticks);
+    r->start_cycle = reserve(now, r->request_cycle, r->occupancy_cycles);
     r->granted = true;
     m_last_granted = r->initiator;
   }
   m_batch.clear();
 }
 
-void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request) {
+void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
+                     const Request& request) {
   BusInitiatorStats& s = m_stats[initiator];
-  const unsigned transfers = transfers_of(gp);
   s.transactions += transfers;
   if (gp.is_read()) s.reads += transfers;
   if (gp.is_write()) s.writes += transfers;
   s.bytes += gp.get_data_length();
   s.beats += beats;
-  s.busy_cycles += request.occupancy_ticks / m_period_ticks;
-  s.wait_cycles += (request.start_ticks - request.request_ticks) / m_period_ticks;
+  s.busy_cycles += request.occupancy_cycles;
+  s.wait_cycles += request.start_cycle - request.request_cycle;
   if (m_tracing) {
-    const uint64_t end = request.start_ticks + request.occupancy_ticks;
-    m_request_traces[initiator]->set_at(true, sc_time::from_value(request.request_ticks));
-    m_grant_traces[initiator]->set_at(true, sc_time::from_value(request.start_ticks));
+    const uint64_t end = (request.start_cycle + request.occupancy_cycles) * m_period_ticks;
+    m_request_traces[initiator]->set_at(true, sc_time::from_value(request.request_cycle * m_period_ticks));
+    m_grant_traces[initiator]->set_at(true, sc_time::from_value(request.start_cycle * m_period_ticks));
     m_request_traces[initiator]->set_at(false, sc_time::from_value(end));
     m_grant_traces[initiator]->set_at(false, sc_time::from_value(end));
   }
@@ -147,16 +165,17 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
   const unsigned initiator = static_cast<unsigned>(id);
   const uint64_t now = sc_core::sc_time_stamp().value();
   const uint64_t address = gp.get_address();
-  Request request{initiator, align_to_edge(now + delay.value()), 0};
+  // Request time: the initiator's local time, rounded up to a clock edge.
+  Request request{initiator, m_cycles.ceil(now + delay.value()), 0};
+  const uint64_t request_ticks = request.request_cycle * m_period_ticks;
   const unsigned transfers = transfers_of(gp);
-  const uint64_t transfer_bytes = gp.get_data_length() / transfers;
-  const uint64_t beats =
-      transfers * std::max<uint64_t>(1, (transfer_bytes + m_params.width_bytes - 1) / m_params.width_bytes);
+  const uint64_t transfer_bytes = transfers == 1 ? gp.get_data_length() : gp.get_data_length() / transfers;
+  const uint64_t beats = transfers * std::max<uint64_t>(1, m_beats.ceil(transfer_bytes));
 
   const Region* region = decode(address);
   if (!region) {
     gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
-    request.occupancy_ticks = (m_params.address_cycles + m_params.error_cycles) * m_period_ticks;
+    request.occupancy_cycles = m_params.address_cycles + m_params.error_cycles;
     ++m_stats[initiator].errors;
     log::warning(name(), "unmapped " + std::string(gp.is_write() ? "write" : "read") + " by " +
                              m_stats[initiator].name + " at " + log::hex(address));
@@ -165,13 +184,13 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     // The target sees the access at the time it is requested (the
     // initiator's local time, as loosely-timed targets expect) and adds
     // its latency, which sets the data phase.
-    const uint64_t request_offset = request.request_ticks - now;
-    sc_time target_delay = sc_time::from_value(request_offset);
+    const uint64_t request_offset = request_ticks - now;
+    sc_time target_delay = request_offset == delay.value() ? delay : sc_time::from_value(request_offset);
     out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
     const uint64_t target_ticks = target_delay.value() - request_offset;
-    const uint64_t data_ticks = std::max(align_to_edge(target_ticks), beats * m_period_ticks);
-    request.occupancy_ticks = transfers * m_params.address_cycles * m_period_ticks + data_ticks;
+    const uint64_t data_cycles = std::max(m_cycles.ceil(target_ticks), beats);
+    request.occupancy_cycles = transfers * m_params.address_cycles + data_cycles;
     if (gp.is_response_error()) ++m_stats[initiator].errors;
   }
 
@@ -185,16 +204,16 @@ void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
     // Pending synchronised requests are for the current time, so no later
     // than this one: they are served first.
     if (!m_batch.empty()) resolve_batch();
-    request.start_ticks = reserve(request.request_ticks, request.occupancy_ticks);
+    request.start_cycle = reserve(now, request.request_cycle, request.occupancy_cycles);
     m_last_granted = initiator;
   }
-  account(initiator, gp, beats, request);
+  account(initiator, gp, transfers, beats, request);
   if (log::enabled(log::Level::debug))
     log::debug(name(), m_stats[initiator].name + (gp.is_write() ? " write " : " read ") +
                            std::to_string(gp.get_data_length()) + " bytes at " + log::hex(address) + ", granted " +
-                           sc_time::from_value(request.start_ticks).to_string() + ", " +
-                           std::to_string(request.occupancy_ticks / m_period_ticks) + " cycles");
-  delay = sc_time::from_value(request.start_ticks + request.occupancy_ticks - now);
+                           sc_time::from_value(request.start_cycle * m_period_ticks).to_string() + ", " +
+                           std::to_string(request.occupancy_cycles) + " cycles");
+  delay = sc_time::from_value((request.start_cycle + request.occupancy_cycles) * m_period_ticks - now);
 }
 
 unsigned AhbBus::transport_dbg(int id, tlm::tlm_generic_payload& gp) {
@@ -255,7 +274,7 @@ void AhbBus::invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint6
 double AhbBus::span_cycles(const sc_time& elapsed) const {
   // Busy cycles are counted when a transfer is granted, so the period they
   // are spread over runs to the end of the last granted transfer.
-  const uint64_t span = std::max<uint64_t>(elapsed.value(), m_last_end_ticks);
+  const uint64_t span = std::max<uint64_t>(elapsed.value(), m_last_end_cycle * m_period_ticks);
   return span / static_cast<double>(m_period_ticks);
 }
 

@@ -41,6 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/fixed_divider.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -124,40 +125,53 @@ class AhbBus : public Block {
     std::string name;
     unsigned target_index;
   };
+  // Times in bus cycles from time 0 (cycle c is the clock edge at c
+  // periods): every request is aligned to an edge and every occupancy is a
+  // whole number of cycles, so the timeline needs no finer unit.
   struct Request {
     unsigned initiator;
-    uint64_t request_ticks;
-    uint64_t occupancy_ticks;
-    uint64_t start_ticks = 0;
+    uint64_t request_cycle;
+    uint64_t occupancy_cycles;
+    uint64_t start_cycle = 0;
     bool granted = false;
   };
 
   void add_initiator(const std::string& name, unsigned priority);
   void add_region(uint64_t base, uint64_t size, const std::string& name);
-  const Region* decode(uint64_t address) const;
+  const Region* decode(uint64_t address) const {
+    if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+    return decode_other(address);
+  }
+  const Region* decode_other(uint64_t address) const;  // and remembers it
 
   void b_transport(int id, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned transport_dbg(int id, tlm::tlm_generic_payload& gp);
   bool get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);
 
-  uint64_t align_to_edge(uint64_t ticks) const;
-  // Earliest start >= request at which [start, start + length) is free; reserves it.
-  uint64_t reserve(uint64_t request_ticks, uint64_t length_ticks);
+  // Earliest start >= request at which [start, start + length) is free;
+  // reserves it. `now`: the kernel's time in ticks.
+  uint64_t reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles);
   void resolve_batch();
-  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t beats, const Request& request);
+  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
+               const Request& request);
   // Bus cycles over which utilisation is computed: `elapsed`, or up to the
   // end of the last granted transfer if that is later.
   double span_cycles(const sc_core::sc_time& elapsed) const;
 
   BusParams m_params;
   uint64_t m_period_ticks;
+  FixedDivider m_cycles;  // ticks to bus cycles
+  FixedDivider m_beats;   // bytes to beats
   std::vector<Region> m_regions;
   std::vector<BusInitiatorStats> m_stats;
-  // The reservation timeline: disjoint [start, end) intervals in ticks,
+  // The reservation timeline: disjoint [start, end) intervals in cycles,
   // sorted, from m_reserved_head on (the ones before it have ended). A sorted
   // vector rather than a map: requests arrive nearly in time order, so
-  // almost every reservation extends or follows the last interval.
+  // almost every reservation extends or follows the last interval (which
+  // reserve() tries first), and the intervals that have ended are dropped
+  // as time passes, so the cost does not grow with the simulation's
+  // history.
   struct Interval {
     uint64_t start;
     uint64_t end;
@@ -167,7 +181,7 @@ class AhbBus : public Block {
   std::vector<Request*> m_batch;
   unsigned m_last_granted = 0;
   ActivityCounter& m_busy_cycles;
-  uint64_t m_last_end_ticks = 0;
+  uint64_t m_last_end_cycle = 0;
   mutable const Region* m_last_region = nullptr;
   bool m_tracing = false;
   std::vector<std::unique_ptr<TimedTrace>> m_request_traces;

@@ -1,5 +1,6 @@
 #include "mem/memory.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -13,20 +14,19 @@ Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
       in("in"),
       m_params(params),
       m_data(params.size_bytes, 0),
+      m_beats(std::max(1u, params.width_bytes)),  // checked below, with the memory's name in the message
+      m_first_access_ticks(params.clock_period.value() * params.first_access_cycles),
+      m_beat_ticks(params.clock_period.value() * params.beat_cycles),
       m_reads(counter("reads", "read transfers")),
       m_writes(counter("writes", "write transfers")),
       m_bytes_read(counter("bytes_read", "bytes read")),
       m_bytes_written(counter("bytes_written", "bytes written")),
       m_errors(counter("errors", "accesses answered with an error")) {
   if (params.size_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": size 0");
+  if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero width");
   in.register_b_transport(this, &Memory::b_transport);
   in.register_transport_dbg(this, &Memory::transport_dbg);
   in.register_get_direct_mem_ptr(this, &Memory::get_direct_mem_ptr);
-}
-
-sc_core::sc_time Memory::access_time(uint64_t bytes) const {
-  const uint64_t beats = bytes == 0 ? 1 : (bytes + m_params.width_bytes - 1) / m_params.width_bytes;
-  return m_params.clock_period * static_cast<double>(m_params.first_access_cycles + beats * m_params.beat_cycles);
 }
 
 bool Memory::check(tlm::tlm_generic_payload& gp) const {
@@ -57,6 +57,7 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
   const uint64_t length = gp.get_data_length();
   const uint8_t* enables = gp.get_byte_enable_ptr();
   const unsigned enable_length = gp.get_byte_enable_length();
+  const unsigned transfers = transfers_of(gp);
   if (gp.is_read()) {
     if (enables) {
       for (uint64_t i = 0; i < length; ++i)
@@ -64,7 +65,7 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
     } else {
       std::memcpy(gp.get_data_ptr(), memory, length);
     }
-    m_reads += transfers_of(gp);
+    m_reads += transfers;
     m_bytes_read += length;
   } else if (gp.is_write()) {
     if (enables) {
@@ -73,13 +74,14 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
     } else {
       std::memmove(memory, gp.get_data_ptr(), length);
     }
-    m_writes += transfers_of(gp);
+    m_writes += transfers;
     m_bytes_written += length;
   }
-  const unsigned transfers = transfers_of(gp);
-  const sc_core::sc_time time = access_time(length / transfers) * static_cast<double>(transfers);
-  m_busy_ticks += time.value();
-  delay += time;
+  // Integer ticks: every transfer of a train takes the time of one access.
+  const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
+  m_busy_ticks += ticks;
+  if (ticks != m_last_access.value()) m_last_access = sc_core::sc_time::from_value(ticks);
+  delay += m_last_access;
   gp.set_dmi_allowed(true);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/fixed_divider.h"
 #include "config/config.h"
 
 namespace tessera {
@@ -49,7 +50,7 @@ class Memory : public Block {
   // Direct view for the testbench (loading programs, checking results).
   uint8_t* data() { return m_data.data(); }
   // Data-phase time of an access of `bytes` bytes.
-  sc_core::sc_time access_time(uint64_t bytes) const;
+  sc_core::sc_time access_time(uint64_t bytes) const { return sc_core::sc_time::from_value(access_ticks(bytes)); }
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -61,9 +62,18 @@ class Memory : public Block {
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   // Checks range and attributes; sets the response status on failure.
   bool check(tlm::tlm_generic_payload& gp) const;
+  // access_time() in ticks (the time resolution's units): integers only.
+  uint64_t access_ticks(uint64_t bytes) const {
+    const uint64_t beats = bytes == 0 ? 1 : m_beats.ceil(bytes);
+    return m_first_access_ticks + beats * m_beat_ticks;
+  }
 
   MemoryParams m_params;
   std::vector<uint8_t> m_data;
+  FixedDivider m_beats;  // bytes to beats (the width)
+  uint64_t m_first_access_ticks;
+  uint64_t m_beat_ticks;
+  sc_core::sc_time m_last_access;  // the time of the access before, kept as an sc_time
   ActivityCounter& m_reads;
   ActivityCounter& m_writes;
   ActivityCounter& m_bytes_read;
