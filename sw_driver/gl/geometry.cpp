@@ -111,6 +111,21 @@ bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenV
   return 4 * twice_area > 5 * edges + 10;
 }
 
+namespace {
+
+// A window coordinate in 9.4 codes, rounded to nearest. The far edge of a
+// 512-pixel screen, 512.0 (code 8192, one past 9.4), becomes 511 15/16: the
+// last pixel centres are at 511.5, so only the edges through such a vertex
+// move, by at most 1/16 pixel at the vertex (snapping moves every vertex by
+// up to 1/32). Without it a full-width or full-height triangle on a
+// 512-pixel screen would be dropped.
+double screen_coordinate(double window) {
+  const double code = std::nearbyint(window * (1 << SUBPIXEL_BITS));
+  return code == MAX_SCREEN_COORDINATE + 1 ? MAX_SCREEN_COORDINATE : code;
+}
+
+}  // namespace
+
 bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
   const glm::vec4& p = v.position;
   WindowPoint window;
@@ -118,8 +133,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   const double inv_w = 1.0 / p.w;
   const double zn = p.z * inv_w;
   const double zw = (zn * (viewport.far_depth - viewport.near_depth) + viewport.far_depth + viewport.near_depth) * 0.5;
-  const double xf = std::nearbyint(window.x * (1 << SUBPIXEL_BITS));
-  const double yf = std::nearbyint(window.y * (1 << SUBPIXEL_BITS));
+  const double xf = screen_coordinate(window.x);
+  const double yf = screen_coordinate(window.y);
   if (!std::isfinite(xf) || !std::isfinite(yf) || xf < 0 || yf < 0 || xf > MAX_SCREEN_COORDINATE ||
       yf > MAX_SCREEN_COORDINATE)
     return false;

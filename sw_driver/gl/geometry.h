@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/screen_size.h"
 #include "gl/renderer.h"
 
 namespace tessera::gl {
@@ -74,6 +75,8 @@ int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVe
 
 inline constexpr int SUBPIXEL_BITS = 4;
 inline constexpr int32_t MAX_SCREEN_COORDINATE = (1 << (9 + SUBPIXEL_BITS)) - 1;  // 9.4 unsigned
+static_assert(MAX_SCREEN_COORDINATE + 1 == int32_t{MAX_SCREEN_SIZE} << SUBPIXEL_BITS,
+              "a screen of MAX_SCREEN_SIZE pixels ends one code past 9.4");
 
 uint8_t to_unorm8(float value);
 uint32_t to_unorm24(float value);

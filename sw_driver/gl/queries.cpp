@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "common/screen_size.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
 
@@ -153,7 +154,7 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_FOG_START: v[0] = m_fog_start; break;
     case GL_FOG_END: v[0] = m_fog_end; break;
     case GL_DEPTH_RANGE: v[0] = m_viewport.near_depth, v[1] = m_viewport.far_depth; break;
-    case GL_MAX_VIEWPORT_DIMS: v[0] = v[1] = 512; break;
+    case GL_MAX_VIEWPORT_DIMS: v[0] = v[1] = static_cast<GLint>(MAX_SCREEN_SIZE); break;
     case GL_ALIASED_POINT_SIZE_RANGE:
     case GL_SMOOTH_POINT_SIZE_RANGE:
     case GL_ALIASED_LINE_WIDTH_RANGE:

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "common/screen_size.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
 
@@ -140,7 +141,7 @@ void Context::clear(GLbitfield mask) {
 void Context::viewport(GLint x, GLint y, GLsizei w, GLsizei h) {
   charge_call();
   if (w < 0 || h < 0) return error(GL_INVALID_VALUE);
-  const GLsizei max = 1 << 9;  // the 9.4 screen format
+  const auto max = static_cast<GLsizei>(MAX_SCREEN_SIZE);  // the 9.4 screen format
   m_viewport.x = x, m_viewport.y = y, m_viewport.width = std::min(w, max), m_viewport.height = std::min(h, max);
 }
 

@@ -84,7 +84,7 @@ TEST(SocParameters, EachBlockReadsItsDeclaredDefaults) {
 TEST(SocParameters, FrameBuffersLargerThanMemoryNameTheKeys) {
   Config config = soc_config();
   for (const char* assignment :
-       {"display.width=2048", "display.height=2048", "display.format=rgba8888", "mem.size_mib=16"})
+       {"display.width=512", "display.height=512", "display.format=rgba8888", "mem.size_mib=1"})
     config.apply_override(assignment);  // each value is legal on its own
   const std::string message = config_error([&] { config.validate(); });
   EXPECT_MENTIONS(message, "impossible combination");

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "common/screen_size.h"
 #include "display/display_controller.h"
 
 namespace tessera {
@@ -20,8 +21,10 @@ ParamGroup DisplayParams::parameters() {
   using param::integer;
   return {"display",
           {
-              integer("display.width", 320, 16, 2048, "pixels", "visible pixels per line"),
-              integer("display.height", 240, 16, 2048, "lines", "visible lines"),
+              integer("display.width", 320, 16, MAX_SCREEN_SIZE, "pixels",
+                      "visible pixels per line (at most 512: screen x is 9.4 fixed point)"),
+              integer("display.height", 240, 16, MAX_SCREEN_SIZE, "lines",
+                      "visible lines (at most 512: screen y is 9.4 fixed point)"),
               param::choice("display.format", "rgb565", pixel_format_name_list(), "frame-buffer pixel format"),
               param::boolean("display.dma", false,
                              "true: a display DMA scans the front buffer out over the bus; false: the host copies "

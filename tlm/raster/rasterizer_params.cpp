@@ -1,6 +1,7 @@
 // The rasterizer's parameters: raster.*.
 #include <string>
 
+#include "common/screen_size.h"
 #include "raster/rasterizer.h"
 
 namespace tessera {
@@ -15,10 +16,12 @@ ParamGroup RasterizerParams::parameters() {
       "raster",
       {
           param::real("raster.clock_mhz", 100.0, 1, 1000, "MHz", "rasterizer pipeline clock"),
-          integer("raster.width", 320, 16, 2048, "pixels",
-                  "screen width the rasterizer covers (must equal display.width with driver.backend=raster)"),
-          integer("raster.height", 240, 16, 2048, "lines",
-                  "screen height the rasterizer covers (must equal display.height with driver.backend=raster)"),
+          integer("raster.width", 320, 16, MAX_SCREEN_SIZE, "pixels",
+                  "screen width the rasterizer covers (must equal display.width with driver.backend=raster; at "
+                  "most 512: screen x is 9.4 fixed point)"),
+          integer("raster.height", 240, 16, MAX_SCREEN_SIZE, "lines",
+                  "screen height the rasterizer covers (must equal display.height with driver.backend=raster; at "
+                  "most 512: screen y is 9.4 fixed point)"),
           integer("raster.tile_width", 32, 1, 256, "pixels", "tile buffer width (the paper: 32)"),
           integer("raster.tile_height", 16, 1, 256, "lines", "tile buffer height (the paper: 16)"),
           integer("raster.recip_method", 3, 1, 3, "",

@@ -3,11 +3,11 @@
 //
 //   render_compare --scene NAME [--soc-sim PATH] [--frame N] [--format rgb565|rgba8888]
 //                  [--backend arm] [--tolerance T] [--min-percent P] [--allowed-coverage C]
-//                  [--allow-coverage-off-edges] [--out DIR] [-- scene args]
+//                  [--allow-coverage-off-edges] [--set KEY=VALUE ...] [--out DIR] [-- scene args]
 //   render_compare --scene NAME --ours frame.png [...]
 //
 // Without --ours, soc_sim runs as a child process (`--app NAME --frames N+1
-// --out DIR/ours --set display.format=F --backend B --force -- scene args`) and frame
+// --out DIR/ours --set display.format=F --backend B --force [--set KEY=VALUE ...] -- scene args`) and frame
 // N is taken from what it wrote. It must stay a separate process: Mesa and
 // our driver export the same gl* symbols. The soc_sim next to this program in
 // the build tree is used unless --soc-sim names another.
@@ -58,6 +58,7 @@ struct Options {
   size_t allowed_coverage = 0;
   bool allow_coverage_off_edges = false;
   std::string out_dir;
+  std::vector<std::string> settings;           // --set key=value, passed on to soc_sim
   std::vector<std::string> scene_args;         // after --
   std::vector<std::string> scene_arg_options;  // --scene-arg, the older spelling; these come first
 };
@@ -143,6 +144,7 @@ Image render_on_soc(const Options& options, const fs::path& frames_dir) {
                                       "display.format=" + options.format, "--backend", options.backend,
                                       // DIR/ours is render_compare's: a rerun replaces the frames it holds.
                                       "--force"};
+  for (const std::string& setting : options.settings) command.insert(command.end(), {"--set", setting});
   if (!options.scene_args.empty()) {
     command.push_back("--");
     command.insert(command.end(), options.scene_args.begin(), options.scene_args.end());
@@ -264,6 +266,8 @@ static int run_main(int argc, char** argv) {
                "accept coverage mismatches away from the reference's edges (holes, stray pixels)");
   app.add_option("--out", options.out_dir,
                  "write ours.png, reference.png and difference.png (and soc_sim's frames in ours/) here");
+  app.add_option("--set", options.settings,
+                 "soc_sim parameter key=value (repeatable), e.g. display.width=512; Mesa draws the frame's size");
   app.add_option("--scene-arg", options.scene_arg_options, "argument passed to the scene's init (repeatable)");
   app.add_option("scene_args", options.scene_args, "arguments passed to the scene, after --");
   try {

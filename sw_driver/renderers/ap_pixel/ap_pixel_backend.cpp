@@ -1,4 +1,5 @@
 // The ap-pixel back end's entry points for the registry (backends.def).
+#include <cstdint>
 #include <string>
 
 #include "renderers/ap_pixel/ap_pixel_renderer.h"
@@ -32,12 +33,22 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
 }
 
 // The display shows the study's frame (192 x 144 for the 24 x 4 array)
-// unless the user chose its size.
+// unless the user chose its size. A grid whose frame ap-pixel cannot draw
+// is refused here, naming the array's keys (array.rows 15 and 16 would
+// otherwise fail display.height's range, naming a key the user never set).
 void adjust_configuration(Config& config) {
-  if (!config.is_set("display.width"))
-    config.set("display.width", config.get_uint("array.columns") * TILE_WIDTH, "driver.backend=ap-pixel");
-  if (!config.is_set("display.height"))
-    config.set("display.height", config.get_uint("array.rows") * TILE_HEIGHT, "driver.backend=ap-pixel");
+  const uint64_t width = config.get_uint("array.columns") * TILE_WIDTH;
+  const uint64_t height = config.get_uint("array.rows") * TILE_HEIGHT;
+  if ((!config.is_set("display.width") && width > MAX_FRAME) ||
+      (!config.is_set("display.height") && height > MAX_FRAME))
+    throw ConfigError(
+        "configuration: impossible combination: driver.backend=ap-pixel draws frames of at most " +
+        std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
+        " pixels, but the array's frame (array.columns x array.rows tiles of 8 x 36) is " + std::to_string(width) +
+        " x " + std::to_string(height) + "; set display.width and display.height, or use at most array.columns=" +
+        std::to_string(MAX_FRAME / TILE_WIDTH) + " and array.rows=" + std::to_string(MAX_FRAME / TILE_HEIGHT));
+  if (!config.is_set("display.width")) config.set("display.width", width, "driver.backend=ap-pixel");
+  if (!config.is_set("display.height")) config.set("display.height", height, "driver.backend=ap-pixel");
 }
 
 // A CU's block offsets are signed bytes: frames up to 256 x 256.

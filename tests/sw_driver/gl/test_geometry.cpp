@@ -193,6 +193,30 @@ TEST(Viewport, NonFiniteHugeAndOffRangeVerticesAreRejected) {
   EXPECT_FALSE(to_screen(bad_tex, viewport, &s));
 }
 
+// A 512-pixel screen's far edge, 512.0, is one code past 9.4 (8192): the
+// vertex moves to 511 15/16 (8191) instead of dropping its triangle, and
+// only that code moves. A 511-pixel screen's far edge, 511.0, is 8176.
+TEST(Viewport, FarEdgeOfA512PixelScreenIsKept) {
+  Viewport viewport;
+  viewport.width = viewport.height = 512;
+  ScreenVertex s;
+  ASSERT_TRUE(to_screen(vertex(1, 1, 0), viewport, &s));
+  EXPECT_EQ(s.x, 8191);
+  EXPECT_EQ(s.y, 8191);
+  ASSERT_TRUE(to_screen(vertex(-1, -1, 0), viewport, &s));
+  EXPECT_EQ(s.x, 0);
+  EXPECT_EQ(s.y, 0);
+  // 511.9375 is 9.4 already and stays.
+  ASSERT_TRUE(to_screen(vertex(511.9375f / 256 - 1, 0, 0), viewport, &s));
+  EXPECT_EQ(s.x, 8191);
+  // 512.0625 (code 8193) is beyond the screen and still rejected.
+  EXPECT_FALSE(to_screen(vertex(512.0625f / 256 - 1, 0, 0), viewport, &s));
+  viewport.width = viewport.height = 511;
+  ASSERT_TRUE(to_screen(vertex(1, 1, 0), viewport, &s));
+  EXPECT_EQ(s.x, 511 * 16);
+  EXPECT_EQ(s.y, 511 * 16);
+}
+
 TEST(Viewport, SignedAreaIsPositiveCounterClockwise) {
   ScreenVertex a{}, b{}, c{};
   a.x = 0, a.y = 0;

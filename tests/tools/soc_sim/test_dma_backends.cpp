@@ -133,6 +133,27 @@ TEST_F(DmaBackend, ApPixelHostTimeWritingTheArrayFallsWithEachStep) {
             driver(run("ap-pixel", ciu).first, "ap_pixel.host_read_ns"));
 }
 
+// dma.channels accepts 1 to 8. ap-pixel runs on one channel (its output
+// then shares channel 0); ap-tile's read-back keeps two chunks in flight,
+// one per channel, so one channel is a usage error naming the key (it
+// failed with a bus error on the missing channel at the first frame).
+TEST_F(DmaBackend, OneChannelRunsOnApPixelAndIsRefusedByApTile) {
+  const std::vector<std::string> args = {"--app", "triangle",      "--frames", "1", "-q", "--set", "dma.enabled=true",
+                                         "--set", "dma.channels=1"};
+  std::vector<std::string> pixel = {"--backend", "ap-pixel", "--out", "pixel_one_channel"};
+  pixel.insert(pixel.end(), args.begin(), args.end());
+  const SimResult pixel_result = tessera::test::run_soc_sim(g_soc_sim, m_dir, pixel);
+  EXPECT_EQ(pixel_result.status, 0) << describe(pixel_result);
+  EXPECT_TRUE(fs::is_regular_file(m_dir / "pixel_one_channel" / "frame_0000.png"));
+  std::vector<std::string> tile = {"--backend", "ap-tile", "--out", "tile_one_channel"};
+  tile.insert(tile.end(), args.begin(), args.end());
+  const SimResult tile_result = tessera::test::run_soc_sim(g_soc_sim, m_dir, tile);
+  EXPECT_EQ(tile_result.status, 2) << describe(tile_result);
+  EXPECT_NE(tile_result.err.find("dma.channels=1"), std::string::npos) << describe(tile_result);
+  EXPECT_NE(tile_result.err.find("impossible combination"), std::string::npos) << describe(tile_result);
+  EXPECT_FALSE(fs::exists(m_dir / "tile_one_channel" / "stats.json"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -860,8 +860,8 @@ TEST_F(SocSim, OutOfRangeValueIsRejected) {
 }
 
 TEST_F(SocSim, ImpossibleCombinationIsRejected) {
-  expect_rejected(run({"--set", "display.width=2048", "--set", "display.height=2048", "--set",
-                       "display.format=rgba8888", "--set", "mem.size_mib=16", "--out", "out"}),
+  expect_rejected(run({"--set", "display.width=512", "--set", "display.height=512", "--set", "display.format=rgba8888",
+                       "--set", "mem.size_mib=1", "--out", "out"}),
                   EXIT_USAGE, {"impossible combination", "display.width", "display.format", "mem.size_mib"});
   EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
 }

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 
+#include "common/screen_size.h"
 #include "raster/core/command_decoder.h"
 #include "raster/core/draw_state.h"
 #include "raster/core/fragment_shader.h"
@@ -23,8 +24,7 @@ namespace tessera::raster {
 namespace {
 
 // 9.4 screen coordinates reach 511 + 15/16; edge_function.h is exact for
-// pixels 0..512.
-constexpr unsigned MAX_SCREEN_SIZE = 512;
+// pixels 0..512: screens up to MAX_SCREEN_SIZE (common/screen_size.h).
 
 // One triangle through setup, traversal and shading. The texture's size is
 // checked only when a textured triangle reaches the traversal.
