@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the binary seed inputs of fuzz/corpus (raster_commands, gl).
+"""Writes the binary seed inputs of fuzz/corpus (raster_commands, gl), and
+the regression inputs written for a fault rather than kept as found.
 
 The text seeds (config, obj, array_asm) are written by hand. Run from
 anywhere: python3 fuzz/make_seeds.py. The layouts are those the targets'
@@ -63,6 +64,23 @@ ORTHO_EDGES = bytes([100] + [1, 0, 1, 1, 1, 2, 1, 3, 1, 4, 1, 12])  # glOrthof o
 PUSH_POP = bytes([112, 112, 111, 111, 111])                 # one pop too many: GL_STACK_UNDERFLOW
 
 
+def gl_enum(value):  # Arguments::e(), any 32-bit value
+    return bytes([0]) + struct.pack("<I", value)
+
+
+def gl_int_edge(index):  # Arguments::i(), EDGES[index]: 0 is 0, 17 is INT_MAX
+    return bytes([1, index])
+
+
+GL_TEXTURE_2D, GL_RGBA = 0x0DE1, 0x1908
+# glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 0, 0, INT_MAX, INT_MAX, 0) and
+# glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, INT_MAX, INT_MAX): they
+# allocated width x height x 4 bytes before checking the size.
+COPY_TEX_HUGE = (bytes([24]) + gl_enum(GL_TEXTURE_2D) + gl_int_edge(0) + gl_enum(GL_RGBA) + gl_int_edge(0) * 2 +
+                 gl_int_edge(17) * 2 + gl_int_edge(0) +
+                 bytes([25]) + gl_enum(GL_TEXTURE_2D) + gl_int_edge(0) * 5 + gl_int_edge(17) * 2 + GET_ERROR)
+
+
 def main():
     (CORPUS / "raster_commands").mkdir(parents=True, exist_ok=True)
     (CORPUS / "gl").mkdir(parents=True, exist_ok=True)
@@ -81,6 +99,7 @@ def main():
                                           VERTEX_POINTER_FLOAT3, DRAW_TRIANGLES_6, GET_ERROR),
         "gl/seed-matrices.bin": gl_stream(ORTHO_EDGES, PUSH_POP, GET_ERROR, ENABLE_VERTEX_ARRAY,
                                           VERTEX_POINTER_FLOAT3, DRAW_TRIANGLES_6),
+        "gl/regress-copy-tex-image-huge-size.bin": COPY_TEX_HUGE,
     }
     for name, data in seeds.items():
         (CORPUS / name).write_bytes(data)
