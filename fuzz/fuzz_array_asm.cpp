@@ -37,6 +37,7 @@ bool assemble(std::string_view source, const std::string& name, const ap::AsmLim
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view source(reinterpret_cast<const char*>(data), size);
   const ap::AsmLimits limits;  // array.* defaults, as ap_asm without options

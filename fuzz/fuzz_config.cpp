@@ -109,6 +109,7 @@ bool accepted(Step&& step) {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static tessera::fuzz::ScratchFile file(".json");
   const std::string input(reinterpret_cast<const char*>(data), size);

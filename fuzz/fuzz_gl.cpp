@@ -549,8 +549,9 @@ class Arguments {
   const void* array_pointer(GLenum binding) {
     GLint buffer = 0;
     glGetIntegerv(binding, &buffer);
-    if (buffer != 0) return reinterpret_cast<const void*>(static_cast<uintptr_t>(r.pick(4) == 0 ? r.u32() : r.u16()));
-    return in();
+    if (buffer == 0) return in();
+    const uintptr_t bytes = r.pick(4) == 0 ? r.u32() : r.u16();
+    return reinterpret_cast<const void*>(bytes);  // NOLINT(performance-no-int-to-ptr): GL's buffer offsets
   }
 
   ByteReader& r;
@@ -836,6 +837,7 @@ void call(Arguments& a) {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static FuzzHost host;
   static CountingRenderer renderer;

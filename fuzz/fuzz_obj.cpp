@@ -14,6 +14,7 @@
 #include "fuzz_support.h"
 #include "scenes/obj_loader.h"
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using tessera::fuzz::fail;
   namespace scenes = tessera::scenes;

@@ -65,6 +65,7 @@ class FuzzPort : public RasterPort {
 
 }  // namespace
 
+// NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tessera::fuzz::ByteReader header(data, size);
   const uint8_t flags = header.u8();
