@@ -248,7 +248,7 @@ TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
   viewport.height = 48;
   gl::ScreenVertex snapped[3];
   for (int i = 0; i < 3; ++i) {
-    gl::ClipVertex v;
+    gl::ClipVertex v{};  // colour and texture coordinates too: to_screen reads them
     v.position = {collinear[3 * i], collinear[3 * i + 1], 0, 1};
     ASSERT_TRUE(gl::to_screen(v, viewport, &snapped[i]));
   }
