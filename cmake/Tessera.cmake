@@ -1,7 +1,8 @@
 # Project-wide helpers: warnings, sanitizers, tests and Verilog units.
 
 add_library(tessera_warnings INTERFACE)
-target_compile_options(tessera_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow=local
+# -Wshadow=local is GCC's; clang (the fuzz preset) has no such option.
+target_compile_options(tessera_warnings INTERFACE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                        $<$<BOOL:${TESSERA_WERROR}>:-Werror>)
 
 if(TESSERA_SANITIZE)

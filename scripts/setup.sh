@@ -20,6 +20,7 @@ PACKAGES=(
   gdb-multiarch           # GDB against the ISS (iss_run --gdb; tests/host/gdb_session.sh)
   yosys                   # synthesis size report of the Verilog units
   clang-format clang-tidy # the lint tests: one code dialect (tests/lint)
+  clang-14 libclang-rt-14-dev  # the fuzz preset: clang with libFuzzer, ASan and UBSan (docs/fuzzing.md)
   gtkwave                 # viewing VCD traces; its vcd2fst checks them in the tests
   python3                 # helper scripts
   python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)

@@ -10,6 +10,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context.h"
+#include "gl/context_internal.h"
 #include "gl/entry_point.h"
 
 using tessera::gl::Context;
@@ -417,7 +418,9 @@ GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum inte
   if (internalformat != GL_RGBA && internalformat != GL_RGB && internalformat != GL_LUMINANCE &&
       internalformat != GL_ALPHA && internalformat != GL_LUMINANCE_ALPHA)
     return c->error(GL_INVALID_ENUM);
-  if (width < 0 || height < 0) return c->error(GL_INVALID_VALUE);
+  // No texture is larger: refused before the copy's buffer is allocated.
+  if (width < 0 || height < 0 || width > tessera::gl::MAX_TEXTURE_SIZE || height > tessera::gl::MAX_TEXTURE_SIZE)
+    return c->error(GL_INVALID_VALUE);
   std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 4);
   if (!pixels.empty()) c->read_pixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   c->tex_image(target, level, GL_RGBA, width, height, border, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
@@ -425,7 +428,8 @@ GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum inte
 GL_API void GL_APIENTRY glCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                                             GLsizei width, GLsizei height) {
   WITH_CONTEXT()
-  if (width < 0 || height < 0) return c->error(GL_INVALID_VALUE);
+  if (width < 0 || height < 0 || width > tessera::gl::MAX_TEXTURE_SIZE || height > tessera::gl::MAX_TEXTURE_SIZE)
+    return c->error(GL_INVALID_VALUE);
   std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 4);
   if (!pixels.empty()) c->read_pixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   c->tex_sub_image(target, level, xoffset, yoffset, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());

@@ -91,6 +91,22 @@ TEST_F(GlApi, BadValuesAreInvalidValue) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
 }
 
+// Found by fuzz/fuzz_gl.cpp (fuzz/corpus/gl/regress-copy-tex-image-huge-size.bin):
+// the copies allocated width x height x 4 bytes before any check of the size.
+TEST_F(GlApi, CopiesLargerThanAnyTextureAreInvalidValue) {
+  const GLsizei huge = std::numeric_limits<GLsizei>::max();
+  glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 0, 0, huge, huge, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 0, 0, 257, 1, 0);  // MAX_TEXTURE_SIZE is 256
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, huge, huge);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  GLint size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+  glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 0, 0, size, size, 0);  // the largest is still a texture
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(GlApi, MatrixStackOverflowAndUnderflow) {
   glMatrixMode(GL_MODELVIEW);
   glPopMatrix();
@@ -232,7 +248,7 @@ TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
   viewport.height = 48;
   gl::ScreenVertex snapped[3];
   for (int i = 0; i < 3; ++i) {
-    gl::ClipVertex v;
+    gl::ClipVertex v{};  // colour and texture coordinates too: to_screen reads them
     v.position = {collinear[3 * i], collinear[3 * i + 1], 0, 1};
     ASSERT_TRUE(gl::to_screen(v, viewport, &snapped[i]));
   }
