@@ -65,9 +65,9 @@ int stuck_loop_app(AppEnvironment& env) {
 
 int crash_app(AppEnvironment& env) {
   show_one_frame(env);
-  // A pointer the compiler cannot see is null, so the write is not folded
-  // into a trap instruction.
-  uint32_t* volatile pointer = nullptr;
+  // Both volatile: a pointer the compiler cannot see is null (so the write
+  // is not folded into a trap instruction), and a write it must not drop.
+  volatile uint32_t* volatile pointer = nullptr;
   *pointer = 1;
   return 1;
 }

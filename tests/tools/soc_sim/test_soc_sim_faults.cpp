@@ -90,6 +90,12 @@ void stdout_to_full_device() {
   if (full >= 0) dup2(full, STDOUT_FILENO);
 }
 
+// In the child: no core file from the crash made on purpose.
+void no_core_dump() {
+  rlimit limit{0, 0};
+  setrlimit(RLIMIT_CORE, &limit);
+}
+
 class SocSimFaults : public tessera::test::ScratchFolderTest {
  protected:
   void SetUp() override {
@@ -287,7 +293,7 @@ TEST_F(SocSimFaults, WallClockLimitStopsTheRunWithItsStatistics) {
 // A crash in the application is reported as one, with the frame reached,
 // and the process still ends by its signal (a core dump stays possible).
 TEST_F(SocSimFaults, CrashInTheApplicationIsReportedWithTheFrame) {
-  const SimResult result = run({"--app", "crash", "--out", "out"});
+  const SimResult result = wait(start({"--app", "crash", "--out", "out"}, no_core_dump));
   EXPECT_EQ(result.status, 128 + SIGSEGV) << describe(result);
   EXPECT_TRUE(contains(result.err,
                        "soc_sim: crashed: SIGSEGV (invalid memory access) at address 0x0 while "
