@@ -36,6 +36,12 @@ const std::map<std::string, AppInfo>& builtin_apps() {
         "the study's patch sizes: square and line patches of 1 to 40 pixels sharing an attribute set, on the host "
         "(--backend arm) or the array (--backend ap-pixel, ap.pixel.block); -- --max-pixels N"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
+      {"stuck_loop",
+       {stuck_loop_app,
+        "diagnostic: shows one frame, then computes forever without calling the host model (sim.stall_limit_s "
+        "ends it)"}},
+      {"crash",
+       {crash_app, "diagnostic: shows one frame, then writes through a null pointer (a crashing application)"}},
   };
   static const std::map<std::string, AppInfo> with_scenes = [] {
     std::map<std::string, AppInfo> all = apps;

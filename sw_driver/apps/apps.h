@@ -33,6 +33,8 @@ int calib_array_add_cmem_app(AppEnvironment& env);
 int calib_array_mul_cmem_app(AppEnvironment& env);
 int calib_ciu_app(AppEnvironment& env);
 int unmapped_access_app(AppEnvironment& env);
+int stuck_loop_app(AppEnvironment& env);
+int crash_app(AppEnvironment& env);
 int study_shading_app(AppEnvironment& env);
 int study_patches_app(AppEnvironment& env);
 

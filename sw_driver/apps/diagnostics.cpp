@@ -5,9 +5,19 @@
 // covers. The bus answers with an address error and logs it naming the
 // initiator; the host raises BusError into the software, and soc_sim reports
 // the failed application and exits with status 1.
+//
+// stuck_loop: after one frame, computes forever in its own code without
+// calling the host model, so simulated time stands still and the SystemC
+// kernel never runs again; soc_sim's watch (sim.stall_limit_s) ends the run,
+// naming the frame and what the host was running.
+//
+// crash: after one frame, writes through a null pointer, as a buggy
+// application would; soc_sim reports the crash with the frame reached.
+#include <cstdint>
 #include <cstdio>
 
 #include "apps/apps.h"
+#include "device/display_driver.h"
 #include "soc/memory_map.h"
 
 namespace tessera {
@@ -30,6 +40,35 @@ int unmapped_access_app(AppEnvironment& env) {
   // Reached only if the bus failed to report the error.
   std::fprintf(stderr, "unmapped_access: read of 0x%08x returned 0x%08x instead of a bus error\n", UNMAPPED_ADDRESS,
                value);
+  return 1;
+}
+
+namespace {
+
+// The one frame both diagnostics show first, so that their failure comes
+// after a frame: the back buffer as it is (memory starts cleared).
+void show_one_frame(AppEnvironment& env) {
+  DisplayDriver display(env);
+  display.present();
+}
+
+}  // namespace
+
+// Exported (not static), so that the call stack soc_sim reports names it.
+int stuck_loop_app(AppEnvironment& env) {
+  show_one_frame(env);
+  // A loop with an effect the compiler must keep (a loop without one may be
+  // assumed to end), and none the simulation sees.
+  volatile uint64_t turns = 0;
+  for (;;) turns = turns + 1;
+}
+
+int crash_app(AppEnvironment& env) {
+  show_one_frame(env);
+  // Both volatile: a pointer the compiler cannot see is null (so the write
+  // is not folded into a trap instruction), and a write it must not drop.
+  volatile uint32_t* volatile pointer = nullptr;
+  *pointer = 1;
   return 1;
 }
 

@@ -34,7 +34,6 @@ inline std::string read_file(const std::filesystem::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// Runs `soc_sim` with `args` in the folder `dir`.
 // A system test's main: GoogleTest's options out of argv, then the soc_sim
 // to run (the first remaining argument, else TESSERA_SOC_SIM; empty: none).
 inline std::string init_soc_sim_test(int& argc, char** argv) {
@@ -44,8 +43,11 @@ inline std::string init_soc_sim_test(int& argc, char** argv) {
   return path != nullptr ? path : "";
 }
 
-inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::path& dir,
-                             const std::vector<std::string>& args) {
+// Starts `soc_sim` with `args` in the folder `dir` and returns its process
+// id (-1 if fork failed); `in_child`, if given, runs in the child before
+// exec (to set a resource limit, say).
+inline pid_t start_soc_sim(const std::string& soc_sim, const std::filesystem::path& dir,
+                           const std::vector<std::string>& args, void (*in_child)() = nullptr) {
   const std::filesystem::path out_path = dir / "soc_sim.stdout";
   const std::filesystem::path err_path = dir / "soc_sim.stderr";
   std::vector<char*> argv{const_cast<char*>(soc_sim.c_str())};
@@ -61,14 +63,18 @@ inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::
     close(out);
     close(err);
     setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
+    if (in_child != nullptr) in_child();
     execv(argv[0], argv.data());
     _exit(127);
   }
+  if (pid < 0) ADD_FAILURE() << "fork failed";
+  return pid;
+}
+
+// Waits for a soc_sim that start_soc_sim started in `dir`.
+inline SimResult wait_soc_sim(pid_t pid, const std::filesystem::path& dir) {
   SimResult run;
-  if (pid < 0) {
-    ADD_FAILURE() << "fork failed";
-    return run;
-  }
+  if (pid < 0) return run;
   int wstatus = 0;
   while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
   }
@@ -76,9 +82,15 @@ inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::
     run.status = WEXITSTATUS(wstatus);
   else if (WIFSIGNALED(wstatus))
     run.status = 128 + WTERMSIG(wstatus);
-  run.out = read_file(out_path);
-  run.err = read_file(err_path);
+  run.out = read_file(dir / "soc_sim.stdout");
+  run.err = read_file(dir / "soc_sim.stderr");
   return run;
+}
+
+// Runs `soc_sim` with `args` in the folder `dir`.
+inline SimResult run_soc_sim(const std::string& soc_sim, const std::filesystem::path& dir,
+                             const std::vector<std::string>& args) {
+  return wait_soc_sim(start_soc_sim(soc_sim, dir, args), dir);
 }
 
 // Runs `soc_sim` with `args` in the folder `dir` with its stderr on a

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "common/log.h"
@@ -257,22 +258,26 @@ void Soc::close_trace() {
   if (!m_trace) return;
   sc_core::sc_close_vcd_trace_file(m_trace);
   m_trace = nullptr;
-  // SystemC writes the wall-clock date into the header; replace it with a
-  // fixed text of the same length so that identical runs give identical files.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(m_trace_path, error)) return;
   std::fstream file(m_trace_path, std::ios::in | std::ios::out | std::ios::binary);
-  std::string head(512, '\0');
+  std::string head(VCD_DATE_BYTES, '\0');
   file.read(&head[0], static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(file.gcount()));
+  const std::string original = head;
+  blank_vcd_date(head);
+  if (head == original) return;
+  file.clear();
+  file.seekp(0);
+  file.write(head.data(), static_cast<std::streamsize>(head.size()));
+}
+
+void blank_vcd_date(std::string& head) {
   const auto date = head.find("$date");
   const auto end = date == std::string::npos ? std::string::npos : head.find("$end", date);
-  if (end != std::string::npos) {
-    std::string replacement = head.substr(date, end - date);
-    for (size_t i = 5; i < replacement.size(); ++i)
-      if (replacement[i] != '\n' && replacement[i] != ' ') replacement[i] = '-';
-    file.clear();
-    file.seekp(static_cast<std::streamoff>(date));
-    file.write(replacement.data(), static_cast<std::streamsize>(replacement.size()));
-  }
+  if (end == std::string::npos) return;
+  for (size_t i = date + 5; i < end; ++i)
+    if (head[i] != '\n' && head[i] != ' ') head[i] = '-';
 }
 
 void Soc::record_request(const sc_time& when) {

@@ -78,6 +78,9 @@ class Soc : public sc_core::sc_module {
   // signals and, unless power.trace_window_us is 0, every energy unit's
   // average power per window (soc.power.<unit>, soc.power.total, in mW).
   // Call before sc_start.
+  // The path may name a pipe (soc_sim copies the trace through one to check
+  // every write); close_trace blanks the date (blank_vcd_date) only in a
+  // regular file, and a reader of a pipe blanks it itself.
   void trace_to(const std::string& path_without_extension);
   void close_trace();
 
@@ -134,5 +137,11 @@ class Soc : public sc_core::sc_module {
   // energy_activity(), then the total. Sized once: the VCD holds their addresses.
   std::vector<double> m_power_milliwatts;
 };
+
+// SystemC writes the wall-clock date into a VCD header; this replaces it in
+// `head`, the first VCD_DATE_BYTES of the file or fewer, with dashes of the
+// same length, so that identical runs give identical files.
+constexpr size_t VCD_DATE_BYTES = 512;
+void blank_vcd_date(std::string& head);
 
 }  // namespace tessera

@@ -8,8 +8,10 @@
 
 namespace tessera {
 
-// Writes 8-bit RGBA pixels (row 0 at the top). Throws std::runtime_error
-// naming the file on failure.
+// The PNG file of 8-bit RGBA pixels (row 0 at the top), in memory.
+std::vector<unsigned char> encode_png(unsigned width, unsigned height, const std::vector<uint8_t>& rgba);
+// Writes them as a PNG file, whole or not at all (tools/common/output_file.h).
+// Throws std::runtime_error naming the file and the reason on failure.
 void write_png(const std::string& path, unsigned width, unsigned height, const std::vector<uint8_t>& rgba);
 
 struct Image {

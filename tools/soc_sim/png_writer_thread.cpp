@@ -56,8 +56,10 @@ void PngWriterThread::run() {
     m_busy = false;
     if (error.empty())
       ++m_written;
-    else if (m_error.empty())
+    else if (m_error.empty()) {
       m_error = error;
+      m_failed.store(true);
+    }
     m_changed.notify_all();
   }
 }

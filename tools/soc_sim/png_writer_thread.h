@@ -1,9 +1,13 @@
 // Writes PNG files on a thread of its own, so that encoding a frame does not
 // hold up the simulation (on this machine it costs about as much as
 // simulating a frame of a simple scene). Files are the same as if written
-// in line; the first error is kept and reported by finish().
+// in line, and written whole or not at all (tools/common/output_file.h); the
+// first error is kept and reported by finish(), and failed() tells the
+// simulation at once, so that a full disk stops the run instead of letting
+// it simulate frames nobody can keep.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -24,6 +28,8 @@ class PngWriterThread {
   // Waits until every queued image is written; returns the first error ("" if none).
   std::string finish();
   unsigned written() const;
+  // A write has failed (finish() says which and why).
+  bool failed() const { return m_failed.load(); }
 
  private:
   struct Job {
@@ -41,6 +47,7 @@ class PngWriterThread {
   bool m_stop = false;
   unsigned m_written = 0;
   std::string m_error;
+  std::atomic<bool> m_failed{false};
   std::thread m_thread;
 };
 

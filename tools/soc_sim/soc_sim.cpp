@@ -5,14 +5,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -25,14 +28,17 @@
 #include "common/log.h"
 #include "config/config.h"
 #include "frame_writer.h"
+#include "output_file.h"
 #include "png_writer_thread.h"
 #include "progress_line.h"
 #include "renderers/backend_parameters.h"
 #include "renderers/backends.h"
 #include "run_outputs.h"
+#include "run_watch.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
 #include "time_limit.h"
+#include "trace_pipe.h"
 
 namespace fs = std::filesystem;
 using namespace tessera;
@@ -273,6 +279,12 @@ ParamGroup runner_parameters() {
               param::integer("sim.time_limit_ms", 0, 0, 3600000, "ms",
                              "simulated-time limit; a run that reaches it stops with an error (0: automatic, " +
                                  TimeLimit::automatic_rule() + ")"),
+              param::integer("sim.stall_limit_s", 60, 0, 86400, "s",
+                             "wall-clock time the simulation may go without simulated time advancing (an application "
+                             "stuck in its own code) before the run stops with an error (0: no limit)"),
+              param::integer("sim.wall_limit_s", 0, 0, 604800, "s",
+                             "wall-clock limit of the simulation; a run that reaches it stops with an error and writes "
+                             "what is complete (0: no limit)"),
               param::choice("sim.log_level", "warning", {"quiet", "error", "warning", "info", "debug"},
                             "lowest severity of the log lines printed on stderr"),
           },
@@ -326,7 +338,12 @@ int run(int argc, char* argv[]) {
       "0 (the default): automatic, " +
       TimeLimit::automatic_rule() + " (" + std::to_string(choose_time_limit(default_frames, 0).ms / 1000) +
       " s for the default " + std::to_string(default_frames) +
-      " frames).\nThe summary and stats.json show the limit in effect; reaching it is an error (status 1).");
+      " frames).\nThe summary and stats.json show the limit in effect; reaching it is an error (status 1).\n\n"
+      "A run that cannot finish ends by itself: sim.stall_limit_s (wall-clock seconds without\n"
+      "simulated progress, default 60) and sim.wall_limit_s (wall-clock limit, default none)\n"
+      "stop it with status 1. SIGINT or SIGTERM stops it at the next safe point with status\n"
+      "128 + signal; a crash is reported with the frame reached. stats.json says how the run\n"
+      "ended (run_status), and every output is whole or absent.");
   // CLI11 sees only what comes before the first "--": the rest belongs to
   // the application, so a word before it is an error, not an argument.
   int own_argc = argc;
@@ -341,6 +358,17 @@ int run(int argc, char* argv[]) {
   } catch (const CLI::ParseError& e) {
     return cli.exit(e) == 0 ? 0 : EXIT_USAGE;
   }
+  // An option given with an empty value is a mistake (an unset shell
+  // variable, say), not a request for the default.
+  const std::pair<const char*, const std::string*> valued_options[] = {
+      {"--app", &opt.app}, {"--backend", &opt.backend}, {"--log-level", &opt.log_level}};
+  for (const auto& [option, value] : valued_options)
+    if (cli.count(option) > 0 && value->empty()) {
+      std::cerr << "soc_sim: " << option << " was given an empty value: give one (soc_sim --help"
+                << (std::string_view(option) == "--app" ? ", soc_sim --list-apps" : "")
+                << "), or leave the option out for the default\n";
+      return EXIT_USAGE;
+    }
   if (!cli.remaining().empty()) {
     const std::string word = cli.remaining().front();
     if (word.size() > 1 && word[0] == '-') {
@@ -412,9 +440,21 @@ int run(int argc, char* argv[]) {
   }
 
   log::install(log::parse_level(config.get_string("sim.log_level")));
+  install_run_signal_handlers();
   const unsigned frames = static_cast<unsigned>(config.get_uint("sim.frames"));
+  const std::string vcd_path = opt.vcd.empty() ? "" : vcd_base + ".vcd";
+  // Declared before the SoC, whose destructor closes the trace: the pipe's
+  // copier ends when SystemC closes its end.
+  std::unique_ptr<TracePipe> trace_pipe;
+  try {
+    if (!vcd_path.empty()) trace_pipe = std::make_unique<TracePipe>(vcd_path);
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return EXIT_SIM_FAILED;
+  }
   Soc soc("soc", config);
   PngWriterThread png_writer;
+  std::unique_ptr<RunWatch> watch;
   unsigned frames_shown = 0;
   // The wall clock from the start of the simulation; each frame's reading is
   // its wall_ns in stats.json with --wall-clock, so a benchmark times frames
@@ -430,6 +470,7 @@ int run(int argc, char* argv[]) {
       png_writer.write((fs::path(opt.out_dir) / frame_file_name(frame.index)).string(), frame.width, frame.height,
                        frame.rgba);
     ++frames_shown;
+    if (watch) watch->frame_shown(frames_shown);
   });
 
   AppEnvironment env;
@@ -457,50 +498,113 @@ int run(int argc, char* argv[]) {
     return app.main(env);
   });
 
-  if (!opt.vcd.empty()) soc.trace_to(vcd_base);
+  if (trace_pipe) soc.trace_to(trace_pipe->systemc_base());
 
-  Progress progress(!opt.quiet && isatty(STDERR_FILENO), frames);
+  // stats.json: what soc_sim knows of the run, and the SoC's statistics
+  // (null when the run was stopped from outside the simulation).
+  const nlohmann::json config_json = config.to_json();
+  const auto statistics_document = [&](int status, RunEnd end, const std::string& error, unsigned shown,
+                                       unsigned written, nlohmann::json stats) {
+    nlohmann::json document = {{"application", config.get_string("sim.app")},
+                               {"version", build_info::version()},
+                               {"commit", build_info::commit()},
+                               {"command_line", std::vector<std::string>(argv, argv + argc)},
+                               {"time_limit_ms", time_limit.ms},
+                               {"time_limit_automatic", time_limit.automatic},
+                               {"frames_shown", shown},
+                               {"frames_written", written},
+                               {"exit_status", status},
+                               {"run_status", run_end_name(end)},
+                               {"config", config_json},
+                               {"stats", std::move(stats)}};
+    if (!error.empty()) document["error"] = error;
+    return document.dump(2) + "\n";
+  };
+
+  const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
+  Progress progress(show_progress, frames);
+  // A stop from the watching thread (run_watch.h): the application holds
+  // the simulation, so the SoC is not touched; the frames already shown are
+  // written, the trace is dropped (it is not whole) and stats.json says how
+  // the run ended.
+  const auto stop_from_outside = [&](const RunStop& stop) {
+    if (stop.end != RunEnd::crashed)
+      std::fprintf(stderr, "%ssoc_sim: %s\n", show_progress ? "\n" : "", stop.message.c_str());
+    png_writer.finish();
+    if (trace_pipe) trace_pipe->abandon_from_other_thread();
+    try {
+      write_file_atomically(stats_path, statistics_document(stop.exit_status, stop.end, stop.message,
+                                                            watch->frames_shown(), png_writer.written(), nullptr));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "soc_sim: %s\n", e.what());
+    }
+  };
+  watch =
+      std::make_unique<RunWatch>(WatchLimits{config.get_uint("sim.stall_limit_s"), config.get_uint("sim.wall_limit_s")},
+                                 frames, stop_from_outside);
   wall_start = std::chrono::steady_clock::now();
   const sc_core::sc_time limit(static_cast<double>(time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
+  // The reasons the run failed, the first deciding run_status and the exit status.
+  std::vector<RunStop> failures;
+  const auto fail = [&failures](RunEnd end, int status, const std::string& message) {
+    failures.push_back({end, status, message});
+  };
+  std::optional<RunStop> stopped;
   try {
     while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
       sc_core::sc_start(slice);
+      watch->progress(static_cast<uint64_t>(sc_core::sc_time_stamp().to_seconds() * 1e12));
       progress.update(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
+      stopped = watch->stop_request();
+      if (stopped || png_writer.failed()) break;
     }
   } catch (const std::exception& e) {
-    progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
-    std::cerr << "soc_sim: simulation failed: " << e.what() << "\n";
-    return EXIT_SIM_FAILED;
+    fail(RunEnd::failed, EXIT_SIM_FAILED, std::string("simulation failed: ") + e.what());
   }
+  watch->finish();
   progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
   soc.close_trace();
+  const std::string trace_error = trace_pipe ? trace_pipe->finish() : "";
   const std::string png_error = png_writer.finish();
   const unsigned frames_written = png_writer.written();
   const double wall = wall_seconds();
 
-  int status = 0;
-  if (!png_error.empty()) {
-    std::cerr << "soc_sim: " << png_error << "\n";
-    status = EXIT_SIM_FAILED;
+  if (!failures.empty()) {
+    // An exception from the simulation: reported above all else.
+  } else if (stopped) {
+    failures.push_back(*stopped);
+  } else if (!png_error.empty()) {
+    // Reported below; the run stopped at it.
   } else if (!soc.done() && sc_core::sc_time_stamp() >= limit) {
-    std::cerr << "soc_sim: simulated-time limit reached: sim.time_limit_ms = " << time_limit.ms << " ms ("
-              << (time_limit.automatic ? "automatic, " + TimeLimit::automatic_rule() : std::string("given")) << ") "
-              << "stopped the run after " << frames_shown << " of " << frames << " frames; "
-              << (time_limit.automatic ? "set sim.time_limit_ms to a larger value (--set sim.time_limit_ms=N)"
-                                       : "raise it, or leave sim.time_limit_ms unset for the automatic limit")
-              << "\n";
-    status = EXIT_SIM_FAILED;
+    fail(RunEnd::failed, EXIT_SIM_FAILED,
+         "simulated-time limit reached: sim.time_limit_ms = " + std::to_string(time_limit.ms) + " ms (" +
+             (time_limit.automatic ? "automatic, " + TimeLimit::automatic_rule() : std::string("given")) + ") " +
+             "stopped the run after " + std::to_string(frames_shown) + " of " + std::to_string(frames) + " frames; " +
+             (time_limit.automatic ? "set sim.time_limit_ms to a larger value (--set sim.time_limit_ms=N)"
+                                   : "raise it, or leave sim.time_limit_ms unset for the automatic limit"));
   } else if (!soc.done()) {
-    std::cerr << "soc_sim: the simulation stopped after " << frames_shown << " of " << frames
-              << " frames, before the application finished\n";
-    status = EXIT_SIM_FAILED;
+    fail(RunEnd::failed, EXIT_SIM_FAILED,
+         "the simulation stopped after " + std::to_string(frames_shown) + " of " + std::to_string(frames) +
+             " frames, before the application finished");
   } else if (soc.host.exit_code() != 0) {
-    std::cerr << "soc_sim: application failed: " << soc.host.failure() << "\n";
     // An application reports bad input (an unreadable file, a bad argument)
     // with status 2, like soc_sim itself.
-    status = soc.host.exit_code() == EXIT_USAGE ? EXIT_USAGE : EXIT_SIM_FAILED;
+    fail(RunEnd::failed, soc.host.exit_code() == EXIT_USAGE ? EXIT_USAGE : EXIT_SIM_FAILED,
+         "application failed: " + soc.host.failure());
   }
+  if (!png_error.empty())
+    fail(RunEnd::failed, EXIT_SIM_FAILED,
+         png_error + "; the run stopped after " + std::to_string(frames_shown) + " of " + std::to_string(frames) +
+             " frames were shown, " + std::to_string(frames_written) + " written");
+  if (!trace_error.empty()) fail(RunEnd::failed, EXIT_SIM_FAILED, trace_error + " (the VCD trace is not kept)");
+  if (failures.empty() && frames_shown == 0)
+    log::warning("soc_sim", "the application '" + config.get_string("sim.app") +
+                                "' finished without showing a frame (" + std::to_string(frames) +
+                                " requested): nothing was drawn");
+  for (const RunStop& failure : failures) std::cerr << "soc_sim: " << failure.message << "\n";
+  int status = failures.empty() ? 0 : failures.front().exit_status;
+  const RunEnd end = failures.empty() ? RunEnd::completed : failures.front().end;
 
   nlohmann::json stats = soc.stats_json();
   stats["driver"] = to_json(driver_counters);
@@ -509,18 +613,15 @@ int run(int argc, char* argv[]) {
   // The display hands each frame shown to soc_sim and to the SoC's record.
   if (opt.wall_clock && stats["frames"].size() == frame_wall_seconds.size())
     for (size_t i = 0; i < frame_wall_seconds.size(); ++i) stats["frames"][i]["wall_ns"] = frame_wall_seconds[i] * 1e9;
-  nlohmann::json document = {{"application", config.get_string("sim.app")},
-                             {"version", build_info::version()},
-                             {"commit", build_info::commit()},
-                             {"command_line", std::vector<std::string>(argv, argv + argc)},
-                             {"time_limit_ms", time_limit.ms},
-                             {"time_limit_automatic", time_limit.automatic},
-                             {"frames_shown", frames_shown},
-                             {"frames_written", frames_written},
-                             {"exit_status", status},
-                             {"config", config.to_json()},
-                             {"stats", stats}};
-  std::ofstream(stats_path) << document.dump(2) << "\n";
+  bool stats_written = true;
+  try {
+    write_file_atomically(stats_path, statistics_document(status, end, failures.empty() ? "" : failures.front().message,
+                                                          frames_shown, frames_written, stats));
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << " (statistics)\n";
+    stats_written = false;
+    if (status == 0) status = EXIT_SIM_FAILED;
+  }
   if (config.get_string("power.calibration") != "none") print_energy_calibration(config, soc, stats);
 
   if (!opt.quiet) {
@@ -529,9 +630,15 @@ int run(int argc, char* argv[]) {
       outputs.push_back(std::to_string(frames_written) + " frame(s): " +
                         (fs::path(opt.out_dir) / frame_file_name(0)).string() + (frames_written > 1 ? " ..." : ""));
     if (opt.no_frames) outputs.push_back(std::to_string(frames_shown) + " frame(s) shown, none written (--no-frames)");
-    outputs.push_back("statistics: " + stats_path);
-    if (!opt.vcd.empty()) outputs.push_back("VCD trace: " + vcd_base + ".vcd");
+    outputs.push_back(stats_written ? "statistics: " + stats_path : "statistics: none (" + stats_path + " failed)");
+    if (!vcd_path.empty()) outputs.push_back(trace_error.empty() ? "VCD trace: " + vcd_path : "VCD trace: none");
     print_summary(soc, stats, config.get_string("sim.app"), wall, time_limit, outputs);
+  }
+  // The summary (and anything the application printed) must have arrived.
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout) {
+    std::cerr << "soc_sim: cannot write to standard output: " << std::strerror(errno) << "\n";
+    if (status == 0) status = EXIT_SIM_FAILED;
   }
   return status;
 }
