@@ -10,9 +10,9 @@ if(TESSERA_SANITIZE)
   # GCC's "undefined" group leaves out its two float checks. float-cast-overflow
   # (a float converted to an integer type that cannot hold it, NaN included) is
   # undefined behaviour and is enabled. float-divide-by-zero is not: the GL
-  # front end and the renderers rely on IEEE division (x / 0 gives an infinity
-  # that clipping and the perspective divide handle), which C++ on IEC 559
-  # hardware defines, so that check would only report intended arithmetic.
+  # front end divides by values a legal application controls (a viewport of
+  # width 0, a point at w = 0, zero attenuation) and relies on IEEE division
+  # giving an infinity that its finiteness checks reject (tests/README.md).
   add_compile_options(-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer
                       -fno-sanitize-recover=undefined,float-cast-overflow --param=asan-use-after-return=0)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
