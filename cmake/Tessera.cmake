@@ -8,9 +8,15 @@ target_compile_options(tessera_warnings INTERFACE -Wall -Wextra -Wpedantic $<$<C
 if(TESSERA_SANITIZE)
   # SystemC switches coroutine stacks; ASan's use-after-return check mistakes that for
   # use of freed stack memory, so it is compiled out.
-  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-                      --param=asan-use-after-return=0)
-  add_link_options(-fsanitize=address,undefined)
+  # GCC's "undefined" group leaves out its two float checks. float-cast-overflow
+  # (a float converted to an integer type that cannot hold it, NaN included) is
+  # undefined behaviour and is enabled. float-divide-by-zero is not: the GL
+  # front end divides by values a legal application controls (a viewport of
+  # width 0, a point at w = 0, zero attenuation) and relies on IEEE division
+  # giving an infinity that its finiteness checks reject (tests/README.md).
+  add_compile_options(-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined,float-cast-overflow --param=asan-use-after-return=0)
+  add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
 
 # tessera_add_test(NAME name SOURCES ... LIBS ... LABELS ... [TIMEOUT s] [NO_GTEST_MAIN])

@@ -66,7 +66,9 @@ void Context::buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, c
   const GLuint name = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
   if (name == 0) return error(GL_INVALID_OPERATION);
   BufferObject& b = m_buffers[name];
-  if (offset < 0 || size < 0 || static_cast<size_t>(offset + size) > b.data.size()) return error(GL_INVALID_VALUE);
+  if (offset < 0 || size < 0 || static_cast<size_t>(offset) > b.data.size() ||
+      static_cast<size_t>(size) > b.data.size() - static_cast<size_t>(offset))
+    return error(GL_INVALID_VALUE);
   if (data) std::memcpy(b.data.data() + offset, data, static_cast<size_t>(size));
 }
 

@@ -7,7 +7,10 @@
 #include <GLES/gl.h>
 
 #include <algorithm>
+#include <climits>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 
 #include "common/fixed_function.h"
@@ -21,6 +24,31 @@ inline constexpr size_t MAX_TEXTURE_DEPTH = 2;
 inline constexpr unsigned MAX_LIGHTS = 8;
 inline constexpr GLsizei MAX_TEXTURE_SIZE = 256;
 inline constexpr size_t BATCH_TRIANGLES = 256;
+
+// A float parameter that names an enum (glTexParameterf(..., GL_LINEAR)
+// passes 9729.0f): only a whole number in GLenum's range names one.
+// Anything else (1e30, NaN, 9729.5) names no enum, and the caller raises
+// GL_INVALID_ENUM; converting it with a cast would be undefined behaviour.
+inline std::optional<GLenum> enum_from_float(float value) {
+  if (!(value >= 0.0f && value < 4294967296.0f) || value != std::floor(value)) return std::nullopt;
+  return static_cast<GLenum>(value);
+}
+
+// A float answered through an integer query (glGetIntegerv and the like):
+// rounded to the nearest integer (GL ES 1.1 section 6.1.2) and, where GLint
+// cannot hold it, clamped (NaN as 0) instead of converted out of range.
+inline GLint int_from_float(double value) {
+  if (std::isnan(value)) return 0;
+  if (value >= static_cast<double>(INT_MAX)) return INT_MAX;
+  if (value <= static_cast<double>(INT_MIN)) return INT_MIN;
+  return static_cast<GLint>(std::lround(value));
+}
+
+// x + width <= limit for a rectangle that starts at x >= 0 and has
+// width >= 0, without the signed overflow of x + width (x = INT_MAX).
+inline bool fits(GLint x, GLsizei width, uint32_t limit) {
+  return static_cast<int64_t>(x) + width <= static_cast<int64_t>(limit);
+}
 
 // GL enums to the hardware codes of common/fixed_function.def, with GL's
 // rules on which values each call accepts; false for an enum GL rejects

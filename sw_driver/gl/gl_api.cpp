@@ -97,8 +97,8 @@ GL_API void GL_APIENTRY glGetIntegerv(GLenum pname, GLint* data) {
   if (!query(c, pname, v)) return;
   // Colours and depths map [0, 1] to the full integer range (GL 2.2.1).
   for (size_t i = 0; i < v.size(); ++i)
-    data[i] = is_color_query(pname) ? static_cast<GLint>(std::lround(v[i] * 2147483647.0))
-                                    : static_cast<GLint>(std::lround(v[i]));
+    data[i] =
+        is_color_query(pname) ? tessera::gl::int_from_float(v[i] * 2147483647.0) : tessera::gl::int_from_float(v[i]);
 }
 GL_API void GL_APIENTRY glGetPointerv(GLenum pname, void** params) {
   WITH_CONTEXT() c->get_pointer(pname, params);
@@ -418,7 +418,7 @@ GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum inte
   if (internalformat != GL_RGBA && internalformat != GL_RGB && internalformat != GL_LUMINANCE &&
       internalformat != GL_ALPHA && internalformat != GL_LUMINANCE_ALPHA)
     return c->error(GL_INVALID_ENUM);
-  // No texture is larger: refused before the copy's buffer is allocated.
+  // Larger than any texture: refused before the copy is allocated.
   if (width < 0 || height < 0 || width > tessera::gl::MAX_TEXTURE_SIZE || height > tessera::gl::MAX_TEXTURE_SIZE)
     return c->error(GL_INVALID_VALUE);
   std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 4);
@@ -458,7 +458,7 @@ GL_API void GL_APIENTRY glGetTexParameteriv(GLenum target, GLenum pname, GLint* 
   WITH_CONTEXT()
   float v = 0;
   c->get_tex_parameter(target, pname, &v);
-  *params = static_cast<GLint>(v);
+  *params = tessera::gl::int_from_float(v);
 }
 GL_API void GL_APIENTRY glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
   WITH_CONTEXT()
@@ -491,9 +491,9 @@ GL_API void GL_APIENTRY glGetTexEnviv(GLenum target, GLenum pname, GLint* params
   float v[4] = {0, 0, 0, 0};
   c->get_tex_env(target, pname, v);
   if (pname == GL_TEXTURE_ENV_COLOR)
-    for (int i = 0; i < 4; ++i) params[i] = static_cast<GLint>(std::lround(v[i] * 2147483647.0));
+    for (int i = 0; i < 4; ++i) params[i] = tessera::gl::int_from_float(v[i] * 2147483647.0);
   else
-    params[0] = static_cast<GLint>(v[0]);
+    params[0] = tessera::gl::int_from_float(v[0]);
 }
 
 }  // extern "C"

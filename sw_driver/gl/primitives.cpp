@@ -175,7 +175,8 @@ void Context::draw_arrays(GLenum mode, GLint first, GLsizei count) {
   if (mode > GL_TRIANGLE_FAN) return error(GL_INVALID_ENUM);
   if (count < 0 || first < 0) return error(GL_INVALID_VALUE);
   std::vector<uint32_t> indices(static_cast<size_t>(count));
-  for (GLsizei i = 0; i < count; ++i) indices[i] = static_cast<uint32_t>(first + i);
+  // In 32 unsigned bits: first + i overflows a GLint when first is near INT_MAX.
+  for (GLsizei i = 0; i < count; ++i) indices[i] = static_cast<uint32_t>(first) + static_cast<uint32_t>(i);
   draw(mode, indices, false);
 }
 
@@ -189,7 +190,8 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
   if (m_element_buffer) {
     const BufferObject& b = m_buffers[m_element_buffer];
     const size_t offset = reinterpret_cast<size_t>(pointer);
-    if (offset + size * static_cast<size_t>(count) > b.data.size()) return error(GL_INVALID_OPERATION);
+    if (offset > b.data.size() || size * static_cast<size_t>(count) > b.data.size() - offset)
+      return error(GL_INVALID_OPERATION);
     base = b.data.data() + offset;
   } else if (!pointer && count > 0) {
     return error(GL_INVALID_VALUE);
@@ -221,10 +223,17 @@ void Context::read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format,
   }
   if (w == 0 || h == 0) return;
   flush_triangles();
-  std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4, 0);
-  m_renderer->read_pixels(x, y, w, h, rgba.data());
   const size_t row = static_cast<size_t>(w) * 4;
   const size_t stride = (row + m_pack_alignment - 1) / m_pack_alignment * m_pack_alignment;
+  // A rectangle reaching past INT_MAX (x = INT_MAX) lies outside any window,
+  // where GL leaves the values undefined: they are 0, as the renderers give
+  // for pixels outside, without handing the renderer an x + w that overflows.
+  if (!fits(std::max(x, 0), w, INT_MAX) || !fits(std::max(y, 0), h, INT_MAX)) {
+    for (GLsizei j = 0; j < h; ++j) std::memset(static_cast<uint8_t*>(pixels) + j * stride, 0, row);
+    return;
+  }
+  std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4, 0);
+  m_renderer->read_pixels(x, y, w, h, rgba.data());
   for (GLsizei j = 0; j < h; ++j) std::memcpy(static_cast<uint8_t*>(pixels) + j * stride, rgba.data() + j * row, row);
 }
 

@@ -272,7 +272,7 @@ void Context::fog(GLenum name, const float* values, int count) {
   charge_call();
   switch (name) {
     case GL_FOG_MODE: {
-      const GLenum mode = static_cast<GLenum>(values[0]);
+      const GLenum mode = enum_from_float(values[0]).value_or(0u);  // 0 is no mode
       if (mode != GL_LINEAR && mode != GL_EXP && mode != GL_EXP2) return error(GL_INVALID_ENUM);
       m_fog_mode = mode;
       break;

@@ -116,9 +116,8 @@ void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsize
   if (!format_ok || !type_ok) return error(GL_INVALID_ENUM);
   TextureObject* object = bound_texture();
   if (!object->defined) return error(GL_INVALID_OPERATION);
-  if (level < 0 || x < 0 || y < 0 || width < 0 || height < 0 ||
-      static_cast<unsigned>(x + width) > object->texture.width ||
-      static_cast<unsigned>(y + height) > object->texture.height)
+  if (level < 0 || x < 0 || y < 0 || width < 0 || height < 0 || !fits(x, width, object->texture.width) ||
+      !fits(y, height, object->texture.height))
     return error(GL_INVALID_VALUE);
   if (level > 0 || !pixels) return;
   const auto* in = static_cast<const uint8_t*>(pixels);
@@ -140,19 +139,19 @@ void Context::tex_parameter(GLenum target, GLenum name, float value) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   Texture& t = bound_texture()->texture;
-  const GLenum v = static_cast<GLenum>(value);
+  const std::optional<GLenum> v = enum_from_float(value);
   switch (name) {
     case GL_TEXTURE_MIN_FILTER:
-      if (!tex_filter_value(v, true, &t.min_filter)) error(GL_INVALID_ENUM);
+      if (!v || !tex_filter_value(*v, true, &t.min_filter)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_MAG_FILTER:
-      if (!tex_filter_value(v, false, &t.mag_filter)) error(GL_INVALID_ENUM);
+      if (!v || !tex_filter_value(*v, false, &t.mag_filter)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_WRAP_S:
-      if (!tex_wrap_value(v, &t.wrap_s)) error(GL_INVALID_ENUM);
+      if (!v || !tex_wrap_value(*v, &t.wrap_s)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_WRAP_T:
-      if (!tex_wrap_value(v, &t.wrap_t)) error(GL_INVALID_ENUM);
+      if (!v || !tex_wrap_value(*v, &t.wrap_t)) error(GL_INVALID_ENUM);
       break;
     case GL_GENERATE_MIPMAP: break;
     default: error(GL_INVALID_ENUM);
@@ -177,7 +176,7 @@ void Context::tex_env(GLenum target, GLenum name, const float* values, int count
   charge_call();
   if (target != GL_TEXTURE_ENV) return error(GL_INVALID_ENUM);
   if (name == GL_TEXTURE_ENV_MODE) {
-    const GLenum mode = static_cast<GLenum>(values[0]);
+    const GLenum mode = enum_from_float(values[0]).value_or(0u);  // 0 is no mode
     if (mode != GL_MODULATE && mode != GL_REPLACE && mode != GL_DECAL && mode != GL_BLEND && mode != GL_ADD &&
         mode != GL_COMBINE)
       return error(GL_INVALID_ENUM);

@@ -22,7 +22,10 @@ const uint8_t* Context::array_element(const ArrayPointer& array, uint32_t index,
   if (array.buffer) {
     auto it = m_buffers.find(array.buffer);
     const size_t start = reinterpret_cast<size_t>(array.pointer);
-    if (it == m_buffers.end() || start + offset + element_size > it->second.data.size()) return nullptr;
+    // Compared piece by piece: a huge pointer offset would wrap the sum.
+    if (it == m_buffers.end()) return nullptr;
+    const size_t size = it->second.data.size();
+    if (start > size || offset > size - start || element_size > size - start - offset) return nullptr;
     return it->second.data.data() + start + offset;
   }
   if (!array.pointer) return nullptr;

@@ -412,6 +412,121 @@ TEST_F(ConfigFiles, BadFileLeavesTheConfigurationUnchanged) {
   EXPECT_EQ(config.get_int("display.height"), 480);
 }
 
+// Issue 14: a file must not be able to knock the loader over. Nesting is
+// refused past MAX_CONFIG_DEPTH (200 KB of nested arrays used to overflow the
+// stack; 100000 nested objects took gigabytes), by the key where it happened.
+TEST_F(ConfigFiles, DeepNestingIsRefusedByDepthNotByTheStack) {
+  Config config = make_config();
+  const std::size_t arrays = 100000;  // 200 KB
+  const std::string path =
+      write("arrays.json", "{\"sim.app\": " + std::string(arrays, '[') + std::string(arrays, ']') + "}");
+  std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, path);
+  EXPECT_MENTIONS(message, "more than 32 deep");
+  EXPECT_MENTIONS(message, "'sim.app[0][0]");
+
+  std::string objects;
+  for (int i = 0; i < 100000; ++i) objects += "{\"a\":";
+  objects += "1" + std::string(100000, '}');
+  message = config_error([&] { config.load_file(write("objects.json", objects)); });
+  EXPECT_MENTIONS(message, "more than 32 deep (at 'a.a.a.");
+  EXPECT_EQ(config.get_string("sim.app"), "teapot");
+}
+
+TEST_F(ConfigFiles, NestingUpToTheLimitIsParsed) {
+  ASSERT_EQ(tessera::MAX_CONFIG_DEPTH, 32u);
+  // 32 levels: the top-level object and 31 below it; the key is unknown, so
+  // the error is about the key, not the depth.
+  auto nested = [](std::size_t depth) {
+    std::string text;
+    for (std::size_t i = 0; i < depth; ++i) text += i == 0 ? "{" : "\"k\": {";
+    text += "\"x\": 1" + std::string(depth, '}');
+    return text;
+  };
+  Config config = make_config();
+  std::string message = config_error([&] { config.load_file(write("deep.json", nested(32))); });
+  EXPECT_MENTIONS(message, "unknown key 'k.k.k.");
+  message = config_error([&] { config.load_file(write("deeper.json", nested(33))); });
+  EXPECT_MENTIONS(message, "more than 32 deep");
+}
+
+TEST_F(ConfigFiles, FileSizeIsLimited) {
+  ASSERT_EQ(tessera::MAX_CONFIG_FILE_BYTES, 1048576u);
+  const std::string document = R"({"sim.frames": 7})";
+  Config config = make_config();
+  // Exactly at the limit (padded with white space) loads.
+  config.load_file(write("full.json", document + std::string(tessera::MAX_CONFIG_FILE_BYTES - document.size(), ' ')));
+  EXPECT_EQ(config.get_int("sim.frames"), 7);
+  // One byte more does not.
+  const std::string path =
+      write("over.json", document + std::string(tessera::MAX_CONFIG_FILE_BYTES + 1 - document.size(), ' '));
+  std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, path);
+  EXPECT_MENTIONS(message, "larger than the limit of 1048576 bytes");
+  // A device without an end is read no further than the limit.
+  if (fs::exists("/dev/zero")) {
+    message = config_error([&] { config.load_file("/dev/zero"); });
+    EXPECT_MENTIONS(message, "'/dev/zero' is larger than the limit");
+  }
+}
+
+TEST_F(ConfigFiles, NumberBeyondADoubleNamesFileLineAndKey) {
+  Config config = make_config();
+  const std::string path = write("huge.json", "{\n  \"display\": {\n    \"refresh_hz\": 1e400\n  }\n}\n");
+  std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, "'" + path + "' line 3: 'display.refresh_hz' is 1e400, a number out of the range");
+  message = config_error([&] { config.load_file(write("tiny.json", R"({"mem.size_mib": -2e999})")); });
+  EXPECT_MENTIONS(message, "line 1: 'mem.size_mib' is -2e999");
+  EXPECT_DOUBLE_EQ(config.get_real("display.refresh_hz"), 60.0);
+  // The same number on the command line is refused by the key's type.
+  message = config_error([&] { config.apply_override("display.refresh_hz=1e400"); });
+  EXPECT_MENTIONS(message, "'display.refresh_hz' expects a number");
+}
+
+TEST_F(ConfigFiles, ObjectWhereAValueBelongsIsRefusedByKey) {
+  Config config = make_config();
+  for (const char* document :
+       {R"({"display": {"width": {}}})", R"({"display": {"width": {"value": 640}}})", R"({"display.width": {}})"}) {
+    SCOPED_TRACE(document);
+    const std::string message = config_error([&] { config.load_file(write("object.json", document)); });
+    EXPECT_MENTIONS(message, "'display.width' expects an integer in [16, 2048] (pixels), got {");
+  }
+  // An empty object under a name that is no group is an unknown key, not
+  // nothing; an empty group is harmless.
+  std::string message = config_error([&] { config.load_file(write("unknown.json", R"({"dispaly": {}})")); });
+  EXPECT_MENTIONS(message, "unknown key 'dispaly'");
+  config.load_file(write("empty_group.json", R"({"display": {}, "host": {"cycles": {}}})"));
+  EXPECT_EQ(config.get_int("display.width"), 320);
+}
+
+TEST_F(ConfigFiles, KeyTwiceInOneObjectIsRefused) {
+  Config config = make_config();
+  const std::string path = write("twice.json", R"({"display": {"width": 640, "width": 800}})");
+  const std::string message = config_error([&] { config.load_file(path); });
+  EXPECT_MENTIONS(message, "'" + path + "' has 'display.width' twice");
+  EXPECT_EQ(config.get_int("display.width"), 320);
+}
+
+TEST(ConfigOverrides, TextThatIsNotUtf8IsAnErrorNotALibraryException) {
+  Config config = make_config();
+  std::string message = config_error([&] { config.apply_override("sim.app=\xff\xfe"); });
+  EXPECT_MENTIONS(message, "'sim.app' expects a string");
+  EXPECT_MENTIONS(message, "not valid UTF-8");
+  message = config_error([&] { config.apply_override("display.dma=\xff"); });
+  EXPECT_MENTIONS(message, "'display.dma' expects a boolean");
+  EXPECT_EQ(config.get_string("sim.app"), "teapot");
+}
+
+TEST(ConfigOverrides, LongWrongValueIsShortenedInTheMessage) {
+  Config config = make_config();
+  json many = json::array();
+  for (int i = 0; i < 10000; ++i) many.push_back(i);
+  const std::string message = config_error([&] { config.set("sim.frames", many, "test"); });
+  EXPECT_MENTIONS(message, "'sim.frames' expects an integer");
+  EXPECT_MENTIONS(message, "...");
+  EXPECT_LT(message.size(), 300u);
+}
+
 TEST(ConfigJson, ToJsonRoundTripsThroughMergeJson) {
   Config changed = make_config();
   for (const char* assignment : {"bus.arbitration=round_robin", "display.dma=true", "display.format=rgba8888",

@@ -60,15 +60,148 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-void flatten(const nlohmann::json& node, const std::string& prefix,
-             std::vector<std::pair<std::string, nlohmann::json>>& out) {
-  for (auto it = node.begin(); it != node.end(); ++it) {
-    std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
-    if (it->is_object())
-      flatten(*it, key, out);
-    else
-      out.emplace_back(key, *it);
+// A value as shown in an error message: invalid UTF-8 replaced rather than
+// thrown about, and a long value (a big array) cut short.
+std::string shown_value(const nlohmann::json& value) {
+  constexpr std::size_t LIMIT = 80;
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > LIMIT) text = text.substr(0, LIMIT) + "...";
+  return text;
+}
+
+// Builds the document of a configuration file from the parser's events (the
+// parser itself keeps its own state on the heap, not on the stack), so that
+// a file can be refused with its key named: nesting beyond MAX_CONFIG_DEPTH
+// (the document is later walked recursively), a key twice in one object, and
+// a number that does not fit in a double (1e400, which the parser reports
+// without saying where it stood).
+class DocumentBuilder {
+ public:
+  using json = nlohmann::json;
+
+  DocumentBuilder(const std::string& text, json* document) : m_text(text), m_document(document) {}
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool value) { return add(value); }
+  bool number_integer(json::number_integer_t value) { return add(value); }
+  bool number_unsigned(json::number_unsigned_t value) { return add(value); }
+  bool number_float(json::number_float_t value, const json::string_t& /*text*/) { return add(value); }
+  bool string(json::string_t& value) { return add(std::move(value)); }
+  bool binary(json::binary_t& /*value*/) { return refuse("binary values are not JSON"); }
+  bool start_object(std::size_t /*elements*/) { return open(json::object()); }
+  bool start_array(std::size_t /*elements*/) { return open(json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool key(json::string_t& name) {
+    Level& level = m_levels.back();
+    if (level.node->contains(name)) {
+      level.key = name;
+      return refuse("has '" + path() + "' twice in one object");
+    }
+    level.key = name;
+    return true;
   }
+  bool parse_error(std::size_t byte, const std::string& token, const nlohmann::detail::exception& error) {
+    if (error.id == 406) {  // out_of_range: number overflow
+      const auto end = m_text.begin() + static_cast<std::ptrdiff_t>(std::min(byte, m_text.size()));
+      const auto line = 1 + std::count(m_text.begin(), end, '\n');
+      m_problem = "line " + std::to_string(line) + ": " +
+                  (m_levels.empty() ? std::string("the value") : "'" + path() + "'") + " is " + token +
+                  ", a number out of the range of a double";
+    } else {
+      m_problem = std::string("is not valid JSON: ") + error.what();
+    }
+    return false;
+  }
+
+  // Set when the builder stopped the parse; empty when the parser's message
+  // is the whole story.
+  const std::string& problem() const { return m_problem; }
+
+ private:
+  struct Level {
+    json* node;
+    std::string key;  // the key being read (objects) or the index (arrays)
+  };
+
+  // The dotted path of the value being read: "display.width", "a.b[3]". An
+  // outer array already holds the element being read; the innermost one
+  // does not yet.
+  std::string path() const {
+    std::string text;
+    for (const Level& level : m_levels) {
+      if (level.node->is_array()) {
+        const std::size_t index = level.node->size() - (&level == &m_levels.back() ? 0 : 1);
+        text += "[" + std::to_string(index) + "]";
+      } else {
+        if (!text.empty()) text += ".";
+        text += level.key;
+      }
+    }
+    return text;
+  }
+
+  bool refuse(const std::string& problem) {
+    m_problem = problem;
+    return false;
+  }
+
+  // Where a new value goes: the document itself, the current key of the
+  // innermost object or the end of the innermost array.
+  json* place(json&& value) {
+    if (m_levels.empty()) {
+      *m_document = std::move(value);
+      return m_document;
+    }
+    Level& level = m_levels.back();
+    if (level.node->is_array()) {
+      level.node->push_back(std::move(value));
+      return &level.node->back();
+    }
+    return &((*level.node)[level.key] = std::move(value));
+  }
+
+  bool add(json&& value) {
+    place(std::move(value));
+    return true;
+  }
+
+  bool open(json&& container) {
+    if (m_levels.size() >= MAX_CONFIG_DEPTH)
+      return refuse("nests objects and arrays more than " + std::to_string(MAX_CONFIG_DEPTH) + " deep (at '" + path() +
+                    "')");
+    json* node = place(std::move(container));
+    m_levels.push_back({node, {}});
+    return true;
+  }
+
+  bool close() {
+    m_levels.pop_back();
+    return true;
+  }
+
+  const std::string& m_text;
+  json* m_document;
+  std::vector<Level> m_levels;
+  std::string m_problem;
+};
+
+// The text of a file, refused beyond MAX_CONFIG_FILE_BYTES (it may be a
+// device such as /dev/zero, whose size is not known in advance).
+std::string read_limited(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError("configuration: cannot open '" + path + "': " + std::strerror(errno));
+  std::string text;
+  std::vector<char> buffer(64 * 1024);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > MAX_CONFIG_FILE_BYTES)
+      throw ConfigError("configuration: '" + path + "' is larger than the limit of " +
+                        std::to_string(MAX_CONFIG_FILE_BYTES) + " bytes");
+  }
+  if (in.bad()) throw ConfigError("configuration: cannot read '" + path + "': " + std::strerror(errno));
+  return text;
 }
 
 }  // namespace
@@ -138,7 +271,7 @@ void Config::set(const std::string& key, const nlohmann::json& value, const std:
     throw ConfigError("configuration: '" + key + "' expects " + expectation(s) + ", got " + got + " (from " + source +
                       ")");
   };
-  const std::string shown = value.dump();
+  const std::string shown = shown_value(value);
   switch (s.type) {
     case ParamType::boolean:
       if (!value.is_boolean()) fail(shown);
@@ -158,6 +291,11 @@ void Config::set(const std::string& key, const nlohmann::json& value, const std:
     }
     case ParamType::string:
       if (!value.is_string()) fail(shown);
+      try {
+        (void)value.dump();  // the effective configuration is written as JSON
+      } catch (const nlohmann::json::type_error&) {
+        fail(shown + ", text that is not valid UTF-8");
+      }
       break;
     case ParamType::choice:
       if (!value.is_string() ||
@@ -167,6 +305,27 @@ void Config::set(const std::string& key, const nlohmann::json& value, const std:
   }
   m_values[key] = value;
   m_set.insert(key);
+}
+
+bool Config::is_group(const std::string& prefix) const {
+  const std::string start = prefix + ".";
+  return std::any_of(m_specs.begin(), m_specs.end(),
+                     [&](const ParamSpec& s) { return s.key.compare(0, start.size(), start) == 0; });
+}
+
+void Config::flatten(const nlohmann::json& node, const std::string& prefix,
+                     std::vector<std::pair<std::string, nlohmann::json>>& out) const {
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    // An object is a group of keys, unless its key is a parameter (an object
+    // where a value belongs) or it is empty and names no group (an unknown
+    // key): those are handed to set(), which names the key and the problem.
+    const bool group = it->is_object() && m_index.count(key) == 0 && (!it->empty() || is_group(key));
+    if (group)
+      flatten(*it, key, out);
+    else
+      out.emplace_back(key, *it);
+  }
 }
 
 void Config::merge_json(const nlohmann::json& doc, const std::string& source) {
@@ -181,14 +340,16 @@ void Config::merge_json(const nlohmann::json& doc, const std::string& source) {
 }
 
 void Config::load_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("configuration: cannot open '" + path + "': " + std::strerror(errno));
+  const std::string text = read_limited(path);
   nlohmann::json doc;
+  DocumentBuilder builder(text, &doc);
+  bool parsed = false;
   try {
-    doc = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+    parsed = nlohmann::json::sax_parse(text, &builder);
+  } catch (const nlohmann::json::exception& e) {
     throw ConfigError("configuration: '" + path + "' is not valid JSON: " + e.what());
   }
+  if (!parsed) throw ConfigError("configuration: '" + path + "' " + builder.problem());
   merge_json(doc, path);
 }
 

@@ -6,12 +6,14 @@
 // the key and what was expected.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -56,6 +58,13 @@ struct ParamGroup {
   std::function<void(const Config&)> validate;
 };
 
+// Limits of a configuration file (load_file). Both are far above any real
+// configuration (a few dozen keys, nested three deep) and keep a hostile or
+// broken file from exhausting memory or the stack: a bigger file, or objects
+// and arrays nested deeper, is a ConfigError naming the file.
+constexpr std::size_t MAX_CONFIG_FILE_BYTES = 1024 * 1024;
+constexpr std::size_t MAX_CONFIG_DEPTH = 32;  // the top-level object is depth 1
+
 class Config {
  public:
   // All parameters of `groups` at their defaults. A key declared twice is a
@@ -64,7 +73,12 @@ class Config {
 
   // Merges a JSON document of nested objects ({"bus": {"arbitration": ...}})
   // or dotted keys. `source` names where it came from, for error messages.
+  // An object where a parameter belongs, or an empty object whose key names
+  // no group of parameters, is an error like any other wrong value.
   void merge_json(const nlohmann::json& doc, const std::string& source);
+  // Reads at most MAX_CONFIG_FILE_BYTES of JSON nested at most
+  // MAX_CONFIG_DEPTH deep, with no key twice in one object; a number out of
+  // the range of a double (1e400) is an error naming the key and the line.
   void load_file(const std::string& path);
   // "key=value"; the value is parsed according to the key's type.
   void apply_override(const std::string& assignment);
@@ -96,6 +110,10 @@ class Config {
 
  private:
   const ParamSpec& spec(const std::string& key, const std::string& source) const;
+  // True when some parameter's key starts with `prefix` + ".".
+  bool is_group(const std::string& prefix) const;
+  void flatten(const nlohmann::json& node, const std::string& prefix,
+               std::vector<std::pair<std::string, nlohmann::json>>& out) const;
   const nlohmann::json& value(const std::string& key, ParamType expected) const;
 
   std::vector<ParamGroup> m_groups;

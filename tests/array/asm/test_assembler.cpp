@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 
@@ -383,6 +385,47 @@ void expect_same_words(const std::string& with_rept, const std::string& by_hand)
   EXPECT_EQ(repeated.entries, written.entries);
   EXPECT_EQ(repeated.variables, written.variables);
   EXPECT_EQ(repeated.constants, written.constants);
+}
+
+// Issue 14: input that must not knock the assembler over.
+TEST(Limits, ParenthesesNestAtMost64Deep) {
+  auto nested = [](size_t depth) {
+    return ".const a " + std::string(depth, '(') + "1" + std::string(depth, ')') + "\nmain:\nhalt\n";
+  };
+  EXPECT_EQ(assemble_text(nested(64)).constants.at("a"), 1);
+  expect_error(nested(65), 1, "parentheses nested more than 64 deep in the value of constant 'a'");
+  // Used to overflow the stack.
+  expect_error(nested(200000), 1, "parentheses nested more than 64 deep");
+}
+
+TEST(Limits, NulBytesAndControlCharactersAreNamed) {
+  expect_error(std::string("main:\n  halt\0\n", 13), 2, "a NUL byte in column 7: not a text file");
+  expect_error(std::string("main: ; \0\nhalt\n", 15), 1, "a NUL byte in column 9");
+  expect_error("main:\n  ha\x01lt\n", 2, "unexpected character 0x01");
+  expect_error("main:\n  halt \xff\n", 2, "unexpected character 0xFF");
+}
+
+TEST(Files, SizeIsLimited) {
+  ASSERT_EQ(MAX_SOURCE_BYTES, 64u * 1024 * 1024);
+  const std::string path = ::testing::TempDir() + "tessera_asm_big.s";
+  std::ofstream(path) << "main:\nhalt\n";
+  std::filesystem::resize_file(path, MAX_SOURCE_BYTES + 1);  // sparse: refused by its size, unread
+  try {
+    assemble_file(path);
+    ADD_FAILURE() << "assembled a file over the limit";
+  } catch (const AsmError& error) {
+    EXPECT_EQ(std::string(error.what()), path + ": 67108865 bytes, more than the limit of 67108864");
+  }
+  std::filesystem::remove(path);
+  // A device has no size; /dev/zero is refused at its first byte.
+  if (std::filesystem::exists("/dev/zero")) {
+    try {
+      assemble_file("/dev/zero");
+      ADD_FAILURE() << "assembled /dev/zero";
+    } catch (const AsmError& error) {
+      EXPECT_EQ(std::string(error.what()), "/dev/zero:1: a NUL byte in column 1: not a text file");
+    }
+  }
 }
 
 TEST(Rept, CountsUp) {

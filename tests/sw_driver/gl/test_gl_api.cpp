@@ -107,6 +107,139 @@ TEST_F(GlApi, CopiesLargerThanAnyTextureAreInvalidValue) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// Issue 14: a float that is not exactly an enum names none. glTexParameterf,
+// glTexEnvf and glFogf used to cast 1e30 and NaN straight to GLenum
+// (undefined behaviour, reported by -fsanitize=float-cast-overflow); each is
+// GL_INVALID_ENUM and leaves the state as it was, and the exact value still
+// works.
+TEST_F(GlApi, FloatParametersThatAreNoExactEnumAreInvalidEnum) {
+  GLuint texture;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  // The state before the bad calls.
+  GLint min_filter = 0, wrap_s = 0, env_mode = 0, fog_mode = 0;
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, &min_filter);
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, &wrap_s);
+  glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &env_mode);
+  glGetIntegerv(GL_FOG_MODE, &fog_mode);
+  EXPECT_EQ(wrap_s, GL_REPEAT);      // GL ES 1.1 table 6.14
+  EXPECT_EQ(env_mode, GL_MODULATE);  // table 6.16
+  EXPECT_EQ(fog_mode, GL_EXP);       // table 6.9
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float infinity = std::numeric_limits<float>::infinity();
+  const float not_enums[] = {
+      1e30f, -1e30f, nan, -nan, infinity, -infinity, 4294967296.0f, -1.0f, static_cast<float>(GL_LINEAR) + 0.5f};
+  for (const float value : not_enums) {
+    SCOPED_TRACE(value);
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, &value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glTexEnvf(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glTexEnvfv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glFogf(GL_FOG_MODE, value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+    glFogfv(GL_FOG_MODE, &value);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  }
+  // The state is as it was...
+  GLint value = 0;
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, &value);
+  EXPECT_EQ(value, min_filter);
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, &value);
+  EXPECT_EQ(value, wrap_s);
+  glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &value);
+  EXPECT_EQ(value, env_mode);
+  glGetIntegerv(GL_FOG_MODE, &value);
+  EXPECT_EQ(value, fog_mode);
+  // ...and exact values are taken.
+  glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<float>(GL_LINEAR));
+  glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, static_cast<float>(GL_CLAMP_TO_EDGE));
+  glTexEnvf(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, static_cast<float>(GL_REPLACE));
+  glFogf(GL_FOG_MODE, static_cast<float>(GL_LINEAR));
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, &value);
+  EXPECT_EQ(value, GL_LINEAR);
+  glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, &value);
+  EXPECT_EQ(value, GL_CLAMP_TO_EDGE);
+  glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, &value);
+  EXPECT_EQ(value, GL_REPLACE);
+  glGetIntegerv(GL_FOG_MODE, &value);
+  EXPECT_EQ(value, GL_LINEAR);
+}
+
+// A float answered through glGetIntegerv is rounded and, beyond GLint,
+// clamped (NaN as 0) instead of converted out of range.
+TEST_F(GlApi, IntegerQueriesOfHugeFloatsSaturate) {
+  GLint value = 0;
+  glFogf(GL_FOG_END, 1e30f);
+  glGetIntegerv(GL_FOG_END, &value);
+  EXPECT_EQ(value, std::numeric_limits<GLint>::max());
+  glFogf(GL_FOG_END, -1e30f);
+  glGetIntegerv(GL_FOG_END, &value);
+  EXPECT_EQ(value, std::numeric_limits<GLint>::min());
+  glFogf(GL_FOG_END, std::numeric_limits<float>::quiet_NaN());
+  glGetIntegerv(GL_FOG_END, &value);
+  EXPECT_EQ(value, 0);
+  glFogf(GL_FOG_END, 2.5f);
+  glGetIntegerv(GL_FOG_END, &value);
+  EXPECT_EQ(value, 3);  // to nearest, halves away from zero
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// Rectangles and offsets near INT_MAX: x + width used to overflow a GLint in
+// glTexSubImage2D; each is GL_INVALID_VALUE (or, for a buffer, the error
+// GL specifies) and nothing is written.
+TEST_F(GlApi, OffsetsNearIntMaxAreRefusedWithoutOverflow) {
+  constexpr GLint BIG = std::numeric_limits<GLint>::max();
+  GLuint texture;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  std::vector<uint8_t> pixels(64 * 64 * 4, 0x5A);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, BIG, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, BIG, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 1, 1, BIG, BIG, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 63, 63, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // the last texel
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  // A copy larger than any texture is refused before it is allocated.
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, BIG, BIG);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 0, 0, BIG, 1, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  // A copy from x = INT_MAX lies outside the window: no error, no overflow.
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, BIG, BIG, 2, 2);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  std::vector<uint8_t> read(2 * 2 * 4, 0xEE);
+  glReadPixels(BIG, BIG - 1, 2, 2, GL_RGBA, GL_UNSIGNED_BYTE, read.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(read, std::vector<uint8_t>(2 * 2 * 4, 0));
+
+  // Buffers: offset + size and a huge index offset.
+  GLuint buffer;
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer);
+  const uint16_t indices[3] = {0, 1, 2};
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, std::numeric_limits<GLintptr>::max(), 2, indices);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 2, std::numeric_limits<GLsizeiptr>::max(), indices);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  const auto far_offset = reinterpret_cast<const void*>(~static_cast<uintptr_t>(0) - 1);
+  glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, far_offset);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
+}
+
 TEST_F(GlApi, MatrixStackOverflowAndUnderflow) {
   glMatrixMode(GL_MODELVIEW);
   glPopMatrix();

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -43,6 +45,18 @@ constexpr int64_t LITERAL_LIMIT = INT_MAX;
 // mistyped count), far beyond any program memory the array is configured
 // with, and would keep the assembler busy for minutes.
 constexpr int64_t MAX_EXPANDED_LINES = 1000000;
+
+// Parentheses are read by recursion: deeper nesting than this is refused
+// rather than allowed to overflow the stack.
+constexpr unsigned MAX_PARENTHESES_DEPTH = 64;
+
+// A character as a message shows it: itself, or its code if unprintable.
+std::string shown_character(char c) {
+  const auto code = static_cast<unsigned char>(c);
+  if (code >= 0x20 && code < 0x7f) return "'" + std::string(1, c) + "'";
+  const char* const hex = "0123456789ABCDEF";
+  return std::string("0x") + hex[code >> 4] + hex[code & 0xf];
+}
 
 struct LoopScope {
   std::string variable;
@@ -162,6 +176,9 @@ class Assembler {
       std::string_view text = source.substr(0, newline);
       source = newline == std::string_view::npos ? std::string_view{} : source.substr(newline + 1);
       m_line = ++number;
+      // A NUL byte anywhere, comments included, means the file is not text.
+      if (const size_t nul = text.find('\0'); nul != std::string_view::npos)
+        fail("a NUL byte in column " + std::to_string(nul + 1) + ": not a text file");
       const size_t comment = std::min(text.find(';'), text.find("//"));
       Tokens tokens = tokenize(text.substr(0, comment));
       if (!tokens.empty()) feed({number, std::move(tokens)});
@@ -276,7 +293,7 @@ class Assembler {
         tokens.push_back({TokenKind::punct, std::string(1, c)});
         ++i;
       } else {
-        fail("unexpected character '" + std::string(1, c) + "'");
+        fail("unexpected character " + shown_character(c));
       }
     }
     return tokens;
@@ -421,6 +438,7 @@ class Assembler {
     size_t end;
     const std::string& what;
     bool in_address;
+    unsigned depth = 0;  // of parentheses open at `at`
 
     bool next_is(char punct) const { return at < end && tokens[at].is(punct); }
   };
@@ -489,7 +507,10 @@ class Assembler {
     } else if (token.kind == TokenKind::name) {
       value = name_value(token.text, cursor.what, cursor.in_address);
     } else if (token.is('(')) {
+      if (++cursor.depth > MAX_PARENTHESES_DEPTH)
+        fail("parentheses nested more than " + std::to_string(MAX_PARENTHESES_DEPTH) + " deep in " + cursor.what);
       value = sum(cursor);
+      --cursor.depth;
       if (!cursor.next_is(')')) fail("'(' without a matching ')' in " + cursor.what);
       ++cursor.at;
     } else {
@@ -743,10 +764,29 @@ Program assemble(std::string_view source, const std::string& source_name, const 
 
 Program assemble_file(const std::string& path, const AsmLimits& limits) {
   std::string source;
+  std::error_code failure;
+  if (std::filesystem::is_regular_file(path, failure)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, failure);
+    if (!failure && size > MAX_SOURCE_BYTES)
+      throw AsmError(path, 0,
+                     std::to_string(size) + " bytes, more than the limit of " + std::to_string(MAX_SOURCE_BYTES));
+  }
   try {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw AsmError(path, 0, "cannot read the file");
-    source.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    // At most MAX_SOURCE_BYTES (a device such as /dev/zero has no end);
+    // reading stops after a NUL byte, which assemble() then names by line.
+    std::vector<char> buffer(64 * 1024);
+    while (in) {
+      in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      const auto got = static_cast<size_t>(in.gcount());
+      source.append(buffer.data(), got);
+      if (source.size() > MAX_SOURCE_BYTES)
+        throw AsmError(path, 0, "more than the limit of " + std::to_string(MAX_SOURCE_BYTES) + " bytes");
+      if (std::find(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(got), '\0') !=
+          buffer.begin() + static_cast<std::ptrdiff_t>(got))
+        break;
+    }
     if (in.bad()) throw AsmError(path, 0, "cannot read the file");
   } catch (const AsmError&) {
     throw;

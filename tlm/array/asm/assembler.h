@@ -5,6 +5,7 @@
 // added, lies inside the CMEM of the limits it was given.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -37,6 +38,10 @@ class AsmError : public std::runtime_error {
   unsigned m_line;
   std::string m_problem;
 };
+
+// The largest source assemble_file reads: far above any program that fits
+// the largest program memory written out line by line.
+constexpr size_t MAX_SOURCE_BYTES = 64u * 1024 * 1024;
 
 // Throws AsmError on the first problem; std::invalid_argument when the
 // limits themselves are not an array the ISA can address.
