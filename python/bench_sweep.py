@@ -2,7 +2,7 @@
 Dask cluster of 1 and of 2 workers, paired and repeated; prints min and
 median wall time of each and the speed-up of the medians.
 
-    build/venv/bin/python3 python/bench_sweep.py [--repeat 3] [--frames 40]
+    build/venv/bin/python3 python/bench_sweep.py [--repeat 3] [--frames 1000]
 
 Each run starts from an empty output folder (nothing cached). Two times
 of each run: the whole run_sweep call, as a user sees it (the points'
@@ -61,7 +61,7 @@ def timed_sweep(spec, simulator, workers: int, scratch: Path) -> dict:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=3, help="pairs of runs (default 3)")
-    parser.add_argument("--frames", type=int, default=40, help="frames per point (default 40)")
+    parser.add_argument("--frames", type=int, default=1000, help="frames per point (default 1000)")
     parser.add_argument("--soc-sim", default=os.environ.get("TESSERA_SOC_SIM", DEFAULT_SOC_SIM))
     options = parser.parse_args()
     if options.repeat < 1 or options.frames < 1:

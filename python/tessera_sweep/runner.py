@@ -59,7 +59,8 @@ def connect(scheduler: str | None, workers: int | None):
             yield client
 
 
-def progress(done: int, total: int, record: dict, out=sys.stderr) -> None:
+def progress(done: int, total: int, record: dict, out=None) -> None:
+    out = out or sys.stderr  # looked up at the call: redirect_stderr applies
     outcome = "ok" if record["status"] == 0 else f"FAILED (exit status {record['status']})"
     print(f"[{done}/{total}] {record['axes']} {outcome} {record['wall_s']:.2f} s", file=out, flush=True)
 
