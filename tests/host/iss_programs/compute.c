@@ -19,8 +19,7 @@ static uint32_t crc32(const uint8_t* data, unsigned length) {
   uint32_t crc = 0xffffffffu;
   for (unsigned i = 0; i < length; ++i) {
     crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit)
-      crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
   }
   return ~crc;
 }
@@ -37,7 +36,9 @@ static void insertion_sort(int32_t* values, int count) {
   }
 }
 
-static unsigned fibonacci(unsigned n) { return n < 2 ? n : fibonacci(n - 1) + fibonacci(n - 2); }
+static unsigned fibonacci(unsigned n) {
+  return n < 2 ? n : fibonacci(n - 1) + fibonacci(n - 2);
+}
 
 static int classify(unsigned x) {
   switch (x % 7) { /* a jump table */
@@ -80,8 +81,14 @@ int main(void) {
     g -= f / (float)(i * i + 1);
     d = d * 0.999 + (double)i / 3.0 - (double)f * 1e-3;
   }
-  union { float f; uint32_t u; } fu = {f}, gu = {g};
-  union { double d; uint64_t u; } du = {d};
+  union {
+    float f;
+    uint32_t u;
+  } fu = {f}, gu = {g};
+  union {
+    double d;
+    uint64_t u;
+  } du = {d};
   put_hex("float f", fu.u);
   put_hex("float g", gu.u);
   put_hex("double.hi", (uint32_t)(du.u >> 32));
@@ -89,24 +96,20 @@ int main(void) {
   put_hex("float->int", (uint32_t)(int32_t)(g * 1000.0f));
   put_hex("double->uint", (uint32_t)(d * 16.0));
 
-  for (unsigned i = 0; i < sizeof buffer; ++i)
-    buffer[i] = (uint8_t)next_random();
+  for (unsigned i = 0; i < sizeof buffer; ++i) buffer[i] = (uint8_t)next_random();
   memcpy(buffer + 100, buffer + 7, 200);
   memset(buffer + 400, 0x5a, 33);
   put_hex("crc32", crc32(buffer, sizeof buffer));
 
-  for (int i = 0; i < 64; ++i)
-    values[i] = (int32_t)next_random() >> 7;
+  for (int i = 0; i < 64; ++i) values[i] = (int32_t)next_random() >> 7;
   insertion_sort(values, 64);
   uint32_t order = 0;
-  for (int i = 0; i < 64; ++i)
-    order = order * 31u + (uint32_t)values[i];
+  for (int i = 0; i < 64; ++i) order = order * 31u + (uint32_t)values[i];
   put_hex("sorted", order);
   put_hex("min", (uint32_t)values[0]);
   put_hex("fibonacci(20)", fibonacci(20));
   int classes = 0;
-  for (unsigned i = 0; i < 100; ++i)
-    classes += classify(next_random());
+  for (unsigned i = 0; i < 100; ++i) classes += classify(next_random());
   put_hex("classes", (uint32_t)classes);
   return 0;
 }
