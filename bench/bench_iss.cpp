@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench_support.h"
+#include "guarded_main.h"
 #include "host/iss/bare_machine.h"
 
 namespace {
@@ -38,9 +39,7 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_main(int argc, char** argv) {
   CLI::App app{"bench_iss: the ISS core's speed on compiled ARM and Thumb code"};
   int repeat = 21;
   std::string arm_elf = TESSERA_ISS_ARM_ELF, thumb_elf = TESSERA_ISS_THUMB_ELF;
@@ -76,4 +75,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return tessera::guarded_main("bench_iss", [&] { return run_main(argc, argv); });
 }

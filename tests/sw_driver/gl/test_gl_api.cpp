@@ -235,7 +235,9 @@ TEST_F(GlApi, OffsetsNearIntMaxAreRefusedWithoutOverflow) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
   glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 2, std::numeric_limits<GLsizeiptr>::max(), indices);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
-  const auto far_offset = reinterpret_cast<const void*>(~static_cast<uintptr_t>(0) - 1);
+  // An offset into the bound buffer, passed as a pointer as GL does.
+  const auto far_offset =
+      reinterpret_cast<const void*>(~static_cast<uintptr_t>(0) - 1);  // NOLINT(performance-no-int-to-ptr)
   glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, far_offset);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
 }
