@@ -1,11 +1,11 @@
 #include "apps/iss_app.h"
 
-#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 #include <vector>
 
 #include "host/iss/arm_core.h"
+#include "host/iss/bare_machine.h"
 #include "host/iss/cp15.h"
 #include "host/iss/elf_image.h"
 
@@ -13,18 +13,12 @@ namespace tessera {
 
 namespace {
 
-// The console and exit registers the test programs write (BareMachine's,
-// tlm/host/iss/bare_machine.h): taken by the launcher, not on the bus yet.
-constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
+// The console and exit registers the test programs write (BareMachine's):
+// taken by the launcher, not on the bus yet.
+constexpr uint32_t CONSOLE = iss::BareMachine::CONSOLE, EXIT = iss::BareMachine::EXIT;
 // Instructions whose one-cycle charges are added up before the host is
 // told (the host's time moves in these steps between memory accesses).
 constexpr uint64_t CHARGE_BATCH = 256;
-
-std::string hex(uint32_t value) {
-  char text[16];
-  std::snprintf(text, sizeof text, "0x%08x", value);
-  return text;
-}
 
 // The ISS's memory port over the host's device layer. Data accesses are the
 // host's (charged by its cache, write buffer and bus); instruction fetches
@@ -148,16 +142,11 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
   iss::Cp15 cp15(core);  // ID, cache type, control; cache operations reach no caches yet
   core.set_coprocessors(&cp15);
   core.on_exception([&](iss::Exception exception, uint32_t pc) {
-    const char* what = nullptr;
-    switch (exception) {
-      case iss::Exception::undefined: what = "undefined instruction"; break;
-      case iss::Exception::prefetch_abort: what = "prefetch abort (no memory at the PC)"; break;
-      case iss::Exception::data_abort: what = "data abort"; break;
-      default: return;  // SWI and interrupts go to the program's vectors
-    }
+    const char* fault = iss::fault_name(exception);
+    if (fault == nullptr) return;  // SWI and interrupts go to the program's vectors
     memory.flush_console();
-    std::string text = path + ": " + what + " at pc " + hex(pc);
-    if (exception == iss::Exception::data_abort) text += ", address " + hex(memory.fault_address());
+    std::string text = path + ": " + fault + " at pc " + iss::address_text(pc);
+    if (exception == iss::Exception::data_abort) text += ", address " + iss::address_text(memory.fault_address());
     throw std::runtime_error(text + " (the program has no handler: the ISS launcher stops it)");
   });
   core.reset();

@@ -20,16 +20,6 @@
 #include "host/iss/cp15.h"
 #include "host/iss/gdb_server.h"
 
-namespace {
-
-std::string hex(uint32_t value) {
-  char text[16];
-  std::snprintf(text, sizeof text, "0x%08x", value);
-  return text;
-}
-
-}  // namespace
-
 int run_main(int argc, char** argv) {
   CLI::App app{"iss_run: an ARM executable on the instruction-set simulator alone"};
   std::string elf, port_file;
@@ -49,10 +39,7 @@ int run_main(int argc, char** argv) {
     core.set_coprocessors(&cp15);
     machine.load(read_elf(elf), core);
     core.on_exception([&](Exception exception, uint32_t pc) {
-      if (exception == Exception::undefined) throw IssError(elf + ": undefined instruction at pc " + hex(pc));
-      if (exception == Exception::prefetch_abort) throw IssError(elf + ": prefetch abort (no memory) at pc " + hex(pc));
-      if (exception == Exception::data_abort)
-        throw IssError(elf + ": data abort (no memory at the address) at pc " + hex(pc));
+      if (const char* fault = fault_name(exception)) throw IssError(elf + ": " + fault + " at pc " + address_text(pc));
     });
     try {
       if (gdb_port >= 0) {
@@ -63,7 +50,7 @@ int run_main(int argc, char** argv) {
           throw std::runtime_error("cannot write the port to " + port_file);
         if (!server.serve(limit)) {
           std::cout << machine.console();
-          std::cerr << "iss_run: killed by GDB at pc " << hex(core.reg(15)) << "\n";
+          std::cerr << "iss_run: killed by GDB at pc " << address_text(core.reg(15)) << "\n";
           return 3;
         }
       }
@@ -71,7 +58,7 @@ int run_main(int argc, char** argv) {
       std::cout << machine.console() << std::flush;
       if (!exited) {
         std::cerr << "iss_run: " << elf << ": no exit after " << core.instructions() << " instructions (--limit), pc "
-                  << hex(core.reg(15)) << "\n";
+                  << address_text(core.reg(15)) << "\n";
         return 3;
       }
       return static_cast<int>(machine.status() & 0xffu);

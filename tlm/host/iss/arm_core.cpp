@@ -27,6 +27,21 @@ uint32_t nz(uint32_t result) {
 
 }  // namespace
 
+std::string address_text(uint64_t address) {
+  char text[24];
+  std::snprintf(text, sizeof text, "0x%08llx", static_cast<unsigned long long>(address));
+  return text;
+}
+
+const char* fault_name(Exception exception) {
+  switch (exception) {
+    case Exception::undefined: return "undefined instruction";
+    case Exception::prefetch_abort: return "prefetch abort (no memory at the PC)";
+    case Exception::data_abort: return "data abort";
+    default: return nullptr;
+  }
+}
+
 ArmCore::ArmCore(IssMemory& memory, Coprocessors* coprocessors) : m_memory(memory), m_coprocessors(coprocessors) {
   m_cpsr = static_cast<uint32_t>(Mode::svc) | psr::I | psr::F;
 }
@@ -416,9 +431,7 @@ void ArmCore::undefined() {
 }
 
 void ArmCore::unpredictable(const std::string& what) const {
-  char text[96];
-  std::snprintf(text, sizeof text, "ISS: %s at 0x%08x: unpredictable on ARMv4T, not executed", what.c_str(), m_pc);
-  throw IssError(text);
+  throw IssError("ISS: " + what + " at " + address_text(m_pc) + ": unpredictable on ARMv4T, not executed");
 }
 
 // The shifter operand of a register form: Rm shifted by an immediate or by

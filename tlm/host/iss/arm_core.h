@@ -56,6 +56,14 @@ class Coprocessors {
                    uint32_t value) = 0;
 };
 
+// "0x%08x": how the ISS's messages write an address or a PC.
+std::string address_text(uint64_t address);
+
+// The faults a launcher without handlers stops at, named for its message:
+// "undefined instruction", "prefetch abort (no memory at the PC)", "data
+// abort"; nullptr for reset, SWI and interrupts, which go to the vectors.
+const char* fault_name(Exception exception);
+
 // An instruction the ISS will not execute (one whose result ARMv4T leaves
 // unpredictable, e.g. LDM/STM with no registers): an error naming the
 // address, never a silent guess.

@@ -1,8 +1,9 @@
 #include "host/iss/elf_image.h"
 
-#include <cstdio>
 #include <fstream>
 #include <iterator>
+
+#include "host/iss/arm_core.h"
 
 namespace tessera::iss {
 
@@ -17,12 +18,6 @@ uint32_t u32(const std::vector<uint8_t>& b, uint64_t at) {
 }
 uint16_t u16(const std::vector<uint8_t>& b, uint64_t at) {
   return static_cast<uint16_t>(b[at] | b[at + 1] << 8);
-}
-
-std::string hex(uint64_t value) {
-  char text[24];
-  std::snprintf(text, sizeof text, "0x%08llx", static_cast<unsigned long long>(value));
-  return text;
 }
 
 }  // namespace
@@ -66,7 +61,7 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
     if (file_size > memory_size) fail("segment " + std::to_string(i) + " has more file bytes than memory bytes");
     if (offset + file_size > file.size()) fail("segment " + std::to_string(i) + " extends past the end of the file");
     if (address + memory_size > (1ull << 32))
-      fail("segment " + std::to_string(i) + " at " + hex(address) + " wraps past 4 GiB");
+      fail("segment " + std::to_string(i) + " at " + address_text(address) + " wraps past 4 GiB");
     if (memory_size > MAX_ELF_BYTES)
       fail("segment " + std::to_string(i) + " of " + std::to_string(memory_size) + " bytes");
     if (memory_size == 0) continue;
@@ -80,7 +75,7 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
     image.segments.push_back(std::move(segment));
   }
   if (image.segments.empty()) fail("no loadable segment");
-  if (!entry_covered) fail("entry point " + hex(image.entry) + " is not in an executable segment");
+  if (!entry_covered) fail("entry point " + address_text(image.entry) + " is not in an executable segment");
   return image;
 }
 
@@ -88,8 +83,8 @@ void ElfImage::check_fits(uint32_t base, uint64_t size, const std::string& what)
   for (const ElfSegment& segment : segments) {
     const uint64_t end = uint64_t{segment.address} + segment.bytes.size();
     if (segment.address < base || end > base + size)
-      throw ElfError(path + ": segment " + hex(segment.address) + ".." + hex(end) + " falls outside " + what + " (" +
-                     hex(base) + ".." + hex(base + size) + ")");
+      throw ElfError(path + ": segment " + address_text(segment.address) + ".." + address_text(end) +
+                     " falls outside " + what + " (" + address_text(base) + ".." + address_text(base + size) + ")");
   }
 }
 
