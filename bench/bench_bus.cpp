@@ -172,18 +172,6 @@ struct Driver : sc_core::sc_module {
   }
 };
 
-struct MinMedian {
-  double min;
-  double median;
-};
-
-MinMedian min_median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  const double median = n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-  return {values.front(), median};
-}
-
 std::vector<double> ratios(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> r;
   for (size_t i = 0; i < a.size(); ++i) r.push_back(a[i] / b[i]);
@@ -234,11 +222,11 @@ int run(const Options& options) {
       "|---|--:|--:|--:|--:|--:|\n");
   for (size_t k = 0; k < KIND_COUNT; ++k) {
     const auto& t = driver.timings[k];
-    const MinMedian floor = min_median(t[floor_path]);
-    const MinMedian bus_only = min_median(t[bus_path]);
-    const MinMedian memory_too = min_median(t[memory_path]);
-    const double bus_ratio = min_median(ratios(t[bus_path], t[floor_path])).median;
-    const double memory_ratio = min_median(ratios(t[memory_path], t[floor_path])).median;
+    const tessera::bench::MinMedian floor = tessera::bench::min_median(t[floor_path]);
+    const tessera::bench::MinMedian bus_only = tessera::bench::min_median(t[bus_path]);
+    const tessera::bench::MinMedian memory_too = tessera::bench::min_median(t[memory_path]);
+    const double bus_ratio = tessera::bench::min_median(ratios(t[bus_path], t[floor_path])).median;
+    const double memory_ratio = tessera::bench::min_median(ratios(t[memory_path], t[floor_path])).median;
     std::printf("| %s | %.1f / %.1f | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.2f / %.2f |\n", KINDS[k].name,
                 floor.min, floor.median, bus_only.min, bus_only.median, memory_too.min, memory_too.median,
                 bus_only.min / floor.min, bus_ratio, memory_too.min / floor.min, memory_ratio);

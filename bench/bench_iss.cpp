@@ -33,12 +33,6 @@ Timed run_once(const tessera::iss::ElfImage& image) {
   return {seconds, core.instructions()};
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
 int run_main(int argc, char** argv) {
   CLI::App app{"bench_iss: the ISS core's speed on compiled ARM and Thumb code"};
   int repeat = 21;
@@ -63,10 +57,9 @@ int run_main(int argc, char** argv) {
     std::printf("|---|---|---|---|---|\n");
     const char* names[2] = {"compute.c, ARM state", "compute.c, Thumb state"};
     for (int s = 0; s < 2; ++s) {
-      const double med = median(seconds[s]);
+      const tessera::bench::MinMedian times = tessera::bench::min_median(seconds[s]);
       std::printf("| %s | %llu | %.2f | %.2f | %.1f |\n", names[s], static_cast<unsigned long long>(instructions[s]),
-                  1e3 * *std::min_element(seconds[s].begin(), seconds[s].end()), 1e3 * med,
-                  static_cast<double>(instructions[s]) / med / 1e6);
+                  1e3 * times.min, 1e3 * times.median, static_cast<double>(instructions[s]) / times.median / 1e6);
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     std::printf("\n%s\n", tessera::bench::machine_summary(load_before, total).c_str());

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +18,13 @@
 extern char** environ;
 
 namespace tessera::bench {
+
+MinMedian min_median(std::vector<double> values) {
+  if (values.empty()) throw std::invalid_argument("min_median: no measurement");
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return {values.front(), n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2};
+}
 
 namespace fs = std::filesystem;
 

@@ -21,6 +21,13 @@ struct ChildResult {
 // Throws if it cannot start or does not exit with status 0.
 ChildResult run_child(const std::vector<std::string>& argv, const std::filesystem::path& output_file);
 
+struct MinMedian {
+  double min = 0;
+  double median = 0;  // of an even count: the mean of the two middle values
+};
+// Min and median of repeated measurements (at least one).
+MinMedian min_median(std::vector<double> values);
+
 nlohmann::json read_json_file(const std::filesystem::path& path);
 
 // The folder of the running executable (the build tree puts the benchmarks
