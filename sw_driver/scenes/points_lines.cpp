@@ -145,10 +145,12 @@ void draw_size_array() {
   glEnableClientState(GL_POINT_SIZE_ARRAY_OES);
   glPointSizePointerOES(GL_FLOAT, 0, FLOAT_SIZES);
   glDrawArrays(GL_POINTS, 0, POINTS_PER_ROW / 2);
-  // The fixed-point sizes for the second half: the array starts at its
-  // first element, so the pointer is moved back by the three vertices.
-  glPointSizePointerOES(GL_FIXED, 0, FIXED_SIZES - POINTS_PER_ROW / 2);
-  glDrawArrays(GL_POINTS, POINTS_PER_ROW / 2, POINTS_PER_ROW / 2);
+  // The fixed-point sizes for the second half, whose positions and colours
+  // start the arrays here.
+  glVertexPointer(3, GL_FLOAT, 0, &xyz[3 * (POINTS_PER_ROW / 2)]);
+  glColorPointer(4, GL_FLOAT, 0, &rgba[4 * (POINTS_PER_ROW / 2)]);
+  glPointSizePointerOES(GL_FIXED, 0, FIXED_SIZES);
+  glDrawArrays(GL_POINTS, 0, POINTS_PER_ROW / 2);
   glDisableClientState(GL_POINT_SIZE_ARRAY_OES);
 #endif
   glDisableClientState(GL_COLOR_ARRAY);
