@@ -265,7 +265,7 @@ glm::vec4 light_vertex(const LightingModel& model, const Material& material, con
       to_light = glm::normalize(glm::vec3(light.position));
     }
     float spot = 1;
-    if (light.spot_cutoff != 180 && light.position.w != 0) {
+    if (light.spot_cutoff != 180) {
       const float cos_angle = glm::dot(-to_light, glm::normalize(light.spot_direction));
       const float cos_cutoff = std::cos(glm::radians(light.spot_cutoff));
       spot = cos_angle < cos_cutoff ? 0.0f : std::pow(std::max(cos_angle, 0.0f), light.spot_exponent);

@@ -168,10 +168,10 @@ struct LightingModel {
 
 // The lit colour of a vertex at eye position `eye` with unit eye-space
 // normal `normal` (ES 1.1 eq. 2.1, local viewer false as ES mandates),
-// clamped to [0, 1]. Alpha is the material's diffuse alpha. Attenuation and
-// the spot light factor apply to positional lights (w != 0) only, as in
-// Mesa's fixed-function vertex program; a directional light is neither
-// attenuated nor a spot light. The back colour of two-sided lighting is the
+// clamped to [0, 1]. Alpha is the material's diffuse alpha. Attenuation
+// applies to positional lights (w != 0) only; the spot factor to every
+// light whose cutoff is not 180, a directional one taking its direction
+// as the light's (as Mesa's fixed-function vertex program does). The back colour of two-sided lighting is the
 // same call with the normal reversed (ES 1.1 has one material for both
 // faces: glMaterial takes only GL_FRONT_AND_BACK).
 glm::vec4 light_vertex(const LightingModel& model, const Material& material, const glm::vec4& eye,

@@ -201,11 +201,26 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
       va.eye = va.clip.eye, vb.eye = vb.clip.eye;
     }
     if (!(va.clip.position.w > 0) || !(vb.clip.position.w > 0)) return;
-    const glm::vec2 pa = window(va), pb = window(vb);
-    glm::vec2 d = pb - pa;
+    glm::vec2 pa = window(va), pb = window(vb);
+    const glm::vec2 d = pb - pa;
     const float length = glm::length(d);
     if (!(length > 0)) return;
-    const glm::vec2 side = glm::vec2(-d.y, d.x) / length * (m_line_width * 0.5f);
+    // An aliased wide line (ES 1.1 section 3.4.2): each column of an
+    // x-major line (each row of a y-major one) gets a span of the width,
+    // centred on the line: a parallelogram whose short sides are vertical
+    // (horizontal), not a rectangle. Placed as Mesa places it (its draw
+    // module's wide lines, which softpipe draws): the whole line moved by
+    // half a pixel back along its major axis, against the direction it is
+    // drawn in, and by 1/8 pixel across it (up in x-major lines, right in
+    // y-major ones), so that its pixels are those of GL's diamond-exit
+    // rule at the ends.
+    const float half_width = m_line_width * 0.5f;
+    const bool x_major = std::fabs(d.x) >= std::fabs(d.y);
+    const glm::vec2 side = x_major ? glm::vec2(0, half_width) : glm::vec2(half_width, 0);
+    constexpr float ACROSS = 0.125f, ALONG = 0.5f;
+    const glm::vec2 shift = x_major ? glm::vec2(d.x > 0 ? -ALONG : ALONG, ACROSS)
+                                    : glm::vec2(ACROSS, d.y > 0 ? -ALONG : ALONG);
+    pa += shift, pb += shift;
     // A quad along the segment: two triangles, each end keeps its attributes.
     Vertex q[4] = {va, vb, vb, va};
     const glm::vec2 corners[4] = {pa - side, pb - side, pb + side, pa + side};
@@ -245,11 +260,25 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
           charge({3, 4, 0, 0, 1, 0, 0}, user_planes.size());
           if (!inside_user_planes(v[i].clip, user_planes)) continue;
         }
-        const float size = derived_point_size(indices[i], v[i].eye);
+        float size = derived_point_size(indices[i], v[i].eye);
         if (!(size > 0)) continue;
         const glm::vec2 c = window(v[i]);
-        const float h = size * 0.5f;
-        const glm::vec2 corners[4] = {{c.x - h, c.y - h}, {c.x + h, c.y - h}, {c.x + h, c.y + h}, {c.x - h, c.y + h}};
+        float left = c.x - size * 0.5f, bottom = c.y - size * 0.5f;
+        if (!m_point_sprite) {
+          // An aliased point (ES 1.1 section 3.3.1) is a square of whole
+          // pixels on the pixel grid. Placed as Mesa's softpipe places it,
+          // which is GL's rule (the square centred on the pixel centre or
+          // corner nearest the point's) with a quarter-pixel bias: its
+          // size truncated to whole pixels, its left column
+          // floor(x + 3/4 - size / 2) and its top row, counted down from
+          // the top, floor(y_down + 1/4 - size / 2).
+          const float whole = std::max(1.0f, std::floor(size));
+          left = std::floor(c.x + 0.75f - size * 0.5f);
+          bottom = std::ceil(c.y + size * 0.5f - 0.25f) - whole;
+          size = whole;
+        }
+        const float right = left + size, top = bottom + size;
+        const glm::vec2 corners[4] = {{left, bottom}, {right, bottom}, {right, top}, {left, top}};
         emit_quad(corners, v[i], sprite_tex);
       }
       break;

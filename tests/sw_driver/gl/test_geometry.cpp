@@ -516,9 +516,12 @@ TEST(Lighting, SpotLightsAndAttenuation) {
   EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1}).r, 0.8f, 1e-6);
   EXPECT_NEAR(light_vertex(model, material, off_axis, facing_light).r, 0.8f * std::pow(std::cos(angle), 2.0f), 1e-5);
   EXPECT_EQ(light_vertex(model, material, {2, 0, -2, 1}, glm::normalize(glm::vec3(-1, 0, 1))).r, 0);
-  // A directional light is never a spot light (nor attenuated), as Mesa
-  // draws it: the cutoff does not cut it off.
+  // A directional light is not attenuated; its spot factor takes the
+  // light's direction, -position: from +x, (-1, 0, 0) against the spot
+  // direction (0, 0, -1) is 90 degrees off, outside the 30-degree cone.
   light.position = {1, 0, 0, 0};
   light.linear_attenuation = 3;
+  EXPECT_EQ(light_vertex(model, material, {0, 0, -2, 1}, {1, 0, 0}).r, 0);
+  light.spot_direction = {-1, 0, 0};  // on the cone's axis: spot factor 1
   EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {1, 0, 0}).r, 0.8f, 1e-6);
 }
