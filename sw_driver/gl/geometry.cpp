@@ -89,8 +89,8 @@ bool inside_user_planes(const ClipVertex& v, const std::vector<glm::vec4>& user_
   return true;
 }
 
-bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes,
-                  float* t0, float* t1) {
+bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes, float* t0,
+                  float* t1) {
   float start = 0, end = 1;
   for (const glm::vec4& plane : user_planes) {
     const float da = glm::dot(plane, eye_a), db = glm::dot(plane, eye_b);

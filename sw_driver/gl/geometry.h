@@ -16,9 +16,9 @@
 namespace tessera::gl {
 
 struct ClipVertex {
-  glm::vec4 position;  // clip coordinates
-  glm::vec4 color;     // RGBA, [0, 1] after lighting or clamping
-  glm::vec2 tex;       // texture coordinates after the texture matrix
+  glm::vec4 position;         // clip coordinates
+  glm::vec4 color;            // RGBA, [0, 1] after lighting or clamping
+  glm::vec2 tex;              // texture coordinates after the texture matrix
   glm::vec4 eye{0, 0, 0, 1};  // eye coordinates, for the user clip planes
   // The colour of a back-facing polygon's vertex under two-sided lighting
   // (lit with the reversed normal); the front colour otherwise.
@@ -56,8 +56,8 @@ bool inside_user_planes(const ClipVertex& v, const std::vector<glm::vec4>& user_
 
 // Clips the segment a-b (parameters 0 at a, 1 at b) against `user_planes`:
 // false if nothing is left, else the parameters of the part inside.
-bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes,
-                  float* t0, float* t1);
+bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes, float* t0,
+                  float* t1);
 
 struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;

@@ -218,8 +218,8 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
     const bool x_major = std::fabs(d.x) >= std::fabs(d.y);
     const glm::vec2 side = x_major ? glm::vec2(0, half_width) : glm::vec2(half_width, 0);
     constexpr float ACROSS = 0.125f, ALONG = 0.5f;
-    const glm::vec2 shift = x_major ? glm::vec2(d.x > 0 ? -ALONG : ALONG, ACROSS)
-                                    : glm::vec2(ACROSS, d.y > 0 ? -ALONG : ALONG);
+    const glm::vec2 shift =
+        x_major ? glm::vec2(d.x > 0 ? -ALONG : ALONG, ACROSS) : glm::vec2(ACROSS, d.y > 0 ? -ALONG : ALONG);
     pa += shift, pb += shift;
     // A quad along the segment: two triangles, each end keeps its attributes.
     Vertex q[4] = {va, vb, vb, va};

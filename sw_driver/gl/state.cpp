@@ -58,7 +58,8 @@ void Context::enable(GLenum cap, bool on) {
 bool Context::is_enabled(GLenum cap) {
   charge_call();
   if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + MAX_LIGHTS) return m_lighting_model.lights[cap - GL_LIGHT0].enabled;
-  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES) return m_clip_plane_enabled[cap - GL_CLIP_PLANE0];
+  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES)
+    return m_clip_plane_enabled[cap - GL_CLIP_PLANE0];
   switch (cap) {
     case GL_DEPTH_TEST: return m_depth_test;
     case GL_BLEND: return m_blend;

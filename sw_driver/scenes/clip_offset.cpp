@@ -48,7 +48,8 @@ std::array<GLfloat, 36 * 3> g_cube_xyz;
 std::array<GLfloat, 36 * 4> g_cube_rgba;
 
 // The floor (y = -1.2, from z = -2.5 to -12) and the decal on it.
-constexpr GLfloat FLOOR_XYZ[4 * 3] = {-4.0f, -1.2f, -2.5f, 4.0f, -1.2f, -2.5f, 4.0f, -1.2f, -12.0f, -4.0f, -1.2f, -12.0f};
+constexpr GLfloat FLOOR_XYZ[4 * 3] = {-4.0f, -1.2f, -2.5f,  4.0f,  -1.2f, -2.5f,
+                                      4.0f,  -1.2f, -12.0f, -4.0f, -1.2f, -12.0f};
 constexpr GLfloat DECAL_XYZ[4 * 3] = {-1.8f, -1.2f, -3.5f, 1.4f, -1.2f, -3.0f, 2.2f, -1.2f, -9.0f, -2.5f, -1.2f, -8.0f};
 
 void draw_quad(const GLfloat* xyz, GLfloat r, GLfloat g, GLfloat b) {
@@ -65,7 +66,8 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
     for (int k = 0; k < 6; ++k) {
       const int vertex = 6 * face + k;
       const int corner = FACE_CORNERS[face][quad_to_triangles[k]];
-      for (int axis = 0; axis < 3; ++axis) g_cube_xyz[3 * vertex + axis] = (corner >> axis) & 1 ? HALF_EDGE : -HALF_EDGE;
+      for (int axis = 0; axis < 3; ++axis)
+        g_cube_xyz[3 * vertex + axis] = (corner >> axis) & 1 ? HALF_EDGE : -HALF_EDGE;
       for (int c = 0; c < 4; ++c) g_cube_rgba[4 * vertex + c] = FACE_RGBA[face][c];
     }
   set_perspective(width, height, 50.0f, 1.0f, 20.0f);

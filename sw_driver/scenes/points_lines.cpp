@@ -190,13 +190,13 @@ void draw_lines() {
   const float top = std::floor(h / 6.0f) + 0.4f;  // the band of the last row
   // Separate segments: horizontal, shallow, steep and vertical, one width each.
   const GLfloat segments[8 * 3] = {
-      w * 0.06f + 0.3f, top, -1.0f, w * 0.26f + 0.3f, top, -1.0f,                  // horizontal
-      w * 0.30f + 0.3f, top - 4.0f, -1.0f, w * 0.48f + 0.3f, top + 6.3f, -1.0f,     // shallow
-      w * 0.52f + 0.3f, top - 9.0f, -1.0f, w * 0.57f + 0.3f, top + 10.4f, -1.0f,    // steep
-      w * 0.62f + 0.3f, top - 10.0f, -1.0f, w * 0.62f + 0.3f, top + 10.0f, -1.0f,   // vertical
+      w * 0.06f + 0.3f, top,         -1.0f, w * 0.26f + 0.3f, top,         -1.0f,  // horizontal
+      w * 0.30f + 0.3f, top - 4.0f,  -1.0f, w * 0.48f + 0.3f, top + 6.3f,  -1.0f,  // shallow
+      w * 0.52f + 0.3f, top - 9.0f,  -1.0f, w * 0.57f + 0.3f, top + 10.4f, -1.0f,  // steep
+      w * 0.62f + 0.3f, top - 10.0f, -1.0f, w * 0.62f + 0.3f, top + 10.0f, -1.0f,  // vertical
   };
-  const GLfloat segment_rgba[8 * 4] = {1, 0.3f, 0.3f, 1, 1, 1, 0.3f, 1, 0.3f, 1, 0.3f, 1, 0.3f, 0.4f, 1, 1,
-                                       1, 0.5f, 0.1f, 1, 0.5f, 1, 1, 1, 0.8f, 0.8f, 0.8f, 1, 0.8f, 0.3f, 0.9f, 1};
+  const GLfloat segment_rgba[8 * 4] = {1, 0.3f, 0.3f, 1, 1,    1, 0.3f, 1, 0.3f, 1,    0.3f, 1, 0.3f, 0.4f, 1,    1,
+                                       1, 0.5f, 0.1f, 1, 0.5f, 1, 1,    1, 0.8f, 0.8f, 0.8f, 1, 0.8f, 0.3f, 0.9f, 1};
   glEnableClientState(GL_COLOR_ARRAY);
   glColorPointer(4, GL_FLOAT, 0, segment_rgba);
   glVertexPointer(3, GL_FLOAT, 0, segments);
@@ -231,8 +231,8 @@ void draw(int /*frame*/) {
   draw_attenuated_points();
   draw_lines();
   // A triangle across the middle: culled, as every polygon is here.
-  const GLfloat triangle[3 * 3] = {0.0f, 0.0f, -1.0f, float(g_width), 0.0f, -1.0f, float(g_width) * 0.5f,
-                                   float(g_height), -1.0f};
+  const GLfloat triangle[3 * 3] = {
+      0.0f, 0.0f, -1.0f, float(g_width), 0.0f, -1.0f, float(g_width) * 0.5f, float(g_height), -1.0f};
   glColor4f(1.0f, 1.0f, 1.0f, 1.0f);
   glVertexPointer(3, GL_FLOAT, 0, triangle);
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -442,14 +442,14 @@ TEST(UserClipPlanes, CutASegment) {
   EXPECT_FLOAT_EQ(t0, 0.25f);
   EXPECT_FLOAT_EQ(t1, 1.0f);
   // And x <= 0.5 on a segment from x = 0 to 1 at the same time: ends half way.
-  ASSERT_TRUE(clip_segment({0, 0, -1, 1}, {1, 0, -5, 1}, {glm::vec4(0, 0, -1, -2), glm::vec4(-1, 0, 0, 0.5f)}, &t0,
-                           &t1));
+  ASSERT_TRUE(
+      clip_segment({0, 0, -1, 1}, {1, 0, -5, 1}, {glm::vec4(0, 0, -1, -2), glm::vec4(-1, 0, 0, 0.5f)}, &t0, &t1));
   EXPECT_FLOAT_EQ(t0, 0.25f);
   EXPECT_FLOAT_EQ(t1, 0.5f);
   // Both ends outside, or the inside parts of two planes disjoint: nothing.
   EXPECT_FALSE(clip_segment({0, 0, -1, 1}, {0, 0, -1.5f, 1}, {glm::vec4(0, 0, -1, -2)}, &t0, &t1));
-  EXPECT_FALSE(clip_segment({0, 0, 0, 1}, {1, 0, 0, 1}, {glm::vec4(1, 0, 0, -0.75f), glm::vec4(-1, 0, 0, 0.25f)}, &t0,
-                            &t1));
+  EXPECT_FALSE(
+      clip_segment({0, 0, 0, 1}, {1, 0, 0, 1}, {glm::vec4(1, 0, 0, -0.75f), glm::vec4(-1, 0, 0, 0.25f)}, &t0, &t1));
 }
 
 TEST(PolygonOffset, SlopeOfThePlaneInWindowCoordinates) {

@@ -433,7 +433,8 @@ TEST_F(GlApi, TwoSidedLightingLightsBackFacesWithTheReversedNormal) {
   renderer.triangles.clear();
   draw_triangle(clockwise);
   ASSERT_EQ(renderer.triangles.size(), 1u);
-  for (const gl::ScreenVertex& v : renderer.triangles[0].v) EXPECT_EQ(std::vector<int>({v.r, v.g, v.b}), std::vector<int>({10, 10, 10}));
+  for (const gl::ScreenVertex& v : renderer.triangles[0].v)
+    EXPECT_EQ(std::vector<int>({v.r, v.g, v.b}), std::vector<int>({10, 10, 10}));
   renderer.triangles.clear();
   draw_triangle(counter_clockwise);
   for (const gl::ScreenVertex& v : renderer.triangles[0].v) EXPECT_EQ(v.r, 214);
