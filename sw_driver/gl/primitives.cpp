@@ -251,7 +251,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
       // Point sprites (OES_point_sprite) with GL_COORD_REPLACE_OES: s runs
       // 0 to 1 from the point's left to its right, t 0 to 1 from its top to
       // its bottom (y is up here), as the extension's formulas and Mesa give.
-      static const glm::vec2 SPRITE_TEX[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+      static constexpr glm::vec2 SPRITE_TEX[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
       const glm::vec2* sprite_tex = m_point_sprite && m_coord_replace[0] ? SPRITE_TEX : nullptr;
       for (size_t i = 0; i < n; ++i) {
         if (!v[i].valid || !(v[i].clip.position.w > 0)) continue;

@@ -53,7 +53,7 @@ constexpr GLfloat FLOOR_XYZ[4 * 3] = {-4.0f, -1.2f, -2.5f,  4.0f,  -1.2f, -2.5f,
 constexpr GLfloat DECAL_XYZ[4 * 3] = {-1.8f, -1.2f, -3.5f, 1.4f, -1.2f, -3.0f, 2.2f, -1.2f, -9.0f, -2.5f, -1.2f, -8.0f};
 
 void draw_quad(const GLfloat* xyz, GLfloat r, GLfloat g, GLfloat b) {
-  static const GLubyte FAN_INDICES[6] = {0, 1, 2, 0, 2, 3};
+  static constexpr GLubyte FAN_INDICES[6] = {0, 1, 2, 0, 2, 3};
   glColor4f(r, g, b, 1.0f);
   glVertexPointer(3, GL_FLOAT, 0, xyz);
   glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_BYTE, FAN_INDICES);

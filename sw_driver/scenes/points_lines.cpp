@@ -97,7 +97,7 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
 }
 
 void draw_sized_points() {
-  static const GLfloat SIZES[POINTS_PER_ROW] = {1.0f, 2.0f, 3.0f, 4.0f, 6.0f, 9.0f};
+  static constexpr GLfloat SIZES[POINTS_PER_ROW] = {1.0f, 2.0f, 3.0f, 4.0f, 6.0f, 9.0f};
   for (int i = 0; i < POINTS_PER_ROW; ++i) {
     GLfloat xyz[3];
     place(0, i, xyz);
@@ -107,7 +107,7 @@ void draw_sized_points() {
 }
 
 void draw_sprites() {
-  static const GLfloat SIZES[POINTS_PER_ROW] = {8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 20.0f};
+  static constexpr GLfloat SIZES[POINTS_PER_ROW] = {8.0f, 10.0f, 12.0f, 14.0f, 16.0f, 20.0f};
   glEnable(GL_TEXTURE_2D);
   glEnable(GL_POINT_SPRITE_OES);
   glTexEnvi(GL_POINT_SPRITE_OES, GL_COORD_REPLACE_OES, GL_TRUE);
@@ -124,8 +124,8 @@ void draw_sprites() {
 }
 
 void draw_size_array() {
-  static const GLfloat FLOAT_SIZES[POINTS_PER_ROW / 2] = {2.0f, 5.0f, 7.0f};
-  static const GLfixed FIXED_SIZES[POINTS_PER_ROW / 2] = {3 << 16, 8 << 16, 11 << 16};
+  static constexpr GLfloat FLOAT_SIZES[POINTS_PER_ROW / 2] = {2.0f, 5.0f, 7.0f};
+  static constexpr GLfixed FIXED_SIZES[POINTS_PER_ROW / 2] = {3 << 16, 8 << 16, 11 << 16};
   GLfloat xyz[POINTS_PER_ROW * 3];
   GLfloat rgba[POINTS_PER_ROW * 4];
   for (int i = 0; i < POINTS_PER_ROW; ++i) {
