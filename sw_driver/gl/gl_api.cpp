@@ -137,6 +137,11 @@ GL_API void GL_APIENTRY glTexCoordPointer(GLint size, GLenum type, GLsizei strid
   c->array_pointer(c->texcoord_array(), size, type, stride, pointer, size >= 2 && size <= 4,
                    type == GL_BYTE || type == GL_SHORT || type == GL_FIXED || type == GL_FLOAT);
 }
+// OES_point_size_array: one size per vertex, GL_FIXED or GL_FLOAT.
+GL_API void GL_APIENTRY glPointSizePointerOES(GLenum type, GLsizei stride, const void* pointer) {
+  WITH_CONTEXT()
+  c->array_pointer(c->point_size_array(), 1, type, stride, pointer, true, type == GL_FIXED || type == GL_FLOAT);
+}
 GL_API void GL_APIENTRY glDrawArrays(GLenum mode, GLint first, GLsizei count) {
   WITH_CONTEXT()
   c->draw_arrays(mode, first, count);
@@ -295,17 +300,12 @@ GL_API void GL_APIENTRY glPointSize(GLfloat size) {
   WITH_CONTEXT() c->point_size(size);
 }
 GL_API void GL_APIENTRY glPointParameterf(GLenum pname, GLfloat param) {
-  WITH_CONTEXT()
-  c->charge_call();
-  if (pname != GL_POINT_SIZE_MIN && pname != GL_POINT_SIZE_MAX && pname != GL_POINT_FADE_THRESHOLD_SIZE)
-    return c->error(GL_INVALID_ENUM);
-  if (param < 0) c->error(GL_INVALID_VALUE);
+  WITH_CONTEXT() c->point_parameter(pname, &param, 1);
 }
 GL_API void GL_APIENTRY glPointParameterfv(GLenum pname, const GLfloat* params) {
   WITH_CONTEXT()
-  c->charge_call();
-  if (pname == GL_POINT_DISTANCE_ATTENUATION) return;
-  glPointParameterf(pname, params[0]);
+  if (!params) return c->error(GL_INVALID_VALUE);
+  c->point_parameter(pname, params, pname == GL_POINT_DISTANCE_ATTENUATION ? 3 : 1);
 }
 GL_API void GL_APIENTRY glLineWidth(GLfloat width) {
   WITH_CONTEXT() c->line_width(width);
@@ -462,11 +462,13 @@ GL_API void GL_APIENTRY glGetTexParameteriv(GLenum target, GLenum pname, GLint* 
 }
 GL_API void GL_APIENTRY glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->point_sprite_env(pname, &param);
   if (pname == GL_TEXTURE_ENV_COLOR) return c->error(GL_INVALID_ENUM);
   c->tex_env(target, pname, &param, 1);
 }
 GL_API void GL_APIENTRY glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->point_sprite_env(pname, params);
   c->tex_env(target, pname, params, pname == GL_TEXTURE_ENV_COLOR ? 4 : 1);
 }
 GL_API void GL_APIENTRY glTexEnvi(GLenum target, GLenum pname, GLint param) {
@@ -484,12 +486,16 @@ GL_API void GL_APIENTRY glTexEnviv(GLenum target, GLenum pname, const GLint* par
 }
 GL_API void GL_APIENTRY glGetTexEnvfv(GLenum target, GLenum pname, GLfloat* params) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->get_point_sprite_env(pname, params);
   c->get_tex_env(target, pname, params);
 }
 GL_API void GL_APIENTRY glGetTexEnviv(GLenum target, GLenum pname, GLint* params) {
   WITH_CONTEXT()
   float v[4] = {0, 0, 0, 0};
-  c->get_tex_env(target, pname, v);
+  if (target == GL_POINT_SPRITE_OES)
+    c->get_point_sprite_env(pname, v);
+  else
+    c->get_tex_env(target, pname, v);
   if (pname == GL_TEXTURE_ENV_COLOR)
     for (int i = 0; i < 4; ++i) params[i] = tessera::gl::int_from_float(v[i] * 2147483647.0);
   else

@@ -74,6 +74,7 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   unsigned lights = 0;
   for (const Light& l : m_lighting_model.lights) lights += l.enabled;
   Material material = m_front_material;
+  const bool two_sided = two_sided_lighting();
   auto transform = [&](uint32_t index, Vertex& v) {
     glm::vec4 position = read_attribute(m_vertex_array, index, {0, 0, 0, 1});
     glm::vec4 color = m_color_array.enabled ? read_attribute(m_color_array, index, {0, 0, 0, 1}) : m_color;
@@ -88,9 +89,14 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
       }
       if (m_color_material) material.ambient = material.diffuse = color;
       v.clip.color = light_vertex(m_lighting_model, material, v.eye, n);
+      // Two-sided lighting: the colour a back face shows, lit with the
+      // reversed normal (the material is the same for both faces in ES).
+      v.clip.back_color = two_sided ? light_vertex(m_lighting_model, material, v.eye, -n) : v.clip.color;
     } else {
       v.clip.color = glm::clamp(color, glm::vec4(0), glm::vec4(1));
+      v.clip.back_color = v.clip.color;
     }
+    v.clip.eye = v.eye;
     if (texturing) {
       glm::vec4 tc = m_texcoord_array.enabled ? read_attribute(m_texcoord_array, index, {0, 0, 0, 1}) : m_texcoord;
       tc = texture * tc;
@@ -133,6 +139,7 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   FloatCost per_vertex = transform_cost();
   per_vertex += transform_cost();
   if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
+  if (two_sided) per_vertex += lighting_cost(lights);
   if (texturing) per_vertex += transform_cost();
   per_vertex += clip_test_cost();
   charge(per_vertex, transformed);

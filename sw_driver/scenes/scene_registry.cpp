@@ -5,11 +5,16 @@
 namespace tessera::scenes {
 
 Scene aapoly_scene();  // aapoly.cpp
+// The ES 1.1 geometry scenes (clip_offset.cpp, points_lines.cpp, lights_two_side.cpp).
+Scene clip_offset_scene();
+Scene points_lines_scene();
+Scene lights_two_side_scene();
 
 const std::vector<Scene>& all_scenes() {
-  static const std::vector<Scene> scenes = {triangle_scene(),      cubes_scene(),    fullscreen_rect_scene(),
-                                            textured_quad_scene(), teapot_scene(),   obj_viewer_scene(),
-                                            aapoly_scene(),        tile_grid_scene()};
+  static const std::vector<Scene> scenes = {triangle_scene(),      cubes_scene(),          fullscreen_rect_scene(),
+                                            textured_quad_scene(), teapot_scene(),         obj_viewer_scene(),
+                                            aapoly_scene(),        tile_grid_scene(),      clip_offset_scene(),
+                                            points_lines_scene(),  lights_two_side_scene()};
   return scenes;
 }
 
