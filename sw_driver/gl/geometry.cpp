@@ -22,7 +22,8 @@ float plane_value(const glm::vec4& p, int plane) {
 }
 
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
-  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t, a.tex + (b.tex - a.tex) * t};
+  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t, a.tex + (b.tex - a.tex) * t,
+          a.fog + (b.fog - a.fog) * t};
 }
 
 }  // namespace
@@ -148,7 +149,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->a = to_unorm8(v.color.a);
   out->s = v.tex.x;
   out->t = v.tex.y;
-  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y);
+  out->fog = v.fog;
+  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y) && std::isfinite(v.fog);
 }
 
 int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {

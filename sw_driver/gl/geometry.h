@@ -19,6 +19,7 @@ struct ClipVertex {
   glm::vec4 position;  // clip coordinates
   glm::vec4 color;     // RGBA, [0, 1] after lighting or clamping
   glm::vec2 tex;       // texture coordinates after the texture matrix
+  float fog = 0;       // fog coordinate, |z_eye| (ScreenVertex::fog)
 };
 
 // Clips a convex polygon against -w <= x, y, z <= w (and w > 0), one plane
