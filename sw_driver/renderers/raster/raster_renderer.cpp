@@ -109,7 +109,7 @@ renderers::TileGrid read_grid(HostApi& host, const DisplayDriver& display) {
 }  // namespace
 
 RasterRenderer::RasterRenderer(AppEnvironment& env)
-    : m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
+    : m_env(env), m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
   m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
   m_last_draw_state = encode_state(gl::RasterState{});
@@ -163,6 +163,7 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   if (count == 0) return;
+  if (state.fog) m_unsupported.report(m_env, "fog (GL_FOG): drawn without it");
   m_last_draw_state = encode_state(state);
   const uint32_t state_index = add_state(m_last_draw_state);
   // Antialiased edges reach into the pixels next to the box; one pixel of
@@ -327,6 +328,7 @@ void RasterRenderer::read_pixels(int x, int y, int width, int height, uint8_t* r
 void RasterRenderer::present() {
   flush();
   m_display.present();
+  m_unsupported.new_frame();
 }
 
 }  // namespace tessera::raster_backend

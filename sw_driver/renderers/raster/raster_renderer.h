@@ -18,6 +18,7 @@
 #include "raster/command_format.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/tile_binner.h"
+#include "renderers/common/unsupported_state.h"
 
 namespace tessera::raster_backend {
 
@@ -59,6 +60,7 @@ class RasterRenderer : public gl::Renderer {
   void run_rasterizer(uint32_t tile_table);
   uint32_t reg(uint32_t offset) const;
 
+  AppEnvironment& m_env;
   HostApi& m_host;
   DisplayDriver m_display;
   renderers::TileBinner m_binner;  // the rasterizer's screen and tile size
@@ -70,6 +72,7 @@ class RasterRenderer : public gl::Renderer {
   std::vector<ClearWords> m_clears;
   std::vector<raster::TriangleRecord> m_triangles;
   raster::StateBlock m_last_draw_state{};
+  renderers::UnsupportedState m_unsupported{"raster"};
 };
 
 }  // namespace tessera::raster_backend
