@@ -28,6 +28,7 @@ ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
   v.tex = a.tex + (b.tex - a.tex) * t;
   v.eye = a.eye + (b.eye - a.eye) * t;
   v.back_color = a.back_color + (b.back_color - a.back_color) * t;
+  v.fog = a.fog + (b.fog - a.fog) * t;
   return v;
 }
 
@@ -203,7 +204,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->a = to_unorm8(v.color.a);
   out->s = v.tex.x;
   out->t = v.tex.y;
-  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y);
+  out->fog = v.fog;
+  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y) && std::isfinite(v.fog);
 }
 
 bool to_screen(const ClipVertex& v, const Viewport& viewport, double depth_offset, ScreenVertex* out) {

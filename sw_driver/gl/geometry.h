@@ -23,6 +23,7 @@ struct ClipVertex {
   // The colour of a back-facing polygon's vertex under two-sided lighting
   // (lit with the reversed normal); the front colour otherwise.
   glm::vec4 back_color{0, 0, 0, 0};
+  float fog = 0;  // fog coordinate, |z_eye| (ScreenVertex::fog)
 };
 
 // Clips a convex polygon against -w <= x, y, z <= w (and w > 0), one plane

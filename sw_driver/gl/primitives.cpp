@@ -142,6 +142,12 @@ RasterState Context::raster_state() const {
   s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
   if (s.texture) s.tex = it->second.texture;
   s.tex_env = tex_env_value(m_tex_env_mode);
+  s.fog = m_fog;
+  s.fog_mode = from_gl_enum<FogMode>(m_fog_mode).value_or(FogMode::exp);
+  s.fog_density = m_fog_density;
+  s.fog_start = m_fog_start;
+  s.fog_end = m_fog_end;
+  for (int i = 0; i < 4; ++i) s.fog_color[i] = to_unorm8(m_fog_color[i]);
   return s;
 }
 

@@ -21,6 +21,10 @@ struct ScreenVertex {
   float inv_w;         // 1 / w_clip, for perspective-correct texture coordinates
   uint8_t r, g, b, a;  // 0.8
   float s, t;          // texture coordinates (not divided by w)
+  // The fog coordinate: the eye distance |z_eye| (Mesa's default, the eye
+  // plane's absolute value), 0 when fog is off. Back ends interpolate it
+  // (as the fog argument of renderers/common/fog.h) perspective-correctly.
+  float fog;
 };
 
 // Either winding; v[2] is the provoking vertex for flat shading.
@@ -33,6 +37,7 @@ struct Triangle {
 // state blocks take; the GL front end converts GL enums with that table.
 using tessera::BlendFactor;
 using tessera::CompareFunc;
+using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::StencilOp;
 using tessera::TexEnv;
@@ -72,6 +77,12 @@ struct RasterState {
   Texture tex;
   TexEnv tex_env = TexEnv::modulate;
   bool polygon_smooth = false;  // antialiased edges (rasterizers that support it)
+  // Fog (glFog), applied after texturing: factor from the vertices'
+  // ScreenVertex::fog by renderers/common/fog.h; colour in 0.8, alpha unused.
+  bool fog = false;
+  FogMode fog_mode = FogMode::exp;
+  float fog_density = 1, fog_start = 0, fog_end = 1;
+  uint8_t fog_color[4] = {0, 0, 0, 0};
 };
 
 struct ClearRequest {

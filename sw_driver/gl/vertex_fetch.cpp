@@ -104,6 +104,8 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
     } else {
       v.clip.tex = {0, 0};
     }
+    // Fog from the eye distance as Mesa takes it: |z_eye|, not divided by w.
+    v.clip.fog = m_fog ? std::fabs(v.eye.z) : 0.0f;
     const glm::vec4& p = v.clip.position;
     v.valid = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w) &&
               std::isfinite(v.clip.color.r) && std::isfinite(v.clip.tex.x) && std::isfinite(v.clip.tex.y);
@@ -143,7 +145,8 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   if (texturing) per_vertex += transform_cost();
   per_vertex += clip_test_cost();
   charge(per_vertex, transformed);
-  m_host.compute(Op::alu, 20 * transformed);  // fetch, conversions, loop overhead
+  m_host.compute(Op::alu, 20 * transformed);        // fetch, conversions, loop overhead
+  if (m_fog) m_host.compute(Op::alu, transformed);  // the fog coordinate |z_eye|: BIC of the sign bit
 }
 
 }  // namespace tessera::gl

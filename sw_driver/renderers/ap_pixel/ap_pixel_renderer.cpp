@@ -117,6 +117,7 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
   const double start = m_host.now_seconds();
   const renderers::HostTime before = m_time;
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): drawn without it");
+  if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   const bool textured = state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
                         state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
                         (state.tex.height & (state.tex.height - 1)) == 0;

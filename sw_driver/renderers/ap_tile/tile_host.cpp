@@ -27,6 +27,7 @@ std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& 
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
   if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
   if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
+  if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
     unsupported("colour masks (glColorMask): drawn with every channel");
   DrawFlags flags;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderers/common/fog.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
 
@@ -100,7 +101,7 @@ struct Plane {
 }  // namespace
 
 struct ArmRasterizer::TriangleSetup {
-  Plane z, color[4], sq, tq, q;
+  Plane z, color[4], sq, tq, q, fog;
   uint32_t flat_rgba = 0;
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
@@ -113,12 +114,15 @@ struct ArmRasterizer::DrawContext {
   bool depth_test = false, depth_write = false;
   bool stencil_test = false, stencil_writes = false;
   bool alpha_test = false, texture = false, gouraud = false;
+  bool fog = false;
+  renderers::FogCoefficients fog_coefficients;
+  uint32_t fog_rgba = 0;
   bool late_tests = false;  // alpha test first, then stencil and depth
   bool color_write = false, needs_destination = false, blend = false, logic_op = false;
   uint32_t color_write_mask = 0;  // packed bits that are written
   // Instructions per pixel of a span, per shaded pixel, per written pixel.
   uint64_t pixel_alu = 0, pixel_branch = 0;
-  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0;
+  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0, shade_load_use = 0;
   uint64_t write_alu = 0, write_mul = 0;
   uint64_t span_alu = 0, span_mul = 0;
   unsigned attributes = 0;
@@ -231,6 +235,11 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   c.alpha_test = state.alpha_test;
   c.late_tests = state.alpha_test;
   c.gouraud = !state.flat_shading;
+  c.fog = state.fog;
+  if (c.fog) {
+    c.fog_coefficients = renderers::fog_coefficients(state);
+    c.fog_rgba = renderers::fog_rgba(state);
+  }
   const gl::Texture& tex = state.texture ? state.tex : gl::Texture{};
   c.texture = state.texture && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
               (tex.height & (tex.height - 1)) == 0;
@@ -248,9 +257,10 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
        (c.logic_op && logic_op_reads_destination(state.logic_op_mode)) || c.color_write_mask != all_color);
 
   // Instruction counts for this state.
-  c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0);
+  c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0) + (c.fog ? 1 : 0);
   c.pixel_alu = k.pixel_alu + (c.depth_test ? k.depth_step_test_alu : 0) + (c.stencil_test ? k.stencil_test_alu : 0) +
-                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0);
+                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0) +
+                (c.fog ? k.fog_step_alu : 0);
   c.pixel_branch = k.pixel_branch;
   c.shade_alu = c.alpha_test ? k.alpha_test_alu : 0;
   if (c.texture) {
@@ -263,6 +273,26 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
       c.shade_alu += k.decal_alu;
       c.shade_mul += k.decal_mul;
     }
+  }
+  if (c.fog) {
+    switch (state.fog_mode) {
+      case gl::FogMode::linear:
+        c.shade_alu += k.fog_linear_alu;
+        c.shade_mul += k.fog_linear_mul;
+        break;
+      case gl::FogMode::exp:
+        c.shade_alu += k.fog_exp_alu;
+        c.shade_mul += k.fog_exp_mul;
+        c.shade_load_use += k.fog_exp_load_use;
+        break;
+      case gl::FogMode::exp2:
+        c.shade_alu += k.fog_exp2_alu;
+        c.shade_mul += k.fog_exp2_mul;
+        c.shade_load_use += k.fog_exp2_load_use;
+        break;
+    }
+    c.shade_alu += k.fog_blend_alu;
+    c.shade_mul += k.fog_blend_mul;
   }
   if (c.color_write) {
     c.write_alu += format == PixelFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
@@ -369,7 +399,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
     // Normalised 1/w of each vertex: attributes are interpolated as a/w and
     // 1/w and divided per pixel when the triangle is seen in perspective.
     double qn[3] = {1.0, 1.0, 1.0};
-    if (c.gouraud || c.texture) {
+    if (c.gouraud || c.texture || c.fog) {
       double inv_w[3], max_inv_w = 0;
       for (int v = 0; v < 3; ++v) {
         const float w = tri.v[v].inv_w;
@@ -417,6 +447,17 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
       s.linear_filter = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
       m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
       m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
+    }
+    if (c.fog) {
+      // The fog argument (16.16) of each vertex, interpolated as a/w and
+      // divided by 1/w per pixel like the Gouraud colours: perspective-correct,
+      // as Mesa interpolates its fog coordinate.
+      double fog[3];
+      for (int v = 0; v < 3; ++v) fog[v] = double(renderers::fog_argument(c.fog_coefficients, tri.v[v].fog)) * qn[v];
+      s.fog.setup(fog, px, py, area, 1.0, 0.0);
+      m_memory.compute(Op::fmul, 3ull * k.fog_vertex_fmul);
+      m_memory.compute(Op::fadd, 3ull * k.fog_vertex_fadd);
+      m_memory.compute(Op::fconv, 3ull * k.fog_vertex_fconv);
     }
     m_memory.compute(Op::alu, uint64_t(c.attributes) * k.attribute_setup_alu);
     m_memory.compute(Op::mul, uint64_t(c.attributes) * k.attribute_setup_mul);
@@ -511,9 +552,14 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     dsq = s.sq.step;
     dtq = s.tq.step;
   }
-  if (c.texture || s.perspective_color) {
+  if (c.texture || s.perspective_color || (c.fog && s.perspective)) {
     q = s.q.start(x_first, j, n);
     dq = s.q.step;
+  }
+  int64_t fog = 0, dfog = 0;
+  if (c.fog) {
+    fog = s.fog.start(x_first, j, n);
+    dfog = s.fog.step;
   }
 
   const uint8_t stencil_ref = state.stencil_ref, stencil_mask = state.stencil_value_mask;
@@ -536,7 +582,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     return !c.depth_test || compare_passes(state.depth_func, z16, m_depth_old[i]);
   };
 
-  uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0;
+  uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
@@ -574,6 +620,18 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         fetch_texel(c, int(u8), int(v8), s.linear_filter, texel);
         rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
       }
+      if (c.fog) {
+        // After texturing, before the fragment operations (ES 1.1, 3.8).
+        int64_t argument = fog;
+        if (s.perspective) {
+          argument = fog * (int64_t{1} << Q_FRACTION_BITS) / q;
+          // The reciprocal of q is shared with the texture coordinates or
+          // the colours when they divide too.
+          if (!c.texture && !s.perspective_color) ++fog_divisions;
+        }
+        const auto a = int32_t(std::clamp<int64_t>(argument, INT32_MIN, INT32_MAX));
+        rgba = fog_blend(fog_factor(state.fog_mode, a), rgba, c.fog_rgba);
+      }
       if (c.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
         alive = false;
       } else if (c.late_tests) {
@@ -589,6 +647,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     sq += dsq;
     tq += dtq;
     q += dq;
+    fog += dfog;
   }
 
   // Stores, as runs of consecutive pixels.
@@ -641,11 +700,13 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   const uint64_t step_alu =
       c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
   if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
-  const uint64_t divisions = texel_calls + color_divisions;
+  if (c.fog && s.perspective) shade_mul += k.fog_perspective_mul;
+  const uint64_t divisions = texel_calls + color_divisions + fog_divisions;
   m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
                                 passed * c.write_alu + divisions * k.division_alu);
   m_memory.compute(Op::mul, c.span_mul + shaded * shade_mul + passed * c.write_mul);
   m_memory.compute(Op::branch, k.span_branch + uint64_t(n) * c.pixel_branch);
+  if (c.shade_load_use != 0) m_memory.compute(Op::load_use, shaded * c.shade_load_use);
   if (divisions != 0) m_memory.compute(Op::call, divisions);
 }
 

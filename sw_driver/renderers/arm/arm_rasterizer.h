@@ -89,6 +89,16 @@ struct InstructionCounts {
   unsigned texel_linear_alu = 30, texel_linear_mul = 9;
   unsigned modulate_alu = 12, modulate_mul = 4, decal_alu = 12, decal_mul = 3;
   unsigned alpha_test_alu = 2;
+  // Fog (README.md, "Fog"): per vertex the fog argument from soft float, per
+  // pixel its step, per shaded pixel its perspective product, the factor of
+  // the mode and the blend of R, G, B with the fog colour.
+  unsigned fog_vertex_fmul = 1, fog_vertex_fadd = 1, fog_vertex_fconv = 1;
+  unsigned fog_step_alu = 1;
+  unsigned fog_perspective_mul = 1;
+  unsigned fog_linear_alu = 4, fog_linear_mul = 1;
+  unsigned fog_exp_alu = 7, fog_exp_mul = 1, fog_exp_load_use = 1;
+  unsigned fog_exp2_alu = 9, fog_exp2_mul = 2, fog_exp2_load_use = 1;
+  unsigned fog_blend_alu = 13, fog_blend_mul = 6;
   // Per pixel written.
   unsigned depth_write_alu = 1;
   // Packing to RGB565 rounds each channel to nearest (common/pixel_format.h):

@@ -23,6 +23,7 @@ ClipVertex vertex(float x, float y, float z, float w = 1) {
   v.position = {x, y, z, w};
   v.color = {x, y, z, w};
   v.tex = {x * 2, y * 3};
+  v.fog = 5 * x + 7 * w;  // the fog coordinate is clipped like the rest
   return v;
 }
 
@@ -33,6 +34,7 @@ void expect_attributes_follow_positions(const std::vector<ClipVertex>& polygon) 
     EXPECT_NEAR(v.color.b, v.position.z, 1e-5);
     EXPECT_NEAR(v.tex.x, 2 * v.position.x, 1e-5);
     EXPECT_NEAR(v.tex.y, 3 * v.position.y, 1e-5);
+    EXPECT_NEAR(v.fog, 5 * v.position.x + 7 * v.position.w, 1e-4);
   }
 }
 
@@ -143,6 +145,7 @@ TEST(Viewport, CentreOfTheViewportAndDepthMidpoint) {
   EXPECT_EQ(s.b, 0);
   EXPECT_EQ(s.a, 64);  // 63.75
   EXPECT_FLOAT_EQ(s.inv_w, 1.0f);
+  EXPECT_FLOAT_EQ(s.fog, 7.0f);  // passed on as it is
 }
 
 TEST(Viewport, CornersAndSubpixelRounding) {
