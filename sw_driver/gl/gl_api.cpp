@@ -12,6 +12,7 @@
 #include "gl/context.h"
 #include "gl/context_internal.h"
 #include "gl/entry_point.h"
+#include "gl/texture_formats.h"
 
 using tessera::gl::Context;
 
@@ -400,17 +401,18 @@ GL_API void GL_APIENTRY glTexSubImage2D(GLenum target, GLint level, GLint xoffse
   WITH_CONTEXT()
   c->tex_sub_image(target, level, xoffset, yoffset, width, height, format, type, pixels);
 }
-// No compressed formats are supported (GL_NUM_COMPRESSED_TEXTURE_FORMATS is 0).
-GL_API void GL_APIENTRY glCompressedTexImage2D(GLenum, GLint, GLenum, GLsizei, GLsizei, GLint, GLsizei, const void*) {
+// The compressed formats are OES_compressed_paletted_texture's ten.
+GL_API void GL_APIENTRY glCompressedTexImage2D(GLenum target, GLint level, GLenum internalformat, GLsizei width,
+                                               GLsizei height, GLint border, GLsizei imageSize, const void* data) {
   WITH_CONTEXT()
-  c->charge_call();
-  c->error(GL_INVALID_ENUM);
+  c->compressed_tex_image(target, level, internalformat, width, height, border, imageSize, data);
 }
-GL_API void GL_APIENTRY glCompressedTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLsizei,
+// A paletted texture cannot be updated in part (OES_compressed_paletted_texture).
+GL_API void GL_APIENTRY glCompressedTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum format, GLsizei,
                                                   const void*) {
   WITH_CONTEXT()
   c->charge_call();
-  c->error(GL_INVALID_ENUM);
+  c->error(tessera::gl::find_palette_format(format) ? GL_INVALID_OPERATION : GL_INVALID_ENUM);
 }
 GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
                                          GLsizei width, GLsizei height, GLint border) {

@@ -4,12 +4,14 @@
 
 namespace tessera::scenes {
 
-Scene aapoly_scene();  // aapoly.cpp
+Scene aapoly_scene();           // aapoly.cpp
+Scene mipmap_floor_scene();     // mipmap_floor.cpp
+Scene texture_formats_scene();  // texture_formats.cpp
 
 const std::vector<Scene>& all_scenes() {
-  static const std::vector<Scene> scenes = {triangle_scene(),      cubes_scene(),    fullscreen_rect_scene(),
-                                            textured_quad_scene(), teapot_scene(),   obj_viewer_scene(),
-                                            aapoly_scene(),        tile_grid_scene()};
+  static const std::vector<Scene> scenes = {
+      triangle_scene(),   cubes_scene(),  fullscreen_rect_scene(), textured_quad_scene(), teapot_scene(),
+      obj_viewer_scene(), aapoly_scene(), tile_grid_scene(),       mipmap_floor_scene(),  texture_formats_scene()};
   return scenes;
 }
 

@@ -451,9 +451,8 @@ typedef long GLsizeiptr;
 #define GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES 0x8B9B
 #endif
 
-/* Not implemented: values only, so that code naming them compiles; the
- * driver reports no compressed formats, rejects glEnable of point sprites
- * and has no glPointSizePointerOES. */
+#ifndef GL_OES_compressed_paletted_texture
+#define GL_OES_compressed_paletted_texture 1
 #define GL_PALETTE4_RGB8_OES 0x8B90
 #define GL_PALETTE4_RGBA8_OES 0x8B91
 #define GL_PALETTE4_R5_G6_B5_OES 0x8B92
@@ -464,6 +463,11 @@ typedef long GLsizeiptr;
 #define GL_PALETTE8_R5_G6_B5_OES 0x8B97
 #define GL_PALETTE8_RGBA4_OES 0x8B98
 #define GL_PALETTE8_RGB5_A1_OES 0x8B99
+#endif
+
+/* Not implemented: values only, so that code naming them compiles; the
+ * driver rejects glEnable of point sprites and has no
+ * glPointSizePointerOES. */
 #define GL_POINT_SPRITE_OES 0x8861
 #define GL_COORD_REPLACE_OES 0x8862
 #define GL_POINT_SIZE_ARRAY_TYPE_OES 0x898A

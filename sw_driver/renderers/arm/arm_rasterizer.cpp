@@ -105,6 +105,7 @@ struct ArmRasterizer::TriangleSetup {
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
   bool linear_filter = false;
+  bool lod = false;  // the level of detail chooses filter and levels (texturing.h)
 };
 
 struct ArmRasterizer::DrawContext {
@@ -415,6 +416,14 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
       s.linear_filter = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
+      s.lod = renderers::texture_needs_lod(tex);
+      if (s.lod) {
+        s.linear_filter = false;  // chosen per pixel, charged per pixel
+        if (!s.perspective) {
+          m_memory.compute(Op::alu, k.lod_alu);
+          m_memory.compute(Op::mul, k.lod_mul);
+        }
+      }
       m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
       m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
     }
@@ -449,19 +458,20 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   m_memory.compute(Op::branch, rows * k.row_branch);
 }
 
-void ArmRasterizer::fetch_texel(const DrawContext& c, int u8, int v8, bool linear, uint8_t out[4]) {
+void ArmRasterizer::fetch_texel(const DrawContext& c, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
   const gl::Texture& tex = c.state->tex;
-  const unsigned w = tex.width;
-  auto address = [&](int i, int j) { return tex.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
+  const gl::TextureLevel image = renderers::texture_level(tex, level);
+  const unsigned w = image.width, h = image.height;
+  auto address = [&](int i, int j) { return image.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
   if (!linear) {
-    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, tex.height, tex.wrap_t);
+    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, h, tex.wrap_t);
     std::memcpy(out, m_memory.load(address(i, j), 4, 1), 4);
     return;
   }
   const int um = u8 - 128, vm = v8 - 128;
   const uint32_t fu = uint32_t(um) & 255, fv = uint32_t(vm) & 255;
   const int i0 = wrap(um >> 8, w, tex.wrap_s), i1 = wrap((um >> 8) + 1, w, tex.wrap_s);
-  const int j0 = wrap(vm >> 8, tex.height, tex.wrap_t), j1 = wrap((vm >> 8) + 1, tex.height, tex.wrap_t);
+  const int j0 = wrap(vm >> 8, h, tex.wrap_t), j1 = wrap((vm >> 8) + 1, h, tex.wrap_t);
   uint8_t texel[4][4];  // (i0, j0), (i1, j0), (i0, j1), (i1, j1)
   const int rows[2] = {j0, j1};
   for (int r = 0; r < 2; ++r) {
@@ -537,6 +547,20 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   };
 
   uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0;
+  // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
+  uint64_t lod_alu = 0, lod_mul = 0;
+  auto filter_level = [&](unsigned level, int u, int v, bool linear, uint8_t out[4]) {
+    fetch_texel(c, level, u, v, linear, out);
+  };
+  // lambda at a pixel from its stepped (s q), (t q), q and the planes'
+  // gradients: d(sq/q)/dx = (gx(sq) q - sq gx(q)) / q^2, in level 0's texels.
+  auto pixel_lod = [&](int64_t sq_value, int64_t tq_value, int64_t q_value) {
+    const double scale = double(int64_t{1} << (Q_FRACTION_BITS - ST_FRACTION_BITS)) / (double(q_value) * q_value);
+    const double sqd = double(sq_value), tqd = double(tq_value), qd = double(q_value);
+    const double ux = (s.sq.gx * qd - sqd * s.q.gx) * scale, uy = (s.sq.gy * qd - sqd * s.q.gy) * scale;
+    const double vx = (s.tq.gx * qd - tqd * s.q.gx) * scale, vy = (s.tq.gy * qd - tqd * s.q.gy) * scale;
+    return renderers::texture_lod(ux, vx, uy, vy);
+  };
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
@@ -571,7 +595,18 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
           v8 = tq >> (ST_FRACTION_BITS - 8);
         }
         uint8_t texel[4];
-        fetch_texel(c, int(u8), int(v8), s.linear_filter, texel);
+        if (s.lod) {
+          const renderers::LodChoice choice =
+              renderers::sample_texture_lod(state.tex, int(u8), int(v8), pixel_lod(sq, tq, q), filter_level, texel);
+          if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
+          const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
+          const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
+          lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
+          lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
+        } else {
+          fetch_texel(c, 0, int(u8), int(v8), s.linear_filter, texel);
+        }
+        renderers::fill_missing_components(state.tex, state.tex_env, rgba, texel);
         rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
       }
       if (c.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
@@ -641,6 +676,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   const uint64_t step_alu =
       c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
   if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
+  if (lod_alu != 0) m_memory.compute(Op::alu, lod_alu);
+  if (lod_mul != 0) m_memory.compute(Op::mul, lod_mul);
   const uint64_t divisions = texel_calls + color_divisions;
   m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
                                 passed * c.write_alu + divisions * k.division_alu);
