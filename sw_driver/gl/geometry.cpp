@@ -148,6 +148,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->a = to_unorm8(v.color.a);
   out->s = v.tex.x;
   out->t = v.tex.y;
+  out->x_window = static_cast<float>(window.x);
+  out->y_window = static_cast<float>(window.y);
   return std::isfinite(v.tex.x) && std::isfinite(v.tex.y);
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "common/fixed_function.h"
 #include "common/pixel_format.h"
@@ -21,6 +22,10 @@ struct ScreenVertex {
   float inv_w;         // 1 / w_clip, for perspective-correct texture coordinates
   uint8_t r, g, b, a;  // 0.8
   float s, t;          // texture coordinates (not divided by w)
+  // The window position before snapping to 9.4 (pixels), for attribute
+  // planes that follow the unsnapped triangle as the reference's do; NaN
+  // when unknown.
+  float x_window = std::numeric_limits<float>::quiet_NaN(), y_window = std::numeric_limits<float>::quiet_NaN();
 };
 
 // Either winding; v[2] is the provoking vertex for flat shading.

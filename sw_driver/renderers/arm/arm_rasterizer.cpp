@@ -33,6 +33,12 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   return q;
 }
 
+bool has_window_positions(const gl::Triangle& tri) {
+  for (const gl::ScreenVertex& v : tri.v)
+    if (!std::isfinite(v.x_window) || !std::isfinite(v.y_window)) return false;
+  return true;
+}
+
 int64_t ceil_div(int64_t a, int64_t b) {
   return -floor_div(-a, b);
 }  // b > 0
@@ -367,6 +373,29 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
                            double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
       s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
     }
+    // A textured triangle's colour, 1/w and texture planes follow the
+    // vertices before snapping, as the reference's do: snapping moves a
+    // vertex by up to 1/32 pixel, which at a minified texel rate of 1.6
+    // texels per pixel shifts the texture by 0.05 texel, a colour step of
+    // bilinear filtering (README, "Rounding"). Coverage and depth keep the
+    // snapped vertices.
+    double attribute_area = area;
+    if (c.texture && has_window_positions(tri)) {
+      for (int v = 0; v < 3; ++v) {
+        px[v] = double(tri.v[v].x_window);
+        py[v] = double(tri.v[v].y_window);
+      }
+      const double exact_area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+      // A sliver the snapping made (or the float positions left degenerate) keeps the snapped planes.
+      if (std::fabs(exact_area) > 1e-6 && (exact_area > 0) == (area > 0)) {
+        attribute_area = exact_area;
+      } else {
+        for (int v = 0; v < 3; ++v) {
+          px[v] = double(x[v]) / 16.0;
+          py[v] = double(y[v]) / 16.0;
+        }
+      }
+    }
     // Normalised 1/w of each vertex: attributes are interpolated as a/w and
     // 1/w and divided per pixel when the triangle is seen in perspective.
     double qn[3] = {1.0, 1.0, 1.0};
@@ -382,7 +411,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         for (int v = 0; v < 3; ++v) qn[v] = inv_w[v] / max_inv_w;
       double q[3];
       for (int v = 0; v < 3; ++v) q[v] = std::max(qn[v] * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
-      s.q.setup(q, px, py, area, 1.0, 0.0);
+      s.q.setup(q, px, py, attribute_area, 1.0, 0.0);
     }
     if (c.gouraud) {
       s.perspective_color = s.perspective;
@@ -395,7 +424,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         }
         // The rounding half is added after the division in the perspective case.
         const double bias = s.perspective_color ? 0.0 : double(1 << (COLOR_FRACTION_BITS - 1));
-        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), bias);
+        s.color[ch].setup(value, px, py, attribute_area, double(1 << COLOR_FRACTION_BITS), bias);
       }
     } else {
       const gl::ScreenVertex& pv = tri.v[2];
@@ -410,8 +439,8 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         sq[v] = su[v] * qn[v];
         tq[v] = tv[v] * qn[v];
       }
-      s.sq.setup(sq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.tq.setup(tq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.sq.setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.tq.setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
       // Minified when the triangle covers more texels than pixels.
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
