@@ -403,9 +403,9 @@ GL_API void GL_APIENTRY glTexSubImage2D(GLenum target, GLint level, GLint xoffse
 }
 // The compressed formats are OES_compressed_paletted_texture's ten.
 GL_API void GL_APIENTRY glCompressedTexImage2D(GLenum target, GLint level, GLenum internalformat, GLsizei width,
-                                               GLsizei height, GLint border, GLsizei imageSize, const void* data) {
+                                               GLsizei height, GLint border, GLsizei image_size, const void* data) {
   WITH_CONTEXT()
-  c->compressed_tex_image(target, level, internalformat, width, height, border, imageSize, data);
+  c->compressed_tex_image(target, level, internalformat, width, height, border, image_size, data);
 }
 // A paletted texture cannot be updated in part (OES_compressed_paletted_texture).
 GL_API void GL_APIENTRY glCompressedTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum format, GLsizei,

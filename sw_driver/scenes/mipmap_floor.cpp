@@ -23,6 +23,7 @@ namespace {
 constexpr int TEXTURE_SIZE = 64;
 constexpr int SQUARE_SIZE = 8;
 constexpr int STRIPS = 6;
+constexpr int FIRST_STRIP_OFFSET = STRIPS / 2;  // strips from -3 to +3 strip widths, centred
 constexpr float STRIP_WIDTH = 0.4f;
 constexpr float FLOOR_Y = -1.0f;
 constexpr float NEAR_Z = -1.0f, FAR_Z = -80.0f;
@@ -42,6 +43,11 @@ constexpr std::array<std::array<GLubyte, 3>, 5> SQUARE_COLOURS = {{
     {{240, 210, 40}},
     {{40, 200, 210}},
 }};
+
+// The tint of each uploaded level (level 0 has none).
+constexpr GLubyte LEVEL_TINTS[7][3] = {{0, 0, 0},     {255, 0, 0},   {0, 255, 0},  {0, 0, 255},
+                                       {255, 255, 0}, {0, 255, 255}, {255, 0, 255}};
+const GLushort STRIP_TRIANGLES[] = {0, 1, 2, 0, 2, 3};
 
 GLuint g_textures[STRIPS] = {};
 
@@ -66,15 +72,13 @@ std::vector<GLubyte> checkerboard() {
 // its own (a quarter of the way) so that each level is told apart.
 std::vector<GLubyte> next_level(const std::vector<GLubyte>& in, int size, int level) {
   const int half = size / 2;
-  static const GLubyte TINTS[7][3] = {{0, 0, 0},     {255, 0, 0},   {0, 255, 0},  {0, 0, 255},
-                                      {255, 255, 0}, {0, 255, 255}, {255, 0, 255}};
   std::vector<GLubyte> out(static_cast<size_t>(half) * half * 4);
   for (int y = 0; y < half; ++y)
     for (int x = 0; x < half; ++x)
       for (int c = 0; c < 4; ++c) {
         auto at = [&](int i, int j) { return in[4 * ((2 * y + j) * size + 2 * x + i) + c]; };
         int v = (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1) + 2) / 4;
-        if (c < 3) v = (3 * v + TINTS[level][c] + 2) / 4;
+        if (c < 3) v = (3 * v + LEVEL_TINTS[level][c] + 2) / 4;
         out[4 * (y * half + x) + c] = static_cast<GLubyte>(v);
       }
   return out;
@@ -128,16 +132,15 @@ void draw(int frame) {
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_TEXTURE_COORD_ARRAY);
   for (int k = 0; k < STRIPS; ++k) {
-    const float x0 = (k - STRIPS / 2) * STRIP_WIDTH, x1 = x0 + STRIP_WIDTH;
+    const float x0 = static_cast<float>(k - FIRST_STRIP_OFFSET) * STRIP_WIDTH, x1 = x0 + STRIP_WIDTH;
     const GLfloat xyz[] = {x0, FLOOR_Y, NEAR_Z, x1, FLOOR_Y, NEAR_Z, x1, FLOOR_Y, FAR_Z, x0, FLOOR_Y, FAR_Z};
     const float s0 = x0 * REPEATS_PER_UNIT, s1 = x1 * REPEATS_PER_UNIT;
     const float t0 = -NEAR_Z * REPEATS_PER_UNIT, t1 = -FAR_Z * REPEATS_PER_UNIT;
     const GLfloat st[] = {s0, t0, s1, t0, s1, t1, s0, t1};
-    static const GLushort TRIANGLES[] = {0, 1, 2, 0, 2, 3};
     glBindTexture(GL_TEXTURE_2D, g_textures[k]);
     glVertexPointer(3, GL_FLOAT, 0, xyz);
     glTexCoordPointer(2, GL_FLOAT, 0, st);
-    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, TRIANGLES);
+    glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, STRIP_TRIANGLES);
   }
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);

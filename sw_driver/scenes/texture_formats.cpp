@@ -50,6 +50,14 @@ const Cell CELL_FORMATS[CELLS] = {
     {0, GL_PALETTE8_RGB5_A1_OES},
 };
 
+// A palette entry's format and type, by the compressed format's place in
+// each group of five (RGB8, RGBA8, R5_G6_B5, RGBA4, RGB5_A1).
+const GLenum ENTRY_FORMAT[5] = {GL_RGB, GL_RGBA, GL_RGB, GL_RGBA, GL_RGBA};
+const GLenum ENTRY_TYPE[5] = {GL_UNSIGNED_BYTE, GL_UNSIGNED_BYTE, GL_UNSIGNED_SHORT_5_6_5, GL_UNSIGNED_SHORT_4_4_4_4,
+                              GL_UNSIGNED_SHORT_5_5_5_1};
+const GLfloat QUAD_ST[] = {0, 0, 1, 0, 1, 1, 0, 1};
+const GLushort QUAD_TRIANGLES[] = {0, 1, 2, 0, 2, 3};
+
 GLuint g_textures[CELLS] = {};
 int g_width = 0, g_height = 0;
 
@@ -103,9 +111,6 @@ void append_pixel(GLenum format, GLenum type, const GLubyte c[4], std::vector<GL
 std::vector<GLubyte> paletted_image(GLenum format, int levels) {
   const unsigned code = format - GL_PALETTE4_RGB8_OES;
   const int bits = code < 5 ? 4 : 8, entries = 1 << bits;
-  static const GLenum ENTRY_FORMAT[5] = {GL_RGB, GL_RGBA, GL_RGB, GL_RGBA, GL_RGBA};
-  static const GLenum ENTRY_TYPE[5] = {GL_UNSIGNED_BYTE, GL_UNSIGNED_BYTE, GL_UNSIGNED_SHORT_5_6_5,
-                                       GL_UNSIGNED_SHORT_4_4_4_4, GL_UNSIGNED_SHORT_5_5_5_1};
   std::vector<GLubyte> data;
   for (int p = 0; p < entries; ++p) {
     GLubyte c[4];
@@ -185,9 +190,7 @@ void draw(int) {
   const int quad = SIZE * scale;
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_TEXTURE_COORD_ARRAY);
-  static const GLfloat ST[] = {0, 0, 1, 0, 1, 1, 0, 1};
-  static const GLushort TRIANGLES[] = {0, 1, 2, 0, 2, 3};
-  glTexCoordPointer(2, GL_FLOAT, 0, ST);
+  glTexCoordPointer(2, GL_FLOAT, 0, QUAD_ST);
   for (int k = 0; k < CELLS; ++k) {
     glBindTexture(GL_TEXTURE_2D, g_textures[k]);
     const int x = (k % COLUMNS) * cell_width + (cell_width - quad) / 2;
@@ -200,7 +203,7 @@ void draw(int) {
       glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, half == 0 ? GL_MODULATE : GL_REPLACE);
       glColor4f(1.0f, 0.8f, 0.6f, 0.75f);
       glVertexPointer(3, GL_FLOAT, 0, xyz);
-      glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, TRIANGLES);
+      glDrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_SHORT, QUAD_TRIANGLES);
     }
   }
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
