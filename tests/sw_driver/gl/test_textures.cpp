@@ -237,3 +237,17 @@ TEST_F(GlApi, PalettedTexturesDecodeEveryLevel) {
   EXPECT_EQ(host.read32(renderer.state.tex.address), rgba(255, 0, 0, 255));
   EXPECT_FALSE(renderer.state.tex.has_alpha);  // an RGB palette makes an RGB texture
 }
+
+TEST_F(GlApi, CopyTexImageDefinesALevelInTheInternalFormatAskedFor) {
+  const uint8_t luminance[4] = {10, 20, 30, 40};
+  glEnable(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, 2, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, luminance);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  // The recording renderer reads every byte as 0x5a: luminance 0x5a.
+  glCopyTexImage2D(GL_TEXTURE_2D, 1, GL_LUMINANCE, 0, 0, 1, 1, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  draw_triangle(TRIANGLE);
+  ASSERT_TRUE(renderer.state.texture);  // both levels GL_LUMINANCE: complete
+  EXPECT_EQ(host.read32(renderer.state.tex.level[1].address), rgba(0x5a, 0x5a, 0x5a, 255));
+  EXPECT_FALSE(renderer.state.tex.has_alpha);
+}
