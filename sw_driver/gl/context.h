@@ -32,10 +32,37 @@ struct ArrayPointer {
   GLuint buffer = 0;  // bound GL_ARRAY_BUFFER when the pointer was set
 };
 
-struct TextureObject {
-  Texture texture;       // what the back ends see
-  bool defined = false;  // glTexImage2D has been called
+// One mipmap level as the application defined it: RGBA8 in system memory.
+struct TextureImage {
+  uint32_t address = 0;
+  unsigned width = 0, height = 0;
+  GLenum format = 0;  // the internal format it was given; 0: not defined
 };
+
+struct TextureObject {
+  // Sampling parameters (filters, wraps); the level chain is filled in for
+  // drawing (drawn_texture, textures.cpp). A new object has GL's default
+  // minification filter, GL_NEAREST_MIPMAP_LINEAR.
+  Texture texture = mipmapped_default();
+  bool defined = false;  // level 0 has texels
+  bool generate_mipmap = false;
+  TextureImage image[MAX_TEXTURE_LEVELS];
+
+  static Texture mipmapped_default() {
+    Texture t;
+    t.min_mipmap = MipmapFilter::linear;
+    return t;
+  }
+};
+
+// Whether `object` may be sampled (OpenGL ES 1.1 section 3.8.10): level 0
+// defined and, for a mipmap minification filter, every level down to 1 x 1
+// defined with half the size of the one before and level 0's format. An
+// incomplete texture disables texturing for its unit.
+bool texture_complete(const TextureObject& object);
+// The texture as the back ends draw it: parameters and levels (one level
+// unless the minification filter uses mipmaps). `object` is complete.
+Texture drawn_texture(const TextureObject& object);
 
 struct BufferObject {
   std::vector<uint8_t> data;
@@ -136,6 +163,9 @@ class Context {
                  GLenum format, GLenum type, const void* pixels);
   void tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
                      GLenum type, const void* pixels);
+  // A level of OES_compressed_paletted_texture; level <= 0 gives 1 - level levels.
+  void compressed_tex_image(GLenum target, GLint level, GLenum internal_format, GLsizei width, GLsizei height,
+                            GLint border, GLsizei image_size, const void* data);
   void tex_parameter(GLenum target, GLenum name, float value);
   void get_tex_parameter(GLenum target, GLenum name, float* value);
   void tex_env(GLenum target, GLenum name, const float* values, int count);
@@ -194,6 +224,12 @@ class Context {
   const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
   glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults);
   TextureObject* bound_texture();
+  // Level `level` of the bound texture as `width` x `height` RGBA8 words
+  // (re)allocated in system memory, with `rows` written if not null.
+  void store_level(TextureObject* object, unsigned level, unsigned width, unsigned height, GLenum format,
+                   const uint32_t* rows);
+  // GL_GENERATE_MIPMAP: levels 1.. from level 0 by the box filter.
+  void generate_mipmaps(TextureObject* object);
   void charge(const FloatCost& cost, uint64_t times);
 
   HostApi& m_host;

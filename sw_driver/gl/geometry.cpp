@@ -205,6 +205,8 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->s = v.tex.x;
   out->t = v.tex.y;
   out->fog = v.fog;
+  out->x_window = static_cast<float>(window.x);
+  out->y_window = static_cast<float>(window.y);
   return std::isfinite(v.tex.x) && std::isfinite(v.tex.y) && std::isfinite(v.fog);
 }
 

@@ -139,8 +139,8 @@ RasterState Context::raster_state() const {
   s.scissor_test = m_scissor_test;
   s.polygon_smooth = m_polygon_smooth;
   auto it = m_textures.find(m_bound_texture);
-  s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
-  if (s.texture) s.tex = it->second.texture;
+  s.texture = m_texture_2d && it != m_textures.end() && texture_complete(it->second);
+  if (s.texture) s.tex = drawn_texture(it->second);
   s.tex_env = tex_env_value(m_tex_env_mode);
   s.fog = m_fog;
   s.fog_mode = from_gl_enum<FogMode>(m_fog_mode).value_or(FogMode::exp);

@@ -12,11 +12,13 @@
 #include "common/screen_size.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
+#include "gl/texture_formats.h"
 
 namespace tessera::gl {
 
 int Context::query_count(GLenum name) {
   switch (name) {
+    case GL_COMPRESSED_TEXTURE_FORMATS: return static_cast<int>(PALETTE_FORMAT_COUNT);
     case GL_COLOR_CLEAR_VALUE:
     case GL_VIEWPORT:
     case GL_SCISSOR_BOX:
@@ -235,7 +237,10 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(m_texcoord_array.stride); break;
     case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES: v[0] = GL_UNSIGNED_BYTE; break;
     case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES: v[0] = GL_RGBA; break;
-    case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = 0; break;
+    case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = PALETTE_FORMAT_COUNT; break;
+    case GL_COMPRESSED_TEXTURE_FORMATS:
+      for (unsigned i = 0; i < PALETTE_FORMAT_COUNT; ++i) v[i] = static_cast<float>(PALETTE_FORMATS[i].name);
+      break;
     case GL_SAMPLE_BUFFERS: v[0] = 0; break;
     case GL_SAMPLES: v[0] = 0; break;
     case GL_SAMPLE_COVERAGE_VALUE: v[0] = m_sample_coverage_value; break;
@@ -265,7 +270,8 @@ const GLubyte* Context::get_string(GLenum name) {
     case GL_VERSION: return reinterpret_cast<const GLubyte*>("OpenGL ES-CM 1.1");
     // Those <GLES/glext.h> declares (test_gl_api checks that the two agree).
     case GL_EXTENSIONS:
-      return reinterpret_cast<const GLubyte*>("GL_OES_read_format GL_OES_point_size_array GL_OES_point_sprite");
+      return reinterpret_cast<const GLubyte*>(
+          "GL_OES_read_format GL_OES_point_size_array GL_OES_point_sprite GL_OES_compressed_paletted_texture");
     default: error(GL_INVALID_ENUM); return nullptr;
   }
 }

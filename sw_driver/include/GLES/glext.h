@@ -16,6 +16,9 @@
  *   GL_OES_point_sprite  textured points whose texture coordinates run
  *                       across the point (GL_COORD_REPLACE_OES).
  *
+ *   GL_OES_compressed_paletted_texture  glCompressedTexImage2D with the
+ *                       ten GL_PALETTE4_* / GL_PALETTE8_* formats.
+ *
  * They are ES 1.1's required extensions, so <GLES/gl.h> defines them too,
  * where the Khronos gl.h does; the guards keep one copy. */
 #ifndef TESSERA_GLES_GLEXT_H
@@ -52,6 +55,20 @@ GL_API void GL_APIENTRY glPointSizePointerOES(GLenum type, GLsizei stride, const
 #define GL_OES_point_sprite 1
 #define GL_POINT_SPRITE_OES 0x8861
 #define GL_COORD_REPLACE_OES 0x8862
+#endif
+
+#ifndef GL_OES_compressed_paletted_texture
+#define GL_OES_compressed_paletted_texture 1
+#define GL_PALETTE4_RGB8_OES 0x8B90
+#define GL_PALETTE4_RGBA8_OES 0x8B91
+#define GL_PALETTE4_R5_G6_B5_OES 0x8B92
+#define GL_PALETTE4_RGBA4_OES 0x8B93
+#define GL_PALETTE4_RGB5_A1_OES 0x8B94
+#define GL_PALETTE8_RGB8_OES 0x8B95
+#define GL_PALETTE8_RGBA8_OES 0x8B96
+#define GL_PALETTE8_R5_G6_B5_OES 0x8B97
+#define GL_PALETTE8_RGBA4_OES 0x8B98
+#define GL_PALETTE8_RGB5_A1_OES 0x8B99
 #endif
 
 #ifdef __cplusplus

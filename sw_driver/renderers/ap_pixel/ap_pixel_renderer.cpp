@@ -123,6 +123,14 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
                         (state.tex.height & (state.tex.height - 1)) == 0;
   if (state.texture && !textured)
     unsupported("textures that are not a power of two up to 256 texels: drawn untextured");
+  if (textured && renderers::env_needs_base_format(state.tex, state.tex_env))
+    unsupported(
+        "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
+        "3.15): drawn with the texel expanded to RGBA");
+  if (textured && renderers::texture_needs_lod(state.tex))
+    unsupported(
+        "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
+        "sampled with the magnification filter");
   Reads reads;
   reads.colour = !state.flat_shading;
   reads.alpha = reads.colour && (state.alpha_test || state.blend || m_buffers.color_format != PixelFormat::rgb565 ||

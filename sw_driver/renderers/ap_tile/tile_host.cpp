@@ -49,6 +49,14 @@ std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& 
   if (state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
       state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
       (state.tex.height & (state.tex.height - 1)) == 0) {
+    if (renderers::texture_needs_lod(state.tex))
+      unsupported(
+          "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
+          "sampled with the magnification filter");
+    if (renderers::env_needs_base_format(state.tex, state.tex_env))
+      unsupported(
+          "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
+          "3.15): drawn with the texel expanded to RGBA");
     flags.tex = textures.number(state, unsupported);
     flags.tex_width = state.tex.width;
     flags.tex_height = state.tex.height;

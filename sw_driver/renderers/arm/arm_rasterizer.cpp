@@ -34,6 +34,12 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   return q;
 }
 
+bool has_window_positions(const gl::Triangle& tri) {
+  for (const gl::ScreenVertex& v : tri.v)
+    if (!std::isfinite(v.x_window) || !std::isfinite(v.y_window)) return false;
+  return true;
+}
+
 int64_t ceil_div(int64_t a, int64_t b) {
   return -floor_div(-a, b);
 }  // b > 0
@@ -106,6 +112,7 @@ struct ArmRasterizer::TriangleSetup {
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
   bool linear_filter = false;
+  bool lod = false;  // the level of detail chooses filter and levels (texturing.h)
 };
 
 struct ArmRasterizer::DrawContext {
@@ -396,6 +403,29 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
                            double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
       s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
     }
+    // A textured triangle's colour, 1/w and texture planes follow the
+    // vertices before snapping, as the reference's do: snapping moves a
+    // vertex by up to 1/32 pixel, which at a minified texel rate of 1.6
+    // texels per pixel shifts the texture by 0.05 texel, a colour step of
+    // bilinear filtering (README, "Rounding"). Coverage and depth keep the
+    // snapped vertices.
+    double attribute_area = area;
+    if (c.texture && has_window_positions(tri)) {
+      for (int v = 0; v < 3; ++v) {
+        px[v] = double(tri.v[v].x_window);
+        py[v] = double(tri.v[v].y_window);
+      }
+      const double exact_area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+      // A sliver the snapping made (or the float positions left degenerate) keeps the snapped planes.
+      if (std::fabs(exact_area) > 1e-6 && (exact_area > 0) == (area > 0)) {
+        attribute_area = exact_area;
+      } else {
+        for (int v = 0; v < 3; ++v) {
+          px[v] = double(x[v]) / 16.0;
+          py[v] = double(y[v]) / 16.0;
+        }
+      }
+    }
     // Normalised 1/w of each vertex: attributes are interpolated as a/w and
     // 1/w and divided per pixel when the triangle is seen in perspective.
     double qn[3] = {1.0, 1.0, 1.0};
@@ -411,7 +441,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         for (int v = 0; v < 3; ++v) qn[v] = inv_w[v] / max_inv_w;
       double q[3];
       for (int v = 0; v < 3; ++v) q[v] = std::max(qn[v] * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
-      s.q.setup(q, px, py, area, 1.0, 0.0);
+      s.q.setup(q, px, py, attribute_area, 1.0, 0.0);
     }
     if (c.gouraud) {
       s.perspective_color = s.perspective;
@@ -424,7 +454,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         }
         // The rounding half is added after the division in the perspective case.
         const double bias = s.perspective_color ? 0.0 : double(1 << (COLOR_FRACTION_BITS - 1));
-        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), bias);
+        s.color[ch].setup(value, px, py, attribute_area, double(1 << COLOR_FRACTION_BITS), bias);
       }
     } else {
       const gl::ScreenVertex& pv = tri.v[2];
@@ -439,12 +469,20 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         sq[v] = su[v] * qn[v];
         tq[v] = tv[v] * qn[v];
       }
-      s.sq.setup(sq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.tq.setup(tq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.sq.setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.tq.setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
       // Minified when the triangle covers more texels than pixels.
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
       s.linear_filter = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
+      s.lod = renderers::texture_needs_lod(tex);
+      if (s.lod) {
+        s.linear_filter = false;  // chosen per pixel, charged per pixel
+        if (!s.perspective) {
+          m_memory.compute(Op::alu, k.lod_alu);
+          m_memory.compute(Op::mul, k.lod_mul);
+        }
+      }
       m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
       m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
     }
@@ -490,19 +528,20 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   m_memory.compute(Op::branch, rows * k.row_branch);
 }
 
-void ArmRasterizer::fetch_texel(const DrawContext& c, int u8, int v8, bool linear, uint8_t out[4]) {
+void ArmRasterizer::fetch_texel(const DrawContext& c, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
   const gl::Texture& tex = c.state->tex;
-  const unsigned w = tex.width;
-  auto address = [&](int i, int j) { return tex.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
+  const gl::TextureLevel image = renderers::texture_level(tex, level);
+  const unsigned w = image.width, h = image.height;
+  auto address = [&](int i, int j) { return image.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
   if (!linear) {
-    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, tex.height, tex.wrap_t);
+    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, h, tex.wrap_t);
     std::memcpy(out, m_memory.load(address(i, j), 4, 1), 4);
     return;
   }
   const int um = u8 - 128, vm = v8 - 128;
   const uint32_t fu = uint32_t(um) & 255, fv = uint32_t(vm) & 255;
   const int i0 = wrap(um >> 8, w, tex.wrap_s), i1 = wrap((um >> 8) + 1, w, tex.wrap_s);
-  const int j0 = wrap(vm >> 8, tex.height, tex.wrap_t), j1 = wrap((vm >> 8) + 1, tex.height, tex.wrap_t);
+  const int j0 = wrap(vm >> 8, h, tex.wrap_t), j1 = wrap((vm >> 8) + 1, h, tex.wrap_t);
   uint8_t texel[4][4];  // (i0, j0), (i1, j0), (i0, j1), (i1, j1)
   const int rows[2] = {j0, j1};
   for (int r = 0; r < 2; ++r) {
@@ -583,6 +622,20 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   };
 
   uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
+  // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
+  uint64_t lod_alu = 0, lod_mul = 0;
+  auto filter_level = [&](unsigned level, int u, int v, bool linear, uint8_t out[4]) {
+    fetch_texel(c, level, u, v, linear, out);
+  };
+  // lambda at a pixel from its stepped (s q), (t q), q and the planes'
+  // gradients: d(sq/q)/dx = (gx(sq) q - sq gx(q)) / q^2, in level 0's texels.
+  auto pixel_lod = [&](int64_t sq_value, int64_t tq_value, int64_t q_value) {
+    const double scale = double(int64_t{1} << (Q_FRACTION_BITS - ST_FRACTION_BITS)) / (double(q_value) * q_value);
+    const double sqd = double(sq_value), tqd = double(tq_value), qd = double(q_value);
+    const double ux = (s.sq.gx * qd - sqd * s.q.gx) * scale, uy = (s.sq.gy * qd - sqd * s.q.gy) * scale;
+    const double vx = (s.tq.gx * qd - tqd * s.q.gx) * scale, vy = (s.tq.gy * qd - tqd * s.q.gy) * scale;
+    return renderers::texture_lod(ux, vx, uy, vy);
+  };
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
@@ -617,7 +670,18 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
           v8 = tq >> (ST_FRACTION_BITS - 8);
         }
         uint8_t texel[4];
-        fetch_texel(c, int(u8), int(v8), s.linear_filter, texel);
+        if (s.lod) {
+          const renderers::LodChoice choice =
+              renderers::sample_texture_lod(state.tex, int(u8), int(v8), pixel_lod(sq, tq, q), filter_level, texel);
+          if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
+          const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
+          const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
+          lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
+          lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
+        } else {
+          fetch_texel(c, 0, int(u8), int(v8), s.linear_filter, texel);
+        }
+        renderers::fill_missing_components(state.tex, state.tex_env, rgba, texel);
         rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
       }
       if (c.fog) {
@@ -701,6 +765,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
       c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
   if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
   if (c.fog && s.perspective) shade_mul += k.fog_perspective_mul;
+  if (lod_alu != 0) m_memory.compute(Op::alu, lod_alu);
+  if (lod_mul != 0) m_memory.compute(Op::mul, lod_mul);
   const uint64_t divisions = texel_calls + color_divisions + fog_divisions;
   m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
                                 passed * c.write_alu + divisions * k.division_alu);

@@ -9,6 +9,7 @@
 #include "gl/runtime.h"
 #include "raster/raster_regs.h"
 #include "renderers/common/fog.h"
+#include "renderers/common/texturing.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
 
@@ -129,7 +130,7 @@ renderers::TileGrid read_grid(HostApi& host, const DisplayDriver& display) {
 }  // namespace
 
 RasterRenderer::RasterRenderer(AppEnvironment& env)
-    : m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
+    : m_env(env), m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
   m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
   m_last_draw_state = {encode_state(gl::RasterState{}), raster::FogState{}};
@@ -186,6 +187,15 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   if (count == 0) return;
+  // The rasterizer's texture unit fetches from one level (tlm/raster).
+  if (state.texture && state.tex.min_mipmap != gl::MipmapFilter::none)
+    m_unsupported.report(m_env,
+                         "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
+                         "within a level");
+  if (state.texture && renderers::env_needs_base_format(state.tex, state.tex_env))
+    m_unsupported.report(m_env,
+                         "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
+                         "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
   m_last_draw_state = {encode_state(state), encode_fog(state)};
   const uint32_t state_index = add_state(m_last_draw_state);
   renderers::FogCoefficients fog;
@@ -371,6 +381,7 @@ void RasterRenderer::read_pixels(int x, int y, int width, int height, uint8_t* r
 void RasterRenderer::present() {
   flush();
   m_display.present();
+  m_unsupported.new_frame();
 }
 
 }  // namespace tessera::raster_backend

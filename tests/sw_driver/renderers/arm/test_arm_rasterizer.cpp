@@ -984,3 +984,63 @@ TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
 
 }  // namespace
 }  // namespace tessera::arm
+
+// Mipmaps: a 32 x 32 texture whose six levels are solid colours (level k:
+// red 50 k, green 255 - 50 k) on the 32 x 32 pixel square, s and t from 0
+// to smax: smax texels of level 0 per pixel, lambda = log2(smax) everywhere.
+namespace {
+
+gl::Texture mipmap_levels(Frame& f, gl::TexFilter within, gl::MipmapFilter mipmap) {
+  gl::Texture tex = f.texture(32, 32, std::vector<Rgba>(32 * 32, Rgba{0, 255, 0, 255}));
+  tex.min_filter = within;
+  tex.min_mipmap = mipmap;
+  tex.levels = 6;
+  uint32_t address = tex.address;
+  for (unsigned k = 0; k < 6; ++k) {
+    const unsigned side = 32u >> k;
+    tex.level[k] = {address, side, side};
+    uint8_t* p = f.memory.at(address, side * side * 4);
+    for (unsigned i = 0; i < side * side; ++i) {
+      p[4 * i] = uint8_t(50 * k);
+      p[4 * i + 1] = uint8_t(255 - 50 * k);
+      p[4 * i + 2] = 0;
+      p[4 * i + 3] = 255;
+    }
+    address += side * side * 4;
+  }
+  return tex;
+}
+
+Rgba mipmapped_centre(double smax, gl::TexFilter within, gl::MipmapFilter mipmap) {
+  Frame f(48, 48, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.texture = true;
+  state.tex = mipmap_levels(f, within, mipmap);
+  state.tex_env = gl::TexEnv::replace;
+  f.draw(state, textured_square(smax, {255, 255, 255, 255}));
+  return f.color(24, 24);
+}
+
+}  // namespace
+
+TEST(ArmRasterizerTexture, NearestMipmapTakesTheLevelOfLambda) {
+  // lambda = 2: level ceil(2.5) - 1 = 2.
+  EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 100);
+  // lambda = log2(1.5) = 0.58 > 0.5: level 1; log2(1.25) = 0.32: level 0.
+  EXPECT_EQ(mipmapped_centre(1.5, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 50);
+  EXPECT_EQ(mipmapped_centre(1.25, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 0);
+  // lambda = 6 is past the last level, 5 (1 x 1).
+  EXPECT_EQ(mipmapped_centre(64, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 250);
+  // Magnified (lambda = -1): level 0.
+  EXPECT_EQ(mipmapped_centre(0.5, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 0);
+}
+
+TEST(ArmRasterizerTexture, LinearMipmapBlendsTheTwoLevelsAroundLambda) {
+  // lambda = log2(3) = 1.585: levels 1 (red 50) and 2 (red 100), weight 0.585 of level 2: 79.2.
+  const Rgba c = mipmapped_centre(3, gl::TexFilter::linear, gl::MipmapFilter::linear);
+  EXPECT_NEAR(c.r, 50 + 50 * (std::log2(3.0) - 1), 1.0);
+  EXPECT_NEAR(c.g, 205 - 50 * (std::log2(3.0) - 1), 1.0);
+  // lambda = 2 exactly: level 2 alone.
+  EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::linear, gl::MipmapFilter::linear).r, 100);
+}
