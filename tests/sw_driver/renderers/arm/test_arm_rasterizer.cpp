@@ -982,9 +982,6 @@ TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
   EXPECT_GE(f.memory.ops(Op::branch), uint64_t(pixels));
 }
 
-}  // namespace
-}  // namespace tessera::arm
-
 // Mipmaps: a 32 x 32 texture whose six levels are solid colours (level k:
 // red 50 k, green 255 - 50 k) on the 32 x 32 pixel square, s and t from 0
 // to smax: smax texels of level 0 per pixel, lambda = log2(smax) everywhere.
@@ -1044,3 +1041,6 @@ TEST(ArmRasterizerTexture, LinearMipmapBlendsTheTwoLevelsAroundLambda) {
   // lambda = 2 exactly: level 2 alone.
   EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::linear, gl::MipmapFilter::linear).r, 100);
 }
+
+}  // namespace
+}  // namespace tessera::arm
