@@ -75,6 +75,10 @@ struct Row {
   std::string goal;
   std::vector<double> measured;
   std::vector<double> reference;  // empty: an absolute figure, no ratio
+  // CPU time of the same runs (each process's own clock over the timed
+  // frames), where both sides report it: a loaded machine inflates wall
+  // times, hardly CPU times.
+  std::vector<double> cpu_measured, cpu_reference;
   // true: the goal is a ratio at most goal_value (or a time at most it,
   // without a reference); false: at least goal_value.
   bool at_most = true;
@@ -178,39 +182,50 @@ void Bench::arm_rows() {
   png.goal_value = 1.5;
   Row mesa{"`arm` teapot frame: soc_sim --no-frames / Mesa softpipe (bench_arm_mesa)", "< 1x (faster)"};
   mesa.goal_value = 1.0;
-  std::vector<double> sim, sim_png, native_s, mesa_s;
+  std::vector<double> sim, sim_png, native_s, mesa_s, sim_cpu, sim_png_cpu, native_cpu, mesa_cpu;
   for (unsigned r = 0; r < m_opt.rounds; ++r) {
     std::fprintf(stderr, "bench_speed: arm teapot, round %u of %u ...\n", r + 1, m_opt.rounds);
-    in_rotation(
-        r,
-        {
-            [&] {
-              sim.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, false));
-            },
-            [&] {
-              sim_png.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, true));
-            },
-            [&] {
-              const ChildResult c =
-                  child({program("bench_arm_native").string(), "--scene", "teapot", "--frames", std::to_string(n),
-                         "--width", width, "--height", height, "--format", display["format"].get<std::string>(),
-                         "--dma", display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
-                         std::to_string(m_config["mem"]["size_mib"].get<unsigned>())});
-              native_s.push_back(positive(json::parse(c.output)["wall_per_frame_s"].get<double>(), "native per frame"));
-            },
-            [&] {
-              const ChildResult c = child({program("bench_arm_mesa").string(), "--scene", "teapot", "--frames",
-                                           std::to_string(n), "--repeat", "1", "--width", width, "--height", height});
-              mesa_s.push_back(positive(json::parse(c.output)["wall_per_frame_s"].get<double>(), "Mesa per frame"));
-            },
-        });
+    in_rotation(r, {
+                       [&] {
+                         sim.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, false));
+                         sim_cpu.push_back(m_last_cpu);
+                       },
+                       [&] {
+                         sim_png.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, true));
+                         sim_png_cpu.push_back(m_last_cpu);
+                       },
+                       [&] {
+                         const ChildResult c = child({program("bench_arm_native").string(), "--scene", "teapot",
+                                                      "--frames", std::to_string(n), "--width", width, "--height",
+                                                      height, "--format", display["format"].get<std::string>(), "--dma",
+                                                      display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
+                                                      std::to_string(m_config["mem"]["size_mib"].get<unsigned>())});
+                         const json out = json::parse(c.output);
+                         native_s.push_back(positive(out["wall_per_frame_s"].get<double>(), "native per frame"));
+                         native_cpu.push_back(positive(out["cpu_per_frame_s"].get<double>(), "native CPU per frame"));
+                       },
+                       [&] {
+                         const ChildResult c =
+                             child({program("bench_arm_mesa").string(), "--scene", "teapot", "--frames",
+                                    std::to_string(n), "--repeat", "1", "--width", width, "--height", height});
+                         const json out = json::parse(c.output);
+                         mesa_s.push_back(positive(out["wall_per_frame_s"].get<double>(), "Mesa per frame"));
+                         mesa_cpu.push_back(positive(out["cpu_per_frame_s"].get<double>(), "Mesa CPU per frame"));
+                       },
+                   });
   }
   native.measured = sim;
   native.reference = native_s;
+  native.cpu_measured = sim_cpu;
+  native.cpu_reference = native_cpu;
   png.measured = sim_png;
   png.reference = native_s;
+  png.cpu_measured = sim_png_cpu;
+  png.cpu_reference = native_cpu;
   mesa.measured = sim;
   mesa.reference = mesa_s;
+  mesa.cpu_measured = sim_cpu;
+  mesa.cpu_reference = mesa_cpu;
   m_rows.push_back(native);
   m_rows.push_back(png);
   m_rows.push_back(mesa);
@@ -532,8 +547,8 @@ void Bench::scaling() {
 
 void Bench::print_table() const {
   std::printf(
-      "| what | measured (min / median) | against (min / median) | ratio (mins / median of pairs) | goal | met "
-      "(median) |\n|---|--:|--:|--:|---|---|\n");
+      "| what | measured (min / median) | against (min / median) | ratio (mins / median of pairs) | CPU ratio "
+      "(median of pairs) | goal | met (median of pairs) |\n|---|--:|--:|--:|--:|---|---|\n");
   for (const Row& row : m_rows) print_row(row);
   std::printf(
       "\nPer-frame figures are of frames %u..%u of runs of %u frames, timed within each run; %u paired rounds (%u "
