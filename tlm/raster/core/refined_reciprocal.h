@@ -62,6 +62,15 @@ inline bool refined_reciprocal(uint64_t v, RecipMethod method, Reciprocal& out) 
 // 2^-extra_shift.
 inline int128 divide(int128 numerator, const Reciprocal& r, bool negative_divisor, int extra_shift = 0) {
   const int shift = 30 + r.n + extra_shift;
+  // The per-fragment quotients (colour and texture words over q) have small
+  // numerators: then the product, its rounding and the shift fit in 64 bits
+  // (|p| < 2^62, half < 2^61) and give the same bits as the 128-bit path.
+  constexpr int64_t SMALL = int64_t{1} << 30;
+  if (numerator > -SMALL && numerator < SMALL && r.y < (uint64_t{1} << 32) && shift >= 1 && shift <= 62) {
+    int64_t p = int64_t(numerator) * int64_t(r.y);
+    if (negative_divisor) p = -p;
+    return (p + (int64_t{1} << (shift - 1))) >> shift;
+  }
   int128 p = numerator * int128(r.y);
   if (negative_divisor) p = -p;
   return (p + (int128{1} << (shift - 1))) >> shift;

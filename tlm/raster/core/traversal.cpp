@@ -52,15 +52,14 @@ uint64_t traverse_row_smooth(RunContext& run, const TriangleSetup& setup, const 
 }
 
 // Without: the three edges' fill-rule decisions for up to 64 pixels at a
-// time (edge_inside_row), and a fragment for every pixel inside all three.
+// time (triangle_inside_row), and a fragment for every pixel inside all three.
 uint64_t traverse_row(RunContext& run, const TriangleSetup& setup, const Rect& box, int py, FragmentShader& shader) {
   constexpr unsigned CHUNK = 64;
   const unorm8 full = unorm8::from_raw(255);
   for (int x0 = box.x0; x0 < box.x1; x0 += int(CHUNK)) {
     const unsigned count = std::min(CHUNK, unsigned(box.x1 - x0));
-    uint64_t inside = edge_inside_row(setup.edges[0], unsigned(x0), unsigned(py), count);
-    if (inside != 0) inside &= edge_inside_row(setup.edges[1], unsigned(x0), unsigned(py), count);
-    if (inside != 0) inside &= edge_inside_row(setup.edges[2], unsigned(x0), unsigned(py), count);
+    uint64_t inside =
+        triangle_inside_row(setup.edges[0], setup.edges[1], setup.edges[2], unsigned(x0), unsigned(py), count);
     while (inside != 0) {
       const int px = x0 + __builtin_ctzll(inside);
       inside &= inside - 1;

@@ -34,7 +34,8 @@
 // rule is one comparison: E == 0 counts as inside exactly when the tie-break
 // holds, so inside = E + tie > 0 with tie = 1 or 0 (E is an integer code).
 // edge_inside_row steps E along a row of up to 64 pixels and returns the
-// decisions as a bit mask, what the core's traversal takes per row.
+// decisions as a bit mask; triangle_inside_row does it for the three edges
+// of a triangle at once, what the core's traversal takes per row.
 //
 // Normalised distance (EASA, L1 norm): d = E / (|dx| + |dy|). |dx| + |dy| is
 // unsigned 10.4 (edge_l1_length, at most 16382 codes, the reciprocal unit's
@@ -131,6 +132,28 @@ constexpr uint64_t edge_inside_row(const Edge& e, unsigned px, unsigned py, unsi
   for (unsigned i = 0; i < count; ++i) {
     mask |= uint64_t{biased > 0} << i;
     biased += step;
+  }
+  return mask;
+}
+
+// The same for the three edges of a triangle at once: bit i is set when
+// pixel (px + i, py) is inside all three. The inside pixels of a row form
+// one run (the triangle is convex), so the walk stops at the first pixel
+// outside after an inside one.
+constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
+                                       unsigned count) {
+  const int64_t step0 = 16 * edge_dy(e0).raw, step1 = 16 * edge_dy(e1).raw, step2 = 16 * edge_dy(e2).raw;
+  int64_t b0 = edge_value_at(e0, px, py).raw + edge_tie(e0);
+  int64_t b1 = edge_value_at(e1, px, py).raw + edge_tie(e1);
+  int64_t b2 = edge_value_at(e2, px, py).raw + edge_tie(e2);
+  uint64_t mask = 0;
+  for (unsigned i = 0; i < count; ++i) {
+    const bool inside = (b0 > 0) & (b1 > 0) & (b2 > 0);
+    if (!inside && mask != 0) break;
+    mask |= uint64_t{inside} << i;
+    b0 += step0;
+    b1 += step1;
+    b2 += step2;
   }
   return mask;
 }
