@@ -46,9 +46,9 @@ uint64_t traverse_row_smooth(RunContext& run, const TriangleSetup& setup, const 
     if (coverage.raw == 0) continue;
     ++run.result().fragments;
     shader.shade(setup, px, py, coverage);
-    if (run.failed()) return uint64_t(px - box.x0 + 1);
+    if (run.failed()) return uint64_t(px) - uint64_t(box.x0) + 1;
   }
-  return uint64_t(box.x1 - box.x0);
+  return uint64_t(box.x1) - uint64_t(box.x0);
 }
 
 // Without: the three edges' fill-rule decisions for up to 64 pixels at a
@@ -65,10 +65,10 @@ uint64_t traverse_row(RunContext& run, const TriangleSetup& setup, const Rect& b
       inside &= inside - 1;
       ++run.result().fragments;
       shader.shade(setup, px, py, full);
-      if (run.failed()) return uint64_t(px - box.x0 + 1);
+      if (run.failed()) return uint64_t(px) - uint64_t(box.x0) + 1;
     }
   }
-  return uint64_t(box.x1 - box.x0);
+  return uint64_t(box.x1) - uint64_t(box.x0);
 }
 
 }  // namespace
