@@ -2,7 +2,7 @@
  * soft float) and natively: integer arithmetic, division (libgcc's on the
  * ARM), 64-bit products, IEEE single and double arithmetic (soft-float on
  * the ARM: correctly rounded + - x / and conversions, so both agree to the
- * bit), a sort, a CRC, memcpy/memset of newlib, recursion and a jump table.
+ * bit), a sort, a CRC, memmove/memset of newlib, recursion and a jump table.
  * It prints one hex line per result; the test compares the two outputs. */
 #include <stdint.h>
 #include <string.h>
@@ -97,7 +97,7 @@ int main(void) {
   put_hex("double->uint", (uint32_t)(d * 16.0));
 
   for (unsigned i = 0; i < sizeof buffer; ++i) buffer[i] = (uint8_t)next_random();
-  memcpy(buffer + 100, buffer + 7, 200);
+  memmove(buffer + 100, buffer + 7, 200); /* overlapping: memmove, as memcpy would be undefined */
   memset(buffer + 400, 0x5a, 33);
   put_hex("crc32", crc32(buffer, sizeof buffer));
 
