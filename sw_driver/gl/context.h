@@ -37,6 +37,27 @@ struct TextureObject {
   bool defined = false;  // glTexImage2D has been called
 };
 
+// The state of one texture unit (ES 1.1 section 3.7.12 and 2.10.2): the
+// server side (enable, binding, environment, texture matrix stack) selected
+// by glActiveTexture, the client side (coordinate array, current
+// coordinates) by glClientActiveTexture and glMultiTexCoord. Environment
+// values are kept as the GL enums glGetTexEnv returns.
+struct TextureUnitState {
+  bool enabled = false;  // GL_TEXTURE_2D
+  GLuint bound = 0;      // GL_TEXTURE_BINDING_2D
+  GLenum env_mode = GL_MODULATE;
+  float env_color[4] = {0, 0, 0, 0};
+  GLenum combine_rgb = GL_MODULATE, combine_alpha = GL_MODULATE;
+  GLenum source_rgb[3] = {GL_TEXTURE, GL_PREVIOUS, GL_CONSTANT};
+  GLenum source_alpha[3] = {GL_TEXTURE, GL_PREVIOUS, GL_CONSTANT};
+  GLenum operand_rgb[3] = {GL_SRC_COLOR, GL_SRC_COLOR, GL_SRC_ALPHA};
+  GLenum operand_alpha[3] = {GL_SRC_ALPHA, GL_SRC_ALPHA, GL_SRC_ALPHA};
+  float rgb_scale = 1, alpha_scale = 1;
+  std::vector<glm::mat4> matrix{glm::mat4(1)};
+  glm::vec4 texcoord{0, 0, 0, 1};
+  ArrayPointer texcoord_array;
+};
+
 struct BufferObject {
   std::vector<uint8_t> data;
   GLenum usage = GL_STATIC_DRAW;
@@ -46,7 +67,10 @@ class Context {
  public:
   // The renderer belongs to the EGL surface the context is current on. The
   // driver's statistics (vertex cache) go to `counters` if there are any.
-  Context(HostApi& host, Renderer& renderer, ActivityCounters* counters = nullptr);
+  // `texture_units` (driver.texture_units, 1 .. MAX_TEXTURE_UNITS) is what
+  // GL_MAX_TEXTURE_UNITS answers.
+  Context(HostApi& host, Renderer& renderer, ActivityCounters* counters = nullptr,
+          unsigned texture_units = DEFAULT_TEXTURE_UNITS);
 
   HostApi& host() { return m_host; }
   Renderer& renderer() { return *m_renderer; }
@@ -110,7 +134,7 @@ class Context {
   ArrayPointer& vertex_array() { return m_vertex_array; }
   ArrayPointer& color_array() { return m_color_array; }
   ArrayPointer& normal_array() { return m_normal_array; }
-  ArrayPointer& texcoord_array() { return m_texcoord_array; }
+  ArrayPointer& texcoord_array() { return client_unit().texcoord_array; }
   void active_texture(GLenum unit, bool client);
 
   // Lighting
@@ -173,6 +197,10 @@ class Context {
   const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
   glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults);
   TextureObject* bound_texture();
+  TextureUnitState& active_unit() { return m_units[m_active_texture - GL_TEXTURE0]; }
+  TextureUnitState& client_unit() { return m_units[m_client_active_texture - GL_TEXTURE0]; }
+  // Whether unit u draws: enabled, with a defined texture bound.
+  bool unit_textured(unsigned u) const;
   void charge(const FloatCost& cost, uint64_t times);
 
   HostApi& m_host;
@@ -182,7 +210,7 @@ class Context {
   // Fragment and framebuffer state
   RasterState m_raster;
   bool m_depth_test = false, m_blend = false, m_alpha_test = false, m_stencil_test = false;
-  bool m_scissor_test = false, m_logic_op = false, m_texture_2d = false, m_dither = true;
+  bool m_scissor_test = false, m_logic_op = false, m_dither = true;
   bool m_cull = false, m_lighting = false, m_normalize = false, m_rescale_normal = false;
   bool m_color_material = false, m_fog = false, m_multisample = true, m_polygon_offset_fill = false;
   bool m_sample_alpha_to_coverage = false, m_sample_alpha_to_one = false, m_sample_coverage = false;
@@ -207,13 +235,12 @@ class Context {
 
   // Transform state
   GLenum m_matrix_mode = GL_MODELVIEW;
-  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)}, m_texture_matrix{glm::mat4(1)};
+  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)};
 
   // Current vertex attributes and arrays
   glm::vec4 m_color{1, 1, 1, 1};
   glm::vec3 m_normal{0, 0, 1};
-  glm::vec4 m_texcoord{0, 0, 0, 1};
-  ArrayPointer m_vertex_array, m_color_array, m_normal_array, m_texcoord_array;
+  ArrayPointer m_vertex_array, m_color_array, m_normal_array;
   GLenum m_active_texture = GL_TEXTURE0, m_client_active_texture = GL_TEXTURE0;
 
   // Lighting
@@ -224,9 +251,9 @@ class Context {
   // Textures and buffers
   std::map<GLuint, TextureObject> m_textures;
   GLuint m_next_texture = 1;
-  GLuint m_bound_texture = 0;
-  GLenum m_tex_env_mode = GL_MODULATE;
-  float m_tex_env_color[4] = {0, 0, 0, 0};
+  // Texture units: m_texture_units of them are offered, the rest stay off.
+  unsigned m_texture_units = DEFAULT_TEXTURE_UNITS;
+  std::array<TextureUnitState, MAX_TEXTURE_UNITS> m_units;
   std::map<GLuint, BufferObject> m_buffers;
   GLuint m_next_buffer = 1;
   GLuint m_array_buffer = 0, m_element_buffer = 0;

@@ -22,7 +22,11 @@ float plane_value(const glm::vec4& p, int plane) {
 }
 
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
-  return {a.position + (b.position - a.position) * t, a.color + (b.color - a.color) * t, a.tex + (b.tex - a.tex) * t};
+  ClipVertex out = a;
+  out.position = a.position + (b.position - a.position) * t;
+  out.color = a.color + (b.color - a.color) * t;
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) out.tex[u] = a.tex[u] + (b.tex[u] - a.tex[u]) * t;
+  return out;
 }
 
 }  // namespace
@@ -146,9 +150,12 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->g = to_unorm8(v.color.g);
   out->b = to_unorm8(v.color.b);
   out->a = to_unorm8(v.color.a);
-  out->s = v.tex.x;
-  out->t = v.tex.y;
-  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y);
+  bool finite = true;
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
+    out->tex[u] = {v.tex[u].x, v.tex[u].y};
+    finite = finite && std::isfinite(v.tex[u].x) && std::isfinite(v.tex[u].y);
+  }
+  return finite;
 }
 
 int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {

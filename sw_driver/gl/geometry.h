@@ -16,9 +16,9 @@
 namespace tessera::gl {
 
 struct ClipVertex {
-  glm::vec4 position;  // clip coordinates
-  glm::vec4 color;     // RGBA, [0, 1] after lighting or clamping
-  glm::vec2 tex;       // texture coordinates after the texture matrix
+  glm::vec4 position;                // clip coordinates
+  glm::vec4 color;                   // RGBA, [0, 1] after lighting or clamping
+  glm::vec2 tex[MAX_TEXTURE_UNITS];  // per unit, after the unit's texture matrix
 };
 
 // Clips a convex polygon against -w <= x, y, z <= w (and w > 0), one plane

@@ -68,10 +68,12 @@ RasterState Context::raster_state() const {
   s.logic_op = m_logic_op;
   s.scissor_test = m_scissor_test;
   s.polygon_smooth = m_polygon_smooth;
-  auto it = m_textures.find(m_bound_texture);
-  s.texture = m_texture_2d && it != m_textures.end() && it->second.defined;
-  if (s.texture) s.tex = it->second.texture;
-  s.tex_env = tex_env_value(m_tex_env_mode);
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
+    TextureUnit& unit = s.unit[u];
+    unit.enabled = unit_textured(u);
+    if (unit.enabled) unit.tex = m_textures.at(m_units[u].bound).texture;
+    set_unit_environment(m_units[u], &unit);
+  }
   return s;
 }
 

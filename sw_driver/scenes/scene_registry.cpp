@@ -4,12 +4,13 @@
 
 namespace tessera::scenes {
 
-Scene aapoly_scene();  // aapoly.cpp
+Scene aapoly_scene();        // aapoly.cpp
+Scene multitexture_scene();  // multitexture.cpp
 
 const std::vector<Scene>& all_scenes() {
-  static const std::vector<Scene> scenes = {triangle_scene(),      cubes_scene(),    fullscreen_rect_scene(),
-                                            textured_quad_scene(), teapot_scene(),   obj_viewer_scene(),
-                                            aapoly_scene(),        tile_grid_scene()};
+  static const std::vector<Scene> scenes = {triangle_scene(),      cubes_scene(),     fullscreen_rect_scene(),
+                                            textured_quad_scene(), teapot_scene(),    obj_viewer_scene(),
+                                            aapoly_scene(),        tile_grid_scene(), multitexture_scene()};
   return scenes;
 }
 

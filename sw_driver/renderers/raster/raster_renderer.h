@@ -18,6 +18,7 @@
 #include "raster/command_format.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/tile_binner.h"
+#include "renderers/common/unsupported_state.h"
 
 namespace tessera::raster_backend {
 
@@ -59,8 +60,12 @@ class RasterRenderer : public gl::Renderer {
   void run_rasterizer(uint32_t tile_table);
   uint32_t reg(uint32_t offset) const;
 
+  AppEnvironment& m_env;
   HostApi& m_host;
   DisplayDriver m_display;
+  // The rasterizer's one texture unit and three environments: the rest is
+  // reported (renderers/common/texture_units.h).
+  renderers::UnsupportedState m_unsupported{"raster"};
   renderers::TileBinner m_binner;  // the rasterizer's screen and tile size
   uint32_t m_depth_buffer = 0;
   uint32_t m_arena = 0, m_arena_bytes = 0;

@@ -22,7 +22,7 @@ ClipVertex vertex(float x, float y, float z, float w = 1) {
   ClipVertex v;
   v.position = {x, y, z, w};
   v.color = {x, y, z, w};
-  v.tex = {x * 2, y * 3};
+  v.tex[0] = {x * 2, y * 3};
   return v;
 }
 
@@ -31,8 +31,8 @@ void expect_attributes_follow_positions(const std::vector<ClipVertex>& polygon) 
     EXPECT_NEAR(v.color.r, v.position.x, 1e-5);
     EXPECT_NEAR(v.color.g, v.position.y, 1e-5);
     EXPECT_NEAR(v.color.b, v.position.z, 1e-5);
-    EXPECT_NEAR(v.tex.x, 2 * v.position.x, 1e-5);
-    EXPECT_NEAR(v.tex.y, 3 * v.position.y, 1e-5);
+    EXPECT_NEAR(v.tex[0].x, 2 * v.position.x, 1e-5);
+    EXPECT_NEAR(v.tex[0].y, 3 * v.position.y, 1e-5);
   }
 }
 
@@ -187,7 +187,7 @@ TEST(Viewport, NonFiniteHugeAndOffRangeVerticesAreRejected) {
   viewport.width = 100;
   EXPECT_FALSE(to_screen(vertex(-1, 0, 0), viewport, &s));
   ClipVertex bad_tex = vertex(0, 0, 0);
-  bad_tex.tex.x = nan;
+  bad_tex.tex[0].x = nan;
   viewport = Viewport{};
   viewport.width = viewport.height = 100;
   EXPECT_FALSE(to_screen(bad_tex, viewport, &s));
