@@ -12,6 +12,11 @@ point submitted to last result: what the workers share). The runs alternate
 (1 then 2 workers, then 2 then 1, ...) so that a change of the machine's
 load falls on both. Points: the teapot at 192 x 144 on arm and raster, four
 bus clocks, the display DMA off and on, --frames frames each, no PNG.
+
+A third pair of rows is the machine's own ceiling: the same 16 soc_sim
+commands started directly, one or two at a time, without Dask (a thread
+per slot waiting for its process). The sweep cannot scale better than two
+soc_sim processes scale on the machine's two cores.
 """
 
 from __future__ import annotations
@@ -23,6 +28,8 @@ import shutil
 import statistics
 import sys
 import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import redirect_stderr
 from io import StringIO
 from pathlib import Path
@@ -32,7 +39,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from tessera_sweep import Simulator  # noqa: E402
 from tessera_sweep.cli import DEFAULT_SOC_SIM  # noqa: E402
 from tessera_sweep.runner import run_sweep  # noqa: E402
-from tessera_sweep.spec import parse_spec  # noqa: E402
+from tessera_sweep.spec import expand, parse_spec  # noqa: E402
 
 
 def sweep_spec(frames: int):
@@ -58,6 +65,25 @@ def timed_sweep(spec, simulator, workers: int, scratch: Path) -> dict:
     return phases
 
 
+def direct_runs(spec, simulator, slots: int, scratch: Path) -> dict:
+    """The 16 points' soc_sim runs without Dask, `slots` at a time."""
+    points = expand(spec)
+    out = scratch / f"direct{slots}"
+    shutil.rmtree(out, ignore_errors=True)
+
+    def run(index: int):
+        return simulator.run(points[index].settings, list(points[index].args), out / str(index), spec.write_frames)
+
+    start = time.perf_counter()
+    with ThreadPoolExecutor(max_workers=slots) as pool:
+        results = list(pool.map(run, range(len(points))))
+    elapsed = time.perf_counter() - start
+    failed = [result.error for result in results if result.status != 0]
+    if failed:
+        raise SystemExit(f"bench_sweep: {len(failed)} direct runs failed: {failed[0]}")
+    return {"direct_s": elapsed}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=3, help="pairs of runs (default 3)")
@@ -73,15 +99,18 @@ def main() -> int:
         for repeat in range(options.repeat):
             for workers in ((1, 2) if repeat % 2 == 0 else (2, 1)):
                 times[workers].append(timed_sweep(spec, simulator, workers, Path(scratch)))
+                times[workers][-1].update(direct_runs(spec, simulator, workers, Path(scratch)))
                 phases = times[workers][-1]
                 print(f"  pair {repeat + 1}/{options.repeat}, {workers} worker(s): {phases['total_s']:.2f} s, "
-                      f"runs {phases['runs_s']:.2f} s", file=sys.stderr, flush=True)
+                      f"runs {phases['runs_s']:.2f} s, without Dask {phases['direct_s']:.2f} s",
+                      file=sys.stderr, flush=True)
     print(f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
           f"Python {platform.python_version()}; soc_sim {simulator.version}")
     print(f"16 points (teapot 192x144, {options.frames} frames each), {options.repeat} paired runs\n")
-    print("| what | local workers | min (s) | median (s) | speed-up (medians) |")
+    print("| what | local workers (or runs at a time) | min (s) | median (s) | speed-up (medians) |")
     print("|---|---|---|---|---|")
-    for phase, name in (("total_s", "whole sweep"), ("runs_s", "runs alone")):
+    for phase, name in (("total_s", "whole sweep"), ("runs_s", "runs alone"),
+                        ("direct_s", "soc_sim runs without Dask (ceiling)")):
         median = {workers: statistics.median(run[phase] for run in runs) for workers, runs in times.items()}
         for workers in (1, 2):
             print(f"| {name} | {workers} | {min(run[phase] for run in times[workers]):.2f} | "

@@ -17,10 +17,12 @@
 set -euo pipefail
 
 # top module | sources under rtl_models/ (space separated) | paper's cell count or -
-# Every unit also reads fixed_function_pkg.sv and ap_isa_pkg.sv, which this
-# script generates from tlm/common/fixed_function.def and tlm/array/isa/ with
-# cmake/fixed_function_pkg.cmake and cmake/ap_isa_pkg.cmake, as the build
-# does for Verilator.
+# Every unit also reads fixed_function_pkg.sv, ap_isa_pkg.sv and
+# fog_table_pkg.sv, which this script generates from
+# tlm/common/fixed_function.def, tlm/array/isa/ and
+# tlm/common/fog_exp2_table.def with cmake/fixed_function_pkg.cmake,
+# cmake/ap_isa_pkg.cmake and cmake/fog_table_pkg.cmake, as the build does for
+# Verilator.
 UNITS=(
   "recip_unit|raster/recip_unit.sv|1615"
   "edge_function|raster/edge_function.sv|-"
@@ -29,6 +31,7 @@ UNITS=(
   "blend_logic_op|raster/blend_logic_op.sv|-"
   "texel_address|raster/texel_address.sv|-"
   "texture_env|raster/texture_env.sv|-"
+  "fog_unit|raster/fog_unit.sv|-"
   "cu_datapath|array/cu_datapath.sv|-"
 )
 
@@ -61,6 +64,12 @@ if ! cmake -DISA_DIR="$ROOT/tlm/array/isa" -DOUT="$AP_PKG" -P "$ROOT/cmake/ap_is
   exit 1
 fi
 
+FOG_PKG="$LOG_DIR/fog_table_pkg.sv"
+if ! cmake -DDEF="$ROOT/tlm/common/fog_exp2_table.def" -DOUT="$FOG_PKG" -P "$ROOT/cmake/fog_table_pkg.cmake"; then
+  echo "synth_report: cannot generate fog_table_pkg.sv" >&2
+  exit 1
+fi
+
 status=0
 printf '%-20s %8s %8s %6s  %s\n' "unit" "cells" "cmos4" "flops" "paper (Table IV)"
 cmos4_cmds=""
@@ -72,7 +81,7 @@ for entry in "${UNITS[@]}"; do
   if [[ $# -gt 0 && ! " $* " =~ " $top " ]]; then
     continue
   fi
-  read_cmds="read_verilog -sv $PKG; read_verilog -sv $AP_PKG; "
+  read_cmds="read_verilog -sv $PKG; read_verilog -sv $AP_PKG; read_verilog -sv $FOG_PKG; "
   for src in $sources; do
     read_cmds+="read_verilog -sv $RTL_DIR/$src; "
   done

@@ -32,9 +32,11 @@ struct ArrayPointer {
   GLuint buffer = 0;  // bound GL_ARRAY_BUFFER when the pointer was set
 };
 
-struct TextureObject {
-  Texture texture;       // what the back ends see
-  bool defined = false;  // glTexImage2D has been called
+// One mipmap level as the application defined it: RGBA8 in system memory.
+struct TextureImage {
+  uint32_t address = 0;
+  unsigned width = 0, height = 0;
+  GLenum format = 0;  // the internal format it was given; 0: not defined
 };
 
 // The state of one texture unit (ES 1.1 section 3.7.12 and 2.10.2): the
@@ -56,7 +58,33 @@ struct TextureUnitState {
   std::vector<glm::mat4> matrix{glm::mat4(1)};
   glm::vec4 texcoord{0, 0, 0, 1};
   ArrayPointer texcoord_array;
+  bool coord_replace = false;  // GL_COORD_REPLACE_OES (glTexEnv GL_POINT_SPRITE_OES)
 };
+
+struct TextureObject {
+  // Sampling parameters (filters, wraps); the level chain is filled in for
+  // drawing (drawn_texture, textures.cpp). A new object has GL's default
+  // minification filter, GL_NEAREST_MIPMAP_LINEAR.
+  Texture texture = mipmapped_default();
+  bool defined = false;  // level 0 has texels
+  bool generate_mipmap = false;
+  TextureImage image[MAX_TEXTURE_LEVELS];
+
+  static Texture mipmapped_default() {
+    Texture t;
+    t.min_mipmap = MipmapFilter::linear;
+    return t;
+  }
+};
+
+// Whether `object` may be sampled (OpenGL ES 1.1 section 3.8.10): level 0
+// defined and, for a mipmap minification filter, every level down to 1 x 1
+// defined with half the size of the one before and level 0's format. An
+// incomplete texture disables texturing for its unit.
+bool texture_complete(const TextureObject& object);
+// The texture as the back ends draw it: parameters and levels (one level
+// unless the minification filter uses mipmaps). `object` is complete.
+Texture drawn_texture(const TextureObject& object);
 
 struct BufferObject {
   std::vector<uint8_t> data;
@@ -114,6 +142,12 @@ class Context {
   void fog(GLenum name, const float* values, int count);
   void clip_plane(GLenum plane, const float* equation);
   void get_clip_plane(GLenum plane, float* equation);
+  // glPointParameterf/fv: `count` values (3 for GL_POINT_DISTANCE_ATTENUATION).
+  void point_parameter(GLenum name, const float* values, int count);
+  // glTexEnv / glGetTexEnv with target GL_POINT_SPRITE_OES (GL_COORD_REPLACE_OES
+  // of the active texture unit).
+  void point_sprite_env(GLenum name, const float* values);
+  void get_point_sprite_env(GLenum name, float* values);
 
   // Matrices
   void matrix_mode(GLenum mode);
@@ -135,6 +169,7 @@ class Context {
   ArrayPointer& color_array() { return m_color_array; }
   ArrayPointer& normal_array() { return m_normal_array; }
   ArrayPointer& texcoord_array() { return client_unit().texcoord_array; }
+  ArrayPointer& point_size_array() { return m_point_size_array; }
   void active_texture(GLenum unit, bool client);
 
   // Lighting
@@ -153,6 +188,9 @@ class Context {
                  GLenum format, GLenum type, const void* pixels);
   void tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
                      GLenum type, const void* pixels);
+  // A level of OES_compressed_paletted_texture; level <= 0 gives 1 - level levels.
+  void compressed_tex_image(GLenum target, GLint level, GLenum internal_format, GLsizei width, GLsizei height,
+                            GLint border, GLsizei image_size, const void* data);
   void tex_parameter(GLenum target, GLenum name, float value);
   void get_tex_parameter(GLenum target, GLenum name, float* value);
   void tex_env(GLenum target, GLenum name, const float* values, int count);
@@ -186,12 +224,26 @@ class Context {
     glm::vec4 eye;
     bool valid;
   };
+  // What emit_triangle is given: a polygon (culled, offset, two-sided lit)
+  // or the two triangles of a point or a line (none of these).
+  enum class Primitive { polygon, point_or_line };
   // `indexed`: the indices come from glDrawElements and may repeat, so
   // they go through the vertex cache; glDrawArrays' never repeat.
   void fetch_and_transform(const std::vector<uint32_t>& indices, bool indexed, std::vector<Vertex>& out);
   void draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed);
-  void emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color);
-  void emit_quad(const glm::vec2 corners[4], const Vertex& source, float depth_ndc_w_z, float w);
+  // `flat_back_color`: the provoking vertex's back colour (two-sided lighting, flat shading).
+  void emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color,
+                     Primitive primitive = Primitive::polygon, const glm::vec4* flat_back_color = nullptr);
+  // The user clip planes enabled, in eye coordinates.
+  const std::vector<glm::vec4>& enabled_user_planes();
+  // The point's size after the point-size array or glPointSize, distance
+  // attenuation and clamping (GL ES 1.1 section 3.3).
+  float derived_point_size(uint32_t index, const glm::vec4& eye);
+  bool two_sided_lighting() const { return m_lighting && m_two_side; }
+  void emit_quad(const glm::vec2 corners[4], const Vertex& source, const glm::vec2* tex);
+  // Adds the polygon offset to the window depth of `screen` (the clipped
+  // `polygon`'s vertices); false if a vertex cannot be placed.
+  bool apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::vector<ScreenVertex>& screen);
   void flush_triangles();
   RasterState raster_state() const;
   const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
@@ -201,6 +253,12 @@ class Context {
   TextureUnitState& client_unit() { return m_units[m_client_active_texture - GL_TEXTURE0]; }
   // Whether unit u draws: enabled, with a defined texture bound.
   bool unit_textured(unsigned u) const;
+  // Level `level` of the bound texture as `width` x `height` RGBA8 words
+  // (re)allocated in system memory, with `rows` written if not null.
+  void store_level(TextureObject* object, unsigned level, unsigned width, unsigned height, GLenum format,
+                   const uint32_t* rows);
+  // GL_GENERATE_MIPMAP: levels 1.. from level 0 by the box filter.
+  void generate_mipmaps(TextureObject* object);
   void charge(const FloatCost& cost, uint64_t times);
 
   HostApi& m_host;
@@ -215,8 +273,9 @@ class Context {
   bool m_color_material = false, m_fog = false, m_multisample = true, m_polygon_offset_fill = false;
   bool m_sample_alpha_to_coverage = false, m_sample_alpha_to_one = false, m_sample_coverage = false;
   bool m_point_smooth = false, m_line_smooth = false, m_polygon_smooth = false;
-  std::array<bool, 6> m_clip_plane_enabled{};
-  std::array<glm::vec4, 6> m_clip_planes{};
+  std::array<bool, MAX_USER_CLIP_PLANES> m_clip_plane_enabled{};
+  std::array<glm::vec4, MAX_USER_CLIP_PLANES> m_clip_planes{};
+  std::vector<glm::vec4> m_enabled_user_planes;  // scratch of enabled_user_planes()
   GLenum m_cull_mode = GL_BACK, m_front_face = GL_CCW, m_shade_model = GL_SMOOTH;
   float m_clear_color[4] = {0, 0, 0, 0};
   float m_clear_depth = 1;
@@ -225,6 +284,10 @@ class Context {
   GLint m_stencil_ref = 0;
   float m_alpha_ref = 0;
   float m_point_size = 1, m_line_width = 1;
+  // Points: OES_point_sprite, glPointParameter (ES 1.1 table 6.10's initial values).
+  bool m_point_sprite = false;
+  float m_point_size_min = 0, m_point_size_max = MAX_POINT_SIZE, m_point_fade_threshold = 1;
+  glm::vec3 m_point_distance_attenuation{1, 0, 0};
   float m_polygon_offset[2] = {0, 0};
   GLint m_pack_alignment = 4, m_unpack_alignment = 4;
   std::map<GLenum, GLenum> m_hints;
@@ -241,6 +304,7 @@ class Context {
   glm::vec4 m_color{1, 1, 1, 1};
   glm::vec3 m_normal{0, 0, 1};
   ArrayPointer m_vertex_array, m_color_array, m_normal_array;
+  ArrayPointer m_point_size_array{false, 1, GL_FLOAT, 0, nullptr, 0};  // OES_point_size_array
   GLenum m_active_texture = GL_TEXTURE0, m_client_active_texture = GL_TEXTURE0;
 
   // Lighting

@@ -80,12 +80,32 @@ inline bool blend_factor(GLenum factor, bool source, BlendFactor* out) {
   return code.has_value();
 }
 
-// There are no mipmaps: a mipmap minification filter acts as the filter
-// within its base level.
-inline bool tex_filter_value(GLenum filter, bool minification, TexFilter* out) {
-  if (minification && (filter == GL_NEAREST_MIPMAP_NEAREST || filter == GL_NEAREST_MIPMAP_LINEAR)) filter = GL_NEAREST;
-  if (minification && (filter == GL_LINEAR_MIPMAP_NEAREST || filter == GL_LINEAR_MIPMAP_LINEAR)) filter = GL_LINEAR;
+inline bool tex_filter_value(GLenum filter, TexFilter* out) {
   return fixed_function_value(filter, out);
+}
+
+// A minification filter: the filter within a level and how levels are chosen.
+inline bool tex_min_filter_value(GLenum filter, TexFilter* within, MipmapFilter* mipmap) {
+  switch (filter) {
+    case GL_NEAREST_MIPMAP_NEAREST: *within = TexFilter::nearest, *mipmap = MipmapFilter::nearest; return true;
+    case GL_LINEAR_MIPMAP_NEAREST: *within = TexFilter::linear, *mipmap = MipmapFilter::nearest; return true;
+    case GL_NEAREST_MIPMAP_LINEAR: *within = TexFilter::nearest, *mipmap = MipmapFilter::linear; return true;
+    case GL_LINEAR_MIPMAP_LINEAR: *within = TexFilter::linear, *mipmap = MipmapFilter::linear; return true;
+    default:
+      if (!fixed_function_value(filter, within)) return false;
+      *mipmap = MipmapFilter::none;
+      return true;
+  }
+}
+
+inline GLenum tex_min_filter_enum(TexFilter within, MipmapFilter mipmap) {
+  const bool linear = within == TexFilter::linear;
+  switch (mipmap) {
+    case MipmapFilter::nearest: return linear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
+    case MipmapFilter::linear: return linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR;
+    case MipmapFilter::none: break;
+  }
+  return linear ? GL_LINEAR : GL_NEAREST;
 }
 
 inline bool tex_wrap_value(GLenum wrap, TexWrap* out) {

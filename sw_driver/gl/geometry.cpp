@@ -22,11 +22,37 @@ float plane_value(const glm::vec4& p, int plane) {
 }
 
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
-  ClipVertex out = a;
-  out.position = a.position + (b.position - a.position) * t;
-  out.color = a.color + (b.color - a.color) * t;
-  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) out.tex[u] = a.tex[u] + (b.tex[u] - a.tex[u]) * t;
-  return out;
+  ClipVertex v = a;
+  v.position = a.position + (b.position - a.position) * t;
+  v.color = a.color + (b.color - a.color) * t;
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) v.tex[u] = a.tex[u] + (b.tex[u] - a.tex[u]) * t;
+  v.eye = a.eye + (b.eye - a.eye) * t;
+  v.back_color = a.back_color + (b.back_color - a.back_color) * t;
+  v.fog = a.fog + (b.fog - a.fog) * t;
+  return v;
+}
+
+// One Sutherland-Hodgman pass against the plane whose signed value at a
+// vertex `distance` gives (>= 0: inside).
+template <typename Distance>
+void clip_against(std::vector<ClipVertex>& current, std::vector<ClipVertex>& next, Distance distance) {
+  next.clear();
+  for (size_t i = 0; i < current.size(); ++i) {
+    const ClipVertex& a = current[i];
+    const ClipVertex& b = current[(i + 1) % current.size()];
+    const float da = distance(a);
+    const float db = distance(b);
+    if (da >= 0) next.push_back(a);
+    // An edge crossing the plane contributes its intersection; computing t
+    // from the inside end keeps shared edges of neighbours identical.
+    if ((da >= 0) != (db >= 0)) {
+      if (da >= 0)
+        next.push_back(lerp(a, b, da / (da - db)));
+      else
+        next.push_back(lerp(b, a, db / (db - da)));
+    }
+  }
+  current.swap(next);
 }
 
 }  // namespace
@@ -38,28 +64,49 @@ bool inside_view_volume(const ClipVertex& v) {
 }
 
 std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon) {
+  return clip_polygon(polygon, {});
+}
+
+std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon,
+                                     const std::vector<glm::vec4>& user_planes) {
   std::vector<ClipVertex> current = polygon, next;
-  for (int plane = 0; plane < 7 && !current.empty(); ++plane) {
-    next.clear();
-    for (size_t i = 0; i < current.size(); ++i) {
-      const ClipVertex& a = current[i];
-      const ClipVertex& b = current[(i + 1) % current.size()];
-      const float da = plane_value(a.position, plane);
-      const float db = plane_value(b.position, plane);
-      if (da >= 0) next.push_back(a);
-      // An edge crossing the plane contributes its intersection; computing t
-      // from the inside end keeps shared edges of neighbours identical.
-      if ((da >= 0) != (db >= 0)) {
-        if (da >= 0)
-          next.push_back(lerp(a, b, da / (da - db)));
-        else
-          next.push_back(lerp(b, a, db / (db - da)));
-      }
-    }
-    current.swap(next);
+  for (int plane = 0; plane < 7 && !current.empty(); ++plane)
+    clip_against(current, next, [plane](const ClipVertex& v) { return plane_value(v.position, plane); });
+  for (const glm::vec4& plane : user_planes) {
+    if (current.empty()) break;
+    clip_against(current, next, [&plane](const ClipVertex& v) { return glm::dot(plane, v.eye); });
   }
   if (current.size() < 3) current.clear();
   return current;
+}
+
+ClipVertex interpolate(const ClipVertex& a, const ClipVertex& b, float t) {
+  return lerp(a, b, t);
+}
+
+bool inside_user_planes(const ClipVertex& v, const std::vector<glm::vec4>& user_planes) {
+  for (const glm::vec4& plane : user_planes)
+    if (!(glm::dot(plane, v.eye) >= 0)) return false;
+  return true;
+}
+
+bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes, float* t0,
+                  float* t1) {
+  float start = 0, end = 1;
+  for (const glm::vec4& plane : user_planes) {
+    const float da = glm::dot(plane, eye_a), db = glm::dot(plane, eye_b);
+    const bool a_in = da >= 0, b_in = db >= 0;
+    if (!a_in && !b_in) return false;
+    if (a_in && b_in) continue;
+    const float t = da / (da - db);  // where the value crosses 0
+    if (a_in)
+      end = std::min(end, t);
+    else
+      start = std::max(start, t);
+    if (!(start <= end)) return false;
+  }
+  *t0 = start, *t1 = end;
+  return true;
 }
 
 uint8_t to_unorm8(float value) {
@@ -130,6 +177,11 @@ double screen_coordinate(double window) {
 
 }  // namespace
 
+double window_depth(const glm::vec4& p, const Viewport& viewport) {
+  const double zn = p.z * (1.0 / p.w);
+  return (zn * (viewport.far_depth - viewport.near_depth) + viewport.far_depth + viewport.near_depth) * 0.5;
+}
+
 bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out) {
   const glm::vec4& p = v.position;
   WindowPoint window;
@@ -150,12 +202,51 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->g = to_unorm8(v.color.g);
   out->b = to_unorm8(v.color.b);
   out->a = to_unorm8(v.color.a);
-  bool finite = true;
+  bool finite = std::isfinite(v.fog);
   for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
     out->tex[u] = {v.tex[u].x, v.tex[u].y};
     finite = finite && std::isfinite(v.tex[u].x) && std::isfinite(v.tex[u].y);
   }
+  out->fog = v.fog;
+  out->x_window = static_cast<float>(window.x);
+  out->y_window = static_cast<float>(window.y);
   return finite;
+}
+
+bool to_screen(const ClipVertex& v, const Viewport& viewport, double depth_offset, ScreenVertex* out) {
+  if (!to_screen(v, viewport, out)) return false;
+  if (depth_offset == 0) return true;
+  const double low = std::min(viewport.near_depth, viewport.far_depth);
+  const double high = std::max(viewport.near_depth, viewport.far_depth);
+  const double z = std::clamp(window_depth(v.position, viewport) + depth_offset, low, high);
+  if (!std::isfinite(z)) return false;
+  out->z = to_unorm24(static_cast<float>(z));
+  return true;
+}
+
+double depth_slope(const std::vector<WindowDepthPoint>& polygon) {
+  // Newell's normal (nx, ny, nz) of the polygon's plane; on the plane
+  // nx dx + ny dy + nz dz = 0, so dz/dx = -nx / nz and dz/dy = -ny / nz.
+  double nx = 0, ny = 0, nz = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const WindowDepthPoint& a = polygon[i];
+    const WindowDepthPoint& b = polygon[(i + 1) % polygon.size()];
+    nx += (a.y - b.y) * (a.z + b.z);
+    ny += (a.z - b.z) * (a.x + b.x);
+    nz += (a.x - b.x) * (a.y + b.y);
+  }
+  if (!(std::fabs(nz) > 0)) return 0;
+  const double slope = std::max(std::fabs(nx / nz), std::fabs(ny / nz));
+  return std::isfinite(slope) ? slope : 0;
+}
+
+double minimum_resolvable_depth(unsigned depth_bits) {
+  const unsigned bits = depth_bits == 0 ? 24 : std::min(depth_bits, 32u);
+  return 1.0 / (std::ldexp(1.0, static_cast<int>(bits)) - 1.0);
+}
+
+double polygon_depth_offset(double slope, float factor, float units, unsigned depth_bits) {
+  return slope * factor + minimum_resolvable_depth(depth_bits) * units;
 }
 
 int64_t signed_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) {

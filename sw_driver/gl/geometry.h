@@ -19,6 +19,11 @@ struct ClipVertex {
   glm::vec4 position;                // clip coordinates
   glm::vec4 color;                   // RGBA, [0, 1] after lighting or clamping
   glm::vec2 tex[MAX_TEXTURE_UNITS];  // per unit, after the unit's texture matrix
+  glm::vec4 eye{0, 0, 0, 1};         // eye coordinates, for the user clip planes
+  // The colour of a back-facing polygon's vertex under two-sided lighting
+  // (lit with the reversed normal); the front colour otherwise.
+  glm::vec4 back_color{0, 0, 0, 0};
+  float fog = 0;  // fog coordinate, |z_eye| (ScreenVertex::fog)
 };
 
 // Clips a convex polygon against -w <= x, y, z <= w (and w > 0), one plane
@@ -28,6 +33,32 @@ std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon);
 
 // True if every vertex is inside the view volume (no clipping needed).
 bool inside_view_volume(const ClipVertex& v);
+
+// User clip planes (glClipPlanef, GL ES 1.1 section 2.11), in eye
+// coordinates: a vertex is inside plane p when dot(p, eye) >= 0. The driver
+// offers MAX_USER_CLIP_PLANES of them (the profile asks for at least one).
+inline constexpr unsigned MAX_USER_CLIP_PLANES = 6;
+
+// GL_ALIASED_POINT_SIZE_RANGE (and the smooth one, and the line widths):
+// the sizes a point is clamped to after distance attenuation.
+inline constexpr float MIN_POINT_SIZE = 1, MAX_POINT_SIZE = 64;
+
+// As clip_polygon, then against each of `user_planes` (eye space) in turn,
+// interpolating the eye coordinates with the other attributes. With no
+// user planes it is clip_polygon.
+std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon, const std::vector<glm::vec4>& user_planes);
+
+// The vertex at t along a -> b (0 at a), every attribute interpolated
+// linearly in clip space, as the clipper does.
+ClipVertex interpolate(const ClipVertex& a, const ClipVertex& b, float t);
+
+// True if the vertex is inside every one of `user_planes`.
+bool inside_user_planes(const ClipVertex& v, const std::vector<glm::vec4>& user_planes);
+
+// Clips the segment a-b (parameters 0 at a, 1 at b) against `user_planes`:
+// false if nothing is left, else the parameters of the part inside.
+bool clip_segment(const glm::vec4& eye_a, const glm::vec4& eye_b, const std::vector<glm::vec4>& user_planes, float* t0,
+                  float* t1);
 
 struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;
@@ -68,6 +99,34 @@ inline constexpr unsigned SURELY_HAS_AREA_ALU = 10;  // its cost beside signed_a
 // whose coordinates are not finite or fall outside the 9.4 range (the caller
 // drops the triangle).
 bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out);
+
+// As to_screen, with `depth_offset` added to the window depth, which is then
+// clamped to the depth range (polygon offset).
+bool to_screen(const ClipVertex& v, const Viewport& viewport, double depth_offset, ScreenVertex* out);
+
+// The window depth of a clip-space position (glDepthRangef), unclamped.
+double window_depth(const glm::vec4& clip, const Viewport& viewport);
+
+// Polygon offset (glPolygonOffset, GL ES 1.1 section 3.5.5) --------------------
+
+// A polygon's vertex in window coordinates with its window depth (before
+// snapping), for the depth slope.
+struct WindowDepthPoint {
+  double x = 0, y = 0, z = 0;
+};
+
+// The polygon's maximum depth slope m = max(|dz/dx|, |dz/dy|) in window
+// coordinates, from the plane through its vertices (Newell's normal, so any
+// convex polygon, clipped or not); 0 for a polygon seen edge-on.
+double depth_slope(const std::vector<WindowDepthPoint>& polygon);
+
+// The smallest resolvable difference r of a depth buffer of `depth_bits`
+// bits: one step of its unsigned normalised codes, 1 / (2^bits - 1), as
+// Mesa takes it (depth_bits 0, no depth buffer, counts as 24).
+double minimum_resolvable_depth(unsigned depth_bits);
+
+// o = m * factor + r * units.
+double polygon_depth_offset(double slope, float factor, float units, unsigned depth_bits);
 
 // Twice the signed area of a screen triangle in 9.4 units squared (> 0:
 // counter-clockwise with y up).
@@ -110,7 +169,12 @@ struct LightingModel {
 
 // The lit colour of a vertex at eye position `eye` with unit eye-space
 // normal `normal` (ES 1.1 eq. 2.1, local viewer false as ES mandates),
-// clamped to [0, 1]. Alpha is the material's diffuse alpha.
+// clamped to [0, 1]. Alpha is the material's diffuse alpha. Attenuation
+// applies to positional lights (w != 0) only; the spot factor to every
+// light whose cutoff is not 180, a directional one taking its direction
+// as the light's (as Mesa's fixed-function vertex program does). The back colour of two-sided lighting is the
+// same call with the normal reversed (ES 1.1 has one material for both
+// faces: glMaterial takes only GL_FRONT_AND_BACK).
 glm::vec4 light_vertex(const LightingModel& model, const Material& material, const glm::vec4& eye,
                        const glm::vec3& normal);
 

@@ -3,6 +3,7 @@
 // query returns 0), as the GL leaves that case undefined.
 #include <GLES/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "gl/context.h"
 #include "gl/context_internal.h"
 #include "gl/entry_point.h"
+#include "gl/texture_formats.h"
 
 using tessera::gl::Context;
 
@@ -136,6 +138,11 @@ GL_API void GL_APIENTRY glTexCoordPointer(GLint size, GLenum type, GLsizei strid
   WITH_CONTEXT()
   c->array_pointer(c->texcoord_array(), size, type, stride, pointer, size >= 2 && size <= 4,
                    type == GL_BYTE || type == GL_SHORT || type == GL_FIXED || type == GL_FLOAT);
+}
+// OES_point_size_array: one size per vertex, GL_FIXED or GL_FLOAT.
+GL_API void GL_APIENTRY glPointSizePointerOES(GLenum type, GLsizei stride, const void* pointer) {
+  WITH_CONTEXT()
+  c->array_pointer(c->point_size_array(), 1, type, stride, pointer, true, type == GL_FIXED || type == GL_FLOAT);
 }
 GL_API void GL_APIENTRY glDrawArrays(GLenum mode, GLint first, GLsizei count) {
   WITH_CONTEXT()
@@ -295,17 +302,12 @@ GL_API void GL_APIENTRY glPointSize(GLfloat size) {
   WITH_CONTEXT() c->point_size(size);
 }
 GL_API void GL_APIENTRY glPointParameterf(GLenum pname, GLfloat param) {
-  WITH_CONTEXT()
-  c->charge_call();
-  if (pname != GL_POINT_SIZE_MIN && pname != GL_POINT_SIZE_MAX && pname != GL_POINT_FADE_THRESHOLD_SIZE)
-    return c->error(GL_INVALID_ENUM);
-  if (param < 0) c->error(GL_INVALID_VALUE);
+  WITH_CONTEXT() c->point_parameter(pname, &param, 1);
 }
 GL_API void GL_APIENTRY glPointParameterfv(GLenum pname, const GLfloat* params) {
   WITH_CONTEXT()
-  c->charge_call();
-  if (pname == GL_POINT_DISTANCE_ATTENUATION) return;
-  glPointParameterf(pname, params[0]);
+  if (!params) return c->error(GL_INVALID_VALUE);
+  c->point_parameter(pname, params, pname == GL_POINT_DISTANCE_ATTENUATION ? 3 : 1);
 }
 GL_API void GL_APIENTRY glLineWidth(GLfloat width) {
   WITH_CONTEXT() c->line_width(width);
@@ -400,17 +402,18 @@ GL_API void GL_APIENTRY glTexSubImage2D(GLenum target, GLint level, GLint xoffse
   WITH_CONTEXT()
   c->tex_sub_image(target, level, xoffset, yoffset, width, height, format, type, pixels);
 }
-// No compressed formats are supported (GL_NUM_COMPRESSED_TEXTURE_FORMATS is 0).
-GL_API void GL_APIENTRY glCompressedTexImage2D(GLenum, GLint, GLenum, GLsizei, GLsizei, GLint, GLsizei, const void*) {
+// The compressed formats are OES_compressed_paletted_texture's ten.
+GL_API void GL_APIENTRY glCompressedTexImage2D(GLenum target, GLint level, GLenum internalformat, GLsizei width,
+                                               GLsizei height, GLint border, GLsizei image_size, const void* data) {
   WITH_CONTEXT()
-  c->charge_call();
-  c->error(GL_INVALID_ENUM);
+  c->compressed_tex_image(target, level, internalformat, width, height, border, image_size, data);
 }
-GL_API void GL_APIENTRY glCompressedTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLsizei,
+// A paletted texture cannot be updated in part (OES_compressed_paletted_texture).
+GL_API void GL_APIENTRY glCompressedTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum format, GLsizei,
                                                   const void*) {
   WITH_CONTEXT()
   c->charge_call();
-  c->error(GL_INVALID_ENUM);
+  c->error(tessera::gl::find_palette_format(format) ? GL_INVALID_OPERATION : GL_INVALID_ENUM);
 }
 GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
                                          GLsizei width, GLsizei height, GLint border) {
@@ -423,7 +426,29 @@ GL_API void GL_APIENTRY glCopyTexImage2D(GLenum target, GLint level, GLenum inte
     return c->error(GL_INVALID_VALUE);
   std::vector<uint8_t> pixels(static_cast<size_t>(width) * height * 4);
   if (!pixels.empty()) c->read_pixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  c->tex_image(target, level, GL_RGBA, width, height, border, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  // The level gets the internal format asked for (texture completeness
+  // compares the levels' formats): the frame's RGBA repacked to its
+  // components, rows padded to GL_UNPACK_ALIGNMENT as tex_image reads them.
+  const unsigned bytes = tessera::gl::pixel_bytes(internalformat, GL_UNSIGNED_BYTE);
+  float alignment_value = 4;
+  c->get_floats(GL_UNPACK_ALIGNMENT, &alignment_value);
+  const auto alignment = static_cast<size_t>(alignment_value);
+  const size_t stride = (static_cast<size_t>(width) * bytes + alignment - 1) / alignment * alignment;
+  std::vector<uint8_t> packed(stride * static_cast<size_t>(height));
+  for (GLsizei j = 0; j < height; ++j) {
+    for (GLsizei i = 0; i < width; ++i) {
+      const uint8_t* in = &pixels[(static_cast<size_t>(j) * width + i) * 4];
+      uint8_t* out = &packed[j * stride + static_cast<size_t>(i) * bytes];
+      switch (internalformat) {
+        case GL_LUMINANCE: out[0] = in[0]; break;
+        case GL_ALPHA: out[0] = in[3]; break;
+        case GL_LUMINANCE_ALPHA: out[0] = in[0], out[1] = in[3]; break;
+        default: std::copy(in, in + bytes, out);  // RGB, RGBA
+      }
+    }
+  }
+  c->tex_image(target, level, static_cast<GLint>(internalformat), width, height, border, internalformat,
+               GL_UNSIGNED_BYTE, packed.data());
 }
 GL_API void GL_APIENTRY glCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                                             GLsizei width, GLsizei height) {
@@ -462,11 +487,13 @@ GL_API void GL_APIENTRY glGetTexParameteriv(GLenum target, GLenum pname, GLint* 
 }
 GL_API void GL_APIENTRY glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->point_sprite_env(pname, &param);
   if (pname == GL_TEXTURE_ENV_COLOR) return c->error(GL_INVALID_ENUM);
   c->tex_env(target, pname, &param, 1);
 }
 GL_API void GL_APIENTRY glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->point_sprite_env(pname, params);
   c->tex_env(target, pname, params, pname == GL_TEXTURE_ENV_COLOR ? 4 : 1);
 }
 GL_API void GL_APIENTRY glTexEnvi(GLenum target, GLenum pname, GLint param) {
@@ -484,12 +511,16 @@ GL_API void GL_APIENTRY glTexEnviv(GLenum target, GLenum pname, const GLint* par
 }
 GL_API void GL_APIENTRY glGetTexEnvfv(GLenum target, GLenum pname, GLfloat* params) {
   WITH_CONTEXT()
+  if (target == GL_POINT_SPRITE_OES) return c->get_point_sprite_env(pname, params);
   c->get_tex_env(target, pname, params);
 }
 GL_API void GL_APIENTRY glGetTexEnviv(GLenum target, GLenum pname, GLint* params) {
   WITH_CONTEXT()
   float v[4] = {0, 0, 0, 0};
-  c->get_tex_env(target, pname, v);
+  if (target == GL_POINT_SPRITE_OES)
+    c->get_point_sprite_env(pname, v);
+  else
+    c->get_tex_env(target, pname, v);
   if (pname == GL_TEXTURE_ENV_COLOR)
     for (int i = 0; i < 4; ++i) params[i] = tessera::gl::int_from_float(v[i] * 2147483647.0);
   else

@@ -16,14 +16,26 @@
 
 namespace tessera::gl {
 
-void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color) {
+void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, const glm::vec4* flat_color,
+                            Primitive primitive, const glm::vec4* flat_back_color) {
   if (!a.valid || !b.valid || !c.valid) return;  // non-finite vertices: dropped
+  const bool polygon_rules = primitive == Primitive::polygon;
   std::vector<ClipVertex> polygon = {a.clip, b.clip, c.clip};
   if (flat_color)
     for (auto& v : polygon) v.color = *flat_color;
-  const bool inside = inside_view_volume(a.clip) && inside_view_volume(b.clip) && inside_view_volume(c.clip);
+  if (flat_back_color)
+    for (auto& v : polygon) v.back_color = *flat_back_color;
+  // Points and lines met the user clip planes before they became triangles.
+  static const std::vector<glm::vec4> no_planes;
+  const std::vector<glm::vec4>& user_planes = polygon_rules ? m_enabled_user_planes : no_planes;
+  bool inside = inside_view_volume(a.clip) && inside_view_volume(b.clip) && inside_view_volume(c.clip);
+  if (!user_planes.empty()) {
+    charge({3, 4, 0, 0, 1, 0, 0}, 3 * user_planes.size());
+    inside = inside && inside_user_planes(a.clip, user_planes) && inside_user_planes(b.clip, user_planes) &&
+             inside_user_planes(c.clip, user_planes);
+  }
   if (!inside) {
-    polygon = clip_polygon(polygon);
+    polygon = clip_polygon(polygon, user_planes);
     charge({12, 12, 1, 0, 7, 0, 0}, polygon.size());
     if (polygon.size() < 3) return;
   }
@@ -47,7 +59,21 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
   }
   if (area == 0) return;  // a thin polygon whose vertices snapped onto one line
   const bool front = (area > 0) == (m_front_face == GL_CCW);
-  if (m_cull && (m_cull_mode == GL_FRONT_AND_BACK || (m_cull_mode == GL_BACK) != front)) return;
+  // Culling, two-sided lighting and polygon offset concern polygons only:
+  // a point or a line is two triangles here, but neither faces anywhere.
+  if (polygon_rules) {
+    if (m_cull && (m_cull_mode == GL_FRONT_AND_BACK || (m_cull_mode == GL_BACK) != front)) return;
+    if (!front && two_sided_lighting()) {
+      for (size_t i = 0; i < polygon.size(); ++i) {
+        const glm::vec4& back = polygon[i].back_color;
+        screen[i].r = to_unorm8(back.r), screen[i].g = to_unorm8(back.g), screen[i].b = to_unorm8(back.b);
+        screen[i].a = to_unorm8(back.a);
+      }
+      m_host.compute(Op::alu, 4 * polygon.size());
+    }
+    if (m_polygon_offset_fill && (m_polygon_offset[0] != 0 || m_polygon_offset[1] != 0))
+      if (!apply_polygon_offset(polygon, screen)) return;
+  }
   for (size_t i = 1; i + 1 < screen.size(); ++i) {
     // The provoking vertex (flat shading) is the last one: keep the
     // triangle's original last vertex last.
@@ -56,6 +82,50 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     m_batch.push_back(t);
   }
   if (m_batch.size() >= BATCH_TRIANGLES) flush_triangles();
+}
+
+bool Context::apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::vector<ScreenVertex>& screen) {
+  // The offset is constant over the polygon (GL ES 1.1 section 3.5.5), so
+  // adding it to each vertex's window depth before the back end
+  // interpolates gives every fragment the same offset depth.
+  std::vector<WindowDepthPoint> points(polygon.size());
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    WindowPoint w;
+    if (!to_window(polygon[i].position, m_viewport, &w)) return false;
+    points[i] = {w.x, w.y, window_depth(polygon[i].position, m_viewport)};
+  }
+  const double offset = polygon_depth_offset(depth_slope(points), m_polygon_offset[0], m_polygon_offset[1],
+                                             m_renderer->capabilities().depth_bits);
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    ScreenVertex shifted;
+    if (!to_screen(polygon[i], m_viewport, offset, &shifted)) return false;
+    screen[i].z = shifted.z;
+  }
+  charge({9 * polygon.size() + 2, 6 * polygon.size() + 2, 2, 0, 4 + 2 * polygon.size(), 1, 0}, 1);
+  return true;
+}
+
+const std::vector<glm::vec4>& Context::enabled_user_planes() {
+  m_enabled_user_planes.clear();
+  for (size_t i = 0; i < m_clip_planes.size(); ++i)
+    if (m_clip_plane_enabled[i]) m_enabled_user_planes.push_back(m_clip_planes[i]);
+  return m_enabled_user_planes;
+}
+
+float Context::derived_point_size(uint32_t index, const glm::vec4& eye) {
+  float size = m_point_size;
+  if (m_point_size_array.enabled) size = read_attribute(m_point_size_array, index, {1, 0, 0, 1}).x;
+  const glm::vec3& a = m_point_distance_attenuation;
+  if (a != glm::vec3(1, 0, 0)) {
+    // d: the eye-coordinate distance from the eye, (0, 0, 0, 1).
+    const float d = glm::length(glm::vec3(eye) / (eye.w != 0 ? eye.w : 1.0f));
+    size *= std::sqrt(1.0f / (a.x + a.y * d + a.z * d * d));
+    charge({3, 6, 2, 2, 0, 0, 0}, 1);
+  }
+  // Clamped to GL_POINT_SIZE_MIN/MAX, then to the sizes the driver draws.
+  // A size that is not a number stays one, and the point is dropped.
+  size = std::min(std::max(size, m_point_size_min), m_point_size_max);
+  return std::min(std::max(size, MIN_POINT_SIZE), MAX_POINT_SIZE);
 }
 
 RasterState Context::raster_state() const {
@@ -71,9 +141,15 @@ RasterState Context::raster_state() const {
   for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
     TextureUnit& unit = s.unit[u];
     unit.enabled = unit_textured(u);
-    if (unit.enabled) unit.tex = m_textures.at(m_units[u].bound).texture;
+    if (unit.enabled) unit.tex = drawn_texture(m_textures.at(m_units[u].bound));
     set_unit_environment(m_units[u], &unit);
   }
+  s.fog = m_fog;
+  s.fog_mode = from_gl_enum<FogMode>(m_fog_mode).value_or(FogMode::exp);
+  s.fog_density = m_fog_density;
+  s.fog_start = m_fog_start;
+  s.fog_end = m_fog_end;
+  for (int i = 0; i < 4; ++i) s.fog_color[i] = to_unorm8(m_fog_color[i]);
   return s;
 }
 
@@ -83,10 +159,12 @@ void Context::flush_triangles() {
   m_batch.clear();
 }
 
-void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, float, float) {
-  // Points and lines become two triangles in window space; the corners are
-  // turned back into clip coordinates with the source vertex's w so that the
-  // normal path (clipping, viewport) applies.
+void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const glm::vec2* tex) {
+  // Points become two triangles in window space; the corners are turned
+  // back into clip coordinates with the source vertex's w so that the
+  // normal path (clipping, viewport) applies. `tex`, if given, replaces the
+  // texture coordinates corner by corner (point sprites) in each unit whose
+  // GL_COORD_REPLACE_OES is on.
   const glm::vec4& p = source.clip.position;
   Vertex v[4];
   for (int i = 0; i < 4; ++i) {
@@ -94,20 +172,25 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, float,
     const float xn = (corners[i].x - m_viewport.x) * 2.0f / m_viewport.width - 1.0f;
     const float yn = (corners[i].y - m_viewport.y) * 2.0f / m_viewport.height - 1.0f;
     v[i].clip.position = {xn * p.w, yn * p.w, p.z, p.w};
+    if (tex)
+      for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u)
+        if (m_units[u].coord_replace) v[i].clip.tex[u] = tex[i];
   }
-  emit_triangle(v[0], v[1], v[2], nullptr);
-  emit_triangle(v[0], v[2], v[3], nullptr);
+  emit_triangle(v[0], v[1], v[2], nullptr, Primitive::point_or_line);
+  emit_triangle(v[0], v[2], v[3], nullptr, Primitive::point_or_line);
 }
 
 void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
   fetch_and_transform(indices, indexed, m_vertices);
+  enabled_user_planes();
+  const std::vector<glm::vec4>& user_planes = m_enabled_user_planes;
   const std::vector<Vertex>& v = m_vertices;
   const size_t n = v.size();
   const bool flat = m_shade_model == GL_FLAT;
   auto triangle = [&](size_t a, size_t b, size_t c, size_t provoking) {
-    const glm::vec4 color = v[provoking].clip.color;
-    emit_triangle(v[a], v[b], v[c], flat ? &color : nullptr);
+    const glm::vec4 color = v[provoking].clip.color, back_color = v[provoking].clip.back_color;
+    emit_triangle(v[a], v[b], v[c], flat ? &color : nullptr, Primitive::polygon, flat ? &back_color : nullptr);
   };
   auto window = [&](const Vertex& x) {
     const glm::vec4& p = x.clip.position;
@@ -115,14 +198,40 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
                      (p.y / p.w + 1) * m_viewport.height * 0.5f + m_viewport.y);
   };
   auto line = [&](size_t a, size_t b) {
-    if (!v[a].valid || !v[b].valid || !(v[a].clip.position.w > 0) || !(v[b].clip.position.w > 0)) return;
-    const glm::vec2 pa = window(v[a]), pb = window(v[b]);
-    glm::vec2 d = pb - pa;
-    const float length = glm::length(d);
-    if (!(length > 0)) return;
-    const glm::vec2 side = glm::vec2(-d.y, d.x) / length * (m_line_width * 0.5f);
+    if (!v[a].valid || !v[b].valid) return;
     Vertex va = v[a], vb = v[b];
     if (flat) va.clip.color = vb.clip.color;
+    if (!user_planes.empty()) {
+      // The segment is clipped by the user planes before it is widened.
+      float t0 = 0, t1 = 1;
+      charge({3, 4, 0, 0, 2, 0, 0}, 2 * user_planes.size());
+      if (!clip_segment(va.clip.eye, vb.clip.eye, user_planes, &t0, &t1)) return;
+      const ClipVertex ca = va.clip, cb = vb.clip;
+      if (t0 > 0) va.clip = interpolate(ca, cb, t0);
+      if (t1 < 1) vb.clip = interpolate(ca, cb, t1);
+      va.eye = va.clip.eye, vb.eye = vb.clip.eye;
+    }
+    if (!(va.clip.position.w > 0) || !(vb.clip.position.w > 0)) return;
+    glm::vec2 pa = window(va), pb = window(vb);
+    const glm::vec2 d = pb - pa;
+    const float length = glm::length(d);
+    if (!(length > 0)) return;
+    // An aliased wide line (ES 1.1 section 3.4.2): each column of an
+    // x-major line (each row of a y-major one) gets a span of the width,
+    // centred on the line: a parallelogram whose short sides are vertical
+    // (horizontal), not a rectangle. Placed as Mesa places it (its draw
+    // module's wide lines, which softpipe draws): the whole line moved by
+    // half a pixel back along its major axis, against the direction it is
+    // drawn in, and by 1/8 pixel across it (up in x-major lines, right in
+    // y-major ones), so that its pixels are those of GL's diamond-exit
+    // rule at the ends.
+    const float half_width = m_line_width * 0.5f;
+    const bool x_major = std::fabs(d.x) >= std::fabs(d.y);
+    const glm::vec2 side = x_major ? glm::vec2(0, half_width) : glm::vec2(half_width, 0);
+    constexpr float ACROSS = 0.125f, ALONG = 0.5f;
+    const glm::vec2 shift =
+        x_major ? glm::vec2(d.x > 0 ? -ALONG : ALONG, ACROSS) : glm::vec2(ACROSS, d.y > 0 ? -ALONG : ALONG);
+    pa += shift, pb += shift;
     // A quad along the segment: two triangles, each end keeps its attributes.
     Vertex q[4] = {va, vb, vb, va};
     const glm::vec2 corners[4] = {pa - side, pb - side, pb + side, pa + side};
@@ -131,8 +240,8 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
       q[i].clip.position = {((corners[i].x - m_viewport.x) * 2.0f / m_viewport.width - 1.0f) * p.w,
                             ((corners[i].y - m_viewport.y) * 2.0f / m_viewport.height - 1.0f) * p.w, p.z, p.w};
     }
-    emit_triangle(q[0], q[1], q[2], nullptr);
-    emit_triangle(q[0], q[2], q[3], nullptr);
+    emit_triangle(q[0], q[1], q[2], nullptr, Primitive::point_or_line);
+    emit_triangle(q[0], q[2], q[3], nullptr, Primitive::point_or_line);
   };
   switch (mode) {
     case GL_TRIANGLES:
@@ -149,15 +258,42 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
     case GL_TRIANGLE_FAN:
       for (size_t i = 1; i + 1 < n; ++i) triangle(0, i, i + 1, i + 1);
       break;
-    case GL_POINTS:
+    case GL_POINTS: {
+      // Point sprites (OES_point_sprite) with GL_COORD_REPLACE_OES: s runs
+      // 0 to 1 from the point's left to its right, t 0 to 1 from its top to
+      // its bottom (y is up here), as the extension's formulas and Mesa give.
+      static constexpr glm::vec2 SPRITE_TEX[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+      const glm::vec2* sprite_tex = m_point_sprite ? SPRITE_TEX : nullptr;
       for (size_t i = 0; i < n; ++i) {
         if (!v[i].valid || !(v[i].clip.position.w > 0)) continue;
+        // A point outside a user clip plane is discarded whole.
+        if (!user_planes.empty()) {
+          charge({3, 4, 0, 0, 1, 0, 0}, user_planes.size());
+          if (!inside_user_planes(v[i].clip, user_planes)) continue;
+        }
+        float size = derived_point_size(indices[i], v[i].eye);
+        if (!(size > 0)) continue;
         const glm::vec2 c = window(v[i]);
-        const float h = m_point_size * 0.5f;
-        const glm::vec2 corners[4] = {{c.x - h, c.y - h}, {c.x + h, c.y - h}, {c.x + h, c.y + h}, {c.x - h, c.y + h}};
-        emit_quad(corners, v[i], 0, 0);
+        float left = c.x - size * 0.5f, bottom = c.y - size * 0.5f;
+        if (!m_point_sprite) {
+          // An aliased point (ES 1.1 section 3.3.1) is a square of whole
+          // pixels on the pixel grid. Placed as Mesa's softpipe places it,
+          // which is GL's rule (the square centred on the pixel centre or
+          // corner nearest the point's) with a quarter-pixel bias: its
+          // size truncated to whole pixels, its left column
+          // floor(x + 3/4 - size / 2) and its top row, counted down from
+          // the top, floor(y_down + 1/4 - size / 2).
+          const float whole = std::max(1.0f, std::floor(size));
+          left = std::floor(c.x + 0.75f - size * 0.5f);
+          bottom = std::ceil(c.y + size * 0.5f - 0.25f) - whole;
+          size = whole;
+        }
+        const float right = left + size, top = bottom + size;
+        const glm::vec2 corners[4] = {{left, bottom}, {right, bottom}, {right, top}, {left, top}};
+        emit_quad(corners, v[i], sprite_tex);
       }
       break;
+    }
     case GL_LINES:
       for (size_t i = 0; i + 1 < n; i += 2) line(i, i + 1);
       break;

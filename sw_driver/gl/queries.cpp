@@ -12,11 +12,13 @@
 #include "common/screen_size.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
+#include "gl/texture_formats.h"
 
 namespace tessera::gl {
 
 int Context::query_count(GLenum name) {
   switch (name) {
+    case GL_COMPRESSED_TEXTURE_FORMATS: return static_cast<int>(PALETTE_FORMAT_COUNT);
     case GL_COLOR_CLEAR_VALUE:
     case GL_VIEWPORT:
     case GL_SCISSOR_BOX:
@@ -25,7 +27,8 @@ int Context::query_count(GLenum name) {
     case GL_CURRENT_TEXTURE_COORDS:
     case GL_LIGHT_MODEL_AMBIENT:
     case GL_FOG_COLOR: return 4;
-    case GL_CURRENT_NORMAL: return 3;
+    case GL_CURRENT_NORMAL:
+    case GL_POINT_DISTANCE_ATTENUATION: return 3;
     case GL_DEPTH_RANGE:
     case GL_MAX_VIEWPORT_DIMS:
     case GL_ALIASED_POINT_SIZE_RANGE:
@@ -110,7 +113,15 @@ int Context::query_count(GLenum name) {
     case GL_POINT_SMOOTH_HINT:
     case GL_LINE_SMOOTH_HINT:
     case GL_FOG_HINT:
-    case GL_GENERATE_MIPMAP_HINT: return 1;
+    case GL_GENERATE_MIPMAP_HINT:
+    case GL_POINT_SIZE_MIN:
+    case GL_POINT_SIZE_MAX:
+    case GL_POINT_FADE_THRESHOLD_SIZE:
+    case GL_POINT_SIZE_ARRAY_TYPE_OES:
+    case GL_POINT_SIZE_ARRAY_STRIDE_OES:
+    case GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES:
+    case GL_POINT_SPRITE_OES:
+    case GL_POINT_SIZE_ARRAY_OES: return 1;
     default: return 0;
   }
 }
@@ -158,7 +169,7 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_ALIASED_POINT_SIZE_RANGE:
     case GL_SMOOTH_POINT_SIZE_RANGE:
     case GL_ALIASED_LINE_WIDTH_RANGE:
-    case GL_SMOOTH_LINE_WIDTH_RANGE: v[0] = 1, v[1] = 64; break;
+    case GL_SMOOTH_LINE_WIDTH_RANGE: v[0] = MIN_POINT_SIZE, v[1] = MAX_POINT_SIZE; break;
     case GL_MODELVIEW_MATRIX: mat(m_modelview.back()); break;
     case GL_PROJECTION_MATRIX: mat(m_projection.back()); break;
     case GL_TEXTURE_MATRIX: mat(active_unit().matrix.back()); break;
@@ -185,7 +196,18 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_MAX_LIGHTS: v[0] = MAX_LIGHTS; break;
     case GL_MAX_TEXTURE_SIZE: v[0] = MAX_TEXTURE_SIZE; break;
     case GL_MAX_TEXTURE_UNITS: v[0] = static_cast<float>(m_texture_units); break;
-    case GL_MAX_CLIP_PLANES: v[0] = 6; break;
+    case GL_MAX_CLIP_PLANES: v[0] = MAX_USER_CLIP_PLANES; break;
+    case GL_POINT_SIZE_MIN: v[0] = m_point_size_min; break;
+    case GL_POINT_SIZE_MAX: v[0] = m_point_size_max; break;
+    case GL_POINT_FADE_THRESHOLD_SIZE: v[0] = m_point_fade_threshold; break;
+    case GL_POINT_DISTANCE_ATTENUATION:
+      for (int i = 0; i < 3; ++i) v[i] = m_point_distance_attenuation[i];
+      break;
+    case GL_POINT_SIZE_ARRAY_TYPE_OES: v[0] = static_cast<float>(m_point_size_array.type); break;
+    case GL_POINT_SIZE_ARRAY_STRIDE_OES: v[0] = static_cast<float>(m_point_size_array.stride); break;
+    case GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES: v[0] = static_cast<float>(m_point_size_array.buffer); break;
+    case GL_POINT_SPRITE_OES: v[0] = m_point_sprite; break;
+    case GL_POINT_SIZE_ARRAY_OES: v[0] = m_point_size_array.enabled; break;
     case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(active_unit().bound); break;
     case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
     case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
@@ -215,7 +237,10 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(client_unit().texcoord_array.stride); break;
     case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES: v[0] = GL_UNSIGNED_BYTE; break;
     case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES: v[0] = GL_RGBA; break;
-    case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = 0; break;
+    case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = PALETTE_FORMAT_COUNT; break;
+    case GL_COMPRESSED_TEXTURE_FORMATS:
+      for (unsigned i = 0; i < PALETTE_FORMAT_COUNT; ++i) v[i] = static_cast<float>(PALETTE_FORMATS[i].name);
+      break;
     case GL_SAMPLE_BUFFERS: v[0] = 0; break;
     case GL_SAMPLES: v[0] = 0; break;
     case GL_SAMPLE_COVERAGE_VALUE: v[0] = m_sample_coverage_value; break;
@@ -244,7 +269,9 @@ const GLubyte* Context::get_string(GLenum name) {
     case GL_RENDERER: return reinterpret_cast<const GLubyte*>(m_renderer->name());
     case GL_VERSION: return reinterpret_cast<const GLubyte*>("OpenGL ES-CM 1.1");
     // Those <GLES/glext.h> declares (test_gl_api checks that the two agree).
-    case GL_EXTENSIONS: return reinterpret_cast<const GLubyte*>("GL_OES_read_format");
+    case GL_EXTENSIONS:
+      return reinterpret_cast<const GLubyte*>(
+          "GL_OES_read_format GL_OES_point_size_array GL_OES_point_sprite GL_OES_compressed_paletted_texture");
     default: error(GL_INVALID_ENUM); return nullptr;
   }
 }
@@ -256,6 +283,7 @@ void Context::get_pointer(GLenum name, void** value) {
     case GL_COLOR_ARRAY_POINTER: *value = const_cast<void*>(m_color_array.pointer); break;
     case GL_NORMAL_ARRAY_POINTER: *value = const_cast<void*>(m_normal_array.pointer); break;
     case GL_TEXTURE_COORD_ARRAY_POINTER: *value = const_cast<void*>(client_unit().texcoord_array.pointer); break;
+    case GL_POINT_SIZE_ARRAY_POINTER_OES: *value = const_cast<void*>(m_point_size_array.pointer); break;
     default: error(GL_INVALID_ENUM);
   }
 }

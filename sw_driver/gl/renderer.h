@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "common/fixed_function.h"
 #include "common/pixel_format.h"
@@ -33,6 +34,14 @@ struct ScreenVertex {
   // Per texture unit, after the unit's texture matrix; not divided by w.
   // Units that are not enabled carry zeros.
   TexCoord tex[MAX_TEXTURE_UNITS];
+  // The fog coordinate: the eye distance |z_eye| (Mesa's default, the eye
+  // plane's absolute value), 0 when fog is off. Back ends interpolate it
+  // (as the fog argument of renderers/common/fog.h) perspective-correctly.
+  float fog;
+  // The window position before snapping to 9.4 (pixels), for attribute
+  // planes that follow the unsnapped triangle as the reference's do; NaN
+  // when unknown.
+  float x_window = std::numeric_limits<float>::quiet_NaN(), y_window = std::numeric_limits<float>::quiet_NaN();
 };
 
 // Either winding; v[2] is the provoking vertex for flat shading.
@@ -45,20 +54,47 @@ struct Triangle {
 // state blocks take; the GL front end converts GL enums with that table.
 using tessera::BlendFactor;
 using tessera::CompareFunc;
+using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::StencilOp;
 using tessera::TexEnv;
 using tessera::TexFilter;
 using tessera::TexWrap;
 
+// How a minification filter chooses mipmap levels: none (GL_NEAREST,
+// GL_LINEAR: level 0 only), the nearest level (*_MIPMAP_NEAREST) or a blend
+// of the two nearest (*_MIPMAP_LINEAR). Not a hardware code: the raster
+// unit's state block carries TexFilter alone (level 0).
+enum class MipmapFilter : uint8_t { none, nearest, linear };
+
+// One mipmap level: RGBA8 texels in system memory, row t = 0 first.
+struct TextureLevel {
+  uint32_t address = 0;
+  unsigned width = 0, height = 0;
+};
+
+// Levels of a 256 x 256 texture: 256, 128, ..., 1.
+inline constexpr unsigned MAX_TEXTURE_LEVELS = 9;
+
 // A texture as the back ends see it: RGBA8 texels in system memory, row
-// t = 0 first, power-of-two sizes from 1 to 256.
+// t = 0 first, power-of-two sizes from 1 to 256. address, width and height
+// are level 0's; a mipmapped texture (min_mipmap != none) is complete and
+// carries its whole chain in level[0 .. levels - 1], each level half the
+// size of the one before (at least 1), down to 1 x 1.
 struct Texture {
   uint32_t address = 0;
   unsigned width = 0, height = 0;
-  TexFilter min_filter = TexFilter::nearest;  // mipmaps are not supported: a mipmap filter acts as its base
+  TexFilter min_filter = TexFilter::nearest;  // the filter within a level
   TexFilter mag_filter = TexFilter::linear;
   TexWrap wrap_s = TexWrap::repeat, wrap_t = TexWrap::repeat;
+  MipmapFilter min_mipmap = MipmapFilter::none;  // a texture object starts with GL_NEAREST_MIPMAP_LINEAR
+  // The base format's components: RGB and LUMINANCE have no alpha, ALPHA no
+  // colour. The texels hold them expanded (0 colour, 255 alpha), which is
+  // what GL_COMBINE takes; GL_MODULATE and GL_REPLACE take the fragment's
+  // instead (table 3.15, renderers/common/texturing.h: fill_missing_components).
+  bool has_color = true, has_alpha = true;
+  unsigned levels = 1;
+  TextureLevel level[MAX_TEXTURE_LEVELS];
 };
 
 // The texture environment of a unit (glTexEnv GL_TEXTURE_ENV_MODE).
@@ -130,6 +166,12 @@ struct RasterState {
   // driver.texture_units are never enabled.
   TextureUnit unit[MAX_TEXTURE_UNITS];
   bool polygon_smooth = false;  // antialiased edges (rasterizers that support it)
+  // Fog (glFog), applied after texturing: factor from the vertices'
+  // ScreenVertex::fog by renderers/common/fog.h; colour in 0.8, alpha unused.
+  bool fog = false;
+  FogMode fog_mode = FogMode::exp;
+  float fog_density = 1, fog_start = 0, fog_end = 1;
+  uint8_t fog_color[4] = {0, 0, 0, 0};
 };
 
 struct ClearRequest {

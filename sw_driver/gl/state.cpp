@@ -1,5 +1,6 @@
 // Fragment and framebuffer state: enables, clears, viewport, depth, stencil,
-// blending, masks, culling, hints, point/line sizes, fog and clip planes.
+// blending, masks, culling, hints, point/line sizes, point parameters and
+// sprites, polygon offset, fog and clip planes.
 #include "gl/context.h"
 
 #include <algorithm>
@@ -22,7 +23,7 @@ void Context::enable(GLenum cap, bool on) {
     m_lighting_model.lights[cap - GL_LIGHT0].enabled = on;
     return;
   }
-  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + 6) {
+  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES) {
     m_clip_plane_enabled[cap - GL_CLIP_PLANE0] = on;
     return;
   }
@@ -48,6 +49,7 @@ void Context::enable(GLenum cap, bool on) {
     case GL_SAMPLE_COVERAGE: m_sample_coverage = on; break;
     case GL_POINT_SMOOTH: m_point_smooth = on; break;
     case GL_LINE_SMOOTH: m_line_smooth = on; break;
+    case GL_POINT_SPRITE_OES: m_point_sprite = on; break;
     case 0x0B41: m_polygon_smooth = on; break;  // GL_POLYGON_SMOOTH (desktop GL), for antialiased polygons
     default: error(GL_INVALID_ENUM);
   }
@@ -56,7 +58,8 @@ void Context::enable(GLenum cap, bool on) {
 bool Context::is_enabled(GLenum cap) {
   charge_call();
   if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + MAX_LIGHTS) return m_lighting_model.lights[cap - GL_LIGHT0].enabled;
-  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + 6) return m_clip_plane_enabled[cap - GL_CLIP_PLANE0];
+  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES)
+    return m_clip_plane_enabled[cap - GL_CLIP_PLANE0];
   switch (cap) {
     case GL_DEPTH_TEST: return m_depth_test;
     case GL_BLEND: return m_blend;
@@ -79,6 +82,8 @@ bool Context::is_enabled(GLenum cap) {
     case GL_SAMPLE_COVERAGE: return m_sample_coverage;
     case GL_POINT_SMOOTH: return m_point_smooth;
     case GL_LINE_SMOOTH: return m_line_smooth;
+    case GL_POINT_SPRITE_OES: return m_point_sprite;
+    case GL_POINT_SIZE_ARRAY_OES: return m_point_size_array.enabled;
     case 0x0B41: return m_polygon_smooth;
     case GL_VERTEX_ARRAY: return m_vertex_array.enabled;
     case GL_COLOR_ARRAY: return m_color_array.enabled;
@@ -95,7 +100,7 @@ void Context::enable_client_state(GLenum array, bool on) {
     case GL_COLOR_ARRAY: m_color_array.enabled = on; break;
     case GL_NORMAL_ARRAY: m_normal_array.enabled = on; break;
     case GL_TEXTURE_COORD_ARRAY: client_unit().texcoord_array.enabled = on; break;
-    case GL_POINT_SIZE_ARRAY_OES: break;
+    case GL_POINT_SIZE_ARRAY_OES: m_point_size_array.enabled = on; break;
     default: error(GL_INVALID_ENUM);
   }
 }
@@ -254,6 +259,41 @@ void Context::polygon_offset(float factor, float units) {
   m_polygon_offset[0] = factor, m_polygon_offset[1] = units;
 }
 
+void Context::point_parameter(GLenum name, const float* v, int count) {
+  charge_call();
+  switch (name) {
+    case GL_POINT_SIZE_MIN:
+    case GL_POINT_SIZE_MAX:
+    case GL_POINT_FADE_THRESHOLD_SIZE:
+      if (!(v[0] >= 0)) return error(GL_INVALID_VALUE);
+      (name == GL_POINT_SIZE_MIN   ? m_point_size_min
+       : name == GL_POINT_SIZE_MAX ? m_point_size_max
+                                   : m_point_fade_threshold) = v[0];
+      break;
+    case GL_POINT_DISTANCE_ATTENUATION:
+      // Only through the vector form (glPointParameterf takes one value).
+      if (count < 3) return error(GL_INVALID_ENUM);
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) return error(GL_INVALID_VALUE);
+      m_point_distance_attenuation = {v[0], v[1], v[2]};
+      break;
+    default: error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::point_sprite_env(GLenum name, const float* v) {
+  charge_call();
+  if (name != GL_COORD_REPLACE_OES) return error(GL_INVALID_ENUM);
+  // GL_TRUE or GL_FALSE only, as Mesa checks it.
+  if (v[0] != GL_TRUE && v[0] != GL_FALSE) return error(GL_INVALID_VALUE);
+  active_unit().coord_replace = v[0] == GL_TRUE;  // per texture unit
+}
+
+void Context::get_point_sprite_env(GLenum name, float* v) {
+  charge_call();
+  if (name != GL_COORD_REPLACE_OES) return error(GL_INVALID_ENUM);
+  v[0] = active_unit().coord_replace ? 1.0f : 0.0f;
+}
+
 void Context::pixel_store(GLenum name, GLint value) {
   charge_call();
   if (name != GL_PACK_ALIGNMENT && name != GL_UNPACK_ALIGNMENT) return error(GL_INVALID_ENUM);
@@ -291,14 +331,14 @@ void Context::fog(GLenum name, const float* values, int count) {
 
 void Context::clip_plane(GLenum plane, const float* equation) {
   charge_call();
-  if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + 6) return error(GL_INVALID_ENUM);
+  if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES) return error(GL_INVALID_ENUM);
   const glm::vec4 e(equation[0], equation[1], equation[2], equation[3]);
   m_clip_planes[plane - GL_CLIP_PLANE0] = e * glm::inverse(m_modelview.back());
 }
 
 void Context::get_clip_plane(GLenum plane, float* equation) {
   charge_call();
-  if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + 6) return error(GL_INVALID_ENUM);
+  if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + MAX_USER_CLIP_PLANES) return error(GL_INVALID_ENUM);
   const glm::vec4& e = m_clip_planes[plane - GL_CLIP_PLANE0];
   for (int i = 0; i < 4; ++i) equation[i] = e[i];
 }

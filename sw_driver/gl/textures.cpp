@@ -13,6 +13,7 @@
 
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
+#include "gl/texture_formats.h"
 
 namespace tessera::gl {
 
@@ -57,91 +58,192 @@ TextureObject* Context::bound_texture() {
 bool Context::unit_textured(unsigned u) const {
   if (u >= m_texture_units || !m_units[u].enabled) return false;
   const auto it = m_textures.find(m_units[u].bound);
-  return it != m_textures.end() && it->second.defined;
+  return it != m_textures.end() && texture_complete(it->second);
 }
 
 namespace {
 
-// Bytes per pixel of an external format, 0 for a bad combination.
-int pixel_bytes(GLenum format, GLenum type, bool* format_ok, bool* type_ok) {
-  *format_ok = format == GL_RGBA || format == GL_RGB || format == GL_LUMINANCE || format == GL_ALPHA ||
-               format == GL_LUMINANCE_ALPHA;
-  *type_ok = type == GL_UNSIGNED_BYTE;
-  if (!*format_ok || !*type_ok) return 0;
-  switch (format) {
-    case GL_RGBA: return 4;
-    case GL_RGB: return 3;
-    case GL_LUMINANCE_ALPHA: return 2;
-    default: return 1;
-  }
+// log2 of a power of two.
+unsigned log2_of(unsigned v) {
+  unsigned n = 0;
+  while ((1u << n) < v) ++n;
+  return n;
 }
 
-void expand_texel(GLenum format, const uint8_t* in, uint8_t* out) {
-  switch (format) {
-    case GL_RGBA: std::memcpy(out, in, 4); break;
-    case GL_RGB: out[0] = in[0], out[1] = in[1], out[2] = in[2], out[3] = 255; break;
-    case GL_LUMINANCE: out[0] = out[1] = out[2] = in[0], out[3] = 255; break;
-    case GL_LUMINANCE_ALPHA: out[0] = out[1] = out[2] = in[0], out[3] = in[1]; break;
-    case GL_ALPHA: out[0] = out[1] = out[2] = 0, out[3] = in[0]; break;
-  }
+// Levels of a complete mipmap of level 0's size: down to 1 x 1.
+unsigned full_levels(unsigned width, unsigned height) {
+  return log2_of(std::max(width, height)) + 1;
+}
+
+bool internal_format_ok(GLint format) {
+  const auto f = static_cast<GLenum>(format);
+  return f == GL_RGBA || f == GL_RGB || f == GL_LUMINANCE || f == GL_ALPHA || f == GL_LUMINANCE_ALPHA;
+}
+
+// A level's size: power of two from 0 to the largest texture, a level no
+// deeper than the largest texture has.
+bool level_size_ok(GLint level, GLsizei width, GLsizei height) {
+  return level >= 0 && static_cast<unsigned>(level) < MAX_TEXTURE_LEVELS && width >= 0 && height >= 0 &&
+         width <= MAX_TEXTURE_SIZE && height <= MAX_TEXTURE_SIZE && (!width || is_power_of_two(width)) &&
+         (!height || is_power_of_two(height));
 }
 
 }  // namespace
+
+bool texture_complete(const TextureObject& object) {
+  const TextureImage& base = object.image[0];
+  if (!object.defined || base.width == 0 || base.height == 0) return false;
+  if (object.texture.min_mipmap == MipmapFilter::none) return true;
+  const unsigned levels = full_levels(base.width, base.height);
+  for (unsigned level = 1; level < levels; ++level) {
+    const TextureImage& image = object.image[level];
+    if (image.format != base.format || image.width != std::max(1u, base.width >> level) ||
+        image.height != std::max(1u, base.height >> level))
+      return false;
+  }
+  return true;
+}
+
+Texture drawn_texture(const TextureObject& object) {
+  Texture t = object.texture;
+  const TextureImage& base = object.image[0];
+  t.address = base.address;
+  t.width = base.width;
+  t.height = base.height;
+  t.levels = t.min_mipmap == MipmapFilter::none ? 1 : full_levels(base.width, base.height);
+  t.has_color = base.format != GL_ALPHA;
+  t.has_alpha = base.format == GL_RGBA || base.format == GL_LUMINANCE_ALPHA || base.format == GL_ALPHA;
+  for (unsigned level = 0; level < MAX_TEXTURE_LEVELS; ++level) {
+    t.level[level] = level < t.levels ? TextureLevel{object.image[level].address, object.image[level].width,
+                                                     object.image[level].height}
+                                      : TextureLevel{};
+  }
+  return t;
+}
+
+void Context::store_level(TextureObject* object, unsigned level, unsigned width, unsigned height, GLenum format,
+                          const uint32_t* rows) {
+  TextureImage& image = object->image[level];
+  // Stored as RGBA8 in system memory, where every back end fetches it; the
+  // memory of a level whose size changes is not reused (bump allocator).
+  if (image.width != width || image.height != height || image.address == 0)
+    image.address = allocate(width * height * 4);
+  image.width = width;
+  image.height = height;
+  image.format = format;
+  if (level == 0) object->defined = true;
+  if (!rows) return;
+  for (unsigned j = 0; j < height; ++j) {
+    const uint32_t address = image.address + j * width * 4;
+    for (unsigned i = 0; i < width; i += 8)
+      m_host.write_words(address + 4 * i, rows + size_t{j} * width + i, std::min(8u, width - i));
+  }
+}
+
+void Context::generate_mipmaps(TextureObject* object) {
+  const TextureImage base = object->image[0];
+  if (!object->defined || base.width == 0 || base.height == 0) return;
+  std::vector<uint32_t> in(size_t{base.width} * base.height), out;
+  for (unsigned j = 0; j < base.height; ++j) {
+    for (unsigned i = 0; i < base.width; i += 8)
+      m_host.read_words(base.address + (j * base.width + i) * 4, &in[size_t{j} * base.width + i],
+                        std::min(8u, base.width - i));
+  }
+  unsigned width = base.width, height = base.height;
+  for (unsigned level = 1; level < full_levels(base.width, base.height); ++level) {
+    const unsigned w = std::max(1u, width / 2), h = std::max(1u, height / 2);
+    out.resize(size_t{w} * h);
+    box_filter_level(in.data(), width, height, out.data());
+    // Four loads, four adds per channel, a rounding shift and the packing per texel.
+    m_host.compute(Op::alu, 24ull * w * h);
+    store_level(object, level, w, h, base.format, out.data());
+    in.swap(out);
+    width = w;
+    height = h;
+  }
+}
 
 void Context::tex_image(GLenum target, GLint level, GLint internal_format, GLsizei width, GLsizei height, GLint border,
                         GLenum format, GLenum type, const void* pixels) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
-  bool format_ok, type_ok;
-  pixel_bytes(format, type, &format_ok, &type_ok);
-  if (!format_ok || !type_ok) return error(GL_INVALID_ENUM);
-  if (level < 0 || border != 0 || width < 0 || height < 0 || width > MAX_TEXTURE_SIZE || height > MAX_TEXTURE_SIZE ||
-      (width && !is_power_of_two(width)) || (height && !is_power_of_two(height)))
+  const GLenum format_error = format_type_error(format, type);
+  if (format_error == GL_INVALID_ENUM) return error(GL_INVALID_ENUM);
+  if (!internal_format_ok(internal_format) || border != 0 || !level_size_ok(level, width, height))
     return error(GL_INVALID_VALUE);
-  if (static_cast<GLenum>(internal_format) != format) return error(GL_INVALID_OPERATION);
-  if (level > 0) return;  // mipmap levels are accepted and not used: no mipmapping (documented)
+  if (static_cast<GLenum>(internal_format) != format || format_error != 0) return error(GL_INVALID_OPERATION);
   TextureObject* object = bound_texture();
-  const uint32_t texel_bytes = static_cast<uint32_t>(width) * height * 4;
-  if (texel_bytes == 0) {
-    object->defined = false;
+  if (static_cast<uint32_t>(width) * static_cast<uint32_t>(height) == 0) {
+    object->image[level] = TextureImage{};
+    if (level == 0) object->defined = false;
     return;
   }
-  // Stored as RGBA8 in system memory, where every back end fetches it.
-  if (object->texture.width != static_cast<unsigned>(width) ||
-      object->texture.height != static_cast<unsigned>(height) || object->texture.address == 0)
-    object->texture.address = allocate(texel_bytes);
-  object->texture.width = static_cast<unsigned>(width);
-  object->texture.height = static_cast<unsigned>(height);
-  object->defined = true;
-  if (pixels) tex_sub_image(target, 0, 0, 0, width, height, format, type, pixels);
+  store_level(object, static_cast<unsigned>(level), static_cast<unsigned>(width), static_cast<unsigned>(height), format,
+              nullptr);
+  if (pixels)
+    tex_sub_image(target, level, 0, 0, width, height, format, type, pixels);
+  else if (level == 0 && object->generate_mipmap)
+    generate_mipmaps(object);
 }
 
 void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
                             GLenum type, const void* pixels) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
-  bool format_ok, type_ok;
-  const int bytes = pixel_bytes(format, type, &format_ok, &type_ok);
-  if (!format_ok || !type_ok) return error(GL_INVALID_ENUM);
+  const GLenum format_error = format_type_error(format, type);
+  if (format_error == GL_INVALID_ENUM) return error(GL_INVALID_ENUM);
+  if (level < 0 || static_cast<unsigned>(level) >= MAX_TEXTURE_LEVELS) return error(GL_INVALID_VALUE);
   TextureObject* object = bound_texture();
-  if (!object->defined) return error(GL_INVALID_OPERATION);
-  if (level < 0 || x < 0 || y < 0 || width < 0 || height < 0 || !fits(x, width, object->texture.width) ||
-      !fits(y, height, object->texture.height))
+  const TextureImage& image = object->image[level];
+  if (image.format == 0) return error(GL_INVALID_OPERATION);
+  if (x < 0 || y < 0 || width < 0 || height < 0 || !fits(x, width, image.width) || !fits(y, height, image.height))
     return error(GL_INVALID_VALUE);
-  if (level > 0 || !pixels) return;
+  if (format_error != 0) return error(GL_INVALID_OPERATION);
+  if (!pixels) return;
+  const unsigned bytes = pixel_bytes(format, type);
   const auto* in = static_cast<const uint8_t*>(pixels);
   const size_t row_bytes = static_cast<size_t>(width) * bytes;
   const size_t stride = (row_bytes + m_unpack_alignment - 1) / m_unpack_alignment * m_unpack_alignment;
   std::vector<uint32_t> row(static_cast<size_t>(width));
   for (GLsizei j = 0; j < height; ++j) {
-    for (GLsizei i = 0; i < width; ++i)
-      expand_texel(format, in + j * stride + static_cast<size_t>(i) * bytes, reinterpret_cast<uint8_t*>(&row[i]));
-    // The driver's conversion loop: a load, a few shifts and a store per texel.
-    m_host.compute(Op::alu, 4ull * width);
-    const uint32_t address = object->texture.address + ((y + j) * object->texture.width + x) * 4;
+    for (GLsizei i = 0; i < width; ++i) row[i] = unpack_pixel(format, type, in + j * stride + size_t{bytes} * i);
+    // The driver's conversion loop: a load, a few shifts and a store per
+    // texel; a packed type takes three more shifts and masks per channel.
+    m_host.compute(Op::alu, (type == GL_UNSIGNED_BYTE ? 4ull : 16ull) * width);
+    const uint32_t address = image.address + ((y + j) * image.width + x) * 4;
     for (GLsizei i = 0; i < width; i += 8)
       m_host.write_words(address + 4 * i, &row[i], static_cast<unsigned>(std::min<GLsizei>(8, width - i)));
   }
+  if (level == 0 && object->generate_mipmap) generate_mipmaps(object);
+}
+
+void Context::compressed_tex_image(GLenum target, GLint level, GLenum internal_format, GLsizei width, GLsizei height,
+                                   GLint border, GLsizei image_size, const void* data) {
+  charge_call();
+  if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
+  const PaletteFormat* format = find_palette_format(internal_format);
+  if (!format) return error(GL_INVALID_ENUM);
+  // OES_compressed_paletted_texture: level 0 or -n, n + 1 levels in one
+  // image from width x height down.
+  if (level > 0 || border != 0 || !level_size_ok(-level, width, height) || width == 0 || height == 0)
+    return error(GL_INVALID_VALUE);
+  const unsigned levels = static_cast<unsigned>(1 - level);
+  const auto w = static_cast<unsigned>(width), h = static_cast<unsigned>(height);
+  if (levels > full_levels(w, h)) return error(GL_INVALID_VALUE);
+  if (image_size < 0 || static_cast<size_t>(image_size) != paletted_image_size(*format, w, h, levels))
+    return error(GL_INVALID_VALUE);
+  if (!data) return error(GL_INVALID_VALUE);
+  TextureObject* object = bound_texture();
+  const GLenum expanded = format->entry_format;
+  std::vector<uint32_t> texels(size_t{w} * h);
+  for (unsigned k = 0; k < levels; ++k) {
+    const unsigned lw = std::max(1u, w >> k), lh = std::max(1u, h >> k);
+    decode_paletted_level(*format, static_cast<const uint8_t*>(data), w, h, k, texels.data());
+    // An index load, a palette load and the entry's conversion per texel.
+    m_host.compute(Op::alu, (format->entry_type == GL_UNSIGNED_BYTE ? 6ull : 18ull) * lw * lh);
+    store_level(object, k, lw, lh, expanded, texels.data());
+  }
+  if (levels == 1 && object->generate_mipmap) generate_mipmaps(object);
 }
 
 void Context::tex_parameter(GLenum target, GLenum name, float value) {
@@ -151,10 +253,10 @@ void Context::tex_parameter(GLenum target, GLenum name, float value) {
   const std::optional<GLenum> v = enum_from_float(value);
   switch (name) {
     case GL_TEXTURE_MIN_FILTER:
-      if (!v || !tex_filter_value(*v, true, &t.min_filter)) error(GL_INVALID_ENUM);
+      if (!v || !tex_min_filter_value(*v, &t.min_filter, &t.min_mipmap)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_MAG_FILTER:
-      if (!v || !tex_filter_value(*v, false, &t.mag_filter)) error(GL_INVALID_ENUM);
+      if (!v || !tex_filter_value(*v, &t.mag_filter)) error(GL_INVALID_ENUM);
       break;
     case GL_TEXTURE_WRAP_S:
       if (!v || !tex_wrap_value(*v, &t.wrap_s)) error(GL_INVALID_ENUM);
@@ -162,7 +264,9 @@ void Context::tex_parameter(GLenum target, GLenum name, float value) {
     case GL_TEXTURE_WRAP_T:
       if (!v || !tex_wrap_value(*v, &t.wrap_t)) error(GL_INVALID_ENUM);
       break;
-    case GL_GENERATE_MIPMAP: break;
+    case GL_GENERATE_MIPMAP:
+      bound_texture()->generate_mipmap = value != 0.0f;  // any non-zero value is GL_TRUE, as in Mesa
+      break;
     default: error(GL_INVALID_ENUM);
   }
 }
@@ -172,11 +276,11 @@ void Context::get_tex_parameter(GLenum target, GLenum name, float* value) {
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   const Texture& t = bound_texture()->texture;
   switch (name) {
-    case GL_TEXTURE_MIN_FILTER: *value = static_cast<float>(gl_value(t.min_filter)); break;
+    case GL_TEXTURE_MIN_FILTER: *value = static_cast<float>(tex_min_filter_enum(t.min_filter, t.min_mipmap)); break;
     case GL_TEXTURE_MAG_FILTER: *value = static_cast<float>(gl_value(t.mag_filter)); break;
     case GL_TEXTURE_WRAP_S: *value = static_cast<float>(gl_value(t.wrap_s)); break;
     case GL_TEXTURE_WRAP_T: *value = static_cast<float>(gl_value(t.wrap_t)); break;
-    case GL_GENERATE_MIPMAP: *value = GL_FALSE; break;
+    case GL_GENERATE_MIPMAP: *value = bound_texture()->generate_mipmap ? 1.0f : 0.0f; break;
     default: error(GL_INVALID_ENUM);
   }
 }

@@ -76,6 +76,7 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   unsigned lights = 0;
   for (const Light& l : m_lighting_model.lights) lights += l.enabled;
   Material material = m_front_material;
+  const bool two_sided = two_sided_lighting();
   auto transform = [&](uint32_t index, Vertex& v) {
     glm::vec4 position = read_attribute(m_vertex_array, index, {0, 0, 0, 1});
     glm::vec4 color = m_color_array.enabled ? read_attribute(m_color_array, index, {0, 0, 0, 1}) : m_color;
@@ -90,8 +91,12 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
       }
       if (m_color_material) material.ambient = material.diffuse = color;
       v.clip.color = light_vertex(m_lighting_model, material, v.eye, n);
+      // Two-sided lighting: the colour a back face shows, lit with the
+      // reversed normal (the material is the same for both faces in ES).
+      v.clip.back_color = two_sided ? light_vertex(m_lighting_model, material, v.eye, -n) : v.clip.color;
     } else {
       v.clip.color = glm::clamp(color, glm::vec4(0), glm::vec4(1));
+      v.clip.back_color = v.clip.color;
     }
     bool tex_finite = true;
     for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
@@ -106,6 +111,9 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
       v.clip.tex[u] = tc.w != 0 ? glm::vec2(tc) / tc.w : glm::vec2(tc);
       tex_finite = tex_finite && std::isfinite(v.clip.tex[u].x) && std::isfinite(v.clip.tex[u].y);
     }
+    v.clip.eye = v.eye;
+    // Fog from the eye distance as Mesa takes it: |z_eye|, not divided by w.
+    v.clip.fog = m_fog ? std::fabs(v.eye.z) : 0.0f;
     const glm::vec4& p = v.clip.position;
     v.valid = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w) &&
               std::isfinite(v.clip.color.r) && tex_finite;
@@ -141,10 +149,12 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   FloatCost per_vertex = transform_cost();
   per_vertex += transform_cost();
   if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
+  if (two_sided) per_vertex += lighting_cost(lights);
   for (unsigned u = 0; u < textured_units; ++u) per_vertex += transform_cost();
   per_vertex += clip_test_cost();
   charge(per_vertex, transformed);
-  m_host.compute(Op::alu, 20 * transformed);  // fetch, conversions, loop overhead
+  m_host.compute(Op::alu, 20 * transformed);        // fetch, conversions, loop overhead
+  if (m_fog) m_host.compute(Op::alu, transformed);  // the fog coordinate |z_eye|: BIC of the sign bit
 }
 
 }  // namespace tessera::gl

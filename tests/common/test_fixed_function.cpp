@@ -93,6 +93,7 @@ void check_rejects_other_enums() {
   add(FixedFunction<TexEnv>::ENTRIES);
   add(FixedFunction<TexFilter>::ENTRIES);
   add(FixedFunction<TexWrap>::ENTRIES);
+  add(FixedFunction<FogMode>::ENTRIES);
   for (const uint32_t gl_enum : candidates) {
     bool listed = false;
     for (const FixedFunctionEntry<E>& entry : FixedFunction<E>::ENTRIES) listed = listed || entry.gl_enum == gl_enum;
@@ -200,6 +201,14 @@ TEST(FixedFunction, TextureEnvironmentsFiltersAndWraps) {
   check_rejects_other_enums<TexWrap>();
 }
 
+TEST(FixedFunction, FogModes) {
+  check_dense_unique_and_round_trip<FogMode>(
+      {{FogMode::linear, GL_LINEAR}, {FogMode::exp, GL_EXP}, {FogMode::exp2, GL_EXP2}});
+  check_rejects_other_enums<FogMode>();
+  EXPECT_EQ(FixedFunction<FogMode>::BITS, 2u);
+  EXPECT_STREQ(FixedFunction<FogMode>::UNKNOWN, "code 3 applies no fog, f = 1");
+}
+
 // The unknown codes the table defines are the ones its description names.
 TEST(FixedFunction, FieldsSayWhatUnknownCodesDo) {
   EXPECT_EQ(FixedFunction<CompareFunc>::BITS, 3u);
@@ -280,9 +289,10 @@ TEST_F(GeneratedPackage, HoldsTheTablesCodes) {
   check<TexEnv>("TexEnv");
   check<TexFilter>("TexFilter");
   check<TexWrap>("TexWrap");
+  check<FogMode>("FogMode");
   EXPECT_EQ(m_checked, m_values.size()) << "the package has values the table does not";
-  EXPECT_EQ(m_bits.size(), 7u);
-  EXPECT_EQ(m_types.size(), 7u);
+  EXPECT_EQ(m_bits.size(), 8u);
+  EXPECT_EQ(m_types.size(), 8u);
 }
 
 }  // namespace

@@ -47,6 +47,11 @@ enum class TexWrap : uint8_t {
 #include "common/fixed_function.def"
 };
 
+enum class FogMode : uint8_t {
+#define TESSERA_FOG_MODE(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
 template <typename E>
 struct FixedFunctionEntry {
   E value;
@@ -126,6 +131,14 @@ template <>
 struct FixedFunction<TexWrap> : FixedFunctionField<TexWrap> {
   static constexpr FixedFunctionEntry<TexWrap> ENTRIES[] = {
 #define TESSERA_TEX_WRAP(name, code, gl_enum, description) {TexWrap::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<FogMode> : FixedFunctionField<FogMode> {
+  static constexpr FixedFunctionEntry<FogMode> ENTRIES[] = {
+#define TESSERA_FOG_MODE(name, code, gl_enum, description) {FogMode::name, #name, gl_enum, description},
 #include "common/fixed_function.def"
   };
 };

@@ -44,6 +44,21 @@ struct TriangleRecord {
 };
 static_assert(sizeof(TriangleRecord) == 72, "triangle records are 18 words");
 
+// Fog (StateFlag::fog). A StateBlock with the fog flag is followed by a
+// FogState, and every triangle record drawn with that state by a
+// TriangleFog; without the flag neither is there, so a list without fog is
+// word for word what it was before fog existed. The driver writes and the
+// rasterizer reads the sizes of state_block_bytes and triangle_record_bytes.
+struct FogState {
+  uint32_t mode;   // FogMode in bits 0-1 (FOG_MODE_SHIFT)
+  uint32_t color;  // fog colour R bits 0-7, G 8-15, B 16-23 (0.8; bits 24-31 unused)
+};
+struct TriangleFog {
+  int32_t argument[3];  // per vertex v[k], the fog argument: signed 16.16 (common/fog.h)
+};
+static_assert(sizeof(FogState) == 8, "fog states are 2 words");
+static_assert(sizeof(TriangleFog) == 12, "triangle fog records are 3 words");
+
 // Flags of StateBlock::flags.
 enum StateFlag : uint32_t {
   depth_test = 1u << 0,
@@ -56,6 +71,7 @@ enum StateFlag : uint32_t {
   texture = 1u << 7,
   flat_shading = 1u << 8,
   polygon_smooth = 1u << 9,  // antialiased edges from normalised edge functions (EASA)
+  fog = 1u << 10,            // a FogState follows the block, a TriangleFog each triangle record
 };
 
 // Compare functions, stencil ops, blend factors, logic ops, texture filters,
@@ -80,10 +96,20 @@ struct StateBlock {
 };
 static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
 
+// Bytes of a state block with `flags` and of a triangle record drawn with
+// it: the one place the fog extension's sizes are stated.
+constexpr uint32_t state_block_bytes(uint32_t flags) {
+  return uint32_t{sizeof(StateBlock)} + ((flags & StateFlag::fog) != 0 ? uint32_t{sizeof(FogState)} : 0u);
+}
+constexpr uint32_t triangle_record_bytes(uint32_t state_flags) {
+  return uint32_t{sizeof(TriangleRecord)} + ((state_flags & StateFlag::fog) != 0 ? uint32_t{sizeof(TriangleFog)} : 0u);
+}
+
 // Positions of the codes in their StateBlock words (the compare functions
 // sit at bit 0 of depth_func, alpha_func and stencil_func).
 constexpr unsigned STENCIL_FAIL_SHIFT = 0, STENCIL_DEPTH_FAIL_SHIFT = 8, STENCIL_DEPTH_PASS_SHIFT = 16;
 constexpr unsigned BLEND_SRC_SHIFT = 0, BLEND_DST_SHIFT = 8, BLEND_LOGIC_OP_SHIFT = 16;
+constexpr unsigned FOG_MODE_SHIFT = 0;
 constexpr unsigned TEXTURE_MIN_FILTER_SHIFT = 0, TEXTURE_MAG_FILTER_SHIFT = 1, TEXTURE_WRAP_S_SHIFT = 2,
                    TEXTURE_WRAP_T_SHIFT = 4, TEXTURE_ENV_SHIFT = 8;
 
@@ -100,6 +126,7 @@ static_assert(TEXTURE_WRAP_S_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_WRA
                   TEXTURE_WRAP_T_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_ENV_SHIFT,
               "wrap codes fit bits 2-3 and 4-5");
 static_assert(FixedFunction<TexEnv>::BITS <= 2, "texture environment codes fit bits 8-9");
+static_assert(FixedFunction<FogMode>::BITS <= 2, "fog mode codes fit bits 0-1 of FogState::mode");
 
 // ERROR_STATUS codes. On an error the rasterizer stops the run, sets
 // STATUS.error and IRQ_STATUS.error, and leaves the tiles not yet written

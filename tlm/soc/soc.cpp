@@ -68,23 +68,18 @@ DmaParams dma_params(const Config& config) {
   return p;
 }
 
-// Energy in joules and average power in watts over `seconds`: the total and
-// each unit's, with each event class's energy when `events`.
-nlohmann::json energy_json(const std::vector<UnitEnergy>& energy, double seconds, bool events) {
-  const auto watts = [seconds](double joules) { return seconds > 0 ? joules / seconds : 0.0; };
-  nlohmann::json units = nlohmann::json::object();
-  double total = 0;
-  for (const UnitEnergy& unit : energy) {
-    nlohmann::json& u = units[unit.unit];
-    u = {{"total_j", unit.total_joules()},
-         {"static_j", unit.static_joules},
-         {"dynamic_j", unit.dynamic_joules()},
-         {"average_w", watts(unit.total_joules())}};
-    if (events)
-      for (const auto& [event, joules] : unit.event_joules) u["events"][event]["j"] = joules;
-    total += unit.total_joules();
-  }
-  return {{"total_j", total}, {"average_w", watts(total)}, {"units", units}};
+// Energy in joules and average power in watts over `seconds`: one unit's
+// (adding its event classes' energies under "events" is the caller's), and
+// the total of all units with each unit's.
+nlohmann::json unit_energy_json(double static_joules, double dynamic_joules, double seconds) {
+  const double total = dynamic_joules + static_joules;
+  return {{"total_j", total},
+          {"static_j", static_joules},
+          {"dynamic_j", dynamic_joules},
+          {"average_w", seconds > 0 ? total / seconds : 0.0}};
+}
+nlohmann::json energy_json(nlohmann::json units, double total_joules, double seconds) {
+  return {{"total_j", total_joules}, {"average_w", seconds > 0 ? total_joules / seconds : 0.0}, {"units", units}};
 }
 
 }  // namespace
@@ -292,34 +287,57 @@ void Soc::record_frame(const Frame& frame) {
   // it (DMA mode) or from its PRESENT (port mode); requests it replaced are
   // dropped.
   while (m_requests.size() > 1 && m_requests.front().seconds < frame.requested_seconds) m_requests.pop_front();
+  Request request;
   if (m_requests.empty() || m_requests.front().seconds != frame.requested_seconds) {
     // Only software that bypasses the display's registers gets here.
-    m_frames.push_back(
-        {frame.time_seconds,
-         {frame.requested_seconds, host.busy_time(), bus.bytes(), energy_activity(sc_core::sc_time_stamp())}});
-    return;
+    request = {frame.requested_seconds, host.busy_time(), bus.bytes(), energy_activity(sc_core::sc_time_stamp())};
+  } else {
+    request = std::move(m_requests.front());
+    m_requests.pop_front();
   }
-  m_frames.push_back({frame.time_seconds, m_requests.front()});
-  m_requests.pop_front();
+  // What stats.json lists of the frame, as differences to the frame before,
+  // taken now: a long run keeps a few numbers per frame, not every unit's
+  // event counts (docs/robustness.md, soak).
+  FrameRecord record;
+  record.shown_seconds = frame.time_seconds;
+  record.requested_seconds = request.seconds;
+  record.render_seconds = request.seconds - m_last_shown.seconds;
+  record.host_busy = request.host_busy - m_last_shown.host_busy;
+  record.bus_bytes = request.bus_bytes - m_last_shown.bus_bytes;
+  std::vector<std::string> units;
+  for (const UnitEnergy& unit : m_energy_model.unit_energies(
+           activity_difference(request.activity, m_last_shown.activity), record.render_seconds)) {
+    units.push_back(unit.unit);
+    record.energy.push_back({unit.static_joules, unit.dynamic_joules()});
+  }
+  if (m_frames.empty() || *m_frames.back().units != units)
+    record.units = std::make_shared<const std::vector<std::string>>(std::move(units));
+  else
+    record.units = m_frames.back().units;
+  m_frames.push_back(std::move(record));
+  m_last_shown = std::move(request);
 }
 
 nlohmann::json Soc::frames_json() const {
   nlohmann::json frames = nlohmann::json::array();
-  FrameRecord previous{0, {0, sc_core::SC_ZERO_TIME, 0, {}}};
+  double previous_shown_seconds = 0;
   for (size_t i = 0; i < m_frames.size(); ++i) {
     const FrameRecord& f = m_frames[i];
-    const double render_seconds = f.request.seconds - previous.request.seconds;
-    const std::vector<UnitEnergy> energy = m_energy_model.unit_energies(
-        activity_difference(f.request.activity, previous.request.activity), render_seconds);
+    nlohmann::json units = nlohmann::json::object();
+    double total_joules = 0;
+    for (size_t u = 0; u < f.energy.size(); ++u) {
+      units[(*f.units)[u]] = unit_energy_json(f.energy[u].static_joules, f.energy[u].dynamic_joules, f.render_seconds);
+      total_joules += f.energy[u].dynamic_joules + f.energy[u].static_joules;
+    }
     frames.push_back({{"index", i},
                       {"time_ns", f.shown_seconds * 1e9},
-                      {"interval_ns", (f.shown_seconds - previous.shown_seconds) * 1e9},
-                      {"requested_ns", f.request.seconds * 1e9},
-                      {"render_ns", render_seconds * 1e9},
-                      {"host_busy_ns", (f.request.host_busy - previous.request.host_busy).to_seconds() * 1e9},
-                      {"bus_bytes", f.request.bus_bytes - previous.request.bus_bytes},
-                      {"energy", energy_json(energy, render_seconds, false)}});
-    previous = f;
+                      {"interval_ns", (f.shown_seconds - previous_shown_seconds) * 1e9},
+                      {"requested_ns", f.requested_seconds * 1e9},
+                      {"render_ns", f.render_seconds * 1e9},
+                      {"host_busy_ns", f.host_busy.to_seconds() * 1e9},
+                      {"bus_bytes", f.bus_bytes},
+                      {"energy", energy_json(std::move(units), total_joules, f.render_seconds)}});
+    previous_shown_seconds = f.shown_seconds;
   }
   return frames;
 }
@@ -336,8 +354,15 @@ nlohmann::json Soc::stats_json() const {
   nlohmann::json stats = {{"simulated_ns", elapsed.to_seconds() * 1e9}};
   for (const Block* block : m_blocks) stats[block->basename()] = block->stats_json(elapsed);
   const EnergyActivity activity = energy_activity(elapsed);
-  stats["energy"] =
-      energy_json(m_energy_model.unit_energies(activity, elapsed.to_seconds()), elapsed.to_seconds(), true);
+  nlohmann::json units = nlohmann::json::object();
+  double total_joules = 0;
+  for (const UnitEnergy& unit : m_energy_model.unit_energies(activity, elapsed.to_seconds())) {
+    nlohmann::json& u = units[unit.unit];
+    u = unit_energy_json(unit.static_joules, unit.dynamic_joules(), elapsed.to_seconds());
+    for (const auto& [event, joules] : unit.event_joules) u["events"][event]["j"] = joules;
+    total_joules += unit.total_joules();
+  }
+  stats["energy"] = energy_json(std::move(units), total_joules, elapsed.to_seconds());
   for (const UnitActivity& unit : activity)
     for (const auto& [event, count] : unit.counts)
       stats["energy"]["units"][unit.unit]["events"][event]["count"] = count;

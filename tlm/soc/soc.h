@@ -120,10 +120,19 @@ class Soc : public sc_core::sc_module {
     uint64_t bus_bytes;
     EnergyActivity activity;
   };
-  std::deque<Request> m_requests;  // not yet shown
+  std::deque<Request> m_requests;                         // not yet shown
+  Request m_last_shown{0, sc_core::SC_ZERO_TIME, 0, {}};  // of the last frame shown (zero before the first)
+  // A frame shown: its times, and what was spent on it (since the frame
+  // before), as stats.json lists them.
+  struct UnitJoules {
+    double static_joules, dynamic_joules;
+  };
   struct FrameRecord {
-    double shown_seconds;
-    Request request;
+    double shown_seconds = 0, requested_seconds = 0, render_seconds = 0;
+    sc_core::sc_time host_busy;
+    uint64_t bus_bytes = 0;
+    std::shared_ptr<const std::vector<std::string>> units;  // energy's units, shared with the frame before if the same
+    std::vector<UnitJoules> energy;                         // per unit of `units`
   };
   std::vector<FrameRecord> m_frames;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;

@@ -12,10 +12,10 @@
  * ones take GLfloat. The enums of the four extensions the Khronos gl.h
  * carries (read_format, compressed_paletted_texture, point_size_array,
  * point_sprite) are defined so that code naming them compiles; of their
- * extension macros only GL_OES_read_format is, the one the driver
- * implements (<GLES/glext.h> lists what it implements, as does
- * glGetString(GL_EXTENSIONS)). glPointSizePointerOES is not declared
- * because the driver does not implement point size arrays. */
+ * extension macros those of the extensions the driver implements are
+ * (read_format, point_size_array with glPointSizePointerOES, point_sprite;
+ * <GLES/glext.h> lists what it implements, as does
+ * glGetString(GL_EXTENSIONS)). */
 #ifndef TESSERA_GLES_GL_H
 #define TESSERA_GLES_GL_H
 
@@ -451,9 +451,23 @@ typedef long GLsizeiptr;
 #define GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES 0x8B9B
 #endif
 
-/* Not implemented: values only, so that code naming them compiles; the
- * driver reports no compressed formats, rejects glEnable of point sprites
- * and has no glPointSizePointerOES. */
+#ifndef GL_OES_point_size_array
+#define GL_OES_point_size_array 1
+#define GL_POINT_SIZE_ARRAY_OES 0x8B9C
+#define GL_POINT_SIZE_ARRAY_TYPE_OES 0x898A
+#define GL_POINT_SIZE_ARRAY_STRIDE_OES 0x898B
+#define GL_POINT_SIZE_ARRAY_POINTER_OES 0x898C
+#define GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES 0x8B9F
+GL_API void GL_APIENTRY glPointSizePointerOES(GLenum type, GLsizei stride, const void* pointer);
+#endif
+#ifndef GL_OES_point_sprite
+#define GL_OES_point_sprite 1
+#define GL_POINT_SPRITE_OES 0x8861
+#define GL_COORD_REPLACE_OES 0x8862
+#endif
+
+#ifndef GL_OES_compressed_paletted_texture
+#define GL_OES_compressed_paletted_texture 1
 #define GL_PALETTE4_RGB8_OES 0x8B90
 #define GL_PALETTE4_RGBA8_OES 0x8B91
 #define GL_PALETTE4_R5_G6_B5_OES 0x8B92
@@ -464,13 +478,7 @@ typedef long GLsizeiptr;
 #define GL_PALETTE8_R5_G6_B5_OES 0x8B97
 #define GL_PALETTE8_RGBA4_OES 0x8B98
 #define GL_PALETTE8_RGB5_A1_OES 0x8B99
-#define GL_POINT_SPRITE_OES 0x8861
-#define GL_COORD_REPLACE_OES 0x8862
-#define GL_POINT_SIZE_ARRAY_TYPE_OES 0x898A
-#define GL_POINT_SIZE_ARRAY_STRIDE_OES 0x898B
-#define GL_POINT_SIZE_ARRAY_POINTER_OES 0x898C
-#define GL_POINT_SIZE_ARRAY_OES 0x8B9C
-#define GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES 0x8B9F
+#endif
 
 /* ======================================================================== */
 /* Entry points                                                             */

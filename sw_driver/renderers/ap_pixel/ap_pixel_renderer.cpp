@@ -118,12 +118,21 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
   const double start = m_host.now_seconds();
   const renderers::HostTime before = m_time;
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): drawn without it");
+  if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   m_unit = renderers::single_texture_unit(state, [this](const std::string& what) { unsupported(what); });
   const gl::Texture tex = m_unit.index >= 0 ? state.unit[m_unit.index].tex : gl::Texture{};
   const bool textured = m_unit.index >= 0 && tex.width > 0 && tex.height > 0 && tex.width <= 256 && tex.height <= 256 &&
                         (tex.width & (tex.width - 1)) == 0 && (tex.height & (tex.height - 1)) == 0;
   if (m_unit.index >= 0 && !textured)
     unsupported("textures that are not a power of two up to 256 texels: drawn untextured");
+  if (textured && renderers::env_needs_base_format(tex, m_unit.env))
+    unsupported(
+        "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
+        "3.15): drawn with the texel expanded to RGBA");
+  if (textured && renderers::texture_needs_lod(tex))
+    unsupported(
+        "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
+        "sampled with the magnification filter");
   Reads reads;
   reads.colour = !state.flat_shading;
   reads.alpha = reads.colour && (state.alpha_test || state.blend || m_buffers.color_format != PixelFormat::rgb565 ||

@@ -28,6 +28,7 @@ std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& 
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
   if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
   if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
+  if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
     unsupported("colour masks (glColorMask): drawn with every channel");
   DrawFlags flags;
@@ -50,6 +51,14 @@ std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& 
   const gl::Texture tex = unit.index >= 0 ? state.unit[unit.index].tex : gl::Texture{};
   if (unit.index >= 0 && tex.width > 0 && tex.height > 0 && tex.width <= 256 && tex.height <= 256 &&
       (tex.width & (tex.width - 1)) == 0 && (tex.height & (tex.height - 1)) == 0) {
+    if (renderers::texture_needs_lod(tex))
+      unsupported(
+          "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
+          "sampled with the magnification filter");
+    if (renderers::env_needs_base_format(tex, unit.env))
+      unsupported(
+          "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
+          "3.15): drawn with the texel expanded to RGBA");
     flags.tex = textures.number(tex, unit.env, unsupported);
     flags.tex_width = tex.width;
     flags.tex_height = tex.height;

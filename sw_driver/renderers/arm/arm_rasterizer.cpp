@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderers/common/fog.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
 
@@ -31,6 +32,12 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
   int64_t q = a / b;
   if ((a % b) != 0 && a < 0) --q;
   return q;
+}
+
+bool has_window_positions(const gl::Triangle& tri) {
+  for (const gl::ScreenVertex& v : tri.v)
+    if (!std::isfinite(v.x_window) || !std::isfinite(v.y_window)) return false;
+  return true;
 }
 
 int64_t ceil_div(int64_t a, int64_t b) {
@@ -109,12 +116,14 @@ struct Plane {
 }  // namespace
 
 struct ArmRasterizer::TriangleSetup {
-  Plane z, color[4], q;
+  Plane z, color[4], q, fog;
   Plane sq[gl::MAX_TEXTURE_UNITS], tq[gl::MAX_TEXTURE_UNITS];  // per unit of DrawContext::units
   uint32_t flat_rgba = 0;
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
   bool linear_filter[gl::MAX_TEXTURE_UNITS] = {};
+  // Per unit: the level of detail chooses filter and levels (texturing.h).
+  bool lod[gl::MAX_TEXTURE_UNITS] = {};
 };
 
 struct ArmRasterizer::DrawContext {
@@ -126,12 +135,15 @@ struct ArmRasterizer::DrawContext {
   // The texture units drawn, in order (enabled, with a usable texture).
   unsigned units[gl::MAX_TEXTURE_UNITS] = {};
   unsigned unit_count = 0;
+  bool fog = false;
+  renderers::FogCoefficients fog_coefficients;
+  uint32_t fog_rgba = 0;
   bool late_tests = false;  // alpha test first, then stencil and depth
   bool color_write = false, needs_destination = false, blend = false, logic_op = false;
   uint32_t color_write_mask = 0;  // packed bits that are written
   // Instructions per pixel of a span, per shaded pixel, per written pixel.
   uint64_t pixel_alu = 0, pixel_branch = 0;
-  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0;
+  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0, shade_load_use = 0;
   uint64_t write_alu = 0, write_mul = 0;
   uint64_t span_alu = 0, span_mul = 0;
   unsigned attributes = 0;
@@ -244,6 +256,11 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   c.alpha_test = state.alpha_test;
   c.late_tests = state.alpha_test;
   c.gouraud = !state.flat_shading;
+  c.fog = state.fog;
+  if (c.fog) {
+    c.fog_coefficients = renderers::fog_coefficients(state);
+    c.fog_rgba = renderers::fog_rgba(state);
+  }
   for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
     const gl::TextureUnit& unit = state.unit[u];
     const gl::Texture& tex = unit.tex;
@@ -267,9 +284,11 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
 
   // Instruction counts for this state.
   // A texture takes s/w, t/w and 1/w; each further unit its own s/w, t/w.
-  c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 1 + 2 * c.unit_count : 0);
+  c.attributes =
+      (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 1 + 2 * c.unit_count : 0) + (c.fog ? 1 : 0);
   c.pixel_alu = k.pixel_alu + (c.depth_test ? k.depth_step_test_alu : 0) + (c.stencil_test ? k.stencil_test_alu : 0) +
-                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0);
+                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0) +
+                (c.fog ? k.fog_step_alu : 0);
   c.pixel_branch = k.pixel_branch;
   c.shade_alu = c.alpha_test ? k.alpha_test_alu : 0;
   for (unsigned i = 0; i < c.unit_count; ++i) {
@@ -311,6 +330,26 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
         break;
       }
     }
+  }
+  if (c.fog) {
+    switch (state.fog_mode) {
+      case gl::FogMode::linear:
+        c.shade_alu += k.fog_linear_alu;
+        c.shade_mul += k.fog_linear_mul;
+        break;
+      case gl::FogMode::exp:
+        c.shade_alu += k.fog_exp_alu;
+        c.shade_mul += k.fog_exp_mul;
+        c.shade_load_use += k.fog_exp_load_use;
+        break;
+      case gl::FogMode::exp2:
+        c.shade_alu += k.fog_exp2_alu;
+        c.shade_mul += k.fog_exp2_mul;
+        c.shade_load_use += k.fog_exp2_load_use;
+        break;
+    }
+    c.shade_alu += k.fog_blend_alu;
+    c.shade_mul += k.fog_blend_mul;
   }
   if (c.color_write) {
     c.write_alu += format == PixelFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
@@ -414,10 +453,39 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
                            double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
       s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
     }
+    // A textured triangle's colour, 1/w and texture planes follow the
+    // vertices before snapping, as the reference's do: snapping moves a
+    // vertex by up to 1/32 pixel, which at a minified texel rate of 1.6
+    // texels per pixel shifts the texture by 0.05 texel, a colour step of
+    // bilinear filtering (README, "Rounding"). Coverage and depth keep the
+    // snapped vertices.
+    // Only where 1/w varies: on an affine triangle (constant w) the reference's
+    // GL_NEAREST texel choices follow the snapped vertices (multitexture's
+    // orthographic panels, whose vertices lie 0.2/16 pixel off the grid and
+    // whose pixel centres fall on texel edges: 0.4% of the frame took the
+    // next texel row with the unsnapped planes).
+    const bool varying_w = !(tri.v[0].inv_w == tri.v[1].inv_w && tri.v[1].inv_w == tri.v[2].inv_w);
+    double attribute_area = area;
+    if (c.texture && varying_w && has_window_positions(tri)) {
+      for (int v = 0; v < 3; ++v) {
+        px[v] = double(tri.v[v].x_window);
+        py[v] = double(tri.v[v].y_window);
+      }
+      const double exact_area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
+      // A sliver the snapping made (or the float positions left degenerate) keeps the snapped planes.
+      if (std::fabs(exact_area) > 1e-6 && (exact_area > 0) == (area > 0)) {
+        attribute_area = exact_area;
+      } else {
+        for (int v = 0; v < 3; ++v) {
+          px[v] = double(x[v]) / 16.0;
+          py[v] = double(y[v]) / 16.0;
+        }
+      }
+    }
     // Normalised 1/w of each vertex: attributes are interpolated as a/w and
     // 1/w and divided per pixel when the triangle is seen in perspective.
     double qn[3] = {1.0, 1.0, 1.0};
-    if (c.gouraud || c.texture) {
+    if (c.gouraud || c.texture || c.fog) {
       double inv_w[3], max_inv_w = 0;
       for (int v = 0; v < 3; ++v) {
         const float w = tri.v[v].inv_w;
@@ -429,7 +497,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         for (int v = 0; v < 3; ++v) qn[v] = inv_w[v] / max_inv_w;
       double q[3];
       for (int v = 0; v < 3; ++v) q[v] = std::max(qn[v] * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
-      s.q.setup(q, px, py, area, 1.0, 0.0);
+      s.q.setup(q, px, py, attribute_area, 1.0, 0.0);
     }
     if (c.gouraud) {
       s.perspective_color = s.perspective;
@@ -442,7 +510,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         }
         // The rounding half is added after the division in the perspective case.
         const double bias = s.perspective_color ? 0.0 : double(1 << (COLOR_FRACTION_BITS - 1));
-        s.color[ch].setup(value, px, py, area, double(1 << COLOR_FRACTION_BITS), bias);
+        s.color[ch].setup(value, px, py, attribute_area, double(1 << COLOR_FRACTION_BITS), bias);
       }
     } else {
       const gl::ScreenVertex& pv = tri.v[2];
@@ -459,14 +527,33 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         sq[v] = su[v] * qn[v];
         tq[v] = tv[v] * qn[v];
       }
-      s.sq[i].setup(sq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.tq[i].setup(tq, px, py, area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.sq[i].setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.tq[i].setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
       // Minified when the triangle covers more texels than pixels.
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
       s.linear_filter[i] = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
+      s.lod[i] = renderers::texture_needs_lod(tex);
+      if (s.lod[i]) {
+        s.linear_filter[i] = false;  // chosen per pixel, charged per pixel
+        if (!s.perspective) {
+          m_memory.compute(Op::alu, k.lod_alu);
+          m_memory.compute(Op::mul, k.lod_mul);
+        }
+      }
       m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
       m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
+    }
+    if (c.fog) {
+      // The fog argument (16.16) of each vertex, interpolated as a/w and
+      // divided by 1/w per pixel like the Gouraud colours: perspective-correct,
+      // as Mesa interpolates its fog coordinate.
+      double fog[3];
+      for (int v = 0; v < 3; ++v) fog[v] = double(renderers::fog_argument(c.fog_coefficients, tri.v[v].fog)) * qn[v];
+      s.fog.setup(fog, px, py, area, 1.0, 0.0);
+      m_memory.compute(Op::fmul, 3ull * k.fog_vertex_fmul);
+      m_memory.compute(Op::fadd, 3ull * k.fog_vertex_fadd);
+      m_memory.compute(Op::fconv, 3ull * k.fog_vertex_fconv);
     }
     m_memory.compute(Op::alu, uint64_t(c.attributes) * k.attribute_setup_alu);
     m_memory.compute(Op::mul, uint64_t(c.attributes) * k.attribute_setup_mul);
@@ -499,18 +586,19 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   m_memory.compute(Op::branch, rows * k.row_branch);
 }
 
-void ArmRasterizer::fetch_texel(const gl::Texture& tex, int u8, int v8, bool linear, uint8_t out[4]) {
-  const unsigned w = tex.width;
-  auto address = [&](int i, int j) { return tex.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
+void ArmRasterizer::fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
+  const gl::TextureLevel image = renderers::texture_level(tex, level);
+  const unsigned w = image.width, h = image.height;
+  auto address = [&](int i, int j) { return image.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
   if (!linear) {
-    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, tex.height, tex.wrap_t);
+    const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, h, tex.wrap_t);
     std::memcpy(out, m_memory.load(address(i, j), 4, 1), 4);
     return;
   }
   const int um = u8 - 128, vm = v8 - 128;
   const uint32_t fu = uint32_t(um) & 255, fv = uint32_t(vm) & 255;
   const int i0 = wrap(um >> 8, w, tex.wrap_s), i1 = wrap((um >> 8) + 1, w, tex.wrap_s);
-  const int j0 = wrap(vm >> 8, tex.height, tex.wrap_t), j1 = wrap((vm >> 8) + 1, tex.height, tex.wrap_t);
+  const int j0 = wrap(vm >> 8, h, tex.wrap_t), j1 = wrap((vm >> 8) + 1, h, tex.wrap_t);
   uint8_t texel[4][4];  // (i0, j0), (i1, j0), (i0, j1), (i1, j1)
   const int rows[2] = {j0, j1};
   for (int r = 0; r < 2; ++r) {
@@ -561,9 +649,14 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     dsq[u] = s.sq[u].step;
     dtq[u] = s.tq[u].step;
   }
-  if (c.texture || s.perspective_color) {
+  if (c.texture || s.perspective_color || (c.fog && s.perspective)) {
     q = s.q.start(x_first, j, n);
     dq = s.q.step;
+  }
+  int64_t fog = 0, dfog = 0;
+  if (c.fog) {
+    fog = s.fog.start(x_first, j, n);
+    dfog = s.fog.step;
   }
 
   const uint8_t stencil_ref = state.stencil_ref, stencil_mask = state.stencil_value_mask;
@@ -586,7 +679,19 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     return !c.depth_test || compare_passes(state.depth_func, z16, m_depth_old[i]);
   };
 
-  uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0;
+  uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
+  // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
+  uint64_t lod_alu = 0, lod_mul = 0;
+  // lambda at a pixel from unit i's stepped (s q), (t q), q and its planes'
+  // gradients: d(sq/q)/dx = (gx(sq) q - sq gx(q)) / q^2, in level 0's texels.
+  auto pixel_lod = [&](unsigned i, int64_t sq_value, int64_t tq_value, int64_t q_value) {
+    const double scale = double(int64_t{1} << (Q_FRACTION_BITS - ST_FRACTION_BITS)) / (double(q_value) * q_value);
+    const double sqd = double(sq_value), tqd = double(tq_value), qd = double(q_value);
+    const Plane &sp = s.sq[i], &tp = s.tq[i];
+    const double ux = (sp.gx * qd - sqd * s.q.gx) * scale, uy = (sp.gy * qd - sqd * s.q.gy) * scale;
+    const double vx = (tp.gx * qd - tqd * s.q.gx) * scale, vy = (tp.gy * qd - tqd * s.q.gy) * scale;
+    return renderers::texture_lod(ux, vx, uy, vy);
+  };
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
@@ -625,9 +730,37 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
           }
           const gl::TextureUnit& unit = state.unit[c.units[u]];
           uint8_t texel[4];
-          fetch_texel(unit.tex, int(u8), int(v8), s.linear_filter[u], texel);
+          if (s.lod[u]) {
+            // The unit's own level of detail, from its coordinates' gradients.
+            auto filter_level = [&](unsigned level, int fu, int fv, bool linear, uint8_t filtered[4]) {
+              fetch_texel(unit.tex, level, fu, fv, linear, filtered);
+            };
+            const renderers::LodChoice choice = renderers::sample_texture_lod(
+                unit.tex, int(u8), int(v8), pixel_lod(u, sq[u], tq[u], q), filter_level, texel);
+            if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
+            const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
+            const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
+            lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
+            lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
+          } else {
+            fetch_texel(unit.tex, 0, int(u8), int(v8), s.linear_filter[u], texel);
+          }
+          // The unit's base format rules (fill_missing_components) apply
+          // before its environment, inside apply_texture_unit.
           rgba = renderers::apply_texture_unit(unit, rgba, primary, texel);
         }
+      }
+      if (c.fog) {
+        // After texturing, before the fragment operations (ES 1.1, 3.8).
+        int64_t argument = fog;
+        if (s.perspective) {
+          argument = fog * (int64_t{1} << Q_FRACTION_BITS) / q;
+          // The reciprocal of q is shared with the texture coordinates or
+          // the colours when they divide too.
+          if (!c.texture && !s.perspective_color) ++fog_divisions;
+        }
+        const auto a = int32_t(std::clamp<int64_t>(argument, INT32_MIN, INT32_MAX));
+        rgba = fog_blend(fog_factor(state.fog_mode, a), rgba, c.fog_rgba);
       }
       if (c.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) {
         alive = false;
@@ -646,6 +779,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
       tq[u] += dtq[u];
     }
     q += dq;
+    fog += dfog;
   }
 
   // Stores, as runs of consecutive pixels.
@@ -702,11 +836,15 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
                further_units * k.texcoord_step_alu_unit;
   }
   if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
-  const uint64_t divisions = texel_calls + color_divisions;
+  if (c.fog && s.perspective) shade_mul += k.fog_perspective_mul;
+  if (lod_alu != 0) m_memory.compute(Op::alu, lod_alu);
+  if (lod_mul != 0) m_memory.compute(Op::mul, lod_mul);
+  const uint64_t divisions = texel_calls + color_divisions + fog_divisions;
   m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
                                 passed * c.write_alu + divisions * k.division_alu);
   m_memory.compute(Op::mul, c.span_mul + shaded * shade_mul + passed * c.write_mul);
   m_memory.compute(Op::branch, k.span_branch + uint64_t(n) * c.pixel_branch);
+  if (c.shade_load_use != 0) m_memory.compute(Op::load_use, shaded * c.shade_load_use);
   if (divisions != 0) m_memory.compute(Op::call, divisions);
 }
 

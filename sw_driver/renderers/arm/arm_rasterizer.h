@@ -29,9 +29,14 @@
 //   units with 8 fraction bits. When the three 1/w are equal the division is
 //   skipped (affine). Nearest takes texel floor(u); bilinear blends texels
 //   floor(u - 0.5) and +1 with 8-bit weights, rounded to nearest. Repeat
-//   wraps with & (size - 1), clamp-to-edge clamps the texel index. The
-//   minification/magnification choice is made per triangle: minified when the
-//   triangle's area in texels exceeds its area in pixels.
+//   wraps with & (size - 1), clamp-to-edge clamps the texel index.
+// - Level of detail: where it matters (a mipmap minification filter, or
+//   different minification and magnification filters) lambda = log2(rho) is
+//   computed per pixel from the derivatives of u = (s q)/q and v, which
+//   follow from the planes' gradients and the pixel's stepped values
+//   (renderers/common/texturing.h: texture_lod, choose_levels); the levels
+//   are sampled at u / 2^level and two levels blended with an 8-bit weight.
+//   Where it does not matter it is not computed.
 //
 // Fill rule (shared edges are drawn exactly once). Pixel (i, j) is drawn if
 // its centre (i + 0.5, j + 0.5) is inside the triangle. A centre exactly on
@@ -89,6 +94,12 @@ struct InstructionCounts {
   unsigned perspective_unit_mul = 2;                  // each further unit: s/w, t/w times the reciprocal
   unsigned texel_nearest_alu = 8, texel_nearest_mul = 1;
   unsigned texel_linear_alu = 30, texel_linear_mul = 9;
+  // The level of detail: four derivatives of u/q and v/q (two products and a
+  // difference each, over q squared), two sums of squares, the larger, and
+  // log2 by CLZ and a 16-entry table of the mantissa; per pixel where 1/w
+  // varies, once per triangle where it does not. A second mipmap level:
+  // its texel fetch, plus the blend of the two colours.
+  unsigned lod_alu = 30, lod_mul = 14, mipmap_blend_alu = 12, mipmap_blend_mul = 4;
   unsigned modulate_alu = 12, modulate_mul = 4, decal_alu = 12, decal_mul = 3;
   unsigned blend_env_alu = 16, blend_env_mul = 7, add_env_alu = 14, add_env_mul = 1;
   // GL_COMBINE, per unit: per argument (source select and operand), then
@@ -98,6 +109,16 @@ struct InstructionCounts {
   unsigned combine_alpha_function_alu = 6, combine_alpha_function_mul = 2;
   unsigned combine_dot3_alu = 16, combine_dot3_mul = 3;
   unsigned alpha_test_alu = 2;
+  // Fog (README.md, "Fog"): per vertex the fog argument from soft float, per
+  // pixel its step, per shaded pixel its perspective product, the factor of
+  // the mode and the blend of R, G, B with the fog colour.
+  unsigned fog_vertex_fmul = 1, fog_vertex_fadd = 1, fog_vertex_fconv = 1;
+  unsigned fog_step_alu = 1;
+  unsigned fog_perspective_mul = 1;
+  unsigned fog_linear_alu = 4, fog_linear_mul = 1;
+  unsigned fog_exp_alu = 7, fog_exp_mul = 1, fog_exp_load_use = 1;
+  unsigned fog_exp2_alu = 9, fog_exp2_mul = 2, fog_exp2_load_use = 1;
+  unsigned fog_blend_alu = 13, fog_blend_mul = 6;
   // Per pixel written.
   unsigned depth_write_alu = 1;
   // Packing to RGB565 rounds each channel to nearest (common/pixel_format.h):
@@ -145,7 +166,8 @@ class ArmRasterizer {
 
   void draw_triangle(const DrawContext& context, const gl::Triangle& triangle);
   void shade_span(const DrawContext& context, const TriangleSetup& setup, int j, int x_first, int x_last);
-  void fetch_texel(const gl::Texture& tex, int u8, int v8, bool linear, uint8_t out[4]);
+  // Nearest or bilinear texel of `tex`'s mipmap level `level` at that level's texel coordinates (u8, v8).
+  void fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]);
   void write_color_run(const DrawContext& context, uint32_t row_offset, int x_begin, int begin, int end);
 
   PixelMemory& m_memory;

@@ -8,7 +8,9 @@
 
 #include "gl/runtime.h"
 #include "raster/raster_regs.h"
+#include "renderers/common/fog.h"
 #include "renderers/common/texture_units.h"
+#include "renderers/common/texturing.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
 
@@ -22,8 +24,9 @@ namespace {
 
 // The host charges for the binning loop, per unit of work, in ARM922T
 // operation classes (the stores of the lists are charged by write_words).
-constexpr uint64_t TRIANGLE_ALU = 24;       // bounding box (6 min/max), tile range, packing x/y/z/rgba
-constexpr uint64_t TRIANGLE_FMUL = 2;       // s/w, t/w
+constexpr uint64_t TRIANGLE_ALU = 24;  // bounding box (6 min/max), tile range, packing x/y/z/rgba
+constexpr uint64_t TRIANGLE_FMUL = 2;  // s/w, t/w
+constexpr uint64_t FOG_VERTEX_FMUL = 1, FOG_VERTEX_FADD = 1, FOG_VERTEX_FCONV = 1;  // c * scale + bias, to 16.16
 constexpr uint64_t TILE_ENTRY_ALU = 4;      // append two words to a tile's list, bump its count
 constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
 constexpr unsigned STM_WORDS = 8;           // STM with eight registers
@@ -46,6 +49,7 @@ StateBlock encode_state(const gl::RasterState& s, const renderers::SingleTexture
   flag(texture, raster::texture);
   flag(s.flat_shading, raster::flat_shading);
   flag(s.polygon_smooth, raster::polygon_smooth);
+  flag(s.fog, raster::fog);
   b.depth_func = code_of(s.depth_func);
   b.alpha_func = code_of(s.alpha_func) | uint32_t{s.alpha_ref} << 8;
   b.stencil_func = code_of(s.stencil_func) | uint32_t{s.stencil_ref} << 8 | uint32_t{s.stencil_value_mask} << 16 |
@@ -76,8 +80,25 @@ StateBlock encode_state(const gl::RasterState& s, const renderers::SingleTexture
   return b;
 }
 
+// The FogState of a state with fog (zeros without, never written then).
+raster::FogState encode_fog(const gl::RasterState& s) {
+  raster::FogState f{};
+  if (!s.fog) return f;
+  f.mode = code_of(s.fog_mode) << raster::FOG_MODE_SHIFT;
+  f.color = uint32_t{s.fog_color[0]} | uint32_t{s.fog_color[1]} << 8 | uint32_t{s.fog_color[2]} << 16;
+  return f;
+}
+
 bool same(const StateBlock& a, const StateBlock& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// The first `bytes` of `object`, as words.
+template <typename T>
+void append_words(std::vector<uint32_t>& words, const T& object, uint32_t bytes) {
+  const size_t at = words.size();
+  words.resize(at + bytes / 4);
+  std::memcpy(words.data() + at, &object, bytes);
 }
 
 raster::VertexRecord encode_vertex(const gl::ScreenVertex& v, int unit) {
@@ -116,16 +137,18 @@ RasterRenderer::RasterRenderer(AppEnvironment& env)
     : m_env(env), m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
   m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
-  m_last_draw_state = encode_state(gl::RasterState{}, {});
+  m_last_draw_state = {encode_state(gl::RasterState{}, {}), raster::FogState{}};
 }
 
 uint32_t RasterRenderer::reg(uint32_t offset) const {
   return memory_map::raster_regs.base + offset;
 }
 
-uint32_t RasterRenderer::add_state(const StateBlock& block) {
+uint32_t RasterRenderer::add_state(const StateRecord& state) {
   m_host.compute(Op::alu, STATE_COMPARE_ALU);
-  if (m_states.empty() || !same(m_states.back(), block)) m_states.push_back(block);
+  if (m_states.empty() || !same(m_states.back().block, state.block) ||
+      std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0)
+    m_states.push_back(state);
   return static_cast<uint32_t>(m_states.size() - 1);
 }
 
@@ -133,12 +156,13 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
   if (!request.color && !request.depth && !request.stencil) return;
   // The clear's scissor is that of the state current in its tile, so the
   // clear carries a state: the last draw state with the clear's scissor.
-  StateBlock block = m_last_draw_state;
+  StateRecord record = m_last_draw_state;
+  StateBlock& block = record.block;
   block.flags = (block.flags & ~raster::scissor_test) | (request.scissor_test ? raster::scissor_test : 0u);
   auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
   block.scissor_xy = u16(request.scissor_x) | u16(request.scissor_y) << 16;
   block.scissor_size = u16(request.scissor_width) | u16(request.scissor_height) << 16;
-  const uint32_t state = add_state(block);
+  const uint32_t state = add_state(record);
   renderers::TileRange tiles;
   if (request.scissor_test) {
     if (request.scissor_width <= 0 || request.scissor_height <= 0) return;
@@ -169,15 +193,33 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
   if (count == 0) return;
   const renderers::SingleTextureUnit unit =
       renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
-  m_last_draw_state = encode_state(state, unit);
+  if (unit.index >= 0) {
+    const gl::Texture& tex = state.unit[unit.index].tex;
+    // The rasterizer's texture unit fetches from one level (tlm/raster).
+    if (tex.min_mipmap != gl::MipmapFilter::none)
+      m_unsupported.report(m_env,
+                           "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
+                           "within a level");
+    if (renderers::env_needs_base_format(tex, unit.env))
+      m_unsupported.report(m_env,
+                           "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
+                           "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
+  }
+  m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
   const uint32_t state_index = add_state(m_last_draw_state);
+  renderers::FogCoefficients fog;
+  if (state.fog) fog = renderers::fog_coefficients(state);
   // Antialiased edges reach into the pixels next to the box; one pixel of
   // margin covers them and costs nothing for the tiles.
   constexpr int MARGIN = 1;
   for (size_t i = 0; i < count; ++i) {
     const gl::Triangle& t = triangles[i];
-    raster::TriangleRecord record;
-    for (unsigned k = 0; k < 3; ++k) record.v[k] = encode_vertex(t.v[k], unit.index);
+    TriangleWords record{};
+    record.state_flags = m_last_draw_state.block.flags;
+    for (unsigned k = 0; k < 3; ++k) {
+      record.record.v[k] = encode_vertex(t.v[k], unit.index);
+      if (state.fog) record.fog.argument[k] = renderers::fog_argument(fog, t.v[k].fog);
+    }
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
     const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
     m_binner.add(state_index, m_binner.tiles_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN,
@@ -187,6 +229,11 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
   }
   m_host.compute(Op::alu, TRIANGLE_ALU * count);
   m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count);
+  if (state.fog) {
+    m_host.compute(Op::fmul, FOG_VERTEX_FMUL * 3 * count);
+    m_host.compute(Op::fadd, FOG_VERTEX_FADD * 3 * count);
+    m_host.compute(Op::fconv, FOG_VERTEX_FCONV * 3 * count);
+  }
   m_host.compute(Op::branch, count);
   m_host.compute(Op::call);
 }
@@ -221,8 +268,19 @@ void RasterRenderer::flush() {
   const std::vector<std::vector<renderers::BinEntry>> bins = m_binner.bin();
   std::vector<std::vector<uint32_t>> lists(tiles);
   const uint32_t tile_table_bytes = tiles * sizeof(raster::TileEntry);
-  const uint32_t states_bytes = static_cast<uint32_t>(m_states.size() * sizeof(StateBlock));
-  const uint32_t triangles_bytes = static_cast<uint32_t>(m_triangles.size() * sizeof(raster::TriangleRecord));
+  // State blocks and triangle records, each as long as command_format.h
+  // says for its fog flag, at these byte offsets.
+  std::vector<uint32_t> state_words, record_words, state_offsets, record_offsets;
+  for (const StateRecord& s : m_states) {
+    state_offsets.push_back(static_cast<uint32_t>(4 * state_words.size()));
+    append_words(state_words, s, raster::state_block_bytes(s.block.flags));
+  }
+  for (const TriangleWords& t : m_triangles) {
+    record_offsets.push_back(static_cast<uint32_t>(4 * record_words.size()));
+    append_words(record_words, t, raster::triangle_record_bytes(t.state_flags));
+  }
+  const uint32_t states_bytes = static_cast<uint32_t>(4 * state_words.size());
+  const uint32_t triangles_bytes = static_cast<uint32_t>(4 * record_words.size());
   uint64_t entries = 0;
   for (unsigned tile = 0; tile < tiles; ++tile) {
     std::vector<uint32_t>& list = lists[tile];
@@ -261,8 +319,7 @@ void RasterRenderer::flush() {
         i += 4;
         continue;
       }
-      list[i + 1] = op == Opcode::state ? states + list[i + 1] * static_cast<uint32_t>(sizeof(StateBlock))
-                                        : records + list[i + 1] * static_cast<uint32_t>(sizeof(raster::TriangleRecord));
+      list[i + 1] = op == Opcode::state ? states + state_offsets[list[i + 1]] : records + record_offsets[list[i + 1]];
       i += 2;
     }
     table[2 * tile] = list.empty() ? 0 : next_list;
@@ -270,8 +327,8 @@ void RasterRenderer::flush() {
     write_block(next_list, list.data(), list.size());
     next_list += static_cast<uint32_t>(4 * list.size());
   }
-  write_block(states, reinterpret_cast<const uint32_t*>(m_states.data()), states_bytes / 4);
-  write_block(records, reinterpret_cast<const uint32_t*>(m_triangles.data()), triangles_bytes / 4);
+  write_block(states, state_words.data(), state_words.size());
+  write_block(records, record_words.data(), record_words.size());
   write_block(tile_table, table.data(), table.size());
 
   run_rasterizer(tile_table);

@@ -9,6 +9,7 @@
 // for the arm back end.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -54,7 +55,25 @@ class RasterRenderer : public gl::Renderer {
     uint32_t words[4];
   };
 
-  uint32_t add_state(const raster::StateBlock& block);
+  // A state block and the FogState that follows it in memory with
+  // StateFlag::fog: the first raster::state_block_bytes(block.flags) bytes
+  // are written.
+  struct StateRecord {
+    raster::StateBlock block;
+    raster::FogState fog;
+  };
+  // A triangle record and its TriangleFog: the first
+  // raster::triangle_record_bytes(state_flags) bytes are written.
+  struct TriangleWords {
+    raster::TriangleRecord record;
+    raster::TriangleFog fog;
+    uint32_t state_flags;
+  };
+  // The extensions follow their blocks directly, as command_format.h lays them out.
+  static_assert(offsetof(StateRecord, fog) == sizeof(raster::StateBlock), "FogState right after the block");
+  static_assert(offsetof(TriangleWords, fog) == sizeof(raster::TriangleRecord), "TriangleFog right after the record");
+
+  uint32_t add_state(const StateRecord& state);
   uint32_t arena(uint32_t bytes);
   void write_block(uint32_t address, const uint32_t* words, size_t count);
   void run_rasterizer(uint32_t tile_table);
@@ -71,10 +90,10 @@ class RasterRenderer : public gl::Renderer {
   uint32_t m_arena = 0, m_arena_bytes = 0;
 
   std::vector<Command> m_commands;
-  std::vector<raster::StateBlock> m_states;
+  std::vector<StateRecord> m_states;
   std::vector<ClearWords> m_clears;
-  std::vector<raster::TriangleRecord> m_triangles;
-  raster::StateBlock m_last_draw_state{};
+  std::vector<TriangleWords> m_triangles;
+  StateRecord m_last_draw_state{};
 };
 
 }  // namespace tessera::raster_backend

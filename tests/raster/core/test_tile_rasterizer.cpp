@@ -16,6 +16,7 @@ using namespace tessera::raster;
 using tessera::BlendFactor;
 using tessera::code_of;
 using tessera::CompareFunc;
+using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::TexEnv;
 using tessera::TexWrap;
@@ -132,6 +133,27 @@ class Frame {
   void triangle(const VertexRecord& a, const VertexRecord& b, const VertexRecord& c) {
     const TriangleRecord t{{a, b, c}};
     const uint32_t address = put(&t, sizeof t);
+    all({uint32_t(Opcode::triangle), address});
+  }
+  // A state with the fog flag and its FogState right after the block.
+  void fog_state(StateBlock s, const FogState& fog) {
+    s.flags |= StateFlag::fog;
+    struct {
+      StateBlock block;
+      FogState fog;
+    } words{s, fog};
+    static_assert(sizeof words == state_block_bytes(StateFlag::fog), "block and fog words");
+    const uint32_t a = put(&words, sizeof words);
+    all({uint32_t(Opcode::state), a});
+  }
+  // A triangle record followed by its TriangleFog (drawn with a fog state).
+  void fog_triangle(const VertexRecord& a, const VertexRecord& b, const VertexRecord& c, const TriangleFog& fog) {
+    struct {
+      TriangleRecord record;
+      TriangleFog fog;
+    } words{{{a, b, c}}, fog};
+    static_assert(sizeof words == triangle_record_bytes(StateFlag::fog), "record and fog words");
+    const uint32_t address = put(&words, sizeof words);
     all({uint32_t(Opcode::triangle), address});
   }
   // Writes the lists and the tile table; word_count_extra lengthens none.
@@ -424,6 +446,54 @@ TEST(TileRasterizer, GouraudColoursArePerspectiveCorrect) {
   EXPECT_LE(worst, 1);
   // The affine ramp would give 128 at the middle; the perspective one 52.
   EXPECT_NEAR(int(frame.pixel(48, 20) & 0xff), 52, 1);
+}
+
+// Fog, exp mode, on a quad seen in perspective: the fog argument is
+// interpolated as a/w over 1/w (as Mesa interpolates its fog coordinate),
+// then f = 2^-a and C = f Cf + (1 - f) Cfog, computed here in double from
+// GL's formulas; within 1 code (the factor's 0.82 and the blend's rounding
+// over |Cf - Cfog| = 255, and the perspective division).
+TEST(TileRasterizer, FogIsPerFragmentAndPerspectiveCorrect) {
+  VectorPort port(MEMORY_SIZE);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  FogState fog{};
+  fog.mode = code_of(FogMode::exp) << FOG_MODE_SHIFT;
+  fog.color = 0x000000ffu;  // red fog
+  frame.fog_state(default_state(), fog);
+  const float w_left = 1, w_right = 4;
+  const double a_left = 0.25, a_right = 3.0;  // fog arguments, 2^-a
+  const int32_t fa = int32_t(std::lround(a_left * 65536)), fb = int32_t(std::lround(a_right * 65536));
+  const uint32_t white = 0xffffffffu;
+  const VertexRecord a = vertex(0, 0, white, 0, 0, 0, w_left), b = vertex(96, 0, white, 0, 0, 0, w_right),
+                     c = vertex(96, 48, white, 0, 0, 0, w_right), d = vertex(0, 48, white, 0, 0, 0, w_left);
+  frame.fog_triangle(a, b, c, TriangleFog{{fa, fb, fb}});
+  frame.fog_triangle(a, c, d, TriangleFog{{fa, fb, fa}});
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+  int worst = 0;
+  for (unsigned y : {5u, 20u, 40u}) {
+    for (unsigned x = 0; x < 96; ++x) {
+      const double t = (x + 0.5) / 96;
+      const double argument = ((1 - t) * a_left / w_left + t * a_right / w_right) / ((1 - t) / w_left + t / w_right);
+      const double f = std::exp2(-argument);
+      const uint32_t p = frame.pixel(x, y);
+      worst = std::max(worst, std::abs(int((p >> 8) & 0xff) - int(std::lround(255 * f))));  // green: 255 f
+      EXPECT_EQ(p & 0xff, 0xffu);                                                           // red stays 255
+      EXPECT_EQ(p >> 24, 0xffu);                                                            // alpha is not fogged
+    }
+  }
+  EXPECT_LE(worst, 1);
+}
+
+// A run without the fog flag reads no fog words: a fog state's extension
+// and a fog record's are only read under the flag (state_block_bytes and
+// triangle_record_bytes of 0 are the plain sizes).
+TEST(TileRasterizer, FogExtensionsOnlyWithTheFlag) {
+  EXPECT_EQ(state_block_bytes(0), sizeof(StateBlock));
+  EXPECT_EQ(triangle_record_bytes(0), sizeof(TriangleRecord));
+  EXPECT_EQ(state_block_bytes(StateFlag::fog), sizeof(StateBlock) + 8);
+  EXPECT_EQ(triangle_record_bytes(StateFlag::fog), sizeof(TriangleRecord) + 12);
 }
 
 TEST(TileRasterizer, BlendingSourceAlpha) {

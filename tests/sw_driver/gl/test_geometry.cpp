@@ -23,6 +23,8 @@ ClipVertex vertex(float x, float y, float z, float w = 1) {
   v.position = {x, y, z, w};
   v.color = {x, y, z, w};
   v.tex[0] = {x * 2, y * 3};
+  v.tex[1] = {y - z, 4 * w};  // every unit's coordinates are clipped
+  v.fog = 5 * x + 7 * w;      // the fog coordinate is clipped like the rest
   return v;
 }
 
@@ -33,6 +35,9 @@ void expect_attributes_follow_positions(const std::vector<ClipVertex>& polygon) 
     EXPECT_NEAR(v.color.b, v.position.z, 1e-5);
     EXPECT_NEAR(v.tex[0].x, 2 * v.position.x, 1e-5);
     EXPECT_NEAR(v.tex[0].y, 3 * v.position.y, 1e-5);
+    EXPECT_NEAR(v.tex[1].x, v.position.y - v.position.z, 1e-5);
+    EXPECT_NEAR(v.tex[1].y, 4 * v.position.w, 1e-5);
+    EXPECT_NEAR(v.fog, 5 * v.position.x + 7 * v.position.w, 1e-4);
   }
 }
 
@@ -143,6 +148,7 @@ TEST(Viewport, CentreOfTheViewportAndDepthMidpoint) {
   EXPECT_EQ(s.b, 0);
   EXPECT_EQ(s.a, 64);  // 63.75
   EXPECT_FLOAT_EQ(s.inv_w, 1.0f);
+  EXPECT_FLOAT_EQ(s.fog, 7.0f);  // passed on as it is
 }
 
 TEST(Viewport, CornersAndSubpixelRounding) {
@@ -381,4 +387,147 @@ TEST(Lighting, DisabledLightsContributeNothing) {
   EXPECT_NEAR(c.r, 0.1f + 0.04f, 1e-6);
   EXPECT_NEAR(c.g, 0.2f + 0.04f, 1e-6);
   EXPECT_NEAR(c.b, 0.3f + 0.04f, 1e-6);
+}
+
+// User clip planes, polygon offset and lighting of ES 1.1 -------------------
+
+namespace {
+
+// A vertex whose eye coordinates equal its clip coordinates (identity
+// projection), with a colour to follow through the clipper.
+ClipVertex eye_vertex(float x, float y, glm::vec4 color) {
+  ClipVertex v;
+  v.position = v.eye = {x, y, 0, 1};
+  v.color = v.back_color = color;
+  for (glm::vec2& st : v.tex) st = {0, 0};
+  return v;
+}
+
+}  // namespace
+
+TEST(UserClipPlanes, CutAPolygonInEyeSpace) {
+  // The triangle (-1, 0), (1, 0), (1, 1) against x >= 0: the edge
+  // (-1, 0)-(1, 0) crosses at (0, 0) half way, the edge (1, 1)-(-1, 0) at
+  // (0, 0.5) half way; what remains is (0, 0), (1, 0), (1, 1), (0, 0.5).
+  const std::vector<ClipVertex> triangle = {eye_vertex(-1, 0, {1, 0, 0, 1}), eye_vertex(1, 0, {0, 1, 0, 1}),
+                                            eye_vertex(1, 1, {0, 0, 1, 1})};
+  const std::vector<ClipVertex> clipped = clip_polygon(triangle, {glm::vec4(1, 0, 0, 0)});
+  ASSERT_EQ(clipped.size(), 4u);
+  int crossings = 0;
+  for (const ClipVertex& v : clipped) {
+    EXPECT_GE(v.eye.x, 0);
+    EXPECT_EQ(v.eye, v.position);  // eye coordinates are interpolated with the rest
+    if (v.eye.x == 0 && v.eye.y == 0) {
+      // Half way from red to green.
+      EXPECT_NEAR(v.color.r, 0.5f, 1e-6);
+      EXPECT_NEAR(v.color.g, 0.5f, 1e-6);
+      EXPECT_NEAR(v.back_color.r, 0.5f, 1e-6);
+      ++crossings;
+    }
+    if (v.eye.x == 0 && std::fabs(v.eye.y - 0.5f) < 1e-6f) {
+      // Half way from blue to red.
+      EXPECT_NEAR(v.color.r, 0.5f, 1e-6);
+      EXPECT_NEAR(v.color.b, 0.5f, 1e-6);
+      ++crossings;
+    }
+  }
+  EXPECT_EQ(crossings, 2);
+  // Two planes that leave nothing between them.
+  EXPECT_TRUE(clip_polygon(triangle, {glm::vec4(1, 0, 0, -2), glm::vec4(-1, 0, 0, 0)}).empty());
+  // No planes: clip_polygon of the view volume alone.
+  EXPECT_EQ(clip_polygon(triangle, {}).size(), 3u);
+  EXPECT_TRUE(inside_user_planes(triangle[1], {glm::vec4(1, 0, 0, 0)}));
+  EXPECT_FALSE(inside_user_planes(triangle[0], {glm::vec4(1, 0, 0, 0)}));
+}
+
+TEST(UserClipPlanes, CutASegment) {
+  // Keep z <= -2 ((0, 0, -1, -2)): from z = -1 to z = -5 the value runs
+  // from -1 to 3 and crosses 0 a quarter of the way.
+  float t0 = -1, t1 = -1;
+  ASSERT_TRUE(clip_segment({0, 0, -1, 1}, {0, 0, -5, 1}, {glm::vec4(0, 0, -1, -2)}, &t0, &t1));
+  EXPECT_FLOAT_EQ(t0, 0.25f);
+  EXPECT_FLOAT_EQ(t1, 1.0f);
+  // And x <= 0.5 on a segment from x = 0 to 1 at the same time: ends half way.
+  ASSERT_TRUE(
+      clip_segment({0, 0, -1, 1}, {1, 0, -5, 1}, {glm::vec4(0, 0, -1, -2), glm::vec4(-1, 0, 0, 0.5f)}, &t0, &t1));
+  EXPECT_FLOAT_EQ(t0, 0.25f);
+  EXPECT_FLOAT_EQ(t1, 0.5f);
+  // Both ends outside, or the inside parts of two planes disjoint: nothing.
+  EXPECT_FALSE(clip_segment({0, 0, -1, 1}, {0, 0, -1.5f, 1}, {glm::vec4(0, 0, -1, -2)}, &t0, &t1));
+  EXPECT_FALSE(
+      clip_segment({0, 0, 0, 1}, {1, 0, 0, 1}, {glm::vec4(1, 0, 0, -0.75f), glm::vec4(-1, 0, 0, 0.25f)}, &t0, &t1));
+}
+
+TEST(PolygonOffset, SlopeOfThePlaneInWindowCoordinates) {
+  // z = 0.05 x + 0.01 y: at (0, 0) 0, at (10, 0) 0.5, at (0, 20) 0.2.
+  EXPECT_NEAR(depth_slope({{0, 0, 0}, {10, 0, 0.5}, {0, 20, 0.2}}), 0.05, 1e-12);
+  // The same plane as a quadrilateral, and wound the other way.
+  EXPECT_NEAR(depth_slope({{0, 0, 0}, {0, 20, 0.2}, {10, 20, 0.7}, {10, 0, 0.5}}), 0.05, 1e-12);
+  // Steeper in y: z = -0.3 y.
+  EXPECT_NEAR(depth_slope({{0, 0, 0.5}, {4, 0, 0.5}, {0, 1, 0.2}}), 0.3, 1e-12);
+  // Constant depth, and a polygon seen edge-on (no area in x, y).
+  EXPECT_EQ(depth_slope({{0, 0, 0.5}, {4, 0, 0.5}, {0, 1, 0.5}}), 0);
+  EXPECT_EQ(depth_slope({{0, 0, 0.1}, {4, 0, 0.5}, {8, 0, 0.9}}), 0);
+}
+
+TEST(PolygonOffset, UnitsAreTheDepthBuffersSmallestStep) {
+  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(16), 1.0 / 65535);
+  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(24), 1.0 / 16777215);
+  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(0), 1.0 / 16777215);
+  EXPECT_DOUBLE_EQ(polygon_depth_offset(0.05, 2, 3, 16), 0.1 + 3.0 / 65535);
+  EXPECT_DOUBLE_EQ(polygon_depth_offset(0.05, -1, -1, 24), -0.05 - 1.0 / 16777215);
+}
+
+TEST(PolygonOffset, OffsetDepthIsClampedToTheDepthRange) {
+  Viewport viewport;
+  viewport.width = 64, viewport.height = 48;
+  viewport.near_depth = 0.2f, viewport.far_depth = 0.6f;
+  const ClipVertex v = vertex(0, 0, 0);  // NDC z 0: window depth 0.4
+  EXPECT_NEAR(window_depth(v.position, viewport), 0.4, 1e-7);
+  ScreenVertex s{};
+  ASSERT_TRUE(to_screen(v, viewport, 0.1, &s));
+  EXPECT_EQ(s.z, to_unorm24(0.5f));
+  ASSERT_TRUE(to_screen(v, viewport, 0.5, &s));
+  EXPECT_EQ(s.z, to_unorm24(0.6f));
+  ASSERT_TRUE(to_screen(v, viewport, -0.5, &s));
+  EXPECT_EQ(s.z, to_unorm24(0.2f));
+}
+
+TEST(Lighting, SpotLightsAndAttenuation) {
+  LightingModel model;
+  model.ambient = {0, 0, 0, 1};
+  model.lights.resize(8);
+  Material material;
+  material.ambient = {0, 0, 0, 1};  // only the diffuse term: 0.8 per unit of n.l
+  Light& light = model.lights[7];   // any of the eight
+  light.enabled = true;
+  light.diffuse = {1, 1, 1, 1};
+  light.position = {0, 0, 0, 1};
+  // Attenuation 1 / (1 + 0.5 d) at d = 2: 0.5; n.l = 1: 0.8 * 0.5 = 0.4.
+  light.linear_attenuation = 0.5f;
+  EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1}).r, 0.4f, 1e-6);
+  // Quadratic: 1 / (1 + 0.25 * 4) = 0.5 as well.
+  light.linear_attenuation = 0, light.quadratic_attenuation = 0.25f;
+  EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1}).r, 0.4f, 1e-6);
+  light.quadratic_attenuation = 0;
+  // A spot light down -z with a 30-degree cutoff and exponent 2: on the
+  // axis the spot factor is 1; at 20 degrees off it cos(20)^2; at 45
+  // degrees the vertex is outside the cone and gets nothing.
+  light.spot_direction = {0, 0, -1};
+  light.spot_cutoff = 30, light.spot_exponent = 2;
+  const float pi = std::acos(-1.0f);
+  const float angle = 20 * pi / 180;
+  const glm::vec4 off_axis{std::sin(angle), 0, -std::cos(angle), 1};
+  const glm::vec3 facing_light = -glm::vec3(off_axis);  // n.l = 1
+  EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {0, 0, 1}).r, 0.8f, 1e-6);
+  EXPECT_NEAR(light_vertex(model, material, off_axis, facing_light).r, 0.8f * std::pow(std::cos(angle), 2.0f), 1e-5);
+  EXPECT_EQ(light_vertex(model, material, {2, 0, -2, 1}, glm::normalize(glm::vec3(-1, 0, 1))).r, 0);
+  // A directional light is not attenuated; its spot factor takes the
+  // light's direction, -position: from +x, (-1, 0, 0) against the spot
+  // direction (0, 0, -1) is 90 degrees off, outside the 30-degree cone.
+  light.position = {1, 0, 0, 0};
+  light.linear_attenuation = 3;
+  EXPECT_EQ(light_vertex(model, material, {0, 0, -2, 1}, {1, 0, 0}).r, 0);
+  light.spot_direction = {-1, 0, 0};  // on the cone's axis: spot factor 1
+  EXPECT_NEAR(light_vertex(model, material, {0, 0, -2, 1}, {1, 0, 0}).r, 0.8f, 1e-6);
 }

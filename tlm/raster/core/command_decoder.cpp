@@ -112,13 +112,21 @@ bool CommandDecoder::read_state(uint32_t address, DrawState& state) {
   s.min_filter = from_code<TexFilter>(mode >> TEXTURE_MIN_FILTER_SHIFT);
   s.mag_filter = from_code<TexFilter>(mode >> TEXTURE_MAG_FILTER_SHIFT);
   s.env = from_code<TexEnv>(mode >> TEXTURE_ENV_SHIFT);
+  if (s.has(StateFlag::fog)) {
+    uint8_t f[sizeof(FogState)];
+    if (!m_run.read(address + uint32_t{sizeof(StateBlock)}, f, sizeof f)) return false;
+    s.fog_mode = from_code<FogMode>(load_le32(f) >> FOG_MODE_SHIFT);
+    s.fog_color = Rgba8::unpack(load_le32(f + 4));
+  }
   state = s;
   return true;
 }
 
-bool CommandDecoder::read_triangle(uint32_t address, TriangleVertices& vertices) {
-  uint8_t raw[sizeof(TriangleRecord)];
-  if (!m_run.read(address, raw, sizeof raw)) return false;
+bool CommandDecoder::read_triangle(uint32_t address, const DrawState& state, TriangleVertices& vertices) {
+  uint8_t raw[sizeof(TriangleRecord) + sizeof(TriangleFog)];
+  static_assert(sizeof raw >= triangle_record_bytes(StateFlag::fog), "room for the fog extension");
+  if (!m_run.read(address, raw, triangle_record_bytes(state.flags))) return false;
+  const bool fog = state.has(StateFlag::fog);
   for (unsigned k = 0; k < 3; ++k) {
     const uint8_t* p = raw + VERTEX_RECORD_BYTES * k;
     TriangleVertex& v = vertices[k];
@@ -130,6 +138,7 @@ bool CommandDecoder::read_triangle(uint32_t address, TriangleVertices& vertices)
     v.s_over_w = load_float(p + 12);
     v.t_over_w = load_float(p + 16);
     v.inv_w = load_float(p + 20);
+    v.fog = fog ? int32_t(load_le32(raw + sizeof(TriangleRecord) + 4 * k)) : 0;
     if (v.x > q9_4::MAX_RAW || v.y > q9_4::MAX_RAW) {  // not a 9.4 coordinate
       ++m_run.result().triangles_skipped;
       return false;

@@ -38,6 +38,7 @@ struct TriangleVertex {
   uint32_t z = 0;         // 0.24
   Rgba8 color;
   float s_over_w = 0, t_over_w = 0, inv_w = 0;
+  int32_t fog = 0;  // the fog argument, 16.16 (a TriangleFog; 0 without fog)
 };
 using TriangleVertices = std::array<TriangleVertex, 3>;
 
@@ -48,11 +49,13 @@ class CommandDecoder {
   // The list's next command; false at the end of the list, after an error
   // and when this command is one.
   bool next(Command& command);
-  // The StateBlock at `address`; false when its fetch fails.
+  // The StateBlock at `address` (and its FogState with the fog flag); false
+  // when its fetch fails.
   bool read_state(uint32_t address, DrawState& state);
-  // The triangle record at `address`; false when its fetch fails, or when a
-  // vertex is not a 9.4 coordinate (the triangle is skipped and counted).
-  bool read_triangle(uint32_t address, TriangleVertices& vertices);
+  // The triangle record at `address` (and its TriangleFog when `state` has
+  // fog); false when its fetch fails, or when a vertex is not a 9.4
+  // coordinate (the triangle is skipped and counted).
+  bool read_triangle(uint32_t address, const DrawState& state, TriangleVertices& vertices);
 
  private:
   RunContext& m_run;

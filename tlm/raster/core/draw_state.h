@@ -24,6 +24,8 @@ struct DrawState {
   unsigned log2_width = 0, log2_height = 0;  // as stored, checked at use
   TexFilter min_filter = TexFilter::nearest, mag_filter = TexFilter::nearest;
   TexEnv env = TexEnv::modulate;
+  FogMode fog_mode = FogMode::exp;  // with StateFlag::fog, from the FogState
+  Rgba8 fog_color;
 
   bool has(StateFlag flag) const { return (flags & flag) != 0; }
 };

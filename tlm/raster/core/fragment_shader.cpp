@@ -3,6 +3,7 @@
 
 #include "raster/core/fragment_operations.h"
 #include "raster/core/interpolation.h"
+#include "raster/datapath/fog_unit.h"
 #include "raster/datapath/texture_env.h"
 
 namespace tessera::raster {
@@ -13,6 +14,11 @@ void FragmentShader::shade(const TriangleSetup& ts, int px, int py, unorm8 cover
   if (m_state.has(StateFlag::texture)) {
     if (!m_sampler.sample(ts, dx, dy, color, color)) return;
   }
+  // Fog after texturing, before coverage and the fragment operations.
+  if (m_state.has(StateFlag::fog))
+    color =
+        fog_unit(m_state.fog_mode, interpolated_fog(ts, dx, dy, m_run.config().recip_method), color, m_state.fog_color)
+            .color;
   if (m_state.has(StateFlag::polygon_smooth)) color.a = unorm8::from_raw(div255_round(color.a.raw * coverage.raw));
 
   const unsigned i = m_tile.index(px, py);

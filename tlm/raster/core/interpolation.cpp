@@ -31,6 +31,17 @@ Rgba8 interpolated_color(const TriangleSetup& ts, int dx, int dy, RecipMethod me
           attribute_to_color(attribute_at(ts.color[2], dx, dy)), attribute_to_color(attribute_at(ts.color[3], dx, dy))};
 }
 
+int32_t interpolated_fog(const TriangleSetup& ts, int dx, int dy, RecipMethod method) {
+  int128 argument = attribute_at(ts.fog, dx, dy).raw;
+  if (ts.perspective_fog) {
+    const attribute_sum q = attribute_at(ts.q, dx, dy);
+    Reciprocal inv_q;
+    refined_reciprocal(uint64_t(std::max<int64_t>(q.raw, 1)), method, inv_q);
+    argument = divide(argument, inv_q, false, -int(TEXCOORD_FRACTION_BITS));
+  }
+  return int32_t(std::clamp<int128>(argument, INT32_MIN, INT32_MAX));
+}
+
 unorm24 interpolated_depth(const TriangleSetup& ts, int dx, int dy) {
   return attribute_to_depth(attribute_at(ts.depth, dx, dy));
 }

@@ -13,5 +13,8 @@ namespace tessera::raster {
 
 Rgba8 interpolated_color(const TriangleSetup& setup, int dx, int dy, RecipMethod method);
 unorm24 interpolated_depth(const TriangleSetup& setup, int dx, int dy);
+// The fog argument (16.16, saturated to 32 bits): the plane's value, or in
+// perspective argument/w divided by q with the refined reciprocal.
+int32_t interpolated_fog(const TriangleSetup& setup, int dx, int dy, RecipMethod method);
 
 }  // namespace tessera::raster

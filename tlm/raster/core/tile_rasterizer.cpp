@@ -31,7 +31,7 @@ namespace {
 void draw_triangle(RunContext& run, CommandDecoder& decoder, TileCache& tile, const DrawState& state,
                    uint32_t record_address) {
   TriangleVertices vertices;
-  if (!decoder.read_triangle(record_address, vertices)) return;
+  if (!decoder.read_triangle(record_address, state, vertices)) return;
   const bool smooth = state.has(StateFlag::polygon_smooth);
   const Rect box = traversal_box(vertices, smooth, tile.tile(), state);
   if (box.empty()) return;

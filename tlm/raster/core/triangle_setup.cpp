@@ -88,6 +88,16 @@ bool set_up_triangle(const TriangleVertices& vin, const DrawState& state, RecipM
     }
   }
 
+  if (state.has(StateFlag::fog)) {
+    ts.perspective_fog = usable_w && !(vin[0].inv_w == vin[1].inv_w && vin[1].inv_w == vin[2].inv_w);
+    const auto word = [&](unsigned k) {
+      // argument/w in 16.16 words: argument * q_k / 2^24, rounded (|word| < 2^31).
+      if (ts.perspective_fog) return int64_t((int128(vin[k].fog) * q[k] + (int64_t{1} << 23)) >> 24);
+      return int64_t{vin[k].fog};
+    };
+    ts.fog = plane(AttributeKind::texcoord, {word(0), word(1), word(2)});
+  }
+
   if (texture) {
     if (!usable_w) return false;
     for (const TriangleVertex& v : vin)

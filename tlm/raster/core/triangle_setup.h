@@ -37,6 +37,11 @@ struct TriangleSetup {
   // q) and each pixel divides by q, as GL interpolates (README.md, "Colour").
   bool perspective_color = false;
   Rgba8 flat_color;
+  // With fog: the fog argument's plane, in 16.16 words; in perspective it
+  // holds argument/w (normalised like q) and each pixel divides by q, as
+  // for the colours (README.md, "Fog").
+  AttributePlane fog;
+  bool perspective_fog = false;
 };
 
 // false: the triangle cannot be drawn and is skipped (zero area, an edge the

@@ -678,6 +678,106 @@ TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
   EXPECT_GT(far_from_affine, 100);
 }
 
+// --- Fog ---------------------------------------------------------------------
+
+// GL's fog factor of eye distance c, in double (ES 1.1, 3.8).
+double gl_fog_factor(const gl::RasterState& s, double c) {
+  switch (s.fog_mode) {
+    case gl::FogMode::linear: return std::clamp((s.fog_end - c) / (s.fog_end - s.fog_start), 0.0, 1.0);
+    case gl::FogMode::exp: return std::exp(-s.fog_density * c);
+    case gl::FogMode::exp2: return std::exp(-(s.fog_density * c) * (s.fog_density * c));
+  }
+  return 1;
+}
+
+// A perspective triangle whose eye distance grows from 2 to 16 across the
+// frame, in each mode: every pixel is GL's C f + Cfog (1 - f) with the fog
+// coordinate interpolated perspective-correctly (c/w over 1/w, as Mesa
+// does), within 2 codes (the 8-bit factor: 0.82; the blend's rounding: 0.5;
+// the fog argument's 16.16 interpolation: well below one code). Alpha stays.
+TEST(ArmRasterizerFog, EveryModeMatchesGlFormulaPerFragment) {
+  for (const gl::FogMode mode : {gl::FogMode::linear, gl::FogMode::exp, gl::FogMode::exp2}) {
+    Frame f(64, 48, PixelFormat::rgba8888);
+    gl::RasterState state;
+    state.fog = true;
+    state.fog_mode = mode;
+    state.fog_density = mode == gl::FogMode::exp2 ? 0.12f : 0.2f;
+    state.fog_start = 3;
+    state.fog_end = 14;
+    state.fog_color[0] = 200, state.fog_color[1] = 100, state.fog_color[2] = 20, state.fog_color[3] = 7;
+    auto v = [](double x, double y, Rgba c, float eye) {
+      gl::ScreenVertex sv = vertex(x, y, c, 0.5, 0, 0, 1.0f / eye);
+      sv.fog = eye;
+      return sv;
+    };
+    const gl::Triangle t =
+        triangle(v(1, 1, {10, 240, 128, 99}, 2), v(63, 1, {250, 0, 60, 99}, 16), v(1, 47, {30, 30, 220, 99}, 5));
+    f.draw(state, {t});
+    int checked = 0;
+    for (int y = 0; y < 48; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        if (!covers(t, x + 0.5, y + 0.5)) continue;
+        const auto w = barycentric(t, x + 0.5, y + 0.5);
+        double q = 0, cq = 0, rgb_q[3] = {0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+          q += w[k] * t.v[k].inv_w;
+          cq += w[k] * t.v[k].fog * t.v[k].inv_w;
+          const uint8_t channels[3] = {t.v[k].r, t.v[k].g, t.v[k].b};
+          for (int ch = 0; ch < 3; ++ch) rgb_q[ch] += w[k] * channels[ch] * t.v[k].inv_w;
+        }
+        const double factor = gl_fog_factor(state, cq / q);
+        const Rgba got = f.color(x, y);
+        const int got_rgb[3] = {got.r, got.g, got.b};
+        for (int ch = 0; ch < 3; ++ch) {
+          const double colour = rgb_q[ch] / q;
+          const double expected = factor * colour + (1 - factor) * state.fog_color[ch];
+          EXPECT_LE(std::fabs(got_rgb[ch] - expected), 2.0) << "mode " << int(mode) << " at " << x << "," << y;
+        }
+        EXPECT_EQ(got.a, 99);
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 1000);
+  }
+}
+
+// Fog off leaves the picture as it was: the same triangle with fog
+// coordinates set but GL_FOG disabled draws the unfogged colours.
+TEST(ArmRasterizerFog, DisabledFogChangesNothing) {
+  Frame plain(32, 32, PixelFormat::rgb565), with_coordinates(32, 32, PixelFormat::rgb565);
+  gl::Triangle t =
+      triangle(vertex(1, 1, {200, 10, 10, 255}), vertex(31, 2, {10, 200, 10, 255}), vertex(3, 30, {10, 10, 200, 255}));
+  plain.draw(gl::RasterState{}, {t});
+  for (auto& sv : t.v) sv.fog = 50;
+  gl::RasterState state;
+  state.fog_mode = gl::FogMode::linear;
+  with_coordinates.draw(state, {t});
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) ASSERT_EQ(plain.packed565(x, y), with_coordinates.packed565(x, y));
+}
+
+// Fog comes after texturing: a REPLACE texel is fogged, not the vertex colour.
+TEST(ArmRasterizerFog, AppliesAfterTheTextureEnvironment) {
+  Frame f(16, 16, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(1, 1, {{255, 255, 255, 255}});
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.fog = true;
+  state.fog_mode = gl::FogMode::linear;
+  state.fog_start = 0;
+  state.fog_end = 10;
+  // c = 5 everywhere: f = 1/2, so white against a black fog gives 128 (127.5 up).
+  gl::Triangle t = triangle(vertex(0, 0, {0, 0, 0, 255}), vertex(16, 0, {0, 0, 0, 255}), vertex(0, 16, {0, 0, 0, 255}));
+  for (auto& sv : t.v) sv.fog = 5;
+  f.draw(state, {t});
+  const Rgba c = f.color(2, 2);
+  EXPECT_EQ(c.r, 128);
+  EXPECT_EQ(c.g, 128);
+  EXPECT_EQ(c.b, 128);
+  EXPECT_EQ(c.a, 255);
+}
+
 // --- Per-fragment operations -----------------------------------------------
 
 TEST(ArmRasterizerFragment, BlendSrcAlphaOneMinusSrcAlpha) {
@@ -960,6 +1060,119 @@ TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
   const InstructionCounts& k = f.rasterizer->instruction_counts();
   EXPECT_GE(f.memory.ops(Op::alu), uint64_t(pixels) * (k.pixel_alu + k.depth_step_test_alu + k.color_step_alu));
   EXPECT_GE(f.memory.ops(Op::branch), uint64_t(pixels));
+}
+
+// Mipmaps: a 32 x 32 texture whose six levels are solid colours (level k:
+// red 50 k, green 255 - 50 k) on the 32 x 32 pixel square, s and t from 0
+// to smax: smax texels of level 0 per pixel, lambda = log2(smax) everywhere.
+namespace {
+
+gl::Texture mipmap_levels(Frame& f, gl::TexFilter within, gl::MipmapFilter mipmap) {
+  gl::Texture tex = f.texture(32, 32, std::vector<Rgba>(32 * 32, Rgba{0, 255, 0, 255}));
+  tex.min_filter = within;
+  tex.min_mipmap = mipmap;
+  tex.levels = 6;
+  uint32_t address = tex.address;
+  for (unsigned k = 0; k < 6; ++k) {
+    const unsigned side = 32u >> k;
+    tex.level[k] = {address, side, side};
+    uint8_t* p = f.memory.at(address, side * side * 4);
+    for (unsigned i = 0; i < side * side; ++i) {
+      p[4 * i] = uint8_t(50 * k);
+      p[4 * i + 1] = uint8_t(255 - 50 * k);
+      p[4 * i + 2] = 0;
+      p[4 * i + 3] = 255;
+    }
+    address += side * side * 4;
+  }
+  return tex;
+}
+
+Rgba mipmapped_centre(double smax, gl::TexFilter within, gl::MipmapFilter mipmap) {
+  Frame f(48, 48, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = mipmap_levels(f, within, mipmap);
+  state.unit[0].env = gl::TexEnvMode::replace;
+  f.draw(state, textured_square(smax, {255, 255, 255, 255}));
+  return f.color(24, 24);
+}
+
+}  // namespace
+
+TEST(ArmRasterizerTexture, NearestMipmapTakesTheLevelOfLambda) {
+  // lambda = 2: level ceil(2.5) - 1 = 2.
+  EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 100);
+  // lambda = log2(1.5) = 0.58 > 0.5: level 1; log2(1.25) = 0.32: level 0.
+  EXPECT_EQ(mipmapped_centre(1.5, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 50);
+  EXPECT_EQ(mipmapped_centre(1.25, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 0);
+  // lambda = 6 is past the last level, 5 (1 x 1).
+  EXPECT_EQ(mipmapped_centre(64, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 250);
+  // Magnified (lambda = -1): level 0.
+  EXPECT_EQ(mipmapped_centre(0.5, gl::TexFilter::nearest, gl::MipmapFilter::nearest).r, 0);
+}
+
+TEST(ArmRasterizerTexture, LinearMipmapBlendsTheTwoLevelsAroundLambda) {
+  // lambda = log2(3) = 1.585: levels 1 (red 50) and 2 (red 100), weight 0.585 of level 2: 79.2.
+  const Rgba c = mipmapped_centre(3, gl::TexFilter::linear, gl::MipmapFilter::linear);
+  EXPECT_NEAR(c.r, 50 + 50 * (std::log2(3.0) - 1), 1.0);
+  EXPECT_NEAR(c.g, 205 - 50 * (std::log2(3.0) - 1), 1.0);
+  // lambda = 2 exactly: level 2 alone.
+  EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::linear, gl::MipmapFilter::linear).r, 100);
+}
+
+// Each unit samples with its own level of detail, from its own coordinates:
+// unit 0 (REPLACE) at lambda = 2 takes level 2 (red 100, green 155); unit 1
+// (ADD) on the same texture at lambda = -1 (magnified) takes level 0 (red 0,
+// green 255). Red stays 100; had unit 1 used unit 0's lambda it would add
+// level 2's red (200), had unit 0 used unit 1's it would be 0.
+TEST(ArmRasterizerTexture, EachUnitSamplesItsMipmapsWithItsOwnLevelOfDetail) {
+  Frame f(48, 48, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  const gl::Texture tex = mipmap_levels(f, gl::TexFilter::nearest, gl::MipmapFilter::nearest);
+  state.unit[0].enabled = state.unit[1].enabled = true;
+  state.unit[0].tex = state.unit[1].tex = tex;
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.unit[1].env = gl::TexEnvMode::add;
+  std::vector<gl::Triangle> square = textured_square(4, {255, 255, 255, 255});
+  for (gl::Triangle& t : square)
+    for (gl::ScreenVertex& v : t.v) v.tex[1] = {v.tex[0].s / 8, v.tex[0].t / 8};
+  f.draw(state, square);
+  const Rgba c = f.color(24, 24);
+  EXPECT_EQ(c.r, 100);
+  EXPECT_EQ(c.g, 255);  // 155 + 255, saturated
+  EXPECT_TRUE(f.guards_intact());
+}
+
+// The base format's rules apply per unit before that unit's environment, and
+// fog after the last unit: unit 0 REPLACEs with an RGB texel (the fragment's
+// alpha kept, table 3.15), unit 1 MODULATEs with an ALPHA texture (colour
+// kept, alpha times the texel's), then linear fog at f = 1/2 towards black.
+TEST(ArmRasterizerTexture, BaseFormatsPerUnitThenFog) {
+  Frame f(16, 16, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.unit[0].enabled = state.unit[1].enabled = true;
+  state.unit[0].tex = f.texture(1, 1, {{200, 100, 50, 255}});
+  state.unit[0].tex.has_alpha = false;
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.unit[1].tex = f.texture(1, 1, {{0, 0, 0, 128}}, 64);
+  state.unit[1].tex.has_color = false;
+  state.unit[1].env = gl::TexEnvMode::modulate;
+  state.fog = true;
+  state.fog_mode = gl::FogMode::linear;
+  state.fog_start = 0;
+  state.fog_end = 10;
+  gl::Triangle t = triangle(vertex(0, 0, {0, 0, 0, 200}), vertex(16, 0, {0, 0, 0, 200}), vertex(0, 16, {0, 0, 0, 200}));
+  for (auto& sv : t.v) sv.fog = 5;
+  f.draw(state, {t});
+  const Rgba c = f.color(2, 2);
+  EXPECT_EQ(c.r, 100);  // 200 / 2
+  EXPECT_EQ(c.g, 50);   // 100 / 2
+  EXPECT_EQ(c.b, 25);   // 50 / 2
+  EXPECT_EQ(c.a, 100);  // 200 (the fragment's, not the RGB texel's 255) x 128 / 255 = 100.4
 }
 
 }  // namespace

@@ -1,0 +1,54 @@
+// Fog for the software back ends and the raster back end's command writer:
+// a vertex's fog coordinate (gl::ScreenVertex::fog, the eye distance) turned
+// into the 16.16 fog argument that is interpolated per fragment, and the
+// per-fragment factor and blend of common/fog.h (the arithmetic the
+// rasterizer's fog unit computes bit for bit).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "common/fog.h"
+#include "gl/renderer.h"
+
+namespace tessera::renderers {
+
+// argument = c * scale + bias, in units of the fog argument (not yet 16.16).
+struct FogCoefficients {
+  double scale = 0, bias = 0;
+};
+
+// The mode's linear map of the fog coordinate (common/fog.h). Linear fog with
+// end == start has no slope; it uses scale -1 and bias end, as Mesa does
+// (its fog scale is 1 there), so f is 1 up to c = end - 1 and 0 from c = end.
+inline FogCoefficients fog_coefficients(const gl::RasterState& state) {
+  const double density = state.fog_density;
+  switch (state.fog_mode) {
+    case FogMode::linear: {
+      const double range = double(state.fog_end) - double(state.fog_start);
+      const double scale = range == 0 ? 1.0 : 1.0 / range;
+      return {-scale, double(state.fog_end) * scale};
+    }
+    case FogMode::exp: return {density / std::log(2.0), 0.0};
+    case FogMode::exp2: return {density / std::sqrt(std::log(2.0)), 0.0};
+  }
+  return {0.0, 1.0};
+}
+
+// The 16.16 fog argument of fog coordinate c, rounded to nearest and
+// saturated to the int32 range (a non-finite c gives no fog argument: 0).
+inline int32_t fog_argument(const FogCoefficients& k, float c) {
+  const double a = (double(c) * k.scale + k.bias) * FOG_ONE;
+  if (!std::isfinite(a)) return 0;
+  if (a >= 2147483647.0) return INT32_MAX;
+  if (a <= -2147483648.0) return INT32_MIN;
+  return static_cast<int32_t>(std::llround(a));
+}
+
+// The fog colour as r | g << 8 | b << 16 | a << 24.
+inline uint32_t fog_rgba(const gl::RasterState& state) {
+  return uint32_t{state.fog_color[0]} | uint32_t{state.fog_color[1]} << 8 | uint32_t{state.fog_color[2]} << 16 |
+         uint32_t{state.fog_color[3]} << 24;
+}
+
+}  // namespace tessera::renderers

@@ -1,0 +1,31 @@
+// Fog unit of the rasterizer's fragment pipeline (texture, fog, then the
+// fragment operations, as in Crisu et al.'s pipeline and OpenGL ES 1.1,
+// section 3.8): the fog factor of the fragment's interpolated fog argument
+// and the blend of its colour with the fog colour. The arithmetic is
+// common/fog.h's, written once for every renderer: the factor from the
+// 256-entry 2^-x table (fog_exp2_table.def, unsigned 0.16, largest error of
+// the 8-bit factor 0.82 of a code, measured exhaustively), the blend rounded
+// once per channel. Combinational; its Verilog twin is
+// rtl_models/raster/fog_unit.sv.
+//
+// Ports: mode (FogMode, 2 bits), the fog argument (signed 16.16, 32 bits),
+// the fragment colour and the fog colour (RGBA8; the fog colour's alpha is
+// not used); out: the factor (unorm8, 255 = no fog) and the colour, whose
+// alpha is the fragment's.
+#pragma once
+
+#include <cstdint>
+
+#include "common/fixed_function.h"
+#include "fixed_point.h"
+
+namespace tessera::raster {
+
+struct FogUnitResult {
+  uint8_t factor = 255;
+  Rgba8 color;
+};
+
+FogUnitResult fog_unit(FogMode mode, int32_t argument, Rgba8 fragment, Rgba8 fog_color);
+
+}  // namespace tessera::raster
