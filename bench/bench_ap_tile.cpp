@@ -20,8 +20,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,9 +56,9 @@ struct Options {
 struct SceneResult {
   std::string scene;
   double simulated_per_frame_s = 0;
-  double soc_sim_wall_per_frame_s = std::numeric_limits<double>::max();  // writing every frame as PNG
-  double no_png_wall_per_frame_s = std::numeric_limits<double>::max();   // with --no-frames
-  double native_per_frame_s = std::numeric_limits<double>::max();
+  std::vector<double> soc_sim_wall;  // per round: writing every frame as PNG
+  std::vector<double> no_png_wall;   // with --no-frames
+  std::vector<double> native;
 };
 
 class Bench {
@@ -112,25 +112,30 @@ SceneResult Bench::measure(const std::string& scene) {
   result.scene = scene;
   const unsigned n = m_opt.frames;
   // R rounds of: soc_sim writing PNG frames, soc_sim with --no-frames, the
-  // native run; each soc_sim run draws 2N frames with --wall-clock and
-  // frames N..2N-1 are timed within it; the best of R of each.
-  for (unsigned r = 0; r < m_opt.repeat; ++r) {
-    for (const bool png : {true, false}) {
-      const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
-      run_child(soc_sim_command(scene, 2 * n, out, png), m_work / "soc_sim.stdout");
-      const json stats = read_json_file(out / "stats.json");
-      if (stats["exit_status"] != 0 || stats["frames_written"] != (png ? 2 * n : 0))
-        throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
-                                 std::to_string(2 * n) + " frames");
-      double& wall = png ? result.soc_sim_wall_per_frame_s : result.no_png_wall_per_frame_s;
-      wall = std::min(wall, per_frame_seconds(stats, n, "wall_ns"));
-      result.simulated_per_frame_s = per_frame_seconds(stats, n, "time_ns");
-      fs::remove_all(out);
-    }
-    const ChildResult native = run_child(native_command(scene), m_work / "native.stdout");
-    result.native_per_frame_s =
-        std::min(result.native_per_frame_s, json::parse(native.output)["wall_per_frame_s"].get<double>());
-  }
+  // native run, in an order rotating from round to round; each soc_sim run
+  // draws 2N frames with --wall-clock and frames N..2N-1 are timed within
+  // it. Times: min and median over the rounds; ratios: the median of the
+  // ratios within each round.
+  const auto soc_sim = [&](bool png) {
+    const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
+    run_child(soc_sim_command(scene, 2 * n, out, png), m_work / "soc_sim.stdout");
+    const json stats = read_json_file(out / "stats.json");
+    if (stats["exit_status"] != 0 || stats["frames_written"] != (png ? 2 * n : 0))
+      throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
+                               std::to_string(2 * n) + " frames");
+    (png ? result.soc_sim_wall : result.no_png_wall)
+        .push_back(positive(per_frame_seconds(stats, n, "wall_ns"), "soc_sim wall per frame"));
+    result.simulated_per_frame_s = per_frame_seconds(stats, n, "time_ns");
+    fs::remove_all(out);
+  };
+  const auto native = [&] {
+    const ChildResult child = run_child(native_command(scene), m_work / "native.stdout");
+    result.native.push_back(
+        positive(json::parse(child.output)["wall_per_frame_s"].get<double>(), "native wall per frame"));
+  };
+  const std::vector<std::function<void()>> steps = {[&] { soc_sim(true); }, [&] { soc_sim(false); }, native};
+  for (unsigned r = 0; r < m_opt.repeat; ++r)
+    for (size_t i = 0; i < steps.size(); ++i) steps[(i + r) % steps.size()]();
   return result;
 }
 
@@ -141,29 +146,30 @@ void Bench::print_table(const std::vector<SceneResult>& results) const {
       "| soc_sim / native | (--no-frames) | within 3x (PNG, --no-frames) |\n");
   std::printf("|---|--:|--:|--:|--:|--:|--:|---|\n");
   for (const auto& r : results) {
-    const double ratio = r.soc_sim_wall_per_frame_s / r.native_per_frame_s;
-    const double no_png_ratio = r.no_png_wall_per_frame_s / r.native_per_frame_s;
+    const double ratio = paired_median(r.soc_sim_wall, r.native);
+    const double no_png_ratio = paired_median(r.no_png_wall, r.native);
     std::printf("| %s | %s | %s | %s | %s | %s | %s | %s, %s |\n", r.scene.c_str(),
-                format_ms(r.simulated_per_frame_s).c_str(), format_ms(r.soc_sim_wall_per_frame_s).c_str(),
-                format_ms(r.no_png_wall_per_frame_s).c_str(), format_ms(r.native_per_frame_s).c_str(),
+                format_ms(r.simulated_per_frame_s).c_str(), format_min_median_ms(r.soc_sim_wall).c_str(),
+                format_min_median_ms(r.no_png_wall).c_str(), format_min_median_ms(r.native).c_str(),
                 format_ratio(ratio).c_str(), format_ratio(no_png_ratio).c_str(), within(ratio), within(no_png_ratio));
   }
   for (const auto& r : results)
     if (r.scene == "teapot") {
-      const double worst = std::max(r.soc_sim_wall_per_frame_s, r.no_png_wall_per_frame_s) / r.native_per_frame_s;
+      const double ratio = paired_median(r.soc_sim_wall, r.native);
+      const double no_png_ratio = paired_median(r.no_png_wall, r.native);
       std::printf(
           "\nteapot: soc_sim wall / native wall = %s writing PNG frames, %s with --no-frames (issue 10 item 6: at "
           "most 3): %s\n",
-          format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
-          format_ratio(r.no_png_wall_per_frame_s / r.native_per_frame_s).c_str(),
-          worst <= TARGET_RATIO ? "met" : "not met");
+          format_ratio(ratio).c_str(), format_ratio(no_png_ratio).c_str(),
+          std::max(ratio, no_png_ratio) <= TARGET_RATIO ? "met" : "not met");
     }
   const auto& display = m_config["display"];
   const auto& array = m_config["array"];
   std::printf(
       "\nArray %ux%u CUs, display %ux%u %s, %s mode; native: every CU runs %s; per-frame values are frames %u..%u of "
-      "runs of 2N=%u frames, timed within each run (soc_sim --wall-clock, the native run's presents); wall times the "
-      "best of %u run(s), soc_sim (PNG), soc_sim (--no-frames) and native alternating.\n",
+      "runs of 2N=%u frames, timed within each run (soc_sim --wall-clock, the native run's presents); wall times min / "
+      "median of %u rounds of soc_sim (PNG), soc_sim (--no-frames) and native in rotating order, ratios the median "
+      "of the ratios within each round.\n",
       array["columns"].get<unsigned>(), array["rows"].get<unsigned>(), display["width"].get<unsigned>(),
       display["height"].get<unsigned>(), display["format"].get<std::string>().c_str(),
       display["dma"].get<bool>() ? "DMA" : "port",
@@ -204,7 +210,7 @@ static int run_main(int argc, char** argv) {
   cli.add_option("--frames", opt.frames, "N: runs of 2N frames, frames N..2N-1 timed")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  cli.add_option("--repeat", opt.repeat, "rounds of the three runs; the best wall time of each is kept")
+  cli.add_option("--repeat", opt.repeat, "rounds of the three runs; min and median are printed")
       ->check(CLI::Range(1, 20))
       ->capture_default_str();
   cli.add_option("--scene", opt.scenes, "scene(s) to measure")->capture_default_str();

@@ -19,8 +19,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -41,7 +41,7 @@ using namespace tessera::bench;
 
 struct Options {
   unsigned frames = 100;
-  unsigned repeat = 2;
+  unsigned repeat = 3;
   std::vector<std::string> scenes;
   std::vector<std::string> config_files;
   std::string obj_file = TESSERA_BENCH_OBJ_FILE;
@@ -57,13 +57,16 @@ std::string format_mib(long kib) {
   return text;
 }
 
+// Every round's figures of one scene, in seconds per frame (frames N..2N-1).
 struct SceneResult {
   std::string scene;
   double simulated_per_frame_s = 0;
-  double soc_sim_wall_per_frame_s = 0;  // writing every frame as PNG, as soc_sim does by default
-  double no_png_wall_per_frame_s = 0;   // with --no-frames
-  double native_per_frame_s = 0;
-  double mesa_per_frame_s = 0;
+  std::vector<double> soc_sim_wall;  // writing every frame as PNG, as soc_sim does by default
+  std::vector<double> no_png_wall;   // with --no-frames
+  std::vector<double> soc_sim_cpu;   // CPU time of the process (every thread) per frame, writing PNG
+  std::vector<double> no_png_cpu;    // the same with --no-frames
+  std::vector<double> native;
+  std::vector<double> mesa;
   long soc_sim_max_rss_kib = 0;
 };
 
@@ -111,28 +114,6 @@ SceneResult Bench::measure(const std::string& scene) {
   result.scene = scene;
   const unsigned n = m_opt.frames;
   const auto& display = m_config["display"];
-
-  // soc_sim: runs of 2N frames with --wall-clock, writing PNG frames and
-  // not (--no-frames), alternating so that a change in the machine's load
-  // hits both; frames N..2N-1 timed within each run, the best of R.
-  result.soc_sim_wall_per_frame_s = std::numeric_limits<double>::max();
-  result.no_png_wall_per_frame_s = std::numeric_limits<double>::max();
-  for (unsigned r = 0; r < m_opt.repeat; ++r) {
-    for (const bool png : {true, false}) {
-      const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
-      const ChildResult child = run_child(soc_sim_command(scene, 2 * n, out, png), m_work / "soc_sim.stdout");
-      const json stats = read_json_file(out / "stats.json");
-      if (stats["exit_status"] != 0 || stats["frames_written"] != (png ? 2 * n : 0))
-        throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
-                                 std::to_string(2 * n) + " frames");
-      double& wall = png ? result.soc_sim_wall_per_frame_s : result.no_png_wall_per_frame_s;
-      wall = std::min(wall, per_frame_seconds(stats, n, "wall_ns"));
-      result.simulated_per_frame_s = per_frame_seconds(stats, n, "time_ns");
-      result.soc_sim_max_rss_kib = std::max(result.soc_sim_max_rss_kib, child.max_rss_kib);
-      fs::remove_all(out);
-    }
-  }
-
   const auto args = scene_args(scene);
   auto with_args = [&](std::vector<std::string> command) {
     if (!args.empty()) {
@@ -143,41 +124,66 @@ SceneResult Bench::measure(const std::string& scene) {
   };
   const std::string width = std::to_string(display["width"].get<unsigned>());
   const std::string height = std::to_string(display["height"].get<unsigned>());
-  const ChildResult mesa = run_child(with_args({m_opt.mesa, "--scene", scene, "--frames", std::to_string(n), "--repeat",
-                                                std::to_string(m_opt.repeat), "--width", width, "--height", height}),
-                                     m_work / "mesa.stdout");
-  result.mesa_per_frame_s = json::parse(mesa.output)["wall_per_frame_s"].get<double>();
-  result.native_per_frame_s = std::numeric_limits<double>::max();
-  for (unsigned r = 0; r < m_opt.repeat; ++r) {
-    const ChildResult native =
+
+  // soc_sim: runs of 2N frames with --wall-clock, writing PNG frames and
+  // not (--no-frames); frames N..2N-1 timed within each run. Each round
+  // runs soc_sim both ways, the native run and the Mesa run once, in an
+  // order rotating from round to round, so that a change in the machine's
+  // load hits all four alike and the ratios can be taken within a round.
+  const auto soc_sim = [&](bool png) {
+    const fs::path out = m_work / ("soc_sim_" + std::to_string(m_run++));
+    const ChildResult child = run_child(soc_sim_command(scene, 2 * n, out, png), m_work / "soc_sim.stdout");
+    const json stats = read_json_file(out / "stats.json");
+    if (stats["exit_status"] != 0 || stats["frames_written"] != (png ? 2 * n : 0))
+      throw std::runtime_error("soc_sim " + scene + ": wrote " + stats["frames_written"].dump() + " of " +
+                               std::to_string(2 * n) + " frames");
+    (png ? result.soc_sim_wall : result.no_png_wall)
+        .push_back(positive(per_frame_seconds(stats, n, "wall_ns"), "soc_sim wall"));
+    (png ? result.soc_sim_cpu : result.no_png_cpu)
+        .push_back(positive(per_frame_seconds(stats, n, "cpu_ns"), "soc_sim CPU"));
+    result.simulated_per_frame_s = per_frame_seconds(stats, n, "time_ns");
+    result.soc_sim_max_rss_kib = std::max(result.soc_sim_max_rss_kib, child.max_rss_kib);
+    fs::remove_all(out);
+  };
+  const auto native = [&] {
+    const ChildResult child =
         run_child(with_args({m_opt.native, "--scene", scene, "--frames", std::to_string(n), "--width", width,
                              "--height", height, "--format", display["format"].get<std::string>(), "--dma",
                              display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
                              std::to_string(m_config["mem"]["size_mib"].get<unsigned>())}),
                   m_work / "native.stdout");
-    result.native_per_frame_s =
-        std::min(result.native_per_frame_s, json::parse(native.output)["wall_per_frame_s"].get<double>());
-  }
+    result.native.push_back(positive(json::parse(child.output)["wall_per_frame_s"].get<double>(), "native"));
+  };
+  const auto mesa = [&] {
+    const ChildResult child = run_child(with_args({m_opt.mesa, "--scene", scene, "--frames", std::to_string(n),
+                                                   "--repeat", "1", "--width", width, "--height", height}),
+                                        m_work / "mesa.stdout");
+    result.mesa.push_back(positive(json::parse(child.output)["wall_per_frame_s"].get<double>(), "Mesa"));
+  };
+  const std::vector<std::function<void()>> steps = {[&] { soc_sim(true); }, [&] { soc_sim(false); }, native, mesa};
+  for (unsigned r = 0; r < m_opt.repeat; ++r)
+    for (size_t i = 0; i < steps.size(); ++i) steps[(i + r) % steps.size()]();
   return result;
 }
 
 void Bench::print_table(const std::vector<SceneResult>& results, long default_rss_kib) const {
   const auto& display = m_config["display"];
   std::printf(
-      "| scene | simulated / frame | soc_sim wall / frame | (--no-frames) | simulated : wall "
-      "| native wall / frame | Mesa softpipe / frame | soc_sim / native | (--no-frames) | native / Mesa "
-      "| soc_sim max RSS |\n");
-  std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+      "| scene | simulated / frame | soc_sim wall / frame | (--no-frames) | soc_sim CPU / frame | (--no-frames) "
+      "| simulated : wall | native wall / frame | Mesa softpipe / frame | soc_sim / native | (--no-frames) "
+      "| soc_sim (--no-frames) / Mesa | native / Mesa | soc_sim max RSS |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   for (const auto& r : results)
-    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(),
-                format_ms(r.simulated_per_frame_s).c_str(), format_ms(r.soc_sim_wall_per_frame_s).c_str(),
-                format_ms(r.no_png_wall_per_frame_s).c_str(),
-                format_ratio(r.simulated_per_frame_s / r.soc_sim_wall_per_frame_s).c_str(),
-                format_ms(r.native_per_frame_s).c_str(), format_ms(r.mesa_per_frame_s).c_str(),
-                format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
-                format_ratio(r.no_png_wall_per_frame_s / r.native_per_frame_s).c_str(),
-                format_ratio(r.native_per_frame_s / r.mesa_per_frame_s).c_str(),
-                format_mib(r.soc_sim_max_rss_kib).c_str());
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(),
+                format_ms(r.simulated_per_frame_s).c_str(), format_min_median_ms(r.soc_sim_wall).c_str(),
+                format_min_median_ms(r.no_png_wall).c_str(), format_ms(min_median(r.soc_sim_cpu).median).c_str(),
+                format_ms(min_median(r.no_png_cpu).median).c_str(),
+                format_ratio(r.simulated_per_frame_s / min_median(r.no_png_wall).median).c_str(),
+                format_min_median_ms(r.native).c_str(), format_min_median_ms(r.mesa).c_str(),
+                format_ratio(paired_median(r.soc_sim_wall, r.native)).c_str(),
+                format_ratio(paired_median(r.no_png_wall, r.native)).c_str(),
+                format_ratio(paired_median(r.no_png_wall, r.mesa)).c_str(),
+                format_ratio(paired_median(r.native, r.mesa)).c_str(), format_mib(r.soc_sim_max_rss_kib).c_str());
   std::printf(
       "\nsoc_sim default demo (`soc_sim` with no options: teapot, %u frames): max RSS %s "
       "(target < 200 MB)\n",
@@ -185,12 +191,15 @@ void Bench::print_table(const std::vector<SceneResult>& results, long default_rs
   for (const auto& r : results)
     if (r.scene == "teapot")
       std::printf("teapot: soc_sim wall / native wall = %s writing PNG frames, %s with --no-frames (target <= 3)\n",
-                  format_ratio(r.soc_sim_wall_per_frame_s / r.native_per_frame_s).c_str(),
-                  format_ratio(r.no_png_wall_per_frame_s / r.native_per_frame_s).c_str());
+                  format_ratio(paired_median(r.soc_sim_wall, r.native)).c_str(),
+                  format_ratio(paired_median(r.no_png_wall, r.native)).c_str());
   std::printf(
       "\nDisplay %ux%u %s, %s mode; per-frame values are frames %u..%u of runs of 2N=%u frames, timed within each "
-      "run (soc_sim --wall-clock, the native run's presents, Mesa after each frame's glFinish); wall times the best "
-      "of %u run(s).\n",
+      "run (soc_sim --wall-clock, the native run's presents, Mesa after each frame's glFinish). %u rounds, each "
+      "running soc_sim with and without PNG, the native run and Mesa once, in rotating order: times are min / "
+      "median over the rounds, CPU times and simulated : wall medians, ratios the median of the ratios within each "
+      "round. CPU / frame is the soc_sim process's (every thread): the PNG writer's thread shows there, while on a "
+      "machine with a spare core it costs little wall time.\n",
       display["width"].get<unsigned>(), display["height"].get<unsigned>(), display["format"].get<std::string>().c_str(),
       display["dma"].get<bool>() ? "DMA" : "port", m_opt.frames, 2 * m_opt.frames - 1, 2 * m_opt.frames, m_opt.repeat);
 }
@@ -238,7 +247,7 @@ static int run_main(int argc, char** argv) {
   cli.add_option("--frames", opt.frames, "N: runs of 2N frames, frames N..2N-1 timed")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  cli.add_option("--repeat", opt.repeat, "runs of each measurement; the best wall time is kept")
+  cli.add_option("--repeat", opt.repeat, "rounds: each runs every measurement once; min and median are printed")
       ->check(CLI::Range(1, 20))
       ->capture_default_str();
   cli.add_option("--scene", opt.scenes, "scene(s) to measure (default: all built-in scenes)");

@@ -28,6 +28,7 @@
 #include <tlm_utils/simple_target_socket.h>
 #include <tlm_utils/tlm_quantumkeeper.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <systemc>
 #include <tlm>
 
@@ -47,6 +48,7 @@ struct Options {
   unsigned transactions = 20000;
   unsigned rounds = 101;
   unsigned quantum_ns = 1000;
+  bool json = false;  // every round's figures as JSON instead of the table (for bench_speed)
 };
 
 // A target that does what any memory must and nothing more: copy the data,
@@ -210,6 +212,16 @@ int run(const Options& options) {
 
   sc_core::sc_start();
   if (!driver.error.empty()) throw std::runtime_error(driver.error);
+  if (options.json) {
+    nlohmann::json transactions = nlohmann::json::array();
+    for (size_t k = 0; k < KIND_COUNT; ++k)
+      transactions.push_back({{"name", KINDS[k].name},
+                              {"floor_ns", driver.timings[k][floor_path]},
+                              {"bus_ns", driver.timings[k][bus_path]},
+                              {"memory_ns", driver.timings[k][memory_path]}});
+    std::printf("%s\n", nlohmann::json{{"transactions", transactions}, {"rounds", options.rounds}}.dump().c_str());
+    return 0;
+  }
 
   std::printf(
       "bench_bus: %u transactions per timed loop, %u rounds (each path once per round, paired), quantum %u ns; "
@@ -252,6 +264,7 @@ int run_main(int argc, char** argv) {
   cli.add_option("--quantum-ns", options.quantum_ns, "global quantum of the keeper (soc_sim's sim.quantum_ns)")
       ->check(CLI::Range(1u, 1000000u))
       ->capture_default_str();
+  cli.add_flag("--json", options.json, "print every round's ns per transaction per path as JSON, not the table");
   CLI11_PARSE(cli, argc, argv);
   return run(options);
 }

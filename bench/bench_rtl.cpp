@@ -4,30 +4,42 @@
 // same vectors. Prints one Markdown table; bench_raster runs it as a child.
 // See README.md for the method.
 //
-//   bench_rtl [--vectors V] [--repeat R] [--seed S]
+//   bench_rtl [--vectors V] [--pool P] [--rounds R] [--seed S]
 //
-// For each unit, V random vectors are generated once (with the distributions
-// of tests/raster/test_raster_*_cosim.cpp), outside the timed loops. Each
-// timed pass runs every vector through one side and folds every output field
-// into a checksum, so that the compiler cannot drop the work (the C++ units
-// live in another library and nothing is inlined across it); the checksum is
-// printed. Both sides must give the same checksum: it is the cosim
-// comparison in one number, and shows both did the same work. The time is
-// the best of R passes.
+// For each unit, P random vectors (the pool, default 4096: it stays in the
+// caches, as the core's operands do) are generated once, with the
+// distributions of tests/raster/test_raster_*_cosim.cpp, outside the timed
+// loops. A round times V operations on each side, one after the other: the
+// pool is swept V / P times, every output stored into an array of P results
+// (a compiler barrier between sweeps keeps every sweep's stores). The C++
+// side calls the unit's one-call entry point, inline from its header, in a
+// plain loop (the compiler may vectorise across vectors: that is the point
+// of branch-free units); the RTL side calls the adapter. R rounds, paired:
+// min and median ns per operation of each side, and the ratio both ways
+// (of the mins; median of the per-round ratios). Times are the thread's CPU
+// time (CLOCK_THREAD_CPUTIME_ID), not wall time, so that time-slicing on a
+// shared machine does not count. After timing, every output
+// field of the pool's results is folded into a checksum per side; both must
+// agree (a cosim run in one number), or bench_rtl exits with 1.
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <limits>
+#include <new>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "attr_interp_adapter.h"
+#include "bench_support.h"
 #include "blend_logic_op_adapter.h"
 #include "edge_function_adapter.h"
 #include "fragment_tests_adapter.h"
@@ -53,10 +65,15 @@ using tessera::StencilOp;
 using tessera::TexEnv;
 using tessera::TexFilter;
 using tessera::TexWrap;
+using tessera::bench::load_average;
+using tessera::bench::machine_summary;
+using tessera::bench::min_median;
+using tessera::bench::MinMedian;
 
 struct Options {
   uint64_t vectors = 1'000'000;
-  unsigned repeat = 3;
+  uint64_t pool = 4096;
+  unsigned rounds = 15;
   uint64_t seed = 0xbe4c4;
 };
 
@@ -287,92 +304,110 @@ std::vector<TexEnvVector> texenv_vectors(std::mt19937_64& rng, uint64_t count) {
   return v;
 }
 
-struct Timing {
-  double best_s = std::numeric_limits<double>::max();
-  uint64_t checksum = 0;
-  bool stable = true;  // every pass gave the same checksum
-};
+// Stops the compiler from merging or dropping sweeps: every store before it
+// happens, every load after it reads memory again.
+inline void compiler_barrier(const void* p) {
+  asm volatile("" : : "r"(p) : "memory");
+}
 
-// Runs `pass` (one sweep over all vectors, returning its checksum) `repeat`
-// times and keeps the best wall time.
-template <class Pass>
-Timing time_best(unsigned repeat, Pass&& pass) {
-  Timing timing;
-  for (unsigned r = 0; r < repeat; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    const uint64_t checksum = pass();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    timing.best_s = std::min(timing.best_s, seconds);
-    if (r > 0 && checksum != timing.checksum) timing.stable = false;
-    timing.checksum = checksum;
+// The CPU time of this thread: unlike the wall time it does not count the
+// time the thread waited for a core, so a loaded machine (other processes
+// time-sliced with this one) inflates it far less.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
+
+// `operations` calls of `unit(vector)` over the pool, the results stored in
+// `out` (pool-sized); returns the thread's CPU time.
+template <class Vector, class Result, class Unit>
+double sweep(const std::vector<Vector>& pool, std::vector<Result>& out, uint64_t operations, Unit&& unit) {
+  static_assert(std::is_trivially_destructible_v<Result>, "results are overwritten in place");
+  const size_t n = pool.size();
+  const double start = thread_cpu_seconds();
+  for (uint64_t done = 0; done < operations; done += n) {
+    const size_t count = static_cast<size_t>(std::min<uint64_t>(n, operations - done));
+    const Vector* in = pool.data();
+    Result* results = out.data();
+    // Constructed in place (C++17 guaranteed elision): an assignment would
+    // build each result in a temporary on the stack and copy it, which costs
+    // a store-forwarding stall per result, more than the unit itself.
+    for (size_t i = 0; i < count; ++i) ::new (static_cast<void*>(results + i)) Result(unit(in[i]));
+    compiler_barrier(results);
   }
-  return timing;
+  return thread_cpu_seconds() - start;
+}
+
+template <class Result>
+uint64_t checksum(const std::vector<Result>& results) {
+  uint64_t sum = 0;
+  for (const Result& r : results) sum = fold(sum, r);
+  return sum;
 }
 
 struct UnitResult {
   std::string unit;
-  uint64_t vectors = 0;
-  Timing cpp, rtl;
+  std::vector<double> cpp_ns, rtl_ns, ratio;  // per round
+  uint64_t cpp_checksum = 0, rtl_checksum = 0;
 };
 
-// Times the C++ unit `model(vector)` and the adapter `rtl(vector)` over the
-// same vectors.
+// R paired rounds of the C++ unit `model(vector)` and the adapter
+// `rtl(vector)` over the same pool.
 template <class Vector, class Model, class Rtl>
-UnitResult measure(const char* unit, const std::vector<Vector>& vectors, unsigned repeat, Model&& model, Rtl&& rtl) {
-  UnitResult result{unit, vectors.size(), {}, {}};
+UnitResult measure(const char* unit, const std::vector<Vector>& pool, const Options& opt, Model&& model, Rtl&& rtl) {
+  using Result = decltype(model(pool.front()));
+  static_assert(std::is_same_v<Result, decltype(rtl(pool.front()))>, "both sides give the same result type");
   std::fprintf(stderr, "bench_rtl: %s ...\n", unit);
-  result.cpp = time_best(repeat, [&] {
-    uint64_t sum = 0;
-    for (const Vector& v : vectors) sum = fold(sum, model(v));
-    return sum;
-  });
-  result.rtl = time_best(repeat, [&] {
-    uint64_t sum = 0;
-    for (const Vector& v : vectors) sum = fold(sum, rtl(v));
-    return sum;
-  });
+  UnitResult result;
+  result.unit = unit;
+  std::vector<Result> cpp_out(pool.size()), rtl_out(pool.size());
+  const double ops = static_cast<double>(opt.vectors);
+  sweep(pool, cpp_out, pool.size(), model);  // warm-up, not counted
+  sweep(pool, rtl_out, pool.size(), rtl);
+  for (unsigned r = 0; r < opt.rounds; ++r) {
+    const double cpp_s = sweep(pool, cpp_out, opt.vectors, model);
+    const double rtl_s = sweep(pool, rtl_out, opt.vectors, rtl);
+    result.cpp_ns.push_back(cpp_s / ops * 1e9);
+    result.rtl_ns.push_back(rtl_s / ops * 1e9);
+    result.ratio.push_back(rtl_s / cpp_s);
+  }
+  result.cpp_checksum = checksum(cpp_out);
+  result.rtl_checksum = checksum(rtl_out);
   return result;
 }
 
-std::string format_rate(double per_second) {
+std::string format_ns(double ns) {
   char text[32];
-  if (per_second >= 1e6)
-    std::snprintf(text, sizeof text, "%.1f M", per_second / 1e6);
-  else
-    std::snprintf(text, sizeof text, "%.0f k", per_second / 1e3);
-  return text;
-}
-
-std::string format_ns(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f ns", seconds * 1e9);
+  std::snprintf(text, sizeof text, ns < 10 ? "%.2f" : "%.1f", ns);
   return text;
 }
 
 int run(const Options& opt) {
+  const std::string load_before = load_average();
+  const auto start = std::chrono::steady_clock::now();
   std::mt19937_64 rng(opt.seed);
-  const uint64_t n = opt.vectors;
+  const uint64_t n = opt.pool;
   std::vector<UnitResult> results;
   {
     const auto vectors = recip_vectors(rng, n);
     RecipUnitRtl rtl;
     results.push_back(measure(
-        "reciprocal (Method 3)", vectors, opt.repeat, [](uint16_t x) { return reciprocal(x, RecipMethod::method3); },
+        "reciprocal (Method 3)", vectors, opt, [](uint16_t x) { return reciprocal(x, RecipMethod::method3); },
         [&rtl](uint16_t x) { return rtl.evaluate(x); }));
   }
   {
     const auto vectors = edge_vectors(rng, n);
     EdgeFunctionRtl rtl;
     results.push_back(measure(
-        "edge function", vectors, opt.repeat,
-        [](const EdgeVector& v) { return evaluate_edge(v.e, v.px, v.py, v.recip); },
+        "edge function", vectors, opt, [](const EdgeVector& v) { return evaluate_edge(v.e, v.px, v.py, v.recip); },
         [&rtl](const EdgeVector& v) { return rtl.evaluate(v.e, v.px, v.py, v.recip); }));
   }
   {
     const auto vectors = attr_vectors(rng, n);
     AttrInterpRtl rtl;
     results.push_back(measure(
-        "attribute interpolator", vectors, opt.repeat,
+        "attribute interpolator", vectors, opt,
         [](const AttrVector& v) { return evaluate_attribute(v.plane, v.dx, v.dy); },
         [&rtl](const AttrVector& v) { return rtl.evaluate(v.plane, v.dx, v.dy); }));
   }
@@ -380,58 +415,63 @@ int run(const Options& opt) {
     const auto vectors = fragment_vectors(rng, n);
     FragmentTestsRtl rtl;
     results.push_back(measure(
-        "fragment tests", vectors, opt.repeat,
-        [](const FragmentVector& v) { return run_fragment_tests(v.state, v.in); },
+        "fragment tests", vectors, opt, [](const FragmentVector& v) { return run_fragment_tests(v.state, v.in); },
         [&rtl](const FragmentVector& v) { return rtl.run(v.state, v.in); }));
   }
   {
     const auto vectors = blend_vectors(rng, n);
     BlendLogicOpRtl rtl;
     results.push_back(measure(
-        "blend / logic op", vectors, opt.repeat,
-        [](const BlendVector& v) { return blend_logic_op(v.state, v.src, v.dst); },
+        "blend / logic op", vectors, opt, [](const BlendVector& v) { return blend_logic_op(v.state, v.src, v.dst); },
         [&rtl](const BlendVector& v) { return rtl.run(v.state, v.src, v.dst); }));
   }
   {
     const auto vectors = texel_vectors(rng, n);
     TexelAddressRtl rtl;
     results.push_back(measure(
-        "texel address", vectors, opt.repeat, [](const TexelVector& v) { return texel_lookup(v.state, v.s, v.t); },
+        "texel address", vectors, opt, [](const TexelVector& v) { return texel_lookup(v.state, v.s, v.t); },
         [&rtl](const TexelVector& v) { return rtl.lookup(v.state, v.s, v.t); }));
   }
   {
     const auto vectors = texenv_vectors(rng, n);
     TextureEnvRtl rtl;
     results.push_back(measure(
-        "texture env (filter + env)", vectors, opt.repeat,
+        "texture env (filter + env)", vectors, opt,
         [](const TexEnvVector& v) { return texture_filter_env(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); },
         [&rtl](const TexEnvVector& v) { return rtl.run(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); }));
   }
 
-  std::printf("| unit | C++ model ops/s | RTL ops/s | C++ / RTL | C++ ns/op | RTL ns/op | checksum (both) |\n");
-  std::printf("|---|--:|--:|--:|--:|--:|---|\n");
+  std::printf(
+      "| unit | C++ ns/op (min) | (median) | RTL ns/op (min) | (median) | RTL / C++ (mins) | (median of rounds) "
+      "| goal >= 50 | checksum (both) |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|--:|---|---|\n");
   bool all_agree = true;
   for (const auto& r : results) {
-    const bool agree = r.cpp.checksum == r.rtl.checksum && r.cpp.stable && r.rtl.stable;
+    const bool agree = r.cpp_checksum == r.rtl_checksum;
     all_agree = all_agree && agree;
-    char checksum[64];
+    char sum[64];
     if (agree)
-      std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(r.cpp.checksum));
+      std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(r.cpp_checksum));
     else
-      std::snprintf(checksum, sizeof checksum, "DIFFER: %016llx / %016llx",
-                    static_cast<unsigned long long>(r.cpp.checksum), static_cast<unsigned long long>(r.rtl.checksum));
-    const double n_ops = static_cast<double>(r.vectors);
-    std::printf("| %s | %s | %s | %.1f | %s | %s | %s |\n", r.unit.c_str(), format_rate(n_ops / r.cpp.best_s).c_str(),
-                format_rate(n_ops / r.rtl.best_s).c_str(), r.rtl.best_s / r.cpp.best_s,
-                format_ns(r.cpp.best_s / n_ops).c_str(), format_ns(r.rtl.best_s / n_ops).c_str(), checksum);
+      std::snprintf(sum, sizeof sum, "DIFFER: %016llx / %016llx", static_cast<unsigned long long>(r.cpp_checksum),
+                    static_cast<unsigned long long>(r.rtl_checksum));
+    const MinMedian cpp = min_median(r.cpp_ns), rtl = min_median(r.rtl_ns), ratio = min_median(r.ratio);
+    const double ratio_of_mins = rtl.min / cpp.min;
+    std::printf("| %s | %s | %s | %s | %s | %.1f | %.1f | %s | %s |\n", r.unit.c_str(), format_ns(cpp.min).c_str(),
+                format_ns(cpp.median).c_str(), format_ns(rtl.min).c_str(), format_ns(rtl.median).c_str(), ratio_of_mins,
+                ratio.median, ratio.median >= 50 ? "met" : "**not met**", sum);
   }
   std::printf(
-      "\n%llu random vectors per unit (seed %#llx), generated before timing; each figure the best of %u "
-      "passes over all of them. One op = one vector through the unit's whole function (C++: the "
-      "datapath's one-call entry point; RTL: its adapter, i.e. port packing + Verilated eval + unpacking). "
-      "The checksum folds every output field of every vector; C++ and RTL agree bit for bit when it is the "
-      "same.\n",
-      static_cast<unsigned long long>(n), static_cast<unsigned long long>(opt.seed), opt.repeat);
+      "\n%u paired rounds per unit; a round times %llu operations on each side, sweeping a pool of %llu random "
+      "vectors (seed %#llx) generated before timing. One op = one vector through the unit's whole function (C++: "
+      "the datapath's one-call entry point, inline; RTL: its adapter, i.e. port packing + Verilated eval + "
+      "unpacking); times are this thread's CPU time. The checksum folds every output field of the pool's results; C++ "
+      "and RTL agree bit for bit when "
+      "it is the same. %s\n",
+      opt.rounds, static_cast<unsigned long long>(opt.vectors), static_cast<unsigned long long>(n),
+      static_cast<unsigned long long>(opt.seed),
+      machine_summary(load_before, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+          .c_str());
   return all_agree ? 0 : 1;
 }
 
@@ -440,11 +480,14 @@ int run(const Options& opt) {
 static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_rtl: C++ datapath units of the rasterizer against their Verilated RTL, same vectors"};
-  cli.add_option("--vectors", opt.vectors, "random vectors per unit")
+  cli.add_option("--vectors", opt.vectors, "operations per side and round")
       ->check(CLI::Range(uint64_t{1}, uint64_t{100'000'000}))
       ->capture_default_str();
-  cli.add_option("--repeat", opt.repeat, "passes over the vectors; the best time is kept")
-      ->check(CLI::Range(1, 20))
+  cli.add_option("--pool", opt.pool, "distinct random vectors per unit, swept in every round")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{10'000'000}))
+      ->capture_default_str();
+  cli.add_option("--rounds", opt.rounds, "paired rounds (C++ then RTL); min and median are printed")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cli.add_option("--seed", opt.seed, "seed of the vector generator")->capture_default_str();
   CLI11_PARSE(cli, argc, argv);

@@ -26,6 +26,17 @@ MinMedian min_median(std::vector<double> values) {
   return {values.front(), n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2};
 }
 
+double paired_median(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> ratios;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) ratios.push_back(a[i] / b[i]);
+  return min_median(ratios).median;
+}
+
+double positive(double value, const std::string& what) {
+  if (!(value > 0)) throw std::runtime_error(what + ": measured " + std::to_string(value) + ", not a positive figure");
+  return value;
+}
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -58,6 +69,8 @@ ChildResult run_child(const std::vector<std::string>& argv, const fs::path& outp
   ChildResult result;
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.max_rss_kib = usage.ru_maxrss;
+  result.cpu_s = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                 static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-6;
   std::ifstream in(output_file);
   std::stringstream text;
   text << in.rdbuf();
@@ -117,6 +130,11 @@ std::string format_ms(double seconds) {
   const double ms = seconds * 1e3;
   std::snprintf(text, sizeof text, ms >= 100 ? "%.0f ms" : ms >= 10 ? "%.1f ms" : "%.2f ms", ms);
   return text;
+}
+
+std::string format_min_median_ms(const std::vector<double>& seconds) {
+  const MinMedian m = min_median(seconds);
+  return format_ms(m.min) + " / " + format_ms(m.median);
 }
 
 std::string format_ratio(double ratio) {

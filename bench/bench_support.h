@@ -13,6 +13,7 @@ namespace tessera::bench {
 
 struct ChildResult {
   double wall_s = 0;
+  double cpu_s = 0;      // user + system CPU time of the child (every thread), from wait4
   long max_rss_kib = 0;  // ru_maxrss of the child
   std::string output;    // its stdout
 };
@@ -27,6 +28,16 @@ struct MinMedian {
 };
 // Min and median of repeated measurements (at least one).
 MinMedian min_median(std::vector<double> values);
+
+// The median over the rounds of a[i] / b[i]: a ratio of two measurements
+// paired by round (taken one after the other, so that a change in the
+// machine's load hits both alike). Uses the common length of the two.
+double paired_median(const std::vector<double>& a, const std::vector<double>& b);
+
+// A measured duration or count must be positive: zero or less means the
+// measurement is broken (a clock read in the wrong place, a difference of
+// two runs), never a fast machine. Returns `value`, or throws naming `what`.
+double positive(double value, const std::string& what);
 
 nlohmann::json read_json_file(const std::filesystem::path& path);
 
@@ -50,6 +61,8 @@ std::string machine_summary(const std::string& load_before, double total_s);
 double per_frame_seconds(const nlohmann::json& document, unsigned n, const std::string& key);
 
 std::string format_ms(double seconds);  // 3 significant digits
+// "min / median" of repeated times, each as format_ms.
+std::string format_min_median_ms(const std::vector<double>& seconds);
 std::string format_ratio(double ratio);
 
 }  // namespace tessera::bench

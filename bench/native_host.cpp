@@ -1,5 +1,7 @@
 #include "native_host.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -50,7 +52,12 @@ uint32_t NativeHost::read_display_reg(uint32_t offset) const {
 }
 
 void NativeHost::write_display_reg(uint32_t offset) {
-  if (offset == (m_display.dma ? regs::SWAP : regs::PRESENT)) m_present_times.push_back(Clock::now());
+  if (offset == (m_display.dma ? regs::SWAP : regs::PRESENT)) {
+    m_present_times.push_back(Clock::now());
+    timespec cpu{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu);
+    m_present_cpu_seconds.push_back(static_cast<double>(cpu.tv_sec) + static_cast<double>(cpu.tv_nsec) * 1e-9);
+  }
 }
 
 uint64_t NativeHost::read(uint32_t address, unsigned bytes) {

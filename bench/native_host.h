@@ -54,6 +54,9 @@ class NativeHost : public HostApi {
   // When each frame was handed to the display (PRESENT in port mode, SWAP
   // in DMA mode), in order.
   const std::vector<Clock::time_point>& present_times() const { return m_present_times; }
+  // The process's CPU time (seconds) at each of them: what a loaded
+  // machine does not inflate.
+  const std::vector<double>& present_cpu_seconds() const { return m_present_cpu_seconds; }
 
  private:
   // Where `bytes` bytes at `address` live: system memory, or nullptr for the
@@ -67,6 +70,7 @@ class NativeHost : public HostApi {
   std::vector<uint8_t> m_memory;
   NativeDisplay m_display;
   std::vector<Clock::time_point> m_present_times;
+  std::vector<double> m_present_cpu_seconds;
 };
 
 }  // namespace tessera::bench

@@ -34,11 +34,13 @@ int run_timed_scene(const char* program, AppEnvironment& env, const NativeHost& 
   auto seconds = [](auto from, auto to) { return std::chrono::duration<double>(to - from).count(); };
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  nlohmann::json result = {{"scene", scene_name},
-                           {"timed_frames", frames},
-                           {"wall_per_frame_s", seconds(presents[frames - 1], presents.back()) / frames},
-                           {"first_frame_s", seconds(start, presents.front())},
-                           {"max_rss_kib", usage.ru_maxrss}};
+  nlohmann::json result = {
+      {"scene", scene_name},
+      {"timed_frames", frames},
+      {"wall_per_frame_s", seconds(presents[frames - 1], presents.back()) / frames},
+      {"cpu_per_frame_s", (host.present_cpu_seconds().back() - host.present_cpu_seconds()[frames - 1]) / frames},
+      {"first_frame_s", seconds(start, presents.front())},
+      {"max_rss_kib", usage.ru_maxrss}};
   for (const auto& [key, value] : extra.items()) result[key] = value;
   std::printf("%s\n", result.dump().c_str());
   return 0;

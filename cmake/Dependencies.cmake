@@ -12,6 +12,8 @@ target_link_libraries(tessera_systemc INTERFACE PkgConfig::SYSTEMC PkgConfig::TL
 # OpenImageIO's CMake config needs packages we do not otherwise use;
 # its pkg-config file does not.
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+# libpng: soc_sim writes its PNG frames through it alone (tools/frame_writer/png_writer.h).
+pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)
 
 # Unicorn (QEMU's CPU emulation as a library): the reference the ISS runs
 # in lock-step with in its tests.

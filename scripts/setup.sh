@@ -7,7 +7,8 @@ PACKAGES=(
   build-essential cmake pkg-config git
   libsystemc-dev          # SystemC 2.3 with TLM-2.0
   libglm-dev              # vector maths for the GL front end
-  libopenimageio-dev      # PNG output of the display
+  libpng-dev              # PNG output of the display (soc_sim)
+  libopenimageio-dev      # reading images back: tests and comparison tools
   libgtest-dev            # unit and TLM tests
   libgles-dev libegl-dev  # Khronos GL ES / EGL headers: the conformance test compares ours with them
   verilator               # Verilog reference units

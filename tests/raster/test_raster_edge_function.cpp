@@ -1,6 +1,7 @@
 // Unit tests of the edge-function evaluator (tlm/raster/datapath/edge_function.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -96,6 +97,46 @@ TEST(EdgeFunction, SteppingEqualsDirectEvaluation) {
     EXPECT_EQ(r.value_next_x, edge_value_at(e, px + 1, py));
     EXPECT_EQ(r.value_next_y, edge_value_at(e, px, py + 1));
   }
+}
+
+// The row masks (the traversal's batch form) against the fill rule decided
+// pixel by pixel by direct evaluation: random edges and triangles, random
+// rows and spans up to 64 pixels, up to pixel 512.
+TEST(EdgeFunction, RowMasksEqualPixelByPixelDecisions) {
+  std::mt19937 rng(4321);
+  std::uniform_int_distribution<uint32_t> coord(0, 8191);
+  std::uniform_int_distribution<unsigned> pixel(0, 511);
+  std::uniform_int_distribution<unsigned> span(0, 64);
+  const auto random_edge = [&] {
+    return Edge{q9_4::from_raw(coord(rng)), q9_4::from_raw(coord(rng)), q9_4::from_raw(coord(rng)),
+                q9_4::from_raw(coord(rng))};
+  };
+  unsigned rows_with_inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Edge e = random_edge();
+    const unsigned py = pixel(rng);
+    const unsigned px = pixel(rng);
+    const unsigned count = std::min(span(rng), 513 - px);
+    uint64_t expected = 0;
+    for (unsigned k = 0; k < count; ++k)
+      if (edge_inside(e, edge_value_at(e, px + k, py))) expected |= uint64_t{1} << k;
+    ASSERT_EQ(edge_inside_row(e, px, py, count), expected) << i;
+
+    // A small triangle near the row, so that the runs start and end inside
+    // the span; the edges oriented as triangle setup does.
+    const double cx = px + 0.37 * count, cy = py + 0.5;
+    std::uniform_real_distribution<double> around(-12.0, 12.0);
+    const auto clamp = [](double v) { return std::clamp(v, 0.0, 511.0); };
+    const auto tri = triangle_edges({clamp(cx + around(rng)), clamp(cy + around(rng))},
+                                    {clamp(cx + around(rng)), clamp(cy + around(rng))},
+                                    {clamp(cx + around(rng)), clamp(cy + around(rng))});
+    uint64_t expected_tri = 0;
+    for (unsigned k = 0; k < count; ++k)
+      if (covers(tri, px + k, py)) expected_tri |= uint64_t{1} << k;
+    ASSERT_EQ(triangle_inside_row(tri[0], tri[1], tri[2], px, py, count), expected_tri) << i;
+    rows_with_inside += expected_tri != 0;
+  }
+  EXPECT_GT(rows_with_inside, 1000u);  // the triangles do cross the rows
 }
 
 TEST(EdgeFunction, TieBreakIsAntisymmetric) {

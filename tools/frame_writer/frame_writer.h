@@ -1,18 +1,14 @@
-// Writes displayed frames as PNG files through OpenImageIO, and reads PNG
-// files back (for tests and comparisons).
+// Reads images back through OpenImageIO (for tests and comparisons); writes
+// PNG files through png_writer.h (libpng alone), which it includes.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace tessera {
+#include "png_writer.h"
 
-// The PNG file of 8-bit RGBA pixels (row 0 at the top), in memory.
-std::vector<unsigned char> encode_png(unsigned width, unsigned height, const std::vector<uint8_t>& rgba);
-// Writes them as a PNG file, whole or not at all (tools/common/output_file.h).
-// Throws std::runtime_error naming the file and the reason on failure.
-void write_png(const std::string& path, unsigned width, unsigned height, const std::vector<uint8_t>& rgba);
+namespace tessera {
 
 struct Image {
   unsigned width = 0;

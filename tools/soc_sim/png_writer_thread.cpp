@@ -2,7 +2,7 @@
 
 #include <exception>
 
-#include "frame_writer.h"
+#include "png_writer.h"
 
 namespace tessera {
 

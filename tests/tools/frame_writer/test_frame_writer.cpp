@@ -39,6 +39,51 @@ TEST(FrameWriter, PixelsComeBackAsWrittenWhateverTheirAlpha) {
   fs::remove_all(path.parent_path());
 }
 
+// The writer is libpng alone; OpenImageIO, an independent reader, must get
+// back every pixel of an image whose compressed data spans several IDAT
+// chunks (noise does not compress: more than libpng's 8 KiB chunk).
+TEST(FrameWriter, ANoisyImageComesBackWholeThroughAnotherReader) {
+  constexpr unsigned WIDTH = 97, HEIGHT = 61;
+  std::vector<uint8_t> rgba(size_t{WIDTH} * HEIGHT * 4);
+  uint32_t state = 12345;
+  for (uint8_t& byte : rgba) {
+    state = state * 1664525u + 1013904223u;
+    byte = static_cast<uint8_t>(state >> 24);
+  }
+  const std::vector<unsigned char> png = encode_png(WIDTH, HEIGHT, rgba);
+  EXPECT_GT(png.size(), 8192u + 100u) << "the data fits one IDAT chunk: the test does not cover several";
+  const fs::path path = scratch_file("noise.png");
+  write_png(path.string(), WIDTH, HEIGHT, rgba);
+  const Image image = read_image(path.string());
+  EXPECT_EQ(image.width, WIDTH);
+  EXPECT_EQ(image.height, HEIGHT);
+  EXPECT_EQ(image.rgba, rgba);
+  fs::remove_all(path.parent_path());
+}
+
+TEST(FrameWriter, WrongPixelCountIsRefused) {
+  EXPECT_THROW(encode_png(4, 4, std::vector<uint8_t>(4 * 4 * 4 - 1)), std::invalid_argument);
+  EXPECT_THROW(encode_png(0, 0, {}), std::invalid_argument);
+  try {
+    write_png("frame_9.png", 2, 2, std::vector<uint8_t>(3));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("frame_9.png"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FrameWriter, UnwritableFileIsAnErrorNamingIt) {
+  const fs::path path = scratch_file("no_such_folder") / "frame_0000.png";
+  try {
+    write_png(path.string(), 1, 1, {1, 2, 3, 4});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path));
+  fs::remove_all(path.parent_path().parent_path());
+}
+
 TEST(FrameWriter, MissingFileIsAnErrorNamingIt) {
   try {
     read_image("no_such_frame.png");

@@ -576,7 +576,7 @@ TEST_F(SocSim, NoFramesWritesNoPngButCountsTheFrames) {
   EXPECT_TRUE(contains(result.out, "3 frame(s) shown, none written (--no-frames)")) << result.out;
 }
 
-// --wall-clock: each frame's wall-clock time in stats.json (for benchmarks),
+// --wall-clock: each frame's wall-clock and CPU time in stats.json (for benchmarks),
 // rising from frame to frame; without it the file has none, so that
 // identical runs write identical files.
 TEST_F(SocSim, WallClockPerFrameOnlyWhenAskedFor) {
@@ -584,17 +584,25 @@ TEST_F(SocSim, WallClockPerFrameOnlyWhenAskedFor) {
   ASSERT_EQ(result.status, 0) << describe(result);
   json frames = read_stats(m_dir / "a/stats.json")["stats"]["frames"];
   ASSERT_EQ(frames.size(), 3u);
-  double previous = 0;
+  double previous = 0, previous_cpu = 0;
   for (const json& frame : frames) {
     ASSERT_TRUE(frame.contains("wall_ns")) << frame.dump();
     EXPECT_GT(frame["wall_ns"].get<double>(), previous);
     previous = frame["wall_ns"].get<double>();
+    // The process's CPU time so far: it includes start-up, and simulating
+    // a frame takes some, so it only grows (never equal: a clock of ns).
+    ASSERT_TRUE(frame.contains("cpu_ns")) << frame.dump();
+    EXPECT_GT(frame["cpu_ns"].get<double>(), previous_cpu);
+    previous_cpu = frame["cpu_ns"].get<double>();
   }
   result = run({"--app", "pattern", "--frames", "3", "--out", "b", "--no-frames", "--quiet"});
   ASSERT_EQ(result.status, 0) << describe(result);
   frames = read_stats(m_dir / "b/stats.json")["stats"]["frames"];
   ASSERT_EQ(frames.size(), 3u);
-  for (const json& frame : frames) EXPECT_FALSE(frame.contains("wall_ns")) << frame.dump();
+  for (const json& frame : frames) {
+    EXPECT_FALSE(frame.contains("wall_ns")) << frame.dump();
+    EXPECT_FALSE(frame.contains("cpu_ns")) << frame.dump();
+  }
 }
 
 // 1000 teapot frames take 172 s of simulated time in port mode (a few

@@ -6,8 +6,8 @@
 
 namespace tessera::raster {
 
-FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, Rgba8 fragment, unorm24 depth,
-                                             Rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil) {
+FragmentOperationsResult fragment_tests_only(const FragmentOperationsState& state, unorm8 alpha, unorm24 depth,
+                                             unorm24 stored_depth, stencil8 stored_stencil) {
   FragmentTestState tests;
   tests.depth_enable = state.depth_test;
   tests.depth_func = state.depth_func;
@@ -24,14 +24,20 @@ FragmentOperationsResult fragment_operations(const FragmentOperationsState& stat
   tests.dpfail = state.depth_fail;
   tests.dppass = state.depth_pass;
 
-  const FragmentTestResult tested = run_fragment_tests(tests, {fragment.a, depth, stored_depth, stored_stencil});
+  const FragmentTestResult tested = run_fragment_tests(tests, {alpha, depth, stored_depth, stored_stencil});
   FragmentOperationsResult result;
   result.pass = tested.pass;
   result.depth_write = tested.depth_write;
   result.stencil = uint8_t(tested.stencil.raw);
-  result.color = stored_color;
-  if (!tested.pass) return result;
+  return result;
+}
 
+Rgba8 fragment_color_update(const FragmentOperationsState& state, Rgba8 fragment, Rgba8 stored_color) {
+  // Neither blending nor a logic op and every channel writable: the unit
+  // passes the fragment (blend_logic_op.h), so the branch-free unit, which
+  // computes every factor, is not needed. The state is the triangle's, so
+  // this branch is predicted.
+  if (!state.blend && !state.logic_op && (state.color_mask & COLOR_MASK_ALL) == COLOR_MASK_ALL) return fragment;
   BlendState blending;
   blending.blend_enable = state.blend;
   blending.src_factor = state.blend_src;
@@ -39,8 +45,7 @@ FragmentOperationsResult fragment_operations(const FragmentOperationsState& stat
   blending.logic_op_enable = state.logic_op;
   blending.op = state.logic_op_mode;
   blending.color_mask = uint8_t(state.color_mask & COLOR_MASK_ALL);
-  result.color = blend_logic_op(blending, fragment, stored_color);
-  return result;
+  return blend_logic_op(blending, fragment, stored_color);
 }
 
 }  // namespace tessera::raster

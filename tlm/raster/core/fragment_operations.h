@@ -41,7 +41,12 @@ struct FragmentOperationsResult {
   Rgba8 color;
 };
 
-FragmentOperationsResult fragment_operations(const FragmentOperationsState& state, Rgba8 fragment, unorm24 depth,
-                                             Rgba8 stored_color, unorm24 stored_depth, stencil8 stored_stencil);
+// In two steps, so that the shader can compute the fragment's colour only
+// when it is needed: the tests (which read the colour's alpha only with the
+// alpha test enabled; `color` of the result is left unset), then, for a
+// fragment that passed, blending or logic op and the colour mask.
+FragmentOperationsResult fragment_tests_only(const FragmentOperationsState& state, unorm8 alpha, unorm24 depth,
+                                             unorm24 stored_depth, stencil8 stored_stencil);
+Rgba8 fragment_color_update(const FragmentOperationsState& state, Rgba8 fragment, Rgba8 stored_color);
 
 }  // namespace tessera::raster

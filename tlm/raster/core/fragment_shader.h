@@ -25,6 +25,8 @@ class FragmentShader {
   void shade(const TriangleSetup& setup, int px, int py, unorm8 coverage);
 
  private:
+  bool shaded_color(const TriangleSetup& setup, int dx, int dy, unorm8 coverage, Rgba8& color);
+
   RunContext& m_run;
   TileCache& m_tile;
   const DrawState& m_state;

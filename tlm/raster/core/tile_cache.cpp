@@ -30,6 +30,45 @@ bool TileCache::clears_whole_tile(const ClearCommand& clear, const DrawState& st
   return all && (!state.scissor || state.scissor_box.contains(m_tile));
 }
 
+namespace {
+
+// The per-pixel conversions with the pixel format a template argument, so
+// that the loops below carry no per-pixel test of it; RGB565 through the
+// tables of tile_cache.h.
+template <PixelFormat FORMAT>
+void unpack_row(const uint8_t* bytes, Rgba8* color, unsigned width) {
+  constexpr unsigned BPP = bytes_per_pixel(FORMAT);
+  for (unsigned x = 0; x < width; ++x) {
+    const uint32_t packed = load_pixel(FORMAT, bytes + x * BPP);
+    color[x] = Rgba8::unpack(FORMAT == PixelFormat::rgba8888 ? packed : unpack_rgb565(packed));
+  }
+}
+
+template <PixelFormat FORMAT>
+void pack_row(const Rgba8* color, uint8_t* bytes, unsigned width) {
+  constexpr unsigned BPP = bytes_per_pixel(FORMAT);
+  for (unsigned x = 0; x < width; ++x) {
+    const uint32_t rgba = color[x].pack();
+    store_pixel(FORMAT, bytes + x * BPP, FORMAT == PixelFormat::rgba8888 ? rgba : pack_rgb565(rgba));
+  }
+}
+
+void unpack_row(PixelFormat format, const uint8_t* bytes, Rgba8* color, unsigned width) {
+  if (format == PixelFormat::rgba8888)
+    unpack_row<PixelFormat::rgba8888>(bytes, color, width);
+  else
+    unpack_row<PixelFormat::rgb565>(bytes, color, width);
+}
+
+void pack_row(PixelFormat format, const Rgba8* color, uint8_t* bytes, unsigned width) {
+  if (format == PixelFormat::rgba8888)
+    pack_row<PixelFormat::rgba8888>(color, bytes, width);
+  else
+    pack_row<PixelFormat::rgb565>(color, bytes, width);
+}
+
+}  // namespace
+
 void TileCache::load(RunContext& run) {
   const RunConfig& c = m_config;
   const unsigned width = unsigned(m_tile.x1 - m_tile.x0), rows = unsigned(m_tile.y1 - m_tile.y0);
@@ -38,16 +77,15 @@ void TileCache::load(RunContext& run) {
     const unsigned row = m_row0 + r;
     const uint32_t color_address = c.color_base + (row * c.width + unsigned(m_tile.x0)) * bpp;
     if (!run.read(color_address, m_row_bytes.data(), width * bpp)) return;
-    for (unsigned x = 0; x < width; ++x) {
-      const uint8_t* p = m_row_bytes.data() + x * bpp;
-      m_color[r * c.tile_width + x] = Rgba8::unpack(unpack_pixel(c.color_format, load_pixel(c.color_format, p)));
-    }
+    unpack_row(c.color_format, m_row_bytes.data(), m_color.data() + r * c.tile_width, width);
     const uint32_t depth_address = c.depth_base + (row * c.width + unsigned(m_tile.x0)) * 4;
     if (!run.read(depth_address, m_row_bytes.data(), width * 4)) return;
+    uint32_t* depth = m_depth.data() + r * c.tile_width;
+    uint8_t* stencil = m_stencil.data() + r * c.tile_width;
     for (unsigned x = 0; x < width; ++x) {
       const uint32_t v = load_le32(m_row_bytes.data() + x * 4);
-      m_depth[r * c.tile_width + x] = v & 0xffffff;
-      m_stencil[r * c.tile_width + x] = uint8_t(v >> 24);
+      depth[x] = v & 0xffffff;
+      stencil[x] = uint8_t(v >> 24);
     }
     run.charge(run.result().tile_cycles, uint64_t{run.costs().tile_write_word} * ((width * bpp + 3) / 4 + width));
   }
@@ -58,18 +96,15 @@ void TileCache::write_back(RunContext& run) {
   const unsigned width = unsigned(m_tile.x1 - m_tile.x0), rows = unsigned(m_tile.y1 - m_tile.y0);
   const unsigned bpp = bytes_per_pixel(c.color_format);
   for (unsigned r = 0; r < rows; ++r) {
-    for (unsigned x = 0; x < width; ++x)
-      store_pixel(c.color_format, m_row_bytes.data() + x * bpp,
-                  pack_pixel(c.color_format, m_color[r * c.tile_width + x].pack()));
+    pack_row(c.color_format, m_color.data() + r * c.tile_width, m_row_bytes.data(), width);
     const uint32_t address = c.color_base + ((m_row0 + r) * c.width + unsigned(m_tile.x0)) * bpp;
     if (!run.write(address, m_row_bytes.data(), width * bpp)) return;
     run.charge(run.result().tile_cycles, uint64_t{run.costs().tile_write_word} * ((width * bpp + 3) / 4));
   }
   for (unsigned r = 0; r < rows; ++r) {
-    for (unsigned x = 0; x < width; ++x) {
-      const unsigned i = r * c.tile_width + x;
-      store_le32(m_row_bytes.data() + x * 4, m_depth[i] | uint32_t{m_stencil[i]} << 24);
-    }
+    const uint32_t* depth = m_depth.data() + r * c.tile_width;
+    const uint8_t* stencil = m_stencil.data() + r * c.tile_width;
+    for (unsigned x = 0; x < width; ++x) store_le32(m_row_bytes.data() + x * 4, depth[x] | uint32_t{stencil[x]} << 24);
     const uint32_t address = c.depth_base + ((m_row0 + r) * c.width + unsigned(m_tile.x0)) * 4;
     if (!run.write(address, m_row_bytes.data(), width * 4)) return;
     run.charge(run.result().tile_cycles, uint64_t{run.costs().tile_write_word} * width);
@@ -88,20 +123,26 @@ void TileCache::clear(RunContext& run, const ClearCommand& clear, const DrawStat
   Rect area = m_tile;
   if (state.scissor) area = area.intersect(state.scissor_box);
   if (area.empty() || !(clear_color || clear_depth || clear_stencil)) return;
+  const unsigned width = unsigned(area.x1 - area.x0);
+  const uint32_t color_bits = color.pack() & channel_bits;
+  const uint8_t stencil_bits = uint8_t(clear.stencil_value & stencil_mask);
   for (int y = area.y0; y < area.y1; ++y) {
-    for (int x = area.x0; x < area.x1; ++x) {
-      const unsigned i = index(x, y);
-      if (clear_color) m_color[i] = Rgba8::unpack((m_color[i].pack() & ~channel_bits) | (color.pack() & channel_bits));
-      if (clear_depth) m_depth[i] = clear.depth_value;
-      if (clear_stencil) m_stencil[i] = uint8_t((m_stencil[i] & ~stencil_mask) | (clear.stencil_value & stencil_mask));
+    const unsigned i0 = index(area.x0, y);  // the row's pixels are i0 .. i0 + width - 1
+    if (clear_color) {
+      Rgba8* row = m_color.data() + i0;
+      if (channel_bits == 0xffffffffu)
+        std::fill(row, row + width, color);
+      else
+        for (unsigned x = 0; x < width; ++x) row[x] = Rgba8::unpack((row[x].pack() & ~channel_bits) | color_bits);
+    }
+    if (clear_depth) std::fill(m_depth.data() + i0, m_depth.data() + i0 + width, clear.depth_value);
+    if (clear_stencil) {
+      uint8_t* row = m_stencil.data() + i0;
+      for (unsigned x = 0; x < width; ++x) row[x] = uint8_t((row[x] & ~stencil_mask) | stencil_bits);
     }
   }
   run.charge(run.result().tile_cycles,
              uint64_t{run.costs().tile_pixel_clear} * uint64_t(area.x1 - area.x0) * uint64_t(area.y1 - area.y0));
-}
-
-Rgba8 TileCache::quantise(Rgba8 c) const {
-  return Rgba8::unpack(quantize_color(m_config.color_format, c.pack()));
 }
 
 }  // namespace tessera::raster

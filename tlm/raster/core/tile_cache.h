@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/pixel_format.h"
 #include "raster/core/command_decoder.h"
 #include "raster/core/draw_state.h"
 #include "raster/core/rect.h"
@@ -15,6 +16,39 @@
 #include "raster/datapath/fixed_point.h"
 
 namespace tessera::raster {
+
+// RGB565's channel conversions of common/pixel_format.h (reduce_channel,
+// expand_channel) as constexpr tables built from them, for the per-pixel
+// loops: the same values, a load instead of a division and a loop.
+struct Rgb565Tables {
+  uint8_t reduce5[256], reduce6[256], expand5[32], expand6[64];
+};
+constexpr Rgb565Tables make_rgb565_tables() {
+  Rgb565Tables t{};
+  for (uint32_t c = 0; c < 256; ++c) {
+    t.reduce5[c] = uint8_t(reduce_channel(c, 5));
+    t.reduce6[c] = uint8_t(reduce_channel(c, 6));
+  }
+  for (uint32_t v = 0; v < 32; ++v) t.expand5[v] = uint8_t(expand_channel(v, 5));
+  for (uint32_t v = 0; v < 64; ++v) t.expand6[v] = uint8_t(expand_channel(v, 6));
+  return t;
+}
+inline constexpr Rgb565Tables RGB565_TABLES = make_rgb565_tables();
+
+// pack_pixel and unpack_pixel of RGB565 through the tables.
+constexpr uint32_t pack_rgb565(uint32_t rgba) {
+  const Rgb565Tables& t = RGB565_TABLES;
+  return uint32_t{t.reduce5[rgba & 0xff]} << 11 | uint32_t{t.reduce6[(rgba >> 8) & 0xff]} << 5 |
+         uint32_t{t.reduce5[(rgba >> 16) & 0xff]};
+}
+constexpr uint32_t unpack_rgb565(uint32_t packed) {
+  const Rgb565Tables& t = RGB565_TABLES;
+  return uint32_t{t.expand5[(packed >> 11) & 31]} | uint32_t{t.expand6[(packed >> 5) & 63]} << 8 |
+         uint32_t{t.expand5[packed & 31]} << 16 | 0xffu << 24;
+}
+static_assert(pack_rgb565(0x00c08040u) == pack_pixel(PixelFormat::rgb565, 0x00c08040u) &&
+                  unpack_rgb565(0xa5a5u) == unpack_pixel(PixelFormat::rgb565, 0xa5a5u),
+              "the RGB565 tables follow common/pixel_format.h");
 
 class TileCache {
  public:
@@ -44,7 +78,9 @@ class TileCache {
   uint8_t& stencil(unsigned i) { return m_stencil[i]; }
   // What the colour buffer keeps of a colour: with RGB565, 5-6-5 bits
   // expanded back and alpha 255 (common/pixel_format.h).
-  Rgba8 quantise(Rgba8 c) const;
+  Rgba8 quantise(Rgba8 c) const {
+    return m_config.color_format == PixelFormat::rgba8888 ? c : Rgba8::unpack(unpack_rgb565(pack_rgb565(c.pack())));
+  }
 
  private:
   const RunConfig& m_config;

@@ -36,6 +36,10 @@
 //   texcoord  (A + 2^7) >> 8,   clamped to [-2^31, 2^31 - 1]  -> q15_16
 // returned as the raw 32-bit port value (q15_16 in two's complement).
 // An undefined kind code (3) gives 0, as the Verilog unit's default branch.
+//
+// Speed: every function is inline; the output conversion takes its shift
+// and clamp bounds from a four-entry table indexed by the kind (the
+// undefined kind clamps to [0, 0]), so it has no branch.
 #pragma once
 
 #include <cstdint>
@@ -69,19 +73,67 @@ struct AttributeEvaluation {
 constexpr int ATTRIBUTE_OFFSET_MIN = -512;
 constexpr int ATTRIBUTE_OFFSET_MAX = 511;
 
+constexpr int64_t attribute_word40(int64_t v) {
+  return sign_extend(static_cast<uint64_t>(v), 40);
+}
+
 // Cuts the plane's words to 40 bits, as the input registers would.
-AttributePlane attribute_plane_from_raw(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y);
+constexpr AttributePlane attribute_plane_from_raw(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y) {
+  return AttributePlane{kind, attribute_word40(start), attribute_word40(grad_x), attribute_word40(grad_y)};
+}
 
-attribute_sum attribute_at(const AttributePlane& plane, int dx, int dy);
-attribute_sum attribute_step_x(const AttributePlane& plane, attribute_sum value);
-attribute_sum attribute_step_y(const AttributePlane& plane, attribute_sum value);
-uint32_t attribute_output(AttributeKind kind, attribute_sum value);
+constexpr attribute_sum attribute_at(const AttributePlane& plane, int dx, int dy) {
+  return attribute_sum::from_raw(attribute_word40(plane.start) + attribute_word40(plane.grad_x) * dx +
+                                 attribute_word40(plane.grad_y) * dy);
+}
 
-unorm8 attribute_to_color(attribute_sum value);
-unorm24 attribute_to_depth(attribute_sum value);
-q15_16 attribute_to_texcoord(attribute_sum value);
+constexpr attribute_sum attribute_step_x(const AttributePlane& plane, attribute_sum value) {
+  return attribute_sum::from_raw(value.raw + attribute_word40(plane.grad_x));
+}
+
+constexpr attribute_sum attribute_step_y(const AttributePlane& plane, attribute_sum value) {
+  return attribute_sum::from_raw(value.raw + attribute_word40(plane.grad_y));
+}
+
+constexpr unorm8 attribute_to_color(attribute_sum value) {
+  return unorm8::from_raw(static_cast<uint32_t>(clamp_i64(round_shift_right(value.raw, 16), 0, 255)));
+}
+
+constexpr unorm24 attribute_to_depth(attribute_sum value) {
+  return unorm24::from_raw(static_cast<uint32_t>(clamp_i64(round_shift_right(value.raw, 8), 0, 0xffffff)));
+}
+
+constexpr q15_16 attribute_to_texcoord(attribute_sum value) {
+  return q15_16{clamp_i64(round_shift_right(value.raw, 8), q15_16::MIN_RAW, q15_16::MAX_RAW)};
+}
+
+// The output conversion of each kind code: the rounding shift and the clamp.
+struct AttributeOutputRule {
+  unsigned shift;
+  int64_t min, max;
+};
+inline constexpr AttributeOutputRule ATTRIBUTE_OUTPUT_RULES[4] = {
+    {16, 0, 255},                           // color
+    {8, 0, 0xffffff},                       // depth
+    {8, q15_16::MIN_RAW, q15_16::MAX_RAW},  // texcoord
+    {8, 0, 0},                              // undefined: 0
+};
+
+constexpr uint32_t attribute_output(AttributeKind kind, attribute_sum value) {
+  const AttributeOutputRule& rule = ATTRIBUTE_OUTPUT_RULES[static_cast<unsigned>(kind) & 3];
+  const bool defined = static_cast<unsigned>(kind) < 3;
+  return static_cast<uint32_t>(clamp_i64(round_shift_right(value.raw, rule.shift), rule.min, rule.max)) &
+         (defined ? ~uint32_t{0} : 0);
+}
 
 // Everything the Verilog unit attr_interp.sv computes, in one call.
-AttributeEvaluation evaluate_attribute(const AttributePlane& plane, int dx, int dy);
+constexpr AttributeEvaluation evaluate_attribute(const AttributePlane& plane, int dx, int dy) {
+  AttributeEvaluation r;
+  r.value = attribute_at(plane, dx, dy);
+  r.value_next_x = attribute_step_x(plane, r.value);
+  r.value_next_y = attribute_step_y(plane, r.value);
+  r.output = attribute_output(plane.kind, r.value);
+  return r;
+}
 
 }  // namespace tessera::raster

@@ -30,6 +30,13 @@
 // "Basic Polygon Rasterization"). In y-down tile/memory order this is the usual top-left rule.
 // A degenerate edge (dx = dy = 0) has E == 0 everywhere and is never inside.
 //
+// Speed. Every function here is inline and allocation-free, and the fill
+// rule is one comparison: E == 0 counts as inside exactly when the tie-break
+// holds, so inside = E + tie > 0 with tie = 1 or 0 (E is an integer code).
+// edge_inside_row steps E along a row of up to 64 pixels and returns the
+// decisions as a bit mask; triangle_inside_row does it for the three edges
+// of a triangle at once, what the core's traversal takes per row.
+//
 // Normalised distance (EASA, L1 norm): d = E / (|dx| + |dy|). |dx| + |dy| is
 // unsigned 10.4 (edge_l1_length, at most 16382 codes, the reciprocal unit's
 // input); its reciprocal arrives as unsigned 5.16 (`recip`). The product
@@ -43,6 +50,9 @@
 // minimum over the three edges (triangle_coverage); the L1 distance is what
 // Schilling's EASA uses as the area estimate.
 #pragma once
+
+#include <algorithm>
+#include <cstdint>
 
 #include "fixed_point.h"
 
@@ -66,21 +76,114 @@ struct EdgeEvaluation {
   unorm8 coverage;          // clamp(1/2 + distance), 0.8
 };
 
-edge_delta edge_dx(const Edge& e);
-edge_delta edge_dy(const Edge& e);
-q10_4 edge_l1_length(const Edge& e);
+// The 9.4 code of the centre of pixel p.
+constexpr int64_t edge_pixel_centre(unsigned p) {
+  return int64_t{16} * p + 8;
+}
+
+constexpr edge_delta edge_dx(const Edge& e) {
+  return edge_delta::from_raw(int64_t{e.x1.raw} - e.x0.raw);
+}
+
+constexpr edge_delta edge_dy(const Edge& e) {
+  return edge_delta::from_raw(int64_t{e.y1.raw} - e.y0.raw);
+}
+
+constexpr q10_4 edge_l1_length(const Edge& e) {
+  const int64_t dx = edge_dx(e).raw;
+  const int64_t dy = edge_dy(e).raw;
+  return q10_4::from_raw(static_cast<uint32_t>((dx < 0 ? -dx : dx) + (dy < 0 ? -dy : dy)));
+}
 
 // Direct evaluation at the centre of pixel (px, py), px and py in 0..512.
-edge_value edge_value_at(const Edge& e, unsigned px, unsigned py);
-edge_value edge_step_x(const Edge& e, edge_value value);
-edge_value edge_step_y(const Edge& e, edge_value value);
-bool edge_inside(const Edge& e, edge_value value);
+constexpr edge_value edge_value_at(const Edge& e, unsigned px, unsigned py) {
+  const int64_t rel_x = edge_pixel_centre(px) - e.x0.raw;
+  const int64_t rel_y = edge_pixel_centre(py) - e.y0.raw;
+  return edge_value::from_raw(rel_x * edge_dy(e).raw - rel_y * edge_dx(e).raw);
+}
 
-edge_distance edge_normalised_distance(edge_value value, q5_16 recip);
-unorm8 edge_coverage(edge_distance distance);
-unorm8 triangle_coverage(unorm8 c0, unorm8 c1, unorm8 c2);
+constexpr edge_value edge_step_x(const Edge& e, edge_value value) {
+  return edge_value::from_raw(value.raw + 16 * edge_dy(e).raw);
+}
+
+constexpr edge_value edge_step_y(const Edge& e, edge_value value) {
+  return edge_value::from_raw(value.raw - 16 * edge_dx(e).raw);
+}
+
+// The fill rule's tie-break as 1 (a sample on the edge belongs to it: dy > 0,
+// or dy == 0 and dx < 0) or 0.
+constexpr int64_t edge_tie(const Edge& e) {
+  const int64_t dx = edge_dx(e).raw;
+  const int64_t dy = edge_dy(e).raw;
+  return int64_t{dy > 0} | (int64_t{dy == 0} & int64_t{dx < 0});
+}
+
+constexpr bool edge_inside(const Edge& e, edge_value value) {
+  return value.raw + edge_tie(e) > 0;
+}
+
+// The fill-rule decisions of `count` pixels of a row, (px + i, py) for i in
+// 0..count-1, as bit i of the result; count in 0..64 and px + count <= 513.
+// E is evaluated once and stepped, which is exact (see above).
+constexpr uint64_t edge_inside_row(const Edge& e, unsigned px, unsigned py, unsigned count) {
+  const int64_t step = 16 * edge_dy(e).raw;
+  int64_t biased = edge_value_at(e, px, py).raw + edge_tie(e);
+  uint64_t mask = 0;
+  for (unsigned i = 0; i < count; ++i) {
+    mask |= uint64_t{biased > 0} << i;
+    biased += step;
+  }
+  return mask;
+}
+
+// The same for the three edges of a triangle at once: bit i is set when
+// pixel (px + i, py) is inside all three. The inside pixels of a row form
+// one run (the triangle is convex), so the walk stops at the first pixel
+// outside after an inside one.
+constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
+                                       unsigned count) {
+  const int64_t step0 = 16 * edge_dy(e0).raw, step1 = 16 * edge_dy(e1).raw, step2 = 16 * edge_dy(e2).raw;
+  int64_t b0 = edge_value_at(e0, px, py).raw + edge_tie(e0);
+  int64_t b1 = edge_value_at(e1, px, py).raw + edge_tie(e1);
+  int64_t b2 = edge_value_at(e2, px, py).raw + edge_tie(e2);
+  uint64_t mask = 0;
+  for (unsigned i = 0; i < count; ++i) {
+    const bool inside = (b0 > 0) & (b1 > 0) & (b2 > 0);
+    if (!inside && mask != 0) break;
+    mask |= uint64_t{inside} << i;
+    b0 += step0;
+    b1 += step1;
+    b2 += step2;
+  }
+  return mask;
+}
+
+constexpr edge_distance edge_normalised_distance(edge_value value, q5_16 recip) {
+  const int64_t product = value.raw * static_cast<int64_t>(recip.raw);
+  const int64_t rounded = round_shift_right(product, 16);
+  return edge_distance{clamp_i64(rounded, edge_distance::MIN_RAW, edge_distance::MAX_RAW)};
+}
+
+constexpr unorm8 edge_coverage(edge_distance distance) {
+  const int64_t t = clamp_i64(distance.raw + 128, 0, 256);
+  return unorm8::from_raw(static_cast<uint32_t>((255 * t + 128) >> 8));
+}
+
+constexpr unorm8 triangle_coverage(unorm8 c0, unorm8 c1, unorm8 c2) {
+  return unorm8{std::min(c0.raw, std::min(c1.raw, c2.raw))};
+}
 
 // Everything the Verilog unit edge_function.sv computes, in one call.
-EdgeEvaluation evaluate_edge(const Edge& e, unsigned px, unsigned py, q5_16 recip);
+constexpr EdgeEvaluation evaluate_edge(const Edge& e, unsigned px, unsigned py, q5_16 recip) {
+  EdgeEvaluation r{};
+  r.value = edge_value_at(e, px, py);
+  r.value_next_x = edge_step_x(e, r.value);
+  r.value_next_y = edge_step_y(e, r.value);
+  r.inside = edge_inside(e, r.value);
+  r.l1_length = edge_l1_length(e);
+  r.distance = edge_normalised_distance(r.value, recip);
+  r.coverage = edge_coverage(r.distance);
+  return r;
+}
 
 }  // namespace tessera::raster

@@ -1,6 +1,7 @@
 // Reciprocal unit, Methods 1-3 of Crisu et al.; formats and invalid-operand
-// behaviour are described in reciprocal.h. The three tables are built once, on
-// first use, from integer arithmetic only, so every entry is the exact
+// behaviour are described in reciprocal.h. Tables I and II are built once, on
+// first use, and Table III at compile time (reciprocal.h), all from integer
+// arithmetic only, so every entry is the exact
 // truncation of the true reciprocal and no floating-point rounding can differ
 // between hosts.
 #include "raster/datapath/reciprocal.h"
@@ -11,33 +12,9 @@ namespace tessera::raster {
 
 namespace {
 
-constexpr unsigned TABLE3_INDEX_BITS = 10;
-constexpr unsigned TABLE3_ENTRIES = 1u << TABLE3_INDEX_BITS;
-constexpr unsigned PRESCALE_MAX = 4;
-constexpr unsigned OPERAND_BITS = 14;
-constexpr uint16_t OPERAND_MSB = 1u << (OPERAND_BITS - 1);
-constexpr unsigned IMPLIED_ONE = 1u << RECIP_MANTISSA_BITS;
-constexpr uint8_t MANTISSA_MASK = IMPLIED_ONE - 1;
-// q5_16 LSB is 2^-16 and a 1.6 significand's LSB is 2^(exponent - 6), so the
-// significand moves left by exponent + 10 (0 for the smallest result 2^-10).
-constexpr int Q5_16_SHIFT_BIAS = RECIP_Q5_16_FRACTION_BITS - RECIP_MANTISSA_BITS;
+using namespace recip_detail;
+
 constexpr unsigned Q5_10_TO_Q5_16_SHIFT = 6;
-
-// 1/d as (1 + mantissa/64) * 2^-k with the mantissa truncated, for d >= 1.
-// k = ceil(log2 d) puts 2^(k + 6) / d in [64, 128).
-struct FloatEntry {
-  uint8_t mantissa;
-  uint8_t negated_exponent;
-};
-
-FloatEntry truncated_reciprocal(uint32_t d) {
-  uint8_t k = 0;
-  while ((1u << k) < d) {
-    ++k;
-  }
-  const uint32_t significand = (1u << (k + RECIP_MANTISSA_BITS)) / d;
-  return {static_cast<uint8_t>(significand & MANTISSA_MASK), k};
-}
 
 uint32_t float_to_q5_16(uint8_t mantissa, int exponent) {
   return (IMPLIED_ONE | mantissa) << (exponent + Q5_16_SHIFT_BIAS);
@@ -69,20 +46,6 @@ const std::array<FloatEntry, RECIP_OPERAND_MAX + 1>& method2_table() {
   return table;
 }
 
-// Table III: 1/index for the integers 1..1023; entry 0 is the unused all-ones
-// pattern of the paper.
-const std::array<FloatEntry, TABLE3_ENTRIES>& method3_table() {
-  static const auto table = [] {
-    std::array<FloatEntry, TABLE3_ENTRIES> t{};
-    t[0] = {MANTISSA_MASK, 0xF};
-    for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) {
-      t[index] = truncated_reciprocal(index);
-    }
-    return t;
-  }();
-  return table;
-}
-
 ReciprocalResult method1(uint16_t raw) {
   ReciprocalResult r;
   r.method = RecipMethod::method1;
@@ -97,25 +60,6 @@ ReciprocalResult method2(uint16_t raw) {
   r.method = RecipMethod::method2;
   r.mantissa = e.mantissa;
   r.exponent = static_cast<int8_t>(RECIP_OPERAND_FRACTION_BITS - e.negated_exponent);
-  r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
-  return r;
-}
-
-ReciprocalResult method3(uint16_t raw) {
-  // Prescaler: 1/X = 2^s * 16/(raw << s), and with the 4 LSBs of raw << s
-  // dropped the table index approximates (raw << s) / 16.
-  unsigned shift = 0;
-  uint16_t scaled = raw;
-  while (shift < PRESCALE_MAX && (scaled & OPERAND_MSB) == 0) {
-    scaled = static_cast<uint16_t>(scaled << 1);
-    ++shift;
-  }
-  const unsigned index = (scaled >> RECIP_OPERAND_FRACTION_BITS) & (TABLE3_ENTRIES - 1);
-  const FloatEntry e = method3_table()[index];
-  ReciprocalResult r;
-  r.method = RecipMethod::method3;
-  r.mantissa = e.mantissa;
-  r.exponent = static_cast<int8_t>(static_cast<int>(shift) - e.negated_exponent);
   r.q5_16 = float_to_q5_16(r.mantissa, r.exponent);
   return r;
 }
@@ -167,14 +111,14 @@ ReciprocalResult reciprocal_invalid_result(RecipMethod method) {
   return r;
 }
 
-ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method) {
+ReciprocalResult reciprocal_table_method(uint16_t x_q10_4, RecipMethod method) {
   if (x_q10_4 == 0 || x_q10_4 > RECIP_OPERAND_MAX) {
     return reciprocal_invalid_result(method);
   }
   switch (method) {
     case RecipMethod::method1: return method1(x_q10_4);
     case RecipMethod::method2: return method2(x_q10_4);
-    case RecipMethod::method3: return method3(x_q10_4);
+    case RecipMethod::method3: return reciprocal_method3(x_q10_4);
   }
   return reciprocal_invalid_result(method);
 }

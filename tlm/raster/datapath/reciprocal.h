@@ -33,6 +33,11 @@
 //   q5_16 = RECIP_Q5_16_SATURATED (0x1FFFFF, i.e. 32 - 2^-16),
 //   fixed_q5_10 = 0x7FFF (method 1), mantissa = 0x3F and exponent = -1
 //   (5-bit field 11111; methods 2 and 3).
+//
+// Speed: Method 3, the one the rasterizer uses, is inline and branch-free
+// (the prescaler is a leading-zero count, Table III is a constexpr table built
+// at compile time by the same integer rule, the invalid operand a select);
+// Methods 1 and 2 (16k-entry tables) stay in reciprocal.cpp.
 #pragma once
 
 #include <cstdint>
@@ -71,7 +76,9 @@ struct ReciprocalResult {
   int8_t exponent = 0;
 
   // The exponent as the hardware's 5-bit two's complement field.
-  uint8_t exponent_field() const { return static_cast<uint8_t>(exponent) & ((1u << RECIP_EXPONENT_BITS) - 1); }
+  constexpr uint8_t exponent_field() const {
+    return static_cast<uint8_t>(exponent) & ((1u << RECIP_EXPONENT_BITS) - 1);
+  }
 };
 
 bool operator==(const ReciprocalResult& a, const ReciprocalResult& b);
@@ -80,7 +87,80 @@ bool operator!=(const ReciprocalResult& a, const ReciprocalResult& b);
 // The result that any method gives for an invalid operand (see above).
 ReciprocalResult reciprocal_invalid_result(RecipMethod method);
 
-ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method);
+namespace recip_detail {
+
+constexpr unsigned TABLE3_INDEX_BITS = 10;
+constexpr unsigned TABLE3_ENTRIES = 1u << TABLE3_INDEX_BITS;
+constexpr unsigned PRESCALE_MAX = 4;
+constexpr unsigned OPERAND_BITS = 14;
+constexpr unsigned IMPLIED_ONE = 1u << RECIP_MANTISSA_BITS;
+constexpr uint8_t MANTISSA_MASK = IMPLIED_ONE - 1;
+// q5_16 LSB is 2^-16 and a 1.6 significand's LSB is 2^(exponent - 6), so the
+// significand moves left by exponent + 10 (0 for the smallest result 2^-10).
+constexpr int Q5_16_SHIFT_BIAS = RECIP_Q5_16_FRACTION_BITS - RECIP_MANTISSA_BITS;
+
+// 1/d as (1 + mantissa/64) * 2^-k with the mantissa truncated, for d >= 1.
+// k = ceil(log2 d) puts 2^(k + 6) / d in [64, 128).
+struct FloatEntry {
+  uint8_t mantissa;
+  uint8_t negated_exponent;
+};
+
+constexpr FloatEntry truncated_reciprocal(uint32_t d) {
+  uint8_t k = 0;
+  while ((1u << k) < d) {
+    ++k;
+  }
+  const uint32_t significand = (1u << (k + RECIP_MANTISSA_BITS)) / d;
+  return {static_cast<uint8_t>(significand & MANTISSA_MASK), k};
+}
+
+// Table III: 1/index for the integers 1..1023; entry 0 is the unused
+// all-ones pattern of the paper.
+struct Table3 {
+  FloatEntry entry[TABLE3_ENTRIES];
+};
+constexpr Table3 make_table3() {
+  Table3 t{};
+  t.entry[0] = {MANTISSA_MASK, 0xF};
+  for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) {
+    t.entry[index] = truncated_reciprocal(index);
+  }
+  return t;
+}
+inline constexpr Table3 TABLE3 = make_table3();
+
+}  // namespace recip_detail
+
+// Method 3 (the paper's method), inline and branch-free.
+constexpr ReciprocalResult reciprocal_method3(uint16_t x_q10_4) {
+  using namespace recip_detail;
+  const uint32_t raw = x_q10_4;
+  const bool valid = raw != 0 && raw <= RECIP_OPERAND_MAX;
+  // Prescaler: 1/X = 2^s * 16/(raw << s), s = the leading zeros of the
+  // 14-bit word, at most 4; with the 4 LSBs of raw << s dropped the table
+  // index approximates (raw << s) / 16.
+  const int leading_zeros = __builtin_clz(raw | 1u) - (32 - static_cast<int>(OPERAND_BITS));
+  const int shift = leading_zeros < 0 ? 0 : (leading_zeros > int{PRESCALE_MAX} ? int{PRESCALE_MAX} : leading_zeros);
+  const unsigned index = ((raw << shift) >> RECIP_OPERAND_FRACTION_BITS) & (TABLE3_ENTRIES - 1);
+  const FloatEntry e = TABLE3.entry[index];
+  const int exponent = shift - e.negated_exponent;
+  const uint32_t q5_16 = (IMPLIED_ONE | e.mantissa) << ((exponent + Q5_16_SHIFT_BIAS) & 31);
+  ReciprocalResult r;
+  r.method = RecipMethod::method3;
+  r.invalid_operand = !valid;
+  r.q5_16 = valid ? q5_16 : RECIP_Q5_16_SATURATED;
+  r.mantissa = valid ? e.mantissa : MANTISSA_MASK;
+  r.exponent = static_cast<int8_t>(valid ? exponent : -1);
+  return r;
+}
+
+// Methods 1 and 2 (reciprocal.cpp).
+ReciprocalResult reciprocal_table_method(uint16_t x_q10_4, RecipMethod method);
+
+inline ReciprocalResult reciprocal(uint16_t x_q10_4, RecipMethod method) {
+  return method == RecipMethod::method3 ? reciprocal_method3(x_q10_4) : reciprocal_table_method(x_q10_4, method);
+}
 
 inline uint32_t reciprocal_q5_16(uint16_t x_q10_4, RecipMethod method) {
   return reciprocal(x_q10_4, method).q5_16;

@@ -27,8 +27,12 @@
 // Wraps and filters are the codes of common/fixed_function.def (TexWrap,
 // TexFilter), the numbers the Verilog unit's fields take; a wrap code without
 // an entry (2, 3) is taken as REPEAT, the GL default.
+//
+// Speed: inline; wrap and filter only select between values, so there is no
+// branch.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -61,10 +65,47 @@ struct TexelFootprint {
   std::array<uint32_t, 4> address{};
 };
 
-TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TexWrap wrap, TexFilter filter);
-uint32_t texel_address(uint32_t base, unsigned log2_width, uint8_t i, uint8_t j);
+namespace texel_detail {
+constexpr int64_t HALF_TEXEL = int64_t{1} << 15;
+constexpr unsigned saturate_log2(unsigned log2_size) {
+  return log2_size > TEXTURE_MAX_LOG2 ? TEXTURE_MAX_LOG2 : log2_size;
+}
+}  // namespace texel_detail
+
+constexpr TexelAxis texel_axis_for(q15_16 coord, unsigned log2_size, TexWrap wrap, TexFilter filter) {
+  using texel_detail::HALF_TEXEL;
+  const unsigned log2n = texel_detail::saturate_log2(log2_size);
+  const int64_t size = int64_t{1} << log2n;
+  const bool clamp = wrap == TexWrap::clamp_to_edge;
+  const bool linear = filter == TexFilter::linear;
+
+  const int64_t u_raw = coord.raw * size;  // exact: |s| < 2^31, size <= 2^8
+  const int64_t u = clamp ? clamp_i64(u_raw, HALF_TEXEL, (size << 16) - HALF_TEXEL) : u_raw;
+  const int64_t v = linear ? u - HALF_TEXEL : u;
+  const int64_t i0 = v >> 16;  // floor
+  const int64_t i1 = linear ? i0 + 1 : i0;
+  TexelAxis axis;
+  axis.index0 = static_cast<uint8_t>(clamp ? i0 : (i0 & (size - 1)));
+  axis.index1 = static_cast<uint8_t>(clamp ? std::min(i1, size - 1) : (i1 & (size - 1)));
+  axis.weight = static_cast<uint8_t>(linear ? (v >> 8) & 0xff : 0);
+  return axis;
+}
+
+constexpr uint32_t texel_address(uint32_t base, unsigned log2_width, uint8_t i, uint8_t j) {
+  const uint32_t texel = (uint32_t{j} << texel_detail::saturate_log2(log2_width)) + i;
+  return base + texel * 4;
+}
 
 // Everything the Verilog unit texel_address.sv computes, in one call.
-TexelFootprint texel_lookup(const TextureState& state, q15_16 s, q15_16 t);
+constexpr TexelFootprint texel_lookup(const TextureState& state, q15_16 s, q15_16 t) {
+  TexelFootprint f;
+  f.s = texel_axis_for(s, state.log2_width, state.wrap_s, state.filter);
+  f.t = texel_axis_for(t, state.log2_height, state.wrap_t, state.filter);
+  f.address = {texel_address(state.base, state.log2_width, f.s.index0, f.t.index0),
+               texel_address(state.base, state.log2_width, f.s.index1, f.t.index0),
+               texel_address(state.base, state.log2_width, f.s.index0, f.t.index1),
+               texel_address(state.base, state.log2_width, f.s.index1, f.t.index1)};
+  return f;
+}
 
 }  // namespace tessera::raster

@@ -1,0 +1,650 @@
+// bench_speed: issue 13's speed table from one command. Every row runs the
+// programs the other benchmarks use, as children, in paired rounds (each
+// round runs the measured program and its reference one after the other,
+// the order rotating from round to round, so that a change in the machine's
+// load hits both), and prints min and median of each side and two ratios:
+// that of the mins and the median of the ratios within each round. Then the
+// scaling of a frame's wall time with triangles and pixels, fitted as a
+// power law. See README.md for the method.
+//
+//   bench_speed [--rounds R] [--frames N] [--startup-runs S] [--no-scaling] [--work-dir DIR]
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bench_support.h"
+#include "guarded_main.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace tessera::bench;
+
+struct Options {
+  unsigned rounds = 5;
+  unsigned frames = 10;
+  unsigned startup_runs = 11;
+  unsigned bus_rounds = 31;
+  unsigned rtl_vectors = 200000;
+  bool scaling = true;
+  unsigned scaling_frames = 3;
+  unsigned scaling_rounds = 3;
+  std::vector<unsigned> triangles = {80, 800, 8000, 80000};
+  std::vector<std::string> sizes = {"320x240", "384x288", "448x336", "512x384", "512x512"};
+  std::string work_dir;
+  fs::path bin;
+};
+
+std::string format_duration(double seconds) {
+  char text[32];
+  if (seconds >= 1e-3) return format_ms(seconds);
+  const double us = seconds * 1e6;
+  if (us >= 1)
+    std::snprintf(text, sizeof text, us >= 100 ? "%.0f us" : us >= 10 ? "%.1f us" : "%.2f us", us);
+  else
+    std::snprintf(text, sizeof text, seconds * 1e9 >= 10 ? "%.1f ns" : "%.2f ns", seconds * 1e9);
+  return text;
+}
+
+std::string pair_text(const MinMedian& m, const std::function<std::string(double)>& format) {
+  return format(m.min) + " / " + format(m.median);
+}
+
+// One row of the table: `measured` against `reference`, paired by round.
+struct Row {
+  Row() = default;
+  Row(std::string description, std::string goal_text) : what(std::move(description)), goal(std::move(goal_text)) {}
+  std::string what;
+  std::string goal;
+  std::vector<double> measured;
+  std::vector<double> reference;  // empty: an absolute figure, no ratio
+  // CPU time of the same runs (each process's own clock over the timed
+  // frames), where both sides report it: a loaded machine inflates wall
+  // times, hardly CPU times.
+  std::vector<double> cpu_measured, cpu_reference;
+  // true: the goal is a ratio at most goal_value (or a time at most it,
+  // without a reference); false: at least goal_value.
+  bool at_most = true;
+  double goal_value = 0;
+  bool invert = false;  // ratio is reference / measured (a speed-up)
+  std::function<std::string(double)> format = format_duration;
+};
+
+std::string ratio_text(double ratio) {
+  char text[32];
+  std::snprintf(text, sizeof text, ratio >= 100 ? "%.0f" : ratio >= 10 ? "%.1f" : "%.2f", ratio);
+  return text;
+}
+
+void print_row(const Row& row) {
+  const MinMedian m = min_median(row.measured);
+  std::string against = "-", ratios = "-";
+  double decisive = m.median;
+  if (!row.reference.empty()) {
+    const MinMedian r = min_median(row.reference);
+    against = pair_text(r, row.format);
+    std::vector<double> paired;
+    for (size_t i = 0; i < row.measured.size() && i < row.reference.size(); ++i)
+      paired.push_back(row.invert ? row.reference[i] / row.measured[i] : row.measured[i] / row.reference[i]);
+    const double mins = row.invert ? r.min / m.min : m.min / r.min;
+    decisive = min_median(paired).median;
+    ratios = ratio_text(mins) + " / " + ratio_text(decisive);
+  }
+  std::string cpu = "-";
+  if (!row.cpu_measured.empty() && !row.cpu_reference.empty())
+    cpu = ratio_text(paired_median(row.cpu_measured, row.cpu_reference));
+  const bool met = row.at_most ? decisive <= row.goal_value : decisive >= row.goal_value;
+  std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", row.what.c_str(), pair_text(m, row.format).c_str(),
+              against.c_str(), ratios.c_str(), cpu.c_str(), row.goal.c_str(),
+              row.goal == "-" ? "-"
+              : met           ? "yes"
+                              : "**no**");
+}
+
+class Bench {
+ public:
+  explicit Bench(Options options) : m_opt(std::move(options)) {}
+  void run();
+
+ private:
+  fs::path program(const std::string& name) const { return m_opt.bin / name; }
+  ChildResult child(const std::vector<std::string>& argv) {
+    return run_child(argv, m_work / ("child_" + std::to_string(m_runs++) + ".stdout"));
+  }
+  // soc_sim for 2N frames with --wall-clock and --no-frames (or writing PNG
+  // files); the wall time per frame of frames N..2N-1.
+  double soc_sim_frame(const std::vector<std::string>& args, unsigned n, bool png,
+                       const std::vector<std::string>& app_args = {});
+  // Runs the commands of one round in an order rotated by `round`.
+  static void in_rotation(unsigned round, const std::vector<std::function<void()>>& steps) {
+    for (size_t i = 0; i < steps.size(); ++i) steps[(i + round) % steps.size()]();
+  }
+  void arm_rows();
+  void raster_row();
+  void bus_row();
+  void datapath_rows();
+  void startup_rows();
+  void scaling();
+  void print_table() const;
+
+  Options m_opt;
+  fs::path m_work;
+  json m_config;
+  unsigned m_runs = 0;
+  double m_last_cpu = 0;  // CPU time per frame of the last soc_sim_frame run (cpu_ns)
+  std::vector<Row> m_rows;
+  std::vector<std::string> m_notes;
+  std::string m_datapath_table;
+  std::string m_scaling_text;
+};
+
+double Bench::soc_sim_frame(const std::vector<std::string>& args, unsigned n, bool png,
+                            const std::vector<std::string>& app_args) {
+  const fs::path out = m_work / ("soc_sim_" + std::to_string(m_runs));
+  std::vector<std::string> command = {program("soc_sim").string()};
+  command.insert(command.end(), args.begin(), args.end());
+  command.insert(command.end(),
+                 {"--frames", std::to_string(2 * n), "--out", out.string(), "--quiet", "--force", "--wall-clock"});
+  if (!png) command.push_back("--no-frames");
+  if (!app_args.empty()) {
+    command.push_back("--");
+    command.insert(command.end(), app_args.begin(), app_args.end());
+  }
+  child(command);
+  const json stats = read_json_file(out / "stats.json");
+  fs::remove_all(out);
+  m_last_cpu = positive(per_frame_seconds(stats, n, "cpu_ns"), "soc_sim CPU per frame");
+  return positive(per_frame_seconds(stats, n, "wall_ns"), "soc_sim wall per frame");
+}
+
+void Bench::arm_rows() {
+  const unsigned n = m_opt.frames;
+  const json& display = m_config["display"];
+  const std::string width = std::to_string(display["width"].get<unsigned>());
+  const std::string height = std::to_string(display["height"].get<unsigned>());
+  Row native{"`arm` teapot frame: soc_sim --no-frames / the renderer natively (bench_arm_native)", "<= 1.5x"};
+  native.goal_value = 1.5;
+  Row png{"`arm` teapot frame: soc_sim writing PNG frames / natively", "<= 1.5x"};
+  png.goal_value = 1.5;
+  Row mesa{"`arm` teapot frame: soc_sim --no-frames / Mesa softpipe (bench_arm_mesa)", "< 1x (faster)"};
+  mesa.goal_value = 1.0;
+  std::vector<double> sim, sim_png, native_s, mesa_s, sim_cpu, sim_png_cpu, native_cpu, mesa_cpu;
+  for (unsigned r = 0; r < m_opt.rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: arm teapot, round %u of %u ...\n", r + 1, m_opt.rounds);
+    in_rotation(r, {
+                       [&] {
+                         sim.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, false));
+                         sim_cpu.push_back(m_last_cpu);
+                       },
+                       [&] {
+                         sim_png.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, true));
+                         sim_png_cpu.push_back(m_last_cpu);
+                       },
+                       [&] {
+                         const ChildResult c = child({program("bench_arm_native").string(), "--scene", "teapot",
+                                                      "--frames", std::to_string(n), "--width", width, "--height",
+                                                      height, "--format", display["format"].get<std::string>(), "--dma",
+                                                      display["dma"].get<bool>() ? "true" : "false", "--mem-mib",
+                                                      std::to_string(m_config["mem"]["size_mib"].get<unsigned>())});
+                         const json out = json::parse(c.output);
+                         native_s.push_back(positive(out["wall_per_frame_s"].get<double>(), "native per frame"));
+                         native_cpu.push_back(positive(out["cpu_per_frame_s"].get<double>(), "native CPU per frame"));
+                       },
+                       [&] {
+                         const ChildResult c =
+                             child({program("bench_arm_mesa").string(), "--scene", "teapot", "--frames",
+                                    std::to_string(n), "--repeat", "1", "--width", width, "--height", height});
+                         const json out = json::parse(c.output);
+                         mesa_s.push_back(positive(out["wall_per_frame_s"].get<double>(), "Mesa per frame"));
+                         mesa_cpu.push_back(positive(out["cpu_per_frame_s"].get<double>(), "Mesa CPU per frame"));
+                       },
+                   });
+  }
+  native.measured = sim;
+  native.reference = native_s;
+  native.cpu_measured = sim_cpu;
+  native.cpu_reference = native_cpu;
+  png.measured = sim_png;
+  png.reference = native_s;
+  png.cpu_measured = sim_png_cpu;
+  png.cpu_reference = native_cpu;
+  mesa.measured = sim;
+  mesa.reference = mesa_s;
+  mesa.cpu_measured = sim_cpu;
+  mesa.cpu_reference = mesa_cpu;
+  m_rows.push_back(native);
+  m_rows.push_back(png);
+  m_rows.push_back(mesa);
+}
+
+void Bench::raster_row() {
+  const unsigned n = m_opt.frames;
+  Row row{"`raster` teapot frame: soc_sim --no-frames / its core natively (bench_raster --native-core)", "<= 1.2x"};
+  row.goal_value = 1.2;
+  std::vector<double> per_fragment;
+  for (unsigned r = 0; r < m_opt.rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: raster teapot, round %u of %u ...\n", r + 1, m_opt.rounds);
+    in_rotation(r, {
+                       [&] {
+                         row.measured.push_back(soc_sim_frame({"--app", "teapot", "--backend", "raster"}, n, false));
+                       },
+                       [&] {
+                         const json out = json::parse(child({program("bench_raster").string(), "--native-core",
+                                                             "teapot", "--frames", std::to_string(n)})
+                                                          .output);
+                         const double seconds = positive(out["seconds"].get<double>(), "native core time");
+                         row.reference.push_back(seconds / n);
+                         per_fragment.push_back(seconds / positive(out["fragments"].get<double>(), "fragments"));
+                       },
+                   });
+  }
+  m_rows.push_back(row);
+  Row fragment{"`raster` core natively: time per fragment", "4x faster than 215 ns: <= 54 ns"};
+  fragment.measured = per_fragment;
+  fragment.goal_value = 215e-9 / 4;
+  m_rows.push_back(fragment);
+}
+
+void Bench::bus_row() {
+  std::fprintf(stderr, "bench_speed: bus and memory (bench_bus) ...\n");
+  const json out = json::parse(
+      child({program("bench_bus").string(), "--rounds", std::to_string(m_opt.bus_rounds), "--json"}).output);
+  for (const json& kind : out["transactions"]) {
+    if (kind["name"] != "4-byte read") continue;
+    Row row{"one LT 4-byte read through bus + memory / a bare tlm_quantumkeeper b_transport (bench_bus)", "<= 2x"};
+    row.goal_value = 2.0;
+    for (const json& v : kind["memory_ns"]) row.measured.push_back(v.get<double>() * 1e-9);
+    for (const json& v : kind["floor_ns"]) row.reference.push_back(v.get<double>() * 1e-9);
+    m_rows.push_back(row);
+    Row bus{"the same through the bus alone / the floor", "<= 2x"};
+    bus.goal_value = 2.0;
+    for (const json& v : kind["bus_ns"]) bus.measured.push_back(v.get<double>() * 1e-9);
+    bus.reference = row.reference;
+    m_rows.push_back(bus);
+  }
+}
+
+// A figure of bench_rtl's table: "110.8 M", "950 k", "1.2 G" or a plain number.
+double parse_rate(const std::string& text) {
+  std::istringstream in(text);
+  double value = 0;
+  std::string unit;
+  in >> value >> unit;
+  if (unit == "k") value *= 1e3;
+  if (unit == "M") value *= 1e6;
+  if (unit == "G") value *= 1e9;
+  return value;
+}
+
+std::vector<std::string> table_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  std::string cell;
+  std::getline(in, cell, '|');  // before the first bar
+  while (std::getline(in, cell, '|')) {
+    const size_t first = cell.find_first_not_of(' ');
+    const size_t last = cell.find_last_not_of(' ');
+    cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+  }
+  if (!cells.empty() && cells.back().empty()) cells.pop_back();
+  return cells;
+}
+
+void Bench::datapath_rows() {
+  // bench_rtl: each unit in C++ and in Verilated RTL on the same vectors;
+  // one process per round, one pass each (--repeat 1), read from its table
+  // by the columns' names.
+  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> units;  // C++ s/op, RTL s/op
+  std::vector<std::string> order;
+  for (unsigned r = 0; r < m_opt.rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: datapath units (bench_rtl), round %u of %u ...\n", r + 1, m_opt.rounds);
+    const std::string output =
+        child({program("bench_rtl").string(), "--vectors", std::to_string(m_opt.rtl_vectors), "--repeat", "1"}).output;
+    std::istringstream lines(output);
+    int unit_column = -1, cpp_column = -1, rtl_column = -1;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind('|', 0) != 0) continue;
+      const std::vector<std::string> cells = table_cells(line);
+      if (unit_column < 0) {
+        for (size_t i = 0; i < cells.size(); ++i) {
+          if (cells[i] == "unit") unit_column = static_cast<int>(i);
+          if (cells[i].rfind("C++", 0) == 0 && cells[i].find("ops/s") != std::string::npos)
+            cpp_column = static_cast<int>(i);
+          if (cells[i].rfind("RTL", 0) == 0 && cells[i].find("ops/s") != std::string::npos)
+            rtl_column = static_cast<int>(i);
+        }
+        continue;
+      }
+      if (cpp_column < 0 || rtl_column < 0 || cells.size() <= static_cast<size_t>(std::max(cpp_column, rtl_column)) ||
+          cells[0].rfind("---", 0) == 0)
+        continue;
+      const std::string& unit = cells[unit_column];
+      if (!units.count(unit)) order.push_back(unit);
+      units[unit].first.push_back(1 / positive(parse_rate(cells[cpp_column]), unit + " C++ ops/s"));
+      units[unit].second.push_back(1 / positive(parse_rate(cells[rtl_column]), unit + " RTL ops/s"));
+    }
+  }
+  if (units.empty()) throw std::runtime_error("bench_rtl printed no table with 'C++ ... ops/s' and 'RTL ... ops/s'");
+  Row worst;
+  double worst_speedup = 0;
+  std::ostringstream table;
+  table << "| unit | C++ per op (min / median) | RTL per op (min / median) | RTL / C++ (mins / median of pairs) |\n"
+        << "|---|--:|--:|--:|\n";
+  for (const std::string& unit : order) {
+    Row row{"C++ datapath unit / its Verilated RTL, the slowest: " + unit + " (bench_rtl)", "RTL / C++ >= 50x"};
+    row.measured = units[unit].first;
+    row.reference = units[unit].second;
+    row.invert = true;
+    row.at_most = false;
+    row.goal_value = 50;
+    std::vector<double> paired;
+    for (size_t i = 0; i < row.measured.size(); ++i) paired.push_back(row.reference[i] / row.measured[i]);
+    const double speedup = min_median(paired).median;
+    const MinMedian c = min_median(row.measured), v = min_median(row.reference);
+    table << "| " << unit << " | " << pair_text(c, format_duration) << " | " << pair_text(v, format_duration) << " | "
+          << ratio_text(v.min / c.min) << " / " << ratio_text(speedup) << " |\n";
+    if (worst.measured.empty() || speedup < worst_speedup) {
+      worst = row;
+      worst_speedup = speedup;
+    }
+  }
+  m_rows.push_back(worst);
+  m_datapath_table = table.str();
+}
+
+void Bench::startup_rows() {
+  // Start-up: the whole process, from spawn to exit, of soc_sim listing
+  // its applications and of a one-frame run of the smallest scene writing
+  // no image (its simulation takes a few ms of it), its CPU time (user +
+  // system, every thread: what a loaded machine does not inflate) and its
+  // peak memory; and the same run writing its frame. The three alternate.
+  const auto mib = [](double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MiB", bytes / (1 << 20));
+    return std::string(text);
+  };
+  Row list{"soc_sim --list-apps: wall time of the process", "<= 50 ms"};
+  list.goal_value = 50e-3;
+  Row list_cpu{"soc_sim --list-apps: CPU time", "-"};
+  Row frame{"soc_sim --app triangle --frames 1 --no-frames: wall time of the process", "<= 50 ms"};
+  frame.goal_value = 50e-3;
+  Row frame_cpu{"soc_sim --app triangle --frames 1 --no-frames: CPU time", "-"};
+  Row rss{"soc_sim --app triangle --frames 1 --no-frames: peak RSS", "-"};
+  rss.format = mib;
+  Row png{"the same writing its frame as PNG: wall time", "-"};
+  Row rss_png{"the same writing its frame as PNG: peak RSS", "-"};
+  rss_png.format = mib;
+  std::fprintf(stderr, "bench_speed: soc_sim start-up, %u runs each ...\n", m_opt.startup_runs);
+  const std::string soc_sim = program("soc_sim").string();
+  for (unsigned r = 0; r < m_opt.startup_runs; ++r) {
+    in_rotation(r, {
+                       [&] {
+                         const ChildResult c = child({soc_sim, "--list-apps"});
+                         list.measured.push_back(c.wall_s);
+                         list_cpu.measured.push_back(c.cpu_s);
+                       },
+                       [&] {
+                         const fs::path out = m_work / "startup";
+                         const ChildResult c = child({soc_sim, "--app", "triangle", "--frames", "1", "--no-frames",
+                                                      "--quiet", "--force", "--out", out.string()});
+                         frame.measured.push_back(c.wall_s);
+                         frame_cpu.measured.push_back(c.cpu_s);
+                         rss.measured.push_back(static_cast<double>(c.max_rss_kib) * 1024);
+                       },
+                       [&] {
+                         const fs::path out = m_work / "startup_png";
+                         const ChildResult c = child({soc_sim, "--app", "triangle", "--frames", "1", "--quiet",
+                                                      "--force", "--out", out.string()});
+                         png.measured.push_back(c.wall_s);
+                         rss_png.measured.push_back(static_cast<double>(c.max_rss_kib) * 1024);
+                       },
+                   });
+  }
+  for (const Row& row : {list, list_cpu, frame, frame_cpu, rss, png, rss_png}) m_rows.push_back(row);
+}
+
+// Least-squares slope of log(y) against log(x): the exponent of y ~ x^k.
+double exponent(const std::vector<double>& x, const std::vector<double>& y) {
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    mx += std::log(x[i]);
+    my += std::log(y[i]);
+  }
+  mx /= static_cast<double>(x.size());
+  my /= static_cast<double>(x.size());
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxy += (std::log(x[i]) - mx) * (std::log(y[i]) - my);
+    sxx += (std::log(x[i]) - mx) * (std::log(x[i]) - mx);
+  }
+  return sxx > 0 ? sxy / sxx : 0;
+}
+
+// An OBJ grid of `triangles` triangles (2 per cell of a nearly square
+// grid), gently curved so that it is lit unevenly; obj_viewer fits it to
+// the view, so every size covers the same pixels.
+unsigned write_grid_obj(const fs::path& path, unsigned triangles) {
+  // rows x columns cells, rows the largest divisor of the cell count up to
+  // its square root: exactly `triangles` triangles when it is even.
+  const unsigned cells = std::max(1u, triangles / 2);
+  unsigned rows = 1;
+  for (unsigned r = 1; r * r <= cells; ++r)
+    if (cells % r == 0) rows = r;
+  const unsigned columns = cells / rows;
+  std::ofstream out(path);
+  for (unsigned y = 0; y <= rows; ++y)
+    for (unsigned x = 0; x <= columns; ++x) {
+      const double u = static_cast<double>(x) / columns, v = static_cast<double>(y) / rows;
+      out << "v " << u * 2 - 1 << " " << v * 2 - 1 << " " << 0.2 * std::sin(3 * u) * std::cos(3 * v) << "\n";
+    }
+  const auto index = [columns](unsigned x, unsigned y) { return y * (columns + 1) + x + 1; };
+  for (unsigned y = 0; y < rows; ++y)
+    for (unsigned x = 0; x < columns; ++x) {
+      out << "f " << index(x, y) << " " << index(x + 1, y) << " " << index(x + 1, y + 1) << "\n";
+      out << "f " << index(x, y) << " " << index(x + 1, y + 1) << " " << index(x, y + 1) << "\n";
+    }
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  return 2 * rows * columns;
+}
+
+void Bench::scaling() {
+  const unsigned n = m_opt.scaling_frames;
+  std::ostringstream text;
+  // Triangles: obj_viewer on grids of 80 to 80,000 triangles.
+  std::vector<unsigned> counts;
+  std::vector<fs::path> files;
+  for (const unsigned t : m_opt.triangles) {
+    files.push_back(m_work / ("grid_" + std::to_string(t) + ".obj"));
+    counts.push_back(write_grid_obj(files.back(), t));
+  }
+  std::vector<std::vector<double>> tri_times(counts.size()), tri_cpu(counts.size());
+  for (unsigned r = 0; r < m_opt.scaling_rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: scaling with triangles, round %u of %u ...\n", r + 1, m_opt.scaling_rounds);
+    std::vector<std::function<void()>> steps;
+    for (size_t i = 0; i < counts.size(); ++i)
+      steps.emplace_back([&, i] {
+        tri_times[i].push_back(
+            soc_sim_frame({"--app", "obj_viewer", "--backend", "arm"}, n, false, {files[i].string()}));
+        tri_cpu[i].push_back(m_last_cpu);
+      });
+    in_rotation(r, steps);
+  }
+  // Pixels: fullscreen_rect (every pixel drawn) at display sizes up to the largest.
+  std::vector<double> pixels;
+  std::vector<std::vector<double>> pix_times(m_opt.sizes.size()), pix_cpu(m_opt.sizes.size());
+  for (const std::string& size : m_opt.sizes) {
+    const size_t x = size.find('x');
+    pixels.push_back(std::stod(size.substr(0, x)) * std::stod(size.substr(x + 1)));
+  }
+  for (unsigned r = 0; r < m_opt.scaling_rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: scaling with pixels, round %u of %u ...\n", r + 1, m_opt.scaling_rounds);
+    std::vector<std::function<void()>> steps;
+    for (size_t i = 0; i < m_opt.sizes.size(); ++i)
+      steps.emplace_back([&, i] {
+        const std::string& size = m_opt.sizes[i];
+        const size_t x = size.find('x');
+        pix_times[i].push_back(
+            soc_sim_frame({"--app", "fullscreen_rect", "--backend", "arm", "--set",
+                           "display.width=" + size.substr(0, x), "--set", "display.height=" + size.substr(x + 1)},
+                          n, false));
+        pix_cpu[i].push_back(m_last_cpu);
+      });
+    in_rotation(r, steps);
+  }
+  // The exponent k of time ~ x^k, least squares on log-log over every
+  // point, and between the two largest points (the trend where the fixed
+  // cost of a frame matters least).
+  const auto fit = [](const std::vector<double>& x, const std::vector<double>& y) {
+    const size_t last = x.size() - 1;
+    return std::pair{exponent(x, y), std::log(y[last] / y[last - 1]) / std::log(x[last] / x[last - 1])};
+  };
+  const auto report = [&text, &fit](const char* title, const std::vector<double>& x,
+                                    const std::vector<std::vector<double>>& wall,
+                                    const std::vector<std::vector<double>>& cpu) {
+    std::vector<double> wall_medians, cpu_medians;
+    text << "| " << title << " | wall / frame (min / median) | CPU / frame (min / median) |\n|--:|--:|--:|\n";
+    for (size_t i = 0; i < x.size(); ++i) {
+      wall_medians.push_back(min_median(wall[i]).median);
+      cpu_medians.push_back(min_median(cpu[i]).median);
+      char value[32];
+      std::snprintf(value, sizeof value, "%.0f", x[i]);
+      text << "| " << value << " | " << pair_text(min_median(wall[i]), format_duration) << " | "
+           << pair_text(min_median(cpu[i]), format_duration) << " |\n";
+    }
+    const auto [k_wall, top_wall] = fit(x, wall_medians);
+    const auto [k_cpu, top_cpu] = fit(x, cpu_medians);
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "\ntime ~ %s^k, fitted to the medians: wall k = %.2f (%.2f between the two largest), CPU k = %.2f "
+                  "(%.2f); goal: k over every point <= 1.05: %s\n\n",
+                  title, k_wall, top_wall, k_cpu, top_cpu, std::max(k_wall, k_cpu) <= 1.05 ? "met" : "**not met**");
+    text << line;
+  };
+  std::vector<double> tri_x(counts.begin(), counts.end());
+  text << "Triangles: `soc_sim --app obj_viewer --backend arm --no-frames` on a grid of T triangles (written by "
+          "bench_speed), fitted to the view:\n\n";
+  report("triangles", tri_x, tri_times, tri_cpu);
+  text << "Pixels: `soc_sim --app fullscreen_rect --backend arm --no-frames` at display sizes " << m_opt.sizes.front()
+       << " to " << m_opt.sizes.back() << ":\n\n";
+  report("pixels", pixels, pix_times, pix_cpu);
+  m_scaling_text = text.str();
+}
+
+void Bench::print_table() const {
+  std::printf(
+      "| what | measured (min / median) | against (min / median) | ratio (mins / median of pairs) | CPU ratio "
+      "(median of pairs) | goal | met (median of pairs) |\n|---|--:|--:|--:|--:|---|---|\n");
+  for (const Row& row : m_rows) print_row(row);
+  std::printf(
+      "\nPer-frame figures are of frames %u..%u of runs of %u frames, timed within each run; %u paired rounds (%u "
+      "for start-up), the order rotating from round to round. Ratios: \"mins\" of the two min columns, \"median of "
+      "pairs\" the median of the ratios within each round (for the datapath, RTL / C++: a speed-up).\n",
+      m_opt.frames, 2 * m_opt.frames - 1, 2 * m_opt.frames, m_opt.rounds, m_opt.startup_runs);
+  if (!m_datapath_table.empty())
+    std::printf(
+        "\nDatapath units, C++ against Verilated RTL (bench_rtl --vectors %u --repeat 1, once per round):\n\n%s",
+        m_opt.rtl_vectors, m_datapath_table.c_str());
+  if (!m_scaling_text.empty())
+    std::printf("\n### Scaling (%u frames timed, %u rounds)\n\n%s", m_opt.scaling_frames, m_opt.scaling_rounds,
+                m_scaling_text.c_str());
+}
+
+void Bench::run() {
+  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_speed_" + std::to_string(getpid()))
+                                  : fs::path(m_opt.work_dir);
+  fs::create_directories(m_work);
+  m_config = json::parse(child({program("soc_sim").string(), "--print-config"}).output);
+  const std::string load_before = load_average();
+  const auto start = std::chrono::steady_clock::now();
+  startup_rows();
+  arm_rows();
+  raster_row();
+  bus_row();
+  datapath_rows();
+  if (m_opt.scaling) scaling();
+  const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  print_table();
+  std::printf("\n%s\n", machine_summary(load_before, total_s).c_str());
+  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
+}
+
+int run_main(int argc, char** argv) {
+  Options opt;
+  CLI::App cli{"bench_speed: issue 13's speed table (paired rounds, min and median) and the scaling exponents"};
+  cli.add_option("--rounds", opt.rounds, "paired rounds of each frame and datapath measurement")
+      ->check(CLI::Range(1, 101))
+      ->capture_default_str();
+  cli.add_option("--frames", opt.frames, "N: runs of 2N frames, frames N..2N-1 timed")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cli.add_option("--startup-runs", opt.startup_runs, "runs of each start-up measurement")
+      ->check(CLI::Range(1, 1001))
+      ->capture_default_str();
+  cli.add_option("--bus-rounds", opt.bus_rounds, "rounds of bench_bus")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cli.add_option("--rtl-vectors", opt.rtl_vectors, "vectors per datapath unit (bench_rtl)")
+      ->check(CLI::Range(1000, 100000000))
+      ->capture_default_str();
+  cli.add_flag("!--no-scaling", opt.scaling, "skip the scaling with triangles and pixels");
+  cli.add_option("--scaling-frames", opt.scaling_frames, "N of the scaling runs")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cli.add_option("--scaling-rounds", opt.scaling_rounds, "rounds of the scaling runs")
+      ->check(CLI::Range(1, 101))
+      ->capture_default_str();
+  cli.add_option("--triangles", opt.triangles, "triangle counts of the scaling grids")
+      ->check(CLI::Range(2, 120000))
+      ->capture_default_str();
+  cli.add_option("--sizes", opt.sizes, "display sizes WxH of the pixel scaling")->capture_default_str();
+  cli.add_option("--work-dir", opt.work_dir, "folder for the children's output (default: a temporary one, removed)");
+  CLI11_PARSE(cli, argc, argv);
+  for (const std::string& size : opt.sizes) {
+    const size_t x = size.find('x');
+    if (x == std::string::npos || x == 0 || x + 1 == size.size() ||
+        size.find_first_not_of("0123456789x") != std::string::npos) {
+      std::cerr << "bench_speed: --sizes: '" << size << "' is not WIDTHxHEIGHT\n";
+      return 2;
+    }
+  }
+  if (opt.triangles.size() < 2 || opt.sizes.size() < 2) {
+    std::cerr << "bench_speed: --triangles and --sizes need at least two values each to fit an exponent\n";
+    return 2;
+  }
+  opt.bin = own_directory();
+  for (const char* name : {"soc_sim", "bench_arm_native", "bench_arm_mesa", "bench_raster", "bench_bus", "bench_rtl"})
+    if (!fs::exists(opt.bin / name)) {
+      std::cerr << "bench_speed: " << (opt.bin / name).string() << " not found (build the bench_speed target)\n";
+      return 2;
+    }
+  try {
+    Bench(opt).run();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_speed: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return tessera::guarded_main("bench_speed", [&] { return run_main(argc, argv); });
+}
