@@ -27,7 +27,12 @@ void set_current_context(Context* context) {
   g_current = context;
 }
 
-Context::Context(HostApi& host, Renderer& renderer, ActivityCounters* counters) : m_host(host), m_renderer(&renderer) {
+Context::Context(HostApi& host, Renderer& renderer, ActivityCounters* counters, unsigned texture_units)
+    : m_host(host),
+      m_renderer(&renderer),
+      // The configuration refuses other counts (driver.texture_units); a
+      // direct caller's is brought into range.
+      m_texture_units(std::clamp(texture_units, 1u, MAX_TEXTURE_UNITS)) {
   if (counters) {
     m_cache_hits = &counters->counter("vertex_cache.hits",
                                       "glDrawElements indices whose vertex was in the post-transform vertex cache");

@@ -39,6 +39,28 @@ struct TextureImage {
   GLenum format = 0;  // the internal format it was given; 0: not defined
 };
 
+// The state of one texture unit (ES 1.1 section 3.7.12 and 2.10.2): the
+// server side (enable, binding, environment, texture matrix stack) selected
+// by glActiveTexture, the client side (coordinate array, current
+// coordinates) by glClientActiveTexture and glMultiTexCoord. Environment
+// values are kept as the GL enums glGetTexEnv returns.
+struct TextureUnitState {
+  bool enabled = false;  // GL_TEXTURE_2D
+  GLuint bound = 0;      // GL_TEXTURE_BINDING_2D
+  GLenum env_mode = GL_MODULATE;
+  float env_color[4] = {0, 0, 0, 0};
+  GLenum combine_rgb = GL_MODULATE, combine_alpha = GL_MODULATE;
+  GLenum source_rgb[3] = {GL_TEXTURE, GL_PREVIOUS, GL_CONSTANT};
+  GLenum source_alpha[3] = {GL_TEXTURE, GL_PREVIOUS, GL_CONSTANT};
+  GLenum operand_rgb[3] = {GL_SRC_COLOR, GL_SRC_COLOR, GL_SRC_ALPHA};
+  GLenum operand_alpha[3] = {GL_SRC_ALPHA, GL_SRC_ALPHA, GL_SRC_ALPHA};
+  float rgb_scale = 1, alpha_scale = 1;
+  std::vector<glm::mat4> matrix{glm::mat4(1)};
+  glm::vec4 texcoord{0, 0, 0, 1};
+  ArrayPointer texcoord_array;
+  bool coord_replace = false;  // GL_COORD_REPLACE_OES (glTexEnv GL_POINT_SPRITE_OES)
+};
+
 struct TextureObject {
   // Sampling parameters (filters, wraps); the level chain is filled in for
   // drawing (drawn_texture, textures.cpp). A new object has GL's default
@@ -73,7 +95,10 @@ class Context {
  public:
   // The renderer belongs to the EGL surface the context is current on. The
   // driver's statistics (vertex cache) go to `counters` if there are any.
-  Context(HostApi& host, Renderer& renderer, ActivityCounters* counters = nullptr);
+  // `texture_units` (driver.texture_units, 1 .. MAX_TEXTURE_UNITS) is what
+  // GL_MAX_TEXTURE_UNITS answers.
+  Context(HostApi& host, Renderer& renderer, ActivityCounters* counters = nullptr,
+          unsigned texture_units = DEFAULT_TEXTURE_UNITS);
 
   HostApi& host() { return m_host; }
   Renderer& renderer() { return *m_renderer; }
@@ -143,7 +168,7 @@ class Context {
   ArrayPointer& vertex_array() { return m_vertex_array; }
   ArrayPointer& color_array() { return m_color_array; }
   ArrayPointer& normal_array() { return m_normal_array; }
-  ArrayPointer& texcoord_array() { return m_texcoord_array; }
+  ArrayPointer& texcoord_array() { return client_unit().texcoord_array; }
   ArrayPointer& point_size_array() { return m_point_size_array; }
   void active_texture(GLenum unit, bool client);
 
@@ -224,6 +249,10 @@ class Context {
   const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
   glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults);
   TextureObject* bound_texture();
+  TextureUnitState& active_unit() { return m_units[m_active_texture - GL_TEXTURE0]; }
+  TextureUnitState& client_unit() { return m_units[m_client_active_texture - GL_TEXTURE0]; }
+  // Whether unit u draws: enabled, with a defined texture bound.
+  bool unit_textured(unsigned u) const;
   // Level `level` of the bound texture as `width` x `height` RGBA8 words
   // (re)allocated in system memory, with `rows` written if not null.
   void store_level(TextureObject* object, unsigned level, unsigned width, unsigned height, GLenum format,
@@ -239,7 +268,7 @@ class Context {
   // Fragment and framebuffer state
   RasterState m_raster;
   bool m_depth_test = false, m_blend = false, m_alpha_test = false, m_stencil_test = false;
-  bool m_scissor_test = false, m_logic_op = false, m_texture_2d = false, m_dither = true;
+  bool m_scissor_test = false, m_logic_op = false, m_dither = true;
   bool m_cull = false, m_lighting = false, m_normalize = false, m_rescale_normal = false;
   bool m_color_material = false, m_fog = false, m_multisample = true, m_polygon_offset_fill = false;
   bool m_sample_alpha_to_coverage = false, m_sample_alpha_to_one = false, m_sample_coverage = false;
@@ -257,7 +286,6 @@ class Context {
   float m_point_size = 1, m_line_width = 1;
   // Points: OES_point_sprite, glPointParameter (ES 1.1 table 6.10's initial values).
   bool m_point_sprite = false;
-  std::array<bool, 2> m_coord_replace{};  // per texture unit
   float m_point_size_min = 0, m_point_size_max = MAX_POINT_SIZE, m_point_fade_threshold = 1;
   glm::vec3 m_point_distance_attenuation{1, 0, 0};
   float m_polygon_offset[2] = {0, 0};
@@ -270,13 +298,12 @@ class Context {
 
   // Transform state
   GLenum m_matrix_mode = GL_MODELVIEW;
-  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)}, m_texture_matrix{glm::mat4(1)};
+  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)};
 
   // Current vertex attributes and arrays
   glm::vec4 m_color{1, 1, 1, 1};
   glm::vec3 m_normal{0, 0, 1};
-  glm::vec4 m_texcoord{0, 0, 0, 1};
-  ArrayPointer m_vertex_array, m_color_array, m_normal_array, m_texcoord_array;
+  ArrayPointer m_vertex_array, m_color_array, m_normal_array;
   ArrayPointer m_point_size_array{false, 1, GL_FLOAT, 0, nullptr, 0};  // OES_point_size_array
   GLenum m_active_texture = GL_TEXTURE0, m_client_active_texture = GL_TEXTURE0;
 
@@ -288,9 +315,9 @@ class Context {
   // Textures and buffers
   std::map<GLuint, TextureObject> m_textures;
   GLuint m_next_texture = 1;
-  GLuint m_bound_texture = 0;
-  GLenum m_tex_env_mode = GL_MODULATE;
-  float m_tex_env_color[4] = {0, 0, 0, 0};
+  // Texture units: m_texture_units of them are offered, the rest stay off.
+  unsigned m_texture_units = DEFAULT_TEXTURE_UNITS;
+  std::array<TextureUnitState, MAX_TEXTURE_UNITS> m_units;
   std::map<GLuint, BufferObject> m_buffers;
   GLuint m_next_buffer = 1;
   GLuint m_array_buffer = 0, m_element_buffer = 0;

@@ -112,12 +112,9 @@ inline bool tex_wrap_value(GLenum wrap, TexWrap* out) {
   return fixed_function_value(wrap, out);
 }
 
-// GL_TEXTURE_ENV_MODE as drawn: BLEND, ADD and COMBINE are accepted and
-// stored (textures.cpp) but have no entry in the table yet, and are drawn as
-// MODULATE.
-inline TexEnv tex_env_value(GLenum mode) {
-  return from_gl_enum<TexEnv>(mode).value_or(TexEnv::modulate);
-}
+// A texture unit's environment as the back ends take it (textures.cpp);
+// the texture and `enabled` are the caller's.
+void set_unit_environment(const TextureUnitState& in, TextureUnit* out);
 
 // The GL enum of a code the state holds, for glGet.
 template <typename E>

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "common/pixel_format.h"
+#include "config/config.h"
 #include "display/display_regs.h"
 #include "gl/context.h"
 #include "gl/runtime.h"
@@ -382,7 +383,12 @@ EGLAPI EGLBoolean EGLAPIENTRY eglMakeCurrent(EGLDisplay dpy, EGLSurface draw, EG
   if (c->surface && c->surface != d) return fail(EGL_BAD_MATCH, EGL_FALSE);
   if (!c->gl) {
     auto& env = tessera::gl::environment();
-    c->gl = std::make_unique<Context>(*env.host, *d->renderer, env.counters);
+    // driver.texture_units where the launcher has a configuration that
+    // declares it (driver_parameters), the default elsewhere.
+    const unsigned units = env.config != nullptr && env.config->has("driver.texture_units")
+                               ? static_cast<unsigned>(env.config->get_uint("driver.texture_units"))
+                               : tessera::gl::DEFAULT_TEXTURE_UNITS;
+    c->gl = std::make_unique<Context>(*env.host, *d->renderer, env.counters, units);
   }
   c->surface = d;
   g_current = c;

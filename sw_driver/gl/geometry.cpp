@@ -25,7 +25,7 @@ ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, float t) {
   ClipVertex v = a;
   v.position = a.position + (b.position - a.position) * t;
   v.color = a.color + (b.color - a.color) * t;
-  v.tex = a.tex + (b.tex - a.tex) * t;
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) v.tex[u] = a.tex[u] + (b.tex[u] - a.tex[u]) * t;
   v.eye = a.eye + (b.eye - a.eye) * t;
   v.back_color = a.back_color + (b.back_color - a.back_color) * t;
   v.fog = a.fog + (b.fog - a.fog) * t;
@@ -202,12 +202,15 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
   out->g = to_unorm8(v.color.g);
   out->b = to_unorm8(v.color.b);
   out->a = to_unorm8(v.color.a);
-  out->s = v.tex.x;
-  out->t = v.tex.y;
+  bool finite = std::isfinite(v.fog);
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
+    out->tex[u] = {v.tex[u].x, v.tex[u].y};
+    finite = finite && std::isfinite(v.tex[u].x) && std::isfinite(v.tex[u].y);
+  }
   out->fog = v.fog;
   out->x_window = static_cast<float>(window.x);
   out->y_window = static_cast<float>(window.y);
-  return std::isfinite(v.tex.x) && std::isfinite(v.tex.y) && std::isfinite(v.fog);
+  return finite;
 }
 
 bool to_screen(const ClipVertex& v, const Viewport& viewport, double depth_offset, ScreenVertex* out) {

@@ -16,10 +16,10 @@
 namespace tessera::gl {
 
 struct ClipVertex {
-  glm::vec4 position;         // clip coordinates
-  glm::vec4 color;            // RGBA, [0, 1] after lighting or clamping
-  glm::vec2 tex;              // texture coordinates after the texture matrix
-  glm::vec4 eye{0, 0, 0, 1};  // eye coordinates, for the user clip planes
+  glm::vec4 position;                // clip coordinates
+  glm::vec4 color;                   // RGBA, [0, 1] after lighting or clamping
+  glm::vec2 tex[MAX_TEXTURE_UNITS];  // per unit, after the unit's texture matrix
+  glm::vec4 eye{0, 0, 0, 1};         // eye coordinates, for the user clip planes
   // The colour of a back-facing polygon's vertex under two-sided lighting
   // (lit with the reversed normal); the front colour otherwise.
   glm::vec4 back_color{0, 0, 0, 0};

@@ -23,7 +23,7 @@ void Context::matrix_mode(GLenum mode) {
 glm::mat4& Context::current_matrix() {
   switch (m_matrix_mode) {
     case GL_PROJECTION: return m_projection.back();
-    case GL_TEXTURE: return m_texture_matrix.back();
+    case GL_TEXTURE: return active_unit().matrix.back();
     default: return m_modelview.back();
   }
 }
@@ -42,7 +42,7 @@ void Context::mult_matrix(const glm::mat4& m) {
 void Context::push_matrix() {
   charge_call(16);
   auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
-                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                : m_matrix_mode == GL_TEXTURE  ? active_unit().matrix
                                                : m_modelview;
   const size_t limit = m_matrix_mode == GL_PROJECTION ? MAX_PROJECTION_DEPTH
                        : m_matrix_mode == GL_TEXTURE  ? MAX_TEXTURE_DEPTH
@@ -54,7 +54,7 @@ void Context::push_matrix() {
 void Context::pop_matrix() {
   charge_call();
   auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
-                : m_matrix_mode == GL_TEXTURE  ? m_texture_matrix
+                : m_matrix_mode == GL_TEXTURE  ? active_unit().matrix
                                                : m_modelview;
   if (stack.size() <= 1) return error(GL_STACK_UNDERFLOW);
   stack.pop_back();

@@ -138,10 +138,12 @@ RasterState Context::raster_state() const {
   s.logic_op = m_logic_op;
   s.scissor_test = m_scissor_test;
   s.polygon_smooth = m_polygon_smooth;
-  auto it = m_textures.find(m_bound_texture);
-  s.texture = m_texture_2d && it != m_textures.end() && texture_complete(it->second);
-  if (s.texture) s.tex = drawn_texture(it->second);
-  s.tex_env = tex_env_value(m_tex_env_mode);
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
+    TextureUnit& unit = s.unit[u];
+    unit.enabled = unit_textured(u);
+    if (unit.enabled) unit.tex = drawn_texture(m_textures.at(m_units[u].bound));
+    set_unit_environment(m_units[u], &unit);
+  }
   s.fog = m_fog;
   s.fog_mode = from_gl_enum<FogMode>(m_fog_mode).value_or(FogMode::exp);
   s.fog_density = m_fog_density;
@@ -161,7 +163,8 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
   // Points become two triangles in window space; the corners are turned
   // back into clip coordinates with the source vertex's w so that the
   // normal path (clipping, viewport) applies. `tex`, if given, replaces the
-  // texture coordinates corner by corner (point sprites).
+  // texture coordinates corner by corner (point sprites) in each unit whose
+  // GL_COORD_REPLACE_OES is on.
   const glm::vec4& p = source.clip.position;
   Vertex v[4];
   for (int i = 0; i < 4; ++i) {
@@ -169,7 +172,9 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
     const float xn = (corners[i].x - m_viewport.x) * 2.0f / m_viewport.width - 1.0f;
     const float yn = (corners[i].y - m_viewport.y) * 2.0f / m_viewport.height - 1.0f;
     v[i].clip.position = {xn * p.w, yn * p.w, p.z, p.w};
-    if (tex) v[i].clip.tex = tex[i];
+    if (tex)
+      for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u)
+        if (m_units[u].coord_replace) v[i].clip.tex[u] = tex[i];
   }
   emit_triangle(v[0], v[1], v[2], nullptr, Primitive::point_or_line);
   emit_triangle(v[0], v[2], v[3], nullptr, Primitive::point_or_line);
@@ -258,7 +263,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
       // 0 to 1 from the point's left to its right, t 0 to 1 from its top to
       // its bottom (y is up here), as the extension's formulas and Mesa give.
       static constexpr glm::vec2 SPRITE_TEX[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-      const glm::vec2* sprite_tex = m_point_sprite && m_coord_replace[0] ? SPRITE_TEX : nullptr;
+      const glm::vec2* sprite_tex = m_point_sprite ? SPRITE_TEX : nullptr;
       for (size_t i = 0; i < n; ++i) {
         if (!v[i].valid || !(v[i].clip.position.w > 0)) continue;
         // A point outside a user clip plane is discarded whole.

@@ -150,7 +150,7 @@ void Context::get_floats(GLenum name, float* v) {
       for (int i = 0; i < 4; ++i) v[i] = m_color[i];
       break;
     case GL_CURRENT_TEXTURE_COORDS:
-      for (int i = 0; i < 4; ++i) v[i] = m_texcoord[i];
+      for (int i = 0; i < 4; ++i) v[i] = active_unit().texcoord[i];
       break;
     case GL_CURRENT_NORMAL:
       for (int i = 0; i < 3; ++i) v[i] = m_normal[i];
@@ -172,7 +172,7 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_SMOOTH_LINE_WIDTH_RANGE: v[0] = MIN_POINT_SIZE, v[1] = MAX_POINT_SIZE; break;
     case GL_MODELVIEW_MATRIX: mat(m_modelview.back()); break;
     case GL_PROJECTION_MATRIX: mat(m_projection.back()); break;
-    case GL_TEXTURE_MATRIX: mat(m_texture_matrix.back()); break;
+    case GL_TEXTURE_MATRIX: mat(active_unit().matrix.back()); break;
     case GL_DEPTH_CLEAR_VALUE: v[0] = m_clear_depth; break;
     case GL_STENCIL_CLEAR_VALUE: v[0] = static_cast<float>(m_clear_stencil); break;
     case GL_DEPTH_FUNC: v[0] = static_cast<float>(gl_value(m_raster.depth_func)); break;
@@ -189,13 +189,13 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_MATRIX_MODE: v[0] = static_cast<float>(m_matrix_mode); break;
     case GL_MODELVIEW_STACK_DEPTH: v[0] = static_cast<float>(m_modelview.size()); break;
     case GL_PROJECTION_STACK_DEPTH: v[0] = static_cast<float>(m_projection.size()); break;
-    case GL_TEXTURE_STACK_DEPTH: v[0] = static_cast<float>(m_texture_matrix.size()); break;
+    case GL_TEXTURE_STACK_DEPTH: v[0] = static_cast<float>(active_unit().matrix.size()); break;
     case GL_MAX_MODELVIEW_STACK_DEPTH: v[0] = MAX_MODELVIEW_DEPTH; break;
     case GL_MAX_PROJECTION_STACK_DEPTH: v[0] = MAX_PROJECTION_DEPTH; break;
     case GL_MAX_TEXTURE_STACK_DEPTH: v[0] = MAX_TEXTURE_DEPTH; break;
     case GL_MAX_LIGHTS: v[0] = MAX_LIGHTS; break;
     case GL_MAX_TEXTURE_SIZE: v[0] = MAX_TEXTURE_SIZE; break;
-    case GL_MAX_TEXTURE_UNITS: v[0] = 2; break;
+    case GL_MAX_TEXTURE_UNITS: v[0] = static_cast<float>(m_texture_units); break;
     case GL_MAX_CLIP_PLANES: v[0] = MAX_USER_CLIP_PLANES; break;
     case GL_POINT_SIZE_MIN: v[0] = m_point_size_min; break;
     case GL_POINT_SIZE_MAX: v[0] = m_point_size_max; break;
@@ -208,7 +208,7 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES: v[0] = static_cast<float>(m_point_size_array.buffer); break;
     case GL_POINT_SPRITE_OES: v[0] = m_point_sprite; break;
     case GL_POINT_SIZE_ARRAY_OES: v[0] = m_point_size_array.enabled; break;
-    case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(m_bound_texture); break;
+    case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(active_unit().bound); break;
     case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
     case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
     case GL_RED_BITS: v[0] = static_cast<float>(format.red_bits); break;
@@ -232,9 +232,9 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_COLOR_ARRAY_STRIDE: v[0] = static_cast<float>(m_color_array.stride); break;
     case GL_NORMAL_ARRAY_TYPE: v[0] = static_cast<float>(m_normal_array.type); break;
     case GL_NORMAL_ARRAY_STRIDE: v[0] = static_cast<float>(m_normal_array.stride); break;
-    case GL_TEXTURE_COORD_ARRAY_SIZE: v[0] = static_cast<float>(m_texcoord_array.size); break;
-    case GL_TEXTURE_COORD_ARRAY_TYPE: v[0] = static_cast<float>(m_texcoord_array.type); break;
-    case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(m_texcoord_array.stride); break;
+    case GL_TEXTURE_COORD_ARRAY_SIZE: v[0] = static_cast<float>(client_unit().texcoord_array.size); break;
+    case GL_TEXTURE_COORD_ARRAY_TYPE: v[0] = static_cast<float>(client_unit().texcoord_array.type); break;
+    case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(client_unit().texcoord_array.stride); break;
     case GL_IMPLEMENTATION_COLOR_READ_TYPE_OES: v[0] = GL_UNSIGNED_BYTE; break;
     case GL_IMPLEMENTATION_COLOR_READ_FORMAT_OES: v[0] = GL_RGBA; break;
     case GL_NUM_COMPRESSED_TEXTURE_FORMATS: v[0] = PALETTE_FORMAT_COUNT; break;
@@ -282,7 +282,7 @@ void Context::get_pointer(GLenum name, void** value) {
     case GL_VERTEX_ARRAY_POINTER: *value = const_cast<void*>(m_vertex_array.pointer); break;
     case GL_COLOR_ARRAY_POINTER: *value = const_cast<void*>(m_color_array.pointer); break;
     case GL_NORMAL_ARRAY_POINTER: *value = const_cast<void*>(m_normal_array.pointer); break;
-    case GL_TEXTURE_COORD_ARRAY_POINTER: *value = const_cast<void*>(m_texcoord_array.pointer); break;
+    case GL_TEXTURE_COORD_ARRAY_POINTER: *value = const_cast<void*>(client_unit().texcoord_array.pointer); break;
     case GL_POINT_SIZE_ARRAY_POINTER_OES: *value = const_cast<void*>(m_point_size_array.pointer); break;
     default: error(GL_INVALID_ENUM);
   }

@@ -14,6 +14,16 @@
 
 namespace tessera::gl {
 
+// The most texture units the front end and the back ends hold state for.
+// How many a context offers (GL_MAX_TEXTURE_UNITS) is the configuration's
+// driver.texture_units, from 1 to this (the ES 1.1 minimum is 2).
+inline constexpr unsigned MAX_TEXTURE_UNITS = 4;
+inline constexpr unsigned DEFAULT_TEXTURE_UNITS = 2;
+
+struct TexCoord {
+  float s = 0, t = 0;
+};
+
 // A vertex in window coordinates. Pixel (i, j) covers [i, i+1) x [j, j+1)
 // with its centre at (i + 0.5, j + 0.5); j = 0 is the BOTTOM row, as in GL.
 struct ScreenVertex {
@@ -21,7 +31,9 @@ struct ScreenVertex {
   uint32_t z;          // 0.24 fixed point, 0 = near
   float inv_w;         // 1 / w_clip, for perspective-correct texture coordinates
   uint8_t r, g, b, a;  // 0.8
-  float s, t;          // texture coordinates (not divided by w)
+  // Per texture unit, after the unit's texture matrix; not divided by w.
+  // Units that are not enabled carry zeros.
+  TexCoord tex[MAX_TEXTURE_UNITS];
   // The fog coordinate: the eye distance |z_eye| (Mesa's default, the eye
   // plane's absolute value), 0 when fog is off. Back ends interpolate it
   // (as the fog argument of renderers/common/fog.h) perspective-correctly.
@@ -85,6 +97,52 @@ struct Texture {
   TextureLevel level[MAX_TEXTURE_LEVELS];
 };
 
+// The texture environment of a unit (glTexEnv GL_TEXTURE_ENV_MODE).
+// MODULATE, REPLACE and DECAL are also the hardware's TexEnv codes
+// (hardware_tex_env); BLEND, ADD and COMBINE have no code in
+// common/fixed_function.def yet (its 2-bit field is full, and the raster
+// combiner is a later step), so only the software back ends draw them.
+enum class TexEnvMode : uint8_t { modulate, replace, decal, blend, add, combine };
+
+// The GL_COMBINE function, its argument sources and operands (ES 1.1,
+// section 3.7.12, table 3.18 and 3.19).
+enum class CombineFunc : uint8_t { replace, modulate, add, add_signed, interpolate, subtract, dot3_rgb, dot3_rgba };
+enum class CombineSource : uint8_t { texture, constant, primary_color, previous };
+enum class CombineOperand : uint8_t { src_color, one_minus_src_color, src_alpha, one_minus_src_alpha };
+
+// One half (RGB or alpha) of a unit's combiner. The defaults are GL's.
+struct CombineStage {
+  CombineFunc func = CombineFunc::modulate;
+  CombineSource source[3] = {CombineSource::texture, CombineSource::previous, CombineSource::constant};
+  CombineOperand operand[3] = {CombineOperand::src_color, CombineOperand::src_color, CombineOperand::src_alpha};
+  uint8_t scale = 1;  // 1, 2 or 4
+};
+
+// One texture unit as the back ends see it: drawn only if `enabled` (the
+// unit's GL_TEXTURE_2D is on and its texture is complete). Units are
+// applied in order, each to the previous one's result.
+struct TextureUnit {
+  bool enabled = false;
+  Texture tex;
+  TexEnvMode env = TexEnvMode::modulate;
+  uint8_t env_color[4] = {0, 0, 0, 0};  // GL_TEXTURE_ENV_COLOR, 0.8
+  CombineStage combine_rgb;
+  CombineStage combine_alpha{CombineFunc::modulate,
+                             {CombineSource::texture, CombineSource::previous, CombineSource::constant},
+                             {CombineOperand::src_alpha, CombineOperand::src_alpha, CombineOperand::src_alpha},
+                             1};
+};
+
+// The hardware code of `env` (fixed_function.def), false if it has none.
+inline bool hardware_tex_env(TexEnvMode env, TexEnv* code) {
+  switch (env) {
+    case TexEnvMode::modulate: *code = TexEnv::modulate; return true;
+    case TexEnvMode::replace: *code = TexEnv::replace; return true;
+    case TexEnvMode::decal: *code = TexEnv::decal; return true;
+    default: return false;
+  }
+}
+
 struct RasterState {
   bool flat_shading = false;
   bool depth_test = false;
@@ -104,9 +162,9 @@ struct RasterState {
   bool color_mask[4] = {true, true, true, true};
   bool scissor_test = false;
   int scissor_x = 0, scissor_y = 0, scissor_width = 0, scissor_height = 0;
-  bool texture = false;
-  Texture tex;
-  TexEnv tex_env = TexEnv::modulate;
+  // Texture units 0 .. MAX_TEXTURE_UNITS - 1; those beyond the context's
+  // driver.texture_units are never enabled.
+  TextureUnit unit[MAX_TEXTURE_UNITS];
   bool polygon_smooth = false;  // antialiased edges (rasterizers that support it)
   // Fog (glFog), applied after texturing: factor from the vertices'
   // ScreenVertex::fog by renderers/common/fog.h; colour in 0.8, alpha unused.

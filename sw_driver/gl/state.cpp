@@ -34,7 +34,7 @@ void Context::enable(GLenum cap, bool on) {
     case GL_STENCIL_TEST: m_stencil_test = on; break;
     case GL_SCISSOR_TEST: m_scissor_test = on; break;
     case GL_COLOR_LOGIC_OP: m_logic_op = on; break;
-    case GL_TEXTURE_2D: m_texture_2d = on; break;
+    case GL_TEXTURE_2D: active_unit().enabled = on; break;
     case GL_DITHER: m_dither = on; break;
     case GL_CULL_FACE: m_cull = on; break;
     case GL_LIGHTING: m_lighting = on; break;
@@ -67,7 +67,7 @@ bool Context::is_enabled(GLenum cap) {
     case GL_STENCIL_TEST: return m_stencil_test;
     case GL_SCISSOR_TEST: return m_scissor_test;
     case GL_COLOR_LOGIC_OP: return m_logic_op;
-    case GL_TEXTURE_2D: return m_texture_2d;
+    case GL_TEXTURE_2D: return active_unit().enabled;
     case GL_DITHER: return m_dither;
     case GL_CULL_FACE: return m_cull;
     case GL_LIGHTING: return m_lighting;
@@ -88,7 +88,7 @@ bool Context::is_enabled(GLenum cap) {
     case GL_VERTEX_ARRAY: return m_vertex_array.enabled;
     case GL_COLOR_ARRAY: return m_color_array.enabled;
     case GL_NORMAL_ARRAY: return m_normal_array.enabled;
-    case GL_TEXTURE_COORD_ARRAY: return m_texcoord_array.enabled;
+    case GL_TEXTURE_COORD_ARRAY: return client_unit().texcoord_array.enabled;
     default: error(GL_INVALID_ENUM); return false;
   }
 }
@@ -99,9 +99,7 @@ void Context::enable_client_state(GLenum array, bool on) {
     case GL_VERTEX_ARRAY: m_vertex_array.enabled = on; break;
     case GL_COLOR_ARRAY: m_color_array.enabled = on; break;
     case GL_NORMAL_ARRAY: m_normal_array.enabled = on; break;
-    case GL_TEXTURE_COORD_ARRAY:
-      if (m_client_active_texture == GL_TEXTURE0) m_texcoord_array.enabled = on;
-      break;
+    case GL_TEXTURE_COORD_ARRAY: client_unit().texcoord_array.enabled = on; break;
     case GL_POINT_SIZE_ARRAY_OES: m_point_size_array.enabled = on; break;
     default: error(GL_INVALID_ENUM);
   }
@@ -287,15 +285,13 @@ void Context::point_sprite_env(GLenum name, const float* v) {
   if (name != GL_COORD_REPLACE_OES) return error(GL_INVALID_ENUM);
   // GL_TRUE or GL_FALSE only, as Mesa checks it.
   if (v[0] != GL_TRUE && v[0] != GL_FALSE) return error(GL_INVALID_VALUE);
-  const size_t unit = m_active_texture - GL_TEXTURE0;
-  if (unit < m_coord_replace.size()) m_coord_replace[unit] = v[0] == GL_TRUE;
+  active_unit().coord_replace = v[0] == GL_TRUE;  // per texture unit
 }
 
 void Context::get_point_sprite_env(GLenum name, float* v) {
   charge_call();
   if (name != GL_COORD_REPLACE_OES) return error(GL_INVALID_ENUM);
-  const size_t unit = m_active_texture - GL_TEXTURE0;
-  v[0] = unit < m_coord_replace.size() && m_coord_replace[unit] ? 1.0f : 0.0f;
+  v[0] = active_unit().coord_replace ? 1.0f : 0.0f;
 }
 
 void Context::pixel_store(GLenum name, GLint value) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -31,7 +33,8 @@ void Context::delete_textures(GLsizei n, const GLuint* names) {
   for (GLsizei i = 0; i < n; ++i) {
     if (names[i] == 0) continue;
     m_textures.erase(names[i]);  // system memory of the texels is not reused (bump allocator)
-    if (m_bound_texture == names[i]) m_bound_texture = 0;
+    for (TextureUnitState& unit : m_units)
+      if (unit.bound == names[i]) unit.bound = 0;
   }
 }
 
@@ -39,7 +42,7 @@ void Context::bind_texture(GLenum target, GLuint name) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
   if (name != 0 && !m_textures.count(name)) m_textures[name] = TextureObject{};
-  m_bound_texture = name;
+  active_unit().bound = name;
 }
 
 bool Context::is_texture(GLuint name) {
@@ -49,7 +52,13 @@ bool Context::is_texture(GLuint name) {
 
 TextureObject* Context::bound_texture() {
   // Texture object 0 is the default texture, which exists like any other.
-  return &m_textures[m_bound_texture];
+  return &m_textures[active_unit().bound];
+}
+
+bool Context::unit_textured(unsigned u) const {
+  if (u >= m_texture_units || !m_units[u].enabled) return false;
+  const auto it = m_textures.find(m_units[u].bound);
+  return it != m_textures.end() && texture_complete(it->second);
 }
 
 namespace {
@@ -276,20 +285,106 @@ void Context::get_tex_parameter(GLenum target, GLenum name, float* value) {
   }
 }
 
+namespace {
+
+// The GL_COMBINE enums and their codes in gl::RasterState, one table each.
+constexpr std::pair<GLenum, CombineFunc> COMBINE_FUNCS[] = {
+    {GL_REPLACE, CombineFunc::replace},
+    {GL_MODULATE, CombineFunc::modulate},
+    {GL_ADD, CombineFunc::add},
+    {GL_ADD_SIGNED, CombineFunc::add_signed},
+    {GL_INTERPOLATE, CombineFunc::interpolate},
+    {GL_SUBTRACT, CombineFunc::subtract},
+    {GL_DOT3_RGB, CombineFunc::dot3_rgb},
+    {GL_DOT3_RGBA, CombineFunc::dot3_rgba},
+};
+constexpr std::pair<GLenum, CombineSource> COMBINE_SOURCES[] = {
+    {GL_TEXTURE, CombineSource::texture},
+    {GL_CONSTANT, CombineSource::constant},
+    {GL_PRIMARY_COLOR, CombineSource::primary_color},
+    {GL_PREVIOUS, CombineSource::previous},
+};
+constexpr std::pair<GLenum, CombineOperand> COMBINE_OPERANDS[] = {
+    {GL_SRC_COLOR, CombineOperand::src_color},
+    {GL_ONE_MINUS_SRC_COLOR, CombineOperand::one_minus_src_color},
+    {GL_SRC_ALPHA, CombineOperand::src_alpha},
+    {GL_ONE_MINUS_SRC_ALPHA, CombineOperand::one_minus_src_alpha},
+};
+constexpr std::pair<GLenum, TexEnvMode> ENV_MODES[] = {
+    {GL_MODULATE, TexEnvMode::modulate}, {GL_REPLACE, TexEnvMode::replace}, {GL_DECAL, TexEnvMode::decal},
+    {GL_BLEND, TexEnvMode::blend},       {GL_ADD, TexEnvMode::add},         {GL_COMBINE, TexEnvMode::combine},
+};
+
+template <typename Code, size_t N>
+std::optional<Code> lookup(const std::pair<GLenum, Code> (&table)[N], GLenum value) {
+  for (const auto& entry : table)
+    if (entry.first == value) return entry.second;
+  return std::nullopt;
+}
+
+// The glTexEnv names of the sources and operands: SRCi_RGB, SRCi_ALPHA,
+// OPERANDi_RGB, OPERANDi_ALPHA, each i = 0..2 consecutive.
+bool in_triple(GLenum name, GLenum first, int* i) {
+  if (name < first || name > first + 2) return false;
+  *i = static_cast<int>(name - first);
+  return true;
+}
+
+}  // namespace
+
+void set_unit_environment(const TextureUnitState& in, TextureUnit* out) {
+  out->env = lookup(ENV_MODES, in.env_mode).value_or(TexEnvMode::modulate);
+  for (int ch = 0; ch < 4; ++ch) out->env_color[ch] = static_cast<uint8_t>(std::lround(in.env_color[ch] * 255.0f));
+  const GLenum funcs[2] = {in.combine_rgb, in.combine_alpha};
+  const GLenum* sources[2] = {in.source_rgb, in.source_alpha};
+  const GLenum* operands[2] = {in.operand_rgb, in.operand_alpha};
+  const float scales[2] = {in.rgb_scale, in.alpha_scale};
+  CombineStage* stages[2] = {&out->combine_rgb, &out->combine_alpha};
+  for (int half = 0; half < 2; ++half) {
+    CombineStage& stage = *stages[half];
+    stage.func = lookup(COMBINE_FUNCS, funcs[half]).value_or(CombineFunc::modulate);
+    for (int i = 0; i < 3; ++i) {
+      stage.source[i] = lookup(COMBINE_SOURCES, sources[half][i]).value_or(CombineSource::texture);
+      stage.operand[i] = lookup(COMBINE_OPERANDS, operands[half][i]).value_or(CombineOperand::src_color);
+    }
+    stage.scale = static_cast<uint8_t>(scales[half]);
+  }
+}
+
 void Context::tex_env(GLenum target, GLenum name, const float* values, int count) {
   charge_call();
   if (target != GL_TEXTURE_ENV) return error(GL_INVALID_ENUM);
+  TextureUnitState& unit = active_unit();
+  // Every other name takes one value, an enum except for the scales.
+  const std::optional<GLenum> value = name == GL_TEXTURE_ENV_COLOR ? std::nullopt : enum_from_float(values[0]);
+  const GLenum v = value.value_or(0u);  // 0 is no mode, source or operand
+  int i = 0;
   if (name == GL_TEXTURE_ENV_MODE) {
-    const GLenum mode = enum_from_float(values[0]).value_or(0u);  // 0 is no mode
-    if (mode != GL_MODULATE && mode != GL_REPLACE && mode != GL_DECAL && mode != GL_BLEND && mode != GL_ADD &&
-        mode != GL_COMBINE)
-      return error(GL_INVALID_ENUM);
-    // BLEND, ADD and COMBINE are valid GL ES 1.1 and stored; the back ends
-    // render them as MODULATE (documented limitation).
-    m_tex_env_mode = mode;
+    if (!lookup(ENV_MODES, v)) return error(GL_INVALID_ENUM);
+    unit.env_mode = v;
   } else if (name == GL_TEXTURE_ENV_COLOR) {
     if (count < 4) return error(GL_INVALID_ENUM);
-    for (int i = 0; i < 4; ++i) m_tex_env_color[i] = clamp01(values[i]);
+    for (int c = 0; c < 4; ++c) unit.env_color[c] = clamp01(values[c]);
+  } else if (name == GL_COMBINE_RGB) {
+    if (!lookup(COMBINE_FUNCS, v)) return error(GL_INVALID_ENUM);
+    unit.combine_rgb = v;
+  } else if (name == GL_COMBINE_ALPHA) {
+    // The dot products are colour functions only (ES 1.1 table 3.18).
+    if (!lookup(COMBINE_FUNCS, v) || v == GL_DOT3_RGB || v == GL_DOT3_RGBA) return error(GL_INVALID_ENUM);
+    unit.combine_alpha = v;
+  } else if (in_triple(name, GL_SRC0_RGB, &i) || in_triple(name, GL_SRC0_ALPHA, &i)) {
+    if (!lookup(COMBINE_SOURCES, v)) return error(GL_INVALID_ENUM);
+    (name <= GL_SRC2_RGB ? unit.source_rgb : unit.source_alpha)[i] = v;
+  } else if (in_triple(name, GL_OPERAND0_RGB, &i)) {
+    if (!lookup(COMBINE_OPERANDS, v)) return error(GL_INVALID_ENUM);
+    unit.operand_rgb[i] = v;
+  } else if (in_triple(name, GL_OPERAND0_ALPHA, &i)) {
+    // An alpha operand reads alpha only (ES 1.1 table 3.19).
+    if (v != GL_SRC_ALPHA && v != GL_ONE_MINUS_SRC_ALPHA) return error(GL_INVALID_ENUM);
+    unit.operand_alpha[i] = v;
+  } else if (name == GL_RGB_SCALE || name == GL_ALPHA_SCALE) {
+    if (values[0] != 1.0f && values[0] != 2.0f && values[0] != 4.0f) return error(GL_INVALID_VALUE);
+    (name == GL_RGB_SCALE ? unit.rgb_scale : unit.alpha_scale) = values[0];
   } else {
     error(GL_INVALID_ENUM);
   }
@@ -298,10 +393,28 @@ void Context::tex_env(GLenum target, GLenum name, const float* values, int count
 void Context::get_tex_env(GLenum target, GLenum name, float* values) {
   charge_call();
   if (target != GL_TEXTURE_ENV) return error(GL_INVALID_ENUM);
+  const TextureUnitState& unit = active_unit();
+  int i = 0;
   if (name == GL_TEXTURE_ENV_MODE)
-    values[0] = static_cast<float>(m_tex_env_mode);
+    values[0] = static_cast<float>(unit.env_mode);
   else if (name == GL_TEXTURE_ENV_COLOR)
-    std::copy(m_tex_env_color, m_tex_env_color + 4, values);
+    std::copy(unit.env_color, unit.env_color + 4, values);
+  else if (name == GL_COMBINE_RGB)
+    values[0] = static_cast<float>(unit.combine_rgb);
+  else if (name == GL_COMBINE_ALPHA)
+    values[0] = static_cast<float>(unit.combine_alpha);
+  else if (in_triple(name, GL_SRC0_RGB, &i))
+    values[0] = static_cast<float>(unit.source_rgb[i]);
+  else if (in_triple(name, GL_SRC0_ALPHA, &i))
+    values[0] = static_cast<float>(unit.source_alpha[i]);
+  else if (in_triple(name, GL_OPERAND0_RGB, &i))
+    values[0] = static_cast<float>(unit.operand_rgb[i]);
+  else if (in_triple(name, GL_OPERAND0_ALPHA, &i))
+    values[0] = static_cast<float>(unit.operand_alpha[i]);
+  else if (name == GL_RGB_SCALE)
+    values[0] = unit.rgb_scale;
+  else if (name == GL_ALPHA_SCALE)
+    values[0] = unit.alpha_scale;
   else
     error(GL_INVALID_ENUM);
 }

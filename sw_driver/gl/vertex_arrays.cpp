@@ -26,8 +26,8 @@ void Context::normal(float x, float y, float z) {
 
 void Context::tex_coord(GLenum unit, float s, float t, float r, float q) {
   charge_call(4);
-  if (unit < GL_TEXTURE0 || unit > GL_TEXTURE1) return error(GL_INVALID_ENUM);
-  if (unit == GL_TEXTURE0) m_texcoord = {s, t, r, q};
+  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture_units) return error(GL_INVALID_ENUM);
+  m_units[unit - GL_TEXTURE0].texcoord = {s, t, r, q};
 }
 
 void Context::array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer,
@@ -35,14 +35,13 @@ void Context::array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsize
   charge_call(6);
   if (!type_ok) return error(GL_INVALID_ENUM);
   if (!size_ok || stride < 0) return error(GL_INVALID_VALUE);
-  if (&array == &m_texcoord_array && m_client_active_texture != GL_TEXTURE0) return;
   array.size = size, array.type = type, array.stride = stride, array.pointer = pointer;
   array.buffer = m_array_buffer;
 }
 
 void Context::active_texture(GLenum unit, bool client) {
   charge_call();
-  if (unit < GL_TEXTURE0 || unit > GL_TEXTURE1) return error(GL_INVALID_ENUM);
+  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture_units) return error(GL_INVALID_ENUM);
   (client ? m_client_active_texture : m_active_texture) = unit;
 }
 

@@ -67,8 +67,10 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   out.resize(indices.size());
   const glm::mat4& modelview = m_modelview.back();
   const glm::mat4& projection = m_projection.back();
-  const glm::mat4& texture = m_texture_matrix.back();
-  const bool texturing = m_texture_2d && m_textures.count(m_bound_texture) && m_textures[m_bound_texture].defined;
+  // The units that draw: only their coordinates are fetched and transformed.
+  unsigned textured_units = 0;
+  bool textured[MAX_TEXTURE_UNITS] = {};
+  for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) textured_units += textured[u] = unit_textured(u);
   glm::mat3 normal_matrix(1);
   if (m_lighting) normal_matrix = glm::transpose(glm::inverse(glm::mat3(modelview)));
   unsigned lights = 0;
@@ -96,19 +98,25 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
       v.clip.color = glm::clamp(color, glm::vec4(0), glm::vec4(1));
       v.clip.back_color = v.clip.color;
     }
-    v.clip.eye = v.eye;
-    if (texturing) {
-      glm::vec4 tc = m_texcoord_array.enabled ? read_attribute(m_texcoord_array, index, {0, 0, 0, 1}) : m_texcoord;
-      tc = texture * tc;
-      v.clip.tex = tc.w != 0 ? glm::vec2(tc) / tc.w : glm::vec2(tc);
-    } else {
-      v.clip.tex = {0, 0};
+    bool tex_finite = true;
+    for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
+      if (!textured[u]) {
+        v.clip.tex[u] = {0, 0};
+        continue;
+      }
+      const TextureUnitState& unit = m_units[u];
+      glm::vec4 tc =
+          unit.texcoord_array.enabled ? read_attribute(unit.texcoord_array, index, {0, 0, 0, 1}) : unit.texcoord;
+      tc = unit.matrix.back() * tc;
+      v.clip.tex[u] = tc.w != 0 ? glm::vec2(tc) / tc.w : glm::vec2(tc);
+      tex_finite = tex_finite && std::isfinite(v.clip.tex[u].x) && std::isfinite(v.clip.tex[u].y);
     }
+    v.clip.eye = v.eye;
     // Fog from the eye distance as Mesa takes it: |z_eye|, not divided by w.
     v.clip.fog = m_fog ? std::fabs(v.eye.z) : 0.0f;
     const glm::vec4& p = v.clip.position;
     v.valid = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w) &&
-              std::isfinite(v.clip.color.r) && std::isfinite(v.clip.tex.x) && std::isfinite(v.clip.tex.y);
+              std::isfinite(v.clip.color.r) && tex_finite;
   };
 
   uint64_t transformed = 0;
@@ -142,7 +150,7 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   per_vertex += transform_cost();
   if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
   if (two_sided) per_vertex += lighting_cost(lights);
-  if (texturing) per_vertex += transform_cost();
+  for (unsigned u = 0; u < textured_units; ++u) per_vertex += transform_cost();
   per_vertex += clip_test_cost();
   charge(per_vertex, transformed);
   m_host.compute(Op::alu, 20 * transformed);        // fetch, conversions, loop overhead

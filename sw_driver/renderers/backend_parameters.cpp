@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "gl/renderer.h"
 #include "renderers/backends.h"
 
 namespace tessera {
@@ -20,6 +21,9 @@ ParamGroup driver_parameters() {
   return {"driver",
           {
               param::choice("driver.backend", "arm", names, description),
+              param::integer("driver.texture_units", gl::DEFAULT_TEXTURE_UNITS, 1, gl::MAX_TEXTURE_UNITS, "units",
+                             "texture units the GL ES driver offers (GL_MAX_TEXTURE_UNITS; ES 1.1 requires at "
+                             "least 2)"),
           },
           [](const Config& config) {
             // The choice has been checked against the same names already.

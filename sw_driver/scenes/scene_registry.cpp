@@ -4,7 +4,8 @@
 
 namespace tessera::scenes {
 
-Scene aapoly_scene();  // aapoly.cpp
+Scene aapoly_scene();        // aapoly.cpp
+Scene multitexture_scene();  // multitexture.cpp
 // The ES 1.1 geometry scenes (clip_offset.cpp, points_lines.cpp, lights_two_side.cpp).
 Scene clip_offset_scene();
 Scene points_lines_scene();
@@ -15,9 +16,9 @@ Scene texture_formats_scene();  // texture_formats.cpp
 
 const std::vector<Scene>& all_scenes() {
   static const std::vector<Scene> scenes = {
-      triangle_scene(),        cubes_scene(),   fullscreen_rect_scene(), textured_quad_scene(),  teapot_scene(),
-      obj_viewer_scene(),      aapoly_scene(),  tile_grid_scene(),       clip_offset_scene(),    points_lines_scene(),
-      lights_two_side_scene(), fog_row_scene(), mipmap_floor_scene(),    texture_formats_scene()};
+      triangle_scene(),        cubes_scene(),   fullscreen_rect_scene(), textured_quad_scene(),   teapot_scene(),
+      obj_viewer_scene(),      aapoly_scene(),  tile_grid_scene(),       clip_offset_scene(),     points_lines_scene(),
+      lights_two_side_scene(), fog_row_scene(), mipmap_floor_scene(),    texture_formats_scene(), multitexture_scene()};
   return scenes;
 }
 

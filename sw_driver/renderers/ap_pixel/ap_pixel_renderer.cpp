@@ -9,6 +9,7 @@
 #include "common/pixel_format.h"
 #include "gl/runtime.h"
 #include "renderers/common/fragment_ops.h"
+#include "renderers/common/texture_units.h"
 #include "renderers/common/texturing.h"
 
 namespace tessera::ap_pixel {
@@ -118,27 +119,26 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
   const renderers::HostTime before = m_time;
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): drawn without it");
   if (state.fog) unsupported("fog (GL_FOG): drawn without it");
-  const bool textured = state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
-                        state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
-                        (state.tex.height & (state.tex.height - 1)) == 0;
-  if (state.texture && !textured)
+  m_unit = renderers::single_texture_unit(state, [this](const std::string& what) { unsupported(what); });
+  const gl::Texture tex = m_unit.index >= 0 ? state.unit[m_unit.index].tex : gl::Texture{};
+  const bool textured = m_unit.index >= 0 && tex.width > 0 && tex.height > 0 && tex.width <= 256 && tex.height <= 256 &&
+                        (tex.width & (tex.width - 1)) == 0 && (tex.height & (tex.height - 1)) == 0;
+  if (m_unit.index >= 0 && !textured)
     unsupported("textures that are not a power of two up to 256 texels: drawn untextured");
-  if (textured && renderers::env_needs_base_format(state.tex, state.tex_env))
+  if (textured && renderers::env_needs_base_format(tex, m_unit.env))
     unsupported(
         "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
         "3.15): drawn with the texel expanded to RGBA");
-  if (textured && renderers::texture_needs_lod(state.tex))
+  if (textured && renderers::texture_needs_lod(tex))
     unsupported(
         "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
         "sampled with the magnification filter");
   Reads reads;
   reads.colour = !state.flat_shading;
   reads.alpha = reads.colour && (state.alpha_test || state.blend || m_buffers.color_format != PixelFormat::rgb565 ||
-                                 (textured && state.tex_env != gl::TexEnv::replace));
+                                 (textured && m_unit.env != gl::TexEnv::replace));
   reads.texcoords = textured;
-  gl::RasterState effective = state;
-  effective.texture = textured;
-  for (size_t t = 0; t < count; ++t) draw_triangle(effective, triangles[t], reads);
+  for (size_t t = 0; t < count; ++t) draw_triangle(state, triangles[t], reads);
   const double elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
                            (m_time.array_wait - before.array_wait);
   m_time.compute += m_host.now_seconds() - start - elsewhere;
@@ -156,8 +156,9 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
     box.x1 = static_cast<int>(std::min<int64_t>(box.x1, int64_t{state.scissor_x} + state.scissor_width - 1));
     box.y1 = static_cast<int>(std::min<int64_t>(box.y1, int64_t{state.scissor_y} + state.scissor_height - 1));
   }
-  const PixelTriangle setup(triangle, state.flat_shading, state.texture ? state.tex.width : 0,
-                            state.texture ? state.tex.height : 0, box);
+  const gl::Texture* tex = reads.texcoords ? &state.unit[m_unit.index].tex : nullptr;
+  const PixelTriangle setup(triangle, state.flat_shading, tex ? tex->width : 0, tex ? tex->height : 0, box,
+                            tex ? static_cast<unsigned>(m_unit.index) : 0);
   if (!setup.valid()) return;
 
   // Scan conversion and the depth test, on the host.
@@ -573,7 +574,7 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
                                   bool textured) {
   const HostCosts& k = m_costs;
   if (textured) {
-    const gl::Texture& tex = state.tex;
+    const gl::Texture& tex = state.unit[m_unit.index].tex;
     auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
       std::memcpy(
           out,
@@ -588,7 +589,7 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
       m_host.compute(Op::alu, k.texel_nearest_alu);
       m_host.compute(Op::mul, k.texel_nearest_mul);
     }
-    rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
+    rgba = renderers::apply_tex_env(m_unit.env, rgba, texel);
     m_host.compute(Op::alu, k.tex_env_alu);
     m_host.compute(Op::mul, k.tex_env_mul);
   }

@@ -24,6 +24,7 @@
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
+#include "renderers/common/texture_units.h"
 #include "renderers/common/unsupported_state.h"
 
 namespace tessera::ap_pixel {
@@ -133,6 +134,8 @@ class ApPixelRenderer : public gl::Renderer {
   // Per pixel of a batch, the attribute values read back (16.8).
   std::vector<std::array<int32_t, ATTRIBUTES>> m_results;
   renderers::UnsupportedState m_unsupported{"ap-pixel"};
+  // The one texture unit the current draw textures with (texture_units.h).
+  renderers::SingleTextureUnit m_unit;
 
   // With the DMA: the CMEM ranges of the 21 values (with the gradients'
   // sign bytes, which the program overwrites), the staging buffers in

@@ -49,7 +49,7 @@ PixelLayout PixelLayout::of(const ap::Program& program) {
 }
 
 PixelTriangle::PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned tex_width, unsigned tex_height,
-                             const PixelBox& box)
+                             const PixelBox& box, unsigned unit)
     : m_box(box) {
   int64_t x[3], y[3];
   for (unsigned i = 0; i < 3; ++i) {
@@ -87,8 +87,8 @@ PixelTriangle::PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned t
     m_z[i] = v.z;
     const uint8_t channels[4] = {colour.r, colour.g, colour.b, colour.a};
     for (unsigned k = 0; k < 4; ++k) m_vertex[k][i] = 256.0 * channels[k];
-    m_vertex[static_cast<unsigned>(Attribute::s)][i] = static_cast<double>(v.s) * tex_width * 256.0;
-    m_vertex[static_cast<unsigned>(Attribute::t)][i] = static_cast<double>(v.t) * tex_height * 256.0;
+    m_vertex[static_cast<unsigned>(Attribute::s)][i] = static_cast<double>(v.tex[unit].s) * tex_width * 256.0;
+    m_vertex[static_cast<unsigned>(Attribute::t)][i] = static_cast<double>(v.tex[unit].t) * tex_height * 256.0;
     m_vertex[static_cast<unsigned>(Attribute::z)][i] = static_cast<double>(v.z) / 256.0;
   }
   m_valid = true;

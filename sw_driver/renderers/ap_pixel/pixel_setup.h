@@ -82,7 +82,9 @@ class PixelTriangle {
  public:
   // flat: every vertex takes v[2]'s colour; tex_width, tex_height: the
   // texture's size in texels (S and T are in texels), 0 when untextured.
-  PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned tex_width, unsigned tex_height, const PixelBox& box);
+  // `unit`: the texture unit whose coordinates are interpolated.
+  PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned tex_width, unsigned tex_height, const PixelBox& box,
+                unsigned unit = 0);
 
   // False for a triangle that draws nothing (zero area, a vertex beyond
   // +-2^18 pixels as in the other back ends, or wholly outside the box).

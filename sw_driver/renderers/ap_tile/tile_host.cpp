@@ -2,21 +2,22 @@
 
 #include <algorithm>
 
+#include "renderers/common/texture_units.h"
+
 namespace tessera::ap_tile {
 
-uint8_t TextureTable::number(const gl::RasterState& state, const Unsupported& unsupported) {
+uint8_t TextureTable::number(const gl::Texture& tex, gl::TexEnv env, const Unsupported& unsupported) {
   for (size_t k = 0; k < m_entries.size(); ++k) {
     const gl::Texture& t = m_entries[k].texture;
-    if (t.address == state.tex.address && t.width == state.tex.width && t.height == state.tex.height &&
-        t.min_filter == state.tex.min_filter && t.mag_filter == state.tex.mag_filter && t.wrap_s == state.tex.wrap_s &&
-        t.wrap_t == state.tex.wrap_t && m_entries[k].env == state.tex_env)
+    if (t.address == tex.address && t.width == tex.width && t.height == tex.height && t.min_filter == tex.min_filter &&
+        t.mag_filter == tex.mag_filter && t.wrap_s == tex.wrap_s && t.wrap_t == tex.wrap_t && m_entries[k].env == env)
       return static_cast<uint8_t>(k + 1);
   }
   if (m_entries.size() == 255) {
     unsupported("more than 255 textures between colour clears (the last one is reused)");
     return 255;
   }
-  m_entries.push_back({state.tex, state.tex_env});
+  m_entries.push_back({tex, env});
   return static_cast<uint8_t>(m_entries.size());
 }
 
@@ -46,20 +47,22 @@ std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& 
       default: unsupported("depth functions other than GL_LESS, GL_LEQUAL, GL_ALWAYS and GL_NEVER: drawn as GL_LESS");
     }
   }
-  if (state.texture && state.tex.width > 0 && state.tex.height > 0 && state.tex.width <= 256 &&
-      state.tex.height <= 256 && (state.tex.width & (state.tex.width - 1)) == 0 &&
-      (state.tex.height & (state.tex.height - 1)) == 0) {
-    if (renderers::texture_needs_lod(state.tex))
+  const renderers::SingleTextureUnit unit = renderers::single_texture_unit(state, unsupported);
+  const gl::Texture tex = unit.index >= 0 ? state.unit[unit.index].tex : gl::Texture{};
+  if (unit.index >= 0 && tex.width > 0 && tex.height > 0 && tex.width <= 256 && tex.height <= 256 &&
+      (tex.width & (tex.width - 1)) == 0 && (tex.height & (tex.height - 1)) == 0) {
+    if (renderers::texture_needs_lod(tex))
       unsupported(
           "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
           "sampled with the magnification filter");
-    if (renderers::env_needs_base_format(state.tex, state.tex_env))
+    if (renderers::env_needs_base_format(tex, unit.env))
       unsupported(
           "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or GL_REPLACE (ES 1.1 table "
           "3.15): drawn with the texel expanded to RGBA");
-    flags.tex = textures.number(state, unsupported);
-    flags.tex_width = state.tex.width;
-    flags.tex_height = state.tex.height;
+    flags.tex = textures.number(tex, unit.env, unsupported);
+    flags.tex_width = tex.width;
+    flags.tex_height = tex.height;
+    flags.tex_unit = static_cast<uint8_t>(unit.index);
   }
   return flags;
 }

@@ -34,8 +34,8 @@ struct TextureEntry {
 // CMEM's `tid` plane holds them (0: untextured).
 class TextureTable {
  public:
-  // The number of `state`'s texture and environment, added if new.
-  uint8_t number(const gl::RasterState& state, const Unsupported& unsupported);
+  // The number of a texture and environment, added if new.
+  uint8_t number(const gl::Texture& tex, gl::TexEnv env, const Unsupported& unsupported);
   // The entry numbered `number`, or nullptr.
   const TextureEntry* find(unsigned number) const {
     return number != 0 && number <= m_entries.size() ? &m_entries[number - 1] : nullptr;

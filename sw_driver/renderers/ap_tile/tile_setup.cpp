@@ -182,8 +182,8 @@ TriangleSetup::TriangleSetup(const gl::Triangle& triangle, const DrawFlags& flag
       m_color[k].fraction = 8;
       m_color[k].bias = 128;
     }
-    m_tex[0][i] = static_cast<double>(triangle.v[i].s) * flags.tex_width * 256.0;
-    m_tex[1][i] = static_cast<double>(triangle.v[i].t) * flags.tex_height * 256.0;
+    m_tex[0][i] = static_cast<double>(triangle.v[i].tex[flags.tex_unit].s) * flags.tex_width * 256.0;
+    m_tex[1][i] = static_cast<double>(triangle.v[i].tex[flags.tex_unit].t) * flags.tex_height * 256.0;
   }
   m_valid = true;
 }

@@ -72,6 +72,7 @@ struct DrawFlags {
   bool flat = false;
   uint8_t tex = 0;  // texture number of the frame (0: untextured)
   unsigned tex_width = 0, tex_height = 0;
+  uint8_t tex_unit = 0;  // the texture unit whose coordinates are drawn
 };
 
 // One normalised edge function E = A x + B y + C in 1/512 pixel, inside >= 0.

@@ -71,6 +71,15 @@ inline int wrap(int i, unsigned size, gl::TexWrap mode) {
   return renderers::wrap_texel(i, size, mode);
 }
 
+// How many arguments a GL_COMBINE function reads (ES 1.1 table 3.18).
+unsigned combine_arguments(gl::CombineFunc func) {
+  switch (func) {
+    case gl::CombineFunc::replace: return 1;
+    case gl::CombineFunc::interpolate: return 3;
+    default: return 2;
+  }
+}
+
 // One attribute's plane, in fixed point: value(x, y) = value0 + gx (x - x0) +
 // gy (y - y0), x and y in pixels. Values inside the triangle are convex
 // combinations of the vertex values, so every start value is clamped to
@@ -107,12 +116,14 @@ struct Plane {
 }  // namespace
 
 struct ArmRasterizer::TriangleSetup {
-  Plane z, color[4], sq, tq, q, fog;
+  Plane z, color[4], q, fog;
+  Plane sq[gl::MAX_TEXTURE_UNITS], tq[gl::MAX_TEXTURE_UNITS];  // per unit of DrawContext::units
   uint32_t flat_rgba = 0;
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
-  bool linear_filter = false;
-  bool lod = false;  // the level of detail chooses filter and levels (texturing.h)
+  bool linear_filter[gl::MAX_TEXTURE_UNITS] = {};
+  // Per unit: the level of detail chooses filter and levels (texturing.h).
+  bool lod[gl::MAX_TEXTURE_UNITS] = {};
 };
 
 struct ArmRasterizer::DrawContext {
@@ -121,6 +132,9 @@ struct ArmRasterizer::DrawContext {
   bool depth_test = false, depth_write = false;
   bool stencil_test = false, stencil_writes = false;
   bool alpha_test = false, texture = false, gouraud = false;
+  // The texture units drawn, in order (enabled, with a usable texture).
+  unsigned units[gl::MAX_TEXTURE_UNITS] = {};
+  unsigned unit_count = 0;
   bool fog = false;
   renderers::FogCoefficients fog_coefficients;
   uint32_t fog_rgba = 0;
@@ -247,9 +261,14 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
     c.fog_coefficients = renderers::fog_coefficients(state);
     c.fog_rgba = renderers::fog_rgba(state);
   }
-  const gl::Texture& tex = state.texture ? state.tex : gl::Texture{};
-  c.texture = state.texture && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
-              (tex.height & (tex.height - 1)) == 0;
+  for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
+    const gl::TextureUnit& unit = state.unit[u];
+    const gl::Texture& tex = unit.tex;
+    if (unit.enabled && tex.width > 0 && tex.height > 0 && (tex.width & (tex.width - 1)) == 0 &&
+        (tex.height & (tex.height - 1)) == 0)
+      c.units[c.unit_count++] = u;
+  }
+  c.texture = c.unit_count != 0;
   unsigned color_mask = 0;
   for (unsigned ch = 0; ch < 4; ++ch) color_mask |= state.color_mask[ch] ? 1u << ch : 0u;
   c.color_write_mask = channel_bits(format, color_mask);
@@ -264,21 +283,52 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
        (c.logic_op && logic_op_reads_destination(state.logic_op_mode)) || c.color_write_mask != all_color);
 
   // Instruction counts for this state.
-  c.attributes = (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 3 : 0) + (c.fog ? 1 : 0);
+  // A texture takes s/w, t/w and 1/w; each further unit its own s/w, t/w.
+  c.attributes =
+      (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 1 + 2 * c.unit_count : 0) + (c.fog ? 1 : 0);
   c.pixel_alu = k.pixel_alu + (c.depth_test ? k.depth_step_test_alu : 0) + (c.stencil_test ? k.stencil_test_alu : 0) +
                 (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0) +
                 (c.fog ? k.fog_step_alu : 0);
   c.pixel_branch = k.pixel_branch;
   c.shade_alu = c.alpha_test ? k.alpha_test_alu : 0;
-  if (c.texture) {
+  for (unsigned i = 0; i < c.unit_count; ++i) {
+    const gl::TextureUnit& unit = state.unit[c.units[i]];
     c.shade_alu += k.texel_nearest_alu;  // refined per triangle for linear filtering and perspective
     c.shade_mul += k.texel_nearest_mul;
-    if (state.tex_env == gl::TexEnv::modulate) {
-      c.shade_alu += k.modulate_alu;
-      c.shade_mul += k.modulate_mul;
-    } else if (state.tex_env == gl::TexEnv::decal) {
-      c.shade_alu += k.decal_alu;
-      c.shade_mul += k.decal_mul;
+    switch (unit.env) {
+      case gl::TexEnvMode::modulate:
+        c.shade_alu += k.modulate_alu;
+        c.shade_mul += k.modulate_mul;
+        break;
+      case gl::TexEnvMode::decal:
+        c.shade_alu += k.decal_alu;
+        c.shade_mul += k.decal_mul;
+        break;
+      case gl::TexEnvMode::replace: break;
+      case gl::TexEnvMode::blend:
+        c.shade_alu += k.blend_env_alu;
+        c.shade_mul += k.blend_env_mul;
+        break;
+      case gl::TexEnvMode::add:
+        c.shade_alu += k.add_env_alu;
+        c.shade_mul += k.add_env_mul;
+        break;
+      case gl::TexEnvMode::combine: {
+        const bool dot3 =
+            unit.combine_rgb.func == gl::CombineFunc::dot3_rgb || unit.combine_rgb.func == gl::CombineFunc::dot3_rgba;
+        const bool dot3_rgba = unit.combine_rgb.func == gl::CombineFunc::dot3_rgba;
+        const gl::CombineStage* stages[2] = {&unit.combine_rgb, dot3_rgba ? nullptr : &unit.combine_alpha};
+        for (int half = 0; half < 2; ++half) {
+          const gl::CombineStage* stage = stages[half];
+          if (stage == nullptr) continue;
+          const unsigned arguments = combine_arguments(stage->func);
+          const bool rgb = half == 0;
+          c.shade_alu += arguments * (rgb ? k.combine_rgb_argument_alu : k.combine_alpha_argument_alu);
+          c.shade_alu += rgb ? (dot3 ? k.combine_dot3_alu : k.combine_rgb_function_alu) : k.combine_alpha_function_alu;
+          c.shade_mul += rgb ? (dot3 ? k.combine_dot3_mul : k.combine_rgb_function_mul) : k.combine_alpha_function_mul;
+        }
+        break;
+      }
     }
   }
   if (c.fog) {
@@ -409,8 +459,14 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
     // texels per pixel shifts the texture by 0.05 texel, a colour step of
     // bilinear filtering (README, "Rounding"). Coverage and depth keep the
     // snapped vertices.
+    // Only where 1/w varies: on an affine triangle (constant w) the reference's
+    // GL_NEAREST texel choices follow the snapped vertices (multitexture's
+    // orthographic panels, whose vertices lie 0.2/16 pixel off the grid and
+    // whose pixel centres fall on texel edges: 0.4% of the frame took the
+    // next texel row with the unsnapped planes).
+    const bool varying_w = !(tri.v[0].inv_w == tri.v[1].inv_w && tri.v[1].inv_w == tri.v[2].inv_w);
     double attribute_area = area;
-    if (c.texture && has_window_positions(tri)) {
+    if (c.texture && varying_w && has_window_positions(tri)) {
       for (int v = 0; v < 3; ++v) {
         px[v] = double(tri.v[v].x_window);
         py[v] = double(tri.v[v].y_window);
@@ -460,24 +516,26 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
       const gl::ScreenVertex& pv = tri.v[2];
       s.flat_rgba = uint32_t(pv.r) | uint32_t(pv.g) << 8 | uint32_t(pv.b) << 16 | uint32_t(pv.a) << 24;
     }
-    if (c.texture) {
-      const gl::Texture& tex = state.tex;
+    for (unsigned i = 0; i < c.unit_count; ++i) {
+      const unsigned u = c.units[i];
+      const gl::Texture& tex = state.unit[u].tex;
       double sq[3], tq[3], su[3], tv[3];
       for (int v = 0; v < 3; ++v) {
-        su[v] = std::isfinite(tri.v[v].s) ? std::clamp(double(tri.v[v].s) * tex.width, -MAX_TEXELS, MAX_TEXELS) : 0.0;
-        tv[v] = std::isfinite(tri.v[v].t) ? std::clamp(double(tri.v[v].t) * tex.height, -MAX_TEXELS, MAX_TEXELS) : 0.0;
+        const gl::TexCoord& st = tri.v[v].tex[u];
+        su[v] = std::isfinite(st.s) ? std::clamp(double(st.s) * tex.width, -MAX_TEXELS, MAX_TEXELS) : 0.0;
+        tv[v] = std::isfinite(st.t) ? std::clamp(double(st.t) * tex.height, -MAX_TEXELS, MAX_TEXELS) : 0.0;
         sq[v] = su[v] * qn[v];
         tq[v] = tv[v] * qn[v];
       }
-      s.sq.setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.tq.setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.sq[i].setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
+      s.tq[i].setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
       // Minified when the triangle covers more texels than pixels.
       const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
       const bool minified = std::fabs(texel_area) > std::fabs(area);
-      s.linear_filter = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
-      s.lod = renderers::texture_needs_lod(tex);
-      if (s.lod) {
-        s.linear_filter = false;  // chosen per pixel, charged per pixel
+      s.linear_filter[i] = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
+      s.lod[i] = renderers::texture_needs_lod(tex);
+      if (s.lod[i]) {
+        s.linear_filter[i] = false;  // chosen per pixel, charged per pixel
         if (!s.perspective) {
           m_memory.compute(Op::alu, k.lod_alu);
           m_memory.compute(Op::mul, k.lod_mul);
@@ -528,8 +586,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   m_memory.compute(Op::branch, rows * k.row_branch);
 }
 
-void ArmRasterizer::fetch_texel(const DrawContext& c, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
-  const gl::Texture& tex = c.state->tex;
+void ArmRasterizer::fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
   const gl::TextureLevel image = renderers::texture_level(tex, level);
   const unsigned w = image.width, h = image.height;
   auto address = [&](int i, int j) { return image.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
@@ -584,12 +641,13 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
       dcolor[ch] = int32_t(s.color[ch].step);
     }
   }
-  int64_t sq = 0, tq = 0, q = 1, dsq = 0, dtq = 0, dq = 0;
-  if (c.texture) {
-    sq = s.sq.start(x_first, j, n);
-    tq = s.tq.start(x_first, j, n);
-    dsq = s.sq.step;
-    dtq = s.tq.step;
+  int64_t sq[gl::MAX_TEXTURE_UNITS] = {}, tq[gl::MAX_TEXTURE_UNITS] = {}, q = 1, dq = 0;
+  int64_t dsq[gl::MAX_TEXTURE_UNITS] = {}, dtq[gl::MAX_TEXTURE_UNITS] = {};
+  for (unsigned u = 0; u < c.unit_count; ++u) {
+    sq[u] = s.sq[u].start(x_first, j, n);
+    tq[u] = s.tq[u].start(x_first, j, n);
+    dsq[u] = s.sq[u].step;
+    dtq[u] = s.tq[u].step;
   }
   if (c.texture || s.perspective_color || (c.fog && s.perspective)) {
     q = s.q.start(x_first, j, n);
@@ -624,16 +682,14 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
   // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
   uint64_t lod_alu = 0, lod_mul = 0;
-  auto filter_level = [&](unsigned level, int u, int v, bool linear, uint8_t out[4]) {
-    fetch_texel(c, level, u, v, linear, out);
-  };
-  // lambda at a pixel from its stepped (s q), (t q), q and the planes'
+  // lambda at a pixel from unit i's stepped (s q), (t q), q and its planes'
   // gradients: d(sq/q)/dx = (gx(sq) q - sq gx(q)) / q^2, in level 0's texels.
-  auto pixel_lod = [&](int64_t sq_value, int64_t tq_value, int64_t q_value) {
+  auto pixel_lod = [&](unsigned i, int64_t sq_value, int64_t tq_value, int64_t q_value) {
     const double scale = double(int64_t{1} << (Q_FRACTION_BITS - ST_FRACTION_BITS)) / (double(q_value) * q_value);
     const double sqd = double(sq_value), tqd = double(tq_value), qd = double(q_value);
-    const double ux = (s.sq.gx * qd - sqd * s.q.gx) * scale, uy = (s.sq.gy * qd - sqd * s.q.gy) * scale;
-    const double vx = (s.tq.gx * qd - tqd * s.q.gx) * scale, vy = (s.tq.gy * qd - tqd * s.q.gy) * scale;
+    const Plane &sp = s.sq[i], &tp = s.tq[i];
+    const double ux = (sp.gx * qd - sqd * s.q.gx) * scale, uy = (sp.gy * qd - sqd * s.q.gy) * scale;
+    const double vx = (tp.gx * qd - tqd * s.q.gx) * scale, vy = (tp.gy * qd - tqd * s.q.gy) * scale;
     return renderers::texture_lod(ux, vx, uy, vy);
   };
   for (int i = 0; i < n; ++i) {
@@ -660,29 +716,39 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         rgba = s.flat_rgba;
       }
       if (c.texture) {
-        int64_t u8, v8;
-        if (s.perspective) {
-          u8 = sq * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
-          v8 = tq * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
-          ++texel_calls;
-        } else {
-          u8 = sq >> (ST_FRACTION_BITS - 8);
-          v8 = tq >> (ST_FRACTION_BITS - 8);
+        // One reciprocal of q per pixel serves every unit (texel_calls).
+        if (s.perspective) ++texel_calls;
+        const uint32_t primary = rgba;
+        for (unsigned u = 0; u < c.unit_count; ++u) {
+          int64_t u8, v8;
+          if (s.perspective) {
+            u8 = sq[u] * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
+            v8 = tq[u] * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
+          } else {
+            u8 = sq[u] >> (ST_FRACTION_BITS - 8);
+            v8 = tq[u] >> (ST_FRACTION_BITS - 8);
+          }
+          const gl::TextureUnit& unit = state.unit[c.units[u]];
+          uint8_t texel[4];
+          if (s.lod[u]) {
+            // The unit's own level of detail, from its coordinates' gradients.
+            auto filter_level = [&](unsigned level, int fu, int fv, bool linear, uint8_t filtered[4]) {
+              fetch_texel(unit.tex, level, fu, fv, linear, filtered);
+            };
+            const renderers::LodChoice choice = renderers::sample_texture_lod(
+                unit.tex, int(u8), int(v8), pixel_lod(u, sq[u], tq[u], q), filter_level, texel);
+            if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
+            const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
+            const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
+            lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
+            lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
+          } else {
+            fetch_texel(unit.tex, 0, int(u8), int(v8), s.linear_filter[u], texel);
+          }
+          // The unit's base format rules (fill_missing_components) apply
+          // before its environment, inside apply_texture_unit.
+          rgba = renderers::apply_texture_unit(unit, rgba, primary, texel);
         }
-        uint8_t texel[4];
-        if (s.lod) {
-          const renderers::LodChoice choice =
-              renderers::sample_texture_lod(state.tex, int(u8), int(v8), pixel_lod(sq, tq, q), filter_level, texel);
-          if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
-          const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
-          const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
-          lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
-          lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
-        } else {
-          fetch_texel(c, 0, int(u8), int(v8), s.linear_filter, texel);
-        }
-        renderers::fill_missing_components(state.tex, state.tex_env, rgba, texel);
-        rgba = renderers::apply_tex_env(state.tex_env, rgba, texel);
       }
       if (c.fog) {
         // After texturing, before the fragment operations (ES 1.1, 3.8).
@@ -708,8 +774,10 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     passed += alive;
     z += dz;
     for (int ch = 0; ch < 4; ++ch) color[ch] += dcolor[ch];
-    sq += dsq;
-    tq += dtq;
+    for (unsigned u = 0; u < c.unit_count; ++u) {
+      sq[u] += dsq[u];
+      tq[u] += dtq[u];
+    }
     q += dq;
     fog += dfog;
   }
@@ -751,18 +819,22 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   }
 
   uint64_t shade_alu = c.shade_alu, shade_mul = c.shade_mul;
-  if (c.texture) {
-    if (s.linear_filter) {
+  for (unsigned u = 0; u < c.unit_count; ++u) {
+    if (s.linear_filter[u]) {
       shade_alu += k.texel_linear_alu - k.texel_nearest_alu;
       shade_mul += k.texel_linear_mul - k.texel_nearest_mul;
     }
+  }
+  uint64_t step_alu = 0;
+  if (c.texture) {
+    const uint64_t further_units = c.unit_count - 1;
     if (s.perspective) {
       shade_alu += k.perspective_alu;
-      shade_mul += k.perspective_mul;
+      shade_mul += k.perspective_mul + further_units * k.perspective_unit_mul;
     }
+    step_alu = (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) +
+               further_units * k.texcoord_step_alu_unit;
   }
-  const uint64_t step_alu =
-      c.texture ? (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) : 0;
   if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
   if (c.fog && s.perspective) shade_mul += k.fog_perspective_mul;
   if (lod_alu != 0) m_memory.compute(Op::alu, lod_alu);

@@ -88,8 +88,10 @@ struct InstructionCounts {
   unsigned depth_step_test_alu = 3, stencil_test_alu = 4, stencil_update_alu = 3;
   unsigned color_step_alu = 4;  // Gouraud only
   unsigned texcoord_step_alu_perspective = 6, texcoord_step_alu_affine = 4;
+  unsigned texcoord_step_alu_unit = 2;  // each texture unit after the first: its s/w and t/w
   // Per shaded pixel.
   unsigned perspective_alu = 4, perspective_mul = 2;  // plus one division
+  unsigned perspective_unit_mul = 2;                  // each further unit: s/w, t/w times the reciprocal
   unsigned texel_nearest_alu = 8, texel_nearest_mul = 1;
   unsigned texel_linear_alu = 30, texel_linear_mul = 9;
   // The level of detail: four derivatives of u/q and v/q (two products and a
@@ -99,6 +101,13 @@ struct InstructionCounts {
   // its texel fetch, plus the blend of the two colours.
   unsigned lod_alu = 30, lod_mul = 14, mipmap_blend_alu = 12, mipmap_blend_mul = 4;
   unsigned modulate_alu = 12, modulate_mul = 4, decal_alu = 12, decal_mul = 3;
+  unsigned blend_env_alu = 16, blend_env_mul = 7, add_env_alu = 14, add_env_mul = 1;
+  // GL_COMBINE, per unit: per argument (source select and operand), then
+  // the function of the colour (three channels) and of the alpha half.
+  unsigned combine_rgb_argument_alu = 4, combine_alpha_argument_alu = 2;
+  unsigned combine_rgb_function_alu = 18, combine_rgb_function_mul = 6;
+  unsigned combine_alpha_function_alu = 6, combine_alpha_function_mul = 2;
+  unsigned combine_dot3_alu = 16, combine_dot3_mul = 3;
   unsigned alpha_test_alu = 2;
   // Fog (README.md, "Fog"): per vertex the fog argument from soft float, per
   // pixel its step, per shaded pixel its perspective product, the factor of
@@ -157,8 +166,8 @@ class ArmRasterizer {
 
   void draw_triangle(const DrawContext& context, const gl::Triangle& triangle);
   void shade_span(const DrawContext& context, const TriangleSetup& setup, int j, int x_first, int x_last);
-  // Nearest or bilinear texel of mipmap level `level` at that level's texel coordinates (u8, v8).
-  void fetch_texel(const DrawContext& context, unsigned level, int u8, int v8, bool linear, uint8_t out[4]);
+  // Nearest or bilinear texel of `tex`'s mipmap level `level` at that level's texel coordinates (u8, v8).
+  void fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]);
   void write_color_run(const DrawContext& context, uint32_t row_offset, int x_begin, int begin, int end);
 
   PixelMemory& m_memory;

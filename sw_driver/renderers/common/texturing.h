@@ -1,8 +1,10 @@
 // Texel arithmetic the software back ends share (arm in its span loop,
 // ap-tile when it textures the frame it reads back from the array): wrap
 // modes, the bilinear blend of four texels with 8-bit weights, the level of
-// detail and mipmap level choice, and the texture environments on RGBA8, with products of 0.8 codes rounded to
-// nearest exactly (sw_driver/renderers/arm/README.md, "Rounding").
+// detail and mipmap level choice, and the texture environments on RGBA8
+// (every ES 1.1 mode and the GL_COMBINE functions), with products of 0.8
+// codes rounded to nearest exactly (sw_driver/renderers/arm/README.md,
+// "Rounding").
 #pragma once
 
 #include <algorithm>
@@ -56,6 +58,112 @@ inline uint32_t apply_tex_env(gl::TexEnv env, uint32_t rgba, const uint8_t texel
   return rgba;
 }
 
+// GL_BLEND and GL_ADD (ES 1.1 table 3.15, RGBA textures): BLEND is
+// C = Cf (1 - Ct) + Cc Ct with one rounding per channel, as DECAL; ADD is
+// C = min(Cf + Ct, 1) (exact); both take A = Af At (rounded as MODULATE).
+inline uint32_t apply_blend_env(uint32_t rgba, const uint8_t texel[4], const uint8_t env_color[4]) {
+  uint32_t out = mul8(rgba >> 24, texel[3]) << 24;
+  for (int ch = 0; ch < 3; ++ch) {
+    const uint32_t f = (rgba >> (8 * ch)) & 0xff, t = texel[ch];
+    out |= div255(f * (255 - t) + env_color[ch] * t) << (8 * ch);
+  }
+  return out;
+}
+inline uint32_t apply_add_env(uint32_t rgba, const uint8_t texel[4]) {
+  uint32_t out = mul8(rgba >> 24, texel[3]) << 24;
+  for (int ch = 0; ch < 3; ++ch) out |= std::min<uint32_t>(((rgba >> (8 * ch)) & 0xff) + texel[ch], 255) << (8 * ch);
+  return out;
+}
+
+// GL_COMBINE (ES 1.1 section 3.7.12). Each argument is a 0.8 code a (the
+// operand applied to its source: a, 255 - a, or the source's alpha); the
+// function's value is computed exactly in units of 1/510 of a code, where
+// every function of table 3.18 is an integer n:
+//   REPLACE      510 a0                  MODULATE   2 a0 a1
+//   ADD          510 (a0 + a1)           SUBTRACT   510 (a0 - a1)
+//   ADD_SIGNED   510 (a0 + a1) - 65025   (a0 + a1 - 0.5 on the 0..1 scale)
+//   INTERPOLATE  2 (a0 a2 + a1 (255 - a2))
+//   DOT3_RGB(A)  2 sum over r, g, b of (2 a0 - 255) (2 a1 - 255)
+//                (4 ((r0 - 0.5)(r1 - 0.5) + ...) on the 0..1 scale)
+// then multiplied by the scale (1, 2 or 4), rounded to nearest once (halves
+// up: floor((n scale + 255) / 510)) and clamped to [0, 255]. MODULATE with
+// scale 1 is therefore exactly the MODULATE environment's mul8, and no
+// intermediate result is rounded or clamped before the scale, as the
+// specification's formulas read.
+inline int64_t combine_value(gl::CombineFunc func, const int32_t a[3]) {
+  switch (func) {
+    case gl::CombineFunc::replace: return 510 * int64_t{a[0]};
+    case gl::CombineFunc::modulate: return 2 * int64_t{a[0]} * a[1];
+    case gl::CombineFunc::add: return 510 * int64_t{a[0] + a[1]};
+    case gl::CombineFunc::add_signed: return 510 * int64_t{a[0] + a[1]} - 65025;
+    case gl::CombineFunc::interpolate: return 2 * (int64_t{a[0]} * a[2] + int64_t{a[1]} * (255 - a[2]));
+    case gl::CombineFunc::subtract: return 510 * int64_t{a[0] - a[1]};
+    default: return 0;  // DOT3 takes all three channels: combine_dot3
+  }
+}
+inline int64_t combine_dot3(const int32_t a0[3], const int32_t a1[3]) {
+  int64_t sum = 0;
+  for (int ch = 0; ch < 3; ++ch) sum += int64_t{2 * a0[ch] - 255} * (2 * a1[ch] - 255);
+  return 2 * sum;
+}
+inline uint32_t combine_round(int64_t value, unsigned scale) {
+  const int64_t n = value * scale + 255;
+  const int64_t q = n >= 0 ? n / 510 : -((-n + 509) / 510);  // floor
+  return static_cast<uint32_t>(std::clamp<int64_t>(q, 0, 255));
+}
+
+// The argument of `stage` number i for channel ch (0..2 colour, 3 alpha);
+// sources[] holds the RGBA8 colours indexed by gl::CombineSource.
+inline int32_t combine_argument(const gl::CombineStage& stage, int i, int ch, const uint32_t sources[4]) {
+  const uint32_t color = sources[static_cast<int>(stage.source[i])];
+  const int32_t c = static_cast<int32_t>((color >> (8 * ch)) & 0xff), alpha = static_cast<int32_t>(color >> 24);
+  switch (stage.operand[i]) {
+    case gl::CombineOperand::src_color: return c;
+    case gl::CombineOperand::one_minus_src_color: return 255 - c;
+    case gl::CombineOperand::src_alpha: return alpha;
+    case gl::CombineOperand::one_minus_src_alpha: return 255 - alpha;
+  }
+  return c;
+}
+
+inline uint32_t apply_combine(const gl::TextureUnit& unit, uint32_t previous, uint32_t primary,
+                              const uint8_t texel[4]) {
+  const uint32_t texture_rgba =
+      uint32_t{texel[0]} | uint32_t{texel[1]} << 8 | uint32_t{texel[2]} << 16 | uint32_t{texel[3]} << 24;
+  const uint32_t constant = uint32_t{unit.env_color[0]} | uint32_t{unit.env_color[1]} << 8 |
+                            uint32_t{unit.env_color[2]} << 16 | uint32_t{unit.env_color[3]} << 24;
+  // Indexed by gl::CombineSource: texture, constant, primary colour, previous.
+  const uint32_t sources[4] = {texture_rgba, constant, primary, previous};
+  const gl::CombineStage& rgb = unit.combine_rgb;
+  const gl::CombineStage& alpha = unit.combine_alpha;
+  uint32_t out = 0;
+  const bool dot3 = rgb.func == gl::CombineFunc::dot3_rgb || rgb.func == gl::CombineFunc::dot3_rgba;
+  if (dot3) {
+    int32_t a0[3], a1[3];
+    for (int ch = 0; ch < 3; ++ch) {
+      a0[ch] = combine_argument(rgb, 0, ch, sources);
+      a1[ch] = combine_argument(rgb, 1, ch, sources);
+    }
+    const int64_t dot = combine_dot3(a0, a1);
+    const uint32_t value = combine_round(dot, rgb.scale);
+    out = value | value << 8 | value << 16;
+    // DOT3_RGBA puts the dot product in alpha too, the alpha function unused;
+    // each result is then scaled by its own scale (ES 1.1 section 3.7.12:
+    // "the RGB and ALPHA results ... multiplied by RGB_SCALE and
+    // ALPHA_SCALE, respectively", as Mesa does).
+    if (rgb.func == gl::CombineFunc::dot3_rgba) return out | combine_round(dot, alpha.scale) << 24;
+  } else {
+    for (int ch = 0; ch < 3; ++ch) {
+      const int32_t a[3] = {combine_argument(rgb, 0, ch, sources), combine_argument(rgb, 1, ch, sources),
+                            combine_argument(rgb, 2, ch, sources)};
+      out |= combine_round(combine_value(rgb.func, a), rgb.scale) << (8 * ch);
+    }
+  }
+  const int32_t a[3] = {combine_argument(alpha, 0, 3, sources), combine_argument(alpha, 1, 3, sources),
+                        combine_argument(alpha, 2, 3, sources)};
+  return out | combine_round(combine_value(alpha.func, a), alpha.scale) << 24;
+}
+
 // Whether `env` takes a component `tex`'s base format lacks (ES 1.1 table
 // 3.15): GL_REPLACE the fragment's alpha for RGB and LUMINANCE, GL_REPLACE
 // and GL_MODULATE the fragment's colour for ALPHA. The other modes give the
@@ -74,6 +182,29 @@ inline void fill_missing_components(const gl::Texture& tex, gl::TexEnv env, uint
   if (!tex.has_color) {
     for (int ch = 0; ch < 3; ++ch)
       texel[ch] = env == gl::TexEnv::replace ? static_cast<uint8_t>(rgba >> (8 * ch)) : uint8_t{255};
+  }
+}
+
+// One texture unit applied to the fragment: `previous` is the colour the
+// units before it produced (the primary colour for the first), `primary`
+// the interpolated fragment colour, `texel` the unit's filtered texel as
+// the texture holds it (missing components expanded). For MODULATE and
+// REPLACE the components the unit's base format lacks are filled from
+// `previous` first (fill_missing_components, table 3.15); BLEND, ADD and
+// DECAL give the table's result from the expanded texel, and GL_COMBINE
+// takes it as it is.
+inline uint32_t apply_texture_unit(const gl::TextureUnit& unit, uint32_t previous, uint32_t primary,
+                                   const uint8_t texel[4]) {
+  gl::TexEnv code;
+  if (gl::hardware_tex_env(unit.env, &code)) {
+    uint8_t filled[4] = {texel[0], texel[1], texel[2], texel[3]};
+    fill_missing_components(unit.tex, code, previous, filled);
+    return apply_tex_env(code, previous, filled);
+  }
+  switch (unit.env) {
+    case gl::TexEnvMode::blend: return apply_blend_env(previous, texel, unit.env_color);
+    case gl::TexEnvMode::add: return apply_add_env(previous, texel);
+    default: return apply_combine(unit, previous, primary, texel);
   }
 }
 

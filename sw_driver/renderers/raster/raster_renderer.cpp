@@ -9,6 +9,7 @@
 #include "gl/runtime.h"
 #include "raster/raster_regs.h"
 #include "renderers/common/fog.h"
+#include "renderers/common/texture_units.h"
 #include "renderers/common/texturing.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
@@ -31,11 +32,13 @@ constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the la
 constexpr unsigned STM_WORDS = 8;           // STM with eight registers
 
 // A StateBlock from the GL state, in command_format.h's encoding: the state
-// already holds the hardware codes (common/fixed_function.def).
-StateBlock encode_state(const gl::RasterState& s) {
+// already holds the hardware codes (common/fixed_function.def). The
+// rasterizer has one texture unit: `unit` is the one drawn.
+StateBlock encode_state(const gl::RasterState& s, const renderers::SingleTextureUnit& unit) {
   StateBlock b{};
   auto flag = [&](bool on, uint32_t bit) { b.flags |= on ? bit : 0u; };
-  const bool texture = s.texture && s.tex.width > 0 && s.tex.height > 0;  // incomplete: texturing off (GL)
+  const gl::Texture& tex = unit.index >= 0 ? s.unit[unit.index].tex : gl::Texture{};
+  const bool texture = unit.index >= 0 && tex.width > 0 && tex.height > 0;  // incomplete: texturing off (GL)
   flag(s.depth_test, raster::depth_test);
   flag(s.depth_write, raster::depth_write);
   flag(s.alpha_test, raster::alpha_test);
@@ -66,13 +69,13 @@ StateBlock encode_state(const gl::RasterState& s) {
       while ((1u << n) < v) ++n;
       return n;
     };
-    b.texture_address = s.tex.address;
-    b.texture_size = log2(s.tex.width) | log2(s.tex.height) << 8;
-    b.texture_mode = code_of(s.tex.min_filter) << raster::TEXTURE_MIN_FILTER_SHIFT |
-                     code_of(s.tex.mag_filter) << raster::TEXTURE_MAG_FILTER_SHIFT |
-                     code_of(s.tex.wrap_s) << raster::TEXTURE_WRAP_S_SHIFT |
-                     code_of(s.tex.wrap_t) << raster::TEXTURE_WRAP_T_SHIFT |
-                     code_of(s.tex_env) << raster::TEXTURE_ENV_SHIFT;
+    b.texture_address = tex.address;
+    b.texture_size = log2(tex.width) | log2(tex.height) << 8;
+    b.texture_mode = code_of(tex.min_filter) << raster::TEXTURE_MIN_FILTER_SHIFT |
+                     code_of(tex.mag_filter) << raster::TEXTURE_MAG_FILTER_SHIFT |
+                     code_of(tex.wrap_s) << raster::TEXTURE_WRAP_S_SHIFT |
+                     code_of(tex.wrap_t) << raster::TEXTURE_WRAP_T_SHIFT |
+                     code_of(unit.env) << raster::TEXTURE_ENV_SHIFT;
   }
   return b;
 }
@@ -98,14 +101,15 @@ void append_words(std::vector<uint32_t>& words, const T& object, uint32_t bytes)
   std::memcpy(words.data() + at, &object, bytes);
 }
 
-raster::VertexRecord encode_vertex(const gl::ScreenVertex& v) {
+raster::VertexRecord encode_vertex(const gl::ScreenVertex& v, int unit) {
+  const gl::TexCoord st = unit >= 0 ? v.tex[unit] : gl::TexCoord{};
   auto q9_4 = [](int32_t c) { return static_cast<uint32_t>(std::clamp<int32_t>(c, 0, 0xFFFF)); };
   raster::VertexRecord r;
   r.xy = q9_4(v.x) | q9_4(v.y) << 16;
   r.z = v.z & 0xFFFFFF;
   r.rgba = uint32_t{v.r} | uint32_t{v.g} << 8 | uint32_t{v.b} << 16 | uint32_t{v.a} << 24;
-  r.s_over_w = v.s * v.inv_w;
-  r.t_over_w = v.t * v.inv_w;
+  r.s_over_w = st.s * v.inv_w;
+  r.t_over_w = st.t * v.inv_w;
   r.inv_w = v.inv_w;
   return r;
 }
@@ -133,7 +137,7 @@ RasterRenderer::RasterRenderer(AppEnvironment& env)
     : m_env(env), m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
   m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
-  m_last_draw_state = {encode_state(gl::RasterState{}), raster::FogState{}};
+  m_last_draw_state = {encode_state(gl::RasterState{}, {}), raster::FogState{}};
 }
 
 uint32_t RasterRenderer::reg(uint32_t offset) const {
@@ -187,16 +191,21 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   if (count == 0) return;
-  // The rasterizer's texture unit fetches from one level (tlm/raster).
-  if (state.texture && state.tex.min_mipmap != gl::MipmapFilter::none)
-    m_unsupported.report(m_env,
-                         "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
-                         "within a level");
-  if (state.texture && renderers::env_needs_base_format(state.tex, state.tex_env))
-    m_unsupported.report(m_env,
-                         "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
-                         "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
-  m_last_draw_state = {encode_state(state), encode_fog(state)};
+  const renderers::SingleTextureUnit unit =
+      renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
+  if (unit.index >= 0) {
+    const gl::Texture& tex = state.unit[unit.index].tex;
+    // The rasterizer's texture unit fetches from one level (tlm/raster).
+    if (tex.min_mipmap != gl::MipmapFilter::none)
+      m_unsupported.report(m_env,
+                           "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
+                           "within a level");
+    if (renderers::env_needs_base_format(tex, unit.env))
+      m_unsupported.report(m_env,
+                           "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
+                           "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
+  }
+  m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
   const uint32_t state_index = add_state(m_last_draw_state);
   renderers::FogCoefficients fog;
   if (state.fog) fog = renderers::fog_coefficients(state);
@@ -208,7 +217,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     TriangleWords record{};
     record.state_flags = m_last_draw_state.block.flags;
     for (unsigned k = 0; k < 3; ++k) {
-      record.record.v[k] = encode_vertex(t.v[k]);
+      record.record.v[k] = encode_vertex(t.v[k], unit.index);
       if (state.fog) record.fog.argument[k] = renderers::fog_argument(fog, t.v[k].fog);
     }
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});

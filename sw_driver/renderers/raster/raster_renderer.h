@@ -82,6 +82,8 @@ class RasterRenderer : public gl::Renderer {
   AppEnvironment& m_env;
   HostApi& m_host;
   DisplayDriver m_display;
+  // The rasterizer's one texture unit and three environments: the rest is
+  // reported (renderers/common/texture_units.h).
   renderers::UnsupportedState m_unsupported{"raster"};
   renderers::TileBinner m_binner;  // the rasterizer's screen and tile size
   uint32_t m_depth_buffer = 0;

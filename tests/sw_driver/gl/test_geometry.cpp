@@ -22,8 +22,9 @@ ClipVertex vertex(float x, float y, float z, float w = 1) {
   ClipVertex v;
   v.position = {x, y, z, w};
   v.color = {x, y, z, w};
-  v.tex = {x * 2, y * 3};
-  v.fog = 5 * x + 7 * w;  // the fog coordinate is clipped like the rest
+  v.tex[0] = {x * 2, y * 3};
+  v.tex[1] = {y - z, 4 * w};  // every unit's coordinates are clipped
+  v.fog = 5 * x + 7 * w;      // the fog coordinate is clipped like the rest
   return v;
 }
 
@@ -32,8 +33,10 @@ void expect_attributes_follow_positions(const std::vector<ClipVertex>& polygon) 
     EXPECT_NEAR(v.color.r, v.position.x, 1e-5);
     EXPECT_NEAR(v.color.g, v.position.y, 1e-5);
     EXPECT_NEAR(v.color.b, v.position.z, 1e-5);
-    EXPECT_NEAR(v.tex.x, 2 * v.position.x, 1e-5);
-    EXPECT_NEAR(v.tex.y, 3 * v.position.y, 1e-5);
+    EXPECT_NEAR(v.tex[0].x, 2 * v.position.x, 1e-5);
+    EXPECT_NEAR(v.tex[0].y, 3 * v.position.y, 1e-5);
+    EXPECT_NEAR(v.tex[1].x, v.position.y - v.position.z, 1e-5);
+    EXPECT_NEAR(v.tex[1].y, 4 * v.position.w, 1e-5);
     EXPECT_NEAR(v.fog, 5 * v.position.x + 7 * v.position.w, 1e-4);
   }
 }
@@ -190,7 +193,7 @@ TEST(Viewport, NonFiniteHugeAndOffRangeVerticesAreRejected) {
   viewport.width = 100;
   EXPECT_FALSE(to_screen(vertex(-1, 0, 0), viewport, &s));
   ClipVertex bad_tex = vertex(0, 0, 0);
-  bad_tex.tex.x = nan;
+  bad_tex.tex[0].x = nan;
   viewport = Viewport{};
   viewport.width = viewport.height = 100;
   EXPECT_FALSE(to_screen(bad_tex, viewport, &s));
@@ -396,7 +399,7 @@ ClipVertex eye_vertex(float x, float y, glm::vec4 color) {
   ClipVertex v;
   v.position = v.eye = {x, y, 0, 1};
   v.color = v.back_color = color;
-  v.tex = {0, 0};
+  for (glm::vec2& st : v.tex) st = {0, 0};
   return v;
 }
 

@@ -308,7 +308,7 @@ TEST_F(GlApi, FixedFunctionStateReachesTheRendererAsTableCodes) {
   EXPECT_EQ(code_of(s.stencil_func), 6u);
   EXPECT_EQ(s.logic_op_mode, LogicOp::xor_);
   EXPECT_EQ(code_of(s.alpha_func), 5u);
-  EXPECT_EQ(code_of(s.tex_env), 2u);
+  EXPECT_EQ(s.unit[0].env, tessera::gl::TexEnvMode::decal);
   const std::pair<GLenum, GLint> queries[] = {{GL_BLEND_SRC, GL_DST_COLOR},
                                               {GL_BLEND_DST, GL_ONE_MINUS_SRC_ALPHA},
                                               {GL_STENCIL_FAIL, GL_INVERT},
@@ -459,7 +459,7 @@ TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
     for (int k = 0; k < 3; ++k) {
       const gl::ScreenVertex &a = renderer.triangles[t].v[k], &b = indexed[t].v[k];
       EXPECT_TRUE(a.x == b.x && a.y == b.y && a.z == b.z && a.inv_w == b.inv_w && a.r == b.r && a.g == b.g &&
-                  a.b == b.b && a.a == b.a && a.s == b.s && a.t == b.t)
+                  a.b == b.b && a.a == b.a && a.tex[0].s == b.tex[0].s && a.tex[0].t == b.tex[0].t)
           << "triangle " << t << ", vertex " << k;
     }
   EXPECT_LT(indexed_cost * 2, unindexed_cost);

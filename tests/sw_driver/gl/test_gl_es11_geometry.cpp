@@ -383,8 +383,8 @@ TEST_F(GlApi, PointSpriteCoordinatesRunAcrossThePoint) {
   const Extent e = extent(renderer.triangles);
   for (const gl::Triangle& t : renderer.triangles)
     for (const gl::ScreenVertex& v : t.v) {
-      EXPECT_FLOAT_EQ(v.s, v.x / 16.0f == e.min_x ? 0.0f : 1.0f);
-      EXPECT_FLOAT_EQ(v.t, v.y / 16.0f == e.max_y ? 0.0f : 1.0f);
+      EXPECT_FLOAT_EQ(v.tex[0].s, v.x / 16.0f == e.min_x ? 0.0f : 1.0f);
+      EXPECT_FLOAT_EQ(v.tex[0].t, v.y / 16.0f == e.max_y ? 0.0f : 1.0f);
     }
   // Without GL_COORD_REPLACE_OES the point keeps its vertex's coordinates.
   glTexEnvi(GL_POINT_SPRITE_OES, GL_COORD_REPLACE_OES, GL_FALSE);
@@ -392,7 +392,41 @@ TEST_F(GlApi, PointSpriteCoordinatesRunAcrossThePoint) {
   renderer.triangles.clear();
   glDrawArrays(GL_POINTS, 0, 1);
   for (const gl::Triangle& t : renderer.triangles)
-    for (const gl::ScreenVertex& v : t.v) EXPECT_EQ(std::vector<float>({v.s, v.t}), std::vector<float>({0.25f, 0.75f}));
+    for (const gl::ScreenVertex& v : t.v)
+      EXPECT_EQ(std::vector<float>({v.tex[0].s, v.tex[0].t}), std::vector<float>({0.25f, 0.75f}));
+  EXPECT_EQ(error(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// GL_COORD_REPLACE_OES is per texture unit: with it on unit 1 only, unit 1
+// gets the sprite's coordinates and unit 0 keeps its current coordinates.
+TEST_F(GlApi, PointSpriteReplacesCoordinatesOnlyInTheUnitsThatAskForIt) {
+  const GLubyte texels[4] = {255, 255, 255, 255};
+  GLuint textures[2] = {0, 0};
+  glGenTextures(2, textures);
+  for (unsigned u = 0; u < 2; ++u) {
+    glActiveTexture(GL_TEXTURE0 + u);
+    glBindTexture(GL_TEXTURE_2D, textures[u]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glEnable(GL_TEXTURE_2D);
+  }
+  glEnable(GL_POINT_SPRITE_OES);
+  glActiveTexture(GL_TEXTURE1);
+  glTexEnvi(GL_POINT_SPRITE_OES, GL_COORD_REPLACE_OES, GL_TRUE);
+  glMultiTexCoord4f(GL_TEXTURE0, 0.25f, 0.75f, 0, 1);
+  const float point[] = {0, 0, 0};
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, point);
+  glPointSize(8);
+  glDrawArrays(GL_POINTS, 0, 1);
+  ASSERT_EQ(renderer.triangles.size(), 2u);
+  const Extent e = extent(renderer.triangles);
+  for (const gl::Triangle& t : renderer.triangles)
+    for (const gl::ScreenVertex& v : t.v) {
+      EXPECT_FLOAT_EQ(v.tex[0].s, 0.25f);
+      EXPECT_FLOAT_EQ(v.tex[0].t, 0.75f);
+      EXPECT_FLOAT_EQ(v.tex[1].s, v.x / 16.0f == e.min_x ? 0.0f : 1.0f);
+      EXPECT_FLOAT_EQ(v.tex[1].t, v.y / 16.0f == e.max_y ? 0.0f : 1.0f);
+    }
   EXPECT_EQ(error(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

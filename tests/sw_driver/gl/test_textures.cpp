@@ -123,26 +123,26 @@ TEST_F(GlApi, MipmapFilterNeedsEveryLevelOfTheSameFormat) {
   glEnable(GL_TEXTURE_2D);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 4, 4, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   draw_triangle(TRIANGLE);  // default GL_NEAREST_MIPMAP_LINEAR, levels 1 and 2 missing: texturing off
-  EXPECT_FALSE(renderer.state.texture);
+  EXPECT_FALSE(renderer.state.unit[0].enabled);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);
-  EXPECT_EQ(renderer.state.tex.levels, 1u);
-  EXPECT_EQ(renderer.state.tex.min_mipmap, gl::MipmapFilter::none);
+  ASSERT_TRUE(renderer.state.unit[0].enabled);
+  EXPECT_EQ(renderer.state.unit[0].tex.levels, 1u);
+  EXPECT_EQ(renderer.state.unit[0].tex.min_mipmap, gl::MipmapFilter::none);
 
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
   glTexImage2D(GL_TEXTURE_2D, 1, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   glTexImage2D(GL_TEXTURE_2D, 2, GL_RGBA, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());  // should be 1 x 1
   draw_triangle(TRIANGLE);
-  EXPECT_FALSE(renderer.state.texture);
+  EXPECT_FALSE(renderer.state.unit[0].enabled);
   glTexImage2D(GL_TEXTURE_2D, 2, GL_RGB, 1, 1, 0, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());  // another format
   draw_triangle(TRIANGLE);
-  EXPECT_FALSE(renderer.state.texture);
+  EXPECT_FALSE(renderer.state.unit[0].enabled);
   const uint8_t texel[4] = {1, 2, 3, 4};
   glTexImage2D(GL_TEXTURE_2D, 2, GL_RGBA, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, texel);
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);
-  const gl::Texture& t = renderer.state.tex;
+  ASSERT_TRUE(renderer.state.unit[0].enabled);
+  const gl::Texture& t = renderer.state.unit[0].tex;
   EXPECT_EQ(t.levels, 3u);
   EXPECT_EQ(t.min_filter, gl::TexFilter::linear);
   EXPECT_EQ(t.min_mipmap, gl::MipmapFilter::nearest);
@@ -167,8 +167,8 @@ TEST_F(GlApi, GenerateMipmapFillsEveryLevelFromLevelZero) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, 4, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, luminance);
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);  // GL_NEAREST_MIPMAP_LINEAR with generated levels
-  const gl::Texture& t = renderer.state.tex;
+  ASSERT_TRUE(renderer.state.unit[0].enabled);  // GL_NEAREST_MIPMAP_LINEAR with generated levels
+  const gl::Texture& t = renderer.state.unit[0].tex;
   ASSERT_EQ(t.levels, 3u);
   // (0 + 2 + 4 + 6) / 4 = 3; (100 + 101 + 100 + 100) / 4 = 100.25 -> 100; then (3 + 100) / 2 = 51.5 -> 52.
   EXPECT_EQ(host.read32(t.level[1].address), rgba(3, 3, 3, 255));
@@ -213,8 +213,8 @@ TEST_F(GlApi, PalettedTexturesDecodeEveryLevel) {
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);
-  const gl::Texture& t = renderer.state.tex;
+  ASSERT_TRUE(renderer.state.unit[0].enabled);
+  const gl::Texture& t = renderer.state.unit[0].tex;
   ASSERT_EQ(t.levels, 2u);
   EXPECT_EQ(host.read32(t.address), rgba(1, 2, 3, 254));
   EXPECT_EQ(host.read32(t.address + 4), rgba(2, 4, 6, 253));
@@ -233,9 +233,9 @@ TEST_F(GlApi, PalettedTexturesDecodeEveryLevel) {
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);
-  EXPECT_EQ(host.read32(renderer.state.tex.address), rgba(255, 0, 0, 255));
-  EXPECT_FALSE(renderer.state.tex.has_alpha);  // an RGB palette makes an RGB texture
+  ASSERT_TRUE(renderer.state.unit[0].enabled);
+  EXPECT_EQ(host.read32(renderer.state.unit[0].tex.address), rgba(255, 0, 0, 255));
+  EXPECT_FALSE(renderer.state.unit[0].tex.has_alpha);  // an RGB palette makes an RGB texture
 }
 
 TEST_F(GlApi, CopyTexImageDefinesALevelInTheInternalFormatAskedFor) {
@@ -247,7 +247,7 @@ TEST_F(GlApi, CopyTexImageDefinesALevelInTheInternalFormatAskedFor) {
   glCopyTexImage2D(GL_TEXTURE_2D, 1, GL_LUMINANCE, 0, 0, 1, 1, 0);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   draw_triangle(TRIANGLE);
-  ASSERT_TRUE(renderer.state.texture);  // both levels GL_LUMINANCE: complete
-  EXPECT_EQ(host.read32(renderer.state.tex.level[1].address), rgba(0x5a, 0x5a, 0x5a, 255));
-  EXPECT_FALSE(renderer.state.tex.has_alpha);
+  ASSERT_TRUE(renderer.state.unit[0].enabled);  // both levels GL_LUMINANCE: complete
+  EXPECT_EQ(host.read32(renderer.state.unit[0].tex.level[1].address), rgba(0x5a, 0x5a, 0x5a, 255));
+  EXPECT_FALSE(renderer.state.unit[0].tex.has_alpha);
 }

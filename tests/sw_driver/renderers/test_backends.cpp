@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/renderer.h"
 #include "gl/runtime.h"
 #include "renderers/backend_parameters.h"
 #include "renderers/backends.h"
@@ -190,8 +191,14 @@ TEST(DriverParameters, EachBackEndsKeysAreUnderItsName) {
 TEST(DriverParameters, GroupsAreTheDriversAndEveryBackEndsWithKeys) {
   const std::vector<ParamGroup> groups = driver_parameter_groups();
   ASSERT_FALSE(groups.empty());
-  EXPECT_EQ(groups[0].specs.size(), 1u);
+  ASSERT_EQ(groups[0].specs.size(), 2u);
   EXPECT_EQ(groups[0].specs[0].key, "driver.backend");
+  // The texture units: 1 to the driver's maximum, 2 (the ES 1.1 minimum) by default.
+  EXPECT_EQ(groups[0].specs[1].key, "driver.texture_units");
+  EXPECT_EQ(groups[0].specs[1].type, ParamType::integer);
+  EXPECT_EQ(groups[0].specs[1].min, 1);
+  EXPECT_EQ(groups[0].specs[1].max, gl::MAX_TEXTURE_UNITS);
+  EXPECT_EQ(groups[0].specs[1].default_value.get<int64_t>(), 2);
   size_t with_keys = 0;
   for (const backends::Backend& entry : backends::BACKENDS) with_keys += entry.parameters().specs.empty() ? 0 : 1;
   EXPECT_EQ(groups.size(), 1 + with_keys);

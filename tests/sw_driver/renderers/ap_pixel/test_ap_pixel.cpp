@@ -35,8 +35,8 @@ gl::Triangle triangle(int x0, int y0, int x1, int y1, int x2, int y2) {
     t.v[i].g = static_cast<uint8_t>(255 - 100 * i);
     t.v[i].b = 77;
     t.v[i].a = 255;
-    t.v[i].s = 0.5f * static_cast<float>(i);
-    t.v[i].t = 1.0f - 0.25f * static_cast<float>(i);
+    t.v[i].tex[0].s = 0.5f * static_cast<float>(i);
+    t.v[i].tex[0].t = 1.0f - 0.25f * static_cast<float>(i);
     t.v[i].inv_w = 1;
   }
   return t;

@@ -72,8 +72,8 @@ gl::Triangle random_triangle(std::mt19937& rng, const FrameGeometry& frame) {
     v.g = static_cast<uint8_t>(byte(rng));
     v.b = static_cast<uint8_t>(byte(rng));
     v.a = 255;
-    v.s = st(rng);
-    v.t = st(rng);
+    v.tex[0].s = st(rng);
+    v.tex[0].t = st(rng);
     v.inv_w = 1;
   }
   return t;

@@ -72,9 +72,10 @@ class Frame {
   }
   uint8_t stencil(int x, int y) { return *memory.at(stencil_address + (height - 1 - y) * width + x); }
 
-  // Writes a texture (RGBA8, row t = 0 first) and returns its descriptor.
-  gl::Texture texture(unsigned w, unsigned h, const std::vector<Rgba>& texels) {
-    uint8_t* p = memory.at(texture_address, w * h * 4);
+  // Writes a texture (RGBA8, row t = 0 first) `offset` bytes into the
+  // texture area and returns its descriptor.
+  gl::Texture texture(unsigned w, unsigned h, const std::vector<Rgba>& texels, uint32_t offset = 0) {
+    uint8_t* p = memory.at(texture_address + offset, w * h * 4);
     for (unsigned i = 0; i < w * h; ++i) {
       p[4 * i] = uint8_t(texels[i].r);
       p[4 * i + 1] = uint8_t(texels[i].g);
@@ -82,7 +83,7 @@ class Frame {
       p[4 * i + 3] = uint8_t(texels[i].a);
     }
     gl::Texture tex;
-    tex.address = texture_address;
+    tex.address = texture_address + offset;
     tex.width = w;
     tex.height = h;
     tex.min_filter = tex.mag_filter = gl::TexFilter::nearest;
@@ -126,8 +127,7 @@ gl::ScreenVertex vertex(double x, double y, Rgba c = {255, 255, 255, 255}, doubl
   v.g = uint8_t(c.g);
   v.b = uint8_t(c.b);
   v.a = uint8_t(c.a);
-  v.s = s;
-  v.t = t;
+  v.tex[0] = {s, t};
   v.inv_w = inv_w;
   return v;
 }
@@ -481,14 +481,16 @@ int div255_round(int x) {
   return int(std::lround(x / 255.0));
 }
 
-void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
+void check_texture(gl::TexWrap wrap, double smax, gl::TexEnvMode env) {
   Frame f(48, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
-  state.texture = true;
-  state.tex = f.texture(2, 2, TEXELS_2X2);
-  state.tex.wrap_s = state.tex.wrap_t = wrap;
-  state.tex_env = env;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(2, 2, TEXELS_2X2);
+  state.unit[0].tex.wrap_s = state.unit[0].tex.wrap_t = wrap;
+  state.unit[0].env = env;
+  const uint8_t env_color[4] = {40, 80, 160, 0};
+  std::copy(env_color, env_color + 4, state.unit[0].env_color);
   const Rgba cf{128, 255, 64, 200};
   f.draw(state, textured_square(smax, cf));
   for (int y = 8; y < 40; ++y) {
@@ -506,15 +508,25 @@ void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
       const Rgba t = TEXELS_2X2[size_t(j) * 2 + size_t(i)];
       Rgba expected{};
       switch (env) {
-        case gl::TexEnv::modulate:
+        case gl::TexEnvMode::modulate:
           expected = {div255_round(cf.r * t.r), div255_round(cf.g * t.g), div255_round(cf.b * t.b),
                       div255_round(cf.a * t.a)};
           break;
-        case gl::TexEnv::replace: expected = t; break;
-        case gl::TexEnv::decal:
+        case gl::TexEnvMode::replace: expected = t; break;
+        case gl::TexEnvMode::decal:
           expected = {div255_round(cf.r * (255 - t.a) + t.r * t.a), div255_round(cf.g * (255 - t.a) + t.g * t.a),
                       div255_round(cf.b * (255 - t.a) + t.b * t.a), cf.a};
           break;
+        // BLEND with GL_TEXTURE_ENV_COLOR (40, 80, 160, 0): Cf (1 - Ct) + Cc Ct.
+        case gl::TexEnvMode::blend:
+          expected = {div255_round(cf.r * (255 - t.r) + 40 * t.r), div255_round(cf.g * (255 - t.g) + 80 * t.g),
+                      div255_round(cf.b * (255 - t.b) + 160 * t.b), div255_round(cf.a * t.a)};
+          break;
+        case gl::TexEnvMode::add:
+          expected = {std::min(cf.r + t.r, 255), std::min(cf.g + t.g, 255), std::min(cf.b + t.b, 255),
+                      div255_round(cf.a * t.a)};
+          break;
+        case gl::TexEnvMode::combine: FAIL() << "not a case of this test"; break;
       }
       const Rgba c = f.color(x, y);
       ASSERT_EQ(c.r, expected.r) << x << "," << y;
@@ -527,30 +539,98 @@ void check_texture(gl::TexWrap wrap, double smax, gl::TexEnv env) {
 }
 
 TEST(ArmRasterizerTexture, NearestReplace) {
-  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::replace);
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnvMode::replace);
 }
 TEST(ArmRasterizerTexture, NearestRepeat) {
-  check_texture(gl::TexWrap::repeat, 2, gl::TexEnv::replace);
+  check_texture(gl::TexWrap::repeat, 2, gl::TexEnvMode::replace);
 }
 TEST(ArmRasterizerTexture, NearestClampToEdge) {
-  check_texture(gl::TexWrap::clamp_to_edge, 2, gl::TexEnv::replace);
+  check_texture(gl::TexWrap::clamp_to_edge, 2, gl::TexEnvMode::replace);
 }
 TEST(ArmRasterizerTexture, Modulate) {
-  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::modulate);
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnvMode::modulate);
 }
 TEST(ArmRasterizerTexture, Decal) {
-  check_texture(gl::TexWrap::repeat, 1, gl::TexEnv::decal);
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnvMode::decal);
+}
+
+TEST(ArmRasterizerTexture, Blend) {
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnvMode::blend);
+}
+TEST(ArmRasterizerTexture, Add) {
+  check_texture(gl::TexWrap::repeat, 1, gl::TexEnvMode::add);
+}
+
+// Two units applied in order: unit 0 REPLACEs the fragment colour by the
+// 2x2 texture, unit 1 (a 1x1 texture, its coordinates those of unit 0)
+// either ADDs its texel or, in GL_COMBINE, INTERPOLATEs between the primary
+// colour and the previous unit's result by the constant's alpha.
+void check_two_units(bool combine) {
+  Frame f(48, 48, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(2, 2, TEXELS_2X2);
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.unit[1].enabled = true;
+  state.unit[1].tex = f.texture(1, 1, {Rgba{10, 20, 30, 255}}, 2 * 2 * 4);
+  const int k = 64;  // the constant's alpha
+  if (combine) {
+    gl::TextureUnit& u = state.unit[1];
+    u.env = gl::TexEnvMode::combine;
+    u.env_color[3] = uint8_t(k);
+    u.combine_rgb.func = u.combine_alpha.func = gl::CombineFunc::interpolate;
+    for (gl::CombineStage* stage : {&u.combine_rgb, &u.combine_alpha}) {
+      stage->source[0] = gl::CombineSource::primary_color;
+      stage->source[1] = gl::CombineSource::previous;
+      stage->source[2] = gl::CombineSource::constant;
+    }
+  } else {
+    state.unit[1].env = gl::TexEnvMode::add;
+  }
+  const Rgba cf{128, 255, 64, 200};
+  std::vector<gl::Triangle> square = textured_square(1, cf);
+  for (gl::Triangle& t : square)
+    for (gl::ScreenVertex& v : t.v) v.tex[1] = v.tex[0];
+  f.draw(state, square);
+  for (int y = 8; y < 40; ++y) {
+    for (int x = 8; x < 40; ++x) {
+      const int i = int(std::floor((x + 0.5 - 8) / 16)), j = int(std::floor((y + 0.5 - 8) / 16));
+      const Rgba t = TEXELS_2X2[size_t(j) * 2 + size_t(i)];
+      Rgba expected{};
+      if (combine) {
+        // Primary k/255 + previous (1 - k/255).
+        auto mix = [&](int p, int q) { return div255_round(p * k + q * (255 - k)); };
+        expected = {mix(cf.r, t.r), mix(cf.g, t.g), mix(cf.b, t.b), mix(cf.a, t.a)};
+      } else {
+        expected = {std::min(t.r + 10, 255), std::min(t.g + 20, 255), std::min(t.b + 30, 255), t.a};
+      }
+      const Rgba c = f.color(x, y);
+      ASSERT_EQ(c.r, expected.r) << x << "," << y;
+      ASSERT_EQ(c.g, expected.g) << x << "," << y;
+      ASSERT_EQ(c.b, expected.b) << x << "," << y;
+      ASSERT_EQ(c.a, expected.a) << x << "," << y;
+    }
+  }
+  EXPECT_TRUE(f.guards_intact());
+}
+
+TEST(ArmRasterizerTexture, SecondUnitAddsToTheFirst) {
+  check_two_units(false);
+}
+TEST(ArmRasterizerTexture, SecondUnitCombinesPrimaryAndPrevious) {
+  check_two_units(true);
 }
 
 TEST(ArmRasterizerTexture, BilinearAtTheTextureCentreAveragesFourTexels) {
   Frame f(48, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
-  state.texture = true;
-  state.tex = f.texture(2, 2, TEXELS_2X2);
-  state.tex.mag_filter = gl::TexFilter::linear;
-  state.tex.wrap_s = state.tex.wrap_t = gl::TexWrap::clamp_to_edge;
-  state.tex_env = gl::TexEnv::replace;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(2, 2, TEXELS_2X2);
+  state.unit[0].tex.mag_filter = gl::TexFilter::linear;
+  state.unit[0].tex.wrap_s = state.unit[0].tex.wrap_t = gl::TexWrap::clamp_to_edge;
+  state.unit[0].env = gl::TexEnvMode::replace;
   f.draw(state, textured_square(1, {255, 255, 255, 255}, 8.5));
   // Pixel (24, 24) has its centre at s = t = 0.5: texel coordinate (1, 1).
   const Rgba c = f.color(24, 24);
@@ -570,9 +650,9 @@ TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
   for (int i = 0; i < 64; ++i) ramp[size_t(i)] = {i * 4, 0, 0, 255};
   gl::RasterState state;
   state.flat_shading = true;
-  state.texture = true;
-  state.tex = f.texture(64, 1, ramp);
-  state.tex_env = gl::TexEnv::replace;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(64, 1, ramp);
+  state.unit[0].env = gl::TexEnvMode::replace;
   const gl::Triangle t = triangle(vertex(2, 2, {}, 0.5, 0.0f, 0.5f, 1.0f), vertex(62, 2, {}, 0.5, 0.999f, 0.5f, 0.25f),
                                   vertex(2, 46, {}, 0.5, 0.0f, 0.5f, 1.0f));
   f.draw(state, {t});
@@ -583,9 +663,9 @@ TEST(ArmRasterizerTexture, PerspectiveCorrectCoordinates) {
       const auto w = barycentric(t, x + 0.5, y + 0.5);
       double sq = 0, q = 0, affine = 0;
       for (int k = 0; k < 3; ++k) {
-        sq += w[k] * t.v[k].s * t.v[k].inv_w;
+        sq += w[k] * t.v[k].tex[0].s * t.v[k].inv_w;
         q += w[k] * t.v[k].inv_w;
-        affine += w[k] * t.v[k].s;
+        affine += w[k] * t.v[k].tex[0].s;
       }
       const double u = sq / q * 64;
       const int texel = f.color(x, y).r / 4;
@@ -680,9 +760,9 @@ TEST(ArmRasterizerFog, DisabledFogChangesNothing) {
 TEST(ArmRasterizerFog, AppliesAfterTheTextureEnvironment) {
   Frame f(16, 16, PixelFormat::rgba8888);
   gl::RasterState state;
-  state.texture = true;
-  state.tex = f.texture(1, 1, {{255, 255, 255, 255}});
-  state.tex_env = gl::TexEnv::replace;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(1, 1, {{255, 255, 255, 255}});
+  state.unit[0].env = gl::TexEnvMode::replace;
   state.fog = true;
   state.fog_mode = gl::FogMode::linear;
   state.fog_start = 0;
@@ -865,8 +945,8 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
     state.blend = true;
     state.blend_src = gl::BlendFactor::one;
     state.blend_dst = gl::BlendFactor::one;
-    state.texture = true;
-    state.tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
+    state.unit[0].enabled = true;
+    state.unit[0].tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
     const Rgba c{1, 1, 1, 1};
     const gl::Triangle huge =
         triangle(vertex(-100000, -50000, c, 0.1, -1000, 3, 0.5f), vertex(200000, 30, c, 0.9, 5000, -7, 1.0f),
@@ -1012,9 +1092,9 @@ Rgba mipmapped_centre(double smax, gl::TexFilter within, gl::MipmapFilter mipmap
   Frame f(48, 48, PixelFormat::rgba8888);
   gl::RasterState state;
   state.flat_shading = true;
-  state.texture = true;
-  state.tex = mipmap_levels(f, within, mipmap);
-  state.tex_env = gl::TexEnv::replace;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = mipmap_levels(f, within, mipmap);
+  state.unit[0].env = gl::TexEnvMode::replace;
   f.draw(state, textured_square(smax, {255, 255, 255, 255}));
   return f.color(24, 24);
 }
@@ -1040,6 +1120,59 @@ TEST(ArmRasterizerTexture, LinearMipmapBlendsTheTwoLevelsAroundLambda) {
   EXPECT_NEAR(c.g, 205 - 50 * (std::log2(3.0) - 1), 1.0);
   // lambda = 2 exactly: level 2 alone.
   EXPECT_EQ(mipmapped_centre(4, gl::TexFilter::linear, gl::MipmapFilter::linear).r, 100);
+}
+
+// Each unit samples with its own level of detail, from its own coordinates:
+// unit 0 (REPLACE) at lambda = 2 takes level 2 (red 100, green 155); unit 1
+// (ADD) on the same texture at lambda = -1 (magnified) takes level 0 (red 0,
+// green 255). Red stays 100; had unit 1 used unit 0's lambda it would add
+// level 2's red (200), had unit 0 used unit 1's it would be 0.
+TEST(ArmRasterizerTexture, EachUnitSamplesItsMipmapsWithItsOwnLevelOfDetail) {
+  Frame f(48, 48, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  const gl::Texture tex = mipmap_levels(f, gl::TexFilter::nearest, gl::MipmapFilter::nearest);
+  state.unit[0].enabled = state.unit[1].enabled = true;
+  state.unit[0].tex = state.unit[1].tex = tex;
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.unit[1].env = gl::TexEnvMode::add;
+  std::vector<gl::Triangle> square = textured_square(4, {255, 255, 255, 255});
+  for (gl::Triangle& t : square)
+    for (gl::ScreenVertex& v : t.v) v.tex[1] = {v.tex[0].s / 8, v.tex[0].t / 8};
+  f.draw(state, square);
+  const Rgba c = f.color(24, 24);
+  EXPECT_EQ(c.r, 100);
+  EXPECT_EQ(c.g, 255);  // 155 + 255, saturated
+  EXPECT_TRUE(f.guards_intact());
+}
+
+// The base format's rules apply per unit before that unit's environment, and
+// fog after the last unit: unit 0 REPLACEs with an RGB texel (the fragment's
+// alpha kept, table 3.15), unit 1 MODULATEs with an ALPHA texture (colour
+// kept, alpha times the texel's), then linear fog at f = 1/2 towards black.
+TEST(ArmRasterizerTexture, BaseFormatsPerUnitThenFog) {
+  Frame f(16, 16, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.unit[0].enabled = state.unit[1].enabled = true;
+  state.unit[0].tex = f.texture(1, 1, {{200, 100, 50, 255}});
+  state.unit[0].tex.has_alpha = false;
+  state.unit[0].env = gl::TexEnvMode::replace;
+  state.unit[1].tex = f.texture(1, 1, {{0, 0, 0, 128}}, 64);
+  state.unit[1].tex.has_color = false;
+  state.unit[1].env = gl::TexEnvMode::modulate;
+  state.fog = true;
+  state.fog_mode = gl::FogMode::linear;
+  state.fog_start = 0;
+  state.fog_end = 10;
+  gl::Triangle t = triangle(vertex(0, 0, {0, 0, 0, 200}), vertex(16, 0, {0, 0, 0, 200}), vertex(0, 16, {0, 0, 0, 200}));
+  for (auto& sv : t.v) sv.fog = 5;
+  f.draw(state, {t});
+  const Rgba c = f.color(2, 2);
+  EXPECT_EQ(c.r, 100);  // 200 / 2
+  EXPECT_EQ(c.g, 50);   // 100 / 2
+  EXPECT_EQ(c.b, 25);   // 50 / 2
+  EXPECT_EQ(c.a, 100);  // 200 (the fragment's, not the RGB texel's 255) x 128 / 255 = 100.4
 }
 
 }  // namespace
