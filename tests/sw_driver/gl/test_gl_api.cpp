@@ -709,3 +709,58 @@ TEST_F(GlApi, DepthAndStencilBitsComeFromTheRenderer) {
   glGetIntegerv(GL_STENCIL_BITS, &bits);
   EXPECT_EQ(bits, 4);
 }
+
+// GL_BYTE, GL_SHORT and GL_FIXED vertex and texture-coordinate arrays (ES
+// 1.1 section 2.8): integers are taken as they are, GL_FIXED as S15.16.
+// With glOrthof over the 64 x 48 window an object coordinate is a window
+// coordinate, so (10, 10), (50, 12), (30, 40) arrive in 9.4 as 16 times
+// those numbers, and texture coordinates (with texturing on) as given.
+TEST_F(GlApi, ByteShortAndFixedArraysGiveTheirValues) {
+  glMatrixMode(GL_PROJECTION);
+  glOrthof(0, 64, 0, 48, -1, 1);
+  GLuint texture;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  const uint8_t texel[4] = {255, 255, 255, 255};
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, texel);
+  glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glEnable(GL_TEXTURE_2D);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  const int position[6] = {10, 10, 50, 12, 30, 40};
+  const int coordinate[6] = {0, 1, 2, 3, -4, 5};
+  const int8_t bytes[6] = {10, 10, 50, 12, 30, 40};
+  const int8_t byte_coordinates[6] = {0, 1, 2, 3, -4, 5};
+  const int16_t shorts[6] = {10, 10, 50, 12, 30, 40};
+  const int16_t short_coordinates[6] = {0, 1, 2, 3, -4, 5};
+  GLfixed fixed[6], fixed_coordinates[6];
+  for (int i = 0; i < 6; ++i) {
+    fixed[i] = position[i] * 65536;
+    fixed_coordinates[i] = coordinate[i] * 65536;
+  }
+  const struct {
+    const char* name;
+    GLenum type;
+    const void* positions;
+    const void* coordinates;
+  } cases[] = {{"GL_BYTE", GL_BYTE, bytes, byte_coordinates},
+               {"GL_SHORT", GL_SHORT, shorts, short_coordinates},
+               {"GL_FIXED", GL_FIXED, fixed, fixed_coordinates}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    renderer.triangles.clear();
+    glVertexPointer(2, c.type, 0, c.positions);
+    glTexCoordPointer(2, c.type, 0, c.coordinates);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    ASSERT_EQ(renderer.triangles.size(), 1u);
+    const gl::Triangle& t = renderer.triangles[0];
+    for (int v = 0; v < 3; ++v) {
+      EXPECT_EQ(t.v[v].x, 16 * position[2 * v]);
+      EXPECT_EQ(t.v[v].y, 16 * position[2 * v + 1]);
+      EXPECT_EQ(t.v[v].tex[0].s, static_cast<float>(coordinate[2 * v]));
+      EXPECT_EQ(t.v[v].tex[0].t, static_cast<float>(coordinate[2 * v + 1]));
+    }
+  }
+}
