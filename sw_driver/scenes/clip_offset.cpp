@@ -19,18 +19,6 @@ namespace {
 
 constexpr float HALF_EDGE = 0.6f;
 
-// Each face, in the order +x, -x, +y, -y, +z, -z, lists its corners
-// counter-clockwise seen from outside; corner k has x, y, z positive where
-// bit 0, 1, 2 of k is set.
-constexpr std::array<std::array<int, 4>, 6> FACE_CORNERS = {{
-    {{1, 3, 7, 5}},
-    {{0, 4, 6, 2}},
-    {{2, 6, 7, 3}},
-    {{0, 1, 5, 4}},
-    {{4, 5, 7, 6}},
-    {{0, 2, 3, 1}},
-}};
-
 constexpr std::array<std::array<GLfloat, 4>, 6> FACE_RGBA = {{
     {{0.90f, 0.20f, 0.20f, 1.0f}},
     {{0.20f, 0.80f, 0.30f, 1.0f}},
@@ -61,15 +49,7 @@ void draw_quad(const GLfloat* xyz, GLfloat r, GLfloat g, GLfloat b) {
 
 bool init(int width, int height, const std::vector<std::string>& args, std::string* error) {
   if (!expect_no_arguments("clip_offset", args, error)) return false;
-  const int quad_to_triangles[6] = {0, 1, 2, 0, 2, 3};
-  for (int face = 0; face < 6; ++face)
-    for (int k = 0; k < 6; ++k) {
-      const int vertex = 6 * face + k;
-      const int corner = FACE_CORNERS[face][quad_to_triangles[k]];
-      for (int axis = 0; axis < 3; ++axis)
-        g_cube_xyz[3 * vertex + axis] = (corner >> axis) & 1 ? HALF_EDGE : -HALF_EDGE;
-      for (int c = 0; c < 4; ++c) g_cube_rgba[4 * vertex + c] = FACE_RGBA[face][c];
-    }
+  flat_cube(HALF_EDGE, FACE_RGBA, g_cube_xyz, g_cube_rgba);
   set_perspective(width, height, 50.0f, 1.0f, 20.0f);
   glClearColor(0.1f, 0.1f, 0.2f, 1.0f);
   glEnable(GL_DEPTH_TEST);

@@ -15,18 +15,6 @@ namespace {
 
 constexpr float HALF_EDGE = 0.5f;
 
-// Corner k of the cube has x, y, z positive where bit 0, 1, 2 of k is set.
-// Each face, in the order +x, -x, +y, -y, +z, -z, lists its corners
-// counter-clockwise seen from outside.
-constexpr std::array<std::array<GLushort, 4>, 6> FACE_CORNERS = {{
-    {{1, 3, 7, 5}},
-    {{0, 4, 6, 2}},
-    {{2, 6, 7, 3}},
-    {{0, 1, 5, 4}},
-    {{4, 5, 7, 6}},
-    {{0, 2, 3, 1}},
-}};
-
 constexpr std::array<std::array<GLfloat, 4>, 6> FACE_RGBA = {{
     {{0.90f, 0.20f, 0.20f, 1.0f}},
     {{0.20f, 0.80f, 0.30f, 1.0f}},
@@ -76,7 +64,7 @@ void build_geometry() {
   for (int face = 0; face < 6; ++face)
     for (int k = 0; k < 6; ++k) {
       const int vertex = 6 * face + k;
-      const GLushort corner = FACE_CORNERS[face][quad_to_triangles[k]];
+      const GLushort corner = CUBE_FACE_CORNERS[face][quad_to_triangles[k]];
       corner_position(corner, &g_geometry.face_xyz[3 * vertex]);
       for (int c = 0; c < 4; ++c) g_geometry.face_rgba[4 * vertex + c] = FACE_RGBA[face][c];
       g_geometry.corner_indices[vertex] = corner;

@@ -38,15 +38,6 @@ constexpr std::array<FogPart, 3> PARTS = {{
     {GL_EXP2, 0.11f, 0.0f, 1.0f},
 }};
 
-// Cube corners as in cubes.cpp: bit 0, 1, 2 of k set where x, y, z are +.
-constexpr std::array<std::array<GLushort, 4>, 6> FACE_CORNERS = {{
-    {{1, 3, 7, 5}},
-    {{0, 4, 6, 2}},
-    {{2, 6, 7, 3}},
-    {{0, 1, 5, 4}},
-    {{4, 5, 7, 6}},
-    {{0, 2, 3, 1}},
-}};
 constexpr std::array<std::array<GLfloat, 4>, 6> FACE_RGBA = {{
     {{0.85f, 0.15f, 0.10f, 1.0f}},
     {{0.15f, 0.70f, 0.20f, 1.0f}},
@@ -68,20 +59,9 @@ constexpr std::array<GLushort, 6> FLOOR_INDICES = {0, 1, 2, 0, 2, 3};
 
 int g_width = 0, g_height = 0;
 
-void build_cube() {
-  const int quad_to_triangles[6] = {0, 1, 2, 0, 2, 3};
-  for (int face = 0; face < 6; ++face)
-    for (int k = 0; k < 6; ++k) {
-      const int vertex = 6 * face + k;
-      const int corner = FACE_CORNERS[face][quad_to_triangles[k]];
-      for (int axis = 0; axis < 3; ++axis) g_cube_xyz[3 * vertex + axis] = (corner >> axis) & 1 ? 0.5f : -0.5f;
-      for (int c = 0; c < 4; ++c) g_cube_rgba[4 * vertex + c] = FACE_RGBA[face][c];
-    }
-}
-
 bool init(int width, int height, const std::vector<std::string>& args, std::string* error) {
   if (!expect_no_arguments("fog_row", args, error)) return false;
-  build_cube();
+  flat_cube(0.5f, FACE_RGBA, g_cube_xyz, g_cube_rgba);
   g_width = width;
   g_height = height;
   glClearColor(SKY_COLOUR[0], SKY_COLOUR[1], SKY_COLOUR[2], SKY_COLOUR[3]);

@@ -89,4 +89,25 @@ void draw_lit_mesh(const Mesh& mesh, int frame) {
   glDisableClientState(GL_VERTEX_ARRAY);
 }
 
+const std::array<std::array<unsigned short, 4>, 6> CUBE_FACE_CORNERS = {{
+    {{1, 3, 7, 5}},
+    {{0, 4, 6, 2}},
+    {{2, 6, 7, 3}},
+    {{0, 1, 5, 4}},
+    {{4, 5, 7, 6}},
+    {{0, 2, 3, 1}},
+}};
+
+void flat_cube(float half_edge, const std::array<std::array<float, 4>, 6>& face_rgba, std::array<float, 36 * 3>& xyz,
+               std::array<float, 36 * 4>& rgba) {
+  const int quad_to_triangles[6] = {0, 1, 2, 0, 2, 3};
+  for (size_t face = 0; face < 6; ++face)
+    for (size_t k = 0; k < 6; ++k) {
+      const size_t vertex = 6 * face + k;
+      const unsigned corner = CUBE_FACE_CORNERS[face][quad_to_triangles[k]];
+      for (size_t axis = 0; axis < 3; ++axis) xyz[3 * vertex + axis] = (corner >> axis) & 1 ? half_edge : -half_edge;
+      for (size_t ch = 0; ch < 4; ++ch) rgba[4 * vertex + ch] = face_rgba[face][ch];
+    }
+}
+
 }  // namespace tessera::scenes

@@ -2,6 +2,7 @@
 // a few GL ES 1.1 set-up steps that several of them repeat.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ Scene textured_quad_scene();
 Scene teapot_scene();
 Scene obj_viewer_scene();
 Scene tile_grid_scene();
+
+// The corners of a cube centred at the origin: corner k has x, y, z
+// positive where bit 0, 1, 2 of k is set. Each face, in the order +x, -x,
+// +y, -y, +z, -z, lists its corners counter-clockwise seen from outside.
+extern const std::array<std::array<unsigned short, 4>, 6> CUBE_FACE_CORNERS;
+
+// That cube with half edge `half_edge` as 12 triangles (36 vertices, face by
+// face: corners 0, 1, 2 and 0, 2, 3 of its list), each face in its colour
+// of `face_rgba`: positions into xyz, colours into rgba.
+void flat_cube(float half_edge, const std::array<std::array<float, 4>, 6>& face_rgba, std::array<float, 36 * 3>& xyz,
+               std::array<float, 36 * 4>& rgba);
 
 // For scenes that take no arguments: false with a message if there are any.
 bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error);
