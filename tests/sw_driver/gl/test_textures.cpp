@@ -241,6 +241,7 @@ TEST_F(GlApi, PalettedTexturesDecodeEveryLevel) {
 TEST_F(GlApi, CopyTexImageDefinesALevelInTheInternalFormatAskedFor) {
   const uint8_t luminance[4] = {10, 20, 30, 40};
   glEnable(GL_TEXTURE_2D);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows of 2 bytes, packed (the default 4 would read 6 bytes)
   glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, 2, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, luminance);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
   // The recording renderer reads every byte as 0x5a: luminance 0x5a.
