@@ -36,7 +36,7 @@ const GLint MIN_FILTERS[STRIPS] = {GL_NEAREST,
                                    GL_NEAREST_MIPMAP_LINEAR,
                                    GL_LINEAR_MIPMAP_LINEAR};
 
-constexpr std::array<std::array<GLubyte, 3>, 5> SQUARE_COLOURS = {{
+const std::vector<std::array<GLubyte, 3>> SQUARE_COLOURS = {{
     {{230, 50, 40}},
     {{40, 170, 70}},
     {{60, 90, 230}},
@@ -50,23 +50,6 @@ constexpr GLubyte LEVEL_TINTS[7][3] = {{0, 0, 0},     {255, 0, 0},   {0, 255, 0}
 const GLushort STRIP_TRIANGLES[] = {0, 1, 2, 0, 2, 3};
 
 GLuint g_textures[STRIPS] = {};
-
-std::vector<GLubyte> checkerboard() {
-  std::vector<GLubyte> texels(TEXTURE_SIZE * TEXTURE_SIZE * 4);
-  for (int y = 0; y < TEXTURE_SIZE; ++y)
-    for (int x = 0; x < TEXTURE_SIZE; ++x) {
-      const int sx = x / SQUARE_SIZE, sy = y / SQUARE_SIZE;
-      GLubyte* t = &texels[4 * (y * TEXTURE_SIZE + x)];
-      if ((sx + sy) % 2 == 0) {
-        t[0] = t[1] = t[2] = 250;
-      } else {
-        const auto& colour = SQUARE_COLOURS[(sx * 2 + sy) % SQUARE_COLOURS.size()];
-        for (int c = 0; c < 3; ++c) t[c] = colour[c];
-      }
-      t[3] = 255;
-    }
-  return texels;
-}
 
 // The next level by a 2 x 2 average, rounded, tinted towards a colour of
 // its own (a quarter of the way) so that each level is told apart.
@@ -94,7 +77,7 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
   glHint(GL_PERSPECTIVE_CORRECTION_HINT, GL_NICEST);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
 
-  const std::vector<GLubyte> base = checkerboard();
+  const std::vector<GLubyte> base = checkerboard_rgba8(TEXTURE_SIZE, SQUARE_SIZE, 250, SQUARE_COLOURS, 2);
   glGenTextures(STRIPS, g_textures);
   for (int k = 0; k < STRIPS; ++k) {
     glBindTexture(GL_TEXTURE_2D, g_textures[k]);

@@ -110,4 +110,23 @@ void flat_cube(float half_edge, const std::array<std::array<float, 4>, 6>& face_
     }
 }
 
+std::vector<unsigned char> checkerboard_rgba8(int size, int square, unsigned char light,
+                                              const std::vector<std::array<unsigned char, 3>>& colours,
+                                              int colour_step) {
+  std::vector<unsigned char> texels(static_cast<size_t>(size) * size * 4);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const int sx = x / square, sy = y / square;
+      unsigned char* t = &texels[4 * (static_cast<size_t>(y) * size + x)];
+      if ((sx + sy) % 2 == 0) {
+        t[0] = t[1] = t[2] = light;
+      } else {
+        const auto& colour = colours[static_cast<size_t>(sx * colour_step + sy) % colours.size()];
+        for (int ch = 0; ch < 3; ++ch) t[ch] = colour[ch];
+      }
+      t[3] = 255;
+    }
+  return texels;
+}
+
 }  // namespace tessera::scenes

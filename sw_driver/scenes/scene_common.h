@@ -30,6 +30,13 @@ extern const std::array<std::array<unsigned short, 4>, 6> CUBE_FACE_CORNERS;
 void flat_cube(float half_edge, const std::array<std::array<float, 4>, 6>& face_rgba, std::array<float, 36 * 3>& xyz,
                std::array<float, 36 * 4>& rgba);
 
+// An RGBA8 checkerboard texture of size x size texels in squares of
+// `square` texels: square (sx, sy) with sx + sy even is grey `light`, the
+// others colour (sx * colour_step + sy) mod the number of colours; alpha 255.
+std::vector<unsigned char> checkerboard_rgba8(int size, int square, unsigned char light,
+                                              const std::vector<std::array<unsigned char, 3>>& colours,
+                                              int colour_step);
+
 // For scenes that take no arguments: false with a message if there are any.
 bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error);
 

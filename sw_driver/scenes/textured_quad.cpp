@@ -28,7 +28,7 @@ const GLfloat QUAD_ST[] = {0.0f, 0.0f, 2.0f, 0.0f, 2.0f, 2.0f, 0.0f, 2.0f};
 const GLubyte QUAD_RGBA[] = {255, 255, 255, 255, 255, 230, 120, 255, 140, 230, 255, 255, 255, 160, 220, 255};
 const GLushort QUAD_TRIANGLES[] = {0, 1, 2, 0, 2, 3};
 
-constexpr std::array<std::array<GLubyte, 3>, 6> SQUARE_COLOURS = {{
+const std::vector<std::array<GLubyte, 3>> SQUARE_COLOURS = {{
     {{220, 40, 40}},
     {{40, 180, 60}},
     {{50, 80, 230}},
@@ -38,24 +38,6 @@ constexpr std::array<std::array<GLubyte, 3>, 6> SQUARE_COLOURS = {{
 }};
 
 GLuint g_texture = 0;
-
-std::array<GLubyte, TEXTURE_SIZE * TEXTURE_SIZE * 4> checkerboard() {
-  std::array<GLubyte, TEXTURE_SIZE * TEXTURE_SIZE * 4> texels{};
-  for (int y = 0; y < TEXTURE_SIZE; ++y)
-    for (int x = 0; x < TEXTURE_SIZE; ++x) {
-      const int square_x = x / SQUARE_SIZE;
-      const int square_y = y / SQUARE_SIZE;
-      GLubyte* texel = &texels[4 * (y * TEXTURE_SIZE + x)];
-      if ((square_x + square_y) % 2 == 0) {
-        texel[0] = texel[1] = texel[2] = 255;
-      } else {
-        const auto& colour = SQUARE_COLOURS[(square_x * 3 + square_y) % SQUARE_COLOURS.size()];
-        for (int c = 0; c < 3; ++c) texel[c] = colour[c];
-      }
-      texel[3] = 255;
-    }
-  return texels;
-}
 
 bool init(int width, int height, const std::vector<std::string>& args, std::string* error) {
   GLint filter = GL_LINEAR;
@@ -80,7 +62,7 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
   glShadeModel(GL_SMOOTH);
   glHint(GL_PERSPECTIVE_CORRECTION_HINT, GL_NICEST);
 
-  const auto texels = checkerboard();
+  const auto texels = checkerboard_rgba8(TEXTURE_SIZE, SQUARE_SIZE, 255, SQUARE_COLOURS, 3);
   glGenTextures(1, &g_texture);
   glBindTexture(GL_TEXTURE_2D, g_texture);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
