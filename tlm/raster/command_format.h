@@ -59,6 +59,60 @@ struct TriangleFog {
 static_assert(sizeof(FogState) == 8, "fog states are 2 words");
 static_assert(sizeof(TriangleFog) == 12, "triangle fog records are 3 words");
 
+// Texture units (StateFlag::texture_units): mipmaps, a second (third,
+// fourth) unit and the environments beyond the block's 2-bit TexEnv field
+// (ES 1.1 texturing, docs/es11_profile.md). A StateBlock with the flag is
+// followed, after its FogState if it has one, by a TextureUnitsHeader and
+// `count` TextureUnitState records, one per ENABLED texture unit in GL's
+// order (a disabled unit passes its input through, so the driver leaves it
+// out); the block's own texture flag and texture words are then ignored.
+// Every triangle record drawn with that state is followed, after its
+// TriangleFog if any, by count - 1 TriangleUnitCoords: the first enabled
+// unit's coordinates are the VertexRecord's, each further unit's are in
+// its record, in the order of the units. Lists without the flag are word
+// for word what they were before the extension.
+constexpr uint32_t MAX_TEXTURE_UNITS = 4;
+struct TextureUnitsHeader {
+  uint32_t count;  // bits 0-7: enabled units, 1 .. MAX_TEXTURE_UNITS (another count: RasterError::bad_texture)
+};
+struct TextureUnitState {
+  uint32_t address;        // level 0's RGBA8 texels, row t = 0 first
+  uint32_t size;           // log2 width bits 0-7, log2 height 8-15 (0..8), last level bits 16-23 (0: level 0 only)
+  uint32_t level_table;    // with a last level L > 0: L words, the texel addresses of levels 1 .. L (level k is
+                           // max(1, w >> k) x max(1, h >> k) texels); unused (not read) with L = 0
+  uint32_t mode;           // filters, wraps, environment and base format at the UNIT_* shifts below
+  uint32_t env_color;      // GL_TEXTURE_ENV_COLOR: R bits 0-7, G 8-15, B 16-23, A 24-31 (0.8)
+  uint32_t combine_rgb;    // GL_COMBINE_RGB: function, three sources, three operands, scale (COMBINE_* shifts)
+  uint32_t combine_alpha;  // GL_COMBINE_ALPHA: the same layout
+};
+struct TriangleUnitCoords {
+  float s_over_w[3];  // per vertex v[k]: the unit's s / w and t / w (1 / w is the VertexRecord's)
+  float t_over_w[3];
+};
+static_assert(sizeof(TextureUnitsHeader) == 4, "the texture units header is 1 word");
+static_assert(sizeof(TextureUnitState) == 28, "texture unit states are 7 words");
+static_assert(sizeof(TriangleUnitCoords) == 24, "a further unit's coordinates are 6 words");
+
+// Fields of TextureUnitState::mode. The minification filter is the
+// within-level filter (TexFilter) and the choice between levels beside it;
+// the environment field is wider than the StateBlock's.
+constexpr unsigned UNIT_MIN_FILTER_SHIFT = 0;    // TexFilter within a level, 1 bit
+constexpr unsigned UNIT_MAG_FILTER_SHIFT = 1;    // TexFilter, 1 bit
+constexpr unsigned UNIT_WRAP_S_SHIFT = 2;        // TexWrap, bits 2-3
+constexpr unsigned UNIT_WRAP_T_SHIFT = 4;        // TexWrap, bits 4-5
+constexpr unsigned UNIT_MIPMAP_SHIFT = 6;        // between levels, bits 6-7 (a fixed_function.def table)
+constexpr unsigned UNIT_ENV_SHIFT = 8;           // TexEnv, bits 8-11
+constexpr unsigned UNIT_BASE_FORMAT_SHIFT = 12;  // the texture's base format (table 3.15), bits 12-15
+// Fields of TextureUnitState::combine_rgb and combine_alpha: source k at
+// COMBINE_SOURCE_SHIFT + 4 k, operand k at COMBINE_OPERAND_SHIFT + 4 k.
+constexpr unsigned COMBINE_FUNC_SHIFT = 0;      // bits 0-3
+constexpr unsigned COMBINE_SOURCE_SHIFT = 4;    // bits 4-5, 8-9, 12-13
+constexpr unsigned COMBINE_OPERAND_SHIFT = 16;  // bits 16-17, 20-21, 24-25
+constexpr unsigned COMBINE_SCALE_SHIFT = 28;    // log2 of the scale (0, 1, 2), bits 28-29
+
+// Levels of a 256 x 256 texture: 0 (256 x 256) to 8 (1 x 1).
+constexpr uint32_t MAX_TEXTURE_LEVEL = 8;
+
 // Flags of StateBlock::flags.
 enum StateFlag : uint32_t {
   depth_test = 1u << 0,
@@ -72,6 +126,7 @@ enum StateFlag : uint32_t {
   flat_shading = 1u << 8,
   polygon_smooth = 1u << 9,  // antialiased edges from normalised edge functions (EASA)
   fog = 1u << 10,            // a FogState follows the block, a TriangleFog each triangle record
+  texture_units = 1u << 11,  // TextureUnitsHeader and unit states follow, TriangleUnitCoords each record
 };
 
 // Compare functions, stencil ops, blend factors, logic ops, texture filters,
@@ -96,13 +151,31 @@ struct StateBlock {
 };
 static_assert(sizeof(StateBlock) == 48, "state blocks are 12 words");
 
-// Bytes of a state block with `flags` and of a triangle record drawn with
-// it: the one place the fog extension's sizes are stated.
-constexpr uint32_t state_block_bytes(uint32_t flags) {
-  return uint32_t{sizeof(StateBlock)} + ((flags & StateFlag::fog) != 0 ? uint32_t{sizeof(FogState)} : 0u);
+// Bytes of a state block with `flags` (and `units` texture unit states
+// with StateFlag::texture_units) and of a triangle record drawn with it:
+// the one place the extensions' sizes and order are stated.
+constexpr uint32_t fog_state_offset() {
+  return uint32_t{sizeof(StateBlock)};
 }
-constexpr uint32_t triangle_record_bytes(uint32_t state_flags) {
-  return uint32_t{sizeof(TriangleRecord)} + ((state_flags & StateFlag::fog) != 0 ? uint32_t{sizeof(TriangleFog)} : 0u);
+constexpr uint32_t texture_units_offset(uint32_t flags) {
+  return fog_state_offset() + ((flags & StateFlag::fog) != 0 ? uint32_t{sizeof(FogState)} : 0u);
+}
+constexpr uint32_t state_block_bytes(uint32_t flags, uint32_t units = 0) {
+  return texture_units_offset(flags) +
+         ((flags & StateFlag::texture_units) != 0
+              ? uint32_t{sizeof(TextureUnitsHeader)} + units * uint32_t{sizeof(TextureUnitState)}
+              : 0u);
+}
+constexpr uint32_t triangle_fog_offset() {
+  return uint32_t{sizeof(TriangleRecord)};
+}
+constexpr uint32_t triangle_unit_coords_offset(uint32_t state_flags) {
+  return triangle_fog_offset() + ((state_flags & StateFlag::fog) != 0 ? uint32_t{sizeof(TriangleFog)} : 0u);
+}
+constexpr uint32_t triangle_record_bytes(uint32_t state_flags, uint32_t units = 0) {
+  return triangle_unit_coords_offset(state_flags) + ((state_flags & StateFlag::texture_units) != 0 && units > 1
+                                                         ? (units - 1) * uint32_t{sizeof(TriangleUnitCoords)}
+                                                         : 0u);
 }
 
 // Positions of the codes in their StateBlock words (the compare functions
@@ -127,6 +200,9 @@ static_assert(TEXTURE_WRAP_S_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_WRA
               "wrap codes fit bits 2-3 and 4-5");
 static_assert(FixedFunction<TexEnv>::BITS <= 2, "texture environment codes fit bits 8-9");
 static_assert(FixedFunction<FogMode>::BITS <= 2, "fog mode codes fit bits 0-1 of FogState::mode");
+static_assert(FixedFunction<TexFilter>::BITS <= 1 && FixedFunction<TexWrap>::BITS <= 2 &&
+                  FixedFunction<TexEnv>::BITS <= 4,
+              "unit filter, wrap and environment codes fit their TextureUnitState::mode fields");
 
 // ERROR_STATUS codes. On an error the rasterizer stops the run, sets
 // STATUS.error and IRQ_STATUS.error, and leaves the tiles not yet written
@@ -136,7 +212,8 @@ enum class RasterError : uint32_t {
   bus_error = 1,     // a fetch or a tile write got an error response (ERROR_ADDRESS: the address)
   bad_opcode = 2,    // unknown command word (ERROR_ADDRESS: its address)
   list_overrun = 3,  // a command runs past its tile's word_count
-  bad_texture = 4,   // texture size above 256 (log2 > 8) or texels outside memory
+  bad_texture = 4,   // texture size above 256 (log2 > 8), texels outside memory, a unit count not 1 .. 4,
+                     // or a last level beyond the texture's 1 x 1 level
   bad_reciprocal =
       5,  // reciprocal operand 0 or above 2^14 - 1 reached the unit: the triangle is skipped, counted, not fatal
 };

@@ -616,6 +616,58 @@ TEST(TileRasterizer, BadTextureSizeAndTexelsOutsideMemory) {
   }
 }
 
+// The texture unit extension's sizes (command_format.h): the header and
+// seven words per unit after the fog words; six words per further unit
+// after the triangle's fog words.
+TEST(TileRasterizer, TextureUnitExtensionSizes) {
+  EXPECT_EQ(state_block_bytes(StateFlag::texture_units, 2), sizeof(StateBlock) + 4 + 2 * 28);
+  EXPECT_EQ(state_block_bytes(StateFlag::texture_units | StateFlag::fog, 1), sizeof(StateBlock) + 8 + 4 + 28);
+  EXPECT_EQ(texture_units_offset(StateFlag::fog | StateFlag::texture_units), sizeof(StateBlock) + 8);
+  EXPECT_EQ(triangle_record_bytes(StateFlag::texture_units, 1), sizeof(TriangleRecord));
+  EXPECT_EQ(triangle_record_bytes(StateFlag::texture_units, 3), sizeof(TriangleRecord) + 2 * 24);
+  EXPECT_EQ(triangle_record_bytes(StateFlag::texture_units | StateFlag::fog, 2), sizeof(TriangleRecord) + 12 + 24);
+  EXPECT_EQ(triangle_record_bytes(0, 3), sizeof(TriangleRecord));  // units only count with the flag
+}
+
+// A texture unit state with a unit count of 0 or 5 stops the run at its
+// header; a unit whose size is above 256 or whose last level is beyond the
+// 1 x 1 level stops it at that unit's size word when a triangle uses it.
+TEST(TileRasterizer, BadTextureUnitCountSizeAndLastLevel) {
+  struct Case {
+    uint32_t count, size;
+    bool at_header;
+  };
+  for (const Case k : {Case{0, 2 | 2u << 8, true}, Case{5, 2 | 2u << 8, true}, Case{2, 9 | 2u << 8, false},
+                       Case{2, 2 | 3u << 8 | 4u << 16, false}}) {
+    ErrorCase c;
+    StateBlock s = default_state();
+    s.flags |= StateFlag::texture_units;
+    struct {
+      StateBlock block;
+      TextureUnitsHeader header;
+      TextureUnitState unit[2];
+    } words{s, {k.count}, {}};
+    words.unit[0].address = TEXTURE_BASE;
+    words.unit[0].size = 2 | 2u << 8;
+    words.unit[1].address = TEXTURE_BASE;
+    words.unit[1].size = k.size;
+    const uint32_t state_address = c.frame.put(&words, sizeof words);
+    struct {
+      TriangleRecord record;
+      TriangleUnitCoords unit1;
+    } t{{{vertex(34, 20, ~0u, 0, 0, 0), vertex(60, 20, ~0u, 0, 1, 0), vertex(34, 30, ~0u, 0, 0, 1)}}, {}};
+    const uint32_t record = c.frame.put(&t, sizeof t);
+    c.frame.lists[ErrorCase::BAD_TILE].insert(
+        c.frame.lists[ErrorCase::BAD_TILE].end(),
+        {uint32_t(Opcode::state), state_address, uint32_t(Opcode::triangle), record});
+    c.frame.finish();
+    const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+    EXPECT_EQ(r.error, RasterError::bad_texture) << k.count << " " << k.size;
+    EXPECT_EQ(r.error_address, k.at_header ? state_address + 48 : state_address + 48 + 4 + 28 + 4)
+        << k.count << " " << k.size;
+  }
+}
+
 TEST(TileRasterizer, ZeroAreaTriangleIsSkipped) {
   VectorPort port(MEMORY_SIZE);
   Frame frame(port, 96, 48);

@@ -114,19 +114,70 @@ bool CommandDecoder::read_state(uint32_t address, DrawState& state) {
   s.env = from_code<TexEnv>(mode >> TEXTURE_ENV_SHIFT);
   if (s.has(StateFlag::fog)) {
     uint8_t f[sizeof(FogState)];
-    if (!m_run.read(address + uint32_t{sizeof(StateBlock)}, f, sizeof f)) return false;
+    if (!m_run.read(address + fog_state_offset(), f, sizeof f)) return false;
     s.fog_mode = from_code<FogMode>(load_le32(f) >> FOG_MODE_SHIFT);
     s.fog_color = Rgba8::unpack(load_le32(f + 4));
   }
+  if (s.has(StateFlag::texture_units) && !read_texture_units(address + texture_units_offset(s.flags), s)) return false;
   state = s;
   return true;
 }
 
+bool CommandDecoder::read_texture_units(uint32_t address, DrawState& s) {
+  uint8_t h[sizeof(TextureUnitsHeader)];
+  if (!m_run.read(address, h, sizeof h)) return false;
+  const uint32_t count = load_le32(h) & 0xff;
+  if (count < 1 || count > MAX_TEXTURE_UNITS) {
+    m_run.fail(RasterError::bad_texture, address);
+    return false;
+  }
+  uint8_t b[MAX_TEXTURE_UNITS * sizeof(TextureUnitState)];
+  const uint32_t units_address = address + uint32_t{sizeof(TextureUnitsHeader)};
+  if (!m_run.read(units_address, b, count * uint32_t{sizeof(TextureUnitState)})) return false;
+  s.unit_count = count;
+  for (uint32_t u = 0; u < count; ++u) {
+    const uint8_t* p = b + sizeof(TextureUnitState) * u;
+    const auto word = [p](unsigned i) { return load_le32(p + 4 * i); };
+    TextureUnitDraw& d = s.unit[u];
+    const uint32_t size = word(1), mode = word(3);
+    d.log2_width = size & 0xff;
+    d.log2_height = (size >> 8) & 0xff;
+    d.last_level = (size >> 16) & 0xff;
+    d.texture.base = word(0);
+    d.texture.log2_width = uint8_t(std::min(d.log2_width, TEXTURE_MAX_LOG2));
+    d.texture.log2_height = uint8_t(std::min(d.log2_height, TEXTURE_MAX_LOG2));
+    d.texture.wrap_s = from_code<TexWrap>(mode >> UNIT_WRAP_S_SHIFT);
+    d.texture.wrap_t = from_code<TexWrap>(mode >> UNIT_WRAP_T_SHIFT);
+    d.min_filter = from_code<TexFilter>(mode >> UNIT_MIN_FILTER_SHIFT);
+    d.mag_filter = from_code<TexFilter>(mode >> UNIT_MAG_FILTER_SHIFT);
+    d.mipmap = (mode >> UNIT_MIPMAP_SHIFT) & 3;
+    d.env = (mode >> UNIT_ENV_SHIFT) & 15;
+    d.base_format = (mode >> UNIT_BASE_FORMAT_SHIFT) & 15;
+    d.env_color = Rgba8::unpack(word(4));
+    d.combine_rgb = word(5);
+    d.combine_alpha = word(6);
+    d.level_address = {};
+    d.level_address[0] = d.texture.base;
+    // The level table, read only when the size is one the core can use (a
+    // bad size or last level fails the run when a triangle uses the unit).
+    const unsigned max_level = std::max(d.log2_width, d.log2_height);
+    if (d.last_level > 0 && d.log2_width <= TEXTURE_MAX_LOG2 && d.log2_height <= TEXTURE_MAX_LOG2 &&
+        d.last_level <= max_level) {
+      uint8_t table[4 * MAX_TEXTURE_LEVEL];
+      if (!m_run.read(word(2), table, 4 * d.last_level)) return false;
+      for (unsigned k = 1; k <= d.last_level; ++k) d.level_address[k] = load_le32(table + 4 * (k - 1));
+    }
+  }
+  return true;
+}
+
 bool CommandDecoder::read_triangle(uint32_t address, const DrawState& state, TriangleVertices& vertices) {
-  uint8_t raw[sizeof(TriangleRecord) + sizeof(TriangleFog)];
-  static_assert(sizeof raw >= triangle_record_bytes(StateFlag::fog), "room for the fog extension");
-  if (!m_run.read(address, raw, triangle_record_bytes(state.flags))) return false;
+  uint8_t raw[sizeof(TriangleRecord) + sizeof(TriangleFog) + (MAX_TEXTURE_UNITS - 1) * sizeof(TriangleUnitCoords)];
+  static_assert(sizeof raw >= triangle_record_bytes(StateFlag::fog | StateFlag::texture_units, MAX_TEXTURE_UNITS),
+                "room for the fog and texture unit extensions");
+  if (!m_run.read(address, raw, triangle_record_bytes(state.flags, state.unit_count))) return false;
   const bool fog = state.has(StateFlag::fog);
+  const uint8_t* unit_coords = raw + triangle_unit_coords_offset(state.flags);
   for (unsigned k = 0; k < 3; ++k) {
     const uint8_t* p = raw + VERTEX_RECORD_BYTES * k;
     TriangleVertex& v = vertices[k];
@@ -138,7 +189,18 @@ bool CommandDecoder::read_triangle(uint32_t address, const DrawState& state, Tri
     v.s_over_w = load_float(p + 12);
     v.t_over_w = load_float(p + 16);
     v.inv_w = load_float(p + 20);
-    v.fog = fog ? int32_t(load_le32(raw + sizeof(TriangleRecord) + 4 * k)) : 0;
+    v.fog = fog ? int32_t(load_le32(raw + triangle_fog_offset() + 4 * k)) : 0;
+    v.unit_s_over_w = {};
+    v.unit_t_over_w = {};
+    if (state.unit_count > 0) {
+      v.unit_s_over_w[0] = v.s_over_w;
+      v.unit_t_over_w[0] = v.t_over_w;
+    }
+    for (unsigned u = 1; u < state.unit_count; ++u) {
+      const uint8_t* c = unit_coords + sizeof(TriangleUnitCoords) * (u - 1);
+      v.unit_s_over_w[u] = load_float(c + 4 * k);
+      v.unit_t_over_w[u] = load_float(c + 12 + 4 * k);
+    }
     if (v.x > q9_4::MAX_RAW || v.y > q9_4::MAX_RAW) {  // not a 9.4 coordinate
       ++m_run.result().triangles_skipped;
       return false;

@@ -39,6 +39,9 @@ struct TriangleVertex {
   Rgba8 color;
   float s_over_w = 0, t_over_w = 0, inv_w = 0;
   int32_t fog = 0;  // the fog argument, 16.16 (a TriangleFog; 0 without fog)
+  // With StateFlag::texture_units, unit u's s / w and t / w (unit 0's are
+  // s_over_w and t_over_w above, repeated here); 0 for the other units.
+  std::array<float, MAX_TEXTURE_UNITS> unit_s_over_w{}, unit_t_over_w{};
 };
 using TriangleVertices = std::array<TriangleVertex, 3>;
 
@@ -49,15 +52,19 @@ class CommandDecoder {
   // The list's next command; false at the end of the list, after an error
   // and when this command is one.
   bool next(Command& command);
-  // The StateBlock at `address` (and its FogState with the fog flag); false
-  // when its fetch fails.
+  // The StateBlock at `address` (and its FogState with the fog flag, its
+  // texture unit states with the texture_units flag); false when a fetch
+  // fails or the unit count is not 1 .. MAX_TEXTURE_UNITS (bad_texture).
   bool read_state(uint32_t address, DrawState& state);
   // The triangle record at `address` (and its TriangleFog when `state` has
-  // fog); false when its fetch fails, or when a vertex is not a 9.4
-  // coordinate (the triangle is skipped and counted).
+  // fog, its further units' coordinates with texture_units); false when its
+  // fetch fails, or when a vertex is not a 9.4 coordinate (the triangle is
+  // skipped and counted).
   bool read_triangle(uint32_t address, const DrawState& state, TriangleVertices& vertices);
 
  private:
+  bool read_texture_units(uint32_t address, DrawState& state);
+
   RunContext& m_run;
   TileEntry m_entry;
   uint32_t m_position = 0;  // words of the list taken

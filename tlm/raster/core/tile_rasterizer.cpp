@@ -7,6 +7,8 @@
 // RunContext.
 #include "raster/core/tile_rasterizer.h"
 
+#include <algorithm>
+
 #include <cstddef>
 
 #include "common/screen_size.h"
@@ -36,9 +38,22 @@ void draw_triangle(RunContext& run, CommandDecoder& decoder, TileCache& tile, co
   const Rect box = traversal_box(vertices, smooth, tile.tile(), state);
   if (box.empty()) return;
 
-  if (state.has(StateFlag::texture) && (state.log2_width > TEXTURE_MAX_LOG2 || state.log2_height > TEXTURE_MAX_LOG2))
+  if (state.has(StateFlag::texture_units)) {
+    // Each unit's size, and a last level no further than the 1 x 1 level.
+    for (unsigned u = 0; u < state.unit_count; ++u) {
+      const TextureUnitDraw& unit = state.unit[u];
+      if (unit.log2_width > TEXTURE_MAX_LOG2 || unit.log2_height > TEXTURE_MAX_LOG2 ||
+          unit.last_level > std::max(unit.log2_width, unit.log2_height))
+        return run.fail(RasterError::bad_texture, state.address + texture_units_offset(state.flags) +
+                                                      uint32_t{sizeof(TextureUnitsHeader)} +
+                                                      uint32_t{sizeof(TextureUnitState)} * u +
+                                                      static_cast<uint32_t>(offsetof(TextureUnitState, size)));
+    }
+  } else if (state.has(StateFlag::texture) &&
+             (state.log2_width > TEXTURE_MAX_LOG2 || state.log2_height > TEXTURE_MAX_LOG2)) {
     return run.fail(RasterError::bad_texture,
                     state.address + static_cast<uint32_t>(offsetof(StateBlock, texture_size)));
+  }
 
   TriangleSetup setup;
   if (!set_up_triangle(vertices, state, run.config().recip_method, setup)) {
