@@ -323,6 +323,10 @@ class Context {
   GLuint m_array_buffer = 0, m_element_buffer = 0;
 
   std::vector<Triangle> m_batch;
+  // Scratch space of emit_triangle (its polygon before and after clipping,
+  // and in screen space), kept so that a triangle allocates nothing.
+  std::vector<ClipVertex> m_scratch_polygon;
+  std::vector<ScreenVertex> m_scratch_screen;
   std::vector<Vertex> m_vertices;
   VertexCache<Vertex> m_vertex_cache;
 

@@ -20,7 +20,10 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
                             Primitive primitive, const glm::vec4* flat_back_color) {
   if (!a.valid || !b.valid || !c.valid) return;  // non-finite vertices: dropped
   const bool polygon_rules = primitive == Primitive::polygon;
-  std::vector<ClipVertex> polygon = {a.clip, b.clip, c.clip};
+  // The polygon and its screen vertices live in scratch vectors of the
+  // context, so a triangle that needs no clipping allocates nothing.
+  std::vector<ClipVertex>& polygon = m_scratch_polygon;
+  polygon.assign({a.clip, b.clip, c.clip});
   if (flat_color)
     for (auto& v : polygon) v.color = *flat_color;
   if (flat_back_color)
@@ -39,7 +42,8 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     charge({12, 12, 1, 0, 7, 0, 0}, polygon.size());
     if (polygon.size() < 3) return;
   }
-  std::vector<ScreenVertex> screen(polygon.size());
+  std::vector<ScreenVertex>& screen = m_scratch_screen;
+  screen.assign(polygon.size(), ScreenVertex{});
   for (size_t i = 0; i < polygon.size(); ++i)
     if (!to_screen(polygon[i], m_viewport, &screen[i])) return;
   charge(screen_cost(), polygon.size());
