@@ -69,6 +69,11 @@ std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon) {
 
 std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon,
                                      const std::vector<glm::vec4>& user_planes) {
+  return clip_polygon(polygon, user_planes, ClipSpacePlanes{});
+}
+
+std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon, const std::vector<glm::vec4>& user_planes,
+                                     const ClipSpacePlanes& screen) {
   std::vector<ClipVertex> current = polygon, next;
   for (int plane = 0; plane < 7 && !current.empty(); ++plane)
     clip_against(current, next, [plane](const ClipVertex& v) { return plane_value(v.position, plane); });
@@ -76,8 +81,33 @@ std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon,
     if (current.empty()) break;
     clip_against(current, next, [&plane](const ClipVertex& v) { return glm::dot(plane, v.eye); });
   }
+  for (unsigned i = 0; i < screen.count && !current.empty(); ++i) {
+    const glm::vec4& plane = screen.plane[i];
+    clip_against(current, next, [&plane](const ClipVertex& v) { return glm::dot(plane, v.position); });
+  }
   if (current.size() < 3) current.clear();
   return current;
+}
+
+ClipSpacePlanes screen_planes(const Viewport& viewport) {
+  // Window x = (x_c / w_c + 1) W / 2 + x0, so x >= 0 is
+  // x_c + (1 + 2 x0 / W) w_c >= 0 and x <= S is (2 (S - x0) / W - 1) w_c - x_c >= 0
+  // (w_c > 0 inside the view volume); y alike.
+  ClipSpacePlanes planes;
+  if (viewport.width <= 0 || viewport.height <= 0) return planes;
+  const double s = MAX_SCREEN_SIZE;
+  const double w = viewport.width, h = viewport.height;
+  if (viewport.x < 0) planes.plane[planes.count++] = {1, 0, 0, static_cast<float>(1 + 2 * viewport.x / w)};
+  if (viewport.x + w > s) planes.plane[planes.count++] = {-1, 0, 0, static_cast<float>(2 * (s - viewport.x) / w - 1)};
+  if (viewport.y < 0) planes.plane[planes.count++] = {0, 1, 0, static_cast<float>(1 + 2 * viewport.y / h)};
+  if (viewport.y + h > s) planes.plane[planes.count++] = {0, -1, 0, static_cast<float>(2 * (s - viewport.y) / h - 1)};
+  return planes;
+}
+
+bool inside_clip_space_planes(const ClipVertex& v, const ClipSpacePlanes& planes) {
+  for (unsigned i = 0; i < planes.count; ++i)
+    if (!(glm::dot(planes.plane[i], v.position) >= 0)) return false;
+  return true;
 }
 
 ClipVertex interpolate(const ClipVertex& a, const ClipVertex& b, float t) {

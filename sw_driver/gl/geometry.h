@@ -48,6 +48,20 @@ inline constexpr float MIN_POINT_SIZE = 1, MAX_POINT_SIZE = 64;
 // user planes it is clip_polygon.
 std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon, const std::vector<glm::vec4>& user_planes);
 
+// Clip-space planes (a vertex is inside when dot(plane, position) >= 0),
+// at most four: the screen's edges when a viewport reaches past them.
+struct ClipSpacePlanes {
+  glm::vec4 plane[4];
+  unsigned count = 0;
+};
+
+// True if the vertex is inside every one of `planes`.
+bool inside_clip_space_planes(const ClipVertex& v, const ClipSpacePlanes& planes);
+
+// As clip_polygon with user planes, then against `screen` (clip space).
+std::vector<ClipVertex> clip_polygon(const std::vector<ClipVertex>& polygon, const std::vector<glm::vec4>& user_planes,
+                                     const ClipSpacePlanes& screen);
+
 // The vertex at t along a -> b (0 at a), every attribute interpolated
 // linearly in clip space, as the clipper does.
 ClipVertex interpolate(const ClipVertex& a, const ClipVertex& b, float t);
@@ -64,6 +78,14 @@ struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;
   float near_depth = 0.0f, far_depth = 1.0f;  // glDepthRangef
 };
+
+// The edges of what the back ends can draw (window x and y from 0 to
+// MAX_SCREEN_SIZE, the 9.4 range) that the viewport reaches past, as
+// clip-space planes. glViewport may put the viewport partly off the screen
+// (a negative x or y, or x + width beyond the screen); the picture is then
+// the viewport's, cut at the screen. Empty for a viewport on the screen,
+// whose view volume is inside it already.
+ClipSpacePlanes screen_planes(const Viewport& viewport);
 
 // A vertex's window coordinates before snapping: pixels, y up, computed in
 // double precision from the float clip coordinates as to_screen does.

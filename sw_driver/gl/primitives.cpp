@@ -37,8 +37,15 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     inside = inside && inside_user_planes(a.clip, user_planes) && inside_user_planes(b.clip, user_planes) &&
              inside_user_planes(c.clip, user_planes);
   }
+  // A viewport partly off the screen: its picture is cut at the screen.
+  const ClipSpacePlanes screen_edges = screen_planes(m_viewport);
+  if (screen_edges.count > 0) {
+    charge({3, 4, 0, 0, 1, 0, 0}, 3 * screen_edges.count);
+    inside = inside && inside_clip_space_planes(a.clip, screen_edges) &&
+             inside_clip_space_planes(b.clip, screen_edges) && inside_clip_space_planes(c.clip, screen_edges);
+  }
   if (!inside) {
-    polygon = clip_polygon(polygon, user_planes);
+    polygon = clip_polygon(polygon, user_planes, screen_edges);
     charge({12, 12, 1, 0, 7, 0, 0}, polygon.size());
     if (polygon.size() < 3) return;
   }

@@ -78,9 +78,21 @@ void build_geometry() {
 }
 
 bool init(int width, int height, const std::vector<std::string>& args, std::string* error) {
-  if (!expect_no_arguments("cubes", args, error)) return false;
+  for (size_t i = 0; i < args.size(); ++i)
+    if (i > 0 || args[i] != "offscreen") {
+      *error =
+          "cubes: the only argument is 'offscreen' (the viewport partly off the screen's left and bottom edges), "
+          "got '" +
+          args[i] + "'";
+      return false;
+    }
   build_geometry();
   set_perspective(width, height, 45.0f, 1.0f, 20.0f);
+  // `offscreen`: the same view through a viewport moved left by a third of
+  // the screen and down by a quarter (glViewport accepts a negative origin;
+  // the picture is cut at the screen's edges). Its size stays the screen's,
+  // within every implementation's GL_MAX_VIEWPORT_DIMS.
+  if (!args.empty()) glViewport(-width / 3, -height / 4, width, height);
   glClearColor(0.05f, 0.05f, 0.08f, 1.0f);
   glClearDepthf(1.0f);
   glEnable(GL_DEPTH_TEST);

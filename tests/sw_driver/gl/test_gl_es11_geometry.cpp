@@ -497,3 +497,57 @@ TEST_F(GlApi, ExtensionsListPointSpritesAndSizeArrays) {
   EXPECT_NE(extensions.find("GL_OES_point_sprite"), std::string::npos);
   EXPECT_NE(extensions.find("GL_OES_point_size_array"), std::string::npos);
 }
+
+// ---- A viewport partly off the screen ----------------------------------------
+
+TEST_F(GlApi, ViewportPartlyOffTheScreenIsCutAtTheScreen) {
+  // glViewport(-32, -24, 64, 48): NDC -1..1 maps to window x -32..32 and
+  // y -24..24. A quad over the whole view volume keeps its on-screen
+  // quarter, x 0..32 and y 0..24 (it was dropped whole before).
+  glViewport(-32, -24, 64, 48);
+  const float lower[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0};
+  const float upper[] = {-1, -1, 0, 1, 1, 0, -1, 1, 0};
+  draw_triangle(lower);
+  draw_triangle(upper);
+  ASSERT_FALSE(renderer.triangles.empty());
+  Extent e = extent(renderer.triangles);
+  EXPECT_FLOAT_EQ(e.min_x, 0);
+  EXPECT_FLOAT_EQ(e.max_x, 32);
+  EXPECT_FLOAT_EQ(e.min_y, 0);
+  EXPECT_FLOAT_EQ(e.max_y, 24);
+
+  // A triangle whose NDC corners (-0.5, -0.5), (0.5, -0.5), (0.5, 0.5) are
+  // at window (-16, -12), (16, -12), (16, 12): cut at x = 0 and y = 0, it
+  // keeps the part right of x = 0 and above y = 0 under its hypotenuse
+  // y = 0.75 x (window): x 0..16, y 0..12.
+  renderer.triangles.clear();
+  const float small[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0};
+  draw_triangle(small);
+  ASSERT_FALSE(renderer.triangles.empty());
+  e = extent(renderer.triangles);
+  EXPECT_FLOAT_EQ(e.min_x, 0);
+  EXPECT_FLOAT_EQ(e.max_x, 16);
+  EXPECT_FLOAT_EQ(e.min_y, 0);
+  EXPECT_FLOAT_EQ(e.max_y, 12);
+
+  // Past the far edges of the 9.4 range (512 pixels): glViewport(480, 500,
+  // 64, 48) reaches x 544 and y 548; the quad is cut at 512, whose code is
+  // the last one, 511 15/16 (geometry.cpp, screen_coordinate).
+  renderer.triangles.clear();
+  glViewport(480, 500, 64, 48);
+  draw_triangle(lower);
+  draw_triangle(upper);
+  ASSERT_FALSE(renderer.triangles.empty());
+  e = extent(renderer.triangles);
+  EXPECT_FLOAT_EQ(e.min_x, 480);
+  EXPECT_FLOAT_EQ(e.max_x, 511.9375f);
+  EXPECT_FLOAT_EQ(e.min_y, 500);
+  EXPECT_FLOAT_EQ(e.max_y, 511.9375f);
+
+  // Wholly off the screen: nothing.
+  renderer.triangles.clear();
+  glViewport(-100, 0, 64, 48);
+  draw_triangle(lower);
+  EXPECT_TRUE(renderer.triangles.empty());
+  EXPECT_EQ(error(), GLenum(GL_NO_ERROR));
+}
