@@ -2,9 +2,11 @@
 // forwards to it. Without a current context a call does nothing (and a
 // query returns 0), as the GL leaves that case undefined.
 #include <GLES/gl.h>
+#include <GLES/glext.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -29,6 +31,16 @@ bool query(Context* c, GLenum name, std::vector<float>& values) {
   values.assign(static_cast<size_t>(count), 0.0f);
   c->get_floats(name, values.data());
   return true;
+}
+
+// The matrix whose bits an OES_matrix_get name asks for, 0 for another name.
+GLenum matrix_of_float_bits(GLenum name) {
+  switch (name) {
+    case GL_MODELVIEW_MATRIX_FLOAT_AS_INT_BITS_OES: return GL_MODELVIEW_MATRIX;
+    case GL_PROJECTION_MATRIX_FLOAT_AS_INT_BITS_OES: return GL_PROJECTION_MATRIX;
+    case GL_TEXTURE_MATRIX_FLOAT_AS_INT_BITS_OES: return GL_TEXTURE_MATRIX;
+    default: return 0;
+  }
 }
 
 bool is_color_query(GLenum name) {
@@ -96,6 +108,14 @@ GL_API void GL_APIENTRY glGetFloatv(GLenum pname, GLfloat* data) {
 GL_API void GL_APIENTRY glGetIntegerv(GLenum pname, GLint* data) {
   WITH_CONTEXT()
   std::vector<float> v;
+  // OES_matrix_get: the matrix's floats, each as the integer of the same
+  // 32 bits (IEEE 754 single), so that a program without float keeps them
+  // exactly. Only glGetIntegerv takes these names.
+  if (const GLenum matrix = matrix_of_float_bits(pname)) {
+    if (!query(c, matrix, v)) return;
+    std::memcpy(data, v.data(), v.size() * sizeof(float));
+    return;
+  }
   if (!query(c, pname, v)) return;
   // Colours and depths map [0, 1] to the full integer range (GL 2.2.1).
   for (size_t i = 0; i < v.size(); ++i)

@@ -271,7 +271,8 @@ const GLubyte* Context::get_string(GLenum name) {
     // Those <GLES/glext.h> declares (test_gl_api checks that the two agree).
     case GL_EXTENSIONS:
       return reinterpret_cast<const GLubyte*>(
-          "GL_OES_read_format GL_OES_point_size_array GL_OES_point_sprite GL_OES_compressed_paletted_texture");
+          "GL_OES_read_format GL_OES_point_size_array GL_OES_point_sprite GL_OES_compressed_paletted_texture "
+          "GL_OES_byte_coordinates GL_OES_fixed_point GL_OES_single_precision GL_OES_matrix_get");
     default: error(GL_INVALID_ENUM); return nullptr;
   }
 }

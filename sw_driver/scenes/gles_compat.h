@@ -144,6 +144,205 @@ inline void compressed_tex_image_2d(GLenum target, GLint level, GLenum format, G
 
 #define glCompressedTexImage2D ::tessera::gles_compat::compressed_tex_image_2d
 
+// The fixed-point (S15.16) commands are ES only: desktop GL has their float
+// or double originals. Each x form a scene uses is a conversion here, x /
+// 65536, into that original; a parameter that names an enum (a texture
+// filter, wrap or environment mode) is passed as it is, as ES 1.1 carries
+// it. Written here for the reference, apart from the driver's own
+// conversions (sw_driver/gl/gl_fixed.cpp).
+namespace tessera::gles_compat {
+
+inline GLdouble from_fixed(GLfixed value) {
+  return value / 65536.0;
+}
+// The values of a vector parameter of glLight / glMaterial / glLightModel.
+inline int fixed_parameter_count(GLenum pname) {
+  switch (pname) {
+    case GL_AMBIENT:
+    case GL_DIFFUSE:
+    case GL_SPECULAR:
+    case GL_POSITION:
+    case GL_EMISSION:
+    case GL_AMBIENT_AND_DIFFUSE:
+    case GL_LIGHT_MODEL_AMBIENT: return 4;
+    case GL_SPOT_DIRECTION: return 3;
+    default: return 1;
+  }
+}
+inline void fixed_to_floats(const GLfixed* values, int count, GLfloat* out) {
+  for (int i = 0; i < count; ++i) out[i] = static_cast<GLfloat>(from_fixed(values[i]));
+}
+
+inline void clear_colorx(GLfixed r, GLfixed g, GLfixed b, GLfixed a) {
+  glClearColor(static_cast<GLfloat>(from_fixed(r)), static_cast<GLfloat>(from_fixed(g)),
+               static_cast<GLfloat>(from_fixed(b)), static_cast<GLfloat>(from_fixed(a)));
+}
+inline void clear_depthx(GLfixed depth) {
+  glClearDepth(from_fixed(depth));
+}
+inline void frustumx(GLfixed l, GLfixed r, GLfixed b, GLfixed t, GLfixed n, GLfixed f) {
+  glFrustum(from_fixed(l), from_fixed(r), from_fixed(b), from_fixed(t), from_fixed(n), from_fixed(f));
+}
+inline void translatex(GLfixed x, GLfixed y, GLfixed z) {
+  glTranslated(from_fixed(x), from_fixed(y), from_fixed(z));
+}
+inline void rotatex(GLfixed angle, GLfixed x, GLfixed y, GLfixed z) {
+  glRotated(from_fixed(angle), from_fixed(x), from_fixed(y), from_fixed(z));
+}
+inline void scalex(GLfixed x, GLfixed y, GLfixed z) {
+  glScaled(from_fixed(x), from_fixed(y), from_fixed(z));
+}
+inline void color4x(GLfixed r, GLfixed g, GLfixed b, GLfixed a) {
+  glColor4d(from_fixed(r), from_fixed(g), from_fixed(b), from_fixed(a));
+}
+inline void normal3x(GLfixed x, GLfixed y, GLfixed z) {
+  glNormal3d(from_fixed(x), from_fixed(y), from_fixed(z));
+}
+inline void lightxv(GLenum light, GLenum pname, const GLfixed* params) {
+  GLfloat f[4] = {};
+  fixed_to_floats(params, fixed_parameter_count(pname), f);
+  glLightfv(light, pname, f);
+}
+inline void light_modelxv(GLenum pname, const GLfixed* params) {
+  if (pname == GL_LIGHT_MODEL_TWO_SIDE) return glLightModeli(pname, params[0]);  // a boolean
+  GLfloat f[4] = {};
+  fixed_to_floats(params, fixed_parameter_count(pname), f);
+  glLightModelfv(pname, f);
+}
+inline void materialxv(GLenum face, GLenum pname, const GLfixed* params) {
+  GLfloat f[4] = {};
+  fixed_to_floats(params, fixed_parameter_count(pname), f);
+  glMaterialfv(face, pname, f);
+}
+inline void materialx(GLenum face, GLenum pname, GLfixed param) {
+  glMaterialf(face, pname, static_cast<GLfloat>(from_fixed(param)));
+}
+inline void tex_parameterx(GLenum target, GLenum pname, GLfixed param) {
+  glTexParameteri(target, pname, param);  // every ES 1.1 texture parameter is an enum or a boolean
+}
+inline void tex_envx(GLenum target, GLenum pname, GLfixed param) {
+  if (pname == GL_RGB_SCALE || pname == GL_ALPHA_SCALE)
+    glTexEnvf(target, pname, static_cast<GLfloat>(from_fixed(param)));
+  else
+    glTexEnvi(target, pname, param);  // a mode, source or operand
+}
+inline void point_sizex(GLfixed size) {
+  glPointSize(static_cast<GLfloat>(from_fixed(size)));
+}
+
+// GL_FIXED vertex arrays do not exist in desktop GL either. A GL_FIXED
+// vertex, normal or texture coordinate pointer is recorded here instead of
+// given to GL, and each draw call converts the elements it reads (0 up to
+// the last index drawn) to a float copy, hands GL that copy and keeps it
+// until the array's next pointer or draw, after the draw has read it. Any
+// other type goes to GL unchanged, so scenes without GL_FIXED arrays draw
+// as before. Client arrays only: a scene that stores GL_FIXED data in a
+// buffer object has no reference here.
+struct FixedArray {
+  GLint size = 0;
+  GLsizei stride = 0;
+  const GLfixed* pointer = nullptr;  // null: the array is not GL_FIXED
+  std::vector<GLfloat> converted;
+};
+constexpr int FIXED_TEXCOORD_UNITS = 8;
+struct FixedArrays {
+  FixedArray vertex, normal, texcoord[FIXED_TEXCOORD_UNITS];
+};
+inline FixedArrays& fixed_arrays() {
+  static FixedArrays arrays;
+  return arrays;
+}
+inline int client_active_unit() {
+  GLint unit = GL_TEXTURE0;
+  glGetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &unit);
+  const int index = unit - GL_TEXTURE0;
+  return index >= 0 && index < FIXED_TEXCOORD_UNITS ? index : 0;
+}
+// True when `pointer` was a GL_FIXED one, now recorded.
+inline bool record_fixed(FixedArray& array, GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  array.pointer = type == GL_FIXED ? static_cast<const GLfixed*>(pointer) : nullptr;
+  array.size = size;
+  array.stride = stride;
+  return array.pointer != nullptr;
+}
+inline void vertex_pointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  if (!record_fixed(fixed_arrays().vertex, size, type, stride, pointer)) glVertexPointer(size, type, stride, pointer);
+}
+inline void normal_pointer(GLenum type, GLsizei stride, const void* pointer) {
+  if (!record_fixed(fixed_arrays().normal, 3, type, stride, pointer)) glNormalPointer(type, stride, pointer);
+}
+inline void tex_coord_pointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  if (!record_fixed(fixed_arrays().texcoord[client_active_unit()], size, type, stride, pointer))
+    glTexCoordPointer(size, type, stride, pointer);
+}
+// Converts elements 0 to `count` - 1 of a recorded array, tightly packed.
+inline const GLfloat* convert_fixed(FixedArray& array, GLsizei count) {
+  const GLsizei stride_bytes = array.stride ? array.stride : array.size * static_cast<GLsizei>(sizeof(GLfixed));
+  array.converted.assign(static_cast<std::size_t>(count) * array.size, 0.0f);
+  for (GLsizei i = 0; i < count; ++i) {
+    const auto* element = reinterpret_cast<const GLfixed*>(reinterpret_cast<const GLubyte*>(array.pointer) +
+                                                           static_cast<std::ptrdiff_t>(i) * stride_bytes);
+    fixed_to_floats(element, array.size, &array.converted[static_cast<std::size_t>(i) * array.size]);
+  }
+  return array.converted.data();
+}
+// Before a draw reading `count` elements: each enabled GL_FIXED array
+// converted and given to GL.
+inline void prepare_fixed_arrays(GLsizei count) {
+  FixedArrays& a = fixed_arrays();
+  bool any = a.vertex.pointer || a.normal.pointer;
+  for (const FixedArray& t : a.texcoord) any = any || t.pointer;
+  if (!any) return;  // no GL call at all for a scene without GL_FIXED arrays
+  if (a.vertex.pointer && glIsEnabled(GL_VERTEX_ARRAY))
+    glVertexPointer(a.vertex.size, GL_FLOAT, 0, convert_fixed(a.vertex, count));
+  if (a.normal.pointer && glIsEnabled(GL_NORMAL_ARRAY)) glNormalPointer(GL_FLOAT, 0, convert_fixed(a.normal, count));
+  const int active = client_active_unit();
+  for (int unit = 0; unit < FIXED_TEXCOORD_UNITS; ++unit) {
+    FixedArray& t = a.texcoord[unit];
+    if (!t.pointer) continue;
+    glClientActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    if (glIsEnabled(GL_TEXTURE_COORD_ARRAY)) glTexCoordPointer(t.size, GL_FLOAT, 0, convert_fixed(t, count));
+  }
+  glClientActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + active));
+}
+inline void draw_arrays(GLenum mode, GLint first, GLsizei count) {
+  prepare_fixed_arrays(first + count);
+  glDrawArrays(mode, first, count);
+}
+inline void draw_elements(GLenum mode, GLsizei count, GLenum type, const void* indices) {
+  GLsizei elements = 0;
+  for (GLsizei i = 0; i < count; ++i) {
+    const GLsizei index =
+        type == GL_UNSIGNED_BYTE ? static_cast<const GLubyte*>(indices)[i] : static_cast<const GLushort*>(indices)[i];
+    if (index + 1 > elements) elements = index + 1;
+  }
+  prepare_fixed_arrays(elements);
+  glDrawElements(mode, count, type, indices);
+}
+
+}  // namespace tessera::gles_compat
+
+#define glClearColorx ::tessera::gles_compat::clear_colorx
+#define glClearDepthx ::tessera::gles_compat::clear_depthx
+#define glFrustumx ::tessera::gles_compat::frustumx
+#define glTranslatex ::tessera::gles_compat::translatex
+#define glRotatex ::tessera::gles_compat::rotatex
+#define glScalex ::tessera::gles_compat::scalex
+#define glColor4x ::tessera::gles_compat::color4x
+#define glNormal3x ::tessera::gles_compat::normal3x
+#define glLightxv ::tessera::gles_compat::lightxv
+#define glLightModelxv ::tessera::gles_compat::light_modelxv
+#define glMaterialxv ::tessera::gles_compat::materialxv
+#define glMaterialx ::tessera::gles_compat::materialx
+#define glTexParameterx ::tessera::gles_compat::tex_parameterx
+#define glTexEnvx ::tessera::gles_compat::tex_envx
+#define glPointSizex ::tessera::gles_compat::point_sizex
+#define glVertexPointer ::tessera::gles_compat::vertex_pointer
+#define glNormalPointer ::tessera::gles_compat::normal_pointer
+#define glTexCoordPointer ::tessera::gles_compat::tex_coord_pointer
+#define glDrawArrays ::tessera::gles_compat::draw_arrays
+#define glDrawElements ::tessera::gles_compat::draw_elements
+
 // ES names that desktop GL spells differently (same values).
 #ifndef GL_POINT_SPRITE_OES
 #define GL_POINT_SPRITE_OES GL_POINT_SPRITE

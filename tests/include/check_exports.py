@@ -3,7 +3,8 @@
 
 Applications run with `soc_sim --app` leave their GL ES and EGL calls
 undefined and resolve them in soc_sim when it loads them, so each function
-that sw_driver/include's GLES/gl.h and EGL/egl.h declare must be a defined
+that sw_driver/include's GLES/gl.h, GLES/glext.h (the implemented
+extensions' entry points) and EGL/egl.h declare must be a defined
 dynamic symbol of soc_sim; one that is missing fails only when an
 application that calls it is loaded.
 """
@@ -38,7 +39,8 @@ def main():
 
     missing = []
     declared = 0
-    for header in ("GLES/gl.h", "EGL/egl.h"):
+    # GLES/glext.h includes GLES/gl.h, so its functions are both headers'.
+    for header in ("GLES/glext.h", "EGL/egl.h"):
         functions = parse(os.path.join(args.ours, header), args.ours).functions
         declared += len(functions)
         missing += [f"{name} ({header})" for name in sorted(functions) if name not in exported]
