@@ -247,7 +247,10 @@ class Context {
   void flush_triangles();
   RasterState raster_state() const;
   const uint8_t* array_element(const ArrayPointer& array, uint32_t index, size_t element_size);
-  glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults);
+  // One element of `array` (`defaults` for the components it lacks);
+  // `normalized`: signed integer components as normal components.
+  glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults,
+                           bool normalized = false);
   TextureObject* bound_texture();
   TextureUnitState& active_unit() { return m_units[m_active_texture - GL_TEXTURE0]; }
   TextureUnitState& client_unit() { return m_units[m_client_active_texture - GL_TEXTURE0]; }

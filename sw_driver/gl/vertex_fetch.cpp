@@ -32,7 +32,8 @@ const uint8_t* Context::array_element(const ArrayPointer& array, uint32_t index,
   return static_cast<const uint8_t*>(array.pointer) + offset;
 }
 
-glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults) {
+glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults,
+                                  bool normalized) {
   const size_t component = type_size(array.type);
   const uint8_t* p = array_element(array, index, component * static_cast<size_t>(array.size));
   glm::vec4 value = defaults;
@@ -48,13 +49,19 @@ glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, con
         v = static_cast<float>(x) / 65536.0f;
         break;
       }
+      // Signed normal components map to [-1, 1] as ES 1.1 table 2.7 gives:
+      // (2 c + 1) / (2^b - 1); coordinates keep their integer values.
       case GL_SHORT: {
         int16_t x;
         std::memcpy(&x, q, 2);
-        v = x;
+        v = normalized ? (2.0f * x + 1.0f) / 65535.0f : static_cast<float>(x);
         break;
       }
-      case GL_BYTE: v = static_cast<int8_t>(*q); break;
+      case GL_BYTE: {
+        const float x = static_cast<int8_t>(*q);
+        v = normalized ? (2.0f * x + 1.0f) / 255.0f : x;
+        break;
+      }
       case GL_UNSIGNED_BYTE: v = *q / 255.0f; break;  // colours: normalised
       default: break;
     }
@@ -83,7 +90,8 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
     v.eye = modelview * position;
     v.clip.position = projection * v.eye;
     if (m_lighting) {
-      glm::vec3 n = m_normal_array.enabled ? glm::vec3(read_attribute(m_normal_array, index, {0, 0, 1, 0})) : m_normal;
+      glm::vec3 n =
+          m_normal_array.enabled ? glm::vec3(read_attribute(m_normal_array, index, {0, 0, 1, 0}, true)) : m_normal;
       n = normal_matrix * n;
       if (m_normalize || m_rescale_normal) {
         const float length = glm::length(n);

@@ -764,3 +764,47 @@ TEST_F(GlApi, ByteShortAndFixedArraysGiveTheirValues) {
     }
   }
 }
+
+// Normal arrays of GL_BYTE and GL_SHORT are normalised (ES 1.1 table 2.7:
+// (2 c + 1) / (2^b - 1)), so lighting sees unit-range normals. A light
+// along +z with diffuse (1, 1, 1) on a white material, ambient off: the
+// vertex colour is the normal's z. Byte 63 is 127 / 255, 0.498 (127 in
+// 0.8 after rounding 126.99); byte 127 and short 32767 are 1 (255); short
+// -32768 is -1 (0, the light is behind). Left raw, 63 would saturate at 255.
+TEST_F(GlApi, ByteAndShortNormalArraysAreNormalised) {
+  glMatrixMode(GL_PROJECTION);
+  glOrthof(0, 64, 0, 48, -1, 1);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  const float black[4] = {0, 0, 0, 1}, white[4] = {1, 1, 1, 1}, along_z[4] = {0, 0, 1, 0};
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, black);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, black);
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, white);
+  glLightfv(GL_LIGHT0, GL_SPECULAR, black);
+  glLightfv(GL_LIGHT0, GL_POSITION, along_z);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, black);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, white);
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, black);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  const float position[6] = {10, 10, 50, 12, 30, 40};
+  glVertexPointer(2, GL_FLOAT, 0, position);
+  const int8_t bytes[9] = {0, 0, 63, 0, 0, 127, 0, 0, 127};
+  const int16_t shorts[9] = {0, 0, 32767, 0, 0, -32768, 0, 0, 32767};
+  const struct {
+    const char* name;
+    GLenum type;
+    const void* normals;
+    uint8_t expected[3];
+  } cases[] = {{"GL_BYTE", GL_BYTE, bytes, {127, 255, 255}}, {"GL_SHORT", GL_SHORT, shorts, {255, 0, 255}}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    renderer.triangles.clear();
+    glNormalPointer(c.type, 0, c.normals);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glFinish();
+    ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    ASSERT_EQ(renderer.triangles.size(), 1u);
+    for (int v = 0; v < 3; ++v) EXPECT_EQ(renderer.triangles[0].v[v].r, c.expected[v]) << "vertex " << v;
+  }
+}
