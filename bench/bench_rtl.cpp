@@ -42,11 +42,13 @@
 #include "bench_support.h"
 #include "blend_logic_op_adapter.h"
 #include "edge_function_adapter.h"
+#include "fog_unit_adapter.h"
 #include "fragment_tests_adapter.h"
 #include "guarded_main.h"
 #include "raster/datapath/attribute_interpolator.h"
 #include "raster/datapath/blend_logic_op.h"
 #include "raster/datapath/edge_function.h"
+#include "raster/datapath/fog_unit.h"
 #include "raster/datapath/fragment_tests.h"
 #include "raster/datapath/reciprocal.h"
 #include "raster/datapath/texel_address.h"
@@ -60,6 +62,7 @@ namespace {
 using namespace tessera::raster;
 using tessera::BlendFactor;
 using tessera::CompareFunc;
+using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::StencilOp;
 using tessera::TexEnv;
@@ -128,6 +131,10 @@ uint64_t fold(uint64_t sum, Rgba8 r) {
   return fold(sum, r.pack());
 }
 
+uint64_t fold(uint64_t sum, const FogUnitResult& r) {
+  return fold(sum, uint64_t{r.color.pack()} | uint64_t{r.factor} << 32);
+}
+
 // One vector per unit: the arguments of the C++ call and of the adapter.
 struct EdgeVector {
   Edge e;
@@ -149,6 +156,11 @@ struct BlendVector {
 struct TexelVector {
   TextureState state;
   q15_16 s, t;
+};
+struct FogVector {
+  FogMode mode;
+  int32_t argument;
+  Rgba8 fragment, fog_color;
 };
 struct TexEnvVector {
   TexEnv mode;
@@ -304,6 +316,22 @@ std::vector<TexEnvVector> texenv_vectors(std::mt19937_64& rng, uint64_t count) {
   return v;
 }
 
+// Every mode code (3: no fog); arguments over the whole signed 16.16 range
+// half the time, within the table's reach (0 to 32) the other half.
+std::vector<FogVector> fog_vectors(std::mt19937_64& rng, uint64_t count) {
+  std::vector<FogVector> v(count);
+  for (auto& x : v) {
+    const uint64_t a = rng();
+    const uint64_t b = rng();
+    x.mode = static_cast<FogMode>(a & 3);
+    x.argument = (a >> 2) & 1 ? static_cast<int32_t>(a >> 32)
+                              : static_cast<int32_t>((a >> 8) & 0x1fffff) - (1 << 16);  // -1 .. 31
+    x.fragment = Rgba8::unpack(static_cast<uint32_t>(b));
+    x.fog_color = Rgba8::unpack(static_cast<uint32_t>(b >> 32));
+  }
+  return v;
+}
+
 // Stops the compiler from merging or dropping sweeps: every store before it
 // happens, every load after it reads memory again.
 inline void compiler_barrier(const void* p) {
@@ -439,6 +467,15 @@ int run(const Options& opt) {
         "texture env (filter + env)", vectors, opt,
         [](const TexEnvVector& v) { return texture_filter_env(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); },
         [&rtl](const TexEnvVector& v) { return rtl.run(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); }));
+  }
+
+  {
+    const auto vectors = fog_vectors(rng, n);
+    FogUnitRtl rtl;
+    results.push_back(measure(
+        "fog unit", vectors, opt,
+        [](const FogVector& v) { return fog_unit(v.mode, v.argument, v.fragment, v.fog_color); },
+        [&rtl](const FogVector& v) { return rtl.run(v.mode, v.argument, v.fragment, v.fog_color); }));
   }
 
   std::printf(

@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "common/fixed_function.h"
+#include "common/fog.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
@@ -26,6 +27,13 @@ struct FogUnitResult {
   Rgba8 color;
 };
 
-FogUnitResult fog_unit(FogMode mode, int32_t argument, Rgba8 fragment, Rgba8 fog_color);
+// Inline and branch-free but for the mode's switch in fog_factor: a table
+// read (exp, exp2) or a clamp (linear), a multiply-add per channel.
+inline FogUnitResult fog_unit(FogMode mode, int32_t argument, Rgba8 fragment, Rgba8 fog_color) {
+  FogUnitResult r;
+  r.factor = fog_factor(mode, argument);
+  r.color = Rgba8::unpack(fog_blend(r.factor, fragment.pack(), fog_color.pack()));
+  return r;
+}
 
 }  // namespace tessera::raster
