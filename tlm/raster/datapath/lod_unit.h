@@ -80,7 +80,7 @@ constexpr int32_t lod_lambda(uint32_t rho) {
     m = square >> (15 + bit);  // m^2 or m^2 / 2 as 1.15
   }
   const int32_t raw = ((static_cast<int32_t>(e) - 16) << LOD_LOG2_ITERATIONS) | static_cast<int32_t>(fraction);
-  constexpr unsigned cut = LOD_LOG2_ITERATIONS - LOD_FRACTION_BITS;
+  const unsigned cut = LOD_LOG2_ITERATIONS - LOD_FRACTION_BITS;
   return (raw + (1 << (cut - 1))) >> cut;  // arithmetic shift: floor, so ties go up
 }
 
