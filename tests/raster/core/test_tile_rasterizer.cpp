@@ -783,9 +783,10 @@ TEST(TileRasterizer, MipmapLinearBlendsTwoLevels) {
 }
 
 // A floor in perspective: the level grows with the distance. Each pixel's
-// level against GL's rule from rho worked out in doubles from the same
-// differences to the next pixel (pixels within 1/64 of a level boundary
-// are not checked: the hardware's coordinates are fixed point).
+// level against GL's rule from rho = max(|du/dx|, |dv/dx|, |du/dy|,
+// |dv/dy|) at the pixel's centre, worked out in doubles (pixels within 1/64
+// of a level boundary are not checked: the hardware's coordinates and
+// lambda are fixed point).
 TEST(TileRasterizer, MipmapLevelsFollowPerspective) {
   VectorPort port(MEMORY_SIZE);
   put_mipmaps(port);
@@ -826,12 +827,18 @@ TEST(TileRasterizer, MipmapLevelsFollowPerspective) {
       const V& p = va;
       const V& q = lower ? vb : vc;
       const V& rr = lower ? vc : vd;
-      double s0, t0, sx, tx, sy, ty;
-      at(p, q, rr, x + 0.5, y + 0.5, s0, t0);
-      at(p, q, rr, x + 1.5, y + 0.5, sx, tx);
-      at(p, q, rr, x + 0.5, y + 1.5, sy, ty);
-      const double rho =
-          64 * std::max({std::fabs(sx - s0), std::fabs(tx - t0), std::fabs(sy - s0), std::fabs(ty - t0)});
+      // GL's partial derivatives at the pixel's centre, by central
+      // differences over a small step.
+      constexpr double h = 1.0 / 1024;
+      double s0, t0, s1, t1, sx, tx, sy, ty;
+      at(p, q, rr, x + 0.5 - h, y + 0.5, s0, t0);
+      at(p, q, rr, x + 0.5 + h, y + 0.5, s1, t1);
+      const double dsdx = (s1 - s0) / (2 * h), dtdx = (t1 - t0) / (2 * h);
+      at(p, q, rr, x + 0.5, y + 0.5 - h, s0, t0);
+      at(p, q, rr, x + 0.5, y + 0.5 + h, sx, tx);
+      sy = (sx - s0) / (2 * h);
+      ty = (tx - t0) / (2 * h);
+      const double rho = 64 * std::max({std::fabs(dsdx), std::fabs(dtdx), std::fabs(sy), std::fabs(ty)});
       const double lambda = std::log2(rho);
       const double frac_to_boundary = std::fabs(lambda - 0.5 - std::round(lambda - 0.5));
       if (frac_to_boundary < 1.0 / 64) continue;

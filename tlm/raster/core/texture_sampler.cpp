@@ -89,27 +89,35 @@ bool TextureSampler::fetch_filtered(const TextureState& tex, q15_16 s, q15_16 t,
 bool TextureSampler::sample_unit(const TextureUnitDraw& unit, const AttributePlane& s_plane,
                                  const AttributePlane& t_plane, const AttributePlane& q_plane, int dx, int dy,
                                  Rgba8& texel) {
-  const AttributeEvaluation s = evaluate_attribute(s_plane, dx, dy);
-  const AttributeEvaluation t = evaluate_attribute(t_plane, dx, dy);
-  const AttributeEvaluation q = evaluate_attribute(q_plane, dx, dy);
-  q15_16 sc, tc;
-  texture_coords(s.value, t.value, q.value, sc, tc);
+  const attribute_sum s = attribute_at(s_plane, dx, dy), t = attribute_at(t_plane, dx, dy);
+  const attribute_sum q = attribute_at(q_plane, dx, dy);
+  // s = (s/w) / (1/w) as texture_coords divides (1/w is positive inside
+  // the triangle; an antialiased edge's outside pixels may reach 0).
+  Reciprocal inv_q;
+  refined_reciprocal(uint64_t(std::max<int64_t>(q.raw, 1)), m_run.config().recip_method, inv_q);
+  const auto over_q = [&](attribute_sum v) {
+    return q15_16{int64_t(std::clamp<int128>(divide(v.raw, inv_q, false, -16), q15_16::MIN_RAW, q15_16::MAX_RAW))};
+  };
+  const q15_16 sc = over_q(s), tc = over_q(t);
   // rho = max(|du/dx|, |dv/dx|, |du/dy|, |dv/dy|) in level 0's texels, 16.16
-  // (the lower bound GL allows, as the arm back end and Mesa's softpipe
-  // take it), from the differences to the next pixel; only when it can
-  // change the result.
+  // (the lower bound of equation 3.17, as the arm back end and Mesa's
+  // softpipe take it), from the derivatives at the pixel's centre: ds/dx =
+  // (d(s/w)/dx - s d(1/w)/dx) / (1/w), the planes' gradients with the
+  // coordinate and the reciprocal already at hand (one product and one
+  // multiplication by the reciprocal per derivative, no further division).
+  // Only when the result can depend on it.
   uint32_t rho = 0;
   if (unit.mipmap != TexMipmap::none || unit.min_filter != unit.mag_filter) {
-    q15_16 sx, tx, sy, ty;
-    texture_coords(s.value_next_x, t.value_next_x, q.value_next_x, sx, tx);
-    texture_coords(s.value_next_y, t.value_next_y, q.value_next_y, sy, ty);
-    const auto texel_delta = [](q15_16 a, q15_16 b, unsigned log2) {
-      const int128 d = int128(b.raw - a.raw) << log2;
+    const auto texel_derivative = [&](int64_t grad, q15_16 coord, int64_t grad_q, unsigned log2) {
+      const int128 n = (int128(attribute_word40(grad)) << 16) - int128(coord.raw) * attribute_word40(grad_q);
+      const int128 d = divide(n, inv_q, false) << log2;  // q15.16 per pixel, in texels
       return d < 0 ? -d : d;
     };
-    const int128 largest =
-        std::max({texel_delta(sc, sx, unit.texture.log2_width), texel_delta(tc, tx, unit.texture.log2_height),
-                  texel_delta(sc, sy, unit.texture.log2_width), texel_delta(tc, ty, unit.texture.log2_height)});
+    const unsigned lw = unit.texture.log2_width, lh = unit.texture.log2_height;
+    const int128 largest = std::max({texel_derivative(s_plane.grad_x, sc, q_plane.grad_x, lw),
+                                     texel_derivative(t_plane.grad_x, tc, q_plane.grad_x, lh),
+                                     texel_derivative(s_plane.grad_y, sc, q_plane.grad_y, lw),
+                                     texel_derivative(t_plane.grad_y, tc, q_plane.grad_y, lh)});
     rho = uint32_t(std::min<int128>(largest, std::numeric_limits<uint32_t>::max()));
   }
   const LodResult lod = lod_unit(rho, unit.min_filter, unit.mag_filter, unit.mipmap, unit.last_level);

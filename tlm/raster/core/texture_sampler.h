@@ -26,8 +26,8 @@ class TextureSampler {
   bool sample(const TriangleSetup& setup, int dx, int dy, Rgba8 fragment, Rgba8& out);
 
   // One texture unit's filtered texel, before its environment, at (dx, dy):
-  // the scale factor rho from the texel-space differences to the next pixel
-  // in x and in y, the level(s) the LOD unit (lod_unit.h) chooses, each
+  // the scale factor rho from the coordinates' derivatives at the pixel
+  // (the planes' gradients over 1/w), the level(s) the LOD unit (lod_unit.h) chooses, each
   // level max(1, w >> k) x max(1, h >> k) texels at its level table address,
   // filtered within the level, two levels blended with the 8-bit weight
   // (README.md, "Texture sampling"). s, t, q are the unit's planes (s/w,
