@@ -16,8 +16,8 @@ namespace {
 using namespace tessera;
 using namespace tessera::raster;
 
-constexpr uint32_t rho_of(double texels_per_pixel) {
-  return static_cast<uint32_t>(texels_per_pixel * 65536.0 + 0.5);
+uint32_t rho_of(double texels_per_pixel) {
+  return static_cast<uint32_t>(std::llround(texels_per_pixel * 65536.0));
 }
 
 double lambda_error(uint32_t rho) {
@@ -55,24 +55,24 @@ TEST(LodUnit, LambdaAtPowersOfTwoIsExact) {
 // GL: minified when lambda > c; c = 1/2 only for mag LINEAR with a
 // NEAREST_MIPMAP_* minification filter.
 TEST(LodUnit, SwitchPointFollowsSection389) {
-  const TexFilter N = TexFilter::nearest, L = TexFilter::linear;
+  const TexFilter nearest = TexFilter::nearest, linear = TexFilter::linear;
   // lambda = 0 exactly: magnified with any c.
-  EXPECT_FALSE(lod_unit(LOD_RHO_ONE, L, N, TexMipmap::linear, 8).minified);
-  EXPECT_TRUE(lod_unit(LOD_RHO_ONE + 1, L, N, TexMipmap::linear, 8).minified);
+  EXPECT_FALSE(lod_unit(LOD_RHO_ONE, linear, nearest, TexMipmap::linear, 8).minified);
+  EXPECT_TRUE(lod_unit(LOD_RHO_ONE + 1, linear, nearest, TexMipmap::linear, 8).minified);
   // rho 1.3 (lambda 0.38): c = 1/2 for mag LINEAR, min NEAREST_MIPMAP_*.
   const uint32_t rho = rho_of(1.3);
-  EXPECT_FALSE(lod_unit(rho, N, L, TexMipmap::nearest, 8).minified);
-  EXPECT_FALSE(lod_unit(rho, N, L, TexMipmap::linear, 8).minified);
-  EXPECT_TRUE(lod_unit(rho, L, L, TexMipmap::nearest, 8).minified);  // LINEAR_MIPMAP_NEAREST: c = 0
-  EXPECT_TRUE(lod_unit(rho, N, L, TexMipmap::none, 8).minified);     // GL_NEAREST: c = 0
-  EXPECT_TRUE(lod_unit(rho, N, N, TexMipmap::nearest, 8).minified);  // mag NEAREST: c = 0
+  EXPECT_FALSE(lod_unit(rho, nearest, linear, TexMipmap::nearest, 8).minified);
+  EXPECT_FALSE(lod_unit(rho, nearest, linear, TexMipmap::linear, 8).minified);
+  EXPECT_TRUE(lod_unit(rho, linear, linear, TexMipmap::nearest, 8).minified);    // LINEAR_MIPMAP_NEAREST: c = 0
+  EXPECT_TRUE(lod_unit(rho, nearest, linear, TexMipmap::none, 8).minified);      // GL_NEAREST: c = 0
+  EXPECT_TRUE(lod_unit(rho, nearest, nearest, TexMipmap::nearest, 8).minified);  // mag NEAREST: c = 0
   // c = 1/2 is log2(rho) > 1/2: rho > sqrt 2 = 1.414214 (92681.9 / 2^16).
-  EXPECT_FALSE(lod_unit(92681, N, L, TexMipmap::nearest, 8).minified);
-  EXPECT_TRUE(lod_unit(92682, N, L, TexMipmap::nearest, 8).minified);
+  EXPECT_FALSE(lod_unit(92681, nearest, linear, TexMipmap::nearest, 8).minified);
+  EXPECT_TRUE(lod_unit(92682, nearest, linear, TexMipmap::nearest, 8).minified);
   // The within-level filter follows the decision.
-  EXPECT_TRUE(lod_unit(rho_of(0.5), N, L, TexMipmap::none, 8).linear);
-  EXPECT_FALSE(lod_unit(rho_of(2.0), N, L, TexMipmap::none, 8).linear);
-  EXPECT_TRUE(lod_unit(rho_of(2.0), L, N, TexMipmap::none, 8).linear);
+  EXPECT_TRUE(lod_unit(rho_of(0.5), nearest, linear, TexMipmap::none, 8).linear);
+  EXPECT_FALSE(lod_unit(rho_of(2.0), nearest, linear, TexMipmap::none, 8).linear);
+  EXPECT_TRUE(lod_unit(rho_of(2.0), linear, nearest, TexMipmap::none, 8).linear);
 }
 
 // NEAREST_MIPMAP_NEAREST: d = ceil(lambda + 1/2) - 1 for lambda > 1/2, else

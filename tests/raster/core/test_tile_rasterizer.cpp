@@ -829,7 +829,7 @@ TEST(TileRasterizer, MipmapLevelsFollowPerspective) {
       const V& rr = lower ? vc : vd;
       // GL's partial derivatives at the pixel's centre, by central
       // differences over a small step.
-      constexpr double h = 1.0 / 1024;
+      const double h = 1.0 / 1024;
       double s0, t0, s1, t1, sx, tx, sy, ty;
       at(p, q, rr, x + 0.5 - h, y + 0.5, s0, t0);
       at(p, q, rr, x + 0.5 + h, y + 0.5, s1, t1);

@@ -109,9 +109,9 @@ bool TextureSampler::sample_unit(const TextureUnitDraw& unit, const AttributePla
   uint32_t rho = 0;
   if (unit.mipmap != TexMipmap::none || unit.min_filter != unit.mag_filter) {
     const auto texel_derivative = [&](int64_t grad, q15_16 coord, int64_t grad_q, unsigned log2) {
-      const int128 n = (int128(attribute_word40(grad)) << 16) - int128(coord.raw) * attribute_word40(grad_q);
-      const int128 d = divide(n, inv_q, false) << log2;  // q15.16 per pixel, in texels
-      return d < 0 ? -d : d;
+      const int128 n = int128(attribute_word40(grad)) * 65536 - int128(coord.raw) * attribute_word40(grad_q);
+      const int128 d = divide(n, inv_q, false);  // q15.16 per pixel
+      return (d < 0 ? -d : d) << log2;           // in texels
     };
     const unsigned lw = unit.texture.log2_width, lh = unit.texture.log2_height;
     const int128 largest = std::max({texel_derivative(s_plane.grad_x, sc, q_plane.grad_x, lw),
