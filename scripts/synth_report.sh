@@ -32,6 +32,7 @@ UNITS=(
   "texel_address|raster/texel_address.sv|-"
   "texture_env|raster/texture_env.sv|-"
   "fog_unit|raster/fog_unit.sv|-"
+  "lod_unit|raster/lod_unit.sv|-"
   "cu_datapath|array/cu_datapath.sv|-"
 )
 

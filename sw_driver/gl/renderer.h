@@ -64,7 +64,7 @@ using tessera::TexWrap;
 // How a minification filter chooses mipmap levels: none (GL_NEAREST,
 // GL_LINEAR: level 0 only), the nearest level (*_MIPMAP_NEAREST) or a blend
 // of the two nearest (*_MIPMAP_LINEAR). Not a hardware code: the raster
-// unit's state block carries TexFilter alone (level 0).
+// driver writes it as the TexMipmap code of a texture unit state.
 enum class MipmapFilter : uint8_t { none, nearest, linear };
 
 // One mipmap level: RGBA8 texels in system memory, row t = 0 first.

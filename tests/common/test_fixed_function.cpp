@@ -93,6 +93,7 @@ void check_rejects_other_enums() {
   add(FixedFunction<TexEnv>::ENTRIES);
   add(FixedFunction<TexFilter>::ENTRIES);
   add(FixedFunction<TexWrap>::ENTRIES);
+  add(FixedFunction<TexMipmap>::ENTRIES);
   add(FixedFunction<FogMode>::ENTRIES);
   for (const uint32_t gl_enum : candidates) {
     bool listed = false;
@@ -201,6 +202,17 @@ TEST(FixedFunction, TextureEnvironmentsFiltersAndWraps) {
   check_rejects_other_enums<TexWrap>();
 }
 
+// The choice between levels, named by the minification filters that take
+// NEAREST within a level (the within-level filter is TexFilter's).
+TEST(FixedFunction, TextureMipmapChoices) {
+  check_dense_unique_and_round_trip<TexMipmap>({{TexMipmap::none, GL_NEAREST},
+                                                {TexMipmap::nearest, GL_NEAREST_MIPMAP_NEAREST},
+                                                {TexMipmap::linear, GL_NEAREST_MIPMAP_LINEAR}});
+  check_rejects_other_enums<TexMipmap>();
+  EXPECT_EQ(FixedFunction<TexMipmap>::BITS, 2u);
+  EXPECT_STREQ(FixedFunction<TexMipmap>::UNKNOWN, "code 3 acts as none, level 0 only");
+}
+
 TEST(FixedFunction, FogModes) {
   check_dense_unique_and_round_trip<FogMode>(
       {{FogMode::linear, GL_LINEAR}, {FogMode::exp, GL_EXP}, {FogMode::exp2, GL_EXP2}});
@@ -289,10 +301,11 @@ TEST_F(GeneratedPackage, HoldsTheTablesCodes) {
   check<TexEnv>("TexEnv");
   check<TexFilter>("TexFilter");
   check<TexWrap>("TexWrap");
+  check<TexMipmap>("TexMipmap");
   check<FogMode>("FogMode");
   EXPECT_EQ(m_checked, m_values.size()) << "the package has values the table does not";
-  EXPECT_EQ(m_bits.size(), 8u);
-  EXPECT_EQ(m_types.size(), 8u);
+  EXPECT_EQ(m_bits.size(), 9u);
+  EXPECT_EQ(m_types.size(), 9u);
 }
 
 }  // namespace

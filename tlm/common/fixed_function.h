@@ -47,6 +47,11 @@ enum class TexWrap : uint8_t {
 #include "common/fixed_function.def"
 };
 
+enum class TexMipmap : uint8_t {
+#define TESSERA_TEX_MIPMAP(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
 enum class FogMode : uint8_t {
 #define TESSERA_FOG_MODE(name, code, gl_enum, description) name = (code),
 #include "common/fixed_function.def"
@@ -131,6 +136,14 @@ template <>
 struct FixedFunction<TexWrap> : FixedFunctionField<TexWrap> {
   static constexpr FixedFunctionEntry<TexWrap> ENTRIES[] = {
 #define TESSERA_TEX_WRAP(name, code, gl_enum, description) {TexWrap::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<TexMipmap> : FixedFunctionField<TexMipmap> {
+  static constexpr FixedFunctionEntry<TexMipmap> ENTRIES[] = {
+#define TESSERA_TEX_MIPMAP(name, code, gl_enum, description) {TexMipmap::name, #name, gl_enum, description},
 #include "common/fixed_function.def"
   };
 };

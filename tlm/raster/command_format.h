@@ -100,7 +100,7 @@ constexpr unsigned UNIT_MIN_FILTER_SHIFT = 0;    // TexFilter within a level, 1 
 constexpr unsigned UNIT_MAG_FILTER_SHIFT = 1;    // TexFilter, 1 bit
 constexpr unsigned UNIT_WRAP_S_SHIFT = 2;        // TexWrap, bits 2-3
 constexpr unsigned UNIT_WRAP_T_SHIFT = 4;        // TexWrap, bits 4-5
-constexpr unsigned UNIT_MIPMAP_SHIFT = 6;        // between levels, bits 6-7 (a fixed_function.def table)
+constexpr unsigned UNIT_MIPMAP_SHIFT = 6;        // TexMipmap, between levels, bits 6-7
 constexpr unsigned UNIT_ENV_SHIFT = 8;           // TexEnv, bits 8-11
 constexpr unsigned UNIT_BASE_FORMAT_SHIFT = 12;  // the texture's base format (table 3.15), bits 12-15
 // Fields of TextureUnitState::combine_rgb and combine_alpha: source k at
@@ -131,7 +131,8 @@ enum StateFlag : uint32_t {
 
 // Compare functions, stencil ops, blend factors, logic ops, texture filters,
 // wraps and environments are the hardware codes of common/fixed_function.def
-// (CompareFunc, StencilOp, BlendFactor, LogicOp, TexFilter, TexWrap, TexEnv),
+// (CompareFunc, StencilOp, BlendFactor, LogicOp, TexFilter, TexWrap, TexEnv;
+// TexMipmap in the texture unit states),
 // at the positions below. The rasterizer cuts each field to the width of its
 // code (a code without an entry does what the table says); the bits between
 // fields are reserved and ignored.
@@ -201,7 +202,7 @@ static_assert(TEXTURE_WRAP_S_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_WRA
 static_assert(FixedFunction<TexEnv>::BITS <= 2, "texture environment codes fit bits 8-9");
 static_assert(FixedFunction<FogMode>::BITS <= 2, "fog mode codes fit bits 0-1 of FogState::mode");
 static_assert(FixedFunction<TexFilter>::BITS <= 1 && FixedFunction<TexWrap>::BITS <= 2 &&
-                  FixedFunction<TexEnv>::BITS <= 4,
+                  FixedFunction<TexMipmap>::BITS <= 2 && FixedFunction<TexEnv>::BITS <= 4,
               "unit filter, wrap and environment codes fit their TextureUnitState::mode fields");
 
 // ERROR_STATUS codes. On an error the rasterizer stops the run, sets

@@ -1,6 +1,8 @@
 #include "renderers/raster/raster_renderer.h"
 
 #include <algorithm>
+#include <cassert>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -89,8 +91,38 @@ raster::FogState encode_fog(const gl::RasterState& s) {
   return f;
 }
 
-bool same(const StateBlock& a, const StateBlock& b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
+// A mipmapped texture (a complete chain: gl::Texture) is drawn through the
+// texture unit extension, the only state that carries levels: one unit
+// (the drawn one), its level table, filters, wraps, the choice between
+// levels (TexMipmap) and the environment; the base format and the combiner
+// words are 0. Any other state keeps the StateBlock's own texture words, so
+// its lists are word for word what they were.
+void encode_texture_units(const gl::RasterState& s, const renderers::SingleTextureUnit& unit,
+                          raster::TextureUnitsHeader& header, raster::TextureUnitState& out,
+                          uint32_t (&level_table)[raster::MAX_TEXTURE_LEVEL], StateBlock& block) {
+  if (unit.index < 0) return;
+  const gl::TextureUnit& u = s.unit[unit.index];
+  const gl::Texture& tex = u.tex;
+  if (tex.width == 0 || tex.height == 0 || tex.min_mipmap == gl::MipmapFilter::none) return;
+  auto log2 = [](unsigned v) {
+    uint32_t n = 0;
+    while ((1u << n) < v) ++n;
+    return n;
+  };
+  const uint32_t last_level = std::min<uint32_t>(tex.levels > 0 ? tex.levels - 1 : 0, raster::MAX_TEXTURE_LEVEL);
+  const TexMipmap mipmap = tex.min_mipmap == gl::MipmapFilter::linear ? TexMipmap::linear : TexMipmap::nearest;
+  block.flags |= raster::texture_units;
+  header.count = 1;
+  out.address = tex.address;
+  out.size = log2(tex.width) | log2(tex.height) << 8 | last_level << 16;
+  out.level_table = 0;  // the table's address, once flush lays the arena out
+  out.mode = code_of(tex.min_filter) << raster::UNIT_MIN_FILTER_SHIFT |
+             code_of(tex.mag_filter) << raster::UNIT_MAG_FILTER_SHIFT |
+             code_of(tex.wrap_s) << raster::UNIT_WRAP_S_SHIFT | code_of(tex.wrap_t) << raster::UNIT_WRAP_T_SHIFT |
+             code_of(mipmap) << raster::UNIT_MIPMAP_SHIFT | code_of(unit.env) << raster::UNIT_ENV_SHIFT;
+  out.env_color = uint32_t{u.env_color[0]} | uint32_t{u.env_color[1]} << 8 | uint32_t{u.env_color[2]} << 16 |
+                  uint32_t{u.env_color[3]} << 24;
+  for (uint32_t k = 1; k <= last_level; ++k) level_table[k - 1] = tex.level[k].address;
 }
 
 // The first `bytes` of `object`, as words.
@@ -137,7 +169,7 @@ RasterRenderer::RasterRenderer(AppEnvironment& env)
     : m_env(env), m_host(*env.host), m_display(env), m_binner(read_grid(m_host, m_display)) {
   // Depth 24 | stencil 8 << 24 per pixel (raster_regs.def, DEPTH_BASE).
   m_depth_buffer = gl::allocate(m_display.width() * m_display.height() * 4);
-  m_last_draw_state = {encode_state(gl::RasterState{}, {}), raster::FogState{}};
+  m_last_draw_state = {encode_state(gl::RasterState{}, {}), raster::FogState{}, {}, {}, {}};
 }
 
 uint32_t RasterRenderer::reg(uint32_t offset) const {
@@ -146,9 +178,7 @@ uint32_t RasterRenderer::reg(uint32_t offset) const {
 
 uint32_t RasterRenderer::add_state(const StateRecord& state) {
   m_host.compute(Op::alu, STATE_COMPARE_ALU);
-  if (m_states.empty() || !same(m_states.back().block, state.block) ||
-      std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0)
-    m_states.push_back(state);
+  if (m_states.empty() || std::memcmp(&m_states.back(), &state, sizeof state) != 0) m_states.push_back(state);
   return static_cast<uint32_t>(m_states.size() - 1);
 }
 
@@ -195,17 +225,14 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
       renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
   if (unit.index >= 0) {
     const gl::Texture& tex = state.unit[unit.index].tex;
-    // The rasterizer's texture unit fetches from one level (tlm/raster).
-    if (tex.min_mipmap != gl::MipmapFilter::none)
-      m_unsupported.report(m_env,
-                           "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
-                           "within a level");
     if (renderers::env_needs_base_format(tex, unit.env))
       m_unsupported.report(m_env,
                            "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
                            "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
   }
-  m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
+  m_last_draw_state = {encode_state(state, unit), encode_fog(state), {}, {}, {}};
+  encode_texture_units(state, unit, m_last_draw_state.units_header, m_last_draw_state.unit,
+                       m_last_draw_state.level_table, m_last_draw_state.block);
   const uint32_t state_index = add_state(m_last_draw_state);
   renderers::FogCoefficients fog;
   if (state.fog) fog = renderers::fog_coefficients(state);
@@ -269,17 +296,34 @@ void RasterRenderer::flush() {
   std::vector<std::vector<uint32_t>> lists(tiles);
   const uint32_t tile_table_bytes = tiles * sizeof(raster::TileEntry);
   // State blocks and triangle records, each as long as command_format.h
-  // says for its fog flag, at these byte offsets.
-  std::vector<uint32_t> state_words, record_words, state_offsets, record_offsets;
+  // says for its flags, at these byte offsets; the level tables of the
+  // texture unit states after the blocks (none without mipmaps).
+  std::vector<uint32_t> state_words, record_words, state_offsets, record_offsets, table_words;
+  std::vector<std::pair<size_t, uint32_t>> table_fixups;  // level_table's word in state_words, table offset
   for (const StateRecord& s : m_states) {
     state_offsets.push_back(static_cast<uint32_t>(4 * state_words.size()));
-    append_words(state_words, s, raster::state_block_bytes(s.block.flags));
+    append_words(state_words, s.block, sizeof s.block);
+    if ((s.block.flags & raster::fog) != 0) append_words(state_words, s.fog, sizeof s.fog);
+    if ((s.block.flags & raster::texture_units) != 0) {
+      append_words(state_words, s.units_header, sizeof s.units_header);
+      const size_t unit_at = state_words.size();
+      append_words(state_words, s.unit, sizeof s.unit);
+      const uint32_t last_level = (s.unit.size >> 16) & 0xff;
+      if (last_level > 0) {
+        table_fixups.emplace_back(unit_at + offsetof(raster::TextureUnitState, level_table) / 4,
+                                  static_cast<uint32_t>(4 * table_words.size()));
+        table_words.insert(table_words.end(), s.level_table, s.level_table + last_level);
+      }
+    }
+    assert(4 * state_words.size() - state_offsets.back() ==
+           raster::state_block_bytes(s.block.flags, (s.block.flags & raster::texture_units) != 0 ? 1 : 0));
   }
   for (const TriangleWords& t : m_triangles) {
     record_offsets.push_back(static_cast<uint32_t>(4 * record_words.size()));
     append_words(record_words, t, raster::triangle_record_bytes(t.state_flags));
   }
   const uint32_t states_bytes = static_cast<uint32_t>(4 * state_words.size());
+  const uint32_t tables_bytes = static_cast<uint32_t>(4 * table_words.size());
   const uint32_t triangles_bytes = static_cast<uint32_t>(4 * record_words.size());
   uint64_t entries = 0;
   for (unsigned tile = 0; tile < tiles; ++tile) {
@@ -300,14 +344,18 @@ void RasterRenderer::flush() {
   m_host.compute(Op::alu, TILE_ENTRY_ALU * entries);
   m_host.compute(Op::branch, entries);
 
-  // Layout in the arena: tile table, state blocks, triangle records, lists.
+  // Layout in the arena: tile table, state blocks, level tables, triangle
+  // records, lists.
   size_t list_words = 0;
   for (const auto& list : lists) list_words += list.size();
-  const uint32_t total = tile_table_bytes + states_bytes + triangles_bytes + static_cast<uint32_t>(4 * list_words);
+  const uint32_t total =
+      tile_table_bytes + states_bytes + tables_bytes + triangles_bytes + static_cast<uint32_t>(4 * list_words);
   const uint32_t base = arena(total);
   const uint32_t tile_table = base;
   const uint32_t states = tile_table + tile_table_bytes;
-  const uint32_t records = states + states_bytes;
+  const uint32_t level_tables = states + states_bytes;
+  const uint32_t records = level_tables + tables_bytes;
+  for (const auto& [word, offset] : table_fixups) state_words[word] = level_tables + offset;
   uint32_t next_list = records + triangles_bytes;
 
   std::vector<uint32_t> table(2 * tiles, 0);
@@ -328,6 +376,7 @@ void RasterRenderer::flush() {
     next_list += static_cast<uint32_t>(4 * list.size());
   }
   write_block(states, state_words.data(), state_words.size());
+  if (!table_words.empty()) write_block(level_tables, table_words.data(), table_words.size());
   write_block(records, record_words.data(), record_words.size());
   write_block(tile_table, table.data(), table.size());
 

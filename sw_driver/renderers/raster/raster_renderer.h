@@ -56,11 +56,17 @@ class RasterRenderer : public gl::Renderer {
   };
 
   // A state block and the FogState that follows it in memory with
-  // StateFlag::fog: the first raster::state_block_bytes(block.flags) bytes
-  // are written.
+  // StateFlag::fog, then with StateFlag::texture_units the header and the
+  // unit's state (a mipmapped texture: encode_texture_units); flush writes
+  // the parts the flags ask for, in command_format.h's order, and the
+  // unit's level table (levels 1 .. last) into the arena, filling in
+  // unit.level_table.
   struct StateRecord {
     raster::StateBlock block;
     raster::FogState fog;
+    raster::TextureUnitsHeader units_header;
+    raster::TextureUnitState unit;
+    uint32_t level_table[raster::MAX_TEXTURE_LEVEL];  // unit.level_table's words, last level of them
   };
   // A triangle record and its TriangleFog: the first
   // raster::triangle_record_bytes(state_flags) bytes are written.

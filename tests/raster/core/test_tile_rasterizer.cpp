@@ -19,6 +19,7 @@ using tessera::CompareFunc;
 using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::TexEnv;
+using tessera::TexFilter;
 using tessera::TexWrap;
 
 namespace {
@@ -665,6 +666,225 @@ TEST(TileRasterizer, BadTextureUnitCountSizeAndLastLevel) {
     EXPECT_EQ(r.error, RasterError::bad_texture) << k.count << " " << k.size;
     EXPECT_EQ(r.error_address, k.at_header ? state_address + 48 : state_address + 48 + 4 + 28 + 4)
         << k.count << " " << k.size;
+  }
+}
+
+// A 64 x 64 mipmapped texture whose levels 0 .. 6 are each one colour, and
+// a state with one texture unit that samples it (REPLACE, repeat); the
+// level table follows the unit record.
+constexpr uint32_t LEVEL_COLORS[7] = {0xff0000ffu, 0xff00ff00u, 0xffff0000u, 0xff00ffffu,
+                                      0xffff00ffu, 0xffffff00u, 0xff808080u};
+
+uint32_t level_address(unsigned k) {
+  uint32_t address = TEXTURE_BASE;
+  for (unsigned i = 0; i < k; ++i) address += (64u >> i) * (64u >> i) * 4;
+  return address;
+}
+
+void put_mipmaps(VectorPort& port) {
+  for (unsigned k = 0; k <= 6; ++k)
+    for (uint32_t i = 0; i < (64u >> k) * (64u >> k); ++i) port.set_word(level_address(k) + 4 * i, LEVEL_COLORS[k]);
+}
+
+void mipmap_state(Frame& frame, TexFilter min, TexFilter mag, tessera::TexMipmap mipmap, unsigned last_level,
+                  uint32_t table_override = 0) {
+  uint32_t table[6];
+  for (unsigned k = 1; k <= 6; ++k) table[k - 1] = level_address(k);
+  const uint32_t table_address = table_override != 0 ? table_override : frame.put(table, sizeof table);
+  StateBlock s = default_state();
+  s.flags |= StateFlag::texture_units;
+  struct {
+    StateBlock block;
+    TextureUnitsHeader header;
+    TextureUnitState unit;
+  } words{s, {1}, {}};
+  words.unit.address = TEXTURE_BASE;
+  words.unit.size = 6 | 6u << 8 | last_level << 16;
+  words.unit.level_table = table_address;
+  words.unit.mode = code_of(min) << UNIT_MIN_FILTER_SHIFT | code_of(mag) << UNIT_MAG_FILTER_SHIFT |
+                    code_of(mipmap) << UNIT_MIPMAP_SHIFT | code_of(TexEnv::replace) << UNIT_ENV_SHIFT;
+  static_assert(sizeof words == state_block_bytes(StateFlag::texture_units, 1), "block, header and one unit");
+  const uint32_t a = frame.put(&words, sizeof words);
+  frame.all({uint32_t(Opcode::state), a});
+}
+
+// Strips 16 x 16 pixels at x = 16 k, y 8 .. 24, each with s from 0 to
+// s_end[k] and t from 0 to 1/8: rho = 64 s_end / 16 texels per pixel along
+// x (along y 0.5), so lambda = log2(4 s_end).
+constexpr double STRIP_S_END[6] = {0.125, 0.5, 1.0, 2.0, 0.75, 16.0};  // rho 0.5, 2, 4, 8, 3, 64
+
+void mipmap_strips(Frame& frame) {
+  for (unsigned k = 0; k < 6; ++k) {
+    const double x0 = 16.0 * k, x1 = x0 + 16;
+    const float s1 = float(STRIP_S_END[k]);
+    const VertexRecord a = vertex(x0, 8, ~0u, 0, 0, 0), b = vertex(x1, 8, ~0u, 0, s1, 0),
+                       c = vertex(x1, 24, ~0u, 0, s1, 0.125f), d = vertex(x0, 24, ~0u, 0, 0, 0.125f);
+    frame.triangle(a, b, c);
+    frame.triangle(a, c, d);
+  }
+}
+
+// GL (ES 1.1 3.8.8): NEAREST_MIPMAP_NEAREST takes level ceil(lambda + 1/2) -
+// 1 for lambda > 1/2, level 0 when magnified, at most the last level.
+TEST(TileRasterizer, MipmapNearestShowsTheLevelOfEachStrip) {
+  for (const unsigned last : {6u, 2u}) {
+    VectorPort port(MEMORY_SIZE);
+    put_mipmaps(port);
+    Frame frame(port, 96, 48);
+    frame.clear(0);
+    mipmap_state(frame, TexFilter::nearest, TexFilter::nearest, tessera::TexMipmap::nearest, last);
+    mipmap_strips(frame);
+    frame.finish();
+    const RunResult r = run(port, frame.config);
+    ASSERT_EQ(r.error, RasterError::none);
+    EXPECT_EQ(r.texels, 6u * 16u * 16u);  // one fetch per pixel
+    for (unsigned k = 0; k < 6; ++k) {
+      const double lambda = std::log2(64 * STRIP_S_END[k] / 16);
+      const double d = lambda <= 0.5 ? 0 : std::ceil(lambda + 0.5) - 1;
+      const unsigned level = unsigned(std::min(d, double(last)));
+      for (unsigned y = 8; y < 24; ++y)
+        for (unsigned x = 16 * k; x < 16 * k + 16; ++x)
+          EXPECT_EQ(frame.pixel(x, y), LEVEL_COLORS[level])
+              << "strip " << k << " last " << last << " at " << x << "," << y;
+    }
+  }
+}
+
+// LINEAR_MIPMAP_LINEAR: levels floor(lambda) and the next, weighted by
+// frac(lambda) in 1/256; a one-colour level filters to its colour.
+TEST(TileRasterizer, MipmapLinearBlendsTwoLevels) {
+  VectorPort port(MEMORY_SIZE);
+  put_mipmaps(port);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  mipmap_state(frame, TexFilter::linear, TexFilter::linear, tessera::TexMipmap::linear, 6);
+  mipmap_strips(frame);
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  // Strips with integer lambda (or magnified, or at the last level) read
+  // four texels of one level; the strip with rho 3 eight, of two.
+  EXPECT_EQ(r.texels, 5u * 16u * 16u * 4u + 16u * 16u * 8u);
+  for (unsigned k = 0; k < 6; ++k) {
+    const double lambda = std::max(std::log2(64 * STRIP_S_END[k] / 16), 0.0);
+    const unsigned d1 = unsigned(std::min(std::floor(lambda), 6.0));
+    const unsigned w = d1 >= 6 ? 0 : unsigned(std::lround((lambda - d1) * 256));
+    const uint32_t c1 = LEVEL_COLORS[d1], c2 = LEVEL_COLORS[std::min(d1 + 1, 6u)];
+    uint32_t want = 0;
+    for (unsigned ch = 0; ch < 32; ch += 8)
+      want |= ((((c1 >> ch) & 0xff) * (256 - w) + ((c2 >> ch) & 0xff) * w + 128) >> 8) << ch;
+    if (k == 4) {
+      EXPECT_EQ(w, 150u);  // log2 3 = 1.585
+    }
+    for (unsigned y = 8; y < 24; ++y)
+      for (unsigned x = 16 * k; x < 16 * k + 16; ++x)
+        EXPECT_EQ(frame.pixel(x, y), want) << "strip " << k << " at " << x << "," << y;
+  }
+}
+
+// A floor in perspective: the level grows with the distance. Each pixel's
+// level against GL's rule from rho = max(|du/dx|, |dv/dx|, |du/dy|,
+// |dv/dy|) at the pixel's centre, worked out in doubles (pixels within 1/64
+// of a level boundary are not checked: the hardware's coordinates and
+// lambda are fixed point).
+TEST(TileRasterizer, MipmapLevelsFollowPerspective) {
+  VectorPort port(MEMORY_SIZE);
+  put_mipmaps(port);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  mipmap_state(frame, TexFilter::nearest, TexFilter::nearest, tessera::TexMipmap::nearest, 6);
+  // A trapezoid: near edge y = 0 (w 1), far edge y = 48 (w 8); s 0 .. 4, t 0 .. 8.
+  const float near_w = 1, far_w = 8;
+  const VertexRecord a = vertex(0, 0, ~0u, 0, 0, 0, near_w), b = vertex(96, 0, ~0u, 0, 4, 0, near_w),
+                     c = vertex(96, 48, ~0u, 0, 4, 8, far_w), d = vertex(0, 48, ~0u, 0, 0, 8, far_w);
+  frame.triangle(a, b, c);
+  frame.triangle(a, c, d);
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  // s/w, t/w and 1/w are affine over each triangle (abc below the diagonal
+  // a-c, acd above it): barycentric interpolation of the vertices' values,
+  // the same triangle's plane at the pixel and at its neighbours.
+  struct V {
+    double x, y, s, t, w;
+  };
+  const V va{0, 0, 0, 0, near_w}, vb{96, 0, 4, 0, near_w}, vc{96, 48, 4, 8, far_w}, vd{0, 48, 0, 8, far_w};
+  const auto at = [](const V& p, const V& q, const V& o, double x, double y, double& s, double& t) {
+    const double area = (q.x - p.x) * (o.y - p.y) - (o.x - p.x) * (q.y - p.y);
+    const double l1 = ((x - p.x) * (o.y - p.y) - (o.x - p.x) * (y - p.y)) / area;
+    const double l2 = ((q.x - p.x) * (y - p.y) - (x - p.x) * (q.y - p.y)) / area, l0 = 1 - l1 - l2;
+    const double inv_w = l0 / p.w + l1 / q.w + l2 / o.w;
+    s = (l0 * p.s / p.w + l1 * q.s / q.w + l2 * o.s / o.w) / inv_w;
+    t = (l0 * p.t / p.w + l1 * q.t / q.w + l2 * o.t / o.w) / inv_w;
+  };
+  unsigned checked = 0, levels_seen = 0;
+  bool seen[7] = {};
+  for (unsigned y = 0; y < 48; ++y) {
+    for (unsigned x = 0; x < 96; ++x) {
+      const double diagonal = (y + 0.5) - (x + 0.5) / 2;  // below a-c: negative
+      if (std::fabs(diagonal) < 1.5) continue;
+      const bool lower = diagonal < 0;
+      const V& p = va;
+      const V& q = lower ? vb : vc;
+      const V& rr = lower ? vc : vd;
+      // GL's partial derivatives at the pixel's centre, by central
+      // differences over a small step.
+      const double h = 1.0 / 1024;
+      double s0, t0, s1, t1, sx, tx, sy, ty;
+      at(p, q, rr, x + 0.5 - h, y + 0.5, s0, t0);
+      at(p, q, rr, x + 0.5 + h, y + 0.5, s1, t1);
+      const double dsdx = (s1 - s0) / (2 * h), dtdx = (t1 - t0) / (2 * h);
+      at(p, q, rr, x + 0.5, y + 0.5 - h, s0, t0);
+      at(p, q, rr, x + 0.5, y + 0.5 + h, sx, tx);
+      sy = (sx - s0) / (2 * h);
+      ty = (tx - t0) / (2 * h);
+      const double rho = 64 * std::max({std::fabs(dsdx), std::fabs(dtdx), std::fabs(sy), std::fabs(ty)});
+      const double lambda = std::log2(rho);
+      const double frac_to_boundary = std::fabs(lambda - 0.5 - std::round(lambda - 0.5));
+      if (frac_to_boundary < 1.0 / 64) continue;
+      const double nearest = lambda <= 0.5 ? 0 : std::ceil(lambda + 0.5) - 1;
+      const unsigned level = unsigned(std::min(nearest, 6.0));
+      EXPECT_EQ(frame.pixel(x, y), LEVEL_COLORS[level]) << x << "," << y << " lambda " << lambda;
+      if (!seen[level]) ++levels_seen;
+      seen[level] = true;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 96u * 48u * 8 / 10);
+  EXPECT_GE(levels_seen, 3u);
+}
+
+// A level table outside memory is a bus error at the state (the decoder
+// reads it with the unit records); a level's texels outside memory are
+// bad_texture at the texel.
+TEST(TileRasterizer, MipmapLevelTableAndLevelTexelsOutsideMemory) {
+  {
+    VectorPort port(MEMORY_SIZE);
+    put_mipmaps(port);
+    Frame frame(port, 96, 48);
+    mipmap_state(frame, TexFilter::nearest, TexFilter::nearest, tessera::TexMipmap::nearest, 6, MEMORY_SIZE - 8);
+    mipmap_strips(frame);
+    frame.finish();
+    const RunResult r = run(port, frame.config);
+    EXPECT_EQ(r.error, RasterError::bus_error);
+    EXPECT_EQ(r.error_address, MEMORY_SIZE - 8);
+  }
+  {
+    VectorPort port(MEMORY_SIZE);
+    put_mipmaps(port);
+    Frame frame(port, 96, 48);
+    uint32_t table[6];
+    for (unsigned k = 1; k <= 6; ++k) table[k - 1] = level_address(k);
+    table[2] = MEMORY_SIZE + 0x100;  // level 3
+    const uint32_t table_address = frame.put(table, sizeof table);
+    mipmap_state(frame, TexFilter::nearest, TexFilter::nearest, tessera::TexMipmap::nearest, 6, table_address);
+    mipmap_strips(frame);
+    frame.finish();
+    const RunResult r = run(port, frame.config);
+    EXPECT_EQ(r.error, RasterError::bad_texture);
+    // A texel of level 3 (8 x 8), the first strip 3 fetches.
+    EXPECT_GE(r.error_address, MEMORY_SIZE + 0x100);
+    EXPECT_LT(r.error_address, MEMORY_SIZE + 0x100 + 8 * 8 * 4);
   }
 }
 

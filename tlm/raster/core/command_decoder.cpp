@@ -150,7 +150,7 @@ bool CommandDecoder::read_texture_units(uint32_t address, DrawState& s) {
     d.texture.wrap_t = from_code<TexWrap>(mode >> UNIT_WRAP_T_SHIFT);
     d.min_filter = from_code<TexFilter>(mode >> UNIT_MIN_FILTER_SHIFT);
     d.mag_filter = from_code<TexFilter>(mode >> UNIT_MAG_FILTER_SHIFT);
-    d.mipmap = (mode >> UNIT_MIPMAP_SHIFT) & 3;
+    d.mipmap = from_code<TexMipmap>(mode >> UNIT_MIPMAP_SHIFT);
     d.env = (mode >> UNIT_ENV_SHIFT) & 15;
     d.base_format = (mode >> UNIT_BASE_FORMAT_SHIFT) & 15;
     d.env_color = Rgba8::unpack(word(4));

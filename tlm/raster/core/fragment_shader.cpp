@@ -12,7 +12,7 @@ namespace tessera::raster {
 // coverage with polygon_smooth; false when a texel fetch failed.
 bool FragmentShader::shaded_color(const TriangleSetup& ts, int dx, int dy, unorm8 coverage, Rgba8& color) {
   color = interpolated_color(ts, dx, dy, m_run.config().recip_method);
-  if (m_state.has(StateFlag::texture)) {
+  if (m_state.textured()) {
     if (!m_sampler.sample(ts, dx, dy, color, color)) return false;
   }
   // Fog after texturing, before coverage and the fragment operations.
@@ -30,7 +30,7 @@ void FragmentShader::shade(const TriangleSetup& ts, int px, int py, unorm8 cover
   // the alpha test (which reads the colour), the tests do not depend on the
   // colour: it is computed only for the fragments that pass them. The
   // results are the same as in GL's order.
-  const bool color_after_tests = !m_state.has(StateFlag::texture) && !m_state.operations.alpha_test;
+  const bool color_after_tests = !m_state.textured() && !m_state.operations.alpha_test;
   Rgba8 color;
   if (!color_after_tests && !shaded_color(ts, dx, dy, coverage, color)) return;
 

@@ -21,9 +21,25 @@ class TextureSampler {
 
   // The fragment's colour after the texture environment, at the offset
   // (dx, dy) from the setup's reference pixel; false when a texel fetch failed.
+  // With a texture_units state, unit 0 through sample_unit and its
+  // environment cut to TexEnv.
   bool sample(const TriangleSetup& setup, int dx, int dy, Rgba8 fragment, Rgba8& out);
 
+  // One texture unit's filtered texel, before its environment, at (dx, dy):
+  // the scale factor rho from the coordinates' derivatives at the pixel
+  // (the planes' gradients over 1/w), the level(s) the LOD unit (lod_unit.h) chooses, each
+  // level max(1, w >> k) x max(1, h >> k) texels at its level table address,
+  // filtered within the level, two levels blended with the 8-bit weight
+  // (README.md, "Texture sampling"). s, t, q are the unit's planes (s/w,
+  // t/w, 1/w). false when a texel fetch failed.
+  bool sample_unit(const TextureUnitDraw& unit, const AttributePlane& s, const AttributePlane& t,
+                   const AttributePlane& q, int dx, int dy, Rgba8& texel);
+
  private:
+  // The texels of `tex`'s footprint at (s, t), fetched (one, or four with
+  // LINEAR) and filtered; false when a fetch failed.
+  bool fetch_filtered(const TextureState& tex, q15_16 s, q15_16 t, Rgba8& texel);
+
   // The perspective division into the q15.16 that texel addressing takes.
   void texture_coords(attribute_sum s, attribute_sum t, attribute_sum q, q15_16& s_out, q15_16& t_out) const;
 

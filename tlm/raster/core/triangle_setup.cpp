@@ -56,7 +56,7 @@ bool set_up_triangle(const TriangleVertices& vin, const DrawState& state, RecipM
   // 1/w of the vertices scaled by one power of two so that the largest lies
   // in [1/2, 1): every ratio a = (a/w) / (1/w) is unchanged and the scaling
   // is exact.
-  const bool texture = state.has(StateFlag::texture);
+  const bool texture = state.textured();
   bool usable_w = true;
   double max_inv_w = 0;
   for (const TriangleVertex& v : vin) {
