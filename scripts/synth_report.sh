@@ -32,6 +32,7 @@ UNITS=(
   "texel_address|raster/texel_address.sv|-"
   "texture_env|raster/texture_env.sv|-"
   "fog_unit|raster/fog_unit.sv|-"
+  "texture_combiner|raster/texture_combiner.sv|-"
   "cu_datapath|array/cu_datapath.sv|-"
 )
 

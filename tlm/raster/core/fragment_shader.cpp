@@ -4,6 +4,7 @@
 #include "raster/core/fragment_operations.h"
 #include "raster/core/interpolation.h"
 #include "raster/datapath/fog_unit.h"
+#include "raster/datapath/texture_combiner.h"
 #include "raster/datapath/texture_env.h"
 
 namespace tessera::raster {
@@ -12,7 +13,16 @@ namespace tessera::raster {
 // coverage with polygon_smooth; false when a texel fetch failed.
 bool FragmentShader::shaded_color(const TriangleSetup& ts, int dx, int dy, unorm8 coverage, Rgba8& color) {
   color = interpolated_color(ts, dx, dy, m_run.config().recip_method);
-  if (m_state.has(StateFlag::texture)) {
+  if (m_state.has(StateFlag::texture_units)) {
+    // Each enabled unit in order: its texel and its environment, taking the
+    // previous unit's result and the interpolated (primary) colour.
+    const Rgba8 primary = color;
+    for (unsigned u = 0; u < m_state.unit_count; ++u) {
+      Rgba8 texel;
+      if (!m_sampler.unit_texel(ts, u, dx, dy, texel)) return false;
+      color = texture_combiner(m_state.unit[u].env, primary, color, texel);
+    }
+  } else if (m_state.has(StateFlag::texture)) {
     if (!m_sampler.sample(ts, dx, dy, color, color)) return false;
   }
   // Fog after texturing, before coverage and the fragment operations.
@@ -30,7 +40,8 @@ void FragmentShader::shade(const TriangleSetup& ts, int px, int py, unorm8 cover
   // the alpha test (which reads the colour), the tests do not depend on the
   // colour: it is computed only for the fragments that pass them. The
   // results are the same as in GL's order.
-  const bool color_after_tests = !m_state.has(StateFlag::texture) && !m_state.operations.alpha_test;
+  const bool color_after_tests =
+      !m_state.has(StateFlag::texture) && !m_state.has(StateFlag::texture_units) && !m_state.operations.alpha_test;
   Rgba8 color;
   if (!color_after_tests && !shaded_color(ts, dx, dy, coverage, color)) return;
 

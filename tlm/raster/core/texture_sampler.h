@@ -23,7 +23,18 @@ class TextureSampler {
   // (dx, dy) from the setup's reference pixel; false when a texel fetch failed.
   bool sample(const TriangleSetup& setup, int dx, int dy, Rgba8 fragment, Rgba8& out);
 
+  // With StateFlag::texture_units: texture unit `unit`'s filtered texel at
+  // (dx, dy), before its environment (texture_combiner); false when a texel
+  // fetch failed.
+  bool unit_texel(const TriangleSetup& setup, unsigned unit, int dx, int dy, Rgba8& texel);
+
  private:
+  // The filtered texel of `texture` at the coordinates of planes s and t
+  // (over the setup's q): the minification or magnification filter, the
+  // texel addresses and fetches, the bilinear filter.
+  bool filtered_texel(const TriangleSetup& setup, const AttributePlane& s_plane, const AttributePlane& t_plane,
+                      TextureState tex, TexFilter min_filter, TexFilter mag_filter, int dx, int dy, Rgba8& texel);
+
   // The perspective division into the q15.16 that texel addressing takes.
   void texture_coords(attribute_sum s, attribute_sum t, attribute_sum q, q15_16& s_out, q15_16& t_out) const;
 
