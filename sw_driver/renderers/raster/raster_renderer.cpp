@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gl/runtime.h"
+#include "raster/datapath/texture_combiner.h"
 #include "raster/raster_regs.h"
 #include "renderers/common/fog.h"
 #include "renderers/common/texture_units.h"
@@ -89,6 +90,74 @@ raster::FogState encode_fog(const gl::RasterState& s) {
   return f;
 }
 
+// A unit the rasterizer draws: enabled, with a complete texture.
+bool textured(const gl::TextureUnit& unit) {
+  return unit.enabled && unit.tex.width > 0 && unit.tex.height > 0;
+}
+
+// Whether `s` needs the texture units extension (command_format.h): more
+// than one unit to draw, an environment the StateBlock's 2-bit field does
+// not carry (BLEND, ADD, COMBINE), or a base format whose table 3.15 rules
+// differ from RGBA's under the unit's environment. Otherwise the
+// StateBlock's own texture words draw it, word for word as before.
+bool needs_texture_units(const gl::RasterState& s) {
+  unsigned units = 0;
+  for (const gl::TextureUnit& unit : s.unit) {
+    if (!textured(unit)) continue;
+    ++units;
+    gl::TexEnv code;
+    if (!gl::hardware_tex_env(unit.env, &code) || renderers::env_needs_base_format(unit.tex, unit.env)) return true;
+  }
+  return units > 1;
+}
+
+// The texture units extension of `s` (the block's own texture flag and
+// words cleared, as the rasterizer ignores them then): one TextureUnitState
+// per unit drawn, in GL's order; `index` gets the GL unit of each. Returns
+// the count.
+unsigned encode_texture_units(const gl::RasterState& s, StateBlock& block, raster::TextureUnitsHeader& header,
+                              raster::TextureUnitState units[], int index[]) {
+  block.flags &= ~raster::texture;
+  block.flags |= raster::texture_units;
+  block.texture_address = block.texture_size = block.texture_mode = 0;
+  const auto log2 = [](unsigned v) {
+    uint32_t n = 0;
+    while ((1u << n) < v) ++n;
+    return n;
+  };
+  const auto stage = [](const gl::CombineStage& g) {
+    raster::CombineStage c;
+    c.func = g.func;
+    for (unsigned k = 0; k < 3; ++k) {
+      c.source[k] = g.source[k];
+      c.operand[k] = g.operand[k];
+    }
+    c.scale_log2 = g.scale >= 4 ? 2 : g.scale >= 2 ? 1 : 0;
+    return c.encode();
+  };
+  unsigned count = 0;
+  for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
+    const gl::TextureUnit& unit = s.unit[u];
+    if (!textured(unit)) continue;
+    const gl::Texture& tex = unit.tex;
+    raster::TextureUnitState& w = units[count];
+    w.address = tex.address;
+    w.size = log2(tex.width) | log2(tex.height) << 8;
+    w.mode = code_of(tex.min_filter) << raster::UNIT_MIN_FILTER_SHIFT |
+             code_of(tex.mag_filter) << raster::UNIT_MAG_FILTER_SHIFT |
+             code_of(tex.wrap_s) << raster::UNIT_WRAP_S_SHIFT | code_of(tex.wrap_t) << raster::UNIT_WRAP_T_SHIFT |
+             code_of(unit.env) << raster::UNIT_ENV_SHIFT |
+             code_of(gl::tex_base_format(tex)) << raster::UNIT_BASE_FORMAT_SHIFT;
+    w.env_color = uint32_t{unit.env_color[0]} | uint32_t{unit.env_color[1]} << 8 | uint32_t{unit.env_color[2]} << 16 |
+                  uint32_t{unit.env_color[3]} << 24;
+    w.combine_rgb = stage(unit.combine_rgb);
+    w.combine_alpha = stage(unit.combine_alpha);
+    index[count++] = static_cast<int>(u);
+  }
+  header.count = count;
+  return count;
+}
+
 bool same(const StateBlock& a, const StateBlock& b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
@@ -147,7 +216,9 @@ uint32_t RasterRenderer::reg(uint32_t offset) const {
 uint32_t RasterRenderer::add_state(const StateRecord& state) {
   m_host.compute(Op::alu, STATE_COMPARE_ALU);
   if (m_states.empty() || !same(m_states.back().block, state.block) ||
-      std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0)
+      std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0 ||
+      std::memcmp(&m_states.back().units_header, &state.units_header, sizeof state.units_header) != 0 ||
+      std::memcmp(&m_states.back().units, &state.units, sizeof state.units) != 0)
     m_states.push_back(state);
   return static_cast<uint32_t>(m_states.size() - 1);
 }
@@ -191,21 +262,29 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   if (count == 0) return;
-  const renderers::SingleTextureUnit unit =
-      renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
-  if (unit.index >= 0) {
-    const gl::Texture& tex = state.unit[unit.index].tex;
-    // The rasterizer's texture unit fetches from one level (tlm/raster).
-    if (tex.min_mipmap != gl::MipmapFilter::none)
+  // Several units, BLEND, ADD, COMBINE or a base format's rules: the texture
+  // units extension (encode_texture_units); else the StateBlock's one texture.
+  int unit_index[gl::MAX_TEXTURE_UNITS] = {-1, -1, -1, -1};
+  unsigned units = 0;
+  renderers::SingleTextureUnit unit;
+  if (needs_texture_units(state)) {
+    m_last_draw_state = {encode_state(state, {}), encode_fog(state)};
+    units = encode_texture_units(state, m_last_draw_state.block, m_last_draw_state.units_header,
+                                 m_last_draw_state.units, unit_index);
+    unit.index = unit_index[0];
+  } else {
+    unit =
+        renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
+    m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
+  }
+  for (unsigned u = 0; u < std::max(units, 1u); ++u) {
+    // The rasterizer's texture units fetch from one level (tlm/raster).
+    const int index = units > 0 ? unit_index[u] : unit.index;
+    if (index >= 0 && state.unit[index].tex.min_mipmap != gl::MipmapFilter::none)
       m_unsupported.report(m_env,
                            "mipmap minification filters (GL_*_MIPMAP_*): level 0 sampled with the filter "
                            "within a level");
-    if (renderers::env_needs_base_format(tex, unit.env))
-      m_unsupported.report(m_env,
-                           "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
-                           "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
   }
-  m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
   const uint32_t state_index = add_state(m_last_draw_state);
   renderers::FogCoefficients fog;
   if (state.fog) fog = renderers::fog_coefficients(state);
@@ -216,9 +295,15 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     const gl::Triangle& t = triangles[i];
     TriangleWords record{};
     record.state_flags = m_last_draw_state.block.flags;
+    record.units = units;
     for (unsigned k = 0; k < 3; ++k) {
       record.record.v[k] = encode_vertex(t.v[k], unit.index);
       if (state.fog) record.fog.argument[k] = renderers::fog_argument(fog, t.v[k].fog);
+      for (unsigned u = 1; u < units; ++u) {  // the further units' s/w and t/w
+        const gl::TexCoord st = t.v[k].tex[unit_index[u]];
+        record.unit_coords[u - 1].s_over_w[k] = st.s * t.v[k].inv_w;
+        record.unit_coords[u - 1].t_over_w[k] = st.t * t.v[k].inv_w;
+      }
     }
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
     const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
@@ -228,7 +313,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     m_triangles.push_back(record);
   }
   m_host.compute(Op::alu, TRIANGLE_ALU * count);
-  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count);
+  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count * std::max(units, 1u));
   if (state.fog) {
     m_host.compute(Op::fmul, FOG_VERTEX_FMUL * 3 * count);
     m_host.compute(Op::fadd, FOG_VERTEX_FADD * 3 * count);
@@ -273,11 +358,17 @@ void RasterRenderer::flush() {
   std::vector<uint32_t> state_words, record_words, state_offsets, record_offsets;
   for (const StateRecord& s : m_states) {
     state_offsets.push_back(static_cast<uint32_t>(4 * state_words.size()));
-    append_words(state_words, s, raster::state_block_bytes(s.block.flags));
+    append_words(state_words, s, raster::texture_units_offset(s.block.flags));  // the block and its FogState
+    if (s.block.flags & raster::texture_units) {
+      append_words(state_words, s.units_header, sizeof s.units_header);
+      append_words(state_words, s.units, s.units_header.count * uint32_t{sizeof(raster::TextureUnitState)});
+    }
   }
   for (const TriangleWords& t : m_triangles) {
     record_offsets.push_back(static_cast<uint32_t>(4 * record_words.size()));
-    append_words(record_words, t, raster::triangle_record_bytes(t.state_flags));
+    append_words(record_words, t, raster::triangle_unit_coords_offset(t.state_flags));  // the record and its fog
+    if ((t.state_flags & raster::texture_units) && t.units > 1)
+      append_words(record_words, t.unit_coords, (t.units - 1) * uint32_t{sizeof(raster::TriangleUnitCoords)});
   }
   const uint32_t states_bytes = static_cast<uint32_t>(4 * state_words.size());
   const uint32_t triangles_bytes = static_cast<uint32_t>(4 * record_words.size());

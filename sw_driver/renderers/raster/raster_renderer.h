@@ -55,19 +55,26 @@ class RasterRenderer : public gl::Renderer {
     uint32_t words[4];
   };
 
-  // A state block and the FogState that follows it in memory with
-  // StateFlag::fog: the first raster::state_block_bytes(block.flags) bytes
-  // are written.
+  // A state block, the FogState that follows it in memory with
+  // StateFlag::fog and the texture unit states with StateFlag::texture_units:
+  // raster::state_block_bytes(block.flags, units_header.count) bytes are
+  // written, the extensions in command_format.h's order.
   struct StateRecord {
     raster::StateBlock block;
     raster::FogState fog;
+    // With StateFlag::texture_units: the header and its units (zeros without).
+    raster::TextureUnitsHeader units_header{};
+    raster::TextureUnitState units[raster::MAX_TEXTURE_UNITS]{};
   };
-  // A triangle record and its TriangleFog: the first
-  // raster::triangle_record_bytes(state_flags) bytes are written.
+  // A triangle record, its TriangleFog and its further units' coordinates:
+  // raster::triangle_record_bytes(state_flags, units) bytes are written.
   struct TriangleWords {
     raster::TriangleRecord record;
     raster::TriangleFog fog;
     uint32_t state_flags;
+    // With StateFlag::texture_units: the units after the first (`units` in all).
+    uint32_t units = 0;
+    raster::TriangleUnitCoords unit_coords[raster::MAX_TEXTURE_UNITS - 1]{};
   };
   // The extensions follow their blocks directly, as command_format.h lays them out.
   static_assert(offsetof(StateRecord, fog) == sizeof(raster::StateBlock), "FogState right after the block");
