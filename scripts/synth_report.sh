@@ -33,6 +33,7 @@ UNITS=(
   "texture_env|raster/texture_env.sv|-"
   "fog_unit|raster/fog_unit.sv|-"
   "lod_unit|raster/lod_unit.sv|-"
+  "texture_combiner|raster/texture_combiner.sv|-"
   "cu_datapath|array/cu_datapath.sv|-"
 )
 

@@ -97,18 +97,16 @@ struct Texture {
   TextureLevel level[MAX_TEXTURE_LEVELS];
 };
 
-// The texture environment of a unit (glTexEnv GL_TEXTURE_ENV_MODE).
-// MODULATE, REPLACE and DECAL are also the hardware's TexEnv codes
-// (hardware_tex_env); BLEND, ADD and COMBINE have no code in
-// common/fixed_function.def yet (its 2-bit field is full, and the raster
-// combiner is a later step), so only the software back ends draw them.
-enum class TexEnvMode : uint8_t { modulate, replace, decal, blend, add, combine };
-
-// The GL_COMBINE function, its argument sources and operands (ES 1.1,
-// section 3.7.12, table 3.18 and 3.19).
-enum class CombineFunc : uint8_t { replace, modulate, add, add_signed, interpolate, subtract, dot3_rgb, dot3_rgba };
-enum class CombineSource : uint8_t { texture, constant, primary_color, previous };
-enum class CombineOperand : uint8_t { src_color, one_minus_src_color, src_alpha, one_minus_src_alpha };
+// The texture environment of a unit (glTexEnv GL_TEXTURE_ENV_MODE) and the
+// GL_COMBINE function, its argument sources and operands (ES 1.1, section
+// 3.7.12, tables 3.17 and 3.18): the hardware codes of
+// common/fixed_function.def, one encoding for the front end, the software
+// back ends and the rasterizer's texture unit states.
+using TexEnvMode = tessera::TexEnv;
+using tessera::CombineFunc;
+using tessera::CombineOperand;
+using tessera::CombineSource;
+using tessera::TexBaseFormat;
 
 // One half (RGB or alpha) of a unit's combiner. The defaults are GL's.
 struct CombineStage {
@@ -133,14 +131,22 @@ struct TextureUnit {
                              1};
 };
 
-// The hardware code of `env` (fixed_function.def), false if it has none.
+// Whether `env` is one of the environments the rasterizer's StateBlock
+// carries (REPLACE, MODULATE, DECAL: its 2-bit field); *code is `env`.
 inline bool hardware_tex_env(TexEnvMode env, TexEnv* code) {
   switch (env) {
-    case TexEnvMode::modulate: *code = TexEnv::modulate; return true;
-    case TexEnvMode::replace: *code = TexEnv::replace; return true;
-    case TexEnvMode::decal: *code = TexEnv::decal; return true;
+    case TexEnv::modulate:
+    case TexEnv::replace:
+    case TexEnv::decal: *code = env; return true;
     default: return false;
   }
+}
+
+// The base format code (table 3.15) of `tex`'s components: LUMINANCE
+// follows RGB's rules and LUMINANCE_ALPHA RGBA's, so the components decide.
+inline TexBaseFormat tex_base_format(const Texture& tex) {
+  if (!tex.has_color) return TexBaseFormat::alpha;
+  return tex.has_alpha ? TexBaseFormat::rgba : TexBaseFormat::rgb;
 }
 
 struct RasterState {

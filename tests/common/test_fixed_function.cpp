@@ -91,6 +91,10 @@ void check_rejects_other_enums() {
   add(FixedFunction<BlendFactor>::ENTRIES);
   add(FixedFunction<LogicOp>::ENTRIES);
   add(FixedFunction<TexEnv>::ENTRIES);
+  add(FixedFunction<TexBaseFormat>::ENTRIES);
+  add(FixedFunction<CombineFunc>::ENTRIES);
+  add(FixedFunction<CombineSource>::ENTRIES);
+  add(FixedFunction<CombineOperand>::ENTRIES);
   add(FixedFunction<TexFilter>::ENTRIES);
   add(FixedFunction<TexWrap>::ENTRIES);
   add(FixedFunction<TexMipmap>::ENTRIES);
@@ -192,9 +196,17 @@ TEST(FixedFunction, LogicOps) {
 }
 
 TEST(FixedFunction, TextureEnvironmentsFiltersAndWraps) {
-  check_dense_unique_and_round_trip<TexEnv>(
-      {{TexEnv::replace, GL_REPLACE}, {TexEnv::modulate, GL_MODULATE}, {TexEnv::decal, GL_DECAL}});
+  check_dense_unique_and_round_trip<TexEnv>({{TexEnv::replace, GL_REPLACE},
+                                             {TexEnv::modulate, GL_MODULATE},
+                                             {TexEnv::decal, GL_DECAL},
+                                             {TexEnv::blend, GL_BLEND},
+                                             {TexEnv::add, GL_ADD},
+                                             {TexEnv::combine, GL_COMBINE}});
   check_rejects_other_enums<TexEnv>();
+  // The StateBlock's 2-bit field carries the first three (command_format.h).
+  EXPECT_LT(code_of(TexEnv::replace), 4u);
+  EXPECT_LT(code_of(TexEnv::modulate), 4u);
+  EXPECT_LT(code_of(TexEnv::decal), 4u);
   check_dense_unique_and_round_trip<TexFilter>({{TexFilter::nearest, GL_NEAREST}, {TexFilter::linear, GL_LINEAR}});
   check_rejects_other_enums<TexFilter>();
   check_dense_unique_and_round_trip<TexWrap>(
@@ -213,6 +225,37 @@ TEST(FixedFunction, TextureMipmapChoices) {
   EXPECT_STREQ(FixedFunction<TexMipmap>::UNKNOWN, "code 3 acts as none, level 0 only");
 }
 
+// ES 1.1 table 3.15's base formats (RGBA is code 0: a unit state without
+// the field set draws an RGBA texture) and the combiner's tables 3.17, 3.18.
+TEST(FixedFunction, BaseFormatsAndCombiner) {
+  check_dense_unique_and_round_trip<TexBaseFormat>({{TexBaseFormat::rgba, GL_RGBA},
+                                                    {TexBaseFormat::rgb, GL_RGB},
+                                                    {TexBaseFormat::alpha, GL_ALPHA},
+                                                    {TexBaseFormat::luminance, GL_LUMINANCE},
+                                                    {TexBaseFormat::luminance_alpha, GL_LUMINANCE_ALPHA}});
+  check_rejects_other_enums<TexBaseFormat>();
+  EXPECT_EQ(code_of(TexBaseFormat::rgba), 0u);
+  check_dense_unique_and_round_trip<CombineFunc>({{CombineFunc::replace, GL_REPLACE},
+                                                  {CombineFunc::modulate, GL_MODULATE},
+                                                  {CombineFunc::add, GL_ADD},
+                                                  {CombineFunc::add_signed, GL_ADD_SIGNED},
+                                                  {CombineFunc::interpolate, GL_INTERPOLATE},
+                                                  {CombineFunc::subtract, GL_SUBTRACT},
+                                                  {CombineFunc::dot3_rgb, GL_DOT3_RGB},
+                                                  {CombineFunc::dot3_rgba, GL_DOT3_RGBA}});
+  check_rejects_other_enums<CombineFunc>();
+  check_dense_unique_and_round_trip<CombineSource>({{CombineSource::texture, GL_TEXTURE},
+                                                    {CombineSource::constant, GL_CONSTANT},
+                                                    {CombineSource::primary_color, GL_PRIMARY_COLOR},
+                                                    {CombineSource::previous, GL_PREVIOUS}});
+  check_rejects_other_enums<CombineSource>();
+  check_dense_unique_and_round_trip<CombineOperand>({{CombineOperand::src_color, GL_SRC_COLOR},
+                                                     {CombineOperand::one_minus_src_color, GL_ONE_MINUS_SRC_COLOR},
+                                                     {CombineOperand::src_alpha, GL_SRC_ALPHA},
+                                                     {CombineOperand::one_minus_src_alpha, GL_ONE_MINUS_SRC_ALPHA}});
+  check_rejects_other_enums<CombineOperand>();
+}
+
 TEST(FixedFunction, FogModes) {
   check_dense_unique_and_round_trip<FogMode>(
       {{FogMode::linear, GL_LINEAR}, {FogMode::exp, GL_EXP}, {FogMode::exp2, GL_EXP2}});
@@ -227,12 +270,17 @@ TEST(FixedFunction, FieldsSayWhatUnknownCodesDo) {
   EXPECT_EQ(FixedFunction<StencilOp>::BITS, 3u);
   EXPECT_EQ(FixedFunction<BlendFactor>::BITS, 4u);
   EXPECT_EQ(FixedFunction<LogicOp>::BITS, 4u);
-  EXPECT_EQ(FixedFunction<TexEnv>::BITS, 2u);
+  EXPECT_EQ(FixedFunction<TexEnv>::BITS, 3u);
+  EXPECT_EQ(FixedFunction<TexBaseFormat>::BITS, 3u);
+  EXPECT_EQ(FixedFunction<CombineFunc>::BITS, 3u);
+  EXPECT_EQ(FixedFunction<CombineSource>::BITS, 2u);
+  EXPECT_EQ(FixedFunction<CombineOperand>::BITS, 2u);
   EXPECT_EQ(FixedFunction<TexFilter>::BITS, 1u);
   EXPECT_EQ(FixedFunction<TexWrap>::BITS, 2u);
   EXPECT_STREQ(FixedFunction<StencilOp>::UNKNOWN, "codes 6 and 7 keep the stored value");
   EXPECT_STREQ(FixedFunction<BlendFactor>::UNKNOWN, "codes 11 to 15 act as zero");
-  EXPECT_STREQ(FixedFunction<TexEnv>::UNKNOWN, "code 3 passes the fragment colour through");
+  EXPECT_STREQ(FixedFunction<TexEnv>::UNKNOWN, "codes 6 and 7 pass the unit's input colour through");
+  EXPECT_STREQ(FixedFunction<TexBaseFormat>::UNKNOWN, "codes 5 to 7 act as RGBA");
   EXPECT_STREQ(FixedFunction<TexWrap>::UNKNOWN, "codes 2 and 3 act as repeat, the GL default");
 }
 
@@ -299,13 +347,17 @@ TEST_F(GeneratedPackage, HoldsTheTablesCodes) {
   check<BlendFactor>("BlendFactor");
   check<LogicOp>("LogicOp");
   check<TexEnv>("TexEnv");
+  check<TexBaseFormat>("TexBaseFormat");
+  check<CombineFunc>("CombineFunc");
+  check<CombineSource>("CombineSource");
+  check<CombineOperand>("CombineOperand");
   check<TexFilter>("TexFilter");
   check<TexWrap>("TexWrap");
   check<TexMipmap>("TexMipmap");
   check<FogMode>("FogMode");
   EXPECT_EQ(m_checked, m_values.size()) << "the package has values the table does not";
-  EXPECT_EQ(m_bits.size(), 9u);
-  EXPECT_EQ(m_types.size(), 9u);
+  EXPECT_EQ(m_bits.size(), 13u);
+  EXPECT_EQ(m_types.size(), 13u);
 }
 
 }  // namespace

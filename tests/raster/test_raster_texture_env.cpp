@@ -62,7 +62,7 @@ TEST(TextureEnv, EnvironmentsFollowGlTable) {
   // R: (200*191 + 255*64)/255 = 213.80 -> 214; G: (100*191 + 128*64)/255 = 107.02 -> 107;
   // B: 50*191/255 = 37.45 -> 37.
   EXPECT_EQ(texture_environment(TexEnv::decal, f, t), colour(214, 107, 37, 128));
-  // Unknown mode: fragment unchanged.
+  // A code this unit does not draw (3: BLEND, the combiner's): fragment unchanged.
   EXPECT_EQ(texture_environment(static_cast<TexEnv>(3), f, t), f);
   EXPECT_EQ(code_of(static_cast<TexEnv>(3)), 3u);
   // MODULATE with white is the identity.

@@ -12,7 +12,8 @@
 namespace tessera::raster {
 namespace {
 
-// Every environment, plus a code without an entry (fragment passes on both sides).
+// Every environment of the unit, plus code 3 (BLEND, the combiner's: the
+// fragment passes on both sides).
 constexpr std::array<TexEnv, 4> ALL_MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal, static_cast<TexEnv>(3)};
 
 struct Checker : CosimTally {

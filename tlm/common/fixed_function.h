@@ -37,6 +37,26 @@ enum class TexEnv : uint8_t {
 #include "common/fixed_function.def"
 };
 
+enum class TexBaseFormat : uint8_t {
+#define TESSERA_TEX_BASE_FORMAT(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
+enum class CombineFunc : uint8_t {
+#define TESSERA_COMBINE_FUNC(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
+enum class CombineSource : uint8_t {
+#define TESSERA_COMBINE_SOURCE(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
+enum class CombineOperand : uint8_t {
+#define TESSERA_COMBINE_OPERAND(name, code, gl_enum, description) name = (code),
+#include "common/fixed_function.def"
+};
+
 enum class TexFilter : uint8_t {
 #define TESSERA_TEX_FILTER(name, code, gl_enum, description) name = (code),
 #include "common/fixed_function.def"
@@ -120,6 +140,38 @@ template <>
 struct FixedFunction<TexEnv> : FixedFunctionField<TexEnv> {
   static constexpr FixedFunctionEntry<TexEnv> ENTRIES[] = {
 #define TESSERA_TEX_ENV(name, code, gl_enum, description) {TexEnv::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<TexBaseFormat> : FixedFunctionField<TexBaseFormat> {
+  static constexpr FixedFunctionEntry<TexBaseFormat> ENTRIES[] = {
+#define TESSERA_TEX_BASE_FORMAT(name, code, gl_enum, description) {TexBaseFormat::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<CombineFunc> : FixedFunctionField<CombineFunc> {
+  static constexpr FixedFunctionEntry<CombineFunc> ENTRIES[] = {
+#define TESSERA_COMBINE_FUNC(name, code, gl_enum, description) {CombineFunc::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<CombineSource> : FixedFunctionField<CombineSource> {
+  static constexpr FixedFunctionEntry<CombineSource> ENTRIES[] = {
+#define TESSERA_COMBINE_SOURCE(name, code, gl_enum, description) {CombineSource::name, #name, gl_enum, description},
+#include "common/fixed_function.def"
+  };
+};
+
+template <>
+struct FixedFunction<CombineOperand> : FixedFunctionField<CombineOperand> {
+  static constexpr FixedFunctionEntry<CombineOperand> ENTRIES[] = {
+#define TESSERA_COMBINE_OPERAND(name, code, gl_enum, description) {CombineOperand::name, #name, gl_enum, description},
 #include "common/fixed_function.def"
   };
 };

@@ -102,12 +102,12 @@ constexpr unsigned UNIT_WRAP_S_SHIFT = 2;        // TexWrap, bits 2-3
 constexpr unsigned UNIT_WRAP_T_SHIFT = 4;        // TexWrap, bits 4-5
 constexpr unsigned UNIT_MIPMAP_SHIFT = 6;        // TexMipmap, between levels, bits 6-7
 constexpr unsigned UNIT_ENV_SHIFT = 8;           // TexEnv, bits 8-11
-constexpr unsigned UNIT_BASE_FORMAT_SHIFT = 12;  // the texture's base format (table 3.15), bits 12-15
+constexpr unsigned UNIT_BASE_FORMAT_SHIFT = 12;  // TexBaseFormat: the texture's base format (table 3.15), bits 12-15
 // Fields of TextureUnitState::combine_rgb and combine_alpha: source k at
 // COMBINE_SOURCE_SHIFT + 4 k, operand k at COMBINE_OPERAND_SHIFT + 4 k.
-constexpr unsigned COMBINE_FUNC_SHIFT = 0;      // bits 0-3
-constexpr unsigned COMBINE_SOURCE_SHIFT = 4;    // bits 4-5, 8-9, 12-13
-constexpr unsigned COMBINE_OPERAND_SHIFT = 16;  // bits 16-17, 20-21, 24-25
+constexpr unsigned COMBINE_FUNC_SHIFT = 0;      // CombineFunc, bits 0-3
+constexpr unsigned COMBINE_SOURCE_SHIFT = 4;    // CombineSource, bits 4-5, 8-9, 12-13
+constexpr unsigned COMBINE_OPERAND_SHIFT = 16;  // CombineOperand, bits 16-17, 20-21, 24-25
 constexpr unsigned COMBINE_SCALE_SHIFT = 28;    // log2 of the scale (0, 1, 2), bits 28-29
 
 // Levels of a 256 x 256 texture: 0 (256 x 256) to 8 (1 x 1).
@@ -199,11 +199,22 @@ static_assert(TEXTURE_MIN_FILTER_SHIFT + FixedFunction<TexFilter>::BITS <= TEXTU
 static_assert(TEXTURE_WRAP_S_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_WRAP_T_SHIFT &&
                   TEXTURE_WRAP_T_SHIFT + FixedFunction<TexWrap>::BITS <= TEXTURE_ENV_SHIFT,
               "wrap codes fit bits 2-3 and 4-5");
-static_assert(FixedFunction<TexEnv>::BITS <= 2, "texture environment codes fit bits 8-9");
+// The StateBlock's 2-bit environment field carries REPLACE, MODULATE and
+// DECAL only; BLEND, ADD and COMBINE take the texture units extension (its
+// code 3 is reserved: the rasterizer passes the fragment through, as before).
+constexpr uint32_t TEXTURE_ENV_BITS = 2;
+static_assert(code_of(TexEnv::replace) < (1u << TEXTURE_ENV_BITS) &&
+                  code_of(TexEnv::modulate) < (1u << TEXTURE_ENV_BITS) &&
+                  code_of(TexEnv::decal) < (1u << TEXTURE_ENV_BITS),
+              "the StateBlock's environment codes fit bits 8-9");
 static_assert(FixedFunction<FogMode>::BITS <= 2, "fog mode codes fit bits 0-1 of FogState::mode");
 static_assert(FixedFunction<TexFilter>::BITS <= 1 && FixedFunction<TexWrap>::BITS <= 2 &&
-                  FixedFunction<TexMipmap>::BITS <= 2 && FixedFunction<TexEnv>::BITS <= 4,
-              "unit filter, wrap and environment codes fit their TextureUnitState::mode fields");
+                  FixedFunction<TexMipmap>::BITS <= 2 && FixedFunction<TexEnv>::BITS <= 4 &&
+                  FixedFunction<TexBaseFormat>::BITS <= 4,
+              "unit filter, wrap, mipmap, environment and base format codes fit their TextureUnitState::mode fields");
+static_assert(FixedFunction<CombineFunc>::BITS <= 4 && FixedFunction<CombineSource>::BITS <= 2 &&
+                  FixedFunction<CombineOperand>::BITS <= 2,
+              "combiner codes fit their combine_rgb and combine_alpha fields");
 
 // ERROR_STATUS codes. On an error the rasterizer stops the run, sets
 // STATUS.error and IRQ_STATUS.error, and leaves the tiles not yet written

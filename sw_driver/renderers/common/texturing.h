@@ -54,6 +54,7 @@ inline uint32_t apply_tex_env(gl::TexEnv env, uint32_t rgba, const uint8_t texel
       return div255(f[0] * (255 - at) + texel[0] * at) | div255(f[1] * (255 - at) + texel[1] * at) << 8 |
              div255(f[2] * (255 - at) + texel[2] * at) << 16 | f[3] << 24;
     }
+    default: break;  // BLEND, ADD, COMBINE: apply_texture_unit
   }
   return rgba;
 }

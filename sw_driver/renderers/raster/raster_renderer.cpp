@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gl/runtime.h"
+#include "raster/datapath/texture_combiner.h"
 #include "raster/raster_regs.h"
 #include "renderers/common/fog.h"
 #include "renderers/common/texture_units.h"
@@ -91,38 +92,90 @@ raster::FogState encode_fog(const gl::RasterState& s) {
   return f;
 }
 
-// A mipmapped texture (a complete chain: gl::Texture) is drawn through the
-// texture unit extension, the only state that carries levels: one unit
-// (the drawn one), its level table, filters, wraps, the choice between
-// levels (TexMipmap) and the environment; the base format and the combiner
-// words are 0. Any other state keeps the StateBlock's own texture words, so
-// its lists are word for word what they were.
-void encode_texture_units(const gl::RasterState& s, const renderers::SingleTextureUnit& unit,
-                          raster::TextureUnitsHeader& header, raster::TextureUnitState& out,
-                          uint32_t (&level_table)[raster::MAX_TEXTURE_LEVEL], StateBlock& block) {
-  if (unit.index < 0) return;
-  const gl::TextureUnit& u = s.unit[unit.index];
-  const gl::Texture& tex = u.tex;
-  if (tex.width == 0 || tex.height == 0 || tex.min_mipmap == gl::MipmapFilter::none) return;
-  auto log2 = [](unsigned v) {
+// A unit the rasterizer draws: enabled, with a complete texture.
+bool textured(const gl::TextureUnit& unit) {
+  return unit.enabled && unit.tex.width > 0 && unit.tex.height > 0;
+}
+
+// Whether `s` needs the texture units extension (command_format.h): more
+// than one unit to draw, an environment the StateBlock's 2-bit field does
+// not carry (BLEND, ADD, COMBINE), or a base format whose table 3.15 rules
+// differ from RGBA's under the unit's environment. Otherwise the
+// StateBlock's own texture words draw it, word for word as before.
+bool needs_texture_units(const gl::RasterState& s) {
+  unsigned units = 0;
+  for (const gl::TextureUnit& unit : s.unit) {
+    if (!textured(unit)) continue;
+    ++units;
+    gl::TexEnv code;
+    if (!gl::hardware_tex_env(unit.env, &code) || renderers::env_needs_base_format(unit.tex, unit.env) ||
+        unit.tex.min_mipmap != gl::MipmapFilter::none)
+      return true;
+  }
+  return units > 1;
+}
+
+// The texture units extension of `s` (the block's own texture flag and
+// words cleared, as the rasterizer ignores them then): one TextureUnitState
+// per unit drawn, in GL's order; `index` gets the GL unit of each. Returns
+// the count.
+unsigned encode_texture_units(const gl::RasterState& s, StateBlock& block, raster::TextureUnitsHeader& header,
+                              raster::TextureUnitState units[],
+                              uint32_t (&level_tables)[raster::MAX_TEXTURE_UNITS][raster::MAX_TEXTURE_LEVEL],
+                              int index[]) {
+  block.flags &= ~raster::texture;
+  block.flags |= raster::texture_units;
+  block.texture_address = block.texture_size = block.texture_mode = 0;
+  const auto log2 = [](unsigned v) {
     uint32_t n = 0;
     while ((1u << n) < v) ++n;
     return n;
   };
-  const uint32_t last_level = std::min<uint32_t>(tex.levels > 0 ? tex.levels - 1 : 0, raster::MAX_TEXTURE_LEVEL);
-  const TexMipmap mipmap = tex.min_mipmap == gl::MipmapFilter::linear ? TexMipmap::linear : TexMipmap::nearest;
-  block.flags |= raster::texture_units;
-  header.count = 1;
-  out.address = tex.address;
-  out.size = log2(tex.width) | log2(tex.height) << 8 | last_level << 16;
-  out.level_table = 0;  // the table's address, once flush lays the arena out
-  out.mode = code_of(tex.min_filter) << raster::UNIT_MIN_FILTER_SHIFT |
+  const auto stage = [](const gl::CombineStage& g) {
+    raster::CombineStage c;
+    c.func = g.func;
+    for (unsigned k = 0; k < 3; ++k) {
+      c.source[k] = g.source[k];
+      c.operand[k] = g.operand[k];
+    }
+    c.scale_log2 = g.scale >= 4 ? 2 : g.scale >= 2 ? 1 : 0;
+    return c.encode();
+  };
+  unsigned count = 0;
+  for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
+    const gl::TextureUnit& unit = s.unit[u];
+    if (!textured(unit)) continue;
+    const gl::Texture& tex = unit.tex;
+    raster::TextureUnitState& w = units[count];
+    // A mipmapped texture (a complete chain: gl::Texture) carries its
+    // levels in the unit's level table; another, level 0 alone.
+    const uint32_t last_level = tex.min_mipmap == gl::MipmapFilter::none
+                                    ? 0
+                                    : std::min<uint32_t>(tex.levels > 0 ? tex.levels - 1 : 0, raster::MAX_TEXTURE_LEVEL);
+    const TexMipmap mipmap = tex.min_mipmap == gl::MipmapFilter::none     ? TexMipmap::none
+                             : tex.min_mipmap == gl::MipmapFilter::linear ? TexMipmap::linear
+                                                                         : TexMipmap::nearest;
+    for (uint32_t k = 1; k <= last_level; ++k) level_tables[count][k - 1] = tex.level[k].address;
+    w.address = tex.address;
+    w.size = log2(tex.width) | log2(tex.height) << 8 | last_level << 16;
+    w.level_table = 0;  // the table's address, once flush lays the arena out
+    w.mode = code_of(tex.min_filter) << raster::UNIT_MIN_FILTER_SHIFT |
              code_of(tex.mag_filter) << raster::UNIT_MAG_FILTER_SHIFT |
              code_of(tex.wrap_s) << raster::UNIT_WRAP_S_SHIFT | code_of(tex.wrap_t) << raster::UNIT_WRAP_T_SHIFT |
-             code_of(mipmap) << raster::UNIT_MIPMAP_SHIFT | code_of(unit.env) << raster::UNIT_ENV_SHIFT;
-  out.env_color = uint32_t{u.env_color[0]} | uint32_t{u.env_color[1]} << 8 | uint32_t{u.env_color[2]} << 16 |
-                  uint32_t{u.env_color[3]} << 24;
-  for (uint32_t k = 1; k <= last_level; ++k) level_table[k - 1] = tex.level[k].address;
+             code_of(mipmap) << raster::UNIT_MIPMAP_SHIFT | code_of(unit.env) << raster::UNIT_ENV_SHIFT |
+             code_of(gl::tex_base_format(tex)) << raster::UNIT_BASE_FORMAT_SHIFT;
+    w.env_color = uint32_t{unit.env_color[0]} | uint32_t{unit.env_color[1]} << 8 | uint32_t{unit.env_color[2]} << 16 |
+                  uint32_t{unit.env_color[3]} << 24;
+    w.combine_rgb = stage(unit.combine_rgb);
+    w.combine_alpha = stage(unit.combine_alpha);
+    index[count++] = static_cast<int>(u);
+  }
+  header.count = count;
+  return count;
+}
+
+bool same(const StateBlock& a, const StateBlock& b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 // The first `bytes` of `object`, as words.
@@ -178,7 +231,12 @@ uint32_t RasterRenderer::reg(uint32_t offset) const {
 
 uint32_t RasterRenderer::add_state(const StateRecord& state) {
   m_host.compute(Op::alu, STATE_COMPARE_ALU);
-  if (m_states.empty() || std::memcmp(&m_states.back(), &state, sizeof state) != 0) m_states.push_back(state);
+  if (m_states.empty() || !same(m_states.back().block, state.block) ||
+      std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0 ||
+      std::memcmp(&m_states.back().units_header, &state.units_header, sizeof state.units_header) != 0 ||
+      std::memcmp(&m_states.back().units, &state.units, sizeof state.units) != 0 ||
+      std::memcmp(&m_states.back().level_tables, &state.level_tables, sizeof state.level_tables) != 0)
+    m_states.push_back(state);
   return static_cast<uint32_t>(m_states.size() - 1);
 }
 
@@ -221,18 +279,21 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   if (count == 0) return;
-  const renderers::SingleTextureUnit unit =
-      renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
-  if (unit.index >= 0) {
-    const gl::Texture& tex = state.unit[unit.index].tex;
-    if (renderers::env_needs_base_format(tex, unit.env))
-      m_unsupported.report(m_env,
-                           "textures without alpha under GL_REPLACE and GL_ALPHA textures under GL_MODULATE or "
-                           "GL_REPLACE (ES 1.1 table 3.15): drawn with the texel expanded to RGBA");
+  // Several units, BLEND, ADD, COMBINE or a base format's rules: the texture
+  // units extension (encode_texture_units); else the StateBlock's one texture.
+  int unit_index[gl::MAX_TEXTURE_UNITS] = {-1, -1, -1, -1};
+  unsigned units = 0;
+  renderers::SingleTextureUnit unit;
+  if (needs_texture_units(state)) {
+    m_last_draw_state = {encode_state(state, {}), encode_fog(state)};
+    units = encode_texture_units(state, m_last_draw_state.block, m_last_draw_state.units_header,
+                                 m_last_draw_state.units, m_last_draw_state.level_tables, unit_index);
+    unit.index = unit_index[0];
+  } else {
+    unit =
+        renderers::single_texture_unit(state, [this](const std::string& what) { m_unsupported.report(m_env, what); });
+    m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
   }
-  m_last_draw_state = {encode_state(state, unit), encode_fog(state), {}, {}, {}};
-  encode_texture_units(state, unit, m_last_draw_state.units_header, m_last_draw_state.unit,
-                       m_last_draw_state.level_table, m_last_draw_state.block);
   const uint32_t state_index = add_state(m_last_draw_state);
   renderers::FogCoefficients fog;
   if (state.fog) fog = renderers::fog_coefficients(state);
@@ -243,9 +304,15 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     const gl::Triangle& t = triangles[i];
     TriangleWords record{};
     record.state_flags = m_last_draw_state.block.flags;
+    record.units = units;
     for (unsigned k = 0; k < 3; ++k) {
       record.record.v[k] = encode_vertex(t.v[k], unit.index);
       if (state.fog) record.fog.argument[k] = renderers::fog_argument(fog, t.v[k].fog);
+      for (unsigned u = 1; u < units; ++u) {  // the further units' s/w and t/w
+        const gl::TexCoord st = t.v[k].tex[unit_index[u]];
+        record.unit_coords[u - 1].s_over_w[k] = st.s * t.v[k].inv_w;
+        record.unit_coords[u - 1].t_over_w[k] = st.t * t.v[k].inv_w;
+      }
     }
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
     const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
@@ -255,7 +322,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     m_triangles.push_back(record);
   }
   m_host.compute(Op::alu, TRIANGLE_ALU * count);
-  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count);
+  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count * std::max(units, 1u));
   if (state.fog) {
     m_host.compute(Op::fmul, FOG_VERTEX_FMUL * 3 * count);
     m_host.compute(Op::fadd, FOG_VERTEX_FADD * 3 * count);
@@ -302,25 +369,28 @@ void RasterRenderer::flush() {
   std::vector<std::pair<size_t, uint32_t>> table_fixups;  // level_table's word in state_words, table offset
   for (const StateRecord& s : m_states) {
     state_offsets.push_back(static_cast<uint32_t>(4 * state_words.size()));
-    append_words(state_words, s.block, sizeof s.block);
-    if ((s.block.flags & raster::fog) != 0) append_words(state_words, s.fog, sizeof s.fog);
-    if ((s.block.flags & raster::texture_units) != 0) {
+    append_words(state_words, s, raster::texture_units_offset(s.block.flags));  // the block and its FogState
+    if (s.block.flags & raster::texture_units) {
       append_words(state_words, s.units_header, sizeof s.units_header);
-      const size_t unit_at = state_words.size();
-      append_words(state_words, s.unit, sizeof s.unit);
-      const uint32_t last_level = (s.unit.size >> 16) & 0xff;
-      if (last_level > 0) {
-        table_fixups.emplace_back(unit_at + offsetof(raster::TextureUnitState, level_table) / 4,
-                                  static_cast<uint32_t>(4 * table_words.size()));
-        table_words.insert(table_words.end(), s.level_table, s.level_table + last_level);
+      const size_t units_at = state_words.size();
+      append_words(state_words, s.units, s.units_header.count * uint32_t{sizeof(raster::TextureUnitState)});
+      for (uint32_t u = 0; u < s.units_header.count; ++u) {
+        const uint32_t last_level = (s.units[u].size >> 16) & 0xff;
+        if (last_level == 0) continue;
+        table_fixups.emplace_back(
+            units_at + (u * sizeof(raster::TextureUnitState) + offsetof(raster::TextureUnitState, level_table)) / 4,
+            static_cast<uint32_t>(4 * table_words.size()));
+        table_words.insert(table_words.end(), s.level_tables[u], s.level_tables[u] + last_level);
       }
     }
     assert(4 * state_words.size() - state_offsets.back() ==
-           raster::state_block_bytes(s.block.flags, (s.block.flags & raster::texture_units) != 0 ? 1 : 0));
+           raster::state_block_bytes(s.block.flags, s.units_header.count));
   }
   for (const TriangleWords& t : m_triangles) {
     record_offsets.push_back(static_cast<uint32_t>(4 * record_words.size()));
-    append_words(record_words, t, raster::triangle_record_bytes(t.state_flags));
+    append_words(record_words, t, raster::triangle_unit_coords_offset(t.state_flags));  // the record and its fog
+    if ((t.state_flags & raster::texture_units) && t.units > 1)
+      append_words(record_words, t.unit_coords, (t.units - 1) * uint32_t{sizeof(raster::TriangleUnitCoords)});
   }
   const uint32_t states_bytes = static_cast<uint32_t>(4 * state_words.size());
   const uint32_t tables_bytes = static_cast<uint32_t>(4 * table_words.size());

@@ -55,25 +55,30 @@ class RasterRenderer : public gl::Renderer {
     uint32_t words[4];
   };
 
-  // A state block and the FogState that follows it in memory with
-  // StateFlag::fog, then with StateFlag::texture_units the header and the
-  // unit's state (a mipmapped texture: encode_texture_units); flush writes
-  // the parts the flags ask for, in command_format.h's order, and the
-  // unit's level table (levels 1 .. last) into the arena, filling in
-  // unit.level_table.
+  // A state block, the FogState that follows it in memory with
+  // StateFlag::fog and the texture unit states with StateFlag::texture_units:
+  // raster::state_block_bytes(block.flags, units_header.count) bytes are
+  // written, the extensions in command_format.h's order.
   struct StateRecord {
     raster::StateBlock block;
     raster::FogState fog;
-    raster::TextureUnitsHeader units_header;
-    raster::TextureUnitState unit;
-    uint32_t level_table[raster::MAX_TEXTURE_LEVEL];  // unit.level_table's words, last level of them
+    // With StateFlag::texture_units: the header and its units (zeros without).
+    raster::TextureUnitsHeader units_header{};
+    raster::TextureUnitState units[raster::MAX_TEXTURE_UNITS]{};
+    // Each unit's level table (the addresses of levels 1 .. its last level):
+    // flush writes it into the arena after the state blocks and fills in
+    // units[u].level_table.
+    uint32_t level_tables[raster::MAX_TEXTURE_UNITS][raster::MAX_TEXTURE_LEVEL]{};
   };
-  // A triangle record and its TriangleFog: the first
-  // raster::triangle_record_bytes(state_flags) bytes are written.
+  // A triangle record, its TriangleFog and its further units' coordinates:
+  // raster::triangle_record_bytes(state_flags, units) bytes are written.
   struct TriangleWords {
     raster::TriangleRecord record;
     raster::TriangleFog fog;
     uint32_t state_flags;
+    // With StateFlag::texture_units: the units after the first (`units` in all).
+    uint32_t units = 0;
+    raster::TriangleUnitCoords unit_coords[raster::MAX_TEXTURE_UNITS - 1]{};
   };
   // The extensions follow their blocks directly, as command_format.h lays them out.
   static_assert(offsetof(StateRecord, fog) == sizeof(raster::StateBlock), "FogState right after the block");

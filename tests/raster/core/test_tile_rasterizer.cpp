@@ -630,6 +630,82 @@ TEST(TileRasterizer, TextureUnitExtensionSizes) {
   EXPECT_EQ(triangle_record_bytes(0, 3), sizeof(TriangleRecord));  // units only count with the flag
 }
 
+// Two texture units (ES 1.1 section 3.7.12): unit 0 MODULATEs the flat
+// fragment colour with a 4 x 4 texture at its own coordinates, unit 1 ADDs
+// a 2 x 2 texture at coordinates of its own (from the TriangleUnitCoords)
+// to that result; both nearest, repeat. Each pixel is worked out here from
+// the texel the pixel centre falls in and the table 3.16 formulas, with
+// products divided by 255 and rounded to nearest.
+TEST(TileRasterizer, TwoTextureUnitsModulateThenAdd) {
+  VectorPort port(MEMORY_SIZE);
+  constexpr uint32_t TEXTURE1 = TEXTURE_BASE + 0x1000;
+  const auto texel0 = [](unsigned i, unsigned j) {
+    return (40 + 50 * i) | (200 - 40 * j) << 8 | 128u << 16 | 255u << 24;
+  };
+  const auto texel1 = [](unsigned i, unsigned j) { return 30 * i | 10u << 8 | (70 * j) << 16 | 128u << 24; };
+  for (unsigned j = 0; j < 4; ++j)
+    for (unsigned i = 0; i < 4; ++i) port.set_word(TEXTURE_BASE + (j * 4 + i) * 4, texel0(i, j));
+  for (unsigned j = 0; j < 2; ++j)
+    for (unsigned i = 0; i < 2; ++i) port.set_word(TEXTURE1 + (j * 2 + i) * 4, texel1(i, j));
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= StateFlag::texture_units;
+  struct {
+    StateBlock block;
+    TextureUnitsHeader header;
+    TextureUnitState unit[2];
+  } words{s, {2}, {}};
+  words.unit[0].address = TEXTURE_BASE;
+  words.unit[0].size = 2 | 2u << 8;
+  words.unit[0].mode = code_of(TexEnv::modulate) << UNIT_ENV_SHIFT;  // nearest, repeat, RGBA
+  words.unit[1].address = TEXTURE1;
+  words.unit[1].size = 1 | 1u << 8;
+  words.unit[1].mode = code_of(TexEnv::add) << UNIT_ENV_SHIFT;
+  static_assert(sizeof words == state_block_bytes(StateFlag::texture_units, 2), "block and two units");
+  const uint32_t state_address = frame.put(&words, sizeof words);
+  frame.all({uint32_t(Opcode::state), state_address});
+  // Quad [16, 48) x [8, 24): unit 0 s 0..1, t 0..1; unit 1 s 0..2, t 1..0.
+  const uint32_t colour = 200 | 100u << 8 | 255u << 16 | 255u << 24;
+  const VertexRecord a = vertex(16, 8, colour, 0, 0, 0), b = vertex(48, 8, colour, 0, 1, 0),
+                     c = vertex(48, 24, colour, 0, 1, 1), d = vertex(16, 24, colour, 0, 0, 1);
+  const auto triangle = [&](const VertexRecord& p, const VertexRecord& q, const VertexRecord& r) {
+    struct {
+      TriangleRecord record;
+      TriangleUnitCoords unit1;
+    } t{{{p, q, r}}, {}};
+    const VertexRecord* v[3] = {&p, &q, &r};
+    for (unsigned k = 0; k < 3; ++k) {
+      t.unit1.s_over_w[k] = 2 * v[k]->s_over_w;
+      t.unit1.t_over_w[k] = 1 - v[k]->t_over_w;
+    }
+    static_assert(sizeof t == triangle_record_bytes(StateFlag::texture_units, 2), "record and unit 1");
+    frame.all({uint32_t(Opcode::triangle), frame.put(&t, sizeof t)});
+  };
+  triangle(a, b, c);
+  triangle(a, c, d);
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  EXPECT_EQ(r.texels, 2u * 32u * 16u);  // one nearest fetch per unit and pixel
+  const auto mul = [](uint32_t x, uint32_t y) { return uint32_t(std::lround(x * y / 255.0)); };
+  const uint32_t f[4] = {200, 100, 255, 255};
+  for (unsigned y = 8; y < 24; ++y) {
+    for (unsigned x = 16; x < 48; ++x) {
+      const double u = (x - 16 + 0.5) / 32, v = (y - 8 + 0.5) / 16;
+      const uint32_t t0 = texel0(unsigned(u * 4), unsigned(v * 4));
+      const uint32_t t1 = texel1(unsigned(u * 2 * 2) % 2, unsigned((1 - v) * 2));
+      uint32_t want = 0;
+      for (unsigned ch = 0; ch < 4; ++ch) {
+        const uint32_t modulated = mul(f[ch], (t0 >> (8 * ch)) & 0xff);
+        const uint32_t t = (t1 >> (8 * ch)) & 0xff;
+        want |= (ch < 3 ? std::min<uint32_t>(modulated + t, 255) : mul(modulated, t)) << (8 * ch);
+      }
+      EXPECT_EQ(frame.pixel(x, y), want) << x << "," << y;
+    }
+  }
+}
+
 // A texture unit state with a unit count of 0 or 5 stops the run at its
 // header; a unit whose size is above 256 or whose last level is beyond the
 // 1 x 1 level stops it at that unit's size word when a triangle uses it.

@@ -111,7 +111,10 @@ bool CommandDecoder::read_state(uint32_t address, DrawState& state) {
   s.texture.wrap_t = from_code<TexWrap>(mode >> TEXTURE_WRAP_T_SHIFT);
   s.min_filter = from_code<TexFilter>(mode >> TEXTURE_MIN_FILTER_SHIFT);
   s.mag_filter = from_code<TexFilter>(mode >> TEXTURE_MAG_FILTER_SHIFT);
-  s.env = from_code<TexEnv>(mode >> TEXTURE_ENV_SHIFT);
+  // The block's 2-bit field: REPLACE, MODULATE, DECAL; its reserved code 3
+  // passes the fragment through (an unknown TexEnv code).
+  const uint32_t env = (mode >> TEXTURE_ENV_SHIFT) & ((1u << TEXTURE_ENV_BITS) - 1);
+  s.env = from_code<TexEnv>(env == 3 ? field_mask<TexEnv>() : env);
   if (s.has(StateFlag::fog)) {
     uint8_t f[sizeof(FogState)];
     if (!m_run.read(address + fog_state_offset(), f, sizeof f)) return false;
@@ -151,11 +154,11 @@ bool CommandDecoder::read_texture_units(uint32_t address, DrawState& s) {
     d.min_filter = from_code<TexFilter>(mode >> UNIT_MIN_FILTER_SHIFT);
     d.mag_filter = from_code<TexFilter>(mode >> UNIT_MAG_FILTER_SHIFT);
     d.mipmap = from_code<TexMipmap>(mode >> UNIT_MIPMAP_SHIFT);
-    d.env = (mode >> UNIT_ENV_SHIFT) & 15;
-    d.base_format = (mode >> UNIT_BASE_FORMAT_SHIFT) & 15;
-    d.env_color = Rgba8::unpack(word(4));
-    d.combine_rgb = word(5);
-    d.combine_alpha = word(6);
+    d.env.env = from_code<TexEnv>(mode >> UNIT_ENV_SHIFT);
+    d.env.base_format = from_code<TexBaseFormat>(mode >> UNIT_BASE_FORMAT_SHIFT);
+    d.env.env_color = Rgba8::unpack(word(4));
+    d.env.rgb = CombineStage::decode(word(5));
+    d.env.alpha = CombineStage::decode(word(6));
     d.level_address = {};
     d.level_address[0] = d.texture.base;
     // The level table, read only when the size is one the core can use (a

@@ -12,14 +12,13 @@
 #include "raster/core/fragment_operations.h"
 #include "raster/core/rect.h"
 #include "raster/datapath/texel_address.h"
+#include "raster/datapath/texture_combiner.h"
 
 namespace tessera::raster {
 
 // One enabled texture unit of a StateFlag::texture_units state
 // (command_format.h, TextureUnitState), as CommandDecoder decodes it. The
-// fields whose fixed_function.def tables do not exist yet (the wider
-// environments, the base format, the combiner) are kept as the raw fields
-// of the record.
+// fields are the codes of common/fixed_function.def.
 struct TextureUnitDraw {
   TextureState texture;                                         // level 0: address, log2 sizes (clamped to 8), wraps
   unsigned log2_width = 0, log2_height = 0;                     // as stored, checked at use
@@ -27,10 +26,7 @@ struct TextureUnitDraw {
   std::array<uint32_t, MAX_TEXTURE_LEVEL + 1> level_address{};  // level 0's is texture.base; up to last_level
   TexFilter min_filter = TexFilter::nearest, mag_filter = TexFilter::nearest;
   TexMipmap mipmap = TexMipmap::none;  // the UNIT_MIPMAP field, bits 6-7 of mode
-  uint32_t env = 0;                    // the UNIT_ENV field, bits 8-11 of mode
-  uint32_t base_format = 0;            // the UNIT_BASE_FORMAT field, bits 12-15 of mode
-  Rgba8 env_color;
-  uint32_t combine_rgb = 0, combine_alpha = 0;  // the records' words (COMBINE_* shifts)
+  TextureUnitEnv env;                  // environment, base format, env colour and combiner (datapath/texture_combiner.h)
 };
 
 struct DrawState {

@@ -4,6 +4,7 @@
 #include "raster/core/fragment_operations.h"
 #include "raster/core/interpolation.h"
 #include "raster/datapath/fog_unit.h"
+#include "raster/datapath/texture_combiner.h"
 #include "raster/datapath/texture_env.h"
 
 namespace tessera::raster {
@@ -12,7 +13,16 @@ namespace tessera::raster {
 // coverage with polygon_smooth; false when a texel fetch failed.
 bool FragmentShader::shaded_color(const TriangleSetup& ts, int dx, int dy, unorm8 coverage, Rgba8& color) {
   color = interpolated_color(ts, dx, dy, m_run.config().recip_method);
-  if (m_state.textured()) {
+  if (m_state.has(StateFlag::texture_units)) {
+    // Each enabled unit in order: its texel and its environment, taking the
+    // previous unit's result and the interpolated (primary) colour.
+    const Rgba8 primary = color;
+    for (unsigned u = 0; u < m_state.unit_count; ++u) {
+      Rgba8 texel;
+      if (!m_sampler.unit_texel(ts, u, dx, dy, texel)) return false;
+      color = texture_combiner(m_state.unit[u].env, primary, color, texel);
+    }
+  } else if (m_state.has(StateFlag::texture)) {
     if (!m_sampler.sample(ts, dx, dy, color, color)) return false;
   }
   // Fog after texturing, before coverage and the fragment operations.

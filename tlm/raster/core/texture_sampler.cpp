@@ -29,21 +29,13 @@ void TextureSampler::texture_coords(attribute_sum s, attribute_sum t, attribute_
 }
 
 bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragment, Rgba8& out) {
-  if (m_state.unit_count > 0) {
-    const TextureUnitDraw& unit = m_state.unit[0];
-    Rgba8 texel;
-    if (!sample_unit(unit, ts.s, ts.t, ts.q, dx, dy, texel)) return false;
-    out = texture_environment(from_code<TexEnv>(unit.env), fragment, texel);
-    return true;
-  }
   const AttributeEvaluation s = evaluate_attribute(ts.s, dx, dy);
   const AttributeEvaluation t = evaluate_attribute(ts.t, dx, dy);
   const AttributeEvaluation q = evaluate_attribute(ts.q, dx, dy);
   q15_16 sc, tc;
   texture_coords(s.value, t.value, q.value, sc, tc);
-  TextureState tex = m_state.texture;
-  tex.filter = m_state.mag_filter;
-  if (m_state.min_filter != m_state.mag_filter) {
+  tex.filter = mag_filter;
+  if (min_filter != mag_filter) {
     // GL's scale factor rho from the texel-space differences to the next
     // pixel in x and in y (as Mesa does per quad); rho > 1 minifies.
     q15_16 sx, tx, sy, ty;
@@ -53,7 +45,7 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
     const int128 dux = texel_delta(sc, sx, tex.log2_width), dvx = texel_delta(tc, tx, tex.log2_height);
     const int128 duy = texel_delta(sc, sy, tex.log2_width), dvy = texel_delta(tc, ty, tex.log2_height);
     const int128 rho2 = std::max(dux * dux + dvx * dvx, duy * duy + dvy * dvy);
-    if (rho2 > (int128{1} << 32)) tex.filter = m_state.min_filter;
+    if (rho2 > (int128{1} << 32)) tex.filter = min_filter;
   }
   const TexelFootprint footprint = texel_lookup(tex, sc, tc);
   const unsigned fetches = tex.filter == TexFilter::linear ? 4 : 1;
@@ -66,8 +58,12 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
   for (unsigned k = fetches; k < 4; ++k) texels[k] = texels[0];
   m_run.result().texels += fetches;
   m_run.charge(m_run.result().texel_cycles, uint64_t{m_run.costs().texel} * fetches);
-  out = texture_filter_env(m_state.env, texels, footprint.s.weight, footprint.t.weight, fragment).fragment;
+  texel = bilinear_filter(texels, footprint.s.weight, footprint.t.weight);
   return true;
+}
+
+bool TextureSampler::unit_texel(const TriangleSetup& ts, unsigned unit, int dx, int dy, Rgba8& texel) {
+  return sample_unit(m_state.unit[unit], ts.unit_s[unit], ts.unit_t[unit], ts.q, dx, dy, texel);
 }
 
 bool TextureSampler::fetch_filtered(const TextureState& tex, q15_16 s, q15_16 t, Rgba8& texel) {

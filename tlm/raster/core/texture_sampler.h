@@ -21,9 +21,13 @@ class TextureSampler {
 
   // The fragment's colour after the texture environment, at the offset
   // (dx, dy) from the setup's reference pixel; false when a texel fetch failed.
-  // With a texture_units state, unit 0 through sample_unit and its
-  // environment cut to TexEnv.
+  // The StateBlock's texture (without StateFlag::texture_units).
   bool sample(const TriangleSetup& setup, int dx, int dy, Rgba8 fragment, Rgba8& out);
+
+  // With StateFlag::texture_units: texture unit `unit`'s filtered texel at
+  // (dx, dy), before its environment (texture_combiner): sample_unit with
+  // the unit's planes; false when a texel fetch failed.
+  bool unit_texel(const TriangleSetup& setup, unsigned unit, int dx, int dy, Rgba8& texel);
 
   // One texture unit's filtered texel, before its environment, at (dx, dy):
   // the scale factor rho from the coordinates' derivatives at the pixel

@@ -56,7 +56,8 @@ bool set_up_triangle(const TriangleVertices& vin, const DrawState& state, RecipM
   // 1/w of the vertices scaled by one power of two so that the largest lies
   // in [1/2, 1): every ratio a = (a/w) / (1/w) is unchanged and the scaling
   // is exact.
-  const bool texture = state.textured();
+  const bool units = state.has(StateFlag::texture_units);
+  const bool texture = state.has(StateFlag::texture) && !units;
   bool usable_w = true;
   double max_inv_w = 0;
   for (const TriangleVertex& v : vin) {
@@ -112,6 +113,26 @@ bool set_up_triangle(const TriangleVertices& vin, const DrawState& state, RecipM
     }
     ts.s = plane(AttributeKind::texcoord, s);
     ts.t = plane(AttributeKind::texcoord, t);
+  }
+  if (units) {
+    // Every enabled unit's coordinates, as the single texture's above.
+    if (!usable_w) return false;
+    for (unsigned u = 0; u < state.unit_count; ++u) {
+      std::array<int64_t, 3> s, t;
+      for (unsigned k = 0; k < 3; ++k) {
+        const TriangleVertex& v = vin[k];
+        if (!std::isfinite(v.unit_s_over_w[u]) || !std::isfinite(v.unit_t_over_w[u])) return false;
+        const double values[3] = {scaled(v.unit_s_over_w[u]), scaled(v.unit_t_over_w[u]), scaled(v.inv_w)};
+        for (double value : values)
+          if (std::fabs(value) > TEXCOORD_LIMIT) return false;
+        s[k] = std::llround(std::ldexp(values[0], TEXCOORD_FRACTION_BITS));
+        t[k] = std::llround(std::ldexp(values[1], TEXCOORD_FRACTION_BITS));
+      }
+      ts.unit_s[u] = plane(AttributeKind::texcoord, s);
+      ts.unit_t[u] = plane(AttributeKind::texcoord, t);
+    }
+    ts.s = ts.unit_s[0];
+    ts.t = ts.unit_t[0];
   }
   return true;
 }

@@ -42,6 +42,9 @@ struct TriangleSetup {
   // for the colours (README.md, "Fog").
   AttributePlane fog;
   bool perspective_fog = false;
+  // With StateFlag::texture_units: each unit's s/w and t/w planes, set up
+  // like s and t (unit 0's are s and t themselves).
+  std::array<AttributePlane, MAX_TEXTURE_UNITS> unit_s, unit_t;
 };
 
 // false: the triangle cannot be drawn and is skipped (zero area, an edge the

@@ -11,9 +11,10 @@
 // NEAREST the weights are 0 and the result is texel (i0,j0) exactly, so the
 // filter needs no mode input.
 //
-// Environment: the codes of common/fixed_function.def (TexEnv), the numbers
-// the Verilog unit's 2-bit field takes; a code without an entry (3) passes
-// the fragment colour through untouched. f = fragment colour, t = filtered
+// Environment: the codes of common/fixed_function.def (TexEnv) that the
+// StateBlock's 2-bit field carries; any other code (3 and up: BLEND, ADD
+// and COMBINE, which the texture units' combiner draws, texture_combiner.h)
+// passes the fragment colour through untouched. f = fragment colour, t = filtered
 // texel colour, all 0.8 codes, "1 - x" is 255 - x:
 //     REPLACE   C = Ct                     A = At
 //     MODULATE  C = Cf * Ct                A = Af * At
@@ -65,7 +66,7 @@ constexpr Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel) {
     modulate |= div255_round(fc * tc) << c;
     if (c < 24) decal |= div255_round(fc * (255 - ta) + tc * ta) << c;
   }
-  const uint32_t results[4] = {t, modulate, decal, f};  // code 3 (and above): the fragment
+  const uint32_t results[4] = {t, modulate, decal, f};  // code 3 and above: the fragment
   return Rgba8::unpack(results[std::min(static_cast<unsigned>(mode), 3u)]);
 }
 
