@@ -11,10 +11,14 @@
 #include <vector>
 
 #include "raster/core/tile_rasterizer.h"
+#include "raster/datapath/texture_combiner.h"
 
 using namespace tessera::raster;
 using tessera::BlendFactor;
 using tessera::code_of;
+using tessera::CombineFunc;
+using tessera::CombineOperand;
+using tessera::CombineSource;
 using tessera::CompareFunc;
 using tessera::FogMode;
 using tessera::LogicOp;
@@ -704,6 +708,82 @@ TEST(TileRasterizer, TwoTextureUnitsModulateThenAdd) {
       EXPECT_EQ(frame.pixel(x, y), want) << x << "," << y;
     }
   }
+}
+
+// Four units (MAX_TEXTURE_UNITS), each a 1 x 1 texture, chained: REPLACE;
+// COMBINE ADD(previous, texture) with alpha REPLACE(primary alpha); BLEND
+// with its env colour; COMBINE INTERPOLATE(previous, primary, constant
+// alpha) with alpha MODULATE(previous, texture). GL_PREVIOUS is the unit
+// before's result and GL_PRIMARY_COLOR the interpolated colour throughout;
+// the pixels are worked out here from table 3.16 and 3.17's formulas.
+TEST(TileRasterizer, FourTextureUnitsChainPreviousAndPrimary) {
+  VectorPort port(MEMORY_SIZE);
+  const uint32_t texel[4] = {0x40a01060u, 0xff103070u, 0x80ff4000u, 0x40000000u};  // A B G R
+  for (unsigned u = 0; u < 4; ++u) port.set_word(TEXTURE_BASE + 0x100 * u, texel[u]);
+  Frame frame(port, 64, 32);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= StateFlag::texture_units;
+  struct {
+    StateBlock block;
+    TextureUnitsHeader header;
+    TextureUnitState unit[4];
+  } words{s, {4}, {}};
+  const auto stage = [](CombineFunc f, CombineSource s0, CombineOperand o0, CombineSource s1, CombineOperand o1,
+                        CombineSource s2, CombineOperand o2) {
+    CombineStage c;
+    c.func = f;
+    c.source[0] = s0, c.source[1] = s1, c.source[2] = s2;
+    c.operand[0] = o0, c.operand[1] = o1, c.operand[2] = o2;
+    return c.encode();
+  };
+  using S = CombineSource;
+  using O = CombineOperand;
+  const TexEnv envs[4] = {TexEnv::replace, TexEnv::combine, TexEnv::blend, TexEnv::combine};
+  for (unsigned u = 0; u < 4; ++u) {
+    words.unit[u].address = TEXTURE_BASE + 0x100 * u;
+    words.unit[u].mode = code_of(envs[u]) << UNIT_ENV_SHIFT;
+  }
+  words.unit[1].combine_rgb =
+      stage(CombineFunc::add, S::previous, O::src_color, S::texture, O::src_color, S::texture, O::src_color);
+  words.unit[1].combine_alpha =
+      stage(CombineFunc::replace, S::primary_color, O::src_alpha, S::texture, O::src_alpha, S::texture, O::src_alpha);
+  const uint32_t c2 = 0x00204060u, c3 = 0x50000000u;  // env colours: unit 2's colour, unit 3's alpha 80
+  words.unit[2].env_color = c2;
+  words.unit[3].env_color = c3;
+  words.unit[3].combine_rgb = stage(CombineFunc::interpolate, S::previous, O::src_color, S::primary_color, O::src_color,
+                                    S::constant, O::src_alpha);
+  words.unit[3].combine_alpha =
+      stage(CombineFunc::modulate, S::previous, O::src_alpha, S::texture, O::src_alpha, S::texture, O::src_alpha);
+  frame.all({uint32_t(Opcode::state), frame.put(&words, sizeof words)});
+  const uint32_t primary = 0xc8326496u;  // R 150, G 100, B 50, A 200
+  struct {
+    TriangleRecord record;
+    TriangleUnitCoords units[3];
+  } t{{{vertex(4, 4, primary), vertex(60, 4, primary), vertex(4, 28, primary)}}, {}};
+  frame.all({uint32_t(Opcode::triangle), frame.put(&t, sizeof t)});
+  frame.finish();
+  ASSERT_EQ(run(port, frame.config).error, RasterError::none);
+
+  const auto ch = [](uint32_t c, unsigned k) { return (c >> (8 * k)) & 0xff; };
+  const auto div = [](uint32_t x) { return uint32_t(std::lround(x / 255.0)); };
+  uint32_t want = 0;
+  for (unsigned k = 0; k < 4; ++k) {
+    uint32_t c = ch(texel[0], k);                                               // REPLACE
+    c = k < 3 ? std::min<uint32_t>(c + ch(texel[1], k), 255) : ch(primary, 3);  // ADD / primary alpha
+    c = k < 3 ? div(c * (255 - ch(texel[2], k)) + ch(c2, k) * ch(texel[2], k))  // BLEND colour
+              : div(c * ch(texel[2], 3));                                       // BLEND alpha
+    c = k < 3 ? div(c * ch(c3, 3) + ch(primary, k) * (255 - ch(c3, 3))) : div(c * ch(texel[3], 3));
+    want |= c << (8 * k);
+  }
+  unsigned drawn = 0;
+  for (unsigned y = 0; y < 32; ++y)
+    for (unsigned x = 0; x < 64; ++x)
+      if (frame.pixel(x, y) != 0) {
+        ++drawn;
+        EXPECT_EQ(frame.pixel(x, y), want) << x << "," << y;
+      }
+  EXPECT_GT(drawn, 500u);
 }
 
 // A texture unit state with a unit count of 0 or 5 stops the run at its
