@@ -34,8 +34,9 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
   const AttributeEvaluation q = evaluate_attribute(ts.q, dx, dy);
   q15_16 sc, tc;
   texture_coords(s.value, t.value, q.value, sc, tc);
-  tex.filter = mag_filter;
-  if (min_filter != mag_filter) {
+  TextureState tex = m_state.texture;
+  tex.filter = m_state.mag_filter;
+  if (m_state.min_filter != m_state.mag_filter) {
     // GL's scale factor rho from the texel-space differences to the next
     // pixel in x and in y (as Mesa does per quad); rho > 1 minifies.
     q15_16 sx, tx, sy, ty;
@@ -45,7 +46,7 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
     const int128 dux = texel_delta(sc, sx, tex.log2_width), dvx = texel_delta(tc, tx, tex.log2_height);
     const int128 duy = texel_delta(sc, sy, tex.log2_width), dvy = texel_delta(tc, ty, tex.log2_height);
     const int128 rho2 = std::max(dux * dux + dvx * dvx, duy * duy + dvy * dvy);
-    if (rho2 > (int128{1} << 32)) tex.filter = min_filter;
+    if (rho2 > (int128{1} << 32)) tex.filter = m_state.min_filter;
   }
   const TexelFootprint footprint = texel_lookup(tex, sc, tc);
   const unsigned fetches = tex.filter == TexFilter::linear ? 4 : 1;
@@ -58,7 +59,7 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
   for (unsigned k = fetches; k < 4; ++k) texels[k] = texels[0];
   m_run.result().texels += fetches;
   m_run.charge(m_run.result().texel_cycles, uint64_t{m_run.costs().texel} * fetches);
-  texel = bilinear_filter(texels, footprint.s.weight, footprint.t.weight);
+  out = texture_filter_env(m_state.env, texels, footprint.s.weight, footprint.t.weight, fragment).fragment;
   return true;
 }
 
