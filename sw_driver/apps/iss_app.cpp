@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "host/iss/arm922t_timing.h"
 #include "host/iss/arm_core.h"
 #include "host/iss/bare_machine.h"
 #include "host/iss/cp15.h"
@@ -16,18 +17,19 @@ namespace {
 // The console and exit registers the test programs write (BareMachine's):
 // taken by the launcher, not on the bus yet.
 constexpr uint32_t CONSOLE = iss::BareMachine::CONSOLE, EXIT = iss::BareMachine::EXIT;
-// Instructions whose one-cycle charges are added up before the host is
-// told (the host's time moves in these steps between memory accesses).
+// Cycles added up before the host is told (the host's time moves in these
+// steps between memory accesses).
 constexpr uint64_t CHARGE_BATCH = 256;
 
 // The ISS's memory port over the host's device layer. Data accesses are the
-// host's (charged by its cache, write buffer and bus); instruction fetches
-// read a private copy of the executable segments (an ideal instruction
-// cache: no fetch is charged yet), kept in step with the program's own
-// stores into them.
+// host's (charged by its data-cache tag model, write buffer and bus; each
+// charges the host's one issue cycle, host.cycles.load or .store);
+// instruction fetches read a private copy of the executable segments, kept
+// in step with the program's own stores into them, and are charged by the
+// timing layer's instruction-cache model (a line fill as a cycle figure).
 class HostMemory : public iss::IssMemory {
  public:
-  HostMemory(HostApi& host, const iss::ElfImage& image) : m_host(host) {
+  HostMemory(HostApi& host, const iss::ElfImage& image, iss::Arm922tTiming& timing) : m_host(host), m_timing(timing) {
     for (const iss::ElfSegment& segment : image.segments)
       if (segment.executable) m_code.push_back({segment.address, segment.bytes});
   }
@@ -40,8 +42,15 @@ class HostMemory : public iss::IssMemory {
     }
   }
   uint64_t pending() const { return m_pending; }
+  // Host accesses since the last call (each already charged its issue cycle).
+  unsigned take_accesses() {
+    const unsigned accesses = m_accesses;
+    m_accesses = 0;
+    return accesses;
+  }
 
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
+    m_pending += m_timing.fetch(address);
     for (const Code& code : m_code)
       if (address >= code.base && address - code.base + bytes <= code.bytes.size()) {
         value = 0;
@@ -53,6 +62,7 @@ class HostMemory : public iss::IssMemory {
 
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     flush();
+    ++m_accesses;
     try {
       value = bytes == 4 ? m_host.read32(address) : bytes == 2 ? m_host.read16(address) : m_host.read8(address);
       return true;
@@ -77,6 +87,7 @@ class HostMemory : public iss::IssMemory {
       return true;
     }
     flush();
+    ++m_accesses;
     try {
       if (bytes == 4)
         m_host.write32(address, value);
@@ -109,8 +120,10 @@ class HostMemory : public iss::IssMemory {
     std::vector<uint8_t> bytes;
   };
   HostApi& m_host;
+  iss::Arm922tTiming& m_timing;
   std::vector<Code> m_code;
   uint64_t m_pending = 0;
+  unsigned m_accesses = 0;
   std::string m_console;
   bool m_exited = false;
   uint32_t m_status = 0;
@@ -137,10 +150,17 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
                        uint32_t{segment.bytes[i + 2]} << 16 | uint32_t{segment.bytes[i + 3]} << 24);
     for (; i < segment.bytes.size(); ++i) host.write8(segment.address + static_cast<uint32_t>(i), segment.bytes[i]);
   }
-  HostMemory memory(host, image);
+  iss::Arm922tTiming timing;
+  HostMemory memory(host, image, timing);
   iss::ArmCore core(memory);
-  iss::Cp15 cp15(core);  // ID, cache type, control; cache operations reach no caches yet
+  // c7's instruction-side operations reach the timing layer's instruction
+  // cache; the data side is the host's (HostApi has no cache operations).
+  iss::Cp15 cp15(core, &timing);
   core.set_coprocessors(&cp15);
+  timing.attach(&cp15);
+  // As a boot loader would: the caches on (CP15 c1's I and C) before the
+  // program starts; the program may turn the instruction cache off.
+  cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | iss::Cp15::CONTROL_I | iss::Cp15::CONTROL_C);
   core.on_exception([&](iss::Exception exception, uint32_t pc) {
     const char* fault = iss::fault_name(exception);
     if (fault == nullptr) return;  // SWI and interrupts go to the program's vectors
@@ -154,7 +174,11 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
   try {
     while (!memory.exited()) {
       core.step();
-      memory.charge(1);
+      // The instruction's cycles beyond the issue cycle of each host access
+      // it made (those the host has charged already).
+      const unsigned cycles = timing.step(core.last_step());
+      const unsigned accesses = memory.take_accesses();
+      memory.charge(cycles > accesses ? cycles - accesses : 0);
       if (memory.pending() >= CHARGE_BATCH) memory.flush();
     }
   } catch (const iss::IssError& error) {

@@ -120,6 +120,7 @@ void ArmCore::enter(Exception exception, uint32_t return_address) {
   m_r[14] = return_address;
   m_pc = (m_high_vectors ? 0xffff0000u : 0) + VECTOR_OFFSET[index];
   m_branched = true;
+  m_info.exception = true;
 }
 
 bool ArmCore::condition(uint32_t cond) const {
@@ -147,6 +148,7 @@ bool ArmCore::condition(uint32_t cond) const {
 void ArmCore::step() {
   // Interrupts are sampled between instructions; the handler returns with
   // SUBS pc, lr, #4 to the instruction that would have run.
+  m_info = StepInfo{};
   if (m_fiq_line && !(m_cpsr & psr::F)) {
     enter(Exception::fiq, m_pc + 4);
     return;
@@ -165,8 +167,10 @@ void ArmCore::step() {
     }
     ++m_instructions;
     m_r[15] = m_current + 4;
+    m_info.executed = true;
     execute_thumb(half);
     if (!m_branched) m_pc = m_current + 2;
+    m_info.pc_written = m_branched && !m_info.exception;
     return;
   }
   uint32_t insn = 0;
@@ -178,13 +182,17 @@ void ArmCore::step() {
   m_r[15] = m_current + 8;
   execute_arm(insn);
   if (!m_branched) m_pc = m_current + 4;
+  m_info.pc_written = m_branched && !m_info.exception;
 }
 
 void ArmCore::execute_arm(uint32_t insn) {
-  if (condition(insn >> 28)) {
+  m_info.executed = condition(insn >> 28);
+  if (m_info.executed) {
     switch (bits(insn, 27, 25)) {
       case 0:
         if ((insn & 0x0ffffff0u) == 0x012fff10u) {  // BX
+          m_info.kind = InsnClass::branch;
+          m_info.reads = static_cast<uint16_t>(1u << bits(insn, 3, 0));
           const uint32_t target = operand(bits(insn, 3, 0));
           m_cpsr = (m_cpsr & ~psr::T) | (target & 1u ? psr::T : 0);
           write_pc(target & (target & 1u ? ~1u : ~3u));
@@ -217,6 +225,7 @@ void ArmCore::execute_arm(uint32_t insn) {
         break;
       case 4: block_transfer(insn); break;
       case 5: {  // B, BL
+        m_info.kind = InsnClass::branch;
         const int32_t offset = static_cast<int32_t>(insn << 8) >> 6;
         if (bit(insn, 24)) m_r[14] = m_current + 4;
         write_pc(m_r[15] + static_cast<uint32_t>(offset));
@@ -226,9 +235,10 @@ void ArmCore::execute_arm(uint32_t insn) {
         undefined();
         break;
       default:
-        if (bit(insn, 24))
+        if (bit(insn, 24)) {
+          m_info.kind = InsnClass::exception;
           enter(Exception::swi, m_current + 4);
-        else if (bit(insn, 4))
+        } else if (bit(insn, 4))
           coprocessor_transfer(insn);
         else
           undefined();  // CDP
@@ -314,6 +324,8 @@ void ArmCore::execute_thumb(uint32_t insn) {
           case 1: data_processing(dp(cmp, true, hd, 0, hs)); return;
           case 2: data_processing(dp(mov, false, 0, hd, hs)); return;
           default: {
+            m_info.kind = InsnClass::branch;
+            m_info.reads = static_cast<uint16_t>(1u << hs);
             const uint32_t target = operand(hs);
             m_cpsr = (m_cpsr & ~psr::T) | (target & 1u ? psr::T : 0);
             write_pc(target & (target & 1u ? ~1u : ~3u));
@@ -364,6 +376,8 @@ void ArmCore::execute_thumb(uint32_t insn) {
       return;
     case 0x14:
     case 0x15: {  // add Rd, PC / SP, #imm8 x 4 (the PC word-aligned; no flags)
+      m_info.kind = InsnClass::data_processing;
+      m_info.reads = bit(insn, 11) ? 1u << 13 : 0;
       const uint32_t base = bit(insn, 11) ? m_r[13] : (m_current + 4) & ~3u;
       m_r[bits(insn, 10, 8)] = base + (bits(insn, 7, 0) << 2);
       return;
@@ -371,6 +385,8 @@ void ArmCore::execute_thumb(uint32_t insn) {
     case 0x16:
     case 0x17:
       if (bits(insn, 10, 8) == 0) {  // add SP, #+-imm7 x 4
+        m_info.kind = InsnClass::data_processing;
+        m_info.reads = 1u << 13;
         const uint32_t offset = bits(insn, 6, 0) << 2;
         m_r[13] = bit(insn, 7) ? m_r[13] - offset : m_r[13] + offset;
       } else if (bits(insn, 10, 9) == 2) {  // PUSH {rlist, LR}, POP {rlist, PC}
@@ -399,21 +415,28 @@ void ArmCore::execute_thumb(uint32_t insn) {
     case 0x1b: {  // B<cond>, SWI
       const uint32_t cond = bits(insn, 11, 8);
       if (cond == 0xf) {
+        m_info.kind = InsnClass::exception;
         enter(Exception::swi, m_current + 2);
       } else if (cond == 0xe) {
         undefined();
-      } else if (condition(cond)) {
-        write_pc(m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 24) >> 23));
+      } else {
+        m_info.kind = InsnClass::branch;
+        m_info.executed = condition(cond);
+        if (m_info.executed) write_pc(m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 24) >> 23));
       }
       return;
     }
     case 0x1c:  // B
+      m_info.kind = InsnClass::branch;
       write_pc(m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 21) >> 20));
       return;
     case 0x1e:  // BL, first half: LR = PC + (offset << 12)
+      m_info.kind = InsnClass::data_processing;
       m_r[14] = m_current + 4 + static_cast<uint32_t>(static_cast<int32_t>(insn << 21) >> 9);
       return;
     case 0x1f: {  // BL, second half
+      m_info.kind = InsnClass::branch;
+      m_info.reads = 1u << 14;
       const uint32_t target = m_r[14] + (bits(insn, 10, 0) << 1);
       m_r[14] = (m_current + 2) | 1u;
       write_pc(target & ~1u);
@@ -427,6 +450,7 @@ void ArmCore::execute_thumb(uint32_t insn) {
 
 // LR = the next instruction: + 4 in ARM state, + 2 in Thumb.
 void ArmCore::undefined() {
+  m_info.kind = InsnClass::exception;
   enter(Exception::undefined, m_current + (thumb() ? 2 : 4));
 }
 
@@ -503,6 +527,11 @@ void ArmCore::data_processing(uint32_t insn) {
   }
   const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12), opcode = bits(insn, 24, 21);
   const bool set_flags = bit(insn, 20);
+  m_info.kind = InsnClass::data_processing;
+  m_info.register_shift = !bit(insn, 25) && bit(insn, 4);
+  m_info.reads = static_cast<uint16_t>((opcode == 0xd || opcode == 0xf ? 0 : 1u << rn) |
+                                       (bit(insn, 25) ? 0 : 1u << bits(insn, 3, 0)) |
+                                       (m_info.register_shift ? 1u << bits(insn, 11, 8) : 0));
   const uint32_t a = operand(rn) + (!bit(insn, 25) && bit(insn, 4) && rn == 15 ? 4 : 0);
   const bool c_in = m_cpsr & psr::C;
   uint32_t result = 0;
@@ -586,6 +615,11 @@ void ArmCore::data_processing(uint32_t insn) {
 
 void ArmCore::multiply(uint32_t insn) {
   const unsigned rd = bits(insn, 19, 16), rn = bits(insn, 15, 12), rs = bits(insn, 11, 8), rm = bits(insn, 3, 0);
+  m_info.kind = InsnClass::multiply;
+  m_info.accumulate = bit(insn, 21);
+  m_info.signed_multiply = true;
+  m_info.multiplier = operand(rs);
+  m_info.reads = static_cast<uint16_t>((1u << rm) | (1u << rs) | (m_info.accumulate ? 1u << rn : 0));
   uint32_t result = operand(rm) * operand(rs);
   if (bit(insn, 21)) result += operand(rn);
   if (bit(insn, 20))  // N and Z; C is left as it was (ARMv4: meaningless), V unchanged
@@ -595,6 +629,11 @@ void ArmCore::multiply(uint32_t insn) {
 
 void ArmCore::multiply_long(uint32_t insn) {
   const unsigned hi = bits(insn, 19, 16), lo = bits(insn, 15, 12), rs = bits(insn, 11, 8), rm = bits(insn, 3, 0);
+  m_info.kind = InsnClass::multiply_long;
+  m_info.accumulate = bit(insn, 21);
+  m_info.signed_multiply = bit(insn, 22);
+  m_info.multiplier = operand(rs);
+  m_info.reads = static_cast<uint16_t>((1u << rm) | (1u << rs) | (m_info.accumulate ? (1u << hi) | (1u << lo) : 0));
   uint64_t result;
   if (bit(insn, 22))
     result = static_cast<uint64_t>(static_cast<int64_t>(static_cast<int32_t>(operand(rm))) *
@@ -623,7 +662,12 @@ void ArmCore::single_transfer(uint32_t insn) {
   const uint32_t base = operand(rn);
   const uint32_t moved = up ? base + offset : base - offset;
   const uint32_t address = pre ? moved : base;
+  m_info.kind = load ? InsnClass::load : InsnClass::store;
+  m_info.reads =
+      static_cast<uint16_t>((1u << rn) | (bit(insn, 25) ? 1u << bits(insn, 3, 0) : 0) | (load ? 0 : 1u << rd));
   if (load) {
+    m_info.narrow_load = byte || (address & 3u) != 0;
+    m_info.loaded = static_cast<int8_t>(rd);
     uint32_t value = 0;
     if (!m_memory.read(byte ? address : address & ~3u, byte ? 1 : 4, value)) {
       enter(Exception::data_abort, m_current + 8);  // base restored: no register changed
@@ -654,7 +698,12 @@ void ArmCore::halfword_transfer(uint32_t insn) {
   const uint32_t base = operand(rn);
   const uint32_t moved = up ? base + offset : base - offset;
   const uint32_t address = pre ? moved : base;
+  m_info.kind = load ? InsnClass::load : InsnClass::store;
+  m_info.reads =
+      static_cast<uint16_t>((1u << rn) | (bit(insn, 22) ? 0 : 1u << bits(insn, 3, 0)) | (load ? 0 : 1u << rd));
   if (load) {
+    m_info.narrow_load = true;
+    m_info.loaded = static_cast<int8_t>(rd);
     const bool half = kind != 2;
     uint32_t value = 0;
     if (!m_memory.read(half ? address & ~1u : address, half ? 2 : 1, value)) {
@@ -689,6 +738,10 @@ void ArmCore::block_transfer(uint32_t insn) {
   uint32_t address = up ? base + (pre ? 4 : 0) : base - 4 * count + (pre ? 0 : 4);
   const uint32_t final_base = up ? base + 4 * count : base - 4 * count;
   const bool loads_pc = load && (list & 0x8000u);
+  m_info.kind = load ? InsnClass::load_multiple : InsnClass::store_multiple;
+  m_info.registers = static_cast<uint8_t>(count);
+  m_info.reads = static_cast<uint16_t>((1u << rn) | (load ? 0 : list));
+  if (load && !loads_pc) m_info.loaded = static_cast<int8_t>(31 - __builtin_clz(list));
   // S without r15 loaded: the user-mode registers (r8..r14 of usr).
   const bool user_registers = user_bank && !loads_pc;
   const unsigned bank = bank_of(mode());
@@ -739,6 +792,10 @@ void ArmCore::swap(uint32_t insn) {
   const bool byte = bit(insn, 22);
   const unsigned rn = bits(insn, 19, 16), rd = bits(insn, 15, 12), rm = bits(insn, 3, 0);
   const uint32_t address = operand(rn);
+  m_info.kind = InsnClass::swap;
+  m_info.reads = static_cast<uint16_t>((1u << rn) | (1u << rm));
+  m_info.loaded = static_cast<int8_t>(rd);
+  m_info.narrow_load = byte || (address & 3u) != 0;
   uint32_t old = 0;
   if (!m_memory.read(byte ? address : address & ~3u, byte ? 1 : 4, old) ||
       !m_memory.write(byte ? address : address & ~3u, byte ? 1 : 4, byte ? operand(rm) & 0xffu : operand(rm))) {
@@ -750,6 +807,7 @@ void ArmCore::swap(uint32_t insn) {
 
 void ArmCore::status_transfer(uint32_t insn) {
   const bool use_spsr = bit(insn, 22);
+  m_info.kind = bit(insn, 21) ? InsnClass::status_write : InsnClass::status_read;
   if (!bit(insn, 21)) {  // MRS
     if ((insn & 0x0fbf0fffu) != 0x010f0000u) {
       undefined();
@@ -759,12 +817,15 @@ void ArmCore::status_transfer(uint32_t insn) {
     return;
   }
   uint32_t value;
-  if (bit(insn, 25))
+  if (bit(insn, 25)) {
     value = ror(bits(insn, 7, 0), bits(insn, 11, 8) * 2);
-  else
+  } else {
     value = operand(bits(insn, 3, 0));
+    m_info.reads = static_cast<uint16_t>(1u << bits(insn, 3, 0));
+  }
   uint32_t mask = 0;
   const uint32_t fields = bits(insn, 19, 16);
+  m_info.control_write = !use_spsr && (fields & 1u);
   if (fields & 8u) mask |= 0xff000000u;
   if (fields & 4u) mask |= 0x00ff0000u;
   if (fields & 2u) mask |= 0x0000ff00u;
@@ -783,6 +844,8 @@ void ArmCore::coprocessor_transfer(uint32_t insn) {
   const unsigned cp = bits(insn, 11, 8), op1 = bits(insn, 23, 21), crn = bits(insn, 19, 16);
   const unsigned rd = bits(insn, 15, 12), op2 = bits(insn, 7, 5), crm = bits(insn, 3, 0);
   const bool privileged = mode() != Mode::usr;
+  m_info.kind = bit(insn, 20) ? InsnClass::coprocessor_read : InsnClass::coprocessor_write;
+  if (!bit(insn, 20)) m_info.reads = static_cast<uint16_t>(1u << rd);
   if (m_coprocessors == nullptr) {
     undefined();
     return;

@@ -72,6 +72,43 @@ class IssError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What the last step executed, for the timing layer (Arm922tTiming): the
+// instruction's class and the operands its cycle count depends on. Thumb
+// instructions report the ARM instruction they are executed as.
+enum class InsnClass : uint8_t {
+  none,               // no instruction: an interrupt taken or a failed fetch
+  data_processing,    // ALU operations, Thumb's address additions, BL's first half
+  multiply,           // MUL, MLA
+  multiply_long,      // UMULL, UMLAL, SMULL, SMLAL
+  load,               // LDR, LDRB, LDRH, LDRSB, LDRSH
+  store,              // STR, STRB, STRH
+  load_multiple,      // LDM, POP
+  store_multiple,     // STM, PUSH
+  swap,               // SWP, SWPB
+  branch,             // B, BL, BX, Thumb's B<cond>, B and BL's second half
+  status_read,        // MRS
+  status_write,       // MSR
+  coprocessor_read,   // MRC
+  coprocessor_write,  // MCR
+  exception,          // SWI, an undefined instruction (CDP, LDC/STC included)
+};
+
+struct StepInfo {
+  InsnClass kind = InsnClass::none;
+  bool executed = false;         // false: the condition failed
+  bool pc_written = false;       // the instruction wrote the PC (a branch, a load or an ALU result)
+  bool exception = false;        // an exception was entered (SWI, undefined, abort, interrupt)
+  bool register_shift = false;   // data processing with a shift by a register
+  bool narrow_load = false;      // a byte, halfword or unaligned word was loaded (rotated in Write)
+  bool accumulate = false;       // MLA, UMLAL, SMLAL
+  bool signed_multiply = false;  // SMULL, SMLAL (and MUL/MLA: the multiplier's sign counts)
+  bool control_write = false;    // MSR wrote the CPSR's control field (mode, I, F)
+  uint8_t registers = 0;         // LDM/STM: the number of registers in the list
+  int8_t loaded = -1;            // the register a load wrote last (for load-use interlocks); -1: none
+  uint16_t reads = 0;            // registers read (bit n: rn)
+  uint32_t multiplier = 0;       // the multiplier operand (Rs) for early termination
+};
+
 class ArmCore {
  public:
   // coprocessors may be null: every MRC/MCR is then undefined.
@@ -116,6 +153,8 @@ class ArmCore {
   void set_high_vectors(bool high) { m_high_vectors = high; }
 
   uint64_t instructions() const { return m_instructions; }
+  // What the last step() executed (the timing layer's input).
+  const StepInfo& last_step() const { return m_info; }
 
  private:
   static unsigned bank_of(Mode mode);
@@ -168,6 +207,7 @@ class ArmCore {
   bool m_fiq_line = false;
   bool m_high_vectors = false;
   uint64_t m_instructions = 0;
+  StepInfo m_info;
   ExceptionHook m_exception_hook;
 };
 
