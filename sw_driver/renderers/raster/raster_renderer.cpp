@@ -149,12 +149,13 @@ unsigned encode_texture_units(const gl::RasterState& s, StateBlock& block, raste
     raster::TextureUnitState& w = units[count];
     // A mipmapped texture (a complete chain: gl::Texture) carries its
     // levels in the unit's level table; another, level 0 alone.
-    const uint32_t last_level = tex.min_mipmap == gl::MipmapFilter::none
-                                    ? 0
-                                    : std::min<uint32_t>(tex.levels > 0 ? tex.levels - 1 : 0, raster::MAX_TEXTURE_LEVEL);
+    const uint32_t last_level =
+        tex.min_mipmap == gl::MipmapFilter::none
+            ? 0
+            : std::min<uint32_t>(tex.levels > 0 ? tex.levels - 1 : 0, raster::MAX_TEXTURE_LEVEL);
     const TexMipmap mipmap = tex.min_mipmap == gl::MipmapFilter::none     ? TexMipmap::none
                              : tex.min_mipmap == gl::MipmapFilter::linear ? TexMipmap::linear
-                                                                         : TexMipmap::nearest;
+                                                                          : TexMipmap::nearest;
     for (uint32_t k = 1; k <= last_level; ++k) level_tables[count][k - 1] = tex.level[k].address;
     w.address = tex.address;
     w.size = log2(tex.width) | log2(tex.height) << 8 | last_level << 16;

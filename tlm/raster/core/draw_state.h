@@ -26,7 +26,7 @@ struct TextureUnitDraw {
   std::array<uint32_t, MAX_TEXTURE_LEVEL + 1> level_address{};  // level 0's is texture.base; up to last_level
   TexFilter min_filter = TexFilter::nearest, mag_filter = TexFilter::nearest;
   TexMipmap mipmap = TexMipmap::none;  // the UNIT_MIPMAP field, bits 6-7 of mode
-  TextureUnitEnv env;                  // environment, base format, env colour and combiner (datapath/texture_combiner.h)
+  TextureUnitEnv env;  // environment, base format, env colour and combiner (datapath/texture_combiner.h)
 };
 
 struct DrawState {
