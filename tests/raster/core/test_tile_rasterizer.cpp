@@ -906,6 +906,71 @@ TEST(TileRasterizer, MipmapNearestShowsTheLevelOfEachStrip) {
   }
 }
 
+// Two texture units, each with its own level of detail: unit 0 REPLACE at
+// the strips' coordinates, unit 1 ADD on the same chain at coordinates four
+// times as large (lambda + 2, so two levels further, at most the last).
+// Each pixel is the sum of the two levels' colours, clamped per channel
+// (ADD: C = min(Cf + Ct, 1), A = Af At).
+TEST(TileRasterizer, EachTextureUnitTakesItsOwnMipmapLevel) {
+  VectorPort port(MEMORY_SIZE);
+  put_mipmaps(port);
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  uint32_t table[6];
+  for (unsigned k = 1; k <= 6; ++k) table[k - 1] = level_address(k);
+  const uint32_t table_address = frame.put(table, sizeof table);
+  StateBlock block = default_state();
+  block.flags |= StateFlag::texture_units;
+  struct {
+    StateBlock block;
+    TextureUnitsHeader header;
+    TextureUnitState unit[2];
+  } words{block, {2}, {}};
+  for (unsigned u = 0; u < 2; ++u) {
+    words.unit[u].address = TEXTURE_BASE;
+    words.unit[u].size = 6 | 6u << 8 | 6u << 16;
+    words.unit[u].level_table = table_address;
+    words.unit[u].mode = code_of(tessera::TexMipmap::nearest) << UNIT_MIPMAP_SHIFT |
+                         code_of(u == 0 ? TexEnv::replace : TexEnv::add) << UNIT_ENV_SHIFT;
+  }
+  static_assert(sizeof words == state_block_bytes(StateFlag::texture_units, 2), "block, header and two units");
+  frame.all({uint32_t(Opcode::state), frame.put(&words, sizeof words)});
+  for (unsigned k = 0; k < 6; ++k) {
+    const double x0 = 16.0 * k, x1 = x0 + 16;
+    const float s1 = float(STRIP_S_END[k]);
+    const VertexRecord a = vertex(x0, 8, ~0u, 0, 0, 0), b = vertex(x1, 8, ~0u, 0, s1, 0),
+                       c = vertex(x1, 24, ~0u, 0, s1, 0.125f), d = vertex(x0, 24, ~0u, 0, 0, 0.125f);
+    const auto triangle = [&frame](const VertexRecord& p, const VertexRecord& q, const VertexRecord& r) {
+      struct {
+        TriangleRecord record;
+        TriangleUnitCoords unit1;
+      } t{{{p, q, r}},
+          {{4 * p.s_over_w, 4 * q.s_over_w, 4 * r.s_over_w}, {4 * p.t_over_w, 4 * q.t_over_w, 4 * r.t_over_w}}};
+      static_assert(sizeof t == triangle_record_bytes(StateFlag::texture_units, 2), "record and unit 1");
+      frame.all({uint32_t(Opcode::triangle), frame.put(&t, sizeof t)});
+    };
+    triangle(a, b, c);
+    triangle(a, c, d);
+  }
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  ASSERT_EQ(r.error, RasterError::none);
+  EXPECT_EQ(r.texels, 2u * 6u * 16u * 16u);  // one fetch per unit and pixel
+  const auto level_of = [](double lambda) {
+    const double d = lambda <= 0.5 ? 0 : std::ceil(lambda + 0.5) - 1;
+    return unsigned(std::min(d, 6.0));
+  };
+  for (unsigned k = 0; k < 6; ++k) {
+    const double lambda = std::log2(64 * STRIP_S_END[k] / 16);
+    const uint32_t c0 = LEVEL_COLORS[level_of(lambda)], c1 = LEVEL_COLORS[level_of(lambda + 2)];
+    uint32_t want = 0xff000000u;
+    for (unsigned ch = 0; ch < 24; ch += 8) want |= std::min(((c0 >> ch) & 0xff) + ((c1 >> ch) & 0xff), 255u) << ch;
+    for (unsigned y = 8; y < 24; ++y)
+      for (unsigned x = 16 * k; x < 16 * k + 16; ++x)
+        EXPECT_EQ(frame.pixel(x, y), want) << "strip " << k << " at " << x << "," << y;
+  }
+}
+
 // LINEAR_MIPMAP_LINEAR: levels floor(lambda) and the next, weighted by
 // frac(lambda) in 1/256; a one-colour level filters to its colour.
 TEST(TileRasterizer, MipmapLinearBlendsTwoLevels) {
