@@ -94,6 +94,7 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
   m_regs.add(HEIGHT, [this] { return m_params.height; });
   m_regs.add(TILE_WIDTH, [this] { return m_params.tile_width; });
   m_regs.add(TILE_HEIGHT, [this] { return m_params.tile_height; });
+  m_regs.add(TEXTURE_UNITS, [this] { return m_params.texture_units; });
   m_regs.add({RECIP_METHOD.name, RECIP_METHOD.offset, recip_method_number(params.recip_method), RECIP_METHOD.access});
   m_regs.add(TRIANGLES);
   m_regs.add(FRAGMENTS);
@@ -150,6 +151,7 @@ void Rasterizer::run() {
     config.height = m_params.height;
     config.tile_width = m_params.tile_width;
     config.tile_height = m_params.tile_height;
+    config.texture_units = m_params.texture_units;
     config.tile_table = m_regs.get(regs::TILE_TABLE);
     config.color_base = m_regs.get(regs::COLOR_BASE);
     config.depth_base = m_regs.get(regs::DEPTH_BASE);

@@ -42,6 +42,7 @@ struct RasterizerParams {
   unsigned tile_width = 0;
   unsigned tile_height = 0;
   raster::RecipMethod recip_method = raster::RecipMethod::method3;
+  unsigned texture_units = 2;  // texture units (sampler and combiner each), 1 .. raster::MAX_TEXTURE_UNITS
   raster::CycleCosts costs;
   sc_core::sc_time clock_period;
   // Longest burst on the bus, in beats (AHB's INCR16): a long tile write

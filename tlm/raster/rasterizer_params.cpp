@@ -26,6 +26,9 @@ ParamGroup RasterizerParams::parameters() {
           integer("raster.tile_height", 16, 1, 256, "lines", "tile buffer height (the paper: 16)"),
           integer("raster.recip_method", 3, 1, 3, "",
                   "reciprocal unit at reset: 1 fixed-point table, 2 floating-point table, 3 the paper's Method 3"),
+          integer("raster.texture_units", 2, 1, raster::MAX_TEXTURE_UNITS, "units",
+                  "texture units, each a sampler (with mipmaps) and a combiner; with driver.backend=raster, "
+                  "driver.texture_units (GL_MAX_TEXTURE_UNITS) may not exceed it"),
           integer("raster.burst_beats", 16, 1, 256, "beats", "longest burst of the rasterizer's bus accesses"),
           integer("raster.beat_bytes", 4, 4, 16, "bytes",
                   "bytes per beat of the rasterizer's bus interface, its data width: 4, 8 or 16, at most "
@@ -49,6 +52,18 @@ ParamGroup RasterizerParams::parameters() {
         if (beat * 8 > bus_bits)
           throw ConfigError("configuration: impossible combination: raster.beat_bytes=" + std::to_string(beat) +
                             " is wider than the bus (bus.width_bits=" + std::to_string(bus_bits) + ")");
+        // The driver offers GL_MAX_TEXTURE_UNITS = driver.texture_units; on
+        // the rasterizer each needs a unit of the hardware.
+        if (config.has("driver.backend") && config.has("driver.texture_units") &&
+            config.get_string("driver.backend") == "raster") {
+          const uint64_t units = config.get_uint("raster.texture_units");
+          const uint64_t driver_units = config.get_uint("driver.texture_units");
+          if (driver_units > units)
+            throw ConfigError(
+                "configuration: impossible combination: driver.texture_units=" + std::to_string(driver_units) +
+                " with driver.backend=raster, whose rasterizer has " + std::to_string(units) +
+                " (raster.texture_units=" + std::to_string(units) + "): lower the one or raise the other");
+        }
       }};
 }
 
@@ -62,6 +77,7 @@ RasterizerParams RasterizerParams::from_config(const Config& config) {
   p.recip_method = method == 1   ? raster::RecipMethod::method1
                    : method == 2 ? raster::RecipMethod::method2
                                  : raster::RecipMethod::method3;
+  p.texture_units = static_cast<unsigned>(config.get_uint("raster.texture_units"));
   p.burst_beats = static_cast<unsigned>(config.get_uint("raster.burst_beats"));
   p.beat_bytes = static_cast<unsigned>(config.get_uint("raster.beat_bytes"));
   auto cycles = [&](const char* key) {

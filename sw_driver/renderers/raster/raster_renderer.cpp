@@ -122,7 +122,7 @@ bool needs_texture_units(const gl::RasterState& s) {
 unsigned encode_texture_units(const gl::RasterState& s, StateBlock& block, raster::TextureUnitsHeader& header,
                               raster::TextureUnitState units[],
                               uint32_t (&level_tables)[raster::MAX_TEXTURE_UNITS][raster::MAX_TEXTURE_LEVEL],
-                              int index[]) {
+                              int index[], unsigned hardware_units) {
   block.flags &= ~raster::texture;
   block.flags |= raster::texture_units;
   block.texture_address = block.texture_size = block.texture_mode = 0;
@@ -142,7 +142,7 @@ unsigned encode_texture_units(const gl::RasterState& s, StateBlock& block, raste
     return c.encode();
   };
   unsigned count = 0;
-  for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
+  for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS && count < hardware_units; ++u) {
     const gl::TextureUnit& unit = s.unit[u];
     if (!textured(unit)) continue;
     const gl::Texture& tex = unit.tex;
@@ -286,9 +286,22 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
   unsigned units = 0;
   renderers::SingleTextureUnit unit;
   if (needs_texture_units(state)) {
+    // The hardware's unit count, read when a state first needs the units
+    // (so that runs without them make no extra register read).
+    if (m_texture_units == 0)
+      m_texture_units =
+          std::clamp(m_host.read32(reg(regs::TEXTURE_UNITS)), 1u, static_cast<uint32_t>(raster::MAX_TEXTURE_UNITS));
     m_last_draw_state = {encode_state(state, {}), encode_fog(state)};
     units = encode_texture_units(state, m_last_draw_state.block, m_last_draw_state.units_header,
-                                 m_last_draw_state.units, m_last_draw_state.level_tables, unit_index);
+                                 m_last_draw_state.units, m_last_draw_state.level_tables, unit_index, m_texture_units);
+    // The configuration keeps driver.texture_units within
+    // raster.texture_units; a unit beyond the hardware's is reported, not
+    // silently dropped.
+    unsigned wanted = 0;
+    for (const gl::TextureUnit& u : state.unit) wanted += textured(u) ? 1 : 0;
+    if (wanted > units)
+      m_unsupported.report(m_env, "more enabled texture units than the rasterizer has (TEXTURE_UNITS = " +
+                                      std::to_string(m_texture_units) + ", raster.texture_units): drawn without them");
     unit.index = unit_index[0];
   } else {
     unit =

@@ -93,10 +93,11 @@ class RasterRenderer : public gl::Renderer {
   AppEnvironment& m_env;
   HostApi& m_host;
   DisplayDriver m_display;
-  // The rasterizer's one texture unit and three environments: the rest is
-  // reported (renderers/common/texture_units.h).
+  // What the rasterizer does not draw is reported
+  // (renderers/common/texture_units.h).
   renderers::UnsupportedState m_unsupported{"raster"};
   renderers::TileBinner m_binner;  // the rasterizer's screen and tile size
+  unsigned m_texture_units = 0;    // its TEXTURE_UNITS register, read at the first state that needs units
   uint32_t m_depth_buffer = 0;
   uint32_t m_arena = 0, m_arena_bytes = 0;
 

@@ -1109,6 +1109,31 @@ TEST(TileRasterizer, MipmapLevelTableAndLevelTexelsOutsideMemory) {
   }
 }
 
+// A state enabling more units than the hardware has (RunConfig::
+// texture_units, the TEXTURE_UNITS register) stops the run at its header.
+TEST(TileRasterizer, MoreUnitsThanTheHardwareHasIsBadTexture) {
+  ErrorCase c;
+  c.frame.config.texture_units = 1;
+  StateBlock s = default_state();
+  s.flags |= StateFlag::texture_units;
+  struct {
+    StateBlock block;
+    TextureUnitsHeader header;
+    TextureUnitState unit[2];
+  } words{s, {2}, {}};
+  for (TextureUnitState& unit : words.unit) {
+    unit.address = TEXTURE_BASE;
+    unit.size = 2 | 2u << 8;
+  }
+  const uint32_t state_address = c.frame.put(&words, sizeof words);
+  c.frame.lists[ErrorCase::BAD_TILE].insert(c.frame.lists[ErrorCase::BAD_TILE].end(),
+                                            {uint32_t(Opcode::state), state_address});
+  c.frame.finish();
+  const RunResult r = c.run_and_check_tiles(ErrorCase::BAD_TILE);
+  EXPECT_EQ(r.error, RasterError::bad_texture);
+  EXPECT_EQ(r.error_address, state_address + 48);
+}
+
 TEST(TileRasterizer, ZeroAreaTriangleIsSkipped) {
   VectorPort port(MEMORY_SIZE);
   Frame frame(port, 96, 48);

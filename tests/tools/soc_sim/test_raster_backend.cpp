@@ -138,6 +138,24 @@ TEST_F(RasterBackend, RasterizerSmallerThanTheDisplayIsRejected) {
   EXPECT_EQ(arm.status, 0) << describe(arm);
 }
 
+// GL_MAX_TEXTURE_UNITS (driver.texture_units) beyond the rasterizer's
+// units is refused up front, naming both keys; within them the multitexture
+// scene runs, and on arm the rasterizer's count does not matter.
+TEST_F(RasterBackend, MoreTextureUnitsThanTheRasterizerHasAreRejected) {
+  const SimResult result = run({"--backend", "raster", "--set", "driver.texture_units=3", "--set",
+                                "raster.texture_units=2", "--app", "multitexture", "--out", "out"});
+  EXPECT_EQ(result.status, EXIT_USAGE) << describe(result);
+  EXPECT_TRUE(contains(result.err, "impossible combination")) << describe(result);
+  EXPECT_TRUE(contains(result.err, "driver.texture_units=3")) << describe(result);
+  EXPECT_TRUE(contains(result.err, "raster.texture_units=2")) << describe(result);
+  const SimResult four = run({"--backend", "raster", "--set", "driver.texture_units=4", "--set",
+                              "raster.texture_units=4", "--app", "multitexture", "--frames", "1", "--out", "four"});
+  EXPECT_EQ(four.status, 0) << describe(four);
+  const SimResult arm = run({"--backend", "arm", "--set", "driver.texture_units=3", "--set", "raster.texture_units=1",
+                             "--app", "multitexture", "--frames", "1", "--out", "arm"});
+  EXPECT_EQ(arm.status, 0) << describe(arm);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {

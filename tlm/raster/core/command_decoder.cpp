@@ -130,7 +130,7 @@ bool CommandDecoder::read_texture_units(uint32_t address, DrawState& s) {
   uint8_t h[sizeof(TextureUnitsHeader)];
   if (!m_run.read(address, h, sizeof h)) return false;
   const uint32_t count = load_le32(h) & 0xff;
-  if (count < 1 || count > MAX_TEXTURE_UNITS) {
+  if (count < 1 || count > std::min(m_run.config().texture_units, MAX_TEXTURE_UNITS)) {
     m_run.fail(RasterError::bad_texture, address);
     return false;
   }

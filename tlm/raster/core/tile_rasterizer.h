@@ -25,6 +25,7 @@ struct RunConfig {
   uint32_t tile_table = 0, color_base = 0, depth_base = 0;
   PixelFormat color_format = PixelFormat::rgb565;
   RecipMethod recip_method = RecipMethod::method3;
+  unsigned texture_units = MAX_TEXTURE_UNITS;  // the hardware's units: a texture_units state may enable as many
 };
 
 struct RunResult {
