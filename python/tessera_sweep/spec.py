@@ -158,8 +158,8 @@ def check(points: list[Point], simulator: Simulator) -> list[dict]:
             return error
 
     # One soc_sim --print-config per point, as many at once as there are
-    # cores (each is a process start: a third of a second); the first
-    # refused point in the spec's order is the one reported.
+    # cores (each is a process start, about 10 ms); the first refused point
+    # in the spec's order is the one reported.
     with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
         configs = list(pool.map(config, points))
     for point, result in zip(points, configs):
