@@ -48,18 +48,10 @@ bool TextureSampler::sample(const TriangleSetup& ts, int dx, int dy, Rgba8 fragm
     const int128 rho2 = std::max(dux * dux + dvx * dvx, duy * duy + dvy * dvy);
     if (rho2 > (int128{1} << 32)) tex.filter = m_state.min_filter;
   }
-  const TexelFootprint footprint = texel_lookup(tex, sc, tc);
-  const unsigned fetches = tex.filter == TexFilter::linear ? 4 : 1;
-  std::array<Rgba8, 4> texels;
-  for (unsigned k = 0; k < fetches; ++k) {
-    uint8_t raw[4];
-    if (!m_run.read(footprint.address[k], raw, 4, RasterError::bad_texture)) return false;
-    texels[k] = Rgba8::unpack(load_le32(raw));
-  }
-  for (unsigned k = fetches; k < 4; ++k) texels[k] = texels[0];
-  m_run.result().texels += fetches;
-  m_run.charge(m_run.result().texel_cycles, uint64_t{m_run.costs().texel} * fetches);
-  out = texture_filter_env(m_state.env, texels, footprint.s.weight, footprint.t.weight, fragment).fragment;
+  // The filtered texel, then the environment: texture_filter_env's two steps.
+  Rgba8 texel;
+  if (!fetch_filtered(tex, sc, tc, texel)) return false;
+  out = texture_environment(m_state.env, fragment, texel);
   return true;
 }
 
