@@ -79,7 +79,11 @@ constexpr int32_t lod_lambda(uint32_t rho) {
     fraction = (fraction << 1) | bit;
     m = square >> (15 + bit);  // m^2 or m^2 / 2 as 1.15
   }
-  const int32_t raw = ((static_cast<int32_t>(e) - 16) << LOD_LOG2_ITERATIONS) | static_cast<int32_t>(fraction);
+  // The integer part times 2^10 plus the fraction (a multiplication: the
+  // integer part is negative below rho = 1, and shifting a negative value
+  // left is undefined in C++17; the bits are those of the Verilog's
+  // concatenation).
+  const int32_t raw = (static_cast<int32_t>(e) - 16) * (1 << LOD_LOG2_ITERATIONS) + static_cast<int32_t>(fraction);
   const unsigned cut = LOD_LOG2_ITERATIONS - LOD_FRACTION_BITS;
   return (raw + (1 << (cut - 1))) >> cut;  // arithmetic shift: floor, so ties go up
 }
