@@ -130,12 +130,15 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
               requested.to_seconds(),
               m_params.width,
               m_params.height,
-              std::vector<uint8_t>(size_t{m_params.width} * m_params.height * 4)};
-  const size_t count = size_t{m_params.width} * m_params.height;
-  const unsigned bpp = bytes_per_pixel();
-  for (size_t i = 0; i < count; ++i) {
-    const uint32_t rgba = unpack_pixel(m_params.format, load_pixel(m_params.format, &pixels[i * bpp]));
-    for (unsigned c = 0; c < 4; ++c) frame.rgba[4 * i + c] = static_cast<uint8_t>(rgba >> (8 * c));
+              {}};
+  if (m_keep_pixels) {
+    const size_t count = size_t{m_params.width} * m_params.height;
+    const unsigned bpp = bytes_per_pixel();
+    frame.rgba.resize(count * 4);
+    for (size_t i = 0; i < count; ++i) {
+      const uint32_t rgba = unpack_pixel(m_params.format, load_pixel(m_params.format, &pixels[i * bpp]));
+      for (unsigned c = 0; c < 4; ++c) frame.rgba[4 * i + c] = static_cast<uint8_t>(rgba >> (8 * c));
+    }
   }
   if (m_frames.value == 0) m_first_frame_time = when;
   m_last_frame_time = when;
