@@ -11,6 +11,7 @@
 // calib_ciu times the host's 32-bit writes and reads through the CIU,
 // including the ARM's address computation, beside the board's 488 ns and
 // 830 ns.
+#include <cinttypes>
 #include <cstdio>
 #include <string>
 
@@ -195,7 +196,7 @@ int calib_ciu_app(AppEnvironment& env) {
   report("one 32-bit CIU write from the ARM, address computation included", write_ns, 488, "ns");
   report("one 32-bit CIU read from the ARM, address computation included", read_ns, 830, "ns");
   if (checksum != expected) {
-    std::fprintf(stderr, "calib_ciu: read back checksum %u, expected %u\n", checksum, expected);
+    std::fprintf(stderr, "calib_ciu: read back checksum %" PRIu32 ", expected %" PRIu32 "\n", checksum, expected);
     return 1;
   }
   return 0;

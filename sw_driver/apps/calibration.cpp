@@ -18,6 +18,7 @@
 // to the display port, with the display driver's copy loop (LDM/STM of
 // eight words, the port mode's present()), and the time is printed beside
 // the 36 ms measured on the board.
+#include <cinttypes>
 #include <cstdio>
 #include <cstring>
 
@@ -38,7 +39,7 @@ int run_loop(AppEnvironment& env, bool multiply) {
   // Three arrays of ITERATIONS elements at 1 MiB, 2 MiB and 3 MiB.
   const uint32_t a = 1u << 20, b = 2u << 20, c = 3u << 20;
   if (env.memory_bytes < c + 2 * ITERATIONS) {
-    std::fprintf(stderr, "calibration: needs at least %u bytes of system memory\n", c + 2 * ITERATIONS);
+    std::fprintf(stderr, "calibration: needs at least %" PRIu32 " bytes of system memory\n", c + 2 * ITERATIONS);
     return 1;
   }
   // Operands: a[i] = 3i + 1, b[i] = i mod 251 (written before timing starts;
@@ -78,7 +79,7 @@ int run_loop(AppEnvironment& env, bool multiply) {
       "(%+.1f%%)\n",
       multiply ? "16x8-bit multiplication" : "16-bit addition", ITERATIONS, rate, MEASURED_MILLIONS_PER_SECOND,
       (rate / MEASURED_MILLIONS_PER_SECOND - 1) * 100);
-  std::printf("host calibration: checksum %u\n", checksum);
+  std::printf("host calibration: checksum %" PRIu32 "\n", checksum);
   return 0;
 }
 

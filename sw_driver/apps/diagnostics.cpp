@@ -13,6 +13,7 @@
 //
 // crash: after one frame, writes through a null pointer, as a buggy
 // application would; soc_sim reports the crash with the frame reached.
+#include <cinttypes>
 #include <cstdint>
 #include <cstdio>
 
@@ -38,8 +39,8 @@ static_assert(!mapped(UNMAPPED_ADDRESS), "the diagnostic's address must stay out
 int unmapped_access_app(AppEnvironment& env) {
   const uint32_t value = env.host->read32(UNMAPPED_ADDRESS);
   // Reached only if the bus failed to report the error.
-  std::fprintf(stderr, "unmapped_access: read of 0x%08x returned 0x%08x instead of a bus error\n", UNMAPPED_ADDRESS,
-               value);
+  std::fprintf(stderr, "unmapped_access: read of 0x%08" PRIx32 " returned 0x%08" PRIx32 " instead of a bus error\n",
+               UNMAPPED_ADDRESS, value);
   return 1;
 }
 

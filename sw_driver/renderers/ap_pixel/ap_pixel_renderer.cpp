@@ -557,7 +557,7 @@ void ApPixelRenderer::write_shaded(const gl::RasterState& state, const gl::Trian
   if (reads.colour) {
     // The integer part of 16.8, clamped.
     auto channel = [&](Attribute a) {
-      return static_cast<uint32_t>(std::clamp(r[static_cast<unsigned>(a)] >> 8, 0, 255));
+      return static_cast<uint32_t>(std::clamp<int32_t>(r[static_cast<unsigned>(a)] >> 8, 0, 255));
     };
     rgba = channel(Attribute::red) | channel(Attribute::green) << 8 | channel(Attribute::blue) << 16 |
            (reads.alpha ? channel(Attribute::alpha) : 255u) << 24;

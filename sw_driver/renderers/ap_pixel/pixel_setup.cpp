@@ -5,11 +5,13 @@
 #include <cstdlib>
 #include <string>
 
+#include "renderers/common/wide_int.h"
+
 namespace tessera::ap_pixel {
 
 namespace {
 
-__extension__ typedef __int128 Wide;  // GCC and clang: 2^46 edge values times 2^24 depths
+using Wide = Int128;  // 2^46 edge values times 2^24 depths
 
 int64_t floor_div(int64_t n, int64_t d) {
   if (d < 0) n = -n, d = -d;

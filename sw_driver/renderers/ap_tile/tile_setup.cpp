@@ -7,11 +7,13 @@
 #include <string>
 #include <utility>
 
+#include "renderers/common/wide_int.h"
+
 namespace tessera::ap_tile {
 
 namespace {
 
-__extension__ typedef __int128 Wide;  // GCC and clang; products of 2^23 coordinates and 2^46 areas
+using Wide = Int128;  // products of 2^23 coordinates and 2^46 areas
 
 // n / d rounded to nearest, halves away from zero: round(-q) = -round(q), so
 // two triangles that share an edge get exactly opposite edge values.

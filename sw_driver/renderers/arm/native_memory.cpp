@@ -1,5 +1,6 @@
 #include "renderers/arm/native_memory.h"
 
+#include <cinttypes>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -13,7 +14,7 @@ uint8_t* NativeMemory::checked(uint32_t address, uint64_t bytes) {
   if (address < m_base || offset + bytes > m_bytes.size()) {
     throw std::out_of_range("NativeMemory: access of " + std::to_string(bytes) + " bytes at 0x" + [&] {
       char text[16];
-      std::snprintf(text, sizeof text, "%08x", address);
+      std::snprintf(text, sizeof text, "%08" PRIx32, address);
       return std::string(text);
     }() + " is outside the address space");
   }

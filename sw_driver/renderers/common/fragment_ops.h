@@ -71,7 +71,7 @@ inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t s
   uint32_t out = 0;
   for (int c = 0; c < 4; ++c) {
     const uint32_t v = mul8(s[c], blend_factor(src_factor, s, d, c)) + mul8(d[c], blend_factor(dst_factor, s, d, c));
-    out |= std::min(v, 255u) << (8 * c);
+    out |= std::min<uint32_t>(v, 255) << (8 * c);
   }
   return out;
 }

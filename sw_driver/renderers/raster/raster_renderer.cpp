@@ -247,7 +247,7 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
   // clear carries a state: the last draw state with the clear's scissor.
   StateRecord record = m_last_draw_state;
   StateBlock& block = record.block;
-  block.flags = (block.flags & ~raster::scissor_test) | (request.scissor_test ? raster::scissor_test : 0u);
+  block.flags = (block.flags & ~raster::scissor_test) | (request.scissor_test ? raster::scissor_test : uint32_t{0});
   auto u16 = [](int v) { return static_cast<uint32_t>(std::clamp(v, 0, 0xFFFF)); };
   block.scissor_xy = u16(request.scissor_x) | u16(request.scissor_y) << 16;
   block.scissor_size = u16(request.scissor_width) | u16(request.scissor_height) << 16;
@@ -289,8 +289,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     // The hardware's unit count, read when a state first needs the units
     // (so that runs without them make no extra register read).
     if (m_texture_units == 0)
-      m_texture_units =
-          std::clamp(m_host.read32(reg(regs::TEXTURE_UNITS)), 1u, static_cast<uint32_t>(raster::MAX_TEXTURE_UNITS));
+      m_texture_units = std::clamp<uint32_t>(m_host.read32(reg(regs::TEXTURE_UNITS)), 1, raster::MAX_TEXTURE_UNITS);
     m_last_draw_state = {encode_state(state, {}), encode_fog(state)};
     units = encode_texture_units(state, m_last_draw_state.block, m_last_draw_state.units_header,
                                  m_last_draw_state.units, m_last_draw_state.level_tables, unit_index, m_texture_units);

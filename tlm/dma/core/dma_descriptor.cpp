@@ -184,7 +184,7 @@ Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, 
     }
     case Kind::mem_to_mem:
       for (uint32_t done = 0; done < d.length;) {
-        const unsigned bytes = std::min(buffer_bytes, d.length - done);
+        const unsigned bytes = std::min<uint32_t>(buffer_bytes, d.length - done);
         if (!port.read_memory(d.src + done, buffer.data(), bytes)) return {Error::bus_error, d.src + done};
         if (!port.write_memory(d.dst + done, buffer.data(), bytes)) return {Error::bus_error, d.dst + done};
         done += bytes;
@@ -200,7 +200,7 @@ Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, 
       }
       const uint32_t step = broadcast_step(d);
       for (uint32_t done = 0; done < d.length;) {
-        const unsigned bytes = std::min(buffer_bytes, d.length - done);
+        const unsigned bytes = std::min<uint32_t>(buffer_bytes, d.length - done);
         if (!port.read_memory(d.src + done, buffer.data(), bytes)) return {Error::bus_error, d.src + done};
         port.broadcast_cmem(mask, d.dst + done * step, step, buffer.data(), bytes);
         done += bytes;
