@@ -19,6 +19,13 @@ if(TESSERA_SANITIZE)
   add_link_options(-fsanitize=address,undefined,float-cast-overflow)
 endif()
 
+# tessera_block_library(name sources...): a block's library (tlm/).
+function(tessera_block_library name)
+  add_library(${name} STATIC ${ARGN})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/tlm)
+  target_link_libraries(${name} PRIVATE tessera_warnings)
+endfunction()
+
 # tessera_add_test(NAME name SOURCES ... LIBS ... LABELS ... [TIMEOUT s] [NO_GTEST_MAIN])
 # One executable per module (the SystemC kernel cannot be reset, so each
 # executable has one elaboration). GoogleTest provides main() unless the test

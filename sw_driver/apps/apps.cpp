@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "apps/gl_apps.h"
-#include "apps/iss_app.h"
 #include "scenes/scene.h"
 
 namespace tessera {
@@ -53,20 +52,10 @@ const std::map<std::string, AppInfo>& builtin_apps() {
   return with_scenes;
 }
 
-AppInfo find_app(const std::string& name) {
-  const auto& apps = builtin_apps();
-  auto it = apps.find(name);
-  if (it != apps.end()) return it->second;
-  if (is_elf_app(name))
-    return {[name](AppEnvironment& env) { return run_elf_app(env, name); }, "ARM executable " + name + " on the ISS"};
-  if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
-    const GlMain main = load_app_library(name);
-    return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); }, "application library " + name};
-  }
-  std::string known;
-  for (const auto& [app_name, info] : apps) known += (known.empty() ? "" : ", ") + app_name;
-  throw std::invalid_argument("unknown application '" + name + "' (built-in: " + known +
-                              "; or the path of a shared library exporting tessera_app_main or main)");
+std::string builtin_app_names() {
+  std::string names;
+  for (const auto& [name, info] : builtin_apps()) names += (names.empty() ? "" : ", ") + name;
+  return names;
 }
 
 }  // namespace tessera

@@ -1,8 +1,5 @@
 #include "apps/gl_apps.h"
 
-#include <dlfcn.h>
-#include <link.h>
-
 #include <EGL/egl.h>
 #include <GLES/gl.h>
 
@@ -77,39 +74,6 @@ int run_gl_app(AppEnvironment& env, GlMain main, const std::string& name) {
 int run_scene_app(AppEnvironment& env, const scenes::Scene& scene) {
   g_scene = &scene;
   return run_gl_app(env, scene_main, scene.name);
-}
-
-namespace {
-
-// `name` as defined by the library `handle` itself, or nullptr: dlsym also
-// finds symbols of the libraries it depends on, and a `main` there is not
-// the application's.
-void* own_symbol(void* handle, const char* name) {
-  void* symbol = dlsym(handle, name);
-  if (!symbol) return nullptr;
-  link_map* library = nullptr;
-  link_map* defining = nullptr;
-  Dl_info info;
-  if (dlinfo(handle, RTLD_DI_LINKMAP, &library) != 0 ||
-      !dladdr1(symbol, &info, reinterpret_cast<void**>(&defining), RTLD_DL_LINKMAP))
-    return nullptr;
-  return defining == library ? symbol : nullptr;
-}
-
-}  // namespace
-
-GlMain load_app_library(const std::string& path) {
-  // A name without a slash would be searched in the library path; an
-  // application is a file the user names.
-  const std::string file = path.find('/') == std::string::npos ? "./" + path : path;
-  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw std::invalid_argument(std::string("cannot load application library: ") + dlerror());
-  // tessera_app_main first, so a program that also builds natively with its
-  // own main can say which one soc_sim runs; then an ordinary program's main.
-  if (void* symbol = own_symbol(handle, "tessera_app_main")) return reinterpret_cast<GlMain>(symbol);
-  if (void* symbol = own_symbol(handle, "main")) return reinterpret_cast<GlMain>(symbol);
-  dlclose(handle);
-  throw std::invalid_argument("application library '" + path + "' exports neither tessera_app_main nor main");
 }
 
 }  // namespace tessera

@@ -22,7 +22,8 @@ int run_scene_app(AppEnvironment& env, const scenes::Scene& scene);
 
 // Loads a shared library and returns its tessera_app_main, or its main if
 // it has none (defined in the library itself); throws
-// std::invalid_argument naming the file and what is wrong with it.
+// std::invalid_argument naming the file and what is wrong with it. Native
+// only (app_loading.cpp).
 GlMain load_app_library(const std::string& path);
 
 }  // namespace tessera

@@ -1,35 +1,43 @@
 #include "apps/iss_app.h"
 
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
 #include <vector>
 
+#include "host/host_core.h"
 #include "host/iss/arm922t_timing.h"
 #include "host/iss/arm_core.h"
 #include "host/iss/bare_machine.h"
 #include "host/iss/cp15.h"
 #include "host/iss/elf_image.h"
+#include "host/iss/profile.h"
+#include "host/iss/semihosting.h"
+#include "runtime/boot_info.h"
 
 namespace tessera {
 
 namespace {
 
-// The console and exit registers the test programs write (BareMachine's):
-// taken by the launcher, not on the bus yet.
+// The console and exit registers of the bare machine's test programs
+// (tests/host/iss_programs): still taken here, beside semihosting, so that
+// those programs run in the SoC unchanged.
 constexpr uint32_t CONSOLE = iss::BareMachine::CONSOLE, EXIT = iss::BareMachine::EXIT;
 // Cycles added up before the host is told (the host's time moves in these
-// steps between memory accesses).
+// steps between memory accesses; the interrupt inputs are looked at as often).
 constexpr uint64_t CHARGE_BATCH = 256;
 
-// The ISS's memory port over the host's device layer. Data accesses are the
-// host's (charged by its data-cache tag model, write buffer and bus; each
-// charges the host's one issue cycle, host.cycles.load or .store);
-// instruction fetches read a private copy of the executable segments, kept
-// in step with the program's own stores into them, and are charged by the
-// timing layer's instruction-cache model (a line fill as a cycle figure).
+// The ISS's memory port over the host. Data accesses are the host's
+// (HostApi: its data-cache tag model, write buffer and bus; each charges
+// the host's one issue cycle, host.cycles.load or .store). Instruction
+// fetches read a private copy of the executable segments, kept in step with
+// the program's own stores into them; their time is the timing layer's
+// instruction cache, whose line fills are the host's instruction-side bus
+// reads (HostCore::fetch).
 class HostMemory : public iss::IssMemory {
  public:
-  HostMemory(HostApi& host, const iss::ElfImage& image, iss::Arm922tTiming& timing) : m_host(host), m_timing(timing) {
+  HostMemory(HostApi& host, HostCore& core, const iss::ElfImage& image, iss::Arm922tTiming& timing)
+      : m_host(host), m_core(core), m_timing(timing) {
     for (const iss::ElfSegment& segment : image.segments)
       if (segment.executable) m_code.push_back({segment.address, segment.bytes});
   }
@@ -50,7 +58,11 @@ class HostMemory : public iss::IssMemory {
   }
 
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
-    m_pending += m_timing.fetch(address);
+    try {
+      m_pending += m_timing.fetch(address);  // a miss's fill is the host's bus read (on_fill)
+    } catch (const BusError&) {
+      return false;  // a prefetch abort
+    }
     for (const Code& code : m_code)
       if (address >= code.base && address - code.base + bytes <= code.bytes.size()) {
         value = 0;
@@ -63,6 +75,7 @@ class HostMemory : public iss::IssMemory {
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     flush();
     ++m_accesses;
+    const Charged charged(*this);
     try {
       value = bytes == 4 ? m_host.read32(address) : bytes == 2 ? m_host.read16(address) : m_host.read8(address);
       return true;
@@ -88,6 +101,7 @@ class HostMemory : public iss::IssMemory {
     }
     flush();
     ++m_accesses;
+    const Charged charged(*this);
     try {
       if (bytes == 4)
         m_host.write32(address, value);
@@ -106,6 +120,30 @@ class HostMemory : public iss::IssMemory {
     return true;
   }
 
+  // The profile entry of the instruction being executed: its data
+  // accesses' stalls and misses are charged to it.
+  void set_profile_entry(iss::Profile::Entry* entry) { m_entry = entry; }
+  iss::Profile::Entry* profile_entry() const { return m_entry; }
+
+  // What the host's stall and miss counters moved by while it lives, charged
+  // to the profile entry.
+  class Charged {
+   public:
+    explicit Charged(HostMemory& memory)
+        : m_memory(memory), m_stalled(memory.m_core.stalled_cycles()), m_misses(memory.m_core.data_cache_misses()) {}
+    ~Charged() {
+      m_memory.m_entry->stall_cycles += m_memory.m_core.stalled_cycles() - m_stalled;
+      m_memory.m_entry->dcache_misses += m_memory.m_core.data_cache_misses() - m_misses;
+    }
+    Charged(const Charged&) = delete;
+    Charged& operator=(const Charged&) = delete;
+
+   private:
+    HostMemory& m_memory;
+    double m_stalled;
+    uint64_t m_misses;
+  };
+
   bool exited() const { return m_exited; }
   uint32_t status() const { return m_status; }
   uint32_t fault_address() const { return m_fault_address; }
@@ -120,7 +158,9 @@ class HostMemory : public iss::IssMemory {
     std::vector<uint8_t> bytes;
   };
   HostApi& m_host;
+  HostCore& m_core;
   iss::Arm922tTiming& m_timing;
+  iss::Profile::Entry* m_entry = nullptr;
   std::vector<Code> m_code;
   uint64_t m_pending = 0;
   unsigned m_accesses = 0;
@@ -130,37 +170,212 @@ class HostMemory : public iss::IssMemory {
   uint32_t m_fault_address = 0;
 };
 
+// Semihosting's memory and clock: the host's debug access (no time) and its
+// local time.
+class HostSemihostingPort : public iss::SemihostingPort {
+ public:
+  HostSemihostingPort(HostApi& host, HostCore& core) : m_host(host), m_core(core), m_start(host.now_seconds()) {}
+  bool read_memory(uint32_t address, uint8_t* data, unsigned bytes) override {
+    return m_core.debug_read(address, data, bytes);
+  }
+  bool write_memory(uint32_t address, const uint8_t* data, unsigned bytes) override {
+    return m_core.debug_write(address, data, bytes);
+  }
+  uint64_t elapsed_cycles() override {
+    return static_cast<uint64_t>(std::llround((m_host.now_seconds() - m_start) * m_host.clock_hz()));
+  }
+  uint32_t clock_hz() override { return static_cast<uint32_t>(std::llround(m_host.clock_hz())); }
+
+ private:
+  HostApi& m_host;
+  HostCore& m_core;
+  double m_start;
+};
+
+// CP15 c7's operations: the instruction side's reach the timing layer's
+// instruction cache; a wait for interrupt idles the host until the
+// interrupt controller asserts IRQ or FIQ. (The data side's have nothing to
+// act on: the host's data cache is a tag model whose data is always in
+// memory.)
+class LauncherCaches : public iss::CacheMaintenance {
+ public:
+  LauncherCaches(iss::Arm922tTiming& timing, HostMemory& memory, HostCore& core)
+      : m_timing(timing), m_memory(memory), m_core(core) {}
+  void invalidate_instruction_cache() override { m_timing.invalidate_instruction_cache(); }
+  void invalidate_instruction_line(uint32_t address) override { m_timing.invalidate_instruction_line(address); }
+  void wait_for_interrupt() override {
+    m_memory.flush();
+    m_core.wait_for_interrupt();
+  }
+
+ private:
+  iss::Arm922tTiming& m_timing;
+  HostMemory& m_memory;
+  HostCore& m_core;
+};
+
+// Text written to a semihosting file, handed on a line at a time.
+class LineSink {
+ public:
+  explicit LineSink(std::function<void(const std::string& line)> take) : m_take(std::move(take)) {}
+  void operator()(const std::string& data) {
+    m_partial += data;
+    for (size_t end; (end = m_partial.find('\n')) != std::string::npos;) {
+      const std::string line = m_partial.substr(0, end);
+      m_partial.erase(0, end + 1);
+      m_take(line);
+    }
+  }
+
+ private:
+  std::function<void(const std::string&)> m_take;
+  std::string m_partial;
+};
+
+std::string file_name(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Functions listed in stats.json's profile.
+constexpr size_t PROFILE_ROWS = 40;
+
+nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTiming& timing,
+                                  const iss::Profile& profile) {
+  const uint64_t instructions = core.instructions();
+  double stalls = 0;
+  nlohmann::json rows = nlohmann::json::array();
+  const std::vector<iss::Profile::Row> all = profile.rows();
+  for (const iss::Profile::Row& row : all) stalls += row.entry.stall_cycles;
+  const double total = static_cast<double>(timing.cycles()) + stalls;
+  for (size_t i = 0; i < all.size() && i < PROFILE_ROWS; ++i) {
+    const iss::Profile::Row& row = all[i];
+    const double cycles = static_cast<double>(row.entry.cycles) + row.entry.stall_cycles;
+    rows.push_back({{"function", row.function},
+                    {"address", row.address},
+                    {"instructions", row.entry.instructions},
+                    {"cycles", cycles},
+                    {"share", total > 0 ? cycles / total : 0.0},
+                    {"core_cycles", row.entry.cycles},
+                    {"stall_cycles", row.entry.stall_cycles},
+                    {"icache_misses", row.entry.icache_misses},
+                    {"dcache_misses", row.entry.dcache_misses}});
+  }
+  return {{"instructions", instructions},
+          {"core_cycles", timing.cycles()},
+          {"stall_cycles", stalls},
+          {"cpi", instructions > 0 ? total / static_cast<double>(instructions) : 0.0},
+          {"interlock_cycles", timing.interlock_cycles()},
+          {"icache", {{"hits", timing.icache().hits()}, {"misses", timing.icache().misses()}}},
+          {"functions_profiled", all.size()},
+          {"profile", rows}};
+}
+
 }  // namespace
 
 bool is_elf_app(const std::string& name) {
   return name.size() > 4 && name.compare(name.size() - 4, 4, ".elf") == 0;
 }
 
-int run_elf_app(AppEnvironment& env, const std::string& path) {
+int run_elf_app(AppEnvironment& env, const std::string& path, const std::string& builtin_app) {
   HostApi& host = *env.host;
+  if (env.core == nullptr)
+    throw std::logic_error("the ISS launcher needs the host's core interface (AppEnvironment::core)");
+  HostCore& core_port = *env.core;
   const iss::ElfImage image = iss::read_elf(path);
-  image.check_fits(0, env.memory_bytes, "the populated system memory (mem.size_mib)");
-  // The boot loader's copy of the image into system memory, charged as the
-  // host's stores (a word at a time).
-  for (const iss::ElfSegment& segment : image.segments) {
-    size_t i = 0;
-    for (; i + 4 <= segment.bytes.size(); i += 4)
-      host.write32(segment.address + static_cast<uint32_t>(i),
-                   uint32_t{segment.bytes[i]} | uint32_t{segment.bytes[i + 1]} << 8 |
-                       uint32_t{segment.bytes[i + 2]} << 16 | uint32_t{segment.bytes[i + 3]} << 24);
-    for (; i < segment.bytes.size(); ++i) host.write8(segment.address + static_cast<uint32_t>(i), segment.bytes[i]);
-  }
+  // The program's own part of system memory: below the driver's heap and
+  // the frame buffers (tlm/soc/software_layout.h), which it must not cover.
+  const uint32_t application_end = env.heap_base != 0 ? env.heap_base : env.memory_bytes;
+  image.check_fits(0, application_end, "the application's part of system memory (below the driver's heap)");
+  // The image is in memory when the program starts, as if a debugger had
+  // loaded it: its copy takes no simulated time.
+  for (const iss::ElfSegment& segment : image.segments)
+    if (!segment.bytes.empty() &&
+        !core_port.debug_write(segment.address, segment.bytes.data(), static_cast<unsigned>(segment.bytes.size())))
+      throw std::runtime_error(path + ": cannot load the segment at " + iss::address_text(segment.address));
+
   iss::Arm922tTiming timing;
-  HostMemory memory(host, image, timing);
+  HostMemory memory(host, core_port, image, timing);
+  iss::Profile profile(image.functions);
+  memory.set_profile_entry(&profile.at(image.entry));
+  // Line fills and uncached fetches are the host's instruction-side reads,
+  // at the time the instructions before them have taken.
+  timing.on_fill([&memory, &core_port](uint32_t address, unsigned bytes) {
+    memory.flush();
+    const HostMemory::Charged charged(memory);
+    ++memory.profile_entry()->icache_misses;
+    core_port.fetch(address, bytes);
+  });
   iss::ArmCore core(memory);
-  // c7's instruction-side operations reach the timing layer's instruction
-  // cache; the data side is the host's (HostApi has no cache operations).
-  iss::Cp15 cp15(core, &timing);
+  LauncherCaches caches(timing, memory, core_port);
+  iss::Cp15 cp15(core, &caches);
   core.set_coprocessors(&cp15);
   timing.attach(&cp15);
   // As a boot loader would: the caches on (CP15 c1's I and C) before the
   // program starts; the program may turn the instruction cache off.
   cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | iss::Cp15::CONTROL_I | iss::Cp15::CONTROL_C);
+
+  HostSemihostingPort port(host, core_port);
+  iss::Semihosting semihosting(port);
+  semihosting.console = [&memory](int stream, const std::string& text) {
+    memory.flush_console();
+    (stream == 2 ? std::cerr : std::cout) << text << std::flush;
+  };
+  semihosting.warn = [&env, &path](const std::string& message) {
+    if (env.warn)
+      env.warn("host", path + ": " + message);
+    else
+      std::cerr << path << ": " << message << "\n";
+  };
+  std::string command_line = builtin_app.empty() ? file_name(path) : builtin_app;
+  for (const std::string& arg : env.args) command_line += " " + arg;
+  semihosting.command_line = command_line;
+  boot_info::BootInfo boot;
+  boot.app = builtin_app.empty() ? file_name(path) : builtin_app;
+  boot.args = env.args;
+  boot.frames = env.frames;
+  boot.frame_buffers[0] = env.frame_buffers[0];
+  boot.frame_buffers[1] = env.frame_buffers[1];
+  boot.memory_bytes = env.memory_bytes;
+  boot.heap_base = env.heap_base;
+  boot.heap_end = env.heap_end;
+  if (env.make_renderer && env.config != nullptr && env.config->has("driver.backend"))
+    boot.backend = env.config->get_string("driver.backend");
+  if (env.config != nullptr) boot.config = boot_info::effective_parameters(*env.config);
+  semihosting.offer_file(boot_info::BOOT_FILE, boot_info::encode(boot));
+  LineSink warnings([&env](const std::string& line) {
+    const size_t tab = line.find('\t');
+    const std::string source = tab == std::string::npos ? "driver" : line.substr(0, tab);
+    const std::string message = tab == std::string::npos ? line : line.substr(tab + 1);
+    if (env.warn)
+      env.warn(source, message);
+    else
+      std::cerr << source << ": " << message << "\n";
+  });
+  LineSink figures([&env](const std::string& line) {
+    if (env.frame_statistics) env.frame_statistics(boot_info::decode_figures(line));
+  });
+  LineSink counters([&env](const std::string& line) {
+    const size_t first = line.find('\t'), second = line.find('\t', first + 1);
+    if (env.counters == nullptr || first == std::string::npos || second == std::string::npos) return;
+    env.counters->counter(line.substr(0, first), line.substr(second + 1)) +=
+        std::strtoull(line.c_str() + first + 1, nullptr, 10);
+  });
+  semihosting.offer_sink(boot_info::WARNINGS_FILE, [&warnings](const std::string& data) { warnings(data); });
+  semihosting.offer_sink(boot_info::FRAME_FIGURES_FILE, [&figures](const std::string& data) { figures(data); });
+  semihosting.offer_sink(boot_info::COUNTERS_FILE, [&counters](const std::string& data) { counters(data); });
+
+  core.on_swi([&](uint32_t pc) {
+    uint32_t instruction = 0;
+    uint8_t bytes[4] = {};
+    const unsigned size = core.thumb() ? 2 : 4;
+    if (!core_port.debug_read(pc, bytes, size)) return false;
+    for (unsigned i = 0; i < size; ++i) instruction |= uint32_t{bytes[i]} << (8 * i);
+    if (!iss::Semihosting::is_call(instruction, core.thumb())) return false;
+    memory.flush();
+    core.set_reg(0, semihosting.serve(core.reg(0), core.reg(1)));
+    return true;
+  });
   core.on_exception([&](iss::Exception exception, uint32_t pc) {
     const char* fault = iss::fault_name(exception);
     if (fault == nullptr) return;  // SWI and interrupts go to the program's vectors
@@ -169,17 +384,47 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
     if (exception == iss::Exception::data_abort) text += ", address " + iss::address_text(memory.fault_address());
     throw std::runtime_error(text + " (the program has no handler: the ISS launcher stops it)");
   });
+  // The program's statistics in stats.json, live while it runs (a run
+  // stopped at its time limit reports them too), kept when it ends.
+  const auto statistics = [&] { return program_statistics(core, timing, profile); };
+  struct Publisher {
+    HostCore& core;
+    std::function<nlohmann::json()> live;
+    Publisher(HostCore& c, std::function<nlohmann::json()> s) : core(c), live(std::move(s)) {
+      core.set_program_statistics(live);
+    }
+    ~Publisher() {
+      core.set_program_statistics([final = live()] { return final; });
+    }
+  } publisher(core_port, statistics);
+
   core.reset();
   core.set_reg(15, image.entry);
+  const bool tracing = core_port.tracing_program();
+  if (tracing) core_port.set_function_names(profile.names());
+  uint32_t traced_function = ~0u;
   try {
-    while (!memory.exited()) {
+    while (!memory.exited() && !semihosting.exited()) {
+      iss::Profile::Entry& entry = profile.at(core.reg(15));
+      memory.set_profile_entry(&entry);
       core.step();
       // The instruction's cycles beyond the issue cycle of each host access
       // it made (those the host has charged already).
       const unsigned cycles = timing.step(core.last_step());
+      ++entry.instructions;
+      entry.cycles += cycles;
       const unsigned accesses = memory.take_accesses();
       memory.charge(cycles > accesses ? cycles - accesses : 0);
-      if (memory.pending() >= CHARGE_BATCH) memory.flush();
+      if (tracing && profile.last_index() != traced_function) {
+        memory.flush();
+        traced_function = profile.last_index();
+        core_port.trace_program(core.reg(15), traced_function);
+      }
+      if (memory.pending() >= CHARGE_BATCH) {
+        memory.flush();
+        core.set_irq(core_port.irq_asserted());
+        core.set_fiq(core_port.fiq_asserted());
+      }
     }
   } catch (const iss::IssError& error) {
     memory.flush_console();
@@ -187,7 +432,7 @@ int run_elf_app(AppEnvironment& env, const std::string& path) {
   }
   memory.flush();
   memory.flush_console();
-  return static_cast<int>(memory.status());
+  return semihosting.exited() ? semihosting.exit_status() : static_cast<int>(memory.status());
 }
 
 }  // namespace tessera

@@ -2,8 +2,8 @@
 // the ELF on the ISS (tlm/host/iss) over the host's device layer, so that
 // its loads and stores are the host's (data cache, write buffer, bus
 // transactions) and its instructions are charged to the host's clock.
-// sw_driver/apps/README.md ("ARM executables") says what is and is not
-// modelled yet.
+// sw_driver/README.md ("ARM executables") and sw_driver/runtime/README.md
+// say how a program gets its environment.
 #pragma once
 
 #include <string>
@@ -16,8 +16,11 @@ namespace tessera {
 bool is_elf_app(const std::string& name);
 
 // Loads the ELF into system memory and runs it to its exit; returns its exit
-// status. Throws std::runtime_error naming the file and the PC on an
+// status. `builtin_app` names the built-in application a build of the
+// runtime with every built-in application (tessera_apps.elf) is to run;
+// empty for an application of its own. Needs env.core (the host's
+// HostCore). Throws std::runtime_error naming the file and the PC on an
 // undefined instruction, an abort or an unpredictable encoding.
-int run_elf_app(AppEnvironment& env, const std::string& path);
+int run_elf_app(AppEnvironment& env, const std::string& path, const std::string& builtin_app = "");
 
 }  // namespace tessera

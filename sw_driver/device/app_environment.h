@@ -17,6 +17,7 @@
 namespace tessera {
 
 class Config;
+class HostCore;
 struct AppEnvironment;
 
 // Builds the renderer of the window surface (eglCreateWindowSurface). The
@@ -26,6 +27,9 @@ using RendererFactory = std::function<std::unique_ptr<gl::Renderer>(AppEnvironme
 
 struct AppEnvironment {
   HostApi* host = nullptr;
+  // What the ISS launcher needs beyond HostApi (instruction fetches, the
+  // core's interrupt inputs, debug access); null where no ISS runs.
+  HostCore* core = nullptr;
   unsigned frames = 1;
   uint32_t frame_buffers[2] = {0, 0};
   uint32_t memory_bytes = 0;  // system memory populated from address 0

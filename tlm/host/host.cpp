@@ -31,6 +31,8 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
     : Block(name),
       out("out"),
       irq("irq", params.irq_lines),
+      core_irq("core_irq"),
+      core_fiq("core_fiq"),
       m_params(params),
       m_period_ticks(params.clock_period.value()),
       m_run_ahead_ticks(params.run_ahead.value()),
@@ -51,6 +53,10 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
   m_train = new TransferTrain;
   m_payload.set_extension(m_train);
   m_qk.reset();
+  if (params.iss) {
+    m_pc_trace = std::make_unique<TimedWord>("pc");
+    m_function_trace = std::make_unique<TimedWord>("function");
+  }
   SC_THREAD(run);
 }
 
@@ -59,6 +65,17 @@ void Host::trace_signals(sc_core::sc_trace_file* file) {
   sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
   for (unsigned i = 0; i < irq.size(); ++i)
     sc_core::sc_trace(file, irq[i], std::string(name()) + ".irq_" + std::to_string(i));
+  if (m_pc_trace) {
+    sc_core::sc_trace(file, m_pc_trace->signal, std::string(name()) + ".pc");
+    sc_core::sc_trace(file, m_function_trace->signal, std::string(name()) + ".function");
+  }
+}
+
+void Host::trace_program(uint32_t pc, uint32_t function) {
+  if (!tracing_program()) return;
+  const sc_time when = sc_time::from_value(local_ticks());
+  m_pc_trace->set_at(pc, when);
+  m_function_trace->set_at(function, when);
 }
 
 uint64_t Host::local_ticks() const {
@@ -481,18 +498,73 @@ bool Host::irq_pending(unsigned line) {
   return irq[line].read();
 }
 
+template <typename Event, typename Done>
+void Host::idle_until(const Event& event, Done done) {
+  sync();
+  if (done()) return;
+  const uint64_t start = sc_core::sc_time_stamp().value();
+  if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
+  while (!done()) wait(event);
+  restart_quantum();
+  m_idle_ticks += sc_core::sc_time_stamp().value() - start;
+  if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
+}
+
 void Host::wait_irq(unsigned line) {
   if (line >= irq.size())
     throw std::out_of_range("host: interrupt line " + std::to_string(line) +
                             " does not exist (host.irq_lines=" + std::to_string(irq.size()) + ")");
-  sync();
-  if (irq[line].read()) return;
-  const uint64_t start = sc_core::sc_time_stamp().value();
-  if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
-  while (!irq[line].read()) wait(irq[line].value_changed_event());
-  restart_quantum();
-  m_idle_ticks += sc_core::sc_time_stamp().value() - start;
-  if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
+  idle_until(irq[line].value_changed_event(), [&] { return irq[line].read(); });
+}
+
+void Host::wait_for_interrupt() {
+  if (core_irq.size() == 0 || core_fiq.size() == 0)
+    throw std::logic_error(
+        "host: wait for interrupt without an interrupt controller (the SoC builds one with "
+        "host.model=iss)");
+  sc_core::sc_event_or_list changes;
+  changes |= core_irq->value_changed_event();
+  changes |= core_fiq->value_changed_event();
+  idle_until(changes, [&] { return irq_asserted() || fiq_asserted(); });
+}
+
+void Host::fetch(uint32_t address, unsigned bytes) {
+  if (m_fetches == nullptr) {
+    m_fetches = &counter("fetch.transactions", "instruction-side bus reads: cache line fills and uncached fetches");
+    m_fetch_bytes = &counter("fetch.bytes", "bytes those reads carried");
+  }
+  ++*m_fetches;
+  *m_fetch_bytes += bytes;
+  uint8_t data[256];
+  if (bytes > sizeof data)
+    throw std::invalid_argument("host: instruction fetch of " + std::to_string(bytes) + " bytes");
+  stall_until(transact(tlm::TLM_READ_COMMAND, address, data, bytes, 0));
+}
+
+bool Host::debug_access(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
+  tlm::tlm_generic_payload request;
+  request.set_command(command);
+  request.set_address(address);
+  request.set_data_ptr(data);
+  request.set_data_length(bytes);
+  request.set_streaming_width(bytes);
+  return out->transport_dbg(request) == bytes;
+}
+
+bool Host::debug_read(uint32_t address, uint8_t* data, unsigned bytes) {
+  if (const uint8_t* p = dmi_pointer(address, bytes, false)) {
+    std::memcpy(data, p, bytes);
+    return true;
+  }
+  return debug_access(tlm::TLM_READ_COMMAND, address, data, bytes);
+}
+
+bool Host::debug_write(uint32_t address, const uint8_t* data, unsigned bytes) {
+  if (uint8_t* p = dmi_pointer(address, bytes, true)) {
+    std::memcpy(p, data, bytes);
+    return true;
+  }
+  return debug_access(tlm::TLM_WRITE_COMMAND, address, const_cast<uint8_t*>(data), bytes);
 }
 
 void Host::run() {
@@ -531,6 +603,7 @@ nlohmann::json Host::stats_json(const sc_time& elapsed) const {
   stats["waiting_for_irq_ns"] = idle_time().to_seconds() * 1e9;
   stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
   stats["dcache"] = {{"hits", m_dcache.hits()}, {"misses", m_dcache.misses()}, {"writebacks", m_dcache.writebacks()}};
+  if (m_program_statistics) stats["iss"] = m_program_statistics();
   return stats;
 }
 

@@ -31,6 +31,7 @@
 #include "config/config.h"
 #include "host/data_cache.h"
 #include "host/host_api.h"
+#include "host/host_core.h"
 
 namespace tessera {
 
@@ -44,6 +45,7 @@ struct HostParams {
   unsigned dcache_ways = 0;
   unsigned write_buffer_words = 0;
   unsigned irq_lines = 0;
+  bool iss = false;  // host.model=iss: the software is an ARM executable on the ISS
   // Cacheable address range (set by the SoC: system memory).
   uint32_t cacheable_base = 0;
   uint32_t cacheable_size = 0;
@@ -62,7 +64,7 @@ struct HostParams {
   static HostParams defaults();
 };
 
-class Host : public Block, public HostApi {
+class Host : public Block, public HostApi, public HostCore {
  public:
   SC_HAS_PROCESS(Host);
 
@@ -70,6 +72,13 @@ class Host : public Block, public HostApi {
 
   tlm_utils::simple_initiator_socket<Host, 32> out;
   sc_core::sc_vector<sc_core::sc_in<bool>> irq;
+  // The core's own interrupt inputs, from the interrupt controller: what
+  // the ISS takes IRQ and FIQ exceptions on and wakes from a wait for
+  // interrupt by. Bound with host.model=iss only (the host-compiled model
+  // waits on the lines themselves); unbound, they read as low.
+  using OptionalInput = sc_core::sc_port<sc_core::sc_signal_in_if<bool>, 1, sc_core::SC_ZERO_OR_MORE_BOUND>;
+  OptionalInput core_irq;
+  OptionalInput core_fiq;
 
   Host(sc_core::sc_module_name name, const HostParams& params);
 
@@ -77,6 +86,7 @@ class Host : public Block, public HostApi {
   // Called (in simulation) when the program returns or fails.
   void on_finish(std::function<void()> callback) { m_on_finish = std::move(callback); }
   bool finished() const { return m_finished; }
+  const HostParams& params() const { return m_params; }
   int exit_code() const { return m_exit_code; }
   const std::string& failure() const { return m_failure; }
 
@@ -105,6 +115,25 @@ class Host : public Block, public HostApi {
   double now_seconds() const override;
   double clock_hz() const override { return 1.0 / m_params.clock_period.to_seconds(); }
 
+  // HostCore
+  void fetch(uint32_t address, unsigned bytes) override;
+  bool irq_asserted() override { return core_irq.size() != 0 && core_irq->read(); }
+  bool fiq_asserted() override { return core_fiq.size() != 0 && core_fiq->read(); }
+  void wait_for_interrupt() override;
+  bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override;
+  bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) override;
+  double stalled_cycles() const override {
+    return static_cast<double>(m_stall_ticks) / static_cast<double>(m_period_ticks);
+  }
+  uint64_t data_cache_misses() const override { return m_dcache.misses(); }
+  void set_program_statistics(std::function<nlohmann::json()> statistics) override {
+    m_program_statistics = std::move(statistics);
+  }
+  bool tracing_program() const override { return m_tracing && m_pc_trace != nullptr; }
+  void trace_program(uint32_t pc, uint32_t function) override;
+  void set_function_names(std::vector<std::string> names) override { m_function_names = std::move(names); }
+  const std::vector<std::string>& function_names() const { return m_function_names; }
+
  private:
   void run();
   void charge(uint64_t cycles);
@@ -132,6 +161,11 @@ class Host : public Block, public HostApi {
   void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
   // Hands the host's local time to the quantum keeper and waits for it.
   void sync();
+  // Idles until `done()`, looking again at each `event` (the wait of
+  // wait_irq and wait_for_interrupt), counting the time as idle.
+  template <typename Event, typename Done>
+  void idle_until(const Event& event, Done done);
+  bool debug_access(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes);
 
   HostParams m_params;
   uint64_t m_period_ticks;  // clock period in kernel time units
@@ -181,9 +215,18 @@ class Host : public Block, public HostApi {
   std::array<ActivityCounter*, static_cast<size_t>(Op::count_)> m_op_counts{};
   ActivityCounter& m_loads;
   ActivityCounter& m_stores;
+  // Instruction-side fills and uncached fetches (fetch()): declared at the
+  // first, so that the host-compiled model's statistics do not list them.
+  ActivityCounter* m_fetches = nullptr;
+  ActivityCounter* m_fetch_bytes = nullptr;
 
   TimedTrace m_busy_trace;
   bool m_tracing = false;
+  // The program on the ISS (host.model=iss): its PC and function in the VCD
+  // (built only then), its statistics in stats.json.
+  std::unique_ptr<TimedWord> m_pc_trace, m_function_trace;
+  std::function<nlohmann::json()> m_program_statistics;
+  std::vector<std::string> m_function_names;
 };
 
 }  // namespace tessera

@@ -1,7 +1,16 @@
-// What software running on the host model sees: the device layer. Application
-// and driver code is host-compiled C++ that calls these functions for every
-// operation whose time matters; each call advances the host's local time by
-// the cost model (compute) or by the bus (memory and device accesses).
+// What software running on the host model sees: the device layer, compiled
+// one of two ways (tlm/host/README.md, "Two host models"):
+//
+// - host-compiled (host.model=native, the default): application and driver
+//   code is native C++ that calls these functions for every operation whose
+//   time matters; each call advances the host's local time by the cost model
+//   (compute) or by the bus (memory and device accesses);
+// - cross-compiled for the ARM922T and run on the instruction-set simulator
+//   (host.model=iss; TESSERA_HOST_ISS defined): the same calls are plain
+//   volatile loads and stores inlined into the code, compute() is nothing
+//   (the instructions themselves take the time), and waiting for an
+//   interrupt is the interrupt controller and CP15's wait-for-interrupt
+//   (sw_driver/runtime).
 #pragma once
 
 #include <cstdint>
@@ -40,6 +49,8 @@ class BusError : public std::runtime_error {
   uint32_t m_address;
 };
 
+#if !defined(TESSERA_HOST_ISS)
+
 class HostApi {
  public:
   virtual ~HostApi() = default;
@@ -75,5 +86,40 @@ class HostApi {
   virtual double now_seconds() const = 0;
   virtual double clock_hz() const = 0;
 };
+
+#else
+
+// On the ISS: every access is the instruction itself, through the core's
+// data cache and write buffer to the bus; the out-of-line functions are in
+// sw_driver/runtime/host_api_iss.cpp.
+class HostApi {
+ public:
+  void compute(Op /*op*/, uint64_t /*count*/ = 1) {}
+
+  uint32_t read32(uint32_t address) { return *reinterpret_cast<const volatile uint32_t*>(address); }
+  uint16_t read16(uint32_t address) { return *reinterpret_cast<const volatile uint16_t*>(address); }
+  uint8_t read8(uint32_t address) { return *reinterpret_cast<const volatile uint8_t*>(address); }
+  void write32(uint32_t address, uint32_t value) { *reinterpret_cast<volatile uint32_t*>(address) = value; }
+  void write16(uint32_t address, uint16_t value) { *reinterpret_cast<volatile uint16_t*>(address) = value; }
+  void write8(uint32_t address, uint8_t value) { *reinterpret_cast<volatile uint8_t*>(address) = value; }
+  // LDM/STM, eight registers at a time.
+  void read_words(uint32_t address, uint32_t* words, unsigned count);
+  void write_words(uint32_t address, const uint32_t* words, unsigned count);
+
+  const uint8_t* load_span(uint32_t address, unsigned /*size*/, unsigned /*count*/) {
+    return reinterpret_cast<const uint8_t*>(address);
+  }
+  uint8_t* store_span(uint32_t address, unsigned /*size*/, unsigned /*count*/) {
+    return reinterpret_cast<uint8_t*>(address);
+  }
+
+  void wait_irq(unsigned line);
+  bool irq_pending(unsigned line);
+
+  double now_seconds() const;
+  double clock_hz() const;
+};
+
+#endif
 
 }  // namespace tessera

@@ -27,6 +27,10 @@ ParamGroup HostParams::parameters() {
   return {
       "host",
       {
+          param::choice("host.model", "native", {"native", "iss"},
+                        "how software runs on the host: native (host-compiled, timed by the cost model below) or iss "
+                        "(the driver and application cross-compiled for the ARM922T and run on the instruction-set "
+                        "simulator with its timing; tlm/host/README.md)"),
           real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
           integer("host.irq_lines", 8, 4, 32, "lines", "interrupt inputs of the host"),
           integer("host.cycles.alu", 1, 0, 100, "cycles", "data-processing instruction (ARM9TDMI: 1)"),
@@ -83,6 +87,7 @@ HostParams HostParams::from_config(const Config& config) {
   p.dcache_ways = static_cast<unsigned>(config.get_uint("host.dcache.ways"));
   p.write_buffer_words = static_cast<unsigned>(config.get_uint("host.write_buffer.entries"));
   p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
+  p.iss = config.get_string("host.model") == "iss";
   return p;
 }
 

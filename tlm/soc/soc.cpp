@@ -159,6 +159,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
 
   for (const auto& region : memory_map::ALL_REGIONS) {
     if (region.base == memory_map::dma_regs.base && !config.get_bool("dma.enabled")) continue;
+    if (region.base == memory_map::intc.base && !host.params().iss) continue;
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
                               std::to_string(region.size) + " bytes");
   }
@@ -190,6 +191,21 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     const size_t initiator = bus.initiator_stats().size() - 1;
     dma->set_bus_wait_probe([this, initiator] { return bus.initiator_stats()[initiator].wait_cycles; });
     m_blocks.push_back(dma.get());
+  }
+
+  if (host.params().iss) {
+    // The ISS's software reads the lines and waits for them through the
+    // interrupt controller, on the bus clock.
+    intc = std::make_unique<InterruptController>("intc", bus.params().clock_period, host.irq.size());
+    bus.map(intc->in, memory_map::intc.base, memory_map::intc.size, memory_map::intc.name);
+    for (unsigned i = 0; i < host.irq.size(); ++i) intc->lines[i].bind(*m_irq_lines[i]);
+    m_core_irq = std::make_unique<sc_core::sc_signal<bool>>("core_irq", false);
+    m_core_fiq = std::make_unique<sc_core::sc_signal<bool>>("core_fiq", false);
+    intc->irq.bind(*m_core_irq);
+    intc->fiq.bind(*m_core_fiq);
+    host.core_irq.bind(*m_core_irq);
+    host.core_fiq.bind(*m_core_fiq);
+    m_blocks.push_back(intc.get());
   }
 
   host.on_finish([this] { m_host_finished.notify(sc_core::SC_ZERO_TIME); });

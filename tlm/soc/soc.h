@@ -20,6 +20,7 @@
 #include "display/display_dma.h"
 #include "dma/dma.h"
 #include "host/host.h"
+#include "intc/interrupt_controller.h"
 #include "mem/memory.h"
 #include "power/energy_model.h"
 #include "power/power_trace.h"
@@ -63,6 +64,9 @@ class Soc : public sc_core::sc_module {
   // The system/array DMA, built only when dma.enabled (otherwise the SoC is
   // exactly what it was without it: no bus initiator, no statistics).
   std::unique_ptr<Dma> dma;
+  // The interrupt controller, built only when host.model=iss (the software
+  // on the ISS needs it; host-compiled software waits on the lines).
+  std::unique_ptr<InterruptController> intc;
 
   // Runs the host program; the simulation stops when it has finished and
   // the display has shown every frame handed to it.
@@ -136,6 +140,7 @@ class Soc : public sc_core::sc_module {
   };
   std::vector<FrameRecord> m_frames;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
+  std::unique_ptr<sc_core::sc_signal<bool>> m_core_irq, m_core_fiq;
   sc_core::sc_event m_host_finished;
   bool m_done = false;
   sc_core::sc_trace_file* m_trace = nullptr;

@@ -13,6 +13,10 @@
 namespace tessera::software_layout {
 
 inline constexpr uint32_t HEAP_BASE = 4u << 20;
+// A program on the ISS (host.model=iss) lives below HEAP_BASE: its code and
+// data from address 0, its C heap after them, and its stacks at the top,
+// this many bytes for all of them (sw_driver/runtime/README.md).
+inline constexpr uint32_t APPLICATION_STACK_BYTES = 256u << 10;
 inline constexpr uint32_t FRAME_BUFFER_ALIGNMENT = 4096;
 
 struct Layout {

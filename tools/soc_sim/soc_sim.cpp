@@ -24,6 +24,7 @@
 #include <systemc>
 
 #include "apps/apps.h"
+#include "apps/iss_app.h"
 #include "build_info.h"
 #include "common/activity_json.h"
 #include "common/log.h"
@@ -402,6 +403,16 @@ int run(int argc, char* argv[]) {
     if (!opt.backend.empty()) config.set("driver.backend", opt.backend, "--backend");
     if (!opt.log_level.empty()) config.set("sim.log_level", opt.log_level, "--log-level");
     if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
+    // An ARM executable runs on the ISS: host.model follows the application
+    // unless the user chose it.
+    if (is_elf_app(config.get_string("sim.app"))) {
+      if (!config.is_set("host.model"))
+        config.set("host.model", "iss", "--app " + config.get_string("sim.app"));
+      else if (config.get_string("host.model") != "iss")
+        throw ConfigError(
+            "configuration: impossible combination: sim.app=" + config.get_string("sim.app") +
+            " is an ARM executable, which runs on the ISS, and host.model=" + config.get_string("host.model"));
+    }
     // The chosen back end fills in what it needs that the user left unset.
     if (const backends::Backend* chosen = backends::find_backend(config.get_string("driver.backend")))
       chosen->adjust_configuration(config);
@@ -418,7 +429,7 @@ int run(int argc, char* argv[]) {
 
   AppInfo app;
   try {
-    app = find_app(config.get_string("sim.app"));
+    app = find_app(config.get_string("sim.app"), config.get_string("host.model") == "iss");
   } catch (const std::invalid_argument& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -473,6 +484,7 @@ int run(int argc, char* argv[]) {
     return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
   };
   std::vector<double> frame_cpu_seconds;
+  soc.display.keep_pixels(!opt.no_frames);
   soc.display.on_frame([&](const Frame& frame) {
     frame_wall_seconds.push_back(wall_seconds());
     frame_cpu_seconds.push_back(cpu_seconds());
@@ -503,6 +515,7 @@ int run(int argc, char* argv[]) {
     frame_driver_figures.push_back(std::move(record));
   };
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
+  env.core = &soc.host;
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);
@@ -575,7 +588,19 @@ int run(int argc, char* argv[]) {
   watch->finish();
   progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
   soc.close_trace();
-  const std::string trace_error = trace_pipe ? trace_pipe->finish() : "";
+  std::string trace_error = trace_pipe ? trace_pipe->finish() : "";
+  // A program on the ISS: its functions' names by soc.host.function's value,
+  // as a GTKWave translate-filter file beside the VCD.
+  if (trace_pipe && trace_error.empty() && !soc.host.function_names().empty()) {
+    std::string names;
+    for (size_t i = 0; i < soc.host.function_names().size(); ++i)
+      names += std::to_string(i) + " " + soc.host.function_names()[i] + "\n";
+    try {
+      write_file_atomically(vcd_base + ".functions.txt", names);
+    } catch (const std::exception& e) {
+      trace_error = e.what();
+    }
+  }
   const std::string png_error = png_writer.finish();
   const unsigned frames_written = png_writer.written();
   const double wall = wall_seconds();

@@ -47,10 +47,18 @@ void InstructionCache::invalidate_line(uint32_t address) {
 unsigned Arm922tTiming::fetch(uint32_t address) {
   unsigned stall = 0;
   if (m_cp15 != nullptr && !m_cp15->instruction_cache_enabled()) {
-    stall = m_params.uncached_fetch_cycles;
+    if (m_fill)
+      m_fill(address & ~3u, 4);
+    else
+      stall = m_params.uncached_fetch_cycles;
   } else {
     const bool round_robin = m_cp15 != nullptr && (m_cp15->control() & (1u << 14)) != 0;  // RR
-    if (!m_icache.access(address, round_robin)) stall = m_params.line_fill_cycles;
+    if (!m_icache.access(address, round_robin)) {
+      if (m_fill)
+        m_fill(address & ~(InstructionCache::LINE_BYTES - 1), InstructionCache::LINE_BYTES);
+      else
+        stall = m_params.line_fill_cycles;
+    }
   }
   m_fetch_stall_cycles += stall;
   m_cycles += stall;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 
 #include "host/iss/arm_core.h"
 #include "host/iss/cp15.h"
@@ -63,6 +64,12 @@ class Arm922tTiming : public CacheMaintenance {
 
   // Stall cycles of an instruction fetch at `address` (0 on a hit).
   unsigned fetch(uint32_t address);
+  // Makes line fills (32 bytes at the line's address) and uncached fetches
+  // (the word) calls of `fill`, a bus read whose time is the caller's,
+  // instead of TimingParams' cycle figures: fetch() then returns 0 for them.
+  // What `fill` throws (a bus error) passes through fetch().
+  using Fill = std::function<void(uint32_t address, unsigned bytes)>;
+  void on_fill(Fill fill) { m_fill = std::move(fill); }
   // Cycles of the step the core just made, interlocks included (the fetch's
   // stall is fetch()'s).
   unsigned step(const StepInfo& info);
@@ -87,6 +94,7 @@ class Arm922tTiming : public CacheMaintenance {
   TimingParams m_params;
   const Cp15* m_cp15 = nullptr;
   InstructionCache m_icache;
+  Fill m_fill;
   // The last load's destination while it can still interlock: the next
   // instruction (age 0), or for a byte, halfword or unaligned load the one
   // after (age 1) when the one between took a single cycle.

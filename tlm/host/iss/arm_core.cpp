@@ -107,6 +107,7 @@ void ArmCore::reset() {
 }
 
 void ArmCore::enter(Exception exception, uint32_t return_address) {
+  if (exception == Exception::swi && m_swi_hook && m_swi_hook(m_current)) return;
   if (m_exception_hook) {
     const bool interrupt = exception == Exception::irq || exception == Exception::fiq;
     m_exception_hook(exception, interrupt || exception == Exception::reset ? m_pc : m_current);

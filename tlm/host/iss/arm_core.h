@@ -149,6 +149,12 @@ class ArmCore {
   using ExceptionHook = std::function<void(Exception exception, uint32_t pc)>;
   void on_exception(ExceptionHook hook) { m_exception_hook = std::move(hook); }
 
+  // Called when a SWI is about to be taken, with its address; true: the
+  // call was served outside the program (semihosting), so the core goes on
+  // with the next instruction instead of entering the SWI vector.
+  using SwiHook = std::function<bool(uint32_t pc)>;
+  void on_swi(SwiHook hook) { m_swi_hook = std::move(hook); }
+
   // Exception vectors at 0xffff0000 (CP15 control bit V).
   void set_high_vectors(bool high) { m_high_vectors = high; }
 
@@ -209,6 +215,7 @@ class ArmCore {
   uint64_t m_instructions = 0;
   StepInfo m_info;
   ExceptionHook m_exception_hook;
+  SwiHook m_swi_hook;
 };
 
 }  // namespace tessera::iss

@@ -1,5 +1,7 @@
 #include "host/iss/elf_image.h"
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -18,6 +20,43 @@ uint32_t u32(const std::vector<uint8_t>& b, uint64_t at) {
 }
 uint16_t u16(const std::vector<uint8_t>& b, uint64_t at) {
   return static_cast<uint16_t>(b[at] | b[at + 1] << 8);
+}
+
+constexpr uint32_t SYMBOL_TABLE = 2;
+constexpr unsigned SECTION_HEADER_BYTES = 40, SYMBOL_BYTES = 16;
+constexpr uint8_t FUNCTION = 2;
+
+// The symbol table's functions. A malformed table is left out rather than
+// refused: the program runs without it, and only its profile is poorer.
+void read_functions(const std::vector<uint8_t>& file, ElfImage& image) {
+  const uint64_t sections = u32(file, 32);
+  const unsigned entry_size = u16(file, 46), count = u16(file, 48);
+  if (sections == 0 || entry_size < SECTION_HEADER_BYTES || sections + uint64_t{entry_size} * count > file.size())
+    return;
+  for (unsigned i = 0; i < count; ++i) {
+    const uint64_t at = sections + uint64_t{entry_size} * i;
+    if (u32(file, at + 4) != SYMBOL_TABLE) continue;
+    const uint64_t table = u32(file, at + 16), table_size = u32(file, at + 20);
+    const unsigned link = u32(file, at + 24);
+    if (link >= count || table + table_size > file.size()) return;
+    const uint64_t strings_at = sections + uint64_t{entry_size} * link;
+    const uint64_t strings = u32(file, strings_at + 16), strings_size = u32(file, strings_at + 20);
+    if (strings + strings_size > file.size()) return;
+    for (uint64_t s = table; s + SYMBOL_BYTES <= table + table_size; s += SYMBOL_BYTES) {
+      const uint32_t name = u32(file, s), value = u32(file, s + 4), size = u32(file, s + 8);
+      if ((file[s + 12] & 0xf) != FUNCTION || size == 0 || name >= strings_size) continue;
+      const auto* text = reinterpret_cast<const char*>(file.data() + strings + name);
+      const size_t length = strnlen(text, strings_size - name);
+      image.functions.push_back({std::string(text, length), value & ~1u, size});
+    }
+  }
+  std::sort(image.functions.begin(), image.functions.end(),
+            [](const ElfFunction& a, const ElfFunction& b) { return a.address < b.address; });
+  // Aliases and overlaps: the first function at an address keeps it.
+  std::vector<ElfFunction> kept;
+  for (ElfFunction& f : image.functions)
+    if (kept.empty() || f.address >= kept.back().address + kept.back().size) kept.push_back(std::move(f));
+  image.functions = std::move(kept);
 }
 
 }  // namespace
@@ -75,6 +114,7 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
     image.segments.push_back(std::move(segment));
   }
   if (image.segments.empty()) fail("no loadable segment");
+  read_functions(file, image);
   if (!entry_covered) fail("entry point " + address_text(image.entry) + " is not in an executable segment");
   return image;
 }

@@ -21,10 +21,20 @@ struct ElfSegment {
   bool executable = false;
 };
 
+// A function of the symbol table (STT_FUNC with a size), for profiles and
+// the VCD's function signal.
+struct ElfFunction {
+  std::string name;      // as the symbol table has it (mangled for C++)
+  uint32_t address = 0;  // without the Thumb bit
+  uint32_t size = 0;
+};
+
 struct ElfImage {
   std::string path;
   uint32_t entry = 0;
   std::vector<ElfSegment> segments;
+  // Sorted by address, without overlaps; empty for a stripped executable.
+  std::vector<ElfFunction> functions;
 
   // ElfError unless every segment lies in [base, base + size).
   void check_fits(uint32_t base, uint64_t size, const std::string& what) const;

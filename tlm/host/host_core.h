@@ -1,0 +1,58 @@
+// What an instruction-set simulator running as the host's program
+// (host.model=iss, sw_driver/apps/iss_app.cpp) needs of the host beyond the
+// device layer (HostApi): the instruction side's bus reads, the core's two
+// interrupt inputs, the wait for an interrupt, and access to memory that
+// takes no time (a debugger's, semihosting's). Host implements it; the
+// launcher gets it through AppEnvironment::core.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tessera {
+
+class HostCore {
+ public:
+  virtual ~HostCore() = default;
+
+  // An instruction-side read over the bus at the host's local time: an
+  // instruction-cache line fill or one uncached fetch. The core stalls
+  // until it completes. Throws BusError (a prefetch abort).
+  virtual void fetch(uint32_t address, unsigned bytes) = 0;
+
+  // The core's IRQ and FIQ inputs (the interrupt controller's outputs) as
+  // the kernel sees them now.
+  virtual bool irq_asserted() = 0;
+  virtual bool fiq_asserted() = 0;
+  // CP15's wait for interrupt: the core idles until IRQ or FIQ is asserted
+  // (returns at once if one is), whether or not the CPSR masks it.
+  virtual void wait_for_interrupt() = 0;
+
+  // Memory as a debugger sees it: no time, no cache or bus activity.
+  // false where no target answers (an unmapped address).
+  virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
+  virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
+
+  // For the program's profile: the cycles the host has stalled on the bus
+  // and its data cache's misses, so far.
+  virtual double stalled_cycles() const = 0;
+  virtual uint64_t data_cache_misses() const = 0;
+
+  // The program's own statistics (instructions, CPI, caches, its profile),
+  // asked for whenever the host's are written: stats.json's host.iss.
+  virtual void set_program_statistics(std::function<nlohmann::json()> statistics) = 0;
+
+  // Whether a VCD is being written; then the program counter and the
+  // function holding it (an index the launcher names) are traced at the
+  // host's local time: host.pc, host.function.
+  virtual bool tracing_program() const = 0;
+  virtual void trace_program(uint32_t pc, uint32_t function) = 0;
+  // The functions' names by index (soc_sim writes them beside the VCD).
+  virtual void set_function_names(std::vector<std::string> names) = 0;
+};
+
+}  // namespace tessera
