@@ -49,12 +49,13 @@ class HostMemory : public iss::IssMemory {
     return accesses;
   }
 
+  // One call per instruction: the segment of the last fetch is tried first.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     m_pending += m_timing.fetch(address);
-    for (const Code& code : m_code)
-      if (address >= code.base && address - code.base + bytes <= code.bytes.size()) {
-        value = 0;
-        for (unsigned i = 0; i < bytes; ++i) value |= uint32_t{code.bytes[address - code.base + i]} << (8 * i);
+    if (m_fetch_segment < m_code.size() && fetched_from(m_code[m_fetch_segment], address, bytes, value)) return true;
+    for (size_t i = 0; i < m_code.size(); ++i)
+      if (fetched_from(m_code[i], address, bytes, value)) {
+        m_fetch_segment = i;
         return true;
       }
     return read(address, bytes, value);  // code outside the image: through the data side
@@ -119,9 +120,15 @@ class HostMemory : public iss::IssMemory {
     uint32_t base;
     std::vector<uint8_t> bytes;
   };
+  static bool fetched_from(const Code& code, uint32_t address, unsigned bytes, uint32_t& value) {
+    if (address < code.base || uint64_t{address - code.base} + bytes > code.bytes.size()) return false;
+    value = iss::load_little_endian(&code.bytes[address - code.base], bytes);
+    return true;
+  }
   HostApi& m_host;
   iss::Arm922tTiming& m_timing;
   std::vector<Code> m_code;
+  size_t m_fetch_segment = 0;  // where the last fetch was found
   uint64_t m_pending = 0;
   unsigned m_accesses = 0;
   std::string m_console;
