@@ -218,8 +218,8 @@ void ArmCore::enter(Exception exception, uint32_t return_address) {
   m_info.exception = true;
 }
 
-// Inline (and so not interposable in this position-independent build): the
-// step's hot path.
+// Inline (so not interposable in this position-independent build: inlined):
+// the step's hot path.
 inline bool ArmCore::condition(uint32_t cond) const {
   return (PASSES[cond] >> (m_cpsr >> 28)) & 1u;
 }
@@ -1017,6 +1017,7 @@ inline ArmCore::Decoded& ArmCore::decoded(uint32_t address, uint32_t raw, bool t
   Decoded* page = recent.key == key ? recent.entries : decoded_page(key);
   Decoded& entry = page[(address & ((1u << PAGE_BITS) - 1)) >> (thumb ? 1 : 2)];
   if (__builtin_expect(entry.raw != raw, 0)) {
+    ++m_decodes;
     if (thumb)
       Exec::decode_thumb(raw, entry);
     else

@@ -176,6 +176,9 @@ class ArmCore {
   void set_high_vectors(bool high) { m_high_vectors = high; }
 
   uint64_t instructions() const { return m_instructions; }
+  // Instructions decoded: once per address and state, again when the word
+  // there changed (a word 0 comes decoded; README.md, "The decode cache").
+  uint64_t decodes() const { return m_decodes; }
   // What the last step() executed (the timing layer's input).
   const StepInfo& last_step() const { return m_info; }
 
@@ -210,7 +213,7 @@ class ArmCore {
     uint32_t key = ~0u;  // page number << 1 | Thumb
     Decoded* entries = nullptr;
   };
-  Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);
+  inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);  // inline: the step's hot path
   Decoded* decoded_page(uint32_t key);
 
   static unsigned bank_of(Mode mode);
@@ -229,7 +232,7 @@ class ArmCore {
     else
       m_r[n] = value;
   }
-  bool condition(uint32_t cond) const;
+  inline bool condition(uint32_t cond) const;
   void undefined();
   [[noreturn]] void unpredictable(const std::string& what) const;
 
@@ -249,6 +252,7 @@ class ArmCore {
   uint32_t m_interrupt_lines = 0;  // psr::I while the IRQ line is high, psr::F for FIQ: masked by the CPSR's bits
   bool m_high_vectors = false;
   uint64_t m_instructions = 0;
+  uint64_t m_decodes = 0;
   StepInfo m_info;
   ExceptionHook m_exception_hook;
   std::array<RecentPage, RECENT_PAGES> m_recent_pages{};
