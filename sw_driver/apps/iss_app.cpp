@@ -49,13 +49,21 @@ class HostMemory : public iss::IssMemory {
     return accesses;
   }
 
-  // One call per instruction: the segment of the last fetch is tried first.
+  // One call per instruction: a fetch from the segment of the one before
+  // reads it directly.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     m_pending += m_timing.fetch(address);
-    if (m_fetch_segment < m_code.size() && fetched_from(m_code[m_fetch_segment], address, bytes, value)) return true;
-    for (size_t i = 0; i < m_code.size(); ++i)
-      if (fetched_from(m_code[i], address, bytes, value)) {
-        m_fetch_segment = i;
+    const uint32_t offset = address - m_window_base;  // wraps below the base: then past the size
+    if (uint64_t{offset} + bytes <= m_window_size) {
+      value = iss::load_little_endian(m_window + offset, bytes);
+      return true;
+    }
+    for (const Code& code : m_code)
+      if (address >= code.base && uint64_t{address - code.base} + bytes <= code.bytes.size()) {
+        m_window_base = code.base;
+        m_window_size = code.bytes.size();
+        m_window = code.bytes.data();
+        value = iss::load_little_endian(m_window + (address - code.base), bytes);
         return true;
       }
     return read(address, bytes, value);  // code outside the image: through the data side
@@ -120,15 +128,13 @@ class HostMemory : public iss::IssMemory {
     uint32_t base;
     std::vector<uint8_t> bytes;
   };
-  static bool fetched_from(const Code& code, uint32_t address, unsigned bytes, uint32_t& value) {
-    if (address < code.base || uint64_t{address - code.base} + bytes > code.bytes.size()) return false;
-    value = iss::load_little_endian(&code.bytes[address - code.base], bytes);
-    return true;
-  }
   HostApi& m_host;
   iss::Arm922tTiming& m_timing;
   std::vector<Code> m_code;
-  size_t m_fetch_segment = 0;  // where the last fetch was found
+  // The segment of the last fetch (its bytes never move: stores change them in place).
+  uint32_t m_window_base = 0;
+  uint64_t m_window_size = 0;
+  const uint8_t* m_window = nullptr;
   uint64_t m_pending = 0;
   unsigned m_accesses = 0;
   std::string m_console;
