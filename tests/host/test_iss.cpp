@@ -496,4 +496,27 @@ TEST_F(DecodeCache, TheSameWordIsDecodedApartInArmAndThumbState) {
   EXPECT_EQ(core.decodes(), 2u);
 }
 
+// Every word fetched is a branch to the same place in the next 4 KB page.
+struct PageHopper : IssMemory {
+  bool read(uint32_t, unsigned, uint32_t& value) override {
+    value = 0xea0003feu;  // b . + 4096
+    return true;
+  }
+  bool write(uint32_t, unsigned, uint32_t) override { return true; }
+};
+
+TEST(DecodeCachePages, ProgramsRunningThroughMorePagesThanKeptRunOn) {
+  PageHopper memory;
+  ArmCore core(memory);
+  core.set_cpsr(SYS);
+  core.set_reg(15, 0x10000000u);
+  for (int i = 0; i < 600; ++i) core.step();  // past the 256 pages kept, twice
+  EXPECT_EQ(core.reg(15), 0x10000000u + 600u * 4096u);
+  EXPECT_EQ(core.decodes(), 600u);
+  core.set_reg(15, 0x10000000u);  // the first pages again: dropped, so decoded again
+  for (int i = 0; i < 10; ++i) core.step();
+  EXPECT_EQ(core.reg(15), 0x10000000u + 10u * 4096u);
+  EXPECT_EQ(core.decodes(), 610u);
+}
+
 }  // namespace
