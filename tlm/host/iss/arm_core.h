@@ -194,7 +194,7 @@ class ArmCore {
   struct Decoded {
     Handler handler;
     uint32_t raw;   // the fetched word (ARM) or halfword (Thumb) this entry was decoded from
-    uint32_t insn;  // the ARM encoding executed (for Thumb, the one it stands for)
+    uint32_t insn;  // the ARM encoding executed (Thumb: the one it stands for, or the halfword itself)
     uint32_t imm;   // operand 2's immediate, a signed load/store offset, a branch displacement
     uint8_t cond;   // condition field (Thumb: AL, B<cond> tests its own)
     uint8_t rd, rn, rm, rs;
@@ -220,8 +220,6 @@ class ArmCore {
   void switch_bank(unsigned from, unsigned to);
   void enter(Exception exception, uint32_t return_address);
 
-  // Operand reads during execution: r15 reads as the instruction's address + 8.
-  uint32_t operand(unsigned n) const { return m_r[n]; }
   void write_pc(uint32_t address) {
     m_pc = address;
     m_branched = true;
