@@ -87,7 +87,7 @@ Run run_core(const ElfImage& image) {
   machine.load(image, core);
   const Stopwatch clock;
   machine.run(core, INSTRUCTION_LIMIT);
-  const Run run{clock.wall_seconds(), clock.cpu_seconds(), core.instructions(), machine.console()};
+  Run run{clock.wall_seconds(), clock.cpu_seconds(), core.instructions(), machine.console()};
   check_exit(machine, image);
   return run;
 }
@@ -109,7 +109,7 @@ Run run_timed(const ElfImage& image) {
     core.step();
     timing.step(core.last_step());
   }
-  const Run run{clock.wall_seconds(), clock.cpu_seconds(), core.instructions(), machine.console()};
+  Run run{clock.wall_seconds(), clock.cpu_seconds(), core.instructions(), machine.console()};
   check_exit(machine, image);
   return run;
 }

@@ -93,7 +93,7 @@ class Arm922tTiming : public CacheMaintenance {
     const unsigned base = base_cycles(info);
     // The next instruction's interlock state.
     if (info.executed && !info.exception && info.loaded >= 0 && !info.pc_written) {
-      m_load_register = info.loaded;  // 0..14 here
+      m_load_register = static_cast<uint8_t>(info.loaded);  // 0..14 here
       m_load_age = 0;
       m_load_narrow = info.narrow_load;
     } else if (m_load_register >= 0 && m_load_age == 0 && m_load_narrow && interlock == 0 && base == 1) {
