@@ -57,16 +57,25 @@ class HostMemory : public iss::IssMemory {
     return accesses;
   }
 
+  // One call per instruction: a fetch from the segment of the one before
+  // reads it directly.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     try {
       m_pending += m_timing.fetch(address);  // a miss's fill is the host's bus read (on_fill)
     } catch (const BusError&) {
       return false;  // a prefetch abort
     }
+    const uint32_t offset = address - m_window_base;  // wraps below the base: then past the size
+    if (uint64_t{offset} + bytes <= m_window_size) {
+      value = iss::load_little_endian(m_window + offset, bytes);
+      return true;
+    }
     for (const Code& code : m_code)
-      if (address >= code.base && address - code.base + bytes <= code.bytes.size()) {
-        value = 0;
-        for (unsigned i = 0; i < bytes; ++i) value |= uint32_t{code.bytes[address - code.base + i]} << (8 * i);
+      if (address >= code.base && uint64_t{address - code.base} + bytes <= code.bytes.size()) {
+        m_window_base = code.base;
+        m_window_size = code.bytes.size();
+        m_window = code.bytes.data();
+        value = iss::load_little_endian(m_window + (address - code.base), bytes);
         return true;
       }
     return read(address, bytes, value);  // code outside the image: through the data side
@@ -162,6 +171,10 @@ class HostMemory : public iss::IssMemory {
   iss::Arm922tTiming& m_timing;
   iss::Profile::Entry* m_entry = nullptr;
   std::vector<Code> m_code;
+  // The segment of the last fetch (its bytes never move: stores change them in place).
+  uint32_t m_window_base = 0;
+  uint64_t m_window_size = 0;
+  const uint8_t* m_window = nullptr;
   uint64_t m_pending = 0;
   unsigned m_accesses = 0;
   std::string m_console;

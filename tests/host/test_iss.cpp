@@ -6,11 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include "host/iss/arm922t_timing.h"
 #include "host/iss/arm_core.h"
 #include "host/iss/cp15.h"
 
 namespace {
 
+using tessera::iss::Arm922tTiming;
 using tessera::iss::ArmCore;
 using tessera::iss::CacheMaintenance;
 using tessera::iss::Coprocessors;
@@ -378,6 +380,143 @@ TEST_F(Iss, Cp15CacheOperationsReachTheCachesAndUserModeIsRefused) {
   cpu.step();
   EXPECT_EQ(cpu.mode(), Mode::und);
   EXPECT_EQ(recorder.calls.size(), 5u);
+}
+
+// The decode cache (README.md, "The decode cache"): an instruction the
+// program stores over one it has run is the one that runs next time, with
+// or without the c7 invalidation the ARM922T would need (the model's memory
+// is coherent: its caches are tag models that only cost time); a store
+// into a code page beside the instructions decodes nothing again. The
+// core runs under the timing layer, as in iss_run --timing, so that c7
+// reaches an instruction cache.
+struct DecodeCache : ::testing::Test {
+  Memory memory;
+  Arm922tTiming timing;
+  tessera::iss::TimedFetch port{memory, &timing};
+  ArmCore core{port};
+  Cp15 cp15{core, &timing};
+  void SetUp() override {
+    core.set_coprocessors(&cp15);
+    timing.attach(&cp15);
+    cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
+  }
+  // Steps until the PC is `end` (at most 100 steps); the steps taken.
+  int run_to(uint32_t end) {
+    int steps = 0;
+    while (core.reg(15) != end && steps < 100) {
+      core.step();
+      timing.step(core.last_step());
+      ++steps;
+    }
+    return steps;
+  }
+  // Stores its new instruction over the one at 0x100 and runs it: r0 is 1
+  // after the old instruction, 2 after the new one.
+  void self_modifying(uint32_t between_store_and_branch) {
+    memory.program(0x100, {0xe3a00001,                // mov r0, #1      @ replaced by mov r0, #2
+                           0xe3500002,                // cmp r0, #2
+                           0x0a000004,                // beq 0x120
+                           0xe59f1010,                // ldr r1, [pc, #16]   @ the word at 0x124
+                           0xe3a02c01,                // mov r2, #0x100
+                           0xe5821000,                // str r1, [r2]
+                           between_store_and_branch,  //
+                           0xeafffff7,                // b 0x100
+                           0xe1a00000,                // nop             @ 0x120: done
+                           0xe3a00002});              // .word: mov r0, #2
+    core.set_cpsr(SYS);
+    core.set_reg(15, 0x100);
+  }
+};
+
+TEST_F(DecodeCache, AnInstructionStoredOverOneThatRanIsExecutedWithoutAnInvalidation) {
+  self_modifying(0xe1a00000);    // nop
+  EXPECT_EQ(run_to(0x120), 11);  // 8 instructions, then the new one, cmp and beq
+  EXPECT_EQ(memory.word(0x100), 0xe3a00002u);
+  EXPECT_EQ(core.reg(0), 2u);
+  EXPECT_EQ(core.decodes(), 9u);  // the 8 instructions and the new one
+  // One line fetched (0x100..0x11f), missed once: the I-cache still holds
+  // it with the old instruction (its data are the model's memory, always current).
+  EXPECT_EQ(timing.icache().misses(), 1u);
+}
+
+TEST_F(DecodeCache, AnInstructionStoredOverOneThatRanIsExecutedAfterAnInvalidation) {
+  self_modifying(mcr(2, 7, 5, 1));  // invalidate the I-cache line of r2 (0x100)
+  EXPECT_EQ(run_to(0x120), 11);
+  EXPECT_EQ(core.reg(0), 2u);
+  EXPECT_EQ(core.decodes(), 9u);
+  // The line invalidated under the branch at 0x11c: it misses again there.
+  EXPECT_EQ(timing.icache().misses(), 2u);
+}
+
+TEST_F(DecodeCache, AThumbInstructionStoredOverOneThatRanIsExecuted) {
+  // Halfwords, two to a word, the first in the low half.
+  memory.program(0x200, {0x28022001,    // 0x200: movs r0, #1 (replaced by movs r0, #2); cmp r0, #2
+                         0x4a03d004,    // 0x204: beq 0x210; ldr r2, [pc, #12] (the word at 0x214)
+                         0x801a4b03,    // 0x208: ldr r3, [pc, #12] (the word at 0x218); strh r2, [r3]
+                         0x46c0e7f8,    // 0x20c: b 0x200; nop
+                         0x46c046c0,    // 0x210: nop (done); nop
+                         0x00002002,    // 0x214: .word: movs r0, #2
+                         0x00000200});  // 0x218: .word: 0x200
+  core.set_cpsr(SYS | psr::T);
+  core.set_reg(15, 0x200);
+  EXPECT_EQ(run_to(0x210), 10);  // 7 instructions, then the new one, cmp and beq
+  EXPECT_EQ(core.reg(0), 2u);
+  EXPECT_EQ(core.decodes(), 8u);
+}
+
+TEST_F(DecodeCache, AStoreIntoACodePageBesideTheInstructionsDecodesNothingAgain) {
+  memory.program(0x100, {0xe3a00000,    // mov r0, #0
+                         0xe2800001,    // add r0, r0, #1
+                         0xe58f0008,    // str r0, [pc, #8]   @ the word at 0x118: same page, same line
+                         0xe350000a,    // cmp r0, #10
+                         0x1afffffb,    // bne 0x104
+                         0xe1a00000,    // nop                @ 0x114: done
+                         0x00000000});  // .word
+  core.set_cpsr(SYS);
+  core.set_reg(15, 0x100);
+  EXPECT_EQ(run_to(0x114), 41);
+  EXPECT_EQ(core.reg(0), 10u);
+  EXPECT_EQ(memory.word(0x118), 10u);
+  EXPECT_EQ(core.decodes(), 5u);  // each of the 5 instructions once, for 41 executed
+  EXPECT_EQ(timing.icache().misses(), 1u);
+}
+
+TEST_F(DecodeCache, TheSameWordIsDecodedApartInArmAndThumbState) {
+  memory.program(0x300, {0x00002001});  // ARM: andeq r2, r0, r1; Thumb: movs r0, #1 (and a 0)
+  core.set_cpsr(SYS | psr::Z);
+  core.set_reg(0, 0x10);
+  core.set_reg(1, 0x30);
+  core.set_reg(15, 0x300);
+  core.step();
+  EXPECT_EQ(core.reg(2), 0x10u);
+  core.set_cpsr(SYS | psr::T);
+  core.set_reg(15, 0x300);
+  core.step();
+  EXPECT_EQ(core.reg(0), 1u);
+  EXPECT_EQ(core.decodes(), 2u);
+}
+
+// Every word fetched is a branch to the same place in the next 4 KB page.
+struct PageHopper : IssMemory {
+  bool read(uint32_t, unsigned, uint32_t& value) override {
+    value = 0xea0003feu;  // b . + 4096
+    return true;
+  }
+  bool write(uint32_t, unsigned, uint32_t) override { return true; }
+};
+
+TEST(DecodeCachePages, ProgramsRunningThroughMorePagesThanKeptRunOn) {
+  PageHopper memory;
+  ArmCore core(memory);
+  core.set_cpsr(SYS);
+  core.set_reg(15, 0x10000000u);
+  for (int i = 0; i < 600; ++i) core.step();  // past the 256 pages kept, twice
+  EXPECT_EQ(core.reg(15), 0x10000000u + 600u * 4096u);
+  EXPECT_EQ(core.decodes(), 600u);
+  core.set_reg(15, 0x10000000u);  // the first pages again: dropped, so decoded again
+  for (int i = 0; i < 10; ++i) core.step();
+  EXPECT_EQ(core.reg(15), 0x10000000u + 10u * 4096u);
+  EXPECT_EQ(core.decodes(), 610u);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // tlm/host/iss/README.md, "Timing", lists each rule with its source.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -28,6 +29,13 @@ class InstructionCache {
   // A fetch: true on a hit; on a miss the line is allocated (the caller
   // charges the fill).
   bool access(uint32_t address, bool round_robin);
+  // A fetch from the line of the last hit: a hit, counted, without a search
+  // (false: not that line; nothing counted, access() decides).
+  bool hit_last_line(uint32_t address) {
+    if ((address & ~(LINE_BYTES - 1)) != m_last_line) return false;
+    ++m_hits;
+    return true;
+  }
   void invalidate_all();
   void invalidate_line(uint32_t address);
 
@@ -37,6 +45,13 @@ class InstructionCache {
  private:
   static constexpr uint32_t INVALID = 1;        // line addresses are multiples of 32: bit 0 is free
   std::array<uint32_t, SETS * WAYS> m_lines{};  // line address per way, set-major; INVALID if empty
+  // The model's speed, not the cache's behaviour: lines known to be
+  // resident, direct-mapped by line number (a slot holds a resident line or
+  // INVALID), so that most hits on another line than the last need no
+  // search of a 64-way set. Cleared with the line it holds.
+  static constexpr unsigned RESIDENT_SLOTS = 512;
+  std::array<uint32_t, RESIDENT_SLOTS> m_resident{};
+  static unsigned resident_slot(uint32_t line) { return (line / LINE_BYTES) % RESIDENT_SLOTS; }
   std::array<uint8_t, SETS> m_round_robin{};
   uint16_t m_lfsr = 0xace1u;       // the pseudo-random victim's source
   uint32_t m_last_line = INVALID;  // the line of the last hit: consecutive fetches skip the search
@@ -62,8 +77,13 @@ class Arm922tTiming : public CacheMaintenance {
   // instruction cache is on with pseudo-random replacement.
   void attach(const Cp15* cp15) { m_cp15 = cp15; }
 
-  // Stall cycles of an instruction fetch at `address` (0 on a hit).
-  unsigned fetch(uint32_t address);
+  // Stall cycles of an instruction fetch at `address` (0 on a hit). Inline:
+  // one per instruction; a fetch from the line of the one before is a hit
+  // without a search.
+  unsigned fetch(uint32_t address) {
+    if ((m_cp15 == nullptr || m_cp15->instruction_cache_enabled()) && m_icache.hit_last_line(address)) return 0;
+    return fetch_other_line(address);
+  }
   // Makes line fills (32 bytes at the line's address) and uncached fetches
   // (the word) calls of `fill`, a bus read whose time is the caller's,
   // instead of TimingParams' cycle figures: fetch() then returns 0 for them.
@@ -71,12 +91,39 @@ class Arm922tTiming : public CacheMaintenance {
   using Fill = std::function<void(uint32_t address, unsigned bytes)>;
   void on_fill(Fill fill) { m_fill = std::move(fill); }
   // Cycles of the step the core just made, interlocks included (the fetch's
-  // stall is fetch()'s).
-  unsigned step(const StepInfo& info);
+  // stall is fetch()'s). Inline: one per instruction.
+  unsigned step(const StepInfo& info) {
+    ++m_instructions;
+    unsigned interlock = 0;
+    if (m_load_register >= 0 && info.executed && !info.exception && (info.reads >> m_load_register) & 1u)
+      interlock = m_load_age == 0 && m_load_narrow ? 2 : 1;
+    const unsigned base = base_cycles(info);
+    // The next instruction's interlock state.
+    if (info.executed && !info.exception && info.loaded >= 0 && !info.pc_written) {
+      m_load_register = static_cast<uint8_t>(info.loaded);  // 0..14 here
+      m_load_age = 0;
+      m_load_narrow = info.narrow_load;
+    } else if (m_load_register >= 0 && m_load_age == 0 && m_load_narrow && interlock == 0 && base == 1) {
+      m_load_age = 1;  // a byte/halfword load still interlocks the instruction after next
+    } else {
+      m_load_register = -1;
+    }
+    m_interlock_cycles += interlock;
+    m_cycles += base + interlock;
+    return base + interlock;
+  }
 
-  // The ARM9TDMI's multiplier cycles for a multiplier operand: 1 to 4, one
-  // per 8 significant bits (early termination).
-  static unsigned multiplier_cycles(uint32_t multiplier, bool is_signed);
+  // The ARM9TDMI's multiplier cycles for a multiplier operand, one per 8
+  // significant bits (early termination): 1 if its bits 31:8 are all zero
+  // (or, signed, all one), 2 for bits 31:16, 3 for bits 31:24, 4 otherwise
+  // (ARM9TDMI TRM, the instruction cycle summary's multiply rows).
+  static unsigned multiplier_cycles(uint32_t multiplier, bool is_signed) {
+    const uint32_t value = is_signed && (multiplier & 0x80000000u) ? ~multiplier : multiplier;
+    if ((value >> 8) == 0) return 1;
+    if ((value >> 16) == 0) return 2;
+    if ((value >> 24) == 0) return 3;
+    return 4;
+  }
 
   uint64_t instructions() const { return m_instructions; }
   uint64_t cycles() const { return m_cycles; }  // steps' cycles plus fetch stalls
@@ -89,7 +136,43 @@ class Arm922tTiming : public CacheMaintenance {
   void invalidate_instruction_line(uint32_t address) override { m_icache.invalidate_line(address); }
 
  private:
-  unsigned base_cycles(const StepInfo& info) const;
+  unsigned fetch_other_line(uint32_t address);
+  // The rules of the README's table, as a table (a switch here costs the
+  // simulation a mispredicted jump per instruction): the cycles of each
+  // class without and with the PC written, to which a register shift, MSR's
+  // control field, the multiplier and the LDM/STM register count add.
+  static constexpr uint8_t FIXED_CYCLES[][2] = {
+      {1, 1},  // none
+      {1, 3},  // data_processing: + 2 for the refill
+      {1, 1},  // multiply: + m, + 1 with the accumulate
+      {2, 2},  // multiply_long: + m, + 1 with the accumulate
+      {1, 5},  // load: LDR pc 5
+      {1, 1},  // store
+      {0, 4},  // load_multiple: + n (at least 2); n + 4 with the PC
+      {0, 0},  // store_multiple: + n (at least 2)
+      {2, 2},  // swap
+      {1, 3},  // branch: taken 3 (Thumb's B<cond> not taken: 1)
+      {2, 2},  // status_read
+      {1, 1},  // status_write: 3 with the control field
+      {2, 2},  // coprocessor_read
+      {1, 1},  // coprocessor_write
+      {3, 3},  // exception
+  };
+  static_assert(sizeof FIXED_CYCLES / sizeof FIXED_CYCLES[0] == static_cast<size_t>(InsnClass::exception) + 1,
+                "a row per instruction class");
+  static unsigned base_cycles(const StepInfo& info) {
+    if (info.exception) return 3;  // SWI, undefined, aborts, interrupts: the vector's pipeline refill
+    if (!info.executed) return 1;  // a failed condition: the instruction passes through as a no-op
+    const auto kind = info.kind;
+    unsigned cycles = FIXED_CYCLES[static_cast<unsigned>(kind)][info.pc_written ? 1 : 0] +
+                      (info.register_shift ? 1 : 0) + (info.control_write ? 2 : 0);
+    if (kind == InsnClass::multiply || kind == InsnClass::multiply_long)
+      cycles += multiplier_cycles(info.multiplier, info.signed_multiply) + (info.accumulate ? 1 : 0);
+    else if (kind == InsnClass::load_multiple || kind == InsnClass::store_multiple)
+      cycles +=
+          kind == InsnClass::load_multiple && info.pc_written ? info.registers : std::max<unsigned>(info.registers, 2);
+    return cycles;
+  }
 
   TimingParams m_params;
   const Cp15* m_cp15 = nullptr;

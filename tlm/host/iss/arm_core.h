@@ -6,8 +6,10 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 namespace tessera::iss {
 
@@ -44,6 +46,27 @@ class IssMemory {
   // Instruction fetch (the I side); by default the same as a read.
   virtual bool fetch(uint32_t address, unsigned bytes, uint32_t& value) { return read(address, bytes, value); }
 };
+
+// The 1, 2 or 4 bytes at `p` as a little-endian value, and back: for ports
+// that hold the target's memory as bytes (fixed sizes, so that each is one
+// load or store).
+inline uint32_t load_little_endian(const uint8_t* p, unsigned bytes) {
+  switch (bytes) {
+    case 4: return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+    case 2: return uint32_t{p[0]} | uint32_t{p[1]} << 8;
+    default: return p[0];
+  }
+}
+inline void store_little_endian(uint8_t* p, unsigned bytes, uint32_t value) {
+  switch (bytes) {
+    case 4:
+      p[3] = static_cast<uint8_t>(value >> 24);
+      p[2] = static_cast<uint8_t>(value >> 16);
+      [[fallthrough]];
+    case 2: p[1] = static_cast<uint8_t>(value >> 8); [[fallthrough]];
+    default: p[0] = static_cast<uint8_t>(value);
+  }
+}
 
 // Coprocessor register transfers (MRC/MCR). false: no such register or not
 // allowed; the core takes the undefined-instruction exception.
@@ -141,8 +164,8 @@ class ArmCore {
 
   // Interrupt inputs (level-sensitive, taken before the next instruction
   // when not masked).
-  void set_irq(bool level) { m_irq_line = level; }
-  void set_fiq(bool level) { m_fiq_line = level; }
+  void set_irq(bool level) { m_interrupt_lines = (m_interrupt_lines & ~psr::I) | (level ? psr::I : 0); }
+  void set_fiq(bool level) { m_interrupt_lines = (m_interrupt_lines & ~psr::F) | (level ? psr::F : 0); }
   // Called on every exception entry, before the core changes mode, with the
   // address of the instruction that caused it (for interrupts: the next
   // one). A launcher that has no handlers to vector to throws from it.
@@ -159,16 +182,50 @@ class ArmCore {
   void set_high_vectors(bool high) { m_high_vectors = high; }
 
   uint64_t instructions() const { return m_instructions; }
+  // Instructions decoded: once per address and state, again when the word
+  // there changed (a word 0 comes decoded; README.md, "The decode cache").
+  uint64_t decodes() const { return m_decodes; }
   // What the last step() executed (the timing layer's input).
   const StepInfo& last_step() const { return m_info; }
 
  private:
+  // The decode cache (README.md, "The decode cache"): every instruction is
+  // decoded once per address and state into a Decoded entry, the handler
+  // that executes it with its fields extracted and the static part of its
+  // StepInfo; the word it was decoded from is kept, and an entry whose word
+  // differs from what the fetch returned is decoded again, so a store into
+  // code (by the program, a debugger or a DMA) is never missed.
+  struct Decoded;
+  using Handler = void (*)(ArmCore& core, const Decoded& insn);
+  struct Decoded {
+    Handler handler;
+    uint32_t raw;   // the fetched word (ARM) or halfword (Thumb) this entry was decoded from
+    uint32_t insn;  // the ARM encoding executed (Thumb: the one it stands for, or the halfword itself)
+    uint32_t imm;   // operand 2's immediate, a signed load/store offset, a branch displacement
+    uint8_t cond;   // condition field (Thumb: AL, B<cond> tests its own)
+    uint8_t rd, rn, rm, rs;
+    uint8_t shift_type, shift_amount;  // an immediate shift, or the immediate's rotation
+    bool up;                           // a register offset is added (else subtracted)
+    StepInfo info;                     // what the step reports, but for the operand-dependent fields
+  };
+  struct Exec;  // the handlers (arm_core.cpp)
+  friend struct Exec;
+  // Decoded entries per page of code and state; the pages are found through
+  // a small direct-mapped table of recent ones.
+  static constexpr unsigned PAGE_BITS = 12;
+  static constexpr unsigned RECENT_PAGES = 64;
+  static constexpr size_t MAX_PAGES = 256;  // beyond: all dropped (a program running from all of memory)
+  struct RecentPage {
+    uint32_t key = ~0u;  // page number << 1 | Thumb
+    Decoded* entries = nullptr;
+  };
+  inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);  // inline: the step's hot path
+  Decoded* decoded_page(uint32_t key);
+
   static unsigned bank_of(Mode mode);
   void switch_bank(unsigned from, unsigned to);
   void enter(Exception exception, uint32_t return_address);
 
-  // Operand reads during execution: r15 reads as the instruction's address + 8.
-  uint32_t operand(unsigned n) const { return m_r[n]; }
   void write_pc(uint32_t address) {
     m_pc = address;
     m_branched = true;
@@ -179,20 +236,7 @@ class ArmCore {
     else
       m_r[n] = value;
   }
-  bool condition(uint32_t cond) const;
-  uint32_t shifted_register(uint32_t insn, bool& carry) const;
-
-  void execute_arm(uint32_t insn);
-  void execute_thumb(uint32_t insn);
-  void data_processing(uint32_t insn);
-  void multiply(uint32_t insn);
-  void multiply_long(uint32_t insn);
-  void single_transfer(uint32_t insn);
-  void halfword_transfer(uint32_t insn);
-  void block_transfer(uint32_t insn);
-  void swap(uint32_t insn);
-  void status_transfer(uint32_t insn);
-  void coprocessor_transfer(uint32_t insn);
+  inline bool condition(uint32_t cond) const;
   void undefined();
   [[noreturn]] void unpredictable(const std::string& what) const;
 
@@ -209,13 +253,15 @@ class ArmCore {
   std::array<uint32_t, 5> m_user_r8_12{};
   std::array<uint32_t, 5> m_fiq_r8_12{};
   std::array<uint32_t, 6> m_spsr{};
-  bool m_irq_line = false;
-  bool m_fiq_line = false;
+  uint32_t m_interrupt_lines = 0;  // psr::I while the IRQ line is high, psr::F for FIQ: masked by the CPSR's bits
   bool m_high_vectors = false;
   uint64_t m_instructions = 0;
+  uint64_t m_decodes = 0;
   StepInfo m_info;
   ExceptionHook m_exception_hook;
   SwiHook m_swi_hook;
+  std::array<RecentPage, RECENT_PAGES> m_recent_pages{};
+  std::unordered_map<uint32_t, std::unique_ptr<Decoded[]>> m_pages;
 };
 
 }  // namespace tessera::iss

@@ -40,9 +40,11 @@ class BareMachine : public IssMemory {
 
   bool read(uint32_t address, unsigned size, uint32_t& value) override {
     if (uint64_t{address} + size > m_ram.size()) return false;
-    value = 0;
-    for (unsigned i = 0; i < size; ++i) value |= uint32_t{m_ram[address + i]} << (8 * i);
+    value = load_little_endian(&m_ram[address], size);
     return true;
+  }
+  bool fetch(uint32_t address, unsigned size, uint32_t& value) override {
+    return BareMachine::read(address, size, value);
   }
   bool write(uint32_t address, unsigned size, uint32_t value) override {
     if (address == CONSOLE) {
@@ -55,7 +57,7 @@ class BareMachine : public IssMemory {
       return true;
     }
     if (uint64_t{address} + size > m_ram.size()) return false;
-    for (unsigned i = 0; i < size; ++i) m_ram[address + i] = static_cast<uint8_t>(value >> (8 * i));
+    store_little_endian(&m_ram[address], size, value);
     return true;
   }
 
