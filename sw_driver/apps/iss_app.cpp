@@ -50,11 +50,12 @@ class HostMemory : public iss::IssMemory {
     }
   }
   uint64_t pending() const { return m_pending; }
-  // Host accesses since the last call (each already charged its issue cycle).
-  unsigned take_accesses() {
-    const unsigned accesses = m_accesses;
-    m_accesses = 0;
-    return accesses;
+  // The cycles the host has charged as busy for the accesses since the last
+  // call (their issue cycles: host.cycles.load and .store, per word).
+  uint64_t take_host_charged() {
+    const uint64_t charged = m_host_charged;
+    m_host_charged = 0;
+    return charged;
   }
 
   // One call per instruction: a fetch from the segment of the one before
@@ -83,7 +84,6 @@ class HostMemory : public iss::IssMemory {
 
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     flush();
-    ++m_accesses;
     const Charged charged(*this);
     try {
       value = bytes == 4 ? m_host.read32(address) : bytes == 2 ? m_host.read16(address) : m_host.read8(address);
@@ -109,7 +109,6 @@ class HostMemory : public iss::IssMemory {
       return true;
     }
     flush();
-    ++m_accesses;
     const Charged charged(*this);
     try {
       if (bytes == 4)
@@ -129,18 +128,57 @@ class HostMemory : public iss::IssMemory {
     return true;
   }
 
+  // LDM and STM: the host's read_words and write_words, one burst where
+  // the words miss the data cache.
+  bool read_block(uint32_t address, uint32_t* words, unsigned count) override {
+    flush();
+    const Charged charged(*this);
+    try {
+      m_host.read_words(address, words, count);
+      return true;
+    } catch (const BusError& error) {
+      m_fault_address = error.address();
+      return false;
+    }
+  }
+
+  bool write_block(uint32_t address, const uint32_t* words, unsigned count) override {
+    if (address <= EXIT && uint64_t{address} + 4 * count > CONSOLE)
+      return IssMemory::write_block(address, words, count);
+    flush();
+    const Charged charged(*this);
+    try {
+      m_host.write_words(address, words, count);
+    } catch (const BusError& error) {
+      m_fault_address = error.address();
+      return false;
+    }
+    for (Code& code : m_code)  // a store into the code: the copy follows
+      for (unsigned i = 0; i < count; ++i) {
+        const uint32_t at = address + 4 * i;
+        if (at >= code.base && uint64_t{at - code.base} + 4 <= code.bytes.size())
+          for (unsigned b = 0; b < 4; ++b) code.bytes[at - code.base + b] = static_cast<uint8_t>(words[i] >> (8 * b));
+      }
+    return true;
+  }
+
   // The profile entry of the instruction being executed: its data
   // accesses' stalls and misses are charged to it.
   void set_profile_entry(iss::Profile::Entry* entry) { m_entry = entry; }
   iss::Profile::Entry* profile_entry() const { return m_entry; }
 
-  // What the host's stall and miss counters moved by while it lives, charged
-  // to the profile entry.
+  // What the host's busy, stall and miss counters moved by while it lives:
+  // the busy cycles are the accesses' issue cycles (not charged again), the
+  // rest goes to the profile entry.
   class Charged {
    public:
     explicit Charged(HostMemory& memory)
-        : m_memory(memory), m_stalled(memory.m_core.stalled_cycles()), m_misses(memory.m_core.data_cache_misses()) {}
+        : m_memory(memory),
+          m_busy(memory.m_core.busy_cycles()),
+          m_stalled(memory.m_core.stalled_cycles()),
+          m_misses(memory.m_core.data_cache_misses()) {}
     ~Charged() {
+      m_memory.m_host_charged += m_memory.m_core.busy_cycles() - m_busy;
       m_memory.m_entry->stall_cycles += m_memory.m_core.stalled_cycles() - m_stalled;
       m_memory.m_entry->dcache_misses += m_memory.m_core.data_cache_misses() - m_misses;
     }
@@ -149,6 +187,7 @@ class HostMemory : public iss::IssMemory {
 
    private:
     HostMemory& m_memory;
+    uint64_t m_busy;
     double m_stalled;
     uint64_t m_misses;
   };
@@ -176,7 +215,7 @@ class HostMemory : public iss::IssMemory {
   uint64_t m_window_size = 0;
   const uint8_t* m_window = nullptr;
   uint64_t m_pending = 0;
-  unsigned m_accesses = 0;
+  uint64_t m_host_charged = 0;
   std::string m_console;
   bool m_exited = false;
   uint32_t m_status = 0;
@@ -421,13 +460,13 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
       iss::Profile::Entry& entry = profile.at(core.reg(15));
       memory.set_profile_entry(&entry);
       core.step();
-      // The instruction's cycles beyond the issue cycle of each host access
-      // it made (those the host has charged already).
+      // The instruction's cycles beyond the issue cycles of its host
+      // accesses (those the host has charged already).
       const unsigned cycles = timing.step(core.last_step());
       ++entry.instructions;
       entry.cycles += cycles;
-      const unsigned accesses = memory.take_accesses();
-      memory.charge(cycles > accesses ? cycles - accesses : 0);
+      const uint64_t charged = memory.take_host_charged();
+      memory.charge(cycles > charged ? cycles - charged : 0);
       if (tracing && profile.last_index() != traced_function) {
         memory.flush();
         traced_function = profile.last_index();

@@ -1,7 +1,8 @@
 // The SoC launcher of ARM executables (sw_driver/apps/iss_app.cpp) charges
 // the host exactly the timing layer's cycles: for the test programs, the
-// cycles it passes to compute() plus the one issue cycle the host charges
-// for each of its reads and writes equal what Arm922tTiming counts for the
+// cycles it passes to compute() plus the issue cycle the host charges for
+// each word it reads or writes (LDM and STM are one read_words or
+// write_words) equal what Arm922tTiming counts for the
 // same program on the bare machine, less the instruction cache's fill
 // stalls; those are the host's own instruction-side bus reads instead
 // (HostCore::fetch), one per miss of the bare machine's instruction cache.
@@ -57,6 +58,18 @@ BareFigures bare_figures(const std::string& path) {
   return {timing.cycles() - timing.fetch_stall_cycles(), timing.icache().misses()};
 }
 
+// One issue cycle per word the program loaded or stored (what the SoC's host
+// charges with host.cycles.load and .store at 1).
+uint64_t issue_cycles(const RecordingHost& host) {
+  uint64_t cycles = 0;
+  for (const auto& access : host.log()) {
+    using Kind = RecordingHost::Access::Kind;
+    if (access.kind == Kind::read || access.kind == Kind::write) ++cycles;
+    if (access.kind == Kind::read_words || access.kind == Kind::write_words) cycles += access.count;
+  }
+  return cycles;
+}
+
 // The host's core side over the recording host's memory: debug access
 // reads and writes it, fetches are counted (and charge nothing), no
 // interrupt is ever asserted.
@@ -79,6 +92,9 @@ class RecordingCore : public tessera::HostCore {
     std::memcpy(m_host.memory(address, bytes), data, bytes);
     return true;
   }
+  // As the SoC's host with host.cycles.load and .store at 1: one issue
+  // cycle per word loaded or stored.
+  uint64_t busy_cycles() const override { return issue_cycles(m_host); }
   double stalled_cycles() const override { return 0; }
   uint64_t data_cache_misses() const override { return 0; }
   void set_program_statistics(std::function<nlohmann::json()> statistics) override {
@@ -108,14 +124,10 @@ LauncherFigures launcher_figures(const std::string& path) {
   env.core = &core;
   env.memory_bytes = 1u << 20;
   EXPECT_EQ(tessera::run_elf_app(env, path), 0) << path;
-  size_t accesses = 0;
-  for (const auto& access : host.log())
-    if (access.kind == RecordingHost::Access::Kind::read || access.kind == RecordingHost::Access::Kind::write)
-      ++accesses;
   uint64_t computed = 0;
   for (int op = 0; op < static_cast<int>(tessera::Op::count_); ++op)
     computed += host.operations(static_cast<tessera::Op>(op));
-  return {computed + accesses, core.fetches};
+  return {computed + issue_cycles(host), core.fetches};
 }
 
 TEST(IssAppTiming, ArmProgramIsChargedTheTimingLayersCycles) {

@@ -122,6 +122,7 @@ class Host : public Block, public HostApi, public HostCore {
   void wait_for_interrupt() override;
   bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override;
   bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) override;
+  uint64_t busy_cycles() const override { return m_busy_cycles.value; }
   double stalled_cycles() const override {
     return static_cast<double>(m_stall_ticks) / static_cast<double>(m_period_ticks);
   }

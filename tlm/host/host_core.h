@@ -37,8 +37,11 @@ class HostCore {
   virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
   virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
 
-  // For the program's profile: the cycles the host has stalled on the bus
-  // and its data cache's misses, so far.
+  // The cycles the host has charged as busy (the launcher charges the
+  // instructions' cycles less those its accesses were charged), and for the
+  // program's profile the cycles it has stalled on the bus and its data
+  // cache's misses, so far.
+  virtual uint64_t busy_cycles() const = 0;
   virtual double stalled_cycles() const = 0;
   virtual uint64_t data_cache_misses() const = 0;
 

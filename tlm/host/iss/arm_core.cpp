@@ -429,33 +429,33 @@ struct ArmCore::Exec {
       if (n >= 13 && n < 15 && bank != 0) return c.m_r13_14[0][n - 13];
       return c.m_r[n];
     };
-    std::array<uint32_t, 16> loaded{};
-    bool first = true;
-    for (unsigned n = 0; n < 16; ++n) {
-      if (!(list & (1u << n))) continue;
-      if (load) {
-        if (!c.m_memory.read(address, 4, loaded[n])) {
-          c.enter(Exception::data_abort, c.m_current + 8);
-          return;
-        }
-      } else {
-        uint32_t value;
+    // The transfer is one block access of the port (a burst where the host
+    // makes one), the lowest register at the lowest address.
+    std::array<uint32_t, 16> words{};
+    if (!load) {
+      unsigned i = 0;
+      for (unsigned n = 0; n < 16; ++n) {
+        if (!(list & (1u << n))) continue;
         if (n == 15)
-          value = c.m_current + 12;
+          words[i] = c.m_current + 12;
         else if (user_registers)
-          value = user_reg(n);
-        else if (n == rn && writeback && !first)  // ARM9TDMI: the base after write-back
-          value = final_base;
+          words[i] = user_reg(n);
+        else if (n == rn && writeback && i != 0)  // ARM9TDMI: the base after write-back
+          words[i] = final_base;
         else
-          value = c.m_r[n];
-        if (!c.m_memory.write(address, 4, value)) {
-          c.enter(Exception::data_abort, c.m_current + 8);
-          return;
-        }
+          words[i] = c.m_r[n];
+        ++i;
       }
-      first = false;
-      address += 4;
     }
+    if (!(load ? c.m_memory.read_block(address, words.data(), count)
+               : c.m_memory.write_block(address, words.data(), count))) {
+      c.enter(Exception::data_abort, c.m_current + 8);
+      return;
+    }
+    std::array<uint32_t, 16> loaded{};
+    if (load)
+      for (unsigned n = 0, i = 0; n < 16; ++n)
+        if (list & (1u << n)) loaded[n] = words[i++];
     if (writeback) c.m_r[rn] = final_base;  // rn == 15 is unpredictable; never the PC here
     if (load) {
       for (unsigned n = 0; n < 15; ++n)

@@ -45,6 +45,19 @@ class IssMemory {
   virtual bool write(uint32_t address, unsigned bytes, uint32_t value) = 0;
   // Instruction fetch (the I side); by default the same as a read.
   virtual bool fetch(uint32_t address, unsigned bytes, uint32_t& value) { return read(address, bytes, value); }
+  // LDM and STM: `count` words from `address` up, one access (a port that
+  // has bursts makes it one); by default word by word, stopping at the
+  // first that fails (the words before it are transferred, as on the core).
+  virtual bool read_block(uint32_t address, uint32_t* words, unsigned count) {
+    for (unsigned i = 0; i < count; ++i)
+      if (!read(address + 4 * i, 4, words[i])) return false;
+    return true;
+  }
+  virtual bool write_block(uint32_t address, const uint32_t* words, unsigned count) {
+    for (unsigned i = 0; i < count; ++i)
+      if (!write(address + 4 * i, 4, words[i])) return false;
+    return true;
+  }
 };
 
 // The 1, 2 or 4 bytes at `p` as a little-endian value, and back: for ports
