@@ -12,6 +12,7 @@
 #include "apps/apps.h"
 #include "apps/gl_apps.h"
 #include "apps/iss_app.h"
+#include "host/iss/elf_image.h"
 
 namespace tessera {
 
@@ -68,8 +69,14 @@ AppInfo find_app(const std::string& name, bool on_iss) {
     return {[image, name](AppEnvironment& env) { return run_elf_app(env, image, name); },
             it->second.description + " (cross-compiled, on the ISS)"};
   }
-  if (is_elf_app(name))
+  if (is_elf_app(name)) {
+    try {
+      (void)iss::read_elf(name);  // bad input is the command line's error, before the simulation
+    } catch (const iss::ElfError& e) {
+      throw std::invalid_argument(e.what());
+    }
     return {[name](AppEnvironment& env) { return run_elf_app(env, name); }, "ARM executable " + name + " on the ISS"};
+  }
   if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
     if (on_iss)
       throw std::invalid_argument("application library '" + name +

@@ -12,6 +12,8 @@
 //
 // Each instruction is charged through the host model, so the rate printed is
 // the model's; it is printed beside the rate measured on the J2210 board.
+// On the ISS (host.model=iss) the loop is GCC's code for the same loop in C
+// (calibration_loops.c), six instructions an iteration as above.
 //
 // The display port's: the host copies one finished frame of the study's
 // size (192x144, 16 bits per pixel) from its frame buffer in system memory
@@ -19,10 +21,13 @@
 // eight words, the port mode's present()), and the time is printed beside
 // the 36 ms measured on the board.
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include "apps/apps.h"
+#include "apps/calibration_loops.h"
 #include "device/display_driver.h"
 #include "display/display_regs.h"
 #include "soc/memory_map.h"
@@ -36,10 +41,14 @@ constexpr double MEASURED_MILLIONS_PER_SECOND = 13.9;
 
 int run_loop(AppEnvironment& env, bool multiply) {
   HostApi& host = *env.host;
-  // Three arrays of ITERATIONS elements at 1 MiB, 2 MiB and 3 MiB.
-  const uint32_t a = 1u << 20, b = 2u << 20, c = 3u << 20;
-  if (env.memory_bytes < c + 2 * ITERATIONS) {
-    std::fprintf(stderr, "calibration: needs at least %" PRIu32 " bytes of system memory\n", c + 2 * ITERATIONS);
+  // Three arrays of ITERATIONS elements 1 MiB apart in the driver's heap
+  // (the memory below it is the program's own on the ISS).
+  const uint32_t a = env.heap_base, b = a + (1u << 20), c = a + (2u << 20);
+  if (env.heap_end < c + 2 * ITERATIONS) {
+    std::fprintf(stderr,
+                 "calibration: needs 2 MiB + %u bytes of the driver's heap, which has %" PRIu32
+                 " (more system memory: mem.size_mib)\n",
+                 2 * ITERATIONS, env.heap_end - env.heap_base);
     return 1;
   }
   // Operands: a[i] = 3i + 1, b[i] = i mod 251 (written before timing starts;
@@ -53,6 +62,18 @@ int run_loop(AppEnvironment& env, bool multiply) {
   }
   const double start = host.now_seconds();
   uint32_t checksum = 0;
+#if defined(TESSERA_HOST_ISS)
+  // On the ISS the loop is GCC's code for the C loop itself
+  // (calibration_loops.c); the checksum is read afterwards.
+  if (multiply)
+    tessera_calibration_mul16x8(reinterpret_cast<const int16_t*>(a), reinterpret_cast<const int8_t*>(b),
+                                reinterpret_cast<int16_t*>(c), ITERATIONS);
+  else
+    tessera_calibration_add16(reinterpret_cast<const uint16_t*>(a), reinterpret_cast<const uint16_t*>(b),
+                              reinterpret_cast<uint16_t*>(c), ITERATIONS);
+  const double seconds = host.now_seconds() - start;
+  for (unsigned i = 0; i < ITERATIONS; ++i) checksum += host.read16(c + 2 * i);
+#else
   for (unsigned i = 0; i < ITERATIONS; ++i) {
     const uint16_t x = host.read16(a + 2 * i);
     uint16_t result;
@@ -73,6 +94,7 @@ int run_loop(AppEnvironment& env, bool multiply) {
     checksum += result;
   }
   const double seconds = host.now_seconds() - start;
+#endif
   const double rate = ITERATIONS / seconds / 1e6;
   std::printf(
       "host calibration: %s loop of %u iterations: model %.2f million/s, measured %.1f million/s "
@@ -137,6 +159,95 @@ int calib_display_port_app(AppEnvironment& env) {
       STUDY_WIDTH, STUDY_HEIGHT, milliseconds, MEASURED_FRAME_COPY_MS,
       (milliseconds / MEASURED_FRAME_COPY_MS - 1) * 100);
   return frames == 1 ? 0 : 1;
+}
+
+}  // namespace tessera
+
+namespace tessera {
+
+namespace {
+
+// The soft-float operations the host-compiled cost model charges one
+// parameter each for (host.cycles.fadd ...), timed one class at a time over
+// the same loop of table lookups, and the loop alone, so that the
+// difference is the operation's cost: what the ISS measures for the soft-
+// float library's code, or what the cost model charges natively.
+constexpr unsigned SOFT_FLOAT_ITERATIONS = 4096, SOFT_FLOAT_TABLE = 256;
+
+struct SoftFloatOperands {
+  float a[SOFT_FLOAT_TABLE], b[SOFT_FLOAT_TABLE];
+  int32_t i[SOFT_FLOAT_TABLE];
+  SoftFloatOperands() {
+    uint32_t state = 0x2545f491u;  // xorshift32: the same operands on every host
+    auto next = [&state] {
+      state ^= state << 13;
+      state ^= state >> 17;
+      state ^= state << 5;
+      return state;
+    };
+    // Magnitudes 2^-8 .. 2^12, either sign: a vertex's coordinates, colours
+    // and depths, the GL front end's operands.
+    for (unsigned k = 0; k < SOFT_FLOAT_TABLE; ++k) {
+      a[k] = std::ldexp(static_cast<float>(next() & 0xffffff) / 16777216.0f + 1.0f, static_cast<int>(next() % 21) - 8) *
+             ((next() & 1) != 0 ? -1.0f : 1.0f);
+      b[k] = std::ldexp(static_cast<float>(next() & 0xffffff) / 16777216.0f + 1.0f, static_cast<int>(next() % 21) - 8) *
+             ((next() & 1) != 0 ? -1.0f : 1.0f);
+      i[k] = static_cast<int32_t>(next() >> 12) - (1 << 19);
+    }
+  }
+};
+
+volatile float g_float_sink;
+volatile int32_t g_int_sink;
+
+// Host seconds of SOFT_FLOAT_ITERATIONS of `body(k)`; natively, `op` (if
+// any) charged once per iteration.
+template <typename Body>
+double timed_loop(HostApi& host, const std::optional<Op>& op, Body body) {
+  const double start = host.now_seconds();
+  for (unsigned n = 0; n < SOFT_FLOAT_ITERATIONS; ++n) {
+    body(n % SOFT_FLOAT_TABLE);
+    if (op) host.compute(*op);
+    host.compute(Op::alu, 3);  // the loop's index, compare and table address
+    host.compute(Op::branch);
+  }
+  return host.now_seconds() - start;
+}
+
+}  // namespace
+
+int calib_softfloat_app(AppEnvironment& env) {
+  HostApi& host = *env.host;
+  static const SoftFloatOperands operands;
+  const SoftFloatOperands& o = operands;
+  const double cycles_per_second = host.clock_hz();
+  const double loop = timed_loop(host, std::nullopt, [&](unsigned k) { g_float_sink = o.a[k]; });
+  const double int_loop = timed_loop(host, std::nullopt, [&](unsigned k) { g_int_sink = o.i[k]; });
+  struct Row {
+    const char* name;
+    double seconds, baseline;
+  };
+  const Row rows[] = {
+      {"fadd", timed_loop(host, Op::fadd, [&](unsigned k) { g_float_sink = o.a[k] + o.b[k]; }), loop},
+      {"fmul", timed_loop(host, Op::fmul, [&](unsigned k) { g_float_sink = o.a[k] * o.b[k]; }), loop},
+      {"fdiv", timed_loop(host, Op::fdiv, [&](unsigned k) { g_float_sink = o.a[k] / o.b[k]; }), loop},
+      {"fsqrt", timed_loop(host, Op::fsqrt, [&](unsigned k) { g_float_sink = std::sqrt(std::fabs(o.a[k])); }), loop},
+      {"fcmp", timed_loop(host, Op::fcmp, [&](unsigned k) { g_int_sink = o.a[k] < o.b[k]; }), int_loop},
+      // Conversions both ways, half the iterations each way.
+      {"fconv",
+       timed_loop(host, Op::fconv,
+                  [&](unsigned k) {
+                    if (k & 1)
+                      g_float_sink = static_cast<float>(o.i[k]);
+                    else
+                      g_int_sink = static_cast<int32_t>(o.a[k] * 256.0f);
+                  }),
+       (loop + int_loop) / 2},
+  };
+  for (const Row& row : rows)
+    std::printf("host calibration: soft-float %s: %.1f cycles per operation\n", row.name,
+                (row.seconds - row.baseline) * cycles_per_second / SOFT_FLOAT_ITERATIONS);
+  return 0;
 }
 
 }  // namespace tessera

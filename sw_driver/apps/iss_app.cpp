@@ -391,6 +391,22 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   boot.memory_bytes = env.memory_bytes;
   boot.heap_base = env.heap_base;
   boot.heap_end = env.heap_end;
+  // The program's C heap may continue in the first host.iss_heap_mib of
+  // the driver's heap (host-compiled software allocates from the host's
+  // memory, without a limit; the ARM program from the SoC's).
+  const uint64_t program_heap = env.config != nullptr && env.config->has("host.iss_heap_mib")
+                                    ? env.config->get_uint("host.iss_heap_mib") << 20
+                                    : 0;
+  if (program_heap != 0) {
+    if (uint64_t{env.heap_base} + program_heap > env.heap_end)
+      throw std::invalid_argument("host.iss_heap_mib=" + std::to_string(program_heap >> 20) +
+                                  " MiB does not fit in the driver's heap (" +
+                                  std::to_string((env.heap_end - env.heap_base) >> 20) +
+                                  " MiB with this mem.size_mib and display): lower it or raise mem.size_mib");
+    boot.program_heap_base = env.heap_base;
+    boot.program_heap_end = static_cast<uint32_t>(env.heap_base + program_heap);
+    boot.heap_base = boot.program_heap_end;
+  }
   if (env.make_renderer && env.config != nullptr && env.config->has("driver.backend"))
     boot.backend = env.config->get_string("driver.backend");
   if (env.config != nullptr) boot.config = boot_info::effective_parameters(*env.config);
@@ -452,11 +468,20 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
 
   core.reset();
   core.set_reg(15, image.entry);
+  const uint64_t instruction_limit = env.config != nullptr && env.config->has("host.iss_instruction_limit")
+                                         ? env.config->get_uint("host.iss_instruction_limit")
+                                         : 0;
   const bool tracing = core_port.tracing_program();
   if (tracing) core_port.set_function_names(profile.names());
   uint32_t traced_function = ~0u;
   try {
     while (!memory.exited() && !semihosting.exited()) {
+      if (core.instructions() == instruction_limit && instruction_limit != 0) {
+        memory.flush_console();
+        throw std::runtime_error(
+            path + ": still running after host.iss_instruction_limit=" + std::to_string(instruction_limit) +
+            " instructions, at pc " + iss::address_text(core.reg(15)) + " (a runaway program?)");
+      }
       iss::Profile::Entry& entry = profile.at(core.reg(15));
       memory.set_profile_entry(&entry);
       core.step();

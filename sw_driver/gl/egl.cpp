@@ -7,16 +7,20 @@
 #include <EGL/egl.h>
 
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/pixel_format.h"
 #include "config/config.h"
 #include "display/display_regs.h"
 #include "gl/context.h"
+#include "gl/frame_phases.h"
 #include "gl/runtime.h"
 #include "soc/memory_map.h"
 
@@ -47,6 +51,10 @@ std::set<ContextObject*> g_contexts;
 ContextObject* g_current = nullptr;
 Surface* g_current_surface = nullptr;
 unsigned g_swaps = 0;
+// AppEnvironment::frame_statistics as the launcher gave it, and the back
+// end's figures of the frame being presented (eglCreateWindowSurface).
+std::function<void(const std::vector<std::pair<std::string, double>>&)> g_frame_statistics;
+std::vector<std::pair<std::string, double>> g_backend_figures;
 
 // The one configuration: its id is 1.
 EGLConfig const CONFIG = reinterpret_cast<EGLConfig>(1);
@@ -269,6 +277,14 @@ EGLAPI EGLSurface EGLAPIENTRY eglCreateWindowSurface(EGLDisplay dpy, EGLConfig c
   // the front end knows none by name.
   if (!env.make_renderer)
     throw std::logic_error("EGL: no renderer back end was handed to the driver (AppEnvironment::make_renderer)");
+  // The back end's figures for a frame (it gives them in present()) go
+  // out with the front end's phases, one record per frame, at the swap.
+  if (env.frame_statistics && !g_frame_statistics) {
+    g_frame_statistics = std::move(env.frame_statistics);
+    env.frame_statistics = [](const std::vector<std::pair<std::string, double>>& figures) {
+      g_backend_figures.insert(g_backend_figures.end(), figures.begin(), figures.end());
+    };
+  }
   surface->renderer = env.make_renderer(env);
   surface->config = config;
   Surface* handle = surface.release();
@@ -445,8 +461,17 @@ EGLAPI EGLBoolean EGLAPIENTRY eglSwapBuffers(EGLDisplay dpy, EGLSurface surface)
   auto* s = static_cast<Surface*>(surface);
   if (!g_surfaces.count(s)) return fail(EGL_BAD_SURFACE, EGL_FALSE);
   if (!g_current || g_current_surface != s) return fail(EGL_BAD_SURFACE, EGL_FALSE);
-  g_current->gl->flush();
-  s->renderer->present();
+  {
+    const tessera::gl::PhaseScope phase(tessera::gl::Phase::presenting);
+    g_current->gl->flush();
+    s->renderer->present();
+  }
+  if (g_frame_statistics) {
+    std::vector<std::pair<std::string, double>> figures = tessera::gl::phase_clock().take_frame();
+    figures.insert(figures.end(), g_backend_figures.begin(), g_backend_figures.end());
+    g_backend_figures.clear();
+    g_frame_statistics(figures);
+  }
   ++g_swaps;
   if (g_swaps >= tessera::gl::environment().frames) throw tessera::gl::FramesComplete{};
   return ok();

@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/context_internal.h"
+#include "gl/frame_phases.h"
 #include "gl/runtime.h"
 
 namespace tessera::gl {
@@ -166,6 +167,7 @@ RasterState Context::raster_state() const {
 
 void Context::flush_triangles() {
   if (m_batch.empty()) return;
+  const PhaseScope phase(Phase::rasterization);
   m_renderer->draw(raster_state(), m_batch.data(), m_batch.size());
   m_batch.clear();
 }
@@ -193,6 +195,7 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
 
 void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
+  const PhaseScope phase(Phase::geometry);
   fetch_and_transform(indices, indexed, m_vertices);
   enabled_user_planes();
   const std::vector<glm::vec4>& user_planes = m_enabled_user_planes;
@@ -382,7 +385,10 @@ void Context::read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format,
     return;
   }
   std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4, 0);
-  m_renderer->read_pixels(x, y, w, h, rgba.data());
+  {
+    const PhaseScope phase(Phase::rasterization);
+    m_renderer->read_pixels(x, y, w, h, rgba.data());
+  }
   for (GLsizei j = 0; j < h; ++j) std::memcpy(static_cast<uint8_t*>(pixels) + j * stride, rgba.data() + j * row, row);
 }
 
@@ -394,6 +400,7 @@ void Context::flush() {
 void Context::finish() {
   charge_call();
   flush_triangles();
+  const PhaseScope phase(Phase::rasterization);
   m_renderer->finish();
 }
 

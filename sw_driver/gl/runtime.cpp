@@ -1,5 +1,7 @@
 #include "gl/runtime.h"
 
+#include "gl/frame_phases.h"
+
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +15,7 @@ uint32_t g_heap_next = 0;
 void set_environment(AppEnvironment* env) {
   g_environment = env;
   g_heap_next = env ? env->heap_base : 0;
+  phase_clock().start(env != nullptr ? env->host : nullptr);
 }
 
 AppEnvironment& environment() {

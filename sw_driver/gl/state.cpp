@@ -13,6 +13,7 @@
 
 #include "common/screen_size.h"
 #include "gl/context_internal.h"
+#include "gl/frame_phases.h"
 #include "gl/runtime.h"
 
 namespace tessera::gl {
@@ -138,6 +139,7 @@ void Context::clear(GLbitfield mask) {
   request.scissor_y = m_raster.scissor_y;
   request.scissor_width = m_raster.scissor_width;
   request.scissor_height = m_raster.scissor_height;
+  const PhaseScope phase(Phase::rasterization);
   m_renderer->clear(request);
 }
 

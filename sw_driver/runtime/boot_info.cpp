@@ -57,6 +57,7 @@ std::string encode(const BootInfo& info) {
                               {"memory_bytes", info.memory_bytes},
                               {"heap_base", info.heap_base},
                               {"heap_end", info.heap_end},
+                              {"program_heap", {info.program_heap_base, info.program_heap_end}},
                               {"backend", info.backend},
                               {"config", config}};
   return doc.dump();
@@ -74,6 +75,8 @@ BootInfo decode(const std::string& text) {
     info.memory_bytes = doc.at("memory_bytes").get<uint32_t>();
     info.heap_base = doc.at("heap_base").get<uint32_t>();
     info.heap_end = doc.at("heap_end").get<uint32_t>();
+    info.program_heap_base = doc.at("program_heap").at(0).get<uint32_t>();
+    info.program_heap_end = doc.at("program_heap").at(1).get<uint32_t>();
     info.backend = doc.at("backend").get<std::string>();
     for (const nlohmann::json& entry : doc.at("config")) {
       ParamSpec p;

@@ -34,6 +34,10 @@ struct BootInfo {
   uint32_t frame_buffers[2] = {0, 0};
   uint32_t memory_bytes = 0;
   uint32_t heap_base = 0, heap_end = 0;
+  // Where the program's C heap grows once the part of its own memory below
+  // its stacks is used up (host.iss_heap_mib of the driver's heap); empty
+  // if none.
+  uint32_t program_heap_base = 0, program_heap_end = 0;
   std::string backend;  // driver.backend; empty: no GL back end
   // The run's configuration: every parameter with its type and effective
   // value (descriptions, ranges and choices left out).

@@ -14,6 +14,8 @@ void open_standard_streams();
 // The core's cycles since the program started, and its clock (semihosting).
 uint64_t cycles_since_start();
 uint32_t clock_hz();
+// Where the C heap continues once the memory below the stacks is used up.
+void set_second_heap(uint32_t base, uint32_t end);
 
 }  // namespace tessera::runtime
 

@@ -53,6 +53,7 @@ int run() {
     return 1;
   }
   const boot_info::BootInfo boot = boot_info::decode(boot_file.read_all());
+  if (boot.program_heap_end > boot.program_heap_base) set_second_heap(boot.program_heap_base, boot.program_heap_end);
   const Config config({ParamGroup{"soc_sim", boot.config, {}}});
 
   static HostApi host;

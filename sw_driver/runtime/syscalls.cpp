@@ -30,6 +30,10 @@ namespace {
 constexpr int MAX_FILES = 16;
 uint32_t g_handles[MAX_FILES];
 char* g_break = &end;
+// The second region the heap continues in (boot information), once the
+// first is used up; newlib's malloc takes the jump as foreign memory.
+char* g_second_base = nullptr;
+char* g_second_end = nullptr;
 
 int set_errno(int error) {
   errno = error;
@@ -70,6 +74,11 @@ void open_standard_streams() {
 
 uint64_t cycles_since_start() {
   return elapsed_cycles();
+}
+
+void set_second_heap(uint32_t base, uint32_t end) {
+  g_second_base = reinterpret_cast<char*>(base);
+  g_second_end = reinterpret_cast<char*>(end);
 }
 
 uint32_t clock_hz() {
@@ -160,9 +169,15 @@ int _isatty(int fd) {
 }
 
 void* _sbrk(ptrdiff_t increment) {
-  if (increment > &__heap_limit - g_break || increment < &end - g_break) {
-    errno = ENOMEM;
-    return reinterpret_cast<void*>(-1);
+  const bool in_second = g_second_base != nullptr && g_break >= g_second_base && g_break <= g_second_end;
+  char* const low = in_second ? g_second_base : &end;
+  char* const high = in_second ? g_second_end : &__heap_limit;
+  if (increment > high - g_break || increment < low - g_break) {
+    if (in_second || g_second_base == nullptr || increment < 0 || increment > g_second_end - g_second_base) {
+      errno = ENOMEM;
+      return reinterpret_cast<void*>(-1);
+    }
+    g_break = g_second_base;  // the first region is used up: on in the second
   }
   char* previous = g_break;
   g_break += increment;

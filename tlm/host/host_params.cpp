@@ -31,6 +31,12 @@ ParamGroup HostParams::parameters() {
                         "how software runs on the host: native (host-compiled, timed by the cost model below) or iss "
                         "(the driver and application cross-compiled for the ARM922T and run on the instruction-set "
                         "simulator with its timing; tlm/host/README.md)"),
+          integer("host.iss_instruction_limit", 0, 0, 1e18, "instructions",
+                  "host.model=iss: instructions after which a program still running is stopped with an error "
+                  "naming the file and the PC (a runaway program); 0: no limit but sim.time_limit_ms"),
+          integer("host.iss_heap_mib", 4, 0, 240, "MiB",
+                  "host.model=iss: system memory given to the program's C heap (malloc, new) once the part below its "
+                  "stacks is used up, taken from the start of the driver's heap (sw_driver/runtime/README.md)"),
           real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
           integer("host.irq_lines", 8, 4, 32, "lines", "interrupt inputs of the host"),
           integer("host.cycles.alu", 1, 0, 100, "cycles", "data-processing instruction (ARM9TDMI: 1)"),

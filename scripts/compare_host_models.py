@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""Compares the two host models on every built-in GL scene.
+
+For each scene and back end, runs soc_sim twice, host-compiled
+(host.model=native: the cost model) and on the ISS (host.model=iss: the
+driver cross-compiled for the ARM922T), with the same configuration, and
+prints one Markdown table of the simulated time per frame, by phase of the
+driver (the frame records' host_<phase>_ns figures: geometry,
+rasterization, presenting, the application's own code), for the frames
+after the first (the first holds the start-up: the ISS program parses its
+boot information, the scenes build their meshes). The ISS is the reference:
+the last columns are the host-compiled model's error against it.
+
+    scripts/compare_host_models.py                     # every scene, arm and raster, 3 frames
+    scripts/compare_host_models.py --backend arm --scene teapot --frames 5
+    scripts/compare_host_models.py --soc-sim build/default/bin/soc_sim --out out/host_models
+
+Simulated times are exact and repeatable; this script times nothing on the
+wall clock. docs/calibration.md ("The two host models") has the last table
+and how to read it. Exit status: 0, 1 when a run fails, 2 for a bad command
+line.
+"""
+
+import argparse
+import json
+import os
+import pathlib
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+PHASES = ["geometry", "rasterization", "presenting", "application"]
+OBJ = ROOT / "tests" / "sw_driver" / "scenes" / "data" / "cube.obj"
+
+
+def scenes(soc_sim):
+    out = subprocess.run([soc_sim, "--list-apps"], capture_output=True, text=True, check=True).stdout
+    return [line.split()[0] for line in out.splitlines() if "GL ES 1.1 scene" in line]
+
+
+def run(soc_sim, out, scene, backend, model, frames):
+    folder = out / f"{scene}_{backend}_{model}"
+    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames",
+               "--quiet", "--force", "--out", str(folder), "--set", f"host.model={model}"]
+    if scene == "obj_viewer":
+        command += ["--", str(OBJ)]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
+    stats = json.loads((folder / "stats.json").read_text())["stats"]
+    later = stats["frames"][1:]
+    if not later:
+        raise RuntimeError(f"{scene} on {backend} ({model}): fewer than 2 frames shown")
+    per_frame = {"render": sum(f["render_ns"] for f in later) / len(later) / 1e6}
+    for phase in PHASES:
+        per_frame[phase] = sum(f.get("driver", {}).get(f"host_{phase}_ns", 0.0) for f in later) / len(later) / 1e6
+    return per_frame
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"))
+    parser.add_argument("--backend", action="append", help="back end (repeatable; default arm and raster)")
+    parser.add_argument("--scene", action="append", help="scene (repeatable; default every built-in GL scene)")
+    parser.add_argument("--frames", type=int, default=3, help="frames per run (>= 2; frames 1.. are averaged)")
+    parser.add_argument("--out", default="out/host_models", help="folder for the runs' statistics")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    if args.frames < 2:
+        parser.error("--frames must be at least 2")
+    if not os.access(args.soc_sim, os.X_OK):
+        parser.error(f"no soc_sim at {args.soc_sim}")
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    backends = args.backend or ["arm", "raster"]
+    chosen = args.scene or scenes(args.soc_sim)
+    cases = [(scene, backend) for backend in backends for scene in chosen]
+    with ThreadPoolExecutor(args.jobs) as pool:
+        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model, args.frames)
+                   for scene, backend in cases for model in ("native", "iss")}
+        try:
+            results = {key: future.result() for key, future in futures.items()}
+        except RuntimeError as error:
+            print(f"compare_host_models: {error}", file=sys.stderr)
+            return 1
+
+    print(f"Simulated ms per frame (frames 1..{args.frames - 1} of {args.frames}), host-compiled (native) / ISS, "
+          "and the host-compiled model's error against the ISS:\n")
+    header = ["scene", "back end", "frame: native / ISS"] + [f"{p}: native / ISS" for p in PHASES]
+    header += ["frame error", "host-phases error"]
+    print("| " + " | ".join(header) + " |")
+    print("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
+    for scene, backend in cases:
+        n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
+        cells = [scene, backend, f"{n['render']:.2f} / {i['render']:.2f}"]
+        cells += [f"{n[p]:.2f} / {i[p]:.2f}" for p in PHASES]
+        host_n = sum(n[p] for p in PHASES if p != "application")
+        host_i = sum(i[p] for p in PHASES if p != "application")
+        cells.append(f"{(n['render'] / i['render'] - 1) * 100:+.0f}%")
+        cells.append(f"{(host_n / host_i - 1) * 100:+.0f}%" if host_i > 0 else "-")
+        print("| " + " | ".join(cells) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

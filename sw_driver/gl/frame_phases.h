@@ -1,0 +1,57 @@
+// Where a frame's host time goes, by phase of the driver: the application's
+// own code (outside the GL calls below), geometry (the front end's part of
+// the draw calls: fetching, transforming, lighting, clipping and setting up
+// vertices), rasterization (the back end's part: every call into the
+// Renderer but present) and presenting (eglSwapBuffers: flushing and the
+// back end's present). The driver switches phases with PhaseScope; time is
+// the host's (HostApi::now_seconds), so waiting for hardware counts in the
+// phase that waits. eglSwapBuffers hands each frame's split to
+// AppEnvironment::frame_statistics as host_<phase>_ns, together with the
+// back end's own figures for the frame, so that the two host models
+// (native and ISS) can be compared phase by phase
+// (docs/calibration.md, "The two host models").
+#pragma once
+
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/host_api.h"
+
+namespace tessera::gl {
+
+enum class Phase : uint8_t { application, geometry, rasterization, presenting, count_ };
+
+class PhaseClock {
+ public:
+  // Starts timing on `host` (null: the clock does nothing) in the
+  // application phase.
+  void start(HostApi* host);
+  // Makes `phase` the current one; returns the previous.
+  Phase switch_to(Phase phase);
+  // The host time per phase since the last call, in ns, named host_<phase>_ns.
+  std::vector<std::pair<std::string, double>> take_frame();
+
+ private:
+  HostApi* m_host = nullptr;
+  Phase m_phase = Phase::application;
+  double m_since = 0;
+  std::array<double, static_cast<size_t>(Phase::count_)> m_seconds{};
+};
+
+PhaseClock& phase_clock();
+
+// The phase for the life of the scope (nesting: back to the previous one).
+class PhaseScope {
+ public:
+  explicit PhaseScope(Phase phase) : m_previous(phase_clock().switch_to(phase)) {}
+  ~PhaseScope() { phase_clock().switch_to(m_previous); }
+  PhaseScope(const PhaseScope&) = delete;
+  PhaseScope& operator=(const PhaseScope&) = delete;
+
+ private:
+  Phase m_previous;
+};
+
+}  // namespace tessera::gl
