@@ -49,6 +49,7 @@ struct Options {
   unsigned rounds = 101;
   unsigned quantum_ns = 1000;
   bool json = false;  // every round's figures as JSON instead of the table (for bench_speed)
+  std::string only;   // one path's loops alone (for a profiler); empty: all three
 };
 
 // A target that does what any memory must and nothing more: copy the data,
@@ -81,6 +82,7 @@ struct FloorTarget : sc_core::sc_module {
 
 enum Path { floor_path, bus_path, memory_path, path_count };
 const char* const PATH_NAMES[path_count] = {"floor", "bus", "bus + memory"};
+const char* const PATH_KEYS[path_count] = {"floor", "bus", "memory"};  // --only
 
 struct Kind {
   const char* name;
@@ -153,20 +155,23 @@ struct Driver : sc_core::sc_module {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     keeper.sync();
-    return seconds * 1e9 / options.transactions;
+    return tessera::bench::positive(seconds * 1e9 / options.transactions, PATH_NAMES[path]);
   }
+
+  bool selected(Path path) const { return options.only.empty() || options.only == PATH_KEYS[path]; }
 
   void run() {
     try {
       timings.assign(KIND_COUNT, std::vector<std::vector<double>>(path_count));
       // A warm-up round, not counted: first touches of the memories and caches.
       for (size_t k = 0; k < KIND_COUNT; ++k)
-        for (int p = 0; p < path_count; ++p) time_loop(static_cast<Path>(p), KINDS[k]);
+        for (int p = 0; p < path_count; ++p)
+          if (selected(static_cast<Path>(p))) time_loop(static_cast<Path>(p), KINDS[k]);
       for (unsigned r = 0; r < options.rounds; ++r)
         for (size_t k = 0; k < KIND_COUNT; ++k)
           for (unsigned i = 0; i < path_count; ++i) {
             const auto p = static_cast<Path>((i + r) % path_count);
-            timings[k][p].push_back(time_loop(p, KINDS[k]));
+            if (selected(p)) timings[k][p].push_back(time_loop(p, KINDS[k]));
           }
     } catch (const std::exception& e) {
       error = e.what();
@@ -212,6 +217,14 @@ int run(const Options& options) {
 
   sc_core::sc_start();
   if (!driver.error.empty()) throw std::runtime_error(driver.error);
+  if (!options.only.empty()) {
+    for (size_t k = 0; k < KIND_COUNT; ++k)
+      for (int p = 0; p < path_count; ++p)
+        if (!driver.timings[k][p].empty())
+          std::printf("%s, %s: %.1f ns median\n", KINDS[k].name, PATH_NAMES[p],
+                      tessera::bench::min_median(driver.timings[k][p]).median);
+    return 0;
+  }
   if (options.json) {
     nlohmann::json transactions = nlohmann::json::array();
     for (size_t k = 0; k < KIND_COUNT; ++k)
@@ -265,6 +278,9 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1000000u))
       ->capture_default_str();
   cli.add_flag("--json", options.json, "print every round's ns per transaction per path as JSON, not the table");
+  cli.add_option("--only", options.only,
+                 "time one path alone (floor, bus or memory), for a profiler; prints its medians")
+      ->check(CLI::IsMember({PATH_KEYS[floor_path], PATH_KEYS[bus_path], PATH_KEYS[memory_path]}));
   CLI11_PARSE(cli, argc, argv);
   return run(options);
 }

@@ -235,6 +235,53 @@ TEST(AhbBus, InitiatorAheadInTimeDoesNotBlockOneBehind) {
   EXPECT_EQ(done_b, start + CYCLE * 10.0 + access(FAST_WAIT, 1));
 }
 
+// An initiator far ahead leaves many reservations with gaps between them
+// (more than the timeline keeps before it prunes); one behind still gets the
+// first gap long enough for it, wherever that is.
+TEST(AhbBus, ManyReservationsAheadLeaveTheirGapsToAnInitiatorBehind) {
+  Bench& bench = *g_fixed;
+  constexpr unsigned COUNT = 150;  // reservations of 1 + FAST_WAIT + 1 = 4 cycles, every 10 cycles
+  sc_time start, done_short, done_long, done_after;
+  test::run_thread([&] {
+    uint32_t v;
+    start = sc_core::sc_time_stamp();
+    for (unsigned k = 0; k < COUNT; ++k)
+      bench.a.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4, CYCLE * (100.0 + 10.0 * k));
+    // Cycle 855 is in the gap [854, 860) after the 76th: 4 cycles fit.
+    done_short = start + bench.b.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4, CYCLE * 855.0).delay;
+    // 8 beats (11 cycles) fit in no gap: after the last reservation.
+    uint8_t line[32];
+    done_long = start + bench.c.read(FAST_BASE, line, 32, CYCLE * 300.0).delay;
+    // Once the kernel is past them all, a request is placed at once.
+    sc_core::wait(CYCLE * 2000.0);
+    done_after = sc_core::sc_time_stamp() + bench.b.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4).delay;
+    sc_core::wait(done_after - sc_core::sc_time_stamp());
+  });
+  EXPECT_EQ(done_short, start + CYCLE * 859.0);
+  EXPECT_EQ(done_long, start + CYCLE * (100.0 + 10.0 * (COUNT - 1) + 4 + 11));
+  EXPECT_EQ(done_after, start + CYCLE * 2000.0 + access(FAST_WAIT, 1));
+  EXPECT_EQ(bench.violations(), 0u);
+}
+
+// A synchronised request waits a delta cycle for the others of its instant
+// only when there can be others: alone, it is served at once (with the
+// same grant, FixedPriorityServesSimultaneousRequestsByPriority checks the
+// others).
+TEST(AhbBus, ALoneSynchronisedRequestIsServedWithoutADeltaCycle) {
+  Bench& bench = *g_fixed;
+  uint64_t deltas = 0;
+  sc_time delay;
+  test::run_thread([&] {
+    uint32_t v;
+    const uint64_t before = sc_core::sc_delta_count();
+    delay = bench.a.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4).delay;
+    deltas = sc_core::sc_delta_count() - before;
+    sc_core::wait(delay);
+  });
+  EXPECT_EQ(deltas, 0u);
+  EXPECT_EQ(delay, access(FAST_WAIT, 1));
+}
+
 // A loosely-timed target must see an access at the initiator's local time
 // (a register write that starts something starts then), not at the kernel's
 // time, which lags by up to a quantum.

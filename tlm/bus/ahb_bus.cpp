@@ -16,11 +16,47 @@ Arbitration parse_arbitration(const std::string& name) {
   throw std::invalid_argument("unknown arbitration '" + name + "' (expected fixed_priority or round_robin)");
 }
 
+// One initiator's end of the bus: a target socket that is its own forward
+// interface and calls the bus with the initiator's index, one virtual call
+// per access (multi_passthrough_target_socket adds a binder, a functor and
+// a member-function pointer to every call).
+class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>, private tlm::tlm_fw_transport_if<> {
+ public:
+  InitiatorPort(const char* name, AhbBus& bus, unsigned index)
+      : tlm::tlm_target_socket<32>(name), m_bus(bus), m_index(index) {
+    bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
+  }
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override { m_bus.b_transport(m_index, gp, delay); }
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
+    return m_bus.get_direct_mem_ptr(m_index, gp, dmi);
+  }
+  // Loosely timed only.
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase, sc_time& delay) override {
+    (void)phase;
+    (void)delay;
+    log::warning(m_bus.name(), "nb_transport_fw by " + m_bus.m_stats[m_index].name +
+                                   " is not supported (loosely timed: b_transport only)");
+    gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    return tlm::TLM_COMPLETED;
+  }
+
+  AhbBus& m_bus;
+  unsigned m_index;
+};
+
+namespace {
+// Occupancies and waits up to this many cycles get their sc_time from a table.
+constexpr unsigned CYCLE_TIME_TABLE = 256;
+}  // namespace
+
 AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
     : Block(name),
-      in("in"),
       out("out"),
       m_params(params),
+      m_context(sc_core::sc_get_curr_simcontext()),
       m_period_ticks(params.clock_period.value()),
       // Checked below, with the bus's name in the message.
       m_cycles(std::max<uint64_t>(1, m_period_ticks)),
@@ -28,22 +64,37 @@ AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
       m_busy_cycles(counter("busy_cycles", "bus cycles reserved by transfers, all initiators")) {
   if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
-  in.register_b_transport(this, &AhbBus::b_transport);
-  in.register_transport_dbg(this, &AhbBus::transport_dbg);
-  in.register_get_direct_mem_ptr(this, &AhbBus::get_direct_mem_ptr);
   out.register_invalidate_direct_mem_ptr(this, &AhbBus::invalidate_direct_mem_ptr);
+  for (unsigned k = 0; k < CYCLE_TIME_TABLE; ++k) m_cycle_times.push_back(sc_time::from_value(k * m_period_ticks));
 }
 
-void AhbBus::add_initiator(const std::string& initiator_name, unsigned priority) {
+AhbBus::~AhbBus() = default;
+
+void AhbBus::add_initiator(const std::string& initiator_name, unsigned priority, BindInitiator bind) {
+  if (sc_core::sc_get_status() != sc_core::SC_ELABORATION)
+    throw std::logic_error(std::string(name()) + ": initiator " + initiator_name + " attached after elaboration");
   BusInitiatorStats stats;
   stats.name = initiator_name;
   stats.priority = priority;
   m_stats.push_back(stats);
+  m_request_memo.emplace_back();
+  m_binds.push_back(std::move(bind));
   // attach() runs outside the bus's constructor, so these modules land in
   // the caller's scope: the bus's name keeps them apart from another bus's.
   const std::string prefix = std::string(basename()) + "_" + initiator_name;
   m_request_traces.push_back(std::make_unique<TimedTrace>((prefix + "_request").c_str()));
   m_grant_traces.push_back(std::make_unique<TimedTrace>((prefix + "_grant").c_str()));
+}
+
+void AhbBus::before_end_of_elaboration() {
+  // A socket is made inside a module: here the kernel has made the bus the
+  // current one, wherever attach() was called from.
+  for (size_t i = 0; i < m_binds.size(); ++i) {
+    m_ports.push_back(
+        std::make_unique<InitiatorPort>((m_stats[i].name + "_in").c_str(), *this, static_cast<unsigned>(i)));
+    m_binds[i](*m_ports.back());
+  }
+  m_binds.clear();
 }
 
 void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_name) {
@@ -52,7 +103,7 @@ void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_
     if (base < r.base + r.size && r.base < base + size)
       throw std::invalid_argument(std::string(name()) + ": region " + target_name + " at " + log::hex(base) +
                                   " overlaps " + r.name + " at " + log::hex(r.base));
-  m_regions.push_back({base, size, target_name, static_cast<unsigned>(m_regions.size())});
+  m_regions.push_back({base, size, target_name, static_cast<unsigned>(m_regions.size()), CycleMemo{}});
 }
 
 const AhbBus::Region* AhbBus::decode_other(uint64_t address) const {
@@ -69,48 +120,39 @@ void AhbBus::trace_signals(sc_core::sc_trace_file* file) {
   }
 }
 
-uint64_t AhbBus::reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles) {
-  // Nothing can be requested before the current time, so older reservations go.
-  while (m_reserved_head < m_reserved.size() && m_reserved[m_reserved_head].end * m_period_ticks <= now)
-    ++m_reserved_head;
-  if (m_reserved_head == m_reserved.size()) {
-    m_reserved.clear();
-    m_reserved_head = 0;
-  } else if (m_reserved_head > 256 && m_reserved_head * 2 > m_reserved.size()) {
-    m_reserved.erase(m_reserved.begin(), m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head));
-    m_reserved_head = 0;
-  }
+void AhbBus::prune(uint64_t now) {
+  // Nothing can be requested before the current time, so the intervals
+  // that ended by then (a prefix: they are sorted and disjoint) go.
+  const auto ended = std::find_if(m_reserved.begin(), m_reserved.end(),
+                                  [&](const Interval& i) { return i.end * m_period_ticks > now; });
+  if (ended != m_reserved.begin()) m_pruned_end_cycle = std::max(m_pruned_end_cycle, std::prev(ended)->end);
+  m_reserved.erase(m_reserved.begin(), ended);
+  // The next pruning when the timeline has doubled: constant cost per
+  // reservation, however many intervals are still to come.
+  m_prune_at = std::max<size_t>(PRUNE_AT_LEAST, 2 * m_reserved.size());
+}
+
+uint64_t AhbBus::reserve_among(uint64_t now, uint64_t request_cycle, uint64_t length_cycles) {
+  prune(now);
   uint64_t start = request_cycle;
-  if (m_reserved_head == m_reserved.size() || m_reserved.back().end <= start) {
-    // At or after the end of every reservation, as almost every request is:
-    // no search. It joins the last interval if that ends where it starts.
-    if (m_reserved_head < m_reserved.size() && m_reserved.back().end == start)
-      m_reserved.back().end = start + length_cycles;
-    else
-      m_reserved.push_back(Interval{start, start + length_cycles});
-  } else {
-    const auto first = m_reserved.begin() + static_cast<std::ptrdiff_t>(m_reserved_head);
-    const auto by_start = [](uint64_t t, const Interval& i) { return t < i.start; };
-    // The first interval starting after the request; the one before it may
-    // still be running at the request time.
-    auto it = std::upper_bound(first, m_reserved.end(), start, by_start);
-    if (it != first && std::prev(it)->end > start) start = std::prev(it)->end;
-    // Skip every interval the transfer would overlap.
-    while (it != m_reserved.end() && it->start < start + length_cycles) {
-      start = std::max(start, it->end);
-      ++it;
-    }
-    // `it` is now the first interval starting at or after the transfer's
-    // end, so the transfer goes just before it; it joins an interval that
-    // ends exactly where it starts, to keep the timeline short under
-    // back-to-back traffic.
-    if (it != first && std::prev(it)->end == start)
-      std::prev(it)->end = start + length_cycles;
-    else
-      m_reserved.insert(it, Interval{start, start + length_cycles});
+  const auto by_start = [](uint64_t t, const Interval& i) { return t < i.start; };
+  // The first interval starting after the request; the one before it may
+  // still be running at the request time.
+  auto it = std::upper_bound(m_reserved.begin(), m_reserved.end(), start, by_start);
+  if (it != m_reserved.begin() && std::prev(it)->end > start) start = std::prev(it)->end;
+  // Skip every interval the transfer would overlap.
+  while (it != m_reserved.end() && it->start < start + length_cycles) {
+    start = std::max(start, it->end);
+    ++it;
   }
-  m_busy_cycles += length_cycles;
-  m_last_end_cycle = std::max(m_last_end_cycle, start + length_cycles);
+  // `it` is now the first interval starting at or after the transfer's
+  // end, so the transfer goes just before it; it joins an interval that
+  // ends exactly where it starts, to keep the timeline short under
+  // back-to-back traffic.
+  if (it != m_reserved.begin() && std::prev(it)->end == start)
+    std::prev(it)->end = start + length_cycles;
+  else
+    m_reserved.insert(it, Interval{start, start + length_cycles});
   return start;
 }
 
@@ -142,84 +184,130 @@ void AhbBus::resolve_batch() {
   m_batch.clear();
 }
 
-void AhbBus::account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
-                     const Request& request) {
-  BusInitiatorStats& s = m_stats[initiator];
-  s.transactions += transfers;
-  if (gp.is_read()) s.reads += transfers;
-  if (gp.is_write()) s.writes += transfers;
-  s.bytes += gp.get_data_length();
-  s.beats += beats;
-  s.busy_cycles += request.occupancy_cycles;
-  s.wait_cycles += request.start_cycle - request.request_cycle;
-  if (m_tracing) {
-    const uint64_t end = (request.start_cycle + request.occupancy_cycles) * m_period_ticks;
-    m_request_traces[initiator]->set_at(true, sc_time::from_value(request.request_cycle * m_period_ticks));
-    m_grant_traces[initiator]->set_at(true, sc_time::from_value(request.start_cycle * m_period_ticks));
-    m_request_traces[initiator]->set_at(false, sc_time::from_value(end));
-    m_grant_traces[initiator]->set_at(false, sc_time::from_value(end));
-  }
+void AhbBus::trace_grant(unsigned initiator, uint64_t request_cycle, uint64_t start_cycle, uint64_t end_cycle) {
+  const uint64_t end = end_cycle * m_period_ticks;
+  m_request_traces[initiator]->set_at(true, sc_time::from_value(request_cycle * m_period_ticks));
+  m_grant_traces[initiator]->set_at(true, sc_time::from_value(start_cycle * m_period_ticks));
+  m_request_traces[initiator]->set_at(false, sc_time::from_value(end));
+  m_grant_traces[initiator]->set_at(false, sc_time::from_value(end));
 }
 
-void AhbBus::b_transport(int id, tlm::tlm_generic_payload& gp, sc_time& delay) {
-  const unsigned initiator = static_cast<unsigned>(id);
-  const uint64_t now = sc_core::sc_time_stamp().value();
-  const uint64_t address = gp.get_address();
-  // Request time: the initiator's local time, rounded up to a clock edge.
-  Request request{initiator, m_cycles.ceil(now + delay.value()), 0};
-  const uint64_t request_ticks = request.request_cycle * m_period_ticks;
-  const unsigned transfers = transfers_of(gp);
-  const uint64_t transfer_bytes = transfers == 1 ? gp.get_data_length() : gp.get_data_length() / transfers;
-  const uint64_t beats = transfers * std::max<uint64_t>(1, m_beats.ceil(transfer_bytes));
+uint64_t AhbBus::unmapped(unsigned initiator, tlm::tlm_generic_payload& gp) {
+  gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  ++m_stats[initiator].errors;
+  log::warning(name(), "unmapped " + std::string(gp.is_write() ? "write" : "read") + " by " + m_stats[initiator].name +
+                           " at " + log::hex(gp.get_address()));
+  return m_params.address_cycles + m_params.error_cycles;
+}
 
+uint64_t AhbBus::collect(unsigned initiator, uint64_t request_cycle, uint64_t occupancy_cycles) {
+  Request request{initiator, request_cycle, occupancy_cycles};
+  m_batch.push_back(&request);
+  wait(sc_core::SC_ZERO_TIME);
+  if (!request.granted) resolve_batch();
+  return request.start_cycle;
+}
+
+void AhbBus::log_grant(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t start_cycle,
+                       uint64_t occupancy_cycles) const {
+  log::debug(name(), m_stats[initiator].name + (gp.is_write() ? " write " : " read ") +
+                         std::to_string(gp.get_data_length()) + " bytes at " + log::hex(gp.get_address()) +
+                         ", granted " + sc_time::from_value(start_cycle * m_period_ticks).to_string() + ", " +
+                         std::to_string(occupancy_cycles) + " cycles");
+}
+
+bool AhbBus::must_collect() const {
+  // A delta cycle collects the synchronised requests of this instant, to
+  // serve them in arbitration order. When no other request is waiting and
+  // nothing else can run at this time (no runnable process, no delta
+  // notification, no pending update), the request would be alone in its
+  // batch and nothing would happen during its delta cycle: serving it at
+  // once gives the same grant and the same times, one delta cycle earlier,
+  // without the two context switches. (A run stopped by sc_stop() in this
+  // delta cycle never wakes the waiting request, so then it waits as
+  // before; sc_pause() is not used by the SoC.)
+  return !m_batch.empty() || sc_core::sc_pending_activity_at_current_time() ||
+         sc_core::sc_get_simulator_status() != sc_core::SC_SIM_OK;
+}
+
+uint64_t AhbBus::train_beats(uint64_t length, unsigned transfers) const {
+  return transfers * std::max<uint64_t>(1, m_beats.ceil(length / transfers));
+}
+
+void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay) {
+  const uint64_t now = m_context->time_stamp().value();
+  const uint64_t local_ticks = now + delay.value();
+  // Request time: the initiator's local time, rounded up to a clock edge.
+  const uint64_t request_cycle = ceil_cycles(local_ticks, m_request_memo[initiator]);
+  const uint64_t request_ticks = request_cycle * m_period_ticks;
+
+  // From the local time to the clock edge: zero for most requests (an
+  // initiator's next request is usually at the end of its last one).
+  sc_time to_edge;
+  if (request_ticks != local_ticks) to_edge = sc_time::from_value(request_ticks - local_ticks);
+
+  const uint64_t address = gp.get_address();
   const Region* region = decode(address);
-  if (!region) {
-    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
-    request.occupancy_cycles = m_params.address_cycles + m_params.error_cycles;
-    ++m_stats[initiator].errors;
-    log::warning(name(), "unmapped " + std::string(gp.is_write() ? "write" : "read") + " by " +
-                             m_stats[initiator].name + " at " + log::hex(address));
-  } else {
+  uint64_t target_cycles = 0;
+  if (region) {
     gp.set_address(address - region->base);
     // The target sees the access at the time it is requested (the
     // initiator's local time, as loosely-timed targets expect) and adds
     // its latency, which sets the data phase.
-    const uint64_t request_offset = request_ticks - now;
-    sc_time target_delay = request_offset == delay.value() ? delay : sc_time::from_value(request_offset);
+    sc_time target_delay = delay;
+    target_delay += to_edge;
     out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
-    const uint64_t target_ticks = target_delay.value() - request_offset;
-    const uint64_t data_cycles = std::max(m_cycles.ceil(target_ticks), beats);
-    request.occupancy_cycles = transfers * m_params.address_cycles + data_cycles;
-    if (gp.is_response_error()) ++m_stats[initiator].errors;
+    target_cycles = ceil_cycles(target_delay.value() - (request_ticks - now), region->latency);
+  }
+  const unsigned transfers = transfers_of(gp);
+  const uint64_t length = gp.get_data_length();
+  const uint64_t beats = transfers == 1 ? std::max<uint64_t>(1, m_beats.ceil(length)) : train_beats(length, transfers);
+  BusInitiatorStats& s = m_stats[initiator];
+  uint64_t occupancy_cycles;
+  if (region) {
+    occupancy_cycles = transfers * m_params.address_cycles + std::max(target_cycles, beats);
+    if (gp.is_response_error()) ++s.errors;
+  } else {
+    occupancy_cycles = unmapped(initiator, gp);
   }
 
-  if (delay == sc_core::SC_ZERO_TIME) {
+  uint64_t start_cycle;
+  if (delay.value() == 0 && must_collect()) {
     // Synchronised request: let every request of this instant arrive, then
     // the first to wake serves them all in arbitration order.
-    m_batch.push_back(&request);
-    wait(sc_core::SC_ZERO_TIME);
-    if (!request.granted) resolve_batch();
+    start_cycle = collect(initiator, request_cycle, occupancy_cycles);
   } else {
     // Pending synchronised requests are for the current time, so no later
     // than this one: they are served first.
     if (!m_batch.empty()) resolve_batch();
-    request.start_cycle = reserve(now, request.request_cycle, request.occupancy_cycles);
+    start_cycle = reserve(now, request_cycle, occupancy_cycles);
     m_last_granted = initiator;
   }
-  account(initiator, gp, transfers, beats, request);
-  if (log::enabled(log::Level::debug))
-    log::debug(name(), m_stats[initiator].name + (gp.is_write() ? " write " : " read ") +
-                           std::to_string(gp.get_data_length()) + " bytes at " + log::hex(address) + ", granted " +
-                           sc_time::from_value(request.start_cycle * m_period_ticks).to_string() + ", " +
-                           std::to_string(request.occupancy_cycles) + " cycles");
-  delay = sc_time::from_value((request.start_cycle + request.occupancy_cycles) * m_period_ticks - now);
+  const uint64_t end_cycle = start_cycle + occupancy_cycles;
+
+  s.transactions += transfers;
+  if (gp.is_read()) s.reads += transfers;
+  if (gp.is_write()) s.writes += transfers;
+  s.bytes += length;
+  s.beats += beats;
+  s.busy_cycles += occupancy_cycles;
+  s.wait_cycles += start_cycle - request_cycle;
+  if (m_tracing) trace_grant(initiator, request_cycle, start_cycle, end_cycle);
+  if (log::enabled(log::Level::debug)) log_grant(initiator, gp, start_cycle, occupancy_cycles);
+
+  // The initiator's next request is usually at this one's end.
+  m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
+  // Returned delay: the end minus the kernel's time (a delta cycle does not
+  // move it), that is the delay given, to the edge, then whole cycles.
+  delay += to_edge;
+  delay += cycles_time(end_cycle - request_cycle);
 }
 
-unsigned AhbBus::transport_dbg(int id, tlm::tlm_generic_payload& gp) {
+unsigned AhbBus::transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp) {
   const uint64_t address = gp.get_address();
   const Region* region = decode(address);
-  ++m_stats[static_cast<unsigned>(id)].debug_accesses;
+  ++m_stats[initiator].debug_accesses;
   if (!region) {
     gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
     return 0;
@@ -230,7 +318,7 @@ unsigned AhbBus::transport_dbg(int id, tlm::tlm_generic_payload& gp) {
   return count;
 }
 
-bool AhbBus::get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
+bool AhbBus::get_direct_mem_ptr(unsigned initiator, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
   const uint64_t address = gp.get_address();
   const Region* region = decode(address);
   if (!region) {
@@ -251,7 +339,7 @@ bool AhbBus::get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_d
   if (granted) {
     const uint64_t offset = start - (dmi.get_start_address() + region->base);
     dmi.set_dmi_ptr(dmi.get_dmi_ptr() + offset);
-    ++m_stats[static_cast<unsigned>(id)].dmi_grants;
+    ++m_stats[initiator].dmi_grants;
     // The bus adds its address phase to the target's latencies.
     const sc_time address_phase = m_params.clock_period * m_params.address_cycles;
     dmi.set_read_latency(dmi.get_read_latency() + address_phase);
@@ -267,14 +355,15 @@ void AhbBus::invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint6
     if (r.target_index != static_cast<unsigned>(id)) continue;
     const uint64_t global_start = r.base + std::min<uint64_t>(start, r.size - 1);
     const uint64_t global_end = end >= r.size - 1 ? r.base + r.size - 1 : r.base + end;
-    for (unsigned i = 0; i < in.size(); ++i) in[i]->invalidate_direct_mem_ptr(global_start, global_end);
+    for (const auto& port : m_ports) (*port)->invalidate_direct_mem_ptr(global_start, global_end);
   }
 }
 
 double AhbBus::span_cycles(const sc_time& elapsed) const {
   // Busy cycles are counted when a transfer is granted, so the period they
   // are spread over runs to the end of the last granted transfer.
-  const uint64_t span = std::max<uint64_t>(elapsed.value(), m_last_end_cycle * m_period_ticks);
+  const uint64_t last_end_cycle = std::max(m_pruned_end_cycle, m_reserved.empty() ? 0 : m_reserved.back().end);
+  const uint64_t span = std::max<uint64_t>(elapsed.value(), last_end_cycle * m_period_ticks);
   return span / static_cast<double>(m_period_ticks);
 }
 

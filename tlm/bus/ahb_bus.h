@@ -27,14 +27,15 @@
 // bursts of a line still carry a time offset.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <tlm_utils/multi_passthrough_initiator_socket.h>
-#include <tlm_utils/multi_passthrough_target_socket.h>
 #include <systemc>
 #include <tlm>
 
@@ -81,19 +82,22 @@ struct BusInitiatorStats {
 };
 
 class AhbBus : public Block {
+  class InitiatorPort;
+
  public:
-  tlm_utils::multi_passthrough_target_socket<AhbBus, 32> in;      // initiators bind here
   tlm_utils::multi_passthrough_initiator_socket<AhbBus, 32> out;  // bound to targets
 
   AhbBus(sc_core::sc_module_name name, const BusParams& params);
+  ~AhbBus() override;
 
-  // Binds an initiator socket to the bus. Lower priority value = served
-  // first under fixed priority. Call in the order initiators should be
-  // visited by round-robin.
+  // Binds an initiator socket to the bus, through a target socket of its
+  // own (<bus>.<initiator_name>_in, made and bound before the end of
+  // elaboration, inside the bus). Lower priority value = served first under
+  // fixed priority. Call in the order initiators should be visited by
+  // round-robin, before the simulation starts.
   template <typename Socket>
   void attach(Socket& initiator, const std::string& initiator_name, unsigned priority) {
-    initiator.bind(in);
-    add_initiator(initiator_name, priority);
+    add_initiator(initiator_name, priority, [&initiator](tlm::tlm_target_socket<32>& port) { initiator.bind(port); });
   }
 
   // Binds a target socket to the bus at [base, base + size).
@@ -119,11 +123,20 @@ class AhbBus : public Block {
   std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const override;
 
  private:
+  // Ticks to bus cycles, rounded up, remembering the last conversion: an
+  // initiator's next request is usually at the end of its last one, and a
+  // target's latency repeats, so most conversions are one comparison.
+  struct CycleMemo {
+    uint64_t ticks = 0;
+    uint64_t cycles = 0;
+  };
+
   struct Region {
     uint64_t base;
     uint64_t size;
     std::string name;
     unsigned target_index;
+    mutable CycleMemo latency;  // the target's last latency in cycles
   };
   // Times in bus cycles from time 0 (cycle c is the clock edge at c
   // periods): every request is aligned to an edge and every occupancy is a
@@ -136,7 +149,10 @@ class AhbBus : public Block {
     bool granted = false;
   };
 
-  void add_initiator(const std::string& name, unsigned priority);
+  using BindInitiator = std::function<void(tlm::tlm_target_socket<32>&)>;
+  void add_initiator(const std::string& name, unsigned priority, BindInitiator bind);
+  // Makes every initiator's target socket and binds the initiator to it.
+  void before_end_of_elaboration() override;
   void add_region(uint64_t base, uint64_t size, const std::string& name);
   const Region* decode(uint64_t address) const {
     if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
@@ -144,44 +160,100 @@ class AhbBus : public Block {
   }
   const Region* decode_other(uint64_t address) const;  // and remembers it
 
-  void b_transport(int id, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  unsigned transport_dbg(int id, tlm::tlm_generic_payload& gp);
-  bool get_direct_mem_ptr(int id, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
+  void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  unsigned transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp);
+  bool get_direct_mem_ptr(unsigned initiator, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);
 
+  uint64_t ceil_cycles(uint64_t ticks, CycleMemo& memo) const {
+    if (ticks != memo.ticks) memo = {ticks, m_cycles.ceil(ticks)};
+    return memo.cycles;
+  }
+  // `cycles` bus cycles as an sc_time, from a table for the short ones
+  // (sc_time::from_value is a call into the SystemC library).
+  sc_core::sc_time cycles_time(uint64_t cycles) const {
+    return cycles < m_cycle_times.size() ? m_cycle_times[cycles]
+                                         : sc_core::sc_time::from_value(cycles * m_period_ticks);
+  }
+  // Whether a synchronised request must wait a delta cycle for the others
+  // of its instant (see b_transport).
+  bool must_collect() const;
+
   // Earliest start >= request at which [start, start + length) is free;
-  // reserves it. `now`: the kernel's time in ticks.
-  uint64_t reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles);
+  // reserves it. `now`: the kernel's time in ticks. A request at or after
+  // the end of every reservation, as almost every one is, is placed
+  // without a search.
+  uint64_t reserve(uint64_t now, uint64_t request_cycle, uint64_t length_cycles) {
+    uint64_t start = request_cycle;
+    if (m_reserved.empty() || m_reserved.back().end <= start) {
+      // Joins the last interval if that ends where it starts.
+      if (!m_reserved.empty() && m_reserved.back().end == start) {
+        m_reserved.back().end = start + length_cycles;
+      } else {
+        if (m_reserved.size() >= m_prune_at) prune(now);
+        m_reserved.push_back(Interval{start, start + length_cycles});
+      }
+    } else {
+      start = reserve_among(now, request_cycle, length_cycles);
+    }
+    m_busy_cycles += length_cycles;
+    return start;
+  }
+  // reserve() for a request before the end of the last reservation: a search.
+  uint64_t reserve_among(uint64_t now, uint64_t request_cycle, uint64_t length_cycles);
+  // Beats of a train of `transfers` transfers of length / transfers bytes.
+  uint64_t train_beats(uint64_t length, unsigned transfers) const;
+  // Drops the reservations that ended by `now`.
+  void prune(uint64_t now);
   void resolve_batch();
-  void account(unsigned initiator, const tlm::tlm_generic_payload& gp, unsigned transfers, uint64_t beats,
-               const Request& request);
+  // A synchronised request: joins the batch of this instant and waits a
+  // delta cycle for its grant. The start cycle.
+  uint64_t collect(unsigned initiator, uint64_t request_cycle, uint64_t occupancy_cycles);
+  // The error response to an unmapped address; its occupancy.
+  uint64_t unmapped(unsigned initiator, tlm::tlm_generic_payload& gp);
+  void trace_grant(unsigned initiator, uint64_t request_cycle, uint64_t start_cycle, uint64_t end_cycle);
+  void log_grant(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t start_cycle,
+                 uint64_t occupancy_cycles) const;
   // Bus cycles over which utilisation is computed: `elapsed`, or up to the
   // end of the last granted transfer if that is later.
   double span_cycles(const sc_core::sc_time& elapsed) const;
 
   BusParams m_params;
+  // The kernel's time is read from the context on every access (the
+  // sc_time_stamp() function is a call into the SystemC library).
+  const sc_core::sc_simcontext* m_context;
   uint64_t m_period_ticks;
-  FixedDivider m_cycles;  // ticks to bus cycles
-  FixedDivider m_beats;   // bytes to beats
+  FixedDivider m_cycles;                        // ticks to bus cycles
+  FixedDivider m_beats;                         // bytes to beats
+  std::vector<sc_core::sc_time> m_cycle_times;  // [k]: k cycles
   std::vector<Region> m_regions;
   std::vector<BusInitiatorStats> m_stats;
+  std::vector<BindInitiator> m_binds;  // per initiator, until its socket is made
+  std::vector<std::unique_ptr<InitiatorPort>> m_ports;
+  // Per initiator: its last request's end, which is where its next request
+  // usually is.
+  std::vector<CycleMemo> m_request_memo;
   // The reservation timeline: disjoint [start, end) intervals in cycles,
-  // sorted, from m_reserved_head on (the ones before it have ended). A sorted
-  // vector rather than a map: requests arrive nearly in time order, so
-  // almost every reservation extends or follows the last interval (which
-  // reserve() tries first), and the intervals that have ended are dropped
-  // as time passes, so the cost does not grow with the simulation's
+  // sorted. A sorted vector rather than a map: requests arrive nearly in
+  // time order, so almost every reservation extends or follows the last
+  // interval (which reserve() tries first). Intervals that ended before the
+  // kernel's time can no longer be hit (nothing is requested in the past);
+  // they are dropped whenever the vector has doubled since the last time,
+  // so the cost per reservation does not grow with the simulation's
   // history.
   struct Interval {
     uint64_t start;
     uint64_t end;
   };
+  static constexpr size_t PRUNE_AT_LEAST = 64;
   std::vector<Interval> m_reserved;
-  size_t m_reserved_head = 0;
+  size_t m_prune_at = PRUNE_AT_LEAST;
   std::vector<Request*> m_batch;
   unsigned m_last_granted = 0;
   ActivityCounter& m_busy_cycles;
-  uint64_t m_last_end_cycle = 0;
+  // The latest end of a reservation dropped from the timeline; with the
+  // timeline's last interval, the end of the last granted transfer.
+  uint64_t m_pruned_end_cycle = 0;
   mutable const Region* m_last_region = nullptr;
   bool m_tracing = false;
   std::vector<std::unique_ptr<TimedTrace>> m_request_traces;

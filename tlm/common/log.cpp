@@ -8,9 +8,12 @@
 #include <tlm>
 
 namespace tessera::log {
+
+Level detail::g_level = Level::warning;
+using detail::g_level;
+
 namespace {
 
-Level g_level = Level::warning;
 unsigned g_warnings = 0;
 unsigned g_errors = 0;
 
@@ -66,10 +69,6 @@ void install(Level level) {
   sc_report_handler::set_verbosity_level(level >= Level::debug ? sc_core::SC_DEBUG : sc_core::SC_MEDIUM);
   // SystemC's own deprecation chatter is not a guest error.
   sc_report_handler::set_actions("/IEEE_Std_1666/deprecated", sc_core::SC_DO_NOTHING);
-}
-
-bool enabled(Level level) {
-  return g_level >= level;
 }
 
 void info(const std::string& module, const std::string& message) {

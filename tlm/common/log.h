@@ -22,9 +22,15 @@ inline std::string msg_type(const std::string& module) {
   return "tessera/" + module;
 }
 
+namespace detail {
+extern Level g_level;  // set by install()
+}  // namespace detail
+
 // True when messages of `level` are printed; guards messages that are
-// expensive to build.
-bool enabled(Level level);
+// expensive to build. Inline: the bus asks on every access.
+inline bool enabled(Level level) {
+  return detail::g_level >= level;
+}
 
 void info(const std::string& module, const std::string& message);
 void debug(const std::string& module, const std::string& message);

@@ -24,66 +24,99 @@ Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
       m_errors(counter("errors", "accesses answered with an error")) {
   if (params.size_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": size 0");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero width");
-  in.register_b_transport(this, &Memory::b_transport);
-  in.register_transport_dbg(this, &Memory::transport_dbg);
-  in.register_get_direct_mem_ptr(this, &Memory::get_direct_mem_ptr);
+  for (size_t beats = 0; beats < m_access_times.size(); ++beats)
+    m_access_times[beats] = sc_core::sc_time::from_value(m_first_access_ticks + beats * m_beat_ticks);
+  in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
 }
 
-bool Memory::check(tlm::tlm_generic_payload& gp) const {
-  const uint64_t address = gp.get_address();
-  const uint64_t length = gp.get_data_length();
-  if (address >= m_data.size() || length > m_data.size() - address) {
-    gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
-    return false;
+namespace {
+
+// memmove (the data may overlap the memory), inline for the sizes of
+// single transfers, where a call into the C library would cost more than
+// the copy.
+inline void move(uint8_t* to, const uint8_t* from, uint64_t length) {
+  switch (length) {
+    case 1: std::memmove(to, from, 1); break;
+    case 2: std::memmove(to, from, 2); break;
+    case 4: std::memmove(to, from, 4); break;
+    case 8: std::memmove(to, from, 8); break;
+    default: std::memmove(to, from, length);
   }
-  if (gp.get_streaming_width() < length) {
-    gp.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
-    return false;
-  }
-  return true;
 }
 
-void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
-  if (!check(gp)) {
-    ++m_errors;
-    const char* what = gp.get_response_status() == tlm::TLM_BURST_ERROR_RESPONSE
-                           ? "streaming width shorter than the data (not supported): "
-                           : "access outside memory: ";
-    log::warning(name(), std::string(what) + (gp.is_write() ? "write" : "read") + " of " +
-                             std::to_string(gp.get_data_length()) + " bytes at offset " + log::hex(gp.get_address()));
-    return;
-  }
+}  // namespace
+
+void Memory::refuse(tlm::tlm_generic_payload& gp) {
+  const bool outside = gp.get_address() >= m_data.size() || gp.get_data_length() > m_data.size() - gp.get_address();
+  gp.set_response_status(outside ? tlm::TLM_ADDRESS_ERROR_RESPONSE : tlm::TLM_BURST_ERROR_RESPONSE);
+  ++m_errors;
+  const char* what = outside ? "access outside memory: " : "streaming width shorter than the data (not supported): ";
+  log::warning(name(), std::string(what) + (gp.is_write() ? "write" : "read") + " of " +
+                           std::to_string(gp.get_data_length()) + " bytes at offset " + log::hex(gp.get_address()));
+}
+
+void Memory::move_enabled(tlm::tlm_generic_payload& gp) {
   uint8_t* memory = m_data.data() + gp.get_address();
   const uint64_t length = gp.get_data_length();
   const uint8_t* enables = gp.get_byte_enable_ptr();
   const unsigned enable_length = gp.get_byte_enable_length();
+  if (gp.is_read()) {
+    for (uint64_t i = 0; i < length; ++i)
+      if (enables[i % enable_length] == TLM_BYTE_ENABLED) gp.get_data_ptr()[i] = memory[i];
+  } else if (gp.is_write()) {
+    for (uint64_t i = 0; i < length; ++i)
+      if (enables[i % enable_length] == TLM_BYTE_ENABLED) memory[i] = gp.get_data_ptr()[i];
+  }
+}
+
+const sc_core::sc_time& Memory::long_data_phase(uint64_t length, unsigned transfers) {
+  // Integer ticks: every transfer of a train takes the time of one access.
+  const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
+  if (ticks != m_last_access.value()) m_last_access = sc_core::sc_time::from_value(ticks);
+  return m_last_access;
+}
+
+void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  const uint64_t address = gp.get_address();
+  const uint64_t length = gp.get_data_length();
+  const uint64_t size = m_data.size();
+  if (address >= size || length > size - address || gp.get_streaming_width() < length) {
+    refuse(gp);
+    return;
+  }
   const unsigned transfers = transfers_of(gp);
   if (gp.is_read()) {
-    if (enables) {
-      for (uint64_t i = 0; i < length; ++i)
-        if (enables[i % enable_length] == TLM_BYTE_ENABLED) gp.get_data_ptr()[i] = memory[i];
-    } else {
-      std::memcpy(gp.get_data_ptr(), memory, length);
-    }
+    if (gp.get_byte_enable_ptr())
+      move_enabled(gp);
+    else
+      move(gp.get_data_ptr(), m_data.data() + address, length);
     m_reads += transfers;
     m_bytes_read += length;
   } else if (gp.is_write()) {
-    if (enables) {
-      for (uint64_t i = 0; i < length; ++i)
-        if (enables[i % enable_length] == TLM_BYTE_ENABLED) memory[i] = gp.get_data_ptr()[i];
-    } else {
-      std::memmove(memory, gp.get_data_ptr(), length);
-    }
+    if (gp.get_byte_enable_ptr())
+      move_enabled(gp);
+    else
+      move(m_data.data() + address, gp.get_data_ptr(), length);
     m_writes += transfers;
     m_bytes_written += length;
   }
-  // Integer ticks: every transfer of a train takes the time of one access.
-  const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
-  m_busy_ticks += ticks;
-  if (ticks != m_last_access.value()) m_last_access = sc_core::sc_time::from_value(ticks);
-  delay += m_last_access;
+  const uint64_t beats = length == 0 ? 1 : m_beats.ceil(length);
+  const sc_core::sc_time& time =
+      transfers == 1 && beats < m_access_times.size() ? m_access_times[beats] : long_data_phase(length, transfers);
+  m_busy_ticks += time.value();
+  delay += time;
   gp.set_dmi_allowed(true);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+tlm::tlm_sync_enum Memory::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
+                                           sc_core::sc_time& delay) {
+  (void)phase;
+  (void)delay;
+  ++m_errors;
+  log::warning(name(), "nb_transport_fw is not supported (loosely timed: b_transport only)");
+  gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+  return tlm::TLM_COMPLETED;
 }
 
 unsigned Memory::transport_dbg(tlm::tlm_generic_payload& gp) {

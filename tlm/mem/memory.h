@@ -2,13 +2,17 @@
 // per-beat burst latency in bus cycles, DMI for reads and writes, and debug
 // transport. Addresses are offsets into the memory (the bus subtracts the
 // region base). An access past the end is an address error.
+//
+// The memory is its own forward interface: its socket calls b_transport
+// with one virtual call, where simple_target_socket adds a second hop and a
+// member-function pointer (the memory is on every bus access's path).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
 
@@ -36,9 +40,9 @@ struct MemoryParams {
   static MemoryParams defaults();
 };
 
-class Memory : public Block {
+class Memory : public Block, private tlm::tlm_fw_transport_if<> {
  public:
-  tlm_utils::simple_target_socket<Memory, 32> in;
+  tlm::tlm_target_socket<32> in;
 
   Memory(sc_core::sc_module_name name, const MemoryParams& params);
 
@@ -57,11 +61,22 @@ class Memory : public Block {
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
-  bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
-  // Checks range and attributes; sets the response status on failure.
-  bool check(tlm::tlm_generic_payload& gp) const;
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override;
+  // Loosely timed only: a non-blocking call is answered with a command error.
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
+                                     sc_core::sc_time& delay) override;
+  // The error response to an access outside the memory or with a streaming
+  // width (not supported).
+  void refuse(tlm::tlm_generic_payload& gp);
+  // The copy of an access with byte enables.
+  void move_enabled(tlm::tlm_generic_payload& gp);
+  // access_time() of an access of `length` bytes as `transfers` transfers,
+  // when it is not in the table of single transfers: computed
+  // (sc_time::from_value is a call into the SystemC library) and kept while
+  // it repeats.
+  const sc_core::sc_time& long_data_phase(uint64_t length, unsigned transfers);
   // access_time() in ticks (the time resolution's units): integers only.
   uint64_t access_ticks(uint64_t bytes) const {
     const uint64_t beats = bytes == 0 ? 1 : m_beats.ceil(bytes);
@@ -73,7 +88,8 @@ class Memory : public Block {
   FixedDivider m_beats;  // bytes to beats (the width)
   uint64_t m_first_access_ticks;
   uint64_t m_beat_ticks;
-  sc_core::sc_time m_last_access;  // the time of the access before, kept as an sc_time
+  std::array<sc_core::sc_time, 65> m_access_times;  // [beats]: access_time() of a single transfer of that many beats
+  sc_core::sc_time m_last_access;                   // the time of the last access not in the table
   ActivityCounter& m_reads;
   ActivityCounter& m_writes;
   ActivityCounter& m_bytes_read;
