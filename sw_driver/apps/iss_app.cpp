@@ -495,7 +495,7 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
       if (tracing && profile.last_index() != traced_function) {
         memory.flush();
         traced_function = profile.last_index();
-        core_port.trace_program(core.reg(15), traced_function);
+        core_port.trace_program(core.reg(15), traced_function, core.cpsr());
       }
       if (memory.pending() >= CHARGE_BATCH) {
         memory.flush();

@@ -101,7 +101,7 @@ class RecordingCore : public tessera::HostCore {
     this->statistics = std::move(statistics);
   }
   bool tracing_program() const override { return false; }
-  void trace_program(uint32_t /*pc*/, uint32_t /*function*/) override {}
+  void trace_program(uint32_t /*pc*/, uint32_t /*function*/, uint32_t /*cpsr*/) override {}
   void set_function_names(std::vector<std::string> /*names*/) override {}
   uint64_t fetches = 0;
   std::function<nlohmann::json()> statistics;

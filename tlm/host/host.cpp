@@ -56,6 +56,7 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
   if (params.iss) {
     m_pc_trace = std::make_unique<TimedWord>("pc");
     m_function_trace = std::make_unique<TimedWord>("function");
+    m_cpsr_trace = std::make_unique<TimedWord>("cpsr");
   }
   SC_THREAD(run);
 }
@@ -68,14 +69,16 @@ void Host::trace_signals(sc_core::sc_trace_file* file) {
   if (m_pc_trace) {
     sc_core::sc_trace(file, m_pc_trace->signal, std::string(name()) + ".pc");
     sc_core::sc_trace(file, m_function_trace->signal, std::string(name()) + ".function");
+    sc_core::sc_trace(file, m_cpsr_trace->signal, std::string(name()) + ".cpsr");
   }
 }
 
-void Host::trace_program(uint32_t pc, uint32_t function) {
+void Host::trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) {
   if (!tracing_program()) return;
   const sc_time when = sc_time::from_value(local_ticks());
   m_pc_trace->set_at(pc, when);
   m_function_trace->set_at(function, when);
+  m_cpsr_trace->set_at(cpsr, when);
 }
 
 uint64_t Host::local_ticks() const {

@@ -131,7 +131,7 @@ class Host : public Block, public HostApi, public HostCore {
     m_program_statistics = std::move(statistics);
   }
   bool tracing_program() const override { return m_tracing && m_pc_trace != nullptr; }
-  void trace_program(uint32_t pc, uint32_t function) override;
+  void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) override;
   void set_function_names(std::vector<std::string> names) override { m_function_names = std::move(names); }
   const std::vector<std::string>& function_names() const { return m_function_names; }
 
@@ -225,7 +225,7 @@ class Host : public Block, public HostApi, public HostCore {
   bool m_tracing = false;
   // The program on the ISS (host.model=iss): its PC and function in the VCD
   // (built only then), its statistics in stats.json.
-  std::unique_ptr<TimedWord> m_pc_trace, m_function_trace;
+  std::unique_ptr<TimedWord> m_pc_trace, m_function_trace, m_cpsr_trace;
   std::function<nlohmann::json()> m_program_statistics;
   std::vector<std::string> m_function_names;
 };

@@ -49,11 +49,12 @@ class HostCore {
   // asked for whenever the host's are written: stats.json's host.iss.
   virtual void set_program_statistics(std::function<nlohmann::json()> statistics) = 0;
 
-  // Whether a VCD is being written; then the program counter and the
-  // function holding it (an index the launcher names) are traced at the
-  // host's local time: host.pc, host.function.
+  // Whether a VCD is being written; then the program counter, the function
+  // holding it (an index the launcher names) and the CPSR (mode, state,
+  // interrupt masks, flags) are traced at the host's local time: host.pc,
+  // host.function, host.cpsr.
   virtual bool tracing_program() const = 0;
-  virtual void trace_program(uint32_t pc, uint32_t function) = 0;
+  virtual void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) = 0;
   // The functions' names by index (soc_sim writes them beside the VCD).
   virtual void set_function_names(std::vector<std::string> names) = 0;
 };
