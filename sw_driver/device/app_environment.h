@@ -15,6 +15,9 @@
 #include "host/host_api.h"
 
 namespace tessera {
+namespace iss {
+class GdbServer;
+}
 
 class Config;
 class HostCore;
@@ -30,6 +33,9 @@ struct AppEnvironment {
   // What the ISS launcher needs beyond HostApi (instruction fetches, the
   // core's interrupt inputs, debug access); null where no ISS runs.
   HostCore* core = nullptr;
+  // A GDB server listening (soc_sim --gdb): the ISS launcher waits for GDB
+  // before the program's first instruction and serves it. Null: no GDB.
+  iss::GdbServer* gdb = nullptr;
   unsigned frames = 1;
   uint32_t frame_buffers[2] = {0, 0};
   uint32_t memory_bytes = 0;  // system memory populated from address 0

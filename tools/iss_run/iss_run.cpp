@@ -10,6 +10,7 @@
 // naming the file and the PC (exit status 3); bad input exits 2.
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -35,7 +36,7 @@ int run_main(int argc, char** argv) {
   app.add_option("--gdb-port-file", port_file, "write the GDB port here once listening");
   app.add_flag("--timing", timed,
                "ARM922T timing (ARM9TDMI cycles, 8 KB instruction cache on from the start, data memory without wait "
-               "states): instructions, cycles and CPI on stderr at exit (not while under --gdb)");
+               "states): instructions, cycles and CPI on stderr at exit");
   CLI11_PARSE(app, argc, argv);
   using namespace tessera::iss;
   try {
@@ -50,28 +51,35 @@ int run_main(int argc, char** argv) {
     cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
     machine.load(read_elf(elf), core);
     core.on_exception([&](Exception exception, uint32_t pc) {
-      if (const char* fault = fault_name(exception)) throw IssError(elf + ": " + fault + " at pc " + address_text(pc));
+      if (const char* fault = fault_name(exception))
+        throw ProgramFault(exception, elf + ": " + fault + " at pc " + address_text(pc));
     });
     try {
+      const auto timed_step = [&] {
+        core.step();
+        timing.step(core.last_step());
+      };
       if (gdb_port >= 0) {
-        GdbServer server({core, machine, [&] { return machine.exited(); }, [&] { return machine.status(); }});
+        GdbServer server;
         const unsigned port = server.listen(static_cast<unsigned>(gdb_port));
         std::cerr << "iss_run: waiting for GDB on 127.0.0.1:" << port << "\n";
         if (!port_file.empty() && !(std::ofstream(port_file) << port << "\n"))
           throw std::runtime_error("cannot write the port to " + port_file);
-        if (!server.serve(limit)) {
+        const GdbServer::Target target{core, machine,
+                                       timed ? std::function<void()>(timed_step) : [&core] { core.step(); },
+                                       [&] { return machine.exited(); }, [&] { return machine.status(); }};
+        const GdbServer::End end = server.serve(target, limit);
+        if (end == GdbServer::End::killed) {
           std::cout << machine.console();
           std::cerr << "iss_run: killed by GDB at pc " << address_text(core.reg(15)) << "\n";
           return 3;
         }
+        if (end == GdbServer::End::disconnected) std::cerr << "iss_run: GDB went away; the program runs on\n";
       }
       bool exited;
       if (timed) {
         const uint64_t steps = limit - std::min(limit, core.instructions());
-        for (uint64_t i = 0; !machine.exited() && i < steps; ++i) {
-          core.step();
-          timing.step(core.last_step());
-        }
+        for (uint64_t i = 0; !machine.exited() && i < steps; ++i) timed_step();
         exited = machine.exited();
       } else {
         exited = machine.run(core, limit - std::min(limit, core.instructions()));

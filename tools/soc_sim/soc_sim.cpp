@@ -29,6 +29,7 @@
 #include "common/activity_json.h"
 #include "common/log.h"
 #include "config/config.h"
+#include "host/iss/gdb_server.h"
 #include "output_file.h"
 #include "png_writer_thread.h"
 #include "progress_line.h"
@@ -66,6 +67,8 @@ struct Options {
   bool print_config = false;
   bool config_reference = false;
   bool list_apps = false;
+  int gdb_port = -1;  // -1: no GDB
+  std::string gdb_port_file;
   std::vector<std::string> app_args;
 };
 
@@ -320,6 +323,11 @@ int run(int argc, char* argv[]) {
   cli.add_flag("--wall-clock", opt.wall_clock,
                "add each frame's wall-clock and CPU time (wall_ns, cpu_ns) to stats.json, for benchmarks; the file "
                "then differs from run to run");
+  CLI::Option* gdb = cli.add_option("--gdb", opt.gdb_port,
+                                    "serve GDB's remote protocol on 127.0.0.1:PORT (0: any free port) for the program "
+                                    "on the ISS (host.model=iss), which waits for GDB before its first instruction")
+                         ->check(CLI::Range(0, 65535));
+  cli.add_option("--gdb-port-file", opt.gdb_port_file, "with --gdb: write the port to FILE once listening")->needs(gdb);
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
   cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
@@ -427,6 +435,14 @@ int run(int argc, char* argv[]) {
     return 0;
   }
 
+  if (opt.gdb_port >= 0 && config.get_string("host.model") != "iss") {
+    std::cerr << "soc_sim: impossible combination: --gdb debugs a program on the ISS, and host.model="
+              << config.get_string("host.model")
+              << " runs the application host-compiled (set host.model=iss, or run an ARM executable with --app "
+                 "program.elf)\n";
+    return EXIT_USAGE;
+  }
+
   AppInfo app;
   try {
     app = find_app(config.get_string("sim.app"), config.get_string("host.model") == "iss");
@@ -448,6 +464,22 @@ int run(int argc, char* argv[]) {
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
+  }
+
+  // Listening before the SoC is built: a port in use is bad input, found
+  // before anything runs.
+  std::unique_ptr<iss::GdbServer> gdb_server;
+  if (opt.gdb_port >= 0) {
+    try {
+      gdb_server = std::make_unique<iss::GdbServer>();
+      const unsigned port = gdb_server->listen(static_cast<unsigned>(opt.gdb_port));
+      if (!opt.gdb_port_file.empty() && !(std::ofstream(opt.gdb_port_file) << port << "\n"))
+        throw std::runtime_error("cannot write the GDB port to '" + opt.gdb_port_file + "'");
+      if (!opt.quiet) std::cerr << "soc_sim: waiting for GDB on 127.0.0.1:" << port << "\n";
+    } catch (const std::exception& e) {
+      std::cerr << "soc_sim: --gdb: " << e.what() << "\n";
+      return EXIT_USAGE;
+    }
   }
 
   log::install(log::parse_level(config.get_string("sim.log_level")));
@@ -516,6 +548,7 @@ int run(int argc, char* argv[]) {
   };
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   env.core = &soc.host;
+  env.gdb = gdb_server.get();
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);
@@ -562,9 +595,11 @@ int run(int argc, char* argv[]) {
       std::fprintf(stderr, "soc_sim: %s\n", e.what());
     }
   };
-  watch =
-      std::make_unique<RunWatch>(WatchLimits{config.get_uint("sim.stall_limit_s"), config.get_uint("sim.wall_limit_s")},
-                                 frames, stop_from_outside);
+  // Under GDB simulated time stands still while GDB holds the program, for
+  // as long as the user likes: that is no stall.
+  const uint64_t stall_limit_s = gdb_server ? 0 : config.get_uint("sim.stall_limit_s");
+  watch = std::make_unique<RunWatch>(WatchLimits{stall_limit_s, config.get_uint("sim.wall_limit_s")}, frames,
+                                     stop_from_outside);
   wall_start = std::chrono::steady_clock::now();
   const sc_core::sc_time limit(static_cast<double>(time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
@@ -586,6 +621,9 @@ int run(int argc, char* argv[]) {
     fail(RunEnd::failed, EXIT_SIM_FAILED, std::string("simulation failed: ") + e.what());
   }
   watch->finish();
+  // The run ended with the program still running under GDB (the time
+  // limit, say): GDB is told, not left waiting.
+  if (gdb_server) gdb_server->abandon();
   progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
   soc.close_trace();
   std::string trace_error = trace_pipe ? trace_pipe->finish() : "";

@@ -108,6 +108,18 @@ class IssError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A fault that a launcher without handlers stops the program at (one
+// fault_name names), thrown from the core's exception hook: which exception
+// it was, so that a debugger shows the stop with the matching signal.
+class ProgramFault : public IssError {
+ public:
+  ProgramFault(Exception exception, const std::string& what) : IssError(what), m_exception(exception) {}
+  Exception exception() const { return m_exception; }
+
+ private:
+  Exception m_exception;
+};
+
 // What the last step executed, for the timing layer (Arm922tTiming): the
 // instruction's class and the operands its cycle count depends on. Thumb
 // instructions report the ARM instruction they are executed as.

@@ -3,16 +3,18 @@
 // no timing: what the ISS's functional tests and its speed benchmark run.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "host/iss/arm_core.h"
 #include "host/iss/elf_image.h"
+#include "host/iss/gdb_server.h"
 
 namespace tessera::iss {
 
-class BareMachine : public IssMemory {
+class BareMachine : public IssMemory, public DebugMemory {
  public:
   static constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
 
@@ -45,6 +47,17 @@ class BareMachine : public IssMemory {
   }
   bool fetch(uint32_t address, unsigned size, uint32_t& value) override {
     return BareMachine::read(address, size, value);
+  }
+  // A debugger's access reaches the RAM only (not the console or exit register).
+  bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override {
+    if (uint64_t{address} + bytes > m_ram.size()) return false;
+    std::copy_n(m_ram.begin() + address, bytes, data);
+    return true;
+  }
+  bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) override {
+    if (uint64_t{address} + bytes > m_ram.size()) return false;
+    std::copy_n(data, bytes, m_ram.begin() + address);
+    return true;
   }
   bool write(uint32_t address, unsigned size, uint32_t value) override {
     if (address == CONSOLE) {

@@ -2,12 +2,17 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace tessera::iss {
 
@@ -27,6 +32,22 @@ const std::string TARGET_XML = [] {
 }();
 
 constexpr char HEX[] = "0123456789abcdef";
+
+// GDB's signal numbers (its own numbering, the same as Linux's for these).
+constexpr unsigned SIGNAL_INT = 2, SIGNAL_ILL = 4, SIGNAL_TRAP = 5, SIGNAL_ABRT = 6, SIGNAL_KILL = 9, SIGNAL_SEGV = 11,
+                   SIGNAL_XCPU = 24;
+
+// Instructions between two looks at the connection during a run (for
+// GDB's Ctrl-C, or its going away): a poll() costs about a microsecond.
+constexpr uint64_t POLL_INTERVAL = 1u << 16;
+
+// The largest packet either side sends (qSupported's PacketSize): GDB
+// sizes its memory reads and writes by it.
+constexpr uint64_t PACKET_SIZE = 0x4000;
+
+std::string hex_byte(unsigned value) {
+  return {HEX[(value >> 4) & 15], HEX[value & 15]};
+}
 
 std::string hex_word(uint32_t value) {  // target byte order: little-endian
   std::string out;
@@ -65,9 +86,14 @@ uint32_t word_from_hex(const std::string& text) {  // 8 hex digits, little-endia
 
 }  // namespace
 
+GdbServer::~GdbServer() {
+  close_connection();
+}
+
 unsigned GdbServer::listen(unsigned port) {
   m_listen_fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  if (m_listen_fd < 0) throw std::runtime_error("GDB server: cannot create a socket");
+  if (m_listen_fd < 0)
+    throw std::runtime_error("GDB server: cannot create a socket: " + std::string(std::strerror(errno)));
   const int yes = 1;
   ::setsockopt(m_listen_fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   sockaddr_in address{};
@@ -75,67 +101,120 @@ unsigned GdbServer::listen(unsigned port) {
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   address.sin_port = htons(static_cast<uint16_t>(port));
   if (port > 65535 || ::bind(m_listen_fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
-      ::listen(m_listen_fd, 1) != 0)
-    throw std::runtime_error("GDB server: cannot listen on 127.0.0.1:" + std::to_string(port) + ": " +
-                             std::strerror(errno));
+      ::listen(m_listen_fd, 1) != 0) {
+    const std::string reason = port > 65535 ? "not a TCP port" : std::strerror(errno);
+    close_connection();
+    throw std::runtime_error("GDB server: cannot listen on 127.0.0.1:" + std::to_string(port) + ": " + reason);
+  }
   socklen_t length = sizeof address;
   ::getsockname(m_listen_fd, reinterpret_cast<sockaddr*>(&address), &length);
   return ntohs(address.sin_port);
 }
 
+void GdbServer::close_connection() {
+  if (m_fd >= 0) ::close(m_fd);
+  if (m_listen_fd >= 0) ::close(m_listen_fd);
+  m_fd = m_listen_fd = -1;
+  m_connected = m_running = false;
+}
+
+bool GdbServer::receive(char& c) {
+  ssize_t n;
+  do n = ::recv(m_fd, &c, 1, 0);
+  while (n < 0 && errno == EINTR);
+  if (n != 1) m_connected = false;
+  return n == 1;
+}
+
 std::string GdbServer::read_packet() {
   std::string data;
   char c = 0;
-  while (true) {                                  // skip to the start of a packet (acks, Ctrl-C)
-    if (::read(m_fd, &c, 1) != 1) return "\x04";  // the connection closed
-    if (c == '$') break;
-  }
-  while (::read(m_fd, &c, 1) == 1 && c != '#') data += c;
+  do  // skip to the start of a packet (acks, a Ctrl-C while stopped)
+    if (!receive(c)) return "";
+  while (c != '$');
+  while (receive(c) && c != '#') data += c;
   char checksum[2];
-  if (::read(m_fd, checksum, 2) != 2) return "\x04";
-  ::write(m_fd, "+", 1);
+  if (!m_connected || !receive(checksum[0]) || !receive(checksum[1])) return "";
+  ::send(m_fd, "+", 1, MSG_NOSIGNAL);
   return data;
 }
 
 void GdbServer::send_packet(const std::string& data) {
+  if (!m_connected) return;
   unsigned sum = 0;
   for (char c : data) sum += static_cast<unsigned char>(c);
-  std::string packet = "$" + data + "#";
-  packet += HEX[(sum >> 4) & 15];
-  packet += HEX[sum & 15];
+  const std::string packet = "$" + data + "#" + hex_byte(sum);
   for (int attempt = 0; attempt < 3; ++attempt) {
-    if (::write(m_fd, packet.data(), packet.size()) != static_cast<ssize_t>(packet.size())) return;
+    // MSG_NOSIGNAL: a GDB gone away is an error here, not a SIGPIPE.
+    if (::send(m_fd, packet.data(), packet.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(packet.size())) {
+      m_connected = false;
+      return;
+    }
     char ack = 0;
-    if (::read(m_fd, &ack, 1) != 1 || ack == '+') return;
+    if (!receive(ack) || ack != '-') return;
   }
 }
 
 std::string GdbServer::registers() const {
   std::string out;
-  for (unsigned n = 0; n < 16; ++n) out += hex_word(m_target.core.reg(n));
-  return out + hex_word(m_target.core.cpsr());
+  for (unsigned n = 0; n < 16; ++n) out += hex_word(m_target->core.reg(n));
+  return out + hex_word(m_target->core.cpsr());
 }
 
 std::string GdbServer::stop_reply() const {
-  if (m_target.exited()) {
-    char text[8];
-    std::snprintf(text, sizeof text, "W%02x", m_target.status() & 0xffu);
-    return text;
-  }
-  return "S05";  // SIGTRAP: a breakpoint, a step, or the start
+  if (m_target->exited()) return "W" + hex_byte(m_target->status() & 0xffu);
+  return "S" + hex_byte(m_signal);
+}
+
+std::string GdbServer::read_memory(uint32_t address, uint32_t length) const {
+  std::vector<uint8_t> bytes(length);
+  uint32_t got = length;
+  if (!m_target->memory.debug_read(address, bytes.data(), length))  // as far as memory goes
+    for (got = 0; got < length && m_target->memory.debug_read(address + got, &bytes[got], 1);) ++got;
+  if (got == 0 && length > 0) return "E01";
+  std::string out;
+  for (uint32_t i = 0; i < got; ++i) out += hex_byte(bytes[i]);
+  return out;
+}
+
+bool GdbServer::interrupted() {
+  pollfd connection{m_fd, POLLIN, 0};
+  if (::poll(&connection, 1, 0) <= 0) return false;
+  char c = 0;
+  return !receive(c) || c == '\x03';
 }
 
 bool GdbServer::run(bool single_step, uint64_t& budget) {
+  ArmCore& core = m_target->core;
+  uint64_t until_poll = POLL_INTERVAL;
+  m_signal = SIGNAL_TRAP;
   do {
     if (budget == 0) return false;
     --budget;
-    m_target.core.step();
-  } while (!single_step && !m_target.exited() && !m_breakpoints.count(m_target.core.reg(15)));
+    try {
+      m_target->step();
+    } catch (const ProgramFault& fault) {
+      m_signal = fault.exception() == Exception::undefined ? SIGNAL_ILL : SIGNAL_SEGV;
+      m_fault = std::current_exception();
+      return true;
+    } catch (const IssError&) {  // an unpredictable encoding
+      m_signal = SIGNAL_ILL;
+      m_fault = std::current_exception();
+      return true;
+    }
+    if (--until_poll == 0) {
+      until_poll = POLL_INTERVAL;
+      if (interrupted()) {
+        m_signal = SIGNAL_INT;
+        return true;
+      }
+    }
+  } while (!single_step && !m_target->exited() && (m_breakpoints.empty() || !m_breakpoints.count(core.reg(15))));
   return true;
 }
 
 std::string GdbServer::handle(const std::string& packet, bool& resume, bool& step, bool& stop_serving) {
-  ArmCore& core = m_target.core;
+  ArmCore& core = m_target->core;
   const char kind = packet.empty() ? '\0' : packet[0];
   const std::string args = packet.size() > 1 ? packet.substr(1) : "";
   switch (kind) {
@@ -169,24 +248,19 @@ std::string GdbServer::handle(const std::string& packet, bool& resume, bool& ste
       uint64_t address = 0, length = 0;
       if (comma == std::string::npos || !parse_hex(args.substr(0, comma), address) ||
           !parse_hex(args.substr(comma + 1, kind == 'M' ? colon - comma - 1 : std::string::npos), length) ||
-          length > 0x1000 || address + length > (1ull << 32))
+          length > PACKET_SIZE / 2 || address + length > (1ull << 32))
         return "E01";
-      std::string out;
+      if (kind == 'm') return read_memory(static_cast<uint32_t>(address), static_cast<uint32_t>(length));
+      if (colon == std::string::npos || args.size() != colon + 1 + 2 * length) return "E01";
+      std::vector<uint8_t> bytes(length);
       for (uint64_t i = 0; i < length; ++i) {
-        const auto at = static_cast<uint32_t>(address + i);
-        if (kind == 'm') {
-          uint32_t byte = 0;
-          if (!m_target.memory.read(at, 1, byte)) return out.empty() ? "E01" : out;  // as far as memory goes
-          out += HEX[(byte >> 4) & 15];
-          out += HEX[byte & 15];
-        } else {
-          if (colon == std::string::npos || args.size() < colon + 1 + 2 * (i + 1)) return "E01";
-          const int high = nibble(args[colon + 1 + 2 * i]), low = nibble(args[colon + 2 + 2 * i]);
-          if (high < 0 || low < 0 || !m_target.memory.write(at, 1, static_cast<uint32_t>(high << 4 | low)))
-            return "E01";
-        }
+        const int high = nibble(args[colon + 1 + 2 * i]), low = nibble(args[colon + 2 + 2 * i]);
+        if (high < 0 || low < 0) return "E01";
+        bytes[i] = static_cast<uint8_t>(high << 4 | low);
       }
-      return kind == 'm' ? out : "OK";
+      const bool written = length == 0 || m_target->memory.debug_write(static_cast<uint32_t>(address), bytes.data(),
+                                                                       static_cast<unsigned>(length));
+      return written ? "OK" : "E01";
     }
     case 'Z':
     case 'z': {
@@ -203,22 +277,33 @@ std::string GdbServer::handle(const std::string& packet, bool& resume, bool& ste
     }
     case 'c':
     case 's':
-      if (!args.empty()) {
+    case 'C':  // with a signal (GDB passes on the one the program stopped
+    case 'S':  // with): the ISS has none to deliver, so it is dropped
+    {
+      const size_t semicolon = args.find(';');
+      const std::string at = kind == 'c' || kind == 's'       ? args
+                             : semicolon == std::string::npos ? ""
+                                                              : args.substr(semicolon + 1);
+      if (!at.empty()) {
         uint64_t address = 0;
-        if (!parse_hex(args, address)) return "E01";
+        if (!parse_hex(at, address)) return "E01";
         core.set_reg(15, static_cast<uint32_t>(address));
       }
       resume = true;
-      step = kind == 's';
+      step = kind == 's' || kind == 'S';
       return "";
-    case 'k':
-      m_killed = true;
-      stop_serving = true;
-      return "";
+    }
+    case 'k': stop_serving = true; return "";
     case 'D': stop_serving = true; return "OK";
     case 'H': return "OK";
     case 'q':
-      if (packet.rfind("qSupported", 0) == 0) return "PacketSize=4000;qXfer:features:read+";
+      if (packet.rfind("qSupported", 0) == 0) {
+        char features[64];
+        std::snprintf(features, sizeof features, "PacketSize=%llx;qXfer:features:read+",
+                      static_cast<unsigned long long>(PACKET_SIZE));
+        return features;
+      }
+      // Attached to a running program: GDB leaving detaches rather than kills.
       if (packet == "qAttached") return "1";
       if (packet == "qC") return "QC1";
       if (packet == "qfThreadInfo") return "m1";
@@ -239,31 +324,82 @@ std::string GdbServer::handle(const std::string& packet, bool& resume, bool& ste
   }
 }
 
-bool GdbServer::serve(uint64_t instruction_limit) {
-  m_fd = ::accept(m_listen_fd, nullptr, nullptr);
-  if (m_fd < 0) throw std::runtime_error(std::string("GDB server: accept failed: ") + std::strerror(errno));
+GdbServer::End GdbServer::serve(const Target& target, uint64_t instruction_limit) {
+  if (m_listen_fd < 0) throw std::logic_error("GDB server: serve() before listen()");
+  do m_fd = ::accept(m_listen_fd, nullptr, nullptr);
+  while (m_fd < 0 && errno == EINTR);
+  if (m_fd < 0) {
+    const std::string reason = std::strerror(errno);
+    close_connection();
+    throw std::runtime_error("GDB server: accept failed: " + reason);
+  }
+  ::close(m_listen_fd);  // one debugger at a time
+  m_listen_fd = -1;
+  const int yes = 1;  // single steps are one small packet each way
+  ::setsockopt(m_fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+  m_connected = true;
+  m_target = &target;
+  m_fault = nullptr;
+  m_signal = SIGNAL_TRAP;
   uint64_t budget = instruction_limit;
-  while (true) {
-    const std::string packet = read_packet();
-    if (packet == "\x04") break;  // GDB went away: the program runs on
-    bool resume = false, step = false, stop_serving = false;
-    const std::string reply = handle(packet, resume, step, stop_serving);
-    if (resume) {
-      if (!run(step, budget)) {
-        send_packet("X18");  // SIGXCPU: the instruction limit
+  End end = End::detached;
+  try {
+    while (true) {
+      const std::string packet = read_packet();
+      if (!m_connected) {
+        end = End::disconnected;
         break;
       }
-      send_packet(stop_reply());
-      if (m_target.exited()) break;
-      continue;
+      bool resume = false, step = false, stop_serving = false;
+      const std::string reply = handle(packet, resume, step, stop_serving);
+      if (resume && m_fault) {  // the program cannot go on from its fault
+        send_packet("X" + hex_byte(m_signal));
+        break;
+      }
+      if (resume) {
+        m_running = true;
+        const bool within_limit = run(step, budget);
+        m_running = false;
+        if (!within_limit) {
+          send_packet("X" + hex_byte(SIGNAL_XCPU));
+          end = End::limit;
+          break;
+        }
+        if (!m_connected) {
+          end = End::disconnected;
+          break;
+        }
+        send_packet(stop_reply());
+        if (target.exited()) {
+          end = End::exited;
+          break;
+        }
+        continue;
+      }
+      if (packet == "k") {
+        end = End::killed;
+        break;
+      }
+      send_packet(reply);
+      if (stop_serving) break;
     }
-    if (!(packet == "k")) send_packet(reply);
-    if (stop_serving) break;
+  } catch (...) {
+    // Not the program's fault (the launcher's or the simulation's own
+    // error): GDB is told the program ended before it goes on up.
+    if (m_running) send_packet("X" + hex_byte(SIGNAL_ABRT));
+    close_connection();
+    m_target = nullptr;
+    throw;
   }
-  ::close(m_fd);
-  ::close(m_listen_fd);
-  m_fd = m_listen_fd = -1;
-  return !m_killed;
+  close_connection();
+  m_target = nullptr;
+  if (m_fault && end != End::killed) std::rethrow_exception(std::exchange(m_fault, nullptr));
+  return end;
+}
+
+void GdbServer::abandon() {
+  if (m_running) send_packet("X" + hex_byte(SIGNAL_KILL));
+  close_connection();
 }
 
 }  // namespace tessera::iss

@@ -1,52 +1,98 @@
 // GdbServer: the GDB remote serial protocol over TCP for the ISS, so that
 // gdb-multiarch can debug a program the ISS runs: registers (r0-r15 and the
-// CPSR, described to GDB by a target description), memory, software
-// breakpoints, single step, continue, and the program's exit.
+// CPSR, described to GDB by a target description), memory, breakpoints,
+// single step, continue, interrupting a run (Ctrl-C), kill, detach, the
+// program's faults and its exit. One server for every launcher: iss_run's
+// bare machine and soc_sim's host (host.model=iss) each hand it the core, a
+// debugger's view of memory and the step their run makes.
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
-#include <set>
 #include <string>
+#include <unordered_set>
 
 #include "host/iss/arm_core.h"
 
 namespace tessera::iss {
 
+// Memory as a debugger sees it: no simulated time, no cache or bus activity.
+// false where nothing answers (an unmapped address).
+class DebugMemory {
+ public:
+  virtual ~DebugMemory() = default;
+  virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
+  virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
+};
+
 class GdbServer {
  public:
-  // What the server runs: one instruction at a time; `exited` and `status`
-  // say whether the program has ended and how.
+  // What the server debugs.
   struct Target {
     ArmCore& core;
-    IssMemory& memory;  // debugger reads and writes (no side effects expected)
+    DebugMemory& memory;
+    // Executes one instruction as the launcher's run does (its timing, its
+    // host's time, its interrupt sampling), so that a program under GDB
+    // behaves as it does without. A ProgramFault or IssError it throws is
+    // the program's fault: shown to GDB, then rethrown when GDB resumes or
+    // leaves; anything else is rethrown at once.
+    std::function<void()> step;
     std::function<bool()> exited;
     std::function<uint32_t()> status;
   };
 
-  explicit GdbServer(Target target) : m_target(std::move(target)) {}
+  // How serving ended.
+  enum class End {
+    exited,        // the program exited (reported to GDB)
+    detached,      // GDB detached: the program runs on without it
+    disconnected,  // the connection closed without a detach: the same
+    killed,        // GDB killed the program
+    limit,         // the instruction limit (reported to GDB as SIGXCPU)
+  };
+
+  GdbServer() = default;
+  ~GdbServer();
+  GdbServer(const GdbServer&) = delete;
+  GdbServer& operator=(const GdbServer&) = delete;
 
   // Listens on 127.0.0.1:port (0: any free port); returns the port. Throws
-  // std::runtime_error naming the port if it cannot listen.
+  // std::runtime_error naming the port if it cannot listen (in use, say).
   unsigned listen(unsigned port);
-  // Waits for GDB, then serves it until it detaches or kills the program, or
-  // the program exits (reported to GDB). Returns false if GDB killed it.
-  bool serve(uint64_t instruction_limit);
+  // Waits for GDB with the program stopped before its first instruction,
+  // then serves it until GDB detaches, kills the program or goes away, or the
+  // program exits. The listening socket is closed once GDB is connected.
+  End serve(const Target& target, uint64_t instruction_limit);
+  // The run ends from outside while the program runs under GDB (soc_sim's
+  // simulated-time limit, say): GDB is told that the program was killed
+  // (SIGKILL) and the connection is closed. Nothing if GDB is not there.
+  void abandon();
 
  private:
   std::string handle(const std::string& packet, bool& resume, bool& step, bool& stop_serving);
+  // One byte from GDB; false, with m_connected cleared, when the connection closed.
+  bool receive(char& c);
+  // A packet's data; "" with m_connected cleared when the connection closed.
   std::string read_packet();
   void send_packet(const std::string& data);
+  std::string read_memory(uint32_t address, uint32_t length) const;
   std::string registers() const;
   std::string stop_reply() const;
-  // Runs until a breakpoint, the program's end or the limit; false at the limit.
+  // Steps until a breakpoint, the program's end, its fault, the limit or
+  // GDB's interrupt; false at the limit.
   bool run(bool single_step, uint64_t& budget);
+  // GDB sent Ctrl-C, or the connection closed (m_connected cleared).
+  bool interrupted();
+  void close_connection();
 
-  Target m_target;
+  const Target* m_target = nullptr;
   int m_listen_fd = -1;
   int m_fd = -1;
-  std::set<uint32_t> m_breakpoints;
-  bool m_killed = false;
+  bool m_connected = false;
+  bool m_running = false;  // GDB waits for a stop reply
+  unsigned m_signal = 5;   // of the last stop: SIGTRAP, SIGINT, or the fault's
+  std::unordered_set<uint32_t> m_breakpoints;
+  std::exception_ptr m_fault;  // the program's fault, shown to GDB, not yet rethrown
 };
 
 }  // namespace tessera::iss
