@@ -44,6 +44,7 @@
 
 #include <cstdint>
 
+#include "batch.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
@@ -135,5 +136,35 @@ constexpr AttributeEvaluation evaluate_attribute(const AttributePlane& plane, in
   r.output = attribute_output(plane.kind, r.value);
   return r;
 }
+
+// Batch form (batch.h): the offsets (dx + i, dy), i in 0..count-1, of a
+// row (-512 <= dx, dx + count <= 512, dy in -512..511), everything
+// evaluate_attribute gives, A evaluated once and stepped by grad_x (exact,
+// above: no sum reaches the 51-bit bound, so none wraps). value holds
+// count + 1 sums, at dx .. dx + count, so that value[i + 1] is offset i's
+// value_next_x; value_next_y may be null when not wanted.
+struct AttributeSpan {
+  int64_t* value;         // count + 1 entries
+  int64_t* value_next_y;  // at (dx + i, dy + 1); null: not computed
+  uint32_t* output;       // attribute_output(kind, value)
+};
+
+struct AttributeSpanKernel {
+  TESSERA_BATCH_KERNEL void run(const AttributePlane& plane, int dx, int dy, unsigned count, const AttributeSpan& out) {
+    loop(plane.kind, attribute_at(plane, dx, dy).raw, attribute_word40(plane.grad_x), attribute_word40(plane.grad_y),
+         count, out.value, out.value_next_y, out.output);
+  }
+  TESSERA_BATCH_KERNEL void loop(AttributeKind kind, int64_t first, int64_t step, int64_t step_y, unsigned count,
+                                 int64_t* __restrict value, int64_t* __restrict value_next_y,
+                                 uint32_t* __restrict output) {
+    for (unsigned i = 0; i <= count; ++i) value[i] = first + static_cast<int64_t>(i) * step;
+    if (value_next_y != nullptr)
+      for (unsigned i = 0; i < count; ++i) value_next_y[i] = value[i] + step_y;
+    for (unsigned i = 0; i < count; ++i) output[i] = attribute_output(kind, attribute_sum{value[i]});
+  }
+};
+
+void attribute_span(const AttributePlane& plane, int dx, int dy, unsigned count, const AttributeSpan& out,
+                    BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

@@ -54,6 +54,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "batch.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
@@ -185,5 +186,44 @@ constexpr EdgeEvaluation evaluate_edge(const Edge& e, unsigned px, unsigned py, 
   r.coverage = edge_coverage(r.distance);
   return r;
 }
+
+// Batch form (batch.h): the pixels (px + i, py), i in 0..count-1, of a row
+// (px + count <= 512, py <= 511), everything evaluate_edge gives, E
+// evaluated once and stepped (exact, above). value holds count + 1 values,
+// E at px .. px + count, so that value[i + 1] is pixel i's value_next_x;
+// l1_length, the same for every pixel, is the return value.
+struct EdgeSpan {
+  int32_t* value;         // count + 1 entries; E fits in 29 bits
+  int32_t* value_next_y;  // E at (px + i, py + 1)
+  uint32_t* inside;       // 1 or 0
+  int32_t* distance;      // q7.8
+  uint32_t* coverage;     // 0.8
+};
+
+struct EdgeSpanKernel {
+  TESSERA_BATCH_KERNEL void run(const Edge& e, unsigned px, unsigned py, unsigned count, q5_16 recip,
+                                const EdgeSpan& out) {
+    loop(e, static_cast<int32_t>(edge_value_at(e, px, py).raw), count, recip, out.value, out.value_next_y, out.inside,
+         out.distance, out.coverage);
+  }
+  TESSERA_BATCH_KERNEL void loop(const Edge e, int32_t first, unsigned count, q5_16 recip, int32_t* __restrict value,
+                                 int32_t* __restrict value_next_y, uint32_t* __restrict inside,
+                                 int32_t* __restrict distance, uint32_t* __restrict coverage) {
+    const auto step = static_cast<int32_t>(edge_step_x(e, edge_value{0}).raw);
+    const auto step_y = static_cast<int32_t>(edge_step_y(e, edge_value{0}).raw);
+    for (unsigned i = 0; i <= count; ++i) value[i] = first + static_cast<int32_t>(i) * step;
+    for (unsigned i = 0; i < count; ++i) {
+      const edge_value v{first + static_cast<int32_t>(i) * step};
+      value_next_y[i] = static_cast<int32_t>(v.raw) + step_y;
+      inside[i] = edge_inside(e, v) ? 1u : 0u;
+      const edge_distance d = edge_normalised_distance(v, recip);
+      distance[i] = static_cast<int32_t>(d.raw);
+      coverage[i] = edge_coverage(d).raw;
+    }
+  }
+};
+
+q10_4 edge_span(const Edge& e, unsigned px, unsigned py, unsigned count, q5_16 recip, const EdgeSpan& out,
+                BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster
