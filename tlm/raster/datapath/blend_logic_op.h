@@ -124,7 +124,7 @@ constexpr uint32_t blend_word(BlendFactor src_factor, BlendFactor dst_factor, ui
   return out;
 }
 
-constexpr Rgba8 blend(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src, Rgba8 dst) {
+constexpr Rgba8 blend_colors(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src, Rgba8 dst) {
   return Rgba8::unpack(blend_word(src_factor, dst_factor, src.pack(), dst.pack()));
 }
 

@@ -65,15 +65,15 @@ constexpr bool compare_matches_table() {
 static_assert(compare_matches_table(), "the compare codes are no longer GL's bit pattern");
 }  // namespace fragment_tests_detail
 
-constexpr bool alpha_test(CompareFunc func, unorm8 alpha, unorm8 ref) {
+constexpr bool alpha_test_passes(CompareFunc func, unorm8 alpha, unorm8 ref) {
   return compare(func, alpha.raw, ref.raw);
 }
 
-constexpr bool depth_test(CompareFunc func, unorm24 incoming, unorm24 stored) {
+constexpr bool depth_test_passes(CompareFunc func, unorm24 incoming, unorm24 stored) {
   return compare(func, incoming.raw, stored.raw);
 }
 
-constexpr bool stencil_test(CompareFunc func, stencil8 ref, uint8_t value_mask, stencil8 stored) {
+constexpr bool stencil_test_passes(CompareFunc func, stencil8 ref, uint8_t value_mask, stencil8 stored) {
   return compare(func, ref.raw & value_mask, stored.raw & value_mask);
 }
 
