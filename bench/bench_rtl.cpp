@@ -10,7 +10,7 @@
 // the caches, as the core's operands do) is generated once, outside the
 // timed loops, with the distributions of tests/raster/test_raster_*_cosim.cpp,
 // cut into batches of B vectors (default 32, a tile row) that share what the
-// core's batches share: a state, or the row of a span. Three sides sweep the
+// core's batches share: a state or a plane, or the row of a span. Three sides sweep the
 // pool, each storing every output field of every vector:
 //   batch   the unit's batch form (batch.h), one call per batch, the variant
 //           --isa names or the widest the processor has: how the raster core
@@ -393,14 +393,11 @@ Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
 }
 
 Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  struct Span {
-    AttributePlane plane;
-    int dx, dy;
-  };
   struct Pool {
     Batches batches;
-    std::vector<Span> spans;
-    std::vector<int64_t> value, value_next_y;
+    std::vector<AttributePlane> planes;
+    std::vector<int32_t> dx, dy;
+    std::vector<int64_t> value, value_next_x, value_next_y;
     std::vector<uint32_t> output;
     std::vector<AttributeEvaluation> scalar, rtl_out;
     AttrInterpRtl rtl;
@@ -408,62 +405,59 @@ Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   };
   auto p = std::make_shared<Pool>(opt);
   const uint32_t n = p->batches.lanes;
-  // Random words at random magnitudes, a span of a row at a random offset.
+  for (auto* v : {&p->dx, &p->dy}) v->resize(n);
+  for (auto* v : {&p->value, &p->value_next_x, &p->value_next_y}) v->resize(n);
+  p->output.resize(n);
+  // Random words at random magnitudes, offsets at random, as the cosim test.
   auto word = [&rng]() { return sign_extend(rng(), 1 + static_cast<unsigned>(rng() % 40)); };
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    Span s{};
     const auto kind = static_cast<AttributeKind>(rng() & 3);  // 3: undefined kind
     const int64_t start = word(), grad_x = word(), grad_y = word();
-    s.plane = AttributePlane{kind, start, grad_x, grad_y};
-    const uint64_t offsets = rng();
-    s.dx = std::min(static_cast<int>(offsets & 0x3ff) - 512, 512 - static_cast<int>(p->batches.count[b]));
-    s.dy = static_cast<int>((offsets >> 10) & 0x3ff) - 512;
-    p->spans.push_back(s);
+    p->planes.push_back(AttributePlane{kind, start, grad_x, grad_y});
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint64_t offsets = rng();
+      p->dx[p->batches.first[b] + k] = static_cast<int32_t>(offsets & 0x3ff) - 512;
+      p->dy[p->batches.first[b] + k] = static_cast<int32_t>((offsets >> 10) & 0x3ff) - 512;
+    }
   }
-  p->value.resize(n + p->batches.size());
-  p->value_next_y.resize(n);
-  p->output.resize(n);
   p->scalar.resize(n);
   p->rtl_out.resize(n);
   Unit u{"attribute interpolator", n, {}};
-  u.side[BATCH] = {[p, isa] {
-                     for (size_t b = 0; b < p->batches.size(); ++b) {
-                       const uint32_t f = p->batches.first[b];
-                       const Span& s = p->spans[b];
-                       attribute_span(s.plane, s.dx, s.dy, p->batches.count[b],
-                                      {p->value.data() + f + b, p->value_next_y.data() + f, p->output.data() + f}, isa);
-                     }
-                     compiler_barrier(p->value.data());
-                   },
-                   [p] {
-                     uint64_t sum = 0;
-                     for (size_t b = 0; b < p->batches.size(); ++b)
-                       for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
-                         const uint32_t i = p->batches.first[b] + k;
-                         sum = fold(sum, static_cast<uint64_t>(p->value[i + b]));
-                         sum = fold(sum, static_cast<uint64_t>(p->value[i + b + 1]));
-                         sum = fold(sum, static_cast<uint64_t>(p->value_next_y[i]));
-                         sum = fold(sum, p->output[i]);
-                       }
-                     return sum;
-                   }};
+  u.side[BATCH] = {
+      [p, isa] {
+        for (size_t b = 0; b < p->batches.size(); ++b) {
+          const uint32_t f = p->batches.first[b];
+          attribute_batch(
+              p->planes[b], p->dx.data() + f, p->dy.data() + f, p->batches.count[b],
+              {p->value.data() + f, p->value_next_x.data() + f, p->value_next_y.data() + f, p->output.data() + f}, isa);
+        }
+        compiler_barrier(p->value.data());
+      },
+      [p] {
+        uint64_t sum = 0;
+        for (uint32_t i = 0; i < p->dx.size(); ++i) {
+          sum = fold(sum, static_cast<uint64_t>(p->value[i]));
+          sum = fold(sum, static_cast<uint64_t>(p->value_next_x[i]));
+          sum = fold(sum, static_cast<uint64_t>(p->value_next_y[i]));
+          sum = fold(sum, p->output[i]);
+        }
+        return sum;
+      }};
   u.side[SCALAR] = {[p] {
-                      for (size_t b = 0; b < p->batches.size(); ++b) {
-                        const Span& s = p->spans[b];
-                        for (uint32_t k = 0; k < p->batches.count[b]; ++k)
-                          store(p->scalar, p->batches.first[b] + k,
-                                [&] { return evaluate_attribute(s.plane, s.dx + static_cast<int>(k), s.dy); });
-                      }
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] { return evaluate_attribute(p->planes[b], p->dx[i], p->dy[i]); });
+                        }
                       compiler_barrier(p->scalar.data());
                     },
                     [p] { return checksum(p->scalar); }};
   u.side[RTL] = {[p] {
-                   for (size_t b = 0; b < p->batches.size(); ++b) {
-                     const Span& s = p->spans[b];
-                     for (uint32_t k = 0; k < p->batches.count[b]; ++k)
-                       store(p->rtl_out, p->batches.first[b] + k,
-                             [&] { return p->rtl.evaluate(s.plane, s.dx + static_cast<int>(k), s.dy); });
-                   }
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] { return p->rtl.evaluate(p->planes[b], p->dx[i], p->dy[i]); });
+                     }
                    compiler_barrier(p->rtl_out.data());
                  },
                  [p] { return checksum(p->rtl_out); }};

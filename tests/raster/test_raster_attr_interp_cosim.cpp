@@ -1,12 +1,10 @@
 // Co-simulation: tlm/raster/datapath/attribute_interpolator.h against the
 // Verilated rtl_models/raster/attr_interp.sv, every output bit. Every vector
 // goes through the scalar form (evaluate_attribute) and through the batch
-// form (attribute_span) in every variant this machine runs: a corner vector
-// as a span of one offset, the random vectors as spans of 1 to 64 offsets
-// along a row.
+// form (attribute_batch) in every variant this machine runs, with the other
+// offsets of its plane: the 36 corner offsets, or 1 to 64 random ones.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <array>
 #include <random>
 #include <vector>
@@ -18,37 +16,39 @@
 namespace tessera::raster {
 namespace {
 
-constexpr unsigned MAX_SPAN = 64;
-
-struct SpanBuffers {
-  std::array<int64_t, MAX_SPAN + 1> value{};
-  std::array<int64_t, MAX_SPAN> value_next_y{};
-  std::array<uint32_t, MAX_SPAN> output{};
-  AttributeSpan view() { return {value.data(), value_next_y.data(), output.data()}; }
-};
-
+// One plane's offsets, checked together: the batch form takes them as one
+// batch.
 struct Checker : CosimTally {
   AttrInterpRtl rtl;
 
-  // The offsets (dx .. dx + offsets - 1, dy).
-  void check_span(const AttributePlane& p, int dx, int dy, unsigned offsets) {
-    std::vector<SpanBuffers> spans(batch_isas().size());
-    for (size_t k = 0; k < spans.size(); ++k) attribute_span(p, dx, dy, offsets, spans[k].view(), batch_isas()[k]);
-    for (unsigned i = 0; i < offsets; ++i) {
-      const int x = dx + static_cast<int>(i);
-      const AttributeEvaluation want = evaluate_attribute(p, x, dy);
-      const AttributeEvaluation got = rtl.evaluate(p, x, dy);
+  void check(const AttributePlane& p, const std::vector<int32_t>& dx, const std::vector<int32_t>& dy) {
+    const size_t n = dx.size();
+    struct Outputs {
+      std::vector<int64_t> value, next_x, next_y;
+      std::vector<uint32_t> output;
+    };
+    std::vector<Outputs> outs;
+    for (BatchIsa isa : batch_isas()) {
+      outs.push_back(
+          {std::vector<int64_t>(n), std::vector<int64_t>(n), std::vector<int64_t>(n), std::vector<uint32_t>(n)});
+      Outputs& o = outs.back();
+      attribute_batch(p, dx.data(), dy.data(), static_cast<unsigned>(n),
+                      {o.value.data(), o.next_x.data(), o.next_y.data(), o.output.data()}, isa);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const AttributeEvaluation want = evaluate_attribute(p, dx[i], dy[i]);
+      const AttributeEvaluation got = rtl.evaluate(p, dx[i], dy[i]);
       bool same = want.value == got.value && want.value_next_x == got.value_next_x &&
                   want.value_next_y == got.value_next_y && want.output == got.output;
-      for (const SpanBuffers& s : spans)
-        same = same && s.value[i] == got.value.raw && s.value[i + 1] == got.value_next_x.raw &&
-               s.value_next_y[i] == got.value_next_y.raw && s.output[i] == got.output;
+      for (const Outputs& o : outs)
+        same = same && o.value[i] == got.value.raw && o.next_x[i] == got.value_next_x.raw &&
+               o.next_y[i] == got.value_next_y.raw && o.output[i] == got.output;
       if (count(same)) {
         ADD_FAILURE() << "kind " << int(p.kind) << " start " << p.start << " gx " << p.grad_x << " gy " << p.grad_y
-                      << " offset " << x << "," << dy << " (span from " << dx << ", " << offsets << "): value "
-                      << want.value.raw << "/" << got.value.raw << " next_x " << want.value_next_x.raw << "/"
-                      << got.value_next_x.raw << " next_y " << want.value_next_y.raw << "/" << got.value_next_y.raw
-                      << " output " << want.output << "/" << got.output << " (or a batch variant)";
+                      << " offset " << dx[i] << "," << dy[i] << ": value " << want.value.raw << "/" << got.value.raw
+                      << " next_x " << want.value_next_x.raw << "/" << got.value_next_x.raw << " next_y "
+                      << want.value_next_y.raw << "/" << got.value_next_y.raw << " output " << want.output << "/"
+                      << got.output << " (or a batch variant)";
       }
     }
   }
@@ -58,19 +58,23 @@ TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
   const int64_t lo = -(int64_t{1} << 39), hi = (int64_t{1} << 39) - 1;
   const std::array<int64_t, 10> words{0, 1, -1, lo, hi, 1 << 15, 255 << 16, (255 << 16) + (1 << 15), 127, 0xffffff80};
-  const std::array<int, 6> corner_offsets{-512, -1, 0, 1, 2, 511};
+  const std::array<int32_t, 6> offsets{-512, -1, 0, 1, 2, 511};
+  std::vector<int32_t> corner_dx, corner_dy;
+  for (int32_t dx : offsets)
+    for (int32_t dy : offsets) {
+      corner_dx.push_back(dx);
+      corner_dy.push_back(dy);
+    }
   for (int kind = 0; kind < 4; ++kind)
     for (int64_t s : words)
       for (int64_t gx : words)
         for (int64_t gy : words)
-          for (int dx : corner_offsets)
-            for (int dy : corner_offsets) {
-              c.check_span(AttributePlane{static_cast<AttributeKind>(kind), s, gx, gy}, dx, dy, 1);
-            }
+          c.check(AttributePlane{static_cast<AttributeKind>(kind), s, gx, gy}, corner_dx, corner_dy);
   const uint64_t corner_vectors = c.vectors;
 
   // Random words at random magnitudes, so that the conversions are seen
-  // inside their range as well as clamped.
+  // inside their range as well as clamped; planes at random, each with a
+  // batch of 1 to 64 random offsets.
   std::mt19937_64 rng(0xa77a1);
   auto word = [&rng]() {
     const unsigned bits = 1 + static_cast<unsigned>(rng() % 40);
@@ -79,11 +83,13 @@ TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
     const auto kind = static_cast<AttributeKind>(rng() & 3);
     const int64_t s = word(), gx = word(), gy = word();
-    const uint64_t o = rng();
-    const int dx = static_cast<int>(o & 0x3ff) - 512;
-    // Within the RTL's 10-bit offset port: the span ends at offset 511 at most.
-    const unsigned offsets = std::min(random_batch_length(o >> 20), static_cast<unsigned>(512 - dx));
-    c.check_span(AttributePlane{kind, s, gx, gy}, dx, static_cast<int>((o >> 10) & 0x3ff) - 512, offsets);
+    std::vector<int32_t> dx(random_batch_length(rng())), dy(dx.size());
+    for (size_t i = 0; i < dx.size(); ++i) {
+      const uint64_t o = rng();
+      dx[i] = static_cast<int32_t>(o & 0x3ff) - 512;
+      dy[i] = static_cast<int32_t>((o >> 10) & 0x3ff) - 512;
+    }
+    c.check(AttributePlane{kind, s, gx, gy}, dx, dy);
   }
   report_cosim("attr_interp", c, corner_vectors);
 }

@@ -3,9 +3,9 @@
 
 namespace tessera::raster {
 
-void attribute_span(const AttributePlane& plane, int dx, int dy, unsigned count, const AttributeSpan& out,
-                    BatchIsa isa) {
-  batch_detail::dispatch<AttributeSpanKernel>(isa, plane, dx, dy, count, out);
+void attribute_batch(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
+                     const AttributeBatch& out, BatchIsa isa) {
+  batch_detail::dispatch<AttributeKernel>(isa, plane, dx, dy, count, out);
 }
 
 }  // namespace tessera::raster

@@ -137,34 +137,43 @@ constexpr AttributeEvaluation evaluate_attribute(const AttributePlane& plane, in
   return r;
 }
 
-// Batch form (batch.h): the offsets (dx + i, dy), i in 0..count-1, of a
-// row (-512 <= dx, dx + count <= 512, dy in -512..511), everything
-// evaluate_attribute gives, A evaluated once and stepped by grad_x (exact,
-// above: no sum reaches the 51-bit bound, so none wraps). value holds
-// count + 1 sums, at dx .. dx + count, so that value[i + 1] is offset i's
-// value_next_x; value_next_y may be null when not wanted.
-struct AttributeSpan {
-  int64_t* value;         // count + 1 entries
-  int64_t* value_next_y;  // at (dx + i, dy + 1); null: not computed
+// Batch form (batch.h): `count` offsets (dx[i], dy[i]), each in
+// -512..511, on one plane, everything evaluate_attribute gives, each field
+// in an array of its own; value_next_x and value_next_y may be null when
+// not wanted. Each offset is evaluated directly, as the unit does (equal to
+// stepping, above), so a batch may hold any set of fragments: the rows of a
+// triangle, or only those that passed the tests.
+struct AttributeBatch {
+  int64_t* value;
+  int64_t* value_next_x;  // null: not computed
+  int64_t* value_next_y;  // null: not computed
   uint32_t* output;       // attribute_output(kind, value)
 };
 
-struct AttributeSpanKernel {
-  TESSERA_BATCH_KERNEL void run(const AttributePlane& plane, int dx, int dy, unsigned count, const AttributeSpan& out) {
-    loop(plane.kind, attribute_at(plane, dx, dy).raw, attribute_word40(plane.grad_x), attribute_word40(plane.grad_y),
-         count, out.value, out.value_next_y, out.output);
+struct AttributeKernel {
+  TESSERA_BATCH_KERNEL void run(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
+                                const AttributeBatch& out) {
+    loop(plane.kind, attribute_word40(plane.start), attribute_word40(plane.grad_x), attribute_word40(plane.grad_y),
+         dx, dy, count, out.value, out.value_next_x, out.value_next_y, out.output);
   }
-  TESSERA_BATCH_KERNEL void loop(AttributeKind kind, int64_t first, int64_t step, int64_t step_y, unsigned count,
-                                 int64_t* __restrict value, int64_t* __restrict value_next_y,
-                                 uint32_t* __restrict output) {
-    for (unsigned i = 0; i <= count; ++i) value[i] = first + static_cast<int64_t>(i) * step;
+  TESSERA_BATCH_KERNEL void loop(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y,
+                                 const int32_t* __restrict dx, const int32_t* __restrict dy, unsigned count,
+                                 int64_t* __restrict value, int64_t* __restrict value_next_x,
+                                 int64_t* __restrict value_next_y, uint32_t* __restrict output) {
+    const AttributePlane plane{kind, start, grad_x, grad_y};
+    for (unsigned i = 0; i < count; ++i) {
+      const attribute_sum v = attribute_at(plane, dx[i], dy[i]);
+      value[i] = v.raw;
+      output[i] = attribute_output(kind, v);
+    }
+    if (value_next_x != nullptr)
+      for (unsigned i = 0; i < count; ++i) value_next_x[i] = attribute_step_x(plane, attribute_sum{value[i]}).raw;
     if (value_next_y != nullptr)
-      for (unsigned i = 0; i < count; ++i) value_next_y[i] = value[i] + step_y;
-    for (unsigned i = 0; i < count; ++i) output[i] = attribute_output(kind, attribute_sum{value[i]});
+      for (unsigned i = 0; i < count; ++i) value_next_y[i] = attribute_step_y(plane, attribute_sum{value[i]}).raw;
   }
 };
 
-void attribute_span(const AttributePlane& plane, int dx, int dy, unsigned count, const AttributeSpan& out,
-                    BatchIsa isa = best_batch_isa());
+void attribute_batch(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
+                     const AttributeBatch& out, BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster
