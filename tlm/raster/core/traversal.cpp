@@ -104,33 +104,40 @@ bool smooth_row(Traversal& traversal, const TriangleSetup& setup, const Rect& bo
   return true;
 }
 
-// Without: the three edges' fill-rule decisions for up to 64 pixels at a
-// time (triangle_inside_row), each run of pixels inside all three.
-bool fill_row(Traversal& traversal, const TriangleSetup& setup, const Rect& box, int py) {
-  constexpr unsigned CHUNK = 64;
-  for (int x0 = box.x0; x0 < box.x1; x0 += int(CHUNK)) {
-    const unsigned count = std::min(CHUNK, unsigned(box.x1 - x0));
-    uint64_t inside =
-        triangle_inside_row(setup.edges[0], setup.edges[1], setup.edges[2], unsigned(x0), unsigned(py), count);
-    while (inside != 0) {
-      const unsigned first = unsigned(__builtin_ctzll(inside));
-      const uint64_t rest = ~(inside >> first);
-      const unsigned run = rest == 0 ? 64 - first : unsigned(__builtin_ctzll(rest));
-      if (!traversal.add(x0 + int(first), py, run, nullptr)) return false;
-      inside &= run + first >= 64 ? 0 : ~uint64_t{0} << (first + run);
+// Without: the run of pixels inside all three edges by the fill rule
+// (triangle_inside_run), the edges' biased values at the row's first pixel
+// stepped from row to row (exact, edge_function.h).
+class FillRows {
+ public:
+  FillRows(const TriangleSetup& setup, const Rect& box) {
+    for (unsigned k = 0; k < 3; ++k) {
+      const Edge& e = setup.edges[k];
+      m_biased[k] = edge_value_at(e, unsigned(box.x0), unsigned(box.y1 - 1)).raw + edge_tie(e);
+      m_step[k] = 16 * edge_dy(e).raw;
+      m_row_step[k] = 16 * edge_dx(e).raw;  // E(x, y - 1) = E(x, y) + 16 dx
     }
   }
-  return true;
-}
+
+  // The row at the current values, then the values of the row below.
+  bool row(Traversal& traversal, const Rect& box, int py) {
+    const InsideRun run = triangle_inside_run(m_biased, m_step, unsigned(box.x1 - box.x0));
+    for (unsigned k = 0; k < 3; ++k) m_biased[k] += m_row_step[k];
+    return run.count == 0 || traversal.add(box.x0 + int(run.first), py, run.count, nullptr);
+  }
+
+ private:
+  int64_t m_biased[3], m_step[3], m_row_step[3];
+};
 
 }  // namespace
 
 void traverse(RunContext& run, const TriangleSetup& setup, const Rect& box, bool smooth, ShadingWorkspace& work,
               FragmentShader& shader) {
   Traversal traversal(run, setup, box, work.batch, shader);
+  FillRows fill(setup, box);
   bool going = true;
   for (int py = box.y1 - 1; py >= box.y0 && going; --py)  // top row first, as memory
-    going = smooth ? smooth_row(traversal, setup, box, py, work) : fill_row(traversal, setup, box, py);
+    going = smooth ? smooth_row(traversal, setup, box, py, work) : fill.row(traversal, box, py);
   if (going) traversal.flush();
   run.charge(run.result().fragment_cycles, uint64_t{run.costs().fragment} * traversal.visited());
 }

@@ -137,26 +137,58 @@ constexpr uint64_t edge_inside_row(const Edge& e, unsigned px, unsigned py, unsi
   return mask;
 }
 
-// The same for the three edges of a triangle at once: bit i is set when
-// pixel (px + i, py) is inside all three. The inside pixels of a row form
+// The same for the three edges of a triangle at once, from each edge's
+// biased value E + tie at the row's first pixel and its step 16 dy: bit i
+// is set when pixel i is inside all three. The inside pixels of a row form
 // one run (the triangle is convex), so the walk stops at the first pixel
-// outside after an inside one.
-constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
-                                       unsigned count) {
-  const int64_t step0 = 16 * edge_dy(e0).raw, step1 = 16 * edge_dy(e1).raw, step2 = 16 * edge_dy(e2).raw;
-  int64_t b0 = edge_value_at(e0, px, py).raw + edge_tie(e0);
-  int64_t b1 = edge_value_at(e1, px, py).raw + edge_tie(e1);
-  int64_t b2 = edge_value_at(e2, px, py).raw + edge_tie(e2);
+// outside after an inside one. A traversal steps the biased values from
+// row to row itself (E(x, y - 1) = E + 16 dx), without a multiplication.
+constexpr uint64_t triangle_inside_mask(const int64_t (&biased)[3], const int64_t (&step)[3], unsigned count) {
+  int64_t b0 = biased[0], b1 = biased[1], b2 = biased[2];
   uint64_t mask = 0;
   for (unsigned i = 0; i < count; ++i) {
     const bool inside = (b0 > 0) & (b1 > 0) & (b2 > 0);
     if (!inside && mask != 0) break;
     mask |= uint64_t{inside} << i;
-    b0 += step0;
-    b1 += step1;
-    b2 += step2;
+    b0 += step[0];
+    b1 += step[1];
+    b2 += step[2];
   }
   return mask;
+}
+
+// The same run found without walking it: each edge's inside pixels
+// b + i s > 0 (b its biased value at pixel 0, s its step) are a half-line
+// of i, found by one exact integer division where b and s have opposite
+// signs, and the run is the intersection of the three with 0..count-1.
+// Bit for bit the run of triangle_inside_mask (test_raster_edge_function
+// compares them), at a cost that does not grow with the row's width.
+struct InsideRun {
+  unsigned first = 0, count = 0;  // count 0: no pixel inside
+};
+
+constexpr InsideRun triangle_inside_run(const int64_t (&biased)[3], const int64_t (&step)[3], unsigned count) {
+  int64_t lo = 0, hi = int64_t{count} - 1;
+  for (unsigned k = 0; k < 3; ++k) {
+    const int64_t b = biased[k], s = step[k];
+    if (s > 0) {
+      if (b <= 0) lo = std::max(lo, -b / s + 1);  // the first i with b + i s > 0
+    } else if (s < 0) {
+      hi = b > 0 ? std::min(hi, (b - 1) / -s) : -1;  // the last i with b + i s > 0
+    } else if (b <= 0) {
+      hi = -1;  // parallel to the row and outside
+    }
+  }
+  return lo <= hi ? InsideRun{unsigned(lo), unsigned(hi - lo + 1)} : InsideRun{};
+}
+
+// triangle_inside_mask of pixels (px + i, py), i in 0..count-1.
+constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
+                                       unsigned count) {
+  const int64_t biased[3] = {edge_value_at(e0, px, py).raw + edge_tie(e0), edge_value_at(e1, px, py).raw + edge_tie(e1),
+                             edge_value_at(e2, px, py).raw + edge_tie(e2)};
+  const int64_t step[3] = {16 * edge_dy(e0).raw, 16 * edge_dy(e1).raw, 16 * edge_dy(e2).raw};
+  return triangle_inside_mask(biased, step, count);
 }
 
 constexpr edge_distance edge_normalised_distance(edge_value value, q5_16 recip) {
