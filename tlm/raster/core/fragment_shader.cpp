@@ -90,19 +90,23 @@ unsigned FragmentShader::shade(const TriangleSetup& ts, const FragmentBatch& bat
   fragment_tests(m_state.operations, w.alpha.data(), w.depth.data(), w.stored_depth.data(), w.stored_stencil.data(),
                  count, w.flags.data(), w.stencil.data());
 
-  // Stencil and depth back into the tile; the fragments that passed, in order.
+  // Stencil and depth back into the tile; the fragments that passed, in
+  // order (without a branch on the tests' outcome, which is not predictable).
   unsigned passed = 0;
   for (unsigned i = 0; i < count; ++i) {
     const unsigned index = w.tile_index[i];
     m_tile.stencil(index) = uint8_t(w.stencil[i]);
-    if ((w.flags[i] & FRAGMENT_DEPTH_WRITE) != 0) m_tile.depth(index) = w.depth[i];
-    if ((w.flags[i] & FRAGMENT_PASS) == 0) continue;
+    uint32_t& depth = m_tile.depth(index);
+    depth = (w.flags[i] & FRAGMENT_DEPTH_WRITE) != 0 ? w.depth[i] : depth;
     w.passed[passed] = i;
-    w.passed_dx[passed] = batch.dx()[i];
-    w.passed_dy[passed] = batch.dy()[i];
-    w.passed_coverage[passed] = batch.coverage()[i];
-    w.stored_color[passed] = m_tile.color(index);
-    ++passed;
+    passed += (w.flags[i] & FRAGMENT_PASS) != 0 ? 1 : 0;
+  }
+  for (unsigned j = 0; j < passed; ++j) {
+    const unsigned i = w.passed[j];
+    w.passed_dx[j] = batch.dx()[i];
+    w.passed_dy[j] = batch.dy()[i];
+    w.passed_coverage[j] = batch.coverage()[i];
+    w.stored_color[j] = m_tile.color(w.tile_index[i]);
   }
   if (color_after_tests) {
     shaded_colors(ts, w.passed_dx.data(), w.passed_dy.data(), w.passed_coverage.data(), passed, w.passed_color.data());
@@ -110,7 +114,8 @@ unsigned FragmentShader::shade(const TriangleSetup& ts, const FragmentBatch& bat
     for (unsigned j = 0; j < passed; ++j) w.passed_color[j] = w.color[w.passed[j]];
   }
   fragment_color_update(m_state.operations, w.passed_color.data(), w.stored_color.data(), passed, w.written.data());
-  for (unsigned j = 0; j < passed; ++j) m_tile.color(w.tile_index[w.passed[j]]) = m_tile.quantise(w.written[j]);
+  m_tile.quantise(w.written.data(), passed);
+  for (unsigned j = 0; j < passed; ++j) m_tile.color(w.tile_index[w.passed[j]]) = w.written[j];
   m_run.result().fragments_written += passed;
   return failed_at;
 }

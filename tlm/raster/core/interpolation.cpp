@@ -41,20 +41,26 @@ struct InverseQKernel {
 // by divide itself after the loop).
 struct PerspectiveChannelKernel {
   TESSERA_BATCH_KERNEL void run(const int64_t* value, const uint64_t* y, const int64_t* n, unsigned count,
-                                unsigned channel, uint32_t* rgba) {
-    loop(value, y, n, count, channel, rgba);
+                                unsigned channel, uint32_t* rgba, uint32_t* large) {
+    *large = loop(value, y, n, count, channel, rgba);
   }
-  TESSERA_BATCH_KERNEL void loop(const int64_t* __restrict value, const uint64_t* __restrict y,
-                                 const int64_t* __restrict n, unsigned count, unsigned channel,
-                                 uint32_t* __restrict rgba) {
+  // Returns nonzero when a lane's quotient is not small.
+  TESSERA_BATCH_KERNEL uint32_t loop(const int64_t* __restrict value, const uint64_t* __restrict y,
+                                     const int64_t* __restrict n, unsigned count, unsigned channel,
+                                     uint32_t* __restrict rgba) {
+    constexpr int64_t SMALL = int64_t{1} << 30;
+    uint32_t large = 0;
     for (unsigned i = 0; i < count; ++i) {
       const int64_t shift = 30 + n[i] - int64_t{TEXCOORD_FRACTION_BITS};
-      // Wraps where the quotient is not small; that lane is redone below.
+      // refined_detail::small_quotient, without int128.
+      large |= (value[i] <= -SMALL) | (value[i] >= SMALL) | (y[i] >= (uint64_t{1} << 32)) | (shift < 1) | (shift > 62);
+      // Wraps where the quotient is not small; that lane is redone after.
       const auto p = int64_t(uint64_t(value[i]) * y[i]);
       // (p + 2^(shift-1)) >> shift, the same floor without a shifted constant.
       const int64_t c = ((p >> (shift - 1)) + 1) >> 1;
       rgba[i] |= attribute_to_color(attribute_sum{saturate_word(c)}).raw << (8 * channel);
     }
+    return large;
   }
 };
 
@@ -98,11 +104,12 @@ void interpolated_colors(const TriangleSetup& ts, const int32_t* dx, const int32
     inverse_q(ts, dx, dy, count, method, scratch);
     for (unsigned ch = 0; ch < 4; ++ch) {
       plane_values(ts.color[ch], dx, dy, count, scratch);
+      uint32_t large = 0;
       batch_detail::dispatch<PerspectiveChannelKernel>(
           best_batch_isa(), static_cast<const int64_t*>(scratch.value.data()),
           static_cast<const uint64_t*>(scratch.inv_y.data()), static_cast<const int64_t*>(scratch.inv_n.data()), count,
-          ch, rgba);
-      for (unsigned i = 0; i < count; ++i) {
+          ch, rgba, &large);
+      for (unsigned i = 0; i < count && large != 0; ++i) {
         const Reciprocal r = inverse(scratch, i);
         if (refined_detail::small_quotient(scratch.value[i], r.y, 30 + r.n - int(TEXCOORD_FRACTION_BITS))) continue;
         const int128 c = divide(scratch.value[i], r, false, -int(TEXCOORD_FRACTION_BITS));

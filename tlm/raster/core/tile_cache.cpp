@@ -94,6 +94,13 @@ struct JoinDepthStencilKernel {
   }
 };
 
+struct QuantiseKernel {
+  TESSERA_BATCH_KERNEL void run(uint32_t* rgba, unsigned count) { loop(rgba, count); }
+  TESSERA_BATCH_KERNEL void loop(uint32_t* __restrict rgba, unsigned count) {
+    for (unsigned i = 0; i < count; ++i) rgba[i] = unpack_rgb565(pack_rgb565(rgba[i]));
+  }
+};
+
 void unpack_row(PixelFormat format, const uint8_t* bytes, uint32_t* color, unsigned width) {
   batch_detail::dispatch<UnpackRowKernel>(best_batch_isa(), format, bytes, color, width);
 }
@@ -111,6 +118,11 @@ void join_depth_stencil(const uint32_t* depth, const uint8_t* stencil, uint8_t* 
 }
 
 }  // namespace
+
+void TileCache::quantise(uint32_t* rgba, unsigned count) const {
+  if (m_config.color_format == PixelFormat::rgb565)
+    batch_detail::dispatch<QuantiseKernel>(best_batch_isa(), rgba, count);
+}
 
 void TileCache::load(RunContext& run) {
   const RunConfig& c = m_config;

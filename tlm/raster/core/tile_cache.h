@@ -84,6 +84,8 @@ class TileCache {
   uint32_t quantise(uint32_t rgba) const {
     return m_config.color_format == PixelFormat::rgba8888 ? rgba : unpack_rgb565(pack_rgb565(rgba));
   }
+  // The same for `count` colours in place (a batch kernel, batch.h).
+  void quantise(uint32_t* rgba, unsigned count) const;
 
  private:
   const RunConfig& m_config;
