@@ -188,6 +188,7 @@ class RasterNativeHost : public tessera::HostApi {
       case regs::HEIGHT: return m_config.height;
       case regs::TILE_WIDTH: return m_config.tile_width;
       case regs::TILE_HEIGHT: return m_config.tile_height;
+      case regs::TEXTURE_UNITS: return m_config.texture_units;
       case regs::FRAGMENTS: return static_cast<uint32_t>(m_last.fragments);
       case regs::TRIANGLES: return static_cast<uint32_t>(m_last.triangles);
       default: return 0;
@@ -258,6 +259,7 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
   geometry.height = raster_config["height"].get<unsigned>();
   geometry.tile_width = raster_config["tile_width"].get<unsigned>();
   geometry.tile_height = raster_config["tile_height"].get<unsigned>();
+  geometry.texture_units = raster_config["texture_units"].get<unsigned>();
   const auto method =
       tessera::raster::parse_recip_method(std::to_string(raster_config["recip_method"].get<unsigned>()));
   if (method) geometry.recip_method = *method;

@@ -22,10 +22,11 @@ unsigned FragmentShader::shaded_colors(const TriangleSetup& ts, const int32_t* d
     // environment over the batch, taking the previous unit's result and
     // the interpolated (primary) colour.
     std::copy(rgba, rgba + count, w.primary.data());
+    for (unsigned u = 0; u < m_state.unit_count; ++u) m_sampler.prepare_unit(ts, u, dx, dy, count);
     for (unsigned i = 0; i < count && done == count; ++i)
       for (unsigned u = 0; u < m_state.unit_count; ++u) {
         Rgba8 texel;
-        if (!m_sampler.unit_texel(ts, u, dx[i], dy[i], texel)) {
+        if (!m_sampler.unit_texel(u, i, texel)) {
           done = i;
           break;
         }
@@ -36,14 +37,7 @@ unsigned FragmentShader::shaded_colors(const TriangleSetup& ts, const int32_t* d
       std::copy(w.color_out.data(), w.color_out.data() + done, rgba);
     }
   } else if (m_state.has(StateFlag::texture)) {
-    for (unsigned i = 0; i < count; ++i) {
-      Rgba8 textured;
-      if (!m_sampler.sample(ts, dx[i], dy[i], Rgba8::unpack(rgba[i]), textured)) {
-        done = i;
-        break;
-      }
-      rgba[i] = textured.pack();
-    }
+    done = m_sampler.sample(ts, dx, dy, count, rgba);
   }
   // Fog after texturing, before coverage and the fragment operations.
   if (m_state.has(StateFlag::fog)) {

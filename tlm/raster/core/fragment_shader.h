@@ -26,6 +26,7 @@ struct ShadingWorkspace {
   static constexpr unsigned N = FragmentBatch::CAPACITY;
   FragmentBatch batch;
   InterpolationScratch interpolation;
+  TextureScratch texture;
   // By batch index: colour (packed RGBA8), its alpha code, depth, the
   // tile's depth and stencil and buffer index, the tests' flags and
   // stencil value.
@@ -50,7 +51,7 @@ struct ShadingWorkspace {
 class FragmentShader {
  public:
   FragmentShader(RunContext& run, TileCache& tile, const DrawState& state, ShadingWorkspace& work)
-      : m_run(run), m_tile(tile), m_state(state), m_work(work), m_sampler(run, state) {}
+      : m_run(run), m_tile(tile), m_state(state), m_work(work), m_sampler(run, state, work.texture) {}
 
   // Shades the batch's fragments in order. Returns the index of the
   // fragment whose texel fetch failed (the run has failed then; the
