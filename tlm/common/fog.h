@@ -67,21 +67,23 @@ constexpr uint8_t fog_exp2_negative(uint32_t x) {
   return static_cast<uint8_t>((mantissa * 255 + (1u << (FOG_FRACTION_BITS - 1))) >> FOG_FRACTION_BITS);
 }
 
-// The fog factor of the fog argument (16.16) in `mode`, 0..255. Every mode's
-// factor is computed and the mode's code selects one by masks, without a
-// branch: the rasterizer's fog unit runs it on a batch of fragments, which
-// the compiler then vectorises (tlm/raster/datapath/batch.h).
+// The fog factor of the fog argument (16.16) in `mode`, 0..255. The linear
+// factor and the exponential one (of x = a for exp, a^2 for exp2: one table
+// read either way) are both computed and the mode's code selects by masks,
+// without a branch: the rasterizer's fog unit runs it on a batch of
+// fragments, which the compiler then vectorises (tlm/raster/datapath/
+// batch.h).
 constexpr uint8_t fog_factor(FogMode mode, int32_t argument) {
   const uint32_t positive = argument < 0 ? 0u : static_cast<uint32_t>(argument);
   const uint32_t a = std::min<uint32_t>(positive, FOG_ONE);
   const uint32_t linear = (a * 255 + (1u << (FOG_FRACTION_BITS - 1))) >> FOG_FRACTION_BITS;
-  const uint32_t exp = fog_exp2_negative(positive);
   const uint64_t b = std::min<uint32_t>(positive, FOG_EXP2_ARGUMENT_LIMIT);
-  const uint32_t exp2 = fog_exp2_negative(static_cast<uint32_t>((b * b) >> FOG_FRACTION_BITS));
+  const auto square = static_cast<uint32_t>((b * b) >> FOG_FRACTION_BITS);
   const uint32_t code = static_cast<uint32_t>(mode);
+  const uint32_t exponential = fog_exp2_negative(code == code_of(FogMode::exp2) ? square : positive);
   const auto pick = [code](uint32_t mode_code, uint32_t factor) { return (code == mode_code ? 0xffu : 0u) & factor; };
-  return static_cast<uint8_t>(pick(code_of(FogMode::linear), linear) | pick(code_of(FogMode::exp), exp) |
-                              pick(code_of(FogMode::exp2), exp2) | (code > code_of(FogMode::exp2) ? 0xffu : 0u));
+  return static_cast<uint8_t>(pick(code_of(FogMode::linear), linear) | pick(code_of(FogMode::exp), exponential) |
+                              pick(code_of(FogMode::exp2), exponential) | (code > code_of(FogMode::exp2) ? 0xffu : 0u));
 }
 
 // The fogged colour: RGB of `rgba` (r | g << 8 | b << 16 | a << 24) towards
