@@ -39,7 +39,8 @@
 //
 // Speed: every function is inline; the output conversion takes its shift
 // and clamp bounds from a four-entry table indexed by the kind (the
-// undefined kind clamps to [0, 0]), so it has no branch.
+// undefined kind clamps to [0, 0]), so it has no branch. The batch form
+// (attribute_batch, batch.h) evaluates one plane at any set of offsets.
 #pragma once
 
 #include <cstdint>
@@ -153,8 +154,8 @@ struct AttributeBatch {
 struct AttributeKernel {
   TESSERA_BATCH_KERNEL void run(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
                                 const AttributeBatch& out) {
-    loop(plane.kind, attribute_word40(plane.start), attribute_word40(plane.grad_x), attribute_word40(plane.grad_y),
-         dx, dy, count, out.value, out.value_next_x, out.value_next_y, out.output);
+    loop(plane.kind, attribute_word40(plane.start), attribute_word40(plane.grad_x), attribute_word40(plane.grad_y), dx,
+         dy, count, out.value, out.value_next_x, out.value_next_y, out.output);
   }
   TESSERA_BATCH_KERNEL void loop(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y,
                                  const int32_t* __restrict dx, const int32_t* __restrict dy, unsigned count,

@@ -24,10 +24,11 @@
 // channel keeps the destination value. The result is the value to store.
 //
 // Speed: inline and branch-free on packed RGBA words (Rgba8::pack). The
-// factors of a code are picked from a table of the candidates; a logic op is
-// its GL truth table (code bit 0: s & d, bit 1: s & ~d, bit 2: ~s & d,
-// bit 3: ~s & ~d, checked at compile time), applied to the whole word; the
-// write mask is a constexpr table of byte masks.
+// factor of a code is picked among the candidates by masks (select_code); a
+// logic op is its GL truth table (code bit 0: s & d, bit 1: s & ~d, bit 2:
+// ~s & d, bit 3: ~s & ~d, checked at compile time), applied to the whole
+// word; the write mask is a constexpr table of byte masks. The batch form
+// (blend_logic_op_batch, batch.h) takes fragments under one state.
 #pragma once
 
 #include <algorithm>

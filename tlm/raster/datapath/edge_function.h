@@ -34,8 +34,10 @@
 // rule is one comparison: E == 0 counts as inside exactly when the tie-break
 // holds, so inside = E + tie > 0 with tie = 1 or 0 (E is an integer code).
 // edge_inside_row steps E along a row of up to 64 pixels and returns the
-// decisions as a bit mask; triangle_inside_row does it for the three edges
-// of a triangle at once, what the core's traversal takes per row.
+// decisions as a bit mask; triangle_inside_mask does it for the three edges
+// of a triangle at once, and triangle_inside_run finds the same run by
+// division, what the core's traversal takes per row. The batch form
+// (edge_span, batch.h) gives everything evaluate_edge does along a row.
 //
 // Normalised distance (EASA, L1 norm): d = E / (|dx| + |dy|). |dx| + |dy| is
 // unsigned 10.4 (edge_l1_length, at most 16382 codes, the reciprocal unit's

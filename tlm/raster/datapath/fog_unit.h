@@ -28,8 +28,9 @@ struct FogUnitResult {
   Rgba8 color;
 };
 
-// Inline and branch-free but for the mode's switch in fog_factor: a table
-// read (exp, exp2) or a clamp (linear), a multiply-add per channel.
+// Inline and branch-free: a table read (exp, exp2) and a clamp (linear), the
+// mode picking one, a multiply-add per channel. The batch form
+// (fog_unit_batch, batch.h) takes fragments under one mode and fog colour.
 inline FogUnitResult fog_unit(FogMode mode, int32_t argument, Rgba8 fragment, Rgba8 fog_color) {
   FogUnitResult r;
   r.factor = fog_factor(mode, argument);

@@ -1,5 +1,7 @@
 // Per-fragment tests of OpenGL 1.2 ("Per-Fragment Operations"): alpha test,
-// stencil test and stencil update, depth test.
+// stencil test and stencil update, depth test. Inline and branch-free
+// (fragment_test_bits); the batch form (run_fragment_tests_batch, batch.h)
+// takes fragments under one state.
 //
 // Formats (rasterizer interface): alpha and its reference unorm 0.8, depth
 // unorm 0.24, stencil 8.0. All comparisons are exact integer comparisons of

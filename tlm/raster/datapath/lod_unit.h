@@ -38,7 +38,9 @@
 //
 // Speed: inline; the logarithm is a fixed chain of ten 16 x 16 squarings and
 // the level choice selects between values, so there is no data-dependent
-// loop. Combinational; its Verilog twin is rtl_models/raster/lod_unit.sv.
+// loop; the batch form (lod_unit_batch, batch.h) takes the scale factors of
+// fragments under one unit's state. Combinational; its Verilog twin is
+// rtl_models/raster/lod_unit.sv.
 #pragma once
 
 #include <algorithm>

@@ -35,9 +35,10 @@
 //   (5-bit field 11111; methods 2 and 3).
 //
 // Speed: Method 3, the one the rasterizer uses, is inline and branch-free
-// (the prescaler is a leading-zero count, Table III is a constexpr table built
-// at compile time by the same integer rule, the invalid operand a select);
-// Methods 1 and 2 (16k-entry tables) stay in reciprocal.cpp.
+// (the prescaler four comparisons, Table III a constexpr table built at
+// compile time by the same integer rule, the invalid operand a select), and
+// has a batch form (reciprocal_method3_batch, batch.h); Methods 1 and 2
+// (16k-entry tables) stay in reciprocal.cpp.
 #pragma once
 
 #include <cstdint>

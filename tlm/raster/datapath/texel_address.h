@@ -28,8 +28,9 @@
 // TexFilter), the numbers the Verilog unit's fields take; a wrap code without
 // an entry (2, 3) is taken as REPEAT, the GL default.
 //
-// Speed: inline; wrap and filter only select between values, so there is no
-// branch.
+// Speed: inline, in 32-bit arithmetic (below); wrap and filter only select
+// between values, so there is no branch. The batch form
+// (texel_lookup_batch, batch.h) takes coordinate pairs on one texture.
 #pragma once
 
 #include <algorithm>

@@ -45,7 +45,10 @@
 // reciprocal (floor(m / 255) = (m + 1 + ((m + 1) >> 8)) >> 8 for m < 65280).
 // Its Verilog twin is rtl_models/raster/texture_combiner.sv.
 //
-// Speed: inline, allocation-free, no data-dependent branch but the clamp.
+// Speed: inline, allocation-free, no data-dependent branch: the state's
+// codes pick among every candidate by masks (select_code, select_if). The
+// batch form (texture_combiner_batch, batch.h) takes fragments through one
+// unit's state.
 #pragma once
 
 #include <algorithm>

@@ -23,8 +23,9 @@
 // rounding to nearest (x <= 65025; 255 is odd, ties cannot occur):
 // t = x + 128, (t + (t >> 8)) >> 8 (the same divider as blending).
 //
-// Speed: inline; the environment computes all three results and the code
-// picks one, so there is no branch.
+// Speed: inline, on packed words; the environment computes all three
+// results and the code picks one, so there is no branch. The batch form
+// (texture_filter_env_batch, batch.h) takes fragments under one environment.
 #pragma once
 
 #include <algorithm>
