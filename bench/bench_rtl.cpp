@@ -216,8 +216,8 @@ struct Side {
   std::function<uint64_t()> checksum;
 };
 
-enum SideIndex { BATCH, SCALAR, RTL, SIDES };
-constexpr const char* SIDE_NAMES[SIDES] = {"batch", "scalar", "RTL"};
+// The sides' indices in Unit::side and UnitResult.
+constexpr unsigned BATCH = 0, SCALAR = 1, RTL = 2, SIDES = 3;
 
 struct Unit {
   std::string name;

@@ -30,8 +30,8 @@ struct CosimTally {
   }
 };
 
-// Every variant of the batch forms this machine runs (batch.h), named for
-// the failure messages.
+// Every variant of the batch forms this machine runs (batch.h): each test
+// runs every vector through each.
 inline const std::vector<BatchIsa>& batch_isas() {
   return runnable_batch_isas();
 }

@@ -43,10 +43,15 @@ namespace batch_detail {
 // The variants are built with GCC on x86-64; elsewhere only the generic one.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define TESSERA_BATCH_VARIANTS 1
-#define TESSERA_BATCH_TARGET_AVX2 __attribute__((target("arch=x86-64-v3")))
-#define TESSERA_BATCH_TARGET_AVX512 __attribute__((target("arch=x86-64-v4,prefer-vector-width=256")))
+// Jump threading off: it turns the units' branch-free selects back into
+// branches inside the loops, which the vectoriser then refuses.
+#define TESSERA_BATCH_OPTIMIZE __attribute__((optimize("no-thread-jumps")))
+#define TESSERA_BATCH_TARGET_AVX2 __attribute__((target("arch=x86-64-v3"))) TESSERA_BATCH_OPTIMIZE
+#define TESSERA_BATCH_TARGET_AVX512 \
+  __attribute__((target("arch=x86-64-v4,prefer-vector-width=256"))) TESSERA_BATCH_OPTIMIZE
 #else
 #define TESSERA_BATCH_VARIANTS 0
+#define TESSERA_BATCH_OPTIMIZE
 #define TESSERA_BATCH_TARGET_AVX2
 #define TESSERA_BATCH_TARGET_AVX512
 #endif
@@ -56,7 +61,7 @@ namespace batch_detail {
 // units it calls are inlined into it (an out-of-line copy, if the compiler
 // made one, would be the generic one every translation unit shares).
 template <class Kernel, class... Args>
-__attribute__((noinline, flatten)) void run_generic(const Args&... args) {
+TESSERA_BATCH_OPTIMIZE __attribute__((noinline, flatten)) void run_generic(const Args&... args) {
   Kernel::run(args...);
 }
 #if TESSERA_BATCH_VARIANTS
