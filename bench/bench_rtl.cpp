@@ -4,34 +4,42 @@
 // same vectors. Prints one Markdown table; bench_raster runs it as a child.
 // See README.md for the method.
 //
-//   bench_rtl [--vectors V] [--pool P] [--rounds R] [--seed S]
+//   bench_rtl [--vectors V] [--pool P] [--batch B] [--rounds R] [--seed S] [--isa NAME]
 //
-// For each unit, P random vectors (the pool, default 4096: it stays in the
-// caches, as the core's operands do) are generated once, with the
-// distributions of tests/raster/test_raster_*_cosim.cpp, outside the timed
-// loops. A round times V operations on each side, one after the other: the
-// pool is swept V / P times, every output stored into an array of P results
-// (a compiler barrier between sweeps keeps every sweep's stores). The C++
-// side calls the unit's one-call entry point, inline from its header, in a
-// plain loop (the compiler may vectorise across vectors: that is the point
-// of branch-free units); the RTL side calls the adapter. R rounds, paired:
-// min and median ns per operation of each side, and the ratio both ways
-// (of the mins; median of the per-round ratios). Times are the thread's CPU
-// time (CLOCK_THREAD_CPUTIME_ID), not wall time, so that time-slicing on a
-// shared machine does not count. After timing, every output
-// field of the pool's results is folded into a checksum per side; both must
-// agree (a cosim run in one number), or bench_rtl exits with 1.
+// For each unit, a pool of about P random vectors (default 4096: it stays in
+// the caches, as the core's operands do) is generated once, outside the
+// timed loops, with the distributions of tests/raster/test_raster_*_cosim.cpp,
+// cut into batches of B vectors (default 32, a tile row) that share what the
+// core's batches share: a state or a plane, or the row of a span. Three sides sweep the
+// pool, each storing every output field of every vector:
+//   batch   the unit's batch form (batch.h), one call per batch, the variant
+//           --isa names or the widest the processor has: how the raster core
+//           calls the unit;
+//   scalar  the unit's one-call scalar form, one call per vector, inline;
+//   RTL     the adapter, one call per vector: port packing, Verilated eval()
+//           (three for the clocked reciprocal unit), unpacking. The RTL has
+//           no batch form: its cost per vector is its eval.
+// A round times V vectors (whole pool sweeps, a compiler barrier after each)
+// on each side; the order of the three sides rotates from round to round, so
+// that a change in the machine's load hits each in turn. R rounds: min and
+// median ns per vector of each side, and RTL / batch as the ratio of the
+// mins and the median of the per-round ratios (the goal column). Times are
+// the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), not wall time, so that
+// time-slicing on a shared machine does not count. After timing, every
+// output field of the pool's results is folded into a checksum per side;
+// all three must agree (a cosim run in one number), or bench_rtl exits
+// with 1.
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
+#include <functional>
 #include <iostream>
-#include <limits>
+#include <memory>
 #include <new>
 #include <random>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -45,16 +53,20 @@
 #include "fog_unit_adapter.h"
 #include "fragment_tests_adapter.h"
 #include "guarded_main.h"
+#include "lod_unit_adapter.h"
 #include "raster/datapath/attribute_interpolator.h"
 #include "raster/datapath/blend_logic_op.h"
 #include "raster/datapath/edge_function.h"
 #include "raster/datapath/fog_unit.h"
 #include "raster/datapath/fragment_tests.h"
+#include "raster/datapath/lod_unit.h"
 #include "raster/datapath/reciprocal.h"
 #include "raster/datapath/texel_address.h"
+#include "raster/datapath/texture_combiner.h"
 #include "raster/datapath/texture_env.h"
 #include "recip_unit_adapter.h"
 #include "texel_address_adapter.h"
+#include "texture_combiner_adapter.h"
 #include "texture_env_adapter.h"
 
 namespace {
@@ -65,8 +77,10 @@ using tessera::CompareFunc;
 using tessera::FogMode;
 using tessera::LogicOp;
 using tessera::StencilOp;
+using tessera::TexBaseFormat;
 using tessera::TexEnv;
 using tessera::TexFilter;
+using tessera::TexMipmap;
 using tessera::TexWrap;
 using tessera::bench::load_average;
 using tessera::bench::machine_summary;
@@ -76,12 +90,17 @@ using tessera::bench::MinMedian;
 struct Options {
   uint64_t vectors = 1'000'000;
   uint64_t pool = 4096;
+  unsigned batch = 32;
   unsigned rounds = 15;
   uint64_t seed = 0xbe4c4;
+  std::string isa;  // empty: the widest the processor has
 };
 
-// Order-dependent fold of one output field into the checksum (FNV-1a step
-// on a whole word).
+// ---------------------------------------------------------------------------
+// Checksums: an order-dependent fold of every output field (FNV-1a step on a
+// whole word). The batch side folds its arrays lane by lane in the same
+// order as the scalar and RTL sides fold their result structs.
+
 inline uint64_t fold(uint64_t sum, uint64_t field) {
   return (sum ^ field) * 0x100000001b3ull;
 }
@@ -110,10 +129,14 @@ uint64_t fold(uint64_t sum, const AttributeEvaluation& r) {
   return fold(sum, r.output);
 }
 
+uint64_t fragment_flags(const FragmentTestResult& r) {
+  return (r.alpha_pass ? FRAGMENT_ALPHA_PASS : 0) | (r.stencil_pass ? FRAGMENT_STENCIL_PASS : 0) |
+         (r.depth_pass ? FRAGMENT_DEPTH_PASS : 0) | (r.pass ? FRAGMENT_PASS : 0) |
+         (r.depth_write ? FRAGMENT_DEPTH_WRITE : 0);
+}
+
 uint64_t fold(uint64_t sum, const FragmentTestResult& r) {
-  const uint64_t flags = uint64_t{r.alpha_pass} | uint64_t{r.stencil_pass} << 1 | uint64_t{r.depth_pass} << 2 |
-                         uint64_t{r.pass} << 3 | uint64_t{r.depth_write} << 4;
-  return fold(fold(sum, flags), r.stencil.raw);
+  return fold(fold(sum, fragment_flags(r)), r.stencil.raw);
 }
 
 uint64_t fold(uint64_t sum, const TexelFootprint& r) {
@@ -135,202 +158,25 @@ uint64_t fold(uint64_t sum, const FogUnitResult& r) {
   return fold(sum, uint64_t{r.color.pack()} | uint64_t{r.factor} << 32);
 }
 
-// One vector per unit: the arguments of the C++ call and of the adapter.
-struct EdgeVector {
-  Edge e;
-  unsigned px, py;
-  q5_16 recip;
-};
-struct AttrVector {
-  AttributePlane plane;
-  int dx, dy;
-};
-struct FragmentVector {
-  FragmentTestState state;
-  FragmentTestInput in;
-};
-struct BlendVector {
-  BlendState state;
-  Rgba8 src, dst;
-};
-struct TexelVector {
-  TextureState state;
-  q15_16 s, t;
-};
-struct FogVector {
-  FogMode mode;
-  int32_t argument;
-  Rgba8 fragment, fog_color;
-};
-struct TexEnvVector {
-  TexEnv mode;
-  std::array<Rgba8, 4> texels;
-  uint8_t weight_s, weight_t;
-  Rgba8 fragment;
-};
-
-// The generators follow the random halves of the cosim tests, so that every
-// branch (clamps, enables, undefined codes) is taken about as often as there.
-std::vector<uint16_t> recip_vectors(std::mt19937_64& rng, uint64_t count) {
-  std::vector<uint16_t> v(count);
-  for (auto& x : v) x = static_cast<uint16_t>(rng() & RECIP_OPERAND_MAX);  // 0 is the invalid operand
-  return v;
+uint64_t lod_flags(const LodResult& r) {
+  return (r.minified ? LOD_MINIFIED : 0) | (r.linear ? LOD_LINEAR : 0) | (r.two_levels ? LOD_TWO_LEVELS : 0);
 }
 
-std::vector<EdgeVector> edge_vectors(std::mt19937_64& rng, uint64_t count) {
-  std::vector<EdgeVector> v(count);
-  for (auto& x : v) {
-    const uint64_t bits = rng();
-    const uint64_t more = rng();
-    x.px = static_cast<unsigned>(more) & 0x1ff;
-    x.py = static_cast<unsigned>(more >> 9) & 0x1ff;
-    if (more >> 63) {  // a short edge near the pixel: distance and coverage leave their clamps
-      const uint32_t cx = x.px * 16 + static_cast<uint32_t>((more >> 18) & 0x3f) - 32;
-      const uint32_t cy = x.py * 16 + static_cast<uint32_t>((more >> 24) & 0x3f) - 32;
-      x.e = Edge{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
-                 q9_4::from_raw(cy + ((more >> 37) & 0x7f) - 64)};
-      const uint32_t l1 = edge_l1_length(x.e).raw;
-      x.recip = q5_16::from_raw(l1 == 0 ? 0 : static_cast<uint32_t>((uint64_t{1} << 20) / l1));
-    } else {
-      x.e = Edge{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
-                 q9_4::from_raw(static_cast<uint32_t>(bits >> 26)), q9_4::from_raw(static_cast<uint32_t>(bits >> 39))};
-      x.recip = q5_16::from_raw(static_cast<uint32_t>(more >> 42));
-    }
-  }
-  return v;
+uint64_t fold(uint64_t sum, const LodResult& r) {
+  sum = fold(sum, static_cast<uint64_t>(int64_t{r.lambda}));
+  sum = fold(sum, lod_flags(r));
+  return fold(sum, uint64_t{r.level[0]} | uint64_t{r.level[1]} << 8 | uint64_t{r.weight} << 16);
 }
 
-std::vector<AttrVector> attr_vectors(std::mt19937_64& rng, uint64_t count) {
-  std::vector<AttrVector> v(count);
-  auto word = [&rng]() { return sign_extend(rng(), 1 + static_cast<unsigned>(rng() % 40)); };
-  for (auto& x : v) {
-    const auto kind = static_cast<AttributeKind>(rng() & 3);  // 3: undefined kind
-    const int64_t start = word(), grad_x = word(), grad_y = word();
-    x.plane = AttributePlane{kind, start, grad_x, grad_y};
-    const uint64_t offsets = rng();
-    x.dx = static_cast<int>(offsets & 0x3ff) - 512;
-    x.dy = static_cast<int>((offsets >> 10) & 0x3ff) - 512;
-  }
-  return v;
+template <class Result>
+uint64_t checksum(const std::vector<Result>& results) {
+  uint64_t sum = 0;
+  for (const Result& r : results) sum = fold(sum, r);
+  return sum;
 }
 
-std::vector<FragmentVector> fragment_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
-                                                    CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
-                                                    CompareFunc::gequal, CompareFunc::always};
-  static constexpr std::array<StencilOp, 7> OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
-                                                StencilOp::incr,          StencilOp::decr, StencilOp::invert,
-                                                static_cast<StencilOp>(7)};
-  std::vector<FragmentVector> v(count);
-  for (auto& x : v) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    FragmentTestState& s = x.state;
-    s.alpha_enable = a & 1;
-    s.stencil_enable = (a >> 1) & 1;
-    s.depth_enable = (a >> 2) & 1;
-    s.depth_write_mask = (a >> 3) & 1;
-    s.alpha_func = FUNCS[(a >> 4) & 7];
-    s.stencil_func = FUNCS[(a >> 7) & 7];
-    s.depth_func = FUNCS[(a >> 10) & 7];
-    s.sfail = OPS[((a >> 13) & 0xff) % OPS.size()];
-    s.dpfail = OPS[((a >> 21) & 0xff) % OPS.size()];
-    s.dppass = OPS[((a >> 29) & 0xff) % OPS.size()];
-    s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
-    s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
-    s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
-    s.stencil_write_mask = static_cast<uint8_t>(b);
-    x.in.alpha = ((b >> 61) & 1) ? s.alpha_ref : unorm8::from_raw(static_cast<uint32_t>(b >> 8));
-    x.in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(b >> 16));
-    x.in.depth = unorm24::from_raw(static_cast<uint32_t>(b >> 24));
-    x.in.stored_depth = (b >> 62) == 0 ? x.in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
-  }
-  return v;
-}
-
-std::vector<BlendVector> blend_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::zero,
-                                                       BlendFactor::one,
-                                                       BlendFactor::src_color,
-                                                       BlendFactor::one_minus_src_color,
-                                                       BlendFactor::src_alpha,
-                                                       BlendFactor::one_minus_src_alpha,
-                                                       BlendFactor::dst_alpha,
-                                                       BlendFactor::one_minus_dst_alpha,
-                                                       BlendFactor::dst_color,
-                                                       BlendFactor::one_minus_dst_color,
-                                                       BlendFactor::src_alpha_saturate,
-                                                       static_cast<BlendFactor>(15)};
-  std::vector<BlendVector> v(count);
-  for (auto& x : v) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    x.state.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
-    x.state.logic_op_enable = ((a >> 2) & 7) == 0;
-    x.state.src_factor = FACTORS[((a >> 5) & 0xff) % FACTORS.size()];
-    x.state.dst_factor = FACTORS[((a >> 13) & 0xff) % FACTORS.size()];
-    x.state.op = static_cast<LogicOp>((a >> 21) & 15);
-    x.state.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
-    x.src = Rgba8::unpack(static_cast<uint32_t>(b));
-    x.dst = Rgba8::unpack(static_cast<uint32_t>(b >> 32));
-  }
-  return v;
-}
-
-std::vector<TexelVector> texel_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<TexWrap, 2> WRAPS{TexWrap::repeat, TexWrap::clamp_to_edge};
-  static constexpr std::array<TexFilter, 2> FILTERS{TexFilter::nearest, TexFilter::linear};
-  std::vector<TexelVector> v(count);
-  for (auto& x : v) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    x.state.base = static_cast<uint32_t>(a >> 32);
-    x.state.log2_width = static_cast<uint8_t>(a % 10);
-    x.state.log2_height = static_cast<uint8_t>((a >> 4) % 10);
-    x.state.wrap_s = WRAPS[(a >> 8) & 1];
-    x.state.wrap_t = WRAPS[(a >> 9) & 1];
-    x.state.filter = FILTERS[(a >> 10) & 1];
-    // Mostly coordinates within a few repetitions, some across the whole range.
-    const unsigned bits = ((a >> 11) & 7) != 0 ? 20 : 32;
-    x.s = q15_16{sign_extend(b, bits)};
-    x.t = q15_16{sign_extend(b >> 32, bits)};
-  }
-  return v;
-}
-
-std::vector<TexEnvVector> texenv_vectors(std::mt19937_64& rng, uint64_t count) {
-  static constexpr std::array<TexEnv, 4> MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal,
-                                               static_cast<TexEnv>(3)};
-  std::vector<TexEnvVector> v(count);
-  for (auto& x : v) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    const uint64_t d = rng();
-    x.mode = MODES[d & 3];
-    x.texels = {Rgba8::unpack(static_cast<uint32_t>(a)), Rgba8::unpack(static_cast<uint32_t>(a >> 32)),
-                Rgba8::unpack(static_cast<uint32_t>(b)), Rgba8::unpack(static_cast<uint32_t>(b >> 32))};
-    x.weight_s = static_cast<uint8_t>(d >> 8);
-    x.weight_t = static_cast<uint8_t>(d >> 16);
-    x.fragment = Rgba8::unpack(static_cast<uint32_t>(d >> 32));
-  }
-  return v;
-}
-
-// Every mode code (3: no fog); arguments over the whole signed 16.16 range
-// half the time, within the table's reach (0 to 32) the other half.
-std::vector<FogVector> fog_vectors(std::mt19937_64& rng, uint64_t count) {
-  std::vector<FogVector> v(count);
-  for (auto& x : v) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    x.mode = static_cast<FogMode>(a & 3);
-    x.argument = (a >> 2) & 1 ? static_cast<int32_t>(a >> 32)
-                              : static_cast<int32_t>((a >> 8) & 0x1fffff) - (1 << 16);  // -1 .. 31
-    x.fragment = Rgba8::unpack(static_cast<uint32_t>(b));
-    x.fog_color = Rgba8::unpack(static_cast<uint32_t>(b >> 32));
-  }
-  return v;
-}
+// ---------------------------------------------------------------------------
+// Timing.
 
 // Stops the compiler from merging or dropping sweeps: every store before it
 // happens, every load after it reads memory again.
@@ -347,166 +193,943 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
 }
 
-// `operations` calls of `unit(vector)` over the pool, the results stored in
-// `out` (pool-sized); returns the thread's CPU time.
-template <class Vector, class Result, class Unit>
-double sweep(const std::vector<Vector>& pool, std::vector<Result>& out, uint64_t operations, Unit&& unit) {
-  static_assert(std::is_trivially_destructible_v<Result>, "results are overwritten in place");
-  const size_t n = pool.size();
-  const double start = thread_cpu_seconds();
-  for (uint64_t done = 0; done < operations; done += n) {
-    const size_t count = static_cast<size_t>(std::min<uint64_t>(n, operations - done));
-    const Vector* in = pool.data();
-    Result* results = out.data();
-    // Constructed in place (C++17 guaranteed elision): an assignment would
-    // build each result in a temporary on the stack and copy it, which costs
-    // a store-forwarding stall per result, more than the unit itself.
-    for (size_t i = 0; i < count; ++i) ::new (static_cast<void*>(results + i)) Result(unit(in[i]));
-    compiler_barrier(results);
+// A pool of vectors cut into batches: batch b is lanes first[b] .. first[b]
+// + count[b] - 1 of the pool's arrays.
+struct Batches {
+  std::vector<uint32_t> first, count;
+  uint32_t lanes = 0;
+
+  Batches(uint64_t pool, unsigned batch) {
+    while (lanes < pool) {
+      first.push_back(lanes);
+      count.push_back(batch);
+      lanes += batch;
+    }
   }
-  return thread_cpu_seconds() - start;
-}
-
-template <class Result>
-uint64_t checksum(const std::vector<Result>& results) {
-  uint64_t sum = 0;
-  for (const Result& r : results) sum = fold(sum, r);
-  return sum;
-}
-
-struct UnitResult {
-  std::string unit;
-  std::vector<double> cpp_ns, rtl_ns, ratio;  // per round
-  uint64_t cpp_checksum = 0, rtl_checksum = 0;
+  size_t size() const { return first.size(); }
 };
 
-// R paired rounds of the C++ unit `model(vector)` and the adapter
-// `rtl(vector)` over the same pool.
-template <class Vector, class Model, class Rtl>
-UnitResult measure(const char* unit, const std::vector<Vector>& pool, const Options& opt, Model&& model, Rtl&& rtl) {
-  using Result = decltype(model(pool.front()));
-  static_assert(std::is_same_v<Result, decltype(rtl(pool.front()))>, "both sides give the same result type");
-  std::fprintf(stderr, "bench_rtl: %s ...\n", unit);
-  UnitResult result;
-  result.unit = unit;
-  std::vector<Result> cpp_out(pool.size()), rtl_out(pool.size());
-  const double ops = static_cast<double>(opt.vectors);
-  sweep(pool, cpp_out, pool.size(), model);  // warm-up, not counted
-  sweep(pool, rtl_out, pool.size(), rtl);
-  for (unsigned r = 0; r < opt.rounds; ++r) {
-    const double cpp_s = sweep(pool, cpp_out, opt.vectors, model);
-    const double rtl_s = sweep(pool, rtl_out, opt.vectors, rtl);
-    result.cpp_ns.push_back(cpp_s / ops * 1e9);
-    result.rtl_ns.push_back(rtl_s / ops * 1e9);
-    result.ratio.push_back(rtl_s / cpp_s);
+// One side of a unit's measurement: a sweep over the whole pool, storing
+// every output, and the checksum of the last sweep's outputs.
+struct Side {
+  std::function<void()> sweep;
+  std::function<uint64_t()> checksum;
+};
+
+// The sides' indices in Unit::side and UnitResult.
+constexpr unsigned BATCH = 0, SCALAR = 1, RTL = 2, SIDES = 3;
+
+struct Unit {
+  std::string name;
+  uint64_t lanes = 0;  // vectors per sweep
+  Side side[SIDES];
+};
+
+// The scalar and RTL sides store results constructed in place: an assignment
+// would build each result in a temporary on the stack and copy it, which
+// costs a store-forwarding stall per result, more than a unit itself.
+template <class Result, class Make>
+void store(std::vector<Result>& out, size_t i, Make&& make) {
+  static_assert(std::is_trivially_destructible_v<Result>, "results are overwritten in place");
+  ::new (static_cast<void*>(out.data() + i)) Result(make());
+}
+
+// ---------------------------------------------------------------------------
+// The units. Each builds its pool (the random halves of the cosim tests, in
+// batches sharing a state) and its three sides over it.
+
+Unit reciprocal_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct Pool {
+    Batches batches;
+    std::vector<uint32_t> x;
+    std::vector<uint32_t> q5_16, mantissa, invalid;
+    std::vector<int32_t> exponent;
+    std::vector<ReciprocalResult> scalar, rtl_out;
+    RecipUnitRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  p->x.resize(n);
+  for (auto& x : p->x) x = static_cast<uint32_t>(rng() & RECIP_OPERAND_MAX);  // 0 is the invalid operand
+  p->q5_16.resize(n);
+  p->mantissa.resize(n);
+  p->invalid.resize(n);
+  p->exponent.resize(n);
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"reciprocal (Method 3)", n, {}};
+  u.side[BATCH] = {[p, isa] {
+                     for (size_t b = 0; b < p->batches.size(); ++b) {
+                       const uint32_t f = p->batches.first[b];
+                       reciprocal_method3_batch(
+                           p->x.data() + f, p->batches.count[b],
+                           {p->q5_16.data() + f, p->mantissa.data() + f, p->exponent.data() + f, p->invalid.data() + f},
+                           isa);
+                     }
+                     compiler_barrier(p->q5_16.data());
+                   },
+                   [p] {
+                     uint64_t sum = 0;
+                     for (size_t i = 0; i < p->x.size(); ++i) {
+                       sum = fold(sum, p->q5_16[i]);
+                       sum = fold(sum, p->invalid[i]);
+                       sum = fold(sum, p->mantissa[i]);
+                       sum = fold(sum, static_cast<uint32_t>(p->exponent[i]) & ((1u << RECIP_EXPONENT_BITS) - 1));
+                     }
+                     return sum;
+                   }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t i = 0; i < p->x.size(); ++i)
+                        store(p->scalar, i,
+                              [&] { return reciprocal(static_cast<uint16_t>(p->x[i]), RecipMethod::method3); });
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t i = 0; i < p->x.size(); ++i)
+                     store(p->rtl_out, i, [&] { return p->rtl.evaluate(static_cast<uint16_t>(p->x[i])); });
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct Span {
+    Edge e;
+    unsigned px, py;
+    q5_16 recip;
+  };
+  struct Pool {
+    Batches batches;
+    std::vector<Span> spans;
+    std::vector<int32_t> value, value_next_y, distance;
+    std::vector<uint32_t> inside, coverage, l1;
+    std::vector<EdgeEvaluation> scalar, rtl_out;
+    EdgeFunctionRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  // Spans of a row at random, half of them of a short edge near the first
+  // pixel (distance and coverage leave their clamps), as the cosim test.
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t bits = rng(), more = rng();
+    Span s{};
+    s.px = std::min(static_cast<unsigned>(more) & 0x1ff, 512 - p->batches.count[b]);
+    s.py = static_cast<unsigned>(more >> 9) & 0x1ff;
+    if (more >> 63) {
+      const uint32_t cx = s.px * 16 + static_cast<uint32_t>((more >> 18) & 0x3f) - 32;
+      const uint32_t cy = s.py * 16 + static_cast<uint32_t>((more >> 24) & 0x3f) - 32;
+      s.e = Edge{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
+                 q9_4::from_raw(cy + ((more >> 37) & 0x7f) - 64)};
+      const uint32_t l1 = edge_l1_length(s.e).raw;
+      s.recip = q5_16::from_raw(l1 == 0 ? 0 : static_cast<uint32_t>((uint64_t{1} << 20) / l1));
+    } else {
+      s.e = Edge{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
+                 q9_4::from_raw(static_cast<uint32_t>(bits >> 26)), q9_4::from_raw(static_cast<uint32_t>(bits >> 39))};
+      s.recip = q5_16::from_raw(static_cast<uint32_t>(more >> 42));
+    }
+    p->spans.push_back(s);
   }
-  result.cpp_checksum = checksum(cpp_out);
-  result.rtl_checksum = checksum(rtl_out);
+  p->value.resize(n + p->batches.size());  // count + 1 values a span
+  p->value_next_y.resize(n);
+  p->distance.resize(n);
+  p->inside.resize(n);
+  p->coverage.resize(n);
+  p->l1.resize(p->batches.size());
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"edge function", n, {}};
+  u.side[BATCH] = {[p, isa] {
+                     for (size_t b = 0; b < p->batches.size(); ++b) {
+                       const uint32_t f = p->batches.first[b];
+                       const Span& s = p->spans[b];
+                       p->l1[b] = edge_span(s.e, s.px, s.py, p->batches.count[b], s.recip,
+                                            {p->value.data() + f + b, p->value_next_y.data() + f, p->inside.data() + f,
+                                             p->distance.data() + f, p->coverage.data() + f},
+                                            isa)
+                                      .raw;
+                     }
+                     compiler_barrier(p->value.data());
+                   },
+                   [p] {
+                     uint64_t sum = 0;
+                     for (size_t b = 0; b < p->batches.size(); ++b)
+                       for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                         const uint32_t i = p->batches.first[b] + k;
+                         sum = fold(sum, static_cast<uint64_t>(int64_t{p->value[i + b]}));
+                         sum = fold(sum, static_cast<uint64_t>(int64_t{p->value[i + b + 1]}));
+                         sum = fold(sum, static_cast<uint64_t>(int64_t{p->value_next_y[i]}));
+                         sum = fold(sum, p->inside[i]);
+                         sum = fold(sum, p->l1[b]);
+                         sum = fold(sum, static_cast<uint64_t>(int64_t{p->distance[i]}));
+                         sum = fold(sum, p->coverage[i]);
+                       }
+                     return sum;
+                   }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b) {
+                        const Span& s = p->spans[b];
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k)
+                          store(p->scalar, p->batches.first[b] + k,
+                                [&] { return evaluate_edge(s.e, s.px + k, s.py, s.recip); });
+                      }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b) {
+                     const Span& s = p->spans[b];
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k)
+                       store(p->rtl_out, p->batches.first[b] + k,
+                             [&] { return p->rtl.evaluate(s.e, s.px + k, s.py, s.recip); });
+                   }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct Pool {
+    Batches batches;
+    std::vector<AttributePlane> planes;
+    std::vector<int32_t> dx, dy;
+    std::vector<int64_t> value, value_next_x, value_next_y;
+    std::vector<uint32_t> output;
+    std::vector<AttributeEvaluation> scalar, rtl_out;
+    AttrInterpRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  for (auto* v : {&p->dx, &p->dy}) v->resize(n);
+  for (auto* v : {&p->value, &p->value_next_x, &p->value_next_y}) v->resize(n);
+  p->output.resize(n);
+  // Random words at random magnitudes, offsets at random, as the cosim test.
+  auto word = [&rng]() { return sign_extend(rng(), 1 + static_cast<unsigned>(rng() % 40)); };
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const auto kind = static_cast<AttributeKind>(rng() & 3);  // 3: undefined kind
+    const int64_t start = word(), grad_x = word(), grad_y = word();
+    p->planes.push_back(AttributePlane{kind, start, grad_x, grad_y});
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint64_t offsets = rng();
+      p->dx[p->batches.first[b] + k] = static_cast<int32_t>(offsets & 0x3ff) - 512;
+      p->dy[p->batches.first[b] + k] = static_cast<int32_t>((offsets >> 10) & 0x3ff) - 512;
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"attribute interpolator", n, {}};
+  u.side[BATCH] = {
+      [p, isa] {
+        for (size_t b = 0; b < p->batches.size(); ++b) {
+          const uint32_t f = p->batches.first[b];
+          attribute_batch(
+              p->planes[b], p->dx.data() + f, p->dy.data() + f, p->batches.count[b],
+              {p->value.data() + f, p->value_next_x.data() + f, p->value_next_y.data() + f, p->output.data() + f}, isa);
+        }
+        compiler_barrier(p->value.data());
+      },
+      [p] {
+        uint64_t sum = 0;
+        for (uint32_t i = 0; i < p->dx.size(); ++i) {
+          sum = fold(sum, static_cast<uint64_t>(p->value[i]));
+          sum = fold(sum, static_cast<uint64_t>(p->value_next_x[i]));
+          sum = fold(sum, static_cast<uint64_t>(p->value_next_y[i]));
+          sum = fold(sum, p->output[i]);
+        }
+        return sum;
+      }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] { return evaluate_attribute(p->planes[b], p->dx[i], p->dy[i]); });
+                        }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] { return p->rtl.evaluate(p->planes[b], p->dx[i], p->dy[i]); });
+                     }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit fragment_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
+                                                    CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
+                                                    CompareFunc::gequal, CompareFunc::always};
+  static constexpr std::array<StencilOp, 7> OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
+                                                StencilOp::incr,          StencilOp::decr, StencilOp::invert,
+                                                static_cast<StencilOp>(7)};
+  struct Pool {
+    Batches batches;
+    std::vector<FragmentTestState> states;
+    std::vector<uint32_t> alpha, depth, stored_depth, stored_stencil, flags, stencil;
+    std::vector<FragmentTestResult> scalar, rtl_out;
+    FragmentTestsRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+    FragmentTestInput input(size_t i) const {
+      return {unorm8::from_raw(alpha[i]), unorm24::from_raw(depth[i]), unorm24::from_raw(stored_depth[i]),
+              stencil8::from_raw(stored_stencil[i])};
+    }
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  for (auto* v : {&p->alpha, &p->depth, &p->stored_depth, &p->stored_stencil, &p->flags, &p->stencil}) v->resize(n);
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t a = rng(), w = rng();
+    FragmentTestState s;
+    s.alpha_enable = a & 1;
+    s.stencil_enable = (a >> 1) & 1;
+    s.depth_enable = (a >> 2) & 1;
+    s.depth_write_mask = (a >> 3) & 1;
+    s.alpha_func = FUNCS[(a >> 4) & 7];
+    s.stencil_func = FUNCS[(a >> 7) & 7];
+    s.depth_func = FUNCS[(a >> 10) & 7];
+    s.sfail = OPS[((a >> 13) & 0xff) % OPS.size()];
+    s.dpfail = OPS[((a >> 21) & 0xff) % OPS.size()];
+    s.dppass = OPS[((a >> 29) & 0xff) % OPS.size()];
+    s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
+    s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
+    s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
+    s.stencil_write_mask = static_cast<uint8_t>(w);
+    p->states.push_back(s);
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint32_t i = p->batches.first[b] + k;
+      const uint64_t f = rng();
+      p->alpha[i] = ((f >> 61) & 1) ? s.alpha_ref.raw : static_cast<uint32_t>(f >> 8) & 0xff;
+      p->stored_stencil[i] = static_cast<uint32_t>(f >> 16) & 0xff;
+      p->depth[i] = static_cast<uint32_t>(f >> 24) & 0xffffff;
+      p->stored_depth[i] = (f >> 62) == 0 ? p->depth[i] : static_cast<uint32_t>(rng()) & 0xffffff;
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"fragment tests", n, {}};
+  u.side[BATCH] = {[p, isa] {
+                     for (size_t b = 0; b < p->batches.size(); ++b) {
+                       const uint32_t f = p->batches.first[b];
+                       run_fragment_tests_batch(p->states[b],
+                                                {p->alpha.data() + f, p->depth.data() + f, p->stored_depth.data() + f,
+                                                 p->stored_stencil.data() + f},
+                                                p->batches.count[b], {p->flags.data() + f, p->stencil.data() + f}, isa);
+                     }
+                     compiler_barrier(p->flags.data());
+                   },
+                   [p] {
+                     uint64_t sum = 0;
+                     for (uint32_t i = 0; i < p->flags.size(); ++i) sum = fold(fold(sum, p->flags[i]), p->stencil[i]);
+                     return sum;
+                   }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] { return run_fragment_tests(p->states[b], p->input(i)); });
+                        }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] { return p->rtl.run(p->states[b], p->input(i)); });
+                     }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+// The sides of a unit whose result is one packed colour per vector (blend,
+// combiner): the batch writes `out`, scalar and RTL their Rgba8 arrays.
+template <class Pool>
+void colour_checksums(Unit& u, const std::shared_ptr<Pool>& p) {
+  u.side[BATCH].checksum = [p] {
+    uint64_t sum = 0;
+    for (uint32_t c : p->out) sum = fold(sum, c);
+    return sum;
+  };
+  u.side[SCALAR].checksum = [p] { return checksum(p->scalar); };
+  u.side[RTL].checksum = [p] { return checksum(p->rtl_out); };
+}
+
+Unit blend_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::zero,
+                                                       BlendFactor::one,
+                                                       BlendFactor::src_color,
+                                                       BlendFactor::one_minus_src_color,
+                                                       BlendFactor::src_alpha,
+                                                       BlendFactor::one_minus_src_alpha,
+                                                       BlendFactor::dst_alpha,
+                                                       BlendFactor::one_minus_dst_alpha,
+                                                       BlendFactor::dst_color,
+                                                       BlendFactor::one_minus_dst_color,
+                                                       BlendFactor::src_alpha_saturate,
+                                                       static_cast<BlendFactor>(15)};
+  struct Pool {
+    Batches batches;
+    std::vector<BlendState> states;
+    std::vector<uint32_t> src, dst, out;
+    std::vector<Rgba8> scalar, rtl_out;
+    BlendLogicOpRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  p->src.resize(n);
+  p->dst.resize(n);
+  p->out.resize(n);
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t a = rng();
+    BlendState s;
+    s.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
+    s.logic_op_enable = ((a >> 2) & 7) == 0;
+    s.src_factor = FACTORS[((a >> 5) & 0xff) % FACTORS.size()];
+    s.dst_factor = FACTORS[((a >> 13) & 0xff) % FACTORS.size()];
+    s.op = static_cast<LogicOp>((a >> 21) & 15);
+    s.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
+    p->states.push_back(s);
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint64_t c = rng();
+      p->src[p->batches.first[b] + k] = static_cast<uint32_t>(c);
+      p->dst[p->batches.first[b] + k] = static_cast<uint32_t>(c >> 32);
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"blend / logic op", n, {}};
+  u.side[BATCH].sweep = [p, isa] {
+    for (size_t b = 0; b < p->batches.size(); ++b) {
+      const uint32_t f = p->batches.first[b];
+      blend_logic_op_batch(p->states[b], p->src.data() + f, p->dst.data() + f, p->batches.count[b], p->out.data() + f,
+                           isa);
+    }
+    compiler_barrier(p->out.data());
+  };
+  u.side[SCALAR].sweep = [p] {
+    for (size_t b = 0; b < p->batches.size(); ++b)
+      for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+        const uint32_t i = p->batches.first[b] + k;
+        store(p->scalar, i,
+              [&] { return blend_logic_op(p->states[b], Rgba8::unpack(p->src[i]), Rgba8::unpack(p->dst[i])); });
+      }
+    compiler_barrier(p->scalar.data());
+  };
+  u.side[RTL].sweep = [p] {
+    for (size_t b = 0; b < p->batches.size(); ++b)
+      for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+        const uint32_t i = p->batches.first[b] + k;
+        store(p->rtl_out, i,
+              [&] { return p->rtl.run(p->states[b], Rgba8::unpack(p->src[i]), Rgba8::unpack(p->dst[i])); });
+      }
+    compiler_barrier(p->rtl_out.data());
+  };
+  colour_checksums(u, p);
+  return u;
+}
+
+Unit texel_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  static constexpr std::array<TexWrap, 2> WRAPS{TexWrap::repeat, TexWrap::clamp_to_edge};
+  static constexpr std::array<TexFilter, 2> FILTERS{TexFilter::nearest, TexFilter::linear};
+  struct Pool {
+    Batches batches;
+    std::vector<TextureState> states;
+    std::vector<int32_t> s, t;
+    std::vector<uint32_t> field[10];
+    std::vector<TexelFootprint> scalar, rtl_out;
+    TexelAddressRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  p->s.resize(n);
+  p->t.resize(n);
+  for (auto& f : p->field) f.resize(n);
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t a = rng();
+    TextureState st;
+    st.base = static_cast<uint32_t>(a >> 32);
+    st.log2_width = static_cast<uint8_t>(a % 10);
+    st.log2_height = static_cast<uint8_t>((a >> 4) % 10);
+    st.wrap_s = WRAPS[(a >> 8) & 1];
+    st.wrap_t = WRAPS[(a >> 9) & 1];
+    st.filter = FILTERS[(a >> 10) & 1];
+    p->states.push_back(st);
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint64_t c = rng();
+      // Mostly coordinates within a few repetitions, some across the whole range.
+      const unsigned bits = ((c >> 11) & 7) != 0 ? 20 : 32;
+      p->s[p->batches.first[b] + k] = static_cast<int32_t>(sign_extend(c, bits));
+      p->t[p->batches.first[b] + k] = static_cast<int32_t>(sign_extend(c >> 32, bits));
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"texel address", n, {}};
+  u.side[BATCH] = {
+      [p, isa] {
+        for (size_t b = 0; b < p->batches.size(); ++b) {
+          const uint32_t f = p->batches.first[b];
+          auto at = [&](unsigned k) { return p->field[k].data() + f; };
+          texel_lookup_batch(p->states[b], p->s.data() + f, p->t.data() + f, p->batches.count[b],
+                             {at(0), at(1), at(2), at(3), at(4), at(5), {at(6), at(7), at(8), at(9)}}, isa);
+        }
+        compiler_barrier(p->field[0].data());
+      },
+      [p] {
+        uint64_t sum = 0;
+        for (uint32_t i = 0; i < p->s.size(); ++i) {
+          sum = fold(sum, uint64_t{p->field[0][i]} | uint64_t{p->field[1][i]} << 8 | uint64_t{p->field[2][i]} << 16);
+          sum = fold(sum, uint64_t{p->field[3][i]} | uint64_t{p->field[4][i]} << 8 | uint64_t{p->field[5][i]} << 16);
+          for (unsigned k = 6; k < 10; ++k) sum = fold(sum, p->field[k][i]);
+        }
+        return sum;
+      }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i,
+                                [&] { return texel_lookup(p->states[b], q15_16{p->s[i]}, q15_16{p->t[i]}); });
+                        }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i,
+                             [&] { return p->rtl.lookup(p->states[b], q15_16{p->s[i]}, q15_16{p->t[i]}); });
+                     }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit texture_env_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  static constexpr std::array<TexEnv, 4> MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal,
+                                               static_cast<TexEnv>(3)};
+  struct Pool {
+    Batches batches;
+    std::vector<TexEnv> modes;
+    std::vector<uint32_t> texel[4], weight_s, weight_t, fragment, texel_out, fragment_out;
+    std::vector<TextureEnvResult> scalar, rtl_out;
+    TextureEnvRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+    std::array<Rgba8, 4> texels(size_t i) const {
+      return {Rgba8::unpack(texel[0][i]), Rgba8::unpack(texel[1][i]), Rgba8::unpack(texel[2][i]),
+              Rgba8::unpack(texel[3][i])};
+    }
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  for (auto& t : p->texel) t.resize(n);
+  for (auto* v : {&p->weight_s, &p->weight_t, &p->fragment, &p->texel_out, &p->fragment_out}) v->resize(n);
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    p->modes.push_back(MODES[rng() & 3]);
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint32_t i = p->batches.first[b] + k;
+      const uint64_t a = rng(), c = rng(), d = rng();
+      p->texel[0][i] = static_cast<uint32_t>(a);
+      p->texel[1][i] = static_cast<uint32_t>(a >> 32);
+      p->texel[2][i] = static_cast<uint32_t>(c);
+      p->texel[3][i] = static_cast<uint32_t>(c >> 32);
+      p->weight_s[i] = static_cast<uint32_t>(d >> 8) & 0xff;
+      p->weight_t[i] = static_cast<uint32_t>(d >> 16) & 0xff;
+      p->fragment[i] = static_cast<uint32_t>(d >> 32);
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"texture env (filter + env)", n, {}};
+  u.side[BATCH] = {
+      [p, isa] {
+        for (size_t b = 0; b < p->batches.size(); ++b) {
+          const uint32_t f = p->batches.first[b];
+          texture_filter_env_batch(
+              p->modes[b],
+              {{p->texel[0].data() + f, p->texel[1].data() + f, p->texel[2].data() + f, p->texel[3].data() + f},
+               p->weight_s.data() + f,
+               p->weight_t.data() + f,
+               p->fragment.data() + f},
+              p->batches.count[b], {p->texel_out.data() + f, p->fragment_out.data() + f}, isa);
+        }
+        compiler_barrier(p->texel_out.data());
+      },
+      [p] {
+        uint64_t sum = 0;
+        for (uint32_t i = 0; i < p->texel_out.size(); ++i)
+          sum = fold(sum, uint64_t{p->texel_out[i]} | uint64_t{p->fragment_out[i]} << 32);
+        return sum;
+      }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] {
+                            return texture_filter_env(p->modes[b], p->texels(i), static_cast<uint8_t>(p->weight_s[i]),
+                                                      static_cast<uint8_t>(p->weight_t[i]),
+                                                      Rgba8::unpack(p->fragment[i]));
+                          });
+                        }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] {
+                         return p->rtl.run(p->modes[b], p->texels(i), static_cast<uint8_t>(p->weight_s[i]),
+                                           static_cast<uint8_t>(p->weight_t[i]), Rgba8::unpack(p->fragment[i]));
+                       });
+                     }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit fog_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct Pool {
+    Batches batches;
+    std::vector<FogMode> modes;
+    std::vector<Rgba8> fog_colors;
+    std::vector<int32_t> argument;
+    std::vector<uint32_t> fragment, factor, color;
+    std::vector<FogUnitResult> scalar, rtl_out;
+    FogUnitRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  p->argument.resize(n);
+  for (auto* v : {&p->fragment, &p->factor, &p->color}) v->resize(n);
+  // Every mode code (3: no fog); arguments over the whole signed 16.16
+  // range half the time, within the table's reach (-1 to 31) the other half.
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t m = rng();
+    p->modes.push_back(static_cast<FogMode>(m & 3));
+    p->fog_colors.push_back(Rgba8::unpack(static_cast<uint32_t>(m >> 32)));
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint32_t i = p->batches.first[b] + k;
+      const uint64_t a = rng();
+      p->argument[i] =
+          (a >> 2) & 1 ? static_cast<int32_t>(a >> 32) : static_cast<int32_t>((a >> 8) & 0x1fffff) - (1 << 16);
+      p->fragment[i] = static_cast<uint32_t>(rng());
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"fog unit", n, {}};
+  u.side[BATCH] = {[p, isa] {
+                     for (size_t b = 0; b < p->batches.size(); ++b) {
+                       const uint32_t f = p->batches.first[b];
+                       fog_unit_batch(p->modes[b], p->fog_colors[b], p->argument.data() + f, p->fragment.data() + f,
+                                      p->batches.count[b], {p->factor.data() + f, p->color.data() + f}, isa);
+                     }
+                     compiler_barrier(p->color.data());
+                   },
+                   [p] {
+                     uint64_t sum = 0;
+                     for (uint32_t i = 0; i < p->color.size(); ++i)
+                       sum = fold(sum, uint64_t{p->color[i]} | uint64_t{p->factor[i]} << 32);
+                     return sum;
+                   }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b)
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] {
+                            return fog_unit(p->modes[b], p->argument[i], Rgba8::unpack(p->fragment[i]),
+                                            p->fog_colors[b]);
+                          });
+                        }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b)
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] {
+                         return p->rtl.run(p->modes[b], p->argument[i], Rgba8::unpack(p->fragment[i]),
+                                           p->fog_colors[b]);
+                       });
+                     }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct State {
+    TexFilter min, mag;
+    TexMipmap mipmap;
+    unsigned last;
+  };
+  struct Pool {
+    Batches batches;
+    std::vector<State> states;
+    std::vector<uint32_t> rho, flags, level0, level1, weight;
+    std::vector<int32_t> lambda;
+    std::vector<LodResult> scalar, rtl_out;
+    LodUnitRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  p->lambda.resize(n);
+  for (auto* v : {&p->rho, &p->flags, &p->level0, &p->level1, &p->weight}) v->resize(n);
+  // Every filter pair, mipmap code and last level; every magnitude of rho
+  // equally often (a random rho shifted right by 0..31), as the cosim test.
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const auto state = static_cast<unsigned>(rng());
+    p->states.push_back({tessera::from_code<TexFilter>(state), tessera::from_code<TexFilter>(state >> 1),
+                         tessera::from_code<TexMipmap>(state >> 2), (state >> 4) & 15});
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint64_t a = rng();
+      p->rho[p->batches.first[b] + k] = static_cast<uint32_t>(a) >> ((a >> 32) & 31);
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"LOD unit", n, {}};
+  u.side[BATCH] = {[p, isa] {
+                     for (size_t b = 0; b < p->batches.size(); ++b) {
+                       const uint32_t f = p->batches.first[b];
+                       const State& s = p->states[b];
+                       lod_unit_batch(s.min, s.mag, s.mipmap, s.last, p->rho.data() + f, p->batches.count[b],
+                                      {p->lambda.data() + f, p->flags.data() + f, p->level0.data() + f,
+                                       p->level1.data() + f, p->weight.data() + f},
+                                      isa);
+                     }
+                     compiler_barrier(p->lambda.data());
+                   },
+                   [p] {
+                     uint64_t sum = 0;
+                     for (uint32_t i = 0; i < p->rho.size(); ++i) {
+                       sum = fold(sum, static_cast<uint64_t>(int64_t{p->lambda[i]}));
+                       sum = fold(sum, p->flags[i]);
+                       sum = fold(sum,
+                                  uint64_t{p->level0[i]} | uint64_t{p->level1[i]} << 8 | uint64_t{p->weight[i]} << 16);
+                     }
+                     return sum;
+                   }};
+  u.side[SCALAR] = {[p] {
+                      for (size_t b = 0; b < p->batches.size(); ++b) {
+                        const State& s = p->states[b];
+                        for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                          const uint32_t i = p->batches.first[b] + k;
+                          store(p->scalar, i, [&] { return lod_unit(p->rho[i], s.min, s.mag, s.mipmap, s.last); });
+                        }
+                      }
+                      compiler_barrier(p->scalar.data());
+                    },
+                    [p] { return checksum(p->scalar); }};
+  u.side[RTL] = {[p] {
+                   for (size_t b = 0; b < p->batches.size(); ++b) {
+                     const State& s = p->states[b];
+                     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+                       const uint32_t i = p->batches.first[b] + k;
+                       store(p->rtl_out, i, [&] { return p->rtl.run(p->rho[i], s.min, s.mag, s.mipmap, s.last); });
+                     }
+                   }
+                   compiler_barrier(p->rtl_out.data());
+                 },
+                 [p] { return checksum(p->rtl_out); }};
+  return u;
+}
+
+Unit combiner_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+  struct State {
+    TextureUnitEnv unit;
+    uint32_t rgb_word, alpha_word;
+  };
+  struct Pool {
+    Batches batches;
+    std::vector<State> states;
+    std::vector<uint32_t> primary, previous, texel, out;
+    std::vector<Rgba8> scalar, rtl_out;
+    TextureCombinerRtl rtl;
+    explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
+  };
+  auto p = std::make_shared<Pool>(opt);
+  const uint32_t n = p->batches.lanes;
+  for (auto* v : {&p->primary, &p->previous, &p->texel, &p->out}) v->resize(n);
+  // Random combiner words (reserved bits included), half the states
+  // COMBINE, as the cosim test.
+  for (size_t b = 0; b < p->batches.size(); ++b) {
+    const uint64_t a = rng(), d = rng();
+    State s;
+    s.unit.env = tessera::from_code<TexEnv>((d & 1) != 0 ? 5u : static_cast<uint32_t>(d >> 1) & 7);
+    s.unit.base_format = tessera::from_code<TexBaseFormat>(static_cast<uint32_t>(d >> 4) & 7);
+    s.unit.env_color = Rgba8::unpack(static_cast<uint32_t>(a));
+    s.rgb_word = static_cast<uint32_t>(d >> 8);
+    s.alpha_word = static_cast<uint32_t>(d >> 32) ^ static_cast<uint32_t>(a >> 16);
+    s.unit.rgb = CombineStage::decode(s.rgb_word);
+    s.unit.alpha = CombineStage::decode(s.alpha_word);
+    p->states.push_back(s);
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+      const uint32_t i = p->batches.first[b] + k;
+      const uint64_t c = rng(), e = rng();
+      p->primary[i] = static_cast<uint32_t>(c);
+      p->previous[i] = static_cast<uint32_t>(c >> 32);
+      p->texel[i] = static_cast<uint32_t>(e);
+    }
+  }
+  p->scalar.resize(n);
+  p->rtl_out.resize(n);
+  Unit u{"texture combiner", n, {}};
+  u.side[BATCH].sweep = [p, isa] {
+    for (size_t b = 0; b < p->batches.size(); ++b) {
+      const uint32_t f = p->batches.first[b];
+      texture_combiner_batch(p->states[b].unit, p->primary.data() + f, p->previous.data() + f, p->texel.data() + f,
+                             p->batches.count[b], p->out.data() + f, isa);
+    }
+    compiler_barrier(p->out.data());
+  };
+  u.side[SCALAR].sweep = [p] {
+    for (size_t b = 0; b < p->batches.size(); ++b)
+      for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+        const uint32_t i = p->batches.first[b] + k;
+        store(p->scalar, i, [&] {
+          return texture_combiner(p->states[b].unit, Rgba8::unpack(p->primary[i]), Rgba8::unpack(p->previous[i]),
+                                  Rgba8::unpack(p->texel[i]));
+        });
+      }
+    compiler_barrier(p->scalar.data());
+  };
+  u.side[RTL].sweep = [p] {
+    for (size_t b = 0; b < p->batches.size(); ++b) {
+      const State& s = p->states[b];
+      for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
+        const uint32_t i = p->batches.first[b] + k;
+        store(p->rtl_out, i, [&] {
+          return p->rtl.run(s.unit.env, s.unit.base_format, Rgba8::unpack(p->primary[i]), Rgba8::unpack(p->previous[i]),
+                            Rgba8::unpack(p->texel[i]), s.unit.env_color, s.rgb_word, s.alpha_word);
+        });
+      }
+    }
+    compiler_barrier(p->rtl_out.data());
+  };
+  colour_checksums(u, p);
+  return u;
+}
+
+// ---------------------------------------------------------------------------
+
+struct UnitResult {
+  std::string name;
+  std::vector<double> ns[SIDES];  // per round
+  std::vector<double> ratio;      // RTL / batch, per round
+  uint64_t checksum[SIDES] = {};
+};
+
+// R rounds of whole sweeps over the pool, the three sides in an order that
+// rotates from round to round.
+UnitResult measure(Unit& u, const Options& opt) {
+  std::fprintf(stderr, "bench_rtl: %s ...\n", u.name.c_str());
+  UnitResult result;
+  result.name = u.name;
+  const uint64_t sweeps = std::max<uint64_t>(1, (opt.vectors + u.lanes - 1) / u.lanes);
+  const double vectors = static_cast<double>(sweeps * u.lanes);
+  for (Side& side : u.side) side.sweep();  // warm-up, not counted
+  for (unsigned r = 0; r < opt.rounds; ++r) {
+    double seconds[SIDES] = {};
+    for (unsigned k = 0; k < SIDES; ++k) {
+      const unsigned s = (r + k) % SIDES;
+      const double start = thread_cpu_seconds();
+      for (uint64_t i = 0; i < sweeps; ++i) u.side[s].sweep();
+      seconds[s] = thread_cpu_seconds() - start;
+    }
+    for (unsigned s = 0; s < SIDES; ++s) result.ns[s].push_back(seconds[s] / vectors * 1e9);
+    result.ratio.push_back(seconds[RTL] / seconds[BATCH]);
+  }
+  for (unsigned s = 0; s < SIDES; ++s) result.checksum[s] = u.side[s].checksum();
   return result;
 }
 
 std::string format_ns(double ns) {
   char text[32];
-  std::snprintf(text, sizeof text, ns < 10 ? "%.2f" : "%.1f", ns);
+  std::snprintf(text, sizeof text, ns < 1 ? "%.3f" : ns < 10 ? "%.2f" : "%.1f", ns);
   return text;
 }
 
 int run(const Options& opt) {
+  BatchIsa isa = best_batch_isa();
+  if (!opt.isa.empty()) {
+    bool found = false;
+    for (BatchIsa candidate : runnable_batch_isas())
+      if (to_string(candidate) == opt.isa) {
+        isa = candidate;
+        found = true;
+      }
+    if (!found) {
+      std::cerr << "bench_rtl: --isa " << opt.isa << ": not a batch variant this build has and this processor runs (";
+      for (BatchIsa candidate : runnable_batch_isas()) std::cerr << " " << to_string(candidate);
+      std::cerr << " )\n";
+      return 2;
+    }
+  }
   const std::string load_before = load_average();
   const auto start = std::chrono::steady_clock::now();
   std::mt19937_64 rng(opt.seed);
-  const uint64_t n = opt.pool;
+  std::vector<Unit (*)(std::mt19937_64&, const Options&, BatchIsa)> makers = {
+      reciprocal_unit, edge_unit,        attribute_unit, fragment_unit,  blend_unit,
+      texel_unit,      texture_env_unit, fog_unit_bench, lod_unit_bench, combiner_unit};
   std::vector<UnitResult> results;
-  {
-    const auto vectors = recip_vectors(rng, n);
-    RecipUnitRtl rtl;
-    results.push_back(measure(
-        "reciprocal (Method 3)", vectors, opt, [](uint16_t x) { return reciprocal(x, RecipMethod::method3); },
-        [&rtl](uint16_t x) { return rtl.evaluate(x); }));
-  }
-  {
-    const auto vectors = edge_vectors(rng, n);
-    EdgeFunctionRtl rtl;
-    results.push_back(measure(
-        "edge function", vectors, opt, [](const EdgeVector& v) { return evaluate_edge(v.e, v.px, v.py, v.recip); },
-        [&rtl](const EdgeVector& v) { return rtl.evaluate(v.e, v.px, v.py, v.recip); }));
-  }
-  {
-    const auto vectors = attr_vectors(rng, n);
-    AttrInterpRtl rtl;
-    results.push_back(measure(
-        "attribute interpolator", vectors, opt,
-        [](const AttrVector& v) { return evaluate_attribute(v.plane, v.dx, v.dy); },
-        [&rtl](const AttrVector& v) { return rtl.evaluate(v.plane, v.dx, v.dy); }));
-  }
-  {
-    const auto vectors = fragment_vectors(rng, n);
-    FragmentTestsRtl rtl;
-    results.push_back(measure(
-        "fragment tests", vectors, opt, [](const FragmentVector& v) { return run_fragment_tests(v.state, v.in); },
-        [&rtl](const FragmentVector& v) { return rtl.run(v.state, v.in); }));
-  }
-  {
-    const auto vectors = blend_vectors(rng, n);
-    BlendLogicOpRtl rtl;
-    results.push_back(measure(
-        "blend / logic op", vectors, opt, [](const BlendVector& v) { return blend_logic_op(v.state, v.src, v.dst); },
-        [&rtl](const BlendVector& v) { return rtl.run(v.state, v.src, v.dst); }));
-  }
-  {
-    const auto vectors = texel_vectors(rng, n);
-    TexelAddressRtl rtl;
-    results.push_back(measure(
-        "texel address", vectors, opt, [](const TexelVector& v) { return texel_lookup(v.state, v.s, v.t); },
-        [&rtl](const TexelVector& v) { return rtl.lookup(v.state, v.s, v.t); }));
-  }
-  {
-    const auto vectors = texenv_vectors(rng, n);
-    TextureEnvRtl rtl;
-    results.push_back(measure(
-        "texture env (filter + env)", vectors, opt,
-        [](const TexEnvVector& v) { return texture_filter_env(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); },
-        [&rtl](const TexEnvVector& v) { return rtl.run(v.mode, v.texels, v.weight_s, v.weight_t, v.fragment); }));
-  }
-
-  {
-    const auto vectors = fog_vectors(rng, n);
-    FogUnitRtl rtl;
-    results.push_back(measure(
-        "fog unit", vectors, opt,
-        [](const FogVector& v) { return fog_unit(v.mode, v.argument, v.fragment, v.fog_color); },
-        [&rtl](const FogVector& v) { return rtl.run(v.mode, v.argument, v.fragment, v.fog_color); }));
+  for (auto make : makers) {
+    Unit u = make(rng, opt, isa);
+    results.push_back(measure(u, opt));
   }
 
   std::printf(
-      "| unit | C++ ns/op (min) | (median) | RTL ns/op (min) | (median) | RTL / C++ (mins) | (median of rounds) "
-      "| goal >= 50 | checksum (both) |\n");
-  std::printf("|---|--:|--:|--:|--:|--:|--:|---|---|\n");
+      "| unit | C++ batch ns/op (min) | (median) | scalar ns/op (median) | RTL ns/op (min) | (median) "
+      "| RTL / batch (mins) | (median of rounds) | goal >= 50 | checksum (all three) |\n");
+  std::printf("|---|--:|--:|--:|--:|--:|--:|--:|---|---|\n");
   bool all_agree = true;
   for (const auto& r : results) {
-    const bool agree = r.cpp_checksum == r.rtl_checksum;
+    const bool agree = r.checksum[BATCH] == r.checksum[RTL] && r.checksum[SCALAR] == r.checksum[RTL];
     all_agree = all_agree && agree;
-    char sum[64];
+    char sum[96];
     if (agree)
-      std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(r.cpp_checksum));
+      std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(r.checksum[RTL]));
     else
-      std::snprintf(sum, sizeof sum, "DIFFER: %016llx / %016llx", static_cast<unsigned long long>(r.cpp_checksum),
-                    static_cast<unsigned long long>(r.rtl_checksum));
-    const MinMedian cpp = min_median(r.cpp_ns), rtl = min_median(r.rtl_ns), ratio = min_median(r.ratio);
-    const double ratio_of_mins = rtl.min / cpp.min;
-    std::printf("| %s | %s | %s | %s | %s | %.1f | %.1f | %s | %s |\n", r.unit.c_str(), format_ns(cpp.min).c_str(),
-                format_ns(cpp.median).c_str(), format_ns(rtl.min).c_str(), format_ns(rtl.median).c_str(), ratio_of_mins,
-                ratio.median, ratio.median >= 50 ? "met" : "**not met**", sum);
+      std::snprintf(
+          sum, sizeof sum, "DIFFER: %016llx / %016llx / %016llx", static_cast<unsigned long long>(r.checksum[BATCH]),
+          static_cast<unsigned long long>(r.checksum[SCALAR]), static_cast<unsigned long long>(r.checksum[RTL]));
+    const MinMedian batch = min_median(r.ns[BATCH]), scalar = min_median(r.ns[SCALAR]), rtl = min_median(r.ns[RTL]);
+    const MinMedian ratio = min_median(r.ratio);
+    std::printf("| %s | %s | %s | %s | %s | %s | %.1f | %.1f | %s | %s |\n", r.name.c_str(),
+                format_ns(batch.min).c_str(), format_ns(batch.median).c_str(), format_ns(scalar.median).c_str(),
+                format_ns(rtl.min).c_str(), format_ns(rtl.median).c_str(), rtl.min / batch.min, ratio.median,
+                ratio.median >= 50 ? "met" : "**not met**", sum);
   }
   std::printf(
-      "\n%u paired rounds per unit; a round times %llu operations on each side, sweeping a pool of %llu random "
-      "vectors (seed %#llx) generated before timing. One op = one vector through the unit's whole function (C++: "
-      "the datapath's one-call entry point, inline; RTL: its adapter, i.e. port packing + Verilated eval + "
-      "unpacking); times are this thread's CPU time. The checksum folds every output field of the pool's results; C++ "
-      "and RTL agree bit for bit when "
-      "it is the same. %s\n",
-      opt.rounds, static_cast<unsigned long long>(opt.vectors), static_cast<unsigned long long>(n),
-      static_cast<unsigned long long>(opt.seed),
+      "\n%u rounds per unit, the order of the three sides rotating; a round times about %llu vectors on each side, "
+      "whole sweeps of a pool of %llu random vectors (seed %#llx) generated before timing, in batches of %u that "
+      "share a state or a row. One op = one vector through the unit's whole function, every output field stored. "
+      "C++ batch: the batch form, one call per batch, variant %s; scalar: the one-call form, inline; RTL: its "
+      "adapter (port packing, Verilated eval, unpacking). Times are this thread's CPU time. The checksum folds every "
+      "output field of the pool's results; the three sides agree bit for bit when it is the same. %s\n",
+      opt.rounds, static_cast<unsigned long long>(opt.vectors), static_cast<unsigned long long>(opt.pool),
+      static_cast<unsigned long long>(opt.seed), opt.batch, std::string(to_string(isa)).c_str(),
       machine_summary(load_before, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
           .c_str());
   return all_agree ? 0 : 1;
@@ -517,16 +1140,21 @@ int run(const Options& opt) {
 static int run_main(int argc, char** argv) {
   Options opt;
   CLI::App cli{"bench_rtl: C++ datapath units of the rasterizer against their Verilated RTL, same vectors"};
-  cli.add_option("--vectors", opt.vectors, "operations per side and round")
+  cli.add_option("--vectors", opt.vectors, "vectors per side and round (rounded up to whole pool sweeps)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{100'000'000}))
       ->capture_default_str();
-  cli.add_option("--pool", opt.pool, "distinct random vectors per unit, swept in every round")
+  cli.add_option("--pool", opt.pool, "random vectors per unit, swept in every round")
       ->check(CLI::Range(uint64_t{1}, uint64_t{10'000'000}))
       ->capture_default_str();
-  cli.add_option("--rounds", opt.rounds, "paired rounds (C++ then RTL); min and median are printed")
+  cli.add_option("--batch", opt.batch, "vectors a batch (a span of a row, or fragments under one state)")
+      ->check(CLI::Range(1, 512))
+      ->capture_default_str();
+  cli.add_option("--rounds", opt.rounds, "rounds (batch, scalar and RTL, the order rotating); min and median printed")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cli.add_option("--seed", opt.seed, "seed of the vector generator")->capture_default_str();
+  cli.add_option("--isa", opt.isa,
+                 "batch variant: x86-64, x86-64-v3 or x86-64-v4 (default: the widest this processor runs)");
   CLI11_PARSE(cli, argc, argv);
   return run(opt);
 }

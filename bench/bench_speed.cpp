@@ -244,19 +244,23 @@ void Bench::raster_row() {
     in_rotation(r, {
                        [&] {
                          row.measured.push_back(soc_sim_frame({"--app", "teapot", "--backend", "raster"}, n, false));
+                         row.cpu_measured.push_back(m_last_cpu);
                        },
                        [&] {
                          const json out = json::parse(child({program("bench_raster").string(), "--native-core",
                                                              "teapot", "--frames", std::to_string(n)})
                                                           .output);
                          const double seconds = positive(out["seconds"].get<double>(), "native core time");
+                         const double cpu = positive(out["cpu_seconds"].get<double>(), "native core CPU time");
                          row.reference.push_back(seconds / n);
-                         per_fragment.push_back(seconds / positive(out["fragments"].get<double>(), "fragments"));
+                         row.cpu_reference.push_back(cpu / n);
+                         // The core's own speed: its thread's CPU time, which a loaded machine inflates least.
+                         per_fragment.push_back(cpu / positive(out["fragments"].get<double>(), "fragments"));
                        },
                    });
   }
   m_rows.push_back(row);
-  Row fragment{"`raster` core natively: time per fragment", "4x faster than 215 ns: <= 54 ns"};
+  Row fragment{"`raster` core natively: CPU time per fragment", "4x faster than 215 ns: <= 54 ns"};
   fragment.measured = per_fragment;
   fragment.goal_value = 215e-9 / 4;
   m_rows.push_back(fragment);
@@ -281,15 +285,11 @@ void Bench::bus_row() {
   }
 }
 
-// A figure of bench_rtl's table: "110.8 M", "950 k", "1.2 G" or a plain number.
-double parse_rate(const std::string& text) {
+// A figure of bench_rtl's table: ns per operation, a plain number.
+double parse_ns(const std::string& text) {
   std::istringstream in(text);
   double value = 0;
-  std::string unit;
-  in >> value >> unit;
-  if (unit == "k") value *= 1e3;
-  if (unit == "M") value *= 1e6;
-  if (unit == "G") value *= 1e9;
+  in >> value;
   return value;
 }
 
@@ -308,15 +308,16 @@ std::vector<std::string> table_cells(const std::string& line) {
 }
 
 void Bench::datapath_rows() {
-  // bench_rtl: each unit in C++ and in Verilated RTL on the same vectors;
-  // one process per round, one pass each (--repeat 1), read from its table
-  // by the columns' names.
+  // bench_rtl: each unit in C++ (its batch form) and in Verilated RTL on
+  // the same vectors; one process per round, one pass each (--rounds 1),
+  // read from its table by the columns' names (the first "C++ ... ns/op"
+  // and "RTL ... ns/op" ones, the mins: of one pass, its time).
   std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> units;  // C++ s/op, RTL s/op
   std::vector<std::string> order;
   for (unsigned r = 0; r < m_opt.rounds; ++r) {
     std::fprintf(stderr, "bench_speed: datapath units (bench_rtl), round %u of %u ...\n", r + 1, m_opt.rounds);
     const std::string output =
-        child({program("bench_rtl").string(), "--vectors", std::to_string(m_opt.rtl_vectors), "--repeat", "1"}).output;
+        child({program("bench_rtl").string(), "--vectors", std::to_string(m_opt.rtl_vectors), "--rounds", "1"}).output;
     std::istringstream lines(output);
     int unit_column = -1, cpp_column = -1, rtl_column = -1;
     for (std::string line; std::getline(lines, line);) {
@@ -325,9 +326,9 @@ void Bench::datapath_rows() {
       if (unit_column < 0) {
         for (size_t i = 0; i < cells.size(); ++i) {
           if (cells[i] == "unit") unit_column = static_cast<int>(i);
-          if (cells[i].rfind("C++", 0) == 0 && cells[i].find("ops/s") != std::string::npos)
+          if (cpp_column < 0 && cells[i].rfind("C++", 0) == 0 && cells[i].find("ns/op") != std::string::npos)
             cpp_column = static_cast<int>(i);
-          if (cells[i].rfind("RTL", 0) == 0 && cells[i].find("ops/s") != std::string::npos)
+          if (rtl_column < 0 && cells[i].rfind("RTL", 0) == 0 && cells[i].find("ns/op") != std::string::npos)
             rtl_column = static_cast<int>(i);
         }
         continue;
@@ -337,11 +338,11 @@ void Bench::datapath_rows() {
         continue;
       const std::string& unit = cells[unit_column];
       if (!units.count(unit)) order.push_back(unit);
-      units[unit].first.push_back(1 / positive(parse_rate(cells[cpp_column]), unit + " C++ ops/s"));
-      units[unit].second.push_back(1 / positive(parse_rate(cells[rtl_column]), unit + " RTL ops/s"));
+      units[unit].first.push_back(positive(parse_ns(cells[cpp_column]), unit + " C++ ns/op") * 1e-9);
+      units[unit].second.push_back(positive(parse_ns(cells[rtl_column]), unit + " RTL ns/op") * 1e-9);
     }
   }
-  if (units.empty()) throw std::runtime_error("bench_rtl printed no table with 'C++ ... ops/s' and 'RTL ... ops/s'");
+  if (units.empty()) throw std::runtime_error("bench_rtl printed no table with 'C++ ... ns/op' and 'RTL ... ns/op'");
   Row worst;
   double worst_speedup = 0;
   std::ostringstream table;
@@ -559,7 +560,8 @@ void Bench::print_table() const {
       m_opt.frames, 2 * m_opt.frames - 1, 2 * m_opt.frames, m_opt.rounds, m_opt.startup_runs);
   if (!m_datapath_table.empty())
     std::printf(
-        "\nDatapath units, C++ against Verilated RTL (bench_rtl --vectors %u --repeat 1, once per round):\n\n%s",
+        "\nDatapath units, C++ batch forms against Verilated RTL (bench_rtl --vectors %u --rounds 1, once per "
+        "round):\n\n%s",
         m_opt.rtl_vectors, m_datapath_table.c_str());
   if (!m_scaling_text.empty())
     std::printf("\n### Scaling (%u frames timed, %u rounds)\n\n%s", m_opt.scaling_frames, m_opt.scaling_rounds,

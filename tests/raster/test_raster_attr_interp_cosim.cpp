@@ -1,9 +1,13 @@
 // Co-simulation: tlm/raster/datapath/attribute_interpolator.h against the
-// Verilated rtl_models/raster/attr_interp.sv, every output bit.
+// Verilated rtl_models/raster/attr_interp.sv, every output bit. Every vector
+// goes through the scalar form (evaluate_attribute) and through the batch
+// form (attribute_batch) in every variant this machine runs, with the other
+// offsets of its plane: the 36 corner offsets, or 1 to 64 random ones.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <random>
+#include <vector>
 
 #include "attr_interp_adapter.h"
 #include "cosim_support.h"
@@ -12,20 +16,40 @@
 namespace tessera::raster {
 namespace {
 
+// One plane's offsets, checked together: the batch form takes them as one
+// batch.
 struct Checker : CosimTally {
   AttrInterpRtl rtl;
 
-  void check(const AttributePlane& p, int dx, int dy) {
-    const AttributeEvaluation want = evaluate_attribute(p, dx, dy);
-    const AttributeEvaluation got = rtl.evaluate(p, dx, dy);
-    const bool same = want.value == got.value && want.value_next_x == got.value_next_x &&
-                      want.value_next_y == got.value_next_y && want.output == got.output;
-    if (count(same)) {
-      ADD_FAILURE() << "kind " << int(p.kind) << " start " << p.start << " gx " << p.grad_x << " gy " << p.grad_y
-                    << " offset " << dx << "," << dy << ": value " << want.value.raw << "/" << got.value.raw
-                    << " next_x " << want.value_next_x.raw << "/" << got.value_next_x.raw << " next_y "
-                    << want.value_next_y.raw << "/" << got.value_next_y.raw << " output " << want.output << "/"
-                    << got.output;
+  void check(const AttributePlane& p, const std::vector<int32_t>& dx, const std::vector<int32_t>& dy) {
+    const size_t n = dx.size();
+    struct Outputs {
+      std::vector<int64_t> value, next_x, next_y;
+      std::vector<uint32_t> output;
+    };
+    std::vector<Outputs> outs;
+    for (BatchIsa isa : batch_isas()) {
+      outs.push_back(
+          {std::vector<int64_t>(n), std::vector<int64_t>(n), std::vector<int64_t>(n), std::vector<uint32_t>(n)});
+      Outputs& o = outs.back();
+      attribute_batch(p, dx.data(), dy.data(), static_cast<unsigned>(n),
+                      {o.value.data(), o.next_x.data(), o.next_y.data(), o.output.data()}, isa);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const AttributeEvaluation want = evaluate_attribute(p, dx[i], dy[i]);
+      const AttributeEvaluation got = rtl.evaluate(p, dx[i], dy[i]);
+      bool same = want.value == got.value && want.value_next_x == got.value_next_x &&
+                  want.value_next_y == got.value_next_y && want.output == got.output;
+      for (const Outputs& o : outs)
+        same = same && o.value[i] == got.value.raw && o.next_x[i] == got.value_next_x.raw &&
+               o.next_y[i] == got.value_next_y.raw && o.output[i] == got.output;
+      if (count(same)) {
+        ADD_FAILURE() << "kind " << int(p.kind) << " start " << p.start << " gx " << p.grad_x << " gy " << p.grad_y
+                      << " offset " << dx[i] << "," << dy[i] << ": value " << want.value.raw << "/" << got.value.raw
+                      << " next_x " << want.value_next_x.raw << "/" << got.value_next_x.raw << " next_y "
+                      << want.value_next_y.raw << "/" << got.value_next_y.raw << " output " << want.output << "/"
+                      << got.output << " (or a batch variant)";
+      }
     }
   }
 };
@@ -34,30 +58,38 @@ TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
   const int64_t lo = -(int64_t{1} << 39), hi = (int64_t{1} << 39) - 1;
   const std::array<int64_t, 10> words{0, 1, -1, lo, hi, 1 << 15, 255 << 16, (255 << 16) + (1 << 15), 127, 0xffffff80};
-  const std::array<int, 6> offsets{-512, -1, 0, 1, 2, 511};
+  const std::array<int32_t, 6> offsets{-512, -1, 0, 1, 2, 511};
+  std::vector<int32_t> corner_dx, corner_dy;
+  for (int32_t dx : offsets)
+    for (int32_t dy : offsets) {
+      corner_dx.push_back(dx);
+      corner_dy.push_back(dy);
+    }
   for (int kind = 0; kind < 4; ++kind)
     for (int64_t s : words)
       for (int64_t gx : words)
         for (int64_t gy : words)
-          for (int dx : offsets)
-            for (int dy : offsets) {
-              c.check(AttributePlane{static_cast<AttributeKind>(kind), s, gx, gy}, dx, dy);
-            }
+          c.check(AttributePlane{static_cast<AttributeKind>(kind), s, gx, gy}, corner_dx, corner_dy);
   const uint64_t corner_vectors = c.vectors;
 
   // Random words at random magnitudes, so that the conversions are seen
-  // inside their range as well as clamped.
+  // inside their range as well as clamped; planes at random, each with a
+  // batch of 1 to 64 random offsets.
   std::mt19937_64 rng(0xa77a1);
   auto word = [&rng]() {
     const unsigned bits = 1 + static_cast<unsigned>(rng() % 40);
     return sign_extend(rng(), bits);
   };
-  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+  while (c.vectors - corner_vectors < RANDOM_VECTORS) {
     const auto kind = static_cast<AttributeKind>(rng() & 3);
     const int64_t s = word(), gx = word(), gy = word();
-    const uint64_t o = rng();
-    c.check(AttributePlane{kind, s, gx, gy}, static_cast<int>(o & 0x3ff) - 512,
-            static_cast<int>((o >> 10) & 0x3ff) - 512);
+    std::vector<int32_t> dx(random_batch_length(rng())), dy(dx.size());
+    for (size_t i = 0; i < dx.size(); ++i) {
+      const uint64_t o = rng();
+      dx[i] = static_cast<int32_t>(o & 0x3ff) - 512;
+      dy[i] = static_cast<int32_t>((o >> 10) & 0x3ff) - 512;
+    }
+    c.check(AttributePlane{kind, s, gx, gy}, dx, dy);
   }
   report_cosim("attr_interp", c, corner_vectors);
 }

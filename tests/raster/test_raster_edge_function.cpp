@@ -139,6 +139,67 @@ TEST(EdgeFunction, RowMasksEqualPixelByPixelDecisions) {
   EXPECT_GT(rows_with_inside, 1000u);  // the triangles do cross the rows
 }
 
+// The runs found by division (the traversal's form) against the fill rule
+// decided pixel by pixel by direct evaluation, and against the walked mask:
+// random triangles from slivers to the whole screen (vertices on pixel
+// centres and edges through them included), random rows, spans up to the
+// screen's 512 pixels.
+TEST(EdgeFunction, InsideRunsEqualPixelByPixelDecisions) {
+  std::mt19937 rng(8765);
+  std::uniform_int_distribution<unsigned> pixel(0, 511);
+  std::uniform_int_distribution<unsigned> span(0, 512);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  unsigned rows_with_inside = 0, clipped_both_sides = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const unsigned py = pixel(rng);
+    const unsigned px = pixel(rng);
+    const unsigned count = std::min(span(rng), 512 - px);
+    // Vertices around the row at a random scale; a quarter on pixel
+    // centres (x + 1/2), where E == 0 and the tie-break decides.
+    const double scale = std::pow(2.0, 10.0 * unit(rng) - 1.0);
+    const double cx = px + unit(rng) * count, cy = py + 0.5;
+    const bool on_centres = (i & 3) == 0;
+    const auto vertex = [&] {
+      double x = std::clamp(cx + scale * (2 * unit(rng) - 1), 0.0, 511.0);
+      double y = std::clamp(cy + scale * (2 * unit(rng) - 1), 0.0, 511.0);
+      if (on_centres) {
+        x = std::floor(x) + 0.5;
+        y = std::floor(y) + 0.5;
+      }
+      return Point{x, y};
+    };
+    const auto tri = triangle_edges(vertex(), vertex(), vertex());
+    int first = -1, last = -1;
+    for (unsigned k = 0; k < count; ++k)
+      if (covers(tri, px + k, py)) {
+        if (first < 0) first = int(k);
+        ASSERT_EQ(last, first < int(k) ? int(k) - 1 : -1) << i << ": the inside pixels are not one run";
+        last = int(k);
+      }
+    int64_t biased[3], step[3];
+    for (unsigned k = 0; k < 3; ++k) {
+      biased[k] = edge_value_at(tri[k], px, py).raw + edge_tie(tri[k]);
+      step[k] = 16 * edge_dy(tri[k]).raw;
+    }
+    const InsideRun run = triangle_inside_run(biased, step, count);
+    ASSERT_EQ(run.count, first < 0 ? 0u : unsigned(last - first + 1)) << i;
+    if (first >= 0) {
+      ASSERT_EQ(run.first, unsigned(first)) << i;
+    }
+    if (count <= 64) {
+      const uint64_t mask = triangle_inside_mask(biased, step, count);
+      ASSERT_EQ(mask,
+                run.count == 0 ? 0 : ((run.count == 64 ? ~uint64_t{0} : (uint64_t{1} << run.count) - 1)) << run.first)
+          << i;
+    }
+    rows_with_inside += first >= 0;
+    clipped_both_sides += first > 0 && last >= 0 && unsigned(last) + 1 < count;
+  }
+  // The triangles do cross the rows, and often begin and end within them.
+  EXPECT_GT(rows_with_inside, 10000u);
+  EXPECT_GT(clipped_both_sides, 3000u);
+}
+
 TEST(EdgeFunction, TieBreakIsAntisymmetric) {
   // A sample exactly on the edge belongs to exactly one of the two directions.
   const std::vector<std::array<double, 4>> edges{

@@ -34,31 +34,31 @@ TEST(FragmentTests, DepthCompareTruthTable) {
                                                   {true, true, true}}};
   const unorm24 mid = unorm24::from_raw(0x800000);
   for (size_t f = 0; f < 8; ++f) {
-    EXPECT_EQ(depth_test(ALL_FUNCS[f], unorm24::from_raw(0x7fffff), mid), table[f][0]) << f;
-    EXPECT_EQ(depth_test(ALL_FUNCS[f], mid, mid), table[f][1]) << f;
-    EXPECT_EQ(depth_test(ALL_FUNCS[f], unorm24::from_raw(0x800001), mid), table[f][2]) << f;
+    EXPECT_EQ(depth_test_passes(ALL_FUNCS[f], unorm24::from_raw(0x7fffff), mid), table[f][0]) << f;
+    EXPECT_EQ(depth_test_passes(ALL_FUNCS[f], mid, mid), table[f][1]) << f;
+    EXPECT_EQ(depth_test_passes(ALL_FUNCS[f], unorm24::from_raw(0x800001), mid), table[f][2]) << f;
   }
-  EXPECT_FALSE(depth_test(CompareFunc::less, mid, mid));
-  EXPECT_TRUE(depth_test(CompareFunc::less, unorm24::from_raw(0), unorm24::from_raw(0xffffff)));
-  EXPECT_FALSE(depth_test(CompareFunc::greater, unorm24::from_raw(0xffffff), unorm24::from_raw(0xffffff)));
+  EXPECT_FALSE(depth_test_passes(CompareFunc::less, mid, mid));
+  EXPECT_TRUE(depth_test_passes(CompareFunc::less, unorm24::from_raw(0), unorm24::from_raw(0xffffff)));
+  EXPECT_FALSE(depth_test_passes(CompareFunc::greater, unorm24::from_raw(0xffffff), unorm24::from_raw(0xffffff)));
 }
 
 TEST(FragmentTests, AlphaCompareAgainstReference) {
-  EXPECT_TRUE(alpha_test(CompareFunc::gequal, unorm8{128}, unorm8{128}));
-  EXPECT_FALSE(alpha_test(CompareFunc::greater, unorm8{128}, unorm8{128}));
-  EXPECT_TRUE(alpha_test(CompareFunc::greater, unorm8{129}, unorm8{128}));
-  EXPECT_FALSE(alpha_test(CompareFunc::less, unorm8{0}, unorm8{0}));
+  EXPECT_TRUE(alpha_test_passes(CompareFunc::gequal, unorm8{128}, unorm8{128}));
+  EXPECT_FALSE(alpha_test_passes(CompareFunc::greater, unorm8{128}, unorm8{128}));
+  EXPECT_TRUE(alpha_test_passes(CompareFunc::greater, unorm8{129}, unorm8{128}));
+  EXPECT_FALSE(alpha_test_passes(CompareFunc::less, unorm8{0}, unorm8{0}));
 }
 
 TEST(FragmentTests, StencilCompareUsesValueMaskOnBothSides) {
   // ref 0x13 & 0x0f = 3, stored 0xf3 & 0x0f = 3: EQUAL despite different high bits.
-  EXPECT_TRUE(stencil_test(CompareFunc::equal, stencil8{0x13}, 0x0f, stencil8{0xf3}));
-  EXPECT_FALSE(stencil_test(CompareFunc::equal, stencil8{0x13}, 0xff, stencil8{0xf3}));
+  EXPECT_TRUE(stencil_test_passes(CompareFunc::equal, stencil8{0x13}, 0x0f, stencil8{0xf3}));
+  EXPECT_FALSE(stencil_test_passes(CompareFunc::equal, stencil8{0x13}, 0xff, stencil8{0xf3}));
   // GL: LESS passes when ref < stored.
-  EXPECT_TRUE(stencil_test(CompareFunc::less, stencil8{1}, 0xff, stencil8{2}));
-  EXPECT_FALSE(stencil_test(CompareFunc::less, stencil8{2}, 0xff, stencil8{1}));
+  EXPECT_TRUE(stencil_test_passes(CompareFunc::less, stencil8{1}, 0xff, stencil8{2}));
+  EXPECT_FALSE(stencil_test_passes(CompareFunc::less, stencil8{2}, 0xff, stencil8{1}));
   // Mask 0: everything compares equal.
-  EXPECT_TRUE(stencil_test(CompareFunc::equal, stencil8{0xaa}, 0x00, stencil8{0x55}));
+  EXPECT_TRUE(stencil_test_passes(CompareFunc::equal, stencil8{0xaa}, 0x00, stencil8{0x55}));
 }
 
 TEST(FragmentTests, StencilOperationsSaturateAndMask) {

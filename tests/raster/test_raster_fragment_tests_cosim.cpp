@@ -1,9 +1,13 @@
 // Co-simulation: tlm/raster/datapath/fragment_tests.h against the Verilated
-// rtl_models/raster/fragment_tests.sv, every output bit.
+// rtl_models/raster/fragment_tests.sv, every output bit. Every vector goes
+// through the scalar form (run_fragment_tests) and through the batch form
+// (run_fragment_tests_batch) in every variant this machine runs, with the
+// other fragments of its state: 5 for a corner state, 1 to 64 at random.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <random>
+#include <vector>
 
 #include "cosim_support.h"
 #include "fragment_tests_adapter.h"
@@ -20,21 +24,46 @@ constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::keep,          StencilOp::
                                            StencilOp::incr,          StencilOp::decr, StencilOp::invert,
                                            static_cast<StencilOp>(7)};
 
+// One state's fragments, checked together: the batch form takes them as
+// one batch.
 struct Checker : CosimTally {
   FragmentTestsRtl rtl;
 
-  void check(const FragmentTestState& s, const FragmentTestInput& in) {
-    const FragmentTestResult want = run_fragment_tests(s, in);
-    const FragmentTestResult got = rtl.run(s, in);
-    const bool same = want.alpha_pass == got.alpha_pass && want.stencil_pass == got.stencil_pass &&
-                      want.depth_pass == got.depth_pass && want.pass == got.pass && want.stencil == got.stencil &&
-                      want.depth_write == got.depth_write;
-    if (count(same)) {
-      ADD_FAILURE() << "vector " << vectors << ": alpha " << want.alpha_pass << "/" << got.alpha_pass << " stencil "
-                    << want.stencil_pass << "/" << got.stencil_pass << " depth " << want.depth_pass << "/"
-                    << got.depth_pass << " pass " << want.pass << "/" << got.pass << " stencil value "
-                    << want.stencil.raw << "/" << got.stencil.raw << " depth write " << want.depth_write << "/"
-                    << got.depth_write;
+  void check(const FragmentTestState& s, const std::vector<FragmentTestInput>& fragments) {
+    const size_t n = fragments.size();
+    std::vector<uint32_t> alpha(n), depth(n), stored_depth(n), stored_stencil(n);
+    for (size_t i = 0; i < n; ++i) {
+      alpha[i] = fragments[i].alpha.raw;
+      depth[i] = fragments[i].depth.raw;
+      stored_depth[i] = fragments[i].stored_depth.raw;
+      stored_stencil[i] = fragments[i].stored_stencil.raw;
+    }
+    std::vector<std::vector<uint32_t>> flags, stencil;
+    for (BatchIsa isa : batch_isas()) {
+      flags.emplace_back(n);
+      stencil.emplace_back(n);
+      run_fragment_tests_batch(s, {alpha.data(), depth.data(), stored_depth.data(), stored_stencil.data()},
+                               static_cast<unsigned>(n), {flags.back().data(), stencil.back().data()}, isa);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const FragmentTestResult want = run_fragment_tests(s, fragments[i]);
+      const FragmentTestResult got = rtl.run(s, fragments[i]);
+      const uint32_t got_flags = (got.alpha_pass ? FRAGMENT_ALPHA_PASS : 0) |
+                                 (got.stencil_pass ? FRAGMENT_STENCIL_PASS : 0) |
+                                 (got.depth_pass ? FRAGMENT_DEPTH_PASS : 0) | (got.pass ? FRAGMENT_PASS : 0) |
+                                 (got.depth_write ? FRAGMENT_DEPTH_WRITE : 0);
+      bool same = want.alpha_pass == got.alpha_pass && want.stencil_pass == got.stencil_pass &&
+                  want.depth_pass == got.depth_pass && want.pass == got.pass && want.stencil == got.stencil &&
+                  want.depth_write == got.depth_write;
+      for (size_t k = 0; k < flags.size(); ++k)
+        same = same && flags[k][i] == got_flags && stencil[k][i] == got.stencil.raw;
+      if (count(same)) {
+        ADD_FAILURE() << "vector " << vectors << ": alpha " << want.alpha_pass << "/" << got.alpha_pass << " stencil "
+                      << want.stencil_pass << "/" << got.stencil_pass << " depth " << want.depth_pass << "/"
+                      << got.depth_pass << " pass " << want.pass << "/" << got.pass << " stencil value "
+                      << want.stencil.raw << "/" << got.stencil.raw << " depth write " << want.depth_write << "/"
+                      << got.depth_write << " (or a batch variant)";
+      }
     }
   }
 };
@@ -69,15 +98,16 @@ TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
               s.dpfail = ALL_OPS[(static_cast<size_t>(k) + 1) % ALL_OPS.size()];
               s.dppass = ALL_OPS[(static_cast<size_t>(k) + 2) % ALL_OPS.size()];
               s.depth_write_mask = k != 5;
-              for (uint32_t v = 0; v < 5; ++v) {
-                const FragmentTestInput in{unorm8{alpha_refs[v % 3]}, unorm24{depths[v]}, unorm24{depths[(v + k) % 5]},
-                                           stencil8{stencils[(v + k) % 4]}};
-                c.check(s, in);
-              }
+              std::vector<FragmentTestInput> fragments;
+              for (uint32_t v = 0; v < 5; ++v)
+                fragments.push_back({unorm8{alpha_refs[v % 3]}, unorm24{depths[v]}, unorm24{depths[(v + k) % 5]},
+                                     stencil8{stencils[(v + k) % 4]}});
+              c.check(s, fragments);
             }
   const uint64_t corner_vectors = c.vectors;
 
-  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+  // States at random, each with a batch of 1 to 64 fragments at random.
+  while (c.vectors - corner_vectors < RANDOM_VECTORS) {
     const uint64_t a = rng();
     const uint64_t b = rng();
     FragmentTestState s;
@@ -95,16 +125,19 @@ TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
     s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
     s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
     s.stencil_write_mask = static_cast<uint8_t>(b);
-    FragmentTestInput in;
-    in.alpha = unorm8::from_raw(static_cast<uint32_t>(b >> 8));
-    in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(b >> 16));
-    in.depth = unorm24::from_raw(static_cast<uint32_t>(b >> 24));
-    // A quarter of the vectors compare equal values, which random ones never would.
-    in.stored_depth = ((b >> 62) == 0) ? in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
-    if ((b >> 61) & 1) {
-      in.alpha = s.alpha_ref;
+    std::vector<FragmentTestInput> fragments(random_batch_length(b >> 8));
+    for (FragmentTestInput& in : fragments) {
+      const uint64_t f = rng();
+      in.alpha = unorm8::from_raw(static_cast<uint32_t>(f >> 8));
+      in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(f >> 16));
+      in.depth = unorm24::from_raw(static_cast<uint32_t>(f >> 24));
+      // A quarter of the vectors compare equal values, which random ones never would.
+      in.stored_depth = ((f >> 62) == 0) ? in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
+      if ((f >> 61) & 1) {
+        in.alpha = s.alpha_ref;
+      }
     }
-    c.check(s, in);
+    c.check(s, fragments);
   }
   report_cosim("fragment_tests", c, corner_vectors);
 }

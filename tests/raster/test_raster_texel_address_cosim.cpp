@@ -1,9 +1,14 @@
 // Co-simulation: tlm/raster/datapath/texel_address.h against the Verilated
-// rtl_models/raster/texel_address.sv, every output bit.
+// rtl_models/raster/texel_address.sv, every output bit. Every vector goes
+// through the scalar form (texel_lookup) and through the batch form
+// (texel_lookup_batch) in every variant this machine runs, with the other
+// coordinate pairs of its texture state: a corner state's pairs of the
+// corner coordinates, or 1 to 64 random ones.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <random>
+#include <vector>
 
 #include "cosim_support.h"
 #include "raster/datapath/texel_address.h"
@@ -12,25 +17,56 @@
 namespace tessera::raster {
 namespace {
 
+struct BatchBuffers {
+  std::vector<uint32_t> field[10];
+  explicit BatchBuffers(size_t n) {
+    for (auto& f : field) f.resize(n);
+  }
+  TexelBatch view() {
+    return {field[0].data(),
+            field[1].data(),
+            field[2].data(),
+            field[3].data(),
+            field[4].data(),
+            field[5].data(),
+            {field[6].data(), field[7].data(), field[8].data(), field[9].data()}};
+  }
+};
+
+// One texture's coordinate pairs, checked together: the batch form takes
+// them as one batch.
 struct Checker : CosimTally {
   TexelAddressRtl rtl;
 
-  void check(const TextureState& st, q15_16 s, q15_16 t) {
-    const TexelFootprint want = texel_lookup(st, s, t);
-    const TexelFootprint got = rtl.lookup(st, s, t);
+  void check(const TextureState& st, const std::vector<int32_t>& s, const std::vector<int32_t>& t) {
+    const size_t n = s.size();
+    std::vector<BatchBuffers> batches;
+    for (BatchIsa isa : batch_isas()) {
+      batches.emplace_back(n);
+      texel_lookup_batch(st, s.data(), t.data(), static_cast<unsigned>(n), batches.back().view(), isa);
+    }
     const auto same_axis = [](const TexelAxis& a, const TexelAxis& b) {
       return a.index0 == b.index0 && a.index1 == b.index1 && a.weight == b.weight;
     };
-    const bool same = same_axis(want.s, got.s) && same_axis(want.t, got.t) && want.address == got.address;
-    if (count(same)) {
-      ADD_FAILURE() << "s " << s.raw << " t " << t.raw << " log2 " << int(st.log2_width) << "x" << int(st.log2_height)
-                    << " wrap " << static_cast<unsigned>(st.wrap_s) << "/" << static_cast<unsigned>(st.wrap_t)
-                    << " filter " << static_cast<unsigned>(st.filter) << ": i " << int(want.s.index0) << ","
-                    << int(want.s.index1) << "/" << int(got.s.index0) << "," << int(got.s.index1) << " j "
-                    << int(want.t.index0) << "," << int(want.t.index1) << "/" << int(got.t.index0) << ","
-                    << int(got.t.index1) << " weights " << int(want.s.weight) << "," << int(want.t.weight) << "/"
-                    << int(got.s.weight) << "," << int(got.t.weight) << " addr00 " << want.address[0] << "/"
-                    << got.address[0];
+    for (size_t i = 0; i < n; ++i) {
+      const TexelFootprint want = texel_lookup(st, q15_16{s[i]}, q15_16{t[i]});
+      const TexelFootprint got = rtl.lookup(st, q15_16{s[i]}, q15_16{t[i]});
+      bool same = same_axis(want.s, got.s) && same_axis(want.t, got.t) && want.address == got.address;
+      for (BatchBuffers& b : batches) {
+        const uint32_t expected[10] = {got.s.index0, got.s.index1,   got.s.weight,   got.t.index0,   got.t.index1,
+                                       got.t.weight, got.address[0], got.address[1], got.address[2], got.address[3]};
+        for (unsigned f = 0; f < 10; ++f) same = same && b.field[f][i] == expected[f];
+      }
+      if (count(same)) {
+        ADD_FAILURE() << "s " << s[i] << " t " << t[i] << " log2 " << int(st.log2_width) << "x" << int(st.log2_height)
+                      << " wrap " << static_cast<unsigned>(st.wrap_s) << "/" << static_cast<unsigned>(st.wrap_t)
+                      << " filter " << static_cast<unsigned>(st.filter) << ": i " << int(want.s.index0) << ","
+                      << int(want.s.index1) << "/" << int(got.s.index0) << "," << int(got.s.index1) << " j "
+                      << int(want.t.index0) << "," << int(want.t.index1) << "/" << int(got.t.index0) << ","
+                      << int(got.t.index1) << " weights " << int(want.s.weight) << "," << int(want.t.weight) << "/"
+                      << int(got.s.weight) << "," << int(got.t.weight) << " addr00 " << want.address[0] << "/"
+                      << got.address[0] << " (or a batch variant)";
+      }
     }
   }
 };
@@ -50,23 +86,30 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
       for (TexWrap ws : wraps)
         for (TexWrap wt : wraps)
           for (TexFilter f : filters)
-            for (int64_t s : coords)
-              for (int64_t t : coords) {
-                TextureState st;
-                st.base = (s & 1) ? 0xffff'fff0u : 0x0010'0000u;
-                st.log2_width = lw;
-                st.log2_height = lh;
-                st.wrap_s = ws;
-                st.wrap_t = wt;
-                st.filter = f;
-                c.check(st, q15_16{s}, q15_16{t});
-              }
+            for (int64_t parity = 0; parity < 2; ++parity) {
+              // Every pair of coordinates; the base by the parity of s.
+              TextureState st;
+              st.base = parity != 0 ? 0xffff'fff0u : 0x0010'0000u;
+              st.log2_width = lw;
+              st.log2_height = lh;
+              st.wrap_s = ws;
+              st.wrap_t = wt;
+              st.filter = f;
+              std::vector<int32_t> s_batch, t_batch;
+              for (int64_t s : coords)
+                for (int64_t t : coords)
+                  if ((s & 1) == parity) {
+                    s_batch.push_back(static_cast<int32_t>(s));
+                    t_batch.push_back(static_cast<int32_t>(t));
+                  }
+              c.check(st, s_batch, t_batch);
+            }
   const uint64_t corner_vectors = c.vectors;
 
+  // Textures at random, each with a batch of 1 to 64 coordinate pairs.
   std::mt19937_64 rng(0x7e8e1);
-  for (uint64_t i = 0; i < RANDOM_VECTORS; ++i) {
+  while (c.vectors - corner_vectors < RANDOM_VECTORS) {
     const uint64_t a = rng();
-    const uint64_t b = rng();
     TextureState st;
     st.base = static_cast<uint32_t>(a >> 32);
     st.log2_width = static_cast<uint8_t>(a % 10);
@@ -74,11 +117,19 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
     st.wrap_s = wraps[(a >> 8) & 1];
     st.wrap_t = wraps[(a >> 9) & 1];
     st.filter = filters[(a >> 10) & 1];
-    // Mostly coordinates within a few repetitions, where wrap and clamp
-    // decisions happen; some across the whole range.
-    const bool small = ((a >> 11) & 7) != 0;
-    const auto pick = [small](uint64_t bits) { return small ? sign_extend(bits, 20) : sign_extend(bits, 32); };
-    c.check(st, q15_16{pick(b)}, q15_16{pick(b >> 32)});
+    std::vector<int32_t> s(random_batch_length(a >> 14)), t(s.size());
+    for (size_t i = 0; i < s.size(); ++i) {
+      const uint64_t b = rng();
+      // Mostly coordinates within a few repetitions, where wrap and clamp
+      // decisions happen; some across the whole range.
+      const bool small = ((b >> 11) & 7) != 0;
+      const auto pick = [small](uint64_t bits) {
+        return static_cast<int32_t>(small ? sign_extend(bits, 20) : sign_extend(bits, 32));
+      };
+      s[i] = pick(b);
+      t[i] = pick(b >> 32);
+    }
+    c.check(st, s, t);
   }
   report_cosim("texel_address", c, corner_vectors);
 }
@@ -99,7 +150,7 @@ TEST(TexelAddressCosim, UnknownWrapCodesActAsRepeat) {
       st.wrap_s = from_code<TexWrap>(code);
       st.wrap_t = from_code<TexWrap>(code);
       const q15_16 s{sign_extend(a >> 12, 20)}, t{sign_extend(a >> 32, 20)};
-      c.check(st, s, t);
+      c.check(st, {static_cast<int32_t>(s.raw)}, {static_cast<int32_t>(t.raw)});
       TextureState repeat = st;
       repeat.wrap_s = repeat.wrap_t = TexWrap::repeat;
       const TexelFootprint want = reference.lookup(repeat, s, t);

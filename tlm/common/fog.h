@@ -46,35 +46,44 @@ inline constexpr int32_t FOG_ONE = 1 << FOG_FRACTION_BITS;
 // exp2 squares at most 4.0: 4^2 = 16 shifts every table entry to 0.
 inline constexpr int32_t FOG_EXP2_ARGUMENT_LIMIT = 4 * FOG_ONE;
 
-inline constexpr uint16_t FOG_EXP2_TABLE[FOG_TABLE_ENTRIES] = {
+// Unsigned 0.16 entries held in 32 bits: a batch of fragments reads the
+// table with one vector gather, which has no 16-bit form.
+struct FogExp2Table {
+  uint32_t entry[FOG_TABLE_ENTRIES];
+};
+inline constexpr FogExp2Table FOG_EXP2 = {{
 #define TESSERA_FOG_EXP2(index, value) (value),
 #include "common/fog_exp2_table.def"
-};
+}};
+inline constexpr const uint32_t (&FOG_EXP2_TABLE)[FOG_TABLE_ENTRIES] = FOG_EXP2.entry;
 
-// 255 * 2^-x as an 8-bit code, x unsigned 16.16.
+// 255 * 2^-x as an 8-bit code, x unsigned 16.16. The shift by floor(x) is
+// cut at 16, where every 16-bit table entry is already 0, so that there is
+// no branch for floor(x) >= 16.
 constexpr uint8_t fog_exp2_negative(uint32_t x) {
   const uint32_t whole = x >> FOG_FRACTION_BITS;
-  if (whole >= 16) return 0;
   const uint32_t index = (x >> (FOG_FRACTION_BITS - FOG_TABLE_INDEX_BITS)) & (FOG_TABLE_ENTRIES - 1);
-  const uint32_t mantissa = uint32_t{FOG_EXP2_TABLE[index]} >> whole;
+  const uint32_t mantissa = FOG_EXP2.entry[index] >> (whole < 16 ? whole : 16);
   return static_cast<uint8_t>((mantissa * 255 + (1u << (FOG_FRACTION_BITS - 1))) >> FOG_FRACTION_BITS);
 }
 
-// The fog factor of the fog argument (16.16) in `mode`, 0..255.
+// The fog factor of the fog argument (16.16) in `mode`, 0..255. The linear
+// factor and the exponential one (of x = a for exp, a^2 for exp2: one table
+// read either way) are both computed and the mode's code selects by masks,
+// without a branch: the rasterizer's fog unit runs it on a batch of
+// fragments, which the compiler then vectorises (tlm/raster/datapath/
+// batch.h).
 constexpr uint8_t fog_factor(FogMode mode, int32_t argument) {
   const uint32_t positive = argument < 0 ? 0u : static_cast<uint32_t>(argument);
-  switch (mode) {
-    case FogMode::linear: {
-      const uint32_t a = std::min<uint32_t>(positive, FOG_ONE);
-      return static_cast<uint8_t>((a * 255 + (1u << (FOG_FRACTION_BITS - 1))) >> FOG_FRACTION_BITS);
-    }
-    case FogMode::exp: return fog_exp2_negative(positive);
-    case FogMode::exp2: {
-      const uint64_t a = std::min<uint32_t>(positive, FOG_EXP2_ARGUMENT_LIMIT);
-      return fog_exp2_negative(static_cast<uint32_t>((a * a) >> FOG_FRACTION_BITS));
-    }
-  }
-  return 255;
+  const uint32_t a = std::min<uint32_t>(positive, FOG_ONE);
+  const uint32_t linear = (a * 255 + (1u << (FOG_FRACTION_BITS - 1))) >> FOG_FRACTION_BITS;
+  const uint64_t b = std::min<uint32_t>(positive, FOG_EXP2_ARGUMENT_LIMIT);
+  const auto square = static_cast<uint32_t>((b * b) >> FOG_FRACTION_BITS);
+  const uint32_t code = static_cast<uint32_t>(mode);
+  const uint32_t exponential = fog_exp2_negative(code == code_of(FogMode::exp2) ? square : positive);
+  const auto pick = [code](uint32_t mode_code, uint32_t factor) { return (code == mode_code ? 0xffu : 0u) & factor; };
+  return static_cast<uint8_t>(pick(code_of(FogMode::linear), linear) | pick(code_of(FogMode::exp), exponential) |
+                              pick(code_of(FogMode::exp2), exponential) | (code > code_of(FogMode::exp2) ? 0xffu : 0u));
 }
 
 // The fogged colour: RGB of `rgba` (r | g << 8 | b << 16 | a << 24) towards

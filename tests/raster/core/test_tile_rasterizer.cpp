@@ -392,6 +392,44 @@ TEST(TileRasterizer, TextureNearestRepeat) {
   }
 }
 
+// A texel fetch that fails in the middle of a triangle (the shader takes
+// the triangle's fragments as one batch): the run stops at that fragment,
+// which is counted with those before it in the traversal's order, their
+// texels and the pixels visited up to it are counted too, and the error is
+// the failing texel's address. A 1 x 16 texture, t falling from 1 at the
+// top row to 0 at the bottom, its rows 8 and above refused: the rows 46 to
+// 40 fetch rows 0 to 7, row 39 fails at its first fragment.
+TEST(TileRasterizer, TexelFetchFailingMidTriangleStopsAtThatFragment) {
+  VectorPort port(MEMORY_SIZE);
+  put_texture(port, 1, 16);
+  port.fail_begin = TEXTURE_BASE + 8 * 4;
+  port.fail_end = TEXTURE_BASE + 16 * 4;
+  Frame frame(port, 96, 48);
+  frame.clear(0);
+  StateBlock s = default_state();
+  s.flags |= texture;
+  s.texture_address = TEXTURE_BASE;
+  s.texture_size = 0 | 4u << 8;
+  s.texture_mode = code_of(TexEnv::replace) << TEXTURE_ENV_SHIFT;  // nearest, repeat
+  frame.state(s);
+  const VertexRecord tri[3] = {vertex(2, 33, ~0u, 0, 0, 1), vertex(30, 33, ~0u, 0, 0, 1), vertex(2, 47, ~0u, 0, 0, 0)};
+  frame.triangle(tri[0], tri[1], tri[2]);
+  frame.finish();
+  const RunResult r = run(port, frame.config);
+  EXPECT_EQ(r.error, RasterError::bad_texture);
+  EXPECT_EQ(r.error_address, TEXTURE_BASE + 8 * 4);
+  // The box is x 2..29, y 33..46; the rows above 39 are drawn whole.
+  uint64_t before = 0;
+  for (unsigned y = 40; y <= 46; ++y)
+    for (unsigned x = 2; x < 30; ++x) before += reference_inside(tri, x, y);
+  unsigned first = 2;
+  while (!reference_inside(tri, first, 39)) ++first;
+  EXPECT_EQ(r.fragments, before + 1);
+  EXPECT_EQ(r.texels, before);  // nearest: one each
+  EXPECT_EQ(r.fragment_cycles, 7u * 28u + (first - 2 + 1));
+  EXPECT_GT(before, 40u);
+}
+
 // Perspective: 1/w varies across the quad; s must follow (s/w)/(1/w), not
 // the affine interpolation.
 TEST(TileRasterizer, TextureCoordinatesArePerspectiveCorrect) {

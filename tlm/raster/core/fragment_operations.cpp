@@ -1,13 +1,15 @@
-// See fragment_operations.h for why this is its own translation unit.
+// See fragment_operations.h.
 #include "raster/core/fragment_operations.h"
 
+#include <algorithm>
+
 #include "raster/datapath/blend_logic_op.h"
-#include "raster/datapath/fragment_tests.h"
 
 namespace tessera::raster {
 
-FragmentOperationsResult fragment_tests_only(const FragmentOperationsState& state, unorm8 alpha, unorm24 depth,
-                                             unorm24 stored_depth, stencil8 stored_stencil) {
+void fragment_tests(const FragmentOperationsState& state, const uint32_t* alpha, const uint32_t* depth,
+                    const uint32_t* stored_depth, const uint32_t* stored_stencil, unsigned count, uint32_t* flags,
+                    uint32_t* stencil) {
   FragmentTestState tests;
   tests.depth_enable = state.depth_test;
   tests.depth_func = state.depth_func;
@@ -23,21 +25,18 @@ FragmentOperationsResult fragment_tests_only(const FragmentOperationsState& stat
   tests.sfail = state.stencil_fail;
   tests.dpfail = state.depth_fail;
   tests.dppass = state.depth_pass;
-
-  const FragmentTestResult tested = run_fragment_tests(tests, {alpha, depth, stored_depth, stored_stencil});
-  FragmentOperationsResult result;
-  result.pass = tested.pass;
-  result.depth_write = tested.depth_write;
-  result.stencil = uint8_t(tested.stencil.raw);
-  return result;
+  run_fragment_tests_batch(tests, {alpha, depth, stored_depth, stored_stencil}, count, {flags, stencil});
 }
 
-Rgba8 fragment_color_update(const FragmentOperationsState& state, Rgba8 fragment, Rgba8 stored_color) {
+void fragment_color_update(const FragmentOperationsState& state, const uint32_t* fragment, const uint32_t* stored,
+                           unsigned count, uint32_t* out) {
   // Neither blending nor a logic op and every channel writable: the unit
-  // passes the fragment (blend_logic_op.h), so the branch-free unit, which
-  // computes every factor, is not needed. The state is the triangle's, so
-  // this branch is predicted.
-  if (!state.blend && !state.logic_op && (state.color_mask & COLOR_MASK_ALL) == COLOR_MASK_ALL) return fragment;
+  // passes the fragment (blend_logic_op.h), so the unit, which computes
+  // every factor, is not needed.
+  if (!state.blend && !state.logic_op && (state.color_mask & COLOR_MASK_ALL) == COLOR_MASK_ALL) {
+    std::copy(fragment, fragment + count, out);
+    return;
+  }
   BlendState blending;
   blending.blend_enable = state.blend;
   blending.src_factor = state.blend_src;
@@ -45,7 +44,7 @@ Rgba8 fragment_color_update(const FragmentOperationsState& state, Rgba8 fragment
   blending.logic_op_enable = state.logic_op;
   blending.op = state.logic_op_mode;
   blending.color_mask = uint8_t(state.color_mask & COLOR_MASK_ALL);
-  return blend_logic_op(blending, fragment, stored_color);
+  blend_logic_op_batch(blending, fragment, stored, count, out);
 }
 
 }  // namespace tessera::raster

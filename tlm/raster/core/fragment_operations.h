@@ -1,19 +1,13 @@
 // The per-fragment operations after the scissor (alpha, stencil and depth
-// tests, blending, logic op, colour mask) on the datapath units
-// fragment_tests and blend_logic_op, behind an interface that names neither.
-//
-// Why a separate translation unit: command_format.h declares the unscoped
-// enumerators raster::depth_test, alpha_test, stencil_test, blend and
-// logic_op, and the datapath headers fragment_tests.h and blend_logic_op.h
-// declare functions and an enum with the same names in the same namespace,
-// so no file can include both. tile_rasterizer.cpp includes the contract and
-// this header; fragment_operations.cpp includes the datapath units.
+// tests, blending, logic op, colour mask) on a batch of fragments
+// (fragment_batch.h), through the batch forms of the datapath units
+// fragment_tests and blend_logic_op, with the state decoded once per batch.
 #pragma once
 
 #include <cstdint>
 
 #include "common/fixed_function.h"
-#include "raster/datapath/fixed_point.h"
+#include "raster/datapath/fragment_tests.h"
 
 namespace tessera::raster {
 
@@ -34,19 +28,16 @@ struct FragmentOperationsState {
   uint8_t color_mask = 15;
 };
 
-struct FragmentOperationsResult {
-  bool pass = false;         // the colour buffer takes `color`
-  bool depth_write = false;  // the depth buffer takes the fragment's depth
-  uint8_t stencil = 0;       // the stencil buffer's new value
-  Rgba8 color;
-};
-
-// In two steps, so that the shader can compute the fragment's colour only
-// when it is needed: the tests (which read the colour's alpha only with the
-// alpha test enabled; `color` of the result is left unset), then, for a
-// fragment that passed, blending or logic op and the colour mask.
-FragmentOperationsResult fragment_tests_only(const FragmentOperationsState& state, unorm8 alpha, unorm24 depth,
-                                             unorm24 stored_depth, stencil8 stored_stencil);
-Rgba8 fragment_color_update(const FragmentOperationsState& state, Rgba8 fragment, Rgba8 stored_color);
+// In two steps, so that the shader can compute the fragments' colours only
+// where they are needed: the tests of `count` fragments (alpha 0.8, read
+// with the alpha test only; depth 0.24; the tile's stored depth and
+// stencil), giving FRAGMENT_* flags and the stencil value to store each;
+// then, for fragments that passed, blending or logic op and the colour mask
+// (packed RGBA8 words), giving the colour to store.
+void fragment_tests(const FragmentOperationsState& state, const uint32_t* alpha, const uint32_t* depth,
+                    const uint32_t* stored_depth, const uint32_t* stored_stencil, unsigned count, uint32_t* flags,
+                    uint32_t* stencil);
+void fragment_color_update(const FragmentOperationsState& state, const uint32_t* fragment, const uint32_t* stored,
+                           unsigned count, uint32_t* out);
 
 }  // namespace tessera::raster

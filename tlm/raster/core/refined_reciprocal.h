@@ -34,7 +34,27 @@ struct Normalised {
 
 inline Normalised normalise(uint64_t v) {
   const int n = v == 0 ? 0 : 64 - __builtin_clzll(v);  // the bit length of v
-  return {n <= 30 ? v << (30 - n) : v >> (n - 30), n};
+  // Both shifts with their counts cut to 0..63, then a select: the batch
+  // form's loop computes both in every lane (the one not taken is unused).
+  const uint64_t up = v << ((30 - n) & 63), down = v >> ((n - 30) & 63);
+  return {n <= 30 ? up : down, n};
+}
+
+// Two Newton-Raphson steps y <- y (2 - f y) in Q30 from the seed y.
+inline uint64_t newton(uint64_t f_q30, uint64_t y) {
+  for (unsigned step = 0; step < NEWTON_STEPS; ++step) {
+    const uint64_t fy = (f_q30 * y) >> 30;
+    const uint64_t two = uint64_t{1} << 31;
+    y = (y * (fy >= two ? 0 : two - fy)) >> 30;
+  }
+  return y;
+}
+
+// The operand bits the unit gets of the normalised divisor: Method 1 is a
+// fixed-point table, accurate for small operands only: it gets X in
+// [8, 16); the floating-point tables get X in [512, 1024).
+constexpr unsigned operand_bits(RecipMethod method) {
+  return method == RecipMethod::method1 ? 8 : 14;
 }
 
 }  // namespace refined_detail
@@ -42,21 +62,27 @@ inline Normalised normalise(uint64_t v) {
 // 1/v for v > 0; false when the unit flags its operand (v = 0).
 inline bool refined_reciprocal(uint64_t v, RecipMethod method, Reciprocal& out) {
   const refined_detail::Normalised norm = refined_detail::normalise(v);
-  // Method 1 is a fixed-point table, accurate for small operands only: it
-  // gets X in [8, 16); the floating-point tables get X in [512, 1024).
-  const unsigned operand_bits = method == RecipMethod::method1 ? 8 : 14;
+  const unsigned operand_bits = refined_detail::operand_bits(method);
   const auto operand = static_cast<uint16_t>(norm.f_q30 >> (30 - operand_bits));
   const ReciprocalResult seed = reciprocal(v == 0 ? 0 : operand, method);
   if (seed.invalid_operand) return false;
-  uint64_t y = uint64_t{seed.q5_16} << (10 + operand_bits);  // Q30 of 1/f
-  for (unsigned step = 0; step < refined_detail::NEWTON_STEPS; ++step) {
-    const uint64_t fy = (norm.f_q30 * y) >> 30;
-    const uint64_t two = uint64_t{1} << 31;
-    y = (y * (fy >= two ? 0 : two - fy)) >> 30;
-  }
-  out = {y, norm.n};
+  // The seed as Q30 of 1/f, refined.
+  out = {refined_detail::newton(norm.f_q30, uint64_t{seed.q5_16} << (10 + operand_bits)), norm.n};
   return true;
 }
+
+namespace refined_detail {
+
+// The quotients whose product, rounding and shift fit in 64 bits (|p| <
+// 2^62, half < 2^61) and so give the same bits as the 128-bit path: the
+// per-fragment ones (colour, fog and texture words over q) have such small
+// numerators.
+inline bool small_quotient(int128 numerator, uint64_t y, int shift) {
+  constexpr int64_t SMALL = int64_t{1} << 30;
+  return numerator > -SMALL && numerator < SMALL && y < (uint64_t{1} << 32) && shift >= 1 && shift <= 62;
+}
+
+}  // namespace refined_detail
 
 // numerator / v, with r = 1/v and v's sign given apart, scaled by
 // 2^-extra_shift.
@@ -65,8 +91,7 @@ inline int128 divide(int128 numerator, const Reciprocal& r, bool negative_diviso
   // The per-fragment quotients (colour and texture words over q) have small
   // numerators: then the product, its rounding and the shift fit in 64 bits
   // (|p| < 2^62, half < 2^61) and give the same bits as the 128-bit path.
-  constexpr int64_t SMALL = int64_t{1} << 30;
-  if (numerator > -SMALL && numerator < SMALL && r.y < (uint64_t{1} << 32) && shift >= 1 && shift <= 62) {
+  if (refined_detail::small_quotient(numerator, r.y, shift)) {
     int64_t p = int64_t(numerator) * int64_t(r.y);
     if (negative_divisor) p = -p;
     return (p + (int64_t{1} << (shift - 1))) >> shift;

@@ -18,37 +18,40 @@
 namespace tessera::raster {
 
 // RGB565's channel conversions of common/pixel_format.h (reduce_channel,
-// expand_channel) as constexpr tables built from them, for the per-pixel
-// loops: the same values, a load instead of a division and a loop.
-struct Rgb565Tables {
-  uint8_t reduce5[256], reduce6[256], expand5[32], expand6[64];
-};
-constexpr Rgb565Tables make_rgb565_tables() {
-  Rgb565Tables t{};
-  for (uint32_t c = 0; c < 256; ++c) {
-    t.reduce5[c] = uint8_t(reduce_channel(c, 5));
-    t.reduce6[c] = uint8_t(reduce_channel(c, 6));
-  }
-  for (uint32_t v = 0; v < 32; ++v) t.expand5[v] = uint8_t(expand_channel(v, 5));
-  for (uint32_t v = 0; v < 64; ++v) t.expand6[v] = uint8_t(expand_channel(v, 6));
-  return t;
+// expand_channel) in arithmetic the per-pixel loops vectorise: the
+// division by 255 as a multiply-free floor, the expansion as the bit
+// replication it is; checked against pixel_format.h for every code below.
+constexpr uint32_t reduce_rgb565_channel(uint32_t c, unsigned bits) {
+  const uint32_t x = c * ((1u << bits) - 1) + 127;  // below 65280: floor(x / 255) exactly
+  return (x + 1 + ((x + 1) >> 8)) >> 8;
 }
-inline constexpr Rgb565Tables RGB565_TABLES = make_rgb565_tables();
+constexpr uint32_t expand_rgb565_channel(uint32_t v, unsigned bits) {
+  return ((v << (8 - bits)) | (v >> (2 * bits - 8))) & 0xff;
+}
 
-// pack_pixel and unpack_pixel of RGB565 through the tables.
+// pack_pixel and unpack_pixel of RGB565.
 constexpr uint32_t pack_rgb565(uint32_t rgba) {
-  const Rgb565Tables& t = RGB565_TABLES;
-  return uint32_t{t.reduce5[rgba & 0xff]} << 11 | uint32_t{t.reduce6[(rgba >> 8) & 0xff]} << 5 |
-         uint32_t{t.reduce5[(rgba >> 16) & 0xff]};
+  return reduce_rgb565_channel(rgba & 0xff, 5) << 11 | reduce_rgb565_channel((rgba >> 8) & 0xff, 6) << 5 |
+         reduce_rgb565_channel((rgba >> 16) & 0xff, 5);
 }
 constexpr uint32_t unpack_rgb565(uint32_t packed) {
-  const Rgb565Tables& t = RGB565_TABLES;
-  return uint32_t{t.expand5[(packed >> 11) & 31]} | uint32_t{t.expand6[(packed >> 5) & 63]} << 8 |
-         uint32_t{t.expand5[packed & 31]} << 16 | 0xffu << 24;
+  return expand_rgb565_channel((packed >> 11) & 31, 5) | expand_rgb565_channel((packed >> 5) & 63, 6) << 8 |
+         expand_rgb565_channel(packed & 31, 5) << 16 | 0xffu << 24;
 }
-static_assert(pack_rgb565(0x00c08040u) == pack_pixel(PixelFormat::rgb565, 0x00c08040u) &&
-                  unpack_rgb565(0xa5a5u) == unpack_pixel(PixelFormat::rgb565, 0xa5a5u),
-              "the RGB565 tables follow common/pixel_format.h");
+
+namespace tile_cache_detail {
+constexpr bool rgb565_matches_pixel_format() {
+  for (uint32_t c = 0; c < 256; ++c)
+    if (reduce_rgb565_channel(c, 5) != reduce_channel(c, 5) || reduce_rgb565_channel(c, 6) != reduce_channel(c, 6))
+      return false;
+  for (uint32_t v = 0; v < 64; ++v)
+    if ((v < 32 && expand_rgb565_channel(v, 5) != expand_channel(v, 5)) ||
+        expand_rgb565_channel(v, 6) != expand_channel(v, 6))
+      return false;
+  return true;
+}
+static_assert(rgb565_matches_pixel_format(), "the RGB565 conversions follow common/pixel_format.h");
+}  // namespace tile_cache_detail
 
 class TileCache {
  public:
@@ -73,20 +76,22 @@ class TileCache {
     const unsigned row = m_config.height - 1 - unsigned(py);
     return (row - m_row0) * m_config.tile_width + (unsigned(px) - unsigned(m_tile.x0));
   }
-  Rgba8& color(unsigned i) { return m_color[i]; }
+  uint32_t& color(unsigned i) { return m_color[i]; }  // packed RGBA8 (Rgba8::pack)
   uint32_t& depth(unsigned i) { return m_depth[i]; }
   uint8_t& stencil(unsigned i) { return m_stencil[i]; }
   // What the colour buffer keeps of a colour: with RGB565, 5-6-5 bits
   // expanded back and alpha 255 (common/pixel_format.h).
-  Rgba8 quantise(Rgba8 c) const {
-    return m_config.color_format == PixelFormat::rgba8888 ? c : Rgba8::unpack(unpack_rgb565(pack_rgb565(c.pack())));
+  uint32_t quantise(uint32_t rgba) const {
+    return m_config.color_format == PixelFormat::rgba8888 ? rgba : unpack_rgb565(pack_rgb565(rgba));
   }
+  // The same for `count` colours in place (a batch kernel, batch.h).
+  void quantise(uint32_t* rgba, unsigned count) const;
 
  private:
   const RunConfig& m_config;
   Rect m_tile;
-  unsigned m_row0 = 0;  // first memory row (top) of the tile
-  std::vector<Rgba8> m_color;
+  unsigned m_row0 = 0;            // first memory row (top) of the tile
+  std::vector<uint32_t> m_color;  // packed RGBA8
   std::vector<uint32_t> m_depth;  // 0.24
   std::vector<uint8_t> m_stencil;
   std::vector<uint8_t> m_row_bytes;

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include <cstddef>
+#include <memory>
 
 #include "common/screen_size.h"
 #include "raster/core/command_decoder.h"
@@ -31,7 +32,7 @@ namespace {
 // One triangle through setup, traversal and shading. The texture's size is
 // checked only when a textured triangle reaches the traversal.
 void draw_triangle(RunContext& run, CommandDecoder& decoder, TileCache& tile, const DrawState& state,
-                   uint32_t record_address) {
+                   uint32_t record_address, ShadingWorkspace& work) {
   TriangleVertices vertices;
   if (!decoder.read_triangle(record_address, state, vertices)) return;
   const bool smooth = state.has(StateFlag::polygon_smooth);
@@ -63,14 +64,14 @@ void draw_triangle(RunContext& run, CommandDecoder& decoder, TileCache& tile, co
   ++run.result().triangles;
   run.charge(run.result().setup_cycles, run.costs().setup);
 
-  FragmentShader shader(run, tile, state);
-  traverse(run, setup, box, smooth, shader);
+  FragmentShader shader(run, tile, state, work);
+  traverse(run, setup, box, smooth, work, shader);
 }
 
 // One tile's command list, from GL's default state; the tile buffers are
 // loaded at the first command that uses them (unless it overwrites them
 // all) and written back at the end.
-void run_tile(RunContext& run, TileCache& tile, const TileEntry& entry) {
+void run_tile(RunContext& run, TileCache& tile, const TileEntry& entry, ShadingWorkspace& work) {
   ++run.result().tiles;
   run.charge(run.result().tile_cycles, run.costs().tile_start);
   DrawState state;
@@ -89,7 +90,7 @@ void run_tile(RunContext& run, TileCache& tile, const TileEntry& entry) {
       if (command.opcode == Opcode::clear) {
         tile.clear(run, command.clear, state);
       } else {
-        draw_triangle(run, decoder, tile, state, command.pointer);
+        draw_triangle(run, decoder, tile, state, command.pointer, work);
       }
     }
     run.report_cycles();
@@ -109,6 +110,8 @@ RunResult TileRasterizer::run(const RunConfig& config) {
   const unsigned tiles_x = (config.width + config.tile_width - 1) / config.tile_width;
   const unsigned tiles_y = (config.height + config.tile_height - 1) / config.tile_height;
   TileCache tile(config);
+  // Default-initialised: every array is written before it is read.
+  const std::unique_ptr<ShadingWorkspace> work(new ShadingWorkspace);
 
   for (unsigned ty = 0; ty < tiles_y && !run.failed(); ++ty) {
     for (unsigned tx = 0; tx < tiles_x && !run.failed(); ++tx) {
@@ -118,7 +121,7 @@ RunResult TileRasterizer::run(const RunConfig& config) {
       const TileEntry entry{load_le32(raw), load_le32(raw + 4)};
       if (entry.word_count == 0) continue;
       tile.select(tx, ty);
-      run_tile(run, tile, entry);
+      run_tile(run, tile, entry, *work);
       run.report_cycles();
     }
   }

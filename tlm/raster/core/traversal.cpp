@@ -1,7 +1,8 @@
 // See traversal.h; the fill rule and the coverage are those of
 // raster/datapath/edge_function.h. Each row's edge functions are evaluated
-// once at its first pixel and stepped along it (exact: edge_function.h), the
-// fill rule decided 64 pixels at a time as bit masks.
+// once at its first pixel and stepped along it (exact: edge_function.h):
+// the fill rule decided 64 pixels at a time as bit masks, the coverage
+// with the edge function's batch form.
 #include "raster/core/traversal.h"
 
 #include <algorithm>
@@ -25,61 +26,120 @@ Rect traversal_box(const TriangleVertices& v, bool smooth, const Rect& tile, con
 
 namespace {
 
-// With polygon_smooth: every pixel of a row, each edge stepped along it, the
-// EASA coverage the minimum of the three; a pixel with coverage 0 makes no
-// fragment. Returns the pixels visited (fewer than the row when shading
-// fails, counting the pixel that failed).
-uint64_t traverse_row_smooth(RunContext& run, const TriangleSetup& setup, const Rect& box, int py,
-                             FragmentShader& shader) {
-  int64_t value[3], step[3];
-  for (unsigned k = 0; k < 3; ++k) {
-    value[k] = edge_value_at(setup.edges[k], unsigned(box.x0), unsigned(py)).raw;
-    step[k] = 16 * edge_dy(setup.edges[k]).raw;
+// Fills the batch and shades it whenever it is full. Each fragment is
+// counted when its batch is shaded; when a texel fetch fails the run, the
+// fragments up to the failing one are counted, and the pixels visited up to
+// it (the rows above its own, and its own row up to it).
+class Traversal {
+ public:
+  Traversal(RunContext& run, const TriangleSetup& setup, const Rect& box, FragmentBatch& batch, FragmentShader& shader)
+      : m_run(run), m_setup(setup), m_box(box), m_batch(batch), m_shader(shader) {
+    m_batch.reset(setup.ref_x, setup.ref_y);
   }
-  for (int px = box.x0; px < box.x1; ++px) {
-    unorm8 cover[3];
-    for (unsigned k = 0; k < 3; ++k) {
-      cover[k] = edge_coverage(edge_normalised_distance(edge_value{value[k]}, setup.edge_recip[k]));
-      value[k] += step[k];
+
+  // Pixels px .. px + count - 1 of row py with their coverage (null: full);
+  // false once the run has failed.
+  bool add(int px, int py, unsigned count, const uint32_t* coverage) {
+    while (count > 0) {
+      if (m_batch.room() == 0 && !flush()) return false;
+      const unsigned n = std::min(count, m_batch.room());
+      m_batch.add_run(px, py, n, coverage);
+      px += static_cast<int>(n);
+      count -= n;
+      if (coverage != nullptr) coverage += n;
     }
-    const unorm8 coverage = triangle_coverage(cover[0], cover[1], cover[2]);
-    if (coverage.raw == 0) continue;
-    ++run.result().fragments;
-    shader.shade(setup, px, py, coverage);
-    if (run.failed()) return uint64_t(px) - uint64_t(box.x0) + 1;
+    return true;
   }
-  return uint64_t(box.x1) - uint64_t(box.x0);
+
+  bool flush() {
+    if (m_batch.empty()) return true;
+    const unsigned done = m_shader.shade(m_setup, m_batch);
+    if (done == m_batch.size()) {
+      m_run.result().fragments += done;
+      m_batch.clear();
+      return true;
+    }
+    m_run.result().fragments += done + 1;
+    const auto [px, py] = m_batch.pixel(done);
+    m_failed_visits = uint64_t(m_box.y1 - 1 - py) * width() + uint64_t(px - m_box.x0) + 1;
+    return false;
+  }
+
+  uint64_t width() const { return uint64_t(m_box.x1 - m_box.x0); }
+  // Pixels visited: all of the box, or up to the fragment that failed.
+  uint64_t visited() const { return m_run.failed() ? m_failed_visits : uint64_t(m_box.y1 - m_box.y0) * width(); }
+
+ private:
+  RunContext& m_run;
+  const TriangleSetup& m_setup;
+  const Rect& m_box;
+  FragmentBatch& m_batch;
+  FragmentShader& m_shader;
+  uint64_t m_failed_visits = 0;
+};
+
+// With polygon_smooth: every pixel of a row, each edge's coverage from the
+// edge function's batch form, the EASA coverage the minimum of the three;
+// the runs of pixels with coverage above 0 are fragments.
+bool smooth_row(Traversal& traversal, const TriangleSetup& setup, const Rect& box, int py, ShadingWorkspace& w) {
+  const unsigned width = unsigned(box.x1 - box.x0);
+  uint32_t* coverage = w.coverage.data();
+  std::fill(coverage, coverage + width, 255u);
+  for (unsigned k = 0; k < 3; ++k) {
+    edge_span(setup.edges[k], unsigned(box.x0), unsigned(py), width, setup.edge_recip[k],
+              {w.edge_value.data(), w.edge_value_next_y.data(), w.edge_inside.data(), w.edge_distance.data(),
+               w.edge_coverage.data()});
+    for (unsigned i = 0; i < width; ++i) coverage[i] = std::min(coverage[i], w.edge_coverage[i]);
+  }
+  for (unsigned i = 0; i < width;) {
+    if (coverage[i] == 0) {
+      ++i;
+      continue;
+    }
+    unsigned end = i + 1;
+    while (end < width && coverage[end] != 0) ++end;
+    if (!traversal.add(box.x0 + int(i), py, end - i, coverage + i)) return false;
+    i = end;
+  }
+  return true;
 }
 
-// Without: the three edges' fill-rule decisions for up to 64 pixels at a
-// time (triangle_inside_row), and a fragment for every pixel inside all three.
-uint64_t traverse_row(RunContext& run, const TriangleSetup& setup, const Rect& box, int py, FragmentShader& shader) {
-  constexpr unsigned CHUNK = 64;
-  const unorm8 full = unorm8::from_raw(255);
-  for (int x0 = box.x0; x0 < box.x1; x0 += int(CHUNK)) {
-    const unsigned count = std::min(CHUNK, unsigned(box.x1 - x0));
-    uint64_t inside =
-        triangle_inside_row(setup.edges[0], setup.edges[1], setup.edges[2], unsigned(x0), unsigned(py), count);
-    while (inside != 0) {
-      const int px = x0 + __builtin_ctzll(inside);
-      inside &= inside - 1;
-      ++run.result().fragments;
-      shader.shade(setup, px, py, full);
-      if (run.failed()) return uint64_t(px) - uint64_t(box.x0) + 1;
+// Without: the run of pixels inside all three edges by the fill rule
+// (triangle_inside_run), the edges' biased values at the row's first pixel
+// stepped from row to row (exact, edge_function.h).
+class FillRows {
+ public:
+  FillRows(const TriangleSetup& setup, const Rect& box) {
+    for (unsigned k = 0; k < 3; ++k) {
+      const Edge& e = setup.edges[k];
+      m_biased[k] = edge_value_at(e, unsigned(box.x0), unsigned(box.y1 - 1)).raw + edge_tie(e);
+      m_step[k] = 16 * edge_dy(e).raw;
+      m_row_step[k] = 16 * edge_dx(e).raw;  // E(x, y - 1) = E(x, y) + 16 dx
     }
   }
-  return uint64_t(box.x1) - uint64_t(box.x0);
-}
+
+  // The row at the current values, then the values of the row below.
+  bool row(Traversal& traversal, const Rect& box, int py) {
+    const InsideRun run = triangle_inside_run(m_biased, m_step, unsigned(box.x1 - box.x0));
+    for (unsigned k = 0; k < 3; ++k) m_biased[k] += m_row_step[k];
+    return run.count == 0 || traversal.add(box.x0 + int(run.first), py, run.count, nullptr);
+  }
+
+ private:
+  int64_t m_biased[3], m_step[3], m_row_step[3];
+};
 
 }  // namespace
 
-void traverse(RunContext& run, const TriangleSetup& setup, const Rect& box, bool smooth, FragmentShader& shader) {
-  uint64_t visited = 0;
-  for (int py = box.y1 - 1; py >= box.y0 && !run.failed(); --py) {  // top row first, as memory
-    if (box.x0 >= box.x1) continue;
-    visited += smooth ? traverse_row_smooth(run, setup, box, py, shader) : traverse_row(run, setup, box, py, shader);
-  }
-  run.charge(run.result().fragment_cycles, uint64_t{run.costs().fragment} * visited);
+void traverse(RunContext& run, const TriangleSetup& setup, const Rect& box, bool smooth, ShadingWorkspace& work,
+              FragmentShader& shader) {
+  Traversal traversal(run, setup, box, work.batch, shader);
+  FillRows fill(setup, box);
+  bool going = true;
+  for (int py = box.y1 - 1; py >= box.y0 && going; --py)  // top row first, as memory
+    going = smooth ? smooth_row(traversal, setup, box, py, work) : fill.row(traversal, box, py);
+  if (going) traversal.flush();
+  run.charge(run.result().fragment_cycles, uint64_t{run.costs().fragment} * traversal.visited());
 }
 
 }  // namespace tessera::raster

@@ -1,7 +1,8 @@
 // Traversal: the pixels a triangle can cover, walked top row first (the
 // memory order of the tile), each decided by the three edge functions with
-// the fill rule or, with polygon_smooth, given the EASA coverage; every
-// fragment goes to the shader (README.md, "Traversal and coverage").
+// the fill rule or, with polygon_smooth, given the EASA coverage; the
+// fragments go to the shader in batches (README.md, "Traversal and
+// coverage" and "Batches").
 #pragma once
 
 #include "raster/core/command_decoder.h"
@@ -19,8 +20,11 @@ namespace tessera::raster {
 // test is done here, by not generating the fragments.
 Rect traversal_box(const TriangleVertices& vertices, bool smooth, const Rect& tile, const DrawState& state);
 
-// Visits every pixel of `box`, counts the fragments, shades each, and charges
-// one fragment cycle per pixel visited; stops when the run fails.
-void traverse(RunContext& run, const TriangleSetup& setup, const Rect& box, bool smooth, FragmentShader& shader);
+// Visits every pixel of `box`, gathers the fragments into the workspace's
+// batch and shades them batch by batch, counts them, and charges one
+// fragment cycle per pixel visited; stops at the fragment whose texel fetch
+// fails the run.
+void traverse(RunContext& run, const TriangleSetup& setup, const Rect& box, bool smooth, ShadingWorkspace& work,
+              FragmentShader& shader);
 
 }  // namespace tessera::raster

@@ -20,9 +20,13 @@ namespace tessera::raster {
 constexpr unsigned TEXCOORD_FRACTION_BITS = 24;  // texcoord_attr, also the q (1/w) plane
 constexpr int64_t ATTRIBUTE_WORD_MAX = (int64_t{1} << 39) - 1;
 
-// Saturated to the interpolator's signed 40-bit words.
+// Saturated to the interpolator's signed 40-bit words (in 64 bits where the
+// value fits, which a batch loop vectorises).
 inline int64_t saturate_word(int128 v) {
   return int64_t(std::clamp<int128>(v, -ATTRIBUTE_WORD_MAX - 1, ATTRIBUTE_WORD_MAX));
+}
+inline int64_t saturate_word(int64_t v) {
+  return std::clamp<int64_t>(v, -ATTRIBUTE_WORD_MAX - 1, ATTRIBUTE_WORD_MAX);
 }
 
 struct TriangleSetup {

@@ -39,11 +39,13 @@
 //
 // Speed: every function is inline; the output conversion takes its shift
 // and clamp bounds from a four-entry table indexed by the kind (the
-// undefined kind clamps to [0, 0]), so it has no branch.
+// undefined kind clamps to [0, 0]), so it has no branch. The batch form
+// (attribute_batch, batch.h) evaluates one plane at any set of offsets.
 #pragma once
 
 #include <cstdint>
 
+#include "batch.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
@@ -135,5 +137,44 @@ constexpr AttributeEvaluation evaluate_attribute(const AttributePlane& plane, in
   r.output = attribute_output(plane.kind, r.value);
   return r;
 }
+
+// Batch form (batch.h): `count` offsets (dx[i], dy[i]), each in
+// -512..511, on one plane, everything evaluate_attribute gives, each field
+// in an array of its own; value_next_x and value_next_y may be null when
+// not wanted. Each offset is evaluated directly, as the unit does (equal to
+// stepping, above), so a batch may hold any set of fragments: the rows of a
+// triangle, or only those that passed the tests.
+struct AttributeBatch {
+  int64_t* value;
+  int64_t* value_next_x;  // null: not computed
+  int64_t* value_next_y;  // null: not computed
+  uint32_t* output;       // attribute_output(kind, value)
+};
+
+struct AttributeKernel {
+  TESSERA_BATCH_KERNEL void run(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
+                                const AttributeBatch& out) {
+    loop(plane.kind, attribute_word40(plane.start), attribute_word40(plane.grad_x), attribute_word40(plane.grad_y), dx,
+         dy, count, out.value, out.value_next_x, out.value_next_y, out.output);
+  }
+  TESSERA_BATCH_KERNEL void loop(AttributeKind kind, int64_t start, int64_t grad_x, int64_t grad_y,
+                                 const int32_t* __restrict dx, const int32_t* __restrict dy, unsigned count,
+                                 int64_t* __restrict value, int64_t* __restrict value_next_x,
+                                 int64_t* __restrict value_next_y, uint32_t* __restrict output) {
+    const AttributePlane plane{kind, start, grad_x, grad_y};
+    for (unsigned i = 0; i < count; ++i) {
+      const attribute_sum v = attribute_at(plane, dx[i], dy[i]);
+      value[i] = v.raw;
+      output[i] = attribute_output(kind, v);
+    }
+    if (value_next_x != nullptr)
+      for (unsigned i = 0; i < count; ++i) value_next_x[i] = attribute_step_x(plane, attribute_sum{value[i]}).raw;
+    if (value_next_y != nullptr)
+      for (unsigned i = 0; i < count; ++i) value_next_y[i] = attribute_step_y(plane, attribute_sum{value[i]}).raw;
+  }
+};
+
+void attribute_batch(const AttributePlane& plane, const int32_t* dx, const int32_t* dy, unsigned count,
+                     const AttributeBatch& out, BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

@@ -24,15 +24,17 @@
 // channel keeps the destination value. The result is the value to store.
 //
 // Speed: inline and branch-free on packed RGBA words (Rgba8::pack). The
-// factors of a code are picked from a table of the candidates; a logic op is
-// its GL truth table (code bit 0: s & d, bit 1: s & ~d, bit 2: ~s & d,
-// bit 3: ~s & ~d, checked at compile time), applied to the whole word; the
-// write mask is a constexpr table of byte masks.
+// factor of a code is picked among the candidates by masks (select_code); a
+// logic op is its GL truth table (code bit 0: s & d, bit 1: s & ~d, bit 2:
+// ~s & d, bit 3: ~s & ~d, checked at compile time), applied to the whole
+// word; the write mask is a constexpr table of byte masks. The batch form
+// (blend_logic_op_batch, batch.h) takes fragments under one state.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 
+#include "batch.h"
 #include "common/fixed_function.h"
 #include "fixed_point.h"
 
@@ -87,19 +89,9 @@ inline constexpr WriteMasks WRITE_MASKS = make_write_masks();
 constexpr uint32_t factor_word(BlendFactor factor, uint32_t src, uint32_t dst) {
   const uint32_t sa = src >> 24, da = dst >> 24;
   const uint32_t saturate = std::min(sa, 255 - da);
-  const uint32_t candidates[12] = {0,
-                                   0xffffffffu,
-                                   src,
-                                   ~src,
-                                   broadcast(sa),
-                                   ~broadcast(sa),
-                                   broadcast(da),
-                                   ~broadcast(da),
-                                   dst,
-                                   ~dst,
-                                   broadcast(saturate) | 0xff000000u,
-                                   0};
-  return candidates[std::min(static_cast<unsigned>(factor), 11u)];
+  return select_code<uint32_t>(static_cast<unsigned>(factor), 0, 0, 0xffffffffu, src, ~src, broadcast(sa),
+                               ~broadcast(sa), broadcast(da), ~broadcast(da), dst, ~dst,
+                               broadcast(saturate) | 0xff000000u);
 }
 
 // The GL truth table of `op` on every bit of two words; codes above 15 give 0.
@@ -133,7 +125,7 @@ constexpr uint32_t blend_word(BlendFactor src_factor, BlendFactor dst_factor, ui
   return out;
 }
 
-constexpr Rgba8 blend(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src, Rgba8 dst) {
+constexpr Rgba8 blend_colors(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src, Rgba8 dst) {
   return Rgba8::unpack(blend_word(src_factor, dst_factor, src.pack(), dst.pack()));
 }
 
@@ -141,7 +133,12 @@ constexpr Rgba8 blend(BlendFactor src_factor, BlendFactor dst_factor, Rgba8 src,
 constexpr uint32_t blend_logic_op_word(const BlendState& state, uint32_t src, uint32_t dst) {
   const uint32_t logic = blend_detail::logic_word(state.op, src, dst);
   const uint32_t blended = blend_word(state.src_factor, state.dst_factor, src, dst);
-  const uint32_t result = state.logic_op_enable ? logic : (state.blend_enable ? blended : src);
+  // Masks rather than a choice between the words: in a batch the state is
+  // the same for every fragment, and the vectoriser takes masks from it,
+  // not a select on a scalar condition.
+  const uint32_t logic_mask = state.logic_op_enable ? ~0u : 0u;
+  const uint32_t blend_mask = state.blend_enable && !state.logic_op_enable ? ~0u : 0u;
+  const uint32_t result = (logic & logic_mask) | (blended & blend_mask) | (src & ~(logic_mask | blend_mask));
   const uint32_t write = blend_detail::WRITE_MASKS.word[state.color_mask & COLOR_MASK_ALL];
   return (result & write) | (dst & ~write);
 }
@@ -150,6 +147,22 @@ constexpr uint32_t blend_logic_op_word(const BlendState& state, uint32_t src, ui
 constexpr Rgba8 blend_logic_op(const BlendState& state, Rgba8 src, Rgba8 dst) {
   return Rgba8::unpack(blend_logic_op_word(state, src.pack(), dst.pack()));
 }
+
+// Batch form (batch.h): `count` fragments under one state, colours as
+// packed words (Rgba8::pack).
+struct BlendKernel {
+  TESSERA_BATCH_KERNEL void run(const BlendState& state, const uint32_t* src, const uint32_t* dst, unsigned count,
+                                uint32_t* out) {
+    loop(state, src, dst, count, out);
+  }
+  TESSERA_BATCH_KERNEL void loop(const BlendState state, const uint32_t* __restrict src, const uint32_t* __restrict dst,
+                                 unsigned count, uint32_t* __restrict out) {
+    for (unsigned i = 0; i < count; ++i) out[i] = blend_logic_op_word(state, src[i], dst[i]);
+  }
+};
+
+void blend_logic_op_batch(const BlendState& state, const uint32_t* src, const uint32_t* dst, unsigned count,
+                          uint32_t* out, BatchIsa isa = best_batch_isa());
 
 namespace blend_detail {
 constexpr bool logic_ops_match_gl() {

@@ -34,8 +34,10 @@
 // rule is one comparison: E == 0 counts as inside exactly when the tie-break
 // holds, so inside = E + tie > 0 with tie = 1 or 0 (E is an integer code).
 // edge_inside_row steps E along a row of up to 64 pixels and returns the
-// decisions as a bit mask; triangle_inside_row does it for the three edges
-// of a triangle at once, what the core's traversal takes per row.
+// decisions as a bit mask; triangle_inside_mask does it for the three edges
+// of a triangle at once, and triangle_inside_run finds the same run by
+// division, what the core's traversal takes per row. The batch form
+// (edge_span, batch.h) gives everything evaluate_edge does along a row.
 //
 // Normalised distance (EASA, L1 norm): d = E / (|dx| + |dy|). |dx| + |dy| is
 // unsigned 10.4 (edge_l1_length, at most 16382 codes, the reciprocal unit's
@@ -54,6 +56,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "batch.h"
 #include "fixed_point.h"
 
 namespace tessera::raster {
@@ -136,26 +139,58 @@ constexpr uint64_t edge_inside_row(const Edge& e, unsigned px, unsigned py, unsi
   return mask;
 }
 
-// The same for the three edges of a triangle at once: bit i is set when
-// pixel (px + i, py) is inside all three. The inside pixels of a row form
+// The same for the three edges of a triangle at once, from each edge's
+// biased value E + tie at the row's first pixel and its step 16 dy: bit i
+// is set when pixel i is inside all three. The inside pixels of a row form
 // one run (the triangle is convex), so the walk stops at the first pixel
-// outside after an inside one.
-constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
-                                       unsigned count) {
-  const int64_t step0 = 16 * edge_dy(e0).raw, step1 = 16 * edge_dy(e1).raw, step2 = 16 * edge_dy(e2).raw;
-  int64_t b0 = edge_value_at(e0, px, py).raw + edge_tie(e0);
-  int64_t b1 = edge_value_at(e1, px, py).raw + edge_tie(e1);
-  int64_t b2 = edge_value_at(e2, px, py).raw + edge_tie(e2);
+// outside after an inside one. A traversal steps the biased values from
+// row to row itself (E(x, y - 1) = E + 16 dx), without a multiplication.
+constexpr uint64_t triangle_inside_mask(const int64_t (&biased)[3], const int64_t (&step)[3], unsigned count) {
+  int64_t b0 = biased[0], b1 = biased[1], b2 = biased[2];
   uint64_t mask = 0;
   for (unsigned i = 0; i < count; ++i) {
     const bool inside = (b0 > 0) & (b1 > 0) & (b2 > 0);
     if (!inside && mask != 0) break;
     mask |= uint64_t{inside} << i;
-    b0 += step0;
-    b1 += step1;
-    b2 += step2;
+    b0 += step[0];
+    b1 += step[1];
+    b2 += step[2];
   }
   return mask;
+}
+
+// The same run found without walking it: each edge's inside pixels
+// b + i s > 0 (b its biased value at pixel 0, s its step) are a half-line
+// of i, found by one exact integer division where b and s have opposite
+// signs, and the run is the intersection of the three with 0..count-1.
+// Bit for bit the run of triangle_inside_mask (test_raster_edge_function
+// compares them), at a cost that does not grow with the row's width.
+struct InsideRun {
+  unsigned first = 0, count = 0;  // count 0: no pixel inside
+};
+
+constexpr InsideRun triangle_inside_run(const int64_t (&biased)[3], const int64_t (&step)[3], unsigned count) {
+  int64_t lo = 0, hi = int64_t{count} - 1;
+  for (unsigned k = 0; k < 3; ++k) {
+    const int64_t b = biased[k], s = step[k];
+    if (s > 0) {
+      if (b <= 0) lo = std::max(lo, -b / s + 1);  // the first i with b + i s > 0
+    } else if (s < 0) {
+      hi = b > 0 ? std::min(hi, (b - 1) / -s) : -1;  // the last i with b + i s > 0
+    } else if (b <= 0) {
+      hi = -1;  // parallel to the row and outside
+    }
+  }
+  return lo <= hi ? InsideRun{unsigned(lo), unsigned(hi - lo + 1)} : InsideRun{};
+}
+
+// triangle_inside_mask of pixels (px + i, py), i in 0..count-1.
+constexpr uint64_t triangle_inside_row(const Edge& e0, const Edge& e1, const Edge& e2, unsigned px, unsigned py,
+                                       unsigned count) {
+  const int64_t biased[3] = {edge_value_at(e0, px, py).raw + edge_tie(e0), edge_value_at(e1, px, py).raw + edge_tie(e1),
+                             edge_value_at(e2, px, py).raw + edge_tie(e2)};
+  const int64_t step[3] = {16 * edge_dy(e0).raw, 16 * edge_dy(e1).raw, 16 * edge_dy(e2).raw};
+  return triangle_inside_mask(biased, step, count);
 }
 
 constexpr edge_distance edge_normalised_distance(edge_value value, q5_16 recip) {
@@ -185,5 +220,44 @@ constexpr EdgeEvaluation evaluate_edge(const Edge& e, unsigned px, unsigned py, 
   r.coverage = edge_coverage(r.distance);
   return r;
 }
+
+// Batch form (batch.h): the pixels (px + i, py), i in 0..count-1, of a row
+// (px + count <= 512, py <= 511), everything evaluate_edge gives, E
+// evaluated once and stepped (exact, above). value holds count + 1 values,
+// E at px .. px + count, so that value[i + 1] is pixel i's value_next_x;
+// l1_length, the same for every pixel, is the return value.
+struct EdgeSpan {
+  int32_t* value;         // count + 1 entries; E fits in 29 bits
+  int32_t* value_next_y;  // E at (px + i, py + 1)
+  uint32_t* inside;       // 1 or 0
+  int32_t* distance;      // q7.8
+  uint32_t* coverage;     // 0.8
+};
+
+struct EdgeSpanKernel {
+  TESSERA_BATCH_KERNEL void run(const Edge& e, unsigned px, unsigned py, unsigned count, q5_16 recip,
+                                const EdgeSpan& out) {
+    loop(e, static_cast<int32_t>(edge_value_at(e, px, py).raw), count, recip, out.value, out.value_next_y, out.inside,
+         out.distance, out.coverage);
+  }
+  TESSERA_BATCH_KERNEL void loop(const Edge e, int32_t first, unsigned count, q5_16 recip, int32_t* __restrict value,
+                                 int32_t* __restrict value_next_y, uint32_t* __restrict inside,
+                                 int32_t* __restrict distance, uint32_t* __restrict coverage) {
+    const auto step = static_cast<int32_t>(edge_step_x(e, edge_value{0}).raw);
+    const auto step_y = static_cast<int32_t>(edge_step_y(e, edge_value{0}).raw);
+    for (unsigned i = 0; i <= count; ++i) value[i] = first + static_cast<int32_t>(i) * step;
+    for (unsigned i = 0; i < count; ++i) {
+      const edge_value v{first + static_cast<int32_t>(i) * step};
+      value_next_y[i] = static_cast<int32_t>(v.raw) + step_y;
+      inside[i] = edge_inside(e, v) ? 1u : 0u;
+      const edge_distance d = edge_normalised_distance(v, recip);
+      distance[i] = static_cast<int32_t>(d.raw);
+      coverage[i] = edge_coverage(d).raw;
+    }
+  }
+};
+
+q10_4 edge_span(const Edge& e, unsigned px, unsigned py, unsigned count, q5_16 recip, const EdgeSpan& out,
+                BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

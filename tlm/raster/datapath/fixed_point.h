@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 namespace tessera::raster {
 
@@ -78,6 +79,36 @@ constexpr int64_t clamp_i64(int64_t v, int64_t lo, int64_t hi) {
 // (add half an output unit, then floor). `shift` must be at least 1.
 constexpr int64_t round_shift_right(int64_t v, unsigned shift) {
   return (v + (int64_t{1} << (shift - 1))) >> shift;
+}
+
+// The value a state code selects, `values[code]`, with `fallback` for a code
+// past the last value: each value ANDed with an all-ones or all-zero mask of
+// its code and the results ORed, so branch-free. Neither an array indexed
+// by the code nor a chain of `code == k ?` (which the compiler turns into a
+// switch): in a batch (batch.h) the compiler vectorises this form across
+// lanes and neither of the others.
+template <class T, class... Values>
+constexpr T select_code(unsigned code, T fallback, Values... values) {
+  static_assert(std::is_integral_v<T>, "select_code picks between integer codes or words");
+  using U = std::make_unsigned_t<T>;
+  const auto mask = [](bool selected) { return selected ? static_cast<U>(~U{0}) : U{0}; };
+  U result = 0;
+  unsigned k = 0;
+  ((result |= mask(code == k++) & static_cast<U>(static_cast<T>(values))), ...);
+  result |= mask(code >= sizeof...(Values)) & static_cast<U>(fallback);
+  return static_cast<T>(result);
+}
+
+// `condition ? a : b` by masks, for a condition that is the same for every
+// lane of a batch (a state flag) choosing between values that are not: the
+// vectoriser turns a conditional expression of that kind into a branch
+// around each value's computation, which stops it.
+template <class T>
+constexpr T select_if(bool condition, T a, T b) {
+  static_assert(std::is_integral_v<T>, "select_if picks between integer codes or words");
+  using U = std::make_unsigned_t<T>;
+  const U mask = condition ? static_cast<U>(~U{0}) : U{0};
+  return static_cast<T>((static_cast<U>(a) & mask) | (static_cast<U>(b) & ~mask));
 }
 
 // Interface formats.

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 
+#include "batch.h"
 #include "common/fixed_function.h"
 #include "common/fog.h"
 #include "fixed_point.h"
@@ -27,13 +28,41 @@ struct FogUnitResult {
   Rgba8 color;
 };
 
-// Inline and branch-free but for the mode's switch in fog_factor: a table
-// read (exp, exp2) or a clamp (linear), a multiply-add per channel.
+// Inline and branch-free: a table read (exp, exp2) and a clamp (linear), the
+// mode picking one, a multiply-add per channel. The batch form
+// (fog_unit_batch, batch.h) takes fragments under one mode and fog colour.
 inline FogUnitResult fog_unit(FogMode mode, int32_t argument, Rgba8 fragment, Rgba8 fog_color) {
   FogUnitResult r;
   r.factor = fog_factor(mode, argument);
   r.color = Rgba8::unpack(fog_blend(r.factor, fragment.pack(), fog_color.pack()));
   return r;
 }
+
+// Batch form (batch.h): `count` fragments under one mode and fog colour,
+// colours as packed words (Rgba8::pack).
+struct FogBatch {
+  uint32_t* factor;
+  uint32_t* color;
+};
+
+struct FogKernel {
+  TESSERA_BATCH_KERNEL void run(FogMode mode, Rgba8 fog_color, const int32_t* argument, const uint32_t* fragment,
+                                unsigned count, const FogBatch& out) {
+    loop(mode, fog_color.pack(), argument, fragment, count, out.factor, out.color);
+  }
+  // fog_unit's two steps on packed words.
+  TESSERA_BATCH_KERNEL void loop(FogMode mode, uint32_t fog_color, const int32_t* __restrict argument,
+                                 const uint32_t* __restrict fragment, unsigned count, uint32_t* __restrict factor,
+                                 uint32_t* __restrict color) {
+    for (unsigned i = 0; i < count; ++i) {
+      const uint8_t f = fog_factor(mode, argument[i]);
+      factor[i] = f;
+      color[i] = fog_blend(f, fragment[i], fog_color);
+    }
+  }
+};
+
+void fog_unit_batch(FogMode mode, Rgba8 fog_color, const int32_t* argument, const uint32_t* fragment, unsigned count,
+                    const FogBatch& out, BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

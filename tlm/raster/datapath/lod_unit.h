@@ -38,13 +38,16 @@
 //
 // Speed: inline; the logarithm is a fixed chain of ten 16 x 16 squarings and
 // the level choice selects between values, so there is no data-dependent
-// loop. Combinational; its Verilog twin is rtl_models/raster/lod_unit.sv.
+// loop; the batch form (lod_unit_batch, batch.h) takes the scale factors of
+// fragments under one unit's state. Combinational; its Verilog twin is
+// rtl_models/raster/lod_unit.sv.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 
 #include "common/fixed_function.h"
+#include "raster/datapath/batch.h"
 
 namespace tessera::raster {
 
@@ -64,15 +67,20 @@ struct LodResult {
   uint8_t weight = 0;  // of level[1], 1/256; 0 with one level
 };
 
-// lambda = log2(rho / 2^16) in 1/256, as described above.
+// lambda = log2(rho / 2^16) in 1/256, as described above. The leading one
+// by a binary search and the squarings unrolled, each step a select: the
+// batch form (batch.h) vectorises it.
 constexpr int32_t lod_lambda(uint32_t rho) {
-  if (rho == 0) return LOD_LAMBDA_MIN;
   unsigned e = 0;  // leading one's position, 0 .. 31
-  for (unsigned b = 16; b > 0; b >>= 1)
-    if ((rho >> (e + b)) != 0) e += b;
+  e += (rho >> (e + 16)) != 0 ? 16 : 0;
+  e += (rho >> (e + 8)) != 0 ? 8 : 0;
+  e += (rho >> (e + 4)) != 0 ? 4 : 0;
+  e += (rho >> (e + 2)) != 0 ? 2 : 0;
+  e += (rho >> (e + 1)) != 0 ? 1 : 0;
   // Mantissa m in [1, 2) as 1.15: the leading one at bit 15.
   uint32_t m = e >= 15 ? rho >> (e - 15) : rho << (15 - e);
   uint32_t fraction = 0;
+#pragma GCC unroll 10
   for (unsigned i = 0; i < LOD_LOG2_ITERATIONS; ++i) {
     const uint32_t square = m * m;  // 2.30, below 2^32
     const uint32_t bit = square >> 31;
@@ -85,34 +93,98 @@ constexpr int32_t lod_lambda(uint32_t rho) {
   // concatenation).
   const int32_t raw = (static_cast<int32_t>(e) - 16) * (1 << LOD_LOG2_ITERATIONS) + static_cast<int32_t>(fraction);
   const unsigned cut = LOD_LOG2_ITERATIONS - LOD_FRACTION_BITS;
-  return (raw + (1 << (cut - 1))) >> cut;  // arithmetic shift: floor, so ties go up
+  const int32_t lambda = (raw + (1 << (cut - 1))) >> cut;  // arithmetic shift: floor, so ties go up
+  return rho == 0 ? LOD_LAMBDA_MIN : lambda;
 }
 
-// Everything the Verilog unit lod_unit.sv computes, in one call.
-constexpr LodResult lod_unit(uint32_t rho, TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap,
-                             unsigned last_level) {
-  LodResult r;
-  r.lambda = lod_lambda(rho);
+// The flags of LodResult as bits of one word.
+constexpr uint32_t LOD_MINIFIED = 1;
+constexpr uint32_t LOD_LINEAR = 2;
+constexpr uint32_t LOD_TWO_LEVELS = 4;
+
+// LodResult in integers, what lod_unit and the batch form share: selects
+// on values, no bool or byte array in the result, so that a batch loop
+// keeps it in vector registers.
+struct LodFields {
+  int32_t lambda;
+  uint32_t flags;  // LOD_*
+  uint32_t level0, level1, weight;
+};
+
+constexpr LodFields lod_fields(uint32_t rho, TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap,
+                               unsigned last_level) {
+  const int32_t lambda = lod_lambda(rho);
   const bool mipmapped = mipmap == TexMipmap::nearest || mipmap == TexMipmap::linear;
   const bool half = mag_filter == TexFilter::linear && min_filter == TexFilter::nearest && mipmapped;
-  r.minified = rho > (half ? LOD_RHO_SQRT2_FLOOR : LOD_RHO_ONE);
-  r.linear = (r.minified ? min_filter : mag_filter) == TexFilter::linear;
+  const uint32_t minified = rho > (half ? LOD_RHO_SQRT2_FLOOR : LOD_RHO_ONE) ? 1u : 0u;
+  const uint32_t min_linear = min_filter == TexFilter::linear ? 1u : 0u;
+  const uint32_t mag_linear = mag_filter == TexFilter::linear ? 1u : 0u;
+  const uint32_t linear = minified != 0 ? min_linear : mag_linear;
   const int32_t q = static_cast<int32_t>(std::min(last_level, LOD_MAX_LEVEL));
-  const int32_t l = std::max(r.lambda, int32_t{0});
+  const int32_t l = std::max(lambda, int32_t{0});
   // nearest: (L + 127) >> 8 for L > 128, else 0; at most q.
   const int32_t nearest = std::min(l > 128 ? (l + 127) >> LOD_FRACTION_BITS : 0, q);
   // linear: floor(L) and the next below q, else q alone.
   const bool below_q = l < (q << LOD_FRACTION_BITS);
   const int32_t floor_level = below_q ? l >> LOD_FRACTION_BITS : q;
-  const uint8_t weight = below_q ? static_cast<uint8_t>(l & 0xff) : 0;
-  const bool use_nearest = r.minified && mipmap == TexMipmap::nearest;
-  const bool use_linear = r.minified && mipmap == TexMipmap::linear;
-  const int32_t level0 = use_nearest ? nearest : use_linear ? floor_level : 0;
-  r.weight = use_linear ? weight : 0;
-  r.two_levels = r.weight != 0;
-  r.level[0] = static_cast<uint8_t>(level0);
-  r.level[1] = static_cast<uint8_t>(level0 + (r.two_levels ? 1 : 0));
+  const uint32_t weight = below_q ? static_cast<uint32_t>(l & 0xff) : 0u;
+  const uint32_t use_nearest = mipmap == TexMipmap::nearest ? minified : 0u;
+  const uint32_t use_linear = mipmap == TexMipmap::linear ? minified : 0u;
+  const int32_t level0 = use_nearest != 0 ? nearest : (use_linear != 0 ? floor_level : 0);
+  const uint32_t level_weight = use_linear != 0 ? weight : 0u;
+  const uint32_t two_levels = level_weight != 0 ? 1u : 0u;
+  return {lambda, minified * LOD_MINIFIED | linear * LOD_LINEAR | two_levels * LOD_TWO_LEVELS,
+          static_cast<uint32_t>(level0), static_cast<uint32_t>(level0) + two_levels, level_weight};
+}
+
+// Everything the Verilog unit lod_unit.sv computes, in one call.
+constexpr LodResult lod_unit(uint32_t rho, TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap,
+                             unsigned last_level) {
+  const LodFields f = lod_fields(rho, min_filter, mag_filter, mipmap, last_level);
+  LodResult r;
+  r.lambda = f.lambda;
+  r.minified = (f.flags & LOD_MINIFIED) != 0;
+  r.linear = (f.flags & LOD_LINEAR) != 0;
+  r.two_levels = (f.flags & LOD_TWO_LEVELS) != 0;
+  r.level[0] = static_cast<uint8_t>(f.level0);
+  r.level[1] = static_cast<uint8_t>(f.level1);
+  r.weight = static_cast<uint8_t>(f.weight);
   return r;
 }
+
+// Batch form (batch.h): `count` scale factors under one texture unit's
+// filters, mipmap mode and last level, every field of the results in an
+// array of its own.
+struct LodBatch {
+  int32_t* lambda;
+  uint32_t* flags;  // LOD_*
+  uint32_t* level0;
+  uint32_t* level1;
+  uint32_t* weight;
+};
+
+struct LodKernel {
+  TESSERA_BATCH_KERNEL void run(TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap, unsigned last_level,
+                                const uint32_t* rho, unsigned count, const LodBatch& out) {
+    loop(min_filter, mag_filter, mipmap, last_level, rho, count, out.lambda, out.flags, out.level0, out.level1,
+         out.weight);
+  }
+  TESSERA_BATCH_KERNEL void loop(TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap, unsigned last_level,
+                                 const uint32_t* __restrict rho, unsigned count, int32_t* __restrict lambda,
+                                 uint32_t* __restrict flags, uint32_t* __restrict level0, uint32_t* __restrict level1,
+                                 uint32_t* __restrict weight) {
+    for (unsigned i = 0; i < count; ++i) {
+      const LodFields r = lod_fields(rho[i], min_filter, mag_filter, mipmap, last_level);
+      lambda[i] = r.lambda;
+      flags[i] = r.flags;
+      level0[i] = r.level0;
+      level1[i] = r.level1;
+      weight[i] = r.weight;
+    }
+  }
+};
+
+void lod_unit_batch(TexFilter min_filter, TexFilter mag_filter, TexMipmap mipmap, unsigned last_level,
+                    const uint32_t* rho, unsigned count, const LodBatch& out, BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

@@ -123,6 +123,10 @@ ReciprocalResult reciprocal_table_method(uint16_t x_q10_4, RecipMethod method) {
   return reciprocal_invalid_result(method);
 }
 
+void reciprocal_method3_batch(const uint32_t* x_q10_4, unsigned count, const ReciprocalBatch& out, BatchIsa isa) {
+  batch_detail::dispatch<ReciprocalKernel>(isa, x_q10_4, count, out);
+}
+
 double reciprocal_value(uint16_t x_q10_4, RecipMethod method) {
   return static_cast<double>(reciprocal_q5_16(x_q10_4, method)) / static_cast<double>(1u << RECIP_Q5_16_FRACTION_BITS);
 }

@@ -35,15 +35,17 @@
 //   (5-bit field 11111; methods 2 and 3).
 //
 // Speed: Method 3, the one the rasterizer uses, is inline and branch-free
-// (the prescaler is a leading-zero count, Table III is a constexpr table built
-// at compile time by the same integer rule, the invalid operand a select);
-// Methods 1 and 2 (16k-entry tables) stay in reciprocal.cpp.
+// (the prescaler four comparisons, Table III a constexpr table built at
+// compile time by the same integer rule, the invalid operand a select), and
+// has a batch form (reciprocal_method3_batch, batch.h); Methods 1 and 2
+// (16k-entry tables) stay in reciprocal.cpp.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string_view>
 
+#include "raster/datapath/batch.h"
 #include "raster/datapath/fixed_point.h"
 
 namespace tessera::raster {
@@ -115,45 +117,101 @@ constexpr FloatEntry truncated_reciprocal(uint32_t d) {
   return {static_cast<uint8_t>(significand & MANTISSA_MASK), k};
 }
 
-// Table III: 1/index for the integers 1..1023; entry 0 is the unused
-// all-ones pattern of the paper.
+// Table III: 1/index for the integers 1..1023, each entry the word
+// mantissa | negated_exponent << 8; entry 0 is the unused all-ones pattern
+// of the paper. 32-bit entries because a batch of operands (batch.h) reads
+// them with one gather, which a 2-byte entry has not.
+constexpr uint32_t table3_word(FloatEntry e) {
+  return e.mantissa | uint32_t{e.negated_exponent} << 8;
+}
 struct Table3 {
-  FloatEntry entry[TABLE3_ENTRIES];
+  uint32_t word[TABLE3_ENTRIES];
 };
 constexpr Table3 make_table3() {
   Table3 t{};
-  t.entry[0] = {MANTISSA_MASK, 0xF};
-  for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) {
-    t.entry[index] = truncated_reciprocal(index);
-  }
+  t.word[0] = table3_word({MANTISSA_MASK, 0xF});
+  for (uint32_t index = 1; index < TABLE3_ENTRIES; ++index) t.word[index] = table3_word(truncated_reciprocal(index));
   return t;
 }
 inline constexpr Table3 TABLE3 = make_table3();
 
+// The prescaler's shift: the leading zeros of the 14-bit word, at most 4
+// (0 for an operand above 14 bits), as four comparisons rather than a
+// leading-zero count, which has no vector form before AVX-512.
+constexpr int prescale_shift(uint32_t raw) {
+  return int{raw < 0x2000} + int{raw < 0x1000} + int{raw < 0x800} + int{raw < 0x400};
+}
+
 }  // namespace recip_detail
 
-// Method 3 (the paper's method), inline and branch-free.
-constexpr ReciprocalResult reciprocal_method3(uint16_t x_q10_4) {
+// Method 3's fields of one operand, for the scalar and the batch form.
+// Integers rather than a ReciprocalResult with a bool in it: the batch
+// loop keeps these in registers, which it does not do with that struct.
+struct Method3Fields {
+  uint32_t q5_16;
+  uint32_t mantissa;
+  int32_t exponent;
+  uint32_t invalid;  // 1 for an invalid operand
+};
+
+constexpr Method3Fields method3_fields(uint32_t raw) {
   using namespace recip_detail;
-  const uint32_t raw = x_q10_4;
-  const bool valid = raw != 0 && raw <= RECIP_OPERAND_MAX;
+  const uint32_t invalid = uint32_t{raw == 0} | uint32_t{raw > RECIP_OPERAND_MAX};
   // Prescaler: 1/X = 2^s * 16/(raw << s), s = the leading zeros of the
   // 14-bit word, at most 4; with the 4 LSBs of raw << s dropped the table
   // index approximates (raw << s) / 16.
-  const int leading_zeros = __builtin_clz(raw | 1u) - (32 - static_cast<int>(OPERAND_BITS));
-  const int shift = leading_zeros < 0 ? 0 : (leading_zeros > int{PRESCALE_MAX} ? int{PRESCALE_MAX} : leading_zeros);
+  const int shift = prescale_shift(raw);
   const unsigned index = ((raw << shift) >> RECIP_OPERAND_FRACTION_BITS) & (TABLE3_ENTRIES - 1);
-  const FloatEntry e = TABLE3.entry[index];
-  const int exponent = shift - e.negated_exponent;
-  const uint32_t q5_16 = (IMPLIED_ONE | e.mantissa) << ((exponent + Q5_16_SHIFT_BIAS) & 31);
+  const uint32_t word = TABLE3.word[index];
+  const uint32_t mantissa = word & MANTISSA_MASK;
+  const int exponent = shift - static_cast<int>(word >> 8);
+  const uint32_t q5_16 = (IMPLIED_ONE | mantissa) << ((exponent + Q5_16_SHIFT_BIAS) & 31);
+  return {invalid != 0 ? RECIP_Q5_16_SATURATED : q5_16, invalid != 0 ? uint32_t{MANTISSA_MASK} : mantissa,
+          invalid != 0 ? -1 : exponent, invalid};
+}
+
+// Method 3 (the paper's method), inline and branch-free.
+constexpr ReciprocalResult reciprocal_method3(uint16_t x_q10_4) {
+  const Method3Fields f = method3_fields(x_q10_4);
   ReciprocalResult r;
   r.method = RecipMethod::method3;
-  r.invalid_operand = !valid;
-  r.q5_16 = valid ? q5_16 : RECIP_Q5_16_SATURATED;
-  r.mantissa = valid ? e.mantissa : MANTISSA_MASK;
-  r.exponent = static_cast<int8_t>(valid ? exponent : -1);
+  r.invalid_operand = f.invalid != 0;
+  r.q5_16 = f.q5_16;
+  r.mantissa = static_cast<uint8_t>(f.mantissa);
+  r.exponent = static_cast<int8_t>(f.exponent);
   return r;
 }
+
+// Batch form of Method 3 (batch.h): `count` operands (an operand above 16
+// bits is invalid, as one above 14), each field of the results in an array
+// of its own, 32-bit elements as in every batch form, so that the loop runs
+// vectorised from 8 elements on.
+struct ReciprocalBatch {
+  uint32_t* q5_16;
+  uint32_t* mantissa;
+  int32_t* exponent;
+  uint32_t* invalid_operand;  // 1 for an invalid operand
+};
+
+struct ReciprocalKernel {
+  TESSERA_BATCH_KERNEL void run(const uint32_t* x_q10_4, unsigned count, const ReciprocalBatch& out) {
+    loop(x_q10_4, count, out.q5_16, out.mantissa, out.exponent, out.invalid_operand);
+  }
+  TESSERA_BATCH_KERNEL void loop(const uint32_t* __restrict x, unsigned count, uint32_t* __restrict q5_16,
+                                 uint32_t* __restrict mantissa, int32_t* __restrict exponent,
+                                 uint32_t* __restrict invalid) {
+    for (unsigned i = 0; i < count; ++i) {
+      const Method3Fields f = method3_fields(x[i]);
+      q5_16[i] = f.q5_16;
+      mantissa[i] = f.mantissa;
+      exponent[i] = f.exponent;
+      invalid[i] = f.invalid;
+    }
+  }
+};
+
+void reciprocal_method3_batch(const uint32_t* x_q10_4, unsigned count, const ReciprocalBatch& out,
+                              BatchIsa isa = best_batch_isa());
 
 // Methods 1 and 2 (reciprocal.cpp).
 ReciprocalResult reciprocal_table_method(uint16_t x_q10_4, RecipMethod method);

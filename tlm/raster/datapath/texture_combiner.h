@@ -45,12 +45,16 @@
 // reciprocal (floor(m / 255) = (m + 1 + ((m + 1) >> 8)) >> 8 for m < 65280).
 // Its Verilog twin is rtl_models/raster/texture_combiner.sv.
 //
-// Speed: inline, allocation-free, no data-dependent branch but the clamp.
+// Speed: inline, allocation-free, no data-dependent branch: the state's
+// codes pick among every candidate by masks (select_code, select_if). The
+// batch form (texture_combiner_batch, batch.h) takes fragments through one
+// unit's state.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 
+#include "batch.h"
 #include "common/fixed_function.h"
 #include "fixed_point.h"
 #include "raster/command_format.h"
@@ -110,31 +114,32 @@ constexpr uint32_t channel(uint32_t rgba, unsigned ch) {
 // floor((n + 255) / 510) clamped to 0 .. 255, for |n| < 2^23.
 constexpr uint32_t combine_round(int32_t n) {
   const int32_t m = n + 255;
-  if (m < 0) return 0;
-  if (m >= 256 * 510) return 255;
   const uint32_t h = static_cast<uint32_t>(m) >> 1;  // floor(m / 510) = floor(floor(m / 2) / 255)
-  return (h + 1 + ((h + 1) >> 8)) >> 8;
+  const uint32_t quotient = (h + 1 + ((h + 1) >> 8)) >> 8;
+  // The clamps as selects (the quotient of a negative m is not used).
+  return m < 0 ? 0u : (m >= 256 * 510 ? 255u : quotient);
 }
 
-// Argument k of `stage` for channel ch (3: alpha); sources indexed by code.
-constexpr int32_t argument(const CombineStage& stage, unsigned k, unsigned ch, const uint32_t sources[4]) {
-  const uint32_t colour = sources[code_of(stage.source[k])];
+// The colours a combiner argument may take, by CombineSource code.
+struct CombineSources {
+  uint32_t texture, constant, primary, previous;
+};
+
+// Argument k of `stage` for channel ch (3: alpha).
+constexpr int32_t argument(const CombineStage& stage, unsigned k, unsigned ch, const CombineSources& sources) {
+  const uint32_t colour = select_code<uint32_t>(code_of(stage.source[k]), 0, sources.texture, sources.constant,
+                                                sources.primary, sources.previous);
+  // The operand's alpha or channel, and 255 - x as x ^ 255: shift and mask
+  // the same for every lane of a batch.
   const uint32_t op = code_of(stage.operand[k]);
-  const uint32_t x = (op & 2) != 0 ? colour >> 24 : channel(colour, ch);
-  return static_cast<int32_t>((op & 1) != 0 ? 255 - x : x);
+  const uint32_t x = (colour >> ((op & 2) != 0 ? 24 : 8 * ch)) & 0xff;
+  return static_cast<int32_t>(x ^ ((op & 1) != 0 ? 0xffu : 0u));
 }
 
 // The function's value in 1/510 of a code (DOT3 codes: 0, see combine_dot3).
 constexpr int32_t combine_value(CombineFunc func, int32_t a0, int32_t a1, int32_t a2) {
-  const int32_t values[8] = {510 * a0,
-                             2 * a0 * a1,
-                             510 * (a0 + a1),
-                             510 * (a0 + a1) - 65025,
-                             2 * (a0 * a2 + a1 * (255 - a2)),
-                             510 * (a0 - a1),
-                             0,
-                             0};
-  return values[code_of(func)];
+  return select_code<int32_t>(code_of(func), 0, 510 * a0, 2 * a0 * a1, 510 * (a0 + a1), 510 * (a0 + a1) - 65025,
+                              2 * (a0 * a2 + a1 * (255 - a2)), 510 * (a0 - a1));
 }
 
 }  // namespace combiner_detail
@@ -149,26 +154,28 @@ constexpr Rgba8 texture_combiner(const TextureUnitEnv& unit, Rgba8 primary, Rgba
 
   // REPLACE, MODULATE, DECAL, BLEND, ADD, per channel.
   uint32_t replace = 0, modulate = 0, decal = f & 0xff000000u, blend = 0, add = 0;
+#pragma GCC unroll 3
   for (unsigned ch = 0; ch < 3; ++ch) {
     const uint32_t fc = channel(f, ch), tc = channel(t, ch), cc = channel(c, ch);
-    replace |= (no_colour ? fc : tc) << (8 * ch);
-    modulate |= (no_colour ? fc : div255(fc * tc)) << (8 * ch);
+    replace |= select_if(no_colour, fc, tc) << (8 * ch);
+    modulate |= select_if(no_colour, fc, div255(fc * tc)) << (8 * ch);
     decal |= div255(fc * (255 - ta) + tc * ta) << (8 * ch);
     blend |= div255(fc * (255 - tc) + cc * tc) << (8 * ch);
     add |= std::min<uint32_t>(fc + tc, 255) << (8 * ch);
   }
   const uint32_t alpha_product = div255(fa * ta) << 24;
-  replace |= (no_alpha ? fa : ta) << 24;
+  replace |= select_if(no_alpha, fa, ta) << 24;
   modulate |= alpha_product;
   blend |= alpha_product;
   add |= alpha_product;
 
   // COMBINE. Sources indexed by CombineSource code.
-  const uint32_t sources[4] = {t, c, primary.pack(), f};
+  const CombineSources sources{t, c, primary.pack(), f};
   const CombineStage& rgb = unit.rgb;
   const CombineStage& alpha = unit.alpha;
   uint32_t combine = 0;
   int32_t dot = 0;
+#pragma GCC unroll 3
   for (unsigned ch = 0; ch < 3; ++ch) {
     const int32_t a0 = argument(rgb, 0, ch, sources), a1 = argument(rgb, 1, ch, sources);
     const int32_t a2 = argument(rgb, 2, ch, sources);
@@ -179,15 +186,32 @@ constexpr Rgba8 texture_combiner(const TextureUnitEnv& unit, Rgba8 primary, Rgba
   const bool dot3 = rgb.func == CombineFunc::dot3_rgb || rgb.func == CombineFunc::dot3_rgba;
   const uint32_t dot_rgb = combine_round(dot * (1 << rgb.scale_log2)) * 0x010101u;
   const uint32_t alpha_value =
-      rgb.func == CombineFunc::dot3_rgba
-          ? combine_round(dot * (1 << alpha.scale_log2))
-          : combine_round(combine_value(alpha.func, argument(alpha, 0, 3, sources), argument(alpha, 1, 3, sources),
-                                        argument(alpha, 2, 3, sources)) *
-                          (1 << alpha.scale_log2));
-  combine = (dot3 ? dot_rgb : combine) | alpha_value << 24;
+      select_if(rgb.func == CombineFunc::dot3_rgba, combine_round(dot * (1 << alpha.scale_log2)),
+                combine_round(combine_value(alpha.func, argument(alpha, 0, 3, sources), argument(alpha, 1, 3, sources),
+                                            argument(alpha, 2, 3, sources)) *
+                              (1 << alpha.scale_log2)));
+  combine = select_if(dot3, dot_rgb, combine) | alpha_value << 24;
 
-  const uint32_t results[8] = {replace, modulate, decal, blend, add, combine, f, f};
-  return Rgba8::unpack(results[code_of(unit.env)]);
+  return Rgba8::unpack(select_code<uint32_t>(code_of(unit.env), f, replace, modulate, decal, blend, add, combine));
 }
+
+// Batch form (batch.h): `count` fragments through one unit's state,
+// colours as packed words (Rgba8::pack).
+struct TextureCombinerKernel {
+  TESSERA_BATCH_KERNEL void run(const TextureUnitEnv& unit, const uint32_t* primary, const uint32_t* previous,
+                                const uint32_t* texel, unsigned count, uint32_t* out) {
+    loop(unit, primary, previous, texel, count, out);
+  }
+  TESSERA_BATCH_KERNEL void loop(const TextureUnitEnv unit, const uint32_t* __restrict primary,
+                                 const uint32_t* __restrict previous, const uint32_t* __restrict texel, unsigned count,
+                                 uint32_t* __restrict out) {
+    for (unsigned i = 0; i < count; ++i)
+      out[i] =
+          texture_combiner(unit, Rgba8::unpack(primary[i]), Rgba8::unpack(previous[i]), Rgba8::unpack(texel[i])).pack();
+  }
+};
+
+void texture_combiner_batch(const TextureUnitEnv& unit, const uint32_t* primary, const uint32_t* previous,
+                            const uint32_t* texel, unsigned count, uint32_t* out, BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster

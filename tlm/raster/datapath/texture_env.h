@@ -23,14 +23,16 @@
 // rounding to nearest (x <= 65025; 255 is odd, ties cannot occur):
 // t = x + 128, (t + (t >> 8)) >> 8 (the same divider as blending).
 //
-// Speed: inline; the environment computes all three results and the code
-// picks one, so there is no branch.
+// Speed: inline, on packed words; the environment computes all three
+// results and the code picks one, so there is no branch. The batch form
+// (texture_filter_env_batch, batch.h) takes fragments under one environment.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 
+#include "batch.h"
 #include "common/fixed_function.h"
 #include "fixed_point.h"
 
@@ -42,23 +44,29 @@ constexpr uint32_t div255_round(uint32_t x) {
   return (t + (t >> 8)) >> 8;
 }
 
-// texels in the order (i0,j0), (i1,j0), (i0,j1), (i1,j1).
-constexpr Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t) {
-  const uint32_t a = weight_s;
-  const uint32_t b = weight_t;
-  const uint32_t w[4] = {(256 - a) * (256 - b), a * (256 - b), (256 - a) * b, a * b};
-  const uint32_t t[4] = {texels[0].pack(), texels[1].pack(), texels[2].pack(), texels[3].pack()};
+// The filter on packed words (Rgba8::pack), texels in the order (i0,j0),
+// (i1,j0), (i0,j1), (i1,j1), weights a and b in 0..255: what
+// bilinear_filter and the batch form share.
+constexpr uint32_t bilinear_filter_word(uint32_t t00, uint32_t t10, uint32_t t01, uint32_t t11, uint32_t a,
+                                        uint32_t b) {
+  const uint32_t w00 = (256 - a) * (256 - b), w10 = a * (256 - b), w01 = (256 - a) * b, w11 = a * b;
   uint32_t out = 0;
   for (unsigned c = 0; c < 32; c += 8) {
-    uint32_t sum = 0;
-    for (unsigned k = 0; k < 4; ++k) sum += w[k] * ((t[k] >> c) & 0xff);
+    const uint32_t sum =
+        w00 * ((t00 >> c) & 0xff) + w10 * ((t10 >> c) & 0xff) + w01 * ((t01 >> c) & 0xff) + w11 * ((t11 >> c) & 0xff);
     out |= ((sum + (1u << 15)) >> 16) << c;
   }
-  return Rgba8::unpack(out);
+  return out;
 }
 
-constexpr Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel) {
-  const uint32_t f = fragment.pack(), t = texel.pack();
+constexpr Rgba8 bilinear_filter(const std::array<Rgba8, 4>& texels, uint8_t weight_s, uint8_t weight_t) {
+  return Rgba8::unpack(
+      bilinear_filter_word(texels[0].pack(), texels[1].pack(), texels[2].pack(), texels[3].pack(), weight_s, weight_t));
+}
+
+// The environment on packed words: what texture_environment and the batch
+// form share.
+constexpr uint32_t texture_environment_word(TexEnv mode, uint32_t f, uint32_t t) {
   const uint32_t ta = t >> 24;
   uint32_t modulate = 0, decal = f & 0xff000000u;
   for (unsigned c = 0; c < 32; c += 8) {
@@ -66,8 +74,12 @@ constexpr Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel) {
     modulate |= div255_round(fc * tc) << c;
     if (c < 24) decal |= div255_round(fc * (255 - ta) + tc * ta) << c;
   }
-  const uint32_t results[4] = {t, modulate, decal, f};  // code 3 and above: the fragment
-  return Rgba8::unpack(results[std::min(static_cast<unsigned>(mode), 3u)]);
+  // Code 3 and above: the fragment.
+  return select_code<uint32_t>(static_cast<unsigned>(mode), f, t, modulate, decal);
+}
+
+constexpr Rgba8 texture_environment(TexEnv mode, Rgba8 fragment, Rgba8 texel) {
+  return Rgba8::unpack(texture_environment_word(mode, fragment.pack(), texel.pack()));
 }
 
 struct TextureEnvResult {
@@ -83,5 +95,41 @@ constexpr TextureEnvResult texture_filter_env(TexEnv mode, const std::array<Rgba
   r.fragment = texture_environment(mode, fragment, r.texel);
   return r;
 }
+
+// Batch form (batch.h): `count` fragments under one environment, colours as
+// packed words (Rgba8::pack), weights as 8-bit codes in 32-bit elements (no
+// output array may overlap an input array).
+struct TextureEnvBatchInput {
+  const uint32_t* texel[4];  // (i0,j0), (i1,j0), (i0,j1), (i1,j1)
+  const uint32_t* weight_s;
+  const uint32_t* weight_t;
+  const uint32_t* fragment;
+};
+struct TextureEnvBatch {
+  uint32_t* texel;     // filtered
+  uint32_t* fragment;  // after the environment
+};
+
+struct TextureEnvKernel {
+  TESSERA_BATCH_KERNEL void run(TexEnv mode, const TextureEnvBatchInput& in, unsigned count,
+                                const TextureEnvBatch& out) {
+    loop(mode, in.texel[0], in.texel[1], in.texel[2], in.texel[3], in.weight_s, in.weight_t, in.fragment, count,
+         out.texel, out.fragment);
+  }
+  TESSERA_BATCH_KERNEL void loop(TexEnv mode, const uint32_t* __restrict t00, const uint32_t* __restrict t10,
+                                 const uint32_t* __restrict t01, const uint32_t* __restrict t11,
+                                 const uint32_t* __restrict ws, const uint32_t* __restrict wt,
+                                 const uint32_t* __restrict fragment, unsigned count, uint32_t* __restrict texel,
+                                 uint32_t* __restrict fragment_out) {
+    for (unsigned i = 0; i < count; ++i) {
+      const uint32_t filtered = bilinear_filter_word(t00[i], t10[i], t01[i], t11[i], ws[i] & 0xff, wt[i] & 0xff);
+      texel[i] = filtered;
+      fragment_out[i] = texture_environment_word(mode, fragment[i], filtered);
+    }
+  }
+};
+
+void texture_filter_env_batch(TexEnv mode, const TextureEnvBatchInput& in, unsigned count, const TextureEnvBatch& out,
+                              BatchIsa isa = best_batch_isa());
 
 }  // namespace tessera::raster
