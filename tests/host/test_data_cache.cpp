@@ -56,10 +56,10 @@ TEST(DataCache, DirtyVictimIsWrittenBackWithItsAddress) {
   EXPECT_TRUE(cache.write(0x40 + 0 * WAY + 8));  // way 0 dirty
   const DataCache::Result first = cache.read(0x40 + WAYS * WAY);
   EXPECT_FALSE(first.hit);
-  EXPECT_TRUE(first.evicted_dirty);
-  EXPECT_EQ(first.evicted_address, 0x40u);
+  EXPECT_EQ(first.victim.bytes, LINE);
+  EXPECT_EQ(first.victim.address, 0x40u);
   const DataCache::Result second = cache.read(0x40 + (WAYS + 1) * WAY);
-  EXPECT_FALSE(second.evicted_dirty) << "way 1 was clean";
+  EXPECT_EQ(second.victim.bytes, 0u) << "way 1 was clean";
   EXPECT_EQ(cache.writebacks(), 1u);
 }
 

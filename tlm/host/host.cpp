@@ -38,7 +38,7 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
       m_run_ahead_ticks(params.run_ahead.value()),
       m_run_aheads(counter("run_aheads", "quantum ends at which the host ran on (nothing else was scheduled)")),
       m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
-      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways),
+      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways, params.dcache_round_robin),
       m_busy_cycles(counter("busy_cycles", "host cycles charged")),
       m_write_buffer_stalls(counter("write_buffer_stalls", "waits for a write-buffer entry")),
       m_bus_errors(counter("bus_errors", "bus transactions that got an error response")),
@@ -194,15 +194,11 @@ void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
 void Host::read_data(uint32_t address, void* data, unsigned bytes) {
   ++m_loads;
   charge(m_params.load_cycles);
-  if (cacheable(address, bytes) && m_dcache.enabled()) {
+  if (cached(address, bytes)) {
     const DataCache::Result result = m_dcache.read(address);
     if (!result.hit) {
       const unsigned line = m_dcache.line_bytes();
-      if (result.evicted_dirty) {
-        uint8_t victim[256] = {};
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
-        post_write(result.evicted_address, victim, line);
-      }
+      write_back(result.victim);
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(address), fill, line, 0));
       std::memcpy(data, fill + (address - m_dcache.line_address(address)), bytes);
@@ -222,8 +218,8 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
     out->transport_dbg(request);
     return;
   }
-  // Uncached: the write buffer drains before a read goes out, so it cannot
-  // overtake earlier writes.
+  // Uncached (a device, or the data cache off): the write buffer drains
+  // before a read goes out, so it cannot overtake earlier writes.
   drain_write_buffer();
   stall_until(transact(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes, 0));
 }
@@ -231,7 +227,10 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
 void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   ++m_stores;
   charge(m_params.store_cycles);
-  if (cacheable(address, bytes) && m_dcache.write(address)) {
+  // A write-back hit stays in the cache; a write-through hit updates the
+  // line (memory holds the data either way) and goes to the write buffer as
+  // a miss does.
+  if (cached(address, bytes) && m_dcache.write(address, !m_params.write_through) && !m_params.write_through) {
     if (uint8_t* p = dmi_pointer(address, bytes, true)) {
       std::memcpy(p, data, bytes);
       return;
@@ -306,6 +305,26 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
   m_write_buffer_words += held;
 }
 
+void Host::write_back(const DataCache::WriteBack& dirty) {
+  if (dirty.bytes == 0) return;
+  uint8_t data[256] = {};
+  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes, false)) std::memcpy(data, p, dirty.bytes);
+  post_write(dirty.address, data, dirty.bytes);
+}
+
+void Host::set_data_cache_control(bool enabled, bool round_robin) {
+  m_dcache_on = enabled;
+  m_dcache.set_round_robin(round_robin);
+}
+
+void Host::clean_data_line(uint32_t address, bool invalidate) {
+  write_back(m_dcache.clean_line(address, invalidate));
+}
+
+void Host::clean_data_index(uint32_t index, bool invalidate) {
+  write_back(m_dcache.clean_index(index, invalidate));
+}
+
 void Host::drain_write_buffer() {
   if (m_write_buffer.empty()) return;
   stall_until(m_write_buffer_free_ticks);
@@ -358,7 +377,7 @@ void Host::write8(uint32_t address, uint8_t value) {
 void Host::read_words(uint32_t address, uint32_t* words, unsigned count) {
   check_alignment(address, 4);
   if (count == 0) return;
-  if (cacheable(address, count * 4) && m_dcache.enabled()) {
+  if (cached(address, count * 4)) {
     // LDM through the cache: one load per word, a line fill per missed line.
     for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
     return;
@@ -375,11 +394,14 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
   if (count == 0) return;
   ++m_stores;
   charge(m_params.store_cycles * count + 1);
-  // STM: words hitting the cache are written there; the rest go out as one
-  // burst per contiguous run through the write buffer.
+  // STM: words hitting a write-back line are written there; the rest (all of
+  // them, write-through) go out as one burst per contiguous run through the
+  // write buffer.
+  const bool write_through = m_params.write_through;
   unsigned run_start = 0;
   for (unsigned i = 0; i <= count; ++i) {
-    const bool hit = i < count && cacheable(address + 4 * i, 4) && m_dcache.write(address + 4 * i);
+    const bool hit =
+        i < count && cached(address + 4 * i, 4) && m_dcache.write(address + 4 * i, !write_through) && !write_through;
     if (hit) {
       if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) {
         std::memcpy(p, &words[i], 4);
@@ -418,7 +440,7 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
   uint8_t* data = span_pointer(address, std::max(bytes, 1u));
   if (count == 0) return data;
   m_loads += count;
-  if (!m_dcache.enabled()) {
+  if (!m_dcache_on || !m_dcache.enabled()) {
     // No cache: one single transfer per element, back to back, as bus
     // requests of at most a buffer's worth (as posted stores are), each
     // issued when the one before has completed.
@@ -443,11 +465,7 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     charge(uint64_t{m_params.load_cycles} * elements);
     const DataCache::Result result = m_dcache.read(cursor);
     if (!result.hit) {
-      if (result.evicted_dirty) {
-        uint8_t victim[256] = {};
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
-        post_write(result.evicted_address, victim, line);
-      }
+      write_back(result.victim);
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(cursor), fill, line, 0));
     }
@@ -462,10 +480,13 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
   uint8_t* data = span_pointer(address, std::max(bytes, 1u));
   if (count == 0) return data;
   m_stores += count;
-  const unsigned line = m_dcache.enabled() ? m_dcache.line_bytes() : bytes;
+  const bool cache = m_dcache_on && m_dcache.enabled();
+  const bool write_through = m_params.write_through;
+  const unsigned line = cache ? m_dcache.line_bytes() : bytes;
   uint32_t cursor = address;
   const uint32_t end = address + bytes;
-  // Runs of elements that miss the cache leave as posted single stores.
+  // Runs of elements that miss the cache (or hit write-through lines) leave
+  // as posted single stores.
   uint32_t miss_start = 0;
   unsigned miss_elements = 0;
   auto post_misses = [&] {
@@ -473,13 +494,14 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
     miss_elements = 0;
   };
   while (cursor < end) {
-    const uint32_t line_end = m_dcache.enabled() ? m_dcache.line_address(cursor) + line : end;
+    const uint32_t line_end = cache ? m_dcache.line_address(cursor) + line : end;
     const uint32_t piece_end = std::min(end, line_end);
     const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
     charge(uint64_t{m_params.store_cycles} * elements);
-    if (m_dcache.enabled() && m_dcache.write(cursor)) {
+    const bool hit = cache && m_dcache.write(cursor, !write_through);
+    if (hit) m_dcache.count_hits(elements - 1);
+    if (hit && !write_through) {
       post_misses();
-      m_dcache.count_hits(elements - 1);
     } else {
       if (!miss_elements) miss_start = cursor;
       miss_elements += elements;
