@@ -42,8 +42,10 @@ void DataCache::remember(const Line& line, size_t index) {
 DataCache::WriteBack DataCache::take_dirty(Line& line, bool invalidate) {
   WriteBack write_back;
   if (line.valid && line.dirty != 0) {
-    write_back.address = line.tag << m_line_shift;
-    write_back.bytes = m_line_bytes;
+    const unsigned half = m_line_bytes / 2;
+    const uint32_t address = line.tag << m_line_shift;
+    write_back.address = line.dirty == 2 ? address + half : address;
+    write_back.bytes = line.dirty == 3 ? m_line_bytes : half;
     ++m_writebacks;
   }
   line.dirty = 0;
