@@ -253,7 +253,8 @@ unsigned Host::transfers_per_request(unsigned bytes_each) const {
 
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
   const unsigned each = bytes / transfers;
-  const unsigned per_request = transfers_per_request(each);
+  // Each store of a train takes an address entry of its own.
+  const unsigned per_request = std::min(transfers_per_request(each), m_params.write_buffer_addresses);
   if (transfers <= per_request) {
     post_request(address, data, bytes, transfers);
     return;
@@ -269,17 +270,24 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
 }
 
 void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  // The ARM922T's write buffer holds 16 data words and 4 addresses (TRM
+  // 4.3): a burst (an STM, a victim or cleaned line) takes one address, each
+  // single store of a train one; the core stalls while the new request's
+  // words or addresses do not fit.
   const unsigned words = std::max(transfers, (bytes + 3) / 4);
+  const unsigned held_words = std::min(words, m_params.write_buffer_words);
+  const unsigned held_addresses = std::min(transfers, m_params.write_buffer_addresses);
   auto retire = [&] {
     const uint64_t local = local_ticks();
     while (!m_write_buffer.empty() && m_write_buffer.front().done_ticks <= local) {
       m_write_buffer_words -= m_write_buffer.front().words;
+      m_write_buffer_addresses -= m_write_buffer.front().addresses;
       m_write_buffer.pop_front();
     }
   };
   retire();
-  while (!m_write_buffer.empty() &&
-         m_write_buffer_words + std::min(words, m_params.write_buffer_words) > m_params.write_buffer_words) {
+  while (!m_write_buffer.empty() && (m_write_buffer_words + held_words > m_params.write_buffer_words ||
+                                     m_write_buffer_addresses + held_addresses > m_params.write_buffer_addresses)) {
     ++m_write_buffer_stalls;
     stall_until(m_write_buffer.front().done_ticks);
     retire();
@@ -300,9 +308,9 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
     ++m_write_buffer_stalls;
     stall_until(done - per_word * m_params.write_buffer_words);
   }
-  const unsigned held = std::min(words, m_params.write_buffer_words);
-  m_write_buffer.push_back({done, held});
-  m_write_buffer_words += held;
+  m_write_buffer.push_back({done, held_words, held_addresses});
+  m_write_buffer_words += held_words;
+  m_write_buffer_addresses += held_addresses;
 }
 
 void Host::write_back(const DataCache::WriteBack& dirty) {
@@ -330,6 +338,7 @@ void Host::drain_write_buffer() {
   stall_until(m_write_buffer_free_ticks);
   m_write_buffer.clear();
   m_write_buffer_words = 0;
+  m_write_buffer_addresses = 0;
 }
 
 namespace {

@@ -50,6 +50,7 @@ struct HostParams {
   // write-back, as the ARM922T's page tables' C and B bits would say.
   bool write_through = false;
   unsigned write_buffer_words = 0;
+  unsigned write_buffer_addresses = 0;
   unsigned irq_lines = 0;
   bool iss = false;  // host.model=iss: the software is an ARM executable on the ISS
   // Cacheable address range (set by the SoC: system memory).
@@ -165,12 +166,13 @@ class Host : public Block, public HostApi, public HostCore {
   void write_data(uint32_t address, const void* data, unsigned bytes);
   // Posts `transfers` single transfers (a train) or one burst (transfers =
   // 1) to the write buffer. A train leaves it as bus requests of at most a
-  // buffer's worth of transfers, so that arbitration can serve other
-  // initiators between them (tlm/bus/README.md, "Fairness").
+  // buffer's worth of transfers (its words or its addresses, whichever runs
+  // out first), so that arbitration can serve other initiators between them
+  // (tlm/bus/README.md, "Fairness").
   void post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers = 1);
   // One bus request through the write buffer.
   void post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers);
-  // Transfers of `bytes_each` that one bus request may carry: a buffer's worth.
+  // Transfers of `bytes_each` that the buffer's data words hold.
   unsigned transfers_per_request(unsigned bytes_each) const;
   uint8_t* span_pointer(uint32_t address, unsigned bytes);
   // Posts a line's dirty data (a victim's, or a clean's) to the write buffer.
@@ -216,10 +218,12 @@ class Host : public Block, public HostApi, public HostCore {
   struct PendingWrite {
     uint64_t done_ticks;
     unsigned words;
+    unsigned addresses;
   };
   std::deque<PendingWrite> m_write_buffer;
   std::vector<uint8_t> m_post_data;  // payload data of the write being posted
   unsigned m_write_buffer_words = 0;
+  unsigned m_write_buffer_addresses = 0;
   uint64_t m_write_buffer_free_ticks = 0;  // when the buffer finishes its last write
 
   bool m_finished = false;

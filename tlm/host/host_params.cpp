@@ -58,7 +58,10 @@ ParamGroup HostParams::parameters() {
                         "data cache write policy of system memory (the ARM922T takes it from the page tables' C "
                         "and B bits): write_back (store hits stay in the cache) or write_through (every store "
                         "goes through the write buffer, hits also update the line)"),
-          integer("host.write_buffer.entries", 16, 1, 256, "entries", "posted-write buffer depth (ARM922T: 16)"),
+          integer("host.write_buffer.entries", 16, 1, 256, "entries",
+                  "posted-write buffer depth, in 32-bit data words (ARM922T: 16)"),
+          integer("host.write_buffer.addresses", 4, 1, 256, "addresses",
+                  "posted-write buffer addresses: one per buffered store, burst or cache line (ARM922T: 4)"),
       },
       [](const Config& config) {
         const int64_t line = config.get_int("host.dcache.line_bytes");
@@ -95,6 +98,7 @@ HostParams HostParams::from_config(const Config& config) {
   p.dcache_round_robin = config.get_string("host.dcache.replacement") == "round_robin";
   p.write_through = config.get_string("host.dcache.write_policy") == "write_through";
   p.write_buffer_words = static_cast<unsigned>(config.get_uint("host.write_buffer.entries"));
+  p.write_buffer_addresses = static_cast<unsigned>(config.get_uint("host.write_buffer.addresses"));
   p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
   p.iss = config.get_string("host.model") == "iss";
   return p;
