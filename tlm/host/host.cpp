@@ -253,20 +253,26 @@ unsigned Host::transfers_per_request(unsigned bytes_each) const {
 
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
   const unsigned each = bytes / transfers;
-  // Each store of a train takes an address entry of its own.
-  const unsigned per_request = std::min(transfers_per_request(each), m_params.write_buffer_addresses);
-  if (transfers <= per_request) {
+  // The buffer holds as many stores of a train as it has addresses for (each
+  // store takes one) and data words: the core resumes when the train's last
+  // stores of that number are in the buffer.
+  const unsigned held = std::min(transfers_per_request(each), m_params.write_buffer_addresses);
+  if (transfers <= held) {
     post_request(address, data, bytes, transfers);
     return;
   }
-  // The buffer fills as the core stores and drains one entry at a time; the
-  // bus sees the train a buffer's worth at a time, each request issued when
-  // the buffer has room for it. The first request takes the remainder, so
-  // that the core resumes, as it would, when the last buffer's worth of the
-  // train is in the buffer.
-  unsigned count = transfers % per_request ? transfers % per_request : per_request;
-  for (unsigned done = 0; done < transfers; done += count, count = per_request)
+  // The buffer fills as the core stores and drains one entry at a time. The
+  // bus sees the train as requests of at most a buffer's worth of data words
+  // (one request a store would be faithful for arbitration and slow), each
+  // issued when the one before has left the buffer; the last request is the
+  // stores the buffer holds at the end, so that the core resumes when it is
+  // posted, and the first takes the remainder of the others.
+  const unsigned per_request = transfers_per_request(each);
+  const unsigned before_last = transfers - held;
+  unsigned count = before_last % per_request ? before_last % per_request : per_request;
+  for (unsigned done = 0; done < before_last; done += count, count = per_request)
     post_request(address + done * each, data + done * each, count * each, count);
+  post_request(address + before_last * each, data + before_last * each, held * each, held);
 }
 
 void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
