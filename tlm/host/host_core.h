@@ -38,7 +38,8 @@ class HostCore {
   virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
   virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
 
-  // CP15 c1's data-side bits (ARM922T TRM, ARM DDI 0184B, 2.3.5 and 4.3):
+  // CP15 c1's data-side bits (ARM922T TRM, ARM DDI 0184B: register 1 of
+  // the CP15 chapter, and 4.3):
   // C switches the data cache (off: its contents are kept but not looked up,
   // every data access is uncached, reads on the bus after the write buffer
   // has drained, writes through the write buffer); RR selects round-robin
