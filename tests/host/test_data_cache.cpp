@@ -76,6 +76,26 @@ TEST(DataCache, DirtyVictimWritesBackTheDirtyHalfOrTheWholeLine) {
   EXPECT_EQ(cache.writebacks(), 3u);
 }
 
+// A write of several bytes (a span's elements in one line) marks every half
+// it covers.
+TEST(DataCache, AWriteAcrossTheMiddleOfALineDirtiesBothHalves) {
+  DataCache cache = arm922t();
+  cache.read(0x3000);
+  cache.read(0x3020);
+  cache.read(0x3040);
+  EXPECT_TRUE(cache.write(0x3008, true, 24));  // bytes 8 to 31
+  EXPECT_TRUE(cache.write(0x3020, true, 16));  // the first half only
+  EXPECT_TRUE(cache.write(0x3050, true, 64));  // from byte 16, clamped to the line
+  EXPECT_EQ(cache.clean_line(0x3000, false).bytes, LINE);
+  const DataCache::WriteBack first = cache.clean_line(0x3020, false);
+  EXPECT_EQ(first.address, 0x3020u);
+  EXPECT_EQ(first.bytes, LINE / 2);
+  const DataCache::WriteBack second = cache.clean_line(0x3040, false);
+  EXPECT_EQ(second.address, 0x3050u);
+  EXPECT_EQ(second.bytes, LINE / 2);
+  EXPECT_EQ(cache.hits(), 3u);
+}
+
 // Write-through: a store hit updates the line (a hit) but leaves it clean,
 // the store itself going to the write buffer (the host's part).
 TEST(DataCache, WriteThroughHitLeavesTheLineClean) {

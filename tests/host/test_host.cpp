@@ -386,6 +386,25 @@ TEST(Host, CleanPostsTheDirtyHalfAndDrainWaitsForIt) {
   EXPECT_EQ(written, 0xabcdu);
 }
 
+// A span of stores hitting a write-back line dirties every half it covers:
+// 16 halfwords over the whole line are a 32-byte write-back, 4 over the
+// second half a 16-byte one.
+TEST(Host, ASpanHittingALineDirtiesTheHalvesItCovers) {
+  const uint32_t line = 0x9800;
+  const auto& stats = g_bench->bus.initiator_stats()[0];
+  uint64_t bytes = 0;
+  g_bench->run([&](HostApi& api) {
+    api.read32(line);
+    api.read32(line + 32);
+    bytes = stats.bytes;
+    std::memset(api.store_span(line, 2, 16), 0x22, 32);
+    std::memset(api.store_span(line + 48, 2, 4), 0x33, 8);
+    g_bench->host.clean_data_line(line, false);
+    g_bench->host.clean_data_line(line + 32, false);
+  });
+  EXPECT_EQ(stats.bytes - bytes, 32u + 16u);
+}
+
 // By index: the way in bits 31:26, the set in bits 6:5. Which way holds the
 // line depends on the earlier tests' traffic, so every way of its set is
 // cleaned: one write-back. Invalidating a line or the whole cache drops

@@ -78,11 +78,15 @@ DataCache::Result DataCache::read(uint32_t address) {
   return result;
 }
 
-bool DataCache::write(uint32_t address, bool write_back) {
+bool DataCache::write(uint32_t address, bool write_back, unsigned bytes) {
   if (!enabled()) return false;
   Line* line = find(address);
   if (!line) return false;
-  if (write_back) line->dirty |= static_cast<uint8_t>(1u << ((address >> (m_line_shift - 1)) & 1u));
+  if (write_back) {
+    const auto half = [&](uint32_t at) { return 1u << ((at >> (m_line_shift - 1)) & 1u); };
+    const uint32_t last = std::min(address + std::max(bytes, 1u) - 1, line_address(address) + m_line_bytes - 1);
+    line->dirty |= static_cast<uint8_t>(half(address) | half(last));
+  }
   ++m_hits;
   return true;
 }

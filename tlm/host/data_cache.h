@@ -40,9 +40,10 @@ class DataCache {
   // A read: on a miss the line is allocated (the caller fills it, after
   // writing back the victim's dirty data).
   Result read(uint32_t address);
-  // A write: true on a hit, which marks the addressed half of the line
-  // dirty if `write_back`; a miss does not allocate.
-  bool write(uint32_t address, bool write_back = true);
+  // A write of `bytes` from `address` (within one line): true on a hit,
+  // which marks the halves of the line it covers dirty if `write_back`; a
+  // miss does not allocate.
+  bool write(uint32_t address, bool write_back = true, unsigned bytes = 1);
 
   // CP15 c7's data-side operations (ARM922T TRM 2.3.11). Clean: the line's
   // dirty data is returned for writing back and the line marked clean (and

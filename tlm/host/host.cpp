@@ -513,7 +513,7 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
     const uint32_t piece_end = std::min(end, line_end);
     const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
     charge(uint64_t{m_params.store_cycles} * elements);
-    const bool hit = cache && m_dcache.write(cursor, !write_through);
+    const bool hit = cache && m_dcache.write(cursor, !write_through, piece_end - cursor);
     if (hit) m_dcache.count_hits(elements - 1);
     if (hit && !write_through) {
       post_misses();
