@@ -264,23 +264,46 @@ class HostSemihostingPort : public iss::SemihostingPort {
   double m_start;
 };
 
-// CP15 c7's operations: the instruction side's reach the timing layer's
-// instruction cache; a wait for interrupt idles the host until the
-// interrupt controller asserts IRQ or FIQ. (The data side's have nothing to
-// act on: the host's data cache is a tag model whose data is always in
-// memory.)
+// CP15's cache control and c7's operations: the instruction side's reach
+// the timing layer's instruction cache; the data side's (c1's C and RR
+// bits, c7's invalidations, cleans and the write-buffer drain) the host's
+// data cache and write buffer, the cleans and the drain at the time the
+// instructions before them have taken, their stalls charged to the
+// instruction's function; a wait for interrupt idles the host until the
+// interrupt controller asserts IRQ or FIQ.
 class LauncherCaches : public iss::CacheMaintenance {
  public:
   LauncherCaches(iss::Arm922tTiming& timing, HostMemory& memory, HostCore& core)
       : m_timing(timing), m_memory(memory), m_core(core) {}
   void invalidate_instruction_cache() override { m_timing.invalidate_instruction_cache(); }
   void invalidate_instruction_line(uint32_t address) override { m_timing.invalidate_instruction_line(address); }
+  void control_written(uint32_t control) override {
+    m_core.set_data_cache_control((control & iss::Cp15::CONTROL_C) != 0, (control & iss::Cp15::CONTROL_RR) != 0);
+  }
+  void invalidate_data_cache() override { m_core.invalidate_data_cache(); }
+  void invalidate_data_line(uint32_t address) override { m_core.invalidate_data_line(address); }
+  void clean_data_line(uint32_t address, bool invalidate) override {
+    in_time([&] { m_core.clean_data_line(address, invalidate); });
+  }
+  void clean_data_index(uint32_t index, bool invalidate) override {
+    in_time([&] { m_core.clean_data_index(index, invalidate); });
+  }
+  void drain_write_buffer() override {
+    in_time([&] { m_core.drain_write_buffer(); });
+  }
   void wait_for_interrupt() override {
     m_memory.flush();
     m_core.wait_for_interrupt();
   }
 
  private:
+  template <typename Operation>
+  void in_time(Operation operation) {
+    m_memory.flush();
+    const HostMemory::Charged charged(m_memory);
+    operation();
+  }
+
   iss::Arm922tTiming& m_timing;
   HostMemory& m_memory;
   HostCore& m_core;
@@ -384,7 +407,9 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   core.set_coprocessors(&cp15);
   timing.attach(&cp15);
   // As a boot loader would: the caches on (CP15 c1's I and C) before the
-  // program starts; the program may turn the instruction cache off.
+  // program starts, replacement as at reset (RR clear: pseudo-random); the
+  // program may change any of them (the write reaches the host's data cache
+  // through LauncherCaches::control_written).
   cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | iss::Cp15::CONTROL_I | iss::Cp15::CONTROL_C);
 
   HostSemihostingPort port(host, core_port);
@@ -506,9 +531,9 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   const auto step = [&]() __attribute__((always_inline)) {
     if (core.instructions() == instruction_limit && instruction_limit != 0) {
       memory.flush_console();
-      throw std::runtime_error(path + ": still running after host.iss_instruction_limit=" +
-                               std::to_string(instruction_limit) + " instructions, at pc " +
-                               iss::address_text(core.reg(15)) + " (a runaway program?)");
+      throw std::runtime_error(path +
+                               ": still running after host.iss_instruction_limit=" + std::to_string(instruction_limit) +
+                               " instructions, at pc " + iss::address_text(core.reg(15)) + " (a runaway program?)");
     }
     iss::Profile::Entry& entry = profile.at(core.reg(15));
     memory.set_profile_entry(&entry);

@@ -317,6 +317,11 @@ struct Recorder : CacheMaintenance {
     calls.push_back(std::string(invalidate ? "clean+invalidate D " : "clean D ") + std::to_string(address));
   }
   void drain_write_buffer() override { calls.push_back("drain"); }
+  void invalidate_data_cache() override { calls.push_back("invalidate D"); }
+  void clean_data_index(uint32_t index, bool invalidate) override {
+    calls.push_back(std::string(invalidate ? "clean+invalidate D index " : "clean D index ") + std::to_string(index));
+  }
+  void control_written(uint32_t control) override { calls.push_back("control " + std::to_string(control)); }
 };
 
 TEST_F(Iss, Cp15IdentifiesAnArm922tWithTwo8KbCaches) {
@@ -364,22 +369,32 @@ TEST_F(Iss, Cp15CacheOperationsReachTheCachesAndUserModeIsRefused) {
   Cp15 cp15(core, &recorder);
   core.set_coprocessors(&cp15);
   ArmCore& cpu = core;
-  memory.program(0x100, {mcr(0, 7, 5, 0),     // invalidate the I-cache
-                         mcr(1, 7, 6, 1),     // invalidate the D line of r1
-                         mcr(1, 7, 10, 1),    // clean the D line of r1
-                         mcr(1, 7, 14, 1),    // clean and invalidate it
-                         mcr(0, 7, 10, 4)});  // drain the write buffer
+  memory.program(0x100, {mcr(0, 7, 5, 0),    // invalidate the I-cache
+                         mcr(1, 7, 6, 1),    // invalidate the D line of r1
+                         mcr(1, 7, 10, 1),   // clean the D line of r1
+                         mcr(1, 7, 14, 1),   // clean and invalidate it
+                         mcr(0, 7, 10, 4),   // drain the write buffer
+                         mcr(0, 7, 6, 0),    // invalidate the D-cache
+                         mcr(2, 7, 10, 2),   // clean the D entry of index r2
+                         mcr(2, 7, 14, 2),   // clean and invalidate it
+                         mcr(0, 7, 7, 0),    // invalidate both caches
+                         mcr(3, 1, 0, 0)});  // the control register: C and RR
   cpu.set_cpsr(SYS);
   cpu.set_reg(1, 0x8020);
+  cpu.set_reg(2, (5u << 26) | (3u << 5));  // way 5, set 3
+  cpu.set_reg(3, Cp15::CONTROL_C | Cp15::CONTROL_RR);
   cpu.set_reg(15, 0x100);
-  for (int i = 0; i < 5; ++i) cpu.step();
-  EXPECT_EQ(recorder.calls, (std::vector<std::string>{"invalidate I", "invalidate D 32800", "clean D 32800",
-                                                      "clean+invalidate D 32800", "drain"}));
+  for (int i = 0; i < 10; ++i) cpu.step();
+  EXPECT_EQ(recorder.calls,
+            (std::vector<std::string>{"invalidate I", "invalidate D 32800", "clean D 32800", "clean+invalidate D 32800",
+                                      "drain", "invalidate D", "clean D index 335544416",
+                                      "clean+invalidate D index 335544416", "invalidate I", "invalidate D",
+                                      "control " + std::to_string(0x78u | Cp15::CONTROL_C | Cp15::CONTROL_RR)}));
   cpu.set_cpsr(USR);
   cpu.set_reg(15, 0x100);
   cpu.step();
   EXPECT_EQ(cpu.mode(), Mode::und);
-  EXPECT_EQ(recorder.calls.size(), 5u);
+  EXPECT_EQ(recorder.calls.size(), 11u);
 }
 
 // The decode cache (README.md, "The decode cache"): an instruction the

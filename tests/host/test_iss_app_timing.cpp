@@ -95,6 +95,12 @@ class RecordingCore : public tessera::HostCore {
   // As the SoC's host with host.cycles.load and .store at 1: one issue
   // cycle per word loaded or stored.
   uint64_t busy_cycles() const override { return issue_cycles(m_host); }
+  void set_data_cache_control(bool /*enabled*/, bool /*round_robin*/) override {}
+  void invalidate_data_cache() override {}
+  void invalidate_data_line(uint32_t /*address*/) override {}
+  void clean_data_line(uint32_t /*address*/, bool /*invalidate*/) override {}
+  void clean_data_index(uint32_t /*index*/, bool /*invalidate*/) override {}
+  void drain_write_buffer() override {}
   double stalled_cycles() const override { return 0; }
   uint64_t data_cache_misses() const override { return 0; }
   void set_program_statistics(std::function<nlohmann::json()> statistics) override {

@@ -72,8 +72,9 @@ TEST(Soc, BlocksAreListedOnceEachUnderTheirNames) {
 
 // With the display DMA not scanning, the clear's time is its own: the host
 // charges one store cycle per pixel, posts the stores, and resumes when all
-// but the write buffer's 16 have left; each store holds the bus for an
-// address cycle, the memory's 3 wait states and one beat.
+// but the 4 the write buffer holds (one address each) have left; each store
+// holds the bus for an address cycle, the memory's 3 wait states and one
+// beat.
 TEST(Soc, ALongClearOnAnIdleBusTakesItsBusTime) {
   Bench& b = *g_bench;
   const unsigned pixels = b.soc.display.frame_bytes() / 2;
@@ -87,7 +88,7 @@ TEST(Soc, ALongClearOnAnIdleBusTakesItsBusTime) {
   });
   const uint64_t edge = bus_cycle.value();
   const sc_time issued = sc_time::from_value(((start + host_cycle * pixels).value() + edge - 1) / edge * edge);
-  EXPECT_EQ(end, issued + bus_cycle * (5.0 * (pixels - 16)));
+  EXPECT_EQ(end, issued + bus_cycle * (5.0 * (pixels - 4)));
   EXPECT_EQ(b.soc.display_dma.underrun_lines(), 0u);
 }
 

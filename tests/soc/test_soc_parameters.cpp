@@ -74,6 +74,9 @@ TEST(SocParameters, EachBlockReadsItsDeclaredDefaults) {
   EXPECT_EQ(tessera::MemoryParams::defaults().size_bytes, config.get_uint("mem.size_mib") << 20);
   EXPECT_EQ(tessera::BusParams::defaults().width_bytes * 8, config.get_uint("bus.width_bits"));
   EXPECT_EQ(tessera::HostParams::defaults().write_buffer_words, config.get_uint("host.write_buffer.entries"));
+  EXPECT_EQ(tessera::HostParams::defaults().write_buffer_addresses, config.get_uint("host.write_buffer.addresses"));
+  EXPECT_TRUE(tessera::HostParams::defaults().dcache_round_robin);
+  EXPECT_FALSE(tessera::HostParams::defaults().write_through);
   EXPECT_EQ(tessera::DisplayParams::defaults().port_cycles, config.get_uint("display.port_cycles"));
   EXPECT_EQ(tessera::RasterizerParams::defaults().costs.setup, config.get_uint("raster.cycles.setup"));
   EXPECT_EQ(tessera::RasterizerParams::defaults().burst_beats, config.get_uint("raster.burst_beats"));

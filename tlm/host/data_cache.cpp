@@ -4,14 +4,17 @@
 
 namespace tessera {
 
-DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways)
+DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways, bool round_robin)
     : m_line_bytes(line_bytes),
       m_ways(ways),
       m_sets(size_bytes == 0 ? 0 : size_bytes / (line_bytes * ways)),
-      m_line_shift(0) {
+      m_line_shift(0),
+      m_way_shift(32),
+      m_round_robin(round_robin),
+      m_replacement(m_sets, ways) {
   while ((1u << m_line_shift) < line_bytes) ++m_line_shift;
+  while (m_way_shift > 0 && (uint64_t{1} << (32 - m_way_shift)) < ways) --m_way_shift;
   m_lines.resize(static_cast<size_t>(m_sets) * m_ways);
-  m_victim.resize(m_sets, 0);
 }
 
 DataCache::Line* DataCache::find(uint32_t address) {
@@ -34,8 +37,27 @@ void DataCache::remember(const Line& line, size_t index) {
   m_where[line.tag] = static_cast<uint32_t>(index + 1);
 }
 
+// The dirty bits decide whether the whole line, one half or nothing is
+// written back (ARM922T TRM 4.3).
+DataCache::WriteBack DataCache::take_dirty(Line& line, bool invalidate) {
+  WriteBack write_back;
+  if (line.valid && line.dirty != 0) {
+    const unsigned half = m_line_bytes / 2;
+    const uint32_t address = line.tag << m_line_shift;
+    write_back.address = line.dirty == 2 ? address + half : address;
+    write_back.bytes = line.dirty == 3 ? m_line_bytes : half;
+    ++m_writebacks;
+  }
+  line.dirty = 0;
+  if (invalidate) {
+    forget(line);
+    line = Line{};
+  }
+  return write_back;
+}
+
 DataCache::Result DataCache::read(uint32_t address) {
-  Result result{false, false, 0};
+  Result result{false, {}};
   if (!enabled()) {
     ++m_misses;
     return result;
@@ -48,27 +70,46 @@ DataCache::Result DataCache::read(uint32_t address) {
   ++m_misses;
   const uint32_t tag = address >> m_line_shift;
   const unsigned set_index = tag & (m_sets - 1);
-  const size_t index = static_cast<size_t>(set_index) * m_ways + m_victim[set_index];
+  const size_t index = static_cast<size_t>(set_index) * m_ways + m_replacement.victim(set_index, m_round_robin);
   Line& victim = m_lines[index];
-  m_victim[set_index] = (m_victim[set_index] + 1) % m_ways;
-  if (victim.valid && victim.dirty) {
-    result.evicted_dirty = true;
-    result.evicted_address = victim.tag << m_line_shift;
-    ++m_writebacks;
-  }
-  forget(victim);
-  victim = {tag, true, false};
+  result.victim = take_dirty(victim, true);
+  victim = {tag, true, 0};
   remember(victim, index);
   return result;
 }
 
-bool DataCache::write(uint32_t address) {
+bool DataCache::write(uint32_t address, bool write_back, unsigned bytes) {
   if (!enabled()) return false;
   Line* line = find(address);
   if (!line) return false;
-  line->dirty = true;
+  if (write_back) {
+    const auto half = [&](uint32_t at) { return 1u << ((at >> (m_line_shift - 1)) & 1u); };
+    const uint32_t last = std::min(address + std::max(bytes, 1u) - 1, line_address(address) + m_line_bytes - 1);
+    line->dirty |= static_cast<uint8_t>(half(address) | half(last));
+  }
   ++m_hits;
   return true;
+}
+
+DataCache::WriteBack DataCache::clean_line(uint32_t address, bool invalidate) {
+  if (!enabled()) return {};
+  Line* line = find(address);
+  return line ? take_dirty(*line, invalidate) : WriteBack{};
+}
+
+DataCache::WriteBack DataCache::clean_index(uint32_t index, bool invalidate) {
+  if (!enabled()) return {};
+  const uint32_t way = m_way_shift < 32 ? index >> m_way_shift : 0;
+  if (way >= m_ways) return {};  // no such way (a cache whose ways are not a power of two)
+  const uint32_t set = (index >> m_line_shift) & (m_sets - 1);
+  return take_dirty(m_lines[static_cast<size_t>(set) * m_ways + way], invalidate);
+}
+
+void DataCache::invalidate_line(uint32_t address) {
+  if (Line* line = enabled() ? find(address) : nullptr) {
+    forget(*line);
+    *line = Line{};
+  }
 }
 
 void DataCache::invalidate_all() {

@@ -1,55 +1,86 @@
-// Tag model of the ARM922T data cache: set associative, round-robin
-// replacement, write back, allocation on read misses only (ARM922T). Data
+// Tag model of the ARM922T data cache (ARM922T TRM, ARM DDI 0184B, 4.3
+// "DCache and write buffer"): set associative, round-robin or pseudo-random
+// replacement, allocation on read misses only, two dirty bits per line (one
+// per half), so that a write-back is the whole line or the dirty half. Data
 // stay in system memory; the cache only decides what costs a bus access.
+// Whether a store hit leaves the line dirty (write-back) or not
+// (write-through) is the caller's: it knows the region's policy.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "host/cache_replacement.h"
+
 namespace tessera {
 
 class DataCache {
  public:
+  // Dirty data to write to memory: the whole line, or the dirty half of it.
+  struct WriteBack {
+    uint32_t address = 0;
+    unsigned bytes = 0;  // 0: nothing to write
+  };
   struct Result {
     bool hit;
-    bool evicted_dirty;        // a dirty line must be written back
-    uint32_t evicted_address;  // its address
+    WriteBack victim;  // a miss's replaced line, if it held dirty data
   };
 
   // size 0 disables the cache (every access misses and nothing allocates).
-  DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways);
+  DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways, bool round_robin = true);
 
   bool enabled() const { return m_sets != 0; }
   unsigned line_bytes() const { return m_line_bytes; }
   uint32_t line_address(uint32_t address) const { return address & ~(m_line_bytes - 1); }
+  // CP15 c1's RR bit: round-robin (true) or pseudo-random replacement.
+  void set_round_robin(bool round_robin) { m_round_robin = round_robin; }
+  bool round_robin() const { return m_round_robin; }
 
-  // A read: on a miss the line is allocated (the caller fills it).
+  // A read: on a miss the line is allocated (the caller fills it, after
+  // writing back the victim's dirty data).
   Result read(uint32_t address);
-  // A write: hit marks the line dirty; a miss does not allocate.
-  bool write(uint32_t address);
+  // A write of `bytes` from `address` (within one line): true on a hit,
+  // which marks the halves of the line it covers dirty if `write_back`; a
+  // miss does not allocate.
+  bool write(uint32_t address, bool write_back = true, unsigned bytes = 1);
+
+  // CP15 c7's data-side operations (ARM922T TRM 2.3.11). Clean: the line's
+  // dirty data is returned for writing back and the line marked clean (and
+  // invalid with `invalidate`); by address (a miss does nothing), or by
+  // index in c7's index format: the way in the top bits (31:26 with 64
+  // ways), the set above the line offset (6:5 with 4 sets of 32 bytes).
+  WriteBack clean_line(uint32_t address, bool invalidate);
+  WriteBack clean_index(uint32_t index, bool invalidate);
+  // Invalidate: the line (or every line) is dropped, dirty or not.
+  void invalidate_line(uint32_t address);
   void invalidate_all();
+
   // Counts further hits on a line just looked up (a span's other elements).
   void count_hits(uint64_t n) { m_hits += n; }
 
   uint64_t hits() const { return m_hits; }
   uint64_t misses() const { return m_misses; }
+  // Dirty lines written back: evicted or cleaned.
   uint64_t writebacks() const { return m_writebacks; }
 
  private:
   struct Line {
     uint32_t tag = 0;
     bool valid = false;
-    bool dirty = false;
+    uint8_t dirty = 0;  // bit 0: the first half of the line, bit 1: the second
   };
   Line* find(uint32_t address);
+  WriteBack take_dirty(Line& line, bool invalidate);
 
   unsigned m_line_bytes;
   unsigned m_ways;
   unsigned m_sets;
   unsigned m_line_shift;
-  std::vector<Line> m_lines;       // set-major
-  std::vector<unsigned> m_victim;  // round-robin pointer per set
+  unsigned m_way_shift;  // the way's position in a c7 index
+  bool m_round_robin;
+  std::vector<Line> m_lines;  // set-major
+  CacheReplacement m_replacement;
   // Where each resident line is, by tag (line number + 1, 0: absent): the
   // model's speed, not the cache's behaviour. Lookups, hits and misses alike,
   // cost one load instead of a search of a 64-way set. The table covers the

@@ -38,7 +38,7 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
       m_run_ahead_ticks(params.run_ahead.value()),
       m_run_aheads(counter("run_aheads", "quantum ends at which the host ran on (nothing else was scheduled)")),
       m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
-      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways),
+      m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways, params.dcache_round_robin),
       m_busy_cycles(counter("busy_cycles", "host cycles charged")),
       m_write_buffer_stalls(counter("write_buffer_stalls", "waits for a write-buffer entry")),
       m_bus_errors(counter("bus_errors", "bus transactions that got an error response")),
@@ -197,15 +197,11 @@ void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
 void Host::read_data(uint32_t address, void* data, unsigned bytes) {
   ++m_loads;
   charge(m_params.load_cycles);
-  if (cacheable(address, bytes) && m_dcache.enabled()) {
+  if (cached(address, bytes)) {
     const DataCache::Result result = m_dcache.read(address);
     if (!result.hit) {
       const unsigned line = m_dcache.line_bytes();
-      if (result.evicted_dirty) {
-        uint8_t victim[256] = {};
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
-        post_write(result.evicted_address, victim, line);
-      }
+      write_back(result.victim);
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(address), fill, line, 0));
       std::memcpy(data, fill + (address - m_dcache.line_address(address)), bytes);
@@ -225,8 +221,8 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
     out->transport_dbg(request);
     return;
   }
-  // Uncached: the write buffer drains before a read goes out, so it cannot
-  // overtake earlier writes.
+  // Uncached (a device, or the data cache off): the write buffer drains
+  // before a read goes out, so it cannot overtake earlier writes.
   drain_write_buffer();
   stall_until(transact(tlm::TLM_READ_COMMAND, address, static_cast<uint8_t*>(data), bytes, 0));
 }
@@ -234,7 +230,10 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
 void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   ++m_stores;
   charge(m_params.store_cycles);
-  if (cacheable(address, bytes) && m_dcache.write(address)) {
+  // A write-back hit stays in the cache; a write-through hit updates the
+  // line (memory holds the data either way) and goes to the write buffer as
+  // a miss does.
+  if (cached(address, bytes) && m_dcache.write(address, !m_params.write_through) && !m_params.write_through) {
     if (uint8_t* p = dmi_pointer(address, bytes, true)) {
       std::memcpy(p, data, bytes);
       return;
@@ -257,33 +256,47 @@ unsigned Host::transfers_per_request(unsigned bytes_each) const {
 
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
   const unsigned each = bytes / transfers;
-  const unsigned per_request = transfers_per_request(each);
-  if (transfers <= per_request) {
+  // The buffer holds as many stores of a train as it has addresses for (each
+  // store takes one) and data words: the core resumes when the train's last
+  // stores of that number are in the buffer.
+  const unsigned held = std::min(transfers_per_request(each), m_params.write_buffer_addresses);
+  if (transfers <= held) {
     post_request(address, data, bytes, transfers);
     return;
   }
-  // The buffer fills as the core stores and drains one entry at a time; the
-  // bus sees the train a buffer's worth at a time, each request issued when
-  // the buffer has room for it. The first request takes the remainder, so
-  // that the core resumes, as it would, when the last buffer's worth of the
-  // train is in the buffer.
-  unsigned count = transfers % per_request ? transfers % per_request : per_request;
-  for (unsigned done = 0; done < transfers; done += count, count = per_request)
+  // The buffer fills as the core stores and drains one entry at a time. The
+  // bus sees the train as requests of at most a buffer's worth of data words
+  // (one request a store would be faithful for arbitration and slow), each
+  // issued when the one before has left the buffer; the last request is the
+  // stores the buffer holds at the end, so that the core resumes when it is
+  // posted, and the first takes the remainder of the others.
+  const unsigned per_request = transfers_per_request(each);
+  const unsigned before_last = transfers - held;
+  unsigned count = before_last % per_request ? before_last % per_request : per_request;
+  for (unsigned done = 0; done < before_last; done += count, count = per_request)
     post_request(address + done * each, data + done * each, count * each, count);
+  post_request(address + before_last * each, data + before_last * each, held * each, held);
 }
 
 void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  // The ARM922T's write buffer holds 16 data words and 4 addresses (TRM
+  // 4.3): a burst (an STM, a victim or cleaned line) takes one address, each
+  // single store of a train one; the core stalls while the new request's
+  // words or addresses do not fit.
   const unsigned words = std::max(transfers, (bytes + 3) / 4);
+  const unsigned held_words = std::min(words, m_params.write_buffer_words);
+  const unsigned held_addresses = std::min(transfers, m_params.write_buffer_addresses);
   auto retire = [&] {
     const uint64_t local = local_ticks();
     while (!m_write_buffer.empty() && m_write_buffer.front().done_ticks <= local) {
       m_write_buffer_words -= m_write_buffer.front().words;
+      m_write_buffer_addresses -= m_write_buffer.front().addresses;
       m_write_buffer.pop_front();
     }
   };
   retire();
-  while (!m_write_buffer.empty() &&
-         m_write_buffer_words + std::min(words, m_params.write_buffer_words) > m_params.write_buffer_words) {
+  while (!m_write_buffer.empty() && (m_write_buffer_words + held_words > m_params.write_buffer_words ||
+                                     m_write_buffer_addresses + held_addresses > m_params.write_buffer_addresses)) {
     ++m_write_buffer_stalls;
     stall_until(m_write_buffer.front().done_ticks);
     retire();
@@ -304,9 +317,29 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
     ++m_write_buffer_stalls;
     stall_until(done - per_word * m_params.write_buffer_words);
   }
-  const unsigned held = std::min(words, m_params.write_buffer_words);
-  m_write_buffer.push_back({done, held});
-  m_write_buffer_words += held;
+  m_write_buffer.push_back({done, held_words, held_addresses});
+  m_write_buffer_words += held_words;
+  m_write_buffer_addresses += held_addresses;
+}
+
+void Host::write_back(const DataCache::WriteBack& dirty) {
+  if (dirty.bytes == 0) return;
+  uint8_t data[256] = {};
+  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes, false)) std::memcpy(data, p, dirty.bytes);
+  post_write(dirty.address, data, dirty.bytes);
+}
+
+void Host::set_data_cache_control(bool enabled, bool round_robin) {
+  m_dcache_on = enabled;
+  m_dcache.set_round_robin(round_robin);
+}
+
+void Host::clean_data_line(uint32_t address, bool invalidate) {
+  write_back(m_dcache.clean_line(address, invalidate));
+}
+
+void Host::clean_data_index(uint32_t index, bool invalidate) {
+  write_back(m_dcache.clean_index(index, invalidate));
 }
 
 void Host::drain_write_buffer() {
@@ -314,6 +347,7 @@ void Host::drain_write_buffer() {
   stall_until(m_write_buffer_free_ticks);
   m_write_buffer.clear();
   m_write_buffer_words = 0;
+  m_write_buffer_addresses = 0;
 }
 
 namespace {
@@ -361,7 +395,7 @@ void Host::write8(uint32_t address, uint8_t value) {
 void Host::read_words(uint32_t address, uint32_t* words, unsigned count) {
   check_alignment(address, 4);
   if (count == 0) return;
-  if (cacheable(address, count * 4) && m_dcache.enabled()) {
+  if (cached(address, count * 4)) {
     // LDM through the cache: one load per word, a line fill per missed line.
     for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
     return;
@@ -378,11 +412,14 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
   if (count == 0) return;
   ++m_stores;
   charge(m_params.store_cycles * count + 1);
-  // STM: words hitting the cache are written there; the rest go out as one
-  // burst per contiguous run through the write buffer.
+  // STM: words hitting a write-back line are written there; the rest (all of
+  // them, write-through) go out as one burst per contiguous run through the
+  // write buffer.
+  const bool write_through = m_params.write_through;
   unsigned run_start = 0;
   for (unsigned i = 0; i <= count; ++i) {
-    const bool hit = i < count && cacheable(address + 4 * i, 4) && m_dcache.write(address + 4 * i);
+    const bool hit =
+        i < count && cached(address + 4 * i, 4) && m_dcache.write(address + 4 * i, !write_through) && !write_through;
     if (hit) {
       if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) {
         std::memcpy(p, &words[i], 4);
@@ -421,7 +458,7 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
   uint8_t* data = span_pointer(address, std::max(bytes, 1u));
   if (count == 0) return data;
   m_loads += count;
-  if (!m_dcache.enabled()) {
+  if (!m_dcache_on || !m_dcache.enabled()) {
     // No cache: one single transfer per element, back to back, as bus
     // requests of at most a buffer's worth (as posted stores are), each
     // issued when the one before has completed.
@@ -446,11 +483,7 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     charge(uint64_t{m_params.load_cycles} * elements);
     const DataCache::Result result = m_dcache.read(cursor);
     if (!result.hit) {
-      if (result.evicted_dirty) {
-        uint8_t victim[256] = {};
-        if (uint8_t* p = dmi_pointer(result.evicted_address, line, false)) std::memcpy(victim, p, line);
-        post_write(result.evicted_address, victim, line);
-      }
+      write_back(result.victim);
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(cursor), fill, line, 0));
     }
@@ -465,10 +498,13 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
   uint8_t* data = span_pointer(address, std::max(bytes, 1u));
   if (count == 0) return data;
   m_stores += count;
-  const unsigned line = m_dcache.enabled() ? m_dcache.line_bytes() : bytes;
+  const bool cache = m_dcache_on && m_dcache.enabled();
+  const bool write_through = m_params.write_through;
+  const unsigned line = cache ? m_dcache.line_bytes() : bytes;
   uint32_t cursor = address;
   const uint32_t end = address + bytes;
-  // Runs of elements that miss the cache leave as posted single stores.
+  // Runs of elements that miss the cache (or hit write-through lines) leave
+  // as posted single stores.
   uint32_t miss_start = 0;
   unsigned miss_elements = 0;
   auto post_misses = [&] {
@@ -476,13 +512,14 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
     miss_elements = 0;
   };
   while (cursor < end) {
-    const uint32_t line_end = m_dcache.enabled() ? m_dcache.line_address(cursor) + line : end;
+    const uint32_t line_end = cache ? m_dcache.line_address(cursor) + line : end;
     const uint32_t piece_end = std::min(end, line_end);
     const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
     charge(uint64_t{m_params.store_cycles} * elements);
-    if (m_dcache.enabled() && m_dcache.write(cursor)) {
+    const bool hit = cache && m_dcache.write(cursor, !write_through, piece_end - cursor);
+    if (hit) m_dcache.count_hits(elements - 1);
+    if (hit && !write_through) {
       post_misses();
-      m_dcache.count_hits(elements - 1);
     } else {
       if (!miss_elements) miss_start = cursor;
       miss_elements += elements;

@@ -43,7 +43,14 @@ struct HostParams {
   unsigned dcache_bytes = 0;
   unsigned dcache_line_bytes = 0;
   unsigned dcache_ways = 0;
+  // host.dcache.replacement: round-robin (true) or pseudo-random. With
+  // host.model=iss the program's CP15 RR bit decides instead.
+  bool dcache_round_robin = true;
+  // host.dcache.write_policy of the cacheable range: write-through (true) or
+  // write-back, as the ARM922T's page tables' C and B bits would say.
+  bool write_through = false;
   unsigned write_buffer_words = 0;
+  unsigned write_buffer_addresses = 0;
   unsigned irq_lines = 0;
   bool iss = false;  // host.model=iss: the software is an ARM executable on the ISS
   // Cacheable address range (set by the SoC: system memory).
@@ -127,6 +134,12 @@ class Host : public Block, public HostApi, public HostCore {
     return static_cast<double>(m_stall_ticks) / static_cast<double>(m_period_ticks);
   }
   uint64_t data_cache_misses() const override { return m_dcache.misses(); }
+  void set_data_cache_control(bool enabled, bool round_robin) override;
+  void invalidate_data_cache() override { m_dcache.invalidate_all(); }
+  void invalidate_data_line(uint32_t address) override { m_dcache.invalidate_line(address); }
+  void clean_data_line(uint32_t address, bool invalidate) override;
+  void clean_data_index(uint32_t index, bool invalidate) override;
+  void drain_write_buffer() override;
   void set_program_statistics(std::function<nlohmann::json()> statistics) override {
     m_program_statistics = std::move(statistics);
   }
@@ -141,6 +154,11 @@ class Host : public Block, public HostApi, public HostCore {
   void stall_until(uint64_t absolute_ticks);
   uint64_t local_ticks() const;
   bool cacheable(uint32_t address, unsigned bytes) const;
+  // Whether an access is looked up in the data cache: cacheable, and the
+  // cache present and on (CP15's C bit).
+  bool cached(uint32_t address, unsigned bytes) const {
+    return m_dcache_on && m_dcache.enabled() && cacheable(address, bytes);
+  }
   // A bus transaction issued at the host's local time (or later, `not_before`);
   // returns its completion time in absolute ticks. Throws BusError.
   uint64_t transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
@@ -149,15 +167,17 @@ class Host : public Block, public HostApi, public HostCore {
   void write_data(uint32_t address, const void* data, unsigned bytes);
   // Posts `transfers` single transfers (a train) or one burst (transfers =
   // 1) to the write buffer. A train leaves it as bus requests of at most a
-  // buffer's worth of transfers, so that arbitration can serve other
-  // initiators between them (tlm/bus/README.md, "Fairness").
+  // buffer's worth of transfers (its words or its addresses, whichever runs
+  // out first), so that arbitration can serve other initiators between them
+  // (tlm/bus/README.md, "Fairness").
   void post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers = 1);
   // One bus request through the write buffer.
   void post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers);
-  // Transfers of `bytes_each` that one bus request may carry: a buffer's worth.
+  // Transfers of `bytes_each` that the buffer's data words hold.
   unsigned transfers_per_request(unsigned bytes_each) const;
   uint8_t* span_pointer(uint32_t address, unsigned bytes);
-  void drain_write_buffer();
+  // Posts a line's dirty data (a victim's, or a clean's) to the write buffer.
+  void write_back(const DataCache::WriteBack& dirty);
   uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
   void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
   // Hands the host's local time to the quantum keeper and waits for it.
@@ -188,6 +208,7 @@ class Host : public Block, public HostApi, public HostCore {
   void restart_quantum();
   void quantum_used_up();
   DataCache m_dcache;
+  bool m_dcache_on = true;  // CP15 c1's C bit (host.model=iss); always on for host-compiled code
   tlm::tlm_generic_payload m_payload;
   TransferTrain* m_train;  // owned by m_payload
 
@@ -198,10 +219,12 @@ class Host : public Block, public HostApi, public HostCore {
   struct PendingWrite {
     uint64_t done_ticks;
     unsigned words;
+    unsigned addresses;
   };
   std::deque<PendingWrite> m_write_buffer;
   std::vector<uint8_t> m_post_data;  // payload data of the write being posted
   unsigned m_write_buffer_words = 0;
+  unsigned m_write_buffer_addresses = 0;
   uint64_t m_write_buffer_free_ticks = 0;  // when the buffer finishes its last write
 
   bool m_finished = false;

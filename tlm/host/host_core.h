@@ -1,8 +1,9 @@
 // What an instruction-set simulator running as the host's program
 // (host.model=iss, sw_driver/apps/iss_app.cpp) needs of the host beyond the
 // device layer (HostApi): the instruction side's bus reads, the core's two
-// interrupt inputs, the wait for an interrupt, and access to memory that
-// takes no time (a debugger's, semihosting's). Host implements it; the
+// interrupt inputs, the wait for an interrupt, CP15's control of the data
+// cache and its c7 operations, and access to memory that takes no time (a
+// debugger's, semihosting's). Host implements it; the
 // launcher gets it through AppEnvironment::core.
 #pragma once
 
@@ -36,6 +37,26 @@ class HostCore {
   // false where no target answers (an unmapped address).
   virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
   virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
+
+  // CP15 c1's data-side bits (ARM922T TRM, ARM DDI 0184B: register 1 of
+  // the CP15 chapter, and 4.3):
+  // C switches the data cache (off: its contents are kept but not looked up,
+  // every data access is uncached, reads on the bus after the write buffer
+  // has drained, writes through the write buffer); RR selects round-robin
+  // replacement (clear, as at reset: pseudo-random).
+  virtual void set_data_cache_control(bool enabled, bool round_robin) = 0;
+  // CP15 c7's data-side operations (TRM 2.3.11), at the host's local time:
+  // invalidating drops lines, dirty or not, and takes no time; cleaning
+  // posts a line's dirty data (the line or its dirty half) to the write
+  // buffer, by address or by c7's index (the way in bits 31:26, the set in
+  // bits 6:5 for the ARM922T's geometry), and invalidates it with
+  // `invalidate`; draining the write buffer stalls until its writes have
+  // completed.
+  virtual void invalidate_data_cache() = 0;
+  virtual void invalidate_data_line(uint32_t address) = 0;
+  virtual void clean_data_line(uint32_t address, bool invalidate) = 0;
+  virtual void clean_data_index(uint32_t index, bool invalidate) = 0;
+  virtual void drain_write_buffer() = 0;
 
   // The cycles the host has charged as busy (the launcher charges the
   // instructions' cycles less those its accesses were charged), and for the

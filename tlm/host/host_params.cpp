@@ -57,7 +57,17 @@ ParamGroup HostParams::parameters() {
           integer("host.dcache.size_bytes", 8192, 0, 1048576, "bytes", "data cache size (0: no data cache)"),
           integer("host.dcache.line_bytes", 32, 4, 256, "bytes", "data cache line"),
           integer("host.dcache.ways", 64, 1, 1024, "ways", "data cache associativity (ARM922T: 64)"),
-          integer("host.write_buffer.entries", 16, 1, 256, "entries", "posted-write buffer depth (ARM922T: 16)"),
+          param::choice("host.dcache.replacement", "round_robin", {"round_robin", "random"},
+                        "data cache victim choice: round_robin or random (pseudo-random; the ARM922T's reset "
+                        "choice); with host.model=iss the program's CP15 RR bit decides instead"),
+          param::choice("host.dcache.write_policy", "write_back", {"write_back", "write_through"},
+                        "data cache write policy of system memory (the ARM922T takes it from the page tables' C "
+                        "and B bits): write_back (store hits stay in the cache) or write_through (every store "
+                        "goes through the write buffer, hits also update the line)"),
+          integer("host.write_buffer.entries", 16, 1, 256, "entries",
+                  "posted-write buffer depth, in 32-bit data words (ARM922T: 16)"),
+          integer("host.write_buffer.addresses", 4, 1, 256, "addresses",
+                  "posted-write buffer addresses: one per buffered store, burst or cache line (ARM922T: 4)"),
       },
       [](const Config& config) {
         const int64_t line = config.get_int("host.dcache.line_bytes");
@@ -91,7 +101,10 @@ HostParams HostParams::from_config(const Config& config) {
   p.dcache_bytes = static_cast<unsigned>(config.get_uint("host.dcache.size_bytes"));
   p.dcache_line_bytes = static_cast<unsigned>(config.get_uint("host.dcache.line_bytes"));
   p.dcache_ways = static_cast<unsigned>(config.get_uint("host.dcache.ways"));
+  p.dcache_round_robin = config.get_string("host.dcache.replacement") == "round_robin";
+  p.write_through = config.get_string("host.dcache.write_policy") == "write_through";
   p.write_buffer_words = static_cast<unsigned>(config.get_uint("host.write_buffer.entries"));
+  p.write_buffer_addresses = static_cast<unsigned>(config.get_uint("host.write_buffer.addresses"));
   p.irq_lines = static_cast<unsigned>(config.get_uint("host.irq_lines"));
   p.iss = config.get_string("host.model") == "iss";
   return p;

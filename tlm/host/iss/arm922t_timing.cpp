@@ -24,14 +24,7 @@ bool InstructionCache::access(uint32_t address, bool round_robin) {
       return true;
     }
   ++m_misses;
-  unsigned victim;
-  if (round_robin) {
-    victim = m_round_robin[set];
-    m_round_robin[set] = static_cast<uint8_t>((victim + 1) % WAYS);
-  } else {  // a 16-bit Galois LFSR (x^16 + x^14 + x^13 + x^11 + 1): deterministic, so runs repeat
-    m_lfsr = static_cast<uint16_t>((m_lfsr >> 1) ^ (-(m_lfsr & 1u) & 0xb400u));
-    victim = m_lfsr % WAYS;
-  }
+  const unsigned victim = m_replacement.victim(set, round_robin);
   if (m_resident[resident_slot(ways[victim])] == ways[victim]) m_resident[resident_slot(ways[victim])] = INVALID;
   ways[victim] = line;
   m_last_line = line;
@@ -63,7 +56,7 @@ unsigned Arm922tTiming::fetch_other_line(uint32_t address) {
     else
       stall = m_params.uncached_fetch_cycles;
   } else {
-    const bool round_robin = m_cp15 != nullptr && (m_cp15->control() & (1u << 14)) != 0;  // RR
+    const bool round_robin = m_cp15 != nullptr && (m_cp15->control() & Cp15::CONTROL_RR) != 0;
     if (!m_icache.access(address, round_robin)) {
       if (m_fill)
         m_fill(address & ~(InstructionCache::LINE_BYTES - 1), InstructionCache::LINE_BYTES);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "host/cache_replacement.h"
 #include "host/iss/arm_core.h"
 #include "host/iss/cp15.h"
 
@@ -52,8 +53,7 @@ class InstructionCache {
   static constexpr unsigned RESIDENT_SLOTS = 512;
   std::array<uint32_t, RESIDENT_SLOTS> m_resident{};
   static unsigned resident_slot(uint32_t line) { return (line / LINE_BYTES) % RESIDENT_SLOTS; }
-  std::array<uint8_t, SETS> m_round_robin{};
-  uint16_t m_lfsr = 0xace1u;       // the pseudo-random victim's source
+  CacheReplacement m_replacement{SETS, WAYS};
   uint32_t m_last_line = INVALID;  // the line of the last hit: consecutive fetches skip the search
   uint64_t m_hits = 0, m_misses = 0;
 };

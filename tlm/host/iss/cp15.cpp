@@ -33,6 +33,7 @@ bool Cp15::mcr(unsigned cp, unsigned op1, unsigned crn, unsigned crm, unsigned o
       if (crm != 0 || op2 != 0) return false;
       m_control = CONTROL_RESET | (value & CONTROL_WRITABLE);
       m_core.set_high_vectors((m_control & CONTROL_V) != 0);
+      m_caches.control_written(m_control);
       return true;
     case 2: m_translation_base = value & ~0x3fffu; return crm == 0 && op2 == 0;
     case 3: m_domains = value; return crm == 0 && op2 == 0;

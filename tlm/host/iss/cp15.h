@@ -26,6 +26,9 @@ class CacheMaintenance {
   virtual void clean_data_index(uint32_t /*set_way*/, bool /*invalidate*/) {}
   virtual void drain_write_buffer() {}
   virtual void wait_for_interrupt() {}
+  // The control register (c1) was written: the caches' enables (C, I) and
+  // replacement (RR) as they now are.
+  virtual void control_written(uint32_t /*control*/) {}
 };
 
 class Cp15 : public Coprocessors {
@@ -37,7 +40,7 @@ class Cp15 : public Coprocessors {
   static constexpr uint32_t CACHE_TYPE = 0x0d132132u;
   // Control register bits.
   static constexpr uint32_t CONTROL_M = 1u << 0, CONTROL_A = 1u << 1, CONTROL_C = 1u << 2;
-  static constexpr uint32_t CONTROL_I = 1u << 12, CONTROL_V = 1u << 13;
+  static constexpr uint32_t CONTROL_I = 1u << 12, CONTROL_V = 1u << 13, CONTROL_RR = 1u << 14;
   // Bits 6..3 read as one; the writable ones: M, A, C, S, R, I, V, RR, nF, iA
   // (not B: the model is little-endian only).
   static constexpr uint32_t CONTROL_RESET = 0x00000078u;
