@@ -1,7 +1,9 @@
 # The ARM sub-build, started from the main (native) build: the driver, the
 # back ends and the built-in applications cross-compiled for the ARM922T
 # with the bare-metal runtime into bin/arm922t/tessera_apps.elf, which
-# soc_sim runs with host.model=iss (sw_driver/runtime/README.md). It is a
+# soc_sim runs with host.model=iss (sw_driver/runtime/README.md), and the
+# SDK's archive for applications of one's own, arm922t/libtessera_arm922t.a
+# (installed by cmake/Install.cmake with the linker script). It is a
 # separate CMake project (ExternalProject: one project has one compiler),
 # configured from this source tree with TESSERA_TARGET_ISS
 # (cmake/Arm922tTarget.cmake) and handed what only the native build makes.
@@ -29,6 +31,7 @@ find_path(TESSERA_GLM_HEADERS glm/glm.hpp REQUIRED)
 find_path(TESSERA_TINYOBJ_HEADERS tiny_obj_loader.h REQUIRED)
 string(JOIN "|" header_dirs ${TESSERA_JSON_HEADERS} ${TESSERA_GLM_HEADERS} ${TESSERA_TINYOBJ_HEADERS})
 
+set(TESSERA_ARM_LIBRARY ${PROJECT_BINARY_DIR}/arm922t/libtessera_arm922t.a)
 include(ExternalProject)
 ExternalProject_Add(tessera_arm922t
   SOURCE_DIR ${PROJECT_SOURCE_DIR}
@@ -42,7 +45,9 @@ ExternalProject_Add(tessera_arm922t
              -DTESSERA_LINKER_SCRIPT=${TESSERA_LINKER_SCRIPT}
              -DTESSERA_HEADER_DIRS=${header_dirs}
              -DTESSERA_ELF_DIR=${PROJECT_BINARY_DIR}/bin/arm922t
+             -DTESSERA_ARM_LIBRARY=${TESSERA_ARM_LIBRARY}
   BUILD_ALWAYS ON
+  BUILD_BYPRODUCTS ${TESSERA_ARM_LIBRARY}
   INSTALL_COMMAND ""
   DEPENDS ap_asm tessera_linker_script)
 # soc_sim runs what it builds.

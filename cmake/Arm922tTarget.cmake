@@ -6,11 +6,12 @@
 # header-only libraries the driver uses (TESSERA_HEADER_DIRS: nlohmann/json,
 # glm, tinyobjloader). Those folders are Debian's /usr/include, which the
 # ARM compiler must not search whole (its C library is newlib's), so each
-# library is reached through a link of its own.
+# library is reached through a link of its own. It also names the SDK's
+# archive this build makes (TESSERA_ARM_LIBRARY).
 enable_language(ASM)
 include(Tessera)
 
-foreach(variable TESSERA_AP_ASM TESSERA_LINKER_SCRIPT TESSERA_HEADER_DIRS)
+foreach(variable TESSERA_AP_ASM TESSERA_LINKER_SCRIPT TESSERA_HEADER_DIRS TESSERA_ARM_LIBRARY)
   if(NOT ${variable})
     message(FATAL_ERROR "the ARM sub-build needs ${variable} from the main build")
   endif()

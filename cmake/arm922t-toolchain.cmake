@@ -2,7 +2,8 @@
 # (ARMv4T, ARM state, no FPU: soft float) with Debian's gcc-arm-none-eabi and
 # newlib. Used by the build of the driver and the built-in applications
 # (sw_driver/runtime/README.md) and, installed with the SDK, by an
-# application of one's own:
+# application of one's own, which find_package(tessera) then builds as an
+# ARM executable (cmake/tesseraConfig.cmake.in):
 #   cmake -S app -B build -DCMAKE_TOOLCHAIN_FILE=<prefix>/lib/cmake/tessera/arm922t-toolchain.cmake
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
@@ -25,3 +26,10 @@ set(CMAKE_EXE_LINKER_FLAGS_INIT "-nostartfiles -Wl,--gc-sections")
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+
+# Installed, this file sits beside the package it belongs to: the SDK whose
+# ARM archive matches its soc_sim. find_package(tessera) takes that one
+# without a CMAKE_PREFIX_PATH (a tessera_DIR given by the user wins).
+if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/tesseraConfig.cmake)
+  set(tessera_DIR ${CMAKE_CURRENT_LIST_DIR} CACHE PATH "The tessera package of this toolchain file")
+endif()
