@@ -16,10 +16,11 @@ const std::map<std::string, AppInfo>& builtin_apps() {
        {calib_display_port_app,
         "display port calibration: the host copies one 192x144 16-bit frame to the display port "
         "(--set display.width=192 --set display.height=144)"}},
-      {"calib_softfloat",
-       {calib_softfloat_app,
-        "host calibration: cycles per soft-float operation (add, multiply, divide, square root, compare, "
-        "conversion); on the ISS, the measurement behind host.cycles.f* (docs/calibration.md)"}},
+      {"calib_operations",
+       {calib_operations_app,
+        "host calibration: cycles per operation class of the cost model (soft-float add, multiply, divide, "
+        "square root, compare, conversion; a function call and return); on the ISS, the measurement behind "
+        "host.cycles.f* and host.cycles.call (docs/calibration.md)"}},
       {"calib_array_add",
        {calib_array_add_app, "array calibration: 16-bit addition at register level (calibration.md)"}},
       {"calib_array_mul",

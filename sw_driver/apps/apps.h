@@ -37,7 +37,7 @@ int pattern_app(AppEnvironment& env);
 int calib_add_app(AppEnvironment& env);
 int calib_mul_app(AppEnvironment& env);
 int calib_display_port_app(AppEnvironment& env);
-int calib_softfloat_app(AppEnvironment& env);
+int calib_operations_app(AppEnvironment& env);
 int calib_array_add_app(AppEnvironment& env);
 int calib_array_mul_app(AppEnvironment& env);
 int calib_array_add_cmem_app(AppEnvironment& env);

@@ -167,17 +167,19 @@ namespace tessera {
 
 namespace {
 
-// The soft-float operations the host-compiled cost model charges one
-// parameter each for (host.cycles.fadd ...), timed one class at a time over
-// the same loop of table lookups, and the loop alone, so that the
-// difference is the operation's cost: what the ISS measures for the soft-
-// float library's code, or what the cost model charges natively.
-constexpr unsigned SOFT_FLOAT_ITERATIONS = 4096, SOFT_FLOAT_TABLE = 256;
+// The operation classes the host-compiled cost model charges one parameter
+// each for that are not single instructions (the soft-float operations,
+// host.cycles.fadd ..., and a function call with its return,
+// host.cycles.call), timed one class at a time over the same loop of table
+// lookups, and the loop alone, so that the difference is the operation's
+// cost: what the ISS measures for GCC's and the soft-float library's code,
+// or what the cost model charges natively.
+constexpr unsigned OPERATION_ITERATIONS = 4096, OPERAND_TABLE = 256;
 
-struct SoftFloatOperands {
-  float a[SOFT_FLOAT_TABLE], b[SOFT_FLOAT_TABLE];
-  int32_t i[SOFT_FLOAT_TABLE];
-  SoftFloatOperands() {
+struct Operands {
+  float a[OPERAND_TABLE], b[OPERAND_TABLE];
+  int32_t i[OPERAND_TABLE];
+  Operands() {
     uint32_t state = 0x2545f491u;  // xorshift32: the same operands on every host
     auto next = [&state] {
       state ^= state << 13;
@@ -187,7 +189,7 @@ struct SoftFloatOperands {
     };
     // Magnitudes 2^-8 .. 2^12, either sign: a vertex's coordinates, colours
     // and depths, the GL front end's operands.
-    for (unsigned k = 0; k < SOFT_FLOAT_TABLE; ++k) {
+    for (unsigned k = 0; k < OPERAND_TABLE; ++k) {
       a[k] = std::ldexp(static_cast<float>(next() & 0xffffff) / 16777216.0f + 1.0f, static_cast<int>(next() % 21) - 8) *
              ((next() & 1) != 0 ? -1.0f : 1.0f);
       b[k] = std::ldexp(static_cast<float>(next() & 0xffffff) / 16777216.0f + 1.0f, static_cast<int>(next() % 21) - 8) *
@@ -200,13 +202,19 @@ struct SoftFloatOperands {
 volatile float g_float_sink;
 volatile int32_t g_int_sink;
 
-// Host seconds of SOFT_FLOAT_ITERATIONS of `body(k)`; natively, `op` (if
+// A function the compiler must call: its body is the store the loop alone
+// makes, so the difference is the call, the return and the argument.
+__attribute__((noinline)) void store_through_call(int32_t value) {
+  g_int_sink = value;
+}
+
+// Host seconds of OPERATION_ITERATIONS of `body(k)`; natively, `op` (if
 // any) charged once per iteration.
 template <typename Body>
 double timed_loop(HostApi& host, const std::optional<Op>& op, Body body) {
   const double start = host.now_seconds();
-  for (unsigned n = 0; n < SOFT_FLOAT_ITERATIONS; ++n) {
-    body(n % SOFT_FLOAT_TABLE);
+  for (unsigned n = 0; n < OPERATION_ITERATIONS; ++n) {
+    body(n % OPERAND_TABLE);
     if (op) host.compute(*op);
     host.compute(Op::alu, 3);  // the loop's index, compare and table address
     host.compute(Op::branch);
@@ -216,10 +224,10 @@ double timed_loop(HostApi& host, const std::optional<Op>& op, Body body) {
 
 }  // namespace
 
-int calib_softfloat_app(AppEnvironment& env) {
+int calib_operations_app(AppEnvironment& env) {
   HostApi& host = *env.host;
-  static const SoftFloatOperands operands;
-  const SoftFloatOperands& o = operands;
+  static const Operands operands;
+  const Operands& o = operands;
   const double cycles_per_second = host.clock_hz();
   const double loop = timed_loop(host, std::nullopt, [&](unsigned k) { g_float_sink = o.a[k]; });
   const double int_loop = timed_loop(host, std::nullopt, [&](unsigned k) { g_int_sink = o.i[k]; });
@@ -243,10 +251,11 @@ int calib_softfloat_app(AppEnvironment& env) {
                       g_int_sink = static_cast<int32_t>(o.a[k] * 256.0f);
                   }),
        (loop + int_loop) / 2},
+      {"call", timed_loop(host, Op::call, [&](unsigned k) { store_through_call(o.i[k]); }), int_loop},
   };
   for (const Row& row : rows)
-    std::printf("host calibration: soft-float %s: %.1f cycles per operation\n", row.name,
-                (row.seconds - row.baseline) * cycles_per_second / SOFT_FLOAT_ITERATIONS);
+    std::printf("host calibration: %s: %.1f cycles per operation (host.cycles.%s)\n", row.name,
+                (row.seconds - row.baseline) * cycles_per_second / OPERATION_ITERATIONS, row.name);
   return 0;
 }
 
