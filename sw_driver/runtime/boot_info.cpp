@@ -32,17 +32,18 @@ ParamType type_of(const std::string& name) {
 std::vector<ParamSpec> effective_parameters(const Config& config) {
   std::vector<ParamSpec> out;
   for (const ParamSpec& spec : config.specs()) {
-    ParamSpec p;
-    p.key = spec.key;
-    p.type = spec.type;
+    // Aggregates built whole: ParamSpec's implicit default constructor is
+    // declared noexcept, yet nlohmann::json's default constructor may throw
+    // (clang-tidy's bugprone-exception-escape).
+    nlohmann::json value;
     switch (spec.type) {
-      case ParamType::boolean: p.default_value = config.get_bool(spec.key); break;
-      case ParamType::integer: p.default_value = config.get_int(spec.key); break;
-      case ParamType::real: p.default_value = config.get_real(spec.key); break;
+      case ParamType::boolean: value = config.get_bool(spec.key); break;
+      case ParamType::integer: value = config.get_int(spec.key); break;
+      case ParamType::real: value = config.get_real(spec.key); break;
       case ParamType::string:
-      case ParamType::choice: p.default_value = config.get_string(spec.key); break;
+      case ParamType::choice: value = config.get_string(spec.key); break;
     }
-    out.push_back(std::move(p));
+    out.push_back(ParamSpec{spec.key, spec.type, std::move(value), {}, {}, 0, 0, {}});
   }
   return out;
 }
@@ -79,10 +80,8 @@ BootInfo decode(const std::string& text) {
     info.program_heap_end = doc.at("program_heap").at(1).get<uint32_t>();
     info.backend = doc.at("backend").get<std::string>();
     for (const nlohmann::json& entry : doc.at("config")) {
-      ParamSpec p;
-      p.key = entry.at(0).get<std::string>();
-      p.type = type_of(entry.at(1).get<std::string>());
-      p.default_value = entry.at(2);
+      ParamSpec p{
+          entry.at(0).get<std::string>(), type_of(entry.at(1).get<std::string>()), entry.at(2), {}, {}, 0, 0, {}};
       // Read back, never set: the ranges are the values themselves.
       if (p.type == ParamType::integer || p.type == ParamType::real) p.min = p.max = p.default_value.get<double>();
       if (p.type == ParamType::choice) p.choices = {p.default_value.get<std::string>()};
