@@ -2,6 +2,14 @@
 
 namespace tessera {
 
+namespace {
+uint64_t g_edges = 0;
+}  // namespace
+
+uint64_t timed_signal_edges() {
+  return g_edges;
+}
+
 template <class T>
 TimedSignal<T>::TimedSignal(sc_core::sc_module_name name) : sc_core::sc_module(name), signal("signal") {
   SC_METHOD(apply);
@@ -14,6 +22,7 @@ void TimedSignal<T>::set_at(T value, const sc_core::sc_time& when) {
   const sc_core::sc_time now = sc_core::sc_time_stamp();
   const sc_core::sc_time at = when < now ? now : when;
   m_pending.emplace(at, value);
+  ++g_edges;
   // An event keeps only its earliest pending notification, which is the one we need.
   m_wake.notify(at - now);
 }

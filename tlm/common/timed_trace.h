@@ -33,6 +33,11 @@ class TimedSignal : public sc_core::sc_module {
   sc_core::sc_event m_wake;
 };
 
+// How many changes every TimedSignal has been given to schedule so far: an
+// initiator running ahead of the kernel tells from it that none was
+// scheduled while it was not looking (tlm/host: run-ahead).
+uint64_t timed_signal_edges();
+
 using TimedTrace = TimedSignal<bool>;
 using TimedWord = TimedSignal<uint32_t>;
 

@@ -17,10 +17,7 @@ DataCache::DataCache(unsigned size_bytes, unsigned line_bytes, unsigned ways, bo
   m_lines.resize(static_cast<size_t>(m_sets) * m_ways);
 }
 
-DataCache::Line* DataCache::find(uint32_t address) {
-  const uint32_t tag = address >> m_line_shift;
-  if (tag < m_where.size()) return m_where[tag] ? &m_lines[m_where[tag] - 1] : nullptr;
-  if (tag < INDEXED_TAGS) return nullptr;  // an allocated tag this low would be in the table
+DataCache::Line* DataCache::find_in_set(uint32_t tag) {
   Line* set = &m_lines[static_cast<size_t>(tag & (m_sets - 1)) * m_ways];
   for (unsigned way = 0; way < m_ways; ++way)
     if (set[way].valid && set[way].tag == tag) return &set[way];
@@ -56,18 +53,10 @@ DataCache::WriteBack DataCache::take_dirty(Line& line, bool invalidate) {
   return write_back;
 }
 
-DataCache::Result DataCache::read(uint32_t address) {
+DataCache::Result DataCache::read_miss(uint32_t address) {
   Result result{false, {}};
-  if (!enabled()) {
-    ++m_misses;
-    return result;
-  }
-  if (find(address)) {
-    ++m_hits;
-    result.hit = true;
-    return result;
-  }
   ++m_misses;
+  if (!enabled()) return result;
   const uint32_t tag = address >> m_line_shift;
   const unsigned set_index = tag & (m_sets - 1);
   const size_t index = static_cast<size_t>(set_index) * m_ways + m_replacement.victim(set_index, m_round_robin);
@@ -76,19 +65,6 @@ DataCache::Result DataCache::read(uint32_t address) {
   victim = {tag, true, 0};
   remember(victim, index);
   return result;
-}
-
-bool DataCache::write(uint32_t address, bool write_back, unsigned bytes) {
-  if (!enabled()) return false;
-  Line* line = find(address);
-  if (!line) return false;
-  if (write_back) {
-    const auto half = [&](uint32_t at) { return 1u << ((at >> (m_line_shift - 1)) & 1u); };
-    const uint32_t last = std::min(address + std::max(bytes, 1u) - 1, line_address(address) + m_line_bytes - 1);
-    line->dirty |= static_cast<uint8_t>(half(address) | half(last));
-  }
-  ++m_hits;
-  return true;
 }
 
 DataCache::WriteBack DataCache::clean_line(uint32_t address, bool invalidate) {

@@ -7,6 +7,7 @@
 // (write-through) is the caller's: it knows the region's policy.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -38,12 +39,28 @@ class DataCache {
   bool round_robin() const { return m_round_robin; }
 
   // A read: on a miss the line is allocated (the caller fills it, after
-  // writing back the victim's dirty data).
-  Result read(uint32_t address);
+  // writing back the victim's dirty data). Hits, the host's common case,
+  // are found here without a call.
+  Result read(uint32_t address) {
+    if (enabled() && find(address)) {
+      ++m_hits;
+      return {true, {}};
+    }
+    return read_miss(address);
+  }
   // A write of `bytes` from `address` (within one line): true on a hit,
   // which marks the halves of the line it covers dirty if `write_back`; a
   // miss does not allocate.
-  bool write(uint32_t address, bool write_back = true, unsigned bytes = 1);
+  bool write(uint32_t address, bool write_back = true, unsigned bytes = 1) {
+    Line* line = enabled() ? find(address) : nullptr;
+    if (!line) return false;
+    if (write_back) {
+      const uint32_t last = std::min(address + std::max(bytes, 1u) - 1, line_address(address) + m_line_bytes - 1);
+      line->dirty |= static_cast<uint8_t>(half_bit(address) | half_bit(last));
+    }
+    ++m_hits;
+    return true;
+  }
 
   // CP15 c7's data-side operations (ARM922T TRM 2.3.11). Clean: the line's
   // dirty data is returned for writing back and the line marked clean (and
@@ -70,7 +87,17 @@ class DataCache {
     bool valid = false;
     uint8_t dirty = 0;  // bit 0: the first half of the line, bit 1: the second
   };
-  Line* find(uint32_t address);
+  // The resident line holding `address`, or null: one load from the tag
+  // table for the tags it covers, a search of the set above them.
+  Line* find(uint32_t address) {
+    const uint32_t tag = address >> m_line_shift;
+    if (tag < m_where.size()) return m_where[tag] ? &m_lines[m_where[tag] - 1] : nullptr;
+    return tag < INDEXED_TAGS ? nullptr : find_in_set(tag);  // an allocated tag this low would be in the table
+  }
+  Line* find_in_set(uint32_t tag);
+  Result read_miss(uint32_t address);
+  // The dirty bit of the half of its line that `address` is in.
+  unsigned half_bit(uint32_t address) const { return 1u << ((address >> (m_line_shift - 1)) & 1u); }
   WriteBack take_dirty(Line& line, bool invalidate);
 
   unsigned m_line_bytes;

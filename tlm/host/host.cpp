@@ -34,7 +34,9 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
       core_irq("core_irq"),
       core_fiq("core_fiq"),
       m_params(params),
+      m_context(sc_core::sc_get_curr_simcontext()),
       m_period_ticks(params.clock_period.value()),
+      m_cacheable_end(uint64_t{params.cacheable_base} + params.cacheable_size),
       m_run_ahead_ticks(params.run_ahead.value()),
       m_run_aheads(counter("run_aheads", "quantum ends at which the host ran on (nothing else was scheduled)")),
       m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
@@ -81,14 +83,11 @@ void Host::trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) {
   m_cpsr_trace->set_at(cpsr, when);
 }
 
-uint64_t Host::local_ticks() const {
-  return sc_core::sc_time_stamp().value() + m_local_ticks;
-}
-
 void Host::restart_quantum() {
   m_qk.reset();
   m_local_ticks = 0;
-  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - sc_core::sc_time_stamp().value();
+  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - kernel_ticks();
+  m_window_clear = false;
 }
 
 void Host::sync() {
@@ -96,7 +95,21 @@ void Host::sync() {
   m_qk.set(sc_time::from_value(m_local_ticks));
   m_qk.sync();
   m_local_ticks = 0;
-  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - sc_core::sc_time_stamp().value();
+  m_quantum_ticks = m_budget_ticks = m_qk.next_sync_ticks() - kernel_ticks();
+  m_window_clear = false;
+}
+
+bool Host::nothing_scheduled_in_window() {
+  // Asking the kernel (sc_time_to_pending_activity) is what a quantum end
+  // costs while running ahead, and in port mode it comes after almost every
+  // bus access. Its answer cannot change while the kernel's time stands
+  // and nothing is scheduled, so it is kept until the host waits, accesses
+  // anything but memory, or a traced edge is scheduled (the bus traces
+  // every grant); the outcome, and so every count, is the kernel's.
+  if (m_window_clear && m_traced_edges == timed_signal_edges()) return true;
+  m_traced_edges = timed_signal_edges();
+  m_window_clear = sc_core::sc_time_to_pending_activity().value() >= m_run_ahead_ticks;
+  return m_window_clear;
 }
 
 void Host::quantum_used_up() {
@@ -107,18 +120,12 @@ void Host::quantum_used_up() {
   // may have woken another process; the next check then sees that process.
   // When something is scheduled, the host synchronises at the quantum as a
   // plain quantum keeper does, so timing is exactly that of run_ahead = 0.
-  if (m_local_ticks < m_run_ahead_ticks && sc_core::sc_time_to_pending_activity().value() >= m_run_ahead_ticks) {
+  if (m_local_ticks < m_run_ahead_ticks && nothing_scheduled_in_window()) {
     ++m_run_aheads;
     m_budget_ticks = m_run_ahead_ticks;
     return;
   }
   sync();
-}
-
-void Host::charge(uint64_t cycles) {
-  m_busy_cycles += cycles;
-  m_local_ticks += cycles * m_period_ticks;
-  if (m_local_ticks >= m_budget_ticks) quantum_used_up();
 }
 
 void Host::stall_until(uint64_t absolute_ticks) {
@@ -140,17 +147,14 @@ double Host::now_seconds() const {
   return sc_time::from_value(local_ticks()).to_seconds();
 }
 
-bool Host::cacheable(uint32_t address, unsigned bytes) const {
-  return address >= m_params.cacheable_base &&
-         static_cast<uint64_t>(address) + bytes <=
-             static_cast<uint64_t>(m_params.cacheable_base) + m_params.cacheable_size;
-}
-
 uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
                         uint64_t not_before_ticks) {
-  const uint64_t now = sc_core::sc_time_stamp().value();
-  const uint64_t issue = std::max(local_ticks(), not_before_ticks);
-  sc_time delay = sc_time::from_value(issue - now);
+  const uint64_t now = kernel_ticks();
+  const uint64_t issue = std::max(now + m_local_ticks, not_before_ticks);
+  // A request issued where the last one ended (a train's next request, a
+  // load after its fill) is given the delay that one returned, without a
+  // call to sc_time::from_value in the SystemC library.
+  sc_time delay = issue - now == m_last_delay.value() ? m_last_delay : sc_time::from_value(issue - now);
   m_payload.set_command(command);
   m_payload.set_address(address);
   m_payload.set_data_ptr(data);
@@ -161,8 +165,13 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_dmi_allowed(false);
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   out->b_transport(m_payload, delay);
+  m_last_delay = delay;
   m_train->transfers = 1;
   m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
+  // Memory (a target that grants DMI may be bypassed, so its accesses can
+  // wake no process) leaves the kernel's schedule as it was; a request
+  // without delay may have waited a delta cycle for others at the bus.
+  m_window_clear = m_window_clear && m_payload.is_dmi_allowed() && issue > now;
   if (m_payload.is_response_error()) {
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +
@@ -170,10 +179,10 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
                                 log::response_text(m_payload.get_response_status()) + ")";
     throw BusError(message, address);
   }
-  return sc_core::sc_time_stamp().value() + delay.value();
+  return kernel_ticks() + delay.value();
 }
 
-uint8_t* Host::dmi_pointer(uint32_t address, unsigned bytes, bool write) {
+uint8_t* Host::dmi_pointer_or_null(uint32_t address, unsigned bytes) {
   if (!m_dmi_valid && !m_dmi_denied) {
     tlm::tlm_generic_payload request;
     request.set_command(tlm::TLM_READ_COMMAND);
@@ -182,7 +191,6 @@ uint8_t* Host::dmi_pointer(uint32_t address, unsigned bytes, bool write) {
     m_dmi_valid = out->get_direct_mem_ptr(request, m_dmi) && m_dmi.is_read_write_allowed();
     m_dmi_denied = !m_dmi_valid;
   }
-  (void)write;
   if (!m_dmi_valid || address < m_dmi.get_start_address() ||
       static_cast<uint64_t>(address) + bytes - 1 > m_dmi.get_end_address())
     return nullptr;
@@ -207,7 +215,7 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
       std::memcpy(data, fill + (address - m_dcache.line_address(address)), bytes);
       return;
     }
-    if (const uint8_t* p = dmi_pointer(address, bytes, false)) {
+    if (const uint8_t* p = dmi_pointer(address, bytes)) {
       std::memcpy(data, p, bytes);
       return;
     }
@@ -234,7 +242,7 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   // line (memory holds the data either way) and goes to the write buffer as
   // a miss does.
   if (cached(address, bytes) && m_dcache.write(address, !m_params.write_through) && !m_params.write_through) {
-    if (uint8_t* p = dmi_pointer(address, bytes, true)) {
+    if (uint8_t* p = dmi_pointer(address, bytes)) {
       std::memcpy(p, data, bytes);
       return;
     }
@@ -251,7 +259,8 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
 }
 
 unsigned Host::transfers_per_request(unsigned bytes_each) const {
-  return std::max(1u, m_params.write_buffer_words / std::max(1u, (bytes_each + 3) / 4));
+  const unsigned words_each = (bytes_each + 3) / 4;
+  return std::max(1u, words_each <= 1 ? m_params.write_buffer_words : m_params.write_buffer_words / words_each);
 }
 
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
@@ -325,7 +334,7 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
 void Host::write_back(const DataCache::WriteBack& dirty) {
   if (dirty.bytes == 0) return;
   uint8_t data[256] = {};
-  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes, false)) std::memcpy(data, p, dirty.bytes);
+  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes)) std::memcpy(data, p, dirty.bytes);
   post_write(dirty.address, data, dirty.bytes);
 }
 
@@ -421,7 +430,7 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
     const bool hit =
         i < count && cached(address + 4 * i, 4) && m_dcache.write(address + 4 * i, !write_through) && !write_through;
     if (hit) {
-      if (uint8_t* p = dmi_pointer(address + 4 * i, 4, true)) {
+      if (uint8_t* p = dmi_pointer(address + 4 * i, 4)) {
         std::memcpy(p, &words[i], 4);
       } else {
         tlm::tlm_generic_payload request;
@@ -448,7 +457,7 @@ uint8_t* Host::span_pointer(uint32_t address, unsigned bytes) {
   if (!cacheable(address, bytes))
     throw std::invalid_argument("host: span access of " + std::to_string(bytes) + " bytes at " + log::hex(address) +
                                 " is not in system memory");
-  uint8_t* p = dmi_pointer(address, bytes, true);
+  uint8_t* p = dmi_pointer(address, bytes);
   if (!p) throw std::invalid_argument("host: span access at " + log::hex(address) + " without DMI to system memory");
   return p;
 }
@@ -542,11 +551,11 @@ template <typename Event, typename Done>
 void Host::idle_until(const Event& event, Done done) {
   sync();
   if (done()) return;
-  const uint64_t start = sc_core::sc_time_stamp().value();
+  const uint64_t start = kernel_ticks();
   if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
   while (!done()) wait(event);
   restart_quantum();
-  m_idle_ticks += sc_core::sc_time_stamp().value() - start;
+  m_idle_ticks += kernel_ticks() - start;
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
 }
 
@@ -592,7 +601,7 @@ bool Host::debug_access(tlm::tlm_command command, uint32_t address, uint8_t* dat
 }
 
 bool Host::debug_read(uint32_t address, uint8_t* data, unsigned bytes) {
-  if (const uint8_t* p = dmi_pointer(address, bytes, false)) {
+  if (const uint8_t* p = dmi_pointer(address, bytes)) {
     std::memcpy(data, p, bytes);
     return true;
   }
@@ -600,7 +609,7 @@ bool Host::debug_read(uint32_t address, uint8_t* data, unsigned bytes) {
 }
 
 bool Host::debug_write(uint32_t address, const uint8_t* data, unsigned bytes) {
-  if (uint8_t* p = dmi_pointer(address, bytes, true)) {
+  if (uint8_t* p = dmi_pointer(address, bytes)) {
     std::memcpy(p, data, bytes);
     return true;
   }

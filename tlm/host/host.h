@@ -150,10 +150,20 @@ class Host : public Block, public HostApi, public HostCore {
 
  private:
   void run();
-  void charge(uint64_t cycles);
+  // The kernel's time in ticks: sc_simcontext::time_stamp() is inline,
+  // sc_time_stamp() a call into the SystemC library.
+  uint64_t kernel_ticks() const { return m_context->time_stamp().value(); }
+  uint64_t local_ticks() const { return kernel_ticks() + m_local_ticks; }
+  // Adds busy cycles; the hot path is an addition and a compare in ticks.
+  void charge(uint64_t cycles) {
+    m_busy_cycles += cycles;
+    m_local_ticks += cycles * m_period_ticks;
+    if (m_local_ticks >= m_budget_ticks) quantum_used_up();
+  }
   void stall_until(uint64_t absolute_ticks);
-  uint64_t local_ticks() const;
-  bool cacheable(uint32_t address, unsigned bytes) const;
+  bool cacheable(uint32_t address, unsigned bytes) const {
+    return address >= m_params.cacheable_base && uint64_t{address} + bytes <= m_cacheable_end;
+  }
   // Whether an access is looked up in the data cache: cacheable, and the
   // cache present and on (CP15's C bit).
   bool cached(uint32_t address, unsigned bytes) const {
@@ -178,7 +188,15 @@ class Host : public Block, public HostApi, public HostCore {
   uint8_t* span_pointer(uint32_t address, unsigned bytes);
   // Posts a line's dirty data (a victim's, or a clean's) to the write buffer.
   void write_back(const DataCache::WriteBack& dirty);
-  uint8_t* dmi_pointer(uint32_t address, unsigned bytes, bool write);
+  // A pointer to `bytes` at `address` through DMI, or null where DMI does
+  // not reach; the DMI region is asked for at the first call and after
+  // each invalidation.
+  uint8_t* dmi_pointer(uint32_t address, unsigned bytes) {
+    if (m_dmi_valid && address >= m_dmi.get_start_address() && uint64_t{address} + bytes - 1 <= m_dmi.get_end_address())
+      return m_dmi.get_dmi_ptr() + (address - m_dmi.get_start_address());
+    return dmi_pointer_or_null(address, bytes);
+  }
+  uint8_t* dmi_pointer_or_null(uint32_t address, unsigned bytes);
   void invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end);
   // Hands the host's local time to the quantum keeper and waits for it.
   void sync();
@@ -189,7 +207,9 @@ class Host : public Block, public HostApi, public HostCore {
   bool debug_access(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes);
 
   HostParams m_params;
-  uint64_t m_period_ticks;  // clock period in kernel time units
+  sc_core::sc_simcontext* m_context;
+  uint64_t m_period_ticks;   // clock period in kernel time units
+  uint64_t m_cacheable_end;  // the cacheable range's end, exclusive
   Program m_program;
   std::function<void()> m_on_finish;
   // The quantum keeper with its next synchronisation point readable, so that
@@ -205,12 +225,21 @@ class Host : public Block, public HostApi, public HostCore {
   uint64_t m_run_ahead_ticks;     // params.run_ahead
   ActivityCounter& m_run_aheads;  // synchronisations skipped
   ActivityCounter& m_syncs;       // synchronisations made
+  // Whether the kernel was last seen with nothing scheduled within the
+  // run-ahead window, and nothing can have been scheduled since: the host
+  // has not waited, its bus accesses since went to memory (which cannot
+  // wake a process) and no traced edge was scheduled (`m_traced_edges`,
+  // timed_signal_edges() when the kernel was looked at). See quantum_used_up.
+  bool m_window_clear = false;
+  uint64_t m_traced_edges = 0;
   void restart_quantum();
   void quantum_used_up();
+  bool nothing_scheduled_in_window();
   DataCache m_dcache;
   bool m_dcache_on = true;  // CP15 c1's C bit (host.model=iss); always on for host-compiled code
   tlm::tlm_generic_payload m_payload;
-  TransferTrain* m_train;  // owned by m_payload
+  TransferTrain* m_train;         // owned by m_payload
+  sc_core::sc_time m_last_delay;  // the delay the last transaction returned
 
   tlm::tlm_dmi m_dmi;
   bool m_dmi_valid = false;
