@@ -181,6 +181,17 @@ class Bench {
   std::vector<double> m_floor_s;                             // bench_bus's bare b_transport, per round
   // Its median; 0 if bench_bus gave no 4-byte read.
   double floor_seconds() const { return m_floor_s.empty() ? 0 : min_median(m_floor_s).median; }
+  // What a goal of `goal` times the reference frame leaves for everything
+  // the simulation adds, in all and per bus transaction, against the floor.
+  std::string transaction_budget(double transactions, double reference_frame, double goal) const {
+    const double allowed = (goal - 1) * reference_frame;
+    const double each = allowed / std::max(1.0, transactions);
+    return text_of(
+        "The goal leaves %.2g of the reference frame, %s, for all the simulation adds: %s per transaction, %s one "
+        "bare b_transport (%s, the floor of the bus row)",
+        goal - 1, format_duration(allowed).c_str(), format_duration(each).c_str(), than(each, floor_seconds()),
+        format_duration(floor_seconds()).c_str());
+  }
   std::vector<Row> m_rows;
   std::vector<std::string> m_notes;
   std::string m_datapath_table;
@@ -269,16 +280,14 @@ void Bench::arm_rows() {
   // What the goal leaves for everything the simulation adds, per bus
   // transaction, against the bare b_transport of the bus row's floor.
   const double native_frame = min_median(native_s).median;
-  native.limit = [this, native_frame] {
-    const double floor = floor_seconds();
-    const double each = 0.5 * native_frame / std::max(1.0, m_arm_transactions);
+  native.limit = [this, native_frame, goal = native.goal_value] {
     return text_of(
-        "the host's memory traffic: %.0f bus transactions a frame (stats.json, averaged over the run; every "
-        "cache miss and buffered store is one, as the timing model requires). The goal leaves half the native "
-        "frame, %s, for all the simulation adds: %s per transaction, %s one bare b_transport (%s, the floor of "
-        "the bus row), at whose cost the transactions alone would take %s a frame",
-        m_arm_transactions, format_duration(0.5 * native_frame).c_str(), format_duration(each).c_str(),
-        than(each, floor), format_duration(floor).c_str(), format_duration(m_arm_transactions * floor).c_str());
+               "the host's memory traffic: %.0f bus transactions a frame (stats.json, averaged over the run; every "
+               "cache miss and buffered store is one, as the timing model requires). ",
+               m_arm_transactions) +
+           transaction_budget(m_arm_transactions, native_frame, goal) +
+           text_of(", at whose cost the transactions alone would take %s a frame",
+                   format_duration(m_arm_transactions * floor_seconds()).c_str());
   };
   png.limit = [] {
     return std::string("the same traffic as the row above (its bus transactions are the same), and the PNG files");
@@ -324,16 +333,12 @@ void Bench::raster_row() {
                    });
   }
   const double core_frame = min_median(row.reference).median;
-  row.limit = [this, core_frame] {
-    const double floor = floor_seconds();
-    const double each = 0.2 * core_frame / std::max(1.0, m_raster_transactions);
+  row.limit = [this, core_frame, goal = row.goal_value] {
     return text_of(
-        "around the core, the host model and the bus: %.0f bus transactions a frame (the rasterizer's bursts and "
-        "the host's, each arbitrated; stats.json, averaged over the run). The goal leaves 0.2 of the core's "
-        "frame, %s, for all the simulation adds: %s per transaction, %s one bare b_transport (%s, the floor of "
-        "the bus row)",
-        m_raster_transactions, format_duration(0.2 * core_frame).c_str(), format_duration(each).c_str(),
-        than(each, floor), format_duration(floor).c_str());
+               "around the core, the host model and the bus: %.0f bus transactions a frame (the rasterizer's bursts "
+               "and the host's, each arbitrated; stats.json, averaged over the run). ",
+               m_raster_transactions) +
+           transaction_budget(m_raster_transactions, core_frame, goal);
   };
   m_rows.push_back(row);
   Row fragment{"`raster` core natively: CPU time per fragment", "4x faster than 215 ns: <= 54 ns"};
