@@ -31,6 +31,11 @@ import yaml
 from .simulator import Simulator, SimulatorError, flatten
 
 ALIASES = {"app": "sim.app", "backend": "driver.backend", "frames": "sim.frames"}
+# The values a YAML spec may hold with its aliases (*name) expanded, each
+# reference counting as a copy. A real spec holds tens; the bound refuses a
+# few hundred bytes of nested aliases that expand to billions of values
+# (which took gigabytes and ended in a MemoryError) before anything is built.
+MAX_SPEC_VALUES = 100_000
 FIELDS = {"app", "backend", "frames", "args", "config", "axes", "zip", "metrics", "output", "write_frames"}
 
 
@@ -112,11 +117,62 @@ def parse_spec(data: dict) -> Spec:
                 source=yaml.safe_dump(data, sort_keys=False))
 
 
+def _children(node: yaml.Node) -> list:
+    if isinstance(node, yaml.MappingNode):
+        return [part for pair in node.value for part in pair]
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    return []
+
+
+def _check_expanded_size(root: yaml.Node, where: Path) -> None:
+    """SpecError if the YAML document, its aliases expanded, holds more than
+    MAX_SPEC_VALUES values or refers to itself. Counts on the composed
+    graph, where an alias is the anchored node itself: each node once,
+    without building anything."""
+    sizes: dict[int, int] = {}
+    open_nodes: set[int] = set()  # the nodes whose children are being counted
+    stack = [(root, False)]
+    while stack:
+        node, counted = stack.pop()
+        key = id(node)
+        if counted:
+            open_nodes.discard(key)
+            sizes[key] = 1 + sum(sizes[id(child)] for child in _children(node))
+            if sizes[key] > MAX_SPEC_VALUES:
+                line = node.start_mark.line + 1
+                raise SpecError(f"{where}: line {line}: the spec holds more than {MAX_SPEC_VALUES:,} values with "
+                                "its aliases (*name) expanded: a spec that repeats aliases of aliases grows "
+                                "exponentially; write the values out, or use fewer levels of aliases")
+            continue
+        if key in sizes:
+            continue
+        if key in open_nodes:
+            line = node.start_mark.line + 1
+            raise SpecError(f"{where}: line {line}: an alias refers to a value that contains it")
+        open_nodes.add(key)
+        stack.append((node, True))
+        stack.extend((child, False) for child in _children(node) if id(child) not in sizes)
+
+
+def _load_yaml(text: str, where: Path):
+    """yaml.safe_load with the size of the document checked first."""
+    loader = yaml.SafeLoader(text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        _check_expanded_size(node, where)
+        return loader.construct_document(node)
+    finally:
+        loader.dispose()
+
+
 def load_spec(path: str | Path) -> Spec:
     path = Path(path)
     text = path.read_text()
     try:
-        data = json.loads(text) if path.suffix == ".json" else yaml.safe_load(text)
+        data = json.loads(text) if path.suffix == ".json" else _load_yaml(text, path)
     except (json.JSONDecodeError, yaml.YAMLError) as error:
         raise SpecError(f"{path}: {error}") from None
     spec = parse_spec(data)

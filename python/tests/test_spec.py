@@ -95,3 +95,54 @@ def test_example_sweeps_are_valid_and_name_metrics(path, simulator):
     spec = load_spec(path)
     assert spec.metrics and spec.output
     check(expand(spec), simulator)
+
+
+def _nested_aliases(levels: int) -> str:
+    """A spec of a few hundred bytes whose aliases of aliases ("billion
+    laughs") expand to 10 ** (levels + 1) values."""
+    lines = ["app: triangle", "frames: 1", "config:", "  a0: &a0 [x, x, x, x, x, x, x, x, x, x]"]
+    for level in range(1, levels + 1):
+        lines.append(f"  a{level}: &a{level} [" + ", ".join([f"*a{level - 1}"] * 10) + "]")
+    lines += ["axes:", f"  display.width: *a{levels}"]
+    return "\n".join(lines) + "\n"
+
+
+def test_nested_aliases_are_refused_before_anything_is_built(tmp_path):
+    import tracemalloc
+    path = tmp_path / "laughs.yaml"
+    path.write_text(_nested_aliases(8))
+    assert len(path.read_text()) < 700
+    tracemalloc.start()
+    try:
+        with pytest.raises(SpecError, match=r"laughs.yaml: line \d+: .*more than 100,000 values.*aliases"):
+            load_spec(path)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < 20 * 2 ** 20
+
+
+def test_nested_aliases_are_refused_by_the_command_line(tmp_path, capsys):
+    from tessera_sweep.cli import main
+    path = tmp_path / "laughs.yaml"
+    path.write_text(_nested_aliases(8))
+    assert main([str(path), "--check", "--soc-sim", "/nonexistent/soc_sim"]) == 2
+    error = capsys.readouterr().err
+    assert "tessera-sweep:" in error and "aliases" in error and "Traceback" not in error
+
+
+def test_an_alias_that_contains_itself_is_refused(tmp_path):
+    path = tmp_path / "loop.yaml"
+    path.write_text("app: triangle\naxes:\n  display.width: &w [192, *w]\n")
+    with pytest.raises(SpecError, match="contains it"):
+        load_spec(path)
+
+
+def test_a_few_aliases_are_still_fine(tmp_path, tiny):
+    # Aliases within the bound load as before: the same as the values written out.
+    path = tmp_path / "ok.yaml"
+    path.write_text("app: triangle\nframes: 1\nconfig:\n  display.width: &w 192\n  raster.width: *w\n"
+                    "axes:\n  display.height: &h [144, 96]\n  raster.height: *h\n")
+    spec = load_spec(path)
+    assert spec.base["display.width"] == spec.base["raster.width"] == 192
+    assert spec.axes == {"display.height": [144, 96], "raster.height": [144, 96]}
