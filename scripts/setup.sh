@@ -5,6 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config git
+  ccache                  # rebuilds and other clones on this machine reuse compiled units (cmake/Ccache.cmake)
   libsystemc-dev          # SystemC 2.3 with TLM-2.0
   libglm-dev              # vector maths for the GL front end
   libpng-dev              # PNG output of the display (soc_sim)
