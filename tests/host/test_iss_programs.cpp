@@ -2,8 +2,10 @@
 // float, newlib's memcpy/memset, libgcc's division) run on the ISS; their
 // console output must equal the same source compiled natively and run on
 // this machine. Also: what a malformed or misplaced ELF gets.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -99,6 +101,83 @@ TEST(IssPrograms, MalformedExecutablesAreClearErrorsNamingTheFile) {
   entry[24] = entry[25] = entry[26] = 0xff;
   entry[27] = 0x7f;  // e_entry 0x7fffffff: in no segment
   expect_error(write_file("entry.elf", entry), "entry point 0x7fffffff is not in an executable segment");
+}
+
+// A minimal ARM executable: the ELF header, one program header per
+// segment (address, file bytes, memory bytes; the first executable), the
+// entry at the first segment's address. The file bytes are zeros.
+struct Segment {
+  uint32_t address, file_bytes, memory_bytes;
+};
+std::vector<uint8_t> make_elf(const std::vector<Segment>& segments) {
+  const uint32_t headers = 52, data = headers + 32 * static_cast<uint32_t>(segments.size());
+  uint32_t file_bytes = 0;
+  for (const Segment& s : segments) file_bytes = std::max(file_bytes, s.file_bytes);
+  std::vector<uint8_t> elf(data + file_bytes, 0);
+  const auto put16 = [&](uint32_t at, uint32_t v) {
+    elf[at] = static_cast<uint8_t>(v);
+    elf[at + 1] = static_cast<uint8_t>(v >> 8);
+  };
+  const auto put32 = [&](uint32_t at, uint32_t v) {
+    put16(at, v & 0xffff);
+    put16(at + 2, v >> 16);
+  };
+  const uint8_t ident[] = {0x7f, 'E', 'L', 'F', 1, 1, 1};
+  std::copy(std::begin(ident), std::end(ident), elf.begin());
+  put16(16, 2);   // ET_EXEC
+  put16(18, 40);  // EM_ARM
+  put32(20, 1);
+  put32(24, segments.front().address);  // e_entry
+  put32(28, headers);                   // e_phoff
+  put16(40, 52);
+  put16(42, 32);
+  put16(44, static_cast<uint32_t>(segments.size()));
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const uint32_t at = headers + 32 * static_cast<uint32_t>(i);
+    put32(at, 1);  // PT_LOAD
+    put32(at + 4, data);
+    put32(at + 8, segments[i].address);
+    put32(at + 12, segments[i].address);
+    put32(at + 16, segments[i].file_bytes);
+    put32(at + 20, segments[i].memory_bytes);
+    put32(at + 24, i == 0 ? 5 : 6);  // R+X, then R+W
+  }
+  return elf;
+}
+
+TEST(IssPrograms, WellFormedSegmentsAreRead) {
+  const auto image =
+      tessera::iss::read_elf(write_file("two_segments.elf", make_elf({{0x1000, 16, 64}, {0x2000, 8, 0x10000}})));
+  ASSERT_EQ(image.segments.size(), 2u);
+  EXPECT_EQ(image.segments[1].address, 0x2000u);
+  EXPECT_EQ(image.segments[1].bytes.size(), 0x10000u);
+  EXPECT_EQ(image.entry, 0x1000u);
+}
+
+// Issue 34: the limit is on the file's segments together, checked before
+// anything is allocated (24 segments of 64 MiB each took 1.5 GB, more
+// ended in std::bad_alloc with no file named).
+TEST(IssPrograms, SegmentsTogetherLargerThanTheLimitAreRefusedBeforeAllocation) {
+  const uint32_t mib = 1u << 20;
+  expect_error(write_file("two_large.elf", make_elf({{0, 16, 40 * mib}, {64 * mib, 16, 40 * mib}})),
+               "more than an executable for the SoC can (67108864)");
+  std::vector<Segment> many;
+  for (uint32_t i = 0; i < 60; ++i) many.push_back({i * 64 * mib, 16, 64 * mib});
+  expect_error(write_file("many_large.elf", make_elf(many)), "more than an executable for the SoC can");
+  // Exactly the limit is an executable still.
+  EXPECT_NO_THROW(
+      tessera::iss::read_elf(write_file("at_limit.elf", make_elf({{0, 16, 32 * mib}, {32 * mib, 16, 32 * mib}}))));
+}
+
+// Issue 34: overlapping segments left the ISS running one copy while
+// memory and GDB showed another.
+TEST(IssPrograms, OverlappingSegmentsAreRefusedNamingBoth) {
+  expect_error(write_file("overlap.elf", make_elf({{0x1000, 16, 0x100}, {0x10f0, 16, 0x100}})),
+               "segments 0 (0x00001000..0x00001100) and 1 (0x000010f0..0x000011f0) overlap");
+  expect_error(write_file("inside.elf", make_elf({{0x1000, 16, 0x1000}, {0x0800, 16, 0x100}, {0x1800, 4, 4}})),
+               "segments 0 (0x00001000..0x00002000) and 2 (0x00001800..0x00001804) overlap");
+  // Touching is not overlapping.
+  EXPECT_NO_THROW(tessera::iss::read_elf(write_file("adjacent.elf", make_elf({{0x1000, 16, 0x100}, {0x1100, 4, 4}}))));
 }
 
 TEST(IssPrograms, AnExecutableOutsideMemoryIsAClearError) {

@@ -91,7 +91,17 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
   if (count == 0) fail("no program headers");
   if (entry_size < PROGRAM_HEADER_BYTES || table + uint64_t{entry_size} * count > file.size())
     fail("program headers outside the file");
-  bool entry_covered = false;
+  // Every header is checked, and the segments' total and overlaps, before
+  // a byte is allocated: a small file must not make the loader take
+  // gigabytes (many large segments) nor leave two segments claiming the
+  // same memory (which copy would run, which would GDB show?).
+  struct Loadable {
+    unsigned index;
+    uint64_t offset, address, file_size, memory_size;
+    bool executable;
+  };
+  std::vector<Loadable> loadable;
+  uint64_t total = 0;
   for (unsigned i = 0; i < count; ++i) {
     const uint64_t at = table + uint64_t{entry_size} * i;
     if (u32(file, at) != LOAD) continue;
@@ -101,16 +111,36 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
     if (offset + file_size > file.size()) fail("segment " + std::to_string(i) + " extends past the end of the file");
     if (address + memory_size > (1ull << 32))
       fail("segment " + std::to_string(i) + " at " + address_text(address) + " wraps past 4 GiB");
-    if (memory_size > MAX_ELF_BYTES)
-      fail("segment " + std::to_string(i) + " of " + std::to_string(memory_size) + " bytes");
     if (memory_size == 0) continue;
+    total += memory_size;
+    if (total > MAX_ELF_BYTES)
+      fail("its loadable segments take " + std::to_string(total) + " bytes or more (up to segment " +
+           std::to_string(i) + "), more than an executable for the SoC can (" + std::to_string(MAX_ELF_BYTES) + ")");
+    loadable.push_back({i, offset, address, file_size, memory_size, (u32(file, at + 24) & FLAG_EXECUTE) != 0});
+  }
+  std::vector<const Loadable*> by_address;
+  for (const Loadable& segment : loadable) by_address.push_back(&segment);
+  std::sort(by_address.begin(), by_address.end(),
+            [](const Loadable* a, const Loadable* b) { return a->address < b->address; });
+  const auto range = [](const Loadable& s) {
+    return address_text(static_cast<uint32_t>(s.address)) + ".." + address_text(s.address + s.memory_size);
+  };
+  for (size_t k = 1; k < by_address.size(); ++k) {
+    const Loadable& before = *by_address[k - 1];
+    const Loadable& after = *by_address[k];
+    if (after.address < before.address + before.memory_size)
+      fail("segments " + std::to_string(before.index) + " (" + range(before) + ") and " + std::to_string(after.index) +
+           " (" + range(after) + ") overlap");
+  }
+  bool entry_covered = false;
+  for (const Loadable& s : loadable) {
     ElfSegment segment;
-    segment.address = static_cast<uint32_t>(address);
-    segment.executable = (u32(file, at + 24) & FLAG_EXECUTE) != 0;
-    segment.bytes.assign(file.begin() + static_cast<std::ptrdiff_t>(offset),
-                         file.begin() + static_cast<std::ptrdiff_t>(offset + file_size));
-    segment.bytes.resize(memory_size, 0);
-    entry_covered |= segment.executable && image.entry >= address && image.entry < address + memory_size;
+    segment.address = static_cast<uint32_t>(s.address);
+    segment.executable = s.executable;
+    segment.bytes.assign(file.begin() + static_cast<std::ptrdiff_t>(s.offset),
+                         file.begin() + static_cast<std::ptrdiff_t>(s.offset + s.file_size));
+    segment.bytes.resize(s.memory_size, 0);
+    entry_covered |= s.executable && image.entry >= s.address && image.entry < s.address + s.memory_size;
     image.segments.push_back(std::move(segment));
   }
   if (image.segments.empty()) fail("no loadable segment");
