@@ -14,6 +14,8 @@ constexpr uint32_t FAILED = 0xffffffffu;  // -1
 // Semihosting's file modes, fopen's strings in order: 0-3 read, 4-7 write,
 // 8-11 append.
 constexpr uint32_t MODES = 12;
+// SYS_WRITE reads the program's data and hands it on in pieces this large.
+constexpr uint32_t WRITE_CHUNK = 4096;
 bool reads(uint32_t mode) {
   return mode < 4;
 }
@@ -180,23 +182,35 @@ uint32_t Semihosting::write(uint32_t block) {
   if (!words(block, w, 3)) return fail(ERROR_FAULT);
   Handle* h = handle(w[0]);
   if (!h) return fail(ERROR_BAD_HANDLE);
-  std::string data;
-  constexpr uint32_t CHUNK = 1u << 16;
-  for (uint32_t done = 0; done < w[2]; done += CHUNK) {
-    std::string chunk;
-    if (!read_string(w[1] + done, std::min(CHUNK, w[2] - done), chunk)) return fail(ERROR_FAULT);
-    data += chunk;
-  }
+  std::function<void(const std::string&)> take;
   switch (h->kind) {
     case Handle::Kind::console_out:
-      if (console) console(1, data);
-      return 0;
+      take = [this](const std::string& text) {
+        if (console) console(1, text);
+      };
+      break;
     case Handle::Kind::console_error:
-      if (console) console(2, data);
-      return 0;
-    case Handle::Kind::sink: h->sink(data); return 0;
+      take = [this](const std::string& text) {
+        if (console) console(2, text);
+      };
+      break;
+    case Handle::Kind::sink: take = h->sink; break;
     default: m_errno = ERROR_BAD_HANDLE; return w[2];  // opened for reading: nothing written
   }
+  // Handed on a chunk at a time as it is read: any length is written, in
+  // bounded memory.
+  std::string chunk;
+  for (uint32_t done = 0; done < w[2]; done += static_cast<uint32_t>(chunk.size())) {
+    chunk.resize(std::min(WRITE_CHUNK, w[2] - done));
+    if (!m_port.read_memory(w[1] + done, reinterpret_cast<uint8_t*>(chunk.data()),
+                            static_cast<unsigned>(chunk.size()))) {
+      if (done == 0) return fail(ERROR_FAULT);
+      m_errno = ERROR_FAULT;
+      return w[2] - done;  // the bytes not written
+    }
+    take(chunk);
+  }
+  return 0;
 }
 
 uint32_t Semihosting::read(uint32_t block) {
