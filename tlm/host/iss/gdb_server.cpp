@@ -77,14 +77,67 @@ bool parse_hex(const std::string& text, uint64_t& value) {
   return true;
 }
 
-uint32_t word_from_hex(const std::string& text) {  // 8 hex digits, little-endian bytes
-  uint32_t value = 0;
-  for (int i = 0; i < 4; ++i)
-    value |= static_cast<uint32_t>(nibble(text[2 * i]) << 4 | nibble(text[2 * i + 1])) << (8 * i);
-  return value;
+// Eight hex digits at `at`, the word's bytes little-endian; false if any is
+// not a hex digit or the text is too short.
+bool word_from_hex(const std::string& text, size_t at, uint32_t& value) {
+  if (text.size() < at + 8) return false;
+  value = 0;
+  for (unsigned i = 0; i < 8; ++i) {
+    const int n = nibble(text[at + i]);
+    if (n < 0) return false;
+    value |= static_cast<uint32_t>(n) << (8 * (i / 2) + (i % 2 == 0 ? 4 : 0));
+  }
+  return true;
 }
 
 }  // namespace
+
+GdbPacketReader::Event GdbPacketReader::feed(char c) {
+  switch (m_state) {
+    case State::between:
+      if (c == '$') {
+        m_state = State::data;
+        m_data.clear();
+        m_sum = 0;
+        m_too_long = false;
+      }
+      return Event::none;
+    case State::data:
+      if (c == '#') {
+        m_state = State::checksum_high;
+      } else if (c == '$') {  // a packet begun again (the rest was lost)
+        m_data.clear();
+        m_sum = 0;
+        m_too_long = false;
+      } else {
+        m_sum += static_cast<unsigned char>(c);
+        if (m_data.size() < MAX_DATA)
+          m_data += c;
+        else
+          m_too_long = true;
+      }
+      return Event::none;
+    case State::checksum_high:
+      m_bad_digit = nibble(c) < 0;
+      m_checksum = m_bad_digit ? 0 : static_cast<unsigned>(nibble(c)) << 4;
+      m_state = State::checksum_low;
+      return Event::none;
+    case State::checksum_low:
+      m_state = State::between;
+      m_bad_digit = m_bad_digit || nibble(c) < 0;
+      if (!m_bad_digit) m_checksum |= static_cast<unsigned>(nibble(c));
+      if (m_too_long) {
+        m_data.clear();
+        return Event::too_long;
+      }
+      if (m_bad_digit || m_checksum != (m_sum & 0xffu)) {
+        m_data.clear();
+        return Event::bad_checksum;
+      }
+      return Event::packet;
+  }
+  return Event::none;
+}
 
 GdbServer::~GdbServer() {
   close_connection();
@@ -127,16 +180,24 @@ bool GdbServer::receive(char& c) {
 }
 
 std::string GdbServer::read_packet() {
-  std::string data;
   char c = 0;
-  do  // skip to the start of a packet (acks, a Ctrl-C while stopped)
-    if (!receive(c)) return "";
-  while (c != '$');
-  while (receive(c) && c != '#') data += c;
-  char checksum[2];
-  if (!m_connected || !receive(checksum[0]) || !receive(checksum[1])) return "";
-  ::send(m_fd, "+", 1, MSG_NOSIGNAL);
-  return data;
+  while (receive(c)) {
+    switch (m_reader.feed(c)) {
+      case GdbPacketReader::Event::none: break;
+      case GdbPacketReader::Event::packet: ::send(m_fd, "+", 1, MSG_NOSIGNAL); return m_reader.packet();
+      case GdbPacketReader::Event::bad_checksum:  // not executed: GDB sends it again
+        ::send(m_fd, "-", 1, MSG_NOSIGNAL);
+        break;
+      case GdbPacketReader::Event::too_long:
+        // Sending it again would not help: acknowledged, refused, dropped.
+        std::fprintf(stderr, "GDB server: a packet of more than %zu bytes refused (the server offers %llu)\n",
+                     GdbPacketReader::MAX_DATA, static_cast<unsigned long long>(PACKET_SIZE));
+        ::send(m_fd, "+", 1, MSG_NOSIGNAL);
+        send_packet("E01");
+        break;
+    }
+  }
+  return "";
 }
 
 void GdbServer::send_packet(const std::string& data) {
@@ -220,11 +281,15 @@ std::string GdbServer::handle(const std::string& packet, bool& resume, bool& ste
   switch (kind) {
     case '?': return stop_reply();
     case 'g': return registers();
-    case 'G':
-      if (args.size() < 17 * 8) return "E01";
-      for (unsigned n = 0; n < 16; ++n) core.set_reg(n, word_from_hex(args.substr(8 * n, 8)));
-      core.set_cpsr(word_from_hex(args.substr(16 * 8, 8)));
+    case 'G': {
+      // Every word checked before any is set: a bad packet changes nothing.
+      uint32_t words[17];
+      for (unsigned n = 0; n < 17; ++n)
+        if (!word_from_hex(args, 8 * n, words[n])) return "E01";
+      for (unsigned n = 0; n < 16; ++n) core.set_reg(n, words[n]);
+      core.set_cpsr(words[16]);
       return "OK";
+    }
     case 'p': {
       uint64_t n = 0;
       if (!parse_hex(args, n) || n > 16) return "E01";
@@ -233,8 +298,9 @@ std::string GdbServer::handle(const std::string& packet, bool& resume, bool& ste
     case 'P': {
       const size_t eq = args.find('=');
       uint64_t n = 0;
-      if (eq == std::string::npos || !parse_hex(args.substr(0, eq), n) || n > 16 || args.size() < eq + 9) return "E01";
-      const uint32_t value = word_from_hex(args.substr(eq + 1, 8));
+      uint32_t value = 0;
+      if (eq == std::string::npos || !parse_hex(args.substr(0, eq), n) || n > 16 || !word_from_hex(args, eq + 1, value))
+        return "E01";
       if (n == 16)
         core.set_cpsr(value);
       else
@@ -395,6 +461,20 @@ GdbServer::End GdbServer::serve(const Target& target, uint64_t instruction_limit
   m_target = nullptr;
   if (m_fault && end != End::killed) std::rethrow_exception(std::exchange(m_fault, nullptr));
   return end;
+}
+
+std::string GdbServer::reply(const Target& target, const std::string& packet) {
+  const Target* serving = std::exchange(m_target, &target);
+  bool resume = false, step = false, stop_serving = false;
+  std::string answer;
+  try {
+    answer = handle(packet, resume, step, stop_serving);
+  } catch (...) {
+    m_target = serving;
+    throw;
+  }
+  m_target = serving;
+  return answer;
 }
 
 void GdbServer::abandon() {

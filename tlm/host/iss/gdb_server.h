@@ -26,6 +26,33 @@ class DebugMemory {
   virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
 };
 
+// The remote serial protocol's framing, a byte at a time: '$', the data,
+// '#' and two hex digits, the data's sum modulo 256. Plain C++ (the server
+// feeds it what the socket gives; the tests and the fuzz target feed it
+// bytes). Anything between packets (acknowledgements, a Ctrl-C while the
+// program is stopped) is skipped. A packet whose checksum does not match is
+// reported, not returned (the server answers '-': GDB sends it again); one
+// longer than MAX_DATA is read to its end but not kept (bounded memory),
+// then reported.
+class GdbPacketReader {
+ public:
+  // Twice the packet size the server offers GDB (qSupported's PacketSize):
+  // no well-behaved client comes near it.
+  static constexpr size_t MAX_DATA = 0x8000;
+  enum class Event { none, packet, bad_checksum, too_long };
+  Event feed(char c);
+  // The data of the packet `feed` has just returned `packet` for.
+  const std::string& packet() const { return m_data; }
+
+ private:
+  enum class State { between, data, checksum_high, checksum_low } m_state = State::between;
+  std::string m_data;
+  unsigned m_sum = 0;
+  unsigned m_checksum = 0;
+  bool m_bad_digit = false;
+  bool m_too_long = false;
+};
+
 class GdbServer {
  public:
   // What the server debugs.
@@ -68,11 +95,18 @@ class GdbServer {
   // (SIGKILL) and the connection is closed. Nothing if GDB is not there.
   void abandon();
 
+  // The reply serve() sends for one packet's data, without a connection
+  // and without running the program (a c or s packet gets "" here): for
+  // the tests and the fuzz target.
+  std::string reply(const Target& target, const std::string& packet);
+
  private:
   std::string handle(const std::string& packet, bool& resume, bool& step, bool& stop_serving);
   // One byte from GDB; false, with m_connected cleared, when the connection closed.
   bool receive(char& c);
-  // A packet's data; "" with m_connected cleared when the connection closed.
+  // A packet's data (acknowledged '+'); "" with m_connected cleared when
+  // the connection closed. A packet with a bad checksum is answered '-' and
+  // one too long an error, and reading goes on.
   std::string read_packet();
   void send_packet(const std::string& data);
   std::string read_memory(uint32_t address, uint32_t length) const;
@@ -92,6 +126,7 @@ class GdbServer {
   bool m_running = false;  // GDB waits for a stop reply
   unsigned m_signal = 5;   // of the last stop: SIGTRAP, SIGINT, or the fault's
   std::unordered_set<uint32_t> m_breakpoints;
+  GdbPacketReader m_reader;
   std::exception_ptr m_fault;  // the program's fault, shown to GDB, not yet rethrown
 };
 
