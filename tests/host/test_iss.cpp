@@ -2,6 +2,8 @@
 // behaviours the lock-step test leaves out (test_iss_lockstep.cpp), on
 // hand-encoded instructions with their assembly beside them; expected
 // values worked out from the ARM Architecture Reference Manual (ARMv4T).
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -73,6 +75,50 @@ TEST_F(Iss, ResetEntersSupervisorModeAtVectorZeroWithInterruptsMasked) {
   core.set_high_vectors(true);
   core.reset();
   EXPECT_EQ(core.reg(15), 0xffff0000u);
+}
+
+// Issue 34: a program spinning on a branch to itself with IRQ and FIQ
+// masked can never leave it; the core stops it at once, naming the PC,
+// instead of letting it run to the instruction limit.
+TEST_F(Iss, ABranchToItselfWithInterruptsMaskedIsAHungProgram) {
+  const uint32_t masked = SYS | psr::I | psr::F;
+  const auto hangs = [&](uint32_t pc, uint32_t cpsr, const char* what) {
+    start(pc, cpsr);
+    try {
+      run(3);
+      ADD_FAILURE() << what << ": not stopped";
+    } catch (const IssError& error) {
+      char at[32];
+      std::snprintf(at, sizeof at, "at pc 0x%08x", pc);
+      EXPECT_NE(std::string(error.what()).find(at), std::string::npos) << what << ": " << error.what();
+      EXPECT_NE(std::string(error.what()).find("branch to itself"), std::string::npos) << error.what();
+    }
+    EXPECT_EQ(core.reg(15), pc) << what;
+  };
+  memory.program(0x200, {0xeafffffe});  // b .
+  hangs(0x200, masked, "b .");
+  memory.program(0x210, {0x0afffffe});  // beq . (Z set: taken, and the flags never change)
+  hangs(0x210, masked | psr::Z, "beq .");
+  memory.program(0x220, {0xebfffffe});  // bl .
+  hangs(0x220, masked, "bl .");
+  memory.program(0x230, {0x0000e7fe});  // Thumb: b .
+  hangs(0x230, masked | psr::T, "Thumb b .");
+  memory.program(0x240, {0x0000d0fe});  // Thumb: beq .
+  hangs(0x240, masked | psr::T | psr::Z, "Thumb beq .");
+
+  // Not hung: an interrupt may still come (I or F clear), or the branch is not taken.
+  start(0x200, SYS | psr::I);
+  run(1000);
+  EXPECT_EQ(core.reg(15), 0x200u);
+  start(0x200, SYS | psr::F);
+  run(1000);
+  EXPECT_EQ(core.reg(15), 0x200u);
+  start(0x210, masked);  // beq with Z clear: falls through
+  run(1);
+  EXPECT_EQ(core.reg(15), 0x214u);
+  start(0x240, masked | psr::T);
+  run(1);
+  EXPECT_EQ(core.reg(15), 0x242u);
 }
 
 TEST_F(Iss, AnUnalignedWordLoadRotatesTheAlignedWord) {

@@ -175,9 +175,11 @@ class Generator {
     return (cond() << 28) | 0x01000090u | (byte << 22) | (rn << 16) | (rd << 12) | rm;
   }
 
-  // B, BL to a target in mapped memory (Unicorn fetches there before it stops).
+  // B, BL to a target in mapped memory (Unicorn fetches there before it stops),
+  // never to itself (with I and F set the ISS stops that as a hung program: test_iss).
   uint32_t branch() {
-    const int32_t words = static_cast<int32_t>(any(0x3000)) - 0x400;  // 0x1008 + 4 x words >= 8
+    int32_t words = static_cast<int32_t>(any(0x3000)) - 0x400;  // 0x1008 + 4 x words >= 8
+    if (words == -2) words = -1;
     return (cond() << 28) | (5u << 25) | (any(2) << 24) | (static_cast<uint32_t>(words) & 0xffffffu);
   }
 
@@ -279,10 +281,14 @@ class Generator {
         if (list == 0) list = 1u << other_low(rb);
         return 0xc000u | (any(2) << 11) | (rb << 8) | list;
       }
-      case 15:  // B<cond>, conditions EQ..LE
-        return 0xd000u | (any(14) << 8) | any(256);
-      case 16:  // B
-        return 0xe000u | any(2048);
+      case 15: {  // B<cond>, conditions EQ..LE, not to itself (offset -2 halfwords: see branch())
+        const uint32_t offset = any(255);
+        return 0xd000u | (any(14) << 8) | (offset == 0xfe ? 0xffu : offset);
+      }
+      case 16: {  // B, not to itself
+        const uint32_t offset = any(2047);
+        return 0xe000u | (offset == 0x7fe ? 0x7ffu : offset);
+      }
       case 17: {  // BL, both halves (Unicorn runs them as one instruction): a target in the code area
         const uint32_t offset = any(0x800);  // halfwords from CODE + 4
         return (0xf000u) | ((0xf800u | offset) << 16);

@@ -235,6 +235,16 @@ void ArmCore::unpredictable(const std::string& what) const {
   throw IssError("ISS: " + what + " at " + address_text(m_pc) + ": unpredictable on ARMv4T, not executed");
 }
 
+// A taken branch to itself. With IRQ and FIQ both masked nothing can take
+// the core out of it (no interrupt is taken, the flags the branch tested do
+// not change), so the program has stopped for good: refused at once rather
+// than run to the instruction limit (minutes of wall time in the SoC).
+void ArmCore::check_progress() const {
+  if ((m_cpsr & (psr::I | psr::F)) == (psr::I | psr::F))
+    throw IssError("ISS: a branch to itself at pc " + address_text(m_current) +
+                   " with IRQ and FIQ masked: the program can never leave it (a hung program, stopped)");
+}
+
 // The handlers, one per instruction form, and the decoders that choose
 // them. A handler finds its operands' register numbers and immediates in the
 // entry and the static part of its StepInfo already in m_info; it adds what
@@ -530,8 +540,10 @@ struct ArmCore::Exec {
 
   // B, BL: imm is the displacement from the instruction + 8.
   static void branch(ArmCore& c, const Decoded& d) {
+    const uint32_t target = c.m_r[15] + d.imm;
+    if (target == c.m_current) c.check_progress();
     if (bit(d.insn, 24)) c.m_r[14] = c.m_current + 4;
-    c.write_pc(c.m_r[15] + d.imm);
+    c.write_pc(target);
   }
 
   // BX, in either state.
@@ -560,11 +572,16 @@ struct ArmCore::Exec {
   // Thumb's B<cond>: its own condition (bits 11:8), imm from the instruction.
   static void thumb_branch_conditional(ArmCore& c, const Decoded& d) {
     c.m_info.executed = c.condition(bits(d.insn, 11, 8));
-    if (c.m_info.executed) c.write_pc(c.m_current + d.imm);
+    if (!c.m_info.executed) return;
+    if (d.imm == 0) c.check_progress();
+    c.write_pc(c.m_current + d.imm);
   }
 
   // Thumb's B: imm from the instruction.
-  static void thumb_branch(ArmCore& c, const Decoded& d) { c.write_pc(c.m_current + d.imm); }
+  static void thumb_branch(ArmCore& c, const Decoded& d) {
+    if (d.imm == 0) c.check_progress();
+    c.write_pc(c.m_current + d.imm);
+  }
 
   // BL, first half: LR = PC + (offset << 12), imm from the instruction.
   static void thumb_branch_link_high(ArmCore& c, const Decoded& d) { c.m_r[14] = c.m_current + d.imm; }

@@ -263,6 +263,8 @@ class ArmCore {
   }
   inline bool condition(uint32_t cond) const;
   void undefined();
+  // Throws IssError if a branch to itself can never be left (IRQ and FIQ masked).
+  void check_progress() const;
   [[noreturn]] void unpredictable(const std::string& what) const;
 
   IssMemory& m_memory;
