@@ -28,20 +28,27 @@ constexpr uint32_t CONSOLE = iss::BareMachine::CONSOLE, EXIT = iss::BareMachine:
 // steps between memory accesses; the interrupt inputs are looked at as often).
 constexpr uint64_t CHARGE_BATCH = 256;
 
+// Console output without a newline is printed once this much has gathered.
+constexpr size_t CONSOLE_CHUNK = 4096;
+
 // The ISS's memory port over the host. Data accesses are the host's
 // (HostApi: its data-cache tag model, write buffer and bus; each charges
 // the host's one issue cycle, host.cycles.load or .store). Instruction
-// fetches read a private copy of the executable segments, kept in step with
-// the program's own stores into them; their time is the timing layer's
-// instruction cache, whose line fills are the host's instruction-side bus
-// reads (HostCore::fetch).
+// fetches read system memory itself, directly (HostCore::direct_memory,
+// the bus's DMI), so that they see every bus master's writes: the
+// program's stores, the DMA's, a debugger's (a private copy of the code
+// would miss those of every master but the core); the decode cache
+// compares each fetched word with the one it decoded. Their time is the
+// timing layer's instruction cache, whose line fills are the host's
+// instruction-side bus reads (HostCore::fetch).
 class HostMemory : public iss::IssMemory, public iss::DebugMemory {
  public:
-  HostMemory(HostApi& host, HostCore& core, const iss::ElfImage& image, iss::Arm922tTiming& timing)
-      : m_host(host), m_core(core), m_timing(timing) {
-    for (const iss::ElfSegment& segment : image.segments)
-      if (segment.executable) m_code.push_back({segment.address, segment.bytes});
+  HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing) : m_host(host), m_core(core), m_timing(timing) {
+    m_core.on_direct_memory_invalidated([this] { m_window_size = 0; });
   }
+  ~HostMemory() override { m_core.on_direct_memory_invalidated(nullptr); }
+  HostMemory(const HostMemory&) = delete;
+  HostMemory& operator=(const HostMemory&) = delete;
 
   void charge(uint64_t cycles) { m_pending += cycles; }
   void flush() {
@@ -59,8 +66,8 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     return charged;
   }
 
-  // One call per instruction: a fetch from the segment of the one before
-  // reads it directly.
+  // One call per instruction: a fetch inside the direct window reads
+  // memory there.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     try {
       m_pending += m_timing.fetch(address);  // a miss's fill is the host's bus read (on_fill)
@@ -72,15 +79,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       value = iss::load_little_endian(m_window + offset, bytes);
       return true;
     }
-    for (const Code& code : m_code)
-      if (address >= code.base && uint64_t{address - code.base} + bytes <= code.bytes.size()) {
-        m_window_base = code.base;
-        m_window_size = code.bytes.size();
-        m_window = code.bytes.data();
-        value = iss::load_little_endian(m_window + (address - code.base), bytes);
-        return true;
-      }
-    return read(address, bytes, value);  // code outside the image: through the data side
+    return fetch_outside_window(address, bytes, value);
   }
 
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
@@ -98,7 +97,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   bool write(uint32_t address, unsigned bytes, uint32_t value) override {
     if (address == CONSOLE) {
       m_console += static_cast<char>(value);
-      if (static_cast<char>(value) == '\n') {
+      if (static_cast<char>(value) == '\n' || m_console.size() >= CONSOLE_CHUNK) {
         std::cout << m_console << std::flush;
         m_console.clear();
       }
@@ -122,21 +121,15 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       m_fault_address = address;
       return false;
     }
-    uint8_t stored[4];
-    iss::store_little_endian(stored, bytes, value);
-    follow_store(address, stored, bytes);
     return true;
   }
 
-  // A debugger's access (GDB's): the host's, taking no time; a write into
-  // the code reaches the fetches' copy too.
+  // A debugger's access (GDB's): the host's, taking no time.
   bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override {
     return m_core.debug_read(address, data, bytes);
   }
   bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) override {
-    if (!m_core.debug_write(address, data, bytes)) return false;
-    follow_store(address, data, bytes);
-    return true;
+    return m_core.debug_write(address, data, bytes);
   }
 
   // LDM and STM: the host's read_words and write_words, one burst where
@@ -164,12 +157,6 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       m_fault_address = error.address();
       return false;
     }
-    for (Code& code : m_code)  // a store into the code: the copy follows
-      for (unsigned i = 0; i < count; ++i) {
-        const uint32_t at = address + 4 * i;
-        if (at >= code.base && uint64_t{at - code.base} + 4 <= code.bytes.size())
-          for (unsigned b = 0; b < 4; ++b) code.bytes[at - code.base + b] = static_cast<uint8_t>(words[i] >> (8 * b));
-      }
     return true;
   }
 
@@ -212,25 +199,35 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   }
 
  private:
-  struct Code {
-    uint32_t base;
-    std::vector<uint8_t> bytes;
-  };
-  // A store into the code: the copy follows.
-  void follow_store(uint32_t address, const uint8_t* data, unsigned bytes) {
-    for (Code& code : m_code) {
-      if (uint64_t{address} + bytes <= code.base || address >= uint64_t{code.base} + code.bytes.size()) continue;
-      for (unsigned i = 0; i < bytes; ++i)  // a debugger's write may overlap the segment's ends
-        if (address + i >= code.base && address + i - code.base < code.bytes.size())
-          code.bytes[address + i - code.base] = data[i];
+  // A fetch outside the direct window: the window is asked for again (a
+  // first fetch, or after the memory withdrew its DMI); where there is
+  // none, memory is read by debug access (no time: the timing layer's
+  // instruction cache charges the fetch).
+  bool fetch_outside_window(uint32_t address, unsigned bytes, uint32_t& value) {
+    const HostCore::DirectMemory direct = m_core.direct_memory(address);
+    if (direct.size != 0 && address >= direct.base && uint64_t{address - direct.base} + bytes <= direct.size) {
+      m_window_base = direct.base;
+      m_window_size = direct.size;
+      m_window = direct.data;
+      value = iss::load_little_endian(m_window + (address - m_window_base), bytes);
+      return true;
     }
+    uint8_t data[4];
+    if (!m_core.debug_read(address, data, bytes)) {
+      m_fault_address = address;
+      return false;  // a prefetch abort
+    }
+    value = iss::load_little_endian(data, bytes);
+    return true;
   }
+
   HostApi& m_host;
   HostCore& m_core;
   iss::Arm922tTiming& m_timing;
   iss::Profile::Entry* m_entry = nullptr;
-  std::vector<Code> m_code;
-  // The segment of the last fetch (its bytes never move: stores change them in place).
+  // Memory the fetches read directly (HostCore::direct_memory): system
+  // memory's DMI window, size 0 until the first fetch and after the memory
+  // withdraws it.
   uint32_t m_window_base = 0;
   uint64_t m_window_size = 0;
   const uint8_t* m_window = nullptr;
@@ -309,7 +306,8 @@ class LauncherCaches : public iss::CacheMaintenance {
   HostCore& m_core;
 };
 
-// Text written to a semihosting file, handed on a line at a time.
+// Text written to a semihosting file, handed on a line at a time (a line
+// longer than MAX_LINE in pieces of that size).
 class LineSink {
  public:
   explicit LineSink(std::function<void(const std::string& line)> take) : m_take(std::move(take)) {}
@@ -320,9 +318,15 @@ class LineSink {
       m_partial.erase(0, end + 1);
       m_take(line);
     }
+    // Text that never ends its line is handed on in pieces, not kept without bound.
+    while (m_partial.size() >= MAX_LINE) {
+      m_take(m_partial.substr(0, MAX_LINE));
+      m_partial.erase(0, MAX_LINE);
+    }
   }
 
  private:
+  static constexpr size_t MAX_LINE = 1u << 16;
   std::function<void(const std::string&)> m_take;
   std::string m_partial;
 };
@@ -380,8 +384,14 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   const iss::ElfImage image = iss::read_elf(path);
   // The program's own part of system memory: below the driver's heap and
   // the frame buffers (tlm/soc/software_layout.h), which it must not cover.
+  // An executable that does not fit is bad input (status 2), found here
+  // because the memory's size is known only now.
   const uint32_t application_end = env.heap_base != 0 ? env.heap_base : env.memory_bytes;
-  image.check_fits(0, application_end, "the application's part of system memory (below the driver's heap)");
+  try {
+    image.check_fits(0, application_end, "the application's part of system memory (below the driver's heap)");
+  } catch (const iss::ElfError& error) {
+    throw ProgramInputError(error.what());
+  }
   // The image is in memory when the program starts, as if a debugger had
   // loaded it: its copy takes no simulated time.
   for (const iss::ElfSegment& segment : image.segments)
@@ -390,7 +400,7 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
       throw std::runtime_error(path + ": cannot load the segment at " + iss::address_text(segment.address));
 
   iss::Arm922tTiming timing;
-  HostMemory memory(host, core_port, image, timing);
+  HostMemory memory(host, core_port, timing);
   iss::Profile profile(image.functions);
   memory.set_profile_entry(&profile.at(image.entry));
   // Line fills and uncached fetches are the host's instruction-side reads,

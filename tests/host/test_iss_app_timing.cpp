@@ -23,6 +23,7 @@
 #include "host/iss/bare_machine.h"
 #include "host/iss/cp15.h"
 #include "host/iss/elf_image.h"
+#include "support/recording_core.h"
 #include "support/recording_host.h"
 
 namespace {
@@ -30,6 +31,8 @@ namespace {
 using tessera::iss::Arm922tTiming;
 using tessera::iss::ArmCore;
 using tessera::iss::Cp15;
+using tessera::test::issue_cycles;
+using tessera::test::RecordingCore;
 using tessera::test::RecordingHost;
 
 std::string g_arm_elf, g_thumb_elf;
@@ -58,64 +61,6 @@ BareFigures bare_figures(const std::string& path) {
   return {timing.cycles() - timing.fetch_stall_cycles(), timing.icache().misses()};
 }
 
-// One issue cycle per word the program loaded or stored (what the SoC's host
-// charges with host.cycles.load and .store at 1).
-uint64_t issue_cycles(const RecordingHost& host) {
-  uint64_t cycles = 0;
-  for (const auto& access : host.log()) {
-    using Kind = RecordingHost::Access::Kind;
-    if (access.kind == Kind::read || access.kind == Kind::write) ++cycles;
-    if (access.kind == Kind::read_words || access.kind == Kind::write_words) cycles += access.count;
-  }
-  return cycles;
-}
-
-// The host's core side over the recording host's memory: debug access
-// reads and writes it, fetches are counted (and charge nothing), no
-// interrupt is ever asserted.
-class RecordingCore : public tessera::HostCore {
- public:
-  explicit RecordingCore(RecordingHost& host) : m_host(host) {}
-  void fetch(uint32_t address, unsigned bytes) override {
-    EXPECT_EQ(bytes, 32u);
-    EXPECT_EQ(address % 32, 0u);
-    ++fetches;
-  }
-  bool irq_asserted() override { return false; }
-  bool fiq_asserted() override { return false; }
-  void wait_for_interrupt() override { ADD_FAILURE() << "the test programs do not wait for interrupts"; }
-  bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override {
-    std::memcpy(data, m_host.memory(address, bytes), bytes);
-    return true;
-  }
-  bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) override {
-    std::memcpy(m_host.memory(address, bytes), data, bytes);
-    return true;
-  }
-  // As the SoC's host with host.cycles.load and .store at 1: one issue
-  // cycle per word loaded or stored.
-  uint64_t busy_cycles() const override { return issue_cycles(m_host); }
-  void set_data_cache_control(bool /*enabled*/, bool /*round_robin*/) override {}
-  void invalidate_data_cache() override {}
-  void invalidate_data_line(uint32_t /*address*/) override {}
-  void clean_data_line(uint32_t /*address*/, bool /*invalidate*/) override {}
-  void clean_data_index(uint32_t /*index*/, bool /*invalidate*/) override {}
-  void drain_write_buffer() override {}
-  double stalled_cycles() const override { return 0; }
-  uint64_t data_cache_misses() const override { return 0; }
-  void set_program_statistics(std::function<nlohmann::json()> statistics) override {
-    this->statistics = std::move(statistics);
-  }
-  bool tracing_program() const override { return false; }
-  void trace_program(uint32_t /*pc*/, uint32_t /*function*/, uint32_t /*cpsr*/) override {}
-  void set_function_names(std::vector<std::string> /*names*/) override {}
-  uint64_t fetches = 0;
-  std::function<nlohmann::json()> statistics;
-
- private:
-  RecordingHost& m_host;
-};
-
 struct LauncherFigures {
   uint64_t cycles;
   uint64_t fetches;
@@ -124,7 +69,7 @@ struct LauncherFigures {
 // What the launcher charged the host for the program, and the fills it asked for.
 LauncherFigures launcher_figures(const std::string& path) {
   RecordingHost host(1u << 20);
-  RecordingCore core(host);
+  RecordingCore core(host, 1u << 20);  // fetches read the memory directly, as in the SoC
   tessera::AppEnvironment env;
   env.host = &host;
   env.core = &core;

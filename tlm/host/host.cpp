@@ -198,8 +198,17 @@ uint8_t* Host::dmi_pointer_or_null(uint32_t address, unsigned bytes) {
 }
 
 void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
-  if (m_dmi_valid && start <= m_dmi.get_end_address() && end >= m_dmi.get_start_address()) m_dmi_valid = false;
+  if (m_dmi_valid && start <= m_dmi.get_end_address() && end >= m_dmi.get_start_address()) {
+    m_dmi_valid = false;
+    if (m_direct_memory_invalidated) m_direct_memory_invalidated();
+  }
   m_dmi_denied = false;
+}
+
+HostCore::DirectMemory Host::direct_memory(uint32_t address) {
+  if (dmi_pointer(address, 1) == nullptr) return {};
+  return {m_dmi.get_dmi_ptr(), static_cast<uint32_t>(m_dmi.get_start_address()),
+          m_dmi.get_end_address() - m_dmi.get_start_address() + 1};
 }
 
 void Host::read_data(uint32_t address, void* data, unsigned bytes) {
@@ -629,6 +638,10 @@ void Host::run() {
     if (m_exit_code != 0) m_failure = "program exited with status " + std::to_string(m_exit_code);
   } catch (const sc_core::sc_unwind_exception&) {
     throw;
+  } catch (const ProgramInputError& e) {
+    m_exit_code = 2;
+    m_failure = e.what();
+    log::error(name(), m_failure);
   } catch (const std::exception& e) {
     m_exit_code = 1;
     m_failure = e.what();

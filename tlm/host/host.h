@@ -146,6 +146,10 @@ class Host : public Block, public HostApi, public HostCore {
   bool tracing_program() const override { return m_tracing && m_pc_trace != nullptr; }
   void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) override;
   void set_function_names(std::vector<std::string> names) override { m_function_names = std::move(names); }
+  DirectMemory direct_memory(uint32_t address) override;
+  void on_direct_memory_invalidated(std::function<void()> callback) override {
+    m_direct_memory_invalidated = std::move(callback);
+  }
   const std::vector<std::string>& function_names() const { return m_function_names; }
 
  private:
@@ -212,6 +216,7 @@ class Host : public Block, public HostApi, public HostCore {
   uint64_t m_cacheable_end;  // the cacheable range's end, exclusive
   Program m_program;
   std::function<void()> m_on_finish;
+  std::function<void()> m_direct_memory_invalidated;
   // The quantum keeper with its next synchronisation point readable, so that
   // charging time is an addition and a compare in ticks (the hot path); the
   // keeper is handed the local time when the host synchronises.

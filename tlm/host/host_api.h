@@ -49,6 +49,14 @@ class BusError : public std::runtime_error {
   uint32_t m_address;
 };
 
+// Bad input the program finds as it starts (an executable that does not fit
+// the memory it is for, say): the host's program ends with status 2, the
+// status of bad input (soc_sim's own), and this message.
+class ProgramInputError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 #if !defined(TESSERA_HOST_ISS)
 
 class HostApi {

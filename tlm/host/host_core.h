@@ -38,6 +38,21 @@ class HostCore {
   virtual bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) = 0;
   virtual bool debug_write(uint32_t address, const uint8_t* data, unsigned bytes) = 0;
 
+  // System memory as the instruction fetches read it: directly (the bus's
+  // DMI), where every bus master's writes land (the core's stores, the
+  // DMA's, a debugger's, semihosting's), so that a fetch sees what memory
+  // holds whoever wrote it. `data` holds the `size` bytes from `base`;
+  // size 0 where no direct access reaches `address` (the launcher then
+  // fetches by debug access). Valid until the host calls the function given
+  // to on_direct_memory_invalidated (the memory withdrew its DMI).
+  struct DirectMemory {
+    const uint8_t* data = nullptr;
+    uint32_t base = 0;
+    uint64_t size = 0;
+  };
+  virtual DirectMemory direct_memory(uint32_t /*address*/) { return {}; }
+  virtual void on_direct_memory_invalidated(std::function<void()> /*callback*/) {}
+
   // CP15 c1's data-side bits (ARM922T TRM, ARM DDI 0184B: register 1 of
   // the CP15 chapter, and 4.3):
   // C switches the data cache (off: its contents are kept but not looked up,
