@@ -1,5 +1,6 @@
-# Fails when the README's configuration reference differs from what the
-# parameter table generates (scripts/update_config_reference.sh fixes it).
+# Fails when the configuration reference in README (the variable: the file
+# docs/configuration.md) differs from what the parameter table generates
+# (scripts/update_config_reference.sh fixes it).
 execute_process(COMMAND ${SOC_SIM} --config-reference OUTPUT_VARIABLE generated RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "soc_sim --config-reference failed with status ${status}")
@@ -8,7 +9,7 @@ file(READ ${README} readme)
 string(FIND "${readme}" "<!-- config-reference:begin -->\n" begin)
 string(FIND "${readme}" "\n<!-- config-reference:end -->" end)
 if(begin EQUAL -1 OR end EQUAL -1)
-  message(FATAL_ERROR "README.md lacks the configuration reference markers")
+  message(FATAL_ERROR "${README} lacks the configuration reference markers")
 endif()
 string(LENGTH "<!-- config-reference:begin -->\n" marker_length)
 math(EXPR start "${begin} + ${marker_length}")
@@ -17,6 +18,6 @@ string(SUBSTRING "${readme}" ${start} ${length} section)
 string(STRIP "${section}" section)
 string(STRIP "${generated}" generated)
 if(NOT section STREQUAL generated)
-  message(FATAL_ERROR "README.md's configuration reference is out of date: run scripts/update_config_reference.sh")
+  message(FATAL_ERROR "${README}'s configuration reference is out of date: run scripts/update_config_reference.sh")
 endif()
-message(STATUS "README.md configuration reference matches the parameter table")
+message(STATUS "${README}: the configuration reference matches the parameter table")

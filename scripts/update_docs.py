@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""Regenerates the generated blocks of the Markdown docs from their sources of
+truth, or (--check) fails naming every block that is out of date.
+
+A generated block sits between two marker lines in a Markdown file:
+
+    <!-- NAME:begin -->
+    ...generated text, never edited by hand...
+    <!-- NAME:end -->
+
+and one file may hold several blocks of the same NAME. The blocks and where
+each comes from:
+
+    backends          sw_driver/renderers/backends.def (the back-end table)
+    memory-map        tlm/soc/memory_map.def
+    apps              soc_sim --list-apps
+    soc-sim-help      soc_sim --help
+    config-reference  soc_sim --config-reference
+    experiment-NAME   scripts/experiment.py NAME, for every experiment of
+                      configs/experiments/ (experiment-dma-whatif for
+                      dma_whatif): the table it prints, simulated figures,
+                      the same on every host
+
+The experiment blocks run the simulator (about half a minute together on
+two cores) and are regenerated or checked only with --experiments or
+--only-experiments.
+
+Usage:
+    scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments]
+    scripts/update_docs.py --check [...]     exit 1 if a block is stale
+    scripts/update_docs.py --only memory-map backends   only those blocks
+Standard library only.
+"""
+
+import argparse
+import csv
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+# Every Markdown file that holds generated blocks; a block NAME found in a
+# file not listed here is an error too (see blocks_in()).
+FILES = [
+    "README.md",
+    "docs/backends.md",
+    "docs/configuration.md",
+    "docs/architecture.md",
+    "docs/usage.md",
+    "docs/experiments.md",
+    "tlm/soc/README.md",
+    "tools/soc_sim/README.md",
+]
+
+
+def read_def(path, macro):
+    """The argument lists of every `macro(...)` line of an X-macro file."""
+    rows = []
+    pattern = re.compile(r"^" + macro + r"\((.*)\)\s*$")
+    for line in (ROOT / path).read_text().splitlines():
+        match = pattern.match(line)
+        if not match:
+            continue
+        # Split on commas outside double quotes.
+        fields = next(csv.reader([match.group(1)], skipinitialspace=True))
+        rows.append([field.strip() for field in fields])
+    if not rows:
+        sys.exit(f"update_docs: no {macro} line in {path}")
+    return rows
+
+
+def backends_table(_args):
+    lines = ["| `--backend` (`driver.backend`) | what renders | depth / stencil bits | its README |",
+             "| --- | --- | --- | --- |"]
+    for backend_id, name, depth, stencil, description in read_def("sw_driver/renderers/backends.def",
+                                                                  "TESSERA_BACKEND"):
+        readme = f"sw_driver/renderers/{backend_id}/README.md"
+        link = f"`{readme}`" if (ROOT / readme).exists() else "-"
+        lines.append(f"| `{name}` | {description} | {depth} / {stencil} | {link} |")
+    return "\n".join(lines)
+
+
+def memory_map_table(_args):
+    lines = ["| region | base | size | what answers |", "| --- | --- | --- | --- |"]
+    for name, base, size, description in read_def("tlm/soc/memory_map.def", "TESSERA_REGION"):
+        base_value, size_value = int(base.rstrip("u"), 16), int(size.rstrip("u"), 16)
+        if size_value % (1 << 20) == 0:
+            human = f"{size_value >> 20} MiB"
+        else:
+            human = f"{size_value >> 10} KiB"
+        lines.append(f"| `{name}` | `0x{base_value:08X}` | `0x{size_value:08X}` ({human}) | {description} |")
+    return "\n".join(lines)
+
+
+def run(command, cwd=None):
+    env = dict(os.environ, SYSTEMC_DISABLE_COPYRIGHT_MESSAGE="1")
+    try:
+        result = subprocess.run(command, cwd=cwd, env=env, capture_output=True, text=True)
+    except OSError as error:
+        sys.exit(f"update_docs: cannot run {command[0]}: {error.strerror} (build it, or give --soc-sim)")
+    if result.returncode != 0:
+        sys.exit(f"update_docs: {' '.join(map(str, command))} failed with status {result.returncode}:\n"
+                 f"{result.stderr}")
+    return result.stdout
+
+
+def apps_table(args):
+    lines = ["| `--app` | what it runs |", "| --- | --- |"]
+    for line in run([args.soc_sim, "--list-apps"]).splitlines():
+        name, _, description = line.strip().partition("  ")
+        if name:
+            lines.append(f"| `{name}` | {description.strip()} |")
+    return "\n".join(lines)
+
+
+def soc_sim_help(args):
+    # The usage line names the binary by the path it was started from.
+    text = run([args.soc_sim, "--help"]).rstrip()
+    text = re.sub(r"^Usage: \S*soc_sim", "Usage: soc_sim", text, flags=re.M)
+    return "```\n" + text + "\n```"
+
+
+def config_reference(args):
+    return run([args.soc_sim, "--config-reference"]).strip()
+
+
+def experiment(name):
+    def generate(args):
+        with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
+            # experiment.py runs under Debian's python3 (its #! line), which has matplotlib.
+            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet",
+                         "--soc-sim", args.soc_sim, "--out", folder])
+        lines = []
+        for line in table.strip().splitlines():
+            if line.startswith("table ") and folder in line:
+                continue  # where it wrote its files: a temporary folder
+            if line.startswith("#"):
+                line = "**" + line.lstrip("# ").strip() + "**"  # a heading of its own would break the page's outline
+            lines.append(line)
+        return (f"From `scripts/experiment.py {name}` (simulated times: the same on every host):\n\n"
+                + "\n".join(lines).strip())
+    return generate
+
+
+GENERATORS = {
+    "backends": backends_table,
+    "memory-map": memory_map_table,
+    "apps": apps_table,
+    "soc-sim-help": soc_sim_help,
+    "config-reference": config_reference,
+}
+# One block per experiment of configs/experiments/: experiment-<name>, with
+# the name's underscores as dashes.
+for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
+    GENERATORS["experiment-" + _file.stem.replace("_", "-")] = experiment(_file.stem)
+SLOW = {name for name in GENERATORS if name.startswith("experiment-")}
+
+MARKER = re.compile(r"<!-- ([a-z-]+):begin -->\n(.*?)\n?<!-- \1:end -->", re.S)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--check", action="store_true", help="change nothing; exit 1 if a block is stale")
+    parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"),
+                        help="the soc_sim to ask (default: build/default/bin/soc_sim)")
+    parser.add_argument("--experiments", action="store_true",
+                        help="also the blocks that run experiments (slow), and only those with --only-experiments")
+    parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks")
+    parser.add_argument("--only", nargs="+", choices=sorted(GENERATORS), metavar="BLOCK",
+                        help="only these blocks: " + ", ".join(sorted(GENERATORS)))
+    args = parser.parse_args()
+    wanted = set(GENERATORS)
+    if args.only:
+        wanted = set(args.only)
+    elif args.only_experiments:
+        wanted = SLOW
+    elif not args.experiments:
+        wanted -= SLOW
+
+    cache = {}
+    stale = []
+    found = set()
+    for relative in FILES:
+        path = ROOT / relative
+        text = path.read_text()
+
+        def replace(match):
+            name, body = match.group(1), match.group(2)
+            if name not in GENERATORS:
+                sys.exit(f"update_docs: {relative}: unknown generated block '{name}'")
+            found.add(name)
+            if name not in wanted:
+                return match.group(0)
+            if name not in cache:
+                cache[name] = GENERATORS[name](args)
+            if body.strip() != cache[name]:
+                stale.append(f"{relative}: block '{name}'")
+            return f"<!-- {name}:begin -->\n{cache[name]}\n<!-- {name}:end -->"
+
+        new_text = MARKER.sub(replace, text)
+        if not args.check and new_text != text:
+            path.write_text(new_text)
+    missing = wanted - found
+    if missing:
+        sys.exit(f"update_docs: no block of {', '.join(sorted(missing))} in any of {', '.join(FILES)}")
+    if args.check:
+        if stale:
+            print("Out of date (run scripts/update_docs.py"
+                  + (" --only-experiments" if wanted == SLOW else "") + "):\n  " + "\n  ".join(stale))
+            return 1
+        print(f"generated blocks up to date: {', '.join(sorted(wanted))}")
+        return 0
+    print("updated: " + (", ".join(stale) if stale else "nothing was stale"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
