@@ -6,7 +6,9 @@ than 0.
     run_readme_commands.py SOURCE_DIR BUILD_DIR
 
 The folder stands for a fresh checkout after the quick start: every
-top-level entry of SOURCE_DIR is linked into it except build/ and out/,
+top-level entry of SOURCE_DIR is linked into it except build/ and out/
+(scripts/ is copied, so that a script finding the repository from its own
+path finds this folder),
 build/default is a link to BUILD_DIR (the build the test belongs to) and
 build/venv to BUILD_DIR/../venv when that exists. The quick start's demo
 runs first, as scripts/quickstart.sh runs it once the build is done
@@ -22,6 +24,7 @@ preceded by a line
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -84,7 +87,12 @@ def main():
     with tempfile.TemporaryDirectory(prefix="tessera-readme-") as name:
         folder = pathlib.Path(name)
         for entry in source.iterdir():
-            if entry.name not in ("build", "out", ".git"):
+            if entry.name == "scripts":
+                # Copied, not linked: a script that finds the repository from
+                # its own path (experiment.py's build/default/bin/soc_sim)
+                # then finds this folder and the build under test.
+                shutil.copytree(entry, folder / entry.name, symlinks=True)
+            elif entry.name not in ("build", "out", ".git"):
                 (folder / entry.name).symlink_to(entry)
         (folder / "build").mkdir()
         (folder / "build" / "default").symlink_to(build)
