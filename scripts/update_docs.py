@@ -16,6 +16,8 @@ each comes from:
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
+    calibration-array   what the array's calibration applications print
+    calibration-energy  what the two energy calibration runs print
     experiment-NAME   scripts/experiment.py NAME, for every experiment of
                       configs/experiments/ (experiment-dma-whatif for
                       dma_whatif): the table it prints, simulated figures,
@@ -146,7 +148,30 @@ def experiment(name):
     return generate
 
 
+def printed_by(*runs):
+    """What soc_sim prints on stdout for each run (its arguments), in a
+    fenced block: published figures, regenerated from the runs."""
+    def generate(args):
+        lines = []
+        with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
+            for number, arguments in enumerate(runs):
+                output = run([args.soc_sim, *arguments, "--quiet", "--no-frames", "--out", f"run{number}"],
+                             cwd=folder)
+                lines += output.strip().splitlines()
+        return "```\n" + "\n".join(lines) + "\n```"
+    return generate
+
+
+ARRAY_CALIBRATION = [["--app", app] for app in ("calib_array_add", "calib_array_mul", "calib_array_add_cmem",
+                                                  "calib_array_mul_cmem", "calib_ciu")]
+ENERGY_CALIBRATION = [
+    ["--app", "teapot", "--backend", "ap-tile", "--frames", "1", "--set", "power.calibration=tile_renderer"],
+    ["--app", "study_shading", "--backend", "ap-pixel", "--set", "power.calibration=pixel_shading"],
+]
+
 GENERATORS = {
+    "calibration-array": printed_by(*ARRAY_CALIBRATION),
+    "calibration-energy": printed_by(*ENERGY_CALIBRATION),
     "backends": backends_table,
     "memory-map": memory_map_table,
     "apps": apps_table,
