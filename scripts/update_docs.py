@@ -23,6 +23,10 @@ each comes from:
                       dma_whatif): the table it prints, simulated figures,
                       the same on every host
 
+Besides, a hand-written table that must list every item of a generated
+list is checked for a row per item: sw_driver/scenes/README.md, a row for
+every built-in scene of soc_sim --list-apps.
+
 The experiment blocks run the simulator (about half a minute together on
 two cores) and are regenerated or checked only with --experiments or
 --only-experiments.
@@ -184,6 +188,25 @@ for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
     GENERATORS["experiment-" + _file.stem.replace("_", "-")] = experiment(_file.stem)
 SLOW = {name for name in GENERATORS if name.startswith("experiment-")}
 
+# Hand-written tables that must name every item of a generated list: the
+# file, and a function giving the names a row must start with.
+def builtin_scenes(args):
+    return [line.split()[0] for line in run([args.soc_sim, "--list-apps"]).splitlines()
+            if line.rstrip().endswith("(GL ES 1.1 scene)")]
+
+
+COMPLETE_TABLES = [("sw_driver/scenes/README.md", builtin_scenes)]
+
+
+def missing_rows(args):
+    """Items a hand-written table lacks: '<file>: no row for <name>'."""
+    missing = []
+    for relative, names in COMPLETE_TABLES:
+        text = (ROOT / relative).read_text()
+        missing += [f"{relative}: no row for `{name}`" for name in names(args) if f"| `{name}` |" not in text]
+    return missing
+
+
 MARKER = re.compile(r"<!-- ([a-z-]+):begin -->\n(.*?)\n?<!-- \1:end -->", re.S)
 
 
@@ -232,6 +255,12 @@ def main():
     missing = wanted - found
     if missing:
         sys.exit(f"update_docs: no block of {', '.join(sorted(missing))} in any of {', '.join(FILES)}")
+    if not args.only_experiments and not args.only:
+        missing = missing_rows(args)
+        if missing:
+            print("Incomplete (add the row by hand):\n  " + "\n  ".join(missing))
+            if args.check:
+                return 1
     if args.check:
         if stale:
             print("Out of date (run scripts/update_docs.py"
