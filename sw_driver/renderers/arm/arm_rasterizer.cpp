@@ -4,9 +4,9 @@
 #include "renderers/arm/arm_rasterizer.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 
+#include "renderers/common/fixed_math.h"
 #include "renderers/common/fog.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
@@ -20,29 +20,215 @@ using gl::CompareFunc;
 using gl::LogicOp;
 using gl::StencilOp;
 
-// 9.4 coordinates beyond this magnitude would overflow the exact edge DDA.
-constexpr int64_t MAX_COORDINATE = int64_t{1} << 22;
+// Ranges. The front end delivers 9.4 vertices in [0, 8191] (the 512-pixel
+// screen, gl/geometry.h MAX_SCREEN_COORDINATE); the core takes any vertex
+// with |x|, |y| <= MAX_COORDINATE = 2^14 - 1 (about +-1024 pixels) and skips
+// a triangle with a vertex beyond. From that, in 9.4 units:
+// - edge vectors: |dx|, |dy| <= 2^15 - 2;
+// - twice the area, A = dx1 dy2 - dx2 dy1: |A| <= 2 (2^15 - 2)^2 < 2^31;
+// - an edge DDA's numerator (xt - 8) d + (yt - yc) dx: |.| < 2^29 + 2^30,
+//   as the walked row's centre yc lies between the edge's ends (|yt - yc|
+//   <= d), and its divisor 16 d < 2^19: all int32, one 32-bit division each.
+constexpr int32_t MAX_COORDINATE = (1 << 14) - 1;
+// The window positions before snapping, for the attribute planes of a
+// perspective textured triangle, are taken to 1/256 pixel while they lie
+// within +-2^10 pixels (else the snapped vertices serve): |d| < 2^19 and
+// |A| < 2^39 in those units, int64.
+constexpr int UNSNAPPED_BITS = 8;
+constexpr float MAX_UNSNAPPED = 1024.0f;
 constexpr int COLOR_FRACTION_BITS = 16;
-constexpr int DEPTH_FRACTION_BITS = 7;  // interpolant = z24 << 7, fits in int32
-constexpr int Q_FRACTION_BITS = 30;     // normalised 1/w in (0, 1]
-constexpr int ST_FRACTION_BITS = 24;    // s * width * q
-constexpr double MAX_TEXELS = 32768.0;  // |s * width| is clamped to this
+constexpr int DEPTH_FRACTION_BITS = 7;  // interpolant = z24 << 7 < 2^31
+constexpr int Q_FRACTION_BITS = 30;     // normalised 1/w in (0, 1], as 1 .. 2^30
+constexpr int ST_MAX_FRACTION_BITS = 24;  // s * width * q with F <= 24 fraction bits, |.| < 2^30
+constexpr float MAX_TEXELS = 32768.0f;    // |s * width| is clamped to this
+// Every plane's vertex values lie within [-2^30, 2^31) and differ by less
+// than 2^31 (depth: [0, 2^31 - 128]; colour: < 2^24; q: [1, 2^30]; s q and
+// t q: |.| < 2^30; fog: clamped to +-2^30), so that a difference times a
+// barycentric weight (|w| < 2 in 2.30) is below 2^62.
+constexpr int32_t MAX_FOG_VALUE = 1 << 30;
 
-int64_t floor_div(int64_t a, int64_t b) {  // b > 0
-  int64_t q = a / b;
+int32_t floor_div(int32_t a, int32_t b) {  // b > 0: a 32-bit division
+  int32_t q = a / b;
   if ((a % b) != 0 && a < 0) --q;
   return q;
 }
 
+int32_t ceil_div(int32_t a, int32_t b) {
+  return -floor_div(-a, b);
+}  // b > 0
+
+bool finite(float f) {
+  return f == f && f - f == 0.0f;  // not NaN, not infinite (no libm)
+}
+
 bool has_window_positions(const gl::Triangle& tri) {
-  for (const gl::ScreenVertex& v : tri.v)
-    if (!std::isfinite(v.x_window) || !std::isfinite(v.y_window)) return false;
+  for (const gl::ScreenVertex& v : tri.v) {
+    if (!finite(v.x_window) || !finite(v.y_window)) return false;
+    if (v.x_window >= MAX_UNSNAPPED || v.x_window <= -MAX_UNSNAPPED || v.y_window >= MAX_UNSNAPPED ||
+        v.y_window <= -MAX_UNSNAPPED)
+      return false;
+  }
   return true;
 }
 
-int64_t ceil_div(int64_t a, int64_t b) {
-  return -floor_div(-a, b);
-}  // b > 0
+// Rounded to nearest, halves away from zero; |f| < 2^30.
+int32_t round_to_int(float f) {
+  return static_cast<int32_t>(f >= 0 ? f + 0.5f : f - 0.5f);
+}
+
+// llround(x / 2) for an integer x.
+int64_t halve_rounded(int64_t x) {
+  return x >= 0 ? (x + 1) >> 1 : -((-x + 1) >> 1);
+}
+
+// The frame the attribute planes are set up in: vertex 0 and the edge
+// vectors to vertices 1 and 2, in units of 2^-bits pixel (bits = 4: the
+// snapped 9.4 vertices; UNSNAPPED_BITS: the window positions), twice the
+// area A (nonzero) and 1/|A|.
+struct Basis {
+  int bits = 4;
+  int64_t x0 = 0, y0 = 0, dx1 = 0, dy1 = 0, dx2 = 0, dy2 = 0;
+  int64_t area = 0;
+  renderers::Reciprocal inverse;
+
+  // False when the area is zero.
+  bool init(int fraction_bits, const int64_t x[3], const int64_t y[3]) {
+    bits = fraction_bits;
+    x0 = x[0];
+    y0 = y[0];
+    dx1 = x[1] - x[0];
+    dy1 = y[1] - y[0];
+    dx2 = x[2] - x[0];
+    dy2 = y[2] - y[0];
+    area = dx1 * dy2 - dx2 * dy1;
+    if (area == 0) return false;
+    inverse = renderers::make_reciprocal(uint64_t(area < 0 ? -area : area));
+    return true;
+  }
+
+  // N / A scaled by 2^k, for a numerator N (|N| < 2^62).
+  int64_t over_area(int64_t n, int k) const { return renderers::scaled_quotient(area < 0 ? -n : n, inverse, k); }
+
+  // The barycentric weights of vertices 1 and 2 at the centre of pixel (i,
+  // j), in 2.30: w = E / A with E the edge function, both in [0, 1] for a
+  // centre inside the triangle (every span's first pixel: the fill rule
+  // puts its centre inside the snapped triangle, within 1/32 pixel of the
+  // unsnapped one), clamped to +-2 otherwise. |E| < 2^38 (a centre within
+  // 2^10 pixels of vertex 0, an edge shorter than 2^11 pixels).
+  void weights(int i, int j, int32_t w[2]) const {
+    const int64_t x = ((2 * int64_t{i} + 1) << (bits - 1)) - x0;
+    const int64_t y = ((2 * int64_t{j} + 1) << (bits - 1)) - y0;
+    const int64_t e[2] = {x * dy2 - y * dx2, y * dx1 - x * dy1};
+    for (int k = 0; k < 2; ++k) {
+      const int64_t v = over_area(e[k], 30);
+      w[k] = int32_t(std::clamp<int64_t>(v, -(int64_t{1} << 31) + 1, (int64_t{1} << 31) - 1));
+    }
+  }
+
+  // The numerators of an attribute's gradients: d/dx = nx 2^bits / A, d/dy
+  // = ny 2^bits / A per pixel, for vertex differences |d1|, |d2| < 2^31:
+  // |n| < 2^51.
+  void numerators(int64_t d1, int64_t d2, int64_t* nx, int64_t* ny) const {
+    *nx = d1 * dy2 - d2 * dy1;
+    *ny = d2 * dx1 - d1 * dx2;
+  }
+};
+
+// One attribute's plane in fixed point: the value at vertex 0 and the
+// differences to vertices 1 and 2, evaluated at a span's first pixel from
+// the barycentric weights there: v0 + floor((d1 w1 + d2 w2) / 2^30), each
+// product below 2^62. Values inside the triangle are convex combinations of
+// the vertex values, so every start value is clamped to [lo, hi] and nudged
+// so that stepping to the span's end stays there. The step per pixel is the
+// x gradient rounded to nearest (halves away from zero) and clamped to
+// +-(hi - lo).
+//
+// The planes the perspective divide reads (q, s q, t q: |values| < 2^30)
+// are also kept with FINE_BITS more fraction bits (start_fine, step_fine:
+// value 2^29, below 2^59; the start is (v0 2^29 + d1 w1 / 2 + d2 w2 / 2),
+// each term below 2^61), stepped by 64-bit adds (ADDS, ADC), so that a
+// rounded step's error (half a unit per pixel, 256 units over a 512-pixel
+// span) does not add up: where 1/w falls 1000 times across a triangle,
+// 256 units of s q moved u by several texels.
+constexpr int FINE_BITS = 29;
+
+struct Plane {
+  int32_t v0 = 0, d1 = 0, d2 = 0;
+  int32_t lo = 0, hi = 0, step = 0;
+  int64_t step_fine = 0;  // the x gradient in 2^-FINE_BITS units, for fine planes
+
+  void setup(const int32_t v[3], const Basis& basis, bool fine = false) {
+    v0 = v[0];
+    d1 = v[1] - v[0];
+    d2 = v[2] - v[0];
+    lo = std::min({v[0], v[1], v[2]});
+    hi = std::max({v[0], v[1], v[2]});
+    int64_t nx, ny;
+    basis.numerators(d1, d2, &nx, &ny);
+    const int64_t range = int64_t{hi} - lo;
+    step = int32_t(std::clamp<int64_t>(halve_rounded(basis.over_area(nx, basis.bits + 1)), -range, range));
+    if (fine) {
+      const int64_t fine_range = range << FINE_BITS;  // < 2^60
+      step_fine = std::clamp<int64_t>(halve_rounded(basis.over_area(nx, basis.bits + FINE_BITS + 1)), -fine_range,
+                                      fine_range);
+    }
+  }
+
+  // Value at the first pixel of a span of n pixels, whose weights are w.
+  int32_t start(const int32_t w[2], int n) const {
+    const int64_t v = int64_t{v0} + ((int64_t{d1} * w[0] + int64_t{d2} * w[1]) >> 30);
+    int64_t s = std::clamp<int64_t>(v, lo, hi);
+    const int64_t end = s + int64_t{step} * (n - 1);
+    if (end < lo) s += lo - end;
+    if (end > hi) s -= end - hi;
+    return int32_t(std::clamp<int64_t>(s, lo, hi));
+  }
+
+  // The same in 2^-FINE_BITS units, stepped by step_fine.
+  int64_t start_fine(const int32_t w[2], int n) const {
+    const int64_t low = int64_t{lo} << FINE_BITS, high = int64_t{hi} << FINE_BITS;
+    const int64_t v = (int64_t{v0} << FINE_BITS) + ((int64_t{d1} * w[0]) >> 1) + ((int64_t{d2} * w[1]) >> 1);
+    int64_t s = std::clamp<int64_t>(v, low, high);
+    // |step_fine| (n - 1) stays below 2^62 unless the step is far beyond
+    // the span's reach (a sliver's): then the start is only clamped.
+    const uint64_t magnitude = uint64_t(step_fine < 0 ? -step_fine : step_fine);
+    if (n > 1 && renderers::bit_length64(magnitude) + renderers::bit_length(uint32_t(n - 1)) <= 62) {
+      const int64_t end = s + step_fine * (n - 1);
+      if (end < low) s += low - end;
+      if (end > high) s -= end - high;
+    }
+    return std::clamp<int64_t>(s, low, high);
+  }
+};
+
+// The gradients of a texture unit's s q, t q and of q, for its level of
+// detail: g = gradient 2^-exponent, |g| < 2^30, one exponent for the six so
+// that the pixel's derivatives of u = (s q) / q keep their ratio.
+struct LodGradients {
+  int32_t sx = 0, sy = 0, tx = 0, ty = 0, qx = 0, qy = 0;
+  int exponent = 0;
+  bool moves = false;  // a texture that does not move has lambda = -inf
+
+  void setup(const Plane& sq, const Plane& tq, const Plane& q, const Basis& basis) {
+    int64_t n[6];
+    basis.numerators(sq.d1, sq.d2, &n[0], &n[1]);
+    basis.numerators(tq.d1, tq.d2, &n[2], &n[3]);
+    basis.numerators(q.d1, q.d2, &n[4], &n[5]);
+    unsigned longest = 0;
+    for (int64_t v : n) longest = std::max(longest, renderers::bit_length64(uint64_t(v < 0 ? -v : v)));
+    moves = longest != 0;
+    if (!moves) return;
+    // |n 2^(bits + k) / A| < 2^(longest + bits + k - length(A) + 1) = 2^29.
+    const int area_length = int(renderers::bit_length64(uint64_t(basis.area < 0 ? -basis.area : basis.area)));
+    const int k = 28 - int(longest) - basis.bits + area_length;
+    exponent = k;
+    int32_t* out[6] = {&sx, &sy, &tx, &ty, &qx, &qy};
+    for (int i = 0; i < 6; ++i) {
+      const int64_t g = basis.over_area(n[i], basis.bits + k);
+      *out[i] = int32_t(std::clamp<int64_t>(g, -(int64_t{1} << 30), int64_t{1} << 30));
+    }
+  }
+};
 
 // Exact round(x / 255) for 0 <= x <= 65025.
 
@@ -80,44 +266,18 @@ unsigned combine_arguments(gl::CombineFunc func) {
   }
 }
 
-// One attribute's plane, in fixed point: value(x, y) = value0 + gx (x - x0) +
-// gy (y - y0), x and y in pixels. Values inside the triangle are convex
-// combinations of the vertex values, so every start value is clamped to
-// [lo, hi] and nudged so that stepping to the span's end stays there.
-struct Plane {
-  double value0 = 0, gx = 0, gy = 0, x0 = 0, y0 = 0;
-  int64_t lo = 0, hi = 0, step = 0;
-
-  void setup(const double value[3], const double x[3], const double y[3], double area, double scale, double bias) {
-    double v[3];
-    for (int k = 0; k < 3; ++k) v[k] = value[k] * scale + bias;
-    x0 = x[0];
-    y0 = y[0];
-    value0 = v[0];
-    gx = ((v[1] - v[0]) * (y[2] - y[0]) - (v[2] - v[0]) * (y[1] - y[0])) / area;
-    gy = ((v[2] - v[0]) * (x[1] - x[0]) - (v[1] - v[0]) * (x[2] - x[0])) / area;
-    lo = int64_t(std::floor(std::min({v[0], v[1], v[2]})));
-    hi = int64_t(std::floor(std::max({v[0], v[1], v[2]})));
-    const double range = double(hi - lo);
-    step = int64_t(std::llround(std::clamp(gx, -range, range)));
-  }
-
-  // Value at the centre of pixel (i, j), first of a span of n pixels.
-  int64_t start(int i, int j, int n) const {
-    const double v = value0 + gx * (i + 0.5 - x0) + gy * (j + 0.5 - y0);
-    int64_t s = v <= double(lo) ? lo : v >= double(hi) ? hi : int64_t(std::floor(v));
-    const int64_t end = s + step * (n - 1);
-    if (end < lo) s += lo - end;
-    if (end > hi) s -= end - hi;
-    return std::clamp(s, lo, hi);
-  }
-};
-
 }  // namespace
 
 struct ArmRasterizer::TriangleSetup {
+  // Depth follows the snapped vertices; colour, q, the texture coordinates
+  // and fog follow `attributes`, the unsnapped positions of a perspective
+  // textured triangle (draw_triangle), else the same snapped frame.
+  Basis snapped, unsnapped;
+  bool use_unsnapped = false;
   Plane z, color[4], q, fog;
   Plane sq[gl::MAX_TEXTURE_UNITS], tq[gl::MAX_TEXTURE_UNITS];  // per unit of DrawContext::units
+  int st_bits[gl::MAX_TEXTURE_UNITS] = {};  // F: s q and t q are s W q 2^F, t H q 2^F
+  LodGradients lod_gradients[gl::MAX_TEXTURE_UNITS];
   uint32_t flat_rgba = 0;
   bool perspective = false;        // the vertices' 1/w differ
   bool perspective_color = false;  // Gouraud colours divided by q per pixel, as GL interpolates them
@@ -136,7 +296,7 @@ struct ArmRasterizer::DrawContext {
   unsigned units[gl::MAX_TEXTURE_UNITS] = {};
   unsigned unit_count = 0;
   bool fog = false;
-  renderers::FogCoefficients fog_coefficients;
+  renderers::FogCoefficientsF fog_coefficients;
   uint32_t fog_rgba = 0;
   bool late_tests = false;  // alpha test first, then stencil and depth
   bool color_write = false, needs_destination = false, blend = false, logic_op = false;
@@ -258,7 +418,7 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
   c.gouraud = !state.flat_shading;
   c.fog = state.fog;
   if (c.fog) {
-    c.fog_coefficients = renderers::fog_coefficients(state);
+    c.fog_coefficients = renderers::fog_coefficients_f(state);
     c.fog_rgba = renderers::fog_rgba(state);
   }
   for (unsigned u = 0; u < gl::MAX_TEXTURE_UNITS; ++u) {
@@ -380,14 +540,15 @@ namespace {
 // whose centre is at or right of the crossing, ceil((x - 8) / 16) in 9.4
 // units, kept as quotient and remainder while stepping down one row.
 struct EdgeWalk {
-  int64_t f = 0, e = 0, q = 0, r = 0, m = 1;
+  int32_t f = 0, e = 0, q = 0, r = 0, m = 1;
   int row = 0;
 
-  // Edge from (xt, yt) down to (xb, yb), yt > yb, at scanline j.
-  void init(int64_t xt, int64_t yt, int64_t xb, int64_t yb, int j) {
-    const int64_t d = yt - yb, dx = xb - xt, yc = int64_t(j) * 16 + 8;
+  // Edge from (xt, yt) down to (xb, yb), yt > yb, at scanline j (yb < 16 j + 8
+  // <= yt); the bounds are MAX_COORDINATE's.
+  void init(int32_t xt, int32_t yt, int32_t xb, int32_t yb, int j) {
+    const int32_t d = yt - yb, dx = xb - xt, yc = j * 16 + 8;
     m = 16 * d;
-    const int64_t n = (xt - 8) * d + (yt - yc) * dx;
+    const int32_t n = (xt - 8) * d + (yt - yc) * dx;
     f = ceil_div(n, m);
     e = f * m - n;
     q = floor_div(16 * dx, m);
@@ -418,9 +579,9 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   m_memory.compute(Op::mul, k.triangle_mul);
   m_memory.compute(Op::branch, k.triangle_branch);
 
-  const int64_t x[3] = {tri.v[0].x, tri.v[1].x, tri.v[2].x};
-  const int64_t y[3] = {tri.v[0].y, tri.v[1].y, tri.v[2].y};
-  const int64_t area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  const int32_t x[3] = {tri.v[0].x, tri.v[1].x, tri.v[2].x};
+  const int32_t y[3] = {tri.v[0].y, tri.v[1].y, tri.v[2].y};
+  const int32_t area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
   if (area2 == 0) return;
 
   // Top, middle, bottom by GL y (top = largest y = first display row).
@@ -429,11 +590,12 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   if (y[mid] < y[b]) std::swap(mid, b);
   if (y[t] < y[mid]) std::swap(t, mid);
 
-  const int64_t j_top = floor_div(y[t] - 8, 16);
-  const int64_t j_mid = floor_div(y[mid] - 8, 16);
-  const int64_t j_bottom = floor_div(y[b] - 8, 16) + 1;
-  const int64_t first_row = std::min<int64_t>(j_top, c.clip_y1);
-  const int64_t last_row = std::max<int64_t>(j_bottom, c.clip_y0);
+  // floor((y - 8) / 16) as an arithmetic shift.
+  const int32_t j_top = (y[t] - 8) >> 4;
+  const int32_t j_mid = (y[mid] - 8) >> 4;
+  const int32_t j_bottom = ((y[b] - 8) >> 4) + 1;
+  const int32_t first_row = std::min<int32_t>(j_top, c.clip_y1);
+  const int32_t last_row = std::max<int32_t>(j_bottom, c.clip_y0);
   if (first_row < last_row) return;
 
   m_memory.compute(Op::call, k.triangle_divisions);
@@ -441,76 +603,72 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
 
   TriangleSetup s;
   {
-    double px[3], py[3];
-    for (int v = 0; v < 3; ++v) {
-      px[v] = double(x[v]) / 16.0;
-      py[v] = double(y[v]) / 16.0;
-    }
-    const double area = double(area2) / 256.0;
+    const int64_t xs[3] = {x[0], x[1], x[2]}, ys[3] = {y[0], y[1], y[2]};
+    s.snapped.init(4, xs, ys);  // nonzero: area2 != 0
     if (c.depth_test) {
-      const double z[3] = {double(std::min<uint32_t>(tri.v[0].z, 0xffffff)),
-                           double(std::min<uint32_t>(tri.v[1].z, 0xffffff)),
-                           double(std::min<uint32_t>(tri.v[2].z, 0xffffff))};
-      s.z.setup(z, px, py, area, double(1 << DEPTH_FRACTION_BITS), 0.0);
+      int32_t z[3];
+      for (int v = 0; v < 3; ++v) z[v] = int32_t(std::min<uint32_t>(tri.v[v].z, 0xffffff) << DEPTH_FRACTION_BITS);
+      s.z.setup(z, s.snapped);
     }
     // A textured triangle's colour, 1/w and texture planes follow the
     // vertices before snapping, as the reference's do: snapping moves a
     // vertex by up to 1/32 pixel, which at a minified texel rate of 1.6
     // texels per pixel shifts the texture by 0.05 texel, a colour step of
-    // bilinear filtering (README, "Rounding"). Coverage and depth keep the
-    // snapped vertices.
+    // bilinear filtering (README, "Rounding"). They are taken to 1/256
+    // pixel (UNSNAPPED_BITS), which leaves 1/512 pixel. Coverage and depth
+    // keep the snapped vertices.
     // Only where 1/w varies: on an affine triangle (constant w) the reference's
     // GL_NEAREST texel choices follow the snapped vertices (multitexture's
     // orthographic panels, whose vertices lie 0.2/16 pixel off the grid and
     // whose pixel centres fall on texel edges: 0.4% of the frame took the
     // next texel row with the unsnapped planes).
     const bool varying_w = !(tri.v[0].inv_w == tri.v[1].inv_w && tri.v[1].inv_w == tri.v[2].inv_w);
-    double attribute_area = area;
     if (c.texture && varying_w && has_window_positions(tri)) {
+      int64_t xu[3], yu[3];
       for (int v = 0; v < 3; ++v) {
-        px[v] = double(tri.v[v].x_window);
-        py[v] = double(tri.v[v].y_window);
+        xu[v] = round_to_int(tri.v[v].x_window * float(1 << UNSNAPPED_BITS));
+        yu[v] = round_to_int(tri.v[v].y_window * float(1 << UNSNAPPED_BITS));
       }
-      const double exact_area = (px[1] - px[0]) * (py[2] - py[0]) - (px[2] - px[0]) * (py[1] - py[0]);
-      // A sliver the snapping made (or the float positions left degenerate) keeps the snapped planes.
-      if (std::fabs(exact_area) > 1e-6 && (exact_area > 0) == (area > 0)) {
-        attribute_area = exact_area;
-      } else {
-        for (int v = 0; v < 3; ++v) {
-          px[v] = double(x[v]) / 16.0;
-          py[v] = double(y[v]) / 16.0;
-        }
-      }
+      // A sliver the snapping made (or the positions left degenerate) keeps the snapped planes.
+      s.use_unsnapped = s.unsnapped.init(UNSNAPPED_BITS, xu, yu) && (s.unsnapped.area > 0) == (area2 > 0);
     }
+    const Basis& basis = s.use_unsnapped ? s.unsnapped : s.snapped;
     // Normalised 1/w of each vertex: attributes are interpolated as a/w and
     // 1/w and divided per pixel when the triangle is seen in perspective.
-    double qn[3] = {1.0, 1.0, 1.0};
+    // The vertex's 1/w is single precision (geometry's); the ratio to the
+    // largest is one float division per vertex, and q = 2^30 qn (>= 1).
+    float qn[3] = {1.0f, 1.0f, 1.0f};
+    int32_t q[3] = {1 << Q_FRACTION_BITS, 1 << Q_FRACTION_BITS, 1 << Q_FRACTION_BITS};
     if (c.gouraud || c.texture || c.fog) {
-      double inv_w[3], max_inv_w = 0;
+      float inv_w[3], max_inv_w = 0;
       for (int v = 0; v < 3; ++v) {
         const float w = tri.v[v].inv_w;
-        inv_w[v] = (std::isfinite(w) && w > 0) ? double(w) : 1.0;
+        inv_w[v] = (finite(w) && w > 0) ? w : 1.0f;
         max_inv_w = std::max(max_inv_w, inv_w[v]);
       }
       s.perspective = !(inv_w[0] == inv_w[1] && inv_w[1] == inv_w[2]);
-      if (s.perspective)
-        for (int v = 0; v < 3; ++v) qn[v] = inv_w[v] / max_inv_w;
-      double q[3];
-      for (int v = 0; v < 3; ++v) q[v] = std::max(qn[v] * double(int64_t{1} << Q_FRACTION_BITS), 1.0);
-      s.q.setup(q, px, py, attribute_area, 1.0, 0.0);
+      if (s.perspective) {
+        for (int v = 0; v < 3; ++v) {
+          qn[v] = inv_w[v] / max_inv_w;
+          q[v] = std::max<int32_t>(int32_t(qn[v] * float(1 << Q_FRACTION_BITS)), 1);
+        }
+      }
+      s.q.setup(q, basis, true);
     }
     if (c.gouraud) {
       s.perspective_color = s.perspective;
       for (int ch = 0; ch < 4; ++ch) {
-        double value[3];
+        int32_t value[3];
         for (int v = 0; v < 3; ++v) {
           const gl::ScreenVertex& sv = tri.v[v];
           const uint8_t channels[4] = {sv.r, sv.g, sv.b, sv.a};
-          value[v] = channels[ch] * qn[v];
+          // c q 2^16 / 2^30 (< 2^24); the rounding half is added after the
+          // division in the perspective case, here otherwise.
+          value[v] = s.perspective_color
+                         ? int32_t((int64_t{channels[ch]} * q[v]) >> (Q_FRACTION_BITS - COLOR_FRACTION_BITS))
+                         : (int32_t{channels[ch]} << COLOR_FRACTION_BITS) + (1 << (COLOR_FRACTION_BITS - 1));
         }
-        // The rounding half is added after the division in the perspective case.
-        const double bias = s.perspective_color ? 0.0 : double(1 << (COLOR_FRACTION_BITS - 1));
-        s.color[ch].setup(value, px, py, attribute_area, double(1 << COLOR_FRACTION_BITS), bias);
+        s.color[ch].setup(value, basis);
       }
     } else {
       const gl::ScreenVertex& pv = tri.v[2];
@@ -519,22 +677,51 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
     for (unsigned i = 0; i < c.unit_count; ++i) {
       const unsigned u = c.units[i];
       const gl::Texture& tex = state.unit[u].tex;
-      double sq[3], tq[3], su[3], tv[3];
+      // s W and t H in texels (single precision: the vertex's coordinates
+      // are geometry's floats; W, H are powers of two, so exact), clamped,
+      // then times the vertex's qn.
+      float su[3], tv[3], suq[3], tvq[3], largest = 0;
       for (int v = 0; v < 3; ++v) {
         const gl::TexCoord& st = tri.v[v].tex[u];
-        su[v] = std::isfinite(st.s) ? std::clamp(double(st.s) * tex.width, -MAX_TEXELS, MAX_TEXELS) : 0.0;
-        tv[v] = std::isfinite(st.t) ? std::clamp(double(st.t) * tex.height, -MAX_TEXELS, MAX_TEXELS) : 0.0;
-        sq[v] = su[v] * qn[v];
-        tq[v] = tv[v] * qn[v];
+        su[v] = finite(st.s) ? std::clamp(st.s * float(tex.width), -MAX_TEXELS, MAX_TEXELS) : 0.0f;
+        tv[v] = finite(st.t) ? std::clamp(st.t * float(tex.height), -MAX_TEXELS, MAX_TEXELS) : 0.0f;
+        suq[v] = su[v] * qn[v];
+        tvq[v] = tv[v] * qn[v];
+        largest = std::max({largest, suq[v] < 0 ? -suq[v] : suq[v], tvq[v] < 0 ? -tvq[v] : tvq[v]});
       }
-      s.sq[i].setup(sq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      s.tq[i].setup(tq, px, py, attribute_area, double(int64_t{1} << ST_FRACTION_BITS), 0.0);
-      // Minified when the triangle covers more texels than pixels.
-      const double texel_area = (su[1] - su[0]) * (tv[2] - tv[0]) - (su[2] - su[0]) * (tv[1] - tv[0]);
-      const bool minified = std::fabs(texel_area) > std::fabs(area);
+      // F, as many fraction bits as keep |s W q 2^F| < 2^30: with |s W qn| <
+      // 2^L (L <= 16), F = 30 - L, at most ST_MAX_FRACTION_BITS; at least 14.
+      // The largest vertex value then has 29 bits or F is at its most, so a
+      // step's rounding (half a unit per pixel, 256 units over a 512-pixel
+      // span) stays below 2^-21 of the values even where 1/w falls 1000
+      // times across the triangle (tests: PerspectiveTexturingAtTheFormatsExtremes).
+      const int length = int(renderers::bit_length(uint32_t(largest) + 1));
+      const int bits = std::min(ST_MAX_FRACTION_BITS, 30 - length);
+      s.st_bits[i] = bits;
+      const float scale = float(1 << bits);
+      const int32_t limit = (1 << 30) - 1;
+      int32_t sq[3], tq[3];
+      for (int v = 0; v < 3; ++v) {
+        sq[v] = std::clamp(round_to_int(suq[v] * scale), -limit, limit);
+        tq[v] = std::clamp(round_to_int(tvq[v] * scale), -limit, limit);
+      }
+      s.sq[i].setup(sq, basis, true);
+      s.tq[i].setup(tq, basis, true);
+      // Minified when the triangle covers more texels than pixels: twice
+      // the texel area in 2^-16 texel^2 (coordinates to 1/256 texel, |.| <=
+      // 2^23, products below 2^48) against twice the snapped area in 2^-8
+      // pixel^2.
+      int64_t su8[3], tv8[3];
+      for (int v = 0; v < 3; ++v) {
+        su8[v] = round_to_int(su[v] * 256.0f);
+        tv8[v] = round_to_int(tv[v] * 256.0f);
+      }
+      const int64_t texel_area = (su8[1] - su8[0]) * (tv8[2] - tv8[0]) - (su8[2] - su8[0]) * (tv8[1] - tv8[0]);
+      const bool minified = (texel_area < 0 ? -texel_area : texel_area) > (int64_t{area2 < 0 ? -area2 : area2} << 8);
       s.linear_filter[i] = (minified ? tex.min_filter : tex.mag_filter) == gl::TexFilter::linear;
       s.lod[i] = renderers::texture_needs_lod(tex);
       if (s.lod[i]) {
+        s.lod_gradients[i].setup(s.sq[i], s.tq[i], s.q, basis);
         s.linear_filter[i] = false;  // chosen per pixel, charged per pixel
         if (!s.perspective) {
           m_memory.compute(Op::alu, k.lod_alu);
@@ -547,10 +734,14 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
     if (c.fog) {
       // The fog argument (16.16) of each vertex, interpolated as a/w and
       // divided by 1/w per pixel like the Gouraud colours: perspective-correct,
-      // as Mesa interpolates its fog coordinate.
-      double fog[3];
-      for (int v = 0; v < 3; ++v) fog[v] = double(renderers::fog_argument(c.fog_coefficients, tri.v[v].fog)) * qn[v];
-      s.fog.setup(fog, px, py, area, 1.0, 0.0);
+      // as Mesa interpolates its fog coordinate. |a| <= 2^30: 2^-a and the
+      // linear clamp saturate long before.
+      int32_t fog[3];
+      for (int v = 0; v < 3; ++v) {
+        const int32_t a = renderers::fog_argument_f(c.fog_coefficients, tri.v[v].fog, MAX_FOG_VALUE);
+        fog[v] = int32_t((int64_t{a} * q[v]) >> Q_FRACTION_BITS);
+      }
+      s.fog.setup(fog, basis);
       m_memory.compute(Op::fmul, 3ull * k.fog_vertex_fmul);
       m_memory.compute(Op::fadd, 3ull * k.fog_vertex_fadd);
       m_memory.compute(Op::fconv, 3ull * k.fog_vertex_fconv);
@@ -560,28 +751,28 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   }
 
   // Is the middle vertex left of the long edge (top -> bottom)?
-  const int64_t cross = (x[t] - x[b]) * (y[mid] - y[b]) - (y[t] - y[b]) * (x[mid] - x[b]);
+  const int32_t cross = (x[t] - x[b]) * (y[mid] - y[b]) - (y[t] - y[b]) * (x[mid] - x[b]);
   const bool short_is_left = cross > 0;
 
   EdgeWalk long_edge, short_edge;
   uint64_t rows = 0;
-  auto walk = [&](int64_t from, int64_t to, int short_top, int short_bottom) {
-    for (int64_t j = from; j >= to; --j) {
-      if (long_edge.row != j || rows == 0) long_edge.init(x[t], y[t], x[b], y[b], int(j));
-      if (j == from) short_edge.init(x[short_top], y[short_top], x[short_bottom], y[short_bottom], int(j));
+  auto walk = [&](int32_t from, int32_t to, int short_top, int short_bottom) {
+    for (int32_t j = from; j >= to; --j) {
+      if (long_edge.row != j || rows == 0) long_edge.init(x[t], y[t], x[b], y[b], j);
+      if (j == from) short_edge.init(x[short_top], y[short_top], x[short_bottom], y[short_bottom], j);
       const EdgeWalk& left = short_is_left ? short_edge : long_edge;
       const EdgeWalk& right = short_is_left ? long_edge : short_edge;
-      const int64_t x_first = std::max<int64_t>(left.f, c.clip_x0);
-      const int64_t x_last = std::min<int64_t>(right.f - 1, c.clip_x1);
-      if (x_first <= x_last) shade_span(c, s, int(j), int(x_first), int(x_last));
+      const int32_t x_first = std::max<int32_t>(left.f, c.clip_x0);
+      const int32_t x_last = std::min<int32_t>(right.f - 1, c.clip_x1);
+      if (x_first <= x_last) shade_span(c, s, j, x_first, x_last);
       long_edge.step();
       short_edge.step();
       ++rows;
     }
   };
   // Upper part: y_mid < yc <= y_top; lower part: y_bottom < yc <= y_mid.
-  walk(first_row, std::max<int64_t>(j_mid + 1, last_row), t, mid);
-  walk(std::min<int64_t>(j_mid, first_row), last_row, mid, b);
+  walk(first_row, std::max<int32_t>(j_mid + 1, last_row), t, mid);
+  walk(std::min<int32_t>(j_mid, first_row), last_row, mid, b);
   m_memory.compute(Op::alu, rows * k.row_alu);
   m_memory.compute(Op::branch, rows * k.row_branch);
 }
@@ -629,33 +820,45 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     std::memcpy(m_stencil_new.data(), p, size_t(n));
   }
 
+  // The barycentric weights of the span's first pixel, once per frame of planes.
+  int32_t w_snapped[2], w_attributes[2];
+  s.snapped.weights(x_first, j, w_snapped);
+  if (s.use_unsnapped) {
+    s.unsnapped.weights(x_first, j, w_attributes);
+  } else {
+    w_attributes[0] = w_snapped[0];
+    w_attributes[1] = w_snapped[1];
+  }
   int32_t z = 0, dz = 0;
   if (c.depth_test) {
-    z = int32_t(s.z.start(x_first, j, n));
-    dz = int32_t(s.z.step);
+    z = s.z.start(w_snapped, n);
+    dz = s.z.step;
   }
   int32_t color[4] = {0, 0, 0, 0}, dcolor[4] = {0, 0, 0, 0};
   if (c.gouraud) {
     for (int ch = 0; ch < 4; ++ch) {
-      color[ch] = int32_t(s.color[ch].start(x_first, j, n));
-      dcolor[ch] = int32_t(s.color[ch].step);
+      color[ch] = s.color[ch].start(w_attributes, n);
+      dcolor[ch] = s.color[ch].step;
     }
   }
-  int64_t sq[gl::MAX_TEXTURE_UNITS] = {}, tq[gl::MAX_TEXTURE_UNITS] = {}, q = 1, dq = 0;
+  // q, s q and t q in 2^-FINE_BITS units (Plane::start_fine); the pixel's
+  // values are their integer parts.
+  int64_t sq_fine[gl::MAX_TEXTURE_UNITS] = {}, tq_fine[gl::MAX_TEXTURE_UNITS] = {};
+  int64_t q_fine = int64_t{1} << FINE_BITS, dq = 0;
   int64_t dsq[gl::MAX_TEXTURE_UNITS] = {}, dtq[gl::MAX_TEXTURE_UNITS] = {};
   for (unsigned u = 0; u < c.unit_count; ++u) {
-    sq[u] = s.sq[u].start(x_first, j, n);
-    tq[u] = s.tq[u].start(x_first, j, n);
-    dsq[u] = s.sq[u].step;
-    dtq[u] = s.tq[u].step;
+    sq_fine[u] = s.sq[u].start_fine(w_attributes, n);
+    tq_fine[u] = s.tq[u].start_fine(w_attributes, n);
+    dsq[u] = s.sq[u].step_fine;
+    dtq[u] = s.tq[u].step_fine;
   }
   if (c.texture || s.perspective_color || (c.fog && s.perspective)) {
-    q = s.q.start(x_first, j, n);
-    dq = s.q.step;
+    q_fine = s.q.start_fine(w_attributes, n);
+    dq = s.q.step_fine;
   }
-  int64_t fog = 0, dfog = 0;
+  int32_t fog = 0, dfog = 0;
   if (c.fog) {
-    fog = s.fog.start(x_first, j, n);
+    fog = s.fog.start(w_attributes, n);
     dfog = s.fog.step;
   }
 
@@ -682,30 +885,57 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   uint64_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
   // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
   uint64_t lod_alu = 0, lod_mul = 0;
-  // lambda at a pixel from unit i's stepped (s q), (t q), q and its planes'
-  // gradients: d(sq/q)/dx = (gx(sq) q - sq gx(q)) / q^2, in level 0's texels.
-  auto pixel_lod = [&](unsigned i, int64_t sq_value, int64_t tq_value, int64_t q_value) {
-    const double scale = double(int64_t{1} << (Q_FRACTION_BITS - ST_FRACTION_BITS)) / (double(q_value) * q_value);
-    const double sqd = double(sq_value), tqd = double(tq_value), qd = double(q_value);
-    const Plane &sp = s.sq[i], &tp = s.tq[i];
-    const double ux = (sp.gx * qd - sqd * s.q.gx) * scale, uy = (sp.gy * qd - sqd * s.q.gy) * scale;
-    const double vx = (tp.gx * qd - tqd * s.q.gx) * scale, vy = (tp.gy * qd - tqd * s.q.gy) * scale;
-    return renderers::texture_lod(ux, vx, uy, vy);
+  // lambda (16.16) at a pixel from unit i's stepped (s q), (t q), q and its
+  // planes' gradients: du/dx = (gx(sq) q - sq gx(q)) / q^2 2^(30 - F) in
+  // level 0's texels, the gradients g 2^-e (LodGradients). Each product is
+  // below 2^59 (|g| <= 2^30, q <= 2^30, |sq| < 2^30), each difference below
+  // 2^60; lambda = log2(max) - 2 log2(q) + 30 - F - e.
+  auto pixel_lod = [&](unsigned i, int32_t sq_value, int32_t tq_value, int32_t q_value) -> int32_t {
+    const LodGradients& g = s.lod_gradients[i];
+    if (!g.moves) return renderers::LOD_MAGNIFIED;
+    auto magnitude = [](int64_t v) { return uint64_t(v < 0 ? -v : v); };
+    const uint64_t ux = magnitude(int64_t{g.sx} * q_value - int64_t{sq_value} * g.qx);
+    const uint64_t uy = magnitude(int64_t{g.sy} * q_value - int64_t{sq_value} * g.qy);
+    const uint64_t vx = magnitude(int64_t{g.tx} * q_value - int64_t{tq_value} * g.qx);
+    const uint64_t vy = magnitude(int64_t{g.ty} * q_value - int64_t{tq_value} * g.qy);
+    const uint64_t largest = std::max({ux, uy, vx, vy});
+    if (largest == 0) return renderers::LOD_MAGNIFIED;
+    return renderers::log2_q16(largest) - 2 * renderers::log2_q16(uint64_t(q_value)) +
+           (Q_FRACTION_BITS - s.st_bits[i] - g.exponent) * renderers::LOD_ONE;
   };
+  int32_t sq[gl::MAX_TEXTURE_UNITS] = {}, tq[gl::MAX_TEXTURE_UNITS] = {};
   for (int i = 0; i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
     bool alive = c.late_tests || fragment_tests(i, z16);
     if (alive) {
       ++shaded;
+      const auto q = int32_t(q_fine >> FINE_BITS);
+      for (unsigned u = 0; u < c.unit_count; ++u) {
+        sq[u] = int32_t(sq_fine[u] >> FINE_BITS);
+        tq[u] = int32_t(tq_fine[u] >> FINE_BITS);
+      }
+      // The pixel's 1/q, when anything divides: q in [1, 2^30] is
+      // normalised to m in [2^29, 2^30), 1/q ~ r / 2^shift with r =
+      // floor(2^59 / m) (one 32-bit division, a Newton step, a correction;
+      // renderers/common/fixed_math.h), shift = 29 + length(q). A value x
+      // times 2^k / q is then (x r) >> (shift - k), x r below 2^61,
+      // truncated toward zero; within 2^-29 of the exact quotient.
+      renderers::Reciprocal inverse_q;
+      if (s.perspective) inverse_q = renderers::make_reciprocal(uint32_t(q));
+      auto divide = [&](int32_t value, int scale_bits) {
+        int64_t product = int64_t{value} * inverse_q.r;
+        const int shift = inverse_q.shift - scale_bits;  // >= 0 for every scale below
+        if (product < 0) product += (int64_t{1} << shift) - 1;
+        return product >> shift;
+      };
       uint32_t rgba;
       if (s.perspective_color) {
         // c/w over 1/w: one reciprocal of q per pixel (shared with the
-        // texture coordinates on the ARM), then a multiply per channel.
+        // texture coordinates), then a multiply per channel.
         rgba = 0;
         for (int ch = 0; ch < 4; ++ch) {
-          const int64_t value =
-              (int64_t{color[ch]} * (int64_t{1} << Q_FRACTION_BITS) / q + (1 << (COLOR_FRACTION_BITS - 1))) >>
-              COLOR_FRACTION_BITS;
+          const int64_t value = (divide(color[ch], Q_FRACTION_BITS) + (1 << (COLOR_FRACTION_BITS - 1))) >>
+                                COLOR_FRACTION_BITS;
           rgba |= uint32_t(std::clamp<int64_t>(value, 0, 255)) << (8 * ch);
         }
         if (!c.texture) ++color_divisions;
@@ -720,14 +950,19 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         if (s.perspective) ++texel_calls;
         const uint32_t primary = rgba;
         for (unsigned u = 0; u < c.unit_count; ++u) {
+          // Texel coordinates with 8 fraction bits: (s q 2^F) 2^(38 - F) / q,
+          // |.| < 2^23 inside the triangle (|s W| <= 2^15), clamped to 2^30.
+          const int bits = s.st_bits[u];
           int64_t u8, v8;
           if (s.perspective) {
-            u8 = sq[u] * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
-            v8 = tq[u] * (int64_t{1} << (8 + Q_FRACTION_BITS - ST_FRACTION_BITS)) / q;
+            u8 = divide(sq[u], 8 + Q_FRACTION_BITS - bits);
+            v8 = divide(tq[u], 8 + Q_FRACTION_BITS - bits);
           } else {
-            u8 = sq[u] >> (ST_FRACTION_BITS - 8);
-            v8 = tq[u] >> (ST_FRACTION_BITS - 8);
+            u8 = sq[u] >> (bits - 8);
+            v8 = tq[u] >> (bits - 8);
           }
+          u8 = std::clamp<int64_t>(u8, -(int64_t{1} << 30), int64_t{1} << 30);
+          v8 = std::clamp<int64_t>(v8, -(int64_t{1} << 30), int64_t{1} << 30);
           const gl::TextureUnit& unit = state.unit[c.units[u]];
           uint8_t texel[4];
           if (s.lod[u]) {
@@ -735,7 +970,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
             auto filter_level = [&](unsigned level, int fu, int fv, bool linear, uint8_t filtered[4]) {
               fetch_texel(unit.tex, level, fu, fv, linear, filtered);
             };
-            const renderers::LodChoice choice = renderers::sample_texture_lod(
+            const renderers::LodChoice choice = renderers::sample_texture_lod_q16(
                 unit.tex, int(u8), int(v8), pixel_lod(u, sq[u], tq[u], q), filter_level, texel);
             if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
             const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
@@ -754,7 +989,7 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         // After texturing, before the fragment operations (ES 1.1, 3.8).
         int64_t argument = fog;
         if (s.perspective) {
-          argument = fog * (int64_t{1} << Q_FRACTION_BITS) / q;
+          argument = divide(fog, Q_FRACTION_BITS);
           // The reciprocal of q is shared with the texture coordinates or
           // the colours when they divide too.
           if (!c.texture && !s.perspective_color) ++fog_divisions;
@@ -775,10 +1010,10 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     z += dz;
     for (int ch = 0; ch < 4; ++ch) color[ch] += dcolor[ch];
     for (unsigned u = 0; u < c.unit_count; ++u) {
-      sq[u] += dsq[u];
-      tq[u] += dtq[u];
+      sq_fine[u] += dsq[u];
+      tq_fine[u] += dtq[u];
     }
-    q += dq;
+    q_fine += dq;
     fog += dfog;
   }
 

@@ -25,8 +25,10 @@
 //   nearest exactly: mul(a, b) = (a * b + 127) / 255, computed as
 //   (x + 128 + ((x + 128) >> 8)) >> 8 with x = a * b.
 // - Texture coordinates: s/w, t/w and 1/w are interpolated (1/w normalised
-//   per triangle to the largest vertex 1/w) and divided per pixel to texel
-//   units with 8 fraction bits. When the three 1/w are equal the division is
+//   per triangle to the largest vertex 1/w, as q in [1, 2^30]; s W q and
+//   t H q with F fraction bits, F = min(24, 30 - bits of the largest |s W|,
+//   |t H| of the triangle), so that they stay below 2^30) and divided per
+//   pixel to texel units with 8 fraction bits. When the three 1/w are equal the division is
 //   skipped (affine). Nearest takes texel floor(u); bilinear blends texels
 //   floor(u - 0.5) and +1 with 8-bit weights, rounded to nearest. Repeat
 //   wraps with & (size - 1), clamp-to-edge clamps the texel index.
@@ -51,9 +53,28 @@
 //
 // Guards. Zero-area triangles draw nothing. Spans are clipped to the screen
 // and the scissor box, so a triangle partly off screen is drawn only where it
-// is on screen. Triangles with a vertex beyond +-2^18 pixels (where the exact
-// 64-bit edge arithmetic would overflow) are skipped; the front end's clipper
-// keeps vertices far inside that.
+// is on screen. Triangles with a vertex beyond +-(2^14 - 1) in 9.4 (about
+// 1024 pixels, where the 32-bit edge and area bounds of arm_rasterizer.cpp
+// end) are skipped; the front end keeps vertices in [0, 512] pixels.
+//
+// Arithmetic (written for the ARM922T: no FPU, no divide instruction). The
+// scan conversion, the planes' set-up and every per-span and per-pixel step
+// are 32-bit integer fixed point with 32x32->64 products, 64-bit adds and
+// shifts; no double precision, no 64-bit division, no 128-bit product.
+// Single precision only where the vertex's own values are floats (its 1/w,
+// s, t, fog coordinate and unsnapped window position): a few operations per
+// vertex turn them into the fixed-point vertex values. Each plane is the
+// vertex 0 value plus the differences to vertices 1 and 2 times the
+// barycentric weights of a span's first pixel (2.30, from the edge
+// functions and a 30-bit reciprocal of the area: one 32-bit division per
+// triangle); its step per pixel is the x gradient rounded to nearest. The
+// perspective divide takes one reciprocal of q per shaded pixel (one 32-bit
+// division, a Newton step and an exact correction) and multiplies. The
+// level of detail is log2 by a 257-entry table in 16.16. The bounds behind
+// every format are written beside the code (arm_rasterizer.cpp,
+// renderers/common/fixed_math.h) and tested at the largest screen (512 x
+// 512), with vertices at the coordinate limit, slivers and degenerate
+// triangles (tests/sw_driver/renderers/arm/).
 #pragma once
 
 #include <cstddef>

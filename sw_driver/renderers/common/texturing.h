@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <climits>
 
 #include "gl/renderer.h"
 
@@ -91,26 +92,34 @@ inline uint32_t apply_add_env(uint32_t rgba, const uint8_t texel[4]) {
 // scale 1 is therefore exactly the MODULATE environment's mul8, and no
 // intermediate result is rounded or clamped before the scale, as the
 // specification's formulas read.
-inline int64_t combine_value(gl::CombineFunc func, const int32_t a[3]) {
+// Every value fits an int32: |n| <= 2 * 3 * 255^2 (DOT3) before the scale
+// of at most 4, below 2^21. The rounding divides by 510 without a division
+// instruction: floor(m / 510) = floor(floor(m / 2) / 255) for m >= 0, and
+// floor(h / 255) = (h + 1 + ((h + 1) >> 8)) >> 8 for h < 65790, which
+// covers every m below the clamp at 256 * 510 (the rasterizer's combiner,
+// tlm/raster/datapath/texture_combiner.h, rounds the same way).
+inline int32_t combine_value(gl::CombineFunc func, const int32_t a[3]) {
   switch (func) {
-    case gl::CombineFunc::replace: return 510 * int64_t{a[0]};
-    case gl::CombineFunc::modulate: return 2 * int64_t{a[0]} * a[1];
-    case gl::CombineFunc::add: return 510 * int64_t{a[0] + a[1]};
-    case gl::CombineFunc::add_signed: return 510 * int64_t{a[0] + a[1]} - 65025;
-    case gl::CombineFunc::interpolate: return 2 * (int64_t{a[0]} * a[2] + int64_t{a[1]} * (255 - a[2]));
-    case gl::CombineFunc::subtract: return 510 * int64_t{a[0] - a[1]};
+    case gl::CombineFunc::replace: return 510 * a[0];
+    case gl::CombineFunc::modulate: return 2 * a[0] * a[1];
+    case gl::CombineFunc::add: return 510 * (a[0] + a[1]);
+    case gl::CombineFunc::add_signed: return 510 * (a[0] + a[1]) - 65025;
+    case gl::CombineFunc::interpolate: return 2 * (a[0] * a[2] + a[1] * (255 - a[2]));
+    case gl::CombineFunc::subtract: return 510 * (a[0] - a[1]);
     default: return 0;  // DOT3 takes all three channels: combine_dot3
   }
 }
-inline int64_t combine_dot3(const int32_t a0[3], const int32_t a1[3]) {
-  int64_t sum = 0;
-  for (int ch = 0; ch < 3; ++ch) sum += int64_t{2 * a0[ch] - 255} * (2 * a1[ch] - 255);
+inline int32_t combine_dot3(const int32_t a0[3], const int32_t a1[3]) {
+  int32_t sum = 0;
+  for (int ch = 0; ch < 3; ++ch) sum += (2 * a0[ch] - 255) * (2 * a1[ch] - 255);
   return 2 * sum;
 }
-inline uint32_t combine_round(int64_t value, unsigned scale) {
-  const int64_t n = value * scale + 255;
-  const int64_t q = n >= 0 ? n / 510 : -((-n + 509) / 510);  // floor
-  return static_cast<uint32_t>(std::clamp<int64_t>(q, 0, 255));
+inline uint32_t combine_round(int32_t value, unsigned scale) {
+  const int32_t m = value * static_cast<int32_t>(scale) + 255;
+  if (m < 0) return 0;
+  if (m >= 256 * 510) return 255;
+  const uint32_t h = static_cast<uint32_t>(m) >> 1;
+  return (h + 1 + ((h + 1) >> 8)) >> 8;
 }
 
 // The argument of `stage` number i for channel ch (0..2 colour, 3 alpha);
@@ -145,7 +154,7 @@ inline uint32_t apply_combine(const gl::TextureUnit& unit, uint32_t previous, ui
       a0[ch] = combine_argument(rgb, 0, ch, sources);
       a1[ch] = combine_argument(rgb, 1, ch, sources);
     }
-    const int64_t dot = combine_dot3(a0, a1);
+    const int32_t dot = combine_dot3(a0, a1);
     const uint32_t value = combine_round(dot, rgb.scale);
     out = value | value << 8 | value << 16;
     // DOT3_RGBA puts the dot product in alpha too, the alpha function unused;
@@ -319,6 +328,65 @@ LodChoice sample_texture_lod(const gl::Texture& tex, int u8, int v8, double lamb
                              uint8_t out[4]) {
   const LodChoice choice = choose_levels(tex, lambda);
   // Coordinates scale by 2^-level: u8 >> level keeps 8 fraction bits.
+  filter(choice.level[0], u8 >> choice.level[0], v8 >> choice.level[0], choice.linear, out);
+  if (choice.count == 1) return choice;
+  uint8_t next[4];
+  filter(choice.level[1], u8 >> choice.level[1], v8 >> choice.level[1], choice.linear, next);
+  for (int ch = 0; ch < 4; ++ch)
+    out[ch] = static_cast<uint8_t>((out[ch] * (256 - choice.blend) + next[ch] * choice.blend + 128) >> 8);
+  return choice;
+}
+
+// The same choice with lambda in 16.16 fixed point, as the arm back end
+// computes it (renderers/common/fixed_math.h, log2_q16); LOD_MAGNIFIED for
+// a texture that does not move (rho = 0). Equal to choose_levels at the
+// same lambda: the thresholds 0.5 and the level boundaries are exact in
+// 16.16, and the blend weight rounds frac(lambda) * 256 to nearest, halves
+// up, as lround does for a positive value.
+inline constexpr int32_t LOD_MAGNIFIED = INT32_MIN;
+inline constexpr int32_t LOD_ONE = 65536;
+
+inline LodChoice choose_levels_q16(const gl::Texture& tex, int32_t lambda) {
+  LodChoice choice;
+  // lod_switch_point's 0.5 or 0.
+  const bool half = tex.mag_filter == gl::TexFilter::linear && tex.min_filter == gl::TexFilter::nearest &&
+                    tex.min_mipmap != gl::MipmapFilter::none;
+  const int32_t switch_point = half ? LOD_ONE / 2 : 0;
+  if (lambda == LOD_MAGNIFIED || lambda <= switch_point) {
+    choice.linear = tex.mag_filter == gl::TexFilter::linear;
+    return choice;
+  }
+  choice.linear = tex.min_filter == gl::TexFilter::linear;
+  const unsigned q = tex.levels > 0 ? tex.levels - 1 : 0;  // the last level
+  if (tex.min_mipmap == gl::MipmapFilter::none || q == 0) return choice;
+  if (tex.min_mipmap == gl::MipmapFilter::nearest) {
+    // d = ceil(lambda + 1/2) - 1 for lambda > 1/2, else 0; at most q.
+    const int32_t d = lambda <= LOD_ONE / 2 ? 0 : ((lambda + LOD_ONE / 2 + (LOD_ONE - 1)) >> 16) - 1;
+    choice.level[0] = std::min(static_cast<unsigned>(d), q);
+    return choice;
+  }
+  if (lambda >= static_cast<int32_t>(q) * LOD_ONE) {
+    choice.level[0] = q;
+    return choice;
+  }
+  // Levels floor(lambda) and the next, blended by frac(lambda).
+  choice.level[0] = static_cast<unsigned>(lambda >> 16);
+  choice.level[1] = choice.level[0] + 1;
+  choice.blend = ((static_cast<uint32_t>(lambda) & 0xffff) + 128) >> 8;
+  if (choice.blend == 0) return choice;
+  if (choice.blend == 256) {
+    choice.level[0] = choice.level[1];
+    return choice;
+  }
+  choice.count = 2;
+  return choice;
+}
+
+// sample_texture_lod with lambda in 16.16 (choose_levels_q16).
+template <typename FilterLevel>
+LodChoice sample_texture_lod_q16(const gl::Texture& tex, int u8, int v8, int32_t lambda, FilterLevel&& filter,
+                                 uint8_t out[4]) {
+  const LodChoice choice = choose_levels_q16(tex, lambda);
   filter(choice.level[0], u8 >> choice.level[0], v8 >> choice.level[0], choice.linear, out);
   if (choice.count == 1) return choice;
   uint8_t next[4];

@@ -14,6 +14,7 @@
 
 #include "renderers/arm/arm_rasterizer.h"
 #include "renderers/arm/native_memory.h"
+#include "renderers/common/fixed_math.h"
 
 namespace tessera::arm {
 namespace {
@@ -948,9 +949,11 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
     state.unit[0].enabled = true;
     state.unit[0].tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
     const Rgba c{1, 1, 1, 1};
+    // Far outside the screen, within the core's coordinate limit (+-1024
+    // pixels, arm_rasterizer.cpp); texture coordinates beyond the clamp.
     const gl::Triangle huge =
-        triangle(vertex(-100000, -50000, c, 0.1, -1000, 3, 0.5f), vertex(200000, 30, c, 0.9, 5000, -7, 1.0f),
-                 vertex(30, 150000, c, 0.5, 2, 9000, 0.01f));
+        triangle(vertex(-1000, -500, c, 0.1, -1000, 3, 0.5f), vertex(1020, 30, c, 0.9, 5000, -7, 1.0f),
+                 vertex(30, 1000, c, 0.5, 2, 9000, 0.01f));
     std::vector<gl::Triangle> tris = {
         huge,
         triangle(vertex(5, 5, c), vertex(5, 5, c), vertex(5, 5, c)),           // a point
@@ -1173,6 +1176,232 @@ TEST(ArmRasterizerTexture, BaseFormatsPerUnitThenFog) {
   EXPECT_EQ(c.g, 50);   // 100 / 2
   EXPECT_EQ(c.b, 25);   // 50 / 2
   EXPECT_EQ(c.a, 100);  // 200 (the fragment's, not the RGB texel's 255) x 128 / 255 = 100.4
+}
+
+
+// --- Fixed point: the bounds of arm_rasterizer.cpp at their extremes --------
+
+// floor(2^59 / m) exactly over [2^29, 2^30]: both ends, powers of two, and a
+// sweep; the reference is the exact 128-bit quotient (test code only).
+TEST(ArmFixedPoint, ReciprocalIsTheExactFloorOver29To30Bits) {
+  __extension__ typedef unsigned __int128 Wide;
+  auto exact = [](uint32_t m) { return uint32_t((Wide(1) << 59) / m); };
+  const uint32_t lo = 1u << 29, hi = 1u << 30;
+  for (uint32_t m : {lo, lo + 1, lo + 2, hi - 2, hi - 1, hi, (lo + hi) / 2, 0x2aaaaaabu, 0x3fffc000u})
+    EXPECT_EQ(renderers::reciprocal_2_59(m), exact(m)) << m;
+  std::mt19937 random(27);
+  std::uniform_int_distribution<uint32_t> any(lo, hi);
+  for (int i = 0; i < 200000; ++i) {
+    const uint32_t m = any(random);
+    ASSERT_EQ(renderers::reciprocal_2_59(m), exact(m)) << m;
+  }
+}
+
+// scaled_quotient(x, 1/d, k) within 2^-28 (relative) plus one of x 2^k / d,
+// for the extremes the rasterizer divides: x up to 2^62 and d from 1 to
+// 2^39 (twice an unsnapped area), and saturation beyond 2^62.
+TEST(ArmFixedPoint, ScaledQuotientWithinItsStatedError) {
+  std::mt19937_64 random(1);
+  for (int i = 0; i < 200000; ++i) {
+    const int dbits = int(random() % 40) + 1, xbits = int(random() % 62) + 1, k = int(random() % 40) - 8;
+    const uint64_t d = std::max<uint64_t>(1, random() >> (64 - dbits));
+    int64_t x = int64_t(random() >> (64 - xbits));
+    if (random() & 1) x = -x;
+    const long double exact = std::ldexp((long double)x, k) / (long double)d;
+    const int64_t got = renderers::scaled_quotient(x, renderers::make_reciprocal(d), k);
+    if (std::fabs(exact) >= std::ldexp(1.0L, 62)) {
+      EXPECT_EQ(std::fabs((long double)got), std::ldexp(1.0L, 62)) << x << " " << d << " " << k;
+      continue;
+    }
+    ASSERT_LE(std::fabs((long double)got - std::floor(exact)), std::fabs(exact) * std::ldexp(1.0L, -28) + 1.0L)
+        << x << " * 2^" << k << " / " << d;
+  }
+}
+
+TEST(ArmFixedPoint, Log2Within1Point2UnitsOf2ToTheMinus16) {
+  std::mt19937_64 random(2);
+  for (uint64_t x : {uint64_t{1}, uint64_t{2}, uint64_t{3}, uint64_t{255}, uint64_t{1} << 31, (uint64_t{1} << 32) - 1,
+                     uint64_t{1} << 60, ~uint64_t{0}}) {
+    EXPECT_NEAR(renderers::log2_q16(x), std::log2((long double)x) * 65536, 1.2) << x;
+  }
+  for (int i = 0; i < 100000; ++i) {
+    const uint64_t x = std::max<uint64_t>(1, random() >> (random() % 64));
+    ASSERT_NEAR(renderers::log2_q16(x), std::log2((long double)x) * 65536, 1.2) << x;
+  }
+}
+
+// The largest screen (512 x 512) covered by two triangles whose vertices
+// lie at the core's coordinate limit (+-(2^14 - 1) in 9.4: the edges, areas
+// and DDA numerators at their stated bounds). Coverage is exactly the edge
+// functions' (every pixel once), Gouraud colour within one code of the
+// barycentric value, depth within one 16-bit step.
+TEST(ArmFixedPoint, LargestScreenWithVerticesAtTheCoordinateLimit) {
+  Frame f(512, 512, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.depth_test = true;
+  state.depth_func = gl::CompareFunc::always;
+  state.stencil_test = true;
+  state.depth_pass = gl::StencilOp::incr;
+  const double m = ((1 << 14) - 1) / 16.0;  // 1023.9375 pixels
+  const Rgba ca{255, 0, 10, 255}, cb{0, 255, 128, 0}, cc{30, 60, 255, 200}, cd{128, 128, 0, 90};
+  const gl::Triangle t1 = triangle(vertex(-m, -m, ca, 0.0), vertex(m, -m, cb, 0.7), vertex(m, m, cc, 1.0));
+  const gl::Triangle t2 = triangle(vertex(-m, -m, ca, 0.0), vertex(m, m, cc, 1.0), vertex(-m, m, cd, 0.3));
+  f.draw(state, {t1, t2});
+  int checked = 0;
+  for (int y = 0; y < 512; y += 3) {
+    for (int x = 0; x < 512; x += 3) {
+      const double xc = x + 0.5, yc = y + 0.5;
+      const int expected = covers(t1, xc, yc) + covers(t2, xc, yc);
+      ASSERT_EQ(expected, 1);
+      ASSERT_EQ(f.stencil(x, y), 1) << x << "," << y;
+      const gl::Triangle& t = covers(t1, xc, yc) ? t1 : t2;
+      const auto w = barycentric(t, xc, yc);
+      const Rgba c = f.color(x, y);
+      const Rgba vc[3] = {ca, covers(t1, xc, yc) ? cb : cc, covers(t1, xc, yc) ? cc : cd};
+      EXPECT_NEAR(c.r, w[0] * vc[0].r + w[1] * vc[1].r + w[2] * vc[2].r, 1.0) << x << "," << y;
+      EXPECT_NEAR(c.g, w[0] * vc[0].g + w[1] * vc[1].g + w[2] * vc[2].g, 1.0) << x << "," << y;
+      EXPECT_NEAR(c.a, w[0] * vc[0].a + w[1] * vc[1].a + w[2] * vc[2].a, 1.0) << x << "," << y;
+      double z = 0;
+      for (int k = 0; k < 3; ++k) z += w[k] * double(t.v[k].z);
+      EXPECT_NEAR(f.depth(x, y), z / 256.0, 1.0) << x << "," << y;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 29000);
+  EXPECT_TRUE(f.guards_intact());
+}
+
+// A vertex one 1/16 pixel beyond the limit skips its triangle (the front end
+// never sends one: its vertices lie in [0, 512]); one at the limit draws.
+TEST(ArmFixedPoint, VertexBeyondTheCoordinateLimitSkipsTheTriangle) {
+  Frame f(32, 32, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.stencil_test = true;
+  state.depth_pass = gl::StencilOp::incr;
+  gl::Triangle t = triangle(vertex(0, 0), vertex(32, 0), vertex(0, 32));
+  t.v[1].x = (1 << 14);
+  f.draw(state, {t});
+  EXPECT_EQ(f.stencil(1, 1), 0);
+  t.v[1].x = (1 << 14) - 1;
+  f.draw(state, {t});
+  EXPECT_EQ(f.stencil(1, 1), 1);
+  Frame g(32, 32, PixelFormat::rgba8888);
+  t.v[1].x = -(1 << 14);
+  t.v[0].x = 31 * 16;
+  t.v[2].x = 31 * 16;
+  g.draw(state, {t});
+  EXPECT_EQ(g.stencil(30, 1), 0);
+  t.v[1].x = -(1 << 14) + 1;
+  g.draw(state, {t});
+  EXPECT_EQ(g.stencil(30, 1), 1);
+}
+
+// Slivers across the largest screen, each with pixel centres on its one
+// drawn edge: 1/16 pixel high and 511 pixels long (a top edge), 1/16 pixel
+// wide and 511 tall (a left edge), the diagonal with the third vertex 1/16
+// pixel off it (a left edge), and a nearly horizontal one whose far end
+// drops 1/16 pixel. Coverage is exactly the edge functions', and every drawn
+// pixel's colour and depth stay within its vertices' values (the clamp and
+// nudge of the planes), within one code of the barycentric colour where the
+// weights are in [0, 1].
+TEST(ArmFixedPoint, SliversAtTheLargestScreen) {
+  const Rgba ca{0, 255, 0, 255}, cb{255, 0, 255, 0}, cc{128, 64, 32, 16};
+  const std::vector<gl::Triangle> slivers = {
+      triangle(vertex(0.25, 100.5, ca, 0.1), vertex(511.75, 100.5, cb, 0.9), vertex(300, 100.5 - 1 / 16.0, cc, 0.5)),
+      triangle(vertex(200.5, 0.25, ca, 0.1), vertex(200.5 + 1 / 16.0, 511.75, cb, 0.9), vertex(200.5, 300, cc, 0.5)),
+      triangle(vertex(0.5, 0.5, ca, 0.0), vertex(511.5, 511.5, cb, 1.0), vertex(256.0, 256.0 - 1 / 16.0, cc, 0.5)),
+      triangle(vertex(0.5, 400.5, ca, 0.0), vertex(511.5, 400.4375, cb, 1.0), vertex(3.0, 400.5, cc, 0.2)),
+  };
+  for (const gl::Triangle& t : slivers) {
+    Frame f(512, 512, PixelFormat::rgba8888);
+    gl::RasterState state;
+    state.depth_test = true;
+    state.depth_func = gl::CompareFunc::always;
+    state.stencil_test = true;
+    state.depth_pass = gl::StencilOp::incr;
+    f.draw(state, {t});
+    int drawn = 0;
+    for (int y = 0; y < 512; ++y) {
+      for (int x = 0; x < 512; ++x) {
+        const bool in = covers(t, x + 0.5, y + 0.5);
+        ASSERT_EQ(f.stencil(x, y), in ? 1 : 0) << x << "," << y;
+        if (!in) continue;
+        ++drawn;
+        const Rgba c = f.color(x, y);
+        EXPECT_GE(c.r, 0);
+        EXPECT_LE(c.r, 255);
+        EXPECT_GE(c.g, std::min({ca.g, cb.g, cc.g}));
+        EXPECT_LE(c.g, std::max({ca.g, cb.g, cc.g}));
+        const uint16_t zmin = uint16_t(std::min({t.v[0].z, t.v[1].z, t.v[2].z}) >> 8);
+        const uint16_t zmax = uint16_t(std::max({t.v[0].z, t.v[1].z, t.v[2].z}) >> 8);
+        EXPECT_GE(f.depth(x, y), zmin);
+        EXPECT_LE(f.depth(x, y), zmax);
+        const auto w = barycentric(t, x + 0.5, y + 0.5);
+        if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0) {
+          EXPECT_NEAR(c.g, w[0] * ca.g + w[1] * cb.g + w[2] * cc.g, 1.0) << x << "," << y;
+        }
+      }
+    }
+    EXPECT_GT(drawn, 0);
+    EXPECT_TRUE(f.guards_intact());
+  }
+}
+
+// Perspective texturing at the extremes of its formats on the largest
+// screen: s W up to the clamp (2^15 texels: F = 14 fraction bits, s q 2^F
+// just below 2^30) and 1/w varying 1000 times across the triangle (q down
+// to 2^30 / 1000). The texel each pixel takes is within one of floor(u) of
+// the exact perspective-correct u (u = (sum w_k s_k q_k) / (sum w_k q_k)),
+// wrapped by the repeat mode.
+TEST(ArmFixedPoint, PerspectiveTexturingAtTheFormatsExtremes) {
+  Frame f(512, 512, PixelFormat::rgba8888);
+  std::vector<Rgba> ramp(64);
+  for (int i = 0; i < 64; ++i) ramp[size_t(i)] = {i * 4, 0, 0, 255};
+  gl::RasterState state;
+  state.flat_shading = true;
+  state.unit[0].enabled = true;
+  state.unit[0].tex = f.texture(64, 1, ramp);
+  state.unit[0].env = gl::TexEnvMode::replace;
+  for (const float far_s : {512.0f, 3.0f}) {  // s W = 32768 texels, and 192
+    const gl::Triangle t = triangle(vertex(0, 0, {}, 0.5, 0.0f, 0.5f, 1.0f),
+                                    vertex(512, 0, {}, 0.5, far_s, 0.5f, 0.001f),
+                                    vertex(0, 512, {}, 0.5, 0.0f, 0.5f, 1.0f));
+    f.draw(state, {t});
+    int checked = 0;
+    for (int y = 0; y < 512; y += 5) {
+      for (int x = 0; x < 512; x += 5) {
+        if (!covers(t, x + 0.5, y + 0.5)) continue;
+        const auto w = barycentric(t, x + 0.5, y + 0.5);
+        double sq = 0, q = 0;
+        for (int k = 0; k < 3; ++k) {
+          sq += w[k] * t.v[k].tex[0].s * 64 * t.v[k].inv_w;
+          q += w[k] * t.v[k].inv_w;
+        }
+        const double u = sq / q;
+        const int texel = f.color(x, y).r / 4;
+        const int exact = int(std::floor(u)) & 63;
+        const int distance = std::min((texel - exact) & 63, (exact - texel) & 63);
+        EXPECT_LE(distance, 1) << x << "," << y << " u=" << u;
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 4000);
+  }
+}
+
+// Degenerate triangles at the largest screen draw nothing: zero area
+// (collinear across the screen, a point, two equal vertices).
+TEST(ArmFixedPoint, DegenerateTrianglesDrawNothing) {
+  Frame f(512, 512, PixelFormat::rgba8888);
+  gl::RasterState state;
+  state.stencil_test = true;
+  state.depth_pass = gl::StencilOp::incr;
+  f.draw(state, {triangle(vertex(0, 0), vertex(256, 256), vertex(512, 512)),
+                 triangle(vertex(0.5, 511.5), vertex(511.5, 0.5), vertex(256, 256)),
+                 triangle(vertex(100, 100), vertex(100, 100), vertex(100, 100)),
+                 triangle(vertex(10, 10), vertex(500, 20), vertex(10, 10))});
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) ASSERT_EQ(f.stencil(x, y), 0) << x << "," << y;
 }
 
 }  // namespace
