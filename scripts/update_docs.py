@@ -23,9 +23,11 @@ each comes from:
                       dma_whatif): the table it prints, simulated figures,
                       the same on every host
 
-Besides, a hand-written table that must list every item of a generated
-list is checked for a row per item: sw_driver/scenes/README.md, a row for
-every built-in scene of soc_sim --list-apps.
+Besides, the pictures of PICTURES (the README's teapot: the demo's last
+frame) are compared byte for byte with what their run writes today, and a
+hand-written table that must list every item of a generated list is
+checked for a row per item: sw_driver/scenes/README.md, a row for every
+built-in scene of soc_sim --list-apps.
 
 The experiment blocks run the simulator (about half a minute together on
 two cores) and are regenerated or checked only with --experiments or
@@ -197,6 +199,25 @@ def builtin_scenes(args):
 
 COMPLETE_TABLES = [("sw_driver/scenes/README.md", builtin_scenes)]
 
+# Pictures the docs show, each the file a run writes: (the picture, soc_sim's
+# arguments, the file of the run's output folder).
+PICTURES = [("docs/images/teapot.png", ["--quiet"], "frame_0002.png")]  # the README's: the demo's last frame
+
+
+def stale_pictures(args, write):
+    """The pictures that differ from what their run writes today (and, with
+    `write`, replaced by it)."""
+    stale = []
+    for relative, arguments, produced in PICTURES:
+        with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
+            run([args.soc_sim, *arguments, "--out", "out"], cwd=folder)
+            fresh = (pathlib.Path(folder) / "out" / produced).read_bytes()
+        if (ROOT / relative).read_bytes() != fresh:
+            stale.append(f"{relative}: the picture")
+            if write:
+                (ROOT / relative).write_bytes(fresh)
+    return stale
+
 
 def missing_rows(args):
     """Items a hand-written table lacks: '<file>: no row for <name>'."""
@@ -252,6 +273,8 @@ def main():
         new_text = MARKER.sub(replace, text)
         if not args.check and new_text != text:
             path.write_text(new_text)
+    if not args.only_experiments and not args.only:
+        stale += stale_pictures(args, write=not args.check)
     missing = wanted - found
     if missing:
         sys.exit(f"update_docs: no block of {', '.join(sorted(missing))} in any of {', '.join(FILES)}")
