@@ -133,8 +133,9 @@ def check_paths(root):
     return 1 if failures or checked == 0 else 0
 
 
-# "issue 15", "issues 13 and 15", "Issue 15's", "(#15)", "issue #15".
-ISSUE_NUMBER = re.compile(r"\bissues?\s+#?\d+|\(#\d+\)", re.I)
+# "issue 15", "issues 13 and 15", "Issue 15's", "(#15)", "issue #15", and
+# the issue named without its number ("the issue's goal", "this issue").
+ISSUE_NUMBER = re.compile(r"\bissues?\s+#?\d+|\(#\d+\)|\bthe issue's|\bthis issue\b", re.I)
 
 
 def check_issues(root):
