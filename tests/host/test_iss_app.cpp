@@ -50,6 +50,7 @@ int run_dma_code(bool direct) {
   RecordingHost host(MEMORY_BYTES);
   RecordingCore core(host, direct ? MEMORY_BYTES : 0);
   unsigned status_reads = 0;
+  uint64_t asked_before = 0;
   host.read_register = [&](uint32_t address) -> uint32_t {
     EXPECT_EQ(address, DMA_STATUS);
     if (status_reads++ == 0) {
@@ -62,6 +63,9 @@ int run_dma_code(bool direct) {
       }
       EXPECT_NE(destination, 0u);
       std::memcpy(host.memory(destination, 4), host.memory(source, 4), 4);
+      // The memory withdraws its direct access meanwhile: the launcher must ask again.
+      asked_before = core.direct_memory_asked;
+      core.invalidate_direct_memory();
     }
     return STATUS_DONE;
   };
@@ -71,6 +75,10 @@ int run_dma_code(bool direct) {
   env.memory_bytes = MEMORY_BYTES;
   const int status = tessera::run_elf_app(env, g_dma_code_elf);
   EXPECT_EQ(status_reads, 1u);
+  if (direct) {
+    EXPECT_GE(asked_before, 1u) << "fetches did not use direct memory";
+    EXPECT_EQ(core.direct_memory_asked, asked_before + 1) << "asked again once after the invalidation";
+  }
   return status;
 }
 

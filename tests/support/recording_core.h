@@ -67,15 +67,25 @@ class RecordingCore : public tessera::HostCore {
   void trace_program(uint32_t /*pc*/, uint32_t /*function*/, uint32_t /*cpsr*/) override {}
   void set_function_names(std::vector<std::string> /*names*/) override {}
   DirectMemory direct_memory(uint32_t address) override {
+    ++direct_memory_asked;
     if (address >= m_direct_bytes) return {};
     return {m_host.memory(0, m_direct_bytes), 0, m_direct_bytes};
   }
+  void on_direct_memory_invalidated(std::function<void()> callback) override {
+    m_invalidated = std::move(callback);
+  }
+  // As the SoC's memory withdrawing its DMI.
+  void invalidate_direct_memory() {
+    if (m_invalidated) m_invalidated();
+  }
+  uint64_t direct_memory_asked = 0;
   uint64_t fetches = 0;
   std::function<nlohmann::json()> statistics;
 
  private:
   RecordingHost& m_host;
   uint32_t m_direct_bytes;
+  std::function<void()> m_invalidated;
 };
 
 }  // namespace tessera::test
