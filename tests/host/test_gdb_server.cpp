@@ -1,4 +1,4 @@
-// The GDB server (tlm/host/iss/gdb_server.h): its packet framing (issue 34:
+// The GDB server (tlm/host/iss/gdb_server.h): its packet framing (once:
 // checksums were never checked, packets had no size bound), its register
 // and memory commands on bad data (non-hex register data set registers
 // to 0xffffffff through a shift of -1), and the same over a socket as GDB

@@ -77,7 +77,7 @@ TEST_F(Iss, ResetEntersSupervisorModeAtVectorZeroWithInterruptsMasked) {
   EXPECT_EQ(core.reg(15), 0xffff0000u);
 }
 
-// Issue 34: a program spinning on a branch to itself with IRQ and FIQ
+// A program spinning on a branch to itself with IRQ and FIQ
 // masked can never leave it; the core stops it at once, naming the PC,
 // instead of letting it run to the instruction limit.
 TEST_F(Iss, ABranchToItselfWithInterruptsMaskedIsAHungProgram) {

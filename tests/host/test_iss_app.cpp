@@ -40,7 +40,7 @@ class CapturedOutput {
   std::streambuf* m_saved;
 };
 
-// Issue 34: the program has the DMA copy `mov r0, #2` over a function it
+// The program has the DMA copy `mov r0, #2` over a function it
 // has run, waits for it, invalidates the instruction cache and calls the
 // function again. Here the "DMA" is the recording host writing its memory
 // when the program reads the channel's status: a write by a master other
@@ -87,7 +87,7 @@ TEST(IssApp, CodeWrittenByAnotherBusMasterIsExecuted) {
   EXPECT_EQ(run_dma_code(false), 0) << "fetches by debug access (no DMI)";
 }
 
-// Issue 34: console output without a newline was kept until one came,
+// Console output without a newline was once kept until one came,
 // without bound. The program writes 10,000 bytes without a newline and then
 // reads a device register: by then all but the last part (less than the
 // launcher's 4,096-byte chunk) must have been printed, and all of it at the end.

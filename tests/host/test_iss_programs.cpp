@@ -154,7 +154,7 @@ TEST(IssPrograms, WellFormedSegmentsAreRead) {
   EXPECT_EQ(image.entry, 0x1000u);
 }
 
-// Issue 34: the limit is on the file's segments together, checked before
+// The limit is on the file's segments together, checked before
 // anything is allocated (24 segments of 64 MiB each took 1.5 GB, more
 // ended in std::bad_alloc with no file named).
 TEST(IssPrograms, SegmentsTogetherLargerThanTheLimitAreRefusedBeforeAllocation) {
@@ -169,7 +169,7 @@ TEST(IssPrograms, SegmentsTogetherLargerThanTheLimitAreRefusedBeforeAllocation) 
       tessera::iss::read_elf(write_file("at_limit.elf", make_elf({{0, 16, 32 * mib}, {32 * mib, 16, 32 * mib}}))));
 }
 
-// Issue 34: overlapping segments left the ISS running one copy while
+// Overlapping segments once left the ISS running one copy while
 // memory and GDB showed another.
 TEST(IssPrograms, OverlappingSegmentsAreRefusedNamingBoth) {
   expect_error(write_file("overlap.elf", make_elf({{0x1000, 16, 0x100}, {0x10f0, 16, 0x100}})),

@@ -1,5 +1,5 @@
 // Semihosting (tlm/host/iss/semihosting.h) served over a plain memory, as
-// the ISS serves a program's calls: the write path's lengths (issue 34: a
+// the ISS serves a program's calls: the write path's lengths (once a
 // SYS_WRITE of more than 4,096 bytes wrote nothing and returned -1 with
 // errno 14), its bad handles and faults.
 #include <cstring>

@@ -1,4 +1,4 @@
-@ Console output without a newline (issue 34: it was kept until a newline,
+@ Console output without a newline (once kept until a newline came,
 @ without bound): 10,000 bytes 'x' to the console register, then a read of
 @ a device register (test_iss_app's recording host notes how much of the
 @ output has been printed by then), then the exit register (status 0).

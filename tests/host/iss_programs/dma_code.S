@@ -1,4 +1,4 @@
-@ Code written by a bus master other than the CPU (issue 34): the program
+@ Code written by a bus master other than the CPU: the program
 @ runs `function` (r0 = 1), has the system DMA copy `mov r0, #2` over its
 @ first instruction (mem_to_mem, 4 bytes; soc_sim --set dma.enabled=true),
 @ waits for the channel to finish, invalidates the instruction cache as

@@ -1,4 +1,4 @@
-@ A hung program (issue 34): a branch to itself with IRQ and FIQ masked,
+@ A hung program: a branch to itself with IRQ and FIQ masked,
 @ which nothing can end. The ISS stops it at once, naming the PC, rather
 @ than at the instruction limit.
         .syntax unified
