@@ -158,7 +158,7 @@ void Bench::print_table(const std::vector<SceneResult>& results) const {
       const double ratio = paired_median(r.soc_sim_wall, r.native);
       const double no_png_ratio = paired_median(r.no_png_wall, r.native);
       std::printf(
-          "\nteapot: soc_sim wall / native wall = %s writing PNG frames, %s with --no-frames (issue 10 item 6: at "
+          "\nteapot: soc_sim wall / native wall = %s writing PNG frames, %s with --no-frames (target: at "
           "most 3): %s\n",
           format_ratio(ratio).c_str(), format_ratio(no_png_ratio).c_str(),
           std::max(ratio, no_png_ratio) <= TARGET_RATIO ? "met" : "not met");

@@ -708,7 +708,7 @@ void Bench::run() {
 
 int run_main(int argc, char** argv) {
   Options opt;
-  CLI::App cli{"bench_speed: issue 13's speed table (paired rounds, min and median) and the scaling exponents"};
+  CLI::App cli{"bench_speed: the simulation-speed table (paired rounds, min and median) and the scaling exponents"};
   cli.add_option("--rounds", opt.rounds, "paired rounds of each frame and datapath measurement")
       ->check(CLI::Range(1, 101))
       ->capture_default_str();
