@@ -13,6 +13,7 @@ each comes from:
 
     backends          sw_driver/renderers/backends.def (the back-end table)
     memory-map        tlm/soc/memory_map.def
+    irq-map           tlm/soc/irq_map.def
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
@@ -104,6 +105,13 @@ def memory_map_table(_args):
     return "\n".join(lines)
 
 
+def irq_map_table(_args):
+    lines = ["| source | host line |", "| --- | --- |"]
+    for source, line in read_def("tlm/soc/irq_map.def", "TESSERA_IRQ"):
+        lines.append(f"| `{source}` | {line} |")
+    return "\n".join(lines)
+
+
 def run(command, cwd=None):
     env = dict(os.environ, SYSTEMC_DISABLE_COPYRIGHT_MESSAGE="1")
     try:
@@ -180,6 +188,7 @@ GENERATORS = {
     "calibration-energy": printed_by(*ENERGY_CALIBRATION),
     "backends": backends_table,
     "memory-map": memory_map_table,
+    "irq-map": irq_map_table,
     "apps": apps_table,
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,
