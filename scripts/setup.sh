@@ -32,6 +32,7 @@ PACKAGES=(
   python3-jinja2          # tessera-sweep: the HTML report
   python3-yaml            # tessera-sweep: YAML sweep specs
   python3-pytest          # tessera-sweep's tests (python/tests)
+  python3-hypothesis      # tessera-sweep's tests: the sweep spec fuzzed (python/tests/test_spec_fuzz.py)
   python3-venv python3-pip  # the sweep venv below
 )
 

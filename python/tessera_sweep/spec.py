@@ -83,7 +83,7 @@ def _axis(key: str, values, where: str) -> list:
 def parse_spec(data: dict) -> Spec:
     if not isinstance(data, dict):
         raise SpecError("a sweep spec is a mapping")
-    unknown = sorted(set(data) - FIELDS)
+    unknown = sorted(str(name) for name in set(data) - FIELDS)
     if unknown:
         raise SpecError(f"unknown spec field '{unknown[0]}' (known: {', '.join(sorted(FIELDS))})")
     base = {ALIASES[name]: data[name] for name in ("app", "backend", "frames") if name in data}
@@ -95,6 +95,8 @@ def parse_spec(data: dict) -> Spec:
     zips = []
     for group in zip_groups:
         group = {key: _axis(key, values, "zip") for key, values in _keys(group, "zip").items()}
+        if not group:  # it would make the product empty: a sweep of no points
+            raise SpecError("a zip group needs at least one axis")
         lengths = {key: len(values) for key, values in group.items()}
         if len(set(lengths.values())) > 1:
             raise SpecError(f"zip axes differ in length: {lengths}")
@@ -111,6 +113,8 @@ def parse_spec(data: dict) -> Spec:
     if not isinstance(metrics, list) or not all(isinstance(m, str) for m in metrics):
         raise SpecError("'metrics' must be a list of results-table columns")
     output = data.get("output")
+    if output is not None and not isinstance(output, str):
+        raise SpecError("'output' must be a folder's path")
     return Spec(base=base, axes=axes, zips=zips, args=[str(a) for a in args],
                 metrics=list(metrics), output=Path(output) if output else None,
                 write_frames=bool(data.get("write_frames", False)),

@@ -50,6 +50,11 @@ def test_zip_axes_go_in_step_and_multiply_the_rest(tiny):
     ({"axes": {"array.columns": 12}}, "axis 'array.columns'"),
     ({"zip": {"display.width": [192, 320], "display.height": [144]}}, "differ in length"),
     ({"axes": {"driver.backend": ["arm"]}, "zip": {"backend": ["raster"]}}, "'driver.backend' given twice"),
+    # Found by test_spec_fuzz.py: an empty zip group made a sweep of no
+    # points; a non-string output and a non-string field name were a TypeError.
+    ({"app": "triangle", "zip": [{}]}, "zip group needs at least one axis"),
+    ({"output": True}, "'output' must be a folder's path"),
+    ({1: "x", "axis": {}}, "unknown spec field '1'"),
 ])
 def test_malformed_specs_are_refused(data, message):
     with pytest.raises(SpecError, match=message):
