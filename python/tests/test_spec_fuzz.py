@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 from tessera_sweep.spec import ALIASES, FIELDS, SpecError, expand, load_spec, parse_spec
 
 EXAMPLES = int(os.environ.get("HYPOTHESIS_EXAMPLES", "300"))
-FUZZ = settings(max_examples=EXAMPLES, deadline=None, derandomize=True,
+FUZZ = settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,  # no .hypothesis in the tree
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 
 scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70), st.floats(allow_nan=True),
