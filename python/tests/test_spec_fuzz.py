@@ -11,11 +11,16 @@ seconds; the fuzz label's nightly-style run sets 100000)."""
 import itertools
 import math
 import os
+import tempfile
 
 import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from hypothesis.configuration import set_hypothesis_home_dir
+
+# Hypothesis's caches go to a temporary folder, not python/.hypothesis.
+set_hypothesis_home_dir(tempfile.mkdtemp(prefix="hypothesis_"))
 
 from tessera_sweep.spec import ALIASES, FIELDS, SpecError, expand, load_spec, parse_spec
 
