@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -390,6 +391,110 @@ TEST(ArrayController, MaxProgramCyclesStopsARunaway) {
   EXPECT_EQ(result.error_pc, 1u);
   EXPECT_EQ(result.cycles, 101u);
   EXPECT_NE(result.error.find("max_program_cycles"), std::string::npos) << result.error;
+}
+
+// The AC's control flow walked step by step, written here apart from the
+// controller: after each instruction, its word and the cycles and
+// instructions so far, to the halt.
+struct TraceStep {
+  unsigned pc;
+  uint64_t cycles, instructions;
+};
+std::vector<TraceStep> control_flow_trace(const std::vector<Instruction>& program, const CycleTable& table) {
+  struct Running {
+    unsigned body;
+    int variable;
+    unsigned step;
+  };
+  std::vector<TraceStep> trace;
+  std::vector<Running> loops;
+  uint64_t cycles = 0;
+  for (unsigned pc = 0; pc < program.size();) {
+    const Instruction& in = program[pc];
+    cycles += table.cost(in);
+    trace.push_back({pc, cycles, trace.size() + 1});
+    unsigned next = pc + 1;
+    if (in.opcode == Opcode::op_halt) break;
+    if (in.opcode == Opcode::op_loop) loops.push_back({pc + 1, static_cast<int>(in.loop_start()), in.loop_step()});
+    if (in.opcode == Opcode::op_endloop) {
+      Running& loop = loops.back();
+      loop.variable -= static_cast<int>(loop.step);
+      if (loop.variable >= 0)
+        next = loop.body;
+      else
+        loops.pop_back();
+    }
+    pc = next;
+  }
+  return trace;
+}
+
+// A runaway is stopped before it runs, at the word and cycle count where
+// the cap stops it when run: for every cap below the program's length, the
+// run's error word, cycles and instructions are the first step of the
+// step-by-step walk past the cap; at or above it the program halts.
+TEST(ArrayController, ARunawayStopsWhereTheCapWouldStopItWhenRun) {
+  // i0 = 5, 3, 1 around a multiply, i1 = 3, 2, 1, 0 around an addition
+  // with CMEM addresses plus both variables, and nops.
+  const std::vector<Instruction> program = {loop(0, 5, 2),        make(Opcode::op_mul, reg(0), reg(3), reg(5)),
+                                            loop(1, 3, 1),        make(Opcode::op_add, mem(10, 2), reg(1), mem(20, 1)),
+                                            make(Opcode::op_nop), make(Opcode::op_endloop),
+                                            make(Opcode::op_nop), make(Opcode::op_endloop),
+                                            make(Opcode::op_halt)};
+  const std::vector<TraceStep> trace = control_flow_trace(program, CycleTable::defaults());
+  const uint64_t length = trace.back().cycles;
+  ASSERT_GT(length, 40u);
+  std::vector<uint64_t> words;
+  for (const Instruction& in : program) words.push_back(encode(in));
+  for (uint64_t cap = 1; cap <= length + 1; ++cap) {
+    SCOPED_TRACE("cap " + std::to_string(cap));
+    ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, cap);
+    ASSERT_TRUE(controller.load(0, words));
+    const RunResult result = controller.run(0);
+    const auto past = std::find_if(trace.begin(), trace.end(), [cap](const TraceStep& s) { return s.cycles > cap; });
+    if (past == trace.end() || past->pc == program.size() - 1) {  // a halt ends the run whatever the cap
+      EXPECT_TRUE(result.ok) << result.error;
+      EXPECT_EQ(result.cycles, length);
+      EXPECT_EQ(result.instructions, trace.size());
+      continue;
+    }
+    EXPECT_FALSE(result.ok);
+    EXPECT_EQ(result.kind, RunError::too_long);
+    EXPECT_EQ(result.error_pc, past->pc);
+    EXPECT_EQ(result.cycles, past->cycles);
+    EXPECT_EQ(result.instructions, past->instructions);
+    EXPECT_NE(result.error.find("max_program_cycles"), std::string::npos) << result.error;
+    EXPECT_EQ(controller.activity().failed_programs, 1u);
+  }
+}
+
+// Three nested loops of 16,384 iterations around a multiply: about
+// 10^13 cycles. Under array.max_program_cycles' default, 10^9, the run
+// stops at once, at the word whose cycles pass the cap, instead of
+// multiplying for 10^9 cycles (7 s of wall time here, 50-90 s in a loaded
+// soc_sim, the simulation held all along).
+TEST(ArrayController, ARunawayIsStoppedAtOnce) {
+  constexpr uint64_t CAP = 1'000'000'000;
+  ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, CAP);
+  const std::vector<Instruction> program = {loop(0, MAX_LOOP_START, 1), loop(1, MAX_LOOP_START, 1),
+                                            loop(2, MAX_LOOP_START, 1), make(Opcode::op_mul, reg(0), reg(3), reg(5)),
+                                            make(Opcode::op_endloop),   make(Opcode::op_endloop),
+                                            make(Opcode::op_endloop),   make(Opcode::op_halt)};
+  std::vector<uint64_t> words;
+  for (const Instruction& in : program) words.push_back(encode(in));
+  ASSERT_TRUE(controller.load(0, words));
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult result = controller.run(0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 0.5);
+  ASSERT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::too_long);
+  // The word that took the count past the cap: the multiply or an endloop.
+  ASSERT_GE(result.error_pc, 3u);
+  ASSERT_LE(result.error_pc, 6u);
+  EXPECT_GT(result.cycles, CAP);
+  EXPECT_LE(result.cycles - CycleTable::defaults().cost(program[result.error_pc]), CAP);
+  EXPECT_NE(result.error.find("program word " + std::to_string(result.error_pc)), std::string::npos) << result.error;
 }
 
 TEST(ArrayController, ProgramMemoryBounds) {

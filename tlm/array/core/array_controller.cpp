@@ -66,7 +66,145 @@ const char* run_error_name(RunError error) {
   return "unknown";
 }
 
+namespace {
+
+// The symbolic walk of find_runaway: the program's control flow with loop
+// iterations counted, not run. `Slots`: ArrayController's decoded words.
+template <typename Slots>
+class RunawayWalk {
+ public:
+  enum class End { body_end, halted, crossed, unknown };
+
+  RunawayWalk(const Slots& slots, unsigned cmem_bytes, uint64_t max_cycles)
+      : m_slots(slots), m_cmem_bytes(cmem_bytes), m_max_cycles(max_cycles) {}
+
+  // Walks from `pc` with `depth` loops running (their start values in
+  // m_starts) to the endloop closing the innermost (body_end, `pc` left on
+  // it), a halt at depth 0, the cap's crossing (crossing_pc) or something
+  // only running can decide.
+  End walk(unsigned& pc, unsigned depth) {
+    while (true) {
+      if (pc >= m_slots.size() || !m_slots[pc].error.empty()) return End::unknown;
+      const Instruction& in = m_slots[pc].instruction;
+      switch (in.opcode) {
+        case Opcode::op_halt: return depth == 0 ? End::halted : End::unknown;
+        case Opcode::op_endloop: return depth == 0 ? End::unknown : End::body_end;
+        case Opcode::op_loop: {
+          if (in.loop_level() != depth || depth >= LOOP_LEVELS) return End::unknown;
+          if (step(pc)) return End::crossed;
+          const End end = loop(pc, depth, in.loop_start(), in.loop_step());
+          if (end != End::body_end) return end;
+          break;  // pc on the loop's endloop: carry on after it
+        }
+        default:
+          if (!cmem_in_range(in, depth)) return End::unknown;
+          if (step(pc)) return End::crossed;
+      }
+      ++pc;
+    }
+  }
+
+  uint64_t cycles = 0, instructions = 0;
+  unsigned crossing_pc = 0;
+
+ private:
+  // One instruction: its cost, and true when it takes the run past the cap.
+  bool step(unsigned pc) {
+    cycles += m_slots[pc].cost;
+    ++instructions;
+    if (cycles <= m_max_cycles) return false;
+    crossing_pc = pc;
+    return true;
+  }
+
+  // The loop at `pc` (already counted): its iterations, the first walked,
+  // the rest added as multiples of the first while they fit under the cap,
+  // the one that crosses it walked. Returns body_end with `pc` on the
+  // endloop when the loop ends within the cap.
+  End loop(unsigned& pc, unsigned depth, unsigned start, unsigned step_size) {
+    // The variable runs start, start - step, ... while >= 0 (the decoder
+    // refuses a step of 0).
+    if (step_size == 0) return End::unknown;
+    m_starts[depth] = start;
+    const uint64_t iterations = uint64_t{start} / step_size + 1;
+    const unsigned body = pc + 1;
+    const uint64_t cycles_before = cycles, instructions_before = instructions;
+    unsigned end = body;
+    const End first = walk(end, depth + 1);
+    if (first != End::body_end) return first;
+    if (step(end)) return End::crossed;
+    const uint64_t per_cycles = cycles - cycles_before, per_instructions = instructions - instructions_before;
+    const uint64_t left = iterations - 1;
+    if (per_cycles == 0) {  // instructions of 0 cycles (a cycle table may say so): the cap never comes
+      instructions += per_instructions * left;
+      pc = end;
+      return End::body_end;
+    }
+    const uint64_t fit = (m_max_cycles - cycles) / per_cycles;  // whole iterations within the cap
+    if (fit >= left) {
+      cycles += per_cycles * left;
+      instructions += per_instructions * left;
+      pc = end;
+      return End::body_end;
+    }
+    cycles += per_cycles * fit;
+    instructions += per_instructions * fit;
+    // The next iteration crosses the cap: walked to find the word.
+    unsigned again = body;
+    const End crossing = walk(again, depth + 1);
+    if (crossing == End::body_end && step(again)) return End::crossed;
+    return crossing == End::crossed ? End::crossed : End::unknown;
+  }
+
+  // Every CMEM byte the instruction may address, with any loop variable at
+  // its largest (its loop's start), within CMEM.
+  bool cmem_in_range(const Instruction& in, unsigned depth) const {
+    const std::pair<const Operand*, char> operands[] = {{&in.d, 'd'}, {&in.a, 'a'}, {&in.b, 'b'}};
+    for (const auto& [operand, which] : operands) {
+      if (!operand->in_cmem) continue;
+      uint64_t last = uint64_t{operand->value} + std::max(operand_width(in.opcode, which), 1u) - 1;
+      if (operand->loop != 0) {
+        if (operand->loop > depth) return false;
+        last += m_starts[operand->loop - 1];
+      }
+      if (last >= m_cmem_bytes) return false;
+    }
+    return true;
+  }
+
+  const Slots& m_slots;
+  unsigned m_cmem_bytes;
+  uint64_t m_max_cycles;
+  std::array<unsigned, LOOP_LEVELS> m_starts{};
+};
+
+}  // namespace
+
+std::optional<ArrayController::Runaway> ArrayController::find_runaway(unsigned entry) const {
+  RunawayWalk<std::vector<Slot>> walk(m_slots, m_geometry.cmem_bytes, m_max_cycles);
+  unsigned pc = entry;
+  if (walk.walk(pc, 0) != RunawayWalk<std::vector<Slot>>::End::crossed) return std::nullopt;
+  return Runaway{walk.crossing_pc, walk.cycles, walk.instructions};
+}
+
 RunResult ArrayController::run(unsigned entry) {
+  if (const std::optional<Runaway> runaway = find_runaway(entry)) {
+    RunResult result;
+    result.ok = false;
+    result.kind = RunError::too_long;
+    result.error_pc = runaway->pc;
+    result.cycles = runaway->cycles;
+    result.instructions = runaway->instructions;
+    result.error = "program word " + std::to_string(runaway->pc) + ": the program ran for more than " +
+                   "array.max_program_cycles (" + std::to_string(m_max_cycles) + ") cycles: its loops reach the " +
+                   "limit at this word (known from its loop counts at the start, so it was not run)";
+    ++m_activity.programs;
+    ++m_activity.failed_programs;
+    m_activity.cycles += result.cycles;
+    m_activity.instructions += result.instructions;
+    m_stage_changes.clear();
+    return result;
+  }
   struct Loop {
     unsigned body;
     unsigned step;

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,8 +72,27 @@ class ArrayController {
   // Runs from `entry` to a halt. On an error (an undecodable word, a loop
   // the AC cannot run, a CMEM address out of range, more than
   // max_program_cycles) the run stops at that word with ok == false; the
-  // state keeps what the instructions before it did.
+  // state keeps what the instructions before it did. Except a runaway: the
+  // AC's control flow does not depend on data (counted loops, no
+  // branches), so a program whose loops take it past max_program_cycles is
+  // known before it runs (find_runaway) and stops at once, at the word and
+  // cycle count where the cap would have stopped it, without running (the
+  // state as it was; a billion-cycle program used to hold the simulation
+  // for a minute).
   RunResult run(unsigned entry);
+
+  // Where the run from `entry` would pass max_program_cycles, if its
+  // control flow alone says so: the word, the cycles and instructions up to
+  // and including it. Empty when the run halts within the cap, or when
+  // something else might stop it first (a bad word, a loop error, a CMEM
+  // address the loop variables could take beyond CMEM): run() finds those
+  // by running.
+  struct Runaway {
+    unsigned pc = 0;
+    uint64_t cycles = 0;
+    uint64_t instructions = 0;
+  };
+  std::optional<Runaway> find_runaway(unsigned entry) const;
 
   const ControllerActivity& activity() const { return m_activity; }
 
