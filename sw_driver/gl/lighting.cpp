@@ -38,18 +38,20 @@ void Context::light(GLenum which, GLenum name, const float* v, int count) {
     case GL_SPOT_DIRECTION:
       if (need(3)) l.spot_direction = glm::mat3(m_modelview.back()) * glm::vec3(v[0], v[1], v[2]);
       break;
+    // The range checks are written to fail for NaN, which no range holds
+    // (a NaN compares false both ways, and passed "< 0 || > 128").
     case GL_SPOT_EXPONENT:
-      if (v[0] < 0 || v[0] > 128) return error(GL_INVALID_VALUE);
+      if (!(v[0] >= 0 && v[0] <= 128)) return error(GL_INVALID_VALUE);
       l.spot_exponent = v[0];
       break;
     case GL_SPOT_CUTOFF:
-      if ((v[0] < 0 || v[0] > 90) && v[0] != 180) return error(GL_INVALID_VALUE);
+      if (!(v[0] >= 0 && v[0] <= 90) && v[0] != 180) return error(GL_INVALID_VALUE);
       l.spot_cutoff = v[0];
       break;
     case GL_CONSTANT_ATTENUATION:
     case GL_LINEAR_ATTENUATION:
     case GL_QUADRATIC_ATTENUATION:
-      if (v[0] < 0) return error(GL_INVALID_VALUE);
+      if (!(v[0] >= 0)) return error(GL_INVALID_VALUE);
       (name == GL_CONSTANT_ATTENUATION ? l.constant_attenuation
        : name == GL_LINEAR_ATTENUATION ? l.linear_attenuation
                                        : l.quadratic_attenuation) = v[0];
@@ -108,7 +110,7 @@ void Context::material(GLenum face, GLenum name, const float* v, int count) {
     case GL_SPECULAR: rgba(m.specular); break;
     case GL_EMISSION: rgba(m.emission); break;
     case GL_SHININESS:
-      if (v[0] < 0 || v[0] > 128) return error(GL_INVALID_VALUE);
+      if (!(v[0] >= 0 && v[0] <= 128)) return error(GL_INVALID_VALUE);  // NaN too
       m.shininess = v[0];
       break;
     default: error(GL_INVALID_ENUM);

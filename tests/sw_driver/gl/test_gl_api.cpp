@@ -91,6 +91,40 @@ TEST_F(GlApi, BadValuesAreInvalidValue) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
 }
 
+// A NaN is in no range: each scalar light and material parameter refuses it
+// with GL_INVALID_VALUE and keeps its value (range checks written as
+// "v < 0 || v > 128" let NaN through with GL_NO_ERROR).
+TEST_F(GlApi, NanLightAndMaterialParametersAreInvalidValue) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const GLenum name :
+       {GL_SPOT_EXPONENT, GL_SPOT_CUTOFF, GL_CONSTANT_ATTENUATION, GL_LINEAR_ATTENUATION, GL_QUADRATIC_ATTENUATION}) {
+    SCOPED_TRACE("light parameter 0x" + std::to_string(name));
+    GLfloat before = -1;
+    glGetLightfv(GL_LIGHT0, name, &before);
+    glLightf(GL_LIGHT0, name, nan);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+    glLightfv(GL_LIGHT0, name, &nan);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+    GLfloat after = -1;
+    glGetLightfv(GL_LIGHT0, name, &after);
+    EXPECT_EQ(after, before);
+  }
+  GLfloat before = -1;
+  glGetMaterialfv(GL_FRONT, GL_SHININESS, &before);
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, nan);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  glMaterialfv(GL_FRONT_AND_BACK, GL_SHININESS, &nan);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  GLfloat after = -1;
+  glGetMaterialfv(GL_FRONT, GL_SHININESS, &after);
+  EXPECT_EQ(after, before);
+  // The ends of the ranges still pass.
+  glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, 180);
+  glLightf(GL_LIGHT0, GL_SPOT_EXPONENT, 128);
+  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // Found by fuzz/fuzz_gl.cpp (fuzz/corpus/gl/regress-copy-tex-image-huge-size.bin):
 // the copies allocated width x height x 4 bytes before any check of the size.
 TEST_F(GlApi, CopiesLargerThanAnyTextureAreInvalidValue) {
