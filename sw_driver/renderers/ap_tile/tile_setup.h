@@ -1,5 +1,6 @@
 // The host's side of the ap-tile algorithm, plain C++: the CMEM layout the
 // array program declares, a triangle's set-up in the study's fixed point
+// (32-bit integer arithmetic, as the ARM922T runs it)
 // (three normalised edge functions, attribute planes), the tiles it
 // overlaps, and the record each overlapped CU receives. The formats are in
 // README.md ("Fixed point"); the array program is ap_tile.s, and
@@ -12,6 +13,7 @@
 
 #include "array/asm/program.h"
 #include "gl/renderer.h"
+#include "renderers/common/divisor.h"
 
 namespace tessera::ap_tile {
 
@@ -77,28 +79,31 @@ struct DrawFlags {
 
 // One normalised edge function E = A x + B y + C in 1/512 pixel, inside >= 0.
 struct Edge {
-  int64_t px = 0, py = 0, dx = 0, dy = 0;  // the edge's start and direction, 1/16 pixel
-  int64_t norm = 1;                        // max(|dx|, |dy|)
+  int32_t px = 0, py = 0, dx = 0, dy = 0;  // the edge's start and direction, 1/16 pixel
+  int32_t norm = 1;                        // max(|dx|, |dy|)
   int sign = 1;                            // +1 or -1: makes the inside positive
   int32_t a = 0, b = 0;                    // per pixel right and per pixel up, rounded
   bool top_left = false;                   // owns the pixels exactly on it
 };
 
-// An attribute's plane: value(x, y) = (v1 * area + cx (x - x1) + cy (y - y1)) / area
-// times num / den, in 2^-fraction units, plus bias.
-struct Plane {
-  std::array<int64_t, 3> v{};
-  int64_t num = 1, den = 1;
-  int fraction = 8;
-  int64_t bias = 0;
-};
-
+// The set-up is 32-bit integer arithmetic written for the ARM922T (no FPU,
+// no divide instruction): 32x32->64 multiplies, 64-bit additions, and
+// divisions by a Divisor made once per triangle (renderers/common/
+// divisor.h). The ranges, from the vertices' bound (COORDINATE_LIMIT) and
+// the formats, are written in tile_setup.cpp beside each computation.
 class TriangleSetup {
  public:
+  // Vertices are 1/16 pixel; the GL front end gives 9.4 codes in
+  // [0, 2^13). The set-up accepts |x|, |y| <= 2^14 (so that tests may put
+  // vertices a screen's width off it) and refuses the triangle beyond, as
+  // it does a frame wider or taller than MAX_FRAME pixels.
+  static constexpr int32_t COORDINATE_LIMIT = int32_t{1} << 14;
+  static constexpr unsigned MAX_FRAME = 512;
+
   TriangleSetup(const gl::Triangle& triangle, const DrawFlags& flags, const FrameGeometry& frame);
 
-  // False for a triangle that draws nothing (zero area, or a vertex beyond
-  // +-2^18 pixels, as the arm back end).
+  // False for a triangle that draws nothing (zero area, a vertex beyond
+  // COORDINATE_LIMIT, a frame beyond MAX_FRAME).
   bool valid() const { return m_valid; }
   // The tiles the triangle reaches: its bounding box overlaps the tile's
   // pixel centres and no edge has all four corner pixels of the tile
@@ -115,28 +120,54 @@ class TriangleSetup {
   // bottom-right pixel, the steps left and up, and the least and greatest
   // value at the tile's four corner pixels.
   struct EdgeInTile {
-    int64_t e0 = 0, du = 0, dv = 0, low = 0, high = 0;
+    int32_t e0 = 0, du = 0, dv = 0, low = 0, high = 0;
+  };
+  // An attribute: its value at vertex 0 and its differences to vertices 1
+  // and 2, in the attribute's own units.
+  struct Plane {
+    int32_t v0 = 0, d1 = 0, d2 = 0;
+  };
+  // Exact quotients by the doubled area: value * area = whole * area + rest.
+  struct Scaled {
+    int64_t whole = 0;
+    uint32_t rest = 0;
   };
 
+  bool in_box(unsigned c, unsigned r) const;
   // The edge function at a pixel centre (sixteenths), rounded, with the
   // tie bias.
-  int64_t edge_at(const Edge& edge, int64_t x16, int64_t y16) const;
-  EdgeInTile edge_in_tile(const Edge& edge, unsigned c, unsigned r) const;
+  int32_t edge_at(unsigned e, int32_t x16, int32_t y16) const;
+  EdgeInTile edge_in_tile(unsigned e, unsigned c, unsigned r) const;
   // The centre of tile column c's / row r's bottom-right pixel, 1/16 pixel.
-  int64_t corner_x16(unsigned c) const;
-  int64_t corner_y16(unsigned r) const;
-  int64_t plane_at(const Plane& plane, int64_t x16, int64_t y16) const;
-  int64_t plane_step(const Plane& plane, int64_t dx16, int64_t dy16) const;
-  double texture_at(unsigned k, double x16, double y16) const;
+  int32_t corner_x16(unsigned c) const;
+  int32_t corner_y16(unsigned r) const;
+  // plane * area at a point whose barycentric numerators are w1, w2 (the
+  // area-weighted distances from the edges opposite vertices 1 and 2), or
+  // a step's numerator; with the area's sign taken out.
+  int64_t plane_numerator(const Plane& plane, int32_t w1, int32_t w2) const;
+  int64_t step_numerator(const Plane& plane, int dx16, int dy16) const;
+  // numerator * m / |area|, exact.
+  Scaled scale(int64_t numerator, uint32_t m) const;
+  // Of value = numerator / area, rounded: the 16.8 depth (value * 65535 /
+  // 65536, exact modulo 2^24), the 8.8 colour (value * max / 255 * 256)
+  // and the 8.8 texel (value / 16, exact modulo 2^16).
+  int64_t depth_value(int64_t numerator) const;
+  int64_t colour_value(int64_t numerator, unsigned max) const;
+  int64_t texel_value(int64_t numerator) const;
 
   FrameGeometry m_frame;
   DrawFlags m_flags;
   bool m_valid = false;
-  int64_t m_x[3]{}, m_y[3]{};  // vertices, 1/16 pixel, GL y
+  int32_t m_x[3]{}, m_y[3]{};  // vertices, 1/16 pixel, GL y
   int64_t m_area = 0;          // twice the signed area, 1/256 pixel^2
+  Divisor m_area_divisor{1};   // |m_area|
   std::array<Edge, 3> m_edges{};
-  Plane m_z, m_color[3];
-  double m_tex[2][3]{};                                      // s * width * 256, t * height * 256 per vertex
+  std::array<Divisor, 3> m_norms{Divisor{1}, Divisor{1}, Divisor{1}};
+  Plane m_z, m_color[3], m_tex[2];  // z24; 0.8 channels; s, t in 1/4096 texel
+  // The gradients, the same in every tile.
+  uint32_t m_zdu = 0, m_zdv = 0;
+  std::array<uint16_t, 3> m_cdu{}, m_cdv{};
+  std::array<uint16_t, 2> m_stdu{}, m_stdv{};
   int m_x_min = 0, m_x_max = -1, m_y_min = 0, m_y_max = -1;  // pixel bounding box, GL rows
 };
 

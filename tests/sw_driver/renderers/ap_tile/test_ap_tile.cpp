@@ -284,6 +284,173 @@ TEST(ApTileSetup, BinsSmallAndFullFrameTriangles) {
   EXPECT_EQ(std::count(reached.begin(), reached.end(), true), static_cast<long>(frame.cus()));
 }
 
+// The set-up's 32-bit arithmetic (tile_setup.cpp) against the README's
+// formulas evaluated exactly in 128-bit integers here: every record field
+// of every tile equals the exactly rounded value, at the extremes of the ranges: the largest frame
+// (512 x 504), vertices at +-2^14, slivers one sixteenth wide and a pixel
+// long or the frame long, depths 0 and 2^24 - 1, colours 0 and 255.
+__extension__ typedef __int128 Exact;
+
+int64_t exact_round(Exact n, Exact d) {
+  if (d < 0) n = -n, d = -d;
+  return static_cast<int64_t>((n >= 0 ? n + d / 2 : n - d / 2) / d);
+}
+
+struct ExactPlane {
+  Exact v[3];
+};
+
+// value * area at (x16, y16): v0 area + cx (x - x0) + cy (y - y0).
+Exact plane_times_area(const ExactPlane& p, const gl::Triangle& t, Exact x16, Exact y16, Exact* cx_out = nullptr,
+                       Exact* cy_out = nullptr) {
+  const Exact x0 = t.v[0].x, y0 = t.v[0].y, x1 = t.v[1].x, y1 = t.v[1].y, x2 = t.v[2].x, y2 = t.v[2].y;
+  const Exact area = (x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0);
+  const Exact dv1 = p.v[1] - p.v[0], dv2 = p.v[2] - p.v[0];
+  const Exact cx = dv1 * (y2 - y0) - dv2 * (y1 - y0), cy = dv2 * (x1 - x0) - dv1 * (x2 - x0);
+  if (cx_out) *cx_out = cx;
+  if (cy_out) *cy_out = cy;
+  return p.v[0] * area + cx * (x16 - x0) + cy * (y16 - y0);
+}
+
+void expect_exact_records(const gl::Triangle& t, const DrawFlags& flags, const FrameGeometry& frame,
+                          const char* what, unsigned& records) {
+  const TriangleSetup setup(t, flags, frame);
+  const Exact x[3] = {t.v[0].x, t.v[1].x, t.v[2].x}, y[3] = {t.v[0].y, t.v[1].y, t.v[2].y};
+  const Exact area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+  ASSERT_EQ(setup.valid(), area != 0) << what;
+  if (area == 0) return;
+  const int sign = area > 0 ? -1 : 1;
+  const std::vector<unsigned> tiles = setup.tiles();
+  for (unsigned r = 0; r < frame.rows; ++r)
+    for (unsigned c = 0; c < frame.columns; ++c) {
+      const Exact cx16 = 16 * Exact((c + 1) * frame.tile_width - 1) + 8;
+      const Exact cy16 = 16 * Exact(frame.height() - (r + 1) * frame.tile_height) + 8;
+      // Edges: the exact value at the corner pixel, rounded, and the
+      // rounded normalised coefficients.
+      int64_t e0[3], du[3], dv[3];
+      bool reached = true, inside[3];
+      for (unsigned i = 0; i < 3; ++i) {
+        const unsigned n = (i + 1) % 3;
+        const Exact dx = x[n] - x[i], dy = y[n] - y[i];
+        const Exact norm = std::max(dx < 0 ? -dx : dx, dy < 0 ? -dy : dy);
+        const bool top_left = sign * dy > 0 || (sign * dy == 0 && -sign * dx < 0);
+        e0[i] = exact_round(32 * sign * ((cx16 - x[i]) * dy - (cy16 - y[i]) * dx), norm) - (top_left ? 0 : 1);
+        du[i] = -exact_round(512 * sign * dy, norm);
+        dv[i] = exact_round(-512 * sign * dx, norm);
+        const int64_t lu = frame.tile_width - 1, lv = frame.tile_height - 1;
+        const int64_t corners[] = {e0[i], e0[i] + lu * du[i], e0[i] + lv * dv[i], e0[i] + lu * du[i] + lv * dv[i]};
+        reached = reached && *std::max_element(std::begin(corners), std::end(corners)) >= 0;
+        inside[i] = *std::min_element(std::begin(corners), std::end(corners)) >= 0;
+      }
+      const bool binned = std::find(tiles.begin(), tiles.end(), r * frame.columns + c) != tiles.end();
+      const TileRecord got = setup.record(c, r);
+      ASSERT_EQ(got.live, binned) << what << ", tile " << c << "," << r;
+      if (!binned) continue;
+      ASSERT_TRUE(reached) << what << ", tile " << c << "," << r;
+      ++records;
+      for (unsigned i = 0; i < 3; ++i) {
+        EXPECT_EQ(got.e0[i], inside[i] ? 0 : e0[i]) << what << ", tile " << c << "," << r << ", edge " << i;
+        EXPECT_EQ(got.edu[i], inside[i] ? 0 : du[i]) << what << ", edge " << i;
+        EXPECT_EQ(got.edv[i], inside[i] ? 0 : dv[i]) << what << ", edge " << i;
+      }
+      // Depth: z24 x 65535 / 65536 in 16.8, plus a half; colour x max /
+      // 255 in 8.8, plus a half.
+      Exact cx, cy;
+      const ExactPlane z{{t.v[0].z, t.v[1].z, t.v[2].z}};
+      const Exact z_area = plane_times_area(z, t, cx16, cy16, &cx, &cy);
+      EXPECT_EQ(got.z0, static_cast<uint32_t>(exact_round(z_area * 65535, area * 65536) + 128) & 0xffffffu) << what;
+      EXPECT_EQ(got.zdu, static_cast<uint32_t>(exact_round(-16 * cx * 65535, area * 65536)) & 0xffffffu) << what;
+      EXPECT_EQ(got.zdv, static_cast<uint32_t>(exact_round(16 * cy * 65535, area * 65536)) & 0xffffffu) << what;
+      const unsigned max[3] = {31, 63, 31};
+      for (unsigned k = 0; k < 3; ++k) {
+        ExactPlane p{};
+        for (unsigned i = 0; i < 3; ++i) {
+          const gl::ScreenVertex& v = flags.flat ? t.v[2] : t.v[i];
+          p.v[i] = k == 0 ? v.r : k == 1 ? v.g : v.b;
+        }
+        const Exact value = plane_times_area(p, t, cx16, cy16, &cx, &cy);
+        EXPECT_EQ(got.c0[k], static_cast<uint16_t>(exact_round(value * max[k] * 256, area * 255) + 128)) << what;
+        EXPECT_EQ(got.cdu[k], static_cast<uint16_t>(exact_round(-16 * cx * max[k] * 256, area * 255))) << what;
+        EXPECT_EQ(got.cdv[k], static_cast<uint16_t>(exact_round(16 * cy * max[k] * 256, area * 255))) << what;
+      }
+      // Texture coordinates: the vertices in 1/4096 texel, rounded to
+      // nearest, halves up (README.md), the plane exactly, to 8.8 rounded
+      // (halves up).
+      if (flags.tex != 0)
+        for (unsigned k = 0; k < 2; ++k) {
+          ExactPlane p{};
+          const unsigned size = k == 0 ? flags.tex_width : flags.tex_height;
+          for (unsigned i = 0; i < 3; ++i) {
+            const float st = k == 0 ? t.v[i].tex[0].s : t.v[i].tex[0].t;
+            p.v[i] = static_cast<Exact>(std::floor(static_cast<double>(st) * size * 4096 + 0.5));
+          }
+          const Exact value = plane_times_area(p, t, cx16, cy16, &cx, &cy);
+          const auto texel = [&](Exact numerator) {
+            Exact n = numerator, d = area * 16;
+            if (d < 0) n = -n, d = -d;
+            n += d / 2;
+            return static_cast<uint16_t>(static_cast<int64_t>(n >= 0 ? n / d : -((-n + d - 1) / d)));
+          };
+          EXPECT_EQ(got.st0[k], texel(value)) << what << ", tile " << c << "," << r;
+          EXPECT_EQ(got.stdu[k], texel(-16 * cx)) << what;
+          EXPECT_EQ(got.stdv[k], texel(16 * cy)) << what;
+        }
+    }
+}
+
+TEST(ApTileSetup, RecordsAreExactAtTheExtremes) {
+  FrameGeometry largest;
+  largest.columns = 64;  // 512 x 504: the largest frame of 8 x 36 tiles
+  largest.rows = 14;
+  DrawFlags flags;
+  flags.tex = 1;
+  flags.tex_width = 256;
+  flags.tex_height = 64;
+  std::mt19937 rng(2611);
+  const int limit = TriangleSetup::COORDINATE_LIMIT;
+  unsigned records = 0;
+  for (const FrameGeometry& frame : {FrameGeometry{}, largest}) {
+    const int w = 16 * static_cast<int>(frame.width()), h = 16 * static_cast<int>(frame.height());
+    std::uniform_int_distribution<int> sx(0, w - 1), sy(0, h - 1), far(-limit, limit), one(-1, 1);
+    std::uniform_int_distribution<uint32_t> z(0, 0xffffff), byte(0, 255);
+    std::uniform_real_distribution<float> st(-40.0f, 40.0f);
+    auto attributes = [&](gl::Triangle& t, bool extreme) {
+      for (unsigned i = 0; i < 3; ++i) {
+        gl::ScreenVertex& v = t.v[i];
+        v.z = extreme ? (i == 1 ? 0xffffffu : 0u) : z(rng);
+        v.r = static_cast<uint8_t>(extreme ? (i == 0 ? 255 : 0) : byte(rng));
+        v.g = static_cast<uint8_t>(extreme ? (i == 1 ? 255 : 0) : byte(rng));
+        v.b = static_cast<uint8_t>(extreme ? (i == 2 ? 0 : 255) : byte(rng));
+        v.tex[0].s = st(rng);
+        v.tex[0].t = st(rng);
+      }
+    };
+    std::vector<std::pair<gl::Triangle, std::string>> cases;
+    // The frame's two halves, the frame's corners, vertices at the limit.
+    cases.emplace_back(triangle(0, 0, w - 1, 0, w - 1, h - 1), "lower half");
+    cases.emplace_back(triangle(0, 0, w - 1, h - 1, 0, h - 1), "upper half");
+    cases.emplace_back(triangle(-limit, -limit, limit, -limit, -limit, limit), "limit corners");
+    cases.emplace_back(triangle(limit, limit, -limit, limit, limit, -limit), "limit corners, clockwise");
+    for (unsigned n = 0; n < 30; ++n) {
+      // Slivers: a long edge and a third vertex one sixteenth off it.
+      const int ax = sx(rng), ay = sy(rng), bx = sx(rng), by = sy(rng);
+      const int mx = (ax + bx) / 2 + one(rng), my = (ay + by) / 2 + one(rng);
+      cases.emplace_back(triangle(ax, ay, bx, by, mx, my), "sliver");
+      cases.emplace_back(triangle(ax, ay, ax + 16 + one(rng), ay + one(rng), ax + 8, ay + one(rng)), "short sliver");
+      cases.emplace_back(triangle(far(rng), far(rng), far(rng), far(rng), far(rng), far(rng)), "far");
+      cases.emplace_back(triangle(sx(rng), sy(rng), sx(rng), sy(rng), sx(rng), sy(rng)), "on screen");
+      cases.emplace_back(triangle(ax, ay, bx, by, 2 * bx - ax, 2 * by - ay), "degenerate");
+    }
+    for (size_t n = 0; n < cases.size(); ++n) {
+      attributes(cases[n].first, n % 2 == 0);
+      flags.flat = n % 7 == 3;
+      expect_exact_records(cases[n].first, flags, frame, cases[n].second.c_str(), records);
+      if (HasFatalFailure()) return;
+    }
+  }
+  EXPECT_GT(records, 5000u);  // the frames' every tile for the large triangles, and the slivers' few
+}
+
 // The record's bytes land where the program reads them, big-endian.
 TEST(ApTileRecord, PacksBigEndianAtTheProgramsAddresses) {
   const CmemLayout layout = CmemLayout::of(program());
