@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -146,6 +147,43 @@ TriangleValues load_inputs(HostApi& host, uint32_t address, int& x, int& y) {
   return v;
 }
 
+// The input words of a set as the host's own loop loads them: one LDR each
+// (the words are 4-byte aligned, and little-endian as both host models
+// are), no copy into a TriangleValues.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the inputs are stored little-endian");
+
+const uint8_t* aligned_words(const uint8_t* p) {
+  return static_cast<const uint8_t*>(__builtin_assume_aligned(p, 4));
+}
+
+uint32_t word_at(const uint8_t* words, unsigned k) {
+  uint32_t w;
+  std::memcpy(&w, words + 4 * k, 4);
+  return w;
+}
+
+// A signed byte of the packed position word.
+int signed_byte(uint32_t word, unsigned byte) {
+  return static_cast<int8_t>(static_cast<uint8_t>(word >> (8 * byte)));
+}
+
+// One shade from its input words, as the study's loop does it: per
+// attribute C = C0 + x dC/dx + y dC/dy in 32 bits (C0 < 2^24, |x|, |y| <=
+// 128, |gradient| < 2^15: the products stay below 2^22), the integer part
+// of the 16.8 result stored as 16 bits.
+void shade(const uint8_t* in, uint8_t* out) {
+  in = aligned_words(in);
+  const uint32_t xy = word_at(in, 3 * ATTRIBUTES);
+  const int32_t x = signed_byte(xy, 0), y = signed_byte(xy, 1);
+  for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+    const uint32_t c0 = word_at(in, 3 * a);
+    const auto gx = static_cast<int16_t>(word_at(in, 3 * a + 1));
+    const auto gy = static_cast<int16_t>(word_at(in, 3 * a + 2));
+    const auto value = static_cast<uint16_t>((c0 + static_cast<uint32_t>(x * gx + y * gy)) >> 8);
+    std::memcpy(out + 2 * a, &value, 2);
+  }
+}
+
 int mismatch(const char* app, const std::string& where, unsigned attribute, unsigned got, unsigned expected) {
   std::fprintf(stderr, "%s: %s, attribute %u: %u, expected %u\n", app, where.c_str(), attribute, got, expected);
   return 1;
@@ -199,6 +237,10 @@ int study_shading(AppEnvironment& env) {
   renderers::HostTime time;
   uint64_t passes = 0, cycles = 0;
   double total = 0;
+  // A pass's loaded sets and results, allocated once.
+  std::vector<TriangleValues> sets(per_pass);
+  std::vector<int> xs(per_pass), ys(per_pass);
+  std::vector<std::array<uint16_t, ATTRIBUTES>> got(per_pass);
   for (unsigned first = 0; first < shades; first += per_pass) {
     const unsigned n = std::min(per_pass, shades - first);
     for (unsigned i = 0; i < n; ++i) {
@@ -207,23 +249,16 @@ int study_shading(AppEnvironment& env) {
                    static_cast<int>(s / 192 % 144) - 72);
     }
     const double start = host.now_seconds();
-    std::vector<TriangleValues> sets(n);
-    std::vector<int> xs(n), ys(n);
-    std::vector<std::array<uint16_t, ATTRIBUTES>> got(n);
     if (target == Target::host) {
+      // The study's loop: each shade's 22 words loaded and its seven
+      // results stored, nothing else.
       renderers::TimedScope timed(host, time.compute);
-      for (unsigned i = 0; i < n; ++i) {
-        sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
-        host.compute(Op::alu, ATTRIBUTES * FULL_ALU + LOOP_ALU);
-        host.compute(Op::mul, ATTRIBUTES * FULL_MUL);
-        host.compute(Op::branch, LOOP_BRANCH);
-        uint8_t* out = host.store_span(results + i * ATTRIBUTES * 2, 2, ATTRIBUTES);
-        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
-          got[i][a] = integer_part(ap_pixel::shade_reference(sets[i], static_cast<Attribute>(a), xs[i], ys[i], 0, 0));
-          out[2 * a] = static_cast<uint8_t>(got[i][a]);
-          out[2 * a + 1] = static_cast<uint8_t>(got[i][a] >> 8);
-        }
-      }
+      const uint8_t* in = host.load_span(inputs, 4, n * INPUT_WORDS);
+      uint8_t* out = host.store_span(results, 2, n * ATTRIBUTES);
+      host.compute(Op::alu, uint64_t{n} * (ATTRIBUTES * FULL_ALU + LOOP_ALU));
+      host.compute(Op::mul, uint64_t{n} * ATTRIBUTES * FULL_MUL);
+      host.compute(Op::branch, uint64_t{n} * LOOP_BRANCH);
+      for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * ATTRIBUTES * 2);
     } else if (use.enabled) {
       // Through the DMA: the host stores every CU's 63 bytes and position
       // into plain arrays (2 ALU a byte: shifted out of its value and
@@ -295,12 +330,22 @@ int study_shading(AppEnvironment& env) {
     }
     total += host.now_seconds() - start;
     ++passes;
-    for (unsigned i = 0; i < n; ++i)
+    if (target == Target::host) {
+      const uint8_t* out = host.load_span(results, 2, n * ATTRIBUTES);
+      for (unsigned i = 0; i < n; ++i)
+        for (unsigned a = 0; a < ATTRIBUTES; ++a)
+          got[i][a] = static_cast<uint16_t>(out[2 * (i * ATTRIBUTES + a)] | out[2 * (i * ATTRIBUTES + a) + 1] << 8);
+    }
+    // Checked against the sets as generated, not as loaded.
+    for (unsigned i = 0; i < n; ++i) {
+      const uint32_t s = first + i;
+      const TriangleValues set = attribute_set(s);
+      const int x = static_cast<int>(s % 192) - 96, y = static_cast<int>(s / 192 % 144) - 72;
       for (unsigned a = 0; a < ATTRIBUTES; ++a) {
-        const uint16_t expected =
-            integer_part(ap_pixel::shade_reference(sets[i], static_cast<Attribute>(a), xs[i], ys[i], 0, 0));
-        if (got[i][a] != expected) return mismatch(app, "shade " + std::to_string(first + i), a, got[i][a], expected);
+        const uint16_t expected = integer_part(ap_pixel::shade_reference(set, static_cast<Attribute>(a), x, y, 0, 0));
+        if (got[i][a] != expected) return mismatch(app, "shade " + std::to_string(s), a, got[i][a], expected);
       }
+    }
   }
   publish(env, "shades", "single-pixel shades computed", shades);
   publish(env, "passes", "array passes (96 shades each), or groups of 96 on the host", passes);
@@ -348,30 +393,43 @@ int study_patches(AppEnvironment& env) {
     double elapsed = 0;
     for (unsigned round = 0; round < 2; ++round) {
       const double start = host.now_seconds();
-      int x0 = 0, y0 = 0;
-      const TriangleValues v = load_inputs(host, inputs, x0, y0);
       if (target == Target::host) {
-        // Start values per attribute, then one addition per pixel and
-        // attribute, row by row.
+        // Start values per attribute from the input words, then one
+        // addition per pixel and attribute, row by row (32 bits, modulo
+        // 2^24 as the CU's sums: only the low 24 bits are kept).
+        const uint8_t* in = aligned_words(host.load_span(inputs, 4, INPUT_WORDS));
+        const uint32_t xy = word_at(in, 3 * ATTRIBUTES);
+        const int32_t x0 = signed_byte(xy, 0), y0 = signed_byte(xy, 1);
+        uint32_t row_start[ATTRIBUTES], step_x[ATTRIBUTES], step_y[ATTRIBUTES];
         host.compute(Op::alu, ATTRIBUTES * (FULL_ALU + 2));
         host.compute(Op::mul, ATTRIBUTES * FULL_MUL);
+        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+          const int32_t gx = static_cast<int16_t>(word_at(in, 3 * a + 1));
+          const int32_t gy = static_cast<int16_t>(word_at(in, 3 * a + 2));
+          step_x[a] = static_cast<uint32_t>(gx);
+          step_y[a] = static_cast<uint32_t>(gy);
+          row_start[a] = word_at(in, 3 * a) + static_cast<uint32_t>(x0 * gx + y0 * gy);
+        }
         for (unsigned r = 0; r < shape.height; ++r) {
           host.compute(Op::alu, ATTRIBUTES * STEP_ALU + 4);
           uint8_t* out = host.store_span(results + r * shape.width * ATTRIBUTES * 2, 2, shape.width * ATTRIBUTES);
           host.compute(Op::alu, uint64_t{shape.width} * (ATTRIBUTES * STEP_ALU + LOOP_ALU));
           host.compute(Op::branch, uint64_t{shape.width} * LOOP_BRANCH);
+          uint32_t value[ATTRIBUTES];
+          std::memcpy(value, row_start, sizeof value);
           for (unsigned c = 0; c < shape.width; ++c)
             for (unsigned a = 0; a < ATTRIBUTES; ++a) {
-              const uint16_t value =
-                  integer_part(ap_pixel::shade_reference(v, static_cast<Attribute>(a), x0, y0, c, r));
-              got[r * shape.width + c][a] = value;
-              out[2 * (c * ATTRIBUTES + a)] = static_cast<uint8_t>(value);
-              out[2 * (c * ATTRIBUTES + a) + 1] = static_cast<uint8_t>(value >> 8);
+              const auto integer = static_cast<uint16_t>(value[a] >> 8);
+              std::memcpy(out + 2 * (c * ATTRIBUTES + a), &integer, 2);
+              value[a] += step_x[a];
             }
+          for (unsigned a = 0; a < ATTRIBUTES; ++a) row_start[a] += step_y[a];
         }
       } else {
         // The 21 values to every CU; blocks of block x block pixels, one
         // per CU, row by row; the pixels of the patch read back.
+        int x0 = 0, y0 = 0;
+        const TriangleValues v = load_inputs(host, inputs, x0, y0);
         ap_pixel::for_each_value_byte(v, layout, [&](unsigned address, uint8_t byte) { array->fill8(address, byte); });
         const unsigned across = (shape.width + block - 1) / block, up = (shape.height + block - 1) / block;
         const unsigned blocks = across * up, cus = array->cus();
@@ -419,6 +477,12 @@ int study_patches(AppEnvironment& env) {
         }
       }
       elapsed = host.now_seconds() - start;
+    }
+    if (target == Target::host) {
+      const uint8_t* out = host.load_span(results, 2, shape.width * shape.height * ATTRIBUTES);
+      for (size_t p = 0; p < got.size(); ++p)
+        for (unsigned a = 0; a < ATTRIBUTES; ++a)
+          got[p][a] = static_cast<uint16_t>(out[2 * (p * ATTRIBUTES + a)] | out[2 * (p * ATTRIBUTES + a) + 1] << 8);
     }
     for (unsigned r = 0; r < shape.height; ++r)
       for (unsigned c = 0; c < shape.width; ++c)
