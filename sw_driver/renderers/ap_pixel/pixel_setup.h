@@ -11,6 +11,7 @@
 
 #include "array/asm/program.h"
 #include "gl/renderer.h"
+#include "renderers/common/divisor.h"
 
 namespace tessera::ap_pixel {
 
@@ -78,8 +79,13 @@ struct PixelBox {
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive, GL rows (0 at the bottom)
 };
 
+// The set-up is 32-bit integer arithmetic written for the ARM922T: 32x32->64
+// multiplies, 64-bit additions and divisions by per-triangle Divisors
+// (renderers/common/divisor.h); the ranges are in pixel_setup.cpp.
 class PixelTriangle {
  public:
+  static constexpr int32_t COORDINATE_LIMIT = int32_t{1} << 14;
+
   // flat: every vertex takes v[2]'s colour; tex_width, tex_height: the
   // texture's size in texels (S and T are in texels), 0 when untextured.
   // `unit`: the texture unit whose coordinates are interpolated.
@@ -87,7 +93,8 @@ class PixelTriangle {
                 unsigned unit = 0);
 
   // False for a triangle that draws nothing (zero area, a vertex beyond
-  // +-2^18 pixels as in the other back ends, or wholly outside the box).
+  // +-2^14 sixteenths (COORDINATE_LIMIT: twice the 9.4 screen), or wholly
+  // outside the box, which must lie within a 512-pixel frame).
   bool valid() const { return m_valid; }
   // The rows with pixel centres in the triangle's bounding box, in the box.
   int y_first() const { return m_y_min; }
@@ -104,18 +111,28 @@ class PixelTriangle {
 
  private:
   struct Edge {
-    int64_t a = 0, b = 0, c = 0;  // E = a x16 + b y16 + c, inside > 0 (or = 0 on a top-left edge)
+    int32_t a = 0, b = 0, c = 0;  // E = a x16 + b y16 + c, inside > 0 (or = 0 on a top-left edge)
     bool top_left = false;
+    Divisor over_16a{1};  // 16 |a| (1 when a = 0)
+  };
+  // An attribute: its value at vertex 0 and its differences to vertices 1
+  // and 2, in 2^-fraction units of its 16.8 code.
+  struct Plane {
+    int32_t v0 = 0, d1 = 0, d2 = 0;
+    unsigned fraction = 8;
   };
 
   PixelBox m_box;
   bool m_valid = false;
-  int64_t m_area = 0;  // |twice the area|, 1/256 pixel^2: the sum of the three edge functions
+  uint32_t m_area = 0;  // |twice the area|, 1/256 pixel^2: the sum of the three edge functions
+  Divisor m_area_divisor{1};
+  int m_area_sign = 1;
   std::array<Edge, 3> m_edges{};
-  // Per attribute, its value at the three vertices, 16.8 units.
-  std::array<std::array<double, 3>, ATTRIBUTES> m_vertex{};
-  std::array<double, 3> m_x{}, m_y{};  // vertices in pixels
-  std::array<uint32_t, 3> m_z{};       // 0.24 depth
+  std::array<Plane, ATTRIBUTES> m_planes{};
+  // The gradients, the same for every origin.
+  TriangleValues m_gradients;
+  std::array<int32_t, 3> m_x{}, m_y{};  // vertices, 1/16 pixel
+  std::array<uint32_t, 3> m_z{};        // 0.24 depth
   int m_y_min = 0, m_y_max = -1;
 };
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -247,6 +248,121 @@ TEST(ApPixelSetup, DepthAndValuesFollowThePlanes) {
       EXPECT_NEAR(sv / 256.0, s, 0.5 / 256 + distance / 512.0) << i << ", " << j;
     }
   }
+}
+
+// The set-up's 32-bit arithmetic (pixel_setup.cpp) against the README's
+// formulas evaluated exactly in 128-bit integers, at the extremes of the
+// ranges: a 512 x 512 frame, vertices at +-2^14 sixteenths, slivers a
+// sixteenth wide and the frame long, depths 0 and 2^24 - 1, texture
+// coordinates across 40 repeats. Spans are the pixels whose centres the
+// exact edge functions put inside (top-left rule), the depth the exact
+// plane truncated, the 21 values the exact planes rounded (halves up) with
+// the vertices' texture coordinates in 1/4096 texel.
+TEST(ApPixelSetup, SpansDepthAndValuesAreExactAtTheExtremes) {
+  __extension__ typedef __int128 Exact;
+  const PixelBox box{0, 0, 511, 511};
+  const int limit = PixelTriangle::COORDINATE_LIMIT, w = 16 * 512;
+  std::mt19937 rng(1202);
+  std::uniform_int_distribution<int> sx(0, w - 1), far(-limit, limit), one(-1, 1);
+  std::uniform_int_distribution<uint32_t> z(0, 0xffffff), byte(0, 255);
+  std::uniform_real_distribution<float> st(-20.0f, 20.0f);
+  std::vector<gl::Triangle> cases = {triangle(0, 0, w - 1, 0, w - 1, w - 1), triangle(0, 0, w - 1, w - 1, 0, w - 1),
+                                     triangle(-limit, -limit, limit, -limit, -limit, limit)};
+  for (unsigned n = 0; n < 24; ++n) {
+    const int ax = sx(rng), ay = sx(rng), bx = sx(rng), by = sx(rng);
+    cases.push_back(triangle(ax, ay, bx, by, (ax + bx) / 2 + one(rng), (ay + by) / 2 + one(rng)));  // sliver
+    cases.push_back(triangle(far(rng), far(rng), far(rng), far(rng), far(rng), far(rng)));
+  }
+  unsigned pixels = 0;
+  for (size_t c = 0; c < cases.size(); ++c) {
+    gl::Triangle& t = cases[c];
+    for (unsigned i = 0; i < 3; ++i) {
+      t.v[i].z = c % 2 == 0 ? (i == 1 ? 0xffffffu : 0u) : z(rng);
+      t.v[i].r = static_cast<uint8_t>(byte(rng));
+      t.v[i].a = static_cast<uint8_t>(c % 2 == 0 ? 255 * (i % 2) : byte(rng));
+      t.v[i].tex[0].s = st(rng);
+      t.v[i].tex[0].t = st(rng);
+    }
+    const unsigned tex_w = 256, tex_h = 32;
+    const PixelTriangle setup(t, false, tex_w, tex_h, box);
+    const Exact x[3] = {t.v[0].x, t.v[1].x, t.v[2].x}, y[3] = {t.v[0].y, t.v[1].y, t.v[2].y};
+    const Exact area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    ASSERT_EQ(setup.valid(), area != 0 && setup.y_first() <= setup.y_last()) << "case " << c;
+    if (!setup.valid()) continue;
+    const auto floor_div = [](Exact n, Exact d) {
+      if (d < 0) n = -n, d = -d;
+      return n >= 0 ? n / d : -((-n + d - 1) / d);
+    };
+    // The exact edge functions, inside positive.
+    const Exact sign = area > 0 ? -1 : 1;
+    const auto edge = [&](unsigned e, Exact px, Exact py) {
+      const unsigned n = (e + 1) % 3;
+      return sign * ((px - x[e]) * (y[n] - y[e]) - (py - y[e]) * (x[n] - x[e]));
+    };
+    const auto owns = [&](unsigned e) {
+      const unsigned n = (e + 1) % 3;
+      const Exact a = sign * (y[n] - y[e]), b = -sign * (x[n] - x[e]);
+      return a > 0 || (a == 0 && b < 0);
+    };
+    for (int j = setup.y_first(); j <= setup.y_last(); j += 5) {
+      int lo = 0, hi = -1;
+      const bool any = setup.span(j, lo, hi);
+      int expected_lo = 1, expected_hi = 0;
+      for (int i = box.x0; i <= box.x1; ++i) {
+        bool in = true;
+        for (unsigned e = 0; e < 3; ++e) {
+          const Exact v = edge(e, 16 * i + 8, 16 * j + 8);
+          in = in && (owns(e) ? v >= 0 : v > 0);
+        }
+        if (!in) continue;
+        if (expected_lo > expected_hi) expected_lo = i;
+        expected_hi = i;
+        if ((i - expected_lo) % 3 == 0) {
+          Exact sum = 0;
+          for (unsigned e = 0; e < 3; ++e) sum += edge(e, 16 * i + 8, 16 * j + 8) * t.v[(e + 2) % 3].z;
+          const Exact z24 = sum / (area < 0 ? -area : area);
+          ASSERT_EQ(setup.depth16(i, j), static_cast<uint16_t>(std::clamp<Exact>(z24, 0, 0xffffff) >> 8))
+              << "case " << c << ", pixel " << i << ", " << j;
+          ++pixels;
+        }
+      }
+      ASSERT_EQ(any, expected_lo <= expected_hi) << "case " << c << ", row " << j;
+      if (!any) continue;
+      ASSERT_EQ(lo, expected_lo) << "case " << c << ", row " << j;
+      ASSERT_EQ(hi, expected_hi) << "case " << c << ", row " << j;
+    }
+    // The values at an origin in the frame: per attribute the plane in
+    // 2^-fraction code units, at the origin's centre and per pixel.
+    const int ox = sx(rng) / 16, oy = sx(rng) / 16;
+    const TriangleValues got = setup.values(ox, oy);
+    for (unsigned k = 0; k < ATTRIBUTES; ++k) {
+      Exact v[3];
+      unsigned fraction = 8;
+      for (unsigned i = 0; i < 3; ++i) {
+        const gl::ScreenVertex& p = t.v[i];
+        const uint8_t channels[4] = {p.r, p.g, p.b, p.a};
+        if (k < 4) v[i] = Exact{channels[k]} << 16;
+        if (k == 6) v[i] = p.z;
+        if (k == 4 || k == 5) {
+          v[i] = static_cast<Exact>(std::floor(static_cast<double>(k == 4 ? p.tex[0].s : p.tex[0].t) *
+                                                   (k == 4 ? tex_w : tex_h) * 4096 +
+                                               0.5));
+          fraction = 4;
+        }
+      }
+      const Exact d1 = v[1] - v[0], d2 = v[2] - v[0];
+      const Exact cx = d1 * (y[2] - y[0]) - d2 * (y[1] - y[0]), cy = d2 * (x[1] - x[0]) - d1 * (x[2] - x[0]);
+      const Exact at = v[0] * area + cx * (16 * ox + 8 - x[0]) + cy * (16 * oy + 8 - y[0]);
+      const Exact half = Exact{1} << (fraction - 1), unit = Exact{1} << fraction;
+      const Exact c0 = floor_div(at + half * area, unit * area) + (k < 4 ? 128 : 0);
+      EXPECT_EQ(got.c0[k], static_cast<uint32_t>(c0) & 0xffffffu) << "case " << c << ", attribute " << k;
+      const Exact gx = floor_div(16 * cx + half * area, unit * area), gy = floor_div(16 * cy + half * area, unit * area);
+      EXPECT_EQ(got.clamped[k], gx > 32767 || gx < -32767 || gy > 32767 || gy < -32767) << "case " << c;
+      EXPECT_EQ(got.gx[k], static_cast<int16_t>(std::clamp<Exact>(gx, -32768, 32767))) << "case " << c << ", " << k;
+      EXPECT_EQ(got.gy[k], static_cast<int16_t>(std::clamp<Exact>(gy, -32768, 32767))) << "case " << c << ", " << k;
+    }
+  }
+  EXPECT_GT(pixels, 10000u);
 }
 
 // A program that lacks what the host expects is refused, naming it.
