@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the binary seed inputs of fuzz/corpus (raster_commands, gl), and
+"""Writes the binary seed inputs of fuzz/corpus (raster_commands, gl, elf,
+gdb_packets, semihosting), and
 the regression inputs written for a fault rather than kept as found.
 
 The text seeds (config, obj, array_asm) are written by hand. Run from
 anywhere: python3 fuzz/make_seeds.py. The layouts are those the targets'
-headers describe (fuzz_raster_commands.cpp, fuzz_gl.cpp).
+headers describe (fuzz_raster_commands.cpp, fuzz_gl.cpp, fuzz_elf.cpp,
+fuzz_gdb_packets.cpp, fuzz_semihosting.cpp).
 """
 import pathlib
 import struct
@@ -81,9 +83,48 @@ COPY_TEX_HUGE = (bytes([24]) + gl_enum(GL_TEXTURE_2D) + gl_int_edge(0) + gl_enum
                  bytes([25]) + gl_enum(GL_TEXTURE_2D) + gl_int_edge(0) * 5 + gl_int_edge(17) * 2 + GET_ERROR)
 
 
+# --- elf: an ARM executable. Segments are (address, file bytes, memory
+# bytes, flags); the file bytes of every segment follow the headers, in turn.
+def elf(segments, entry=None):
+    headers = 52 + 32 * len(segments)
+    out = bytearray(b"\x7fELF\x01\x01\x01" + bytes(9))
+    out += struct.pack("<HHIIIIIHHHHHH", 2, 40, 1, segments[0][0] if entry is None else entry, 52, 0, 0, 52, 32,
+                       len(segments), 40, 0, 0)
+    offset = headers
+    for address, data, memory_bytes, flags in segments:
+        out += struct.pack("<IIIIIIII", 1, offset, address, address, len(data), memory_bytes, flags, 4)
+        offset += len(data)
+    for _, data, _, _ in segments:
+        out += data
+    return bytes(out)
+
+
+EXIT_PROGRAM = words(0xE3A00005, 0xE3A0124F, 0xE5810000, 0xEAFFFFFE)  # mov r0,#5; ldr r1,=EXIT; str r0,[r1]; b .
+HANG_PROGRAM = words(0xE321F0D3, 0xEAFFFFFE)  # msr cpsr_c, #0xd3; b .
+
+
+# --- gdb_packets: what a client sends, each packet framed with its checksum.
+def gdb(*packets, ack=True):
+    out = b""
+    for p in packets:
+        out += b"$" + p + b"#" + b"%02x" % (sum(p) & 0xFF) + (b"+" if ack else b"")
+    return out
+
+
+# --- semihosting: a 1,024-byte memory image, then calls of (operation, parameter).
+def semihosting(image, *calls):
+    memory = bytearray(1024)
+    for address, data in image:
+        memory[address:address + len(data)] = data
+    return bytes(memory) + b"".join(struct.pack("<BI", op, parameter) for op, parameter in calls)
+
+
 def main():
     (CORPUS / "raster_commands").mkdir(parents=True, exist_ok=True)
-    (CORPUS / "gl").mkdir(parents=True, exist_ok=True)
+    for target in ("gl", "elf", "gdb_packets", "semihosting"):
+        (CORPUS / target).mkdir(parents=True, exist_ok=True)
+    operation = {"open": 0, "close": 1, "writec": 2, "write0": 3, "write": 4, "read": 5, "flen": 9,
+                 "get_cmdline": 13, "exit_extended": 15}  # indices into semihosting.def's list
     depth = 1 | 2
     tri = [vertex(2, 2, 0xFF0000FF, 100), vertex(60, 4, 0xFF00FF00, 200), vertex(30, 30, 0xFFFF0000, 300)]
     seeds = {
@@ -100,6 +141,29 @@ def main():
         "gl/seed-matrices.bin": gl_stream(ORTHO_EDGES, PUSH_POP, GET_ERROR, ENABLE_VERTEX_ARRAY,
                                           VERTEX_POINTER_FLOAT3, DRAW_TRIANGLES_6),
         "gl/regress-copy-tex-image-huge-size.bin": COPY_TEX_HUGE,
+        "elf/seed-exit.elf": elf([(0x8000, EXIT_PROGRAM, 16, 5)]),
+        "elf/seed-two-segments.elf": elf([(0x100, HANG_PROGRAM, 8, 5), (0x2000, words(1, 2, 3), 0x100, 6)]),
+        "elf/seed-overlapping.elf": elf([(0x100, EXIT_PROGRAM, 16, 5), (0x108, words(7), 4, 6)]),
+        "elf/seed-large-bss.elf": elf([(0, EXIT_PROGRAM, 16, 5), (0x10000, b"", 0x2000000, 6)]),
+        "gdb_packets/seed-session.bin": b"+" + gdb(b"qSupported:multiprocess+;swbreak+", b"?", b"g",
+                                                   b"qXfer:features:read:target.xml:0,ffb", b"m0,40",
+                                                   b"M100,4:01020304", b"p10", b"P3=78563412",
+                                                   b"Z0,100,4", b"z0,100,4", b"G" + b"00000000" * 16 + b"d3000000",
+                                                   b"s", b"c", b"D"),
+        "gdb_packets/seed-errors.bin": gdb(b"G" + b"zz" * 68, b"M100,2:0g", b"m,", b"P=1", b"qXfer:x") +
+                                       b"$m0,4#00-\x03$g#6" + b"$" + b"a" * 100,
+        "semihosting/seed-console.bin": semihosting(
+            [(0x100, b":tt"), (0x200, words(0x100, 4, 3)), (0x210, words(1, 0x300, 200)), (0x300, b"hello\n" * 40),
+             (0x40, b"text\0")],
+            (operation["open"], 0x200), (operation["write"], 0x210), (operation["write0"], 0x40),
+            (operation["writec"], 0x300), (operation["exit_extended"], 0x3f8)),
+        "semihosting/seed-files.bin": semihosting(
+            [(0x100, b":fuzz/file"), (0x120, b":fuzz/sink"), (0x200, words(0x100, 0, 10)),
+             (0x210, words(0x120, 4, 10)), (0x220, words(1, 0x300, 100)), (0x230, words(2, 0x300, 100)),
+             (0x240, words(1)), (0x250, words(0x380, 64))],
+            (operation["open"], 0x200), (operation["open"], 0x210), (operation["read"], 0x220),
+            (operation["write"], 0x230), (operation["flen"], 0x240), (operation["get_cmdline"], 0x250),
+            (operation["close"], 0x240)),
     }
     for name, data in seeds.items():
         (CORPUS / name).write_bytes(data)
