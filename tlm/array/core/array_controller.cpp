@@ -45,6 +45,7 @@ bool ArrayController::write_word(unsigned index, uint64_t word) {
   if (index >= m_words.size()) return false;
   m_words[index] = word;
   decode_slot(index);
+  m_runaways.clear();
   return true;
 }
 
@@ -181,6 +182,11 @@ class RunawayWalk {
 }  // namespace
 
 std::optional<ArrayController::Runaway> ArrayController::find_runaway(unsigned entry) const {
+  if (const auto known = m_runaways.find(entry); known != m_runaways.end()) return known->second;
+  return m_runaways[entry] = walk_for_runaway(entry);
+}
+
+std::optional<ArrayController::Runaway> ArrayController::walk_for_runaway(unsigned entry) const {
   RunawayWalk<std::vector<Slot>> walk(m_slots, m_geometry.cmem_bytes, m_max_cycles);
   unsigned pc = entry;
   if (walk.walk(pc, 0) != RunawayWalk<std::vector<Slot>>::End::crossed) return std::nullopt;

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "array/core/cu_array.h"
@@ -114,6 +115,7 @@ class ArrayController {
     std::string error;  // why the word cannot run, or empty
   };
   void decode_slot(unsigned index);
+  std::optional<Runaway> walk_for_runaway(unsigned entry) const;
 
   ArrayGeometry m_geometry;
   CycleTable m_cycles;
@@ -123,6 +125,9 @@ class ArrayController {
   std::vector<Slot> m_slots;
   ControllerActivity m_activity;
   std::vector<uint64_t> m_run_executions;  // per word, during run(): executions so far, folded in at its end
+  // find_runaway's answer per entry word, until program memory is written:
+  // a renderer starts the same programs thousands of times a frame.
+  mutable std::unordered_map<unsigned, std::optional<Runaway>> m_runaways;
   bool m_record_stages = false;
   std::vector<StageChange> m_stage_changes;
 };
