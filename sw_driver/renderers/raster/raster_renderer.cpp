@@ -308,8 +308,10 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     m_last_draw_state = {encode_state(state, unit), encode_fog(state)};
   }
   const uint32_t state_index = add_state(m_last_draw_state);
-  renderers::FogCoefficients fog;
-  if (state.fog) fog = renderers::fog_coefficients(state);
+  // The fog argument in single precision (fog.h's _f forms: a multiply, an
+  // add and a conversion per vertex on the ARM922T, no double).
+  renderers::FogCoefficientsF fog;
+  if (state.fog) fog = renderers::fog_coefficients_f(state);
   // Antialiased edges reach into the pixels next to the box; one pixel of
   // margin covers them and costs nothing for the tiles.
   constexpr int MARGIN = 1;
@@ -320,7 +322,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     record.units = units;
     for (unsigned k = 0; k < 3; ++k) {
       record.record.v[k] = encode_vertex(t.v[k], unit.index);
-      if (state.fog) record.fog.argument[k] = renderers::fog_argument(fog, t.v[k].fog);
+      if (state.fog) record.fog.argument[k] = renderers::fog_argument_f(fog, t.v[k].fog, INT32_MAX);
       for (unsigned u = 1; u < units; ++u) {  // the further units' s/w and t/w
         const gl::TexCoord st = t.v[k].tex[unit_index[u]];
         record.unit_coords[u - 1].s_over_w[k] = st.s * t.v[k].inv_w;
