@@ -180,6 +180,42 @@ TEST(IssPrograms, OverlappingSegmentsAreRefusedNamingBoth) {
   EXPECT_NO_THROW(tessera::iss::read_elf(write_file("adjacent.elf", make_elf({{0x1000, 16, 0x100}, {0x1100, 4, 4}}))));
 }
 
+// Console output without a newline, streamed (as iss_run prints it):
+// handed on in pieces of at most 4 KiB while the program runs, the rest at
+// the flush, never kept whole.
+TEST(IssPrograms, StreamedConsoleOutputWithoutANewlineComesInBoundedPieces) {
+  tessera::iss::BareMachine machine;
+  ArmCore core(machine);
+  const uint32_t program[] = {
+      0xe3a0020f,  //       mov  r0, #0xf0000000  @ the console register
+      0xe3a01078,  //       mov  r1, #'x'
+      0xe3a02c27,  //       mov  r2, #0x2700
+      0xe2822010,  //       add  r2, r2, #0x10    @ 10,000
+      0xe5801000,  // 1:    str  r1, [r0]
+      0xe2522001,  //       subs r2, r2, #1
+      0x1afffffc,  //       bne  1b
+      0xe3a01000,  //       mov  r1, #0
+      0xe5801004,  //       str  r1, [r0, #4]     @ the exit register
+  };
+  ASSERT_TRUE(machine.debug_write(0, reinterpret_cast<const uint8_t*>(program), sizeof program));
+  std::vector<size_t> pieces;
+  size_t total = 0;
+  machine.stream_console([&](const std::string& text) {
+    pieces.push_back(text.size());
+    total += text.size();
+    EXPECT_EQ(text, std::string(text.size(), 'x'));
+  });
+  core.reset();
+  core.set_reg(15, 0);
+  EXPECT_TRUE(machine.run(core, 100'000));
+  EXPECT_GT(total, 10'000u - tessera::iss::BareMachine::CONSOLE_CHUNK);
+  for (size_t piece : pieces) EXPECT_LE(piece, tessera::iss::BareMachine::CONSOLE_CHUNK);
+  EXPECT_LT(machine.console().size(), tessera::iss::BareMachine::CONSOLE_CHUNK);
+  machine.flush_console();
+  EXPECT_EQ(total, 10'000u);
+  EXPECT_EQ(machine.console(), "");
+}
+
 TEST(IssPrograms, AnExecutableOutsideMemoryIsAClearError) {
   const auto image = tessera::iss::read_elf(g_arm_elf);
   try {

@@ -50,6 +50,8 @@ int run_main(int argc, char** argv) {
     // As a boot loader would: the instruction cache on before the program starts.
     cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
     machine.load(read_elf(elf), core);
+    // Printed as it comes (a line, or 4 KiB without a newline), not kept to the end.
+    machine.stream_console([](const std::string& text) { std::cout << text << std::flush; });
     core.on_exception([&](Exception exception, uint32_t pc) {
       if (const char* fault = fault_name(exception))
         throw ProgramFault(exception, elf + ": " + fault + " at pc " + address_text(pc));
@@ -70,7 +72,7 @@ int run_main(int argc, char** argv) {
                                        [&] { return machine.exited(); }, [&] { return machine.status(); }};
         const GdbServer::End end = server.serve(target, limit);
         if (end == GdbServer::End::killed) {
-          std::cout << machine.console();
+          machine.flush_console();
           std::cerr << "iss_run: killed by GDB at pc " << address_text(core.reg(15)) << "\n";
           return 3;
         }
@@ -84,7 +86,7 @@ int run_main(int argc, char** argv) {
       } else {
         exited = machine.run(core, limit - std::min(limit, core.instructions()));
       }
-      std::cout << machine.console() << std::flush;
+      machine.flush_console();
       if (timed) {
         char line[256];
         std::snprintf(line, sizeof line,
@@ -106,7 +108,7 @@ int run_main(int argc, char** argv) {
       }
       return static_cast<int>(machine.status() & 0xffu);
     } catch (const IssError& error) {
-      std::cout << machine.console() << std::flush;
+      machine.flush_console();
       std::cerr << "iss_run: " << error.what() << "\n";
       return 3;
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,16 @@ class BareMachine : public IssMemory, public DebugMemory {
     return m_exited;
   }
 
+  // Console output as the program writes it: handed to `sink` at each
+  // newline and whenever CONSOLE_CHUNK bytes without one have gathered (the
+  // rest at flush_console()). Without a sink it is kept whole: console().
+  static constexpr size_t CONSOLE_CHUNK = 4096;
+  void stream_console(std::function<void(const std::string& text)> sink) { m_console_sink = std::move(sink); }
+  void flush_console() {
+    if (m_console_sink && !m_console.empty()) m_console_sink(m_console);
+    if (m_console_sink) m_console.clear();
+  }
+
   const std::string& console() const { return m_console; }
   bool exited() const { return m_exited; }
   uint32_t status() const { return m_status; }
@@ -62,6 +73,7 @@ class BareMachine : public IssMemory, public DebugMemory {
   bool write(uint32_t address, unsigned size, uint32_t value) override {
     if (address == CONSOLE) {
       m_console += static_cast<char>(value);
+      if (m_console_sink && (static_cast<char>(value) == '\n' || m_console.size() >= CONSOLE_CHUNK)) flush_console();
       return true;
     }
     if (address == EXIT) {
@@ -77,6 +89,7 @@ class BareMachine : public IssMemory, public DebugMemory {
  private:
   std::vector<uint8_t> m_ram;
   std::string m_console;
+  std::function<void(const std::string&)> m_console_sink;
   bool m_exited = false;
   uint32_t m_status = 0;
 };
