@@ -103,7 +103,8 @@ void DmaDriver::finish(unsigned channel) {
   if ((m_host.read32(channel_reg(channel, regs::CH_STATUS)) & regs::STATUS_ERROR) == 0) return;
   const uint32_t code = m_host.read32(channel_reg(channel, regs::CH_ERROR_CODE));
   const uint32_t descriptor = m_host.read32(channel_reg(channel, regs::CH_ERROR_DESC));
-  const uint32_t address = m_host.read32(channel_reg(channel, regs::CH_ERROR_ADDR));
+  const uint64_t address = m_host.read32(channel_reg(channel, regs::CH_ERROR_ADDR)) |
+                           uint64_t{m_host.read32(channel_reg(channel, regs::CH_ERROR_ADDR_HI))} << 32;
   throw DmaError("DMA channel " + std::to_string(channel) + " stopped: " +
                      dma::error_text(static_cast<dma::Error>(code)) + " (the simulator's log names the descriptor)",
                  code, descriptor, address);

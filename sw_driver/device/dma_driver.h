@@ -18,14 +18,16 @@ namespace tessera {
 // address (0xFFFFFFFF: the registers) and the offending address.
 class DmaError : public std::runtime_error {
  public:
-  DmaError(const std::string& what, uint32_t code, uint32_t descriptor, uint32_t address)
+  DmaError(const std::string& what, uint32_t code, uint32_t descriptor, uint64_t address)
       : std::runtime_error(what), m_code(code), m_descriptor(descriptor), m_address(address) {}
   uint32_t code() const { return m_code; }
   uint32_t descriptor() const { return m_descriptor; }
-  uint32_t address() const { return m_address; }
+  // ERROR_ADDR_HI:ERROR_ADDR, up to 33 bits.
+  uint64_t address() const { return m_address; }
 
  private:
-  uint32_t m_code, m_descriptor, m_address;
+  uint32_t m_code, m_descriptor;
+  uint64_t m_address;
 };
 
 class DmaDriver {

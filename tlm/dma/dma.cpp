@@ -134,7 +134,8 @@ Dma::Dma(sc_core::sc_module_name name, const DmaParams& params)
     });
     m_regs.add(ERROR_CODE, [this, c] { return m_channels[c].error_code; });
     m_regs.add(ERROR_DESC, [this, c] { return m_channels[c].error_desc; });
-    m_regs.add(ERROR_ADDR, [this, c] { return m_channels[c].error_addr; });
+    m_regs.add(ERROR_ADDR, [this, c] { return static_cast<uint32_t>(m_channels[c].error_addr); });
+    m_regs.add(ERROR_ADDR_HI, [this, c] { return static_cast<uint32_t>(m_channels[c].error_addr >> 32); });
     m_regs.add(DESCRIPTORS, [this, c] { return static_cast<uint32_t>(m_channels[c].descriptors->value); });
     m_regs.add(BYTES, [this, c] { return static_cast<uint32_t>(m_channels[c].bytes->value); });
   }
@@ -272,7 +273,7 @@ void Dma::fail(unsigned channel, uint32_t descriptor, const dma::Fault& fault) {
   ch.error = true;
   ch.error_code = static_cast<uint32_t>(fault.error);
   ch.error_desc = descriptor;
-  ch.error_addr = static_cast<uint32_t>(fault.address);
+  ch.error_addr = fault.address;
   ++*ch.errors;
   const std::string at =
       descriptor == regs::ERROR_DESC_REGISTERS ? std::string("in registers") : "at " + log::hex(descriptor);

@@ -81,7 +81,8 @@ class Dma : public Peripheral {
     uint32_t next = 0;             // the next descriptor in memory
     std::unordered_set<uint32_t> visited;
     bool done = false, error = false, refused = false;
-    uint32_t error_code = 0, error_desc = 0, error_addr = 0;
+    uint32_t error_code = 0, error_desc = 0;
+    uint64_t error_addr = 0;    // up to 33 bits: the last byte of a range past 4 GiB
     sc_core::sc_time ready_at;  // the START's time
     sc_core::sc_time busy_time;
     sc_core::sc_time bus_wait;

@@ -150,7 +150,8 @@ TEST(DmaDriver, ARefusedDescriptorRaisesDmaErrorNamingCodeDescriptorAndAddress) 
   Bench& b = *g_bench;
   const uint32_t beyond = static_cast<uint32_t>(b.soc.memory.size()) + 0x100;
   bool thrown = false;
-  uint32_t code = 0, descriptor = 0, address = 0;
+  uint32_t code = 0, descriptor = 0;
+  uint64_t address = 0;
   std::string what;
   b.run([&](HostApi&, DmaDriver& dma) {
     try {

@@ -114,7 +114,10 @@ Fault check_reshuffle(const Descriptor& d, const Limits& limits) {
 }  // namespace
 
 Fault validate(const Descriptor& d, const Limits& limits) {
-  if (d.kind_code() > static_cast<uint32_t>(Kind::broadcast)) return {Error::bad_descriptor, d.ctrl};
+  if (d.kind_code() > static_cast<uint32_t>(Kind::broadcast) || (d.ctrl & CTRL_RESERVED_MASK) != 0)
+    return {Error::bad_descriptor, d.ctrl};
+  if (d.kind() != Kind::broadcast && d.mask != 0) return {Error::bad_descriptor, d.ctrl};
+  if (d.kind() == Kind::broadcast && d.src_stride != 0) return {Error::bad_descriptor, d.ctrl};
   if (d.length == 0) return {Error::zero_length, 0};
   uint64_t offending = 0;
   switch (d.kind()) {
@@ -182,15 +185,21 @@ Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, 
       }
       return {};
     }
-    case Kind::mem_to_mem:
-      for (uint32_t done = 0; done < d.length;) {
+    case Kind::mem_to_mem: {
+      // A destination above an overlapping source: chunk by chunk from the
+      // end, so no chunk reads bytes an earlier one has written (memmove).
+      // The chunks are the same ones either way, so is the time.
+      const bool backwards = d.dst > d.src && d.dst < uint64_t{d.src} + d.length;
+      const uint32_t chunks = (d.length + buffer_bytes - 1) / buffer_bytes;
+      for (uint32_t i = 0; i < chunks; ++i) {
+        const uint32_t done = (backwards ? chunks - 1 - i : i) * buffer_bytes;
         const unsigned bytes = std::min<uint32_t>(buffer_bytes, d.length - done);
         if (!port.read_memory(d.src + done, buffer.data(), bytes)) return {Error::bus_error, d.src + done};
         if (!port.write_memory(d.dst + done, buffer.data(), bytes)) return {Error::bus_error, d.dst + done};
-        done += bytes;
         moved += bytes;
       }
       return {};
+    }
     case Kind::broadcast: {
       std::vector<uint8_t> mask;
       if (d.mask != 0) {

@@ -35,6 +35,8 @@ inline constexpr unsigned DESCRIPTOR_BYTES = 4 * DESCRIPTOR_WORDS;
 inline constexpr uint32_t CTRL_KIND_MASK = 0x7;
 inline constexpr unsigned CTRL_ELEMENT_SHIFT = 4;
 inline constexpr uint32_t CTRL_ELEMENT_MASK = 0x3u << CTRL_ELEMENT_SHIFT;
+// The rest of CTRL is reserved: a descriptor with any of it set is refused.
+inline constexpr uint32_t CTRL_RESERVED_MASK = ~(CTRL_KIND_MASK | CTRL_ELEMENT_MASK);
 
 // Word order: the same in memory (little-endian words) and in registers.
 struct Descriptor {
@@ -79,7 +81,9 @@ struct Fault {
 };
 
 // The whole descriptor checked before anything moves: ranges (every byte
-// it would read or write), length, alignment, fields.
+// it would read or write), length, alignment, fields. Reserved CTRL bits
+// and the words the kind does not use (MASK but for a broadcast,
+// SRC_STRIDE of a broadcast, the strides of a copy) must be 0.
 Fault validate(const Descriptor& d, const Limits& limits);
 // A descriptor's own address in a chain: 4-aligned, its 32 bytes in memory.
 Fault validate_descriptor_address(uint32_t address, const Limits& limits);
@@ -132,7 +136,9 @@ class DmaPort {
 
 // Moves one descriptor that validate() accepted, in rows: a reshuffle row
 // is `lanes` elements, a copy or a broadcast moves chunks of at most
-// `buffer_bytes` (which must hold a reshuffle row). Returns the first
+// `buffer_bytes` (which must hold a reshuffle row). A copy whose
+// destination overlaps its source above it moves its chunks from the last
+// to the first, so that overlapping copies give memmove's result. Returns the first
 // failed memory access (bus_error) or success; `moved` gets the bytes
 // delivered.
 Fault execute(const Descriptor& d, const Limits& limits, unsigned buffer_bytes, DmaPort& port, uint64_t& moved);
