@@ -100,7 +100,12 @@ class NativeApTileRenderer : public gl::Renderer {
 
   void clear(const gl::ClearRequest& request) override {
     flush();
-    if (request.scissor_test) unsupported("scissored clears: the whole frame is cleared");
+    switch (scissor_cover(request.scissor_test, request.scissor_x, request.scissor_y, request.scissor_width,
+                          request.scissor_height, m_frame.width(), m_frame.height())) {
+      case ScissorCover::none: return;
+      case ScissorCover::part: unsupported("scissored clears: the whole frame is cleared"); break;
+      case ScissorCover::whole: break;
+    }
     if (request.color && (!request.color_mask[0] || !request.color_mask[1] || !request.color_mask[2]))
       unsupported("masked colour clears: every channel is cleared");
     if (request.color) {
@@ -128,8 +133,8 @@ class NativeApTileRenderer : public gl::Renderer {
   }
 
   void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override {
-    const std::optional<DrawFlags> flags =
-        draw_flags(state, m_textures, [this](const std::string& what) { unsupported(what); });
+    const std::optional<DrawFlags> flags = draw_flags(state, m_frame.width(), m_frame.height(), m_textures,
+                                                      [this](const std::string& what) { unsupported(what); });
     if (!flags) return;
     if (flags->tex != 0) m_frame_textured = true;
     for (size_t t = 0; t < count; ++t) {

@@ -80,8 +80,8 @@ void ApTileRenderer::unsupported(const std::string& what) {
 
 void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   Timed timed(m_host, m_time.compute);
-  const std::optional<DrawFlags> flags =
-      draw_flags(state, m_textures, [this](const std::string& what) { unsupported(what); });
+  const std::optional<DrawFlags> flags = draw_flags(state, m_frame.width(), m_frame.height(), m_textures,
+                                                    [this](const std::string& what) { unsupported(what); });
   if (!flags) return;
   if (flags->tex != 0) m_frame_textured = true;
   const HostCosts& k = m_costs;
@@ -234,7 +234,12 @@ bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
 
 void ApTileRenderer::clear(const gl::ClearRequest& request) {
   flush();
-  if (request.scissor_test) unsupported("scissored clears: the whole frame is cleared");
+  switch (scissor_cover(request.scissor_test, request.scissor_x, request.scissor_y, request.scissor_width,
+                        request.scissor_height, m_frame.width(), m_frame.height())) {
+    case ScissorCover::none: return;
+    case ScissorCover::part: unsupported("scissored clears: the whole frame is cleared"); break;
+    case ScissorCover::whole: break;
+  }
   if (request.color && (!request.color_mask[0] || !request.color_mask[1] || !request.color_mask[2]))
     unsupported("masked colour clears: every channel is cleared");
   if (request.color) {

@@ -21,13 +21,29 @@ uint8_t TextureTable::number(const gl::Texture& tex, gl::TexEnv env, const Unsup
   return static_cast<uint8_t>(m_entries.size());
 }
 
-std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& textures,
-                                    const Unsupported& unsupported) {
+ScissorCover scissor_cover(bool test, int x, int y, int box_width, int box_height, unsigned width, unsigned height) {
+  if (!test) return ScissorCover::whole;
+  const int64_t x0 = std::max<int64_t>(x, 0), y0 = std::max<int64_t>(y, 0);
+  const int64_t x1 = std::min<int64_t>(int64_t{x} + box_width, width);
+  const int64_t y1 = std::min<int64_t>(int64_t{y} + box_height, height);
+  if (x1 <= x0 || y1 <= y0) return ScissorCover::none;
+  return x0 == 0 && y0 == 0 && x1 == width && y1 == height ? ScissorCover::whole : ScissorCover::part;
+}
+
+std::optional<DrawFlags> draw_flags(const gl::RasterState& state, unsigned width, unsigned height,
+                                    TextureTable& textures, const Unsupported& unsupported) {
+  switch (scissor_cover(state.scissor_test, state.scissor_x, state.scissor_y, state.scissor_width, state.scissor_height,
+                        width, height)) {
+    case ScissorCover::none: return std::nullopt;
+    case ScissorCover::part:
+      unsupported("the scissor test (GL_SCISSOR_TEST) with a box smaller than the frame: drawn without it");
+      break;
+    case ScissorCover::whole: break;
+  }
   if (state.blend) unsupported("blending (GL_BLEND): drawn without it");
   if (state.alpha_test) unsupported("the alpha test (GL_ALPHA_TEST): drawn without it");
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): there is no stencil buffer");
   if (state.logic_op) unsupported("logic ops (GL_COLOR_LOGIC_OP): drawn without it");
-  if (state.scissor_test) unsupported("the scissor test (GL_SCISSOR_TEST): drawn without it");
   if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2])
     unsupported("colour masks (glColorMask): drawn with every channel");

@@ -46,12 +46,21 @@ class TextureTable {
   std::vector<TextureEntry> m_entries;
 };
 
-// The records' flags for a draw with `state`, reporting the state the
-// algorithm does not have; nullopt when the draw draws nothing (GL_NEVER).
-// A texture the CU's 8.8 coordinates can wrap (a power of two, at most 256
-// texels a side) gets its number from `textures`.
-std::optional<DrawFlags> draw_flags(const gl::RasterState& state, TextureTable& textures,
-                                    const Unsupported& unsupported);
+// What the scissor test leaves of a `width` x `height` frame: all of it
+// (test off, or a box covering the frame), none (a box of zero width or
+// height, or one wholly outside the frame: GL draws and clears nothing), or
+// a part, which the algorithm cannot draw exactly (no per-pixel scissor in
+// the CUs' program).
+enum class ScissorCover { whole, none, part };
+ScissorCover scissor_cover(bool test, int x, int y, int box_width, int box_height, unsigned width, unsigned height);
+
+// The records' flags for a draw with `state` on a `width` x `height` frame,
+// reporting the state the algorithm does not have; nullopt when the draw
+// draws nothing (GL_NEVER, an empty scissor box). A texture the CU's 8.8
+// coordinates can wrap (a power of two, at most 256 texels a side) gets its
+// number from `textures`.
+std::optional<DrawFlags> draw_flags(const gl::RasterState& state, unsigned width, unsigned height,
+                                    TextureTable& textures, const Unsupported& unsupported);
 
 // The triangles of a flush, binned: per CU the triangles that reach its
 // tile, in order. Pass p gives every CU the p-th triangle of its queue, so

@@ -2,7 +2,7 @@
 // a user's (tessera_add_app) run on every back end, and the frames and the
 // statistics show what the front end did.
 //
-// Usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so> [GoogleTest options]
+// Usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so> <libempty_scissor.so> [GoogleTest options]
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 
 std::string g_soc_sim;
 std::string g_collinear_app;
+std::string g_empty_scissor_app;
 
 using tessera::test::describe;
 using tessera::test::SimResult;
@@ -32,8 +33,9 @@ using tessera::test::SimResult;
 class GlFrontEnd : public tessera::test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim) && fs::is_regular_file(g_collinear_app))
-        << "usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so>";
+    ASSERT_TRUE(fs::is_regular_file(g_soc_sim) && fs::is_regular_file(g_collinear_app) &&
+                fs::is_regular_file(g_empty_scissor_app))
+        << "usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so> <libempty_scissor.so>";
     ScratchFolderTest::SetUp();
   }
   SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
@@ -57,6 +59,24 @@ TEST_F(GlFrontEnd, CollinearTrianglesDrawNothingOnEveryBackEnd) {
     const tessera::Image frame = tessera::read_image((m_dir / backend / "frame_0000.png").string());
     ASSERT_GT(frame.rgba.size(), 0u);
     EXPECT_EQ(pixels_other_than(frame, clear_blue), 0u) << backend << ": pixels drawn by zero-area triangles";
+  }
+}
+
+// A scissor box of zero width or height lets no pixel through: a clear and
+// a full-window quad under it change nothing, on every back end. ap-tile,
+// which has no per-pixel scissor, drew the quad over the whole frame.
+TEST_F(GlFrontEnd, EmptyScissorBoxDrawsAndClearsNothingOnEveryBackEnd) {
+  const uint8_t clear_blue[3] = {0, 0, 255};
+  for (const std::string& backend : tessera::test::back_end_names()) {
+    const SimResult result =
+        run({"--backend", backend, "--app", g_empty_scissor_app, "--frames", "2", "--out", backend});
+    ASSERT_EQ(result.status, 0) << backend << ": " << describe(result);
+    for (const char* name : {"frame_0000.png", "frame_0001.png"}) {
+      const tessera::Image frame = tessera::read_image((m_dir / backend / name).string());
+      ASSERT_GT(frame.rgba.size(), 0u) << backend << " " << name;
+      EXPECT_EQ(pixels_other_than(frame, clear_blue), 0u)
+          << backend << " " << name << ": pixels drawn or cleared through an empty scissor box";
+    }
   }
 }
 
@@ -88,9 +108,10 @@ TEST_F(GlFrontEnd, TeapotTransformsEachVertexOncePerFrame) {
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (argc >= 3) {
+  if (argc >= 4) {
     g_soc_sim = fs::absolute(argv[1]).string();
     g_collinear_app = fs::absolute(argv[2]).string();
+    g_empty_scissor_app = fs::absolute(argv[3]).string();
   }
   return RUN_ALL_TESTS();
 }
