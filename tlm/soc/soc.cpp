@@ -330,30 +330,40 @@ void Soc::record_frame(const Frame& frame) {
     record.units = std::make_shared<const std::vector<std::string>>(std::move(units));
   else
     record.units = m_frames.back().units;
-  m_frames.push_back(std::move(record));
   m_last_shown = std::move(request);
+  if (m_frame_sink) {
+    const double previous = m_last_shown_seconds;
+    m_last_shown_seconds = record.shown_seconds;
+    m_frame_sink(frame_json(record, m_frames.size() + m_frames_streamed++, previous));
+    return;
+  }
+  m_last_shown_seconds = record.shown_seconds;
+  m_frames.push_back(std::move(record));
+}
+
+nlohmann::json Soc::frame_json(const FrameRecord& f, size_t index, double previous_shown_seconds) {
+  nlohmann::json units = nlohmann::json::object();
+  double total_joules = 0;
+  for (size_t u = 0; u < f.energy.size(); ++u) {
+    units[(*f.units)[u]] = unit_energy_json(f.energy[u].static_joules, f.energy[u].dynamic_joules, f.render_seconds);
+    total_joules += f.energy[u].dynamic_joules + f.energy[u].static_joules;
+  }
+  return {{"index", index},
+          {"time_ns", f.shown_seconds * 1e9},
+          {"interval_ns", (f.shown_seconds - previous_shown_seconds) * 1e9},
+          {"requested_ns", f.requested_seconds * 1e9},
+          {"render_ns", f.render_seconds * 1e9},
+          {"host_busy_ns", f.host_busy.to_seconds() * 1e9},
+          {"bus_bytes", f.bus_bytes},
+          {"energy", energy_json(std::move(units), total_joules, f.render_seconds)}};
 }
 
 nlohmann::json Soc::frames_json() const {
   nlohmann::json frames = nlohmann::json::array();
   double previous_shown_seconds = 0;
   for (size_t i = 0; i < m_frames.size(); ++i) {
-    const FrameRecord& f = m_frames[i];
-    nlohmann::json units = nlohmann::json::object();
-    double total_joules = 0;
-    for (size_t u = 0; u < f.energy.size(); ++u) {
-      units[(*f.units)[u]] = unit_energy_json(f.energy[u].static_joules, f.energy[u].dynamic_joules, f.render_seconds);
-      total_joules += f.energy[u].dynamic_joules + f.energy[u].static_joules;
-    }
-    frames.push_back({{"index", i},
-                      {"time_ns", f.shown_seconds * 1e9},
-                      {"interval_ns", (f.shown_seconds - previous_shown_seconds) * 1e9},
-                      {"requested_ns", f.requested_seconds * 1e9},
-                      {"render_ns", f.render_seconds * 1e9},
-                      {"host_busy_ns", f.host_busy.to_seconds() * 1e9},
-                      {"bus_bytes", f.bus_bytes},
-                      {"energy", energy_json(std::move(units), total_joules, f.render_seconds)}});
-    previous_shown_seconds = f.shown_seconds;
+    frames.push_back(frame_json(m_frames[i], i, previous_shown_seconds));
+    previous_shown_seconds = m_frames[i].shown_seconds;
   }
   return frames;
 }

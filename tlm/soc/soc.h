@@ -103,6 +103,12 @@ class Soc : public sc_core::sc_module {
   // time.
   nlohmann::json stats_json() const;
 
+  // Streams `frames` instead: from now on each frame shown goes to `sink`
+  // as its stats.json record, in order, and is not kept, so a long run's
+  // memory stays flat; stats_json()'s `frames` then holds only the frames
+  // shown before. The records are those stats_json() would have listed.
+  void stream_frames(std::function<void(const nlohmann::json& record)> sink) { m_frame_sink = std::move(sink); }
+
   // Every block's activity for the energy model, from the start to `now`.
   EnergyActivity energy_activity(const sc_core::sc_time& now) const;
   const EnergyModel& energy_model() const { return m_energy_model; }
@@ -113,6 +119,10 @@ class Soc : public sc_core::sc_module {
   void record_request(const sc_core::sc_time& when);
   void record_frame(const Frame& frame);
   nlohmann::json frames_json() const;
+  struct FrameRecord;
+  // Frame `index`'s record in stats.json; `previous_shown_seconds`: when the
+  // frame before was shown (0 for the first).
+  static nlohmann::json frame_json(const FrameRecord& frame, size_t index, double previous_shown_seconds);
 
   std::vector<Block*> m_blocks;
   EnergyModel m_energy_model;
@@ -139,6 +149,9 @@ class Soc : public sc_core::sc_module {
     std::vector<UnitJoules> energy;                         // per unit of `units`
   };
   std::vector<FrameRecord> m_frames;
+  std::function<void(const nlohmann::json&)> m_frame_sink;  // stream_frames
+  size_t m_frames_streamed = 0;
+  double m_last_shown_seconds = 0;  // the last frame's, streamed or kept
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
   std::unique_ptr<sc_core::sc_signal<bool>> m_core_irq, m_core_fiq;
   sc_core::sc_event m_host_finished;
