@@ -25,6 +25,13 @@ ParamGroup DmaParams::parameters() {
                       "the DMA's row buffer: a reshuffle row (CUs x element bytes) must fit"),
           },
           [](const Config& config) {
+            // The broadcast is a write of the DMA: without the DMA in the SoC
+            // the switch would change nothing, silently.
+            if (config.get_bool("dma.broadcast") && !config.get_bool("dma.enabled"))
+              throw ConfigError(
+                  "configuration: impossible combination: dma.broadcast=true needs dma.enabled=true (the broadcast is "
+                  "a write of the system/array DMA, which dma.enabled=false leaves out of the SoC): set "
+                  "dma.enabled=true too, or leave dma.broadcast out");
             if (!config.has("array.columns") || !config.has("array.rows")) return;
             const uint64_t row = config.get_uint("dma.row_buffer_bytes");
             const uint64_t lanes = config.get_uint("array.columns") * config.get_uint("array.rows");

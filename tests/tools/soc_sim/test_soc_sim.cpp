@@ -874,6 +874,21 @@ TEST_F(SocSim, ImpossibleCombinationIsRejected) {
   EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
 }
 
+// dma.broadcast is a write of the DMA: asked for without the DMA in the SoC
+// it would change nothing, silently. An error naming both keys, from --set
+// and from a file alike; with dma.enabled=true it runs.
+TEST_F(SocSim, DmaBroadcastWithoutTheDmaIsRejectedNamingBothKeys) {
+  expect_rejected(run({"--set", "dma.broadcast=true", "--frames", "1", "--out", "out"}), EXIT_USAGE,
+                  {"impossible combination", "dma.broadcast=true", "dma.enabled=true"});
+  EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+  std::ofstream(m_dir / "broadcast.json") << R"({"dma": {"broadcast": true, "enabled": false}})";
+  expect_rejected(run({"--config", "broadcast.json", "--frames", "1", "--out", "out"}), EXIT_USAGE,
+                  {"dma.broadcast", "dma.enabled"});
+  const SimResult both = run({"--set", "dma.broadcast=true", "--set", "dma.enabled=true", "--app", "pattern",
+                              "--frames", "1", "--out", "both", "--quiet"});
+  EXPECT_EQ(both.status, 0) << describe(both);
+}
+
 TEST_F(SocSim, MissingConfigFileIsRejected) {
   expect_rejected(run({"--config", "no_such_config.json", "--out", "out"}), EXIT_USAGE, {"no_such_config.json"});
 }
