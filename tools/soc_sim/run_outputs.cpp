@@ -1,8 +1,15 @@
 #include "run_outputs.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -127,6 +134,56 @@ void remove_earlier_outputs(const EarlierOutputs& outputs) {
       if (!fs::remove(path, error) && error)
         throw std::runtime_error("cannot remove '" + path.string() + "' of an earlier run: " + error.message());
     }
+}
+
+OutputFolderClaim::OutputFolderClaim(const fs::path& out_dir) : m_path(out_dir / OUTPUT_FOLDER_LOCK) {
+  // A run that ends unlinks the file it locked: a run that opened that file
+  // just before then holds a lock on a file no longer in the folder, so it
+  // checks that the path still names the file it locked, and tries again if
+  // not. A few rounds settle it; the bound only keeps a pathological folder
+  // from looping.
+  for (int round = 0; round < 100; ++round) {
+    const int fd = ::open(m_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+      throw std::runtime_error("output folder '" + out_dir.string() + "': cannot create '" + m_path.string() +
+                               "': " + std::strerror(errno));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      char holder[32] = {};
+      const ssize_t got = ::pread(fd, holder, sizeof holder - 1, 0);
+      ::close(fd);
+      if (error != EWOULDBLOCK)
+        throw std::runtime_error("output folder '" + out_dir.string() + "': cannot lock '" + m_path.string() +
+                                 "': " + std::strerror(error));
+      std::string pid(holder, got > 0 ? static_cast<size_t>(got) : 0);
+      while (!pid.empty() && !std::isdigit(static_cast<unsigned char>(pid.back()))) pid.pop_back();
+      throw std::runtime_error("output folder '" + out_dir.string() + "' is in use by another run of soc_sim" +
+                               (pid.empty() ? std::string() : " (process " + pid + ")") +
+                               ": wait until it has finished, or choose another folder with --out");
+    }
+    struct stat locked {};
+    struct stat named {};
+    if (::fstat(fd, &locked) == 0 && ::stat(m_path.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
+        locked.st_ino == named.st_ino) {
+      m_fd = fd;
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      if (::ftruncate(fd, 0) == 0) {
+        [[maybe_unused]] const ssize_t written = ::pwrite(fd, pid.data(), pid.size(), 0);
+      }
+      return;
+    }
+    ::close(fd);
+  }
+  throw std::runtime_error("output folder '" + out_dir.string() + "': cannot claim '" + m_path.string() +
+                           "': it keeps being replaced");
+}
+
+OutputFolderClaim::~OutputFolderClaim() {
+  if (m_fd < 0) return;
+  // Unlinked while still locked: a run waiting on this file sees it gone
+  // and takes a new one.
+  ::unlink(m_path.c_str());
+  ::close(m_fd);
 }
 
 }  // namespace tessera

@@ -52,4 +52,28 @@ std::string describe_outputs(const EarlierOutputs& outputs, const std::filesyste
 // std::runtime_error naming the first file it cannot remove.
 void remove_earlier_outputs(const EarlierOutputs& outputs);
 
+// This run's claim on its output folder, held from before the check for an
+// earlier run's outputs until the run has written everything: two runs
+// started together into one folder cannot both pass the check (each used to
+// find the folder empty, both ran and one run's outputs were lost). The
+// claim is an exclusive flock(2) on OUTPUT_FOLDER_LOCK in the folder; the
+// kernel drops it when the process ends however it ends, so a crashed run
+// leaves no stale claim (at most the empty file, which the next run takes).
+class OutputFolderClaim {
+ public:
+  static constexpr const char* OUTPUT_FOLDER_LOCK = ".soc_sim.lock";
+
+  // Claims `out_dir` (which must exist), or throws std::runtime_error
+  // naming the folder and the process holding it.
+  explicit OutputFolderClaim(const std::filesystem::path& out_dir);
+  // Removes the lock file and releases the claim.
+  ~OutputFolderClaim();
+  OutputFolderClaim(const OutputFolderClaim&) = delete;
+  OutputFolderClaim& operator=(const OutputFolderClaim&) = delete;
+
+ private:
+  std::filesystem::path m_path;
+  int m_fd = -1;
+};
+
 }  // namespace tessera

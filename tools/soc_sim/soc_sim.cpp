@@ -1,6 +1,7 @@
 // soc_sim: builds the SoC from the configuration, runs an application on the
 // host model, writes the displayed frames, statistics and (optionally) a VCD
 // trace, and prints a summary.
+#include <strings.h>
 #include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
@@ -17,8 +18,10 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <systemc>
@@ -29,6 +32,7 @@
 #include "common/activity_json.h"
 #include "common/log.h"
 #include "config/config.h"
+#include "frame_stats_stream.h"
 #include "host/iss/gdb_server.h"
 #include "output_file.h"
 #include "png_writer_thread.h"
@@ -154,8 +158,8 @@ class Progress {
 // The back ends' own figures: for each driver section with a host-time
 // split (the array back ends), where the host's time went, and the
 // averages of the per-frame figures the back end gave (the frame records'
-// "driver").
-void print_driver_summary(const nlohmann::json& stats) {
+// "driver", summed as they were streamed to stats.json).
+void print_driver_summary(const nlohmann::json& stats, const FrameStatsStream::Sums& sums) {
   const nlohmann::json& driver = stats["driver"];
   const double simulated = stats["simulated_ns"].get<double>() * 1e-9;
   for (const auto& [section, counters] : driver.items()) {
@@ -168,41 +172,28 @@ void print_driver_summary(const nlohmann::json& stats) {
       std::printf("    %-12s %14s %12s\n", part, format_duration(seconds).c_str(),
                   format_percent(simulated > 0 ? seconds / simulated : 0).c_str());
     }
-    std::map<std::string, double> sums;
-    size_t frames = 0;
-    for (const nlohmann::json& frame : stats["frames"]) {
-      if (!frame.contains("driver")) continue;
-      ++frames;
-      for (const auto& [name, value] : frame["driver"].items())
-        if (value.is_number() && name.rfind("host_", 0) != 0) sums[name] += value.get<double>();
-    }
-    if (frames == 0) continue;
-    std::printf("  %s: per frame (mean of %zu)\n", section.c_str(), frames);
-    for (const auto& [name, sum] : sums)
-      std::printf("    %-28s %14.3f\n", name.c_str(), sum / static_cast<double>(frames));
+    if (sums.driver_frames == 0) continue;
+    std::printf("  %s: per frame (mean of %zu)\n", section.c_str(), sums.driver_frames);
+    for (const auto& [name, sum] : sums.driver)
+      std::printf("    %-28s %14.3f\n", name.c_str(), sum / static_cast<double>(sums.driver_frames));
   }
 }
 
 // Each energy unit's energy over the run, its average power and its mean
 // energy per frame shown (tlm/power/).
-void print_energy_summary(const nlohmann::json& stats) {
+void print_energy_summary(const nlohmann::json& stats, const FrameStatsStream::Sums& sums) {
   const nlohmann::json& energy = stats["energy"];
-  const nlohmann::json& frames = stats["frames"];
   std::printf("\n  %-18s %12s %12s %14s\n", "energy (1.2 V)", "total", "average", "per frame");
-  const auto row = [&frames](const std::string& name, const nlohmann::json& unit,
-                             const nlohmann::json::json_pointer& per_frame) {
-    std::string mean = "-";
-    if (!frames.empty()) {
-      double sum = 0;
-      for (const nlohmann::json& frame : frames) sum += frame["energy"].value(per_frame, 0.0);
-      mean = format_energy(sum / static_cast<double>(frames.size()));
-    }
+  const auto row = [&sums](const std::string& name, const nlohmann::json& unit, double frame_sum) {
+    const std::string mean = sums.frames == 0 ? "-" : format_energy(frame_sum / static_cast<double>(sums.frames));
     std::printf("  %-18s %12s %12s %14s\n", name.c_str(), format_energy(unit["total_j"].get<double>()).c_str(),
                 format_power(unit["average_w"].get<double>()).c_str(), mean.c_str());
   };
-  for (const auto& [name, unit] : energy["units"].items())
-    row(name, unit, nlohmann::json::json_pointer("/units/" + name + "/total_j"));
-  row("total", energy, nlohmann::json::json_pointer("/total_j"));
+  for (const auto& [name, unit] : energy["units"].items()) {
+    const auto found = sums.energy_unit_j.find(name);
+    row(name, unit, found == sums.energy_unit_j.end() ? 0.0 : found->second);
+  }
+  row("total", energy, sums.energy_total_j);
 }
 
 // With power.calibration set: each group of units of that scenario of the
@@ -235,10 +226,41 @@ void print_energy_calibration(const Config& config, const Soc& soc, const nlohma
   line("leakage, clocks stopped", leakage_mw, 3.0 * 1.2);
 }
 
-// The summary: run, block table (each block's own row), the blocks' own
-// tables (the bus's traffic per initiator), outputs. It names no block.
-void print_summary(const Soc& soc, const nlohmann::json& stats, const std::string& app, double wall,
-                   const TimeLimit& time_limit, const std::vector<std::string>& outputs) {
+// The summary's width: it fits a terminal of 80 columns.
+constexpr size_t SUMMARY_COLUMNS = 80;
+
+// `text` in lines of at most `width` characters, broken after ", " (a part
+// longer than `width` is a line of its own).
+std::vector<std::string> wrap_at_commas(const std::string& text, size_t width) {
+  std::vector<std::string> lines(1);
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find(", ", start);
+    end = end == std::string::npos ? text.size() : end + 1;  // the comma ends the part, the space is dropped
+    const std::string part = text.substr(start, end - start);
+    const std::string joined = lines.back().empty() ? part : lines.back() + " " + part;
+    if (!lines.back().empty() && joined.size() > width)
+      lines.push_back(part);
+    else
+      lines.back() = joined;
+    start = end < text.size() ? end + 1 : end;
+  }
+  return lines;
+}
+
+// A block that did nothing in the run: no busy time and every counter 0.
+bool did_nothing(const Block& block, const SummaryRow& row) {
+  if (row.busy && row.busy->value() != 0) return false;
+  const auto& all = block.counters().all();
+  return std::all_of(all.begin(), all.end(), [](const ActivityCounter& c) { return c.value == 0; });
+}
+
+// The summary: run, block table (each block's own row, its notes wrapped to
+// SUMMARY_COLUMNS; the blocks that did nothing named on one line instead),
+// the blocks' own tables (the bus's traffic per initiator), outputs. It
+// names no block.
+void print_summary(const Soc& soc, const nlohmann::json& stats, const FrameStatsStream::Sums& frame_sums,
+                   const std::string& app, double wall, const TimeLimit& time_limit,
+                   const std::vector<std::string>& outputs) {
   const sc_core::sc_time elapsed = sc_core::sc_time_stamp();
   const double simulated = elapsed.to_seconds();
   std::printf("\ntessera soc_sim: application '%s', display %s mode\n", app.c_str(),
@@ -247,28 +269,43 @@ void print_summary(const Soc& soc, const nlohmann::json& stats, const std::strin
               format_duration(simulated).c_str(), format_duration(wall).c_str(),
               format_duration(wall > 0 ? simulated / wall : 0).c_str());
   std::printf("  time limit      %s\n", time_limit.describe().c_str());
-  std::printf("\n  %-12s %14s %12s  %s\n", "block", "busy", "utilisation", "notes");
+  // "  name          busy  utilisation  notes": 40 columns before the notes.
+  constexpr int NOTES_COLUMN = 40;
+  std::printf("\n  %-12s %11s %11s  %s\n", "block", "busy", "utilisation", "notes");
   std::vector<SummaryTable> tables;
+  std::string idle;
+  std::set<std::string> idle_blocks;
   for (const Block* block : soc.blocks()) {
     const SummaryRow row = block->summary_row(elapsed);
-    std::printf("  %-12s %14s %12s  %s\n", block->basename(),
+    if (did_nothing(*block, row)) {
+      idle += (idle.empty() ? "" : ", ") + std::string(block->basename());
+      idle_blocks.insert(block->basename());
+      continue;
+    }
+    const std::vector<std::string> notes = wrap_at_commas(row.notes, SUMMARY_COLUMNS - NOTES_COLUMN);
+    std::printf("  %-12s %11s %11s  %s\n", block->basename(),
                 row.busy ? format_duration(row.busy->to_seconds()).c_str() : "-",
-                row.utilisation ? format_percent(*row.utilisation).c_str() : "-", row.notes.c_str());
+                row.utilisation ? format_percent(*row.utilisation).c_str() : "-", notes.front().c_str());
+    for (size_t i = 1; i < notes.size(); ++i) std::printf("%*s%s\n", NOTES_COLUMN, "", notes[i].c_str());
     for (SummaryTable& table : block->summary_tables(elapsed)) tables.push_back(std::move(table));
   }
+  if (!idle.empty())
+    for (const std::string& line : wrap_at_commas("did nothing: " + idle, SUMMARY_COLUMNS - 2))
+      std::printf("  %s\n", line.c_str());
   for (const SummaryTable& table : tables) {
     std::printf("\n  %s\n ", table.title.c_str());
     for (size_t i = 0; i < table.columns.size(); ++i)
       std::printf(i == 0 ? " %-12s" : " %12s", table.columns[i].c_str());
     std::printf("\n");
     for (const auto& row : table.rows) {
+      if (!row.empty() && idle_blocks.count(row.front())) continue;  // named above, a row of zeros
       std::printf(" ");
       for (size_t i = 0; i < row.size(); ++i) std::printf(i == 0 ? " %-12s" : " %12s", row[i].c_str());
       std::printf("\n");
     }
   }
-  print_energy_summary(stats);
-  print_driver_summary(stats);
+  print_energy_summary(stats, frame_sums);
+  print_driver_summary(stats, frame_sums);
   std::printf("\n  outputs\n");
   for (const auto& line : outputs) std::printf("    %s\n", line.c_str());
 }
@@ -451,16 +488,24 @@ int run(int argc, char* argv[]) {
     return EXIT_USAGE;
   }
 
-  // SystemC appends ".vcd" to the name it is given.
+  // The trace is written under exactly the name given (TracePipe copies
+  // SystemC's output there, whatever SystemC appends to its own name); the
+  // functions' names go beside it, named after it without a ".vcd" in any
+  // case.
   std::string vcd_base = opt.vcd;
-  if (vcd_base.size() > 4 && vcd_base.substr(vcd_base.size() - 4) == ".vcd") vcd_base.resize(vcd_base.size() - 4);
+  if (const fs::path extension = fs::path(vcd_base).extension();
+      extension.string().size() == 4 && strcasecmp(extension.c_str(), ".vcd") == 0)
+    vcd_base.resize(vcd_base.size() - 4);
   const std::string stats_path = opt.stats.empty() ? (fs::path(opt.out_dir) / "stats.json").string() : opt.stats;
+  // Held to the end of the run: no other run checks or writes this folder
+  // meanwhile (run_outputs.h).
+  std::optional<OutputFolderClaim> folder_claim;
   try {
     prepare_output_dir(opt.out_dir);
+    folder_claim.emplace(opt.out_dir);
     check_writable_file(stats_path);
-    if (!opt.vcd.empty()) check_writable_file(vcd_base + ".vcd");
-    clear_earlier_outputs({opt.out_dir, stats_path, opt.vcd.empty() ? fs::path() : fs::path(vcd_base + ".vcd")},
-                          opt.force);
+    if (!opt.vcd.empty()) check_writable_file(opt.vcd);
+    clear_earlier_outputs({opt.out_dir, stats_path, opt.vcd.empty() ? fs::path() : fs::path(opt.vcd)}, opt.force);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -485,7 +530,7 @@ int run(int argc, char* argv[]) {
   log::install(log::parse_level(config.get_string("sim.log_level")));
   install_run_signal_handlers();
   const unsigned frames = static_cast<unsigned>(config.get_uint("sim.frames"));
-  const std::string vcd_path = opt.vcd.empty() ? "" : vcd_base + ".vcd";
+  const std::string& vcd_path = opt.vcd;
   // Declared before the SoC, whose destructor closes the trace: the pipe's
   // copier ends when SystemC closes its end.
   std::unique_ptr<TracePipe> trace_pipe;
@@ -506,7 +551,6 @@ int run(int argc, char* argv[]) {
   auto wall_seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
-  std::vector<double> frame_wall_seconds;
   // And the process's CPU time (every thread: the simulation and the PNG
   // writer), cpu_ns with --wall-clock: on a machine with a core to spare the
   // PNG thread costs little wall time, but its work shows here.
@@ -515,11 +559,20 @@ int run(int argc, char* argv[]) {
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
     return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
   };
-  std::vector<double> frame_cpu_seconds;
+  // stats.json's frame records go to side files as the frames are shown and
+  // are merged into stats.json at the end (frame_stats_stream.h): nothing
+  // per frame is kept in memory.
+  std::unique_ptr<FrameStatsStream> frame_stream;
+  try {
+    frame_stream = std::make_unique<FrameStatsStream>(opt.out_dir);
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << "\n";
+    return EXIT_SIM_FAILED;
+  }
+  soc.stream_frames([&frame_stream](const nlohmann::json& record) { frame_stream->add_frame(record); });
   soc.display.keep_pixels(!opt.no_frames);
   soc.display.on_frame([&](const Frame& frame) {
-    frame_wall_seconds.push_back(wall_seconds());
-    frame_cpu_seconds.push_back(cpu_seconds());
+    if (opt.wall_clock) frame_stream->add_timing(wall_seconds(), cpu_seconds());
     if (!opt.no_frames)
       png_writer.write((fs::path(opt.out_dir) / frame_file_name(frame.index)).string(), frame.width, frame.height,
                        frame.rgba);
@@ -540,11 +593,10 @@ int run(int argc, char* argv[]) {
   ActivityCounters driver_counters;
   env.counters = &driver_counters;
   env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };
-  std::vector<nlohmann::json> frame_driver_figures;
-  env.frame_statistics = [&frame_driver_figures](const std::vector<std::pair<std::string, double>>& figures) {
+  env.frame_statistics = [&frame_stream](const std::vector<std::pair<std::string, double>>& figures) {
     nlohmann::json record = nlohmann::json::object();
     for (const auto& [name, value] : figures) record[name] = value;
-    frame_driver_figures.push_back(std::move(record));
+    frame_stream->add_driver(record);
   };
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   env.core = &soc.host;
@@ -588,6 +640,7 @@ int run(int argc, char* argv[]) {
       std::fprintf(stderr, "%ssoc_sim: %s\n", show_progress ? "\n" : "", stop.message.c_str());
     png_writer.finish();
     if (trace_pipe) trace_pipe->abandon_from_other_thread();
+    frame_stream->unlink_from_other_thread();
     try {
       write_file_atomically(stats_path, statistics_document(stop.exit_status, stop.end, stop.message,
                                                             watch->frames_shown(), png_writer.written(), nullptr));
@@ -681,18 +734,16 @@ int run(int argc, char* argv[]) {
 
   nlohmann::json stats = soc.stats_json();
   stats["driver"] = to_json(driver_counters);
-  for (size_t i = 0; i < frame_driver_figures.size() && i < stats["frames"].size(); ++i)
-    stats["frames"][i]["driver"] = frame_driver_figures[i];
-  // The display hands each frame shown to soc_sim and to the SoC's record.
-  if (opt.wall_clock && stats["frames"].size() == frame_wall_seconds.size())
-    for (size_t i = 0; i < frame_wall_seconds.size(); ++i) {
-      stats["frames"][i]["wall_ns"] = frame_wall_seconds[i] * 1e9;
-      stats["frames"][i]["cpu_ns"] = frame_cpu_seconds[i] * 1e9;
-    }
+  // The frames streamed (every one: streaming began before the first) are
+  // merged in where the placeholder is.
+  stats["frames"] = FrameStatsStream::placeholder();
   bool stats_written = true;
+  FrameStatsStream::Sums frame_sums;
   try {
-    write_file_atomically(stats_path, statistics_document(status, end, failures.empty() ? "" : failures.front().message,
-                                                          frames_shown, frames_written, stats));
+    frame_sums = frame_stream->write(stats_path,
+                                     statistics_document(status, end, failures.empty() ? "" : failures.front().message,
+                                                         frames_shown, frames_written, stats),
+                                     opt.wall_clock);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << " (statistics)\n";
     stats_written = false;
@@ -708,7 +759,7 @@ int run(int argc, char* argv[]) {
     if (opt.no_frames) outputs.push_back(std::to_string(frames_shown) + " frame(s) shown, none written (--no-frames)");
     outputs.push_back(stats_written ? "statistics: " + stats_path : "statistics: none (" + stats_path + " failed)");
     if (!vcd_path.empty()) outputs.push_back(trace_error.empty() ? "VCD trace: " + vcd_path : "VCD trace: none");
-    print_summary(soc, stats, config.get_string("sim.app"), wall, time_limit, outputs);
+    print_summary(soc, stats, frame_sums, config.get_string("sim.app"), wall, time_limit, outputs);
   }
   // The summary (and anything the application printed) must have arrived.
   std::cout.flush();

@@ -341,12 +341,25 @@ TEST_F(SocSim, SummaryHasARowForEveryBlockAndTheBusTraffic) {
     }
     if (w[0] == "block") in_blocks = true;
     if (w[0] == "initiator") in_traffic = true;
-    if (in_blocks && w[0] != "block") rows[w[0]] = w;
+    // A row starts in the first column after the indent; its notes go on
+    // indented below it.
+    if (in_blocks && w[0] != "block" && line.rfind("  ", 0) == 0 && line[2] != ' ') rows[w[0]] = w;
     if (in_traffic && w[0] != "initiator") initiators.insert(w[0]);
+  }
+  // The blocks that did nothing are named on one line instead of a row each.
+  std::set<std::string> idle;
+  if (rows.count("did")) {
+    for (size_t i = 2; i < rows["did"].size(); ++i) {
+      std::string name = rows["did"][i];
+      if (!name.empty() && name.back() == ',') name.pop_back();
+      idle.insert(name);
+    }
   }
   for (const auto& [section, value] : stats.items()) {
     if (!value.is_object() || section == "driver" || section == "energy") continue;
-    EXPECT_EQ(rows.count(section), 1u) << "no summary row for " << section << "\n" << result.out;
+    EXPECT_EQ(rows.count(section) + idle.count(section), 1u)
+        << "no summary row for " << section << ", nor named as idle\n"
+        << result.out;
   }
   ASSERT_EQ(rows.count("host"), 1u) << result.out;
   // "host  4.625 ms  27.8%  stalled on bus ...": the busy time in stats.json.
@@ -355,8 +368,44 @@ TEST_F(SocSim, SummaryHasARowForEveryBlockAndTheBusTraffic) {
   const double scale = rows["host"][2] == "s" ? 1e9 : rows["host"][2] == "ms" ? 1e6 : 1e3;
   EXPECT_NEAR(std::stod(rows["host"][1]) * scale, busy_ns, scale * 0.0005) << result.out;
   EXPECT_TRUE(contains(result.out, "stalled on bus")) << result.out;
+  // A traffic row for every initiator but the idle blocks (a row of zeros).
   for (const auto& [name, counts] : stats["bus"]["initiators"].items())
-    EXPECT_EQ(initiators.count(name), 1u) << "no traffic row for " << name << "\n" << result.out;
+    EXPECT_EQ(initiators.count(name), idle.count(name) ? 0u : 1u) << "traffic row for " << name << "\n" << result.out;
+}
+
+// The summary fits a terminal of 80 columns (long notes wrap under the
+// notes column), and the blocks that did nothing (no busy time, every
+// counter 0: the pattern application on the host leaves the rasterizer and
+// the array idle) are named on one line instead of a row each; on ap-tile
+// the array and its CIU have rows.
+TEST_F(SocSim, SummaryFitsEightyColumnsAndNamesTheIdleBlocksOnOneLine) {
+  const SimResult pattern = run({"--app", "pattern", "--frames", "1", "--out", "p"});
+  ASSERT_EQ(pattern.status, 0) << describe(pattern);
+  const SimResult tile = run({"--backend", "ap-tile", "--app", "triangle", "--frames", "1", "--out", "t"});
+  ASSERT_EQ(tile.status, 0) << describe(tile);
+  for (const SimResult* result : {&pattern, &tile}) {
+    std::istringstream lines(result->out);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 80u) << line;
+  }
+  const std::regex idle_line(R"(\n  did nothing: ([a-z_, ]+)\n)");
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(pattern.out, match, idle_line)) << pattern.out;
+  // The block table: from its heading to the first empty line (the energy
+  // table below lists energy units, the idle ones' leakage too).
+  const auto block_table = [](const std::string& out) {
+    const size_t start = out.find("\n  block ");
+    return out.substr(start, out.find("\n\n", start) - start);
+  };
+  for (const char* name : {"raster", "array", "ciu"}) {
+    EXPECT_NE(match[1].str().find(name), std::string::npos) << name << " not named idle\n" << pattern.out;
+    EXPECT_FALSE(std::regex_search(block_table(pattern.out), std::regex(std::string("\n  ") + name + " +[0-9-]")))
+        << name << " has a row though idle\n"
+        << pattern.out;
+  }
+  for (const char* name : {"array", "ciu"})
+    EXPECT_TRUE(std::regex_search(block_table(tile.out), std::regex(std::string("\n  ") + name + " +[0-9]")))
+        << name << " has no row on ap-tile\n"
+        << tile.out;
 }
 
 // The arm back end clears each frame with long trains of posted stores
@@ -520,6 +569,37 @@ TEST_F(SocSim, SecondRunIntoTheSameFolderIsRefusedNamingWhatIsThere) {
                   {"earlier run", "frame_0000.png"});
 }
 
+// Two runs started together into the same folder: the check that the folder
+// is free and its claim are one step, so exactly one runs and the other is
+// refused naming the folder, and the outputs are the one run's, whole. (Both
+// used to pass the check before either had written anything, both exited 0
+// and one run's outputs were lost.) Each run has its own working folder for
+// its stdout and stderr; --out is the same absolute folder.
+TEST_F(SocSim, TwoRunsStartedTogetherIntoTheSameFolderOneIsRefused) {
+  const fs::path shared = m_dir / "shared";
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    SCOPED_TRACE("attempt " + std::to_string(attempt));
+    fs::remove_all(shared);
+    const fs::path a = m_dir / ("a" + std::to_string(attempt)), b = m_dir / ("b" + std::to_string(attempt));
+    fs::create_directories(a);
+    fs::create_directories(b);
+    // Different frame counts, so the statistics tell which run they are from.
+    const pid_t first = tessera::test::start_soc_sim(
+        g_soc_sim, a, {"--app", "pattern", "--frames", "3", "--out", shared.string(), "--quiet"});
+    const pid_t second = tessera::test::start_soc_sim(
+        g_soc_sim, b, {"--app", "pattern", "--frames", "2", "--out", shared.string(), "--quiet"});
+    const SimResult one = tessera::test::wait_soc_sim(first, a);
+    const SimResult two = tessera::test::wait_soc_sim(second, b);
+    ASSERT_EQ((one.status == 0) + (two.status == 0), 1) << "exactly one run must run\n"
+                                                        << describe(one) << describe(two);
+    const SimResult& refused = one.status == 0 ? two : one;
+    expect_rejected(refused, EXIT_USAGE, {"output folder '" + shared.string() + "'", "another run"});
+    const unsigned frames = one.status == 0 ? 3 : 2;
+    EXPECT_EQ(read_stats(shared / "stats.json")["frames_written"], frames);
+    expect_pattern_frames(shared, frames, true);
+  }
+}
+
 // --force removes exactly what soc_sim wrote there before -- frames,
 // statistics, traces -- and nothing else in the folder.
 TEST_F(SocSim, ForceRemovesExactlyTheEarlierOutputs) {
@@ -561,6 +641,40 @@ TEST_F(SocSim, FilesSocSimDidNotWriteAreNeverOverwritten) {
                   {"'mine.vcd'", "VCD trace", "--vcd"});
   EXPECT_EQ(read_file(m_dir / "README.md"), "# my notes\n");
   EXPECT_EQ(read_file(m_dir / "mine.vcd"), "$date\n today\n$end\n");
+}
+
+// The frames' records are streamed to side files in the output folder while
+// the run goes on and merged into stats.json at the end: the file is the
+// whole document as nlohmann's dump(2) writes it (byte for byte: parsed and
+// dumped again it is the same), with every frame's record and the driver's
+// figures and --wall-clock times joined to it, and no side file is left.
+TEST_F(SocSim, StreamedFrameStatisticsMergeIntoTheWholeDocument) {
+  const SimResult result = run({"--backend", "ap-tile", "--app", "triangle", "--frames", "4", "--out", "out",
+                                "--no-frames", "--wall-clock", "--quiet"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  const std::string text = read_file(m_dir / "out/stats.json");
+  const json document = json::parse(text);
+  EXPECT_EQ(document.dump(2) + "\n", text);
+  const json& frames = document["stats"]["frames"];
+  ASSERT_EQ(frames.size(), 4u);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i]["index"], i);
+    EXPECT_TRUE(frames[i].contains("energy") && frames[i].contains("driver") && frames[i].contains("wall_ns") &&
+                frames[i].contains("cpu_ns"))
+        << frames[i].dump(2);
+    if (i > 0) {
+      EXPECT_GT(frames[i]["wall_ns"].get<double>(), frames[i - 1]["wall_ns"].get<double>());
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(m_dir / "out")) names.push_back(entry.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"stats.json"});
+  // A run stopped by the time limit before its first frame: an empty list.
+  run({"--app", "teapot", "--frames", "1", "--out", "none", "--no-frames", "--quiet", "--set", "sim.time_limit_ms=1"});
+  const json stopped = json::parse(read_file(m_dir / "none/stats.json"));
+  ASSERT_EQ(stopped["frames_shown"], 0) << stopped.dump(2);
+  EXPECT_EQ(stopped["stats"]["frames"], json::array());
+  EXPECT_EQ(stopped.dump(2) + "\n", read_file(m_dir / "none/stats.json"));
 }
 
 // --no-frames for sweeps: no PNG, the frames still counted.
@@ -810,6 +924,25 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
 }
 
 // power.trace_window_us=0 leaves the power signals out.
+// --vcd FILE writes exactly FILE, whatever its extension: SystemC appends
+// ".vcd" to the name it is given, and "t.VCD" used to become "t.VCD.vcd".
+TEST_F(SocSim, VcdTraceIsWrittenUnderExactlyTheNameGiven) {
+  for (const std::string name : {"t.VCD", "trace", "w.vcd.txt", "plain.vcd"}) {
+    SCOPED_TRACE(name);
+    const std::string out = "out_" + name;
+    const SimResult result = run({"--app", "pattern", "--frames", "1", "--out", out, "--vcd", out + "/" + name});
+    ASSERT_EQ(result.status, 0) << describe(result);
+    EXPECT_TRUE(contains(result.out, "VCD trace: " + out + "/" + name + "\n")) << result.out;
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(m_dir / out)) files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    std::vector<std::string> expected = {"frame_0000.png", name, "stats.json"};
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(files, expected);
+    EXPECT_EQ(read_file(m_dir / out / name).rfind("$date", 0), 0u) << "not a VCD";
+  }
+}
+
 TEST_F(SocSim, NoPowerSignalsWithAZeroWindow) {
   const SimResult result =
       run({"--frames", "1", "--set", "power.trace_window_us=0", "--out", "out", "--vcd", "out/trace.vcd", "--quiet"});
