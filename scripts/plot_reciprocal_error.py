@@ -7,9 +7,11 @@ Runs the recip_table command once per method and writes, into the output
 folder, one PNG per method (fig4_method1.png, fig5_method2.png,
 fig7_method3.png) and all three on one page (reciprocal_error_all.png).
 
-    scripts/plot_reciprocal_error.py build/default/bin/recip_table out/recip
+    build/venv/bin/python3 scripts/plot_reciprocal_error.py build/default/bin/recip_table out/recip
 
-Needs matplotlib (Debian: python3-matplotlib).
+Runs under the project's Python environment, build/venv (scripts/setup.sh
+makes it; it sees Debian's matplotlib, python3-matplotlib), or any Python 3
+with matplotlib. python/tests/test_plot_reciprocal_error.py runs it so.
 """
 
 import argparse
