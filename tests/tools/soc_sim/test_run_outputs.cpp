@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 namespace tessera {
@@ -144,6 +145,32 @@ TEST_F(RunOutputs, StatisticsAndTracesAreRecognisedByContent) {
   EXPECT_FALSE(is_soc_sim_trace(write("b.vcd", other_top)));
   EXPECT_FALSE(is_soc_sim_trace(write("c.vcd", std::string(TRACE).substr(1))));
   EXPECT_FALSE(is_soc_sim_trace(m_dir / "missing.vcd"));
+}
+
+// A folder is claimed by one run at a time: a second claim, from this
+// process or another, is refused naming the folder and the holder; the
+// claim ends with its object (or its process) and leaves no lock file. A
+// lock file left by a run that was killed is taken over.
+TEST_F(RunOutputs, AFolderIsClaimedByOneRunAtATime) {
+  const fs::path out = m_dir / "out";
+  const fs::path lock = out / OutputFolderClaim::OUTPUT_FOLDER_LOCK;
+  {
+    const OutputFolderClaim claim(out);
+    EXPECT_TRUE(fs::exists(lock));
+    try {
+      const OutputFolderClaim second(out);
+      ADD_FAILURE() << "a second claim of the same folder";
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("'" + out.string() + "' is in use by another run"), std::string::npos) << message;
+      EXPECT_NE(message.find("process " + std::to_string(::getpid())), std::string::npos) << message;
+    }
+  }
+  EXPECT_FALSE(fs::exists(lock));
+  std::ofstream(lock) << "12345\n";  // a killed run's file, no lock held on it
+  { const OutputFolderClaim again(out); }
+  EXPECT_FALSE(fs::exists(lock));
+  EXPECT_THROW(OutputFolderClaim(m_dir / "missing"), std::runtime_error);
 }
 
 }  // namespace
