@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ namespace {
 using tessera::test::RecordingCore;
 using tessera::test::RecordingHost;
 
-std::string g_dma_code_elf, g_console_elf;
+std::string g_dma_code_elf, g_console_elf, g_long_line_elf;
 
 constexpr uint32_t MEMORY_BYTES = 1u << 20;
 constexpr uint32_t DMA_STATUS = 0x52000124;  // channel 0's STATUS (tlm/dma/dma_regs.def)
@@ -118,15 +119,36 @@ TEST(IssApp, ConsoleOutputWithoutANewlineIsPrintedInBoundedChunks) {
   EXPECT_TRUE(printed_at_mark == std::string(printed_at_mark.size(), 'x'));
 }
 
+// A line without an end written to the driver's warnings file (100,000
+// bytes): handed on in pieces of at most 64 KiB while the program runs,
+// not kept whole (once kept without bound until a newline came).
+TEST(IssApp, ASemihostingLineWithoutAnEndIsHandedOnInBoundedPieces) {
+  RecordingHost host(MEMORY_BYTES);
+  RecordingCore core(host, MEMORY_BYTES);
+  std::vector<size_t> pieces;
+  tessera::AppEnvironment env;
+  env.host = &host;
+  env.core = &core;
+  env.memory_bytes = MEMORY_BYTES;
+  env.warn = [&](const std::string& source, const std::string& message) {
+    EXPECT_EQ(source, "driver");
+    pieces.push_back(message.size());
+  };
+  EXPECT_EQ(tessera::run_elf_app(env, g_long_line_elf), 0) << "SYS_WRITE wrote all 100,000 bytes";
+  ASSERT_EQ(pieces.size(), 1u);
+  EXPECT_EQ(pieces[0], 65'536u);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: %s DMA_CODE.elf CONSOLE.elf\n", argv[0]);
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: %s DMA_CODE.elf CONSOLE.elf LONG_LINE.elf\n", argv[0]);
     return 2;
   }
   g_dma_code_elf = argv[1];
   g_console_elf = argv[2];
+  g_long_line_elf = argv[3];
   return RUN_ALL_TESTS();
 }
