@@ -18,6 +18,13 @@ Markdown and writes, in the output folder (default out/experiments/<name>):
     scripts/experiment.py fullscreen_rect
     scripts/experiment.py teapot --frames 1 --out out/quick
     scripts/experiment.py my_experiment.json --soc-sim build/sanitize/bin/soc_sim
+    scripts/experiment.py teapot --host iss --frames 1 --out out/teapot_iss
+    scripts/experiment.py dma_whatif --set ciu.read_cycles=40 --out out/whatif_ciu
+
+--host runs every run on the given host model (host.model: native, the
+host-compiled model, or iss, the driver as ARM code on the ISS); --set
+KEY=VALUE sets any configuration key in every run, over the experiment's
+own. The table ends with the host model its runs used.
 
 docs/experiments.md describes each experiment, its columns, the file format
 and how to add an experiment. The script runs under Debian's python3, the
@@ -577,23 +584,23 @@ def run_folder_name(label):
     return re.sub(r"[^A-Za-z0-9.-]+", "_", label).strip("_") or "run"
 
 
-def soc_sim_command(soc_sim, spec, run, frames, folder):
+def soc_sim_command(soc_sim, spec, run, frames, folder, overrides):
     command = [str(soc_sim), "--backend", run["backend"], "--app", run["app"], "--frames", str(frames),
                "--out", str(folder), "--force", "--quiet"]
-    for key, value in {**spec["set"], **run["set"]}.items():
+    for key, value in {**spec["set"], **run["set"], **overrides}.items():
         command += ["--set", f"{key}={setting_text(value)}"]
     if run["args"]:
         command += ["--"] + run["args"]
     return command
 
 
-def run_all(spec, name, soc_sim, out, frames_override, quiet):
+def run_all(spec, name, soc_sim, out, frames_override, quiet, overrides):
     results = []
     for run in spec["runs"]:
         frames = frames_override or run.get("frames", spec["frames"])
         folder = out / "runs" / run_folder_name(run["label"])
         folder.mkdir(parents=True, exist_ok=True)
-        command = soc_sim_command(soc_sim, spec, run, frames, folder)
+        command = soc_sim_command(soc_sim, spec, run, frames, folder, overrides)
         if not quiet:
             print(f"[{name}] {run['label']}: {' '.join(command)}", file=sys.stderr, flush=True)
         start = time.monotonic()
@@ -620,6 +627,19 @@ def run_all(spec, name, soc_sim, out, frames_override, quiet):
             print(f"[{name}] {run['label']}: done in {time.monotonic() - start:.1f} s", file=sys.stderr, flush=True)
         results.append(RunResult(run, stats_path, document))
     return results
+
+
+def command_line_settings(args):
+    """The settings --set and --host give every run, over the experiment's own (--host last)."""
+    settings = {}
+    for item in args.set:
+        key, equals, value = item.partition("=")
+        if not equals or not key.strip():
+            raise UsageError(f"--set {item!r}: expected KEY=VALUE")
+        settings[key.strip()] = value
+    if args.host:
+        settings["host.model"] = args.host
+    return settings
 
 
 # ---------------------------------------------------------------------------
@@ -812,11 +832,13 @@ def run_experiment(name, args):
     out.mkdir(parents=True, exist_ok=True)
 
     try:
-        results = run_all(spec, name, soc_sim, out, args.frames, args.quiet)
+        results = run_all(spec, name, soc_sim, out, args.frames, args.quiet, command_line_settings(args))
         rows = build_table(spec, results)
+        hosts = sorted({str(config(result, "host.model")) for result in results})
     except RunError as error:
         raise RunError(f"experiment '{name}': {error}") from error
-    table = markdown(spec, rows)
+    # Which host model made the figures, as the runs' own configurations say.
+    table = markdown(spec, rows) + f"\nHost model: {', '.join(hosts)} (`host.model`).\n"
     (out / f"{name}.md").write_text(f"{spec['title']}\n\n{table}")
     write_csv(spec, rows, out / f"{name}.csv")
     plot(spec, rows, out / f"{name}.png", plt)
@@ -838,6 +860,13 @@ def main():
     parser.add_argument("--frames", type=int, help="frames of every run instead of the experiment's own "
                                                    "(e.g. 1 for a quick check)")
     parser.add_argument("--quiet", "-q", action="store_true", help="print the tables only, not each soc_sim run")
+    parser.add_argument("--host", choices=("native", "iss"),
+                        help="the host model of every run (host.model): native, the host-compiled model, or iss, "
+                             "the driver as ARM code on the ISS; default: the experiment's own (native unless it "
+                             "sets one); the table says which")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a configuration setting for every run, over the experiment's own (repeatable; "
+                             "docs/configuration.md lists the keys)")
     args = parser.parse_args()
     try:
         if args.list:

@@ -173,6 +173,27 @@ def test_errors(soc_sim, work):
     check(status == 1 and "run 'a' has no statistic 'driver.ap_tile.passes'" in err,
           "a statistic a run lacks must be status 1 naming the run and the statistic\n" + describe(status, out, err))
 
+    # --host and --set reach every run, and the table says which host model the runs used (from their own
+    # stats.json): the triangle's frame on the ISS, with a CIU latency the experiment does not set.
+    small = work / "small.json"
+    small.write_text(json.dumps({"title": "t", "runs": [{"label": "a", "backend": "arm", "app": "triangle"}],
+                                 "columns": [{"key": "ciu", "config": "ciu.read_cycles"}]}))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--quiet", "--host", "iss",
+                                  "--set", "ciu.read_cycles=41")
+    check(status == 0 and "Host model: iss (`host.model`)." in out and "| a | 41 |" in out,
+          "--host iss --set ciu.read_cycles=41 must run on the ISS with that setting and say so\n"
+          + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--quiet")
+    check(status == 0 and "Host model: native (`host.model`)." in out,
+          "without --host the runs use the default host model, native, and the table says so\n"
+          + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--set", "ciu.read_cycles")
+    check(status == 2 and "--set 'ciu.read_cycles': expected KEY=VALUE" in err,
+          "a --set without '=' must be status 2 naming it\n" + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--host", "qemu")
+    check(status == 2 and "invalid choice: 'qemu'" in err, "an unknown --host must be status 2\n"
+          + describe(status, out, err))
+
 
 MATRIX_SPEC = {
     "title": "matrix",
