@@ -119,6 +119,7 @@ ElfImage parse_elf(const std::vector<uint8_t>& file, const std::string& path) {
     loadable.push_back({i, offset, address, file_size, memory_size, (u32(file, at + 24) & FLAG_EXECUTE) != 0});
   }
   std::vector<const Loadable*> by_address;
+  by_address.reserve(loadable.size());
   for (const Loadable& segment : loadable) by_address.push_back(&segment);
   std::sort(by_address.begin(), by_address.end(),
             [](const Loadable* a, const Loadable* b) { return a->address < b->address; });
