@@ -178,6 +178,10 @@ OutputFolderClaim::OutputFolderClaim(const fs::path& out_dir) : m_path(out_dir /
                            "': it keeps being replaced");
 }
 
+void OutputFolderClaim::unlink_from_other_thread() const noexcept {
+  if (m_fd >= 0) ::unlink(m_path.c_str());
+}
+
 OutputFolderClaim::~OutputFolderClaim() {
   if (m_fd < 0) return;
   // Unlinked while still locked: a run waiting on this file sees it gone

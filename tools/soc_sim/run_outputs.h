@@ -68,6 +68,10 @@ class OutputFolderClaim {
   explicit OutputFolderClaim(const std::filesystem::path& out_dir);
   // Removes the lock file and releases the claim.
   ~OutputFolderClaim();
+  // Removes the lock file's name only, keeping the lock: for a run that
+  // ends from another thread with _exit (no destructor runs; the kernel
+  // releases the lock).
+  void unlink_from_other_thread() const noexcept;
   OutputFolderClaim(const OutputFolderClaim&) = delete;
   OutputFolderClaim& operator=(const OutputFolderClaim&) = delete;
 

@@ -640,13 +640,16 @@ int run(int argc, char* argv[]) {
       std::fprintf(stderr, "%ssoc_sim: %s\n", show_progress ? "\n" : "", stop.message.c_str());
     png_writer.finish();
     if (trace_pipe) trace_pipe->abandon_from_other_thread();
-    frame_stream->unlink_from_other_thread();
     try {
       write_file_atomically(stats_path, statistics_document(stop.exit_status, stop.end, stop.message,
                                                             watch->frames_shown(), png_writer.written(), nullptr));
     } catch (const std::exception& e) {
       std::fprintf(stderr, "soc_sim: %s\n", e.what());
     }
+    // The run exits with _exit: no destructor removes the side files or the
+    // lock file (the kernel drops the lock itself).
+    frame_stream->unlink_from_other_thread();
+    folder_claim->unlink_from_other_thread();
   };
   // Under GDB simulated time stands still while GDB holds the program, for
   // as long as the user likes: that is no stall.
