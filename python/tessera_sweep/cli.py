@@ -19,6 +19,23 @@ from .spec import SpecError, check, expand, load_spec
 DEFAULT_SOC_SIM = Path(__file__).resolve().parents[2] / "build" / "default" / "bin" / "soc_sim"
 
 
+def command_line_settings(options: argparse.Namespace, spec) -> dict:
+    """The settings --set and --host give every point (--host last); a key the spec sweeps is refused."""
+    settings: dict = {}
+    for item in options.set:
+        key, equals, value = item.partition("=")
+        if not equals or not key.strip():
+            raise SpecError(f"--set {item!r}: expected KEY=VALUE")
+        settings[key.strip()] = value
+    if options.host:
+        settings["host.model"] = options.host
+    swept = sorted(set(settings) & set(spec.axis_keys))
+    if swept:
+        raise SpecError(f"--set/--host: {', '.join(swept)} is an axis of the sweep; drop it from the spec or the "
+                        "command line")
+    return settings
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tessera-sweep", description=__doc__)
     parser.add_argument("spec", type=Path, help="sweep spec, YAML or JSON")
@@ -32,9 +49,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--check", action="store_true", help="check the spec and every point, run nothing")
     parser.add_argument("--report-only", action="store_true",
                         help="rebuild the plots and report.html from the output's results table, run nothing")
+    parser.add_argument("--host", choices=("native", "iss"),
+                        help="the host model of every point (host.model): native, the host-compiled model, or iss, "
+                             "the driver as ARM code on the ISS; recorded in the table's host_model column")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a configuration setting for every point, over the spec's config (repeatable)")
     options = parser.parse_args(argv)
     try:
         spec = load_spec(options.spec)
+        spec.base.update(command_line_settings(options, spec))
         simulator = Simulator(options.soc_sim)
         if options.check:
             points = expand(spec)

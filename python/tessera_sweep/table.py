@@ -35,7 +35,10 @@ def row(axes: dict, record: dict, point_dir: Path) -> dict:
                   status=record["status"], error=record["error"], wall_s=record["wall_s"])
     stats_file = point_dir / "stats.json"
     if record["status"] == 0 and stats_file.is_file():
-        values.update(numeric_leaves(json.loads(stats_file.read_text())))
+        document = json.loads(stats_file.read_text())
+        values.update(numeric_leaves(document))
+        # Which host model made the point's figures (a string: numeric_leaves leaves it out).
+        values["host_model"] = document.get("config", {}).get("host", {}).get("model")
     return values
 
 

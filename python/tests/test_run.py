@@ -108,3 +108,26 @@ def test_command_check_runs_nothing(simulator, tmp_path):
     done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path))
     assert done.returncode == 0, done.stderr
     assert "4 points, all valid" in done.stdout
+
+
+def test_command_host_and_set_reach_every_point_and_the_table(simulator, tmp_path):
+    # One triangle frame on each of two resolutions of the ISS, with a CIU latency the spec does not set.
+    spec_file = write_spec(tmp_path, dict(TINY, axes={"display.width": [192, 160]}))
+    out = tmp_path / "out"
+    done = tessera_sweep_command(str(spec_file), "--out", str(out), "--soc-sim", str(simulator.path),
+                                 "--workers", "1", "--host", "iss", "--set", "ciu.read_cycles=41")
+    assert done.returncode == 0, done.stderr
+    table = tessera_sweep.load(out)
+    assert list(table["host_model"]) == ["iss", "iss"]
+    assert list(table["config.ciu.read_cycles"]) == [41, 41]
+    assert (table["stats.host.iss.instructions"] > 0).all()
+
+
+def test_command_refuses_a_set_of_a_swept_key_or_without_a_value(simulator, tmp_path):
+    spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
+    swept = next(iter(AXES))
+    done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path),
+                                 "--set", f"{swept}=1")
+    assert done.returncode == 2 and f"{swept} is an axis of the sweep" in done.stderr
+    done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path), "--set", "ciu")
+    assert done.returncode == 2 and "--set 'ciu': expected KEY=VALUE" in done.stderr
