@@ -908,10 +908,9 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     const uint64_t uy = magnitude(int64_t{g.sy} * q_value - int64_t{sq_value} * g.qy);
     const uint64_t vx = magnitude(int64_t{g.tx} * q_value - int64_t{tq_value} * g.qx);
     const uint64_t vy = magnitude(int64_t{g.ty} * q_value - int64_t{tq_value} * g.qy);
-    const uint64_t largest = std::max({ux, uy, vx, vy});
-    if (largest == 0) return renderers::LOD_MAGNIFIED;
-    return renderers::log2_q16(largest) - 2 * renderers::log2_q16(uint64_t(q_value)) +
-           (Q_FRACTION_BITS - s.st_bits[i] - g.exponent) * renderers::LOD_ONE;
+    const int32_t scale = (Q_FRACTION_BITS - s.st_bits[i] - g.exponent) * renderers::LOD_ONE -
+                          2 * renderers::log2_q16(uint64_t(q_value));
+    return renderers::texture_lod_q16(ux, vx, uy, vy, scale);
   };
   // The spans most scenes draw (no texture, fog, stencil or alpha test:
   // depth and colour only) take a loop of their own, specialised on the

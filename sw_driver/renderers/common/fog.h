@@ -5,7 +5,6 @@
 // rasterizer's fog unit computes bit for bit).
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 
 #include "common/fog.h"
@@ -13,41 +12,12 @@
 
 namespace tessera::renderers {
 
-// argument = c * scale + bias, in units of the fog argument (not yet 16.16).
-struct FogCoefficients {
-  double scale = 0, bias = 0;
-};
-
-// The mode's linear map of the fog coordinate (common/fog.h). Linear fog with
-// end == start has no slope; it uses scale -1 and bias end, as Mesa does
-// (its fog scale is 1 there), so f is 1 up to c = end - 1 and 0 from c = end.
-inline FogCoefficients fog_coefficients(const gl::RasterState& state) {
-  const double density = state.fog_density;
-  switch (state.fog_mode) {
-    case FogMode::linear: {
-      const double range = double(state.fog_end) - double(state.fog_start);
-      const double scale = range == 0 ? 1.0 : 1.0 / range;
-      return {-scale, double(state.fog_end) * scale};
-    }
-    case FogMode::exp: return {density / std::log(2.0), 0.0};
-    case FogMode::exp2: return {density / std::sqrt(std::log(2.0)), 0.0};
-  }
-  return {0.0, 1.0};
-}
-
-// The 16.16 fog argument of fog coordinate c, rounded to nearest and
-// saturated to the int32 range (a non-finite c gives no fog argument: 0).
-inline int32_t fog_argument(const FogCoefficients& k, float c) {
-  const double a = (double(c) * k.scale + k.bias) * FOG_ONE;
-  if (!std::isfinite(a)) return 0;
-  if (a >= 2147483647.0) return INT32_MAX;
-  if (a <= -2147483648.0) return INT32_MIN;
-  return static_cast<int32_t>(std::llround(a));
-}
-
-// The same map in single precision, for the back ends that run it on the
-// ARM922T without double-precision arithmetic (arm): 1 / ln 2 and
-// 1 / sqrt(ln 2) as float constants, one division per draw for linear fog.
+// argument = c * scale + bias, in units of the fog argument (not yet 16.16),
+// in single precision: the back ends run it on the ARM922T, which has no
+// FPU (1 / ln 2 and 1 / sqrt(ln 2) as float constants, one division per
+// draw for linear fog). Linear fog with end == start has no slope; it uses
+// scale -1 and bias end, as Mesa does (its fog scale is 1 there), so f is 1
+// up to c = end - 1 and 0 from c = end.
 struct FogCoefficientsF {
   float scale = 0, bias = 0;
 };
@@ -68,8 +38,7 @@ inline FogCoefficientsF fog_coefficients_f(const gl::RasterState& state) {
 
 // The 16.16 fog argument of fog coordinate c in single precision (one
 // multiply, one add, one conversion), rounded to nearest and saturated to
-// +-limit (a non-finite c gives 0). Within one unit of 2^-16 of
-// fog_argument's for arguments below 2^7, where the factor still changes.
+// +-limit (a non-finite c gives 0).
 inline int32_t fog_argument_f(const FogCoefficientsF& k, float c, int32_t limit) {
   const float a = (c * k.scale + k.bias) * 65536.0f;
   if (!(a == a) || a - a != 0.0f) return 0;  // NaN or infinite, without libm

@@ -8,11 +8,11 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <climits>
+#include <cstdint>
 
 #include "gl/renderer.h"
+#include "renderers/common/fixed_math.h"
 
 namespace tessera::renderers {
 
@@ -250,21 +250,28 @@ bool sample_texture(const gl::Texture& tex, int u8, int v8, Fetch&& fetch, uint8
 // root per pixel on the ARM, and the reference's level choice. (The exact
 // form differs from it by up to log2(sqrt 2) = 0.5 where u and v both vary
 // along one screen axis: on the mipmap_floor scene's outer strips it moved
-// the level boundaries by several rows away from the reference.) -inf for a
-// texture that does not move (rho = 0): magnified.
-inline double texture_lod(double ux, double vx, double uy, double vy) {
-  return std::log2(std::max({std::fabs(ux), std::fabs(vx), std::fabs(uy), std::fabs(vy)}));
+// the level boundaries by several rows away from the reference.)
+// In 16.16 fixed point: the four derivatives' magnitudes are given in a
+// common unit 2^scale texels per pixel (scale in 16.16), lambda =
+// log2_q16(max) + scale; LOD_MAGNIFIED for a texture that does not move
+// (rho = 0).
+inline constexpr int32_t LOD_MAGNIFIED = INT32_MIN;
+inline constexpr int32_t LOD_ONE = 65536;
+
+inline int32_t texture_lod_q16(uint64_t ux, uint64_t vx, uint64_t uy, uint64_t vy, int32_t scale) {
+  const uint64_t largest = std::max({ux, vx, uy, vy});
+  return largest == 0 ? LOD_MAGNIFIED : log2_q16(largest) + scale;
 }
 
-// The switch point c between magnification (lambda <= c) and minification:
-// 0.5 for a LINEAR magnification filter with a NEAREST_MIPMAP_* minification
-// filter, 0 otherwise (section 3.8.9), so that a magnified texture's edge
-// to level 1 is not sharper than the magnified image.
-inline double lod_switch_point(const gl::Texture& tex) {
+// The switch point c between magnification (lambda <= c) and minification,
+// in 16.16: 0.5 for a LINEAR magnification filter with a NEAREST_MIPMAP_*
+// minification filter, 0 otherwise (section 3.8.9), so that a magnified
+// texture's edge to level 1 is not sharper than the magnified image.
+inline int32_t lod_switch_point(const gl::Texture& tex) {
   return tex.mag_filter == gl::TexFilter::linear && tex.min_filter == gl::TexFilter::nearest &&
                  tex.min_mipmap != gl::MipmapFilter::none
-             ? 0.5
-             : 0.0;
+             ? LOD_ONE / 2
+             : 0;
 }
 
 // Whether the level of detail changes what `tex` gives: it does not when the
@@ -273,9 +280,7 @@ inline bool texture_needs_lod(const gl::Texture& tex) {
   return tex.min_mipmap != gl::MipmapFilter::none || tex.min_filter != tex.mag_filter;
 }
 
-// The levels and filter that sample `tex` at level of detail `lambda`
-// (sections 3.8.8 to 3.8.9): level[0] (and level[1] with weight `blend`, in
-// 1/256, when two levels are blended), each filtered by `linear`.
+// Levels and filter chosen for one sample (choose_levels_q16).
 struct LodChoice {
   unsigned level[2] = {0, 0};
   unsigned count = 1;  // levels sampled: 1 or 2
@@ -283,76 +288,16 @@ struct LodChoice {
   bool linear = false;
 };
 
-inline LodChoice choose_levels(const gl::Texture& tex, double lambda) {
-  LodChoice choice;
-  if (!(lambda > lod_switch_point(tex))) {  // magnified (NaN included)
-    choice.linear = tex.mag_filter == gl::TexFilter::linear;
-    return choice;
-  }
-  choice.linear = tex.min_filter == gl::TexFilter::linear;
-  const unsigned q = tex.levels > 0 ? tex.levels - 1 : 0;  // the last level
-  if (tex.min_mipmap == gl::MipmapFilter::none || q == 0) return choice;
-  if (tex.min_mipmap == gl::MipmapFilter::nearest) {
-    // d = ceil(lambda + 1/2) - 1 for lambda > 1/2, else 0; at most q.
-    const double d = lambda <= 0.5 ? 0.0 : std::ceil(lambda + 0.5) - 1.0;
-    choice.level[0] = static_cast<unsigned>(std::min(d, static_cast<double>(q)));
-    return choice;
-  }
-  if (lambda >= static_cast<double>(q)) {
-    choice.level[0] = q;
-    return choice;
-  }
-  // Levels floor(lambda) and the next, blended by frac(lambda).
-  const double d1 = std::floor(lambda);
-  choice.level[0] = static_cast<unsigned>(d1);
-  choice.level[1] = choice.level[0] + 1;
-  choice.blend = static_cast<uint32_t>(std::lround((lambda - d1) * 256.0));
-  if (choice.blend == 0) return choice;
-  if (choice.blend == 256) {
-    choice.level[0] = choice.level[1];
-    return choice;
-  }
-  choice.count = 2;
-  return choice;
-}
-
-// The colour of `tex` at level-0 texel coordinates (u8, v8), 8 fraction
-// bits, and level of detail `lambda`: the one function that samples a
-// texture for the rasterizers that mipmap (arm). filter(level, u8, v8,
-// linear, out) filters within one level (nearest: texel floor(u); bilinear:
-// texels floor(u - 0.5) and the next, weights in 1/256) at that level's
-// coordinates; two levels are blended with an 8-bit weight, rounded once.
-// Returns the levels and filter it took (for the callers' instruction counts).
-template <typename FilterLevel>
-LodChoice sample_texture_lod(const gl::Texture& tex, int u8, int v8, double lambda, FilterLevel&& filter,
-                             uint8_t out[4]) {
-  const LodChoice choice = choose_levels(tex, lambda);
-  // Coordinates scale by 2^-level: u8 >> level keeps 8 fraction bits.
-  filter(choice.level[0], u8 >> choice.level[0], v8 >> choice.level[0], choice.linear, out);
-  if (choice.count == 1) return choice;
-  uint8_t next[4];
-  filter(choice.level[1], u8 >> choice.level[1], v8 >> choice.level[1], choice.linear, next);
-  for (int ch = 0; ch < 4; ++ch)
-    out[ch] = static_cast<uint8_t>((out[ch] * (256 - choice.blend) + next[ch] * choice.blend + 128) >> 8);
-  return choice;
-}
-
-// The same choice with lambda in 16.16 fixed point, as the arm back end
-// computes it (renderers/common/fixed_math.h, log2_q16); LOD_MAGNIFIED for
-// a texture that does not move (rho = 0). Equal to choose_levels at the
-// same lambda: the thresholds 0.5 and the level boundaries are exact in
-// 16.16, and the blend weight rounds frac(lambda) * 256 to nearest, halves
-// up, as lround does for a positive value.
-inline constexpr int32_t LOD_MAGNIFIED = INT32_MIN;
-inline constexpr int32_t LOD_ONE = 65536;
-
+// The levels and filter that sample `tex` at level of detail `lambda`
+// (16.16; sections 3.8.8 to 3.8.9): magnified when lambda <= c (the switch
+// point; LOD_MAGNIFIED included), level[0] (and level[1] with weight
+// `blend`, in 1/256, when two levels are blended), each filtered by
+// `linear`. *_MIPMAP_NEAREST takes level ceil(lambda + 1/2) - 1 (0 up to
+// lambda = 1/2), at most the last; *_MIPMAP_LINEAR levels floor(lambda) and
+// the next, blended by frac(lambda) * 256 rounded to nearest (halves up).
 inline LodChoice choose_levels_q16(const gl::Texture& tex, int32_t lambda) {
   LodChoice choice;
-  // lod_switch_point's 0.5 or 0.
-  const bool half = tex.mag_filter == gl::TexFilter::linear && tex.min_filter == gl::TexFilter::nearest &&
-                    tex.min_mipmap != gl::MipmapFilter::none;
-  const int32_t switch_point = half ? LOD_ONE / 2 : 0;
-  if (lambda == LOD_MAGNIFIED || lambda <= switch_point) {
+  if (lambda == LOD_MAGNIFIED || lambda <= lod_switch_point(tex)) {
     choice.linear = tex.mag_filter == gl::TexFilter::linear;
     return choice;
   }
@@ -382,7 +327,14 @@ inline LodChoice choose_levels_q16(const gl::Texture& tex, int32_t lambda) {
   return choice;
 }
 
-// sample_texture_lod with lambda in 16.16 (choose_levels_q16).
+// The colour of `tex` at level-0 texel coordinates (u8, v8), 8 fraction
+// bits, and level of detail `lambda` (16.16): the one function that samples
+// a texture for the rasterizers that mipmap (arm). filter(level, u8, v8,
+// linear, out) filters within one level (nearest: texel floor(u); bilinear:
+// texels floor(u - 0.5) and the next, weights in 1/256) at that level's
+// coordinates (u8 >> level keeps 8 fraction bits); two levels are blended
+// with an 8-bit weight, rounded once. Returns the levels and filter it took
+// (for the callers' instruction counts).
 template <typename FilterLevel>
 LodChoice sample_texture_lod_q16(const gl::Texture& tex, int u8, int v8, int32_t lambda, FilterLevel&& filter,
                                  uint8_t out[4]) {

@@ -3,7 +3,8 @@
 // section 3.8.8, the level and filter choice of sections 3.8.8-3.8.9 with
 // the switch point c, the blend of two levels, and the components a base
 // format lacks (table 3.15). Expected values are worked out by hand from
-// the specification's formulas.
+// the specification's formulas; lambda is 16.16 fixed point, as the back
+// ends compute it on the ARM922T.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,11 +12,19 @@
 #include "renderers/common/texturing.h"
 
 using namespace tessera;
-using renderers::choose_levels;
 using renderers::LodChoice;
-using renderers::texture_lod;
+using renderers::LOD_MAGNIFIED;
+using renderers::LOD_ONE;
 
 namespace {
+
+// lambda in 16.16, as the back ends compute it.
+int32_t q16(double lambda) {
+  return int32_t(std::lround(lambda * 65536));
+}
+LodChoice choose_levels(const gl::Texture& tex, double lambda) {
+  return renderers::choose_levels_q16(tex, q16(lambda));
+}
 
 // An 8 x 8 texture with its four levels (8, 4, 2, 1) and the given filters.
 gl::Texture mipmapped(gl::TexFilter within, gl::MipmapFilter mipmap, gl::TexFilter mag) {
@@ -33,19 +42,22 @@ gl::Texture mipmapped(gl::TexFilter within, gl::MipmapFilter mipmap, gl::TexFilt
 }  // namespace
 
 TEST(TextureLod, IsLog2OfTheLargerScaleFactor) {
+  using renderers::texture_lod_q16;
   // rho = max(fx, fy), fx = max(|ux|, |vx|): equation 3.17's lower bound.
-  EXPECT_DOUBLE_EQ(texture_lod(2, 0, 0, 2), 1.0);
-  EXPECT_DOUBLE_EQ(texture_lod(1, 0, 0, 4), 2.0);       // the larger of the two directions
-  EXPECT_DOUBLE_EQ(texture_lod(-8, 0, 0, 1), 3.0);      // of the magnitudes
-  EXPECT_DOUBLE_EQ(texture_lod(0.5, 0, 0, 0.5), -1.0);  // magnified two times
-  EXPECT_TRUE(std::isinf(texture_lod(0, 0, 0, 0)));     // a texture that does not move
+  EXPECT_EQ(texture_lod_q16(2, 0, 0, 2, 0), 1 * LOD_ONE);
+  EXPECT_EQ(texture_lod_q16(1, 0, 0, 4, 0), 2 * LOD_ONE);  // the larger of the two directions
+  EXPECT_EQ(texture_lod_q16(8, 0, 0, 1, 0), 3 * LOD_ONE);  // of the magnitudes
+  EXPECT_EQ(texture_lod_q16(1, 0, 0, 1, -LOD_ONE), -LOD_ONE);  // magnified two times: 0.5 in units of 2^-1
+  EXPECT_EQ(texture_lod_q16(0, 0, 0, 0, 0), LOD_MAGNIFIED);    // a texture that does not move
   // Within the bounds the specification allows for fx:
   // max(|ux|, |vx|) <= fx <= |ux| + |vx|, and at most the exact sqrt form.
   const double ux = 3, vx = 4;
-  const double fx = std::exp2(texture_lod(ux, vx, 0, 0));
+  const double fx = std::exp2(texture_lod_q16(3, 4, 0, 0, 0) / 65536.0);
   EXPECT_GE(fx, std::max(ux, vx));
   EXPECT_LE(fx, ux + vx);
   EXPECT_LE(fx, std::sqrt(ux * ux + vx * vx));
+  // log2 of a magnitude that is not a power of two, within 1.2 units of 2^-16.
+  EXPECT_NEAR(texture_lod_q16(3, 0, 0, 0, 0), std::log2(3.0) * 65536, 1.2);
 }
 
 TEST(TextureLod, LinearMipmapLinearBlendsTheTwoNearestLevels) {
@@ -81,15 +93,15 @@ TEST(TextureLod, NearestMipmapTakesCeilOfLambdaPlusHalfMinusOne) {
 TEST(TextureLod, SwitchPointIsHalfForLinearMagnificationWithNearestMipmaps) {
   // c = 0.5: lambda 0.3 is still magnified, with the LINEAR magnification filter.
   gl::Texture t = mipmapped(gl::TexFilter::nearest, gl::MipmapFilter::nearest, gl::TexFilter::linear);
-  EXPECT_DOUBLE_EQ(renderers::lod_switch_point(t), 0.5);
+  EXPECT_EQ(renderers::lod_switch_point(t), LOD_ONE / 2);
   EXPECT_TRUE(choose_levels(t, 0.3).linear);
   EXPECT_FALSE(choose_levels(t, 0.6).linear);
   // c = 0 otherwise: lambda 0.3 is minified, NEAREST within level 0.
   t.mag_filter = gl::TexFilter::nearest;
-  EXPECT_DOUBLE_EQ(renderers::lod_switch_point(t), 0.0);
+  EXPECT_EQ(renderers::lod_switch_point(t), 0);
   t.mag_filter = gl::TexFilter::linear;
   t.min_filter = gl::TexFilter::linear;  // LINEAR_MIPMAP_NEAREST: c = 0
-  EXPECT_DOUBLE_EQ(renderers::lod_switch_point(t), 0.0);
+  EXPECT_EQ(renderers::lod_switch_point(t), 0);
   gl::Texture plain;  // GL_NEAREST minification, GL_LINEAR magnification, no mipmaps
   plain.min_filter = gl::TexFilter::nearest;
   EXPECT_TRUE(choose_levels(plain, 0.0).linear);      // lambda <= 0: magnified
@@ -120,7 +132,7 @@ TEST(TextureLod, SamplesEachLevelAtItsScaleAndBlendsWithEightBitWeights) {
     for (int ch = 0; ch < 4; ++ch) out[ch] = level == 1 ? 0 : 255;
   };
   uint8_t out[4];
-  const LodChoice c = renderers::sample_texture_lod(t, 0x300, 0x140, 1.25, filter, out);
+  const LodChoice c = renderers::sample_texture_lod_q16(t, 0x300, 0x140, q16(1.25), filter, out);
   EXPECT_EQ(c.count, 2u);
   EXPECT_EQ(seen_u[0], 0x180);  // 3.0 texels of level 0 are 1.5 of level 1
   EXPECT_EQ(seen_v[0], 0xa0);
