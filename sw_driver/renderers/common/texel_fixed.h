@@ -14,9 +14,10 @@
 //
 // The scale (the texture's size times 4096) is a power of two for the
 // textures the arrays wrap, so the float product is exact; it is rounded to
-// a whole number (nearest, halves up) and split into whole periods and the
-// rest as an integer. Single-precision float only (soft float on the
-// ARM922T: a multiply, an add, floorf and a conversion per vertex).
+// a whole number (nearest, halves away from zero) and split into whole
+// periods and the rest. Single-precision float only (soft float on the
+// ARM922T: a few multiplies, adds, floorf and 32-bit conversions per
+// vertex), no double and no 64-bit conversion.
 #pragma once
 
 #include <cmath>
@@ -29,23 +30,36 @@ namespace tessera::renderers {
 // as the most negative one kept (2^40 units).
 inline void texel_fixed(const float values[3], float scale, unsigned period_log2, int32_t out[3]) {
   constexpr float LIMIT = 1099511627776.0f;  // 2^40: whole periods fit 32 bits
+  const auto period = static_cast<float>(uint32_t{1} << period_log2);
   const int32_t max_whole = (int32_t{1} << (29 - period_log2)) - 1;
   int32_t first_whole = 0;
   for (unsigned i = 0; i < 3; ++i) {
     float value = values[i] * scale;
     if (!(value > -LIMIT)) value = -LIMIT;  // also NaN
     if (value > LIMIT) value = LIMIT;
-    // Rounded to a whole number: from 2^23 up a float is one already;
-    // below, its last place is at most 1/2, so adding 1/2 is exact.
-    const int64_t rounded = value >= 8388608.0f || value <= -8388608.0f ? static_cast<int64_t>(value)
-                                                                           : static_cast<int64_t>(std::floor(value + 0.5f));
-    const auto periods = static_cast<int32_t>(rounded >> period_log2);  // floor
-    const auto rest = static_cast<int32_t>(rounded & ((int64_t{1} << period_log2) - 1));
+    // |value| as whole periods and the rest, both exact (the rest is at
+    // most |value|, a multiple of its last place), the rest rounded to a
+    // whole number: from 2^23 up a float is one already, below its last
+    // place is at most 1/2, so adding 1/2 is exact. Only 32-bit
+    // conversions (__aeabi_f2iz): libgcc's float to 64-bit conversion
+    // goes through double.
+    const float magnitude = value < 0 ? -value : value;
+    const float whole = std::floor(magnitude * (1.0f / period));  // a power of two: exact
+    const float rest = magnitude - whole * period;
+    const auto rest_rounded = static_cast<int32_t>(rest >= 8388608.0f ? rest : std::floor(rest + 0.5f));
+    auto periods = static_cast<int32_t>(whole);
+    int32_t part = rest_rounded;
+    if (value < 0 && part > 0) {  // -(whole P + part) = -(whole + 1) P + (P - part)
+      periods = -periods - 1;
+      part = static_cast<int32_t>(period) - part;
+    } else if (value < 0) {
+      periods = -periods;
+    }
     if (i == 0) first_whole = periods;
     int32_t relative = periods - first_whole;
     if (relative > max_whole) relative = max_whole;
     if (relative < -max_whole) relative = -max_whole;
-    out[i] = relative * (int32_t{1} << period_log2) + rest;
+    out[i] = relative * static_cast<int32_t>(period) + part;
   }
 }
 

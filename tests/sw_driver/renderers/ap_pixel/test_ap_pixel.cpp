@@ -344,9 +344,8 @@ TEST(ApPixelSetup, SpansDepthAndValuesAreExactAtTheExtremes) {
         if (k < 4) v[i] = Exact{channels[k]} << 16;
         if (k == 6) v[i] = p.z;
         if (k == 4 || k == 5) {
-          v[i] = static_cast<Exact>(std::floor(static_cast<double>(k == 4 ? p.tex[0].s : p.tex[0].t) *
-                                                   (k == 4 ? tex_w : tex_h) * 4096 +
-                                               0.5));
+          const double scaled = static_cast<double>(k == 4 ? p.tex[0].s : p.tex[0].t) * (k == 4 ? tex_w : tex_h) * 4096;
+          v[i] = static_cast<Exact>(scaled < 0 ? -std::floor(-scaled + 0.5) : std::floor(scaled + 0.5));  // halves away
           fraction = 4;
         }
       }

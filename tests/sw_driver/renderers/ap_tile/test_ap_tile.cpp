@@ -374,15 +374,16 @@ void expect_exact_records(const gl::Triangle& t, const DrawFlags& flags, const F
         EXPECT_EQ(got.cdv[k], static_cast<uint16_t>(exact_round(16 * cy * max[k] * 256, area * 255))) << what;
       }
       // Texture coordinates: the vertices in 1/4096 texel, rounded to
-      // nearest, halves up (README.md), the plane exactly, to 8.8 rounded
-      // (halves up).
+      // nearest, halves away from zero (renderers/common/texel_fixed.h),
+      // the plane exactly, to 8.8 rounded (halves up).
       if (flags.tex != 0)
         for (unsigned k = 0; k < 2; ++k) {
           ExactPlane p{};
           const unsigned size = k == 0 ? flags.tex_width : flags.tex_height;
           for (unsigned i = 0; i < 3; ++i) {
             const float st = k == 0 ? t.v[i].tex[0].s : t.v[i].tex[0].t;
-            p.v[i] = static_cast<Exact>(std::floor(static_cast<double>(st) * size * 4096 + 0.5));
+            const double scaled = static_cast<double>(st) * size * 4096;  // exact
+            p.v[i] = static_cast<Exact>(scaled < 0 ? -std::floor(-scaled + 0.5) : std::floor(scaled + 0.5));
           }
           const Exact value = plane_times_area(p, t, cx16, cy16, &cx, &cy);
           const auto texel = [&](Exact numerator) {
