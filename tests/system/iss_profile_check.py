@@ -62,6 +62,46 @@ BACKENDS = {
         "ran": [r"^tessera::arm::ArmRasterizer::shade_span\(", r"^tessera::arm::ArmRasterizer::draw_triangle\("],
         "max_share": None,
     },
+    # The array back ends: the triangle set-up, the per-CU records and their
+    # packing, the host's spans, depth test and per-pixel writes, the
+    # read-back's texturing. Not the renderers' draw and flush themselves:
+    # their TimedScopes read the host's clock as a double (HostApi::
+    # now_seconds), bookkeeping of the simulation rather than the driver's
+    # arithmetic.
+    "ap-tile": {
+        "scene": "teapot",
+        "frames": 1,
+        "set": [],
+        "roots": [r"^tessera::ap_tile::TriangleSetup::",
+                  r"^tessera::ap_tile::encode_record\(",
+                  r"^tessera::ap_tile::TileBins::",
+                  r"^tessera::ap_tile::ApTileRenderer::(write_group|shade_pixel)\("],
+        "ran": [r"^tessera::ap_tile::TriangleSetup::TriangleSetup\(", r"^tessera::ap_tile::TriangleSetup::edge_at\(",
+                r"^tessera::ap_tile::ApTileRenderer::write_group\("],
+        "max_share": None,
+    },
+    "ap-pixel": {
+        "scene": "teapot",
+        "frames": 1,
+        "set": [],
+        "roots": [r"^tessera::ap_pixel::PixelTriangle::",
+                  r"^tessera::ap_pixel::ApPixelRenderer::(write_pixel|write_shaded)\("],
+        "ran": [r"^tessera::ap_pixel::PixelTriangle::PixelTriangle\(", r"^tessera::ap_pixel::PixelTriangle::depth16\(",
+                r"^tessera::ap_pixel::PixelTriangle::span\("],
+        "max_share": None,
+    },
+    # The raster driver's per-triangle path: the vertex records, the fog
+    # argument and the binning (not flush, once a frame: its arena comes
+    # from the GL's allocator and its errors are formatted by snprintf).
+    "raster": {
+        "scene": "teapot",
+        "frames": 1,
+        "set": [],
+        "roots": [r"^tessera::raster_backend::RasterRenderer::draw\(",
+                  r"^tessera::raster_backend::\(anonymous namespace\)::encode_"],
+        "ran": [r"^tessera::raster_backend::RasterRenderer::draw\("],
+        "max_share": None,
+    },
 }
 
 # Double-precision soft float (libgcc's __*df* and the ARM EABI's
