@@ -71,9 +71,7 @@ class RecordingCore : public tessera::HostCore {
     if (address >= m_direct_bytes) return {};
     return {m_host.memory(0, m_direct_bytes), 0, m_direct_bytes};
   }
-  void on_direct_memory_invalidated(std::function<void()> callback) override {
-    m_invalidated = std::move(callback);
-  }
+  void on_direct_memory_invalidated(const std::function<void()>& callback) override { m_invalidated = callback; }
   // As the SoC's memory withdrawing its DMI.
   void invalidate_direct_memory() {
     if (m_invalidated) m_invalidated();

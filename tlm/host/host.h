@@ -147,8 +147,8 @@ class Host : public Block, public HostApi, public HostCore {
   void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) override;
   void set_function_names(std::vector<std::string> names) override { m_function_names = std::move(names); }
   DirectMemory direct_memory(uint32_t address) override;
-  void on_direct_memory_invalidated(std::function<void()> callback) override {
-    m_direct_memory_invalidated = std::move(callback);
+  void on_direct_memory_invalidated(const std::function<void()>& callback) override {
+    m_direct_memory_invalidated = callback;
   }
   const std::vector<std::string>& function_names() const { return m_function_names; }
 

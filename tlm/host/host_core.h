@@ -51,7 +51,7 @@ class HostCore {
     uint64_t size = 0;
   };
   virtual DirectMemory direct_memory(uint32_t /*address*/) { return {}; }
-  virtual void on_direct_memory_invalidated(std::function<void()> /*callback*/) {}
+  virtual void on_direct_memory_invalidated(const std::function<void()>& /*callback*/) {}
 
   // CP15 c1's data-side bits (ARM922T TRM, ARM DDI 0184B: register 1 of
   // the CP15 chapter, and 4.3):
