@@ -32,6 +32,11 @@ using tessera::fuzz::ByteReader;
 using tessera::fuzz::fail;
 
 constexpr size_t MAX_MEMORY = 4096;
+// What the header's bytes pick from: CUs (0: no array), CMEM bytes per CU,
+// the memory's base address.
+constexpr unsigned LANES[] = {0, 1, 8, 24, 96};
+constexpr unsigned CMEM[] = {16, 64, 4096};
+constexpr uint64_t BASES[] = {0, 0x1000, 0xFFFFF000u};
 
 struct CheckingPort : DmaPort {
   uint64_t base = 0;
@@ -99,9 +104,6 @@ void run_one(const Descriptor& d, const Limits& limits, unsigned buffer, Checkin
 // NOLINTNEXTLINE(readability-identifier-naming): the name libFuzzer calls
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ByteReader in(data, size);
-  static const unsigned LANES[] = {0, 1, 8, 24, 96};
-  static const unsigned CMEM[] = {16, 64, 4096};
-  static const uint64_t BASES[] = {0, 0x1000, 0xFFFFF000u};
   CheckingPort port;
   port.lanes = LANES[in.pick(5)];
   port.cmem_bytes = port.lanes == 0 ? 0 : CMEM[in.pick(3)];
