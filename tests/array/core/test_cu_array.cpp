@@ -445,6 +445,7 @@ TEST(ArrayController, ARunawayStopsWhereTheCapWouldStopItWhenRun) {
   const uint64_t length = trace.back().cycles;
   ASSERT_GT(length, 40u);
   std::vector<uint64_t> words;
+  words.reserve(program.size());
   for (const Instruction& in : program) words.push_back(encode(in));
   for (uint64_t cap = 1; cap <= length + 1; ++cap) {
     SCOPED_TRACE("cap " + std::to_string(cap));
@@ -481,6 +482,7 @@ TEST(ArrayController, ARunawayIsStoppedAtOnce) {
                                             make(Opcode::op_endloop),   make(Opcode::op_endloop),
                                             make(Opcode::op_endloop),   make(Opcode::op_halt)};
   std::vector<uint64_t> words;
+  words.reserve(program.size());
   for (const Instruction& in : program) words.push_back(encode(in));
   ASSERT_TRUE(controller.load(0, words));
   const auto start = std::chrono::steady_clock::now();
