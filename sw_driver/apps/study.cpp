@@ -179,8 +179,9 @@ void shade(const uint8_t* in, uint8_t* out) {
     const uint32_t c0 = word_at(in, 3 * a);
     const auto gx = static_cast<int16_t>(word_at(in, 3 * a + 1));
     const auto gy = static_cast<int16_t>(word_at(in, 3 * a + 2));
-    const auto value = static_cast<uint16_t>((c0 + static_cast<uint32_t>(x * gx + y * gy)) >> 8);
-    std::memcpy(out + 2 * a, &value, 2);
+    const uint32_t value = (c0 + static_cast<uint32_t>(x * gx + y * gy)) >> 8;
+    out[2 * a] = static_cast<uint8_t>(value);  // two STRB: no library call for an unaligned halfword
+    out[2 * a + 1] = static_cast<uint8_t>(value >> 8);
   }
 }
 
@@ -416,11 +417,11 @@ int study_patches(AppEnvironment& env) {
           host.compute(Op::alu, uint64_t{shape.width} * (ATTRIBUTES * STEP_ALU + LOOP_ALU));
           host.compute(Op::branch, uint64_t{shape.width} * LOOP_BRANCH);
           uint32_t value[ATTRIBUTES];
-          std::memcpy(value, row_start, sizeof value);
+          for (unsigned a = 0; a < ATTRIBUTES; ++a) value[a] = row_start[a];
           for (unsigned c = 0; c < shape.width; ++c)
             for (unsigned a = 0; a < ATTRIBUTES; ++a) {
-              const auto integer = static_cast<uint16_t>(value[a] >> 8);
-              std::memcpy(out + 2 * (c * ATTRIBUTES + a), &integer, 2);
+              out[2 * (c * ATTRIBUTES + a)] = static_cast<uint8_t>(value[a] >> 8);
+              out[2 * (c * ATTRIBUTES + a) + 1] = static_cast<uint8_t>(value[a] >> 16);
               value[a] += step_x[a];
             }
           for (unsigned a = 0; a < ATTRIBUTES; ++a) row_start[a] += step_y[a];
@@ -500,7 +501,8 @@ int study_patches(AppEnvironment& env) {
             "host time for one patch of that many pixels, all seven attributes", ns(elapsed));
   }
   publish(env, "block", "pixels per side of a CU's block (1 on the host)", block);
-  std::printf("%s: %zu patches on the %s\n", app, shapes.size(), target == Target::host ? "host" : "array");
+  std::printf("%s: %u patches on the %s\n", app, static_cast<unsigned>(shapes.size()),
+              target == Target::host ? "host" : "array");
   return 0;
 }
 

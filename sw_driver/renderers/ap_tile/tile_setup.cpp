@@ -284,7 +284,7 @@ std::vector<unsigned> TriangleSetup::tiles() const {
 // plane(x, y) * area = v0 area + d1 w1 + d2 w2, with w1 and w2 the
 // barycentric numerators (|w| <= 2^30). Depth: |v0|, |d| < 2^24, so the
 // sum stays below 3 x 2^54; colour below 3 x 2^38; texture coordinates
-// (|v0| < 2^20, |d| < 2^30) below 2^61.
+// (|v0| <= 2^20, |d| < 2^30) below 2^62.
 int64_t TriangleSetup::plane_numerator(const Plane& plane, int32_t w1, int32_t w2) const {
   const int64_t n = int64_t{plane.v0} * static_cast<int32_t>(m_area) + int64_t{plane.d1} * w1 + int64_t{plane.d2} * w2;
   return m_area < 0 ? -n : n;
