@@ -179,8 +179,30 @@ void print_driver_summary(const nlohmann::json& stats, const FrameStatsStream::S
   }
 }
 
+// The summary's width: it fits a terminal of 80 columns.
+constexpr size_t SUMMARY_COLUMNS = 80;
+
+// `text` in lines of at most `width` characters, broken after ", " (a part
+// longer than `width` is a line of its own).
+std::vector<std::string> wrap_at_commas(const std::string& text, size_t width) {
+  std::vector<std::string> lines(1);
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find(", ", start);
+    end = end == std::string::npos ? text.size() : end + 1;  // the comma ends the part, the space is dropped
+    const std::string part = text.substr(start, end - start);
+    const std::string joined = lines.back().empty() ? part : lines.back() + " " + part;
+    if (!lines.back().empty() && joined.size() > width)
+      lines.push_back(part);
+    else
+      lines.back() = joined;
+    start = end < text.size() ? end + 1 : end;
+  }
+  return lines;
+}
+
 // Each energy unit's energy over the run, its average power and its mean
-// energy per frame shown (tlm/power/).
+// energy per frame shown (tlm/power/); units that spent none are named on
+// one line instead, as the blocks that did nothing are above.
 void print_energy_summary(const nlohmann::json& stats, const FrameStatsStream::Sums& sums) {
   const nlohmann::json& energy = stats["energy"];
   std::printf("\n  %-18s %12s %12s %14s\n", "energy (1.2 V)", "total", "average", "per frame");
@@ -189,11 +211,19 @@ void print_energy_summary(const nlohmann::json& stats, const FrameStatsStream::S
     std::printf("  %-18s %12s %12s %14s\n", name.c_str(), format_energy(unit["total_j"].get<double>()).c_str(),
                 format_power(unit["average_w"].get<double>()).c_str(), mean.c_str());
   };
+  std::string none;
   for (const auto& [name, unit] : energy["units"].items()) {
+    if (unit["total_j"].get<double>() == 0) {
+      none += (none.empty() ? "" : ", ") + name;
+      continue;
+    }
     const auto found = sums.energy_unit_j.find(name);
     row(name, unit, found == sums.energy_unit_j.end() ? 0.0 : found->second);
   }
   row("total", energy, sums.energy_total_j);
+  if (!none.empty())
+    for (const std::string& line : wrap_at_commas("no energy: " + none, SUMMARY_COLUMNS - 2))
+      std::printf("  %s\n", line.c_str());
 }
 
 // With power.calibration set: each group of units of that scenario of the
@@ -224,27 +254,6 @@ void print_energy_calibration(const Config& config, const Soc& soc, const nlohma
   }
   line("ARM922T idling on NOPs", idle_pj * 1e-9 * config.get_real("host.clock_mhz") * 1e6 + leakage_mw, 43.5 * 1.2);
   line("leakage, clocks stopped", leakage_mw, 3.0 * 1.2);
-}
-
-// The summary's width: it fits a terminal of 80 columns.
-constexpr size_t SUMMARY_COLUMNS = 80;
-
-// `text` in lines of at most `width` characters, broken after ", " (a part
-// longer than `width` is a line of its own).
-std::vector<std::string> wrap_at_commas(const std::string& text, size_t width) {
-  std::vector<std::string> lines(1);
-  for (size_t start = 0; start < text.size();) {
-    size_t end = text.find(", ", start);
-    end = end == std::string::npos ? text.size() : end + 1;  // the comma ends the part, the space is dropped
-    const std::string part = text.substr(start, end - start);
-    const std::string joined = lines.back().empty() ? part : lines.back() + " " + part;
-    if (!lines.back().empty() && joined.size() > width)
-      lines.push_back(part);
-    else
-      lines.back() = joined;
-    start = end < text.size() ? end + 1 : end;
-  }
-  return lines;
 }
 
 // A block that did nothing in the run: no busy time and every counter 0.

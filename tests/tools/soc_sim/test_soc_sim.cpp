@@ -406,6 +406,22 @@ TEST_F(SocSim, SummaryFitsEightyColumnsAndNamesTheIdleBlocksOnOneLine) {
     EXPECT_TRUE(std::regex_search(block_table(tile.out), std::regex(std::string("\n  ") + name + " +[0-9]")))
         << name << " has no row on ap-tile\n"
         << tile.out;
+  // The energy table: units that spent nothing (pattern: the rasterizer, the
+  // array's controller and CIU) are named on one line, not listed as rows of
+  // zeros; on ap-tile they spent energy and have their rows.
+  const std::regex no_energy_line(R"(\n  no energy: ([a-z_, ]+)\n)");
+  ASSERT_TRUE(std::regex_search(pattern.out, match, no_energy_line)) << pattern.out;
+  for (const char* name : {"raster", "array_controller", "ciu"}) {
+    EXPECT_NE(match[1].str().find(name), std::string::npos) << name << " not named as spending nothing\n"
+                                                            << pattern.out;
+    EXPECT_FALSE(std::regex_search(pattern.out, std::regex(std::string("\n  ") + name + " +0\\.000 uJ")))
+        << name << " has an energy row of zeros\n"
+        << pattern.out;
+  }
+  for (const char* name : {"array_controller", "ciu"})
+    EXPECT_TRUE(std::regex_search(tile.out, std::regex(std::string("\n  ") + name + " +[0-9.]+ [mun]?J")))
+        << name << " has no energy row on ap-tile\n"
+        << tile.out;
 }
 
 // The arm back end clears each frame with long trains of posted stores
