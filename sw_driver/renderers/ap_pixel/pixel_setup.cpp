@@ -108,8 +108,8 @@ PixelTriangle::PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned t
     m_planes[k] = plane(v[0], v[1], v[2], 8);
   }
   for (unsigned i = 0; i < 3; ++i) m_z[i] = triangle.v[i].z;
-  m_planes[static_cast<unsigned>(Attribute::z)] = plane(static_cast<int32_t>(m_z[0]), static_cast<int32_t>(m_z[1]),
-                                                        static_cast<int32_t>(m_z[2]), 8);
+  m_planes[static_cast<unsigned>(Attribute::z)] =
+      plane(static_cast<int32_t>(m_z[0]), static_cast<int32_t>(m_z[1]), static_cast<int32_t>(m_z[2]), 8);
   const unsigned sizes[2] = {tex_width, tex_height};
   bool not_finite[2] = {false, false};
   for (unsigned k = 0; k < 2; ++k) {
@@ -134,9 +134,9 @@ PixelTriangle::PixelTriangle(const gl::Triangle& triangle, bool flat, unsigned t
     const int64_t cx = int64_t{p.d1} * y2 - int64_t{p.d2} * y1;
     const int64_t cy = int64_t{p.d2} * x1 - int64_t{p.d1} * x2;
     const auto gradient = [&](int64_t numerator, bool& clamped) {
-      const int64_t code = (m_area_divisor.floor_divide(16 * m_area_sign * numerator).quotient +
-                            (int64_t{1} << (p.fraction - 1))) >>
-                           p.fraction;
+      const int64_t code =
+          (m_area_divisor.floor_divide(16 * m_area_sign * numerator).quotient + (int64_t{1} << (p.fraction - 1))) >>
+          p.fraction;
       clamped = clamped || code > 32767 || code < -32767;
       return static_cast<int16_t>(std::clamp<int64_t>(code, -32768, 32767));
     };

@@ -244,7 +244,8 @@ TriangleSetup::EdgeInTile TriangleSetup::edge_in_tile(unsigned e, unsigned c, un
   t.e0 = edge_at(e, corner_x16(c), corner_y16(r));
   t.du = -m_edges[e].a;
   t.dv = m_edges[e].b;
-  const auto last_u = static_cast<int32_t>(m_frame.tile_width - 1), last_v = static_cast<int32_t>(m_frame.tile_height - 1);
+  const auto last_u = static_cast<int32_t>(m_frame.tile_width - 1),
+             last_v = static_cast<int32_t>(m_frame.tile_height - 1);
   const int32_t corners[] = {t.e0, t.e0 + last_u * t.du, t.e0 + last_v * t.dv, t.e0 + last_u * t.du + last_v * t.dv};
   t.low = *std::min_element(std::begin(corners), std::end(corners));
   t.high = *std::max_element(std::begin(corners), std::end(corners));

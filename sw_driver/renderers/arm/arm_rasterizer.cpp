@@ -37,8 +37,8 @@ constexpr int32_t MAX_COORDINATE = (1 << 14) - 1;
 constexpr int UNSNAPPED_BITS = 8;
 constexpr float MAX_UNSNAPPED = 1024.0f;
 constexpr int COLOR_FRACTION_BITS = 16;
-constexpr int DEPTH_FRACTION_BITS = 7;  // interpolant = z24 << 7 < 2^31
-constexpr int Q_FRACTION_BITS = 30;     // normalised 1/w in (0, 1], as 1 .. 2^30
+constexpr int DEPTH_FRACTION_BITS = 7;    // interpolant = z24 << 7 < 2^31
+constexpr int Q_FRACTION_BITS = 30;       // normalised 1/w in (0, 1], as 1 .. 2^30
 constexpr int ST_MAX_FRACTION_BITS = 24;  // s * width * q with F <= 24 fraction bits, |.| < 2^30
 constexpr float MAX_TEXELS = 32768.0f;    // |s * width| is clamped to this
 // Every plane's vertex values lie within [-2^30, 2^31) and differ by less
@@ -169,8 +169,8 @@ struct Plane {
     step = int32_t(std::clamp<int64_t>(halve_rounded(basis.over_area(nx, basis.bits + 1)), -range, range));
     if (fine) {
       const int64_t fine_range = range << FINE_BITS;  // < 2^60
-      step_fine = std::clamp<int64_t>(halve_rounded(basis.over_area(nx, basis.bits + FINE_BITS + 1)), -fine_range,
-                                      fine_range);
+      step_fine =
+          std::clamp<int64_t>(halve_rounded(basis.over_area(nx, basis.bits + FINE_BITS + 1)), -fine_range, fine_range);
     }
   }
 
@@ -276,7 +276,7 @@ struct ArmRasterizer::TriangleSetup {
   bool use_unsnapped = false;
   Plane z, color[4], q, fog;
   Plane sq[gl::MAX_TEXTURE_UNITS], tq[gl::MAX_TEXTURE_UNITS];  // per unit of DrawContext::units
-  int st_bits[gl::MAX_TEXTURE_UNITS] = {};  // F: s q and t q are s W q 2^F, t H q 2^F
+  int st_bits[gl::MAX_TEXTURE_UNITS] = {};                     // F: s q and t q are s W q 2^F, t H q 2^F
   LodGradients lod_gradients[gl::MAX_TEXTURE_UNITS];
   uint32_t flat_rgba = 0;
   bool perspective = false;        // the vertices' 1/w differ
@@ -908,8 +908,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     const uint64_t uy = magnitude(int64_t{g.sy} * q_value - int64_t{sq_value} * g.qy);
     const uint64_t vx = magnitude(int64_t{g.tx} * q_value - int64_t{tq_value} * g.qx);
     const uint64_t vy = magnitude(int64_t{g.ty} * q_value - int64_t{tq_value} * g.qy);
-    const int32_t scale = (Q_FRACTION_BITS - s.st_bits[i] - g.exponent) * renderers::LOD_ONE -
-                          2 * renderers::log2_q16(uint64_t(q_value));
+    const int32_t scale =
+        (Q_FRACTION_BITS - s.st_bits[i] - g.exponent) * renderers::LOD_ONE - 2 * renderers::log2_q16(uint64_t(q_value));
     return renderers::texture_lod_q16(ux, vx, uy, vy, scale);
   };
   // The spans most scenes draw (no texture, fog, stencil or alpha test:
@@ -976,8 +976,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
   int32_t sq[gl::MAX_TEXTURE_UNITS] = {}, tq[gl::MAX_TEXTURE_UNITS] = {};
   for (int i = 0; !plain && i < n; ++i) {
     const uint16_t z16 = uint16_t(uint32_t(z) >> (8 + DEPTH_FRACTION_BITS));
-    bool alive = early_depth_only ? compare_passes(depth_func, z16, depth_old[i])
-                                  : (c.late_tests || fragment_tests(i, z16));
+    bool alive =
+        early_depth_only ? compare_passes(depth_func, z16, depth_old[i]) : (c.late_tests || fragment_tests(i, z16));
     if (alive) {
       ++shaded;
       const int32_t q = step_q ? int32_t(q_fine >> FINE_BITS) : int32_t{1} << Q_FRACTION_BITS;
@@ -1005,8 +1005,8 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
         // texture coordinates), then a multiply per channel.
         rgba = 0;
         for (int ch = 0; ch < 4; ++ch) {
-          const int64_t value = (divide(color[ch], Q_FRACTION_BITS) + (1 << (COLOR_FRACTION_BITS - 1))) >>
-                                COLOR_FRACTION_BITS;
+          const int64_t value =
+              (divide(color[ch], Q_FRACTION_BITS) + (1 << (COLOR_FRACTION_BITS - 1))) >> COLOR_FRACTION_BITS;
           rgba |= uint32_t(std::clamp<int64_t>(value, 0, 255)) << (8 * ch);
         }
         if (!c.texture) ++color_divisions;

@@ -34,7 +34,9 @@ class Divisor {
 
   // `divisor` >= 1.
   constexpr explicit Divisor(uint32_t divisor)
-      : m_divisor(divisor), m_shift(leading_zeros(divisor)), m_normalised(divisor << m_shift),
+      : m_divisor(divisor),
+        m_shift(leading_zeros(divisor)),
+        m_normalised(divisor << m_shift),
         m_reciprocal(reciprocal(m_normalised)) {}
 
   constexpr uint32_t value() const { return m_divisor; }

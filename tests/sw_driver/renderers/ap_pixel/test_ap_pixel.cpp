@@ -355,7 +355,8 @@ TEST(ApPixelSetup, SpansDepthAndValuesAreExactAtTheExtremes) {
       const Exact half = Exact{1} << (fraction - 1), unit = Exact{1} << fraction;
       const Exact c0 = floor_div(at + half * area, unit * area) + (k < 4 ? 128 : 0);
       EXPECT_EQ(got.c0[k], static_cast<uint32_t>(c0) & 0xffffffu) << "case " << c << ", attribute " << k;
-      const Exact gx = floor_div(16 * cx + half * area, unit * area), gy = floor_div(16 * cy + half * area, unit * area);
+      const Exact gx = floor_div(16 * cx + half * area, unit * area),
+                  gy = floor_div(16 * cy + half * area, unit * area);
       EXPECT_EQ(got.clamped[k], gx > 32767 || gx < -32767 || gy > 32767 || gy < -32767) << "case " << c;
       EXPECT_EQ(got.gx[k], static_cast<int16_t>(std::clamp<Exact>(gx, -32768, 32767))) << "case " << c << ", " << k;
       EXPECT_EQ(got.gy[k], static_cast<int16_t>(std::clamp<Exact>(gy, -32768, 32767))) << "case " << c << ", " << k;

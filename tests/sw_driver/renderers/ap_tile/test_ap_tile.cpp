@@ -312,8 +312,8 @@ Exact plane_times_area(const ExactPlane& p, const gl::Triangle& t, Exact x16, Ex
   return p.v[0] * area + cx * (x16 - x0) + cy * (y16 - y0);
 }
 
-void expect_exact_records(const gl::Triangle& t, const DrawFlags& flags, const FrameGeometry& frame,
-                          const char* what, unsigned& records) {
+void expect_exact_records(const gl::Triangle& t, const DrawFlags& flags, const FrameGeometry& frame, const char* what,
+                          unsigned& records) {
   const TriangleSetup setup(t, flags, frame);
   const Exact x[3] = {t.v[0].x, t.v[1].x, t.v[2].x}, y[3] = {t.v[0].y, t.v[1].y, t.v[2].y};
   const Exact area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);

@@ -1178,7 +1178,6 @@ TEST(ArmRasterizerTexture, BaseFormatsPerUnitThenFog) {
   EXPECT_EQ(c.a, 100);  // 200 (the fragment's, not the RGB texel's 255) x 128 / 255 = 100.4
 }
 
-
 // --- Fixed point: the bounds of arm_rasterizer.cpp at their extremes --------
 
 // floor(2^59 / m) exactly over [2^29, 2^30]: both ends, powers of two, and a
@@ -1363,9 +1362,9 @@ TEST(ArmFixedPoint, PerspectiveTexturingAtTheFormatsExtremes) {
   state.unit[0].tex = f.texture(64, 1, ramp);
   state.unit[0].env = gl::TexEnvMode::replace;
   for (const float far_s : {512.0f, 3.0f}) {  // s W = 32768 texels, and 192
-    const gl::Triangle t = triangle(vertex(0, 0, {}, 0.5, 0.0f, 0.5f, 1.0f),
-                                    vertex(512, 0, {}, 0.5, far_s, 0.5f, 0.001f),
-                                    vertex(0, 512, {}, 0.5, 0.0f, 0.5f, 1.0f));
+    const gl::Triangle t =
+        triangle(vertex(0, 0, {}, 0.5, 0.0f, 0.5f, 1.0f), vertex(512, 0, {}, 0.5, far_s, 0.5f, 0.001f),
+                 vertex(0, 512, {}, 0.5, 0.0f, 0.5f, 1.0f));
     f.draw(state, {t});
     int checked = 0;
     for (int y = 0; y < 512; y += 5) {

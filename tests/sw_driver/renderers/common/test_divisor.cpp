@@ -15,8 +15,8 @@ namespace {
 using tessera::Divisor;
 
 std::vector<uint32_t> divisors() {
-  std::vector<uint32_t> out = {1, 2, 3, 7, 255, 256, 65535, 65536, 65537, 0x7fffffffu, 0x80000000u, 0x80000001u,
-                               0xfffffffeu, 0xffffffffu};
+  std::vector<uint32_t> out = {1,     2,     3,           7,           255,         256,         65535,
+                               65536, 65537, 0x7fffffffu, 0x80000000u, 0x80000001u, 0xfffffffeu, 0xffffffffu};
   std::mt19937_64 random(20261202);
   for (int i = 0; i < 300; ++i) {
     const unsigned bits = 1 + static_cast<unsigned>(random() % 32);

@@ -12,9 +12,9 @@
 #include "renderers/common/texturing.h"
 
 using namespace tessera;
-using renderers::LodChoice;
 using renderers::LOD_MAGNIFIED;
 using renderers::LOD_ONE;
+using renderers::LodChoice;
 
 namespace {
 
@@ -45,8 +45,8 @@ TEST(TextureLod, IsLog2OfTheLargerScaleFactor) {
   using renderers::texture_lod_q16;
   // rho = max(fx, fy), fx = max(|ux|, |vx|): equation 3.17's lower bound.
   EXPECT_EQ(texture_lod_q16(2, 0, 0, 2, 0), 1 * LOD_ONE);
-  EXPECT_EQ(texture_lod_q16(1, 0, 0, 4, 0), 2 * LOD_ONE);  // the larger of the two directions
-  EXPECT_EQ(texture_lod_q16(8, 0, 0, 1, 0), 3 * LOD_ONE);  // of the magnitudes
+  EXPECT_EQ(texture_lod_q16(1, 0, 0, 4, 0), 2 * LOD_ONE);      // the larger of the two directions
+  EXPECT_EQ(texture_lod_q16(8, 0, 0, 1, 0), 3 * LOD_ONE);      // of the magnitudes
   EXPECT_EQ(texture_lod_q16(1, 0, 0, 1, -LOD_ONE), -LOD_ONE);  // magnified two times: 0.5 in units of 2^-1
   EXPECT_EQ(texture_lod_q16(0, 0, 0, 0, 0), LOD_MAGNIFIED);    // a texture that does not move
   // Within the bounds the specification allows for fx:
