@@ -584,10 +584,10 @@ def run_folder_name(label):
     return re.sub(r"[^A-Za-z0-9.-]+", "_", label).strip("_") or "run"
 
 
-def soc_sim_command(soc_sim, spec, run, frames, folder, overrides):
+def soc_sim_command(soc_sim, spec, run, frames, folder, overrides=None):
     command = [str(soc_sim), "--backend", run["backend"], "--app", run["app"], "--frames", str(frames),
                "--out", str(folder), "--force", "--quiet"]
-    for key, value in {**spec["set"], **run["set"], **overrides}.items():
+    for key, value in {**spec["set"], **run["set"], **(overrides or {})}.items():
         command += ["--set", f"{key}={setting_text(value)}"]
     if run["args"]:
         command += ["--"] + run["args"]
