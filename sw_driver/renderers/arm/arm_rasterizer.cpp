@@ -47,6 +47,14 @@ constexpr float MAX_TEXELS = 32768.0f;    // |s * width| is clamped to this
 // barycentric weight (|w| < 2 in 2.30) is below 2^62.
 constexpr int32_t MAX_FOG_VALUE = 1 << 30;
 
+// One step of a span's interpolant, wrapping as the ARM's ADD does: the
+// values the span's pixels use stay within their clamped range, but the
+// step after its last pixel may leave int32 (a signed overflow, undefined
+// in C++; the same bits on the ARM).
+inline void advance(int32_t& value, int32_t delta) {
+  value = int32_t(uint32_t(value) + uint32_t(delta));
+}
+
 int32_t floor_div(int32_t a, int32_t b) {  // b > 0: a 32-bit division
   int32_t q = a / b;
   if ((a % b) != 0 && a < 0) --q;
@@ -116,8 +124,8 @@ struct Basis {
   // unsnapped one), clamped to +-2 otherwise. |E| < 2^38 (a centre within
   // 2^10 pixels of vertex 0, an edge shorter than 2^11 pixels).
   void weights(int i, int j, int32_t w[2]) const {
-    const int64_t x = ((2 * int64_t{i} + 1) << (bits - 1)) - x0;
-    const int64_t y = ((2 * int64_t{j} + 1) << (bits - 1)) - y0;
+    const int64_t x = (2 * int64_t{i} + 1) * (int64_t{1} << (bits - 1)) - x0;
+    const int64_t y = (2 * int64_t{j} + 1) * (int64_t{1} << (bits - 1)) - y0;
     const int64_t e[2] = {x * dy2 - y * dx2, y * dx1 - x * dy1};
     for (int k = 0; k < 2; ++k) {
       const int64_t v = over_area(e[k], 30);
@@ -186,8 +194,11 @@ struct Plane {
 
   // The same in 2^-FINE_BITS units, stepped by step_fine.
   int64_t start_fine(const int32_t w[2], int n) const {
-    const int64_t low = int64_t{lo} << FINE_BITS, high = int64_t{hi} << FINE_BITS;
-    const int64_t v = (int64_t{v0} << FINE_BITS) + ((int64_t{d1} * w[0]) >> 1) + ((int64_t{d2} * w[1]) >> 1);
+    // Scaled by a multiply: lo, hi and v0 may be negative, and a left shift
+    // of a negative value is undefined (the same bits on the ARM).
+    constexpr int64_t fine_unit = int64_t{1} << FINE_BITS;
+    const int64_t low = int64_t{lo} * fine_unit, high = int64_t{hi} * fine_unit;
+    const int64_t v = int64_t{v0} * fine_unit + ((int64_t{d1} * w[0]) >> 1) + ((int64_t{d2} * w[1]) >> 1);
     int64_t s = std::clamp<int64_t>(v, low, high);
     // |step_fine| (n - 1) stays below 2^62 unless the step is far beyond
     // the span's reach (a sliver's): then the start is only clamped.
@@ -955,11 +966,11 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
       pass[i] = alive;
       depth_new[i] = z16;
       count += alive;
-      depth += dz;
-      r += dr;
-      g += dg;
-      b += db;
-      a += da;
+      advance(depth, dz);
+      advance(r, dr);
+      advance(g, dg);
+      advance(b, db);
+      advance(a, da);
       q_value += dq;
     }
     shaded = passed = count;
@@ -1078,14 +1089,14 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     pass[i] = alive;
     depth_new[i] = z16;
     passed += alive;
-    z += dz;
-    for (int ch = 0; ch < 4; ++ch) color[ch] += dcolor[ch];
+    advance(z, dz);
+    for (int ch = 0; ch < 4; ++ch) advance(color[ch], dcolor[ch]);
     for (unsigned u = 0; u < c.unit_count; ++u) {
       sq_fine[u] += dsq[u];
       tq_fine[u] += dtq[u];
     }
     if (step_q) q_fine += dq;
-    fog += dfog;
+    advance(fog, dfog);
   }
 
   // Stores, as runs of consecutive pixels; a span whose every pixel passed
