@@ -16,10 +16,12 @@
 namespace tessera::gl {
 
 struct ClipVertex {
-  glm::vec4 position;                // clip coordinates
-  glm::vec4 color;                   // RGBA, [0, 1] after lighting or clamping
-  glm::vec2 tex[MAX_TEXTURE_UNITS];  // per unit, after the unit's texture matrix
-  glm::vec4 eye{0, 0, 0, 1};         // eye coordinates, for the user clip planes
+  // Every member has a value, also the units a vertex's maker leaves alone
+  // (to_screen checks every unit's coordinates for finiteness).
+  glm::vec4 position{0, 0, 0, 1};      // clip coordinates
+  glm::vec4 color{0, 0, 0, 0};         // RGBA, [0, 1] after lighting or clamping
+  glm::vec2 tex[MAX_TEXTURE_UNITS]{};  // per unit, after the unit's texture matrix
+  glm::vec4 eye{0, 0, 0, 1};           // eye coordinates, for the user clip planes
   // The colour of a back-facing polygon's vertex under two-sided lighting
   // (lit with the reversed normal); the front colour otherwise.
   glm::vec4 back_color{0, 0, 0, 0};

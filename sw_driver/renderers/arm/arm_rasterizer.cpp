@@ -196,9 +196,9 @@ struct Plane {
   int64_t start_fine(const int32_t w[2], int n) const {
     // Scaled by a multiply: lo, hi and v0 may be negative, and a left shift
     // of a negative value is undefined (the same bits on the ARM).
-    constexpr int64_t fine_unit = int64_t{1} << FINE_BITS;
-    const int64_t low = int64_t{lo} * fine_unit, high = int64_t{hi} * fine_unit;
-    const int64_t v = int64_t{v0} * fine_unit + ((int64_t{d1} * w[0]) >> 1) + ((int64_t{d2} * w[1]) >> 1);
+    constexpr int64_t FINE_UNIT = int64_t{1} << FINE_BITS;
+    const int64_t low = int64_t{lo} * FINE_UNIT, high = int64_t{hi} * FINE_UNIT;
+    const int64_t v = int64_t{v0} * FINE_UNIT + ((int64_t{d1} * w[0]) >> 1) + ((int64_t{d2} * w[1]) >> 1);
     int64_t s = std::clamp<int64_t>(v, low, high);
     // |step_fine| (n - 1) stays below 2^62 unless the step is far beyond
     // the span's reach (a sliver's): then the start is only clamped.
