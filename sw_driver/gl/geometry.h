@@ -90,9 +90,10 @@ struct Viewport {
 ClipSpacePlanes screen_planes(const Viewport& viewport);
 
 // A vertex's window coordinates before snapping: pixels, y up, computed in
-// double precision from the float clip coordinates as to_screen does.
+// single precision from the float clip coordinates as to_screen does (its
+// error bound is beside to_window in geometry.cpp).
 struct WindowPoint {
-  double x = 0, y = 0;
+  float x = 0, y = 0;
 };
 
 // False for a position that is not finite or has w <= 0.
@@ -106,7 +107,7 @@ bool to_window(const glm::vec4& clip, const Viewport& viewport, WindowPoint* out
 // leaves collinear vertices within about 1e-4 pixel of their line on a
 // 512-pixel screen, far inside this; and a triangle thinner than it would
 // only cover what rounding to 1/16 pixel makes of it.
-inline constexpr double DEGENERATE_HEIGHT = 1.0 / 64;  // pixels
+inline constexpr float DEGENERATE_HEIGHT = 1.0f / 64;  // pixels
 
 // True when the convex polygon (window coordinates before snapping, fewer
 // than three vertices included) has no area in the sense above.
@@ -126,31 +127,31 @@ bool to_screen(const ClipVertex& v, const Viewport& viewport, ScreenVertex* out)
 
 // As to_screen, with `depth_offset` added to the window depth, which is then
 // clamped to the depth range (polygon offset).
-bool to_screen(const ClipVertex& v, const Viewport& viewport, double depth_offset, ScreenVertex* out);
+bool to_screen(const ClipVertex& v, const Viewport& viewport, float depth_offset, ScreenVertex* out);
 
 // The window depth of a clip-space position (glDepthRangef), unclamped.
-double window_depth(const glm::vec4& clip, const Viewport& viewport);
+float window_depth(const glm::vec4& clip, const Viewport& viewport);
 
 // Polygon offset (glPolygonOffset, GL ES 1.1 section 3.5.5) --------------------
 
 // A polygon's vertex in window coordinates with its window depth (before
 // snapping), for the depth slope.
 struct WindowDepthPoint {
-  double x = 0, y = 0, z = 0;
+  float x = 0, y = 0, z = 0;
 };
 
 // The polygon's maximum depth slope m = max(|dz/dx|, |dz/dy|) in window
 // coordinates, from the plane through its vertices (Newell's normal, so any
 // convex polygon, clipped or not); 0 for a polygon seen edge-on.
-double depth_slope(const std::vector<WindowDepthPoint>& polygon);
+float depth_slope(const std::vector<WindowDepthPoint>& polygon);
 
 // The smallest resolvable difference r of a depth buffer of `depth_bits`
 // bits: one step of its unsigned normalised codes, 1 / (2^bits - 1), as
 // Mesa takes it (depth_bits 0, no depth buffer, counts as 24).
-double minimum_resolvable_depth(unsigned depth_bits);
+float minimum_resolvable_depth(unsigned depth_bits);
 
 // o = m * factor + r * units.
-double polygon_depth_offset(double slope, float factor, float units, unsigned depth_bits);
+float polygon_depth_offset(float slope, float factor, float units, unsigned depth_bits);
 
 // Twice the signed area of a screen triangle in 9.4 units squared (> 0:
 // counter-clockwise with y up).

@@ -106,8 +106,8 @@ bool Context::apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::
     if (!to_window(polygon[i].position, m_viewport, &w)) return false;
     points[i] = {w.x, w.y, window_depth(polygon[i].position, m_viewport)};
   }
-  const double offset = polygon_depth_offset(depth_slope(points), m_polygon_offset[0], m_polygon_offset[1],
-                                             m_renderer->capabilities().depth_bits);
+  const float offset = polygon_depth_offset(depth_slope(points), m_polygon_offset[0], m_polygon_offset[1],
+                                            m_renderer->capabilities().depth_bits);
   for (size_t i = 0; i < polygon.size(); ++i) {
     ScreenVertex shifted;
     if (!to_screen(polygon[i], m_viewport, offset, &shifted)) return false;

@@ -4,6 +4,7 @@
 // orientation, and lighting.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -223,6 +224,72 @@ TEST(Viewport, FarEdgeOfA512PixelScreenIsKept) {
   EXPECT_EQ(s.y, 511 * 16);
 }
 
+// The float viewport transform against the exact one (in double here) on a
+// 512x512 screen, the largest, and on viewports reaching past it: within
+// 1e-4 pixel everywhere in the view volume (geometry.cpp's bound), so the
+// 9.4 code is the exactly rounded one unless the exact coordinate is that
+// close to a rounding tie. Rounding ties go to the even code, as nearbyint;
+// the screen's limits are -1/32 and 512 + 1/32.
+TEST(Viewport, FloatWindowCoordinatesAtTheExtremes) {
+  std::mt19937 random(99);
+  std::uniform_real_distribution<float> ndc(-1.0f, 1.0f), depth(0.05f, 100.0f);
+  const int origins[][2] = {{0, 0}, {-256, 0}, {256, -300}, {1, 1}};
+  unsigned compared = 0;
+  for (const auto& origin : origins) {
+    Viewport viewport;
+    viewport.x = origin[0], viewport.y = origin[1];
+    viewport.width = viewport.height = 512;
+    for (int i = 0; i < 20000; ++i) {
+      const float w = depth(random);
+      const glm::vec4 clip(ndc(random) * w, ndc(random) * w, 0, w);
+      WindowPoint window;
+      ASSERT_TRUE(to_window(clip, viewport, &window));
+      const double exact_x = (double{clip.x} / clip.w + 1) * 256 + viewport.x;
+      const double exact_y = (double{clip.y} / clip.w + 1) * 256 + viewport.y;
+      ASSERT_NEAR(window.x, exact_x, 1e-4) << i;
+      ASSERT_NEAR(window.y, exact_y, 1e-4) << i;
+      ScreenVertex s;
+      ClipVertex v;
+      v.position = clip;
+      const double code = std::min(std::nearbyint(exact_x * 16), double{MAX_SCREEN_COORDINATE});
+      const bool on_screen = exact_x >= 0 && exact_x < 512 && exact_y >= 0 && exact_y < 512;
+      if (!on_screen || std::fabs(exact_x * 16 - std::floor(exact_x * 16) - 0.5) < 2e-3) continue;
+      ASSERT_TRUE(to_screen(v, viewport, &s)) << i;
+      EXPECT_EQ(s.x, static_cast<int32_t>(code)) << i;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 20000u);
+  // Ties and limits on the 512-pixel screen (window = 256 x_ndc + 256, exact here).
+  Viewport viewport;
+  viewport.width = viewport.height = 512;
+  auto code_of = [&viewport](float window, int32_t* code) {
+    ScreenVertex s;
+    const bool ok = to_screen(vertex((window - 256) / 256, 0, 0), viewport, &s);
+    *code = s.x;
+    return ok;
+  };
+  int32_t code = -1;
+  ASSERT_TRUE(code_of(100.03125f, &code));  // 1600.5
+  EXPECT_EQ(code, 1600);
+  ASSERT_TRUE(code_of(100.09375f, &code));  // 1601.5
+  EXPECT_EQ(code, 1602);
+  ASSERT_TRUE(code_of(511.90625f, &code));  // 8190.5
+  EXPECT_EQ(code, 8190);
+  ASSERT_TRUE(code_of(511.96875f, &code));  // 8191.5: 8192, the far edge, kept as 8191
+  EXPECT_EQ(code, 8191);
+  ASSERT_TRUE(code_of(512.03125f, &code));  // 8192.5: the last one kept
+  EXPECT_EQ(code, 8191);
+  EXPECT_FALSE(code_of(512.0313f, &code));
+  ASSERT_TRUE(code_of(0.03125f, &code));  // 0.5
+  EXPECT_EQ(code, 0);
+  ASSERT_TRUE(code_of(0.09375f, &code));  // 1.5
+  EXPECT_EQ(code, 2);
+  ASSERT_TRUE(code_of(-0.03125f, &code));  // -0.5: the first one kept
+  EXPECT_EQ(code, 0);
+  EXPECT_FALSE(code_of(-0.0313f, &code));
+}
+
 TEST(Viewport, SignedAreaIsPositiveCounterClockwise) {
   ScreenVertex a{}, b{}, c{};
   a.x = 0, a.y = 0;
@@ -252,19 +319,45 @@ TEST(Degeneracy, CollinearVerticesHaveNoAreaBeforeSnappingButSomeAfter) {
 }
 
 TEST(Degeneracy, HeightAcrossTheLongestEdgeAgainstAQuarterOfTheSnappingStep) {
-  auto triangle = [](double height) { return std::vector<WindowPoint>{{10, 10}, {110, 10}, {40, 10 + height}}; };
+  auto triangle = [](float height) { return std::vector<WindowPoint>{{10, 10}, {110, 10}, {40, 10 + height}}; };
   EXPECT_TRUE(is_degenerate(triangle(0)));
   EXPECT_TRUE(is_degenerate(triangle(DEGENERATE_HEIGHT / 2)));
   EXPECT_FALSE(is_degenerate(triangle(DEGENERATE_HEIGHT * 2)));
-  EXPECT_FALSE(is_degenerate(triangle(-0.5)));  // either winding
+  EXPECT_FALSE(is_degenerate(triangle(-0.5f)));  // either winding
   // A needle: long, with its third vertex off the line by less than the limit.
-  EXPECT_TRUE(is_degenerate({{0, 0}, {400, 300}, {200, 150.005}}));
+  EXPECT_TRUE(is_degenerate({{0, 0}, {400, 300}, {200, 150.005f}}));
   // Fewer than three vertices, or all in one place.
   EXPECT_TRUE(is_degenerate({{0, 0}, {5, 5}}));
   EXPECT_TRUE(is_degenerate({{3, 3}, {3, 3}, {3, 3}}));
   // A clipped polygon: a unit square is not degenerate, a flattened one is.
   EXPECT_FALSE(is_degenerate({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
-  EXPECT_TRUE(is_degenerate({{0, 0}, {1, 0}, {2, 0.001}, {0.5, 0.0005}}));
+  EXPECT_TRUE(is_degenerate({{0, 0}, {1, 0}, {2, 0.001f}, {0.5f, 0.0005f}}));
+}
+
+// The float test at the extremes of a 512x512 screen: slivers whose height
+// is 5 % off DEGENERATE_HEIGHT either way across the longest edges there are
+// (the full width, the diagonal of 724 pixels), at the screen's far corner
+// too, where float's steps are coarsest (geometry.cpp bounds the error by
+// 2 % of the limit).
+TEST(Degeneracy, SliversAtTheThresholdOnA512PixelScreen) {
+  const float below = DEGENERATE_HEIGHT * 0.95f, above = DEGENERATE_HEIGHT * 1.05f;
+  for (const float y : {0.0f, 511.0f}) {
+    EXPECT_TRUE(is_degenerate({{0, y}, {512, y}, {256, y + below}})) << y;
+    EXPECT_FALSE(is_degenerate({{0, y}, {512, y}, {256, y + above}})) << y;
+    EXPECT_TRUE(is_degenerate({{0, y}, {512, y}, {511.9375f, y - below}})) << y;
+    EXPECT_FALSE(is_degenerate({{0, y}, {512, y}, {511.9375f, y - above}})) << y;
+  }
+  // The diagonal: the third vertex off its middle by h across it.
+  const float step = 1.0f / std::sqrt(2.0f);
+  for (const float along : {1.0f, 256.0f, 511.0f}) {
+    EXPECT_TRUE(is_degenerate({{0, 0}, {512, 512}, {along - below * step, along + below * step}})) << along;
+    EXPECT_FALSE(is_degenerate({{0, 0}, {512, 512}, {along - above * step, along + above * step}})) << along;
+  }
+  // Collinear vertices of the far corner's lines stay degenerate, and a
+  // polygon of the whole screen, clipped to many vertices, is not.
+  EXPECT_TRUE(is_degenerate({{511.9375f, 0}, {0, 511.9375f}, {255.96875f, 255.96875f}}));
+  EXPECT_TRUE(is_degenerate({{0, 0}, {512, 512}, {511.9375f, 511.9375f}, {0.0625f, 0.0625f}}));
+  EXPECT_FALSE(is_degenerate({{0, 0}, {512, 0}, {512, 512}, {0, 512}}));
 }
 
 // The integer shortcut may only vouch for triangles the unsnapped test
@@ -316,6 +409,24 @@ TEST(FixedPoint, Unorm8AndUnorm24Clamp) {
   EXPECT_EQ(to_unorm24(1), 16777215u);
   EXPECT_EQ(to_unorm24(0), 0u);
   EXPECT_EQ(to_unorm24(1.0f / 16777215), 1u);
+}
+
+// to_unorm24 rounds value * (2^24 - 1) exactly (in integers): the reference
+// is that product in double, which holds it exactly (24 + 24 bits), rounded
+// half away from zero. Every float step near 1 and near 1/2, random values,
+// and the tiny ones.
+TEST(FixedPoint, Unorm24IsTheExactlyRoundedProduct) {
+  auto reference = [](float value) { return static_cast<uint32_t>(std::llround(double{value} * 16777215.0)); };
+  std::vector<float> values;
+  float v = 1.0f;
+  for (int i = 0; i < 100000; ++i) values.push_back(v = std::nextafter(v, 0.0f));
+  v = 0.5f;
+  for (int i = 0; i < 100000; ++i) values.push_back(v = std::nextafter(v, 1.0f));
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int i = 0; i < 100000; ++i) values.push_back(unit(random));
+  for (const float tiny : {1e-7f, 2.9802322e-8f, 2.9802326e-8f, 1e-12f, 1e-30f, 1e-45f}) values.push_back(tiny);
+  for (const float value : values) ASSERT_EQ(to_unorm24(value), reference(value)) << value;
 }
 
 TEST(Lighting, DirectionalDiffuseAmbientAndSpecular) {
@@ -460,22 +571,31 @@ TEST(UserClipPlanes, CutASegment) {
 
 TEST(PolygonOffset, SlopeOfThePlaneInWindowCoordinates) {
   // z = 0.05 x + 0.01 y: at (0, 0) 0, at (10, 0) 0.5, at (0, 20) 0.2.
-  EXPECT_NEAR(depth_slope({{0, 0, 0}, {10, 0, 0.5}, {0, 20, 0.2}}), 0.05, 1e-12);
+  // Single precision: within a few float steps of the exact slope.
+  EXPECT_NEAR(depth_slope({{0, 0, 0}, {10, 0, 0.5f}, {0, 20, 0.2f}}), 0.05, 1e-8);
   // The same plane as a quadrilateral, and wound the other way.
-  EXPECT_NEAR(depth_slope({{0, 0, 0}, {0, 20, 0.2}, {10, 20, 0.7}, {10, 0, 0.5}}), 0.05, 1e-12);
+  EXPECT_NEAR(depth_slope({{0, 0, 0}, {0, 20, 0.2f}, {10, 20, 0.7f}, {10, 0, 0.5f}}), 0.05, 1e-8);
   // Steeper in y: z = -0.3 y.
-  EXPECT_NEAR(depth_slope({{0, 0, 0.5}, {4, 0, 0.5}, {0, 1, 0.2}}), 0.3, 1e-12);
+  EXPECT_NEAR(depth_slope({{0, 0, 0.5f}, {4, 0, 0.5f}, {0, 1, 0.2f}}), 0.3, 1e-7);
   // Constant depth, and a polygon seen edge-on (no area in x, y).
-  EXPECT_EQ(depth_slope({{0, 0, 0.5}, {4, 0, 0.5}, {0, 1, 0.5}}), 0);
-  EXPECT_EQ(depth_slope({{0, 0, 0.1}, {4, 0, 0.5}, {8, 0, 0.9}}), 0);
+  EXPECT_EQ(depth_slope({{0, 0, 0.5f}, {4, 0, 0.5f}, {0, 1, 0.5f}}), 0);
+  EXPECT_EQ(depth_slope({{0, 0, 0.1f}, {4, 0, 0.5f}, {8, 0, 0.9f}}), 0);
+  // At the far corner of a 512x512 screen, where float's steps are
+  // coarsest, the slope is taken relative to the first vertex: the same
+  // plane, z = 0.05 x + 0.01 y shifted, as at the origin.
+  EXPECT_NEAR(depth_slope({{500, 490, 0}, {510, 490, 0.5f}, {500, 510, 0.2f}}), 0.05, 1e-7);
+  // A sliver across the whole screen, 1/32 pixel high (just above the
+  // degeneracy limit): z = x / 1024 along it, dz/dy = 1 across it.
+  const float h = 1.0f / 32;
+  EXPECT_NEAR(depth_slope({{0, 0, 0}, {512, 0, 0.5f}, {256, h, 0.25f + h}}), 1.0, 1e-3);
 }
 
 TEST(PolygonOffset, UnitsAreTheDepthBuffersSmallestStep) {
-  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(16), 1.0 / 65535);
-  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(24), 1.0 / 16777215);
-  EXPECT_DOUBLE_EQ(minimum_resolvable_depth(0), 1.0 / 16777215);
-  EXPECT_DOUBLE_EQ(polygon_depth_offset(0.05, 2, 3, 16), 0.1 + 3.0 / 65535);
-  EXPECT_DOUBLE_EQ(polygon_depth_offset(0.05, -1, -1, 24), -0.05 - 1.0 / 16777215);
+  EXPECT_FLOAT_EQ(minimum_resolvable_depth(16), 1.0f / 65535);
+  EXPECT_FLOAT_EQ(minimum_resolvable_depth(24), 1.0f / 16777215);
+  EXPECT_FLOAT_EQ(minimum_resolvable_depth(0), 1.0f / 16777215);
+  EXPECT_FLOAT_EQ(polygon_depth_offset(0.05f, 2, 3, 16), 0.1f + 3.0f / 65535);
+  EXPECT_FLOAT_EQ(polygon_depth_offset(0.05f, -1, -1, 24), -0.05f - 1.0f / 16777215);
 }
 
 TEST(PolygonOffset, OffsetDepthIsClampedToTheDepthRange) {
@@ -485,11 +605,11 @@ TEST(PolygonOffset, OffsetDepthIsClampedToTheDepthRange) {
   const ClipVertex v = vertex(0, 0, 0);  // NDC z 0: window depth 0.4
   EXPECT_NEAR(window_depth(v.position, viewport), 0.4, 1e-7);
   ScreenVertex s{};
-  ASSERT_TRUE(to_screen(v, viewport, 0.1, &s));
+  ASSERT_TRUE(to_screen(v, viewport, 0.1f, &s));
   EXPECT_EQ(s.z, to_unorm24(0.5f));
-  ASSERT_TRUE(to_screen(v, viewport, 0.5, &s));
+  ASSERT_TRUE(to_screen(v, viewport, 0.5f, &s));
   EXPECT_EQ(s.z, to_unorm24(0.6f));
-  ASSERT_TRUE(to_screen(v, viewport, -0.5, &s));
+  ASSERT_TRUE(to_screen(v, viewport, -0.5f, &s));
   EXPECT_EQ(s.z, to_unorm24(0.2f));
 }
 
