@@ -37,11 +37,34 @@ inline std::optional<GLenum> enum_from_float(float value) {
 // A float answered through an integer query (glGetIntegerv and the like):
 // rounded to the nearest integer (GL ES 1.1 section 6.1.2) and, where GLint
 // cannot hold it, clamped (NaN as 0) instead of converted out of range.
-inline GLint int_from_float(double value) {
+// Every float from 2^23 up is an integer, so the largest below 2^31,
+// 2^31 - 128, fits GLint; 2^31 and beyond clamp (-2^31 is INT_MIN itself).
+inline GLint int_from_float(float value) {
+  constexpr float LIMIT = 2147483648.0f;  // 2^31
   if (std::isnan(value)) return 0;
-  if (value >= static_cast<double>(INT_MAX)) return INT_MAX;
-  if (value <= static_cast<double>(INT_MIN)) return INT_MIN;
+  if (value >= LIMIT) return INT_MAX;
+  if (value <= -LIMIT) return INT_MIN;
   return static_cast<GLint>(std::lround(value));
+}
+
+// A colour or depth answered through an integer query: [-1, 1] mapped
+// linearly to [-(2^31 - 1), 2^31 - 1] (GL ES 1.1 section 6.1.2 with table
+// 2.7), that is value * (2^31 - 1) rounded to nearest, half away from zero,
+// and clamped to GLint (NaN as 0). Exact in integers: value = m 2^(e - 24)
+// with a 24-bit integer m and e <= 0 inside (-1, 1), so the product is
+// m (2^31 - 1), below 2^55, shifted right by 24 - e.
+inline GLint int_from_unit_float(float value) {
+  if (std::isnan(value)) return 0;
+  if (value >= 1.0f) return INT_MAX;
+  if (value == -1.0f) return -INT_MAX;
+  if (value < -1.0f) return INT_MIN;
+  int exponent = 0;
+  const float fraction = std::frexp(std::fabs(value), &exponent);      // [0.5, 1), or 0
+  const auto mantissa = static_cast<int64_t>(fraction * 16777216.0f);  // exact: a power of two
+  const int shift = 24 - exponent;
+  if (shift >= 63) return 0;  // below 2^-39: rounds to 0
+  const int64_t magnitude = (mantissa * INT_MAX + (int64_t{1} << (shift - 1))) >> shift;
+  return static_cast<GLint>(value < 0 ? -magnitude : magnitude);
 }
 
 // x + width <= limit for a rectangle that starts at x >= 0 and has

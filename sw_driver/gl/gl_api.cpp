@@ -119,8 +119,7 @@ GL_API void GL_APIENTRY glGetIntegerv(GLenum pname, GLint* data) {
   if (!query(c, pname, v)) return;
   // Colours and depths map [0, 1] to the full integer range (GL 2.2.1).
   for (size_t i = 0; i < v.size(); ++i)
-    data[i] =
-        is_color_query(pname) ? tessera::gl::int_from_float(v[i] * 2147483647.0) : tessera::gl::int_from_float(v[i]);
+    data[i] = is_color_query(pname) ? tessera::gl::int_from_unit_float(v[i]) : tessera::gl::int_from_float(v[i]);
 }
 GL_API void GL_APIENTRY glGetPointerv(GLenum pname, void** params) {
   WITH_CONTEXT() c->get_pointer(pname, params);
@@ -542,7 +541,7 @@ GL_API void GL_APIENTRY glGetTexEnviv(GLenum target, GLenum pname, GLint* params
   else
     c->get_tex_env(target, pname, v);
   if (pname == GL_TEXTURE_ENV_COLOR)
-    for (int i = 0; i < 4; ++i) params[i] = tessera::gl::int_from_float(v[i] * 2147483647.0);
+    for (int i = 0; i < 4; ++i) params[i] = tessera::gl::int_from_unit_float(v[i]);
   else
     params[0] = tessera::gl::int_from_float(v[0]);
 }

@@ -32,7 +32,7 @@ using tessera::gl::Context;
 namespace {
 
 constexpr float ONE_OVER_FIXED_ONE = 1.0f / 65536.0f;
-constexpr double FIXED_ONE = 65536.0;
+constexpr float FIXED_ONE = 65536.0f;
 
 float from_fixed(GLfixed x) {
   return static_cast<float>(x) * ONE_OVER_FIXED_ONE;
@@ -40,10 +40,14 @@ float from_fixed(GLfixed x) {
 
 GLfixed to_fixed(float value) {
   if (std::isnan(value)) return 0;
-  const double scaled = std::nearbyint(static_cast<double>(value) * FIXED_ONE);
-  if (scaled >= static_cast<double>(std::numeric_limits<GLfixed>::max())) return std::numeric_limits<GLfixed>::max();
-  if (scaled <= static_cast<double>(std::numeric_limits<GLfixed>::min())) return std::numeric_limits<GLfixed>::min();
-  return static_cast<GLfixed>(scaled);
+  // Times 2^16 is exact in float (or infinite); every float from 2^23 up
+  // is an integer, so the largest below 2^31, 2^31 - 128, fits GLfixed and
+  // only 2^31 and beyond clamp (-2^31 is GLfixed's minimum itself).
+  constexpr float LIMIT = 2147483648.0f;  // 2^31
+  const float scaled = value * FIXED_ONE;
+  if (scaled >= LIMIT) return std::numeric_limits<GLfixed>::max();
+  if (scaled <= -LIMIT) return std::numeric_limits<GLfixed>::min();
+  return static_cast<GLfixed>(std::nearbyint(scaled));
 }
 
 // The host's work for `numbers` scaled values and `enums` values passed as

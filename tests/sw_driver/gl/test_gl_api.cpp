@@ -23,6 +23,7 @@
 
 #include "device/app_environment.h"
 #include "gl/context.h"
+#include "gl/context_internal.h"
 #include "gl/runtime.h"
 #include "gl_test_fixture.h"
 #include "renderers/backends.h"
@@ -32,6 +33,37 @@ using namespace tessera;
 using test::GlApi;
 using test::RecordingRenderer;
 using test::VectorHost;
+
+// Colours and depths through glGetIntegerv: value * (2^31 - 1), rounded to
+// nearest, computed exactly in integers. The reference is the product in
+// long double (64-bit significand on x86, enough for 24 + 31 bits).
+TEST(IntegerQueries, UnitFloatsMapExactlyToTheIntegerRange) {
+  auto reference = [](float value) {
+    return static_cast<GLint>(std::llround(static_cast<long double>(value) * 2147483647.0L));
+  };
+  EXPECT_EQ(gl::int_from_unit_float(1.0f), 2147483647);
+  EXPECT_EQ(gl::int_from_unit_float(2.0f), 2147483647);
+  EXPECT_EQ(gl::int_from_unit_float(-1.0f), -2147483647);
+  EXPECT_EQ(gl::int_from_unit_float(-1.5f), std::numeric_limits<GLint>::min());
+  EXPECT_EQ(gl::int_from_unit_float(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(gl::int_from_unit_float(0.0f), 0);
+  EXPECT_EQ(gl::int_from_unit_float(0.5f), 1073741824);  // 1073741823.5, half away from zero
+  float v = 1.0f;
+  for (int i = 0; i < 20000; ++i) {
+    v = std::nextafter(v, 0.0f);
+    ASSERT_EQ(gl::int_from_unit_float(v), reference(v)) << v;
+    ASSERT_EQ(gl::int_from_unit_float(-v), reference(-v)) << v;
+  }
+  for (const float x : {0.2f, 0.3f, 1.0f / 255, 1e-5f, 1e-9f, 2.3283064e-10f, 1e-12f, 1e-40f})
+    EXPECT_EQ(gl::int_from_unit_float(x), reference(x)) << x;
+  // Other floats: rounded and clamped.
+  EXPECT_EQ(gl::int_from_float(2.5f), 3);
+  EXPECT_EQ(gl::int_from_float(-2.5f), -3);
+  EXPECT_EQ(gl::int_from_float(2147483520.0f), 2147483520);
+  EXPECT_EQ(gl::int_from_float(2147483648.0f), 2147483647);
+  EXPECT_EQ(gl::int_from_float(-2147483648.0f), std::numeric_limits<GLint>::min());
+  EXPECT_EQ(gl::int_from_float(std::numeric_limits<float>::infinity()), 2147483647);
+}
 
 TEST_F(GlApi, BadEnumsAreInvalidEnum) {
   glEnable(0x1234);
