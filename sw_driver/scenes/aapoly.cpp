@@ -51,24 +51,24 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
 
-  const double pi = std::acos(-1.0);
+  constexpr float PI = 3.14159265358979f;
   for (int i = 0; i < SPOKES; ++i) {
     // Offset by a third of a step so that no spoke is axis-aligned.
-    const double angle = 2.0 * pi * (i + 1.0 / 3.0) / SPOKES;
-    const double half = HALF_WIDTH_DEGREES * pi / 180.0;
-    const double xy[3][2] = {{INNER_RADIUS * std::cos(angle), INNER_RADIUS * std::sin(angle)},
-                             {OUTER_RADIUS * std::cos(angle - half), OUTER_RADIUS * std::sin(angle - half)},
-                             {OUTER_RADIUS * std::cos(angle + half), OUTER_RADIUS * std::sin(angle + half)}};
+    const float angle = 2.0f * PI * (static_cast<float>(i) + 1.0f / 3.0f) / SPOKES;
+    const float half = HALF_WIDTH_DEGREES * PI / 180.0f;
+    const float xy[3][2] = {{INNER_RADIUS * std::cos(angle), INNER_RADIUS * std::sin(angle)},
+                            {OUTER_RADIUS * std::cos(angle - half), OUTER_RADIUS * std::sin(angle - half)},
+                            {OUTER_RADIUS * std::cos(angle + half), OUTER_RADIUS * std::sin(angle + half)}};
     // A colour wheel: hue from the angle, full saturation.
-    const double hue = 6.0 * i / SPOKES;
-    const auto ramp = [hue](double offset) {
-      const double h = std::fmod(hue + offset, 6.0);
-      return GLfloat(std::clamp(std::fabs(h - 3.0) - 1.0, 0.0, 1.0));
+    const float hue = 6.0f * static_cast<float>(i) / SPOKES;
+    const auto ramp = [hue](float offset) {
+      const float h = std::fmod(hue + offset, 6.0f);
+      return std::clamp(std::fabs(h - 3.0f) - 1.0f, 0.0f, 1.0f);
     };
-    const GLfloat rgba[4] = {ramp(0.0), ramp(4.0), ramp(2.0), 1.0f};
+    const GLfloat rgba[4] = {ramp(0.0f), ramp(4.0f), ramp(2.0f), 1.0f};
     for (int v = 0; v < 3; ++v) {
-      g_xy[(3 * i + v) * 2 + 0] = GLfloat(xy[v][0]);
-      g_xy[(3 * i + v) * 2 + 1] = GLfloat(xy[v][1]);
+      g_xy[(3 * i + v) * 2 + 0] = xy[v][0];
+      g_xy[(3 * i + v) * 2 + 1] = xy[v][1];
       for (int c = 0; c < 4; ++c) g_rgba[(3 * i + v) * 4 + c] = rgba[c];
     }
   }

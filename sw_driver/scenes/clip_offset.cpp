@@ -76,7 +76,7 @@ void draw(int frame) {
   // The cube, cut by a plane that turns with it.
   glPushMatrix();
   glTranslatef(0.0f, 0.1f, -5.0f);
-  glRotatef(rotation_degrees(frame, 3.0), 0.3f, 1.0f, 0.2f);
+  glRotatef(rotation_degrees(frame, 3.0f), 0.3f, 1.0f, 0.2f);
   glClipPlanef(GL_CLIP_PLANE0, CUBE_CLIP_PLANE);
   glEnable(GL_CLIP_PLANE0);
   glEnableClientState(GL_COLOR_ARRAY);

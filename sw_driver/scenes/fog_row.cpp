@@ -105,7 +105,7 @@ void draw(int frame) {
     for (int i = 0; i < CUBES; ++i) {
       glPushMatrix();
       glTranslatef(FIRST_CUBE_X + CUBE_STEP_X * i, CUBE_Y, -(NEAREST_CUBE + CUBE_SPACING * i));
-      glRotatef(rotation_degrees(frame, 1.0) + 25.0f * i, 0.0f, 1.0f, 0.0f);
+      glRotatef(rotation_degrees(frame, 1.0f) + 25.0f * i, 0.0f, 1.0f, 0.0f);
       glScalef(CUBE_SCALE, CUBE_SCALE, CUBE_SCALE);
       glDrawArrays(GL_TRIANGLES, 0, 36);
       glPopMatrix();

@@ -160,7 +160,7 @@ void draw(int frame) {
   glPushMatrix();
   glTranslatef(0.0f, 0.0f, -5.0f);
   glRotatef(20.0f, 1.0f, 0.0f, 0.0f);
-  glRotatef(rotation_degrees(frame, 6.0) + 120.0f, 0.0f, 1.0f, 0.0f);
+  glRotatef(rotation_degrees(frame, 6.0f) + 120.0f, 0.0f, 1.0f, 0.0f);
   const GLfloat ivory[4] = {0.9f, 0.85f, 0.75f, 1.0f};
   draw_grid(g_shell, ivory);
   glPopMatrix();

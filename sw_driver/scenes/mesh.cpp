@@ -21,18 +21,18 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-double dot(const Vec3& a, const Vec3& b) {
-  return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+float dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-double length(const Vec3& a) {
+float length(const Vec3& a) {
   return std::sqrt(dot(a, a));
 }
 
-double angle_between(const Vec3& a, const Vec3& b) {
-  const double lengths = length(a) * length(b);
-  if (!(lengths > 0.0)) return 0.0;
-  return std::acos(std::clamp(dot(a, b) / lengths, -1.0, 1.0));
+float angle_between(const Vec3& a, const Vec3& b) {
+  const float lengths = length(a) * length(b);
+  if (!(lengths > 0.0f)) return 0.0f;
+  return std::acos(std::clamp(dot(a, b) / lengths, -1.0f, 1.0f));
 }
 
 }  // namespace
@@ -51,25 +51,25 @@ Bounds mesh_bounds(const Mesh& mesh) {
 }
 
 void compute_smooth_normals(Mesh* mesh) {
-  std::vector<double> sums(mesh->positions.size(), 0.0);
+  std::vector<float> sums(mesh->positions.size(), 0.0f);
   for (std::size_t t = 0; t < mesh->triangle_count(); ++t) {
     const std::uint16_t* corner = &mesh->indices[3 * t];
     const Vec3 p[3] = {position(*mesh, corner[0]), position(*mesh, corner[1]), position(*mesh, corner[2])};
     const Vec3 face = cross(sub(p[1], p[0]), sub(p[2], p[0]));
-    const double face_length = length(face);
-    if (!(face_length > 0.0)) continue;
+    const float face_length = length(face);
+    if (!(face_length > 0.0f)) continue;
     for (int k = 0; k < 3; ++k) {
-      const double angle = angle_between(sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
+      const float angle = angle_between(sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
       for (int axis = 0; axis < 3; ++axis) sums[3 * corner[k] + axis] += angle * face[axis] / face_length;
     }
   }
   mesh->normals.assign(mesh->positions.size(), 0.0f);
   for (std::size_t v = 0; v < mesh->vertex_count(); ++v) {
-    const double* sum = &sums[3 * v];
-    const double sum_length = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    const float* sum = &sums[3 * v];
+    const float sum_length = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
     float* normal = &mesh->normals[3 * v];
-    if (sum_length > 0.0 && std::isfinite(sum_length)) {
-      for (int axis = 0; axis < 3; ++axis) normal[axis] = static_cast<float>(sum[axis] / sum_length);
+    if (sum_length > 0.0f && std::isfinite(sum_length)) {
+      for (int axis = 0; axis < 3; ++axis) normal[axis] = sum[axis] / sum_length;
     } else {
       normal[2] = 1.0f;
     }
@@ -80,16 +80,16 @@ void fit_to_unit_sphere(Mesh* mesh) {
   const Bounds bounds = mesh_bounds(*mesh);
   Vec3 centre;
   for (int axis = 0; axis < 3; ++axis) centre[axis] = 0.5f * (bounds.min[axis] + bounds.max[axis]);
-  double radius = 0.0;
+  float radius = 0.0f;
   for (std::size_t v = 0; v < mesh->vertex_count(); ++v) {
     const Vec3 d = sub(position(*mesh, v), centre);
     radius = std::max(radius, length(d));
   }
-  const double scale = radius > 0.0 ? 1.0 / radius : 1.0;
+  const float scale = radius > 0.0f ? 1.0f / radius : 1.0f;
   for (std::size_t v = 0; v < mesh->vertex_count(); ++v)
     for (int axis = 0; axis < 3; ++axis) {
       float& coordinate = mesh->positions[3 * v + axis];
-      coordinate = static_cast<float>((coordinate - centre[axis]) * scale);
+      coordinate = (coordinate - centre[axis]) * scale;
     }
 }
 

@@ -222,7 +222,7 @@ void draw(int frame) {
   set_unit(GL_TEXTURE1, g_light, GL_MODULATE);
   glMatrixMode(GL_TEXTURE);
   glTranslatef(0.5f, 0.5f, 0.0f);
-  glRotatef(rotation_degrees(frame, 3.0), 0.0f, 0.0f, 1.0f);
+  glRotatef(rotation_degrees(frame, 3.0f), 0.0f, 0.0f, 1.0f);
   glTranslatef(-0.5f + 0.02f * static_cast<float>(frame % 50), -0.5f, 0.0f);
   glMatrixMode(GL_MODELVIEW);
   draw_panel(0, 1, WARM, 2.0f);

@@ -16,8 +16,8 @@ constexpr float MESH_DEGREES_PER_FRAME = 0.5f;
 
 }  // namespace
 
-float rotation_degrees(int frame, double degrees_per_frame) {
-  return static_cast<float>(std::fmod(frame * degrees_per_frame, 360.0));
+float rotation_degrees(int frame, float degrees_per_frame) {
+  return std::fmod(static_cast<float>(frame) * degrees_per_frame, 360.0f);
 }
 
 bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error) {

@@ -42,7 +42,7 @@ bool expect_no_arguments(const char* scene, const std::vector<std::string>& args
 
 // The angle after `frame` frames, reduced to (-360, 360) so that it keeps
 // its precision in float however long a scene runs.
-float rotation_degrees(int frame, double degrees_per_frame);
+float rotation_degrees(int frame, float degrees_per_frame);
 
 // Viewport over the whole window and a symmetric perspective projection with
 // the given vertical field of view; leaves GL_MODELVIEW current and identity.

@@ -10,6 +10,12 @@
 // and the cross product is zero. The limit of the normal as the parameter
 // leaves the pole is well defined, so it is taken by evaluating the
 // derivatives a small step into the patch.
+//
+// Single precision, by de Casteljau's construction (repeated linear
+// interpolation) rather than by summing the Bernstein terms: interpolating
+// between equal points gives that point exactly, so a pole evaluates to its
+// control point and its dP/dv to exactly zero, and the triangles with two
+// corners there have exactly no area, as they had in double precision.
 #include "scenes/teapot_mesh.h"
 
 #include <array>
@@ -369,17 +375,35 @@ constexpr float TEAPOT_CONTROL_POINTS_XYZ[TEAPOT_CONTROL_POINTS][3] = {
     {1.425f, -0.798f, 0.0f},
 };
 
-using Vec3 = std::array<double, 3>;
+using Vec3 = std::array<float, 3>;
 
-struct Basis {
-  std::array<double, 4> value;
-  std::array<double, 4> derivative;
+// The point at t along a -> b, from the nearer end: exactly a at t = 0,
+// exactly b at t = 1 (1 - t is exact for t >= 1/2), and exactly a when
+// b == a. So a patch's edge evaluates to the same floats as its
+// neighbour's, which shares those control points: no cracks between them.
+float lerp(float a, float b, float t) {
+  return t < 0.5f ? a + t * (b - a) : b - (1 - t) * (b - a);
+}
+
+Vec3 lerp(const Vec3& a, const Vec3& b, float t) {
+  return {lerp(a[0], b[0], t), lerp(a[1], b[1], t), lerp(a[2], b[2], t)};
+}
+
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+struct CurvePoint {
+  Vec3 point;
+  Vec3 derivative;
 };
 
-Basis bernstein(double t) {
-  const double s = 1.0 - t;
-  return {{s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t},
-          {-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t * t, 3.0 * t * t}};
+// The cubic Bezier curve of `c` at t, and its derivative 3 (bcd - abc).
+CurvePoint de_casteljau(const std::array<Vec3, 4>& c, float t) {
+  const Vec3 ab = lerp(c[0], c[1], t), bc = lerp(c[1], c[2], t), cd = lerp(c[2], c[3], t);
+  const Vec3 abc = lerp(ab, bc, t), bcd = lerp(bc, cd, t);
+  const Vec3 d = sub(bcd, abc);
+  return {lerp(abc, bcd, t), {3 * d[0], 3 * d[1], 3 * d[2]}};
 }
 
 struct SurfacePoint {
@@ -388,51 +412,53 @@ struct SurfacePoint {
   Vec3 d_dv;
 };
 
-SurfacePoint evaluate(const std::array<std::uint16_t, 16>& patch, double u, double v) {
-  const Basis bu = bernstein(u);
-  const Basis bv = bernstein(v);
-  SurfacePoint point{};
-  for (int i = 0; i < 4; ++i)
+// Each control row i as a curve in v, then the rows' points (and their
+// v-derivatives) as a curve in u.
+SurfacePoint evaluate(const std::array<std::uint16_t, 16>& patch, float u, float v) {
+  std::array<Vec3, 4> rows, row_derivatives;
+  for (int i = 0; i < 4; ++i) {
+    std::array<Vec3, 4> row;
     for (int j = 0; j < 4; ++j) {
       const float* control = TEAPOT_CONTROL_POINTS_XYZ[patch[4 * i + j]];
-      for (int axis = 0; axis < 3; ++axis) {
-        point.position[axis] += bu.value[i] * bv.value[j] * control[axis];
-        point.d_du[axis] += bu.derivative[i] * bv.value[j] * control[axis];
-        point.d_dv[axis] += bu.value[i] * bv.derivative[j] * control[axis];
-      }
+      row[j] = {control[0], control[1], control[2]};
     }
-  return point;
+    const CurvePoint along_v = de_casteljau(row, v);
+    rows[i] = along_v.point;
+    row_derivatives[i] = along_v.derivative;
+  }
+  const CurvePoint along_u = de_casteljau(rows, u);
+  return {along_u.point, along_u.derivative, de_casteljau(row_derivatives, u).point};
 }
 
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-double length(const Vec3& a) {
+float length(const Vec3& a) {
   return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
 // Far below the squared length of any real derivative of this data (the
 // smallest patch is about 0.1 across), far above rounding noise at a pole.
-constexpr double DEGENERATE_NORMAL = 1e-9;
+constexpr float DEGENERATE_NORMAL = 1e-9f;
 // How far into the patch the normal at a pole is taken from.
-constexpr double POLE_STEP = 1e-4;
+constexpr float POLE_STEP = 1e-4f;
 
-Vec3 outward_normal(const std::array<std::uint16_t, 16>& patch, double u, double v) {
+Vec3 outward_normal(const std::array<std::uint16_t, 16>& patch, float u, float v) {
   SurfacePoint point = evaluate(patch, u, v);
   Vec3 normal = cross(point.d_dv, point.d_du);
   if (length(normal) < DEGENERATE_NORMAL) {
-    const double inner_u = u < 0.5 ? u + POLE_STEP : u - POLE_STEP;
-    const double inner_v = v < 0.5 ? v + POLE_STEP : v - POLE_STEP;
+    const float inner_u = u < 0.5f ? u + POLE_STEP : u - POLE_STEP;
+    const float inner_v = v < 0.5f ? v + POLE_STEP : v - POLE_STEP;
     point = evaluate(patch, inner_u, inner_v);
     normal = cross(point.d_dv, point.d_du);
   }
-  const double n = length(normal);
+  const float n = length(normal);
   return {normal[0] / n, normal[1] / n, normal[2] / n};
 }
 
 // Twice the area of triangle abc, from the stored (float) positions.
-double doubled_area(const Mesh& mesh, std::uint16_t a, std::uint16_t b, std::uint16_t c) {
+float doubled_area(const Mesh& mesh, std::uint16_t a, std::uint16_t b, std::uint16_t c) {
   auto at = [&mesh](std::uint16_t vertex) {
     return Vec3{mesh.positions[3 * vertex], mesh.positions[3 * vertex + 1], mesh.positions[3 * vertex + 2]};
   };
@@ -442,7 +468,7 @@ double doubled_area(const Mesh& mesh, std::uint16_t a, std::uint16_t b, std::uin
 
 // A triangle at a pole has two corners at the same point; its area is
 // rounding noise, many orders of magnitude below a real triangle's.
-constexpr double DEGENERATE_AREA = 1e-9;
+constexpr float DEGENERATE_AREA = 1e-9f;
 
 }  // namespace
 
@@ -460,13 +486,13 @@ Mesh teapot_mesh(int subdivisions) {
     const auto first = static_cast<std::uint16_t>(mesh.vertex_count());
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j <= n; ++j) {
-        const double u = double(i) / n;
-        const double v = double(j) / n;
+        const float u = static_cast<float>(i) / static_cast<float>(n);
+        const float v = static_cast<float>(j) / static_cast<float>(n);
         const SurfacePoint point = evaluate(patch, u, v);
         const Vec3 normal = outward_normal(patch, u, v);
         for (int axis = 0; axis < 3; ++axis) {
-          mesh.positions.push_back(static_cast<float>(point.position[axis]));
-          mesh.normals.push_back(static_cast<float>(normal[axis]));
+          mesh.positions.push_back(point.position[axis]);
+          mesh.normals.push_back(normal[axis]);
         }
       }
     auto vertex = [first, side](int i, int j) { return static_cast<std::uint16_t>(first + i * side + j); };

@@ -19,7 +19,7 @@ constexpr int TEXTURE_SIZE = 64;
 constexpr int SQUARE_SIZE = 8;
 constexpr float TILT_DEGREES = -60.0f;
 constexpr float QUAD_DISTANCE = 3.0f;
-constexpr double DEGREES_PER_FRAME = 0.5;
+constexpr float DEGREES_PER_FRAME = 0.5f;
 
 // Quad in the xy plane, counter-clockwise from the lower left.
 const GLfloat QUAD_XYZ[] = {-1.0f, -1.0f, 0.0f, 1.0f, -1.0f, 0.0f, 1.0f, 1.0f, 0.0f, -1.0f, 1.0f, 0.0f};
