@@ -26,6 +26,18 @@ namespace {
 
 constexpr unsigned RECORDS = 128, RECORD = 6;
 
+// calib_ciu: CMEM addresses 0 .. CIU_ADDRESSES - 1 of every group (3072
+// words with the default 24 groups); the value written changes by
+// VALUE_STEP from one word to the next. The inner loops' own single-cycle
+// instructions per access besides their taken branch, in GCC's code for
+// the ARM922T (natively charged; the driver charges its call): the
+// write loop's four argument moves, the fifth argument's store, the
+// value's step, the counter and the compare; the read loop's four moves,
+// the sum, the counter and the compare.
+constexpr unsigned CIU_ADDRESSES = 128;
+constexpr uint32_t VALUE_STEP = 2654435761u;
+constexpr uint64_t CIU_WRITE_LOOP_INSTRUCTIONS = 8, CIU_READ_LOOP_INSTRUCTIONS = 7;
+
 const ap::Program& program() {
   return ap::programs::ap_calibration();
 }
@@ -59,7 +71,7 @@ int mismatch(const char* what, unsigned cu, unsigned record, long got, long expe
 
 int register_level(AppEnvironment& env, bool multiply) {
   ArrayDriver array(env);
-  array.load(program().words);
+  array.load(program());
   const unsigned n = array.cus();
   std::vector<uint16_t> first(n), second(n);
   std::vector<uint8_t> multipliers(n);
@@ -105,7 +117,7 @@ int register_level(AppEnvironment& env, bool multiply) {
 
 int cmem_level(AppEnvironment& env, bool multiply) {
   ArrayDriver array(env);
-  array.load(program().words);
+  array.load(program());
   const unsigned n = array.cus();
   const unsigned records = address_of("records");
   std::vector<uint16_t> values(n);
@@ -177,24 +189,40 @@ int calib_array_mul_cmem_app(AppEnvironment& env) {
 int calib_ciu_app(AppEnvironment& env) {
   HostApi& host = *env.host;
   ArrayDriver array(env);
-  constexpr unsigned ACCESSES = 4096;
-  // Writes to every group in turn, at consecutive addresses, as a loop
-  // filling CMEM would; then reads of the same words.
-  const unsigned groups = array.groups_per_row() * array.rows();
+  // The study's loop: WriteMem32 to every group of every row at each
+  // address in turn (as the driver fills a value into every CU), then
+  // ReadMem32 of the same words. The arguments are checked once, before
+  // the loops; each access is the driver's call alone.
+  const unsigned groups = array.groups_per_row(), rows = array.rows();
+  array.check_access(groups - 1, rows - 1, CIU_ADDRESSES - 1);
+  const unsigned accesses = CIU_ADDRESSES * rows * groups;
+  uint32_t value = 0;
   double start = host.now_seconds();
-  for (unsigned k = 0; k < ACCESSES; ++k)
-    array.write32(k % array.groups_per_row(), (k / array.groups_per_row()) % array.rows(), k / groups, k * 2654435761u);
+  for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
+    for (unsigned j = 0; j < rows; ++j)
+      for (unsigned i = 0; i < groups; ++i) {
+        value += VALUE_STEP;
+        array.write32(i, j, a, value);
+        host.compute(Op::alu, CIU_WRITE_LOOP_INSTRUCTIONS);
+        host.compute(Op::branch);
+      }
   // The last write has left the host's write buffer when a read can pass.
-  const double write_ns = (host.now_seconds() - start) / ACCESSES * 1e9;
+  const double write_ns = (host.now_seconds() - start) / accesses * 1e9;
   start = host.now_seconds();
-  uint32_t checksum = 0, expected = 0;
-  for (unsigned k = 0; k < ACCESSES; ++k) {
-    checksum += array.read32(k % array.groups_per_row(), (k / array.groups_per_row()) % array.rows(), k / groups);
-    expected += k * 2654435761u;
-  }
-  const double read_ns = (host.now_seconds() - start) / ACCESSES * 1e9;
+  uint32_t checksum = 0;
+  for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
+    for (unsigned j = 0; j < rows; ++j)
+      for (unsigned i = 0; i < groups; ++i) {
+        checksum += array.read32(i, j, a);
+        host.compute(Op::alu, CIU_READ_LOOP_INSTRUCTIONS);
+        host.compute(Op::branch);
+      }
+  const double read_ns = (host.now_seconds() - start) / accesses * 1e9;
   report("one 32-bit CIU write from the ARM, address computation included", write_ns, 488, "ns");
   report("one 32-bit CIU read from the ARM, address computation included", read_ns, 830, "ns");
+  // value is the sum of 1 .. accesses steps, the checksum their sum.
+  uint32_t expected = 0;
+  for (uint32_t k = 1; k <= accesses; ++k) expected += k * VALUE_STEP;
   if (checksum != expected) {
     std::fprintf(stderr, "calib_ciu: read back checksum %" PRIu32 ", expected %" PRIu32 "\n", checksum, expected);
     return 1;

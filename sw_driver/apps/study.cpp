@@ -205,7 +205,7 @@ int study_shading(AppEnvironment& env) {
   renderers::DmaUse use;
   if (target == Target::array) {
     array = std::make_unique<ArrayDriver>(env);
-    array->load(ap::programs::ap_pixel().words);
+    array->load(ap::programs::ap_pixel());
     use = renderers::dma_use(env, dma);
   }
   const unsigned per_pass = array ? array->cus() : 96;
@@ -373,7 +373,7 @@ int study_patches(AppEnvironment& env) {
   unsigned block = 1;
   if (target == Target::array) {
     array = std::make_unique<ArrayDriver>(env);
-    array->load(ap::programs::ap_pixel().words);
+    array->load(ap::programs::ap_pixel());
     if (env.config != nullptr) block = static_cast<unsigned>(env.config->get_uint("ap.pixel.block"));
   }
   const uint32_t inputs = env.heap_base, results = inputs + INPUT_WORDS * 4;

@@ -14,6 +14,16 @@ namespace {
 
 constexpr uint32_t AC = memory_map::array_regs.base;
 
+// The ARM's cycles for one WriteMem32 / ReadMem32 call outside its bus
+// access, measured on the ISS (host.model=iss) in calib_ciu's loops:
+// the call (BL), the address computation and the return, less the store's
+// or the load's own issue cycle, which the host model charges with the
+// access. Charged natively as that many single-cycle instructions
+// (host.cycles.alu = 1). How they were measured: docs/calibration.md,
+// "The CIU".
+constexpr uint64_t ISS_WRITE32_CYCLES = 19;
+constexpr uint64_t ISS_READ32_CYCLES = 16;
+
 }  // namespace
 
 ArrayDriver::ArrayDriver(AppEnvironment& env)
@@ -22,7 +32,8 @@ ArrayDriver::ArrayDriver(AppEnvironment& env)
       m_rows(m_host.read32(AC + regs::ROWS)),
       m_cmem_bytes(m_host.read32(AC + regs::CMEM_BYTES)),
       m_program_words(m_host.read32(AC + regs::PROGRAM_WORDS)),
-      m_clock_khz(m_host.read32(AC + regs::CLOCK_KHZ)) {}
+      m_clock_khz(m_host.read32(AC + regs::CLOCK_KHZ)),
+      m_groups_per_row(m_columns / 4) {}
 
 void ArrayDriver::load(const std::vector<uint64_t>& words, unsigned at) {
   if (at > m_program_words || words.size() > m_program_words - at)
@@ -40,6 +51,15 @@ void ArrayDriver::load(const std::vector<uint64_t>& words, unsigned at) {
     m_host.write_words(memory_map::array_program.base + static_cast<uint32_t>((at + first) * regs::PROGRAM_WORD_BYTES),
                        halves, static_cast<unsigned>(2 * count));
   }
+}
+
+void ArrayDriver::load(const ap::Program& program, unsigned at) {
+  for (const auto& [name, variable] : program.variables)
+    if (variable.address >= m_cmem_bytes || variable.size > m_cmem_bytes - variable.address)
+      throw std::out_of_range(program.source_name + ": CMEM variable '" + name + "' (" + std::to_string(variable.size) +
+                              " bytes at " + std::to_string(variable.address) + ") is outside the array's " +
+                              std::to_string(m_cmem_bytes) + " bytes of CMEM (array.cmem_bytes)");
+  load(program.words, at);
 }
 
 void ArrayDriver::start(unsigned entry) {
@@ -78,31 +98,24 @@ uint32_t ArrayDriver::poll() {
   return finish(m_host, m_host.read32(AC + regs::IRQ_STATUS));
 }
 
-void ArrayDriver::check_group(unsigned i, unsigned j, unsigned a, unsigned bytes) const {
-  if (i >= groups_per_row() || j >= m_rows || a + bytes > m_cmem_bytes)
+void ArrayDriver::check_access(unsigned i, unsigned j, unsigned a, unsigned bytes) const {
+  if (i >= m_groups_per_row || j >= m_rows || a >= m_cmem_bytes || bytes > m_cmem_bytes - a)
     throw std::out_of_range("CMEM access at group (" + std::to_string(i) + ", " + std::to_string(j) + "), address " +
-                            std::to_string(a) + " is outside the array (" + std::to_string(groups_per_row()) + "x" +
+                            std::to_string(a) + (bytes > 1 ? " (" + std::to_string(bytes) + " bytes)" : "") +
+                            " is outside the array (" + std::to_string(m_groups_per_row) + "x" +
                             std::to_string(m_rows) + " groups, " + std::to_string(m_cmem_bytes) + " bytes)");
 }
 
-uint32_t ArrayDriver::cmem_address(unsigned i, unsigned j, unsigned a) const {
-  return memory_map::array_cmem.base + regs::cmem_offset(j * groups_per_row() + i, a, m_cmem_bytes);
-}
-
-// The ARM's address computation for one access: MLA for the group number,
-// then an ADD with the address shifted in and one with the base (the
-// calibrated CIU latency assumes exactly this, docs/calibration.md).
+// The study's WriteMem32 and ReadMem32: an MLA for the group number, an MLA
+// with the address, the base added, the access. On the ISS these are the
+// instructions; natively their measured cycles are charged.
 void ArrayDriver::write32(unsigned i, unsigned j, unsigned a, uint32_t value) {
-  check_group(i, j, a, 1);
-  m_host.compute(Op::mul);
-  m_host.compute(Op::alu, 2);
+  m_host.compute(Op::alu, ISS_WRITE32_CYCLES);
   m_host.write32(cmem_address(i, j, a), value);
 }
 
 uint32_t ArrayDriver::read32(unsigned i, unsigned j, unsigned a) {
-  check_group(i, j, a, 1);
-  m_host.compute(Op::mul);
-  m_host.compute(Op::alu, 2);
+  m_host.compute(Op::alu, ISS_READ32_CYCLES);
   return m_host.read32(cmem_address(i, j, a));
 }
 
@@ -110,7 +123,7 @@ uint32_t ArrayDriver::read32(unsigned i, unsigned j, unsigned a) {
 // bytes: per value an AND (or a shift) and an ORR with a shift, 7 ALU
 // operations per word.
 void ArrayDriver::write16(unsigned i, unsigned j, unsigned a, const std::array<uint16_t, 4>& values) {
-  check_group(i, j, a, 2);
+  check_access(i, j, a, 2);
   uint32_t high = 0, low = 0;
   for (unsigned k = 0; k < 4; ++k) {
     high |= uint32_t{static_cast<uint8_t>(values[k] >> 8)} << (8 * k);
@@ -122,7 +135,7 @@ void ArrayDriver::write16(unsigned i, unsigned j, unsigned a, const std::array<u
 }
 
 std::array<uint16_t, 4> ArrayDriver::read16(unsigned i, unsigned j, unsigned a) {
-  check_group(i, j, a, 2);
+  check_access(i, j, a, 2);
   const uint32_t high = read32(i, j, a);
   const uint32_t low = read32(i, j, a + 1);
   std::array<uint16_t, 4> values{};
@@ -134,6 +147,7 @@ std::array<uint16_t, 4> ArrayDriver::read16(unsigned i, unsigned j, unsigned a) 
 
 void ArrayDriver::write_all8(unsigned a, const std::vector<uint8_t>& per_cu) {
   if (per_cu.size() != cus()) throw std::invalid_argument("write_all8: one value per CU expected");
+  check_access(m_groups_per_row - 1, m_rows - 1, a);
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) {
       uint32_t word = 0;
@@ -154,6 +168,7 @@ void ArrayDriver::write_all16(unsigned a, const std::vector<uint16_t>& per_cu) {
 }
 
 std::vector<uint8_t> ArrayDriver::read_all8(unsigned a) {
+  check_access(m_groups_per_row - 1, m_rows - 1, a);
   std::vector<uint8_t> values(cus());
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) {
@@ -175,6 +190,7 @@ std::vector<uint16_t> ArrayDriver::read_all16(unsigned a) {
 }
 
 void ArrayDriver::fill8(unsigned a, uint8_t value) {
+  check_access(m_groups_per_row - 1, m_rows - 1, a);
   const uint32_t word = value * 0x01010101u;
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) write32(i, j, a, word);

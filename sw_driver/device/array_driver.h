@@ -12,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "array/array_regs.h"
+#include "array/asm/program.h"
 #include "device/app_environment.h"
+#include "soc/memory_map.h"
 
 namespace tessera {
 
@@ -36,7 +39,7 @@ class ArrayDriver {
   unsigned columns() const { return m_columns; }
   unsigned rows() const { return m_rows; }
   unsigned cus() const { return m_columns * m_rows; }
-  unsigned groups_per_row() const { return m_columns / 4; }
+  unsigned groups_per_row() const { return m_groups_per_row; }
   unsigned cmem_bytes() const { return m_cmem_bytes; }
   unsigned program_words() const { return m_program_words; }
   double clock_hz() const { return m_clock_khz * 1e3; }
@@ -44,6 +47,10 @@ class ArrayDriver {
   // Writes an image into program memory from word `at`. Throws
   // std::invalid_argument if it does not fit.
   void load(const std::vector<uint64_t>& words, unsigned at = 0);
+  // The same for an assembled program, whose CMEM variables are checked
+  // once here against this array's CMEM (std::out_of_range naming the
+  // variable otherwise), so that the per-access path need not check them.
+  void load(const ap::Program& program, unsigned at = 0);
   // Starts the program at word `entry` (the AC must be idle).
   void start(unsigned entry);
   // Sleeps until the AC's interrupt, clears it, and returns the program's
@@ -58,10 +65,22 @@ class ArrayDriver {
   }
 
   // The bus address of CMEM address `a` of CU group (i, j).
-  uint32_t cmem_address(unsigned i, unsigned j, unsigned a) const;
+  uint32_t cmem_address(unsigned i, unsigned j, unsigned a) const {
+    return memory_map::array_cmem.base + array_regs::cmem_offset(j * m_groups_per_row + i, a, m_cmem_bytes);
+  }
+
+  // Throws std::out_of_range, naming the access and the array's size,
+  // unless CMEM addresses a .. a + bytes - 1 of group (i, j) are in the
+  // array. write32/read32 do not check their arguments, as the study's
+  // driver did not on every access: a loop checks once the last group and
+  // the last address it reaches (the first are no smaller), and every
+  // function below checks its own arguments once.
+  void check_access(unsigned i, unsigned j, unsigned a, unsigned bytes = 1) const;
 
   // WriteMem32 / ReadMem32: one word, byte k to/from CU column 4i+k of row
-  // j, with the ARM's address computation charged.
+  // j: the address computation and the access, nothing else. Natively the
+  // ARM's cycles for the call outside the bus access are charged
+  // (ISS_WRITE32_CYCLES, ISS_READ32_CYCLES in array_driver.cpp).
   void write32(unsigned i, unsigned j, unsigned a, uint32_t value);
   uint32_t read32(unsigned i, unsigned j, unsigned a);
 
@@ -92,10 +111,9 @@ class ArrayDriver {
   void write_constants(const Constants& constants);
 
  private:
-  void check_group(unsigned i, unsigned j, unsigned a, unsigned bytes) const;
-
   HostApi& m_host;
   unsigned m_columns, m_rows, m_cmem_bytes, m_program_words, m_clock_khz;
+  unsigned m_groups_per_row;
   bool m_irq_enabled = false;
 };
 

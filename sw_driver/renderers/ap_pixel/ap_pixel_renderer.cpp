@@ -48,7 +48,7 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
   if (m_block < 1 || m_block > m_layout.max_block)
     throw std::invalid_argument("ap-pixel: block size " + std::to_string(m_block) + " is outside 1.." +
                                 std::to_string(m_layout.max_block));
-  m_array.load(ap::programs::ap_pixel().words, m_program_base);
+  m_array.load(ap::programs::ap_pixel(), m_program_base);
   const unsigned across = (m_buffers.width + m_block - 1) / m_block, up = (m_buffers.height + m_block - 1) / m_block;
   m_block_index.assign(size_t{across} * up, -1);
 

@@ -49,7 +49,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
         " pixels cover " + std::to_string(m_frame.width()) + " x " + std::to_string(m_frame.height()) +
         ", but the display is " + std::to_string(m_display.width()) + " x " + std::to_string(m_display.height()));
   const ap::Program& program = ap::programs::ap_tile();
-  m_array.load(program.words, m_program_base);
+  m_array.load(program, m_program_base);
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
