@@ -11,10 +11,10 @@ double-precision arithmetic (the soft-float __aeabi_d* / __*df* helpers,
 libm's double functions) nor 64-bit division (__aeabi_uldivmod,
 __udivmoddi4, ...).
 
-A flat profile cannot say who called a helper: on the teapot the scene's
-Bezier evaluation and the geometry (transform, window coordinates) still
-use double precision and hold most of those helpers' cycles. So the check
-attributes through the program itself: from the ISS image (--elf,
+A flat profile cannot say who called a helper: on the teapot the array
+back ends (ap-tile, ap-pixel) still spend cycles in double-precision
+helpers outside their drawing functions (the GL geometry and the scenes no
+longer do). So the check attributes through the program itself: from the ISS image (--elf,
 disassembled with --objdump) it follows every direct branch (BL and tail
 B) from the back end's drawing functions (BACKENDS[..]["roots"]: its
 rasterizer, its renderer's draw and clear, its memory interface; not its
@@ -44,6 +44,14 @@ import re
 import subprocess
 import sys
 
+# The bound for a back end whose whole program is free of forbidden helpers
+# (arm and raster since the GL geometry and the scenes went to single
+# precision: 0.000 % listed, the 40th row at 0.25 %): 1 % of the ISS's
+# cycles, far below what double precision in the geometry held (32.7 % on
+# the teapot on arm), and far enough above the last listed row that the
+# profile can show it.
+CLEAN_MAX_SHARE = 0.01
+
 # Per back end: the scene it runs and its frames, extra soc_sim settings,
 # the functions (demangled names, regular expressions) whose direct callees
 # may reach no forbidden helper, the functions that must show cycles in the
@@ -60,7 +68,7 @@ BACKENDS = {
                   r"^tessera::arm::HostPixelMemory::(load|store|compute)\(",
                   r"^tessera::arm::\(anonymous namespace\)::"],
         "ran": [r"^tessera::arm::ArmRasterizer::shade_span\(", r"^tessera::arm::ArmRasterizer::draw_triangle\("],
-        "max_share": None,
+        "max_share": CLEAN_MAX_SHARE,
     },
     # The array back ends: the triangle set-up, the per-CU records and their
     # packing, the host's spans, depth test and per-pixel writes, the
@@ -100,7 +108,7 @@ BACKENDS = {
         "roots": [r"^tessera::raster_backend::RasterRenderer::draw\(",
                   r"^tessera::raster_backend::\(anonymous namespace\)::encode_"],
         "ran": [r"^tessera::raster_backend::RasterRenderer::draw\("],
-        "max_share": None,
+        "max_share": CLEAN_MAX_SHARE,
     },
 }
 
