@@ -140,6 +140,7 @@ class RasterNativeHost : public tessera::HostApi {
       : m_host(host), m_port(host), m_core(m_port), m_config(geometry), m_timed_after(timed_after) {}
 
   void compute(tessera::Op op, uint64_t count) override { m_host.compute(op, count); }
+  void compute_cycles(uint64_t cycles) override { m_host.compute_cycles(cycles); }
   uint32_t read32(uint32_t address) override { return is_reg(address) ? read_reg(address) : m_host.read32(address); }
   uint16_t read16(uint32_t address) override { return m_host.read16(address); }
   uint8_t read8(uint32_t address) override { return m_host.read8(address); }

@@ -29,6 +29,7 @@ class NativeHost : public HostApi {
   NativeHost(uint32_t memory_bytes, const NativeDisplay& display);
 
   void compute(Op, uint64_t) override {}
+  void compute_cycles(uint64_t) override {}
 
   uint32_t read32(uint32_t address) override;
   uint16_t read16(uint32_t address) override;

@@ -48,6 +48,7 @@ class FuzzHost : public tessera::HostApi {
  public:
   FuzzHost() : m_memory(16u << 20, 0) {}
   void compute(tessera::Op, uint64_t) override {}
+  void compute_cycles(uint64_t) override {}
   uint32_t read32(uint32_t address) override {
     uint32_t v;
     std::memcpy(&v, at(address, 4), 4);

@@ -66,6 +66,11 @@ def main():
     parser.add_argument("--frames", type=int, default=3, help="frames per run (>= 2; frames 1.. are averaged)")
     parser.add_argument("--out", default="out/host_models", help="folder for the runs' statistics")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--check", type=float, metavar="PERCENT",
+                        help="exit 1 unless every frame, and every phase that holds at least --floor of its frame, "
+                             "is within PERCENT of the ISS's")
+    parser.add_argument("--floor", type=float, default=1.0, metavar="PERCENT",
+                        help="the share of the frame below which --check leaves a phase out (default 1)")
     args = parser.parse_args()
     if args.frames < 2:
         parser.error("--frames must be at least 2")
@@ -91,8 +96,16 @@ def main():
     header += ["frame error", "host-phases error"]
     print("| " + " | ".join(header) + " |")
     print("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
+    outside = []
     for scene, backend in cases:
         n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
+        if args.check is not None:
+            checked = [("frame", n["render"], i["render"])]
+            checked += [(p, n[p], i[p]) for p in PHASES if i[p] >= args.floor / 100 * i["render"]]
+            for what, native, iss in checked:
+                error = (native / iss - 1) * 100 if iss > 0 else float("inf")
+                if abs(error) > args.check:
+                    outside.append(f"{scene} on {backend}, {what}: {native:.2f} / {iss:.2f} ms ({error:+.1f}%)")
         cells = [scene, backend, f"{n['render']:.2f} / {i['render']:.2f}"]
         cells += [f"{n[p]:.2f} / {i[p]:.2f}" for p in PHASES]
         host_n = sum(n[p] for p in PHASES if p != "application")
@@ -100,6 +113,11 @@ def main():
         cells.append(f"{(n['render'] / i['render'] - 1) * 100:+.0f}%")
         cells.append(f"{(host_n / host_i - 1) * 100:+.0f}%" if host_i > 0 else "-")
         print("| " + " | ".join(cells) + " |")
+    if args.check is not None:
+        if outside:
+            print(f"\n{len(outside)} outside +-{args.check:g}%:\n  " + "\n  ".join(outside))
+            return 1
+        print(f"\nevery frame, and every phase of at least {args.floor:g}% of its frame, within +-{args.check:g}%")
     return 0
 
 

@@ -5,8 +5,10 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "costs/host_cost.h"
 #include "gl/runtime.h"
 
 namespace tessera {
@@ -14,6 +16,15 @@ namespace tessera {
 namespace {
 
 const scenes::Scene* g_scene = nullptr;
+HostApi* g_host = nullptr;
+
+// Charges the scene's own code (the rows scene_<name>_init and
+// scene_<name>_frame of the measured cost table, where it has them).
+void charge_scene(const scenes::Scene& scene, const char* part) {
+  if (g_host == nullptr) return;
+  if (const auto row = costs::find_host_cost(std::string("scene_") + scene.name + "_" + part))
+    costs::charge(*g_host, *row);
+}
 
 // A scene's program: EGL set-up, the scene's own set-up, then frames until
 // the simulator has seen enough of them.
@@ -47,8 +58,10 @@ int scene_main(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s\n", scene.name, error.c_str());
     return 2;
   }
+  charge_scene(scene, "init");
   for (int frame = 0;; ++frame) {
     scene.draw(frame);
+    charge_scene(scene, "frame");
     eglSwapBuffers(display, surface);
   }
 }
@@ -73,6 +86,7 @@ int run_gl_app(AppEnvironment& env, GlMain main, const std::string& name) {
 
 int run_scene_app(AppEnvironment& env, const scenes::Scene& scene) {
   g_scene = &scene;
+  g_host = env.host;
   return run_gl_app(env, scene_main, scene.name);
 }
 

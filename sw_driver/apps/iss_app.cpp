@@ -53,7 +53,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   void charge(uint64_t cycles) { m_pending += cycles; }
   void flush() {
     if (m_pending != 0) {
-      m_host.compute(Op::alu, m_pending);
+      m_host.compute_cycles(m_pending);
       m_pending = 0;
     }
   }

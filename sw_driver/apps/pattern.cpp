@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "apps/apps.h"
+#include "costs/host_cost.h"
 #include "device/display_driver.h"
 
 namespace tessera {
@@ -43,9 +44,7 @@ int pattern_app(AppEnvironment& env) {
         const uint32_t rgba = c.r | c.g << 8 | c.b << 16 | 0xffu << 24;
         store_pixel(display.format(), bytes + x * display.bytes_per_pixel(), pack_pixel(display.format(), rgba));
       }
-      // Per pixel: region compares, a table look-up and the packing shifts.
-      host.compute(Op::alu, 8ull * width);
-      host.compute(Op::branch, width);
+      costs::charge(host, costs::HostCost::pattern_pixel, width);
       const uint32_t line = buffer + y * display.stride();
       const unsigned words = static_cast<unsigned>(row.size());
       for (unsigned w = 0; w < words; w += 8) host.write_words(line + 4 * w, &row[w], std::min(8u, words - w));

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "costs/host_cost.h"
 #include "display/display_regs.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
@@ -49,8 +50,7 @@ void DisplayDriver::present() {
       // LDM: the loads of the eight words, charged through the cache.
       std::memcpy(words, m_host.load_span(buffer + offset, 4, count), 4 * count);
       m_host.write_words(memory_map::display_port.base + offset, words, count);
-      m_host.compute(Op::alu, 2);
-      m_host.compute(Op::branch);
+      costs::charge(m_host, costs::HostCost::display_copy_block);
       offset += 4 * count;
     }
     if (offset < bytes) m_host.write16(memory_map::display_port.base + offset, m_host.read16(buffer + offset));

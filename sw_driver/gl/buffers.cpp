@@ -57,7 +57,7 @@ void Context::buffer_data(GLenum target, GLsizeiptr size, const void* data, GLen
   b.usage = usage;
   b.data.assign(static_cast<size_t>(size), 0);
   if (data) std::memcpy(b.data.data(), data, static_cast<size_t>(size));
-  m_host.compute(Op::alu, static_cast<uint64_t>(size) / 4);
+  charge(costs::HostCost::gl_buffer_word, static_cast<uint64_t>(size) / 4);
 }
 
 void Context::buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, const void* data) {

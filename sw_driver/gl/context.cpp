@@ -60,20 +60,4 @@ GLenum Context::get_error() {
   return e;
 }
 
-void Context::charge_call(unsigned alu) {
-  m_host.compute(Op::call);
-  m_host.compute(Op::alu, alu);
-}
-
-void Context::charge(const FloatCost& cost, uint64_t times) {
-  if (times == 0) return;
-  if (cost.add) m_host.compute(Op::fadd, cost.add * times);
-  if (cost.mul) m_host.compute(Op::fmul, cost.mul * times);
-  if (cost.div) m_host.compute(Op::fdiv, cost.div * times);
-  if (cost.sqrt) m_host.compute(Op::fsqrt, cost.sqrt * times);
-  if (cost.cmp) m_host.compute(Op::fcmp, cost.cmp * times);
-  if (cost.conv) m_host.compute(Op::fconv, cost.conv * times);
-  if (cost.calls) m_host.compute(Op::call, cost.calls * times);
-}
-
 }  // namespace tessera::gl

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "common/activity_counters.h"
+#include "costs/host_cost.h"
 #include "gl/geometry.h"
 #include "gl/renderer.h"
 #include "gl/vertex_cache.h"
@@ -108,7 +109,9 @@ class Context {
   GLenum get_error();
 
   // Charges one GL call (argument checks, state update) to the host.
-  void charge_call(unsigned alu = 8);
+  void charge_call() { charge(costs::HostCost::gl_call); }
+  // Charges `units` of a row of the measured cost table (sw_driver/costs).
+  void charge(costs::HostCost cost, uint64_t units = 1) { costs::charge(m_host, cost, units); }
 
   // State commands
   void enable(GLenum cap, bool on);
@@ -262,7 +265,6 @@ class Context {
                    const uint32_t* rows);
   // GL_GENERATE_MIPMAP: levels 1.. from level 0 by the box filter.
   void generate_mipmaps(TextureObject* object);
-  void charge(const FloatCost& cost, uint64_t times);
 
   HostApi& m_host;
   Renderer* m_renderer;

@@ -1,11 +1,15 @@
 #include "gl/frame_phases.h"
 
+#include "costs/host_cost.h"
+
 namespace tessera::gl {
 
 namespace {
 constexpr const char* NAMES[] = {"host_application_ns", "host_geometry_ns", "host_rasterization_ns",
                                  "host_presenting_ns"};
+constexpr const char* BUCKETS[] = {"application", "geometry", "rasterization", "presenting"};
 static_assert(std::size(NAMES) == static_cast<size_t>(Phase::count_));
+static_assert(std::size(BUCKETS) == static_cast<size_t>(Phase::count_) && std::size(BUCKETS) <= costs::COST_BUCKETS);
 }  // namespace
 
 PhaseClock& phase_clock() {
@@ -18,6 +22,7 @@ void PhaseClock::start(HostApi* host) {
   m_phase = Phase::application;
   m_seconds.fill(0);
   m_since = host != nullptr ? host->now_seconds() : 0;
+  costs::reset_cost_meter();
 }
 
 Phase PhaseClock::switch_to(Phase phase) {
@@ -28,6 +33,7 @@ Phase PhaseClock::switch_to(Phase phase) {
     m_since = now;
   }
   m_phase = phase;
+  costs::set_cost_bucket(static_cast<unsigned>(phase));
   return previous;
 }
 
@@ -40,6 +46,7 @@ std::vector<std::pair<std::string, double>> PhaseClock::take_frame() {
   std::vector<std::pair<std::string, double>> figures;
   for (size_t i = 0; i < m_seconds.size(); ++i) figures.emplace_back(NAMES[i], m_seconds[i] * 1e9);
   m_seconds.fill(0);
+  for (auto& units : costs::take_cost_units(BUCKETS)) figures.push_back(std::move(units));
   return figures;
 }
 

@@ -394,36 +394,4 @@ glm::vec4 light_vertex(const LightingModel& model, const Material& material, con
   return {color, std::clamp(material.diffuse.a, 0.0f, 1.0f)};
 }
 
-FloatCost transform_cost() {
-  return {12, 16, 0, 0, 0, 0, 0};
-}
-
-FloatCost lighting_cost(unsigned lights) {
-  FloatCost cost{6, 6, 0, 0, 0, 0, 0};
-  for (unsigned i = 0; i < lights; ++i) {
-    // direction, attenuation, n.l, half vector and its normalisation, n.h,
-    // the specular power (a pow() call) and the accumulation.
-    cost += FloatCost{20, 24, 2, 2, 3, 0, 1};
-  }
-  cost += FloatCost{0, 0, 0, 0, 6, 0, 0};  // clamp
-  return cost;
-}
-
-FloatCost clip_test_cost() {
-  return {6, 0, 0, 0, 7, 0, 0};
-}
-FloatCost screen_cost() {
-  return {6, 8, 1, 0, 2, 3, 0};
-}
-
-FloatCost degeneracy_cost(size_t vertices) {
-  // Per edge its vector, squared length and the running maximum; per fan
-  // triangle a cross product and the sum; then the final comparison.
-  const uint64_t n = vertices, fan = n >= 2 ? n - 2 : 0;
-  FloatCost cost{3 * n, 2 * n, 0, 0, n, 0, 0};
-  cost += FloatCost{4 * fan, 2 * fan, 0, 0, 0, 0, 0};
-  cost += FloatCost{0, 3, 0, 0, 1, 0, 0};
-  return cost;
-}
-
 }  // namespace tessera::gl

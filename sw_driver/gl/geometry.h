@@ -117,7 +117,6 @@ bool is_degenerate(const std::vector<WindowPoint>& polygon);
 // the unsnapped triangle cannot be degenerate: a few integer operations
 // that spare all but thin triangles the floating-point test on the host.
 bool surely_has_area(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c);
-inline constexpr unsigned SURELY_HAS_AREA_ALU = 10;  // its cost beside signed_area
 
 // Window coordinates in 9.4 fixed point (rounded to nearest), depth in 0.24,
 // colour in 0.8 (rounded to nearest, clamped). Returns false for a vertex
@@ -202,19 +201,5 @@ struct LightingModel {
 // faces: glMaterial takes only GL_FRONT_AND_BACK).
 glm::vec4 light_vertex(const LightingModel& model, const Material& material, const glm::vec4& eye,
                        const glm::vec3& normal);
-
-// Counts of soft-float operations per step, for the host's cost model.
-struct FloatCost {
-  uint64_t add = 0, mul = 0, div = 0, sqrt = 0, cmp = 0, conv = 0, calls = 0;
-  FloatCost& operator+=(const FloatCost& o) {
-    add += o.add, mul += o.mul, div += o.div, sqrt += o.sqrt, cmp += o.cmp, conv += o.conv, calls += o.calls;
-    return *this;
-  }
-};
-FloatCost transform_cost();                  // one 4x4 matrix times a vector
-FloatCost lighting_cost(unsigned lights);    // light_vertex with `lights` enabled lights
-FloatCost clip_test_cost();                  // inside_view_volume
-FloatCost screen_cost();                     // to_screen
-FloatCost degeneracy_cost(size_t vertices);  // is_degenerate of a polygon of `vertices`
 
 }  // namespace tessera::gl

@@ -53,9 +53,8 @@ GLfixed to_fixed(float value) {
 // The host's work for `numbers` scaled values and `enums` values passed as
 // they are (converted to float, not scaled).
 void charge_conversions(Context* c, unsigned numbers, unsigned enums = 0) {
-  c->host().compute(Op::call);
-  c->host().compute(Op::fconv, numbers + enums);
-  if (numbers) c->host().compute(Op::fmul, numbers);
+  c->charge(tessera::costs::HostCost::gl_call);
+  c->charge(tessera::costs::HostCost::gl_fixed_argument, numbers + enums);
 }
 
 // Up to four values, converted from fixed point; `count` of them are read.

@@ -15,7 +15,7 @@
 namespace tessera::gl {
 
 void Context::light(GLenum which, GLenum name, const float* v, int count) {
-  charge_call(8);
+  charge_call();
   if (which < GL_LIGHT0 || which >= GL_LIGHT0 + MAX_LIGHTS) return error(GL_INVALID_ENUM);
   Light& l = m_lighting_model.lights[which - GL_LIGHT0];
   auto need = [&](int n) {
@@ -95,7 +95,7 @@ void Context::light_model(GLenum name, const float* v, int count) {
 }
 
 void Context::material(GLenum face, GLenum name, const float* v, int count) {
-  charge_call(8);
+  charge_call();
   // ES 1.1 accepts only GL_FRONT_AND_BACK.
   if (face != GL_FRONT_AND_BACK) return error(GL_INVALID_ENUM);
   Material& m = m_front_material;

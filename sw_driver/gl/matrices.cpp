@@ -29,18 +29,18 @@ glm::mat4& Context::current_matrix() {
 }
 
 void Context::load_matrix(const glm::mat4& m) {
-  charge_call(16);
+  charge_call();
   current_matrix() = m;
 }
 
 void Context::mult_matrix(const glm::mat4& m) {
   charge_call();
-  charge({48, 64, 0, 0, 0, 0, 0}, 1);
+  charge(costs::HostCost::gl_matrix_multiply);
   current_matrix() = current_matrix() * m;
 }
 
 void Context::push_matrix() {
-  charge_call(16);
+  charge_call();
   auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
                 : m_matrix_mode == GL_TEXTURE  ? active_unit().matrix
                                                : m_modelview;

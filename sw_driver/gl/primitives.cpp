@@ -34,31 +34,31 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
   const std::vector<glm::vec4>& user_planes = polygon_rules ? m_enabled_user_planes : no_planes;
   bool inside = inside_view_volume(a.clip) && inside_view_volume(b.clip) && inside_view_volume(c.clip);
   if (!user_planes.empty()) {
-    charge({3, 4, 0, 0, 1, 0, 0}, 3 * user_planes.size());
+    charge(costs::HostCost::gl_clip_plane_test, 3 * user_planes.size());
     inside = inside && inside_user_planes(a.clip, user_planes) && inside_user_planes(b.clip, user_planes) &&
              inside_user_planes(c.clip, user_planes);
   }
   // A viewport partly off the screen: its picture is cut at the screen.
   const ClipSpacePlanes screen_edges = screen_planes(m_viewport);
   if (screen_edges.count > 0) {
-    charge({3, 4, 0, 0, 1, 0, 0}, 3 * screen_edges.count);
+    charge(costs::HostCost::gl_clip_plane_test, 3 * screen_edges.count);
     inside = inside && inside_clip_space_planes(a.clip, screen_edges) &&
              inside_clip_space_planes(b.clip, screen_edges) && inside_clip_space_planes(c.clip, screen_edges);
   }
   if (!inside) {
     polygon = clip_polygon(polygon, user_planes, screen_edges);
-    charge({12, 12, 1, 0, 7, 0, 0}, polygon.size());
+    charge(costs::HostCost::gl_clipped_vertex, polygon.size());
     if (polygon.size() < 3) return;
   }
   std::vector<ScreenVertex>& screen = m_scratch_screen;
   screen.assign(polygon.size(), ScreenVertex{});
   for (size_t i = 0; i < polygon.size(); ++i)
     if (!to_screen(polygon[i], m_viewport, &screen[i])) return;
-  charge(screen_cost(), polygon.size());
+  charge(costs::HostCost::gl_screen_vertex, polygon.size());
   // Orientation from the whole polygon, so that clipping cannot flip a face.
   int64_t area = 0;
   for (size_t i = 1; i + 1 < screen.size(); ++i) area += signed_area(screen[0], screen[i], screen[i + 1]);
-  m_host.compute(Op::alu, 12 + SURELY_HAS_AREA_ALU);
+  charge(costs::HostCost::gl_primitive);
   // Whether the polygon has any area is decided before snapping, which
   // would turn collinear vertices into a sliver (geometry.h); an integer
   // bound settles it for every triangle but the thin ones.
@@ -66,7 +66,7 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     std::vector<WindowPoint> window(polygon.size());
     for (size_t i = 0; i < polygon.size(); ++i)
       if (!to_window(polygon[i].position, m_viewport, &window[i])) return;
-    charge(degeneracy_cost(window.size()), 1);
+    charge(costs::HostCost::gl_degeneracy_test);
     if (is_degenerate(window)) return;
   }
   if (area == 0) return;  // a thin polygon whose vertices snapped onto one line
@@ -81,7 +81,7 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
         screen[i].r = to_unorm8(back.r), screen[i].g = to_unorm8(back.g), screen[i].b = to_unorm8(back.b);
         screen[i].a = to_unorm8(back.a);
       }
-      m_host.compute(Op::alu, 4 * polygon.size());
+      charge(costs::HostCost::gl_two_sided_vertex, polygon.size());
     }
     if (m_polygon_offset_fill && (m_polygon_offset[0] != 0 || m_polygon_offset[1] != 0))
       if (!apply_polygon_offset(polygon, screen)) return;
@@ -113,7 +113,7 @@ bool Context::apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::
     if (!to_screen(polygon[i], m_viewport, offset, &shifted)) return false;
     screen[i].z = shifted.z;
   }
-  charge({9 * polygon.size() + 2, 6 * polygon.size() + 2, 2, 0, 4 + 2 * polygon.size(), 1, 0}, 1);
+  charge(costs::HostCost::gl_polygon_offset_vertex, polygon.size());
   return true;
 }
 
@@ -132,7 +132,7 @@ float Context::derived_point_size(uint32_t index, const glm::vec4& eye) {
     // d: the eye-coordinate distance from the eye, (0, 0, 0, 1).
     const float d = glm::length(glm::vec3(eye) / (eye.w != 0 ? eye.w : 1.0f));
     size *= std::sqrt(1.0f / (a.x + a.y * d + a.z * d * d));
-    charge({3, 6, 2, 2, 0, 0, 0}, 1);
+    charge(costs::HostCost::gl_point_attenuation);
   }
   // Clamped to GL_POINT_SIZE_MIN/MAX, then to the sizes the driver draws.
   // A size that is not a number stays one, and the point is dropped.
@@ -178,6 +178,7 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
   // normal path (clipping, viewport) applies. `tex`, if given, replaces the
   // texture coordinates corner by corner (point sprites) in each unit whose
   // GL_COORD_REPLACE_OES is on.
+  charge(costs::HostCost::gl_quad);
   const glm::vec4& p = source.clip.position;
   Vertex v[4];
   for (int i = 0; i < 4; ++i) {
@@ -196,6 +197,7 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
 void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
   const PhaseScope phase(Phase::geometry);
+  charge(costs::HostCost::gl_draw);
   fetch_and_transform(indices, indexed, m_vertices);
   enabled_user_planes();
   const std::vector<glm::vec4>& user_planes = m_enabled_user_planes;
@@ -218,7 +220,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
     if (!user_planes.empty()) {
       // The segment is clipped by the user planes before it is widened.
       float t0 = 0, t1 = 1;
-      charge({3, 4, 0, 0, 2, 0, 0}, 2 * user_planes.size());
+      charge(costs::HostCost::gl_clip_plane_test, 2 * user_planes.size());
       if (!clip_segment(va.clip.eye, vb.clip.eye, user_planes, &t0, &t1)) return;
       const ClipVertex ca = va.clip, cb = vb.clip;
       if (t0 > 0) va.clip = interpolate(ca, cb, t0);
@@ -282,7 +284,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
         if (!v[i].valid || !(v[i].clip.position.w > 0)) continue;
         // A point outside a user clip plane is discarded whole.
         if (!user_planes.empty()) {
-          charge({3, 4, 0, 0, 1, 0, 0}, user_planes.size());
+          charge(costs::HostCost::gl_clip_plane_test, user_planes.size());
           if (!inside_user_planes(v[i].clip, user_planes)) continue;
         }
         float size = derived_point_size(indices[i], v[i].eye);
@@ -358,7 +360,7 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
       indices[i] = x;
     }
   }
-  m_host.compute(Op::alu, 2ull * static_cast<uint64_t>(count));
+  charge(costs::HostCost::gl_index, static_cast<uint64_t>(count));
   draw(mode, indices, true);
 }
 

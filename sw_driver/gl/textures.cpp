@@ -154,8 +154,7 @@ void Context::generate_mipmaps(TextureObject* object) {
     const unsigned w = std::max(1u, width / 2), h = std::max(1u, height / 2);
     out.resize(size_t{w} * h);
     box_filter_level(in.data(), width, height, out.data());
-    // Four loads, four adds per channel, a rounding shift and the packing per texel.
-    m_host.compute(Op::alu, 24ull * w * h);
+    charge(costs::HostCost::gl_texel_filtered, uint64_t{w} * h);
     store_level(object, level, w, h, base.format, out.data());
     in.swap(out);
     width = w;
@@ -207,9 +206,7 @@ void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsize
   std::vector<uint32_t> row(static_cast<size_t>(width));
   for (GLsizei j = 0; j < height; ++j) {
     for (GLsizei i = 0; i < width; ++i) row[i] = unpack_pixel(format, type, in + j * stride + size_t{bytes} * i);
-    // The driver's conversion loop: a load, a few shifts and a store per
-    // texel; a packed type takes three more shifts and masks per channel.
-    m_host.compute(Op::alu, (type == GL_UNSIGNED_BYTE ? 4ull : 16ull) * width);
+    charge(costs::HostCost::gl_texel_converted, static_cast<uint64_t>(width));
     const uint32_t address = image.address + ((y + j) * image.width + x) * 4;
     for (GLsizei i = 0; i < width; i += 8)
       m_host.write_words(address + 4 * i, &row[i], static_cast<unsigned>(std::min<GLsizei>(8, width - i)));
@@ -239,8 +236,7 @@ void Context::compressed_tex_image(GLenum target, GLint level, GLenum internal_f
   for (unsigned k = 0; k < levels; ++k) {
     const unsigned lw = std::max(1u, w >> k), lh = std::max(1u, h >> k);
     decode_paletted_level(*format, static_cast<const uint8_t*>(data), w, h, k, texels.data());
-    // An index load, a palette load and the entry's conversion per texel.
-    m_host.compute(Op::alu, (format->entry_type == GL_UNSIGNED_BYTE ? 6ull : 18ull) * lw * lh);
+    charge(costs::HostCost::gl_texel_converted, uint64_t{lw} * lh);
     store_level(object, k, lw, lh, expanded, texels.data());
   }
   if (levels == 1 && object->generate_mipmap) generate_mipmaps(object);

@@ -15,24 +15,24 @@
 namespace tessera::gl {
 
 void Context::color(float r, float g, float b, float a) {
-  charge_call(4);
+  charge_call();
   m_color = {r, g, b, a};
 }
 
 void Context::normal(float x, float y, float z) {
-  charge_call(3);
+  charge_call();
   m_normal = {x, y, z};
 }
 
 void Context::tex_coord(GLenum unit, float s, float t, float r, float q) {
-  charge_call(4);
+  charge_call();
   if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture_units) return error(GL_INVALID_ENUM);
   m_units[unit - GL_TEXTURE0].texcoord = {s, t, r, q};
 }
 
 void Context::array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer,
                             bool size_ok, bool type_ok) {
-  charge_call(6);
+  charge_call();
   if (!type_ok) return error(GL_INVALID_ENUM);
   if (!size_ok || stride < 0) return error(GL_INVALID_VALUE);
   array.size = size, array.type = type, array.stride = stride, array.pointer = pointer;

@@ -28,12 +28,6 @@ namespace tessera::gl {
 
 inline constexpr unsigned VERTEX_CACHE_ENTRIES = 32;
 
-// What the host is charged per index looked up (slot mask, tag load and
-// compare; a branch), and for tagging the slot on a miss.
-inline constexpr unsigned VERTEX_CACHE_LOOKUP_ALU = 3;
-inline constexpr unsigned VERTEX_CACHE_LOOKUP_BRANCHES = 1;
-inline constexpr unsigned VERTEX_CACHE_FILL_ALU = 1;
-
 template <typename Value, unsigned ENTRIES = VERTEX_CACHE_ENTRIES>
 class VertexCache {
   static_assert(ENTRIES > 0 && (ENTRIES & (ENTRIES - 1)) == 0, "a power of two: the slot is the index's low bits");

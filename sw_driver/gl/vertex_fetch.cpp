@@ -142,9 +142,7 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
       ++transformed;
     }
     const uint64_t hits = indices.size() - transformed;
-    m_host.compute(
-        Op::alu, VERTEX_CACHE_ENTRIES + VERTEX_CACHE_LOOKUP_ALU * indices.size() + VERTEX_CACHE_FILL_ALU * transformed);
-    m_host.compute(Op::branch, VERTEX_CACHE_LOOKUP_BRANCHES * indices.size());
+    charge(costs::HostCost::gl_vertex_cache_lookup, indices.size());
     if (m_cache_hits) *m_cache_hits += hits;
     if (m_cache_misses) *m_cache_misses += transformed;
   } else {
@@ -153,16 +151,14 @@ void Context::fetch_and_transform(const std::vector<uint32_t>& indices, bool ind
   }
   if (m_vertices_transformed) *m_vertices_transformed += transformed;
 
-  // The geometry's soft-float work on the ARM, per vertex transformed.
-  FloatCost per_vertex = transform_cost();
-  per_vertex += transform_cost();
-  if (m_lighting) per_vertex += lighting_cost(lights) += FloatCost{6, 9, 0, 0, 0, 0, 0};
-  if (two_sided) per_vertex += lighting_cost(lights);
-  for (unsigned u = 0; u < textured_units; ++u) per_vertex += transform_cost();
-  per_vertex += clip_test_cost();
-  charge(per_vertex, transformed);
-  m_host.compute(Op::alu, 20 * transformed);        // fetch, conversions, loop overhead
-  if (m_fog) m_host.compute(Op::alu, transformed);  // the fog coordinate |z_eye|: BIC of the sign bit
+  charge(costs::HostCost::gl_vertex, transformed);
+  if (m_lighting) {
+    const uint64_t sides = two_sided ? 2 : 1;
+    charge(costs::HostCost::gl_vertex_lit, sides * transformed);
+    charge(costs::HostCost::gl_vertex_light, sides * lights * transformed);
+  }
+  charge(costs::HostCost::gl_vertex_texcoord, uint64_t{textured_units} * transformed);
+  if (m_fog) charge(costs::HostCost::gl_vertex_fog, transformed);
 }
 
 }  // namespace tessera::gl

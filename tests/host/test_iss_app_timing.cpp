@@ -78,6 +78,7 @@ LauncherFigures launcher_figures(const std::string& path) {
   uint64_t computed = 0;
   for (int op = 0; op < static_cast<int>(tessera::Op::count_); ++op)
     computed += host.operations(static_cast<tessera::Op>(op));
+  computed += host.measured_cycles();
   return {computed + issue_cycles(host), core.fetches};
 }
 

@@ -41,6 +41,8 @@ class RecordingHost : public HostApi {
   uint8_t* memory(uint32_t address, uint32_t bytes) { return at(address, bytes); }
 
   void compute(Op op, uint64_t count) override { m_operations[static_cast<size_t>(op)] += count; }
+  void compute_cycles(uint64_t cycles) override { m_measured_cycles += cycles; }
+  uint64_t measured_cycles() const { return m_measured_cycles; }
 
   uint32_t read32(uint32_t address) override { return read(address, 4); }
   uint16_t read16(uint32_t address) override { return static_cast<uint16_t>(read(address, 2)); }
@@ -102,6 +104,7 @@ class RecordingHost : public HostApi {
   std::vector<uint8_t> m_memory;
   std::vector<Access> m_log;
   uint64_t m_operations[static_cast<size_t>(Op::count_)] = {};
+  uint64_t m_measured_cycles = 0;
 };
 
 }  // namespace tessera::test

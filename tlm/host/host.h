@@ -107,6 +107,7 @@ class Host : public Block, public HostApi, public HostCore {
 
   // HostApi
   void compute(Op op, uint64_t count = 1) override;
+  void compute_cycles(uint64_t cycles) override;
   uint32_t read32(uint32_t address) override;
   uint16_t read16(uint32_t address) override;
   uint8_t read8(uint32_t address) override;
@@ -266,6 +267,7 @@ class Host : public Block, public HostApi, public HostCore {
   std::string m_failure;
 
   ActivityCounter& m_busy_cycles;
+  ActivityCounter& m_measured_cycles;
   uint64_t m_stall_ticks = 0;
   uint64_t m_idle_ticks = 0;
   ActivityCounter& m_write_buffer_stalls;

@@ -64,6 +64,9 @@ class HostApi {
   virtual ~HostApi() = default;
 
   virtual void compute(Op op, uint64_t count = 1) = 0;
+  // Whole host cycles of the ISS-measured cost table (sw_driver/costs):
+  // the driver's code as the ARM922T runs it, charged as measured.
+  virtual void compute_cycles(uint64_t cycles) = 0;
 
   virtual uint32_t read32(uint32_t address) = 0;
   virtual uint16_t read16(uint32_t address) = 0;
@@ -103,6 +106,7 @@ class HostApi {
 class HostApi {
  public:
   void compute(Op /*op*/, uint64_t /*count*/ = 1) {}
+  void compute_cycles(uint64_t /*cycles*/) {}
 
   uint32_t read32(uint32_t address) { return *reinterpret_cast<const volatile uint32_t*>(address); }
   uint16_t read16(uint32_t address) { return *reinterpret_cast<const volatile uint16_t*>(address); }

@@ -312,18 +312,17 @@ struct ArmRasterizer::DrawContext {
   bool late_tests = false;  // alpha test first, then stencil and depth
   bool color_write = false, needs_destination = false, blend = false, logic_op = false;
   uint32_t color_write_mask = 0;  // packed bits that are written
-  // Instructions per pixel of a span, per shaded pixel, per written pixel.
-  uint64_t pixel_alu = 0, pixel_branch = 0;
-  uint64_t shade_alu = 0, shade_mul = 0, shade_call = 0, shade_load_use = 0;
-  uint64_t write_alu = 0, write_mul = 0;
-  uint64_t span_alu = 0, span_mul = 0;
+  // What the host is charged for (sw_driver/costs): attributes set up and
+  // stepped, texture environments applied per shaded pixel (GL_COMBINE
+  // apart), whether a written pixel reads the destination back.
   unsigned attributes = 0;
+  unsigned environments = 0, combines = 0, combine_arguments = 0;
+  bool reads_destination = false;
 };
 
-ArmRasterizer::ArmRasterizer(PixelMemory& memory, const FrameBuffers& buffers, const InstructionCounts& counts)
+ArmRasterizer::ArmRasterizer(PixelMemory& memory, const FrameBuffers& buffers)
     : m_memory(memory),
       m_buffers(buffers),
-      m_counts(counts),
       m_depth_old(buffers.width),
       m_depth_new(buffers.width),
       m_stencil_old(buffers.width),
@@ -364,7 +363,7 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
           else
             store_le(out + k * size, size, m_source[k]);
         }
-        m_memory.compute(Op::alu, uint64_t(elements) * m_counts.clear_masked_pixel_alu);
+        m_memory.charge(HostCost::arm_clear_masked_pixel, elements);
       } else {
         uint8_t* out = m_memory.store(address, size, elements);
         if (size == 1) {
@@ -372,11 +371,9 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
         } else {
           for (unsigned k = 0; k < elements; ++k) store_le(out + k * size, size, value);
         }
-        const uint64_t blocks = (uint64_t(elements) * size + 31) / 32;
-        m_memory.compute(Op::alu, blocks * m_counts.clear_block_alu);
-        m_memory.compute(Op::branch, blocks * m_counts.clear_block_branch);
+        m_memory.charge(HostCost::arm_clear_block, (uint64_t(elements) * size + 31) / 32);
       }
-      m_memory.compute(Op::alu, m_counts.clear_row_alu);
+      m_memory.charge(HostCost::arm_clear_row);
     }
   };
 
@@ -402,7 +399,6 @@ void ArmRasterizer::clear(const gl::ClearRequest& request) {
 }
 
 void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
-  const InstructionCounts& k = m_counts;
   DrawContext c;
   c.state = &state;
   c.clip_x0 = 0;
@@ -453,94 +449,22 @@ void ArmRasterizer::draw(const gl::RasterState& state, const gl::Triangle* trian
       ((c.blend && (state.blend_dst != BlendFactor::zero || factor_reads_destination(state.blend_src))) ||
        (c.logic_op && logic_op_reads_destination(state.logic_op_mode)) || c.color_write_mask != all_color);
 
-  // Instruction counts for this state.
   // A texture takes s/w, t/w and 1/w; each further unit its own s/w, t/w.
   c.attributes =
       (c.depth_test ? 1 : 0) + (c.gouraud ? 4 : 0) + (c.texture ? 1 + 2 * c.unit_count : 0) + (c.fog ? 1 : 0);
-  c.pixel_alu = k.pixel_alu + (c.depth_test ? k.depth_step_test_alu : 0) + (c.stencil_test ? k.stencil_test_alu : 0) +
-                (c.stencil_writes ? k.stencil_update_alu : 0) + (c.gouraud ? k.color_step_alu : 0) +
-                (c.fog ? k.fog_step_alu : 0);
-  c.pixel_branch = k.pixel_branch;
-  c.shade_alu = c.alpha_test ? k.alpha_test_alu : 0;
   for (unsigned i = 0; i < c.unit_count; ++i) {
     const gl::TextureUnit& unit = state.unit[c.units[i]];
-    c.shade_alu += k.texel_nearest_alu;  // refined per triangle for linear filtering and perspective
-    c.shade_mul += k.texel_nearest_mul;
-    switch (unit.env) {
-      case gl::TexEnvMode::modulate:
-        c.shade_alu += k.modulate_alu;
-        c.shade_mul += k.modulate_mul;
-        break;
-      case gl::TexEnvMode::decal:
-        c.shade_alu += k.decal_alu;
-        c.shade_mul += k.decal_mul;
-        break;
-      case gl::TexEnvMode::replace: break;
-      case gl::TexEnvMode::blend:
-        c.shade_alu += k.blend_env_alu;
-        c.shade_mul += k.blend_env_mul;
-        break;
-      case gl::TexEnvMode::add:
-        c.shade_alu += k.add_env_alu;
-        c.shade_mul += k.add_env_mul;
-        break;
-      case gl::TexEnvMode::combine: {
-        const bool dot3 =
-            unit.combine_rgb.func == gl::CombineFunc::dot3_rgb || unit.combine_rgb.func == gl::CombineFunc::dot3_rgba;
-        const bool dot3_rgba = unit.combine_rgb.func == gl::CombineFunc::dot3_rgba;
-        const gl::CombineStage* stages[2] = {&unit.combine_rgb, dot3_rgba ? nullptr : &unit.combine_alpha};
-        for (int half = 0; half < 2; ++half) {
-          const gl::CombineStage* stage = stages[half];
-          if (stage == nullptr) continue;
-          const unsigned arguments = combine_arguments(stage->func);
-          const bool rgb = half == 0;
-          c.shade_alu += arguments * (rgb ? k.combine_rgb_argument_alu : k.combine_alpha_argument_alu);
-          c.shade_alu += rgb ? (dot3 ? k.combine_dot3_alu : k.combine_rgb_function_alu) : k.combine_alpha_function_alu;
-          c.shade_mul += rgb ? (dot3 ? k.combine_dot3_mul : k.combine_rgb_function_mul) : k.combine_alpha_function_mul;
-        }
-        break;
-      }
+    const gl::TexEnvMode env = unit.env;
+    if (env == gl::TexEnvMode::combine) {
+      ++c.combines;
+      c.combine_arguments += combine_arguments(unit.combine_rgb.func);
+      if (unit.combine_rgb.func != gl::CombineFunc::dot3_rgba)
+        c.combine_arguments += combine_arguments(unit.combine_alpha.func);
+    } else if (env != gl::TexEnvMode::replace) {
+      ++c.environments;
     }
   }
-  if (c.fog) {
-    switch (state.fog_mode) {
-      case gl::FogMode::linear:
-        c.shade_alu += k.fog_linear_alu;
-        c.shade_mul += k.fog_linear_mul;
-        break;
-      case gl::FogMode::exp:
-        c.shade_alu += k.fog_exp_alu;
-        c.shade_mul += k.fog_exp_mul;
-        c.shade_load_use += k.fog_exp_load_use;
-        break;
-      case gl::FogMode::exp2:
-        c.shade_alu += k.fog_exp2_alu;
-        c.shade_mul += k.fog_exp2_mul;
-        c.shade_load_use += k.fog_exp2_load_use;
-        break;
-    }
-    c.shade_alu += k.fog_blend_alu;
-    c.shade_mul += k.fog_blend_mul;
-  }
-  if (c.color_write) {
-    c.write_alu += format == PixelFormat::rgb565 ? k.pack_rgb565_alu : k.pack_rgba8888_alu;
-    if (format == PixelFormat::rgb565) c.write_mul += k.pack_rgb565_mul;
-    if (c.needs_destination) c.write_alu += format == PixelFormat::rgb565 ? k.unpack_rgb565_alu : k.unpack_rgba8888_alu;
-    if (c.blend) {
-      for (BlendFactor f : {state.blend_src, state.blend_dst}) {
-        if (f != BlendFactor::zero && f != BlendFactor::one) {
-          c.write_alu += k.blend_factor_alu;
-          c.write_mul += k.blend_factor_mul;
-        }
-      }
-      c.write_alu += k.blend_combine_alu;
-    }
-    if (c.logic_op) c.write_alu += k.logic_op_alu;
-    if (c.color_write_mask != all_color) c.write_alu += k.color_mask_alu;
-  }
-  if (c.depth_write) c.write_alu += k.depth_write_alu;
-  c.span_alu = k.span_alu + uint64_t(c.attributes) * k.span_attribute_alu;
-  c.span_mul = k.span_mul + uint64_t(c.attributes) * k.span_attribute_mul;
+  c.reads_destination = c.color_write && (c.needs_destination || c.blend || c.logic_op);
 
   for (size_t i = 0; i < count; ++i) draw_triangle(c, triangles[i]);
 }
@@ -581,14 +505,11 @@ struct EdgeWalk {
 }  // namespace
 
 void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri) {
-  const InstructionCounts& k = m_counts;
   const gl::RasterState& state = *c.state;
   for (const gl::ScreenVertex& v : tri.v) {
     if (v.x > MAX_COORDINATE || v.x < -MAX_COORDINATE || v.y > MAX_COORDINATE || v.y < -MAX_COORDINATE) return;
   }
-  m_memory.compute(Op::alu, k.triangle_alu);
-  m_memory.compute(Op::mul, k.triangle_mul);
-  m_memory.compute(Op::branch, k.triangle_branch);
+  m_memory.charge(HostCost::arm_triangle);
 
   const int32_t x[3] = {tri.v[0].x, tri.v[1].x, tri.v[2].x};
   const int32_t y[3] = {tri.v[0].y, tri.v[1].y, tri.v[2].y};
@@ -609,8 +530,8 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   const int32_t last_row = std::max<int32_t>(j_bottom, c.clip_y0);
   if (first_row < last_row) return;
 
-  m_memory.compute(Op::call, k.triangle_divisions);
-  m_memory.compute(Op::alu, uint64_t(k.triangle_divisions) * k.division_alu);
+  m_memory.charge(HostCost::arm_triangle_setup);
+  m_memory.charge(HostCost::arm_triangle_attribute, c.attributes);
 
   TriangleSetup s;
   {
@@ -734,13 +655,9 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
       if (s.lod[i]) {
         s.lod_gradients[i].setup(s.sq[i], s.tq[i], s.q, basis);
         s.linear_filter[i] = false;  // chosen per pixel, charged per pixel
-        if (!s.perspective) {
-          m_memory.compute(Op::alu, k.lod_alu);
-          m_memory.compute(Op::mul, k.lod_mul);
-        }
+        if (!s.perspective) m_memory.charge(HostCost::arm_lod);
       }
-      m_memory.compute(Op::fconv, 3ull * k.texture_vertex_fconv);
-      m_memory.compute(Op::fmul, 3ull * k.texture_vertex_fmul);
+      m_memory.charge(HostCost::arm_triangle_texture_unit);
     }
     if (c.fog) {
       // The fog argument (16.16) of each vertex, interpolated as a/w and
@@ -753,12 +670,8 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
         fog[v] = int32_t((int64_t{a} * q[v]) >> Q_FRACTION_BITS);
       }
       s.fog.setup(fog, basis);
-      m_memory.compute(Op::fmul, 3ull * k.fog_vertex_fmul);
-      m_memory.compute(Op::fadd, 3ull * k.fog_vertex_fadd);
-      m_memory.compute(Op::fconv, 3ull * k.fog_vertex_fconv);
+      m_memory.charge(HostCost::arm_triangle_fog);
     }
-    m_memory.compute(Op::alu, uint64_t(c.attributes) * k.attribute_setup_alu);
-    m_memory.compute(Op::mul, uint64_t(c.attributes) * k.attribute_setup_mul);
   }
 
   // Is the middle vertex left of the long edge (top -> bottom)?
@@ -784,8 +697,7 @@ void ArmRasterizer::draw_triangle(const DrawContext& c, const gl::Triangle& tri)
   // Upper part: y_mid < yc <= y_top; lower part: y_bottom < yc <= y_mid.
   walk(first_row, std::max<int32_t>(j_mid + 1, last_row), t, mid);
   walk(std::min<int32_t>(j_mid, first_row), last_row, mid, b);
-  m_memory.compute(Op::alu, rows * k.row_alu);
-  m_memory.compute(Op::branch, rows * k.row_branch);
+  m_memory.charge(HostCost::arm_row, rows);
 }
 
 void ArmRasterizer::fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]) {
@@ -815,7 +727,6 @@ void ArmRasterizer::fetch_texel(const gl::Texture& tex, unsigned level, int u8, 
 }
 
 void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int j, int x_first, int x_last) {
-  const InstructionCounts& k = m_counts;
   const gl::RasterState& state = *c.state;
   const int n = x_last - x_first + 1;
   const uint32_t row_offset = uint32_t(int(m_buffers.height) - 1 - j) * m_buffers.width;
@@ -904,8 +815,9 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
 
   // Per span: at most 512 pixels, so 32-bit counts.
   uint32_t shaded = 0, texel_calls = 0, passed = 0, color_divisions = 0, fog_divisions = 0;
-  // Instructions of the level of detail and of the texels beyond one nearest texel, where they vary per pixel.
-  uint32_t lod_alu = 0, lod_mul = 0;
+  // Where the level of detail chooses per pixel: its computations, the
+  // texels it samples, the blends of two levels.
+  uint32_t lods = 0, lod_nearest = 0, lod_linear = 0, mipmap_blends = 0;
   // lambda (16.16) at a pixel from unit i's stepped (s q), (t q), q and its
   // planes' gradients: du/dx = (gx(sq) q - sq gx(q)) / q^2 2^(30 - F) in
   // level 0's texels, the gradients g 2^-e (LodGradients). Each product is
@@ -1054,11 +966,9 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
             };
             const renderers::LodChoice choice = renderers::sample_texture_lod_q16(
                 unit.tex, int(u8), int(v8), pixel_lod(u, sq[u], tq[u], q), filter_level, texel);
-            if (s.perspective) lod_alu += k.lod_alu, lod_mul += k.lod_mul;
-            const uint64_t sample_alu = choice.linear ? k.texel_linear_alu : k.texel_nearest_alu;
-            const uint64_t sample_mul = choice.linear ? k.texel_linear_mul : k.texel_nearest_mul;
-            lod_alu += (sample_alu - k.texel_nearest_alu) + (choice.count - 1) * (sample_alu + k.mipmap_blend_alu);
-            lod_mul += (sample_mul - k.texel_nearest_mul) + (choice.count - 1) * (sample_mul + k.mipmap_blend_mul);
+            if (s.perspective) ++lods;
+            (choice.linear ? lod_linear : lod_nearest) += choice.count;
+            mipmap_blends += choice.count - 1;
           } else {
             fetch_texel(unit.tex, 0, int(u8), int(v8), s.linear_filter[u], texel);
           }
@@ -1143,34 +1053,36 @@ void ArmRasterizer::shade_span(const DrawContext& c, const TriangleSetup& s, int
     }
   }
 
-  uint64_t shade_alu = c.shade_alu, shade_mul = c.shade_mul;
+  // The span's host time (sw_driver/costs): per span, per pixel walked,
+  // per pixel shaded and its texels, divisions and environments, per pixel
+  // written.
+  uint32_t nearest_units = 0, linear_units = 0;
   for (unsigned u = 0; u < c.unit_count; ++u) {
-    if (s.linear_filter[u]) {
-      shade_alu += k.texel_linear_alu - k.texel_nearest_alu;
-      shade_mul += k.texel_linear_mul - k.texel_nearest_mul;
-    }
+    if (!s.lod[u]) ++(s.linear_filter[u] ? linear_units : nearest_units);
   }
-  uint64_t step_alu = 0;
-  if (c.texture) {
-    const uint64_t further_units = c.unit_count - 1;
-    if (s.perspective) {
-      shade_alu += k.perspective_alu;
-      shade_mul += k.perspective_mul + further_units * k.perspective_unit_mul;
-    }
-    step_alu = (s.perspective ? k.texcoord_step_alu_perspective : k.texcoord_step_alu_affine) +
-               further_units * k.texcoord_step_alu_unit;
-  }
-  if (s.perspective_color) shade_mul += 4;  // c/w times the pixel's 1/q
-  if (c.fog && s.perspective) shade_mul += k.fog_perspective_mul;
-  if (lod_alu != 0) m_memory.compute(Op::alu, lod_alu);
-  if (lod_mul != 0) m_memory.compute(Op::mul, lod_mul);
-  const uint64_t divisions = texel_calls + color_divisions + fog_divisions;
-  m_memory.compute(Op::alu, c.span_alu + uint64_t(n) * (c.pixel_alu + step_alu) + shaded * shade_alu +
-                                passed * c.write_alu + divisions * k.division_alu);
-  m_memory.compute(Op::mul, c.span_mul + shaded * shade_mul + passed * c.write_mul);
-  m_memory.compute(Op::branch, k.span_branch + uint64_t(n) * c.pixel_branch);
-  if (c.shade_load_use != 0) m_memory.compute(Op::load_use, shaded * c.shade_load_use);
-  if (divisions != 0) m_memory.compute(Op::call, divisions);
+  m_memory.charge(HostCost::arm_span);
+  m_memory.charge(HostCost::arm_span_attribute, c.attributes);
+  m_memory.charge(HostCost::arm_pixel, uint64_t(n));
+  if (c.depth_test) m_memory.charge(HostCost::arm_pixel_depth, uint64_t(n));
+  if (c.stencil_test) m_memory.charge(HostCost::arm_pixel_stencil, uint64_t(n));
+  if (c.gouraud) m_memory.charge(HostCost::arm_pixel_color, uint64_t(n));
+  if (c.texture) m_memory.charge(HostCost::arm_pixel_texcoord, uint64_t(n) * c.unit_count);
+  if (c.fog) m_memory.charge(HostCost::arm_pixel_fog, uint64_t(n));
+  m_memory.charge(HostCost::arm_shaded_pixel, shaded);
+  m_memory.charge(HostCost::arm_texel_nearest, uint64_t(shaded) * nearest_units + lod_nearest);
+  m_memory.charge(HostCost::arm_texel_linear, uint64_t(shaded) * linear_units + lod_linear);
+  m_memory.charge(HostCost::arm_mipmap_blend, mipmap_blends);
+  m_memory.charge(HostCost::arm_lod, lods);
+  m_memory.charge(HostCost::arm_division, uint64_t(texel_calls) + color_divisions + fog_divisions);
+  if (s.perspective_color) m_memory.charge(HostCost::arm_perspective_color, shaded);
+  m_memory.charge(HostCost::arm_texture_environment, uint64_t(shaded) * c.environments);
+  m_memory.charge(HostCost::arm_texture_combine, uint64_t(shaded) * c.combines);
+  m_memory.charge(HostCost::arm_texture_combine_argument, uint64_t(shaded) * c.combine_arguments);
+  if (c.fog) m_memory.charge(HostCost::arm_fog, shaded);
+  if (c.alpha_test) m_memory.charge(HostCost::arm_alpha_test, shaded);
+  if (c.color_write) m_memory.charge(HostCost::arm_color_write, passed);
+  if (c.reads_destination) m_memory.charge(HostCost::arm_color_read_back, passed);
+  if (c.depth_write) m_memory.charge(HostCost::arm_depth_write, passed);
 }
 
 void ArmRasterizer::write_color_run(const DrawContext& c, uint32_t row_offset, int x_begin, int begin, int end) {
@@ -1222,7 +1134,7 @@ void ArmRasterizer::read_pixels(int x, int y, int width, int height, uint8_t* rg
       out[4 * i + 2] = uint8_t(v >> 16);
       out[4 * i + 3] = uint8_t(v >> 24);
     }
-    m_memory.compute(Op::alu, uint64_t(x1 - x0) * m_counts.read_pixel_alu);
+    m_memory.charge(HostCost::arm_read_pixel, uint64_t(x1 - x0));
   }
 }
 

@@ -3,8 +3,9 @@
 // edge and attribute stepping). Plain C++: it reaches its buffers and
 // textures only through PixelMemory, which either counts (native) or charges
 // (host model) the accesses it declares, and it charges its instructions with
-// PixelMemory::compute using the per-pixel and per-span counts listed in
-// README.md.
+// PixelMemory::charge: units of the rows of the host's measured cost table
+// (sw_driver/costs), per triangle, row, span, pixel walked, pixel shaded,
+// texel sampled and pixel written.
 //
 // Buffers. Colour is RGB565 (uint16, R in bits 15..11, little endian) or
 // RGBA8888 (bytes R, G, B, A at increasing addresses); depth is uint16,
@@ -87,73 +88,6 @@
 
 namespace tessera::arm {
 
-// ARM922T instructions the core charges, by where they are executed. The
-// defaults are the counts of a hand-scheduled ARM implementation, justified
-// in README.md; every count is in instructions of its Op class (a taken
-// branch is one Op::branch, a software division one Op::call plus
-// `division_alu` Op::alu).
-struct InstructionCounts {
-  // Per triangle: sorting, area, edge set-up, the gradient divisions.
-  unsigned triangle_alu = 70, triangle_mul = 10, triangle_branch = 8, triangle_divisions = 4;
-  unsigned division_alu = 20;
-  unsigned attribute_setup_alu = 8, attribute_setup_mul = 4;   // per interpolated attribute
-  unsigned texture_vertex_fconv = 3, texture_vertex_fmul = 4;  // per vertex, soft float -> fixed
-  // Per scanline walked: two edge DDAs, the span clip, the loop.
-  unsigned row_alu = 12, row_branch = 1;
-  // Per non-empty span: buffer addresses, loop entry, and per attribute the
-  // start value and the range check.
-  unsigned span_alu = 8, span_mul = 1, span_branch = 2;
-  unsigned span_attribute_alu = 4, span_attribute_mul = 3;
-  // Per pixel of a span, whether it is drawn or not.
-  unsigned pixel_alu = 1, pixel_branch = 1;  // SUBS, BNE
-  unsigned depth_step_test_alu = 3, stencil_test_alu = 4, stencil_update_alu = 3;
-  unsigned color_step_alu = 4;  // Gouraud only
-  unsigned texcoord_step_alu_perspective = 6, texcoord_step_alu_affine = 4;
-  unsigned texcoord_step_alu_unit = 2;  // each texture unit after the first: its s/w and t/w
-  // Per shaded pixel.
-  unsigned perspective_alu = 4, perspective_mul = 2;  // plus one division
-  unsigned perspective_unit_mul = 2;                  // each further unit: s/w, t/w times the reciprocal
-  unsigned texel_nearest_alu = 8, texel_nearest_mul = 1;
-  unsigned texel_linear_alu = 30, texel_linear_mul = 9;
-  // The level of detail: four derivatives of u/q and v/q (two products and a
-  // difference each, over q squared), two sums of squares, the larger, and
-  // log2 by CLZ and a 16-entry table of the mantissa; per pixel where 1/w
-  // varies, once per triangle where it does not. A second mipmap level:
-  // its texel fetch, plus the blend of the two colours.
-  unsigned lod_alu = 30, lod_mul = 14, mipmap_blend_alu = 12, mipmap_blend_mul = 4;
-  unsigned modulate_alu = 12, modulate_mul = 4, decal_alu = 12, decal_mul = 3;
-  unsigned blend_env_alu = 16, blend_env_mul = 7, add_env_alu = 14, add_env_mul = 1;
-  // GL_COMBINE, per unit: per argument (source select and operand), then
-  // the function of the colour (three channels) and of the alpha half.
-  unsigned combine_rgb_argument_alu = 4, combine_alpha_argument_alu = 2;
-  unsigned combine_rgb_function_alu = 18, combine_rgb_function_mul = 6;
-  unsigned combine_alpha_function_alu = 6, combine_alpha_function_mul = 2;
-  unsigned combine_dot3_alu = 16, combine_dot3_mul = 3;
-  unsigned alpha_test_alu = 2;
-  // Fog (README.md, "Fog"): per vertex the fog argument from soft float, per
-  // pixel its step, per shaded pixel its perspective product, the factor of
-  // the mode and the blend of R, G, B with the fog colour.
-  unsigned fog_vertex_fmul = 1, fog_vertex_fadd = 1, fog_vertex_fconv = 1;
-  unsigned fog_step_alu = 1;
-  unsigned fog_perspective_mul = 1;
-  unsigned fog_linear_alu = 4, fog_linear_mul = 1;
-  unsigned fog_exp_alu = 7, fog_exp_mul = 1, fog_exp_load_use = 1;
-  unsigned fog_exp2_alu = 9, fog_exp2_mul = 2, fog_exp2_load_use = 1;
-  unsigned fog_blend_alu = 13, fog_blend_mul = 6;
-  // Per pixel written.
-  unsigned depth_write_alu = 1;
-  // Packing to RGB565 rounds each channel to nearest (common/pixel_format.h):
-  // one multiply-accumulate and one shift per channel, then two ORRs.
-  unsigned pack_rgb565_alu = 5, pack_rgb565_mul = 3, pack_rgba8888_alu = 3;
-  unsigned unpack_rgb565_alu = 6, unpack_rgba8888_alu = 3;
-  unsigned blend_factor_alu = 12, blend_factor_mul = 4, blend_combine_alu = 8;  // per factor other than ZERO/ONE
-  unsigned logic_op_alu = 2, color_mask_alu = 3;
-  // Clears and read-back.
-  unsigned clear_block_alu = 1, clear_block_branch = 1;  // per 32 bytes (STM of 8 registers)
-  unsigned clear_row_alu = 4, clear_masked_pixel_alu = 4;
-  unsigned read_pixel_alu = 6;
-};
-
 // Where the buffers are and what they look like.
 struct FrameBuffers {
   unsigned width = 0, height = 0;
@@ -165,10 +99,9 @@ struct FrameBuffers {
 
 class ArmRasterizer {
  public:
-  ArmRasterizer(PixelMemory& memory, const FrameBuffers& buffers, const InstructionCounts& counts = {});
+  ArmRasterizer(PixelMemory& memory, const FrameBuffers& buffers);
 
   const FrameBuffers& buffers() const { return m_buffers; }
-  const InstructionCounts& instruction_counts() const { return m_counts; }
   unsigned width() const { return m_buffers.width; }
   unsigned height() const { return m_buffers.height; }
   // Double buffering: the caller moves drawing to the other colour buffer.
@@ -183,7 +116,7 @@ class ArmRasterizer {
 
  private:
   struct TriangleSetup;  // per-triangle attribute planes (arm_rasterizer.cpp)
-  struct DrawContext;    // per-draw decisions and instruction counts (arm_rasterizer.cpp)
+  struct DrawContext;    // per-draw decisions and what they cost the host (arm_rasterizer.cpp)
 
   void draw_triangle(const DrawContext& context, const gl::Triangle& triangle);
   void shade_span(const DrawContext& context, const TriangleSetup& setup, int j, int x_first, int x_last);
@@ -193,7 +126,6 @@ class ArmRasterizer {
 
   PixelMemory& m_memory;
   FrameBuffers m_buffers;
-  InstructionCounts m_counts;
   // Per-span scratch, sized to the width once so that nothing is allocated
   // while drawing.
   std::vector<uint16_t> m_depth_old, m_depth_new;

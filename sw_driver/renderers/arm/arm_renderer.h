@@ -27,7 +27,7 @@ class HostPixelMemory : public PixelMemory {
   uint8_t* store(uint32_t address, unsigned size, unsigned count) override {
     return m_host.store_span(address, size, count);
   }
-  void compute(Op op, uint64_t count) override { m_host.compute(op, count); }
+  void charge(HostCost cost, uint64_t units) override { costs::charge(m_host, cost, units); }
 
  private:
   HostApi& m_host;

@@ -35,9 +35,9 @@ uint8_t* NativeMemory::store(uint32_t address, unsigned size, unsigned count) {
   return checked(address, uint64_t(size) * count);
 }
 
-void NativeMemory::compute(Op op, uint64_t count) {
-  const auto index = static_cast<size_t>(op);
-  if (index < m_counters.ops.size()) m_counters.ops[index] += count;
+void NativeMemory::charge(HostCost cost, uint64_t units) {
+  const auto index = static_cast<size_t>(cost);
+  if (index < m_counters.units.size()) m_counters.units[index] += units;
 }
 
 uint8_t* NativeMemory::at(uint32_t address, size_t bytes) {

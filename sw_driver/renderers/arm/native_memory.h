@@ -1,6 +1,6 @@
 // A PixelMemory over a plain byte array: the arm core running natively, with
 // no time. It charges nothing but counts what the core declares (calls,
-// elements and bytes loaded and stored, operations by class), so tests and
+// elements and bytes loaded and stored, units of each row of the cost table), so tests and
 // tools can see the work a frame takes without the host model.
 #pragma once
 
@@ -18,7 +18,7 @@ class NativeMemory : public PixelMemory {
   struct Counters {
     uint64_t load_calls = 0, load_elements = 0, load_bytes = 0;
     uint64_t store_calls = 0, store_elements = 0, store_bytes = 0;
-    std::array<uint64_t, static_cast<size_t>(Op::count_)> ops{};
+    std::array<uint64_t, costs::HOST_COST_COUNT> units{};  // per row of the cost table
   };
 
   // An address space of `size` bytes starting at address `base`, zeroed.
@@ -27,7 +27,7 @@ class NativeMemory : public PixelMemory {
   // Throw std::out_of_range when the declared access leaves the address space.
   const uint8_t* load(uint32_t address, unsigned size, unsigned count) override;
   uint8_t* store(uint32_t address, unsigned size, unsigned count) override;
-  void compute(Op op, uint64_t count) override;
+  void charge(HostCost cost, uint64_t units) override;
 
   // Direct access for set-up and inspection: not counted.
   uint8_t* at(uint32_t address, size_t bytes = 1);
@@ -35,7 +35,7 @@ class NativeMemory : public PixelMemory {
   size_t size() const { return m_bytes.size(); }
 
   const Counters& counters() const { return m_counters; }
-  uint64_t ops(Op op) const { return m_counters.ops[static_cast<size_t>(op)]; }
+  uint64_t units(HostCost cost) const { return m_counters.units[static_cast<size_t>(cost)]; }
   void reset_counters() { m_counters = {}; }
 
  private:

@@ -8,9 +8,12 @@
 
 #include <cstdint>
 
+#include "costs/host_cost.h"
 #include "host/host_api.h"
 
 namespace tessera::arm {
+
+using costs::HostCost;
 
 class PixelMemory {
  public:
@@ -22,8 +25,8 @@ class PixelMemory {
   // `count` stores of `size` bytes each, consecutive from `address`;
   // returns where the caller writes them (valid until the next call).
   virtual uint8_t* store(uint32_t address, unsigned size, unsigned count) = 0;
-  // Charges `count` operations of class `op` (cost model of the host).
-  virtual void compute(Op op, uint64_t count) = 0;
+  // Charges `units` of a row of the host's measured cost table.
+  virtual void charge(HostCost cost, uint64_t units = 1) = 0;
 };
 
 }  // namespace tessera::arm

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "costs/host_cost.h"
 #include "gl/runtime.h"
 #include "raster/datapath/texture_combiner.h"
 #include "raster/raster_regs.h"
@@ -25,14 +26,7 @@ using raster::StateBlock;
 
 namespace {
 
-// The host charges for the binning loop, per unit of work, in ARM922T
-// operation classes (the stores of the lists are charged by write_words).
-constexpr uint64_t TRIANGLE_ALU = 24;  // bounding box (6 min/max), tile range, packing x/y/z/rgba
-constexpr uint64_t TRIANGLE_FMUL = 2;  // s/w, t/w
-constexpr uint64_t FOG_VERTEX_FMUL = 1, FOG_VERTEX_FADD = 1, FOG_VERTEX_FCONV = 1;  // c * scale + bias, to 16.16
-constexpr uint64_t TILE_ENTRY_ALU = 4;      // append two words to a tile's list, bump its count
-constexpr uint64_t STATE_COMPARE_ALU = 12;  // compare a state block with the last one
-constexpr unsigned STM_WORDS = 8;           // STM with eight registers
+constexpr unsigned STM_WORDS = 8;  // STM with eight registers
 
 // A StateBlock from the GL state, in command_format.h's encoding: the state
 // already holds the hardware codes (common/fixed_function.def). The
@@ -231,7 +225,7 @@ uint32_t RasterRenderer::reg(uint32_t offset) const {
 }
 
 uint32_t RasterRenderer::add_state(const StateRecord& state) {
-  m_host.compute(Op::alu, STATE_COMPARE_ALU);
+  costs::charge(m_host, costs::HostCost::raster_state_compare);
   if (m_states.empty() || !same(m_states.back().block, state.block) ||
       std::memcmp(&m_states.back().fog, &state.fog, sizeof state.fog) != 0 ||
       std::memcmp(&m_states.back().units_header, &state.units_header, sizeof state.units_header) != 0 ||
@@ -274,8 +268,7 @@ void RasterRenderer::clear(const gl::ClearRequest& request) {
   m_binner.add(state, tiles);
   m_commands.push_back({Opcode::clear, static_cast<uint32_t>(m_clears.size())});
   m_clears.push_back(clear);
-  m_host.compute(Op::alu, 16);
-  m_host.compute(Op::call);
+  costs::charge(m_host, costs::HostCost::raster_clear);
 }
 
 void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
@@ -315,6 +308,7 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
   // Antialiased edges reach into the pixels next to the box; one pixel of
   // margin covers them and costs nothing for the tiles.
   constexpr int MARGIN = 1;
+  uint64_t tiles_binned = 0;
   for (size_t i = 0; i < count; ++i) {
     const gl::Triangle& t = triangles[i];
     TriangleWords record{};
@@ -331,20 +325,18 @@ void RasterRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     }
     const int32_t min_x = std::min({t.v[0].x, t.v[1].x, t.v[2].x}), max_x = std::max({t.v[0].x, t.v[1].x, t.v[2].x});
     const int32_t min_y = std::min({t.v[0].y, t.v[1].y, t.v[2].y}), max_y = std::max({t.v[0].y, t.v[1].y, t.v[2].y});
-    m_binner.add(state_index, m_binner.tiles_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN,
-                                                       (max_x >> 4) + MARGIN, (max_y >> 4) + MARGIN));
+    const renderers::TileRange tiles = m_binner.tiles_of_pixels((min_x >> 4) - MARGIN, (min_y >> 4) - MARGIN,
+                                                                (max_x >> 4) + MARGIN, (max_y >> 4) + MARGIN);
+    m_binner.add(state_index, tiles);
+    tiles_binned += tiles.count();
     m_commands.push_back({Opcode::triangle, static_cast<uint32_t>(m_triangles.size())});
     m_triangles.push_back(record);
   }
-  m_host.compute(Op::alu, TRIANGLE_ALU * count);
-  m_host.compute(Op::fmul, TRIANGLE_FMUL * 3 * count * std::max(units, 1u));
-  if (state.fog) {
-    m_host.compute(Op::fmul, FOG_VERTEX_FMUL * 3 * count);
-    m_host.compute(Op::fadd, FOG_VERTEX_FADD * 3 * count);
-    m_host.compute(Op::fconv, FOG_VERTEX_FCONV * 3 * count);
-  }
-  m_host.compute(Op::branch, count);
-  m_host.compute(Op::call);
+  costs::charge(m_host, costs::HostCost::raster_draw);
+  costs::charge(m_host, costs::HostCost::raster_triangle, count);
+  costs::charge(m_host, costs::HostCost::raster_triangle_texture_unit, count * units);
+  if (state.fog) costs::charge(m_host, costs::HostCost::raster_triangle_fog, count);
+  costs::charge(m_host, costs::HostCost::raster_triangle_tile, tiles_binned);
 }
 
 uint32_t RasterRenderer::arena(uint32_t bytes) {
@@ -362,8 +354,7 @@ void RasterRenderer::write_block(uint32_t address, const uint32_t* words, size_t
   for (size_t done = 0; done < count; done += STM_WORDS) {
     const unsigned n = static_cast<unsigned>(std::min<size_t>(STM_WORDS, count - done));
     m_host.write_words(address + static_cast<uint32_t>(4 * done), words + done, n);
-    m_host.compute(Op::alu, 2);
-    m_host.compute(Op::branch);
+    costs::charge(m_host, costs::HostCost::raster_block_write);
   }
 }
 
@@ -426,8 +417,7 @@ void RasterRenderer::flush() {
     }
     entries += bins[tile].size();
   }
-  m_host.compute(Op::alu, TILE_ENTRY_ALU * entries);
-  m_host.compute(Op::branch, entries);
+  costs::charge(m_host, costs::HostCost::raster_tile_entry, entries);
 
   // Layout in the arena: tile table, state blocks, level tables, triangle
   // records, lists.
@@ -517,7 +507,7 @@ void RasterRenderer::read_pixels(int x, int y, int width, int height, uint8_t* r
       const uint32_t color = unpack_pixel(m_display.format(), load_pixel(m_display.format(), p));
       for (unsigned c = 0; c < 4; ++c) out[c] = static_cast<uint8_t>(color >> (8 * c));
     }
-    m_host.compute(Op::alu, uint64_t(x1 - x0) * 6);
+    costs::charge(m_host, costs::HostCost::raster_read_pixel, uint64_t(x1 - x0));
   }
 }
 

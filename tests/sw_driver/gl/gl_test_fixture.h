@@ -27,6 +27,7 @@ class VectorHost : public HostApi {
  public:
   VectorHost() : m_memory(16u << 20, 0) {}
   void compute(Op, uint64_t count) override { m_operations += count; }
+  void compute_cycles(uint64_t cycles) override { m_operations += cycles; }
   uint32_t read32(uint32_t address) override {
     if (memory_map::display_regs.contains(address)) {
       switch (address - memory_map::display_regs.base) {

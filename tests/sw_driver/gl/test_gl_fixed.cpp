@@ -11,7 +11,10 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <string>
 
+#include "../../support/cost_units.h"
 #include "gl_test_fixture.h"
 
 using tessera::test::GlApi;
@@ -318,14 +321,16 @@ TEST_F(GlApi, FailedFixedQueriesWriteNothingAndKeepTheFirstError) {
 }
 
 TEST_F(GlApi, FixedConversionsAreChargedToTheHost) {
-  uint64_t start = host.operations();
+  tessera::test::take_cost_units();
   glTranslatef(1, 2, 3);
-  const uint64_t with_float = host.operations() - start;
-  start = host.operations();
+  std::map<std::string, uint64_t> with_float = tessera::test::take_cost_units();
   glTranslatex(ONE, 2 * ONE, 3 * ONE);
-  const uint64_t with_fixed = host.operations() - start;
-  // A call, and a conversion and a multiply per value.
-  EXPECT_EQ(with_fixed, with_float + 1 + 2 * 3);
+  std::map<std::string, uint64_t> with_fixed = tessera::test::take_cost_units();
+  // A call of its own, and a conversion per value, beside the float call's charges.
+  EXPECT_EQ(with_fixed["gl_fixed_argument"], 3u);
+  EXPECT_EQ(with_fixed["gl_call"], with_float["gl_call"] + 1);
+  EXPECT_EQ(with_fixed["gl_matrix_multiply"], with_float["gl_matrix_multiply"]);
+  EXPECT_EQ(with_float["gl_fixed_argument"], 0u);
 }
 
 TEST(GlFixedWithoutContext, CallsDoNothing) {

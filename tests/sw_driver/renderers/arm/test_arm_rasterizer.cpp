@@ -1060,9 +1060,16 @@ TEST(ArmRasterizerCost, OneMemoryCallPerSpanAndBuffer) {
   EXPECT_EQ(counters.store_calls, uint64_t(2 * rows));  // depth and colour
   EXPECT_EQ(counters.load_elements, uint64_t(pixels));
   EXPECT_EQ(counters.store_bytes, uint64_t(4 * pixels));
-  const InstructionCounts& k = f.rasterizer->instruction_counts();
-  EXPECT_GE(f.memory.ops(Op::alu), uint64_t(pixels) * (k.pixel_alu + k.depth_step_test_alu + k.color_step_alu));
-  EXPECT_GE(f.memory.ops(Op::branch), uint64_t(pixels));
+  // The host is charged per row, span, pixel walked, shaded and written.
+  EXPECT_EQ(f.memory.units(HostCost::arm_triangle), 1u);
+  EXPECT_EQ(f.memory.units(HostCost::arm_span), uint64_t(rows));
+  EXPECT_EQ(f.memory.units(HostCost::arm_pixel), uint64_t(pixels));
+  EXPECT_EQ(f.memory.units(HostCost::arm_pixel_depth), uint64_t(pixels));
+  EXPECT_EQ(f.memory.units(HostCost::arm_pixel_color), uint64_t(pixels));
+  EXPECT_EQ(f.memory.units(HostCost::arm_shaded_pixel), uint64_t(pixels));  // the depth buffer was cleared far
+  EXPECT_EQ(f.memory.units(HostCost::arm_color_write), uint64_t(pixels));
+  EXPECT_EQ(f.memory.units(HostCost::arm_depth_write), uint64_t(pixels));
+  EXPECT_EQ(f.memory.units(HostCost::arm_texel_nearest) + f.memory.units(HostCost::arm_texel_linear), 0u);
 }
 
 // Mipmaps: a 32 x 32 texture whose six levels are solid colours (level k:

@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""Measures the host-compiled model's costs on the ISS and writes them to sw_driver/costs/host_costs.def.
+
+The host-compiled model (host.model=native) charges the driver's work by
+rows of one table (sw_driver/costs/host_costs.def, README.md there): each
+place in the driver names a row and counts its unit (a vertex, a polygon
+vertex mapped to the screen, a GL call). This script measures each row's
+cycles per unit on the ISS (host.model=iss: the same driver compiled for
+the ARM922T, the reference host):
+
+1. every training run (the built-in GL scenes on the arm and raster back
+   ends, TRAINING below) runs natively and on the ISS with the same
+   configuration;
+2. the native frame records give, per frame and phase of the driver
+   (application, geometry, rasterization, presenting), the units charged
+   of each row (units_<phase>_<row>) and the phase's time; the ISS's give
+   the phase's time;
+3. what the native model spends in a phase besides the table's rows
+   (memory and bus, waiting, work not yet in the table) is its phase time
+   less the rows' cycles at the table's current values; the rows' cycles
+   must make up the rest of the ISS's time: one equation per frame and
+   phase, in cycles, weighted by the ISS's phase time (relative error);
+4. the cycles per unit are the non-negative least-squares solution over
+   the phases whose every charge is a row of the table (FITTED_PHASES):
+   a phase whose native time still holds hand-counted charges is left out.
+   Of the first frame only the application phase counts: it holds the
+   scenes' set-up (their meshes, the textures they upload), which later
+   frames do not; its other phases hold the ISS program's own start-up
+   (parsing its boot information, constructing the back end's
+   configuration), which is no driver work the table models.
+
+Every row the runs exercise is measured; a row no run charges keeps its
+value and is listed. The table's `sources:` line is the hash of the
+driver's sources (sw_driver, but the table itself): `--check` recomputes
+it and fails when the sources changed since the table was measured (the
+test host_costs_fresh). Run it again after changing the driver; a second
+run converges (the split of step 3 depends on the table only through the
+rows' own cycles).
+
+    scripts/measure_host_costs.py                 # measure and rewrite the table (a few minutes)
+    scripts/measure_host_costs.py --dry-run       # print the fit, leave the table
+    scripts/measure_host_costs.py --check         # is the table current? (no runs)
+
+Needs numpy and scipy (build/venv has them). Exit status: 0, 1 when a
+run fails or the table is stale (--check), 2 for a bad command line.
+"""
+
+import argparse
+import hashlib
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+TABLE = ROOT / "sw_driver" / "costs" / "host_costs.def"
+OBJ = ROOT / "tests" / "sw_driver" / "scenes" / "data" / "cube.obj"
+PHASES = ["application", "geometry", "rasterization", "presenting"]
+# The training runs: (scene, back end). The GL front end's rows (the
+# geometry phase) are the same code on every back end.
+TRAINING_SCENES = ["aapoly", "clip_offset", "cubes", "fixed_point", "fog_row", "fullscreen_rect", "lights_two_side",
+                   "mipmap_floor", "multitexture", "obj_viewer", "points_lines", "teapot", "texture_formats",
+                   "textured_quad", "tile_grid", "triangle"]
+TRAINING = [(scene, backend) for backend in ("arm", "raster") for scene in TRAINING_SCENES]
+# The phases whose every native charge is a row of the table, per back end.
+FITTED_PHASES = {"arm": ["application", "geometry", "rasterization", "presenting"], "raster": ["application", "geometry", "rasterization", "presenting"]}
+FRAMES = 3
+ROW = re.compile(r'^HOST_COST\((\w+), ([0-9.eE+-]+), (".*")\)$')
+SOURCE_SUFFIXES = {".c", ".cpp", ".h", ".hpp", ".S", ".s", ".def", ".inc", ".txt"}
+
+
+def sources_hash():
+    """The hash of the driver's sources: every source file under sw_driver but the table."""
+    digest = hashlib.sha256()
+    folder = ROOT / "sw_driver"
+    for path in sorted(p for p in folder.rglob("*") if p.is_file() and p.suffix in SOURCE_SUFFIXES):
+        if path == TABLE:
+            continue
+        digest.update(path.relative_to(ROOT).as_posix().encode() + b"\0")
+        digest.update(path.read_bytes() + b"\0")
+    return digest.hexdigest()[:16]
+
+
+def read_table():
+    lines = TABLE.read_text().splitlines()
+    rows = {}
+    for line in lines:
+        match = ROW.match(line)
+        if match:
+            rows[match.group(1)] = float(match.group(2))
+    recorded = next((line.split(":", 1)[1].strip() for line in lines if line.startswith("// sources:")), None)
+    return lines, rows, recorded
+
+
+def write_table(lines, cycles, digest):
+    out = []
+    for line in lines:
+        match = ROW.match(line)
+        if match and match.group(1) in cycles:
+            line = f"HOST_COST({match.group(1)}, {cycles[match.group(1)]:.6g}, {match.group(3)})"
+        elif line.startswith("// sources:"):
+            line = f"// sources: {digest}"
+        out.append(line)
+    TABLE.write_text("\n".join(out) + "\n")
+
+
+def run(soc_sim, out, scene, backend, model):
+    folder = out / f"{scene}_{backend}_{model}"
+    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(FRAMES), "--no-frames", "--quiet",
+               "--force", "--out", str(folder), "--set", f"host.model={model}"]
+    if scene == "obj_viewer":
+        command += ["--", str(OBJ)]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
+    stats = json.loads((folder / "stats.json").read_text())["stats"]
+    return [frame.get("driver", {}) for frame in stats["frames"]]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"))
+    parser.add_argument("--out", default="out/host_costs", help="folder for the runs' statistics")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--clock-hz", type=float, default=192e6, help="the host's clock (host.clock_hz)")
+    parser.add_argument("--dry-run", action="store_true", help="print the fit, leave the table as it is")
+    parser.add_argument("--check", action="store_true", help="fail when the table is stale (no runs)")
+    args = parser.parse_args()
+
+    lines, table, recorded = read_table()
+    if args.check:
+        digest = sources_hash()
+        if recorded != digest:
+            print(f"measure_host_costs: {TABLE.relative_to(ROOT)} was measured for sources {recorded}, the driver's "
+                  f"sources are now {digest}: run scripts/measure_host_costs.py to measure it again", file=sys.stderr)
+            return 1
+        print(f"measure_host_costs: the table is current (sources {digest})")
+        return 0
+    if not os.access(args.soc_sim, os.X_OK):
+        parser.error(f"no soc_sim at {args.soc_sim}")
+    try:
+        import numpy as np
+        from scipy.optimize import nnls
+    except ImportError:
+        parser.error("numpy and scipy are needed: run it with build/venv/bin/python")
+
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    with ThreadPoolExecutor(args.jobs) as pool:
+        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model)
+                   for scene, backend in TRAINING for model in ("native", "iss")}
+        try:
+            results = {key: future.result() for key, future in futures.items()}
+        except RuntimeError as error:
+            print(f"measure_host_costs: {error}", file=sys.stderr)
+            return 1
+
+    names = list(table)
+    index = {name: i for i, name in enumerate(names)}
+    equations, targets, labels = [], [], []
+    for scene, backend in TRAINING:
+        native, iss = results[(scene, backend, "native")], results[(scene, backend, "iss")]
+        for frame, (n, i) in enumerate(zip(native, iss)):
+            for phase in FITTED_PHASES[backend]:
+                if frame == 0 and phase != "application":
+                    continue  # the start-up (STARTUP_PHASES)
+                iss_cycles = i.get(f"host_{phase}_ns", 0.0) * 1e-9 * args.clock_hz
+                native_cycles = n.get(f"host_{phase}_ns", 0.0) * 1e-9 * args.clock_hz
+                units = [0.0] * len(names)
+                for key, value in n.items():
+                    prefix = f"units_{phase}_"
+                    if key.startswith(prefix) and key[len(prefix):] in index:
+                        units[index[key[len(prefix):]]] = value
+                if iss_cycles <= 0 or not any(units):
+                    continue
+                charged = sum(u * table[name] for u, name in zip(units, names))
+                other = native_cycles - charged
+                equations.append([u / iss_cycles for u in units])
+                targets.append((iss_cycles - other) / iss_cycles)
+                labels.append(f"{scene}/{backend} frame {frame} {phase}")
+    if not equations:
+        print("measure_host_costs: no run charged a row in a fitted phase", file=sys.stderr)
+        return 1
+    a = np.array(equations)
+    b = np.array(targets)
+    used = np.flatnonzero(a.any(axis=0))
+    solution, _ = nnls(a[:, used], b)
+    fitted = dict(table)
+    for column, value in zip(used, solution):
+        fitted[names[column]] = float(value)
+    residual = a[:, used] @ solution - b
+    print(f"{len(equations)} phase-frames, {len(used)} rows measured; relative error of the fitted phases: "
+          f"largest {np.max(np.abs(residual)) * 100:.1f}%, rms {np.sqrt(np.mean(residual ** 2)) * 100:.1f}%")
+    for k in np.argsort(-np.abs(residual))[:5]:
+        print(f"  {labels[k]}: {residual[k] * 100:+.1f}%")
+    for name in names:
+        mark = "" if index[name] in used else "   (no run charges it: kept)"
+        print(f"  {name:28} {table[name]:10.4g} -> {fitted[name]:10.4g}{mark}")
+    if not args.dry_run:
+        write_table(lines, {names[c]: fitted[names[c]] for c in used}, sources_hash())
+        print(f"wrote {TABLE.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,71 @@
+// The host-compiled model's costs, measured on the ISS (README.md): every
+// place in the driver whose host time the native model charges names a row
+// of host_costs.def and a count of that row's unit (a vertex transformed,
+// a pixel shaded, a span walked); the row's cycles per unit are what the
+// ISS spends there running the same code compiled for the ARM922T, fitted
+// by scripts/measure_host_costs.py. On the ISS itself a charge is nothing:
+// the instructions take the time.
+//
+// Natively the meter also counts the units charged per bucket (the GL
+// driver's phases), which the frame records carry as units_<bucket>_<row>,
+// so that the script can fit the rows to the ISS's phase times.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/host_api.h"
+
+namespace tessera::costs {
+
+enum class HostCost : uint16_t {
+#define HOST_COST(name, cycles, unit) name,
+#include "costs/host_costs.def"
+#undef HOST_COST
+  count_
+};
+
+inline constexpr size_t HOST_COST_COUNT = static_cast<size_t>(HostCost::count_);
+
+struct HostCostRow {
+  const char* name;
+  double cycles;  // per unit, measured on the ISS
+  const char* unit;
+};
+
+const HostCostRow& host_cost_row(HostCost cost);
+// The row named `name`, if the table has one.
+std::optional<HostCost> find_host_cost(const std::string& name);
+
+// Buckets the meter counts units in (the GL phases use 0..3).
+inline constexpr unsigned COST_BUCKETS = 4;
+
+#if defined(TESSERA_HOST_ISS)
+
+inline void charge(HostApi& /*host*/, HostCost /*cost*/, uint64_t /*units*/ = 1) {}
+inline void set_cost_bucket(unsigned /*bucket*/) {}
+inline void reset_cost_meter() {}
+inline std::vector<std::pair<std::string, double>> take_cost_units(const char* const* /*bucket_names*/) {
+  return {};
+}
+
+#else
+
+// Charges `units` of `cost` to the host: the row's cycles times units, in
+// whole cycles (the fractions carry over to the next charge).
+void charge(HostApi& host, HostCost cost, uint64_t units = 1);
+// Counts later charges in `bucket` (< COST_BUCKETS).
+void set_cost_bucket(unsigned bucket);
+// Forgets the counts and the carried fraction (a new program starts).
+void reset_cost_meter();
+// The units charged since the last call, per bucket and row, as
+// units_<bucket name>_<row name> (rows with none are left out).
+std::vector<std::pair<std::string, double>> take_cost_units(const char* const* bucket_names);
+
+#endif
+
+}  // namespace tessera::costs

@@ -1,0 +1,24 @@
+// The units of each row of the host's measured cost table
+// (sw_driver/costs) the native driver charged since the last call, summed
+// over the meter's buckets: what a test asserts the driver charges, without
+// depending on the rows' measured cycles.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "costs/host_cost.h"
+
+namespace tessera::test {
+
+inline std::map<std::string, uint64_t> take_cost_units() {
+  static const char* const BUCKETS[costs::COST_BUCKETS] = {"a", "b", "c", "d"};
+  std::map<std::string, uint64_t> units;
+  for (const auto& [name, value] : costs::take_cost_units(BUCKETS)) {
+    units[name.substr(name.find('_', 6) + 1)] += static_cast<uint64_t>(value);  // units_<bucket>_<row>
+  }
+  return units;
+}
+
+}  // namespace tessera::test
