@@ -9,9 +9,13 @@ driver (the frame records' host_<phase>_ns figures: geometry,
 rasterization, presenting, the application's own code), for the frames
 after the first (the first holds the start-up: the ISS program parses its
 boot information, the scenes build their meshes). The ISS is the reference:
-the last columns are the host-compiled model's error against it.
+the last columns are the host-compiled model's error against it. For the
+array back ends (ap-tile, ap-pixel) a second table gives their split of
+the host's time (the frame records' host_compute_ns, host_write_ns,
+host_read_ns, host_wait_ns, host_frame_out_ns), checked with --check like
+the phases.
 
-    scripts/compare_host_models.py                     # every scene, arm and raster, 3 frames
+    scripts/compare_host_models.py                     # every scene, every back end, 3 frames
     scripts/compare_host_models.py --backend arm --scene teapot --frames 5
     scripts/compare_host_models.py --soc-sim build/default/bin/soc_sim --out out/host_models
 
@@ -31,6 +35,9 @@ from concurrent.futures import ThreadPoolExecutor
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PHASES = ["geometry", "rasterization", "presenting", "application"]
+# The array back ends' split of the host's time (renderers/common/host_time.h).
+SPLIT = ["compute", "write", "read", "wait", "frame_out"]
+ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
 OBJ = ROOT / "tests" / "sw_driver" / "scenes" / "data" / "cube.obj"
 
 
@@ -53,7 +60,7 @@ def run(soc_sim, out, scene, backend, model, frames):
     if not later:
         raise RuntimeError(f"{scene} on {backend} ({model}): fewer than 2 frames shown")
     per_frame = {"render": sum(f["render_ns"] for f in later) / len(later) / 1e6}
-    for phase in PHASES:
+    for phase in PHASES + SPLIT:
         per_frame[phase] = sum(f.get("driver", {}).get(f"host_{phase}_ns", 0.0) for f in later) / len(later) / 1e6
     return per_frame
 
@@ -61,7 +68,8 @@ def run(soc_sim, out, scene, backend, model, frames):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"))
-    parser.add_argument("--backend", action="append", help="back end (repeatable; default arm and raster)")
+    parser.add_argument("--backend", action="append",
+                        help="back end (repeatable; default arm, raster, ap-tile and ap-pixel)")
     parser.add_argument("--scene", action="append", help="scene (repeatable; default every built-in GL scene)")
     parser.add_argument("--frames", type=int, default=3, help="frames per run (>= 2; frames 1.. are averaged)")
     parser.add_argument("--out", default="out/host_models", help="folder for the runs' statistics")
@@ -78,7 +86,7 @@ def main():
         parser.error(f"no soc_sim at {args.soc_sim}")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    backends = args.backend or ["arm", "raster"]
+    backends = args.backend or ["arm", "raster", "ap-tile", "ap-pixel"]
     chosen = args.scene or scenes(args.soc_sim)
     cases = [(scene, backend) for backend in backends for scene in chosen]
     with ThreadPoolExecutor(args.jobs) as pool:
@@ -101,7 +109,8 @@ def main():
         n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
         if args.check is not None:
             checked = [("frame", n["render"], i["render"])]
-            checked += [(p, n[p], i[p]) for p in PHASES if i[p] >= args.floor / 100 * i["render"]]
+            parts = PHASES + (SPLIT if backend in ARRAY_BACKENDS else [])
+            checked += [(p, n[p], i[p]) for p in parts if i[p] >= args.floor / 100 * i["render"]]
             for what, native, iss in checked:
                 error = (native / iss - 1) * 100 if iss > 0 else float("inf")
                 if abs(error) > args.check:
@@ -113,6 +122,19 @@ def main():
         cells.append(f"{(n['render'] / i['render'] - 1) * 100:+.0f}%")
         cells.append(f"{(host_n / host_i - 1) * 100:+.0f}%" if host_i > 0 else "-")
         print("| " + " | ".join(cells) + " |")
+    array_cases = [(scene, backend) for scene, backend in cases if backend in ARRAY_BACKENDS]
+    if array_cases:
+        print("\nThe array back ends' host time by part (ms per frame, native / ISS, and the error):\n")
+        header = ["scene", "back end"] + [f"{p}: native / ISS" for p in SPLIT]
+        print("| " + " | ".join(header) + " |")
+        print("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
+        for scene, backend in array_cases:
+            n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
+            cells = [scene, backend]
+            for p in SPLIT:
+                error = f" ({(n[p] / i[p] - 1) * 100:+.0f}%)" if i[p] > 0 else ""
+                cells.append(f"{n[p]:.2f} / {i[p]:.2f}{error}")
+            print("| " + " | ".join(cells) + " |")
     if args.check is not None:
         if outside:
             print(f"\n{len(outside)} outside +-{args.check:g}%:\n  " + "\n  ".join(outside))

@@ -8,13 +8,21 @@ vertex mapped to the screen, a GL call). This script measures each row's
 cycles per unit on the ISS (host.model=iss: the same driver compiled for
 the ARM922T, the reference host):
 
-1. every training run (the built-in GL scenes on the arm and raster back
-   ends, TRAINING below) runs natively and on the ISS with the same
-   configuration;
+1. every training run (the built-in GL scenes on the arm, raster, ap-tile
+   and ap-pixel back ends, TRAINING below; the study's GL-free
+   applications study_shading and study_patches on the host and on the
+   array, and calib_ciu's loops, APP_TRAINING) runs natively and on the
+   ISS with the same configuration;
 2. the native frame records give, per frame and phase of the driver
    (application, geometry, rasterization, presenting), the units charged
    of each row (units_<phase>_<row>) and the phase's time; the ISS's give
-   the phase's time;
+   the phase's time. The array back ends also split their host time
+   (compute, write, read, wait, frame_out: renderers/common/host_time.h),
+   and the meter counts the units charged in each part again
+   (units_<part>_<row> beside host_<part>_ns): each part of each frame is
+   an equation too. The GL-free applications publish the same figures for
+   their timed parts in their driver statistics (study.*, calib_ciu.*):
+   one record each;
 3. what the native model spends in a phase besides the table's rows
    (memory and bus, waiting, work not yet in the table) is its phase time
    less the rows' cycles at the table's current values; the rows' cycles
@@ -64,10 +72,23 @@ PHASES = ["application", "geometry", "rasterization", "presenting"]
 TRAINING_SCENES = ["aapoly", "clip_offset", "cubes", "fixed_point", "fog_row", "fullscreen_rect", "lights_two_side",
                    "mipmap_floor", "multitexture", "obj_viewer", "points_lines", "teapot", "texture_formats",
                    "textured_quad", "tile_grid", "triangle"]
-TRAINING = [(scene, backend) for backend in ("arm", "raster") for scene in TRAINING_SCENES]
+ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
+TRAINING = [(scene, backend) for backend in ("arm", "raster") + ARRAY_BACKENDS for scene in TRAINING_SCENES]
+# The array back ends' split of their host time within the phases.
+SPLIT = ["compute", "write", "read", "wait", "frame_out"]
 # The phases whose every native charge is a row of the table, per back end.
-FITTED_PHASES = {"arm": ["application", "geometry", "rasterization", "presenting"], "raster": ["application", "geometry", "rasterization", "presenting"]}
+FITTED_PHASES = {"arm": PHASES, "raster": PHASES, "ap-tile": PHASES + SPLIT, "ap-pixel": PHASES + SPLIT}
+# The GL-free applications: (name, app, back end, arguments, driver statistics' prefix). Their
+# records are their timed parts (the split).
+APP_TRAINING = [("study_shading_arm", "study_shading", "arm", ["--", "--shades", "9600"], "study"),
+                ("study_shading_ap-pixel", "study_shading", "ap-pixel", ["--", "--shades", "9600"], "study"),
+                ("study_patches_arm", "study_patches", "arm", [], "study"),
+                ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
+                ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu")]
 FRAMES = 3
+# ISS runs of the array back ends are slow (about 1 s of simulated host time a
+# frame on the teapot): the start-up frame and one more.
+ARRAY_FRAMES = 2
 ROW = re.compile(r'^HOST_COST\((\w+), ([0-9.eE+-]+), (".*")\)$')
 SOURCE_SUFFIXES = {".c", ".cpp", ".h", ".hpp", ".S", ".s", ".def", ".inc", ".txt"}
 
@@ -109,7 +130,8 @@ def write_table(lines, cycles, digest):
 
 def run(soc_sim, out, scene, backend, model):
     folder = out / f"{scene}_{backend}_{model}"
-    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(FRAMES), "--no-frames", "--quiet",
+    frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
+    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames", "--quiet",
                "--force", "--out", str(folder), "--set", f"host.model={model}"]
     if scene == "obj_viewer":
         command += ["--", str(OBJ)]
@@ -118,6 +140,25 @@ def run(soc_sim, out, scene, backend, model):
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
     stats = json.loads((folder / "stats.json").read_text())["stats"]
     return [frame.get("driver", {}) for frame in stats["frames"]]
+
+
+def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
+    """A GL-free application's one record: its timed parts' host_<part>_ns and units_<part>_<row>."""
+    folder = out / f"{name}_{model}"
+    command = [soc_sim, "--app", app, "--backend", backend, "--no-frames", "--quiet", "--force", "--out",
+               str(folder), "--set", f"host.model={model}"] + arguments
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
+    figures = json.loads((folder / "stats.json").read_text())["stats"]["driver"].get(prefix, {})
+    record = {}
+    for key, value in figures.items():
+        if key.startswith("units_"):
+            record[key] = value
+        elif key.endswith("_ns") and key[:-3] in SPLIT:
+            record[f"host_{key}"] = value
+    # As a frame after the start-up (frame 1).
+    return [{}, record]
 
 
 def main():
@@ -152,6 +193,10 @@ def main():
     with ThreadPoolExecutor(args.jobs) as pool:
         futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model)
                    for scene, backend in TRAINING for model in ("native", "iss")}
+        for name, app, backend, arguments, prefix in APP_TRAINING:
+            for model in ("native", "iss"):
+                futures[(name, "app", model)] = pool.submit(run_app, args.soc_sim, out, name, app, backend,
+                                                            arguments, prefix, model)
         try:
             results = {key: future.result() for key, future in futures.items()}
         except RuntimeError as error:
@@ -161,10 +206,11 @@ def main():
     names = list(table)
     index = {name: i for i, name in enumerate(names)}
     equations, targets, labels = [], [], []
-    for scene, backend in TRAINING:
+    runs = TRAINING + [(name, "app") for name, *_ in APP_TRAINING]
+    for scene, backend in runs:
         native, iss = results[(scene, backend, "native")], results[(scene, backend, "iss")]
         for frame, (n, i) in enumerate(zip(native, iss)):
-            for phase in FITTED_PHASES[backend]:
+            for phase in FITTED_PHASES.get(backend, SPLIT):
                 if frame == 0 and phase != "application":
                     continue  # the start-up (STARTUP_PHASES)
                 iss_cycles = i.get(f"host_{phase}_ns", 0.0) * 1e-9 * args.clock_hz

@@ -12,13 +12,16 @@
 // including the ARM's address computation, beside the board's 488 ns and
 // 830 ns.
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "ap_programs/ap_calibration.h"
 #include "apps/apps.h"
 #include "array/asm/program.h"
+#include "costs/host_cost.h"
 #include "device/array_driver.h"
+#include "renderers/common/host_time.h"
 
 namespace tessera {
 
@@ -36,7 +39,6 @@ constexpr unsigned RECORDS = 128, RECORD = 6;
 // the sum, the counter and the compare.
 constexpr unsigned CIU_ADDRESSES = 128;
 constexpr uint32_t VALUE_STEP = 2654435761u;
-constexpr uint64_t CIU_WRITE_LOOP_INSTRUCTIONS = 8, CIU_READ_LOOP_INSTRUCTIONS = 7;
 
 const ap::Program& program() {
   return ap::programs::ap_calibration();
@@ -197,27 +199,49 @@ int calib_ciu_app(AppEnvironment& env) {
   array.check_access(groups - 1, rows - 1, CIU_ADDRESSES - 1);
   const unsigned accesses = CIU_ADDRESSES * rows * groups;
   uint32_t value = 0;
+  // Each loop's units of the measured cost table counted in the host
+  // split's write and read buckets, published with the loops' times
+  // (calib_ciu.units_<split>_<row>, calib_ciu.<split>_ns) for
+  // scripts/measure_host_costs.py.
+  renderers::HostTime time;
+  costs::reset_cost_meter();
   double start = host.now_seconds();
-  for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
-    for (unsigned j = 0; j < rows; ++j)
-      for (unsigned i = 0; i < groups; ++i) {
-        value += VALUE_STEP;
-        array.write32(i, j, a, value);
-        host.compute(Op::alu, CIU_WRITE_LOOP_INSTRUCTIONS);
-        host.compute(Op::branch);
-      }
+  {
+    const renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
+    for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
+      for (unsigned j = 0; j < rows; ++j)
+        for (unsigned i = 0; i < groups; ++i) {
+          value += VALUE_STEP;
+          array.write32(i, j, a, value);
+          costs::charge(host, costs::HostCost::ciu_calibration_write);
+        }
+  }
   // The last write has left the host's write buffer when a read can pass.
   const double write_ns = (host.now_seconds() - start) / accesses * 1e9;
   start = host.now_seconds();
   uint32_t checksum = 0;
-  for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
-    for (unsigned j = 0; j < rows; ++j)
-      for (unsigned i = 0; i < groups; ++i) {
-        checksum += array.read32(i, j, a);
-        host.compute(Op::alu, CIU_READ_LOOP_INSTRUCTIONS);
-        host.compute(Op::branch);
-      }
+  {
+    const renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
+    for (unsigned a = 0; a < CIU_ADDRESSES; ++a)
+      for (unsigned j = 0; j < rows; ++j)
+        for (unsigned i = 0; i < groups; ++i) {
+          checksum += array.read32(i, j, a);
+          costs::charge(host, costs::HostCost::ciu_calibration_read);
+        }
+  }
   const double read_ns = (host.now_seconds() - start) / accesses * 1e9;
+  if (env.counters != nullptr) {
+    env.counters->counter("calib_ciu.write_ns", "host time of the write loop").value =
+        static_cast<uint64_t>(std::llround(renderers::host_ns(host, time.array_write)));
+    env.counters->counter("calib_ciu.read_ns", "host time of the read loop").value =
+        static_cast<uint64_t>(std::llround(renderers::host_ns(host, time.array_read)));
+    static const char* const BUCKETS[costs::COST_BUCKETS] = {
+        "application", "geometry", "rasterization", "presenting", "compute", "write", "read", "wait", "frame_out"};
+    for (const auto& [name, units] : costs::take_cost_units(BUCKETS))
+      if (name.compare(0, 12, "units_write_") == 0 || name.compare(0, 11, "units_read_") == 0)
+        env.counters->counter("calib_ciu." + name, "units of a row of the measured cost table charged in the loop")
+            .value = static_cast<uint64_t>(units);
+  }
   report("one 32-bit CIU write from the ARM, address computation included", write_ns, 488, "ns");
   report("one 32-bit CIU read from the ARM, address computation included", read_ns, 830, "ns");
   // value is the sum of 1 .. accesses steps, the checksum their sum.

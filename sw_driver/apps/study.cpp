@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@
 #include "ap_programs/ap_pixel.h"
 #include "apps/apps.h"
 #include "config/config.h"
+#include "costs/host_cost.h"
 #include "device/array_driver.h"
 #include "device/dma_driver.h"
 #include "renderers/ap_pixel/pixel_setup.h"
@@ -99,10 +101,6 @@ uint16_t integer_part(uint32_t value) {
   return static_cast<uint16_t>(value >> 8);
 }
 
-// The ARM922T instructions of the host's own evaluation (the arm back end's
-// counts, sw_driver/renderers/arm/README.md): a full evaluation is two
-// multiplies and two additions per attribute; a step one addition.
-constexpr unsigned FULL_ALU = 2, FULL_MUL = 2, STEP_ALU = 1, LOOP_ALU = 1, LOOP_BRANCH = 1;
 constexpr unsigned INPUT_WORDS = 3 * ATTRIBUTES + 1;  // per set: c0, gx, gy per attribute; x, y packed
 
 void publish(AppEnvironment& env, const std::string& name, const char* description, uint64_t value) {
@@ -111,6 +109,27 @@ void publish(AppEnvironment& env, const std::string& name, const char* descripti
 
 uint64_t ns(double seconds) {
   return static_cast<uint64_t>(std::llround(seconds * 1e9));
+}
+
+uint64_t ns(HostApi& host, uint64_t cycles) {
+  return static_cast<uint64_t>(std::llround(renderers::host_ns(host, cycles)));
+}
+
+// The measured cost table's units charged in the timed parts (the host
+// split's buckets, renderers/common/host_time.h), as study.units_<split>_<row>
+// beside study.<split>_ns: what scripts/measure_host_costs.py fits the
+// rows of this file to. Natively only (the ISS charges nothing).
+void publish_units(AppEnvironment& env) {
+  static const char* const BUCKETS[costs::COST_BUCKETS] = {
+      "application", "geometry", "rasterization", "presenting", "compute", "write", "read", "wait", "frame_out"};
+  for (const auto& [name, units] : costs::take_cost_units(BUCKETS)) {
+    for (unsigned b = costs::PHASE_BUCKETS; b < costs::COST_BUCKETS; ++b) {
+      const std::string prefix = std::string("units_") + BUCKETS[b] + "_";
+      if (name.compare(0, prefix.size(), prefix) == 0)
+        publish(env, name, "units of a row of the measured cost table charged in the timed part",
+                static_cast<uint64_t>(units));
+    }
+  }
 }
 
 // Inputs as the host keeps them: per set 22 words in system memory.
@@ -238,6 +257,7 @@ int study_shading(AppEnvironment& env) {
   renderers::HostTime time;
   uint64_t passes = 0, cycles = 0;
   double total = 0;
+  costs::reset_cost_meter();
   // A pass's loaded sets and results, allocated once.
   std::vector<TriangleValues> sets(per_pass);
   std::vector<int> xs(per_pass), ys(per_pass);
@@ -253,12 +273,11 @@ int study_shading(AppEnvironment& env) {
     if (target == Target::host) {
       // The study's loop: each shade's 22 words loaded and its seven
       // results stored, nothing else.
-      renderers::TimedScope timed(host, time.compute);
+      renderers::TimedScope timed(host, time, renderers::HostSplit::compute);
       const uint8_t* in = host.load_span(inputs, 4, n * INPUT_WORDS);
       uint8_t* out = host.store_span(results, 2, n * ATTRIBUTES);
-      host.compute(Op::alu, uint64_t{n} * (ATTRIBUTES * FULL_ALU + LOOP_ALU));
-      host.compute(Op::mul, uint64_t{n} * ATTRIBUTES * FULL_MUL);
-      host.compute(Op::branch, uint64_t{n} * LOOP_BRANCH);
+      costs::charge(host, costs::HostCost::study_shade_pass);
+      costs::charge(host, costs::HostCost::study_shade, n);
       for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * ATTRIBUTES * 2);
     } else if (use.enabled) {
       // Through the DMA: the host stores every CU's 63 bytes and position
@@ -266,7 +285,7 @@ int study_shading(AppEnvironment& env) {
       // stored), one chain reshuffles them in; a run; one chain brings the
       // seven 16-bit integer parts of every CU out, which the host loads.
       {
-        renderers::TimedScope timed(host, time.array_write);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
         for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
         uint8_t* values = host.store_span(staged_values, 1, value_rows * per_pass);
         std::fill(values, values + size_t{value_rows} * per_pass, 0);
@@ -280,16 +299,16 @@ int study_shading(AppEnvironment& env) {
           offsets[i] = static_cast<uint8_t>(xs[i]);
           offsets[per_pass + i] = static_cast<uint8_t>(ys[i]);
         }
-        host.compute(Op::alu, 2ull * n * (7 * ATTRIBUTES + 2));
+        costs::charge(host, costs::HostCost::study_shade_staged, n);
         dma.start_chain(0, chain_in);
         dma.wait(0);
       }
       {
-        renderers::TimedScope timed(host, time.array_wait);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
         cycles += array->run(layout.entry[1]);
       }
       {
-        renderers::TimedScope timed(host, time.array_read);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
         dma.start_chain(0, chain_out);
         dma.wait(0);
         for (unsigned a = 0; a < ATTRIBUTES; ++a) {
@@ -300,7 +319,7 @@ int study_shading(AppEnvironment& env) {
     } else {
       // Every CU its own 49 bytes and position, a run, seven 16-bit reads.
       {
-        renderers::TimedScope timed(host, time.array_write);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
         for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
         std::vector<uint8_t> column(array->cus(), 0);
         std::vector<std::pair<unsigned, std::vector<uint8_t>>> planes;
@@ -318,11 +337,11 @@ int study_shading(AppEnvironment& env) {
         array->write_all8(layout.dy, column);
       }
       {
-        renderers::TimedScope timed(host, time.array_wait);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
         cycles += array->run(layout.entry[1]);
       }
       {
-        renderers::TimedScope timed(host, time.array_read);
+        renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
         for (unsigned a = 0; a < ATTRIBUTES; ++a) {
           const std::vector<uint16_t> values = array->read_all16(layout.result(0, 0, static_cast<Attribute>(a)));
           for (unsigned i = 0; i < n; ++i) got[i][a] = values[i];
@@ -352,10 +371,11 @@ int study_shading(AppEnvironment& env) {
   publish(env, "passes", "array passes (96 shades each), or groups of 96 on the host", passes);
   publish(env, "array_cycles", "array cycles of the shading program", cycles);
   publish(env, "total_ns", "host time from the first input load to the last result", ns(total));
-  publish(env, "compute_ns", "host time computing the shades itself", ns(time.compute));
-  publish(env, "write_ns", "host time writing inputs to the array", ns(time.array_write));
-  publish(env, "wait_ns", "host time waiting for the array", ns(time.array_wait));
-  publish(env, "read_ns", "host time reading results from the array", ns(time.array_read));
+  publish(env, "compute_ns", "host time computing the shades itself", ns(host, time.compute));
+  publish(env, "write_ns", "host time writing inputs to the array", ns(host, time.array_write));
+  publish(env, "wait_ns", "host time waiting for the array", ns(host, time.array_wait));
+  publish(env, "read_ns", "host time reading results from the array", ns(host, time.array_read));
+  publish_units(env);
   std::printf("%s: %u shades on the %s: %.3f ms\n", app, shades, target == Target::host ? "host" : "array",
               total * 1e3);
   return 0;
@@ -385,6 +405,8 @@ int study_patches(AppEnvironment& env) {
   for (unsigned side = 1; side * side <= max_pixels; ++side) shapes.push_back({"square", side, side});
   for (unsigned n = 1; n <= max_pixels; ++n) shapes.push_back({"line", n, 1});
   unsigned patch = 0;
+  renderers::HostTime time;  // the timed rounds', all in compute
+  costs::reset_cost_meter();
   for (const Shape& shape : shapes) {
     const TriangleValues values = attribute_set(patch++);
     const int ox = -static_cast<int>(shape.width) / 2, oy = -static_cast<int>(shape.height) / 2;
@@ -393,6 +415,8 @@ int study_patches(AppEnvironment& env) {
     // Twice, the second timed: the first warms the caches.
     double elapsed = 0;
     for (unsigned round = 0; round < 2; ++round) {
+      std::optional<renderers::TimedScope> timed;
+      if (round == 1) timed.emplace(host, time, renderers::HostSplit::compute);
       const double start = host.now_seconds();
       if (target == Target::host) {
         // Start values per attribute from the input words, then one
@@ -402,8 +426,7 @@ int study_patches(AppEnvironment& env) {
         const uint32_t xy = word_at(in, 3 * ATTRIBUTES);
         const int32_t x0 = signed_byte(xy, 0), y0 = signed_byte(xy, 1);
         uint32_t row_start[ATTRIBUTES], step_x[ATTRIBUTES], step_y[ATTRIBUTES];
-        host.compute(Op::alu, ATTRIBUTES * (FULL_ALU + 2));
-        host.compute(Op::mul, ATTRIBUTES * FULL_MUL);
+        costs::charge(host, costs::HostCost::study_patch);
         for (unsigned a = 0; a < ATTRIBUTES; ++a) {
           const int32_t gx = static_cast<int16_t>(word_at(in, 3 * a + 1));
           const int32_t gy = static_cast<int16_t>(word_at(in, 3 * a + 2));
@@ -412,10 +435,9 @@ int study_patches(AppEnvironment& env) {
           row_start[a] = word_at(in, 3 * a) + static_cast<uint32_t>(x0 * gx + y0 * gy);
         }
         for (unsigned r = 0; r < shape.height; ++r) {
-          host.compute(Op::alu, ATTRIBUTES * STEP_ALU + 4);
+          costs::charge(host, costs::HostCost::study_patch_row);
           uint8_t* out = host.store_span(results + r * shape.width * ATTRIBUTES * 2, 2, shape.width * ATTRIBUTES);
-          host.compute(Op::alu, uint64_t{shape.width} * (ATTRIBUTES * STEP_ALU + LOOP_ALU));
-          host.compute(Op::branch, uint64_t{shape.width} * LOOP_BRANCH);
+          costs::charge(host, costs::HostCost::study_patch_pixel, shape.width);
           uint32_t value[ATTRIBUTES];
           for (unsigned a = 0; a < ATTRIBUTES; ++a) value[a] = row_start[a];
           for (unsigned c = 0; c < shape.width; ++c)
@@ -444,7 +466,7 @@ int study_patches(AppEnvironment& env) {
               dx |= uint32_t{static_cast<uint8_t>(x0 + static_cast<int>(index % across * block))} << (8 * b);
               dy |= uint32_t{static_cast<uint8_t>(y0 + static_cast<int>(index / across * block))} << (8 * b);
             }
-            host.compute(Op::alu, 14);
+            costs::charge(host, costs::HostCost::study_offset_group);
             array->write32(g % per_row, g / per_row, layout.dx, dx);
             array->write32(g % per_row, g / per_row, layout.dy, dy);
           }
@@ -465,7 +487,7 @@ int study_patches(AppEnvironment& env) {
                   const unsigned address = layout.result(u_in, v_in, static_cast<Attribute>(a));
                   const uint32_t hi = array->read32(g % per_row, g / per_row, address);
                   const uint32_t mid = array->read32(g % per_row, g / per_row, address + 1);
-                  host.compute(Op::alu, 6);
+                  costs::charge(host, costs::HostCost::study_result_attribute);
                   for (unsigned b = 0; b < 4 && 4 * g + b < n; ++b) {
                     const unsigned index = first + 4 * g + b;
                     const unsigned c = index % across * block + u_in, r = index / across * block + v_in;
@@ -501,6 +523,8 @@ int study_patches(AppEnvironment& env) {
             "host time for one patch of that many pixels, all seven attributes", ns(elapsed));
   }
   publish(env, "block", "pixels per side of a CU's block (1 on the host)", block);
+  publish(env, "compute_ns", "host time of the timed rounds of every patch", ns(host, time.compute));
+  publish_units(env);
   std::printf("%s: %u patches on the %s\n", app, static_cast<unsigned>(shapes.size()),
               target == Target::host ? "host" : "array");
   return 0;

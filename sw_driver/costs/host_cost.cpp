@@ -37,6 +37,7 @@ namespace {
 
 struct Meter {
   unsigned bucket = 0;
+  unsigned split = NO_SPLIT;
   double carry = 0;  // cycles charged less whole cycles given to the host, in [0, 1)
   std::array<std::array<uint64_t, HOST_COST_COUNT>, COST_BUCKETS> units{};
 };
@@ -54,6 +55,7 @@ void charge(HostApi& host, HostCost cost, uint64_t units) {
   if (units == 0) return;
   Meter& m = meter();
   m.units[m.bucket][index] += units;
+  if (m.split != NO_SPLIT) m.units[m.split][index] += units;
   const double cycles = m.carry + ROWS[index].cycles * static_cast<double>(units);
   const double whole = std::floor(cycles);
   m.carry = cycles - whole;
@@ -61,8 +63,16 @@ void charge(HostApi& host, HostCost cost, uint64_t units) {
 }
 
 void set_cost_bucket(unsigned bucket) {
-  if (bucket >= COST_BUCKETS) throw std::invalid_argument("host cost: no such bucket");
+  if (bucket >= PHASE_BUCKETS) throw std::invalid_argument("host cost: no such bucket");
   meter().bucket = bucket;
+}
+
+unsigned set_split_bucket(unsigned split) {
+  if (split != NO_SPLIT && (split < PHASE_BUCKETS || split >= COST_BUCKETS))
+    throw std::invalid_argument("host cost: no such split bucket");
+  const unsigned previous = meter().split;
+  meter().split = split;
+  return previous;
 }
 
 void reset_cost_meter() {

@@ -41,13 +41,23 @@ const HostCostRow& host_cost_row(HostCost cost);
 // The row named `name`, if the table has one.
 std::optional<HostCost> find_host_cost(const std::string& name);
 
-// Buckets the meter counts units in (the GL phases use 0..3).
-inline constexpr unsigned COST_BUCKETS = 4;
+// Buckets the meter counts units in: the GL phases (0 .. PHASE_BUCKETS - 1,
+// one at a time), and within them the array back ends' split of their host
+// time (PHASE_BUCKETS .., renderers/common/host_time.h: compute, array
+// write, array read, array wait, frame out), in which a charge counts as
+// well while one is open.
+inline constexpr unsigned PHASE_BUCKETS = 4;
+inline constexpr unsigned SPLIT_BUCKETS = 5;
+inline constexpr unsigned COST_BUCKETS = PHASE_BUCKETS + SPLIT_BUCKETS;
+inline constexpr unsigned NO_SPLIT = ~0u;
 
 #if defined(TESSERA_HOST_ISS)
 
 inline void charge(HostApi& /*host*/, HostCost /*cost*/, uint64_t /*units*/ = 1) {}
 inline void set_cost_bucket(unsigned /*bucket*/) {}
+inline unsigned set_split_bucket(unsigned /*split*/) {
+  return NO_SPLIT;
+}
 inline void reset_cost_meter() {}
 inline std::vector<std::pair<std::string, double>> take_cost_units(const char* const* /*bucket_names*/) {
   return {};
@@ -58,12 +68,16 @@ inline std::vector<std::pair<std::string, double>> take_cost_units(const char* c
 // Charges `units` of `cost` to the host: the row's cycles times units, in
 // whole cycles (the fractions carry over to the next charge).
 void charge(HostApi& host, HostCost cost, uint64_t units = 1);
-// Counts later charges in `bucket` (< COST_BUCKETS).
+// Counts later charges in phase bucket `bucket` (< PHASE_BUCKETS).
 void set_cost_bucket(unsigned bucket);
+// Counts later charges also in split bucket `split` (PHASE_BUCKETS ..
+// COST_BUCKETS - 1; NO_SPLIT: in none); returns the split open before.
+unsigned set_split_bucket(unsigned split);
 // Forgets the counts and the carried fraction (a new program starts).
 void reset_cost_meter();
 // The units charged since the last call, per bucket and row, as
-// units_<bucket name>_<row name> (rows with none are left out).
+// units_<bucket name>_<row name> (rows with none are left out);
+// `bucket_names` names COST_BUCKETS buckets.
 std::vector<std::pair<std::string, double>> take_cost_units(const char* const* bucket_names);
 
 #endif

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "array/array_regs.h"
+#include "costs/host_cost.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
 
@@ -12,17 +13,9 @@ namespace regs = array_regs;
 
 namespace {
 
-constexpr uint32_t AC = memory_map::array_regs.base;
+using costs::HostCost;
 
-// The ARM's cycles for one WriteMem32 / ReadMem32 call outside its bus
-// access, measured on the ISS (host.model=iss) in calib_ciu's loops:
-// the call (BL), the address computation and the return, less the store's
-// or the load's own issue cycle, which the host model charges with the
-// access. Charged natively as that many single-cycle instructions
-// (host.cycles.alu = 1). How they were measured: docs/calibration.md,
-// "The CIU".
-constexpr uint64_t ISS_WRITE32_CYCLES = 19;
-constexpr uint64_t ISS_READ32_CYCLES = 16;
+constexpr uint32_t AC = memory_map::array_regs.base;
 
 }  // namespace
 
@@ -63,6 +56,7 @@ void ArrayDriver::load(const ap::Program& program, unsigned at) {
 }
 
 void ArrayDriver::start(unsigned entry) {
+  costs::charge(m_host, HostCost::array_run);
   if (!m_irq_enabled) {
     m_host.write32(AC + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
     m_irq_enabled = true;
@@ -87,8 +81,19 @@ uint32_t finish(HostApi& host, uint32_t irq_status) {
 
 }  // namespace
 
+// The interrupt controller's line may still show the previous program's
+// done interrupt when this program starts: the AC drops it when its
+// IRQ_STATUS is cleared, but the controller sees the drop only when the
+// simulation's kernel catches up with the host, which runs ahead of it in
+// its quantum (tlm/common/peripheral.cpp). A host fast enough to start the
+// next program and wait within that time wakes at once; only the AC's
+// STATUS says whether this program has finished, so the wait goes on
+// until it is idle (each check a bus read: the host's time moves on, the
+// kernel catches up, the stale line falls and the next wait sleeps).
 uint32_t ArrayDriver::wait() {
-  m_host.wait_irq(irq_map::array);
+  do {
+    m_host.wait_irq(irq_map::array);
+  } while ((m_host.read32(AC + regs::STATUS) & regs::STATUS_BUSY) != 0);
   return finish(m_host, m_host.read32(AC + regs::IRQ_STATUS));
 }
 
@@ -108,20 +113,20 @@ void ArrayDriver::check_access(unsigned i, unsigned j, unsigned a, unsigned byte
 
 // The study's WriteMem32 and ReadMem32: an MLA for the group number, an MLA
 // with the address, the base added, the access. On the ISS these are the
-// instructions; natively their measured cycles are charged.
+// instructions; natively the measured cost table's rows array_write32
+// and array_read32 are charged (the call outside its bus access).
 void ArrayDriver::write32(unsigned i, unsigned j, unsigned a, uint32_t value) {
-  m_host.compute(Op::alu, ISS_WRITE32_CYCLES);
+  costs::charge(m_host, HostCost::array_write32);
   m_host.write32(cmem_address(i, j, a), value);
 }
 
 uint32_t ArrayDriver::read32(unsigned i, unsigned j, unsigned a) {
-  m_host.compute(Op::alu, ISS_READ32_CYCLES);
+  costs::charge(m_host, HostCost::array_read32);
   return m_host.read32(cmem_address(i, j, a));
 }
 
 // Packing four values into a word of their high bytes and one of their low
-// bytes: per value an AND (or a shift) and an ORR with a shift, 7 ALU
-// operations per word.
+// bytes (array_pack16, array_unpack16).
 void ArrayDriver::write16(unsigned i, unsigned j, unsigned a, const std::array<uint16_t, 4>& values) {
   check_access(i, j, a, 2);
   uint32_t high = 0, low = 0;
@@ -129,7 +134,7 @@ void ArrayDriver::write16(unsigned i, unsigned j, unsigned a, const std::array<u
     high |= uint32_t{static_cast<uint8_t>(values[k] >> 8)} << (8 * k);
     low |= uint32_t{static_cast<uint8_t>(values[k])} << (8 * k);
   }
-  m_host.compute(Op::alu, 14);
+  costs::charge(m_host, HostCost::array_pack16);
   write32(i, j, a, high);
   write32(i, j, a + 1, low);
 }
@@ -141,7 +146,7 @@ std::array<uint16_t, 4> ArrayDriver::read16(unsigned i, unsigned j, unsigned a) 
   std::array<uint16_t, 4> values{};
   for (unsigned k = 0; k < 4; ++k)
     values[k] = static_cast<uint16_t>(((high >> (8 * k)) & 0xffu) << 8 | ((low >> (8 * k)) & 0xffu));
-  m_host.compute(Op::alu, 14);
+  costs::charge(m_host, HostCost::array_unpack16);
   return values;
 }
 
@@ -152,7 +157,7 @@ void ArrayDriver::write_all8(unsigned a, const std::vector<uint8_t>& per_cu) {
     for (unsigned i = 0; i < groups_per_row(); ++i) {
       uint32_t word = 0;
       for (unsigned k = 0; k < 4; ++k) word |= uint32_t{per_cu[j * m_columns + 4 * i + k]} << (8 * k);
-      m_host.compute(Op::alu, 7);
+      costs::charge(m_host, HostCost::array_pack_word);
       write32(i, j, a, word);
     }
 }
@@ -174,7 +179,7 @@ std::vector<uint8_t> ArrayDriver::read_all8(unsigned a) {
     for (unsigned i = 0; i < groups_per_row(); ++i) {
       const uint32_t word = read32(i, j, a);
       for (unsigned k = 0; k < 4; ++k) values[j * m_columns + 4 * i + k] = static_cast<uint8_t>(word >> (8 * k));
-      m_host.compute(Op::alu, 7);
+      costs::charge(m_host, HostCost::array_unpack_word);
     }
   return values;
 }
@@ -192,6 +197,7 @@ std::vector<uint16_t> ArrayDriver::read_all16(unsigned a) {
 void ArrayDriver::fill8(unsigned a, uint8_t value) {
   check_access(m_groups_per_row - 1, m_rows - 1, a);
   const uint32_t word = value * 0x01010101u;
+  costs::charge(m_host, HostCost::array_fill_word, uint64_t{m_rows} * m_groups_per_row);
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) write32(i, j, a, word);
 }

@@ -2,8 +2,8 @@
 // CIU (CMEM reads and writes with the J2210's WriteMem32 layout and the
 // host-side packing the study needed). Every access is a bus transaction of
 // the host model, and the address computation and packing the ARM does
-// around it are charged to the host's cost model, so what a renderer pays
-// to talk to the array is what the board paid.
+// around it are charged by rows of the measured cost table (sw_driver/
+// costs), so what a renderer pays to talk to the array is what the board paid.
 #pragma once
 
 #include <array>
@@ -79,8 +79,8 @@ class ArrayDriver {
 
   // WriteMem32 / ReadMem32: one word, byte k to/from CU column 4i+k of row
   // j: the address computation and the access, nothing else. Natively the
-  // ARM's cycles for the call outside the bus access are charged
-  // (ISS_WRITE32_CYCLES, ISS_READ32_CYCLES in array_driver.cpp).
+  // ARM's cycles for the call outside the bus access are charged (the
+  // measured cost table's rows array_write32 and array_read32).
   void write32(unsigned i, unsigned j, unsigned a, uint32_t value);
   uint32_t read32(unsigned i, unsigned j, unsigned a);
 

@@ -7,9 +7,12 @@ namespace tessera::gl {
 namespace {
 constexpr const char* NAMES[] = {"host_application_ns", "host_geometry_ns", "host_rasterization_ns",
                                  "host_presenting_ns"};
-constexpr const char* BUCKETS[] = {"application", "geometry", "rasterization", "presenting"};
+// The phases, then the array back ends' host split (renderers/common/
+// host_time.h): units_<bucket>_<row> beside host_<bucket>_ns.
+constexpr const char* BUCKETS[] = {"application", "geometry", "rasterization", "presenting", "compute",
+                                   "write",       "read",     "wait",          "frame_out"};
 static_assert(std::size(NAMES) == static_cast<size_t>(Phase::count_));
-static_assert(std::size(BUCKETS) == static_cast<size_t>(Phase::count_) && std::size(BUCKETS) <= costs::COST_BUCKETS);
+static_assert(static_cast<size_t>(Phase::count_) == costs::PHASE_BUCKETS && std::size(BUCKETS) == costs::COST_BUCKETS);
 }  // namespace
 
 PhaseClock& phase_clock() {

@@ -69,6 +69,10 @@ double HostApi::now_seconds() const {
   return static_cast<double>(runtime::cycles_since_start()) / clock_hz();
 }
 
+uint64_t HostApi::now_cycles() const {
+  return runtime::cycles_since_start();
+}
+
 double HostApi::clock_hz() const {
   return runtime::clock_hz();
 }

@@ -122,6 +122,7 @@ class Host : public Block, public HostApi, public HostCore {
   bool irq_pending(unsigned line) override;
   double now_seconds() const override;
   double clock_hz() const override { return 1.0 / m_params.clock_period.to_seconds(); }
+  uint64_t now_cycles() const override { return local_ticks() / m_period_ticks; }
 
   // HostCore
   void fetch(uint32_t address, unsigned bytes) override;

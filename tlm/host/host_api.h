@@ -13,6 +13,7 @@
 //   (sw_driver/runtime).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -96,6 +97,10 @@ class HostApi {
   // Host's local time in seconds (simulated time plus its quantum offset).
   virtual double now_seconds() const = 0;
   virtual double clock_hz() const = 0;
+  // The same in whole host cycles from some start (only differences mean
+  // anything): what driver code that times itself reads, in integers as
+  // the ARM922T would.
+  virtual uint64_t now_cycles() const { return static_cast<uint64_t>(std::llround(now_seconds() * clock_hz())); }
 };
 
 #else
@@ -130,6 +135,8 @@ class HostApi {
 
   double now_seconds() const;
   double clock_hz() const;
+  // Cycles since the program's start (the ISS's elapsed-cycles call).
+  uint64_t now_cycles() const;
 };
 
 #endif

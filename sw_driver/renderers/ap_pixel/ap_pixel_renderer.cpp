@@ -7,6 +7,7 @@
 #include "ap_programs/ap_pixel.h"
 #include "common/fixed_function.h"
 #include "common/pixel_format.h"
+#include "costs/host_cost.h"
 #include "gl/runtime.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texture_units.h"
@@ -16,6 +17,7 @@ namespace tessera::ap_pixel {
 
 namespace {
 
+using costs::HostCost;
 using renderers::TimedScope;
 
 // The offsets a CU multiplies by are signed bytes, so every block of a
@@ -79,18 +81,18 @@ void ApPixelRenderer::unsupported(const std::string& what) {
 }
 
 void ApPixelRenderer::clear(const gl::ClearRequest& request) {
-  TimedScope timed(m_host, m_time.compute);
+  TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   m_buffers_core->clear(request);
 }
 
 void ApPixelRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
-  TimedScope timed(m_host, m_time.compute);
+  TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   m_buffers_core->read_pixels(x, y, width, height, rgba);
 }
 
 void ApPixelRenderer::present() {
   {
-    TimedScope timed(m_host, m_time.frame_out);
+    TimedScope timed(m_host, m_time, renderers::HostSplit::frame_out);
     m_display.present();
   }
   m_buffers.color_address = m_display.back_buffer();
@@ -106,7 +108,7 @@ void ApPixelRenderer::present() {
                                              {"ciu_words_written", static_cast<double>(m_words_written)},
                                              {"ciu_words_read", static_cast<double>(m_words_read)}};
   renderers::add_traffic(totals, m_traffic);
-  renderers::add_host_time(totals, m_time);
+  renderers::add_host_time(totals, m_host, m_time);
   m_frame_figures.emit(m_env, totals,
                        {{"values_written_per_triangle",
                          renderers::values_written_per_triangle(m_frame_figures, m_triangles, m_traffic)}});
@@ -115,8 +117,9 @@ void ApPixelRenderer::present() {
 void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   // Everything the host does here is computing except the array's own
   // parts, which their scopes charge.
-  const double start = m_host.now_seconds();
+  const uint64_t start = m_host.now_cycles();
   const renderers::HostTime before = m_time;
+  const renderers::CostSplit split(renderers::HostSplit::compute);
   if (state.stencil_test) unsupported("the stencil test (GL_STENCIL_TEST): drawn without it");
   if (state.fog) unsupported("fog (GL_FOG): drawn without it");
   m_unit = renderers::single_texture_unit(state, [this](const std::string& what) { unsupported(what); });
@@ -139,16 +142,13 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
                                  (textured && m_unit.env != gl::TexEnv::replace));
   reads.texcoords = textured;
   for (size_t t = 0; t < count; ++t) draw_triangle(state, triangles[t], reads);
-  const double elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
-                           (m_time.array_wait - before.array_wait);
-  m_time.compute += m_host.now_seconds() - start - elsewhere;
+  const uint64_t elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
+                             (m_time.array_wait - before.array_wait);
+  m_time.compute += m_host.now_cycles() - start - elsewhere;
 }
 
 void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads) {
-  const HostCosts& k = m_costs;
-  m_host.compute(Op::alu, k.triangle_alu + k.triangle_divisions * k.division_alu);
-  m_host.compute(Op::mul, k.triangle_mul);
-  m_host.compute(Op::call, k.triangle_divisions);
+  costs::charge(m_host, HostCost::ap_pixel_triangle);
   PixelBox box{0, 0, static_cast<int>(m_buffers.width) - 1, static_cast<int>(m_buffers.height) - 1};
   if (state.scissor_test) {
     box.x0 = std::max(box.x0, state.scissor_x);
@@ -167,12 +167,11 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
   const unsigned b = m_block, across = (m_buffers.width + b - 1) / b;
   std::vector<uint16_t>& depth_row = m_depth_row;
   for (int j = setup.y_first(); j <= setup.y_last(); ++j) {
-    m_host.compute(Op::alu, k.row_alu);
+    costs::charge(m_host, HostCost::ap_pixel_row);
     int first = 0, last = -1;
     if (!setup.span(j, first, last)) continue;
     const auto n = static_cast<unsigned>(last - first + 1);
-    m_host.compute(Op::alu, uint64_t{n} * k.pixel_alu);
-    m_host.compute(Op::branch, uint64_t{n} * k.pixel_branch);
+    costs::charge(m_host, HostCost::ap_pixel_span_pixel, n);
     const uint32_t row = (m_buffers.height - 1 - static_cast<uint32_t>(j)) * m_buffers.width;
     if (state.depth_test) {
       const uint8_t* p = m_host.load_span(m_buffers.depth_address + (row + static_cast<uint32_t>(first)) * 2, 2, n);
@@ -194,7 +193,7 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
   }
   for (const Block& block : m_blocks)
     m_block_index[size_t{static_cast<unsigned>(block.y) / b} * across + static_cast<unsigned>(block.x) / b] = -1;
-  m_host.compute(Op::alu, uint64_t{k.visible_alu} * m_pixels.size());
+  costs::charge(m_host, HostCost::ap_pixel_visible, m_pixels.size());
   if (m_pixels.empty()) return;
   ++m_triangles;
   m_visible += m_pixels.size();
@@ -208,6 +207,8 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
   }
 
   // Each block's pixels.
+  costs::charge(m_host, HostCost::ap_pixel_array_triangle);
+  costs::charge(m_host, HostCost::ap_pixel_block, m_blocks.size());
   m_block_pixels.assign(m_blocks.size(), {});
   for (size_t p = 0; p < m_pixels.size(); ++p) m_block_pixels[m_pixels[p].block].push_back(static_cast<uint32_t>(p));
 
@@ -233,8 +234,7 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
     ++m_host_shaded;
     for (const Pixel& pixel : m_pixels) {
       const TriangleValues at = setup.values(pixel.x, pixel.y);
-      m_host.compute(Op::alu, uint64_t{k.host_shade_alu} * ATTRIBUTES);
-      m_host.compute(Op::mul, uint64_t{k.host_shade_mul} * ATTRIBUTES);
+      costs::charge(m_host, HostCost::ap_pixel_sliver_pixel);
       std::array<int32_t, ATTRIBUTES> r{};
       for (unsigned a = 0; a < ATTRIBUTES; ++a) r[a] = static_cast<int32_t>(at.c0[a] << 8) >> 8;
       write_shaded(state, triangle, reads, pixel, r);
@@ -246,9 +246,9 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
     return;
   }
   {
-    TimedScope timed(m_host, m_time.array_write);
+    TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
     for_each_value_byte(values, m_layout, [&](unsigned address, uint8_t byte) {
-      m_host.compute(Op::alu, k.value_alu);
+      costs::charge(m_host, HostCost::ap_pixel_value_byte);
       m_array.fill8(address, byte);
       m_words_written += m_array.cus() / 4;
       m_traffic.values_written += m_array.cus();
@@ -260,8 +260,8 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
 
 void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
                                 size_t first_block, size_t blocks, int ox, int oy) {
-  const HostCosts& k = m_costs;
   const unsigned columns = m_array.columns(), b = m_block;
+  costs::charge(m_host, HostCost::ap_pixel_batch);
   const unsigned groups = static_cast<unsigned>((blocks + 3) / 4);  // groups holding a block, in CU order
   auto lane_block = [&](unsigned group, unsigned byte) -> const Block* {
     const size_t lane = size_t{group} * 4 + byte;
@@ -269,7 +269,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
   };
   // The blocks' offsets: one word of dx and one of dy per group of four CUs.
   {
-    TimedScope timed(m_host, m_time.array_write);
+    TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
     for (unsigned g = 0; g < groups; ++g) {
       uint32_t dx = 0, dy = 0;
       for (unsigned byte = 0; byte < 4; ++byte)
@@ -278,7 +278,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
           dy |= uint32_t{static_cast<uint8_t>(block->y - oy)} << (8 * byte);
         }
       const unsigned i = g % (columns / 4), j = g / (columns / 4);
-      m_host.compute(Op::alu, 2 * k.pack_alu);
+      costs::charge(m_host, HostCost::ap_pixel_offset_group);
       m_array.write32(i, j, m_layout.dx, dx);
       m_array.write32(i, j, m_layout.dy, dy);
       m_words_written += 2;
@@ -286,7 +286,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
     }
   }
   {
-    TimedScope timed(m_host, m_time.array_wait);
+    TimedScope timed(m_host, m_time, renderers::HostSplit::array_wait);
     m_cycles += m_array.run(m_program_base + m_layout.entry[b]);
   }
   ++m_batches;
@@ -317,11 +317,12 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
     for (unsigned v = 0; v < b; ++v)
       for (unsigned u = 0; u < b; ++u) {
         if ((used & (1u << (v * b + u))) == 0) continue;
+        costs::charge(m_host, HostCost::ap_pixel_result_place);
         for (unsigned n = 0; n < needs; ++n) {
           const Needed& need = needed[n];
           uint32_t word[3] = {0, 0, 0};
           {
-            TimedScope timed(m_host, m_time.array_read);
+            TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
             for (unsigned byte = 0; byte < need.bytes; ++byte)
               word[byte] = m_array.read32(i, j, m_layout.result(u, v, need.attribute) + byte);
             m_words_read += need.bytes;
@@ -336,7 +337,7 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
             // Sign-extended from 24 bits.
             m_results[static_cast<size_t>(p)][static_cast<unsigned>(need.attribute)] =
                 static_cast<int32_t>(value << 8) >> 8;
-            m_host.compute(Op::alu, uint64_t{k.unpack_alu} * need.bytes);
+            costs::charge(m_host, HostCost::ap_pixel_result_byte, need.bytes);
           }
         }
       }
@@ -367,7 +368,6 @@ unsigned ApPixelRenderer::needed_reads(const Reads& reads, Needed needed[6]) con
 // is scan-converted, whose depth test needs this one's depths.
 void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
                                        const TriangleValues& values, int ox, int oy) {
-  const HostCosts& k = m_costs;
   const unsigned cus = m_array.cus(), b = m_block;
   Needed needed[6];
   const unsigned needs = needed_reads(reads, needed);
@@ -383,10 +383,10 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
   {
     // The 21 values, once per triangle: by broadcast, or replicated for
     // every CU and reshuffled.
-    TimedScope timed(m_host, m_time.array_write);
+    TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
     std::vector<uint8_t> bytes(m_value_bytes, 0);
     for_each_value_byte(values, m_layout, [&](unsigned address, uint8_t byte) {
-      m_host.compute(Op::alu, k.value_alu);
+      costs::charge(m_host, HostCost::ap_pixel_dma_value_byte);
       unsigned offset = 0;
       for (const Range& range : m_value_ranges) {
         if (address >= range.cmem && address < range.cmem + range.bytes) bytes[offset + address - range.cmem] = byte;
@@ -404,7 +404,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
     } else {
       uint8_t* out = m_host.store_span(m_stage_values, 4, m_value_bytes * cus / 4);
       for (unsigned row = 0; row < m_value_bytes; ++row) std::memset(out + size_t{row} * cus, bytes[row], cus);
-      m_host.compute(Op::alu, uint64_t{k.replicate_alu} * m_value_bytes * cus / 4);
+      costs::charge(m_host, HostCost::ap_pixel_dma_value_word_replicated, uint64_t{m_value_bytes} * cus / 4);
       for (const Range& range : m_value_ranges) {
         in.push_back(DmaDriver::to_cmem(m_stage_values + offset * cus, range.cmem, range.bytes * cus, 1));
         offset += range.bytes;
@@ -417,12 +417,12 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
   bool pending = false;
   auto finish = [&](const DmaBatch& batch) {
     {
-      TimedScope timed(m_host, m_time.array_wait);
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_wait);
       m_cycles += m_array.wait();
     }
     if (batch.slot_row.empty()) return;
     {
-      TimedScope timed(m_host, m_time.array_read);
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
       m_dma.wait(m_out_channel);
     }
     collect_dma_batch(state, triangle, reads, batch);
@@ -434,7 +434,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
     batch.buffer = static_cast<unsigned>(n % 2);
     {
       // The blocks' offsets, dx of every CU and then dy, in CU order.
-      TimedScope timed(m_host, m_time.array_write);
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
       uint8_t* p = m_host.store_span(m_stage_offsets[batch.buffer], 1, 2 * cus);
       std::memset(p, 0, 2 * cus);
       for (size_t lane = 0; lane < batch.blocks; ++lane) {
@@ -442,7 +442,8 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
         p[lane] = static_cast<uint8_t>(block.x - ox);
         p[cus + lane] = static_cast<uint8_t>(block.y - oy);
       }
-      m_host.compute(Op::alu, uint64_t{k.stage_alu} * batch.blocks);
+      costs::charge(m_host, HostCost::ap_pixel_batch);
+      costs::charge(m_host, HostCost::ap_pixel_dma_block, batch.blocks);
       if (m_layout.dy == m_layout.dx + 1) {
         in.push_back(DmaDriver::to_cmem(m_stage_offsets[batch.buffer], m_layout.dx, 2 * cus, 1));
       } else {
@@ -456,17 +457,17 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
       // batch's program overwrites them (the host then unpacks them while
       // this batch runs).
       {
-        TimedScope timed(m_host, m_time.array_wait);
+        TimedScope timed(m_host, m_time, renderers::HostSplit::array_wait);
         m_cycles += m_array.wait();
       }
       if (!running.slot_row.empty()) {
-        TimedScope timed(m_host, m_time.array_read);
+        TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
         m_dma.wait(m_out_channel);
       }
     }
     {
-      TimedScope timed(m_host, m_time.array_write);
-      m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * in.size());
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
+      costs::charge(m_host, HostCost::ap_pixel_dma_descriptor, in.size());
       m_traffic.dma_descriptors += in.size();
       m_dma.write_chain(m_chain_in, in);
       m_dma.start_chain(0, m_chain_in);
@@ -487,7 +488,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
             true;
       }
     if (needs > 0) {
-      TimedScope timed(m_host, m_time.array_read);
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
       std::vector<dma::Descriptor> out;
       batch.slot_row.assign(size_t{b} * b, -1);
       for (unsigned v = 0; v < b; ++v)
@@ -500,7 +501,7 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
                                              rows * cus, 1));
           m_traffic.values_read += uint64_t{rows} * cus;
         }
-      m_host.compute(Op::alu, uint64_t{k.descriptor_alu} * out.size());
+      costs::charge(m_host, HostCost::ap_pixel_dma_descriptor, out.size());
       m_traffic.dma_descriptors += out.size();
       m_dma.write_chain(m_chain_out, out);
       m_dma.start_chain(m_out_channel, m_chain_out);
@@ -516,7 +517,6 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
 // row, README.md) and writes its pixels.
 void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
                                         const DmaBatch& batch) {
-  const HostCosts& k = m_costs;
   const unsigned cus = m_array.cus(), b = m_block;
   Needed needed[6];
   const unsigned needs = needed_reads(reads, needed);
@@ -543,7 +543,7 @@ void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::
           value = value << 8 | got;
         }
         m_results[p][static_cast<unsigned>(need.attribute)] = static_cast<int32_t>(value << 8) >> 8;
-        m_host.compute(Op::alu, uint64_t{k.unpack_alu} * need.bytes);
+        costs::charge(m_host, HostCost::ap_pixel_dma_result_byte, need.bytes);
       }
     }
   }
@@ -553,6 +553,7 @@ void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::
 
 void ApPixelRenderer::write_shaded(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
                                    const Pixel& pixel, const std::array<int32_t, ATTRIBUTES>& r) {
+  costs::charge(m_host, HostCost::ap_pixel_shaded_pixel);
   uint32_t rgba;
   if (reads.colour) {
     // The integer part of 16.8, clamped.
@@ -572,7 +573,6 @@ void ApPixelRenderer::write_shaded(const gl::RasterState& state, const gl::Trian
 
 void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pixel, uint32_t rgba, const int st[2],
                                   bool textured) {
-  const HostCosts& k = m_costs;
   if (textured) {
     const gl::Texture& tex = state.unit[m_unit.index].tex;
     auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
@@ -582,20 +582,14 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
           4);
     };
     uint8_t texel[4];
-    if (renderers::sample_texture(tex, st[0], st[1], texel_at, texel)) {
-      m_host.compute(Op::alu, k.texel_linear_alu);
-      m_host.compute(Op::mul, k.texel_linear_mul);
-    } else {
-      m_host.compute(Op::alu, k.texel_nearest_alu);
-      m_host.compute(Op::mul, k.texel_nearest_mul);
-    }
+    costs::charge(m_host, renderers::sample_texture(tex, st[0], st[1], texel_at, texel)
+                              ? HostCost::ap_pixel_texel_linear
+                              : HostCost::ap_pixel_texel_nearest);
     rgba = renderers::apply_tex_env(m_unit.env, rgba, texel);
-    m_host.compute(Op::alu, k.tex_env_alu);
-    m_host.compute(Op::mul, k.tex_env_mul);
+    costs::charge(m_host, HostCost::ap_pixel_texture_environment);
   }
   if (state.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) return;
-  m_host.compute(Op::alu, k.write_alu);
-  m_host.compute(Op::mul, k.write_mul);
+  costs::charge(m_host, HostCost::ap_pixel_pixel);
   const uint32_t offset =
       (m_buffers.height - 1 - static_cast<uint32_t>(pixel.y)) * m_buffers.width + static_cast<uint32_t>(pixel.x);
   if (state.depth_test && state.depth_write) {
@@ -613,11 +607,11 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
   uint32_t out;
   if (state.blend || state.logic_op || write_mask != all) {
     const uint32_t dst = load_pixel(format, m_host.load_span(address, bpp, 1));
+    costs::charge(m_host, HostCost::ap_pixel_color_read_back);
     uint32_t src = rgba;
     if (state.blend) {
       src = renderers::blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
-      m_host.compute(Op::alu, k.blend_alu);
-      m_host.compute(Op::mul, k.blend_mul);
+      costs::charge(m_host, HostCost::ap_pixel_blend);
     }
     out = pack_pixel(format, src);
     if (state.logic_op) out = renderers::logic_op(state.logic_op_mode, out, dst) & all;
@@ -634,7 +628,7 @@ void ApPixelRenderer::publish_statistics() {
   auto set = [&](const char* name, const char* description, uint64_t value) {
     c.counter(std::string("ap_pixel.") + name, description).value = value;
   };
-  renderers::publish_host_time(c, "ap_pixel", m_time,
+  renderers::publish_host_time(c, "ap_pixel", m_host, m_time,
                                "host time setting up, scan converting, depth testing, packing, texturing and writing "
                                "the pixels");
   set("triangles", "triangles with at least one visible pixel", m_triangles);

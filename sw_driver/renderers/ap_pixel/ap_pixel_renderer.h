@@ -29,26 +29,6 @@
 
 namespace tessera::ap_pixel {
 
-// ARM922T instructions the host is charged (README.md, "Host work").
-struct HostCosts {
-  unsigned triangle_alu = 150, triangle_mul = 40, triangle_divisions = 18, division_alu = 20;
-  unsigned row_alu = 12;                     // per row: the span's ends from the three edges
-  unsigned pixel_alu = 4, pixel_branch = 1;  // per pixel of a span: depth step, test, loop
-  unsigned visible_alu = 6;                  // per visible pixel: its block, first-seen test, list entry
-  unsigned value_alu = 3;                    // per byte of the 21 values: shifted out of its value
-  unsigned pack_alu = 7;                     // per CIU word of block positions: four bytes shifted into place
-  unsigned unpack_alu = 3;                   // per attribute byte read back: shifted out of its word
-  unsigned texel_nearest_alu = 8, texel_nearest_mul = 1, texel_linear_alu = 30, texel_linear_mul = 9;
-  unsigned tex_env_alu = 12, tex_env_mul = 4;
-  unsigned write_alu = 8, write_mul = 3;  // per pixel written: clamp, pack, store colour and depth
-  unsigned blend_alu = 20, blend_mul = 8;
-  unsigned host_shade_alu = 4, host_shade_mul = 2;  // per attribute per pixel of a sliver the host shades
-  // With the DMA (README.md, "With the DMA"):
-  unsigned stage_alu = 3;        // per block: its two offsets stored into the staging array
-  unsigned replicate_alu = 1;    // per word of the values replicated for every CU (no broadcast)
-  unsigned descriptor_alu = 12;  // per descriptor built and linked
-};
-
 class ApPixelRenderer : public gl::Renderer {
  public:
   // block: the side of the block each CU shades (ap.pixel.block), 1 to 5.
@@ -122,7 +102,6 @@ class ApPixelRenderer : public gl::Renderer {
   PixelLayout m_layout;
   unsigned m_block = 1;
   unsigned m_program_base = 0;
-  HostCosts m_costs;
 
   // The triangle being drawn: its visible pixels in scan order, its blocks
   // in first-seen order, and per block of the frame its index (or -1).

@@ -8,6 +8,7 @@
 
 #include "ap_programs/ap_tile.h"
 #include "common/pixel_format.h"
+#include "costs/host_cost.h"
 #include "renderers/common/host_time.h"
 
 namespace tessera::ap_tile {
@@ -15,6 +16,7 @@ namespace tessera::ap_tile {
 namespace {
 
 using Timed = renderers::TimedScope;
+using costs::HostCost;
 
 // The depth a clear stores: the value the depth plane gives that depth
 // (tile_setup.cpp: z24 * 65535 / 65536 / 256, rounded).
@@ -79,20 +81,17 @@ void ApTileRenderer::unsupported(const std::string& what) {
 }
 
 void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
-  Timed timed(m_host, m_time.compute);
+  Timed timed(m_host, m_time, renderers::HostSplit::compute);
   const std::optional<DrawFlags> flags = draw_flags(state, m_frame.width(), m_frame.height(), m_textures,
                                                     [this](const std::string& what) { unsupported(what); });
   if (!flags) return;
   if (flags->tex != 0) m_frame_textured = true;
-  const HostCosts& k = m_costs;
+  costs::charge(m_host, HostCost::ap_tile_triangle, count);
   for (size_t t = 0; t < count; ++t) {
-    m_host.compute(Op::alu, k.triangle_alu + k.triangle_divisions * k.division_alu);
-    m_host.compute(Op::mul, k.triangle_mul);
-    m_host.compute(Op::call, k.triangle_divisions);
     TriangleSetup setup(triangles[t], *flags, m_frame);
     if (!setup.valid()) continue;
     const std::vector<unsigned> tiles = setup.tiles();
-    m_host.compute(Op::alu, uint64_t{k.tile_test_alu} * std::max<size_t>(tiles.size(), 1));
+    costs::charge(m_host, HostCost::ap_tile_tile, tiles.size());
     if (tiles.empty()) continue;
     m_bins.add(setup, tiles);
     ++m_triangles_drawn;
@@ -103,10 +102,11 @@ void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* recor
   std::vector<uint8_t>& bytes = m_record_bytes;
   bytes.resize(size_t{m_layout.record_bytes} * 4);
   for (unsigned k = 0; k < 4; ++k) encode_record(records[k], m_layout, bytes.data() + k * m_layout.record_bytes);
+  costs::charge(m_host, HostCost::ap_tile_record_group);
+  costs::charge(m_host, HostCost::ap_tile_record_word, m_layout.record_bytes);
   for (unsigned b = 0; b < m_layout.record_bytes; ++b) {
     uint32_t word = 0;
     for (unsigned k = 0; k < 4; ++k) word |= uint32_t{bytes[k * m_layout.record_bytes + b]} << (8 * k);
-    m_host.compute(Op::alu, m_costs.pack_alu);
     m_array.write32(i, j, m_layout.record_first + b, word);
     ++m_words_written;
     m_ciu_traffic.values_written += 4;
@@ -114,7 +114,8 @@ void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* recor
 }
 
 void ApTileRenderer::run_stage(TileStage stage) {
-  Timed timed(m_host, m_time.array_wait);
+  Timed timed(m_host, m_time, renderers::HostSplit::array_wait);
+  costs::charge(m_host, HostCost::ap_tile_stage);
   m_stage_cycles[static_cast<int>(stage)] += m_array.run(m_entry[static_cast<int>(stage)]);
 }
 
@@ -125,6 +126,7 @@ void ApTileRenderer::run_pass(bool depth) {
     if (stage == TileStage::texcoord && !texcoords) continue;
     run_stage(stage);
   }
+  costs::charge(m_host, HostCost::ap_tile_pass);
   ++m_passes;
 }
 
@@ -153,22 +155,22 @@ void ApTileRenderer::flush_by_ciu(size_t passes) {
         TileRecord records[4];
         bool any = false, was_live = false;
         {
-          Timed timed(m_host, m_time.compute);
+          Timed timed(m_host, m_time, renderers::HostSplit::compute);
+          costs::charge(m_host, HostCost::ap_tile_group);
           for (unsigned k = 0; k < 4; ++k) {
             const unsigned c = 4 * i + k, lane = j * m_frame.columns + c;
             was_live = was_live || m_live[lane];
             const TriangleSetup* setup = m_bins.at(lane, pass);
             if (setup == nullptr) continue;
             records[k] = setup->record(c, j);
-            m_host.compute(Op::alu, m_costs.record_alu);
-            m_host.compute(Op::mul, m_costs.record_mul);
+            costs::charge(m_host, HostCost::ap_tile_record);
             any = true;
             ++m_cu_triangles;
             depth = depth || !records[k].zoff;
           }
         }
         if (!any && !was_live) continue;
-        Timed timed(m_host, m_time.array_write);
+        Timed timed(m_host, m_time, renderers::HostSplit::array_write);
         if (any) {
           write_group(i, j, records);
         } else {
@@ -189,19 +191,19 @@ void ApTileRenderer::flush_by_ciu(size_t passes) {
 void ApTileRenderer::flush_by_dma(size_t passes) {
   bool depth[2] = {stage_pass(0, 0), false};
   {
-    Timed timed(m_host, m_time.array_write);
+    Timed timed(m_host, m_time, renderers::HostSplit::array_write);
     m_tile_dma->start_records(0);
   }
   for (size_t pass = 0; pass < passes; ++pass) {
     const unsigned buffer = pass % 2, next = 1 - buffer;
     if (pass + 1 < passes) depth[next] = stage_pass(pass + 1, next);
     {
-      Timed timed(m_host, m_time.array_write);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_write);
       m_tile_dma->wait_input();
     }
     run_pass(depth[buffer]);
     if (pass + 1 < passes) {
-      Timed timed(m_host, m_time.array_write);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_write);
       m_tile_dma->start_records(next);
     }
   }
@@ -212,7 +214,7 @@ void ApTileRenderer::flush_by_dma(size_t passes) {
 bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
   bool depth = false;
   {
-    Timed timed(m_host, m_time.compute);
+    Timed timed(m_host, m_time, renderers::HostSplit::compute);
     for (unsigned j = 0; j < m_frame.rows; ++j)
       for (unsigned c = 0; c < m_frame.columns; ++c) {
         const unsigned lane = j * m_frame.columns + c;
@@ -220,20 +222,21 @@ bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
         m_has_record[lane] = setup != nullptr;
         if (setup == nullptr) continue;
         const TileRecord record = setup->record(c, j);
-        m_host.compute(Op::alu, m_costs.record_alu);
-        m_host.compute(Op::mul, m_costs.record_mul);
+        costs::charge(m_host, HostCost::ap_tile_record);
         encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+        costs::charge(m_host, HostCost::ap_tile_dma_record);
         ++m_cu_triangles;
         depth = depth || !record.zoff;
       }
   }
-  Timed timed(m_host, m_time.array_write);
+  Timed timed(m_host, m_time, renderers::HostSplit::array_write);
   m_tile_dma->stage_records(buffer, m_record_bytes, m_has_record);
   return depth;
 }
 
 void ApTileRenderer::clear(const gl::ClearRequest& request) {
   flush();
+  costs::charge(m_host, HostCost::ap_tile_clear);
   switch (scissor_cover(request.scissor_test, request.scissor_x, request.scissor_y, request.scissor_width,
                         request.scissor_height, m_frame.width(), m_frame.height())) {
     case ScissorCover::none: return;
@@ -247,7 +250,7 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
                           uint32_t{request.rgba[3]} << 24;
     const auto packed = static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, rgba));
     {
-      Timed timed(m_host, m_time.array_write);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_write);
       if (m_tile_dma) {
         m_tile_dma->send_constants(
             {{m_layout.clear_c, {static_cast<uint8_t>(packed >> 8), static_cast<uint8_t>(packed)}}});
@@ -265,7 +268,7 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
   if (request.depth && request.depth_write) {
     const uint16_t z = clear_depth16(request.depth_value);
     {
-      Timed timed(m_host, m_time.array_write);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_write);
       if (m_tile_dma) {
         m_tile_dma->send_constants({{m_layout.clear_z, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
       } else {
@@ -280,20 +283,13 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
 }
 
 uint32_t ApTileRenderer::shade_pixel(uint32_t packed, unsigned tid, int16_t s, int16_t t) {
-  const HostCosts& k = m_costs;
   uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
-  m_host.compute(Op::alu, k.pixel_alu);
+  costs::charge(m_host, HostCost::ap_tile_pixel);
   if (const TextureEntry* entry = m_textures.find(tid)) {
     rgba = texture_pixel(*entry, rgba, s, t, [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
-    if (entry->texture.mag_filter == gl::TexFilter::nearest) {
-      m_host.compute(Op::alu, k.texel_nearest_alu);
-      m_host.compute(Op::mul, k.texel_nearest_mul);
-    } else {
-      m_host.compute(Op::alu, k.texel_linear_alu);
-      m_host.compute(Op::mul, k.texel_linear_mul);
-    }
-    m_host.compute(Op::alu, k.tex_env_alu);
-    m_host.compute(Op::mul, k.tex_env_mul);
+    costs::charge(m_host, entry->texture.mag_filter == gl::TexFilter::nearest ? HostCost::ap_tile_texel_nearest
+                                                                              : HostCost::ap_tile_texel_linear);
+    costs::charge(m_host, HostCost::ap_tile_texture_environment);
   }
   return rgba;
 }
@@ -311,7 +307,7 @@ void ApTileRenderer::read_back() {
         for (unsigned l = 0; l < m_frame.tile_height; ++l) {
           uint32_t hi, lo, tid = 0, s_hi = 0, s_lo = 0, t_hi = 0, t_lo = 0;
           {
-            Timed timed(m_host, m_time.array_read);
+            Timed timed(m_host, m_time, renderers::HostSplit::array_read);
             hi = m_array.read32(i, j, m_layout.pixel(m_layout.chi, x, l));
             lo = m_array.read32(i, j, m_layout.pixel(m_layout.clo, x, l));
             m_words_read += 2;
@@ -330,7 +326,8 @@ void ApTileRenderer::read_back() {
               m_ciu_traffic.values_read += 4;
             }
           }
-          Timed timed(m_host, m_time.compute);
+          Timed timed(m_host, m_time, renderers::HostSplit::compute);
+          costs::charge(m_host, HostCost::ap_tile_read_position);
           for (unsigned b = 0; b < 4; ++b) {
             const unsigned shift = 8 * b;
             const uint32_t packed = ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff);
@@ -349,17 +346,17 @@ void ApTileRenderer::read_back() {
 void ApTileRenderer::read_back_by_dma() {
   const unsigned chunks = m_tile_dma->chunks();
   {
-    Timed timed(m_host, m_time.array_read);
+    Timed timed(m_host, m_time, renderers::HostSplit::array_read);
     for (unsigned x = 0; x < std::min(chunks, 2u); ++x) m_tile_dma->start_chunk(x, m_frame_textured);
   }
   for (unsigned x = 0; x < chunks; ++x) {
     {
-      Timed timed(m_host, m_time.array_read);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_read);
       m_tile_dma->wait_chunk(x);
     }
     convert_chunk(x);
     if (x + 2 < chunks) {
-      Timed timed(m_host, m_time.array_read);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_read);
       m_tile_dma->start_chunk(x + 2, m_frame_textured);
     }
   }
@@ -384,7 +381,7 @@ void ApTileRenderer::convert_chunk(unsigned x) {
   };
   for (unsigned l = 0; l < m_frame.tile_height; ++l) {
     {
-      Timed timed(m_host, m_time.array_read);
+      Timed timed(m_host, m_time, renderers::HostSplit::array_read);
       load(m_layout.chi, l, hi);
       load(m_layout.clo, l, lo);
       if (m_frame_textured) {
@@ -397,7 +394,8 @@ void ApTileRenderer::convert_chunk(unsigned x) {
         }
       }
     }
-    Timed timed(m_host, m_time.compute);
+    Timed timed(m_host, m_time, renderers::HostSplit::compute);
+    costs::charge(m_host, HostCost::ap_tile_dma_chunk_row);
     for (unsigned lane = 0; lane < cus; ++lane) {
       const auto s16 = static_cast<int16_t>(s_hi[lane] << 8 | s_lo[lane]);
       const auto t16 = static_cast<int16_t>(t_hi[lane] << 8 | t_lo[lane]);
@@ -417,14 +415,14 @@ void ApTileRenderer::read_pixels(int x, int y, int width, int height, uint8_t* r
 void ApTileRenderer::present() {
   read_back();
   {
-    Timed timed(m_host, m_time.frame_out);
+    Timed timed(m_host, m_time, renderers::HostSplit::frame_out);
     const PixelFormat format = m_display.format();
     const unsigned bytes = bytes_per_pixel(format), width = m_frame.width();
     for (unsigned row = 0; row < m_frame.height(); ++row) {
       uint8_t* out = m_host.store_span(m_display.back_buffer() + row * m_display.stride(), bytes, width);
       for (unsigned column = 0; column < width; ++column)
         store_pixel(format, out + column * bytes, pack_pixel(format, m_rgba[size_t{row} * width + column]));
-      m_host.compute(Op::alu, uint64_t{width} * m_costs.pixel_alu / 2);
+      costs::charge(m_host, HostCost::ap_tile_frame_out_pixel, width);
     }
     m_display.present();
   }
@@ -443,7 +441,7 @@ void ApTileRenderer::present() {
                           TileStage::clear_colour, TileStage::clear_depth})
     totals.emplace_back(std::string("cycles.") + stage_entry(stage),
                         static_cast<double>(m_stage_cycles[static_cast<int>(stage)]));
-  renderers::add_host_time(totals, m_time);
+  renderers::add_host_time(totals, m_host, m_time);
   const double passes = m_frame_figures.change("passes", static_cast<double>(m_passes));
   const double cu_triangles = m_frame_figures.change("cu_triangles", static_cast<double>(m_cu_triangles));
   const double per_triangle = renderers::values_written_per_triangle(m_frame_figures, m_triangles_drawn, traffic);
@@ -467,7 +465,7 @@ void ApTileRenderer::publish_statistics() {
   auto set = [&](const char* name, const char* description, uint64_t value) {
     c.counter(std::string("ap_tile.") + name, description).value = value;
   };
-  renderers::publish_host_time(c, "ap_tile", m_time, "host time setting up, binning, packing and texturing");
+  renderers::publish_host_time(c, "ap_tile", m_host, m_time, "host time setting up, binning, packing and texturing");
   set("triangles", "triangles binned to at least one CU", m_triangles_drawn);
   set("cu_triangles", "triangle records written (one per CU per triangle)", m_cu_triangles);
   set("passes", "passes run (every CU at most one triangle per pass)", m_passes);

@@ -31,18 +31,6 @@
 
 namespace tessera::ap_tile {
 
-// ARM922T instructions the host is charged around the array (README.md,
-// "Host work"), per item.
-struct HostCosts {
-  unsigned triangle_alu = 150, triangle_mul = 40, triangle_divisions = 18, division_alu = 20;
-  unsigned tile_test_alu = 16;                // per candidate tile: 3 edges at 4 corners
-  unsigned record_alu = 40, record_mul = 18;  // per CU record: start values at the tile's corner
-  unsigned pack_alu = 7;                      // per CIU word: four bytes shifted into place
-  unsigned pixel_alu = 8;                     // per pixel read back: unpack RGB565, pack for the display
-  unsigned texel_nearest_alu = 8, texel_nearest_mul = 1, texel_linear_alu = 30, texel_linear_mul = 9;
-  unsigned tex_env_alu = 12, tex_env_mul = 4;
-};
-
 // The back end's configuration (ap.tile.*, declared in ap_tile_backend.cpp).
 struct Settings {
   bool texcoords_always = false;  // the texcoord stage in every pass, textured or not
@@ -91,7 +79,6 @@ class ApTileRenderer : public gl::Renderer {
   DmaDriver m_dma;
   CmemLayout m_layout;
   FrameGeometry m_frame;
-  HostCosts m_costs;
   unsigned m_entry[6]{};
   unsigned m_program_base = 0;
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "costs/host_cost.h"
 #include "gl/runtime.h"
 
 namespace tessera::ap_tile {
@@ -80,7 +81,7 @@ void TileDma::send_constants(const std::vector<Constant>& constants) {
       // Row r of the reshuffle is byte r, once per CU: the byte replicated
       // into a word (two ORRs with shifts), stored as words.
       for (uint32_t r = 0; r < n; ++r) {
-        m_host.compute(Op::alu, 2);
+        costs::charge(m_host, costs::HostCost::ap_tile_dma_constant_byte);
         std::memset(m_host.store_span(at + r * m_cus, 4, m_cus / 4), c.bytes[r], m_cus);
       }
       chain.push_back(DmaDriver::to_cmem(at, c.cmem, m_cus * n, 1));
@@ -98,6 +99,7 @@ void TileDma::stage_records(unsigned buffer, const std::vector<uint8_t>& bytes, 
   const unsigned record_bytes = m_layout.record_bytes, live = m_layout.live - m_layout.record_first;
   const uint32_t base = m_records[buffer];
   std::vector<bool>& staged_live = m_staged_live[buffer];
+  costs::charge(m_host, costs::HostCost::ap_tile_dma_lane, m_cus);
   for (unsigned lane = 0; lane < m_cus; ++lane) {
     if (has_record[lane]) {
       // One STRB per byte, a row apart: no packing.

@@ -15,34 +15,74 @@
 #include "device/app_environment.h"
 
 #include "common/activity_counters.h"
+#include "costs/host_cost.h"
 #include "host/host_api.h"
 
 namespace tessera::renderers {
 
-// Seconds of host time.
+// Where a scope's host time goes; each is also a bucket of the measured
+// cost table's meter (costs/host_cost.h), so that the units charged in it
+// can be fitted to its time.
+enum class HostSplit : unsigned { compute, array_write, array_read, array_wait, frame_out, count_ };
+static_assert(static_cast<unsigned>(HostSplit::count_) == costs::SPLIT_BUCKETS);
+
+// Host time in whole host cycles (HostApi::now_cycles): integers, as the
+// ARM922T driver keeps it.
 struct HostTime {
-  double compute = 0, array_write = 0, array_read = 0, array_wait = 0, frame_out = 0;
+  uint64_t compute = 0, array_write = 0, array_read = 0, array_wait = 0, frame_out = 0;
+  uint64_t& at(HostSplit split) {
+    switch (split) {
+      case HostSplit::array_write: return array_write;
+      case HostSplit::array_read: return array_read;
+      case HostSplit::array_wait: return array_wait;
+      case HostSplit::frame_out: return frame_out;
+      default: return compute;
+    }
+  }
 };
 
-// Adds the host time between its construction and its end to `total`.
+// Counts the measured cost table's charges in `split` while it lasts (and
+// in the split open before it again afterwards).
+class CostSplit {
+ public:
+  explicit CostSplit(HostSplit split)
+      : m_previous(costs::set_split_bucket(costs::PHASE_BUCKETS + static_cast<unsigned>(split))) {}
+  ~CostSplit() { costs::set_split_bucket(m_previous); }
+  CostSplit(const CostSplit&) = delete;
+  CostSplit& operator=(const CostSplit&) = delete;
+
+ private:
+  unsigned m_previous;
+};
+
+// Adds the host time between its construction and its end to `split` of
+// `time`, and counts the charges made meanwhile in that split.
 class TimedScope {
  public:
-  TimedScope(HostApi& host, double& total) : m_host(host), m_total(total), m_start(host.now_seconds()) {}
-  ~TimedScope() { m_total += m_host.now_seconds() - m_start; }
+  TimedScope(HostApi& host, HostTime& time, HostSplit split)
+      : m_host(host), m_total(time.at(split)), m_split(split), m_start(host.now_cycles()) {}
+  ~TimedScope() { m_total += m_host.now_cycles() - m_start; }
   TimedScope(const TimedScope&) = delete;
   TimedScope& operator=(const TimedScope&) = delete;
 
  private:
   HostApi& m_host;
-  double& m_total;
-  double m_start;
+  uint64_t& m_total;
+  CostSplit m_split;
+  uint64_t m_start;
 };
 
+// Host cycles in nanoseconds, at the host's clock.
+inline double host_ns(HostApi& host, uint64_t cycles) {
+  return static_cast<double>(cycles) * 1e9 / host.clock_hz();
+}
+
 // The split as counters <prefix>.host_compute_ns ... host_frame_out_ns.
-inline void publish_host_time(ActivityCounters& counters, const std::string& prefix, const HostTime& time,
-                              const char* compute_description) {
-  auto set = [&](const char* name, const char* description, double seconds) {
-    counters.counter(prefix + "." + name, description).value = static_cast<uint64_t>(std::llround(seconds * 1e9));
+inline void publish_host_time(ActivityCounters& counters, const std::string& prefix, HostApi& host,
+                              const HostTime& time, const char* compute_description) {
+  auto set = [&](const char* name, const char* description, uint64_t cycles) {
+    counters.counter(prefix + "." + name, description).value =
+        static_cast<uint64_t>(std::llround(host_ns(host, cycles)));
   };
   set("host_compute_ns", compute_description, time.compute);
   set("host_write_ns", "host time writing the array (CIU accesses, or building DMA descriptors and waiting for them)",
@@ -80,12 +120,12 @@ class FrameFigures {
 };
 
 // The host-time split as running totals in nanoseconds, for FrameFigures.
-inline void add_host_time(FrameFigures::Figures& totals, const HostTime& time) {
-  totals.emplace_back("host_compute_ns", time.compute * 1e9);
-  totals.emplace_back("host_write_ns", time.array_write * 1e9);
-  totals.emplace_back("host_read_ns", time.array_read * 1e9);
-  totals.emplace_back("host_wait_ns", time.array_wait * 1e9);
-  totals.emplace_back("host_frame_out_ns", time.frame_out * 1e9);
+inline void add_host_time(FrameFigures::Figures& totals, HostApi& host, const HostTime& time) {
+  totals.emplace_back("host_compute_ns", host_ns(host, time.compute));
+  totals.emplace_back("host_write_ns", host_ns(host, time.array_write));
+  totals.emplace_back("host_read_ns", host_ns(host, time.array_read));
+  totals.emplace_back("host_wait_ns", host_ns(host, time.array_wait));
+  totals.emplace_back("host_frame_out_ns", host_ns(host, time.frame_out));
 }
 
 }  // namespace tessera::renderers
