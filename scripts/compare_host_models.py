@@ -46,17 +46,29 @@ def scenes(soc_sim):
     return [line.split()[0] for line in out.splitlines() if "GL ES 1.1 scene" in line]
 
 
-def run(soc_sim, out, scene, backend, model, frames):
+def recorded_frames(folder):
+    """The frame records of an earlier run in `folder`, or None."""
+    path = folder / "stats.json"
+    if not path.is_file():
+        return None
+    return json.loads(path.read_text())["stats"]["frames"]
+
+
+def run(soc_sim, out, scene, backend, model, frames, iss_from=None):
     folder = out / f"{scene}_{backend}_{model}"
-    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames",
-               "--quiet", "--force", "--out", str(folder), "--set", f"host.model={model}"]
-    if scene == "obj_viewer":
-        command += ["--", str(OBJ)]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
-    stats = json.loads((folder / "stats.json").read_text())["stats"]
-    later = stats["frames"][1:]
+    recorded = recorded_frames(iss_from / folder.name) if iss_from is not None and model == "iss" else None
+    if recorded is not None:
+        frames = len(recorded)
+    else:
+        command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames",
+                   "--quiet", "--force", "--out", str(folder), "--set", f"host.model={model}"]
+        if scene == "obj_viewer":
+            command += ["--", str(OBJ)]
+        result = subprocess.run(command, capture_output=True, text=True)
+        if result.returncode != 0:
+            raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
+        recorded = recorded_frames(folder)
+    later = recorded[1:]
     if not later:
         raise RuntimeError(f"{scene} on {backend} ({model}): fewer than 2 frames shown")
     per_frame = {"render": sum(f["render_ns"] for f in later) / len(later) / 1e6}
@@ -79,9 +91,19 @@ def main():
                              "is within PERCENT of the ISS's")
     parser.add_argument("--floor", type=float, default=1.0, metavar="PERCENT",
                         help="the share of the frame below which --check leaves a phase out (default 1)")
+    parser.add_argument("--iss-from", metavar="DIR",
+                        help="take the ISS's runs from DIR where it has them (<scene>_<back end>_iss/stats.json, "
+                             "as scripts/measure_host_costs.py leaves them: the ISS's times do not depend on the "
+                             "table) and run the host-compiled model for as many frames")
+    parser.add_argument("--doc", metavar="FILE",
+                        help="also exit 1 when FILE's table (between <!-- host-models:begin --> and "
+                             "<!-- host-models:end -->) is not the one printed")
+    parser.add_argument("--write-doc", action="store_true", help="write the printed tables into --doc's FILE")
     args = parser.parse_args()
     if args.frames < 2:
         parser.error("--frames must be at least 2")
+    if args.write_doc and not args.doc:
+        parser.error("--write-doc needs --doc FILE")
     if not os.access(args.soc_sim, os.X_OK):
         parser.error(f"no soc_sim at {args.soc_sim}")
     out = pathlib.Path(args.out)
@@ -89,8 +111,14 @@ def main():
     backends = args.backend or ["arm", "raster", "ap-tile", "ap-pixel"]
     chosen = args.scene or scenes(args.soc_sim)
     cases = [(scene, backend) for backend in backends for scene in chosen]
+    iss_from = pathlib.Path(args.iss_from) if args.iss_from else None
+    frames = {}
+    for scene, backend in cases:
+        recorded = recorded_frames(iss_from / f"{scene}_{backend}_iss") if iss_from is not None else None
+        frames[(scene, backend)] = len(recorded) if recorded is not None else args.frames
     with ThreadPoolExecutor(args.jobs) as pool:
-        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model, args.frames)
+        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model,
+                                                        frames[(scene, backend)], iss_from)
                    for scene, backend in cases for model in ("native", "iss")}
         try:
             results = {key: future.result() for key, future in futures.items()}
@@ -98,12 +126,17 @@ def main():
             print(f"compare_host_models: {error}", file=sys.stderr)
             return 1
 
-    print(f"Simulated ms per frame (frames 1..{args.frames - 1} of {args.frames}), host-compiled (native) / ISS, "
-          "and the host-compiled model's error against the ISS:\n")
+    table = []
+
+    def emit(text):
+        table.extend(text.split("\n"))
+
+    emit("Simulated ms per frame (the frames after the first), host-compiled (native) / ISS, and the "
+         "host-compiled model's error against the ISS:\n")
     header = ["scene", "back end", "frame: native / ISS"] + [f"{p}: native / ISS" for p in PHASES]
     header += ["frame error", "host-phases error"]
-    print("| " + " | ".join(header) + " |")
-    print("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
+    emit("| " + " | ".join(header) + " |")
+    emit("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
     outside = []
     for scene, backend in cases:
         n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
@@ -121,26 +154,43 @@ def main():
         host_i = sum(i[p] for p in PHASES if p != "application")
         cells.append(f"{(n['render'] / i['render'] - 1) * 100:+.0f}%")
         cells.append(f"{(host_n / host_i - 1) * 100:+.0f}%" if host_i > 0 else "-")
-        print("| " + " | ".join(cells) + " |")
+        emit("| " + " | ".join(cells) + " |")
     array_cases = [(scene, backend) for scene, backend in cases if backend in ARRAY_BACKENDS]
     if array_cases:
-        print("\nThe array back ends' host time by part (ms per frame, native / ISS, and the error):\n")
+        emit("\nThe array back ends' host time by part (ms per frame, native / ISS, and the error):\n")
         header = ["scene", "back end"] + [f"{p}: native / ISS" for p in SPLIT]
-        print("| " + " | ".join(header) + " |")
-        print("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
+        emit("| " + " | ".join(header) + " |")
+        emit("|" + "|".join(["---"] * 2 + ["--:"] * (len(header) - 2)) + "|")
         for scene, backend in array_cases:
             n, i = results[(scene, backend, "native")], results[(scene, backend, "iss")]
             cells = [scene, backend]
             for p in SPLIT:
                 error = f" ({(n[p] / i[p] - 1) * 100:+.0f}%)" if i[p] > 0 else ""
                 cells.append(f"{n[p]:.2f} / {i[p]:.2f}{error}")
-            print("| " + " | ".join(cells) + " |")
+            emit("| " + " | ".join(cells) + " |")
+    print("\n".join(table))
+    stale = False
+    if args.doc:
+        doc = pathlib.Path(args.doc)
+        text = doc.read_text()
+        begin, end = "<!-- host-models:begin -->\n", "<!-- host-models:end -->"
+        if begin not in text or end not in text:
+            parser.error(f"{doc} has no {begin.strip()} ... {end} block")
+        head, rest = text.split(begin, 1)
+        tail = rest.split(end, 1)[1]
+        block = "\n".join(table) + "\n"
+        if args.write_doc:
+            doc.write_text(head + begin + block + end + tail)
+            print(f"\nwrote the tables into {doc}")
+        elif rest.split(end, 1)[0] != block:
+            print(f"\n{doc}'s table is not this one: run scripts/compare_host_models.py --doc {doc} --write-doc")
+            stale = True
     if args.check is not None:
         if outside:
             print(f"\n{len(outside)} outside +-{args.check:g}%:\n  " + "\n  ".join(outside))
             return 1
         print(f"\nevery frame, and every phase of at least {args.floor:g}% of its frame, within +-{args.check:g}%")
-    return 0
+    return 1 if stale else 0
 
 
 if __name__ == "__main__":

@@ -120,11 +120,9 @@ uint64_t ns(HostApi& host, uint64_t cycles) {
 // beside study.<split>_ns: what scripts/measure_host_costs.py fits the
 // rows of this file to. Natively only (the ISS charges nothing).
 void publish_units(AppEnvironment& env) {
-  static const char* const BUCKETS[costs::COST_BUCKETS] = {
-      "application", "geometry", "rasterization", "presenting", "compute", "write", "read", "wait", "frame_out"};
-  for (const auto& [name, units] : costs::take_cost_units(BUCKETS)) {
+  for (const auto& [name, units] : costs::take_cost_units(costs::COST_BUCKET_NAMES)) {
     for (unsigned b = costs::PHASE_BUCKETS; b < costs::COST_BUCKETS; ++b) {
-      const std::string prefix = std::string("units_") + BUCKETS[b] + "_";
+      const std::string prefix = std::string("units_") + costs::COST_BUCKET_NAMES[b] + "_";
       if (name.compare(0, prefix.size(), prefix) == 0)
         publish(env, name, "units of a row of the measured cost table charged in the timed part",
                 static_cast<uint64_t>(units));

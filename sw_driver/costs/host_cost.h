@@ -49,6 +49,10 @@ std::optional<HostCost> find_host_cost(const std::string& name);
 inline constexpr unsigned PHASE_BUCKETS = 4;
 inline constexpr unsigned SPLIT_BUCKETS = 5;
 inline constexpr unsigned COST_BUCKETS = PHASE_BUCKETS + SPLIT_BUCKETS;
+// The buckets' names, as the frame records and statistics name them
+// (units_<bucket>_<row>).
+inline constexpr const char* COST_BUCKET_NAMES[COST_BUCKETS] = {
+    "application", "geometry", "rasterization", "presenting", "compute", "write", "read", "wait", "frame_out"};
 inline constexpr unsigned NO_SPLIT = ~0u;
 
 #if defined(TESSERA_HOST_ISS)

@@ -7,12 +7,10 @@ namespace tessera::gl {
 namespace {
 constexpr const char* NAMES[] = {"host_application_ns", "host_geometry_ns", "host_rasterization_ns",
                                  "host_presenting_ns"};
-// The phases, then the array back ends' host split (renderers/common/
-// host_time.h): units_<bucket>_<row> beside host_<bucket>_ns.
-constexpr const char* BUCKETS[] = {"application", "geometry", "rasterization", "presenting", "compute",
-                                   "write",       "read",     "wait",          "frame_out"};
 static_assert(std::size(NAMES) == static_cast<size_t>(Phase::count_));
-static_assert(static_cast<size_t>(Phase::count_) == costs::PHASE_BUCKETS && std::size(BUCKETS) == costs::COST_BUCKETS);
+// The meter's first buckets are the phases, in this order (the array back
+// ends' host split follows: costs::COST_BUCKET_NAMES).
+static_assert(static_cast<size_t>(Phase::count_) == costs::PHASE_BUCKETS);
 }  // namespace
 
 PhaseClock& phase_clock() {
@@ -49,7 +47,7 @@ std::vector<std::pair<std::string, double>> PhaseClock::take_frame() {
   std::vector<std::pair<std::string, double>> figures;
   for (size_t i = 0; i < m_seconds.size(); ++i) figures.emplace_back(NAMES[i], m_seconds[i] * 1e9);
   m_seconds.fill(0);
-  for (auto& units : costs::take_cost_units(BUCKETS)) figures.push_back(std::move(units));
+  for (auto& units : costs::take_cost_units(costs::COST_BUCKET_NAMES)) figures.push_back(std::move(units));
   return figures;
 }
 

@@ -236,7 +236,7 @@ GL_API void GL_APIENTRY glRotatef(GLfloat angle, GLfloat x, GLfloat y, GLfloat z
   const glm::vec3 axis(x, y, z);
   const float length = glm::length(axis);
   if (!(length > 0)) return c->charge_call();  // a zero axis rotates by nothing
-  c->host().compute(tessera::Op::call, 2);     // sin and cos
+  c->charge(tessera::costs::HostCost::gl_rotation);
   c->mult_matrix(glm::rotate(glm::mat4(1), glm::radians(angle), axis / length));
 }
 GL_API void GL_APIENTRY glScalef(GLfloat x, GLfloat y, GLfloat z) {

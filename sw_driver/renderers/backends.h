@@ -6,10 +6,12 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "config/config.h"
+#include "costs/host_cost.h"
 #include "device/app_environment.h"
 #include "gl/renderer.h"
 #include "renderers/backend_entry_points.h"
@@ -50,7 +52,15 @@ const Backend& backend(std::string_view name);
 // Hands the back end to an application: its factory and what its buffers
 // hold, for the GL driver's EGL.
 inline void hand_over(const Backend& backend, AppEnvironment& env) {
-  env.make_renderer = backend.make_renderer;
+  // The back end's own set-up as it makes its renderer (its array programs
+  // loaded, its buffers laid out) is the measured cost table's row
+  // backend_start_<id>, where the table has one.
+  const std::optional<costs::HostCost> start = costs::find_host_cost(std::string("backend_start_") + backend.id);
+  env.make_renderer = [make = backend.make_renderer, start](AppEnvironment& e) {
+    std::unique_ptr<gl::Renderer> renderer = make(e);
+    if (start && e.host != nullptr) costs::charge(*e.host, *start);
+    return renderer;
+  };
   env.capabilities = backend.capabilities;
 }
 

@@ -42,7 +42,8 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
       m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways, params.dcache_round_robin),
       m_busy_cycles(counter("busy_cycles", "host cycles charged")),
-      m_measured_cycles(counter("measured_cycles", "cycles charged from the ISS-measured cost table (sw_driver/costs)")),
+      m_measured_cycles(
+          counter("measured_cycles", "cycles charged from the ISS-measured cost table (sw_driver/costs)")),
       m_write_buffer_stalls(counter("write_buffer_stalls", "waits for a write-buffer entry")),
       m_bus_errors(counter("bus_errors", "bus transactions that got an error response")),
       m_loads(counter("loads", "load instructions (an LDM counts once)")),

@@ -82,11 +82,13 @@ void ApTileRenderer::unsupported(const std::string& what) {
 
 void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
   Timed timed(m_host, m_time, renderers::HostSplit::compute);
+  costs::charge(m_host, HostCost::ap_tile_draw);
   const std::optional<DrawFlags> flags = draw_flags(state, m_frame.width(), m_frame.height(), m_textures,
                                                     [this](const std::string& what) { unsupported(what); });
   if (!flags) return;
   if (flags->tex != 0) m_frame_textured = true;
   costs::charge(m_host, HostCost::ap_tile_triangle, count);
+  if (flags->tex != 0) costs::charge(m_host, HostCost::ap_tile_textured_triangle, count);
   for (size_t t = 0; t < count; ++t) {
     TriangleSetup setup(triangles[t], *flags, m_frame);
     if (!setup.valid()) continue;

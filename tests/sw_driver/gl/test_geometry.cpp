@@ -418,6 +418,7 @@ TEST(FixedPoint, Unorm8AndUnorm24Clamp) {
 TEST(FixedPoint, Unorm24IsTheExactlyRoundedProduct) {
   auto reference = [](float value) { return static_cast<uint32_t>(std::llround(double{value} * 16777215.0)); };
   std::vector<float> values;
+  values.reserve(200000);
   float v = 1.0f;
   for (int i = 0; i < 100000; ++i) values.push_back(v = std::nextafter(v, 0.0f));
   v = 0.5f;

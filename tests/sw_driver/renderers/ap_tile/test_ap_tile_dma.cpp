@@ -107,14 +107,16 @@ TEST_F(ApTileDma, TheDmaCarriesTheArraysTrafficAndTheBroadcastWritesLess) {
   }
 }
 
-// CMEM too small for the program's layout: the DMA refuses the first
-// descriptor (the constants); the run ends with an error naming the
-// renderer and the DMA's reason, as an array error would end it.
-TEST_F(ApTileDma, ARefusedDescriptorEndsTheRunNamingTheRenderer) {
+// CMEM too small for the program's layout: the driver refuses the program
+// as it loads it (ArrayDriver::load checks every CMEM variable once), before
+// any descriptor reaches the DMA, with an error naming the program, the
+// variable and the setting. (The DMA's own refusal of a descriptor outside
+// CMEM is tested in tests/dma/test_dma.cpp.)
+TEST_F(ApTileDma, ACmemTooSmallForTheProgramEndsTheRunNamingIt) {
   const SimResult result = run({"--backend", "ap-tile", "--app", "teapot", "--frames", "1", "--no-frames", "--set",
                                 "dma.enabled=true", "--set", "array.cmem_bytes=2048", "--out", "out"});
   EXPECT_EQ(result.status, 1) << describe(result);
-  for (const char* part : {"ap-tile: DMA channel 0 stopped", "destination outside CMEM"})
+  for (const char* part : {"ap_tile.s: CMEM variable", "outside the array's 2048 bytes of CMEM", "array.cmem_bytes"})
     EXPECT_TRUE(contains(result.err, part)) << part << "\n" << describe(result);
 }
 
