@@ -28,6 +28,7 @@
 #include "gl_test_fixture.h"
 #include "renderers/backends.h"
 #include "support/backend_table.h"
+#include "support/cost_units.h"
 
 using namespace tessera;
 using test::GlApi;
@@ -500,8 +501,14 @@ TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
   glVertexPointer(3, GL_FLOAT, 0, grid.data());
 
   uint64_t start = host.operations();
+  tessera::test::take_cost_units();
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(indices.size()), GL_UNSIGNED_SHORT, indices.data());
   const uint64_t indexed_cost = host.operations() - start;
+  std::map<std::string, uint64_t> units = tessera::test::take_cost_units();
+  // The host is charged the transform of each vertex once, and a look-up per index.
+  EXPECT_EQ(units["gl_vertex"], 9u);
+  EXPECT_EQ(units["gl_vertex_light"], 9u);
+  EXPECT_EQ(units["gl_vertex_cache_lookup"], 24u);
   EXPECT_EQ(counters.value("vertices_transformed"), 9u);
   EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
   EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
@@ -517,6 +524,10 @@ TEST_F(GlApi, RepeatedIndicesAreTransformedOnce) {
   start = host.operations();
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(indices.size()));
   const uint64_t unindexed_cost = host.operations() - start;
+  units = tessera::test::take_cost_units();
+  EXPECT_EQ(units["gl_vertex"], 24u);
+  EXPECT_EQ(units["gl_vertex_light"], 24u);
+  EXPECT_EQ(units["gl_vertex_cache_lookup"], 0u);
   EXPECT_EQ(counters.value("vertices_transformed"), 9u + 24u);
   EXPECT_EQ(counters.value("vertex_cache.misses"), 9u);
   EXPECT_EQ(counters.value("vertex_cache.hits"), 15u);
