@@ -107,16 +107,16 @@ LOOP_ACCESS_CYCLES = 3
 # - The CIU driver's WriteMem32 and ReadMem32 in calib_ciu's loops: plus
 #   the caller's BL (3 cycles), less the issue cycle of the one access the
 #   native model charges itself.
-# (The display port's copy of a block, `display_copy_block`, belongs here
-# too: in the arm back end's frames the copy loop, memcpy of the eight
-# words and the STM take 163.5 core cycles a block, 146.5 less the issue
-# cycles of the 8 loads and the STM the native model charges itself. Taken
-# so, the presenting phase of ap-pixel comes out up to 24 % short: the
-# fitted value stands in for work of that phase no row has yet.
-# sw_driver/costs/README.md.)
+# - The display port's copy of a block in fullscreen_rect's arm frames (no
+#   texture, so the copy is the only caller of write_words): the copy loop
+#   and its LDM/STM, less the issue cycles of the 8 loads and the STM (8
+#   stores and one) the native model charges with the accesses. The copy is
+#   bound by the port, so the phase's time cannot tell its cycles.
 CALL_ROWS = {
     "array_write32": ("calib_ciu", ("calib_ciu", "app"), ["tessera::ArrayDriver::write32("], 3 - 1),
     "array_read32": ("calib_ciu", ("calib_ciu", "app"), ["tessera::ArrayDriver::read32("], 3 - 1),
+    "display_copy_block": ("fullscreen_rect_arm", ("fullscreen_rect", "arm"),
+                           ["tessera::DisplayDriver::present(", "tessera::HostApi::write_words("], -(8 + 9)),
 }
 LOOP_ITERATIONS = re.compile(r"loop of ([0-9]+) iterations")
 ROW = re.compile(r'^HOST_COST\((\w+), ([0-9.eE+-]+), (".*")\)$')

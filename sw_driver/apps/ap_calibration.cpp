@@ -235,7 +235,7 @@ int calib_ciu_app(AppEnvironment& env) {
         static_cast<uint64_t>(std::llround(renderers::host_ns(host, time.array_write)));
     env.counters->counter("calib_ciu.read_ns", "host time of the read loop").value =
         static_cast<uint64_t>(std::llround(renderers::host_ns(host, time.array_read)));
-    for (const auto& [name, units] : costs::take_cost_units(costs::COST_BUCKET_NAMES))
+    for (const auto& [name, units] : costs::take_cost_units())
       if (name.compare(0, 12, "units_write_") == 0 || name.compare(0, 11, "units_read_") == 0)
         env.counters->counter("calib_ciu." + name, "units of a row of the measured cost table charged in the loop")
             .value = static_cast<uint64_t>(units);

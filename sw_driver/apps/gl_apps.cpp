@@ -4,6 +4,7 @@
 #include <GLES/gl.h>
 
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,12 +19,14 @@ namespace {
 const scenes::Scene* g_scene = nullptr;
 HostApi* g_host = nullptr;
 
-// Charges the scene's own code (the rows scene_<name>_init and
-// scene_<name>_frame of the measured cost table, where it has them).
-void charge_scene(const scenes::Scene& scene, const char* part) {
-  if (g_host == nullptr) return;
-  if (const auto row = costs::find_host_cost(std::string("scene_") + scene.name + "_" + part))
-    costs::charge(*g_host, *row);
+// The scene's own code: the rows scene_<name>_init and scene_<name>_frame
+// of the measured cost table, where it has them (looked up once).
+std::optional<costs::HostCost> scene_row(const scenes::Scene& scene, const char* part) {
+  return costs::find_host_cost(std::string("scene_") + scene.name + "_" + part);
+}
+
+void charge_scene(const std::optional<costs::HostCost>& row) {
+  if (g_host != nullptr && row) costs::charge(*g_host, *row);
 }
 
 // A scene's program: EGL set-up, the scene's own set-up, then frames until
@@ -58,10 +61,11 @@ int scene_main(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s\n", scene.name, error.c_str());
     return 2;
   }
-  charge_scene(scene, "init");
+  charge_scene(scene_row(scene, "init"));
+  const std::optional<costs::HostCost> frame_row = scene_row(scene, "frame");
   for (int frame = 0;; ++frame) {
     scene.draw(frame);
-    charge_scene(scene, "frame");
+    charge_scene(frame_row);
     eglSwapBuffers(display, surface);
   }
 }

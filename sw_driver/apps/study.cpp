@@ -120,7 +120,7 @@ uint64_t ns(HostApi& host, uint64_t cycles) {
 // beside study.<split>_ns: what scripts/measure_host_costs.py fits the
 // rows of this file to. Natively only (the ISS charges nothing).
 void publish_units(AppEnvironment& env) {
-  for (const auto& [name, units] : costs::take_cost_units(costs::COST_BUCKET_NAMES)) {
+  for (const auto& [name, units] : costs::take_cost_units()) {
     for (unsigned b = costs::PHASE_BUCKETS; b < costs::COST_BUCKETS; ++b) {
       const std::string prefix = std::string("units_") + costs::COST_BUCKET_NAMES[b] + "_";
       if (name.compare(0, prefix.size(), prefix) == 0)

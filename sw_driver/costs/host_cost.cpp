@@ -9,6 +9,12 @@ namespace tessera::costs {
 
 namespace {
 
+struct HostCostRow {
+  const char* name;
+  double cycles;  // per unit, measured on the ISS
+  const char* unit;
+};
+
 constexpr HostCostRow ROWS[] = {
 #define HOST_COST(name, cycles, unit) {#name, cycles, unit},
 #include "costs/host_costs.def"
@@ -17,12 +23,6 @@ constexpr HostCostRow ROWS[] = {
 static_assert(std::size(ROWS) == HOST_COST_COUNT);
 
 }  // namespace
-
-const HostCostRow& host_cost_row(HostCost cost) {
-  const auto index = static_cast<size_t>(cost);
-  if (index >= HOST_COST_COUNT) throw std::invalid_argument("host cost: no such row");
-  return ROWS[index];
-}
 
 std::optional<HostCost> find_host_cost(const std::string& name) {
   for (size_t i = 0; i < HOST_COST_COUNT; ++i) {
@@ -79,13 +79,13 @@ void reset_cost_meter() {
   meter() = Meter{};
 }
 
-std::vector<std::pair<std::string, double>> take_cost_units(const char* const* bucket_names) {
+std::vector<std::pair<std::string, double>> take_cost_units() {
   std::vector<std::pair<std::string, double>> figures;
   Meter& m = meter();
   for (unsigned b = 0; b < COST_BUCKETS; ++b) {
     for (size_t i = 0; i < HOST_COST_COUNT; ++i) {
       if (m.units[b][i] == 0) continue;
-      figures.emplace_back(std::string("units_") + bucket_names[b] + "_" + ROWS[i].name,
+      figures.emplace_back(std::string("units_") + COST_BUCKET_NAMES[b] + "_" + ROWS[i].name,
                            static_cast<double>(m.units[b][i]));
       m.units[b][i] = 0;
     }

@@ -31,14 +31,8 @@ enum class HostCost : uint16_t {
 
 inline constexpr size_t HOST_COST_COUNT = static_cast<size_t>(HostCost::count_);
 
-struct HostCostRow {
-  const char* name;
-  double cycles;  // per unit, measured on the ISS
-  const char* unit;
-};
-
-const HostCostRow& host_cost_row(HostCost cost);
-// The row named `name`, if the table has one.
+// The row named `name`, if the table has one (a lookup by name: resolve a
+// row once, where its name is made, not at each charge).
 std::optional<HostCost> find_host_cost(const std::string& name);
 
 // Buckets the meter counts units in: the GL phases (0 .. PHASE_BUCKETS - 1,
@@ -63,7 +57,7 @@ inline unsigned set_split_bucket(unsigned /*split*/) {
   return NO_SPLIT;
 }
 inline void reset_cost_meter() {}
-inline std::vector<std::pair<std::string, double>> take_cost_units(const char* const* /*bucket_names*/) {
+inline std::vector<std::pair<std::string, double>> take_cost_units() {
   return {};
 }
 
@@ -80,9 +74,9 @@ unsigned set_split_bucket(unsigned split);
 // Forgets the counts and the carried fraction (a new program starts).
 void reset_cost_meter();
 // The units charged since the last call, per bucket and row, as
-// units_<bucket name>_<row name> (rows with none are left out);
-// `bucket_names` names COST_BUCKETS buckets.
-std::vector<std::pair<std::string, double>> take_cost_units(const char* const* bucket_names);
+// units_<bucket name>_<row name> (COST_BUCKET_NAMES; rows with none are
+// left out).
+std::vector<std::pair<std::string, double>> take_cost_units();
 
 #endif
 

@@ -1,7 +1,6 @@
 #include "device/display_driver.h"
 
 #include <algorithm>
-#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -41,14 +40,14 @@ DisplayDriver::DisplayDriver(AppEnvironment& env)
 void DisplayDriver::present() {
   const uint32_t buffer = m_buffers[m_back];
   if (!m_dma) {
-    // Copy loop of LDM/STM with eight registers, as hand-written ARM code does.
+    // Copy loop of LDM/STM with eight registers, as hand-written ARM code
+    // does: the LDM reads the frame where it is (through the cache), the STM
+    // writes the registers to the port.
     const uint32_t bytes = m_width * m_height * bytes_per_pixel();
-    uint32_t words[8];
     uint32_t offset = 0;
     while (bytes - offset >= 4) {
       const unsigned count = std::min<uint32_t>(8, (bytes - offset) / 4);
-      // LDM: the loads of the eight words, charged through the cache.
-      std::memcpy(words, m_host.load_span(buffer + offset, 4, count), 4 * count);
+      const auto* words = reinterpret_cast<const uint32_t*>(m_host.load_span(buffer + offset, 4, count));
       m_host.write_words(memory_map::display_port.base + offset, words, count);
       costs::charge(m_host, costs::HostCost::display_copy_block);
       offset += 4 * count;

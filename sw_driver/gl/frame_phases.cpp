@@ -47,7 +47,7 @@ std::vector<std::pair<std::string, double>> PhaseClock::take_frame() {
   std::vector<std::pair<std::string, double>> figures;
   for (size_t i = 0; i < m_seconds.size(); ++i) figures.emplace_back(NAMES[i], m_seconds[i] * 1e9);
   m_seconds.fill(0);
-  for (auto& units : costs::take_cost_units(costs::COST_BUCKET_NAMES)) figures.push_back(std::move(units));
+  for (auto& units : costs::take_cost_units()) figures.push_back(std::move(units));
   return figures;
 }
 

@@ -1,7 +1,8 @@
 #include "runtime/boot_info.h"
 
-#include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -93,14 +94,26 @@ BootInfo decode(const std::string& text) {
   }
 }
 
+// A figure's value travels as the 16 hex digits of its IEEE-754 bits: exact,
+// and the same few integer operations whatever the value. The ISS runs this
+// in the program's own time (the application phase of the next frame), and a
+// board's driver would hand over numbers, not format them: newlib's "%.17g"
+// costs thousands of soft-float cycles that depend on the digits of each value.
 std::string encode_figures(const std::vector<std::pair<std::string, double>>& figures) {
+  static constexpr char HEX_DIGITS[] = "0123456789abcdef";
   std::string line;
   for (const auto& [name, value] : figures) {
-    char number[40];
-    std::snprintf(number, sizeof number, "%.17g", value);
-    line += (line.empty() ? "" : "\t") + name + "=" + number;
+    if (!line.empty()) line += '\t';
+    line += name;
+    line += '=';
+    uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    char digits[16];
+    for (int i = 15; i >= 0; --i, bits >>= 4) digits[i] = HEX_DIGITS[bits & 0xf];
+    line.append(digits, sizeof digits);
   }
-  return line + "\n";
+  line += '\n';
+  return line;
 }
 
 std::vector<std::pair<std::string, double>> decode_figures(const std::string& line) {
@@ -112,7 +125,13 @@ std::vector<std::pair<std::string, double>> decode_figures(const std::string& li
     const std::string field = line.substr(start, end - start);
     const size_t equals = field.find('=');
     if (equals == std::string::npos) throw std::runtime_error("frame figures: '" + field + "' is not name=value");
-    figures.emplace_back(field.substr(0, equals), std::strtod(field.c_str() + equals + 1, nullptr));
+    const std::string digits = field.substr(equals + 1);
+    if (digits.size() != 16 || digits.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw std::runtime_error("frame figures: '" + field + "' does not hold 16 hex digits after '='");
+    const uint64_t bits = std::strtoull(digits.c_str(), nullptr, 16);
+    double value = 0;
+    std::memcpy(&value, &bits, sizeof value);
+    figures.emplace_back(field.substr(0, equals), value);
     start = end + 1;
   }
   return figures;
