@@ -41,6 +41,7 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
       m_busy_trace("busy"),
       m_program_trace("program"),
       m_stage_trace("stage") {
+  sleeps_until_used();
   const ap::ArrayGeometry& g = params.geometry;
   if (g.columns == 0 || g.rows == 0 || g.columns % regs::CUS_PER_GROUP != 0 || g.registers < 3 ||
       g.registers > ap::MAX_REGISTERS || g.cmem_bytes == 0 || g.cmem_bytes > (1u << ap::ADDRESS_BITS) ||
@@ -169,6 +170,7 @@ void ArrayProcessor::copy_counters() {
 }
 
 void ArrayProcessor::program_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  mark_used(delay);
   const uint64_t address = gp.get_address();
   const uint64_t length = gp.get_data_length();
   const uint64_t size = uint64_t{m_params.program_words} * regs::PROGRAM_WORD_BYTES;

@@ -73,6 +73,7 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   }
   uint8_t read_cmem(unsigned lane, unsigned address) const override { return m_core.array().cmem(lane, address); }
   void write_cmem(unsigned lane, unsigned address, uint8_t value) override {
+    mark_used();
     m_core.array().set_cmem(lane, address, value);
   }
 

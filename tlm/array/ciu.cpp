@@ -21,6 +21,7 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
       m_stalled(counter("stalled_accesses", "accesses that waited for a running program to finish")),
       m_errors(counter("errors", "accesses answered with an error (outside CMEM, not whole aligned words)")),
       m_access_trace("access") {
+  sleeps_until_used();
   in.register_b_transport(this, &Ciu::b_transport);
   in.register_transport_dbg(this, &Ciu::transport_dbg);
 }
@@ -42,6 +43,9 @@ void Ciu::locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address)
 }
 
 void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+  // The CIU's access reaches CMEM: both are in use from here.
+  mark_used(delay);
+  m_array.mark_used(delay);
   const uint64_t offset = gp.get_address();
   const uint64_t length = gp.get_data_length();
   const uint64_t size = window_bytes();

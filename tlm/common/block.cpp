@@ -23,6 +23,12 @@ EnergyActivity Block::energy_activity(const sc_core::sc_time& now) const {
   return {};
 }
 
+double Block::clocked_seconds(const sc_core::sc_time& now) const {
+  if (!m_sleeps_until_used) return now.to_seconds();
+  if (!m_used_at || *m_used_at >= now) return 0.0;
+  return (now - *m_used_at).to_seconds();
+}
+
 SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes) {
   const double elapsed_s = elapsed.to_seconds();
   return {busy, elapsed_s > 0 ? busy.to_seconds() / elapsed_s : 0.0, std::move(notes)};

@@ -57,8 +57,25 @@ class Block : public sc_core::sc_module {
 
   const ActivityCounters& counters() const { return m_counters; }
 
+  // Clock gating (power.sleep_unused): how long the block's clocks have run
+  // from the start to `now`. A block made with sleeps_until_used() sleeps
+  // until the software first uses it (mark_used); any other is clocked from
+  // reset.
+  double clocked_seconds(const sc_core::sc_time& now) const;
+  bool sleeps() const { return m_sleeps_until_used; }
+  // The software used the block at the kernel's time plus `delay` (an
+  // access's annotated time), directly or through another block (the CIU
+  // and the DMA reach the array's CMEM); only the first use counts.
+  void mark_used(const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME) {
+    if (!m_used_at) m_used_at = sc_core::sc_time_stamp() + delay;
+  }
+
  protected:
   explicit Block(sc_core::sc_module_name name) : sc_core::sc_module(name) {}
+
+  // For a block the software switches on when it needs it (the array, the
+  // CIU, the DMAs, the rasterizer): asleep until mark_used.
+  void sleeps_until_used() { m_sleeps_until_used = true; }
 
   // The set the block's counters live in, for the block itself and for the
   // parts that count on its behalf (its BusMaster).
@@ -69,6 +86,8 @@ class Block : public sc_core::sc_module {
 
  private:
   ActivityCounters m_counters;
+  bool m_sleeps_until_used = false;
+  std::optional<sc_core::sc_time> m_used_at;
 };
 
 // The row of a block that is busy for `busy` of `elapsed`: utilisation is

@@ -78,6 +78,7 @@ const char* Peripheral::write_refusal(const tlm::tlm_generic_payload& gp) const 
 }
 
 void Peripheral::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  mark_used(delay);
   m_access_delay = delay;
   if (const char* refusal = write_refusal(gp)) {
     ++m_refused_writes;

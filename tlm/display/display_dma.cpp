@@ -15,6 +15,7 @@ DisplayDma::DisplayDma(sc_core::sc_module_name name, const DisplayDmaParams& par
       m_lines_fetched(counter("lines_fetched", "lines fetched")),
       m_underrun_lines(counter("underrun_lines", "lines that arrived after they were due on screen")),
       m_underrun_frames(counter("underrun_frames", "frames with at least one underrun line")) {
+  sleeps_until_used();
   if (params.line_bytes == 0 || params.lines == 0)
     throw std::invalid_argument(std::string(this->name()) + ": empty frame");
   if (params.fifo_lines == 0) throw std::invalid_argument(std::string(this->name()) + ": fifo_lines must be positive");
@@ -28,6 +29,7 @@ DisplayDma::DisplayDma(sc_core::sc_module_name name, const DisplayDmaParams& par
 void DisplayDma::start_frame(uint32_t base, sc_time first_line_due, sc_time line_time) {
   if (m_fetching) throw std::logic_error(std::string(name()) + ": a frame was started before the last one was fetched");
   m_fetching = true;
+  mark_used();
   m_base = base;
   m_first_line_due = first_line_due;
   m_line_time = line_time;

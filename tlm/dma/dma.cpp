@@ -92,6 +92,7 @@ Dma::Dma(sc_core::sc_module_name name, const DmaParams& params)
       m_cmem_cycles(counter("cmem.cycles", "array cycles of the CMEM passes")),
       m_cmem_stalls(counter("cmem_stalls", "CMEM passes that waited for a running program")),
       m_descriptor_fetches(counter("descriptor_fetches", "descriptors read from system memory")) {
+  sleeps_until_used();
   if (params.channels == 0 || params.channels > regs::MAX_CHANNELS)
     throw std::invalid_argument(std::string(this->name()) + ": channels must be 1.." +
                                 std::to_string(regs::MAX_CHANNELS));

@@ -133,6 +133,7 @@ void Host::quantum_used_up() {
 void Host::stall_until(uint64_t absolute_ticks) {
   const uint64_t local = local_ticks();
   if (absolute_ticks <= local) return;
+  if (m_attribute_in_time) note_ahead(false, local, absolute_ticks);
   m_stall_ticks += absolute_ticks - local;
   m_local_ticks += absolute_ticks - local;
   if (m_local_ticks >= m_budget_ticks) quantum_used_up();
@@ -685,12 +686,39 @@ SummaryRow Host::summary_row(const sc_time& elapsed) const {
                       format_duration(std::max(0.0, elapsed_s - busy_s - stall_s)));
 }
 
+void Host::note_ahead(bool busy, uint64_t start_ticks, uint64_t end_ticks) {
+  if (end_ticks <= start_ticks) return;
+  // What ended before the kernel's time can never be after a snapshot's.
+  const uint64_t kernel = kernel_ticks();
+  while (!m_ahead.empty() && m_ahead.front().end_ticks <= kernel) m_ahead.pop_front();
+  if (!m_ahead.empty() && m_ahead.back().busy == busy && m_ahead.back().end_ticks == start_ticks)
+    m_ahead.back().end_ticks = end_ticks;
+  else
+    m_ahead.push_back({start_ticks, end_ticks, busy});
+}
+
+std::pair<uint64_t, uint64_t> Host::ticks_after(uint64_t now_ticks) const {
+  // The segments follow each other in time: walk back from the newest to
+  // the first that ends before `now_ticks`.
+  uint64_t busy = 0, stalled = 0;
+  for (auto s = m_ahead.rbegin(); s != m_ahead.rend() && s->end_ticks > now_ticks; ++s)
+    (s->busy ? busy : stalled) += s->end_ticks - std::max(s->start_ticks, now_ticks);
+  return {busy, stalled};
+}
+
 EnergyActivity Host::energy_activity(const sc_time& now) const {
   const double period = m_params.clock_period.to_seconds();
-  const double busy_s = busy_time().to_seconds();
-  const double stall_s = stall_time().to_seconds();
+  double busy_cycles = static_cast<double>(m_busy_cycles.value);
+  double busy_s = busy_time().to_seconds();
+  double stall_s = stall_time().to_seconds();
+  if (m_attribute_in_time) {
+    const auto [busy_after, stalled_after] = ticks_after(now.value());
+    busy_cycles -= static_cast<double>(busy_after) / static_cast<double>(m_period_ticks);
+    busy_s = busy_cycles * period;
+    stall_s -= sc_time::from_value(stalled_after).to_seconds();
+  }
   return {{"host",
-           {{"busy_cycles", static_cast<double>(m_busy_cycles.value)},
+           {{"busy_cycles", busy_cycles},
             {"stalled_cycles", stall_s / period},
             {"idle_cycles", std::max(0.0, now.to_seconds() - busy_s - stall_s) / period}}}};
 }

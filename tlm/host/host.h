@@ -102,6 +102,13 @@ class Host : public Block, public HostApi, public HostCore {
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
   sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles.value); }
+  // For the power trace, whose windows end at the kernel's time while the
+  // host may have charged cycles beyond it (a long computation charged at
+  // once, a quantum run ahead): from now on energy_activity(now) counts only
+  // the busy and stalled time before `now`, so each window holds the energy
+  // spent in it. Off by default: the frames' and the run's energies are
+  // taken where the host's time and the kernel's agree.
+  void attribute_activity_in_time() { m_attribute_in_time = true; }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
   sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
 
@@ -162,6 +169,7 @@ class Host : public Block, public HostApi, public HostCore {
   uint64_t local_ticks() const { return kernel_ticks() + m_local_ticks; }
   // Adds busy cycles; the hot path is an addition and a compare in ticks.
   void charge(uint64_t cycles) {
+    if (m_attribute_in_time) note_ahead(true, local_ticks(), local_ticks() + cycles * m_period_ticks);
     m_busy_cycles += cycles;
     m_local_ticks += cycles * m_period_ticks;
     if (m_local_ticks >= m_budget_ticks) quantum_used_up();
@@ -270,6 +278,18 @@ class Host : public Block, public HostApi, public HostCore {
   ActivityCounter& m_busy_cycles;
   ActivityCounter& m_measured_cycles;
   uint64_t m_stall_ticks = 0;
+  // attribute_activity_in_time: the host's busy and stalled intervals that
+  // may lie beyond the kernel's time, in absolute ticks, oldest first.
+  struct AheadSegment {
+    uint64_t start_ticks;
+    uint64_t end_ticks;
+    bool busy;  // else stalled
+  };
+  bool m_attribute_in_time = false;
+  std::deque<AheadSegment> m_ahead;
+  void note_ahead(bool busy, uint64_t start_ticks, uint64_t end_ticks);
+  // The busy and stalled ticks of m_ahead after `now_ticks`.
+  std::pair<uint64_t, uint64_t> ticks_after(uint64_t now_ticks) const;
   uint64_t m_idle_ticks = 0;
   ActivityCounter& m_write_buffer_stalls;
   ActivityCounter& m_bus_errors;

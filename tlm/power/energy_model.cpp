@@ -94,6 +94,10 @@ ParamGroup EnergyModel::parameters() {
   specs.push_back(param::choice("power.calibration", "none", {"none", "tile_renderer", "pixel_shading"},
                                 "after the run, print each unit's average power beside the board's for this "
                                 "scenario of the calibration table (docs/calibration.md)"));
+  specs.push_back(param::boolean("power.sleep_unused", true,
+                                 "a block the software has not used yet sleeps with its clocks gated and is charged "
+                                 "no static power, as the board's measurements put every unused block to sleep "
+                                 "(false: every block clocked from reset)"));
   specs.push_back(param::real("power.trace_window_us", 100, 0, MAX_TRACE_WINDOW_MICROSECONDS, "us",
                               "with a VCD trace (--vcd), each energy unit's average power in mW over consecutive "
                               "windows of this length, under the scope power (0: no power signals)"));
@@ -124,7 +128,7 @@ const UnitEnergyParams& EnergyModel::unit(const std::string& name) const {
 
 UnitEnergy EnergyModel::energy(const UnitActivity& activity, double seconds) const {
   const UnitEnergyParams& params = unit(activity.unit);
-  UnitEnergy result{activity.unit, {}, params.static_milliwatts * 1e-3 * seconds};
+  UnitEnergy result{activity.unit, {}, params.static_milliwatts * 1e-3 * activity.clocked_seconds.value_or(seconds)};
   for (const auto& [event, count] : activity.counts) {
     const EventEnergy* found = nullptr;
     for (const EventEnergy& e : params.events)
@@ -152,6 +156,10 @@ EnergyActivity activity_difference(const EnergyActivity& later, const EnergyActi
           const auto it = before.counts.find(event);
           if (it != before.counts.end()) count -= it->second;
         }
+  for (UnitActivity& unit : result)
+    if (unit.clocked_seconds)
+      for (const UnitActivity& before : earlier)
+        if (before.unit == unit.unit && before.clocked_seconds) *unit.clocked_seconds -= *before.clocked_seconds;
   return result;
 }
 

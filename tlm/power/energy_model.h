@@ -65,9 +65,10 @@ class EnergyModel {
 
   const std::vector<UnitEnergyParams>& units() const { return m_units; }
 
-  // The energy of `activity` over `seconds`. A unit or an event class the
-  // model does not know is a programming error (std::logic_error naming it):
-  // every counter a block reports must have its parameter.
+  // The energy of `activity` over `seconds` (the static power over the
+  // activity's clocked_seconds where it has them). A unit or an event class
+  // the model does not know is a programming error (std::logic_error naming
+  // it): every counter a block reports must have its parameter.
   UnitEnergy energy(const UnitActivity& activity, double seconds) const;
   std::vector<UnitEnergy> unit_energies(const EnergyActivity& activity, double seconds) const;
 
@@ -78,8 +79,8 @@ class EnergyModel {
 };
 
 // The activity between two snapshots of the same blocks (`later` - `earlier`,
-// unit by unit and event by event); a unit missing from `earlier` counts
-// from zero.
+// unit by unit and event by event, and the clocked time); a unit missing
+// from `earlier` counts from zero.
 EnergyActivity activity_difference(const EnergyActivity& later, const EnergyActivity& earlier);
 
 }  // namespace tessera

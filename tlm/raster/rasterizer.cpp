@@ -58,6 +58,7 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
       m_texel_cycles(counter("cycles.texel", "cycles of texel fetches")),
       m_compute_cycles(counter("cycles.compute", "compute cycles the core charged, all stages")),
       m_busy_trace("busy") {
+  sleeps_until_used();
   if (params.width == 0 || params.height == 0 || params.tile_width == 0 || params.tile_height == 0)
     throw std::invalid_argument(std::string(this->name()) + ": empty screen or tile");
   if (params.burst_beats == 0 || params.beat_bytes == 0)

@@ -137,7 +137,8 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       array("array", ArrayParams::from_config(config)),
       ciu("ciu", ciu_params(config), array),
       m_energy_model(EnergyModel::from_config(config)),
-      m_power_window(config.get_real("power.trace_window_us"), sc_core::SC_US) {
+      m_power_window(config.get_real("power.trace_window_us"), sc_core::SC_US),
+      m_sleep_unused(config.get_bool("power.sleep_unused")) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -234,6 +235,7 @@ void Soc::trace_to(const std::string& path_without_extension) {
   // A window below the time resolution would never advance.
   if (m_power_window == sc_core::SC_ZERO_TIME) return;
   m_power_trace = std::make_unique<PowerTrace>(m_energy_model);
+  host.attribute_activity_in_time();
   const EnergyActivity units = energy_activity(sc_core::SC_ZERO_TIME);
   m_power_milliwatts.assign(units.size() + 1, 0.0);
   const std::string scope = std::string(name()) + ".power.";
@@ -370,8 +372,12 @@ nlohmann::json Soc::frames_json() const {
 
 EnergyActivity Soc::energy_activity(const sc_time& now) const {
   EnergyActivity activity;
-  for (const Block* block : m_blocks)
-    for (UnitActivity& unit : block->energy_activity(now)) activity.push_back(std::move(unit));
+  for (const Block* block : m_blocks) {
+    for (UnitActivity& unit : block->energy_activity(now)) {
+      if (m_sleep_unused && block->sleeps()) unit.clocked_seconds = block->clocked_seconds(now);
+      activity.push_back(std::move(unit));
+    }
+  }
   return activity;
 }
 

@@ -159,6 +159,7 @@ class Soc : public sc_core::sc_module {
   sc_core::sc_trace_file* m_trace = nullptr;
   std::string m_trace_path;
   sc_core::sc_time m_power_window;
+  bool m_sleep_unused;  // power.sleep_unused
   std::unique_ptr<PowerTrace> m_power_trace;
   // The traced powers in mW: one per energy unit, in the order of
   // energy_activity(), then the total. Sized once: the VCD holds their addresses.
