@@ -35,6 +35,10 @@ ParamGroup parameters() {
                             "when ap-tile runs its texcoord stage: textured (in the passes after a textured triangle "
                             "since the last colour clear) or always (in every pass, as the study measured it: "
                             "texture coordinates computed even where no texture is applied)"),
+              param::choice("ap.tile.program", "tuned", {"tuned", "study"},
+                            "ap-tile's array program: tuned (ap_tile.s: values in registers across a row, RGB565) "
+                            "or study (ap_tile_study.s: the study's program as its compiler wrote it, every variable "
+                            "in CMEM, 24-bit colour; without the DMA only)"),
           },
           {}};
 }
@@ -44,6 +48,7 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   const Config& config = env.config != nullptr ? *env.config : defaults;
   tessera::ap_tile::Settings settings;
   settings.texcoords_always = config.get_string("ap.tile.texcoords") == "always";
+  settings.study_program = config.get_string("ap.tile.program") == "study";
   return std::make_unique<tessera::ap_tile::ApTileRenderer>(env, settings);
 }
 
@@ -69,6 +74,15 @@ void adjust_configuration(Config& config) {
 // (tile_dma.h): one channel is refused here rather than failing at the
 // first frame with a bus error on the missing channel's registers.
 void check_configuration(const Config& config) {
+  // The DMA's staging buffers and descriptors follow the tuned program's
+  // CMEM layout; the study's program goes through the CIU, as the study's
+  // host did.
+  if (config.has("dma.enabled") && config.get_bool("dma.enabled") && config.has("ap.tile.program") &&
+      config.get_string("ap.tile.program") == "study")
+    throw ConfigError(
+        "configuration: impossible combination: driver.backend=ap-tile with ap.tile.program=study and "
+        "dma.enabled=true: the study's program is written through the CIU only; set ap.tile.program=tuned or "
+        "dma.enabled=false");
   if (config.has("dma.enabled") && config.get_bool("dma.enabled") && config.get_uint("dma.channels") < 2)
     throw ConfigError(
         "configuration: impossible combination: driver.backend=ap-tile with dma.enabled=true reads "
