@@ -223,6 +223,7 @@ void ApTileRenderer::flush_by_ciu(size_t passes) {
             if (setup == nullptr) continue;
             if (m_settings.study_program) {
               study[k] = setup->study_record(c, j);
+              costs::charge(m_host, HostCost::ap_tile_study_record);
               records[k].live = study[k].live;
               records[k].zoff = !study[k].depth_test;
             } else {
