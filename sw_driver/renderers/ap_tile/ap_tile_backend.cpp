@@ -38,7 +38,7 @@ ParamGroup parameters() {
               param::choice("ap.tile.program", "tuned", {"tuned", "study"},
                             "ap-tile's array program: tuned (ap_tile.s: values in registers across a row, RGB565) "
                             "or study (ap_tile_study.s: the study's program as its compiler wrote it, every variable "
-                            "in CMEM, 24-bit colour; without the DMA only)"),
+                            "in CMEM, 24-bit colour)"),
           },
           {}};
 }
@@ -74,15 +74,6 @@ void adjust_configuration(Config& config) {
 // (tile_dma.h): one channel is refused here rather than failing at the
 // first frame with a bus error on the missing channel's registers.
 void check_configuration(const Config& config) {
-  // The DMA's staging buffers and descriptors follow the tuned program's
-  // CMEM layout; the study's program goes through the CIU, as the study's
-  // host did.
-  if (config.has("dma.enabled") && config.get_bool("dma.enabled") && config.has("ap.tile.program") &&
-      config.get_string("ap.tile.program") == "study")
-    throw ConfigError(
-        "configuration: impossible combination: driver.backend=ap-tile with ap.tile.program=study and "
-        "dma.enabled=true: the study's program is written through the CIU only; set ap.tile.program=tuned or "
-        "dma.enabled=false");
   if (config.has("dma.enabled") && config.get_bool("dma.enabled") && config.get_uint("dma.channels") < 2)
     throw ConfigError(
         "configuration: impossible combination: driver.backend=ap-tile with dma.enabled=true reads "

@@ -27,8 +27,9 @@ uint16_t clear_depth16(uint32_t z24) {
 
 constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord};
 
-// The planes read back, per row of a chunk: chi, clo, tid, shi, slo, thi, tlo.
-constexpr unsigned READ_PLANES = 7;
+// The planes read back, per row of a chunk: colour (two planes, or the
+// study's three), tid, shi, slo, thi, tlo.
+constexpr unsigned READ_PLANES = 8;
 
 }  // namespace
 
@@ -66,13 +67,16 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
   // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
   const renderers::DmaUse use = renderers::dma_use(env, m_dma);
-  if (settings.study_program) {
-    // backends::ap_tile::check_configuration refuses the study's program
-    // with the DMA: its staging follows the tuned program's layout.
-    if (use.enabled) throw std::invalid_argument("ap-tile: ap.tile.program=study runs without the DMA only");
+  if (use.enabled && settings.study_program) {
+    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_study_layout), m_frame, use.broadcast);
+    send_study_constants_by_dma();
+    m_has_record.assign(m_frame.cus(), false);
+    m_record_bytes.resize(size_t{m_study_layout.record_bytes} * m_frame.cus());
+    m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
+  } else if (settings.study_program) {
     write_constants_by_ciu();
   } else if (use.enabled) {
-    m_tile_dma = std::make_unique<TileDma>(env, m_dma, m_layout, m_frame, use.broadcast);
+    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_layout), m_frame, use.broadcast);
     std::vector<uint8_t> yc(m_frame.tile_height);
     for (unsigned l = 0; l < m_frame.tile_height; ++l) yc[l] = static_cast<uint8_t>(m_frame.tile_height - 1 - l);
     m_tile_dma->send_constants({{m_layout.yc, yc}, {m_layout.zero, {0}}, {m_layout.live, {0}}});
@@ -109,6 +113,23 @@ void ApTileRenderer::write_constants_by_ciu() {
   m_array.fill8(m.line_c, 0xff);
   m_array.fill8(m.line_c + 1, 0xff);
   m_ciu_traffic.values_written += uint64_t{m_frame.cus()} * (4 + m.tile_width + m.tile_height + 2);
+}
+
+// The study's constants through the DMA, as write_constants_by_ciu sends
+// them through the CIU: XPOS and YPOS (each CU its own byte), 1, 0xff,
+// the counter tables and line 0 of every CU's record (no pixel inside).
+void ApTileRenderer::send_study_constants_by_dma() {
+  const StudyLayout& m = m_study_layout;
+  std::vector<uint8_t> xcounter(m.tile_width), ycounter(m.tile_height), xpos(m_frame.cus()), ypos(m_frame.cus());
+  for (unsigned x = 0; x < m.tile_width; ++x) xcounter[x] = static_cast<uint8_t>(x);
+  for (unsigned y = 0; y < m.tile_height; ++y) ycounter[y] = static_cast<uint8_t>(y);
+  for (unsigned lane = 0; lane < m_frame.cus(); ++lane) {
+    xpos[lane] = static_cast<uint8_t>(lane % m_frame.columns);
+    ypos[lane] = static_cast<uint8_t>(lane / m_frame.columns);
+  }
+  m_tile_dma->send_constants(
+      {{m.one, {1}}, {m.ff, {0xff}}, {m.xcounter, xcounter}, {m.ycounter, ycounter}, {m.line_c, {0xff, 0xff}}},
+      {{m.xpos, xpos}, {m.ypos, ypos}});
 }
 
 void ApTileRenderer::unsupported(const std::string& what) {
@@ -293,7 +314,7 @@ void ApTileRenderer::flush_by_dma(size_t passes) {
 // Every CU's record of pass `pass` computed (as on the CIU path) and staged
 // in buffer `buffer`; whether a record tests depth.
 bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
-  bool depth = false;
+  bool depth = false, untested = false;
   {
     Timed timed(m_host, m_time, renderers::HostSplit::compute);
     for (unsigned j = 0; j < m_frame.rows; ++j)
@@ -302,14 +323,28 @@ bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
         const TriangleSetup* setup = m_bins.at(lane, pass);
         m_has_record[lane] = setup != nullptr;
         if (setup == nullptr) continue;
-        const TileRecord record = setup->record(c, j);
-        costs::charge(m_host, HostCost::ap_tile_record);
-        encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+        bool tested = false;
+        if (m_settings.study_program) {
+          const StudyRecord record = setup->study_record(c, j);
+          costs::charge(m_host, HostCost::ap_tile_record);
+          costs::charge(m_host, HostCost::ap_tile_study_record);
+          encode_study_record(record, m_study_layout,
+                              m_record_bytes.data() + size_t{lane} * m_study_layout.record_bytes);
+          tested = record.depth_test;
+        } else {
+          const TileRecord record = setup->record(c, j);
+          costs::charge(m_host, HostCost::ap_tile_record);
+          encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+          tested = !record.zoff;
+        }
         costs::charge(m_host, HostCost::ap_tile_dma_record);
         ++m_cu_triangles;
-        depth = depth || !record.zoff;
+        untested = untested || !tested;
+        depth = depth || tested;
       }
   }
+  if (m_settings.study_program && depth && untested)
+    unsupported("depth test off beside depth-tested triangles in one pass with ap.tile.program=study: tested");
   Timed timed(m_host, m_time, renderers::HostSplit::array_write);
   m_tile_dma->stage_records(buffer, m_record_bytes, m_has_record);
   return depth;
@@ -332,7 +367,10 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const auto packed = static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, rgba));
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_write);
-      if (m_tile_dma) {
+      if (m_tile_dma && m_settings.study_program) {
+        m_tile_dma->send_constants({{m_study_layout.clear_rg, {request.rgba[0], request.rgba[1]}},
+                                    {m_study_layout.clear_b, {request.rgba[2]}}});
+      } else if (m_tile_dma) {
         m_tile_dma->send_constants(
             {{m_layout.clear_c, {static_cast<uint8_t>(packed >> 8), static_cast<uint8_t>(packed)}}});
       } else if (m_settings.study_program) {
@@ -356,10 +394,10 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const uint16_t z = clear_depth16(request.depth_value);
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_write);
+      const uint16_t at = m_settings.study_program ? m_study_layout.clear_z : m_layout.clear_z;
       if (m_tile_dma) {
-        m_tile_dma->send_constants({{m_layout.clear_z, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
+        m_tile_dma->send_constants({{at, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
       } else {
-        const uint16_t at = m_settings.study_program ? m_study_layout.clear_z : m_layout.clear_z;
         m_array.fill8(at, static_cast<uint8_t>(z >> 8));
         m_array.fill8(at + 1, static_cast<uint8_t>(z));
         m_words_written += 2 * m_frame.cus() / 4;
@@ -473,6 +511,7 @@ void ApTileRenderer::convert_chunk(unsigned x) {
   uint8_t* s_lo = s_hi + cus;
   uint8_t* t_hi = s_lo + cus;
   uint8_t* t_lo = t_hi + cus;
+  uint8_t* blue = t_lo + cus;
   std::fill(tid, hi + READ_PLANES * cus, 0);
   auto load = [&](uint16_t plane, unsigned l, uint8_t* out) {
     std::memcpy(out, m_host.load_span(m_tile_dma->staged_row(plane, x, l), 1, cus), cus);
@@ -480,15 +519,16 @@ void ApTileRenderer::convert_chunk(unsigned x) {
   for (unsigned l = 0; l < m_frame.tile_height; ++l) {
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_read);
-      load(m_layout.chi, l, hi);
-      load(m_layout.clo, l, lo);
+      load(m_read.hi, l, hi);
+      load(m_read.lo, l, lo);
+      if (m_settings.study_program) load(m_read.blue, l, blue);
       if (m_frame_textured) {
-        load(m_layout.tid, l, tid);
+        load(m_read.tid, l, tid);
         if (std::any_of(tid, tid + cus, [](uint8_t t) { return t != 0; })) {
-          load(m_layout.shi, l, s_hi);
-          load(m_layout.slo, l, s_lo);
-          load(m_layout.thi, l, t_hi);
-          load(m_layout.tlo, l, t_lo);
+          load(m_read.s_hi, l, s_hi);
+          load(m_read.s_lo, l, s_lo);
+          load(m_read.t_hi, l, t_hi);
+          load(m_read.t_lo, l, t_lo);
         }
       }
     }
@@ -497,8 +537,11 @@ void ApTileRenderer::convert_chunk(unsigned x) {
     for (unsigned lane = 0; lane < cus; ++lane) {
       const auto s16 = static_cast<int16_t>(s_hi[lane] << 8 | s_lo[lane]);
       const auto t16 = static_cast<int16_t>(t_hi[lane] << 8 | t_lo[lane]);
-      const uint32_t rgba =
-          shade_pixel(unpack_pixel(PixelFormat::rgb565, uint32_t{hi[lane]} << 8 | lo[lane]), tid[lane], s16, t16);
+      const uint32_t colour =
+          m_settings.study_program
+              ? uint32_t{hi[lane]} | uint32_t{lo[lane]} << 8 | uint32_t{blue[lane]} << 16 | 0xff000000u
+              : unpack_pixel(PixelFormat::rgb565, uint32_t{hi[lane]} << 8 | lo[lane]);
+      const uint32_t rgba = shade_pixel(colour, tid[lane], s16, t16);
       const unsigned column = (lane % m_frame.columns) * m_frame.tile_width + x;
       const unsigned row = (lane / m_frame.columns) * m_frame.tile_height + l;
       m_rgba[size_t{row} * width + column] = rgba;
