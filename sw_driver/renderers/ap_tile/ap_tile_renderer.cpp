@@ -55,6 +55,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
   const ap::Program& program = settings.study_program ? ap::programs::ap_tile_study() : ap::programs::ap_tile();
   m_cmem_bytes = cmem_extent(program);
   if (settings.study_program) {
+    costs::charge(m_host, HostCost::ap_tile_study_start);
     m_study_layout = StudyLayout::of(program);
     m_read = {m_study_layout.rg_hi, m_study_layout.rg_lo, m_study_layout.b,    m_study_layout.tid,
               m_study_layout.s_hi,  m_study_layout.s_lo,  m_study_layout.t_hi, m_study_layout.t_lo};
@@ -65,7 +66,8 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
-  // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
+  // The constants: the tuned program's row heights yc[l] = TILE_H - 1 - l
+  // and 0, or the study's (write_study_constants_by_ciu).
   const renderers::DmaUse use = renderers::dma_use(env, m_dma);
   if (use.enabled && settings.study_program) {
     m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_study_layout), m_frame, use.broadcast);
@@ -74,7 +76,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
     m_record_bytes.resize(size_t{m_study_layout.record_bytes} * m_frame.cus());
     m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
   } else if (settings.study_program) {
-    write_constants_by_ciu();
+    write_study_constants_by_ciu();
   } else if (use.enabled) {
     m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_layout), m_frame, use.broadcast);
     std::vector<uint8_t> yc(m_frame.tile_height);
@@ -98,7 +100,7 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
 // tables, once, as the study wrote them; and line 0 of every CU's record
 // as 0 x + 0 y - 1, no pixel inside, because CMEM starts at 0, which puts
 // every pixel inside every line (the study's program has no live flag).
-void ApTileRenderer::write_constants_by_ciu() {
+void ApTileRenderer::write_study_constants_by_ciu() {
   const StudyLayout& m = m_study_layout;
   ArrayDriver::Constants constants;
   constants.xpos = m.xpos;
@@ -115,7 +117,7 @@ void ApTileRenderer::write_constants_by_ciu() {
   m_ciu_traffic.values_written += uint64_t{m_frame.cus()} * (4 + m.tile_width + m.tile_height + 2);
 }
 
-// The study's constants through the DMA, as write_constants_by_ciu sends
+// The study's constants through the DMA, as write_study_constants_by_ciu sends
 // them through the CIU: XPOS and YPOS (each CU its own byte), 1, 0xff,
 // the counter tables and line 0 of every CU's record (no pixel inside).
 void ApTileRenderer::send_study_constants_by_dma() {

@@ -60,7 +60,7 @@ class ApTileRenderer : public gl::Renderer {
   void run_stage(TileStage stage);
   void write_group(unsigned i, unsigned j, const TileRecord* records);
   void write_study_group(unsigned i, unsigned j, const StudyRecord* records);
-  void write_constants_by_ciu();
+  void write_study_constants_by_ciu();
   void send_study_constants_by_dma();
   void read_back();
   // A pixel read back: its colour (RGBA, from the program's colour
