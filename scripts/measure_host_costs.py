@@ -9,7 +9,8 @@ cycles per unit on the ISS (host.model=iss: the same driver compiled for
 the ARM922T, the reference host):
 
 1. every training run (the built-in GL scenes on the arm, raster, ap-tile
-   and ap-pixel back ends, TRAINING below; the study's GL-free
+   and ap-pixel back ends, TRAINING below, and a few on ap-tile with the
+   study's array program, VARIANTS; the study's GL-free
    applications study_shading and study_patches on the host and on the
    array, and calib_ciu's loops, APP_TRAINING) runs natively and on the
    ISS with the same configuration;
@@ -73,11 +74,17 @@ TRAINING_SCENES = ["aapoly", "clip_offset", "cubes", "fixed_point", "fog_row", "
                    "mipmap_floor", "multitexture", "obj_viewer", "points_lines", "teapot", "texture_formats",
                    "textured_quad", "tile_grid", "triangle"]
 ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
+# Back ends run with settings of their own, under a name of their own: a
+# back end's second array program charges rows no default run charges.
+VARIANTS = {"ap-tile:study": ("ap-tile", ["ap.tile.program=study"])}
+VARIANT_SCENES = {"ap-tile:study": ["cubes", "teapot", "textured_quad"]}
 TRAINING = [(scene, backend) for backend in ("arm", "raster") + ARRAY_BACKENDS for scene in TRAINING_SCENES]
+TRAINING += [(scene, variant) for variant, scenes in VARIANT_SCENES.items() for scene in scenes]
 # The array back ends' split of their host time within the phases.
 SPLIT = ["compute", "write", "read", "wait", "frame_out"]
 # The phases whose every native charge is a row of the table, per back end.
-FITTED_PHASES = {"arm": PHASES, "raster": PHASES, "ap-tile": PHASES + SPLIT, "ap-pixel": PHASES + SPLIT}
+FITTED_PHASES = {"arm": PHASES, "raster": PHASES, "ap-tile": PHASES + SPLIT, "ap-pixel": PHASES + SPLIT,
+                 "ap-tile:study": PHASES + SPLIT}
 # The GL-free applications: (name, app, back end, arguments, driver statistics' prefix). Their
 # records are their timed parts (the split).
 APP_TRAINING = [("study_shading_arm", "study_shading", "arm", ["--", "--shades", "9600"], "study"),
@@ -158,11 +165,14 @@ def write_table(lines, cycles, digest):
     TABLE.write_text("\n".join(out) + "\n")
 
 
-def run(soc_sim, out, scene, backend, model):
-    folder = out / f"{scene}_{backend}_{model}"
+def run(soc_sim, out, scene, name, model):
+    backend, settings = VARIANTS.get(name, (name, []))
+    folder = out / f"{scene}_{name.replace(':', '_')}_{model}"
     frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
     command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames", "--quiet",
                "--force", "--out", str(folder), "--set", f"host.model={model}"]
+    for setting in settings:
+        command += ["--set", setting]
     if scene == "obj_viewer":
         command += ["--", str(OBJ)]
     result = subprocess.run(command, capture_output=True, text=True)

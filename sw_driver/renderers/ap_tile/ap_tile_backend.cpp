@@ -35,6 +35,10 @@ ParamGroup parameters() {
                             "when ap-tile runs its texcoord stage: textured (in the passes after a textured triangle "
                             "since the last colour clear) or always (in every pass, as the study measured it: "
                             "texture coordinates computed even where no texture is applied)"),
+              param::choice("ap.tile.program", "tuned", {"tuned", "study"},
+                            "ap-tile's array program: tuned (ap_tile.s: values in registers across a row, RGB565) "
+                            "or study (ap_tile_study.s: the study's program as its compiler wrote it, every variable "
+                            "in CMEM, 24-bit colour)"),
           },
           {}};
 }
@@ -44,6 +48,7 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   const Config& config = env.config != nullptr ? *env.config : defaults;
   tessera::ap_tile::Settings settings;
   settings.texcoords_always = config.get_string("ap.tile.texcoords") == "always";
+  settings.study_program = config.get_string("ap.tile.program") == "study";
   return std::make_unique<tessera::ap_tile::ApTileRenderer>(env, settings);
 }
 

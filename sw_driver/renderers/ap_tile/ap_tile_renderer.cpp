@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "ap_programs/ap_tile.h"
+#include "ap_programs/ap_tile_study.h"
 #include "common/pixel_format.h"
 #include "costs/host_cost.h"
 #include "renderers/common/host_time.h"
@@ -26,8 +27,9 @@ uint16_t clear_depth16(uint32_t z24) {
 
 constexpr TileStage PASS_STAGES[] = {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord};
 
-// The planes read back, per row of a chunk: chi, clo, tid, shi, slo, thi, tlo.
-constexpr unsigned READ_PLANES = 7;
+// The planes read back, per row of a chunk: colour (two planes, or the
+// study's three), tid, shi, slo, thi, tlo.
+constexpr unsigned READ_PLANES = 8;
 
 }  // namespace
 
@@ -50,15 +52,33 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
         " tiles of " + std::to_string(m_frame.tile_width) + " x " + std::to_string(m_frame.tile_height) +
         " pixels cover " + std::to_string(m_frame.width()) + " x " + std::to_string(m_frame.height()) +
         ", but the display is " + std::to_string(m_display.width()) + " x " + std::to_string(m_display.height()));
-  const ap::Program& program = ap::programs::ap_tile();
+  const ap::Program& program = settings.study_program ? ap::programs::ap_tile_study() : ap::programs::ap_tile();
+  m_cmem_bytes = cmem_extent(program);
+  if (settings.study_program) {
+    costs::charge(m_host, HostCost::ap_tile_study_start);
+    m_study_layout = StudyLayout::of(program);
+    m_read = {m_study_layout.rg_hi, m_study_layout.rg_lo, m_study_layout.b,    m_study_layout.tid,
+              m_study_layout.s_hi,  m_study_layout.s_lo,  m_study_layout.t_hi, m_study_layout.t_lo};
+  } else {
+    m_read = {m_layout.chi, m_layout.clo, 0, m_layout.tid, m_layout.shi, m_layout.slo, m_layout.thi, m_layout.tlo};
+  }
   m_array.load(program, m_program_base);
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
-  // The constants: the row heights yc[l] = TILE_H - 1 - l, and 0.
+  // The constants: the tuned program's row heights yc[l] = TILE_H - 1 - l
+  // and 0, or the study's (write_study_constants_by_ciu).
   const renderers::DmaUse use = renderers::dma_use(env, m_dma);
-  if (use.enabled) {
-    m_tile_dma = std::make_unique<TileDma>(env, m_dma, m_layout, m_frame, use.broadcast);
+  if (use.enabled && settings.study_program) {
+    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_study_layout), m_frame, use.broadcast);
+    send_study_constants_by_dma();
+    m_has_record.assign(m_frame.cus(), false);
+    m_record_bytes.resize(size_t{m_study_layout.record_bytes} * m_frame.cus());
+    m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
+  } else if (settings.study_program) {
+    write_study_constants_by_ciu();
+  } else if (use.enabled) {
+    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_layout), m_frame, use.broadcast);
     std::vector<uint8_t> yc(m_frame.tile_height);
     for (unsigned l = 0; l < m_frame.tile_height; ++l) yc[l] = static_cast<uint8_t>(m_frame.tile_height - 1 - l);
     m_tile_dma->send_constants({{m_layout.yc, yc}, {m_layout.zero, {0}}, {m_layout.live, {0}}});
@@ -76,6 +96,44 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
   m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
 }
 
+// The study's constants: the CU's grid position, 1, 0xff and the counter
+// tables, once, as the study wrote them; and line 0 of every CU's record
+// as 0 x + 0 y - 1, no pixel inside, because CMEM starts at 0, which puts
+// every pixel inside every line (the study's program has no live flag).
+void ApTileRenderer::write_study_constants_by_ciu() {
+  const StudyLayout& m = m_study_layout;
+  ArrayDriver::Constants constants;
+  constants.xpos = m.xpos;
+  constants.ypos = m.ypos;
+  constants.one = m.one;
+  constants.ones = m.ff;
+  constants.x_counter = m.xcounter;
+  constants.x_counter_length = m.tile_width;
+  constants.y_counter = m.ycounter;
+  constants.y_counter_length = m.tile_height;
+  m_array.write_constants(constants);
+  m_array.fill8(m.line_c, 0xff);
+  m_array.fill8(m.line_c + 1, 0xff);
+  m_ciu_traffic.values_written += uint64_t{m_frame.cus()} * (4 + m.tile_width + m.tile_height + 2);
+}
+
+// The study's constants through the DMA, as write_study_constants_by_ciu sends
+// them through the CIU: XPOS and YPOS (each CU its own byte), 1, 0xff,
+// the counter tables and line 0 of every CU's record (no pixel inside).
+void ApTileRenderer::send_study_constants_by_dma() {
+  const StudyLayout& m = m_study_layout;
+  std::vector<uint8_t> xcounter(m.tile_width), ycounter(m.tile_height), xpos(m_frame.cus()), ypos(m_frame.cus());
+  for (unsigned x = 0; x < m.tile_width; ++x) xcounter[x] = static_cast<uint8_t>(x);
+  for (unsigned y = 0; y < m.tile_height; ++y) ycounter[y] = static_cast<uint8_t>(y);
+  for (unsigned lane = 0; lane < m_frame.cus(); ++lane) {
+    xpos[lane] = static_cast<uint8_t>(lane % m_frame.columns);
+    ypos[lane] = static_cast<uint8_t>(lane / m_frame.columns);
+  }
+  m_tile_dma->send_constants(
+      {{m.one, {1}}, {m.ff, {0xff}}, {m.xcounter, xcounter}, {m.ycounter, ycounter}, {m.line_c, {0xff, 0xff}}},
+      {{m.xpos, xpos}, {m.ypos, ypos}});
+}
+
 void ApTileRenderer::unsupported(const std::string& what) {
   m_unsupported.report(m_env, what);
 }
@@ -87,6 +145,11 @@ void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
                                                     [this](const std::string& what) { unsupported(what); });
   if (!flags) return;
   if (flags->tex != 0) m_frame_textured = true;
+  if (m_settings.study_program && flags->depth_test) {
+    if (flags->depth_lequal) unsupported("GL_LEQUAL with ap.tile.program=study: drawn as GL_LESS (z < buffer)");
+    if (!flags->depth_write)
+      unsupported("depth writes off with ap.tile.program=study: the depth of every pixel that passes is stored");
+  }
   costs::charge(m_host, HostCost::ap_tile_triangle, count);
   if (flags->tex != 0) costs::charge(m_host, HostCost::ap_tile_textured_triangle, count);
   for (size_t t = 0; t < count; ++t) {
@@ -110,6 +173,22 @@ void ApTileRenderer::write_group(unsigned i, unsigned j, const TileRecord* recor
     uint32_t word = 0;
     for (unsigned k = 0; k < 4; ++k) word |= uint32_t{bytes[k * m_layout.record_bytes + b]} << (8 * k);
     m_array.write32(i, j, m_layout.record_first + b, word);
+    ++m_words_written;
+    m_ciu_traffic.values_written += 4;
+  }
+}
+
+void ApTileRenderer::write_study_group(unsigned i, unsigned j, const StudyRecord* records) {
+  const unsigned bytes_per_record = m_study_layout.record_bytes;
+  std::vector<uint8_t>& bytes = m_record_bytes;
+  bytes.resize(size_t{bytes_per_record} * 4);
+  for (unsigned k = 0; k < 4; ++k) encode_study_record(records[k], m_study_layout, bytes.data() + k * bytes_per_record);
+  costs::charge(m_host, HostCost::ap_tile_record_group);
+  costs::charge(m_host, HostCost::ap_tile_record_word, bytes_per_record);
+  for (unsigned b = 0; b < bytes_per_record; ++b) {
+    uint32_t word = 0;
+    for (unsigned k = 0; k < 4; ++k) word |= uint32_t{bytes[k * bytes_per_record + b]} << (8 * k);
+    m_array.write32(i, j, m_study_layout.record_first + b, word);
     ++m_words_written;
     m_ciu_traffic.values_written += 4;
   }
@@ -151,10 +230,11 @@ void ApTileRenderer::flush() {
 void ApTileRenderer::flush_by_ciu(size_t passes) {
   const unsigned groups = m_frame.columns / 4;
   for (size_t pass = 0; pass < passes; ++pass) {
-    bool depth = false;
+    bool depth = false, untested = false;
     for (unsigned j = 0; j < m_frame.rows; ++j)
       for (unsigned i = 0; i < groups; ++i) {
         TileRecord records[4];
+        StudyRecord study[4];
         bool any = false, was_live = false;
         {
           Timed timed(m_host, m_time, renderers::HostSplit::compute);
@@ -164,17 +244,35 @@ void ApTileRenderer::flush_by_ciu(size_t passes) {
             was_live = was_live || m_live[lane];
             const TriangleSetup* setup = m_bins.at(lane, pass);
             if (setup == nullptr) continue;
-            records[k] = setup->record(c, j);
+            if (m_settings.study_program) {
+              study[k] = setup->study_record(c, j);
+              costs::charge(m_host, HostCost::ap_tile_study_record);
+              records[k].live = study[k].live;
+              records[k].zoff = !study[k].depth_test;
+            } else {
+              records[k] = setup->record(c, j);
+            }
             costs::charge(m_host, HostCost::ap_tile_record);
             any = true;
             ++m_cu_triangles;
             depth = depth || !records[k].zoff;
+            untested = untested || records[k].zoff;
           }
         }
         if (!any && !was_live) continue;
         Timed timed(m_host, m_time, renderers::HostSplit::array_write);
-        if (any) {
+        if (any && m_settings.study_program) {
+          write_study_group(i, j, study);
+        } else if (any) {
           write_group(i, j, records);
+        } else if (m_settings.study_program) {
+          // Line 0 = 0 x + 0 y - 1 in the four CUs: no pixel inside.
+          const StudyLayout& m = m_study_layout;
+          for (unsigned a : {unsigned{m.line_a}, m.line_a + 1u, unsigned{m.line_b}, m.line_b + 1u})
+            m_array.write32(i, j, a, 0);
+          for (unsigned a : {unsigned{m.line_c}, m.line_c + 1u}) m_array.write32(i, j, a, 0xffffffffu);
+          m_words_written += 6;
+          m_ciu_traffic.values_written += 24;
         } else {
           m_array.write32(i, j, m_layout.live, 0);
           ++m_words_written;
@@ -182,6 +280,10 @@ void ApTileRenderer::flush_by_ciu(size_t passes) {
         }
         for (unsigned k = 0; k < 4; ++k) m_live[j * m_frame.columns + 4 * i + k] = records[k].live;
       }
+    // The study's program tests depth in every CU of a pass that runs the
+    // stage: it has no flag for a triangle drawn without the test.
+    if (m_settings.study_program && depth && untested)
+      unsupported("depth test off beside depth-tested triangles in one pass with ap.tile.program=study: tested");
     run_pass(depth);
   }
 }
@@ -214,7 +316,7 @@ void ApTileRenderer::flush_by_dma(size_t passes) {
 // Every CU's record of pass `pass` computed (as on the CIU path) and staged
 // in buffer `buffer`; whether a record tests depth.
 bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
-  bool depth = false;
+  bool depth = false, untested = false;
   {
     Timed timed(m_host, m_time, renderers::HostSplit::compute);
     for (unsigned j = 0; j < m_frame.rows; ++j)
@@ -223,14 +325,28 @@ bool ApTileRenderer::stage_pass(size_t pass, unsigned buffer) {
         const TriangleSetup* setup = m_bins.at(lane, pass);
         m_has_record[lane] = setup != nullptr;
         if (setup == nullptr) continue;
-        const TileRecord record = setup->record(c, j);
-        costs::charge(m_host, HostCost::ap_tile_record);
-        encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+        bool tested = false;
+        if (m_settings.study_program) {
+          const StudyRecord record = setup->study_record(c, j);
+          costs::charge(m_host, HostCost::ap_tile_record);
+          costs::charge(m_host, HostCost::ap_tile_study_record);
+          encode_study_record(record, m_study_layout,
+                              m_record_bytes.data() + size_t{lane} * m_study_layout.record_bytes);
+          tested = record.depth_test;
+        } else {
+          const TileRecord record = setup->record(c, j);
+          costs::charge(m_host, HostCost::ap_tile_record);
+          encode_record(record, m_layout, m_record_bytes.data() + size_t{lane} * m_layout.record_bytes);
+          tested = !record.zoff;
+        }
         costs::charge(m_host, HostCost::ap_tile_dma_record);
         ++m_cu_triangles;
-        depth = depth || !record.zoff;
+        untested = untested || !tested;
+        depth = depth || tested;
       }
   }
+  if (m_settings.study_program && depth && untested)
+    unsupported("depth test off beside depth-tested triangles in one pass with ap.tile.program=study: tested");
   Timed timed(m_host, m_time, renderers::HostSplit::array_write);
   m_tile_dma->stage_records(buffer, m_record_bytes, m_has_record);
   return depth;
@@ -253,9 +369,18 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const auto packed = static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, rgba));
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_write);
-      if (m_tile_dma) {
+      if (m_tile_dma && m_settings.study_program) {
+        m_tile_dma->send_constants({{m_study_layout.clear_rg, {request.rgba[0], request.rgba[1]}},
+                                    {m_study_layout.clear_b, {request.rgba[2]}}});
+      } else if (m_tile_dma) {
         m_tile_dma->send_constants(
             {{m_layout.clear_c, {static_cast<uint8_t>(packed >> 8), static_cast<uint8_t>(packed)}}});
+      } else if (m_settings.study_program) {
+        m_array.fill8(m_study_layout.clear_rg, request.rgba[0]);
+        m_array.fill8(m_study_layout.clear_rg + 1, request.rgba[1]);
+        m_array.fill8(m_study_layout.clear_b, request.rgba[2]);
+        m_words_written += 3 * m_frame.cus() / 4;
+        m_ciu_traffic.values_written += 3 * m_frame.cus();
       } else {
         m_array.fill8(m_layout.clear_c, static_cast<uint8_t>(packed >> 8));
         m_array.fill8(m_layout.clear_c + 1, static_cast<uint8_t>(packed));
@@ -271,11 +396,12 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     const uint16_t z = clear_depth16(request.depth_value);
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_write);
+      const uint16_t at = m_settings.study_program ? m_study_layout.clear_z : m_layout.clear_z;
       if (m_tile_dma) {
-        m_tile_dma->send_constants({{m_layout.clear_z, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
+        m_tile_dma->send_constants({{at, {static_cast<uint8_t>(z >> 8), static_cast<uint8_t>(z)}}});
       } else {
-        m_array.fill8(m_layout.clear_z, static_cast<uint8_t>(z >> 8));
-        m_array.fill8(m_layout.clear_z + 1, static_cast<uint8_t>(z));
+        m_array.fill8(at, static_cast<uint8_t>(z >> 8));
+        m_array.fill8(at + 1, static_cast<uint8_t>(z));
         m_words_written += 2 * m_frame.cus() / 4;
         m_ciu_traffic.values_written += 2 * m_frame.cus();
       }
@@ -284,8 +410,7 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
   }
 }
 
-uint32_t ApTileRenderer::shade_pixel(uint32_t packed, unsigned tid, int16_t s, int16_t t) {
-  uint32_t rgba = unpack_pixel(PixelFormat::rgb565, packed);
+uint32_t ApTileRenderer::shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t) {
   costs::charge(m_host, HostCost::ap_tile_pixel);
   if (const TextureEntry* entry = m_textures.find(tid)) {
     rgba = texture_pixel(*entry, rgba, s, t, [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
@@ -307,20 +432,25 @@ void ApTileRenderer::read_back() {
     for (unsigned i = 0; i < groups; ++i)
       for (unsigned x = 0; x < m_frame.tile_width; ++x)
         for (unsigned l = 0; l < m_frame.tile_height; ++l) {
-          uint32_t hi, lo, tid = 0, s_hi = 0, s_lo = 0, t_hi = 0, t_lo = 0;
+          uint32_t hi, lo, blue = 0, tid = 0, s_hi = 0, s_lo = 0, t_hi = 0, t_lo = 0;
           {
             Timed timed(m_host, m_time, renderers::HostSplit::array_read);
-            hi = m_array.read32(i, j, m_layout.pixel(m_layout.chi, x, l));
-            lo = m_array.read32(i, j, m_layout.pixel(m_layout.clo, x, l));
+            hi = m_array.read32(i, j, m_layout.pixel(m_read.hi, x, l));
+            lo = m_array.read32(i, j, m_layout.pixel(m_read.lo, x, l));
             m_words_read += 2;
             m_ciu_traffic.values_read += 8;
+            if (m_settings.study_program) {
+              blue = m_array.read32(i, j, m_layout.pixel(m_read.blue, x, l));
+              ++m_words_read;
+              m_ciu_traffic.values_read += 4;
+            }
             if (m_frame_textured) {
-              tid = m_array.read32(i, j, m_layout.pixel(m_layout.tid, x, l));
+              tid = m_array.read32(i, j, m_layout.pixel(m_read.tid, x, l));
               if (tid != 0) {
-                s_hi = m_array.read32(i, j, m_layout.pixel(m_layout.shi, x, l));
-                s_lo = m_array.read32(i, j, m_layout.pixel(m_layout.slo, x, l));
-                t_hi = m_array.read32(i, j, m_layout.pixel(m_layout.thi, x, l));
-                t_lo = m_array.read32(i, j, m_layout.pixel(m_layout.tlo, x, l));
+                s_hi = m_array.read32(i, j, m_layout.pixel(m_read.s_hi, x, l));
+                s_lo = m_array.read32(i, j, m_layout.pixel(m_read.s_lo, x, l));
+                t_hi = m_array.read32(i, j, m_layout.pixel(m_read.t_hi, x, l));
+                t_lo = m_array.read32(i, j, m_layout.pixel(m_read.t_lo, x, l));
                 m_words_read += 4;
                 m_ciu_traffic.values_read += 16;
               }
@@ -332,10 +462,16 @@ void ApTileRenderer::read_back() {
           costs::charge(m_host, HostCost::ap_tile_read_position);
           for (unsigned b = 0; b < 4; ++b) {
             const unsigned shift = 8 * b;
-            const uint32_t packed = ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff);
+            // The study's program keeps 8 bits a channel (red, green, blue
+            // bytes); the tuned one RGB565 in two.
+            const uint32_t colour =
+                m_settings.study_program
+                    ? ((hi >> shift) & 0xff) | ((lo >> shift) & 0xff) << 8 | ((blue >> shift) & 0xff) << 16 |
+                          0xff000000u
+                    : unpack_pixel(PixelFormat::rgb565, ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff));
             const auto s16 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
             const auto t16 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
-            const uint32_t rgba = shade_pixel(packed, (tid >> shift) & 0xff, s16, t16);
+            const uint32_t rgba = shade_pixel(colour, (tid >> shift) & 0xff, s16, t16);
             const unsigned column = (4 * i + b) * m_frame.tile_width + x;
             const unsigned row = j * m_frame.tile_height + l;
             m_rgba[size_t{row} * width + column] = rgba;
@@ -377,6 +513,7 @@ void ApTileRenderer::convert_chunk(unsigned x) {
   uint8_t* s_lo = s_hi + cus;
   uint8_t* t_hi = s_lo + cus;
   uint8_t* t_lo = t_hi + cus;
+  uint8_t* blue = t_lo + cus;
   std::fill(tid, hi + READ_PLANES * cus, 0);
   auto load = [&](uint16_t plane, unsigned l, uint8_t* out) {
     std::memcpy(out, m_host.load_span(m_tile_dma->staged_row(plane, x, l), 1, cus), cus);
@@ -384,15 +521,16 @@ void ApTileRenderer::convert_chunk(unsigned x) {
   for (unsigned l = 0; l < m_frame.tile_height; ++l) {
     {
       Timed timed(m_host, m_time, renderers::HostSplit::array_read);
-      load(m_layout.chi, l, hi);
-      load(m_layout.clo, l, lo);
+      load(m_read.hi, l, hi);
+      load(m_read.lo, l, lo);
+      if (m_settings.study_program) load(m_read.blue, l, blue);
       if (m_frame_textured) {
-        load(m_layout.tid, l, tid);
+        load(m_read.tid, l, tid);
         if (std::any_of(tid, tid + cus, [](uint8_t t) { return t != 0; })) {
-          load(m_layout.shi, l, s_hi);
-          load(m_layout.slo, l, s_lo);
-          load(m_layout.thi, l, t_hi);
-          load(m_layout.tlo, l, t_lo);
+          load(m_read.s_hi, l, s_hi);
+          load(m_read.s_lo, l, s_lo);
+          load(m_read.t_hi, l, t_hi);
+          load(m_read.t_lo, l, t_lo);
         }
       }
     }
@@ -401,7 +539,11 @@ void ApTileRenderer::convert_chunk(unsigned x) {
     for (unsigned lane = 0; lane < cus; ++lane) {
       const auto s16 = static_cast<int16_t>(s_hi[lane] << 8 | s_lo[lane]);
       const auto t16 = static_cast<int16_t>(t_hi[lane] << 8 | t_lo[lane]);
-      const uint32_t rgba = shade_pixel(uint32_t{hi[lane]} << 8 | lo[lane], tid[lane], s16, t16);
+      const uint32_t colour =
+          m_settings.study_program
+              ? uint32_t{hi[lane]} | uint32_t{lo[lane]} << 8 | uint32_t{blue[lane]} << 16 | 0xff000000u
+              : unpack_pixel(PixelFormat::rgb565, uint32_t{hi[lane]} << 8 | lo[lane]);
+      const uint32_t rgba = shade_pixel(colour, tid[lane], s16, t16);
       const unsigned column = (lane % m_frame.columns) * m_frame.tile_width + x;
       const unsigned row = (lane / m_frame.columns) * m_frame.tile_height + l;
       m_rgba[size_t{row} * width + column] = rgba;
@@ -474,6 +616,7 @@ void ApTileRenderer::publish_statistics() {
   set("busiest_cu_triangles", "most triangles one CU drew in one flush (the passes that flush needed)", m_busiest);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
+  set("cmem_bytes_per_cu", "CMEM bytes per CU the array program declares (ap.tile.program)", m_cmem_bytes);
   renderers::publish_traffic(c, "ap_tile", traffic());
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})

@@ -24,6 +24,7 @@
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
+#include "renderers/ap_tile/tile_study.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
@@ -34,6 +35,7 @@ namespace tessera::ap_tile {
 // The back end's configuration (ap.tile.*, declared in ap_tile_backend.cpp).
 struct Settings {
   bool texcoords_always = false;  // the texcoord stage in every pass, textured or not
+  bool study_program = false;     // ap_tile_study.s (the study's program) instead of ap_tile.s (tuned)
 };
 
 class ApTileRenderer : public gl::Renderer {
@@ -57,10 +59,13 @@ class ApTileRenderer : public gl::Renderer {
   void run_pass(bool depth);
   void run_stage(TileStage stage);
   void write_group(unsigned i, unsigned j, const TileRecord* records);
+  void write_study_group(unsigned i, unsigned j, const StudyRecord* records);
+  void write_study_constants_by_ciu();
+  void send_study_constants_by_dma();
   void read_back();
-  // A pixel read back: its RGB565 colour, textured on the host when `tid`
-  // names a texture of the frame.
-  uint32_t shade_pixel(uint32_t packed, unsigned tid, int16_t s, int16_t t);
+  // A pixel read back: its colour (RGBA, from the program's colour
+  // format), textured on the host when `tid` names a texture of the frame.
+  uint32_t shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t);
   // With the DMA: the passes' records double-buffered in system memory, the
   // frame read back in chunks on two channels.
   void flush_by_dma(size_t passes);
@@ -77,7 +82,16 @@ class ApTileRenderer : public gl::Renderer {
   DisplayDriver m_display;
   ArrayDriver m_array;
   DmaDriver m_dma;
-  CmemLayout m_layout;
+  CmemLayout m_layout;         // the tuned program's (the DMA's staging follows it)
+  StudyLayout m_study_layout;  // the study's program's, when it runs
+  // The planes the read-back reads, of the program that runs: colour
+  // (RGB565 in hi, lo; or red, green and, in `blue`, blue), texture number
+  // and coordinates.
+  struct ReadPlanes {
+    uint16_t hi = 0, lo = 0, blue = 0, tid = 0, s_hi = 0, s_lo = 0, t_hi = 0, t_lo = 0;
+  };
+  ReadPlanes m_read;
+  unsigned m_cmem_bytes = 0;  // CMEM bytes per CU the program declares
   FrameGeometry m_frame;
   unsigned m_entry[6]{};
   unsigned m_program_base = 0;

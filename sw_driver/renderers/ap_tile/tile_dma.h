@@ -13,25 +13,50 @@
 #include "device/app_environment.h"
 #include "device/dma_driver.h"
 #include "renderers/ap_tile/tile_setup.h"
+#include "renderers/ap_tile/tile_study.h"
 #include "renderers/common/array_dma.h"
 
 namespace tessera::ap_tile {
+
+// What the DMA's staging needs of the running program's CMEM layout (the
+// tuned program's or the study's).
+struct DmaLayout {
+  unsigned tile_height = 0;
+  uint16_t record_first = 0, record_bytes = 0;
+  // The record byte (from record_first) that is 0 in a dead slot, or -1
+  // when the program has none (the study's: every record written is live).
+  int live = -1;
+  // The bytes (from record_first) a slot gets when its CU has no triangle;
+  // the study's program also starts every slot so.
+  std::vector<std::pair<uint16_t, uint8_t>> dead;
+  // The planes read back, in chain order: the texture planes (tid, s, t)
+  // first, then the colour planes, so that an untextured chunk starts the
+  // same chain at its first colour plane.
+  std::vector<uint16_t> read_planes;
+  unsigned colour_planes = 0;
+  // Constants sent at once, at most (the staging's descriptors).
+  unsigned max_constants = 0;
+
+  static DmaLayout of(const CmemLayout& layout);
+  static DmaLayout of(const StudyLayout& layout);
+};
 
 class TileDma {
  public:
   // Allocates the staging buffers (gl::allocate), clears the record
   // buffers and writes the chains. `broadcast`: constants go by broadcast
   // descriptors, else by reshuffles (each CU its copy).
-  TileDma(AppEnvironment& env, DmaDriver& dma, const CmemLayout& layout, const FrameGeometry& frame, bool broadcast);
+  TileDma(AppEnvironment& env, DmaDriver& dma, const DmaLayout& layout, const FrameGeometry& frame, bool broadcast);
 
   // A value the same in every CU: `bytes` to CMEM `cmem`, `cmem` + 1, ...
   struct Constant {
     uint16_t cmem = 0;
     std::vector<uint8_t> bytes;
   };
-  // Stages the constants, sends them on the input channel as one chain
-  // and waits for it.
-  void send_constants(const std::vector<Constant>& constants);
+  // Stages the constants and `per_cu` (one byte per CU, in CU order, at
+  // its `cmem`: a reshuffle whatever the broadcast), sends them on the
+  // input channel as one chain and waits for it.
+  void send_constants(const std::vector<Constant>& constants, const std::vector<Constant>& per_cu = {});
 
   // Stages a pass's records in buffer `buffer` (0 or 1): `bytes` holds
   // every CU's record (record_bytes each, in CU order), of which the CUs
@@ -49,17 +74,14 @@ class TileDma {
   unsigned chunks() const { return m_frame.tile_width; }
   void start_chunk(unsigned x, bool textured);
   void wait_chunk(unsigned x) { wait(x % 2); }
-  // Where row l of tile column x of `plane` (chi, clo, tid, shi, slo, thi or
-  // tlo) landed: one byte per CU, in CU order.
+  // Where row l of tile column x of `plane` (one of the layout's
+  // read_planes) landed: one byte per CU, in CU order.
   uint32_t staged_row(uint16_t plane, unsigned x, unsigned l) const;
 
   const renderers::ArrayTraffic& traffic() const { return m_traffic; }
 
  private:
   static constexpr unsigned INPUT = 0;  // the channel of every write into CMEM
-  // The read-back's planes, in the order of a chunk's chain: a colour-only
-  // chunk starts the same chain at its first colour plane.
-  static constexpr unsigned READ_PLANES = 7, COLOUR_PLANES = 2;
 
   // Sleeps until `channel`'s interrupt; a DmaError names the renderer.
   void wait(unsigned channel);
@@ -67,16 +89,16 @@ class TileDma {
 
   HostApi& m_host;
   DmaDriver& m_dma;
-  CmemLayout m_layout;
+  DmaLayout m_layout;
   FrameGeometry m_frame;
   bool m_broadcast;
   unsigned m_cus;
-  uint16_t m_read_planes[READ_PLANES]{};
+  unsigned m_read_planes;  // m_layout.read_planes.size()
 
   uint32_t m_records[2]{};             // per buffer: record byte r of CU k at + r * cus + k
   uint32_t m_record_chains[2]{};       // per buffer: its reshuffle
   uint32_t m_frame_staging = 0;        // per read-back plane: the plane, row r at + r * cus
-  uint32_t m_chunk_chains = 0;         // per chunk: READ_PLANES descriptors
+  uint32_t m_chunk_chains = 0;         // per chunk: a descriptor per read plane
   uint32_t m_constants = 0;            // the constants' bytes (each CU's copy for a reshuffle)
   uint32_t m_constant_chain = 0;       // the constants' descriptors
   std::vector<bool> m_staged_live[2];  // per buffer and CU: its slot's live byte is set

@@ -393,4 +393,56 @@ TileRecord TriangleSetup::record(unsigned c, unsigned r) const {
   return record;
 }
 
+namespace {
+
+// A 16.8 step (24 bits, wrapping) to the nearest whole unit, halves away
+// from zero, as a signed value.
+int32_t round_16_8(uint32_t step) {
+  const int32_t v = static_cast<int32_t>(step << 8) >> 8;
+  return v >= 0 ? (v + 128) >> 8 : -((-v + 128) >> 8);
+}
+
+}  // namespace
+
+StudyRecord TriangleSetup::study_record(unsigned c, unsigned r) const {
+  StudyRecord study;
+  const TileRecord tuned = record(c, r);
+  if (!tuned.live) return study;
+  study.live = true;
+  const auto last_x = static_cast<int32_t>(m_frame.tile_width - 1),
+             last_y = static_cast<int32_t>(m_frame.tile_height - 1);
+  for (unsigned e = 0; e < 3; ++e) {
+    // The tuned record steps left (du) and up (dv) from the bottom-right
+    // pixel; the study's line steps right and down from the top-left one.
+    // A line that crosses the tile has every value in it below 2^15 in
+    // magnitude (record()), the top-left one too; a tile wholly inside
+    // gets 0, 0, 0.
+    study.a[e] = static_cast<int16_t>(-tuned.edu[e]);
+    study.b[e] = static_cast<int16_t>(-tuned.edv[e]);
+    study.c[e] = static_cast<int16_t>(tuned.e0[e] + last_x * tuned.edu[e] + last_y * tuned.edv[e]);
+  }
+  // Depth: the integer part of the 16.8 value (its half unit is in z0
+  // already), the steps rounded to whole units.
+  study.z = static_cast<uint16_t>(tuned.z0 >> 8);
+  study.z_dx = static_cast<uint16_t>(-round_16_8(tuned.zdu));
+  study.z_dy = static_cast<uint16_t>(-round_16_8(tuned.zdv));
+  // Colour in 8.8 of 0..255, plus half a unit for the CU's truncation.
+  const int32_t dx = corner_x16(c) - m_x[0], dy = corner_y16(r) - m_y[0];
+  const auto w1 = static_cast<int32_t>(int64_t{m_y[2] - m_y[0]} * dx - int64_t{m_x[2] - m_x[0]} * dy);
+  const auto w2 = static_cast<int32_t>(int64_t{m_x[1] - m_x[0]} * dy - int64_t{m_y[1] - m_y[0]} * dx);
+  for (unsigned k = 0; k < 3; ++k) {
+    study.colour[k] = static_cast<uint16_t>(colour_value(plane_numerator(m_color[k], w1, w2), 255) + 128);
+    study.c_dx[k] = static_cast<uint16_t>(colour_value(step_numerator(m_color[k], 16, 0), 255));
+    study.c_dy[k] = static_cast<uint16_t>(colour_value(step_numerator(m_color[k], 0, -16), 255));
+  }
+  for (unsigned k = 0; k < 2; ++k) {
+    study.st[k] = tuned.st0[k];
+    study.st_dx[k] = static_cast<uint16_t>(-tuned.stdu[k]);
+    study.st_dy[k] = static_cast<uint16_t>(-tuned.stdv[k]);
+  }
+  study.tex = tuned.tex;
+  study.depth_test = !tuned.zoff;
+  return study;
+}
+
 }  // namespace tessera::ap_tile

@@ -62,6 +62,23 @@ struct TileRecord {
   bool zlequal = false, zoff = false, zwrite = true;
 };
 
+// What the host writes into one CU before a pass of the study's program
+// (ap_tile_study.s, README.md "The study's program"): three lines
+// E = A x + B y + C (x the tile column from the left, y the row from the
+// top, C the value at the tile's top-left pixel, inside where E >= 0),
+// depth, colour and texture coordinates at the tile's bottom-right pixel
+// with their steps per pixel right (dx) and per row down (dy). Every value
+// 16 bits, wrapping.
+struct StudyRecord {
+  bool live = false;                                 // the triangle reaches the tile (else the CU draws nothing)
+  std::array<int16_t, 3> a{}, b{}, c{};              // lines, 1/512 pixel
+  uint16_t z = 0, z_dx = 0, z_dy = 0;                // depth, 16-bit unsigned
+  std::array<uint16_t, 3> colour{}, c_dx{}, c_dy{};  // R, G, B in 8.8, 0..255
+  std::array<uint16_t, 2> st{}, st_dx{}, st_dy{};    // s, t in texels, 8.8
+  uint8_t tex = 0;
+  bool depth_test = false;  // the draw tests depth (the host decides whether the pass runs the depth stage)
+};
+
 // Writes `record` as the program lays it out: layout.record_bytes bytes,
 // the first at CMEM address layout.record_first.
 void encode_record(const TileRecord& record, const CmemLayout& layout, uint8_t* bytes);
@@ -112,6 +129,10 @@ class TriangleSetup {
   bool overlaps(unsigned c, unsigned r) const;
   // The record for CU (c, r).
   TileRecord record(unsigned c, unsigned r) const;
+  // The study program's record for CU (c, r): the same edges and texture
+  // coordinates as record(c, r), depth rounded to 16 bits, colour in 8.8
+  // of 0..255. A CU the triangle does not reach gets live = false.
+  StudyRecord study_record(unsigned c, unsigned r) const;
 
   const std::array<Edge, 3>& edges() const { return m_edges; }
 

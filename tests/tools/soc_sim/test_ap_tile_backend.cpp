@@ -2,6 +2,10 @@
 // ap.tile.texcoords=always runs the texcoord stage in every pass of a frame
 // that has no texture, and changes no pixel; the default skips the stage; a
 // value it does not know is rejected naming the key and the values allowed.
+// ap.tile.program: tuned, named, is the default, frame and statistics; the
+// study's program draws the same passes with more array cycles and reads
+// the blue array back too; with the DMA, the same frame and array work
+// without a CIU word.
 //
 // Usage: test_ap_tile_backend <path to soc_sim> [GoogleTest options]
 #include <cstdint>
@@ -98,6 +102,70 @@ TEST_F(ApTileBackend, UnknownTexcoordsValueNamesTheKeyAndTheValues) {
   for (const char* part : {"ap.tile.texcoords", "sometimes", "textured", "always"})
     EXPECT_TRUE(contains(result.err, part)) << part << "\n" << describe(result);
   EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+}
+
+TEST_F(ApTileBackend, ExplicitTunedProgramIsTheDefault) {
+  const json implicit = teapot("implicit", {});
+  const json named = teapot("named", {"ap.tile.program=tuned"});
+  ASSERT_FALSE(implicit.is_discarded());
+  ASSERT_FALSE(named.is_discarded());
+  EXPECT_EQ(implicit["config"]["ap"]["tile"]["program"], "tuned");
+  EXPECT_EQ(named["config"]["ap"]["tile"]["program"], "tuned");
+  EXPECT_EQ(implicit["stats"], named["stats"]);
+  const std::string frame = read_file(m_dir / "implicit/frame_0000.png");
+  EXPECT_FALSE(frame.empty());
+  EXPECT_EQ(frame, read_file(m_dir / "named/frame_0000.png"));
+}
+
+TEST_F(ApTileBackend, StudyProgramRunsTheSamePassesInMoreCycles) {
+  const json tuned = teapot("tuned", {});
+  const json study = teapot("study", {"ap.tile.program=study"});
+  ASSERT_FALSE(tuned.is_discarded());
+  ASSERT_FALSE(study.is_discarded());
+  EXPECT_EQ(study["config"]["ap"]["tile"]["program"], "study");
+  const json& t = tuned["stats"]["driver"]["ap_tile"];
+  const json& s = study["stats"]["driver"]["ap_tile"];
+  const uint64_t passes = s["passes"].get<uint64_t>();
+  EXPECT_GT(passes, 1u);
+  // The same binning and passes: only the program and its records differ.
+  for (const char* figure : {"passes", "triangles", "cu_triangles", "busiest_cu_triangles"})
+    EXPECT_EQ(s[figure], t[figure]) << figure;
+  EXPECT_EQ(stage_runs(study, "fill"), passes);
+  EXPECT_EQ(stage_runs(study, "colour"), passes);
+  // Every variable loaded and stored per statement: each stage is slower.
+  for (const char* stage : {"fill", "depth", "colour"})
+    EXPECT_GT(s["cycles"][stage].get<uint64_t>(), t["cycles"][stage].get<uint64_t>()) << stage;
+  // Three CIU words per four pixels read back (red, green, blue) against
+  // two (RGB565), and the CMEM each program declares.
+  EXPECT_EQ(2 * s["ciu_words_read"].get<uint64_t>(), 3 * t["ciu_words_read"].get<uint64_t>());
+  EXPECT_EQ(t["cmem_bytes_per_cu"], 2999);
+  EXPECT_EQ(s["cmem_bytes_per_cu"], 3313);
+  EXPECT_FALSE(read_file(m_dir / "study/frame_0000.png").empty());
+}
+
+TEST_F(ApTileBackend, UnknownProgramValueNamesTheKeyAndTheValues) {
+  const SimResult result =
+      run({"--backend", "ap-tile", "--app", "triangle", "--set", "ap.tile.program=fast", "--out", "out"});
+  EXPECT_EQ(result.status, EXIT_USAGE) << describe(result);
+  for (const char* part : {"ap.tile.program", "fast", "tuned", "study"})
+    EXPECT_TRUE(contains(result.err, part)) << part << "\n" << describe(result);
+  EXPECT_FALSE(fs::exists(m_dir / "out/stats.json"));
+}
+
+TEST_F(ApTileBackend, StudyProgramWithTheDmaMovesEveryCmemByteThroughIt) {
+  const json ciu = teapot("study_ciu", {"ap.tile.program=study"});
+  const json dma = teapot("study_dma", {"ap.tile.program=study", "dma.enabled=true"});
+  ASSERT_FALSE(ciu.is_discarded());
+  ASSERT_FALSE(dma.is_discarded());
+  const json& c = ciu["stats"]["driver"]["ap_tile"];
+  const json& d = dma["stats"]["driver"]["ap_tile"];
+  EXPECT_EQ(d["ciu_words_written"], 0);
+  EXPECT_EQ(d["ciu_words_read"], 0);
+  EXPECT_GT(d["dma_descriptors"].get<uint64_t>(), 0u);
+  // The array's work is the same program on the same records.
+  EXPECT_EQ(d["passes"], c["passes"]);
+  EXPECT_EQ(d["cycles"], c["cycles"]);
+  EXPECT_EQ(read_file(m_dir / "study_ciu/frame_0000.png"), read_file(m_dir / "study_dma/frame_0000.png"));
 }
 
 // The key belongs to the configuration whichever back end runs, so that one

@@ -7,10 +7,13 @@
 #include <vector>
 
 #include "ap_programs/ap_tile.h"
+#include "ap_programs/ap_tile_study.h"
 #include "array/core/array_controller.h"
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
+#include "renderers/ap_tile/tile_study.h"
+#include "renderers/ap_tile/tile_study_reference.h"
 
 namespace tessera::ap_tile {
 namespace {
@@ -147,6 +150,121 @@ TEST(ApTileProgram, MatchesTheReferenceBitForBit) {
         }
   }
   EXPECT_GT(drawn_lanes, 100u);  // the random triangles reached many CUs
+}
+
+// The study's program on 96 CUs against run_study_reference, every CMEM
+// byte, its own variables included: random buffers, the constants the
+// host writes once, 12 passes of seeded random triangles (CUs the
+// triangle misses get the dead record) with clears between.
+TEST(ApTileStudyProgram, MatchesTheReferenceOnEveryCmemByte) {
+  const ap::Program& study = ap::programs::ap_tile_study();
+  const StudyLayout layout = StudyLayout::of(study);
+  const FrameGeometry frame;
+  ArrayGeometry geometry;
+  ArrayController controller(geometry, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, study.words));
+  CuArray& array = controller.array();
+  const unsigned lanes = array.lanes(), bytes = geometry.cmem_bytes;
+  std::vector<std::vector<uint8_t>> reference(lanes, std::vector<uint8_t>(bytes));
+  std::mt19937 rng(1998);
+  auto set = [&](unsigned lane, unsigned a, uint8_t value) {
+    array.set_cmem(lane, a, value);
+    reference[lane][a] = value;
+  };
+  for (unsigned lane = 0; lane < lanes; ++lane) {
+    for (unsigned a = 0; a < bytes; ++a) set(lane, a, static_cast<uint8_t>(rng()));
+    set(lane, layout.xpos, static_cast<uint8_t>(lane % frame.columns));
+    set(lane, layout.ypos, static_cast<uint8_t>(lane / frame.columns));
+    set(lane, layout.one, 1);
+    set(lane, layout.ff, 0xff);
+    for (unsigned x = 0; x < layout.tile_width; ++x) set(lane, layout.xcounter + x, static_cast<uint8_t>(x));
+    for (unsigned y = 0; y < layout.tile_height; ++y) set(lane, layout.ycounter + y, static_cast<uint8_t>(y));
+  }
+  auto run = [&](TileStage stage) {
+    const RunResult result = controller.run(study.entries.at(stage_entry(stage)));
+    ASSERT_TRUE(result.ok) << result.error;
+    for (unsigned lane = 0; lane < lanes; ++lane) run_study_reference(stage, layout, reference[lane].data());
+  };
+  auto compare = [&](const char* after, unsigned pass) {
+    for (unsigned lane = 0; lane < lanes; ++lane)
+      for (unsigned a = 0; a < bytes; ++a)
+        ASSERT_EQ(array.cmem(lane, a), reference[lane][a])
+            << "pass " << pass << " after " << after << ", CU " << lane << ", address " << a;
+  };
+  std::vector<uint8_t> record(layout.record_bytes);
+  unsigned drawn_lanes = 0, drawn_pixels = 0;
+  for (unsigned pass = 0; pass < 12; ++pass) {
+    for (unsigned lane = 0; lane < lanes; ++lane) {
+      DrawFlags flags;
+      flags.depth_test = true;
+      flags.flat = rng() % 5 == 0;
+      flags.tex = static_cast<uint8_t>(rng() % 3);
+      flags.tex_width = 64;
+      flags.tex_height = 32;
+      const TriangleSetup setup(random_triangle(rng, frame), flags, frame);
+      const StudyRecord r = setup.study_record(lane % frame.columns, lane / frame.columns);
+      drawn_lanes += r.live;
+      encode_study_record(r, layout, record.data());
+      for (unsigned b = 0; b < layout.record_bytes; ++b) set(lane, layout.record_first + b, record[b]);
+    }
+    if (pass % 4 == 0) {
+      for (unsigned lane = 0; lane < lanes; ++lane)
+        for (unsigned a : {layout.clear_rg, static_cast<uint16_t>(layout.clear_rg + 1), layout.clear_b, layout.clear_z,
+                           static_cast<uint16_t>(layout.clear_z + 1)})
+          set(lane, a, static_cast<uint8_t>(rng()));
+      run(TileStage::clear_colour);
+      run(TileStage::clear_depth);
+      compare("the clears", pass);
+    }
+    for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord}) {
+      run(stage);
+      compare(stage_entry(stage), pass);
+    }
+    for (unsigned lane = 0; lane < lanes; ++lane)
+      for (unsigned x = 0; x < layout.tile_width; ++x)
+        for (unsigned y = 0; y < layout.tile_height; ++y)
+          drawn_pixels += array.cmem(lane, layout.pixel(layout.we, x, y)) != 0;
+  }
+  EXPECT_GT(drawn_lanes, 100u);    // the random triangles reached many CUs
+  EXPECT_GT(drawn_pixels, 1000u);  // and drew pixels that passed the depth test
+}
+
+// The study's fill draws exactly the tuned program's pixels: the same
+// edges, reached by multiplications and steps right and down instead of
+// steps left and up.
+TEST(ApTileStudyProgram, FillsThePixelsTheTunedProgramFills) {
+  const StudyLayout study = StudyLayout::of(ap::programs::ap_tile_study());
+  const CmemLayout tuned = CmemLayout::of(program());
+  const FrameGeometry frame;
+  std::mt19937 rng(9);
+  unsigned inside = 0;
+  for (unsigned trial = 0; trial < 300; ++trial) {
+    const TriangleSetup setup(random_triangle(rng, frame), DrawFlags{}, frame);
+    const unsigned c = rng() % frame.columns, r = rng() % frame.rows;
+    std::vector<uint8_t> a = fresh_cmem(tuned), b(4096, 0);
+    b[study.one] = 1;
+    for (unsigned x = 0; x < study.tile_width; ++x) b[study.xcounter + x] = static_cast<uint8_t>(x);
+    for (unsigned y = 0; y < study.tile_height; ++y) b[study.ycounter + y] = static_cast<uint8_t>(y);
+    encode_record(setup.record(c, r), tuned, a.data() + tuned.record_first);
+    encode_study_record(setup.study_record(c, r), study, b.data() + study.record_first);
+    run_reference(TileStage::fill, tuned, a.data());
+    run_study_reference(TileStage::fill, study, b.data());
+    for (unsigned x = 0; x < study.tile_width; ++x)
+      for (unsigned y = 0; y < study.tile_height; ++y) {
+        const bool drawn = a[tuned.pixel(tuned.we, x, y)] != 0;
+        ASSERT_EQ(drawn, b[study.pixel(study.we, x, y)] != 0) << "trial " << trial << ", pixel " << x << ", " << y;
+        inside += drawn;
+      }
+  }
+  EXPECT_GT(inside, 500u);
+}
+
+// Every CU's CMEM holds each program's variables: the figures README.md
+// gives.
+TEST(ApTileStudyProgram, CmemBytesPerCu) {
+  EXPECT_EQ(cmem_extent(program()), 2999u);
+  EXPECT_EQ(StudyLayout::of(ap::programs::ap_tile_study()).cmem_bytes, cmem_extent(ap::programs::ap_tile_study()));
+  EXPECT_EQ(cmem_extent(ap::programs::ap_tile_study()), 3313u);
 }
 
 // Every pixel the reference draws for a triangle lies in a tile the set-up
