@@ -72,8 +72,9 @@ block1:
   endloop
   halt
 
-; A block of 2 x 2: pixel (0, 0) in full, row 0 from the left neighbours, each row
-; above from the pixel below its first and then from the left.
+; A block of 2 x 2: pixel (0, 0) in full, row 0 from the left
+; neighbours, each row above from the pixel below its first and then from
+; the left.
 block2:
 .stage shade
   mset
@@ -109,8 +110,9 @@ block2:
   endloop
   halt
 
-; A block of 3 x 3: pixel (0, 0) in full, row 0 from the left neighbours, each row
-; above from the pixel below its first and then from the left.
+; A block of 3 x 3: pixel (0, 0) in full, row 0 from the left
+; neighbours, each row above from the pixel below its first and then from
+; the left.
 block3:
 .stage shade
   mset
@@ -146,8 +148,9 @@ block3:
   endloop
   halt
 
-; A block of 4 x 4: pixel (0, 0) in full, row 0 from the left neighbours, each row
-; above from the pixel below its first and then from the left.
+; A block of 4 x 4: pixel (0, 0) in full, row 0 from the left
+; neighbours, each row above from the pixel below its first and then from
+; the left.
 block4:
 .stage shade
   mset
@@ -183,8 +186,9 @@ block4:
   endloop
   halt
 
-; A block of 5 x 5: pixel (0, 0) in full, row 0 from the left neighbours, each row
-; above from the pixel below its first and then from the left.
+; A block of 5 x 5: pixel (0, 0) in full, row 0 from the left
+; neighbours, each row above from the pixel below its first and then from
+; the left.
 block5:
 .stage shade
   mset
