@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -209,9 +210,9 @@ int signed_byte(uint32_t word, unsigned byte) {
 }
 
 // One shade from its input words, as the study's loop does it: per
-// attribute (the first `attributes`) C = C0 + x dC/dx + y dC/dy in 32 bits (C0 < 2^24, |x|, |y| <=
-// 128, |gradient| < 2^15: the products stay below 2^22), the integer part
-// of the 16.8 result stored as 16 bits.
+// attribute (the first `attributes`) C = C0 + x dC/dx + y dC/dy in 32
+// bits (C0 < 2^24, |x|, |y| <= 128, |gradient| < 2^15: the products stay
+// below 2^22), the integer part of the 16.8 result stored as 16 bits.
 void shade(const uint8_t* in, uint8_t* out, unsigned attributes) {
   in = aligned_words(in);
   const uint32_t xy = word_at(in, 3 * ATTRIBUTES);
