@@ -1,8 +1,9 @@
-; ap-pixel's study program: the pixel algorithm as the study wrote it
-; (docs/spec/study_programs.md, "ap-pixel as the study wrote it"), in the
-; shape the vendor's compiler (SEL) gives it: every variable in CMEM, each
-; statement loading its operands, computing and storing its result, no
-; value kept in a register from one statement to the next. Chosen with
+; ap-pixel's study program: the pixel algorithm
+; (docs/spec/array_processor.md, "ap-pixel") as the study's own code ran
+; it on the board, in the shape the vendor's compiler (SEL) gives it
+; (README.md, "The study program"): every variable in CMEM, each statement
+; loading its operands, computing and storing its result, no value kept in
+; a register from one statement to the next. Chosen with
 ; ap.pixel.program=study; ap_pixel.s is the default, `tuned`.
 ;
 ; Per attribute, on 16-bit 8.8 values (big-endian, modulo 2^16):

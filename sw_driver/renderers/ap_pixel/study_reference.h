@@ -1,9 +1,9 @@
 // The study program's arithmetic (ap_pixel_study.s) in plain C++, on one
 // CU's CMEM image laid out as its PixelLayout says: the reference the
 // program is checked against byte for byte (tests/sw_driver/renderers/
-// ap_pixel/). Written from the study's statements
-// (docs/spec/study_programs.md, "ap-pixel as the study wrote it"): 16-bit
-// 8.8 values, big-endian, every sum and product modulo 2^16.
+// ap_pixel/). Written from the study's statements (README.md, "The study
+// program"): 16-bit 8.8 values, big-endian, every sum and product modulo
+// 2^16.
 #pragma once
 
 #include <cstdint>
