@@ -89,6 +89,12 @@ FITTED_PHASES = {"arm": PHASES, "raster": PHASES, "ap-tile": PHASES + SPLIT, "ap
 # records are their timed parts (the split).
 APP_TRAINING = [("study_shading_arm", "study_shading", "arm", ["--", "--shades", "9600"], "study"),
                 ("study_shading_ap-pixel", "study_shading", "ap-pixel", ["--", "--shades", "9600"], "study"),
+                # Six attributes (the study's shading test) beside the default seven: the host's loop's
+                # cost per attribute apart from its cost per pixel; and the study's array program.
+                ("study_shading_arm_6", "study_shading", "arm", ["--", "--shades", "9600", "--attributes", "6"],
+                 "study"),
+                ("study_shading_ap-pixel_study", "study_shading", "ap-pixel",
+                 ["--set", "ap.pixel.program=study", "--", "--shades", "9600"], "study"),
                 ("study_patches_arm", "study_patches", "arm", [], "study"),
                 ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
                 ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu")]

@@ -34,11 +34,12 @@ const std::map<std::string, AppInfo>& builtin_apps() {
       {"study_shading",
        {study_shading_app,
         "the study's pixel shading: single-pixel shades, each its own attribute set, on the host (--backend arm) "
-        "or the array (--backend ap-pixel); -- --shades N (default 192000)"}},
+        "or the array (--backend ap-pixel, ap.pixel.program); -- --shades N (default 192000), --attributes N "
+        "(1 to 7; default 7, 6 with ap.pixel.program=study as the study measured; tuned takes 7 only)"}},
       {"study_patches",
        {study_patches_app,
         "the study's patch sizes: square and line patches of 1 to 40 pixels sharing an attribute set, on the host "
-        "(--backend arm) or the array (--backend ap-pixel, ap.pixel.block); -- --max-pixels N"}},
+        "(--backend arm) or the array (--backend ap-pixel, ap.pixel.block, ap.pixel.program); -- --max-pixels N"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
       {"stuck_loop",
        {stuck_loop_app,

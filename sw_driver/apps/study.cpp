@@ -5,33 +5,38 @@
 //
 //  - study_shading: N single-pixel shades (default 192,000), each with its
 //    own attribute set, as the study's shading loop: C = C0 + x dC/dx +
-//    y dC/dy for R, G, B, A, S, T, Z. On the array a pass gives each of the
-//    96 CUs its own 21 values and position and reads the seven results back
-//    (through the CIU, or with dma.enabled=true through the system/array
-//    DMA: plain arrays reshuffled in and out; no broadcast, since no two
-//    CUs share a value).
+//    y dC/dy for the first --attributes of R, G, B, A, S, T, Z (default
+//    seven; six, as the study measured, with ap.pixel.program=study). On
+//    the array a pass gives each of the 96 CUs its own values and position
+//    and reads the results back (through the CIU, or with dma.enabled=true
+//    through the system/array DMA: plain arrays reshuffled in and out; no
+//    broadcast, since no two CUs share a value). The array program is
+//    ap.pixel.program's: tuned (16.8, seven attributes only) or study
+//    (8.8, its shade<n> entry for n attributes).
 //  - study_patches: patches of pixels sharing one attribute set, squares of
 //    1 x 1 to 6 x 6 and lines of 1 to 40 pixels: the host steps the
 //    attributes incrementally (arm), or sends the 21 values to every CU and
 //    one block of ap.pixel.block x ap.pixel.block pixels per CU, runs the
-//    program and reads the pixels back (ap-pixel).
+//    program (ap.pixel.program's) and reads the pixels back (ap-pixel).
 //
 // The figures go to stats.json's driver section (study.*), in host time
 // from the first input load to the last result stored, and every result is
 // checked against the same arithmetic done natively (a mismatch is an
-// error, status 1).
+// error, status 1): the integer part of the 16.8 sum the host keeps from
+// the tuned program, the whole 8.8 value (the 16.8 sum modulo 2^16) from
+// the study's.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "ap_programs/ap_pixel.h"
 #include "apps/apps.h"
 #include "config/config.h"
 #include "costs/host_cost.h"
@@ -47,6 +52,7 @@ namespace {
 
 using ap_pixel::Attribute;
 using ap_pixel::ATTRIBUTES;
+using ap_pixel::ProgramVariant;
 using ap_pixel::TriangleValues;
 
 // Where the study's applications run: the host alone, or with the array.
@@ -58,6 +64,15 @@ Target target_of(const AppEnvironment& env, const char* app) {
   if (backend == "ap-pixel") return Target::array;
   throw std::invalid_argument(std::string(app) + " runs on --backend arm (the host computes) or --backend ap-pixel " +
                               "(the array computes), not on " + backend);
+}
+
+// Refuses an option the application does not take.
+void check_options(const AppEnvironment& env, const char* app, std::initializer_list<const char*> known) {
+  for (const std::string& arg : env.args) {
+    if (arg.rfind("--", 0) != 0) continue;
+    if (std::none_of(known.begin(), known.end(), [&](const char* name) { return arg == name; }))
+      throw std::invalid_argument(std::string(app) + ": unknown option '" + arg + "'");
+  }
 }
 
 unsigned option(const AppEnvironment& env, const char* app, const std::string& name, unsigned fallback, unsigned low,
@@ -77,10 +92,14 @@ unsigned option(const AppEnvironment& env, const char* app, const std::string& n
                                     "'");
       return static_cast<unsigned>(value);
     }
-  for (const std::string& arg : env.args)
-    if (arg.rfind("--", 0) == 0 && arg != name)
-      throw std::invalid_argument(std::string(app) + ": unknown option '" + arg + "'");
   return fallback;
+}
+
+// The array program the array runs (ap.pixel.program; the host alone runs
+// none).
+ProgramVariant program_variant(const AppEnvironment& env, Target target) {
+  if (target == Target::host || env.config == nullptr) return ProgramVariant::tuned;
+  return ap_pixel::program_variant(env.config->get_string("ap.pixel.program"));
 }
 
 // The attribute set of shade (or patch) n: deterministic, gradients within
@@ -99,6 +118,12 @@ TriangleValues attribute_set(uint32_t n) {
 // The integer part of a 16.8 result, as the host keeps it.
 uint16_t integer_part(uint32_t value) {
   return static_cast<uint16_t>(value >> 8);
+}
+
+// The part of a result the host keeps: the integer part of tuned's 16.8
+// value, the whole of study's 8.8 value (16.8 modulo 2^16).
+uint16_t kept(ProgramVariant variant, uint32_t value) {
+  return variant == ProgramVariant::study ? static_cast<uint16_t>(value) : integer_part(value);
 }
 
 constexpr unsigned INPUT_WORDS = 3 * ATTRIBUTES + 1;  // per set: c0, gx, gy per attribute; x, y packed
@@ -185,14 +210,14 @@ int signed_byte(uint32_t word, unsigned byte) {
 }
 
 // One shade from its input words, as the study's loop does it: per
-// attribute C = C0 + x dC/dx + y dC/dy in 32 bits (C0 < 2^24, |x|, |y| <=
-// 128, |gradient| < 2^15: the products stay below 2^22), the integer part
-// of the 16.8 result stored as 16 bits.
-void shade(const uint8_t* in, uint8_t* out) {
+// attribute (the first `attributes`) C = C0 + x dC/dx + y dC/dy in 32
+// bits (C0 < 2^24, |x|, |y| <= 128, |gradient| < 2^15: the products stay
+// below 2^22), the integer part of the 16.8 result stored as 16 bits.
+void shade(const uint8_t* in, uint8_t* out, unsigned attributes) {
   in = aligned_words(in);
   const uint32_t xy = word_at(in, 3 * ATTRIBUTES);
   const int32_t x = signed_byte(xy, 0), y = signed_byte(xy, 1);
-  for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+  for (unsigned a = 0; a < attributes; ++a) {
     const uint32_t c0 = word_at(in, 3 * a);
     const auto gx = static_cast<int16_t>(word_at(in, 3 * a + 1));
     const auto gy = static_cast<int16_t>(word_at(in, 3 * a + 2));
@@ -214,35 +239,46 @@ namespace {
 int study_shading(AppEnvironment& env) {
   const char* app = "study_shading";
   const Target target = target_of(env, app);
+  check_options(env, app, {"--shades", "--attributes"});
   const unsigned shades = option(env, app, "--shades", 192000, 1, 10000000);
+  const ProgramVariant variant = program_variant(env, target);
+  const unsigned attributes =
+      option(env, app, "--attributes", variant == ProgramVariant::study ? 6 : ATTRIBUTES, 1, ATTRIBUTES);
+  if (target == Target::array && variant == ProgramVariant::tuned && attributes != ATTRIBUTES)
+    throw std::invalid_argument(std::string(app) + ": --attributes " + std::to_string(attributes) +
+                                " needs ap.pixel.program=study: the tuned program evaluates all " +
+                                std::to_string(ATTRIBUTES));
   HostApi& host = *env.host;
-  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
+  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(variant);
+  // The entry for one pixel of `attributes` attributes.
+  const unsigned entry = variant == ProgramVariant::study ? layout.shade_entry[attributes] : layout.entry[1];
   std::unique_ptr<ArrayDriver> array;
   DmaDriver dma(env);
   renderers::DmaUse use;
   if (target == Target::array) {
     array = std::make_unique<ArrayDriver>(env);
-    array->load(ap::programs::ap_pixel());
+    array->load(ap_pixel::program_of(variant));
     use = renderers::dma_use(env, dma);
   }
   const unsigned per_pass = array ? array->cus() : 96;
-  // With the DMA: the values c0 .. gy + 20 of every CU (63 rows of one
-  // byte per CU, the gradients' sign bytes 0: the program makes them), dx
-  // and dy (2 rows), and the results (7 rows of 16-bit integer parts), in
+  // With the DMA: the values c0 .. the end of gy of every CU (one row of
+  // one byte per CU per CMEM byte: 63 for tuned, whose gradients' sign
+  // bytes stay 0 as the program makes them, 42 for study), dx and dy (2
+  // rows), and the results (a row of 16-bit values per attribute), in
   // system memory, and the two chains. Each shade has its own values, so
   // a broadcast has nothing to carry here (dma.broadcast changes nothing).
-  const unsigned value_rows = 3 * 3 * ATTRIBUTES;
+  const unsigned value_rows = 3 * layout.value_bytes * ATTRIBUTES;
   const uint32_t staged_values = env.heap_base + 2 * per_pass * INPUT_WORDS * 4 + 4096;
   const uint32_t staged_offsets = staged_values + value_rows * per_pass;
   const uint32_t staged_results = staged_offsets + 2 * per_pass;
   const uint32_t chain_in = staged_results + 2 * ATTRIBUTES * per_pass;
   const uint32_t chain_out = chain_in + 2 * dma::DESCRIPTOR_BYTES;
-  if (use.enabled && (layout.gx != layout.c0 + 3 * ATTRIBUTES || layout.gy != layout.gx + 3 * ATTRIBUTES ||
-                      layout.dy != layout.dx + 1))
+  if (use.enabled && (layout.gx != layout.c0 + layout.value_bytes * ATTRIBUTES ||
+                      layout.gy != layout.gx + layout.value_bytes * ATTRIBUTES || layout.dy != layout.dx + 1))
     throw std::logic_error(std::string(app) + ": the program's c0, gx, gy (or dx, dy) are not adjacent");
   if (use.enabled) {
     std::vector<dma::Descriptor> out;
-    for (unsigned a = 0; a < ATTRIBUTES; ++a)
+    for (unsigned a = 0; a < attributes; ++a)
       out.push_back(DmaDriver::from_cmem(layout.result(0, 0, static_cast<Attribute>(a)),
                                          staged_results + 2 * a * per_pass, per_pass, 2));
     dma.write_chain(chain_in, {DmaDriver::to_cmem(staged_values, layout.c0, value_rows * per_pass, 1),
@@ -273,10 +309,11 @@ int study_shading(AppEnvironment& env) {
       // results stored, nothing else.
       renderers::TimedScope timed(host, time, renderers::HostSplit::compute);
       const uint8_t* in = host.load_span(inputs, 4, n * INPUT_WORDS);
-      uint8_t* out = host.store_span(results, 2, n * ATTRIBUTES);
+      uint8_t* out = host.store_span(results, 2, n * attributes);
       costs::charge(host, costs::HostCost::study_shade_pass);
       costs::charge(host, costs::HostCost::study_shade, n);
-      for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * ATTRIBUTES * 2);
+      costs::charge(host, costs::HostCost::study_shade_attribute, uint64_t{n} * attributes);
+      for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * attributes * 2, attributes);
     } else if (use.enabled) {
       // Through the DMA: the host stores every CU's 63 bytes and position
       // into plain arrays (2 ALU a byte: shifted out of its value and
@@ -288,9 +325,10 @@ int study_shading(AppEnvironment& env) {
         uint8_t* values = host.store_span(staged_values, 1, value_rows * per_pass);
         std::fill(values, values + size_t{value_rows} * per_pass, 0);
         for (unsigned i = 0; i < n; ++i)
-          ap_pixel::for_each_value_byte(sets[i], layout, [&](unsigned address, uint8_t byte) {
-            values[size_t{address - layout.c0} * per_pass + i] = byte;
-          });
+          ap_pixel::for_each_value_byte(
+              sets[i], layout,
+              [&](unsigned address, uint8_t byte) { values[size_t{address - layout.c0} * per_pass + i] = byte; },
+              attributes);
         uint8_t* offsets = host.store_span(staged_offsets, 1, 2 * per_pass);
         std::fill(offsets, offsets + 2 * per_pass, 0);
         for (unsigned i = 0; i < n; ++i) {
@@ -303,19 +341,20 @@ int study_shading(AppEnvironment& env) {
       }
       {
         renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
-        cycles += array->run(layout.entry[1]);
+        cycles += array->run(entry);
       }
       {
         renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
         dma.start_chain(0, chain_out);
         dma.wait(0);
-        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+        for (unsigned a = 0; a < attributes; ++a) {
           const uint8_t* p = host.load_span(staged_results + 2 * a * per_pass, 2, n);
           for (unsigned i = 0; i < n; ++i) got[i][a] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
         }
       }
     } else {
-      // Every CU its own 49 bytes and position, a run, seven 16-bit reads.
+      // Every CU its own value bytes (49 tuned, 6 per attribute study) and
+      // position, a run, a 16-bit read per attribute.
       {
         renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
         for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
@@ -323,10 +362,13 @@ int study_shading(AppEnvironment& env) {
         std::vector<std::pair<unsigned, std::vector<uint8_t>>> planes;
         for (unsigned i = 0; i < n; ++i) {
           unsigned k = 0;
-          ap_pixel::for_each_value_byte(sets[i], layout, [&](unsigned address, uint8_t byte) {
-            if (planes.size() <= k) planes.emplace_back(address, std::vector<uint8_t>(array->cus(), 0));
-            planes[k++].second[i] = byte;
-          });
+          ap_pixel::for_each_value_byte(
+              sets[i], layout,
+              [&](unsigned address, uint8_t byte) {
+                if (planes.size() <= k) planes.emplace_back(address, std::vector<uint8_t>(array->cus(), 0));
+                planes[k++].second[i] = byte;
+              },
+              attributes);
         }
         for (const auto& [address, plane] : planes) array->write_all8(address, plane);
         for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(xs[i]);
@@ -336,11 +378,11 @@ int study_shading(AppEnvironment& env) {
       }
       {
         renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
-        cycles += array->run(layout.entry[1]);
+        cycles += array->run(entry);
       }
       {
         renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
-        for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+        for (unsigned a = 0; a < attributes; ++a) {
           const std::vector<uint16_t> values = array->read_all16(layout.result(0, 0, static_cast<Attribute>(a)));
           for (unsigned i = 0; i < n; ++i) got[i][a] = values[i];
         }
@@ -349,23 +391,25 @@ int study_shading(AppEnvironment& env) {
     total += host.now_seconds() - start;
     ++passes;
     if (target == Target::host) {
-      const uint8_t* out = host.load_span(results, 2, n * ATTRIBUTES);
+      const uint8_t* out = host.load_span(results, 2, n * attributes);
       for (unsigned i = 0; i < n; ++i)
-        for (unsigned a = 0; a < ATTRIBUTES; ++a)
-          got[i][a] = static_cast<uint16_t>(out[2 * (i * ATTRIBUTES + a)] | out[2 * (i * ATTRIBUTES + a) + 1] << 8);
+        for (unsigned a = 0; a < attributes; ++a)
+          got[i][a] = static_cast<uint16_t>(out[2 * (i * attributes + a)] | out[2 * (i * attributes + a) + 1] << 8);
     }
     // Checked against the sets as generated, not as loaded.
     for (unsigned i = 0; i < n; ++i) {
       const uint32_t s = first + i;
       const TriangleValues set = attribute_set(s);
       const int x = static_cast<int>(s % 192) - 96, y = static_cast<int>(s / 192 % 144) - 72;
-      for (unsigned a = 0; a < ATTRIBUTES; ++a) {
-        const uint16_t expected = integer_part(ap_pixel::shade_reference(set, static_cast<Attribute>(a), x, y, 0, 0));
+      for (unsigned a = 0; a < attributes; ++a) {
+        const uint32_t value = ap_pixel::shade_reference(set, static_cast<Attribute>(a), x, y, 0, 0);
+        const uint16_t expected = target == Target::host ? integer_part(value) : kept(variant, value);
         if (got[i][a] != expected) return mismatch(app, "shade " + std::to_string(s), a, got[i][a], expected);
       }
     }
   }
   publish(env, "shades", "single-pixel shades computed", shades);
+  publish(env, "attributes", "attributes per shade", attributes);
   publish(env, "passes", "array passes (96 shades each), or groups of 96 on the host", passes);
   publish(env, "array_cycles", "array cycles of the shading program", cycles);
   publish(env, "total_ns", "host time from the first input load to the last result", ns(total));
@@ -374,8 +418,14 @@ int study_shading(AppEnvironment& env) {
   publish(env, "wait_ns", "host time waiting for the array", ns(host, time.array_wait));
   publish(env, "read_ns", "host time reading results from the array", ns(host, time.array_read));
   publish_units(env);
-  std::printf("%s: %u shades on the %s: %.3f ms\n", app, shades, target == Target::host ? "host" : "array",
-              total * 1e3);
+  std::string detail;
+  if (target == Target::array && variant != ProgramVariant::tuned)
+    detail = std::string(" (") + ap_pixel::program_variant_name(variant) + " program, " + std::to_string(attributes) +
+             " attributes)";
+  else if (attributes != ATTRIBUTES)
+    detail = " (" + std::to_string(attributes) + " attributes)";
+  std::printf("%s: %u shades on the %s%s: %.3f ms\n", app, shades, target == Target::host ? "host" : "array",
+              detail.c_str(), total * 1e3);
   return 0;
 }
 
@@ -384,14 +434,16 @@ int study_patches(AppEnvironment& env) {
   const Target target = target_of(env, app);
   // A line of 255 pixels centred on its origin keeps every block's offset
   // within a CU's signed byte.
+  check_options(env, app, {"--max-pixels"});
   const unsigned max_pixels = option(env, app, "--max-pixels", 40, 1, 255);
   HostApi& host = *env.host;
-  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(ap::programs::ap_pixel());
+  const ProgramVariant variant = program_variant(env, target);
+  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(variant);
   std::unique_ptr<ArrayDriver> array;
   unsigned block = 1;
   if (target == Target::array) {
     array = std::make_unique<ArrayDriver>(env);
-    array->load(ap::programs::ap_pixel());
+    array->load(ap_pixel::program_of(variant));
     if (env.config != nullptr) block = static_cast<unsigned>(env.config->get_uint("ap.pixel.block"));
   }
   const uint32_t inputs = env.heap_base, results = inputs + INPUT_WORDS * 4;
@@ -509,7 +561,7 @@ int study_patches(AppEnvironment& env) {
       for (unsigned c = 0; c < shape.width; ++c)
         for (unsigned a = 0; a < ATTRIBUTES; ++a) {
           const uint16_t expected =
-              integer_part(ap_pixel::shade_reference(values, static_cast<Attribute>(a), ox, oy, c, r));
+              kept(variant, ap_pixel::shade_reference(values, static_cast<Attribute>(a), ox, oy, c, r));
           if (got[r * shape.width + c][a] != expected)
             return mismatch(app,
                             std::string(shape.name) + " " + std::to_string(shape.width) + "x" +

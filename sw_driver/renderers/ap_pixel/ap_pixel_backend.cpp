@@ -1,5 +1,6 @@
 // The ap-pixel back end's entry points for the registry (backends.def).
 #include <cstdint>
+#include <iterator>
 #include <string>
 
 #include "renderers/ap_pixel/ap_pixel_renderer.h"
@@ -21,6 +22,12 @@ ParamGroup parameters() {
               param::integer("ap.pixel.block", 1, 1, 5, "pixels",
                              "ap-pixel: each CU shades a block of k x k pixels (one full evaluation, the others "
                              "by adding gradients)"),
+              param::choice("ap.pixel.program", "tuned",
+                            {std::begin(tessera::ap_pixel::PROGRAM_VARIANT_NAMES),
+                             std::end(tessera::ap_pixel::PROGRAM_VARIANT_NAMES)},
+                            "ap-pixel's array program: tuned (16.8 values kept in registers between statements) or "
+                            "study (the study's program as its compiler emitted it: 8.8 values, every statement "
+                            "loading its operands from CMEM and storing its result there)"),
           },
           {}};
 }
@@ -28,8 +35,9 @@ ParamGroup parameters() {
 std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   const Config defaults({parameters()});
   const Config& config = env.config != nullptr ? *env.config : defaults;
-  return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(env,
-                                                              static_cast<unsigned>(config.get_uint("ap.pixel.block")));
+  return std::make_unique<tessera::ap_pixel::ApPixelRenderer>(
+      env, static_cast<unsigned>(config.get_uint("ap.pixel.block")),
+      tessera::ap_pixel::program_variant(config.get_string("ap.pixel.program")));
 }
 
 // The display shows the study's frame (192 x 144 for the 24 x 4 array)

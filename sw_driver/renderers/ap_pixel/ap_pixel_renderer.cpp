@@ -4,7 +4,6 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "ap_programs/ap_pixel.h"
 #include "common/fixed_function.h"
 #include "common/pixel_format.h"
 #include "costs/host_cost.h"
@@ -26,14 +25,14 @@ constexpr unsigned MAX_FRAME = 256;
 
 }  // namespace
 
-ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
+ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block, ProgramVariant program)
     : m_env(env),
       m_host(*env.host),
       m_display(env),
       m_memory(*env.host),
       m_array(env),
       m_dma(env),
-      m_layout(PixelLayout::of(ap::programs::ap_pixel())),
+      m_layout(PixelLayout::of(program)),
       m_block(block) {
   m_buffers.width = m_display.width();
   m_buffers.height = m_display.height();
@@ -50,25 +49,26 @@ ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block)
   if (m_block < 1 || m_block > m_layout.max_block)
     throw std::invalid_argument("ap-pixel: block size " + std::to_string(m_block) + " is outside 1.." +
                                 std::to_string(m_layout.max_block));
-  m_array.load(ap::programs::ap_pixel(), m_program_base);
+  m_array.load(program_of(program), m_program_base);
   const unsigned across = (m_buffers.width + m_block - 1) / m_block, up = (m_buffers.height + m_block - 1) / m_block;
   m_block_index.assign(size_t{across} * up, -1);
 
   m_dma_use = renderers::dma_use(env, m_dma);
   if (m_dma_use.enabled) {
     // The values' ranges, merged where the program's variables touch.
+    const unsigned values = m_layout.value_bytes * ATTRIBUTES;
     for (unsigned start : {unsigned{m_layout.c0}, unsigned{m_layout.gx}, unsigned{m_layout.gy}}) {
       if (!m_value_ranges.empty() && m_value_ranges.back().cmem + m_value_ranges.back().bytes == start)
-        m_value_ranges.back().bytes += 3 * ATTRIBUTES;
+        m_value_ranges.back().bytes += values;
       else
-        m_value_ranges.push_back({start, 3 * ATTRIBUTES});
-      m_value_bytes += 3 * ATTRIBUTES;
+        m_value_ranges.push_back({start, values});
+      m_value_bytes += values;
     }
     const unsigned cus = m_array.cus(), slots = m_layout.max_block * m_layout.max_block;
     m_stage_values = gl::allocate(m_value_bytes * cus);
     for (unsigned buffer = 0; buffer < 2; ++buffer) {
       m_stage_offsets[buffer] = gl::allocate(2 * cus);
-      m_stage_results[buffer] = gl::allocate(slots * 3 * ATTRIBUTES * cus);
+      m_stage_results[buffer] = gl::allocate(slots * m_layout.value_bytes * ATTRIBUTES * cus);
     }
     m_chain_in = gl::allocate(static_cast<uint32_t>((m_value_ranges.size() + 2) * dma::DESCRIPTOR_BYTES));
     m_chain_out = gl::allocate(slots * dma::DESCRIPTOR_BYTES);
@@ -332,11 +332,10 @@ void ApPixelRenderer::run_batch(const gl::RasterState& state, const gl::Triangle
             const int32_t p = slot_pixel[lane][v * b + u];
             if (p < 0) continue;
             uint32_t value = 0;
-            for (unsigned byte = 0; byte < 3; ++byte)
+            for (unsigned byte = 0; byte < m_layout.value_bytes; ++byte)
               value = value << 8 | (byte < need.bytes ? (word[byte] >> (8 * lane)) & 0xff : 0);
-            // Sign-extended from 24 bits.
             m_results[static_cast<size_t>(p)][static_cast<unsigned>(need.attribute)] =
-                static_cast<int32_t>(value << 8) >> 8;
+                result_value(state, need.attribute, value);
             costs::charge(m_host, HostCost::ap_pixel_result_byte, need.bytes);
           }
         }
@@ -354,10 +353,25 @@ unsigned ApPixelRenderer::needed_reads(const Reads& reads, Needed needed[6]) con
     for (Attribute a : {Attribute::red, Attribute::green, Attribute::blue}) needed[needs++] = {a, 2};
   if (reads.alpha) needed[needs++] = {Attribute::alpha, 2};
   if (reads.texcoords) {
-    needed[needs++] = {Attribute::s, 3};
-    needed[needs++] = {Attribute::t, 3};
+    needed[needs++] = {Attribute::s, m_layout.value_bytes};
+    needed[needs++] = {Attribute::t, m_layout.value_bytes};
   }
   return needs;
+}
+
+// A result's code (big-endian, value_bytes of it, the bytes not read 0) as
+// 16.8. tuned: sign-extended from 24 bits. study: 8.8 modulo 2^16, so the
+// host picks the window of 256 units the value lies in: colour and alpha
+// in 0..255, S and T within 128 texels of the texture's middle (exact for
+// a texture of up to 256 texels under GL_REPEAT, which wraps at its size
+// anyway; README.md, "The study program").
+int32_t ApPixelRenderer::result_value(const gl::RasterState& state, Attribute attribute, uint32_t code) const {
+  if (m_layout.value_bytes == 3) return static_cast<int32_t>(code << 8) >> 8;
+  if (attribute != Attribute::s && attribute != Attribute::t) return static_cast<int32_t>(code);
+  const gl::Texture& tex = state.unit[m_unit.index].tex;
+  const uint32_t size = attribute == Attribute::s ? tex.width : tex.height;
+  const uint32_t window_end = (size / 2 + 128) * 256;
+  return static_cast<int32_t>(code) - (code >= window_end ? 0x10000 : 0);
 }
 
 // The batches of one triangle through the DMA (README.md, "With the DMA"):
@@ -371,9 +385,9 @@ void ApPixelRenderer::draw_batches_dma(const gl::RasterState& state, const gl::T
   const unsigned cus = m_array.cus(), b = m_block;
   Needed needed[6];
   const unsigned needs = needed_reads(reads, needed);
-  unsigned first_byte = 3 * ATTRIBUTES, last_byte = 0;
+  unsigned first_byte = m_layout.value_bytes * ATTRIBUTES, last_byte = 0;
   for (unsigned n = 0; n < needs; ++n) {
-    const unsigned at = 3 * static_cast<unsigned>(needed[n].attribute);
+    const unsigned at = m_layout.value_bytes * static_cast<unsigned>(needed[n].attribute);
     first_byte = std::min(first_byte, at);
     last_byte = std::max(last_byte, at + needed[n].bytes - 1);
   }
@@ -520,9 +534,9 @@ void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::
   const unsigned cus = m_array.cus(), b = m_block;
   Needed needed[6];
   const unsigned needs = needed_reads(reads, needed);
-  unsigned first_byte = 3 * ATTRIBUTES;
+  unsigned first_byte = m_layout.value_bytes * ATTRIBUTES;
   for (unsigned n = 0; n < needs; ++n)
-    first_byte = std::min(first_byte, 3 * static_cast<unsigned>(needed[n].attribute));
+    first_byte = std::min(first_byte, m_layout.value_bytes * static_cast<unsigned>(needed[n].attribute));
   const uint32_t base = m_stage_results[batch.buffer];
   m_results.resize(m_pixels.size());
   for (size_t lane = 0; lane < batch.blocks; ++lane) {
@@ -534,15 +548,15 @@ void ApPixelRenderer::collect_dma_batch(const gl::RasterState& state, const gl::
       const auto row0 = static_cast<uint32_t>(batch.slot_row[slot]);
       for (unsigned n = 0; n < needs; ++n) {
         const Needed& need = needed[n];
-        const unsigned at = 3 * static_cast<unsigned>(need.attribute) - first_byte;
+        const unsigned at = m_layout.value_bytes * static_cast<unsigned>(need.attribute) - first_byte;
         uint32_t value = 0;
-        for (unsigned byte = 0; byte < 3; ++byte) {
+        for (unsigned byte = 0; byte < m_layout.value_bytes; ++byte) {
           uint32_t got = 0;
           if (byte < need.bytes)
             got = *m_host.load_span(base + (row0 + at + byte) * cus + static_cast<uint32_t>(lane), 1, 1);
           value = value << 8 | got;
         }
-        m_results[p][static_cast<unsigned>(need.attribute)] = static_cast<int32_t>(value << 8) >> 8;
+        m_results[p][static_cast<unsigned>(need.attribute)] = result_value(state, need.attribute, value);
         costs::charge(m_host, HostCost::ap_pixel_dma_result_byte, need.bytes);
       }
     }
@@ -639,6 +653,8 @@ void ApPixelRenderer::publish_statistics() {
   set("host_shaded_triangles", "slivers whose gradients 8.8 cannot hold, shaded by the host", m_host_shaded);
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
+  set("cmem_bytes_per_cu", "CMEM bytes a CU uses for the array program's variables (ap.pixel.program)",
+      m_layout.cmem_bytes);
   renderers::publish_traffic(c, "ap_pixel", m_traffic);
 }
 

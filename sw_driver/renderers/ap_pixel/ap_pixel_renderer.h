@@ -31,8 +31,9 @@ namespace tessera::ap_pixel {
 
 class ApPixelRenderer : public gl::Renderer {
  public:
-  // block: the side of the block each CU shades (ap.pixel.block), 1 to 5.
-  ApPixelRenderer(AppEnvironment& env, unsigned block);
+  // block: the side of the block each CU shades (ap.pixel.block), 1 to 5;
+  // program: the array program (ap.pixel.program).
+  ApPixelRenderer(AppEnvironment& env, unsigned block, ProgramVariant program = ProgramVariant::tuned);
 
   const char* name() const override { return "tessera ap-pixel (array processor as a 96-wide ALU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_pixel::CAPABILITIES; }
@@ -46,6 +47,7 @@ class ApPixelRenderer : public gl::Renderer {
   void present() override;
 
   unsigned block() const { return m_block; }
+  ProgramVariant program() const { return m_layout.variant; }
 
  private:
   // A pixel the host found visible: its place, depth, and where its block
@@ -84,6 +86,7 @@ class ApPixelRenderer : public gl::Renderer {
   void collect_dma_batch(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads,
                          const DmaBatch& batch);
   unsigned needed_reads(const Reads& reads, Needed needed[6]) const;
+  int32_t result_value(const gl::RasterState& state, Attribute attribute, uint32_t code) const;
   void write_shaded(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads, const Pixel& pixel,
                     const std::array<int32_t, ATTRIBUTES>& values);
   void write_pixel(const gl::RasterState& state, const Pixel& pixel, uint32_t rgba, const int st[2], bool textured);

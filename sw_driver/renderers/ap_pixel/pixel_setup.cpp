@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 
+#include "ap_programs/ap_pixel.h"
+#include "ap_programs/ap_pixel_study.h"
 #include "renderers/common/texel_fixed.h"
 
 namespace tessera::ap_pixel {
@@ -30,25 +34,52 @@ int32_t floor16(int32_t n) {
 
 }  // namespace
 
-PixelLayout PixelLayout::of(const ap::Program& program) {
+ProgramVariant program_variant(const std::string& name, const std::string& key) {
+  std::string allowed;
+  for (unsigned v = 0; v < std::size(PROGRAM_VARIANT_NAMES); ++v) {
+    if (name == PROGRAM_VARIANT_NAMES[v]) return static_cast<ProgramVariant>(v);
+    allowed += std::string(v == 0 ? "" : " or ") + PROGRAM_VARIANT_NAMES[v];
+  }
+  throw std::invalid_argument(key + ": unknown array program '" + name + "'; allowed: " + allowed);
+}
+
+const char* program_variant_name(ProgramVariant variant) {
+  return PROGRAM_VARIANT_NAMES[static_cast<unsigned>(variant)];
+}
+
+const ap::Program& program_of(ProgramVariant variant) {
+  return variant == ProgramVariant::study ? ap::programs::ap_pixel_study() : ap::programs::ap_pixel();
+}
+
+PixelLayout PixelLayout::of(const ap::Program& program, ProgramVariant variant) {
   PixelLayout layout;
+  layout.variant = variant;
+  layout.value_bytes = variant == ProgramVariant::study ? 2 : 3;
+  layout.gradient_offset = variant == ProgramVariant::study ? 0 : 1;
   if (ap::constant_value(program, "ATTRS") != static_cast<int>(ATTRIBUTES))
     throw std::invalid_argument(program.source_name + ": the program evaluates " +
                                 std::to_string(ap::constant_value(program, "ATTRS")) +
                                 " attributes, the host expects " + std::to_string(ATTRIBUTES));
   layout.max_block = static_cast<unsigned>(ap::constant_value(program, "MAX_BLOCK"));
-  const unsigned values = 3 * ATTRIBUTES;
+  const unsigned values = layout.value_bytes * ATTRIBUTES;
   layout.c0 = ap::variable_address(program, "c0", values);
   layout.gx = ap::variable_address(program, "gx", values);
   layout.gy = ap::variable_address(program, "gy", values);
   layout.dx = ap::variable_address(program, "dx", 1);
   layout.dy = ap::variable_address(program, "dy", 1);
   layout.out = ap::variable_address(program, "out", values * layout.max_block * layout.max_block);
+  layout.scratch =
+      ap::variable_address(program, variant == ProgramVariant::study ? "t" : "partial", layout.value_bytes);
   if (layout.max_block + 1 > layout.entry.size())
     throw std::invalid_argument(program.source_name + ": MAX_BLOCK " + std::to_string(layout.max_block) +
                                 " is beyond the host's 5");
   for (unsigned k = 1; k <= layout.max_block; ++k)
     layout.entry[k] = ap::entry_word(program, "block" + std::to_string(k));
+  if (variant == ProgramVariant::study)
+    for (unsigned n = 1; n <= ATTRIBUTES; ++n)
+      layout.shade_entry[n] = ap::entry_word(program, "shade" + std::to_string(n));
+  for (const auto& [name, variable] : program.variables)
+    layout.cmem_bytes = std::max(layout.cmem_bytes, unsigned{variable.address} + variable.size);
   return layout;
 }
 

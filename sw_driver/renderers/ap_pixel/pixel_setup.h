@@ -3,11 +3,12 @@
 // scan conversion and depth test), its 21 attribute values at an origin
 // pixel in the program's fixed point, and the reference of what a CU
 // computes from them. The formats are in README.md ("Fixed point"); the
-// array program is ap_pixel.s.
+// array programs are ap_pixel.s (`tuned`) and ap_pixel_study.s (`study`).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "array/asm/program.h"
 #include "gl/renderer.h"
@@ -19,21 +20,45 @@ namespace tessera::ap_pixel {
 enum class Attribute : unsigned { red, green, blue, alpha, s, t, z };
 constexpr unsigned ATTRIBUTES = 7;
 
+// The array programs (ap.pixel.program): `tuned` (ap_pixel.s: 16.8 values,
+// kept in registers between statements) and `study` (ap_pixel_study.s: the
+// study's 8.8 values, every statement loading from and storing to CMEM).
+enum class ProgramVariant : unsigned { tuned, study };
+inline constexpr const char* PROGRAM_VARIANT_NAMES[] = {"tuned", "study"};
+
+// The variant named `name`; throws std::invalid_argument naming `key` and
+// the names allowed otherwise.
+ProgramVariant program_variant(const std::string& name, const std::string& key = "ap.pixel.program");
+const char* program_variant_name(ProgramVariant variant);
+// The variant's array program, as assembled at build time.
+const ap::Program& program_of(ProgramVariant variant);
+
 // Where everything lives in a CU's CMEM, read from the program's variables
-// (ap_pixel.s is the one place the layout is written).
+// (the program's source is the one place its layout is written).
 struct PixelLayout {
+  ProgramVariant variant = ProgramVariant::tuned;
   unsigned max_block = 0;  // MAX_BLOCK: the largest k
+  // Bytes of a value (C0 and a result): 3 (16.8) or 2 (8.8). A gradient is
+  // two bytes (8.8) at gx + value_bytes a + gradient_offset: tuned keeps a
+  // sign byte before it (the program makes it), study does not.
+  unsigned value_bytes = 3, gradient_offset = 1;
   uint16_t c0 = 0, gx = 0, gy = 0, dx = 0, dy = 0, out = 0;
+  uint16_t scratch = 0;             // the program's temporary, value_bytes long
   std::array<unsigned, 6> entry{};  // entry[k]: block k's entry word, k = 1..5
+  // study only: shade_entry[n] evaluates the first n attributes of one
+  // pixel (n = 1..7; 0 where the program has no such entry).
+  std::array<unsigned, ATTRIBUTES + 1> shade_entry{};
+  unsigned cmem_bytes = 0;  // CMEM a CU uses: the end of the last variable
 
   // The first (high) byte of attribute `a` of the block's pixel (u, v).
   unsigned result(unsigned u, unsigned v, Attribute a) const {
-    return out + 3 * ATTRIBUTES * (max_block * v + u) + 3 * static_cast<unsigned>(a);
+    return out + value_bytes * ATTRIBUTES * (max_block * v + u) + value_bytes * static_cast<unsigned>(a);
   }
 
   // Throws std::invalid_argument naming a variable, constant or entry the
   // program lacks or sizes differently.
-  static PixelLayout of(const ap::Program& program);
+  static PixelLayout of(const ap::Program& program, ProgramVariant variant = ProgramVariant::tuned);
+  static PixelLayout of(ProgramVariant variant) { return of(program_of(variant), variant); }
 };
 
 // A triangle's 21 values at its origin pixel: per attribute the value at the
@@ -56,21 +81,24 @@ inline uint32_t shade_reference(const TriangleValues& values, Attribute a, int d
   return static_cast<uint32_t>(value) & 0xffffffu;
 }
 
-// The bytes the host writes for `values` (the program's c0, gx, gy without
-// the sign bytes, which the program makes): `write(address, byte)` once per
-// byte, 7 * ATTRIBUTES of them.
+// The bytes the host writes for the first `attributes` attributes of
+// `values` (the program's c0, gx, gy without tuned's sign bytes, which the
+// program makes; study's C0 is the 16.8 value modulo 2^16, the same
+// fraction): `write(address, byte)` once per byte, 7 (tuned) or 6 (study)
+// per attribute.
 template <typename Write>
-void for_each_value_byte(const TriangleValues& values, const PixelLayout& layout, Write&& write) {
-  for (unsigned i = 0; i < ATTRIBUTES; ++i) {
-    const unsigned a = 3 * i;
-    write(layout.c0 + a, static_cast<uint8_t>(values.c0[i] >> 16));
-    write(layout.c0 + a + 1, static_cast<uint8_t>(values.c0[i] >> 8));
-    write(layout.c0 + a + 2, static_cast<uint8_t>(values.c0[i]));
+void for_each_value_byte(const TriangleValues& values, const PixelLayout& layout, Write&& write,
+                         unsigned attributes = ATTRIBUTES) {
+  for (unsigned i = 0; i < attributes; ++i) {
+    const unsigned a = layout.value_bytes * i, g = a + layout.gradient_offset;
+    if (layout.value_bytes == 3) write(layout.c0 + a, static_cast<uint8_t>(values.c0[i] >> 16));
+    write(layout.c0 + a + layout.value_bytes - 2, static_cast<uint8_t>(values.c0[i] >> 8));
+    write(layout.c0 + a + layout.value_bytes - 1, static_cast<uint8_t>(values.c0[i]));
     const auto gx = static_cast<uint16_t>(values.gx[i]), gy = static_cast<uint16_t>(values.gy[i]);
-    write(layout.gx + a + 1, static_cast<uint8_t>(gx >> 8));
-    write(layout.gx + a + 2, static_cast<uint8_t>(gx));
-    write(layout.gy + a + 1, static_cast<uint8_t>(gy >> 8));
-    write(layout.gy + a + 2, static_cast<uint8_t>(gy));
+    write(layout.gx + g, static_cast<uint8_t>(gx >> 8));
+    write(layout.gx + g + 1, static_cast<uint8_t>(gx));
+    write(layout.gy + g, static_cast<uint8_t>(gy >> 8));
+    write(layout.gy + g + 1, static_cast<uint8_t>(gy));
   }
 }
 

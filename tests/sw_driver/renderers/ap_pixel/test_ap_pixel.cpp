@@ -8,6 +8,7 @@
 #include "ap_programs/ap_pixel.h"
 #include "array/core/array_controller.h"
 #include "renderers/ap_pixel/pixel_setup.h"
+#include "renderers/ap_pixel/study_reference.h"
 
 namespace tessera::ap_pixel {
 namespace {
@@ -138,6 +139,134 @@ TEST(ApPixelProgram, BlocksShareTheFullEvaluation) {
   for (unsigned k = 2; k <= 5; ++k) {
     EXPECT_GT(cycles[k], cycles[k - 1]);
     EXPECT_LT(cycles[k], cycles[1] * k * k) << "block " << k;
+  }
+}
+
+// The study program, for every block size and for the shading test's
+// entries (one pixel, 1 to 7 attributes), on 96 CUs whose CMEM starts as
+// random bytes, with random values and offsets written as the host writes
+// them: every CMEM byte of every CU equals what the reference leaves in a
+// copy of that CU's CMEM, and the results are the planes modulo 2^16.
+TEST(ApPixelStudyProgram, EveryEntryMatchesTheReferenceByteForByte) {
+  const PixelLayout layout = PixelLayout::of(ProgramVariant::study);
+  ASSERT_EQ(layout.max_block, 5u);
+  ASSERT_EQ(layout.value_bytes, 2u);
+  ArrayGeometry geometry;
+  ArrayController controller(geometry, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program_of(ProgramVariant::study).words));
+  CuArray& array = controller.array();
+  const unsigned lanes = array.lanes();
+  std::mt19937 rng(2008);
+  std::uniform_int_distribution<int> offset(-128, 127), gradient(-32768, 32767), byte(0, 255);
+  std::uniform_int_distribution<uint32_t> start(0, 0xffffff);
+  struct Run {
+    unsigned block, attributes, entry;
+  };
+  std::vector<Run> runs;
+  for (unsigned k = 1; k <= 5; ++k) runs.push_back({k, ATTRIBUTES, layout.entry[k]});
+  for (unsigned n = 1; n <= ATTRIBUTES; ++n) runs.push_back({1, n, layout.shade_entry[n]});
+  for (const Run& run : runs)
+    for (unsigned trial = 0; trial < 8; ++trial) {
+      SCOPED_TRACE("block " + std::to_string(run.block) + ", " + std::to_string(run.attributes) +
+                   " attributes, trial " + std::to_string(trial));
+      TriangleValues values;
+      for (unsigned a = 0; a < ATTRIBUTES; ++a) {
+        values.c0[a] = start(rng);
+        const int limit = trial % 2 == 0 ? 32767 : 300;
+        values.gx[a] = static_cast<int16_t>(std::clamp(gradient(rng), -limit, limit));
+        values.gy[a] = static_cast<int16_t>(std::clamp(gradient(rng), -limit, limit));
+      }
+      std::vector<std::vector<uint8_t>> before(lanes, std::vector<uint8_t>(geometry.cmem_bytes));
+      for (unsigned lane = 0; lane < lanes; ++lane)
+        for (unsigned a = 0; a < geometry.cmem_bytes; ++a) array.set_cmem(lane, a, static_cast<uint8_t>(byte(rng)));
+      for_each_value_byte(
+          values, layout,
+          [&](unsigned address, uint8_t value) {
+            for (unsigned lane = 0; lane < lanes; ++lane) array.set_cmem(lane, address, value);
+          },
+          run.attributes);
+      std::vector<int> dx(lanes), dy(lanes);
+      for (unsigned lane = 0; lane < lanes; ++lane) {
+        dx[lane] = offset(rng);
+        dy[lane] = offset(rng);
+        array.set_cmem(lane, layout.dx, static_cast<uint8_t>(dx[lane]));
+        array.set_cmem(lane, layout.dy, static_cast<uint8_t>(dy[lane]));
+        for (unsigned a = 0; a < geometry.cmem_bytes; ++a) before[lane][a] = array.cmem(lane, a);
+      }
+      const RunResult result = controller.run(run.entry);
+      ASSERT_TRUE(result.ok) << result.error;
+      for (unsigned lane = 0; lane < lanes; ++lane) {
+        std::vector<uint8_t> expected = before[lane];
+        run_study_reference(layout, run.block, run.attributes, expected.data());
+        for (unsigned a = 0; a < geometry.cmem_bytes; ++a)
+          ASSERT_EQ(array.cmem(lane, a), expected[a]) << "CU " << lane << ", CMEM byte " << a;
+        // The planes themselves, modulo 2^16 (the 16.8 sum's low bits).
+        for (unsigned v = 0; v < run.block; ++v)
+          for (unsigned u = 0; u < run.block; ++u)
+            for (unsigned a = 0; a < run.attributes; ++a) {
+              const unsigned at = layout.result(u, v, static_cast<Attribute>(a));
+              const unsigned got = unsigned{array.cmem(lane, at)} << 8 | array.cmem(lane, at + 1);
+              ASSERT_EQ(got, shade_reference(values, static_cast<Attribute>(a), dx[lane], dy[lane], u, v) & 0xffffu)
+                  << "CU " << lane << ", pixel (" << u << ", " << v << "), attribute " << a;
+            }
+      }
+    }
+}
+
+// The study program's cycles: each attribute costs the same, a bigger
+// block more, but less than a full evaluation per pixel; the shading
+// test's entry for all seven attributes is block1.
+TEST(ApPixelStudyProgram, CyclesFollowTheWork) {
+  const PixelLayout study = PixelLayout::of(ProgramVariant::study);
+  ArrayController controller(ArrayGeometry{}, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program_of(ProgramVariant::study).words));
+  uint64_t cycles[6] = {}, shade[ATTRIBUTES + 1] = {};
+  for (unsigned k = 1; k <= 5; ++k) {
+    const RunResult result = controller.run(study.entry[k]);
+    ASSERT_TRUE(result.ok) << result.error;
+    cycles[k] = result.cycles;
+  }
+  for (unsigned k = 2; k <= 5; ++k) {
+    EXPECT_GT(cycles[k], cycles[k - 1]);
+    EXPECT_LT(cycles[k], cycles[1] * k * k) << "block " << k;
+  }
+  for (unsigned n = 1; n <= ATTRIBUTES; ++n) {
+    const RunResult result = controller.run(study.shade_entry[n]);
+    ASSERT_TRUE(result.ok) << result.error;
+    shade[n] = result.cycles;
+    if (n > 1) {
+      EXPECT_EQ(shade[n] - shade[n - 1], shade[2] - shade[1]) << n << " attributes";
+    }
+  }
+  EXPECT_EQ(shade[ATTRIBUTES], cycles[1]);
+}
+
+// The study program's CMEM: its variables, all of them, below the tuned
+// program's extent (8.8 values, no sign bytes), and the 4 KB of a CU.
+TEST(ApPixelStudyProgram, UsesLessCmemThanTuned) {
+  const PixelLayout study = PixelLayout::of(ProgramVariant::study), tuned = PixelLayout::of(ProgramVariant::tuned);
+  unsigned sizes = 0;
+  for (const auto& [name, variable] : program_of(ProgramVariant::study).variables) sizes += variable.size;
+  EXPECT_EQ(study.cmem_bytes, sizes) << "the study program's variables leave gaps";
+  EXPECT_LT(study.cmem_bytes, tuned.cmem_bytes);
+  EXPECT_LE(tuned.cmem_bytes, 4096u);
+}
+
+// ap.pixel.program's values, and a clear error naming the key and the
+// allowed values for anything else.
+TEST(ApPixelStudyProgram, ProgramNamesAreChecked) {
+  EXPECT_EQ(program_variant("tuned"), ProgramVariant::tuned);
+  EXPECT_EQ(program_variant("study"), ProgramVariant::study);
+  EXPECT_STREQ(program_variant_name(ProgramVariant::study), "study");
+  try {
+    program_variant("fast");
+    FAIL() << "accepted 'fast'";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ap.pixel.program"), std::string::npos) << what;
+    EXPECT_NE(what.find("'fast'"), std::string::npos) << what;
+    EXPECT_NE(what.find("tuned"), std::string::npos) << what;
+    EXPECT_NE(what.find("study"), std::string::npos) << what;
   }
 }
 
