@@ -171,12 +171,17 @@ def write_table(lines, cycles, digest):
     TABLE.write_text("\n".join(out) + "\n")
 
 
+def profiled(model):
+    """soc_sim's flag for the ISS's per-function profile, which CALL_ROWS and the loops read (off by default)."""
+    return ["--iss-profile"] if model == "iss" else []
+
+
 def run(soc_sim, out, scene, name, model):
     backend, settings = VARIANTS.get(name, (name, []))
     folder = out / f"{scene}_{name.replace(':', '_')}_{model}"
     frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
     command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames", "--quiet",
-               "--force", "--out", str(folder), "--set", f"host.model={model}"]
+               "--force", "--out", str(folder), "--set", f"host.model={model}"] + profiled(model)
     for setting in settings:
         command += ["--set", setting]
     if scene == "obj_viewer":
@@ -192,7 +197,7 @@ def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
     """A GL-free application's one record: its timed parts' host_<part>_ns and units_<part>_<row>."""
     folder = out / f"{name}_{model}"
     command = [soc_sim, "--app", app, "--backend", backend, "--no-frames", "--quiet", "--force", "--out",
-               str(folder), "--set", f"host.model={model}"] + arguments
+               str(folder), "--set", f"host.model={model}"] + profiled(model) + arguments
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
@@ -210,7 +215,8 @@ def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
 def loop_cycles(soc_sim, out, app, function):
     """The ISS's core cycles an iteration of a calibration loop, from its function's profile."""
     folder = out / f"{app}_iss"
-    command = [soc_sim, "--app", app, "--quiet", "--force", "--out", str(folder), "--set", "host.model=iss"]
+    command = [soc_sim, "--app", app, "--quiet", "--force", "--out", str(folder), "--set", "host.model=iss",
+               "--iss-profile"]
     result = subprocess.run(command, capture_output=True, text=True)
     match = LOOP_ITERATIONS.search(result.stdout)
     if result.returncode != 0 or not match:

@@ -40,13 +40,24 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 // would miss those of every master but the core); the decode cache
 // compares each fetched word with the one it decoded. Their time is the
 // timing layer's instruction cache, whose line fills are the host's
-// instruction-side bus reads (HostCore::fetch).
+// instruction-side bus reads (HostCore::fetch). A fetch inside the window
+// that the instruction cache would hit again grants its line to the core
+// (iss::ResidentLine): the fetches after it from that line are the core's
+// pointer reads, counted as the cache's hits, until the cache or the window
+// changes.
 class HostMemory : public iss::IssMemory, public iss::DebugMemory {
  public:
   HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing) : m_host(host), m_core(core), m_timing(timing) {
-    m_core.on_direct_memory_invalidated([this] { m_window_size = 0; });
+    m_core.on_direct_memory_invalidated([this] {
+      m_window_size = 0;
+      m_resident.line = iss::ResidentLine::NONE;
+    });
+    m_timing.revoke_on_change(&m_resident);
   }
-  ~HostMemory() override { m_core.on_direct_memory_invalidated(nullptr); }
+  ~HostMemory() override {
+    m_timing.revoke_on_change(nullptr);
+    m_core.on_direct_memory_invalidated(nullptr);
+  }
   HostMemory(const HostMemory&) = delete;
   HostMemory& operator=(const HostMemory&) = delete;
 
@@ -77,10 +88,15 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     const uint32_t offset = address - m_window_base;  // wraps below the base: then past the size
     if (uint64_t{offset} + bytes <= m_window_size) {
       value = iss::load_little_endian(m_window + offset, bytes);
+      const uint32_t line = address & ~(iss::ResidentLine::BYTES - 1);
+      const uint32_t line_offset = line - m_window_base;  // the whole line in the window, wherever it starts
+      if (line >= m_window_base && uint64_t{line_offset} + iss::ResidentLine::BYTES <= m_window_size)
+        if (uint64_t* hits = m_timing.resident_hits(address)) m_resident = {line, m_window + line_offset, hits};
       return true;
     }
     return fetch_outside_window(address, bytes, value);
   }
+  iss::ResidentLine* resident_line() override { return &m_resident; }
 
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     flush();
@@ -231,6 +247,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   uint32_t m_window_base = 0;
   uint64_t m_window_size = 0;
   const uint8_t* m_window = nullptr;
+  iss::ResidentLine m_resident;
   uint64_t m_pending = 0;
   uint64_t m_host_charged = 0;
   std::string m_console;
@@ -275,6 +292,7 @@ class LauncherCaches : public iss::CacheMaintenance {
   void invalidate_instruction_cache() override { m_timing.invalidate_instruction_cache(); }
   void invalidate_instruction_line(uint32_t address) override { m_timing.invalidate_instruction_line(address); }
   void control_written(uint32_t control) override {
+    m_timing.control_written(control);
     m_core.set_data_cache_control((control & iss::Cp15::CONTROL_C) != 0, (control & iss::Cp15::CONTROL_RR) != 0);
   }
   void invalidate_data_cache() override { m_core.invalidate_data_cache(); }
@@ -339,15 +357,19 @@ std::string file_name(const std::string& path) {
 // Functions listed in stats.json's profile.
 constexpr size_t PROFILE_ROWS = 40;
 
+// `listed`: the profile's rows too (soc_sim --iss-profile). The stall
+// cycles are the rows' sum either way, in the rows' order: the host's
+// stalls are not whole cycles, and a sum in another order could differ in
+// its last digit.
 nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTiming& timing,
-                                  const iss::Profile& profile) {
+                                  const iss::Profile& profile, bool listed) {
   const uint64_t instructions = core.instructions();
   double stalls = 0;
   nlohmann::json rows = nlohmann::json::array();
   const std::vector<iss::Profile::Row> all = profile.rows();
   for (const iss::Profile::Row& row : all) stalls += row.entry.stall_cycles;
   const double total = static_cast<double>(timing.cycles()) + stalls;
-  for (size_t i = 0; i < all.size() && i < PROFILE_ROWS; ++i) {
+  for (size_t i = 0; listed && i < all.size() && i < PROFILE_ROWS; ++i) {
     const iss::Profile::Row& row = all[i];
     const double cycles = static_cast<double>(row.entry.cycles) + row.entry.stall_cycles;
     rows.push_back({{"function", row.function},
@@ -360,14 +382,17 @@ nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTi
                     {"icache_misses", row.entry.icache_misses},
                     {"dcache_misses", row.entry.dcache_misses}});
   }
-  return {{"instructions", instructions},
-          {"core_cycles", timing.cycles()},
-          {"stall_cycles", stalls},
-          {"cpi", instructions > 0 ? total / static_cast<double>(instructions) : 0.0},
-          {"interlock_cycles", timing.interlock_cycles()},
-          {"icache", {{"hits", timing.icache().hits()}, {"misses", timing.icache().misses()}}},
-          {"functions_profiled", all.size()},
-          {"profile", rows}};
+  nlohmann::json statistics = {{"instructions", instructions},
+                               {"core_cycles", timing.cycles()},
+                               {"stall_cycles", stalls},
+                               {"cpi", instructions > 0 ? total / static_cast<double>(instructions) : 0.0},
+                               {"interlock_cycles", timing.interlock_cycles()},
+                               {"icache", {{"hits", timing.icache().hits()}, {"misses", timing.icache().misses()}}}};
+  if (listed) {
+    statistics["functions_profiled"] = all.size();
+    statistics["profile"] = rows;
+  }
+  return statistics;
 }
 
 }  // namespace
@@ -401,8 +426,24 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
 
   iss::Arm922tTiming timing;
   HostMemory memory(host, core_port, timing);
+  // The per-function profile: each instruction's cycles, and each host
+  // access's stalls and misses, charged to the function holding its PC.
+  // The instructions and cycles are charged a run of instructions at a
+  // time, when the PC leaves the function (the timing layer's counts then
+  // less those at the run's start: whole numbers, the same sums), so that
+  // each instruction costs a range check. stats.json lists the rows only
+  // where asked for (soc_sim --iss-profile, HostCore::profiling_program).
+  const bool profiling = core_port.profiling_program();
   iss::Profile profile(image.functions);
-  memory.set_profile_entry(&profile.at(image.entry));
+  iss::Profile::Entry* entry = &profile.at(image.entry);
+  uint64_t run_steps = 0, run_cycles = 0;  // the timing layer's counts when the run in `entry` began
+  const auto end_run = [&] {
+    entry->instructions += timing.instructions() - run_steps;
+    entry->cycles += timing.cycles() - run_cycles;
+    run_steps = timing.instructions();
+    run_cycles = timing.cycles();
+  };
+  memory.set_profile_entry(entry);
   // Line fills and uncached fetches are the host's instruction-side reads,
   // at the time the instructions before them have taken.
   timing.on_fill([&memory, &core_port](uint32_t address, unsigned bytes) {
@@ -511,7 +552,10 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   });
   // The program's statistics in stats.json, live while it runs (a run
   // stopped at its time limit reports them too), kept when it ends.
-  const auto statistics = [&] { return program_statistics(core, timing, profile); };
+  const auto statistics = [&] {
+    end_run();
+    return program_statistics(core, timing, profile, profiling);
+  };
   struct Publisher {
     HostCore& core;
     std::function<nlohmann::json()> live;
@@ -545,14 +589,15 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
                                ": still running after host.iss_instruction_limit=" + std::to_string(instruction_limit) +
                                " instructions, at pc " + iss::address_text(core.reg(15)) + " (a runaway program?)");
     }
-    iss::Profile::Entry& entry = profile.at(core.reg(15));
-    memory.set_profile_entry(&entry);
+    if (!profile.holds(core.reg(15))) {
+      end_run();
+      entry = &profile.at(core.reg(15));
+      memory.set_profile_entry(entry);
+    }
     core.step();
     // The instruction's cycles beyond the issue cycles of its host
     // accesses (those the host has charged already).
     const unsigned cycles = timing.step(core.last_step());
-    ++entry.instructions;
-    entry.cycles += cycles;
     const uint64_t charged = memory.take_host_charged();
     memory.charge(cycles > charged ? cycles - charged : 0);
     if (tracing && profile.last_index() != traced_function) {

@@ -329,4 +329,81 @@ TEST(InstructionCacheModel, SixtyFourWaysPerSetThenReplacement) {
   EXPECT_FALSE(cache.access(32, true));  // another set: still empty
 }
 
+// A memory whose bytes the core may read directly: TimedFetch grants the
+// line of a fetch the instruction cache would hit again (ResidentLine).
+class DirectMemory : public Memory {
+ public:
+  const uint8_t* code_line(uint32_t line) override {
+    return uint64_t{line} + tessera::iss::ResidentLine::BYTES <= bytes.size() ? &bytes[line] : nullptr;
+  }
+};
+
+// The counts of a run with resident lines granted and without: every
+// figure must be the same, whatever changes the cache's answer between two
+// steps (c7's invalidations, CP15's I bit by the program or from outside)
+// and whatever writes the code.
+struct Counts {
+  uint64_t instructions, decodes, cycles, interlocks, stalls, hits, misses;
+  uint32_t r0, pc;
+  bool operator==(const Counts& o) const {
+    return instructions == o.instructions && decodes == o.decodes && cycles == o.cycles && interlocks == o.interlocks &&
+           stalls == o.stalls && hits == o.hits && misses == o.misses && r0 == o.r0 && pc == o.pc;
+  }
+};
+
+template <typename MemoryType>
+Counts run_with_disturbances() {
+  MemoryType memory;
+  Arm922tTiming timing;
+  TimedFetch port{memory, &timing};
+  ArmCore core{port};
+  Cp15 cp15{core, &timing};
+  core.set_coprocessors(&cp15);
+  timing.attach(&cp15);
+  cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
+  constexpr uint32_t NOP = 0xe1a00000u;          // mov r0, r0
+  constexpr uint32_t ADD_R0_1 = 0xe2800001u;     // add r0, r0, #1
+  constexpr uint32_t ADDS_R0_1 = 0xe2900001u;    // adds r0, r0, #1 (the same count, another decoding)
+  constexpr uint32_t MCR_IC_LINE = 0xee075f35u;  // mcr p15, 0, r5, c7, c5, 1: invalidate the line at r5
+  memory.program(CODE, {0xe3a00000u, ADD_R0_1, NOP, NOP, NOP, NOP, NOP, NOP,  // mov r0, #0; loop: add
+                        0xe3500b01u, MCR_IC_LINE, 0x1afffff5u,                // cmp r0, #1024; mcr; bne loop
+                        0xeafffffeu});                                        // b . (the end)
+  core.set_cpsr(SYS);
+  core.set_reg(5, CODE + 0x20);
+  core.set_reg(15, CODE);
+  uint32_t random = 1;
+  for (int i = 0; i < 12000; ++i) {
+    random = random * 1103515245u + 12345u;
+    if ((random >> 16) % 29 == 0) {
+      switch ((random >> 8) % 5) {
+        case 0: timing.invalidate_instruction_cache(); break;
+        case 1: timing.invalidate_instruction_line(CODE); break;
+        case 2: cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() ^ Cp15::CONTROL_I); break;
+        case 3: memory.program(CODE + 4, {(random >> 4) & 1 ? ADDS_R0_1 : ADD_R0_1}); break;
+        default: cp15.mcr(15, 0, 7, 5, 0, true, 0); break;  // c7 from outside the program
+      }
+    }
+    core.step();
+    timing.step(core.last_step());
+  }
+  return {core.instructions(),
+          core.decodes(),
+          timing.cycles(),
+          timing.interlock_cycles(),
+          timing.fetch_stall_cycles(),
+          timing.icache().hits(),
+          timing.icache().misses(),
+          core.reg(0),
+          core.reg(15)};
+}
+
+TEST(ResidentLines, ChangeNoCount) {
+  const Counts granted = run_with_disturbances<DirectMemory>();
+  const Counts fetched = run_with_disturbances<Memory>();
+  EXPECT_TRUE(granted == fetched);
+  EXPECT_EQ(granted.r0, 1024u);  // the loop ran to its end
+  EXPECT_GT(granted.misses, 100u);
+  EXPECT_GT(granted.decodes, 20u);  // the code was written, and decoded again
+}
+
 }  // namespace

@@ -184,7 +184,7 @@ def reachable_helpers(calls, roots):
 
 def run(soc_sim, backend, settings, out):
     command = [soc_sim, "--app", settings["scene"], "--backend", backend, "--frames", str(settings["frames"]),
-               "--no-frames", "--quiet", "--force", "--out", str(out), "--set", "host.model=iss"]
+               "--no-frames", "--quiet", "--force", "--out", str(out), "--set", "host.model=iss", "--iss-profile"]
     for setting in settings["set"]:
         command += ["--set", setting]
     result = subprocess.run(command, capture_output=True, text=True)

@@ -155,6 +155,9 @@ class Host : public Block, public HostApi, public HostCore {
   bool tracing_program() const override { return m_tracing && m_pc_trace != nullptr; }
   void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) override;
   void set_function_names(std::vector<std::string> names) override { m_function_names = std::move(names); }
+  bool profiling_program() const override { return m_profiling; }
+  // soc_sim --iss-profile (HostCore::profiling_program); before the program starts.
+  void set_profiling_program(bool profiling) { m_profiling = profiling; }
   DirectMemory direct_memory(uint32_t address) override;
   void on_direct_memory_invalidated(const std::function<void()>& callback) override {
     m_direct_memory_invalidated = callback;
@@ -303,6 +306,7 @@ class Host : public Block, public HostApi, public HostCore {
 
   TimedTrace m_busy_trace;
   bool m_tracing = false;
+  bool m_profiling = false;
   // The program on the ISS (host.model=iss): its PC and function in the VCD
   // (built only then), its statistics in stats.json.
   std::unique_ptr<TimedWord> m_pc_trace, m_function_trace, m_cpsr_trace;

@@ -93,6 +93,11 @@ class HostCore {
   virtual void trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) = 0;
   // The functions' names by index (soc_sim writes them beside the VCD).
   virtual void set_function_names(std::vector<std::string> names) = 0;
+  // Whether the launcher keeps its per-function profile of the program
+  // (soc_sim --iss-profile: stats.json's host.iss.profile). It costs the
+  // simulation a look-up per instruction, so it is off unless asked for;
+  // no other figure depends on it.
+  virtual bool profiling_program() const { return false; }
 };
 
 }  // namespace tessera

@@ -73,6 +73,7 @@ struct Options {
   bool list_apps = false;
   int gdb_port = -1;  // -1: no GDB
   std::string gdb_port_file;
+  bool iss_profile = false;
   std::vector<std::string> app_args;
 };
 
@@ -374,6 +375,9 @@ int run(int argc, char* argv[]) {
                                     "on the ISS (host.model=iss), which waits for GDB before its first instruction")
                          ->check(CLI::Range(0, 65535));
   cli.add_option("--gdb-port-file", opt.gdb_port_file, "with --gdb: write the port to FILE once listening")->needs(gdb);
+  cli.add_flag("--iss-profile", opt.iss_profile,
+               "profile the program on the ISS (host.model=iss) per function: stats.json's host.iss.profile (the "
+               "40 functions with the most cycles); off, the run is faster and every other figure the same");
   cli.add_flag("--quiet,-q", opt.quiet, "print nothing but errors");
   cli.add_option("--log-level", opt.log_level, "quiet, error, warning, info or debug (sim.log_level)");
   cli.add_flag("--print-config", opt.print_config, "print the effective configuration as JSON and exit");
@@ -481,6 +485,13 @@ int run(int argc, char* argv[]) {
     return 0;
   }
 
+  if (opt.iss_profile && config.get_string("host.model") != "iss") {
+    std::cerr << "soc_sim: impossible combination: --iss-profile profiles a program on the ISS, and host.model="
+              << config.get_string("host.model")
+              << " runs the application host-compiled (set host.model=iss, or run an ARM executable with --app "
+                 "program.elf)\n";
+    return EXIT_USAGE;
+  }
   if (opt.gdb_port >= 0 && config.get_string("host.model") != "iss") {
     std::cerr << "soc_sim: impossible combination: --gdb debugs a program on the ISS, and host.model="
               << config.get_string("host.model")
@@ -610,6 +621,7 @@ int run(int argc, char* argv[]) {
   backends::hand_over(backends::backend(config.get_string("driver.backend")), env);
   env.core = &soc.host;
   env.gdb = gdb_server.get();
+  soc.host.set_profiling_program(opt.iss_profile);
   soc.set_program([&env, &app](HostApi& host) {
     env.host = &host;
     return app.main(env);

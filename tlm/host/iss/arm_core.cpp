@@ -27,21 +27,6 @@ uint32_t nz(uint32_t result) {
   return (result & psr::N) | (result == 0 ? psr::Z : 0);
 }
 
-// The condition field as a table: bit f of PASSES[cond] is set when the
-// condition holds for the flags NZCV = f (NV never holds: ARMv4).
-constexpr std::array<uint16_t, 16> condition_table() {
-  std::array<uint16_t, 16> table{};
-  for (unsigned f = 0; f < 16; ++f) {
-    const bool n = f & 8u, z = f & 4u, c = f & 2u, v = f & 1u;
-    const bool holds[16] = {z,       !z,     c,      !c,           n,           !n,   v,    !v, c && !z,
-                            !c || z, n == v, n != v, !z && n == v, z || n != v, true, false};
-    for (unsigned cond = 0; cond < 16; ++cond)
-      if (holds[cond]) table[cond] = static_cast<uint16_t>(table[cond] | (1u << f));
-  }
-  return table;
-}
-constexpr std::array<uint16_t, 16> PASSES = condition_table();
-
 // x + y + carry_in, with the addition's carry and overflow.
 inline uint32_t add_with_flags(uint32_t x, uint32_t y, bool carry_in, bool& carry, bool& overflow) {
   const uint64_t wide = uint64_t{x} + y + (carry_in ? 1 : 0);
@@ -137,7 +122,8 @@ const char* fault_name(Exception exception) {
   }
 }
 
-ArmCore::ArmCore(IssMemory& memory, Coprocessors* coprocessors) : m_memory(memory), m_coprocessors(coprocessors) {
+ArmCore::ArmCore(IssMemory& memory, Coprocessors* coprocessors)
+    : m_memory(memory), m_resident(memory.resident_line()), m_coprocessors(coprocessors) {
   m_cpsr = static_cast<uint32_t>(Mode::svc) | psr::I | psr::F;
 }
 
@@ -217,12 +203,6 @@ void ArmCore::enter(Exception exception, uint32_t return_address) {
   m_pc = (m_high_vectors ? 0xffff0000u : 0) + VECTOR_OFFSET[index];
   m_branched = true;
   m_info.exception = true;
-}
-
-// Inline (so not interposable in this position-independent build: inlined):
-// the step's hot path.
-inline bool ArmCore::condition(uint32_t cond) const {
-  return (PASSES[cond] >> (m_cpsr >> 28)) & 1u;
 }
 
 // LR = the next instruction: + 4 in ARM state, + 2 in Thumb.
@@ -533,8 +513,12 @@ struct ArmCore::Exec {
         c.m_cpsr = (c.m_cpsr & ~psr::FLAGS) | (value & psr::FLAGS);
       else
         c.m_r[rd] = value;
-    } else if (!c.m_coprocessors->mcr(cp, op1, crn, crm, op2, privileged, rd == 15 ? c.m_current + 12 : c.m_r[rd])) {
-      c.undefined();
+    } else {
+      // A write may turn the instruction cache off or invalidate it: the
+      // next fetch asks the port again (ResidentLine).
+      if (c.m_resident != nullptr) c.m_resident->line = ResidentLine::NONE;
+      if (!c.m_coprocessors->mcr(cp, op1, crn, crm, op2, privileged, rd == 15 ? c.m_current + 12 : c.m_r[rd]))
+        c.undefined();
     }
   }
 
@@ -1029,50 +1013,23 @@ ArmCore::Decoded* ArmCore::decoded_page(uint32_t key) {
   return found->second.get();
 }
 
-inline ArmCore::Decoded& ArmCore::decoded(uint32_t address, uint32_t raw, bool thumb) {
-  const uint32_t key = (address >> PAGE_BITS) << 1 | (thumb ? 1u : 0u);
-  const RecentPage& recent = m_recent_pages[key % RECENT_PAGES];
-  Decoded* page = recent.key == key ? recent.entries : decoded_page(key);
-  Decoded& entry = page[(address & ((1u << PAGE_BITS) - 1)) >> (thumb ? 1 : 2)];
-  if (__builtin_expect(entry.raw != raw, 0)) {
-    ++m_decodes;
-    if (thumb)
-      Exec::decode_thumb(raw, entry);
-    else
-      Exec::decode_arm(raw, entry);
-    entry.raw = raw;
-  }
-  return entry;
+void ArmCore::decode(Decoded& entry, uint32_t raw, bool thumb) {
+  ++m_decodes;
+  if (thumb)
+    Exec::decode_thumb(raw, entry);
+  else
+    Exec::decode_arm(raw, entry);
+  entry.raw = raw;
 }
 
-void ArmCore::step() {
-  // Interrupts are sampled between instructions, FIQ first; the handler
-  // returns with SUBS pc, lr, #4 to the instruction that would have run.
-  if (const uint32_t pending = m_interrupt_lines & ~m_cpsr) {
-    m_info = StepInfo{};
-    enter(pending & psr::F ? Exception::fiq : Exception::irq, m_pc + 4);
-    return;
-  }
-  m_current = m_pc;
-  m_branched = false;
-  const bool thumb = (m_cpsr & psr::T) != 0;
-  uint32_t raw = 0;
-  if (!m_memory.fetch(m_current, thumb ? 2 : 4, raw)) {
-    m_info = StepInfo{};
-    enter(Exception::prefetch_abort, m_current + 4);
-    return;
-  }
-  ++m_instructions;
-  const Decoded& insn = decoded(m_current, raw, thumb);
-  m_r[15] = m_current + (thumb ? 4 : 8);
-  if (condition(insn.cond)) {
-    m_info = insn.info;
-    insn.handler(*this, insn);
-  } else {
-    m_info = StepInfo{};  // executed: false
-  }
-  if (!m_branched) m_pc = m_current + (thumb ? 2 : 4);
-  m_info.pc_written = m_branched && !m_info.exception;
+void ArmCore::take_interrupt(uint32_t pending) {
+  m_info = StepInfo{};
+  enter(pending & psr::F ? Exception::fiq : Exception::irq, m_pc + 4);
+}
+
+void ArmCore::take_prefetch_abort() {
+  m_info = StepInfo{};
+  enter(Exception::prefetch_abort, m_current + 4);
 }
 
 }  // namespace tessera::iss

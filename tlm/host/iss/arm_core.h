@@ -35,6 +35,24 @@ constexpr uint32_t MODE_MASK = 0x1f;
 constexpr uint32_t FLAGS = 0xf0000000u;
 }  // namespace psr
 
+// A line of code the memory port lets the core fetch from without calling
+// fetch(): the fetches that the port would answer from memory with no time
+// and no effect but a count (an instruction-cache hit on the line of the
+// last hit, a plain RAM read). The port sets it after a fetch and clears it
+// (line = NONE) whenever that stops being true (the cache invalidated or
+// turned off, the memory's direct window withdrawn); the core clears it on
+// every coprocessor write too (CP15's c1 and c7), so that a port whose cache
+// operations reach it late misses none. The core still compares each word
+// with the decoded one (README.md, "The decode cache"), so a store into the
+// line is never missed.
+struct ResidentLine {
+  static constexpr uint32_t BYTES = 32;  // the ARM922T's instruction-cache line
+  static constexpr uint32_t NONE = 1;    // line addresses are multiples of 32: bit 0 is free
+  uint32_t line = NONE;                  // the line's address, or NONE
+  const uint8_t* data = nullptr;         // its bytes, little-endian
+  uint64_t* fetches = nullptr;           // counted once per fetch from it (the cache's hit count)
+};
+
 // What the core reads and writes. Addresses of 2- and 4-byte accesses are
 // aligned by the core (ARMv4 ignores the low bits; a word load rotates).
 // false is an abort (the bus answered with an error).
@@ -45,6 +63,13 @@ class IssMemory {
   virtual bool write(uint32_t address, unsigned bytes, uint32_t value) = 0;
   // Instruction fetch (the I side); by default the same as a read.
   virtual bool fetch(uint32_t address, unsigned bytes, uint32_t& value) { return read(address, bytes, value); }
+  // The line fetches may skip fetch() for (ResidentLine), or nullptr: asked
+  // once, when the core is made; the port keeps it up to date.
+  virtual ResidentLine* resident_line() { return nullptr; }
+  // The ResidentLine::BYTES bytes of plain memory at `line` (a multiple of
+  // 32), to be read directly while they stay where they are, or nullptr:
+  // for a port that wraps this one and grants lines.
+  virtual const uint8_t* code_line(uint32_t /*line*/) { return nullptr; }
   // LDM and STM: `count` words from `address` up, one access (a port that
   // has bursts makes it one); by default word by word, stopping at the
   // first that fails (the words before it are transferred, as on the core).
@@ -91,6 +116,21 @@ class Coprocessors {
   virtual bool mcr(unsigned cp, unsigned op1, unsigned crn, unsigned crm, unsigned op2, bool privileged,
                    uint32_t value) = 0;
 };
+
+// The condition field as a table: bit f of CONDITION_PASSES[cond] is set
+// when the condition holds for the flags NZCV = f (NV never holds: ARMv4).
+constexpr std::array<uint16_t, 16> condition_table() {
+  std::array<uint16_t, 16> table{};
+  for (unsigned f = 0; f < 16; ++f) {
+    const bool n = f & 8u, z = f & 4u, c = f & 2u, v = f & 1u;
+    const bool holds[16] = {z,       !z,     c,      !c,           n,           !n,   v,    !v, c && !z,
+                            !c || z, n == v, n != v, !z && n == v, z || n != v, true, false};
+    for (unsigned cond = 0; cond < 16; ++cond)
+      if (holds[cond]) table[cond] = static_cast<uint16_t>(table[cond] | (1u << f));
+  }
+  return table;
+}
+inline constexpr std::array<uint16_t, 16> CONDITION_PASSES = condition_table();
 
 // "0x%08x": how the ISS's messages write an address or a PC.
 std::string address_text(uint64_t address);
@@ -170,7 +210,11 @@ class ArmCore {
   void reset();
 
   // Executes one instruction, or enters a pending interrupt's handler.
-  void step();
+  // Always inline (below): a run loop's body, where the compiler keeps the
+  // core's state in registers across the step and what the caller does with
+  // its StepInfo (the timing layer's step); GCC left it a call in the SoC
+  // launcher's loop.
+  __attribute__((always_inline)) inline void step();
 
   // Registers as the current mode sees them; r15 is the address of the
   // next instruction to execute (not the +8 an instruction reads).
@@ -246,6 +290,9 @@ class ArmCore {
   };
   inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);  // inline: the step's hot path
   Decoded* decoded_page(uint32_t key);
+  void decode(Decoded& entry, uint32_t raw, bool thumb);  // an entry made or remade: out of the hot path
+  void take_interrupt(uint32_t pending);
+  void take_prefetch_abort();
 
   static unsigned bank_of(Mode mode);
   void switch_bank(unsigned from, unsigned to);
@@ -261,13 +308,14 @@ class ArmCore {
     else
       m_r[n] = value;
   }
-  inline bool condition(uint32_t cond) const;
+  bool condition(uint32_t cond) const { return (CONDITION_PASSES[cond] >> (m_cpsr >> 28)) & 1u; }
   void undefined();
   // Throws IssError if a branch to itself can never be left (IRQ and FIQ masked).
   void check_progress() const;
   [[noreturn]] void unpredictable(const std::string& what) const;
 
   IssMemory& m_memory;
+  ResidentLine* m_resident;  // the port's, or null: asked once
   Coprocessors* m_coprocessors;
   std::array<uint32_t, 16> m_r{};  // the current mode's view; m_r[15] = instruction + 8 while executing
   uint32_t m_pc = 0;               // the next instruction's address
@@ -290,5 +338,47 @@ class ArmCore {
   std::array<RecentPage, RECENT_PAGES> m_recent_pages{};
   std::unordered_map<uint32_t, std::unique_ptr<Decoded[]>> m_pages;
 };
+
+inline ArmCore::Decoded& ArmCore::decoded(uint32_t address, uint32_t raw, bool thumb) {
+  const uint32_t key = (address >> PAGE_BITS) << 1 | (thumb ? 1u : 0u);
+  const RecentPage& recent = m_recent_pages[key % RECENT_PAGES];
+  Decoded* page = recent.key == key ? recent.entries : decoded_page(key);
+  Decoded& entry = page[(address & ((1u << PAGE_BITS) - 1)) >> (thumb ? 1 : 2)];
+  if (__builtin_expect(entry.raw != raw, 0)) decode(entry, raw, thumb);
+  return entry;
+}
+
+inline void ArmCore::step() {
+  // Interrupts are sampled between instructions, FIQ first; the handler
+  // returns with SUBS pc, lr, #4 to the instruction that would have run.
+  if (const uint32_t pending = m_interrupt_lines & ~m_cpsr) {
+    take_interrupt(pending);
+    return;
+  }
+  m_current = m_pc;
+  m_branched = false;
+  const bool thumb = (m_cpsr & psr::T) != 0;
+  uint32_t raw = 0;
+  if (m_resident != nullptr && (m_current & ~(ResidentLine::BYTES - 1)) == m_resident->line) {
+    // What fetch() would do, without the call (ResidentLine).
+    const uint8_t* bytes = m_resident->data + (m_current & (ResidentLine::BYTES - 1));
+    raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
+    ++*m_resident->fetches;
+  } else if (!m_memory.fetch(m_current, thumb ? 2 : 4, raw)) {
+    take_prefetch_abort();
+    return;
+  }
+  ++m_instructions;
+  const Decoded& insn = decoded(m_current, raw, thumb);
+  m_r[15] = m_current + (thumb ? 4 : 8);
+  if (condition(insn.cond)) {
+    m_info = insn.info;
+    insn.handler(*this, insn);
+  } else {
+    m_info = StepInfo{};  // executed: false
+  }
+  if (!m_branched) m_pc = m_current + (thumb ? 2 : 4);
+  m_info.pc_written = m_branched && !m_info.exception;
+}
 
 }  // namespace tessera::iss

@@ -37,6 +37,10 @@ class Profile {
     if (pc - m_last_start < m_last_size) return *m_last;
     return find(pc);
   }
+  // Whether `pc` is in the function `at` last returned (its entry is the
+  // one `at` would return): a caller charging runs of instructions at a
+  // time asks this of each.
+  bool holds(uint32_t pc) const { return pc - m_last_start < m_last_size; }
   // The index of the function `at` last returned (the VCD's function
   // signal): its position in the symbol table's functions, or their count
   // for an address outside them.
