@@ -38,7 +38,10 @@ PHASES = ["geometry", "rasterization", "presenting", "application"]
 # The array back ends' split of the host's time (renderers/common/host_time.h).
 SPLIT = ["compute", "write", "read", "wait", "frame_out"]
 ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
-OBJ = ROOT / "tests" / "sw_driver" / "scenes" / "data" / "cube.obj"
+# Relative to the repository, where the runs start (as measure_host_costs.py
+# runs it): the ARM program reads the path, so its cycles must not depend on
+# where the repository was checked out.
+OBJ = "tests/sw_driver/scenes/data/cube.obj"
 
 
 def scenes(soc_sim):
@@ -61,10 +64,10 @@ def run(soc_sim, out, scene, backend, model, frames, iss_from=None):
         frames = len(recorded)
     else:
         command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames",
-                   "--quiet", "--force", "--out", str(folder), "--set", f"host.model={model}"]
+                   "--quiet", "--force", "--out", str(folder.resolve()), "--set", f"host.model={model}"]
         if scene == "obj_viewer":
-            command += ["--", str(OBJ)]
-        result = subprocess.run(command, capture_output=True, text=True)
+            command += ["--", OBJ]
+        result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
         if result.returncode != 0:
             raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
         recorded = recorded_frames(folder)
@@ -100,6 +103,8 @@ def main():
                              "<!-- host-models:end -->) is not the one printed")
     parser.add_argument("--write-doc", action="store_true", help="write the printed tables into --doc's FILE")
     args = parser.parse_args()
+    # The runs start in the repository (OBJ): a relative path given here is the caller's.
+    args.soc_sim = str(pathlib.Path(args.soc_sim).resolve())
     if args.frames < 2:
         parser.error("--frames must be at least 2")
     if args.write_doc and not args.doc:

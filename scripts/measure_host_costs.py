@@ -66,7 +66,10 @@ from concurrent.futures import ThreadPoolExecutor
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TABLE = ROOT / "sw_driver" / "costs" / "host_costs.def"
-OBJ = ROOT / "tests" / "sw_driver" / "scenes" / "data" / "cube.obj"
+# Relative to the repository, where the runs start: the ARM program reads the
+# path as an argument, so an absolute one would make the ISS's obj_viewer
+# cycles depend on where the repository was checked out.
+OBJ = "tests/sw_driver/scenes/data/cube.obj"
 PHASES = ["application", "geometry", "rasterization", "presenting"]
 # The training runs: (scene, back end). The GL front end's rows (the
 # geometry phase) are the same code on every back end.
@@ -181,12 +184,12 @@ def run(soc_sim, out, scene, name, model):
     folder = out / f"{scene}_{name.replace(':', '_')}_{model}"
     frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
     command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames", "--quiet",
-               "--force", "--out", str(folder), "--set", f"host.model={model}"] + profiled(model)
+               "--force", "--out", str(folder.resolve()), "--set", f"host.model={model}"] + profiled(model)
     for setting in settings:
         command += ["--set", setting]
     if scene == "obj_viewer":
-        command += ["--", str(OBJ)]
-    result = subprocess.run(command, capture_output=True, text=True)
+        command += ["--", OBJ]
+    result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
     stats = json.loads((folder / "stats.json").read_text())["stats"]
@@ -238,6 +241,8 @@ def main():
     parser.add_argument("--dry-run", action="store_true", help="print the fit, leave the table as it is")
     parser.add_argument("--check", action="store_true", help="fail when the table is stale (no runs)")
     args = parser.parse_args()
+    # The runs start in the repository (OBJ): a relative path given here is the caller's.
+    args.soc_sim = str(pathlib.Path(args.soc_sim).resolve())
 
     lines, table, recorded = read_table()
     if args.check:
