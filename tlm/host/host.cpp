@@ -712,10 +712,14 @@ EnergyActivity Host::energy_activity(const sc_time& now) const {
   double busy_s = busy_time().to_seconds();
   double stall_s = stall_time().to_seconds();
   if (m_attribute_in_time) {
+    // Nothing ahead (a frame's request, the end of the run): the figures
+    // as without the trace, to the last bit.
     const auto [busy_after, stalled_after] = ticks_after(now.value());
-    busy_cycles -= static_cast<double>(busy_after) / static_cast<double>(m_period_ticks);
-    busy_s = busy_cycles * period;
-    stall_s -= sc_time::from_value(stalled_after).to_seconds();
+    if (busy_after > 0) {
+      busy_cycles -= static_cast<double>(busy_after) / static_cast<double>(m_period_ticks);
+      busy_s = busy_cycles * period;
+    }
+    if (stalled_after > 0) stall_s -= sc_time::from_value(stalled_after).to_seconds();
   }
   return {{"host",
            {{"busy_cycles", busy_cycles},

@@ -940,6 +940,23 @@ TEST_F(SocSim, VcdTraceDeclaresAndChangesTheSignals) {
   EXPECT_TRUE(contains(text, "$var real")) << "the powers are real-valued";
 }
 
+// The power trace spreads the host's cycles charged ahead of the kernel over
+// its windows (Host::attribute_activity_in_time); the frames' and the run's
+// energies, taken where nothing is ahead, stay what they are without a VCD,
+// to the last bit.
+TEST_F(SocSim, AVcdChangesNoEnergy) {
+  const SimResult plain = run({"--scene", "teapot", "--frames", "2", "--no-frames", "--out", "plain"});
+  const SimResult traced =
+      run({"--scene", "teapot", "--frames", "2", "--no-frames", "--out", "traced", "--vcd", "traced/t.vcd"});
+  ASSERT_EQ(plain.status, 0) << describe(plain);
+  ASSERT_EQ(traced.status, 0) << describe(traced);
+  const json a = read_stats(m_dir / "plain/stats.json")["stats"];
+  const json b = read_stats(m_dir / "traced/stats.json")["stats"];
+  EXPECT_EQ(a["energy"], b["energy"]);
+  ASSERT_EQ(a["frames"].size(), 2u);
+  for (size_t i = 0; i < a["frames"].size(); ++i) EXPECT_EQ(a["frames"][i]["energy"], b["frames"][i]["energy"]) << i;
+}
+
 // power.trace_window_us=0 leaves the power signals out.
 // --vcd FILE writes exactly FILE, whatever its extension: SystemC appends
 // ".vcd" to the name it is given, and "t.VCD" used to become "t.VCD.vcd".
