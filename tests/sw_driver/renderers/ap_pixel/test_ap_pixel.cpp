@@ -125,12 +125,12 @@ TEST(ApPixelProgram, EveryBlockSizeMatchesTheReference) {
 }
 
 // A bigger block costs more cycles, but less than a full evaluation per
-// pixel: the neighbours come from additions.
-TEST(ApPixelProgram, BlocksShareTheFullEvaluation) {
-  const PixelLayout layout = PixelLayout::of(program());
-  ArrayController controller(ArrayGeometry{}, CycleTable::defaults(), 4096, 100000000);
-  ASSERT_TRUE(controller.load(0, program().words));
-  uint64_t cycles[6] = {};
+// pixel, the neighbours coming from additions: runs `layout`'s block
+// entries k = 1..5 on `controller` (its program loaded) into cycles[k] and
+// checks that each costs more than the one before and less than k x k
+// full evaluations.
+void expect_blocks_share_the_full_evaluation(ArrayController& controller, const PixelLayout& layout,
+                                             uint64_t (&cycles)[6]) {
   for (unsigned k = 1; k <= 5; ++k) {
     const RunResult result = controller.run(layout.entry[k]);
     ASSERT_TRUE(result.ok) << result.error;
@@ -140,6 +140,14 @@ TEST(ApPixelProgram, BlocksShareTheFullEvaluation) {
     EXPECT_GT(cycles[k], cycles[k - 1]);
     EXPECT_LT(cycles[k], cycles[1] * k * k) << "block " << k;
   }
+}
+
+TEST(ApPixelProgram, BlocksShareTheFullEvaluation) {
+  const PixelLayout layout = PixelLayout::of(program());
+  ArrayController controller(ArrayGeometry{}, CycleTable::defaults(), 4096, 100000000);
+  ASSERT_TRUE(controller.load(0, program().words));
+  uint64_t cycles[6] = {};
+  expect_blocks_share_the_full_evaluation(controller, layout, cycles);
 }
 
 // The study program, for every block size and for the shading test's
@@ -221,15 +229,8 @@ TEST(ApPixelStudyProgram, CyclesFollowTheWork) {
   ArrayController controller(ArrayGeometry{}, CycleTable::defaults(), 4096, 100000000);
   ASSERT_TRUE(controller.load(0, program_of(ProgramVariant::study).words));
   uint64_t cycles[6] = {}, shade[ATTRIBUTES + 1] = {};
-  for (unsigned k = 1; k <= 5; ++k) {
-    const RunResult result = controller.run(study.entry[k]);
-    ASSERT_TRUE(result.ok) << result.error;
-    cycles[k] = result.cycles;
-  }
-  for (unsigned k = 2; k <= 5; ++k) {
-    EXPECT_GT(cycles[k], cycles[k - 1]);
-    EXPECT_LT(cycles[k], cycles[1] * k * k) << "block " << k;
-  }
+  expect_blocks_share_the_full_evaluation(controller, study, cycles);
+  if (HasFatalFailure()) return;
   for (unsigned n = 1; n <= ATTRIBUTES; ++n) {
     const RunResult result = controller.run(study.shade_entry[n]);
     ASSERT_TRUE(result.ok) << result.error;
