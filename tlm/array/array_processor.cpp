@@ -290,7 +290,19 @@ SummaryRow ArrayProcessor::summary_row(const sc_time& elapsed) const {
 EnergyActivity ArrayProcessor::energy_activity(const sc_time& now) const {
   (void)now;
   const double lanes = static_cast<double>(m_params.geometry.columns) * m_params.geometry.rows;
-  return {{"array_controller", {{"instructions", static_cast<double>(m_instructions.value)}}},
+  // The AC's broadcasts: one per instruction, except the multiplication of
+  // CMEM operands, which stands for the repeated additions on CMEM operands
+  // it is made of: it counts one broadcast per CMEM-operand addition time
+  // (array.cycles.add + array.cycles.cmem_operand) of its cycles, 35 with
+  // the defaults. The register-level mul is one long instruction, one
+  // broadcast. The energy model charges the AC per broadcast
+  // (tlm/power/README.md, "Parameters").
+  const auto& table = m_params.cycles;
+  const double addition = table.cycles[static_cast<unsigned>(ap::Opcode::op_add)] + table.cmem_operand;
+  const double steps = addition > 0 ? table.cycles[static_cast<unsigned>(ap::Opcode::op_mulm)] / addition : 1;
+  const double broadcasts = static_cast<double>(m_instructions.value) +
+                            static_cast<double>(m_mix[static_cast<unsigned>(ap::Opcode::op_mulm)]->value) * (steps - 1);
+  return {{"array_controller", {{"broadcasts", broadcasts}}},
           {"cu_array",
            {{"cu_cycles", lanes * static_cast<double>(m_cycles.value)},
             {"cmem_bytes_read", static_cast<double>(m_cmem_reads.value)},
