@@ -298,4 +298,24 @@ EnergyActivity ArrayProcessor::energy_activity(const sc_time& now) const {
             {"neighbour_transfers", static_cast<double>(m_neighbour_transfers.value)}}}};
 }
 
+std::vector<ArrayProcessor::StageActivity> ArrayProcessor::stage_activity() const {
+  const ap::ControllerActivity& core = m_core.activity();
+  const double lanes = static_cast<double>(m_params.geometry.columns) * m_params.geometry.rows;
+  std::vector<StageActivity> stages;
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) {
+    const uint64_t cycles = core.stage_cycles[stage];
+    if (cycles == 0 && core.stage_instructions[stage] == 0) continue;
+    const ap::ArrayActivity& used = core.stage_lanes[stage];
+    stages.push_back({std::string(ap::stage_name(static_cast<ap::Stage>(stage))),
+                      m_params.clock_period.to_seconds() * static_cast<double>(cycles),
+                      {{"array_controller", {{"instructions", static_cast<double>(core.stage_instructions[stage])}}},
+                       {"cu_array",
+                        {{"cu_cycles", lanes * static_cast<double>(cycles)},
+                         {"cmem_bytes_read", static_cast<double>(used.cmem_reads)},
+                         {"cmem_bytes_written", static_cast<double>(used.cmem_writes)},
+                         {"neighbour_transfers", static_cast<double>(used.neighbour_transfers)}}}}});
+  }
+  return stages;
+}
+
 }  // namespace tessera
