@@ -182,6 +182,12 @@ def test_hosts(soc_sim, work):
         energy_mj, study_mj = float(whole[label]["energy_mj"]), float(study[label]["study_energy_mj"])
         check(0 < study_mj < energy_mj, f"hosts: '{label}': the study's energy {study_mj} mJ is not within the "
                                         f"frame's {energy_mj} mJ")
+    # The ARM's clears are timed on both hosts, inside the rasterization phase.
+    for host in ("native", "iss"):
+        stats_path = out / "fullscreen_rect" / "runs" / f"arm_{host}" / "stats.json"
+        frames = json.loads(stats_path.read_text())["stats"]["frames"] if stats_path.is_file() else []
+        check(frames and all(0 < f["driver"].get("host_clear_ns", 0) < f["driver"]["host_rasterization_ns"]
+                             for f in frames), f"hosts: {stats_path}: host_clear_ns not within the rasterization")
     # The array's passes are the same on both hosts: the ISS changes the host, not the array's programs.
     for program in ("study", "tuned"):
         native, iss = study.get(f"ap-tile {program} native"), study.get(f"ap-tile {program} iss")
