@@ -13,8 +13,9 @@
         fullscreen_rect and tile_pass with --host both --program both: a row
         per host and program in both tables, the host and program columns,
         and the study's quantities against the whole frame's (the study's
-        time is strictly less than the frame's; the ISS and native rows of
-        the array's passes agree, the array being the same).
+        time and energy strictly less than the frame's; the ARM's clear time
+        within its rasterization phase; the ISS and native rows of the
+        array's passes agree, the array being the same).
 
     test_experiment.py errors --soc-sim SOC_SIM --work DIR
         the script's messages and exit statuses for --list, an unknown
