@@ -19,10 +19,12 @@ each comes from:
     config-reference  soc_sim --config-reference
     calibration-array   what the array's calibration applications print
     calibration-energy  what scripts/fit_energy.py prints (the energy fit)
-    experiment-NAME   scripts/experiment.py NAME, for every experiment of
-                      configs/experiments/ (experiment-dma-whatif for
-                      dma_whatif): the table it prints, simulated figures,
-                      the same on every host
+    experiment-NAME   scripts/experiment.py NAME --host native, for every
+                      experiment of configs/experiments/ (experiment-dma-whatif
+                      for dma_whatif): the tables it prints, simulated
+                      figures, the same on every machine
+    experiment-NAME-iss  the same with --host iss, for every experiment
+                      whose "hosts" lists iss
 
 Besides, the pictures of PICTURES (the README's teapot: the demo's last
 frame) are compared byte for byte with what their run writes today, and a
@@ -30,12 +32,14 @@ hand-written table that must list every item of a generated list is
 checked for a row per item: sw_driver/scenes/README.md, a row for every
 built-in scene of soc_sim --list-apps.
 
-The experiment blocks run the simulator (about half a minute together on
-two cores) and are regenerated or checked only with --experiments or
---only-experiments.
+The experiment blocks run the simulator and are regenerated or checked only
+with --experiments or --only-experiments (the native blocks, about a minute
+together on two cores) and --iss-experiments or --only-iss-experiments (the
+ISS blocks, slower: the default test suite leaves them out).
 
 Usage:
-    scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments]
+    scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments] [--iss-experiments]
+    scripts/update_docs.py --only-experiments --only-iss-experiments   every experiment block
     scripts/update_docs.py --check [...]     exit 1 if a block is stale
     scripts/update_docs.py --only memory-map backends   only those blocks
 Standard library only.
@@ -43,6 +47,7 @@ Standard library only.
 
 import argparse
 import csv
+import json
 import os
 import pathlib
 import re
@@ -145,11 +150,11 @@ def config_reference(args):
     return run([args.soc_sim, "--config-reference"]).strip()
 
 
-def experiment(name):
+def experiment(name, host):
     def generate(args):
         with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
             # experiment.py runs under Debian's python3 (its #! line), which has matplotlib.
-            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet",
+            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet", "--host", host,
                          "--soc-sim", args.soc_sim, "--out", folder])
         lines = []
         for line in table.strip().splitlines():
@@ -158,7 +163,7 @@ def experiment(name):
             if line.startswith("#"):
                 line = "**" + line.lstrip("# ").strip() + "**"  # a heading of its own would break the page's outline
             lines.append(line)
-        return (f"From `scripts/experiment.py {name}` (simulated times: the same on every host):\n\n"
+        return (f"From `scripts/experiment.py {name} --host {host}` (simulated times: the same on every machine):\n\n"
                 + "\n".join(lines).strip())
     return generate
 
@@ -199,9 +204,15 @@ GENERATORS = {
 }
 # One block per experiment of configs/experiments/: experiment-<name>, with
 # the name's underscores as dashes.
+# An experiment whose "hosts" lists iss has a second block, experiment-<name>-iss.
+ISS = set()
 for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
-    GENERATORS["experiment-" + _file.stem.replace("_", "-")] = experiment(_file.stem)
-SLOW = {name for name in GENERATORS if name.startswith("experiment-")}
+    _block = "experiment-" + _file.stem.replace("_", "-")
+    GENERATORS[_block] = experiment(_file.stem, "native")
+    if "iss" in json.loads(_file.read_text()).get("hosts", []):
+        GENERATORS[_block + "-iss"] = experiment(_file.stem, "iss")
+        ISS.add(_block + "-iss")
+SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS
 # Blocks another script writes (scripts/compare_host_models.py --write-doc:
 # its own test checks them), left as they are.
 EXTERNAL = {"host-models"}
@@ -254,17 +265,25 @@ def main():
                         help="the soc_sim to ask (default: build/default/bin/soc_sim)")
     parser.add_argument("--experiments", action="store_true",
                         help="also the blocks that run experiments (slow), and only those with --only-experiments")
-    parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks")
+    parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks (native)")
+    parser.add_argument("--iss-experiments", action="store_true",
+                        help="also the experiment blocks run on the ISS (slower), and only those with "
+                             "--only-iss-experiments")
+    parser.add_argument("--only-iss-experiments", action="store_true", help="only the ISS's experiment blocks")
     parser.add_argument("--only", nargs="+", choices=sorted(GENERATORS), metavar="BLOCK",
                         help="only these blocks: " + ", ".join(sorted(GENERATORS)))
     args = parser.parse_args()
     wanted = set(GENERATORS)
+    only_experiments = args.only_experiments or args.only_iss_experiments
     if args.only:
         wanted = set(args.only)
-    elif args.only_experiments:
-        wanted = SLOW
-    elif not args.experiments:
-        wanted -= SLOW
+    elif only_experiments:
+        wanted = (SLOW if args.only_experiments else set()) | (ISS if args.only_iss_experiments else set())
+    else:
+        if not args.experiments:
+            wanted -= SLOW
+        if not args.iss_experiments:
+            wanted -= ISS
 
     cache = {}
     stale = []
@@ -291,12 +310,12 @@ def main():
         new_text = MARKER.sub(replace, text)
         if not args.check and new_text != text:
             path.write_text(new_text)
-    if not args.only_experiments and not args.only:
+    if not only_experiments and not args.only:
         stale += stale_pictures(args, write=not args.check)
     missing = wanted - found
     if missing:
         sys.exit(f"update_docs: no block of {', '.join(sorted(missing))} in any of {', '.join(FILES)}")
-    if not args.only_experiments and not args.only:
+    if not only_experiments and not args.only:
         missing = missing_rows(args)
         if missing:
             print("Incomplete (add the row by hand):\n  " + "\n  ".join(missing))
@@ -304,8 +323,9 @@ def main():
                 return 1
     if args.check:
         if stale:
-            print("Out of date (run scripts/update_docs.py"
-                  + (" --only-experiments" if wanted == SLOW else "") + "):\n  " + "\n  ".join(stale))
+            options = (" --only-experiments" if args.only_experiments else "") + (
+                " --only-iss-experiments" if args.only_iss_experiments else "")
+            print(f"Out of date (run scripts/update_docs.py{options}):\n  " + "\n  ".join(stale))
             return 1
         print(f"generated blocks up to date: {', '.join(sorted(wanted))}")
         return 0

@@ -230,6 +230,20 @@ RunResult ArrayController::run(unsigned entry) {
   };
   ++m_activity.programs;
   m_stage_changes.clear();
+  // The lanes' activity is folded into the stage's totals where the stage
+  // changes, not per instruction.
+  Stage stage = entry < m_slots.size() ? m_slots[entry].instruction.stage : Stage{};
+  ArrayActivity stage_start = m_array.activity();
+  const auto fold_stage = [&] {
+    const ArrayActivity& now = m_array.activity();
+    ArrayActivity& total = m_activity.stage_lanes[static_cast<unsigned>(stage)];
+    total.lane_operations += now.lane_operations - stage_start.lane_operations;
+    total.useful_operations += now.useful_operations - stage_start.useful_operations;
+    total.cmem_reads += now.cmem_reads - stage_start.cmem_reads;
+    total.cmem_writes += now.cmem_writes - stage_start.cmem_writes;
+    total.neighbour_transfers += now.neighbour_transfers - stage_start.neighbour_transfers;
+    stage_start = now;
+  };
   while (true) {
     if (pc >= m_slots.size()) {
       fail(RunError::past_end,
@@ -242,6 +256,10 @@ RunResult ArrayController::run(unsigned entry) {
       break;
     }
     const Instruction& in = slot.instruction;
+    if (in.stage != stage) {
+      fold_stage();
+      stage = in.stage;
+    }
     unsigned next = pc + 1;
     bool halted = false;
     switch (in.opcode) {
@@ -289,6 +307,7 @@ RunResult ArrayController::run(unsigned entry) {
     }
     pc = next;
   }
+  fold_stage();
   // The per-word, per-opcode and per-stage totals from the run's counts per
   // word (each word's cost and instruction are fixed during a run).
   for (unsigned word = entry; word <= last_pc && word < m_slots.size(); ++word) {
@@ -300,6 +319,10 @@ RunResult ArrayController::run(unsigned entry) {
     m_activity.word_cycles[word] += executions * slot.cost;
     m_activity.instruction_mix[static_cast<unsigned>(slot.instruction.opcode)] += executions;
     m_activity.stage_cycles[static_cast<unsigned>(slot.instruction.stage)] += executions * slot.cost;
+    m_activity.stage_instructions[static_cast<unsigned>(slot.instruction.stage)] += executions;
+    m_activity
+        .stage_mix[static_cast<unsigned>(slot.instruction.stage)][static_cast<unsigned>(slot.instruction.opcode)] +=
+        executions;
   }
   m_activity.cycles += result.cycles;
   m_activity.instructions += result.instructions;
