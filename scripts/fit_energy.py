@@ -76,6 +76,11 @@ CUS = ["cu_array"]
 # docs/spec/calibration.md: (figure, run, units, kind, measured). Kinds:
 # host_power (mW), host_op (nJ per iteration of the loop), array_power (mW
 # over the array's runs), array_op (nJ per operation of one CU).
+# A calibration figure of the host (its loops' energy per operation) must
+# come within HOST_OP_TOLERANCE on the ISS, as every host calibration figure
+# does (--check fails otherwise); the others are reported with their
+# residuals (docs/calibration.md, "Power", says which cannot be met).
+HOST_OP_TOLERANCE = 0.03
 FIGURES = [
     ("full-screen rectangle, ARM922T", "arm_rect", HOST, "host_power", 57.5),
     ("shading loop, ARM922T", "arm_shading", HOST, "host_power", 62.76),
@@ -287,11 +292,15 @@ def main():
     for (name, _), value in zip(PARAMETERS, x):
         print(f"- `{name}` = {value:.4g}")
     print("\n| figure | model | measured | residual |\n| --- | --: | --: | --: |")
+    outside = []
     for figure in FIGURES:
         name, run_name, _, kind, measured = figure
         value = model(figure, workloads[run_name], values)
         unit = UNITS[kind]
-        print(f"| {name} | {value:.4g} {unit} | {measured:g} {unit} | {100 * (value - measured) / measured:+.1f} % |")
+        residual = (value - measured) / measured
+        print(f"| {name} | {value:.4g} {unit} | {measured:g} {unit} | {100 * residual:+.1f} % |")
+        if kind == "host_op" and abs(residual) > HOST_OP_TOLERANCE:
+            outside.append(f"{name}: {100 * residual:+.1f} %")
     idle_mw = table[("host", "idle_cycles")][0] * 1e-9 * 192e6 + table[("host", None)][0]
     print(f"| ARM922T idling on NOPs (converted) | {idle_mw:.4g} mW | {43.5 * 1.2:g} mW | "
           f"{100 * (idle_mw - 52.2) / 52.2:+.1f} % |")
@@ -317,6 +326,10 @@ def main():
         print("wrote", os.path.relpath(DEF, ROOT))
     elif args.check and stale:
         print("fit_energy: energy_params.def is stale (run scripts/fit_energy.py --write):\n  " + "\n  ".join(stale),
+              file=sys.stderr)
+        return 1
+    if args.check and outside:
+        print(f"fit_energy: outside {100 * HOST_OP_TOLERANCE:g} % on the ISS:\n  " + "\n  ".join(outside),
               file=sys.stderr)
         return 1
     return 0
