@@ -350,7 +350,8 @@ def study_energy_mj(result, column, results):
     """The study's energy (column "quantity"): the energy of the units the board measured over the study's
     interval, in mJ. The array's passes: the array_stages energies of the pass stages (exact). An array back end's
     processing: the frames' array-unit energy less their static power over the frame out (the array idles then).
-    arm: host_executing_watts x the study's time (the host's power over the run, not the interval alone)."""
+    arm: host_executing_watts x the study's time: exact while a busy and a stalled cycle cost the same (the
+    fitted defaults), since the ARM does not idle in the study's intervals."""
     quantity = column["quantity"]
     if result.backend == "arm":
         return host_executing_watts(result) * study_time_ms(result, column, results)
