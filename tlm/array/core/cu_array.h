@@ -76,6 +76,37 @@ class CuArray {
                std::string& error);
 
   const ArrayActivity& activity() const { return m_activity; }
+  void add_activity(const ArrayActivity& more);
+
+  // For the controller's skipping of idle CUs (array_controller.h): every
+  // row of architectural state by one index, CMEM address a at a, register
+  // r at cmem_bytes + r, then the flags C, Z, S and M (state_flag_row()).
+  unsigned state_rows() const { return m_geometry.cmem_bytes + m_geometry.registers + 4; }
+  unsigned state_flag_row(unsigned flag) const { return m_geometry.cmem_bytes + m_geometry.registers + flag; }
+  uint8_t* state_row(unsigned index) {
+    if (index < m_geometry.cmem_bytes) return row(index);
+    if (index < m_geometry.cmem_bytes + m_geometry.registers) return row(m_reg_rows[index - m_geometry.cmem_bytes]);
+    return row(m_flag_row + (index - m_geometry.cmem_bytes - m_geometry.registers));
+  }
+  // To call after writing the mask's row through state_row().
+  void mask_written() { m_active_stale = true; }
+  // A work array runs on its first `lanes` lanes only (at most the
+  // geometry's), which it then takes as lanes 0..lanes-1 of no grid: its
+  // neighbour reads are meaningless, so only programs without nget run on
+  // it.
+  void set_lane_count(unsigned lanes);
+  // With counting on, execute() also counts per lane the useful
+  // operations and the CMEM bytes stored (lane_useful(), lane_stores()),
+  // from 0 at clear_lane_counts().
+  void count_per_lane(bool on);
+  void clear_lane_counts();
+  const std::vector<uint32_t>& lane_useful() const { return m_lane_useful; }
+  const std::vector<uint32_t>& lane_stores() const { return m_lane_stores; }
+  // Runs a program's instructions in the order a run executed them, loop
+  // variables already added to the addresses (no loop, halt or nget; every
+  // address within CMEM), as execute() would, counting per lane only
+  // (lane_useful(), lane_stores(), from 0; activity() does not change).
+  void run_trace(const std::vector<Instruction>& trace);
 
  private:
   size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
@@ -125,6 +156,8 @@ class CuArray {
   mutable unsigned m_active = 0;
   mutable bool m_active_stale = false;
   ArrayActivity m_activity;
+  bool m_count_lanes = false;
+  std::vector<uint32_t> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
 };
 
