@@ -398,8 +398,20 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
 }
 
 void CuArray::run_trace(const std::vector<Instruction>& trace) {
-  const size_t n = m_lanes;
   clear_lane_counts();
+  // The work array's usual widths with the lane count known to the
+  // compiler, which then unrolls the lane loops into a few vector operations.
+  switch (m_lanes) {
+    case 16: run_trace_lanes<16>(trace); break;
+    case 32: run_trace_lanes<32>(trace); break;
+    case 48: run_trace_lanes<48>(trace); break;
+    default: run_trace_lanes<0>(trace); break;
+  }
+}
+
+template <size_t kLanes>
+void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
+  const size_t n = kLanes != 0 ? kLanes : m_lanes;
   uint8_t* c = row(m_flag_row + flag_c);
   uint8_t* z = row(m_flag_row + flag_z);
   uint8_t* s = row(m_flag_row + flag_s);

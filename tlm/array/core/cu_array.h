@@ -128,6 +128,9 @@ class CuArray {
     return m_active;
   }
   void count_active() const;
+  // run_trace() for kLanes lanes (0: m_lanes).
+  template <size_t kLanes>
+  void run_trace_lanes(const std::vector<Instruction>& trace);
 
   // What execute() needs of each opcode, from the ISA's tables.
   struct OpLanes {
