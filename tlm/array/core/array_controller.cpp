@@ -214,7 +214,12 @@ RunResult ArrayController::run(unsigned entry) {
   if (m_skip_idle) {
     auto plan = m_plans.find(entry);
     if (plan == m_plans.end()) plan = m_plans.emplace(entry, plan_entry(entry)).first;
-    if (plan->second.skippable) return run_skipping(entry, plan->second, m_memos[entry]);
+    if (plan->second.skippable) {
+      EntryMemo& memo = m_memos[entry];
+      if (memo.plain_runs_left == 0) return run_skipping(entry, plan->second, memo);
+      --memo.plain_runs_left;
+      memo.valid = false;
+    }
   }
   unsigned last_pc = entry;
   const RunResult result = interpret(entry, m_array, last_pc);
@@ -330,6 +335,10 @@ constexpr unsigned WORK_LANE_BLOCK = 16;
 // The longest run recorded for skipping (its trace holds an instruction per
 // instruction run): longer programs run on every CU.
 constexpr uint64_t MAX_TRACE = 1u << 22;
+// The back-off of EntryMemo: ap-pixel's blocks fill nearly every CU, and its
+// programs are short enough that comparing and recording cost a few % of
+// its frame.
+constexpr unsigned FULL_RUNS_BEFORE_BACK_OFF = 8, BACK_OFF_RUNS = 64;
 
 // differs[l] |= now[l] ^ then[l], a loop the compiler vectorises.
 void accumulate_differences(size_t n, const uint8_t* __restrict now, const uint8_t* __restrict then,
@@ -571,7 +580,14 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   const auto k = static_cast<unsigned>(m_run_lanes.size());
   // Gathering and scattering costs about what running every CU does when
   // half of them run.
-  if (2 * k > n) return run_and_record(entry, plan, memo);
+  if (2 * k > n) {
+    if (++memo.full_runs == FULL_RUNS_BEFORE_BACK_OFF) {
+      memo.full_runs = 0;
+      memo.plain_runs_left = BACK_OFF_RUNS;
+    }
+    return run_and_record(entry, plan, memo);
+  }
+  memo.full_runs = 0;
 
   const size_t outputs = plan.cmem_out.size() + plan.defined.size();
   const auto output_row = [&](size_t i) {

@@ -172,6 +172,11 @@ class ArrayController {
     // The run's instructions in the order they ran, loop variables added
     // (CuArray::run_trace): what the CUs that differ run.
     std::vector<Instruction> trace;
+    // Back-off: after FULL_RUNS_BEFORE_BACK_OFF runs in a row with most CUs
+    // differing, the next BACK_OFF_RUNS run on every CU without the record
+    // (what comparing and recording would cost for nothing).
+    unsigned full_runs = 0;
+    unsigned plain_runs_left = 0;
   };
   std::vector<Instruction> build_trace(unsigned entry) const;
   RunResult run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
