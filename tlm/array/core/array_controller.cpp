@@ -222,7 +222,7 @@ RunResult ArrayController::run(unsigned entry) {
     }
   }
   unsigned last_pc = entry;
-  const RunResult result = interpret(entry, m_array, last_pc);
+  RunResult result = interpret(entry, m_array, last_pc);
   fold_run(entry, last_pc, result);
   return result;
 }
@@ -538,7 +538,7 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
   const ArrayActivity before = m_array.activity();
   m_array.count_per_lane(true);
   unsigned last_pc = entry;
-  const RunResult result = interpret(entry, m_array, last_pc);
+  RunResult result = interpret(entry, m_array, last_pc);
   m_array.count_per_lane(false);
   m_lanes_run += n;
   if (result.ok && result.instructions <= MAX_TRACE && last_pc == plan.last_pc) {
@@ -594,7 +594,7 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     return i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
   };
   const unsigned last_pc = plan.last_pc;
-  const RunResult result = memo.result;
+  RunResult result = memo.result;
   if (k > 0) {
     if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
     CuArray& work = *m_work;
