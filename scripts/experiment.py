@@ -9,8 +9,9 @@ configuration values, or figures computed from them). This script runs
 soc_sim once per run, reads each run's stats.json, prints the table in
 Markdown and writes, in the output folder (default out/experiments/<name>):
 
-    <name>.md   the table
+    <name>.md   the table (and the study's)
     <name>.csv  the same values, unrounded, one row per run
+    <name>_study.csv  the study's table's values, if it has one
     <name>.png  the plot the experiment asks for (matplotlib)
     runs/<run>/ each run's frames and stats.json
 
@@ -19,12 +20,22 @@ Markdown and writes, in the output folder (default out/experiments/<name>):
     scripts/experiment.py teapot --frames 1 --out out/quick
     scripts/experiment.py my_experiment.json --soc-sim build/sanitize/bin/soc_sim
     scripts/experiment.py teapot --host iss --frames 1 --out out/teapot_iss
+    scripts/experiment.py fullscreen_rect --host both --program study
     scripts/experiment.py dma_whatif --set ciu.read_cycles=40 --out out/whatif_ciu
 
---host runs every run on the given host model (host.model: native, the
-host-compiled model, or iss, the driver as ARM code on the ISS); --set
-KEY=VALUE sets any configuration key in every run, over the experiment's
-own. The table ends with the host model its runs used.
+An experiment's runs are made on each host model it lists ("hosts":
+native, the host-compiled model, or iss, the driver as ARM code on the ISS)
+and, for ap-tile and ap-pixel, with each array program it lists
+("programs": study, the study's program as its compiler wrote it, or tuned);
+--host native|iss|both and --program study|tuned|both choose instead. Every
+table says which host and program each row ran. --set KEY=VALUE sets any
+configuration key in every run, over the experiment's own.
+
+An experiment may have two tables: its own (the whole frame as the model
+runs it: transfers, the display, the whole SoC's energy) and "study", the
+study's quantities as the study measured them (docs/spec/study_programs.md,
+"The study's test cases"); no table mixes the two. The wall time of each
+run and of the experiment is printed on standard error.
 
 docs/experiments.md describes each experiment, its columns, the file format
 and how to add an experiment. The script runs under Debian's python3, the
@@ -164,16 +175,27 @@ def energy_per_frame_mj(result, column, results):
     return stat(result, "energy.total_j") * 1e3
 
 
+def baseline_result(result, column, results):
+    """The run a relative figure compares `result` with: the run of the experiment's label column["baseline"]
+    (before the host and the program are added to it), or the run's own "baseline" (a run doing other work than
+    the column's baseline, e.g. more attributes), on the same host, with the same program if it has one."""
+    name = result.baseline or column["baseline"]
+    candidates = [r for r in results if r.base_label == name and r.host == result.host]
+    if not candidates:
+        raise RunError(f"run '{result.label}': no run '{name}' on host {result.host} to compare with")
+    return next((r for r in candidates if r.program == result.program), candidates[0])
+
+
 def energy_ratio(result, column, results):
     """The baseline run's energy_per_frame_mj over this run's (column "baseline": the run's label): how many times
     less energy this run spends on a frame (on the whole run for a study application)."""
-    baseline = next(r for r in results if r.label == column["baseline"])
+    baseline = baseline_result(result, column, results)
     return energy_per_frame_mj(baseline, column, results) / energy_per_frame_mj(result, column, results)
 
 
 def speedup(result, column, results):
     """The baseline run's frame_time_ms over this run's (column "baseline": the run's label)."""
-    baseline = next(r for r in results if r.label == column["baseline"])
+    baseline = baseline_result(result, column, results)
     return frame_time_ms(baseline, column, results) / frame_time_ms(result, column, results)
 
 
@@ -223,13 +245,149 @@ def patch_break_even(result, column, results):
     """The smallest patch of the column's "shape" (line or square) at which the baseline run (column "baseline",
     the host) takes longer than this run: driver.study.patch.<shape>.<pixels>_ns compared size by size; inf when
     the baseline is faster at every size measured."""
-    baseline = next(r for r in results if r.label == column["baseline"])
+    baseline = baseline_result(result, column, results)
     sizes = sorted(int(key[: -len("_ns")]) for key in result.stats["driver"]["study"]["patch"][column["shape"]])
     for pixels in sizes:
         path = f"driver.study.patch.{column['shape']}.{pixels}_ns"
         if stat(baseline, path) > stat(result, path):
             return float(pixels)
     return math.inf
+
+
+# ---------------------------------------------------------------------------
+# The study's quantities (docs/spec/study_programs.md, "The study's test cases"): what the study's own figure
+# covered, for the "study" tables. A column names the test's quantity ("quantity"); each back end's part of it:
+#
+#   rasterization  arm: the rasterization phase without the clears (host_rasterization_ns - host_clear_ns of
+#                  the frame records); ap-tile: the array's passes (the cycles of its pass stages), per frame
+#   pass           ap-tile: the array's cycles of one pass, at its clock
+#   processing     the frame without its frame out to the display: arm, render_ns - host_presenting_ns (the copy
+#                  to the display port); an array back end, render_ns - host_frame_out_ns
+#   shading        arm: the shading loop (driver.study.compute_ns); ap-pixel: the array's passes
+#                  (driver.study.array_cycles), the host's CIU transfers apart
+#
+# The study's energy is the energy of the units the board measured (the ARM922T for arm; the array controller,
+# the CIU and the CUs for an array back end) over that interval: for the array's passes exactly, from
+# stats.energy.array_stages (each stage's own activity and time); otherwise from the frame records or the run.
+
+QUANTITIES = ("rasterization", "pass", "processing", "shading")
+ARRAY_UNITS = ("array_controller", "ciu", "cu_array")
+
+
+def frames_mean(result, figure):
+    """The mean over the frames of a frame record's figure: `figure` is a function of the record."""
+    frames = result.stats["frames"]
+    if not frames:
+        raise RunError(f"run '{result.label}' shows no frame ({result.stats_path})")
+    try:
+        return sum(figure(frame) for frame in frames) / len(frames)
+    except KeyError as error:
+        raise RunError(f"run '{result.label}': a frame record lacks {error} in {result.stats_path}") from error
+
+
+def array_pass_stages(result):
+    """The stages of the array's passes: ap-tile's four (its clears are not passes); every stage ap-pixel ran."""
+    if result.backend == "ap-tile":
+        return AP_TILE_PASS_STAGES
+    return tuple(result.stats.get("energy", {}).get("array_stages", {}))
+
+
+def study_divisor(result, quantity):
+    """What the study's figure is per: a pass (pass), a frame (rasterization, processing), the run (shading)."""
+    if quantity == "pass":
+        return stat(result, "driver.ap_tile.passes")
+    if quantity == "shading":
+        return 1
+    return frames_drawn(result)
+
+
+def unsupported(result, quantity):
+    return RunError(f"run '{result.label}': the study's {quantity} figure is not defined for back end "
+                    f"'{result.backend}'")
+
+
+def study_time_ms(result, column, results):
+    """The study's time (column "quantity", above), in ms."""
+    quantity = column["quantity"]
+    backend = result.backend
+    if quantity == "processing":
+        if backend == "arm":
+            return frames_mean(result, lambda f: f["render_ns"] - f["driver"]["host_presenting_ns"]) / 1e6
+        return frames_mean(result, lambda f: f["render_ns"] - f["driver"]["host_frame_out_ns"]) / 1e6
+    if backend == "arm" and quantity == "rasterization":
+        return frames_mean(result, lambda f: f["driver"]["host_rasterization_ns"] - f["driver"]["host_clear_ns"]) / 1e6
+    if backend == "arm" and quantity == "shading":
+        return stat(result, "driver.study.compute_ns") / 1e6
+    if backend == "ap-tile" and quantity in ("rasterization", "pass"):
+        cycles = sum(stat(result, f"driver.ap_tile.cycles.{stage}") for stage in AP_TILE_PASS_STAGES)
+    elif backend == "ap-pixel" and quantity == "shading":
+        cycles = stat(result, "driver.study.array_cycles")
+    else:
+        raise unsupported(result, quantity)
+    return cycles / (config(result, "array.clock_mhz") * 1e6) / study_divisor(result, quantity) * 1e3
+
+
+def static_watts(result, units):
+    """The static powers of `units` (power.<unit>.static_mw of the run's configuration), in W."""
+    return sum(config(result, f"power.{unit}.static_mw") for unit in units) / 1e3
+
+
+def host_executing_watts(result):
+    """The ARM922T's average power while it executes (its busy and stalled cycles, idle ones left out) over the
+    run, in W: the host's power over an interval in which it never idles, as the study's ARM loops."""
+    events = result.stats.get("energy", {}).get("units", {}).get("host", {}).get("events", {})
+    try:
+        joules = events["busy_cycles"]["j"] + events["stalled_cycles"]["j"]
+        cycles = events["busy_cycles"]["count"] + events["stalled_cycles"]["count"]
+    except KeyError as error:
+        raise RunError(f"run '{result.label}': stats.energy.units.host.events lacks {error} in "
+                       f"{result.stats_path}") from error
+    seconds = cycles / (stat(result, "host.clock_mhz") * 1e6)
+    return joules / seconds + static_watts(result, ("host",))
+
+
+def study_energy_mj(result, column, results):
+    """The study's energy (column "quantity"): the energy of the units the board measured over the study's
+    interval, in mJ. The array's passes: the array_stages energies of the pass stages (exact). An array back end's
+    processing: the frames' array-unit energy less their static power over the frame out (the array idles then).
+    arm: host_executing_watts x the study's time (the host's power over the run, not the interval alone)."""
+    quantity = column["quantity"]
+    if result.backend == "arm":
+        return host_executing_watts(result) * study_time_ms(result, column, results)
+    if quantity == "processing":
+        watts = static_watts(result, ARRAY_UNITS)
+        return frames_mean(result, lambda f: sum(f["energy"]["units"][unit]["total_j"] for unit in ARRAY_UNITS)
+                           - watts * f["driver"]["host_frame_out_ns"] * 1e-9) * 1e3
+    study_time_ms(result, column, results)  # the quantity applies to the back end
+    stages = result.stats.get("energy", {}).get("array_stages", {})
+    missing = [stage for stage in array_pass_stages(result) if stage not in stages]
+    if missing or not stages:
+        raise RunError(f"run '{result.label}' has no statistic 'energy.array_stages.{(missing or ['*'])[0]}' in "
+                       f"{result.stats_path}")
+    joules = sum(stages[stage]["total_j"] for stage in array_pass_stages(result))
+    return joules / study_divisor(result, quantity) * 1e3
+
+
+def study_power_mw(result, column, results):
+    """study_energy_mj over study_time_ms: the measured units' average power over the study's interval, in mW."""
+    return study_energy_mj(result, column, results) / study_time_ms(result, column, results) * 1e3
+
+
+def study_speedup(result, column, results):
+    """The baseline run's study_time_ms over this run's (column "baseline")."""
+    return study_time_ms(baseline_result(result, column, results), column, results) / study_time_ms(
+        result, column, results)
+
+
+def study_energy_ratio(result, column, results):
+    """The baseline run's study_energy_mj over this run's (column "baseline")."""
+    return study_energy_mj(baseline_result(result, column, results), column, results) / study_energy_mj(
+        result, column, results)
+
+
+def study_shades_per_second_of_study_time(result, column, results):
+    """Shades per second of the study's time ("quantity": shading): driver.study.shades over study_time_ms."""
+    return stat(result, "driver.study.shades") / (study_time_ms(result, column, results) * 1e-3)
 
 
 COMPUTED = {
@@ -251,8 +409,17 @@ COMPUTED = {
         patch_break_even,
         host_time_ms,
         values_written_per_triangle,
+        study_time_ms,
+        study_energy_mj,
+        study_power_mw,
+        study_speedup,
+        study_energy_ratio,
+        study_shades_per_second_of_study_time,
     )
 }
+BASELINE_VALUES = ("speedup", "energy_ratio", "patch_break_even", "study_speedup", "study_energy_ratio")
+QUANTITY_VALUES = ("study_time_ms", "study_energy_mj", "study_power_mw", "study_speedup", "study_energy_ratio",
+                   "study_shades_per_second_of_study_time")
 
 
 def config(result, key):
@@ -268,13 +435,19 @@ def config(result, key):
 # ---------------------------------------------------------------------------
 # The experiment file.
 
-TOP_KEYS = {"title", "description", "frames", "set", "runs", "matrix", "label_header", "columns", "plot"}
-RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames"}
+TOP_KEYS = {"title", "description", "frames", "set", "runs", "matrix", "label_header", "columns", "plot", "hosts",
+            "programs", "study"}
+STUDY_KEYS = {"title", "description", "columns"}
+HOSTS = ("native", "iss")
+PROGRAMS = ("study", "tuned")
+# The array back ends' program keys; the other back ends run no array program.
+PROGRAM_KEYS = {"ap-tile": "ap.tile.program", "ap-pixel": "ap.pixel.program"}
+RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames", "baseline"}
 MATRIX_KEYS = {"switches", "skip", "runs"}
 SWITCH_KEYS = {"key", "name", "values", "backends"}
 MATRIX_RUN_KEYS = (RUN_KEYS - {"backend"}) | {"backends"}
 COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline", "shape",
-               "part", "required", "may_be_zero"}
+               "part", "required", "may_be_zero", "quantity"}
 PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log", "groups"}
 
 
@@ -485,11 +658,49 @@ def load_experiment(path):
         check_settings(run_where, run.setdefault("set", {}))
         if "frames" in run:
             positive_int(f"{run_where}: 'frames'", run["frames"])
+    for run, run_where in zip(runs, run_wheres):
+        if "baseline" in run and run["baseline"] not in labels:
+            raise UsageError(f"{run_where}: 'baseline' must be the label of a run ({', '.join(sorted(labels))})")
 
-    if not isinstance(spec["columns"], list) or not spec["columns"]:
+    check_columns(where, spec["columns"], labels)
+    load_dimensions(where, spec, runs)
+    if "study" in spec:
+        study = spec["study"]
+        if not isinstance(study, dict):
+            raise UsageError(f"{where}: 'study' must be an object with 'title', 'description' and 'columns'")
+        check_keys(f"{where}: study", study, STUDY_KEYS)
+        if not isinstance(study.get("title"), str) or not study["title"]:
+            raise UsageError(f"{where}: study: 'title' must be a non-empty string")
+        study.setdefault("description", "")
+        check_columns(f"{where}: study", study["columns"] if "columns" in study else None, labels)
+        study_keys = {column["key"] for column in study["columns"]}
+        shared = sorted(study_keys & {column["key"] for column in spec["columns"]})
+        if shared:
+            raise UsageError(f"{where}: study: column key(s) {', '.join(shared)} also in the experiment's own table")
+    keys = {column["key"] for column in spec["columns"]}
+
+    plot = spec.setdefault("plot", {})
+    if not isinstance(plot, dict):
+        raise UsageError(f"{where}: 'plot' must be an object")
+    check_keys(f"{where}: plot", plot, PLOT_KEYS)
+    plot.setdefault("columns", [spec["columns"][0]["key"]])
+    for key in plot["columns"] + ([plot["x"]] if "x" in plot else []):
+        if key not in keys:
+            raise UsageError(f"{where}: plot: '{key}' is not a column key ({', '.join(sorted(keys))})")
+    if plot.get("groups"):
+        if "matrix" not in spec:
+            raise UsageError(f"{where}: plot: 'groups' draws a matrix's runs grouped, and there is no 'matrix'")
+        if len(plot["columns"]) != 1 or "x" in plot or plot.get("stacked"):
+            raise UsageError(f"{where}: plot: 'groups' plots one column, without 'x' or 'stacked'")
+    return spec
+
+
+def check_columns(where, columns, labels):
+    """A table's columns, checked, their defaults filled in; `labels`: the runs' labels (for baselines)."""
+    if not isinstance(columns, list) or not columns:
         raise UsageError(f"{where}: 'columns' must be a non-empty list")
     keys = set()
-    for index, column in enumerate(spec["columns"]):
+    for index, column in enumerate(columns):
         column_where = f"{where}: columns[{index}]"
         if not isinstance(column, dict):
             raise UsageError(f"{column_where} must be an object")
@@ -497,8 +708,9 @@ def load_experiment(path):
         key = column.get("key")
         if not isinstance(key, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", key):
             raise UsageError(f"{column_where}: 'key' must be a name of [a-z0-9_] (the CSV's column)")
-        if key in keys or key == "run":
-            raise UsageError(f"{column_where}: key '{key}' is used twice (or is 'run', the label's column)")
+        if key in keys or key in ("run", "host", "program"):
+            raise UsageError(f"{column_where}: key '{key}' is used twice (or is 'run', 'host' or 'program', the "
+                             "columns every table starts with)")
         keys.add(key)
         column.setdefault("header", key)
         sources = [source for source in ("stat", "config", "value") if source in column]
@@ -507,7 +719,7 @@ def load_experiment(path):
         if "value" in column and column["value"] not in COMPUTED:
             raise UsageError(f"{column_where} ('{key}'): unknown value '{column['value']}' "
                              f"(known: {', '.join(COMPUTED)})")
-        if column.get("value") in ("speedup", "energy_ratio", "patch_break_even") and column.get("baseline") not in labels:
+        if column.get("value") in BASELINE_VALUES and column.get("baseline") not in labels:
             raise UsageError(f"{column_where} ('{key}'): 'baseline' must be the label of a run "
                              f"({', '.join(sorted(labels))})")
         if column.get("value") == "patch_break_even" and column.get("shape") not in ("line", "square"):
@@ -531,21 +743,61 @@ def load_experiment(path):
             raise UsageError(f"{column_where} ('{key}'): 'part' goes with the value host_time_ms, which needs it")
         if "part" in column and column["part"] not in HOST_PARTS:
             raise UsageError(f"{column_where} ('{key}'): 'part' must be one of {', '.join(HOST_PARTS)}")
+        if (column.get("value") in QUANTITY_VALUES) != ("quantity" in column):
+            raise UsageError(f"{column_where} ('{key}'): 'quantity' goes with the values {', '.join(QUANTITY_VALUES)}, "
+                             "which need it")
+        if "quantity" in column and column["quantity"] not in QUANTITIES:
+            raise UsageError(f"{column_where} ('{key}'): 'quantity' must be one of {', '.join(QUANTITIES)}")
 
-    plot = spec.setdefault("plot", {})
-    if not isinstance(plot, dict):
-        raise UsageError(f"{where}: 'plot' must be an object")
-    check_keys(f"{where}: plot", plot, PLOT_KEYS)
-    plot.setdefault("columns", [spec["columns"][0]["key"]])
-    for key in plot["columns"] + ([plot["x"]] if "x" in plot else []):
-        if key not in keys:
-            raise UsageError(f"{where}: plot: '{key}' is not a column key ({', '.join(sorted(keys))})")
-    if plot.get("groups"):
-        if "matrix" not in spec:
-            raise UsageError(f"{where}: plot: 'groups' draws a matrix's runs grouped, and there is no 'matrix'")
-        if len(plot["columns"]) != 1 or "x" in plot or plot.get("stacked"):
-            raise UsageError(f"{where}: plot: 'groups' plots one column, without 'x' or 'stacked'")
-    return spec
+
+
+def choice_list(where, key, value, allowed):
+    if not isinstance(value, list) or not value or len(set(map(str, value))) != len(value) \
+            or not all(v in allowed for v in value):
+        raise UsageError(f"{where}: '{key}' must be a non-empty list of distinct values of {', '.join(allowed)}, "
+                         f"got {json.dumps(value)}")
+    return value
+
+
+def load_dimensions(where, spec, runs):
+    """The host models ("hosts", default native) and array programs ("programs", default none: each back end's
+    configured one) the runs are made with, checked; a run may not set what they choose."""
+    choice_list(where, "hosts", spec.setdefault("hosts", ["native"]), HOSTS)
+    if "programs" in spec:
+        choice_list(where, "programs", spec["programs"], PROGRAMS)
+    for run in runs:
+        settings = {**spec["set"], **run["set"]}
+        if "host.model" in settings:
+            raise UsageError(f"{where}: run '{run['label']}' sets host.model: list the hosts in 'hosts' instead")
+        key = PROGRAM_KEYS.get(run["backend"])
+        if "programs" in spec and key in settings:
+            raise UsageError(f"{where}: run '{run['label']}' sets {key}, which 'programs' chooses")
+
+
+def expand_runs(spec, hosts=None, programs=None):
+    """The runs on each host of `hosts` (default: the experiment's "hosts") and, for an array back end, with each
+    program of `programs` (default: the experiment's "programs"; none: the back end's configured program). A run's
+    label gains its program and, with more than one host, its host; base_label keeps the experiment's label (the
+    one baselines name). The matrix's groups follow."""
+    hosts = hosts or spec["hosts"]
+    programs = programs or spec.get("programs")
+    expanded = []
+    for run in spec["runs"]:
+        key = PROGRAM_KEYS.get(run["backend"])
+        for host in hosts:
+            for program in (programs if key and programs else [None]):
+                settings = {**run["set"], "host.model": host}
+                parts = [run["label"]]
+                if program:
+                    settings[key] = program
+                    parts.append(program)
+                if len(hosts) > 1:
+                    parts.append(host)
+                label = " ".join(parts)
+                expanded.append({**run, "label": label, "base_label": run["label"], "set": settings})
+                group, variant = spec["run_groups"].get(run["label"], (run["label"], ""))
+                spec["run_groups"][label] = (group, " ".join(part for part in [variant] + parts[1:] if part))
+    return expanded
 
 
 def experiment_path(name):
@@ -564,13 +816,25 @@ def experiment_path(name):
 
 
 class RunResult:
-    def __init__(self, run, stats_path, document):
+    def __init__(self, run, stats_path, document, wall_seconds=0.0):
         self.label = run["label"]
+        self.base_label = run.get("base_label", run["label"])
+        self.baseline = run.get("baseline")
         self.backend = run["backend"]
         self.shows_frames = run.get("shows_frames", True)
         self.stats_path = stats_path
         self.stats = document["stats"]
         self.config = document["config"]
+        self.wall_seconds = wall_seconds
+        # The host model and array program the run used, as its own configuration says ("-": no array program).
+        self.host = str(self.config.get("host", {}).get("model", "native"))
+        key = PROGRAM_KEYS.get(self.backend)
+        self.program = "-"
+        if key:
+            node = self.config
+            for part in key.split("."):
+                node = node.get(part, {}) if isinstance(node, dict) else {}
+            self.program = node if isinstance(node, str) and node else "-"
 
 
 def setting_text(value):
@@ -594,9 +858,9 @@ def soc_sim_command(soc_sim, spec, run, frames, folder, overrides=None):
     return command
 
 
-def run_all(spec, name, soc_sim, out, frames_override, quiet, overrides):
+def run_all(spec, name, soc_sim, out, frames_override, quiet, overrides, runs):
     results = []
-    for run in spec["runs"]:
+    for run in runs:
         frames = frames_override or run.get("frames", spec["frames"])
         folder = out / "runs" / run_folder_name(run["label"])
         folder.mkdir(parents=True, exist_ok=True)
@@ -623,23 +887,39 @@ def run_all(spec, name, soc_sim, out, frames_override, quiet, overrides):
         expected = frames if run.get("shows_frames", True) else 0
         if shown != expected:
             raise RunError(f"run '{run['label']}': {shown} frames shown, {expected} expected ({stats_path})")
+        wall = time.monotonic() - start
         if not quiet:
-            print(f"[{name}] {run['label']}: done in {time.monotonic() - start:.1f} s", file=sys.stderr, flush=True)
-        results.append(RunResult(run, stats_path, document))
+            print(f"[{name}] {run['label']}: done in {wall:.1f} s", file=sys.stderr, flush=True)
+        results.append(RunResult(run, stats_path, document, wall))
     return results
 
 
 def command_line_settings(args):
-    """The settings --set and --host give every run, over the experiment's own (--host last)."""
+    """The settings --set gives every run, over the experiment's own. The host model and the array programs are
+    chosen by --host and --program (run dimensions), not by --set."""
     settings = {}
     for item in args.set:
         key, equals, value = item.partition("=")
         if not equals or not key.strip():
             raise UsageError(f"--set {item!r}: expected KEY=VALUE")
-        settings[key.strip()] = value
-    if args.host:
-        settings["host.model"] = args.host
+        key = key.strip()
+        if key == "host.model":
+            raise UsageError(f"--set {item!r}: choose the host model with --host native|iss|both")
+        if key in PROGRAM_KEYS.values():
+            raise UsageError(f"--set {item!r}: choose the array programs with --program study|tuned|both")
+        settings[key] = value
     return settings
+
+
+def chosen(value, allowed, option):
+    """The values --host or --program name (one of `allowed`, or both), or None when not given."""
+    if value is None:
+        return None
+    if value == "both":
+        return list(allowed)
+    if value not in allowed:
+        raise UsageError(f"{option} {value!r}: unknown (choose {', '.join(allowed)} or both)")
+    return [value]
 
 
 # ---------------------------------------------------------------------------
@@ -683,17 +963,23 @@ def format_cell(column, value):
     return format(value, ",") if isinstance(value, int) else format(value, ",.2f")
 
 
-def build_table(spec, results):
-    """Rows of (label, [value per column]) in the runs' order."""
-    return [(result.label, [cell_value(column, result, results) for column in spec["columns"]]) for result in results]
+# The columns every table starts with, after the run's label: the host model and the array program it ran.
+RUN_COLUMNS = [{"key": "host", "header": "host"}, {"key": "program", "header": "program"}]
 
 
-def markdown(spec, rows):
-    headers = [spec["label_header"]] + [column["header"] for column in spec["columns"]]
+def build_table(columns, results):
+    """Rows of (label, [host, program, value per column]) in the runs' order."""
+    return [(result.label, [result.host, result.program]
+             + [cell_value(column, result, results) for column in columns]) for result in results]
+
+
+def markdown(label_header, columns, rows):
+    columns = RUN_COLUMNS + columns
+    headers = [label_header] + [column["header"] for column in columns]
     lines = ["| " + " | ".join(headers) + " |",
-             "|" + "---|" + "".join("--:|" for _ in spec["columns"])]
+             "|" + "---|" + "".join(":--|" if column in RUN_COLUMNS else "--:|" for column in columns)]
     for label, values in rows:
-        cells = [format_cell(column, value) for column, value in zip(spec["columns"], values)]
+        cells = [format_cell(column, value) for column, value in zip(columns, values)]
         lines.append("| " + " | ".join([label] + cells) + " |")
     return "\n".join(lines) + "\n"
 
@@ -708,10 +994,10 @@ def csv_text(value):
     return str(value)
 
 
-def write_csv(spec, rows, path):
+def write_csv(columns, rows, path):
     with path.open("w", newline="") as file:
         writer = csv.writer(file)
-        writer.writerow(["run"] + [column["key"] for column in spec["columns"]])
+        writer.writerow(["run"] + [column["key"] for column in RUN_COLUMNS + columns])
         for label, values in rows:
             writer.writerow([label] + [csv_text(value) for value in values])
 
@@ -748,6 +1034,7 @@ def plot_groups(spec, rows, index, groups, axes):
 
 
 def plot(spec, rows, path, plt):
+    rows = [(label, values[len(RUN_COLUMNS):]) for label, values in rows]
     settings = spec["plot"]
     columns = {column["key"]: (index, column) for index, column in enumerate(spec["columns"])}
     labels = [label for label, _ in rows]
@@ -831,22 +1118,34 @@ def run_experiment(name, args):
         out = out / name
     out.mkdir(parents=True, exist_ok=True)
 
+    overrides = command_line_settings(args)
+    runs = expand_runs(spec, chosen(args.host, HOSTS, "--host"), chosen(args.program, PROGRAMS, "--program"))
+    started = time.monotonic()
     try:
-        results = run_all(spec, name, soc_sim, out, args.frames, args.quiet, command_line_settings(args))
-        rows = build_table(spec, results)
-        hosts = sorted({str(config(result, "host.model")) for result in results})
+        results = run_all(spec, name, soc_sim, out, args.frames, args.quiet, overrides, runs)
+        rows = build_table(spec["columns"], results)
+        study_rows = build_table(spec["study"]["columns"], results) if "study" in spec else None
+        hosts = sorted({result.host for result in results})
     except RunError as error:
         raise RunError(f"experiment '{name}': {error}") from error
     # Which host model made the figures, as the runs' own configurations say.
-    table = markdown(spec, rows) + f"\nHost model: {', '.join(hosts)} (`host.model`).\n"
-    (out / f"{name}.md").write_text(f"{spec['title']}\n\n{table}")
-    write_csv(spec, rows, out / f"{name}.csv")
+    footer = f"\nHost model: {', '.join(hosts)} (`host.model`).\n"
+    table = markdown(spec["label_header"], spec["columns"], rows) + footer
+    text = f"## {spec['title']}\n\n" + (f"{spec['description']}\n\n" if spec["description"] else "") + table
+    write_csv(spec["columns"], rows, out / f"{name}.csv")
+    files = f"table {out / (name + '.md')}, CSV {out / (name + '.csv')}"
+    if study_rows is not None:
+        study = spec["study"]
+        text += (f"\n## {study['title']}\n\n" + (f"{study['description']}\n\n" if study["description"] else "")
+                 + markdown(spec["label_header"], study["columns"], study_rows) + footer)
+        write_csv(study["columns"], study_rows, out / f"{name}_study.csv")
+        files += f", study's CSV {out / (name + '_study.csv')}"
+    (out / f"{name}.md").write_text(text)
     plot(spec, rows, out / f"{name}.png", plt)
-    print(f"## {spec['title']}\n")
-    if spec["description"]:
-        print(f"{spec['description']}\n")
-    print(table)
-    print(f"table {out / (name + '.md')}, CSV {out / (name + '.csv')}, plot {out / (name + '.png')}\n")
+    print(text)
+    print(f"{files}, plot {out / (name + '.png')}\n")
+    by_host = ", ".join(f"{host} {sum(r.wall_seconds for r in results if r.host == host):.1f} s" for host in hosts)
+    print(f"[{name}] wall time: {time.monotonic() - started:.1f} s ({by_host})", file=sys.stderr, flush=True)
 
 
 def main():
@@ -860,10 +1159,15 @@ def main():
     parser.add_argument("--frames", type=int, help="frames of every run instead of the experiment's own "
                                                    "(e.g. 1 for a quick check)")
     parser.add_argument("--quiet", "-q", action="store_true", help="print the tables only, not each soc_sim run")
-    parser.add_argument("--host", choices=("native", "iss"),
-                        help="the host model of every run (host.model): native, the host-compiled model, or iss, "
-                             "the driver as ARM code on the ISS; default: the experiment's own (native unless it "
-                             "sets one); the table says which")
+    parser.add_argument("--host", metavar="native|iss|both",
+                        help="the host models the runs are made on (host.model): native, the host-compiled model, "
+                             "iss, the driver as ARM code on the ISS, or both; default: the experiment's 'hosts' "
+                             "(native unless it lists others); the tables say which")
+    parser.add_argument("--program", metavar="study|tuned|both",
+                        help="the array programs of the ap-tile and ap-pixel runs (ap.tile.program, "
+                             "ap.pixel.program): study, the study's program as its compiler wrote it, tuned, or "
+                             "both; default: the experiment's 'programs' (none: the configured one); the tables say "
+                             "which")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="a configuration setting for every run, over the experiment's own (repeatable; "
                              "docs/configuration.md lists the keys)")
@@ -876,6 +1180,9 @@ def main():
             raise UsageError("name an experiment (--list lists them)")
         if args.frames is not None:
             positive_int("--frames", args.frames)
+        chosen(args.host, HOSTS, "--host")
+        chosen(args.program, PROGRAMS, "--program")
+        command_line_settings(args)
         for name in args.experiments:
             run_experiment(name, args)
     except UsageError as error:

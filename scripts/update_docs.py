@@ -18,11 +18,13 @@ each comes from:
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
     calibration-array   what the array's calibration applications print
-    calibration-energy  what the two energy calibration runs print
-    experiment-NAME   scripts/experiment.py NAME, for every experiment of
-                      configs/experiments/ (experiment-dma-whatif for
-                      dma_whatif): the table it prints, simulated figures,
-                      the same on every host
+    calibration-energy  what scripts/fit_energy.py prints (the energy fit)
+    experiment-NAME   scripts/experiment.py NAME --host native, for every
+                      experiment of configs/experiments/ (experiment-dma-whatif
+                      for dma_whatif): the tables it prints, simulated
+                      figures, the same on every machine
+    experiment-NAME-iss  the same with --host iss, for every experiment
+                      whose "hosts" lists iss
 
 Besides, the pictures of PICTURES (the README's teapot: the demo's last
 frame) are compared byte for byte with what their run writes today, and a
@@ -30,12 +32,14 @@ hand-written table that must list every item of a generated list is
 checked for a row per item: sw_driver/scenes/README.md, a row for every
 built-in scene of soc_sim --list-apps.
 
-The experiment blocks run the simulator (about half a minute together on
-two cores) and are regenerated or checked only with --experiments or
---only-experiments.
+The experiment blocks run the simulator and are regenerated or checked only
+with --experiments or --only-experiments (the native blocks, about a minute
+together on two cores) and --iss-experiments or --only-iss-experiments (the
+ISS blocks, slower: the default test suite leaves them out).
 
 Usage:
-    scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments]
+    scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments] [--iss-experiments]
+    scripts/update_docs.py --only-experiments --only-iss-experiments   every experiment block
     scripts/update_docs.py --check [...]     exit 1 if a block is stale
     scripts/update_docs.py --only memory-map backends   only those blocks
 Standard library only.
@@ -43,6 +47,7 @@ Standard library only.
 
 import argparse
 import csv
+import json
 import os
 import pathlib
 import re
@@ -61,6 +66,7 @@ FILES = [
     "docs/architecture.md",
     "docs/usage.md",
     "docs/experiments.md",
+    "docs/calibration.md",
     "tlm/soc/README.md",
     "tools/soc_sim/README.md",
 ]
@@ -144,11 +150,11 @@ def config_reference(args):
     return run([args.soc_sim, "--config-reference"]).strip()
 
 
-def experiment(name):
+def experiment(name, host):
     def generate(args):
         with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
             # experiment.py runs under Debian's python3 (its #! line), which has matplotlib.
-            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet",
+            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet", "--host", host,
                          "--soc-sim", args.soc_sim, "--out", folder])
         lines = []
         for line in table.strip().splitlines():
@@ -157,7 +163,7 @@ def experiment(name):
             if line.startswith("#"):
                 line = "**" + line.lstrip("# ").strip() + "**"  # a heading of its own would break the page's outline
             lines.append(line)
-        return (f"From `scripts/experiment.py {name}` (simulated times: the same on every host):\n\n"
+        return (f"From `scripts/experiment.py {name} --host {host}` (simulated times: the same on every machine):\n\n"
                 + "\n".join(lines).strip())
     return generate
 
@@ -178,14 +184,17 @@ def printed_by(*runs):
 
 ARRAY_CALIBRATION = [["--app", app] for app in ("calib_array_add", "calib_array_mul", "calib_array_add_cmem",
                                                   "calib_array_mul_cmem", "calib_ciu")]
-ENERGY_CALIBRATION = [
-    ["--app", "teapot", "--backend", "ap-tile", "--frames", "1", "--set", "power.calibration=tile_renderer"],
-    ["--app", "study_shading", "--backend", "ap-pixel", "--set", "power.calibration=pixel_shading"],
-]
+
+
+def energy_fit(args):
+    """What scripts/fit_energy.py prints: the fitted parameters and every
+    figure beside the model's value (Markdown)."""
+    return run([sys.executable, os.path.join(ROOT, "scripts", "fit_energy.py"), "--soc-sim", args.soc_sim]).strip()
+
 
 GENERATORS = {
     "calibration-array": printed_by(*ARRAY_CALIBRATION),
-    "calibration-energy": printed_by(*ENERGY_CALIBRATION),
+    "calibration-energy": energy_fit,
     "backends": backends_table,
     "memory-map": memory_map_table,
     "irq-map": irq_map_table,
@@ -195,9 +204,18 @@ GENERATORS = {
 }
 # One block per experiment of configs/experiments/: experiment-<name>, with
 # the name's underscores as dashes.
+# An experiment whose "hosts" lists iss has a second block, experiment-<name>-iss.
+ISS = set()
 for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
-    GENERATORS["experiment-" + _file.stem.replace("_", "-")] = experiment(_file.stem)
-SLOW = {name for name in GENERATORS if name.startswith("experiment-")}
+    _block = "experiment-" + _file.stem.replace("_", "-")
+    GENERATORS[_block] = experiment(_file.stem, "native")
+    if "iss" in json.loads(_file.read_text()).get("hosts", []):
+        GENERATORS[_block + "-iss"] = experiment(_file.stem, "iss")
+        ISS.add(_block + "-iss")
+SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS
+# Blocks another script writes (scripts/compare_host_models.py --write-doc:
+# its own test checks them), left as they are.
+EXTERNAL = {"host-models"}
 
 # Hand-written tables that must name every item of a generated list: the
 # file, and a function giving the names a row must start with.
@@ -247,17 +265,25 @@ def main():
                         help="the soc_sim to ask (default: build/default/bin/soc_sim)")
     parser.add_argument("--experiments", action="store_true",
                         help="also the blocks that run experiments (slow), and only those with --only-experiments")
-    parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks")
+    parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks (native)")
+    parser.add_argument("--iss-experiments", action="store_true",
+                        help="also the experiment blocks run on the ISS (slower), and only those with "
+                             "--only-iss-experiments")
+    parser.add_argument("--only-iss-experiments", action="store_true", help="only the ISS's experiment blocks")
     parser.add_argument("--only", nargs="+", choices=sorted(GENERATORS), metavar="BLOCK",
                         help="only these blocks: " + ", ".join(sorted(GENERATORS)))
     args = parser.parse_args()
     wanted = set(GENERATORS)
+    only_experiments = args.only_experiments or args.only_iss_experiments
     if args.only:
         wanted = set(args.only)
-    elif args.only_experiments:
-        wanted = SLOW
-    elif not args.experiments:
-        wanted -= SLOW
+    elif only_experiments:
+        wanted = (SLOW if args.only_experiments else set()) | (ISS if args.only_iss_experiments else set())
+    else:
+        if not args.experiments:
+            wanted -= SLOW
+        if not args.iss_experiments:
+            wanted -= ISS
 
     cache = {}
     stale = []
@@ -268,6 +294,8 @@ def main():
 
         def replace(match):
             name, body = match.group(1), match.group(2)
+            if name in EXTERNAL:
+                return match.group(0)
             if name not in GENERATORS:
                 sys.exit(f"update_docs: {relative}: unknown generated block '{name}'")
             found.add(name)
@@ -282,12 +310,12 @@ def main():
         new_text = MARKER.sub(replace, text)
         if not args.check and new_text != text:
             path.write_text(new_text)
-    if not args.only_experiments and not args.only:
+    if not only_experiments and not args.only:
         stale += stale_pictures(args, write=not args.check)
     missing = wanted - found
     if missing:
         sys.exit(f"update_docs: no block of {', '.join(sorted(missing))} in any of {', '.join(FILES)}")
-    if not args.only_experiments and not args.only:
+    if not only_experiments and not args.only:
         missing = missing_rows(args)
         if missing:
             print("Incomplete (add the row by hand):\n  " + "\n  ".join(missing))
@@ -295,8 +323,9 @@ def main():
                 return 1
     if args.check:
         if stale:
-            print("Out of date (run scripts/update_docs.py"
-                  + (" --only-experiments" if wanted == SLOW else "") + "):\n  " + "\n  ".join(stale))
+            options = (" --only-experiments" if args.only_experiments else "") + (
+                " --only-iss-experiments" if args.only_iss_experiments else "")
+            print(f"Out of date (run scripts/update_docs.py{options}):\n  " + "\n  ".join(stale))
             return 1
         print(f"generated blocks up to date: {', '.join(sorted(wanted))}")
         return 0

@@ -10,6 +10,6 @@ void tessera_calibration_add16(const uint16_t* a, const uint16_t* b, uint16_t* c
   for (unsigned i = 0; i < n; ++i) c[i] = (uint16_t)(a[i] + b[i]);
 }
 
-void tessera_calibration_mul16x8(const int16_t* a, const int8_t* b, int16_t* c, unsigned n) {
+void tessera_calibration_mul16x8(const int16_t* a, const int16_t* b, int16_t* c, unsigned n) {
   for (unsigned i = 0; i < n; ++i) c[i] = (int16_t)(a[i] * b[i]);
 }

@@ -8,7 +8,7 @@ extern "C" {
 #endif
 
 void tessera_calibration_add16(const uint16_t* a, const uint16_t* b, uint16_t* c, unsigned n);
-void tessera_calibration_mul16x8(const int16_t* a, const int8_t* b, int16_t* c, unsigned n);
+void tessera_calibration_mul16x8(const int16_t* a, const int16_t* b, int16_t* c, unsigned n);
 
 #ifdef __cplusplus
 }

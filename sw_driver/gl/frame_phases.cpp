@@ -22,6 +22,7 @@ void PhaseClock::start(HostApi* host) {
   m_host = host;
   m_phase = Phase::application;
   m_seconds.fill(0);
+  m_clear_seconds = 0;
   m_since = host != nullptr ? host->now_seconds() : 0;
   costs::reset_cost_meter();
 }
@@ -46,9 +47,19 @@ std::vector<std::pair<std::string, double>> PhaseClock::take_frame() {
   }
   std::vector<std::pair<std::string, double>> figures;
   for (size_t i = 0; i < m_seconds.size(); ++i) figures.emplace_back(NAMES[i], m_seconds[i] * 1e9);
+  figures.emplace_back("host_clear_ns", m_clear_seconds * 1e9);
   m_seconds.fill(0);
+  m_clear_seconds = 0;
   for (auto& units : costs::take_cost_units()) figures.push_back(std::move(units));
   return figures;
+}
+
+void PhaseClock::begin_clear() {
+  if (m_host != nullptr) m_clear_since = m_host->now_seconds();
+}
+
+void PhaseClock::end_clear() {
+  if (m_host != nullptr) m_clear_seconds += m_host->now_seconds() - m_clear_since;
 }
 
 }  // namespace tessera::gl

@@ -9,7 +9,10 @@
 // AppEnvironment::frame_statistics as host_<phase>_ns, together with the
 // back end's own figures for the frame, so that the two host models
 // (native and ISS) can be compared phase by phase
-// (docs/calibration.md, "The two host models").
+// (docs/calibration.md, "The two host models"). glClear's own time is also
+// reported on its own, as host_clear_ns, while it stays in its phase: the
+// study's figure for the sequential renderer is its rasterization without the
+// clear (docs/spec/study_programs.md, "The study's test cases").
 #pragma once
 
 #include <array>
@@ -30,14 +33,20 @@ class PhaseClock {
   void start(HostApi* host);
   // Makes `phase` the current one; returns the previous.
   Phase switch_to(Phase phase);
-  // The host time per phase since the last call, in ns, named host_<phase>_ns.
+  // The host time per phase since the last call, in ns, named host_<phase>_ns,
+  // then the clears' time, host_clear_ns.
   std::vector<std::pair<std::string, double>> take_frame();
+  // Times a clear from begin_clear to end_clear (ClearScope), on top of its phase.
+  void begin_clear();
+  void end_clear();
 
  private:
   HostApi* m_host = nullptr;
   Phase m_phase = Phase::application;
   double m_since = 0;
   std::array<double, static_cast<size_t>(Phase::count_)> m_seconds{};
+  double m_clear_since = 0;
+  double m_clear_seconds = 0;
 };
 
 PhaseClock& phase_clock();
@@ -52,6 +61,15 @@ class PhaseScope {
 
  private:
   Phase m_previous;
+};
+
+// A clear for the life of the scope (PhaseClock::begin_clear).
+class ClearScope {
+ public:
+  ClearScope() { phase_clock().begin_clear(); }
+  ~ClearScope() { phase_clock().end_clear(); }
+  ClearScope(const ClearScope&) = delete;
+  ClearScope& operator=(const ClearScope&) = delete;
 };
 
 }  // namespace tessera::gl

@@ -140,6 +140,7 @@ void Context::clear(GLbitfield mask) {
   request.scissor_width = m_raster.scissor_width;
   request.scissor_height = m_raster.scissor_height;
   const PhaseScope phase(Phase::rasterization);
+  const ClearScope timed;
   m_renderer->clear(request);
 }
 

@@ -8,6 +8,8 @@
 // program memory at 0x10000, CIU window at 0x1000000. The array clock is
 // also 100 MHz so expected times are whole nanoseconds.
 #include <cstring>
+#include <map>
+#include <string>
 
 #include "array/array_processor.h"
 #include "array/array_regs.h"
@@ -360,7 +362,93 @@ TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   EXPECT_EQ(b.check_host.violation_count(), 0u);
 }
 
+// The activity of each stage's instructions alone (what the energy of the
+// study's passes, without the clears, is computed from): a program of one
+// fill and two depth instructions gives each stage its own instructions,
+// cycles and CMEM bytes, and the stages add up to the whole.
+TEST(ArrayProcessor, StageActivityHoldsEachStagesOwnInstructionsCyclesAndCmemBytes) {
+  Bench& b = *g_bench;
+  const auto staged = [](uint64_t word, ap::Stage stage) {
+    ap::Instruction in = ap::decode(word).instruction;
+    in.stage = stage;
+    return ap::encode(in);
+  };
+  const uint64_t add = op(ap::Opcode::op_add, mem(0x205), mem(0x201), mem(0x203));
+  const std::vector<uint64_t> program = {staged(add, ap::Stage::fill), staged(add, ap::Stage::depth),
+                                         staged(add, ap::Stage::depth),
+                                         staged(op(ap::Opcode::op_halt), ap::Stage::depth)};
+  const auto by_stage = [&] {
+    std::map<std::string, std::map<std::string, double>> counts;
+    for (const ArrayProcessor::StageActivity& stage : b.array.stage_activity()) {
+      counts[stage.stage]["seconds"] = stage.seconds;
+      for (const UnitActivity& unit : stage.units)
+        for (const auto& [event, count] : unit.counts) counts[stage.stage][event] = count;
+    }
+    return counts;
+  };
+  auto before = by_stage();
+  test::run_thread([&] {
+    load(b, 200, program);
+    start(b, 200);
+    wait_irq(b);
+    clear_irq(b);
+  });
+  auto after = by_stage();
+  const double lanes = b.array.core().array().lanes();
+  // An add of two CMEM operands: 3 cycles, 2 bytes read and 1 written per lane; the halt 1 cycle.
+  const auto expect = [&](const std::string& stage, double instructions, double cycles, double reads, double writes) {
+    EXPECT_EQ(after[stage]["broadcasts"] - before[stage]["broadcasts"], instructions) << stage;
+    EXPECT_EQ(after[stage]["cu_cycles"] - before[stage]["cu_cycles"], lanes * cycles) << stage;
+    EXPECT_NEAR(after[stage]["seconds"] - before[stage]["seconds"], cycles * CYCLE.to_seconds(), 1e-15) << stage;
+    EXPECT_EQ(after[stage]["cmem_bytes_read"] - before[stage]["cmem_bytes_read"], reads) << stage;
+    EXPECT_EQ(after[stage]["cmem_bytes_written"] - before[stage]["cmem_bytes_written"], writes) << stage;
+  };
+  expect("fill", 1, 3, 2 * lanes, lanes);
+  expect("depth", 3, 2 * 3 + 1, 4 * lanes, 2 * lanes);
+  // The stages together hold the array's whole CMEM traffic (the cycles and
+  // instructions of the earlier tests' runaway programs, stopped before they
+  // ran, belong to no stage).
+  std::map<std::string, double> sum;
+  for (const auto& [stage, counts] : after)
+    for (const auto& [event, count] : counts) sum[event] += count;
+  for (const UnitActivity& unit : b.array.energy_activity(sc_core::sc_time_stamp()))
+    for (const auto& [event, count] : unit.counts) {
+      if (event.rfind("cmem_", 0) == 0 || event == "neighbour_transfers") {
+        EXPECT_EQ(sum[event], count) << event;
+      }
+    }
+}
+
 int sc_main(int argc, char* argv[]) {
   g_bench = new Bench("bench");
   return test::run_all_tests(argc, argv);
+}
+
+// The AC's broadcasts for the energy model: one per instruction, but a
+// multiplication of CMEM operands counts the CMEM-operand additions it
+// stands for, its 105 cycles over an addition's 2 + 1: 35 (the register
+// mul counts one). In the whole run's activity and in its stage's.
+TEST(ArrayProcessor, CmemMultiplyCountsItsAdditionsAsBroadcasts) {
+  Bench& b = *g_bench;
+  const auto broadcasts = [&] {
+    double whole = 0, stages = 0;
+    for (const UnitActivity& unit : b.array.energy_activity(sc_core::sc_time_stamp()))
+      if (unit.unit == "array_controller") whole = unit.counts.at("broadcasts");
+    for (const ArrayProcessor::StageActivity& stage : b.array.stage_activity())
+      for (const UnitActivity& unit : stage.units)
+        if (unit.unit == "array_controller") stages += unit.counts.at("broadcasts");
+    return std::make_pair(whole, stages);
+  };
+  const std::vector<uint64_t> program = {op(ap::Opcode::op_mulm, mem(0x210), mem(0x201), mem(0x203)),
+                                         op(ap::Opcode::op_mul, reg(3), reg(0), reg(2)), op(ap::Opcode::op_halt)};
+  const auto before = broadcasts();
+  test::run_thread([&] {
+    load(b, 240, program);
+    start(b, 240);
+    wait_irq(b);
+    clear_irq(b);
+  });
+  const auto after = broadcasts();
+  EXPECT_DOUBLE_EQ(after.first - before.first, 35.0 + 1 + 1);
+  EXPECT_DOUBLE_EQ(after.second - before.second, 35.0 + 1 + 1);
 }

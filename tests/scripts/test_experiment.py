@@ -9,6 +9,14 @@
         the Markdown table and a PNG. It never checks a figure's value: none
         is known in advance.
 
+    test_experiment.py hosts --soc-sim SOC_SIM --work DIR
+        fullscreen_rect and tile_pass with --host both --program both: a row
+        per host and program in both tables, the host and program columns,
+        and the study's quantities against the whole frame's (the study's
+        time and energy strictly less than the frame's; the ARM's clear time
+        within its rasterization phase; the ISS and native rows of the
+        array's passes agree, the array being the same).
+
     test_experiment.py errors --soc-sim SOC_SIM --work DIR
         the script's messages and exit statuses for --list, an unknown
         experiment, a missing soc_sim, a malformed experiment file and a
@@ -77,29 +85,39 @@ def non_negative_number(text):
     return not math.isnan(value) and value >= 0
 
 
-def test_run(name, soc_sim, work):
-    # Loaded as the script loads it: a matrix's runs listed, the columns' defaults filled in.
+def test_run(name, soc_sim, work, host="native"):
+    # Loaded as the script loads it: a matrix's runs listed, the columns' defaults filled in, the runs on `host`
+    # with each program the experiment lists.
     spec = experiment.load_experiment(EXPERIMENTS / f"{name}.json")
+    runs = experiment.expand_runs(spec, [host])
     out = work / name
     shutil.rmtree(out, ignore_errors=True)
-    status, stdout, stderr = run_script(name, "--frames", "1", "--soc-sim", soc_sim, "--out", out, "--quiet")
+    status, stdout, stderr = run_script(name, "--frames", "1", "--soc-sim", soc_sim, "--out", out, "--quiet",
+                                        "--host", host)
     if not check(status == 0, f"{name}: the experiment failed\n" + describe(status, stdout, stderr)):
         return
-
-    columns = spec["columns"]
-    runs = spec["runs"]
-    headers = [spec.get("label_header", "run")] + [column.get("header", column["key"]) for column in columns]
-    header_line = "| " + " | ".join(headers) + " |"
-    check(header_line in stdout.splitlines(), f"{name}: the printed table lacks the line {header_line}\n{stdout}")
+    check(f"[{name}] wall time: " in stderr, f"{name}: no wall time on standard error\n{stderr}")
+    check_table(name, spec["label_header"], spec["columns"], runs, stdout, out / f"{name}.csv")
+    check("study" not in spec or check_table(name, spec["label_header"], spec["study"]["columns"], runs, stdout,
+                                              out / f"{name}_study.csv"), f"{name}: the study's table")
     markdown = out / f"{name}.md"
-    check(markdown.is_file() and header_line in markdown.read_text(), f"{name}: {markdown} lacks the table")
-
+    check(markdown.is_file() and (spec["title"] in markdown.read_text())
+          and ("study" not in spec or spec["study"]["title"] in markdown.read_text()),
+          f"{name}: {markdown} lacks a table's title")
     png = out / f"{name}.png"
     check(png.is_file() and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", f"{name}: {png} is not a PNG file")
 
-    csv_path = out / f"{name}.csv"
+
+def check_table(name, label_header, columns, runs, stdout, csv_path):
+    """One table as printed and as its CSV: the headers (label, host, program, the columns), one row per run, every
+    figure a positive number or empty where the column allows it. True when every check passed."""
+    failures = len(FAILURES)
+    columns = experiment.RUN_COLUMNS + columns
+    headers = [label_header] + [column.get("header", column["key"]) for column in columns]
+    header_line = "| " + " | ".join(headers) + " |"
+    check(header_line in stdout.splitlines(), f"{name}: the printed table lacks the line {header_line}\n{stdout}")
     if not check(csv_path.is_file(), f"{name}: {csv_path} is missing"):
-        return
+        return False
     with csv_path.open(newline="") as file:
         rows = list(csv.reader(file))
     keys = ["run"] + [column["key"] for column in columns]
@@ -107,7 +125,12 @@ def test_run(name, soc_sim, work):
     check([row[0] for row in rows[1:]] == [run["label"] for run in runs],
           f"{name}: CSV rows {[row[0] for row in rows[1:]]}, expected the runs {[run['label'] for run in runs]}")
     for row, run in zip(rows[1:], runs):
-        for column, cell in zip(columns, row[1:]):
+        check(row[1] == run["set"]["host.model"], f"{name}: run '{run['label']}': host '{row[1]}', expected "
+              f"{run['set']['host.model']}")
+        key = experiment.PROGRAM_KEYS.get(run["backend"])
+        check(row[2] == (run["set"].get(key, "tuned") if key else "-"),
+              f"{name}: run '{run['label']}': program '{row[2]}'")
+        for column, cell in zip(columns[2:], row[3:]):
             applies = run["backend"] in column.get("backends", [run["backend"]])
             where = f"{name}: run '{run['label']}', column '{column['key']}'"
             if not applies:
@@ -119,12 +142,64 @@ def test_run(name, soc_sim, work):
             else:
                 check(positive_number(cell), f"{where}: '{cell}' is not a positive number")
     # The table shows the same runs, each figure or '-' where the CSV is empty.
+    lines = stdout.splitlines()
+    start = lines.index(header_line) if header_line in lines else 0
     for row in rows[1:]:
-        table_rows = [line for line in stdout.splitlines() if line.startswith(f"| {row[0]} |")]
+        table_rows = [line for line in lines[start:start + len(rows) + 2] if line.startswith(f"| {row[0]} |")]
         if check(len(table_rows) == 1, f"{name}: the printed table has no single row for '{row[0]}'"):
             cells = [cell.strip() for cell in table_rows[0].strip("|").split("|")][1:]
-            check([cell == "-" for cell in cells] == [value == "" for value in row[1:]],
+            check(cells[:2] == row[1:3] and [cell == "-" for cell in cells[2:]] == [value == "" for value in row[3:]],
                   f"{name}: row '{row[0]}': the table's '-' cells differ from the CSV's empty ones")
+    return len(FAILURES) == failures
+
+
+def read_csv(path):
+    with path.open(newline="") as file:
+        return {row["run"]: row for row in csv.DictReader(file)}
+
+
+def test_hosts(soc_sim, work):
+    """--host both --program both: every host and program in both tables, and the study's quantities set beside the
+    whole frame's."""
+    out = work / "hosts"
+    shutil.rmtree(out, ignore_errors=True)
+    status, stdout, stderr = run_script("fullscreen_rect", "tile_pass", "--frames", "1", "--soc-sim", soc_sim,
+                                        "--out", out, "--quiet", "--host", "both", "--program", "both")
+    if not check(status == 0, "hosts: the experiments failed\n" + describe(status, stdout, stderr)):
+        return
+    check(all(f"[{name}] wall time: " in stderr and "iss " in stderr and "native " in stderr
+              for name in ("fullscreen_rect", "tile_pass")), f"hosts: no wall time per host\n{stderr}")
+    whole = read_csv(out / "fullscreen_rect" / "fullscreen_rect.csv")
+    study = read_csv(out / "fullscreen_rect" / "fullscreen_rect_study.csv")
+    expected = [f"{label} {host}" for label in ("arm", "ap-tile study", "ap-tile tuned") for host in ("native", "iss")]
+    for rows, what in ((whole, "whole-frame"), (study, "study's")):
+        check(sorted(rows) == sorted(expected), f"hosts: the {what} table's rows {sorted(rows)}, expected {expected}")
+    for label in expected:
+        if label not in whole or label not in study:
+            continue
+        frame_ms, study_ms = float(whole[label]["frame_ms"]), float(study[label]["study_ms"])
+        check(0 < study_ms < frame_ms, f"hosts: '{label}': the study's time {study_ms} ms is not within the "
+                                       f"frame's {frame_ms} ms")
+        energy_mj, study_mj = float(whole[label]["energy_mj"]), float(study[label]["study_energy_mj"])
+        check(0 < study_mj < energy_mj, f"hosts: '{label}': the study's energy {study_mj} mJ is not within the "
+                                        f"frame's {energy_mj} mJ")
+    # The ARM's clears are timed on both hosts, inside the rasterization phase.
+    for host in ("native", "iss"):
+        stats_path = out / "fullscreen_rect" / "runs" / f"arm_{host}" / "stats.json"
+        frames = json.loads(stats_path.read_text())["stats"]["frames"] if stats_path.is_file() else []
+        check(frames and all(0 < f["driver"].get("host_clear_ns", 0) < f["driver"]["host_rasterization_ns"]
+                             for f in frames), f"hosts: {stats_path}: host_clear_ns not within the rasterization")
+    # The array's passes are the same on both hosts: the ISS changes the host, not the array's programs.
+    for program in ("study", "tuned"):
+        native, iss = study.get(f"ap-tile {program} native"), study.get(f"ap-tile {program} iss")
+        if native and iss:
+            check(native["study_ms"] == iss["study_ms"] and native["study_energy_mj"] == iss["study_energy_mj"],
+                  f"hosts: ap-tile {program}: the array's passes differ between the hosts: {native} {iss}")
+    # The study's program takes longer per pass than the tuned one (it keeps every variable in CMEM).
+    passes = read_csv(out / "tile_pass" / "tile_pass_study.csv")
+    if "ap-tile study native" in passes and "ap-tile tuned native" in passes:
+        check(float(passes["ap-tile study native"]["total"]) > float(passes["ap-tile tuned native"]["total"]),
+              f"hosts: tile_pass: the study's pass is not longer than the tuned one: {passes}")
 
 
 def test_errors(soc_sim, work):
@@ -180,7 +255,7 @@ def test_errors(soc_sim, work):
                                  "columns": [{"key": "ciu", "config": "ciu.read_cycles"}]}))
     status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--quiet", "--host", "iss",
                                   "--set", "ciu.read_cycles=41")
-    check(status == 0 and "Host model: iss (`host.model`)." in out and "| a | 41 |" in out,
+    check(status == 0 and "Host model: iss (`host.model`)." in out and "| a | iss | - | 41 |" in out,
           "--host iss --set ciu.read_cycles=41 must run on the ISS with that setting and say so\n"
           + describe(status, out, err))
     status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--quiet")
@@ -191,8 +266,31 @@ def test_errors(soc_sim, work):
     check(status == 2 and "--set 'ciu.read_cycles': expected KEY=VALUE" in err,
           "a --set without '=' must be status 2 naming it\n" + describe(status, out, err))
     status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--host", "qemu")
-    check(status == 2 and "invalid choice: 'qemu'" in err, "an unknown --host must be status 2\n"
-          + describe(status, out, err))
+    check(status == 2 and "--host 'qemu': unknown (choose native, iss or both)" in err,
+          "an unknown --host must be status 2 naming it\n" + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--program", "fast")
+    check(status == 2 and "--program 'fast': unknown (choose study, tuned or both)" in err,
+          "an unknown --program must be status 2 naming it\n" + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--set", "host.model=iss")
+    check(status == 2 and "choose the host model with --host" in err,
+          "--set host.model must be status 2 pointing to --host\n" + describe(status, out, err))
+    status, out, err = run_script(small, "--soc-sim", soc_sim, "--out", work / "small", "--set",
+                                  "ap.pixel.program=study")
+    check(status == 2 and "choose the array programs with --program" in err,
+          "--set ap.pixel.program must be status 2 pointing to --program\n" + describe(status, out, err))
+    for what, change, message in [
+        ("an unknown host", {"hosts": ["native", "qemu"]}, "'hosts' must be a non-empty list of distinct values of "
+                                                           "native, iss, got [\"native\", \"qemu\"]"),
+        ("an unknown program", {"programs": ["fast"]}, "'programs' must be a non-empty list of distinct values of "
+                                                       "study, tuned"),
+        ("a host listed twice", {"hosts": ["iss", "iss"]}, "'hosts' must be a non-empty list of distinct values"),
+    ]:
+        bad = work / "bad_dimension.json"
+        bad.write_text(json.dumps({"title": "t", "runs": [{"label": "a", "backend": "arm", "app": "triangle"}],
+                                   "columns": [{"key": "ciu", "config": "ciu.read_cycles"}], **change}))
+        status, out, err = run_script(bad, "--soc-sim", soc_sim, "--out", work / "bad")
+        check(status == 2 and message in err and str(bad) in err,
+              f"{what} in an experiment file must be status 2 naming the file and it\n" + describe(status, out, err))
 
 
 MATRIX_SPEC = {
@@ -394,7 +492,7 @@ def test_what_if_figures():
 
     # Energy: the frame records' own energy (start-up excluded), a study's whole run, and the ratio to a baseline.
     def labelled(label, run):
-        run.label = label
+        run.label = run.base_label = label
         return run
 
     arm = labelled("arm", result("arm", {"frames": [{"render_ns": 1e6, "energy": {"total_j": 0.002}},
@@ -420,7 +518,7 @@ def test_what_if_figures():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=("run", "errors", "matrix"))
+    parser.add_argument("what", choices=("run", "hosts", "errors", "matrix"))
     parser.add_argument("name", nargs="?")
     parser.add_argument("--soc-sim", help="the soc_sim to run (run and errors)")
     parser.add_argument("--work", required=True, type=pathlib.Path)
@@ -431,6 +529,8 @@ def main():
         if not args.name:
             parser.error("run needs an experiment's name")
         test_run(args.name, args.soc_sim, args.work)
+    elif args.what == "hosts":
+        test_hosts(args.soc_sim, args.work)
     elif args.what == "errors":
         test_errors(args.soc_sim, args.work)
     else:

@@ -19,6 +19,19 @@ uint32_t low32(uint64_t value) {
   return static_cast<uint32_t>(std::min<uint64_t>(value, UINT32_MAX));
 }
 
+// The AC's broadcasts: one per instruction, except the multiplication of
+// CMEM operands, which stands for the repeated additions on CMEM operands
+// it is made of: it counts one broadcast per CMEM-operand addition time
+// (array.cycles.add + array.cycles.cmem_operand) of its cycles, 35 with the
+// defaults. The register-level mul is one long instruction, one broadcast.
+// The energy model charges the AC per broadcast (tlm/power/README.md,
+// "Parameters").
+double ac_broadcasts(const ap::CycleTable& table, uint64_t instructions, uint64_t cmem_multiplies) {
+  const double addition = table.cycles[static_cast<unsigned>(ap::Opcode::op_add)] + table.cmem_operand;
+  const double steps = addition > 0 ? table.cycles[static_cast<unsigned>(ap::Opcode::op_mulm)] / addition : 1;
+  return static_cast<double>(instructions) + static_cast<double>(cmem_multiplies) * (steps - 1);
+}
+
 }  // namespace
 
 ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& params)
@@ -291,12 +304,37 @@ SummaryRow ArrayProcessor::summary_row(const sc_time& elapsed) const {
 EnergyActivity ArrayProcessor::energy_activity(const sc_time& now) const {
   (void)now;
   const double lanes = static_cast<double>(m_params.geometry.columns) * m_params.geometry.rows;
-  return {{"array_controller", {{"instructions", static_cast<double>(m_instructions.value)}}},
+  const double broadcasts =
+      ac_broadcasts(m_params.cycles, m_instructions.value, m_mix[static_cast<unsigned>(ap::Opcode::op_mulm)]->value);
+  return {{"array_controller", {{"broadcasts", broadcasts}}},
           {"cu_array",
            {{"cu_cycles", lanes * static_cast<double>(m_cycles.value)},
             {"cmem_bytes_read", static_cast<double>(m_cmem_reads.value)},
             {"cmem_bytes_written", static_cast<double>(m_cmem_writes.value)},
             {"neighbour_transfers", static_cast<double>(m_neighbour_transfers.value)}}}};
+}
+
+std::vector<ArrayProcessor::StageActivity> ArrayProcessor::stage_activity() const {
+  const ap::ControllerActivity& core = m_core.activity();
+  const double lanes = static_cast<double>(m_params.geometry.columns) * m_params.geometry.rows;
+  std::vector<StageActivity> stages;
+  for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) {
+    const uint64_t cycles = core.stage_cycles[stage];
+    if (cycles == 0 && core.stage_instructions[stage] == 0) continue;
+    const ap::ArrayActivity& used = core.stage_lanes[stage];
+    stages.push_back(
+        {std::string(ap::stage_name(static_cast<ap::Stage>(stage))),
+         m_params.clock_period.to_seconds() * static_cast<double>(cycles),
+         {{"array_controller",
+           {{"broadcasts", ac_broadcasts(m_params.cycles, core.stage_instructions[stage],
+                                         core.stage_mix[stage][static_cast<unsigned>(ap::Opcode::op_mulm)])}}},
+          {"cu_array",
+           {{"cu_cycles", lanes * static_cast<double>(cycles)},
+            {"cmem_bytes_read", static_cast<double>(used.cmem_reads)},
+            {"cmem_bytes_written", static_cast<double>(used.cmem_writes)},
+            {"neighbour_transfers", static_cast<double>(used.neighbour_transfers)}}}}});
+  }
+  return stages;
 }
 
 }  // namespace tessera

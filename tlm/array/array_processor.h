@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <tlm_utils/simple_target_socket.h>
 #include <systemc>
@@ -82,6 +83,19 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
+
+  // Per stage of the programs run so far (the stages the program words are
+  // marked with: fill, depth, ...): the time its instructions took at the
+  // array clock, and their activity in the energy model's units
+  // (array_controller, cu_array), so that the energy of some stages alone
+  // can be computed (Soc: stats.energy.array_stages). Stages never run are
+  // left out.
+  struct StageActivity {
+    std::string stage;
+    double seconds = 0;
+    EnergyActivity units;
+  };
+  std::vector<StageActivity> stage_activity() const;
 
  private:
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;

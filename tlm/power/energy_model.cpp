@@ -57,23 +57,6 @@ double UnitEnergy::dynamic_joules() const {
   return sum;
 }
 
-const std::vector<CalibrationScenario>& calibration_scenarios() {
-  // docs/spec/calibration.md, "Power".
-  static const std::vector<CalibrationScenario> scenarios = {
-      {"tile_renderer",
-       "the tile-based renderer on the array (--app teapot --backend ap-tile)",
-       {{"ARM922T", {"host"}, 57.5},
-        {"AC + CIU", {"array_controller", "ciu"}, 37.92},
-        {"CUs + CMEM", {"cu_array"}, 33.24}}},
-      {"pixel_shading",
-       "the pixel shading loop (--app study_shading --backend ap-pixel)",
-       {{"ARM922T", {"host"}, 62.76},
-        {"AC + CIU", {"array_controller", "ciu"}, 12.96},
-        {"CUs + CMEM", {"cu_array"}, 29.28}}},
-  };
-  return scenarios;
-}
-
 EnergyModel::EnergyModel(std::vector<UnitEnergyParams> units) : m_units(std::move(units)) {
   for (const UnitEnergyParams& u : m_units) {
     for (const EventEnergy& e : u.events) check_value(event_key(u.unit, e.event), e.picojoules, "pJ");
@@ -91,9 +74,6 @@ ParamGroup EnergyModel::parameters() {
     else
       specs.push_back(param::real(static_key(e.unit), e.value, 0, MAX_MILLIWATTS, "mW", e.description + source));
   }
-  specs.push_back(param::choice("power.calibration", "none", {"none", "tile_renderer", "pixel_shading"},
-                                "after the run, print each unit's average power beside the board's for this "
-                                "scenario of the calibration table (docs/calibration.md)"));
   specs.push_back(param::boolean("power.sleep_unused", true,
                                  "a block the software has not used yet sleeps with its clocks gated and is charged "
                                  "no static power, as the board's measurements put every unused block to sleep "

@@ -35,22 +35,6 @@ struct UnitEnergy {
   double total_joules() const { return dynamic_joules() + static_joules; }
 };
 
-// A scenario of docs/spec/calibration.md's power table: for each group of
-// units the board measured as one, its measured average power.
-struct CalibrationGroup {
-  std::string name;  // "ARM922T"
-  std::vector<std::string> units;
-  double measured_milliwatts = 0;
-};
-
-struct CalibrationScenario {
-  std::string name;  // the value of power.calibration
-  std::string description;
-  std::vector<CalibrationGroup> groups;
-};
-
-const std::vector<CalibrationScenario>& calibration_scenarios();
-
 class EnergyModel {
  public:
   // Throws ConfigError naming the key (power.<unit>.<event>_pj) when an

@@ -370,6 +370,27 @@ nlohmann::json Soc::frames_json() const {
   return frames;
 }
 
+nlohmann::json Soc::array_stages_energy_json() const {
+  nlohmann::json stages = nlohmann::json::object();
+  for (ArrayProcessor::StageActivity& stage : array.stage_activity()) {
+    // The CIU belongs to the array as the board measured it; its words are
+    // the host's, between programs, so within a stage it has its static
+    // power only. Each unit is clocked for the stage's time.
+    stage.units.push_back({"ciu", {{"words", 0.0}}});
+    nlohmann::json units = nlohmann::json::object();
+    double total_joules = 0;
+    for (UnitActivity& unit : stage.units) {
+      unit.clocked_seconds = stage.seconds;
+      const UnitEnergy energy = m_energy_model.energy(unit, stage.seconds);
+      units[unit.unit] = unit_energy_json(energy.static_joules, energy.dynamic_joules(), stage.seconds);
+      total_joules += energy.total_joules();
+    }
+    stages[stage.stage] = energy_json(std::move(units), total_joules, stage.seconds);
+    stages[stage.stage]["seconds"] = stage.seconds;
+  }
+  return stages;
+}
+
 EnergyActivity Soc::energy_activity(const sc_time& now) const {
   EnergyActivity activity;
   for (const Block* block : m_blocks) {
@@ -398,6 +419,7 @@ nlohmann::json Soc::stats_json() const {
   for (const UnitActivity& unit : activity)
     for (const auto& [event, count] : unit.counts)
       stats["energy"]["units"][unit.unit]["events"][event]["count"] = count;
+  stats["energy"]["array_stages"] = array_stages_energy_json();
   stats["frames"] = frames_json();
   return stats;
 }

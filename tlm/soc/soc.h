@@ -118,6 +118,10 @@ class Soc : public sc_core::sc_module {
   void trace_power();  // SC_THREAD: ends at once without a power trace
   void record_request(const sc_core::sc_time& when);
   void record_frame(const Frame& frame);
+  // stats.energy.array_stages: per stage of the array's programs, the
+  // energy of the units the board measured as the array (array controller,
+  // CIU, CUs) over the time of that stage's instructions alone.
+  nlohmann::json array_stages_energy_json() const;
   nlohmann::json frames_json() const;
   struct FrameRecord;
   // Frame `index`'s record in stats.json; `previous_shown_seconds`: when the

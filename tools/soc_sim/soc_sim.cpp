@@ -227,36 +227,6 @@ void print_energy_summary(const nlohmann::json& stats, const FrameStatsStream::S
       std::printf("  %s\n", line.c_str());
 }
 
-// With power.calibration set: each group of units of that scenario of the
-// calibration table, its average power over the run beside the board's,
-// and the host's idle and leakage power beside the board's figures.
-void print_energy_calibration(const Config& config, const Soc& soc, const nlohmann::json& stats) {
-  const std::string name = config.get_string("power.calibration");
-  const auto line = [](const std::string& what, double model_mw, double measured_mw) {
-    std::printf("energy calibration: %s: model %.2f mW, measured %.2f mW (%+.1f%%)\n", what.c_str(), model_mw,
-                measured_mw, 100.0 * (model_mw - measured_mw) / measured_mw);
-  };
-  for (const CalibrationScenario& scenario : calibration_scenarios()) {
-    if (scenario.name != name) continue;
-    for (const CalibrationGroup& group : scenario.groups) {
-      double watts = 0;
-      for (const std::string& unit : group.units) watts += stats["energy"]["units"][unit]["average_w"].get<double>();
-      line(scenario.name + ": " + group.name, watts * 1e3, group.measured_milliwatts);
-    }
-  }
-  // The board's figures at 1.2 V: 43.5 mA idling on NOPs, 3 mA with clocks stopped.
-  double idle_pj = 0;
-  double leakage_mw = 0;
-  for (const UnitEnergyParams& unit : soc.energy_model().units()) {
-    if (unit.unit != "host") continue;
-    leakage_mw = unit.static_milliwatts;
-    for (const EventEnergy& e : unit.events)
-      if (e.event == "idle_cycles") idle_pj = e.picojoules;
-  }
-  line("ARM922T idling on NOPs", idle_pj * 1e-9 * config.get_real("host.clock_mhz") * 1e6 + leakage_mw, 43.5 * 1.2);
-  line("leakage, clocks stopped", leakage_mw, 3.0 * 1.2);
-}
-
 // A block that did nothing in the run: no busy time and every counter 0.
 bool did_nothing(const Block& block, const SummaryRow& row) {
   if (row.busy && row.busy->value() != 0) return false;
@@ -773,7 +743,6 @@ int run(int argc, char* argv[]) {
     stats_written = false;
     if (status == 0) status = EXIT_SIM_FAILED;
   }
-  if (config.get_string("power.calibration") != "none") print_energy_calibration(config, soc, stats);
 
   if (!opt.quiet) {
     std::vector<std::string> outputs;

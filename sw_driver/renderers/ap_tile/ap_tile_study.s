@@ -21,8 +21,10 @@
 ;   neighbour on the right by the x delta; the row start steps by the y
 ;   delta. Every step is one 16-bit subtraction, A and B being per pixel
 ;   right and per row down.
-; - A 16 x 8 multiplication is the language's shift-and-add routine, eight
-;   steps on CMEM variables, never the `mul` instruction.
+; - A 16 x 8 multiplication of CMEM variables is the calibrated CMEM
+;   multiplication (`mulm`: docs/spec/calibration.md's 1093.44 ns, the
+;   repeated addition SEL makes of it), its 24-bit product stored and the
+;   low 16 bits copied into the 16-bit variable.
 
 .const TILE_W 8
 .const TILE_H 36
@@ -70,7 +72,7 @@
 .var clear_z 2              ; what a depth clear stores
 
 ; The program's own variables.
-.var mul_m 1                ; the multiplier, shifted out a bit at a time
+.var product 3              ; a 16 x 8 product, 24 bits (high, middle, low)
 .var px 2                   ; A times the x offset
 .var py 2                   ; B times the y offset
 .var erow 2                 ; the line's value at the current row's first pixel
@@ -100,59 +102,17 @@ fill:
   endloop
   .rept k, 0, 2
     ; px = A * XCOUNTER[TILE_W - 1]
-    mov r0, [xcounter + TILE_W - 1]
-    mov [mul_m], r0
-    mov r0, [xcounter]
+    mulm [product], [line_a + 2 * k], [xcounter + TILE_W - 1]
+    mov r0, [product + 1]
     mov [px], r0
+    mov r0, [product + 2]
     mov [px + 1], r0
-    loop i, 7, 1
-      mov r0, [px]
-      mov r1, [px + 1]
-      shl r1, r1
-      rol r0, r0
-      mov [px], r0
-      mov [px + 1], r1
-      mov r2, [mul_m]
-      shl r2, r2                  ; C = the multiplier's next bit, the highest first
-      mov [mul_m], r2
-      mmov c
-      mov r0, [px]
-      mov r1, [px + 1]
-      mov r2, [line_a + 2 * k]
-      mov r3, [line_a + 2 * k + 1]
-      add r1, r1, r3
-      adc r0, r0, r2
-      mov [px], r0
-      mov [px + 1], r1
-      mset
-    endloop
     ; py = B * YCOUNTER[TILE_H - 1]
-    mov r0, [ycounter + TILE_H - 1]
-    mov [mul_m], r0
-    mov r0, [xcounter]
+    mulm [product], [line_b + 2 * k], [ycounter + TILE_H - 1]
+    mov r0, [product + 1]
     mov [py], r0
+    mov r0, [product + 2]
     mov [py + 1], r0
-    loop i, 7, 1
-      mov r0, [py]
-      mov r1, [py + 1]
-      shl r1, r1
-      rol r0, r0
-      mov [py], r0
-      mov [py + 1], r1
-      mov r2, [mul_m]
-      shl r2, r2
-      mov [mul_m], r2
-      mmov c
-      mov r0, [py]
-      mov r1, [py + 1]
-      mov r2, [line_b + 2 * k]
-      mov r3, [line_b + 2 * k + 1]
-      add r1, r1, r3
-      adc r0, r0, r2
-      mov [py], r0
-      mov [py + 1], r1
-      mset
-    endloop
     ; erow = C + px; erow = erow + py
     mov r0, [line_c + 2 * k]
     mov r1, [line_c + 2 * k + 1]

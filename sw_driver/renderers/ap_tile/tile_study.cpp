@@ -54,7 +54,7 @@ StudyLayout StudyLayout::of(const ap::Program& program) {
                           {&StudyLayout::clear_rg, "clear_rg", 2},
                           {&StudyLayout::clear_b, "clear_b", 1},
                           {&StudyLayout::clear_z, "clear_z", 2},
-                          {&StudyLayout::mul_m, "mul_m", 1},
+                          {&StudyLayout::product, "product", 3},
                           {&StudyLayout::px, "px", 2},
                           {&StudyLayout::py, "py", 2},
                           {&StudyLayout::erow, "erow", 2},

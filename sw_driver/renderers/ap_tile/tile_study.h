@@ -24,7 +24,7 @@ struct StudyLayout {
   uint16_t xpos = 0, ypos = 0, one = 0, ff = 0, xcounter = 0, ycounter = 0;
   uint16_t clear_rg = 0, clear_b = 0, clear_z = 0;
   // The program's own variables.
-  uint16_t mul_m = 0, px = 0, py = 0, erow = 0, ev = 0, zrow = 0, zv = 0, flag = 0;
+  uint16_t product = 0, px = 0, py = 0, erow = 0, ev = 0, zrow = 0, zv = 0, flag = 0;
   uint16_t crow = 0, cv = 0, rgw = 0, bw = 0, strow = 0, stv = 0;
   // Bytes of CMEM the program declares: one past its last variable.
   unsigned cmem_bytes = 0;

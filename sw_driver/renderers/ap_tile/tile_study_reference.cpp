@@ -18,18 +18,19 @@ bool negative(uint16_t value) {
   return (value & 0x8000u) != 0;
 }
 
-// The language's 16 x 8 multiplication: eight shift-and-add steps, the
-// multiplier's highest bit first, on the CMEM variables `product` and
-// mul_m; the low 16 bits are kept.
-void multiply(const StudyLayout& m, uint8_t* cmem, unsigned multiplicand, unsigned multiplier, unsigned product) {
-  cmem[m.mul_m] = cmem[multiplier];
-  put16(cmem, product, cmem[m.xcounter]);  // XCOUNTER[0]: the 0 the host wrote
-  for (int step = 7; step >= 0; --step) {
-    put16(cmem, product, static_cast<uint16_t>(get16(cmem, product) << 1));
-    const bool bit = (cmem[m.mul_m] & 0x80u) != 0;
-    cmem[m.mul_m] = static_cast<uint8_t>(cmem[m.mul_m] << 1);
-    if (bit) put16(cmem, product, static_cast<uint16_t>(get16(cmem, product) + get16(cmem, multiplicand)));
-  }
+// The language's 16 x 8 multiplication of CMEM variables, the array's
+// mulm: the signed 16-bit multiplicand times the signed 8-bit multiplier,
+// the 24-bit product stored in `product` (high, middle, low), then its low
+// 16 bits copied into `result`.
+void multiply(const StudyLayout& m, uint8_t* cmem, unsigned multiplicand, unsigned multiplier, unsigned result) {
+  const int32_t full =
+      int32_t{static_cast<int16_t>(get16(cmem, multiplicand))} * int32_t{static_cast<int8_t>(cmem[multiplier])};
+  const auto bits = static_cast<uint32_t>(full);
+  cmem[m.product] = static_cast<uint8_t>(bits >> 16);
+  cmem[m.product + 1] = static_cast<uint8_t>(bits >> 8);
+  cmem[m.product + 2] = static_cast<uint8_t>(bits);
+  cmem[result] = cmem[m.product + 1];
+  cmem[result + 1] = cmem[m.product + 2];
 }
 
 // `variable` -= `step` (16 bits, wrapping).

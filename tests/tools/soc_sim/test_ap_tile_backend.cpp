@@ -139,7 +139,7 @@ TEST_F(ApTileBackend, StudyProgramRunsTheSamePassesInMoreCycles) {
   // two (RGB565), and the CMEM each program declares.
   EXPECT_EQ(2 * s["ciu_words_read"].get<uint64_t>(), 3 * t["ciu_words_read"].get<uint64_t>());
   EXPECT_EQ(t["cmem_bytes_per_cu"], 2999);
-  EXPECT_EQ(s["cmem_bytes_per_cu"], 3313);
+  EXPECT_EQ(s["cmem_bytes_per_cu"], 3315);
   EXPECT_FALSE(read_file(m_dir / "study/frame_0000.png").empty());
 }
 

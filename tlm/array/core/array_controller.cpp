@@ -246,6 +246,20 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     result.error = "program word " + std::to_string(pc) + ": " + why;
   };
   m_stage_changes.clear();
+  // The lanes' activity is folded into the stage's totals where the stage
+  // changes, not per instruction.
+  Stage stage = entry < m_slots.size() ? m_slots[entry].instruction.stage : Stage{};
+  ArrayActivity stage_start = array.activity();
+  const auto fold_stage = [&] {
+    const ArrayActivity& now = array.activity();
+    ArrayActivity& total = m_activity.stage_lanes[static_cast<unsigned>(stage)];
+    total.lane_operations += now.lane_operations - stage_start.lane_operations;
+    total.useful_operations += now.useful_operations - stage_start.useful_operations;
+    total.cmem_reads += now.cmem_reads - stage_start.cmem_reads;
+    total.cmem_writes += now.cmem_writes - stage_start.cmem_writes;
+    total.neighbour_transfers += now.neighbour_transfers - stage_start.neighbour_transfers;
+    stage_start = now;
+  };
   while (true) {
     if (pc >= m_slots.size()) {
       fail(RunError::past_end,
@@ -258,6 +272,10 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
       break;
     }
     const Instruction& in = slot.instruction;
+    if (in.stage != stage) {
+      fold_stage();
+      stage = in.stage;
+    }
     unsigned next = pc + 1;
     bool halted = false;
     switch (in.opcode) {
@@ -305,6 +323,7 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     }
     pc = next;
   }
+  fold_stage();
   return result;
 }
 
@@ -321,6 +340,10 @@ void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult
     m_activity.word_cycles[word] += executions * slot.cost;
     m_activity.instruction_mix[static_cast<unsigned>(slot.instruction.opcode)] += executions;
     m_activity.stage_cycles[static_cast<unsigned>(slot.instruction.stage)] += executions * slot.cost;
+    m_activity.stage_instructions[static_cast<unsigned>(slot.instruction.stage)] += executions;
+    m_activity
+        .stage_mix[static_cast<unsigned>(slot.instruction.stage)][static_cast<unsigned>(slot.instruction.opcode)] +=
+        executions;
   }
   m_activity.cycles += result.cycles;
   m_activity.instructions += result.instructions;

@@ -52,6 +52,11 @@ struct ControllerActivity {
   uint64_t instructions = 0;  // instructions broadcast (loop iterations counted)
   std::array<uint64_t, OPCODE_COUNT> instruction_mix{};
   std::array<uint64_t, STAGE_COUNT> stage_cycles{};
+  // The instructions and the lanes' activity per stage, so that the energy of
+  // some stages alone (a pass's, without the clears) can be told apart.
+  std::array<uint64_t, STAGE_COUNT> stage_instructions{};
+  std::array<std::array<uint64_t, OPCODE_COUNT>, STAGE_COUNT> stage_mix{};  // instruction_mix per stage
+  std::array<ArrayActivity, STAGE_COUNT> stage_lanes{};
   std::vector<uint64_t> word_cycles;  // per program word: the profile
   std::vector<uint64_t> word_executions;
 };
