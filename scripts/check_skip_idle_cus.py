@@ -6,8 +6,10 @@ lines; obj_viewer, which needs a model, runs the teapot's OBJ if given one
 with --obj) on each array back end with array.skip_idle_cus=true and
 =false, and compares the two runs byte for byte: every frame file, the VCD,
 and stats.json with the command line and the switch itself taken out (a
-run without --wall-clock has no wall-time figures). Exits 1 naming the
-first scene that differs, and where.
+run without --wall-clock has no wall-time figures), which must hold the
+array's energy per program stage (stats.energy.array_stages, from the lanes'
+activity per stage; CMEM accesses are given an energy for this) in both
+runs. Exits 1 naming the first scene that differs, and where.
 
   check_skip_idle_cus.py --soc-sim build/default/bin/soc_sim [--frames N]
       [--backends ap-tile,ap-pixel] [--apps a,b] [--work-dir DIR] [--jobs J]
@@ -23,6 +25,10 @@ import tempfile
 
 SWITCH = "array.skip_idle_cus"
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
+# The fitted energy model gives CMEM bytes no energy, which would hide the
+# lanes' activity per stage from energy.array_stages: here reads and writes
+# cost something, and differently.
+CMEM_ENERGY = ["--set", "power.cu_array.cmem_bytes_read_pj=1", "--set", "power.cu_array.cmem_bytes_written_pj=3"]
 
 
 def scenes(soc_sim: str) -> list:
@@ -38,7 +44,7 @@ def scenes(soc_sim: str) -> list:
 def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path) -> str:
     command = [soc_sim, "--backend", backend, "--app", app, "--frames", str(frames), "--out", str(out),
                "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"{SWITCH}={str(skip).lower()}"]
-    command += SIZE
+    command += SIZE + CMEM_ENERGY
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         return f"soc_sim exited {result.returncode}: {' '.join(command)}\n{result.stderr[-2000:]}"
@@ -85,8 +91,16 @@ def compare(on: pathlib.Path, off: pathlib.Path) -> str:
     for name in files_on:
         if (on / name).read_bytes() != (off / name).read_bytes():
             return f"{name} differs"
-    return first_difference(stats_without_switch(on / "stats.json"), stats_without_switch(off / "stats.json"),
-                            "stats.json")
+    stats_on, stats_off = stats_without_switch(on / "stats.json"), stats_without_switch(off / "stats.json")
+    for name, stats in (("on", stats_on), ("off", stats_off)):
+        sim = stats.get("stats", {})
+        stages = sim.get("energy", {}).get("array_stages")
+        if stages is None:
+            return f"stats.json ({name}) has no stats.energy.array_stages"
+        cmem_joules = sum(stage["units"]["cu_array"]["dynamic_j"] for stage in stages.values())
+        if sim.get("array", {}).get("programs", 0) > 0 and cmem_joules <= 0:
+            return f"stats.json ({name}): the array ran programs, but no stage's CMEM accesses show in its energy"
+    return first_difference(stats_on, stats_off, "stats.json")
 
 
 def check(soc_sim: str, backend: str, app: str, frames: int, work: pathlib.Path) -> str:

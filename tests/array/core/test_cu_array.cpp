@@ -605,20 +605,56 @@ TEST(ArrayController, SkippingIdleCusChangesNothing) {
         ASSERT_EQ(a.cmem(l, address), b.cmem(l, address)) << "run " << run << ", lane " << l << ", " << address;
     }
     ASSERT_EQ(a.active_lanes(), b.active_lanes());
-    const ArrayActivity &x = a.activity(), &y = b.activity();
-    ASSERT_EQ(x.lane_operations, y.lane_operations) << "run " << run;
-    ASSERT_EQ(x.useful_operations, y.useful_operations) << "run " << run;
-    ASSERT_EQ(x.cmem_reads, y.cmem_reads) << "run " << run;
-    ASSERT_EQ(x.cmem_writes, y.cmem_writes) << "run " << run;
-    ASSERT_EQ(x.neighbour_transfers, y.neighbour_transfers) << "run " << run;
+    // The lanes' activity, in all and per stage (the random instructions'
+    // stages: each program changes stage many times).
+    const auto expect_same = [&](const ArrayActivity& x, const ArrayActivity& y, const std::string& what) {
+      EXPECT_EQ(x.lane_operations, y.lane_operations) << what;
+      EXPECT_EQ(x.useful_operations, y.useful_operations) << what;
+      EXPECT_EQ(x.cmem_reads, y.cmem_reads) << what;
+      EXPECT_EQ(x.cmem_writes, y.cmem_writes) << what;
+      EXPECT_EQ(x.neighbour_transfers, y.neighbour_transfers) << what;
+    };
+    expect_same(a.activity(), b.activity(), "run " + std::to_string(run));
+    for (unsigned stage = 0; stage < STAGE_COUNT; ++stage)
+      expect_same(skipping.activity().stage_lanes[stage], every.activity().stage_lanes[stage],
+                  "run " + std::to_string(run) + ", stage " + std::to_string(stage));
+    ASSERT_FALSE(::testing::Test::HasFailure()) << "run " << run;
   }
   EXPECT_EQ(skipping.activity().word_executions, every.activity().word_executions);
   EXPECT_EQ(skipping.activity().stage_cycles, every.activity().stage_cycles);
   EXPECT_EQ(skipping.activity().instruction_mix, every.activity().instruction_mix);
+  EXPECT_EQ(skipping.activity().stage_instructions, every.activity().stage_instructions);
+  EXPECT_EQ(skipping.activity().stage_mix, every.activity().stage_mix);
+  unsigned stages_with_lane_work = 0;
+  for (const ArrayActivity& stage : every.activity().stage_lanes) stages_with_lane_work += stage.useful_operations > 0;
+  EXPECT_GE(stages_with_lane_work, 4u);
   // Both ways were taken: CUs skipped, and CUs run.
   EXPECT_GT(skipping.lanes_skipped(), skipping.lanes_run());
   EXPECT_GT(skipping.lanes_run(), 0u);
   EXPECT_EQ(every.lanes_skipped(), 0u);
+}
+
+// A program written over another at the same entry is planned and
+// recorded afresh: the CUs are not skipped on the old program's record.
+TEST(ArrayController, SkippingIdleCusForgetsAProgramWrittenOver) {
+  const auto program = [](Opcode opcode) {
+    return std::vector<uint64_t>{encode(make(Opcode::op_mset)), encode(make(Opcode::op_mov, reg(0), mem(0))),
+                                 encode(make(opcode, mem(8), reg(0), mem(1))), encode(make(Opcode::op_halt))};
+  };
+  ArrayController skipping{small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, MAX_CYCLES};
+  skipping.skip_idle_cus(true);
+  for (unsigned l = 0; l < skipping.array().lanes(); ++l) {
+    skipping.array().set_cmem(l, 0, static_cast<uint8_t>(l));
+    skipping.array().set_cmem(l, 1, 3);
+  }
+  ASSERT_TRUE(skipping.load(0, program(Opcode::op_add)));
+  ASSERT_TRUE(skipping.run(0).ok);
+  ASSERT_TRUE(skipping.run(0).ok);  // every CU skipped
+  EXPECT_EQ(skipping.lanes_skipped(), skipping.array().lanes());
+  ASSERT_TRUE(skipping.load(0, program(Opcode::op_sub)));
+  ASSERT_TRUE(skipping.run(0).ok);
+  for (unsigned l = 0; l < skipping.array().lanes(); ++l)
+    EXPECT_EQ(skipping.array().cmem(l, 8), static_cast<uint8_t>(l - 3)) << "lane " << l;
 }
 
 }  // namespace

@@ -43,9 +43,12 @@ void ArrayController::decode_slot(unsigned index) {
 
 bool ArrayController::write_word(unsigned index, uint64_t word) {
   if (index >= m_words.size()) return false;
+  if (m_words[index] == word) return true;
   m_words[index] = word;
   decode_slot(index);
   m_runaways.clear();
+  m_plans.clear();
+  m_memos.clear();
   return true;
 }
 
@@ -558,7 +561,7 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
   memo.inputs.resize(plan.inputs.size() * n);
   for (size_t i = 0; i < plan.inputs.size(); ++i)
     std::copy_n(m_array.state_row(plan.inputs[i]), n, memo.inputs.begin() + static_cast<long>(i * n));
-  const ArrayActivity before = m_array.activity();
+  const std::array<ArrayActivity, STAGE_COUNT> before = m_activity.stage_lanes;
   m_array.count_per_lane(true);
   unsigned last_pc = entry;
   RunResult result = interpret(entry, m_array, last_pc);
@@ -571,11 +574,16 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
       const unsigned row = i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
       std::copy_n(m_array.state_row(row), n, memo.outputs.begin() + static_cast<long>(i * n));
     }
-    memo.useful = m_array.lane_useful();
-    memo.stores = m_array.lane_stores();
-    const ArrayActivity& after = m_array.activity();
-    memo.lane_instructions = (after.lane_operations - before.lane_operations) / n;
-    memo.cmem_reads_per_lane = (after.cmem_reads - before.cmem_reads) / n;
+    memo.lane_stages.clear();
+    for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+      const ArrayActivity& after = m_activity.stage_lanes[stage];
+      memo.lane_instructions[stage] = (after.lane_operations - before[stage].lane_operations) / n;
+      memo.cmem_reads_per_lane[stage] = (after.cmem_reads - before[stage].cmem_reads) / n;
+      if (memo.lane_instructions[stage] == 0) continue;
+      memo.lane_stages.push_back(stage);
+      memo.useful[stage] = m_array.lane_useful(static_cast<Stage>(stage));
+      memo.stores[stage] = m_array.lane_stores(static_cast<Stage>(stage));
+    }
     memo.result = result;
     memo.executions.assign(m_run_executions.begin() + entry, m_run_executions.begin() + last_pc + 1);
     memo.stages_recorded = m_record_stages;
@@ -645,9 +653,13 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
       uint8_t* record = memo.outputs.data() + i * n;
       for (unsigned j = 0; j < k; ++j) to[m_run_lanes[j]] = record[m_run_lanes[j]] = from[j];
     }
-    for (unsigned j = 0; j < k; ++j) {
-      memo.useful[m_run_lanes[j]] = work.lane_useful()[j];
-      memo.stores[m_run_lanes[j]] = work.lane_stores()[j];
+    for (const unsigned stage : memo.lane_stages) {
+      const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
+      const uint32_t* stores = work.lane_stores(static_cast<Stage>(stage)).data();
+      for (unsigned j = 0; j < k; ++j) {
+        memo.useful[stage][m_run_lanes[j]] = useful[j];
+        memo.stores[stage][m_run_lanes[j]] = stores[j];
+      }
     }
   }
   // The run's figures are the recorded run's: they do not depend on data.
@@ -662,14 +674,21 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
       if (m_differs[l] == 0) to[l] = record[l];
   }
   m_array.mask_written();
-  ArrayActivity counts;
-  counts.lane_operations = memo.lane_instructions * n;
-  counts.cmem_reads = memo.cmem_reads_per_lane * n;
-  for (unsigned l = 0; l < n; ++l) {
-    counts.useful_operations += memo.useful[l];
-    counts.cmem_writes += memo.stores[l];
+  // The lanes' activity stage by stage, as interpret() folds it (no nget:
+  // no neighbour transfers).
+  ArrayActivity total;
+  for (const unsigned stage : memo.lane_stages) {
+    ArrayActivity counts;
+    counts.lane_operations = memo.lane_instructions[stage] * n;
+    counts.cmem_reads = memo.cmem_reads_per_lane[stage] * n;
+    for (unsigned l = 0; l < n; ++l) {
+      counts.useful_operations += memo.useful[stage][l];
+      counts.cmem_writes += memo.stores[stage][l];
+    }
+    m_activity.stage_lanes[stage] += counts;
+    total += counts;
   }
-  m_array.add_activity(counts);
+  m_array.add_activity(total);
   m_lanes_run += k;
   m_lanes_skipped += n - k;
   fold_run(entry, last_pc, result);

@@ -128,8 +128,10 @@ class ArrayController {
   // operations, CMEM bytes stored); it runs the program only on the CUs
   // whose state differs (gathered into a work array), gives the others
   // their registers and flags from that record, and adds their counts as
-  // they were. The cycles, the profile and the stage changes do not depend
-  // on data and are the same either way. Off: every CU runs every program.
+  // they were, stage by stage (the instructions' stages: the activity per
+  // stage is the same as well). The cycles, the profile and the stage
+  // changes do not depend on data and are the same either way. Off: every
+  // CU runs every program.
   void skip_idle_cus(bool on) { m_skip_idle = on; }
   // CUs run and CUs skipped since construction (not statistics: the
   // statistics are the same with skipping on and off).
@@ -167,10 +169,13 @@ class ArrayController {
     bool valid = false;
     std::vector<uint8_t> inputs;   // inputs x lanes, at the run's start
     std::vector<uint8_t> outputs;  // (cmem_out, then defined) x lanes, at its end
-    std::vector<uint32_t> useful, stores;
+    // Per stage: per lane, the useful operations and CMEM bytes stored; the
+    // instructions that did lane work and the CMEM bytes each lane read
+    // (the same in every lane); the stages with lane work.
+    std::array<std::vector<uint32_t>, STAGE_COUNT> useful, stores;
+    std::array<uint64_t, STAGE_COUNT> lane_instructions{}, cmem_reads_per_lane{};
+    std::vector<unsigned> lane_stages;
     RunResult result;
-    uint64_t lane_instructions = 0;  // instructions that did lane work
-    uint64_t cmem_reads_per_lane = 0;
     std::vector<uint64_t> executions;  // per word from the entry to last_pc
     bool stages_recorded = false;
     std::vector<StageChange> stages;

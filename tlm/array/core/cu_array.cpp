@@ -168,11 +168,7 @@ void CuArray::set_mask(unsigned lane, bool mask) {
 }
 
 void CuArray::add_activity(const ArrayActivity& more) {
-  m_activity.lane_operations += more.lane_operations;
-  m_activity.useful_operations += more.useful_operations;
-  m_activity.cmem_reads += more.cmem_reads;
-  m_activity.cmem_writes += more.cmem_writes;
-  m_activity.neighbour_transfers += more.neighbour_transfers;
+  m_activity += more;
 }
 
 void CuArray::set_lane_count(unsigned lanes) {
@@ -188,8 +184,10 @@ void CuArray::count_per_lane(bool on) {
 }
 
 void CuArray::clear_lane_counts() {
-  m_lane_useful.assign(m_lanes, 0);
-  m_lane_stores.assign(m_lanes, 0);
+  for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+    m_lane_useful[stage].assign(m_lanes, 0);
+    m_lane_stores[stage].assign(m_lanes, 0);
+  }
 }
 
 void CuArray::count_active() const {
@@ -302,8 +300,10 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   m_activity.lane_operations += n;
   const unsigned active_lanes = active();
   m_activity.useful_operations += active_lanes;
+  uint32_t* lane_useful = m_count_lanes ? m_lane_useful[static_cast<unsigned>(in.stage)].data() : nullptr;
+  uint32_t* lane_stores = m_count_lanes ? m_lane_stores[static_cast<unsigned>(in.stage)].data() : nullptr;
   if (m_count_lanes)
-    for (size_t l = 0; l < n; ++l) m_lane_useful[l] += m[l];
+    for (size_t l = 0; l < n; ++l) lane_useful[l] += m[l];
   m_activity.cmem_reads += n * ((in.a.in_cmem && uses_a ? a_width : 0) + (in.b.in_cmem && uses_b ? 1 : 0));
   const bool d_masked = in.d.in_cmem;
   // Byte `byte` of d from spare row `spare`: a masked store into CMEM, or
@@ -314,7 +314,7 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
       store_masked_lanes(n, value, destination, m);
       m_activity.cmem_writes += active_lanes;
       if (m_count_lanes)
-        for (size_t l = 0; l < n; ++l) m_lane_stores[l] += m[l];
+        for (size_t l = 0; l < n; ++l) lane_stores[l] += m[l];
     } else if (const unsigned r = in.d.value + byte; r < m_geometry.registers) {
       std::swap(m_reg_rows[r], m_spare_rows[spare]);
     } else {
@@ -416,10 +416,12 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
   uint8_t* z = row(m_flag_row + flag_z);
   uint8_t* s = row(m_flag_row + flag_s);
   uint8_t* m = row(m_flag_row + flag_m);
-  uint32_t* lane_useful = m_lane_useful.data();
-  uint32_t* lane_stores = m_lane_stores.data();
-  // The counts per lane are taken where the mask changes: lane operations
-  // and stores since the last change, times each lane's mask.
+  // The counts per lane are taken where the mask or the stage changes: lane
+  // operations and stores since the last change, times each lane's mask,
+  // into the stage's counts.
+  Stage stage = trace.empty() ? Stage{} : trace.front().stage;
+  uint32_t* lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
+  uint32_t* lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
   uint32_t operations = 0, stores = 0;
   const auto count = [&] {
     for (size_t l = 0; l < n; ++l) {
@@ -432,6 +434,12 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
     return o.in_cmem ? row(o.value + byte) : row(m_reg_rows[o.value + byte]);
   };
   for (const Instruction& in : trace) {
+    if (in.stage != stage) {
+      count();
+      stage = in.stage;
+      lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
+      lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
+    }
     uint8_t* out = row(m_spare_rows[SCRATCH_RESULT]);
     switch (in.opcode) {
       case Opcode::op_mset:

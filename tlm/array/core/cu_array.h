@@ -42,6 +42,14 @@ struct ArrayActivity {
   uint64_t cmem_reads = 0;           // bytes read from CMEM, all lanes
   uint64_t cmem_writes = 0;          // bytes written to CMEM (unmasked lanes only)
   uint64_t neighbour_transfers = 0;  // lanes that read a neighbour (not counting reads beyond the edge)
+  ArrayActivity& operator+=(const ArrayActivity& more) {
+    lane_operations += more.lane_operations;
+    useful_operations += more.useful_operations;
+    cmem_reads += more.cmem_reads;
+    cmem_writes += more.cmem_writes;
+    neighbour_transfers += more.neighbour_transfers;
+    return *this;
+  }
 };
 
 class CuArray {
@@ -95,17 +103,17 @@ class CuArray {
   // neighbour reads are meaningless, so only programs without nget run on
   // it.
   void set_lane_count(unsigned lanes);
-  // With counting on, execute() also counts per lane the useful
-  // operations and the CMEM bytes stored (lane_useful(), lane_stores()),
-  // from 0 at clear_lane_counts().
+  // With counting on, execute() also counts per lane and per stage (the
+  // instruction's) the useful operations and the CMEM bytes stored
+  // (lane_useful(), lane_stores()), from 0 at clear_lane_counts().
   void count_per_lane(bool on);
   void clear_lane_counts();
-  const std::vector<uint32_t>& lane_useful() const { return m_lane_useful; }
-  const std::vector<uint32_t>& lane_stores() const { return m_lane_stores; }
+  const std::vector<uint32_t>& lane_useful(Stage stage) const { return m_lane_useful[static_cast<unsigned>(stage)]; }
+  const std::vector<uint32_t>& lane_stores(Stage stage) const { return m_lane_stores[static_cast<unsigned>(stage)]; }
   // Runs a program's instructions in the order a run executed them, loop
   // variables already added to the addresses (no loop, halt or nget; every
-  // address within CMEM), as execute() would, counting per lane only
-  // (lane_useful(), lane_stores(), from 0; activity() does not change).
+  // address within CMEM), as execute() would, counting per lane and stage
+  // only (lane_useful(), lane_stores(), from 0; activity() does not change).
   void run_trace(const std::vector<Instruction>& trace);
 
  private:
@@ -160,7 +168,8 @@ class CuArray {
   mutable bool m_active_stale = false;
   ArrayActivity m_activity;
   bool m_count_lanes = false;
-  std::vector<uint32_t> m_lane_useful, m_lane_stores;
+  // By stage, then lane.
+  std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
 };
 
