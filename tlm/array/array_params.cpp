@@ -20,6 +20,9 @@ ParamGroup ArrayParams::parameters() {
       integer("array.program_words", 4096, 16, 8192, "words", "AC program memory, in 64-bit instruction words"),
       integer("array.max_program_cycles", 1000000000, 1000, 1e15, "cycles",
               "a program running longer stops with an error (a watchdog for runaway loops)"),
+      param::boolean("array.skip_idle_cus", true,
+                     "the simulator skips the CUs whose run of a program would repeat their last run of it "
+                     "exactly (a simulation speed-up: results, cycles and statistics are the same either way)"),
       integer("array.cycles.cmem_operand", 1, 0, 1000, "cycles",
               "extra cycles of an instruction of form RM with an operand in CMEM (calibrated: docs/calibration.md)"),
   };
@@ -43,6 +46,7 @@ ArrayParams ArrayParams::from_config(const Config& config) {
   p.geometry.cmem_bytes = static_cast<unsigned>(config.get_uint("array.cmem_bytes"));
   p.program_words = static_cast<unsigned>(config.get_uint("array.program_words"));
   p.max_program_cycles = config.get_uint("array.max_program_cycles");
+  p.skip_idle_cus = config.get_bool("array.skip_idle_cus");
   p.cycles.cmem_operand = static_cast<unsigned>(config.get_uint("array.cycles.cmem_operand"));
   for (const ap::OpInfo& info : ap::all_ops())
     p.cycles.cycles[static_cast<unsigned>(info.opcode)] =

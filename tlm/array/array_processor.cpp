@@ -60,6 +60,7 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
       g.registers > ap::MAX_REGISTERS || g.cmem_bytes == 0 || g.cmem_bytes > (1u << ap::ADDRESS_BITS) ||
       params.program_words == 0)
     throw std::invalid_argument(std::string(this->name()) + ": impossible array geometry");
+  m_core.skip_idle_cus(params.skip_idle_cus);
   for (const ap::OpInfo& info : ap::all_ops())
     m_mix[static_cast<unsigned>(info.opcode)] =
         &counter("mix." + std::string(info.mnemonic), "executions of " + std::string(info.mnemonic));

@@ -42,6 +42,7 @@ struct ArrayParams {
   ap::CycleTable cycles;
   unsigned program_words = 0;
   uint64_t max_program_cycles = 0;
+  bool skip_idle_cus = true;
   sc_core::sc_time clock_period;
 
   // The parameters this block owns, the one place their defaults live.

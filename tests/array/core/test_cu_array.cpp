@@ -509,5 +509,153 @@ TEST(ArrayController, ProgramMemoryBounds) {
   EXPECT_TRUE(controller.load(1, {0, 0, 1}));
 }
 
+// Skipping idle CUs: random programs (in a loop, loop variables in their
+// addresses), run again and again while a few CUs' CMEM, registers, flags
+// and masks change between runs, leave every CU's CMEM, registers, flags
+// and mask and every count exactly as running every CU does. The first two
+// programs define every register and flag before their random body, which
+// reads the low half of CMEM and stores into its own quarter of the high
+// half, so a CU that
+// nothing changed repeats its last run and is skipped; the third is random
+// throughout (registers and flags read before written) and reads a
+// neighbour, so it always runs on every CU.
+TEST(ArrayController, SkippingIdleCusChangesNothing) {
+  constexpr unsigned WORDS = 256, BODY = 40, RUNS = 400, LOOP_START = 3, HALF = CMEM_BYTES / 2;
+  std::mt19937_64 rng(0x5c1d);
+  std::vector<uint64_t> words;
+  std::vector<unsigned> entries;
+  for (unsigned program = 0; program < 3; ++program) {
+    const bool settled = program < 2;
+    entries.push_back(static_cast<unsigned>(words.size()));
+    if (settled) {
+      words.push_back(encode(make(Opcode::op_mset)));
+      for (unsigned r = 0; r < REGISTERS; ++r) words.push_back(encode(make(Opcode::op_mov, reg(r), mem(r))));
+      words.push_back(encode(make(Opcode::op_add, reg(0), reg(0), mem(0))));  // C, Z and S
+    }
+    words.push_back(encode(loop(0, LOOP_START, 1)));
+    for (unsigned i = 0; i < BODY;) {
+      Instruction in = random_instruction(rng, REGISTERS, CMEM_BYTES).instruction;
+      if ((in.opcode == Opcode::op_nget) != (!settled && i == BODY / 2)) continue;
+      for (Operand* operand : {&in.d, &in.a, &in.b}) {
+        if (!operand->in_cmem) continue;
+        operand->loop = rng() % 3 == 0 ? 1 : 0;
+        const unsigned span = !settled ? CMEM_BYTES : operand == &in.d ? HALF / 2 : HALF;
+        operand->value = static_cast<uint16_t>(operand->value % (span - 3 - LOOP_START));
+        if (settled && operand == &in.d)
+          operand->value = static_cast<uint16_t>(operand->value + HALF + program * HALF / 2);
+      }
+      const Decoded decoded = decode(encode(in));
+      if (!decoded.error.empty() || !check_limits(decoded.instruction, REGISTERS, CMEM_BYTES).empty()) continue;
+      words.push_back(encode(in));
+      ++i;
+    }
+    words.push_back(encode(make(Opcode::op_endloop)));
+    words.push_back(encode(make(Opcode::op_halt)));
+  }
+  ArrayController skipping{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
+  ArrayController every{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
+  skipping.skip_idle_cus(true);
+  for (ArrayController* controller : {&skipping, &every}) ASSERT_TRUE(controller->load(0, words));
+  CuArray& a = skipping.array();
+  CuArray& b = every.array();
+  for (unsigned l = 0; l < a.lanes(); ++l)
+    for (unsigned address = 0; address < CMEM_BYTES; ++address) {
+      const auto value = static_cast<uint8_t>(rng());
+      a.set_cmem(l, address, value);
+      b.set_cmem(l, address, value);
+    }
+  for (unsigned run = 0; run < RUNS; ++run) {
+    // A few CUs change (none in one run of three): a CMEM byte, a
+    // register, the flags and the mask.
+    for (unsigned change = static_cast<unsigned>(rng() % 6 / 2); change > 0; --change) {
+      const auto lane = static_cast<unsigned>(rng() % a.lanes());
+      const auto value = static_cast<uint8_t>(rng());
+      switch (rng() % 4) {
+        case 0:
+        case 1: {
+          const auto address = static_cast<unsigned>(rng() % CMEM_BYTES);
+          a.set_cmem(lane, address, value);
+          b.set_cmem(lane, address, value);
+          break;
+        }
+        case 2:
+          a.set_reg(lane, value % REGISTERS, value);
+          b.set_reg(lane, value % REGISTERS, value);
+          break;
+        default: {
+          const CuFlags flags{(value & 1u) != 0, (value & 2u) != 0, (value & 4u) != 0};
+          a.set_flags(lane, flags);
+          b.set_flags(lane, flags);
+          a.set_mask(lane, (value & 8u) != 0);
+          b.set_mask(lane, (value & 8u) != 0);
+        }
+      }
+    }
+    // The third program, which changes every CU, one run in ten.
+    const unsigned entry = entries[rng() % 10 == 0 ? 2 : rng() % 2];
+    const RunResult ra = skipping.run(entry), rb = every.run(entry);
+    ASSERT_TRUE(ra.ok && rb.ok) << ra.error << rb.error;
+    ASSERT_EQ(ra.cycles, rb.cycles);
+    ASSERT_EQ(ra.instructions, rb.instructions);
+    for (unsigned l = 0; l < a.lanes(); ++l) {
+      ASSERT_EQ(a.flags(l), b.flags(l)) << "run " << run << ", lane " << l;
+      ASSERT_EQ(a.mask(l), b.mask(l)) << "run " << run << ", lane " << l;
+      for (unsigned r = 0; r < REGISTERS; ++r) ASSERT_EQ(a.reg(l, r), b.reg(l, r)) << "run " << run << ", r" << r;
+      for (unsigned address = 0; address < CMEM_BYTES; ++address)
+        ASSERT_EQ(a.cmem(l, address), b.cmem(l, address)) << "run " << run << ", lane " << l << ", " << address;
+    }
+    ASSERT_EQ(a.active_lanes(), b.active_lanes());
+    // The lanes' activity, in all and per stage (the random instructions'
+    // stages: each program changes stage many times).
+    const auto expect_same = [&](const ArrayActivity& x, const ArrayActivity& y, const std::string& what) {
+      EXPECT_EQ(x.lane_operations, y.lane_operations) << what;
+      EXPECT_EQ(x.useful_operations, y.useful_operations) << what;
+      EXPECT_EQ(x.cmem_reads, y.cmem_reads) << what;
+      EXPECT_EQ(x.cmem_writes, y.cmem_writes) << what;
+      EXPECT_EQ(x.neighbour_transfers, y.neighbour_transfers) << what;
+    };
+    expect_same(a.activity(), b.activity(), "run " + std::to_string(run));
+    for (unsigned stage = 0; stage < STAGE_COUNT; ++stage)
+      expect_same(skipping.activity().stage_lanes[stage], every.activity().stage_lanes[stage],
+                  "run " + std::to_string(run) + ", stage " + std::to_string(stage));
+    ASSERT_FALSE(::testing::Test::HasFailure()) << "run " << run;
+  }
+  EXPECT_EQ(skipping.activity().word_executions, every.activity().word_executions);
+  EXPECT_EQ(skipping.activity().stage_cycles, every.activity().stage_cycles);
+  EXPECT_EQ(skipping.activity().instruction_mix, every.activity().instruction_mix);
+  EXPECT_EQ(skipping.activity().stage_instructions, every.activity().stage_instructions);
+  EXPECT_EQ(skipping.activity().stage_mix, every.activity().stage_mix);
+  unsigned stages_with_lane_work = 0;
+  for (const ArrayActivity& stage : every.activity().stage_lanes) stages_with_lane_work += stage.useful_operations > 0;
+  EXPECT_GE(stages_with_lane_work, 4u);
+  // Both ways were taken: CUs skipped, and CUs run.
+  EXPECT_GT(skipping.lanes_skipped(), skipping.lanes_run());
+  EXPECT_GT(skipping.lanes_run(), 0u);
+  EXPECT_EQ(every.lanes_skipped(), 0u);
+}
+
+// A program written over another at the same entry is planned and
+// recorded afresh: the CUs are not skipped on the old program's record.
+TEST(ArrayController, SkippingIdleCusForgetsAProgramWrittenOver) {
+  const auto program = [](Opcode opcode) {
+    return std::vector<uint64_t>{encode(make(Opcode::op_mset)), encode(make(Opcode::op_mov, reg(0), mem(0))),
+                                 encode(make(opcode, mem(8), reg(0), mem(1))), encode(make(Opcode::op_halt))};
+  };
+  ArrayController skipping{small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, MAX_CYCLES};
+  skipping.skip_idle_cus(true);
+  for (unsigned l = 0; l < skipping.array().lanes(); ++l) {
+    skipping.array().set_cmem(l, 0, static_cast<uint8_t>(l));
+    skipping.array().set_cmem(l, 1, 3);
+  }
+  ASSERT_TRUE(skipping.load(0, program(Opcode::op_add)));
+  ASSERT_TRUE(skipping.run(0).ok);
+  ASSERT_TRUE(skipping.run(0).ok);  // every CU skipped
+  EXPECT_EQ(skipping.lanes_skipped(), skipping.array().lanes());
+  ASSERT_TRUE(skipping.load(0, program(Opcode::op_sub)));
+  ASSERT_TRUE(skipping.run(0).ok);
+  for (unsigned l = 0; l < skipping.array().lanes(); ++l)
+    EXPECT_EQ(skipping.array().cmem(l, 8), static_cast<uint8_t>(l - 3)) << "lane " << l;
+}
+
 }  // namespace
 }  // namespace tessera::ap

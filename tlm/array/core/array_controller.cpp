@@ -43,9 +43,12 @@ void ArrayController::decode_slot(unsigned index) {
 
 bool ArrayController::write_word(unsigned index, uint64_t word) {
   if (index >= m_words.size()) return false;
+  if (m_words[index] == word) return true;
   m_words[index] = word;
   decode_slot(index);
   m_runaways.clear();
+  m_plans.clear();
+  m_memos.clear();
   return true;
 }
 
@@ -211,6 +214,23 @@ RunResult ArrayController::run(unsigned entry) {
     m_stage_changes.clear();
     return result;
   }
+  if (m_skip_idle) {
+    auto plan = m_plans.find(entry);
+    if (plan == m_plans.end()) plan = m_plans.emplace(entry, plan_entry(entry)).first;
+    if (plan->second.skippable) {
+      EntryMemo& memo = m_memos[entry];
+      if (memo.plain_runs_left == 0) return run_skipping(entry, plan->second, memo);
+      --memo.plain_runs_left;
+      memo.valid = false;
+    }
+  }
+  unsigned last_pc = entry;
+  RunResult result = interpret(entry, m_array, last_pc);
+  fold_run(entry, last_pc, result);
+  return result;
+}
+
+RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& last_pc) {
   struct Loop {
     unsigned body;
     unsigned step;
@@ -220,22 +240,21 @@ RunResult ArrayController::run(unsigned entry) {
   LoopVariables variables{};
   unsigned depth = 0;
   unsigned pc = entry;
-  unsigned last_pc = entry;  // the furthest word executed (every one is from entry on)
-  std::string error;         // set by an instruction that cannot run
+  last_pc = entry;    // the furthest word executed (every one is from entry on)
+  std::string error;  // set by an instruction that cannot run
   const auto fail = [&](RunError kind, const std::string& why) {
     result.ok = false;
     result.kind = kind;
     result.error_pc = pc;
     result.error = "program word " + std::to_string(pc) + ": " + why;
   };
-  ++m_activity.programs;
   m_stage_changes.clear();
   // The lanes' activity is folded into the stage's totals where the stage
   // changes, not per instruction.
   Stage stage = entry < m_slots.size() ? m_slots[entry].instruction.stage : Stage{};
-  ArrayActivity stage_start = m_array.activity();
+  ArrayActivity stage_start = array.activity();
   const auto fold_stage = [&] {
-    const ArrayActivity& now = m_array.activity();
+    const ArrayActivity& now = array.activity();
     ArrayActivity& total = m_activity.stage_lanes[static_cast<unsigned>(stage)];
     total.lane_operations += now.lane_operations - stage_start.lane_operations;
     total.useful_operations += now.useful_operations - stage_start.useful_operations;
@@ -289,7 +308,7 @@ RunResult ArrayController::run(unsigned entry) {
         break;
       }
       default:
-        if (!m_array.execute(in, variables, depth, error)) fail(RunError::cmem_address, error);
+        if (!array.execute(in, variables, depth, error)) fail(RunError::cmem_address, error);
         break;
     }
     if (!result.ok) break;
@@ -308,6 +327,11 @@ RunResult ArrayController::run(unsigned entry) {
     pc = next;
   }
   fold_stage();
+  return result;
+}
+
+void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult& result) {
+  ++m_activity.programs;
   // The per-word, per-opcode and per-stage totals from the run's counts per
   // word (each word's cost and instruction are fixed during a run).
   for (unsigned word = entry; word <= last_pc && word < m_slots.size(); ++word) {
@@ -327,6 +351,347 @@ RunResult ArrayController::run(unsigned entry) {
   m_activity.cycles += result.cycles;
   m_activity.instructions += result.instructions;
   if (!result.ok) ++m_activity.failed_programs;
+}
+
+namespace {
+
+// The work array's lanes are a multiple of this: the width of the vector
+// unit the lane loops are compiled for (SSE2's 16 bytes).
+constexpr unsigned WORK_LANE_BLOCK = 16;
+// The longest run recorded for skipping (its trace holds an instruction per
+// instruction run): longer programs run on every CU.
+constexpr uint64_t MAX_TRACE = 1u << 22;
+// The back-off of EntryMemo: ap-pixel's blocks fill nearly every CU, and its
+// programs are short enough that comparing and recording cost a few % of
+// its frame.
+constexpr unsigned FULL_RUNS_BEFORE_BACK_OFF = 8, BACK_OFF_RUNS = 64;
+
+// differs[l] |= now[l] ^ then[l], a loop the compiler vectorises.
+void accumulate_differences(size_t n, const uint8_t* __restrict now, const uint8_t* __restrict then,
+                            uint8_t* __restrict differs) {
+  for (size_t l = 0; l < n; ++l) differs[l] |= static_cast<uint8_t>(now[l] ^ then[l]);
+}
+
+}  // namespace
+
+ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
+  // Registers and flags by slot: register r at r, flag f (C, Z, S, M, as
+  // CuArray's state rows) at registers + f.
+  constexpr unsigned FLAG_C = 0, FLAG_Z = 1, FLAG_S = 2, FLAG_M = 3, FLAGS = 4;
+  const unsigned cmem = m_geometry.cmem_bytes, registers = m_geometry.registers;
+  std::vector<uint8_t> read(cmem, 0), written(cmem, 0), defined(registers + FLAGS, 0), live_in(registers + FLAGS, 0);
+  const auto use = [&](unsigned slot) {
+    if (defined[slot] == 0) live_in[slot] = 1;
+  };
+  std::array<unsigned, LOOP_LEVELS> starts{};
+  unsigned depth = 0;
+  // Marks every CMEM byte byte `byte` of `operand` may address (its loop
+  // variable anywhere from 0 to its loop's start); false if that leaves
+  // CMEM or the running loops.
+  const auto mark = [&](const Operand& operand, unsigned byte, std::vector<uint8_t>& marks) {
+    const uint64_t first = uint64_t{operand.value} + byte;
+    uint64_t last = first;
+    if (operand.loop != 0) {
+      if (operand.loop > depth) return false;
+      last += starts[operand.loop - 1];
+    }
+    if (last >= cmem) return false;
+    std::fill(marks.begin() + static_cast<long>(first), marks.begin() + static_cast<long>(last) + 1, 1);
+    return true;
+  };
+  const auto read_operand = [&](const Operand& operand, unsigned width) {
+    for (unsigned byte = 0; byte < width; ++byte) {
+      if (operand.in_cmem) {
+        if (!mark(operand, byte, read)) return false;
+      } else if (operand.value + byte >= registers) {
+        return false;
+      } else {
+        use(operand.value + byte);
+      }
+    }
+    return true;
+  };
+  const auto use_condition = [&](Cond cond) {
+    switch (cond) {
+      case Cond::c:
+      case Cond::nc: use(registers + FLAG_C); break;
+      case Cond::z:
+      case Cond::nz: use(registers + FLAG_Z); break;
+      case Cond::s:
+      case Cond::ns: use(registers + FLAG_S); break;
+      case Cond::hi:
+      case Cond::ls:
+        use(registers + FLAG_C);
+        use(registers + FLAG_Z);
+        break;
+    }
+  };
+  for (unsigned pc = entry; pc < m_slots.size(); ++pc) {
+    const Slot& slot = m_slots[pc];
+    if (!slot.error.empty()) return {};
+    const Instruction& in = slot.instruction;
+    switch (in.opcode) {
+      case Opcode::op_nop: continue;
+      case Opcode::op_halt: {
+        EntryPlan plan;
+        plan.skippable = true;
+        plan.last_pc = pc;
+        for (unsigned a = 0; a < cmem; ++a) {
+          if (read[a] != 0) plan.inputs.push_back(a);
+          if (written[a] != 0) plan.cmem_out.push_back(a);
+          if (read[a] != 0 || written[a] != 0) plan.gathered.push_back(a);
+        }
+        for (unsigned slot_index = 0; slot_index < registers + FLAGS; ++slot_index) {
+          if (live_in[slot_index] != 0) plan.inputs.push_back(cmem + slot_index);
+          if (live_in[slot_index] != 0) plan.gathered.push_back(cmem + slot_index);
+          if (defined[slot_index] != 0) plan.defined.push_back(cmem + slot_index);
+        }
+        return plan;
+      }
+      case Opcode::op_loop:
+        if (in.loop_level() != depth || depth >= LOOP_LEVELS) return {};
+        starts[depth++] = in.loop_start();
+        continue;
+      case Opcode::op_endloop:
+        if (depth == 0) return {};
+        --depth;
+        continue;
+      case Opcode::op_nget: return {};  // reads another CU
+      case Opcode::op_mset:
+      case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
+      case Opcode::op_mmov:
+        use_condition(in.cond());
+        defined[registers + FLAG_M] = 1;
+        continue;
+      case Opcode::op_mand:
+      case Opcode::op_mor:
+        use_condition(in.cond());
+        use(registers + FLAG_M);
+        defined[registers + FLAG_M] = 1;
+        continue;
+      default: break;
+    }
+    const OpInfo& info = op_info(in.opcode);
+    const bool uses_d = info.operands != OperandPattern::ab;
+    const bool uses_b = info.operands == OperandPattern::dab || info.operands == OperandPattern::ab;
+    const bool uses_a = info.operands != OperandPattern::d;
+    // Every lane operation reads the mask: the useful ones are counted.
+    use(registers + FLAG_M);
+    if (uses_a && !read_operand(in.a, std::max(operand_width(in.opcode, 'a'), 1u))) return {};
+    if (uses_b && !read_operand(in.b, 1)) return {};
+    switch (in.opcode) {
+      case Opcode::op_adc:
+      case Opcode::op_sbc:
+      case Opcode::op_cmpc:
+      case Opcode::op_rol:
+      case Opcode::op_ror: use(registers + FLAG_C); break;
+      default: break;
+    }
+    if (uses_d) {
+      for (unsigned byte = 0; byte < std::max(operand_width(in.opcode, 'd'), 1u); ++byte) {
+        if (in.d.in_cmem) {
+          if (!mark(in.d, byte, written)) return {};
+        } else if (in.d.value + byte >= registers) {
+          return {};
+        } else {
+          defined[in.d.value + byte] = 1;
+        }
+      }
+    }
+    for (const char flag : info.flags) {
+      if (flag == 'C') defined[registers + FLAG_C] = 1;
+      if (flag == 'Z') defined[registers + FLAG_Z] = 1;
+      if (flag == 'S') defined[registers + FLAG_S] = 1;
+    }
+  }
+  return {};
+}
+
+std::vector<Instruction> ArrayController::build_trace(unsigned entry) const {
+  struct Loop {
+    unsigned body;
+    unsigned step;
+  };
+  std::vector<Instruction> trace;
+  std::array<Loop, LOOP_LEVELS> loops{};
+  LoopVariables variables{};
+  unsigned depth = 0;
+  // Only for an entry whose run reached its halt: its words and loops are sound.
+  for (unsigned pc = entry; pc < m_slots.size();) {
+    const Instruction& in = m_slots[pc].instruction;
+    unsigned next = pc + 1;
+    switch (in.opcode) {
+      case Opcode::op_nop: break;
+      case Opcode::op_halt: return trace;
+      case Opcode::op_loop:
+        loops[depth] = {pc + 1, in.loop_step()};
+        variables[depth] = static_cast<int>(in.loop_start());
+        ++depth;
+        break;
+      case Opcode::op_endloop:
+        variables[depth - 1] -= static_cast<int>(loops[depth - 1].step);
+        if (variables[depth - 1] >= 0)
+          next = loops[depth - 1].body;
+        else
+          --depth;
+        break;
+      case Opcode::op_mset:
+      case Opcode::op_mclr:
+      case Opcode::op_mmov:
+      case Opcode::op_mand:
+      case Opcode::op_mor: trace.push_back(in); break;
+      default: {
+        Instruction resolved = in;
+        for (Operand* operand : {&resolved.d, &resolved.a, &resolved.b})
+          if (operand->in_cmem && operand->loop != 0) {
+            operand->value = static_cast<uint16_t>(operand->value + variables[operand->loop - 1]);
+            operand->loop = 0;
+          }
+        trace.push_back(resolved);
+      }
+    }
+    pc = next;
+  }
+  return trace;
+}
+
+RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan, EntryMemo& memo) {
+  const unsigned n = m_array.lanes();
+  memo.valid = false;
+  memo.inputs.resize(plan.inputs.size() * n);
+  for (size_t i = 0; i < plan.inputs.size(); ++i)
+    std::copy_n(m_array.state_row(plan.inputs[i]), n, memo.inputs.begin() + static_cast<long>(i * n));
+  const std::array<ArrayActivity, STAGE_COUNT> before = m_activity.stage_lanes;
+  m_array.count_per_lane(true);
+  unsigned last_pc = entry;
+  RunResult result = interpret(entry, m_array, last_pc);
+  m_array.count_per_lane(false);
+  m_lanes_run += n;
+  if (result.ok && result.instructions <= MAX_TRACE && last_pc == plan.last_pc) {
+    const size_t outputs = plan.cmem_out.size() + plan.defined.size();
+    memo.outputs.resize(outputs * n);
+    for (size_t i = 0; i < outputs; ++i) {
+      const unsigned row = i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
+      std::copy_n(m_array.state_row(row), n, memo.outputs.begin() + static_cast<long>(i * n));
+    }
+    memo.lane_stages.clear();
+    for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+      const ArrayActivity& after = m_activity.stage_lanes[stage];
+      memo.lane_instructions[stage] = (after.lane_operations - before[stage].lane_operations) / n;
+      memo.cmem_reads_per_lane[stage] = (after.cmem_reads - before[stage].cmem_reads) / n;
+      if (memo.lane_instructions[stage] == 0) continue;
+      memo.lane_stages.push_back(stage);
+      memo.useful[stage] = m_array.lane_useful(static_cast<Stage>(stage));
+      memo.stores[stage] = m_array.lane_stores(static_cast<Stage>(stage));
+    }
+    memo.result = result;
+    memo.executions.assign(m_run_executions.begin() + entry, m_run_executions.begin() + last_pc + 1);
+    memo.stages_recorded = m_record_stages;
+    memo.stages = m_stage_changes;
+    memo.trace = build_trace(entry);
+    memo.valid = true;
+  }
+  fold_run(entry, last_pc, result);
+  return result;
+}
+
+RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo) {
+  const unsigned n = m_array.lanes();
+  if (!memo.valid || (m_record_stages && !memo.stages_recorded)) return run_and_record(entry, plan, memo);
+  // The CUs whose inputs, or CMEM bytes the program may write, differ
+  // from their last run's.
+  m_differs.assign(n, 0);
+  for (size_t i = 0; i < plan.inputs.size(); ++i)
+    accumulate_differences(n, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n, m_differs.data());
+  for (size_t i = 0; i < plan.cmem_out.size(); ++i)
+    accumulate_differences(n, m_array.state_row(plan.cmem_out[i]), memo.outputs.data() + i * n, m_differs.data());
+  m_run_lanes.clear();
+  for (unsigned l = 0; l < n; ++l)
+    if (m_differs[l] != 0) m_run_lanes.push_back(l);
+  const auto k = static_cast<unsigned>(m_run_lanes.size());
+  // Gathering and scattering costs about what running every CU does when
+  // half of them run.
+  if (2 * k > n) {
+    if (++memo.full_runs == FULL_RUNS_BEFORE_BACK_OFF) {
+      memo.full_runs = 0;
+      memo.plain_runs_left = BACK_OFF_RUNS;
+    }
+    return run_and_record(entry, plan, memo);
+  }
+  memo.full_runs = 0;
+
+  const size_t outputs = plan.cmem_out.size() + plan.defined.size();
+  const auto output_row = [&](size_t i) {
+    return i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
+  };
+  const unsigned last_pc = plan.last_pc;
+  RunResult result = memo.result;
+  if (k > 0) {
+    if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
+    CuArray& work = *m_work;
+    // Whole vectors of lanes: the lane loops have no scalar tail (the lanes
+    // after the k-th compute on stale bytes and are never read back).
+    work.set_lane_count((k + WORK_LANE_BLOCK - 1) / WORK_LANE_BLOCK * WORK_LANE_BLOCK);
+    for (const unsigned row : plan.gathered) {
+      const uint8_t* from = m_array.state_row(row);
+      uint8_t* to = work.state_row(row);
+      for (unsigned j = 0; j < k; ++j) to[j] = from[m_run_lanes[j]];
+    }
+    for (size_t i = 0; i < plan.inputs.size(); ++i) {
+      const uint8_t* from = m_array.state_row(plan.inputs[i]);
+      uint8_t* record = memo.inputs.data() + i * n;
+      for (unsigned j = 0; j < k; ++j) record[m_run_lanes[j]] = from[m_run_lanes[j]];
+    }
+    work.mask_written();
+    // Control flow and addresses do not depend on data: this run takes the
+    // recorded run's path.
+    work.run_trace(memo.trace);
+    for (size_t i = 0; i < outputs; ++i) {
+      const unsigned row = output_row(i);
+      const uint8_t* from = work.state_row(row);
+      uint8_t* to = m_array.state_row(row);
+      uint8_t* record = memo.outputs.data() + i * n;
+      for (unsigned j = 0; j < k; ++j) to[m_run_lanes[j]] = record[m_run_lanes[j]] = from[j];
+    }
+    for (const unsigned stage : memo.lane_stages) {
+      const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
+      const uint32_t* stores = work.lane_stores(static_cast<Stage>(stage)).data();
+      for (unsigned j = 0; j < k; ++j) {
+        memo.useful[stage][m_run_lanes[j]] = useful[j];
+        memo.stores[stage][m_run_lanes[j]] = stores[j];
+      }
+    }
+  }
+  // The run's figures are the recorded run's: they do not depend on data.
+  m_stage_changes.clear();
+  if (m_record_stages) m_stage_changes = memo.stages;
+  std::copy(memo.executions.begin(), memo.executions.end(), m_run_executions.begin() + entry);
+  // The skipped CUs end with the registers and flags their last run left.
+  for (size_t i = plan.cmem_out.size(); i < outputs; ++i) {
+    uint8_t* to = m_array.state_row(output_row(i));
+    const uint8_t* record = memo.outputs.data() + i * n;
+    for (unsigned l = 0; l < n; ++l)
+      if (m_differs[l] == 0) to[l] = record[l];
+  }
+  m_array.mask_written();
+  // The lanes' activity stage by stage, as interpret() folds it (no nget:
+  // no neighbour transfers).
+  ArrayActivity total;
+  for (const unsigned stage : memo.lane_stages) {
+    ArrayActivity counts;
+    counts.lane_operations = memo.lane_instructions[stage] * n;
+    counts.cmem_reads = memo.cmem_reads_per_lane[stage] * n;
+    for (unsigned l = 0; l < n; ++l) {
+      counts.useful_operations += memo.useful[stage][l];
+      counts.cmem_writes += memo.stores[stage][l];
+    }
+    m_activity.stage_lanes[stage] += counts;
+    total += counts;
+  }
+  m_array.add_activity(total);
+  m_lanes_run += k;
+  m_lanes_skipped += n - k;
+  fold_run(entry, last_pc, result);
   return result;
 }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -113,6 +114,30 @@ class ArrayController {
   void record_stages(bool on) { m_record_stages = on; }
   const std::vector<StageChange>& stage_changes() const { return m_stage_changes; }
 
+  // Skipping idle CUs (array.skip_idle_cus; README.md, "Skipping idle
+  // CUs"). A program's work in one CU is a function of that CU's inputs
+  // alone when the program has no nget: the CMEM bytes it may read and the
+  // registers and flags it reads before writing them (the mask included,
+  // which every lane operation reads to count the useful ones), since its
+  // control flow and addresses do not depend on data. So a CU whose inputs
+  // hold what they held when it last ran the program, and whose CMEM bytes
+  // the program may write hold what they held at that run's end, would do
+  // exactly what it did then: it changes no CMEM byte and ends with the
+  // registers and flags it ended with then. The controller keeps, per entry,
+  // each CU's inputs and outputs of its last run and its counts (useful
+  // operations, CMEM bytes stored); it runs the program only on the CUs
+  // whose state differs (gathered into a work array), gives the others
+  // their registers and flags from that record, and adds their counts as
+  // they were, stage by stage (the instructions' stages: the activity per
+  // stage is the same as well). The cycles, the profile and the stage
+  // changes do not depend on data and are the same either way. Off: every
+  // CU runs every program.
+  void skip_idle_cus(bool on) { m_skip_idle = on; }
+  // CUs run and CUs skipped since construction (not statistics: the
+  // statistics are the same with skipping on and off).
+  uint64_t lanes_run() const { return m_lanes_run; }
+  uint64_t lanes_skipped() const { return m_lanes_skipped; }
+
  private:
   struct Slot {
     Instruction instruction;
@@ -121,6 +146,51 @@ class ArrayController {
   };
   void decode_slot(unsigned index);
   std::optional<Runaway> walk_for_runaway(unsigned entry) const;
+  // The run's loop on `array` (m_array or the work array); the counts per
+  // word stay in m_run_executions up to `last_pc` for fold_run().
+  RunResult interpret(unsigned entry, CuArray& array, unsigned& last_pc);
+  void fold_run(unsigned entry, unsigned last_pc, const RunResult& result);
+
+  // What a program from one entry reads and writes, from its text: the
+  // state rows of CuArray::state_row(). Skippable: no nget, and it
+  // reaches its halt with every word decoded and every loop well formed.
+  struct EntryPlan {
+    bool skippable = false;
+    unsigned last_pc = 0;            // its halt
+    std::vector<unsigned> inputs;    // CMEM rows it may read, registers and flags read before written
+    std::vector<unsigned> cmem_out;  // CMEM rows it may write
+    std::vector<unsigned> defined;   // registers and flags it writes
+    std::vector<unsigned> gathered;  // inputs and cmem_out, each row once: what a work array needs
+  };
+  EntryPlan plan_entry(unsigned entry) const;
+  // Per entry, every CU's last run of it (lanes() bytes per row, row-major)
+  // and the run's figures that do not depend on data.
+  struct EntryMemo {
+    bool valid = false;
+    std::vector<uint8_t> inputs;   // inputs x lanes, at the run's start
+    std::vector<uint8_t> outputs;  // (cmem_out, then defined) x lanes, at its end
+    // Per stage: per lane, the useful operations and CMEM bytes stored; the
+    // instructions that did lane work and the CMEM bytes each lane read
+    // (the same in every lane); the stages with lane work.
+    std::array<std::vector<uint32_t>, STAGE_COUNT> useful, stores;
+    std::array<uint64_t, STAGE_COUNT> lane_instructions{}, cmem_reads_per_lane{};
+    std::vector<unsigned> lane_stages;
+    RunResult result;
+    std::vector<uint64_t> executions;  // per word from the entry to last_pc
+    bool stages_recorded = false;
+    std::vector<StageChange> stages;
+    // The run's instructions in the order they ran, loop variables added
+    // (CuArray::run_trace): what the CUs that differ run.
+    std::vector<Instruction> trace;
+    // Back-off: after FULL_RUNS_BEFORE_BACK_OFF runs in a row with most CUs
+    // differing, the next BACK_OFF_RUNS run on every CU without the record
+    // (what comparing and recording would cost for nothing).
+    unsigned full_runs = 0;
+    unsigned plain_runs_left = 0;
+  };
+  std::vector<Instruction> build_trace(unsigned entry) const;
+  RunResult run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
+  RunResult run_and_record(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
 
   ArrayGeometry m_geometry;
   CycleTable m_cycles;
@@ -135,6 +205,13 @@ class ArrayController {
   mutable std::unordered_map<unsigned, std::optional<Runaway>> m_runaways;
   bool m_record_stages = false;
   std::vector<StageChange> m_stage_changes;
+  bool m_skip_idle = false;
+  std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written
+  std::unordered_map<unsigned, EntryMemo> m_memos;  // likewise
+  std::unique_ptr<CuArray> m_work;                  // made at the first skip
+  std::vector<uint8_t> m_differs;                   // per lane, during a run
+  std::vector<unsigned> m_run_lanes;
+  uint64_t m_lanes_run = 0, m_lanes_skipped = 0;
 };
 
 }  // namespace tessera::ap

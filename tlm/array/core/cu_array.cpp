@@ -167,6 +167,29 @@ void CuArray::set_mask(unsigned lane, bool mask) {
   m_active_stale = true;
 }
 
+void CuArray::add_activity(const ArrayActivity& more) {
+  m_activity += more;
+}
+
+void CuArray::set_lane_count(unsigned lanes) {
+  m_lanes = std::min(lanes, m_geometry.lanes());
+  m_copy_bytes = std::min(m_stride, (size_t{m_lanes} + COPY_BLOCK - 1) / COPY_BLOCK * COPY_BLOCK);
+  m_active_stale = true;
+  if (m_count_lanes) clear_lane_counts();
+}
+
+void CuArray::count_per_lane(bool on) {
+  m_count_lanes = on;
+  if (on) clear_lane_counts();
+}
+
+void CuArray::clear_lane_counts() {
+  for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+    m_lane_useful[stage].assign(m_lanes, 0);
+    m_lane_stores[stage].assign(m_lanes, 0);
+  }
+}
+
 void CuArray::count_active() const {
   const uint8_t* m = m_storage.data() + row_offset(m_flag_row + flag_m);
   // Eight 0/1 bytes at a time: their sum is the top byte of the word times
@@ -277,6 +300,10 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   m_activity.lane_operations += n;
   const unsigned active_lanes = active();
   m_activity.useful_operations += active_lanes;
+  uint32_t* lane_useful = m_count_lanes ? m_lane_useful[static_cast<unsigned>(in.stage)].data() : nullptr;
+  uint32_t* lane_stores = m_count_lanes ? m_lane_stores[static_cast<unsigned>(in.stage)].data() : nullptr;
+  if (m_count_lanes)
+    for (size_t l = 0; l < n; ++l) lane_useful[l] += m[l];
   m_activity.cmem_reads += n * ((in.a.in_cmem && uses_a ? a_width : 0) + (in.b.in_cmem && uses_b ? 1 : 0));
   const bool d_masked = in.d.in_cmem;
   // Byte `byte` of d from spare row `spare`: a masked store into CMEM, or
@@ -286,6 +313,8 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
     if (d_masked) {
       store_masked_lanes(n, value, destination, m);
       m_activity.cmem_writes += active_lanes;
+      if (m_count_lanes)
+        for (size_t l = 0; l < n; ++l) lane_stores[l] += m[l];
     } else if (const unsigned r = in.d.value + byte; r < m_geometry.registers) {
       std::swap(m_reg_rows[r], m_spare_rows[spare]);
     } else {
@@ -366,6 +395,153 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   }
   if (uses_d) store(SCRATCH_RESULT, 0, d_rows[0]);
   return true;
+}
+
+void CuArray::run_trace(const std::vector<Instruction>& trace) {
+  clear_lane_counts();
+  // The work array's usual widths with the lane count known to the
+  // compiler, which then unrolls the lane loops into a few vector operations.
+  switch (m_lanes) {
+    case 16: run_trace_lanes<16>(trace); break;
+    case 32: run_trace_lanes<32>(trace); break;
+    case 48: run_trace_lanes<48>(trace); break;
+    default: run_trace_lanes<0>(trace); break;
+  }
+}
+
+template <size_t kLanes>
+void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
+  const size_t n = kLanes != 0 ? kLanes : m_lanes;
+  uint8_t* c = row(m_flag_row + flag_c);
+  uint8_t* z = row(m_flag_row + flag_z);
+  uint8_t* s = row(m_flag_row + flag_s);
+  uint8_t* m = row(m_flag_row + flag_m);
+  // The counts per lane are taken where the mask or the stage changes: lane
+  // operations and stores since the last change, times each lane's mask,
+  // into the stage's counts.
+  Stage stage = trace.empty() ? Stage{} : trace.front().stage;
+  uint32_t* lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
+  uint32_t* lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
+  uint32_t operations = 0, stores = 0;
+  const auto count = [&] {
+    for (size_t l = 0; l < n; ++l) {
+      lane_useful[l] += operations * m[l];
+      lane_stores[l] += stores * m[l];
+    }
+    operations = stores = 0;
+  };
+  const auto operand = [&](const Operand& o, unsigned byte) {
+    return o.in_cmem ? row(o.value + byte) : row(m_reg_rows[o.value + byte]);
+  };
+  for (const Instruction& in : trace) {
+    if (in.stage != stage) {
+      count();
+      stage = in.stage;
+      lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
+      lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
+    }
+    uint8_t* out = row(m_spare_rows[SCRATCH_RESULT]);
+    switch (in.opcode) {
+      case Opcode::op_mset:
+        count();
+        std::fill_n(m, n, 1);
+        continue;
+      case Opcode::op_mclr:
+        count();
+        std::fill_n(m, n, 0);
+        continue;
+      case Opcode::op_mmov:
+      case Opcode::op_mand:
+      case Opcode::op_mor: {
+        count();
+        const uint8_t* holds = condition_lanes(in.cond(), n, c, z, s, out);
+        if (in.opcode == Opcode::op_mmov)
+          copy_row(m, holds);
+        else if (in.opcode == Opcode::op_mand)
+          for (size_t l = 0; l < n; ++l) m[l] &= holds[l];
+        else
+          for (size_t l = 0; l < n; ++l) m[l] |= holds[l];
+        continue;
+      }
+      default: break;
+    }
+    ++operations;
+    const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
+    const uint8_t* a = op.uses_a ? operand(in.a, 0) : nullptr;
+    const uint8_t* b = op.uses_b ? operand(in.b, 0) : nullptr;
+    const auto store = [&](unsigned spare, unsigned byte) {
+      const uint8_t* value = row(m_spare_rows[spare]);
+      if (in.d.in_cmem) {
+        store_masked_lanes(n, value, row(in.d.value + byte), m);
+        ++stores;
+      } else if (const unsigned r = in.d.value + byte; r < m_geometry.registers) {
+        std::swap(m_reg_rows[r], m_spare_rows[spare]);
+      } else {
+        copy_row(row(m_reg_rows[r]), value);
+      }
+    };
+    switch (in.opcode) {
+      case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); break;
+      case Opcode::op_adc: add_lanes<false, true>(n, a, b, false, out, c, z, s); break;
+      case Opcode::op_sub:
+      case Opcode::op_cmp: add_lanes<true, false>(n, a, b, true, out, c, z, s); break;
+      case Opcode::op_sbc:
+      case Opcode::op_cmpc: add_lanes<true, true>(n, a, b, false, out, c, z, s); break;
+      case Opcode::op_and: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); break;
+      case Opcode::op_or: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); break;
+      case Opcode::op_xor: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); break;
+      case Opcode::op_not:
+        logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
+        break;
+      case Opcode::op_mov: logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); break;
+      case Opcode::op_shl:
+        shift_lanes<true>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
+        break;
+      case Opcode::op_shr:
+        shift_lanes<false>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
+        break;
+      case Opcode::op_asr:
+        shift_lanes<false>(n, a, out, c, z, s,
+                           [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
+        break;
+      case Opcode::op_rol:
+        shift_lanes<true>(n, a, out, c, z, s,
+                          [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
+        break;
+      case Opcode::op_ror:
+        shift_lanes<false>(n, a, out, c, z, s,
+                           [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
+        break;
+      case Opcode::op_mul:
+      case Opcode::op_mulm: {
+        uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
+        uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
+        uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
+        const uint8_t* a_low = operand(in.a, 1);
+        for (size_t l = 0; l < n; ++l) {
+          const auto multiplicand = static_cast<int16_t>((a[l] << 8) | a_low[l]);
+          const auto product = static_cast<uint32_t>(int32_t{multiplicand} * int32_t{static_cast<int8_t>(b[l])});
+          high[l] = static_cast<uint8_t>(product >> 16);
+          middle[l] = static_cast<uint8_t>(product >> 8);
+          low[l] = static_cast<uint8_t>(product);
+          c[l] = 0;
+          z[l] = (product & 0xffffffu) == 0 ? 1 : 0;
+          s[l] = static_cast<uint8_t>((product >> 23) & 1u);
+        }
+        store(SCRATCH_PRODUCT, 0);
+        store(SCRATCH_PRODUCT + 1, 1);
+        store(SCRATCH_PRODUCT + 2, 2);
+        continue;
+      }
+      case Opcode::op_getm:
+        for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
+        break;
+      default: continue;  // nothing else is in a trace
+    }
+    if (op.uses_d) store(SCRATCH_RESULT, 0);
+  }
+  count();
+  m_active_stale = true;
 }
 
 }  // namespace tessera::ap

@@ -42,6 +42,14 @@ struct ArrayActivity {
   uint64_t cmem_reads = 0;           // bytes read from CMEM, all lanes
   uint64_t cmem_writes = 0;          // bytes written to CMEM (unmasked lanes only)
   uint64_t neighbour_transfers = 0;  // lanes that read a neighbour (not counting reads beyond the edge)
+  ArrayActivity& operator+=(const ArrayActivity& more) {
+    lane_operations += more.lane_operations;
+    useful_operations += more.useful_operations;
+    cmem_reads += more.cmem_reads;
+    cmem_writes += more.cmem_writes;
+    neighbour_transfers += more.neighbour_transfers;
+    return *this;
+  }
 };
 
 class CuArray {
@@ -76,6 +84,37 @@ class CuArray {
                std::string& error);
 
   const ArrayActivity& activity() const { return m_activity; }
+  void add_activity(const ArrayActivity& more);
+
+  // For the controller's skipping of idle CUs (array_controller.h): every
+  // row of architectural state by one index, CMEM address a at a, register
+  // r at cmem_bytes + r, then the flags C, Z, S and M (state_flag_row()).
+  unsigned state_rows() const { return m_geometry.cmem_bytes + m_geometry.registers + 4; }
+  unsigned state_flag_row(unsigned flag) const { return m_geometry.cmem_bytes + m_geometry.registers + flag; }
+  uint8_t* state_row(unsigned index) {
+    if (index < m_geometry.cmem_bytes) return row(index);
+    if (index < m_geometry.cmem_bytes + m_geometry.registers) return row(m_reg_rows[index - m_geometry.cmem_bytes]);
+    return row(m_flag_row + (index - m_geometry.cmem_bytes - m_geometry.registers));
+  }
+  // To call after writing the mask's row through state_row().
+  void mask_written() { m_active_stale = true; }
+  // A work array runs on its first `lanes` lanes only (at most the
+  // geometry's), which it then takes as lanes 0..lanes-1 of no grid: its
+  // neighbour reads are meaningless, so only programs without nget run on
+  // it.
+  void set_lane_count(unsigned lanes);
+  // With counting on, execute() also counts per lane and per stage (the
+  // instruction's) the useful operations and the CMEM bytes stored
+  // (lane_useful(), lane_stores()), from 0 at clear_lane_counts().
+  void count_per_lane(bool on);
+  void clear_lane_counts();
+  const std::vector<uint32_t>& lane_useful(Stage stage) const { return m_lane_useful[static_cast<unsigned>(stage)]; }
+  const std::vector<uint32_t>& lane_stores(Stage stage) const { return m_lane_stores[static_cast<unsigned>(stage)]; }
+  // Runs a program's instructions in the order a run executed them, loop
+  // variables already added to the addresses (no loop, halt or nget; every
+  // address within CMEM), as execute() would, counting per lane and stage
+  // only (lane_useful(), lane_stores(), from 0; activity() does not change).
+  void run_trace(const std::vector<Instruction>& trace);
 
  private:
   size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
@@ -97,6 +136,9 @@ class CuArray {
     return m_active;
   }
   void count_active() const;
+  // run_trace() for kLanes lanes (0: m_lanes).
+  template <size_t kLanes>
+  void run_trace_lanes(const std::vector<Instruction>& trace);
 
   // What execute() needs of each opcode, from the ISA's tables.
   struct OpLanes {
@@ -125,6 +167,9 @@ class CuArray {
   mutable unsigned m_active = 0;
   mutable bool m_active_stale = false;
   ArrayActivity m_activity;
+  bool m_count_lanes = false;
+  // By stage, then lane.
+  std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
 };
 

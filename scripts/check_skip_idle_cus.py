@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""check_skip_idle_cus.py: skipping idle CUs changes nothing but wall time.
+
+Runs every built-in GL scene (soc_sim --list-apps, the "GL ES 1.1 scene"
+lines; obj_viewer, which needs a model, runs the teapot's OBJ if given one
+with --obj) on each array back end with array.skip_idle_cus=true and
+=false, and compares the two runs byte for byte: every frame file, the VCD,
+and stats.json with the command line and the switch itself taken out (a
+run without --wall-clock has no wall-time figures), which must hold the
+array's energy per program stage (stats.energy.array_stages, from the lanes'
+activity per stage; CMEM accesses are given an energy for this) in both
+runs. Exits 1 naming the first scene that differs, and where.
+
+  check_skip_idle_cus.py --soc-sim build/default/bin/soc_sim [--frames N]
+      [--backends ap-tile,ap-pixel] [--apps a,b] [--work-dir DIR] [--jobs J]
+"""
+import argparse
+import concurrent.futures
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SWITCH = "array.skip_idle_cus"
+SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
+# The fitted energy model gives CMEM bytes no energy, which would hide the
+# lanes' activity per stage from energy.array_stages: here reads and writes
+# cost something, and differently.
+CMEM_ENERGY = ["--set", "power.cu_array.cmem_bytes_read_pj=1", "--set", "power.cu_array.cmem_bytes_written_pj=3"]
+
+
+def scenes(soc_sim: str) -> list:
+    listing = subprocess.run([soc_sim, "--list-apps"], check=True, capture_output=True, text=True).stdout
+    names = []
+    for line in listing.splitlines():
+        fields = line.split()
+        if fields and "(GL ES 1.1 scene)" in line and fields[0] != "obj_viewer":
+            names.append(fields[0])
+    return names
+
+
+def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path) -> str:
+    command = [soc_sim, "--backend", backend, "--app", app, "--frames", str(frames), "--out", str(out),
+               "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"{SWITCH}={str(skip).lower()}"]
+    command += SIZE + CMEM_ENERGY
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        return f"soc_sim exited {result.returncode}: {' '.join(command)}\n{result.stderr[-2000:]}"
+    return ""
+
+
+def stats_without_switch(path: pathlib.Path) -> dict:
+    stats = json.loads(path.read_text())
+    stats.pop("command_line", None)
+    array = stats.get("config", {}).get("array", {})
+    if SWITCH.split(".", 1)[1] not in array:
+        raise RuntimeError(f"{path}: no config.{SWITCH}")
+    array.pop(SWITCH.split(".", 1)[1])
+    return stats
+
+
+def first_difference(a, b, where: str = "") -> str:
+    if isinstance(a, dict) and isinstance(b, dict):
+        for key in sorted(set(a) | set(b)):
+            if key not in a or key not in b:
+                return f"{where}.{key} only in one run"
+            found = first_difference(a[key], b[key], f"{where}.{key}")
+            if found:
+                return found
+        return ""
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            return f"{where}: {len(a)} against {len(b)} items"
+        for i, (x, y) in enumerate(zip(a, b)):
+            found = first_difference(x, y, f"{where}[{i}]")
+            if found:
+                return found
+        return ""
+    return "" if a == b else f"{where}: {a!r} (on) against {b!r} (off)"
+
+
+def compare(on: pathlib.Path, off: pathlib.Path) -> str:
+    files_on = sorted(p.name for p in on.iterdir() if p.name != "stats.json")
+    files_off = sorted(p.name for p in off.iterdir() if p.name != "stats.json")
+    if files_on != files_off:
+        return f"different files: {files_on} against {files_off}"
+    if "trace.vcd" not in files_on or not any(name.startswith("frame_") for name in files_on):
+        return f"a frame or the VCD is missing: {files_on}"
+    for name in files_on:
+        if (on / name).read_bytes() != (off / name).read_bytes():
+            return f"{name} differs"
+    stats_on, stats_off = stats_without_switch(on / "stats.json"), stats_without_switch(off / "stats.json")
+    for name, stats in (("on", stats_on), ("off", stats_off)):
+        sim = stats.get("stats", {})
+        stages = sim.get("energy", {}).get("array_stages")
+        if stages is None:
+            return f"stats.json ({name}) has no stats.energy.array_stages"
+        cmem_joules = sum(stage["units"]["cu_array"]["dynamic_j"] for stage in stages.values())
+        if sim.get("array", {}).get("programs", 0) > 0 and cmem_joules <= 0:
+            return f"stats.json ({name}): the array ran programs, but no stage's CMEM accesses show in its energy"
+    return first_difference(stats_on, stats_off, "stats.json")
+
+
+def check(soc_sim: str, backend: str, app: str, frames: int, work: pathlib.Path) -> str:
+    on, off = work / f"{backend}_{app}_on", work / f"{backend}_{app}_off"
+    for skip, out in ((True, on), (False, off)):
+        failure = run(soc_sim, backend, app, frames, skip, out)
+        if failure:
+            return failure
+    difference = compare(on, off)
+    if not difference:
+        shutil.rmtree(on)
+        shutil.rmtree(off)
+    return difference
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--soc-sim", required=True)
+    parser.add_argument("--frames", type=int, default=2)
+    parser.add_argument("--backends", default="ap-tile,ap-pixel")
+    parser.add_argument("--apps", default="", help="comma-separated scenes (default: every GL scene)")
+    parser.add_argument("--work-dir", default="", help="kept, with the runs that differ (default: a temporary one)")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    apps = args.apps.split(",") if args.apps else scenes(args.soc_sim)
+    work = pathlib.Path(args.work_dir or tempfile.mkdtemp(prefix="check_skip_idle_cus_"))
+    work.mkdir(parents=True, exist_ok=True)
+    cases = [(backend, app) for backend in args.backends.split(",") for app in apps]
+    failures = 0
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        results = pool.map(lambda case: check(args.soc_sim, case[0], case[1], args.frames, work), cases)
+        for (backend, app), difference in zip(cases, results):
+            if difference:
+                failures += 1
+                print(f"check_skip_idle_cus: {backend} {app}: {difference} (runs kept in {work})", file=sys.stderr)
+            else:
+                print(f"check_skip_idle_cus: {backend} {app}: frames, VCD and stats.json identical")
+    if failures == 0 and not args.work_dir:
+        shutil.rmtree(work)
+    print(f"check_skip_idle_cus: {len(cases) - failures} of {len(cases)} runs identical with {SWITCH} on and off")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
