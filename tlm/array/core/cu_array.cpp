@@ -105,6 +105,71 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
   }
 }
 
+// The lanes' arithmetic of one instruction, shared by the interpreter
+// (CuArray::execute) and the trace runner (run_trace_lanes): the result in
+// `out`, or a multiplication's 24-bit product in `high`, `middle`, `low`,
+// and the flags in c, z, s. `a_low` is the multiplicand's low byte. Returns
+// the rows written (1, or 3 for a product), or 0 for an instruction that is
+// not arithmetic (the caller's own: masks, nget). With kLanes not 0 the
+// lane count is known to the compiler, which then unrolls the lane loops.
+template <size_t kLanes>
+[[gnu::always_inline]] inline unsigned arithmetic_lanes(Opcode opcode, size_t lanes, const uint8_t* a,
+                                                        const uint8_t* a_low, const uint8_t* b, const uint8_t* m,
+                                                        uint8_t* out, uint8_t* high, uint8_t* middle, uint8_t* low,
+                                                        uint8_t* c, uint8_t* z, uint8_t* s) {
+  const size_t n = kLanes != 0 ? kLanes : lanes;
+  switch (opcode) {
+    case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_adc: add_lanes<false, true>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_sub:
+    case Opcode::op_cmp: add_lanes<true, false>(n, a, b, true, out, c, z, s); return 1;
+    case Opcode::op_sbc:
+    case Opcode::op_cmpc: add_lanes<true, true>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_and: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); return 1;
+    case Opcode::op_or: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); return 1;
+    case Opcode::op_xor: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); return 1;
+    case Opcode::op_not:
+      logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
+      return 1;
+    case Opcode::op_mov: logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); return 1;
+    case Opcode::op_shl:
+      shift_lanes<true>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
+      return 1;
+    case Opcode::op_shr:
+      shift_lanes<false>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
+      return 1;
+    case Opcode::op_asr:
+      shift_lanes<false>(n, a, out, c, z, s,
+                         [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
+      return 1;
+    case Opcode::op_rol:
+      shift_lanes<true>(n, a, out, c, z, s,
+                        [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
+      return 1;
+    case Opcode::op_ror:
+      shift_lanes<false>(n, a, out, c, z, s,
+                         [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
+      return 1;
+    case Opcode::op_mul:
+    case Opcode::op_mulm:
+      for (size_t l = 0; l < n; ++l) {
+        const auto multiplicand = static_cast<int16_t>((a[l] << 8) | a_low[l]);
+        const auto product = static_cast<uint32_t>(int32_t{multiplicand} * int32_t{static_cast<int8_t>(b[l])});
+        high[l] = static_cast<uint8_t>(product >> 16);
+        middle[l] = static_cast<uint8_t>(product >> 8);
+        low[l] = static_cast<uint8_t>(product);
+        c[l] = 0;
+        z[l] = (product & 0xffffffu) == 0 ? 1 : 0;
+        s[l] = static_cast<uint8_t>((product >> 23) & 1u);
+      }
+      return 3;
+    case Opcode::op_getm:
+      for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
+      return 1;
+    default: return 0;
+  }
+}
+
 }  // namespace
 
 CuArray::CuArray(const ArrayGeometry& geometry)
@@ -323,75 +388,29 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   };
 
   const uint8_t* a = a_rows[0];
-  const uint8_t* b = b_row;
-  switch (in.opcode) {
-    case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); break;
-    case Opcode::op_adc: add_lanes<false, true>(n, a, b, false, out, c, z, s); break;
-    case Opcode::op_sub:
-    case Opcode::op_cmp: add_lanes<true, false>(n, a, b, true, out, c, z, s); break;
-    case Opcode::op_sbc:
-    case Opcode::op_cmpc: add_lanes<true, true>(n, a, b, false, out, c, z, s); break;
-    case Opcode::op_and: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); break;
-    case Opcode::op_or: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); break;
-    case Opcode::op_xor: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); break;
-    case Opcode::op_not:
-      logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
-      break;
-    case Opcode::op_mov: logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); break;
-    case Opcode::op_shl:
-      shift_lanes<true>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
-      break;
-    case Opcode::op_shr:
-      shift_lanes<false>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
-      break;
-    case Opcode::op_asr:
-      shift_lanes<false>(n, a, out, c, z, s,
-                         [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
-      break;
-    case Opcode::op_rol:
-      shift_lanes<true>(n, a, out, c, z, s,
-                        [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
-      break;
-    case Opcode::op_ror:
-      shift_lanes<false>(n, a, out, c, z, s,
-                         [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
-      break;
-    case Opcode::op_mul:
-    case Opcode::op_mulm: {
-      uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
-      uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
-      uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-      const uint8_t* a_high = a_rows[0];
-      const uint8_t* a_low = a_rows[1];
-      for (size_t l = 0; l < n; ++l) {
-        const auto multiplicand = static_cast<int16_t>((a_high[l] << 8) | a_low[l]);
-        const auto product = static_cast<uint32_t>(int32_t{multiplicand} * int32_t{static_cast<int8_t>(b[l])});
-        high[l] = static_cast<uint8_t>(product >> 16);
-        middle[l] = static_cast<uint8_t>(product >> 8);
-        low[l] = static_cast<uint8_t>(product);
-        c[l] = 0;
-        z[l] = (product & 0xffffffu) == 0 ? 1 : 0;
-        s[l] = static_cast<uint8_t>((product >> 23) & 1u);
-      }
-      store(SCRATCH_PRODUCT, 0, d_rows[0]);
-      store(SCRATCH_PRODUCT + 1, 1, d_rows[1]);
-      store(SCRATCH_PRODUCT + 2, 2, d_rows[2]);
-      return true;
-    }
-    case Opcode::op_nget: {
-      const auto direction = static_cast<unsigned>(in.direction());
-      uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
-      const uint8_t* has = m_has_neighbour[direction].data();
-      const uint8_t* source = a + m_neighbour_step[direction];
-      for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
-      m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
-      store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
-      return true;
-    }
-    case Opcode::op_getm:
-      for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
-      break;
-    default: error = "instruction " + std::string(op_info(in.opcode).mnemonic) + " does no lane work"; return false;
+  if (in.opcode == Opcode::op_nget) {
+    const auto direction = static_cast<unsigned>(in.direction());
+    uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
+    const uint8_t* has = m_has_neighbour[direction].data();
+    const uint8_t* source = a + m_neighbour_step[direction];
+    for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
+    m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
+    store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+    return true;
+  }
+  uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
+  uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
+  uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
+  const unsigned written = arithmetic_lanes<0>(in.opcode, n, a, a_rows[1], b_row, m, out, high, middle, low, c, z, s);
+  if (written == 0) {
+    error = "instruction " + std::string(op_info(in.opcode).mnemonic) + " does no lane work";
+    return false;
+  }
+  if (written == 3) {
+    store(SCRATCH_PRODUCT, 0, d_rows[0]);
+    store(SCRATCH_PRODUCT + 1, 1, d_rows[1]);
+    store(SCRATCH_PRODUCT + 2, 2, d_rows[2]);
+    return true;
   }
   if (uses_d) store(SCRATCH_RESULT, 0, d_rows[0]);
   return true;
@@ -480,63 +499,19 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
         copy_row(row(m_reg_rows[r]), value);
       }
     };
-    switch (in.opcode) {
-      case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); break;
-      case Opcode::op_adc: add_lanes<false, true>(n, a, b, false, out, c, z, s); break;
-      case Opcode::op_sub:
-      case Opcode::op_cmp: add_lanes<true, false>(n, a, b, true, out, c, z, s); break;
-      case Opcode::op_sbc:
-      case Opcode::op_cmpc: add_lanes<true, true>(n, a, b, false, out, c, z, s); break;
-      case Opcode::op_and: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); break;
-      case Opcode::op_or: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); break;
-      case Opcode::op_xor: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); break;
-      case Opcode::op_not:
-        logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
-        break;
-      case Opcode::op_mov: logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); break;
-      case Opcode::op_shl:
-        shift_lanes<true>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
-        break;
-      case Opcode::op_shr:
-        shift_lanes<false>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
-        break;
-      case Opcode::op_asr:
-        shift_lanes<false>(n, a, out, c, z, s,
-                           [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
-        break;
-      case Opcode::op_rol:
-        shift_lanes<true>(n, a, out, c, z, s,
-                          [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
-        break;
-      case Opcode::op_ror:
-        shift_lanes<false>(n, a, out, c, z, s,
-                           [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
-        break;
-      case Opcode::op_mul:
-      case Opcode::op_mulm: {
-        uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
-        uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
-        uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-        const uint8_t* a_low = operand(in.a, 1);
-        for (size_t l = 0; l < n; ++l) {
-          const auto multiplicand = static_cast<int16_t>((a[l] << 8) | a_low[l]);
-          const auto product = static_cast<uint32_t>(int32_t{multiplicand} * int32_t{static_cast<int8_t>(b[l])});
-          high[l] = static_cast<uint8_t>(product >> 16);
-          middle[l] = static_cast<uint8_t>(product >> 8);
-          low[l] = static_cast<uint8_t>(product);
-          c[l] = 0;
-          z[l] = (product & 0xffffffu) == 0 ? 1 : 0;
-          s[l] = static_cast<uint8_t>((product >> 23) & 1u);
-        }
-        store(SCRATCH_PRODUCT, 0);
-        store(SCRATCH_PRODUCT + 1, 1);
-        store(SCRATCH_PRODUCT + 2, 2);
-        continue;
-      }
-      case Opcode::op_getm:
-        for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
-        break;
-      default: continue;  // nothing else is in a trace
+    // The spare rows move (a result renamed into a register): found anew per instruction.
+    const bool product = in.opcode == Opcode::op_mul || in.opcode == Opcode::op_mulm;
+    uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
+    uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
+    uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
+    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, product ? operand(in.a, 1) : nullptr, b, m, out,
+                                                      high, middle, low, c, z, s);
+    if (written == 0) continue;  // nothing else is in a trace
+    if (written == 3) {
+      store(SCRATCH_PRODUCT, 0);
+      store(SCRATCH_PRODUCT + 1, 1);
+      store(SCRATCH_PRODUCT + 2, 2);
+      continue;
     }
     if (op.uses_d) store(SCRATCH_RESULT, 0);
   }
