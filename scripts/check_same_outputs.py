@@ -1,0 +1,206 @@
+#!/usr/bin/env python3
+"""check_same_outputs.py: a change of shape changes no output.
+
+Records, for a fixed set of runs, every output soc_sim writes (each frame
+file, the VCD, stats.json) into a manifest, and compares a later build's
+runs with it byte for byte. The runs: every built-in GL scene on every back
+end on the host-compiled model, the calibration and study applications on
+the back ends they run on, and a set of scenes on the ISS (host.model=iss)
+on every back end; each with the VCD on, at 192 x 144 (the study's size),
+two frames. From stats.json only the command line, the commit and the
+version are taken out (they name the build, not the run); everything else,
+every figure of every block, must be equal.
+
+  check_same_outputs.py --soc-sim build/default/bin/soc_sim --record before.json
+  check_same_outputs.py --soc-sim build/default/bin/soc_sim --compare before.json
+
+Options: --removed-keys K1,K2 (configuration keys a change removed, such as
+raster.width: dropped from the manifest's configuration when the new build
+has no such key), --jobs J (default 2), --quick (only the native GL scenes on arm and
+ap-tile, for a fast look), --work-dir DIR (kept, with the runs that differ).
+--compare exits 1 naming each run that differs and the first difference in
+it; a run missing on either side is a difference too.
+"""
+import argparse
+import concurrent.futures
+import hashlib
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
+BACKENDS = ["arm", "raster", "ap-tile", "ap-pixel"]
+ISS_SCENES = ["triangle", "textured_quad", "tile_grid", "fog_row"]
+BUILD_IDENTITY = ("command_line", "commit", "version")
+# Applications that are not GL scenes, and the back ends each runs on.
+OTHER_APPS = {
+    "pattern": ["arm"],
+    "calib_add": ["arm"],
+    "calib_mul": ["arm"],
+    "calib_ciu": ["ap-tile"],
+    "calib_display_port": ["arm"],
+    "calib_array_add": ["ap-tile"],
+    "calib_array_mul": ["ap-tile"],
+    "calib_array_add_cmem": ["ap-tile"],
+    "calib_array_mul_cmem": ["ap-tile"],
+    "study_shading": ["arm", "ap-pixel"],
+    "study_patches": ["arm", "ap-pixel"],
+}
+# The two study applications at a size that keeps the check quick.
+APP_ARGUMENTS = {"study_shading": ["--", "--shades", "2000"], "study_patches": ["--", "--max-pixels", "12"]}
+
+
+def gl_scenes(soc_sim: str) -> list:
+    listing = subprocess.run([soc_sim, "--list-apps"], check=True, capture_output=True, text=True).stdout
+    names = []
+    for line in listing.splitlines():
+        fields = line.split()
+        if fields and "(GL ES 1.1 scene)" in line and fields[0] != "obj_viewer":
+            names.append(fields[0])
+    return names
+
+
+def cases(soc_sim: str, quick: bool) -> list:
+    scenes = gl_scenes(soc_sim)
+    if quick:
+        return [("native", backend, app) for backend in ("arm", "ap-tile") for app in scenes]
+    found = [("native", backend, app) for backend in BACKENDS for app in scenes]
+    found += [("native", backend, app) for app, backends in OTHER_APPS.items() for backend in backends]
+    found += [("iss", backend, app) for backend in BACKENDS for app in ISS_SCENES]
+    return found
+
+
+def case_name(case: tuple) -> str:
+    return "/".join(case)
+
+
+def raster_size_keys(soc_sim: str) -> list:
+    """A build that still has raster.width and raster.height needs them set to the display's size."""
+    config = json.loads(subprocess.run([soc_sim, "--print-config"], check=True, capture_output=True,
+                                       text=True).stdout)
+    if "width" not in config.get("raster", {}):
+        return []
+    return ["--set", "raster.width=192", "--set", "raster.height=144"]
+
+
+def run(soc_sim: str, case: tuple, out: pathlib.Path) -> str:
+    host, backend, app = case
+    command = [soc_sim, "--backend", backend, "--app", app, "--frames", "2", "--out", str(out),
+               "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"host.model={host}"]
+    command += SIZE + (RASTER_SIZE if backend == "raster" else []) + APP_ARGUMENTS.get(app, [])
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        return f"soc_sim exited {result.returncode}: {' '.join(command)}\n{result.stderr[-2000:]}"
+    return ""
+
+
+RASTER_SIZE: list = []
+
+
+def outputs(out: pathlib.Path) -> dict:
+    """The run's outputs: a digest per file, and stats.json without the build's identity."""
+    record = {"files": {}, "stats": None}
+    for path in sorted(out.iterdir()):
+        if path.name == "stats.json":
+            stats = json.loads(path.read_text())
+            for key in BUILD_IDENTITY:
+                stats.pop(key, None)
+            record["stats"] = stats
+        else:
+            record["files"][path.name] = hashlib.sha256(path.read_bytes()).hexdigest()
+    return record
+
+
+def first_difference(a, b, where: str = "") -> str:
+    if isinstance(a, dict) and isinstance(b, dict):
+        for key in sorted(set(a) | set(b)):
+            if key not in a or key not in b:
+                return f"{where}.{key} only {'after' if key not in a else 'before'}"
+            found = first_difference(a[key], b[key], f"{where}.{key}")
+            if found:
+                return found
+        return ""
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            return f"{where}: {len(a)} items before, {len(b)} after"
+        for i, (x, y) in enumerate(zip(a, b)):
+            found = first_difference(x, y, f"{where}[{i}]")
+            if found:
+                return found
+        return ""
+    return "" if a == b else f"{where}: {a!r} before, {b!r} after"
+
+
+def measure(soc_sim: str, case: tuple, work: pathlib.Path):
+    out = work / case_name(case).replace("/", "_")
+    failure = run(soc_sim, case, out)
+    if failure:
+        return None, failure
+    record = outputs(out)
+    if not any(name.startswith("frame_") for name in record["files"]) and case[2] not in OTHER_APPS:
+        return None, f"no frame written: {sorted(record['files'])}"
+    return record, ""
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--soc-sim", required=True)
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--record", help="write the manifest to FILE")
+    mode.add_argument("--compare", help="compare with the manifest in FILE")
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--work-dir", default="")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--removed-keys", default="",
+                        help="comma-separated configuration keys (raster.width) that may be gone after")
+    args = parser.parse_args()
+    RASTER_SIZE[:] = raster_size_keys(args.soc_sim)
+
+    before = json.loads(pathlib.Path(args.compare).read_text()) if args.compare else None
+    work = pathlib.Path(args.work_dir or tempfile.mkdtemp(prefix="check_same_outputs_"))
+    work.mkdir(parents=True, exist_ok=True)
+    todo = cases(args.soc_sim, args.quick)
+    if before is not None and not args.quick:
+        names = {case_name(case) for case in todo}
+        todo += [tuple(name.split("/")) for name in before["runs"] if name not in names]
+    failures, manifest = 0, {"runs": {}}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        results = pool.map(lambda case: measure(args.soc_sim, case, work), todo)
+        for case, (record, failure) in zip(todo, results):
+            name = case_name(case)
+            if failure:
+                failures += 1
+                print(f"check_same_outputs: {name}: {failure}", file=sys.stderr)
+                continue
+            manifest["runs"][name] = record
+            if before is None:
+                continue
+            if name not in before["runs"]:
+                failures += 1
+                print(f"check_same_outputs: {name}: not in the manifest {args.compare}", file=sys.stderr)
+                continue
+            old = json.loads(json.dumps(before["runs"][name]))
+            for key in filter(None, args.removed_keys.split(",")):
+                group, field = key.split(".", 1)
+                if field not in record["stats"]["config"].get(group, {}):
+                    old["stats"]["config"].get(group, {}).pop(field, None)
+            difference = first_difference(old["files"], record["files"], "files")
+            difference = difference or first_difference(old["stats"], record["stats"], "stats.json")
+            if difference:
+                failures += 1
+                print(f"check_same_outputs: {name}: {difference}", file=sys.stderr)
+    if args.record:
+        pathlib.Path(args.record).write_text(json.dumps(manifest, sort_keys=True) + "\n")
+    if failures == 0 and not args.work_dir:
+        shutil.rmtree(work)
+    verb = "recorded" if args.record else "identical to the manifest"
+    print(f"check_same_outputs: {len(todo) - failures} of {len(todo)} runs {verb} "
+          f"(frames, VCD, stats.json; {sum(len(r['files']) for r in manifest['runs'].values())} files)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
