@@ -585,6 +585,8 @@ GLint offset(Arguments& a) {
   return a.i();
 }
 
+// Longer than 150 lines: one case per GL ES entry point the fuzzer calls,
+// each a line; the switch is the list of what is fuzzed.
 void call(Arguments& a) {
   ByteReader& r = a.r;
   switch (r.u8() % 150) {

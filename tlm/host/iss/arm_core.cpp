@@ -795,6 +795,8 @@ struct ArmCore::Exec {
   // they stand for (r15 then reads as the instruction's address + 4); the
   // branches, the PC- and SP-relative additions and SWI have handlers of
   // their own, which find the halfword in insn.
+  // Longer than 150 lines: one switch over the Thumb formats, each case a
+  // few lines of field extraction; split, the table would read in pieces.
   static void decode_thumb(uint32_t insn, Decoded& d) {
     const uint32_t rd = bits(insn, 2, 0), rs = bits(insn, 5, 3);
     switch (bits(insn, 15, 11)) {
