@@ -20,7 +20,7 @@ each comes from:
     calibration-array   what the array's calibration applications print
     calibration-energy  what scripts/fit_energy.py prints (the energy fit)
     experiment-NAME   scripts/experiment.py NAME --host native, for every
-                      experiment of configs/experiments/ (experiment-dma-whatif
+                      experiment of experiments/ (experiment-dma-whatif
                       for dma_whatif): the tables it prints, simulated
                       figures, the same on every machine
     experiment-NAME-iss  the same with --host iss, for every experiment
@@ -42,7 +42,7 @@ Usage:
     scripts/update_docs.py --only-experiments --only-iss-experiments   every experiment block
     scripts/update_docs.py --check [...]     exit 1 if a block is stale
     scripts/update_docs.py --only memory-map backends   only those blocks
-Standard library only.
+Standard library and PyYAML (Debian's python3-yaml: the experiment files).
 """
 
 import argparse
@@ -54,6 +54,8 @@ import re
 import subprocess
 import sys
 import tempfile
+
+import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
@@ -202,14 +204,14 @@ GENERATORS = {
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,
 }
-# One block per experiment of configs/experiments/: experiment-<name>, with
-# the name's underscores as dashes.
+# One block per experiment of experiments/: experiment-<name>, with the
+# name's underscores as dashes.
 # An experiment whose "hosts" lists iss has a second block, experiment-<name>-iss.
 ISS = set()
-for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
+for _file in sorted((ROOT / "experiments").glob("*.yaml")):
     _block = "experiment-" + _file.stem.replace("_", "-")
     GENERATORS[_block] = experiment(_file.stem, "native")
-    if "iss" in json.loads(_file.read_text()).get("hosts", []):
+    if "iss" in yaml.safe_load(_file.read_text()).get("hosts", []):
         GENERATORS[_block + "-iss"] = experiment(_file.stem, "iss")
         ISS.add(_block + "-iss")
 SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS

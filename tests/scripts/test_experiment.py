@@ -44,9 +44,10 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
 SCRIPT = ROOT / "scripts" / "experiment.py"
-EXPERIMENTS = ROOT / "configs" / "experiments"
+EXPERIMENTS = ROOT / "experiments"
 
-# The script's loader and figures (standard library only; matplotlib is imported when it plots).
+# The script's loader and figures (python/tessera_sweep/experiment.py, which the script is an alias of;
+# matplotlib is imported when it plots).
 sys.path.insert(0, str(SCRIPT.parent))
 import experiment  # noqa: E402
 
@@ -88,7 +89,7 @@ def non_negative_number(text):
 def test_run(name, soc_sim, work, host="native"):
     # Loaded as the script loads it: a matrix's runs listed, the columns' defaults filled in, the runs on `host`
     # with each program the experiment lists.
-    spec = experiment.load_experiment(EXPERIMENTS / f"{name}.json")
+    spec = experiment.load_experiment(EXPERIMENTS / f"{name}.yaml")
     runs = experiment.expand_runs(spec, [host])
     out = work / name
     shutil.rmtree(out, ignore_errors=True)
@@ -203,7 +204,7 @@ def test_hosts(soc_sim, work):
 
 
 def test_errors(soc_sim, work):
-    names = sorted(path.stem for path in EXPERIMENTS.glob("*.json"))
+    names = sorted(path.stem for path in EXPERIMENTS.glob("*.yaml"))
     check(names, f"no experiment in {EXPERIMENTS}")
 
     status, out, err = run_script("--list")
