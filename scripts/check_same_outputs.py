@@ -21,6 +21,7 @@ ap-tile, for a fast look), --work-dir DIR (kept, with the runs that differ).
 --compare exits 1 naming each run that differs and the first difference in
 it; a run missing on either side is a difference too.
 """
+
 import argparse
 import concurrent.futures
 import hashlib
@@ -79,8 +80,7 @@ def case_name(case: tuple) -> str:
 
 def raster_size_keys(soc_sim: str) -> list:
     """A build that still has raster.width and raster.height needs them set to the display's size."""
-    config = json.loads(subprocess.run([soc_sim, "--print-config"], check=True, capture_output=True,
-                                       text=True).stdout)
+    config = json.loads(subprocess.run([soc_sim, "--print-config"], check=True, capture_output=True, text=True).stdout)
     if "width" not in config.get("raster", {}):
         return []
     return ["--set", "raster.width=192", "--set", "raster.height=144"]
@@ -88,8 +88,23 @@ def raster_size_keys(soc_sim: str) -> list:
 
 def run(soc_sim: str, case: tuple, out: pathlib.Path) -> str:
     host, backend, app = case
-    command = [soc_sim, "--backend", backend, "--app", app, "--frames", "2", "--out", str(out),
-               "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"host.model={host}"]
+    command = [
+        soc_sim,
+        "--backend",
+        backend,
+        "--app",
+        app,
+        "--frames",
+        "2",
+        "--out",
+        str(out),
+        "--vcd",
+        str(out / "trace.vcd"),
+        "--force",
+        "--quiet",
+        "--set",
+        f"host.model={host}",
+    ]
     command += SIZE + (RASTER_SIZE if backend == "raster" else []) + APP_ARGUMENTS.get(app, [])
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
@@ -154,8 +169,9 @@ def main() -> int:
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--work-dir", default="")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--removed-keys", default="",
-                        help="comma-separated configuration keys (raster.width) that may be gone after")
+    parser.add_argument(
+        "--removed-keys", default="", help="comma-separated configuration keys (raster.width) that may be gone after"
+    )
     args = parser.parse_args()
     RASTER_SIZE[:] = raster_size_keys(args.soc_sim)
 
@@ -197,8 +213,10 @@ def main() -> int:
     if failures == 0 and not args.work_dir:
         shutil.rmtree(work)
     verb = "recorded" if args.record else "identical to the manifest"
-    print(f"check_same_outputs: {len(todo) - failures} of {len(todo)} runs {verb} "
-          f"(frames, VCD, stats.json; {sum(len(r['files']) for r in manifest['runs'].values())} files)")
+    print(
+        f"check_same_outputs: {len(todo) - failures} of {len(todo)} runs {verb} "
+        f"(frames, VCD, stats.json; {sum(len(r['files']) for r in manifest['runs'].values())} files)"
+    )
     return 1 if failures else 0
 
 

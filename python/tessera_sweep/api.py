@@ -40,9 +40,18 @@ def _frame(columns, rows):
     return pd.DataFrame([[label, *values] for label, values in rows], columns=keys)
 
 
-def run(spec_or_path, overrides: dict | None = None, *, out=None, soc_sim=None, frames: int | None = None,
-        hosts: list[str] | None = None, programs: list[str] | None = None, workers: int | None = None,
-        quiet: bool = True) -> pd.DataFrame:
+def run(
+    spec_or_path,
+    overrides: dict | None = None,
+    *,
+    out=None,
+    soc_sim=None,
+    frames: int | None = None,
+    hosts: list[str] | None = None,
+    programs: list[str] | None = None,
+    workers: int | None = None,
+    quiet: bool = True,
+) -> pd.DataFrame:
     """Runs a spec and returns its table.
 
     spec_or_path: an experiment's name ("dma_whatif": experiments/dma_whatif.yaml), the path of an experiment or
@@ -67,8 +76,9 @@ def run(spec_or_path, overrides: dict | None = None, *, out=None, soc_sim=None, 
             if value is not None:
                 experiment.choice_list("run()", what, value, allowed)
         folder = pathlib.Path(out) if out else experiment.ROOT / "out" / "experiments" / name
-        outcome = experiment.run_spec(spec, name, experiment.soc_sim_path(soc_sim), folder, frames, quiet, settings,
-                                      hosts, programs)
+        outcome = experiment.run_spec(
+            spec, name, experiment.soc_sim_path(soc_sim), folder, frames, quiet, settings, hosts, programs
+        )
         result = _frame(spec["columns"], outcome.rows)
         result.attrs["study"] = _frame(spec["study"]["columns"], outcome.study_rows) if "study" in spec else None
         result.attrs["markdown"] = outcome.text

@@ -43,20 +43,25 @@ def command_line_settings(options: argparse.Namespace, spec) -> dict:
         settings["sim.frames"] = options.frames
     swept = sorted(set(settings) & set(spec.axis_keys))
     if swept:
-        raise SpecError(f"--set/--host: {', '.join(swept)} is an axis of the sweep; drop it from the spec or the "
-                        "command line")
+        raise SpecError(
+            f"--set/--host: {', '.join(swept)} is an axis of the sweep; drop it from the spec or the command line"
+        )
     return settings
 
 
 def add_sweep_arguments(parser: argparse.ArgumentParser) -> None:
     """The options only a sweep spec takes."""
-    parser.add_argument("--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT "
-                        "(default: a local cluster)")
+    parser.add_argument(
+        "--scheduler", help="address of a running Dask scheduler, tcp://HOST:PORT (default: a local cluster)"
+    )
     parser.add_argument("--workers", type=int, help="local cluster's workers (default: one per core)")
     parser.add_argument("--retry-failed", action="store_true", help="run failed points again")
     parser.add_argument("--check", action="store_true", help="check the spec and every point, run nothing")
-    parser.add_argument("--report-only", action="store_true",
-                        help="rebuild the plots and report.html from the output's results table, run nothing")
+    parser.add_argument(
+        "--report-only",
+        action="store_true",
+        help="rebuild the plots and report.html from the output's results table, run nothing",
+    )
 
 
 SWEEP_ONLY = ("scheduler", "workers", "retry_failed", "check", "report_only")
@@ -77,10 +82,15 @@ def is_experiment_spec(name: str) -> bool:
 
 def run_main(argv: list[str]) -> int:
     """tessera-sweep run SPEC...: an experiment (several may be named) or one sweep spec."""
-    parser = argparse.ArgumentParser(prog="tessera-sweep run", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("specs", nargs="+", metavar="SPEC",
-                        help="an experiment's name (experiments/NAME.yaml) or file, or a sweep spec (YAML or JSON)")
+    parser = argparse.ArgumentParser(
+        prog="tessera-sweep run", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument(
+        "specs",
+        nargs="+",
+        metavar="SPEC",
+        help="an experiment's name (experiments/NAME.yaml) or file, or a sweep spec (YAML or JSON)",
+    )
     experiment.add_arguments(parser)
     add_sweep_arguments(parser)
     options = parser.parse_args(argv)
@@ -112,18 +122,30 @@ def main(argv: list[str] | None = None) -> int:
         return run_main(argv[1:])
     if argv[:1] == ["list"]:
         return experiment.main(["--list", *argv[1:]], prog="tessera-sweep list")
-    parser = argparse.ArgumentParser(prog="tessera-sweep", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        prog="tessera-sweep", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("spec", type=Path, help="sweep spec, YAML or JSON")
     parser.add_argument("--out", type=Path, help="output folder (default: the spec's 'output')")
-    parser.add_argument("--soc-sim", default=os.environ.get("TESSERA_SOC_SIM", DEFAULT_SOC_SIM),
-                        help="soc_sim to run (default: $TESSERA_SOC_SIM, else build/default/bin/soc_sim)")
+    parser.add_argument(
+        "--soc-sim",
+        default=os.environ.get("TESSERA_SOC_SIM", DEFAULT_SOC_SIM),
+        help="soc_sim to run (default: $TESSERA_SOC_SIM, else build/default/bin/soc_sim)",
+    )
     add_sweep_arguments(parser)
-    parser.add_argument("--host", choices=("native", "iss"),
-                        help="the host model of every point (host.model): native, the host-compiled model, or iss, "
-                             "the driver as ARM code on the ISS; recorded in the table's host_model column")
-    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                        help="a configuration setting for every point, over the spec's config (repeatable)")
+    parser.add_argument(
+        "--host",
+        choices=("native", "iss"),
+        help="the host model of every point (host.model): native, the host-compiled model, or iss, "
+        "the driver as ARM code on the ISS; recorded in the table's host_model column",
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="a configuration setting for every point, over the spec's config (repeatable)",
+    )
     options = parser.parse_args(argv)
     options.frames = None
     return sweep(options)
@@ -148,13 +170,17 @@ def sweep(options: argparse.Namespace) -> int:
             print(f"tessera-sweep: {report}")
             return 0
         phases = {}
-        results, _ = run_sweep(spec, simulator, output, options.scheduler, options.workers,
-                               options.retry_failed, phases)
+        results, _ = run_sweep(
+            spec, simulator, output, options.scheduler, options.workers, options.retry_failed, phases
+        )
     except (SpecError, SimulatorError, OSError) as error:
         print(f"tessera-sweep: {error}", file=sys.stderr)
         return 2
     failed = int((results["status"] != 0).sum())
-    timing = ", ".join(f"{name} {phases[key]:.1f} s" for key, name in
-                       (("check_s", "check"), ("runs_s", "runs"), ("total_s", "total")) if key in phases)
+    timing = ", ".join(
+        f"{name} {phases[key]:.1f} s"
+        for key, name in (("check_s", "check"), ("runs_s", "runs"), ("total_s", "total"))
+        if key in phases
+    )
     print(f"tessera-sweep: {len(results)} points in {output}/results.parquet, {failed} failed ({timing})")
     return 1 if failed else 0

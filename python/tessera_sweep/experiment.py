@@ -62,7 +62,6 @@ import time
 
 import yaml
 
-from .spec import SpecError, _load_yaml
 from .experiment_table import RUN_COLUMNS as RUN_COLUMNS
 from .experiment_table import UsageError, build_table, import_pyplot, markdown, plot, write_csv
 from .experiment_table import cell_value as cell_value
@@ -77,6 +76,7 @@ from .figures import (
     RunError,
     RunResult,
 )
+from .spec import SpecError, _load_yaml
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXPERIMENTS = ROOT / "experiments"
@@ -89,8 +89,20 @@ EXIT_USAGE = 2
 # ---------------------------------------------------------------------------
 # The experiment file.
 
-TOP_KEYS = {"title", "description", "frames", "set", "runs", "matrix", "label_header", "columns", "plot", "hosts",
-            "programs", "study"}
+TOP_KEYS = {
+    "title",
+    "description",
+    "frames",
+    "set",
+    "runs",
+    "matrix",
+    "label_header",
+    "columns",
+    "plot",
+    "hosts",
+    "programs",
+    "study",
+}
 STUDY_KEYS = {"title", "description", "columns"}
 HOSTS = ("native", "iss")
 PROGRAMS = ("study", "tuned")
@@ -99,8 +111,23 @@ RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames", 
 MATRIX_KEYS = {"switches", "skip", "runs"}
 SWITCH_KEYS = {"key", "name", "values", "backends"}
 MATRIX_RUN_KEYS = (RUN_KEYS - {"backend"}) | {"backends"}
-COLUMN_KEYS = {"key", "header", "stat", "config", "value", "per", "scale", "format", "backends", "baseline", "shape",
-               "part", "required", "may_be_zero", "quantity"}
+COLUMN_KEYS = {
+    "key",
+    "header",
+    "stat",
+    "config",
+    "value",
+    "per",
+    "scale",
+    "format",
+    "backends",
+    "baseline",
+    "shape",
+    "part",
+    "required",
+    "may_be_zero",
+    "quantity",
+}
 PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log", "groups"}
 
 
@@ -161,21 +188,26 @@ def load_switches(where, switches):
         keys.add(switch["key"])
         switch.setdefault("name", switch["key"])
         if not isinstance(switch["name"], str) or not re.fullmatch(r"[A-Za-z0-9._-]+", switch["name"]):
-            raise UsageError(f"{switch_where}: 'name' (the run labels' word for it) must be a word of letters, "
-                             "digits, '.', '_' and '-'")
+            raise UsageError(
+                f"{switch_where}: 'name' (the run labels' word for it) must be a word of letters, "
+                "digits, '.', '_' and '-'"
+            )
         if switch["name"] in names:
-            raise UsageError(f"{switch_where}: name '{switch['name']}' is used twice (the labels would not tell "
-                             "the switches apart)")
+            raise UsageError(
+                f"{switch_where}: name '{switch['name']}' is used twice (the labels would not tell the switches apart)"
+            )
         names.add(switch["name"])
         values = switch.setdefault("values", [False, True])
         if not isinstance(values, list) or not values or not all(is_setting_value(v) for v in values):
-            raise UsageError(f"{switch_where} ('{switch['key']}'): 'values' must be a non-empty list of strings, "
-                             "numbers or booleans")
-        if any(same_value(a, b) for i, a in enumerate(values) for b in values[i + 1:]):
+            raise UsageError(
+                f"{switch_where} ('{switch['key']}'): 'values' must be a non-empty list of strings, numbers or booleans"
+            )
+        if any(same_value(a, b) for i, a in enumerate(values) for b in values[i + 1 :]):
             raise UsageError(f"{switch_where} ('{switch['key']}'): a value is listed twice")
         if "backends" in switch and not non_empty_strings(switch["backends"]):
-            raise UsageError(f"{switch_where} ('{switch['key']}'): 'backends' must be a non-empty list of back-end "
-                             "names")
+            raise UsageError(
+                f"{switch_where} ('{switch['key']}'): 'backends' must be a non-empty list of back-end names"
+            )
 
 
 def load_skips(where, skips, switches):
@@ -188,17 +220,21 @@ def load_skips(where, skips, switches):
             raise UsageError(f"{skip_where} must be a non-empty object of switch keys and values")
         for key, value in skip.items():
             if key not in by_key:
-                raise UsageError(f"{skip_where}: '{key}' is not a switch of the matrix "
-                                 f"({', '.join(by_key) or 'it has none'})")
+                raise UsageError(
+                    f"{skip_where}: '{key}' is not a switch of the matrix ({', '.join(by_key) or 'it has none'})"
+                )
             if not any(same_value(value, v) for v in by_key[key]["values"]):
-                raise UsageError(f"{skip_where}: {json.dumps(value)} is not one of the values of '{key}' "
-                                 f"({', '.join(json.dumps(v) for v in by_key[key]['values'])}), so it skips nothing")
+                raise UsageError(
+                    f"{skip_where}: {json.dumps(value)} is not one of the values of '{key}' "
+                    f"({', '.join(json.dumps(v) for v in by_key[key]['values'])}), so it skips nothing"
+                )
 
 
 def skipped(settings, skips):
     """Whether a combination of switch settings matches every key of one of the "skip" objects."""
-    return any(all(key in settings and same_value(settings[key], value) for key, value in skip.items())
-               for skip in skips)
+    return any(
+        all(key in settings and same_value(settings[key], value) for key, value in skip.items()) for skip in skips
+    )
 
 
 def load_matrix(where, matrix, common_settings):
@@ -240,15 +276,17 @@ def load_matrix(where, matrix, common_settings):
         for backend in template["backends"]:
             applying = [switch for switch in switches if backend in switch.get("backends", [backend])]
             group = f"{template['label']} {backend}"
-            combinations = [dict(zip((switch["key"] for switch in applying), values))
-                            for values in itertools.product(*(switch["values"] for switch in applying))]
+            combinations = [
+                dict(zip((switch["key"] for switch in applying), values))
+                for values in itertools.product(*(switch["values"] for switch in applying))
+            ]
             kept = [settings for settings in combinations if not skipped(settings, skips)]
             if not kept:
-                raise UsageError(f"{run_where}: 'skip' leaves no combination of the switches for back end "
-                                 f"'{backend}'")
+                raise UsageError(f"{run_where}: 'skip' leaves no combination of the switches for back end '{backend}'")
             for settings in kept:
-                variant = " ".join(part for part in (switch_label(switch, settings[switch["key"]])
-                                                     for switch in applying) if part)
+                variant = " ".join(
+                    part for part in (switch_label(switch, settings[switch["key"]]) for switch in applying) if part
+                )
                 label = f"{group} {variant}" if variant else group
                 run = {key: value for key, value in template.items() if key != "backends"}
                 run.update(label=label, backend=backend, set={**template["set"], **settings})
@@ -311,8 +349,9 @@ def check_experiment(spec, where):
         raise UsageError(f"{where}: 'runs' must be a non-empty list")
     run_wheres = [f"{where}: runs[{index}]" for index in range(len(runs))]
     # The matrix's runs follow the listed ones; each listed run is a group of its own in a grouped plot.
-    spec["run_groups"] = {run["label"]: (run["label"], "") for run in runs if isinstance(run, dict)
-                      and isinstance(run.get("label"), str)}
+    spec["run_groups"] = {
+        run["label"]: (run["label"], "") for run in runs if isinstance(run, dict) and isinstance(run.get("label"), str)
+    }
     if "matrix" in spec:
         matrix_runs, matrix_wheres, groups = load_matrix(where, spec["matrix"], spec["set"])
         runs += matrix_runs
@@ -327,8 +366,10 @@ def check_experiment(spec, where):
             if not isinstance(run.get(key), str) or not run[key]:
                 raise UsageError(f"{run_where}: '{key}' must be a non-empty string")
         if run["label"] in labels or run_folder_name(run["label"]) in folders:
-            raise UsageError(f"{run_where}: label '{run['label']}' is used twice (or names the same folder as "
-                             "another: runs/" + run_folder_name(run["label"]) + ")")
+            raise UsageError(
+                f"{run_where}: label '{run['label']}' is used twice (or names the same folder as "
+                "another: runs/" + run_folder_name(run["label"]) + ")"
+            )
         labels.add(run["label"])
         folders.add(run_folder_name(run["label"]))
         run.setdefault("args", [])
@@ -388,19 +429,23 @@ def check_columns(where, columns, labels):
         if not isinstance(key, str) or not re.fullmatch(r"[a-z][a-z0-9_]*", key):
             raise UsageError(f"{column_where}: 'key' must be a name of [a-z0-9_] (the CSV's column)")
         if key in keys or key in ("run", "host", "program"):
-            raise UsageError(f"{column_where}: key '{key}' is used twice (or is 'run', 'host' or 'program', the "
-                             "columns every table starts with)")
+            raise UsageError(
+                f"{column_where}: key '{key}' is used twice (or is 'run', 'host' or 'program', the "
+                "columns every table starts with)"
+            )
         keys.add(key)
         column.setdefault("header", key)
         sources = [source for source in ("stat", "config", "value") if source in column]
         if len(sources) != 1:
             raise UsageError(f"{column_where} ('{key}') needs exactly one of 'stat', 'config' and 'value'")
         if "value" in column and column["value"] not in COMPUTED:
-            raise UsageError(f"{column_where} ('{key}'): unknown value '{column['value']}' "
-                             f"(known: {', '.join(COMPUTED)})")
+            raise UsageError(
+                f"{column_where} ('{key}'): unknown value '{column['value']}' (known: {', '.join(COMPUTED)})"
+            )
         if column.get("value") in BASELINE_VALUES and column.get("baseline") not in labels:
-            raise UsageError(f"{column_where} ('{key}'): 'baseline' must be the label of a run "
-                             f"({', '.join(sorted(labels))})")
+            raise UsageError(
+                f"{column_where} ('{key}'): 'baseline' must be the label of a run ({', '.join(sorted(labels))})"
+            )
         if column.get("value") == "patch_break_even" and column.get("shape") not in ("line", "square"):
             raise UsageError(f"{column_where} ('{key}'): 'shape' must be line or square")
         if "per" in column and "stat" not in column:
@@ -411,8 +456,10 @@ def check_columns(where, columns, labels):
             try:
                 format(1.5, column["format"])
             except (TypeError, ValueError) as error:
-                raise UsageError(f"{column_where} ('{key}'): bad 'format' {json.dumps(column['format'])} "
-                                 "(a Python format for a number, e.g. \",.2f\")") from error
+                raise UsageError(
+                    f"{column_where} ('{key}'): bad 'format' {json.dumps(column['format'])} "
+                    '(a Python format for a number, e.g. ",.2f")'
+                ) from error
         if "backends" in column and (not isinstance(column["backends"], list) or not column["backends"]):
             raise UsageError(f"{column_where} ('{key}'): 'backends' must be a non-empty list of back-end names")
         for flag in ("required", "may_be_zero"):
@@ -423,18 +470,24 @@ def check_columns(where, columns, labels):
         if "part" in column and column["part"] not in HOST_PARTS:
             raise UsageError(f"{column_where} ('{key}'): 'part' must be one of {', '.join(HOST_PARTS)}")
         if (column.get("value") in QUANTITY_VALUES) != ("quantity" in column):
-            raise UsageError(f"{column_where} ('{key}'): 'quantity' goes with the values {', '.join(QUANTITY_VALUES)}, "
-                             "which need it")
+            raise UsageError(
+                f"{column_where} ('{key}'): 'quantity' goes with the values {', '.join(QUANTITY_VALUES)}, which need it"
+            )
         if "quantity" in column and column["quantity"] not in QUANTITIES:
             raise UsageError(f"{column_where} ('{key}'): 'quantity' must be one of {', '.join(QUANTITIES)}")
 
 
-
 def choice_list(where, key, value, allowed):
-    if not isinstance(value, list) or not value or len(set(map(str, value))) != len(value) \
-            or not all(v in allowed for v in value):
-        raise UsageError(f"{where}: '{key}' must be a non-empty list of distinct values of {', '.join(allowed)}, "
-                         f"got {json.dumps(value)}")
+    if (
+        not isinstance(value, list)
+        or not value
+        or len(set(map(str, value))) != len(value)
+        or not all(v in allowed for v in value)
+    ):
+        raise UsageError(
+            f"{where}: '{key}' must be a non-empty list of distinct values of {', '.join(allowed)}, "
+            f"got {json.dumps(value)}"
+        )
     return value
 
 
@@ -464,7 +517,7 @@ def expand_runs(spec, hosts=None, programs=None):
     for run in spec["runs"]:
         key = PROGRAM_KEYS.get(run["backend"])
         for host in hosts:
-            for program in (programs if key and programs else [None]):
+            for program in programs if key and programs else [None]:
                 settings = {**run["set"], "host.model": host}
                 parts = [run["label"]]
                 if program:
@@ -495,7 +548,6 @@ def experiment_path(name):
     return path
 
 
-
 def setting_text(value):
     """A JSON value as soc_sim's --set key=value reads it."""
     if isinstance(value, bool):
@@ -508,8 +560,19 @@ def run_folder_name(label):
 
 
 def soc_sim_command(soc_sim, spec, run, frames, folder, overrides=None):
-    command = [str(soc_sim), "--backend", run["backend"], "--app", run["app"], "--frames", str(frames),
-               "--out", str(folder), "--force", "--quiet"]
+    command = [
+        str(soc_sim),
+        "--backend",
+        run["backend"],
+        "--app",
+        run["app"],
+        "--frames",
+        str(frames),
+        "--out",
+        str(folder),
+        "--force",
+        "--quiet",
+    ]
     for key, value in {**spec["set"], **run["set"], **(overrides or {})}.items():
         command += ["--set", f"{key}={setting_text(value)}"]
     if run["args"]:
@@ -528,14 +591,21 @@ def run_all(spec, name, soc_sim, out, frames_override, quiet, overrides, runs):
             print(f"[{name}] {run['label']}: {' '.join(command)}", file=sys.stderr, flush=True)
         start = time.monotonic()
         try:
-            done = subprocess.run(command, capture_output=True, text=True, check=False,
-                                  env={**os.environ, "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE": "1"})
+            done = subprocess.run(
+                command,
+                capture_output=True,
+                text=True,
+                check=False,
+                env={**os.environ, "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE": "1"},
+            )
         except OSError as error:
             raise UsageError(f"cannot run {soc_sim}: {error.strerror}") from error
         if done.returncode != 0:
             message = (done.stderr.strip() or done.stdout.strip()).splitlines()[-5:]
-            raise RunError(f"run '{run['label']}' failed (soc_sim exit status {done.returncode}): "
-                           f"{' '.join(command)}\n  " + "\n  ".join(message))
+            raise RunError(
+                f"run '{run['label']}' failed (soc_sim exit status {done.returncode}): "
+                f"{' '.join(command)}\n  " + "\n  ".join(message)
+            )
         stats_path = folder / "stats.json"
         try:
             document = json.loads(stats_path.read_text())
@@ -645,8 +715,12 @@ def run_spec(spec, name, soc_sim, out, frames=None, quiet=True, overrides=None, 
     files = f"table {out / (name + '.md')}, CSV {out / (name + '.csv')}"
     if study_rows is not None:
         study = spec["study"]
-        text += (f"\n## {study['title']}\n\n" + (f"{study['description']}\n\n" if study["description"] else "")
-                 + markdown(spec["label_header"], study["columns"], study_rows) + footer)
+        text += (
+            f"\n## {study['title']}\n\n"
+            + (f"{study['description']}\n\n" if study["description"] else "")
+            + markdown(spec["label_header"], study["columns"], study_rows)
+            + footer
+        )
         write_csv(study["columns"], study_rows, out / f"{name}_study.csv")
         files += f", study's CSV {out / (name + '_study.csv')}"
     (out / f"{name}.md").write_text(text)
@@ -663,8 +737,17 @@ def run_experiment(name, args):
     if len(args.experiments) > 1 and args.out:
         out = out / name
     started = time.monotonic()
-    outcome = run_spec(spec, name, soc_sim, out, args.frames, args.quiet, command_line_settings(args),
-                       chosen(args.host, HOSTS, "--host"), chosen(args.program, PROGRAMS, "--program"))
+    outcome = run_spec(
+        spec,
+        name,
+        soc_sim,
+        out,
+        args.frames,
+        args.quiet,
+        command_line_settings(args),
+        chosen(args.host, HOSTS, "--host"),
+        chosen(args.program, PROGRAMS, "--program"),
+    )
     print(outcome.text)
     print(f"{outcome.files}\n")
     results = outcome.results
@@ -676,23 +759,38 @@ def run_experiment(name, args):
 def add_arguments(parser):
     """The options of an experiment's run (scripts/experiment.py's, tessera-sweep run's)."""
     parser.add_argument("--soc-sim", help=f"the soc_sim to run (default: {DEFAULT_SOC_SIM.relative_to(ROOT)})")
-    parser.add_argument("--out", help="output folder (default: out/experiments/<name>; with several "
-                                      "experiments, one folder per experiment inside it)")
-    parser.add_argument("--frames", type=int, help="frames of every run instead of the experiment's own "
-                                                   "(e.g. 1 for a quick check)")
+    parser.add_argument(
+        "--out",
+        help="output folder (default: out/experiments/<name>; with several "
+        "experiments, one folder per experiment inside it)",
+    )
+    parser.add_argument(
+        "--frames", type=int, help="frames of every run instead of the experiment's own (e.g. 1 for a quick check)"
+    )
     parser.add_argument("--quiet", "-q", action="store_true", help="print the tables only, not each soc_sim run")
-    parser.add_argument("--host", metavar="native|iss|both",
-                        help="the host models the runs are made on (host.model): native, the host-compiled model, "
-                             "iss, the driver as ARM code on the ISS, or both; default: the experiment's 'hosts' "
-                             "(native unless it lists others); the tables say which")
-    parser.add_argument("--program", metavar="study|tuned|both",
-                        help="the array programs of the ap-tile and ap-pixel runs (ap.tile.program, "
-                             "ap.pixel.program): study, the study's program as its compiler wrote it, tuned, or "
-                             "both; default: the experiment's 'programs' (none: the configured one); the tables say "
-                             "which")
-    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                        help="a configuration setting for every run, over the experiment's own (repeatable; "
-                             "docs/configuration.md lists the keys)")
+    parser.add_argument(
+        "--host",
+        metavar="native|iss|both",
+        help="the host models the runs are made on (host.model): native, the host-compiled model, "
+        "iss, the driver as ARM code on the ISS, or both; default: the experiment's 'hosts' "
+        "(native unless it lists others); the tables say which",
+    )
+    parser.add_argument(
+        "--program",
+        metavar="study|tuned|both",
+        help="the array programs of the ap-tile and ap-pixel runs (ap.tile.program, "
+        "ap.pixel.program): study, the study's program as its compiler wrote it, tuned, or "
+        "both; default: the experiment's 'programs' (none: the configured one); the tables say "
+        "which",
+    )
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="a configuration setting for every run, over the experiment's own (repeatable; "
+        "docs/configuration.md lists the keys)",
+    )
 
 
 def run_command(args, prog):
@@ -721,10 +819,15 @@ def run_command(args, prog):
 
 def main(argv=None, prog="experiment.py"):
     """scripts/experiment.py's command line: EXPERIMENT... [options], or --list."""
-    parser = argparse.ArgumentParser(prog=prog, description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("experiments", nargs="*", metavar="EXPERIMENT",
-                        help="an experiment's name (experiments/<name>.yaml) or a .yaml or .json file")
+    parser = argparse.ArgumentParser(
+        prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument(
+        "experiments",
+        nargs="*",
+        metavar="EXPERIMENT",
+        help="an experiment's name (experiments/<name>.yaml) or a .yaml or .json file",
+    )
     parser.add_argument("--list", action="store_true", help="list the experiments and exit")
     add_arguments(parser)
     return run_command(parser.parse_args(argv), prog)

@@ -56,15 +56,19 @@ RUN_COLUMNS = [{"key": "host", "header": "host"}, {"key": "program", "header": "
 
 def build_table(columns, results):
     """Rows of (label, [host, program, value per column]) in the runs' order."""
-    return [(result.label, [result.host, result.program]
-             + [cell_value(column, result, results) for column in columns]) for result in results]
+    return [
+        (result.label, [result.host, result.program] + [cell_value(column, result, results) for column in columns])
+        for result in results
+    ]
 
 
 def markdown(label_header, columns, rows):
     columns = RUN_COLUMNS + columns
     headers = [label_header] + [column["header"] for column in columns]
-    lines = ["| " + " | ".join(headers) + " |",
-             "|" + "---|" + "".join(":--|" if column in RUN_COLUMNS else "--:|" for column in columns)]
+    lines = [
+        "| " + " | ".join(headers) + " |",
+        "|" + "---|" + "".join(":--|" if column in RUN_COLUMNS else "--:|" for column in columns),
+    ]
     for label, values in rows:
         cells = [format_cell(column, value) for column, value in zip(columns, values)]
         lines.append("| " + " | ".join([label] + cells) + " |")
@@ -97,8 +101,10 @@ def import_pyplot():
     try:
         import matplotlib
     except ImportError as error:
-        raise UsageError(f"matplotlib is missing for {sys.executable}: install python3-matplotlib "
-                         "(scripts/setup.sh) or run the script with Debian's python3") from error
+        raise UsageError(
+            f"matplotlib is missing for {sys.executable}: install python3-matplotlib "
+            "(scripts/setup.sh) or run the script with Debian's python3"
+        ) from error
     matplotlib.use("Agg")  # files only, no display needed
     import matplotlib.pyplot as plt
 
@@ -113,15 +119,18 @@ def plot_groups(spec, rows, index, groups, axes):
     width = 0.8 / len(variants)
     for number, variant in enumerate(variants):
         offset = (number - (len(variants) - 1) / 2) * width
-        bars = [(position + offset, float(values[(group, variant)])) for position, group in enumerate(groups)
-                if values.get((group, variant)) is not None]
+        bars = [
+            (position + offset, float(values[(group, variant)]))
+            for position, group in enumerate(groups)
+            if values.get((group, variant)) is not None
+        ]
         axes.bar([x for x, _ in bars], [y for _, y in bars], width, label=variant or "none")
     axes.set_xticks(list(range(len(groups))))
     axes.set_xticklabels(groups, rotation=30, ha="right", fontsize=8)
 
 
 def plot(spec, rows, path, plt):
-    rows = [(label, values[len(RUN_COLUMNS):]) for label, values in rows]
+    rows = [(label, values[len(RUN_COLUMNS) :]) for label, values in rows]
     settings = spec["plot"]
     columns = {column["key"]: (index, column) for index, column in enumerate(spec["columns"])}
     labels = [label for label, _ in rows]
@@ -151,11 +160,20 @@ def plot(spec, rows, path, plt):
         for number, key in enumerate(keys):
             values = [0.0 if v is None else float(v) for v in series(key)]
             offset = 0.0 if stacked else (number - (len(keys) - 1) / 2) * width
-            bars = axes.bar([p + offset for p in positions], values, width, bottom=bottom if stacked else None,
-                            label=columns[key][1]["header"])
+            bars = axes.bar(
+                [p + offset for p in positions],
+                values,
+                width,
+                bottom=bottom if stacked else None,
+                label=columns[key][1]["header"],
+            )
             column = columns[key][1]
-            axes.bar_label(bars, labels=[format_cell(column, v) if v else "" for v in values], fontsize=8,
-                           label_type="center" if stacked else "edge")
+            axes.bar_label(
+                bars,
+                labels=[format_cell(column, v) if v else "" for v in values],
+                fontsize=8,
+                label_type="center" if stacked else "edge",
+            )
             if stacked:
                 bottom = [b + v for b, v in zip(bottom, values)]
         # Room above the tallest bar for its label and the legend.
@@ -177,4 +195,3 @@ def plot(spec, rows, path, plt):
     figure.tight_layout()
     figure.savefig(path, dpi=120)
     plt.close(figure)
-

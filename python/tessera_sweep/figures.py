@@ -38,7 +38,6 @@ class RunResult:
             self.program = node if isinstance(node, str) and node else "-"
 
 
-
 # ---------------------------------------------------------------------------
 # Figures computed from a run's statistics ("value" columns). Each takes the
 # run's result, the column and every run's result (for figures relative to
@@ -267,8 +266,9 @@ def study_divisor(result, quantity):
 
 
 def unsupported(result, quantity):
-    return RunError(f"run '{result.label}': the study's {quantity} figure is not defined for back end "
-                    f"'{result.backend}'")
+    return RunError(
+        f"run '{result.label}': the study's {quantity} figure is not defined for back end '{result.backend}'"
+    )
 
 
 def study_time_ms(result, column, results):
@@ -305,8 +305,9 @@ def host_executing_watts(result):
         joules = events["busy_cycles"]["j"] + events["stalled_cycles"]["j"]
         cycles = events["busy_cycles"]["count"] + events["stalled_cycles"]["count"]
     except KeyError as error:
-        raise RunError(f"run '{result.label}': stats.energy.units.host.events lacks {error} in "
-                       f"{result.stats_path}") from error
+        raise RunError(
+            f"run '{result.label}': stats.energy.units.host.events lacks {error} in {result.stats_path}"
+        ) from error
     seconds = cycles / (stat(result, "host.clock_mhz") * 1e6)
     return joules / seconds + static_watts(result, ("host",))
 
@@ -322,14 +323,24 @@ def study_energy_mj(result, column, results):
         return host_executing_watts(result) * study_time_ms(result, column, results)
     if quantity == "processing":
         watts = static_watts(result, ARRAY_UNITS)
-        return frames_mean(result, lambda f: sum(f["energy"]["units"][unit]["total_j"] for unit in ARRAY_UNITS)
-                           - watts * f["driver"]["host_frame_out_ns"] * 1e-9) * 1e3
+        return (
+            frames_mean(
+                result,
+                lambda f: (
+                    sum(f["energy"]["units"][unit]["total_j"] for unit in ARRAY_UNITS)
+                    - watts * f["driver"]["host_frame_out_ns"] * 1e-9
+                ),
+            )
+            * 1e3
+        )
     study_time_ms(result, column, results)  # the quantity applies to the back end
     stages = result.stats.get("energy", {}).get("array_stages", {})
     missing = [stage for stage in array_pass_stages(result) if stage not in stages]
     if missing or not stages:
-        raise RunError(f"run '{result.label}' has no statistic 'energy.array_stages.{(missing or ['*'])[0]}' in "
-                       f"{result.stats_path}")
+        raise RunError(
+            f"run '{result.label}' has no statistic 'energy.array_stages.{(missing or ['*'])[0]}' in "
+            f"{result.stats_path}"
+        )
     joules = sum(stages[stage]["total_j"] for stage in array_pass_stages(result))
     return joules / study_divisor(result, quantity) * 1e3
 
@@ -342,13 +353,15 @@ def study_power_mw(result, column, results):
 def study_speedup(result, column, results):
     """The baseline run's study_time_ms over this run's (column "baseline")."""
     return study_time_ms(baseline_result(result, column, results), column, results) / study_time_ms(
-        result, column, results)
+        result, column, results
+    )
 
 
 def study_energy_ratio(result, column, results):
     """The baseline run's study_energy_mj over this run's (column "baseline")."""
     return study_energy_mj(baseline_result(result, column, results), column, results) / study_energy_mj(
-        result, column, results)
+        result, column, results
+    )
 
 
 def study_shades_per_second_of_study_time(result, column, results):
@@ -384,8 +397,14 @@ COMPUTED = {
     )
 }
 BASELINE_VALUES = ("speedup", "energy_ratio", "patch_break_even", "study_speedup", "study_energy_ratio")
-QUANTITY_VALUES = ("study_time_ms", "study_energy_mj", "study_power_mw", "study_speedup", "study_energy_ratio",
-                   "study_shades_per_second_of_study_time")
+QUANTITY_VALUES = (
+    "study_time_ms",
+    "study_energy_mj",
+    "study_power_mw",
+    "study_speedup",
+    "study_energy_ratio",
+    "study_shades_per_second_of_study_time",
+)
 
 
 def config(result, key):
@@ -396,4 +415,3 @@ def config(result, key):
             raise RunError(f"run '{result.label}' has no configuration key '{key}' in {result.stats_path}")
         node = node[part]
     return node
-

@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 
 import tessera_sweep
+
 from conftest import TINY
 
 README = Path(__file__).resolve().parents[1] / "tessera_sweep" / "README.md"
@@ -13,7 +14,10 @@ README = Path(__file__).resolve().parents[1] / "tessera_sweep" / "README.md"
 EXPERIMENT = {
     "title": "t",
     "set": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
-    "runs": [{"label": "a", "backend": "arm", "app": "triangle"}, {"label": "b", "backend": "raster", "app": "triangle"}],
+    "runs": [
+        {"label": "a", "backend": "arm", "app": "triangle"},
+        {"label": "b", "backend": "raster", "app": "triangle"},
+    ],
     "columns": [
         {"key": "frame_ms", "value": "frame_time_ms"},
         {"key": "speedup", "value": "speedup", "baseline": "a"},

@@ -7,8 +7,9 @@ from pathlib import Path
 
 import yaml
 
-from conftest import TINY, tessera_sweep_command, write_spec
 from tessera_sweep import experiment
+
+from conftest import TINY, tessera_sweep_command, write_spec
 
 ROOT = Path(__file__).resolve().parents[2]
 SMALL = {
@@ -38,8 +39,19 @@ def test_list_names_every_experiment():
 def test_run_an_experiment_file_with_set_and_frames(simulator, tmp_path):
     spec = tmp_path / "small.yaml"
     spec.write_text(yaml.safe_dump(SMALL))
-    done = tessera_sweep_command("run", str(spec), "--soc-sim", str(simulator.path), "--out", str(tmp_path / "out"),
-                                 "--quiet", "--set", "ciu.read_cycles=41", "--frames", "2")
+    done = tessera_sweep_command(
+        "run",
+        str(spec),
+        "--soc-sim",
+        str(simulator.path),
+        "--out",
+        str(tmp_path / "out"),
+        "--quiet",
+        "--set",
+        "ciu.read_cycles=41",
+        "--frames",
+        "2",
+    )
     assert done.returncode == 0, done.stderr
     assert "| a | native | - | 41 |" in done.stdout
     stats = json.loads((tmp_path / "out" / "runs" / "a" / "stats.json").read_text())
@@ -48,8 +60,9 @@ def test_run_an_experiment_file_with_set_and_frames(simulator, tmp_path):
 
 def test_run_a_sweep_spec_with_set_and_frames(simulator, tmp_path):
     spec = write_spec(tmp_path, dict(TINY, axes={"driver.backend": ["arm", "raster"]}))
-    done = tessera_sweep_command("run", str(spec), "--check", "--soc-sim", str(simulator.path), "--frames", "2",
-                                 "--set", "ciu.read_cycles=41")
+    done = tessera_sweep_command(
+        "run", str(spec), "--check", "--soc-sim", str(simulator.path), "--frames", "2", "--set", "ciu.read_cycles=41"
+    )
     assert done.returncode == 0 and "2 points, all valid" in done.stdout, done.stderr
 
 
@@ -66,8 +79,12 @@ def test_run_refuses_the_other_kinds_options(simulator, tmp_path):
 def test_the_alias_prints_the_same_tables(simulator, tmp_path):
     common = ["host_traffic", "--frames", "1", "--quiet", "--soc-sim", str(simulator.path)]
     package = tessera_sweep_command("run", *common, "--out", str(tmp_path / "package"))
-    alias = subprocess.run([str(ROOT / "scripts" / "experiment.py"), *common, "--out", str(tmp_path / "alias")],
-                           capture_output=True, text=True, check=False)
+    alias = subprocess.run(
+        [str(ROOT / "scripts" / "experiment.py"), *common, "--out", str(tmp_path / "alias")],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert package.returncode == 0 and alias.returncode == 0, package.stderr + alias.stderr
     tables = [done.stdout.split("\ntable ")[0] for done in (package, alias)]
     assert tables[0] == tables[1] and "| " in tables[0]
