@@ -73,6 +73,7 @@ from .figures import (
     PROGRAM_KEYS,
     QUANTITIES,
     QUANTITY_VALUES,
+    SAVING_PERCENT,
     RunError,
     RunResult,
 )
@@ -127,6 +128,7 @@ COLUMN_KEYS = {
     "required",
     "may_be_zero",
     "quantity",
+    "of",
 }
 PLOT_KEYS = {"columns", "stacked", "ylabel", "x", "log", "groups"}
 
@@ -438,9 +440,18 @@ def check_columns(where, columns, labels):
         sources = [source for source in ("stat", "config", "value") if source in column]
         if len(sources) != 1:
             raise UsageError(f"{column_where} ('{key}') needs exactly one of 'stat', 'config' and 'value'")
-        if "value" in column and column["value"] not in COMPUTED:
+        if "value" in column and column["value"] not in COMPUTED and column["value"] != SAVING_PERCENT:
             raise UsageError(
-                f"{column_where} ('{key}'): unknown value '{column['value']}' (known: {', '.join(COMPUTED)})"
+                f"{column_where} ('{key}'): unknown value '{column['value']}' "
+                f"(known: {', '.join(COMPUTED)}, {SAVING_PERCENT})"
+            )
+        if (column.get("value") == SAVING_PERCENT) != ("of" in column):
+            raise UsageError(f"{column_where} ('{key}'): 'of' goes with the value {SAVING_PERCENT}, which needs it")
+        earlier = {c["key"] for c in columns[:index] if c.get("value") != SAVING_PERCENT}
+        if "of" in column and column["of"] not in earlier:
+            raise UsageError(
+                f"{column_where} ('{key}'): 'of' must be the key of a column before it in the same table, "
+                f"not itself a saving ({', '.join(sorted(earlier)) or 'there is none'})"
             )
         if column.get("value") in BASELINE_VALUES and column.get("baseline") not in labels:
             raise UsageError(

@@ -6,7 +6,17 @@ import csv
 import math
 import sys
 
-from .figures import COMPUTED, RunError, config, frames_drawn, stat, stats_required
+from .figures import (
+    COMPUTED,
+    SAVING_PERCENT,
+    RunError,
+    baseline_result,
+    config,
+    frames_drawn,
+    saving_percent,
+    stat,
+    stats_required,
+)
 
 
 class UsageError(Exception):
@@ -55,11 +65,23 @@ RUN_COLUMNS = [{"key": "host", "header": "host"}, {"key": "program", "header": "
 
 
 def build_table(columns, results):
-    """Rows of (label, [host, program, value per column]) in the runs' order."""
-    return [
-        (result.label, [result.host, result.program] + [cell_value(column, result, results) for column in columns])
+    """Rows of (label, [host, program, value per column]) in the runs' order. A saving_percent column comes from
+    another column's values in the same table, so it is filled in once the run's own figures are."""
+    rows = [
+        [None if column.get("value") == SAVING_PERCENT else cell_value(column, result, results) for column in columns]
         for result in results
     ]
+    position = {column["key"]: index for index, column in enumerate(columns)}
+    for index, column in enumerate(columns):
+        if column.get("value") != SAVING_PERCENT:
+            continue
+        of = position[column["of"]]
+        for result, values in zip(results, rows):
+            if "backends" in column and result.backend not in column["backends"]:
+                continue
+            baseline = rows[results.index(baseline_result(result, column, results))]
+            values[index] = saving_percent(baseline[of], values[of], result, column)
+    return [(result.label, [result.host, result.program] + values) for result, values in zip(results, rows)]
 
 
 def markdown(label_header, columns, rows):

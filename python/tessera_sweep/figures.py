@@ -396,7 +396,29 @@ COMPUTED = {
         study_shades_per_second_of_study_time,
     )
 }
-BASELINE_VALUES = ("speedup", "energy_ratio", "patch_break_even", "study_speedup", "study_energy_ratio")
+# A figure of the table rather than of one run: another column's value (column "of") of the baseline run (column
+# "baseline") against this run's, as the percentage this run saves, (baseline - this) / baseline x 100: any
+# column, a time, an energy or a byte count, gets its saving against a baseline without a figure of its own.
+SAVING_PERCENT = "saving_percent"
+
+
+def saving_percent(baseline_value, value, result, column):
+    """What this run saves of the column "of" against the baseline run, in percent; None where either lacks it."""
+    if baseline_value is None or value is None:
+        return None
+    if baseline_value == 0:
+        raise RunError(f"run '{result.label}': the baseline's '{column['of']}' is 0, so a saving is undefined")
+    return (baseline_value - value) / baseline_value * 100
+
+
+BASELINE_VALUES = (
+    "speedup",
+    "energy_ratio",
+    "patch_break_even",
+    "study_speedup",
+    "study_energy_ratio",
+    SAVING_PERCENT,
+)
 QUANTITY_VALUES = (
     "study_time_ms",
     "study_energy_mj",

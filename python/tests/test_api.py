@@ -22,6 +22,7 @@ EXPERIMENT = {
         {"key": "frame_ms", "value": "frame_time_ms"},
         {"key": "speedup", "value": "speedup", "baseline": "a"},
         {"key": "ciu", "config": "ciu.read_cycles"},
+        {"key": "saved", "value": "saving_percent", "of": "frame_ms", "baseline": "a"},
     ],
 }
 
@@ -39,9 +40,12 @@ def test_readme_example_runs(simulator, tmp_path, monkeypatch, capsys):
 
 def test_an_experiment_as_data_with_overrides(simulator, tmp_path):
     table = tessera_sweep.run(EXPERIMENT, {"ciu.read_cycles": 41}, out=tmp_path, soc_sim=simulator.path)
-    assert list(table.columns) == ["run", "host", "program", "frame_ms", "speedup", "ciu"]
+    assert list(table.columns) == ["run", "host", "program", "frame_ms", "speedup", "ciu", "saved"]
     assert list(table["run"]) == ["a", "b"] and list(table["ciu"]) == [41, 41]
     assert table["speedup"][0] == 1.0 and table["frame_ms"].gt(0).all()
+    # The saving against the baseline: 0 for the baseline itself, and the speed-up's figure seen the other way.
+    assert table["saved"][0] == 0.0
+    assert table["saved"][1] == pytest.approx((1 - 1 / table["speedup"][1]) * 100)
     assert table.attrs["study"] is None and "| a | native | - |" in table.attrs["markdown"]
     again = tessera_sweep.load(tmp_path)
     assert list(again["run"]) == ["a", "b"]
@@ -75,3 +79,15 @@ def test_a_sweep_as_data_with_overrides_and_load(simulator, tmp_path):
 def test_load_without_a_table(tmp_path):
     with pytest.raises(FileNotFoundError):
         tessera_sweep.load(tmp_path)
+
+
+def test_a_saving_needs_an_earlier_column_and_a_baseline(tmp_path):
+    for change, message in [
+        ({"of": "nothing"}, "'of' must be the key of a column before it"),
+        ({"baseline": "z"}, "'baseline' must be the label of a run"),
+        ({"of": None}, "'of' goes with the value saving_percent"),
+    ]:
+        spec = {**EXPERIMENT, "columns": EXPERIMENT["columns"][:3] + [{**EXPERIMENT["columns"][3], **change}]}
+        spec["columns"] = [{k: v for k, v in column.items() if v is not None} for column in spec["columns"]]
+        with pytest.raises(tessera_sweep.UsageError, match=message):
+            tessera_sweep.run(spec, out=tmp_path)
