@@ -77,7 +77,7 @@ from .figures import (
     RunError,
     RunResult,
 )
-from .spec import SpecError, _load_yaml
+from .spec import SpecError, load_yaml
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXPERIMENTS = ROOT / "experiments"
@@ -313,7 +313,7 @@ def read_experiment(path):
         except json.JSONDecodeError as error:
             raise UsageError(f"{path} is not valid JSON: {error}") from error
     try:
-        return _load_yaml(text, path)
+        return load_yaml(text, path)
     except yaml.YAMLError as error:
         raise UsageError(f"{path} is not valid YAML: {error}") from error
     except SpecError as error:

@@ -167,7 +167,7 @@ def _check_expanded_size(root: yaml.Node, where: Path) -> None:
         stack.extend((child, False) for child in _children(node) if id(child) not in sizes)
 
 
-def _load_yaml(text: str, where: Path):
+def load_yaml(text: str, where: Path):
     """yaml.safe_load with the size of the document checked first."""
     loader = yaml.SafeLoader(text)
     try:
@@ -184,7 +184,7 @@ def load_spec(path: str | Path) -> Spec:
     path = Path(path)
     text = path.read_text()
     try:
-        data = json.loads(text) if path.suffix == ".json" else _load_yaml(text, path)
+        data = json.loads(text) if path.suffix == ".json" else load_yaml(text, path)
     except (json.JSONDecodeError, yaml.YAMLError) as error:
         raise SpecError(f"{path}: {error}") from None
     spec = parse_spec(data)
