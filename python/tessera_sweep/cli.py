@@ -24,8 +24,8 @@ from .runner import run_sweep
 from .simulator import Simulator, SimulatorError
 from .spec import SpecError, check, expand, load_spec
 
-# python/tessera_sweep/ -> the repository's default build
-DEFAULT_SOC_SIM = Path(__file__).resolve().parents[2] / "build" / "default" / "bin" / "soc_sim"
+# The repository's default build (build/default/bin/soc_sim).
+DEFAULT_SOC_SIM = experiment.DEFAULT_SOC_SIM
 
 
 def command_line_settings(options: argparse.Namespace, spec) -> dict:
