@@ -43,13 +43,18 @@ from tessera_sweep.spec import expand, parse_spec  # noqa: E402
 
 
 def sweep_spec(frames: int):
-    return parse_spec({
-        "app": "teapot",
-        "frames": frames,
-        "config": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
-        "axes": {"driver.backend": ["arm", "raster"], "bus.clock_mhz": [48, 96, 144, 192],
-                 "display.dma": [False, True]},
-    })
+    return parse_spec(
+        {
+            "app": "teapot",
+            "frames": frames,
+            "config": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
+            "axes": {
+                "driver.backend": ["arm", "raster"],
+                "bus.clock_mhz": [48, 96, 144, 192],
+                "display.dma": [False, True],
+            },
+        }
+    )
 
 
 def timed_sweep(spec, simulator, workers: int, scratch: Path) -> dict:
@@ -60,8 +65,7 @@ def timed_sweep(spec, simulator, workers: int, scratch: Path) -> dict:
         table, ran = run_sweep(spec, simulator, out, workers=workers, phases=phases)
     failed = int((table["status"] != 0).sum())
     if ran != 16 or failed:
-        raise SystemExit(f"bench_sweep: {ran} points ran, {failed} failed (expected 16 and 0): "
-                         f"see {out}/results.csv")
+        raise SystemExit(f"bench_sweep: {ran} points ran, {failed} failed (expected 16 and 0): see {out}/results.csv")
     return phases
 
 
@@ -97,24 +101,34 @@ def main() -> int:
     times = {1: [], 2: []}  # phases of each run
     with tempfile.TemporaryDirectory(prefix="bench_sweep_") as scratch:
         for repeat in range(options.repeat):
-            for workers in ((1, 2) if repeat % 2 == 0 else (2, 1)):
+            for workers in (1, 2) if repeat % 2 == 0 else (2, 1):
                 times[workers].append(timed_sweep(spec, simulator, workers, Path(scratch)))
                 times[workers][-1].update(direct_runs(spec, simulator, workers, Path(scratch)))
                 phases = times[workers][-1]
-                print(f"  pair {repeat + 1}/{options.repeat}, {workers} worker(s): {phases['total_s']:.2f} s, "
-                      f"runs {phases['runs_s']:.2f} s, without Dask {phases['direct_s']:.2f} s",
-                      file=sys.stderr, flush=True)
-    print(f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
-          f"Python {platform.python_version()}; soc_sim {simulator.version}")
+                print(
+                    f"  pair {repeat + 1}/{options.repeat}, {workers} worker(s): {phases['total_s']:.2f} s, "
+                    f"runs {phases['runs_s']:.2f} s, without Dask {phases['direct_s']:.2f} s",
+                    file=sys.stderr,
+                    flush=True,
+                )
+    print(
+        f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
+        f"Python {platform.python_version()}; soc_sim {simulator.version}"
+    )
     print(f"16 points (teapot 192x144, {options.frames} frames each), {options.repeat} paired runs\n")
     print("| what | local workers (or runs at a time) | min (s) | median (s) | speed-up (medians) |")
     print("|---|---|---|---|---|")
-    for phase, name in (("total_s", "whole sweep"), ("runs_s", "runs alone"),
-                        ("direct_s", "soc_sim runs without Dask (ceiling)")):
+    for phase, name in (
+        ("total_s", "whole sweep"),
+        ("runs_s", "runs alone"),
+        ("direct_s", "soc_sim runs without Dask (ceiling)"),
+    ):
         median = {workers: statistics.median(run[phase] for run in runs) for workers, runs in times.items()}
         for workers in (1, 2):
-            print(f"| {name} | {workers} | {min(run[phase] for run in times[workers]):.2f} | "
-                  f"{median[workers]:.2f} | {median[1] / median[workers]:.2f}x |")
+            print(
+                f"| {name} | {workers} | {min(run[phase] for run in times[workers]):.2f} | "
+                f"{median[workers]:.2f} | {median[1] / median[workers]:.2f}x |"
+            )
     return 0
 
 

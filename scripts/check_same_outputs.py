@@ -24,6 +24,7 @@ ap-tile, for a fast look), --work-dir DIR (kept, with the runs that differ).
 --compare exits 1 naming each run that differs and the first difference in
 it; a run missing on either side is a difference too.
 """
+
 import argparse
 import concurrent.futures
 import hashlib
@@ -82,8 +83,7 @@ def case_name(case: tuple) -> str:
 
 def raster_size_keys(soc_sim: str) -> list:
     """A build that still has raster.width and raster.height needs them set to the display's size."""
-    config = json.loads(subprocess.run([soc_sim, "--print-config"], check=True, capture_output=True,
-                                       text=True).stdout)
+    config = json.loads(subprocess.run([soc_sim, "--print-config"], check=True, capture_output=True, text=True).stdout)
     if "width" not in config.get("raster", {}):
         return []
     return ["--set", "raster.width=192", "--set", "raster.height=144"]
@@ -91,8 +91,23 @@ def raster_size_keys(soc_sim: str) -> list:
 
 def run(soc_sim: str, case: tuple, out: pathlib.Path) -> str:
     host, backend, app = case
-    command = [soc_sim, "--backend", backend, "--app", app, "--frames", "2", "--out", str(out),
-               "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"host.model={host}"]
+    command = [
+        soc_sim,
+        "--backend",
+        backend,
+        "--app",
+        app,
+        "--frames",
+        "2",
+        "--out",
+        str(out),
+        "--vcd",
+        str(out / "trace.vcd"),
+        "--force",
+        "--quiet",
+        "--set",
+        f"host.model={host}",
+    ]
     command += SIZE + (RASTER_SIZE if backend == "raster" else []) + APP_ARGUMENTS.get(app, [])
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
@@ -155,12 +170,16 @@ def main() -> int:
     mode.add_argument("--record", help="write the manifest to FILE")
     mode.add_argument("--compare", help="compare with the manifest in FILE")
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--iss-frames-only", action="store_true",
-                        help="on the ISS compare the frames only (for a change that moves the ARM program's code)")
+    parser.add_argument(
+        "--iss-frames-only",
+        action="store_true",
+        help="on the ISS compare the frames only (for a change that moves the ARM program's code)",
+    )
     parser.add_argument("--work-dir", default="")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--removed-keys", default="",
-                        help="comma-separated configuration keys (raster.width) that may be gone after")
+    parser.add_argument(
+        "--removed-keys", default="", help="comma-separated configuration keys (raster.width) that may be gone after"
+    )
     args = parser.parse_args()
     RASTER_SIZE[:] = raster_size_keys(args.soc_sim)
 
@@ -214,8 +233,10 @@ def main() -> int:
     verb = "recorded" if args.record else "identical to the manifest"
     if args.iss_frames_only:
         verb += f" (ISS runs: frames only; {iss_timing_moved} of them with other outputs changed)"
-    print(f"check_same_outputs: {len(todo) - failures} of {len(todo)} runs {verb} "
-          f"(frames, VCD, stats.json; {sum(len(r['files']) for r in manifest['runs'].values())} files)")
+    print(
+        f"check_same_outputs: {len(todo) - failures} of {len(todo)} runs {verb} "
+        f"(frames, VCD, stats.json; {sum(len(r['files']) for r in manifest['runs'].values())} files)"
+    )
     return 1 if failures else 0
 
 

@@ -14,6 +14,7 @@ runs. Exits 1 naming the first scene that differs, and where.
   check_skip_idle_cus.py --soc-sim build/default/bin/soc_sim [--frames N]
       [--backends ap-tile,ap-pixel] [--apps a,b] [--work-dir DIR] [--jobs J]
 """
+
 import argparse
 import concurrent.futures
 import json
@@ -42,8 +43,23 @@ def scenes(soc_sim: str) -> list:
 
 
 def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path) -> str:
-    command = [soc_sim, "--backend", backend, "--app", app, "--frames", str(frames), "--out", str(out),
-               "--vcd", str(out / "trace.vcd"), "--force", "--quiet", "--set", f"{SWITCH}={str(skip).lower()}"]
+    command = [
+        soc_sim,
+        "--backend",
+        backend,
+        "--app",
+        app,
+        "--frames",
+        str(frames),
+        "--out",
+        str(out),
+        "--vcd",
+        str(out / "trace.vcd"),
+        "--force",
+        "--quiet",
+        "--set",
+        f"{SWITCH}={str(skip).lower()}",
+    ]
     command += SIZE + CMEM_ENERGY
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:

@@ -63,8 +63,22 @@ def run(soc_sim, out, scene, backend, model, frames, iss_from=None):
     if recorded is not None:
         frames = len(recorded)
     else:
-        command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames",
-                   "--quiet", "--force", "--out", str(folder.resolve()), "--set", f"host.model={model}"]
+        command = [
+            soc_sim,
+            "--app",
+            scene,
+            "--backend",
+            backend,
+            "--frames",
+            str(frames),
+            "--no-frames",
+            "--quiet",
+            "--force",
+            "--out",
+            str(folder.resolve()),
+            "--set",
+            f"host.model={model}",
+        ]
         if scene == "obj_viewer":
             command += ["--", OBJ]
         result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
@@ -83,24 +97,40 @@ def run(soc_sim, out, scene, backend, model, frames, iss_from=None):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"))
-    parser.add_argument("--backend", action="append",
-                        help="back end (repeatable; default arm, raster, ap-tile and ap-pixel)")
+    parser.add_argument(
+        "--backend", action="append", help="back end (repeatable; default arm, raster, ap-tile and ap-pixel)"
+    )
     parser.add_argument("--scene", action="append", help="scene (repeatable; default every built-in GL scene)")
     parser.add_argument("--frames", type=int, default=3, help="frames per run (>= 2; frames 1.. are averaged)")
     parser.add_argument("--out", default="out/host_models", help="folder for the runs' statistics")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--check", type=float, metavar="PERCENT",
-                        help="exit 1 unless every frame, and every phase that holds at least --floor of its frame, "
-                             "is within PERCENT of the ISS's")
-    parser.add_argument("--floor", type=float, default=1.0, metavar="PERCENT",
-                        help="the share of the frame below which --check leaves a phase out (default 1)")
-    parser.add_argument("--iss-from", metavar="DIR",
-                        help="take the ISS's runs from DIR where it has them (<scene>_<back end>_iss/stats.json, "
-                             "as scripts/measure_host_costs.py leaves them: the ISS's times do not depend on the "
-                             "table) and run the host-compiled model for as many frames")
-    parser.add_argument("--doc", metavar="FILE",
-                        help="also exit 1 when FILE's table (between <!-- host-models:begin --> and "
-                             "<!-- host-models:end -->) is not the one printed")
+    parser.add_argument(
+        "--check",
+        type=float,
+        metavar="PERCENT",
+        help="exit 1 unless every frame, and every phase that holds at least --floor of its frame, "
+        "is within PERCENT of the ISS's",
+    )
+    parser.add_argument(
+        "--floor",
+        type=float,
+        default=1.0,
+        metavar="PERCENT",
+        help="the share of the frame below which --check leaves a phase out (default 1)",
+    )
+    parser.add_argument(
+        "--iss-from",
+        metavar="DIR",
+        help="take the ISS's runs from DIR where it has them (<scene>_<back end>_iss/stats.json, "
+        "as scripts/measure_host_costs.py leaves them: the ISS's times do not depend on the "
+        "table) and run the host-compiled model for as many frames",
+    )
+    parser.add_argument(
+        "--doc",
+        metavar="FILE",
+        help="also exit 1 when FILE's table (between <!-- host-models:begin --> and "
+        "<!-- host-models:end -->) is not the one printed",
+    )
     parser.add_argument("--write-doc", action="store_true", help="write the printed tables into --doc's FILE")
     args = parser.parse_args()
     # The runs start in the repository (OBJ): a relative path given here is the caller's.
@@ -122,9 +152,13 @@ def main():
         recorded = recorded_frames(iss_from / f"{scene}_{backend}_iss") if iss_from is not None else None
         frames[(scene, backend)] = len(recorded) if recorded is not None else args.frames
     with ThreadPoolExecutor(args.jobs) as pool:
-        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model,
-                                                        frames[(scene, backend)], iss_from)
-                   for scene, backend in cases for model in ("native", "iss")}
+        futures = {
+            (scene, backend, model): pool.submit(
+                run, args.soc_sim, out, scene, backend, model, frames[(scene, backend)], iss_from
+            )
+            for scene, backend in cases
+            for model in ("native", "iss")
+        }
         try:
             results = {key: future.result() for key, future in futures.items()}
         except RuntimeError as error:
@@ -136,8 +170,10 @@ def main():
     def emit(text):
         table.extend(text.split("\n"))
 
-    emit("Simulated ms per frame (the frames after the first), host-compiled (native) / ISS, and the "
-         "host-compiled model's error against the ISS:\n")
+    emit(
+        "Simulated ms per frame (the frames after the first), host-compiled (native) / ISS, and the "
+        "host-compiled model's error against the ISS:\n"
+    )
     header = ["scene", "back end", "frame: native / ISS"] + [f"{p}: native / ISS" for p in PHASES]
     header += ["frame error", "host-phases error"]
     emit("| " + " | ".join(header) + " |")

@@ -38,6 +38,7 @@ static power over that time.
 
 Usage: scripts/fit_energy.py [--soc-sim PATH] [--work DIR] [--write | --check]
 """
+
 import argparse
 import itertools
 import json
@@ -58,14 +59,33 @@ ISS = ["--set", "host.model=iss"]
 # 192,000 shades: its power is the same over any number.
 RUNS = {
     "arm_rect": ["--backend", "arm", *RECT, *ISS, "--", "depth"],
-    "arm_shading": ["--backend", "arm", "--app", "study_shading", *ISS, "--", "--shades", "19200",
-                    "--attributes", "6"],
+    "arm_shading": ["--backend", "arm", "--app", "study_shading", *ISS, "--", "--shades", "19200", "--attributes", "6"],
     "add_loop": ["--app", "calib_add", *ISS],
     "mul_loop": ["--app", "calib_mul", *ISS],
-    "tile_rect": ["--backend", "ap-tile", *RECT, "--set", "ap.tile.program=study", "--set", "ap.tile.texcoords=always",
-                  "--", "depth"],
-    "pixel_shading": ["--backend", "ap-pixel", "--app", "study_shading", "--set", "ap.pixel.program=study", "--",
-                      "--shades", "192000", "--attributes", "6"],
+    "tile_rect": [
+        "--backend",
+        "ap-tile",
+        *RECT,
+        "--set",
+        "ap.tile.program=study",
+        "--set",
+        "ap.tile.texcoords=always",
+        "--",
+        "depth",
+    ],
+    "pixel_shading": [
+        "--backend",
+        "ap-pixel",
+        "--app",
+        "study_shading",
+        "--set",
+        "ap.pixel.program=study",
+        "--",
+        "--shades",
+        "192000",
+        "--attributes",
+        "6",
+    ],
     "array_add": ["--app", "calib_array_add_cmem"],
     "array_mul": ["--app", "calib_array_mul_cmem"],
 }
@@ -104,8 +124,10 @@ PARAMETERS = [
     ("power.host.busy_cycles_pj = stalled_cycles_pj", [("host", "busy_cycles"), ("host", "stalled_cycles")]),
     ("power.array_controller.broadcasts_pj", [("array_controller", "broadcasts")]),
     ("power.cu_array.static_mw", [("cu_array", None)]),
-    ("power.cu_array.cmem_bytes_read_pj = cmem_bytes_written_pj = neighbour_transfers_pj",
-     [("cu_array", "cmem_bytes_read"), ("cu_array", "cmem_bytes_written"), ("cu_array", "neighbour_transfers")]),
+    (
+        "power.cu_array.cmem_bytes_read_pj = cmem_bytes_written_pj = neighbour_transfers_pj",
+        [("cu_array", "cmem_bytes_read"), ("cu_array", "cmem_bytes_written"), ("cu_array", "neighbour_transfers")],
+    ),
 ]
 
 # Parameters with no figure, set from a fitted one by a stated rule
@@ -227,6 +249,7 @@ def solve(rows, rhs):
 
     def cost(x):
         return sum((sum(c * v for c, v in zip(r, x)) - y) ** 2 for r, y in zip(rows, rhs))
+
     candidates = [[0.0] * n]
     for size in range(1, n + 1):
         for free in itertools.combinations(range(n), size):
@@ -246,6 +269,7 @@ def fit(workloads, table):
             for key in keys:
                 values[key] = v
         return values
+
     zero = [0.0] * len(PARAMETERS)
     rows, rhs = [], []
     for figure in FIGURES:
@@ -283,8 +307,11 @@ def main():
         workloads = {name: Workload(name, run(args.soc_sim, name, work)) for name in RUNS}
     for name in ("arm_rect", "arm_shading", "add_loop", "mul_loop"):
         if workloads[name].idle_share > MAX_IDLE_SHARE:
-            print(f"fit_energy: the ARM idles {100 * workloads[name].idle_share:.2f} % of {name}: its power is not "
-                  "its executing power", file=sys.stderr)
+            print(
+                f"fit_energy: the ARM idles {100 * workloads[name].idle_share:.2f} % of {name}: its power is not "
+                "its executing power",
+                file=sys.stderr,
+            )
             return 1
 
     x, values = fit(workloads, table)
@@ -302,10 +329,14 @@ def main():
         if kind == "host_op" and abs(residual) > HOST_OP_TOLERANCE:
             outside.append(f"{name}: {100 * residual:+.1f} %")
     idle_mw = table[("host", "idle_cycles")][0] * 1e-9 * 192e6 + table[("host", None)][0]
-    print(f"| ARM922T idling on NOPs (converted) | {idle_mw:.4g} mW | {43.5 * 1.2:g} mW | "
-          f"{100 * (idle_mw - 52.2) / 52.2:+.1f} % |")
-    print(f"| leakage, clocks stopped (converted) | {table[('host', None)][0]:.4g} mW | 3.6 mW | "
-          f"{100 * (table[('host', None)][0] - 3.6) / 3.6:+.1f} % |")
+    print(
+        f"| ARM922T idling on NOPs (converted) | {idle_mw:.4g} mW | {43.5 * 1.2:g} mW | "
+        f"{100 * (idle_mw - 52.2) / 52.2:+.1f} % |"
+    )
+    print(
+        f"| leakage, clocks stopped (converted) | {table[('host', None)][0]:.4g} mW | 3.6 mW | "
+        f"{100 * (table[('host', None)][0] - 3.6) / 3.6:+.1f} % |"
+    )
 
     stale = []
     fitted_or_derived = {key for _, keys in PARAMETERS for key in keys} | set(DERIVED)
@@ -321,16 +352,19 @@ def main():
                 m = LINE.match(line)
                 key = (m.group(2), m.group(3) if m.group(1) == "EVENT" else None) if m else None
                 if m and key in fitted_or_derived and m.group(5) in ("fit", "derived"):
-                    line = line[:m.start(4)] + f"{values[key]:.6g}" + line[m.end(4):]
+                    line = line[: m.start(4)] + f"{values[key]:.6g}" + line[m.end(4) :]
                 f.write(line)
         print("wrote", os.path.relpath(DEF, ROOT))
     elif args.check and stale:
-        print("fit_energy: energy_params.def is stale (run scripts/fit_energy.py --write):\n  " + "\n  ".join(stale),
-              file=sys.stderr)
+        print(
+            "fit_energy: energy_params.def is stale (run scripts/fit_energy.py --write):\n  " + "\n  ".join(stale),
+            file=sys.stderr,
+        )
         return 1
     if args.check and outside:
-        print(f"fit_energy: outside {100 * HOST_OP_TOLERANCE:g} % on the ISS:\n  " + "\n  ".join(outside),
-              file=sys.stderr)
+        print(
+            f"fit_energy: outside {100 * HOST_OP_TOLERANCE:g} % on the ISS:\n  " + "\n  ".join(outside), file=sys.stderr
+        )
         return 1
     return 0
 

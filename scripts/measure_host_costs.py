@@ -73,9 +73,24 @@ OBJ = "tests/sw_driver/scenes/data/cube.obj"
 PHASES = ["application", "geometry", "rasterization", "presenting"]
 # The training runs: (scene, back end). The GL front end's rows (the
 # geometry phase) are the same code on every back end.
-TRAINING_SCENES = ["aapoly", "clip_offset", "cubes", "fixed_point", "fog_row", "fullscreen_rect", "lights_two_side",
-                   "mipmap_floor", "multitexture", "obj_viewer", "points_lines", "teapot", "texture_formats",
-                   "textured_quad", "tile_grid", "triangle"]
+TRAINING_SCENES = [
+    "aapoly",
+    "clip_offset",
+    "cubes",
+    "fixed_point",
+    "fog_row",
+    "fullscreen_rect",
+    "lights_two_side",
+    "mipmap_floor",
+    "multitexture",
+    "obj_viewer",
+    "points_lines",
+    "teapot",
+    "texture_formats",
+    "textured_quad",
+    "tile_grid",
+    "triangle",
+]
 ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
 # Back ends run with settings of their own, under a name of their own: a
 # back end's second array program charges rows no default run charges.
@@ -86,21 +101,32 @@ TRAINING += [(scene, variant) for variant, scenes in VARIANT_SCENES.items() for 
 # The array back ends' split of their host time within the phases.
 SPLIT = ["compute", "write", "read", "wait", "frame_out"]
 # The phases whose every native charge is a row of the table, per back end.
-FITTED_PHASES = {"arm": PHASES, "raster": PHASES, "ap-tile": PHASES + SPLIT, "ap-pixel": PHASES + SPLIT,
-                 "ap-tile:study": PHASES + SPLIT}
+FITTED_PHASES = {
+    "arm": PHASES,
+    "raster": PHASES,
+    "ap-tile": PHASES + SPLIT,
+    "ap-pixel": PHASES + SPLIT,
+    "ap-tile:study": PHASES + SPLIT,
+}
 # The GL-free applications: (name, app, back end, arguments, driver statistics' prefix). Their
 # records are their timed parts (the split).
-APP_TRAINING = [("study_shading_arm", "study_shading", "arm", ["--", "--shades", "9600"], "study"),
-                ("study_shading_ap-pixel", "study_shading", "ap-pixel", ["--", "--shades", "9600"], "study"),
-                # Six attributes (the study's shading test) beside the default seven: the host's loop's
-                # cost per attribute apart from its cost per pixel; and the study's array program.
-                ("study_shading_arm_6", "study_shading", "arm", ["--", "--shades", "9600", "--attributes", "6"],
-                 "study"),
-                ("study_shading_ap-pixel_study", "study_shading", "ap-pixel",
-                 ["--set", "ap.pixel.program=study", "--", "--shades", "9600"], "study"),
-                ("study_patches_arm", "study_patches", "arm", [], "study"),
-                ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
-                ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu")]
+APP_TRAINING = [
+    ("study_shading_arm", "study_shading", "arm", ["--", "--shades", "9600"], "study"),
+    ("study_shading_ap-pixel", "study_shading", "ap-pixel", ["--", "--shades", "9600"], "study"),
+    # Six attributes (the study's shading test) beside the default seven: the host's loop's
+    # cost per attribute apart from its cost per pixel; and the study's array program.
+    ("study_shading_arm_6", "study_shading", "arm", ["--", "--shades", "9600", "--attributes", "6"], "study"),
+    (
+        "study_shading_ap-pixel_study",
+        "study_shading",
+        "ap-pixel",
+        ["--set", "ap.pixel.program=study", "--", "--shades", "9600"],
+        "study",
+    ),
+    ("study_patches_arm", "study_patches", "arm", [], "study"),
+    ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
+    ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu"),
+]
 FRAMES = 3
 # ISS runs of the array back ends are slow (about 1 s of simulated host time a
 # frame on the teapot): the start-up frame and one more.
@@ -111,8 +137,10 @@ ARRAY_FRAMES = 2
 # native model charges with the accesses (host.cycles.load, .store: 1). The
 # loops are bound by the memory, so their time says little of the core's:
 # the row is measured per iteration, not fitted to the rate.
-CALIBRATION_LOOPS = {"calib_add": ("calib_add_iteration", "tessera_calibration_add16"),
-                     "calib_mul": ("calib_mul_iteration", "tessera_calibration_mul16x8")}
+CALIBRATION_LOOPS = {
+    "calib_add": ("calib_add_iteration", "tessera_calibration_add16"),
+    "calib_mul": ("calib_mul_iteration", "tessera_calibration_mul16x8"),
+}
 LOOP_ACCESS_CYCLES = 3
 # Rows whose code is functions of their own, run once per unit, measured
 # from the ISS's profile of a training run instead of fitted: the
@@ -131,8 +159,12 @@ LOOP_ACCESS_CYCLES = 3
 CALL_ROWS = {
     "array_write32": ("calib_ciu", ("calib_ciu", "app"), ["tessera::ArrayDriver::write32("], 3 - 1),
     "array_read32": ("calib_ciu", ("calib_ciu", "app"), ["tessera::ArrayDriver::read32("], 3 - 1),
-    "display_copy_block": ("fullscreen_rect_arm", ("fullscreen_rect", "arm"),
-                           ["tessera::DisplayDriver::present(", "tessera::HostApi::write_words("], -(8 + 9)),
+    "display_copy_block": (
+        "fullscreen_rect_arm",
+        ("fullscreen_rect", "arm"),
+        ["tessera::DisplayDriver::present(", "tessera::HostApi::write_words("],
+        -(8 + 9),
+    ),
 }
 LOOP_ITERATIONS = re.compile(r"loop of ([0-9]+) iterations")
 ROW = re.compile(r'^HOST_COST\((\w+), ([0-9.eE+-]+), (".*")\)$')
@@ -183,8 +215,22 @@ def run(soc_sim, out, scene, name, model):
     backend, settings = VARIANTS.get(name, (name, []))
     folder = out / f"{scene}_{name.replace(':', '_')}_{model}"
     frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
-    command = [soc_sim, "--app", scene, "--backend", backend, "--frames", str(frames), "--no-frames", "--quiet",
-               "--force", "--out", str(folder.resolve()), "--set", f"host.model={model}"] + profiled(model)
+    command = [
+        soc_sim,
+        "--app",
+        scene,
+        "--backend",
+        backend,
+        "--frames",
+        str(frames),
+        "--no-frames",
+        "--quiet",
+        "--force",
+        "--out",
+        str(folder.resolve()),
+        "--set",
+        f"host.model={model}",
+    ] + profiled(model)
     for setting in settings:
         command += ["--set", setting]
     if scene == "obj_viewer":
@@ -199,8 +245,24 @@ def run(soc_sim, out, scene, name, model):
 def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
     """A GL-free application's one record: its timed parts' host_<part>_ns and units_<part>_<row>."""
     folder = out / f"{name}_{model}"
-    command = [soc_sim, "--app", app, "--backend", backend, "--no-frames", "--quiet", "--force", "--out",
-               str(folder), "--set", f"host.model={model}"] + profiled(model) + arguments
+    command = (
+        [
+            soc_sim,
+            "--app",
+            app,
+            "--backend",
+            backend,
+            "--no-frames",
+            "--quiet",
+            "--force",
+            "--out",
+            str(folder),
+            "--set",
+            f"host.model={model}",
+        ]
+        + profiled(model)
+        + arguments
+    )
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
@@ -218,13 +280,24 @@ def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
 def loop_cycles(soc_sim, out, app, function):
     """The ISS's core cycles an iteration of a calibration loop, from its function's profile."""
     folder = out / f"{app}_iss"
-    command = [soc_sim, "--app", app, "--quiet", "--force", "--out", str(folder), "--set", "host.model=iss",
-               "--iss-profile"]
+    command = [
+        soc_sim,
+        "--app",
+        app,
+        "--quiet",
+        "--force",
+        "--out",
+        str(folder),
+        "--set",
+        "host.model=iss",
+        "--iss-profile",
+    ]
     result = subprocess.run(command, capture_output=True, text=True)
     match = LOOP_ITERATIONS.search(result.stdout)
     if result.returncode != 0 or not match:
-        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode} and printed no loop: "
-                           f"{result.stderr.strip()}")
+        raise RuntimeError(
+            f"{' '.join(command)} exited with {result.returncode} and printed no loop: {result.stderr.strip()}"
+        )
     profile = json.loads((folder / "stats.json").read_text())["stats"]["host"]["iss"]["profile"]
     rows = [row for row in profile if row["function"] == function]
     if not rows:
@@ -248,8 +321,11 @@ def main():
     if args.check:
         digest = sources_hash()
         if recorded != digest:
-            print(f"measure_host_costs: {TABLE.relative_to(ROOT)} was measured for sources {recorded}, the driver's "
-                  f"sources are now {digest}: run scripts/measure_host_costs.py to measure it again", file=sys.stderr)
+            print(
+                f"measure_host_costs: {TABLE.relative_to(ROOT)} was measured for sources {recorded}, the driver's "
+                f"sources are now {digest}: run scripts/measure_host_costs.py to measure it again",
+                file=sys.stderr,
+            )
             return 1
         print(f"measure_host_costs: the table is current (sources {digest})")
         return 0
@@ -264,14 +340,20 @@ def main():
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     with ThreadPoolExecutor(args.jobs) as pool:
-        futures = {(scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model)
-                   for scene, backend in TRAINING for model in ("native", "iss")}
+        futures = {
+            (scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model)
+            for scene, backend in TRAINING
+            for model in ("native", "iss")
+        }
         for name, app, backend, arguments, prefix in APP_TRAINING:
             for model in ("native", "iss"):
-                futures[(name, "app", model)] = pool.submit(run_app, args.soc_sim, out, name, app, backend,
-                                                            arguments, prefix, model)
-        loops = {app: pool.submit(loop_cycles, args.soc_sim, out, app, function)
-                 for app, (_, function) in CALIBRATION_LOOPS.items()}
+                futures[(name, "app", model)] = pool.submit(
+                    run_app, args.soc_sim, out, name, app, backend, arguments, prefix, model
+                )
+        loops = {
+            app: pool.submit(loop_cycles, args.soc_sim, out, app, function)
+            for app, (_, function) in CALIBRATION_LOOPS.items()
+        }
         try:
             results = {key: future.result() for key, future in futures.items()}
             loop_results = {key: future.result() for key, future in loops.items()}
@@ -289,7 +371,7 @@ def main():
         for frame in results[key + ("native",)]:
             for name, value in frame.items():
                 if name.startswith("units_") and name.endswith("_" + row):
-                    bucket = name[len("units_"):-len(row) - 1]
+                    bucket = name[len("units_") : -len(row) - 1]
                     per_bucket[bucket] = per_bucket.get(bucket, 0) + value
         # The phases' buckets hold every unit once (the split's again).
         units = sum(v for b, v in per_bucket.items() if b in PHASES) or sum(per_bucket.values())
@@ -297,8 +379,10 @@ def main():
             print(f"measure_host_costs: {folder} shows no {', '.join(functions)} to measure {row} by", file=sys.stderr)
             return 1
         known[row] = max(0.0, core / units + correction)
-        print(f"{row}: {core / units:.3f} core cycles a unit in {', '.join(functions)} of {folder} on the ISS: "
-              f"{known[row]:.4g}")
+        print(
+            f"{row}: {core / units:.3f} core cycles a unit in {', '.join(functions)} of {folder} on the ISS: "
+            f"{known[row]:.4g}"
+        )
     equations, targets, labels = [], [], []
     runs = TRAINING + [(name, "app") for name, *_ in APP_TRAINING]
     for scene, backend in runs:
@@ -312,8 +396,8 @@ def main():
                 units = [0.0] * len(names)
                 for key, value in n.items():
                     prefix = f"units_{phase}_"
-                    if key.startswith(prefix) and key[len(prefix):] in index:
-                        units[index[key[len(prefix):]]] = value
+                    if key.startswith(prefix) and key[len(prefix) :] in index:
+                        units[index[key[len(prefix) :]]] = value
                 if iss_cycles <= 0 or not any(units):
                     continue
                 charged = sum(u * table[name] for u, name in zip(units, names))
@@ -343,8 +427,10 @@ def main():
         fitted[row] = max(0.0, core - LOOP_ACCESS_CYCLES)
         measured.append(row)
         print(f"{app}: {core:.3f} core cycles an iteration in {function} on the ISS: {row} {fitted[row]:.4g}")
-    print(f"{len(equations)} phase-frames, {len(measured)} rows measured; relative error of the fitted phases: "
-          f"largest {np.max(np.abs(residual)) * 100:.1f}%, rms {np.sqrt(np.mean(residual ** 2)) * 100:.1f}%")
+    print(
+        f"{len(equations)} phase-frames, {len(measured)} rows measured; relative error of the fitted phases: "
+        f"largest {np.max(np.abs(residual)) * 100:.1f}%, rms {np.sqrt(np.mean(residual**2)) * 100:.1f}%"
+    )
     for k in np.argsort(-np.abs(residual))[:5]:
         print(f"  {labels[k]}: {residual[k] * 100:+.1f}%")
     # Leaving a scene out: the rows fitted without any run of the scene,

@@ -78,9 +78,23 @@ def main() -> int:
 
     scratch = Path(tempfile.mkdtemp(prefix="soak_"))
     out = options.keep or scratch / "run"
-    command = [str(options.soc_sim), "--app", options.app, "--backend", options.backend,
-               "--frames", str(options.frames), "--no-frames", "--set", "display.dma=true",
-               "--out", str(out), "--force", "-q", "--wall-clock"]
+    command = [
+        str(options.soc_sim),
+        "--app",
+        options.app,
+        "--backend",
+        options.backend,
+        "--frames",
+        str(options.frames),
+        "--no-frames",
+        "--set",
+        "display.dma=true",
+        "--out",
+        str(out),
+        "--force",
+        "-q",
+        "--wall-clock",
+    ]
     if not options.no_vcd:
         command += ["--vcd", str(out / "trace.vcd")]
     out.mkdir(parents=True, exist_ok=True)
@@ -104,8 +118,10 @@ def main() -> int:
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     if len(samples) < 5:
-        print(f"soak: only {len(samples)} RSS samples in {wall:.1f} s: use more --frames or a "
-              "smaller --interval", file=sys.stderr)
+        print(
+            f"soak: only {len(samples)} RSS samples in {wall:.1f} s: use more --frames or a smaller --interval",
+            file=sys.stderr,
+        )
         return 1
 
     frames_per_second = len(frame_seconds) / frame_seconds[-1]
@@ -114,20 +130,26 @@ def main() -> int:
     after = [rss for t, rss in samples if t > frame_seconds[-1]]
     warm = [p for p in running if p[0] >= 0.1 * len(frame_seconds)] or running or points
     kib_per_1000_frames = slope(warm) * 1000
-    print(f"soc_sim {options.app} on {options.backend}, {len(frame_seconds)} frames, display DMA "
-          f"{'on, no VCD' if options.no_vcd else f'and VCD on (VCD {vcd_bytes / 1e9:.2f} GB)'}: "
-          f"{wall:.1f} s wall, {frames_per_second:.1f} frames/s while simulating\n")
+    print(
+        f"soc_sim {options.app} on {options.backend}, {len(frame_seconds)} frames, display DMA "
+        f"{'on, no VCD' if options.no_vcd else f'and VCD on (VCD {vcd_bytes / 1e9:.2f} GB)'}: "
+        f"{wall:.1f} s wall, {frames_per_second:.1f} frames/s while simulating\n"
+    )
     print("| frames shown | RSS (MiB) |")
     print("|---|---|")
     step = max(1, len(running) // 10)
     for index in sorted(set(range(0, len(running), step)) | {len(running) - 1}):
         frame, rss = running[index]
         print(f"| {frame} | {rss / 1024:.1f} |")
-    print(f"\nRSS from frame {warm[0][0]} to the last: {warm[0][1] / 1024:.1f} MiB -> {warm[-1][1] / 1024:.1f} MiB; "
-          f"slope {kib_per_1000_frames:+.1f} KiB per 1000 frames (least squares over {len(warm)} samples)")
+    print(
+        f"\nRSS from frame {warm[0][0]} to the last: {warm[0][1] / 1024:.1f} MiB -> {warm[-1][1] / 1024:.1f} MiB; "
+        f"slope {kib_per_1000_frames:+.1f} KiB per 1000 frames (least squares over {len(warm)} samples)"
+    )
     if after:
-        print(f"After the last frame (statistics built and written): peak {max(after) / 1024:.1f} MiB "
-              f"({len(after)} samples)")
+        print(
+            f"After the last frame (statistics built and written): peak {max(after) / 1024:.1f} MiB "
+            f"({len(after)} samples)"
+        )
     return 0
 
 

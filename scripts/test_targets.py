@@ -28,18 +28,24 @@ def main() -> int:
     if not (build / "CTestTestfile.cmake").is_file():
         print(f"test_targets: {build} is not a configured build (no CTestTestfile.cmake)", file=sys.stderr)
         return 2
-    listing = subprocess.run(["ctest", "--test-dir", str(build), "-N", "--show-only=json-v1", *sys.argv[2:]],
-                             capture_output=True, text=True, check=True)
-    helps = subprocess.run(["cmake", "--build", str(build), "--target", "help"], capture_output=True, text=True,
-                           check=True)
+    listing = subprocess.run(
+        ["ctest", "--test-dir", str(build), "-N", "--show-only=json-v1", *sys.argv[2:]],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    helps = subprocess.run(
+        ["cmake", "--build", str(build), "--target", "help"], capture_output=True, text=True, check=True
+    )
     # "... name" lines of the Makefile generator's help
     targets = {line[4:].split()[0] for line in helps.stdout.splitlines() if line.startswith("... ")}
     needed: set[str] = set()
     for test in json.loads(listing.stdout)["tests"]:
         if "command" not in test:
             if test["name"] not in targets:
-                print(f"test_targets: test {test['name']} has no program yet and no target of its name",
-                      file=sys.stderr)
+                print(
+                    f"test_targets: test {test['name']} has no program yet and no target of its name", file=sys.stderr
+                )
                 return 1
             needed.add(test["name"])
             continue

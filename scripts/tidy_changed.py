@@ -71,8 +71,10 @@ def main() -> int:
     try:
         git("cat-file", "-e", base + "^{commit}")
     except subprocess.CalledProcessError:
-        print(f"tidy_changed: {base} is not a commit of this repository (a shallow clone? fetch its history)",
-              file=sys.stderr)
+        print(
+            f"tidy_changed: {base} is not a commit of this repository (a shallow clone? fetch its history)",
+            file=sys.stderr,
+        )
         return 2
     changed = changed_files(base)
     everything = (SOURCE / ".clang-tidy").resolve() in changed
@@ -92,15 +94,16 @@ def main() -> int:
         if deps & changed:
             units.append(str(unit))
     units = sorted(set(units))
-    print(f"tidy_changed: {len(changed)} file(s) changed since {base[:12]}; "
-          f"{len(units)} translation unit(s) to check")
+    print(f"tidy_changed: {len(changed)} file(s) changed since {base[:12]}; {len(units)} translation unit(s) to check")
     if not units:
         return 0
     run = shutil.which("run-clang-tidy-14") or shutil.which("run-clang-tidy")
     tidy = shutil.which("clang-tidy-14") or shutil.which("clang-tidy")
     if not run or not tidy:
-        print("tidy_changed: run-clang-tidy or clang-tidy is missing (scripts/setup.sh installs clang-tidy)",
-              file=sys.stderr)
+        print(
+            "tidy_changed: run-clang-tidy or clang-tidy is missing (scripts/setup.sh installs clang-tidy)",
+            file=sys.stderr,
+        )
         return 2
     pattern = "^(" + "|".join(re.escape(unit) for unit in units) + ")$"
     result = subprocess.run([run, "-clang-tidy-binary", tidy, "-p", str(build), "-quiet", "-j", "2", pattern])

@@ -20,7 +20,7 @@ each comes from:
     calibration-array   what the array's calibration applications print
     calibration-energy  what scripts/fit_energy.py prints (the energy fit)
     experiment-NAME   scripts/experiment.py NAME --host native, for every
-                      experiment of configs/experiments/ (experiment-dma-whatif
+                      experiment of experiments/ (experiment-dma-whatif
                       for dma_whatif): the tables it prints, simulated
                       figures, the same on every machine
     experiment-NAME-iss  the same with --host iss, for every experiment
@@ -42,18 +42,19 @@ Usage:
     scripts/update_docs.py --only-experiments --only-iss-experiments   every experiment block
     scripts/update_docs.py --check [...]     exit 1 if a block is stale
     scripts/update_docs.py --only memory-map backends   only those blocks
-Standard library only.
+Standard library and PyYAML (Debian's python3-yaml: the experiment files).
 """
 
 import argparse
 import csv
-import json
 import os
 import pathlib
 import re
 import subprocess
 import sys
 import tempfile
+
+import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
@@ -89,10 +90,13 @@ def read_def(path, macro):
 
 
 def backends_table(_args):
-    lines = ["| `--backend` (`driver.backend`) | what renders | depth / stencil bits | its README |",
-             "| --- | --- | --- | --- |"]
-    for backend_id, name, depth, stencil, description in read_def("sw_driver/renderers/backends.def",
-                                                                  "TESSERA_BACKEND"):
+    lines = [
+        "| `--backend` (`driver.backend`) | what renders | depth / stencil bits | its README |",
+        "| --- | --- | --- | --- |",
+    ]
+    for backend_id, name, depth, stencil, description in read_def(
+        "sw_driver/renderers/backends.def", "TESSERA_BACKEND"
+    ):
         readme = f"sw_driver/renderers/{backend_id}/README.md"
         link = f"`{readme}`" if (ROOT / readme).exists() else "-"
         lines.append(f"| `{name}` | {description} | {depth} / {stencil} | {link} |")
@@ -125,8 +129,7 @@ def run(command, cwd=None):
     except OSError as error:
         sys.exit(f"update_docs: cannot run {command[0]}: {error.strerror} (build it, or give --soc-sim)")
     if result.returncode != 0:
-        sys.exit(f"update_docs: {' '.join(map(str, command))} failed with status {result.returncode}:\n"
-                 f"{result.stderr}")
+        sys.exit(f"update_docs: {' '.join(map(str, command))} failed with status {result.returncode}:\n{result.stderr}")
     return result.stdout
 
 
@@ -154,8 +157,19 @@ def experiment(name, host):
     def generate(args):
         with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
             # experiment.py runs under Debian's python3 (its #! line), which has matplotlib.
-            table = run([ROOT / "scripts" / "experiment.py", name, "--quiet", "--host", host,
-                         "--soc-sim", args.soc_sim, "--out", folder])
+            table = run(
+                [
+                    ROOT / "scripts" / "experiment.py",
+                    name,
+                    "--quiet",
+                    "--host",
+                    host,
+                    "--soc-sim",
+                    args.soc_sim,
+                    "--out",
+                    folder,
+                ]
+            )
         lines = []
         for line in table.strip().splitlines():
             if line.startswith("table ") and folder in line:
@@ -163,27 +177,33 @@ def experiment(name, host):
             if line.startswith("#"):
                 line = "**" + line.lstrip("# ").strip() + "**"  # a heading of its own would break the page's outline
             lines.append(line)
-        return (f"From `scripts/experiment.py {name} --host {host}` (simulated times: the same on every machine):\n\n"
-                + "\n".join(lines).strip())
+        return (
+            f"From `scripts/experiment.py {name} --host {host}` (simulated times: the same on every machine):\n\n"
+            + "\n".join(lines).strip()
+        )
+
     return generate
 
 
 def printed_by(*runs):
     """What soc_sim prints on stdout for each run (its arguments), in a
     fenced block: published figures, regenerated from the runs."""
+
     def generate(args):
         lines = []
         with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
             for number, arguments in enumerate(runs):
-                output = run([args.soc_sim, *arguments, "--quiet", "--no-frames", "--out", f"run{number}"],
-                             cwd=folder)
+                output = run([args.soc_sim, *arguments, "--quiet", "--no-frames", "--out", f"run{number}"], cwd=folder)
                 lines += output.strip().splitlines()
         return "```\n" + "\n".join(lines) + "\n```"
+
     return generate
 
 
-ARRAY_CALIBRATION = [["--app", app] for app in ("calib_array_add", "calib_array_mul", "calib_array_add_cmem",
-                                                  "calib_array_mul_cmem", "calib_ciu")]
+ARRAY_CALIBRATION = [
+    ["--app", app]
+    for app in ("calib_array_add", "calib_array_mul", "calib_array_add_cmem", "calib_array_mul_cmem", "calib_ciu")
+]
 
 
 def energy_fit(args):
@@ -202,14 +222,14 @@ GENERATORS = {
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,
 }
-# One block per experiment of configs/experiments/: experiment-<name>, with
-# the name's underscores as dashes.
+# One block per experiment of experiments/: experiment-<name>, with the
+# name's underscores as dashes.
 # An experiment whose "hosts" lists iss has a second block, experiment-<name>-iss.
 ISS = set()
-for _file in sorted((ROOT / "configs" / "experiments").glob("*.json")):
+for _file in sorted((ROOT / "experiments").glob("*.yaml")):
     _block = "experiment-" + _file.stem.replace("_", "-")
     GENERATORS[_block] = experiment(_file.stem, "native")
-    if "iss" in json.loads(_file.read_text()).get("hosts", []):
+    if "iss" in yaml.safe_load(_file.read_text()).get("hosts", []):
         GENERATORS[_block + "-iss"] = experiment(_file.stem, "iss")
         ISS.add(_block + "-iss")
 SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS
@@ -217,11 +237,15 @@ SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS
 # its own test checks them), left as they are.
 EXTERNAL = {"host-models"}
 
+
 # Hand-written tables that must name every item of a generated list: the
 # file, and a function giving the names a row must start with.
 def builtin_scenes(args):
-    return [line.split()[0] for line in run([args.soc_sim, "--list-apps"]).splitlines()
-            if line.rstrip().endswith("(GL ES 1.1 scene)")]
+    return [
+        line.split()[0]
+        for line in run([args.soc_sim, "--list-apps"]).splitlines()
+        if line.rstrip().endswith("(GL ES 1.1 scene)")
+    ]
 
 
 COMPLETE_TABLES = [("sw_driver/scenes/README.md", builtin_scenes)]
@@ -261,17 +285,30 @@ MARKER = re.compile(r"<!-- ([a-z-]+):begin -->\n(.*?)\n?<!-- \1:end -->", re.S)
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--check", action="store_true", help="change nothing; exit 1 if a block is stale")
-    parser.add_argument("--soc-sim", default=str(ROOT / "build" / "default" / "bin" / "soc_sim"),
-                        help="the soc_sim to ask (default: build/default/bin/soc_sim)")
-    parser.add_argument("--experiments", action="store_true",
-                        help="also the blocks that run experiments (slow), and only those with --only-experiments")
+    parser.add_argument(
+        "--soc-sim",
+        default=str(ROOT / "build" / "default" / "bin" / "soc_sim"),
+        help="the soc_sim to ask (default: build/default/bin/soc_sim)",
+    )
+    parser.add_argument(
+        "--experiments",
+        action="store_true",
+        help="also the blocks that run experiments (slow), and only those with --only-experiments",
+    )
     parser.add_argument("--only-experiments", action="store_true", help="only the experiment blocks (native)")
-    parser.add_argument("--iss-experiments", action="store_true",
-                        help="also the experiment blocks run on the ISS (slower), and only those with "
-                             "--only-iss-experiments")
+    parser.add_argument(
+        "--iss-experiments",
+        action="store_true",
+        help="also the experiment blocks run on the ISS (slower), and only those with --only-iss-experiments",
+    )
     parser.add_argument("--only-iss-experiments", action="store_true", help="only the ISS's experiment blocks")
-    parser.add_argument("--only", nargs="+", choices=sorted(GENERATORS), metavar="BLOCK",
-                        help="only these blocks: " + ", ".join(sorted(GENERATORS)))
+    parser.add_argument(
+        "--only",
+        nargs="+",
+        choices=sorted(GENERATORS),
+        metavar="BLOCK",
+        help="only these blocks: " + ", ".join(sorted(GENERATORS)),
+    )
     args = parser.parse_args()
     wanted = set(GENERATORS)
     only_experiments = args.only_experiments or args.only_iss_experiments
@@ -292,19 +329,20 @@ def main():
         path = ROOT / relative
         text = path.read_text()
 
+        # replace runs inside this iteration (MARKER.sub below), so the loop variables it reads are this file's.
         def replace(match):
             name, body = match.group(1), match.group(2)
             if name in EXTERNAL:
                 return match.group(0)
             if name not in GENERATORS:
-                sys.exit(f"update_docs: {relative}: unknown generated block '{name}'")
+                sys.exit(f"update_docs: {relative}: unknown generated block '{name}'")  # noqa: B023
             found.add(name)
             if name not in wanted:
                 return match.group(0)
             if name not in cache:
                 cache[name] = GENERATORS[name](args)
             if body.strip() != cache[name]:
-                stale.append(f"{relative}: block '{name}'")
+                stale.append(f"{relative}: block '{name}'")  # noqa: B023
             return f"<!-- {name}:begin -->\n{cache[name]}\n<!-- {name}:end -->"
 
         new_text = MARKER.sub(replace, text)
@@ -324,7 +362,8 @@ def main():
     if args.check:
         if stale:
             options = (" --only-experiments" if args.only_experiments else "") + (
-                " --only-iss-experiments" if args.only_iss_experiments else "")
+                " --only-iss-experiments" if args.only_iss_experiments else ""
+            )
             print(f"Out of date (run scripts/update_docs.py{options}):\n  " + "\n  ".join(stale))
             return 1
         print(f"generated blocks up to date: {', '.join(sorted(wanted))}")

@@ -42,7 +42,8 @@ def plot_axes(spec: Spec) -> list[tuple[tuple[str, ...], dict]]:
     """What the plots are drawn against, with their values: each product
     axis, and each zip group as one (a group of one key is a plain axis)."""
     return [((key,), {key: values}) for key, values in spec.axes.items()] + [
-        (tuple(group), group) for group in spec.zips]
+        (tuple(group), group) for group in spec.zips
+    ]
 
 
 def is_numeric_axis(column: pd.Series) -> bool:
@@ -84,8 +85,16 @@ def zip_labels(rows: pd.DataFrame, group: dict) -> tuple[pd.Series, list[str]]:
     return labels, ordered
 
 
-def _draw(rows: pd.DataFrame, metric: str, axis: str, axis_label: str, others: list[str], numeric: bool,
-          stem: Path, categories: list | None = None):
+def _draw(
+    rows: pd.DataFrame,
+    metric: str,
+    axis: str,
+    axis_label: str,
+    others: list[str],
+    numeric: bool,
+    stem: Path,
+    categories: list | None = None,
+):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -128,8 +137,7 @@ def make_plots(spec: Spec, table: pd.DataFrame, output: Path) -> tuple[list[Plot
     plots, notes = [], []
     for metric in spec.metrics:
         if metric not in ok.columns or ok[metric].isna().all():
-            notes.append(f"metric '{metric}': no value in the results table (not a column, "
-                         "or no point succeeded)")
+            notes.append(f"metric '{metric}': no value in the results table (not a column, or no point succeeded)")
             continue
         for keys, group in plot_axes(spec):
             missing = [key for key in keys if key not in table.columns]
@@ -143,10 +151,18 @@ def make_plots(spec: Spec, table: pd.DataFrame, output: Path) -> tuple[list[Plot
                 _draw(rows, metric, keys[0], label, others, is_numeric_axis(table[keys[0]]), folder / name)
             else:
                 labels, ordered = zip_labels(rows, group)
-                _draw(rows.assign(**{ZIP_COLUMN: labels}), metric, ZIP_COLUMN, label, others, False,
-                      folder / name, ordered)
+                _draw(
+                    rows.assign(**{ZIP_COLUMN: labels}),
+                    metric,
+                    ZIP_COLUMN,
+                    label,
+                    others,
+                    False,
+                    folder / name,
+                    ordered,
+                )
             svg = (folder / f"{name}.svg").read_text()
-            plots.append(Plot(metric, label, name, len(rows), svg[svg.index("<svg"):]))
+            plots.append(Plot(metric, label, name, len(rows), svg[svg.index("<svg") :]))
     return plots, notes
 
 
@@ -159,15 +175,25 @@ def write_report(spec: Spec, table: pd.DataFrame, output: Path) -> Path:
     axes = [key for key in spec.axis_keys if key in table.columns]
     shown = table[axes + ["status"] + metrics]
     failed = table[table["status"] != 0]
-    environment = jinja2.Environment(loader=jinja2.PackageLoader("tessera_sweep", "templates"),
-                                     autoescape=jinja2.select_autoescape(["html", "j2"]))
+    environment = jinja2.Environment(
+        loader=jinja2.PackageLoader("tessera_sweep", "templates"), autoescape=jinja2.select_autoescape(["html", "j2"])
+    )
     html = environment.get_template("report.html.j2").render(
-        spec=spec, output=output, plots=plots, notes=notes,
+        spec=spec,
+        output=output,
+        plots=plots,
+        notes=notes,
         table=shown.to_html(index=False, na_rep="", classes="results", border=0),
-        failed=[{"axes": {key: row[key] for key in axes}, "status": int(row["status"]),
-                 "error": row["error"] if isinstance(row["error"], str) else ""}
-                for _, row in failed.iterrows()],
-        points=len(table))
+        failed=[
+            {
+                "axes": {key: row[key] for key in axes},
+                "status": int(row["status"]),
+                "error": row["error"] if isinstance(row["error"], str) else "",
+            }
+            for _, row in failed.iterrows()
+        ],
+        points=len(table),
+    )
     path = output / REPORT
     path.write_text(html)
     return path

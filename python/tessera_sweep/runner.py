@@ -20,8 +20,7 @@ from .spec import Point, Spec, check, expand, point_key
 RESULT = "result.json"
 
 
-def run_point(soc_sim: str, point_dir: str, settings: dict, args: list, write_frames: bool,
-              record: dict) -> dict:
+def run_point(soc_sim: str, point_dir: str, settings: dict, args: list, write_frames: bool, record: dict) -> dict:
     """One point, on a worker: its record, also left in point_dir/result.json
     (written last and atomically, so a half-run point is not cached)."""
     point_dir = Path(point_dir)
@@ -54,8 +53,13 @@ def connect(scheduler: str | None, workers: int | None):
         with Client(scheduler) as client:
             yield client
         return
-    with LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=logging.ERROR) as cluster:
+    with LocalCluster(
+        n_workers=workers or os.cpu_count(),
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        silence_logs=logging.ERROR,
+    ) as cluster:
         with Client(cluster) as client:
             yield client
 
@@ -66,8 +70,15 @@ def progress(done: int, total: int, record: dict, out=None) -> None:
     print(f"[{done}/{total}] {record['axes']} {outcome} {record['wall_s']:.2f} s", file=out, flush=True)
 
 
-def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | None = None,
-              workers: int | None = None, retry_failed: bool = False, phases: dict | None = None):
+def run_sweep(
+    spec: Spec,
+    simulator: Simulator,
+    output: Path,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    retry_failed: bool = False,
+    phases: dict | None = None,
+):
     """Checks every point, runs the missing ones and writes the table, the
     plots and the report; returns
     (table, number of soc_sim runs). Points with the same effective
@@ -115,8 +126,7 @@ def run_sweep(spec: Spec, simulator: Simulator, output: Path, scheduler: str | N
             phases["cluster_start_s"] = runs_start - cluster_start
             run_points(client, todo, records, spec, simulator, output)
             phases["runs_s"] = time.perf_counter() - runs_start
-    rows = [table.row(point.axes, records[key], output / "points" / key)
-            for key, point in zip(keys, points)]
+    rows = [table.row(point.axes, records[key], output / "points" / key) for key, point in zip(keys, points)]
     results = table.write(rows, output)
     write_report(spec, results, output)
     phases["total_s"] = time.perf_counter() - start
@@ -131,9 +141,17 @@ def run_points(client, todo: dict, records: dict, spec: Spec, simulator: Simulat
     futures = {}
     for key, point in todo.items():
         base = {"point": key, "axes": point.axes, "sim_version": simulator.version}
-        future = client.submit(run_point, str(simulator.path), str((output / "points" / key).resolve()),
-                               point.settings, list(point.args), spec.write_frames, base,
-                               key=f"point-{key}", pure=False)
+        future = client.submit(
+            run_point,
+            str(simulator.path),
+            str((output / "points" / key).resolve()),
+            point.settings,
+            list(point.args),
+            spec.write_frames,
+            base,
+            key=f"point-{key}",
+            pure=False,
+        )
         futures[future] = base
     for done, future in enumerate(as_completed(futures), 1):
         base = futures[future]

@@ -115,10 +115,16 @@ def parse_spec(data: dict) -> Spec:
     output = data.get("output")
     if output is not None and not isinstance(output, str):
         raise SpecError("'output' must be a folder's path")
-    return Spec(base=base, axes=axes, zips=zips, args=[str(a) for a in args],
-                metrics=list(metrics), output=Path(output) if output else None,
-                write_frames=bool(data.get("write_frames", False)),
-                source=yaml.safe_dump(data, sort_keys=False))
+    return Spec(
+        base=base,
+        axes=axes,
+        zips=zips,
+        args=[str(a) for a in args],
+        metrics=list(metrics),
+        output=Path(output) if output else None,
+        write_frames=bool(data.get("write_frames", False)),
+        source=yaml.safe_dump(data, sort_keys=False),
+    )
 
 
 def _children(node: yaml.Node) -> list:
@@ -145,9 +151,11 @@ def _check_expanded_size(root: yaml.Node, where: Path) -> None:
             sizes[key] = 1 + sum(sizes[id(child)] for child in _children(node))
             if sizes[key] > MAX_SPEC_VALUES:
                 line = node.start_mark.line + 1
-                raise SpecError(f"{where}: line {line}: the spec holds more than {MAX_SPEC_VALUES:,} values with "
-                                "its aliases (*name) expanded: a spec that repeats aliases of aliases grows "
-                                "exponentially; write the values out, or use fewer levels of aliases")
+                raise SpecError(
+                    f"{where}: line {line}: the spec holds more than {MAX_SPEC_VALUES:,} values with "
+                    "its aliases (*name) expanded: a spec that repeats aliases of aliases grows "
+                    "exponentially; write the values out, or use fewer levels of aliases"
+                )
             continue
         if key in sizes:
             continue
@@ -159,7 +167,7 @@ def _check_expanded_size(root: yaml.Node, where: Path) -> None:
         stack.extend((child, False) for child in _children(node) if id(child) not in sizes)
 
 
-def _load_yaml(text: str, where: Path):
+def load_yaml(text: str, where: Path):
     """yaml.safe_load with the size of the document checked first."""
     loader = yaml.SafeLoader(text)
     try:
@@ -176,7 +184,7 @@ def load_spec(path: str | Path) -> Spec:
     path = Path(path)
     text = path.read_text()
     try:
-        data = json.loads(text) if path.suffix == ".json" else _load_yaml(text, path)
+        data = json.loads(text) if path.suffix == ".json" else load_yaml(text, path)
     except (json.JSONDecodeError, yaml.YAMLError) as error:
         raise SpecError(f"{path}: {error}") from None
     spec = parse_spec(data)
@@ -230,6 +238,5 @@ def check(points: list[Point], simulator: Simulator) -> list[dict]:
 
 def point_key(config: dict, point: Point, spec: Spec, version: str) -> str:
     """The cache key: everything that decides a run's statistics."""
-    payload = {"config": config, "args": list(point.args), "write_frames": spec.write_frames,
-               "simulator": version}
+    payload = {"config": config, "args": list(point.args), "write_frames": spec.write_frames, "simulator": version}
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()[:16]

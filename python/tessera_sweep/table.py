@@ -31,8 +31,13 @@ def row(axes: dict, record: dict, point_dir: Path) -> dict:
     configuration keys; statistics sit under stats.json's own top-level
     names (config., stats., ...), so the two cannot collide."""
     values = dict(axes)
-    values.update(point=record["point"], sim_version=record["sim_version"],
-                  status=record["status"], error=record["error"], wall_s=record["wall_s"])
+    values.update(
+        point=record["point"],
+        sim_version=record["sim_version"],
+        status=record["status"],
+        error=record["error"],
+        wall_s=record["wall_s"],
+    )
     stats_file = point_dir / "stats.json"
     if record["status"] == 0 and stats_file.is_file():
         document = json.loads(stats_file.read_text())

@@ -26,8 +26,13 @@ def recip_table() -> Path:
 
 def test_plots_every_method_from_the_project_environment(tmp_path):
     out = tmp_path / "recip"
-    done = subprocess.run([sys.executable, str(ROOT / "scripts/plot_reciprocal_error.py"), str(recip_table()),
-                           str(out)], capture_output=True, text=True, timeout=240, check=False)
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "scripts/plot_reciprocal_error.py"), str(recip_table()), str(out)],
+        capture_output=True,
+        text=True,
+        timeout=240,
+        check=False,
+    )
     assert done.returncode == 0, done.stderr
     for name in ("fig4_method1.png", "fig5_method2.png", "fig7_method3.png", "reciprocal_error_all.png"):
         data = (out / name).read_bytes()

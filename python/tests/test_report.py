@@ -77,17 +77,20 @@ def test_the_report_lists_the_failed_points_with_status_and_error(first_run):
     out, _, _ = first_run
     text = (out / "report.html").read_text()
     cells = Report(text).failed_cells
-    rows = [cells[i:i + 3] for i in range(0, len(cells), 3)]
-    assert [row[:2] for row in rows] == [["driver.backend=arm, sim.time_limit_ms=1", "1"],
-                                         ["driver.backend=raster, sim.time_limit_ms=1", "1"]]
+    rows = [cells[i : i + 3] for i in range(0, len(cells), 3)]
+    assert [row[:2] for row in rows] == [
+        ["driver.backend=arm, sim.time_limit_ms=1", "1"],
+        ["driver.backend=raster, sim.time_limit_ms=1", "1"],
+    ]
     assert all("simulated-time limit reached" in row[2] for row in rows)
     assert "The 2 failed points are left out of the plots." in text
 
 
 def test_series_are_split_by_the_other_axes_but_not_by_zip_partners(first_run):
     _, table, _ = first_run
-    spec = parse_spec(dict(TINY, axes={"driver.backend": ["arm"]},
-                           zip={"sim.time_limit_ms": [0], "display.refresh_hz": [60]}))
+    spec = parse_spec(
+        dict(TINY, axes={"driver.backend": ["arm"]}, zip={"sim.time_limit_ms": [0], "display.refresh_hz": [60]})
+    )
     table = table.assign(**{"display.refresh_hz": 60})
     assert series_axes(spec, "driver.backend", table) == ["sim.time_limit_ms", "display.refresh_hz"]
     assert series_axes(spec, "sim.time_limit_ms", table) == ["driver.backend"]
@@ -95,8 +98,14 @@ def test_series_are_split_by_the_other_axes_but_not_by_zip_partners(first_run):
 
 def test_a_zip_group_is_one_axis_with_a_bar_per_tuple_in_zip_order(first_run, tmp_path):
     _, table, _ = first_run
-    spec = parse_spec(dict(TINY, axes={"sim.time_limit_ms": [0, 1]}, metrics=METRICS[:1],
-                           zip={"driver.backend": ["raster", "arm"], "display.refresh_hz": [50, 60]}))
+    spec = parse_spec(
+        dict(
+            TINY,
+            axes={"sim.time_limit_ms": [0, 1]},
+            metrics=METRICS[:1],
+            zip={"driver.backend": ["raster", "arm"], "display.refresh_hz": [50, 60]},
+        )
+    )
     table = table.assign(**{"display.refresh_hz": table["driver.backend"].map({"arm": 60, "raster": 50})})
     write_report(spec, table, tmp_path)
     zip_plot = plot_name(METRICS[0], ("driver.backend", "display.refresh_hz"))
@@ -117,14 +126,14 @@ def test_report_only_rebuilds_from_the_table_and_runs_nothing(first_run, simulat
     shutil.rmtree(copy / "points")  # a run would recreate them
     # one metric fewer: its plots go too
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES, metrics=METRICS[:1]))
-    done = tessera_sweep_command(str(spec_file), "--report-only", "--out", str(copy),
-                                 "--soc-sim", str(simulator.path))
+    done = tessera_sweep_command(str(spec_file), "--report-only", "--out", str(copy), "--soc-sim", str(simulator.path))
     assert done.returncode == 0, done.stderr
     assert not (copy / "points").exists()
     names = [plot_name(METRICS[0], axis) for axis in AXES]
     assert set(Report((copy / "report.html").read_text()).figures) == {f"plot-{n}" for n in names}
     assert sorted(p.name for p in (copy / "plots").iterdir()) == sorted(
-        f"{name}.{suffix}" for name in names for suffix in ("png", "svg"))
+        f"{name}.{suffix}" for name in names for suffix in ("png", "svg")
+    )
 
 
 def test_a_sweep_where_every_point_failed_has_a_report_without_plots(first_run, spec, tmp_path):
@@ -140,7 +149,8 @@ def test_a_sweep_where_every_point_failed_has_a_report_without_plots(first_run, 
 
 def test_report_only_without_a_table_exits_2(simulator, tmp_path):
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES, metrics=METRICS))
-    done = tessera_sweep_command(str(spec_file), "--report-only", "--out", str(tmp_path / "none"),
-                                 "--soc-sim", str(simulator.path))
+    done = tessera_sweep_command(
+        str(spec_file), "--report-only", "--out", str(tmp_path / "none"), "--soc-sim", str(simulator.path)
+    )
     assert done.returncode == 2
     assert "results.parquet" in done.stderr

@@ -22,10 +22,21 @@ def finished_points(out):
 def test_a_killed_sweep_resumes_with_only_the_unfinished_points(simulator, tmp_path):
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
     out = tmp_path / "out"
-    command = [sys.executable, "-m", "tessera_sweep", str(spec_file), "--out", str(out),
-               "--soc-sim", str(simulator.path), "--workers", "1"]
-    sweep = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=True)  # its own process group: the cluster's too
+    command = [
+        sys.executable,
+        "-m",
+        "tessera_sweep",
+        str(spec_file),
+        "--out",
+        str(out),
+        "--soc-sim",
+        str(simulator.path),
+        "--workers",
+        "1",
+    ]
+    sweep = subprocess.Popen(
+        command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+    )  # its own process group: the cluster's too
     deadline = time.monotonic() + 120
     while not finished_points(out) and sweep.poll() is None and time.monotonic() < deadline:
         time.sleep(0.02)

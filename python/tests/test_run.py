@@ -96,8 +96,7 @@ def test_command_reports_failed_points_with_exit_status_1(first_run, simulator, 
 
 def test_command_refuses_a_bad_spec_naming_the_key(simulator, tmp_path):
     spec_file = write_spec(tmp_path, dict(TINY, axes={"array.columns": [24, 1000]}))
-    done = tessera_sweep_command(str(spec_file), "--out", str(tmp_path / "out"),
-                                 "--soc-sim", str(simulator.path))
+    done = tessera_sweep_command(str(spec_file), "--out", str(tmp_path / "out"), "--soc-sim", str(simulator.path))
     assert done.returncode == 2
     assert "'array.columns'" in done.stderr
     assert not (tmp_path / "out").exists()
@@ -114,8 +113,19 @@ def test_command_host_and_set_reach_every_point_and_the_table(simulator, tmp_pat
     # One triangle frame on each of two resolutions of the ISS, with a CIU latency the spec does not set.
     spec_file = write_spec(tmp_path, dict(TINY, axes={"display.width": [192, 160]}))
     out = tmp_path / "out"
-    done = tessera_sweep_command(str(spec_file), "--out", str(out), "--soc-sim", str(simulator.path),
-                                 "--workers", "1", "--host", "iss", "--set", "ciu.read_cycles=41")
+    done = tessera_sweep_command(
+        str(spec_file),
+        "--out",
+        str(out),
+        "--soc-sim",
+        str(simulator.path),
+        "--workers",
+        "1",
+        "--host",
+        "iss",
+        "--set",
+        "ciu.read_cycles=41",
+    )
     assert done.returncode == 0, done.stderr
     table = tessera_sweep.load(out)
     assert list(table["host_model"]) == ["iss", "iss"]
@@ -126,8 +136,7 @@ def test_command_host_and_set_reach_every_point_and_the_table(simulator, tmp_pat
 def test_command_refuses_a_set_of_a_swept_key_or_without_a_value(simulator, tmp_path):
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
     swept = next(iter(AXES))
-    done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path),
-                                 "--set", f"{swept}=1")
+    done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path), "--set", f"{swept}=1")
     assert done.returncode == 2 and f"{swept} is an axis of the sweep" in done.stderr
     done = tessera_sweep_command(str(spec_file), "--check", "--soc-sim", str(simulator.path), "--set", "ciu")
     assert done.returncode == 2 and "--set 'ciu': expected KEY=VALUE" in done.stderr

@@ -24,8 +24,9 @@ RUN_COLUMNS = ["wall_s"]
 def start(module: str, *args: str, log: Path) -> subprocess.Popen:
     env = dict(os.environ, PYTHONPATH=str(PACKAGE_ROOT))
     with open(log, "w") as out:
-        return subprocess.Popen([sys.executable, "-m", module, *args], stdout=out, stderr=subprocess.STDOUT,
-                                env=env, start_new_session=True)
+        return subprocess.Popen(
+            [sys.executable, "-m", module, *args], stdout=out, stderr=subprocess.STDOUT, env=env, start_new_session=True
+        )
 
 
 def wait_for(condition, what: str, processes, timeout_s: float = 60.0):
@@ -44,16 +45,34 @@ def cluster(tmp_path):
     """A scheduler on a free localhost port and one single-threaded worker,
     each its own process; yields the scheduler's address."""
     scheduler_file = tmp_path / "scheduler.json"
-    scheduler = start("distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
-                      "--no-dashboard", "--scheduler-file", str(scheduler_file),
-                      log=tmp_path / "scheduler.log")
+    scheduler = start(
+        "distributed.cli.dask_scheduler",
+        "--host",
+        "127.0.0.1",
+        "--port",
+        "0",
+        "--no-dashboard",
+        "--scheduler-file",
+        str(scheduler_file),
+        log=tmp_path / "scheduler.log",
+    )
     processes = [scheduler]
     try:
         wait_for(scheduler_file.exists, "the scheduler's address file", processes)
         address = json.loads(scheduler_file.read_text())["address"]
-        worker = start("distributed.cli.dask_worker", address, "--nworkers", "1", "--nthreads", "1",
-                       "--no-dashboard", "--no-nanny", "--local-directory", str(tmp_path / "worker"),
-                       log=tmp_path / "worker.log")
+        worker = start(
+            "distributed.cli.dask_worker",
+            address,
+            "--nworkers",
+            "1",
+            "--nthreads",
+            "1",
+            "--no-dashboard",
+            "--no-nanny",
+            "--local-directory",
+            str(tmp_path / "worker"),
+            log=tmp_path / "worker.log",
+        )
         processes.append(worker)
         from dask.distributed import Client
 
@@ -75,8 +94,9 @@ def test_a_sweep_through_a_separate_scheduler_equals_the_local_run(cluster, firs
     local_out, local, _ = first_run
     spec_file = write_spec(tmp_path, dict(TINY, axes=AXES))
     remote_out = tmp_path / "remote"
-    done = tessera_sweep_command(str(spec_file), "--out", str(remote_out), "--soc-sim", str(simulator.path),
-                                 "--scheduler", cluster)
+    done = tessera_sweep_command(
+        str(spec_file), "--out", str(remote_out), "--soc-sim", str(simulator.path), "--scheduler", cluster
+    )
     assert done.returncode == 1, done.stderr  # half of AXES's points fail on purpose
     assert "4 points, 0 cached, 4 to run" in done.stderr
     remote = load(remote_out)

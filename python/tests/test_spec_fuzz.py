@@ -13,8 +13,6 @@ import math
 import os
 import tempfile
 
-import pytest
-import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from hypothesis.configuration import set_hypothesis_home_dir
@@ -22,30 +20,45 @@ from hypothesis.configuration import set_hypothesis_home_dir
 # Hypothesis's caches go to a temporary folder, not python/.hypothesis.
 set_hypothesis_home_dir(tempfile.mkdtemp(prefix="hypothesis_"))
 
-from tessera_sweep.spec import ALIASES, FIELDS, SpecError, expand, load_spec, parse_spec
+from tessera_sweep.spec import ALIASES, FIELDS, SpecError, expand, load_spec, parse_spec  # noqa: E402 (after the cache folder is set)
 
 EXAMPLES = int(os.environ.get("HYPOTHESIS_EXAMPLES", "300"))
-FUZZ = settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,  # no .hypothesis in the tree
-                suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+FUZZ = settings(
+    max_examples=EXAMPLES,
+    deadline=None,
+    derandomize=True,
+    database=None,  # no .hypothesis in the tree
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
+)
 
-scalars = st.one_of(st.none(), st.booleans(), st.integers(-2**70, 2**70), st.floats(allow_nan=True),
-                    st.text(max_size=12))
-keys = st.one_of(st.sampled_from(sorted(FIELDS) + ["display.width", "sim.frames", "a.b", ""]),
-                 st.text(max_size=8), st.integers(-3, 3), st.booleans(), st.none())
-values = st.recursive(scalars, lambda inner: st.one_of(st.lists(inner, max_size=4),
-                                                       st.dictionaries(keys, inner, max_size=4)), max_leaves=20)
+scalars = st.one_of(
+    st.none(), st.booleans(), st.integers(-(2**70), 2**70), st.floats(allow_nan=True), st.text(max_size=12)
+)
+keys = st.one_of(
+    st.sampled_from(sorted(FIELDS) + ["display.width", "sim.frames", "a.b", ""]),
+    st.text(max_size=8),
+    st.integers(-3, 3),
+    st.booleans(),
+    st.none(),
+)
+values = st.recursive(
+    scalars,
+    lambda inner: st.one_of(st.lists(inner, max_size=4), st.dictionaries(keys, inner, max_size=4)),
+    max_leaves=20,
+)
 
 
 def check_spec(spec):
     points = expand(spec)
-    sizes = [len(values) for values in spec.axes.values()] + \
-        [len(next(iter(group.values()))) for group in spec.zips if group]
+    sizes = [len(values) for values in spec.axes.values()] + [
+        len(next(iter(group.values()))) for group in spec.zips if group
+    ]
     assert len(points) == math.prod(sizes)
     for point in points:
         for key, value in spec.base.items():
             if key not in point.axes:
                 assert point.settings[key] == value or (value != value)  # NaN is never equal
-        for key, value in point.axes.items():
+        for key in point.axes:
             assert key in spec.axis_keys
 
 
@@ -61,16 +74,31 @@ def test_any_shape_of_the_fields_is_a_spec_or_a_spec_error(data):
 
 
 @FUZZ
-@given(st.fixed_dictionaries({}, optional={
-    "app": st.sampled_from(["triangle", "cubes"]),
-    "frames": st.integers(1, 3),
-    "config": st.dictionaries(st.sampled_from(["display.width", "display.height", "dma.enabled"]),
-                              st.integers(1, 512), max_size=3),
-    "axes": st.dictionaries(st.sampled_from(["driver.backend", "raster.width", "app", "frames"]),
-                            st.lists(st.integers(0, 9), min_size=1, max_size=4), max_size=3),
-    "zip": st.lists(st.dictionaries(st.sampled_from(["array.columns", "array.rows", "sim.frames"]),
-                                    st.lists(st.integers(0, 9), min_size=2, max_size=2), max_size=2), max_size=2),
-}))
+@given(
+    st.fixed_dictionaries(
+        {},
+        optional={
+            "app": st.sampled_from(["triangle", "cubes"]),
+            "frames": st.integers(1, 3),
+            "config": st.dictionaries(
+                st.sampled_from(["display.width", "display.height", "dma.enabled"]), st.integers(1, 512), max_size=3
+            ),
+            "axes": st.dictionaries(
+                st.sampled_from(["driver.backend", "raster.width", "app", "frames"]),
+                st.lists(st.integers(0, 9), min_size=1, max_size=4),
+                max_size=3,
+            ),
+            "zip": st.lists(
+                st.dictionaries(
+                    st.sampled_from(["array.columns", "array.rows", "sim.frames"]),
+                    st.lists(st.integers(0, 9), min_size=2, max_size=2),
+                    max_size=2,
+                ),
+                max_size=2,
+            ),
+        },
+    )
+)
 def test_well_formed_specs_expand_to_the_product_of_their_axes(data):
     try:
         spec = parse_spec(data)

@@ -59,14 +59,17 @@ def prose(text):
 
 
 def expand_braces(path):
-    pair = re.match(r"^(.*)\.(\w+)/\.(\w+)$", path)    # name.h/.cpp
+    pair = re.match(r"^(.*)\.(\w+)/\.(\w+)$", path)  # name.h/.cpp
     if pair:
         return [f"{pair.group(1)}.{pair.group(2)}", f"{pair.group(1)}.{pair.group(3)}"]
     match = re.search(r"\{([^{}]*,[^{}]*)\}", path)
     if not match:
         return [path]
-    return [expanded for choice in match.group(1).split(",")
-            for expanded in expand_braces(path[:match.start()] + choice + path[match.end():])]
+    return [
+        expanded
+        for choice in match.group(1).split(",")
+        for expanded in expand_braces(path[: match.start()] + choice + path[match.end() :])
+    ]
 
 
 def candidates(line):
@@ -92,7 +95,7 @@ def is_checked(token):
 
 def clean(token):
     token = token.split("::")[0]
-    token = re.sub(r":\d.*$", "", token)           # file.cpp:123
+    token = re.sub(r":\d.*$", "", token)  # file.cpp:123
     token = token.rstrip(".,;:)")
     return token
 
@@ -105,8 +108,11 @@ def check_paths(root):
         folder = md.parent
         folder_entries = {entry.name for entry in folder.iterdir()}
         text = md.read_text(errors="replace")
-        examples = [prefix for comment in re.findall(r"<!-- check_docs: example paths ([^>]*)-->", text)
-                    for prefix in comment.split()]
+        examples = [
+            prefix
+            for comment in re.findall(r"<!-- check_docs: example paths ([^>]*)-->", text)
+            for prefix in comment.split()
+        ]
         for number, line in prose(text):
             for token, is_link in candidates(line):
                 if not token or not is_checked(token):
@@ -122,9 +128,11 @@ def check_paths(root):
                 for path in expand_braces(token):
                     checked += 1
                     bases = (folder,) if is_link else (root, folder)
-                    exists = any((base / path).exists() or (not is_link and not pathlib.PurePath(path).suffix
-                                                            and (base / (path + ".cpp")).exists())
-                                 for base in bases)
+                    exists = any(
+                        (base / path).exists()
+                        or (not is_link and not pathlib.PurePath(path).suffix and (base / (path + ".cpp")).exists())
+                        for base in bases
+                    )
                     if not exists:
                         failures.append(f"{md.relative_to(root)}:{number}: '{path}' does not exist")
     for failure in failures:

@@ -63,8 +63,15 @@ def run(script, folder, label):
     env = dict(os.environ, SYSTEMC_DISABLE_COPYRIGHT_MESSAGE="1")
     env.pop("TERM", None)
     started = time.monotonic()
-    result = subprocess.run(["bash", "-e", "-x", "-c", script], cwd=folder, env=env,
-                            stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=600)
+    result = subprocess.run(
+        ["bash", "-e", "-x", "-c", script],
+        cwd=folder,
+        env=env,
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     print(f"--- {label}: status {result.returncode}, {time.monotonic() - started:.1f} s")
     if result.returncode != 0:
         print(result.stdout[-4000:])

@@ -90,8 +90,16 @@ class Server:
 
 
 def gdb(elf, port, commands):
-    command = ["gdb-multiarch", "-nx", "-batch", elf, "-ex", "set pagination off", "-ex",
-               f"target remote 127.0.0.1:{port}"]
+    command = [
+        "gdb-multiarch",
+        "-nx",
+        "-batch",
+        elf,
+        "-ex",
+        "set pagination off",
+        "-ex",
+        f"target remote 127.0.0.1:{port}",
+    ]
     for line in commands:
         command += ["-ex", line]
     try:
@@ -108,9 +116,9 @@ def read_png_rgba(path):
     data = open(path, "rb").read()
     position, idat = 8, b""
     while position < len(data):
-        (length,) = struct.unpack(">I", data[position:position + 4])
-        kind = data[position + 4:position + 8]
-        body = data[position + 8:position + 8 + length]
+        (length,) = struct.unpack(">I", data[position : position + 4])
+        kind = data[position + 4 : position + 8]
+        body = data[position + 8 : position + 8 + length]
         if kind == b"IHDR":
             width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
             assert (depth, colour, interlace) == (8, 6, 0), "not an 8-bit RGBA PNG"
@@ -122,7 +130,7 @@ def read_png_rgba(path):
     rows, previous = [], bytearray(stride)
     for y in range(height):
         kind = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        line = bytearray(raw[y * (stride + 1) + 1 : (y + 1) * (stride + 1)])
         for i in range(stride):
             left = line[i - 4] if i >= 4 else 0
             up = previous[i]
@@ -171,12 +179,16 @@ def same_outputs(out, reference, what):
     for frame in ("frame_0000.png", "frame_0001.png"):
         check(os.path.exists(os.path.join(out, frame)), f"{what}: {frame} was not written")
         if os.path.exists(os.path.join(out, frame)):
-            check(open(os.path.join(out, frame), "rb").read() == open(os.path.join(reference, frame), "rb").read(),
-                  f"{what}: {frame} differs from the run without GDB")
+            check(
+                open(os.path.join(out, frame), "rb").read() == open(os.path.join(reference, frame), "rb").read(),
+                f"{what}: {frame} differs from the run without GDB",
+            )
     stats = json.load(open(os.path.join(out, "stats.json")))
     check(stats["exit_status"] == 0, f"{what}: stats.json's exit_status is {stats['exit_status']}")
-    check(stats["stats"] == json.load(open(os.path.join(reference, "stats.json")))["stats"],
-          f"{what}: the SoC's statistics differ from the run without GDB")
+    check(
+        stats["stats"] == json.load(open(os.path.join(reference, "stats.json")))["stats"],
+        f"{what}: the SoC's statistics differ from the run without GDB",
+    )
 
 
 def register(output, name):
@@ -195,8 +207,10 @@ def main():
     # Bad input first: --gdb where no ISS runs.
     native = run([soc_sim, "--app", "triangle", "--gdb", "0", "--out", os.path.join(work, "native")])
     check(native.returncode == 2, f"--gdb with host.model=native exits {native.returncode}, not 2")
-    check("--gdb" in native.stderr and "host.model=native" in native.stderr,
-          "--gdb with host.model=native: the error names neither: " + native.stderr.strip())
+    check(
+        "--gdb" in native.stderr and "host.model=native" in native.stderr,
+        "--gdb with host.model=native: the error names neither: " + native.stderr.strip(),
+    )
 
     reference = os.path.join(work, "plain")
     # Not quiet, as the runs under GDB (whose warnings are looked at): the
@@ -209,12 +223,16 @@ def main():
     # A port in use, and a client that goes away without a word.
     waiting = Server(soc_sim, os.path.join(work, "gone"), scene)
     if check(waiting.port is not None, "soc_sim never listened"):
-        check(f"waiting for GDB on 127.0.0.1:{waiting.port}" in open(waiting.out + ".stderr").read(),
-              "soc_sim does not say where it waits for GDB")
+        check(
+            f"waiting for GDB on 127.0.0.1:{waiting.port}" in open(waiting.out + ".stderr").read(),
+            "soc_sim does not say where it waits for GDB",
+        )
         taken = run([soc_sim, *scene, "--out", os.path.join(work, "taken"), "--gdb", str(waiting.port)])
         check(taken.returncode == 2, f"a port in use: soc_sim exits {taken.returncode}, not 2")
-        check(f"cannot listen on 127.0.0.1:{waiting.port}" in taken.stderr,
-              "a port in use: the error does not name the port: " + taken.stderr.strip())
+        check(
+            f"cannot listen on 127.0.0.1:{waiting.port}" in taken.stderr,
+            "a port in use: the error does not name the port: " + taken.stderr.strip(),
+        )
         with socket.create_connection(("127.0.0.1", waiting.port), timeout=TIMEOUT_S) as client:
             client.sendall(b"$?#3f")
             reply = b""
@@ -223,46 +241,60 @@ def main():
             check(reply == b"+$S05#b8", f"'?' before the first instruction: {reply!r}, not a SIGTRAP stop")
     status, stderr = waiting.finish()
     check(status == 0, f"GDB gone away: soc_sim exits {status}: {stderr}")
-    check("GDB went away without detaching; the program runs on" in stderr,
-          "GDB gone away: soc_sim does not say so: " + stderr.strip())
+    check(
+        "GDB went away without detaching; the program runs on" in stderr,
+        "GDB gone away: soc_sim does not say so: " + stderr.strip(),
+    )
     same_outputs(waiting.out, reference, "GDB gone away")
 
     # The session.
     server = Server(soc_sim, os.path.join(work, "session"), scene)
     if check(server.port is not None, "soc_sim never listened"):
         dump = os.path.join(work, "frame_buffer_0.bin")
-        log = gdb(apps_elf, server.port, [
-            f"break *'{present}'",
-            "continue",
-            "info registers",
-            "x/3xw $r0",
-            "set $r12 = 0x12345678",
-            "print/x $r12",
-            "set {unsigned int}($sp - 64) = 0x5a5aa5a5",
-            "x/xw $sp - 64",
-            f"dump binary memory {dump} {fb0} {fb0 + frame_bytes}",
-            "stepi",
-            "stepi",
-            "info symbol $pc",
-            "delete",
-            "continue",
-        ])
+        log = gdb(
+            apps_elf,
+            server.port,
+            [
+                f"break *'{present}'",
+                "continue",
+                "info registers",
+                "x/3xw $r0",
+                "set $r12 = 0x12345678",
+                "print/x $r12",
+                "set {unsigned int}($sp - 64) = 0x5a5aa5a5",
+                "x/xw $sp - 64",
+                f"dump binary memory {dump} {fb0} {fb0 + frame_bytes}",
+                "stepi",
+                "stepi",
+                "info symbol $pc",
+                "delete",
+                "continue",
+            ],
+        )
         check(f"Breakpoint 1, {present.replace('()', '')}" in log, "no stop at the breakpoint on " + present)
-        check(re.search(r"^pc\s+0x[0-9a-f]+\s+0x[0-9a-f]+ <" + re.escape(present) + ">$", log, re.M),
-              "the PC is not at the start of " + present)
+        check(
+            re.search(r"^pc\s+0x[0-9a-f]+\s+0x[0-9a-f]+ <" + re.escape(present) + ">$", log, re.M),
+            "the PC is not at the start of " + present,
+        )
         sp = register(log, "sp")
-        check(sp is not None and 0x400000 - 0x40000 <= sp < 0x400000,
-              f"SP {sp} is not in the program's stacks (256 KiB below 4 MiB, sw_driver/runtime/README.md)")
+        check(
+            sp is not None and 0x400000 - 0x40000 <= sp < 0x400000,
+            f"SP {sp} is not in the program's stacks (256 KiB below 4 MiB, sw_driver/runtime/README.md)",
+        )
         cpsr = register(log, "cpsr")
-        check(cpsr is not None and cpsr & 0x3f == 0x13, f"CPSR {cpsr}: not supervisor mode in ARM state")
+        check(cpsr is not None and cpsr & 0x3F == 0x13, f"CPSR {cpsr}: not supervisor mode in ARM state")
         words = re.search(r"^0x[0-9a-f]+:\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)$", log, re.M)
-        check(words and (int(words.group(2), 16), int(words.group(3), 16)) == (fb0, fb1),
-              f"the display driver's frame buffers (memory at r0) are not {fb0:#x} and {fb1:#x}")
+        check(
+            words and (int(words.group(2), 16), int(words.group(3), 16)) == (fb0, fb1),
+            f"the display driver's frame buffers (memory at r0) are not {fb0:#x} and {fb1:#x}",
+        )
         check(re.search(r"^\$\d+ = 0x12345678$", log, re.M), "r12 does not read back what GDB wrote")
         check(re.search(r":\s+0x5a5aa5a5$", log, re.M), "the stack word does not read back what GDB wrote")
         if check(os.path.exists(dump), "GDB could not dump the frame buffer") and pixel_format == "rgb565":
-            check(open(dump, "rb").read() == rgb565_of_png(os.path.join(reference, "frame_0000.png")),
-                  "the first frame buffer as GDB reads it is not the first frame shown")
+            check(
+                open(dump, "rb").read() == rgb565_of_png(os.path.join(reference, "frame_0000.png")),
+                "the first frame buffer as GDB reads it is not the first frame shown",
+            )
         check(present + " + 8 in section" in log, "two stepi did not move the PC by two instructions")
         check("exited normally" in log, "the program did not run to its exit under GDB")
         status, stderr = server.finish()
@@ -276,8 +308,10 @@ def main():
             gdb(apps_elf, killed.port, [f"break *'{present}'", "continue", "kill"])
             status, stderr = killed.finish()
             check(status == 1, f"killed by GDB: soc_sim exits {status}, not 1")
-            check(pc is not None and f"killed by GDB at pc {pc:#010x}" in stderr,
-                  "killed by GDB: the error does not name the PC: " + stderr.strip())
+            check(
+                pc is not None and f"killed by GDB at pc {pc:#010x}" in stderr,
+                "killed by GDB: the error does not name the PC: " + stderr.strip(),
+            )
 
     # A fault under GDB: shown as a stop, then the launcher's error.
     faulting = Server(soc_sim, os.path.join(work, "fault"), ["--app", fault_elf, "--no-frames"])
@@ -288,8 +322,10 @@ def main():
         check("Program terminated with signal SIGILL" in log, "continuing from the fault does not end the program")
         status, stderr = faulting.finish()
         check(status == 1, f"a fault under GDB: soc_sim exits {status}, not 1")
-        check("fault_1.elf: undefined instruction at pc 0x00000060" in stderr,
-              "a fault under GDB: the launcher's error is missing: " + stderr.strip())
+        check(
+            "fault_1.elf: undefined instruction at pc 0x00000060" in stderr,
+            "a fault under GDB: the launcher's error is missing: " + stderr.strip(),
+        )
 
     print("PASSED" if not failures else f"{len(failures)} check(s) FAILED")
     return 0 if not failures else 1

@@ -36,9 +36,9 @@ class Header:
     """The macros and prototypes that one header and its includes declare."""
 
     def __init__(self):
-        self.macros = {}        # name -> raw value text
-        self.macro_block = {}   # name -> enclosing feature block (or None)
-        self.functions = {}     # name -> (return type, [parameter types])
+        self.macros = {}  # name -> raw value text
+        self.macro_block = {}  # name -> enclosing feature block (or None)
+        self.functions = {}  # name -> (return type, [parameter types])
         self.function_block = {}
 
 
@@ -141,7 +141,9 @@ def check(khronos, ours, prefix, required, errors):
     for name in sorted(khronos_names & our_names):
         theirs, mine = evaluate(name, khronos.macros), evaluate(name, ours.macros)
         if theirs != mine:
-            errors.append(f"{name}: ours is {ours.macros[name]!r} = {mine!r}, Khronos' is {khronos.macros[name]!r} = {theirs!r}")
+            errors.append(
+                f"{name}: ours is {ours.macros[name]!r} = {mine!r}, Khronos' is {khronos.macros[name]!r} = {theirs!r}"
+            )
 
     for name in sorted(our_names - khronos_names):
         errors.append(f"{name}: defined by ours but unknown to the Khronos header (misspelt?)")
@@ -159,8 +161,9 @@ def check(khronos, ours, prefix, required, errors):
                 errors.append(f"{name}: function missing from ours")
             continue
         if ours.functions[name] != signature:
-            errors.append(f"{name}: ours is {format_signature(ours.functions[name])}, "
-                          f"Khronos' is {format_signature(signature)}")
+            errors.append(
+                f"{name}: ours is {format_signature(ours.functions[name])}, Khronos' is {format_signature(signature)}"
+            )
 
     for name in sorted(set(ours.functions) - set(khronos.functions)):
         if name.startswith(fn_prefix):
@@ -198,8 +201,9 @@ def main():
         if not khronos.functions or not khronos.macros:
             errors.append(f"{khronos_path}: parsed no macros or prototypes; the parser needs updating")
         shared = len(set(khronos.functions) & set(ours.functions))
-        counts.append(f"{api}: {len(ours.macros)} macros, {len(ours.functions)} functions "
-                      f"({shared} compared with Khronos')")
+        counts.append(
+            f"{api}: {len(ours.macros)} macros, {len(ours.functions)} functions ({shared} compared with Khronos')"
+        )
         check(khronos, ours, prefix, required, errors)
 
     for line in counts:

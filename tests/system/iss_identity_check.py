@@ -42,8 +42,21 @@ def parse_case(text):
 
 def run(soc_sim, case, out, flags):
     app, backend, frames = case
-    command = [str(soc_sim), "--app", app, "--backend", backend, "--frames", str(frames), "--quiet", "--force", "--out",
-               str(out), "--set", "host.model=iss"] + flags
+    command = [
+        str(soc_sim),
+        "--app",
+        app,
+        "--backend",
+        backend,
+        "--frames",
+        str(frames),
+        "--quiet",
+        "--force",
+        "--out",
+        str(out),
+        "--set",
+        "host.model=iss",
+    ] + flags
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
@@ -70,7 +83,9 @@ def differences(a, b, names):
         if a[key] != b[key]:
             found.append(f"{key} differs between {names[0]} and {names[1]}")
     if a["stats"] != b["stats"]:
-        found.append(f"stats.json differs between {names[0]} and {names[1]}: {first_difference(a['stats'], b['stats'])}")
+        found.append(
+            f"stats.json differs between {names[0]} and {names[1]}: {first_difference(a['stats'], b['stats'])}"
+        )
     if sorted(a["files"]) != sorted(b["files"]):
         found.append(f"the outputs differ: {sorted(a['files'])} against {sorted(b['files'])}")
     for name in sorted(set(a["files"]) & set(b["files"])):
@@ -97,9 +112,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--soc-sim", required=True, type=pathlib.Path)
     parser.add_argument("--reference", type=pathlib.Path, help="a soc_sim from before the change, to compare with")
-    parser.add_argument("--reference-flag", action="append", default=[],
-                        help="a flag for the reference's runs (default: --iss-profile; give '' for a soc_sim from "
-                             "before it, which always listed the profile)")
+    parser.add_argument(
+        "--reference-flag",
+        action="append",
+        default=[],
+        help="a flag for the reference's runs (default: --iss-profile; give '' for a soc_sim from "
+        "before it, which always listed the profile)",
+    )
     parser.add_argument("--out", required=True, type=pathlib.Path, help="folder for the runs' outputs")
     parser.add_argument("--case", action="append", type=parse_case, help="APP:BACKEND:FRAMES (repeatable)")
     args = parser.parse_args()
@@ -123,8 +142,10 @@ def main():
             found = [str(error)]
         iss = {} if found else plain["stats"]["stats"]["host"]["iss"]
         status = "same" if not found else "DIFFERENT"
-        print(f"{name}: {status}" + (f" ({iss['instructions']} instructions, {iss['core_cycles']} core cycles)"
-                                     if iss else ""))
+        print(
+            f"{name}: {status}"
+            + (f" ({iss['instructions']} instructions, {iss['core_cycles']} core cycles)" if iss else "")
+        )
         failures += [f"{name}: {text}" for text in found]
     for text in failures:
         print(f"iss_identity_check: {text}", file=sys.stderr)

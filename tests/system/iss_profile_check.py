@@ -62,11 +62,13 @@ BACKENDS = {
         "scene": "teapot",
         "frames": 1,
         "set": [],
-        "roots": [r"^tessera::arm::ArmRasterizer::(draw|draw_triangle|shade_span|write_color_run|fetch_texel|clear|"
-                  r"read_pixels)\(",
-                  r"^tessera::arm::ArmRenderer::(draw|clear|read_pixels)\(",
-                  r"^tessera::arm::HostPixelMemory::(load|store|compute)\(",
-                  r"^tessera::arm::\(anonymous namespace\)::"],
+        "roots": [
+            r"^tessera::arm::ArmRasterizer::(draw|draw_triangle|shade_span|write_color_run|fetch_texel|clear|"
+            r"read_pixels)\(",
+            r"^tessera::arm::ArmRenderer::(draw|clear|read_pixels)\(",
+            r"^tessera::arm::HostPixelMemory::(load|store|compute)\(",
+            r"^tessera::arm::\(anonymous namespace\)::",
+        ],
         "ran": [r"^tessera::arm::ArmRasterizer::shade_span\(", r"^tessera::arm::ArmRasterizer::draw_triangle\("],
         "max_share": CLEAN_MAX_SHARE,
     },
@@ -81,22 +83,32 @@ BACKENDS = {
         "scene": "teapot",
         "frames": 1,
         "set": [],
-        "roots": [r"^tessera::ap_tile::TriangleSetup::",
-                  r"^tessera::ap_tile::encode_record\(",
-                  r"^tessera::ap_tile::TileBins::",
-                  r"^tessera::ap_tile::ApTileRenderer::(write_group|shade_pixel)\("],
-        "ran": [r"^tessera::ap_tile::TriangleSetup::TriangleSetup\(", r"^tessera::ap_tile::TriangleSetup::edge_at\(",
-                r"^tessera::ap_tile::ApTileRenderer::write_group\("],
+        "roots": [
+            r"^tessera::ap_tile::TriangleSetup::",
+            r"^tessera::ap_tile::encode_record\(",
+            r"^tessera::ap_tile::TileBins::",
+            r"^tessera::ap_tile::ApTileRenderer::(write_group|shade_pixel)\(",
+        ],
+        "ran": [
+            r"^tessera::ap_tile::TriangleSetup::TriangleSetup\(",
+            r"^tessera::ap_tile::TriangleSetup::edge_at\(",
+            r"^tessera::ap_tile::ApTileRenderer::write_group\(",
+        ],
         "max_share": CLEAN_MAX_SHARE,
     },
     "ap-pixel": {
         "scene": "teapot",
         "frames": 1,
         "set": [],
-        "roots": [r"^tessera::ap_pixel::PixelTriangle::",
-                  r"^tessera::ap_pixel::ApPixelRenderer::(write_pixel|write_shaded)\("],
-        "ran": [r"^tessera::ap_pixel::PixelTriangle::PixelTriangle\(", r"^tessera::ap_pixel::PixelTriangle::depth16\(",
-                r"^tessera::ap_pixel::PixelTriangle::span\("],
+        "roots": [
+            r"^tessera::ap_pixel::PixelTriangle::",
+            r"^tessera::ap_pixel::ApPixelRenderer::(write_pixel|write_shaded)\(",
+        ],
+        "ran": [
+            r"^tessera::ap_pixel::PixelTriangle::PixelTriangle\(",
+            r"^tessera::ap_pixel::PixelTriangle::depth16\(",
+            r"^tessera::ap_pixel::PixelTriangle::span\(",
+        ],
         "max_share": CLEAN_MAX_SHARE,
     },
     # The raster driver's per-triangle path: the vertex records, the fog
@@ -106,8 +118,10 @@ BACKENDS = {
         "scene": "teapot",
         "frames": 1,
         "set": [],
-        "roots": [r"^tessera::raster_backend::RasterRenderer::draw\(",
-                  r"^tessera::raster_backend::\(anonymous namespace\)::encode_"],
+        "roots": [
+            r"^tessera::raster_backend::RasterRenderer::draw\(",
+            r"^tessera::raster_backend::\(anonymous namespace\)::encode_",
+        ],
         "ran": [r"^tessera::raster_backend::RasterRenderer::draw\("],
         "max_share": CLEAN_MAX_SHARE,
     },
@@ -119,8 +133,13 @@ BACKENDS = {
 FORBIDDEN = [
     (re.compile(r"^__aeabi_(d\w+|cd\w+|[il]2d|ul2d|ui2d|f2d|l2d)$"), "double-precision soft float"),
     (re.compile(r"^__\w*df\d?$"), "double-precision soft float"),
-    (re.compile(r"^(__ieee754_)?(floor|ceil|round|lround|llround|trunc|sqrt|exp|exp2|log|log2|pow|fabs|fmod|modf|"
-                r"ldexp|frexp|sin|cos|tan|atan|atan2)$"), "double-precision libm"),
+    (
+        re.compile(
+            r"^(__ieee754_)?(floor|ceil|round|lround|llround|trunc|sqrt|exp|exp2|log|log2|pow|fabs|fmod|modf|"
+            r"ldexp|frexp|sin|cos|tan|atan|atan2)$"
+        ),
+        "double-precision libm",
+    ),
     (re.compile(r"^__aeabi_u?ldivmod$"), "64-bit division"),
     (re.compile(r"^__(u?divmoddi4|u?divdi3|u?moddi3)$"), "64-bit division"),
     (re.compile(r"^__gnu_u?ldivmod_helper$"), "64-bit division"),
@@ -183,8 +202,23 @@ def reachable_helpers(calls, roots):
 
 
 def run(soc_sim, backend, settings, out):
-    command = [soc_sim, "--app", settings["scene"], "--backend", backend, "--frames", str(settings["frames"]),
-               "--no-frames", "--quiet", "--force", "--out", str(out), "--set", "host.model=iss", "--iss-profile"]
+    command = [
+        soc_sim,
+        "--app",
+        settings["scene"],
+        "--backend",
+        backend,
+        "--frames",
+        str(settings["frames"]),
+        "--no-frames",
+        "--quiet",
+        "--force",
+        "--out",
+        str(out),
+        "--set",
+        "host.model=iss",
+        "--iss-profile",
+    ]
     for setting in settings["set"]:
         command += ["--set", setting]
     result = subprocess.run(command, capture_output=True, text=True)
@@ -218,11 +252,15 @@ def check_profile(iss, settings):
         if max_share is not None and row["share"] > max_share:
             failures.append(line + f" > {100 * max_share:.3f} %")
     listed, last = len(rows), rows[-1]["share"]
-    lines.append(f"forbidden helpers listed: {100 * total:.3f} % of the ISS's cycles; {listed} of "
-                 f"{iss.get('functions_profiled', listed)} functions listed, the last at {100 * last:.3f} %")
+    lines.append(
+        f"forbidden helpers listed: {100 * total:.3f} % of the ISS's cycles; {listed} of "
+        f"{iss.get('functions_profiled', listed)} functions listed, the last at {100 * last:.3f} %"
+    )
     if max_share is not None and iss.get("functions_profiled", listed) > listed and last > max_share:
-        failures.append(f"an unlisted helper may hold up to {100 * last:.3f} % (the last listed row) "
-                        f"> {100 * max_share:.3f} %: the profile cannot show the rule")
+        failures.append(
+            f"an unlisted helper may hold up to {100 * last:.3f} % (the last listed row) "
+            f"> {100 * max_share:.3f} %: the profile cannot show the rule"
+        )
     return failures, lines
 
 

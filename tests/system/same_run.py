@@ -3,6 +3,7 @@
 file byte for byte, and stats.json equal in everything but the command line
 that started it (the one thing two spellings of the same configuration
 change). Exits 1, naming the first difference, otherwise."""
+
 import json
 import pathlib
 import sys
