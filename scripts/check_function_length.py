@@ -41,10 +41,11 @@ def long_functions(folders: list, limit: int) -> list:
                 if function.length <= limit:
                     continue
                 lines = lines or path.read_text(errors="replace").splitlines()
-                above = lines[max(0, function.start_line - 1 - REASON_WINDOW):function.start_line - 1]
+                above = lines[max(0, function.start_line - 1 - REASON_WINDOW) : function.start_line - 1]
                 reasoned = any(REASON in line for line in above)
-                found.append((path.relative_to(ROOT).as_posix(), function.start_line, function.name,
-                              function.length, reasoned))
+                found.append(
+                    (path.relative_to(ROOT).as_posix(), function.start_line, function.name, function.length, reasoned)
+                )
     return found
 
 
@@ -58,8 +59,10 @@ def main() -> int:
     for path, line, name, length, reasoned in found:
         status = "reason given" if reasoned else f'no "{REASON}" comment above it'
         print(f"{path}:{line}: {name}: {length} lines ({status})", file=sys.stderr if not reasoned else sys.stdout)
-    print(f"check_function_length: {len(found)} functions over {args.limit} lines in {', '.join(args.folders)}; "
-          f"{len(bad)} without a reason")
+    print(
+        f"check_function_length: {len(found)} functions over {args.limit} lines in {', '.join(args.folders)}; "
+        f"{len(bad)} without a reason"
+    )
     return 1 if bad else 0
 
 
