@@ -44,17 +44,20 @@ PYARROW_VERSION=14.0.2  # the last with wheels built against numpy 1.x, Debian 1
 # The Python linter and formatter (tests/python: python_ruff_check, python_ruff_format;
 # ruff.toml). Pinned: another version formats some constructs differently.
 RUFF_VERSION=0.17.5
+# Function lengths for the lint test lint_function_length (scripts/check_function_length.py).
+LIZARD_VERSION=1.24.3
 
 setup_sweep_venv() {
   if [[ -x "$SWEEP_VENV/bin/tessera-sweep" ]] &&
      "$SWEEP_VENV/bin/python3" -c "import pyarrow, sys; sys.exit(pyarrow.__version__ != '$PYARROW_VERSION')" 2>/dev/null &&
-     [[ "$("$SWEEP_VENV/bin/ruff" --version 2>/dev/null)" == "ruff $RUFF_VERSION" ]]; then
+     [[ "$("$SWEEP_VENV/bin/ruff" --version 2>/dev/null)" == "ruff $RUFF_VERSION" ]] &&
+     "$SWEEP_VENV/bin/python3" -c "import importlib.metadata as m, sys; sys.exit(m.version('lizard') != '$LIZARD_VERSION')" 2>/dev/null; then
     return
   fi
-  echo "setup: sweep venv in $SWEEP_VENV (pyarrow $PYARROW_VERSION, ruff $RUFF_VERSION, tessera-sweep)"
+  echo "setup: sweep venv in $SWEEP_VENV (pyarrow $PYARROW_VERSION, ruff $RUFF_VERSION, lizard $LIZARD_VERSION, tessera-sweep)"
   /usr/bin/python3 -m venv --system-site-packages "$SWEEP_VENV"
   local pip=("$SWEEP_VENV/bin/python3" -m pip install -q --disable-pip-version-check)
-  "${pip[@]}" "pyarrow==$PYARROW_VERSION" "ruff==$RUFF_VERSION"
+  "${pip[@]}" "pyarrow==$PYARROW_VERSION" "ruff==$RUFF_VERSION" "lizard==$LIZARD_VERSION"
   # Editable: build/venv/bin/tessera-sweep runs python/tessera_sweep as it is
   # in this work tree; its dependencies are the Debian packages above.
   "${pip[@]}" --no-deps --no-build-isolation -e "$(dirname "$SWEEP_VENV")/../python"

@@ -236,6 +236,177 @@ int mismatch(const char* app, const std::string& where, unsigned attribute, unsi
 
 namespace {
 
+// One run of study_shading: what every pass shares.
+struct ShadingRun {
+  ShadingRun(const char* app_name, AppEnvironment& environment, Target where, ProgramVariant program,
+             unsigned attribute_count)
+      : app(app_name),
+        env(environment),
+        host(*environment.host),
+        target(where),
+        variant(program),
+        attributes(attribute_count),
+        layout(ap_pixel::PixelLayout::of(program)) {}
+
+  const char* app;
+  AppEnvironment& env;
+  HostApi& host;
+  Target target;
+  ProgramVariant variant;
+  unsigned attributes;
+  ap_pixel::PixelLayout layout;
+  std::unique_ptr<ArrayDriver> array;
+  unsigned per_pass = 96;
+  // With the DMA: the values c0 .. the end of gy of every CU (one row of
+  // one byte per CU per CMEM byte: 63 for tuned, whose gradients' sign
+  // bytes stay 0 as the program makes them, 42 for study), dx and dy (2
+  // rows), and the results (a row of 16-bit values per attribute), in
+  // system memory, and the two chains. Each shade has its own values, so
+  // a broadcast has nothing to carry here (dma.broadcast changes nothing).
+  unsigned value_rows = 0;
+  uint32_t staged_values = 0, staged_offsets = 0, staged_results = 0, chain_in = 0, chain_out = 0;
+  // One pass of inputs in system memory, rewritten for every pass (not
+  // timed), and the results.
+  uint32_t inputs = 0, results = 0;
+  unsigned entry = 0;  // the program's entry for one pixel of `attributes` attributes
+  renderers::HostTime time;
+  uint64_t cycles = 0;
+  // A pass's loaded sets and results, allocated once.
+  std::vector<TriangleValues> sets;
+  std::vector<int> xs, ys;
+  std::vector<std::array<uint16_t, ATTRIBUTES>> got;
+};
+
+// The study's loop on the host: each shade's 22 words loaded and its
+// seven results stored, nothing else.
+void shade_pass_on_host(ShadingRun& r, unsigned n) {
+  renderers::TimedScope timed(r.host, r.time, renderers::HostSplit::compute);
+  const uint8_t* in = r.host.load_span(r.inputs, 4, n * INPUT_WORDS);
+  uint8_t* out = r.host.store_span(r.results, 2, n * r.attributes);
+  costs::charge(r.host, costs::HostCost::study_shade_pass);
+  costs::charge(r.host, costs::HostCost::study_shade, n);
+  costs::charge(r.host, costs::HostCost::study_shade_attribute, uint64_t{n} * r.attributes);
+  for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * r.attributes * 2, r.attributes);
+}
+
+// Through the DMA: the host stores every CU's 63 bytes and position into
+// plain arrays (2 ALU a byte: shifted out of its value and stored), one
+// chain reshuffles them in; a run; one chain brings the seven 16-bit
+// integer parts of every CU out, which the host loads.
+void shade_pass_through_dma(ShadingRun& r, DmaDriver& dma, unsigned n) {
+  HostApi& host = r.host;
+  const unsigned per_pass = r.per_pass;
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_write);
+    for (unsigned i = 0; i < n; ++i) r.sets[i] = load_inputs(host, r.inputs + i * INPUT_WORDS * 4, r.xs[i], r.ys[i]);
+    uint8_t* values = host.store_span(r.staged_values, 1, r.value_rows * per_pass);
+    std::fill(values, values + size_t{r.value_rows} * per_pass, 0);
+    for (unsigned i = 0; i < n; ++i)
+      ap_pixel::for_each_value_byte(
+          r.sets[i], r.layout,
+          [&](unsigned address, uint8_t byte) { values[size_t{address - r.layout.c0} * per_pass + i] = byte; },
+          r.attributes);
+    uint8_t* offsets = host.store_span(r.staged_offsets, 1, 2 * per_pass);
+    std::fill(offsets, offsets + 2 * per_pass, 0);
+    for (unsigned i = 0; i < n; ++i) {
+      offsets[i] = static_cast<uint8_t>(r.xs[i]);
+      offsets[per_pass + i] = static_cast<uint8_t>(r.ys[i]);
+    }
+    costs::charge(host, costs::HostCost::study_shade_staged, n);
+    dma.start_chain(0, r.chain_in);
+    dma.wait(0);
+  }
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_wait);
+    r.cycles += r.array->run(r.entry);
+  }
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_read);
+    dma.start_chain(0, r.chain_out);
+    dma.wait(0);
+    for (unsigned a = 0; a < r.attributes; ++a) {
+      const uint8_t* p = host.load_span(r.staged_results + 2 * a * per_pass, 2, n);
+      for (unsigned i = 0; i < n; ++i) r.got[i][a] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
+    }
+  }
+}
+
+// Through the CIU: every CU its own value bytes (49 tuned, 6 per
+// attribute study) and position, a run, a 16-bit read per attribute.
+void shade_pass_through_ciu(ShadingRun& r, unsigned n) {
+  HostApi& host = r.host;
+  ArrayDriver& array = *r.array;
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_write);
+    for (unsigned i = 0; i < n; ++i) r.sets[i] = load_inputs(host, r.inputs + i * INPUT_WORDS * 4, r.xs[i], r.ys[i]);
+    std::vector<uint8_t> column(array.cus(), 0);
+    std::vector<std::pair<unsigned, std::vector<uint8_t>>> planes;
+    for (unsigned i = 0; i < n; ++i) {
+      unsigned k = 0;
+      ap_pixel::for_each_value_byte(
+          r.sets[i], r.layout,
+          [&](unsigned address, uint8_t byte) {
+            if (planes.size() <= k) planes.emplace_back(address, std::vector<uint8_t>(array.cus(), 0));
+            planes[k++].second[i] = byte;
+          },
+          r.attributes);
+    }
+    for (const auto& [address, plane] : planes) array.write_all8(address, plane);
+    for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(r.xs[i]);
+    array.write_all8(r.layout.dx, column);
+    for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(r.ys[i]);
+    array.write_all8(r.layout.dy, column);
+  }
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_wait);
+    r.cycles += array.run(r.entry);
+  }
+  {
+    renderers::TimedScope timed(host, r.time, renderers::HostSplit::array_read);
+    for (unsigned a = 0; a < r.attributes; ++a) {
+      const std::vector<uint16_t> values = array.read_all16(r.layout.result(0, 0, static_cast<Attribute>(a)));
+      for (unsigned i = 0; i < n; ++i) r.got[i][a] = values[i];
+    }
+  }
+}
+
+// The pass's results, checked against the sets as generated, not as
+// loaded; 0, or 1 after naming the first mismatch.
+int check_pass(ShadingRun& r, unsigned first, unsigned n) {
+  if (r.target == Target::host) {
+    const uint8_t* out = r.host.load_span(r.results, 2, n * r.attributes);
+    for (unsigned i = 0; i < n; ++i)
+      for (unsigned a = 0; a < r.attributes; ++a)
+        r.got[i][a] = static_cast<uint16_t>(out[2 * (i * r.attributes + a)] | out[2 * (i * r.attributes + a) + 1] << 8);
+  }
+  for (unsigned i = 0; i < n; ++i) {
+    const uint32_t s = first + i;
+    const TriangleValues set = attribute_set(s);
+    const int x = static_cast<int>(s % 192) - 96, y = static_cast<int>(s / 192 % 144) - 72;
+    for (unsigned a = 0; a < r.attributes; ++a) {
+      const uint32_t value = ap_pixel::shade_reference(set, static_cast<Attribute>(a), x, y, 0, 0);
+      const uint16_t expected = r.target == Target::host ? integer_part(value) : kept(r.variant, value);
+      if (r.got[i][a] != expected) return mismatch(r.app, "shade " + std::to_string(s), a, r.got[i][a], expected);
+    }
+  }
+  return 0;
+}
+
+// The staged arrays and the two chains of a run through the DMA.
+void stage_dma_chains(ShadingRun& r, DmaDriver& dma) {
+  const ap_pixel::PixelLayout& layout = r.layout;
+  if (layout.gx != layout.c0 + layout.value_bytes * ATTRIBUTES ||
+      layout.gy != layout.gx + layout.value_bytes * ATTRIBUTES || layout.dy != layout.dx + 1)
+    throw std::logic_error(std::string(r.app) + ": the program's c0, gx, gy (or dx, dy) are not adjacent");
+  std::vector<dma::Descriptor> out;
+  for (unsigned a = 0; a < r.attributes; ++a)
+    out.push_back(DmaDriver::from_cmem(layout.result(0, 0, static_cast<Attribute>(a)),
+                                       r.staged_results + 2 * a * r.per_pass, r.per_pass, 2));
+  dma.write_chain(r.chain_in, {DmaDriver::to_cmem(r.staged_values, layout.c0, r.value_rows * r.per_pass, 1),
+                               DmaDriver::to_cmem(r.staged_offsets, layout.dx, 2 * r.per_pass, 1)});
+  dma.write_chain(r.chain_out, out);
+}
+
 int study_shading(AppEnvironment& env) {
   const char* app = "study_shading";
   const Target target = target_of(env, app);
@@ -248,175 +419,62 @@ int study_shading(AppEnvironment& env) {
     throw std::invalid_argument(std::string(app) + ": --attributes " + std::to_string(attributes) +
                                 " needs ap.pixel.program=study: the tuned program evaluates all " +
                                 std::to_string(ATTRIBUTES));
-  HostApi& host = *env.host;
-  const ap_pixel::PixelLayout layout = ap_pixel::PixelLayout::of(variant);
-  // The entry for one pixel of `attributes` attributes.
-  const unsigned entry = variant == ProgramVariant::study ? layout.shade_entry[attributes] : layout.entry[1];
-  std::unique_ptr<ArrayDriver> array;
+  ShadingRun r(app, env, target, variant, attributes);
+  HostApi& host = r.host;
+  r.entry = variant == ProgramVariant::study ? r.layout.shade_entry[attributes] : r.layout.entry[1];
   DmaDriver dma(env);
   renderers::DmaUse use;
   if (target == Target::array) {
-    array = std::make_unique<ArrayDriver>(env);
-    array->load(ap_pixel::program_of(variant));
+    r.array = std::make_unique<ArrayDriver>(env);
+    r.array->load(ap_pixel::program_of(variant));
     use = renderers::dma_use(env, dma);
+    r.per_pass = r.array->cus();
   }
-  const unsigned per_pass = array ? array->cus() : 96;
-  // With the DMA: the values c0 .. the end of gy of every CU (one row of
-  // one byte per CU per CMEM byte: 63 for tuned, whose gradients' sign
-  // bytes stay 0 as the program makes them, 42 for study), dx and dy (2
-  // rows), and the results (a row of 16-bit values per attribute), in
-  // system memory, and the two chains. Each shade has its own values, so
-  // a broadcast has nothing to carry here (dma.broadcast changes nothing).
-  const unsigned value_rows = 3 * layout.value_bytes * ATTRIBUTES;
-  const uint32_t staged_values = env.heap_base + 2 * per_pass * INPUT_WORDS * 4 + 4096;
-  const uint32_t staged_offsets = staged_values + value_rows * per_pass;
-  const uint32_t staged_results = staged_offsets + 2 * per_pass;
-  const uint32_t chain_in = staged_results + 2 * ATTRIBUTES * per_pass;
-  const uint32_t chain_out = chain_in + 2 * dma::DESCRIPTOR_BYTES;
-  if (use.enabled && (layout.gx != layout.c0 + layout.value_bytes * ATTRIBUTES ||
-                      layout.gy != layout.gx + layout.value_bytes * ATTRIBUTES || layout.dy != layout.dx + 1))
-    throw std::logic_error(std::string(app) + ": the program's c0, gx, gy (or dx, dy) are not adjacent");
-  if (use.enabled) {
-    std::vector<dma::Descriptor> out;
-    for (unsigned a = 0; a < attributes; ++a)
-      out.push_back(DmaDriver::from_cmem(layout.result(0, 0, static_cast<Attribute>(a)),
-                                         staged_results + 2 * a * per_pass, per_pass, 2));
-    dma.write_chain(chain_in, {DmaDriver::to_cmem(staged_values, layout.c0, value_rows * per_pass, 1),
-                               DmaDriver::to_cmem(staged_offsets, layout.dx, 2 * per_pass, 1)});
-    dma.write_chain(chain_out, out);
-  }
-  // One pass of inputs in system memory, rewritten for every pass (not
-  // timed), and the results.
-  const uint32_t inputs = env.heap_base, results = inputs + per_pass * INPUT_WORDS * 4;
-  renderers::HostTime time;
-  uint64_t passes = 0, cycles = 0;
+  const unsigned per_pass = r.per_pass;
+  r.value_rows = 3 * r.layout.value_bytes * ATTRIBUTES;
+  r.staged_values = env.heap_base + 2 * per_pass * INPUT_WORDS * 4 + 4096;
+  r.staged_offsets = r.staged_values + r.value_rows * per_pass;
+  r.staged_results = r.staged_offsets + 2 * per_pass;
+  r.chain_in = r.staged_results + 2 * ATTRIBUTES * per_pass;
+  r.chain_out = r.chain_in + 2 * dma::DESCRIPTOR_BYTES;
+  if (use.enabled) stage_dma_chains(r, dma);
+  r.inputs = env.heap_base;
+  r.results = r.inputs + per_pass * INPUT_WORDS * 4;
+  uint64_t passes = 0;
   double total = 0;
   costs::reset_cost_meter();
-  // A pass's loaded sets and results, allocated once.
-  std::vector<TriangleValues> sets(per_pass);
-  std::vector<int> xs(per_pass), ys(per_pass);
-  std::vector<std::array<uint16_t, ATTRIBUTES>> got(per_pass);
+  r.sets.resize(per_pass);
+  r.xs.resize(per_pass);
+  r.ys.resize(per_pass);
+  r.got.resize(per_pass);
   for (unsigned first = 0; first < shades; first += per_pass) {
     const unsigned n = std::min(per_pass, shades - first);
     for (unsigned i = 0; i < n; ++i) {
       const uint32_t s = first + i;
-      store_inputs(host, inputs + i * INPUT_WORDS * 4, attribute_set(s), static_cast<int>(s % 192) - 96,
+      store_inputs(host, r.inputs + i * INPUT_WORDS * 4, attribute_set(s), static_cast<int>(s % 192) - 96,
                    static_cast<int>(s / 192 % 144) - 72);
     }
     const double start = host.now_seconds();
     if (target == Target::host) {
-      // The study's loop: each shade's 22 words loaded and its seven
-      // results stored, nothing else.
-      renderers::TimedScope timed(host, time, renderers::HostSplit::compute);
-      const uint8_t* in = host.load_span(inputs, 4, n * INPUT_WORDS);
-      uint8_t* out = host.store_span(results, 2, n * attributes);
-      costs::charge(host, costs::HostCost::study_shade_pass);
-      costs::charge(host, costs::HostCost::study_shade, n);
-      costs::charge(host, costs::HostCost::study_shade_attribute, uint64_t{n} * attributes);
-      for (unsigned i = 0; i < n; ++i) shade(in + i * INPUT_WORDS * 4, out + i * attributes * 2, attributes);
+      shade_pass_on_host(r, n);
     } else if (use.enabled) {
-      // Through the DMA: the host stores every CU's 63 bytes and position
-      // into plain arrays (2 ALU a byte: shifted out of its value and
-      // stored), one chain reshuffles them in; a run; one chain brings the
-      // seven 16-bit integer parts of every CU out, which the host loads.
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
-        for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
-        uint8_t* values = host.store_span(staged_values, 1, value_rows * per_pass);
-        std::fill(values, values + size_t{value_rows} * per_pass, 0);
-        for (unsigned i = 0; i < n; ++i)
-          ap_pixel::for_each_value_byte(
-              sets[i], layout,
-              [&](unsigned address, uint8_t byte) { values[size_t{address - layout.c0} * per_pass + i] = byte; },
-              attributes);
-        uint8_t* offsets = host.store_span(staged_offsets, 1, 2 * per_pass);
-        std::fill(offsets, offsets + 2 * per_pass, 0);
-        for (unsigned i = 0; i < n; ++i) {
-          offsets[i] = static_cast<uint8_t>(xs[i]);
-          offsets[per_pass + i] = static_cast<uint8_t>(ys[i]);
-        }
-        costs::charge(host, costs::HostCost::study_shade_staged, n);
-        dma.start_chain(0, chain_in);
-        dma.wait(0);
-      }
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
-        cycles += array->run(entry);
-      }
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
-        dma.start_chain(0, chain_out);
-        dma.wait(0);
-        for (unsigned a = 0; a < attributes; ++a) {
-          const uint8_t* p = host.load_span(staged_results + 2 * a * per_pass, 2, n);
-          for (unsigned i = 0; i < n; ++i) got[i][a] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
-        }
-      }
+      shade_pass_through_dma(r, dma, n);
     } else {
-      // Every CU its own value bytes (49 tuned, 6 per attribute study) and
-      // position, a run, a 16-bit read per attribute.
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_write);
-        for (unsigned i = 0; i < n; ++i) sets[i] = load_inputs(host, inputs + i * INPUT_WORDS * 4, xs[i], ys[i]);
-        std::vector<uint8_t> column(array->cus(), 0);
-        std::vector<std::pair<unsigned, std::vector<uint8_t>>> planes;
-        for (unsigned i = 0; i < n; ++i) {
-          unsigned k = 0;
-          ap_pixel::for_each_value_byte(
-              sets[i], layout,
-              [&](unsigned address, uint8_t byte) {
-                if (planes.size() <= k) planes.emplace_back(address, std::vector<uint8_t>(array->cus(), 0));
-                planes[k++].second[i] = byte;
-              },
-              attributes);
-        }
-        for (const auto& [address, plane] : planes) array->write_all8(address, plane);
-        for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(xs[i]);
-        array->write_all8(layout.dx, column);
-        for (unsigned i = 0; i < n; ++i) column[i] = static_cast<uint8_t>(ys[i]);
-        array->write_all8(layout.dy, column);
-      }
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_wait);
-        cycles += array->run(entry);
-      }
-      {
-        renderers::TimedScope timed(host, time, renderers::HostSplit::array_read);
-        for (unsigned a = 0; a < attributes; ++a) {
-          const std::vector<uint16_t> values = array->read_all16(layout.result(0, 0, static_cast<Attribute>(a)));
-          for (unsigned i = 0; i < n; ++i) got[i][a] = values[i];
-        }
-      }
+      shade_pass_through_ciu(r, n);
     }
     total += host.now_seconds() - start;
     ++passes;
-    if (target == Target::host) {
-      const uint8_t* out = host.load_span(results, 2, n * attributes);
-      for (unsigned i = 0; i < n; ++i)
-        for (unsigned a = 0; a < attributes; ++a)
-          got[i][a] = static_cast<uint16_t>(out[2 * (i * attributes + a)] | out[2 * (i * attributes + a) + 1] << 8);
-    }
-    // Checked against the sets as generated, not as loaded.
-    for (unsigned i = 0; i < n; ++i) {
-      const uint32_t s = first + i;
-      const TriangleValues set = attribute_set(s);
-      const int x = static_cast<int>(s % 192) - 96, y = static_cast<int>(s / 192 % 144) - 72;
-      for (unsigned a = 0; a < attributes; ++a) {
-        const uint32_t value = ap_pixel::shade_reference(set, static_cast<Attribute>(a), x, y, 0, 0);
-        const uint16_t expected = target == Target::host ? integer_part(value) : kept(variant, value);
-        if (got[i][a] != expected) return mismatch(app, "shade " + std::to_string(s), a, got[i][a], expected);
-      }
-    }
+    if (check_pass(r, first, n) != 0) return 1;
   }
   publish(env, "shades", "single-pixel shades computed", shades);
   publish(env, "attributes", "attributes per shade", attributes);
   publish(env, "passes", "array passes (96 shades each), or groups of 96 on the host", passes);
-  publish(env, "array_cycles", "array cycles of the shading program", cycles);
+  publish(env, "array_cycles", "array cycles of the shading program", r.cycles);
   publish(env, "total_ns", "host time from the first input load to the last result", ns(total));
-  publish(env, "compute_ns", "host time computing the shades itself", ns(host, time.compute));
-  publish(env, "write_ns", "host time writing inputs to the array", ns(host, time.array_write));
-  publish(env, "wait_ns", "host time waiting for the array", ns(host, time.array_wait));
-  publish(env, "read_ns", "host time reading results from the array", ns(host, time.array_read));
+  publish(env, "compute_ns", "host time computing the shades itself", ns(host, r.time.compute));
+  publish(env, "write_ns", "host time writing inputs to the array", ns(host, r.time.array_write));
+  publish(env, "wait_ns", "host time waiting for the array", ns(host, r.time.array_wait));
+  publish(env, "read_ns", "host time reading results from the array", ns(host, r.time.array_read));
   publish_units(env);
   std::string detail;
   if (target == Target::array && variant != ProgramVariant::tuned)

@@ -55,7 +55,7 @@
 // Guards. Zero-area triangles draw nothing. Spans are clipped to the screen
 // and the scissor box, so a triangle partly off screen is drawn only where it
 // is on screen. Triangles with a vertex beyond +-(2^14 - 1) in 9.4 (about
-// 1024 pixels, where the 32-bit edge and area bounds of arm_rasterizer.cpp
+// 1024 pixels, where the 32-bit edge and area bounds of planes.h
 // end) are skipped; the front end keeps vertices in [0, 512] pixels.
 //
 // Arithmetic (written for the ARM922T: no FPU, no divide instruction). The
@@ -72,7 +72,7 @@
 // perspective divide takes one reciprocal of q per shaded pixel (one 32-bit
 // division, a Newton step and an exact correction) and multiplies. The
 // level of detail is log2 by a 257-entry table in 16.16. The bounds behind
-// every format are written beside the code (arm_rasterizer.cpp,
+// every format are written beside the code (planes.h, triangle_setup.cpp,
 // renderers/common/fixed_math.h) and tested at the largest screen (512 x
 // 512), with vertices at the coordinate limit, slivers and degenerate
 // triangles (tests/sw_driver/renderers/arm/).
@@ -87,6 +87,9 @@
 #include "renderers/arm/pixel_memory.h"
 
 namespace tessera::arm {
+
+struct DrawContext;    // per-draw decisions and what they cost the host (draw_context.h)
+struct TriangleSetup;  // per-triangle attribute planes (triangle_setup.h)
 
 // Where the buffers are and what they look like.
 struct FrameBuffers {
@@ -115,13 +118,13 @@ class ArmRasterizer {
   void read_pixels(int x, int y, int width, int height, uint8_t* rgba);
 
  private:
-  struct TriangleSetup;  // per-triangle attribute planes (arm_rasterizer.cpp)
-  struct DrawContext;    // per-draw decisions and what they cost the host (arm_rasterizer.cpp)
-
+  // The stages, as the raster core's: the triangle's set-up and scan
+  // conversion (draw_triangle), each span's shading (shade_span:
+  // span_shading.h), its stores (store_span, write_color_run:
+  // fragment_operations.cpp).
   void draw_triangle(const DrawContext& context, const gl::Triangle& triangle);
   void shade_span(const DrawContext& context, const TriangleSetup& setup, int j, int x_first, int x_last);
-  // Nearest or bilinear texel of `tex`'s mipmap level `level` at that level's texel coordinates (u8, v8).
-  void fetch_texel(const gl::Texture& tex, unsigned level, int u8, int v8, bool linear, uint8_t out[4]);
+  void store_span(const DrawContext& context, uint32_t row_offset, int x_first, int n, uint32_t passed);
   void write_color_run(const DrawContext& context, uint32_t row_offset, int x_begin, int begin, int end);
 
   PixelMemory& m_memory;

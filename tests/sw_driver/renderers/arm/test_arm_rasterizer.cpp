@@ -950,7 +950,7 @@ TEST(ArmRasterizerRobustness, FarOutsideAndDegenerateTrianglesStayInTheBuffers) 
     state.unit[0].tex = f.texture(4, 4, std::vector<Rgba>(16, Rgba{10, 20, 30, 255}));
     const Rgba c{1, 1, 1, 1};
     // Far outside the screen, within the core's coordinate limit (+-1024
-    // pixels, arm_rasterizer.cpp); texture coordinates beyond the clamp.
+    // pixels, planes.h); texture coordinates beyond the clamp.
     const gl::Triangle huge =
         triangle(vertex(-1000, -500, c, 0.1, -1000, 3, 0.5f), vertex(1020, 30, c, 0.9, 5000, -7, 1.0f),
                  vertex(30, 1000, c, 0.5, 2, 9000, 0.01f));
@@ -1185,7 +1185,7 @@ TEST(ArmRasterizerTexture, BaseFormatsPerUnitThenFog) {
   EXPECT_EQ(c.a, 100);  // 200 (the fragment's, not the RGB texel's 255) x 128 / 255 = 100.4
 }
 
-// --- Fixed point: the bounds of arm_rasterizer.cpp at their extremes --------
+// --- Fixed point: the bounds of planes.h and triangle_setup.cpp at their extremes --------
 
 // floor(2^59 / m) exactly over [2^29, 2^30]: both ends, powers of two, and a
 // sweep; the reference is the exact 128-bit quotient (test code only).
