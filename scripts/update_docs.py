@@ -12,8 +12,8 @@ and one file may hold several blocks of the same NAME. The blocks and where
 each comes from:
 
     backends          sw_driver/renderers/backends.def (the back-end table)
-    memory-map        tlm/soc/memory_map.def
-    irq-map           tlm/soc/irq_map.def
+    memory-map        contract/soc/memory_map.def
+    irq-map           contract/soc/irq_map.def
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
@@ -105,7 +105,7 @@ def backends_table(_args):
 
 def memory_map_table(_args):
     lines = ["| region | base | size | what answers |", "| --- | --- | --- | --- |"]
-    for name, base, size, description in read_def("tlm/soc/memory_map.def", "TESSERA_REGION"):
+    for name, base, size, description in read_def("contract/soc/memory_map.def", "TESSERA_REGION"):
         base_value, size_value = int(base.rstrip("u"), 16), int(size.rstrip("u"), 16)
         if size_value % (1 << 20) == 0:
             human = f"{size_value >> 20} MiB"
@@ -117,7 +117,7 @@ def memory_map_table(_args):
 
 def irq_map_table(_args):
     lines = ["| source | host line |", "| --- | --- |"]
-    for source, line in read_def("tlm/soc/irq_map.def", "TESSERA_IRQ"):
+    for source, line in read_def("contract/soc/irq_map.def", "TESSERA_IRQ"):
         lines.append(f"| `{source}` | {line} |")
     return "\n".join(lines)
 
