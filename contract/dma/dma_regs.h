@@ -1,17 +1,19 @@
-// Register offsets and bits of the system/array DMA, from dma_regs.def.
+// Register offsets and field masks of the system/array DMA, from
+// dma_regs.def, and the layout of its channels.
 #pragma once
 
 #include <cstdint>
 
+#include "common/register_table.h"
+
 namespace tessera::dma_regs {
 
-#define TESSERA_DMA_REG(name, offset, reset, access) inline constexpr uint32_t name = offset;
-#define TESSERA_DMA_CHANNEL_REG(name, offset, reset, access) inline constexpr uint32_t CH_##name = offset;
-#include "dma/dma_regs.def"
-#undef TESSERA_DMA_CHANNEL_REG
-#undef TESSERA_DMA_REG
+#define TESSERA_REGISTER_TABLE "dma/dma_regs.def"
+#include "common/register_constants.inc"
 
-inline constexpr uint32_t ID_VALUE = 0x444D4101;
+// What ID reads: "DMA", version 1.
+inline constexpr uint32_t ID_VALUE = reset_value::ID;
+// Channel c's registers start at channel_base(c).
 inline constexpr uint32_t CHANNEL_BASE = 0x100;
 inline constexpr uint32_t CHANNEL_STRIDE = 0x40;
 inline constexpr unsigned MAX_CHANNELS = 8;
@@ -19,13 +21,9 @@ inline constexpr uint32_t channel_base(unsigned channel) {
   return CHANNEL_BASE + CHANNEL_STRIDE * channel;
 }
 
-inline constexpr uint32_t START_GO = 1u << 0;
-inline constexpr uint32_t START_CHAIN_ONLY = 1u << 1;
-inline constexpr uint32_t STATUS_BUSY = 1u << 0;
-inline constexpr uint32_t STATUS_DONE = 1u << 1;
-inline constexpr uint32_t STATUS_ERROR = 1u << 2;
-inline constexpr uint32_t STATUS_REFUSED = 1u << 3;
+// ERROR_DESC when the failing descriptor is the register descriptor.
 inline constexpr uint32_t ERROR_DESC_REGISTERS = 0xFFFFFFFF;
+// The IRQ bits of channel c.
 inline constexpr uint32_t irq_done(unsigned channel) {
   return 1u << (2 * channel);
 }
