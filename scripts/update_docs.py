@@ -126,19 +126,22 @@ def irq_map_table(_args):
 
 # The register tables, in the order of the memory map: (table, its region of
 # memory_map.def).
-REGISTER_TABLES = [("contract/display/display_regs.def", "display_regs"),
-                   ("contract/array/array_regs.def", "array_regs"),
-                   ("contract/dma/dma_regs.def", "dma_regs"),
-                   ("contract/raster/raster_regs.def", "raster_regs"),
-                   ("contract/intc/intc_regs.def", "intc")]
+REGISTER_TABLES = [
+    ("contract/display/display_regs.def", "display_regs"),
+    ("contract/array/array_regs.def", "array_regs"),
+    ("contract/dma/dma_regs.def", "dma_regs"),
+    ("contract/raster/raster_regs.def", "raster_regs"),
+    ("contract/intc/intc_regs.def", "intc"),
+]
 REGISTER_ROW = re.compile(r"^(TESSERA_REG|TESSERA_CHANNEL_REG|TESSERA_BITS)\(([^)]*)\)\s*(?://\s*(.*))?$")
 
 
 def registers_tables(_args):
     """Per register table: every register (offset, reset, access, what it
     holds) with its bit fields (common/register_table.h)."""
-    bases = {name: base for name, base, _size, _description in read_def("contract/soc/memory_map.def",
-                                                                        "TESSERA_REGION")}
+    bases = {
+        name: base for name, base, _size, _description in read_def("contract/soc/memory_map.def", "TESSERA_REGION")
+    }
     out = []
     for path, region in REGISTER_TABLES:
         rows, fields = [], {}
