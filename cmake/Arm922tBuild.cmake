@@ -13,11 +13,10 @@ if(NOT TESSERA_ARM_CXX)
                       "libnewlib-arm-none-eabi, libstdc++-arm-none-eabi-newlib)")
 endif()
 
-# The linker script, generated from tlm/soc/memory_map.def and
-# tlm/soc/software_layout.h.
+# The linker script, generated from contract/soc/memory_map.def and
+# contract/soc/software_layout.h.
 add_executable(tessera_ld_script ${PROJECT_SOURCE_DIR}/sw_driver/runtime/write_linker_script.cpp)
-target_include_directories(tessera_ld_script PRIVATE ${PROJECT_SOURCE_DIR}/tlm)
-target_link_libraries(tessera_ld_script PRIVATE tessera_warnings)
+target_link_libraries(tessera_ld_script PRIVATE tessera_contract tessera_warnings)
 set(TESSERA_LINKER_SCRIPT ${PROJECT_BINARY_DIR}/arm922t/tessera_arm922t.ld)
 add_custom_command(OUTPUT ${TESSERA_LINKER_SCRIPT}
                    COMMAND tessera_ld_script ${TESSERA_LINKER_SCRIPT}

@@ -40,9 +40,10 @@ add_library(tinyobjloader::tinyobjloader ALIAS tessera_tinyobjloader)
 add_executable(ap_asm IMPORTED)
 set_target_properties(ap_asm PROPERTIES IMPORTED_LOCATION ${TESSERA_AP_ASM})
 
-# The HostApi of the ISS (tlm/host/host_api.h): plain loads and stores.
+# The HostApi of the ISS (contract/host/host_api.h): plain loads and stores.
 add_compile_definitions(TESSERA_HOST_ISS)
 
+add_subdirectory(contract)
 add_subdirectory(tlm/config)
 add_subdirectory(tlm/dma/core)
 add_subdirectory(sw_driver)

@@ -23,7 +23,7 @@ endif()
 function(tessera_block_library name)
   add_library(${name} STATIC ${ARGN})
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/tlm)
-  target_link_libraries(${name} PRIVATE tessera_warnings)
+  target_link_libraries(${name} PUBLIC tessera_contract PRIVATE tessera_warnings)
 endfunction()
 
 # tessera_add_test(NAME name SOURCES ... LIBS ... LABELS ... [TIMEOUT s] [NO_GTEST_MAIN])
@@ -52,7 +52,7 @@ function(tessera_add_test)
                        ENVIRONMENT "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1;TESSERA_SOURCE_DIR=${PROJECT_SOURCE_DIR};TESSERA_BINARY_DIR=${PROJECT_BINARY_DIR}")
 endfunction()
 
-# The RTL's view of tlm/common/fixed_function.def (the fixed-function state
+# The RTL's view of contract/common/fixed_function.def (the fixed-function state
 # codes), generated at build time by the target rtl_fixed_function_pkg
 # (rtl_models/CMakeLists.txt) with cmake/fixed_function_pkg.cmake.
 set(TESSERA_FIXED_FUNCTION_PKG ${PROJECT_BINARY_DIR}/rtl_models/fixed_function_pkg.sv)

@@ -1,11 +1,11 @@
 # Writes the SystemVerilog package fixed_function_pkg, the RTL's view of
-# tlm/common/fixed_function.def: per table a localparam with the width of its
+# contract/common/fixed_function.def: per table a localparam with the width of its
 # field and an enum type whose values are the table's hardware codes, so that
 # no Verilog unit holds a number of its own. Run at build time (the
 # rtl_fixed_function_pkg target; every Verilated unit reads the result) and by
 # scripts/synth_report.sh:
 #
-#   cmake -DDEF=tlm/common/fixed_function.def -DOUT=fixed_function_pkg.sv -P cmake/fixed_function_pkg.cmake
+#   cmake -DDEF=contract/common/fixed_function.def -DOUT=fixed_function_pkg.sv -P cmake/fixed_function_pkg.cmake
 #
 # A table opens with TESSERA_FIXED_FUNCTION(Type, sv_name, bits, "unknown")
 # and its entries are the lines of the macro TESSERA_<SV_NAME>(name, code,
@@ -62,7 +62,7 @@ if(NOT tables)
   message(FATAL_ERROR "${DEF}: no TESSERA_FIXED_FUNCTION table")
 endif()
 
-set(sv "// Generated from tlm/common/fixed_function.def by cmake/fixed_function_pkg.cmake:\n")
+set(sv "// Generated from contract/common/fixed_function.def by cmake/fixed_function_pkg.cmake:\n")
 string(APPEND sv "// do not edit. The hardware codes of the rasterizer's fixed-function state,\n")
 string(APPEND sv "// the same numbers the C++ model, the driver and the state blocks use.\n")
 string(APPEND sv "package fixed_function_pkg;\n")

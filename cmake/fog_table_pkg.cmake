@@ -1,10 +1,10 @@
 # Writes the SystemVerilog package fog_table_pkg, the RTL's view of
-# tlm/common/fog_exp2_table.def (the fog unit's 2^-x table, the one copy): a
+# contract/common/fog_exp2_table.def (the fog unit's 2^-x table, the one copy): a
 # function fog_exp2_entry(index) whose case items are the table's entries, so
 # that rtl_models/raster/fog_unit.sv holds no number of its own. Run at build
 # time (target rtl_fog_table_pkg) and by scripts/synth_report.sh:
 #
-#   cmake -DDEF=tlm/common/fog_exp2_table.def -DOUT=fog_table_pkg.sv -P cmake/fog_table_pkg.cmake
+#   cmake -DDEF=contract/common/fog_exp2_table.def -DOUT=fog_table_pkg.sv -P cmake/fog_table_pkg.cmake
 #
 # Entries are lines TESSERA_FOG_EXP2(index, value), index 0..255 in order,
 # value 0..65535; any other line that starts with TESSERA_ stops the script.
@@ -35,7 +35,7 @@ if(NOT expected EQUAL 256)
   message(FATAL_ERROR "${DEF}: ${expected} entries, 256 expected")
 endif()
 
-set(sv "// Generated from tlm/common/fog_exp2_table.def by cmake/fog_table_pkg.cmake:\n")
+set(sv "// Generated from contract/common/fog_exp2_table.def by cmake/fog_table_pkg.cmake:\n")
 string(APPEND sv "// do not edit. The fog unit's table: entry i = round(2^16 * 2^-((i + 1/2) / 256)).\n")
 string(APPEND sv "package fog_table_pkg;\n\n")
 string(APPEND sv "  function automatic logic [15:0] fog_exp2_entry(input logic [7:0] index);\n")

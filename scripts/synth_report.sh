@@ -19,8 +19,8 @@ set -euo pipefail
 # top module | sources under rtl_models/ (space separated) | paper's cell count or -
 # Every unit also reads fixed_function_pkg.sv, ap_isa_pkg.sv and
 # fog_table_pkg.sv, which this script generates from
-# tlm/common/fixed_function.def, tlm/array/isa/ and
-# tlm/common/fog_exp2_table.def with cmake/fixed_function_pkg.cmake,
+# contract/common/fixed_function.def, tlm/array/isa/ and
+# contract/common/fog_exp2_table.def with cmake/fixed_function_pkg.cmake,
 # cmake/ap_isa_pkg.cmake and cmake/fog_table_pkg.cmake, as the build does for
 # Verilator.
 UNITS=(
@@ -56,7 +56,7 @@ LOG_DIR="$(mktemp -d)"
 trap 'rm -rf "$LOG_DIR"' EXIT
 
 PKG="$LOG_DIR/fixed_function_pkg.sv"
-if ! cmake -DDEF="$ROOT/tlm/common/fixed_function.def" -DOUT="$PKG" -P "$ROOT/cmake/fixed_function_pkg.cmake"; then
+if ! cmake -DDEF="$ROOT/contract/common/fixed_function.def" -DOUT="$PKG" -P "$ROOT/cmake/fixed_function_pkg.cmake"; then
   echo "synth_report: cannot generate fixed_function_pkg.sv" >&2
   exit 1
 fi
@@ -67,7 +67,7 @@ if ! cmake -DISA_DIR="$ROOT/tlm/array/isa" -DOUT="$AP_PKG" -P "$ROOT/cmake/ap_is
 fi
 
 FOG_PKG="$LOG_DIR/fog_table_pkg.sv"
-if ! cmake -DDEF="$ROOT/tlm/common/fog_exp2_table.def" -DOUT="$FOG_PKG" -P "$ROOT/cmake/fog_table_pkg.cmake"; then
+if ! cmake -DDEF="$ROOT/contract/common/fog_exp2_table.def" -DOUT="$FOG_PKG" -P "$ROOT/cmake/fog_table_pkg.cmake"; then
   echo "synth_report: cannot generate fog_table_pkg.sv" >&2
   exit 1
 fi

@@ -12,8 +12,9 @@ and one file may hold several blocks of the same NAME. The blocks and where
 each comes from:
 
     backends          sw_driver/renderers/backends.def (the back-end table)
-    memory-map        tlm/soc/memory_map.def
-    irq-map           tlm/soc/irq_map.def
+    memory-map        contract/soc/memory_map.def
+    irq-map           contract/soc/irq_map.def
+    registers         the register tables, contract/*/*_regs.def
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
@@ -68,6 +69,7 @@ FILES = [
     "docs/usage.md",
     "docs/experiments.md",
     "docs/calibration.md",
+    "contract/README.md",
     "tlm/soc/README.md",
     "tools/soc_sim/README.md",
 ]
@@ -105,7 +107,7 @@ def backends_table(_args):
 
 def memory_map_table(_args):
     lines = ["| region | base | size | what answers |", "| --- | --- | --- | --- |"]
-    for name, base, size, description in read_def("tlm/soc/memory_map.def", "TESSERA_REGION"):
+    for name, base, size, description in read_def("contract/soc/memory_map.def", "TESSERA_REGION"):
         base_value, size_value = int(base.rstrip("u"), 16), int(size.rstrip("u"), 16)
         if size_value % (1 << 20) == 0:
             human = f"{size_value >> 20} MiB"
@@ -117,9 +119,55 @@ def memory_map_table(_args):
 
 def irq_map_table(_args):
     lines = ["| source | host line |", "| --- | --- |"]
-    for source, line in read_def("tlm/soc/irq_map.def", "TESSERA_IRQ"):
+    for source, line in read_def("contract/soc/irq_map.def", "TESSERA_IRQ"):
         lines.append(f"| `{source}` | {line} |")
     return "\n".join(lines)
+
+
+# The register tables, in the order of the memory map: (table, its region of
+# memory_map.def).
+REGISTER_TABLES = [
+    ("contract/display/display_regs.def", "display_regs"),
+    ("contract/array/array_regs.def", "array_regs"),
+    ("contract/dma/dma_regs.def", "dma_regs"),
+    ("contract/raster/raster_regs.def", "raster_regs"),
+    ("contract/intc/intc_regs.def", "intc"),
+]
+REGISTER_ROW = re.compile(r"^(TESSERA_REG|TESSERA_CHANNEL_REG|TESSERA_BITS)\(([^)]*)\)\s*(?://\s*(.*))?$")
+
+
+def registers_tables(_args):
+    """Per register table: every register (offset, reset, access, what it
+    holds) with its bit fields (common/register_table.h)."""
+    bases = {
+        name: base for name, base, _size, _description in read_def("contract/soc/memory_map.def", "TESSERA_REGION")
+    }
+    out = []
+    for path, region in REGISTER_TABLES:
+        rows, fields = [], {}
+        for line in (ROOT / path).read_text().splitlines():
+            match = REGISTER_ROW.match(line)
+            if not match:
+                continue
+            macro, arguments = match.group(1), [argument.strip() for argument in match.group(2).split(",")]
+            comment = (match.group(3) or "").replace("|", "\\|")
+            if macro == "TESSERA_BITS":
+                prefix, name, lsb, width = arguments
+                bits = f"bit {lsb}" if width == "1" else f"bits {lsb}-{int(lsb) + int(width) - 1}"
+                fields.setdefault(prefix, []).append(f"`{prefix}_{name}` ({bits}): {comment}".rstrip(": "))
+            else:
+                rows.append((macro == "TESSERA_CHANNEL_REG", arguments, comment))
+        out.append(f"**`{path}`** (region `{region}` at `{bases[region].rstrip('u')}`):")
+        out.append("")
+        out.append("| register | offset | reset | access | what it holds |")
+        out.append("| --- | --- | --- | --- | --- |")
+        for per_channel, (name, offset, reset, access), comment in rows:
+            where = f"channel base + `{offset}`" if per_channel else f"`{offset}`"
+            bits = fields.get("IRQ" if name == "IRQ_STATUS" else name, [])
+            held = "; ".join(([comment] if comment else []) + bits)
+            out.append(f"| `{name}` | {where} | `{reset}` | {access} | {held} |")
+        out.append("")
+    return "\n".join(out).strip()
 
 
 def run(command, cwd=None):
@@ -218,6 +266,7 @@ GENERATORS = {
     "backends": backends_table,
     "memory-map": memory_map_table,
     "irq-map": irq_map_table,
+    "registers": registers_tables,
     "apps": apps_table,
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,

@@ -4,7 +4,7 @@
 // Combinational (no latency). Colours are packed R in [7:0], G [15:8],
 // B [23:16], A [31:24], each unorm 0.8. Blend factors and logic ops are the
 // codes of fixed_function_pkg (blend_factor_e, logic_op_e), generated from
-// tlm/common/fixed_function.def; factor codes without an entry act as ZERO.
+// contract/common/fixed_function.def; factor codes without an entry act as ZERO.
 // Products are round(a * b / 255), exact: t = a * b + 128,
 // (t + (t >> 8)) >> 8; the sum saturates at 255. An enabled logic op
 // replaces blending. color_mask_i bit c keeps channel c of dst_i when clear.

@@ -1,5 +1,5 @@
 // Fog unit: Verilog reference of tlm/raster/datapath/fog_unit.h (the
-// arithmetic of tlm/common/fog.h).
+// arithmetic of contract/common/fog.h).
 //
 // Combinational (no latency). argument_i is the fragment's fog argument,
 // signed 16.16: the factor f is clamp(a, 0, 1) * 255 rounded (linear),
@@ -7,7 +7,7 @@
 // to 16.16 (exp2), and 255 for a mode code without an entry. 2^-x is
 // 2^-frac(x) >> floor(x): the table fog_table_pkg::fog_exp2_entry (unsigned
 // 0.16, 256 entries indexed by the top 8 fraction bits, generated from
-// tlm/common/fog_exp2_table.def), shifted right by the integer part (0 from
+// contract/common/fog_exp2_table.def), shifted right by the integer part (0 from
 // 16 on), rounded once to 8 bits: (m * 255 + 2^15) >> 16. Colours are packed
 // R [7:0] .. A [31:24]; each of R, G, B is (f Cf + (255 - f) Cfog) / 255
 // rounded to nearest exactly, t = x + 128, (t + (t >> 8)) >> 8; alpha is the

@@ -3,7 +3,7 @@
 //
 // Combinational (no latency). Compare functions and stencil operations are
 // the codes of fixed_function_pkg (compare_func_e, stencil_op_e), generated
-// from tlm/common/fixed_function.def; stencil codes without an entry keep the
+// from contract/common/fixed_function.def; stencil codes without an entry keep the
 // stored value. The incoming value is the left operand of a compare:
 // alpha_i func alpha_ref_i, (stencil_ref_i & mask) func (stencil_i & mask),
 // depth_i func stored_depth_i. INCR and DECR saturate. stencil_o is the value

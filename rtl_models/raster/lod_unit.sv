@@ -16,7 +16,7 @@
 // q. Linear: q alone for L >= q * 256, else floor(L) and the next with the
 // weight L[7:0] of the second (L below 0 as 0); weight 0 is one level.
 // Codes are fixed_function_pkg's (tex_filter_e, tex_mipmap_e), generated
-// from tlm/common/fixed_function.def.
+// from contract/common/fixed_function.def.
 module lod_unit (
   input  logic [31:0] rho_i,
   input  fixed_function_pkg::tex_filter_e min_filter_i,

@@ -5,7 +5,7 @@
 // coordinates; log2_width_i / log2_height_i give the power-of-two size
 // (values above 8 act as 8); wrap_*_i and filter_i are codes of
 // fixed_function_pkg (tex_wrap_e, tex_filter_e, generated from
-// tlm/common/fixed_function.def), wrap codes without an entry act as REPEAT.
+// contract/common/fixed_function.def), wrap codes without an entry act as REPEAT.
 // Per axis: u = coord * N (16 fraction bits, exact); CLAMP_TO_EDGE limits u
 // to [1/2, N - 1/2]; LINEAR subtracts 1/2, takes i0 = floor, i1 = i0 + 1 and
 // the weight of i1 as the 8 fraction bits below the index (truncated);

@@ -7,7 +7,7 @@
 // NEAREST, which then returns texel00_i). Each filtered channel is
 // (sum w * texel + 2^15) >> 16 with w00 = (256-a)(256-b), w10 = a(256-b),
 // w01 = (256-a)b, w11 = ab. env_mode_i is a code of fixed_function_pkg
-// (tex_env_e, generated from tlm/common/fixed_function.def); codes other
+// (tex_env_e, generated from contract/common/fixed_function.def); codes other
 // than REPLACE, MODULATE and DECAL (those of texture_combiner.sv, and those
 // without an entry) pass fragment_i through. Products are divided by 255 with exact
 // rounding: t = x + 128, (t + (t >> 8)) >> 8.

@@ -408,7 +408,7 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
   HostCore& core_port = *env.core;
   const iss::ElfImage image = iss::read_elf(path);
   // The program's own part of system memory: below the driver's heap and
-  // the frame buffers (tlm/soc/software_layout.h), which it must not cover.
+  // the frame buffers (contract/soc/software_layout.h), which it must not cover.
   // An executable that does not fit is bad input (status 2), found here
   // because the memory's size is known only now.
   const uint32_t application_end = env.heap_base != 0 ? env.heap_base : env.memory_bytes;

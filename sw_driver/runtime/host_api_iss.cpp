@@ -1,4 +1,4 @@
-// HostApi as the ISS build has it (tlm/host/host_api.h): what is not inline.
+// HostApi as the ISS build has it (contract/host/host_api.h): what is not inline.
 // ARM only.
 #include "host/host_api.h"
 

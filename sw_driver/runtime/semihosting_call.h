@@ -1,5 +1,5 @@
 // The semihosting trap from the ARM side: r0 the operation
-// (tlm/host/iss/semihosting.def), r1 its parameter, the result in r0.
+// (contract/host/iss/semihosting.def), r1 its parameter, the result in r0.
 // Bare-metal ARM only (the runtime).
 #pragma once
 

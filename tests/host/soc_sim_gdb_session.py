@@ -164,7 +164,7 @@ def rgb565_of_png(path):
 
 
 def frame_buffers(soc_sim, scene):
-    """The boot loader's layout (tlm/soc/software_layout.h), worked out here
+    """The boot loader's layout (contract/soc/software_layout.h), worked out here
     from the configuration: the two frame buffers at the top of system memory
     (at address 0, mem.size_mib of it), each rounded up to 4 KiB."""
     config = json.loads(run([soc_sim, *scene, "--print-config"]).stdout)

@@ -24,7 +24,7 @@ using tessera::test::RecordingHost;
 std::string g_dma_code_elf, g_console_elf, g_long_line_elf;
 
 constexpr uint32_t MEMORY_BYTES = 1u << 20;
-constexpr uint32_t DMA_STATUS = 0x52000124;  // channel 0's STATUS (tlm/dma/dma_regs.def)
+constexpr uint32_t DMA_STATUS = 0x52000124;  // channel 0's STATUS (contract/dma/dma_regs.def)
 constexpr uint32_t STATUS_DONE = 2;
 
 // std::cout into a string while it lives.

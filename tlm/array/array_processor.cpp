@@ -71,48 +71,64 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
   program_in.register_b_transport(this, &ArrayProcessor::program_b_transport);
   program_in.register_transport_dbg(this, &ArrayProcessor::program_transport_dbg);
 
-#define TESSERA_ARRAY_REG(name, offset, reset, access) const RegisterInfo name{#name, offset, reset, RegAccess::access};
-#include "array/array_regs.def"
-#undef TESSERA_ARRAY_REG
-
-  m_regs.add(STATUS, [this] {
-    const sc_time now = access_time();
-    const bool busy = busy_at(now);
-    const ap::RunResult& shown = shown_result(now);
-    const bool ran = m_programs.value > (busy ? 1u : 0u);
-    return (busy ? regs::STATUS_BUSY : 0u) | (ran && shown.ok ? regs::STATUS_DONE : 0u) |
-           (ran && !shown.ok ? regs::STATUS_ERROR : 0u) | (m_refused ? regs::STATUS_REFUSED : 0u);
-  });
-  m_regs.add(ENTRY);
-  m_regs.add(START, {}, [this](uint32_t value) {
-    if ((value & 1u) != 0) start(access_time());
-  });
-  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
-  m_regs.add(ERROR_CODE, [this] { return static_cast<uint32_t>(shown_result(access_time()).kind); });
-  m_regs.add(ERROR_PC, [this] {
-    const ap::RunResult& shown = shown_result(access_time());
-    return shown.ok ? 0u : shown.error_pc;
-  });
-  m_regs.add(CYCLES, [this] { return low32(shown_result(access_time()).cycles); });
-  m_regs.add(TOTAL_CYCLES, [this] {
-    // Only programs that have finished by the access count.
-    const uint64_t running = busy_at(access_time()) ? m_current.cycles : 0;
-    return static_cast<uint32_t>(m_core.activity().cycles - running);
-  });
-  m_regs.add(PROGRAMS, [this] { return static_cast<uint32_t>(m_programs.value); });
-  m_regs.add(COLUMNS, [this] { return m_params.geometry.columns; });
-  m_regs.add(ROWS, [this] { return m_params.geometry.rows; });
-  m_regs.add(CMEM_BYTES, [this] { return m_params.geometry.cmem_bytes; });
-  m_regs.add(REGISTERS, [this] { return m_params.geometry.registers; });
-  m_regs.add(PROGRAM_WORDS, [this] { return m_params.program_words; });
-  m_regs.add(CLOCK_KHZ,
-             [this] { return static_cast<uint32_t>(std::llround(1e-3 / m_params.clock_period.to_seconds())); });
-  const RegisterInfo stage_registers[ap::STAGE_COUNT] = {STAGE_CYCLES0, STAGE_CYCLES1, STAGE_CYCLES2, STAGE_CYCLES3,
-                                                         STAGE_CYCLES4, STAGE_CYCLES5, STAGE_CYCLES6, STAGE_CYCLES7};
+  STATUS.on_read(this, &ArrayProcessor::read_STATUS);
+  START.on_write(this, &ArrayProcessor::write_START);
+  bind_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  ERROR_CODE.on_read(this, &ArrayProcessor::read_ERROR_CODE);
+  ERROR_PC.on_read(this, &ArrayProcessor::read_ERROR_PC);
+  CYCLES.on_read(this, &ArrayProcessor::read_CYCLES);
+  TOTAL_CYCLES.on_read(this, &ArrayProcessor::read_TOTAL_CYCLES);
+  PROGRAMS.on_read(this, &ArrayProcessor::read_PROGRAMS);
+  COLUMNS.set_reset(g.columns);
+  ROWS.set_reset(g.rows);
+  CMEM_BYTES.set_reset(g.cmem_bytes);
+  REGISTERS.set_reset(g.registers);
+  PROGRAM_WORDS.set_reset(params.program_words);
+  CLOCK_KHZ.set_reset(static_cast<uint32_t>(std::llround(1e-3 / params.clock_period.to_seconds())));
+  Register* const stage_registers[ap::STAGE_COUNT] = {&STAGE_CYCLES0, &STAGE_CYCLES1, &STAGE_CYCLES2, &STAGE_CYCLES3,
+                                                      &STAGE_CYCLES4, &STAGE_CYCLES5, &STAGE_CYCLES6, &STAGE_CYCLES7};
   for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage)
-    m_regs.add(stage_registers[stage], [this, stage] {
-      return low32(busy_at(access_time()) ? m_previous_stages[stage] : m_current_stages[stage]);
-    });
+    stage_registers[stage]->on_read([this, stage] { return read_STAGE_CYCLES(stage); });
+}
+
+uint32_t ArrayProcessor::read_STATUS() const {
+  const sc_time now = access_time();
+  const bool busy = busy_at(now);
+  const ap::RunResult& shown = shown_result(now);
+  const bool ran = m_programs.value > (busy ? 1u : 0u);
+  return (busy ? regs::STATUS_BUSY : 0u) | (ran && shown.ok ? regs::STATUS_DONE : 0u) |
+         (ran && !shown.ok ? regs::STATUS_ERROR : 0u) | (m_refused ? regs::STATUS_REFUSED : 0u);
+}
+
+void ArrayProcessor::write_START(uint32_t value) {
+  if ((value & 1u) != 0) start(access_time());
+}
+
+uint32_t ArrayProcessor::read_ERROR_CODE() const {
+  return static_cast<uint32_t>(shown_result(access_time()).kind);
+}
+
+uint32_t ArrayProcessor::read_ERROR_PC() const {
+  const ap::RunResult& shown = shown_result(access_time());
+  return shown.ok ? 0u : shown.error_pc;
+}
+
+uint32_t ArrayProcessor::read_CYCLES() const {
+  return low32(shown_result(access_time()).cycles);
+}
+
+uint32_t ArrayProcessor::read_TOTAL_CYCLES() const {
+  // Only programs that have finished by the access count.
+  const uint64_t running = busy_at(access_time()) ? m_current.cycles : 0;
+  return static_cast<uint32_t>(m_core.activity().cycles - running);
+}
+
+uint32_t ArrayProcessor::read_PROGRAMS() const {
+  return static_cast<uint32_t>(m_programs.value);
+}
+
+uint32_t ArrayProcessor::read_STAGE_CYCLES(unsigned stage) const {
+  return low32(busy_at(access_time()) ? m_previous_stages[stage] : m_current_stages[stage]);
 }
 
 const ap::RunResult& ArrayProcessor::shown_result(const sc_time& when) const {
@@ -128,7 +144,7 @@ const char* ArrayProcessor::write_refusal(const tlm::tlm_generic_payload& gp) co
 }
 
 void ArrayProcessor::start(const sc_time& access_time) {
-  const unsigned entry = m_regs.get(regs::ENTRY);
+  const unsigned entry = ENTRY.get();
   // The run starts one clock after the write reaches the register.
   const sc_time begin = access_time + m_params.clock_period;
   m_previous = m_current;

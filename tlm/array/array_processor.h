@@ -58,22 +58,42 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   // Registers on `in` and the interrupt on `irq` (Peripheral).
   tlm_utils::simple_target_socket<ArrayProcessor, 32> program_in;
 
+  // The registers, one member each (array_regs.def).
+#define TESSERA_REGISTER_TABLE "array/array_regs.def"
+#include "common/register_members.inc"
+
   ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& params);
 
-  const ArrayParams& params() const { return m_params; }
-  ap::ArrayController& core() { return m_core; }
-  const ap::ArrayController& core() const { return m_core; }
+  const ArrayParams& params() const {
+    return m_params;
+  }
+  ap::ArrayController& core() {
+    return m_core;
+  }
+  const ap::ArrayController& core() const {
+    return m_core;
+  }
   // When the running program finishes (a time not later than now when none runs).
-  const sc_core::sc_time& busy_until() const { return m_busy_until; }
-  bool busy_at(const sc_core::sc_time& when) const { return when < m_busy_until; }
-  const ap::RunResult& last_result() const { return m_current; }
+  const sc_core::sc_time& busy_until() const {
+    return m_busy_until;
+  }
+  bool busy_at(const sc_core::sc_time& when) const {
+    return when < m_busy_until;
+  }
+  const ap::RunResult& last_result() const {
+    return m_current;
+  }
 
   // CmemAccess: the DMA's path into CMEM.
-  const ap::ArrayGeometry& cmem_geometry() const override { return m_params.geometry; }
+  const ap::ArrayGeometry& cmem_geometry() const override {
+    return m_params.geometry;
+  }
   sc_core::sc_time cmem_free_from(const sc_core::sc_time& arrival) const override {
     return busy_at(arrival) ? m_busy_until : arrival;
   }
-  uint8_t read_cmem(unsigned lane, unsigned address) const override { return m_core.array().cmem(lane, address); }
+  uint8_t read_cmem(unsigned lane, unsigned address) const override {
+    return m_core.array().cmem(lane, address);
+  }
   void write_cmem(unsigned lane, unsigned address, uint8_t value) override {
     mark_used();
     m_core.array().set_cmem(lane, address, value);
@@ -98,6 +118,15 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   std::vector<StageActivity> stage_activity() const;
 
  private:
+  uint32_t read_STATUS() const;
+  void write_START(uint32_t value);
+  uint32_t read_ERROR_CODE() const;
+  uint32_t read_ERROR_PC() const;
+  uint32_t read_CYCLES() const;
+  uint32_t read_TOTAL_CYCLES() const;
+  uint32_t read_PROGRAMS() const;
+  // STAGE_CYCLES0 ... STAGE_CYCLES7.
+  uint32_t read_STAGE_CYCLES(unsigned stage) const;
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
   void start(const sc_core::sc_time& access_time);
   // The result the registers show at `when`: the running program's only

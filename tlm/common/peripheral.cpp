@@ -18,27 +18,33 @@ Peripheral::Peripheral(sc_core::sc_module_name name, sc_core::sc_time clock_peri
   dont_initialize();
 }
 
-void Peripheral::add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable) {
-  m_irq_status_offset = status.offset;
-  m_irq_enable_offset = enable.offset;
+void Peripheral::bind_irq_registers(Register& status, Register& enable) {
+  m_irq_status = &status;
+  m_irq_enable = &enable;
   // The line follows a write at the access's time. At the kernel's time it
   // would fall in the very time step in which it rose whenever the host
   // (ahead of the kernel in its quantum) answers at once, and a trace,
   // which records one value per time step, would never show the pulse.
-  m_line_status = status.reset;
-  m_line_enable = enable.reset;
-  m_regs.add(status, {}, [this](uint32_t value) {
-    m_regs.set(m_irq_status_offset, m_regs.get(m_irq_status_offset) & ~value);
+  m_line_status = status.get();
+  m_line_enable = enable.get();
+  status.on_write([this](uint32_t value) {
+    m_irq_status->set(m_irq_status->get() & ~value);
     schedule_irq_change({IrqChange::Kind::clear_status, value}, m_regs.access_delay());
   });
-  m_regs.add(enable, {}, [this](uint32_t value) {
-    m_regs.set(m_irq_enable_offset, value);
+  enable.on_write([this](uint32_t value) {
+    m_irq_enable->set(value);
     schedule_irq_change({IrqChange::Kind::write_enable, value}, m_regs.access_delay());
   });
 }
 
+void Peripheral::add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable) {
+  Register& status_register = m_regs.add(status);
+  Register& enable_register = m_regs.add(enable);
+  bind_irq_registers(status_register, enable_register);
+}
+
 void Peripheral::raise_irq(uint32_t bits, const sc_core::sc_time& delay) {
-  m_regs.set(m_irq_status_offset, m_regs.get(m_irq_status_offset) | bits);
+  m_irq_status->set(m_irq_status->get() | bits);
   schedule_irq_change({IrqChange::Kind::set_status, bits}, delay);
 }
 
@@ -65,8 +71,8 @@ void Peripheral::update_irq() {
     // reads them. They differ only where two changes were made out of time
     // order (a clear ahead of the kernel, then a raise at the kernel's
     // time), and then what software reads wins.
-    m_line_status = m_regs.get(m_irq_status_offset);
-    m_line_enable = m_regs.get(m_irq_enable_offset);
+    m_line_status = m_irq_status->get();
+    m_line_enable = m_irq_enable->get();
   }
   irq.write((m_line_status & m_line_enable) != 0);
   if (!m_irq_changes.empty()) m_irq_update.notify(m_irq_changes.begin()->first - now);

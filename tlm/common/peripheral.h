@@ -4,8 +4,9 @@
 // interrupt registers every peripheral has (a status register whose bits
 // the block raises and software clears by writing 1s, and an enable
 // register) and the `irq` output, which follows status & enable != 0. What
-// a peripheral adds is its own registers, declared once from its .def file
-// into m_regs, with their handlers.
+// a peripheral adds is its own registers: members declared from its register
+// table (register_members.inc), in m_regs, with their read_<reg> /
+// write_<reg> handlers.
 //
 // Timing: a register write takes effect at the access's annotated time
 // (RegisterBank::access_delay()), not at the kernel's time, which may be a
@@ -37,13 +38,15 @@ class Peripheral : public Block {
  protected:
   Peripheral(sc_core::sc_module_name name, sc_core::sc_time clock_period);
 
-  // Declares the interrupt registers of the block's map: `status` (w1c) and
-  // `enable` (rw). A write to either moves the line at the access's
-  // annotated time.
+  // Makes `status` (w1c) and `enable` (rw), the block's interrupt registers,
+  // drive `irq`: a write to either moves the line at the access's annotated
+  // time.
+  void bind_irq_registers(Register& status, Register& enable);
+  // The same for registers the bank holds (a block without a register table).
   void add_irq_registers(const RegisterInfo& status, const RegisterInfo& enable);
   // Sets status bits; the line follows `delay` after the kernel's time.
   void raise_irq(uint32_t bits, const sc_core::sc_time& delay = sc_core::SC_ZERO_TIME);
-  uint32_t irq_status() const { return m_regs.get(m_irq_status_offset); }
+  uint32_t irq_status() const { return m_irq_status ? m_irq_status->get() : 0; }
 
   // Why a register write must be refused with a command error (nullptr:
   // accept it). Each refusal is counted (refused_register_writes) and
@@ -71,8 +74,8 @@ class Peripheral : public Block {
   sc_core::sc_time m_clock_period;
   sc_core::sc_time m_access_delay;
   ActivityCounter& m_refused_writes;
-  uint32_t m_irq_status_offset = 0;
-  uint32_t m_irq_enable_offset = 0;
+  Register* m_irq_status = nullptr;
+  Register* m_irq_enable = nullptr;
   // The registers change when they are accessed; the line follows each
   // change at its own time, in time order, through its own copy of the two
   // registers. (An event keeps only its earliest notification, so the later

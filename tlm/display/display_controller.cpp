@@ -26,49 +26,59 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   port_in.register_b_transport(this, &DisplayController::port_b_transport);
   port_in.register_transport_dbg(this, &DisplayController::port_transport_dbg);
 
-#define TESSERA_DISPLAY_REG(name, offset, reset, access) \
-  const RegisterInfo name{#name, offset, reset, RegAccess::access};
-#include "display/display_regs.def"
-#undef TESSERA_DISPLAY_REG
-
-  m_regs.add(CTRL);
-  m_regs.add(STATUS, [this] {
-    return (in_vblank() ? regs::STATUS_VBLANK : 0u) | (m_swap_pending ? regs::STATUS_SWAP_PENDING : 0u);
-  });
-  m_regs.add(FRONT_BASE);
-  m_regs.add(BACK_BASE);
-  m_regs.add(SWAP, {}, [this](uint32_t value) {
-    if (!(value & 1)) return;
-    if (!m_params.dma) {
-      log::warning(this->name(), "SWAP written in port mode (display.dma=false); ignored, use PRESENT");
-      return;
-    }
-    m_swap_pending = true;
-    m_swap_requested = sc_core::sc_time_stamp() + m_regs.access_delay();
-    requested(m_swap_requested);
-  });
-  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
-  m_regs.add(PRESENT, {}, [this](uint32_t value) {
-    if (!(value & 1)) return;
-    if (m_params.dma) {
-      log::warning(this->name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
-      return;
-    }
-    requested(sc_core::sc_time_stamp() + m_regs.access_delay());
-    show(m_port_frame, sc_core::sc_time_stamp() + m_regs.access_delay(), m_regs.access_delay());
-    raise_irq(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
-  });
-  m_regs.add(FRAMES, [this] { return static_cast<uint32_t>(m_frames.value); });
-  m_regs.add(REFRESHES, [this] { return static_cast<uint32_t>(m_refreshes.value); });
-  m_regs.add(UNDERRUNS, [this] { return static_cast<uint32_t>(underruns()); });
-  m_regs.add(WIDTH, [this] { return m_params.width; });
-  m_regs.add(HEIGHT, [this] { return m_params.height; });
-  m_regs.add(FORMAT, [this] { return static_cast<uint32_t>(m_params.format); });
-  m_regs.add(MODE, [this] { return m_params.dma ? 1u : 0u; });
+  STATUS.on_read(this, &DisplayController::read_STATUS);
+  SWAP.on_write(this, &DisplayController::write_SWAP);
+  bind_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  PRESENT.on_write(this, &DisplayController::write_PRESENT);
+  FRAMES.on_read(this, &DisplayController::read_FRAMES);
+  REFRESHES.on_read(this, &DisplayController::read_REFRESHES);
+  UNDERRUNS.on_read(this, &DisplayController::read_UNDERRUNS);
+  WIDTH.set_reset(m_params.width);
+  HEIGHT.set_reset(m_params.height);
+  FORMAT.set_reset(static_cast<uint32_t>(m_params.format));
+  MODE.set_reset(m_params.dma ? 1u : 0u);
 
   m_port_frame.assign(frame_bytes(), 0);
 
   if (m_params.dma) SC_THREAD(refresh);
+}
+
+uint32_t DisplayController::read_STATUS() const {
+  return (in_vblank() ? regs::STATUS_VBLANK : 0u) | (m_swap_pending ? regs::STATUS_SWAP_PENDING : 0u);
+}
+
+void DisplayController::write_SWAP(uint32_t value) {
+  if (!(value & 1)) return;
+  if (!m_params.dma) {
+    log::warning(name(), "SWAP written in port mode (display.dma=false); ignored, use PRESENT");
+    return;
+  }
+  m_swap_pending = true;
+  m_swap_requested = sc_core::sc_time_stamp() + m_regs.access_delay();
+  requested(m_swap_requested);
+}
+
+void DisplayController::write_PRESENT(uint32_t value) {
+  if (!(value & 1)) return;
+  if (m_params.dma) {
+    log::warning(name(), "PRESENT written in DMA mode (display.dma=true); ignored, use SWAP");
+    return;
+  }
+  requested(sc_core::sc_time_stamp() + m_regs.access_delay());
+  show(m_port_frame, sc_core::sc_time_stamp() + m_regs.access_delay(), m_regs.access_delay());
+  raise_irq(regs::IRQ_FRAME_PRESENTED, m_regs.access_delay());
+}
+
+uint32_t DisplayController::read_FRAMES() const {
+  return static_cast<uint32_t>(m_frames.value);
+}
+
+uint32_t DisplayController::read_REFRESHES() const {
+  return static_cast<uint32_t>(m_refreshes.value);
+}
+
+uint32_t DisplayController::read_UNDERRUNS() const {
+  return static_cast<uint32_t>(underruns());
 }
 
 void DisplayController::trace_signals(sc_core::sc_trace_file* file) {
@@ -173,7 +183,7 @@ void DisplayController::refresh() {
     m_vblank.set_at(false, m_active_start);
     bool new_frame = false;
     if (m_swap_pending) {
-      m_regs.set(regs::FRONT_BASE, m_regs.get(regs::BACK_BASE));
+      FRONT_BASE.set(BACK_BASE.get());
       m_swap_pending = false;
       m_scan_requested = m_swap_requested;
       m_front_valid = true;
@@ -181,10 +191,10 @@ void DisplayController::refresh() {
       raise_irq(regs::IRQ_SWAP_DONE);
     }
     raise_irq(regs::IRQ_VBLANK);
-    const bool scanning = m_front_valid && (m_regs.get(regs::CTRL) & regs::CTRL_ENABLE);
+    const bool scanning = m_front_valid && (CTRL.get() & regs::CTRL_ENABLE);
     m_frame_in_scan = scanning && new_frame;
     if (scanning) {
-      m_dma->start_frame(m_regs.get(regs::FRONT_BASE), m_active_start, line_time);
+      m_dma->start_frame(FRONT_BASE.get(), m_active_start, line_time);
       wait(m_dma->frame_fetched_event());
     }
     if (sc_core::sc_time_stamp() < frame_end) wait(frame_end - sc_core::sc_time_stamp());

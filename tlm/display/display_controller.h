@@ -70,15 +70,23 @@ class DisplayController : public Peripheral {
   // Registers on `in` and the interrupt on `irq` (Peripheral).
   tlm_utils::simple_target_socket<DisplayController, 32> port_in;  // display port window
 
+  // The registers, one member each (display_regs.def).
+#define TESSERA_REGISTER_TABLE "display/display_regs.def"
+#include "common/register_members.inc"
+
   DisplayController(sc_core::sc_module_name name, const DisplayParams& params);
 
   // Adds a receiver of the output port: every receiver gets every frame
   // shown, in the order they were added.
-  void on_frame(std::function<void(const Frame&)> receiver) { m_receivers.push_back(std::move(receiver)); }
+  void on_frame(std::function<void(const Frame&)> receiver) {
+    m_receivers.push_back(std::move(receiver));
+  }
   // Whether the frames handed to the receivers carry their pixels (Frame::rgba;
   // on by default). soc_sim turns it off when it writes no images: the
   // conversion to RGBA is about 5% of an `arm` teapot frame (perf).
-  void keep_pixels(bool keep) { m_keep_pixels = keep; }
+  void keep_pixels(bool keep) {
+    m_keep_pixels = keep;
+  }
   // Adds a receiver of requests: called, from within the write, whenever
   // software hands the display a frame (SWAP in DMA mode, PRESENT in port
   // mode), with the write's annotated time, the Frame's requested time.
@@ -88,13 +96,23 @@ class DisplayController : public Peripheral {
   // The scan-out engine of DMA mode; its geometry must be this display's.
   void connect_dma(DisplayDma& dma);
 
-  unsigned bytes_per_pixel() const { return tessera::bytes_per_pixel(m_params.format); }
-  uint64_t frame_bytes() const { return uint64_t{m_params.width} * m_params.height * bytes_per_pixel(); }
-  uint64_t frames_shown() const { return m_frames.value; }
-  uint64_t underruns() const { return m_dma ? m_dma->underrun_lines() : 0; }
+  unsigned bytes_per_pixel() const {
+    return tessera::bytes_per_pixel(m_params.format);
+  }
+  uint64_t frame_bytes() const {
+    return uint64_t{m_params.width} * m_params.height * bytes_per_pixel();
+  }
+  uint64_t frames_shown() const {
+    return m_frames.value;
+  }
+  uint64_t underruns() const {
+    return m_dma ? m_dma->underrun_lines() : 0;
+  }
   // True while a frame has been handed to the display but not yet shown.
   bool frame_pending() const;
-  const sc_core::sc_event& frame_shown_event() const { return m_frame_shown; }
+  const sc_core::sc_event& frame_shown_event() const {
+    return m_frame_shown;
+  }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
@@ -104,6 +122,13 @@ class DisplayController : public Peripheral {
  private:
   void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
+
+  uint32_t read_STATUS() const;
+  void write_SWAP(uint32_t value);
+  void write_PRESENT(uint32_t value);
+  uint32_t read_FRAMES() const;
+  uint32_t read_REFRESHES() const;
+  uint32_t read_UNDERRUNS() const;
 
   void end_of_elaboration() override;
   void requested(const sc_core::sc_time& when);

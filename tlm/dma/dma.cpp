@@ -101,15 +101,9 @@ Dma::Dma(sc_core::sc_module_name name, const DmaParams& params)
   out.configure(params.burst_bytes, BusMaster::OnError::stop);
   m_channels.resize(params.channels);
 
-#define TESSERA_DMA_REG(name, offset, reset, access) const RegisterInfo name{#name, offset, reset, RegAccess::access};
-#define TESSERA_DMA_CHANNEL_REG(name, offset, reset, access)
-#include "dma/dma_regs.def"
-#undef TESSERA_DMA_CHANNEL_REG
-#undef TESSERA_DMA_REG
-  m_regs.add(ID);
-  m_regs.add(CHANNELS, [this] { return m_params.channels; });
-  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
-  m_regs.add(CMEM_BYTES_PER_CYCLE, [this] { return m_params.cmem_bytes_per_cycle; });
+  CHANNELS.set_reset(params.channels);
+  bind_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  CMEM_BYTES_PER_CYCLE.set_reset(params.cmem_bytes_per_cycle);
 
   for (unsigned c = 0; c < params.channels; ++c) {
     Channel& ch = m_channels[c];
@@ -118,27 +112,16 @@ Dma::Dma(sc_core::sc_module_name name, const DmaParams& params)
     ch.bytes = &counter(prefix + "bytes", "bytes delivered by channel " + std::to_string(c));
     ch.errors = &counter(prefix + "errors", "starts of channel " + std::to_string(c) + " stopped by an error");
     ch.busy_trace = std::make_unique<TimedTrace>(("ch" + std::to_string(c) + "_busy").c_str());
-    const uint32_t base = regs::channel_base(c);
-#define TESSERA_DMA_REG(name, offset, reset, access)
-#define TESSERA_DMA_CHANNEL_REG(name, offset, reset, access) \
-  const RegisterInfo name{#name, base + (offset), reset, RegAccess::access};
-#include "dma/dma_regs.def"
-#undef TESSERA_DMA_CHANNEL_REG
-#undef TESSERA_DMA_REG
-    for (const RegisterInfo& info : {D_CTRL, D_SRC, D_DST, D_LENGTH, D_SRC_STRIDE, D_DST_STRIDE, D_NEXT, D_MASK})
-      m_regs.add(info);
-    m_regs.add(START, {}, [this, c](uint32_t value) { start(c, value); });
-    m_regs.add(STATUS, [this, c] {
-      const Channel& s = m_channels[c];
-      return (s.busy ? regs::STATUS_BUSY : 0u) | (s.done ? regs::STATUS_DONE : 0u) |
-             (s.error ? regs::STATUS_ERROR : 0u) | (s.refused ? regs::STATUS_REFUSED : 0u);
-    });
-    m_regs.add(ERROR_CODE, [this, c] { return m_channels[c].error_code; });
-    m_regs.add(ERROR_DESC, [this, c] { return m_channels[c].error_desc; });
-    m_regs.add(ERROR_ADDR, [this, c] { return static_cast<uint32_t>(m_channels[c].error_addr); });
-    m_regs.add(ERROR_ADDR_HI, [this, c] { return static_cast<uint32_t>(m_channels[c].error_addr >> 32); });
-    m_regs.add(DESCRIPTORS, [this, c] { return static_cast<uint32_t>(m_channels[c].descriptors->value); });
-    m_regs.add(BYTES, [this, c] { return static_cast<uint32_t>(m_channels[c].bytes->value); });
+    ch.registers = std::make_unique<ChannelRegisters>(m_regs, regs::channel_base(c));
+    ChannelRegisters& r = *ch.registers;
+    r.START.on_write([this, c](uint32_t value) { write_START(c, value); });
+    r.STATUS.on_read([this, c] { return read_STATUS(c); });
+    r.ERROR_CODE.on_read([this, c] { return read_ERROR_CODE(c); });
+    r.ERROR_DESC.on_read([this, c] { return read_ERROR_DESC(c); });
+    r.ERROR_ADDR.on_read([this, c] { return read_ERROR_ADDR(c); });
+    r.ERROR_ADDR_HI.on_read([this, c] { return read_ERROR_ADDR_HI(c); });
+    r.DESCRIPTORS.on_read([this, c] { return read_DESCRIPTORS(c); });
+    r.BYTES.on_read([this, c] { return read_BYTES(c); });
   }
   SC_THREAD(engine);
 }
@@ -161,9 +144,31 @@ dma::Limits Dma::limits() const {
 }
 
 dma::Descriptor Dma::register_descriptor(unsigned channel) const {
-  std::array<uint32_t, dma::DESCRIPTOR_WORDS> words{};
-  for (unsigned i = 0; i < dma::DESCRIPTOR_WORDS; ++i) words[i] = m_regs.get(regs::channel_base(channel) + 4 * i);
-  return dma::decode(words);
+  const ChannelRegisters& r = *m_channels[channel].registers;
+  return dma::decode({r.D_CTRL.get(), r.D_SRC.get(), r.D_DST.get(), r.D_LENGTH.get(), r.D_SRC_STRIDE.get(),
+                      r.D_DST_STRIDE.get(), r.D_NEXT.get(), r.D_MASK.get()});
+}
+
+uint32_t Dma::read_STATUS(unsigned channel) const {
+  const Channel& s = m_channels[channel];
+  return (s.busy ? regs::STATUS_BUSY : 0u) | (s.done ? regs::STATUS_DONE : 0u) | (s.error ? regs::STATUS_ERROR : 0u) |
+         (s.refused ? regs::STATUS_REFUSED : 0u);
+}
+
+uint32_t Dma::read_ERROR_ADDR(unsigned channel) const {
+  return static_cast<uint32_t>(m_channels[channel].error_addr);
+}
+
+uint32_t Dma::read_ERROR_ADDR_HI(unsigned channel) const {
+  return static_cast<uint32_t>(m_channels[channel].error_addr >> 32);
+}
+
+uint32_t Dma::read_DESCRIPTORS(unsigned channel) const {
+  return static_cast<uint32_t>(m_channels[channel].descriptors->value);
+}
+
+uint32_t Dma::read_BYTES(unsigned channel) const {
+  return static_cast<uint32_t>(m_channels[channel].bytes->value);
 }
 
 const char* Dma::write_refusal(const tlm::tlm_generic_payload& gp) const {
@@ -175,7 +180,7 @@ const char* Dma::write_refusal(const tlm::tlm_generic_payload& gp) const {
   return "written while the channel runs";
 }
 
-void Dma::start(unsigned channel, uint32_t value) {
+void Dma::write_START(unsigned channel, uint32_t value) {
   if ((value & regs::START_GO) == 0) return;
   Channel& ch = m_channels[channel];
   ch.busy = true;
@@ -183,7 +188,7 @@ void Dma::start(unsigned channel, uint32_t value) {
   ch.done = ch.error = ch.refused = false;
   ch.error_code = ch.error_desc = ch.error_addr = 0;
   ch.registers_first = (value & regs::START_CHAIN_ONLY) == 0;
-  ch.next = ch.registers_first ? 0 : m_regs.get(regs::channel_base(channel) + regs::CH_D_NEXT);
+  ch.next = ch.registers_first ? 0 : ch.registers->D_NEXT.get();
   ch.visited.clear();
   ch.ready_at = access_time();
   if (m_tracing) ch.busy_trace->set_at(true, ch.ready_at);

@@ -53,19 +53,32 @@ class Dma : public Peripheral {
   // Registers on `in`, the interrupt on `irq` (Peripheral).
   BusMaster out;  // bus initiator dma
 
+  // The global registers, one member each (dma_regs.def's TESSERA_REG rows);
+  // each channel's are in its ChannelRegisters.
+#define TESSERA_REGISTER_TABLE "dma/dma_regs.def"
+#include "common/register_members.inc"
+
   Dma(sc_core::sc_module_name name, const DmaParams& params);
   ~Dma() override;
 
-  const DmaParams& params() const { return m_params; }
+  const DmaParams& params() const {
+    return m_params;
+  }
   // The array's direct CMEM path; without one, CMEM descriptors fail (no_array).
   void connect_cmem(CmemAccess& cmem);
   // Where the bus's arbitration wait of this initiator is read (cycles of
   // the bus clock so far), for the per-channel bus wait. Optional.
-  void set_bus_wait_probe(std::function<uint64_t()> wait_cycles) { m_bus_wait_probe = std::move(wait_cycles); }
+  void set_bus_wait_probe(std::function<uint64_t()> wait_cycles) {
+    m_bus_wait_probe = std::move(wait_cycles);
+  }
 
-  bool channel_busy(unsigned channel) const { return m_channels.at(channel).busy; }
+  bool channel_busy(unsigned channel) const {
+    return m_channels.at(channel).busy;
+  }
   // Notified whenever a channel finishes (done or error).
-  const sc_core::sc_event& channel_finished_event() const { return m_finished; }
+  const sc_core::sc_event& channel_finished_event() const {
+    return m_finished;
+  }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
@@ -74,7 +87,23 @@ class Dma : public Peripheral {
 
  private:
   class Port;
+  // One channel's registers (dma_regs.def's TESSERA_CHANNEL_REG rows) at
+  // dma_regs::channel_base(c) in the block's bank.
+  struct ChannelRegisters {
+    ChannelRegisters(RegisterBank& bank, uint32_t base) : bank(bank), base(base) {}
+    RegisterBank& bank;
+    uint32_t base;
+#define TESSERA_REG(name, offset, reset, access)
+#define TESSERA_BITS(prefix, name, lsb, width)
+#define TESSERA_CHANNEL_REG(name, offset, reset, access) \
+  Register name{bank, {#name, base + (offset), reset, RegAccess::access}};
+#include "dma/dma_regs.def"
+#undef TESSERA_CHANNEL_REG
+#undef TESSERA_BITS
+#undef TESSERA_REG
+  };
   struct Channel {
+    std::unique_ptr<ChannelRegisters> registers;
     bool busy = false;
     bool queued = false;
     bool registers_first = false;  // the register descriptor still to run
@@ -93,7 +122,19 @@ class Dma : public Peripheral {
   };
 
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
-  void start(unsigned channel, uint32_t value);
+  // Channel c's register handlers.
+  void write_START(unsigned channel, uint32_t value);
+  uint32_t read_STATUS(unsigned channel) const;
+  uint32_t read_ERROR_CODE(unsigned channel) const {
+    return m_channels[channel].error_code;
+  }
+  uint32_t read_ERROR_DESC(unsigned channel) const {
+    return m_channels[channel].error_desc;
+  }
+  uint32_t read_ERROR_ADDR(unsigned channel) const;
+  uint32_t read_ERROR_ADDR_HI(unsigned channel) const;
+  uint32_t read_DESCRIPTORS(unsigned channel) const;
+  uint32_t read_BYTES(unsigned channel) const;
   void engine();  // SC_THREAD
   // Runs the channel's next descriptor.
   void step(unsigned channel);

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "host/host.h"
+#include "soc/irq_map.h"
 
 namespace tessera {
 
@@ -38,7 +39,8 @@ ParamGroup HostParams::parameters() {
                   "host.model=iss: system memory given to the program's C heap (malloc, new) once the part below its "
                   "stacks is used up, taken from the start of the driver's heap (sw_driver/runtime/README.md)"),
           real("host.clock_mhz", 192.0, 1, 2000, "MHz", "ARM922T core clock"),
-          integer("host.irq_lines", 8, 4, 32, "lines", "interrupt inputs of the host"),
+          integer("host.irq_lines", 8, irq_map::MIN_HOST_LINES, irq_map::MAX_HOST_LINES, "lines",
+                  "interrupt inputs of the host"),
           integer("host.cycles.alu", 1, 0, 100, "cycles", "data-processing instruction (ARM9TDMI: 1)"),
           integer("host.cycles.load", 1, 0, 100, "cycles", "LDR/LDRH/LDRB issue, cache hit (ARM9TDMI: 1)"),
           integer("host.cycles.load_use", 1, 0, 100, "cycles",

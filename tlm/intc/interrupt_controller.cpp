@@ -1,24 +1,6 @@
 #include "intc/interrupt_controller.h"
 
-#include "intc/intc_regs.h"
-
 namespace tessera {
-
-namespace {
-
-constexpr RegisterInfo REGISTERS[] = {
-#define TESSERA_INTC_REG(name, offset, reset, access) {#name, offset, reset, RegAccess::access},
-#include "intc/intc_regs.def"
-#undef TESSERA_INTC_REG
-};
-
-const RegisterInfo& info(uint32_t offset) {
-  for (const RegisterInfo& r : REGISTERS)
-    if (r.offset == offset) return r;
-  throw std::logic_error("intc_regs.def has no register at this offset");
-}
-
-}  // namespace
 
 InterruptController::InterruptController(sc_core::sc_module_name name, const sc_core::sc_time& clock_period,
                                          unsigned line_count)
@@ -29,20 +11,11 @@ InterruptController::InterruptController(sc_core::sc_module_name name, const sc_
       m_fiq_assertions(counter("fiq_assertions", "times the core's FIQ input was asserted")) {
   if (line_count > 32)
     throw std::invalid_argument("intc: at most 32 interrupt lines, got " + std::to_string(line_count));
-  using namespace intc_regs;
-  m_regs.add(info(RAW), [this] { return raw(); });
-  m_regs.add(info(IRQ_STATUS), [this] { return raw() & m_regs.get(IRQ_ENABLE); });
-  m_regs.add(info(FIQ_STATUS), [this] { return raw() & m_regs.get(FIQ_ENABLE); });
-  // An enable written ahead of the kernel (the host runs ahead in its
-  // quantum) moves the outputs at the access's time.
-  const auto enable_written = [this](uint32_t offset) {
-    return [this, offset](uint32_t value) {
-      m_regs.set(offset, value);
-      m_enable_written.notify(m_regs.access_delay());
-    };
-  };
-  m_regs.add(info(IRQ_ENABLE), {}, enable_written(IRQ_ENABLE));
-  m_regs.add(info(FIQ_ENABLE), {}, enable_written(FIQ_ENABLE));
+  RAW.on_read(this, &InterruptController::raw);
+  IRQ_STATUS.on_read(this, &InterruptController::read_IRQ_STATUS);
+  FIQ_STATUS.on_read(this, &InterruptController::read_FIQ_STATUS);
+  IRQ_ENABLE.on_write(this, &InterruptController::write_IRQ_ENABLE);
+  FIQ_ENABLE.on_write(this, &InterruptController::write_FIQ_ENABLE);
   SC_METHOD(update_outputs);
   for (auto& line : lines) sensitive << line.value_changed();
   sensitive << m_enable_written;
@@ -55,10 +28,30 @@ uint32_t InterruptController::raw() const {
   return bits;
 }
 
+uint32_t InterruptController::read_IRQ_STATUS() const {
+  return raw() & IRQ_ENABLE.get();
+}
+
+uint32_t InterruptController::read_FIQ_STATUS() const {
+  return raw() & FIQ_ENABLE.get();
+}
+
+// An enable written ahead of the kernel (the host runs ahead in its quantum)
+// moves the outputs at the access's time.
+void InterruptController::write_IRQ_ENABLE(uint32_t value) {
+  IRQ_ENABLE.set(value);
+  m_enable_written.notify(m_regs.access_delay());
+}
+
+void InterruptController::write_FIQ_ENABLE(uint32_t value) {
+  FIQ_ENABLE.set(value);
+  m_enable_written.notify(m_regs.access_delay());
+}
+
 void InterruptController::update_outputs() {
   const uint32_t pending = raw();
-  const bool irq_level = (pending & m_regs.get(intc_regs::IRQ_ENABLE)) != 0;
-  const bool fiq_level = (pending & m_regs.get(intc_regs::FIQ_ENABLE)) != 0;
+  const bool irq_level = (pending & IRQ_ENABLE.get()) != 0;
+  const bool fiq_level = (pending & FIQ_ENABLE.get()) != 0;
   if (irq_level && !irq.read()) ++m_irq_assertions;
   if (fiq_level && !fiq.read()) ++m_fiq_assertions;
   irq.write(irq_level);

@@ -22,6 +22,10 @@ class InterruptController : public Peripheral {
   // Peripheral::irq is the core's IRQ input (high: asserted); this its FIQ input.
   sc_core::sc_out<bool> fiq;
 
+  // The registers, one member each (intc_regs.def).
+#define TESSERA_REGISTER_TABLE "intc/intc_regs.def"
+#include "common/register_members.inc"
+
   InterruptController(sc_core::sc_module_name name, const sc_core::sc_time& clock_period, unsigned line_count);
 
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -29,6 +33,10 @@ class InterruptController : public Peripheral {
 
  private:
   uint32_t raw() const;
+  uint32_t read_IRQ_STATUS() const;
+  uint32_t read_FIQ_STATUS() const;
+  void write_IRQ_ENABLE(uint32_t value);
+  void write_FIQ_ENABLE(uint32_t value);
   void update_outputs();  // SC_METHOD: the lines, or an enable register written
 
   sc_core::sc_event m_enable_written;

@@ -65,41 +65,17 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
     throw std::invalid_argument(std::string(this->name()) + ": burst_beats and beat_bytes must be positive");
   mem_out.configure(params.burst_beats * params.beat_bytes, BusMaster::OnError::stop);
 
-#define TESSERA_RASTER_REG(name, offset, reset, access) \
-  const RegisterInfo name{#name, offset, reset, RegAccess::access};
-#include "raster/raster_regs.def"
-#undef TESSERA_RASTER_REG
-
-  m_regs.add(
-      CTRL, [] { return 0u; }, [](uint32_t) {});
-  m_regs.add(STATUS, [this] {
-    return (m_busy ? regs::STATUS_BUSY : 0u) | (m_done ? regs::STATUS_DONE : 0u) | (m_error ? regs::STATUS_ERROR : 0u);
-  });
-  m_regs.add(START, {}, [this](uint32_t value) {
-    if (!(value & 1)) return;
-    m_busy = true;
-    m_done = false;
-    m_error = false;
-    // The run starts one clock after the write reaches the register, at
-    // the access's annotated time (the bus forwards the initiator's).
-    m_start.notify(m_regs.access_delay() + m_params.clock_period);
-  });
-  m_regs.add(TILE_TABLE);
-  m_regs.add(COLOR_BASE);
-  m_regs.add(DEPTH_BASE);
-  m_regs.add(FORMAT);
-  add_irq_registers(IRQ_STATUS, IRQ_ENABLE);
-  m_regs.add(ERROR_STATUS);
-  m_regs.add(ERROR_ADDRESS);
-  m_regs.add(WIDTH, [this] { return m_params.width; });
-  m_regs.add(HEIGHT, [this] { return m_params.height; });
-  m_regs.add(TILE_WIDTH, [this] { return m_params.tile_width; });
-  m_regs.add(TILE_HEIGHT, [this] { return m_params.tile_height; });
-  m_regs.add(TEXTURE_UNITS, [this] { return m_params.texture_units; });
-  m_regs.add({RECIP_METHOD.name, RECIP_METHOD.offset, recip_method_number(params.recip_method), RECIP_METHOD.access});
-  m_regs.add(TRIANGLES);
-  m_regs.add(FRAGMENTS);
-  m_regs.add(CYCLES);
+  CTRL.on_read(this, &Rasterizer::read_CTRL);
+  CTRL.on_write(this, &Rasterizer::write_CTRL);
+  STATUS.on_read(this, &Rasterizer::read_STATUS);
+  START.on_write(this, &Rasterizer::write_START);
+  bind_irq_registers(IRQ_STATUS, IRQ_ENABLE);
+  WIDTH.set_reset(m_params.width);
+  HEIGHT.set_reset(m_params.height);
+  TILE_WIDTH.set_reset(m_params.tile_width);
+  TILE_HEIGHT.set_reset(m_params.tile_height);
+  TEXTURE_UNITS.set_reset(m_params.texture_units);
+  RECIP_METHOD.set_reset(recip_method_number(m_params.recip_method));
 
   SC_THREAD(run);
 }
@@ -107,6 +83,27 @@ Rasterizer::Rasterizer(sc_core::sc_module_name name, const RasterizerParams& par
 void Rasterizer::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   sc_core::sc_trace(file, m_busy_trace.signal, std::string(name()) + ".busy");
+}
+
+// Reserved: reads 0, ignores what is written.
+uint32_t Rasterizer::read_CTRL() const {
+  return 0;
+}
+
+void Rasterizer::write_CTRL(uint32_t /*value*/) {}
+
+uint32_t Rasterizer::read_STATUS() const {
+  return (m_busy ? regs::STATUS_BUSY : 0u) | (m_done ? regs::STATUS_DONE : 0u) | (m_error ? regs::STATUS_ERROR : 0u);
+}
+
+void Rasterizer::write_START(uint32_t value) {
+  if (!(value & 1)) return;
+  m_busy = true;
+  m_done = false;
+  m_error = false;
+  // The run starts one clock after the write reaches the register, at the
+  // access's annotated time (the bus forwards the initiator's).
+  m_start.notify(m_regs.access_delay() + m_params.clock_period);
 }
 
 const char* Rasterizer::write_refusal(const tlm::tlm_generic_payload& gp) const {
@@ -153,11 +150,11 @@ void Rasterizer::run() {
     config.tile_width = m_params.tile_width;
     config.tile_height = m_params.tile_height;
     config.texture_units = m_params.texture_units;
-    config.tile_table = m_regs.get(regs::TILE_TABLE);
-    config.color_base = m_regs.get(regs::COLOR_BASE);
-    config.depth_base = m_regs.get(regs::DEPTH_BASE);
-    config.color_format = *pixel_format_from_code(m_regs.get(regs::FORMAT));
-    config.recip_method = recip_method_of(m_regs.get(regs::RECIP_METHOD));
+    config.tile_table = TILE_TABLE.get();
+    config.color_base = COLOR_BASE.get();
+    config.depth_base = DEPTH_BASE.get();
+    config.color_format = *pixel_format_from_code(FORMAT.get());
+    config.recip_method = recip_method_of(RECIP_METHOD.get());
     log::info(name(), "run started: tile table at " + log::hex(config.tile_table) + ", colour buffer at " +
                           log::hex(config.color_base));
 
@@ -187,11 +184,11 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
   m_texel_cycles += result.texel_cycles;
 
   const uint64_t cycles = static_cast<uint64_t>(std::llround(elapsed / m_params.clock_period));
-  m_regs.set(regs::ERROR_STATUS, static_cast<uint32_t>(result.error));
-  m_regs.set(regs::ERROR_ADDRESS, result.error == raster::RasterError::none ? 0 : result.error_address);
-  m_regs.set(regs::TRIANGLES, static_cast<uint32_t>(result.triangles));
-  m_regs.set(regs::FRAGMENTS, static_cast<uint32_t>(result.fragments));
-  m_regs.set(regs::CYCLES, static_cast<uint32_t>(std::min<uint64_t>(cycles, UINT32_MAX)));
+  ERROR_STATUS.set(static_cast<uint32_t>(result.error));
+  ERROR_ADDRESS.set(result.error == raster::RasterError::none ? 0 : result.error_address);
+  TRIANGLES.set(static_cast<uint32_t>(result.triangles));
+  FRAGMENTS.set(static_cast<uint32_t>(result.fragments));
+  CYCLES.set(static_cast<uint32_t>(std::min<uint64_t>(cycles, UINT32_MAX)));
   m_busy = false;
   if (fatal(result.error)) {
     ++m_failed_runs;

@@ -68,14 +68,26 @@ class Rasterizer : public Peripheral {
   // Registers on `in` and the interrupt on `irq` (Peripheral).
   BusMaster mem_out;
 
+  // The registers, one member each (raster_regs.def).
+#define TESSERA_REGISTER_TABLE "raster/raster_regs.def"
+#include "common/register_members.inc"
+
   Rasterizer(sc_core::sc_module_name name, const RasterizerParams& params);
 
-  const RasterizerParams& params() const { return m_params; }
-  bool busy() const { return m_busy; }
+  const RasterizerParams& params() const {
+    return m_params;
+  }
+  bool busy() const {
+    return m_busy;
+  }
   // Notified when a run has ended (successfully or not) and the registers
   // hold its results.
-  const sc_core::sc_event& run_finished_event() const { return m_run_finished; }
-  const raster::RunResult& last_result() const { return m_last; }
+  const sc_core::sc_event& run_finished_event() const {
+    return m_run_finished;
+  }
+  const raster::RunResult& last_result() const {
+    return m_last;
+  }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
@@ -96,6 +108,10 @@ class Rasterizer : public Peripheral {
     Rasterizer& m_owner;
   };
 
+  uint32_t read_CTRL() const;
+  void write_CTRL(uint32_t value);
+  uint32_t read_STATUS() const;
+  void write_START(uint32_t value);
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
 
   void run();  // SC_THREAD: one TileRasterizer::run per START

@@ -13,7 +13,7 @@
 _start:
         bl      function
         mov     r5, r0                  @ 1: the original instruction, decoded and cached
-        ldr     r4, =0x52000100         @ the DMA's channel 0 (tlm/dma/dma_regs.def)
+        ldr     r4, =0x52000100         @ the DMA's channel 0 (contract/dma/dma_regs.def)
         mov     r1, #2
         str     r1, [r4, #0x00]         @ D_CTRL: mem_to_mem
         adr     r1, replacement

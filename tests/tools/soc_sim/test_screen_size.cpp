@@ -3,7 +3,7 @@
 // Mesa on every back end that takes them), and every size it refuses is a
 // usage error naming the key, on every back end, before anything runs.
 //
-// The limit is 512 pixels either way (tlm/common/screen_size.h): screen x and
+// The limit is 512 pixels either way (contract/common/screen_size.h): screen x and
 // y are 9.4 fixed point, the rasterizer's interface format, which the GL
 // driver hands every back end. Each array back end has its own, smaller
 // limit, checked here too.

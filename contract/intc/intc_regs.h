@@ -3,10 +3,11 @@
 
 #include <cstdint>
 
+#include "common/register_table.h"
+
 namespace tessera::intc_regs {
 
-#define TESSERA_INTC_REG(name, offset, reset, access) inline constexpr uint32_t name = offset;
-#include "intc/intc_regs.def"
-#undef TESSERA_INTC_REG
+#define TESSERA_REGISTER_TABLE "intc/intc_regs.def"
+#include "common/register_constants.inc"
 
 }  // namespace tessera::intc_regs

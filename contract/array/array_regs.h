@@ -1,22 +1,16 @@
-// Register offsets and bits of the array controller (array_regs.def), and
-// the layout of its two other windows: program memory and the CIU's view
-// of CMEM.
+// Register offsets and field masks of the array controller (array_regs.def),
+// and the layout of its two other windows: program memory and the CIU's
+// view of CMEM (the CIU lane rule).
 #pragma once
 
 #include <cstdint>
 
+#include "common/register_table.h"
+
 namespace tessera::array_regs {
 
-#define TESSERA_ARRAY_REG(name, offset, reset, access) inline constexpr uint32_t name = offset;
-#include "array/array_regs.def"
-#undef TESSERA_ARRAY_REG
-
-inline constexpr uint32_t STATUS_BUSY = 1u << 0;
-inline constexpr uint32_t STATUS_DONE = 1u << 1;
-inline constexpr uint32_t STATUS_ERROR = 1u << 2;
-inline constexpr uint32_t STATUS_REFUSED = 1u << 3;
-inline constexpr uint32_t IRQ_DONE = 1u << 0;
-inline constexpr uint32_t IRQ_ERROR = 1u << 1;
+#define TESSERA_REGISTER_TABLE "array/array_regs.def"
+#include "common/register_constants.inc"
 
 // Program memory (memory_map.def: array_program): instruction word w at
 // byte offset 8 w, low 32 bits first (little-endian, like the host).
