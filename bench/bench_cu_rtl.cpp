@@ -6,7 +6,7 @@
 //   bench_cu_rtl [--instructions N] [--repeat R] [--seed S]
 //
 // N random lane-work instructions (the generator of the array tests,
-// tests/array/random_instruction.h: every opcode equally often, random
+// testbench/cosim/random_instruction.h: every opcode equally often, random
 // register and CMEM operand forms, loop variables) are drawn once. An
 // untimed pass runs them on the C++ array and records, for one inside lane,
 // the bytes the array hands that CU (cu_lane_inputs) before each
@@ -33,9 +33,9 @@
 
 #include "array/core/cu_array.h"
 #include "array/isa/ap_isa.h"
+#include "cosim/random_instruction.h"
 #include "cu_datapath_adapter.h"
 #include "guarded_main.h"
-#include "random_instruction.h"
 
 namespace {
 

@@ -1,15 +1,16 @@
 // bench_rtl: speed of the rasterizer's bit-exact C++ datapath units
 // (tlm/raster/datapath/) against their Verilated Verilog twins
 // (rtl_models/raster/, through the adapters the cosim tests use), on the
-// same vectors. Prints one Markdown table; bench_raster runs it as a child.
-// See README.md for the method.
+// same vectors. Prints one Markdown table, a row per raster unit of
+// rtl_models/units.def in the table's order; bench_raster runs it as a
+// child. See README.md for the method.
 //
 //   bench_rtl [--vectors V] [--pool P] [--batch B] [--rounds R] [--seed S] [--isa NAME]
 //
 // For each unit, a pool of about P random vectors (default 4096: it stays in
 // the caches, as the core's operands do) is generated once, outside the
-// timed loops, with the distributions of tests/raster/test_raster_*_cosim.cpp,
-// cut into batches of B vectors (default 32, a tile row) that share what the
+// timed loops, by the generators the cosim tests draw their random vectors
+// from (testbench/cosim/raster_vectors.h), cut into batches of B vectors (default 32, a tile row) that share what the
 // core's batches share: a state or a plane, or the row of a span. Three sides sweep the
 // pool, each storing every output field of every vector:
 //   batch   the unit's batch form (batch.h), one call per batch, the variant
@@ -46,9 +47,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "attr_interp_adapter.h"
+#include "attribute_interpolator_adapter.h"
 #include "bench_support.h"
 #include "blend_logic_op_adapter.h"
+#include "cosim/raster_vectors.h"
 #include "edge_function_adapter.h"
 #include "fog_unit_adapter.h"
 #include "fragment_tests_adapter.h"
@@ -64,7 +66,7 @@
 #include "raster/datapath/texel_address.h"
 #include "raster/datapath/texture_combiner.h"
 #include "raster/datapath/texture_env.h"
-#include "recip_unit_adapter.h"
+#include "reciprocal_adapter.h"
 #include "texel_address_adapter.h"
 #include "texture_combiner_adapter.h"
 #include "texture_env_adapter.h"
@@ -72,16 +74,8 @@
 namespace {
 
 using namespace tessera::raster;
-using tessera::BlendFactor;
-using tessera::CompareFunc;
 using tessera::FogMode;
-using tessera::LogicOp;
-using tessera::StencilOp;
-using tessera::TexBaseFormat;
 using tessera::TexEnv;
-using tessera::TexFilter;
-using tessera::TexMipmap;
-using tessera::TexWrap;
 using tessera::bench::load_average;
 using tessera::bench::machine_summary;
 using tessera::bench::min_median;
@@ -220,7 +214,6 @@ struct Side {
 constexpr unsigned BATCH = 0, SCALAR = 1, RTL = 2, SIDES = 3;
 
 struct Unit {
-  std::string name;
   uint64_t lanes = 0;  // vectors per sweep
   Side side[SIDES];
 };
@@ -235,30 +228,32 @@ void store(std::vector<Result>& out, size_t i, Make&& make) {
 }
 
 // ---------------------------------------------------------------------------
-// The units. Each builds its pool (the random halves of the cosim tests, in
-// batches sharing a state) and its three sides over it.
+// The units, bench_<name> for each raster unit of rtl_models/units.def. Each
+// builds its pool (testbench/cosim/raster_vectors.h, the generators of the
+// cosim tests' random vectors, in batches sharing a state) and its three
+// sides over it.
 
-Unit reciprocal_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+Unit bench_reciprocal(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<uint32_t> x;
     std::vector<uint32_t> q5_16, mantissa, invalid;
     std::vector<int32_t> exponent;
     std::vector<ReciprocalResult> scalar, rtl_out;
-    RecipUnitRtl rtl;
+    ReciprocalRtl rtl;
     explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
   };
   auto p = std::make_shared<Pool>(opt);
   const uint32_t n = p->batches.lanes;
   p->x.resize(n);
-  for (auto& x : p->x) x = static_cast<uint32_t>(rng() & RECIP_OPERAND_MAX);  // 0 is the invalid operand
+  for (auto& x : p->x) x = random_reciprocal_operand(rng);
   p->q5_16.resize(n);
   p->mantissa.resize(n);
   p->invalid.resize(n);
   p->exponent.resize(n);
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"reciprocal (Method 3)", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {[p, isa] {
                      for (size_t b = 0; b < p->batches.size(); ++b) {
                        const uint32_t f = p->batches.first[b];
@@ -295,15 +290,10 @@ Unit reciprocal_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  struct Span {
-    Edge e;
-    unsigned px, py;
-    q5_16 recip;
-  };
+Unit bench_edge_function(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
-    std::vector<Span> spans;
+    std::vector<EdgeSpanVector> spans;
     std::vector<int32_t> value, value_next_y, distance;
     std::vector<uint32_t> inside, coverage, l1;
     std::vector<EdgeEvaluation> scalar, rtl_out;
@@ -312,27 +302,7 @@ Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   };
   auto p = std::make_shared<Pool>(opt);
   const uint32_t n = p->batches.lanes;
-  // Spans of a row at random, half of them of a short edge near the first
-  // pixel (distance and coverage leave their clamps), as the cosim test.
-  for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t bits = rng(), more = rng();
-    Span s{};
-    s.px = std::min(static_cast<unsigned>(more) & 0x1ff, 512 - p->batches.count[b]);
-    s.py = static_cast<unsigned>(more >> 9) & 0x1ff;
-    if (more >> 63) {
-      const uint32_t cx = s.px * 16 + static_cast<uint32_t>((more >> 18) & 0x3f) - 32;
-      const uint32_t cy = s.py * 16 + static_cast<uint32_t>((more >> 24) & 0x3f) - 32;
-      s.e = Edge{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
-                 q9_4::from_raw(cy + ((more >> 37) & 0x7f) - 64)};
-      const uint32_t l1 = edge_l1_length(s.e).raw;
-      s.recip = q5_16::from_raw(l1 == 0 ? 0 : static_cast<uint32_t>((uint64_t{1} << 20) / l1));
-    } else {
-      s.e = Edge{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
-                 q9_4::from_raw(static_cast<uint32_t>(bits >> 26)), q9_4::from_raw(static_cast<uint32_t>(bits >> 39))};
-      s.recip = q5_16::from_raw(static_cast<uint32_t>(more >> 42));
-    }
-    p->spans.push_back(s);
-  }
+  for (size_t b = 0; b < p->batches.size(); ++b) p->spans.push_back(random_edge_span(rng, p->batches.count[b]));
   p->value.resize(n + p->batches.size());  // count + 1 values a span
   p->value_next_y.resize(n);
   p->distance.resize(n);
@@ -341,12 +311,12 @@ Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   p->l1.resize(p->batches.size());
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"edge function", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {[p, isa] {
                      for (size_t b = 0; b < p->batches.size(); ++b) {
                        const uint32_t f = p->batches.first[b];
-                       const Span& s = p->spans[b];
-                       p->l1[b] = edge_span(s.e, s.px, s.py, p->batches.count[b], s.recip,
+                       const EdgeSpanVector& s = p->spans[b];
+                       p->l1[b] = edge_span(s.edge, s.px, s.py, p->batches.count[b], s.recip,
                                             {p->value.data() + f + b, p->value_next_y.data() + f, p->inside.data() + f,
                                              p->distance.data() + f, p->coverage.data() + f},
                                             isa)
@@ -371,20 +341,20 @@ Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
                    }};
   u.side[SCALAR] = {[p] {
                       for (size_t b = 0; b < p->batches.size(); ++b) {
-                        const Span& s = p->spans[b];
+                        const EdgeSpanVector& s = p->spans[b];
                         for (uint32_t k = 0; k < p->batches.count[b]; ++k)
                           store(p->scalar, p->batches.first[b] + k,
-                                [&] { return evaluate_edge(s.e, s.px + k, s.py, s.recip); });
+                                [&] { return evaluate_edge(s.edge, s.px + k, s.py, s.recip); });
                       }
                       compiler_barrier(p->scalar.data());
                     },
                     [p] { return checksum(p->scalar); }};
   u.side[RTL] = {[p] {
                    for (size_t b = 0; b < p->batches.size(); ++b) {
-                     const Span& s = p->spans[b];
+                     const EdgeSpanVector& s = p->spans[b];
                      for (uint32_t k = 0; k < p->batches.count[b]; ++k)
                        store(p->rtl_out, p->batches.first[b] + k,
-                             [&] { return p->rtl.evaluate(s.e, s.px + k, s.py, s.recip); });
+                             [&] { return p->rtl.evaluate(s.edge, s.px + k, s.py, s.recip); });
                    }
                    compiler_barrier(p->rtl_out.data());
                  },
@@ -392,7 +362,7 @@ Unit edge_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+Unit bench_attribute_interpolator(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<AttributePlane> planes;
@@ -400,7 +370,7 @@ Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
     std::vector<int64_t> value, value_next_x, value_next_y;
     std::vector<uint32_t> output;
     std::vector<AttributeEvaluation> scalar, rtl_out;
-    AttrInterpRtl rtl;
+    AttributeInterpolatorRtl rtl;
     explicit Pool(const Options& o) : batches(o.pool, o.batch) {}
   };
   auto p = std::make_shared<Pool>(opt);
@@ -408,21 +378,17 @@ Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   for (auto* v : {&p->dx, &p->dy}) v->resize(n);
   for (auto* v : {&p->value, &p->value_next_x, &p->value_next_y}) v->resize(n);
   p->output.resize(n);
-  // Random words at random magnitudes, offsets at random, as the cosim test.
-  auto word = [&rng]() { return sign_extend(rng(), 1 + static_cast<unsigned>(rng() % 40)); };
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const auto kind = static_cast<AttributeKind>(rng() & 3);  // 3: undefined kind
-    const int64_t start = word(), grad_x = word(), grad_y = word();
-    p->planes.push_back(AttributePlane{kind, start, grad_x, grad_y});
+    p->planes.push_back(random_attribute_plane(rng));
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
-      const uint64_t offsets = rng();
-      p->dx[p->batches.first[b] + k] = static_cast<int32_t>(offsets & 0x3ff) - 512;
-      p->dy[p->batches.first[b] + k] = static_cast<int32_t>((offsets >> 10) & 0x3ff) - 512;
+      const PixelOffset o = random_pixel_offset(rng);
+      p->dx[p->batches.first[b] + k] = o.dx;
+      p->dy[p->batches.first[b] + k] = o.dy;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"attribute interpolator", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {
       [p, isa] {
         for (size_t b = 0; b < p->batches.size(); ++b) {
@@ -464,13 +430,7 @@ Unit attribute_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit fragment_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  static constexpr std::array<CompareFunc, 8> FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
-                                                    CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
-                                                    CompareFunc::gequal, CompareFunc::always};
-  static constexpr std::array<StencilOp, 7> OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
-                                                StencilOp::incr,          StencilOp::decr, StencilOp::invert,
-                                                static_cast<StencilOp>(7)};
+Unit bench_fragment_tests(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<FragmentTestState> states;
@@ -487,35 +447,20 @@ Unit fragment_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   const uint32_t n = p->batches.lanes;
   for (auto* v : {&p->alpha, &p->depth, &p->stored_depth, &p->stored_stencil, &p->flags, &p->stencil}) v->resize(n);
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t a = rng(), w = rng();
-    FragmentTestState s;
-    s.alpha_enable = a & 1;
-    s.stencil_enable = (a >> 1) & 1;
-    s.depth_enable = (a >> 2) & 1;
-    s.depth_write_mask = (a >> 3) & 1;
-    s.alpha_func = FUNCS[(a >> 4) & 7];
-    s.stencil_func = FUNCS[(a >> 7) & 7];
-    s.depth_func = FUNCS[(a >> 10) & 7];
-    s.sfail = OPS[((a >> 13) & 0xff) % OPS.size()];
-    s.dpfail = OPS[((a >> 21) & 0xff) % OPS.size()];
-    s.dppass = OPS[((a >> 29) & 0xff) % OPS.size()];
-    s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
-    s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
-    s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
-    s.stencil_write_mask = static_cast<uint8_t>(w);
+    const FragmentTestState s = random_fragment_test_state(rng);
     p->states.push_back(s);
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
       const uint32_t i = p->batches.first[b] + k;
-      const uint64_t f = rng();
-      p->alpha[i] = ((f >> 61) & 1) ? s.alpha_ref.raw : static_cast<uint32_t>(f >> 8) & 0xff;
-      p->stored_stencil[i] = static_cast<uint32_t>(f >> 16) & 0xff;
-      p->depth[i] = static_cast<uint32_t>(f >> 24) & 0xffffff;
-      p->stored_depth[i] = (f >> 62) == 0 ? p->depth[i] : static_cast<uint32_t>(rng()) & 0xffffff;
+      const FragmentTestInput f = random_fragment(rng, s);
+      p->alpha[i] = f.alpha.raw;
+      p->stored_stencil[i] = f.stored_stencil.raw;
+      p->depth[i] = f.depth.raw;
+      p->stored_depth[i] = f.stored_depth.raw;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"fragment tests", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {[p, isa] {
                      for (size_t b = 0; b < p->batches.size(); ++b) {
                        const uint32_t f = p->batches.first[b];
@@ -565,19 +510,7 @@ void colour_checksums(Unit& u, const std::shared_ptr<Pool>& p) {
   u.side[RTL].checksum = [p] { return checksum(p->rtl_out); };
 }
 
-Unit blend_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  static constexpr std::array<BlendFactor, 12> FACTORS{BlendFactor::zero,
-                                                       BlendFactor::one,
-                                                       BlendFactor::src_color,
-                                                       BlendFactor::one_minus_src_color,
-                                                       BlendFactor::src_alpha,
-                                                       BlendFactor::one_minus_src_alpha,
-                                                       BlendFactor::dst_alpha,
-                                                       BlendFactor::one_minus_dst_alpha,
-                                                       BlendFactor::dst_color,
-                                                       BlendFactor::one_minus_dst_color,
-                                                       BlendFactor::src_alpha_saturate,
-                                                       static_cast<BlendFactor>(15)};
+Unit bench_blend_logic_op(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<BlendState> states;
@@ -592,24 +525,16 @@ Unit blend_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   p->dst.resize(n);
   p->out.resize(n);
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t a = rng();
-    BlendState s;
-    s.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
-    s.logic_op_enable = ((a >> 2) & 7) == 0;
-    s.src_factor = FACTORS[((a >> 5) & 0xff) % FACTORS.size()];
-    s.dst_factor = FACTORS[((a >> 13) & 0xff) % FACTORS.size()];
-    s.op = static_cast<LogicOp>((a >> 21) & 15);
-    s.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
-    p->states.push_back(s);
+    p->states.push_back(random_blend_state(rng));
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
-      const uint64_t c = rng();
-      p->src[p->batches.first[b] + k] = static_cast<uint32_t>(c);
-      p->dst[p->batches.first[b] + k] = static_cast<uint32_t>(c >> 32);
+      const ColourPair pair = random_colour_pair(rng);
+      p->src[p->batches.first[b] + k] = pair.src;
+      p->dst[p->batches.first[b] + k] = pair.dst;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"blend / logic op", n, {}};
+  Unit u{n, {}};
   u.side[BATCH].sweep = [p, isa] {
     for (size_t b = 0; b < p->batches.size(); ++b) {
       const uint32_t f = p->batches.first[b];
@@ -640,9 +565,7 @@ Unit blend_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit texel_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  static constexpr std::array<TexWrap, 2> WRAPS{TexWrap::repeat, TexWrap::clamp_to_edge};
-  static constexpr std::array<TexFilter, 2> FILTERS{TexFilter::nearest, TexFilter::linear};
+Unit bench_texel_address(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<TextureState> states;
@@ -658,26 +581,16 @@ Unit texel_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   p->t.resize(n);
   for (auto& f : p->field) f.resize(n);
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t a = rng();
-    TextureState st;
-    st.base = static_cast<uint32_t>(a >> 32);
-    st.log2_width = static_cast<uint8_t>(a % 10);
-    st.log2_height = static_cast<uint8_t>((a >> 4) % 10);
-    st.wrap_s = WRAPS[(a >> 8) & 1];
-    st.wrap_t = WRAPS[(a >> 9) & 1];
-    st.filter = FILTERS[(a >> 10) & 1];
-    p->states.push_back(st);
+    p->states.push_back(random_texture_state(rng));
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
-      const uint64_t c = rng();
-      // Mostly coordinates within a few repetitions, some across the whole range.
-      const unsigned bits = ((c >> 11) & 7) != 0 ? 20 : 32;
-      p->s[p->batches.first[b] + k] = static_cast<int32_t>(sign_extend(c, bits));
-      p->t[p->batches.first[b] + k] = static_cast<int32_t>(sign_extend(c >> 32, bits));
+      const TexCoords coords = random_tex_coords(rng);
+      p->s[p->batches.first[b] + k] = coords.s;
+      p->t[p->batches.first[b] + k] = coords.t;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"texel address", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {
       [p, isa] {
         for (size_t b = 0; b < p->batches.size(); ++b) {
@@ -720,9 +633,7 @@ Unit texel_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit texture_env_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  static constexpr std::array<TexEnv, 4> MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal,
-                                               static_cast<TexEnv>(3)};
+Unit bench_texture_env(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<TexEnv> modes;
@@ -740,22 +651,19 @@ Unit texture_env_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   for (auto& t : p->texel) t.resize(n);
   for (auto* v : {&p->weight_s, &p->weight_t, &p->fragment, &p->texel_out, &p->fragment_out}) v->resize(n);
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    p->modes.push_back(MODES[rng() & 3]);
+    p->modes.push_back(random_texture_env_mode(rng));
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
       const uint32_t i = p->batches.first[b] + k;
-      const uint64_t a = rng(), c = rng(), d = rng();
-      p->texel[0][i] = static_cast<uint32_t>(a);
-      p->texel[1][i] = static_cast<uint32_t>(a >> 32);
-      p->texel[2][i] = static_cast<uint32_t>(c);
-      p->texel[3][i] = static_cast<uint32_t>(c >> 32);
-      p->weight_s[i] = static_cast<uint32_t>(d >> 8) & 0xff;
-      p->weight_t[i] = static_cast<uint32_t>(d >> 16) & 0xff;
-      p->fragment[i] = static_cast<uint32_t>(d >> 32);
+      const TextureEnvLane lane = random_texture_env_lane(rng);
+      for (unsigned j = 0; j < 4; ++j) p->texel[j][i] = lane.texel[j];
+      p->weight_s[i] = lane.weight_s;
+      p->weight_t[i] = lane.weight_t;
+      p->fragment[i] = lane.fragment;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"texture env (filter + env)", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {
       [p, isa] {
         for (size_t b = 0; b < p->batches.size(); ++b) {
@@ -804,7 +712,7 @@ Unit texture_env_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit fog_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+Unit bench_fog_unit(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
     std::vector<FogMode> modes;
@@ -819,23 +727,20 @@ Unit fog_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   const uint32_t n = p->batches.lanes;
   p->argument.resize(n);
   for (auto* v : {&p->fragment, &p->factor, &p->color}) v->resize(n);
-  // Every mode code (3: no fog); arguments over the whole signed 16.16
-  // range half the time, within the table's reach (-1 to 31) the other half.
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t m = rng();
-    p->modes.push_back(static_cast<FogMode>(m & 3));
-    p->fog_colors.push_back(Rgba8::unpack(static_cast<uint32_t>(m >> 32)));
+    const FogUnitState state = random_fog_state(rng);
+    p->modes.push_back(state.mode);
+    p->fog_colors.push_back(state.colour);
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
       const uint32_t i = p->batches.first[b] + k;
-      const uint64_t a = rng();
-      p->argument[i] =
-          (a >> 2) & 1 ? static_cast<int32_t>(a >> 32) : static_cast<int32_t>((a >> 8) & 0x1fffff) - (1 << 16);
-      p->fragment[i] = static_cast<uint32_t>(rng());
+      const FogLane lane = random_fog_lane(rng);
+      p->argument[i] = lane.argument;
+      p->fragment[i] = lane.fragment;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"fog unit", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {[p, isa] {
                      for (size_t b = 0; b < p->batches.size(); ++b) {
                        const uint32_t f = p->batches.first[b];
@@ -877,15 +782,10 @@ Unit fog_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
-  struct State {
-    TexFilter min, mag;
-    TexMipmap mipmap;
-    unsigned last;
-  };
+Unit bench_lod_unit(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct Pool {
     Batches batches;
-    std::vector<State> states;
+    std::vector<LodState> states;
     std::vector<uint32_t> rho, flags, level0, level1, weight;
     std::vector<int32_t> lambda;
     std::vector<LodResult> scalar, rtl_out;
@@ -896,25 +796,18 @@ Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   const uint32_t n = p->batches.lanes;
   p->lambda.resize(n);
   for (auto* v : {&p->rho, &p->flags, &p->level0, &p->level1, &p->weight}) v->resize(n);
-  // Every filter pair, mipmap code and last level; every magnitude of rho
-  // equally often (a random rho shifted right by 0..31), as the cosim test.
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const auto state = static_cast<unsigned>(rng());
-    p->states.push_back({tessera::from_code<TexFilter>(state), tessera::from_code<TexFilter>(state >> 1),
-                         tessera::from_code<TexMipmap>(state >> 2), (state >> 4) & 15});
-    for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
-      const uint64_t a = rng();
-      p->rho[p->batches.first[b] + k] = static_cast<uint32_t>(a) >> ((a >> 32) & 31);
-    }
+    p->states.push_back(random_lod_state(rng));
+    for (uint32_t k = 0; k < p->batches.count[b]; ++k) p->rho[p->batches.first[b] + k] = random_lod_rho(rng);
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"LOD unit", n, {}};
+  Unit u{n, {}};
   u.side[BATCH] = {[p, isa] {
                      for (size_t b = 0; b < p->batches.size(); ++b) {
                        const uint32_t f = p->batches.first[b];
-                       const State& s = p->states[b];
-                       lod_unit_batch(s.min, s.mag, s.mipmap, s.last, p->rho.data() + f, p->batches.count[b],
+                       const LodState& s = p->states[b];
+                       lod_unit_batch(s.min, s.mag, s.mipmap, s.last_level, p->rho.data() + f, p->batches.count[b],
                                       {p->lambda.data() + f, p->flags.data() + f, p->level0.data() + f,
                                        p->level1.data() + f, p->weight.data() + f},
                                       isa);
@@ -933,10 +826,11 @@ Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
                    }};
   u.side[SCALAR] = {[p] {
                       for (size_t b = 0; b < p->batches.size(); ++b) {
-                        const State& s = p->states[b];
+                        const LodState& s = p->states[b];
                         for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
                           const uint32_t i = p->batches.first[b] + k;
-                          store(p->scalar, i, [&] { return lod_unit(p->rho[i], s.min, s.mag, s.mipmap, s.last); });
+                          store(p->scalar, i,
+                                [&] { return lod_unit(p->rho[i], s.min, s.mag, s.mipmap, s.last_level); });
                         }
                       }
                       compiler_barrier(p->scalar.data());
@@ -944,10 +838,11 @@ Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
                     [p] { return checksum(p->scalar); }};
   u.side[RTL] = {[p] {
                    for (size_t b = 0; b < p->batches.size(); ++b) {
-                     const State& s = p->states[b];
+                     const LodState& s = p->states[b];
                      for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
                        const uint32_t i = p->batches.first[b] + k;
-                       store(p->rtl_out, i, [&] { return p->rtl.run(p->rho[i], s.min, s.mag, s.mipmap, s.last); });
+                       store(p->rtl_out, i,
+                             [&] { return p->rtl.run(p->rho[i], s.min, s.mag, s.mipmap, s.last_level); });
                      }
                    }
                    compiler_barrier(p->rtl_out.data());
@@ -956,10 +851,10 @@ Unit lod_unit_bench(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   return u;
 }
 
-Unit combiner_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
+Unit bench_texture_combiner(VectorRng& rng, const Options& opt, BatchIsa isa) {
   struct State {
-    TextureUnitEnv unit;
-    uint32_t rgb_word, alpha_word;
+    CombinerState ports;  // as the RTL takes it
+    TextureUnitEnv unit;  // as the C++ twin takes it
   };
   struct Pool {
     Batches batches;
@@ -972,30 +867,20 @@ Unit combiner_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   auto p = std::make_shared<Pool>(opt);
   const uint32_t n = p->batches.lanes;
   for (auto* v : {&p->primary, &p->previous, &p->texel, &p->out}) v->resize(n);
-  // Random combiner words (reserved bits included), half the states
-  // COMBINE, as the cosim test.
   for (size_t b = 0; b < p->batches.size(); ++b) {
-    const uint64_t a = rng(), d = rng();
-    State s;
-    s.unit.env = tessera::from_code<TexEnv>((d & 1) != 0 ? 5u : static_cast<uint32_t>(d >> 1) & 7);
-    s.unit.base_format = tessera::from_code<TexBaseFormat>(static_cast<uint32_t>(d >> 4) & 7);
-    s.unit.env_color = Rgba8::unpack(static_cast<uint32_t>(a));
-    s.rgb_word = static_cast<uint32_t>(d >> 8);
-    s.alpha_word = static_cast<uint32_t>(d >> 32) ^ static_cast<uint32_t>(a >> 16);
-    s.unit.rgb = CombineStage::decode(s.rgb_word);
-    s.unit.alpha = CombineStage::decode(s.alpha_word);
-    p->states.push_back(s);
+    const CombinerState ports = random_combiner_state(rng);
+    p->states.push_back({ports, ports.unit()});
     for (uint32_t k = 0; k < p->batches.count[b]; ++k) {
       const uint32_t i = p->batches.first[b] + k;
-      const uint64_t c = rng(), e = rng();
-      p->primary[i] = static_cast<uint32_t>(c);
-      p->previous[i] = static_cast<uint32_t>(c >> 32);
-      p->texel[i] = static_cast<uint32_t>(e);
+      const CombinerLane lane = random_combiner_lane(rng);
+      p->primary[i] = lane.primary;
+      p->previous[i] = lane.previous;
+      p->texel[i] = lane.texel;
     }
   }
   p->scalar.resize(n);
   p->rtl_out.resize(n);
-  Unit u{"texture combiner", n, {}};
+  Unit u{n, {}};
   u.side[BATCH].sweep = [p, isa] {
     for (size_t b = 0; b < p->batches.size(); ++b) {
       const uint32_t f = p->batches.first[b];
@@ -1022,7 +907,7 @@ Unit combiner_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
         const uint32_t i = p->batches.first[b] + k;
         store(p->rtl_out, i, [&] {
           return p->rtl.run(s.unit.env, s.unit.base_format, Rgba8::unpack(p->primary[i]), Rgba8::unpack(p->previous[i]),
-                            Rgba8::unpack(p->texel[i]), s.unit.env_color, s.rgb_word, s.alpha_word);
+                            Rgba8::unpack(p->texel[i]), s.unit.env_color, s.ports.rgb_word, s.ports.alpha_word);
         });
       }
     }
@@ -1031,6 +916,25 @@ Unit combiner_unit(std::mt19937_64& rng, const Options& opt, BatchIsa isa) {
   colour_checksums(u, p);
   return u;
 }
+
+// The units bench_rtl measures: every raster unit of rtl_models/units.def,
+// in the table's order, each by its bench_<name> above (a raster unit added
+// to the table without one does not compile). The array's CU has a
+// benchmark of its own, bench_cu_rtl.
+struct BenchedUnit {
+  const char* name;
+  Unit (*make)(VectorRng& rng, const Options& opt, BatchIsa isa);
+};
+
+const BenchedUnit BENCHED_UNITS[] = {
+#define TESSERA_RTL_UNIT_IN_raster(name) {#name, bench_##name},
+#define TESSERA_RTL_UNIT_IN_array(name)
+#define TESSERA_RTL_UNIT(name, folder, ...) TESSERA_RTL_UNIT_IN_##folder(name)
+#include "units.def"
+#undef TESSERA_RTL_UNIT
+#undef TESSERA_RTL_UNIT_IN_array
+#undef TESSERA_RTL_UNIT_IN_raster
+};
 
 // ---------------------------------------------------------------------------
 
@@ -1043,10 +947,10 @@ struct UnitResult {
 
 // R rounds of whole sweeps over the pool, the three sides in an order that
 // rotates from round to round.
-UnitResult measure(Unit& u, const Options& opt) {
-  std::fprintf(stderr, "bench_rtl: %s ...\n", u.name.c_str());
+UnitResult measure(const char* name, Unit& u, const Options& opt) {
+  std::fprintf(stderr, "bench_rtl: %s ...\n", name);
   UnitResult result;
-  result.name = u.name;
+  result.name = name;
   const uint64_t sweeps = std::max<uint64_t>(1, (opt.vectors + u.lanes - 1) / u.lanes);
   const double vectors = static_cast<double>(sweeps * u.lanes);
   for (Side& side : u.side) side.sweep();  // warm-up, not counted
@@ -1089,14 +993,11 @@ int run(const Options& opt) {
   }
   const std::string load_before = load_average();
   const auto start = std::chrono::steady_clock::now();
-  std::mt19937_64 rng(opt.seed);
-  std::vector<Unit (*)(std::mt19937_64&, const Options&, BatchIsa)> makers = {
-      reciprocal_unit, edge_unit,        attribute_unit, fragment_unit,  blend_unit,
-      texel_unit,      texture_env_unit, fog_unit_bench, lod_unit_bench, combiner_unit};
+  VectorRng rng(opt.seed);
   std::vector<UnitResult> results;
-  for (auto make : makers) {
-    Unit u = make(rng, opt, isa);
-    results.push_back(measure(u, opt));
+  for (const BenchedUnit& unit : BENCHED_UNITS) {
+    Unit u = unit.make(rng, opt, isa);
+    results.push_back(measure(unit.name, u, opt));
   }
 
   std::printf(

@@ -52,31 +52,8 @@ function(tessera_add_test)
                        ENVIRONMENT "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1;TESSERA_SOURCE_DIR=${PROJECT_SOURCE_DIR};TESSERA_BINARY_DIR=${PROJECT_BINARY_DIR}")
 endfunction()
 
-# The RTL's view of contract/common/fixed_function.def (the fixed-function state
-# codes), generated at build time by the target rtl_fixed_function_pkg
-# (rtl_models/CMakeLists.txt) with cmake/fixed_function_pkg.cmake.
-set(TESSERA_FIXED_FUNCTION_PKG ${PROJECT_BINARY_DIR}/rtl_models/fixed_function_pkg.sv)
-
-# tessera_add_rtl_unit(TARGET lib TOP module SOURCES file.sv ... ADAPTER adapter.cpp ...
-#                      [PACKAGES pkg.sv ... PACKAGE_TARGETS target ...])
-# Each Verilog reference unit becomes its own static library, reached only
-# through the thin C++ adapter listed in ADAPTER. Every unit reads the
-# generated fixed_function_pkg first, then any other generated PACKAGES
-# (made by PACKAGE_TARGETS).
-function(tessera_add_rtl_unit)
-  cmake_parse_arguments(U "" "TARGET;TOP" "SOURCES;ADAPTER;LIBS;PACKAGES;PACKAGE_TARGETS" ${ARGN})
-  add_library(${U_TARGET} STATIC ${U_ADAPTER})
-  add_dependencies(${U_TARGET} rtl_fixed_function_pkg ${U_PACKAGE_TARGETS})
-  verilate(${U_TARGET}
-    PREFIX V${U_TOP}
-    TOP_MODULE ${U_TOP}
-    SOURCES ${TESSERA_FIXED_FUNCTION_PKG} ${U_PACKAGES} ${U_SOURCES} ${PROJECT_SOURCE_DIR}/rtl_models/lint_waivers.vlt
-    VERILATOR_ARGS --cc --no-timing -Wall -O3)
-  target_include_directories(${U_TARGET} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
-  target_link_libraries(${U_TARGET} PUBLIC ${U_LIBS})
-  # Verilator's generated code is not ours to warn about.
-  target_compile_options(${U_TARGET} PRIVATE -w)
-endfunction()
+# The Verilog reference units: their table, generated packages and libraries.
+include(RtlUnits)
 
 # tessera_backends(IDS_VAR NAMES_VAR)
 # The renderer back ends, in the order of sw_driver/renderers/backends.def,

@@ -3,18 +3,19 @@
 # conditions of ap_cond.def and the neighbour directions of the Direction enum
 # in ap_isa.h, each as an enum type whose values are the codes the C++
 # decoder uses, so that no Verilog unit holds an encoding of its own. Run at
-# build time (target rtl_ap_isa_pkg, rtl_models/array/CMakeLists.txt) and by
-# scripts/synth_report.sh:
+# build time (tessera_add_sv_package in cmake/RtlUnits.cmake, target
+# rtl_ap_isa_pkg) and by scripts/synth_report.sh:
 #
-#   cmake -DISA_DIR=tlm/array/isa -DOUT=ap_isa_pkg.sv -P cmake/ap_isa_pkg.cmake
+#   cmake -DROOT=<source tree> -DOUT=ap_isa_pkg.sv -P cmake/ap_isa_pkg.cmake
 #
 # A value is Op<Mnemonic> (OpAdd, OpMulm), Cond<Name> (CondHi) or
 # Direction<Name> (DirectionLeft). A line that starts with TESSERA_AP_OP or
 # TESSERA_AP_COND and does not parse stops the script, so a malformed entry
 # cannot be skipped.
-if(NOT ISA_DIR OR NOT OUT)
-  message(FATAL_ERROR "usage: cmake -DISA_DIR=<tlm/array/isa> -DOUT=<ap_isa_pkg.sv> -P ap_isa_pkg.cmake")
+if(NOT ROOT OR NOT OUT)
+  message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -DOUT=<ap_isa_pkg.sv> -P ap_isa_pkg.cmake")
 endif()
+set(ISA_DIR "${ROOT}/tlm/array/isa")
 
 # The instruction word's field widths (ap_isa.h): a 6-bit opcode, a 3-bit
 # condition, a 2-bit direction.

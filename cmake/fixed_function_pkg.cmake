@@ -1,20 +1,21 @@
 # Writes the SystemVerilog package fixed_function_pkg, the RTL's view of
 # contract/common/fixed_function.def: per table a localparam with the width of its
 # field and an enum type whose values are the table's hardware codes, so that
-# no Verilog unit holds a number of its own. Run at build time (the
-# rtl_fixed_function_pkg target; every Verilated unit reads the result) and by
-# scripts/synth_report.sh:
+# no Verilog unit holds a number of its own. Run at build time
+# (tessera_add_sv_package in cmake/RtlUnits.cmake, target
+# rtl_fixed_function_pkg) and by scripts/synth_report.sh:
 #
-#   cmake -DDEF=contract/common/fixed_function.def -DOUT=fixed_function_pkg.sv -P cmake/fixed_function_pkg.cmake
+#   cmake -DROOT=<source tree> -DOUT=fixed_function_pkg.sv -P cmake/fixed_function_pkg.cmake
 #
 # A table opens with TESSERA_FIXED_FUNCTION(Type, sv_name, bits, "unknown")
 # and its entries are the lines of the macro TESSERA_<SV_NAME>(name, code,
 # gl_enum, ..., "description"). The enum is <sv_name>_e and a value is
 # <Type><Name> (and_reverse -> LogicOpAndReverse). Any other line that starts
 # with TESSERA_ stops the script, so a malformed entry cannot be skipped.
-if(NOT DEF OR NOT OUT)
-  message(FATAL_ERROR "usage: cmake -DDEF=<fixed_function.def> -DOUT=<fixed_function_pkg.sv> -P fixed_function_pkg.cmake")
+if(NOT ROOT OR NOT OUT)
+  message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -DOUT=<fixed_function_pkg.sv> -P fixed_function_pkg.cmake")
 endif()
+set(DEF "${ROOT}/contract/common/fixed_function.def")
 
 # and_reverse -> AndReverse; a trailing underscore (and_) is dropped.
 function(upper_camel name out)

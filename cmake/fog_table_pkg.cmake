@@ -2,15 +2,17 @@
 # contract/common/fog_exp2_table.def (the fog unit's 2^-x table, the one copy): a
 # function fog_exp2_entry(index) whose case items are the table's entries, so
 # that rtl_models/raster/fog_unit.sv holds no number of its own. Run at build
-# time (target rtl_fog_table_pkg) and by scripts/synth_report.sh:
+# time (tessera_add_sv_package in cmake/RtlUnits.cmake, target
+# rtl_fog_table_pkg) and by scripts/synth_report.sh:
 #
-#   cmake -DDEF=contract/common/fog_exp2_table.def -DOUT=fog_table_pkg.sv -P cmake/fog_table_pkg.cmake
+#   cmake -DROOT=<source tree> -DOUT=fog_table_pkg.sv -P cmake/fog_table_pkg.cmake
 #
 # Entries are lines TESSERA_FOG_EXP2(index, value), index 0..255 in order,
 # value 0..65535; any other line that starts with TESSERA_ stops the script.
-if(NOT DEF OR NOT OUT)
-  message(FATAL_ERROR "usage: cmake -DDEF=<fog_exp2_table.def> -DOUT=<fog_table_pkg.sv> -P fog_table_pkg.cmake")
+if(NOT ROOT OR NOT OUT)
+  message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -DOUT=<fog_table_pkg.sv> -P fog_table_pkg.cmake")
 endif()
+set(DEF "${ROOT}/contract/common/fog_exp2_table.def")
 
 file(STRINGS "${DEF}" lines)
 set(items "")

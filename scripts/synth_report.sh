@@ -11,31 +11,10 @@
 # real library's); it is off by default because ABC can take many minutes on
 # the units with wide multipliers.
 #
-#   scripts/synth_report.sh                     # every unit in UNITS
-#   scripts/synth_report.sh recip_unit          # only the named units
-#   scripts/synth_report.sh --cmos4 recip_unit  # also the cmos4 count
+#   scripts/synth_report.sh                     # every unit of rtl_models/units.def
+#   scripts/synth_report.sh reciprocal          # only the named units
+#   scripts/synth_report.sh --cmos4 reciprocal  # also the cmos4 count
 set -euo pipefail
-
-# top module | sources under rtl_models/ (space separated) | paper's cell count or -
-# Every unit also reads fixed_function_pkg.sv, ap_isa_pkg.sv and
-# fog_table_pkg.sv, which this script generates from
-# contract/common/fixed_function.def, tlm/array/isa/ and
-# contract/common/fog_exp2_table.def with cmake/fixed_function_pkg.cmake,
-# cmake/ap_isa_pkg.cmake and cmake/fog_table_pkg.cmake, as the build does for
-# Verilator.
-UNITS=(
-  "recip_unit|raster/recip_unit.sv|1615"
-  "edge_function|raster/edge_function.sv|-"
-  "attr_interp|raster/attr_interp.sv|-"
-  "fragment_tests|raster/fragment_tests.sv|-"
-  "blend_logic_op|raster/blend_logic_op.sv|-"
-  "texel_address|raster/texel_address.sv|-"
-  "texture_env|raster/texture_env.sv|-"
-  "fog_unit|raster/fog_unit.sv|-"
-  "lod_unit|raster/lod_unit.sv|-"
-  "texture_combiner|raster/texture_combiner.sv|-"
-  "cu_datapath|array/cu_datapath.sv|-"
-)
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 RTL_DIR="$ROOT/rtl_models"
@@ -55,41 +34,50 @@ fi
 LOG_DIR="$(mktemp -d)"
 trap 'rm -rf "$LOG_DIR"' EXIT
 
-PKG="$LOG_DIR/fixed_function_pkg.sv"
-if ! cmake -DDEF="$ROOT/contract/common/fixed_function.def" -DOUT="$PKG" -P "$ROOT/cmake/fixed_function_pkg.cmake"; then
-  echo "synth_report: cannot generate fixed_function_pkg.sv" >&2
-  exit 1
-fi
-AP_PKG="$LOG_DIR/ap_isa_pkg.sv"
-if ! cmake -DISA_DIR="$ROOT/tlm/array/isa" -DOUT="$AP_PKG" -P "$ROOT/cmake/ap_isa_pkg.cmake"; then
-  echo "synth_report: cannot generate ap_isa_pkg.sv" >&2
-  exit 1
-fi
+# The units, one line each of rtl_models/units.def, the one table of them:
+# name, folder, the generated packages it reads, the paper's cell count.
+UNITS=()
+while IFS= read -r line; do
+  if [[ ! "$line" =~ ^TESSERA_RTL_UNIT\(([a-z][a-z0-9_]*),\ ([a-z]+),\ \"[^\"]+\",\ [a-z_]+,\ ([a-z_ ]+),\ ([0-9]+),\ \".*\"\)$ ]]; then
+    echo "synth_report: rtl_models/units.def: cannot read '$line'" >&2
+    exit 1
+  fi
+  UNITS+=("${BASH_REMATCH[1]}|${BASH_REMATCH[2]}|${BASH_REMATCH[3]}|${BASH_REMATCH[4]}")
+done < <(grep '^TESSERA_RTL_UNIT(' "$RTL_DIR/units.def")
 
-FOG_PKG="$LOG_DIR/fog_table_pkg.sv"
-if ! cmake -DDEF="$ROOT/contract/common/fog_exp2_table.def" -DOUT="$FOG_PKG" -P "$ROOT/cmake/fog_table_pkg.cmake"; then
-  echo "synth_report: cannot generate fog_table_pkg.sv" >&2
-  exit 1
-fi
+# Each package a unit reads, written by cmake/<package>.cmake from the
+# tables the C++ model uses, as the build does for Verilator
+# (tessera_add_sv_package, cmake/RtlUnits.cmake).
+package_file() {
+  local package="$1" file="$LOG_DIR/$1.sv"
+  if [[ ! -f "$file" ]] && ! cmake -DROOT="$ROOT" -DOUT="$file" -P "$ROOT/cmake/$package.cmake" >&2; then
+    echo "synth_report: cannot generate $package.sv" >&2
+    exit 1
+  fi
+  echo "$file"
+}
 
 status=0
-printf '%-20s %8s %8s %6s  %s\n' "unit" "cells" "cmos4" "flops" "paper (Table IV)"
+printf '%-24s %8s %8s %6s  %s\n' "unit" "cells" "cmos4" "flops" "paper (Table IV)"
 cmos4_cmds=""
 if [[ $CMOS4 -eq 1 ]]; then
   cmos4_cmds="; abc -g cmos4; stat"
 fi
 for entry in "${UNITS[@]}"; do
-  IFS='|' read -r top sources paper <<<"$entry"
+  IFS='|' read -r top folder packages paper <<<"$entry"
   if [[ $# -gt 0 && ! " $* " =~ " $top " ]]; then
     continue
   fi
-  read_cmds="read_verilog -sv $PKG; read_verilog -sv $AP_PKG; read_verilog -sv $FOG_PKG; "
-  for src in $sources; do
-    read_cmds+="read_verilog -sv $RTL_DIR/$src; "
+  read_cmds=""
+  for package in $packages; do
+    if [[ "$package" != none ]]; then
+      read_cmds+="read_verilog -sv $(package_file "$package"); "
+    fi
   done
+  read_cmds+="read_verilog -sv $RTL_DIR/$folder/$top.sv; "
   log="$LOG_DIR/$top.log"
   if ! "$YOSYS" -q -l "$log" -p "${read_cmds}synth -top $top; stat${cmos4_cmds}" >/dev/null 2>&1; then
-    printf '%-20s %8s %8s %6s  %s\n' "$top" "FAILED" "-" "-" "see: $YOSYS -p '${read_cmds}synth -top $top'"
+    printf '%-24s %8s %8s %6s  %s\n' "$top" "FAILED" "-" "-" "see: $YOSYS -p '${read_cmds}synth -top $top'"
     status=1
     continue
   fi
@@ -103,11 +91,11 @@ for entry in "${UNITS[@]}"; do
     cmos_cells="-"
   fi
   flops=$(awk '/^ +Number of cells:/ {n = 0} /^ +\$_(S?DFF|DLATCH)/ {n += $2} END {print n + 0}' "$log")
-  if [[ "$paper" == "-" ]]; then
+  if [[ "$paper" == 0 ]]; then
     paper_text="-"
   else
     paper_text="$paper standard cells"
   fi
-  printf '%-20s %8s %8s %6s  %s\n' "$top" "$cells" "$cmos_cells" "$flops" "$paper_text"
+  printf '%-24s %8s %8s %6s  %s\n' "$top" "$cells" "$cmos_cells" "$flops" "$paper_text"
 done
 exit $status

@@ -28,7 +28,7 @@ import sys
 from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parent.parent
-CHECKED_FOLDERS = ("tlm", "sw_driver", "tools", "bench", "tests", "rtl_models", "fuzz")
+CHECKED_FOLDERS = ("tlm", "sw_driver", "tools", "bench", "tests", "testbench", "rtl_models", "fuzz")
 BASE_FILE = SOURCE / "tests" / "lint" / "tidy_clean_at"
 
 

@@ -15,6 +15,7 @@ each comes from:
     memory-map        contract/soc/memory_map.def
     irq-map           contract/soc/irq_map.def
     registers         the register tables, contract/*/*_regs.def
+    rtl-units         rtl_models/units.def (the Verilog reference units)
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
@@ -72,6 +73,7 @@ FILES = [
     "contract/README.md",
     "tlm/soc/README.md",
     "tools/soc_sim/README.md",
+    "rtl_models/README.md",
 ]
 
 
@@ -168,6 +170,22 @@ def registers_tables(_args):
             out.append(f"| `{name}` | {where} | `{reset}` | {access} | {held} |")
         out.append("")
     return "\n".join(out).strip()
+
+
+def rtl_units_table(_args):
+    lines = [
+        "| unit | RTL (top module) | C++ twin | cosim test | packages | what it computes |",
+        "| --- | --- | --- | --- | --- | --- |",
+    ]
+    for name, folder, twin, _library, packages, _paper, description in read_def(
+        "rtl_models/units.def", "TESSERA_RTL_UNIT"
+    ):
+        read = ", ".join(f"`{package}`" for package in packages.split() if package != "none") or "-"
+        lines.append(
+            f"| `{name}` | `rtl_models/{folder}/{name}.sv` | `tlm/{twin.strip(chr(34))}` | "
+            f"`test_{folder}_{name}_cosim` | {read} | {description} |"
+        )
+    return "\n".join(lines)
 
 
 def run(command, cwd=None):
@@ -267,6 +285,7 @@ GENERATORS = {
     "memory-map": memory_map_table,
     "irq-map": irq_map_table,
     "registers": registers_tables,
+    "rtl-units": rtl_units_table,
     "apps": apps_table,
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,

@@ -13,7 +13,7 @@ if(GIT AND EXISTS ${SOURCE_DIR}/.git)
   string(REPLACE "\n" ";" files "${listed}")
 else()
   set(files)
-  foreach(folder tlm sw_driver tools bench tests rtl_models examples fuzz)
+  foreach(folder tlm sw_driver tools bench tests testbench rtl_models examples fuzz)
     file(GLOB_RECURSE found RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/${folder}/*.c ${SOURCE_DIR}/${folder}/*.cpp
          ${SOURCE_DIR}/${folder}/*.h)
     list(APPEND files ${found})

@@ -16,7 +16,7 @@
 #include "array/core/cu_array.h"
 #include "array/datapath/cu_alu.h"
 #include "array/isa/ap_isa.h"
-#include "random_instruction.h"
+#include "cosim/random_instruction.h"
 
 namespace tessera::ap {
 namespace {

@@ -5,9 +5,9 @@
 // denominator. Source: D. Crisu, S. Cotofana, S. Vassiliadis, P. Liuha,
 // "Design Tradeoffs for an Embedded OpenGL-Compliant Hardware Rasterizer",
 // Section IV, Methods 1-3 and Tables I-III. The Verilog reference of Method 3
-// is rtl_models/raster/recip_unit.sv; the two agree bit for bit on every
+// is rtl_models/raster/reciprocal.sv; the two agree bit for bit on every
 // 16-bit operand, the invalid ones included
-// (tests/raster/test_raster_recip_cosim.cpp).
+// (tests/rtl_models/raster/test_raster_reciprocal_cosim.cpp).
 //
 // Operand: X in unsigned 10.4 fixed point, raw 1..16383 (X = raw / 16).
 //

@@ -6,7 +6,6 @@
 // random vectors as spans of 1 to 64 pixels along a row.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <array>
 #include <random>
 #include <vector>
@@ -77,31 +76,13 @@ TEST(EdgeFunctionCosim, CornerAndRandomVectorsMatchBitForBit) {
               }
   const uint64_t corner_vectors = c.vectors;
 
-  std::mt19937_64 rng(0x7e55e7a);
+  // Spans of 1 to 64 pixels at random (raster_vectors.h: half of them of a
+  // short edge near their first pixel).
+  VectorRng rng(0x7e55e7a);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t bits = rng();
-    const uint64_t more = rng();
-    const uint64_t span = rng();
-    const Edge e{q9_4::from_raw(static_cast<uint32_t>(bits)), q9_4::from_raw(static_cast<uint32_t>(bits >> 13)),
-                 q9_4::from_raw(static_cast<uint32_t>(bits >> 26)), q9_4::from_raw(static_cast<uint32_t>(bits >> 39))};
-    const unsigned px = static_cast<unsigned>(more) & 0x1ff;
-    const unsigned py = static_cast<unsigned>(more >> 9) & 0x1ff;
-    // Within the RTL's 9-bit pixel port: the span ends at pixel 511 at most.
-    const unsigned pixels = std::min(random_batch_length(span), 512 - px);
-    // Half of the spans use a short edge near their first pixel, so the
-    // distance and coverage leave their clamps; the reciprocal then is the
-    // exact one of |dx| + |dy|, as the reciprocal unit would roughly deliver.
-    if (more >> 63) {
-      const uint32_t cx = px * 16 + static_cast<uint32_t>((more >> 18) & 0x3f) - 32;
-      const uint32_t cy = py * 16 + static_cast<uint32_t>((more >> 24) & 0x3f) - 32;
-      const Edge near{q9_4::from_raw(cx), q9_4::from_raw(cy), q9_4::from_raw(cx + ((more >> 30) & 0x7f)),
-                      q9_4::from_raw(cy + ((more >> 37) & 0x7f) - 64)};
-      const uint32_t l1 = edge_l1_length(near).raw;
-      const uint32_t recip = l1 == 0 ? 0 : static_cast<uint32_t>((uint64_t{1} << 20) / l1);
-      c.check_span(near, px, py, pixels, q5_16::from_raw(recip));
-    } else {
-      c.check_span(e, px, py, pixels, q5_16::from_raw(static_cast<uint32_t>(more >> 42)));
-    }
+    const unsigned pixels = random_batch_length(rng());
+    const EdgeSpanVector span = random_edge_span(rng, pixels);
+    c.check_span(span.edge, span.px, span.py, pixels, span.recip);
   }
   report_cosim("edge_function", c, corner_vectors);
 }

@@ -16,14 +16,6 @@
 namespace tessera::raster {
 namespace {
 
-constexpr std::array<CompareFunc, 8> ALL_FUNCS{CompareFunc::never,  CompareFunc::less,    CompareFunc::equal,
-                                               CompareFunc::lequal, CompareFunc::greater, CompareFunc::notequal,
-                                               CompareFunc::gequal, CompareFunc::always};
-// Every operation, plus a code without an entry (kept on both sides).
-constexpr std::array<StencilOp, 7> ALL_OPS{StencilOp::keep,          StencilOp::zero, StencilOp::replace,
-                                           StencilOp::incr,          StencilOp::decr, StencilOp::invert,
-                                           static_cast<StencilOp>(7)};
-
 // One state's fragments, checked together: the batch form takes them as
 // one batch.
 struct Checker : CosimTally {
@@ -70,17 +62,16 @@ struct Checker : CosimTally {
 
 TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
-  std::mt19937_64 rng(0xf7a6);
 
   // Every compare function on every test against below/equal/above at the
   // format extremes, and every stencil operation in every slot.
   const std::array<uint32_t, 3> alpha_refs{0, 128, 255};
   const std::array<uint32_t, 5> depths{0, 1, 0x7fffff, 0xfffffe, 0xffffff};
   const std::array<uint32_t, 4> stencils{0, 1, 0x80, 0xff};
-  for (CompareFunc af : ALL_FUNCS)
-    for (CompareFunc sf : ALL_FUNCS)
-      for (CompareFunc df : ALL_FUNCS)
-        for (StencilOp op : ALL_OPS)
+  for (CompareFunc af : ALL_COMPARE_FUNCS)
+    for (CompareFunc sf : ALL_COMPARE_FUNCS)
+      for (CompareFunc df : ALL_COMPARE_FUNCS)
+        for (StencilOp op : ALL_STENCIL_OPS)
           for (uint32_t enables = 0; enables < 8; ++enables)
             for (uint32_t k = 0; k < 6; ++k) {
               FragmentTestState s;
@@ -95,8 +86,8 @@ TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
               s.stencil_value_mask = k < 3 ? 0xff : 0x0f;
               s.stencil_write_mask = k & 1 ? 0xff : 0x3c;
               s.sfail = op;
-              s.dpfail = ALL_OPS[(static_cast<size_t>(k) + 1) % ALL_OPS.size()];
-              s.dppass = ALL_OPS[(static_cast<size_t>(k) + 2) % ALL_OPS.size()];
+              s.dpfail = ALL_STENCIL_OPS[(static_cast<size_t>(k) + 1) % ALL_STENCIL_OPS.size()];
+              s.dppass = ALL_STENCIL_OPS[(static_cast<size_t>(k) + 2) % ALL_STENCIL_OPS.size()];
               s.depth_write_mask = k != 5;
               std::vector<FragmentTestInput> fragments;
               for (uint32_t v = 0; v < 5; ++v)
@@ -106,37 +97,13 @@ TEST(FragmentTestsCosim, CornerAndRandomVectorsMatchBitForBit) {
             }
   const uint64_t corner_vectors = c.vectors;
 
-  // States at random, each with a batch of 1 to 64 fragments at random.
+  // States at random (raster_vectors.h), each with a batch of 1 to 64
+  // fragments at random.
+  VectorRng rng(0xf7a6);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t a = rng();
-    const uint64_t b = rng();
-    FragmentTestState s;
-    s.alpha_enable = a & 1;
-    s.stencil_enable = (a >> 1) & 1;
-    s.depth_enable = (a >> 2) & 1;
-    s.depth_write_mask = (a >> 3) & 1;
-    s.alpha_func = ALL_FUNCS[(a >> 4) & 7];
-    s.stencil_func = ALL_FUNCS[(a >> 7) & 7];
-    s.depth_func = ALL_FUNCS[(a >> 10) & 7];
-    s.sfail = ALL_OPS[((a >> 13) & 0xff) % ALL_OPS.size()];
-    s.dpfail = ALL_OPS[((a >> 21) & 0xff) % ALL_OPS.size()];
-    s.dppass = ALL_OPS[((a >> 29) & 0xff) % ALL_OPS.size()];
-    s.alpha_ref = unorm8::from_raw(static_cast<uint32_t>(a >> 37));
-    s.stencil_ref = stencil8::from_raw(static_cast<uint32_t>(a >> 45));
-    s.stencil_value_mask = static_cast<uint8_t>(a >> 53);
-    s.stencil_write_mask = static_cast<uint8_t>(b);
-    std::vector<FragmentTestInput> fragments(random_batch_length(b >> 8));
-    for (FragmentTestInput& in : fragments) {
-      const uint64_t f = rng();
-      in.alpha = unorm8::from_raw(static_cast<uint32_t>(f >> 8));
-      in.stored_stencil = stencil8::from_raw(static_cast<uint32_t>(f >> 16));
-      in.depth = unorm24::from_raw(static_cast<uint32_t>(f >> 24));
-      // A quarter of the vectors compare equal values, which random ones never would.
-      in.stored_depth = ((f >> 62) == 0) ? in.depth : unorm24::from_raw(static_cast<uint32_t>(rng()));
-      if ((f >> 61) & 1) {
-        in.alpha = s.alpha_ref;
-      }
-    }
+    const FragmentTestState s = random_fragment_test_state(rng);
+    std::vector<FragmentTestInput> fragments(random_batch_length(rng()));
+    for (FragmentTestInput& in : fragments) in = random_fragment(rng, s);
     c.check(s, fragments);
   }
   report_cosim("fragment_tests", c, corner_vectors);

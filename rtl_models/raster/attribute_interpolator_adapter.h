@@ -1,4 +1,4 @@
-// Thin adapter over the Verilated attr_interp.sv, speaking the types of
+// Thin adapter over the Verilated attribute_interpolator.sv, speaking the types of
 // tlm/raster/datapath/attribute_interpolator.h.
 #pragma once
 
@@ -7,23 +7,23 @@
 #include "raster/datapath/attribute_interpolator.h"
 
 class VerilatedContext;
-class Vattr_interp;
+class Vattribute_interpolator;
 
 namespace tessera::raster {
 
-class AttrInterpRtl {
+class AttributeInterpolatorRtl {
  public:
-  AttrInterpRtl();
-  ~AttrInterpRtl();
-  AttrInterpRtl(const AttrInterpRtl&) = delete;
-  AttrInterpRtl& operator=(const AttrInterpRtl&) = delete;
+  AttributeInterpolatorRtl();
+  ~AttributeInterpolatorRtl();
+  AttributeInterpolatorRtl(const AttributeInterpolatorRtl&) = delete;
+  AttributeInterpolatorRtl& operator=(const AttributeInterpolatorRtl&) = delete;
 
   // dx and dy in -512..511 (10-bit two's complement ports).
   AttributeEvaluation evaluate(const AttributePlane& plane, int dx, int dy);
 
  private:
   std::unique_ptr<VerilatedContext> m_context;
-  std::unique_ptr<Vattr_interp> m_model;
+  std::unique_ptr<Vattribute_interpolator> m_model;
 };
 
 }  // namespace tessera::raster

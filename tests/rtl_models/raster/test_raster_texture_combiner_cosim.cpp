@@ -28,6 +28,7 @@ struct Lanes {
     previous.push_back(f);
     texel.push_back(t);
   }
+  void add(const CombinerLane& lane) { add(lane.primary, lane.previous, lane.texel); }
 };
 
 // One unit state's fragments, checked together: the batch form takes them
@@ -36,12 +37,7 @@ struct Checker : CosimTally {
   TextureCombinerRtl rtl;
 
   void check(uint32_t env, uint32_t base, Rgba8 env_color, uint32_t rgb_word, uint32_t alpha_word, const Lanes& in) {
-    TextureUnitEnv unit;
-    unit.env = from_code<TexEnv>(env);
-    unit.base_format = from_code<TexBaseFormat>(base);
-    unit.env_color = env_color;
-    unit.rgb = CombineStage::decode(rgb_word);
-    unit.alpha = CombineStage::decode(alpha_word);
+    const TextureUnitEnv unit = CombinerState{env, base, env_color, rgb_word, alpha_word}.unit();
     const size_t n = in.primary.size();
     std::vector<std::vector<uint32_t>> out;
     for (BatchIsa isa : batch_isas()) {
@@ -88,19 +84,14 @@ TEST(TextureCombinerCosim, CornerAndRandomVectorsMatchBitForBit) {
         }
   const uint64_t corner_vectors = c.vectors;
 
-  // Unit states at random, each with a batch of 1 to 64 random fragments.
-  std::mt19937_64 rng(0xc0b1);
+  // Unit states at random (raster_vectors.h: half of them COMBINE), each
+  // with a batch of 1 to 64 random fragments.
+  VectorRng rng(0xc0b1);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t a = rng(), d = rng();
-    // Half the states take COMBINE, the rest any code.
-    const uint32_t env = (d & 1) != 0 ? 5u : static_cast<uint32_t>(d >> 1) & 7;
+    const CombinerState s = random_combiner_state(rng);
     Lanes lanes;
-    for (unsigned i = random_batch_length(a >> 40); i > 0; --i) {
-      const uint64_t b = rng(), e = rng();
-      lanes.add(static_cast<uint32_t>(b), static_cast<uint32_t>(b >> 32), static_cast<uint32_t>(e));
-    }
-    c.check(env, static_cast<uint32_t>(d >> 4) & 7, Rgba8::unpack(static_cast<uint32_t>(a)),
-            static_cast<uint32_t>(d >> 8), static_cast<uint32_t>(d >> 32) ^ static_cast<uint32_t>(a >> 16), lanes);
+    for (unsigned i = random_batch_length(rng()); i > 0; --i) lanes.add(random_combiner_lane(rng));
+    c.check(s.env, s.base_format, s.env_color, s.rgb_word, s.alpha_word, lanes);
   }
   report_cosim("texture_combiner", c, corner_vectors);
 }

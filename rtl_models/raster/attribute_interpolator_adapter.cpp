@@ -1,8 +1,8 @@
-#include "attr_interp_adapter.h"
+#include "attribute_interpolator_adapter.h"
 
 #include <verilated.h>
 
-#include "Vattr_interp.h"
+#include "Vattribute_interpolator.h"
 
 namespace tessera::raster {
 
@@ -12,15 +12,15 @@ constexpr uint64_t WORD40_MASK = (uint64_t{1} << 40) - 1;
 
 }  // namespace
 
-AttrInterpRtl::AttrInterpRtl()
+AttributeInterpolatorRtl::AttributeInterpolatorRtl()
     : m_context(std::make_unique<VerilatedContext>()),
-      m_model(std::make_unique<Vattr_interp>(m_context.get(), "attr_interp")) {}
+      m_model(std::make_unique<Vattribute_interpolator>(m_context.get(), "attribute_interpolator")) {}
 
-AttrInterpRtl::~AttrInterpRtl() {
+AttributeInterpolatorRtl::~AttributeInterpolatorRtl() {
   m_model->final();
 }
 
-AttributeEvaluation AttrInterpRtl::evaluate(const AttributePlane& plane, int dx, int dy) {
+AttributeEvaluation AttributeInterpolatorRtl::evaluate(const AttributePlane& plane, int dx, int dy) {
   m_model->kind_i = static_cast<uint8_t>(plane.kind) & 0x3;
   m_model->start_i = static_cast<uint64_t>(plane.start) & WORD40_MASK;
   m_model->grad_x_i = static_cast<uint64_t>(plane.grad_x) & WORD40_MASK;

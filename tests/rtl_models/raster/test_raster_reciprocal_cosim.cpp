@@ -1,7 +1,7 @@
 // Reciprocal unit co-simulation: every 16-bit operand (the 16,383 legal
 // ones, 0 and those above 2^14 - 1) through the functional core (Method 3,
 // its scalar form and its batch form in every variant this machine runs)
-// and the Verilated recip_unit.sv, every output bit compared.
+// and the Verilated reciprocal.sv, every output bit compared.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 
 #include "cosim_support.h"
 #include "raster/datapath/reciprocal.h"
-#include "recip_unit_adapter.h"
+#include "reciprocal_adapter.h"
 
 namespace tessera::raster {
 namespace {
@@ -32,8 +32,8 @@ struct RecipBatchBuffers {
   }
 };
 
-TEST(RecipUnitCosim, EveryOperandMatchesTheFunctionalCoreBitForBit) {
-  RecipUnitRtl rtl;
+TEST(ReciprocalCosim, EveryOperandMatchesTheFunctionalCoreBitForBit) {
+  ReciprocalRtl rtl;
   CosimTally legal;
   CosimTally invalid;
   // Every value of the 16-bit operand: the 16,383 legal ones, and 0 and the
@@ -75,7 +75,7 @@ TEST(RecipUnitCosim, EveryOperandMatchesTheFunctionalCoreBitForBit) {
     }
   }
   std::printf(
-      "recip_unit cosim: %llu legal operands, %llu mismatches; %llu invalid operands (0 and above %u), %llu "
+      "reciprocal cosim: %llu legal operands, %llu mismatches; %llu invalid operands (0 and above %u), %llu "
       "mismatches; each through the scalar form and %zu batch variant(s)\n",
       static_cast<unsigned long long>(legal.vectors), static_cast<unsigned long long>(legal.mismatches),
       static_cast<unsigned long long>(invalid.vectors), unsigned{RECIP_OPERAND_MAX},
@@ -86,9 +86,9 @@ TEST(RecipUnitCosim, EveryOperandMatchesTheFunctionalCoreBitForBit) {
   EXPECT_EQ(invalid.mismatches, 0u);
 }
 
-TEST(RecipUnitCosim, ResultAppearsOneCycleAfterValidAndHoldsWhileIdle) {
-  RecipUnitRtl rtl;
-  EXPECT_EQ(RecipUnitRtl::LATENCY_CYCLES, 1u);
+TEST(ReciprocalCosim, ResultAppearsOneCycleAfterValidAndHoldsWhileIdle) {
+  ReciprocalRtl rtl;
+  EXPECT_EQ(ReciprocalRtl::LATENCY_CYCLES, 1u);
   EXPECT_FALSE(rtl.clock(false, 3).has_value());
   const auto first = rtl.clock(true, 3);
   ASSERT_TRUE(first.has_value());
@@ -107,10 +107,10 @@ TEST(RecipUnitCosim, ResultAppearsOneCycleAfterValidAndHoldsWhileIdle) {
   EXPECT_FALSE(rtl.clock(false, 0).has_value());
 }
 
-TEST(RecipUnitCosim, OperandsAboveFourteenBitsAreFlaggedByTheRtl) {
+TEST(ReciprocalCosim, OperandsAboveFourteenBitsAreFlaggedByTheRtl) {
   // Not cut to the low 14 bits: 16385 would otherwise look like 1 and give
   // 16.0.
-  RecipUnitRtl rtl;
+  ReciprocalRtl rtl;
   for (const uint16_t x : {uint16_t{16384}, uint16_t{16385}, uint16_t{0x8001}, uint16_t{0xFFFF}}) {
     const ReciprocalResult result = rtl.evaluate(x);
     EXPECT_TRUE(result.invalid_operand) << x;

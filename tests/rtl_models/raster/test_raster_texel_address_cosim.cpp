@@ -106,28 +106,16 @@ TEST(TexelAddressCosim, CornerAndRandomVectorsMatchBitForBit) {
             }
   const uint64_t corner_vectors = c.vectors;
 
-  // Textures at random, each with a batch of 1 to 64 coordinate pairs.
-  std::mt19937_64 rng(0x7e8e1);
+  // Textures at random (raster_vectors.h), each with a batch of 1 to 64
+  // coordinate pairs.
+  VectorRng rng(0x7e8e1);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t a = rng();
-    TextureState st;
-    st.base = static_cast<uint32_t>(a >> 32);
-    st.log2_width = static_cast<uint8_t>(a % 10);
-    st.log2_height = static_cast<uint8_t>((a >> 4) % 10);
-    st.wrap_s = wraps[(a >> 8) & 1];
-    st.wrap_t = wraps[(a >> 9) & 1];
-    st.filter = filters[(a >> 10) & 1];
-    std::vector<int32_t> s(random_batch_length(a >> 14)), t(s.size());
+    const TextureState st = random_texture_state(rng);
+    std::vector<int32_t> s(random_batch_length(rng())), t(s.size());
     for (size_t i = 0; i < s.size(); ++i) {
-      const uint64_t b = rng();
-      // Mostly coordinates within a few repetitions, where wrap and clamp
-      // decisions happen; some across the whole range.
-      const bool small = ((b >> 11) & 7) != 0;
-      const auto pick = [small](uint64_t bits) {
-        return static_cast<int32_t>(small ? sign_extend(bits, 20) : sign_extend(bits, 32));
-      };
-      s[i] = pick(b);
-      t[i] = pick(b >> 32);
+      const TexCoords pair = random_tex_coords(rng);
+      s[i] = pair.s;
+      t[i] = pair.t;
     }
     c.check(st, s, t);
   }

@@ -19,18 +19,17 @@
 namespace tessera::raster {
 namespace {
 
-// Filters (2 x 2), mipmap codes (4) and last levels (16): 256 states.
-constexpr unsigned STATES = 256;
-
 // One state's scale factors, checked together: the batch form takes them as
 // one batch.
 struct Checker : CosimTally {
   LodUnitRtl rtl;
 
+  // `state` is LodState's 8-bit code (raster_vectors.h).
   void check(const std::vector<uint32_t>& rho, unsigned state) {
-    const TexFilter min = from_code<TexFilter>(state), mag = from_code<TexFilter>(state >> 1);
-    const TexMipmap mipmap = from_code<TexMipmap>(state >> 2);
-    const unsigned last = (state >> 4) & 15;
+    const LodState s = LodState::from_code(state);
+    const TexFilter min = s.min, mag = s.mag;
+    const TexMipmap mipmap = s.mipmap;
+    const unsigned last = s.last_level;
     const size_t n = rho.size();
     struct Outputs {
       std::vector<int32_t> lambda;
@@ -80,20 +79,17 @@ TEST(LodUnitCosim, ExhaustiveLowRhoAndRandomVectorsMatchBitForBit) {
   std::vector<uint32_t> corners{0xffffffffu, LOD_RHO_SQRT2_FLOOR, LOD_RHO_SQRT2_FLOOR + 1};
   for (unsigned b = 0; b < 32; ++b)
     for (const uint32_t rho : {(1u << b) - 1, 1u << b, (1u << b) + 1}) corners.push_back(rho);
-  for (unsigned state = 0; state < STATES; ++state) c.check(corners, state);
+  for (unsigned state = 0; state < LOD_STATES; ++state) c.check(corners, state);
   const uint64_t corner_vectors = c.vectors;
 
-  // States at random, each with a batch of 1 to 64 random scale factors,
-  // every magnitude equally often: a random rho shifted right by 0..31.
-  std::mt19937_64 rng(0x10d);
+  // States at random, each with a batch of 1 to 64 random scale factors of
+  // every magnitude (raster_vectors.h).
+  VectorRng rng(0x10d);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t s = rng();
-    std::vector<uint32_t> rho(random_batch_length(s >> 8));
-    for (uint32_t& r : rho) {
-      const uint64_t a = rng();
-      r = static_cast<uint32_t>(a) >> ((a >> 32) & 31);
-    }
-    c.check(rho, static_cast<unsigned>(s) & 0xff);
+    const auto state = static_cast<unsigned>(rng() % LOD_STATES);
+    std::vector<uint32_t> rho(random_batch_length(rng()));
+    for (uint32_t& r : rho) r = random_lod_rho(rng);
+    c.check(rho, state);
   }
   report_cosim("lod_unit", c, corner_vectors);
 }

@@ -1,4 +1,4 @@
-// Thin adapter over the Verilated recip_unit.sv (Method 3): takes the 10.4
+// Thin adapter over the Verilated reciprocal.sv (Method 3): takes the 10.4
 // operand and returns tlm/raster/datapath/reciprocal.h's ReciprocalResult, so
 // the co-simulation compares the RTL with the functional core field by field.
 // The Verilator headers stay in the .cpp; users see only the core's types.
@@ -11,20 +11,20 @@
 #include "raster/datapath/reciprocal.h"
 
 class VerilatedContext;
-class Vrecip_unit;
+class Vreciprocal;
 
 namespace tessera::raster {
 
-class RecipUnitRtl {
+class ReciprocalRtl {
  public:
   // Cycles from valid_i to valid_o (the result is registered once).
   static constexpr unsigned LATENCY_CYCLES = 1;
 
   // Builds the model and applies reset.
-  RecipUnitRtl();
-  ~RecipUnitRtl();
-  RecipUnitRtl(const RecipUnitRtl&) = delete;
-  RecipUnitRtl& operator=(const RecipUnitRtl&) = delete;
+  ReciprocalRtl();
+  ~ReciprocalRtl();
+  ReciprocalRtl(const ReciprocalRtl&) = delete;
+  ReciprocalRtl& operator=(const ReciprocalRtl&) = delete;
 
   // One operand through the unit: drive it with valid_i, clock once, read
   // the registered outputs. The port is 16 bits wide, as the core's operand:
@@ -43,7 +43,7 @@ class RecipUnitRtl {
   ReciprocalResult read_outputs() const;
 
   std::unique_ptr<VerilatedContext> m_context;
-  std::unique_ptr<Vrecip_unit> m_model;
+  std::unique_ptr<Vreciprocal> m_model;
 };
 
 }  // namespace tessera::raster

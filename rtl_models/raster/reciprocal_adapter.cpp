@@ -1,8 +1,8 @@
-#include "recip_unit_adapter.h"
+#include "reciprocal_adapter.h"
 
 #include <stdexcept>
 
-#include "Vrecip_unit.h"
+#include "Vreciprocal.h"
 #include "verilated.h"
 
 namespace tessera::raster {
@@ -19,17 +19,17 @@ int8_t exponent_from_field(unsigned field) {
 
 }  // namespace
 
-RecipUnitRtl::RecipUnitRtl()
+ReciprocalRtl::ReciprocalRtl()
     : m_context(std::make_unique<VerilatedContext>()),
-      m_model(std::make_unique<Vrecip_unit>(m_context.get(), "recip_unit")) {
+      m_model(std::make_unique<Vreciprocal>(m_context.get(), "reciprocal")) {
   reset();
 }
 
-RecipUnitRtl::~RecipUnitRtl() {
+ReciprocalRtl::~ReciprocalRtl() {
   m_model->final();
 }
 
-void RecipUnitRtl::reset() {
+void ReciprocalRtl::reset() {
   m_model->clk_i = 0;
   m_model->valid_i = 0;
   m_model->x_i = 0;
@@ -39,7 +39,7 @@ void RecipUnitRtl::reset() {
   m_model->eval();
 }
 
-std::optional<ReciprocalResult> RecipUnitRtl::clock(bool valid, uint16_t x_q10_4) {
+std::optional<ReciprocalResult> ReciprocalRtl::clock(bool valid, uint16_t x_q10_4) {
   m_model->valid_i = valid ? 1 : 0;
   m_model->x_i = x_q10_4;
   // Settle the inputs while the clock is low, so the rising edge samples
@@ -55,15 +55,15 @@ std::optional<ReciprocalResult> RecipUnitRtl::clock(bool valid, uint16_t x_q10_4
   return read_outputs();
 }
 
-ReciprocalResult RecipUnitRtl::evaluate(uint16_t x_q10_4) {
+ReciprocalResult ReciprocalRtl::evaluate(uint16_t x_q10_4) {
   const std::optional<ReciprocalResult> result = clock(true, x_q10_4);
   if (!result) {
-    throw std::logic_error("recip_unit: valid_o not set one cycle after valid_i");
+    throw std::logic_error("reciprocal: valid_o not set one cycle after valid_i");
   }
   return *result;
 }
 
-ReciprocalResult RecipUnitRtl::read_outputs() const {
+ReciprocalResult ReciprocalRtl::read_outputs() const {
   ReciprocalResult r;
   r.method = RecipMethod::method3;
   r.q5_16 = m_model->recip_o;

@@ -1,8 +1,9 @@
-// What the co-simulation tests of the datapath units share: the count of
-// vectors and mismatches, the closing report (the vector counts that ctest
-// -L cosim prints, and the two checks every unit must pass), and the batch
-// forms' variants. Every vector goes through the RTL, the unit's scalar form
-// and its batch form in every variant (batch.h) this machine runs.
+// What the co-simulation tests of the datapath units share besides their
+// random vectors (testbench/cosim/raster_vectors.h): the count of vectors and
+// mismatches, the closing report (the vector counts that ctest -L cosim
+// prints, and the two checks every unit must pass), and the batch forms'
+// variants. Every vector goes through the RTL, the unit's scalar form and its
+// batch form in every variant (batch.h) this machine runs.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cosim/raster_vectors.h"
 #include "raster/datapath/batch.h"
 
 namespace tessera::raster {

@@ -17,20 +17,6 @@
 namespace tessera::raster {
 namespace {
 
-// Every factor, plus a code without an entry (must act as ZERO on both sides).
-constexpr std::array<BlendFactor, 12> ALL_FACTORS{BlendFactor::zero,
-                                                  BlendFactor::one,
-                                                  BlendFactor::src_color,
-                                                  BlendFactor::one_minus_src_color,
-                                                  BlendFactor::src_alpha,
-                                                  BlendFactor::one_minus_src_alpha,
-                                                  BlendFactor::dst_alpha,
-                                                  BlendFactor::one_minus_dst_alpha,
-                                                  BlendFactor::dst_color,
-                                                  BlendFactor::one_minus_dst_color,
-                                                  BlendFactor::src_alpha_saturate,
-                                                  static_cast<BlendFactor>(15)};
-
 // One state's colour pairs, checked together: the batch form takes them as
 // one batch.
 struct Checker : CosimTally {
@@ -69,8 +55,8 @@ TEST(BlendLogicOpCosim, CornerAndRandomVectorsMatchBitForBit) {
       dst.push_back(dc);
     }
   unsigned states = 0;
-  for (BlendFactor sf : ALL_FACTORS)
-    for (BlendFactor df : ALL_FACTORS)
+  for (BlendFactor sf : ALL_BLEND_FACTORS)
+    for (BlendFactor df : ALL_BLEND_FACTORS)
       for (uint32_t enables = 0; enables < 4; ++enables)
         for (uint8_t mask : {uint8_t{0}, uint8_t{5}, uint8_t{15}}) {
           BlendState s;
@@ -92,24 +78,18 @@ TEST(BlendLogicOpCosim, CornerAndRandomVectorsMatchBitForBit) {
     }
   const uint64_t corner_vectors = c.vectors;
 
-  // States at random, each with a batch of 1 to 64 colour pairs at random.
-  std::mt19937_64 rng(0xb1e4d);
+  // States at random (raster_vectors.h), each with a batch of 1 to 64
+  // colour pairs at random.
+  VectorRng rng(0xb1e4d);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t a = rng();
-    BlendState s;
-    s.blend_enable = (a & 3) != 0;  // mostly blending: it has the arithmetic
-    s.logic_op_enable = ((a >> 2) & 7) == 0;
-    s.src_factor = ALL_FACTORS[((a >> 5) & 0xff) % ALL_FACTORS.size()];
-    s.dst_factor = ALL_FACTORS[((a >> 13) & 0xff) % ALL_FACTORS.size()];
-    s.op = static_cast<LogicOp>((a >> 21) & 15);
-    s.color_mask = ((a >> 25) & 3) == 0 ? static_cast<uint8_t>((a >> 27) & 15) : COLOR_MASK_ALL;
-    const unsigned n = random_batch_length(a >> 32);
+    const BlendState s = random_blend_state(rng);
+    const unsigned n = random_batch_length(rng());
     src.resize(n);
     dst.resize(n);
     for (unsigned i = 0; i < n; ++i) {
-      const uint64_t b = rng();
-      src[i] = static_cast<uint32_t>(b);
-      dst[i] = static_cast<uint32_t>(b >> 32);
+      const ColourPair pair = random_colour_pair(rng);
+      src[i] = pair.src;
+      dst[i] = pair.dst;
     }
     c.check(s, src, dst);
   }

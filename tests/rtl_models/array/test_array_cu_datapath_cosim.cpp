@@ -22,8 +22,8 @@
 #include "array/core/cu_array.h"
 #include "array/datapath/cu_alu.h"
 #include "array/isa/ap_isa.h"
+#include "cosim/random_instruction.h"
 #include "cu_datapath_adapter.h"
-#include "random_instruction.h"
 
 namespace tessera::ap {
 namespace {

@@ -10,7 +10,7 @@
 //   2 TEXCOORD  40-bit words q15.24 -> q15.16 in attr_o[31:0]
 //   3           undefined, attr_o = 0
 // Formats and the overflow bound are described in attribute_interpolator.h.
-module attr_interp (
+module attribute_interpolator (
   input  logic [1:0]  kind_i,
   input  logic [39:0] start_i,
   input  logic [39:0] grad_x_i,

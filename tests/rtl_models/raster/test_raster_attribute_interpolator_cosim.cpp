@@ -1,5 +1,5 @@
 // Co-simulation: tlm/raster/datapath/attribute_interpolator.h against the
-// Verilated rtl_models/raster/attr_interp.sv, every output bit. Every vector
+// Verilated rtl_models/raster/attribute_interpolator.sv, every output bit. Every vector
 // goes through the scalar form (evaluate_attribute) and through the batch
 // form (attribute_batch) in every variant this machine runs, with the other
 // offsets of its plane: the 36 corner offsets, or 1 to 64 random ones.
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "attr_interp_adapter.h"
+#include "attribute_interpolator_adapter.h"
 #include "cosim_support.h"
 #include "raster/datapath/attribute_interpolator.h"
 
@@ -19,7 +19,7 @@ namespace {
 // One plane's offsets, checked together: the batch form takes them as one
 // batch.
 struct Checker : CosimTally {
-  AttrInterpRtl rtl;
+  AttributeInterpolatorRtl rtl;
 
   void check(const AttributePlane& p, const std::vector<int32_t>& dx, const std::vector<int32_t>& dy) {
     const size_t n = dx.size();
@@ -54,7 +54,7 @@ struct Checker : CosimTally {
   }
 };
 
-TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
+TEST(AttributeInterpolatorCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
   const int64_t lo = -(int64_t{1} << 39), hi = (int64_t{1} << 39) - 1;
   const std::array<int64_t, 10> words{0, 1, -1, lo, hi, 1 << 15, 255 << 16, (255 << 16) + (1 << 15), 127, 0xffffff80};
@@ -72,26 +72,20 @@ TEST(AttrInterpCosim, CornerAndRandomVectorsMatchBitForBit) {
           c.check(AttributePlane{static_cast<AttributeKind>(kind), s, gx, gy}, corner_dx, corner_dy);
   const uint64_t corner_vectors = c.vectors;
 
-  // Random words at random magnitudes, so that the conversions are seen
-  // inside their range as well as clamped; planes at random, each with a
-  // batch of 1 to 64 random offsets.
-  std::mt19937_64 rng(0xa77a1);
-  auto word = [&rng]() {
-    const unsigned bits = 1 + static_cast<unsigned>(rng() % 40);
-    return sign_extend(rng(), bits);
-  };
+  // Planes at random (raster_vectors.h), each with a batch of 1 to 64
+  // random offsets.
+  VectorRng rng(0xa77a1);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const auto kind = static_cast<AttributeKind>(rng() & 3);
-    const int64_t s = word(), gx = word(), gy = word();
+    const AttributePlane plane = random_attribute_plane(rng);
     std::vector<int32_t> dx(random_batch_length(rng())), dy(dx.size());
     for (size_t i = 0; i < dx.size(); ++i) {
-      const uint64_t o = rng();
-      dx[i] = static_cast<int32_t>(o & 0x3ff) - 512;
-      dy[i] = static_cast<int32_t>((o >> 10) & 0x3ff) - 512;
+      const PixelOffset o = random_pixel_offset(rng);
+      dx[i] = o.dx;
+      dy[i] = o.dy;
     }
-    c.check(AttributePlane{kind, s, gx, gy}, dx, dy);
+    c.check(plane, dx, dy);
   }
-  report_cosim("attr_interp", c, corner_vectors);
+  report_cosim("attribute_interpolator", c, corner_vectors);
 }
 
 }  // namespace

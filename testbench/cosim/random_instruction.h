@@ -1,6 +1,7 @@
-// What the array tests and the CU benchmark share: building instructions
-// by hand, and random instructions with valid encodings across every
-// lane-work opcode, loop variables included.
+// Instructions of the array processor, built by hand or at random: the
+// vectors of the CU's co-simulation (tests/rtl_models/array/), of the CU
+// benchmark (bench_cu_rtl) and of the array core's tests. Random ones have
+// valid encodings across every lane-work opcode, loop variables included.
 #pragma once
 
 #include <array>

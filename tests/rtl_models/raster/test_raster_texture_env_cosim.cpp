@@ -17,10 +17,6 @@
 namespace tessera::raster {
 namespace {
 
-// Every environment of the unit, plus code 3 (BLEND, the combiner's: the
-// fragment passes on both sides).
-constexpr std::array<TexEnv, 4> ALL_MODES{TexEnv::replace, TexEnv::modulate, TexEnv::decal, static_cast<TexEnv>(3)};
-
 // The inputs of one batch, lane by lane.
 struct Lanes {
   std::vector<uint32_t> texel[4], weight_s, weight_t, fragment;
@@ -30,6 +26,7 @@ struct Lanes {
     weight_t.push_back(wt);
     fragment.push_back(f);
   }
+  void add(const TextureEnvLane& lane) { add(lane.texel, lane.weight_s, lane.weight_t, lane.fragment); }
   size_t size() const { return fragment.size(); }
 };
 
@@ -76,7 +73,7 @@ TEST(TextureEnvCosim, CornerAndRandomVectorsMatchBitForBit) {
   Checker c;
   const std::array<uint32_t, 5> colours{0x00000000, 0xffffffff, 0x80ff7f01, 0x01807fff, 0xff000080};
   const std::array<uint8_t, 5> weights{0, 1, 128, 254, 255};
-  for (TexEnv mode : ALL_MODES)
+  for (TexEnv mode : ALL_TEXTURE_ENV_MODES)
     for (uint32_t t0 : colours) {
       Lanes lanes;
       for (uint32_t t1 : colours)
@@ -88,20 +85,14 @@ TEST(TextureEnvCosim, CornerAndRandomVectorsMatchBitForBit) {
     }
   const uint64_t corner_vectors = c.vectors;
 
-  // Environments at random, each with a batch of 1 to 64 random fragments.
-  std::mt19937_64 rng(0x7e4e);
+  // Environments at random (raster_vectors.h), each with a batch of 1 to 64
+  // random fragments.
+  VectorRng rng(0x7e4e);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t m = rng();
+    const TexEnv mode = random_texture_env_mode(rng);
     Lanes lanes;
-    for (unsigned i = random_batch_length(m >> 2); i > 0; --i) {
-      const uint64_t a = rng();
-      const uint64_t b = rng();
-      const uint64_t d = rng();
-      lanes.add({static_cast<uint32_t>(a), static_cast<uint32_t>(a >> 32), static_cast<uint32_t>(b),
-                 static_cast<uint32_t>(b >> 32)},
-                static_cast<uint8_t>(d >> 8), static_cast<uint8_t>(d >> 16), static_cast<uint32_t>(d >> 32));
-    }
-    c.check(ALL_MODES[m & 3], lanes);
+    for (unsigned i = random_batch_length(rng()); i > 0; --i) lanes.add(random_texture_env_lane(rng));
+    c.check(mode, lanes);
   }
   report_cosim("texture_env", c, corner_vectors);
 }

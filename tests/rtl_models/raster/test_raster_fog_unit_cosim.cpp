@@ -2,8 +2,9 @@
 // rtl_models/raster/fog_unit.sv, every output bit. Exhaustive over every
 // fog argument where a mode's factor is not constant (linear 0..1.0, exp
 // 0..16.0, exp2 0..4.0, in 16.16 steps, each with a colour pair that moves
-// with it), the corners around them, then a million random vectors over the
-// whole 32-bit argument, every mode and the code without an entry. Every
+// with it), the corners around them, then a million random vectors
+// (testbench/cosim/raster_vectors.h: half over the whole 32-bit argument,
+// half within the table's reach), every mode and the code without an entry. Every
 // vector goes through the scalar form (fog_unit) and through the batch form
 // (fog_unit_batch) in every variant this machine runs, with the other
 // fragments of its mode and fog colour (up to 64 a batch).
@@ -20,8 +21,6 @@
 
 namespace tessera::raster {
 namespace {
-
-constexpr std::array<FogMode, 4> ALL_MODES{FogMode::linear, FogMode::exp, FogMode::exp2, static_cast<FogMode>(3)};
 
 // One mode's and fog colour's fragments, checked together: the batch form
 // takes them as one batch.
@@ -72,7 +71,7 @@ TEST(FogUnitCosim, ExhaustiveArgumentsAndRandomVectorsMatchBitForBit) {
     }
   const std::vector<int32_t> corners{INT32_MIN, -65536, -1, 0, 1, 65535, 65536, 1 << 20, INT32_MAX};
   const std::array<uint32_t, 4> colours{0x00000000, 0xffffffff, 0x80ff7f01, 0x01807fff};
-  for (FogMode mode : ALL_MODES)
+  for (FogMode mode : ALL_FOG_MODES)
     for (uint32_t g : colours) {
       std::vector<int32_t> arguments;
       std::vector<uint32_t> fragments;
@@ -87,17 +86,17 @@ TEST(FogUnitCosim, ExhaustiveArgumentsAndRandomVectorsMatchBitForBit) {
 
   // Modes and fog colours at random, each with a batch of 1 to 64 random
   // fragments.
-  std::mt19937_64 rng(0xf06);
+  VectorRng rng(0xf06);
   while (c.vectors - corner_vectors < RANDOM_VECTORS) {
-    const uint64_t b = rng();
-    std::vector<int32_t> arguments(random_batch_length(b >> 2));
+    const FogUnitState state = random_fog_state(rng);
+    std::vector<int32_t> arguments(random_batch_length(rng()));
     std::vector<uint32_t> fragments(arguments.size());
     for (size_t i = 0; i < arguments.size(); ++i) {
-      const uint64_t a = rng();
-      arguments[i] = static_cast<int32_t>(a);
-      fragments[i] = static_cast<uint32_t>(a >> 32);
+      const FogLane lane = random_fog_lane(rng);
+      arguments[i] = lane.argument;
+      fragments[i] = lane.fragment;
     }
-    c.check(ALL_MODES[b & 3], Rgba8::unpack(static_cast<uint32_t>(b >> 32)), arguments, fragments);
+    c.check(state.mode, state.colour, arguments, fragments);
   }
   report_cosim("fog_unit", c, corner_vectors);
 }
