@@ -41,7 +41,7 @@
 #include "device/display_driver.h"
 #include "frame_writer.h"
 #include "guarded_main.h"
-#include "native_host.h"
+#include "host/native_host.h"
 #include "native_scene.h"
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"

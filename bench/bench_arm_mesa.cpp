@@ -27,7 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "guarded_main.h"
-#include "mesa_reference.h"
+#include "reference/mesa_reference.h"
 #include "scenes/scene.h"
 
 namespace {

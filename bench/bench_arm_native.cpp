@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "guarded_main.h"
-#include "native_host.h"
+#include "host/native_host.h"
 #include "native_scene.h"
 #include "renderers/backends.h"
 #include "scenes/scene.h"

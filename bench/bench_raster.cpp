@@ -38,7 +38,7 @@
 #include "guarded_main.h"
 
 #include "apps/gl_apps.h"
-#include "native_host.h"
+#include "host/native_host.h"
 #include "raster/core/tile_rasterizer.h"
 #include "raster/raster_regs.h"
 #include "renderers/backends.h"

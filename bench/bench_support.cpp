@@ -1,13 +1,6 @@
 #include "bench_support.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -15,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-extern char** environ;
+#include "process/child_process.h"
 
 namespace tessera::bench {
 
@@ -51,35 +44,23 @@ std::string first_line_of(const fs::path& path, const std::string& prefix) {
 }  // namespace
 
 ChildResult run_child(const std::vector<std::string>& argv, const fs::path& output_file) {
-  std::vector<char*> args;
-  args.reserve(argv.size() + 1);
-  for (const auto& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error("cannot run " + argv[0] + ": " + std::strerror(error));
-  int status = 0;
-  rusage usage{};
-  if (wait4(pid, &status, 0, &usage) != pid) throw std::runtime_error("wait4 failed for " + argv[0]);
-  ChildResult result;
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.max_rss_kib = usage.ru_maxrss;
-  result.cpu_s = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-                 static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) * 1e-6;
-  std::ifstream in(output_file);
-  std::stringstream text;
-  text << in.rdbuf();
-  result.output = text.str();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string command;
-    for (const auto& arg : argv) command += arg + " ";
-    throw std::runtime_error("failed (status " + std::to_string(status) + "): " + command);
+  test::ChildCommand command;
+  command.argv = argv;
+  command.stdout_file = output_file;
+  const test::ChildResult child = test::run_child(command);
+  if (!child.started) throw std::runtime_error(child.start_error);
+  if (!child.exited_zero()) {
+    std::string line;
+    for (const auto& arg : argv) line += arg + " ";
+    const std::string how =
+        child.signal != 0 ? "signal " + std::to_string(child.signal) : "status " + std::to_string(child.status);
+    throw std::runtime_error("failed (" + how + "): " + line);
   }
+  ChildResult result;
+  result.wall_s = child.wall_s;
+  result.cpu_s = child.cpu_s;
+  result.max_rss_kib = child.max_rss_kib;
+  result.output = child.out;
   return result;
 }
 

@@ -18,7 +18,8 @@ struct ChildResult {
   std::string output;    // its stdout
 };
 
-// Runs `argv` with stdout captured in `output_file`, stderr shared with us.
+// Runs `argv` with stdout captured in `output_file`, stderr shared with us
+// (testbench/process/child_process.h does the running).
 // Throws if it cannot start or does not exit with status 0.
 ChildResult run_child(const std::vector<std::string>& argv, const std::filesystem::path& output_file);
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "device/app_environment.h"
-#include "native_host.h"
+#include "host/native_host.h"
 #include "scenes/scene.h"
 
 namespace tessera::bench {

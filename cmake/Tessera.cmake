@@ -43,7 +43,7 @@ function(tessera_add_test)
   if(TESSERA_SANITIZE)
     # LeakSanitizer's tracer crashes now and then at exit on a loaded
     # machine; the wrapper runs the program again only then (tests/README.md).
-    add_test(NAME ${T_NAME} COMMAND ${PROJECT_SOURCE_DIR}/tests/support/leak_check_run.sh $<TARGET_FILE:${T_NAME}>
+    add_test(NAME ${T_NAME} COMMAND ${PROJECT_SOURCE_DIR}/testbench/process/leak_check_run.sh $<TARGET_FILE:${T_NAME}>
                                     ${T_ARGS})
   else()
     add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})

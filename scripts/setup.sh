@@ -20,7 +20,7 @@ PACKAGES=(
   libunicorn-dev          # an independent ARM emulator: the ISS lock-step test
   gcc-arm-none-eabi libnewlib-arm-none-eabi  # bare-metal ARM922T programs for the ISS (tests/host/iss_programs)
   libstdc++-arm-none-eabi-newlib  # C++ for the bare-metal ARM: the GL driver cross-compiled for the ISS (issue 15)
-  gdb-multiarch           # GDB against the ISS (iss_run --gdb; tests/host/gdb_session.sh)
+  gdb-multiarch           # GDB against the ISS (iss_run --gdb; tests/host/iss/gdb_session.sh)
   yosys                   # synthesis size report of the Verilog units
   clang-format clang-tidy # the lint tests: one code dialect (tests/lint)
   clang-14 libclang-rt-14-dev  # the fuzz preset: clang with libFuzzer, ASan and UBSan (docs/fuzzing.md)

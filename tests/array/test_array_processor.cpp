@@ -16,8 +16,8 @@
 #include "array/ciu.h"
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
-#include "support/bench_params.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/bench_params.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

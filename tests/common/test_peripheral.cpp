@@ -12,7 +12,7 @@
 
 #include "checker/protocol_checker.h"
 #include "common/peripheral.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "common/register_bank.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

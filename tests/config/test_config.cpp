@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/config.h"
+#include "fixtures/scratch_folder_test.h"
 
 namespace {
 
@@ -83,23 +84,13 @@ std::string config_error(const std::function<void()>& action) {
   EXPECT_NE((message).find(text), std::string::npos) << "message: " << (message) << "\nlacks: " << (text)
 
 // A file in a fresh temporary folder, removed with the fixture.
-class ConfigFiles : public ::testing::Test {
+class ConfigFiles : public tessera::test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "tessera_test_config_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    m_dir = pattern;
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(m_dir, ignored);
-  }
   std::string write(const std::string& name, const std::string& text) {
     const fs::path path = m_dir / name;
     std::ofstream(path) << text;
     return path.string();
   }
-  fs::path m_dir;
 };
 
 TEST(ConfigDefaults, EveryParameterHasItsDefaultWithItsType) {

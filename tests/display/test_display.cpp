@@ -10,8 +10,8 @@
 #include "display/display_controller.h"
 #include "display/display_regs.h"
 #include "mem/memory.h"
-#include "support/bench_params.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/bench_params.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

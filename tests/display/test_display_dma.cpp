@@ -16,8 +16,8 @@
 #include "checker/protocol_checker.h"
 #include "display/display_dma.h"
 #include "mem/memory.h"
-#include "support/bench_params.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/bench_params.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

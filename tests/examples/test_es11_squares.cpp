@@ -14,15 +14,14 @@
 
 #include <gtest/gtest.h>
 
+#include "fixtures/backend_table.h"
+#include "fixtures/soc_sim_test.h"
 #include "frame_writer.h"
-#include "support/backend_table.h"
-#include "support/soc_sim_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string g_soc_sim;
 std::string g_library;
 
 using tessera::test::contains;
@@ -55,20 +54,19 @@ bool near(const uint8_t* pixel, const Rgb& colour) {
          std::abs(pixel[2] - colour.b) <= TOLERANCE;
 }
 
-class Es11Squares : public tessera::test::ScratchFolderTest {
+class Es11Squares : public tessera::test::SocSimTest {
  protected:
   void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim) && fs::is_regular_file(g_library))
+    ASSERT_TRUE(fs::is_regular_file(g_library))
         << "usage: test_es11_squares <installed soc_sim> <libes11_squares.so> (built by sdk_example_es11_build)";
-    ScratchFolderTest::SetUp();
+    SocSimTest::SetUp();
   }
 };
 
 TEST_F(Es11Squares, SocSimRunsItsMainAndTheFramesShowTheSquares) {
   for (const std::string& backend : tessera::test::back_end_names()) {
-    const SimResult result = tessera::test::run_soc_sim(
-        g_soc_sim, m_dir,
-        {"--backend", backend, "--app", g_library, "--frames", std::to_string(FRAMES), "--out", backend});
+    const SimResult result =
+        run({"--backend", backend, "--app", g_library, "--frames", std::to_string(FRAMES), "--out", backend});
     ASSERT_EQ(result.status, 0) << backend << ": " << describe(result);
     // What the program prints of the GL, through glGetString and the
     // extension's query guarded by its macro from <GLES/glext.h>.
@@ -115,10 +113,7 @@ TEST_F(Es11Squares, SocSimRunsItsMainAndTheFramesShowTheSquares) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  if (argc >= 3) {
-    g_soc_sim = fs::absolute(argv[1]).string();
-    g_library = fs::absolute(argv[2]).string();
-  }
+  tessera::test::init_soc_sim_test(argc, argv);
+  if (argc >= 3) g_library = fs::absolute(argv[2]).string();
   return RUN_ALL_TESTS();
 }

@@ -10,9 +10,9 @@
 #include "checker/protocol_checker.h"
 #include "host/host.h"
 #include "mem/memory.h"
-#include "support/bench_params.h"
-#include "support/host_program_runner.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/bench_params.h"
+#include "tlm_bench/host_program_runner.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::SC_NS;

@@ -6,7 +6,7 @@
 #include "checker/protocol_checker.h"
 #include "intc/intc_regs.h"
 #include "intc/interrupt_controller.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

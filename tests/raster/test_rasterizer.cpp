@@ -18,8 +18,8 @@
 #include "raster/command_format.h"
 #include "raster/raster_regs.h"
 #include "raster/rasterizer.h"
-#include "support/bench_params.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/bench_params.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

@@ -14,8 +14,8 @@
 #include "soc/memory_map.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
-#include "support/host_program_runner.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/host_program_runner.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;

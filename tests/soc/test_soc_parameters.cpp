@@ -10,7 +10,7 @@
 
 #include "config/config.h"
 #include "soc/soc.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 namespace {
 

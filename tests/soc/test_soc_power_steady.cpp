@@ -6,15 +6,14 @@
 // host busy all the time, not the whole computation in the window where it
 // was charged and idling in the others. The array is never used, so with
 // power.sleep_unused (the default) its clocked power is charged in no window.
-#include <unistd.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "process/scratch_folder.h"
 #include "soc/irq_map.h"
 #include "soc/soc.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;
@@ -101,12 +100,11 @@ int sc_main(int argc, char* argv[]) {
     return 0;
   });
   WindowReader reader("reader");
-  const std::filesystem::path trace =
-      std::filesystem::temp_directory_path() / ("tessera_soc_power_steady_" + std::to_string(getpid()));
+  const test::ScratchFolder folder("tessera_soc_power_steady");
+  const std::filesystem::path trace = folder.path() / "power";
   b.soc.trace_to(trace.string());
   sc_core::sc_start(b.window * (TRACED_WINDOWS + 1));
   const int status = test::run_all_tests(argc, argv);
   b.soc.close_trace();
-  std::filesystem::remove(trace.string() + ".vcd");
   return status;
 }

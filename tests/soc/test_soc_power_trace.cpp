@@ -5,17 +5,16 @@
 // array, never used, sleeps without it), and
 // the windows' energies, the last partial one included, add up to the energy
 // the statistics report for the run.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
 
+#include "process/scratch_folder.h"
 #include "soc/irq_map.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 using sc_core::sc_time;
@@ -104,12 +103,11 @@ int sc_main(int argc, char* argv[]) {
     api.wait_irq(irq_map::array);
     return 0;
   });
-  const std::filesystem::path trace =
-      std::filesystem::temp_directory_path() / ("tessera_soc_power_trace_" + std::to_string(getpid()));
+  const test::ScratchFolder folder("tessera_soc_power_trace");
+  const std::filesystem::path trace = folder.path() / "power";
   b.soc.trace_to(trace.string());
   sc_core::sc_start(b.window * 20.5);
   const int status = test::run_all_tests(argc, argv);
   b.soc.close_trace();
-  std::filesystem::remove(trace.string() + ".vcd");
   return status;
 }

@@ -21,7 +21,7 @@
 
 #include "frame_writer.h"
 #include "guarded_main.h"
-#include "image_compare.h"
+#include "reference/image_compare.h"
 
 namespace {
 

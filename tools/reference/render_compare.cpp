@@ -16,18 +16,12 @@
 // an error (soc_sim failed, a frame is missing).
 #include <CLI/CLI.hpp>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -35,11 +29,10 @@
 
 #include "frame_writer.h"
 #include "guarded_main.h"
-#include "image_compare.h"
-#include "mesa_reference.h"
-#include "test_scene.h"
-
-extern char** environ;
+#include "process/child_process.h"
+#include "process/scratch_folder.h"
+#include "reference/image_compare.h"
+#include "reference/mesa_reference.h"
 
 namespace {
 
@@ -63,20 +56,9 @@ struct Options {
   std::vector<std::string> scene_arg_options;  // --scene-arg, the older spelling; these come first
 };
 
-const scenes::Scene* find_reference_scene(const std::string& name) {
-  if (name == reference::test_scene().name) return &reference::test_scene();
-#if defined(TESSERA_HAVE_SCENE_REGISTRY)
-  return scenes::find_scene(name);
-#else
-  return nullptr;
-#endif
-}
-
 std::string known_scene_names() {
-  std::string names = reference::test_scene().name;
-#if defined(TESSERA_HAVE_SCENE_REGISTRY)
-  for (const auto& scene : scenes::all_scenes()) names += std::string(", ") + scene.name;
-#endif
+  std::string names;
+  for (const auto& scene : scenes::all_scenes()) names += (names.empty() ? "" : ", ") + std::string(scene.name);
   return names;
 }
 
@@ -104,26 +86,16 @@ std::string last_lines(const fs::path& file, size_t count) {
 // Runs soc_sim with its output in `log`; returns its exit status, or throws
 // if it cannot be started or dies from a signal.
 int run_process(const std::vector<std::string>& command, const fs::path& log) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<char*> argv;
-  argv.reserve(command.size() + 1);
-  for (const std::string& word : command) argv.push_back(const_cast<char*>(word.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawn_error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0)
-    throw std::runtime_error(std::string("cannot start ") + argv[0] + ": " + std::strerror(spawn_error));
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error(std::string("waiting for soc_sim: ") + std::strerror(errno));
-  if (WIFSIGNALED(status))
-    throw std::runtime_error("soc_sim died from signal " + std::to_string(WTERMSIG(status)) +
+  test::ChildCommand child;
+  child.argv = command;
+  child.stdout_file = log;
+  child.stderr_to = test::ChildCommand::Stderr::with_stdout;
+  const test::ChildResult result = test::run_child(child);
+  if (!result.started) throw std::runtime_error(result.start_error);
+  if (result.signal != 0)
+    throw std::runtime_error("soc_sim died from signal " + std::to_string(result.signal) +
                              "; the end of its output:\n" + last_lines(log, 20));
-  return WEXITSTATUS(status);
+  return result.status;
 }
 
 std::string frame_file_name(int frame) {
@@ -170,31 +142,20 @@ Image render_on_soc(const Options& options, const fs::path& frames_dir) {
 class FramesFolder {
  public:
   explicit FramesFolder(const std::string& out_dir) {
-    if (!out_dir.empty()) {
+    if (out_dir.empty())
+      m_temporary = std::make_unique<test::ScratchFolder>("render_compare");
+    else
       m_path = fs::path(out_dir) / "ours";
-      return;
-    }
-    std::string pattern = (fs::temp_directory_path() / "render_compare.XXXXXX").string();
-    if (!mkdtemp(pattern.data()))
-      throw std::runtime_error("cannot create a temporary folder: " + std::string(std::strerror(errno)));
-    m_path = pattern;
-    m_temporary = true;
   }
-  ~FramesFolder() {
-    std::error_code ignored;
-    if (m_temporary) fs::remove_all(m_path, ignored);
-  }
-  FramesFolder(const FramesFolder&) = delete;
-  FramesFolder& operator=(const FramesFolder&) = delete;
-  const fs::path& path() const { return m_path; }
+  const fs::path& path() const { return m_temporary ? m_temporary->path() : m_path; }
 
  private:
   fs::path m_path;
-  bool m_temporary = false;
+  std::unique_ptr<test::ScratchFolder> m_temporary;
 };
 
 int run(const Options& options) {
-  const scenes::Scene* scene = find_reference_scene(options.scene);
+  const scenes::Scene* scene = scenes::find_scene(options.scene);
   if (!scene) {
     std::fprintf(stderr, "render_compare: unknown scene '%s' (known: %s)\n", options.scene.c_str(),
                  known_scene_names().c_str());

@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "array/isa/ap_isa.h"
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
+#include "process/child_process.h"
 
 namespace {
 
@@ -21,9 +22,16 @@ std::string g_ap_asm;
 
 class ApAsm : public tessera::test::ScratchFolderTest {
  protected:
-  // run_soc_sim runs any program: stdout and stderr to files in m_dir.
-  tessera::test::SimResult run(const std::vector<std::string>& args) {
-    return tessera::test::run_soc_sim(g_ap_asm, m_dir, args);
+  // ap_asm in m_dir, its stdout and stderr in files there.
+  tessera::test::ChildResult run(const std::vector<std::string>& args) {
+    tessera::test::ChildCommand command;
+    command.argv = {g_ap_asm};
+    command.argv.insert(command.argv.end(), args.begin(), args.end());
+    command.working_dir = m_dir;
+    command.stdout_file = m_dir / "ap_asm.stdout";
+    command.stderr_to = tessera::test::ChildCommand::Stderr::file;
+    command.stderr_file = m_dir / "ap_asm.stderr";
+    return tessera::test::run_child(command);
   }
   void write(const std::string& name, const std::string& text) { std::ofstream(m_dir / name) << text; }
 };

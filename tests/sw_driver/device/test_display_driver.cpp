@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "../../support/cost_units.h"
 #include "common/pixel_format.h"
 #include "device/display_driver.h"
 #include "display/display_regs.h"
+#include "host/cost_units.h"
+#include "host/recording_host.h"
 #include "soc/irq_map.h"
 #include "soc/memory_map.h"
-#include "support/recording_host.h"
 
 namespace tessera {
 namespace {

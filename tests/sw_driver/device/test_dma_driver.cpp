@@ -15,8 +15,8 @@
 #include "dma/core/dma_descriptor.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
-#include "support/host_program_runner.h"
-#include "support/tlm_test_support.h"
+#include "tlm_bench/host_program_runner.h"
+#include "tlm_bench/tlm_test_support.h"
 
 using namespace tessera;
 

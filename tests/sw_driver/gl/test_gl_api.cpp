@@ -22,13 +22,13 @@
 #include <vector>
 
 #include "device/app_environment.h"
+#include "fixtures/backend_table.h"
 #include "gl/context.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
 #include "gl_test_fixture.h"
+#include "host/cost_units.h"
 #include "renderers/backends.h"
-#include "support/backend_table.h"
-#include "support/cost_units.h"
 
 using namespace tessera;
 using test::GlApi;

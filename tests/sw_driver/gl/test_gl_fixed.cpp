@@ -14,8 +14,8 @@
 #include <map>
 #include <string>
 
-#include "../../support/cost_units.h"
 #include "gl_test_fixture.h"
+#include "host/cost_units.h"
 
 using tessera::test::GlApi;
 

@@ -1,7 +1,6 @@
 // OBJ loading: the valid cubes load with the right counts; each malformed
 // file is rejected with an error naming the file, the line and the problem.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -9,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "process/scratch_folder.h"
 #include "scenes/obj_loader.h"
 
 namespace tessera::scenes {
@@ -110,19 +110,17 @@ INSTANTIATE_TEST_SUITE_P(MalformedFiles, ObjLoaderRejects,
                            return name.substr(0, name.find('.'));
                          });
 
+// An OBJ file in a folder of its own, removed with it.
 class TemporaryObj {
  public:
-  explicit TemporaryObj(const std::string& text) {
-    std::string name = (std::filesystem::temp_directory_path() / "tessera_test_obj_XXXXXX").string();
-    const int fd = mkstemp(name.data());
-    if (fd >= 0) close(fd);
-    m_path = name;
+  explicit TemporaryObj(const std::string& text)
+      : m_folder("tessera_test_obj"), m_path((m_folder.path() / "model.obj").string()) {
     std::ofstream(m_path) << text;
   }
-  ~TemporaryObj() { std::remove(m_path.c_str()); }
   const std::string& path() const { return m_path; }
 
  private:
+  tessera::test::ScratchFolder m_folder;
   std::string m_path;
 };
 

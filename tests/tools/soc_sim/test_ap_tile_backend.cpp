@@ -18,7 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
@@ -31,16 +31,8 @@ using tessera::test::SimResult;
 
 constexpr int EXIT_USAGE = 2;
 
-std::string g_soc_sim;
-
-class ApTileBackend : public tessera::test::ScratchFolderTest {
+class ApTileBackend : public tessera::test::SocSimTest {
  protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_ap_tile_backend <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
-
   // One frame of the untextured teapot (many passes) on ap-tile with the
   // extra settings; the run's stats.json.
   json teapot(const std::string& folder, const std::vector<std::string>& settings) {
@@ -179,6 +171,5 @@ TEST_F(ApTileBackend, TheKeyIsAcceptedWithAnotherBackEnd) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

@@ -21,30 +21,25 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 using tessera::test::describe;
+using tessera::test::read_file;
 using tessera::test::SimResult;
-
-std::string g_soc_sim;
 
 enum Path { ciu, dma, broadcast };
 const char* const PATH_NAMES[] = {"ciu", "dma", "broadcast"};
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // One back end's three runs, made once for the suite.
-class DmaBackend : public tessera::test::ScratchFolderTest {
+class DmaBackend : public tessera::test::SocSimTest {
  protected:
   // The run's stats.json and its frame's file.
   using Run = std::pair<json, std::string>;
+  using SocSimTest::run;
 
   const Run& run(const std::string& backend, Path path) {
     const std::string key = backend + "/" + PATH_NAMES[path];
@@ -53,7 +48,7 @@ class DmaBackend : public tessera::test::ScratchFolderTest {
     std::vector<std::string> args = {"--backend", backend, "--app", "teapot", "--frames", "1", "--out", key, "-q"};
     if (path != ciu) args.insert(args.end(), {"--set", "dma.enabled=true"});
     if (path == broadcast) args.insert(args.end(), {"--set", "dma.broadcast=true"});
-    const SimResult result = tessera::test::run_soc_sim(g_soc_sim, m_dir, args);
+    const SimResult result = run(args);
     EXPECT_EQ(result.status, 0) << describe(result);
     std::ifstream in(m_dir / key / "stats.json");
     Run r(json::parse(in, nullptr, false), read_file(m_dir / key / "frame_0000.png"));
@@ -142,12 +137,12 @@ TEST_F(DmaBackend, OneChannelRunsOnApPixelAndIsRefusedByApTile) {
                                          "--set", "dma.channels=1"};
   std::vector<std::string> pixel = {"--backend", "ap-pixel", "--out", "pixel_one_channel"};
   pixel.insert(pixel.end(), args.begin(), args.end());
-  const SimResult pixel_result = tessera::test::run_soc_sim(g_soc_sim, m_dir, pixel);
+  const SimResult pixel_result = run(pixel);
   EXPECT_EQ(pixel_result.status, 0) << describe(pixel_result);
   EXPECT_TRUE(fs::is_regular_file(m_dir / "pixel_one_channel" / "frame_0000.png"));
   std::vector<std::string> tile = {"--backend", "ap-tile", "--out", "tile_one_channel"};
   tile.insert(tile.end(), args.begin(), args.end());
-  const SimResult tile_result = tessera::test::run_soc_sim(g_soc_sim, m_dir, tile);
+  const SimResult tile_result = run(tile);
   EXPECT_EQ(tile_result.status, 2) << describe(tile_result);
   EXPECT_NE(tile_result.err.find("dma.channels=1"), std::string::npos) << describe(tile_result);
   EXPECT_NE(tile_result.err.find("impossible combination"), std::string::npos) << describe(tile_result);
@@ -157,6 +152,5 @@ TEST_F(DmaBackend, OneChannelRunsOnApPixelAndIsRefusedByApTile) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

@@ -14,31 +14,28 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fixtures/backend_table.h"
+#include "fixtures/soc_sim_test.h"
 #include "frame_writer.h"
 #include "scenes/teapot_mesh.h"
-#include "support/backend_table.h"
-#include "support/soc_sim_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string g_soc_sim;
 std::string g_collinear_app;
 std::string g_empty_scissor_app;
 
 using tessera::test::describe;
 using tessera::test::SimResult;
 
-class GlFrontEnd : public tessera::test::ScratchFolderTest {
+class GlFrontEnd : public tessera::test::SocSimTest {
  protected:
   void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim) && fs::is_regular_file(g_collinear_app) &&
-                fs::is_regular_file(g_empty_scissor_app))
+    ASSERT_TRUE(fs::is_regular_file(g_collinear_app) && fs::is_regular_file(g_empty_scissor_app))
         << "usage: test_gl_front_end <soc_sim> <libcollinear_triangles.so> <libempty_scissor.so>";
-    ScratchFolderTest::SetUp();
+    SocSimTest::SetUp();
   }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
 };
 
 // Pixels whose colour is not `rgb`.
@@ -107,9 +104,8 @@ TEST_F(GlFrontEnd, TeapotTransformsEachVertexOncePerFrame) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
+  tessera::test::init_soc_sim_test(argc, argv);
   if (argc >= 4) {
-    g_soc_sim = fs::absolute(argv[1]).string();
     g_collinear_app = fs::absolute(argv[2]).string();
     g_empty_scissor_app = fs::absolute(argv[3]).string();
   }

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "fixtures/scratch_folder_test.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -22,24 +24,14 @@ std::string read_file(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-class OutputFileTest : public ::testing::Test {
+class OutputFileTest : public tessera::test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "tessera_output_file_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    m_dir = pattern;
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(m_dir, ignored);
-  }
   // Every name in the folder, to show that no temporary file is left.
   std::string listing() const {
     std::string names;
     for (const auto& entry : fs::directory_iterator(m_dir)) names += entry.path().filename().string() + " ";
     return names;
   }
-  fs::path m_dir;
 };
 
 TEST_F(OutputFileTest, WritesTheFileAndLeavesNothingElse) {

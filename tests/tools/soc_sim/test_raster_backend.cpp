@@ -22,7 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 #include "frame_writer.h"
 
@@ -34,25 +34,13 @@ using nlohmann::json;
 constexpr int EXIT_USAGE = 2;
 constexpr unsigned WIDTH = 320, HEIGHT = 240;
 
-std::string g_soc_sim;
-
 using tessera::test::contains;
 using tessera::test::describe;
 using tessera::test::read_file;
 using tessera::test::SimResult;
 
-SimResult run_soc_sim(const fs::path& dir, const std::vector<std::string>& args) {
-  return tessera::test::run_soc_sim(g_soc_sim, dir, args);
-}
-
-class RasterBackend : public tessera::test::ScratchFolderTest {
+class RasterBackend : public tessera::test::SocSimTest {
  protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_raster_backend <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return run_soc_sim(m_dir, args); }
-
   // Runs `app` on the raster back end for two frames and checks the frames
   // and the statistics; returns the statistics.
   json run_app(const std::string& app, const std::string& folder) {
@@ -159,6 +147,5 @@ TEST_F(RasterBackend, MoreTextureUnitsThanTheRasterizerHasAreRejected) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixtures/scratch_folder_test.h"
+
 namespace tessera {
 namespace {
 
@@ -25,15 +27,12 @@ const char* const TRACE =
     "$end\n\n$timescale\n     1 ps\n$end\n\n$scope module SystemC $end\n$scope module soc $end\n"
     "$scope module bus $end\n$var wire    1  aaaaa  host_request       $end\n";
 
-class RunOutputs : public ::testing::Test {
+class RunOutputs : public tessera::test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "tessera_run_outputs_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    m_dir = pattern;
+    ScratchFolderTest::SetUp();
     fs::create_directory(m_dir / "out");
   }
-  void TearDown() override { fs::remove_all(m_dir); }
 
   fs::path write(const std::string& name, const std::string& text) {
     fs::path path = m_dir / name;
@@ -44,8 +43,6 @@ class RunOutputs : public ::testing::Test {
   OutputPaths paths(const std::string& stats = "out/stats.json", const std::string& trace = "") const {
     return {m_dir / "out", m_dir / stats, trace.empty() ? fs::path() : m_dir / trace};
   }
-
-  fs::path m_dir;
 };
 
 TEST(FrameNames, AreFrameUnderscoreFourOrMoreDigitsPng) {

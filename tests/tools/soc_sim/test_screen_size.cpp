@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "support/backend_table.h"
-#include "support/soc_sim_runner.h"
+#include "fixtures/backend_table.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
@@ -27,16 +27,7 @@ using tessera::test::SimResult;
 
 constexpr int EXIT_USAGE = 2;
 
-std::string g_soc_sim;
-
-class ScreenSize : public tessera::test::ScratchFolderTest {
- protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_screen_size <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
-};
+using ScreenSize = tessera::test::SocSimTest;
 
 // Exit status 2, the key and the limit named, no outputs.
 void expect_refused(const SimResult& result, const fs::path& out, const std::string& key, const std::string& value) {
@@ -134,6 +125,5 @@ TEST_F(ScreenSize, ApPixelAbove256IsRejected) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

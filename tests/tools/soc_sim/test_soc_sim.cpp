@@ -33,8 +33,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/backend_table.h"
-#include "support/soc_sim_runner.h"
+#include "fixtures/backend_table.h"
+#include "fixtures/soc_sim_test.h"
 
 #include "frame_writer.h"
 
@@ -48,16 +48,10 @@ constexpr int EXIT_FAILED = 1;   // the simulation itself failed
 constexpr unsigned WIDTH = 320;  // display.width and display.height defaults
 constexpr unsigned HEIGHT = 240;
 
-std::string g_soc_sim;
-
 using tessera::test::contains;
 using tessera::test::describe;
 using tessera::test::read_file;
 using tessera::test::SimResult;
-
-SimResult run_soc_sim(const fs::path& dir, const std::vector<std::string>& args) {
-  return tessera::test::run_soc_sim(g_soc_sim, dir, args);
-}
 
 // A bad input must be reported, not crash the simulator.
 void expect_no_crash(const SimResult& run) {
@@ -124,16 +118,8 @@ unsigned alpha(const tessera::Image& image, unsigned x, unsigned y) {
   return image.rgba[(size_t{y} * image.width + x) * 4 + 3];
 }
 
-class SocSim : public tessera::test::ScratchFolderTest {
+class SocSim : public tessera::test::SocSimTest {
  protected:
-  void SetUp() override {
-    ASSERT_FALSE(g_soc_sim.empty()) << "usage: test_soc_sim <path to soc_sim>";
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << g_soc_sim;
-    ScratchFolderTest::SetUp();
-  }
-
-  SimResult run(const std::vector<std::string>& args) { return run_soc_sim(m_dir, args); }
-
   // Writes the expected frame beside ours, for a person to compare.
   void keep_expected(const fs::path& folder, unsigned frame, bool rgb565) {
     std::vector<uint8_t> rgba(size_t{WIDTH} * HEIGHT * 4);
@@ -281,7 +267,7 @@ TEST_F(SocSim, VersionNamesTheProgramTheVersionAndTheCommit) {
   const json document = read_stats(m_dir / "out/stats.json");
   EXPECT_EQ(document["version"], TESSERA_PROJECT_VERSION);
   EXPECT_EQ(document["commit"], commit);
-  std::vector<std::string> command_line{g_soc_sim};
+  std::vector<std::string> command_line{soc_sim()};
   command_line.insert(command_line.end(), args.begin(), args.end());
   EXPECT_EQ(document["command_line"], json(command_line));
 }
@@ -501,8 +487,8 @@ TEST_F(SocSim, IdenticalRunsGiveIdenticalFiles) {
   // The same arguments, run in two folders.
   for (const char* folder : {"a", "b"}) {
     fs::create_directory(m_dir / folder);
-    const SimResult result = run_soc_sim(m_dir / folder, {"--frames", "2", "--set", "display.dma=true", "--out", "out",
-                                                          "--vcd", "out/trace.vcd", "--quiet"});
+    const SimResult result = run_in(m_dir / folder, {"--frames", "2", "--set", "display.dma=true", "--out", "out",
+                                                     "--vcd", "out/trace.vcd", "--quiet"});
     ASSERT_EQ(result.status, 0) << describe(result);
   }
   for (const char* file : {"frame_0000.png", "frame_0001.png", "trace.vcd", "stats.json"}) {
@@ -539,7 +525,7 @@ TEST_F(SocSim, RunAheadChangesNoResult) {
     for (int run_ahead = 0; run_ahead < 2; ++run_ahead) {
       const fs::path folder = m_dir / (std::string(c.name) + "_ra" + std::to_string(run_ahead));
       fs::create_directory(folder);
-      const SimResult result = run_soc_sim(
+      const SimResult result = run_in(
           folder, {"--frames", "2", "--backend", c.backend, "--set", std::string("display.dma=") + c.dma, "--set",
                    run_ahead ? "sim.run_ahead_us=1000" : "sim.run_ahead_us=0", "--out", "out", "--quiet"});
       ASSERT_EQ(result.status, 0) << describe(result);
@@ -601,12 +587,12 @@ TEST_F(SocSim, TwoRunsStartedTogetherIntoTheSameFolderOneIsRefused) {
     fs::create_directories(a);
     fs::create_directories(b);
     // Different frame counts, so the statistics tell which run they are from.
-    const pid_t first = tessera::test::start_soc_sim(
-        g_soc_sim, a, {"--app", "pattern", "--frames", "3", "--out", shared.string(), "--quiet"});
-    const pid_t second = tessera::test::start_soc_sim(
-        g_soc_sim, b, {"--app", "pattern", "--frames", "2", "--out", shared.string(), "--quiet"});
-    const SimResult one = tessera::test::wait_soc_sim(first, a);
-    const SimResult two = tessera::test::wait_soc_sim(second, b);
+    tessera::test::ChildProcess first =
+        start_in(a, {"--app", "pattern", "--frames", "3", "--out", shared.string(), "--quiet"});
+    tessera::test::ChildProcess second =
+        start_in(b, {"--app", "pattern", "--frames", "2", "--out", shared.string(), "--quiet"});
+    const SimResult one = first.wait();
+    const SimResult two = second.wait();
     ASSERT_EQ((one.status == 0) + (two.status == 0), 1) << "exactly one run must run\n"
                                                         << describe(one) << describe(two);
     const SimResult& refused = one.status == 0 ? two : one;
@@ -810,8 +796,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // the last column.
 TEST_F(SocSim, ProgressOnATerminalFitsTheWidthAndRedrawsAtMostFourTimesASecond) {
   const auto start = std::chrono::steady_clock::now();
-  const SimResult result =
-      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "100", "--out", "out"}, 60);
+  const SimResult result = run_on_terminal({"--frames", "100", "--out", "out"}, 60);
   const double wall = seconds_since(start);
   ASSERT_EQ(result.status, 0) << describe(result);
   const TerminalOutput terminal = read_terminal(result.err);
@@ -825,15 +810,13 @@ TEST_F(SocSim, ProgressOnATerminalFitsTheWidthAndRedrawsAtMostFourTimesASecond) 
 
 // A terminal that reports no size: $COLUMNS, then 80.
 TEST_F(SocSim, ProgressUsesColumnsWhenTheTerminalReportsNoWidth) {
-  SimResult result =
-      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a"}, 0, {"COLUMNS=45"});
+  SimResult result = run_on_terminal({"--frames", "1", "--out", "a"}, 0, {"COLUMNS=45"});
   ASSERT_EQ(result.status, 0) << describe(result);
   TerminalOutput terminal = read_terminal(result.err);
   EXPECT_EQ(terminal.longest_line, 44u) << result.err;
   EXPECT_TRUE(contains(terminal.last_line, "frame 1/1")) << result.err;
 
-  result = tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "b"}, 0,
-                                                  {"COLUMNS=not a number"});
+  result = run_on_terminal({"--frames", "1", "--out", "b"}, 0, {"COLUMNS=not a number"});
   ASSERT_EQ(result.status, 0) << describe(result);
   terminal = read_terminal(result.err);
   EXPECT_EQ(terminal.longest_line, 79u) << result.err;
@@ -841,8 +824,7 @@ TEST_F(SocSim, ProgressUsesColumnsWhenTheTerminalReportsNoWidth) {
 
 // --quiet, or stderr that is not a terminal: no progress line at all.
 TEST_F(SocSim, NoProgressWhenQuietOrNotOnATerminal) {
-  const SimResult quiet =
-      tessera::test::run_soc_sim_on_terminal(g_soc_sim, m_dir, {"--frames", "1", "--out", "a", "--quiet"}, 80);
+  const SimResult quiet = run_on_terminal({"--frames", "1", "--out", "a", "--quiet"}, 80);
   ASSERT_EQ(quiet.status, 0) << describe(quiet);
   EXPECT_EQ(quiet.err, "");
   const SimResult piped = run({"--frames", "1", "--out", "b"});
@@ -1450,6 +1432,5 @@ TEST_F(SocSim, ConfigReferenceHasARowForEveryKey) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

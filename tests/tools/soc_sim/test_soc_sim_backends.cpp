@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/backend_table.h"
-#include "support/soc_sim_runner.h"
+#include "fixtures/backend_table.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
@@ -26,16 +26,7 @@ using tessera::test::SimResult;
 
 constexpr int EXIT_USAGE = 2;
 
-std::string g_soc_sim;
-
-class SocSimBackends : public tessera::test::ScratchFolderTest {
- protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: test_soc_sim_backends <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
-};
+using SocSimBackends = tessera::test::SocSimTest;
 
 TEST_F(SocSimBackends, EveryBackEndDrawsAFrameAndIsRecorded) {
   for (const tessera::test::BackendEntry& backend : tessera::test::backend_table()) {
@@ -85,6 +76,5 @@ TEST_F(SocSimBackends, ConfigurationNamesEveryBackEnd) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

@@ -7,8 +7,10 @@
 // diagnostic applications stuck_loop and crash.
 //
 // Usage: test_soc_sim_faults <path to soc_sim> [GoogleTest options]
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -21,7 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 #include "frame_writer.h"
 
@@ -35,8 +37,6 @@ using tessera::test::SimResult;
 
 constexpr int EXIT_USAGE = 2;
 constexpr int EXIT_FAILED = 1;
-
-std::string g_soc_sim;
 
 json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -66,11 +66,14 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-// Waits until `path` exists, the run has ended or a minute has passed.
-bool wait_for_file(const fs::path& path, pid_t pid) {
+// Waits until `path` exists, the run has ended or a minute has passed. An
+// ended run is left for ChildProcess::wait to collect (WNOWAIT).
+bool wait_for_file(const fs::path& path, const tessera::test::ChildProcess& child) {
   for (int i = 0; i < 6000; ++i) {
     if (fs::exists(path)) return true;
-    if (waitpid(pid, nullptr, WNOHANG) == pid) return false;
+    siginfo_t info{};
+    if (waitid(P_PID, static_cast<id_t>(child.pid()), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid != 0)
+      return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return false;
@@ -96,18 +99,8 @@ void no_core_dump() {
   setrlimit(RLIMIT_CORE, &limit);
 }
 
-class SocSimFaults : public tessera::test::ScratchFolderTest {
+class SocSimFaults : public tessera::test::SocSimTest {
  protected:
-  void SetUp() override {
-    ASSERT_FALSE(g_soc_sim.empty()) << "usage: test_soc_sim_faults <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
-  pid_t start(const std::vector<std::string>& args, void (*in_child)() = nullptr) {
-    return tessera::test::start_soc_sim(g_soc_sim, m_dir, args, in_child);
-  }
-  SimResult wait(pid_t pid) { return tessera::test::wait_soc_sim(pid, m_dir); }
-
   // Every frame in `folder` is a whole PNG of the display's size, there are
   // `count` of them, and no temporary file was left behind.
   void expect_whole_frames(const fs::path& folder, unsigned count) {
@@ -161,9 +154,10 @@ TEST_F(SocSimFaults, FrameOnAFullDiskFailsAndStopsTheRun) {
 // every output that does not fit is reported and absent, not a truncated
 // file, and the run fails.
 TEST_F(SocSimFaults, OutputsThatDoNotFitAreReportedAndAbsent) {
-  const SimResult result = wait(start({"--app", "pattern", "--frames", "2", "--out", "out", "--vcd", "out/trace.vcd",
-                                       "--set", "power.trace_window_us=0", "--quiet"},
-                                      limit_file_size));
+  const SimResult result = start({"--app", "pattern", "--frames", "2", "--out", "out", "--vcd", "out/trace.vcd",
+                                  "--set", "power.trace_window_us=0", "--quiet"},
+                                 limit_file_size)
+                               .wait();
   EXPECT_EQ(result.status, EXIT_FAILED) << describe(result);
   EXPECT_TRUE(contains(result.err, "File too large")) << describe(result);
   EXPECT_TRUE(contains(result.err, "cannot write 'out/stats.json'")) << describe(result);
@@ -201,7 +195,7 @@ TEST_F(SocSimFaults, VcdTraceIsWholeAndDateless) {
 }
 
 TEST_F(SocSimFaults, StandardOutputOnAFullDeviceFails) {
-  const SimResult result = wait(start({"--app", "pattern", "--frames", "1", "--out", "out"}, stdout_to_full_device));
+  const SimResult result = start({"--app", "pattern", "--frames", "1", "--out", "out"}, stdout_to_full_device).wait();
   EXPECT_EQ(result.status, EXIT_FAILED) << describe(result);
   EXPECT_TRUE(contains(result.err, "cannot write to standard output: No space left on device")) << describe(result);
 }
@@ -209,10 +203,11 @@ TEST_F(SocSimFaults, StandardOutputOnAFullDeviceFails) {
 // SIGINT or SIGTERM: the run stops between two slices, writes the frames
 // shown and the statistics up to there with run_status "interrupted", and
 // exits with 128 + the signal.
-void expect_interrupted(SocSimFaults& test, const fs::path& dir, pid_t pid, int signal, const std::string& name) {
-  ASSERT_TRUE(wait_for_file(dir / "out/frame_0002.png", pid)) << "no third frame appeared";
-  ASSERT_EQ(kill(pid, signal), 0);
-  const SimResult result = tessera::test::wait_soc_sim(pid, dir);
+void expect_interrupted(SocSimFaults& test, const fs::path& dir, tessera::test::ChildProcess& child, int signal,
+                        const std::string& name) {
+  ASSERT_TRUE(wait_for_file(dir / "out/frame_0002.png", child)) << "no third frame appeared";
+  ASSERT_EQ(kill(child.pid(), signal), 0);
+  const SimResult result = child.wait();
   EXPECT_EQ(result.status, 128 + signal) << describe(result);
   EXPECT_TRUE(contains(result.err, "interrupted by " + name + ": the run stopped after")) << describe(result);
   const json stats = read_json(dir / "out/stats.json");
@@ -227,14 +222,15 @@ void expect_interrupted(SocSimFaults& test, const fs::path& dir, pid_t pid, int 
 }
 
 TEST_F(SocSimFaults, SigintStopsAtASafePointKeepingWhatIsComplete) {
-  const pid_t pid = start({"--app", "pattern", "--frames", "100000", "--out", "out"});
-  expect_interrupted(*this, m_dir, pid, SIGINT, "SIGINT");
+  tessera::test::ChildProcess child = start({"--app", "pattern", "--frames", "100000", "--out", "out"});
+  expect_interrupted(*this, m_dir, child, SIGINT, "SIGINT");
   expect_whole_frames(m_dir / "out", read_json(m_dir / "out/stats.json")["frames_written"].get<unsigned>());
 }
 
 TEST_F(SocSimFaults, SigtermStopsAtASafePointKeepingWhatIsComplete) {
-  const pid_t pid = start({"--app", "pattern", "--frames", "100000", "--out", "out", "--vcd", "out/trace.vcd"});
-  expect_interrupted(*this, m_dir, pid, SIGTERM, "SIGTERM");
+  tessera::test::ChildProcess child =
+      start({"--app", "pattern", "--frames", "100000", "--out", "out", "--vcd", "out/trace.vcd"});
+  expect_interrupted(*this, m_dir, child, SIGTERM, "SIGTERM");
   // The trace up to the stop is kept, whole.
   const std::string trace = tessera::test::read_file(m_dir / "out/trace.vcd");
   EXPECT_TRUE(contains(trace, "$enddefinitions")) << trace.substr(0, 200);
@@ -262,10 +258,10 @@ TEST_F(SocSimFaults, StuckApplicationEndsAtTheStallLimit) {
 // Ctrl-C while the application is stuck: the loop never reaches its safe
 // point, so after the grace period the run is stopped from outside.
 TEST_F(SocSimFaults, SigintEndsAStuckApplication) {
-  const pid_t pid = start({"--app", "stuck_loop", "--set", "sim.stall_limit_s=0", "--out", "out"});
-  ASSERT_TRUE(wait_for_file(m_dir / "out/frame_0000.png", pid));
-  ASSERT_EQ(kill(pid, SIGINT), 0);
-  const SimResult result = wait(pid);
+  tessera::test::ChildProcess child = start({"--app", "stuck_loop", "--set", "sim.stall_limit_s=0", "--out", "out"});
+  ASSERT_TRUE(wait_for_file(m_dir / "out/frame_0000.png", child));
+  ASSERT_EQ(kill(child.pid(), SIGINT), 0);
+  const SimResult result = child.wait();
   EXPECT_EQ(result.status, 128 + SIGINT) << describe(result);
   EXPECT_TRUE(contains(result.err, "interrupted by SIGINT after 1 of 3 frames were shown")) << describe(result);
   EXPECT_TRUE(contains(result.err, "tessera::stuck_loop_app")) << describe(result);
@@ -293,7 +289,7 @@ TEST_F(SocSimFaults, WallClockLimitStopsTheRunWithItsStatistics) {
 // A crash in the application is reported as one, with the frame reached,
 // and the process still ends by its signal (a core dump stays possible).
 TEST_F(SocSimFaults, CrashInTheApplicationIsReportedWithTheFrame) {
-  const SimResult result = wait(start({"--app", "crash", "--out", "out"}, no_core_dump));
+  const SimResult result = start({"--app", "crash", "--out", "out"}, no_core_dump).wait();
   EXPECT_EQ(result.status, 128 + SIGSEGV) << describe(result);
   EXPECT_TRUE(contains(result.err,
                        "soc_sim: crashed: SIGSEGV (invalid memory access) at address 0x0 while "
@@ -330,6 +326,5 @@ TEST_F(SocSimFaults, ApplicationWithoutAFrameIsWarnedAbout) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

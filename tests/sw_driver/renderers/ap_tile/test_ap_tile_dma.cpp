@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
@@ -29,16 +29,8 @@ using tessera::test::contains;
 using tessera::test::describe;
 using tessera::test::SimResult;
 
-std::string g_soc_sim;
-
-class ApTileDma : public tessera::test::ScratchFolderTest {
+class ApTileDma : public tessera::test::SocSimTest {
  protected:
-  void SetUp() override {
-    ASSERT_TRUE(fs::is_regular_file(g_soc_sim)) << "usage: ap_tile_dma_statistics <path to soc_sim>";
-    ScratchFolderTest::SetUp();
-  }
-  SimResult run(const std::vector<std::string>& args) { return tessera::test::run_soc_sim(g_soc_sim, m_dir, args); }
-
   // One frame of the teapot on ap-tile with the settings; the run's stats.json.
   json teapot(const std::string& folder, const std::vector<std::string>& settings) {
     std::vector<std::string> args = {"--backend", "ap-tile",     "--app", "teapot", "--frames",
@@ -123,6 +115,5 @@ TEST_F(ApTileDma, ACmemTooSmallForTheProgramEndsTheRunNamingIt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
-  return RUN_ALL_TESTS();
+  return tessera::test::soc_sim_test_main(argc, argv);
 }

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "apps/iss_app.h"
-#include "support/recording_core.h"
-#include "support/recording_host.h"
+#include "host/recording_core.h"
+#include "host/recording_host.h"
 
 namespace {
 

@@ -13,18 +13,17 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "support/soc_sim_runner.h"
+#include "fixtures/soc_sim_test.h"
 
 namespace {
 
-std::string g_soc_sim, g_program;
+std::string g_program;
 
-class IssDcache : public tessera::test::ScratchFolderTest {};
+using IssDcache = tessera::test::SocSimTest;
 
 TEST_F(IssDcache, ProgramsCp15OperationsReachTheHostsDataCacheAndWriteBuffer) {
-  ASSERT_FALSE(g_soc_sim.empty() || g_program.empty()) << "usage: test_iss_dcache SOC_SIM dcache.elf";
-  const tessera::test::SimResult result =
-      tessera::test::run_soc_sim(g_soc_sim, m_dir, {"--app", g_program, "-q", "--no-frames", "--out", "out"});
+  ASSERT_FALSE(g_program.empty()) << "usage: test_iss_dcache SOC_SIM dcache.elf";
+  const tessera::test::SimResult result = run({"--app", g_program, "-q", "--no-frames", "--out", "out"});
   ASSERT_EQ(result.status, 0) << result.err;
   std::ifstream in(m_dir / "out" / "stats.json");
   const nlohmann::json stats = nlohmann::json::parse(in)["stats"];
@@ -57,7 +56,7 @@ TEST_F(IssDcache, ProgramsCp15OperationsReachTheHostsDataCacheAndWriteBuffer) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  g_soc_sim = tessera::test::init_soc_sim_test(argc, argv);
+  tessera::test::init_soc_sim_test(argc, argv);
   if (argc >= 3) g_program = std::filesystem::absolute(argv[2]).string();
   return RUN_ALL_TESTS();
 }

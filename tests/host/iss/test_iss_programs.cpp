@@ -14,6 +14,8 @@
 #include "host/iss/arm_core.h"
 #include "host/iss/bare_machine.h"
 #include "host/iss/elf_image.h"
+#include "process/child_process.h"
+#include "process/scratch_folder.h"
 
 namespace {
 
@@ -38,14 +40,13 @@ IssRun run_on_iss(const std::string& path) {
 }
 
 std::string run_natively(const std::string& path) {
-  std::string output;
-  FILE* pipe = popen(path.c_str(), "r");
-  if (pipe == nullptr) return output;
-  char chunk[256];
-  size_t n;
-  while ((n = fread(chunk, 1, sizeof chunk, pipe)) > 0) output.append(chunk, n);
-  pclose(pipe);
-  return output;
+  const tessera::test::ScratchFolder folder("tessera_iss_programs");
+  tessera::test::ChildCommand command;
+  command.argv = {path};
+  command.stdout_file = folder.path() / "native.stdout";
+  const tessera::test::ChildResult result = tessera::test::run_child(command);
+  EXPECT_TRUE(result.started) << result.start_error;
+  return result.out;
 }
 
 TEST(IssPrograms, ArmAndThumbBuildsPrintWhatTheNativeBuildPrints) {

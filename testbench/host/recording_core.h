@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "host/host_core.h"
-#include "support/recording_host.h"
+#include "host/recording_host.h"
 
 namespace tessera::test {
 

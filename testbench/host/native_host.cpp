@@ -1,4 +1,4 @@
-#include "native_host.h"
+#include "host/native_host.h"
 
 #include <time.h>
 

@@ -23,8 +23,8 @@
 #include "host/iss/bare_machine.h"
 #include "host/iss/cp15.h"
 #include "host/iss/elf_image.h"
-#include "support/recording_core.h"
-#include "support/recording_host.h"
+#include "host/recording_core.h"
+#include "host/recording_host.h"
 
 namespace {
 

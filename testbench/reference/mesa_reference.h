@@ -2,10 +2,11 @@
 // softpipe driver) so that tessera's frames can be compared with what a
 // conforming GL implementation renders for the same GL calls.
 //
-// The scene must come from a library built with tessera_add_reference_scenes
-// (compiled against Mesa's GL). Mesa's libOSMesa and tessera's driver export
-// the same gl* symbols, so the two never share a process: our frames reach
-// the comparison as PNG files written by soc_sim.
+// The scene must come from a library compiled against Mesa's GL
+// (testbench_reference_scenes, testbench/reference/CMakeLists.txt). Mesa's
+// libOSMesa and tessera's driver export the same gl* symbols, so the two
+// never share a process: our frames reach the comparison as PNG files
+// written by soc_sim.
 #pragma once
 
 #include <cstdint>

@@ -10,7 +10,7 @@
 //    directory, and a stale cache cannot change what runs.
 // These are overwritten, not defaulted: a reference that silently changes
 // driver with the caller's environment is no reference.
-#include "mesa_reference.h"
+#include "reference/mesa_reference.h"
 
 #include <GL/osmesa.h>
 

@@ -1,4 +1,4 @@
-#include "image_compare.h"
+#include "reference/image_compare.h"
 
 #include <gtest/gtest.h>
 
