@@ -559,7 +559,7 @@ int run(int argc, char* argv[]) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
   }
-  soc.stream_frames([&frame_stream](const nlohmann::json& record) { frame_stream->add_frame(record); });
+  soc.recorder().stream_frames([&frame_stream](const nlohmann::json& record) { frame_stream->add_frame(record); });
   soc.display.keep_pixels(!opt.no_frames);
   soc.display.on_frame([&](const Frame& frame) {
     if (opt.wall_clock) frame_stream->add_timing(wall_seconds(), cpu_seconds());
@@ -597,7 +597,7 @@ int run(int argc, char* argv[]) {
     return app.main(env);
   });
 
-  if (trace_pipe) soc.trace_to(trace_pipe->systemc_base());
+  if (trace_pipe) soc.recorder().trace_to(trace_pipe->systemc_base());
 
   // stats.json: what soc_sim knows of the run, and the SoC's statistics
   // (null when the run was stopped from outside the simulation).
@@ -672,7 +672,7 @@ int run(int argc, char* argv[]) {
   // limit, say): GDB is told, not left waiting.
   if (gdb_server) gdb_server->abandon();
   progress.finish(frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
-  soc.close_trace();
+  soc.recorder().close_trace();
   std::string trace_error = trace_pipe ? trace_pipe->finish() : "";
   // A program on the ISS: its functions' names by soc.host.function's value,
   // as a GTKWave translate-filter file beside the VCD.
@@ -726,7 +726,7 @@ int run(int argc, char* argv[]) {
   int status = failures.empty() ? 0 : failures.front().exit_status;
   const RunEnd end = failures.empty() ? RunEnd::completed : failures.front().end;
 
-  nlohmann::json stats = soc.stats_json();
+  nlohmann::json stats = soc.recorder().stats_json();
   stats["driver"] = to_json(driver_counters);
   // The frames streamed (every one: streaming began before the first) are
   // merged in where the placeholder is.
