@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "apps/iss_app.h"
+#include "apps/apps.h"
 #include "build_info.h"
 #include "renderers/backend_parameters.h"
 #include "renderers/backends.h"
@@ -222,7 +222,7 @@ std::variant<RunPlan, int> read_command_line(int argc, char* argv[]) {
   }
   if (const std::optional<int> status = check_iss_options(opt, *config)) return *status;
 
-  AppInfo app;
+  LaunchableApp app;
   try {
     app = find_app(config->get_string("sim.app"), config->get_string("host.model") == "iss");
   } catch (const std::invalid_argument& e) {

@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
-#include "apps/apps.h"
 #include "config/config.h"
+#include "launch/app_loading.h"
 #include "time_limit.h"
 
 namespace tessera {
@@ -47,7 +47,7 @@ struct RunPlan {
   Options options;
   Config config;
   TimeLimit time_limit;
-  AppInfo app;
+  LaunchableApp app;
   std::vector<std::string> command_line;  // argv, for stats.json
 };
 

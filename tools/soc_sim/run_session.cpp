@@ -238,12 +238,10 @@ void RunSession::start_application() {
     m_frame_stream->add_driver(record);
   };
   backends::hand_over(backends::backend(m_config.get_string("driver.backend")), m_env);
-  m_env.core = &soc.host;
-  m_env.gdb = m_gdb_server.get();
   soc.host.set_profiling_program(m_options.iss_profile);
   soc.set_program([this](HostApi& host) {
     m_env.host = &host;
-    return m_plan.app.main(m_env);
+    return m_plan.app.main(m_env, IssHost{m_soc->host, m_gdb_server.get()});
   });
 
   if (m_trace_pipe) soc.recorder().trace_to(m_trace_pipe->systemc_base());
