@@ -19,19 +19,8 @@ struct AppInfo {
 const std::map<std::string, AppInfo>& builtin_apps();
 // Their names, ", "-separated, for messages.
 std::string builtin_app_names();
-
-// The application `name`: a built-in one, an ARM executable (*.elf, on the
-// ISS) or a shared library given by its path. With `on_iss`
-// (host.model=iss) a built-in one runs cross-compiled on the ISS, from the
-// image builtin_iss_image() names, and a shared library is refused. Throws
-// std::invalid_argument listing the built-in ones, or naming what is wrong.
-// Native only (app_loading.cpp): the driver cross-compiled for the ISS runs
-// built-in applications alone.
-AppInfo find_app(const std::string& name, bool on_iss = false);
-// The ARM executable of every built-in application, beside the running
-// program (<its folder>/arm922t/tessera_apps.elf); std::invalid_argument if
-// it is missing.
-std::string builtin_iss_image();
+// (soc_sim finds an application by name, built-in or not, and runs it:
+// tools/soc_sim/launch/app_loading.h.)
 
 int pattern_app(AppEnvironment& env);
 int calib_add_app(AppEnvironment& env);

@@ -20,10 +20,4 @@ int run_gl_app(AppEnvironment& env, GlMain main, const std::string& name);
 // The EGL loop around a built-in scene.
 int run_scene_app(AppEnvironment& env, const scenes::Scene& scene);
 
-// Loads a shared library and returns its tessera_app_main, or its main if
-// it has none (defined in the library itself); throws
-// std::invalid_argument naming the file and what is wrong with it. Native
-// only (app_loading.cpp).
-GlMain load_app_library(const std::string& path);
-
 }  // namespace tessera

@@ -1,4 +1,4 @@
-// What the ISS launcher (sw_driver/apps/iss_app.cpp) hands an ARM program
+// What the ISS launcher (tools/soc_sim/launch/iss_launcher.cpp) hands an ARM program
 // built with the bare-metal runtime, and the channels through which the
 // program hands back what a host-compiled application gives soc_sim
 // through its AppEnvironment (warnings, per-frame figures, counters). All of

@@ -1,5 +1,5 @@
 // The host's core side (HostCore) over a RecordingHost's memory, for the
-// ISS launcher's tests (sw_driver/apps/iss_app.cpp): debug access reads and
+// ISS launcher's tests (tools/soc_sim/launch/iss_launcher.cpp): debug access reads and
 // writes that memory, instruction-side fills are counted (and charge
 // nothing), no interrupt is ever asserted. With `direct`, fetches read the
 // memory directly (HostCore::direct_memory, as the SoC's host gives them

@@ -66,7 +66,7 @@ TEST(Soc, BlocksAreListedOnceEachUnderTheirNames) {
   for (const Block* block : g_bench->soc.blocks()) EXPECT_TRUE(names.insert(block->basename()).second);
   EXPECT_EQ(names,
             (std::set<std::string>{"host", "bus", "memory", "display", "display_dma", "raster", "array", "ciu"}));
-  const auto stats = g_bench->soc.stats_json();
+  const auto stats = g_bench->soc.recorder().stats_json();
   for (const auto& name : names) EXPECT_TRUE(stats.contains(name)) << name;
 }
 

@@ -40,14 +40,14 @@ struct WindowReader : sc_core::sc_module {
   void read() {
     wait(g_bench->window + sc_time(1, sc_core::SC_NS));
     for (unsigned k = 0; k < TRACED_WINDOWS; ++k) {
-      g_bench->windows.push_back(g_bench->soc.power_trace()->last_window());
+      g_bench->windows.push_back(g_bench->soc.recorder().power_trace()->last_window());
       wait(g_bench->window);
     }
   }
 };
 
 double pj_of(const std::string& unit, const std::string& event) {
-  for (const UnitEnergyParams& u : g_bench->soc.energy_model().units())
+  for (const UnitEnergyParams& u : g_bench->soc.recorder().energy_model().units())
     if (u.unit == unit)
       for (const EventEnergy& e : u.events)
         if (e.event == event) return e.picojoules;
@@ -55,7 +55,7 @@ double pj_of(const std::string& unit, const std::string& event) {
 }
 
 double static_mw_of(const std::string& unit) {
-  for (const UnitEnergyParams& u : g_bench->soc.energy_model().units())
+  for (const UnitEnergyParams& u : g_bench->soc.recorder().energy_model().units())
     if (u.unit == unit) return u.static_milliwatts;
   throw std::logic_error("no unit " + unit);
 }
@@ -102,9 +102,9 @@ int sc_main(int argc, char* argv[]) {
   WindowReader reader("reader");
   const test::ScratchFolder folder("tessera_soc_power_steady");
   const std::filesystem::path trace = folder.path() / "power";
-  b.soc.trace_to(trace.string());
+  b.soc.recorder().trace_to(trace.string());
   sc_core::sc_start(b.window * (TRACED_WINDOWS + 1));
   const int status = test::run_all_tests(argc, argv);
-  b.soc.close_trace();
+  b.soc.recorder().close_trace();
   return status;
 }

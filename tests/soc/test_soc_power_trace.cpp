@@ -33,7 +33,7 @@ struct Bench {
 Bench* g_bench = nullptr;
 
 const UnitEnergyParams& params_of(const std::string& unit) {
-  for (const UnitEnergyParams& u : g_bench->soc.energy_model().units())
+  for (const UnitEnergyParams& u : g_bench->soc.recorder().energy_model().units())
     if (u.unit == unit) return u;
   throw std::logic_error("no unit " + unit);
 }
@@ -47,7 +47,7 @@ double pj_of(const std::string& unit, const std::string& event) {
 }  // namespace
 
 TEST(SocPowerTrace, WindowsEndOnTheWindowGrid) {
-  const PowerTrace* trace = g_bench->soc.power_trace();
+  const PowerTrace* trace = g_bench->soc.recorder().power_trace();
   ASSERT_NE(trace, nullptr);
   EXPECT_EQ(trace->windows(), 20u);
   EXPECT_EQ(sc_time(trace->last_window().start_seconds, sc_core::SC_SEC), g_bench->window * 19);
@@ -55,7 +55,7 @@ TEST(SocPowerTrace, WindowsEndOnTheWindowGrid) {
 }
 
 TEST(SocPowerTrace, AWindowWithoutActivityShowsStaticPowerOnly) {
-  const PowerWindow& quiet = g_bench->soc.power_trace()->last_window();
+  const PowerWindow& quiet = g_bench->soc.recorder().power_trace()->last_window();
   ASSERT_LT(g_bench->clear_end_seconds, quiet.start_seconds) << "the clear is still running";
   ASSERT_EQ(quiet.units.size(), 9u);  // dma.enabled is false: no dma unit
   for (const UnitEnergy& unit : quiet.units) {
@@ -76,19 +76,19 @@ TEST(SocPowerTrace, AWindowWithoutActivityShowsStaticPowerOnly) {
 
 TEST(SocPowerTrace, TheWindowsAddUpToTheRunsEnergy) {
   Soc& soc = g_bench->soc;
-  soc.close_power_window();
-  EXPECT_EQ(soc.power_trace()->windows(), 21u);
-  EXPECT_EQ(sc_time(soc.power_trace()->last_window().end_seconds, sc_core::SC_SEC), g_bench->window * 20.5);
-  const nlohmann::json energy = soc.stats_json()["energy"];
+  soc.recorder().close_power_window();
+  EXPECT_EQ(soc.recorder().power_trace()->windows(), 21u);
+  EXPECT_EQ(sc_time(soc.recorder().power_trace()->last_window().end_seconds, sc_core::SC_SEC), g_bench->window * 20.5);
+  const nlohmann::json energy = soc.recorder().stats_json()["energy"];
   double total = 0;
-  for (const auto& [unit, joules] : soc.power_trace()->summed_joules()) {
+  for (const auto& [unit, joules] : soc.recorder().power_trace()->summed_joules()) {
     const double reported = energy["units"][unit]["total_j"].get<double>();
     EXPECT_NEAR(joules, reported, 1e-12 * reported + 1e-24) << unit;
     total += joules;
   }
   EXPECT_NEAR(total, energy["total_j"].get<double>(), 1e-12 * total);
   // The clear is in the windows: the bus carried it.
-  EXPECT_GT(soc.power_trace()->summed_joules().at("bus"), 0.0);
+  EXPECT_GT(soc.recorder().power_trace()->summed_joules().at("bus"), 0.0);
 }
 
 int sc_main(int argc, char* argv[]) {
@@ -105,9 +105,9 @@ int sc_main(int argc, char* argv[]) {
   });
   const test::ScratchFolder folder("tessera_soc_power_trace");
   const std::filesystem::path trace = folder.path() / "power";
-  b.soc.trace_to(trace.string());
+  b.soc.recorder().trace_to(trace.string());
   sc_core::sc_start(b.window * 20.5);
   const int status = test::run_all_tests(argc, argv);
-  b.soc.close_trace();
+  b.soc.recorder().close_trace();
   return status;
 }

@@ -5,7 +5,7 @@ Runs soc_sim with the driver cross-compiled for the ARM922T on the ISS
 (host.model=iss) on one scene of one back end and reads stats.json's
 `stats.host.iss.profile`: a flat profile, one row per function of the
 program's symbol table, the functions with the most cycles first, at most
-40 of them (sw_driver/apps/iss_app.cpp, PROFILE_ROWS). The back end's hot
+40 of them (tools/soc_sim/launch/iss_launcher.cpp, PROFILE_ROWS). The back end's hot
 paths are 32-bit integer fixed point, as an ARM922T driver's are: neither
 double-precision arithmetic (the soft-float __aeabi_d* / __*df* helpers,
 libm's double functions) nor 64-bit division (__aeabi_uldivmod,

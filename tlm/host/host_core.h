@@ -1,10 +1,10 @@
 // What an instruction-set simulator running as the host's program
-// (host.model=iss, sw_driver/apps/iss_app.cpp) needs of the host beyond the
+// (host.model=iss, tools/soc_sim/launch/iss_launcher.cpp) needs of the host beyond the
 // device layer (HostApi): the instruction side's bus reads, the core's two
 // interrupt inputs, the wait for an interrupt, CP15's control of the data
 // cache and its c7 operations, and access to memory that takes no time (a
 // debugger's, semihosting's). Host implements it; the
-// launcher gets it through AppEnvironment::core.
+// launcher gets it from soc_sim (IssHost), not through AppEnvironment.
 #pragma once
 
 #include <cstdint>

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "output_file.h"
-#include "soc/soc.h"
+#include "soc/soc_recorder.h"
 
 namespace fs = std::filesystem;
 

@@ -21,9 +21,9 @@ class TracePipe {
   explicit TracePipe(std::filesystem::path trace_path);
   ~TracePipe();  // abandons the trace unless finish() was called
 
-  // The path to give Soc::trace_to (without ".vcd").
+  // The path to give SocRecorder::trace_to (without ".vcd").
   std::string systemc_base() const { return (m_folder / "trace").string(); }
-  // After Soc::close_trace: waits for the copier and puts the trace in
+  // After SocRecorder::close_trace: waits for the copier and puts the trace in
   // place. Returns the first error ("cannot write 'out/trace.vcd': No space
   // left on device"), or "" when the trace is whole.
   std::string finish();

@@ -1,4 +1,4 @@
-// The SoC launcher of ARM executables (sw_driver/apps/iss_app.cpp) over a
+// The SoC launcher of ARM executables (tools/soc_sim/launch/iss_launcher.cpp) over a
 // recording host: what the program's instruction fetches see when another
 // bus master writes its code, and when its console output is printed.
 // (Its cycle accounting is test_iss_app_timing's; in the SoC with the real
@@ -12,9 +12,9 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/iss_app.h"
 #include "host/recording_core.h"
 #include "host/recording_host.h"
+#include "launch/iss_launcher.h"
 
 namespace {
 
@@ -72,9 +72,8 @@ int run_dma_code(bool direct) {
   };
   tessera::AppEnvironment env;
   env.host = &host;
-  env.core = &core;
   env.memory_bytes = MEMORY_BYTES;
-  const int status = tessera::run_elf_app(env, g_dma_code_elf);
+  const int status = tessera::run_elf_app(env, {core}, g_dma_code_elf);
   EXPECT_EQ(status_reads, 1u);
   if (direct) {
     EXPECT_GE(asked_before, 1u) << "fetches did not use direct memory";
@@ -107,9 +106,8 @@ TEST(IssApp, ConsoleOutputWithoutANewlineIsPrintedInBoundedChunks) {
     };
     tessera::AppEnvironment env;
     env.host = &host;
-    env.core = &core;
     env.memory_bytes = MEMORY_BYTES;
-    status = tessera::run_elf_app(env, g_console_elf);
+    status = tessera::run_elf_app(env, {core}, g_console_elf);
     printed = output.text();
   }
   EXPECT_EQ(status, 0);
@@ -128,13 +126,12 @@ TEST(IssApp, ASemihostingLineWithoutAnEndIsHandedOnInBoundedPieces) {
   std::vector<size_t> pieces;
   tessera::AppEnvironment env;
   env.host = &host;
-  env.core = &core;
   env.memory_bytes = MEMORY_BYTES;
   env.warn = [&](const std::string& source, const std::string& message) {
     EXPECT_EQ(source, "driver");
     pieces.push_back(message.size());
   };
-  EXPECT_EQ(tessera::run_elf_app(env, g_long_line_elf), 0) << "SYS_WRITE wrote all 100,000 bytes";
+  EXPECT_EQ(tessera::run_elf_app(env, {core}, g_long_line_elf), 0) << "SYS_WRITE wrote all 100,000 bytes";
   ASSERT_EQ(pieces.size(), 1u);
   EXPECT_EQ(pieces[0], 65'536u);
 }

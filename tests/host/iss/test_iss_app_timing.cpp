@@ -1,4 +1,4 @@
-// The SoC launcher of ARM executables (sw_driver/apps/iss_app.cpp) charges
+// The SoC launcher of ARM executables (tools/soc_sim/launch/iss_launcher.cpp) charges
 // the host exactly the timing layer's cycles: for the test programs, the
 // cycles it passes to compute() plus the issue cycle the host charges for
 // each word it reads or writes (LDM and STM are one read_words or
@@ -17,7 +17,6 @@
 
 #include <gtest/gtest.h>
 
-#include "apps/iss_app.h"
 #include "host/host_core.h"
 #include "host/iss/arm922t_timing.h"
 #include "host/iss/bare_machine.h"
@@ -25,6 +24,7 @@
 #include "host/iss/elf_image.h"
 #include "host/recording_core.h"
 #include "host/recording_host.h"
+#include "launch/iss_launcher.h"
 
 namespace {
 
@@ -72,9 +72,8 @@ LauncherFigures launcher_figures(const std::string& path) {
   RecordingCore core(host, 1u << 20);  // fetches read the memory directly, as in the SoC
   tessera::AppEnvironment env;
   env.host = &host;
-  env.core = &core;
   env.memory_bytes = 1u << 20;
-  EXPECT_EQ(tessera::run_elf_app(env, path), 0) << path;
+  EXPECT_EQ(tessera::run_elf_app(env, {core}, path), 0) << path;
   uint64_t computed = 0;
   for (int op = 0; op < static_cast<int>(tessera::Op::count_); ++op)
     computed += host.operations(static_cast<tessera::Op>(op));

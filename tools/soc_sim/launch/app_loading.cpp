@@ -1,7 +1,5 @@
-// Finding an application by name on the native host: a built-in one, an ARM
-// executable for the ISS, or a shared library loaded with dlopen. Native
-// only: the driver cross-compiled for the ISS has its built-in applications
-// and nothing to load.
+#include "launch/app_loading.h"
+
 #include <dlfcn.h>
 #include <link.h>
 
@@ -11,7 +9,6 @@
 
 #include "apps/apps.h"
 #include "apps/gl_apps.h"
-#include "apps/iss_app.h"
 #include "host/iss/elf_image.h"
 
 namespace tessera {
@@ -60,14 +57,18 @@ std::string builtin_iss_image() {
   return image.string();
 }
 
-AppInfo find_app(const std::string& name, bool on_iss) {
+LaunchableApp find_app(const std::string& name, bool on_iss) {
   const auto& apps = builtin_apps();
   auto it = apps.find(name);
   if (it != apps.end()) {
-    if (!on_iss) return it->second;
+    if (!on_iss) {
+      const AppMain main = it->second.main;
+      return {[main](AppEnvironment& env, const IssHost&) { return main(env); }, it->second.description};
+    }
     const std::string image = builtin_iss_image();
-    return {[image, name](AppEnvironment& env) { return run_elf_app(env, image, name); },
-            it->second.description + " (cross-compiled, on the ISS)"};
+    return {
+        [image, name](AppEnvironment& env, const IssHost& iss_host) { return run_elf_app(env, iss_host, image, name); },
+        it->second.description + " (cross-compiled, on the ISS)"};
   }
   if (is_elf_app(name)) {
     try {
@@ -75,7 +76,8 @@ AppInfo find_app(const std::string& name, bool on_iss) {
     } catch (const iss::ElfError& e) {
       throw std::invalid_argument(e.what());
     }
-    return {[name](AppEnvironment& env) { return run_elf_app(env, name); }, "ARM executable " + name + " on the ISS"};
+    return {[name](AppEnvironment& env, const IssHost& iss_host) { return run_elf_app(env, iss_host, name); },
+            "ARM executable " + name + " on the ISS"};
   }
   if (name.find('/') != std::string::npos || name.find(".so") != std::string::npos) {
     if (on_iss)
@@ -84,7 +86,8 @@ AppInfo find_app(const std::string& name, bool on_iss) {
                                   "as an ARM executable with the SDK's toolchain file (sw_driver/runtime/README.md), "
                                   "or run it with host.model=native");
     const GlMain main = load_app_library(name);
-    return {[main, name](AppEnvironment& env) { return run_gl_app(env, main, name); }, "application library " + name};
+    return {[main, name](AppEnvironment& env, const IssHost&) { return run_gl_app(env, main, name); },
+            "application library " + name};
   }
   throw std::invalid_argument("unknown application '" + name + "' (built-in: " + builtin_app_names() +
                               "; or the path of a shared library exporting tessera_app_main or main, or of an ARM "

@@ -1,7 +1,8 @@
-#include "apps/iss_app.h"
+#include "launch/iss_launcher.h"
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -395,22 +396,13 @@ nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTi
   return statistics;
 }
 
-}  // namespace
-
-bool is_elf_app(const std::string& name) {
-  return name.size() > 4 && name.compare(name.size() - 4, 4, ".elf") == 0;
-}
-
-int run_elf_app(AppEnvironment& env, const std::string& path, const std::string& builtin_app) {
-  HostApi& host = *env.host;
-  if (env.core == nullptr)
-    throw std::logic_error("the ISS launcher needs the host's core interface (AppEnvironment::core)");
-  HostCore& core_port = *env.core;
-  const iss::ElfImage image = iss::read_elf(path);
-  // The program's own part of system memory: below the driver's heap and
-  // the frame buffers (contract/soc/software_layout.h), which it must not cover.
-  // An executable that does not fit is bad input (status 2), found here
-  // because the memory's size is known only now.
+// Reads the ELF and loads it into system memory. The program's own part of
+// system memory is below the driver's heap and the frame buffers
+// (contract/soc/software_layout.h), which it must not cover. An executable that
+// does not fit is bad input (status 2), found here because the memory's
+// size is known only now.
+iss::ElfImage load_program(HostCore& core_port, const AppEnvironment& env, const std::string& path) {
+  iss::ElfImage image = iss::read_elf(path);
   const uint32_t application_end = env.heap_base != 0 ? env.heap_base : env.memory_bytes;
   try {
     image.check_fits(0, application_end, "the application's part of system memory (below the driver's heap)");
@@ -423,6 +415,116 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
     if (!segment.bytes.empty() &&
         !core_port.debug_write(segment.address, segment.bytes.data(), static_cast<unsigned>(segment.bytes.size())))
       throw std::runtime_error(path + ": cannot load the segment at " + iss::address_text(segment.address));
+  return image;
+}
+
+// A warning of the launcher about the program at `path`: the host's, in the
+// run's log (standard error without one).
+void warn_from(const AppEnvironment& env, const std::string& path, const std::string& message) {
+  if (env.warn)
+    env.warn("host", path + ": " + message);
+  else
+    std::cerr << path << ": " << message << "\n";
+}
+
+// The boot information the program reads at its start (boot_info.h): the
+// application's environment as the boot loader hands it over.
+boot_info::BootInfo boot_info_for(const AppEnvironment& env, const std::string& app) {
+  boot_info::BootInfo boot;
+  boot.app = app;
+  boot.args = env.args;
+  boot.frames = env.frames;
+  boot.frame_buffers[0] = env.frame_buffers[0];
+  boot.frame_buffers[1] = env.frame_buffers[1];
+  boot.memory_bytes = env.memory_bytes;
+  boot.heap_base = env.heap_base;
+  boot.heap_end = env.heap_end;
+  // The program's C heap may continue in the first host.iss_heap_mib of
+  // the driver's heap (host-compiled software allocates from the host's
+  // memory, without a limit; the ARM program from the SoC's).
+  const uint64_t program_heap = env.config != nullptr && env.config->has("host.iss_heap_mib")
+                                    ? env.config->get_uint("host.iss_heap_mib") << 20
+                                    : 0;
+  if (program_heap != 0) {
+    if (uint64_t{env.heap_base} + program_heap > env.heap_end)
+      throw std::invalid_argument("host.iss_heap_mib=" + std::to_string(program_heap >> 20) +
+                                  " MiB does not fit in the driver's heap (" +
+                                  std::to_string((env.heap_end - env.heap_base) >> 20) +
+                                  " MiB with this mem.size_mib and display): lower it or raise mem.size_mib");
+    boot.program_heap_base = env.heap_base;
+    boot.program_heap_end = static_cast<uint32_t>(env.heap_base + program_heap);
+    boot.heap_base = boot.program_heap_end;
+  }
+  if (env.make_renderer && env.config != nullptr && env.config->has("driver.backend"))
+    boot.backend = env.config->get_string("driver.backend");
+  if (env.config != nullptr) boot.config = boot_info::effective_parameters(*env.config);
+  return boot;
+}
+
+// The program's environment through semihosting: its command line, the
+// boot information to read, and the files its driver writes its warnings,
+// per-frame figures and counters to, handed on to env's a line at a time.
+void offer_environment(iss::Semihosting& semihosting, AppEnvironment& env, const std::string& path,
+                       const std::string& builtin_app) {
+  const std::string app = builtin_app.empty() ? file_name(path) : builtin_app;
+  std::string command_line = app;
+  for (const std::string& arg : env.args) command_line += " " + arg;
+  semihosting.command_line = command_line;
+  semihosting.offer_file(boot_info::BOOT_FILE, boot_info::encode(boot_info_for(env, app)));
+  // One sink per file, shared by every handle the program opens on it (each
+  // open takes a copy of the function offered).
+  const auto warnings = std::make_shared<LineSink>([&env](const std::string& line) {
+    const size_t tab = line.find('\t');
+    const std::string source = tab == std::string::npos ? "driver" : line.substr(0, tab);
+    const std::string message = tab == std::string::npos ? line : line.substr(tab + 1);
+    if (env.warn)
+      env.warn(source, message);
+    else
+      std::cerr << source << ": " << message << "\n";
+  });
+  const auto figures = std::make_shared<LineSink>([&env](const std::string& line) {
+    if (env.frame_statistics) env.frame_statistics(boot_info::decode_figures(line));
+  });
+  const auto counters = std::make_shared<LineSink>([&env](const std::string& line) {
+    const size_t first = line.find('\t'), second = line.find('\t', first + 1);
+    if (env.counters == nullptr || first == std::string::npos || second == std::string::npos) return;
+    env.counters->counter(line.substr(0, first), line.substr(second + 1)) +=
+        std::strtoull(line.c_str() + first + 1, nullptr, 10);
+  });
+  semihosting.offer_sink(boot_info::WARNINGS_FILE, [warnings](const std::string& data) { (*warnings)(data); });
+  semihosting.offer_sink(boot_info::FRAME_FIGURES_FILE, [figures](const std::string& data) { (*figures)(data); });
+  semihosting.offer_sink(boot_info::COUNTERS_FILE, [counters](const std::string& data) { (*counters)(data); });
+}
+
+// The program's statistics in stats.json (HostCore::set_program_statistics),
+// live while it runs (a run stopped at its time limit reports them too),
+// kept as they were when it ends.
+class StatisticsPublisher {
+ public:
+  StatisticsPublisher(HostCore& core, std::function<nlohmann::json()> live) : m_core(core), m_live(std::move(live)) {
+    m_core.set_program_statistics(m_live);
+  }
+  ~StatisticsPublisher() {
+    m_core.set_program_statistics([final = m_live()] { return final; });
+  }
+  StatisticsPublisher(const StatisticsPublisher&) = delete;
+  StatisticsPublisher& operator=(const StatisticsPublisher&) = delete;
+
+ private:
+  HostCore& m_core;
+  std::function<nlohmann::json()> m_live;
+};
+
+}  // namespace
+
+bool is_elf_app(const std::string& name) {
+  return name.size() > 4 && name.compare(name.size() - 4, 4, ".elf") == 0;
+}
+
+int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string& path, const std::string& builtin_app) {
+  HostApi& host = *env.host;
+  HostCore& core_port = iss_host.core;
+  const iss::ElfImage image = load_program(core_port, env, path);
 
   iss::Arm922tTiming timing;
   HostMemory memory(host, core_port, timing);
@@ -469,66 +571,9 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
     memory.flush_console();
     (stream == 2 ? std::cerr : std::cout) << text << std::flush;
   };
-  const auto warn = [&env, &path](const std::string& message) {
-    if (env.warn)
-      env.warn("host", path + ": " + message);
-    else
-      std::cerr << path << ": " << message << "\n";
-  };
+  const auto warn = [&env, &path](const std::string& message) { warn_from(env, path, message); };
   semihosting.warn = warn;
-  std::string command_line = builtin_app.empty() ? file_name(path) : builtin_app;
-  for (const std::string& arg : env.args) command_line += " " + arg;
-  semihosting.command_line = command_line;
-  boot_info::BootInfo boot;
-  boot.app = builtin_app.empty() ? file_name(path) : builtin_app;
-  boot.args = env.args;
-  boot.frames = env.frames;
-  boot.frame_buffers[0] = env.frame_buffers[0];
-  boot.frame_buffers[1] = env.frame_buffers[1];
-  boot.memory_bytes = env.memory_bytes;
-  boot.heap_base = env.heap_base;
-  boot.heap_end = env.heap_end;
-  // The program's C heap may continue in the first host.iss_heap_mib of
-  // the driver's heap (host-compiled software allocates from the host's
-  // memory, without a limit; the ARM program from the SoC's).
-  const uint64_t program_heap = env.config != nullptr && env.config->has("host.iss_heap_mib")
-                                    ? env.config->get_uint("host.iss_heap_mib") << 20
-                                    : 0;
-  if (program_heap != 0) {
-    if (uint64_t{env.heap_base} + program_heap > env.heap_end)
-      throw std::invalid_argument("host.iss_heap_mib=" + std::to_string(program_heap >> 20) +
-                                  " MiB does not fit in the driver's heap (" +
-                                  std::to_string((env.heap_end - env.heap_base) >> 20) +
-                                  " MiB with this mem.size_mib and display): lower it or raise mem.size_mib");
-    boot.program_heap_base = env.heap_base;
-    boot.program_heap_end = static_cast<uint32_t>(env.heap_base + program_heap);
-    boot.heap_base = boot.program_heap_end;
-  }
-  if (env.make_renderer && env.config != nullptr && env.config->has("driver.backend"))
-    boot.backend = env.config->get_string("driver.backend");
-  if (env.config != nullptr) boot.config = boot_info::effective_parameters(*env.config);
-  semihosting.offer_file(boot_info::BOOT_FILE, boot_info::encode(boot));
-  LineSink warnings([&env](const std::string& line) {
-    const size_t tab = line.find('\t');
-    const std::string source = tab == std::string::npos ? "driver" : line.substr(0, tab);
-    const std::string message = tab == std::string::npos ? line : line.substr(tab + 1);
-    if (env.warn)
-      env.warn(source, message);
-    else
-      std::cerr << source << ": " << message << "\n";
-  });
-  LineSink figures([&env](const std::string& line) {
-    if (env.frame_statistics) env.frame_statistics(boot_info::decode_figures(line));
-  });
-  LineSink counters([&env](const std::string& line) {
-    const size_t first = line.find('\t'), second = line.find('\t', first + 1);
-    if (env.counters == nullptr || first == std::string::npos || second == std::string::npos) return;
-    env.counters->counter(line.substr(0, first), line.substr(second + 1)) +=
-        std::strtoull(line.c_str() + first + 1, nullptr, 10);
-  });
-  semihosting.offer_sink(boot_info::WARNINGS_FILE, [&warnings](const std::string& data) { warnings(data); });
-  semihosting.offer_sink(boot_info::FRAME_FIGURES_FILE, [&figures](const std::string& data) { figures(data); });
-  semihosting.offer_sink(boot_info::COUNTERS_FILE, [&counters](const std::string& data) { counters(data); });
+  offer_environment(semihosting, env, path, builtin_app);
 
   core.on_swi([&](uint32_t pc) {
     uint32_t instruction = 0;
@@ -550,22 +595,10 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
     // The loop's handler below names the file.
     throw iss::ProgramFault(exception, text + " (the program has no handler: the ISS launcher stops it)");
   });
-  // The program's statistics in stats.json, live while it runs (a run
-  // stopped at its time limit reports them too), kept when it ends.
-  const auto statistics = [&] {
+  const StatisticsPublisher publisher(core_port, [&] {
     end_run();
     return program_statistics(core, timing, profile, profiling);
-  };
-  struct Publisher {
-    HostCore& core;
-    std::function<nlohmann::json()> live;
-    Publisher(HostCore& c, std::function<nlohmann::json()> s) : core(c), live(std::move(s)) {
-      core.set_program_statistics(live);
-    }
-    ~Publisher() {
-      core.set_program_statistics([final = live()] { return final; });
-    }
-  } publisher(core_port, statistics);
+  });
 
   core.reset();
   core.set_reg(15, image.entry);
@@ -615,8 +648,8 @@ int run_elf_app(AppEnvironment& env, const std::string& path, const std::string&
     // GDB (soc_sim --gdb), from before the first instruction until it
     // leaves or the program exits, on the host's thread: it holds the
     // kernel, so while GDB holds the program no block's time passes.
-    if (env.gdb != nullptr) {
-      const iss::GdbServer::End end = env.gdb->serve({core, memory, step, ended, exit_status}, ~uint64_t{0});
+    if (iss_host.gdb != nullptr) {
+      const iss::GdbServer::End end = iss_host.gdb->serve({core, memory, step, ended, exit_status}, ~uint64_t{0});
       if (end == iss::GdbServer::End::killed)
         throw std::runtime_error(path + ": killed by GDB at pc " + iss::address_text(core.reg(15)));
       if (end == iss::GdbServer::End::disconnected) warn("GDB went away without detaching; the program runs on");

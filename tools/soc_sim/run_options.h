@@ -1,0 +1,63 @@
+// soc_sim's command line and the configuration it names: what a run is to
+// do (RunPlan), or the answer to a question that needs no run (--help,
+// --version, --list-apps, --print-config, --config-reference) or to bad
+// input, with the status to exit with.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "config/config.h"
+#include "launch/app_loading.h"
+#include "time_limit.h"
+
+namespace tessera {
+
+constexpr int EXIT_USAGE = 2;       // bad option, configuration or input file
+constexpr int EXIT_SIM_FAILED = 1;  // the simulation itself failed
+
+// The command line as given.
+struct Options {
+  std::vector<std::string> config_files;
+  std::vector<std::string> overrides;
+  std::string app;
+  std::string backend;
+  int frames = 0;
+  std::string out_dir = "out";
+  std::string vcd;
+  std::string stats;
+  bool quiet = false;
+  bool force = false;
+  bool no_frames = false;
+  bool wall_clock = false;
+  std::string log_level;
+  bool print_config = false;
+  bool config_reference = false;
+  bool list_apps = false;
+  int gdb_port = -1;  // -1: no GDB
+  std::string gdb_port_file;
+  bool iss_profile = false;
+  std::vector<std::string> app_args;
+};
+
+// A run to do: the command line, the effective configuration (validated),
+// the simulated-time limit in effect and the application found.
+struct RunPlan {
+  Options options;
+  Config config;
+  TimeLimit time_limit;
+  LaunchableApp app;
+  std::vector<std::string> command_line;  // argv, for stats.json
+};
+
+// Every parameter of a run: soc_sim's (sim.*), the driver's and its back
+// ends', the SoC's and its blocks'.
+std::vector<ParamGroup> all_parameters();
+
+// Reads the command line and the configuration it names. A question that
+// needs no run is answered on stdout, bad input on stderr ("soc_sim: ..."),
+// and what comes back is then the status to exit with (0, or EXIT_USAGE).
+std::variant<RunPlan, int> read_command_line(int argc, char* argv[]);
+
+}  // namespace tessera
