@@ -28,11 +28,6 @@ using RendererFactory = std::function<std::unique_ptr<gl::Renderer>(AppEnvironme
 
 struct AppEnvironment {
   HostApi* host = nullptr;
-  // Two words where the ISS core and the GDB server were handed over: kept,
-  // always null, so that the ARM program's memory layout, and with it every
-  // timing on the ISS and the measured host-cost table, stay as they are.
-  // Drop them when the table is next re-measured for a change of its own.
-  void* unused_words[2] = {nullptr, nullptr};
   unsigned frames = 1;
   uint32_t frame_buffers[2] = {0, 0};
   uint32_t memory_bytes = 0;  // system memory populated from address 0
