@@ -42,6 +42,7 @@ std::vector<char*> environment_with(const std::vector<std::string>& additions, s
     if (!replaced) storage.push_back(addition);
   }
   std::vector<char*> pointers;
+  pointers.reserve(storage.size() + 1);
   for (std::string& variable : storage) pointers.push_back(variable.data());
   pointers.push_back(nullptr);
   return pointers;
