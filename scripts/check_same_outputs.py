@@ -35,6 +35,8 @@ import subprocess
 import sys
 import tempfile
 
+from json_difference import first_difference
+
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 BACKENDS = ["arm", "raster", "ap-tile", "ap-pixel"]
 ISS_SCENES = ["triangle", "textured_quad", "tile_grid", "fog_row"]
@@ -130,26 +132,6 @@ def outputs(out: pathlib.Path) -> dict:
         else:
             record["files"][path.name] = hashlib.sha256(path.read_bytes()).hexdigest()
     return record
-
-
-def first_difference(a, b, where: str = "") -> str:
-    if isinstance(a, dict) and isinstance(b, dict):
-        for key in sorted(set(a) | set(b)):
-            if key not in a or key not in b:
-                return f"{where}.{key} only {'after' if key not in a else 'before'}"
-            found = first_difference(a[key], b[key], f"{where}.{key}")
-            if found:
-                return found
-        return ""
-    if isinstance(a, list) and isinstance(b, list):
-        if len(a) != len(b):
-            return f"{where}: {len(a)} items before, {len(b)} after"
-        for i, (x, y) in enumerate(zip(a, b)):
-            found = first_difference(x, y, f"{where}[{i}]")
-            if found:
-                return found
-        return ""
-    return "" if a == b else f"{where}: {a!r} before, {b!r} after"
 
 
 def measure(soc_sim: str, case: tuple, work: pathlib.Path):

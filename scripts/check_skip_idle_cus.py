@@ -24,6 +24,8 @@ import subprocess
 import sys
 import tempfile
 
+from json_difference import first_difference
+
 SWITCH = "array.skip_idle_cus"
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 # The fitted energy model gives CMEM bytes no energy, which would hide the
@@ -77,26 +79,6 @@ def stats_without_switch(path: pathlib.Path) -> dict:
     return stats
 
 
-def first_difference(a, b, where: str = "") -> str:
-    if isinstance(a, dict) and isinstance(b, dict):
-        for key in sorted(set(a) | set(b)):
-            if key not in a or key not in b:
-                return f"{where}.{key} only in one run"
-            found = first_difference(a[key], b[key], f"{where}.{key}")
-            if found:
-                return found
-        return ""
-    if isinstance(a, list) and isinstance(b, list):
-        if len(a) != len(b):
-            return f"{where}: {len(a)} against {len(b)} items"
-        for i, (x, y) in enumerate(zip(a, b)):
-            found = first_difference(x, y, f"{where}[{i}]")
-            if found:
-                return found
-        return ""
-    return "" if a == b else f"{where}: {a!r} (on) against {b!r} (off)"
-
-
 def compare(on: pathlib.Path, off: pathlib.Path) -> str:
     files_on = sorted(p.name for p in on.iterdir() if p.name != "stats.json")
     files_off = sorted(p.name for p in off.iterdir() if p.name != "stats.json")
@@ -116,7 +98,7 @@ def compare(on: pathlib.Path, off: pathlib.Path) -> str:
         cmem_joules = sum(stage["units"]["cu_array"]["dynamic_j"] for stage in stages.values())
         if sim.get("array", {}).get("programs", 0) > 0 and cmem_joules <= 0:
             return f"stats.json ({name}): the array ran programs, but no stage's CMEM accesses show in its energy"
-    return first_difference(stats_on, stats_off, "stats.json")
+    return first_difference(stats_on, stats_off, "stats.json", ("on", "off"))
 
 
 def check(soc_sim: str, backend: str, app: str, frames: int, work: pathlib.Path) -> str:
