@@ -2,6 +2,7 @@
 
     tessera-sweep run SPEC [options]      a sweep spec or an experiment (by file or by name)
     tessera-sweep list                    the study's experiments (experiments/*.yaml)
+    tessera-sweep sort-middle COMMAND     Crockett and Orloff's sort-middle model: table, time, fit
     tessera-sweep SPEC [options]          a sweep spec, as before "run" existed
 
 A sweep spec (axes, zip groups, metrics): checks every point, runs those not
@@ -18,7 +19,7 @@ import os
 import sys
 from pathlib import Path
 
-from . import experiment, table
+from . import experiment, sort_middle_model, table
 from .report import write_report
 from .runner import run_sweep
 from .simulator import Simulator, SimulatorError
@@ -122,6 +123,8 @@ def main(argv: list[str] | None = None) -> int:
         return run_main(argv[1:])
     if argv[:1] == ["list"]:
         return experiment.main(["--list", *argv[1:]], prog="tessera-sweep list")
+    if argv[:1] == ["sort-middle"]:
+        return sort_middle_model.main(argv[1:])
     parser = argparse.ArgumentParser(
         prog="tessera-sweep", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
