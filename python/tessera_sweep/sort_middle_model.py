@@ -300,14 +300,21 @@ def constants_from_options(options: argparse.Namespace) -> Constants:
 
 
 def add_constant_options(parser: argparse.ArgumentParser) -> None:
-    group = parser.add_argument_group("constants (default: the paper's, docs/sort_middle_model.md)")
-    group.add_argument("--latency-us", type=float, help="t_l, trapezoid message latency (431, Table 1)")
-    group.add_argument("--alpha-us", type=float, help="alpha, wait constant (143, Table 1)")
-    group.add_argument("--t-split-us", type=float, help="t_split (2.5, section 6.3)")
-    group.add_argument("--t-B-us", type=float, help="t_B, Bresenham set-up per trapezoid (13.375, section 6.3)")
-    group.add_argument("--t-l0-us", type=float, help="t_l0, termination message latency (75, section 6.3)")
+    group = parser.add_argument_group("constants in microseconds (default: the paper's, docs/sort_middle_model.md)")
+    group.add_argument("--latency-us", type=float, metavar="US", help="t_l, trapezoid message latency (431, Table 1)")
+    group.add_argument("--alpha-us", type=float, metavar="US", help="alpha, wait constant (143, Table 1)")
+    group.add_argument("--t-split-us", type=float, metavar="US", help="t_split (2.5, section 6.3)")
     group.add_argument(
-        "--t-b-us", type=float, help="t_b, per-byte cost (0: the paper drops it; the iPSC/860 link is 0.357)"
+        "--t-B-us", type=float, metavar="US", help="t_B, Bresenham set-up per trapezoid (13.375, section 6.3)"
+    )
+    group.add_argument(
+        "--t-l0-us", type=float, metavar="US", help="t_l0, termination message latency (75, section 6.3)"
+    )
+    group.add_argument(
+        "--t-b-us",
+        type=float,
+        metavar="US",
+        help="t_b, per-byte cost (0: the paper drops it; the iPSC/860 link is 0.357)",
     )
     group.add_argument("--s", type=int, help="s, trapezoid bytes (64, section 5)")
     parser.add_argument("--h", type=float, default=STANDARD_SCENE["h"], help="mean triangle height (8.3)")
@@ -412,7 +419,9 @@ def main(argv: list[str] | None = None, prog: str = "tessera-sweep sort-middle")
     time.add_argument("--n", type=float, default=STANDARD_SCENE["n"], help="triangles (100000)")
     time.add_argument("--p", type=int, required=True, help="processors")
     time.add_argument("--d", type=float, help="buffer depth (default: d_opt rounded)")
-    time.add_argument("--C-us", type=float, help="C, linear cost per triangle (default: estimated, see output)")
+    time.add_argument(
+        "--C-us", type=float, metavar="US", help="C, linear cost per triangle (default: estimated, see output)"
+    )
     time.add_argument("--no-ceiling", action="store_true", help="v/d instead of ceil(v/d) in Eq. 4 and 5")
     add_constant_options(time)
     time.set_defaults(run=time_command)
