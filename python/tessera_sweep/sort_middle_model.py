@@ -295,7 +295,11 @@ def constants_from_options(options: argparse.Namespace) -> Constants:
                 raise ValueError(f"--{name.replace('_', '-')}-us must not be negative ({value})")
             constants = replace(constants, **{name: value * MICROSECOND})
     if options.s is not None:
+        if options.s < 0:
+            raise ValueError(f"--s must not be negative ({options.s})")
         constants = replace(constants, s=options.s)
+    if options.h < 0 or options.y <= 0:
+        raise ValueError(f"need --h >= 0 and --y > 0 (h={options.h}, y={options.y})")
     return constants
 
 
@@ -323,6 +327,9 @@ def add_constant_options(parser: argparse.ArgumentParser) -> None:
 
 def table_command(options: argparse.Namespace) -> int:
     constants = constants_from_options(options)
+    bad = [f"--n {n}" for n in options.n or () if n <= 0] + [f"--p {p}" for p in options.p or () if p < 1]
+    if bad or options.decimals < 0:
+        raise ValueError(f"need n > 0, p >= 1 and --decimals >= 0 ({', '.join(bad) or options.decimals})")
     table = optimal_depth_table(
         options.n or TABLE_TRIANGLES, options.p or TABLE_PROCESSORS, options.h, options.y, constants, not options.all
     )
@@ -341,8 +348,8 @@ def time_command(options: argparse.Namespace) -> int:
         constants = replace(constants, C=paper_linear_constant(constants))
         note = " (ours: from the paper's 4366 triangles/s on one processor, n = 12500; the paper prints none)"
     n, p, h, y = options.n, options.p, options.h, options.y
-    if p < 1 or n <= 0 or h < 0 or y <= 0:
-        raise ValueError(f"need n > 0, p >= 1, h >= 0, y > 0 (n={n}, p={p}, h={h}, y={y})")
+    if p < 1 or n <= 0:
+        raise ValueError(f"need n > 0 and p >= 1 (n={n}, p={p})")
     r = trapezoids_per_processor(n, p, h, y)
     v = r / p
     d_opt = optimal_depth(p, v, constants.t_l, constants.alpha) if p > 1 else None
@@ -386,6 +393,9 @@ def read_points(path: Path) -> dict[int, list[tuple[float, float]]]:
 
 
 def fit_command(options: argparse.Namespace) -> int:
+    constants_from_options(options)  # checks --h and --y
+    if options.n <= 0:
+        raise ValueError(f"need n > 0 (n={options.n})")
     points = read_points(options.points)
     print(f"Eq. 12 fitted per p (n = {options.n:g}, h = {options.h:g}, y = {options.y:g}); t_l and alpha as Table 1")
     print("| p | points | C0 (s) | C1 (s) | C2 (s) | t_l (us) | alpha (us) | rms residual (ms) |")

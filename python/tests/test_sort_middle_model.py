@@ -166,3 +166,7 @@ def test_calculator_names_a_bad_input(tmp_path):
     assert done.returncode == 2 and "missing column(s) d" in done.stderr
     done = tessera_sweep_command("sort-middle", "table", "--alpha-us", "-1")
     assert done.returncode == 2 and "--alpha-us" in done.stderr
+    done = tessera_sweep_command("sort-middle", "table", "--p", "0")
+    assert done.returncode == 2 and "--p 0" in done.stderr
+    done = tessera_sweep_command("sort-middle", "time", "--p", "8", "--d", "0")
+    assert done.returncode == 2 and "d positive" in done.stderr
