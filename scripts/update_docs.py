@@ -134,6 +134,9 @@ REGISTER_TABLES = [
     ("contract/dma/dma_regs.def", "dma_regs"),
     ("contract/raster/raster_regs.def", "raster_regs"),
     ("contract/intc/intc_regs.def", "intc"),
+    # A cluster node's block: not in the SoC's memory map (None); the
+    # cluster platform maps it.
+    ("contract/network/ni_regs.def", None),
 ]
 REGISTER_ROW = re.compile(r"^(TESSERA_REG|TESSERA_CHANNEL_REG|TESSERA_BITS)\(([^)]*)\)\s*(?://\s*(.*))?$")
 
@@ -159,7 +162,10 @@ def registers_tables(_args):
                 fields.setdefault(prefix, []).append(f"`{prefix}_{name}` ({bits}): {comment}".rstrip(": "))
             else:
                 rows.append((macro == "TESSERA_CHANNEL_REG", arguments, comment))
-        out.append(f"**`{path}`** (region `{region}` at `{bases[region].rstrip('u')}`):")
+        if region is None:
+            out.append(f"**`{path}`** (a cluster node's; the cluster platform maps it, not the SoC's memory map):")
+        else:
+            out.append(f"**`{path}`** (region `{region}` at `{bases[region].rstrip('u')}`):")
         out.append("")
         out.append("| register | offset | reset | access | what it holds |")
         out.append("| --- | --- | --- | --- | --- |")
