@@ -14,9 +14,14 @@
 // is outside memory. Network: 20 ns a hop, 100 MB/s (10 ns a byte), 100 ns
 // set-up, 8 header bytes.
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
@@ -152,6 +157,8 @@ struct Bench : sc_core::sc_module {
 };
 
 Bench* g_bench = nullptr;
+sc_core::sc_trace_file* g_trace = nullptr;
+std::filesystem::path g_trace_path;  // without ".vcd"
 
 void fill(Node& node, uint32_t address, unsigned bytes, uint8_t seed) {
   for (unsigned i = 0; i < bytes; ++i) node.memory.data()[address + i] = static_cast<uint8_t>(seed + i);
@@ -603,7 +610,35 @@ TEST(Network, StatisticsSummaryRowsAndNoProtocolViolations) {
   EXPECT_EQ(violations, 0u);
 }
 
+// The last test: it closes the trace file every test has written to.
+TEST(Network, TheTraceShowsMessagesInFlightAndEachInterfacesInterrupt) {
+  sc_core::sc_close_vcd_trace_file(g_trace);
+  g_trace = nullptr;
+  std::ifstream file(g_trace_path.string() + ".vcd");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::filesystem::remove(g_trace_path.string() + ".vcd");
+  const std::string vcd = text.str();
+  EXPECT_NE(vcd.find("in_flight"), std::string::npos);
+  EXPECT_NE(vcd.find("\nb1 "), std::string::npos);  // a message in flight
+  // One irq per NI, in its node's scope.
+  size_t irqs = 0;
+  for (size_t at = vcd.find(" irq "); at != std::string::npos; at = vcd.find(" irq ", at + 1)) ++irqs;
+  EXPECT_EQ(irqs, BUILT);
+  for (unsigned n = 0; n < BUILT; ++n)
+    EXPECT_NE(vcd.find("$scope module node" + std::to_string(n) + " $end"), std::string::npos) << n;
+}
+
 int sc_main(int argc, char* argv[]) {
   g_bench = new Bench("bench");
-  return test::run_all_tests(argc, argv);
+  g_trace_path = std::filesystem::temp_directory_path() / ("test_network_" + std::to_string(::getpid()));
+  g_trace = sc_core::sc_create_vcd_trace_file(g_trace_path.string().c_str());
+  g_bench->network.trace_signals(g_trace);
+  for (auto& node : g_bench->nodes) node->ni.trace_signals(g_trace);
+  const int status = test::run_all_tests(argc, argv);
+  if (g_trace) {  // a filtered run that left the trace test out
+    sc_core::sc_close_vcd_trace_file(g_trace);
+    std::filesystem::remove(g_trace_path.string() + ".vcd");
+  }
+  return status;
 }
