@@ -14,9 +14,14 @@
 // is outside memory. Network: 20 ns a hop, 100 MB/s (10 ns a byte), 100 ns
 // set-up, 8 header bytes.
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
@@ -152,6 +157,8 @@ struct Bench : sc_core::sc_module {
 };
 
 Bench* g_bench = nullptr;
+sc_core::sc_trace_file* g_trace = nullptr;
+std::filesystem::path g_trace_path;  // without ".vcd"
 
 void fill(Node& node, uint32_t address, unsigned bytes, uint8_t seed) {
   for (unsigned i = 0; i < bytes; ++i) node.memory.data()[address + i] = static_cast<uint8_t>(seed + i);
@@ -496,6 +503,70 @@ TEST(NetworkInterface, InterruptsFollowTheEnableMask) {
   });
 }
 
+TEST(NetworkInterface, ThreeNodesExchangingManyMessagesThroughSmallRingsLoseNoneAndKeepEachPairInOrder) {
+  Bench& b = *g_bench;
+  constexpr unsigned MESSAGES = 30;  // per node: 15 to each other node
+  constexpr uint32_t TX_COUNT = 3, RX_COUNT = 3;
+  unsigned finished = 0;
+  bool all_in_order = true;
+  std::vector<uint64_t> errors, received_before;
+  for (unsigned n = 0; n < BUILT; ++n) {
+    errors.push_back(b.node(n).count("errors"));
+    received_before.push_back(b.node(n).count("messages_received"));
+  }
+  test::run_thread([&] {
+    for (unsigned n = 0; n < BUILT; ++n) b.node(n).setup(TX_COUNT, RX_COUNT);
+    // Each node's software: submits while its send ring has room, takes
+    // what arrived, and sleeps on its NI otherwise.
+    for (unsigned n = 0; n < BUILT; ++n)
+      sc_core::sc_spawn([&, n] {
+        Node& node = b.node(n);
+        unsigned sent = 0, received = 0;
+        std::vector<uint32_t> next_sequence(BUILT, ~0u);
+        while (sent < MESSAGES || received < MESSAGES) {
+          bool progress = false;
+          const uint32_t tail = node.ni.TX_TAIL.get();
+          if (sent < MESSAGES && (tail + 1) % TX_COUNT != node.ni.TX_HEAD.get()) {
+            const uint32_t payload = PAYLOAD + 0x100 * tail;
+            node.put32(payload, n);
+            node.put32(payload + 4, sent);
+            node.descriptor(tail, (n + 1 + sent % 2) % BUILT, payload, 8, 0x1000 * n + sent);
+            node.reg(regs::TX_TAIL, (tail + 1) % TX_COUNT);
+            ++sent;
+            progress = true;
+          }
+          const uint32_t head = node.ni.RX_HEAD.get(), rx_tail = node.ni.RX_TAIL.get();
+          if (head != rx_tail) {
+            const uint32_t slot = RX + rx_tail * SLOT;
+            const uint32_t source = node.get32(slot + regs::HDR_SOURCE);
+            const uint32_t sequence = node.get32(slot + regs::HDR_SEQUENCE);
+            const uint32_t index = node.get32(slot + regs::HEADER_BYTES + 4);
+            // Sequence numbers of a pair go up by one, from whatever the
+            // earlier tests left; the payload is the sender's.
+            if (source >= BUILT || node.get32(slot + regs::HEADER_BYTES) != source ||
+                node.get32(slot + regs::HDR_TAG) != 0x1000 * source + index ||
+                (next_sequence[source] != ~0u && sequence != next_sequence[source]))
+              all_in_order = false;
+            if (source < BUILT) next_sequence[source] = sequence + 1;
+            node.reg(regs::RX_TAIL, (rx_tail + 1) % RX_COUNT);
+            ++received;
+            progress = true;
+          }
+          if (!progress) sc_core::wait(node.ni.progress_event());
+        }
+        node.reg(regs::IRQ_STATUS, 0xffffffff);
+        ++finished;
+      });
+  });
+  EXPECT_EQ(finished, BUILT);
+  EXPECT_TRUE(all_in_order);
+  for (unsigned n = 0; n < BUILT; ++n) {
+    EXPECT_EQ(b.node(n).ni.waiting_arrivals(), 0u) << n;
+    EXPECT_EQ(b.node(n).count("errors"), errors[n]) << n;
+    EXPECT_EQ(b.node(n).count("messages_received"), received_before[n] + MESSAGES) << n;
+  }
+}
+
 TEST(Network, AMessageToANodeWithoutAnInterfaceIsDroppedWithAWarning) {
   Bench& b = *g_bench;
   Node& tx = b.node(1);
@@ -603,7 +674,35 @@ TEST(Network, StatisticsSummaryRowsAndNoProtocolViolations) {
   EXPECT_EQ(violations, 0u);
 }
 
+// The last test: it closes the trace file every test has written to.
+TEST(Network, TheTraceShowsMessagesInFlightAndEachInterfacesInterrupt) {
+  sc_core::sc_close_vcd_trace_file(g_trace);
+  g_trace = nullptr;
+  std::ifstream file(g_trace_path.string() + ".vcd");
+  std::stringstream text;
+  text << file.rdbuf();
+  std::filesystem::remove(g_trace_path.string() + ".vcd");
+  const std::string vcd = text.str();
+  EXPECT_NE(vcd.find("in_flight"), std::string::npos);
+  EXPECT_NE(vcd.find("\nb1 "), std::string::npos);  // a message in flight
+  // One irq per NI, in its node's scope.
+  size_t irqs = 0;
+  for (size_t at = vcd.find(" irq "); at != std::string::npos; at = vcd.find(" irq ", at + 1)) ++irqs;
+  EXPECT_EQ(irqs, BUILT);
+  for (unsigned n = 0; n < BUILT; ++n)
+    EXPECT_NE(vcd.find("$scope module node" + std::to_string(n) + " $end"), std::string::npos) << n;
+}
+
 int sc_main(int argc, char* argv[]) {
   g_bench = new Bench("bench");
-  return test::run_all_tests(argc, argv);
+  g_trace_path = std::filesystem::temp_directory_path() / ("test_network_" + std::to_string(::getpid()));
+  g_trace = sc_core::sc_create_vcd_trace_file(g_trace_path.string().c_str());
+  g_bench->network.trace_signals(g_trace);
+  for (auto& node : g_bench->nodes) node->ni.trace_signals(g_trace);
+  const int status = test::run_all_tests(argc, argv);
+  if (g_trace) {  // a filtered run that left the trace test out
+    sc_core::sc_close_vcd_trace_file(g_trace);
+    std::filesystem::remove(g_trace_path.string() + ".vcd");
+  }
+  return status;
 }

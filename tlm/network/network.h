@@ -89,7 +89,9 @@ class Network : public Block {
   uint64_t m_prune_countdown = PRUNE_EVERY;
   static constexpr uint64_t PRUNE_EVERY = 1024;
   sc_core::sc_event m_next_arrival;
-  sc_core::sc_signal<unsigned, sc_core::SC_MANY_WRITERS> m_in_flight_signal;
+  // Written by the senders' threads and the delivery method, possibly in one
+  // delta cycle: the last write holds the latest count.
+  sc_core::sc_signal<unsigned, sc_core::SC_UNCHECKED_WRITERS> m_in_flight_signal;
   bool m_tracing = false;
   ActivityCounter& m_messages;
   ActivityCounter& m_link_bytes;

@@ -164,7 +164,7 @@ bool NetworkInterface::in_memory(uint64_t address, uint64_t bytes) const {
   return address >= m_params.memory_base && address + bytes <= m_params.memory_base + m_params.memory_bytes;
 }
 
-bool NetworkInterface::transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes) {
+bool NetworkInterface::transfer(tlm::tlm_command command, uint64_t address, uint8_t* data, unsigned bytes) {
   if (bytes == 0) return true;
   sc_time local = sc_core::SC_ZERO_TIME;
   const bool ok = out.transfer(command, address, data, bytes, local);
@@ -206,11 +206,12 @@ void NetworkInterface::transmit() {
 
 void NetworkInterface::send_one() {
   const uint32_t head = TX_HEAD.get();
-  const uint32_t where = TX_BASE.get() + head * regs::DESCRIPTOR_BYTES;
+  // In 64 bits: a ring reaching past 4 GiB is outside memory, not wrapped into it.
+  const uint64_t where = uint64_t{TX_BASE.get()} + uint64_t{head} * regs::DESCRIPTOR_BYTES;
   uint8_t descriptor[regs::DESCRIPTOR_BYTES] = {};
   if (!in_memory(where, regs::DESCRIPTOR_BYTES) ||
       !transfer(tlm::TLM_READ_COMMAND, where, descriptor, regs::DESCRIPTOR_BYTES))
-    return fail(regs::Error::descriptor_fault, where);
+    return fail(regs::Error::descriptor_fault, static_cast<uint32_t>(where));
   NetworkMessage message;
   message.source = m_params.node;
   message.destination = word(descriptor, regs::DESC_DESTINATION);
@@ -291,7 +292,7 @@ void NetworkInterface::receive_one() {
     return fail(regs::Error::message_too_long, length);
   }
   const uint32_t head = RX_HEAD.get();
-  const uint32_t slot = RX_BASE.get() + head * slot_bytes;
+  const uint64_t slot = uint64_t{RX_BASE.get()} + uint64_t{head} * slot_bytes;
   std::vector<uint8_t> bytes(regs::HEADER_BYTES + length);
   put_word(bytes.data(), regs::HDR_SOURCE, message.source);
   put_word(bytes.data(), regs::HDR_LENGTH, length);
@@ -302,7 +303,7 @@ void NetworkInterface::receive_one() {
   // fixed the ring and enabled the interface again.
   if (!in_memory(slot, bytes.size()) ||
       !transfer(tlm::TLM_WRITE_COMMAND, slot, bytes.data(), static_cast<unsigned>(bytes.size())))
-    return fail(regs::Error::slot_fault, slot);
+    return fail(regs::Error::slot_fault, static_cast<uint32_t>(slot));
   ++m_messages_received;
   m_bytes_received += length;
   m_arrivals.pop_front();

@@ -97,7 +97,7 @@ class NetworkInterface : public Peripheral, public NetworkEndpoint {
   bool rings_valid(uint32_t& offending) const;
   bool in_memory(uint64_t address, uint64_t bytes) const;
   // A bus transfer at the kernel's time; returns when it has completed.
-  bool transfer(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes);
+  bool transfer(tlm::tlm_command command, uint64_t address, uint8_t* data, unsigned bytes);
   // Sets the error `delay` after the kernel's time: a register write's at
   // the access's time, the rings' at the kernel's (their threads wait for
   // every transfer).
