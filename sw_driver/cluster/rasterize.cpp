@@ -10,9 +10,11 @@ const uint8_t* ArrayMemory::load(uint32_t address, unsigned size, unsigned count
 }
 
 uint8_t* ArrayMemory::store(uint32_t address, unsigned size, unsigned count) {
+  // The message in 32-bit numbers: a 64-bit one would bring in the 64-bit
+  // division helper the core otherwise never needs.
   if (!contains(address, uint64_t{size} * count))
-    throw std::out_of_range("ArrayMemory: " + std::to_string(uint64_t{size} * count) + " bytes at address " +
-                            std::to_string(address) + " leave the memory");
+    throw std::out_of_range("ArrayMemory: " + std::to_string(count) + " elements of " + std::to_string(size) +
+                            " bytes at address " + std::to_string(address) + " leave the memory");
   return m_bytes + (address - m_base);
 }
 
