@@ -90,6 +90,13 @@ uint32_t to_channel(int32_t v) {
   return static_cast<uint32_t>(c < 0 ? 0 : (c > 255 ? 255 : c));
 }
 
+// One step of a span's interpolant, wrapping as the ARM's ADD does: the
+// values the span's pixels use stay in range, but the step after its last
+// pixel may leave int32 (undefined in C++, the same bits on the ARM).
+void advance(int32_t& value, int32_t delta) {
+  value = static_cast<int32_t>(static_cast<uint32_t>(value) + static_cast<uint32_t>(delta));
+}
+
 // One span: pixels x0 .. x0 + n - 1 of stripe row `row`, planes started.
 void draw_span(Stripe& stripe, unsigned row, int32_t x0, int n, const int32_t start[4], const int32_t step[4]) {
   const StripeBuffers& buffers = stripe.buffers();
@@ -109,10 +116,10 @@ void draw_span(Stripe& stripe, unsigned row, int32_t x0, int n, const int32_t st
       stripe.color[i] = pack(buffers.color_format, to_channel(r), to_channel(g), to_channel(b));
       ++passes;
     }
-    z += step[0];
-    r += step[1];
-    g += step[2];
-    b += step[3];
+    advance(z, step[0]);
+    advance(r, step[1]);
+    advance(g, step[2]);
+    advance(b, step[3]);
   }
   counters.pixels += static_cast<unsigned>(n);
   counters.depth_passes += passes;
