@@ -75,7 +75,7 @@ int32_t round_to_int(float f) {
 uint8_t to_unorm8(float c) {
   if (!(c > 0)) return 0;  // also NaN
   if (c >= 1) return 255;
-  return static_cast<uint8_t>(c * 255.0f + 0.5f);
+  return static_cast<uint8_t>(round_to_int(c * 255.0f));
 }
 
 // False when the vertex is behind the eye, outside the depth range or the
@@ -95,7 +95,7 @@ bool project(const WorldVertex& in, const View& view, ScreenVertex* out) {
   if (!(depth >= 0.0f && depth <= 1.0f)) return false;
   out->x = round_to_int(sx * SUBPIXEL_ONE);
   out->y = round_to_int(sy * SUBPIXEL_ONE);
-  out->z = static_cast<uint32_t>(depth * static_cast<float>(MAX_DEPTH) + 0.5f);
+  out->z = static_cast<uint32_t>(round_to_int(depth * static_cast<float>(MAX_DEPTH)));
   if (out->z > MAX_DEPTH) out->z = MAX_DEPTH;
   out->r = to_unorm8(in.r);
   out->g = to_unorm8(in.g);

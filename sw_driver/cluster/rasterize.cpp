@@ -10,9 +10,11 @@ const uint8_t* ArrayMemory::load(uint32_t address, unsigned size, unsigned count
 }
 
 uint8_t* ArrayMemory::store(uint32_t address, unsigned size, unsigned count) {
+  // The message in 32-bit numbers: a 64-bit one would bring in the 64-bit
+  // division helper the core otherwise never needs.
   if (!contains(address, uint64_t{size} * count))
-    throw std::out_of_range("ArrayMemory: " + std::to_string(uint64_t{size} * count) + " bytes at address " +
-                            std::to_string(address) + " leave the memory");
+    throw std::out_of_range("ArrayMemory: " + std::to_string(count) + " elements of " + std::to_string(size) +
+                            " bytes at address " + std::to_string(address) + " leave the memory");
   return m_bytes + (address - m_base);
 }
 
@@ -88,6 +90,13 @@ uint32_t to_channel(int32_t v) {
   return static_cast<uint32_t>(c < 0 ? 0 : (c > 255 ? 255 : c));
 }
 
+// One step of a span's interpolant, wrapping as the ARM's ADD does: the
+// values the span's pixels use stay in range, but the step after its last
+// pixel may leave int32 (undefined in C++, the same bits on the ARM).
+void advance(int32_t& value, int32_t delta) {
+  value = static_cast<int32_t>(static_cast<uint32_t>(value) + static_cast<uint32_t>(delta));
+}
+
 // One span: pixels x0 .. x0 + n - 1 of stripe row `row`, planes started.
 void draw_span(Stripe& stripe, unsigned row, int32_t x0, int n, const int32_t start[4], const int32_t step[4]) {
   const StripeBuffers& buffers = stripe.buffers();
@@ -107,10 +116,10 @@ void draw_span(Stripe& stripe, unsigned row, int32_t x0, int n, const int32_t st
       stripe.color[i] = pack(buffers.color_format, to_channel(r), to_channel(g), to_channel(b));
       ++passes;
     }
-    z += step[0];
-    r += step[1];
-    g += step[2];
-    b += step[3];
+    advance(z, step[0]);
+    advance(r, step[1]);
+    advance(g, step[2]);
+    advance(b, step[3]);
   }
   counters.pixels += static_cast<unsigned>(n);
   counters.depth_passes += passes;

@@ -75,7 +75,7 @@ static_assert(std::is_trivially_copyable_v<Trapezoid> && std::is_standard_layout
 // it is given.
 struct WorkCounters {
   // Geometry (transform_triangle).
-  uint64_t triangles_in = 0;        // transformed and lit vertices: 3 each
+  uint64_t triangles_in = 0;        // transformed: three vertices each
   uint64_t triangles_rejected = 0;  // a vertex behind the eye, outside the depth range or the guard band
   uint64_t triangles_culled = 0;    // back faces and zero area after snapping
   uint64_t triangles_accepted = 0;  // handed to the split
