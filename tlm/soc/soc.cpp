@@ -2,6 +2,7 @@
 
 #include "common/log.h"
 #include "soc/memory_map.h"
+#include "soc/platform_params.h"
 
 namespace tessera {
 
@@ -14,21 +15,11 @@ BusParams bus_params(const Config& config) {
 }
 
 MemoryParams memory_params(const Config& config) {
-  MemoryParams p = MemoryParams::from_config(config);
-  const BusParams bus = BusParams::from_config(config);
-  p.clock_period = bus.clock_period;
-  p.width_bytes = bus.width_bytes;
-  return p;
+  return platform_memory_params(config, MemoryParams::from_config(config).size_bytes);
 }
 
 HostParams host_params(const Config& config) {
-  HostParams p = HostParams::from_config(config);
-  p.cacheable_base = memory_map::sysmem.base;
-  p.cacheable_size = static_cast<uint32_t>(MemoryParams::from_config(config).size_bytes);
-  // A quantum of zero asks for synchronisation on every access: no run-ahead.
-  if (config.get_uint("sim.quantum_ns") != 0)
-    p.run_ahead = sc_core::sc_time(static_cast<double>(config.get_uint("sim.run_ahead_us")), sc_core::SC_US);
-  return p;
+  return platform_host_params(config, memory_map::sysmem.base, MemoryParams::from_config(config).size_bytes);
 }
 
 DisplayParams display_params(const Config& config) {
