@@ -425,6 +425,11 @@ std::string Config::get_string(const std::string& key) const {
   return value(key, ParamType::string).get<std::string>();
 }
 
+const nlohmann::json& Config::get_json(const std::string& key) const {
+  (void)spec(key, "");  // a key no group declares is a programming error
+  return m_values.at(key);
+}
+
 nlohmann::json Config::to_json() const {
   nlohmann::json doc = nlohmann::json::object();
   for (const auto& spec : m_specs) {

@@ -101,6 +101,9 @@ class Config {
   uint64_t get_uint(const std::string& key) const;
   double get_real(const std::string& key) const;
   std::string get_string(const std::string& key) const;
+  // The value as it is held (any type), for copying it into another
+  // configuration.
+  const nlohmann::json& get_json(const std::string& key) const;
 
   // The effective configuration as nested JSON objects.
   nlohmann::json to_json() const;
