@@ -51,3 +51,4 @@ ExternalProject_Add(tessera_arm922t
   DEPENDS ap_asm tessera_linker_script)
 # soc_sim runs what it builds.
 set(TESSERA_BUILTIN_ISS_IMAGE ${PROJECT_BINARY_DIR}/bin/arm922t/tessera_apps.elf)
+set(TESSERA_CLUSTER_ISS_IMAGE ${PROJECT_BINARY_DIR}/bin/arm922t/tessera_cluster_node.elf)

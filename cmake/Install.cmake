@@ -32,7 +32,7 @@ install(FILES ${tessera_sdk_headers}/tessera/app.h DESTINATION ${CMAKE_INSTALL_I
 # itself, in arm922t/), and what an application of one's own links to run
 # on the ISS: the archive of the driver, the back ends and the runtime, and
 # the linker script, used through the package with the toolchain file.
-install(FILES ${TESSERA_BUILTIN_ISS_IMAGE} DESTINATION ${CMAKE_INSTALL_BINDIR}/arm922t)
+install(FILES ${TESSERA_BUILTIN_ISS_IMAGE} ${TESSERA_CLUSTER_ISS_IMAGE} DESTINATION ${CMAKE_INSTALL_BINDIR}/arm922t)
 set(TESSERA_ARM922T_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/tessera/arm922t)
 install(FILES ${TESSERA_ARM_LIBRARY} ${TESSERA_LINKER_SCRIPT} DESTINATION ${TESSERA_ARM922T_INSTALL_DIR})
 

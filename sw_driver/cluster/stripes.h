@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "cluster/records.h"
+#include "cluster/stripe_layout.h"
 
 namespace tessera::cluster {
 
@@ -22,13 +23,14 @@ inline const char* stripe_parameters_error(unsigned screen_height, unsigned p) {
   return nullptr;
 }
 
+// The platform's rule, which gathers the stripes (contract/cluster/stripe_layout.h).
 inline RowRange stripe_rows(unsigned s, unsigned screen_height, unsigned p) {
-  return {s * screen_height / p, (s + 1) * screen_height / p};
+  return {stripes::first_row(s, screen_height, p), stripes::first_row(s + 1, screen_height, p)};
 }
 
 // The s with floor(s H / p) <= y < floor((s + 1) H / p), y < H.
 inline unsigned stripe_of_row(unsigned y, unsigned screen_height, unsigned p) {
-  return ((y + 1) * p - 1) / screen_height;
+  return stripes::owner_of_row(y, screen_height, p);
 }
 
 }  // namespace tessera::cluster
