@@ -38,8 +38,17 @@ the ARM922T, the reference host):
    (parsing its boot information, constructing the back end's
    configuration), which is no driver work the table models.
 
+The cluster platform's node program (sw_driver/cluster_node) is trained
+the same way on cluster runs (CLUSTER_TRAINING): each node's frame figures
+give its phases' cycles (compute, split) and the units of each phase's
+rows (sort_middle_*), one equation per node, frame and phase.
+
 Every row the runs exercise is measured; a row no run charges keeps its
-value and is listed. The table's `sources:` line is the hash of the
+value and is listed. `--only-rows PREFIX` measures only the rows whose
+names start with PREFIX, from the runs that charge them (the cluster's
+for sort_middle_), and keeps every other row as it is: for a change to
+the driver's sources that cannot move the other rows (the node program,
+which no SoC run executes). The table's `sources:` line is the hash of the
 driver's sources (sw_driver, but the table itself): `--check` recomputes
 it and fails when the sources changed since the table was measured (the
 test host_costs_fresh). Run it again after changing the driver; a second
@@ -48,6 +57,7 @@ rows' own cycles).
 
     scripts/measure_host_costs.py                 # measure and rewrite the table (a few minutes)
     scripts/measure_host_costs.py --dry-run       # print the fit, leave the table
+    scripts/measure_host_costs.py --only-rows sort_middle_   # the cluster's rows alone (a minute)
     scripts/measure_host_costs.py --check         # is the table current? (no runs)
 
 Needs numpy and scipy (build/venv has them). Exit status: 0, 1 when a
@@ -127,6 +137,32 @@ APP_TRAINING = [
     ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
     ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu"),
 ]
+# The cluster platform's node program (sw_driver/cluster_node): two nodes,
+# so that trapezoids are both drawn at home and sent. Per node and frame,
+# each phase's units are the node's own counts (stats.json's
+# nodes[i].frames), the rows below each phase charges.
+CLUSTER_TRAINING = {
+    "cluster_random": [
+        "--set", "cluster.nodes=2", "--set", "cluster.triangles=1500", "--set", "cluster.triangle_pixels=12",
+        "--set", "cluster.width=160", "--set", "cluster.height=120",
+    ],
+    "cluster_teapot": [
+        "--scene", "teapot", "--set", "cluster.nodes=2", "--set", "cluster.width=160", "--set", "cluster.height=120",
+    ],
+    "cluster_big_triangles": [
+        "--set", "cluster.nodes=2", "--set", "cluster.triangles=200", "--set", "cluster.triangle_pixels=40",
+        "--set", "cluster.width=160", "--set", "cluster.height=120",
+    ],
+}  # fmt: skip
+CLUSTER_PHASE_ROWS = {
+    "compute": {
+        "sort_middle_triangle": "triangles",
+        "sort_middle_trapezoid": "trapezoids_drawn",
+        "sort_middle_row": "rows",
+        "sort_middle_pixel": "pixels",
+    },
+    "split": {"sort_middle_split": "triangles_split", "sort_middle_piece": "trapezoids_made"},
+}
 FRAMES = 3
 # ISS runs of the array back ends are slow (about 1 s of simulated host time a
 # frame on the teapot): the start-up frame and one more.
@@ -277,6 +313,103 @@ def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
     return [{}, record]
 
 
+def run_cluster(soc_sim, out, name, arguments, model):
+    """A cluster run's node frames: each node's figures of each frame (stats.json's nodes[i].frames)."""
+    folder = out / f"{name}_{model}"
+    command = [
+        soc_sim,
+        "--platform",
+        "cluster",
+        "--frames",
+        "2",
+        "--no-frames",
+        "--quiet",
+        "--force",
+        "--out",
+        str(folder),
+        "--set",
+        f"host.model={model}",
+    ] + arguments
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
+    nodes = json.loads((folder / "stats.json").read_text())["stats"]["nodes"]
+    return [frame for node in nodes for frame in node["frames"]]
+
+
+def cluster_equations(table, index, native, iss):
+    """The fit's equations of one cluster run: per node frame and phase, as the driver's phases'."""
+    equations, targets, labels = [], [], []
+    for k, (n, i) in enumerate(zip(native, iss)):
+        for phase, rows in CLUSTER_PHASE_ROWS.items():
+            iss_cycles = i.get(f"cycles_{phase}", 0.0)
+            native_cycles = n.get(f"cycles_{phase}", 0.0)
+            units = [0.0] * len(index)
+            for row, figure in rows.items():
+                units[index[row]] = n.get(figure, 0.0)
+            if iss_cycles <= 0 or not any(units):
+                continue
+            charged = sum(n.get(figure, 0.0) * table[row] for row, figure in rows.items())
+            other = native_cycles - charged
+            equations.append([u / iss_cycles for u in units])
+            targets.append((iss_cycles - other) / iss_cycles)
+            labels.append(f"node frame {k} {phase}")
+    return equations, targets, labels
+
+
+def measure_cluster_rows(args, out, lines, table, np, nnls):
+    """--only-rows: the rows named PREFIX... fitted to the cluster runs alone; the other rows kept."""
+    rows = [name for name in table if name.startswith(args.only_rows)]
+    cluster_rows = {row for phase in CLUSTER_PHASE_ROWS.values() for row in phase}
+    if not rows or not set(rows) <= cluster_rows:
+        print(
+            f"measure_host_costs: --only-rows {args.only_rows}: the cluster's runs measure "
+            f"{', '.join(sorted(cluster_rows))}",
+            file=sys.stderr,
+        )
+        return 2
+    with ThreadPoolExecutor(args.jobs) as pool:
+        clusters = {
+            (name, model): pool.submit(run_cluster, args.soc_sim, out, name, arguments, model)
+            for name, arguments in CLUSTER_TRAINING.items()
+            for model in ("native", "iss")
+        }
+        try:
+            results = {key: future.result() for key, future in clusters.items()}
+        except RuntimeError as error:
+            print(f"measure_host_costs: {error}", file=sys.stderr)
+            return 1
+    names = list(table)
+    index = {name: i for i, name in enumerate(names)}
+    equations, targets, labels = [], [], []
+    for name in CLUSTER_TRAINING:
+        more, more_targets, more_labels = cluster_equations(
+            table, index, results[(name, "native")], results[(name, "iss")]
+        )
+        equations += more
+        targets += more_targets
+        labels += [f"{name} {label}" for label in more_labels]
+    a = np.array(equations)
+    b = np.array(targets)
+    used = [index[row] for row in rows if a[:, index[row]].any()]
+    solution, _ = nnls(a[:, used], b)
+    residual = a[:, used] @ solution - b
+    fitted = {names[column]: float(value) for column, value in zip(used, solution)}
+    print(
+        f"{len(equations)} node-frame phases, {len(fitted)} rows measured; relative error: "
+        f"largest {np.max(np.abs(residual)) * 100:.1f}%, rms {np.sqrt(np.mean(residual**2)) * 100:.1f}%"
+    )
+    for k in np.argsort(-np.abs(residual))[:5]:
+        print(f"  {labels[k]}: {residual[k] * 100:+.1f}%")
+    for row in rows:
+        mark = "" if row in fitted else "   (no run charges it: kept)"
+        print(f"  {row:28} {table[row]:10.4g} -> {fitted.get(row, table[row]):10.4g}{mark}")
+    if not args.dry_run:
+        write_table(lines, fitted, sources_hash())
+        print(f"wrote {TABLE.relative_to(ROOT)}")
+    return 0
+
+
 def loop_cycles(soc_sim, out, app, function):
     """The ISS's core cycles an iteration of a calibration loop, from its function's profile."""
     folder = out / f"{app}_iss"
@@ -313,6 +446,9 @@ def main():
     parser.add_argument("--clock-hz", type=float, default=192e6, help="the host's clock (host.clock_hz)")
     parser.add_argument("--dry-run", action="store_true", help="print the fit, leave the table as it is")
     parser.add_argument("--check", action="store_true", help="fail when the table is stale (no runs)")
+    parser.add_argument(
+        "--only-rows", metavar="PREFIX", help="measure only the rows named PREFIX...; keep the others (sort_middle_)"
+    )
     args = parser.parse_args()
     # The runs start in the repository (OBJ): a relative path given here is the caller's.
     args.soc_sim = str(pathlib.Path(args.soc_sim).resolve())
@@ -339,6 +475,8 @@ def main():
 
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.only_rows:
+        return measure_cluster_rows(args, out, lines, table, np, nnls)
     with ThreadPoolExecutor(args.jobs) as pool:
         futures = {
             (scene, backend, model): pool.submit(run, args.soc_sim, out, scene, backend, model)
@@ -350,6 +488,11 @@ def main():
                 futures[(name, "app", model)] = pool.submit(
                     run_app, args.soc_sim, out, name, app, backend, arguments, prefix, model
                 )
+        clusters = {
+            (name, model): pool.submit(run_cluster, args.soc_sim, out, name, arguments, model)
+            for name, arguments in CLUSTER_TRAINING.items()
+            for model in ("native", "iss")
+        }
         loops = {
             app: pool.submit(loop_cycles, args.soc_sim, out, app, function)
             for app, (_, function) in CALIBRATION_LOOPS.items()
@@ -357,6 +500,7 @@ def main():
         try:
             results = {key: future.result() for key, future in futures.items()}
             loop_results = {key: future.result() for key, future in loops.items()}
+            cluster_results = {key: future.result() for key, future in clusters.items()}
         except RuntimeError as error:
             print(f"measure_host_costs: {error}", file=sys.stderr)
             return 1
@@ -407,6 +551,13 @@ def main():
                 equations.append([u / iss_cycles for u in units])
                 targets.append((iss_cycles - other) / iss_cycles)
                 labels.append(f"{scene}/{backend} frame {frame} {phase}")
+    for name in CLUSTER_TRAINING:
+        more, more_targets, more_labels = cluster_equations(
+            table, index, cluster_results[(name, "native")], cluster_results[(name, "iss")]
+        )
+        equations += more
+        targets += more_targets
+        labels += [f"{name}/cluster {label}" for label in more_labels]
     if not equations:
         print("measure_host_costs: no run charged a row in a fitted phase", file=sys.stderr)
         return 1

@@ -9,6 +9,7 @@
 
 #include "apps/apps.h"
 #include "build_info.h"
+#include "cluster/cluster.h"
 #include "renderers/backend_parameters.h"
 #include "renderers/backends.h"
 #include "soc/soc.h"
@@ -44,6 +45,7 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--config", opt.config_files, "JSON configuration file(s), applied in order")
       ->check(CLI::ExistingFile);
   cli.add_option("--set", opt.overrides, "override one parameter: key=value (repeatable)");
+  cli.add_option("--platform", opt.platform, "soc (the default) or cluster (sim.platform)");
   cli.add_option("--app,--scene", opt.app, "application: a built-in name (see --list-apps)");
   cli.add_option("--backend", opt.backend,
                  "renderer back end (driver.backend): " + backends::backend_names(", ", " or "));
@@ -122,17 +124,36 @@ std::optional<int> reject_leftovers(const CLI::App& cli, const Options& opt) {
   return EXIT_USAGE;
 }
 
+// On the cluster platform every node runs the sort-middle program
+// (cluster_node); a scene named with --scene (sim.app) is the program's
+// cluster.scene. Throws ConfigError for anything else.
+void choose_cluster_program(Config& config) {
+  constexpr const char* PROGRAM = "cluster_node";
+  if (config.is_set("sim.app") && config.get_string("sim.app") != PROGRAM) {
+    const std::string scene = config.get_string("sim.app");
+    try {
+      config.set("cluster.scene", scene, "--scene");
+    } catch (const ConfigError&) {
+      throw ConfigError("sim.platform=cluster draws the scenes of cluster.scene (random_triangles or teapot), not '" +
+                        scene + "'");
+    }
+  }
+  config.set("sim.app", PROGRAM, "sim.platform=cluster");
+}
+
 // The configuration files, the overrides and the options that set a
 // parameter, applied in that order, then validated. Throws ConfigError.
 Config effective_configuration(const Options& opt) {
   Config config(all_parameters());
   for (const auto& file : opt.config_files) config.load_file(file);
   for (const auto& assignment : opt.overrides) config.apply_override(assignment);
+  if (!opt.platform.empty()) config.set("sim.platform", opt.platform, "--platform");
   if (!opt.app.empty()) config.set("sim.app", opt.app, "--app");
   if (opt.frames > 0) config.set("sim.frames", opt.frames, "--frames");
   if (!opt.backend.empty()) config.set("driver.backend", opt.backend, "--backend");
   if (!opt.log_level.empty()) config.set("sim.log_level", opt.log_level, "--log-level");
   if (opt.quiet) config.set("sim.log_level", "error", "--quiet");
+  if (config.get_string("sim.platform") == "cluster") choose_cluster_program(config);
   // An ARM executable runs on the ISS: host.model follows the application
   // unless the user chose it.
   if (is_elf_app(config.get_string("sim.app"))) {
@@ -172,11 +193,29 @@ std::optional<int> check_iss_options(const Options& opt, const Config& config) {
 
 }  // namespace
 
-std::vector<ParamGroup> all_parameters() {
+std::vector<ParamGroup> soc_parameters() {
   std::vector<ParamGroup> groups = {runner_parameters()};
   for (ParamGroup& group : driver_parameter_groups()) groups.push_back(std::move(group));
   for (ParamGroup& group : Soc::parameter_groups()) groups.push_back(std::move(group));
   return groups;
+}
+
+std::vector<ParamGroup> all_parameters() {
+  std::vector<ParamGroup> groups = soc_parameters();
+  groups.push_back({"platform",
+                    {param::choice("sim.platform", "soc", {"soc", "cluster"},
+                                   "what is simulated: the SoC, or the cluster platform of cluster.nodes ARM922T "
+                                   "nodes and a network running the sort-middle renderer (docs/cluster.md)")},
+                    {}});
+  for (ParamGroup& group : Cluster::parameter_groups()) groups.push_back(std::move(group));
+  return groups;
+}
+
+Config soc_view(const Config& config) {
+  Config view(soc_parameters());
+  for (const ParamSpec& spec : view.specs())
+    if (config.is_set(spec.key)) view.set(spec.key, config.get_json(spec.key), "the run's configuration");
+  return view;
 }
 
 std::variant<RunPlan, int> read_command_line(int argc, char* argv[]) {
@@ -224,7 +263,9 @@ std::variant<RunPlan, int> read_command_line(int argc, char* argv[]) {
 
   LaunchableApp app;
   try {
-    app = find_app(config->get_string("sim.app"), config->get_string("host.model") == "iss");
+    const bool on_iss = config->get_string("host.model") == "iss";
+    app = config->get_string("sim.platform") == "cluster" ? cluster_node_program(on_iss)
+                                                          : find_app(config->get_string("sim.app"), on_iss);
   } catch (const std::invalid_argument& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;

@@ -21,6 +21,7 @@ constexpr int EXIT_SIM_FAILED = 1;  // the simulation itself failed
 struct Options {
   std::vector<std::string> config_files;
   std::vector<std::string> overrides;
+  std::string platform;
   std::string app;
   std::string backend;
   int frames = 0;
@@ -51,9 +52,16 @@ struct RunPlan {
   std::vector<std::string> command_line;  // argv, for stats.json
 };
 
-// Every parameter of a run: soc_sim's (sim.*), the driver's and its back
-// ends', the SoC's and its blocks'.
+// The parameters of a run on the SoC: soc_sim's (sim.*), the driver's and
+// its back ends', the SoC's and its blocks'.
+std::vector<ParamGroup> soc_parameters();
+// Every parameter of a run: the SoC's, the platform's choice
+// (sim.platform) and the cluster platform's (cluster.*, network.*, ni.*).
 std::vector<ParamGroup> all_parameters();
+// `config` restricted to soc_parameters(): what a program on the SoC is
+// handed (on the ISS, its boot information), so that the cluster's
+// parameters do not reach it.
+Config soc_view(const Config& config);
 
 // Reads the command line and the configuration it names. A question that
 // needs no run is answered on stdout, bad input on stderr ("soc_sim: ..."),

@@ -193,7 +193,13 @@ std::optional<int> RunSession::build_soc() {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
   }
-  m_soc = std::make_unique<Soc>("soc", m_config);
+  if (m_config.get_string("sim.platform") == "cluster")
+    m_cluster = std::make_unique<ClusterRun>(m_config, [this](const Frame& frame) {
+      m_frame_stream->add_frame(m_cluster->frame_record(frame));
+      frame_shown(frame);
+    });
+  else
+    m_soc = std::make_unique<Soc>("soc", m_config);
   m_png_writer = std::make_unique<PngWriterThread>();
   m_wall_start = std::chrono::steady_clock::now();
   try {
@@ -202,24 +208,37 @@ std::optional<int> RunSession::build_soc() {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
   }
+  if (m_cluster) return std::nullopt;
   Soc& soc = *m_soc;
   soc.recorder().stream_frames([this](const nlohmann::json& record) { m_frame_stream->add_frame(record); });
   soc.display.keep_pixels(!m_options.no_frames);
-  soc.display.on_frame([this](const Frame& frame) {
-    if (m_options.wall_clock) m_frame_stream->add_timing(wall_seconds(), cpu_seconds());
-    if (!m_options.no_frames)
-      m_png_writer->write((fs::path(m_options.out_dir) / frame_file_name(frame.index)).string(), frame.width,
-                          frame.height, frame.rgba);
-    ++m_frames_shown;
-    if (m_watch) m_watch->frame_shown(m_frames_shown);
-  });
+  soc.display.on_frame([this](const Frame& frame) { frame_shown(frame); });
   return std::nullopt;
+}
+
+void RunSession::frame_shown(const Frame& frame) {
+  if (m_options.wall_clock) m_frame_stream->add_timing(wall_seconds(), cpu_seconds());
+  if (!m_options.no_frames)
+    m_png_writer->write((fs::path(m_options.out_dir) / frame_file_name(frame.index)).string(), frame.width,
+                        frame.height, frame.rgba);
+  ++m_frames_shown;
+  if (m_watch) m_watch->frame_shown(m_frames_shown);
+}
+
+bool RunSession::platform_done() const {
+  return m_cluster ? m_cluster->done() : m_soc->done();
 }
 
 // The application's environment (the boot loader's layout, the back end,
 // the driver's statistics and warnings), the program on the host, and the
 // trace.
 void RunSession::start_application() {
+  if (m_cluster) {
+    m_cluster->start(m_plan.app, m_frames, m_options.iss_profile);
+    if (m_trace_pipe) m_cluster->trace_to(m_trace_pipe->systemc_base());
+    m_config_json = m_config.to_json();
+    return;
+  }
   Soc& soc = *m_soc;
   m_env.frames = m_frames;
   const software_layout::Layout layout = software_layout::layout(soc.memory.size(), soc.display.frame_bytes());
@@ -229,7 +248,10 @@ void RunSession::start_application() {
   m_env.heap_end = layout.heap_end;
   m_env.memory_bytes = static_cast<uint32_t>(soc.memory.size());
   m_env.args = m_options.app_args;
-  m_env.config = &m_config;
+  // The SoC's program is handed the SoC's parameters only (on the ISS, its
+  // boot information), not the cluster platform's.
+  m_soc_config.emplace(soc_view(m_config));
+  m_env.config = &*m_soc_config;
   m_env.counters = &m_driver_counters;
   m_env.warn = [](const std::string& source, const std::string& message) { log::warning(source, message); };
   m_env.frame_statistics = [this](const std::vector<std::pair<std::string, double>>& figures) {
@@ -245,7 +267,7 @@ void RunSession::start_application() {
   });
 
   if (m_trace_pipe) soc.recorder().trace_to(m_trace_pipe->systemc_base());
-  m_config_json = m_config.to_json();
+  m_config_json = m_soc_config->to_json();
 }
 
 // A stop from the watching thread: the frames already shown are written,
@@ -271,7 +293,6 @@ void RunSession::stop_from_outside(const RunStop& stop) {
 }
 
 void RunSession::simulate() {
-  Soc& soc = *m_soc;
   m_progress = std::make_unique<Progress>(!m_options.quiet && isatty(STDERR_FILENO), m_frames);
   // Under GDB simulated time stands still while GDB holds the program, for
   // as long as the user likes: that is no stall.
@@ -282,7 +303,7 @@ void RunSession::simulate() {
   const sc_core::sc_time limit(static_cast<double>(m_plan.time_limit.ms), sc_core::SC_MS);
   const sc_core::sc_time slice(1, sc_core::SC_MS);
   try {
-    while (!soc.done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
+    while (!platform_done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
       sc_core::sc_start(slice);
       m_watch->progress(static_cast<uint64_t>(sc_core::sc_time_stamp().to_seconds() * 1e12));
       m_progress->update(m_frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
@@ -303,13 +324,15 @@ void RunSession::simulate() {
 // soc.host.function's value, as a GTKWave translate-filter file beside the
 // VCD) and the frames.
 void RunSession::close_outputs() {
-  Soc& soc = *m_soc;
-  soc.recorder().close_trace();
+  if (m_cluster)
+    m_cluster->close_trace();
+  else
+    m_soc->recorder().close_trace();
   m_trace_error = m_trace_pipe ? m_trace_pipe->finish() : "";
-  if (m_trace_pipe && m_trace_error.empty() && !soc.host.function_names().empty()) {
+  if (m_soc && m_trace_pipe && m_trace_error.empty() && !m_soc->host.function_names().empty()) {
     std::string names;
-    for (size_t i = 0; i < soc.host.function_names().size(); ++i)
-      names += std::to_string(i) + " " + soc.host.function_names()[i] + "\n";
+    for (size_t i = 0; i < m_soc->host.function_names().size(); ++i)
+      names += std::to_string(i) + " " + m_soc->host.function_names()[i] + "\n";
     try {
       write_file_atomically(m_vcd_base + ".functions.txt", names);
     } catch (const std::exception& e) {
@@ -323,7 +346,6 @@ void RunSession::close_outputs() {
 
 // How the run ended: the first failure decides the status and run_status.
 void RunSession::judge() {
-  const Soc& soc = *m_soc;
   const TimeLimit& time_limit = m_plan.time_limit;
   const bool limit_reached =
       sc_core::sc_time_stamp() >= sc_core::sc_time(static_cast<double>(time_limit.ms), sc_core::SC_MS);
@@ -333,7 +355,7 @@ void RunSession::judge() {
     m_failures.push_back(*m_stopped);
   } else if (!m_png_error.empty()) {
     // Reported below; the run stopped at it.
-  } else if (!soc.done() && limit_reached) {
+  } else if (!platform_done() && limit_reached) {
     fail(RunEnd::failed, EXIT_SIM_FAILED,
          "simulated-time limit reached: sim.time_limit_ms = " + std::to_string(time_limit.ms) + " ms (" +
              (time_limit.automatic ? "automatic, " + TimeLimit::automatic_rule() : std::string("given")) + ") " +
@@ -341,15 +363,15 @@ void RunSession::judge() {
              " frames; " +
              (time_limit.automatic ? "set sim.time_limit_ms to a larger value (--set sim.time_limit_ms=N)"
                                    : "raise it, or leave sim.time_limit_ms unset for the automatic limit"));
-  } else if (!soc.done()) {
+  } else if (!platform_done()) {
     fail(RunEnd::failed, EXIT_SIM_FAILED,
          "the simulation stopped after " + std::to_string(m_frames_shown) + " of " + std::to_string(m_frames) +
              " frames, before the application finished");
-  } else if (soc.host.exit_code() != 0) {
+  } else if (const int code = m_cluster ? m_cluster->exit_code() : m_soc->host.exit_code(); code != 0) {
     // An application reports bad input (an unreadable file, a bad argument)
     // with status 2, like soc_sim itself.
-    fail(RunEnd::failed, soc.host.exit_code() == EXIT_USAGE ? EXIT_USAGE : EXIT_SIM_FAILED,
-         "application failed: " + soc.host.failure());
+    fail(RunEnd::failed, code == EXIT_USAGE ? EXIT_USAGE : EXIT_SIM_FAILED,
+         "application failed: " + (m_cluster ? m_cluster->failure() : m_soc->host.failure()));
   }
   if (!m_png_error.empty())
     fail(RunEnd::failed, EXIT_SIM_FAILED,
@@ -368,8 +390,12 @@ void RunSession::judge() {
 
 // stats.json; a failure to write it fails a run that had not failed.
 int RunSession::write_statistics(int status) {
-  m_stats = m_soc->recorder().stats_json();
-  m_stats["driver"] = to_json(m_driver_counters);
+  if (m_cluster) {
+    m_stats = m_cluster->stats_json();
+  } else {
+    m_stats = m_soc->recorder().stats_json();
+    m_stats["driver"] = to_json(m_driver_counters);
+  }
   // The frames streamed (every one: streaming began before the first) are
   // merged in where the placeholder is.
   m_stats["frames"] = FrameStatsStream::placeholder();
@@ -395,7 +421,10 @@ void RunSession::print_report() {
   outputs.push_back(m_stats_written ? "statistics: " + m_stats_path : "statistics: none (" + m_stats_path + " failed)");
   if (!m_options.vcd.empty())
     outputs.push_back(m_trace_error.empty() ? "VCD trace: " + m_options.vcd : "VCD trace: none");
-  print_summary(*m_soc, m_stats, m_frame_sums, m_config.get_string("sim.app"), m_wall, m_plan.time_limit, outputs);
+  if (m_cluster)
+    m_cluster->print_summary(m_stats, m_wall, outputs);
+  else
+    print_summary(*m_soc, m_stats, m_frame_sums, m_config.get_string("sim.app"), m_wall, m_plan.time_limit, outputs);
 }
 
 // The summary (and anything the application printed) must have arrived.

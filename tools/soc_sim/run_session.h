@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cluster_run.h"
 #include "common/activity_counters.h"
 #include "device/app_environment.h"
 #include "frame_stats_stream.h"
@@ -61,12 +62,15 @@ class RunSession {
   // the simulation, so the SoC is not touched.
   void stop_from_outside(const RunStop& stop);
   void fail(RunEnd end, int status, const std::string& message);
+  void frame_shown(const Frame& frame);
+  bool platform_done() const;
   double wall_seconds() const;
 
   RunPlan m_plan;
-  const Options& m_options;  // m_plan's
-  const Config& m_config;    // m_plan's
-  unsigned m_frames;         // sim.frames
+  const Options& m_options;            // m_plan's
+  const Config& m_config;              // m_plan's
+  std::optional<Config> m_soc_config;  // soc_view(m_config), the SoC's program's
+  unsigned m_frames;                   // sim.frames
   std::string m_stats_path;
   // The VCD's path without a ".vcd" in any case: the functions' names go beside it.
   std::string m_vcd_base;
@@ -80,6 +84,8 @@ class RunSession {
   std::unique_ptr<iss::GdbServer> m_gdb_server;
   std::unique_ptr<TracePipe> m_trace_pipe;
   std::unique_ptr<Soc> m_soc;
+  // With sim.platform=cluster, the cluster platform instead of the SoC.
+  std::unique_ptr<ClusterRun> m_cluster;
   std::unique_ptr<PngWriterThread> m_png_writer;
   std::unique_ptr<RunWatch> m_watch;
   // stats.json's frame records go to side files as the frames are shown and

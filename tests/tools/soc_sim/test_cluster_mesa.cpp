@@ -96,8 +96,8 @@ class ClusterMesa : public tessera::test::SocSimTest {
     rule.min_percent_within_tolerance = 98.0;
     EXPECT_LE(compared.coverage_off_edges, compared.pixels / 1000) << compared.summary();
     EXPECT_TRUE(compared.passes(rule)) << scene_name << " on " << nodes << " nodes: " << compared.summary() << "; "
-                                       << tessera::reference::write_comparison_images(m_dir.string(), out, ours,
-                                                                                      reference.image, compared, options);
+                                       << tessera::reference::write_comparison_images(
+                                              m_dir.string(), out, ours, reference.image, compared, options);
     size_t drawn = 0;
     for (size_t i = 0; i < ours.rgba.size(); i += 4)
       drawn += ours.rgba[i] != 0 || ours.rgba[i + 1] != 0 || ours.rgba[i + 2] != 0;

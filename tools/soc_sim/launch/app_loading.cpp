@@ -9,6 +9,7 @@
 
 #include "apps/apps.h"
 #include "apps/gl_apps.h"
+#include "cluster_node/sort_middle_node.h"
 #include "host/iss/elf_image.h"
 
 namespace tessera {
@@ -46,15 +47,35 @@ GlMain load_app_library(const std::string& path) {
   throw std::invalid_argument("application library '" + path + "' exports neither tessera_app_main nor main");
 }
 
-std::string builtin_iss_image() {
+namespace {
+
+// <the running program's folder>/arm922t/<file>, which must exist; `what`
+// says what it is for.
+std::string iss_image(const char* file, const std::string& what) {
   std::error_code error;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-  const std::filesystem::path image = self.parent_path() / "arm922t" / "tessera_apps.elf";
+  const std::filesystem::path image = self.parent_path() / "arm922t" / file;
   if (error || !std::filesystem::exists(image))
-    throw std::invalid_argument("host.model=iss runs the built-in applications from " + image.string() +
+    throw std::invalid_argument("host.model=iss runs " + what + " from " + image.string() +
                                 ", which is missing: the build makes it when arm-none-eabi-g++ is installed "
                                 "(scripts/setup.sh; sw_driver/runtime/README.md)");
   return image.string();
+}
+
+}  // namespace
+
+std::string builtin_iss_image() {
+  return iss_image("tessera_apps.elf", "the built-in applications");
+}
+
+LaunchableApp cluster_node_program(bool on_iss) {
+  constexpr const char* DESCRIPTION = "the sort-middle renderer's node program";
+  if (!on_iss) return {[](AppEnvironment& env, const IssHost&) { return cluster_node_app(env); }, DESCRIPTION};
+  const std::string image = iss_image("tessera_cluster_node.elf", "the cluster's node program");
+  return {[image](AppEnvironment& env, const IssHost& iss_host) {
+            return run_elf_app(env, iss_host, image, "cluster_node");
+          },
+          std::string(DESCRIPTION) + " (cross-compiled, on the ISS)"};
 }
 
 LaunchableApp find_app(const std::string& name, bool on_iss) {

@@ -28,6 +28,12 @@ struct LaunchableApp {
 // std::invalid_argument listing the built-in ones, or naming what is wrong.
 LaunchableApp find_app(const std::string& name, bool on_iss = false);
 
+// The cluster platform's node program (sw_driver/cluster_node), every
+// node's: host-compiled, or with `on_iss` its ARM executable beside
+// tessera_apps.elf (tessera_cluster_node.elf; std::invalid_argument if it
+// is missing).
+LaunchableApp cluster_node_program(bool on_iss);
+
 // The ARM executable of every built-in application, beside the running
 // program (<its folder>/arm922t/tessera_apps.elf); std::invalid_argument if
 // it is missing.
