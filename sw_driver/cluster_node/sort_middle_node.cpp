@@ -473,9 +473,10 @@ void SortMiddleNode::terminate() {
   while (!m_complete) {
     if (!poll()) break;  // the next frame has begun elsewhere: this one is complete
     if (m_complete) break;
-    enter(Phase::wait);
+    // Asleep until the others' last trapezoids, LTC, NC or GC come: the
+    // end of the frame, the paper's termination (not its wait for a send
+    // buffer, which alpha is).
     m_net.wait();
-    enter(Phase::termination);
   }
 }
 
