@@ -96,6 +96,26 @@ TEST_F(SocSimCluster, TheFrameSurvivesAnyTopologyDepthAndRandomisedNetworkTiming
   }
 }
 
+TEST_F(SocSimCluster, TheIssDrawsWhatTheHostCompiledModelDraws) {
+  // Two nodes of the cross-compiled program (tessera_cluster_node.elf) on
+  // the ISS, a small scene: the same frames, and a frame time within the
+  // host-compiled model's calibration of it (the sort_middle_* rows were
+  // measured on such runs: sw_driver/costs/README.md).
+  const std::vector<std::string> small = {"--set", "cluster.triangles=600", "--set", "cluster.nodes=2"};
+  std::vector<std::string> native = scene("native", 2), iss = scene("iss", 2);
+  native.insert(native.end(), small.begin(), small.end());
+  iss.insert(iss.end(), small.begin(), small.end());
+  iss.insert(iss.end(), {"--set", "host.model=iss"});
+  const SimResult on_native = run(native);
+  ASSERT_EQ(on_native.status, 0) << describe(on_native);
+  const SimResult on_iss = run(iss);
+  ASSERT_EQ(on_iss.status, 0) << describe(on_iss);
+  for (unsigned f = 0; f < 2; ++f) EXPECT_EQ(frame("native", f), frame("iss", f)) << "frame " << f;
+  const double native_ns = stats("native")["stats"]["frames"][1]["render_ns"].get<double>();
+  const double iss_ns = stats("iss")["stats"]["frames"][1]["render_ns"].get<double>();
+  EXPECT_NEAR(native_ns / iss_ns, 1.0, 0.25) << native_ns << " ns natively, " << iss_ns << " ns on the ISS";
+}
+
 TEST_F(SocSimCluster, StatisticsHaveTheNodesTheNetworkAndTheFrames) {
   const SimResult result = run(scene("out", 4));
   ASSERT_EQ(result.status, 0) << describe(result);
