@@ -182,6 +182,11 @@ std::optional<int> check_iss_options(const Options& opt, const Config& config) {
                  "program.elf)\n";
     return EXIT_USAGE;
   }
+  if (opt.gdb_port >= 0 && config.get_string("sim.platform") == "cluster") {
+    std::cerr << "soc_sim: impossible combination: --gdb debugs the SoC's one program, and sim.platform=cluster runs "
+                 "cluster.nodes of them\n";
+    return EXIT_USAGE;
+  }
   if (opt.gdb_port >= 0 && model != "iss") {
     std::cerr << "soc_sim: impossible combination: --gdb debugs a program on the ISS, and host.model=" << model
               << " runs the application host-compiled (set host.model=iss, or run an ARM executable with --app "

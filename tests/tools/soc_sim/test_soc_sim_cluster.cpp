@@ -173,6 +173,10 @@ TEST_F(SocSimCluster, BadInputIsRefusedNamingTheKey) {
   const SimResult deep = run(with(scene("deep", 128), {"cluster.buffer_depth=60000"}));
   EXPECT_EQ(deep.status, EXIT_USAGE) << describe(deep);
   EXPECT_TRUE(contains(deep.err, "cluster.buffer_depth")) << deep.err;
+  // GDB debugs one program; the cluster runs one a node.
+  const SimResult gdb = run({"--platform", "cluster", "--set", "host.model=iss", "--gdb", "0", "--out", "gdb"});
+  EXPECT_EQ(gdb.status, EXIT_USAGE) << describe(gdb);
+  EXPECT_TRUE(contains(gdb.err, "--gdb")) << gdb.err;
   // A scene the cluster does not draw.
   const SimResult scene_name = run({"--platform", "cluster", "--scene", "cubes", "--out", "cubes"});
   EXPECT_EQ(scene_name.status, EXIT_USAGE) << describe(scene_name);
