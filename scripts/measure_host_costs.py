@@ -251,58 +251,32 @@ def run(soc_sim, out, scene, name, model):
     backend, settings = VARIANTS.get(name, (name, []))
     folder = out / f"{scene}_{name.replace(':', '_')}_{model}"
     frames = ARRAY_FRAMES if backend in ARRAY_BACKENDS else FRAMES
-    command = [
-        soc_sim,
-        "--app",
-        scene,
-        "--backend",
-        backend,
-        "--frames",
-        str(frames),
-        "--no-frames",
-        "--quiet",
-        "--force",
-        "--out",
-        str(folder.resolve()),
-        "--set",
-        f"host.model={model}",
-    ] + profiled(model)
+    arguments = ["--app", scene, "--backend", backend, "--frames", str(frames)] + profiled(model)
     for setting in settings:
-        command += ["--set", setting]
+        arguments += ["--set", setting]
     if scene == "obj_viewer":
-        command += ["--", OBJ]
-    result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+        arguments += ["--", OBJ]
+    # The runs start in the repository (OBJ is relative to it).
+    stats = run_soc_sim(soc_sim, folder.resolve(), model, arguments, cwd=ROOT)
+    return [frame.get("driver", {}) for frame in stats["frames"]]
+
+
+def run_soc_sim(soc_sim, folder, model, arguments, cwd=None):
+    """soc_sim with the training runs' common options into `folder` on host model `model`; its stats.json's stats."""
+    command = [soc_sim, "--no-frames", "--quiet", "--force", "--out", str(folder), "--set", f"host.model={model}"]
+    command += arguments
+    result = subprocess.run(command, capture_output=True, text=True, cwd=cwd)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
-    stats = json.loads((folder / "stats.json").read_text())["stats"]
-    return [frame.get("driver", {}) for frame in stats["frames"]]
+    return json.loads((folder / "stats.json").read_text())["stats"]
 
 
 def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
     """A GL-free application's one record: its timed parts' host_<part>_ns and units_<part>_<row>."""
-    folder = out / f"{name}_{model}"
-    command = (
-        [
-            soc_sim,
-            "--app",
-            app,
-            "--backend",
-            backend,
-            "--no-frames",
-            "--quiet",
-            "--force",
-            "--out",
-            str(folder),
-            "--set",
-            f"host.model={model}",
-        ]
-        + profiled(model)
-        + arguments
+    stats = run_soc_sim(
+        soc_sim, out / f"{name}_{model}", model, ["--app", app, "--backend", backend] + profiled(model) + arguments
     )
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
-    figures = json.loads((folder / "stats.json").read_text())["stats"]["driver"].get(prefix, {})
+    figures = stats["driver"].get(prefix, {})
     record = {}
     for key, value in figures.items():
         if key.startswith("units_"):
@@ -315,26 +289,8 @@ def run_app(soc_sim, out, name, app, backend, arguments, prefix, model):
 
 def run_cluster(soc_sim, out, name, arguments, model):
     """A cluster run's node frames: each node's figures of each frame (stats.json's nodes[i].frames)."""
-    folder = out / f"{name}_{model}"
-    command = [
-        soc_sim,
-        "--platform",
-        "cluster",
-        "--frames",
-        "2",
-        "--no-frames",
-        "--quiet",
-        "--force",
-        "--out",
-        str(folder),
-        "--set",
-        f"host.model={model}",
-    ] + arguments
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")
-    nodes = json.loads((folder / "stats.json").read_text())["stats"]["nodes"]
-    return [frame for node in nodes for frame in node["frames"]]
+    stats = run_soc_sim(soc_sim, out / f"{name}_{model}", model, ["--platform", "cluster", "--frames", "2"] + arguments)
+    return [frame for node in stats["nodes"] for frame in node["frames"]]
 
 
 def cluster_equations(table, index, native, iss):

@@ -114,16 +114,20 @@ uint32_t NetworkInterface::read_STATUS() const {
   return (m_tx_busy ? regs::STATUS_TX_BUSY : 0u) | (m_arrivals.empty() ? 0u : regs::STATUS_RX_WAITING);
 }
 
+// A ring's base, count or slot size written: a new ring, empty.
+void NetworkInterface::new_ring(Register& head, Register& tail) {
+  head.set(0);
+  tail.set(0);
+}
+
 void NetworkInterface::write_TX_BASE(uint32_t value) {
   TX_BASE.set(value);
-  TX_HEAD.set(0);
-  TX_TAIL.set(0);
+  new_ring(TX_HEAD, TX_TAIL);
 }
 
 void NetworkInterface::write_TX_COUNT(uint32_t value) {
   TX_COUNT.set(value);
-  TX_HEAD.set(0);
-  TX_TAIL.set(0);
+  new_ring(TX_HEAD, TX_TAIL);
 }
 
 void NetworkInterface::write_TX_TAIL(uint32_t value) {
@@ -135,20 +139,17 @@ void NetworkInterface::write_TX_TAIL(uint32_t value) {
 
 void NetworkInterface::write_RX_BASE(uint32_t value) {
   RX_BASE.set(value);
-  RX_HEAD.set(0);
-  RX_TAIL.set(0);
+  new_ring(RX_HEAD, RX_TAIL);
 }
 
 void NetworkInterface::write_RX_COUNT(uint32_t value) {
   RX_COUNT.set(value);
-  RX_HEAD.set(0);
-  RX_TAIL.set(0);
+  new_ring(RX_HEAD, RX_TAIL);
 }
 
 void NetworkInterface::write_RX_SLOT_BYTES(uint32_t value) {
   RX_SLOT_BYTES.set(value);
-  RX_HEAD.set(0);
-  RX_TAIL.set(0);
+  new_ring(RX_HEAD, RX_TAIL);
 }
 
 void NetworkInterface::write_RX_TAIL(uint32_t value) {

@@ -77,6 +77,7 @@ class NetworkInterface : public Peripheral, public NetworkEndpoint {
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
   void write_CTRL(uint32_t value);
   uint32_t read_STATUS() const;
+  static void new_ring(Register& head, Register& tail);
   void write_TX_BASE(uint32_t value);
   void write_TX_COUNT(uint32_t value);
   void write_TX_TAIL(uint32_t value);
