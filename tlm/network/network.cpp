@@ -136,10 +136,8 @@ nlohmann::json Network::stats_json(const sc_time& elapsed) const {
                      {"bytes_received", t.bytes_received}});
   }
   stats["per_node"] = nodes;
-  // Estimates from network.energy_per_byte_pj and network.static_mw_per_link.
-  const double dynamic_pj = static_cast<double>(m_model.link_bytes()) * m_params.energy_per_byte_pj;
-  const double static_pj = routing.existing_links() * m_params.static_mw_per_link * 1e-3 * elapsed.to_seconds() * 1e12;
-  stats["energy_estimate"] = {{"dynamic_nj", dynamic_pj / 1e3}, {"static_nj", static_pj / 1e3}};
+  const EnergyEstimate energy = energy_estimate(elapsed);
+  stats["energy_estimate"] = {{"dynamic_nj", energy.dynamic_pj / 1e3}, {"static_nj", energy.static_pj / 1e3}};
   stats["elapsed_ns"] = elapsed.to_seconds() * 1e9;
   return stats;
 }
@@ -150,6 +148,12 @@ SummaryRow Network::summary_row(const sc_time& elapsed) const {
           std::to_string(m_model.messages()) + " messages, " + std::to_string(m_model.payload_bytes()) +
               " bytes, max queueing " + format_duration(static_cast<double>(m_model.max_queue_ps()) * 1e-12) +
               ", busiest link " + format_percent(m_model.max_link_utilisation(span))};
+}
+
+Network::EnergyEstimate Network::energy_estimate(const sc_time& elapsed) const {
+  const network::Routing& routing = m_model.routing();
+  return {static_cast<double>(m_model.link_bytes()) * m_params.energy_per_byte_pj,
+          routing.existing_links() * m_params.static_mw_per_link * 1e-3 * elapsed.to_seconds() * 1e12};
 }
 
 EnergyActivity Network::energy_activity(const sc_time& now) const {

@@ -62,6 +62,13 @@ class Network : public Block {
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
+  // The network's energy up to `elapsed`, an estimate (network.energy_per_byte_pj per byte per link crossed,
+  // network.static_mw_per_link per link): dynamic and static, in pJ.
+  struct EnergyEstimate {
+    double dynamic_pj = 0, static_pj = 0;
+    double total_j() const { return (dynamic_pj + static_pj) * 1e-12; }
+  };
+  EnergyEstimate energy_estimate(const sc_core::sc_time& elapsed) const;
 
   static uint64_t to_ps(const sc_core::sc_time& t);
   static sc_core::sc_time from_ps(uint64_t ps);

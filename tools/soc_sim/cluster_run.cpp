@@ -103,22 +103,27 @@ std::string ClusterRun::failure() const {
   return "";
 }
 
-// A gathered frame's record: its time and the nodes' energy since the
-// previous frame (the network's is in the run's totals only).
+// A gathered frame's record: its time and the energy since the previous
+// frame, the nodes' and the network's (an estimate, as in the totals).
 nlohmann::json ClusterRun::frame_record(const Frame& frame) {
   const sc_core::sc_time when(frame.time_seconds, sc_core::SC_SEC);
   const EnergyModel model = EnergyModel::from_config(m_config);
   double joules = 0;
   for (unsigned i = 0; i < m_cluster->nodes(); ++i)
     joules += node_energy(model, m_cluster->node(i), when)["total_j"].get<double>();
-  const double frame_joules = joules - m_energy_before;
+  const double nodes_joules = joules - m_energy_before;
   m_energy_before = joules;
+  const double network = m_cluster->network().energy_estimate(when).total_j();
+  const double network_joules = network - m_network_energy_before;
+  m_network_energy_before = network;
   const double render = frame.time_seconds - m_previous_frame_seconds;
   m_previous_frame_seconds = frame.time_seconds;
   return {{"index", frame.index},
           {"time_ns", frame.time_seconds * 1e9},
           {"render_ns", render * 1e9},
-          {"energy", {{"total_j", frame_joules}, {"units", {{"nodes", {{"total_j", frame_joules}}}}}}}};
+          {"energy",
+           {{"total_j", nodes_joules + network_joules},
+            {"units", {{"nodes", {{"total_j", nodes_joules}}}, {"network", {{"total_j", network_joules}}}}}}}};
 }
 
 nlohmann::json ClusterRun::stats_json() const {

@@ -56,7 +56,8 @@ class ClusterRun {
   std::vector<std::vector<nlohmann::json>> m_node_frames;
   sc_core::sc_trace_file* m_trace = nullptr;
   double m_previous_frame_seconds = 0;
-  double m_energy_before = 0;
+  double m_energy_before = 0;          // the nodes' energy at the last frame, J
+  double m_network_energy_before = 0;  // the network's estimate at the last frame, J
 };
 
 }  // namespace tessera

@@ -61,15 +61,21 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
   return args;
 }
 
-TEST_F(SocSimCluster, OneNodeAndSixtyFourDrawTheSameFrames) {
+TEST_F(SocSimCluster, OneNodeSixtyFourAndTheMostDrawTheSameFrames) {
   const SimResult one = run(scene("p1", 1));
   ASSERT_EQ(one.status, 0) << describe(one);
   const SimResult many = run(scene("p64", 64));
   ASSERT_EQ(many.status, 0) << describe(many);
+  // 128 nodes on 128 rows: a stripe of one row each (in 5 MiB of memory a
+  // node, the program's 4 MiB and room for the stripe and the triangles,
+  // so that the run stays small).
+  const SimResult most = run(with(scene("p128", 128), {"cluster.node_memory_kib=5120"}));
+  ASSERT_EQ(most.status, 0) << describe(most);
   for (unsigned f = 0; f < 2; ++f) {
     SCOPED_TRACE("frame " + std::to_string(f));
     ASSERT_FALSE(frame("p1", f).empty());
     EXPECT_EQ(frame("p1", f), frame("p64", f));
+    EXPECT_EQ(frame("p1", f), frame("p128", f));
   }
   // Something was drawn: the PNG of an empty frame is far smaller.
   EXPECT_GT(frame("p1", 0).size(), 4000u);
@@ -116,6 +122,16 @@ TEST_F(SocSimCluster, TheIssDrawsWhatTheHostCompiledModelDraws) {
   EXPECT_NEAR(native_ns / iss_ns, 1.0, 0.25) << native_ns << " ns natively, " << iss_ns << " ns on the ISS";
 }
 
+TEST_F(SocSimCluster, SixteenIssNodesDrawWhatOneNativeNodeDraws) {
+  // Sixteen copies of the ARM program, each its own ISS, trading trapezoids:
+  // the frames are the host-compiled single node's.
+  ASSERT_EQ(run(with(scene("one", 1), {"cluster.triangles=600"})).status, 0);
+  const SimResult iss = run(with(scene("iss16", 16), {"cluster.triangles=600", "host.model=iss"}));
+  ASSERT_EQ(iss.status, 0) << describe(iss);
+  for (unsigned f = 0; f < 2; ++f) EXPECT_EQ(frame("one", f), frame("iss16", f)) << "frame " << f;
+  EXPECT_EQ(stats("iss16")["stats"]["nodes"].size(), 16u);
+}
+
 TEST_F(SocSimCluster, StatisticsHaveTheNodesTheNetworkAndTheFrames) {
   const SimResult result = run(scene("out", 4));
   ASSERT_EQ(result.status, 0) << describe(result);
@@ -142,6 +158,19 @@ TEST_F(SocSimCluster, StatisticsHaveTheNodesTheNetworkAndTheFrames) {
   EXPECT_EQ(made, drawn);
   EXPECT_GT(s["network"]["messages"].get<uint64_t>(), 0u);
   EXPECT_GT(s["energy"]["total_j"].get<double>(), 0.0);
+  // Each frame's energy is its nodes' and its network's; the frames' lie
+  // within the run's (which has the gathering after the last frame too).
+  double frames_nodes = 0, frames_network = 0;
+  for (const json& f : s["frames"]) {
+    const double nodes = f["energy"]["units"]["nodes"]["total_j"].get<double>();
+    const double network = f["energy"]["units"]["network"]["total_j"].get<double>();
+    EXPECT_GT(nodes, 0.0);
+    EXPECT_GT(network, 0.0);
+    EXPECT_DOUBLE_EQ(f["energy"]["total_j"].get<double>(), nodes + network);
+    frames_nodes += nodes, frames_network += network;
+  }
+  EXPECT_LE(frames_nodes, s["energy"]["nodes_j"].get<double>());
+  EXPECT_LE(frames_network, s["energy"]["network_j"].get<double>());
   EXPECT_TRUE(contains(result.out, "busiest node")) << result.out;
 }
 
