@@ -42,6 +42,9 @@ ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
 # runs it): the ARM program reads the path, so its cycles must not depend on
 # where the repository was checked out.
 OBJ = "tests/sw_driver/scenes/data/cube.obj"
+# Scenes run with arguments (measure_host_costs.py's): the OBJ viewer its
+# file, the random scene 2,000 triangles.
+SCENE_ARGUMENTS = {"obj_viewer": [OBJ], "random_triangles": ["--triangles", "2000"]}
 
 
 def scenes(soc_sim):
@@ -79,8 +82,8 @@ def run(soc_sim, out, scene, backend, model, frames, iss_from=None):
             "--set",
             f"host.model={model}",
         ]
-        if scene == "obj_viewer":
-            command += ["--", OBJ]
+        if scene in SCENE_ARGUMENTS:
+            command += ["--", *SCENE_ARGUMENTS[scene]]
         result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
         if result.returncode != 0:
             raise RuntimeError(f"{' '.join(command)} exited with {result.returncode}: {result.stderr.strip()}")

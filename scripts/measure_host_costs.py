@@ -80,6 +80,9 @@ TABLE = ROOT / "sw_driver" / "costs" / "host_costs.def"
 # path as an argument, so an absolute one would make the ISS's obj_viewer
 # cycles depend on where the repository was checked out.
 OBJ = "tests/sw_driver/scenes/data/cube.obj"
+# Scenes run with arguments: the OBJ viewer its file; the random scene 2,000
+# triangles (its default 10,000 takes the ISS's array back ends long).
+SCENE_ARGUMENTS = {"obj_viewer": [OBJ], "random_triangles": ["--triangles", "2000"]}
 PHASES = ["application", "geometry", "rasterization", "presenting"]
 # The training runs: (scene, back end). The GL front end's rows (the
 # geometry phase) are the same code on every back end.
@@ -95,6 +98,7 @@ TRAINING_SCENES = [
     "multitexture",
     "obj_viewer",
     "points_lines",
+    "random_triangles",
     "teapot",
     "texture_formats",
     "textured_quad",
@@ -254,8 +258,8 @@ def run(soc_sim, out, scene, name, model):
     arguments = ["--app", scene, "--backend", backend, "--frames", str(frames)] + profiled(model)
     for setting in settings:
         arguments += ["--set", setting]
-    if scene == "obj_viewer":
-        arguments += ["--", OBJ]
+    if scene in SCENE_ARGUMENTS:
+        arguments += ["--", *SCENE_ARGUMENTS[scene]]
     # The runs start in the repository (OBJ is relative to it).
     stats = run_soc_sim(soc_sim, folder.resolve(), model, arguments, cwd=ROOT)
     return [frame.get("driver", {}) for frame in stats["frames"]]

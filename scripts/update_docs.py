@@ -27,6 +27,8 @@ each comes from:
                       figures, the same on every machine
     experiment-NAME-iss  the same with --host iss, for every experiment
                       whose "hosts" lists iss
+    cluster-NAME      the cluster platform's experiment cluster_NAME
+                      (cluster-depth-ipsc: with the iPSC/860 preset)
 
 Besides, the pictures of PICTURES (the README's teapot: the demo's last
 frame) are compared byte for byte with what their run writes today, and a
@@ -37,7 +39,9 @@ built-in scene of soc_sim --list-apps.
 The experiment blocks run the simulator and are regenerated or checked only
 with --experiments or --only-experiments (the native blocks, about a minute
 together on two cores) and --iss-experiments or --only-iss-experiments (the
-ISS blocks, slower: the default test suite leaves them out).
+ISS blocks, slower: the default test suite leaves them out) and
+--cluster-experiments or --only-cluster-experiments (the cluster's, a few
+minutes: also left out).
 
 Usage:
     scripts/update_docs.py [--soc-sim build/default/bin/soc_sim] [--experiments] [--iss-experiments]
@@ -272,6 +276,18 @@ def printed_by(*runs):
     return generate
 
 
+def cluster_experiment(name, *options):
+    """What the cluster's experiment `name` (python/tessera_sweep/cluster_experiments.py) prints with `options`."""
+
+    def generate(args):
+        command = ["scripts/experiment.py", name, *options]
+        with tempfile.TemporaryDirectory(prefix="tessera-docs-") as folder:
+            table = run([ROOT / command[0], *command[1:], "--soc-sim", args.soc_sim, "--out", folder], cwd=ROOT)
+        return f"From `{' '.join(command)}` (simulated times: the same on every machine):\n\n" + table.strip()
+
+    return generate
+
+
 ARRAY_CALIBRATION = [
     ["--app", app]
     for app in ("calib_array_add", "calib_array_mul", "calib_array_add_cmem", "calib_array_mul_cmem", "calib_ciu")
@@ -307,6 +323,14 @@ for _file in sorted((ROOT / "experiments").glob("*.yaml")):
         GENERATORS[_block + "-iss"] = experiment(_file.stem, "iss")
         ISS.add(_block + "-iss")
 SLOW = {name for name in GENERATORS if name.startswith("experiment-")} - ISS
+# The cluster platform's experiments: a few minutes together (about 130 runs).
+CLUSTER = {
+    "cluster-depth": cluster_experiment("cluster_depth"),
+    "cluster-depth-ipsc": cluster_experiment("cluster_depth", "--config", "configs/presets/ipsc860_like.json"),
+    "cluster-speedup": cluster_experiment("cluster_speedup"),
+    "cluster-soc": cluster_experiment("cluster_soc"),
+}
+GENERATORS.update(CLUSTER)
 # Blocks another script writes (scripts/compare_host_models.py --write-doc),
 # or written by hand and checked by a script of their own
 # (scripts/check_tree.py: the source tree), left as they are.
@@ -378,6 +402,12 @@ def main():
     )
     parser.add_argument("--only-iss-experiments", action="store_true", help="only the ISS's experiment blocks")
     parser.add_argument(
+        "--cluster-experiments",
+        action="store_true",
+        help="also the cluster platform's experiment blocks (minutes), and only those with --only-cluster-experiments",
+    )
+    parser.add_argument("--only-cluster-experiments", action="store_true", help="only the cluster's blocks")
+    parser.add_argument(
         "--only",
         nargs="+",
         choices=sorted(GENERATORS),
@@ -386,16 +416,22 @@ def main():
     )
     args = parser.parse_args()
     wanted = set(GENERATORS)
-    only_experiments = args.only_experiments or args.only_iss_experiments
+    only_experiments = args.only_experiments or args.only_iss_experiments or args.only_cluster_experiments
     if args.only:
         wanted = set(args.only)
     elif only_experiments:
-        wanted = (SLOW if args.only_experiments else set()) | (ISS if args.only_iss_experiments else set())
+        wanted = (
+            (SLOW if args.only_experiments else set())
+            | (ISS if args.only_iss_experiments else set())
+            | (set(CLUSTER) if args.only_cluster_experiments else set())
+        )
     else:
         if not args.experiments:
             wanted -= SLOW
         if not args.iss_experiments:
             wanted -= ISS
+        if not args.cluster_experiments:
+            wanted -= set(CLUSTER)
 
     cache = {}
     stale = []

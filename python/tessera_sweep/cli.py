@@ -1,7 +1,8 @@
 """tessera-sweep: soc_sim over many configurations, in two kinds of spec.
 
     tessera-sweep run SPEC [options]      a sweep spec or an experiment (by file or by name)
-    tessera-sweep list                    the study's experiments (experiments/*.yaml)
+    tessera-sweep run cluster_NAME ...    a cluster experiment (cluster_experiments.py: depth, speedup, soc)
+    tessera-sweep list                    the experiments (experiments/*.yaml and the cluster's)
     tessera-sweep sort-middle COMMAND     Crockett and Orloff's sort-middle model: table, time, fit
     tessera-sweep SPEC [options]          a sweep spec, as before "run" existed
 
@@ -19,7 +20,7 @@ import os
 import sys
 from pathlib import Path
 
-from . import experiment, sort_middle_model, table
+from . import cluster_experiments, experiment, sort_middle_model, table
 from .report import write_report
 from .runner import run_sweep
 from .simulator import Simulator, SimulatorError
@@ -82,7 +83,10 @@ def is_experiment_spec(name: str) -> bool:
 
 
 def run_main(argv: list[str]) -> int:
-    """tessera-sweep run SPEC...: an experiment (several may be named) or one sweep spec."""
+    """tessera-sweep run SPEC...: an experiment (several may be named) or one sweep spec; or one of the cluster's
+    experiments, with its own options (cluster_experiments.py)."""
+    if argv[:1] and argv[0] in cluster_experiments.EXPERIMENTS:
+        return cluster_experiments.main(argv, "tessera-sweep run")
     parser = argparse.ArgumentParser(
         prog="tessera-sweep run", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )

@@ -27,7 +27,10 @@ the output folder (default out/experiments/<name>):
     tessera-sweep run experiments/dma_whatif.yaml --set ciu.read_cycles=40 --out out/whatif_ciu
 
 (scripts/experiment.py, an alias, takes the same arguments without "run";
---list lists.) An experiment's runs are made on each host model it lists
+--list lists.) The cluster platform's experiments (cluster_depth,
+cluster_speedup, cluster_soc) fit a model to their runs and so are programs,
+not specs: cluster_experiments.py, run by the same commands with options of
+their own. An experiment's runs are made on each host model it lists
 ("hosts": native, the host-compiled model, or iss, the driver as ARM code on
 the ISS) and, for ap-tile and ap-pixel, with each array program it lists
 ("programs": study, the study's program as its compiler wrote it, or tuned);
@@ -554,7 +557,9 @@ def experiment_path(name):
         return pathlib.Path(name)
     path = EXPERIMENTS / f"{name}.yaml"
     if not path.is_file():
-        known = ", ".join(p.stem for p in experiment_files())
+        from . import cluster_experiments
+
+        known = ", ".join([p.stem for p in experiment_files()] + sorted(cluster_experiments.EXPERIMENTS))
         raise UsageError(f"unknown experiment '{name}' (known: {known}; or the path of a .yaml or .json file)")
     return path
 
@@ -679,6 +684,10 @@ def list_experiments():
         except UsageError as error:
             title = f"(malformed: {error})"
         print(f"{path.stem}  {title}")
+    from . import cluster_experiments  # the cluster platform's: programs, not specs (it imports this module)
+
+    for name, title in cluster_experiments.TITLES.items():
+        print(f"{name}  {title}")
 
 
 class Outcome:
@@ -829,7 +838,13 @@ def run_command(args, prog):
 
 
 def main(argv=None, prog="experiment.py"):
-    """scripts/experiment.py's command line: EXPERIMENT... [options], or --list."""
+    """scripts/experiment.py's command line: EXPERIMENT... [options], or --list; a cluster experiment
+    (cluster_experiments.py) with its own options."""
+    from . import cluster_experiments
+
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] and argv[0] in cluster_experiments.EXPERIMENTS:
+        return cluster_experiments.main(argv, prog)
     parser = argparse.ArgumentParser(
         prog=prog, description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )

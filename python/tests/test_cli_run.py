@@ -7,7 +7,7 @@ from pathlib import Path
 
 import yaml
 
-from tessera_sweep import experiment
+from tessera_sweep import cluster_experiments, experiment
 
 from conftest import TINY, tessera_sweep_command, write_spec
 
@@ -33,7 +33,26 @@ def test_list_names_every_experiment():
     done = tessera_sweep_command("list")
     assert done.returncode == 0, done.stderr
     listed = [line.split()[0] for line in done.stdout.splitlines() if line.strip()]
-    assert listed == [path.stem for path in experiment.experiment_files()]
+    assert listed == [path.stem for path in experiment.experiment_files()] + list(cluster_experiments.TITLES)
+
+
+def test_run_a_cluster_experiment_by_name(simulator, tmp_path):
+    """tessera-sweep run cluster_soc: the cluster's experiment, with its own options, through the same command."""
+    done = tessera_sweep_command(
+        "run",
+        "cluster_soc",
+        "--triangles",
+        "300",
+        "--frames",
+        "2",
+        "--soc-sim",
+        str(simulator.path),
+        "--out",
+        str(tmp_path),
+    )
+    assert done.returncode == 0, done.stderr
+    assert "| SoC, arm |" in done.stdout and "| cluster, p = 128 |" in done.stdout
+    assert (tmp_path / "cluster_soc.csv").is_file() and (tmp_path / "cluster_soc.md").is_file()
 
 
 def test_run_an_experiment_file_with_set_and_frames(simulator, tmp_path):

@@ -22,6 +22,11 @@
         experiment, a missing soc_sim, a malformed experiment file and a
         soc_sim run that fails.
 
+    test_experiment.py cluster --soc-sim SOC_SIM --work DIR
+        the cluster's experiments cluster_soc and cluster_depth on a small
+        scene: their tables printed and written, a row per machine, depth
+        and node count, every time and energy a positive number.
+
     test_experiment.py matrix --work DIR
         the experiment file's "matrix" (runs x back ends x combinations of
         switches): the runs it expands to, their labels, settings and groups,
@@ -254,7 +259,14 @@ def test_errors(soc_sim, work):
     status, out, err = run_script("--list")
     check(status == 0, "--list failed\n" + describe(status, out, err))
     listed = [line.split()[0] for line in out.splitlines() if line.strip()]
-    check(listed == names, f"--list lists {listed}, the folder holds {names}")
+    expected = names + ["cluster_depth", "cluster_speedup", "cluster_soc"]
+    check(listed == expected, f"--list lists {listed}, the folder holds {names} and the cluster's are three")
+
+    status, out, err = run_script("cluster_soc", "--frames", "1", "--soc-sim", soc_sim, "--out", work / "frames1")
+    check(
+        status == 2 and "--frames: at least 2" in err,
+        "a cluster experiment with one frame must be status 2 naming --frames\n" + describe(status, out, err),
+    )
 
     status, out, err = run_script("no_such_experiment", "--soc-sim", soc_sim, "--out", work / "unknown")
     check(
@@ -782,9 +794,50 @@ def test_what_if_figures():
     )
 
 
+def test_cluster(soc_sim, work):
+    """cluster_soc and cluster_depth on a small scene: the tables printed and written, a row per machine and per
+    depth and node count, every time and energy a positive number, the SoC's arm its own baseline."""
+    triangles = "600"
+    status, out, err = run_script(
+        "cluster_soc", "--triangles", triangles, "--frames", "2", "--soc-sim", soc_sim, "--out", work / "soc"
+    )
+    if not check(status == 0, "cluster_soc failed\n" + describe(status, out, err)):
+        return
+    with open(work / "soc" / "cluster_soc.csv", newline="") as table:
+        rows = list(csv.DictReader(table))
+    machines = [row["machine"] for row in rows]
+    expected = ["SoC, arm", "SoC, ap-tile"] + [f"cluster, p = {p}" for p in (1, 2, 4, 8, 16, 32, 64, 128)]
+    check(machines == expected, f"cluster_soc: rows {machines}, expected {expected}")
+    check("| SoC, arm |" in out, "cluster_soc: the table is not printed\n" + out)
+    for row in rows:
+        for key in ("time per frame (ms)", "energy per frame (mJ)", "speed-up over arm"):
+            check(positive_number(row[key]), f"cluster_soc: {row['machine']}: {key} is {row[key]!r}")
+    check(rows[0]["speed-up over arm"] == "1.00", f"cluster_soc: arm over itself is {rows[0]['speed-up over arm']}")
+    check(
+        all(positive_number(row["of it the network's (mJ)"]) for row in rows[3:]),
+        f"cluster_soc: a cluster of several nodes has no network energy: {rows}",
+    )
+
+    status, out, err = run_script(
+        "cluster_depth", "--triangles", "2000", "--frames", "2", "--soc-sim", soc_sim, "--out", work / "depth"
+    )
+    if not check(status == 0, "cluster_depth failed\n" + describe(status, out, err)):
+        return
+    with open(work / "depth" / "cluster_depth.csv", newline="") as table:
+        rows = list(csv.DictReader(table))
+    check([row["d"] for row in rows] == ["1", "2", "4", "8", "16", "32", "64"], f"cluster_depth: rows {rows}")
+    check(
+        all(positive_number(value) for row in rows for key, value in row.items() if key != "d"),
+        f"cluster_depth: a time is not a positive number: {rows}",
+    )
+    with open(work / "depth" / "cluster_depth_fit.csv", newline="") as table:
+        fits = list(csv.DictReader(table))
+    check([row["p"] for row in fits] == ["8", "16", "32", "64"], f"cluster_depth: fit rows {fits}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=("run", "hosts", "errors", "matrix"))
+    parser.add_argument("what", choices=("run", "hosts", "errors", "matrix", "cluster"))
     parser.add_argument("name", nargs="?")
     parser.add_argument("--soc-sim", help="the soc_sim to run (run and errors)")
     parser.add_argument("--work", required=True, type=pathlib.Path)
@@ -799,6 +852,8 @@ def main():
         test_hosts(args.soc_sim, args.work)
     elif args.what == "errors":
         test_errors(args.soc_sim, args.work)
+    elif args.what == "cluster":
+        test_cluster(args.soc_sim, args.work)
     else:
         args.work.mkdir(parents=True, exist_ok=True)
         test_matrix_expansion(args.work)
