@@ -62,7 +62,8 @@ def soc_sim(args, name, arguments):
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         message = result.stderr.strip()
-        if "cluster.node_memory_kib=" in message and "is too small" in message:
+        # soc_sim's two messages: the stripe (before the run) and the node's triangles (when a node starts).
+        if "cluster.node_memory_kib" in message and ("is too small" in message or "do not fit" in message):
             raise TooBig(message)
         raise RuntimeError(f"{' '.join(command)}: exit {result.returncode}: {message}")
     return json.loads((folder / "stats.json").read_text())["stats"]
