@@ -57,18 +57,8 @@ constexpr int W = Q2_30_FRACTION_BITS;
 
 }  // namespace
 
-PerspectiveMatrix transposed(const PerspectiveMatrix& m) {
-  PerspectiveMatrix t;
-  t.a = m.e;
-  t.b = m.d;
-  t.c = m.f;
-  t.d = m.b;
-  t.e = m.a;
-  t.f = m.c;
-  t.g = m.h;
-  t.h = m.g;
-  t.i = m.i;
-  return t;
+PerspectiveMatrix with_u_and_v_swapped(const PerspectiveMatrix& m) {
+  return {m.b, m.a, m.c, m.e, m.d, m.f, m.h, m.g, m.i};
 }
 
 std::string matrix_error(const PerspectiveMatrix& m, int texture_width, int texture_height) {

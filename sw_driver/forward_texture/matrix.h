@@ -31,9 +31,10 @@ struct LineMapping {
 // The largest texture and output side.
 constexpr int MAX_IMAGE_SIZE = 1024;
 
-// The matrix with u and v, and x and y, swapped: the columns-first order is
-// the rows-first order of the transposed texture under it.
-PerspectiveMatrix transposed(const PerspectiveMatrix& m);
+// The matrix with u and v swapped (its first two columns): the
+// columns-first order is the rows-first order of the transposed texture
+// under it.
+PerspectiveMatrix with_u_and_v_swapped(const PerspectiveMatrix& m);
 
 // Empty, or the message naming the bad value: a singular matrix (abs(det) <
 // 2^-20), a denominator w not positive or not below 2 at a corner of a

@@ -1,6 +1,6 @@
 // The two-pass warp (warp.h). The columns-first order is the rows-first
-// order run on the transposed texture under the transposed matrix, its
-// output transposed back, so there is one implementation of each pass.
+// order run on the transposed texture under the matrix with u and v
+// swapped, so there is one implementation of each pass.
 #include "forward_texture/warp.h"
 
 #include "forward_texture/resample_line.h"
@@ -171,7 +171,7 @@ std::string choose_pass_order(const PerspectiveMatrix& m, int texture_width, int
                               PassOrderChoice& choice) {
   std::string error = row_pass_scale(m, texture_width, texture_height, choice.rows_first_scale);
   if (error.empty()) {
-    error = row_pass_scale(transposed(m), texture_height, texture_width, choice.columns_first_scale);
+    error = row_pass_scale(with_u_and_v_swapped(m), texture_height, texture_width, choice.columns_first_scale);
     if (!error.empty()) {
       error = "columns first, " + error;
     }
@@ -195,12 +195,8 @@ WarpResult warp_texture_in_order(const Image& texture, const PerspectiveMatrix& 
     result.error = rows_first(texture, m, table, output_width, output_height, result.image);
     return result;
   }
-  Image transposed_output;
   result.error =
-      rows_first(transposed_image(texture), transposed(m), table, output_height, output_width, transposed_output);
-  if (result.error.empty()) {
-    result.image = transposed_image(transposed_output);
-  }
+      rows_first(transposed_image(texture), with_u_and_v_swapped(m), table, output_width, output_height, result.image);
   return result;
 }
 

@@ -1,8 +1,9 @@
 // The two-pass warp of a whole texture (README.md): the row pass (Eq. 1)
 // into an intermediate image of (output width) x (texture height), then the
-// column pass (Eq. 4) into the output; or, when the row pass would compress
-// more than the column pass, the same on the transposed texture ("Pass
-// order"). One channel of unorm8; a colour texture is one warp per channel.
+// column pass (Eq. 4) into the output; or, when mapping the texture's rows
+// would compress more than mapping its columns, the same on the transposed
+// texture: its columns onto the intermediate rows first ("Pass order"). One channel of unorm8; a colour texture is one
+// warp per channel.
 #pragma once
 
 #include <cstdint>

@@ -11,8 +11,8 @@ namespace {
 constexpr double XY_SCALE = 1048576.0;    // 2^20: q12_20
 constexpr double W_SCALE = 1073741824.0;  // 2^30: q2_30
 
-Matrix transposed(const Matrix& m) {
-  return {m.e, m.d, m.f, m.b, m.a, m.c, m.h, m.g, m.i};
+Matrix with_u_and_v_swapped(const Matrix& m) {
+  return {m.b, m.a, m.c, m.e, m.d, m.f, m.h, m.g, m.i};
 }
 
 std::vector<double> transposed(const std::vector<double>& image, int width, int height) {
@@ -120,9 +120,8 @@ std::vector<double> warp_eq3(const tessera::forward_texture::Image& texture, con
   if (order == PassOrder::rows_first) {
     return rows_first(texels, texture.width, texture.height, m, kind, width, output_width, output_height);
   }
-  const std::vector<double> result = rows_first(transposed(texels, texture.width, texture.height), texture.height,
-                                                texture.width, transposed(m), kind, width, output_height, output_width);
-  return transposed(result, output_height, output_width);
+  return rows_first(transposed(texels, texture.width, texture.height), texture.height, texture.width,
+                    with_u_and_v_swapped(m), kind, width, output_width, output_height);
 }
 
 }  // namespace tessera::test::forward_texture
