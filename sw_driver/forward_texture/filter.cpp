@@ -42,10 +42,10 @@ std::string filter_width_error(int width) {
 FilterTable make_filter_table(FilterKind kind, int width) {
   FilterTable table;
   table.kind = kind;
+  table.width = width;  // kept when out of range, so that the error can name it
   if (!filter_width_error(width).empty()) {
     return table;
   }
-  table.width = width;
   table.values.resize(static_cast<std::size_t>(PHASES * width));
   const auto unsigned_width = static_cast<uint32_t>(width);
   for (int phase = 0; phase < PHASES; ++phase) {

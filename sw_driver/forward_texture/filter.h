@@ -32,8 +32,9 @@ const char* filter_name(FilterKind kind);
 std::string filter_width_error(int width);
 
 // The table of `kind` stretched to `width` pixels, in integer arithmetic:
-// exact for the box, rounded to the nearest uq1_15 for the tent. Requires
-// filter_width_error(width) to be empty (an empty table otherwise).
+// exact for the box, rounded to the nearest uq1_15 for the tent. When
+// filter_width_error(width) is not empty the table has no values (and the
+// warp refuses it, naming the width).
 FilterTable make_filter_table(FilterKind kind, int width);
 
 }  // namespace tessera::forward_texture

@@ -146,6 +146,10 @@ std::string rows_first(const Image& texture, const PerspectiveMatrix& m, const F
 std::string input_error(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
                         int output_height) {
   std::string error = filter_width_error(table.width);
+  if (error.empty() && table.values.size() != static_cast<std::size_t>(PHASES * table.width)) {
+    error = "the filter table of width " + std::to_string(table.width) + " holds " +
+            std::to_string(table.values.size()) + " values, not " + std::to_string(PHASES) + " rows of that many";
+  }
   if (error.empty()) {
     error = size_error("texture", texture.width, texture.height);
   }
