@@ -46,12 +46,12 @@ FilterTable make_filter_table(FilterKind kind, int width) {
   if (!filter_width_error(width).empty()) {
     return table;
   }
-  table.values.resize(static_cast<std::size_t>(PHASES * width));
+  table.values.resize(static_cast<std::size_t>(PHASES) * width);
   const auto unsigned_width = static_cast<uint32_t>(width);
   for (int phase = 0; phase < PHASES; ++phase) {
     for (int j = 0; j < width; ++j) {
       const auto n = static_cast<uint32_t>(phase + PHASES * (width - 1 - j));
-      table.values[static_cast<std::size_t>(phase * width + j)] =
+      table.values[static_cast<std::size_t>(phase) * width + j] =
           static_cast<uq1_15>(primitive_at(kind, n, unsigned_width));
     }
   }

@@ -22,7 +22,7 @@ struct FilterTable {
   int width = 0;               // F, in pixels
   std::vector<uq1_15> values;  // PHASES rows of `width` values
 
-  uq1_15 at(int phase, int j) const { return values[static_cast<std::size_t>(phase * width + j)]; }
+  uq1_15 at(int phase, int j) const { return values[static_cast<std::size_t>(phase) * width + j]; }
 };
 
 const char* filter_name(FilterKind kind);

@@ -44,9 +44,14 @@ std::string format_fixed(int64_t raw, int fraction_bits) {
     places -= 10000u;
     ++whole_part;
   }
-  std::string digits = std::to_string(places);
+  // Printed as 32-bit words, so that no 64-bit division is linked in: the
+  // values printed have whole parts far below 2^32 (they come from q12_20,
+  // q2_30, q16_16 and the set-up's 2^-46 scale); a larger one prints as
+  // 4294967295.
+  const uint32_t whole_word = whole_part > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(whole_part);
+  std::string digits = std::to_string(static_cast<uint32_t>(places));
   digits.insert(0, 4 - digits.size(), '0');
-  return (negative ? "-" : "") + std::to_string(whole_part) + "." + digits;
+  return (negative ? "-" : "") + std::to_string(whole_word) + "." + digits;
 }
 
 }  // namespace tessera::forward_texture

@@ -14,7 +14,7 @@ struct Plane {  // a q8_8 image
   int height = 0;
   std::vector<q8_8> values;
 
-  LineView row(int y) { return {&values[static_cast<std::size_t>(y * width)], width, 1}; }
+  LineView row(int y) { return {&values[static_cast<std::size_t>(y) * width], width, 1}; }
   LineView column(int x) { return {&values[static_cast<std::size_t>(x)], height, width}; }
 };
 
@@ -22,7 +22,7 @@ Image transposed_image(const Image& image) {
   Image t{image.height, image.width, std::vector<uint8_t>(image.texels.size())};
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
-      t.texels[static_cast<std::size_t>(x * t.width + y)] = image.at(x, y);
+      t.texels[static_cast<std::size_t>(x) * t.width + y] = image.at(x, y);
     }
   }
   return t;
@@ -123,9 +123,9 @@ std::string column_pass(const PerspectiveMatrix& m, const FilterTable& table, Pl
 std::string rows_first(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
                        int output_height, Image& output) {
   Plane intermediate{output_width, texture.height,
-                     std::vector<q8_8>(static_cast<std::size_t>(output_width * texture.height), 0)};
+                     std::vector<q8_8>(static_cast<std::size_t>(output_width) * texture.height, 0)};
   Plane result{output_width, output_height,
-               std::vector<q8_8>(static_cast<std::size_t>(output_width * output_height), 0)};
+               std::vector<q8_8>(static_cast<std::size_t>(output_width) * output_height, 0)};
   int first_column = 0;
   int last_column = 0;
   std::string error = row_pass(texture, m, table, intermediate, first_column, last_column);
@@ -146,14 +146,14 @@ std::string rows_first(const Image& texture, const PerspectiveMatrix& m, const F
 std::string input_error(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
                         int output_height) {
   std::string error = filter_width_error(table.width);
-  if (error.empty() && table.values.size() != static_cast<std::size_t>(PHASES * table.width)) {
+  if (error.empty() && table.values.size() != static_cast<std::size_t>(PHASES) * table.width) {
     error = "the filter table of width " + std::to_string(table.width) + " holds " +
             std::to_string(table.values.size()) + " values, not " + std::to_string(PHASES) + " rows of that many";
   }
   if (error.empty()) {
     error = size_error("texture", texture.width, texture.height);
   }
-  if (error.empty() && texture.texels.size() != static_cast<std::size_t>(texture.width * texture.height)) {
+  if (error.empty() && texture.texels.size() != static_cast<std::size_t>(texture.width) * texture.height) {
     error = "texture holds " + std::to_string(texture.texels.size()) + " texels, not width x height";
   }
   if (error.empty()) {

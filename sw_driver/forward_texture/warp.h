@@ -20,7 +20,7 @@ struct Image {
   int height = 0;
   std::vector<uint8_t> texels;  // row-major, width * height
 
-  uint8_t at(int x, int y) const { return texels[static_cast<std::size_t>(y * width + x)]; }
+  uint8_t at(int x, int y) const { return texels[static_cast<std::size_t>(y) * width + x]; }
 };
 
 enum class PassOrder { rows_first, columns_first };

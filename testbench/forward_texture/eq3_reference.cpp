@@ -19,7 +19,7 @@ std::vector<double> transposed(const std::vector<double>& image, int width, int 
   std::vector<double> t(image.size());
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      t[static_cast<std::size_t>(x * height + y)] = image[static_cast<std::size_t>(y * width + x)];
+      t[static_cast<std::size_t>(x) * height + y] = image[static_cast<std::size_t>(y) * width + x];
     }
   }
   return t;
@@ -27,7 +27,7 @@ std::vector<double> transposed(const std::vector<double>& image, int width, int 
 
 std::vector<double> rows_first(const std::vector<double>& texture, int texture_width, int texture_height,
                                const Matrix& m, FilterKind kind, int width, int output_width, int output_height) {
-  std::vector<double> intermediate(static_cast<std::size_t>(output_width * texture_height));
+  std::vector<double> intermediate(static_cast<std::size_t>(output_width) * texture_height);
   for (int row = 0; row < texture_height; ++row) {
     const std::vector<double> texels(texture.begin() + row * texture_width,
                                      texture.begin() + (row + 1) * texture_width);
@@ -35,7 +35,7 @@ std::vector<double> rows_first(const std::vector<double>& texture, int texture_w
         resample_line_eq3(texels, row_borders(m, row, texture_width), kind, width, output_width);
     std::copy(pixels.begin(), pixels.end(), intermediate.begin() + row * output_width);
   }
-  std::vector<double> output(static_cast<std::size_t>(output_width * output_height));
+  std::vector<double> output(static_cast<std::size_t>(output_width) * output_height);
   for (int column = 0; column < output_width; ++column) {
     const std::vector<double> borders = column_borders(m, column, texture_height);
     if (borders.empty()) {
@@ -43,11 +43,11 @@ std::vector<double> rows_first(const std::vector<double>& texture, int texture_w
     }
     std::vector<double> texels(static_cast<std::size_t>(texture_height));
     for (int row = 0; row < texture_height; ++row) {
-      texels[static_cast<std::size_t>(row)] = intermediate[static_cast<std::size_t>(row * output_width + column)];
+      texels[static_cast<std::size_t>(row)] = intermediate[static_cast<std::size_t>(row) * output_width + column];
     }
     const std::vector<double> pixels = resample_line_eq3(texels, borders, kind, width, output_height);
     for (int y = 0; y < output_height; ++y) {
-      output[static_cast<std::size_t>(y * output_width + column)] = pixels[static_cast<std::size_t>(y)];
+      output[static_cast<std::size_t>(y) * output_width + column] = pixels[static_cast<std::size_t>(y)];
     }
   }
   return output;

@@ -81,7 +81,7 @@ TEST(FilterTable, EveryRowIsMonotoneAndWithinZeroAndOne) {
   for (const FilterKind kind : {FilterKind::box, FilterKind::tent}) {
     for (int width = 1; width <= MAX_FILTER_WIDTH; ++width) {
       const FilterTable table = make_filter_table(kind, width);
-      ASSERT_EQ(table.values.size(), static_cast<std::size_t>(PHASES * width));
+      ASSERT_EQ(table.values.size(), static_cast<std::size_t>(PHASES) * width);
       for (int phase = 0; phase < PHASES; ++phase) {
         for (int j = 0; j + 1 < width; ++j) {
           EXPECT_GE(table.at(phase, j), table.at(phase, j + 1)) << filter_name(kind) << width;

@@ -23,7 +23,7 @@ namespace reference = tessera::test::forward_texture;
 
 Image random_texture(std::mt19937& random, int width, int height) {
   std::uniform_int_distribution<int> value(0, 255);
-  Image texture{width, height, std::vector<uint8_t>(static_cast<std::size_t>(width * height))};
+  Image texture{width, height, std::vector<uint8_t>(static_cast<std::size_t>(width) * height)};
   for (uint8_t& texel : texture.texels) {
     texel = static_cast<uint8_t>(value(random));
   }
@@ -37,7 +37,7 @@ Image random_texture(std::mt19937& random, int width, int height) {
 std::vector<double> rows_first_bound(const std::vector<double>& texels, int width, int height,
                                      const reference::Matrix& m, FilterKind kind, int filter_width, int output_width,
                                      int output_height) {
-  std::vector<double> intermediate(static_cast<std::size_t>(output_width * height));
+  std::vector<double> intermediate(static_cast<std::size_t>(output_width) * height);
   std::vector<double> intermediate_bound(intermediate.size());
   for (int row = 0; row < height; ++row) {
     const std::vector<double> line(texels.begin() + row * width, texels.begin() + (row + 1) * width);
@@ -47,13 +47,13 @@ std::vector<double> rows_first_bound(const std::vector<double>& texels, int widt
     std::copy(values.begin(), values.end(), intermediate.begin() + row * output_width);
     std::copy(bound.begin(), bound.end(), intermediate_bound.begin() + row * output_width);
   }
-  std::vector<double> output_bound(static_cast<std::size_t>(output_width * output_height), 0.5);
+  std::vector<double> output_bound(static_cast<std::size_t>(output_width) * output_height, 0.5);
   for (int column = 0; column < output_width; ++column) {
     std::vector<double> line(static_cast<std::size_t>(height));
     double input_error = 0.0;
     for (int row = 0; row < height; ++row) {
-      line[static_cast<std::size_t>(row)] = intermediate[static_cast<std::size_t>(row * output_width + column)];
-      input_error = std::max(input_error, intermediate_bound[static_cast<std::size_t>(row * output_width + column)]);
+      line[static_cast<std::size_t>(row)] = intermediate[static_cast<std::size_t>(row) * output_width + column];
+      input_error = std::max(input_error, intermediate_bound[static_cast<std::size_t>(row) * output_width + column]);
     }
     const std::vector<double> borders = reference::column_borders(m, column, height);
     if (borders.empty()) {
@@ -61,7 +61,7 @@ std::vector<double> rows_first_bound(const std::vector<double>& texels, int widt
     }
     const std::vector<double> bound = eq6_error_bound(line, borders, kind, filter_width, output_height, input_error);
     for (int y = 0; y < output_height; ++y) {
-      output_bound[static_cast<std::size_t>(y * output_width + column)] += bound[static_cast<std::size_t>(y)];
+      output_bound[static_cast<std::size_t>(y) * output_width + column] += bound[static_cast<std::size_t>(y)];
     }
   }
   return output_bound;
@@ -76,8 +76,8 @@ std::vector<double> warp_bound(const Image& texture, const reference::Matrix& m,
   std::vector<double> transposed(texels.size());
   for (int y = 0; y < texture.height; ++y) {
     for (int x = 0; x < texture.width; ++x) {
-      transposed[static_cast<std::size_t>(x * texture.height + y)] =
-          texels[static_cast<std::size_t>(y * texture.width + x)];
+      transposed[static_cast<std::size_t>(x) * texture.height + y] =
+          texels[static_cast<std::size_t>(y) * texture.width + x];
     }
   }
   const reference::Matrix swapped{m.b, m.a, m.c, m.e, m.d, m.f, m.h, m.g, m.i};
