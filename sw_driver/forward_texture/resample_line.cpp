@@ -44,9 +44,12 @@ std::string step_borders(const LineMapping& mapping, int texel_count, const std:
                " pixels, more than 1: magnification is not supported; upscale the texture first";
       }
     }
-    // Both stay in range: step_borders' callers checked the line's ends.
-    numerator += mapping.numerator_step;
-    denominator += mapping.denominator_step;
+    // Both stay in range up to the last border: the set-up checked the
+    // line's ends, and a step past the last could leave int32_t.
+    if (t < texel_count) {
+      numerator += mapping.numerator_step;
+      denominator += mapping.denominator_step;
+    }
   }
   return {};
 }
