@@ -2,7 +2,11 @@
 // hand-computed lines, and agreement with Eq. 3 in double on random lines.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <fstream>
 #include <random>
+#include <regex>
+#include <sstream>
 #include <vector>
 
 #include "forward_texture/eq3_reference.h"
@@ -202,6 +206,21 @@ TEST(ResampleLine, Eq6InFixedPointAgreesWithEq3WithinTheBound) {
   EXPECT_GE(lines, 300);
   // The bound is not vacuous: some pixel uses a fair part of it.
   EXPECT_GT(worst_ratio, 0.05);
+}
+
+TEST(Driver, HasNoFloatingPoint) {
+  // The host has no FPU and the double reference belongs to the testbench.
+  const char* source = std::getenv("TESSERA_SOURCE_DIR");
+  ASSERT_NE(source, nullptr) << "run through ctest, which sets TESSERA_SOURCE_DIR";
+  const std::regex floating(R"(\b(double|float|long double)\b)");
+  for (const char* name : {"fixed_point.h", "fixed_point.cpp", "filter.h", "filter.cpp", "matrix.h", "matrix.cpp",
+                           "resample_line.h", "resample_line.cpp", "warp.h", "warp.cpp"}) {
+    std::ifstream file(std::string(source) + "/sw_driver/forward_texture/" + name);
+    ASSERT_TRUE(file) << name;
+    std::stringstream text;
+    text << file.rdbuf();
+    EXPECT_FALSE(std::regex_search(text.str(), floating)) << name;
+  }
 }
 
 }  // namespace
