@@ -140,6 +140,46 @@ APP_TRAINING = [
     ("study_patches_arm", "study_patches", "arm", [], "study"),
     ("study_patches_ap-pixel", "study_patches", "ap-pixel", [], "study"),
     ("calib_ciu", "calib_ciu", "arm", [], "calib_ciu"),
+    # The forward texture warp at four texture sizes and four filter widths: lines, both passes' borders,
+    # factors and pixels in independent proportions.
+    ("study_forward_texture_128_2", "study_forward_texture", "arm", [], "study"),
+    ("study_forward_texture_128_4", "study_forward_texture", "arm", ["--", "--filter-width", "4"], "study"),
+    (
+        "study_forward_texture_64_1",
+        "study_forward_texture",
+        "arm",
+        ["--", "--texture-size", "64", "--filter-width", "1"],
+        "study",
+    ),
+    (
+        "study_forward_texture_32_3",
+        "study_forward_texture",
+        "arm",
+        ["--", "--texture-size", "32", "--filter-width", "3"],
+        "study",
+    ),
+    (
+        "study_forward_texture_256_2",
+        "study_forward_texture",
+        "arm",
+        ["--", "--texture-size", "256", "--filter-width", "2"],
+        "study",
+    ),
+    (
+        "study_forward_texture_256_1",
+        "study_forward_texture",
+        "arm",
+        ["--", "--texture-size", "256", "--filter-width", "1", "--filter", "tent"],
+        "study",
+    ),
+    # A smaller display: fewer second-pass lines for the same texture.
+    (
+        "study_forward_texture_128_2_small",
+        "study_forward_texture",
+        "arm",
+        ["--set", "display.width=192", "--set", "display.height=144", "--", "--filter-width", "2"],
+        "study",
+    ),
 ]
 # The cluster platform's node program (sw_driver/cluster_node): two nodes,
 # so that trapezoids are both drawn at home and sent. Per node and frame,

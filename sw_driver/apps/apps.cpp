@@ -40,6 +40,11 @@ const std::map<std::string, AppInfo>& builtin_apps() {
        {study_patches_app,
         "the study's patch sizes: square and line patches of 1 to 40 pixels sharing an attribute set, on the host "
         "(--backend arm) or the array (--backend ap-pixel, ap.pixel.block, ap.pixel.program); -- --max-pixels N"}},
+      {"study_forward_texture",
+       {study_forward_texture_app,
+        "van Sinten's two-pass forward texture mapping on the host (--backend arm): a checkerboard warped onto the "
+        "display under a perspective matrix with Eq. 6's prefiltered resampling, shown grey; -- --texture-size N, "
+        "--filter box|tent, --filter-width F (1 to 8), --matrix A,B,C,D,E,F,G,H,I"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
       {"stuck_loop",
        {stuck_loop_app,

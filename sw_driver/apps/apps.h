@@ -37,5 +37,6 @@ int stuck_loop_app(AppEnvironment& env);
 int crash_app(AppEnvironment& env);
 int study_shading_app(AppEnvironment& env);
 int study_patches_app(AppEnvironment& env);
+int study_forward_texture_app(AppEnvironment& env);
 
 }  // namespace tessera
