@@ -19,8 +19,11 @@ changes the ISS's timing, its function table in the VCD's trace.functions.txt
 and so the ISS runs' statistics: compares only their frames, and counts the
 runs whose other outputs moved), --removed-keys K1,K2 (configuration keys a change removed, such as
 raster.width: dropped from the manifest's configuration when the new build
-has no such key), --jobs J (default 2), --quick (only the native GL scenes on arm and
-ap-tile, for a fast look), --work-dir DIR (kept, with the runs that differ).
+has no such key), --added-keys K1,K2 (configuration keys a change added, such as
+array.features.divide, a switch whose default keeps the old behaviour: dropped
+from the new run's configuration when the manifest has no such key), --jobs J
+(default 2), --quick (only the native GL scenes on arm and ap-tile, for a fast
+look), --work-dir DIR (kept, with the runs that differ).
 --compare exits 1 naming each run that differs and the first difference in
 it; a run missing on either side is a difference too.
 """
@@ -120,6 +123,31 @@ def run(soc_sim: str, case: tuple, out: pathlib.Path) -> str:
 RASTER_SIZE: list = []
 
 
+def config_parent(config: dict, key: str):
+    """The dictionary holding a dotted key's last part (array.cycles.div: config["array"]["cycles"]), or None."""
+    *path, _ = key.split(".")
+    for part in path:
+        config = config.get(part)
+        if not isinstance(config, dict):
+            return None
+    return config
+
+
+def has_config_key(config: dict, key: str) -> bool:
+    parent = config_parent(config, key)
+    return parent is not None and key.split(".")[-1] in parent
+
+
+def drop_config_key(config: dict, key: str) -> None:
+    """Drops the key, then each group it leaves empty (array.features once its switches are gone)."""
+    parts = key.split(".")
+    for depth in range(len(parts), 0, -1):
+        parent = config_parent(config, ".".join(parts[:depth]))
+        if parent is None or (depth < len(parts) and parent.get(parts[depth - 1])):
+            return
+        parent.pop(parts[depth - 1], None)
+
+
 def outputs(out: pathlib.Path) -> dict:
     """The run's outputs: a digest per file, and stats.json without the build's identity."""
     record = {"files": {}, "stats": None}
@@ -162,6 +190,9 @@ def main() -> int:
     parser.add_argument(
         "--removed-keys", default="", help="comma-separated configuration keys (raster.width) that may be gone after"
     )
+    parser.add_argument(
+        "--added-keys", default="", help="comma-separated configuration keys (array.features.divide) new in this build"
+    )
     args = parser.parse_args()
     RASTER_SIZE[:] = raster_size_keys(args.soc_sim)
 
@@ -203,8 +234,12 @@ def main() -> int:
                 group, field = key.split(".", 1)
                 if field not in record["stats"]["config"].get(group, {}):
                     old["stats"]["config"].get(group, {}).pop(field, None)
-            difference = first_difference(old["files"], record["files"], "files")
-            difference = difference or first_difference(old["stats"], record["stats"], "stats.json")
+            new = json.loads(json.dumps(record))
+            for key in filter(None, args.added_keys.split(",")):
+                if not has_config_key(old["stats"]["config"], key):
+                    drop_config_key(new["stats"]["config"], key)
+            difference = first_difference(old["files"], new["files"], "files")
+            difference = difference or first_difference(old["stats"], new["stats"], "stats.json")
             if difference:
                 failures += 1
                 print(f"check_same_outputs: {name}: {difference}", file=sys.stderr)

@@ -16,7 +16,9 @@
 // Timing: an instruction is taken when valid_i && ready_o at a rising clock
 // edge. Every instruction but the multiply completes on that edge: the state
 // outputs show its result and done_o, cmem_we_o and cmem_wdata_o hold for
-// the one cycle after it. The multiply (mul, mulm) takes 8 edges, one
+// the one cycle after it (the divide, div, included: its 8 restoring steps
+// are unrolled into one edge's logic, as the Image Blender divides in one
+// instruction). The multiply (mul, mulm) takes 8 edges, one
 // shift-and-add step per edge with ready_o low in between, and raises done_o
 // after the eighth. Opcodes that are the array controller's (nop, halt,
 // loop, endloop) and codes with no instruction complete as no-ops.
@@ -46,7 +48,7 @@ module cu_datapath #(
   input  logic [15:0]                  a_cmem_i,
   input  logic [7:0]                   b_cmem_i,
 
-  // The four neighbours' bytes for nget (their register or CMEM byte at a),
+  // The four neighbours' bytes for nget and nadd (their register or CMEM byte at a),
   // byte k at [8k+7:8k] for direction code k (ap_isa_pkg::direction_e);
   // absent beyond the grid's edge.
   input  logic [31:0]                  neighbour_i,
@@ -97,11 +99,19 @@ module cu_datapath #(
   assign a_low_value = a_is_cmem_i ? a_cmem_i[7:0] : regs_q[8*a_low_reg +: 8];
   assign b_value     = b_is_cmem_i ? b_cmem_i : regs_q[8*b_reg_i +: 8];
 
+  logic [7:0] neighbour_value;
+  assign neighbour_value = neighbour_present_i[direction_i] ? neighbour_i[8*direction_i +: 8] : 8'd0;
+
+  // nadd's own operand: d, a register (its forms are R).
+  logic [7:0] d_value;
+  assign d_value = regs_q[8*d_reg_i +: 8];
+
   logic is_mul;
   assign is_mul = opcode_i == ap_isa_pkg::OpMul || opcode_i == ap_isa_pkg::OpMulm;
 
-  // The adder of add, adc, sub, sbc, cmp and cmpc: a subtraction is
-  // a + ~b + carry, so C is "no borrow" as in the C++ model.
+  // The adder of add, adc, sub, sbc, cmp, cmpc and nadd: a subtraction is
+  // a + ~b + carry, so C is "no borrow" as in the C++ model; nadd adds the
+  // neighbour's byte to d.
   logic       subtract, carry_in;
   logic [8:0] sum;
   always_comb begin
@@ -120,7 +130,10 @@ module cu_datapath #(
       default: ;
     endcase
   end
-  assign sum = {1'b0, a_value} + {1'b0, subtract ? ~b_value : b_value} + {8'd0, carry_in};
+  logic [7:0] add_a, add_b;
+  assign add_a = opcode_i == ap_isa_pkg::OpNadd ? d_value : a_value;
+  assign add_b = opcode_i == ap_isa_pkg::OpNadd ? neighbour_value : b_value;
+  assign sum = {1'b0, add_a} + {1'b0, subtract ? ~add_b : add_b} + {8'd0, carry_in};
 
   logic cond_holds;
   always_comb begin
@@ -138,8 +151,26 @@ module cu_datapath #(
     endcase
   end
 
-  logic [7:0] neighbour_value;
-  assign neighbour_value = neighbour_present_i[direction_i] ? neighbour_i[8*direction_i +: 8] : 8'd0;
+  // The divide: dividend a:a+1 (a_value the high byte), divisor b, by 8
+  // restoring steps. A quotient that does not fit 8 bits (the high byte at
+  // least the divisor, a divisor of 0 included) saturates to 0xff with C set.
+  // Otherwise the partial remainder stays below the divisor before each
+  // step, so 9 bits hold it after the shift.
+  logic       div_overflow;
+  logic [7:0] div_quotient;
+  logic [8:0] div_remainder;
+  assign div_overflow = a_value >= b_value;
+  always_comb begin
+    div_remainder = {1'b0, a_value};
+    div_quotient  = '0;
+    for (int i = 7; i >= 0; i--) begin
+      div_remainder = {div_remainder[7:0], a_low_value[i]};
+      if (div_remainder >= {1'b0, b_value}) begin
+        div_remainder   = div_remainder - {1'b0, b_value};
+        div_quotient[i] = 1'b1;
+      end
+    end
+  end
 
   // The single-cycle instructions: the byte for d, whether it is written,
   // and the flags.
@@ -151,7 +182,7 @@ module cu_datapath #(
     writes_czs = 1'b1;
     carry_out  = c_q;
     unique case (opcode_i)
-      ap_isa_pkg::OpAdd, ap_isa_pkg::OpAdc, ap_isa_pkg::OpSub, ap_isa_pkg::OpSbc: begin
+      ap_isa_pkg::OpAdd, ap_isa_pkg::OpAdc, ap_isa_pkg::OpSub, ap_isa_pkg::OpSbc, ap_isa_pkg::OpNadd: begin
         result    = sum[7:0];
         carry_out = sum[8];
       end
@@ -184,6 +215,10 @@ module cu_datapath #(
       ap_isa_pkg::OpRor: begin
         result    = {c_q, a_value[7:1]};
         carry_out = a_value[0];
+      end
+      ap_isa_pkg::OpDiv: begin
+        result    = div_overflow ? 8'hff : div_quotient;
+        carry_out = div_overflow;
       end
       ap_isa_pkg::OpNget: begin
         result     = neighbour_value;

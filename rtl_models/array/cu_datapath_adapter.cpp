@@ -33,7 +33,7 @@ CuLaneInputs cu_lane_inputs(const CuArray& array, unsigned lane, const Instructi
   inputs.operands.a = {cmem_byte(array, lane, in.a, 0, loop_variables),
                        cmem_byte(array, lane, in.a, 1, loop_variables)};
   inputs.operands.b = cmem_byte(array, lane, in.b, 0, loop_variables);
-  if (in.opcode != Opcode::op_nget) return inputs;
+  if (in.opcode != Opcode::op_nget && in.opcode != Opcode::op_nadd) return inputs;
   const unsigned columns = array.geometry().columns, rows = array.geometry().rows;
   const unsigned column = lane % columns, row = lane / columns;
   for (unsigned k = 0; k < 4; ++k) {

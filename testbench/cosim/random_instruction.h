@@ -34,13 +34,14 @@ inline Instruction make_nget(Operand d, Direction direction, Operand a) {
   return make(Opcode::op_nget, d, a, {false, static_cast<uint16_t>(direction), 0});
 }
 
-// The lane-work opcodes: every instruction the CU executes.
-constexpr std::array<Opcode, 25> LANE_OPCODES{
-    Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,  Opcode::op_and,
-    Opcode::op_or,   Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,
-    Opcode::op_shr,  Opcode::op_asr,  Opcode::op_rol,  Opcode::op_ror,  Opcode::op_cmp,
-    Opcode::op_cmpc, Opcode::op_mul,  Opcode::op_mulm, Opcode::op_nget, Opcode::op_getm,
-    Opcode::op_mset, Opcode::op_mclr, Opcode::op_mmov, Opcode::op_mand, Opcode::op_mor};
+// The lane-work opcodes: every instruction the CU executes, those behind an
+// array.features switch (div, nadd) included.
+constexpr std::array<Opcode, 27> LANE_OPCODES{
+    Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,  Opcode::op_and,  Opcode::op_or,
+    Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,  Opcode::op_shr,  Opcode::op_asr,
+    Opcode::op_rol,  Opcode::op_ror,  Opcode::op_cmp,  Opcode::op_cmpc, Opcode::op_mul,  Opcode::op_mulm,
+    Opcode::op_nget, Opcode::op_getm, Opcode::op_mset, Opcode::op_mclr, Opcode::op_mmov, Opcode::op_mand,
+    Opcode::op_mor,  Opcode::op_div,  Opcode::op_nadd};
 
 struct RandomInstruction {
   Instruction instruction;

@@ -309,6 +309,16 @@ TEST(ArrayProcessor, BadProgramsStopWithAnErrorCodeAndTheWord) {
        ap::RunError::too_long,
        2,
        "array.max_program_cycles"},
+      // The Image Blender's instructions, with their switches off (the default).
+      {{op(ap::Opcode::op_mset), op(ap::Opcode::op_div, reg(0), reg(1), reg(3)), op(ap::Opcode::op_halt)},
+       ap::RunError::bad_word,
+       1,
+       "div is not enabled: it needs array.features.divide = true"},
+      {{op(ap::Opcode::op_nadd, reg(0), reg(1), reg(static_cast<unsigned>(ap::Direction::left))),
+        op(ap::Opcode::op_halt)},
+       ap::RunError::bad_word,
+       0,
+       "nadd is not enabled: it needs array.features.neighbour_add = true"},
   };
   test::run_thread([&] {
     for (const Case& c : cases) {
@@ -337,12 +347,36 @@ TEST(ArrayProcessor, BadProgramsStopWithAnErrorCodeAndTheWord) {
   EXPECT_TRUE(capture.contains("outside the 2048-byte program memory"));
 }
 
+TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
+  const auto enabled = [](const ArrayParams& p, ap::Opcode opcode) {
+    return p.enabled_ops[static_cast<unsigned>(opcode)];
+  };
+  const ArrayParams off = ArrayParams::defaults();
+  EXPECT_FALSE(enabled(off, ap::Opcode::op_div));
+  EXPECT_FALSE(enabled(off, ap::Opcode::op_nadd));
+  EXPECT_TRUE(enabled(off, ap::Opcode::op_mul));
+  EXPECT_EQ(off.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 2u);
+  Config config({ArrayParams::parameters()});
+  config.apply_override("array.features.divide=true");
+  const ArrayParams divide = ArrayParams::from_config(config);
+  EXPECT_TRUE(enabled(divide, ap::Opcode::op_div));
+  EXPECT_FALSE(enabled(divide, ap::Opcode::op_nadd));
+  config.apply_override("array.features.neighbour_add=true");
+  config.apply_override("array.cycles.div=40");
+  const ArrayParams both = ArrayParams::from_config(config);
+  EXPECT_TRUE(enabled(both, ap::Opcode::op_nadd));
+  EXPECT_EQ(both.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 40u);
+}
+
 TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   Bench& b = *g_bench;
   const sc_time now = sc_core::sc_time_stamp();
   const auto stats = b.array.stats_json(now);
   EXPECT_EQ(stats["programs"], b.array.counters().value("programs"));
   EXPECT_GE(stats["mix"]["mul"].get<uint64_t>(), 100u);
+  // Instructions that are not enabled have no counter: a J2210's statistics.
+  EXPECT_FALSE(stats["mix"].contains("div"));
+  EXPECT_FALSE(stats["mix"].contains("nadd"));
   EXPECT_GT(stats["cmem"]["bytes_written"].get<uint64_t>(), 0u);
   EXPECT_EQ(stats["programs_by_entry"]["16"]["cycles"], 26);
   // The profile names each word that ran, with its instruction.

@@ -1,6 +1,7 @@
 // The array processor's parameters: array.*. The four calibrated cycle
 // counts (add, adc, mul, mulm and cmem_operand; docs/calibration.md) have
 // their defaults in isa/ap_isa.def with every other instruction's.
+#include <algorithm>
 #include <string>
 
 #include "array/array_processor.h"
@@ -29,6 +30,20 @@ ParamGroup ArrayParams::parameters() {
   for (const ap::OpInfo& info : ap::all_ops())
     specs.push_back(integer("array.cycles." + std::string(info.mnemonic), info.cycles, 0, 100000, "cycles",
                             std::string(info.mnemonic) + ": " + std::string(info.description)));
+  // One switch per feature of ap_isa.def, off: the J2210's instruction set.
+  for (const ap::OpInfo& info : ap::all_ops()) {
+    if (info.feature.empty()) continue;
+    std::string ops;
+    for (const ap::OpInfo& other : ap::all_ops())
+      if (other.feature == info.feature) ops += (ops.empty() ? "" : ", ") + std::string(other.mnemonic);
+    const std::string key = ap::feature_key(info);
+    const bool declared = std::any_of(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.key == key; });
+    if (!declared)
+      specs.push_back(param::boolean(key, false,
+                                     "enables " + ops +
+                                         ", beyond the J2210's instruction set (off: a program using it stops "
+                                         "with ERROR_CODE 1, the warning naming this switch)"));
+  }
   return {"array", std::move(specs), [](const Config& config) {
             if (config.get_uint("array.columns") % 4 != 0)
               throw ConfigError(
@@ -48,6 +63,9 @@ ArrayParams ArrayParams::from_config(const Config& config) {
   p.max_program_cycles = config.get_uint("array.max_program_cycles");
   p.skip_idle_cus = config.get_bool("array.skip_idle_cus");
   p.cycles.cmem_operand = static_cast<unsigned>(config.get_uint("array.cycles.cmem_operand"));
+  for (const ap::OpInfo& info : ap::all_ops())
+    if (!info.feature.empty())
+      p.enabled_ops[static_cast<unsigned>(info.opcode)] = config.get_bool(ap::feature_key(info));
   for (const ap::OpInfo& info : ap::all_ops())
     p.cycles.cycles[static_cast<unsigned>(info.opcode)] =
         static_cast<unsigned>(config.get_uint("array.cycles." + std::string(info.mnemonic)));

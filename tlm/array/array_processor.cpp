@@ -61,9 +61,13 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
       params.program_words == 0)
     throw std::invalid_argument(std::string(this->name()) + ": impossible array geometry");
   m_core.skip_idle_cus(params.skip_idle_cus);
+  m_core.enable_ops(params.enabled_ops);
+  // An instruction that is not enabled never runs: it has no counter, so that
+  // the statistics of a J2210 array are the J2210's.
   for (const ap::OpInfo& info : ap::all_ops())
-    m_mix[static_cast<unsigned>(info.opcode)] =
-        &counter("mix." + std::string(info.mnemonic), "executions of " + std::string(info.mnemonic));
+    if (params.enabled_ops[static_cast<unsigned>(info.opcode)])
+      m_mix[static_cast<unsigned>(info.opcode)] =
+          &counter("mix." + std::string(info.mnemonic), "executions of " + std::string(info.mnemonic));
   for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) {
     const std::string stage_name(ap::stage_name(static_cast<ap::Stage>(stage)));
     m_stage_cycles[stage] = &counter("cycles." + stage_name, "cycles of instructions of stage " + stage_name);
@@ -191,7 +195,8 @@ void ArrayProcessor::copy_counters() {
   m_instructions.value = core.instructions;
   m_cycles.value = core.cycles;
   for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage) m_stage_cycles[stage]->value = core.stage_cycles[stage];
-  for (unsigned op = 0; op < ap::OPCODE_COUNT; ++op) m_mix[op]->value = core.instruction_mix[op];
+  for (unsigned op = 0; op < ap::OPCODE_COUNT; ++op)
+    if (m_mix[op] != nullptr) m_mix[op]->value = core.instruction_mix[op];
   m_lane_operations.value = lanes.lane_operations;
   m_useful_operations.value = lanes.useful_operations;
   m_cmem_reads.value = lanes.cmem_reads;

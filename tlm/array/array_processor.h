@@ -43,6 +43,8 @@ struct ArrayParams {
   unsigned program_words = 0;
   uint64_t max_program_cycles = 0;
   bool skip_idle_cus = true;
+  // The J2210's instructions, and those whose array.features.<feature> is on.
+  ap::EnabledOps enabled_ops = ap::j2210_ops();
   sc_core::sc_time clock_period;
 
   // The parameters this block owns, the one place their defaults live.

@@ -682,6 +682,10 @@ second:
   nget [2], down, r3
   getm r3
   getm [30]
+  div r0, r1, r3
+  div [5], [6], r2
+  nadd r1, left, r2
+  nadd r0, down, r7
   mset
   mclr
   mmov c

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "array/core/array_controller.h"
@@ -97,6 +98,21 @@ class ScalarArray {
         write(lane, in.d, 0, value, v, mask);
         return;
       }
+      case Opcode::op_nadd: {
+        const int other = neighbour(l, in.direction());
+        const uint8_t value = other < 0 ? 0 : read(before[static_cast<unsigned>(other)], in.a, 0, v);
+        const AluResult sum = cu_alu(in.opcode, read(old, in.d, 0, v), value, old.flags);
+        lane.flags = sum.flags;
+        write(lane, in.d, 0, sum.value, v, mask);
+        return;
+      }
+      case Opcode::op_div: {
+        const auto dividend = static_cast<uint16_t>(read(old, in.a, 0, v) << 8 | read(old, in.a, 1, v));
+        const AluResult quotient = cu_div(dividend, read(old, in.b, 0, v));
+        lane.flags = quotient.flags;
+        write(lane, in.d, 0, quotient.value, v, mask);
+        return;
+      }
       case Opcode::op_mul:
       case Opcode::op_mulm: {
         const auto multiplicand = static_cast<uint16_t>(read(old, in.a, 0, v) << 8 | read(old, in.a, 1, v));
@@ -178,6 +194,101 @@ TEST(CuArray, LoopVariableOfALoopThatIsNotRunningIsRefused) {
   EXPECT_NE(array.execute(make(Opcode::op_loop), {}, 0).find("does no lane work"), std::string::npos);
 }
 
+// --- The Image Blender's instructions (array.features.*) -----------------
+
+CuFlags czs(bool c, bool z, bool s) {
+  return {c, z, s};
+}
+
+TEST(CuDatapath, DivideSixteenByEightWithItsFlagsByHand) {
+  struct Case {
+    uint16_t dividend;
+    uint8_t divisor;
+    uint8_t quotient;
+    CuFlags flags;
+  };
+  const std::array<Case, 9> cases{{
+      {0x1234, 0x56, 0x36, czs(false, false, false)},  // 4660 / 86 = 54.19
+      {0x0380, 0x07, 0x80, czs(false, false, true)},   // a texel border: 3.5 (8.8) / 7 = 128, bit 7 set
+      {0x00ff, 0x01, 0xff, czs(false, false, true)},   // the largest quotient that fits
+      {0xfeff, 0xff, 0xff, czs(false, false, true)},   // 65279 / 255 = 255.99: fits
+      {0x8000, 0x81, 0xfe, czs(false, false, true)},   // 32768 / 129 = 254.02
+      {0x0003, 0x07, 0x00, czs(false, true, false)},   // below 1: 0
+      {0x0100, 0x01, 0xff, czs(true, false, true)},    // 256 does not fit: saturated
+      {0xff00, 0xff, 0xff, czs(true, false, true)},    // exactly 256: saturated
+      {0x0005, 0x00, 0xff, czs(true, false, true)},    // division by zero: saturated
+  }};
+  for (const Case& c : cases) {
+    const AluResult result = cu_div(c.dividend, c.divisor);
+    EXPECT_EQ(result.value, c.quotient) << std::hex << c.dividend << " / " << unsigned{c.divisor};
+    EXPECT_EQ(result.flags, c.flags) << std::hex << c.dividend << " / " << unsigned{c.divisor};
+    EXPECT_TRUE(result.writes);
+  }
+  // The same as the quotient where it fits, for every divisor and a sweep of dividends.
+  for (unsigned divisor = 1; divisor < 256; ++divisor)
+    for (unsigned dividend = 0; dividend < 0x10000; dividend += 251) {
+      const AluResult result = cu_div(static_cast<uint16_t>(dividend), static_cast<uint8_t>(divisor));
+      const unsigned expected = dividend / divisor > 0xff ? 0xff : dividend / divisor;
+      ASSERT_EQ(result.value, expected) << dividend << " / " << divisor;
+      ASSERT_EQ(result.flags.c, dividend / divisor > 0xff) << dividend << " / " << divisor;
+    }
+}
+
+TEST(CuDatapath, NeighbourAddIsAnAddOfDAndTheNeighboursByte) {
+  // d 0x70 + 0x90 = 0x100: 0 with a carry out.
+  AluResult result = cu_alu(Opcode::op_nadd, 0x70, 0x90, czs(false, false, true));
+  EXPECT_EQ(result.value, 0x00);
+  EXPECT_EQ(result.flags, czs(true, true, false));
+  // 0x7f + 0x01 = 0x80; the carry in is not used.
+  result = cu_alu(Opcode::op_nadd, 0x7f, 0x01, czs(true, false, false));
+  EXPECT_EQ(result.value, 0x80);
+  EXPECT_EQ(result.flags, czs(false, false, true));
+}
+
+TEST(CuArray, NeighbourAddSumsAChainFromTheLeftAndReadsZeroBeyondTheEdge) {
+  CuArray array(small_cmem_geometry());
+  // Every CU holds 1 in r0 and its column in r1; nadd r1, left, r0 adds the
+  // left neighbour's r0 (1) except in column 0, which has none and adds 0.
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    array.set_reg(l, 0, 1);
+    array.set_reg(l, 1, static_cast<uint8_t>(l % COLUMNS));
+  }
+  const Instruction nadd = make(Opcode::op_nadd, reg(1), reg(0), {false, static_cast<uint16_t>(Direction::left), 0});
+  ASSERT_EQ(array.execute(nadd, {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l)
+    EXPECT_EQ(array.reg(l, 1), l % COLUMNS + (l % COLUMNS == 0 ? 0 : 1)) << l;
+  // 0xff + 1 from the neighbour: 0 with C and Z; lanes in column 0 keep 0xff.
+  for (unsigned l = 0; l < array.lanes(); ++l) array.set_reg(l, 1, 0xff);
+  ASSERT_EQ(array.execute(nadd, {}, 0), "");
+  EXPECT_EQ(array.reg(1, 1), 0x00);
+  EXPECT_EQ(array.flags(1), czs(true, true, false));
+  EXPECT_EQ(array.reg(0, 1), 0xff);
+  EXPECT_EQ(array.flags(0), czs(false, false, true));
+  // Lanes with a left neighbour each read it once.
+  EXPECT_EQ(array.activity().neighbour_transfers, 2u * (COLUMNS - 1) * ROWS);
+}
+
+TEST(CuArray, DivideFromCmemStoresTheQuotientWhereTheMaskIsSet) {
+  CuArray array(small_cmem_geometry());
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    array.set_cmem(l, 10, 0x03);  // 0x0380: 3.5 in 8.8
+    array.set_cmem(l, 11, 0x80);
+    array.set_cmem(l, 12, static_cast<uint8_t>(l % 8));  // divisors 0..7
+    array.set_cmem(l, 20, 0x55);
+    array.set_mask(l, l % 2 == 0);
+  }
+  ASSERT_EQ(array.execute(make(Opcode::op_div, mem(20), mem(10), mem(12)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    const unsigned divisor = l % 8;
+    // 0x0380 / d fits 8 bits from d = 4 on (high byte 3 < d).
+    const uint8_t quotient = divisor > 3 ? static_cast<uint8_t>(0x380 / divisor) : 0xff;
+    EXPECT_EQ(array.cmem(l, 20), l % 2 == 0 ? quotient : 0x55) << l;
+    EXPECT_EQ(array.flags(l).c, divisor <= 3) << l;
+  }
+  // Two dividend bytes and the divisor read in every lane.
+  EXPECT_EQ(array.activity().cmem_reads, 3u * array.lanes());
+}
+
 // --- ArrayController -------------------------------------------------------
 
 constexpr unsigned PROGRAM_WORDS = 64;
@@ -213,6 +324,10 @@ TEST(ArrayController, CycleTableDefaultsByHand) {
   EXPECT_EQ(table.cost(make(Opcode::op_getm, mem(0))), 3u);
   EXPECT_EQ(table.cost(make(Opcode::op_mul, reg(0), reg(3), reg(5))), 40u);
   EXPECT_EQ(table.cost(make(Opcode::op_mulm, mem(0), mem(3), mem(5))), 105u);
+  // The Image Blender's: div an ALU operation (RM), nadd a register one.
+  EXPECT_EQ(table.cost(make(Opcode::op_div, reg(0), reg(1), reg(3))), 2u);
+  EXPECT_EQ(table.cost(make(Opcode::op_div, mem(0), mem(1), reg(3))), 3u);
+  EXPECT_EQ(table.cost(make(Opcode::op_nadd, reg(0), reg(1), reg(2))), 2u);
   for (Opcode opcode : {Opcode::op_mset, Opcode::op_mclr, Opcode::op_nop, Opcode::op_halt})
     EXPECT_EQ(table.cost(make(opcode)), 1u) << op_info(opcode).mnemonic;
   for (Opcode opcode : {Opcode::op_mmov, Opcode::op_mand, Opcode::op_mor})
@@ -335,6 +450,39 @@ TEST(ArrayController, UndecodableWordStopsTheRunThere) {
   result = p.controller.run(0);
   EXPECT_FALSE(result.ok);
   EXPECT_EQ(result.error_pc, 1u);
+}
+
+TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnlessEnabled) {
+  const Instruction div = make(Opcode::op_div, reg(0), reg(1), reg(3));
+  const Instruction nadd = make(Opcode::op_nadd, reg(0), reg(1), {false, static_cast<uint16_t>(Direction::up), 0});
+  for (const auto& [in, key] :
+       {std::pair{div, "array.features.divide"}, std::pair{nadd, "array.features.neighbour_add"}}) {
+    Program p({make(Opcode::op_mset), in, make(Opcode::op_halt)});
+    RunResult result = p.controller.run(0);
+    EXPECT_FALSE(result.ok);
+    EXPECT_EQ(result.kind, RunError::bad_word);
+    EXPECT_EQ(result.error_pc, 1u);
+    EXPECT_NE(result.error.find(key), std::string::npos) << result.error;
+    EXPECT_EQ(result.cycles, 1u) << "only the mset ran";
+    // Enabled, the same words run: 1 + 2 + 1 cycles.
+    EnabledOps enabled = j2210_ops();
+    enabled[static_cast<unsigned>(in.opcode)] = true;
+    p.controller.enable_ops(enabled);
+    result = p.controller.run(0);
+    EXPECT_TRUE(result.ok) << result.error;
+    EXPECT_EQ(result.cycles, 4u);
+    // And off again.
+    p.controller.enable_ops(j2210_ops());
+    EXPECT_FALSE(p.controller.run(0).ok);
+  }
+  // Each enables only its own instruction.
+  EXPECT_EQ(feature_key(op_info(Opcode::op_div)), "array.features.divide");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_nadd)), "array.features.neighbour_add");
+  for (const OpInfo& info : all_ops())
+    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd) {
+      EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
+      EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
+    }
 }
 
 TEST(ArrayController, AddressPlusLoopVariableBeyondCmemStopsTheRun) {
@@ -535,7 +683,8 @@ TEST(ArrayController, SkippingIdleCusChangesNothing) {
     words.push_back(encode(loop(0, LOOP_START, 1)));
     for (unsigned i = 0; i < BODY;) {
       Instruction in = random_instruction(rng, REGISTERS, CMEM_BYTES).instruction;
-      if ((in.opcode == Opcode::op_nget) != (!settled && i == BODY / 2)) continue;
+      const bool reads_neighbour = in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd;
+      if (reads_neighbour != (!settled && i == BODY / 2)) continue;
       for (Operand* operand : {&in.d, &in.a, &in.b}) {
         if (!operand->in_cmem) continue;
         operand->loop = rng() % 3 == 0 ? 1 : 0;
@@ -555,6 +704,7 @@ TEST(ArrayController, SkippingIdleCusChangesNothing) {
   ArrayController skipping{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
   ArrayController every{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
   skipping.skip_idle_cus(true);
+  for (ArrayController* controller : {&skipping, &every}) controller->enable_ops(all_enabled_ops());
   for (ArrayController* controller : {&skipping, &every}) ASSERT_TRUE(controller->load(0, words));
   CuArray& a = skipping.array();
   CuArray& b = every.array();

@@ -524,6 +524,72 @@ TEST_F(CuDatapathDirected, NeighbourReadsAtEveryEdgeAndCornerAreZeroBeyondTheGri
   }
 }
 
+// The Image Blender's instructions (array.features.divide, .neighbour_add):
+// values and flags by hand, the RTL's in one edge each.
+TEST_F(CuDatapathDirected, DivideSaturatesWhereTheQuotientDoesNotFitInRegistersAndCmem) {
+  struct Case {
+    uint16_t dividend;
+    uint8_t divisor;
+    uint8_t quotient;
+    CuFlags flags;
+  };
+  const std::array<Case, 7> cases{{
+      {0x1234, 0x56, 0x36, czs(false, false, false)},  // 4660 / 86 = 54.19
+      {0x0380, 0x07, 0x80, czs(false, false, true)},   // 896 / 7 = 128
+      {0xfeff, 0xff, 0xff, czs(false, false, true)},   // 255.99: fits
+      {0x0003, 0x07, 0x00, czs(false, true, false)},
+      {0x0100, 0x01, 0xff, czs(true, false, true)},  // 256: saturated
+      {0xff00, 0xff, 0xff, czs(true, false, true)},  // 256: saturated
+      {0x0005, 0x00, 0xff, czs(true, false, true)},  // by zero: saturated
+  }};
+  for (const Case& c : cases) {
+    load_wide(3, c.dividend, 2);
+    load(5, c.divisor);
+    run(make(Opcode::op_div, reg(0), reg(3), reg(5)));
+    EXPECT_EQ(rtl(0).reg(0), c.quotient) << std::hex << c.dividend << " / " << unsigned{c.divisor};
+    EXPECT_EQ(rtl_flags(), c.flags) << std::hex << c.dividend << " / " << unsigned{c.divisor};
+    EXPECT_EQ(rtl(0).last_cycles(), CuDatapathRtl::ALU_CYCLES);
+    // The dividend in CMEM, moved by the loop variable to [30 + 2].
+    for (unsigned lane = 0; lane < lanes(); ++lane) {
+      array().set_cmem(lane, 32, static_cast<uint8_t>(c.dividend >> 8));
+      array().set_cmem(lane, 33, static_cast<uint8_t>(c.dividend));
+    }
+    run(make(Opcode::op_div, mem(40), mem(30, 1), reg(5)), {2, 0, 0}, 1);
+    EXPECT_EQ(array().cmem(7, 40), c.quotient) << std::hex << c.dividend << " / " << unsigned{c.divisor};
+  }
+}
+
+TEST_F(CuDatapathDirected, NeighbourAddAddsTheNeighboursByteToDAndZeroBeyondTheGrid) {
+  // r1 = lane + 1 and r2 = 0xf0 in every CU: nadd r2, dir, r1 = 0xf0 + the
+  // neighbour's lane + 1 (at most 12: no carry), 0xf0 beyond the grid.
+  for (unsigned lane = 0; lane < lanes(); ++lane) array().set_cmem(lane, 0, static_cast<uint8_t>(lane + 1));
+  run(make(Opcode::op_mov, reg(1), mem(0)));
+  for (unsigned k = 0; k < 4; ++k) {
+    const auto direction = static_cast<Direction>(k);
+    load(2, 0xf0);
+    run(make(Opcode::op_nadd, reg(2), reg(1), {false, static_cast<uint16_t>(direction), 0}));
+    for (unsigned lane = 0; lane < lanes(); ++lane) {
+      const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
+      int other = -1;
+      if (direction == Direction::left && column > 0) other = static_cast<int>(lane) - 1;
+      if (direction == Direction::right && column < COLUMNS - 1) other = static_cast<int>(lane) + 1;
+      if (direction == Direction::up && row > 0) other = static_cast<int>(lane - COLUMNS);
+      if (direction == Direction::down && row < ROWS - 1) other = static_cast<int>(lane + COLUMNS);
+      const std::string where = std::string(direction_name(direction)) + " of lane " + std::to_string(lane);
+      EXPECT_EQ(rtl(lane).reg(2), 0xf0 + (other < 0 ? 0 : other + 1)) << where;
+      EXPECT_EQ(rtl_flags(lane), czs(false, false, true)) << where;
+    }
+  }
+  // 0xf0 + 0x10 = 0x100: 0 with C and Z, in the CUs with a left neighbour.
+  load(1, 0x10);
+  load(2, 0xf0);
+  run(make(Opcode::op_nadd, reg(2), reg(1), {false, static_cast<uint16_t>(Direction::left), 0}));
+  EXPECT_EQ(rtl(1).reg(2), 0x00);
+  EXPECT_EQ(rtl_flags(1), czs(true, true, false));
+  EXPECT_EQ(rtl(0).reg(2), 0xf0);
+  EXPECT_EQ(rtl_flags(0), czs(false, false, true));
+}
+
 TEST(CuDatapathRtl, ArrayControllerOpcodesAreNoOpsForTheCu) {
   CuDatapathRtl cu;
   CuOperandBytes bytes;

@@ -52,14 +52,15 @@ std::string hex_code(unsigned code) {
 
 std::string isa_table_markdown() {
   std::string text =
-      "| Opcode | Mnemonic | Operands | Forms | Cycles | Flags | Description |\n"
-      "|---|---|---|---|---|---|---|\n";
+      "| Opcode | Mnemonic | Operands | Forms | Cycles | Flags | Switch | Description |\n"
+      "|---|---|---|---|---|---|---|---|\n";
   for (const OpInfo& info : all_ops()) {
     const std::string_view syntax = operand_syntax(info.operands);
     const std::string operands = "`" + std::string(info.mnemonic) + (syntax.empty() ? "" : " ") + cell(syntax) + "`";
     text += "| " + hex_code(static_cast<unsigned>(info.opcode)) + " | `" + std::string(info.mnemonic) + "` | " +
             operands + " | " + std::string(forms_name(info.forms)) + " | " + std::to_string(info.cycles) + " | " +
-            cell(info.flags) + " | " + cell(info.description) + " |\n";
+            cell(info.flags) + " | " + (info.feature.empty() ? "-" : "`" + feature_key(info) + "`") + " | " +
+            cell(info.description) + " |\n";
   }
   text +=
       "\nConditions of `mmov`, `mand` and `mor`:\n\n"

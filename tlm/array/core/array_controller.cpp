@@ -38,7 +38,20 @@ void ArrayController::decode_slot(unsigned index) {
   slot.instruction = decoded.instruction;
   slot.error = decoded.error;
   if (slot.error.empty()) slot.error = check_limits(slot.instruction, m_geometry.registers, m_geometry.cmem_bytes);
+  if (slot.error.empty() && !m_enabled[static_cast<unsigned>(slot.instruction.opcode)]) {
+    const OpInfo& info = op_info(slot.instruction.opcode);
+    slot.error = std::string(info.mnemonic) + " is not enabled: it needs " + feature_key(info) + " = true";
+  }
   slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
+}
+
+void ArrayController::enable_ops(const EnabledOps& enabled) {
+  if (enabled == m_enabled) return;
+  m_enabled = enabled;
+  for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
+  m_runaways.clear();
+  m_plans.clear();
+  m_memos.clear();
 }
 
 bool ArrayController::write_word(unsigned index, uint64_t word) {
@@ -456,7 +469,8 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
         if (depth == 0) return {};
         --depth;
         continue;
-      case Opcode::op_nget: return {};  // reads another CU
+      case Opcode::op_nget:
+      case Opcode::op_nadd: return {};  // reads another CU
       case Opcode::op_mset:
       case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
       case Opcode::op_mmov:

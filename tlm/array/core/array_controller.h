@@ -70,6 +70,12 @@ class ArrayController {
   const CuArray& array() const { return m_array; }
   unsigned program_words() const { return static_cast<unsigned>(m_words.size()); }
 
+  // The instructions the array runs (ap_isa.def's feature column): by
+  // default the J2210's own. A word holding any other is refused like a
+  // word that does not decode (RunError::bad_word), the error naming the
+  // switch that enables it.
+  void enable_ops(const EnabledOps& enabled);
+
   // Program memory. write_word() returns false when `index` is beyond it.
   bool write_word(unsigned index, uint64_t word);
   uint64_t word(unsigned index) const { return index < m_words.size() ? m_words[index] : 0; }
@@ -206,6 +212,7 @@ class ArrayController {
   bool m_record_stages = false;
   std::vector<StageChange> m_stage_changes;
   bool m_skip_idle = false;
+  EnabledOps m_enabled = j2210_ops();
   std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written
   std::unordered_map<unsigned, EntryMemo> m_memos;  // likewise
   std::unique_ptr<CuArray> m_work;                  // made at the first skip

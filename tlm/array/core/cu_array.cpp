@@ -110,7 +110,8 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
 // `out`, or a multiplication's 24-bit product in `high`, `middle`, `low`,
 // and the flags in c, z, s. `a_low` is the multiplicand's low byte. Returns
 // the rows written (1, or 3 for a product), or 0 for an instruction that is
-// not arithmetic (the caller's own: masks, nget). With kLanes not 0 the
+// not arithmetic (the caller's own: masks, nget, nadd). `a_low` is also the
+// dividend's low byte. With kLanes not 0 the
 // lane count is known to the compiler, which then unrolls the lane loops.
 template <size_t kLanes>
 [[gnu::always_inline]] inline unsigned arithmetic_lanes(Opcode opcode, size_t lanes, const uint8_t* a,
@@ -165,6 +166,19 @@ template <size_t kLanes>
       return 3;
     case Opcode::op_getm:
       for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
+      return 1;
+    case Opcode::op_div:
+      for (size_t l = 0; l < n; ++l) {
+        // cu_div's result without its steps: below 256 x b the quotient
+        // fits 8 bits, else (b = 0 included) it saturates with C set.
+        const bool fits = a[l] < b[l];
+        const unsigned dividend = unsigned{a[l]} << 8 | a_low[l];
+        const auto value = static_cast<uint8_t>(fits ? dividend / b[l] : 0xffu);
+        out[l] = value;
+        c[l] = fits ? 0 : 1;
+        z[l] = value == 0 ? 1 : 0;
+        s[l] = value >> 7;
+      }
       return 1;
     default: return 0;
   }
@@ -388,14 +402,20 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   };
 
   const uint8_t* a = a_rows[0];
-  if (in.opcode == Opcode::op_nget) {
+  if (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd) {
     const auto direction = static_cast<unsigned>(in.direction());
     uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
     const uint8_t* has = m_has_neighbour[direction].data();
     const uint8_t* source = a + m_neighbour_step[direction];
     for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
     m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
-    store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+    if (in.opcode == Opcode::op_nget) {
+      store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+      return true;
+    }
+    // nadd: d (a register: its forms are R) plus the neighbour's byte.
+    add_lanes<false, false>(n, d_rows[0], neighbour, false, out, c, z, s);
+    store(SCRATCH_RESULT, 0, d_rows[0]);
     return true;
   }
   uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
@@ -500,11 +520,11 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
       }
     };
     // The spare rows move (a result renamed into a register): found anew per instruction.
-    const bool product = in.opcode == Opcode::op_mul || in.opcode == Opcode::op_mulm;
+    const bool wide_a = op.a_width > 1;  // the multiplicand's or the dividend's low byte
     uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
     uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
     uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, product ? operand(in.a, 1) : nullptr, b, m, out,
+    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, wide_a ? operand(in.a, 1) : nullptr, b, m, out,
                                                       high, middle, low, c, z, s);
     if (written == 0) continue;  // nothing else is in a trace
     if (written == 3) {

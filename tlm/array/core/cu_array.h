@@ -100,7 +100,7 @@ class CuArray {
   void mask_written() { m_active_stale = true; }
   // A work array runs on its first `lanes` lanes only (at most the
   // geometry's), which it then takes as lanes 0..lanes-1 of no grid: its
-  // neighbour reads are meaningless, so only programs without nget run on
+  // neighbour reads are meaningless, so only programs without nget or nadd run on
   // it.
   void set_lane_count(unsigned lanes);
   // With counting on, execute() also counts per lane and per stage (the
@@ -111,7 +111,7 @@ class CuArray {
   const std::vector<uint32_t>& lane_useful(Stage stage) const { return m_lane_useful[static_cast<unsigned>(stage)]; }
   const std::vector<uint32_t>& lane_stores(Stage stage) const { return m_lane_stores[static_cast<unsigned>(stage)]; }
   // Runs a program's instructions in the order a run executed them, loop
-  // variables already added to the addresses (no loop, halt or nget; every
+  // variables already added to the addresses (no loop, halt, nget or nadd; every
   // address within CMEM), as execute() would, counting per lane and stage
   // only (lane_useful(), lane_stores(), from 0; activity() does not change).
   void run_trace(const std::vector<Instruction>& trace);

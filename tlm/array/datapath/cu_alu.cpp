@@ -40,7 +40,8 @@ bool is_alu_opcode(Opcode opcode) {
     case Opcode::op_rol:
     case Opcode::op_ror:
     case Opcode::op_cmp:
-    case Opcode::op_cmpc: return true;
+    case Opcode::op_cmpc:
+    case Opcode::op_nadd: return true;
     default: return false;
   }
 }
@@ -48,7 +49,8 @@ bool is_alu_opcode(Opcode opcode) {
 AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags) {
   const auto inverted = static_cast<uint8_t>(~b);
   switch (opcode) {
-    case Opcode::op_add: return add_with_carry(a, b, false);
+    case Opcode::op_add:
+    case Opcode::op_nadd: return add_with_carry(a, b, false);
     case Opcode::op_adc: return add_with_carry(a, b, flags.c);
     case Opcode::op_sub: return add_with_carry(a, inverted, true);
     case Opcode::op_sbc: return add_with_carry(a, inverted, flags.c);
@@ -90,6 +92,31 @@ MulResult cu_mul(uint16_t multiplicand, uint8_t multiplier) {
   MulResult result;
   result.product = accumulator;
   result.flags = {false, accumulator == 0, (accumulator & 0x800000u) != 0};
+  return result;
+}
+
+AluResult cu_div(uint16_t dividend, uint8_t divisor) {
+  AluResult result;
+  if ((dividend >> 8) >= divisor) {
+    result.value = 0xff;
+    result.flags = {true, false, true};
+    return result;
+  }
+  // Restoring division: the partial remainder, 9 bits wide, takes one bit of
+  // the dividend per step; where it reaches the divisor, the divisor is
+  // subtracted and the quotient's bit is 1. The high byte is below the
+  // divisor, so 8 steps give the whole quotient.
+  unsigned remainder = dividend >> 8, quotient = 0;
+  for (int bit = 7; bit >= 0; --bit) {
+    remainder = (remainder << 1) | ((dividend >> bit) & 1u);
+    quotient <<= 1;
+    if (remainder >= divisor) {
+      remainder -= divisor;
+      quotient |= 1u;
+    }
+  }
+  result.value = static_cast<uint8_t>(quotient);
+  result.flags = {false, result.value == 0, (result.value & 0x80u) != 0};
   return result;
 }
 

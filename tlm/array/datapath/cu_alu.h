@@ -1,5 +1,6 @@
 // One CU's datapath, bit-exact, one lane at a time: the 8-bit ALU with its
-// flags, the 16 x 8 signed multiplier and the mask conditions. This is the
+// flags, the 16 x 8 signed multiplier, the 16 / 8 unsigned divider and the
+// mask conditions. This is the
 // reference the vectorised array core (core/cu_array.h) and the Verilog
 // twin (rtl_models/array/cu_datapath.sv) are both checked against.
 //
@@ -27,7 +28,9 @@ struct AluResult {
 };
 
 // The 8-bit ALU instructions: add, adc, sub, sbc, and, or, xor, not, mov,
-// shl, shr, asr, rol, ror, cmp, cmpc. `b` is ignored by the one-source ones.
+// shl, shr, asr, rol, ror, cmp, cmpc, and nadd (an add: `a` is d's value,
+// `b` the neighbour's byte, 0 beyond the grid's edge). `b` is ignored by the
+// one-source ones.
 // Returns the flags unchanged and writes == false for any other opcode.
 AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags);
 
@@ -42,6 +45,15 @@ struct MulResult {
   CuFlags flags;         // C = 0, Z = product == 0, S = bit 23
 };
 MulResult cu_mul(uint16_t multiplicand, uint8_t multiplier);
+
+// The unsigned 16 / 8 divide (div, behind array.features.divide): the 8-bit
+// quotient of a texel border x = num / den, in one instruction as the Image
+// Blender's processing elements divide. A quotient that does not fit 8 bits
+// (dividend >= 256 x divisor, which a divisor of 0 always meets) saturates:
+// 0xff with C = 1, the clamp to the last texel; else C = 0. Z and S are the
+// quotient's. The result is that of 8 restoring steps (shift, compare,
+// subtract), which a program of the J2210's instructions would run instead.
+AluResult cu_div(uint16_t dividend, uint8_t divisor);
 
 bool cond_holds(Cond cond, const CuFlags& flags);
 

@@ -5,8 +5,15 @@ namespace tessera::ap {
 namespace {
 
 constexpr std::array<OpInfo, OPCODE_COUNT> OPS = {{
-#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) \
-  {#mnemonic, Opcode::op_##mnemonic, OperandPattern::operands, Forms::forms, cycles, flags, description},
+#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, feature, description) \
+  {#mnemonic,                                                                                 \
+   Opcode::op_##mnemonic,                                                                     \
+   OperandPattern::operands,                                                                  \
+   Forms::forms,                                                                              \
+   cycles,                                                                                    \
+   flags,                                                                                     \
+   std::string_view(#feature) == "none" ? std::string_view() : std::string_view(#feature),    \
+   description},
 #include "array/isa/ap_isa.def"
 #undef TESSERA_AP_OP
 }};
@@ -102,6 +109,20 @@ const OpInfo* find_op(std::string_view mnemonic) {
 }
 const std::array<OpInfo, OPCODE_COUNT>& all_ops() {
   return OPS;
+}
+
+EnabledOps j2210_ops() {
+  EnabledOps enabled{};
+  for (const OpInfo& info : OPS) enabled[static_cast<unsigned>(info.opcode)] = info.feature.empty();
+  return enabled;
+}
+EnabledOps all_enabled_ops() {
+  EnabledOps enabled{};
+  enabled.fill(true);
+  return enabled;
+}
+std::string feature_key(const OpInfo& info) {
+  return info.feature.empty() ? std::string() : "array.features." + std::string(info.feature);
 }
 
 std::string_view cond_name(Cond cond) {
@@ -245,6 +266,7 @@ unsigned operand_width(Opcode opcode, char which) {
     if (which == 'd') return 3;
     if (which == 'a') return 2;
   }
+  if (opcode == Opcode::op_div && which == 'a') return 2;
   return 1;
 }
 

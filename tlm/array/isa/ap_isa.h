@@ -38,7 +38,7 @@ namespace tessera::ap {
 
 // Enumerators are op_<mnemonic>: `and`, `or`, `xor` and `not` are C++ keywords.
 enum class Opcode : uint8_t {
-#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) op_##mnemonic = (opcode),
+#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, feature, description) op_##mnemonic = (opcode),
 #include "array/isa/ap_isa.def"
 #undef TESSERA_AP_OP
 };
@@ -64,7 +64,7 @@ enum class Forms : uint8_t { r, m, rm, c };
 enum class Direction : uint8_t { left = 0, right = 1, up = 2, down = 3 };
 
 inline constexpr unsigned OPCODE_COUNT = 0
-#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, description) \
+#define TESSERA_AP_OP(mnemonic, opcode, operands, forms, cycles, flags, feature, description) \
   +1  // NOLINT(bugprone-macro-parentheses)
 #include "array/isa/ap_isa.def"
 #undef TESSERA_AP_OP
@@ -83,6 +83,9 @@ struct OpInfo {
   Forms forms;
   unsigned cycles;  // default of array.cycles.<mnemonic>
   std::string_view flags;
+  // The switch array.features.<feature> that enables an instruction beyond
+  // the J2210's own, or empty for those (ap_isa.def's feature column).
+  std::string_view feature;
   std::string_view description;
 };
 
@@ -92,6 +95,17 @@ const OpInfo& op_info(Opcode opcode);
 const OpInfo* find_op(std::string_view mnemonic);
 // Every instruction in opcode order.
 const std::array<OpInfo, OPCODE_COUNT>& all_ops();
+
+// Which opcodes a configured array runs: the J2210's own always, the others
+// when their feature's switch is on. Indexed by opcode.
+using EnabledOps = std::array<bool, OPCODE_COUNT>;
+// The J2210's own instructions only (every feature off).
+EnabledOps j2210_ops();
+// Every instruction (every feature on), for tests of the datapath.
+EnabledOps all_enabled_ops();
+// The configuration key of the switch that enables `info`'s instruction
+// ("array.features.<feature>"), or an empty string for a J2210 instruction.
+std::string feature_key(const OpInfo& info);
 
 std::string_view cond_name(Cond cond);
 std::string_view cond_description(Cond cond);
@@ -141,7 +155,8 @@ Decoded decode(uint64_t word);
 std::string check_limits(const Instruction& instruction, unsigned registers, unsigned cmem_bytes);
 
 // How many consecutive bytes operand `which` ('d', 'a' or 'b') of the
-// instruction covers (3, 2 and 1 for the multiply's, else 1).
+// instruction covers (3, 2 and 1 for the multiply's; the divide's dividend
+// a is 2; else 1).
 unsigned operand_width(Opcode opcode, char which);
 
 // One line of assembly for the instruction (the disassembler's format, which
