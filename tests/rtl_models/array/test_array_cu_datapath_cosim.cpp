@@ -177,6 +177,17 @@ TEST(CuDatapathCosim, RandomInstructionsMatchTheCoreInEveryLane) {
     EXPECT_GT(mix[static_cast<unsigned>(opcode)], RANDOM_INSTRUCTIONS / 50) << op_info(opcode).mnemonic;
 }
 
+// The lane `direction` of `lane` from the grid's coordinates (row 0 at the
+// top), or -1 beyond the grid's edge.
+int neighbour_of(unsigned lane, Direction direction) {
+  const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
+  if (direction == Direction::left && column > 0) return static_cast<int>(lane) - 1;
+  if (direction == Direction::right && column < COLUMNS - 1) return static_cast<int>(lane) + 1;
+  if (direction == Direction::up && row > 0) return static_cast<int>(lane - COLUMNS);
+  if (direction == Direction::down && row < ROWS - 1) return static_cast<int>(lane + COLUMNS);
+  return -1;
+}
+
 // The directed cases: each runs through the lock step (the RTL agrees with
 // the core in every lane) and then checks the values worked out by hand.
 class CuDatapathDirected : public ::testing::Test {
@@ -509,13 +520,7 @@ TEST_F(CuDatapathDirected, NeighbourReadsAtEveryEdgeAndCornerAreZeroBeyondTheGri
     run(make_nget(reg(3), direction, mem(20, 1)), {2, 0, 0}, 1);
     run(make_nget(mem(24), direction, mem(22)));
     for (unsigned lane = 0; lane < lanes(); ++lane) {
-      // The neighbour from the grid's coordinates: row 0 at the top.
-      const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
-      int other = -1;
-      if (direction == Direction::left && column > 0) other = static_cast<int>(lane) - 1;
-      if (direction == Direction::right && column < COLUMNS - 1) other = static_cast<int>(lane) + 1;
-      if (direction == Direction::up && row > 0) other = static_cast<int>(lane - COLUMNS);
-      if (direction == Direction::down && row < ROWS - 1) other = static_cast<int>(lane + COLUMNS);
+      const int other = neighbour_of(lane, direction);
       const std::string where = std::string(direction_name(direction)) + " of lane " + std::to_string(lane);
       EXPECT_EQ(rtl(lane).reg(2), other < 0 ? 0 : other + 1) << where;
       EXPECT_EQ(rtl(lane).reg(3), other < 0 ? 0 : 0x40 + other) << where;
@@ -569,12 +574,7 @@ TEST_F(CuDatapathDirected, NeighbourAddAddsTheNeighboursByteToDAndZeroBeyondTheG
     load(2, 0xf0);
     run(make(Opcode::op_nadd, reg(2), reg(1), {false, static_cast<uint16_t>(direction), 0}));
     for (unsigned lane = 0; lane < lanes(); ++lane) {
-      const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
-      int other = -1;
-      if (direction == Direction::left && column > 0) other = static_cast<int>(lane) - 1;
-      if (direction == Direction::right && column < COLUMNS - 1) other = static_cast<int>(lane) + 1;
-      if (direction == Direction::up && row > 0) other = static_cast<int>(lane - COLUMNS);
-      if (direction == Direction::down && row < ROWS - 1) other = static_cast<int>(lane + COLUMNS);
+      const int other = neighbour_of(lane, direction);
       const std::string where = std::string(direction_name(direction)) + " of lane " + std::to_string(lane);
       EXPECT_EQ(rtl(lane).reg(2), 0xf0 + (other < 0 ? 0 : other + 1)) << where;
       EXPECT_EQ(rtl_flags(lane), czs(false, false, true)) << where;
