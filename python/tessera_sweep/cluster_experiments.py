@@ -171,6 +171,12 @@ def depth(args):
         for d in DEPTHS
     }
     results = run_all(args, jobs, lambda key: f"depth_p{key[0]}_d{key[1]}")
+    too_big = sorted({p for (p, d), r in results.items() if r is None})
+    if too_big:
+        raise RuntimeError(
+            f"--triangles {args.triangles:,} does not fit the nodes' memory at p = {too_big[0]} "
+            "(cluster.node_memory_kib): fewer triangles, or more memory through --config"
+        )
     rows = []
     for d in DEPTHS:
         rows.append([d] + [f"{results[(p, d)]['seconds'] * 1e3:,.2f}" for p in DEPTH_NODES])
@@ -292,6 +298,8 @@ def speedup(args):
     rows = []
     for p in SPEEDUP_NODES:
         r = results[(n, p)]
+        if r is None:
+            continue
         total = sum(r["phases"].values())
         rows.append(
             [p]
