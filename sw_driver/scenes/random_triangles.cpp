@@ -24,8 +24,10 @@ namespace {
 std::vector<GLfloat> g_positions, g_colours;
 GLfloat g_projection[16];
 
-// The value after `name` in args, or `fallback`; false with `error` set for
-// a value that is not a whole number in [low, high].
+// The whole number after args[i] (the option's name) into `value`; false
+// with `error` naming the option for a missing value or one that is not a
+// whole number in [low, high]. Digit by digit, stopping past `high`: no
+// library conversion that overflows a 32-bit long on the ARM.
 bool option(const std::vector<std::string>& args, size_t i, uint32_t low, uint32_t high, uint32_t* value,
             std::string* error) {
   const std::string& name = args[i];
@@ -34,10 +36,12 @@ bool option(const std::vector<std::string>& args, size_t i, uint32_t low, uint32
     return false;
   }
   const std::string& text = args[i + 1];
-  unsigned long parsed = 0;
-  bool ok = !text.empty() && text.size() <= 10;
-  for (char c : text) ok = ok && c >= '0' && c <= '9';
-  if (ok) parsed = std::stoul(text);
+  uint64_t parsed = 0;
+  bool ok = !text.empty();
+  for (char c : text) {
+    ok = ok && c >= '0' && c <= '9' && parsed <= high;
+    if (ok) parsed = parsed * 10 + static_cast<uint64_t>(c - '0');
+  }
   if (!ok || parsed < low || parsed > high) {
     *error = "random_triangles: " + name + " takes a whole number from " + std::to_string(low) + " to " +
              std::to_string(high) + ", not '" + text + "'";

@@ -1064,6 +1064,28 @@ TEST_F(SocSim, ArgumentsAfterDoubleDashGoToTheApplication) {
   EXPECT_FALSE(contains(result.err, "unexpected argument")) << describe(result);
 }
 
+// random_triangles' options, on both host models: every bad value named
+// (a value past 32 bits too, which a library conversion overflows on the ARM).
+TEST_F(SocSim, RandomTrianglesRefusesBadOptionsNamingThem) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"--triangles", "9999999999"}, {"--triangles", "0"}, {"--size", "x"}, {"--seed"}, {"--shade", "1"}};
+  for (const char* model : {"native", "iss"})
+    for (const std::vector<std::string>& bad : cases) {
+      std::vector<std::string> args = {"--app",
+                                       "random_triangles",
+                                       "--frames",
+                                       "1",
+                                       "--force",
+                                       "--out",
+                                       "out",
+                                       "--set",
+                                       std::string("host.model=") + model,
+                                       "--"};
+      args.insert(args.end(), bad.begin(), bad.end());
+      expect_rejected(run(args), EXIT_USAGE, {"random_triangles: ", bad[0]});
+    }
+}
+
 TEST_F(SocSim, UnknownApplicationIsRejectedListingTheKnownOnes) {
   expect_rejected(run({"--app", "no_such_app", "--out", "out"}), EXIT_USAGE, {"no_such_app", "pattern"});
 }
