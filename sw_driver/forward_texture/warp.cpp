@@ -66,32 +66,43 @@ std::string row_pass_scale(const PerspectiveMatrix& m, int width, int height, q1
 // The row pass of `texture` into `intermediate` (output width x texture
 // height); [first, last) are the intermediate columns any row can reach.
 std::string row_pass(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, Plane& intermediate,
-                     int& first_column, int& last_column) {
-  std::vector<q8_8> texels(static_cast<std::size_t>(texture.width));
-  std::vector<q16_16> borders(static_cast<std::size_t>(texture.width) + 1);
+                     LineResampler& resampler, int& first_column, int& last_column) {
+  const std::size_t batch = resampler.batch_lines();
+  std::vector<q8_8> texels(static_cast<std::size_t>(texture.width) * batch);
+  std::vector<PassLine> lines;
   first_column = intermediate.width;
   last_column = 0;
-  for (int row = 0; row < texture.height; ++row) {
-    LineMapping line;
-    std::string error = row_pass_line(m, row, texture.width, line);
-    if (error.empty()) {
-      error = step_borders(line, texture.width, "row pass, row " + std::to_string(row), borders.data());
+  for (int first_row = 0; first_row < texture.height; first_row += static_cast<int>(batch)) {
+    lines.clear();
+    for (int row = first_row; row < texture.height && lines.size() < batch; ++row) {
+      PassLine line;
+      const std::string error = row_pass_line(m, row, texture.width, line.mapping);
+      if (!error.empty()) {
+        return error;
+      }
+      line.texels = {&texels[lines.size() * static_cast<std::size_t>(texture.width)], texture.width, 1};
+      for (int u = 0; u < texture.width; ++u) {
+        line.texels[u] = texture.at(u, row) << Q8_8_FRACTION_BITS;
+      }
+      line.pixels = intermediate.row(row);
+      lines.push_back(line);
     }
+    const std::string error = resampler.resample(lines, table, [first_row](std::size_t k) {
+      return "row pass, row " + std::to_string(first_row + static_cast<int>(k));
+    });
     if (!error.empty()) {
       return error;
     }
-    for (int u = 0; u < texture.width; ++u) {
-      texels[static_cast<std::size_t>(u)] = texture.at(u, row) << Q8_8_FRACTION_BITS;
+    for (const PassLine& line : lines) {
+      // The filter reaches F/2 pixels beyond the extreme borders.
+      const q16_16 low = line.first_border < line.last_border ? line.first_border : line.last_border;
+      const q16_16 high = line.first_border < line.last_border ? line.last_border : line.first_border;
+      const int reach = table.width / 2 + 1;
+      const int low_column = (low >> Q16_16_FRACTION_BITS) - reach;
+      const int high_column = (high >> Q16_16_FRACTION_BITS) + reach + 1;
+      first_column = low_column < first_column ? low_column : first_column;
+      last_column = high_column > last_column ? high_column : last_column;
     }
-    resample_line({texels.data(), texture.width, 1}, borders.data(), table, intermediate.row(row));
-    // The filter reaches F/2 pixels beyond the extreme borders.
-    const q16_16 low = borders.front() < borders.back() ? borders.front() : borders.back();
-    const q16_16 high = borders.front() < borders.back() ? borders.back() : borders.front();
-    const int reach = table.width / 2 + 1;
-    const int low_column = (low >> Q16_16_FRACTION_BITS) - reach;
-    const int high_column = (high >> Q16_16_FRACTION_BITS) + reach + 1;
-    first_column = low_column < first_column ? low_column : first_column;
-    last_column = high_column > last_column ? high_column : last_column;
   }
   first_column = first_column < 0 ? 0 : first_column;
   last_column = last_column > intermediate.width ? intermediate.width : last_column;
@@ -99,38 +110,47 @@ std::string row_pass(const Image& texture, const PerspectiveMatrix& m, const Fil
 }
 
 std::string column_pass(const PerspectiveMatrix& m, const FilterTable& table, Plane& intermediate, int first_column,
-                        int last_column, Plane& output) {
+                        int last_column, LineResampler& resampler, Plane& output) {
   ColumnPassSetup setup;
   std::string error = column_pass_setup(m, setup);
   if (!error.empty()) {
     return error;
   }
-  std::vector<q16_16> borders(static_cast<std::size_t>(intermediate.height) + 1);
-  for (int column = first_column; column < last_column; ++column) {
-    LineMapping line;
-    error = column_pass_line(setup, column, intermediate.height, line);
-    if (error.empty()) {
-      error = step_borders(line, intermediate.height, "column pass, column " + std::to_string(column), borders.data());
+  const std::size_t batch = resampler.batch_lines();
+  std::vector<PassLine> lines;
+  for (int first = first_column; first < last_column; first += static_cast<int>(batch)) {
+    lines.clear();
+    for (int column = first; column < last_column && lines.size() < batch; ++column) {
+      PassLine line;
+      error = column_pass_line(setup, column, intermediate.height, line.mapping);
+      if (!error.empty()) {
+        return error;
+      }
+      line.texels = intermediate.column(column);
+      line.pixels = output.column(column);
+      lines.push_back(line);
     }
+    error = resampler.resample(lines, table, [first](std::size_t k) {
+      return "column pass, column " + std::to_string(first + static_cast<int>(k));
+    });
     if (!error.empty()) {
       return error;
     }
-    resample_line(intermediate.column(column), borders.data(), table, output.column(column));
   }
   return {};
 }
 
 std::string rows_first(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
-                       int output_height, Image& output) {
+                       int output_height, LineResampler& resampler, Image& output) {
   Plane intermediate{output_width, texture.height,
                      std::vector<q8_8>(static_cast<std::size_t>(output_width) * texture.height, 0)};
   Plane result{output_width, output_height,
                std::vector<q8_8>(static_cast<std::size_t>(output_width) * output_height, 0)};
   int first_column = 0;
   int last_column = 0;
-  std::string error = row_pass(texture, m, table, intermediate, first_column, last_column);
+  std::string error = row_pass(texture, m, table, intermediate, resampler, first_column, last_column);
   if (error.empty()) {
-    error = column_pass(m, table, intermediate, first_column, last_column, result);
+    error = column_pass(m, table, intermediate, first_column, last_column, resampler, result);
   }
   if (!error.empty()) {
     return error;
@@ -187,25 +207,45 @@ std::string choose_pass_order(const PerspectiveMatrix& m, int texture_width, int
   return error;
 }
 
+std::string HostResampler::resample(std::vector<PassLine>& lines, const FilterTable& table,
+                                    const std::function<std::string(std::size_t)>& where) {
+  std::vector<q16_16> borders;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    PassLine& line = lines[k];
+    const int n = line.texels.count;
+    borders.resize(static_cast<std::size_t>(n) + 1);
+    const std::string error = step_borders(line.mapping, n, where(k), borders.data());
+    if (!error.empty()) {
+      return error;
+    }
+    resample_line(line.texels, borders.data(), table, line.pixels);
+    line.first_border = borders.front();
+    line.last_border = borders.back();
+  }
+  return {};
+}
+
 WarpResult warp_texture_in_order(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table,
-                                 int output_width, int output_height, PassOrder order) {
+                                 int output_width, int output_height, PassOrder order, LineResampler* resampler) {
   WarpResult result;
   result.pass_order.order = order;
   result.error = input_error(texture, m, table, output_width, output_height);
   if (!result.error.empty()) {
     return result;
   }
+  HostResampler on_host;
+  LineResampler& lines = resampler != nullptr ? *resampler : on_host;
   if (order == PassOrder::rows_first) {
-    result.error = rows_first(texture, m, table, output_width, output_height, result.image);
+    result.error = rows_first(texture, m, table, output_width, output_height, lines, result.image);
     return result;
   }
-  result.error =
-      rows_first(transposed_image(texture), with_u_and_v_swapped(m), table, output_width, output_height, result.image);
+  result.error = rows_first(transposed_image(texture), with_u_and_v_swapped(m), table, output_width, output_height,
+                            lines, result.image);
   return result;
 }
 
 WarpResult warp_texture(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
-                        int output_height) {
+                        int output_height, LineResampler* resampler) {
   WarpResult result;
   result.error = input_error(texture, m, table, output_width, output_height);
   if (result.error.empty()) {
@@ -215,7 +255,7 @@ WarpResult warp_texture(const Image& texture, const PerspectiveMatrix& m, const 
     return result;
   }
   const PassOrderChoice choice = result.pass_order;
-  result = warp_texture_in_order(texture, m, table, output_width, output_height, choice.order);
+  result = warp_texture_in_order(texture, m, table, output_width, output_height, choice.order, resampler);
   result.pass_order = choice;
   return result;
 }

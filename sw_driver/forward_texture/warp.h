@@ -7,11 +7,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "forward_texture/filter.h"
 #include "forward_texture/matrix.h"
+#include "forward_texture/resample_line.h"
 
 namespace tessera::forward_texture {
 
@@ -40,6 +42,40 @@ struct PassOrderChoice {
 std::string choose_pass_order(const PerspectiveMatrix& m, int texture_width, int texture_height,
                               PassOrderChoice& choice);
 
+// One line of a pass: its mapping, its texels and the pixels it makes, and
+// (set by the resampler) its first and last border, from which the row
+// pass finds the columns it reached.
+struct PassLine {
+  LineMapping mapping;
+  LineView texels;
+  LineView pixels;
+  q16_16 first_border = 0;
+  q16_16 last_border = 0;
+};
+
+// Where a pass's lines are resampled: on the host (HostResampler: one line
+// at a time by step_borders and resample_line) or elsewhere (the array
+// program, array_lines.h) with the same results bit for bit.
+class LineResampler {
+ public:
+  virtual ~LineResampler() = default;
+  // Resamples every line of `lines` (all of `lines[0].texels.count`
+  // texels) with `table`. Empty, or the message of the first line that
+  // step_borders refuses, starting with where(k) for line k.
+  virtual std::string resample(std::vector<PassLine>& lines, const FilterTable& table,
+                               const std::function<std::string(std::size_t)>& where) = 0;
+  // The lines the warp hands over at once, at most (the texels of a row
+  // pass's lines are staged that many at a time).
+  virtual std::size_t batch_lines() const = 0;
+};
+
+class HostResampler : public LineResampler {
+ public:
+  std::string resample(std::vector<PassLine>& lines, const FilterTable& table,
+                       const std::function<std::string(std::size_t)>& where) override;
+  std::size_t batch_lines() const override { return 1; }
+};
+
 struct WarpResult {
   std::string error;  // empty on success; the image is empty otherwise
   Image image;
@@ -47,12 +83,14 @@ struct WarpResult {
 };
 
 // The texture mapped onto an output_width x output_height image under `m`
-// with `table`'s filter, in the order choose_pass_order picks.
+// with `table`'s filter, in the order choose_pass_order picks, each pass's
+// lines resampled by `resampler` (nullptr: on the host).
 WarpResult warp_texture(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table, int output_width,
-                        int output_height);
+                        int output_height, LineResampler* resampler = nullptr);
 
 // The same in a given order (for tests of the rule's reason).
 WarpResult warp_texture_in_order(const Image& texture, const PerspectiveMatrix& m, const FilterTable& table,
-                                 int output_width, int output_height, PassOrder order);
+                                 int output_width, int output_height, PassOrder order,
+                                 LineResampler* resampler = nullptr);
 
 }  // namespace tessera::forward_texture

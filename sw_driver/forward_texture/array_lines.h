@@ -1,0 +1,85 @@
+// The host's side of resample_lines.s, Eq. 6 on the J2210 with one line per
+// CU (README.md, "On the array"): what the host writes into a CU's CMEM for
+// one line and into every CU for the filter, the program with the line's
+// length and the filter's width written into its loops, and the pixels made
+// of what a CU leaves behind. Plain C++: the device layer moves the blocks
+// (DMA or CIU), the tests move them into the functional core.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "array/asm/program.h"
+#include "forward_texture/filter.h"
+#include "forward_texture/matrix.h"
+#include "forward_texture/resample_line.h"
+
+namespace tessera::forward_texture {
+
+// Where resample_lines.s keeps what the host writes and reads (its .var
+// names), and its limits (its .const names).
+struct ArrayLineLayout {
+  // Per line.
+  uint16_t num = 0, num_step = 0, den = 0, den_step = 0, tex_hi = 0, tex_lo = 0;
+  // The same in every CU.
+  uint16_t offset = 0, q_hi = 0, q_lo = 0, r_j = 0, two_f = 0, zero = 0, ff = 0, c80 = 0, c40 = 0, cc0 = 0, none = 0,
+           limit = 0, clamp = 0;
+  // Results.
+  uint16_t idx_hi = 0, idx_lo = 0, val_hi = 0, val_lo = 0, last_pixel = 0, fin_hi = 0, fin_lo = 0, err = 0;
+  int max_texels = 0;  // the longest line
+  int max_width = 0;   // the widest filter
+
+  // Throws std::invalid_argument naming a variable the program lacks or
+  // whose size differs.
+  static ArrayLineLayout of(const ap::Program& program);
+};
+
+// A write of `bytes` at `address` of one CU's CMEM, or, for a result, the
+// bytes read from there.
+struct CmemBlock {
+  uint16_t address = 0;
+  std::vector<uint8_t> bytes;
+};
+
+// Empty, or the message naming what the program cannot do: a filter other
+// than the box (the J2210 has no shared table, so the program computes the
+// box's factors; the tent's need a table), a width beyond the program's
+// window, a line longer than its CMEM holds.
+std::string array_line_error(const ArrayLineLayout& layout, const FilterTable& table, int texel_count);
+
+// The program's words with `texel_count` in its texel loop and width - 1 in
+// its window loops (array_line_error must be empty).
+std::vector<uint64_t> program_for_lines(const ap::Program& program, int texel_count, int width);
+
+// What every CU gets for a filter of `width`.
+std::vector<CmemBlock> filter_blocks(const ArrayLineLayout& layout, int width);
+
+// A line as the program steps it: left to right. A line whose borders
+// decrease (step_borders' last below its first) is given reversed: its
+// mapping stepped from the other end, its texels in the other order.
+struct ArrayLine {
+  LineMapping mapping;  // stepped from the leftmost border
+  bool reversed = false;
+};
+
+// The line's orientation, from its two end borders (two divisions on the
+// host). False when an end does not divide (the array would flag it too:
+// step_borders names the error).
+bool orient_line(const LineMapping& mapping, int texel_count, ArrayLine& line);
+
+// What the line's CU gets: its mapping and its texels.
+std::vector<CmemBlock> line_blocks(const ArrayLineLayout& layout, const ArrayLine& line, LineView texels);
+
+// The blocks to read back from each CU for a line of `texel_count` texels.
+std::vector<CmemBlock> result_blocks(const ArrayLineLayout& layout, int texel_count, int width);
+
+// The line's pixels from its CU's results (result_blocks, filled), written
+// where the reference writes them (pixels outside the line's reach are
+// left as they are: 0 in a fresh image). False when the CU flagged an
+// error (a border out of range or a texel wider than a pixel): step_borders
+// names it.
+bool scatter_line(const ArrayLineLayout& layout, int texel_count, int width, const std::vector<CmemBlock>& results,
+                  LineView pixels);
+
+}  // namespace tessera::forward_texture

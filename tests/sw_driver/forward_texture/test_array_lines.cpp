@@ -1,0 +1,237 @@
+// resample_lines.s, Eq. 6 on the J2210 with one line per CU, run on the
+// array's functional core (tlm/array/core) with the J2210's own
+// instructions: every output pixel bit for bit what step_borders and
+// resample_line compute, on random lines and on the lines of whole warps;
+// the lines it refuses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "ap_programs/resample_lines.h"
+#include "array/core/array_controller.h"
+#include "forward_texture/array_lines.h"
+#include "forward_texture/matrix.h"
+#include "forward_texture/resample_line.h"
+#include "forward_texture_test_support.h"
+
+namespace tessera::forward_texture {
+namespace {
+
+using testing::to_fixed;
+
+struct Line {
+  LineMapping mapping;
+  std::vector<q8_8> texels;
+};
+
+struct Batch {
+  std::vector<std::vector<q8_8>> pixels;  // per line
+  std::vector<bool> flagged;              // the CU flagged an error
+  uint64_t cycles = 0;
+};
+
+// Runs `lines` (at most one per CU, all of the same length) through the
+// program on a J2210 array.
+Batch run_on_array(const std::vector<Line>& lines, const FilterTable& table, int pixel_count) {
+  const ap::Program& program = ap::programs::resample_lines();
+  const ArrayLineLayout layout = ArrayLineLayout::of(program);
+  const int n = static_cast<int>(lines.front().texels.size());
+  EXPECT_EQ(array_line_error(layout, table, n), "");
+  ap::ArrayController controller{ap::ArrayGeometry{}, ap::CycleTable::defaults(), 4096, uint64_t{1} << 40};
+  EXPECT_TRUE(controller.load(0, program_for_lines(program, n, table.width)));
+  ap::CuArray& array = controller.array();
+  EXPECT_LE(lines.size(), array.lanes());
+  const auto write = [&array](unsigned lane, const std::vector<CmemBlock>& blocks) {
+    for (const CmemBlock& block : blocks) {
+      for (std::size_t k = 0; k < block.bytes.size(); ++k) {
+        array.set_cmem(lane, block.address + static_cast<unsigned>(k), block.bytes[k]);
+      }
+    }
+  };
+  std::vector<ArrayLine> oriented(lines.size());
+  for (unsigned lane = 0; lane < array.lanes(); ++lane) {
+    write(lane, filter_blocks(layout, table.width));
+    if (lane < lines.size()) {
+      std::vector<q8_8> texels = lines[lane].texels;
+      EXPECT_TRUE(orient_line(lines[lane].mapping, n, oriented[lane]));
+      write(lane, line_blocks(layout, oriented[lane], {texels.data(), n, 1}));
+    }
+  }
+  const ap::RunResult result = controller.run(ap::entry_word(program, "resample"));
+  EXPECT_TRUE(result.ok) << result.error;
+  Batch batch;
+  batch.cycles = result.cycles;
+  for (unsigned lane = 0; lane < lines.size(); ++lane) {
+    std::vector<CmemBlock> results = result_blocks(layout, n, table.width);
+    for (CmemBlock& block : results) {
+      for (std::size_t k = 0; k < block.bytes.size(); ++k) {
+        block.bytes[k] = array.cmem(lane, block.address + static_cast<unsigned>(k));
+      }
+    }
+    std::vector<q8_8> pixels(static_cast<std::size_t>(pixel_count), -1);
+    batch.flagged.push_back(!scatter_line(layout, n, table.width, results, {pixels.data(), pixel_count, 1}));
+    batch.pixels.push_back(pixels);
+  }
+  return batch;
+}
+
+// step_borders and resample_line; empty when step_borders refuses the line.
+std::vector<q8_8> on_host(const Line& line, const FilterTable& table, int pixel_count) {
+  const int n = static_cast<int>(line.texels.size());
+  std::vector<q16_16> borders(static_cast<std::size_t>(n) + 1);
+  if (!step_borders(line.mapping, n, "line", borders.data()).empty()) {
+    return {};
+  }
+  std::vector<q8_8> texels = line.texels;
+  std::vector<q8_8> pixels(static_cast<std::size_t>(pixel_count), -1);
+  resample_line({texels.data(), n, 1}, borders.data(), table, {pixels.data(), pixel_count, 1});
+  return pixels;
+}
+
+// Random lines like ResampleLine.Eq6InFixedPointAgreesWithEq3WithinTheBound's:
+// either direction, mild perspective, some starting left of the image or
+// running past its end; texels unorm8 << 8 (a row pass) or any q8_8 (a
+// column pass's intermediate values).
+std::vector<Line> random_lines(std::mt19937& random, int n, int count, int pixel_count) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_int_distribution<int> colour(0, 255 << 8);
+  std::vector<Line> lines;
+  while (static_cast<int>(lines.size()) < count) {
+    const double scale = (0.1 + 0.9 * unit(random)) * (unit(random) < 0.5 ? -1.0 : 1.0);
+    const double denominator = 0.6 + 0.8 * unit(random);
+    const double perspective = (unit(random) - 0.5) * 0.4 / n;
+    const double start =
+        scale > 0 ? -4.0 + (pixel_count / 2.0) * unit(random) : pixel_count + 4.0 - (pixel_count / 2.0) * unit(random);
+    Line line{
+        {to_fixed(start * denominator, 20), to_fixed(scale, 20), to_fixed(denominator, 30), to_fixed(perspective, 30)},
+        std::vector<q8_8>(static_cast<std::size_t>(n))};
+    const bool row_pass = lines.size() % 2 == 0;
+    for (q8_8& texel : line.texels) {
+      texel = row_pass ? (colour(random) & 0xff00) : colour(random);
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+TEST(ArrayLines, RandomLinesBitExactForEveryBoxWidth) {
+  std::mt19937 random(32210);
+  const int pixel_count = 64;
+  int compared = 0;
+  for (int width = 1; width <= MAX_FILTER_WIDTH; ++width) {
+    const FilterTable table = make_filter_table(FilterKind::box, width);
+    const int n = 20 + 7 * width;
+    const std::vector<Line> lines = random_lines(random, n, 96, pixel_count);
+    const Batch batch = run_on_array(lines, table, pixel_count);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      const std::vector<q8_8> expected = on_host(lines[k], table, pixel_count);
+      ASSERT_EQ(batch.flagged[k], expected.empty()) << "F = " << width << " line " << k;
+      if (!expected.empty()) {
+        ASSERT_EQ(batch.pixels[k], expected) << "F = " << width << " line " << k;
+        ++compared;
+      }
+    }
+  }
+  // Most lines are minified and compared; the magnified ones are flagged.
+  EXPECT_GE(compared, 400);
+}
+
+TEST(ArrayLines, ExtremeTexelsAndClampedSums) {
+  // Alternating black and white under a 2:1 and a 1:1 map: the largest
+  // differences, sums that the clamp must hold at 0 and 255 << 8.
+  const int n = 48;
+  std::vector<Line> lines;
+  for (const double scale : {1.0, 0.5, -1.0, -0.75, 0.999}) {
+    Line line{{to_fixed(scale > 0 ? 2.25 : 60.25, 20), to_fixed(scale, 20), 1 << 30, 0},
+              std::vector<q8_8>(static_cast<std::size_t>(n))};
+    for (int t = 0; t < n; ++t) {
+      line.texels[static_cast<std::size_t>(t)] = (t % 2 == 0) ? 255 << 8 : 0;
+    }
+    lines.push_back(line);
+  }
+  for (int width = 1; width <= 4; ++width) {
+    const FilterTable table = make_filter_table(FilterKind::box, width);
+    const Batch batch = run_on_array(lines, table, 64);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      EXPECT_FALSE(batch.flagged[k]);
+      EXPECT_EQ(batch.pixels[k], on_host(lines[k], table, 64)) << "F = " << width << " line " << k;
+    }
+  }
+}
+
+TEST(ArrayLines, TheRowsAndColumnsOfAPerspectiveWarp) {
+  // The lines warp.cpp resamples for a tilted plane: the row pass's rows,
+  // then columns of the column pass over random intermediate values.
+  const PerspectiveMatrix m = testing::fixed_matrix(0.9, 0.15, 20.0, -0.1, 0.7, 12.0, 0.0008, 0.0012, 1.0);
+  const int size = 64;
+  ASSERT_EQ(matrix_error(m, size, size), "");
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> colour(0, 255);
+  for (const int width : {1, 2, 3, 4}) {
+    const FilterTable table = make_filter_table(FilterKind::box, width);
+    std::vector<Line> rows;
+    for (int row = 0; row < size; ++row) {
+      Line line{{}, std::vector<q8_8>(size)};
+      ASSERT_EQ(row_pass_line(m, row, size, line.mapping), "");
+      for (q8_8& texel : line.texels) {
+        texel = colour(random) << 8;
+      }
+      rows.push_back(line);
+    }
+    const Batch row_batch = run_on_array(rows, table, 96);
+    for (int row = 0; row < size; ++row) {
+      ASSERT_EQ(row_batch.pixels[static_cast<std::size_t>(row)],
+                on_host(rows[static_cast<std::size_t>(row)], table, 96))
+          << "F = " << width << " row " << row;
+    }
+    ColumnPassSetup setup;
+    ASSERT_EQ(column_pass_setup(m, setup), "");
+    std::vector<Line> columns;
+    for (int column = 10; column < 10 + 90; ++column) {
+      Line line{{}, std::vector<q8_8>(size)};
+      ASSERT_EQ(column_pass_line(setup, column, size, line.mapping), "");
+      for (q8_8& texel : line.texels) {
+        texel = colour(random) * 256 + colour(random);
+      }
+      columns.push_back(line);
+    }
+    const Batch column_batch = run_on_array(columns, table, 96);
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      ASSERT_EQ(column_batch.pixels[k], on_host(columns[k], table, 96)) << "F = " << width << " column " << k;
+    }
+  }
+}
+
+TEST(ArrayLines, FlagsWhatStepBordersRefuses) {
+  // A texel wider than a pixel (x = 3 + 1.25 t), and a border beyond 2^14
+  // pixels (x = 16380 + 0.5 t, passing 16384 at t = 8).
+  const int n = 16;
+  std::vector<Line> lines{{{to_fixed(3.0, 20), to_fixed(1.25, 20), 1 << 30, 0}, std::vector<q8_8>(n, 100 << 8)},
+                          {{to_fixed(1023.75, 20), to_fixed(0.03125, 20), 1 << 26, 0}, std::vector<q8_8>(n, 100 << 8)},
+                          {{to_fixed(3.0, 20), to_fixed(0.75, 20), 1 << 30, 0}, std::vector<q8_8>(n, 100 << 8)}};
+  const FilterTable table = make_filter_table(FilterKind::box, 2);
+  const Batch batch = run_on_array(lines, table, 32);
+  ASSERT_TRUE(on_host(lines[0], table, 32).empty());
+  ASSERT_TRUE(on_host(lines[1], table, 32).empty());
+  EXPECT_TRUE(batch.flagged[0]);
+  EXPECT_TRUE(batch.flagged[1]);
+  EXPECT_FALSE(batch.flagged[2]);
+  EXPECT_EQ(batch.pixels[2], on_host(lines[2], table, 32));
+}
+
+TEST(ArrayLines, RefusesWhatTheProgramCannotRun) {
+  const ArrayLineLayout layout = ArrayLineLayout::of(ap::programs::resample_lines());
+  EXPECT_EQ(layout.max_texels, 512);
+  EXPECT_NE(array_line_error(layout, make_filter_table(FilterKind::tent, 2), 64).find("box filter's factors only"),
+            std::string::npos);
+  FilterTable too_wide = make_filter_table(FilterKind::box, 2);
+  too_wide.width = 9;
+  EXPECT_NE(array_line_error(layout, too_wide, 64).find("F = 9"), std::string::npos);
+  EXPECT_NE(array_line_error(layout, make_filter_table(FilterKind::box, 2), 513).find("513 texels"), std::string::npos);
+  EXPECT_EQ(array_line_error(layout, make_filter_table(FilterKind::box, 8), 512), "");
+}
+
+}  // namespace
+}  // namespace tessera::forward_texture
