@@ -180,6 +180,37 @@ APP_TRAINING = [
         ["--set", "display.width=192", "--set", "display.height=144", "--", "--filter-width", "2"],
         "study",
     ),
+    # The same warp on the array (resample_lines.s): through the CIU (ap-pixel) and the DMA (ap-tile), at
+    # four texture sizes and four filter widths: lines, texels, rows and borders in independent proportions.
+    ("study_forward_texture_array_ciu_128_2", "study_forward_texture", "ap-pixel", [], "study"),
+    (
+        "study_forward_texture_array_ciu_80_4",
+        "study_forward_texture",
+        "ap-pixel",
+        ["--", "--texture-size", "80", "--filter-width", "4"],
+        "study",
+    ),
+    (
+        "study_forward_texture_array_dma_128_2",
+        "study_forward_texture",
+        "ap-tile",
+        ["--set", "dma.enabled=true"],
+        "study",
+    ),
+    (
+        "study_forward_texture_array_dma_48_1",
+        "study_forward_texture",
+        "ap-tile",
+        ["--set", "dma.enabled=true", "--", "--texture-size", "48", "--filter-width", "1"],
+        "study",
+    ),
+    (
+        "study_forward_texture_array_dma_200_3",
+        "study_forward_texture",
+        "ap-tile",
+        ["--set", "dma.enabled=true", "--", "--texture-size", "200", "--filter-width", "3"],
+        "study",
+    ),
 ]
 # The cluster platform's node program (sw_driver/cluster_node): two nodes,
 # so that trapezoids are both drawn at home and sent. Per node and frame,

@@ -1,25 +1,32 @@
 // study_forward_texture: van Sinten's two-pass forward texture mapping
-// (sw_driver/forward_texture/README.md) on the host: a generated
-// checkerboard texture warped onto the display under a perspective 3 x 3
-// matrix, rows then columns (or columns first, as the pass-order rule
-// picks), with the prefiltered resampling of Eq. 6, every frame; the warped
-// image is shown (grey) as the frame. The array's program for the same
-// resampling is not here yet: `--backend arm` only.
+// (sw_driver/forward_texture/README.md): a generated checkerboard texture
+// warped onto the display under a perspective 3 x 3 matrix, rows then
+// columns (or columns first, as the pass-order rule picks), with the
+// prefiltered resampling of Eq. 6, every frame; the warped image is shown
+// (grey) as the frame. The warp runs where the back end draws: `--backend
+// arm` on the host, `--backend ap-tile` or `ap-pixel` on the array
+// (resample_lines.s, one line per CU, the same program for both: the lines
+// in and the results out by the DMA when dma.enabled, else through the CIU;
+// the box filter only), with the same image byte for byte.
 //
 // Options (after "--"): --texture-size N (a square of N x N texels, 2 ..
-// 1024, default 128), --filter box|tent (default box), --filter-width F
-// (1 .. 8, default 2), --matrix A,B,C,D,E,F,G,H,I (decimals: x w = A u + B v
-// + C, y w = D u + E v + F, w = G u + H v + I; default a square seen tilted
-// back, DEFAULT_MATRIX). Magnification is refused (upscale the texture
-// first), as are a singular matrix and a texture that does not fit.
+// 1024, default 128; on the array at most 512), --filter box|tent (default
+// box), --filter-width F (1 .. 8, default 2), --matrix A,B,C,D,E,F,G,H,I
+// (decimals: x w = A u + B v + C, y w = D u + E v + F, w = G u + H v + I;
+// default a square seen tilted back, DEFAULT_MATRIX). Magnification is
+// refused (upscale the texture first), as are a singular matrix and a
+// texture that does not fit.
 //
 // The figures go to stats.json's driver section (study.*): the warp's host
-// time per frame (study.compute_ns, from the texture's first load to the
-// last pixel stored), the pass order, the lines, texel borders and pixels
-// of both passes; the native model charges the forward_texture_* rows of
-// the measured cost table.
+// time per frame (study.warp_ns, from the texture's first load to the last
+// pixel stored) and its split (compute_ns; on the array write_ns, wait_ns,
+// read_ns), the pass order; on the array the programs run, their cycles,
+// the lines and borders, and the bytes and DMA descriptors moved. The
+// native model charges the forward_texture_* rows of the measured cost
+// table.
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +36,7 @@
 #include "config/config.h"
 #include "costs/host_cost.h"
 #include "device/display_driver.h"
+#include "forward_texture/array_resampler.h"
 #include "forward_texture/warp.h"
 #include "renderers/common/host_time.h"
 
@@ -117,8 +125,11 @@ uint8_t checker(unsigned u, unsigned v, unsigned size) {
 int study_forward_texture(AppEnvironment& env) {
   study::check_options(env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix"});
   const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
-  if (backend != "arm")
-    throw std::invalid_argument(std::string(APP) + " runs on --backend arm (the host warps); not on " + backend);
+  const bool on_array = backend == "ap-tile" || backend == "ap-pixel";
+  if (backend != "arm" && !on_array)
+    throw std::invalid_argument(
+        std::string(APP) + " runs on --backend arm (the host warps) or ap-tile / ap-pixel (the array warps); not on " +
+        backend);
   const unsigned size = study::option(env, APP, "--texture-size", 128, 2, ft::MAX_IMAGE_SIZE);
   const ft::FilterKind kind = parse_filter(option_text(env, "--filter", "box"));
   const unsigned width = study::option(env, APP, "--filter-width", 2, 1, ft::MAX_FILTER_WIDTH);
@@ -140,33 +151,57 @@ int study_forward_texture(AppEnvironment& env) {
   const uint32_t image_address = texture_address + ((texels + 3) & ~3u);
 
   renderers::HostTime time;
+  std::optional<ft::ArrayResampler> array;
+  if (on_array) {
+    const uint32_t staging = image_address + ((static_cast<uint32_t>(out_width * out_height) + 31) & ~31u);
+    array.emplace(env, time, staging, env.heap_end);
+    if (const std::string error = array->check(table, static_cast<int>(size)); !error.empty())
+      throw std::invalid_argument(std::string(APP) + ": " + error);
+  }
   costs::reset_cost_meter();
+  uint64_t warp_cycles = 0;
   ft::PassOrderChoice order;
   std::vector<uint32_t> row((static_cast<size_t>(out_width) * display.bytes_per_pixel() + 3) / 4);
   for (unsigned frame = 0; frame < env.frames; ++frame) {
     ft::WarpResult warped;
+    // On the array the resampler times its own parts into `time`; the
+    // warp's time outside them is compute.
+    const uint64_t parts_before = time.compute + time.array_write + time.array_wait + time.array_read;
+    renderers::HostTime whole;
     {
-      renderers::TimedScope timed(host, time, renderers::HostSplit::compute);
+      renderers::TimedScope timed(host, whole, renderers::HostSplit::compute);
       ft::Image texture{static_cast<int>(size), static_cast<int>(size), {}};
       const uint8_t* in = host.load_span(texture_address, 1, texels);
       texture.texels.assign(in, in + texels);
-      warped = ft::warp_texture(texture, matrix, table, out_width, out_height);
+      warped = ft::warp_texture(texture, matrix, table, out_width, out_height, array ? &*array : nullptr);
       if (!warped.error.empty()) throw std::invalid_argument(std::string(APP) + ": " + warped.error);
-      // Per pass: a line's set-up, its texel borders (each a fixed-iteration
-      // division, F lookups and F scalings), the pixels it closes.
-      // The second pass walks the intermediate image's columns, a texel a
-      // row apart: its borders cost the cache misses the first pass's do not.
       const uint64_t first_lines = size, second_lines = static_cast<uint64_t>(out_width);
-      const uint64_t first_borders = first_lines * (size + 1), second_borders = second_lines * (size + 1);
       costs::charge(host, costs::HostCost::forward_texture_line, first_lines + second_lines);
-      costs::charge(host, costs::HostCost::forward_texture_row_border, first_borders);
-      costs::charge(host, costs::HostCost::forward_texture_column_border, second_borders);
-      costs::charge(host, costs::HostCost::forward_texture_factor, (first_borders + second_borders) * width);
-      costs::charge(host, costs::HostCost::forward_texture_pixel,
-                    first_lines * static_cast<uint64_t>(out_width) + second_lines * static_cast<uint64_t>(out_height));
+      if (array) {
+        // The rest is the resampler's: the row pass's texels made q8_8, the
+        // image rounded and copied.
+        costs::charge(host, costs::HostCost::forward_texture_texel_load, first_lines * size);
+        costs::charge(host, costs::HostCost::forward_texture_output_pixel,
+                      static_cast<uint64_t>(out_width) * static_cast<uint64_t>(out_height));
+      } else {
+        // Per pass: a line's set-up, its texel borders (each a fixed-iteration
+        // division, F lookups and F scalings), the pixels it closes.
+        // The second pass walks the intermediate image's columns, a texel a
+        // row apart: its borders cost the cache misses the first pass's do not.
+        const uint64_t first_borders = first_lines * (size + 1), second_borders = second_lines * (size + 1);
+        costs::charge(host, costs::HostCost::forward_texture_row_border, first_borders);
+        costs::charge(host, costs::HostCost::forward_texture_column_border, second_borders);
+        costs::charge(host, costs::HostCost::forward_texture_factor, (first_borders + second_borders) * width);
+        costs::charge(
+            host, costs::HostCost::forward_texture_pixel,
+            first_lines * static_cast<uint64_t>(out_width) + second_lines * static_cast<uint64_t>(out_height));
+      }
       std::memcpy(host.store_span(image_address, 1, static_cast<uint32_t>(warped.image.texels.size())),
                   warped.image.texels.data(), warped.image.texels.size());
     }
+    const uint64_t parts = time.compute + time.array_write + time.array_wait + time.array_read - parts_before;
+    time.compute += whole.compute - parts;
+    warp_cycles += whole.compute;
     order = warped.pass_order;
     // The warped image shown, grey (not timed: the study's figure is the warp).
     const uint32_t buffer = display.back_buffer();
@@ -185,15 +220,36 @@ int study_forward_texture(AppEnvironment& env) {
     display.present();
   }
   const unsigned frames = env.frames > 0 ? env.frames : 1;
-  study::publish(env, "compute_ns", "host time of the warps, every frame's", study::ns(host, time.compute));
-  study::publish(env, "warp_ns", "host time of one warp (the frames' mean)", study::ns(host, time.compute) / frames);
+  study::publish(env, "compute_ns",
+                 "host time of the warps on the host, every frame's (on the array: outside the "
+                 "array's transfers and runs)",
+                 study::ns(host, time.compute));
+  study::publish(env, "warp_ns", "host time of one warp (the frames' mean)", study::ns(host, warp_cycles) / frames);
+  if (array) {
+    const ft::ArrayResampler::Figures& f = array->figures();
+    study::publish(env, "write_ns", "host time sending the lines to the array (every frame's)",
+                   study::ns(host, time.array_write));
+    study::publish(env, "wait_ns", "host time waiting for the array's programs (every frame's)",
+                   study::ns(host, time.array_wait));
+    study::publish(env, "read_ns", "host time fetching and scattering the results (every frame's)",
+                   study::ns(host, time.array_read));
+    study::publish(env, "array_runs", "array programs run (a batch of one line per CU each)", f.runs);
+    study::publish(env, "array_cycles", "array cycles of the resampling programs", f.cycles);
+    study::publish(env, "array_lines", "lines the array resampled", f.lines);
+    study::publish(env, "array_borders", "texel borders the array resampled", f.borders);
+    study::publish(env, "values_written", "bytes the array's data lines carried into CMEM", f.traffic.values_written);
+    study::publish(env, "values_read", "bytes the array's data lines carried out of CMEM", f.traffic.values_read);
+    study::publish(env, "dma_descriptors", "DMA descriptors run (0 through the CIU)", f.traffic.dma_descriptors);
+    study::publish(env, "through_dma", "1 when the DMA moved the lines and results", array->through_dma() ? 1 : 0);
+  }
   study::publish(env, "columns_first", "1 when the pass-order rule mapped the texture's columns first",
                  order.order == ft::PassOrder::columns_first ? 1 : 0);
   study::publish(env, "texture_size", "texels per side of the texture", size);
   study::publish(env, "filter_width", "F, the filter's width in pixels", width);
   study::publish_units(env);
-  std::printf("%s: %ux%u texture onto %dx%d, %s filter of width %u, %s first\n", APP, size, size, out_width, out_height,
-              ft::filter_name(kind), width, order.order == ft::PassOrder::columns_first ? "columns" : "rows");
+  std::printf("%s: %ux%u texture onto %dx%d, %s filter of width %u, %s first, on the %s\n", APP, size, size, out_width,
+              out_height, ft::filter_name(kind), width,
+              order.order == ft::PassOrder::columns_first ? "columns" : "rows", array ? "array" : "host");
   return 0;
 }
 

@@ -19,16 +19,6 @@ CmemBlock word_block(uint16_t address, uint32_t value) {
   return block;
 }
 
-// The bytes of `blocks` at `address`, which one of them holds.
-const CmemBlock& block_at(const std::vector<CmemBlock>& blocks, uint16_t address) {
-  for (const CmemBlock& block : blocks) {
-    if (block.address == address) {
-      return block;
-    }
-  }
-  return blocks.front();  // result_blocks lists every address scatter_line reads
-}
-
 int16_t signed16(uint8_t high, uint8_t low) {
   return static_cast<int16_t>(static_cast<uint16_t>((high << 8) | low));
 }
@@ -147,21 +137,20 @@ std::vector<CmemBlock> filter_blocks(const ArrayLineLayout& layout, int width) {
   return blocks;
 }
 
-bool orient_line(const LineMapping& mapping, int texel_count, ArrayLine& line) {
+bool orient_line(const LineMapping& mapping, LineView texels, ArrayLine& line) {
   // step_borders' last values: n steps of 32-bit additions, in range (the
   // set-up checked the line's ends).
-  const auto n = static_cast<uint32_t>(texel_count);
+  const auto n = static_cast<uint32_t>(texels.count);
   const auto last_numerator =
       static_cast<q12_20>(static_cast<uint32_t>(mapping.numerator) + n * static_cast<uint32_t>(mapping.numerator_step));
   const auto last_denominator = static_cast<q2_30>(static_cast<uint32_t>(mapping.denominator) +
                                                    n * static_cast<uint32_t>(mapping.denominator_step));
-  q16_16 first = 0;
-  q16_16 last = 0;
-  if (!divide_border(mapping.numerator, mapping.denominator, first) ||
-      !divide_border(last_numerator, last_denominator, last)) {
+  if (!divide_border(mapping.numerator, mapping.denominator, line.first_border) ||
+      !divide_border(last_numerator, last_denominator, line.last_border)) {
     return false;
   }
-  line.reversed = last < first;
+  line.texels = texels;
+  line.reversed = line.last_border < line.first_border;
   line.mapping = mapping;
   if (line.reversed) {
     line.mapping = {last_numerator, static_cast<q12_20>(0u - static_cast<uint32_t>(mapping.numerator_step)),
@@ -170,38 +159,70 @@ bool orient_line(const LineMapping& mapping, int texel_count, ArrayLine& line) {
   return true;
 }
 
-std::vector<CmemBlock> line_blocks(const ArrayLineLayout& layout, const ArrayLine& line, LineView texels) {
-  const int n = texels.count;
-  std::vector<CmemBlock> blocks;
-  blocks.push_back(word_block(layout.num, static_cast<uint32_t>(line.mapping.numerator)));
-  blocks.push_back(word_block(layout.num_step, static_cast<uint32_t>(line.mapping.numerator_step)));
-  blocks.push_back(word_block(layout.den, static_cast<uint32_t>(line.mapping.denominator)));
-  blocks.push_back(word_block(layout.den_step, static_cast<uint32_t>(line.mapping.denominator_step)));
+std::vector<CmemRow> line_rows(const ArrayLineLayout& layout, const std::vector<ArrayLine>& lines, unsigned cus) {
+  const int n = lines.empty() ? 0 : lines.front().texels.count;
+  std::vector<CmemRow> rows;
+  const auto word_rows = [&rows, &lines, cus](uint16_t address, int32_t LineMapping::*member) {
+    for (unsigned byte = 0; byte < 4; ++byte) {
+      CmemRow row{static_cast<uint16_t>(address + byte), std::vector<uint8_t>(cus, 0)};
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        row.per_cu[k] = static_cast<uint8_t>(static_cast<uint32_t>(lines[k].mapping.*member) >> (24 - 8 * byte));
+      }
+      rows.push_back(row);
+    }
+  };
+  word_rows(layout.num, &LineMapping::numerator);
+  word_rows(layout.num_step, &LineMapping::numerator_step);
+  word_rows(layout.den, &LineMapping::denominator);
+  word_rows(layout.den_step, &LineMapping::denominator_step);
   // C_k (the k-th texel from the left) at index n - k; 0 at 0 and n + 1.
-  CmemBlock high{layout.tex_hi, std::vector<uint8_t>(static_cast<std::size_t>(n) + 2, 0)};
-  CmemBlock low{layout.tex_lo, high.bytes};
-  for (int k = 0; k < n; ++k) {
-    const auto value = static_cast<uint32_t>(texels[line.reversed ? n - 1 - k : k]);
-    high.bytes[static_cast<std::size_t>(n - k)] = static_cast<uint8_t>(value >> 8);
-    low.bytes[static_cast<std::size_t>(n - k)] = static_cast<uint8_t>(value);
+  const std::size_t first_texel_row = rows.size();
+  for (int index = 0; index <= n + 1; ++index) {
+    rows.push_back({static_cast<uint16_t>(layout.tex_hi + index), std::vector<uint8_t>(cus, 0)});
   }
-  blocks.push_back(high);
-  blocks.push_back(low);
-  return blocks;
+  for (int index = 0; index <= n + 1; ++index) {
+    rows.push_back({static_cast<uint16_t>(layout.tex_lo + index), std::vector<uint8_t>(cus, 0)});
+  }
+  CmemRow* high = &rows[first_texel_row];
+  CmemRow* low = high + n + 2;
+  for (std::size_t lane = 0; lane < lines.size(); ++lane) {
+    const ArrayLine& line = lines[lane];
+    for (int k = 0; k < n; ++k) {
+      const auto value = static_cast<uint32_t>(line.texels[line.reversed ? n - 1 - k : k]);
+      high[n - k].per_cu[lane] = static_cast<uint8_t>(value >> 8);
+      low[n - k].per_cu[lane] = static_cast<uint8_t>(value);
+    }
+  }
+  return rows;
 }
 
-std::vector<CmemBlock> result_blocks(const ArrayLineLayout& layout, int texel_count, int width) {
+// result_addresses' order: the border planes idx_hi, idx_lo, val_hi,
+// val_lo (n + 1 rows each), last_pixel (2), fin_hi, fin_lo (F each), err.
+std::vector<uint16_t> result_addresses(const ArrayLineLayout& layout, int texel_count, int width) {
+  std::vector<uint16_t> addresses;
+  for (const uint16_t plane : {layout.idx_hi, layout.idx_lo, layout.val_hi, layout.val_lo}) {
+    for (int v = 0; v <= texel_count; ++v) {
+      addresses.push_back(static_cast<uint16_t>(plane + v));
+    }
+  }
+  addresses.push_back(layout.last_pixel);
+  addresses.push_back(static_cast<uint16_t>(layout.last_pixel + 1));
+  for (const uint16_t plane : {layout.fin_hi, layout.fin_lo}) {
+    for (int j = 0; j < width; ++j) {
+      addresses.push_back(static_cast<uint16_t>(plane + j));
+    }
+  }
+  addresses.push_back(layout.err);
+  return addresses;
+}
+
+bool scatter_line(int texel_count, int width, const std::vector<CmemRow>& results, unsigned lane, LineView pixels) {
   const auto borders = static_cast<std::size_t>(texel_count) + 1;
-  const auto slots = static_cast<std::size_t>(width);
-  return {{layout.idx_hi, std::vector<uint8_t>(borders)}, {layout.idx_lo, std::vector<uint8_t>(borders)},
-          {layout.val_hi, std::vector<uint8_t>(borders)}, {layout.val_lo, std::vector<uint8_t>(borders)},
-          {layout.last_pixel, std::vector<uint8_t>(2)},   {layout.fin_hi, std::vector<uint8_t>(slots)},
-          {layout.fin_lo, std::vector<uint8_t>(slots)},   {layout.err, std::vector<uint8_t>(1)}};
-}
-
-bool scatter_line(const ArrayLineLayout& layout, int texel_count, int width, const std::vector<CmemBlock>& results,
-                  LineView pixels) {
-  if (block_at(results, layout.err).bytes[0] != 0) {
+  const auto byte = [&results, lane](std::size_t row) { return results[row].per_cu[lane]; };
+  const std::size_t last = 4 * borders;
+  const std::size_t fin = last + 2;
+  const std::size_t err = fin + 2 * static_cast<std::size_t>(width);
+  if (byte(err) != 0) {
     return false;
   }
   for (int p = 0; p < pixels.count; ++p) {
@@ -212,23 +233,16 @@ bool scatter_line(const ArrayLineLayout& layout, int texel_count, int width, con
       pixels[pixel] = (high << 8) | low;
     }
   };
-  const std::vector<uint8_t>& idx_hi = block_at(results, layout.idx_hi).bytes;
-  const std::vector<uint8_t>& idx_lo = block_at(results, layout.idx_lo).bytes;
-  const std::vector<uint8_t>& val_hi = block_at(results, layout.val_hi).bytes;
-  const std::vector<uint8_t>& val_lo = block_at(results, layout.val_lo).bytes;
-  // The window's last pixel is numbered; its first is F - 1 to the left.
-  for (int v = 0; v <= texel_count; ++v) {
-    const auto slot = static_cast<std::size_t>(v);
-    if (idx_hi[slot] != 0x80) {
-      put(signed16(idx_hi[slot], idx_lo[slot]) - (width - 1), val_hi[slot], val_lo[slot]);
+  // The window's last pixel is numbered; the pixel leaving is F - 1 to its left.
+  for (std::size_t v = 0; v < borders; ++v) {
+    if (byte(v) != 0x80) {
+      put(signed16(byte(v), byte(borders + v)) - (width - 1), byte(2 * borders + v), byte(3 * borders + v));
     }
   }
-  const std::vector<uint8_t>& last = block_at(results, layout.last_pixel).bytes;
-  const std::vector<uint8_t>& fin_hi = block_at(results, layout.fin_hi).bytes;
-  const std::vector<uint8_t>& fin_lo = block_at(results, layout.fin_lo).bytes;
-  const int first = signed16(last[0], last[1]) - (width - 1);
-  for (int j = 0; j < width; ++j) {
-    put(first + j, fin_hi[static_cast<std::size_t>(j)], fin_lo[static_cast<std::size_t>(j)]);
+  const int first = signed16(byte(last), byte(last + 1)) - (width - 1);
+  const auto slots = static_cast<std::size_t>(width);
+  for (std::size_t j = 0; j < slots; ++j) {
+    put(first + static_cast<int>(j), byte(fin + j), byte(fin + slots + j));
   }
   return true;
 }

@@ -35,11 +35,17 @@ struct ArrayLineLayout {
   static ArrayLineLayout of(const ap::Program& program);
 };
 
-// A write of `bytes` at `address` of one CU's CMEM, or, for a result, the
-// bytes read from there.
+// The same bytes for every CU: `bytes` at `address`, `address` + 1, ...
 struct CmemBlock {
   uint16_t address = 0;
   std::vector<uint8_t> bytes;
+};
+
+// One CMEM address of every CU: `per_cu` holds one byte per CU, in CU
+// order (what one reshuffling DMA descriptor or one CIU sweep moves).
+struct CmemRow {
+  uint16_t address = 0;
+  std::vector<uint8_t> per_cu;
 };
 
 // Empty, or the message naming what the program cannot do: a filter other
@@ -61,25 +67,28 @@ std::vector<CmemBlock> filter_blocks(const ArrayLineLayout& layout, int width);
 struct ArrayLine {
   LineMapping mapping;  // stepped from the leftmost border
   bool reversed = false;
+  LineView texels;                           // in the texture's order
+  q16_16 first_border = 0, last_border = 0;  // step_borders' first and last
 };
 
-// The line's orientation, from its two end borders (two divisions on the
-// host). False when an end does not divide (the array would flag it too:
+// The line's orientation and end borders, from two divisions on the host.
+// False when an end does not divide (the array would flag it too:
 // step_borders names the error).
-bool orient_line(const LineMapping& mapping, int texel_count, ArrayLine& line);
+bool orient_line(const LineMapping& mapping, LineView texels, ArrayLine& line);
 
-// What the line's CU gets: its mapping and its texels.
-std::vector<CmemBlock> line_blocks(const ArrayLineLayout& layout, const ArrayLine& line, LineView texels);
+// The rows that give CU k line k (lines.size() <= cus, all of the same
+// length); the CUs past the last line get zeros.
+std::vector<CmemRow> line_rows(const ArrayLineLayout& layout, const std::vector<ArrayLine>& lines, unsigned cus);
 
-// The blocks to read back from each CU for a line of `texel_count` texels.
-std::vector<CmemBlock> result_blocks(const ArrayLineLayout& layout, int texel_count, int width);
+// The CMEM addresses to read back from every CU for lines of `texel_count`
+// texels, in the order scatter_line expects their rows.
+std::vector<uint16_t> result_addresses(const ArrayLineLayout& layout, int texel_count, int width);
 
-// The line's pixels from its CU's results (result_blocks, filled), written
-// where the reference writes them (pixels outside the line's reach are
-// left as they are: 0 in a fresh image). False when the CU flagged an
+// The pixels of the line in CU `lane` from the rows read at
+// result_addresses: every pixel of `pixels` written, as resample_line
+// writes them (0 where no texel reaches). False when the CU flagged an
 // error (a border out of range or a texel wider than a pixel): step_borders
 // names it.
-bool scatter_line(const ArrayLineLayout& layout, int texel_count, int width, const std::vector<CmemBlock>& results,
-                  LineView pixels);
+bool scatter_line(int texel_count, int width, const std::vector<CmemRow>& results, unsigned lane, LineView pixels);
 
 }  // namespace tessera::forward_texture

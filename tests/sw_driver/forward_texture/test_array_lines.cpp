@@ -43,35 +43,39 @@ Batch run_on_array(const std::vector<Line>& lines, const FilterTable& table, int
   EXPECT_TRUE(controller.load(0, program_for_lines(program, n, table.width)));
   ap::CuArray& array = controller.array();
   EXPECT_LE(lines.size(), array.lanes());
-  const auto write = [&array](unsigned lane, const std::vector<CmemBlock>& blocks) {
-    for (const CmemBlock& block : blocks) {
+  for (unsigned lane = 0; lane < array.lanes(); ++lane) {
+    for (const CmemBlock& block : filter_blocks(layout, table.width)) {
       for (std::size_t k = 0; k < block.bytes.size(); ++k) {
         array.set_cmem(lane, block.address + static_cast<unsigned>(k), block.bytes[k]);
       }
     }
-  };
+  }
+  std::vector<std::vector<q8_8>> texels;
   std::vector<ArrayLine> oriented(lines.size());
-  for (unsigned lane = 0; lane < array.lanes(); ++lane) {
-    write(lane, filter_blocks(layout, table.width));
-    if (lane < lines.size()) {
-      std::vector<q8_8> texels = lines[lane].texels;
-      EXPECT_TRUE(orient_line(lines[lane].mapping, n, oriented[lane]));
-      write(lane, line_blocks(layout, oriented[lane], {texels.data(), n, 1}));
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    texels.push_back(lines[k].texels);
+    EXPECT_TRUE(orient_line(lines[k].mapping, {texels.back().data(), n, 1}, oriented[k]));
+  }
+  for (const CmemRow& row : line_rows(layout, oriented, array.lanes())) {
+    for (unsigned lane = 0; lane < array.lanes(); ++lane) {
+      array.set_cmem(lane, row.address, row.per_cu[lane]);
     }
   }
   const ap::RunResult result = controller.run(ap::entry_word(program, "resample"));
   EXPECT_TRUE(result.ok) << result.error;
   Batch batch;
   batch.cycles = result.cycles;
-  for (unsigned lane = 0; lane < lines.size(); ++lane) {
-    std::vector<CmemBlock> results = result_blocks(layout, n, table.width);
-    for (CmemBlock& block : results) {
-      for (std::size_t k = 0; k < block.bytes.size(); ++k) {
-        block.bytes[k] = array.cmem(lane, block.address + static_cast<unsigned>(k));
-      }
+  std::vector<CmemRow> results;
+  for (const uint16_t address : result_addresses(layout, n, table.width)) {
+    CmemRow row{address, std::vector<uint8_t>(array.lanes())};
+    for (unsigned lane = 0; lane < array.lanes(); ++lane) {
+      row.per_cu[lane] = array.cmem(lane, address);
     }
+    results.push_back(row);
+  }
+  for (unsigned lane = 0; lane < lines.size(); ++lane) {
     std::vector<q8_8> pixels(static_cast<std::size_t>(pixel_count), -1);
-    batch.flagged.push_back(!scatter_line(layout, n, table.width, results, {pixels.data(), pixel_count, 1}));
+    batch.flagged.push_back(!scatter_line(n, table.width, results, lane, {pixels.data(), pixel_count, 1}));
     batch.pixels.push_back(pixels);
   }
   return batch;

@@ -1,7 +1,9 @@
 // System tests of study_forward_texture (sw_driver/apps/forward_texture.cpp):
 // the warp the host runs is the fixed-point reference's (the library's own
-// tests hold it to Eq. 3), the same picture on both host models, its figures
-// in stats.json, and bad input refused naming the value.
+// tests hold it to Eq. 3), the same picture on both host models, the same
+// picture again from the array program (through the CIU and the DMA, on
+// both host models), its figures in stats.json, and bad input refused
+// naming the value.
 //
 // Usage: test_soc_sim_forward_texture <path to soc_sim> [GoogleTest options]
 #include <fstream>
@@ -55,6 +57,51 @@ TEST_F(SocSimForwardTexture, BothHostModelsWarpTheSamePicture) {
   EXPECT_GT(study("iss")["warp_ns"].get<double>(), 0.0);
 }
 
+TEST_F(SocSimForwardTexture, TheArrayWarpsTheHostsPictureByteForByte) {
+  // Rows first (the default matrix) and columns first (a quarter turn and
+  // more), each on the host and on the array through the CIU (ap-pixel)
+  // and the DMA (ap-tile), natively and on the ISS.
+  const std::vector<std::vector<std::string>> warps = {
+      {"--texture-size", "40", "--filter-width", "3"},
+      {"--texture-size", "32", "--filter-width", "1", "--matrix", "0.3,-0.8,100,0.8,0.3,20,0,0.001,1"}};
+  struct Run {
+    std::string name;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Run> runs = {
+      {"host", {"--backend", "arm", "--set", "display.width=192", "--set", "display.height=144"}},
+      {"ciu", {"--backend", "ap-pixel"}},
+      {"dma", {"--backend", "ap-tile", "--set", "dma.enabled=true"}},
+      {"dma_iss", {"--backend", "ap-tile", "--set", "dma.enabled=true", "--set", "host.model=iss"}},
+      {"ciu_iss", {"--backend", "ap-pixel", "--set", "host.model=iss"}}};
+  for (std::size_t w = 0; w < warps.size(); ++w) {
+    for (const Run& r : runs) {
+      const std::string out = r.name + std::to_string(w);
+      std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", out};
+      args.insert(args.end(), r.settings.begin(), r.settings.end());
+      args.push_back("--");
+      args.insert(args.end(), warps[w].begin(), warps[w].end());
+      const SimResult result = run(args);
+      ASSERT_EQ(result.status, 0) << out << ": " << describe(result);
+      EXPECT_TRUE(contains(result.out, r.name == "host" ? "on the host" : "on the array")) << describe(result);
+      if (r.name == "host") {
+        ASSERT_GT(frame(out, 0).size(), 1000u);
+        continue;
+      }
+      EXPECT_EQ(frame(out, 0), frame("host" + std::to_string(w), 0)) << out;
+      const json figures = study(out);
+      EXPECT_GT(figures["array_runs"].get<int>(), 0) << out;
+      EXPECT_GT(figures["array_cycles"].get<double>(), 0.0) << out;
+      const bool dma = r.name.rfind("dma", 0) == 0;
+      EXPECT_EQ(figures["through_dma"], dma ? 1 : 0) << out;
+      EXPECT_EQ(figures["dma_descriptors"].get<int>() > 0, dma) << out;
+      EXPECT_GT(figures["wait_ns"].get<double>(), 0.0) << out;
+    }
+  }
+  EXPECT_EQ(study("host0")["columns_first"], 0);
+  EXPECT_EQ(study("host1")["columns_first"], 1);
+}
+
 TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
   struct Case {
     std::vector<std::string> args;
@@ -75,10 +122,20 @@ TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
     EXPECT_EQ(result.status, EXIT_USAGE) << c.names << ": " << describe(result);
     EXPECT_TRUE(contains(result.err, c.names) || contains(result.out, c.names)) << c.names << ": " << describe(result);
   }
-  const SimResult array =
-      run({"--app", "study_forward_texture", "--backend", "ap-pixel", "--frames", "1", "--out", "array"});
-  EXPECT_EQ(array.status, EXIT_USAGE) << describe(array);
-  EXPECT_TRUE(contains(array.err, "--backend arm")) << describe(array);
+  // What the array program cannot run, and a back end that has no warp.
+  const Case array_cases[] = {
+      {{"--backend", "ap-pixel", "--", "--filter", "tent"}, "box filter's factors only"},
+      {{"--backend", "ap-tile", "--", "--texture-size", "600", "--matrix", "0.3,0,10,0,0.2,10,0,0,1"},
+       "600 texels does not fit"},
+      {{"--backend", "raster"}, "not on raster"},
+  };
+  for (const Case& c : array_cases) {
+    std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", "bad", "--force"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const SimResult result = run(args);
+    EXPECT_EQ(result.status, EXIT_USAGE) << c.names << ": " << describe(result);
+    EXPECT_TRUE(contains(result.err, c.names)) << c.names << ": " << describe(result);
+  }
 }
 
 }  // namespace

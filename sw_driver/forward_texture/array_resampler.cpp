@@ -1,0 +1,191 @@
+// The warp's lines on the array (array_resampler.h).
+#include "forward_texture/array_resampler.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "ap_programs/resample_lines.h"
+#include "costs/host_cost.h"
+
+namespace tessera::forward_texture {
+
+namespace {
+
+using costs::HostCost;
+using renderers::HostSplit;
+using renderers::TimedScope;
+
+constexpr unsigned INPUT_CHANNEL = 0;
+
+// Rows a batch sends and fetches at most: the mapping's 16 and the texels'
+// 2 (n + 2); the four border planes' 4 (n + 1) and the window's 2 F + 3.
+unsigned input_rows(int texel_count) {
+  return 16 + 2 * (static_cast<unsigned>(texel_count) + 2);
+}
+unsigned result_rows(int texel_count, int width) {
+  return 4 * (static_cast<unsigned>(texel_count) + 1) + 2 * static_cast<unsigned>(width) + 3;
+}
+
+}  // namespace
+
+ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end)
+    : m_env(env),
+      m_host(*env.host),
+      m_time(time),
+      m_array(env),
+      m_dma(env),
+      m_dma_use(renderers::dma_use(env, m_dma)),
+      m_program(ap::programs::resample_lines()),
+      m_layout(ArrayLineLayout::of(m_program)),
+      m_entry(ap::entry_word(m_program, "resample")),
+      m_staging(staging),
+      m_staging_end(staging_end) {}
+
+uint32_t ArrayResampler::staging_bytes(int texel_count, int width) const {
+  // The larger of the input and result rows, and one descriptor each.
+  const unsigned rows = std::max(input_rows(texel_count), result_rows(texel_count, width));
+  return rows * (m_array.cus() + dma::DESCRIPTOR_BYTES);
+}
+
+std::string ArrayResampler::check(const FilterTable& table, int texel_count) const {
+  std::string error = array_line_error(m_layout, table, texel_count);
+  if (error.empty() && m_array.cmem_bytes() < 4096) {
+    error =
+        "the array program needs 4096 bytes of CMEM a CU; array.cmem_bytes is " + std::to_string(m_array.cmem_bytes());
+  }
+  if (error.empty() && m_dma_use.enabled && m_staging_end - m_staging < staging_bytes(texel_count, table.width)) {
+    error = "the DMA's staging for lines of " + std::to_string(texel_count) + " texels needs " +
+            std::to_string(staging_bytes(texel_count, table.width)) + " bytes of system memory; " +
+            std::to_string(m_staging_end - m_staging) + " are left";
+  }
+  return error;
+}
+
+void ArrayResampler::prepare(int texel_count, int width) {
+  if (texel_count != m_loaded_texels || width != m_loaded_width) {
+    TimedScope timed(m_host, m_time, HostSplit::array_write);
+    m_array.load(program_for_lines(m_program, texel_count, width));
+    m_loaded_texels = texel_count;
+    m_loaded_width = width;
+  }
+  if (width != m_filter_width) {
+    // The filter's constants, the same in every CU: broadcast when the DMA
+    // can, else one row per byte.
+    TimedScope timed(m_host, m_time, HostSplit::array_write);
+    std::vector<CmemRow> rows;
+    for (const CmemBlock& block : filter_blocks(m_layout, width)) {
+      for (std::size_t k = 0; k < block.bytes.size(); ++k) {
+        rows.push_back({static_cast<uint16_t>(block.address + k), std::vector<uint8_t>(m_array.cus(), block.bytes[k])});
+      }
+    }
+    send_rows(rows);
+    m_filter_width = width;
+  }
+}
+
+void ArrayResampler::send_rows(const std::vector<CmemRow>& rows) {
+  const unsigned cus = m_array.cus();
+  if (!m_dma_use.enabled) {
+    for (const CmemRow& row : rows) {
+      m_array.write_all8(row.address, row.per_cu);
+      m_figures.traffic.values_written += cus;
+    }
+    return;
+  }
+  // One reshuffle a row (CU k gets byte k), from rows staged one after the
+  // other, as one chain.
+  const uint32_t chain = m_staging + static_cast<uint32_t>(rows.size()) * cus;
+  std::vector<dma::Descriptor> descriptors;
+  descriptors.reserve(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const uint32_t source = m_staging + static_cast<uint32_t>(r) * cus;
+    std::memcpy(m_host.store_span(source, 1, cus), rows[r].per_cu.data(), cus);
+    descriptors.push_back(DmaDriver::to_cmem(source, rows[r].address, cus, 1));
+  }
+  costs::charge(m_host, HostCost::forward_texture_array_row, rows.size());
+  m_dma.write_chain(chain, descriptors);
+  m_dma.start_chain(INPUT_CHANNEL, chain);
+  m_dma.wait(INPUT_CHANNEL);
+  m_figures.traffic.values_written += uint64_t{cus} * rows.size();
+  m_figures.traffic.dma_descriptors += rows.size();
+}
+
+std::vector<CmemRow> ArrayResampler::fetch_rows(const std::vector<uint16_t>& addresses) {
+  const unsigned cus = m_array.cus();
+  std::vector<CmemRow> rows;
+  rows.reserve(addresses.size());
+  if (!m_dma_use.enabled) {
+    for (const uint16_t address : addresses) rows.push_back({address, m_array.read_all8(address)});
+    m_figures.traffic.values_read += uint64_t{cus} * addresses.size();
+    return rows;
+  }
+  const uint32_t chain = m_staging + static_cast<uint32_t>(addresses.size()) * cus;
+  std::vector<dma::Descriptor> descriptors;
+  descriptors.reserve(addresses.size());
+  for (std::size_t r = 0; r < addresses.size(); ++r) {
+    descriptors.push_back(DmaDriver::from_cmem(addresses[r], m_staging + static_cast<uint32_t>(r) * cus, cus, 1));
+  }
+  m_dma.write_chain(chain, descriptors);
+  m_dma.start_chain(INPUT_CHANNEL, chain);
+  m_dma.wait(INPUT_CHANNEL);
+  costs::charge(m_host, HostCost::forward_texture_array_row, addresses.size());
+  for (std::size_t r = 0; r < addresses.size(); ++r) {
+    const uint8_t* bytes = m_host.load_span(m_staging + static_cast<uint32_t>(r) * cus, 1, cus);
+    rows.push_back({addresses[r], std::vector<uint8_t>(bytes, bytes + cus)});
+  }
+  m_figures.traffic.values_read += uint64_t{cus} * addresses.size();
+  m_figures.traffic.dma_descriptors += addresses.size();
+  return rows;
+}
+
+std::string ArrayResampler::resample(std::vector<PassLine>& lines, const FilterTable& table,
+                                     const std::function<std::string(std::size_t)>& where) {
+  if (lines.empty()) {
+    return {};
+  }
+  const int n = lines.front().texels.count;
+  if (std::string error = check(table, n); !error.empty()) {
+    return where(0) + ": " + error;
+  }
+  // A line the host cannot orient, or that the array flags, is named by
+  // step_borders, as on the host.
+  const auto refused = [&lines, &where, n](std::size_t k) {
+    std::vector<q16_16> borders(static_cast<std::size_t>(n) + 1);
+    std::string error = step_borders(lines[k].mapping, n, where(k), borders.data());
+    return error.empty() ? where(k) + ": the array flagged the line, but step_borders finds no error" : error;
+  };
+  prepare(n, table.width);
+  std::vector<ArrayLine> oriented(lines.size());
+  {
+    TimedScope timed(m_host, m_time, HostSplit::compute);
+    costs::charge(m_host, HostCost::forward_texture_array_line, lines.size());
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      if (!orient_line(lines[k].mapping, lines[k].texels, oriented[k])) return refused(k);
+      lines[k].first_border = oriented[k].first_border;
+      lines[k].last_border = oriented[k].last_border;
+    }
+  }
+  {
+    TimedScope timed(m_host, m_time, HostSplit::array_write);
+    costs::charge(m_host, HostCost::forward_texture_array_texel, lines.size() * static_cast<uint64_t>(n));
+    send_rows(line_rows(m_layout, oriented, m_array.cus()));
+  }
+  {
+    TimedScope timed(m_host, m_time, HostSplit::array_wait);
+    m_figures.cycles += m_array.run(m_entry);
+    ++m_figures.runs;
+  }
+  TimedScope timed(m_host, m_time, HostSplit::array_read);
+  const std::vector<CmemRow> results = fetch_rows(result_addresses(m_layout, n, table.width));
+  costs::charge(m_host, HostCost::forward_texture_array_border, lines.size() * (static_cast<uint64_t>(n) + 1));
+  costs::charge(m_host, HostCost::forward_texture_array_pixel,
+                lines.size() * static_cast<uint64_t>(lines.front().pixels.count));
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    if (!scatter_line(n, table.width, results, static_cast<unsigned>(k), lines[k].pixels)) return refused(k);
+  }
+  m_figures.lines += lines.size();
+  m_figures.borders += lines.size() * (static_cast<uint64_t>(n) + 1);
+  return {};
+}
+
+}  // namespace tessera::forward_texture

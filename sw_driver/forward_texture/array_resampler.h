@@ -1,0 +1,67 @@
+// The warp's lines on the array (README.md, "On the array"): a LineResampler
+// that runs resample_lines.s with one line per CU, the lines brought into
+// CMEM and the results taken out by the system/array DMA when the SoC has
+// one (dma.enabled), else through the CIU, and the host scattering the
+// pixels. Its host time goes to the caller's split: writing (the lines
+// staged and sent), waiting (the program) and reading (the results fetched
+// and scattered).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "device/app_environment.h"
+#include "device/array_driver.h"
+#include "device/dma_driver.h"
+#include "forward_texture/array_lines.h"
+#include "forward_texture/warp.h"
+#include "renderers/common/array_dma.h"
+#include "renderers/common/host_time.h"
+
+namespace tessera::forward_texture {
+
+class ArrayResampler : public LineResampler {
+ public:
+  // `staging` .. `staging_end`: system memory the DMA's rows and chains may
+  // use (unused without the DMA). `time` receives the host time of each part.
+  ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end);
+
+  std::string resample(std::vector<PassLine>& lines, const FilterTable& table,
+                       const std::function<std::string(std::size_t)>& where) override;
+  std::size_t batch_lines() const override { return m_array.cus(); }
+
+  // Empty, or why the array cannot resample lines of `texel_count` texels
+  // with `table` (array_line_error), or why the staging is too small.
+  std::string check(const FilterTable& table, int texel_count) const;
+
+  struct Figures {
+    uint64_t runs = 0;    // programs run (batches)
+    uint64_t cycles = 0;  // array cycles, all runs
+    uint64_t lines = 0, borders = 0;
+    renderers::ArrayTraffic traffic;
+  };
+  const Figures& figures() const { return m_figures; }
+  bool through_dma() const { return m_dma_use.enabled; }
+
+ private:
+  void prepare(int texel_count, int width);
+  void send_rows(const std::vector<CmemRow>& rows);
+  std::vector<CmemRow> fetch_rows(const std::vector<uint16_t>& addresses);
+  uint32_t staging_bytes(int texel_count, int width) const;
+
+  AppEnvironment& m_env;
+  HostApi& m_host;
+  renderers::HostTime& m_time;
+  ArrayDriver m_array;
+  DmaDriver m_dma;
+  renderers::DmaUse m_dma_use;
+  const ap::Program& m_program;
+  ArrayLineLayout m_layout;
+  unsigned m_entry = 0;
+  uint32_t m_staging = 0, m_staging_end = 0;
+  int m_loaded_texels = -1, m_loaded_width = -1, m_filter_width = -1;
+  Figures m_figures;
+};
+
+}  // namespace tessera::forward_texture
