@@ -111,7 +111,7 @@ STUDY_KEYS = {"title", "description", "columns"}
 HOSTS = ("native", "iss")
 PROGRAMS = ("study", "tuned")
 # The array back ends' program keys; the other back ends run no array program.
-RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames", "baseline"}
+RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames", "baseline", "backend_program"}
 MATRIX_KEYS = {"switches", "skip", "runs"}
 SWITCH_KEYS = {"key", "name", "values", "backends"}
 MATRIX_RUN_KEYS = (RUN_KEYS - {"backend"}) | {"backends"}

@@ -31,7 +31,7 @@ class RunResult:
         self.host = str(self.config.get("host", {}).get("model", "native"))
         key = PROGRAM_KEYS.get(self.backend)
         self.program = "-"
-        if key:
+        if key and run.get("backend_program", True):
             node = self.config
             for part in key.split("."):
                 node = node.get(part, {}) if isinstance(node, dict) else {}
@@ -218,6 +218,43 @@ def patch_break_even(result, column, results):
     return math.inf
 
 
+def forward_texture_steps(result):
+    """The program's texel steps: each run takes every CU's line one texel border further per step, texture_size + 1
+    borders a line (driver.study.array_runs x (texture_size + 1)), whatever the CUs with a line."""
+    return stat(result, "driver.study.array_runs") * (stat(result, "driver.study.texture_size") + 1)
+
+
+def forward_texture_division_cycles(result, column, results):
+    """Array cycles per texel step in the border's stage (texcoord: the numerator and denominator stepped, the
+    border divided): a texel border of every CU's line at once."""
+    return stat(result, "array.cycles.texcoord") / forward_texture_steps(result)
+
+
+def forward_texture_contribution_cycles(result, column, results):
+    """Array cycles per texel step in the contribution's stages (shade: the F factors and scalings; transfer: the
+    window's sums and the pixel it leaves)."""
+    return (stat(result, "array.cycles.shade") + stat(result, "array.cycles.transfer")) / forward_texture_steps(result)
+
+
+def forward_texture_texels_per_second(result, column, results):
+    """Texel borders per second of the array's own time: driver.study.array_borders over driver.study.array_cycles
+    at the array's clock (array.clock_mhz), one line per CU, the host's transfers not counted."""
+    seconds = stat(result, "driver.study.array_cycles") / (config(result, "array.clock_mhz") * 1e6)
+    return stat(result, "driver.study.array_borders") / seconds
+
+
+def forward_texture_scalings_per_texel(result, column, results):
+    """The scalings per texel step of Eq. 6 as the array ran them (F a texel): its multiplications (array.mix.mul,
+    one broadcast instruction for every CU) over two (each scaling is two 16 x 8 multiplications), per step."""
+    return stat(result, "array.mix.mul") / 2 / forward_texture_steps(result)
+
+
+def forward_texture_polyphase_ms(result, column, results):
+    """A dedicated polyphase unit resampling one texel a cycle at the array's clock (array.clock_mhz): the warp's
+    texel borders (driver.study.array_borders) over that clock, in ms per warp (the frames' mean)."""
+    return stat(result, "driver.study.array_borders") / frames_drawn(result) / (config(result, "array.clock_mhz") * 1e3)
+
+
 # ---------------------------------------------------------------------------
 # The study's quantities (docs/spec/study_programs.md, "The study's test cases"): what the study's own figure
 # covered, for the "study" tables. A column names the test's quantity ("quantity"); each back end's part of it:
@@ -394,6 +431,11 @@ COMPUTED = {
         study_speedup,
         study_energy_ratio,
         study_shades_per_second_of_study_time,
+        forward_texture_division_cycles,
+        forward_texture_contribution_cycles,
+        forward_texture_texels_per_second,
+        forward_texture_scalings_per_texel,
+        forward_texture_polyphase_ms,
     )
 }
 # A figure of the table rather than of one run: another column's value (column "of") of the baseline run (column

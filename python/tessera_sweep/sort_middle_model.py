@@ -33,8 +33,6 @@ import sys
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
-import numpy as np
-
 MICROSECOND = 1e-6
 
 
@@ -207,6 +205,8 @@ def recast_coefficients(
 
 def fit_depth_curve(d, t) -> tuple[float, float, float]:
     """Least squares of Eq. 12 to measured (d, t) points of one p: (C0, C1, C2)."""
+    import numpy as np  # here, not at the top: the package's other commands run under Debian's python3 without it
+
     d = np.asarray(d, dtype=float)
     t = np.asarray(t, dtype=float)
     if d.ndim != 1 or d.shape != t.shape or len(d) < 3:
@@ -396,6 +396,8 @@ def fit_command(options: argparse.Namespace) -> int:
     constants_from_options(options)  # checks --h and --y
     if options.n <= 0:
         raise ValueError(f"need n > 0 (n={options.n})")
+    import numpy as np  # here, as in fit_depth_curve
+
     points = read_points(options.points)
     print(f"Eq. 12 fitted per p (n = {options.n:g}, h = {options.h:g}, y = {options.y:g}); t_l and alpha as Table 1")
     print("| p | points | C0 (s) | C1 (s) | C2 (s) | t_l (us) | alpha (us) | rms residual (ms) |")
