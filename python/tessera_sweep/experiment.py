@@ -111,7 +111,7 @@ STUDY_KEYS = {"title", "description", "columns"}
 HOSTS = ("native", "iss")
 PROGRAMS = ("study", "tuned")
 # The array back ends' program keys; the other back ends run no array program.
-RUN_KEYS = {"label", "backend", "app", "args", "set", "frames", "shows_frames", "baseline", "backend_program"}
+RUN_KEYS = {"label", "backend", "app", "args", "set", "config", "frames", "shows_frames", "baseline", "backend_program"}
 MATRIX_KEYS = {"switches", "skip", "runs"}
 SWITCH_KEYS = {"key", "name", "values", "backends"}
 MATRIX_RUN_KEYS = (RUN_KEYS - {"backend"}) | {"backends"}
@@ -381,6 +381,10 @@ def check_experiment(spec, where):
         if not isinstance(run["args"], list) or not all(isinstance(a, str) for a in run["args"]):
             raise UsageError(f"{run_where}: 'args' must be a list of strings")
         check_settings(run_where, run.setdefault("set", {}))
+        if "config" in run and (not isinstance(run["config"], str) or not (ROOT / run["config"]).is_file()):
+            raise UsageError(
+                f"{run_where}: 'config' must name a configuration file of the repository, not {run['config']!r}"
+            )
         if "frames" in run:
             positive_int(f"{run_where}: 'frames'", run["frames"])
     for run, run_where in zip(runs, run_wheres):
@@ -589,6 +593,8 @@ def soc_sim_command(soc_sim, spec, run, frames, folder, overrides=None):
         "--force",
         "--quiet",
     ]
+    if "config" in run:
+        command += ["--config", str(ROOT / run["config"])]
     for key, value in {**spec["set"], **run["set"], **(overrides or {})}.items():
         command += ["--set", f"{key}={setting_text(value)}"]
     if run["args"]:
