@@ -156,6 +156,14 @@ class CuArray {
     return m_active;
   }
   void count_active() const;
+  // lut: true when every lane's index (high:low) lies within the table,
+  // else false with `error` naming the first lane that does not.
+  bool lut_indices_fit(const uint8_t* high, const uint8_t* low, std::string& error);
+  // nget and nadd: the neighbour's byte of row `a` into `neighbour`, and for
+  // nadd d + it into `out` with the flags; in chain order under skew when
+  // the neighbour is an earlier lane and `a` is d's row.
+  void neighbour_lanes(const Instruction& in, const uint8_t* a, const uint8_t* d, bool d_masked, uint8_t* neighbour,
+                       uint8_t* out);
   // run_trace() for kLanes lanes (0: m_lanes).
   template <size_t kLanes>
   void run_trace_lanes(const std::vector<Instruction>& trace);
