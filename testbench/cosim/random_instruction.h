@@ -35,7 +35,8 @@ inline Instruction make_nget(Operand d, Direction direction, Operand a) {
 }
 
 // The lane-work opcodes: every instruction the CU executes, those behind an
-// array.features switch (div, nadd) included.
+// array.features switch (div, nadd) included; not lut, whose shared table is
+// the array's, outside the CU and its Verilog twin.
 constexpr std::array<Opcode, 27> LANE_OPCODES{
     Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,  Opcode::op_and,  Opcode::op_or,
     Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,  Opcode::op_shr,  Opcode::op_asr,

@@ -27,11 +27,27 @@ namespace {
 
 const sc_time CYCLE(10, sc_core::SC_NS);
 constexpr uint64_t AC = 0x0, PROGRAM = 0x10000, CMEM = 0x1000000;
+// A second array with the Image Blender's features on: delayed execution
+// (K = 1), the lookup table (64 entries, one port), divide and nadd.
+constexpr uint64_t BLENDER_AC = 0x2000, BLENDER_PROGRAM = 0x20000;
+constexpr unsigned LUT_ENTRIES = 64;
 constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
 constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24;
 
 ArrayParams array_params() {
   ArrayParams p = ArrayParams::defaults();
+  p.clock_period = CYCLE;
+  p.program_words = 256;
+  p.max_program_cycles = 100000;
+  return p;
+}
+
+ArrayParams blender_params() {
+  Config config({ArrayParams::parameters()});
+  for (const char* key : {"array.features.lut=true", "array.features.divide=true", "array.features.neighbour_add=true",
+                          "array.issue_skew=lane", "array.issue_skew_cycles=1", "array.lut.entries=64"})
+    config.apply_override(key);
+  ArrayParams p = ArrayParams::from_config(config);
   p.clock_period = CYCLE;
   p.program_words = 256;
   p.max_program_cycles = 100000;
@@ -52,20 +68,25 @@ struct Bench : sc_core::sc_module {
   AhbBus bus;
   ArrayProcessor array;
   Ciu ciu;
-  sc_core::sc_signal<bool> irq;
+  ArrayProcessor blender;
+  sc_core::sc_signal<bool> irq, blender_irq;
   explicit Bench(sc_core::sc_module_name name)
       : sc_core::sc_module(name),
         host("host"),
         check_host("check_host"),
         bus("bus", test::bench_bus_params(CYCLE)),
         array("array", array_params()),
-        ciu("ciu", ciu_params(), array) {
+        ciu("ciu", ciu_params(), array),
+        blender("blender", blender_params()) {
     host.out.bind(check_host.in);
     bus.attach(check_host.out, "host", 0);
     bus.map(array.in, AC, 0x1000, "array_regs");
     bus.map(array.program_in, PROGRAM, 0x10000, "array_program");
     bus.map(ciu.in, CMEM, 0x1000000, "array_cmem");
     array.irq.bind(irq);
+    bus.map(blender.in, BLENDER_AC, 0x1000, "blender_regs");
+    bus.map(blender.program_in, BLENDER_PROGRAM, 0x10000, "blender_program");
+    blender.irq.bind(blender_irq);
   }
 };
 
@@ -319,6 +340,10 @@ TEST(ArrayProcessor, BadProgramsStopWithAnErrorCodeAndTheWord) {
        ap::RunError::bad_word,
        0,
        "nadd is not enabled: it needs array.features.neighbour_add = true"},
+      {{op(ap::Opcode::op_lut, reg(0), reg(2)), op(ap::Opcode::op_halt)},
+       ap::RunError::bad_word,
+       0,
+       "lut is not enabled: it needs array.features.lut = true"},
   };
   test::run_thread([&] {
     for (const Case& c : cases) {
@@ -368,6 +393,93 @@ TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
   EXPECT_EQ(both.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 40u);
 }
 
+TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
+  Config config({ArrayParams::parameters()});
+  try {
+    config.apply_override("array.issue_skew=column");
+    ArrayParams::from_config(config);
+    ADD_FAILURE() << "array.issue_skew=column accepted";
+  } catch (const std::exception& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("array.issue_skew"), std::string::npos) << what;
+    EXPECT_NE(what.find("column"), std::string::npos) << what;
+  }
+  for (const char* bad : {"array.issue_skew_cycles=0", "array.lut.entries=65537", "array.lut.ports=0"}) {
+    Config fresh({ArrayParams::parameters()});
+    EXPECT_THROW(fresh.apply_override(bad), std::exception) << bad;
+  }
+  const ArrayParams defaults = ArrayParams::defaults();
+  EXPECT_EQ(defaults.issue_skew_cycles, 0u);
+  EXPECT_FALSE(defaults.lut_enabled());
+}
+
+// The J2210 (every switch off) has no table: LUT_ENTRIES reads 0 and the
+// table's registers refuse writes, naming the switch.
+TEST(ArrayProcessor, WithoutTheSwitchTheTablesRegistersRefuseWrites) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  test::run_thread([&] {
+    EXPECT_EQ(read32(b, AC + regs::LUT_ENTRIES), 0u);
+    EXPECT_EQ(write32(b, AC + regs::LUT_INDEX, 0), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_EQ(write32(b, AC + regs::LUT_DATA, 7), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_EQ(read32(b, AC + regs::LUT_DATA), 0u);
+    EXPECT_EQ(read32(b, AC + regs::STATUS) & regs::STATUS_REFUSED, 0u);
+  });
+  EXPECT_TRUE(capture.contains("the lookup table needs array.features.lut = true"));
+}
+
+// The host fills the table through LUT_INDEX and LUT_DATA; a program's lut
+// reads it, and under delayed execution the program takes its cycles plus
+// the chain's skew (95 cycles with K = 1).
+TEST(ArrayProcessor, TheHostFillsTheTableAndASkewedProgramLooksItUp) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  ap::CuArray& cus = b.blender.core().array();
+  for (unsigned l = 0; l < cus.lanes(); ++l) cus.set_reg(l, 3, static_cast<uint8_t>(l % LUT_ENTRIES));
+  test::run_thread([&] {
+    EXPECT_EQ(read32(b, BLENDER_AC + regs::LUT_ENTRIES), LUT_ENTRIES);
+    EXPECT_EQ(write32(b, BLENDER_AC + regs::LUT_INDEX, 0), tlm::TLM_OK_RESPONSE);
+    for (unsigned i = 0; i < LUT_ENTRIES; ++i)
+      EXPECT_EQ(write32(b, BLENDER_AC + regs::LUT_DATA, 0xabcd0000u | (1000 + i)), tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(read32(b, BLENDER_AC + regs::LUT_INDEX), LUT_ENTRIES);
+    // One past the table: refused, naming the index and the key.
+    EXPECT_EQ(write32(b, BLENDER_AC + regs::LUT_DATA, 1), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    EXPECT_EQ(write32(b, BLENDER_AC + regs::LUT_INDEX, 5), tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(read32(b, BLENDER_AC + regs::LUT_DATA), 1005u);
+    EXPECT_EQ(read32(b, BLENDER_AC + regs::LUT_INDEX), 5u) << "a read does not step the index";
+    // mset 1, lut 2, halt 1, then the skew: 95.
+    const std::vector<uint64_t> words = {op(ap::Opcode::op_mset), op(ap::Opcode::op_lut, reg(0), reg(2)),
+                                         op(ap::Opcode::op_halt)};
+    for (size_t w = 0; w < words.size(); ++w) {
+      const uint64_t address = BLENDER_PROGRAM + w * regs::PROGRAM_WORD_BYTES;
+      EXPECT_EQ(write32(b, address, static_cast<uint32_t>(words[w])), tlm::TLM_OK_RESPONSE);
+      EXPECT_EQ(write32(b, address + 4, static_cast<uint32_t>(words[w] >> 32)), tlm::TLM_OK_RESPONSE);
+    }
+    write32(b, BLENDER_AC + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
+    write32(b, BLENDER_AC + regs::ENTRY, 0);
+    const sc_time at = sc_core::sc_time_stamp();
+    EXPECT_EQ(write32(b, BLENDER_AC + regs::START, 1), tlm::TLM_OK_RESPONSE);
+    // While it runs the table is the CUs': the host's write is refused.
+    EXPECT_EQ(write32(b, BLENDER_AC + regs::LUT_INDEX, 0), tlm::TLM_COMMAND_ERROR_RESPONSE);
+    if (!b.blender_irq.read()) sc_core::wait(b.blender_irq.posedge_event());
+    // The run begins one array clock after START reaches the AC and lasts its cycles.
+    EXPECT_EQ(sc_core::sc_time_stamp(), at + CYCLE * (1.0 + 99));
+    EXPECT_EQ(read32(b, BLENDER_AC + regs::CYCLES), 1u + 2 + 1 + 95);
+  });
+  EXPECT_TRUE(capture.contains("LUT_INDEX 64 is beyond the table's 64 entries (array.lut.entries)"));
+  for (unsigned l = 0; l < cus.lanes(); ++l) {
+    const unsigned entry = 1000 + l % LUT_ENTRIES;
+    EXPECT_EQ(cus.reg(l, 0), entry >> 8) << l;
+    EXPECT_EQ(cus.reg(l, 1), entry & 0xff) << l;
+  }
+  const auto stats = b.blender.stats_json(sc_core::sc_time_stamp());
+  EXPECT_EQ(stats["issue_skew"]["cycles"], 95);
+  EXPECT_EQ(stats["lut"]["lookups"], 96);
+  EXPECT_EQ(stats["lut"]["stall_cycles"], 0);
+  EXPECT_EQ(stats["lut"]["host_writes"], LUT_ENTRIES);
+  EXPECT_EQ(stats["mix"]["lut"], 1);
+}
+
 TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   Bench& b = *g_bench;
   const sc_time now = sc_core::sc_time_stamp();
@@ -377,6 +489,10 @@ TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   // Instructions that are not enabled have no counter: a J2210's statistics.
   EXPECT_FALSE(stats["mix"].contains("div"));
   EXPECT_FALSE(stats["mix"].contains("nadd"));
+  EXPECT_FALSE(stats["mix"].contains("lut"));
+  // Nor is there a skew or a table.
+  EXPECT_FALSE(stats.contains("issue_skew"));
+  EXPECT_FALSE(stats.contains("lut"));
   EXPECT_GT(stats["cmem"]["bytes_written"].get<uint64_t>(), 0u);
   EXPECT_EQ(stats["programs_by_entry"]["16"]["cycles"], 26);
   // The profile names each word that ran, with its instruction.

@@ -26,6 +26,18 @@ ParamGroup ArrayParams::parameters() {
                      "exactly (a simulation speed-up: results, cycles and statistics are the same either way)"),
       integer("array.cycles.cmem_operand", 1, 0, 1000, "cycles",
               "extra cycles of an instruction of form RM with an operand in CMEM (calibrated: docs/calibration.md)"),
+      param::choice("array.issue_skew", "none", {"none", "lane"},
+                    "delayed execution (the Image Blender's): none, every CU runs each instruction at once (the "
+                    "J2210); lane, CU i runs it array.issue_skew_cycles after CU i - 1, the CUs chained in "
+                    "row-major order (tlm/array/README.md, \"Delayed execution\")"),
+      integer("array.issue_skew_cycles", 1, 1, 1000, "cycles",
+              "with array.issue_skew = lane: the delay K between one CU of the chain and the next; a program "
+              "takes (CUs - 1) x K cycles more"),
+      integer("array.lut.entries", 256, 1, 65536, "entries",
+              "16-bit entries of the lookup table lut reads (with array.features.lut)"),
+      integer("array.lut.ports", 1, 1, 1024, "ports",
+              "lookups the table serves per cycle (with array.features.lut): without skew a lut waits "
+              "ceil(CUs / ports) - 1 cycles; with skew each lut holds a port for (CUs - 1) x K + 1 cycles"),
   };
   for (const ap::OpInfo& info : ap::all_ops())
     specs.push_back(integer("array.cycles." + std::string(info.mnemonic), info.cycles, 0, 100000, "cycles",
@@ -63,6 +75,11 @@ ArrayParams ArrayParams::from_config(const Config& config) {
   p.max_program_cycles = config.get_uint("array.max_program_cycles");
   p.skip_idle_cus = config.get_bool("array.skip_idle_cus");
   p.cycles.cmem_operand = static_cast<unsigned>(config.get_uint("array.cycles.cmem_operand"));
+  p.issue_skew_cycles = config.get_string("array.issue_skew") == "lane"
+                            ? static_cast<unsigned>(config.get_uint("array.issue_skew_cycles"))
+                            : 0;
+  p.lut_entries = static_cast<unsigned>(config.get_uint("array.lut.entries"));
+  p.lut_ports = static_cast<unsigned>(config.get_uint("array.lut.ports"));
   for (const ap::OpInfo& info : ap::all_ops())
     if (!info.feature.empty())
       p.enabled_ops[static_cast<unsigned>(info.opcode)] = config.get_bool(ap::feature_key(info));

@@ -62,6 +62,19 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
     throw std::invalid_argument(std::string(this->name()) + ": impossible array geometry");
   m_core.skip_idle_cus(params.skip_idle_cus);
   m_core.enable_ops(params.enabled_ops);
+  m_core.set_issue_skew(params.issue_skew_cycles);
+  if (params.issue_skew_cycles != 0)
+    m_skew_cycles = &counter("issue_skew.cycles",
+                             "cycles from the first CU's halt to the last CU's, (CUs - 1) x "
+                             "array.issue_skew_cycles per program (in cycles.total)");
+  if (params.lut_enabled()) {
+    m_core.set_lut_ports(params.lut_ports);
+    m_core.array().set_lut_entries(params.lut_entries);
+    m_lut_stall_cycles =
+        &counter("lut.stall_cycles", "cycles the AC waited for the lookup table's ports (in cycles.total)");
+    m_lut_lookups = &counter("lut.lookups", "lookups in the table: CUs x lut instructions");
+    m_lut_writes = &counter("lut.host_writes", "table entries the host wrote through LUT_DATA");
+  }
   // An instruction that is not enabled never runs: it has no counter, so that
   // the statistics of a J2210 array are the J2210's.
   for (const ap::OpInfo& info : ap::all_ops())
@@ -88,6 +101,9 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
   CMEM_BYTES.set_reset(g.cmem_bytes);
   REGISTERS.set_reset(g.registers);
   PROGRAM_WORDS.set_reset(params.program_words);
+  LUT_ENTRIES.set_reset(params.lut_enabled() ? params.lut_entries : 0);
+  LUT_DATA.on_read(this, &ArrayProcessor::read_LUT_DATA);
+  LUT_DATA.on_write(this, &ArrayProcessor::write_LUT_DATA);
   CLOCK_KHZ.set_reset(static_cast<uint32_t>(std::llround(1e-3 / params.clock_period.to_seconds())));
   Register* const stage_registers[ap::STAGE_COUNT] = {&STAGE_CYCLES0, &STAGE_CYCLES1, &STAGE_CYCLES2, &STAGE_CYCLES3,
                                                       &STAGE_CYCLES4, &STAGE_CYCLES5, &STAGE_CYCLES6, &STAGE_CYCLES7};
@@ -139,10 +155,32 @@ const ap::RunResult& ArrayProcessor::shown_result(const sc_time& when) const {
   return busy_at(when) ? m_previous : m_current;
 }
 
+uint32_t ArrayProcessor::read_LUT_DATA() const {
+  const unsigned index = LUT_INDEX.get();
+  return m_params.lut_enabled() && index < m_params.lut_entries ? m_core.array().lut_entry(index) : 0u;
+}
+
+void ArrayProcessor::write_LUT_DATA(uint32_t value) {
+  // write_refusal() has checked the switch and the index.
+  const unsigned index = LUT_INDEX.get();
+  m_core.array().set_lut_entry(index, static_cast<uint16_t>(value));
+  LUT_INDEX.set(index + 1);
+  ++*m_lut_writes;
+}
+
 const char* ArrayProcessor::write_refusal(const tlm::tlm_generic_payload& gp) const {
   if (!gp.is_write()) return nullptr;
   const uint64_t offset = gp.get_address();
-  if (offset == regs::IRQ_STATUS || offset == regs::IRQ_ENABLE || !busy_at(access_time())) return nullptr;
+  if (offset == regs::IRQ_STATUS || offset == regs::IRQ_ENABLE || !busy_at(access_time())) {
+    if (offset != regs::LUT_INDEX && offset != regs::LUT_DATA) return nullptr;
+    if (!m_params.lut_enabled()) return "the lookup table needs array.features.lut = true";
+    if (offset == regs::LUT_DATA && LUT_INDEX.get() >= m_params.lut_entries) {
+      m_refusal = "LUT_INDEX " + std::to_string(LUT_INDEX.get()) + " is beyond the table's " +
+                  std::to_string(m_params.lut_entries) + " entries (array.lut.entries)";
+      return m_refusal.c_str();
+    }
+    return nullptr;
+  }
   m_refused = true;
   return "written while a program runs";
 }
@@ -202,6 +240,11 @@ void ArrayProcessor::copy_counters() {
   m_cmem_reads.value = lanes.cmem_reads;
   m_cmem_writes.value = lanes.cmem_writes;
   m_neighbour_transfers.value = lanes.neighbour_transfers;
+  if (m_skew_cycles != nullptr) m_skew_cycles->value = core.skew_cycles;
+  if (m_lut_stall_cycles != nullptr) {
+    m_lut_stall_cycles->value = core.lut_stall_cycles;
+    m_lut_lookups->value = core.instruction_mix[static_cast<unsigned>(ap::Opcode::op_lut)] * m_params.geometry.lanes();
+  }
 }
 
 void ArrayProcessor::program_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {

@@ -45,6 +45,12 @@ struct ArrayParams {
   bool skip_idle_cus = true;
   // The J2210's instructions, and those whose array.features.<feature> is on.
   ap::EnabledOps enabled_ops = ap::j2210_ops();
+  // Delayed execution's K (array.issue_skew_cycles when array.issue_skew =
+  // lane), 0 for lockstep.
+  unsigned issue_skew_cycles = 0;
+  unsigned lut_entries = 256;
+  unsigned lut_ports = 1;
+  bool lut_enabled() const { return enabled_ops[static_cast<unsigned>(ap::Opcode::op_lut)]; }
   sc_core::sc_time clock_period;
 
   // The parameters this block owns, the one place their defaults live.
@@ -129,6 +135,8 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   uint32_t read_PROGRAMS() const;
   // STAGE_CYCLES0 ... STAGE_CYCLES7.
   uint32_t read_STAGE_CYCLES(unsigned stage) const;
+  uint32_t read_LUT_DATA() const;
+  void write_LUT_DATA(uint32_t value);
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
   void start(const sc_core::sc_time& access_time);
   // The result the registers show at `when`: the running program's only
@@ -144,6 +152,7 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   sc_core::sc_time m_busy_time;
   // Set by write_refusal(), which the bus calls through a const path.
   mutable bool m_refused = false;
+  mutable std::string m_refusal;  // write_refusal()'s reason when it is built
   ap::RunResult m_current, m_previous;
   std::array<uint64_t, ap::STAGE_COUNT> m_current_stages{}, m_previous_stages{};
   // Runs and cycles per entry word: the programs a frame ran.
@@ -166,6 +175,12 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   ActivityCounter& m_refused_program_writes;
   std::array<ActivityCounter*, ap::STAGE_COUNT> m_stage_cycles{};
   std::array<ActivityCounter*, ap::OPCODE_COUNT> m_mix{};
+  // Only with delayed execution, and with the lookup table: a J2210's
+  // statistics have neither.
+  ActivityCounter* m_skew_cycles = nullptr;
+  ActivityCounter* m_lut_stall_cycles = nullptr;
+  ActivityCounter* m_lut_lookups = nullptr;
+  ActivityCounter* m_lut_writes = nullptr;
 
   TimedTrace m_busy_trace;
   TimedWord m_program_trace;

@@ -686,6 +686,8 @@ second:
   div [5], [6], r2
   nadd r1, left, r2
   nadd r0, down, r7
+  lut r0, r2
+  lut [8], [10]
   mset
   mclr
   mmov c

@@ -37,7 +37,10 @@ ArrayGeometry small_cmem_geometry() {
 
 // One lane as plain state, and the array as a vector of them, executed one
 // lane after the other from a copy of the state before the instruction
-// (neighbour reads see the old values, as in hardware).
+// (neighbour reads see the old values, as in hardware). With `skew`
+// (delayed execution, README.md): a neighbour read from an earlier lane of
+// the chain (a lower lane number) sees that lane as this instruction left
+// it, from a later lane as it was before.
 struct Lane {
   std::array<uint8_t, REGISTERS> regs{};
   std::array<uint8_t, CMEM_BYTES> cmem{};
@@ -47,7 +50,7 @@ struct Lane {
 
 class ScalarArray {
  public:
-  ScalarArray() : m_lanes(COLUMNS * ROWS) {}
+  explicit ScalarArray(bool skew = false) : m_lanes(COLUMNS * ROWS), m_skew(skew) {}
   std::vector<Lane>& lanes() { return m_lanes; }
 
   void execute(const Instruction& in, const LoopVariables& variables) {
@@ -81,6 +84,12 @@ class ScalarArray {
     return -1;
   }
 
+  // The neighbour `other` as lane `l` sees it.
+  const Lane& source(const std::vector<Lane>& before, int other, unsigned l) const {
+    const auto index = static_cast<unsigned>(other);
+    return m_skew && index < l ? m_lanes[index] : before[index];
+  }
+
   void execute_lane(const Instruction& in, const LoopVariables& v, const std::vector<Lane>& before, unsigned l) {
     Lane& lane = m_lanes[l];
     const Lane& old = before[l];
@@ -94,13 +103,13 @@ class ScalarArray {
       case Opcode::op_getm: write(lane, in.d, 0, mask ? 0xff : 0x00, v, mask); return;
       case Opcode::op_nget: {
         const int other = neighbour(l, in.direction());
-        const uint8_t value = other < 0 ? 0 : read(before[static_cast<unsigned>(other)], in.a, 0, v);
+        const uint8_t value = other < 0 ? 0 : read(source(before, other, l), in.a, 0, v);
         write(lane, in.d, 0, value, v, mask);
         return;
       }
       case Opcode::op_nadd: {
         const int other = neighbour(l, in.direction());
-        const uint8_t value = other < 0 ? 0 : read(before[static_cast<unsigned>(other)], in.a, 0, v);
+        const uint8_t value = other < 0 ? 0 : read(source(before, other, l), in.a, 0, v);
         const AluResult sum = cu_alu(in.opcode, read(old, in.d, 0, v), value, old.flags);
         lane.flags = sum.flags;
         write(lane, in.d, 0, sum.value, v, mask);
@@ -134,12 +143,23 @@ class ScalarArray {
   }
 
   std::vector<Lane> m_lanes;
+  bool m_skew;
 };
 
-TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
+// An instruction whose result delayed execution changes: a neighbour read
+// from an earlier lane of the chain (left, up) of the operand it writes.
+bool skew_visible(const Instruction& in) {
+  return (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd) &&
+         (in.direction() == Direction::left || in.direction() == Direction::up) && in.a.in_cmem == in.d.in_cmem &&
+         in.a.value == in.d.value && in.a.loop == in.d.loop;
+}
+
+void random_instructions_match_the_scalar_model(bool skew) {
   std::mt19937_64 rng(0xa77a);
   CuArray array(small_cmem_geometry());
-  ScalarArray model;
+  array.set_issue_skew(skew);
+  ScalarArray model(skew);
+  uint64_t visible = 0;
   ASSERT_EQ(array.lanes(), COLUMNS * ROWS);
   for (unsigned l = 0; l < array.lanes(); ++l)
     for (unsigned a = 0; a < CMEM_BYTES; ++a) {
@@ -165,6 +185,7 @@ TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
     } else {
       ASSERT_EQ(array.execute(in, r.variables, r.active_loops), "") << format_instruction(in);
       model.execute(in, r.variables);
+      visible += skew_visible(in) ? 1 : 0;
     }
     unsigned active = 0;
     for (unsigned l = 0; l < array.lanes(); ++l) {
@@ -185,6 +206,16 @@ TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
     ASSERT_EQ(array.active_lanes(), active);
   }
   EXPECT_GT(refused, 0u);
+  // The chain's own case comes up often enough to be tested.
+  EXPECT_GT(visible, 50u);
+}
+
+TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
+  random_instructions_match_the_scalar_model(false);
+}
+
+TEST(CuArray, UnderDelayedExecutionRandomInstructionsMatchTheChainsScalarModel) {
+  random_instructions_match_the_scalar_model(true);
 }
 
 TEST(CuArray, LoopVariableOfALoopThatIsNotRunningIsRefused) {
@@ -287,6 +318,123 @@ TEST(CuArray, DivideFromCmemStoresTheQuotientWhereTheMaskIsSet) {
   }
   // Two dividend bytes and the divisor read in every lane.
   EXPECT_EQ(array.activity().cmem_reads, 3u * array.lanes());
+}
+
+// --- Delayed execution and the lookup table --------------------------------
+
+Operand direction(Direction which) {
+  return {false, static_cast<uint16_t>(which), 0};
+}
+
+TEST(CuArray, UnderDelayedExecutionOneNaddAlongTheChainIsAPrefixSum) {
+  // r0 = the lane's value; nadd r0, left, r0. The J2210 adds the left
+  // neighbour's old r0; under skew the left neighbour ran the nadd first,
+  // so each CU adds its left neighbour's new sum: the prefix sum of its row
+  // (the row's first CU has no left neighbour and adds 0).
+  const Instruction nadd = make(Opcode::op_nadd, reg(0), reg(0), direction(Direction::left));
+  const auto value = [](unsigned l) { return static_cast<uint8_t>(1 + l % 7); };
+  CuArray lockstep(small_cmem_geometry()), skewed(small_cmem_geometry());
+  skewed.set_issue_skew(true);
+  for (unsigned l = 0; l < lockstep.lanes(); ++l) {
+    lockstep.set_reg(l, 0, value(l));
+    skewed.set_reg(l, 0, value(l));
+  }
+  ASSERT_EQ(lockstep.execute(nadd, {}, 0), "");
+  ASSERT_EQ(skewed.execute(nadd, {}, 0), "");
+  for (unsigned l = 0; l < lockstep.lanes(); ++l) {
+    const unsigned column = l % COLUMNS;
+    unsigned prefix = 0;
+    for (unsigned k = l - column; k <= l; ++k) prefix += value(k);
+    EXPECT_EQ(lockstep.reg(l, 0), column == 0 ? value(l) : value(l) + value(l - 1)) << l;
+    EXPECT_EQ(skewed.reg(l, 0), static_cast<uint8_t>(prefix)) << l;
+    EXPECT_EQ(skewed.flags(l).c, prefix > 0xff) << l;
+  }
+  // The same neighbour reads either way.
+  EXPECT_EQ(skewed.activity().neighbour_transfers, lockstep.activity().neighbour_transfers);
+}
+
+TEST(CuArray, UnderDelayedExecutionEarlierLanesAreReadAfterAndLaterLanesBefore) {
+  CuArray array(small_cmem_geometry());
+  array.set_issue_skew(true);
+  const auto fill = [&] {
+    for (unsigned l = 0; l < array.lanes(); ++l) {
+      array.set_reg(l, 1, static_cast<uint8_t>(l));
+      array.set_cmem(l, 5, static_cast<uint8_t>(100 + l));
+      array.set_mask(l, true);
+    }
+  };
+  // nget r1, left, r1: the row's first CU reads 0 beyond the edge, and
+  // each CU after it passes that on: the whole row ends with 0 (on the
+  // J2210, each CU the value of its left neighbour).
+  fill();
+  ASSERT_EQ(array.execute(make(Opcode::op_nget, reg(1), reg(1), direction(Direction::left)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) EXPECT_EQ(array.reg(l, 1), 0) << l;
+  // nget r1, right, r1: the right neighbour has not run it yet: its old value.
+  fill();
+  ASSERT_EQ(array.execute(make(Opcode::op_nget, reg(1), reg(1), direction(Direction::right)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) EXPECT_EQ(array.reg(l, 1), l % COLUMNS == COLUMNS - 1 ? 0 : l + 1) << l;
+  // nadd r1, up, r1: up is earlier in the chain (a row before): column sums.
+  fill();
+  ASSERT_EQ(array.execute(make(Opcode::op_nadd, reg(1), reg(1), direction(Direction::up)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    unsigned sum = 0;
+    for (unsigned k = l % COLUMNS; k <= l; k += COLUMNS) sum += k;
+    EXPECT_EQ(array.reg(l, 1), static_cast<uint8_t>(sum)) << l;
+  }
+  // nadd r2, left, r1 reads an operand it does not write: as on the J2210.
+  fill();
+  for (unsigned l = 0; l < array.lanes(); ++l) array.set_reg(l, 2, 1);
+  ASSERT_EQ(array.execute(make(Opcode::op_nadd, reg(2), reg(1), direction(Direction::left)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) EXPECT_EQ(array.reg(l, 2), 1 + (l % COLUMNS == 0 ? 0 : l - 1)) << l;
+  // nget [5], left, [5] with the mask clear in every fourth CU: a CU reads
+  // its left neighbour's byte as the neighbour's masked store left it (the
+  // new value where it stored, its old one where it did not).
+  fill();
+  const auto stores = [](unsigned l) { return l % 4 != 3; };
+  for (unsigned l = 0; l < array.lanes(); ++l) array.set_mask(l, stores(l));
+  ASSERT_EQ(array.execute(make(Opcode::op_nget, mem(5), mem(5), direction(Direction::left)), {}, 0), "");
+  std::vector<unsigned> after(array.lanes());
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    after[l] = !stores(l) ? 100 + l : l % COLUMNS == 0 ? 0 : after[l - 1];
+    EXPECT_EQ(array.cmem(l, 5), static_cast<uint8_t>(after[l])) << l;
+  }
+}
+
+TEST(CuArray, LutReadsTheSharedTablesEntryAtEachCusIndex) {
+  CuArray array(small_cmem_geometry());
+  array.set_lut_entries(300);
+  for (unsigned i = 0; i < 300; ++i) array.set_lut_entry(i, static_cast<uint16_t>(0x8000 + 7 * i));
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    const unsigned index = 3 * l;  // up to 285: both bytes of the index used
+    array.set_reg(l, 2, static_cast<uint8_t>(index >> 8));
+    array.set_reg(l, 3, static_cast<uint8_t>(index));
+    array.set_cmem(l, 8, static_cast<uint8_t>(index >> 8));
+    array.set_cmem(l, 9, static_cast<uint8_t>(index));
+    array.set_cmem(l, 20, 0x11);
+    array.set_cmem(l, 21, 0x22);
+    array.set_mask(l, l % 3 != 0);
+  }
+  const CuFlags flags = array.flags(5);
+  ASSERT_EQ(array.execute(make(Opcode::op_lut, reg(0), reg(2)), {}, 0), "");
+  // From CMEM into CMEM: stored where the mask is set.
+  ASSERT_EQ(array.execute(make(Opcode::op_lut, mem(20), mem(8)), {}, 0), "");
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    const unsigned entry = 0x8000 + 21 * l;
+    EXPECT_EQ(array.reg(l, 0), entry >> 8) << l;
+    EXPECT_EQ(array.reg(l, 1), entry & 0xff) << l;
+    EXPECT_EQ(array.cmem(l, 20), l % 3 != 0 ? entry >> 8 : 0x11) << l;
+    EXPECT_EQ(array.cmem(l, 21), l % 3 != 0 ? (entry & 0xff) : 0x22) << l;
+  }
+  EXPECT_EQ(array.flags(5), flags) << "lut writes no flag";
+  // An index beyond the table in one CU: refused, naming the CU, the index
+  // and the key; nothing changes.
+  array.set_reg(17, 3, 44);
+  array.set_reg(17, 2, 1);  // 300
+  const std::string error = array.execute(make(Opcode::op_lut, reg(4), reg(2)), {}, 0);
+  EXPECT_NE(error.find("lut index 300 in CU 17"), std::string::npos) << error;
+  EXPECT_NE(error.find("array.lut.entries"), std::string::npos) << error;
+  EXPECT_EQ(array.last_fault(), CuArray::Fault::lut_index);
+  EXPECT_EQ(array.reg(0, 4), 0);
 }
 
 // --- ArrayController -------------------------------------------------------
@@ -478,11 +626,88 @@ TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnl
   // Each enables only its own instruction.
   EXPECT_EQ(feature_key(op_info(Opcode::op_div)), "array.features.divide");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadd)), "array.features.neighbour_add");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_lut)), "array.features.lut");
   for (const OpInfo& info : all_ops())
-    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd) {
+    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut) {
       EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
       EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
     }
+}
+
+TEST(ArrayController, DelayedExecutionAddsTheChainsSkewToAProgramThatHalts) {
+  // mset 1, add 2, halt 1: 4 cycles lockstep; with K = 3, 95 x 3 more,
+  // counted in the halt's word and stage.
+  Program p({make(Opcode::op_mset), make(Opcode::op_add, reg(0), reg(1), reg(2)), make(Opcode::op_halt)});
+  RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 4u);
+  p.controller.set_issue_skew(3);
+  result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 4u + 95 * 3);
+  const ControllerActivity& activity = p.controller.activity();
+  EXPECT_EQ(activity.skew_cycles, 95u * 3);
+  EXPECT_EQ(activity.cycles, 4u + 4 + 95 * 3);
+  EXPECT_EQ(activity.word_cycles[2], 2u + 95 * 3);
+  uint64_t stages = 0;
+  for (const uint64_t cycles : activity.stage_cycles) stages += cycles;
+  EXPECT_EQ(stages, activity.cycles);
+  // A program that fails has no skew added.
+  ASSERT_TRUE(p.controller.write_word(2, uint64_t{1} << 63));
+  result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.cycles, 3u);
+}
+
+// The lookup table's timing (README.md, "The lookup table"): lockstep, a lut
+// takes ceil(96 / P) - 1 cycles more than its 2; under skew each lut holds a
+// port for (96 - 1) x K + 1 cycles.
+TEST(ArrayController, LutStallsForTheTablesPorts) {
+  const Instruction lut = make(Opcode::op_lut, reg(0), reg(2));
+  Program p({make(Opcode::op_mset), lut, lut, make(Opcode::op_halt)});
+  RunResult result = p.controller.run(0);
+  EXPECT_EQ(result.kind, RunError::bad_word);
+  EXPECT_NE(result.error.find("lut is not enabled: it needs array.features.lut = true"), std::string::npos)
+      << result.error;
+  EnabledOps enabled = j2210_ops();
+  enabled[static_cast<unsigned>(Opcode::op_lut)] = true;
+  p.controller.enable_ops(enabled);
+  p.array().set_lut_entries(4);
+  p.array().set_lut_entry(0, 0xbeef);
+  const auto run = [&](unsigned ports, unsigned skew) {
+    p.controller.set_lut_ports(ports);
+    p.controller.set_issue_skew(skew);
+    const uint64_t stalls = p.controller.activity().lut_stall_cycles;
+    const RunResult r = p.controller.run(0);
+    EXPECT_TRUE(r.ok) << r.error;
+    return std::pair{r.cycles, p.controller.activity().lut_stall_cycles - stalls};
+  };
+  // Lockstep: 1 + 2 x (2 + stall) + 1.
+  EXPECT_EQ(run(1, 0), std::pair(uint64_t{1 + 2 * (2 + 95) + 1}, uint64_t{2 * 95}));
+  EXPECT_EQ(run(4, 0), std::pair(uint64_t{1 + 2 * (2 + 23) + 1}, uint64_t{2 * 23}));
+  EXPECT_EQ(run(96, 0), std::pair(uint64_t{1 + 2 * 2 + 1}, uint64_t{0}));
+  EXPECT_EQ(p.array().reg(7, 0), 0xbe);
+  EXPECT_EQ(p.array().reg(7, 1), 0xef);
+  // Skew K = 1, one port: the first lut (at cycle 1) holds the port until
+  // 1 + 96; the second, due at 3, waits 94 cycles. Then the skew, 95.
+  EXPECT_EQ(run(1, 1), std::pair(uint64_t{1 + 2 + 94 + 2 + 1 + 95}, uint64_t{94}));
+  // Two ports: no wait.
+  EXPECT_EQ(run(2, 1), std::pair(uint64_t{1 + 2 + 2 + 1 + 95}, uint64_t{0}));
+  // K = 2, one port: the port is held 95 x 2 + 1 = 191 cycles.
+  EXPECT_EQ(run(1, 2), std::pair(uint64_t{1 + 2 + (192 - 3) + 2 + 1 + 190}, uint64_t{192 - 3}));
+  // The stalls are in the profile: the words' cycles add up to the total.
+  uint64_t words = 0;
+  for (const uint64_t cycles : p.controller.activity().word_cycles) words += cycles;
+  EXPECT_EQ(words, p.controller.activity().cycles);
+  // An index beyond the table stops the program there: ERROR_CODE 6.
+  p.array().set_reg(30, 3, 4);
+  result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::lut_index);
+  EXPECT_EQ(result.error_pc, 1u);
+  EXPECT_NE(result.error.find("lut index 4 in CU 30 is beyond the table's 4 entries (array.lut.entries)"),
+            std::string::npos)
+      << result.error;
 }
 
 TEST(ArrayController, AddressPlusLoopVariableBeyondCmemStopsTheRun) {

@@ -43,6 +43,29 @@ void ArrayController::decode_slot(unsigned index) {
     slot.error = std::string(info.mnemonic) + " is not enabled: it needs " + feature_key(info) + " = true";
   }
   slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew == 0) slot.cost += lut_lockstep_stall();
+}
+
+unsigned ArrayController::lut_lockstep_stall() const {
+  const unsigned lanes = m_geometry.lanes(), ports = std::max(m_lut_ports, 1u);
+  return (lanes + ports - 1) / ports - 1;
+}
+
+void ArrayController::set_issue_skew(unsigned cycles) {
+  if (cycles == m_skew) return;
+  m_skew = cycles;
+  m_array.set_issue_skew(cycles != 0);
+  for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
+  m_runaways.clear();
+  m_plans.clear();
+  m_memos.clear();
+}
+
+void ArrayController::set_lut_ports(unsigned ports) {
+  if (ports == m_lut_ports) return;
+  m_lut_ports = std::max(ports, 1u);
+  for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
+  m_runaways.clear();
 }
 
 void ArrayController::enable_ops(const EnabledOps& enabled) {
@@ -79,6 +102,7 @@ const char* run_error_name(RunError error) {
     case RunError::cmem_address: return "CMEM address out of range";
     case RunError::past_end: return "past the end of program memory";
     case RunError::too_long: return "longer than array.max_program_cycles";
+    case RunError::lut_index: return "lut index beyond the table";
   }
   return "unknown";
 }
@@ -262,6 +286,7 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     result.error = "program word " + std::to_string(pc) + ": " + why;
   };
   m_stage_changes.clear();
+  m_lut_port_free.assign(m_skew != 0 ? m_lut_ports : 0, 0);
   // The lanes' activity is folded into the stage's totals where the stage
   // changes, not per instruction.
   Stage stage = entry < m_slots.size() ? m_slots[entry].instruction.stage : Stage{};
@@ -321,17 +346,33 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
         break;
       }
       default:
-        if (!array.execute(in, variables, depth, error)) fail(RunError::cmem_address, error);
+        if (!array.execute(in, variables, depth, error))
+          fail(array.last_fault() == CuArray::Fault::lut_index ? RunError::lut_index : RunError::cmem_address, error);
         break;
     }
     if (!result.ok) break;
     if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
       m_stage_changes.push_back({result.cycles, in.stage});
+    if (in.opcode == Opcode::op_lut && !m_lut_port_free.empty()) {
+      // The port that frees first; the AC waits for it when every one is
+      // held by an earlier lut's lookups still running down the chain.
+      auto port = std::min_element(m_lut_port_free.begin(), m_lut_port_free.end());
+      const uint64_t stall = *port > result.cycles ? *port - result.cycles : 0;
+      result.cycles += stall;
+      *port = result.cycles + uint64_t{m_geometry.lanes() - 1} * m_skew + 1;
+      m_activity.lut_stall_cycles += stall;
+      m_activity.word_cycles[pc] += stall;
+      m_activity.stage_cycles[static_cast<unsigned>(in.stage)] += stall;
+    }
     result.cycles += slot.cost;
     ++result.instructions;
     ++m_run_executions[pc];
     last_pc = std::max(last_pc, pc);
-    if (halted) break;
+    if (halted) {
+      // The last lane of the chain halts (lanes - 1) x K cycles after the first.
+      result.cycles += uint64_t{m_geometry.lanes() - 1} * m_skew;
+      break;
+    }
     if (result.cycles > m_max_cycles) {
       fail(RunError::too_long,
            "the program ran for more than array.max_program_cycles (" + std::to_string(m_max_cycles) + ") cycles");
@@ -345,6 +386,7 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
 
 void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult& result) {
   ++m_activity.programs;
+  const uint64_t lut_before = m_activity.instruction_mix[static_cast<unsigned>(Opcode::op_lut)];
   // The per-word, per-opcode and per-stage totals from the run's counts per
   // word (each word's cost and instruction are fixed during a run).
   for (unsigned word = entry; word <= last_pc && word < m_slots.size(); ++word) {
@@ -360,6 +402,16 @@ void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult
     m_activity
         .stage_mix[static_cast<unsigned>(slot.instruction.stage)][static_cast<unsigned>(slot.instruction.opcode)] +=
         executions;
+  }
+  if (result.ok && m_skew != 0 && last_pc < m_slots.size()) {
+    const uint64_t skew = uint64_t{m_geometry.lanes() - 1} * m_skew;
+    m_activity.skew_cycles += skew;
+    m_activity.word_cycles[last_pc] += skew;
+    m_activity.stage_cycles[static_cast<unsigned>(m_slots[last_pc].instruction.stage)] += skew;
+  }
+  if (m_skew == 0) {
+    const unsigned lut = static_cast<unsigned>(Opcode::op_lut);
+    m_activity.lut_stall_cycles += (m_activity.instruction_mix[lut] - lut_before) * lut_lockstep_stall();
   }
   m_activity.cycles += result.cycles;
   m_activity.instructions += result.instructions;
@@ -471,6 +523,7 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
         continue;
       case Opcode::op_nget:
       case Opcode::op_nadd: return {};  // reads another CU
+      case Opcode::op_lut: return {};   // reads the table, which the host may rewrite between runs
       case Opcode::op_mset:
       case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
       case Opcode::op_mmov:

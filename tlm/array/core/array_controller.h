@@ -32,7 +32,15 @@ struct CycleTable {
 };
 
 // Why a program stopped early; the AC's ERROR_CODE register holds the value.
-enum class RunError : uint8_t { none = 0, bad_word = 1, loop = 2, cmem_address = 3, past_end = 4, too_long = 5 };
+enum class RunError : uint8_t {
+  none = 0,
+  bad_word = 1,
+  loop = 2,
+  cmem_address = 3,
+  past_end = 4,
+  too_long = 5,
+  lut_index = 6,  // a lut index beyond the table (array.lut.entries)
+};
 const char* run_error_name(RunError error);
 
 struct RunResult {
@@ -59,6 +67,13 @@ struct ControllerActivity {
   std::array<ArrayActivity, STAGE_COUNT> stage_lanes{};
   std::vector<uint64_t> word_cycles;  // per program word: the profile
   std::vector<uint64_t> word_executions;
+  // Delayed execution: the (lanes - 1) x K cycles after the first lane's
+  // halt until the last lane's, in every program that halted (also in
+  // cycles, in the halt's word and stage).
+  uint64_t skew_cycles = 0;
+  // The cycles the AC waited for the lookup table's ports (also in cycles,
+  // in the lut's word and stage).
+  uint64_t lut_stall_cycles = 0;
 };
 
 class ArrayController {
@@ -75,6 +90,20 @@ class ArrayController {
   // word that does not decode (RunError::bad_word), the error naming the
   // switch that enables it.
   void enable_ops(const EnabledOps& enabled);
+
+  // Delayed execution (array.issue_skew = lane): lane i runs each
+  // instruction `cycles` (K, array.issue_skew_cycles) after lane i - 1 of
+  // the chain (lanes in row-major order). 0: lockstep, the J2210. The
+  // neighbour reads follow CuArray::set_issue_skew; a program that halts
+  // takes (lanes - 1) x K cycles more, and lut's stalls follow the chain
+  // (README.md, "Delayed execution", "The lookup table").
+  void set_issue_skew(unsigned cycles);
+  // The lookup table's ports (array.lut.ports): without skew, P lanes look
+  // up per cycle, so a lut takes ceil(lanes / P) - 1 cycles more than its
+  // array.cycles.lut; with skew, each lut holds one port while its lookups
+  // run down the chain, (lanes - 1) x K + 1 cycles, and a lut finding every
+  // port held waits for the first to free.
+  void set_lut_ports(unsigned ports);
 
   // Program memory. write_word() returns false when `index` is beyond it.
   bool write_word(unsigned index, uint64_t word);
@@ -213,6 +242,12 @@ class ArrayController {
   std::vector<StageChange> m_stage_changes;
   bool m_skip_idle = false;
   EnabledOps m_enabled = j2210_ops();
+  unsigned m_skew = 0;       // K, 0 for lockstep
+  unsigned m_lut_ports = 1;  // P
+  // With skew: per port, the run's cycle from which it is free (during run()).
+  std::vector<uint64_t> m_lut_port_free;
+  // The extra cycles of one lut without skew (folded into its slot's cost).
+  unsigned lut_lockstep_stall() const;
   std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written
   std::unordered_map<unsigned, EntryMemo> m_memos;  // likewise
   std::unique_ptr<CuArray> m_work;                  // made at the first skip

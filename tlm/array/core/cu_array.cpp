@@ -1,6 +1,7 @@
 #include "array/core/cu_array.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <utility>
 
@@ -312,6 +313,59 @@ inline void CuArray::copy_row(uint8_t* __restrict destination, const uint8_t* __
   for (size_t i = 0; i < m_copy_bytes; i += COPY_BLOCK) std::memcpy(destination + i, source + i, COPY_BLOCK);
 }
 
+bool CuArray::lut_indices_fit(const uint8_t* high, const uint8_t* low, std::string& error) {
+  // Every lane looks up (its registers are written, masked or not), so
+  // every lane's index must lie within the table; checked before any state
+  // changes.
+  const auto entries = static_cast<unsigned>(m_lut.size());
+  for (size_t l = 0; l < m_lanes; ++l) {
+    const unsigned index = unsigned{high[l]} << 8 | low[l];
+    if (index >= entries) {
+      m_fault = Fault::lut_index;
+      error = "lut index " + std::to_string(index) + " in CU " + std::to_string(l) + " is beyond the table's " +
+              std::to_string(entries) + " entries (array.lut.entries)";
+      return false;
+    }
+  }
+  return true;
+}
+
+void CuArray::neighbour_lanes(const Instruction& in, const uint8_t* a, const uint8_t* d, bool d_masked,
+                              uint8_t* neighbour, uint8_t* out) {
+  const size_t n = m_lanes;
+  uint8_t* c = row(m_flag_row + flag_c);
+  uint8_t* z = row(m_flag_row + flag_z);
+  uint8_t* s = row(m_flag_row + flag_s);
+  const uint8_t* m = row(m_flag_row + flag_m);
+  const auto direction = static_cast<unsigned>(in.direction());
+  const uint8_t* has = m_has_neighbour[direction].data();
+  const int step = m_neighbour_step[direction];
+  m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
+  const bool nadd = in.opcode == Opcode::op_nadd;
+  if (m_skew && step < 0 && a == d) {
+    // Delayed execution, reading an earlier lane of the chain whose
+    // operand this instruction overwrites: that lane ran it already, so
+    // the lanes go one by one in chain order, each reading its
+    // neighbour's new value (where a masked CMEM store left the old one,
+    // the old one). Reading a later lane, or an operand the instruction
+    // does not write, gives what the lockstep loops below give.
+    const uint8_t* result = nadd ? out : neighbour;
+    for (size_t l = 0; l < n; ++l) {
+      uint8_t value = 0;
+      if (has[l] != 0) {
+        const auto from = static_cast<size_t>(static_cast<ptrdiff_t>(l) + step);
+        value = d_masked && m[from] == 0 ? d[from] : result[from];
+      }
+      neighbour[l] = value;
+      if (nadd) add_lanes<false, false>(1, d + l, neighbour + l, false, out + l, c + l, z + l, s + l);
+    }
+    return;
+  }
+  const uint8_t* source = a + step;
+  for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
+  if (nadd) add_lanes<false, false>(n, d, neighbour, false, out, c, z, s);
+}
+
 std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops) {
   std::string error;
   execute(in, loop_variables, active_loops, error);
@@ -361,6 +415,7 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   const bool uses_d = op.uses_d, uses_a = op.uses_a, uses_b = op.uses_b;
   std::array<uint8_t*, 3> d_rows{}, a_rows{};
   uint8_t* b_row = nullptr;
+  m_fault = Fault::operand;
   for (unsigned i = 0; uses_d && i < d_width; ++i)
     if ((d_rows[i] = operand_row(in.d, i, loop_variables, active_loops)) == nullptr) {
       error = operand_error(in.d, i, loop_variables, active_loops);
@@ -375,6 +430,8 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
     error = operand_error(in.b, 0, loop_variables, active_loops);
     return false;
   }
+
+  if (in.opcode == Opcode::op_lut && !lut_indices_fit(a_rows[0], a_rows[1], error)) return false;
 
   m_activity.lane_operations += n;
   const unsigned active_lanes = active();
@@ -403,19 +460,24 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
 
   const uint8_t* a = a_rows[0];
   if (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd) {
-    const auto direction = static_cast<unsigned>(in.direction());
     uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
-    const uint8_t* has = m_has_neighbour[direction].data();
-    const uint8_t* source = a + m_neighbour_step[direction];
-    for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
-    m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
-    if (in.opcode == Opcode::op_nget) {
-      store(SCRATCH_NEIGHBOUR, 0, d_rows[0]);
-      return true;
+    neighbour_lanes(in, a, d_rows[0], d_masked, neighbour, out);
+    const bool nadd = in.opcode == Opcode::op_nadd;
+    // nget stores the neighbour's byte; nadd d (a register: its forms are
+    // R) plus it.
+    store(nadd ? SCRATCH_RESULT : SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+    return true;
+  }
+  if (in.opcode == Opcode::op_lut) {
+    uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
+    uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
+    for (size_t l = 0; l < n; ++l) {
+      const uint16_t entry = m_lut[unsigned{a_rows[0][l]} << 8 | a_rows[1][l]];
+      high[l] = static_cast<uint8_t>(entry >> 8);
+      low[l] = static_cast<uint8_t>(entry);
     }
-    // nadd: d (a register: its forms are R) plus the neighbour's byte.
-    add_lanes<false, false>(n, d_rows[0], neighbour, false, out, c, z, s);
-    store(SCRATCH_RESULT, 0, d_rows[0]);
+    store(SCRATCH_PRODUCT, 0, d_rows[0]);
+    store(SCRATCH_PRODUCT + 1, 1, d_rows[1]);
     return true;
   }
   uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);

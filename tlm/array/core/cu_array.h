@@ -86,6 +86,26 @@ class CuArray {
   const ArrayActivity& activity() const { return m_activity; }
   void add_activity(const ArrayActivity& more);
 
+  // Delayed execution (array.issue_skew = lane; README.md, "Delayed
+  // execution"): the lanes run each instruction one after another in chain
+  // order (lane 0, 1, 2, ...: row-major), so a neighbour read from an
+  // earlier lane (left, up) sees its state after the instruction, one from
+  // a later lane (right, down) its state before it. Only nget and nadd can
+  // tell; every other instruction's result is the same either way.
+  void set_issue_skew(bool on) { m_skew = on; }
+  bool issue_skew() const { return m_skew; }
+
+  // The shared lookup table of lut (array.features.lut): `entries` 16-bit
+  // entries, all 0. The host writes it (the AC's LUT_INDEX and LUT_DATA).
+  void set_lut_entries(unsigned entries) { m_lut.assign(entries, 0); }
+  unsigned lut_entries() const { return static_cast<unsigned>(m_lut.size()); }
+  uint16_t lut_entry(unsigned index) const { return m_lut[index]; }
+  void set_lut_entry(unsigned index, uint16_t value) { m_lut[index] = value; }
+  // Why the last execute() that returned false failed: an operand (a CMEM
+  // address or a loop variable) or a lut index beyond the table.
+  enum class Fault : uint8_t { operand, lut_index };
+  Fault last_fault() const { return m_fault; }
+
   // For the controller's skipping of idle CUs (array_controller.h): every
   // row of architectural state by one index, CMEM address a at a, register
   // r at cmem_bytes + r, then the flags C, Z, S and M (state_flag_row()).
@@ -100,8 +120,8 @@ class CuArray {
   void mask_written() { m_active_stale = true; }
   // A work array runs on its first `lanes` lanes only (at most the
   // geometry's), which it then takes as lanes 0..lanes-1 of no grid: its
-  // neighbour reads are meaningless, so only programs without nget or nadd run on
-  // it.
+  // neighbour reads are meaningless, so only programs without nget, nadd
+  // or lut run on it.
   void set_lane_count(unsigned lanes);
   // With counting on, execute() also counts per lane and per stage (the
   // instruction's) the useful operations and the CMEM bytes stored
@@ -136,6 +156,14 @@ class CuArray {
     return m_active;
   }
   void count_active() const;
+  // lut: true when every lane's index (high:low) lies within the table,
+  // else false with `error` naming the first lane that does not.
+  bool lut_indices_fit(const uint8_t* high, const uint8_t* low, std::string& error);
+  // nget and nadd: the neighbour's byte of row `a` into `neighbour`, and for
+  // nadd d + it into `out` with the flags; in chain order under skew when
+  // the neighbour is an earlier lane and `a` is d's row.
+  void neighbour_lanes(const Instruction& in, const uint8_t* a, const uint8_t* d, bool d_masked, uint8_t* neighbour,
+                       uint8_t* out);
   // run_trace() for kLanes lanes (0: m_lanes).
   template <size_t kLanes>
   void run_trace_lanes(const std::vector<Instruction>& trace);
@@ -171,6 +199,9 @@ class CuArray {
   // By stage, then lane.
   std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
+  bool m_skew = false;
+  std::vector<uint16_t> m_lut;
+  Fault m_fault = Fault::operand;
 };
 
 }  // namespace tessera::ap

@@ -267,6 +267,7 @@ unsigned operand_width(Opcode opcode, char which) {
     if (which == 'a') return 2;
   }
   if (opcode == Opcode::op_div && which == 'a') return 2;
+  if (opcode == Opcode::op_lut && (which == 'd' || which == 'a')) return 2;
   return 1;
 }
 

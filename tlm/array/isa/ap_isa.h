@@ -156,7 +156,7 @@ std::string check_limits(const Instruction& instruction, unsigned registers, uns
 
 // How many consecutive bytes operand `which` ('d', 'a' or 'b') of the
 // instruction covers (3, 2 and 1 for the multiply's; the divide's dividend
-// a is 2; else 1).
+// a is 2; the lookup's index a and entry d are 2; else 1).
 unsigned operand_width(Opcode opcode, char which);
 
 // One line of assembly for the instruction (the disassembler's format, which
