@@ -144,7 +144,7 @@ def check_table(name, label_header, columns, runs, stdout, csv_path):
             row[1] == run["set"]["host.model"],
             f"{name}: run '{run['label']}': host '{row[1]}', expected {run['set']['host.model']}",
         )
-        key = experiment.PROGRAM_KEYS.get(run["backend"])
+        key = experiment.PROGRAM_KEYS.get(run["backend"]) if run.get("backend_program", True) else None
         check(
             row[2] == (run["set"].get(key, "tuned") if key else "-"),
             f"{name}: run '{run['label']}': program '{row[2]}'",
