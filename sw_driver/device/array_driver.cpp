@@ -150,14 +150,14 @@ std::array<uint16_t, 4> ArrayDriver::read16(unsigned i, unsigned j, unsigned a) 
   return values;
 }
 
-void ArrayDriver::write_all8(unsigned a, const std::vector<uint8_t>& per_cu) {
+void ArrayDriver::write_all8(unsigned a, const std::vector<uint8_t>& per_cu, HostCost row) {
   if (per_cu.size() != cus()) throw std::invalid_argument("write_all8: one value per CU expected");
   check_access(m_groups_per_row - 1, m_rows - 1, a);
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) {
       uint32_t word = 0;
       for (unsigned k = 0; k < 4; ++k) word |= uint32_t{per_cu[j * m_columns + 4 * i + k]} << (8 * k);
-      costs::charge(m_host, HostCost::array_pack_word);
+      costs::charge(m_host, row);
       write32(i, j, a, word);
     }
 }
@@ -172,14 +172,14 @@ void ArrayDriver::write_all16(unsigned a, const std::vector<uint16_t>& per_cu) {
     }
 }
 
-std::vector<uint8_t> ArrayDriver::read_all8(unsigned a) {
+std::vector<uint8_t> ArrayDriver::read_all8(unsigned a, HostCost row) {
   check_access(m_groups_per_row - 1, m_rows - 1, a);
   std::vector<uint8_t> values(cus());
   for (unsigned j = 0; j < m_rows; ++j)
     for (unsigned i = 0; i < groups_per_row(); ++i) {
       const uint32_t word = read32(i, j, a);
       for (unsigned k = 0; k < 4; ++k) values[j * m_columns + 4 * i + k] = static_cast<uint8_t>(word >> (8 * k));
-      costs::charge(m_host, HostCost::array_unpack_word);
+      costs::charge(m_host, row);
     }
   return values;
 }

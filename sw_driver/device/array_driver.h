@@ -14,6 +14,7 @@
 
 #include "array/array_regs.h"
 #include "array/asm/program.h"
+#include "costs/host_cost.h"
 #include "device/app_environment.h"
 #include "soc/memory_map.h"
 
@@ -91,9 +92,13 @@ class ArrayDriver {
   std::array<uint16_t, 4> read16(unsigned i, unsigned j, unsigned a);
 
   // Every CU at once, in CU order (row by row): one value per CU.
-  void write_all8(unsigned a, const std::vector<uint8_t>& per_cu);
+  // `row`: the measured cost table's row charged per word for the packing
+  // around the access (a caller whose loop around the call differs from
+  // the study's has its own).
+  void write_all8(unsigned a, const std::vector<uint8_t>& per_cu,
+                  costs::HostCost row = costs::HostCost::array_pack_word);
   void write_all16(unsigned a, const std::vector<uint16_t>& per_cu);
-  std::vector<uint8_t> read_all8(unsigned a);
+  std::vector<uint8_t> read_all8(unsigned a, costs::HostCost row = costs::HostCost::array_unpack_word);
   std::vector<uint16_t> read_all16(unsigned a);
   // The same byte in every CU (a constant the array cannot load itself).
   void fill8(unsigned a, uint8_t value);

@@ -87,7 +87,7 @@ void ArrayResampler::send_rows(const std::vector<CmemRow>& rows) {
   const unsigned cus = m_array.cus();
   if (!m_dma_use.enabled) {
     for (const CmemRow& row : rows) {
-      m_array.write_all8(row.address, row.per_cu);
+      m_array.write_all8(row.address, row.per_cu, HostCost::forward_texture_array_ciu_word_out);
       m_figures.traffic.values_written += cus;
     }
     return;
@@ -115,7 +115,8 @@ std::vector<CmemRow> ArrayResampler::fetch_rows(const std::vector<uint16_t>& add
   std::vector<CmemRow> rows;
   rows.reserve(addresses.size());
   if (!m_dma_use.enabled) {
-    for (const uint16_t address : addresses) rows.push_back({address, m_array.read_all8(address)});
+    for (const uint16_t address : addresses)
+      rows.push_back({address, m_array.read_all8(address, HostCost::forward_texture_array_ciu_word_in)});
     m_figures.traffic.values_read += uint64_t{cus} * addresses.size();
     return rows;
   }
