@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -42,10 +41,6 @@ class SocSimCluster : public tessera::test::SocSimTest {
             "--set",      "cluster.triangle_pixels=12",
             "--set",      "cluster.width=128",
             "--set",      "cluster.height=128"};
-  }
-  std::string frame(const std::string& out, unsigned index) const {
-    std::ifstream in(m_dir / out / ("frame_000" + std::to_string(index) + ".png"), std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
   json stats(const std::string& out) const {
     std::ifstream in(m_dir / out / "stats.json");

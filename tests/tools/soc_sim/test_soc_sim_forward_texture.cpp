@@ -7,7 +7,6 @@
 //
 // Usage: test_soc_sim_forward_texture <path to soc_sim> [GoogleTest options]
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -28,10 +27,6 @@ constexpr int EXIT_USAGE = 2;
 
 class SocSimForwardTexture : public tessera::test::SocSimTest {
  protected:
-  std::string frame(const std::string& out, unsigned index) const {
-    std::ifstream in(m_dir / out / ("frame_000" + std::to_string(index) + ".png"), std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
   json study(const std::string& out) const {
     std::ifstream in(m_dir / out / "stats.json");
     return json::parse(in, nullptr, false)["stats"]["driver"]["study"];
