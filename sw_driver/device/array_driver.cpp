@@ -28,6 +28,10 @@ ArrayDriver::ArrayDriver(AppEnvironment& env)
       m_clock_khz(m_host.read32(AC + regs::CLOCK_KHZ)),
       m_groups_per_row(m_columns / 4) {}
 
+unsigned ArrayDriver::registers() {
+  return m_host.read32(AC + regs::REGISTERS);
+}
+
 void ArrayDriver::load(const std::vector<uint64_t>& words, unsigned at) {
   if (at > m_program_words || words.size() > m_program_words - at)
     throw std::invalid_argument("array program of " + std::to_string(words.size()) + " words at word " +

@@ -44,6 +44,8 @@ class ArrayDriver {
   unsigned cmem_bytes() const { return m_cmem_bytes; }
   unsigned program_words() const { return m_program_words; }
   double clock_hz() const { return m_clock_khz * 1e3; }
+  // Registers per CU (array.registers), read from the AC when asked.
+  unsigned registers();
 
   // Writes an image into program memory from word `at`. Throws
   // std::invalid_argument if it does not fit.

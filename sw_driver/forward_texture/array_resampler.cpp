@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "ap_programs/resample_lines.h"
+#include "array/isa/ap_isa.h"
 #include "costs/host_cost.h"
 
 namespace tessera::forward_texture {
@@ -29,8 +30,7 @@ unsigned result_rows(int texel_count, int width) {
 }  // namespace
 
 ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end)
-    : m_env(env),
-      m_host(*env.host),
+    : m_host(*env.host),
       m_time(time),
       m_array(env),
       m_dma(env),
@@ -47,16 +47,30 @@ uint32_t ArrayResampler::staging_bytes(int texel_count, int width) const {
   return rows * (m_array.cus() + dma::DESCRIPTOR_BYTES);
 }
 
-std::string ArrayResampler::check(const FilterTable& table, int texel_count) const {
+std::string ArrayResampler::batch_error(const FilterTable& table, int texel_count) const {
   std::string error = array_line_error(m_layout, table, texel_count);
-  if (error.empty() && m_array.cmem_bytes() < 4096) {
-    error =
-        "the array program needs 4096 bytes of CMEM a CU; array.cmem_bytes is " + std::to_string(m_array.cmem_bytes());
-  }
-  if (error.empty() && m_dma_use.enabled && m_staging_end - m_staging < staging_bytes(texel_count, table.width)) {
+  const uint32_t left = m_staging_end > m_staging ? m_staging_end - m_staging : 0;
+  if (error.empty() && m_dma_use.enabled && left < staging_bytes(texel_count, table.width)) {
     error = "the DMA's staging for lines of " + std::to_string(texel_count) + " texels needs " +
             std::to_string(staging_bytes(texel_count, table.width)) + " bytes of system memory; " +
-            std::to_string(m_staging_end - m_staging) + " are left";
+            std::to_string(left) + " are left";
+  }
+  return error;
+}
+
+std::string ArrayResampler::check(const FilterTable& table, int texel_count) {
+  std::string error = batch_error(table, texel_count);
+  // The program's registers and CMEM addresses against the array's (the
+  // assembler checked them against the J2210's).
+  const unsigned registers = m_array.registers();
+  for (std::size_t w = 0; error.empty() && w < m_program.words.size(); ++w) {
+    const std::string beyond =
+        ap::check_limits(ap::decode(m_program.words[w]).instruction, registers, m_array.cmem_bytes());
+    if (!beyond.empty()) {
+      error = "the array program needs more than this array has (array.registers = " + std::to_string(registers) +
+              ", array.cmem_bytes = " + std::to_string(m_array.cmem_bytes()) + "): word " + std::to_string(w) + ": " +
+              beyond;
+    }
   }
   return error;
 }
@@ -145,7 +159,7 @@ std::string ArrayResampler::resample(std::vector<PassLine>& lines, const FilterT
     return {};
   }
   const int n = lines.front().texels.count;
-  if (std::string error = check(table, n); !error.empty()) {
+  if (std::string error = batch_error(table, n); !error.empty()) {
     return where(0) + ": " + error;
   }
   // A line the host cannot orient, or that the array flags, is named by

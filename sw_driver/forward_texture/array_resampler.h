@@ -32,8 +32,9 @@ class ArrayResampler : public LineResampler {
   std::size_t batch_lines() const override { return m_array.cus(); }
 
   // Empty, or why the array cannot resample lines of `texel_count` texels
-  // with `table` (array_line_error), or why the staging is too small.
-  std::string check(const FilterTable& table, int texel_count) const;
+  // with `table` (array_line_error), why this array cannot run the
+  // program (its registers or CMEM), or why the staging is too small.
+  std::string check(const FilterTable& table, int texel_count);
 
   struct Figures {
     uint64_t runs = 0;    // programs run (batches)
@@ -49,8 +50,8 @@ class ArrayResampler : public LineResampler {
   void send_rows(const std::vector<CmemRow>& rows);
   std::vector<CmemRow> fetch_rows(const std::vector<uint16_t>& addresses);
   uint32_t staging_bytes(int texel_count, int width) const;
+  std::string batch_error(const FilterTable& table, int texel_count) const;
 
-  AppEnvironment& m_env;
   HostApi& m_host;
   renderers::HostTime& m_time;
   ArrayDriver m_array;

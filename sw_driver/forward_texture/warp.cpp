@@ -76,7 +76,7 @@ std::string row_pass(const Image& texture, const PerspectiveMatrix& m, const Fil
     lines.clear();
     for (int row = first_row; row < texture.height && lines.size() < batch; ++row) {
       PassLine line;
-      const std::string error = row_pass_line(m, row, texture.width, line.mapping);
+      std::string error = row_pass_line(m, row, texture.width, line.mapping);
       if (!error.empty()) {
         return error;
       }
@@ -87,7 +87,7 @@ std::string row_pass(const Image& texture, const PerspectiveMatrix& m, const Fil
       line.pixels = intermediate.row(row);
       lines.push_back(line);
     }
-    const std::string error = resampler.resample(lines, table, [first_row](std::size_t k) {
+    std::string error = resampler.resample(lines, table, [first_row](std::size_t k) {
       return "row pass, row " + std::to_string(first_row + static_cast<int>(k));
     });
     if (!error.empty()) {
@@ -214,7 +214,7 @@ std::string HostResampler::resample(std::vector<PassLine>& lines, const FilterTa
     PassLine& line = lines[k];
     const int n = line.texels.count;
     borders.resize(static_cast<std::size_t>(n) + 1);
-    const std::string error = step_borders(line.mapping, n, where(k), borders.data());
+    std::string error = step_borders(line.mapping, n, where(k), borders.data());
     if (!error.empty()) {
       return error;
     }

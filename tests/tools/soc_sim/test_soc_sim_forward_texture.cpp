@@ -123,6 +123,7 @@ TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
       {{"--backend", "ap-tile", "--", "--texture-size", "600", "--matrix", "0.3,0,10,0,0.2,10,0,0,1"},
        "600 texels does not fit"},
       {{"--backend", "raster"}, "not on raster"},
+      {{"--backend", "ap-pixel", "--set", "array.registers=4"}, "array.registers = 4"},
   };
   for (const Case& c : array_cases) {
     std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", "bad", "--force"};
