@@ -133,39 +133,14 @@ resample:
     mov [quot + 2], [zero]
     mov [quot + 3], [zero]
     mov [overflow], [zero]
-    ; The remainder r0..r3; the magnitude's bits 30 .. 0, then 26 zeros.
-    loop i, 30, 1
+    ; The remainder r0..r3; the magnitude's bits 30 .. 0, then (the magnitude
+    ; shifted out) 26 zeros: 57 steps.
+    loop i, 56, 1
       shl [mag + 3], [mag + 3]
       rol [mag + 2], [mag + 2]
       rol [mag + 1], [mag + 1]
       rol [mag], [mag]
       rol r3, r3
-      rol r2, r2
-      rol r1, r1
-      rol r0, r0
-      cmp r3, [den + 3]
-      cmpc r2, [den + 2]
-      cmpc r1, [den + 1]
-      cmpc r0, [den]
-      mmov c
-      getm r4
-      mset
-      rol [quot + 3], [quot + 3]
-      rol [quot + 2], [quot + 2]
-      rol [quot + 1], [quot + 1]
-      rol [quot], [quot]
-      adc [overflow], [overflow], [zero]
-      and r5, r4, [den + 3]
-      sub r3, r3, r5
-      and r5, r4, [den + 2]
-      sbc r2, r2, r5
-      and r5, r4, [den + 1]
-      sbc r1, r1, r5
-      and r5, r4, [den]
-      sbc r0, r0, r5
-    endloop
-    loop i, 25, 1
-      shl r3, r3
       rol r2, r2
       rol r1, r1
       rol r0, r0
