@@ -393,21 +393,35 @@ TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
   EXPECT_EQ(both.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 40u);
 }
 
-TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
-  Config config({ArrayParams::parameters()});
+// What each bad setting was refused with ("" if accepted), worked out in
+// sc_main before the simulation: an exception thrown on sc_main's stack
+// after the kernel has switched to its processes and back confuses the
+// address sanitizer's view of the stack (the sanitize preset).
+std::map<std::string, std::string> g_refusals;
+
+std::string refusal(const std::string& setting) {
   try {
-    config.apply_override("array.issue_skew=column");
-    ArrayParams::from_config(config);
-    ADD_FAILURE() << "array.issue_skew=column accepted";
+    Config config({ArrayParams::parameters()});
+    config.apply_override(setting);
+    (void)ArrayParams::from_config(config);
   } catch (const std::exception& error) {
-    const std::string what = error.what();
-    EXPECT_NE(what.find("array.issue_skew"), std::string::npos) << what;
-    EXPECT_NE(what.find("column"), std::string::npos) << what;
+    return error.what();
   }
-  for (const char* bad : {"array.issue_skew_cycles=0", "array.lut.entries=65537", "array.lut.ports=0"}) {
-    Config fresh({ArrayParams::parameters()});
-    EXPECT_THROW(fresh.apply_override(bad), std::exception) << bad;
-  }
+  return "";
+}
+
+const char* const BAD_SETTINGS[] = {"array.issue_skew=column", "array.issue_skew_cycles=0", "array.lut.entries=65537",
+                                    "array.lut.ports=0"};
+
+void work_out_refusals() {
+  for (const char* bad : BAD_SETTINGS) g_refusals[bad] = refusal(bad);
+}
+
+TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
+  const std::string& skew = g_refusals.at("array.issue_skew=column");
+  EXPECT_NE(skew.find("array.issue_skew"), std::string::npos) << skew;
+  EXPECT_NE(skew.find("column"), std::string::npos) << skew;
+  for (const char* bad : BAD_SETTINGS) EXPECT_NE(g_refusals.at(bad), "") << bad << " accepted";
   const ArrayParams defaults = ArrayParams::defaults();
   EXPECT_EQ(defaults.issue_skew_cycles, 0u);
   EXPECT_FALSE(defaults.lut_enabled());
@@ -570,6 +584,7 @@ TEST(ArrayProcessor, StageActivityHoldsEachStagesOwnInstructionsCyclesAndCmemByt
 }
 
 int sc_main(int argc, char* argv[]) {
+  work_out_refusals();
   g_bench = new Bench("bench");
   return test::run_all_tests(argc, argv);
 }
