@@ -39,6 +39,7 @@ import sys
 import tempfile
 
 from json_difference import first_difference
+from run_outputs import different_files, gl_scenes
 
 # The parameters that only count with a switch on, and a value other than
 # their default for each.
@@ -52,16 +53,6 @@ INERT = {
 # check_same_outputs.py --added-keys.
 ADDED = ["array.issue_skew", "array.features.lut", *INERT]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
-
-
-def scenes(soc_sim: str) -> list:
-    listing = subprocess.run([soc_sim, "--list-apps"], check=True, capture_output=True, text=True).stdout
-    names = []
-    for line in listing.splitlines():
-        fields = line.split()
-        if fields and "(GL ES 1.1 scene)" in line and fields[0] != "obj_viewer":
-            names.append(fields[0])
-    return names
 
 
 def run(soc_sim: str, backend: str, app: str, frames: int, inert: bool, out: pathlib.Path, preset: str = "") -> str:
@@ -93,15 +84,9 @@ def stats_without_inert(path: pathlib.Path) -> dict:
 
 
 def compare(default: pathlib.Path, inert: pathlib.Path) -> str:
-    files = sorted(p.name for p in default.iterdir() if p.name != "stats.json")
-    files_inert = sorted(p.name for p in inert.iterdir() if p.name != "stats.json")
-    if files != files_inert:
-        return f"different files: {files} against {files_inert}"
-    if "trace.vcd" not in files or not any(name.startswith("frame_") for name in files):
-        return f"a frame or the VCD is missing: {files}"
-    for name in files:
-        if (default / name).read_bytes() != (inert / name).read_bytes():
-            return f"{name} differs"
+    difference = different_files(default, inert)
+    if difference:
+        return difference
     stats = stats_without_inert(default / "stats.json")
     if "issue_skew" in stats.get("stats", {}).get("array", {}) or "lut" in stats.get("stats", {}).get("array", {}):
         return "stats.json has a section of a switch that is off (array.issue_skew or array.lut)"
@@ -150,7 +135,7 @@ def main() -> int:
         return 0
     if not args.soc_sim:
         parser.error("--soc-sim is required")
-    apps = args.apps.split(",") if args.apps else scenes(args.soc_sim)
+    apps = args.apps.split(",") if args.apps else gl_scenes(args.soc_sim)
     work = pathlib.Path(args.work_dir or tempfile.mkdtemp(prefix="check_array_switches_off_"))
     work.mkdir(parents=True, exist_ok=True)
     cases = [(backend, app) for backend in args.backends.split(",") for app in apps]

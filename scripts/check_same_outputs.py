@@ -39,6 +39,7 @@ import sys
 import tempfile
 
 from json_difference import first_difference
+from run_outputs import gl_scenes
 
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 BACKENDS = ["arm", "raster", "ap-tile", "ap-pixel"]
@@ -60,16 +61,6 @@ OTHER_APPS = {
 }
 # The two study applications at a size that keeps the check quick.
 APP_ARGUMENTS = {"study_shading": ["--", "--shades", "2000"], "study_patches": ["--", "--max-pixels", "12"]}
-
-
-def gl_scenes(soc_sim: str) -> list:
-    listing = subprocess.run([soc_sim, "--list-apps"], check=True, capture_output=True, text=True).stdout
-    names = []
-    for line in listing.splitlines():
-        fields = line.split()
-        if fields and "(GL ES 1.1 scene)" in line and fields[0] != "obj_viewer":
-            names.append(fields[0])
-    return names
 
 
 def cases(soc_sim: str, quick: bool) -> list:

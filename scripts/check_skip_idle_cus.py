@@ -25,6 +25,7 @@ import sys
 import tempfile
 
 from json_difference import first_difference
+from run_outputs import different_files, gl_scenes
 
 SWITCH = "array.skip_idle_cus"
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
@@ -32,16 +33,6 @@ SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 # lanes' activity per stage from energy.array_stages: here reads and writes
 # cost something, and differently.
 CMEM_ENERGY = ["--set", "power.cu_array.cmem_bytes_read_pj=1", "--set", "power.cu_array.cmem_bytes_written_pj=3"]
-
-
-def scenes(soc_sim: str) -> list:
-    listing = subprocess.run([soc_sim, "--list-apps"], check=True, capture_output=True, text=True).stdout
-    names = []
-    for line in listing.splitlines():
-        fields = line.split()
-        if fields and "(GL ES 1.1 scene)" in line and fields[0] != "obj_viewer":
-            names.append(fields[0])
-    return names
 
 
 def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path) -> str:
@@ -80,15 +71,9 @@ def stats_without_switch(path: pathlib.Path) -> dict:
 
 
 def compare(on: pathlib.Path, off: pathlib.Path) -> str:
-    files_on = sorted(p.name for p in on.iterdir() if p.name != "stats.json")
-    files_off = sorted(p.name for p in off.iterdir() if p.name != "stats.json")
-    if files_on != files_off:
-        return f"different files: {files_on} against {files_off}"
-    if "trace.vcd" not in files_on or not any(name.startswith("frame_") for name in files_on):
-        return f"a frame or the VCD is missing: {files_on}"
-    for name in files_on:
-        if (on / name).read_bytes() != (off / name).read_bytes():
-            return f"{name} differs"
+    difference = different_files(on, off)
+    if difference:
+        return difference
     stats_on, stats_off = stats_without_switch(on / "stats.json"), stats_without_switch(off / "stats.json")
     for name, stats in (("on", stats_on), ("off", stats_off)):
         sim = stats.get("stats", {})
@@ -123,7 +108,7 @@ def main() -> int:
     parser.add_argument("--work-dir", default="", help="kept, with the runs that differ (default: a temporary one)")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
-    apps = args.apps.split(",") if args.apps else scenes(args.soc_sim)
+    apps = args.apps.split(",") if args.apps else gl_scenes(args.soc_sim)
     work = pathlib.Path(args.work_dir or tempfile.mkdtemp(prefix="check_skip_idle_cus_"))
     work.mkdir(parents=True, exist_ok=True)
     cases = [(backend, app) for backend in args.backends.split(",") for app in apps]
