@@ -27,6 +27,12 @@ unsigned result_rows(int texel_count, int width) {
   return 4 * (static_cast<unsigned>(texel_count) + 1) + 2 * static_cast<unsigned>(width) + 3;
 }
 
+// The larger of the input and result rows, and one descriptor each.
+uint32_t staging_for(unsigned cus, int texel_count, int width) {
+  const unsigned rows = std::max(input_rows(texel_count), result_rows(texel_count, width));
+  return rows * (cus + dma::DESCRIPTOR_BYTES);
+}
+
 }  // namespace
 
 ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end)
@@ -42,9 +48,12 @@ ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, u
       m_staging_end(staging_end) {}
 
 uint32_t ArrayResampler::staging_bytes(int texel_count, int width) const {
-  // The larger of the input and result rows, and one descriptor each.
-  const unsigned rows = std::max(input_rows(texel_count), result_rows(texel_count, width));
-  return rows * (m_array.cus() + dma::DESCRIPTOR_BYTES);
+  return staging_for(m_array.cus(), texel_count, width);
+}
+
+uint32_t ArrayResampler::largest_staging(unsigned cus) {
+  const ArrayLineLayout layout = ArrayLineLayout::of(ap::programs::resample_lines());
+  return staging_for(cus, layout.max_texels, layout.max_width);
 }
 
 std::string ArrayResampler::batch_error(const FilterTable& table, int texel_count) const {

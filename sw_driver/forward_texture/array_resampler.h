@@ -44,6 +44,14 @@ class ArrayResampler : public LineResampler {
   };
   const Figures& figures() const { return m_figures; }
   bool through_dma() const { return m_dma_use.enabled; }
+  // The longest line the program takes.
+  int max_texels() const { return m_layout.max_texels; }
+  // System memory the DMA's rows and chains need on an array of `cus` CUs
+  // for every line and filter the program takes.
+  static uint32_t largest_staging(unsigned cus);
+  // Another program used the array since: the next batch loads this one
+  // and the filter's constants again.
+  void forget_loaded() { m_loaded_texels = m_loaded_width = m_filter_width = -1; }
 
  private:
   void prepare(int texel_count, int width);

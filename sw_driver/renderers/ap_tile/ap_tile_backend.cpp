@@ -39,6 +39,13 @@ ParamGroup parameters() {
                             "ap-tile's array program: tuned (ap_tile.s: values in registers across a row, RGB565) "
                             "or study (ap_tile_study.s: the study's program as its compiler wrote it, every variable "
                             "in CMEM, 24-bit colour)"),
+              param::choice("ap.tile.texture_warp", "off", {"off", "array"},
+                            "how ap-tile textures a planar textured primitive: off (the host looks its texels up at "
+                            "the s and t the array interpolated) or array (the array maps the texture onto the frame "
+                            "by two-pass forward texture mapping, resample_lines.s, and the host reads the warped "
+                            "image; other textured primitives keep the look-ups)"),
+              param::integer("ap.tile.texture_warp_width", 1, 1, 8, "pixels",
+                             "with ap.tile.texture_warp=array: the width F of the warp's box prefilter"),
           },
           {}};
 }
@@ -49,6 +56,8 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
   tessera::ap_tile::Settings settings;
   settings.texcoords_always = config.get_string("ap.tile.texcoords") == "always";
   settings.study_program = config.get_string("ap.tile.program") == "study";
+  settings.texture_warp = config.get_string("ap.tile.texture_warp") == "array";
+  settings.texture_warp_width = static_cast<int>(config.get_uint("ap.tile.texture_warp_width"));
   return std::make_unique<tessera::ap_tile::ApTileRenderer>(env, settings);
 }
 

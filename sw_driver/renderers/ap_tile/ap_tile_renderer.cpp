@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iostream>
 #include <optional>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "ap_programs/ap_tile_study.h"
 #include "common/pixel_format.h"
 #include "costs/host_cost.h"
+#include "gl/runtime.h"
 #include "renderers/common/host_time.h"
 
 namespace tessera::ap_tile {
@@ -66,25 +68,38 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
   for (TileStage stage : {TileStage::fill, TileStage::depth, TileStage::colour, TileStage::texcoord,
                           TileStage::clear_colour, TileStage::clear_depth})
     m_entry[static_cast<int>(stage)] = m_program_base + program.entries.at(stage_entry(stage));
-  // The constants: the tuned program's row heights yc[l] = TILE_H - 1 - l
-  // and 0, or the study's (write_study_constants_by_ciu).
   const renderers::DmaUse use = renderers::dma_use(env, m_dma);
-  if (use.enabled && settings.study_program) {
-    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_study_layout), m_frame, use.broadcast);
-    send_study_constants_by_dma();
+  if (use.enabled) {
+    m_tile_dma = std::make_unique<TileDma>(
+        env, m_dma, settings.study_program ? DmaLayout::of(m_study_layout) : DmaLayout::of(m_layout), m_frame,
+        use.broadcast);
     m_has_record.assign(m_frame.cus(), false);
-    m_record_bytes.resize(size_t{m_study_layout.record_bytes} * m_frame.cus());
+    m_record_bytes.resize(size_t{settings.study_program ? m_study_layout.record_bytes : m_layout.record_bytes} *
+                          m_frame.cus());
     m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
-  } else if (settings.study_program) {
+  }
+  send_constants();
+  m_live.assign(m_frame.cus(), false);
+  m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
+  if (settings.texture_warp) {
+    // The resampler's DMA staging: lines as long as its program takes.
+    const uint32_t bytes = use.enabled ? forward_texture::ArrayResampler::largest_staging(m_array.cus()) : 0;
+    const uint32_t staging = bytes > 0 ? gl::allocate(bytes) : 0;
+    m_resampler = std::make_unique<forward_texture::ArrayResampler>(env, m_time, staging, staging + bytes);
+  }
+}
+
+// The constants: the tuned program's row heights yc[l] = TILE_H - 1 - l,
+// 0 and `live` cleared, or the study's (write_study_constants_by_ciu).
+void ApTileRenderer::send_constants() {
+  if (m_tile_dma && m_settings.study_program) {
+    send_study_constants_by_dma();
+  } else if (m_settings.study_program) {
     write_study_constants_by_ciu();
-  } else if (use.enabled) {
-    m_tile_dma = std::make_unique<TileDma>(env, m_dma, DmaLayout::of(m_layout), m_frame, use.broadcast);
+  } else if (m_tile_dma) {
     std::vector<uint8_t> yc(m_frame.tile_height);
     for (unsigned l = 0; l < m_frame.tile_height; ++l) yc[l] = static_cast<uint8_t>(m_frame.tile_height - 1 - l);
     m_tile_dma->send_constants({{m_layout.yc, yc}, {m_layout.zero, {0}}, {m_layout.live, {0}}});
-    m_has_record.assign(m_frame.cus(), false);
-    m_record_bytes.resize(size_t{m_layout.record_bytes} * m_frame.cus());
-    m_rows.resize(size_t{m_frame.cus()} * READ_PLANES);
   } else {
     for (unsigned l = 0; l < m_frame.tile_height; ++l)
       m_array.fill8(m_layout.yc + l, static_cast<uint8_t>(m_frame.tile_height - 1 - l));
@@ -92,8 +107,6 @@ ApTileRenderer::ApTileRenderer(AppEnvironment& env, Settings settings)
     m_array.fill8(m_layout.live, 0);
     m_ciu_traffic.values_written += uint64_t{m_frame.cus()} * (m_frame.tile_height + 2);
   }
-  m_live.assign(m_frame.cus(), false);
-  m_rgba.assign(size_t{m_frame.width()} * m_frame.height(), 0xff000000u);
 }
 
 // The study's constants: the CU's grid position, 1, 0xff and the counter
@@ -144,6 +157,10 @@ void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
   const std::optional<DrawFlags> flags = draw_flags(state, m_frame.width(), m_frame.height(), m_textures,
                                                     [this](const std::string& what) { unsupported(what); });
   if (!flags) return;
+  if (m_tiles_overwritten)
+    unsupported(
+        "drawing on a frame whose tiles a texture warp overwrote (ap.tile.texture_warp=array; clear the "
+        "colour buffer after a present or glReadPixels): drawn on what the warp left");
   if (flags->tex != 0) m_frame_textured = true;
   if (m_settings.study_program && flags->depth_test) {
     if (flags->depth_lequal) unsupported("GL_LEQUAL with ap.tile.program=study: drawn as GL_LESS (z < buffer)");
@@ -160,6 +177,10 @@ void ApTileRenderer::draw(const gl::RasterState& state, const gl::Triangle* tria
     if (tiles.empty()) continue;
     m_bins.add(setup, tiles);
     ++m_triangles_drawn;
+    if (m_settings.texture_warp && flags->tex != 0) {
+      costs::charge(m_host, HostCost::ap_tile_warp_triangle);
+      m_warp_plan.add(flags->tex, triangles[t], m_textures.find(flags->tex)->texture);
+    }
   }
 }
 
@@ -390,6 +411,8 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
     }
     run_stage(TileStage::clear_colour);
     m_textures.clear();
+    m_warp_plan.clear();
+    m_tiles_overwritten = false;
     m_frame_textured = false;
   }
   if (request.depth && request.depth_write) {
@@ -410,8 +433,12 @@ void ApTileRenderer::clear(const gl::ClearRequest& request) {
   }
 }
 
-uint32_t ApTileRenderer::shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t) {
+uint32_t ApTileRenderer::shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t, size_t index) {
   costs::charge(m_host, HostCost::ap_tile_pixel);
+  if (m_settings.texture_warp && m_warp_plan.warped(tid)) {
+    m_warp_pending.push_back({static_cast<uint32_t>(index), static_cast<uint8_t>(tid), s, t});
+    return rgba;
+  }
   if (const TextureEntry* entry = m_textures.find(tid)) {
     rgba = texture_pixel(*entry, rgba, s, t, [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
     costs::charge(m_host, entry->texture.mag_filter == gl::TexFilter::nearest ? HostCost::ap_tile_texel_nearest
@@ -423,10 +450,14 @@ uint32_t ApTileRenderer::shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int
 
 void ApTileRenderer::read_back() {
   flush();
-  if (m_tile_dma) {
+  if (m_tile_dma)
     read_back_by_dma();
-    return;
-  }
+  else
+    read_back_by_ciu();
+  if (!m_warp_pending.empty()) shade_warped();
+}
+
+void ApTileRenderer::read_back_by_ciu() {
   const unsigned groups = m_frame.columns / 4, width = m_frame.width();
   for (unsigned j = 0; j < m_frame.rows; ++j)
     for (unsigned i = 0; i < groups; ++i)
@@ -471,10 +502,10 @@ void ApTileRenderer::read_back() {
                     : unpack_pixel(PixelFormat::rgb565, ((hi >> shift) & 0xff) << 8 | ((lo >> shift) & 0xff));
             const auto s16 = static_cast<int16_t>(((s_hi >> shift) & 0xff) << 8 | ((s_lo >> shift) & 0xff));
             const auto t16 = static_cast<int16_t>(((t_hi >> shift) & 0xff) << 8 | ((t_lo >> shift) & 0xff));
-            const uint32_t rgba = shade_pixel(colour, (tid >> shift) & 0xff, s16, t16);
             const unsigned column = (4 * i + b) * m_frame.tile_width + x;
             const unsigned row = j * m_frame.tile_height + l;
-            m_rgba[size_t{row} * width + column] = rgba;
+            const size_t index = size_t{row} * width + column;
+            m_rgba[index] = shade_pixel(colour, (tid >> shift) & 0xff, s16, t16, index);
           }
         }
 }
@@ -543,11 +574,111 @@ void ApTileRenderer::convert_chunk(unsigned x) {
           m_settings.study_program
               ? uint32_t{hi[lane]} | uint32_t{lo[lane]} << 8 | uint32_t{blue[lane]} << 16 | 0xff000000u
               : unpack_pixel(PixelFormat::rgb565, uint32_t{hi[lane]} << 8 | lo[lane]);
-      const uint32_t rgba = shade_pixel(colour, tid[lane], s16, t16);
       const unsigned column = (lane % m_frame.columns) * m_frame.tile_width + x;
       const unsigned row = (lane / m_frame.columns) * m_frame.tile_height + l;
-      m_rgba[size_t{row} * width + column] = rgba;
+      const size_t index = size_t{row} * width + column;
+      m_rgba[index] = shade_pixel(colour, tid[lane], s16, t16, index);
     }
+  }
+}
+
+void ApTileRenderer::warp_refused(unsigned tid, const std::string& why) {
+  m_warp_plan.refuse(tid, why);
+  ++m_warp_refusals;
+  const std::string message = "ap.tile.texture_warp=array: texture " + std::to_string(tid) +
+                              " of this frame textured by look-ups on the host: " + why;
+  if (m_env.warn)
+    m_env.warn("ap-tile", message);
+  else
+    std::cerr << "warning: " << message << "\n";
+}
+
+// Each texture with waiting pixels warped once (its three colour channels),
+// its pixels textured from the warped image by the texture environment;
+// then the tiles' program gets its constants back (the warp's program
+// overwrote CMEM: the frame was read back before, and the next frame
+// starts with a clear, as after a present).
+void ApTileRenderer::shade_warped() {
+  std::vector<uint8_t> done(256, 0);  // 1: warped, 2: refused
+  std::vector<WarpedTexture> warped(256);
+  bool ran = false;
+  const auto width = static_cast<int>(m_frame.width()), height = static_cast<int>(m_frame.height());
+  for (const WarpPixel& pixel : m_warp_pending) {
+    if (done[pixel.tid] != 0) continue;
+    const TextureEntry& entry = *m_textures.find(pixel.tid);
+    // The resampler times its own parts (writes, waits, reads) into m_time;
+    // the rest is compute.
+    const uint64_t parts_before = m_time.array_write + m_time.array_wait + m_time.array_read;
+    renderers::HostTime whole;
+    std::optional<Timed> timed(std::in_place, m_host, whole, renderers::HostSplit::compute);
+    costs::charge(m_host, HostCost::ap_tile_warp_setup);
+    WarpJob job(warp_filter(m_settings.texture_warp_width));
+    std::string error = entry.texture.has_color
+                            ? m_warp_plan.job(pixel.tid, entry.texture, width, height, m_resampler->max_texels(), job)
+                            : "an alpha texture (its colour is the fragment's)";
+    if (error.empty()) {
+      const WarpRegion& region = job.region();
+      error = m_resampler->check(warp_filter(m_settings.texture_warp_width),
+                                 std::max(region.width, region.height) * region.upscale);
+    }
+    if (error.empty()) {
+      ran = true;
+      const gl::Texture& tex = entry.texture;
+      uint64_t texels = 0;
+      const WarpJob::TexelSource source = [&](int i, int j, uint8_t out[4]) {
+        const auto u = static_cast<uint32_t>(wrap_texel(i, static_cast<int>(tex.width), tex.wrap_s));
+        const auto v = static_cast<uint32_t>(wrap_texel(j, static_cast<int>(tex.height), tex.wrap_t));
+        std::memcpy(out, m_host.load_span(tex.address + (v * tex.width + u) * 4, 4, 1), 4);
+      };
+      WarpedTexture& out = warped[pixel.tid];
+      error = job.run(source, m_resampler.get(), out, texels);
+      costs::charge(m_host, HostCost::ap_tile_warp_texel, texels);
+      costs::charge(m_host, HostCost::forward_texture_line, out.lines);
+      const uint64_t region_texels = uint64_t{static_cast<unsigned>(out.region.width * out.region.upscale)} *
+                                     static_cast<unsigned>(out.region.height * out.region.upscale);
+      costs::charge(m_host, HostCost::forward_texture_texel_load, 3 * region_texels);
+      costs::charge(m_host, HostCost::forward_texture_output_pixel, uint64_t{3} * m_frame.width() * m_frame.height());
+      m_warp_lines += out.lines;
+      m_warp_borders += out.borders;
+    }
+    timed.reset();
+    m_time.compute += whole.compute - (m_time.array_write + m_time.array_wait + m_time.array_read - parts_before);
+    if (error.empty()) {
+      done[pixel.tid] = 1;
+      ++m_warps;
+    } else {
+      done[pixel.tid] = 2;
+      warp_refused(pixel.tid, error);
+    }
+  }
+  Timed timed(m_host, m_time, renderers::HostSplit::compute);
+  for (const WarpPixel& pixel : m_warp_pending) {
+    const TextureEntry& entry = *m_textures.find(pixel.tid);
+    uint32_t& rgba = m_rgba[pixel.index];
+    if (done[pixel.tid] == 1) {
+      const auto x = static_cast<int>(pixel.index % m_frame.width());
+      const int y = height - 1 - static_cast<int>(pixel.index / m_frame.width());
+      uint8_t texel[4];
+      warped[pixel.tid].texel(x, y, texel);
+      rgba = renderers::apply_tex_env(entry.env, rgba, texel);
+      costs::charge(m_host, HostCost::ap_tile_warp_pixel);
+      ++m_warp_pixels;
+    } else {
+      rgba = texture_pixel(entry, rgba, pixel.s, pixel.t,
+                           [this](uint32_t address) { return m_host.load_span(address, 4, 1); });
+      costs::charge(m_host, entry.texture.mag_filter == gl::TexFilter::nearest ? HostCost::ap_tile_texel_nearest
+                                                                               : HostCost::ap_tile_texel_linear);
+    }
+    costs::charge(m_host, HostCost::ap_tile_texture_environment);
+  }
+  m_warp_pending.clear();
+  if (ran) {
+    Timed write(m_host, m_time, renderers::HostSplit::array_write);
+    m_array.load(m_settings.study_program ? ap::programs::ap_tile_study() : ap::programs::ap_tile(), m_program_base);
+    send_constants();
+    m_live.assign(m_frame.cus(), false);
+    m_resampler->forget_loaded();
+    m_tiles_overwritten = true;
   }
 }
 
@@ -600,6 +731,7 @@ void ApTileRenderer::present() {
 renderers::ArrayTraffic ApTileRenderer::traffic() const {
   renderers::ArrayTraffic traffic = m_ciu_traffic;
   if (m_tile_dma) traffic += m_tile_dma->traffic();
+  if (m_resampler) traffic += m_resampler->figures().traffic;
   return traffic;
 }
 
@@ -622,6 +754,16 @@ void ApTileRenderer::publish_statistics() {
                           TileStage::clear_colour, TileStage::clear_depth})
     c.counter(std::string("ap_tile.cycles.") + stage_entry(stage), "array cycles of the program's stage").value =
         m_stage_cycles[static_cast<int>(stage)];
+  if (m_resampler) {
+    const forward_texture::ArrayResampler::Figures& f = m_resampler->figures();
+    set("warp.textures", "textures warped on the array (each once a frame, three colour channels)", m_warps);
+    set("warp.refused", "textures of a frame textured by look-ups instead (each warned)", m_warp_refusals);
+    set("warp.pixels", "pixels textured from a warped image", m_warp_pixels);
+    set("warp.lines", "lines of the warps' two passes (every channel)", m_warp_lines);
+    set("warp.borders", "texel borders of the warps' two passes (every channel)", m_warp_borders);
+    set("warp.array_runs", "runs of the warp's array program (a batch of one line per CU each)", f.runs);
+    set("warp.array_cycles", "array cycles of the warp's program runs", f.cycles);
+  }
 }
 
 }  // namespace tessera::ap_tile

@@ -19,12 +19,14 @@
 #include "device/array_driver.h"
 #include "device/display_driver.h"
 #include "device/dma_driver.h"
+#include "forward_texture/array_resampler.h"
 #include "gl/renderer.h"
 #include "renderers/ap_tile/tile_dma.h"
 #include "renderers/ap_tile/tile_host.h"
 #include "renderers/ap_tile/tile_reference.h"
 #include "renderers/ap_tile/tile_setup.h"
 #include "renderers/ap_tile/tile_study.h"
+#include "renderers/ap_tile/tile_warp.h"
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
@@ -36,6 +38,8 @@ namespace tessera::ap_tile {
 struct Settings {
   bool texcoords_always = false;  // the texcoord stage in every pass, textured or not
   bool study_program = false;     // ap_tile_study.s (the study's program) instead of ap_tile.s (tuned)
+  bool texture_warp = false;      // planar textured primitives warped on the array (tile_warp.h)
+  int texture_warp_width = 1;     // the warp's box filter width F
 };
 
 class ApTileRenderer : public gl::Renderer {
@@ -54,6 +58,9 @@ class ApTileRenderer : public gl::Renderer {
   void present() override;
 
  private:
+  // The program's constants into CMEM (at construction, and after a
+  // texture warp ran its own program there).
+  void send_constants();
   void flush();
   void flush_by_ciu(size_t passes);
   void run_pass(bool depth);
@@ -65,7 +72,16 @@ class ApTileRenderer : public gl::Renderer {
   void read_back();
   // A pixel read back: its colour (RGBA, from the program's colour
   // format), textured on the host when `tid` names a texture of the frame.
-  uint32_t shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t);
+  // A pixel whose texture is warped on the array (ap.tile.texture_warp)
+  // waits, untextured, until the read-back's end (shade_warped): `index` is
+  // its place in m_rgba.
+  uint32_t shade_pixel(uint32_t rgba, unsigned tid, int16_t s, int16_t t, size_t index);
+  void read_back_by_ciu();
+  // The warps of the frame's planar textures on the array, then their
+  // waiting pixels textured from the warped images (or by look-ups where a
+  // warp is refused).
+  void shade_warped();
+  void warp_refused(unsigned tid, const std::string& why);
   // With the DMA: the passes' records double-buffered in system memory, the
   // frame read back in chunks on two channels.
   void flush_by_dma(size_t passes);
@@ -114,6 +130,19 @@ class ApTileRenderer : public gl::Renderer {
   uint64_t m_passes = 0, m_cu_triangles = 0, m_busiest = 0;
   uint64_t m_stage_cycles[6]{}, m_words_written = 0, m_words_read = 0, m_triangles_drawn = 0;
   renderers::ArrayTraffic m_ciu_traffic;  // the CIU's share (the DMA's: m_tile_dma)
+
+  // ap.tile.texture_warp=array (tile_warp.h): the frame's texture planes,
+  // the pixels waiting for their warp, the resampler and its figures.
+  struct WarpPixel {
+    uint32_t index;
+    uint8_t tid;
+    int16_t s, t;
+  };
+  WarpPlan m_warp_plan;
+  std::vector<WarpPixel> m_warp_pending;
+  std::unique_ptr<forward_texture::ArrayResampler> m_resampler;
+  bool m_tiles_overwritten = false;  // a warp ran since the last colour clear
+  uint64_t m_warps = 0, m_warp_refusals = 0, m_warp_pixels = 0, m_warp_lines = 0, m_warp_borders = 0;
 };
 
 }  // namespace tessera::ap_tile

@@ -43,6 +43,17 @@ class ApTileBackend : public tessera::test::SocSimTest {
     std::ifstream in(m_dir / folder / "stats.json");
     return json::parse(in, nullptr, false);
   }
+  // One frame of `app` on ap-tile with the settings; the run's stats.json
+  // (the run itself in m_last).
+  json scene(const std::string& folder, const std::string& app, const std::vector<std::string>& settings) {
+    std::vector<std::string> args = {"--backend", "ap-tile", "--app", app, "--frames", "1", "--out", folder};
+    for (const std::string& setting : settings) args.insert(args.end(), {"--set", setting});
+    m_last = run(args);
+    EXPECT_EQ(m_last.status, 0) << describe(m_last);
+    std::ifstream in(m_dir / folder / "stats.json");
+    return json::parse(in, nullptr, false);
+  }
+  SimResult m_last;
 };
 
 // How many times the array ran the stage: the executions of its first
@@ -158,6 +169,71 @@ TEST_F(ApTileBackend, StudyProgramWithTheDmaMovesEveryCmemByteThroughIt) {
   EXPECT_EQ(d["passes"], c["passes"]);
   EXPECT_EQ(d["cycles"], c["cycles"]);
   EXPECT_EQ(read_file(m_dir / "study_ciu/frame_0000.png"), read_file(m_dir / "study_dma/frame_0000.png"));
+}
+
+// ap.tile.texture_warp: off, named, is the default: the textured quad's
+// frame and statistics.
+TEST_F(ApTileBackend, TextureWarpOffIsTheDefault) {
+  const json implicit = scene("warp_implicit", "textured_quad", {});
+  const json named = scene("warp_named", "textured_quad", {"ap.tile.texture_warp=off"});
+  ASSERT_FALSE(implicit.is_discarded());
+  ASSERT_FALSE(named.is_discarded());
+  EXPECT_EQ(implicit["stats"], named["stats"]);
+  EXPECT_FALSE(implicit["stats"]["driver"]["ap_tile"].contains("warp"));
+  EXPECT_EQ(read_file(m_dir / "warp_implicit/frame_0000.png"), read_file(m_dir / "warp_named/frame_0000.png"));
+}
+
+// The warp's lines and results through the DMA draw the frame the CIU's
+// draw: the array's results are the same bit for bit.
+TEST_F(ApTileBackend, TextureWarpThroughTheDmaDrawsTheCiusFrame) {
+  const json ciu = scene("warp_ciu", "textured_quad", {"ap.tile.texture_warp=array"});
+  const json dma = scene("warp_dma", "textured_quad", {"ap.tile.texture_warp=array", "dma.enabled=true"});
+  ASSERT_FALSE(ciu.is_discarded());
+  ASSERT_FALSE(dma.is_discarded());
+  for (const json* stats : {&ciu, &dma}) {
+    const json& warp = (*stats)["stats"]["driver"]["ap_tile"]["warp"];
+    EXPECT_EQ(warp["textures"], 1);
+    EXPECT_EQ(warp["refused"], 0);
+    EXPECT_GT(warp["pixels"].get<uint64_t>(), 5000u);
+    EXPECT_GT(warp["array_runs"].get<uint64_t>(), 0u);
+  }
+  EXPECT_EQ(ciu["stats"]["driver"]["ap_tile"]["warp"]["array_cycles"],
+            dma["stats"]["driver"]["ap_tile"]["warp"]["array_cycles"]);
+  EXPECT_GT(dma["stats"]["driver"]["ap_tile"]["dma_descriptors"].get<uint64_t>(),
+            ciu["stats"]["driver"]["ap_tile"]["dma_descriptors"].get<uint64_t>());
+  EXPECT_EQ(read_file(m_dir / "warp_ciu/frame_0000.png"), read_file(m_dir / "warp_dma/frame_0000.png"));
+  // Perspective-correct where the look-ups' affine s and t are not: the
+  // frames differ.
+  const json lookups = scene("warp_off", "textured_quad", {});
+  ASSERT_FALSE(lookups.is_discarded());
+  EXPECT_NE(read_file(m_dir / "warp_ciu/frame_0000.png"), read_file(m_dir / "warp_off/frame_0000.png"));
+}
+
+// mipmap_floor's strips reach 9,966 texels along t, beyond the program's
+// 512 a line: each of its six textures falls back to the look-ups, with a
+// warning naming why, and the frame is the look-ups' frame.
+TEST_F(ApTileBackend, TextureWarpFallsBackWhereTheRegionIsBeyondTheProgramsLines) {
+  const json warped = scene("floor_warp", "mipmap_floor", {"ap.tile.texture_warp=array"});
+  const SimResult warped_run = m_last;
+  const json lookups = scene("floor_off", "mipmap_floor", {});
+  ASSERT_FALSE(warped.is_discarded());
+  ASSERT_FALSE(lookups.is_discarded());
+  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["refused"], 6);
+  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["textures"], 0);
+  EXPECT_TRUE(contains(warped_run.err + warped_run.out,
+                       "textured by look-ups on the host: its texels span 51 x 9966 texels, beyond the array "
+                       "program's 512 texels a line"))
+      << describe(warped_run);
+  EXPECT_EQ(read_file(m_dir / "floor_warp/frame_0000.png"), read_file(m_dir / "floor_off/frame_0000.png"));
+}
+
+TEST_F(ApTileBackend, BadTextureWarpValuesNameTheKey) {
+  for (const char* setting : {"ap.tile.texture_warp=host", "ap.tile.texture_warp_width=9"}) {
+    const SimResult result = run({"--backend", "ap-tile", "--app", "triangle", "--set", setting, "--out", "out"});
+    EXPECT_EQ(result.status, EXIT_USAGE) << describe(result);
+    EXPECT_TRUE(contains(result.err, std::string(setting).substr(0, std::string(setting).find('='))))
+        << describe(result);
+  }
 }
 
 // The key belongs to the configuration whichever back end runs, so that one
