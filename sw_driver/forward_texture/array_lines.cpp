@@ -82,8 +82,8 @@ std::string array_line_error(const ArrayLineLayout& layout, const FilterTable& t
   }
   const auto needed = static_cast<unsigned>(PHASES * table.width);
   if (layout.table_factors && lut_table_entries == 0) {
-    return "the array program looks the filter's factors up in the shared table, which this array has not "
-           "(array.features.lut = false)";
+    return "the array program looks the filter's factors up in the shared lookup table, which this array has "
+           "not (array.features.lut = false)";
   }
   if (layout.table_factors && needed > lut_table_entries) {
     return "filter width F = " + std::to_string(table.width) + " needs " + std::to_string(needed) +
