@@ -35,7 +35,8 @@
 ; (written with the start MAX_WIDTH - 1) before it loads the program.
 ;
 ; Stages: texcoord = the border (stepping and division), shade = the
-; factors (the lookups too) and scalings, transfer = the window's moves and the outputs.
+; factors (the lookups too) and scalings, transfer = the window's moves and
+; the outputs.
 
 .const MAX_TEXELS 512
 .const MAX_WIDTH 8
@@ -323,8 +324,8 @@ resample:
       mov r1, [phase]
       lut r0, r0
       ; A table may hold H = 1.0 = 0x8000 (the tent's does), which mul takes
-      ; for -32768: r7 = 0xff then, and each product gets 65536 times its
-      ; multiplier back (its top byte plus the multiplier).
+      ; for -32768, 65536 too little: with r7 = 0xff then, each product gets
+      ; 65536 times its multiplier back (the multiplier added to its top byte).
       shl r7, r0
       sbc r7, [zero], [zero]
       not r7, r7
