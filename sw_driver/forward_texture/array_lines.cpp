@@ -121,10 +121,12 @@ std::vector<uint64_t> program_for_lines(const ap::Program& program, int texel_co
 }
 
 std::vector<uint16_t> lut_entries(const FilterTable& table) {
-  std::vector<uint16_t> entries(static_cast<std::size_t>(PHASES) * static_cast<std::size_t>(table.width));
-  for (int j = 0; j < table.width; ++j) {
+  const auto width = static_cast<std::size_t>(table.width);
+  std::vector<uint16_t> entries(PHASES * width);
+  for (std::size_t slot = 0; slot < width; ++slot) {
+    const int j = table.width - 1 - static_cast<int>(slot);
     for (int phase = 0; phase < PHASES; ++phase) {
-      entries[static_cast<std::size_t>(PHASES * (table.width - 1 - j) + phase)] = table.at(phase, j);
+      entries[PHASES * slot + static_cast<std::size_t>(phase)] = table.at(phase, j);
     }
   }
   return entries;
