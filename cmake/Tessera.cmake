@@ -81,20 +81,35 @@ function(tessera_backends ids_var names_var)
   set(${names_var} ${names} PARENT_SCOPE)
 endfunction()
 
-# tessera_add_array_programs(TARGET lib SOURCES prog.s ... [ASM_OPTIONS --registers 16 ...])
+# tessera_add_array_programs(TARGET lib SOURCES prog.s ... [ASM_OPTIONS --registers 16 ...]
+#                            [DEFINES NAME=VALUE ...] [NAME accessor])
 # Array programs assembled at build time into the static library `lib`: for
 # each prog.s, `ap_asm --emit-cpp prog` writes the definition of
 # tessera::ap::programs::prog() and its declaration in the header
 # ap_programs/prog.h, on lib's public include path. An assembly error fails
 # the build with the source's file:line. ASM_OPTIONS are ap_asm's limits of
-# the array the programs must fit (the defaults are array.* defaults).
+# the array the programs must fit (the defaults are array.* defaults);
+# DEFINES the constants defined before each source's first line (ap_asm -D,
+# for .if); NAME, with one source, the accessor's name instead of the
+# source's, so that a source assembled with other DEFINES is another program.
 function(tessera_add_array_programs)
-  cmake_parse_arguments(P "" "TARGET" "SOURCES;ASM_OPTIONS" ${ARGN})
+  cmake_parse_arguments(P "" "TARGET;NAME" "SOURCES;ASM_OPTIONS;DEFINES" ${ARGN})
   set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/${P_TARGET})
   set(generated)
+  list(LENGTH P_SOURCES source_count)
+  if(P_NAME AND NOT source_count EQUAL 1)
+    message(FATAL_ERROR "tessera_add_array_programs(${P_TARGET}): NAME ${P_NAME} needs exactly one source")
+  endif()
+  set(defines)
+  foreach(define IN LISTS P_DEFINES)
+    list(APPEND defines -D ${define})
+  endforeach()
   foreach(source IN LISTS P_SOURCES)
     get_filename_component(path ${source} ABSOLUTE)
     get_filename_component(name ${source} NAME_WE)
+    if(P_NAME)
+      set(name ${P_NAME})
+    endif()
     # The name the messages and Program::source_name give: relative to the
     # project, so that the image does not depend on where the tree is.
     file(RELATIVE_PATH shown ${PROJECT_SOURCE_DIR} ${path})
@@ -104,7 +119,7 @@ function(tessera_add_array_programs)
     set(cpp ${out_dir}/${name}.cpp)
     set(header ${out_dir}/include/ap_programs/${name}.h)
     add_custom_command(OUTPUT ${cpp} ${header}
-                       COMMAND ap_asm ${P_ASM_OPTIONS} --emit-cpp ${name} ${shown} -o ${cpp} --header ${header}
+                       COMMAND ap_asm ${P_ASM_OPTIONS} ${defines} --emit-cpp ${name} ${shown} -o ${cpp} --header ${header}
                        DEPENDS ${path} ap_asm
                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
                        COMMENT "Assembling the array program ${shown}"

@@ -249,6 +249,22 @@ def forward_texture_scalings_per_texel(result, column, results):
     return stat(result, "array.mix.mul") / 2 / forward_texture_steps(result)
 
 
+def forward_texture_lookups_per_texel(result, column, results):
+    """The table lookups per texel step (Eq. 6's F a texel when the factors are looked up): array.mix.lut (one
+    broadcast lut for every CU) per step; None on an array without the table (array.features.lut off, no
+    array.mix.lut) when the column's statistics are not required."""
+    lookups = stat(result, "array.mix.lut", stats_required(column))
+    return None if lookups is None else lookups / forward_texture_steps(result)
+
+
+def forward_texture_lut_stall_cycles(result, column, results):
+    """Array cycles per texel step the AC waited for the lookup table's ports (array.lut.stall_cycles: lockstep,
+    ceil(CUs / ports) - 1 per lut; skewed, the waits of a lut issued while every port is held); None on an array
+    without the table when the column's statistics are not required."""
+    stalls = stat(result, "array.lut.stall_cycles", stats_required(column))
+    return None if stalls is None else stalls / forward_texture_steps(result)
+
+
 def forward_texture_polyphase_ms(result, column, results):
     """A dedicated polyphase unit resampling one texel a cycle at the array's clock (array.clock_mhz): the warp's
     texel borders (driver.study.array_borders) over that clock, in ms per warp (the frames' mean)."""
@@ -435,6 +451,8 @@ COMPUTED = {
         forward_texture_contribution_cycles,
         forward_texture_texels_per_second,
         forward_texture_scalings_per_texel,
+        forward_texture_lookups_per_texel,
+        forward_texture_lut_stall_cycles,
         forward_texture_polyphase_ms,
     )
 }

@@ -44,7 +44,8 @@ const std::map<std::string, AppInfo>& builtin_apps() {
        {study_forward_texture_app,
         "van Sinten's two-pass forward texture mapping on the host (--backend arm): a checkerboard warped onto the "
         "display under a perspective matrix with Eq. 6's prefiltered resampling, shown grey; -- --texture-size N, "
-        "--filter box|tent, --filter-width F (1 to 8), --matrix A,B,C,D,E,F,G,H,I"}},
+        "--filter box|tent, --filter-width F (1 to 8), --matrix A,B,C,D,E,F,G,H,I, --array-factors computed|table "
+        "(on ap-tile or ap-pixel: the lookup table, array.features.lut)"}},
       {"unmapped_access", {unmapped_access_app, "diagnostic: reads an unmapped address to show the bus error path"}},
       {"stuck_loop",
        {stuck_loop_app,

@@ -7,13 +7,18 @@
 // arm` on the host, `--backend ap-tile` or `ap-pixel` on the array
 // (resample_lines.s, one line per CU, the same program for both: the lines
 // in and the results out by the DMA when dma.enabled, else through the CIU;
-// the box filter only), with the same image byte for byte.
+// the box filter only, unless the factors are looked up in the array's
+// shared table), with the same image byte for byte.
 //
 // Options (after "--"): --texture-size N (a square of N x N texels, 2 ..
 // 1024, default 128; on the array at most 512), --filter box|tent (default
 // box), --filter-width F (1 .. 8, default 2), --matrix A,B,C,D,E,F,G,H,I
 // (decimals: x w = A u + B v + C, y w = D u + E v + F, w = G u + H v + I;
-// default a square seen tilted back, DEFAULT_MATRIX). Magnification is
+// default a square seen tilted back, DEFAULT_MATRIX), --array-factors
+// computed|table (on the array: the program computes the box's factors, the
+// J2210's way, default; or looks the filter's up in the shared table,
+// resample_lines_lut, which needs array.features.lut and a table of 256 F
+// entries, array.lut.entries). Magnification is
 // refused (upscale the texture first), as are a singular matrix and a
 // texture that does not fit.
 //
@@ -109,6 +114,12 @@ ft::PerspectiveMatrix parse_matrix(const std::string& text) {
   return {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
 }
 
+ft::ArrayFactors parse_array_factors(const std::string& name) {
+  if (name == "computed") return ft::ArrayFactors::computed;
+  if (name == "table") return ft::ArrayFactors::table;
+  throw std::invalid_argument(std::string(APP) + ": --array-factors is computed or table, not '" + name + "'");
+}
+
 ft::FilterKind parse_filter(const std::string& name) {
   if (name == "box") return ft::FilterKind::box;
   if (name == "tent") return ft::FilterKind::tent;
@@ -123,7 +134,7 @@ uint8_t checker(unsigned u, unsigned v, unsigned size) {
 }
 
 int study_forward_texture(AppEnvironment& env) {
-  study::check_options(env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix"});
+  study::check_options(env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix", "--array-factors"});
   const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
   const bool on_array = backend == "ap-tile" || backend == "ap-pixel";
   if (backend != "arm" && !on_array)
@@ -134,6 +145,11 @@ int study_forward_texture(AppEnvironment& env) {
   const ft::FilterKind kind = parse_filter(option_text(env, "--filter", "box"));
   const unsigned width = study::option(env, APP, "--filter-width", 2, 1, ft::MAX_FILTER_WIDTH);
   const ft::PerspectiveMatrix matrix = parse_matrix(option_text(env, "--matrix", DEFAULT_MATRIX));
+  const ft::ArrayFactors factors = parse_array_factors(option_text(env, "--array-factors", "computed"));
+  if (factors == ft::ArrayFactors::table && !on_array)
+    throw std::invalid_argument(std::string(APP) +
+                                ": --array-factors table is the array program's (--backend ap-tile or ap-pixel); "
+                                "the host looks its factors up in its own table");
   HostApi& host = *env.host;
   DisplayDriver display(env);
   const int out_width = static_cast<int>(display.width()), out_height = static_cast<int>(display.height());
@@ -154,9 +170,10 @@ int study_forward_texture(AppEnvironment& env) {
   std::optional<ft::ArrayResampler> array;
   if (on_array) {
     const uint32_t staging = image_address + ((static_cast<uint32_t>(out_width * out_height) + 31) & ~31u);
-    array.emplace(env, time, staging, env.heap_end);
+    array.emplace(env, time, staging, env.heap_end, factors);
     if (const std::string error = array->check(table, static_cast<int>(size)); !error.empty())
-      throw std::invalid_argument(std::string(APP) + ": " + error);
+      throw std::invalid_argument(std::string(APP) + ": " +
+                                  (factors == ft::ArrayFactors::table ? "--array-factors table: " : "") + error);
   }
   costs::reset_cost_meter();
   uint64_t warp_cycles = 0;
@@ -247,9 +264,10 @@ int study_forward_texture(AppEnvironment& env) {
   study::publish(env, "texture_size", "texels per side of the texture", size);
   study::publish(env, "filter_width", "F, the filter's width in pixels", width);
   study::publish_units(env);
-  std::printf("%s: %ux%u texture onto %dx%d, %s filter of width %u, %s first, on the %s\n", APP, size, size, out_width,
-              out_height, ft::filter_name(kind), width,
-              order.order == ft::PassOrder::columns_first ? "columns" : "rows", array ? "array" : "host");
+  std::printf("%s: %ux%u texture onto %dx%d, %s filter of width %u, %s first, on the %s%s\n", APP, size, size,
+              out_width, out_height, ft::filter_name(kind), width,
+              order.order == ft::PassOrder::columns_first ? "columns" : "rows", array ? "array" : "host",
+              factors == ft::ArrayFactors::table ? " (factors from the lookup table)" : "");
   return 0;
 }
 

@@ -206,6 +206,20 @@ void ArrayDriver::fill8(unsigned a, uint8_t value) {
     for (unsigned i = 0; i < groups_per_row(); ++i) write32(i, j, a, word);
 }
 
+unsigned ArrayDriver::lut_entries() {
+  return m_host.read32(AC + regs::LUT_ENTRIES);
+}
+
+void ArrayDriver::write_lut(unsigned first, const std::vector<uint16_t>& entries) {
+  const unsigned table = lut_entries();
+  if (first > table || entries.size() > table - first)
+    throw std::invalid_argument("lookup table entries " + std::to_string(first) + " .. " +
+                                std::to_string(first + entries.size()) + " (exclusive) are beyond the table's " +
+                                std::to_string(table) + " entries (array.lut.entries; 0: array.features.lut = false)");
+  m_host.write32(AC + regs::LUT_INDEX, first);
+  for (const uint16_t entry : entries) m_host.write32(AC + regs::LUT_DATA, entry);
+}
+
 void ArrayDriver::write_constants(const Constants& constants) {
   if (constants.xpos >= 0) {
     std::vector<uint8_t> columns(cus());

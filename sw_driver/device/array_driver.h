@@ -105,6 +105,17 @@ class ArrayDriver {
   // The same byte in every CU (a constant the array cannot load itself).
   void fill8(unsigned a, uint8_t value);
 
+  // The shared lookup table of lut (tlm/array/README.md, "The lookup
+  // table"): its entries (LUT_ENTRIES: array.lut.entries, 0 with
+  // array.features.lut off), read from the AC when asked; `entries` written
+  // from index `first` on, as one LUT_INDEX write and a LUT_DATA write per
+  // entry (the AC steps the index). Throws std::invalid_argument naming
+  // array.lut.entries if they do not fit the table. The ARM's loop around
+  // the writes is not charged (no row of the cost table measures it; a
+  // table is written once per filter).
+  unsigned lut_entries();
+  void write_lut(unsigned first, const std::vector<uint16_t>& entries);
+
   // The per-CU constants of the study, at the addresses a program declares
   // for them (a negative address: the program has none): the CU's column
   // (XPOS) and row (YPOS), 0x01, 0xff, and counter tables 0..n-1.

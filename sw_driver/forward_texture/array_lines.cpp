@@ -39,11 +39,16 @@ ArrayLineLayout ArrayLineLayout::of(const ap::Program& program) {
   m.den_step = at("den_step", 4);
   m.tex_hi = at("tex_hi", texel_plane);
   m.tex_lo = at("tex_lo", texel_plane);
+  m.table_factors = ap::constant_value(program, "TABLE_FACTORS") != 0;
   m.offset = at("offset", 4);
-  m.q_hi = at("q_hi", width);
-  m.q_lo = at("q_lo", width);
-  m.r_j = at("r_j", width);
-  m.two_f = at("two_f", 1);
+  if (m.table_factors) {
+    m.slot_hi = at("slot_hi", width);
+  } else {
+    m.q_hi = at("q_hi", width);
+    m.q_lo = at("q_lo", width);
+    m.r_j = at("r_j", width);
+    m.two_f = at("two_f", 1);
+  }
   m.zero = at("zero", 1);
   m.ff = at("ff", 1);
   m.c80 = at("c80", 1);
@@ -63,8 +68,9 @@ ArrayLineLayout ArrayLineLayout::of(const ap::Program& program) {
   return m;
 }
 
-std::string array_line_error(const ArrayLineLayout& layout, const FilterTable& table, int texel_count) {
-  if (table.kind != FilterKind::box) {
+std::string array_line_error(const ArrayLineLayout& layout, const FilterTable& table, int texel_count,
+                             unsigned lut_table_entries) {
+  if (!layout.table_factors && table.kind != FilterKind::box) {
     return std::string(
                "the J2210 program computes the box filter's factors only (it has no shared table to look "
                "up the ") +
@@ -73,6 +79,16 @@ std::string array_line_error(const ArrayLineLayout& layout, const FilterTable& t
   if (table.width < 1 || table.width > layout.max_width) {
     return "filter width F = " + std::to_string(table.width) + " is beyond the array program's window of 1 .. " +
            std::to_string(layout.max_width) + " pixels";
+  }
+  const auto needed = static_cast<unsigned>(PHASES * table.width);
+  if (layout.table_factors && lut_table_entries == 0) {
+    return "the array program looks the filter's factors up in the shared lookup table, which this array has "
+           "not (array.features.lut = false)";
+  }
+  if (layout.table_factors && needed > lut_table_entries) {
+    return "filter width F = " + std::to_string(table.width) + " needs " + std::to_string(needed) +
+           " lookup table entries (" + std::to_string(PHASES) +
+           " phases x F), more than array.lut.entries = " + std::to_string(lut_table_entries);
   }
   if (texel_count < 1 || texel_count > layout.max_texels) {
     return "a line of " + std::to_string(texel_count) + " texels does not fit the array program's CMEM budget of " +
@@ -104,6 +120,18 @@ std::vector<uint64_t> program_for_lines(const ap::Program& program, int texel_co
   return words;
 }
 
+std::vector<uint16_t> lut_entries(const FilterTable& table) {
+  const auto width = static_cast<std::size_t>(table.width);
+  std::vector<uint16_t> entries(PHASES * width);
+  for (std::size_t slot = 0; slot < width; ++slot) {
+    const int j = table.width - 1 - static_cast<int>(slot);
+    for (int phase = 0; phase < PHASES; ++phase) {
+      entries[PHASES * slot + static_cast<std::size_t>(phase)] = table.at(phase, j);
+    }
+  }
+  return entries;
+}
+
 std::vector<CmemBlock> filter_blocks(const ArrayLineLayout& layout, int width) {
   const auto f = static_cast<uint32_t>(width);
   const uint32_t divisor = 2u * f;
@@ -111,21 +139,31 @@ std::vector<CmemBlock> filter_blocks(const ArrayLineLayout& layout, int width) {
   // s = x + (F - 1) / 2 + half a phase step (resample_line's offset).
   blocks.push_back(word_block(layout.offset, (f - 1u) * (static_cast<uint32_t>(Q16_16_ONE) / 2u) +
                                                  (static_cast<uint32_t>(Q16_16_ONE) >> (PHASE_BITS + 1))));
-  // Slot j's share of the box's table row: 65536 (F - 1 - j) + F = q_j 2F + r_j.
-  CmemBlock q_hi{layout.q_hi, std::vector<uint8_t>(static_cast<std::size_t>(layout.max_width), 0)};
-  CmemBlock q_lo{layout.q_lo, q_hi.bytes};
-  CmemBlock r_j{layout.r_j, q_hi.bytes};
-  for (uint32_t j = 0; j < f; ++j) {
-    const uint32_t constant = 65536u * (f - 1u - j) + f;
-    const uint32_t quotient = constant / divisor;
-    q_hi.bytes[j] = static_cast<uint8_t>(quotient >> 8);
-    q_lo.bytes[j] = static_cast<uint8_t>(quotient);
-    r_j.bytes[j] = static_cast<uint8_t>(constant - quotient * divisor);
+  const std::vector<uint8_t> slots(static_cast<std::size_t>(layout.max_width), 0);
+  if (layout.table_factors) {
+    // Slot j's entries start at 256 (F - 1 - j) (lut_entries).
+    CmemBlock slot_hi{layout.slot_hi, slots};
+    for (uint32_t j = 0; j < f; ++j) {
+      slot_hi.bytes[j] = static_cast<uint8_t>(f - 1u - j);
+    }
+    blocks.push_back(slot_hi);
+  } else {
+    // Slot j's share of the box's table row: 65536 (F - 1 - j) + F = q_j 2F + r_j.
+    CmemBlock q_hi{layout.q_hi, slots};
+    CmemBlock q_lo{layout.q_lo, slots};
+    CmemBlock r_j{layout.r_j, slots};
+    for (uint32_t j = 0; j < f; ++j) {
+      const uint32_t constant = 65536u * (f - 1u - j) + f;
+      const uint32_t quotient = constant / divisor;
+      q_hi.bytes[j] = static_cast<uint8_t>(quotient >> 8);
+      q_lo.bytes[j] = static_cast<uint8_t>(quotient);
+      r_j.bytes[j] = static_cast<uint8_t>(constant - quotient * divisor);
+    }
+    blocks.push_back(q_hi);
+    blocks.push_back(q_lo);
+    blocks.push_back(r_j);
+    blocks.push_back({layout.two_f, {static_cast<uint8_t>(divisor)}});
   }
-  blocks.push_back(q_hi);
-  blocks.push_back(q_lo);
-  blocks.push_back(r_j);
-  blocks.push_back({layout.two_f, {static_cast<uint8_t>(divisor)}});
   blocks.push_back({layout.zero, {0x00}});
   blocks.push_back({layout.ff, {0xff}});
   blocks.push_back({layout.c80, {0x80}});

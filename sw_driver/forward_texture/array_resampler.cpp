@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "ap_programs/resample_lines.h"
+#include "ap_programs/resample_lines_lut.h"
 #include "array/isa/ap_isa.h"
 #include "costs/host_cost.h"
 
@@ -35,17 +36,21 @@ uint32_t staging_for(unsigned cus, int texel_count, int width) {
 
 }  // namespace
 
-ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end)
+ArrayResampler::ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end,
+                               ArrayFactors factors)
     : m_host(*env.host),
       m_time(time),
       m_array(env),
       m_dma(env),
       m_dma_use(renderers::dma_use(env, m_dma)),
-      m_program(ap::programs::resample_lines()),
+      m_program(factors == ArrayFactors::table ? ap::programs::resample_lines_lut() : ap::programs::resample_lines()),
       m_layout(ArrayLineLayout::of(m_program)),
       m_entry(ap::entry_word(m_program, "resample")),
       m_staging(staging),
-      m_staging_end(staging_end) {}
+      m_staging_end(staging_end),
+      // Read only for the table, so that the computed program's runs make
+      // the same bus accesses as before it had a twin.
+      m_lut_entries(factors == ArrayFactors::table ? m_array.lut_entries() : 0) {}
 
 uint32_t ArrayResampler::staging_bytes(int texel_count, int width) const {
   return staging_for(m_array.cus(), texel_count, width);
@@ -57,7 +62,7 @@ uint32_t ArrayResampler::largest_staging(unsigned cus) {
 }
 
 std::string ArrayResampler::batch_error(const FilterTable& table, int texel_count) const {
-  std::string error = array_line_error(m_layout, table, texel_count);
+  std::string error = array_line_error(m_layout, table, texel_count, m_lut_entries);
   const uint32_t left = m_staging_end > m_staging ? m_staging_end - m_staging : 0;
   if (error.empty() && m_dma_use.enabled && left < staging_bytes(texel_count, table.width)) {
     error = "the DMA's staging for lines of " + std::to_string(texel_count) + " texels needs " +
@@ -84,7 +89,8 @@ std::string ArrayResampler::check(const FilterTable& table, int texel_count) {
   return error;
 }
 
-void ArrayResampler::prepare(int texel_count, int width) {
+void ArrayResampler::prepare(int texel_count, const FilterTable& table) {
+  const int width = table.width;
   if (texel_count != m_loaded_texels || width != m_loaded_width) {
     TimedScope timed(m_host, m_time, HostSplit::array_write);
     m_array.load(program_for_lines(m_program, texel_count, width));
@@ -103,6 +109,13 @@ void ArrayResampler::prepare(int texel_count, int width) {
     }
     send_rows(rows);
     m_filter_width = width;
+  }
+  if (m_layout.table_factors && (width != m_table_width || table.kind != m_table_kind)) {
+    // The filter's table, once per filter, through LUT_INDEX and LUT_DATA.
+    TimedScope timed(m_host, m_time, HostSplit::array_write);
+    m_array.write_lut(0, lut_entries(table));
+    m_table_width = width;
+    m_table_kind = table.kind;
   }
 }
 
@@ -178,7 +191,7 @@ std::string ArrayResampler::resample(std::vector<PassLine>& lines, const FilterT
     std::string error = step_borders(lines[k].mapping, n, where(k), borders.data());
     return error.empty() ? where(k) + ": the array flagged the line, but step_borders finds no error" : error;
   };
-  prepare(n, table.width);
+  prepare(n, table);
   std::vector<ArrayLine> oriented(lines.size());
   {
     TimedScope timed(m_host, m_time, HostSplit::compute);

@@ -1,5 +1,6 @@
 // The warp's lines on the array (README.md, "On the array"): a LineResampler
-// that runs resample_lines.s with one line per CU, the lines brought into
+// that runs resample_lines.s with one line per CU (the factors computed, or
+// looked up in the array's shared table: ArrayFactors), the lines brought into
 // CMEM and the results taken out by the system/array DMA when the SoC has
 // one (dma.enabled), else through the CIU, and the host scattering the
 // pixels. Its host time goes to the caller's split: writing (the lines
@@ -21,19 +22,26 @@
 
 namespace tessera::forward_texture {
 
+// Where the program's factors come from: computed (resample_lines, the
+// J2210's own instructions, the box filter only) or looked up in the shared
+// table (resample_lines_lut, array.features.lut, any tabulated filter).
+enum class ArrayFactors { computed, table };
+
 class ArrayResampler : public LineResampler {
  public:
   // `staging` .. `staging_end`: system memory the DMA's rows and chains may
   // use (unused without the DMA). `time` receives the host time of each part.
-  ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end);
+  ArrayResampler(AppEnvironment& env, renderers::HostTime& time, uint32_t staging, uint32_t staging_end,
+                 ArrayFactors factors = ArrayFactors::computed);
 
   std::string resample(std::vector<PassLine>& lines, const FilterTable& table,
                        const std::function<std::string(std::size_t)>& where) override;
   std::size_t batch_lines() const override { return m_array.cus(); }
 
   // Empty, or why the array cannot resample lines of `texel_count` texels
-  // with `table` (array_line_error), why this array cannot run the
-  // program (its registers or CMEM), or why the staging is too small.
+  // with `table` (array_line_error: with the table, its size against
+  // array.lut.entries), why this array cannot run the program (its
+  // registers or CMEM), or why the staging is too small.
   std::string check(const FilterTable& table, int texel_count);
 
   struct Figures {
@@ -54,7 +62,7 @@ class ArrayResampler : public LineResampler {
   void forget_loaded() { m_loaded_texels = m_loaded_width = m_filter_width = -1; }
 
  private:
-  void prepare(int texel_count, int width);
+  void prepare(int texel_count, const FilterTable& table);
   void send_rows(const std::vector<CmemRow>& rows);
   std::vector<CmemRow> fetch_rows(const std::vector<uint16_t>& addresses);
   uint32_t staging_bytes(int texel_count, int width) const;
@@ -70,6 +78,11 @@ class ArrayResampler : public LineResampler {
   unsigned m_entry = 0;
   uint32_t m_staging = 0, m_staging_end = 0;
   int m_loaded_texels = -1, m_loaded_width = -1, m_filter_width = -1;
+  // The table's size (0: the factors are computed), and the filter last
+  // written into it.
+  unsigned m_lut_entries = 0;
+  int m_table_width = -1;
+  FilterKind m_table_kind = FilterKind::box;
   Figures m_figures;
 };
 

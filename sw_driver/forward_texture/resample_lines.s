@@ -1,6 +1,10 @@
-; Eq. 6 on the J2210 as it is (README.md, "On the array"): one line per CU,
-; every CU at the same texel index (a uniform address), bit for bit what
-; step_borders and resample_line compute for the box filter.
+; Eq. 6 on the array (README.md, "On the array"): one line per CU, every CU
+; at the same texel index (a uniform address), bit for bit what
+; step_borders and resample_line compute. Two programs from this source,
+; told apart by TABLE_FACTORS, which the build defines (ap_asm -D):
+;  0: resample_lines, the J2210 as it is: the box filter's factors computed;
+;  1: resample_lines_lut, with the shared lookup table (array.features.lut):
+;     the factors looked up in the host's table of the filter, any filter.
 ;
 ; Per border k = 0 .. n of the line (the texel loop's v = n - k):
 ;  1. the border: the numerator's sign and magnitude, 57 steps of restoring
@@ -9,10 +13,14 @@
 ;     kept in `err`; then numerator and denominator step by one addition;
 ;  2. s = border + offset: its top two bytes are the window's last pixel,
 ;     its third byte the phase; the window moved on when the pixel changed;
-;  3. the F factors H_j = floor((256 phase + 65536 (F - 1 - j) + F) / 2F),
-;     the box's table row, computed: the quotient and remainder of 256 phase
+;  3. the F factors H_j, the filter table's row for the phase:
+;     computed (TABLE_FACTORS 0): H_j = floor((256 phase + 65536 (F - 1 - j)
+;     + F) / 2F), the box's, from the quotient and remainder of 256 phase
 ;     by 2F (16 restoring steps), plus the host's quotient q_j and remainder
 ;     r_j of 65536 (F - 1 - j) + F, plus one when the remainders add up to 2F;
+;     looked up (TABLE_FACTORS 1): one lut a factor, entry 256 (F - 1 - j) +
+;     phase of the host's table (lut_entries in array_lines.h), F lookups a
+;     border (Eq. 6's count);
 ;  4. the F scalings H_j dC rounded to q8_8: two 16 x 8 multiplications of
 ;     H_j by the bytes of |dC|, the sign put back before the rounding;
 ;  5. the window's sums: each slot its pixel's (shifted by one slot when the
@@ -27,7 +35,8 @@
 ; (written with the start MAX_WIDTH - 1) before it loads the program.
 ;
 ; Stages: texcoord = the border (stepping and division), shade = the
-; factors and scalings, transfer = the window's moves and the outputs.
+; factors (the lookups too) and scalings, transfer = the window's moves and
+; the outputs.
 
 .const MAX_TEXELS 512
 .const MAX_WIDTH 8
@@ -42,10 +51,14 @@
 
 ; The same in every CU (the host writes them once per filter).
 .var offset 4               ; (F - 1) / 2 pixel plus half a phase step, q16_16
+.if TABLE_FACTORS
+.var slot_hi MAX_WIDTH      ; F - 1 - j: the high byte of slot j's table index
+.else
 .var q_hi MAX_WIDTH         ; quotient of 65536 (F - 1 - j) + F by 2F, slot j
 .var q_lo MAX_WIDTH
 .var r_j MAX_WIDTH          ; its remainder
 .var two_f 1                ; 2F
+.endif
 .var zero 1                 ; 0x00
 .var ff 1                   ; 0xff
 .var c80 1                  ; 0x80
@@ -75,8 +88,12 @@
 .var phase 1
 .var started 1              ; 0xff after the first border
 .var moved 1                ; 0xff when the window moved on at this border
+.if TABLE_FACTORS
+                            ; (the table needs no division of the phase)
+.else
 .var quotient_256p 2        ; 256 phase / 2F
 .var remainder_256p 1
+.endif
 .var dc_sign 1              ; 0xff when dC < 0
 .var u_hi 1                 ; the bytes of |dC|, each xor 0x80 (a signed multiplier)
 .var u_lo 1
@@ -276,6 +293,9 @@ resample:
     sbc [rounding + 2], [c40], r0
     sbc [rounding + 1], [zero], r0
     sbc [rounding], [zero], r0
+.if TABLE_FACTORS
+    ; 3. The factors are looked up in the loop below.
+.else
     ; 3. 256 phase = quotient_256p 2F + remainder_256p.
     mov r3, [phase]
     mov r4, [zero]
@@ -296,12 +316,25 @@ resample:
     mov [quotient_256p], r5
     mov [quotient_256p + 1], r6
     mov [remainder_256p], r4
+.endif
     loop j, MAX_WIDTH - 1, 1
       ; H_j in r0:r1.
+.if TABLE_FACTORS
+      mov r0, [slot_hi + j]
+      mov r1, [phase]
+      lut r0, r0
+      ; A table may hold H = 1.0 = 0x8000 (the tent's does), which mul takes
+      ; for -32768, 65536 too little: with r7 = 0xff then, each product gets
+      ; 65536 times its multiplier back (the multiplier added to its top byte).
+      shl r7, r0
+      sbc r7, [zero], [zero]
+      not r7, r7
+.else
       add r2, [remainder_256p], [r_j + j]
       cmp r2, [two_f]
       adc r1, [quotient_256p + 1], [q_lo + j]
       adc r0, [quotient_256p], [q_hi + j]
+.endif
       ; 128 H_j.
       mov r2, r0
       mov r3, r1
@@ -315,6 +348,10 @@ resample:
       ; 4. P = H_j |dC|: H_j (u - 128) + 128 H_j for each byte u of |dC|.
       mov r2, [u_hi]
       mul r3, r0, r2
+.if TABLE_FACTORS
+      and r2, r2, r7
+      add r3, r3, r2
+.endif
       add r5, r5, [h128 + 2]
       adc r4, r4, [h128 + 1]
       adc r3, r3, [h128]
@@ -323,6 +360,10 @@ resample:
       mov [p_hi + 2], r5
       mov r2, [u_lo]
       mul r3, r0, r2
+.if TABLE_FACTORS
+      and r2, r2, r7
+      add r3, r3, r2
+.endif
       add r5, r5, [h128 + 2]
       adc r4, r4, [h128 + 1]
       adc r3, r3, [h128]

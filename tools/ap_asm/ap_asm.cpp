@@ -6,16 +6,20 @@
 //                                           the program as C++ (tessera_add_array_programs)
 //   ap_asm --isa-table [-o F]               the ISA as markdown, for tlm/array/README.md
 //   --registers N --cmem-bytes N --program-words N   the array the program must fit
+//   -D NAME=VALUE                           a constant defined before the source's first line (for .if)
 //
 // The image is the program's words, each 8 bytes little-endian, in order.
 // An assembly error is printed as "ap_asm: file:line: problem", exit status 1.
 #include <CLI/CLI.hpp>
 
+#include <climits>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "array/asm/assembler.h"
 #include "array/asm/disassembler.h"
@@ -42,6 +46,23 @@ void write_text(const std::string& path, const std::string& text) {
     std::cout << text << std::flush;
   else
     write_file(path, text);
+}
+
+// "NAME=VALUE", VALUE a decimal or 0x hexadecimal int, optionally negative.
+std::pair<std::string, int> parse_define(const std::string& text) {
+  const size_t equals = text.find('=');
+  const std::string bad = "-D " + text + ": expected NAME=VALUE, VALUE a decimal or 0x hexadecimal int";
+  if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) throw std::runtime_error(bad);
+  const std::string value = text.substr(equals + 1);
+  size_t used = 0;
+  long long number = 0;
+  try {
+    number = std::stoll(value, &used, 0);
+  } catch (const std::exception&) {
+    throw std::runtime_error(bad);
+  }
+  if (used != value.size() || number < INT_MIN || number > INT_MAX) throw std::runtime_error(bad);
+  return {text.substr(0, equals), static_cast<int>(number)};
 }
 
 std::string image_bytes(const Program& program) {
@@ -71,6 +92,7 @@ static int run_main(int argc, char** argv) {
   bool disassemble_program = false;
   bool isa_table = false;
   AsmLimits limits;
+  std::vector<std::string> defines;
   app.add_option("file", file, "the assembly source");
   app.add_option("-o,--output", output, "the image (raw little-endian words), the disassembly, the C++ or the table");
   auto* disassemble_flag = app.add_flag("--disassemble", disassemble_program, "print the program's disassembly");
@@ -82,6 +104,8 @@ static int run_main(int argc, char** argv) {
   app.add_option("--registers", limits.registers, "registers of a CU")->check(CLI::Range(1u, MAX_REGISTERS));
   app.add_option("--cmem-bytes", limits.cmem_bytes, "bytes of CMEM of a CU")->check(CLI::Range(1u, 1u << ADDRESS_BITS));
   app.add_option("--program-words", limits.program_words, "words of program memory")->check(CLI::Range(1u, 1u << 20));
+  app.add_option("-D,--define", defines, "NAME=VALUE: a constant defined before the source's first line (for .if)")
+      ->allow_extra_args(false);
   CLI11_PARSE(app, argc, argv);
 
   if (isa_table) {
@@ -94,7 +118,12 @@ static int run_main(int argc, char** argv) {
     throw std::runtime_error("--emit-cpp " + emit_name + ": the name must be a C++ identifier");
   if (!emit_name.empty() && output.empty()) throw std::runtime_error("--emit-cpp needs -o FILE.cpp");
 
-  const Program program = assemble_file(file, limits);
+  AsmDefines defined;
+  for (const std::string& define : defines) {
+    const auto [name, value] = parse_define(define);
+    if (!defined.emplace(name, value).second) throw std::runtime_error("-D " + name + " is given twice");
+  }
+  const Program program = assemble_file(file, limits, defined);
   if (disassemble_program) {
     write_text(output, disassemble(program));
   } else if (!emit_name.empty()) {

@@ -91,6 +91,26 @@ TEST_F(ApAsm, LimitsComeFromTheOptions) {
   EXPECT_TRUE(contains(result.err, "regs.s:2: register r5 is beyond r3")) << result.err;
 }
 
+TEST_F(ApAsm, DefinesConstantsForIf) {
+  write("variant.s", "main:\n.if TABLE\n  nop\n.endif\n  halt\n");
+  auto result = run({"-D", "TABLE=1", "variant.s"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  EXPECT_EQ(result.out, "variant.s: 2 words, 1 entry (main), 0 variables, 1 constants\n");
+  result = run({"--define", "TABLE=0x0", "variant.s"});
+  ASSERT_EQ(result.status, 0) << describe(result);
+  EXPECT_EQ(result.out, "variant.s: 1 words, 1 entry (main), 0 variables, 1 constants\n");
+  result = run({"variant.s"});
+  EXPECT_EQ(result.status, 1) << describe(result);
+  EXPECT_TRUE(contains(result.err, "variant.s:2: undefined name 'TABLE' in the condition of .if")) << result.err;
+  for (const std::string bad : {"TABLE", "TABLE=", "=1", "TABLE=one", "TABLE=99999999999", "3D=1"}) {
+    result = run({"-D", bad, "variant.s"});
+    EXPECT_EQ(result.status, 1) << bad << describe(result);
+    EXPECT_FALSE(result.err.empty()) << bad;
+  }
+  result = run({"-D", "TABLE=1", "-D", "TABLE=0", "variant.s"});
+  EXPECT_TRUE(contains(result.err, "-D TABLE is given twice")) << result.err;
+}
+
 TEST_F(ApAsm, RejectsBadOptions) {
   write("good.s", GOOD);
   const std::vector<std::vector<std::string>> cases = {

@@ -646,6 +646,117 @@ TEST(Errors, ReptRunaway) {
                ".rept 'a' would replay more than 1000000 lines in all");
 }
 
+// Conditional assembly: .if on a constant expression, .else, .endif, the
+// constants the caller defines, and the program they select against the
+// same program written out by hand.
+TEST(Conditional, SelectsTheBranchOfTheCondition) {
+  const std::string source =
+      ".const WIDE 1\n"
+      "main:\n"
+      ".if WIDE\n"
+      "  add r0, r1, r2\n"
+      "  adc r3, r4, r5\n"
+      ".else\n"
+      "  add r0, r1, r2\n"
+      ".endif\n"
+      ".if WIDE - 1\n"
+      "  nop\n"
+      ".endif\n"
+      "  halt\n";
+  expect_same_words(source, ".const WIDE 1\nmain:\n  add r0, r1, r2\n  adc r3, r4, r5\n  halt\n");
+  const Program program = assemble_text(source);
+  // Each word's line is its source line.
+  EXPECT_EQ(program.lines, (std::vector<unsigned>{4, 5, 12}));
+}
+
+TEST(Conditional, NestsAndSkipsWhatItDoesNotTake) {
+  // A skipped branch is not assembled: its names need not exist, its
+  // labels and constants are not defined, its nested .if not evaluated.
+  const std::string source =
+      ".const A 0\n"
+      ".const B 2\n"
+      ".if A\n"
+      ".const ONLY_A 1\n"
+      "skipped:\n"
+      ".if UNDEFINED\n"
+      "  mov r0, [NOWHERE]\n"
+      ".else\n"
+      "  bogus instruction\n"
+      ".endif\n"
+      ".else\n"
+      "main:\n"
+      ".if B\n"
+      ".rept k, 0, 1\n"
+      ".if k\n"
+      "  mov r1, r2\n"
+      ".else\n"
+      "  mov r3, r4\n"
+      ".endif\n"
+      ".endr\n"
+      ".endif\n"
+      ".endif\n"
+      "  halt\n";
+  expect_same_words(source, ".const A 0\n.const B 2\nmain:\n  mov r3, r4\n  mov r1, r2\n  halt\n");
+  const Program program = assemble_text(source);
+  EXPECT_EQ(program.entries.count("skipped"), 0u);
+  EXPECT_EQ(program.constants.count("ONLY_A"), 0u);
+  // Inside a loop body, an .if is assembly time only.
+  expect_same_words(".const N 0\nmain:\nloop i, 3, 1\n.if N\nnop\n.endif\nmov [i], r0\nendloop\nhalt\n",
+                    "main:\nloop i, 3, 1\nmov [i], r0\nendloop\nhalt\n.const N 0\n");
+}
+
+TEST(Conditional, TheCallerDefinesConstants) {
+  const std::string source =
+      "main:\n"
+      ".if TABLE\n"
+      "  lut r0, r0\n"
+      ".else\n"
+      "  add r0, r0, r1\n"
+      ".endif\n"
+      "  halt\n";
+  const Program table = assemble(source, "test.s", {}, {{"TABLE", 1}});
+  const Program computed = assemble(source, "test.s", {}, {{"TABLE", 0}});
+  EXPECT_EQ(table.words, words_of("lut r0, r0"));
+  EXPECT_EQ(computed.words, words_of("add r0, r0, r1"));
+  // A defined constant is a constant of the program, like a .const.
+  EXPECT_EQ(table.constants.at("TABLE"), 1);
+  EXPECT_EQ(computed.constants.at("TABLE"), 0);
+  // Undefined, it is named, with where a definition would come from.
+  expect_error(source, 2, "undefined name 'TABLE' in the condition of .if");
+  expect_error(source, 2, "ap_asm -D NAME=VALUE");
+  // The source cannot define it again.
+  try {
+    assemble(".const TABLE 2\n", "test.s", {}, {{"TABLE", 1}});
+    ADD_FAILURE() << "no error";
+  } catch (const AsmError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "test.s:1: duplicate name 'TABLE': already a constant (defined when assembling)");
+  }
+  for (const std::string bad : {"", "3D", "r2", "a-b", ".x"})
+    EXPECT_THROW(assemble("main:\nhalt\n", "test.s", {}, {{bad, 1}}), std::invalid_argument) << bad;
+}
+
+TEST(Errors, ConditionalStructure) {
+  expect_error("main:\n.endif\nhalt\n", 2, ".endif without an .if");
+  expect_error("main:\n.else\nhalt\n", 2, ".else without an .if");
+  expect_error(".if 1\nmain:\nhalt\n", 1, ".if is not closed by .endif before the end of the file");
+  // The innermost open .if is the one named.
+  expect_error(".if 1\n.if 0\n.endif\n.if 1\nmain:\nhalt\n", 4, ".if is not closed by .endif");
+  expect_error(".if 1\n.else\n.else\n.endif\n", 3, ".else after an .else: the .if at line 1 has one already");
+  expect_error(".if 1\n.endif 1\n", 2, "nothing may follow .endif on its line");
+  expect_error(".if 1\n.else x\n.endif\n", 2, "nothing may follow .else on its line");
+  expect_error(".if\n.endif\n", 1, "expected the condition of .if");
+  expect_error(".if X\n.endif\n", 1, "undefined name 'X' in the condition of .if");
+  expect_error("main:\nloop v, 3, 1\n.if v\n.endif\nendloop\nhalt\n", 3, "loop variable 'v' in the condition of .if");
+  // Skipped lines are still read: a character the language has not is named.
+  expect_error(".if 0\nnop $\n.endif\n", 2, "unexpected character '$'");
+  // An .if and its .endif are in the same .rept body, or both outside it.
+  expect_error("main:\n.rept k, 0, 1\n.if k\nnop\n.endr\nhalt\n", 3,
+               "(in .rept k = 0) .if is not closed by .endif inside the body of .rept 'k' (line 2)");
+  expect_error("main:\n.if 1\n.rept k, 0, 1\n.endif\n.endr\nhalt\n", 4,
+               "(in .rept k = 0) .endif inside the body of .rept 'k' (line 3) belongs to the .if at line 2");
+}
+
 // Every opcode, each data operand as a register and as an address where
 // the forms allow, with stages, nested loops and two entries.
 const char* const EVERY_OPCODE = R"(

@@ -2,8 +2,9 @@
 // the warp the host runs is the fixed-point reference's (the library's own
 // tests hold it to Eq. 3), the same picture on both host models, the same
 // picture again from the array program (through the CIU and the DMA, on
-// both host models), its figures in stats.json, and bad input refused
-// naming the value.
+// both host models; with the factors computed, and looked up in the shared
+// table for the box and the tent, lockstep and skewed), its figures in
+// stats.json, and bad input refused naming the value.
 //
 // Usage: test_soc_sim_forward_texture <path to soc_sim> [GoogleTest options]
 #include <fstream>
@@ -27,10 +28,11 @@ constexpr int EXIT_USAGE = 2;
 
 class SocSimForwardTexture : public tessera::test::SocSimTest {
  protected:
-  json study(const std::string& out) const {
+  json stats(const std::string& out) const {
     std::ifstream in(m_dir / out / "stats.json");
-    return json::parse(in, nullptr, false)["stats"]["driver"]["study"];
+    return json::parse(in, nullptr, false)["stats"];
   }
+  json study(const std::string& out) const { return stats(out)["driver"]["study"]; }
 };
 
 TEST_F(SocSimForwardTexture, BothHostModelsWarpTheSamePicture) {
@@ -97,6 +99,48 @@ TEST_F(SocSimForwardTexture, TheArrayWarpsTheHostsPictureByteForByte) {
   EXPECT_EQ(study("host1")["columns_first"], 1);
 }
 
+TEST_F(SocSimForwardTexture, TheTableProgramWarpsTheHostsPictureByteForByte) {
+  // --array-factors table: the box and the tent of width 3 (a table of 768
+  // entries), lockstep and under delayed execution, through the DMA and the
+  // CIU; F lookups a border, the table written once.
+  const std::vector<std::string> lut = {"--set", "array.features.lut=true", "--set", "array.lut.entries=1024"};
+  struct Run {
+    std::string name;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Run> runs = {
+      {"host", {"--backend", "arm", "--set", "display.width=192", "--set", "display.height=144"}},
+      {"dma", {"--backend", "ap-tile", "--set", "dma.enabled=true"}},
+      {"dma_skew", {"--backend", "ap-tile", "--set", "dma.enabled=true", "--set", "array.issue_skew=lane"}},
+      {"ciu_skew", {"--backend", "ap-pixel", "--set", "array.issue_skew=lane"}}};
+  const int texels = 40, width = 3;
+  for (const std::string filter : {"box", "tent"}) {
+    for (const Run& r : runs) {
+      const std::string out = r.name + "_" + filter;
+      const bool on_array = r.name != "host";
+      std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", out};
+      args.insert(args.end(), r.settings.begin(), r.settings.end());
+      if (on_array) args.insert(args.end(), lut.begin(), lut.end());
+      args.insert(args.end(), {"--", "--texture-size", std::to_string(texels), "--filter-width", std::to_string(width),
+                               "--filter", filter});
+      if (on_array) args.insert(args.end(), {"--array-factors", "table"});
+      const SimResult result = run(args);
+      ASSERT_EQ(result.status, 0) << out << ": " << describe(result);
+      if (!on_array) continue;
+      EXPECT_TRUE(contains(result.out, "on the array (factors from the lookup table)")) << describe(result);
+      EXPECT_EQ(frame(out, 0), frame("host_" + filter, 0)) << out;
+      const json array = stats(out)["array"];
+      const int runs_made = study(out)["array_runs"].get<int>();
+      EXPECT_EQ(array["mix"]["lut"].get<int>(), runs_made * (texels + 1) * width) << out;
+      EXPECT_EQ(array["lut"]["host_writes"].get<int>(), 256 * width) << out;
+      // Lockstep every lut waits for 95 more CUs; skewed the luts are far
+      // enough apart on the J2210's cycles that no port is ever busy.
+      EXPECT_EQ(array["lut"]["stall_cycles"].get<int>(), r.name == "dma" ? 95 * array["mix"]["lut"].get<int>() : 0)
+          << out;
+    }
+  }
+}
+
 TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
   struct Case {
     std::vector<std::string> args;
@@ -124,6 +168,13 @@ TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
        "600 texels does not fit"},
       {{"--backend", "raster"}, "not on raster"},
       {{"--backend", "ap-pixel", "--set", "array.registers=4"}, "array.registers = 4"},
+      // The table program needs the table, and one large enough for 256 F entries.
+      {{"--backend", "ap-tile", "--", "--array-factors", "table"}, "array.features.lut = false"},
+      {{"--backend", "ap-tile", "--set", "array.features.lut=true", "--", "--array-factors", "table", "--filter",
+        "tent", "--filter-width", "2"},
+       "filter width F = 2 needs 512 lookup table entries (256 phases x F), more than array.lut.entries = 256"},
+      {{"--backend", "arm", "--", "--array-factors", "table"}, "--array-factors table is the array program's"},
+      {{"--backend", "ap-tile", "--", "--array-factors", "lut"}, "--array-factors is computed or table, not 'lut'"},
   };
   for (const Case& c : array_cases) {
     std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", "bad", "--force"};

@@ -100,6 +100,16 @@ struct RepeatCapture {
   std::vector<unsigned> open_inner;
 };
 
+// An .if whose .endif has not come yet.
+struct ConditionScope {
+  unsigned line;
+  bool taken;             // its condition held (false when its enclosing lines are skipped)
+  bool enclosing_active;  // the lines around it are assembled
+  bool in_else;
+  size_t repeat_depth;  // the .rept bodies being replayed when it opened
+  bool active() const { return enclosing_active && (in_else ? !taken : taken); }
+};
+
 // tokens[1, end) split at the commas into [begin, end) ranges; none when
 // nothing follows tokens[0].
 std::vector<std::pair<size_t, size_t>> split_operands(const Tokens& tokens) {
@@ -158,7 +168,7 @@ std::string describe(const Token& token) {
 
 class Assembler {
  public:
-  Assembler(const std::string& source_name, const AsmLimits& limits) : m_limits(limits) {
+  Assembler(const std::string& source_name, const AsmLimits& limits, const AsmDefines& defines) : m_limits(limits) {
     m_program.source_name = source_name;
     if (limits.registers == 0 || limits.registers > MAX_REGISTERS)
       throw std::invalid_argument("registers must be 1.." + std::to_string(MAX_REGISTERS) + ", not " +
@@ -167,6 +177,16 @@ class Assembler {
       throw std::invalid_argument("CMEM bytes must be 1.." + std::to_string(1u << ADDRESS_BITS) + ", not " +
                                   std::to_string(limits.cmem_bytes));
     if (limits.program_words == 0) throw std::invalid_argument("program words must be at least 1");
+    for (const auto& [name, value] : defines) {
+      const bool is_name = !name.empty() && is_name_start(name[0]) &&
+                           std::all_of(name.begin(), name.end(), [](char c) { return is_name_char(c); });
+      if (!is_name || register_number(name))
+        throw std::invalid_argument("cannot define '" + name +
+                                    "': a constant's name is letters, digits and _, not starting with a digit, "
+                                    "and not a register");
+      m_program.constants[name] = value;
+      m_name_lines[name] = 0;
+    }
   }
 
   Program run(std::string_view source) {
@@ -224,6 +244,7 @@ class Assembler {
       return;
     }
     m_line = line.number;
+    if (conditional(line.tokens) || !active()) return;
     if (is_directive(line.tokens, ".rept")) {
       open_repeat(line.tokens);
     } else if (is_directive(line.tokens, ".endr")) {
@@ -231,6 +252,45 @@ class Assembler {
     } else {
       statement(line.tokens);
     }
+  }
+
+  bool active() const { return m_conditions.empty() || m_conditions.back().active(); }
+
+  // .if, .else and .endif, read whether their lines are skipped or not (so
+  // that they pair up); false for any other line. The condition is read only
+  // where the lines around it are assembled, so a skipped branch may use
+  // names that are defined only where it is not skipped.
+  bool conditional(const Tokens& tokens) {
+    if (is_directive(tokens, ".if")) {
+      const bool enclosing = active();
+      const bool taken =
+          enclosing &&
+          expression(tokens, 1, tokens.size(),
+                     "the condition of .if (a constant expression: .const, or defined when assembling, ap_asm -D "
+                     "NAME=VALUE)",
+                     false)
+                  .number != 0;
+      m_conditions.push_back({m_line, taken, enclosing, false, m_repeats.size()});
+      return true;
+    }
+    const bool is_else = is_directive(tokens, ".else");
+    if (!is_else && !is_directive(tokens, ".endif")) return false;
+    const std::string& name = tokens[0].text;
+    if (tokens.size() > 1) fail("nothing may follow " + name + " on its line");
+    if (m_conditions.empty()) fail(name + " without an .if");
+    ConditionScope& scope = m_conditions.back();
+    if (scope.repeat_depth != m_repeats.size())
+      fail(name + " inside the body of .rept '" + m_repeats.back().name + "' (line " +
+           std::to_string(m_repeats.back().line) + ") belongs to the .if at line " + std::to_string(scope.line) +
+           ", outside it: close the .if inside the body");
+    if (is_else) {
+      if (scope.in_else)
+        fail(".else after an .else: the .if at line " + std::to_string(scope.line) + " has one already");
+      scope.in_else = true;
+    } else {
+      m_conditions.pop_back();
+    }
+    return true;
   }
 
   // `.rept NAME, FIRST, LAST`: the bounds are read here, where every name
@@ -268,7 +328,13 @@ class Assembler {
              " lines in all (the limit of the .rept blocks of a file)");
       }
       m_repeats.push_back({capture.name, value, capture.line});
+      const size_t conditions = m_conditions.size();
       for (const SourceLine& line : capture.body) feed(line);
+      if (m_conditions.size() > conditions) {
+        m_line = m_conditions.back().line;
+        fail(".if is not closed by .endif inside the body of .rept '" + capture.name + "' (line " +
+             std::to_string(capture.line) + ")");
+      }
       m_repeats.pop_back();
       if (value == capture.last) break;
     }
@@ -379,7 +445,9 @@ class Assembler {
       fail(tokens[0].text + ": expected the name of the " + what);
     const std::string& name = tokens[1].text;
     if (register_number(name)) fail("'" + name + "' is a register and cannot name a " + what);
-    const auto first_at = [&](const auto& found) { return " (line " + std::to_string(found) + ")"; };
+    const auto first_at = [&](unsigned found) {
+      return found == 0 ? std::string(" (defined when assembling)") : " (line " + std::to_string(found) + ")";
+    };
     if (m_program.constants.count(name) != 0)
       fail("duplicate name '" + name + "': already a constant" + first_at(m_name_lines.at(name)));
     if (m_program.variables.count(name) != 0)
@@ -722,6 +790,10 @@ class Assembler {
   }
 
   void finish() {
+    if (!m_conditions.empty()) {
+      m_line = m_conditions.back().line;
+      fail(".if is not closed by .endif before the end of the file");
+    }
     if (m_capture) {
       m_line = m_capture->open_inner.empty() ? m_capture->line : m_capture->open_inner.back();
       fail(".rept is not closed by .endr before the end of the file");
@@ -749,6 +821,8 @@ class Assembler {
   std::optional<RepeatCapture> m_capture;
   std::vector<RepeatScope> m_repeats;
   int64_t m_expanded_lines = 0;
+  // The .if blocks open, outermost first.
+  std::vector<ConditionScope> m_conditions;
   // The first label since the last halt: its code has not reached a halt yet.
   std::optional<std::pair<std::string, unsigned>> m_open_entry;
   // Whether a label precedes the next instruction with no halt between.
@@ -758,11 +832,12 @@ class Assembler {
 
 }  // namespace
 
-Program assemble(std::string_view source, const std::string& source_name, const AsmLimits& limits) {
-  return Assembler(source_name, limits).run(source);
+Program assemble(std::string_view source, const std::string& source_name, const AsmLimits& limits,
+                 const AsmDefines& defines) {
+  return Assembler(source_name, limits, defines).run(source);
 }
 
-Program assemble_file(const std::string& path, const AsmLimits& limits) {
+Program assemble_file(const std::string& path, const AsmLimits& limits, const AsmDefines& defines) {
   std::string source;
   std::error_code failure;
   if (std::filesystem::is_regular_file(path, failure)) {
@@ -795,7 +870,7 @@ Program assemble_file(const std::string& path, const AsmLimits& limits) {
     // stream buffer, whatever the stream's exception mask.
     throw AsmError(path, 0, std::string("cannot read the file (") + e.what() + ")");
   }
-  return assemble(source, path, limits);
+  return assemble(source, path, limits, defines);
 }
 
 }  // namespace tessera::ap

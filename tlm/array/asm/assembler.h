@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -43,9 +44,16 @@ class AsmError : public std::runtime_error {
 // the largest program memory written out line by line.
 constexpr size_t MAX_SOURCE_BYTES = 64u * 1024 * 1024;
 
+// Constants the caller defines before the source's first line (ap_asm -D
+// NAME=VALUE), as if by `.const`: one source assembled into variants that
+// `.if` tells apart (README.md, "Conditional assembly").
+using AsmDefines = std::map<std::string, int>;
+
 // Throws AsmError on the first problem; std::invalid_argument when the
-// limits themselves are not an array the ISA can address.
-Program assemble(std::string_view source, const std::string& source_name, const AsmLimits& limits = {});
-Program assemble_file(const std::string& path, const AsmLimits& limits = {});
+// limits themselves are not an array the ISA can address, or a defined name
+// is not a name the language allows.
+Program assemble(std::string_view source, const std::string& source_name, const AsmLimits& limits = {},
+                 const AsmDefines& defines = {});
+Program assemble_file(const std::string& path, const AsmLimits& limits = {}, const AsmDefines& defines = {});
 
 }  // namespace tessera::ap
