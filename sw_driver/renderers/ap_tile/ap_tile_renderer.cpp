@@ -617,27 +617,36 @@ void ApTileRenderer::shade_warped() {
                             ? m_warp_plan.job(pixel.tid, entry.texture, width, height, m_resampler->max_texels(), job)
                             : "an alpha texture (its colour is the fragment's)";
     if (error.empty()) {
-      const WarpRegion& region = job.region();
-      error = m_resampler->check(warp_filter(m_settings.texture_warp_width),
-                                 std::max(region.width, region.height) * region.upscale);
+      int longest = 0;
+      for (const WarpBand& band : job.bands())
+        longest = std::max(longest, std::max(band.width, band.height) * band.upscale);
+      error = m_resampler->check(warp_filter(m_settings.texture_warp_width), longest);
     }
     if (error.empty()) {
       ran = true;
       const gl::Texture& tex = entry.texture;
       uint64_t texels = 0;
-      const WarpJob::TexelSource source = [&](int i, int j, uint8_t out[4]) {
-        const auto u = static_cast<uint32_t>(wrap_texel(i, static_cast<int>(tex.width), tex.wrap_s));
-        const auto v = static_cast<uint32_t>(wrap_texel(j, static_cast<int>(tex.height), tex.wrap_t));
-        std::memcpy(out, m_host.load_span(tex.address + (v * tex.width + u) * 4, 4, 1), 4);
+      // The texture's own levels when GL would use them (levels > 1 only
+      // with a mipmapped minification filter); else the job averages.
+      const WarpJob::TexelSource source = [&](int level, int i, int j, uint8_t out[4]) {
+        if (level >= static_cast<int>(tex.levels)) return false;
+        const gl::TextureLevel& at = tex.level[level];
+        const auto u = static_cast<uint32_t>(wrap_texel(i, static_cast<int>(at.width), tex.wrap_s));
+        const auto v = static_cast<uint32_t>(wrap_texel(j, static_cast<int>(at.height), tex.wrap_t));
+        std::memcpy(out, m_host.load_span(at.address + (v * at.width + u) * 4, 4, 1), 4);
+        return true;
       };
       WarpedTexture& out = warped[pixel.tid];
       error = job.run(source, m_resampler.get(), out, texels);
       costs::charge(m_host, HostCost::ap_tile_warp_texel, texels);
       costs::charge(m_host, HostCost::forward_texture_line, out.lines);
-      const uint64_t region_texels = uint64_t{static_cast<unsigned>(out.region.width * out.region.upscale)} *
-                                     static_cast<unsigned>(out.region.height * out.region.upscale);
-      costs::charge(m_host, HostCost::forward_texture_texel_load, 3 * region_texels);
-      costs::charge(m_host, HostCost::forward_texture_output_pixel, uint64_t{3} * m_frame.width() * m_frame.height());
+      uint64_t band_texels = 0;
+      for (const WarpBand& band : job.bands())
+        band_texels += uint64_t{static_cast<unsigned>(band.width * band.upscale)} *
+                       static_cast<unsigned>(band.height * band.upscale);
+      costs::charge(m_host, HostCost::forward_texture_texel_load, 3 * band_texels);
+      costs::charge(m_host, HostCost::forward_texture_output_pixel,
+                    uint64_t{3} * job.bands().size() * m_frame.width() * m_frame.height());
       m_warp_lines += out.lines;
       m_warp_borders += out.borders;
     }

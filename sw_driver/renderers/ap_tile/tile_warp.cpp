@@ -137,48 +137,128 @@ void WarpedTexture::texel(int x, int y, uint8_t out[4]) const {
 std::string WarpJob::prepare(const TexturePlane& plane, const gl::Texture& texture, float u_min, float u_max,
                              float v_min, float v_max, int frame_width, int frame_height, int max_texels) {
   m_plane = plane;
-  m_base_width = static_cast<int>(texture.width);
-  m_base_height = static_cast<int>(texture.height);
   m_frame_width = frame_width;
   m_frame_height = frame_height;
   m_max_texels = max_texels;
+  m_bands.clear();
+  m_region = WarpRegion{};
+  // Levels down to one texel along the texture's shorter side.
+  m_top_level = 0;
+  while ((std::min(texture.width, texture.height) >> (m_top_level + 1)) > 0) ++m_top_level;
   const int margin = region_margin(m_table.width);
-  const auto most = static_cast<float>(max_texels);
-  if (!(u_max - u_min <= most) || !(v_max - v_min <= most))
+  const auto longest = static_cast<float>(max_texels << m_top_level);
+  if (!(u_max - u_min <= longest) || !(v_max - v_min <= longest))
     return "its texels span " + std::to_string(std::lround(u_max - u_min)) + " x " +
            std::to_string(std::lround(v_max - v_min)) + " texels, beyond the array program's " +
-           std::to_string(max_texels) + " texels a line";
+           std::to_string(max_texels) + " texels a line at every level";
   m_region.u0 = static_cast<int>(std::floor(u_min)) - margin;
   m_region.v0 = static_cast<int>(std::floor(v_min)) - margin;
   m_region.width = static_cast<int>(std::ceil(u_max)) + margin - m_region.u0;
   m_region.height = static_cast<int>(std::ceil(v_max)) + margin - m_region.v0;
-  m_region.upscale = 1;
-  if (std::string error = set_matrix(); !error.empty()) return error;
-  // The smallest power-of-two upscale that leaves every texel within a
-  // pixel by the scale at nine points (a warp still refused for
-  // magnification is retried at twice it: run).
-  const float scale = largest_scale(m_matrix, m_region.width, m_region.height);
-  while (scale / static_cast<float>(m_region.upscale) > 1.0001f) m_region.upscale *= 2;
-  return set_matrix();
+  // The whole region at the base level when it fits; else bands.
+  WarpBand whole{m_region.u0, m_region.v0, m_region.width, m_region.height, 0, 1, {}};
+  std::string error = fit_band(whole);
+  if (error.empty()) {
+    m_bands.push_back(whole);
+  } else if (error.find("beyond the array program's") != std::string::npos) {
+    error = cut_bands();
+  }
+  for (const WarpBand& band : m_bands) m_region.upscale = std::max(m_region.upscale, band.upscale);
+  m_region.bands = static_cast<int>(m_bands.size());
+  return error;
 }
 
-// The region's matrix: m times the region's texel-to-base map, scaled so
-// that the largest w at the region's corners is 1, in q12_20 and q2_30.
-std::string WarpJob::set_matrix() {
-  const int k = m_region.upscale;
-  const int width = m_region.width * k, height = m_region.height * k;
+// The band's upscale (the smallest power of two that leaves every texel
+// within a pixel by the scale at nine points; a warp still refused for
+// magnification is retried at twice it: run) and its matrix.
+std::string WarpJob::fit_band(WarpBand& band) const {
+  band.upscale = 1;
+  if (std::string error = band_matrix(band); !error.empty()) return error;
+  const float scale = largest_scale(band.matrix, band.width, band.height);
+  while (scale / static_cast<float>(band.upscale) > 1.0001f) band.upscale *= 2;
+  return band_matrix(band);
+}
+
+// The region cut across its longer side into bands of whole chunks of
+// 2^top_level base texels (the chunks' edges are texel edges at every
+// level), each chunk at the level whose texels cover at most a pixel
+// (level 0, upscaled, where the base texels cover more), consecutive
+// chunks of one level and upscale one band while its lines fit.
+std::string WarpJob::cut_bands() {
+  const bool along_v = m_region.height >= m_region.width;
+  const int chunk = 1 << m_top_level;
+  const int first = along_v ? m_region.v0 : m_region.u0;
+  const int end = first + (along_v ? m_region.height : m_region.width);
+  auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  auto ceil_div = [&](int a, int b) { return -floor_div(-a, b); };
+  WarpBand current{};
+  bool open = false;
+  for (int c = floor_div(first, chunk) * chunk; c < end; c += chunk) {
+    const int a = std::max(c, first), b = std::min(c + chunk, end);
+    // The chunk's scale at level 0, then its level.
+    WarpBand probe{along_v ? m_region.u0 : a,
+                   along_v ? a : m_region.v0,
+                   along_v ? m_region.width : b - a,
+                   along_v ? b - a : m_region.height,
+                   0,
+                   1,
+                   {}};
+    if (std::string error = band_matrix(probe); !error.empty()) return error;
+    const float scale = largest_scale(probe.matrix, probe.width, probe.height);
+    int level = 0;
+    while (level < m_top_level && scale * static_cast<float>(2 << level) <= 1.0f) ++level;
+    const int size = 1 << level;
+    // The band in level texels: its cross extent rounded outwards, its
+    // ends at chunk edges (or the region's, rounded outwards).
+    const int cross0 = floor_div(along_v ? m_region.u0 : m_region.v0, size);
+    const int cross1 = ceil_div(along_v ? m_region.u0 + m_region.width : m_region.v0 + m_region.height, size);
+    const int a_level = floor_div(a, size), b_level = ceil_div(b, size);
+    const bool extends = open && current.level == level &&
+                         (along_v ? current.v0 + current.height == a_level : current.u0 + current.width == a_level);
+    WarpBand next = current;
+    if (extends) {
+      (along_v ? next.height : next.width) += b_level - a_level;
+    } else {
+      next = along_v ? WarpBand{cross0, a_level, cross1 - cross0, b_level - a_level, level, 1, {}}
+                     : WarpBand{a_level, cross0, b_level - a_level, cross1 - cross0, level, 1, {}};
+    }
+    std::string error = fit_band(next);
+    if (extends && !error.empty()) {
+      // The band is full: this chunk starts the next.
+      m_bands.push_back(current);
+      next = along_v ? WarpBand{cross0, a_level, cross1 - cross0, b_level - a_level, level, 1, {}}
+                     : WarpBand{a_level, cross0, b_level - a_level, cross1 - cross0, level, 1, {}};
+      error = fit_band(next);
+    } else if (!extends && open) {
+      m_bands.push_back(current);
+    }
+    if (!error.empty()) return error;
+    current = next;
+    open = true;
+  }
+  if (open) m_bands.push_back(current);
+  return {};
+}
+
+// The band's matrix: m times the band's texel-to-base map (level texels,
+// upscaled), scaled so that the largest w at its corners is 1, in q12_20
+// and q2_30.
+std::string WarpJob::band_matrix(WarpBand& band) const {
+  const int k = band.upscale;
+  const int width = band.width * k, height = band.height * k;
   if (width > m_max_texels || height > m_max_texels)
-    return "its texture region of " + std::to_string(m_region.width) + " x " + std::to_string(m_region.height) +
-           " texels upscaled " + std::to_string(k) + " times is beyond the array program's " +
-           std::to_string(m_max_texels) + " texels a line";
+    return "its texture region of " + std::to_string(band.width) + " x " + std::to_string(band.height) +
+           " texels (level " + std::to_string(band.level) + ") upscaled " + std::to_string(k) +
+           " times is beyond the array program's " + std::to_string(m_max_texels) + " texels a line";
   const std::array<float, 9>& m = m_plane.m;
-  const float inv_k = 1.0f / static_cast<float>(k);
-  const auto u0 = static_cast<float>(m_region.u0), v0 = static_cast<float>(m_region.v0);
+  const auto size = static_cast<float>(1 << band.level);
+  const float step = size / static_cast<float>(k);
+  const float u0 = static_cast<float>(band.u0) * size, v0 = static_cast<float>(band.v0) * size;
   std::array<float, 9> r{};
   for (int row = 0; row < 3; ++row) {
     const auto at = static_cast<size_t>(3 * row);
-    r[at] = m[at] * inv_k;
-    r[at + 1] = m[at + 1] * inv_k;
+    r[at] = m[at] * step;
+    r[at + 1] = m[at + 1] * step;
     r[at + 2] = m[at] * u0 + m[at + 1] * v0 + m[at + 2];
   }
   float w_max = 0.0f, w_min = 0.0f;
@@ -191,52 +271,91 @@ std::string WarpJob::set_matrix() {
   if (!(w_min > 0.0f)) return "its plane passes behind the eye within the texture region";
   const float scale = 1.0f / w_max;
   bool fits = true;
-  int32_t* fixed[9] = {&m_matrix.a, &m_matrix.b, &m_matrix.c, &m_matrix.d, &m_matrix.e,
-                       &m_matrix.f, &m_matrix.g, &m_matrix.h, &m_matrix.i};
+  int32_t* fixed[9] = {&band.matrix.a, &band.matrix.b, &band.matrix.c, &band.matrix.d, &band.matrix.e,
+                       &band.matrix.f, &band.matrix.g, &band.matrix.h, &band.matrix.i};
   for (size_t e = 0; e < 9; ++e) {
     const bool denominator = e >= 6;
     fits = fits && to_fixed(r[e] * scale, denominator ? ft::Q2_30_FRACTION_BITS : ft::Q12_20_FRACTION_BITS,
                             denominator ? 1.99f : 2047.0f, *fixed[e]);
   }
   if (!fits) return "its plane's matrix leaves the warp's fixed point";
-  return ft::matrix_error(m_matrix, width, height);
+  return ft::matrix_error(band.matrix, width, height);
+}
+
+// The band's texels at its level: the texture's own level when it has one
+// (source), else the mean of the base texels under each (rounded).
+std::vector<uint8_t> WarpJob::band_texels(const WarpBand& band, const TexelSource& source,
+                                          uint64_t& texels_loaded) const {
+  std::vector<uint8_t> texels(static_cast<size_t>(band.width) * band.height * 4);
+  const int size = 1 << band.level;
+  for (int j = 0; j < band.height; ++j)
+    for (int i = 0; i < band.width; ++i) {
+      uint8_t* out = &texels[(static_cast<size_t>(j) * band.width + i) * 4];
+      ++texels_loaded;
+      if (source(band.level, band.u0 + i, band.v0 + j, out)) continue;
+      unsigned sum[4] = {};
+      for (int b = 0; b < size; ++b)
+        for (int a = 0; a < size; ++a) {
+          uint8_t base[4];
+          source(0, (band.u0 + i) * size + a, (band.v0 + j) * size + b, base);
+          for (int c = 0; c < 4; ++c) sum[c] += base[c];
+        }
+      const auto count = static_cast<unsigned>(size * size);
+      for (int c = 0; c < 4; ++c) out[c] = static_cast<uint8_t>((sum[c] + count / 2) / count);
+      texels_loaded += count;
+    }
+  return texels;
 }
 
 std::string WarpJob::run(const TexelSource& source, ft::LineResampler* resampler, WarpedTexture& out,
                          uint64_t& texels_loaded) {
-  for (;;) {
-    const int k = m_region.upscale, width = m_region.width * k, height = m_region.height * k;
-    // The base texels once, then each channel's upscaled image.
-    std::vector<uint8_t> base(static_cast<size_t>(m_region.width) * m_region.height * 4);
-    for (int j = 0; j < m_region.height; ++j)
-      for (int i = 0; i < m_region.width; ++i)
-        source(m_region.u0 + i, m_region.v0 + j, &base[(static_cast<size_t>(j) * m_region.width + i) * 4]);
-    texels_loaded += static_cast<uint64_t>(m_region.width) * m_region.height;
-    std::string error;
-    for (size_t c = 0; c < 3 && error.empty(); ++c) {
-      ft::Image image{width, height, std::vector<uint8_t>(static_cast<size_t>(width) * height)};
-      for (int j = 0; j < height; ++j)
-        for (int i = 0; i < width; ++i)
-          image.texels[static_cast<size_t>(j) * width + i] =
-              base[(static_cast<size_t>(j / k) * m_region.width + i / k) * 4 + c];
-      ft::WarpResult result = ft::warp_texture(image, m_matrix, m_table, m_frame_width, m_frame_height, resampler);
-      error = result.error;
-      out.channels[c] = std::move(result.image);
-      out.order = result.pass_order.order;
-      // The row pass's lines are the texture's rows (its columns first:
-      // its columns), the column pass's the output's columns (rows).
-      const bool rows_first = out.order == ft::PassOrder::rows_first;
-      const uint64_t first = rows_first ? height : width, texels = rows_first ? width : height;
-      const uint64_t second = rows_first ? m_frame_width : m_frame_height;
-      out.lines += first + second;
-      out.borders += (first + second) * (texels + 1);
+  const size_t pixels = static_cast<size_t>(m_frame_width) * m_frame_height;
+  std::array<std::vector<uint16_t>, 3> sums;
+  for (std::vector<uint16_t>& sum : sums) sum.assign(pixels, 0);
+  for (WarpBand& band : m_bands) {
+    const std::vector<uint8_t> texels = band_texels(band, source, texels_loaded);
+    for (;;) {
+      const int k = band.upscale, width = band.width * k, height = band.height * k;
+      std::string error;
+      std::array<ft::Image, 3> images;
+      for (size_t c = 0; c < 3 && error.empty(); ++c) {
+        ft::Image image{width, height, std::vector<uint8_t>(static_cast<size_t>(width) * height)};
+        for (int j = 0; j < height; ++j)
+          for (int i = 0; i < width; ++i)
+            image.texels[static_cast<size_t>(j) * width + i] =
+                texels[(static_cast<size_t>(j / k) * band.width + i / k) * 4 + c];
+        ft::WarpResult result = ft::warp_texture(image, band.matrix, m_table, m_frame_width, m_frame_height, resampler);
+        error = result.error;
+        images[c] = std::move(result.image);
+        out.order = result.pass_order.order;
+        // The first pass's lines are the texture's rows (columns first:
+        // its columns), the second's the output's columns (rows).
+        const bool rows_first = out.order == ft::PassOrder::rows_first;
+        const uint64_t first = rows_first ? height : width, texels_a_line = rows_first ? width : height;
+        const uint64_t second = rows_first ? m_frame_width : m_frame_height;
+        out.lines += first + second;
+        out.borders += (first + second) * (texels_a_line + 1);
+      }
+      if (error.empty()) {
+        // A band's image holds its texels' part of every pixel: the bands
+        // add up.
+        for (size_t c = 0; c < 3; ++c)
+          for (size_t p = 0; p < pixels; ++p) sums[c][p] = static_cast<uint16_t>(sums[c][p] + images[c].texels[p]);
+        break;
+      }
+      if (error.find("magnification") == std::string::npos) return error;
+      band.upscale *= 2;
+      m_region.upscale = std::max(m_region.upscale, band.upscale);
+      if (std::string refused = band_matrix(band); !refused.empty()) return refused;
     }
-    out.region = m_region;
-    if (error.empty()) return {};
-    if (error.find("magnification") == std::string::npos) return error;
-    m_region.upscale *= 2;
-    if (std::string refused = set_matrix(); !refused.empty()) return refused;
   }
+  for (size_t c = 0; c < 3; ++c) {
+    out.channels[c] = ft::Image{m_frame_width, m_frame_height, std::vector<uint8_t>(pixels)};
+    for (size_t p = 0; p < pixels; ++p)
+      out.channels[c].texels[p] = static_cast<uint8_t>(std::min<unsigned>(sums[c][p], 255));
+  }
+  out.region = m_region;
+  return {};
 }
 
 void WarpPlan::add(unsigned tid, const gl::Triangle& triangle, const gl::Texture& texture) {

@@ -48,10 +48,20 @@ std::optional<TexturePlane> texture_plane(const gl::Triangle& triangle, const gl
 bool on_plane(const TexturePlane& plane, const gl::Triangle& triangle, const gl::Texture& texture);
 
 // The texels a warp maps: [u0, u0 + width) x [v0, v0 + height) of the base
-// level (wrapped or clamped as the texture's wrap modes say), each made
-// `upscale` x `upscale` texels of the warp's texture.
+// level (wrapped or clamped as the texture's wrap modes say), in `bands`
+// (one: the base texels, each made `upscale` x `upscale` texels of the
+// warp's texture; more: cut across the longer side, each at its own level
+// and upscale, the largest upscale here).
 struct WarpRegion {
-  int u0 = 0, v0 = 0, width = 0, height = 0, upscale = 1;
+  int u0 = 0, v0 = 0, width = 0, height = 0, upscale = 1, bands = 0;
+};
+
+// A band of a region in texels of its level: [u0, u0 + width) x [v0, v0 +
+// height), each made `upscale` x `upscale` texels of the warp's texture,
+// and its matrix.
+struct WarpBand {
+  int u0 = 0, v0 = 0, width = 0, height = 0, level = 0, upscale = 1;
+  forward_texture::PerspectiveMatrix matrix;
 };
 
 // The warped colour channels of a texture, each the frame's size, row 0 at
@@ -72,30 +82,38 @@ class WarpJob {
  public:
   explicit WarpJob(forward_texture::FilterTable table) : m_table(std::move(table)) {}
   // Empty, or why this texture's triangles cannot be warped (the region
-  // beyond the program's texels a line, the plane behind the eye at the
-  // region's corners, a singular or out-of-range matrix).
+  // beyond the program's texels a line at every level, the plane behind
+  // the eye at a band's corners, a singular or out-of-range matrix). A
+  // region whose lines do not fit at the base level is cut into bands.
   std::string prepare(const TexturePlane& plane, const gl::Texture& texture, float u_min, float u_max, float v_min,
                       float v_max, int frame_width, int frame_height, int max_texels);
-  // The texels of the region of one channel (0 red .. 2 blue), upscaled.
-  // texel(i, j, out) gives base-level texel (i, j), already wrapped.
-  using TexelSource = std::function<void(int i, int j, uint8_t out[4])>;
-  // Warps the three channels with `resampler` (nullptr: on the host). A
-  // warp refused for magnification is retried at twice the upscale while
-  // the region fits; `texels_loaded` counts the base texels fetched.
+  // source(level, i, j, out) gives texel (i, j) of `level`, wrapped or
+  // clamped at that level's size, and true; or false when the texture has
+  // no such level (level 0 it always has): the job then averages the base
+  // texels under it.
+  using TexelSource = std::function<bool(int level, int i, int j, uint8_t out[4])>;
+  // Warps the three channels of every band with `resampler` (nullptr: on
+  // the host) and adds the bands up. A band's warp refused for
+  // magnification is retried at twice its upscale while its lines fit;
+  // `texels_loaded` counts the texels fetched.
   std::string run(const TexelSource& source, forward_texture::LineResampler* resampler, WarpedTexture& out,
                   uint64_t& texels_loaded);
   const WarpRegion& region() const { return m_region; }
 
+  const std::vector<WarpBand>& bands() const { return m_bands; }
+
  private:
-  std::string set_matrix();
+  std::string fit_band(WarpBand& band) const;
+  std::string cut_bands();
+  std::string band_matrix(WarpBand& band) const;
+  std::vector<uint8_t> band_texels(const WarpBand& band, const TexelSource& source, uint64_t& texels_loaded) const;
 
   TexturePlane m_plane;
   forward_texture::FilterTable m_table;
   WarpRegion m_region;
-  int m_base_width = 0, m_base_height = 0;
+  std::vector<WarpBand> m_bands;
+  int m_top_level = 0;
   int m_frame_width = 0, m_frame_height = 0, m_max_texels = 0;
-  bool m_wrap_s = true, m_wrap_t = true;
-  forward_texture::PerspectiveMatrix m_matrix;
 };
 
 // Base-level texel (i, j) of `texture` wrapped or clamped by its wrap modes.

@@ -210,21 +210,29 @@ TEST_F(ApTileBackend, TextureWarpThroughTheDmaDrawsTheCiusFrame) {
 }
 
 // mipmap_floor's strips reach 9,966 texels along t, beyond the program's
-// 512 a line: each of its six textures falls back to the look-ups, with a
-// warning naming why, and the frame is the look-ups' frame.
-TEST_F(ApTileBackend, TextureWarpFallsBackWhereTheRegionIsBeyondTheProgramsLines) {
+// 512 a line: each strip's texture is warped in bands, each at the level
+// of its scale; the frame is not the look-ups' frame.
+TEST_F(ApTileBackend, TextureWarpCutsALongRegionIntoBands) {
   const json warped = scene("floor_warp", "mipmap_floor", {"ap.tile.texture_warp=array"});
-  const SimResult warped_run = m_last;
   const json lookups = scene("floor_off", "mipmap_floor", {});
   ASSERT_FALSE(warped.is_discarded());
   ASSERT_FALSE(lookups.is_discarded());
-  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["refused"], 6);
-  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["textures"], 0);
-  EXPECT_TRUE(contains(warped_run.err + warped_run.out,
-                       "textured by look-ups on the host: its texels span 51 x 9966 texels, beyond the array "
-                       "program's 512 texels a line"))
-      << describe(warped_run);
-  EXPECT_EQ(read_file(m_dir / "floor_warp/frame_0000.png"), read_file(m_dir / "floor_off/frame_0000.png"));
+  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["refused"], 0);
+  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["textures"], 6);
+  EXPECT_NE(read_file(m_dir / "floor_warp/frame_0000.png"), read_file(m_dir / "floor_off/frame_0000.png"));
+}
+
+// texture_formats draws two GL_ALPHA textures: their colour is the
+// fragment's, so they keep the look-ups, each with a warning naming why.
+TEST_F(ApTileBackend, TextureWarpLeavesAlphaTexturesToTheLookUps) {
+  const json warped = scene("formats_warp", "texture_formats", {"ap.tile.texture_warp=array"});
+  ASSERT_FALSE(warped.is_discarded());
+  EXPECT_EQ(warped["stats"]["driver"]["ap_tile"]["warp"]["refused"], 2);
+  EXPECT_GT(warped["stats"]["driver"]["ap_tile"]["warp"]["textures"].get<uint64_t>(), 0u);
+  EXPECT_TRUE(contains(m_last.err + m_last.out,
+                       "of this frame textured by look-ups on the host: an alpha texture (its colour is the "
+                       "fragment's)"))
+      << describe(m_last);
 }
 
 TEST_F(ApTileBackend, BadTextureWarpValuesNameTheKey) {

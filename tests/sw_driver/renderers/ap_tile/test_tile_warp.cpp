@@ -99,9 +99,11 @@ std::string warp(WarpPlan& plan, const gl::Texture& tex, WarpedTexture& out, War
   std::string error = plan.job(1, tex, FRAME_W, FRAME_H, 512, job);
   if (!error.empty()) return error;
   uint64_t texels = 0;
-  const WarpJob::TexelSource source = [&](int i, int j, uint8_t texel[4]) {
+  const WarpJob::TexelSource source = [&](int level, int i, int j, uint8_t texel[4]) {
+    if (level > 0) return false;
     texel_of(wrap_texel(i, static_cast<int>(tex.width), tex.wrap_s),
              wrap_texel(j, static_cast<int>(tex.height), tex.wrap_t), texel);
+    return true;
   };
   return job.run(source, nullptr, out, texels);
 }
@@ -162,14 +164,46 @@ TEST(WarpJob, AMagnifyingPlaneIsUpscaledUntilNoTexelCoversMoreThanAPixel) {
   EXPECT_NEAR(got[0], expected[0], 1);
 }
 
-TEST(WarpJob, ARegionBeyondTheProgramsLinesIsRefusedNamingIt) {
-  const Map map{{0.01f, 0, 4, 0, 0.01f, 4, 0, 0, 1}};
+// 640 texels along u (644 with the margins) do not fit the program's 512 at
+// the base level: the region is cut into bands at level 3, whose texels
+// (the means of 8 x 8 base texels) cover a pixel each; the pixel is that
+// mean.
+TEST(WarpJob, ALongRegionIsWarpedInBandsAtTheLevelOfItsScale) {
+  const Map map{{0.125f, 0, 4, 0, 0.125f, 4, 0, 0, 1}};
   WarpPlan plan;
-  plan.add(1, map.triangle({{{0, 0}, {900, 0}, {900, 40}}}, 64.0f), texture(64));
+  plan.add(1, map.triangle({{{0, 0}, {640, 0}, {640, 64}}}, 64.0f), texture(64));
   WarpJob job(warp_filter(1));
   WarpedTexture out;
-  const std::string error = warp(plan, texture(64), out, job);
-  EXPECT_NE(error.find("900 x 40 texels, beyond the array program's 512 texels a line"), std::string::npos) << error;
+  ASSERT_EQ(warp(plan, texture(64), out, job), "");
+  ASSERT_GE(job.bands().size(), 1u);
+  EXPECT_EQ(out.region.bands, static_cast<int>(job.bands().size()));
+  for (const WarpBand& band : job.bands()) EXPECT_EQ(band.level, 3);
+  for (int y = 1; y < 7; ++y)
+    for (int x = 1; x < 79; ++x) {
+      unsigned sum[3] = {};
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+          uint8_t t[4];
+          texel_of((8 * x + i) % 64, (8 * y + j) % 64, t);
+          for (int c = 0; c < 3; ++c) sum[c] += t[c];
+        }
+      uint8_t got[4];
+      out.texel(x + 4, y + 4, got);
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], sum[c] / 64.0, 1.5) << "pixel " << x << ", " << y;
+    }
+}
+
+TEST(WarpJob, ARegionBeyondTheProgramsLinesAtEveryLevelIsRefusedNamingIt) {
+  // A 4 x 4 texture has levels 0 .. 2: at most 512 x 4 base texels a line.
+  const Map map{{0.01f, 0, 4, 0, 0.01f, 4, 0, 0, 1}};
+  WarpPlan plan;
+  plan.add(1, map.triangle({{{0, 0}, {3000, 0}, {3000, 40}}}, 4.0f), texture(4));
+  WarpJob job(warp_filter(1));
+  WarpedTexture out;
+  const std::string error = warp(plan, texture(4), out, job);
+  EXPECT_NE(error.find("3000 x 40 texels, beyond the array program's 512 texels a line at every level"),
+            std::string::npos)
+      << error;
   EXPECT_FALSE(plan.warped(1));
 }
 
