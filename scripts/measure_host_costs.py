@@ -108,8 +108,18 @@ TRAINING_SCENES = [
 ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
 # Back ends run with settings of their own, under a name of their own: a
 # back end's second array program charges rows no default run charges.
-VARIANTS = {"ap-tile:study": ("ap-tile", ["ap.tile.program=study"])}
-VARIANT_SCENES = {"ap-tile:study": ["cubes", "teapot", "textured_quad"]}
+VARIANTS = {
+    "ap-tile:study": ("ap-tile", ["ap.tile.program=study"]),
+    # Textures warped on the array (ap.tile.texture_warp): one band, bands at levels, alpha textures left to the
+    # look-ups; and through the DMA.
+    "ap-tile:warp": ("ap-tile", ["ap.tile.texture_warp=array"]),
+    "ap-tile:warp_dma": ("ap-tile", ["ap.tile.texture_warp=array", "dma.enabled=true"]),
+}
+VARIANT_SCENES = {
+    "ap-tile:study": ["cubes", "teapot", "textured_quad"],
+    "ap-tile:warp": ["textured_quad", "mipmap_floor", "texture_formats"],
+    "ap-tile:warp_dma": ["textured_quad"],
+}
 TRAINING = [(scene, backend) for backend in ("arm", "raster") + ARRAY_BACKENDS for scene in TRAINING_SCENES]
 TRAINING += [(scene, variant) for variant, scenes in VARIANT_SCENES.items() for scene in scenes]
 # The array back ends' split of their host time within the phases.
@@ -121,6 +131,8 @@ FITTED_PHASES = {
     "ap-tile": PHASES + SPLIT,
     "ap-pixel": PHASES + SPLIT,
     "ap-tile:study": PHASES + SPLIT,
+    "ap-tile:warp": PHASES + SPLIT,
+    "ap-tile:warp_dma": PHASES + SPLIT,
 }
 # The GL-free applications: (name, app, back end, arguments, driver statistics' prefix). Their
 # records are their timed parts (the split).
