@@ -627,8 +627,11 @@ TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnl
   EXPECT_EQ(feature_key(op_info(Opcode::op_div)), "array.features.divide");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadd)), "array.features.neighbour_add");
   EXPECT_EQ(feature_key(op_info(Opcode::op_lut)), "array.features.lut");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_nadds)), "array.features.neighbour_add");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_nadcs)), "array.features.neighbour_add");
   for (const OpInfo& info : all_ops())
-    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut) {
+    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut &&
+        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs) {
       EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
       EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
     }
