@@ -385,8 +385,8 @@ void CuArray::set_row_ring(bool on) {
   }
 }
 
-void CuArray::neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, const uint8_t* a_next,
-                                       const uint8_t* d, bool d_masked, uint8_t* neighbour, uint8_t* out) {
+void CuArray::neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, const uint8_t* a_next, const uint8_t* d,
+                                       bool d_masked, uint8_t* neighbour, uint8_t* out) {
   const size_t n = m_lanes;
   uint8_t* c = row(m_flag_row + flag_c);
   uint8_t* z = row(m_flag_row + flag_z);
