@@ -110,7 +110,8 @@ std::vector<uint16_t> chain_lut(const FilterTable& table) {
   std::vector<uint16_t> entries(static_cast<std::size_t>(PHASES) * table.width);
   for (int j = 0; j < table.width; ++j) {
     for (int phase = 0; phase < PHASES; ++phase) {
-      entries[static_cast<std::size_t>(PHASES * j + phase)] = table.at(phase, j);
+      entries[static_cast<std::size_t>(PHASES) * static_cast<std::size_t>(j) + static_cast<std::size_t>(phase)] =
+          table.at(phase, j);
     }
   }
   return entries;
