@@ -47,12 +47,18 @@ module cu_datapath #(
   input  logic [RegBits-1:0]           b_reg_i,
   input  logic [15:0]                  a_cmem_i,
   input  logic [7:0]                   b_cmem_i,
+  // The byte at d, for nadds and nadcs with d in CMEM (they add into d).
+  input  logic [7:0]                   d_cmem_i,
 
   // The four neighbours' bytes for nget and nadd (their register or CMEM byte at a),
   // byte k at [8k+7:8k] for direction code k (ap_isa_pkg::direction_e);
   // absent beyond the grid's edge.
   input  logic [31:0]                  neighbour_i,
   input  logic [3:0]                   neighbour_present_i,
+  // The same neighbours' bytes at a + 1, for nadds and nadcs: where this
+  // CU's S is set they add the neighbour's a + 1 instead of its a (the
+  // window's slot shifted by one, van Sinten's step 5).
+  input  logic [31:0]                  neighbour_next_i,
 
   // Completion and the CMEM write of the instruction that completed.
   output logic                         done_o,
@@ -99,12 +105,24 @@ module cu_datapath #(
   assign a_low_value = a_is_cmem_i ? a_cmem_i[7:0] : regs_q[8*a_low_reg +: 8];
   assign b_value     = b_is_cmem_i ? b_cmem_i : regs_q[8*b_reg_i +: 8];
 
-  logic [7:0] neighbour_value;
-  assign neighbour_value = neighbour_present_i[direction_i] ? neighbour_i[8*direction_i +: 8] : 8'd0;
+  logic is_select_add;
+  assign is_select_add = opcode_i == ap_isa_pkg::OpNadds || opcode_i == ap_isa_pkg::OpNadcs;
 
-  // nadd's own operand: d, a register (its forms are R).
+  logic [7:0] neighbour_value;
+  always_comb begin
+    neighbour_value = 8'd0;
+    if (neighbour_present_i[direction_i]) begin
+      neighbour_value = is_select_add && s_q ? neighbour_next_i[8*direction_i +: 8] : neighbour_i[8*direction_i +: 8];
+    end
+  end
+
+  // The neighbour adds' own operand: d, a register for nadd (its forms are
+  // R), a register or the CMEM byte at d for nadds and nadcs.
   logic [7:0] d_value;
-  assign d_value = regs_q[8*d_reg_i +: 8];
+  assign d_value = d_is_cmem_i ? d_cmem_i : regs_q[8*d_reg_i +: 8];
+
+  logic is_neighbour_add;
+  assign is_neighbour_add = opcode_i == ap_isa_pkg::OpNadd || is_select_add;
 
   logic is_mul;
   assign is_mul = opcode_i == ap_isa_pkg::OpMul || opcode_i == ap_isa_pkg::OpMulm;
@@ -118,7 +136,7 @@ module cu_datapath #(
     subtract = 1'b0;
     carry_in = 1'b0;
     unique case (opcode_i)
-      ap_isa_pkg::OpAdc: carry_in = c_q;
+      ap_isa_pkg::OpAdc, ap_isa_pkg::OpNadcs: carry_in = c_q;
       ap_isa_pkg::OpSub, ap_isa_pkg::OpCmp: begin
         subtract = 1'b1;
         carry_in = 1'b1;
@@ -131,8 +149,8 @@ module cu_datapath #(
     endcase
   end
   logic [7:0] add_a, add_b;
-  assign add_a = opcode_i == ap_isa_pkg::OpNadd ? d_value : a_value;
-  assign add_b = opcode_i == ap_isa_pkg::OpNadd ? neighbour_value : b_value;
+  assign add_a = is_neighbour_add ? d_value : a_value;
+  assign add_b = is_neighbour_add ? neighbour_value : b_value;
   assign sum = {1'b0, add_a} + {1'b0, subtract ? ~add_b : add_b} + {8'd0, carry_in};
 
   logic cond_holds;
@@ -175,16 +193,24 @@ module cu_datapath #(
   // The single-cycle instructions: the byte for d, whether it is written,
   // and the flags.
   logic [7:0] result;
-  logic       writes_d, writes_czs, carry_out;
+  logic       writes_d, writes_czs, writes_c, carry_out;
   always_comb begin
     result     = 8'd0;
     writes_d   = 1'b1;
     writes_czs = 1'b1;
+    writes_c   = 1'b0;
     carry_out  = c_q;
     unique case (opcode_i)
       ap_isa_pkg::OpAdd, ap_isa_pkg::OpAdc, ap_isa_pkg::OpSub, ap_isa_pkg::OpSbc, ap_isa_pkg::OpNadd: begin
         result    = sum[7:0];
         carry_out = sum[8];
+      end
+      // S chose the source byte; it and Z stay for the wide sum's next byte.
+      ap_isa_pkg::OpNadds, ap_isa_pkg::OpNadcs: begin
+        result     = sum[7:0];
+        carry_out  = sum[8];
+        writes_czs = 1'b0;
+        writes_c   = 1'b1;
       end
       ap_isa_pkg::OpCmp, ap_isa_pkg::OpCmpc: begin
         result    = sum[7:0];
@@ -321,6 +347,9 @@ module cu_datapath #(
         c_d = carry_out;
         z_d = result == 8'd0;
         s_d = result[7];
+      end
+      if (writes_c) begin
+        c_d = carry_out;
       end
       if (writes_d) begin
         if (d_is_cmem_i) begin

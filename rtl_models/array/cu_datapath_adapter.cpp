@@ -33,7 +33,9 @@ CuLaneInputs cu_lane_inputs(const CuArray& array, unsigned lane, const Instructi
   inputs.operands.a = {cmem_byte(array, lane, in.a, 0, loop_variables),
                        cmem_byte(array, lane, in.a, 1, loop_variables)};
   inputs.operands.b = cmem_byte(array, lane, in.b, 0, loop_variables);
-  if (in.opcode != Opcode::op_nget && in.opcode != Opcode::op_nadd) return inputs;
+  inputs.operands.d = cmem_byte(array, lane, in.d, 0, loop_variables);
+  const bool selects = in.opcode == Opcode::op_nadds || in.opcode == Opcode::op_nadcs;
+  if (in.opcode != Opcode::op_nget && in.opcode != Opcode::op_nadd && !selects) return inputs;
   const unsigned columns = array.geometry().columns, rows = array.geometry().rows;
   const unsigned column = lane % columns, row = lane / columns;
   for (unsigned k = 0; k < 4; ++k) {
@@ -49,6 +51,9 @@ CuLaneInputs cu_lane_inputs(const CuArray& array, unsigned lane, const Instructi
     if (!present) continue;
     inputs.neighbours.value[k] =
         in.a.in_cmem ? cmem_byte(array, other, in.a, 0, loop_variables) : array.reg(other, in.a.value);
+    if (selects)
+      inputs.neighbours.next[k] =
+          in.a.in_cmem ? cmem_byte(array, other, in.a, 1, loop_variables) : array.reg(other, in.a.value + 1u);
   }
   return inputs;
 }
@@ -102,13 +107,16 @@ CuCmemWrite CuDatapathRtl::execute(const Instruction& in, const CuOperandBytes& 
   m.b_reg_i = in.b.value & REGISTER_MASK;
   m.a_cmem_i = static_cast<uint16_t>(operands.a[0] << 8 | operands.a[1]);
   m.b_cmem_i = operands.b;
-  uint32_t neighbour_bytes = 0;
+  m.d_cmem_i = operands.d;
+  uint32_t neighbour_bytes = 0, next_bytes = 0;
   uint8_t present = 0;
   for (unsigned k = 0; k < 4; ++k) {
     neighbour_bytes |= uint32_t{neighbours.value[k]} << (8 * k);
+    next_bytes |= uint32_t{neighbours.next[k]} << (8 * k);
     present |= static_cast<uint8_t>((neighbours.present[k] ? 1u : 0u) << k);
   }
   m.neighbour_i = neighbour_bytes;
+  m.neighbour_next_i = next_bytes;
   m.neighbour_present_i = present;
   clock_edge();
   m.valid_i = 0;

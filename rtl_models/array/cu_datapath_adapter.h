@@ -25,6 +25,7 @@ namespace tessera::ap {
 struct CuOperandBytes {
   std::array<uint8_t, 2> a{};
   uint8_t b = 0;
+  uint8_t d = 0;  // the byte at d, which nadds and nadcs add into
 };
 
 // For nget: each neighbour's byte (its register a, or its CMEM byte at a),
@@ -32,6 +33,7 @@ struct CuOperandBytes {
 struct CuNeighbours {
   std::array<uint8_t, 4> value{};
   std::array<bool, 4> present{};
+  std::array<uint8_t, 4> next{};  // the byte at a + 1, for nadds and nadcs
 };
 
 // The CU's store into its CMEM: data[i] for address d + i, written where

@@ -35,14 +35,14 @@ inline Instruction make_nget(Operand d, Direction direction, Operand a) {
 }
 
 // The lane-work opcodes: every instruction the CU executes, those behind an
-// array.features switch (div, nadd) included; not lut, whose shared table is
-// the array's, outside the CU and its Verilog twin.
-constexpr std::array<Opcode, 27> LANE_OPCODES{
-    Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,  Opcode::op_and,  Opcode::op_or,
-    Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,  Opcode::op_shr,  Opcode::op_asr,
-    Opcode::op_rol,  Opcode::op_ror,  Opcode::op_cmp,  Opcode::op_cmpc, Opcode::op_mul,  Opcode::op_mulm,
-    Opcode::op_nget, Opcode::op_getm, Opcode::op_mset, Opcode::op_mclr, Opcode::op_mmov, Opcode::op_mand,
-    Opcode::op_mor,  Opcode::op_div,  Opcode::op_nadd};
+// array.features switch (div, nadd, nadds, nadcs) included; not lut, whose
+// shared table is the array's, outside the CU and its Verilog twin.
+constexpr std::array<Opcode, 29> LANE_OPCODES{
+    Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,   Opcode::op_and,  Opcode::op_or,
+    Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,   Opcode::op_shr,  Opcode::op_asr,
+    Opcode::op_rol,  Opcode::op_ror,  Opcode::op_cmp,  Opcode::op_cmpc,  Opcode::op_mul,  Opcode::op_mulm,
+    Opcode::op_nget, Opcode::op_getm, Opcode::op_mset, Opcode::op_mclr,  Opcode::op_mmov, Opcode::op_mand,
+    Opcode::op_mor,  Opcode::op_div,  Opcode::op_nadd, Opcode::op_nadds, Opcode::op_nadcs};
 
 struct RandomInstruction {
   Instruction instruction;

@@ -28,7 +28,8 @@ namespace {
 const sc_time CYCLE(10, sc_core::SC_NS);
 constexpr uint64_t AC = 0x0, PROGRAM = 0x10000, CMEM = 0x1000000;
 // A second array with the Image Blender's features on: delayed execution
-// (K = 1), the lookup table (64 entries, one port), divide and nadd.
+// (K = 1), the row ring, the lookup table (64 entries, one port), divide and
+// the neighbour adds.
 constexpr uint64_t BLENDER_AC = 0x2000, BLENDER_PROGRAM = 0x20000;
 constexpr unsigned LUT_ENTRIES = 64;
 constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
@@ -44,8 +45,9 @@ ArrayParams array_params() {
 
 ArrayParams blender_params() {
   Config config({ArrayParams::parameters()});
-  for (const char* key : {"array.features.lut=true", "array.features.divide=true", "array.features.neighbour_add=true",
-                          "array.issue_skew=lane", "array.issue_skew_cycles=1", "array.lut.entries=64"})
+  for (const char* key :
+       {"array.features.lut=true", "array.features.divide=true", "array.features.neighbour_add=true",
+        "array.issue_skew=lane", "array.issue_skew_cycles=1", "array.lut.entries=64", "array.row_ring=true"})
     config.apply_override(key);
   ArrayParams p = ArrayParams::from_config(config);
   p.clock_period = CYCLE;
@@ -390,7 +392,16 @@ TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
   config.apply_override("array.cycles.div=40");
   const ArrayParams both = ArrayParams::from_config(config);
   EXPECT_TRUE(enabled(both, ap::Opcode::op_nadd));
+  EXPECT_TRUE(enabled(both, ap::Opcode::op_nadds));
+  EXPECT_TRUE(enabled(both, ap::Opcode::op_nadcs));
   EXPECT_EQ(both.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 40u);
+  // The row ring: off by default; on, the core's rows are rings.
+  EXPECT_FALSE(off.row_ring);
+  EXPECT_FALSE(off.enabled_ops[static_cast<unsigned>(ap::Opcode::op_nadds)]);
+  config.apply_override("array.row_ring=true");
+  EXPECT_TRUE(ArrayParams::from_config(config).row_ring);
+  EXPECT_FALSE(g_bench->array.core().array().row_ring());
+  EXPECT_TRUE(g_bench->blender.core().array().row_ring());
 }
 
 // What each bad setting was refused with ("" if accepted), worked out in

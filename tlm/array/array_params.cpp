@@ -33,6 +33,10 @@ ParamGroup ArrayParams::parameters() {
       integer("array.issue_skew_cycles", 1, 1, 1000, "cycles",
               "with array.issue_skew = lane: the delay K between one CU of the chain and the next; a program "
               "takes (CUs - 1) x K cycles more"),
+      param::boolean("array.row_ring", false,
+                     "closes each CU row into a ring for the neighbour reads: column 0's left is the row's last "
+                     "column and the last column's right is column 0 (tlm/array/README.md, \"The row ring\"); off, "
+                     "the grid's edges read 0 (the J2210)"),
       integer("array.lut.entries", 256, 1, 65536, "entries",
               "16-bit entries of the lookup table lut reads (with array.features.lut)"),
       integer("array.lut.ports", 1, 1, 1024, "ports",
@@ -78,6 +82,7 @@ ArrayParams ArrayParams::from_config(const Config& config) {
   p.issue_skew_cycles = config.get_string("array.issue_skew") == "lane"
                             ? static_cast<unsigned>(config.get_uint("array.issue_skew_cycles"))
                             : 0;
+  p.row_ring = config.get_bool("array.row_ring");
   p.lut_entries = static_cast<unsigned>(config.get_uint("array.lut.entries"));
   p.lut_ports = static_cast<unsigned>(config.get_uint("array.lut.ports"));
   for (const ap::OpInfo& info : ap::all_ops())

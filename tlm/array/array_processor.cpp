@@ -63,6 +63,7 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
   m_core.skip_idle_cus(params.skip_idle_cus);
   m_core.enable_ops(params.enabled_ops);
   m_core.set_issue_skew(params.issue_skew_cycles);
+  m_core.array().set_row_ring(params.row_ring);
   if (params.issue_skew_cycles != 0)
     m_skew_cycles = &counter("issue_skew.cycles",
                              "cycles from the first CU's halt to the last CU's, (CUs - 1) x "

@@ -48,6 +48,7 @@ struct ArrayParams {
   // Delayed execution's K (array.issue_skew_cycles when array.issue_skew =
   // lane), 0 for lockstep.
   unsigned issue_skew_cycles = 0;
+  bool row_ring = false;  // array.row_ring
   unsigned lut_entries = 256;
   unsigned lut_ports = 1;
   bool lut_enabled() const { return enabled_ops[static_cast<unsigned>(ap::Opcode::op_lut)]; }

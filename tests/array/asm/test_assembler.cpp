@@ -797,6 +797,8 @@ second:
   div [5], [6], r2
   nadd r1, left, r2
   nadd r0, down, r7
+  nadds [12], left, [13]
+  nadcs r1, right, r2
   lut r0, r2
   lut [8], [10]
   mset

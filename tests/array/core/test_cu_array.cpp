@@ -50,7 +50,7 @@ struct Lane {
 
 class ScalarArray {
  public:
-  explicit ScalarArray(bool skew = false) : m_lanes(COLUMNS * ROWS), m_skew(skew) {}
+  explicit ScalarArray(bool skew = false, bool ring = false) : m_lanes(COLUMNS * ROWS), m_skew(skew), m_ring(ring) {}
   std::vector<Lane>& lanes() { return m_lanes; }
 
   void execute(const Instruction& in, const LoopVariables& variables) {
@@ -72,12 +72,15 @@ class ScalarArray {
     else if (mask)
       lane.cmem[address(operand, variables) + byte] = value;
   }
-  // The lane that way, or -1 beyond the grid: row 0 at the top.
-  static int neighbour(unsigned lane, Direction direction) {
+  // The lane that way, or -1 beyond the grid: row 0 at the top; with the
+  // row ring, left and right wrap around the row.
+  int neighbour(unsigned lane, Direction direction) const {
     const unsigned column = lane % COLUMNS, row = lane / COLUMNS;
+    const int wrap_left = m_ring ? static_cast<int>(lane + COLUMNS - 1) : -1;
+    const int wrap_right = m_ring ? static_cast<int>(lane + 1 - COLUMNS) : -1;
     switch (direction) {
-      case Direction::left: return column == 0 ? -1 : static_cast<int>(lane) - 1;
-      case Direction::right: return column == COLUMNS - 1 ? -1 : static_cast<int>(lane) + 1;
+      case Direction::left: return column == 0 ? wrap_left : static_cast<int>(lane) - 1;
+      case Direction::right: return column == COLUMNS - 1 ? wrap_right : static_cast<int>(lane) + 1;
       case Direction::up: return row == 0 ? -1 : static_cast<int>(lane - COLUMNS);
       case Direction::down: return row == ROWS - 1 ? -1 : static_cast<int>(lane + COLUMNS);
     }
@@ -115,6 +118,17 @@ class ScalarArray {
         write(lane, in.d, 0, sum.value, v, mask);
         return;
       }
+      case Opcode::op_nadds:
+      case Opcode::op_nadcs: {
+        // The neighbour's a, or its a + 1 where this lane's S is set.
+        const int other = neighbour(l, in.direction());
+        const unsigned byte = old.flags.s ? 1 : 0;
+        const uint8_t value = other < 0 ? 0 : read(source(before, other, l), in.a, byte, v);
+        const AluResult sum = cu_alu(in.opcode, read(old, in.d, 0, v), value, old.flags);
+        lane.flags = sum.flags;
+        write(lane, in.d, 0, sum.value, v, mask);
+        return;
+      }
       case Opcode::op_div: {
         const auto dividend = static_cast<uint16_t>(read(old, in.a, 0, v) << 8 | read(old, in.a, 1, v));
         const AluResult quotient = cu_div(dividend, read(old, in.b, 0, v));
@@ -144,21 +158,24 @@ class ScalarArray {
 
   std::vector<Lane> m_lanes;
   bool m_skew;
+  bool m_ring;
 };
 
 // An instruction whose result delayed execution changes: a neighbour read
 // from an earlier lane of the chain (left, up) of the operand it writes.
 bool skew_visible(const Instruction& in) {
-  return (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd) &&
-         (in.direction() == Direction::left || in.direction() == Direction::up) && in.a.in_cmem == in.d.in_cmem &&
-         in.a.value == in.d.value && in.a.loop == in.d.loop;
+  const bool reads_neighbour = in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd ||
+                               in.opcode == Opcode::op_nadds || in.opcode == Opcode::op_nadcs;
+  return reads_neighbour && (in.direction() == Direction::left || in.direction() == Direction::up) &&
+         in.a.in_cmem == in.d.in_cmem && in.a.value == in.d.value && in.a.loop == in.d.loop;
 }
 
-void random_instructions_match_the_scalar_model(bool skew) {
+void random_instructions_match_the_scalar_model(bool skew, bool ring = false) {
   std::mt19937_64 rng(0xa77a);
   CuArray array(small_cmem_geometry());
   array.set_issue_skew(skew);
-  ScalarArray model(skew);
+  array.set_row_ring(ring);
+  ScalarArray model(skew, ring);
   uint64_t visible = 0;
   ASSERT_EQ(array.lanes(), COLUMNS * ROWS);
   for (unsigned l = 0; l < array.lanes(); ++l)
@@ -216,6 +233,11 @@ TEST(CuArray, RandomInstructionsMatchAScalarModelOfEveryLane) {
 
 TEST(CuArray, UnderDelayedExecutionRandomInstructionsMatchTheChainsScalarModel) {
   random_instructions_match_the_scalar_model(true);
+}
+
+TEST(CuArray, WithTheRowRingRandomInstructionsMatchTheScalarModelLockstepAndSkewed) {
+  random_instructions_match_the_scalar_model(false, true);
+  random_instructions_match_the_scalar_model(true, true);
 }
 
 TEST(CuArray, LoopVariableOfALoopThatIsNotRunningIsRefused) {
@@ -397,6 +419,96 @@ TEST(CuArray, UnderDelayedExecutionEarlierLanesAreReadAfterAndLaterLanesBefore) 
   for (unsigned l = 0; l < array.lanes(); ++l) {
     after[l] = !stores(l) ? 100 + l : l % COLUMNS == 0 ? 0 : after[l - 1];
     EXPECT_EQ(array.cmem(l, 5), static_cast<uint8_t>(after[l])) << l;
+  }
+}
+
+TEST(CuArray, TheRowRingWrapsLeftAndRightAndFollowsTheReadRule) {
+  // r1 = the lane number in every CU.
+  const auto fill = [](CuArray& array) {
+    for (unsigned l = 0; l < array.lanes(); ++l) array.set_reg(l, 1, static_cast<uint8_t>(l));
+  };
+  const auto last_column = [](unsigned l) { return l - l % COLUMNS + COLUMNS - 1; };
+  const auto first_column = [](unsigned l) { return l - l % COLUMNS; };
+  // Lockstep: column 0's left is the row's last column, the last column's
+  // right is column 0; up and down keep the grid's edges.
+  CuArray lockstep(small_cmem_geometry());
+  lockstep.set_row_ring(true);
+  fill(lockstep);
+  ASSERT_EQ(lockstep.execute(make(Opcode::op_nget, reg(2), reg(1), direction(Direction::left)), {}, 0), "");
+  ASSERT_EQ(lockstep.execute(make(Opcode::op_nget, reg(3), reg(1), direction(Direction::right)), {}, 0), "");
+  ASSERT_EQ(lockstep.execute(make(Opcode::op_nget, reg(4), reg(1), direction(Direction::up)), {}, 0), "");
+  for (unsigned l = 0; l < lockstep.lanes(); ++l) {
+    EXPECT_EQ(lockstep.reg(l, 2), l % COLUMNS == 0 ? last_column(l) : l - 1) << l;
+    EXPECT_EQ(lockstep.reg(l, 3), l % COLUMNS == COLUMNS - 1 ? first_column(l) : l + 1) << l;
+    EXPECT_EQ(lockstep.reg(l, 4), l < COLUMNS ? 0 : l - COLUMNS) << l;
+  }
+  // Every CU reads a neighbour across the ring: 96 transfers each.
+  EXPECT_EQ(lockstep.activity().neighbour_transfers, 2u * COLUMNS * ROWS + (ROWS - 1) * COLUMNS);
+  // Skewed, nget r1, left, r1: column 0 reads the last column, a later lane,
+  // before the instruction (its lane number); each CU after it passes that
+  // on, so the whole row holds the last column's old r1. That is the relay:
+  // the last column's value reaches column 0 with the next instruction.
+  CuArray skewed(small_cmem_geometry());
+  skewed.set_row_ring(true);
+  skewed.set_issue_skew(true);
+  fill(skewed);
+  ASSERT_EQ(skewed.execute(make(Opcode::op_nget, reg(1), reg(1), direction(Direction::left)), {}, 0), "");
+  for (unsigned l = 0; l < skewed.lanes(); ++l) EXPECT_EQ(skewed.reg(l, 1), last_column(l)) << l;
+  // Skewed, nget r1, right, r1: each CU reads its right neighbour before
+  // the instruction; the last column reads column 0, an earlier lane, after
+  // it: column 1's old r1.
+  fill(skewed);
+  ASSERT_EQ(skewed.execute(make(Opcode::op_nget, reg(1), reg(1), direction(Direction::right)), {}, 0), "");
+  for (unsigned l = 0; l < skewed.lanes(); ++l)
+    EXPECT_EQ(skewed.reg(l, 1), l % COLUMNS == COLUMNS - 1 ? first_column(l) + 1 : l + 1) << l;
+  // Skewed, nadd r1, left, r1 with the ring: the row's prefix sums, column 0
+  // starting from the last column's old value.
+  fill(skewed);
+  ASSERT_EQ(skewed.execute(make(Opcode::op_nadd, reg(1), reg(1), direction(Direction::left)), {}, 0), "");
+  for (unsigned l = 0; l < skewed.lanes(); ++l) {
+    unsigned sum = last_column(l);
+    for (unsigned k = first_column(l); k <= l; ++k) sum += k;
+    EXPECT_EQ(skewed.reg(l, 1), static_cast<uint8_t>(sum)) << l;
+  }
+}
+
+TEST(CuArray, NaddsAndNadcsPassAWindowDownTheChainShiftedWhereSIsSet) {
+  // Van Sinten's step 5 on two 16-bit slots: CMEM [10 + j] the high bytes,
+  // [20 + j] the low bytes of slot j (j = 0, 1; slot 2 = 0), each CU's own
+  // scaling already in its slots; in the CUs with S set the window moved
+  // on, so they add their predecessor's slot j + 1. Slot 1 first, then 0,
+  // low byte then high, under skew: each CU's slots then hold the row's
+  // chained sums, and the lowest CU of a row starts from 0.
+  CuArray array(small_cmem_geometry());
+  array.set_issue_skew(true);
+  const auto moved = [](unsigned l) { return l % 3 == 1; };
+  const auto own = [](unsigned l, unsigned j) { return static_cast<unsigned>(200 + 37 * l + 11 * j); };
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    for (unsigned j = 0; j < 3; ++j) {
+      const unsigned value = j < 2 ? own(l, j) : 0;
+      array.set_cmem(l, 10 + j, static_cast<uint8_t>(value >> 8));
+      array.set_cmem(l, 20 + j, static_cast<uint8_t>(value));
+    }
+    array.set_flags(l, {false, false, moved(l)});
+  }
+  for (const unsigned j : {1u, 0u}) {
+    ASSERT_EQ(array.execute(make(Opcode::op_nadds, mem(20 + j), mem(20 + j), direction(Direction::left)), {}, 0), "");
+    ASSERT_EQ(array.execute(make(Opcode::op_nadcs, mem(10 + j), mem(10 + j), direction(Direction::left)), {}, 0), "");
+  }
+  std::vector<std::array<unsigned, 3>> expected(array.lanes());
+  for (unsigned l = 0; l < array.lanes(); ++l) {
+    for (unsigned j = 0; j < 2; ++j) {
+      const unsigned from = j + (moved(l) ? 1 : 0);
+      const unsigned incoming = l % COLUMNS == 0 ? 0 : expected[l - 1][from];
+      expected[l][j] = (incoming + own(l, j)) & 0xffffu;
+    }
+    expected[l][2] = 0;
+    for (unsigned j = 0; j < 2; ++j) {
+      EXPECT_EQ(array.cmem(l, 10 + j) << 8 | array.cmem(l, 20 + j), expected[l][j]) << "lane " << l << " slot " << j;
+    }
+    // S (the selector) and Z are kept; C is the high byte's carry.
+    EXPECT_EQ(array.flags(l).s, moved(l)) << l;
+    EXPECT_FALSE(array.flags(l).z) << l;
   }
 }
 
@@ -627,8 +739,11 @@ TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnl
   EXPECT_EQ(feature_key(op_info(Opcode::op_div)), "array.features.divide");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadd)), "array.features.neighbour_add");
   EXPECT_EQ(feature_key(op_info(Opcode::op_lut)), "array.features.lut");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_nadds)), "array.features.neighbour_add");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_nadcs)), "array.features.neighbour_add");
   for (const OpInfo& info : all_ops())
-    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut) {
+    if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut &&
+        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs) {
       EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
       EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
     }
@@ -908,7 +1023,8 @@ TEST(ArrayController, SkippingIdleCusChangesNothing) {
     words.push_back(encode(loop(0, LOOP_START, 1)));
     for (unsigned i = 0; i < BODY;) {
       Instruction in = random_instruction(rng, REGISTERS, CMEM_BYTES).instruction;
-      const bool reads_neighbour = in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd;
+      const bool reads_neighbour = in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd ||
+                                   in.opcode == Opcode::op_nadds || in.opcode == Opcode::op_nadcs;
       if (reads_neighbour != (!settled && i == BODY / 2)) continue;
       for (Operand* operand : {&in.d, &in.a, &in.b}) {
         if (!operand->in_cmem) continue;

@@ -590,6 +590,43 @@ TEST_F(CuDatapathDirected, NeighbourAddAddsTheNeighboursByteToDAndZeroBeyondTheG
   EXPECT_EQ(rtl_flags(0), czs(false, false, true));
 }
 
+TEST_F(CuDatapathDirected, NaddsAndNadcsAddTheNeighboursAOrAPlusOneByTheirSAndKeepZAndS) {
+  // The neighbours' bytes at [0] and [1] (and in r1, r2): lane + 1 and
+  // 0x80 + lane + 1. d = 0xf0 at [8] (CMEM) or in r3. C set by a compare of
+  // equals, then S set in the even lanes by a mov of 0x80 (0x01 in the odd).
+  for (unsigned lane = 0; lane < lanes(); ++lane) {
+    array().set_cmem(lane, 0, static_cast<uint8_t>(lane + 1));
+    array().set_cmem(lane, 1, static_cast<uint8_t>(0x80 + lane + 1));
+    array().set_cmem(lane, 2, lane % 2 == 0 ? 0x80 : 0x01);
+  }
+  run(make(Opcode::op_mov, reg(1), mem(0)));
+  run(make(Opcode::op_mov, reg(2), mem(1)));
+  for (const Opcode opcode : {Opcode::op_nadds, Opcode::op_nadcs}) {
+    for (unsigned k = 0; k < 4; ++k) {
+      const auto direction = static_cast<Direction>(k);
+      for (const bool in_cmem : {false, true}) {
+        for (unsigned lane = 0; lane < lanes(); ++lane) array().set_cmem(lane, 8, 0xf0);
+        load(3, 0xf0);
+        run(make(Opcode::op_cmp, mem(2), mem(2)));
+        run(make(Opcode::op_mov, reg(4), mem(2)));
+        const Operand d = in_cmem ? mem(8) : reg(3);
+        run(make(opcode, d, in_cmem ? mem(0) : reg(1), {false, static_cast<uint16_t>(direction), 0}));
+        for (unsigned lane = 0; lane < lanes(); ++lane) {
+          const int other = neighbour_of(lane, direction);
+          const bool s = lane % 2 == 0;
+          const unsigned value = other < 0 ? 0 : (s ? 0x80u : 0u) + static_cast<unsigned>(other) + 1;
+          const unsigned sum = 0xf0 + value + (opcode == Opcode::op_nadcs ? 1 : 0);
+          const std::string where = std::string(op_info(opcode).mnemonic) + " " +
+                                    std::string(direction_name(direction)) + " of lane " + std::to_string(lane);
+          EXPECT_EQ(in_cmem ? array().cmem(lane, 8) : rtl(lane).reg(3), sum & 0xffu) << where;
+          // C the carry; Z and S as the mov of 0x80 or 0x01 left them.
+          EXPECT_EQ(rtl_flags(lane), czs(sum > 0xff, false, s)) << where;
+        }
+      }
+    }
+  }
+}
+
 TEST(CuDatapathRtl, ArrayControllerOpcodesAreNoOpsForTheCu) {
   CuDatapathRtl cu;
   CuOperandBytes bytes;

@@ -522,8 +522,10 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
         --depth;
         continue;
       case Opcode::op_nget:
-      case Opcode::op_nadd: return {};  // reads another CU
-      case Opcode::op_lut: return {};   // reads the table, which the host may rewrite between runs
+      case Opcode::op_nadd:
+      case Opcode::op_nadds:
+      case Opcode::op_nadcs: return {};  // reads another CU
+      case Opcode::op_lut: return {};    // reads the table, which the host may rewrite between runs
       case Opcode::op_mset:
       case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
       case Opcode::op_mmov:

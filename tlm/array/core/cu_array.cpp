@@ -211,6 +211,7 @@ CuArray::CuArray(const ArrayGeometry& geometry)
       m_lanes_with_neighbour[direction] += has ? 1 : 0;
     }
   }
+  set_row_ring(false);
   for (const OpInfo& info : all_ops()) {
     OpLanes& op = m_op_lanes[static_cast<unsigned>(info.opcode)];
     op.d_width = static_cast<uint8_t>(operand_width(info.opcode, 'd'));
@@ -366,6 +367,69 @@ void CuArray::neighbour_lanes(const Instruction& in, const uint8_t* a, const uin
   if (nadd) add_lanes<false, false>(n, d, neighbour, false, out, c, z, s);
 }
 
+void CuArray::set_row_ring(bool on) {
+  m_ring = on;
+  const auto columns = static_cast<int>(m_geometry.columns), rows = static_cast<int>(m_geometry.rows);
+  for (unsigned direction = 0; direction < 4; ++direction) {
+    std::vector<int>& from = m_neighbour_lane[direction];
+    from.assign(m_geometry.lanes(), -1);
+    for (int lane = 0; lane < static_cast<int>(m_geometry.lanes()); ++lane) {
+      const int column = lane % columns, row = lane / columns;
+      switch (static_cast<Direction>(direction)) {
+        case Direction::left: from[lane] = column > 0 ? lane - 1 : (on ? lane + columns - 1 : -1); break;
+        case Direction::right: from[lane] = column + 1 < columns ? lane + 1 : (on ? lane - columns + 1 : -1); break;
+        case Direction::up: from[lane] = row > 0 ? lane - columns : -1; break;
+        case Direction::down: from[lane] = row + 1 < rows ? lane + columns : -1; break;
+      }
+    }
+  }
+}
+
+void CuArray::neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, const uint8_t* a_next, const uint8_t* d,
+                                       bool d_masked, uint8_t* neighbour, uint8_t* out) {
+  const size_t n = m_lanes;
+  uint8_t* c = row(m_flag_row + flag_c);
+  uint8_t* z = row(m_flag_row + flag_z);
+  uint8_t* s = row(m_flag_row + flag_s);
+  const uint8_t* m = row(m_flag_row + flag_m);
+  const std::vector<int>& from_lane = m_neighbour_lane[static_cast<unsigned>(in.direction())];
+  const bool select = a_next != nullptr;
+  const bool with_carry = in.opcode == Opcode::op_nadcs;
+  const bool adds = in.opcode != Opcode::op_nget;
+  // nget's result is the neighbour's byte; every add's is `out`.
+  const uint8_t* result = adds ? out : neighbour;
+  uint64_t transfers = 0;
+  for (size_t l = 0; l < n; ++l) {
+    const int from = from_lane[l];
+    const uint8_t* source = select && s[l] != 0 ? a_next : a;
+    uint8_t value = 0;
+    if (from >= 0) {
+      ++transfers;
+      const auto f = static_cast<size_t>(from);
+      // Under skew an earlier lane has run the instruction already: where
+      // it wrote the row read, its new byte (or, a masked CMEM store, the
+      // old one). A later lane, or a row the instruction does not write,
+      // gives the byte as it is.
+      if (m_skew && f < l && source == d)
+        value = d_masked && m[f] == 0 ? d[f] : result[f];
+      else
+        value = source[f];
+    }
+    neighbour[l] = value;
+    if (!adds) continue;
+    const unsigned sum = unsigned{d[l]} + value + (with_carry ? c[l] : 0u);
+    out[l] = static_cast<uint8_t>(sum);
+    c[l] = static_cast<uint8_t>(sum >> 8);
+    // nadd writes Z and S as add does; nadds and nadcs keep them (S is
+    // their selector, and stays so for the wide sum's next byte).
+    if (!select) {
+      z[l] = static_cast<uint8_t>(sum) == 0 ? 1 : 0;
+      s[l] = static_cast<uint8_t>((sum >> 7) & 1u);
+    }
+  }
+  m_activity.neighbour_transfers += transfers;
+}
+
 std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops) {
   std::string error;
   execute(in, loop_variables, active_loops, error);
@@ -459,13 +523,15 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   };
 
   const uint8_t* a = a_rows[0];
-  if (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd) {
+  const bool selects = in.opcode == Opcode::op_nadds || in.opcode == Opcode::op_nadcs;
+  if (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd || selects) {
     uint8_t* neighbour = row(m_spare_rows[SCRATCH_NEIGHBOUR]);
-    neighbour_lanes(in, a, d_rows[0], d_masked, neighbour, out);
-    const bool nadd = in.opcode == Opcode::op_nadd;
-    // nget stores the neighbour's byte; nadd d (a register: its forms are
-    // R) plus it.
-    store(nadd ? SCRATCH_RESULT : SCRATCH_NEIGHBOUR, 0, d_rows[0]);
+    if (m_ring || selects)
+      neighbour_lanes_in_order(in, a, selects ? a_rows[1] : nullptr, d_rows[0], d_masked, neighbour, out);
+    else
+      neighbour_lanes(in, a, d_rows[0], d_masked, neighbour, out);
+    // nget stores the neighbour's byte; the adds d plus it.
+    store(in.opcode == Opcode::op_nget ? SCRATCH_NEIGHBOUR : SCRATCH_RESULT, 0, d_rows[0]);
     return true;
   }
   if (in.opcode == Opcode::op_lut) {

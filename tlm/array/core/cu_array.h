@@ -94,6 +94,14 @@ class CuArray {
   // tell; every other instruction's result is the same either way.
   void set_issue_skew(bool on) { m_skew = on; }
   bool issue_skew() const { return m_skew; }
+  // The row ring (array.row_ring; README.md, "The row ring"): column 0's
+  // left neighbour is the same row's last column and the last column's right
+  // neighbour is column 0, for every neighbour read; up and down keep the
+  // grid's edges. Under skew the wrapped link follows the read rule like any
+  // other: column 0 reads the last column, a later lane, before the
+  // instruction; the last column reads column 0 after it.
+  void set_row_ring(bool on);
+  bool row_ring() const { return m_ring; }
 
   // The shared lookup table of lut (array.features.lut): `entries` 16-bit
   // entries, all 0. The host writes it (the AC's LUT_INDEX and LUT_DATA).
@@ -164,6 +172,11 @@ class CuArray {
   // the neighbour is an earlier lane and `a` is d's row.
   void neighbour_lanes(const Instruction& in, const uint8_t* a, const uint8_t* d, bool d_masked, uint8_t* neighbour,
                        uint8_t* out);
+  // The same, lane by lane in chain order, for the row ring and for nadds
+  // and nadcs (whose source row, a or a + 1, each lane chooses by its S):
+  // `a_next` is the row of a + 1 (nadds, nadcs) or nullptr.
+  void neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, const uint8_t* a_next, const uint8_t* d,
+                                bool d_masked, uint8_t* neighbour, uint8_t* out);
   // run_trace() for kLanes lanes (0: m_lanes).
   template <size_t kLanes>
   void run_trace_lanes(const std::vector<Instruction>& trace);
@@ -200,6 +213,10 @@ class CuArray {
   std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
   bool m_skew = false;
+  bool m_ring = false;
+  // Per direction and lane, the neighbour's lane, or -1 beyond the edge
+  // (with the row ring, left and right wrap); for neighbour_lanes_in_order.
+  std::array<std::vector<int>, 4> m_neighbour_lane;
   std::vector<uint16_t> m_lut;
   Fault m_fault = Fault::operand;
 };

@@ -41,7 +41,9 @@ bool is_alu_opcode(Opcode opcode) {
     case Opcode::op_ror:
     case Opcode::op_cmp:
     case Opcode::op_cmpc:
-    case Opcode::op_nadd: return true;
+    case Opcode::op_nadd:
+    case Opcode::op_nadds:
+    case Opcode::op_nadcs: return true;
     default: return false;
   }
 }
@@ -52,6 +54,15 @@ AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags) {
     case Opcode::op_add:
     case Opcode::op_nadd: return add_with_carry(a, b, false);
     case Opcode::op_adc: return add_with_carry(a, b, flags.c);
+    case Opcode::op_nadds:
+    case Opcode::op_nadcs: {
+      // The chain's selecting adds write C only: S chose the source byte
+      // (the array's routing) and must stay for the wide sum's next byte.
+      AluResult sum = add_with_carry(a, b, opcode == Opcode::op_nadcs && flags.c);
+      sum.flags.z = flags.z;
+      sum.flags.s = flags.s;
+      return sum;
+    }
     case Opcode::op_sub: return add_with_carry(a, inverted, true);
     case Opcode::op_sbc: return add_with_carry(a, inverted, flags.c);
     case Opcode::op_cmp: {

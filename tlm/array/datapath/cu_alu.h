@@ -29,7 +29,9 @@ struct AluResult {
 
 // The 8-bit ALU instructions: add, adc, sub, sbc, and, or, xor, not, mov,
 // shl, shr, asr, rol, ror, cmp, cmpc, and nadd (an add: `a` is d's value,
-// `b` the neighbour's byte, 0 beyond the grid's edge). `b` is ignored by the
+// `b` the neighbour's byte, 0 beyond the grid's edge), nadds and nadcs (the
+// same with `b` the neighbour's byte at a or a + 1, which the array routes
+// by this CU's S; C written, Z and S kept). `b` is ignored by the
 // one-source ones.
 // Returns the flags unchanged and writes == false for any other opcode.
 AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags);

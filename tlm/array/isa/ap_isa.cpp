@@ -268,6 +268,8 @@ unsigned operand_width(Opcode opcode, char which) {
   }
   if (opcode == Opcode::op_div && which == 'a') return 2;
   if (opcode == Opcode::op_lut && (which == 'd' || which == 'a')) return 2;
+  // The chain's selecting adds read the neighbour's a or a + 1.
+  if ((opcode == Opcode::op_nadds || opcode == Opcode::op_nadcs) && which == 'a') return 2;
   return 1;
 }
 
