@@ -134,6 +134,11 @@ FITTED_PHASES = {
     "ap-tile:warp": PHASES + SPLIT,
     "ap-tile:warp_dma": PHASES + SPLIT,
 }
+# What van Sinten's chain mapping needs of the array (the Image Blender preset's switches, by key).
+CHAIN_SETTINGS = [
+    "--set", "array.issue_skew=lane", "--set", "array.row_ring=true", "--set", "array.features.neighbour_add=true",
+    "--set", "array.features.lut=true", "--set", "array.lut.entries=1024",
+]  # fmt: skip
 # The GL-free applications: (name, app, back end, arguments, driver statistics' prefix). Their
 # records are their timed parts (the split).
 APP_TRAINING = [
@@ -221,6 +226,22 @@ APP_TRAINING = [
         "study_forward_texture",
         "ap-tile",
         ["--set", "dma.enabled=true", "--", "--texture-size", "200", "--filter-width", "3"],
+        "study",
+    ),
+    # Van Sinten's own mapping (resample_chain.s, four lines a run) with the switches it needs, through the DMA and the
+    # CIU: the same rows, in the chain's proportions.
+    (
+        "study_forward_texture_chain_dma_96_2",
+        "study_forward_texture",
+        "ap-tile",
+        ["--set", "dma.enabled=true", *CHAIN_SETTINGS, "--", "--texture-size", "96", "--array-mapping", "chain"],
+        "study",
+    ),
+    (
+        "study_forward_texture_chain_ciu_64_3",
+        "study_forward_texture",
+        "ap-pixel",
+        [*CHAIN_SETTINGS, "--", "--texture-size", "64", "--filter-width", "3", "--array-mapping", "chain"],
         "study",
     ),
 ]

@@ -219,9 +219,10 @@ def patch_break_even(result, column, results):
 
 
 def forward_texture_steps(result):
-    """The program's texel steps: each run takes every CU's line one texel border further per step, texture_size + 1
-    borders a line (driver.study.array_runs x (texture_size + 1)), whatever the CUs with a line."""
-    return stat(result, "driver.study.array_runs") * (stat(result, "driver.study.texture_size") + 1)
+    """The programs' texel steps (driver.study.array_steps): a step takes every CU one texel border on, whatever the
+    CUs with a line; one line per CU, a run's texture_size + 1 borders; van Sinten's chain, a run's rounds (a border
+    per CU each)."""
+    return stat(result, "driver.study.array_steps")
 
 
 def forward_texture_division_cycles(result, column, results):

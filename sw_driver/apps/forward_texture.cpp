@@ -18,9 +18,13 @@
 // computed|table (on the array: the program computes the box's factors, the
 // J2210's way, default; or looks the filter's up in the shared table,
 // resample_lines_lut, which needs array.features.lut and a table of 256 F
-// entries, array.lut.entries). Magnification is
-// refused (upscale the texture first), as are a singular matrix and a
-// texture that does not fit.
+// entries, array.lut.entries), --array-mapping lines|chain (on the array:
+// one line per CU, default; or van Sinten's own mapping, resample_chain.s,
+// a border per CU and the sums passed down each row's chain, its factors
+// always looked up, which needs the Image Blender preset's delayed
+// execution, row ring, selecting adds and table). Magnification is refused
+// (upscale the texture first), as are a singular matrix and a texture that
+// does not fit.
 //
 // The figures go to stats.json's driver section (study.*): the warp's host
 // time per frame (study.warp_ns, from the texture's first load to the last
@@ -120,6 +124,12 @@ ft::ArrayFactors parse_array_factors(const std::string& name) {
   throw std::invalid_argument(std::string(APP) + ": --array-factors is computed or table, not '" + name + "'");
 }
 
+ft::ArrayMapping parse_array_mapping(const std::string& name) {
+  if (name == "lines") return ft::ArrayMapping::lines;
+  if (name == "chain") return ft::ArrayMapping::chain;
+  throw std::invalid_argument(std::string(APP) + ": --array-mapping is lines or chain, not '" + name + "'");
+}
+
 ft::FilterKind parse_filter(const std::string& name) {
   if (name == "box") return ft::FilterKind::box;
   if (name == "tent") return ft::FilterKind::tent;
@@ -134,7 +144,8 @@ uint8_t checker(unsigned u, unsigned v, unsigned size) {
 }
 
 int study_forward_texture(AppEnvironment& env) {
-  study::check_options(env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix", "--array-factors"});
+  study::check_options(
+      env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix", "--array-factors", "--array-mapping"});
   const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
   const bool on_array = backend == "ap-tile" || backend == "ap-pixel";
   if (backend != "arm" && !on_array)
@@ -145,11 +156,22 @@ int study_forward_texture(AppEnvironment& env) {
   const ft::FilterKind kind = parse_filter(option_text(env, "--filter", "box"));
   const unsigned width = study::option(env, APP, "--filter-width", 2, 1, ft::MAX_FILTER_WIDTH);
   const ft::PerspectiveMatrix matrix = parse_matrix(option_text(env, "--matrix", DEFAULT_MATRIX));
-  const ft::ArrayFactors factors = parse_array_factors(option_text(env, "--array-factors", "computed"));
+  const ft::ArrayMapping mapping = parse_array_mapping(option_text(env, "--array-mapping", "lines"));
+  // The chain always looks its factors up.
+  const ft::ArrayFactors factors = parse_array_factors(
+      option_text(env, "--array-factors", mapping == ft::ArrayMapping::chain ? "table" : "computed"));
+  if (mapping == ft::ArrayMapping::chain && !on_array)
+    throw std::invalid_argument(std::string(APP) +
+                                ": --array-mapping chain is an array program's (--backend ap-tile "
+                                "or ap-pixel)");
   if (factors == ft::ArrayFactors::table && !on_array)
     throw std::invalid_argument(std::string(APP) +
                                 ": --array-factors table is the array program's (--backend ap-tile or ap-pixel); "
                                 "the host looks its factors up in its own table");
+  if (mapping == ft::ArrayMapping::chain && factors == ft::ArrayFactors::computed)
+    throw std::invalid_argument(std::string(APP) +
+                                ": --array-mapping chain looks its factors up (resample_chain.s): --array-factors "
+                                "computed is the one-line-per-CU program's");
   HostApi& host = *env.host;
   DisplayDriver display(env);
   const int out_width = static_cast<int>(display.width()), out_height = static_cast<int>(display.height());
@@ -170,10 +192,13 @@ int study_forward_texture(AppEnvironment& env) {
   std::optional<ft::ArrayResampler> array;
   if (on_array) {
     const uint32_t staging = image_address + ((static_cast<uint32_t>(out_width * out_height) + 31) & ~31u);
-    array.emplace(env, time, staging, env.heap_end, factors);
+    array.emplace(env, time, staging, env.heap_end, factors, mapping);
     if (const std::string error = array->check(table, static_cast<int>(size)); !error.empty())
       throw std::invalid_argument(std::string(APP) + ": " +
-                                  (factors == ft::ArrayFactors::table ? "--array-factors table: " : "") + error);
+                                  (mapping == ft::ArrayMapping::chain   ? "--array-mapping chain: "
+                                   : factors == ft::ArrayFactors::table ? "--array-factors table: "
+                                                                        : "") +
+                                  error);
   }
   costs::reset_cost_meter();
   uint64_t warp_cycles = 0;
@@ -254,6 +279,10 @@ int study_forward_texture(AppEnvironment& env) {
     study::publish(env, "array_cycles", "array cycles of the resampling programs", f.cycles);
     study::publish(env, "array_lines", "lines the array resampled", f.lines);
     study::publish(env, "array_borders", "texel borders the array resampled", f.borders);
+    study::publish(env, "array_steps",
+                   "texel steps of the programs (a step takes every CU one border on: a run's n + 1 with one line "
+                   "per CU, its rounds with the chain)",
+                   f.steps);
     study::publish(env, "values_written", "bytes the array's data lines carried into CMEM", f.traffic.values_written);
     study::publish(env, "values_read", "bytes the array's data lines carried out of CMEM", f.traffic.values_read);
     study::publish(env, "dma_descriptors", "DMA descriptors run (0 through the CIU)", f.traffic.dma_descriptors);
@@ -267,7 +296,9 @@ int study_forward_texture(AppEnvironment& env) {
   std::printf("%s: %ux%u texture onto %dx%d, %s filter of width %u, %s first, on the %s%s\n", APP, size, size,
               out_width, out_height, ft::filter_name(kind), width,
               order.order == ft::PassOrder::columns_first ? "columns" : "rows", array ? "array" : "host",
-              factors == ft::ArrayFactors::table ? " (factors from the lookup table)" : "");
+              mapping == ft::ArrayMapping::chain   ? " (van Sinten's mapping: a border per CU, the sums down the chain)"
+              : factors == ft::ArrayFactors::table ? " (factors from the lookup table)"
+                                                   : "");
   return 0;
 }
 

@@ -141,6 +141,48 @@ TEST_F(SocSimForwardTexture, TheTableProgramWarpsTheHostsPictureByteForByte) {
   }
 }
 
+TEST_F(SocSimForwardTexture, TheChainMappingWarpsTheHostsPictureByteForByte) {
+  // --array-mapping chain with the Image Blender's switches it needs
+  // (delayed execution, the row ring, the selecting adds, the table): a
+  // border per CU, four lines a run; box and tent of width 2, through the
+  // DMA and the CIU.
+  const std::vector<std::string> preset = {"--set", "array.issue_skew=lane",
+                                           "--set", "array.row_ring=true",
+                                           "--set", "array.features.neighbour_add=true",
+                                           "--set", "array.features.lut=true",
+                                           "--set", "array.lut.entries=1024"};
+  struct Run {
+    std::string name;
+    std::vector<std::string> settings;
+  };
+  const std::vector<Run> runs = {
+      {"host", {"--backend", "arm", "--set", "display.width=192", "--set", "display.height=144"}},
+      {"chain_dma", {"--backend", "ap-tile", "--set", "dma.enabled=true"}},
+      {"chain_ciu", {"--backend", "ap-pixel"}}};
+  const int texels = 50, width = 2;
+  for (const std::string filter : {"box", "tent"}) {
+    for (const Run& r : runs) {
+      const std::string out = r.name + "_" + filter;
+      const bool on_array = r.name != "host";
+      std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", out};
+      args.insert(args.end(), r.settings.begin(), r.settings.end());
+      if (on_array) args.insert(args.end(), preset.begin(), preset.end());
+      args.insert(args.end(), {"--", "--texture-size", std::to_string(texels), "--filter-width", std::to_string(width),
+                               "--filter", filter});
+      if (on_array) args.insert(args.end(), {"--array-mapping", "chain"});
+      const SimResult result = run(args);
+      ASSERT_EQ(result.status, 0) << out << ": " << describe(result);
+      if (!on_array) continue;
+      EXPECT_TRUE(contains(result.out, "van Sinten's mapping")) << describe(result);
+      EXPECT_EQ(frame(out, 0), frame("host_" + filter, 0)) << out;
+      // A run holds one line per CU row.
+      const json figures = study(out);
+      EXPECT_LE(figures["array_lines"].get<int>(), 4 * figures["array_runs"].get<int>()) << out;
+      EXPECT_GT(stats(out)["array"]["mix"]["nadds"].get<int>(), 0) << out;
+    }
+  }
+}
+
 TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
   struct Case {
     std::vector<std::string> args;
@@ -175,6 +217,15 @@ TEST_F(SocSimForwardTexture, BadInputIsRefusedNamingTheValue) {
        "filter width F = 2 needs 512 lookup table entries (256 phases x F), more than array.lut.entries = 256"},
       {{"--backend", "arm", "--", "--array-factors", "table"}, "--array-factors table is the array program's"},
       {{"--backend", "ap-tile", "--", "--array-factors", "lut"}, "--array-factors is computed or table, not 'lut'"},
+      // The chain needs the Image Blender's switches.
+      {{"--backend", "ap-tile", "--", "--array-mapping", "chain"},
+       "--array-mapping chain: van Sinten's mapping (resample_chain.s) needs array.issue_skew=lane"},
+      {{"--backend", "ap-tile", "--set", "array.issue_skew=lane", "--", "--array-mapping", "chain"},
+       "needs array.row_ring=true"},
+      {{"--backend", "ap-tile", "--", "--array-mapping", "chain", "--array-factors", "computed"},
+       "--array-mapping chain looks its factors up"},
+      {{"--backend", "arm", "--", "--array-mapping", "chain"}, "--array-mapping chain is an array program's"},
+      {{"--backend", "ap-tile", "--", "--array-mapping", "rows"}, "--array-mapping is lines or chain, not 'rows'"},
   };
   for (const Case& c : array_cases) {
     std::vector<std::string> args = {"--app", "study_forward_texture", "--frames", "1", "--out", "bad", "--force"};
