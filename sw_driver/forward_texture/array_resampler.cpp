@@ -271,7 +271,7 @@ std::string ArrayResampler::resample_chain(std::vector<PassLine>& lines, const s
   const ChainGeometry geometry = chain_geometry();
   {
     TimedScope timed(m_host, m_time, HostSplit::array_write);
-    costs::charge(m_host, HostCost::forward_texture_array_texel, lines.size() * static_cast<uint64_t>(n));
+    costs::charge(m_host, HostCost::forward_texture_chain_texel, lines.size() * static_cast<uint64_t>(n));
     send_rows(chain_rows(m_chain_layout, geometry, oriented));
   }
   {
@@ -296,7 +296,7 @@ std::string ArrayResampler::resample_chain(std::vector<PassLine>& lines, const s
   std::vector<const CmemRow*> by_address(m_array.cmem_bytes(), nullptr);
   for (const CmemRow& row : results) by_address[row.address] = &row;
   const auto cmem = [&by_address](unsigned cu, uint16_t address) { return by_address[address]->per_cu[cu]; };
-  costs::charge(m_host, HostCost::forward_texture_array_border, lines.size() * (static_cast<uint64_t>(n) + 1));
+  costs::charge(m_host, HostCost::forward_texture_chain_border, lines.size() * (static_cast<uint64_t>(n) + 1));
   costs::charge(m_host, HostCost::forward_texture_array_pixel,
                 lines.size() * static_cast<uint64_t>(lines.front().pixels.count));
   for (std::size_t k = 0; k < lines.size(); ++k) {
