@@ -143,21 +143,15 @@ uint8_t checker(unsigned u, unsigned v, unsigned size) {
   return static_cast<uint8_t>(16 + 80 * (u + v) / (2 * size));
 }
 
-int study_forward_texture(AppEnvironment& env) {
-  study::check_options(
-      env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix", "--array-factors", "--array-mapping"});
-  const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
-  const bool on_array = backend == "ap-tile" || backend == "ap-pixel";
-  if (backend != "arm" && !on_array)
-    throw std::invalid_argument(
-        std::string(APP) + " runs on --backend arm (the host warps) or ap-tile / ap-pixel (the array warps); not on " +
-        backend);
-  const unsigned size = study::option(env, APP, "--texture-size", 128, 2, ft::MAX_IMAGE_SIZE);
-  const ft::FilterKind kind = parse_filter(option_text(env, "--filter", "box"));
-  const unsigned width = study::option(env, APP, "--filter-width", 2, 1, ft::MAX_FILTER_WIDTH);
-  const ft::PerspectiveMatrix matrix = parse_matrix(option_text(env, "--matrix", DEFAULT_MATRIX));
+// The array program's options: --array-mapping, and --array-factors (the
+// chain always looks its factors up), refused where they cannot run.
+struct ArrayChoice {
+  ft::ArrayMapping mapping;
+  ft::ArrayFactors factors;
+};
+
+ArrayChoice array_choice(AppEnvironment& env, bool on_array) {
   const ft::ArrayMapping mapping = parse_array_mapping(option_text(env, "--array-mapping", "lines"));
-  // The chain always looks its factors up.
   const ft::ArrayFactors factors = parse_array_factors(
       option_text(env, "--array-factors", mapping == ft::ArrayMapping::chain ? "table" : "computed"));
   if (mapping == ft::ArrayMapping::chain && !on_array)
@@ -172,6 +166,25 @@ int study_forward_texture(AppEnvironment& env) {
     throw std::invalid_argument(std::string(APP) +
                                 ": --array-mapping chain looks its factors up (resample_chain.s): --array-factors "
                                 "computed is the one-line-per-CU program's");
+  return {mapping, factors};
+}
+
+int study_forward_texture(AppEnvironment& env) {
+  study::check_options(
+      env, APP, {"--texture-size", "--filter", "--filter-width", "--matrix", "--array-factors", "--array-mapping"});
+  const std::string backend = env.config != nullptr ? env.config->get_string("driver.backend") : "arm";
+  const bool on_array = backend == "ap-tile" || backend == "ap-pixel";
+  if (backend != "arm" && !on_array)
+    throw std::invalid_argument(
+        std::string(APP) + " runs on --backend arm (the host warps) or ap-tile / ap-pixel (the array warps); not on " +
+        backend);
+  const unsigned size = study::option(env, APP, "--texture-size", 128, 2, ft::MAX_IMAGE_SIZE);
+  const ft::FilterKind kind = parse_filter(option_text(env, "--filter", "box"));
+  const unsigned width = study::option(env, APP, "--filter-width", 2, 1, ft::MAX_FILTER_WIDTH);
+  const ft::PerspectiveMatrix matrix = parse_matrix(option_text(env, "--matrix", DEFAULT_MATRIX));
+  const ArrayChoice choice = array_choice(env, on_array);
+  const ft::ArrayMapping mapping = choice.mapping;
+  const ft::ArrayFactors factors = choice.factors;
   HostApi& host = *env.host;
   DisplayDriver display(env);
   const int out_width = static_cast<int>(display.width()), out_height = static_cast<int>(display.height());

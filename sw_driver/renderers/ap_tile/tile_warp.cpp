@@ -98,13 +98,13 @@ std::optional<TexturePlane> texture_plane(const gl::Triangle& triangle, const gl
   const float det = du1 * dv2 - du2 * dv1;
   if (!(std::fabs(det) > 1e-6f)) return std::nullopt;
   TexturePlane plane;
-  for (int r = 0; r < 3; ++r) {
+  for (size_t r = 0; r < 3; ++r) {
     auto value = [r](const PlanePoint& q) { return r == 0 ? q.x * q.w : (r == 1 ? q.y * q.w : q.w); };
     const float base = value(p[0]), d1 = value(p[1]) - base, d2 = value(p[2]) - base;
     const float pu = (d1 * dv2 - d2 * dv1) / det, qv = (du1 * d2 - du2 * d1) / det;
-    plane.m[static_cast<size_t>(3 * r)] = pu;
-    plane.m[static_cast<size_t>(3 * r + 1)] = qv;
-    plane.m[static_cast<size_t>(3 * r + 2)] = base - pu * p[0].u - qv * p[0].v;
+    plane.m[3 * r] = pu;
+    plane.m[3 * r + 1] = qv;
+    plane.m[3 * r + 2] = base - pu * p[0].u - qv * p[0].v;
   }
   return plane;
 }
@@ -255,8 +255,8 @@ std::string WarpJob::band_matrix(WarpBand& band) const {
   const float step = size / static_cast<float>(k);
   const float u0 = static_cast<float>(band.u0) * size, v0 = static_cast<float>(band.v0) * size;
   std::array<float, 9> r{};
-  for (int row = 0; row < 3; ++row) {
-    const auto at = static_cast<size_t>(3 * row);
+  for (size_t row = 0; row < 3; ++row) {
+    const size_t at = 3 * row;
     r[at] = m[at] * step;
     r[at + 1] = m[at + 1] * step;
     r[at + 2] = m[at] * u0 + m[at + 1] * v0 + m[at + 2];
