@@ -18,9 +18,10 @@
 ; x: signed 16-bit pixels; u: the edge's remainder, unsigned 24-bit, biased
 ; so that its carry out is the step of one more pixel; z: z24 in a signed
 ; 32-bit container (its top byte catches rounding beyond 0 .. 2^24 - 1);
-; colour: 8.8 unsigned (modulo 2^16) with half a unit of bias.
+; colour: 8.8 unsigned (modulo 2^16) with half a unit of bias; s, t: texels
+; in 16.8, signed 24-bit (modulo 2^24).
 
-.const REC 62               ; bytes of a unit's record
+.const REC 80               ; bytes of a unit's record
 .const XL 0                 ; left end: first covered pixel of the row
 .const UL 2                 ; its remainder, biased by 2^24 - D
 .const QL 5                 ; its whole step per row
@@ -37,22 +38,29 @@
 .const C 38                 ; R, G, B, A at the row's start pixel
 .const CGX 46               ; their steps per pixel right
 .const CROW 54              ; and per row
-.const SLOT_BYTES 7         ; per slot: z (top byte, z16 high, z16 low), R, G, B, A
+.const S 62                 ; texture coordinates s, t at the row's start pixel
+.const SGX 65               ; their steps per pixel right
+.const SROW 68              ; and per row
+.const T 71
+.const TGX 74
+.const TROW 77
+.const SLOT_BYTES 13        ; per slot: z (top byte, z16 high, z16 low), R, G, B, A, S (3), T (3)
 .const ROW_BYTES 4          ; per row: XL, XR
-.const OUT_BYTES 4096 - 2 * REC - 8
+.const OUT_BYTES 4096 - 2 * REC - 8 - 3
 
 .var rec 2 * REC            ; the units' records (UNITS = 1 uses the first)
 .var cacc 8                 ; the span's colour accumulators
+.var tacc 3                 ; the span's t accumulator
 .var out OUT_BYTES          ; the regions: one per unit
 
 .if UNITS - 1
-.const REGION 1982
+.const REGION 1962
 .else
 .const REGION OUT_BYTES
 .endif
 
 ; Region h: row plane b at out + REGION h + RM b (b = 0, 1: XL; 2, 3: XR),
-; slot plane b of pixel p at out + REGION h + RM (4 + 7 p + b); the row
+; slot plane b of pixel p at out + REGION h + RM (4 + 13 p + b); the row
 ; loop's variable l indexes both (l = RM - 1 for the piece's first row).
 walk:
 .stage setup
@@ -72,12 +80,24 @@ walk:
     .rept k, 0, 7
     mov [cacc + k], [rec + REC * h + C + k]
     .endr
+    mov r4, [rec + REC * h + S]
+    mov r5, [rec + REC * h + S + 1]
+    mov r6, [rec + REC * h + S + 2]
+    .rept k, 0, 2
+    mov [tacc + k], [rec + REC * h + T + k]
+    .endr
     .rept p, 0, W - 1
     mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p) + l], r0
     mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 1) + l], r1
     mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 2) + l], r2
     .rept k, 0, 3
     mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 3 + k) + l], [cacc + 2 * k]
+    .endr
+    mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 7) + l], r4
+    mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 8) + l], r5
+    mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 9) + l], r6
+    .rept k, 0, 2
+    mov [out + REGION * h + RM * (ROW_BYTES + SLOT_BYTES * p + 10 + k) + l], [tacc + k]
     .endr
     add r3, r3, [rec + REC * h + ZGX + 3]
     adc r2, r2, [rec + REC * h + ZGX + 2]
@@ -87,6 +107,12 @@ walk:
     add [cacc + 2 * k + 1], [cacc + 2 * k + 1], [rec + REC * h + CGX + 2 * k + 1]
     adc [cacc + 2 * k], [cacc + 2 * k], [rec + REC * h + CGX + 2 * k]
     .endr
+    add r6, r6, [rec + REC * h + SGX + 2]
+    adc r5, r5, [rec + REC * h + SGX + 1]
+    adc r4, r4, [rec + REC * h + SGX]
+    add [tacc + 2], [tacc + 2], [rec + REC * h + TGX + 2]
+    adc [tacc + 1], [tacc + 1], [rec + REC * h + TGX + 1]
+    adc [tacc], [tacc], [rec + REC * h + TGX]
     .endr
 .stage fill
     ; The left end: the remainder's carry is the row with one pixel more;
@@ -107,6 +133,11 @@ walk:
     add [rec + REC * h + C + 2 * k + 1], [rec + REC * h + C + 2 * k + 1], [rec + REC * h + CGX + 2 * k + 1]
     adc [rec + REC * h + C + 2 * k], [rec + REC * h + C + 2 * k], [rec + REC * h + CGX + 2 * k]
     .endr
+    .rept v, 0, 1
+    add [rec + REC * h + S + 9 * v + 2], [rec + REC * h + S + 9 * v + 2], [rec + REC * h + SGX + 9 * v + 2]
+    adc [rec + REC * h + S + 9 * v + 1], [rec + REC * h + S + 9 * v + 1], [rec + REC * h + SGX + 9 * v + 1]
+    adc [rec + REC * h + S + 9 * v], [rec + REC * h + S + 9 * v], [rec + REC * h + SGX + 9 * v]
+    .endr
     mset
     ; x - (0xff:0xff where the carry was) + Q: x + Q + carry.
     sub [rec + REC * h + XL + 1], [rec + REC * h + XL + 1], r7
@@ -120,6 +151,11 @@ walk:
     .rept k, 0, 3
     add [rec + REC * h + C + 2 * k + 1], [rec + REC * h + C + 2 * k + 1], [rec + REC * h + CROW + 2 * k + 1]
     adc [rec + REC * h + C + 2 * k], [rec + REC * h + C + 2 * k], [rec + REC * h + CROW + 2 * k]
+    .endr
+    .rept v, 0, 1
+    add [rec + REC * h + S + 9 * v + 2], [rec + REC * h + S + 9 * v + 2], [rec + REC * h + SROW + 9 * v + 2]
+    adc [rec + REC * h + S + 9 * v + 1], [rec + REC * h + S + 9 * v + 1], [rec + REC * h + SROW + 9 * v + 1]
+    adc [rec + REC * h + S + 9 * v], [rec + REC * h + S + 9 * v], [rec + REC * h + SROW + 9 * v]
     .endr
     ; The right end, the same way (no values follow it).
     add [rec + REC * h + UR + 2], [rec + REC * h + UR + 2], [rec + REC * h + RR + 2]

@@ -3,8 +3,8 @@
 // middle vertex; batch by batch, each CU gets one half (ap.object.unit=half)
 // or one whole triangle (=triangle) as pieces that fit its slots, walks the
 // rows and spans and emits every covered pixel's depth and colour into CMEM;
-// the host reads them back through the CIU, z-tests them against its depth
-// buffer and writes the frame buffer in system memory. Clears, read-back and
+// the host reads them back through the CIU, textures them, z-tests them
+// against its depth buffer and writes the frame buffer in system memory. Clears, read-back and
 // the buffers' formats are the arm back end's (its rasterizer does them).
 #pragma once
 
@@ -17,6 +17,7 @@
 #include "device/app_environment.h"
 #include "device/array_driver.h"
 #include "device/display_driver.h"
+#include "device/dma_driver.h"
 #include "gl/renderer.h"
 #include "renderers/ap_object/object_setup.h"
 #include "renderers/arm/arm_rasterizer.h"
@@ -24,6 +25,7 @@
 #include "renderers/backend_entry_points.h"
 #include "renderers/common/array_dma.h"
 #include "renderers/common/host_time.h"
+#include "renderers/common/texture_units.h"
 #include "renderers/common/unsupported_state.h"
 
 namespace tessera::ap_object {
@@ -63,10 +65,20 @@ class ApObjectRenderer : public gl::Renderer {
     int x, y;
     uint16_t z;
     uint32_t rgba;
+    int32_t st[2];  // texels, 16.8
   };
 
   void run_units(const gl::RasterState& state);
   void run_jobs(const gl::RasterState& state, const Job* jobs, size_t count, unsigned span_class);
+  void write_records_ciu(const Job* jobs, size_t count, const ObjectLayout& layout);
+  void write_records_dma(const Job* jobs, size_t count, const ObjectLayout& layout);
+  void read_back_ciu(const Job* jobs, size_t count, const ObjectLayout& layout, const std::array<unsigned, 2>& rows);
+  void read_back_dma(const Job* jobs, size_t count, const ObjectLayout& layout, const std::array<unsigned, 2>& rows);
+  // The fragment of a covered pixel from its slot's bytes (b 0..12).
+  template <typename Byte>
+  Fragment fragment_of(int x, int y, Byte&& byte) const;
+  // Runs a chain of descriptors on `channel` and waits for it.
+  void run_chain(unsigned channel, uint32_t chain, std::vector<dma::Descriptor>& descriptors);
   void patch_loop(unsigned span_class, unsigned h, unsigned rows);
   void write_fragment(const gl::RasterState& state, const Fragment& fragment);
   void unsupported(const std::string& what);
@@ -79,6 +91,13 @@ class ApObjectRenderer : public gl::Renderer {
   arm::FrameBuffers m_buffers;
   std::unique_ptr<arm::ArmRasterizer> m_buffers_core;  // clears and read-back
   ArrayDriver m_array;
+  DmaDriver m_dma;
+  renderers::DmaUse m_dma_use;
+  // With the DMA: the records, the rows' ends and the slots staged in
+  // system memory (one byte per CU per CMEM address), the chains.
+  uint32_t m_stage_records = 0, m_stage_ends = 0, m_stage_slots = 0, m_chain = 0;
+  unsigned m_out_channel = 0;
+  renderers::ArrayTraffic m_traffic;
   Unit m_unit;
   std::array<ObjectLayout, SPAN_CLASSES> m_layouts;
   std::array<unsigned, SPAN_CLASSES> m_program_base{};
@@ -94,6 +113,9 @@ class ApObjectRenderer : public gl::Renderer {
   std::vector<std::vector<Fragment>> m_fragments;  // per CU of a run
   std::vector<uint8_t> m_record_bytes;
   renderers::UnsupportedState m_unsupported{"ap-object"};
+  // The one texture unit the current draw textures with (texture_units.h).
+  renderers::SingleTextureUnit m_tex_unit;
+  bool m_textured = false;
 
   renderers::HostTime m_time;
   renderers::FrameFigures m_frame_figures;

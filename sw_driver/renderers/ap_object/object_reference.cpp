@@ -25,6 +25,7 @@ bool add(uint8_t* a, const uint8_t* b, unsigned width) {
 
 void run_reference(const ObjectLayout& m, uint8_t* cmem, const unsigned rows[2]) {
   uint8_t* cacc = cmem + m.cacc;
+  uint8_t* tacc = cmem + m.tacc;
   for (unsigned h = 0; h < m.units; ++h) {
     uint8_t* rec = cmem + m.record(h);
     for (int l = static_cast<int>(rows[h]) - 1; l >= 0; --l) {
@@ -33,14 +34,22 @@ void run_reference(const ObjectLayout& m, uint8_t* cmem, const unsigned rows[2])
       cmem[m.row_plane(h, 1, row)] = rec[m.xl + 1];
       cmem[m.row_plane(h, 2, row)] = rec[m.xr];
       cmem[m.row_plane(h, 3, row)] = rec[m.xr + 1];
-      // The span: z in r0..r3, colour in cacc.
+      // The span: z in r0..r3, colour in cacc, s in r4..r6, t in tacc.
       uint8_t z[4] = {rec[m.z], rec[m.z + 1], rec[m.z + 2], rec[m.z + 3]};
       for (unsigned k = 0; k < 8; ++k) cacc[k] = rec[m.c + k];
+      uint8_t sv[3] = {rec[m.s], rec[m.s + 1], rec[m.s + 2]};
+      for (unsigned k = 0; k < 3; ++k) tacc[k] = rec[m.t + k];
       for (unsigned p = 0; p < m.span; ++p) {
         for (unsigned b = 0; b < 3; ++b) cmem[m.slot(h, p, b, row)] = z[b];
         for (unsigned k = 0; k < 4; ++k) cmem[m.slot(h, p, 3 + k, row)] = cacc[2 * k];
+        for (unsigned b = 0; b < 3; ++b) {
+          cmem[m.slot(h, p, 7 + b, row)] = sv[b];
+          cmem[m.slot(h, p, 10 + b, row)] = tacc[b];
+        }
         add(z, rec + m.zgx, 4);
         for (unsigned k = 0; k < 4; ++k) add(cacc + 2 * k, rec + m.cgx + 2 * k, 2);
+        add(sv, rec + m.sgx, 3);
+        add(tacc, rec + m.tgx, 3);
       }
       // The left end: x + Q + carry, the remainder corrected and the start
       // values moved a pixel right where it carried; then the row steps.
@@ -49,10 +58,14 @@ void run_reference(const ObjectLayout& m, uint8_t* cmem, const unsigned rows[2])
         add(rec + m.ul, rec + m.nl, 3);
         add(rec + m.z, rec + m.zgx, 4);
         for (unsigned k = 0; k < 4; ++k) add(rec + m.c + 2 * k, rec + m.cgx + 2 * k, 2);
+        add(rec + m.s, rec + m.sgx, 3);
+        add(rec + m.t, rec + m.tgx, 3);
       }
       put(rec + m.xl, get(rec + m.xl, 2) + get(rec + m.ql, 2) + (left_carry ? 1 : 0), 2);
       add(rec + m.z, rec + m.zrow, 4);
       for (unsigned k = 0; k < 4; ++k) add(rec + m.c + 2 * k, rec + m.crow + 2 * k, 2);
+      add(rec + m.s, rec + m.srow, 3);
+      add(rec + m.t, rec + m.trow, 3);
       const bool right_carry = add(rec + m.ur, rec + m.rr, 3);
       if (right_carry) add(rec + m.ur, rec + m.nr, 3);
       put(rec + m.xr, get(rec + m.xr, 2) + get(rec + m.qr, 2) + (right_carry ? 1 : 0), 2);

@@ -1,10 +1,12 @@
 #include "renderers/ap_object/object_setup.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 
 #include "array/isa/ap_isa.h"
+#include "renderers/common/texel_fixed.h"
 
 #include "ap_programs/ap_object_tri_w16.h"
 #include "ap_programs/ap_object_tri_w32.h"
@@ -79,19 +81,20 @@ ObjectLayout ObjectLayout::of(const ap::Program& program) {
   m.region = static_cast<unsigned>(ap::constant_value(program, "REGION"));
   m.slot_bytes = static_cast<unsigned>(ap::constant_value(program, "SLOT_BYTES"));
   m.row_bytes = static_cast<unsigned>(ap::constant_value(program, "ROW_BYTES"));
-  if (m.units < 1 || m.units > 2 || m.slot_bytes != 7 || m.row_bytes != 4)
-    throw std::invalid_argument(program.source_name + ": the host expects 1 or 2 units, 7-byte slots, 4-byte rows");
+  if (m.units < 1 || m.units > 2 || m.slot_bytes != 13 || m.row_bytes != 4)
+    throw std::invalid_argument(program.source_name + ": the host expects 1 or 2 units, 13-byte slots, 4-byte rows");
   if (m.rows * (m.row_bytes + m.slot_bytes * m.span) > m.region)
     throw std::invalid_argument(program.source_name + ": RM rows of W pixels do not fit a region");
   m.rec = ap::variable_address(program, "rec", 2 * m.rec_bytes);
   m.cacc = ap::variable_address(program, "cacc", 8);
+  m.tacc = ap::variable_address(program, "tacc", 3);
   m.out = ap::variable_address(program, "out", static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")));
   if (m.region * m.units > static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")))
     throw std::invalid_argument(program.source_name + ": the regions do not fit `out`");
-  unsigned* fields[] = {&m.xl, &m.ul, &m.ql, &m.rl,  &m.nl,   &m.xr, &m.ur,  &m.qr,
-                        &m.rr, &m.nr, &m.z,  &m.zgx, &m.zrow, &m.c,  &m.cgx, &m.crow};
-  const char* names[] = {"XL", "UL", "QL", "RL",  "NL",   "XR", "UR",  "QR",
-                         "RR", "NR", "Z",  "ZGX", "ZROW", "C",  "CGX", "CROW"};
+  unsigned* fields[] = {&m.xl,  &m.ul,   &m.ql, &m.rl,  &m.nl,   &m.xr, &m.ur,  &m.qr,   &m.rr, &m.nr,  &m.z,
+                        &m.zgx, &m.zrow, &m.c,  &m.cgx, &m.crow, &m.s,  &m.sgx, &m.srow, &m.t,  &m.tgx, &m.trow};
+  const char* names[] = {"XL",  "UL",   "QL", "RL",  "NL",   "XR", "UR",  "QR",   "RR", "NR",  "Z",
+                         "ZGX", "ZROW", "C",  "CGX", "CROW", "S",  "SGX", "SROW", "T",  "TGX", "TROW"};
   for (unsigned i = 0; i < std::size(fields); ++i)
     *fields[i] = static_cast<unsigned>(ap::constant_value(program, names[i]));
   m.entry = ap::entry_word(program, "walk");
@@ -127,6 +130,12 @@ void encode_record(const UnitRecord& r, const ObjectLayout& m, uint8_t* bytes) {
     put(bytes, m.cgx + 2 * k, r.cgx[k], 2);
     put(bytes, m.crow + 2 * k, r.crow[k], 2);
   }
+  for (unsigned v = 0; v < 2; ++v) {
+    const unsigned at = v == 0 ? m.s : m.t, gx = v == 0 ? m.sgx : m.tgx, row = v == 0 ? m.srow : m.trow;
+    put(bytes, at, r.st[v], 3);
+    put(bytes, gx, r.stgx[v], 3);
+    put(bytes, row, r.strow[v], 3);
+  }
 }
 
 int32_t EdgeWalk::bound(int j, uint32_t& remainder) const {
@@ -139,7 +148,8 @@ int32_t EdgeWalk::bound(int j, uint32_t& remainder) const {
   return static_cast<int32_t>(f.quotient);
 }
 
-ObjectTriangle::ObjectTriangle(const gl::Triangle& triangle, bool flat, const PixelBox& box) {
+ObjectTriangle::ObjectTriangle(const gl::Triangle& triangle, bool flat, const PixelBox& box, unsigned tex_width,
+                               unsigned tex_height, unsigned unit) {
   int32_t x[3], y[3];
   for (unsigned i = 0; i < 3; ++i) {
     x[i] = triangle.v[i].x;
@@ -236,6 +246,20 @@ ObjectTriangle::ObjectTriangle(const gl::Triangle& triangle, bool flat, const Pi
     }
     m_colour[k] = plane(v[0], v[1], v[2]);
   }
+  // s and t in 1/4096 texel, as ap-pixel's set-up has them
+  // (renderers/common/texel_fixed.h; coordinates that are not finite give 0).
+  const unsigned sizes[2] = {tex_width, tex_height};
+  for (unsigned k = 0; k < 2; ++k) {
+    float st[3];
+    bool finite = true;
+    for (unsigned i = 0; i < 3; ++i) {
+      st[i] = k == 0 ? triangle.v[i].tex[unit].s : triangle.v[i].tex[unit].t;
+      finite = finite && std::isfinite(st[i]);
+    }
+    int32_t v[3] = {0, 0, 0};
+    if (finite && sizes[k] > 0) renderers::texel_fixed(st, static_cast<float>(sizes[k]) * 4096.0f, 28, v);
+    m_st[k] = plane(v[0], v[1], v[2]);
+  }
   m_valid = true;
 }
 
@@ -282,6 +306,13 @@ UnitRecord ObjectTriangle::record(unsigned h, int j, int offset) const {
     r.c[k] = static_cast<uint16_t>(code_at(m_colour[k], X, Y) + 128);
     r.cgx[k] = static_cast<uint16_t>(step(m_colour[k], 16, 0));
     r.crow[k] = static_cast<uint16_t>(step(m_colour[k], 16 * int64_t{L.q}, 16));
+  }
+  // 1/4096 texel to the code's 1/256: a rounding shift.
+  const auto code = [](int64_t sixteenths) { return static_cast<uint32_t>((sixteenths + 8) >> 4) & 0xffffff; };
+  for (unsigned k = 0; k < 2; ++k) {
+    r.st[k] = code(code_at(m_st[k], X, Y));
+    r.stgx[k] = code(step(m_st[k], 16, 0));
+    r.strow[k] = code(step(m_st[k], 16 * int64_t{L.q}, 16));
   }
   return r;
 }

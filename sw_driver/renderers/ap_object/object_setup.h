@@ -42,11 +42,11 @@ struct ObjectLayout {
   unsigned span = 0;   // W: pixels walked per row
   unsigned rows = 0;   // RM: rows a region holds
   unsigned units = 1;  // records per CU: 1 (half) or 2 (triangle)
-  unsigned rec = 0, rec_bytes = 0, cacc = 0, out = 0, region = 0;
+  unsigned rec = 0, rec_bytes = 0, cacc = 0, tacc = 0, out = 0, region = 0;
   // Offsets within a record.
   unsigned xl = 0, ul = 0, ql = 0, rl = 0, nl = 0, xr = 0, ur = 0, qr = 0, rr = 0, nr = 0;
-  unsigned z = 0, zgx = 0, zrow = 0, c = 0, cgx = 0, crow = 0;
-  unsigned slot_bytes = 7, row_bytes = 4;
+  unsigned z = 0, zgx = 0, zrow = 0, c = 0, cgx = 0, crow = 0, s = 0, sgx = 0, srow = 0, t = 0, tgx = 0, trow = 0;
+  unsigned slot_bytes = 13, row_bytes = 4;
   unsigned entry = 0;
   std::array<unsigned, 2> loop_word{};  // the row loop of each record, by word
   unsigned cmem_bytes = 0;              // the end of the last variable
@@ -55,7 +55,7 @@ struct ObjectLayout {
   // The row planes: byte b of row slot l (b 0, 1: XL; 2, 3: XR).
   unsigned row_plane(unsigned h, unsigned b, unsigned l) const { return out + region * h + rows * b + l; }
   // The slot planes: byte b of pixel p's slot in row slot l (b 0..2: z's
-  // top byte, z16 high, z16 low; 3..6: R, G, B, A).
+  // top byte, z16 high, z16 low; 3..6: R, G, B, A; 7..9: s, 10..12: t).
   unsigned slot(unsigned h, unsigned p, unsigned b, unsigned l) const {
     return out + region * h + rows * (row_bytes + slot_bytes * p + b) + l;
   }
@@ -72,6 +72,7 @@ struct UnitRecord {
   uint32_t ul = 0, rl = 0, nl = 0, ur = 0, rr = 0, nr = 0;
   uint32_t z = 0, zgx = 0, zrow = 0;
   std::array<uint16_t, 4> c{}, cgx{}, crow{};
+  std::array<uint32_t, 2> st{}, stgx{}, strow{};  // s and t, 16.8 texels, 24-bit
 };
 // Writes the record's rec_bytes bytes, big-endian, in the program's order.
 void encode_record(const UnitRecord& record, const ObjectLayout& layout, uint8_t* bytes);
@@ -105,8 +106,11 @@ class ObjectTriangle {
  public:
   static constexpr int32_t COORDINATE_LIMIT = int32_t{1} << 14;
 
-  // flat: every vertex takes v[2]'s colour.
-  ObjectTriangle(const gl::Triangle& triangle, bool flat, const PixelBox& box);
+  // flat: every vertex takes v[2]'s colour; tex_width, tex_height: the
+  // texture's size in texels (s and t are in texels), 0 when untextured;
+  // `unit`: the texture unit whose coordinates are interpolated.
+  ObjectTriangle(const gl::Triangle& triangle, bool flat, const PixelBox& box, unsigned tex_width = 0,
+                 unsigned tex_height = 0, unsigned unit = 0);
   // False for a triangle that draws nothing (zero area, a vertex beyond
   // +-2^14 sixteenths, no row in the box).
   bool valid() const { return m_valid; }
@@ -140,6 +144,7 @@ class ObjectTriangle {
   std::array<int, 2> m_first{{0, 0}}, m_last{{-1, -1}};
   Plane m_z;
   std::array<Plane, 4> m_colour;
+  std::array<Plane, 2> m_st;  // in 1/4096 texel (the code's 1/256 times 16)
 };
 
 }  // namespace tessera::ap_object

@@ -42,6 +42,8 @@ gl::Triangle random_triangle(std::mt19937& rng) {
     v.g = static_cast<uint8_t>(byte(rng));
     v.b = static_cast<uint8_t>(byte(rng));
     v.a = static_cast<uint8_t>(byte(rng));
+    v.tex[0].s = std::uniform_real_distribution<float>(-2.0f, 3.0f)(rng);
+    v.tex[0].t = std::uniform_real_distribution<float>(-2.0f, 3.0f)(rng);
     v.inv_w = 1;
   }
   if (byte(rng) < 40) t.v[1].y = t.v[0].y;  // a horizontal edge
@@ -170,7 +172,7 @@ TEST(ApObjectSetup, EmitsExactlyTheCoveredPixels) {
     PixelBox box{0, 0, FRAME_W - 1, FRAME_H - 1};
     if (n % 7 == 0) box = PixelBox{30, 20, 120, 100};
     const bool flat = n % 11 == 0;
-    const ObjectTriangle setup(t, flat, box);
+    const ObjectTriangle setup(t, flat, box, 64, 32);
     const unsigned span_class = static_cast<unsigned>(n % SPAN_CLASSES);
     const ObjectLayout layout = ObjectLayout::of(program_of(Unit::half, span_class));
     const int w = static_cast<int>(layout.span);
@@ -218,6 +220,15 @@ TEST(ApObjectSetup, EmitsExactlyTheCoveredPixels) {
                   EXPECT_NEAR(double(cmem[layout.slot(0, static_cast<unsigned>(p), 3 + k, l)]), plane_at(t, cv, x, j),
                               1.0)
                       << "triangle " << n << " channel " << k;
+                }
+                for (unsigned k = 0; k < 2; ++k) {
+                  uint32_t code = 0;
+                  for (unsigned b = 0; b < 3; ++b)
+                    code = code << 8 | cmem[layout.slot(0, static_cast<unsigned>(p), 7 + 3 * k + b, l)];
+                  const double texels = static_cast<int32_t>(code << 8) / 65536.0;
+                  double tv[3];
+                  for (unsigned v = 0; v < 3; ++v) tv[v] = (k == 0 ? t.v[v].tex[0].s * 64.0 : t.v[v].tex[0].t * 32.0);
+                  EXPECT_NEAR(texels, plane_at(t, tv, x, j), 0.25) << "triangle " << n << " coordinate " << k;
                 }
               }
             }
