@@ -308,6 +308,7 @@ void ApObjectRenderer::write_records_ciu(const Job* jobs, size_t count, const Ob
         for (unsigned k = 0; k < 4; ++k) word |= uint32_t{m_record_bytes[k * layout.rec_bytes + b]} << (8 * k);
         m_array.write32(i, j, layout.record(h) + b, word);
         ++m_words_written;
+        m_traffic.values_written += 4;
       }
     }
   }
@@ -335,6 +336,7 @@ void ApObjectRenderer::read_back_ciu(const Job* jobs, size_t count, const Object
         uint32_t plane[4];
         for (unsigned b = 0; b < 4; ++b) plane[b] = m_array.read32(i, j, layout.row_plane(h, b, l));
         m_words_read += 4;
+        m_traffic.values_read += 16;
         costs::charge(m_host, HostCost::ap_object_row_read);
         for (unsigned k = 0; k < 4; ++k) {
           const auto byte = [&](unsigned b) { return (plane[b] >> (8 * k)) & 0xff; };

@@ -27,9 +27,10 @@ using tessera::test::SimResult;
 
 class ApObjectStatistics : public tessera::test::SocSimTest {
  protected:
-  json teapot(const std::string& folder, const std::string& unit) {
-    const SimResult result = run({"--backend", "ap-object", "--app", "teapot", "--frames", "1", "-q", "--out", folder,
-                                  "--set", "ap.object.unit=" + unit});
+  json teapot(const std::string& folder, const std::string& unit, bool dma = false) {
+    const SimResult result =
+        run({"--backend", "ap-object", "--app", "teapot", "--frames", "1", "-q", "--out", folder, "--set",
+             "ap.object.unit=" + unit, "--set", std::string("dma.enabled=") + (dma ? "true" : "false")});
     EXPECT_EQ(result.status, 0) << describe(result);
     std::ifstream in(m_dir / folder / "stats.json");
     return json::parse(in, nullptr, false);
@@ -68,6 +69,30 @@ TEST_F(ApObjectStatistics, HalvesAndTrianglesDrawTheSameFrame) {
   const std::string a = frame("half"), b = frame("triangle");
   EXPECT_FALSE(a.empty());
   EXPECT_TRUE(a == b) << "the frames differ";
+  EXPECT_EQ(counter(half, "values_written"), 4 * counter(half, "ciu_words_written"));
+  EXPECT_EQ(counter(half, "values_read"), 4 * counter(half, "ciu_words_read"));
+}
+
+// With the DMA: the CIU carries nothing, the DMA's own counts are the back
+// end's, the array did the same work and the frame is the same.
+TEST_F(ApObjectStatistics, TheDmaCarriesTheSameFrame) {
+  for (const char* unit : {"half", "triangle"}) {
+    const std::string ciu_folder = std::string("ciu_") + unit, dma_folder = std::string("dma_") + unit;
+    const json ciu = teapot(ciu_folder, unit);
+    const json dma = teapot(dma_folder, unit, true);
+    ASSERT_FALSE(ciu.is_discarded());
+    ASSERT_FALSE(dma.is_discarded());
+    EXPECT_EQ(counter(dma, "ciu_words_written"), 0u);
+    EXPECT_EQ(counter(dma, "ciu_words_read"), 0u);
+    EXPECT_GT(counter(dma, "dma_descriptors"), 0u);
+    EXPECT_EQ(counter(ciu, "dma_descriptors"), 0u);
+    EXPECT_EQ(dma["stats"]["dma"]["ch0"]["errors"], 0);
+    EXPECT_EQ(counter(dma, "values_written"), dma["stats"]["dma"]["cmem"]["bytes_written"].get<uint64_t>());
+    EXPECT_EQ(counter(dma, "values_read"), dma["stats"]["dma"]["cmem"]["bytes_read"].get<uint64_t>());
+    for (const char* name : {"runs", "cycles", "pieces", "pixels_emitted", "pixels_written", "walked_rows"})
+      EXPECT_EQ(counter(dma, name), counter(ciu, name)) << unit << " " << name;
+    EXPECT_TRUE(frame(ciu_folder) == frame(dma_folder)) << unit << ": the frames differ";
+  }
 }
 
 }  // namespace
