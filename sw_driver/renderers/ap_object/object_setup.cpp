@@ -263,12 +263,12 @@ ObjectTriangle::ObjectTriangle(const gl::Triangle& triangle, bool flat, const Pi
   m_valid = true;
 }
 
-int64_t ObjectTriangle::code_at(const Plane& plane, int64_t X, int64_t Y) const {
-  return plane.v0 + step(plane, X - m_x0, Y - m_y0);
+int64_t ObjectTriangle::code_at(const Plane& plane, int64_t px, int64_t py) const {
+  return plane.v0 + step(plane, px - m_x0, py - m_y0);
 }
 
-int64_t ObjectTriangle::step(const Plane& plane, int64_t dX, int64_t dY) const {
-  return m_area.round_divide(m_area_sign * (dX * plane.cx + dY * plane.cy));
+int64_t ObjectTriangle::step(const Plane& plane, int64_t dx, int64_t dy) const {
+  return m_area.round_divide(m_area_sign * (dx * plane.cx + dy * plane.cy));
 }
 
 int ObjectTriangle::left(unsigned h, int j) const {
@@ -283,36 +283,36 @@ int ObjectTriangle::right(unsigned h, int j) const {
 
 UnitRecord ObjectTriangle::record(unsigned h, int j, int offset) const {
   UnitRecord r;
-  const EdgeWalk& L = m_left[h];
-  const EdgeWalk& R = m_right[h];
+  const EdgeWalk& left_edge = m_left[h];
+  const EdgeWalk& right_edge = m_right[h];
   uint32_t rem_l = 0, rem_r = 0;
-  const int32_t xl = L.bound(j, rem_l), xr = R.bound(j, rem_r);
+  const int32_t xl = left_edge.bound(j, rem_l), xr = right_edge.bound(j, rem_r);
   r.xl = static_cast<int16_t>(xl);
   r.xr = static_cast<int16_t>(xr);
-  r.ql = static_cast<int16_t>(L.q);
-  r.qr = static_cast<int16_t>(R.q);
-  r.nl = (TWO_24 - L.d) & 0xffffff;
-  r.nr = (TWO_24 - R.d) & 0xffffff;
+  r.ql = static_cast<int16_t>(left_edge.q);
+  r.qr = static_cast<int16_t>(right_edge.q);
+  r.nl = (TWO_24 - left_edge.d) & 0xffffff;
+  r.nr = (TWO_24 - right_edge.d) & 0xffffff;
   r.ul = (rem_l + r.nl) & 0xffffff;
   r.ur = (rem_r + r.nr) & 0xffffff;
-  r.rl = L.r;
-  r.rr = R.r;
-  const int64_t X = 16 * (int64_t{xl} + offset) + 8, Y = 16 * int64_t{j} + 8;
-  r.z = static_cast<uint32_t>(code_at(m_z, X, Y));
+  r.rl = left_edge.r;
+  r.rr = right_edge.r;
+  const int64_t px = 16 * (int64_t{xl} + offset) + 8, py = 16 * int64_t{j} + 8;
+  r.z = static_cast<uint32_t>(code_at(m_z, px, py));
   r.zgx = static_cast<uint32_t>(step(m_z, 16, 0));
-  r.zrow = static_cast<uint32_t>(step(m_z, 16 * int64_t{L.q}, 16));
+  r.zrow = static_cast<uint32_t>(step(m_z, 16 * int64_t{left_edge.q}, 16));
   for (unsigned k = 0; k < 4; ++k) {
     // Half a unit of bias: the high byte is the value rounded.
-    r.c[k] = static_cast<uint16_t>(code_at(m_colour[k], X, Y) + 128);
+    r.c[k] = static_cast<uint16_t>(code_at(m_colour[k], px, py) + 128);
     r.cgx[k] = static_cast<uint16_t>(step(m_colour[k], 16, 0));
-    r.crow[k] = static_cast<uint16_t>(step(m_colour[k], 16 * int64_t{L.q}, 16));
+    r.crow[k] = static_cast<uint16_t>(step(m_colour[k], 16 * int64_t{left_edge.q}, 16));
   }
   // 1/4096 texel to the code's 1/256: a rounding shift.
   const auto code = [](int64_t sixteenths) { return static_cast<uint32_t>((sixteenths + 8) >> 4) & 0xffffff; };
   for (unsigned k = 0; k < 2; ++k) {
-    r.st[k] = code(code_at(m_st[k], X, Y));
+    r.st[k] = code(code_at(m_st[k], px, py));
     r.stgx[k] = code(step(m_st[k], 16, 0));
-    r.strow[k] = code(step(m_st[k], 16 * int64_t{L.q}, 16));
+    r.strow[k] = code(step(m_st[k], 16 * int64_t{left_edge.q}, 16));
   }
   return r;
 }

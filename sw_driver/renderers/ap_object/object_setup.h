@@ -133,8 +133,8 @@ class ObjectTriangle {
     int64_t cx = 0, cy = 0;  // the plane's numerators (README.md)
   };
   // The plane's code at sixteenths (X, Y), rounded.
-  int64_t code_at(const Plane& plane, int64_t X, int64_t Y) const;
-  int64_t step(const Plane& plane, int64_t dX, int64_t dY) const;
+  int64_t code_at(const Plane& plane, int64_t px, int64_t py) const;
+  int64_t step(const Plane& plane, int64_t dx, int64_t dy) const;
 
   bool m_valid = false;
   int32_t m_x0 = 0, m_y0 = 0;

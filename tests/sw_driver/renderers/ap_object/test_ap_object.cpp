@@ -139,10 +139,10 @@ bool covered(const gl::Triangle& t, int i, int j) {
     std::swap(x[1], x[2]);
     std::swap(y[1], y[2]);
   }
-  const int64_t X = 16 * i + 8, Y = 16 * j + 8;
+  const int64_t px = 16 * i + 8, py = 16 * j + 8;
   for (unsigned k = 0; k < 3; ++k) {
     const unsigned n = (k + 1) % 3;
-    const int64_t cross = (x[n] - x[k]) * (Y - y[k]) - (y[n] - y[k]) * (X - x[k]);
+    const int64_t cross = (x[n] - x[k]) * (py - y[k]) - (y[n] - y[k]) * (px - x[k]);
     const bool top_left = y[n] < y[k] || (y[n] == y[k] && x[n] < x[k]);
     if (cross < 0 || (cross == 0 && !top_left)) return false;
   }
@@ -151,11 +151,11 @@ bool covered(const gl::Triangle& t, int i, int j) {
 
 // The value a plane takes at pixel (i, j)'s centre, in floating point.
 double plane_at(const gl::Triangle& t, const double v[3], int i, int j) {
-  const double X = 16.0 * i + 8, Y = 16.0 * j + 8;
+  const double px = 16.0 * i + 8, py = 16.0 * j + 8;
   const double x0 = t.v[0].x, y0 = t.v[0].y, x1 = t.v[1].x - x0, y1 = t.v[1].y - y0, x2 = t.v[2].x - x0,
                y2 = t.v[2].y - y0;
   const double area = x1 * y2 - y1 * x2;
-  const double b1 = ((X - x0) * y2 - (Y - y0) * x2) / area, b2 = ((Y - y0) * x1 - (X - x0) * y1) / area;
+  const double b1 = ((px - x0) * y2 - (py - y0) * x2) / area, b2 = ((py - y0) * x1 - (px - x0) * y1) / area;
   return v[0] + b1 * (v[1] - v[0]) + b2 * (v[2] - v[0]);
 }
 
@@ -245,8 +245,8 @@ TEST(ApObjectSetup, EmitsExactlyTheCoveredPixels) {
         if (covered(t, i, j)) {
           ASSERT_EQ(emitted.count({i, j}), 1u) << "triangle " << n << " pixel " << i << ", " << j << " missed";
           ++pixels;
-          const int64_t X = 16 * i + 8, Y = 16 * j + 8;
-          for (const auto& v : t.v) ties += (v.x == X || v.y == Y) ? 1 : 0;
+          const int64_t px = 16 * i + 8, py = 16 * j + 8;
+          for (const auto& v : t.v) ties += (v.x == px || v.y == py) ? 1 : 0;
         }
   }
   EXPECT_GT(pixels, 100000u);

@@ -56,7 +56,10 @@ TEST_F(ApObjectStatistics, HalvesAndTrianglesDrawTheSameFrame) {
                              "pixels_emitted", "pixels_written", "ciu_words_written", "ciu_words_read"})
       EXPECT_GT(counter(s, name), 0u) << name;
     EXPECT_LE(counter(s, "walked_rows"), counter(s, "lane_rows"));
-    EXPECT_EQ(counter(s, "cu_utilisation_permille"), counter(s, "walked_rows") * 1000 / counter(s, "lane_rows"));
+    // The driver divides in floating point (no 64-bit division on the ARM).
+    const uint64_t permille = counter(s, "walked_rows") * 1000 / counter(s, "lane_rows");
+    EXPECT_LE(counter(s, "cu_utilisation_permille"), permille + 1);
+    EXPECT_GE(counter(s, "cu_utilisation_permille") + 1, permille);
     EXPECT_LE(counter(s, "pixels_written"), counter(s, "pixels_emitted"));
     EXPECT_LE(counter(s, "busy_lanes"), 96 * counter(s, "runs"));
     EXPECT_EQ(counter(s, "runs"), counter(s, "runs_w8") + counter(s, "runs_w16") + counter(s, "runs_w32"));
