@@ -150,13 +150,17 @@ void ApObjectRenderer::draw(const gl::RasterState& state, const gl::Triangle* tr
     const auto index = static_cast<uint32_t>(m_triangles.size());
     m_triangles.push_back(setup);
     ++m_triangles_drawn;
+    // A batch is exactly one unit per CU (the last of a draw fewer).
+    const auto add = [&](unsigned which) {
+      m_units.emplace_back(index, which);
+      if (m_units.size() == m_array.cus()) run_units(state);
+    };
     if (m_unit == Unit::triangle) {
-      m_units.emplace_back(index, 2);
+      add(2);
     } else {
       for (unsigned h = 0; h < 2; ++h)
-        if (!setup.empty(h)) m_units.emplace_back(index, h);
+        if (!setup.empty(h)) add(h);
     }
-    if (m_units.size() >= m_array.cus()) run_units(state);
   }
   run_units(state);
   const uint64_t elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
