@@ -1,0 +1,60 @@
+// The ap-object back end's entry points for the registry (backends.def).
+#include <algorithm>
+#include <cstdint>
+#include <iterator>
+#include <string>
+
+#include "renderers/ap_object/ap_object_renderer.h"
+#include "renderers/backend_entry_points.h"
+
+namespace tessera::backends::ap_object {
+
+namespace {
+
+// The study's frame, as ap-pixel draws it: the array's 24 x 4 CUs as tiles
+// of 8 x 36 pixels, 192 x 144 (ap-object has no tiles either).
+constexpr unsigned TILE_WIDTH = 8, TILE_HEIGHT = 36, MAX_FRAME = 1024;
+
+}  // namespace
+
+ParamGroup parameters() {
+  return {"ap-object",
+          {
+              param::choice("ap.object.unit", "half",
+                            {std::begin(tessera::ap_object::UNIT_NAMES), std::end(tessera::ap_object::UNIT_NAMES)},
+                            "ap-object: what a CU walks per batch: half (one half of a triangle, split at its middle "
+                            "vertex: the MorphoSys paper's strategy 3) or triangle (a whole triangle, its two halves "
+                            "one after the other: strategy 1)"),
+          },
+          {}};
+}
+
+std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
+  const Config defaults({parameters()});
+  const Config& config = env.config != nullptr ? *env.config : defaults;
+  return std::make_unique<tessera::ap_object::ApObjectRenderer>(
+      env, tessera::ap_object::unit_named(config.get_string("ap.object.unit")));
+}
+
+// The display shows the study's frame unless the user chose its size.
+void adjust_configuration(Config& config) {
+  const uint64_t width = config.get_uint("array.columns") * TILE_WIDTH;
+  const uint64_t height = config.get_uint("array.rows") * TILE_HEIGHT;
+  if (!config.is_set("display.width"))
+    config.set("display.width", std::min<uint64_t>(width, MAX_FRAME), "driver.backend=ap-object");
+  if (!config.is_set("display.height"))
+    config.set("display.height", std::min<uint64_t>(height, MAX_FRAME), "driver.backend=ap-object");
+}
+
+// A pixel's x is a signed 16-bit value and the set-up's vertices lie within
+// +-1024 pixels: frames up to 1024 x 1024.
+void check_configuration(const Config& config) {
+  const uint64_t width = config.get_uint("display.width"), height = config.get_uint("display.height");
+  if (width > MAX_FRAME || height > MAX_FRAME)
+    throw ConfigError("configuration: impossible combination: driver.backend=ap-object draws frames of at most " +
+                      std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
+                      " pixels, but display.width x display.height = " + std::to_string(width) + " x " +
+                      std::to_string(height));
+}
+
+}  // namespace tessera::backends::ap_object
