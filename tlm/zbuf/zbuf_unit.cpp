@@ -39,7 +39,8 @@ ZbufUnit::ZbufUnit(sc_core::sc_module_name name, const ZbufParams& params, const
   sleeps_until_used();
   irq.bind(m_no_irq);
   ENTRIES.set_reset(params.core.entries);
-  PORTS.set_reset(std::min(params.core.ports, 255u) | (params.core.pair_halves_only ? regs::PORTS_PAIR_HALVES_ONLY : 0u));
+  PORTS.set_reset(std::min(params.core.ports, 255u) |
+                  (params.core.pair_halves_only ? regs::PORTS_PAIR_HALVES_ONLY : 0u));
   FRAME_ORIGIN.on_write([this](uint32_t value) {
     FRAME_ORIGIN.set(value);
     write_FRAME(value);

@@ -56,9 +56,15 @@ class ZbufUnit : public Peripheral, public ap::PixelPort {
   // `array` is the array whose programs send: the unit waits for them.
   ZbufUnit(sc_core::sc_module_name name, const ZbufParams& params, const ArrayProcessor& array);
 
-  const ZbufParams& params() const { return m_params; }
-  zbuf::ZbufCore& core() { return m_core; }
-  const zbuf::ZbufCore& core() const { return m_core; }
+  const ZbufParams& params() const {
+    return m_params;
+  }
+  zbuf::ZbufCore& core() {
+    return m_core;
+  }
+  const zbuf::ZbufCore& core() const {
+    return m_core;
+  }
 
   // ap::PixelPort: the array's zsend, during its controller's run.
   uint64_t send(const std::vector<ap::SentPixel>& pixels) override;

@@ -278,8 +278,7 @@ TEST(ZbufTiming, WorkBetweenSendsHidesThePort) {
 
 TEST(ZbufTiming, PortsPairingAndMasksSetTheHoldTime) {
   const auto halt_stall = [](unsigned ports, bool pairs, bool even_lanes_only, bool cmem) {
-    Timing t(ports, pairs,
-             {cmem ? zsend(mem(0), mem(4)) : zsend(reg(0), reg(4)), make(Opcode::op_halt)});
+    Timing t(ports, pairs, {cmem ? zsend(mem(0), mem(4)) : zsend(reg(0), reg(4)), make(Opcode::op_halt)});
     if (even_lanes_only)
       for (unsigned lane = 1; lane < LANES; lane += 2) t.array().set_mask(lane, false);
     const ap::RunResult result = t.controller.run(0);
@@ -293,7 +292,7 @@ TEST(ZbufTiming, PortsPairingAndMasksSetTheHoldTime) {
   EXPECT_EQ(halt_stall(2, false, true, false), 24u - 2);  // 48 senders
   EXPECT_EQ(halt_stall(2, true, true, false), 48u - 2);   // one sender per pair
   EXPECT_EQ(halt_stall(2, false, false, true), 48u - 3);
-  EXPECT_EQ(halt_stall(96, false, false, false), 0u);     // 1 cycle, within the zsend's own
+  EXPECT_EQ(halt_stall(96, false, false, false), 0u);  // 1 cycle, within the zsend's own
 }
 
 TEST(ZbufTiming, NoSendersHoldNothing) {

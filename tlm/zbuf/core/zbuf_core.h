@@ -48,14 +48,14 @@ struct ZbufCoreParams {
 
 // Totals since construction.
 struct ZbufCounts {
-  uint64_t sends = 0;          // send() calls (zsend instructions)
-  uint64_t pixels = 0;         // pixels received
-  uint64_t written = 0;        // pixels that passed the depth test (depth and colour written)
-  uint64_t failed = 0;         // pixels that failed it
-  uint64_t clipped = 0;        // pixels outside the frame's window
-  uint64_t conflicts = 0;      // pixels that met a lower lane's pixel at the same entry in the same cycle
-  uint64_t port_cycles = 0;    // cycles the ports were busy with sends
-  uint64_t clears = 0;         // clear() calls
+  uint64_t sends = 0;        // send() calls (zsend instructions)
+  uint64_t pixels = 0;       // pixels received
+  uint64_t written = 0;      // pixels that passed the depth test (depth and colour written)
+  uint64_t failed = 0;       // pixels that failed it
+  uint64_t clipped = 0;      // pixels outside the frame's window
+  uint64_t conflicts = 0;    // pixels that met a lower lane's pixel at the same entry in the same cycle
+  uint64_t port_cycles = 0;  // cycles the ports were busy with sends
+  uint64_t clears = 0;       // clear() calls
   uint64_t cleared_entries = 0;
 };
 
