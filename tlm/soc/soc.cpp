@@ -3,6 +3,7 @@
 #include "common/log.h"
 #include "soc/memory_map.h"
 #include "soc/platform_params.h"
+#include "zbuf/zbuf_regs.h"
 
 namespace tessera {
 
@@ -51,6 +52,10 @@ DmaParams dma_params(const Config& config) {
   p.cmem_clock_period = ArrayParams::from_config(config).clock_period;
   p.memory_base = memory_map::sysmem.base;
   p.memory_bytes = MemoryParams::from_config(config).size_bytes;
+  if (config.get_bool("zbuf.enabled")) {
+    p.readable_base = memory_map::zbuf_colour.base;
+    p.readable_bytes = uint64_t{ZbufParams::from_config(config).core.entries} * zbuf_regs::COLOUR_ENTRY_BYTES;
+  }
   return p;
 }
 
