@@ -67,6 +67,7 @@ struct Machine {
   }
   void load(const std::vector<Instruction>& program) {
     std::vector<uint64_t> words;
+    words.reserve(program.size());
     for (const Instruction& in : program) words.push_back(ap::encode(in));
     EXPECT_TRUE(controller.load(0, words));
   }
