@@ -4,7 +4,9 @@
 Delayed execution and the lookup table (tlm/array/README.md) come with
 parameters of their own (INERT below: the skew's K, the table's size and
 ports, the lut's cycles) that only count with their switch on
-(array.issue_skew = lane, array.features.lut = true). Runs every built-in GL
+(array.issue_skew = lane, array.features.lut = true); so does the z-buffer
+unit (tlm/zbuf/README.md: its size, ports, pairing rule and energies, and
+zsend's cycles, with zbuf.enabled and array.features.zsend off). Runs every built-in GL
 scene (soc_sim --list-apps, the "GL ES 1.1 scene" lines but obj_viewer) on
 each array back end twice, with every parameter at its default and with
 INERT set to other values, the switches left off, and compares the two runs
@@ -50,10 +52,19 @@ INERT = {
     "array.cycles.lut": "9",
     "array.cycles.nadds": "5",
     "array.cycles.nadcs": "6",
+    "array.cycles.zsend": "5",
+    "zbuf.entries": "1000",
+    "zbuf.ports": "3",
+    "zbuf.pair_halves_only": "true",
+    "power.zbuf.pixels_pj": "7",
+    "power.zbuf.writes_pj": "7",
+    "power.zbuf.cleared_entries_pj": "7",
+    "power.zbuf.window_words_pj": "7",
+    "power.zbuf.static_mw": "7",
 }
 # Every configuration key delayed execution and the lookup table added:
 # check_same_outputs.py --added-keys.
-ADDED = ["array.issue_skew", "array.features.lut", "array.row_ring", *INERT]
+ADDED = ["array.issue_skew", "array.features.lut", "array.row_ring", "array.features.zsend", "zbuf.enabled", *INERT]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 
 
@@ -90,8 +101,9 @@ def compare(default: pathlib.Path, inert: pathlib.Path) -> str:
     if difference:
         return difference
     stats = stats_without_inert(default / "stats.json")
-    if "issue_skew" in stats.get("stats", {}).get("array", {}) or "lut" in stats.get("stats", {}).get("array", {}):
-        return "stats.json has a section of a switch that is off (array.issue_skew or array.lut)"
+    array = stats.get("stats", {}).get("array", {})
+    if "issue_skew" in array or "lut" in array or "zbuf" in array or "zbuf" in stats.get("stats", {}):
+        return "stats.json has a section of a switch that is off (array.issue_skew, array.lut or zbuf)"
     return first_difference(stats, stats_without_inert(inert / "stats.json"), "stats.json", ("default", "inert"))
 
 

@@ -136,6 +136,7 @@ REGISTER_TABLES = [
     ("contract/display/display_regs.def", "display_regs"),
     ("contract/array/array_regs.def", "array_regs"),
     ("contract/dma/dma_regs.def", "dma_regs"),
+    ("contract/zbuf/zbuf_regs.def", "zbuf_regs"),
     ("contract/raster/raster_regs.def", "raster_regs"),
     ("contract/intc/intc_regs.def", "intc"),
     # A cluster node's block: not in the SoC's memory map (None); the

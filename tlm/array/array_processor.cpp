@@ -76,6 +76,10 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
     m_lut_lookups = &counter("lut.lookups", "lookups in the table: CUs x lut instructions");
     m_lut_writes = &counter("lut.host_writes", "table entries the host wrote through LUT_DATA");
   }
+  if (params.enabled_ops[static_cast<unsigned>(ap::Opcode::op_zsend)])
+    m_zbuf_stall_cycles = &counter("zbuf.stall_cycles",
+                                   "cycles the AC waited for the z-buffer unit's port before a zsend or a halt (in "
+                                   "cycles.total)");
   // An instruction that is not enabled never runs: it has no counter, so that
   // the statistics of a J2210 array are the J2210's.
   for (const ap::OpInfo& info : ap::all_ops())
@@ -242,6 +246,7 @@ void ArrayProcessor::copy_counters() {
   m_cmem_writes.value = lanes.cmem_writes;
   m_neighbour_transfers.value = lanes.neighbour_transfers;
   if (m_skew_cycles != nullptr) m_skew_cycles->value = core.skew_cycles;
+  if (m_zbuf_stall_cycles != nullptr) m_zbuf_stall_cycles->value = core.zbuf_stall_cycles;
   if (m_lut_stall_cycles != nullptr) {
     m_lut_stall_cycles->value = core.lut_stall_cycles;
     m_lut_lookups->value = core.instruction_mix[static_cast<unsigned>(ap::Opcode::op_lut)] * m_params.geometry.lanes();

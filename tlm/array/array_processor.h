@@ -182,6 +182,8 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   ActivityCounter* m_lut_stall_cycles = nullptr;
   ActivityCounter* m_lut_lookups = nullptr;
   ActivityCounter* m_lut_writes = nullptr;
+  // Only with array.features.zsend.
+  ActivityCounter* m_zbuf_stall_cycles = nullptr;
 
   TimedTrace m_busy_trace;
   TimedWord m_program_trace;

@@ -136,6 +136,8 @@ dma::Limits Dma::limits() const {
   dma::Limits l;
   l.memory_base = m_params.memory_base;
   l.memory_bytes = m_params.memory_bytes;
+  l.readable_base = m_params.readable_base;
+  l.readable_bytes = m_params.readable_bytes;
   if (m_cmem) {
     l.lanes = m_cmem->cmem_geometry().lanes();
     l.cmem_bytes = m_cmem->cmem_geometry().cmem_bytes;

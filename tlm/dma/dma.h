@@ -40,6 +40,10 @@ struct DmaParams {
   sc_core::sc_time cmem_clock_period;  // set by the SoC: the array clock
   uint64_t memory_base = 0;            // set by the SoC: system memory
   uint64_t memory_bytes = 0;
+  // Set by the SoC: a device window a copy may read (dma::Limits), the
+  // z-buffer unit's colour plane when zbuf.enabled; 0 bytes: none.
+  uint64_t readable_base = 0;
+  uint64_t readable_bytes = 0;
 
   static ParamGroup parameters();
   static DmaParams from_config(const Config& config);

@@ -3,6 +3,7 @@
 #include "common/log.h"
 #include "soc/memory_map.h"
 #include "soc/platform_params.h"
+#include "zbuf/zbuf_regs.h"
 
 namespace tessera {
 
@@ -51,6 +52,10 @@ DmaParams dma_params(const Config& config) {
   p.cmem_clock_period = ArrayParams::from_config(config).clock_period;
   p.memory_base = memory_map::sysmem.base;
   p.memory_bytes = MemoryParams::from_config(config).size_bytes;
+  if (config.get_bool("zbuf.enabled")) {
+    p.readable_base = memory_map::zbuf_colour.base;
+    p.readable_bytes = uint64_t{ZbufParams::from_config(config).core.entries} * zbuf_regs::COLOUR_ENTRY_BYTES;
+  }
   return p;
 }
 
@@ -95,6 +100,7 @@ std::vector<ParamGroup> Soc::parameter_groups() {
           ArrayParams::parameters(),
           CiuParams::parameters(),
           DmaParams::parameters(),
+          ZbufParams::parameters(),
           EnergyModel::parameters()};
 }
 
@@ -130,6 +136,9 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
 
   for (const auto& region : memory_map::ALL_REGIONS) {
     if (region.base == memory_map::dma_regs.base && !config.get_bool("dma.enabled")) continue;
+    if ((region.base == memory_map::zbuf_regs.base || region.base == memory_map::zbuf_colour.base) &&
+        !config.get_bool("zbuf.enabled"))
+      continue;
     if (region.base == memory_map::intc.base && !host.params().iss) continue;
     log::info(basename(), std::string("memory map: ") + region.name + " at " + log::hex(region.base) + ", " +
                               std::to_string(region.size) + " bytes");
@@ -161,6 +170,14 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
     const size_t initiator = bus.initiator_stats().size() - 1;
     dma->set_bus_wait_probe([this, initiator] { return bus.initiator_stats()[initiator].wait_cycles; });
     m_blocks.push_back(dma.get());
+  }
+
+  if (config.get_bool("zbuf.enabled")) {
+    zbuf = std::make_unique<ZbufUnit>("zbuf", ZbufParams::from_config(config), array);
+    bus.map(zbuf->in, memory_map::zbuf_regs.base, memory_map::zbuf_regs.size, memory_map::zbuf_regs.name);
+    bus.map(zbuf->colour_in, memory_map::zbuf_colour.base, memory_map::zbuf_colour.size, memory_map::zbuf_colour.name);
+    array.core().set_pixel_port(zbuf.get());
+    m_blocks.push_back(zbuf.get());
   }
 
   if (host.params().iss) {

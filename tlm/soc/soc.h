@@ -22,6 +22,7 @@
 #include "raster/rasterizer.h"
 #include "soc/irq_map.h"
 #include "soc/soc_recorder.h"
+#include "zbuf/zbuf_unit.h"
 
 namespace tessera {
 
@@ -60,6 +61,9 @@ class Soc : public sc_core::sc_module {
   // The system/array DMA, built only when dma.enabled (otherwise the SoC is
   // exactly what it was without it: no bus initiator, no statistics).
   std::unique_ptr<Dma> dma;
+  // The z-buffer unit beside the array, built only when zbuf.enabled (the
+  // port of the array's zsend; tlm/zbuf/README.md).
+  std::unique_ptr<ZbufUnit> zbuf;
   // The interrupt controller, built only when host.model=iss (the software
   // on the ISS needs it; host-compiled software waits on the lines).
   std::unique_ptr<InterruptController> intc;

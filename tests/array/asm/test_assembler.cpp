@@ -801,6 +801,8 @@ second:
   nadcs r1, right, r2
   lut r0, r2
   lut [8], [10]
+  zsend r0, r4
+  zsend [16], [20]
   mset
   mclr
   mmov c

@@ -741,9 +741,10 @@ TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnl
   EXPECT_EQ(feature_key(op_info(Opcode::op_lut)), "array.features.lut");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadds)), "array.features.neighbour_add");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadcs)), "array.features.neighbour_add");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_zsend)), "array.features.zsend");
   for (const OpInfo& info : all_ops())
     if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut &&
-        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs) {
+        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs && info.opcode != Opcode::op_zsend) {
       EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
       EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
     }

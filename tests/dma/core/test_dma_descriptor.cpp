@@ -93,6 +93,21 @@ TEST(DmaDescriptor, ValidDescriptorsPass) {
   EXPECT_TRUE(validate(make(Kind::mem_to_cmem, 2, MEMORY - 192, CMEM - 2, 192), limits()).ok());
 }
 
+// The z-buffer unit's colour window (tlm/zbuf): a copy may read it when the
+// SoC has one, wholly within it; nothing else may, and no kind writes it.
+TEST(DmaDescriptor, ACopyMayReadTheReadableWindowOnly) {
+  constexpr uint32_t WINDOW = 0x53010000u, BYTES = 0x20000u;
+  Limits with_window = limits();
+  with_window.readable_base = WINDOW;
+  with_window.readable_bytes = BYTES;
+  EXPECT_TRUE(validate(make(Kind::mem_to_mem, 1, WINDOW, 0x1000, 256), with_window).ok());
+  EXPECT_TRUE(validate(make(Kind::mem_to_mem, 1, WINDOW + BYTES - 256, 0x1000, 256), with_window).ok());
+  EXPECT_EQ(validate(make(Kind::mem_to_mem, 1, WINDOW + BYTES - 252, 0x1000, 256), with_window).error,
+            Error::src_outside_memory);
+  EXPECT_EQ(validate(make(Kind::mem_to_mem, 1, WINDOW, 0x1000, 256), limits()).error, Error::src_outside_memory);
+  EXPECT_EQ(validate(make(Kind::mem_to_mem, 1, 0x1000, WINDOW, 256), with_window).error, Error::dst_outside_memory);
+}
+
 TEST(DmaDescriptor, EachErrorNamesTheOffendingAddress) {
   auto check = [](const Descriptor& d, Error error, uint64_t address) {
     const Fault f = validate(d, limits());

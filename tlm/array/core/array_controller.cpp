@@ -42,6 +42,12 @@ void ArrayController::decode_slot(unsigned index) {
     const OpInfo& info = op_info(slot.instruction.opcode);
     slot.error = std::string(info.mnemonic) + " is not enabled: it needs " + feature_key(info) + " = true";
   }
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_zsend) {
+    if (m_pixel_port == nullptr)
+      slot.error = "zsend has no z-buffer unit to send to: it needs zbuf.enabled = true";
+    else if (m_skew != 0)
+      slot.error = "zsend under delayed execution (array.issue_skew = lane) is not modelled";
+  }
   slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
   if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew == 0) slot.cost += lut_lockstep_stall();
 }
@@ -66,6 +72,15 @@ void ArrayController::set_lut_ports(unsigned ports) {
   m_lut_ports = std::max(ports, 1u);
   for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
   m_runaways.clear();
+}
+
+void ArrayController::set_pixel_port(PixelPort* port) {
+  if (port == m_pixel_port) return;
+  m_pixel_port = port;
+  for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
+  m_runaways.clear();
+  m_plans.clear();
+  m_memos.clear();
 }
 
 void ArrayController::enable_ops(const EnabledOps& enabled) {
@@ -287,6 +302,17 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
   };
   m_stage_changes.clear();
   m_lut_port_free.assign(m_skew != 0 ? m_lut_ports : 0, 0);
+  m_zbuf_port_free = 0;
+  // The AC waits for the z-buffer's port before a zsend or a halt (counted
+  // in that word and its stage).
+  const auto wait_for_zbuf_port = [&](const Instruction& in) {
+    if (m_zbuf_port_free <= result.cycles) return;
+    const uint64_t stall = m_zbuf_port_free - result.cycles;
+    result.cycles += stall;
+    m_activity.zbuf_stall_cycles += stall;
+    m_activity.word_cycles[pc] += stall;
+    m_activity.stage_cycles[static_cast<unsigned>(in.stage)] += stall;
+  };
   // The lanes' activity is folded into the stage's totals where the stage
   // changes, not per instruction.
   Stage stage = entry < m_slots.size() ? m_slots[entry].instruction.stage : Stage{};
@@ -353,6 +379,14 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     if (!result.ok) break;
     if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
       m_stage_changes.push_back({result.cycles, in.stage});
+    if (in.opcode == Opcode::op_zsend || (halted && m_zbuf_port_free != 0)) wait_for_zbuf_port(in);
+    if (in.opcode == Opcode::op_zsend) {
+      const std::vector<SentPixel>& pixels = array.sent_pixels();
+      const uint64_t busy = m_pixel_port->send(pixels);
+      m_zbuf_port_free = result.cycles + busy;
+      m_activity.zbuf_port_cycles += busy;
+      m_activity.zbuf_pixels += pixels.size();
+    }
     if (in.opcode == Opcode::op_lut && !m_lut_port_free.empty()) {
       // The port that frees first; the AC waits for it when every one is
       // held by an earlier lut's lookups still running down the chain.
@@ -526,6 +560,7 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
       case Opcode::op_nadds:
       case Opcode::op_nadcs: return {};  // reads another CU
       case Opcode::op_lut: return {};    // reads the table, which the host may rewrite between runs
+      case Opcode::op_zsend: return {};  // sends to the z-buffer unit: every run's pixels count
       case Opcode::op_mset:
       case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
       case Opcode::op_mmov:

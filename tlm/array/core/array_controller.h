@@ -74,6 +74,12 @@ struct ControllerActivity {
   // The cycles the AC waited for the lookup table's ports (also in cycles,
   // in the lut's word and stage).
   uint64_t lut_stall_cycles = 0;
+  // zsend (the z-buffer unit's port, set_pixel_port): the cycles the AC
+  // waited for the port (also in cycles, in the waiting zsend's or halt's
+  // word and stage), the cycles the port was busy, and the pixels sent.
+  uint64_t zbuf_stall_cycles = 0;
+  uint64_t zbuf_port_cycles = 0;
+  uint64_t zbuf_pixels = 0;
 };
 
 class ArrayController {
@@ -104,6 +110,16 @@ class ArrayController {
   // run down the chain, (lanes - 1) x K + 1 cycles, and a lut finding every
   // port held waits for the first to free.
   void set_lut_ports(unsigned ports);
+  // The z-buffer unit's port that zsend sends to (tlm/zbuf), or nullptr:
+  // without one, a word holding zsend is refused like a disabled one. The
+  // port's reservation over the instruction stream (tlm/zbuf/README.md,
+  // "Timing"): a zsend issues when the port has taken every pixel of the
+  // previous one (each CU holds one pixel until the unit takes it), and
+  // then holds the port for the cycles the unit answers; the AC meanwhile
+  // runs on. A halt waits for the port too, so the unit's planes are
+  // complete when the program's interrupt rises. Lockstep only: under
+  // delayed execution a zsend is refused (not modelled).
+  void set_pixel_port(PixelPort* port);
 
   // Program memory. write_word() returns false when `index` is beyond it.
   bool write_word(unsigned index, uint64_t word);
@@ -246,6 +262,9 @@ class ArrayController {
   unsigned m_lut_ports = 1;  // P
   // With skew: per port, the run's cycle from which it is free (during run()).
   std::vector<uint64_t> m_lut_port_free;
+  PixelPort* m_pixel_port = nullptr;
+  // During run(): the run's cycle from which the z-buffer's port is free.
+  uint64_t m_zbuf_port_free = 0;
   // The extra cycles of one lut without skew (folded into its slot's cost).
   unsigned lut_lockstep_stall() const;
   std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written

@@ -331,6 +331,41 @@ bool CuArray::lut_indices_fit(const uint8_t* high, const uint8_t* low, std::stri
   return true;
 }
 
+bool CuArray::send_pixels(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops,
+                          std::string& error) {
+  constexpr unsigned WIDTH = 4;
+  std::array<const uint8_t*, WIDTH> a{}, b{};
+  m_fault = Fault::operand;
+  for (unsigned i = 0; i < WIDTH; ++i) {
+    if ((a[i] = operand_row(in.a, i, loop_variables, active_loops)) == nullptr) {
+      error = operand_error(in.a, i, loop_variables, active_loops);
+      return false;
+    }
+    if ((b[i] = operand_row(in.b, i, loop_variables, active_loops)) == nullptr) {
+      error = operand_error(in.b, i, loop_variables, active_loops);
+      return false;
+    }
+  }
+  const size_t n = m_lanes;
+  const uint8_t* m = row(m_flag_row + flag_m);
+  const auto pair = [](const uint8_t* high, const uint8_t* low, size_t l) {
+    return static_cast<uint16_t>(unsigned{high[l]} << 8 | low[l]);
+  };
+  m_sent.clear();
+  for (size_t l = 0; l < n; ++l)
+    if (m[l] != 0)
+      m_sent.push_back({static_cast<uint16_t>(l), pair(a[0], a[1], l), pair(a[2], a[3], l), pair(b[0], b[1], l),
+                        pair(b[2], b[3], l)});
+  m_activity.lane_operations += n;
+  m_activity.useful_operations += m_sent.size();
+  m_activity.cmem_reads += n * ((in.a.in_cmem ? WIDTH : 0) + (in.b.in_cmem ? WIDTH : 0));
+  if (m_count_lanes) {
+    uint32_t* lane_useful = m_lane_useful[static_cast<unsigned>(in.stage)].data();
+    for (size_t l = 0; l < n; ++l) lane_useful[l] += m[l];
+  }
+  return true;
+}
+
 void CuArray::neighbour_lanes(const Instruction& in, const uint8_t* a, const uint8_t* d, bool d_masked,
                               uint8_t* neighbour, uint8_t* out) {
   const size_t n = m_lanes;
@@ -471,6 +506,8 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
     }
     default: break;
   }
+
+  if (in.opcode == Opcode::op_zsend) return send_pixels(in, loop_variables, active_loops, error);
 
   // Resolve every operand row first, so an instruction with a bad address
   // changes nothing.

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "array/core/pixel_port.h"
 #include "array/datapath/cu_alu.h"
 #include "array/isa/ap_isa.h"
 
@@ -113,6 +114,10 @@ class CuArray {
   // address or a loop variable) or a lut index beyond the table.
   enum class Fault : uint8_t { operand, lut_index };
   Fault last_fault() const { return m_fault; }
+  // The pixels the last zsend read, one per CU whose mask was set, in
+  // ascending lanes (x = a:a+1, y = a+2:a+3, z = b:b+1, colour = b+2:b+3).
+  // Every CU reads its operands, masked or not; only the masked-in ones send.
+  const std::vector<SentPixel>& sent_pixels() const { return m_sent; }
 
   // For the controller's skipping of idle CUs (array_controller.h): every
   // row of architectural state by one index, CMEM address a at a, register
@@ -167,6 +172,10 @@ class CuArray {
   // lut: true when every lane's index (high:low) lies within the table,
   // else false with `error` naming the first lane that does not.
   bool lut_indices_fit(const uint8_t* high, const uint8_t* low, std::string& error);
+  // zsend: reads both 4-byte operands in every lane, the masked-in lanes'
+  // pixels into m_sent.
+  bool send_pixels(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops,
+                   std::string& error);
   // nget and nadd: the neighbour's byte of row `a` into `neighbour`, and for
   // nadd d + it into `out` with the flags; in chain order under skew when
   // the neighbour is an earlier lane and `a` is d's row.
@@ -218,6 +227,7 @@ class CuArray {
   // (with the row ring, left and right wrap); for neighbour_lanes_in_order.
   std::array<std::vector<int>, 4> m_neighbour_lane;
   std::vector<uint16_t> m_lut;
+  std::vector<SentPixel> m_sent;
   Fault m_fault = Fault::operand;
 };
 

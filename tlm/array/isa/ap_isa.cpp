@@ -270,6 +270,8 @@ unsigned operand_width(Opcode opcode, char which) {
   if (opcode == Opcode::op_lut && (which == 'd' || which == 'a')) return 2;
   // The chain's selecting adds read the neighbour's a or a + 1.
   if ((opcode == Opcode::op_nadds || opcode == Opcode::op_nadcs) && which == 'a') return 2;
+  // The z-buffer's pixel: x:2 y:2 in a, z:2 colour:2 in b.
+  if (opcode == Opcode::op_zsend && (which == 'a' || which == 'b')) return 4;
   return 1;
 }
 

@@ -92,6 +92,12 @@ bool in_memory(uint64_t first, uint64_t end, const Limits& limits, uint64_t& off
   return true;
 }
 
+// [first, end) wholly within the readable device window (Limits)?
+bool in_readable_window(uint64_t first, uint64_t end, const Limits& limits) {
+  return limits.readable_bytes != 0 && first >= limits.readable_base &&
+         end <= limits.readable_base + limits.readable_bytes;
+}
+
 Fault check_reshuffle(const Descriptor& d, const Limits& limits) {
   const unsigned e = d.element_bytes();
   const bool to_cmem = d.kind() == Kind::mem_to_cmem;
@@ -134,7 +140,8 @@ Fault validate(const Descriptor& d, const Limits& limits) {
       if (d.length % 4 != 0) return {Error::misaligned_length, d.length};
       if (d.src % 4 != 0) return {Error::misaligned_length, d.src};
       if (d.dst % 4 != 0) return {Error::misaligned_length, d.dst};
-      if (!in_memory(d.src, uint64_t{d.src} + d.length, limits, offending))
+      if (!in_memory(d.src, uint64_t{d.src} + d.length, limits, offending) &&
+          !in_readable_window(d.src, uint64_t{d.src} + d.length, limits))
         return {Error::src_outside_memory, offending};
       if (!in_memory(d.dst, uint64_t{d.dst} + d.length, limits, offending))
         return {Error::dst_outside_memory, offending};

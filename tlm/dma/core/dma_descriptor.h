@@ -71,6 +71,11 @@ struct Limits {
   uint64_t memory_bytes = 0;
   unsigned lanes = 0;       // CUs, 0: no array (CMEM kinds are refused)
   unsigned cmem_bytes = 0;  // per CU
+  // A device window a copy (mem_to_mem) may also read, besides memory: the
+  // z-buffer unit's colour plane when the SoC has one (tlm/zbuf), so that
+  // the frame's colours reach the back buffer without the host. 0 bytes: none.
+  uint64_t readable_base = 0;
+  uint64_t readable_bytes = 0;
 };
 
 // A validation or transfer failure: what and the offending address (or length).
