@@ -9,7 +9,7 @@ cycles per unit on the ISS (host.model=iss: the same driver compiled for
 the ARM922T, the reference host):
 
 1. every training run (the built-in GL scenes on the arm, raster, ap-tile
-   and ap-pixel back ends, TRAINING below, and a few on ap-tile with the
+   ap-pixel and ap-object back ends, TRAINING below, and a few on ap-tile with the
    study's array program, VARIANTS; the study's GL-free
    applications study_shading and study_patches on the host and on the
    array, and calib_ciu's loops, APP_TRAINING) runs natively and on the
@@ -105,7 +105,7 @@ TRAINING_SCENES = [
     "tile_grid",
     "triangle",
 ]
-ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
+ARRAY_BACKENDS = ("ap-tile", "ap-pixel", "ap-object")
 # Back ends run with settings of their own, under a name of their own: a
 # back end's second array program charges rows no default run charges.
 VARIANTS = {
@@ -114,11 +114,14 @@ VARIANTS = {
     # look-ups; and through the DMA.
     "ap-tile:warp": ("ap-tile", ["ap.tile.texture_warp=array"]),
     "ap-tile:warp_dma": ("ap-tile", ["ap.tile.texture_warp=array", "dma.enabled=true"]),
+    # ap-object's records and pixels through the DMA.
+    "ap-object:dma": ("ap-object", ["dma.enabled=true"]),
 }
 VARIANT_SCENES = {
     "ap-tile:study": ["cubes", "teapot", "textured_quad"],
     "ap-tile:warp": ["textured_quad", "mipmap_floor", "texture_formats"],
     "ap-tile:warp_dma": ["textured_quad"],
+    "ap-object:dma": ["cubes", "teapot", "textured_quad"],
 }
 TRAINING = [(scene, backend) for backend in ("arm", "raster") + ARRAY_BACKENDS for scene in TRAINING_SCENES]
 TRAINING += [(scene, variant) for variant, scenes in VARIANT_SCENES.items() for scene in scenes]
@@ -130,9 +133,11 @@ FITTED_PHASES = {
     "raster": PHASES,
     "ap-tile": PHASES + SPLIT,
     "ap-pixel": PHASES + SPLIT,
+    "ap-object": PHASES + SPLIT,
     "ap-tile:study": PHASES + SPLIT,
     "ap-tile:warp": PHASES + SPLIT,
     "ap-tile:warp_dma": PHASES + SPLIT,
+    "ap-object:dma": PHASES + SPLIT,
 }
 # What van Sinten's chain mapping needs of the array (the Image Blender preset's switches, by key).
 CHAIN_SETTINGS = [
