@@ -716,15 +716,15 @@ TEST(Egl, MisuseGivesTheSpecifiedErrors) {
 // What EGL offers before a surface exists, and what GL reports once the
 // back end's renderer is made, are what the back end stores: 16-bit depth
 // on arm, 24 on raster, 8-bit stencil on both; ap-tile keeps 16-bit depth
-// in CMEM and no stencil; ap-pixel a 16-bit depth buffer in system memory
-// and no stencil test. Making the array back ends' renderers needs the
+// in CMEM and no stencil; ap-pixel and ap-object a 16-bit depth buffer in
+// system memory and no stencil test. Making the array back ends' renderers needs the
 // array processor, which this host without devices lacks, so for them only
 // EGL's side is checked here (their renderers report the same
 // CAPABILITIES).
 TEST(Egl, DepthAndStencilBitsAreTheBackEndsOwn) {
   const std::map<std::string, gl::RendererCapabilities> stored = {
-      {"arm", {16, 8}}, {"raster", {24, 8}}, {"ap-tile", {16, 0}}, {"ap-pixel", {16, 0}}};
-  const std::set<std::string> needs_devices = {"ap-tile", "ap-pixel"};
+      {"arm", {16, 8}}, {"raster", {24, 8}}, {"ap-tile", {16, 0}}, {"ap-pixel", {16, 0}}, {"ap-object", {16, 0}}};
+  const std::set<std::string> needs_devices = {"ap-tile", "ap-pixel", "ap-object"};
   for (const std::string& backend : test::back_end_names()) {
     SCOPED_TRACE(backend);
     ASSERT_TRUE(stored.count(backend)) << "say what the new back end stores";
