@@ -147,6 +147,8 @@ std::vector<CmemRow> chain_rows(const ArrayChainLayout& layout, const ChainGeome
   const int block = geometry.borders_per_round();
   const unsigned cus = geometry.cus();
   std::vector<CmemRow> rows;
+  // Every row at once: the references row_at hands out stay valid.
+  rows.reserve(16 + 3 + 4 * static_cast<std::size_t>(rounds));
   const auto row_at = [&rows, cus](uint16_t address) -> CmemRow& {
     rows.push_back({address, std::vector<uint8_t>(cus, 0)});
     return rows.back();
