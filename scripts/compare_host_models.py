@@ -10,7 +10,7 @@ rasterization, presenting, the application's own code), for the frames
 after the first (the first holds the start-up: the ISS program parses its
 boot information, the scenes build their meshes). The ISS is the reference:
 the last columns are the host-compiled model's error against it. For the
-array back ends (ap-tile, ap-pixel) a second table gives their split of
+array back ends (ap-tile, ap-pixel, ap-object) a second table gives their split of
 the host's time (the frame records' host_compute_ns, host_write_ns,
 host_read_ns, host_wait_ns, host_frame_out_ns), checked with --check like
 the phases.
@@ -33,18 +33,13 @@ import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
 
+from run_outputs import SCENE_ARGUMENTS
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PHASES = ["geometry", "rasterization", "presenting", "application"]
 # The array back ends' split of the host's time (renderers/common/host_time.h).
 SPLIT = ["compute", "write", "read", "wait", "frame_out"]
-ARRAY_BACKENDS = ("ap-tile", "ap-pixel")
-# Relative to the repository, where the runs start (as measure_host_costs.py
-# runs it): the ARM program reads the path, so its cycles must not depend on
-# where the repository was checked out.
-OBJ = "tests/sw_driver/scenes/data/cube.obj"
-# Scenes run with arguments (measure_host_costs.py's): the OBJ viewer its
-# file, the random scene 2,000 triangles.
-SCENE_ARGUMENTS = {"obj_viewer": [OBJ], "random_triangles": ["--triangles", "2000"]}
+ARRAY_BACKENDS = ("ap-tile", "ap-pixel", "ap-object")
 
 
 def scenes(soc_sim):
@@ -136,7 +131,7 @@ def main():
     )
     parser.add_argument("--write-doc", action="store_true", help="write the printed tables into --doc's FILE")
     args = parser.parse_args()
-    # The runs start in the repository (OBJ): a relative path given here is the caller's.
+    # The runs start in the repository (SCENE_ARGUMENTS' OBJ file): a relative path given here is the caller's.
     args.soc_sim = str(pathlib.Path(args.soc_sim).resolve())
     if args.frames < 2:
         parser.error("--frames must be at least 2")

@@ -74,15 +74,10 @@ import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
 
+from run_outputs import SCENE_ARGUMENTS
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TABLE = ROOT / "sw_driver" / "costs" / "host_costs.def"
-# Relative to the repository, where the runs start: the ARM program reads the
-# path as an argument, so an absolute one would make the ISS's obj_viewer
-# cycles depend on where the repository was checked out.
-OBJ = "tests/sw_driver/scenes/data/cube.obj"
-# Scenes run with arguments: the OBJ viewer its file; the random scene 2,000
-# triangles (its default 10,000 takes the ISS's array back ends long).
-SCENE_ARGUMENTS = {"obj_viewer": [OBJ], "random_triangles": ["--triangles", "2000"]}
 PHASES = ["application", "geometry", "rasterization", "presenting"]
 # The training runs: (scene, back end). The GL front end's rows (the
 # geometry phase) are the same code on every back end.
@@ -90,6 +85,7 @@ TRAINING_SCENES = [
     "aapoly",
     "clip_offset",
     "cubes",
+    "dense_teapot",
     "fixed_point",
     "fog_row",
     "fullscreen_rect",
@@ -369,7 +365,7 @@ def run(soc_sim, out, scene, name, model):
         arguments += ["--set", setting]
     if scene in SCENE_ARGUMENTS:
         arguments += ["--", *SCENE_ARGUMENTS[scene]]
-    # The runs start in the repository (OBJ is relative to it).
+    # The runs start in the repository (SCENE_ARGUMENTS' OBJ file is relative to it).
     stats = run_soc_sim(soc_sim, folder.resolve(), model, arguments, cwd=ROOT)
     return [frame.get("driver", {}) for frame in stats["frames"]]
 
@@ -519,7 +515,7 @@ def main():
         "--only-rows", metavar="PREFIX", help="measure only the rows named PREFIX...; keep the others (sort_middle_)"
     )
     args = parser.parse_args()
-    # The runs start in the repository (OBJ): a relative path given here is the caller's.
+    # The runs start in the repository (SCENE_ARGUMENTS' OBJ file): a relative path given here is the caller's.
     args.soc_sim = str(pathlib.Path(args.soc_sim).resolve())
 
     lines, table, recorded = read_table()

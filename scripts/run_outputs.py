@@ -4,6 +4,17 @@ two runs' output folders hold the same frames and VCD byte for byte (stats.json 
 import pathlib
 import subprocess
 
+# Scenes run with arguments by the host-model scripts (measure_host_costs.py,
+# compare_host_models.py): the OBJ viewer its file (a relative path: an
+# absolute one would make the ISS's obj_viewer cycles depend on where the
+# repository was checked out); the random scene and the dense teapot 2,000
+# triangles (their defaults take the ISS's array back ends long).
+SCENE_ARGUMENTS = {
+    "obj_viewer": ["tests/sw_driver/scenes/data/cube.obj"],
+    "random_triangles": ["--triangles", "2000"],
+    "dense_teapot": ["--triangles", "2000"],
+}
+
 
 def gl_scenes(soc_sim: str) -> list:
     """The built-in GL ES 1.1 scenes soc_sim --list-apps names, obj_viewer left out (it needs a model file)."""

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tessera::scenes {
 
@@ -77,20 +78,37 @@ void compute_smooth_normals(Mesh* mesh) {
 }
 
 void fit_to_unit_sphere(Mesh* mesh) {
-  const Bounds bounds = mesh_bounds(*mesh);
+  std::vector<Mesh> one(1);
+  one[0] = std::move(*mesh);
+  fit_to_unit_sphere(&one);
+  *mesh = std::move(one[0]);
+}
+
+void fit_to_unit_sphere(std::vector<Mesh>* meshes) {
+  bool any = false;
+  Bounds bounds{{0, 0, 0}, {0, 0, 0}};
+  for (const Mesh& mesh : *meshes) {
+    if (mesh.vertex_count() == 0) continue;
+    const Bounds part = mesh_bounds(mesh);
+    for (int axis = 0; axis < 3; ++axis) {
+      bounds.min[axis] = any ? std::min(bounds.min[axis], part.min[axis]) : part.min[axis];
+      bounds.max[axis] = any ? std::max(bounds.max[axis], part.max[axis]) : part.max[axis];
+    }
+    any = true;
+  }
   Vec3 centre;
   for (int axis = 0; axis < 3; ++axis) centre[axis] = 0.5f * (bounds.min[axis] + bounds.max[axis]);
   float radius = 0.0f;
-  for (std::size_t v = 0; v < mesh->vertex_count(); ++v) {
-    const Vec3 d = sub(position(*mesh, v), centre);
-    radius = std::max(radius, length(d));
-  }
+  for (const Mesh& mesh : *meshes)
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      radius = std::max(radius, length(sub(position(mesh, v), centre)));
   const float scale = radius > 0.0f ? 1.0f / radius : 1.0f;
-  for (std::size_t v = 0; v < mesh->vertex_count(); ++v)
-    for (int axis = 0; axis < 3; ++axis) {
-      float& coordinate = mesh->positions[3 * v + axis];
-      coordinate = (coordinate - centre[axis]) * scale;
-    }
+  for (Mesh& mesh : *meshes)
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+      for (int axis = 0; axis < 3; ++axis) {
+        float& coordinate = mesh.positions[3 * v + axis];
+        coordinate = (coordinate - centre[axis]) * scale;
+      }
 }
 
 }  // namespace tessera::scenes

@@ -45,4 +45,8 @@ void compute_smooth_normals(Mesh* mesh);
 // which is correct because the scale is uniform.
 void fit_to_unit_sphere(Mesh* mesh);
 
+// The same for a model drawn in several meshes: one centre and one scale
+// for all of them, from all their vertices.
+void fit_to_unit_sphere(std::vector<Mesh>* meshes);
+
 }  // namespace tessera::scenes

@@ -24,33 +24,6 @@ namespace {
 std::vector<GLfloat> g_positions, g_colours;
 GLfloat g_projection[16];
 
-// The whole number after args[i] (the option's name) into `value`; false
-// with `error` naming the option for a missing value or one that is not a
-// whole number in [low, high]. Digit by digit, stopping past `high`: no
-// library conversion that overflows a 32-bit long on the ARM.
-bool option(const std::vector<std::string>& args, size_t i, uint32_t low, uint32_t high, uint32_t* value,
-            std::string* error) {
-  const std::string& name = args[i];
-  if (i + 1 >= args.size()) {
-    *error = "random_triangles: " + name + " needs a value";
-    return false;
-  }
-  const std::string& text = args[i + 1];
-  uint64_t parsed = 0;
-  bool ok = !text.empty();
-  for (char c : text) {
-    ok = ok && c >= '0' && c <= '9' && parsed <= high;
-    if (ok) parsed = parsed * 10 + static_cast<uint64_t>(c - '0');
-  }
-  if (!ok || parsed < low || parsed > high) {
-    *error = "random_triangles: " + name + " takes a whole number from " + std::to_string(low) + " to " +
-             std::to_string(high) + ", not '" + text + "'";
-    return false;
-  }
-  *value = static_cast<uint32_t>(parsed);
-  return true;
-}
-
 bool init(int width, int height, const std::vector<std::string>& args, std::string* error) {
   cluster::RandomScene scene;
   scene.count = 10000;
@@ -60,11 +33,11 @@ bool init(int width, int height, const std::vector<std::string>& args, std::stri
   for (size_t i = 0; i < args.size(); i += 2) {
     bool ok = false;
     if (args[i] == "--triangles")
-      ok = option(args, i, 1, 1000000, &scene.count, error);
+      ok = whole_number_option("random_triangles", args, i, 1, 1000000, &scene.count, error);
     else if (args[i] == "--size")
-      ok = option(args, i, 1, 256, &size, error);
+      ok = whole_number_option("random_triangles", args, i, 1, 256, &size, error);
     else if (args[i] == "--seed")
-      ok = option(args, i, 0, 4294967295u, &scene.seed, error);
+      ok = whole_number_option("random_triangles", args, i, 0, 4294967295u, &scene.seed, error);
     else
       *error = "random_triangles: no option '" + args[i] + "' (--triangles N, --size PIXELS, --seed K)";
     if (!ok) return false;

@@ -26,6 +26,29 @@ bool expect_no_arguments(const char* scene, const std::vector<std::string>& args
   return false;
 }
 
+bool whole_number_option(const char* scene, const std::vector<std::string>& args, std::size_t i, uint32_t low,
+                         uint32_t high, uint32_t* value, std::string* error) {
+  const std::string& name = args[i];
+  if (i + 1 >= args.size()) {
+    *error = std::string(scene) + ": " + name + " needs a value";
+    return false;
+  }
+  const std::string& text = args[i + 1];
+  uint64_t parsed = 0;
+  bool ok = !text.empty();
+  for (char c : text) {
+    ok = ok && c >= '0' && c <= '9' && parsed <= high;
+    if (ok) parsed = parsed * 10 + static_cast<uint64_t>(c - '0');
+  }
+  if (!ok || parsed < low || parsed > high) {
+    *error = std::string(scene) + ": " + name + " takes a whole number from " + std::to_string(low) + " to " +
+             std::to_string(high) + ", not '" + text + "'";
+    return false;
+  }
+  *value = static_cast<uint32_t>(parsed);
+  return true;
+}
+
 void set_perspective(int width, int height, float fovy_degrees, float near_plane, float far_plane) {
   glViewport(0, 0, width, height);
   const float aspect = float(std::max(width, 1)) / float(std::max(height, 1));
@@ -73,6 +96,10 @@ void set_up_lit_mesh(int width, int height, const float diffuse[4]) {
 }
 
 void draw_lit_mesh(const Mesh& mesh, int frame) {
+  draw_lit_meshes(&mesh, 1, frame);
+}
+
+void draw_lit_meshes(const Mesh* meshes, std::size_t count, int frame) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
@@ -82,9 +109,12 @@ void draw_lit_mesh(const Mesh& mesh, int frame) {
 
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
-  glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
-  glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_SHORT, mesh.indices.data());
+  for (std::size_t i = 0; i < count; ++i) {
+    const Mesh& mesh = meshes[i];
+    glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
+    glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_SHORT, mesh.indices.data());
+  }
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_VERTEX_ARRAY);
 }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,14 @@ std::vector<unsigned char> checkerboard_rgba8(int size, int square, unsigned cha
 // For scenes that take no arguments: false with a message if there are any.
 bool expect_no_arguments(const char* scene, const std::vector<std::string>& args, std::string* error);
 
+// A scene's option with a whole number: the value after args[i] (the
+// option's name) into `value`; false with `error` naming the scene and the
+// option for a missing value or one that is not a whole number in [low,
+// high]. Digit by digit, stopping past `high`: no library conversion that
+// overflows a 32-bit long on the ARM.
+bool whole_number_option(const char* scene, const std::vector<std::string>& args, std::size_t i, uint32_t low,
+                         uint32_t high, uint32_t* value, std::string* error);
+
 // The angle after `frame` frames, reduced to (-360, 360) so that it keeps
 // its precision in float however long a scene runs.
 float rotation_degrees(int frame, float degrees_per_frame);
@@ -56,5 +66,9 @@ void set_up_lit_mesh(int width, int height, const float diffuse[4]);
 // front of the eye, tilted towards the viewer and turned about the vertical
 // axis by half a degree per frame.
 void draw_lit_mesh(const Mesh& mesh, int frame);
+
+// The same for a model in several meshes (`count` of them from `meshes`):
+// one clear, one transform, one glDrawElements a mesh.
+void draw_lit_meshes(const Mesh* meshes, std::size_t count, int frame);
 
 }  // namespace tessera::scenes

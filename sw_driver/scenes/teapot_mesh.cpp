@@ -470,45 +470,70 @@ float doubled_area(const Mesh& mesh, std::uint16_t a, std::uint16_t b, std::uint
 // rounding noise, many orders of magnitude below a real triangle's.
 constexpr float DEGENERATE_AREA = 1e-9f;
 
+// Appends `patch` cut into n x n quads to `mesh`: its (n + 1)^2 vertices
+// (which the caller has checked fit 16-bit indices) and its triangles.
+void append_patch(const std::array<std::uint16_t, 16>& patch, int n, Mesh* mesh) {
+  const int side = n + 1;
+  const auto first = static_cast<std::uint16_t>(mesh->vertex_count());
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const float u = static_cast<float>(i) / static_cast<float>(n);
+      const float v = static_cast<float>(j) / static_cast<float>(n);
+      const SurfacePoint point = evaluate(patch, u, v);
+      const Vec3 normal = outward_normal(patch, u, v);
+      for (int axis = 0; axis < 3; ++axis) {
+        mesh->positions.push_back(point.position[axis]);
+        mesh->normals.push_back(normal[axis]);
+      }
+    }
+  auto vertex = [first, side](int i, int j) { return static_cast<std::uint16_t>(first + i * side + j); };
+  auto add_triangle = [mesh](std::uint16_t a, std::uint16_t b, std::uint16_t c) {
+    if (doubled_area(*mesh, a, b, c) < DEGENERATE_AREA) return;
+    mesh->indices.insert(mesh->indices.end(), {a, b, c});
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      // (i, j) -> (i, j + 1) -> (i + 1, j + 1) turns from +v towards +u,
+      // which is counter-clockwise about dP/dv x dP/du.
+      add_triangle(vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1));
+      add_triangle(vertex(i, j), vertex(i + 1, j + 1), vertex(i + 1, j));
+    }
+}
+
+void check_subdivisions(const char* function, int subdivisions, int limit) {
+  if (subdivisions < 1 || subdivisions > limit)
+    throw std::invalid_argument(std::string(function) + ": subdivisions must be 1.." + std::to_string(limit) +
+                                ", not " + std::to_string(subdivisions));
+}
+
 }  // namespace
 
 Mesh teapot_mesh(int subdivisions) {
-  if (subdivisions < 1 || subdivisions > TEAPOT_MAX_SUBDIVISIONS)
-    throw std::invalid_argument("teapot_mesh: subdivisions must be 1.." + std::to_string(TEAPOT_MAX_SUBDIVISIONS) +
-                                ", not " + std::to_string(subdivisions));
+  check_subdivisions("teapot_mesh", subdivisions, TEAPOT_MAX_SUBDIVISIONS);
   const int n = subdivisions;
   const int side = n + 1;
   Mesh mesh;
   mesh.positions.reserve(3 * TEAPOT_PATCHES * side * side);
   mesh.normals.reserve(3 * TEAPOT_PATCHES * side * side);
   mesh.indices.reserve(6 * TEAPOT_PATCHES * n * n);
-  for (const auto& patch : TEAPOT_PATCH_INDICES) {
-    const auto first = static_cast<std::uint16_t>(mesh.vertex_count());
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) {
-        const float u = static_cast<float>(i) / static_cast<float>(n);
-        const float v = static_cast<float>(j) / static_cast<float>(n);
-        const SurfacePoint point = evaluate(patch, u, v);
-        const Vec3 normal = outward_normal(patch, u, v);
-        for (int axis = 0; axis < 3; ++axis) {
-          mesh.positions.push_back(point.position[axis]);
-          mesh.normals.push_back(normal[axis]);
-        }
-      }
-    auto vertex = [first, side](int i, int j) { return static_cast<std::uint16_t>(first + i * side + j); };
-    auto add_triangle = [&mesh](std::uint16_t a, std::uint16_t b, std::uint16_t c) {
-      if (doubled_area(mesh, a, b, c) < DEGENERATE_AREA) return;
-      mesh.indices.insert(mesh.indices.end(), {a, b, c});
-    };
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        // (i, j) -> (i, j + 1) -> (i + 1, j + 1) turns from +v towards +u,
-        // which is counter-clockwise about dP/dv x dP/du.
-        add_triangle(vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1));
-        add_triangle(vertex(i, j), vertex(i + 1, j + 1), vertex(i + 1, j));
-      }
-  }
+  for (const auto& patch : TEAPOT_PATCH_INDICES) append_patch(patch, n, &mesh);
   return mesh;
+}
+
+std::vector<Mesh> teapot_mesh_parts(int subdivisions) {
+  check_subdivisions("teapot_mesh_parts", subdivisions, TEAPOT_MAX_PART_SUBDIVISIONS);
+  const std::size_t patch_vertices = static_cast<std::size_t>(subdivisions + 1) * (subdivisions + 1);
+  std::vector<Mesh> parts(1);
+  for (const auto& patch : TEAPOT_PATCH_INDICES) {
+    if (parts.back().vertex_count() + patch_vertices > MAX_MESH_VERTICES) parts.emplace_back();
+    append_patch(patch, subdivisions, &parts.back());
+  }
+  return parts;
+}
+
+std::size_t teapot_triangle_count(int subdivisions) {
+  const auto n = static_cast<std::size_t>(subdivisions);
+  return 64 * n * n - 8 * n;
 }
 
 }  // namespace tessera::scenes

@@ -4,6 +4,9 @@
 // patches). Plain C++, no GL.
 #pragma once
 
+#include <cstddef>
+#include <vector>
+
 #include "scenes/mesh.h"
 
 namespace tessera::scenes {
@@ -23,5 +26,18 @@ constexpr int TEAPOT_MAX_SUBDIVISIONS = 44;
 // counter-clockwise seen from outside. Throws std::invalid_argument unless
 // 1 <= subdivisions <= TEAPOT_MAX_SUBDIVISIONS.
 Mesh teapot_mesh(int subdivisions);
+
+// Finer tessellations than one mesh's 16-bit indices hold: patch (n + 1)^2
+// vertices <= 65536.
+constexpr int TEAPOT_MAX_PART_SUBDIVISIONS = 255;
+
+// The same tessellation as teapot_mesh(subdivisions), patch by patch in the
+// same order, cut into meshes of whole patches of at most MAX_MESH_VERTICES
+// vertices each (one glDrawElements a part). Throws std::invalid_argument
+// unless 1 <= subdivisions <= TEAPOT_MAX_PART_SUBDIVISIONS.
+std::vector<Mesh> teapot_mesh_parts(int subdivisions);
+
+// 32 * 2 * n^2 - 8 * n: the triangles of either function from n = 2 on.
+std::size_t teapot_triangle_count(int subdivisions);
 
 }  // namespace tessera::scenes

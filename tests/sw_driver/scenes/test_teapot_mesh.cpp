@@ -42,6 +42,49 @@ TEST(TeapotMesh, TriangleCountIsTwoPerQuadLessThePoleTriangles) {
   EXPECT_EQ(teapot_mesh(4).triangle_count(), 992u);
 }
 
+// The parts are the one mesh's patches, in order, cut where the next patch
+// would pass 65,536 vertices: concatenated (indices offset) they are the mesh.
+TEST(TeapotMeshParts, AreTheMeshCutIntoWholePatches) {
+  for (int n : {4, 30, TEAPOT_MAX_SUBDIVISIONS}) {
+    const Mesh whole = teapot_mesh(n);
+    const std::vector<Mesh> parts = teapot_mesh_parts(n);
+    const std::size_t patch_vertices = std::size_t(n + 1) * (n + 1);
+    const std::size_t per_part = MAX_MESH_VERTICES / patch_vertices;
+    ASSERT_EQ(parts.size(), (TEAPOT_PATCHES + per_part - 1) / per_part) << "n = " << n;
+    Mesh joined;
+    for (const Mesh& part : parts) {
+      const std::size_t offset = joined.vertex_count();
+      joined.positions.insert(joined.positions.end(), part.positions.begin(), part.positions.end());
+      joined.normals.insert(joined.normals.end(), part.normals.begin(), part.normals.end());
+      for (std::uint16_t index : part.indices) joined.indices.push_back(static_cast<std::uint16_t>(index + offset));
+    }
+    EXPECT_EQ(joined.positions, whole.positions) << "n = " << n;
+    EXPECT_EQ(joined.normals, whole.normals) << "n = " << n;
+    EXPECT_EQ(joined.indices, whole.indices) << "n = " << n;
+  }
+}
+
+// The stand-ins' tessellations (the smallest n reaching each of the MorphoSys
+// paper's counts: 34, 39, 102, 131, 134) and the largest: every part within
+// 16-bit indices, and the count 64 n^2 - 8 n, which the scene relies on.
+TEST(TeapotMeshParts, FitSixteenBitIndicesAndHaveTheCountedTriangles) {
+  for (int n : {34, 39, 102, 131, 134, TEAPOT_MAX_PART_SUBDIVISIONS}) {
+    const std::vector<Mesh> parts = teapot_mesh_parts(n);
+    std::size_t triangles = 0;
+    for (const Mesh& part : parts) {
+      EXPECT_LE(part.vertex_count(), MAX_MESH_VERTICES) << "n = " << n;
+      triangles += part.triangle_count();
+    }
+    EXPECT_EQ(triangles, teapot_triangle_count(n)) << "n = " << n;
+  }
+  EXPECT_LT(teapot_triangle_count(33), 69451u);
+  EXPECT_GE(teapot_triangle_count(34), 69451u);
+  EXPECT_LT(teapot_triangle_count(133), 1136745u);
+  EXPECT_GE(teapot_triangle_count(134), 1136745u);
+  EXPECT_THROW(teapot_mesh_parts(0), std::invalid_argument);
+  EXPECT_THROW(teapot_mesh_parts(TEAPOT_MAX_PART_SUBDIVISIONS + 1), std::invalid_argument);
+}
+
 TEST(TeapotMesh, RejectsSubdivisionsOutsideTheRange) {
   EXPECT_THROW(teapot_mesh(0), std::invalid_argument);
   EXPECT_THROW(teapot_mesh(TEAPOT_MAX_SUBDIVISIONS + 1), std::invalid_argument);

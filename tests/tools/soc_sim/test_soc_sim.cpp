@@ -1086,6 +1086,37 @@ TEST_F(SocSim, RandomTrianglesRefusesBadOptionsNamingThem) {
     }
 }
 
+// dense_teapot's options, on both host models: every bad value named.
+TEST_F(SocSim, DenseTeapotRefusesBadOptionsNamingThem) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"--triangles", "4000001"}, {"--triangles", "0"}, {"--stand-in", "dragon"}, {"--stand-in"}, {"--size", "1"}};
+  for (const char* model : {"native", "iss"})
+    for (const std::vector<std::string>& bad : cases) {
+      std::vector<std::string> args = {"--app", "dense_teapot", "--frames",
+                                       "1",     "--force",      "--out",
+                                       "out",   "--set",        std::string("host.model=") + model,
+                                       "--"};
+      args.insert(args.end(), bad.begin(), bad.end());
+      expect_rejected(run(args), EXIT_USAGE, {"dense_teapot: ", bad[0]});
+    }
+}
+
+// dense_teapot draws exactly the triangles asked for, the bunny's count from
+// its stand-in name (each triangle's three indices go through the vertex
+// cache once: hits + misses = 3 x triangles).
+TEST_F(SocSim, DenseTeapotDrawsTheTrianglesAskedFor) {
+  for (const std::vector<std::string>& scene_args :
+       std::vector<std::vector<std::string>>{{"--triangles", "5000"}, {"--stand-in", "bunny"}}) {
+    std::vector<std::string> args = {"--app", "dense_teapot", "--frames", "1", "--force", "--out", "out", "--"};
+    args.insert(args.end(), scene_args.begin(), scene_args.end());
+    const SimResult result = run(args);
+    ASSERT_EQ(result.status, 0) << describe(result);
+    const json cache = read_stats(m_dir / "out/stats.json")["stats"]["driver"]["vertex_cache"];
+    const long triangles = scene_args[0] == "--triangles" ? 5000 : 69451;
+    EXPECT_EQ(cache["hits"].get<long>() + cache["misses"].get<long>(), 3 * triangles) << scene_args[1];
+  }
+}
+
 TEST_F(SocSim, UnknownApplicationIsRejectedListingTheKnownOnes) {
   expect_rejected(run({"--app", "no_such_app", "--out", "out"}), EXIT_USAGE, {"no_such_app", "pattern"});
 }
