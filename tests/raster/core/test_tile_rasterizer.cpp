@@ -12,6 +12,7 @@
 
 #include "raster/core/tile_rasterizer.h"
 #include "raster/datapath/texture_combiner.h"
+#include "raster_core_test_support.h"
 
 using namespace tessera::raster;
 using tessera::BlendFactor;
@@ -25,44 +26,11 @@ using tessera::LogicOp;
 using tessera::TexEnv;
 using tessera::TexFilter;
 using tessera::TexWrap;
+using tessera::raster::test::blend_codes;
+using tessera::raster::test::default_state;
+using tessera::raster::test::VectorPort;
 
 namespace {
-
-// RasterPort over a byte vector; accesses that touch [fail_begin, fail_end)
-// or leave the memory get an error response.
-class VectorPort : public RasterPort {
- public:
-  explicit VectorPort(size_t size) : memory(size, 0) {}
-  bool read(uint32_t address, void* data, unsigned bytes) override {
-    if (!ok(address, bytes)) return false;
-    std::memcpy(data, memory.data() + address, bytes);
-    return true;
-  }
-  bool write(uint32_t address, const void* data, unsigned bytes) override {
-    if (!ok(address, bytes)) return false;
-    std::memcpy(memory.data() + address, data, bytes);
-    return true;
-  }
-  void cycles(uint64_t count) override { total_cycles += count; }
-
-  uint32_t word(uint32_t address) const {
-    uint32_t v;
-    std::memcpy(&v, memory.data() + address, 4);
-    return v;
-  }
-  void set_word(uint32_t address, uint32_t v) { std::memcpy(memory.data() + address, &v, 4); }
-
-  std::vector<uint8_t> memory;
-  uint32_t fail_begin = 0, fail_end = 0;
-  uint64_t total_cycles = 0;
-
- private:
-  bool ok(uint32_t address, unsigned bytes) const {
-    const uint64_t end = uint64_t{address} + bytes;
-    if (end > memory.size()) return false;
-    return end <= fail_begin || address >= fail_end;
-  }
-};
 
 constexpr uint32_t TILE_TABLE = 0x1000;
 constexpr uint32_t COLOR_BASE = 0x10000;
@@ -85,23 +53,6 @@ VertexRecord vertex(double x, double y, uint32_t rgba = 0xffffffff, uint32_t z =
   v.t_over_w = t / w;
   v.inv_w = 1 / w;
   return v;
-}
-
-// StateBlock::blend with the logic op COPY.
-uint32_t blend_codes(BlendFactor src, BlendFactor dst) {
-  return code_of(src) << BLEND_SRC_SHIFT | code_of(dst) << BLEND_DST_SHIFT |
-         code_of(LogicOp::copy) << BLEND_LOGIC_OP_SHIFT;
-}
-
-StateBlock default_state() {
-  StateBlock s{};
-  s.flags = depth_write;
-  s.depth_func = code_of(CompareFunc::less);
-  s.alpha_func = code_of(CompareFunc::always);
-  s.stencil_func = code_of(CompareFunc::always) | 0xffu << 16 | 0xffu << 24;
-  s.blend = blend_codes(BlendFactor::one, BlendFactor::zero);
-  s.color_mask = 15;
-  return s;
 }
 
 // A frame: one command list per tile; every command goes to every tile (no
