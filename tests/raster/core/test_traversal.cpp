@@ -181,4 +181,33 @@ TEST(Traversal, ATriangleOfManyBatchesLosesNoFragment) {
   EXPECT_EQ(wrong, 0u);
 }
 
+TEST(Traversal, PolygonSmoothGivesEachPixelItsEasaCoverage) {
+  TraversalBench b;
+  b.state.flags |= StateFlag::polygon_smooth;
+  b.state.operations.blend = false;
+  // Clockwise: (0.75, 0.5) -> (0.75, 16.5) -> (16.75, 0.5). The left edge is
+  // 1/4 pixel right of column 0's centres, the bottom edge runs through row
+  // 0's centres. Coverage = min over the edges of clamp(1/2 + E / (|dx| +
+  // |dy|), 0, 1) in 0.8 (README.md, "Traversal and coverage";
+  // datapath/edge_function.h: (255 t + 128) >> 8 with t = 256 (1/2 + d)):
+  // 1/2 - 1/4 -> t 64 -> 64; 1/2 -> 128; 1/2 + 3/4 or more -> 255.
+  const std::array<Point, 3> clockwise{{{12, 8}, {12, 264}, {268, 8}}};
+  TriangleSetup ts = flat_triangle(clockwise, 0xff0000ff);
+  // 1 / (|dx| + |dy|) in 5.16: the legs 16 pixels (1/16), the hypotenuse 32.
+  ts.edge_recip = {q5_16::from_raw(4096), q5_16::from_raw(2048), q5_16::from_raw(4096)};
+  const Rect box = traversal_box(vertices(clockwise), true, b.cache.tile(), b.state);
+  EXPECT_EQ(box.x0, 0);  // grown by one pixel, cut to the tile
+  FragmentShader shader(b.run, b.cache, b.state, *b.shader_work);
+  traverse(b.run, ts, box, true, *b.shader_work, shader);
+  // The coverage multiplies alpha (255): round(255 c / 255) = c.
+  EXPECT_EQ(b.pixel(0, 0) >> 24, 64u);   // left edge 64, bottom 128
+  EXPECT_EQ(b.pixel(1, 0) >> 24, 128u);  // left 255, bottom 128
+  EXPECT_EQ(b.pixel(0, 1) >> 24, 64u);   // left 64, bottom 1/2 + 1 -> 255
+  EXPECT_EQ(b.pixel(2, 2) >> 24, 255u);  // inside by more than 1/2 from every edge
+  EXPECT_EQ(b.pixel(2, 2) & 0xffffff, 0x0000ffu);
+  // The column left of the edge by 3/4 (pixel -1) is outside the tile; the
+  // pixels right of the hypotenuse by more than 1/2 get no fragment.
+  EXPECT_EQ(b.pixel(20, 0), 0u);
+}
+
 }  // namespace
