@@ -175,4 +175,37 @@ TEST(TriangleSetup, RefusesZeroAreaAndUnusableTextureCoordinates) {
   EXPECT_FALSE(set_up_triangle(v, textured, RecipMethod::method3, ts));
 }
 
+TEST(RefinedReciprocal, TwoNewtonStepsBoundTheSeedsErrorToItsFourthPower) {
+  // 1/v = y 2^-(30 + n) after the unit's seed and two Newton-Raphson steps
+  // (README.md, "Reciprocal of the area"). Each step squares the relative
+  // error e = 1 - f y. Every method's seed is a truncated 1/X with 6 or 7
+  // significant bits (a 1.6 mantissa; Method 1's 5.10 entry of 1/X for X
+  // in [8, 16), whose 8-bit operand is itself truncated): e0 < 1.5 * 2^-6,
+  // so e2 < 5.1 * 2^-24 < 2^-21, plus the Q30 truncations (about 2^-29).
+  // README.md's "about 2^-28" is the typical case, not this bound: Method
+  // 2 at v = 12345 is near 2^-26.
+  for (RecipMethod method : {RecipMethod::method1, RecipMethod::method2, RecipMethod::method3})
+    for (uint64_t v : {uint64_t{3}, uint64_t{7}, uint64_t{1000}, uint64_t{12345}, (uint64_t{1} << 27) - 1}) {
+      Reciprocal r;
+      ASSERT_TRUE(refined_reciprocal(v, method, r));
+      const double relative = std::ldexp(double(r.y), -(30 + r.n)) * double(v) - 1;
+      EXPECT_LT(std::fabs(relative), std::ldexp(1.0, -21)) << int(method) << " " << v;
+    }
+  Reciprocal zero;
+  EXPECT_FALSE(refined_reciprocal(0, RecipMethod::method3, zero));  // the unit flags operand 0
+}
+
+TEST(RefinedReciprocal, QuotientsRoundToNearestTiesUp) {
+  // 1/4 is exact: f = 1/2, the seed 2 is a fixed point of the refinement.
+  Reciprocal quarter;
+  ASSERT_TRUE(refined_reciprocal(4, RecipMethod::method3, quarter));
+  EXPECT_EQ(divide(10, quarter, false), 3);     // 2.5 up
+  EXPECT_EQ(divide(-10, quarter, false), -2);   // -2.5 up, towards +infinity
+  EXPECT_EQ(divide(10, quarter, true), -2);     // 10 / -4
+  EXPECT_EQ(divide(9, quarter, false), 2);      // 2.25
+  EXPECT_EQ(divide(10, quarter, false, 2), 1);  // 2.5 / 4 = 0.625 -> 1
+  // A numerator beyond the 64-bit path: 2^70 / 4 = 2^68 exactly.
+  EXPECT_TRUE(divide(int128{1} << 70, quarter, false) == int128{1} << 68);
+}
+
 }  // namespace
