@@ -1,6 +1,7 @@
 // What the tests of the rasterizer's functional core share: the plain
-// memory that stands for system memory behind the RasterPort, and the
-// StateBlock words the driver writes for GL's default state.
+// memory that stands for system memory behind the RasterPort, the run a
+// stage is tested in, and the StateBlock words the driver writes for GL's
+// default state.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "common/fixed_function.h"
 #include "raster/command_format.h"
 #include "raster/core/raster_port.h"
+#include "raster/core/run_context.h"
 
 namespace tessera::raster::test {
 
@@ -56,6 +58,18 @@ class VectorPort : public RasterPort {
     if (end > memory.size()) return false;
     return end <= fail_begin || address >= fail_end;
   }
+};
+
+// What a stage is tested in: a VectorPort of `memory_bytes`, the default
+// cycle costs, a configuration (which a test may change before the stage
+// reads it) and the RunContext over them.
+struct StageRun {
+  StageRun(size_t memory_bytes, const RunConfig& run_config)
+      : port(memory_bytes), config(run_config), run(port, costs, config) {}
+  VectorPort port;
+  CycleCosts costs;
+  RunConfig config;
+  RunContext run;
 };
 
 // StateBlock::blend with the logic op COPY.

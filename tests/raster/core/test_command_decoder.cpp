@@ -21,7 +21,7 @@ using tessera::TexFilter;
 using tessera::TexWrap;
 using tessera::raster::test::blend_codes;
 using tessera::raster::test::default_state;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
@@ -30,12 +30,8 @@ constexpr uint32_t BLOCK = 0x400;
 constexpr uint32_t RECORD = 0x800;
 
 // A decoder over one tile's list in a 4 KB memory.
-struct DecoderBench {
-  explicit DecoderBench(uint32_t word_count) : port(0x1000), run(port, costs, config), entry{LIST, word_count} {}
-  VectorPort port;
-  CycleCosts costs;
-  RunConfig config;
-  RunContext run;
+struct DecoderBench : StageRun {
+  explicit DecoderBench(uint32_t word_count) : StageRun(0x1000, RunConfig{}), entry{LIST, word_count} {}
   TileEntry entry;
 };
 

@@ -16,15 +16,15 @@ using namespace tessera::raster;
 using tessera::CompareFunc;
 using tessera::PixelFormat;
 using tessera::StencilOp;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
 constexpr int64_t COLOR_ONE = int64_t{1} << 16;
 
-struct ShaderBench {
+struct ShaderBench : StageRun {
   explicit ShaderBench(PixelFormat format = PixelFormat::rgba8888)
-      : port(0x100), config(tile_config(format)), run(port, costs, config), cache(config), work(new ShadingWorkspace) {
+      : StageRun(0x100, tile_config(format)), cache(config), work(new ShadingWorkspace) {
     cache.select(0, 0);
     setup.flat = true;
     setup.flat_color = Rgba8::unpack(0xff00ff00);
@@ -48,10 +48,6 @@ struct ShaderBench {
   }
   unsigned at(int x) const { return cache.index(x, 0); }
 
-  VectorPort port;
-  CycleCosts costs;
-  RunConfig config;
-  RunContext run;
   TileCache cache;
   DrawState state;
   TriangleSetup setup;

@@ -9,20 +9,12 @@
 #include "raster_core_test_support.h"
 
 using namespace tessera::raster;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
-struct ContextBench {
-  ContextBench() : port(0x100), run(port, costs, config) {}
-  VectorPort port;
-  CycleCosts costs;
-  RunConfig config;
-  RunContext run;
-};
-
 TEST(RunContext, AccessesCountTheirBytesAndTheFirstRefusalIsTheError) {
-  ContextBench b;
+  StageRun b(0x100, RunConfig{});
   uint8_t data[16] = {};
   EXPECT_TRUE(b.run.read(0x10, data, 12));
   EXPECT_TRUE(b.run.write(0x20, data, 8));
@@ -43,7 +35,7 @@ TEST(RunContext, AccessesCountTheirBytesAndTheFirstRefusalIsTheError) {
 }
 
 TEST(RunContext, CyclesAreChargedToABucketAndReportedTogether) {
-  ContextBench b;
+  StageRun b(0x100, RunConfig{});
   b.run.charge(b.run.result().setup_cycles, 8);
   b.run.charge(b.run.result().fragment_cycles, 5);
   EXPECT_EQ(b.port.total_cycles, 0u);  // not reported yet

@@ -20,7 +20,7 @@ using namespace tessera::raster;
 using tessera::TexEnv;
 using tessera::TexFilter;
 using tessera::TexWrap;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
@@ -36,9 +36,9 @@ uint32_t texel(unsigned i, unsigned j) {
   return (20 * i + 60 * j) | i << 8 | j << 16 | a << 24;
 }
 
-struct SamplerBench {
+struct SamplerBench : StageRun {
   explicit SamplerBench(TexWrap wrap, TexFilter min = TexFilter::nearest, TexFilter mag = TexFilter::nearest)
-      : port(0x2000), run(port, costs, config), scratch(new TextureScratch) {
+      : StageRun(0x2000, RunConfig{}), scratch(new TextureScratch) {
     for (unsigned j = 0; j < 4; ++j)
       for (unsigned i = 0; i < 4; ++i) port.set_word(texel_address(i, j), texel(i, j));
     state.flags |= StateFlag::texture;
@@ -65,10 +65,6 @@ struct SamplerBench {
     return sampler.sample(setup, dx.data(), dy.data(), count, rgba.data());
   }
 
-  VectorPort port;
-  CycleCosts costs;
-  RunConfig config;
-  RunContext run;
   DrawState state;
   TriangleSetup setup;
   std::unique_ptr<TextureScratch> scratch;

@@ -13,7 +13,7 @@
 
 using namespace tessera::raster;
 using tessera::PixelFormat;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
@@ -33,13 +33,8 @@ RunConfig frame(PixelFormat format = PixelFormat::rgba8888) {
   return c;
 }
 
-struct CacheBench {
-  explicit CacheBench(PixelFormat format = PixelFormat::rgba8888)
-      : port(0x4000), config(frame(format)), run(port, costs, config), cache(config) {}
-  VectorPort port;
-  CycleCosts costs;
-  RunConfig config;
-  RunContext run;
+struct CacheBench : StageRun {
+  explicit CacheBench(PixelFormat format = PixelFormat::rgba8888) : StageRun(0x4000, frame(format)), cache(config) {}
   TileCache cache;
 };
 

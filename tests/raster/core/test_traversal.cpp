@@ -18,7 +18,7 @@
 using namespace tessera::raster;
 using tessera::BlendFactor;
 using tessera::PixelFormat;
-using tessera::raster::test::VectorPort;
+using tessera::raster::test::StageRun;
 
 namespace {
 
@@ -51,20 +51,17 @@ TriangleSetup flat_triangle(const std::array<Point, 3>& clockwise, uint32_t rgba
 
 // A 64 x 64 RGBA8888 frame in one tile, the tile cache starting at 0, the
 // state blending ONE, ONE: each fragment adds its colour.
-struct TraversalBench {
-  TraversalBench() : port(0x100), run(port, costs, config()), cache(run.config()), shader_work(new ShadingWorkspace) {
+struct TraversalBench : StageRun {
+  TraversalBench() : StageRun(0x100, frame()), cache(config), shader_work(new ShadingWorkspace) {
     cache.select(0, 0);
     state.operations.blend = true;
     state.operations.blend_src = BlendFactor::one;
     state.operations.blend_dst = BlendFactor::one;
   }
-  static const RunConfig& config() {
-    static const RunConfig c = [] {
-      RunConfig r;
-      r.width = r.height = r.tile_width = r.tile_height = 64;
-      r.color_format = PixelFormat::rgba8888;
-      return r;
-    }();
+  static RunConfig frame() {
+    RunConfig c;
+    c.width = c.height = c.tile_width = c.tile_height = 64;
+    c.color_format = PixelFormat::rgba8888;
     return c;
   }
   void draw(const TriangleSetup& ts, const Rect& box) {
@@ -73,9 +70,6 @@ struct TraversalBench {
   }
   uint32_t pixel(int x, int y) { return cache.color(cache.index(x, y)); }
 
-  VectorPort port;
-  CycleCosts costs;
-  RunContext run;
   TileCache cache;
   DrawState state;
   std::unique_ptr<ShadingWorkspace> shader_work;  // about 250 KB
