@@ -272,6 +272,39 @@ def forward_texture_polyphase_ms(result, column, results):
     return stat(result, "driver.study.array_borders") / frames_drawn(result) / (config(result, "array.clock_mhz") * 1e3)
 
 
+def array_ms_per_frame(result, column, results):
+    """The array's own time per frame: its cycles (array.cycles.total, every program, z-buffer port stalls and issue
+    skew included) at its clock (array.clock_mhz), in ms per frame. What a renderer's frame rate would be if the array
+    alone set it (the host's geometry and set-up hidden): the measure of Davila et al.'s frames per second."""
+    return stat(result, "array.cycles.total") / frames_drawn(result) / (config(result, "array.clock_mhz") * 1e3)
+
+
+def array_frames_per_second(result, column, results):
+    """1000 over array_ms_per_frame: frames per second of the array's own time."""
+    return 1000.0 / array_ms_per_frame(result, column, results)
+
+
+def triangles_per_frame(result):
+    """The triangles the application submitted per frame: the driver's vertex cache sees each triangle's three
+    indices once (driver.vertex_cache hits + misses over 3), culled and clipped triangles included."""
+    cache = stat(result, "driver.vertex_cache.hits") + stat(result, "driver.vertex_cache.misses")
+    return cache / 3 / frames_drawn(result)
+
+
+def array_triangles_per_second(result, column, results):
+    """triangles_per_frame x array_frames_per_second: the submitted triangles a second of the array's own time (Davila
+    et al.'s T/s)."""
+    return triangles_per_frame(result) * array_frames_per_second(result, column, results)
+
+
+def zbuf_port_busy_percent(result, column, results):
+    """The z-buffer unit's ports' busy share of the array's time: cycles in which a port took a pixel
+    (zbuf.port_cycles) over array.cycles.total, in percent; None without the unit when the column's statistics are
+    not required."""
+    port = stat(result, "zbuf.port_cycles", stats_required(column))
+    return None if port is None else 100.0 * port / stat(result, "array.cycles.total")
+
+
 # ---------------------------------------------------------------------------
 # The study's quantities (docs/spec/study_programs.md, "The study's test cases"): what the study's own figure
 # covered, for the "study" tables. A column names the test's quantity ("quantity"); each back end's part of it:
@@ -455,6 +488,10 @@ COMPUTED = {
         forward_texture_lookups_per_texel,
         forward_texture_lut_stall_cycles,
         forward_texture_polyphase_ms,
+        array_ms_per_frame,
+        array_frames_per_second,
+        array_triangles_per_second,
+        zbuf_port_busy_percent,
     )
 }
 # A figure of the table rather than of one run: another column's value (column "of") of the baseline run (column
