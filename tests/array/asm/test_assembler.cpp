@@ -831,7 +831,7 @@ second:
   add16 r2, r2, r2
   sub16 r6, r0, r6
   cmp16 r1, r2
-  mov16 r4, r5
+  mov16 r4, r6
   mset
   mclr
   mmov c
