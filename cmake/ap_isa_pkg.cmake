@@ -8,7 +8,7 @@
 #
 #   cmake -DROOT=<source tree> -DOUT=ap_isa_pkg.sv -P cmake/ap_isa_pkg.cmake
 #
-# A value is Op<Mnemonic> (OpAdd, OpMulm), Cond<Name> (CondHi) or
+# A value is Op<Mnemonic> (OpAdd, OpMulm, OpAdd16), Cond<Name> (CondHi) or
 # Direction<Name> (DirectionLeft). A line that starts with TESSERA_AP_OP or
 # TESSERA_AP_COND and does not parse stops the script, so a malformed entry
 # cannot be skipped.
@@ -76,7 +76,7 @@ foreach(line IN LISTS lines)
   if(NOT line MATCHES "^TESSERA_AP_OP\\(")
     continue()
   endif()
-  if(NOT line MATCHES "^TESSERA_AP_OP\\(([a-z]+), +0x([0-9a-fA-F]+), +([a-z]+), +([a-z]+), +([0-9]+), +\"([^\"]*)\", +([a-z_]+), +\"(.*)\"\\)$")
+  if(NOT line MATCHES "^TESSERA_AP_OP\\(([a-z][a-z0-9]*), +0x([0-9a-fA-F]+), +([a-z]+), +([a-z]+), +([0-9]+), +\"([^\"]*)\", +([a-z_]+), +\"(.*)\"\\)$")
     message(FATAL_ERROR "${ISA_DIR}/ap_isa.def: not an entry the package generator can read: ${line}")
   endif()
   set(mnemonic "${CMAKE_MATCH_1}")

@@ -6,7 +6,9 @@ parameters of their own (INERT below: the skew's K, the table's size and
 ports, the lut's cycles) that only count with their switch on
 (array.issue_skew = lane, array.features.lut = true); so does the z-buffer
 unit (tlm/zbuf/README.md: its size, ports, pairing rule and energies, and
-zsend's cycles, with zbuf.enabled and array.features.zsend off). Runs every built-in GL
+zsend's cycles, with zbuf.enabled and array.features.zsend off), and so do
+the cycles of MorphoSys's 16-bit operations and wired-OR loop (with
+array.features.wide_ops and array.features.wired_or_loop off). Runs every built-in GL
 scene (soc_sim --list-apps, the "GL ES 1.1 scene" lines but obj_viewer) on
 each array back end twice, with every parameter at its default and with
 INERT set to other values, the switches left off, and compares the two runs
@@ -53,6 +55,11 @@ INERT = {
     "array.cycles.nadds": "5",
     "array.cycles.nadcs": "6",
     "array.cycles.zsend": "5",
+    "array.cycles.add16": "3",
+    "array.cycles.sub16": "5",
+    "array.cycles.cmp16": "6",
+    "array.cycles.mov16": "7",
+    "array.cycles.endloopany": "9",
     "zbuf.entries": "1000",
     "zbuf.ports": "3",
     "zbuf.pair_halves_only": "true",
@@ -64,7 +71,16 @@ INERT = {
 }
 # Every configuration key delayed execution and the lookup table added:
 # check_same_outputs.py --added-keys.
-ADDED = ["array.issue_skew", "array.features.lut", "array.row_ring", "array.features.zsend", "zbuf.enabled", *INERT]
+ADDED = [
+    "array.issue_skew",
+    "array.features.lut",
+    "array.row_ring",
+    "array.features.zsend",
+    "zbuf.enabled",
+    "array.features.wide_ops",
+    "array.features.wired_or_loop",
+    *INERT,
+]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 
 
@@ -102,8 +118,9 @@ def compare(default: pathlib.Path, inert: pathlib.Path) -> str:
         return difference
     stats = stats_without_inert(default / "stats.json")
     array = stats.get("stats", {}).get("array", {})
-    if "issue_skew" in array or "lut" in array or "zbuf" in array or "zbuf" in stats.get("stats", {}):
-        return "stats.json has a section of a switch that is off (array.issue_skew, array.lut or zbuf)"
+    sections = ("issue_skew", "lut", "zbuf", "wired_or")
+    if any(section in array for section in sections) or "zbuf" in stats.get("stats", {}):
+        return "stats.json has a section of a switch that is off (array.issue_skew, array.lut, zbuf or array.wired_or)"
     return first_difference(stats, stats_without_inert(inert / "stats.json"), "stats.json", ("default", "inert"))
 
 

@@ -18,10 +18,13 @@
 // outputs show its result and done_o, cmem_we_o and cmem_wdata_o hold for
 // the one cycle after it (the divide, div, included: its 8 restoring steps
 // are unrolled into one edge's logic, as the Image Blender divides in one
-// instruction). The multiply (mul, mulm) takes 8 edges, one
+// instruction; so are the 16-bit operations on register pairs, add16,
+// sub16, cmp16 and mov16, whose two byte passes are one 16-bit adder here:
+// the cycles they cost are the array controller's table, not this unit's
+// edges). The multiply (mul, mulm) takes 8 edges, one
 // shift-and-add step per edge with ready_o low in between, and raises done_o
 // after the eighth. Opcodes that are the array controller's (nop, halt,
-// loop, endloop) and codes with no instruction complete as no-ops.
+// loop, endloop, endloopany) and codes with no instruction complete as no-ops.
 module cu_datapath #(
   // The CU's register file is a configuration parameter of the array
   // (array.registers); 8 is the default, at most 16 (the 4-bit register
@@ -105,6 +108,16 @@ module cu_datapath #(
   assign a_low_value = a_is_cmem_i ? a_cmem_i[7:0] : regs_q[8*a_low_reg +: 8];
   assign b_value     = b_is_cmem_i ? b_cmem_i : regs_q[8*b_reg_i +: 8];
 
+  // The 16-bit operations' register pairs: the high byte at the register
+  // the instruction names, the low byte at the next one (the decoder refuses
+  // a pair beyond the file).
+  logic [RegBits-1:0] b_low_reg, d_low_reg;
+  logic [15:0]        a_pair, b_pair;
+  assign b_low_reg = b_reg_i + RegBits'(1);
+  assign d_low_reg = d_reg_i + RegBits'(1);
+  assign a_pair    = {regs_q[8*a_reg_i +: 8], regs_q[8*a_low_reg +: 8]};
+  assign b_pair    = {regs_q[8*b_reg_i +: 8], regs_q[8*b_low_reg +: 8]};
+
   logic is_select_add;
   assign is_select_add = opcode_i == ap_isa_pkg::OpNadds || opcode_i == ap_isa_pkg::OpNadcs;
 
@@ -152,6 +165,33 @@ module cu_datapath #(
   assign add_a = is_neighbour_add ? d_value : a_value;
   assign add_b = is_neighbour_add ? neighbour_value : b_value;
   assign sum = {1'b0, add_a} + {1'b0, subtract ? ~add_b : add_b} + {8'd0, carry_in};
+
+  // add16, sub16, cmp16 and mov16: the 16-bit result, whether d:d+1 is
+  // written, and the carry. A subtraction is a + ~b + 1, C "no borrow" as in
+  // the 8-bit adder; mov16 keeps C. Z and S are those of all 16 bits.
+  logic        is_pair_op, pair_writes_d, pair_subtract, pair_carry_out;
+  logic [16:0] pair_sum;
+  logic [15:0] pair_result;
+  assign pair_subtract = opcode_i == ap_isa_pkg::OpSub16 || opcode_i == ap_isa_pkg::OpCmp16;
+  assign pair_sum = {1'b0, a_pair} + {1'b0, pair_subtract ? ~b_pair : b_pair} + {16'd0, pair_subtract};
+  always_comb begin
+    is_pair_op     = 1'b1;
+    pair_writes_d  = 1'b1;
+    pair_result    = pair_sum[15:0];
+    pair_carry_out = pair_sum[16];
+    unique case (opcode_i)
+      ap_isa_pkg::OpAdd16, ap_isa_pkg::OpSub16: ;
+      ap_isa_pkg::OpCmp16: pair_writes_d = 1'b0;
+      ap_isa_pkg::OpMov16: begin
+        pair_result    = a_pair;
+        pair_carry_out = c_q;
+      end
+      default: begin
+        is_pair_op    = 1'b0;
+        pair_writes_d = 1'b0;
+      end
+    endcase
+  end
 
   logic cond_holds;
   always_comb begin
@@ -350,6 +390,15 @@ module cu_datapath #(
       end
       if (writes_c) begin
         c_d = carry_out;
+      end
+      if (is_pair_op) begin
+        c_d = pair_carry_out;
+        z_d = pair_result == 16'd0;
+        s_d = pair_result[15];
+      end
+      if (pair_writes_d) begin
+        regs_d[8*d_reg_i +: 8]   = pair_result[15:8];
+        regs_d[8*d_low_reg +: 8] = pair_result[7:0];
       end
       if (writes_d) begin
         if (d_is_cmem_i) begin

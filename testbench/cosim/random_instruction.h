@@ -35,14 +35,16 @@ inline Instruction make_nget(Operand d, Direction direction, Operand a) {
 }
 
 // The lane-work opcodes: every instruction the CU executes, those behind an
-// array.features switch (div, nadd, nadds, nadcs) included; not lut, whose
-// shared table is the array's, outside the CU and its Verilog twin.
-constexpr std::array<Opcode, 29> LANE_OPCODES{
-    Opcode::op_add,  Opcode::op_adc,  Opcode::op_sub,  Opcode::op_sbc,   Opcode::op_and,  Opcode::op_or,
-    Opcode::op_xor,  Opcode::op_not,  Opcode::op_mov,  Opcode::op_shl,   Opcode::op_shr,  Opcode::op_asr,
-    Opcode::op_rol,  Opcode::op_ror,  Opcode::op_cmp,  Opcode::op_cmpc,  Opcode::op_mul,  Opcode::op_mulm,
-    Opcode::op_nget, Opcode::op_getm, Opcode::op_mset, Opcode::op_mclr,  Opcode::op_mmov, Opcode::op_mand,
-    Opcode::op_mor,  Opcode::op_div,  Opcode::op_nadd, Opcode::op_nadds, Opcode::op_nadcs};
+// array.features switch (div, nadd, nadds, nadcs, add16, sub16, cmp16,
+// mov16) included; not lut, whose shared table is the array's, outside the
+// CU and its Verilog twin, nor zsend, which writes nothing in a CU.
+constexpr std::array<Opcode, 33> LANE_OPCODES{
+    Opcode::op_add,   Opcode::op_adc,   Opcode::op_sub,  Opcode::op_sbc,   Opcode::op_and,   Opcode::op_or,
+    Opcode::op_xor,   Opcode::op_not,   Opcode::op_mov,  Opcode::op_shl,   Opcode::op_shr,   Opcode::op_asr,
+    Opcode::op_rol,   Opcode::op_ror,   Opcode::op_cmp,  Opcode::op_cmpc,  Opcode::op_mul,   Opcode::op_mulm,
+    Opcode::op_nget,  Opcode::op_getm,  Opcode::op_mset, Opcode::op_mclr,  Opcode::op_mmov,  Opcode::op_mand,
+    Opcode::op_mor,   Opcode::op_div,   Opcode::op_nadd, Opcode::op_nadds, Opcode::op_nadcs, Opcode::op_add16,
+    Opcode::op_sub16, Opcode::op_cmp16, Opcode::op_mov16};
 
 struct RandomInstruction {
   Instruction instruction;
@@ -53,7 +55,8 @@ struct RandomInstruction {
 // A random instruction with a valid encoding: random fields as the
 // instruction's operand pattern and forms allow, encoded, then decoded (and
 // checked against `registers` and `cmem_bytes`); operands the decoder refuses (a
-// multiply whose product overlaps a source) are drawn again, so that every
+// multiply whose product overlaps a source, a result pair straddling a
+// source pair) are drawn again, so that every
 // opcode is as frequent as the others.
 inline RandomInstruction random_instruction(std::mt19937_64& rng, unsigned registers, unsigned cmem_bytes) {
   const Opcode opcode = LANE_OPCODES[rng() % LANE_OPCODES.size()];

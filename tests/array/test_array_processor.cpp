@@ -7,6 +7,7 @@
 // Bench: initiator -> checker -> bus (100 MHz) -> AC registers at 0,
 // program memory at 0x10000, CIU window at 0x1000000. The array clock is
 // also 100 MHz so expected times are whole nanoseconds.
+#include <array>
 #include <cstring>
 #include <map>
 #include <string>
@@ -32,6 +33,8 @@ constexpr uint64_t AC = 0x0, PROGRAM = 0x10000, CMEM = 0x1000000;
 // the neighbour adds.
 constexpr uint64_t BLENDER_AC = 0x2000, BLENDER_PROGRAM = 0x20000;
 constexpr unsigned LUT_ENTRIES = 64;
+// A third with MorphoSys's 16-bit operations and wired-OR loop.
+constexpr uint64_t MORPHO_AC = 0x3000, MORPHO_PROGRAM = 0x30000;
 constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
 constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24;
 
@@ -56,6 +59,18 @@ ArrayParams blender_params() {
   return p;
 }
 
+ArrayParams morpho_params() {
+  Config config({ArrayParams::parameters()});
+  for (const char* key : {"array.features.wide_ops=true", "array.features.wired_or_loop=true"})
+    config.apply_override(key);
+  config.validate();
+  ArrayParams p = ArrayParams::from_config(config);
+  p.clock_period = CYCLE;
+  p.program_words = 256;
+  p.max_program_cycles = 100000;
+  return p;
+}
+
 CiuParams ciu_params() {
   CiuParams p = CiuParams::defaults();
   p.write_cycles = WRITE_CYCLES;
@@ -71,7 +86,8 @@ struct Bench : sc_core::sc_module {
   ArrayProcessor array;
   Ciu ciu;
   ArrayProcessor blender;
-  sc_core::sc_signal<bool> irq, blender_irq;
+  ArrayProcessor morpho;
+  sc_core::sc_signal<bool> irq, blender_irq, morpho_irq;
   explicit Bench(sc_core::sc_module_name name)
       : sc_core::sc_module(name),
         host("host"),
@@ -79,7 +95,8 @@ struct Bench : sc_core::sc_module {
         bus("bus", test::bench_bus_params(CYCLE)),
         array("array", array_params()),
         ciu("ciu", ciu_params(), array),
-        blender("blender", blender_params()) {
+        blender("blender", blender_params()),
+        morpho("morpho", morpho_params()) {
     host.out.bind(check_host.in);
     bus.attach(check_host.out, "host", 0);
     bus.map(array.in, AC, 0x1000, "array_regs");
@@ -89,6 +106,9 @@ struct Bench : sc_core::sc_module {
     bus.map(blender.in, BLENDER_AC, 0x1000, "blender_regs");
     bus.map(blender.program_in, BLENDER_PROGRAM, 0x10000, "blender_program");
     blender.irq.bind(blender_irq);
+    bus.map(morpho.in, MORPHO_AC, 0x1000, "morpho_regs");
+    bus.map(morpho.program_in, MORPHO_PROGRAM, 0x10000, "morpho_program");
+    morpho.irq.bind(morpho_irq);
   }
 };
 
@@ -346,6 +366,16 @@ TEST(ArrayProcessor, BadProgramsStopWithAnErrorCodeAndTheWord) {
        ap::RunError::bad_word,
        0,
        "lut is not enabled: it needs array.features.lut = true"},
+      // MorphoSys's, likewise.
+      {{op(ap::Opcode::op_mset), op(ap::Opcode::op_add16, reg(0), reg(2), reg(4)), op(ap::Opcode::op_halt)},
+       ap::RunError::bad_word,
+       1,
+       "add16 is not enabled: it needs array.features.wide_ops = true"},
+      {{loop(0, 3, 1), op(ap::Opcode::op_endloopany, {}, reg(static_cast<unsigned>(ap::Cond::nz))),
+        op(ap::Opcode::op_halt)},
+       ap::RunError::bad_word,
+       1,
+       "endloopany is not enabled: it needs array.features.wired_or_loop = true"},
   };
   test::run_thread([&] {
     for (const Case& c : cases) {
@@ -395,6 +425,20 @@ TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
   EXPECT_TRUE(enabled(both, ap::Opcode::op_nadds));
   EXPECT_TRUE(enabled(both, ap::Opcode::op_nadcs));
   EXPECT_EQ(both.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_div)], 40u);
+  // MorphoSys's: one switch for the four 16-bit operations, one for the loop.
+  const std::array<ap::Opcode, 4> pairs{ap::Opcode::op_add16, ap::Opcode::op_sub16, ap::Opcode::op_cmp16,
+                                        ap::Opcode::op_mov16};
+  for (const ap::Opcode opcode : pairs) {
+    EXPECT_FALSE(enabled(both, opcode));
+    EXPECT_EQ(off.cycles.cycles[static_cast<unsigned>(opcode)], 4u);
+  }
+  EXPECT_FALSE(enabled(both, ap::Opcode::op_endloopany));
+  EXPECT_EQ(off.cycles.cycles[static_cast<unsigned>(ap::Opcode::op_endloopany)], 2u);
+  config.apply_override("array.features.wide_ops=true");
+  for (const ap::Opcode opcode : pairs) EXPECT_TRUE(enabled(ArrayParams::from_config(config), opcode));
+  EXPECT_FALSE(enabled(ArrayParams::from_config(config), ap::Opcode::op_endloopany));
+  config.apply_override("array.features.wired_or_loop=true");
+  EXPECT_TRUE(enabled(ArrayParams::from_config(config), ap::Opcode::op_endloopany));
   // The row ring: off by default; on, the core's rows are rings.
   EXPECT_FALSE(off.row_ring);
   EXPECT_FALSE(off.enabled_ops[static_cast<unsigned>(ap::Opcode::op_nadds)]);
@@ -424,8 +468,23 @@ std::string refusal(const std::string& setting) {
 const char* const BAD_SETTINGS[] = {"array.issue_skew=column", "array.issue_skew_cycles=0", "array.lut.entries=65537",
                                     "array.lut.ports=0"};
 
+// The wired OR under delayed execution: each setting alone is fine, the
+// two together are refused by the group's validation.
+std::string combination_refusal() {
+  try {
+    Config config({ArrayParams::parameters()});
+    config.apply_override("array.features.wired_or_loop=true");
+    config.apply_override("array.issue_skew=lane");
+    config.validate();
+  } catch (const std::exception& error) {
+    return error.what();
+  }
+  return "";
+}
+
 void work_out_refusals() {
   for (const char* bad : BAD_SETTINGS) g_refusals[bad] = refusal(bad);
+  g_refusals["wired_or_loop under skew"] = combination_refusal();
 }
 
 TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
@@ -433,6 +492,8 @@ TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
   EXPECT_NE(skew.find("array.issue_skew"), std::string::npos) << skew;
   EXPECT_NE(skew.find("column"), std::string::npos) << skew;
   for (const char* bad : BAD_SETTINGS) EXPECT_NE(g_refusals.at(bad), "") << bad << " accepted";
+  const std::string& wired = g_refusals.at("wired_or_loop under skew");
+  EXPECT_NE(wired.find("array.features.wired_or_loop=true with array.issue_skew=lane"), std::string::npos) << wired;
   const ArrayParams defaults = ArrayParams::defaults();
   EXPECT_EQ(defaults.issue_skew_cycles, 0u);
   EXPECT_FALSE(defaults.lut_enabled());
@@ -505,6 +566,60 @@ TEST(ArrayProcessor, TheHostFillsTheTableAndASkewedProgramLooksItUp) {
   EXPECT_EQ(stats["mix"]["lut"], 1);
 }
 
+// MorphoSys's machine: each CU counts its own number down and adds a
+// 16-bit step per pass; the loop ends when the last CU's count reaches 0
+// (30 passes of at most 101), and the interrupt comes at the cycles of the
+// passes run. The wired-OR statistics exist on this array only.
+TEST(ArrayProcessor, AWiredOrLoopEndsWithTheLastCusCountAndCountsItsExit) {
+  Bench& b = *g_bench;
+  ap::CuArray& cus = b.morpho.core().array();
+  for (unsigned l = 0; l < cus.lanes(); ++l) {
+    cus.set_cmem(l, 0, 1);
+    cus.set_cmem(l, 1, static_cast<uint8_t>(l == 50 ? 30 : 1 + l % 8));
+    for (unsigned r = 2; r < 6; ++r) cus.set_reg(l, r, r < 4 ? 0 : 1);  // r2:r3 = 0, r4:r5 = 0x0101
+  }
+  const std::vector<uint64_t> words = {
+      op(ap::Opcode::op_mset),                                                      // 1
+      op(ap::Opcode::op_mov, reg(1), mem(0)),                                       // 3
+      op(ap::Opcode::op_mov, reg(0), mem(1)),                                       // 3
+      loop(0, 100, 1),                                                              // 1
+      op(ap::Opcode::op_add16, reg(2), reg(2), reg(4)),                             // 4 a pass
+      op(ap::Opcode::op_sub, reg(0), reg(0), reg(1)),                               // 2 a pass
+      op(ap::Opcode::op_mand, {}, reg(static_cast<unsigned>(ap::Cond::nz))),        // 1 a pass
+      op(ap::Opcode::op_endloopany, {}, reg(static_cast<unsigned>(ap::Cond::nz))),  // 2 a pass
+      op(ap::Opcode::op_halt)};                                                     // 1
+  constexpr unsigned PASSES = 30, CYCLES = 1 + 3 + 3 + 1 + PASSES * (2 + 4 + 1 + 2) + 1;
+  test::run_thread([&] {
+    for (size_t w = 0; w < words.size(); ++w) {
+      const uint64_t address = MORPHO_PROGRAM + w * regs::PROGRAM_WORD_BYTES;
+      EXPECT_EQ(write32(b, address, static_cast<uint32_t>(words[w])), tlm::TLM_OK_RESPONSE);
+      EXPECT_EQ(write32(b, address + 4, static_cast<uint32_t>(words[w] >> 32)), tlm::TLM_OK_RESPONSE);
+    }
+    write32(b, MORPHO_AC + regs::IRQ_ENABLE, regs::IRQ_DONE | regs::IRQ_ERROR);
+    write32(b, MORPHO_AC + regs::ENTRY, 0);
+    const sc_time at = sc_core::sc_time_stamp();
+    EXPECT_EQ(write32(b, MORPHO_AC + regs::START, 1), tlm::TLM_OK_RESPONSE);
+    if (!b.morpho_irq.read()) sc_core::wait(b.morpho_irq.posedge_event());
+    EXPECT_EQ(sc_core::sc_time_stamp(), at + CYCLE * (1.0 + CYCLES));
+    EXPECT_EQ(read32(b, MORPHO_AC + regs::CYCLES), CYCLES);
+    EXPECT_EQ(read32(b, MORPHO_AC + regs::IRQ_STATUS), regs::IRQ_DONE);
+  });
+  for (unsigned l = 0; l < cus.lanes(); ++l) {
+    EXPECT_EQ(cus.reg(l, 2), PASSES) << l;  // 30 x 0x0101
+    EXPECT_EQ(cus.reg(l, 3), PASSES) << l;
+  }
+  const auto stats = b.morpho.stats_json(sc_core::sc_time_stamp());
+  EXPECT_EQ(stats["wired_or"]["exits"], 1);
+  EXPECT_EQ(stats["wired_or"]["iterations_saved"], 101 - PASSES);
+  EXPECT_EQ(stats["mix"]["add16"], PASSES);
+  EXPECT_EQ(stats["mix"]["endloopany"], PASSES);
+  EXPECT_EQ(stats["mix"]["sub16"], 0);
+  EXPECT_EQ(stats["cycles"]["total"], CYCLES);
+  uint64_t profile = 0;
+  for (const auto& line : stats["profile"]) profile += line["cycles"].get<uint64_t>();
+  EXPECT_EQ(profile, CYCLES);
+}
+
 TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   Bench& b = *g_bench;
   const sc_time now = sc_core::sc_time_stamp();
@@ -515,9 +630,12 @@ TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   EXPECT_FALSE(stats["mix"].contains("div"));
   EXPECT_FALSE(stats["mix"].contains("nadd"));
   EXPECT_FALSE(stats["mix"].contains("lut"));
-  // Nor is there a skew or a table.
+  EXPECT_FALSE(stats["mix"].contains("add16"));
+  EXPECT_FALSE(stats["mix"].contains("endloopany"));
+  // Nor is there a skew, a table or a wired OR.
   EXPECT_FALSE(stats.contains("issue_skew"));
   EXPECT_FALSE(stats.contains("lut"));
+  EXPECT_FALSE(stats.contains("wired_or"));
   EXPECT_GT(stats["cmem"]["bytes_written"].get<uint64_t>(), 0u);
   EXPECT_EQ(stats["programs_by_entry"]["16"]["cycles"], 26);
   // The profile names each word that ran, with its instruction.

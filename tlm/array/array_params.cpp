@@ -66,6 +66,15 @@ ParamGroup ArrayParams::parameters() {
                   "configuration: 'array.columns' must be a multiple of 4 (one CIU word reaches 4 "
                   "CUs of a row), got " +
                   std::to_string(config.get_uint("array.columns")));
+            // The wired OR decides the AC's next word from every CU's flags at
+            // once, which a chain of CUs issuing one after another does not
+            // have until its last CU has run the loop's body.
+            if (config.get_bool("array.features.wired_or_loop") && config.get_string("array.issue_skew") != "none")
+              throw ConfigError(
+                  "configuration: impossible combination: array.features.wired_or_loop=true with "
+                  "array.issue_skew=" +
+                  config.get_string("array.issue_skew") +
+                  ": endloopany's wired OR is modelled for lockstep issue only");
           }};
 }
 

@@ -80,6 +80,12 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
     m_zbuf_stall_cycles = &counter("zbuf.stall_cycles",
                                    "cycles the AC waited for the z-buffer unit's port before a zsend or a halt (in "
                                    "cycles.total)");
+  if (params.enabled_ops[static_cast<unsigned>(ap::Opcode::op_endloopany)]) {
+    m_wired_or_exits =
+        &counter("wired_or.exits", "loops endloopany left before their count ran out (no masked-in CU's condition)");
+    m_wired_or_iterations_saved = &counter(
+        "wired_or.iterations_saved", "iterations the loops' counts would still have run where endloopany left them");
+  }
   // An instruction that is not enabled never runs: it has no counter, so that
   // the statistics of a J2210 array are the J2210's.
   for (const ap::OpInfo& info : ap::all_ops())
@@ -247,6 +253,10 @@ void ArrayProcessor::copy_counters() {
   m_neighbour_transfers.value = lanes.neighbour_transfers;
   if (m_skew_cycles != nullptr) m_skew_cycles->value = core.skew_cycles;
   if (m_zbuf_stall_cycles != nullptr) m_zbuf_stall_cycles->value = core.zbuf_stall_cycles;
+  if (m_wired_or_exits != nullptr) {
+    m_wired_or_exits->value = core.wired_or_exits;
+    m_wired_or_iterations_saved->value = core.wired_or_iterations_saved;
+  }
   if (m_lut_stall_cycles != nullptr) {
     m_lut_stall_cycles->value = core.lut_stall_cycles;
     m_lut_lookups->value = core.instruction_mix[static_cast<unsigned>(ap::Opcode::op_lut)] * m_params.geometry.lanes();

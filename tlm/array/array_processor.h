@@ -184,6 +184,9 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   ActivityCounter* m_lut_writes = nullptr;
   // Only with array.features.zsend.
   ActivityCounter* m_zbuf_stall_cycles = nullptr;
+  // Only with array.features.wired_or_loop.
+  ActivityCounter* m_wired_or_exits = nullptr;
+  ActivityCounter* m_wired_or_iterations_saved = nullptr;
 
   TimedTrace m_busy_trace;
   TimedWord m_program_trace;

@@ -341,6 +341,30 @@ TEST(Errors, DecoderRefusals) {
   // The product r0..r2 overlaps the 16-bit source r1..r2.
   expect_error("main:\nmul r0, r1, r2\nhalt\n", 2, "mul: the product d..d+2 overlaps a source");
   expect_error("main:\nmulm [10], [20], [12]\nhalt\n", 2, "mulm: the product d..d+2 overlaps a source");
+  // A result pair overlapping a source pair by one register (the low pass
+  // would write the high byte the second pass reads); the same pair is fine.
+  expect_error("main:\nadd16 r1, r2, r4\nhalt\n", 2, "add16: the result pair d:d+1 overlaps a source pair");
+  expect_error("main:\nsub16 r3, r0, r2\nhalt\n", 2, "sub16: the result pair d:d+1 overlaps a source pair");
+  expect_error("main:\nmov16 r4, r3\nhalt\n", 2, "mov16: the result pair d:d+1 overlaps a source pair");
+  EXPECT_EQ(words_of("add16 r2, r2, r2").size(), 2u);
+  EXPECT_EQ(words_of("cmp16 r1, r2").size(), 2u);  // nothing written: sources may overlap
+}
+
+// The 16-bit operations: registers only, every operand a pair within the
+// configured registers; endloopany closes a loop like endloop.
+TEST(Errors, RegisterPairsAndTheWiredOrLoop) {
+  expect_error("main:\nadd16 r6, r0, r7\nhalt\n", 2, "operand b of add16 covers r7..r8, beyond r7");
+  expect_error("main:\nmov16 r7, r0\nhalt\n", 2, "operand d of mov16 covers r7..r8, beyond r7");
+  expect_error("main:\ncmp16 r15, r0\nhalt\n", 2, "operand a of cmp16 covers r15..r16, beyond r15", {16, 4096, 4096});
+  expect_error("main:\nadd16 r0, [2], r4\nhalt\n", 2, "operand a of add16 must be a register");
+  expect_error("main:\nendloopany c\nhalt\n", 2, "endloopany without a loop");
+  expect_error("main:\nloop y, 1, 1\nendloopany\nhalt\n", 3, "endloopany takes 1 operand (condition), not 0");
+  expect_error("main:\nloop y, 1, 1\nendloopany q\nhalt\n", 3, "unknown condition 'q'");
+  // add16 opcode 0x23, registers d = 0, a = 2, b = 4; endloopany 0x27 with
+  // the condition in a (nz = 3).
+  const std::vector<uint64_t> words = words_of("add16 r0, r2, r4\nloop y, 3, 1\nendloopany nz");
+  EXPECT_EQ(words[0], 0x0000'4000'2000'0023u);
+  EXPECT_EQ(words[2], 0x0000'0000'3000'0027u);
 }
 
 TEST(Limits, ProgramWords) {
@@ -803,6 +827,11 @@ second:
   lut [8], [10]
   zsend r0, r4
   zsend [16], [20]
+  add16 r0, r2, r4
+  add16 r2, r2, r2
+  sub16 r6, r0, r6
+  cmp16 r1, r2
+  mov16 r4, r6
   mset
   mclr
   mmov c
@@ -818,6 +847,10 @@ second:
       endloop
     endloop
   endloop
+  loop z, 9, 1
+    sub r0, r0, r1
+    mand nz
+  endloopany nz
   halt
 )";
 

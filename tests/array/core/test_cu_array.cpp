@@ -136,6 +136,22 @@ class ScalarArray {
         write(lane, in.d, 0, quotient.value, v, mask);
         return;
       }
+      case Opcode::op_add16:
+      case Opcode::op_sub16:
+      case Opcode::op_cmp16:
+      case Opcode::op_mov16: {
+        const auto pair = [&](const Operand& operand) {
+          return static_cast<uint16_t>(read(old, operand, 0, v) << 8 | read(old, operand, 1, v));
+        };
+        const bool reads_b = in.opcode != Opcode::op_mov16;
+        const PairResult result = cu_pair_alu(in.opcode, pair(in.a), reads_b ? pair(in.b) : 0, old.flags);
+        lane.flags = result.flags;
+        if (result.writes) {
+          write(lane, in.d, 0, static_cast<uint8_t>(result.value >> 8), v, mask);
+          write(lane, in.d, 1, static_cast<uint8_t>(result.value), v, mask);
+        }
+        return;
+      }
       case Opcode::op_mul:
       case Opcode::op_mulm: {
         const auto multiplicand = static_cast<uint16_t>(read(old, in.a, 0, v) << 8 | read(old, in.a, 1, v));
@@ -552,6 +568,118 @@ TEST(CuArray, LutReadsTheSharedTablesEntryAtEachCusIndex) {
 // --- ArrayController -------------------------------------------------------
 
 constexpr unsigned PROGRAM_WORDS = 64;
+// --- MorphoSys's 16-bit operations (array.features.wide_ops) -------------
+
+// The 16-bit model the pair operations are checked against: plain integer
+// arithmetic on the two bytes joined, nothing of the byte passes.
+struct Pair16 {
+  uint16_t value;
+  CuFlags flags;
+  bool writes;
+};
+Pair16 pair_model(Opcode opcode, unsigned x, unsigned y, CuFlags before) {
+  switch (opcode) {
+    case Opcode::op_add16: {
+      const unsigned sum = x + y;
+      return {static_cast<uint16_t>(sum), {sum > 0xffff, (sum & 0xffff) == 0, (sum & 0x8000) != 0}, true};
+    }
+    case Opcode::op_sub16:
+    case Opcode::op_cmp16: {
+      const unsigned difference = (x - y) & 0xffff;
+      return {static_cast<uint16_t>(difference),
+              {x >= y, difference == 0, (difference & 0x8000) != 0},
+              opcode == Opcode::op_sub16};
+    }
+    default: return {static_cast<uint16_t>(x), {before.c, x == 0, (x & 0x8000) != 0}, true};
+  }
+}
+
+TEST(CuDatapath, PairOperationsMatchA16BitModel) {
+  // By hand: the carry and Z of all 16 bits (0x0010 + 0x0002 = 0x0012: an
+  // add/adc chain's Z, the high byte's, would be set), no borrow, C kept.
+  PairResult r = cu_pair_alu(Opcode::op_add16, 0xffff, 0x0001, czs(false, false, true));
+  EXPECT_EQ(r.value, 0x0000);
+  EXPECT_EQ(r.flags, czs(true, true, false));
+  r = cu_pair_alu(Opcode::op_add16, 0x0010, 0x0002, czs(true, true, true));
+  EXPECT_EQ(r.value, 0x0012);
+  EXPECT_EQ(r.flags, czs(false, false, false));
+  r = cu_pair_alu(Opcode::op_sub16, 0x0100, 0x0001, czs(false, false, false));
+  EXPECT_EQ(r.value, 0x00ff);
+  EXPECT_EQ(r.flags, czs(true, false, false));
+  r = cu_pair_alu(Opcode::op_cmp16, 0x1234, 0x1235, czs(true, true, false));
+  EXPECT_EQ(r.value, 0xffff);
+  EXPECT_EQ(r.flags, czs(false, false, true));
+  EXPECT_FALSE(r.writes);
+  r = cu_pair_alu(Opcode::op_mov16, 0x8000, 0, czs(true, true, false));
+  EXPECT_EQ(r.flags, czs(true, false, true));
+  // Random values and flags.
+  std::mt19937_64 rng(0x1616);
+  for (unsigned i = 0; i < 200'000; ++i) {
+    const auto opcode = std::array{Opcode::op_add16, Opcode::op_sub16, Opcode::op_cmp16, Opcode::op_mov16}[i % 4];
+    const auto x = static_cast<uint16_t>(rng()), y = static_cast<uint16_t>(rng());
+    const CuFlags before{(rng() & 1) != 0, (rng() & 2) != 0, (rng() & 4) != 0};
+    const PairResult got = cu_pair_alu(opcode, x, y, before);
+    const Pair16 expected = pair_model(opcode, x, y, before);
+    ASSERT_EQ(got.value, expected.value) << op_info(opcode).mnemonic << " " << x << ", " << y;
+    ASSERT_EQ(got.flags, expected.flags) << op_info(opcode).mnemonic << " " << x << ", " << y;
+    ASSERT_EQ(got.writes, expected.writes) << op_info(opcode).mnemonic;
+  }
+}
+
+// Every lane, random pairs of registers (d equal to a source included),
+// random values, flags and masks: the core against the 16-bit model. The
+// registers are written in every CU, masked or not; nothing else changes.
+TEST(CuArray, PairOperationsInEveryLaneMatchA16BitModel) {
+  std::mt19937_64 rng(0xa16);
+  CuArray array(small_cmem_geometry());
+  const std::array<Opcode, 4> opcodes{Opcode::op_add16, Opcode::op_sub16, Opcode::op_cmp16, Opcode::op_mov16};
+  std::array<unsigned, 4> runs{};
+  for (unsigned i = 0; i < 4000; ++i) {
+    const auto which = static_cast<unsigned>(rng() % opcodes.size());
+    const Opcode opcode = opcodes[which];
+    const Instruction in =
+        make(opcode, reg(static_cast<unsigned>(rng() % (REGISTERS - 1))),
+             reg(static_cast<unsigned>(rng() % (REGISTERS - 1))),
+             opcode == Opcode::op_mov16 ? reg(0) : reg(static_cast<unsigned>(rng() % (REGISTERS - 1))));
+    Instruction encoded = in;
+    if (opcode == Opcode::op_cmp16) encoded.d = {};
+    if (opcode == Opcode::op_mov16) encoded.b = {};
+    const Decoded decoded = decode(encode(encoded));
+    if (!decoded.error.empty()) {
+      // Only a result pair straddling a source pair is refused.
+      EXPECT_NE(decoded.error.find("overlaps a source pair"), std::string::npos) << decoded.error;
+      continue;
+    }
+    ++runs[which];
+    std::vector<Lane> before(array.lanes());
+    for (unsigned l = 0; l < array.lanes(); ++l) {
+      for (unsigned r = 0; r < REGISTERS; ++r) array.set_reg(l, r, static_cast<uint8_t>(rng()));
+      array.set_flags(l, {(rng() & 1) != 0, (rng() & 2) != 0, (rng() & 4) != 0});
+      array.set_mask(l, (rng() & 8) != 0);
+      for (unsigned r = 0; r < REGISTERS; ++r) before[l].regs[r] = array.reg(l, r);
+      before[l].flags = array.flags(l);
+    }
+    const Instruction& run = decoded.instruction;
+    ASSERT_EQ(array.execute(run, {}, 0), "") << format_instruction(run);
+    for (unsigned l = 0; l < array.lanes(); ++l) {
+      const auto pair = [&](const Operand& o) {
+        return unsigned{before[l].regs[o.value]} << 8 | before[l].regs[o.value + 1];
+      };
+      const Pair16 expected =
+          pair_model(opcode, pair(run.a), opcode == Opcode::op_mov16 ? 0 : pair(run.b), before[l].flags);
+      std::array<uint8_t, REGISTERS> regs = before[l].regs;
+      if (expected.writes) {
+        regs[run.d.value] = static_cast<uint8_t>(expected.value >> 8);
+        regs[run.d.value + 1] = static_cast<uint8_t>(expected.value);
+      }
+      for (unsigned r = 0; r < REGISTERS; ++r)
+        ASSERT_EQ(array.reg(l, r), regs[r]) << format_instruction(run) << ", lane " << l << ", r" << r;
+      ASSERT_EQ(array.flags(l), expected.flags) << format_instruction(run) << ", lane " << l;
+    }
+  }
+  for (unsigned count : runs) EXPECT_GT(count, 500u);
+}
+
 constexpr uint64_t MAX_CYCLES = 1'000'000;
 
 Instruction loop(unsigned level, unsigned start, unsigned step) {
@@ -594,6 +722,10 @@ TEST(ArrayController, CycleTableDefaultsByHand) {
     EXPECT_EQ(table.cost(make_cond(opcode, Cond::hi)), 1u) << op_info(opcode).mnemonic;
   EXPECT_EQ(table.cost(loop(0, 5, 1)), 1u);
   EXPECT_EQ(table.cost(make(Opcode::op_endloop)), 0u);
+  // MorphoSys's: two byte passes of an ALU slot each; the wired OR's test.
+  EXPECT_EQ(table.cost(make(Opcode::op_add16, reg(0), reg(2), reg(4))), 4u);
+  EXPECT_EQ(table.cost(make(Opcode::op_mov16, reg(0), reg(2))), 4u);
+  EXPECT_EQ(table.cost(make_cond(Opcode::op_endloopany, Cond::nz)), 2u);
 }
 
 TEST(ArrayController, StraightLineProgramCountsEveryInstruction) {
@@ -742,9 +874,13 @@ TEST(ArrayController, TheImageBlendersInstructionsAreRefusedNamingTheirSwitchUnl
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadds)), "array.features.neighbour_add");
   EXPECT_EQ(feature_key(op_info(Opcode::op_nadcs)), "array.features.neighbour_add");
   EXPECT_EQ(feature_key(op_info(Opcode::op_zsend)), "array.features.zsend");
+  for (const Opcode opcode : {Opcode::op_add16, Opcode::op_sub16, Opcode::op_cmp16, Opcode::op_mov16})
+    EXPECT_EQ(feature_key(op_info(opcode)), "array.features.wide_ops");
+  EXPECT_EQ(feature_key(op_info(Opcode::op_endloopany)), "array.features.wired_or_loop");
   for (const OpInfo& info : all_ops())
     if (info.opcode != Opcode::op_div && info.opcode != Opcode::op_nadd && info.opcode != Opcode::op_lut &&
-        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs && info.opcode != Opcode::op_zsend) {
+        info.opcode != Opcode::op_nadds && info.opcode != Opcode::op_nadcs && info.opcode != Opcode::op_zsend &&
+        !is_pair_op(info.opcode) && info.opcode != Opcode::op_endloopany) {
       EXPECT_TRUE(info.feature.empty()) << info.mnemonic;
       EXPECT_TRUE(j2210_ops()[static_cast<unsigned>(info.opcode)]) << info.mnemonic;
     }
@@ -880,6 +1016,184 @@ TEST(ArrayController, MaxProgramCyclesStopsARunaway) {
   EXPECT_EQ(result.error_pc, 1u);
   EXPECT_EQ(result.cycles, 101u);
   EXPECT_NE(result.error.find("max_program_cycles"), std::string::npos) << result.error;
+}
+
+// --- MorphoSys's loop that exits when no CU is left (array.features.wired_or_loop)
+
+EnabledOps with_wired_or_loop() {
+  EnabledOps enabled = j2210_ops();
+  enabled[static_cast<unsigned>(Opcode::op_endloopany)] = true;
+  return enabled;
+}
+
+// Each CU counts its own number down: r0 from CMEM byte 1, minus 1 (CMEM
+// byte 0) per pass, its mask cleared when it reaches 0; the loop runs
+// while a masked-in CU has not reached it, at most 101 passes.
+std::vector<Instruction> countdown_program(Opcode closing) {
+  return {
+      make(Opcode::op_mset),                                                            // 0: 1
+      make(Opcode::op_mov, reg(1), mem(0)),                                             // 1: 3
+      make(Opcode::op_mov, reg(0), mem(1)),                                             // 2: 3
+      loop(0, 100, 1),                                                                  // 3: 1
+      make(Opcode::op_sub, reg(0), reg(0), reg(1)),                                     // 4: 2 a pass
+      make_cond(Opcode::op_mand, Cond::nz),                                             // 5: 1 a pass
+      closing == Opcode::op_endloopany ? make_cond(closing, Cond::nz) : make(closing),  // 6: 2 (0) a pass
+      make(Opcode::op_halt),                                                            // 7: 1
+  };
+}
+
+TEST(ArrayController, EndloopanyLeavesTheLoopWhenNoMaskedCuHasTheCondition) {
+  Program p(countdown_program(Opcode::op_endloopany));
+  p.controller.enable_ops(with_wired_or_loop());
+  // Counts 1..8 by lane, and one CU with 20: twenty passes.
+  for (unsigned l = 0; l < p.array().lanes(); ++l) {
+    p.array().set_cmem(l, 0, 1);
+    p.array().set_cmem(l, 1, static_cast<uint8_t>(l == 37 ? 20 : 1 + l % 8));
+  }
+  const RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 1u + 3 + 3 + 1 + 20 * (2 + 1 + 2) + 1);
+  EXPECT_EQ(result.instructions, 4u + 20 * 3 + 1);
+  for (unsigned l = 0; l < p.array().lanes(); ++l) {
+    EXPECT_FALSE(p.array().mask(l)) << l;
+    // A CU that reached 0 kept counting, below 0, until the loop ended.
+    const unsigned count = l == 37 ? 20 : 1 + l % 8;
+    EXPECT_EQ(p.array().reg(l, 0), static_cast<uint8_t>(count - 20)) << l;
+  }
+  const ControllerActivity& activity = p.controller.activity();
+  EXPECT_EQ(activity.wired_or_exits, 1u);
+  EXPECT_EQ(activity.wired_or_iterations_saved, 101u - 20);
+  EXPECT_EQ(activity.word_executions[6], 20u);
+  EXPECT_EQ(activity.word_cycles[6], 40u);
+  // The profile and the stages add up to the total.
+  uint64_t words = 0, stages = 0;
+  for (const uint64_t cycles : activity.word_cycles) words += cycles;
+  for (const uint64_t cycles : activity.stage_cycles) stages += cycles;
+  EXPECT_EQ(words, activity.cycles);
+  EXPECT_EQ(stages, activity.cycles);
+  EXPECT_EQ(activity.cycles, result.cycles);
+  // With endloop, the same program runs every one of its 101 passes.
+  Program counted(countdown_program(Opcode::op_endloop));
+  for (unsigned l = 0; l < counted.array().lanes(); ++l) {
+    counted.array().set_cmem(l, 0, 1);
+    counted.array().set_cmem(l, 1, 3);
+  }
+  const RunResult full = counted.controller.run(0);
+  ASSERT_TRUE(full.ok) << full.error;
+  EXPECT_EQ(full.cycles, 1u + 3 + 3 + 1 + 101 * (2 + 1 + 0) + 1);
+  EXPECT_EQ(counted.controller.activity().wired_or_exits, 0u);
+}
+
+TEST(ArrayController, EndloopanyCountsOnlyCusWhoseMaskIsSetAndStopsAtTheCount) {
+  // loop i0 = 9 .. 0 { nop } endloopany c: ten passes at most.
+  Program p({loop(0, 9, 1), make(Opcode::op_nop), make_cond(Opcode::op_endloopany, Cond::c), make(Opcode::op_halt)});
+  p.controller.enable_ops(with_wired_or_loop());
+  // Only CU 3 has C, and its mask is clear: one pass, nine saved.
+  p.array().set_flags(3, {true, false, false});
+  p.array().set_mask(3, false);
+  RunResult result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 1u + 1 * (1 + 2) + 1);
+  EXPECT_EQ(p.controller.activity().wired_or_exits, 1u);
+  EXPECT_EQ(p.controller.activity().wired_or_iterations_saved, 9u);
+  // Its mask set, it keeps the loop to its count: ten passes, no early exit.
+  p.array().set_mask(3, true);
+  result = p.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 1u + 10 * (1 + 2) + 1);
+  EXPECT_EQ(p.controller.activity().wired_or_exits, 1u);
+  EXPECT_EQ(p.controller.activity().wired_or_iterations_saved, 9u);
+  // No CU's mask set: the first test leaves the loop.
+  for (unsigned l = 0; l < p.array().lanes(); ++l) p.array().set_mask(l, false);
+  result = p.controller.run(0);
+  EXPECT_EQ(result.cycles, 1u + 1 * (1 + 2) + 1);
+  EXPECT_EQ(p.controller.activity().wired_or_exits, 2u);
+}
+
+TEST(ArrayController, EndloopanyIsRefusedOffUnderSkewAndOutsideALoop) {
+  Program p({loop(0, 3, 1), make_cond(Opcode::op_endloopany, Cond::z), make(Opcode::op_halt)});
+  RunResult result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::bad_word);
+  EXPECT_EQ(result.error_pc, 1u);
+  EXPECT_NE(result.error.find("endloopany is not enabled: it needs array.features.wired_or_loop = true"),
+            std::string::npos)
+      << result.error;
+  p.controller.enable_ops(with_wired_or_loop());
+  EXPECT_TRUE(p.controller.run(0).ok);
+  // Under delayed execution the wired OR would wait for the chain's last CU.
+  p.controller.set_issue_skew(1);
+  result = p.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::bad_word);
+  EXPECT_NE(result.error.find("endloopany under delayed execution"), std::string::npos) << result.error;
+  p.controller.set_issue_skew(0);
+  // With no loop running, as endloop.
+  Program outside({make_cond(Opcode::op_endloopany, Cond::z), make(Opcode::op_halt)});
+  outside.controller.enable_ops(with_wired_or_loop());
+  result = outside.controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::loop);
+  EXPECT_NE(result.error.find("endloopany with no loop running"), std::string::npos) << result.error;
+}
+
+// The runaway check counts a wired-OR loop at its count, the most it runs:
+// refused at START, not run, though the CUs' flags would end it at once.
+TEST(ArrayController, ARunawayCountsAWiredOrLoopAtItsCount) {
+  ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, 100);
+  controller.enable_ops(with_wired_or_loop());
+  ASSERT_TRUE(controller.load(
+      0, {encode(make(Opcode::op_mov, reg(0), mem(0))), encode(loop(0, 1000, 1)), encode(make(Opcode::op_nop)),
+          encode(make_cond(Opcode::op_endloopany, Cond::c)), encode(make(Opcode::op_halt))}));
+  controller.array().set_cmem(0, 0, 0x5a);
+  // mov 3, loop 1, then 3 a pass: 32 passes end at 100, the 33rd's nop
+  // passes the cap.
+  const RunResult result = controller.run(0);
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.kind, RunError::too_long);
+  EXPECT_EQ(result.error_pc, 2u);
+  EXPECT_EQ(result.cycles, 3u + 1 + 32 * 3 + 1);
+  EXPECT_EQ(controller.array().reg(0, 0), 0) << "not run";
+  EXPECT_EQ(controller.activity().wired_or_exits, 0u);
+  // Within the cap, the same program leaves after one pass (no CU has C).
+  controller.load(1, {encode(loop(0, 20, 1))});
+  const RunResult short_run = controller.run(0);
+  ASSERT_TRUE(short_run.ok) << short_run.error;
+  EXPECT_EQ(short_run.cycles, 3u + 1 + 3 + 1);
+  EXPECT_EQ(controller.activity().wired_or_exits, 1u);
+  EXPECT_EQ(controller.activity().wired_or_iterations_saved, 20u);
+}
+
+// The AC's control flow depends on the CUs' flags: a program with
+// endloopany always runs on every CU, whatever array.skip_idle_cus says.
+TEST(ArrayController, AProgramWithEndloopanyRunsOnEveryCu) {
+  for (const Opcode closing : {Opcode::op_endloop, Opcode::op_endloopany}) {
+    ArrayController controller(small_cmem_geometry(), CycleTable::defaults(), PROGRAM_WORDS, MAX_CYCLES);
+    controller.enable_ops(with_wired_or_loop());
+    controller.skip_idle_cus(true);
+    std::vector<uint64_t> words;
+    for (const Instruction& in : countdown_program(closing)) words.push_back(encode(in));
+    ASSERT_TRUE(controller.load(0, words));
+    for (unsigned l = 0; l < controller.array().lanes(); ++l) {
+      controller.array().set_cmem(l, 0, 1);
+      controller.array().set_cmem(l, 1, static_cast<uint8_t>(1 + l % 5));
+    }
+    for (unsigned run = 0; run < 3; ++run) {
+      // One CU's count changes: with the wired OR, that changes the passes
+      // of every CU.
+      controller.array().set_cmem(7, 1, static_cast<uint8_t>(5 + 4 * run));
+      ASSERT_TRUE(controller.run(0).ok);
+    }
+    if (closing == Opcode::op_endloop) {
+      EXPECT_GT(controller.lanes_skipped(), 0u);
+    } else {
+      EXPECT_EQ(controller.lanes_skipped(), 0u);
+      EXPECT_EQ(controller.activity().wired_or_exits, 3u);
+      EXPECT_EQ(controller.activity().wired_or_iterations_saved, (101u - 5) + (101 - 9) + (101 - 13));
+      // CU 0 counted down 13 passes from 1 in the last run.
+      EXPECT_EQ(controller.array().reg(0, 0), static_cast<uint8_t>(1 - 13));
+    }
+  }
 }
 
 // The AC's control flow walked step by step, written here apart from the

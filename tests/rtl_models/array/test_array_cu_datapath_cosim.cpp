@@ -627,6 +627,50 @@ TEST_F(CuDatapathDirected, NaddsAndNadcsAddTheNeighboursAOrAPlusOneByTheirSAndKe
   }
 }
 
+// MorphoSys's 16-bit operations on register pairs: carries and borrows
+// across the bytes, Z of all 16 bits, S bit 15, C kept by mov16, nothing
+// written by cmp16, d equal to a source; the CMEM write enables stay low.
+TEST_F(CuDatapathDirected, PairOperationsCarryAcrossTheBytesWithFlagsOfAll16Bits) {
+  load_wide(0, 0x00ff, 2);
+  load_wide(2, 0x0001, 2);
+  run(make(Opcode::op_add16, reg(4), reg(0), reg(2)));
+  EXPECT_EQ(wide(0, 4, 2), 0x0100u);
+  EXPECT_EQ(rtl_flags(), czs(false, false, false));
+  // 0xffff + 1: 0 with the carry out, into the first pair itself.
+  load_wide(0, 0xffff, 2);
+  run(make(Opcode::op_add16, reg(0), reg(0), reg(2)));
+  EXPECT_EQ(wide(0, 0, 2), 0u);
+  EXPECT_EQ(rtl_flags(), czs(true, true, false));
+  // 0x0012: the high byte is 0, Z is clear (an adc's Z would be set).
+  load_wide(0, 0x0010, 2);
+  load_wide(2, 0x0002, 2);
+  run(make(Opcode::op_add16, reg(6), reg(0), reg(2)));
+  EXPECT_EQ(wide(0, 6, 2), 0x0012u);
+  EXPECT_EQ(rtl_flags(), czs(false, false, false));
+  // 0x0100 - 0x0001 = 0x00ff, no borrow; 0x0001 - 0x0100 borrows, S set.
+  load_wide(0, 0x0100, 2);
+  load_wide(2, 0x0001, 2);
+  run(make(Opcode::op_sub16, reg(4), reg(0), reg(2)));
+  EXPECT_EQ(wide(0, 4, 2), 0x00ffu);
+  EXPECT_EQ(rtl_flags(), czs(true, false, false));
+  run(make(Opcode::op_sub16, reg(4), reg(2), reg(0)));
+  EXPECT_EQ(wide(0, 4, 2), 0xff01u);
+  EXPECT_EQ(rtl_flags(), czs(false, false, true));
+  // cmp16 of equal pairs: Z and C, nothing written.
+  load_wide(4, 0x1234, 2);
+  load_wide(6, 0x1234, 2);
+  run(make(Opcode::op_cmp16, {}, reg(4), reg(6)));
+  EXPECT_EQ(wide(0, 4, 2), 0x1234u);
+  EXPECT_EQ(rtl_flags(), czs(true, true, false));
+  // mov16 keeps C: set by the compare, then 0x8000 moved.
+  load_wide(0, 0x8000, 2);
+  run(make(Opcode::op_cmp16, {}, reg(4), reg(6)));
+  run(make(Opcode::op_mov16, reg(2), reg(0)));
+  EXPECT_EQ(wide(0, 2, 2), 0x8000u);
+  EXPECT_EQ(rtl_flags(), czs(true, false, true));
+  for (unsigned lane = 0; lane < lanes(); ++lane) EXPECT_EQ(rtl_flags(lane), czs(true, false, true));
+}
+
 TEST(CuDatapathRtl, ArrayControllerOpcodesAreNoOpsForTheCu) {
   CuDatapathRtl cu;
   CuOperandBytes bytes;

@@ -678,8 +678,8 @@ class Assembler {
       }
       case OperandPattern::loop: open_loop(in, tokens, operands); return;
     }
-    if (info.opcode == Opcode::op_endloop) {
-      if (m_loops.empty()) fail("endloop without a loop");
+    if (closes_loop(info.opcode)) {
+      if (m_loops.empty()) fail(mnemonic + " without a loop");
       emit(in);
       m_closed_loops.insert(m_loops.back().variable);
       m_loops.pop_back();

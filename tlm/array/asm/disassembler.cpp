@@ -56,7 +56,7 @@ std::string disassemble(const Program& program) {
       continue;
     }
     const Instruction& in = decoded.instruction;
-    if (in.opcode == Opcode::op_endloop && depth > 0) --depth;
+    if (closes_loop(in.opcode) && depth > 0) --depth;
     const std::string indent(2 * (depth + 1), ' ');
     if (in.stage != stage) {
       text += indent + ".stage " + std::string(stage_name(in.stage)) + "\n";

@@ -63,7 +63,7 @@ std::string isa_table_markdown() {
             cell(info.description) + " |\n";
   }
   text +=
-      "\nConditions of `mmov`, `mand` and `mor`:\n\n"
+      "\nConditions of `mmov`, `mand`, `mor` and `endloopany`:\n\n"
       "| Condition | Code | Description |\n"
       "|---|---|---|\n";
   for (unsigned code = 0; code < COND_COUNT; ++code) {

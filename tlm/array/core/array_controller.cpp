@@ -48,6 +48,10 @@ void ArrayController::decode_slot(unsigned index) {
     else if (m_skew != 0)
       slot.error = "zsend under delayed execution (array.issue_skew = lane) is not modelled";
   }
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_endloopany && m_skew != 0)
+    slot.error =
+        "endloopany under delayed execution (array.issue_skew = lane) is not modelled: its wired OR would wait for "
+        "the chain's last CU";
   slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
   if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew == 0) slot.cost += lut_lockstep_stall();
 }
@@ -144,7 +148,9 @@ class RunawayWalk {
       const Instruction& in = m_slots[pc].instruction;
       switch (in.opcode) {
         case Opcode::op_halt: return depth == 0 ? End::halted : End::unknown;
-        case Opcode::op_endloop: return depth == 0 ? End::unknown : End::body_end;
+        case Opcode::op_endloop:
+        case Opcode::op_endloopany:  // counted at its loop's most iterations
+          return depth == 0 ? End::unknown : End::body_end;
         case Opcode::op_loop: {
           if (in.loop_level() != depth || depth >= LOOP_LEVELS) return End::unknown;
           if (step(pc)) return End::crossed;
@@ -358,14 +364,24 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
         variables[depth] = static_cast<int>(in.loop_start());
         ++depth;
         break;
-      case Opcode::op_endloop: {
+      case Opcode::op_endloop:
+      case Opcode::op_endloopany: {
         if (depth == 0) {
-          fail(RunError::loop, "endloop with no loop running");
+          fail(RunError::loop, std::string(op_info(in.opcode).mnemonic) + " with no loop running");
           break;
         }
         Loop& loop = loops[depth - 1];
-        variables[depth - 1] -= static_cast<int>(loop.step);
-        if (variables[depth - 1] >= 0)
+        int& variable = variables[depth - 1];
+        variable -= static_cast<int>(loop.step);
+        bool again = variable >= 0;
+        if (again && in.opcode == Opcode::op_endloopany && !array.any_active_holds(in.cond())) {
+          // The wired OR: no CU whose mask is set has the condition, so the
+          // loop ends before its count does.
+          ++m_activity.wired_or_exits;
+          m_activity.wired_or_iterations_saved += static_cast<uint64_t>(variable) / loop.step + 1;
+          again = false;
+        }
+        if (again)
           next = loop.body;
         else
           --depth;
@@ -558,9 +574,10 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
       case Opcode::op_nget:
       case Opcode::op_nadd:
       case Opcode::op_nadds:
-      case Opcode::op_nadcs: return {};  // reads another CU
-      case Opcode::op_lut: return {};    // reads the table, which the host may rewrite between runs
-      case Opcode::op_zsend: return {};  // sends to the z-buffer unit: every run's pixels count
+      case Opcode::op_nadcs: return {};       // reads another CU
+      case Opcode::op_lut: return {};         // reads the table, which the host may rewrite between runs
+      case Opcode::op_zsend: return {};       // sends to the z-buffer unit: every run's pixels count
+      case Opcode::op_endloopany: return {};  // the AC's control flow depends on every CU's flags
       case Opcode::op_mset:
       case Opcode::op_mclr: defined[registers + FLAG_M] = 1; continue;
       case Opcode::op_mmov:
@@ -582,7 +599,7 @@ ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
     // Every lane operation reads the mask: the useful ones are counted.
     use(registers + FLAG_M);
     if (uses_a && !read_operand(in.a, std::max(operand_width(in.opcode, 'a'), 1u))) return {};
-    if (uses_b && !read_operand(in.b, 1)) return {};
+    if (uses_b && !read_operand(in.b, std::max(operand_width(in.opcode, 'b'), 1u))) return {};
     switch (in.opcode) {
       case Opcode::op_adc:
       case Opcode::op_sbc:

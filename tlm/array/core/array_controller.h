@@ -80,6 +80,10 @@ struct ControllerActivity {
   uint64_t zbuf_stall_cycles = 0;
   uint64_t zbuf_port_cycles = 0;
   uint64_t zbuf_pixels = 0;
+  // endloopany (array.features.wired_or_loop): the loops it left before
+  // their count ran out, and the iterations the count would still have run.
+  uint64_t wired_or_exits = 0;
+  uint64_t wired_or_iterations_saved = 0;
 };
 
 class ArrayController {
@@ -118,7 +122,8 @@ class ArrayController {
   // then holds the port for the cycles the unit answers; the AC meanwhile
   // runs on. A halt waits for the port too, so the unit's planes are
   // complete when the program's interrupt rises. Lockstep only: under
-  // delayed execution a zsend is refused (not modelled).
+  // delayed execution a zsend is refused (not modelled), and so is an
+  // endloopany (its wired OR would wait for the chain's last CU).
   void set_pixel_port(PixelPort* port);
 
   // Program memory. write_word() returns false when `index` is beyond it.
@@ -144,7 +149,10 @@ class ArrayController {
   // and including it. Empty when the run halts within the cap, or when
   // something else might stop it first (a bad word, a loop error, a CMEM
   // address the loop variables could take beyond CMEM): run() finds those
-  // by running.
+  // by running. A loop closed by endloopany counts at its most iterations
+  // (its count), whatever the CUs' flags would make it run: the cap bounds
+  // the worst case, and whether a program is refused does not depend on
+  // data.
   struct Runaway {
     unsigned pc = 0;
     uint64_t cycles = 0;
@@ -167,7 +175,9 @@ class ArrayController {
 
   // Skipping idle CUs (array.skip_idle_cus; README.md, "Skipping idle
   // CUs"). A program's work in one CU is a function of that CU's inputs
-  // alone when the program has no nget: the CMEM bytes it may read and the
+  // alone when the program has no nget (nor any other instruction that
+  // reads another CU, the lookup table, the z-buffer's port, or makes the
+  // AC's control flow depend on the CUs, endloopany): the CMEM bytes it may read and the
   // registers and flags it reads before writing them (the mask included,
   // which every lane operation reads to count the useful ones), since its
   // control flow and addresses do not depend on data. So a CU whose inputs
@@ -203,7 +213,8 @@ class ArrayController {
   void fold_run(unsigned entry, unsigned last_pc, const RunResult& result);
 
   // What a program from one entry reads and writes, from its text: the
-  // state rows of CuArray::state_row(). Skippable: no nget, and it
+  // state rows of CuArray::state_row(). Skippable: no nget, nadd, nadds,
+  // nadcs, lut, zsend or endloopany, and it
   // reaches its halt with every word decoded and every loop well formed.
   struct EntryPlan {
     bool skippable = false;

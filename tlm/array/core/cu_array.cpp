@@ -69,6 +69,25 @@ void shift_lanes(size_t n, const uint8_t* a, uint8_t* __restrict out, uint8_t* _
   }
 }
 
+// The 16-bit add and subtract on register pairs (add16, sub16, cmp16): the
+// sum of a:a_low and b:b_low (inverted, with a carry in, for a
+// subtraction) into high:low, with the flags of all 16 bits.
+void pair_add_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint8_t* b, const uint8_t* b_low,
+                    bool subtract, uint8_t* __restrict high, uint8_t* __restrict low, uint8_t* __restrict c,
+                    uint8_t* __restrict z, uint8_t* __restrict s) {
+  const unsigned invert = subtract ? 0xffffu : 0u, carry_in = subtract ? 1u : 0u;
+  for (size_t l = 0; l < n; ++l) {
+    const unsigned x = unsigned{a[l]} << 8 | a_low[l];
+    const unsigned y = (unsigned{b[l]} << 8 | b_low[l]) ^ invert;
+    const unsigned sum = x + y + carry_in;
+    high[l] = static_cast<uint8_t>(sum >> 8);
+    low[l] = static_cast<uint8_t>(sum);
+    c[l] = static_cast<uint8_t>((sum >> 16) & 1u);
+    z[l] = (sum & 0xffffu) == 0 ? 1 : 0;
+    s[l] = static_cast<uint8_t>((sum >> 15) & 1u);
+  }
+}
+
 // cond_holds() of every lane, as 0/1 bytes: the flag's own row for c, z
 // and s, else `out`, filled by one branch-free loop per condition.
 const uint8_t* condition_lanes(Cond cond, size_t n, const uint8_t* __restrict c, const uint8_t* __restrict z,
@@ -109,16 +128,17 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
 // The lanes' arithmetic of one instruction, shared by the interpreter
 // (CuArray::execute) and the trace runner (run_trace_lanes): the result in
 // `out`, or a multiplication's 24-bit product in `high`, `middle`, `low`,
-// and the flags in c, z, s. `a_low` is the multiplicand's low byte. Returns
-// the rows written (1, or 3 for a product), or 0 for an instruction that is
-// not arithmetic (the caller's own: masks, nget, nadd). `a_low` is also the
-// dividend's low byte. With kLanes not 0 the
+// and the flags in c, z, s, or a 16-bit operation's result in `high`,
+// `middle`. `a_low` is the multiplicand's, the dividend's or a pair's low
+// byte, `b_low` a pair's. Returns the rows written (1, 2 for a pair, 3 for a
+// product), or 0 for an instruction that is not arithmetic (the caller's
+// own: masks, nget, nadd). With kLanes not 0 the
 // lane count is known to the compiler, which then unrolls the lane loops.
 template <size_t kLanes>
 [[gnu::always_inline]] inline unsigned arithmetic_lanes(Opcode opcode, size_t lanes, const uint8_t* a,
-                                                        const uint8_t* a_low, const uint8_t* b, const uint8_t* m,
-                                                        uint8_t* out, uint8_t* high, uint8_t* middle, uint8_t* low,
-                                                        uint8_t* c, uint8_t* z, uint8_t* s) {
+                                                        const uint8_t* a_low, const uint8_t* b, const uint8_t* b_low,
+                                                        const uint8_t* m, uint8_t* out, uint8_t* high, uint8_t* middle,
+                                                        uint8_t* low, uint8_t* c, uint8_t* z, uint8_t* s) {
   const size_t n = kLanes != 0 ? kLanes : lanes;
   switch (opcode) {
     case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); return 1;
@@ -181,6 +201,19 @@ template <size_t kLanes>
         s[l] = value >> 7;
       }
       return 1;
+    case Opcode::op_add16:
+    case Opcode::op_sub16:
+    case Opcode::op_cmp16:
+      pair_add_lanes(n, a, a_low, b, b_low, opcode != Opcode::op_add16, high, middle, c, z, s);
+      return 2;
+    case Opcode::op_mov16:
+      for (size_t l = 0; l < n; ++l) {
+        high[l] = a[l];
+        middle[l] = a_low[l];
+        z[l] = (a[l] | a_low[l]) == 0 ? 1 : 0;
+        s[l] = a[l] >> 7;
+      }
+      return 2;
     default: return 0;
   }
 }
@@ -216,6 +249,7 @@ CuArray::CuArray(const ArrayGeometry& geometry)
     OpLanes& op = m_op_lanes[static_cast<unsigned>(info.opcode)];
     op.d_width = static_cast<uint8_t>(operand_width(info.opcode, 'd'));
     op.a_width = static_cast<uint8_t>(operand_width(info.opcode, 'a'));
+    op.b_width = static_cast<uint8_t>(operand_width(info.opcode, 'b'));
     op.uses_d = info.operands != OperandPattern::ab;
     op.uses_b = info.operands == OperandPattern::dab || info.operands == OperandPattern::ab;
     op.uses_a = info.operands != OperandPattern::d;
@@ -465,6 +499,16 @@ void CuArray::neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, 
   m_activity.neighbour_transfers += transfers;
 }
 
+bool CuArray::any_active_holds(Cond cond) {
+  const size_t n = m_lanes;
+  const uint8_t* holds = condition_lanes(cond, n, row(m_flag_row + flag_c), row(m_flag_row + flag_z),
+                                         row(m_flag_row + flag_s), row(m_spare_rows[SCRATCH_RESULT]));
+  const uint8_t* m = row(m_flag_row + flag_m);
+  uint8_t any = 0;
+  for (size_t l = 0; l < n; ++l) any |= static_cast<uint8_t>(holds[l] & m[l]);
+  return any != 0;
+}
+
 std::string CuArray::execute(const Instruction& in, const LoopVariables& loop_variables, unsigned active_loops) {
   std::string error;
   execute(in, loop_variables, active_loops, error);
@@ -515,7 +559,8 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   const unsigned d_width = op.d_width, a_width = op.a_width;
   const bool uses_d = op.uses_d, uses_a = op.uses_a, uses_b = op.uses_b;
   std::array<uint8_t*, 3> d_rows{}, a_rows{};
-  uint8_t* b_row = nullptr;
+  std::array<uint8_t*, 2> b_rows{};
+  const unsigned b_width = std::min<unsigned>(op.b_width, 2);
   m_fault = Fault::operand;
   for (unsigned i = 0; uses_d && i < d_width; ++i)
     if ((d_rows[i] = operand_row(in.d, i, loop_variables, active_loops)) == nullptr) {
@@ -527,10 +572,11 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
       error = operand_error(in.a, i, loop_variables, active_loops);
       return false;
     }
-  if (uses_b && (b_row = operand_row(in.b, 0, loop_variables, active_loops)) == nullptr) {
-    error = operand_error(in.b, 0, loop_variables, active_loops);
-    return false;
-  }
+  for (unsigned i = 0; uses_b && i < b_width; ++i)
+    if ((b_rows[i] = operand_row(in.b, i, loop_variables, active_loops)) == nullptr) {
+      error = operand_error(in.b, i, loop_variables, active_loops);
+      return false;
+    }
 
   if (in.opcode == Opcode::op_lut && !lut_indices_fit(a_rows[0], a_rows[1], error)) return false;
 
@@ -541,7 +587,7 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   uint32_t* lane_stores = m_count_lanes ? m_lane_stores[static_cast<unsigned>(in.stage)].data() : nullptr;
   if (m_count_lanes)
     for (size_t l = 0; l < n; ++l) lane_useful[l] += m[l];
-  m_activity.cmem_reads += n * ((in.a.in_cmem && uses_a ? a_width : 0) + (in.b.in_cmem && uses_b ? 1 : 0));
+  m_activity.cmem_reads += n * ((in.a.in_cmem && uses_a ? a_width : 0) + (in.b.in_cmem && uses_b ? b_width : 0));
   const bool d_masked = in.d.in_cmem;
   // Byte `byte` of d from spare row `spare`: a masked store into CMEM, or
   // the spare row renamed to the register.
@@ -586,10 +632,18 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
   uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
   uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-  const unsigned written = arithmetic_lanes<0>(in.opcode, n, a, a_rows[1], b_row, m, out, high, middle, low, c, z, s);
+  const unsigned written =
+      arithmetic_lanes<0>(in.opcode, n, a, a_rows[1], b_rows[0], b_rows[1], m, out, high, middle, low, c, z, s);
   if (written == 0) {
     error = "instruction " + std::string(op_info(in.opcode).mnemonic) + " does no lane work";
     return false;
+  }
+  if (written == 2) {
+    if (uses_d) {
+      store(SCRATCH_PRODUCT, 0, d_rows[0]);
+      store(SCRATCH_PRODUCT + 1, 1, d_rows[1]);
+    }
+    return true;
   }
   if (written == 3) {
     store(SCRATCH_PRODUCT, 0, d_rows[0]);
@@ -673,6 +727,7 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
     const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
     const uint8_t* a = op.uses_a ? operand(in.a, 0) : nullptr;
     const uint8_t* b = op.uses_b ? operand(in.b, 0) : nullptr;
+    const uint8_t* b_low = op.uses_b && op.b_width > 1 ? operand(in.b, 1) : nullptr;
     const auto store = [&](unsigned spare, unsigned byte) {
       const uint8_t* value = row(m_spare_rows[spare]);
       if (in.d.in_cmem) {
@@ -685,13 +740,20 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
       }
     };
     // The spare rows move (a result renamed into a register): found anew per instruction.
-    const bool wide_a = op.a_width > 1;  // the multiplicand's or the dividend's low byte
+    const bool wide_a = op.a_width > 1;  // the multiplicand's, the dividend's or a pair's low byte
     uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
     uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
     uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, wide_a ? operand(in.a, 1) : nullptr, b, m, out,
-                                                      high, middle, low, c, z, s);
+    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, wide_a ? operand(in.a, 1) : nullptr, b, b_low, m,
+                                                      out, high, middle, low, c, z, s);
     if (written == 0) continue;  // nothing else is in a trace
+    if (written == 2) {
+      if (op.uses_d) {
+        store(SCRATCH_PRODUCT, 0);
+        store(SCRATCH_PRODUCT + 1, 1);
+      }
+      continue;
+    }
     if (written == 3) {
       store(SCRATCH_PRODUCT, 0);
       store(SCRATCH_PRODUCT + 1, 1);

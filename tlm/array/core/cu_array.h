@@ -84,6 +84,10 @@ class CuArray {
   bool execute(const Instruction& instruction, const LoopVariables& loop_variables, unsigned active_loops,
                std::string& error);
 
+  // endloopany's wired OR: whether any lane whose mask is set has `cond`
+  // on its flags.
+  bool any_active_holds(Cond cond);
+
   const ArrayActivity& activity() const { return m_activity; }
   void add_activity(const ArrayActivity& more);
 
@@ -192,7 +196,7 @@ class CuArray {
 
   // What execute() needs of each opcode, from the ISA's tables.
   struct OpLanes {
-    uint8_t d_width = 0, a_width = 0;
+    uint8_t d_width = 0, a_width = 0, b_width = 0;
     bool uses_d = false, uses_a = false, uses_b = false;
   };
 

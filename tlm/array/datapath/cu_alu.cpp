@@ -89,6 +89,31 @@ AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags) {
   }
 }
 
+PairResult cu_pair_alu(Opcode opcode, uint16_t a, uint16_t b, CuFlags flags) {
+  const auto high = [](uint16_t value) { return static_cast<uint8_t>(value >> 8); };
+  const auto low = [](uint16_t value) { return static_cast<uint8_t>(value); };
+  PairResult result;
+  switch (opcode) {
+    case Opcode::op_mov16:
+      result.value = a;
+      result.flags = {flags.c, a == 0, (a & 0x8000u) != 0};
+      return result;
+    case Opcode::op_add16:
+    case Opcode::op_sub16:
+    case Opcode::op_cmp16: {
+      const bool subtract = opcode != Opcode::op_add16;
+      const uint16_t addend = subtract ? static_cast<uint16_t>(~b) : b;
+      const AluResult low_pass = add_with_carry(low(a), low(addend), subtract);
+      const AluResult high_pass = add_with_carry(high(a), high(addend), low_pass.flags.c);
+      result.value = static_cast<uint16_t>(high_pass.value << 8 | low_pass.value);
+      result.flags = {high_pass.flags.c, low_pass.flags.z && high_pass.flags.z, high_pass.flags.s};
+      result.writes = opcode != Opcode::op_cmp16;
+      return result;
+    }
+    default: return {0, flags, false};
+  }
+}
+
 MulResult cu_mul(uint16_t multiplicand, uint8_t multiplier) {
   // Sign-extend the multiplicand to the 24-bit accumulator's width; each of
   // the 8 steps adds it, shifted by the step, where the multiplier's bit is

@@ -1,6 +1,6 @@
 // One CU's datapath, bit-exact, one lane at a time: the 8-bit ALU with its
-// flags, the 16 x 8 signed multiplier, the 16 / 8 unsigned divider and the
-// mask conditions. This is the
+// flags, the 16-bit operations on register pairs, the 16 x 8 signed
+// multiplier, the 16 / 8 unsigned divider and the mask conditions. This is the
 // reference the vectorised array core (core/cu_array.h) and the Verilog
 // twin (rtl_models/array/cu_datapath.sv) are both checked against.
 //
@@ -38,6 +38,21 @@ AluResult cu_alu(Opcode opcode, uint8_t a, uint8_t b, CuFlags flags);
 
 // True for the opcodes cu_alu() computes.
 bool is_alu_opcode(Opcode opcode);
+
+// The 16-bit operations on register pairs (add16, sub16, cmp16, mov16,
+// behind array.features.wide_ops), as the 8-bit datapath computes them in
+// two passes: the low bytes with the operation's carry in, then the high
+// bytes with the low pass's carry, as add and adc (sub and sbc) would. C is
+// the high pass's carry out (no borrow after a subtraction), Z is set when
+// all 16 bits are 0 (not the high byte's alone, as after adc), S is bit 15.
+// mov16 keeps C.
+struct PairResult {
+  uint16_t value = 0;
+  CuFlags flags;
+  bool writes = true;  // false for cmp16
+};
+// Returns the flags unchanged and writes == false for any other opcode.
+PairResult cu_pair_alu(Opcode opcode, uint16_t a, uint16_t b, CuFlags flags);
 
 // The signed 16 x 8 multiply (mul, mulm): the 24-bit two's complement
 // product, computed as the hardware does it, by shift-and-add over the 8

@@ -247,6 +247,20 @@ Decoded decode(uint64_t word) {
         return result;
       break;
   }
+  if (is_pair_op(info->opcode) && info->operands != OperandPattern::ab) {
+    // The result's pair and a source's are the same pair or share no
+    // register: a datapath of 8 bits computes the low byte first and
+    // writes d + 1 before it reads the sources' high bytes, so a pair
+    // overlapping by one register would read its own result.
+    const auto straddles = [](const Operand& x, const Operand& y) {
+      return x.value != y.value && x.value < y.value + 2 && y.value < x.value + 2;
+    };
+    const bool uses_b = info->operands == OperandPattern::dab;
+    if (straddles(in.d, in.a) || (uses_b && straddles(in.d, in.b))) {
+      result.error = name + ": the result pair d:d+1 overlaps a source pair by one register";
+      return result;
+    }
+  }
   if (info->opcode == Opcode::op_mul || info->opcode == Opcode::op_mulm) {
     // The product must not overlap a source: the steps read the sources
     // while they accumulate into d.
@@ -261,7 +275,17 @@ Decoded decode(uint64_t word) {
   return result;
 }
 
+bool is_pair_op(Opcode opcode) {
+  return opcode == Opcode::op_add16 || opcode == Opcode::op_sub16 || opcode == Opcode::op_cmp16 ||
+         opcode == Opcode::op_mov16;
+}
+
+bool closes_loop(Opcode opcode) {
+  return opcode == Opcode::op_endloop || opcode == Opcode::op_endloopany;
+}
+
 unsigned operand_width(Opcode opcode, char which) {
+  if (is_pair_op(opcode)) return 2;
   if (opcode == Opcode::op_mul || opcode == Opcode::op_mulm) {
     if (which == 'd') return 3;
     if (which == 'a') return 2;

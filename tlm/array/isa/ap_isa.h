@@ -22,8 +22,8 @@
 // the condition in a; `loop` keeps the nesting level in d, the start in a
 // and the step in b.
 //
-// Multi-byte values (the multiply's 16-bit source and 24-bit product) are
-// big-endian: the most significant byte at the lowest register number or
+// Multi-byte values (the multiply's 16-bit source and 24-bit product, the
+// register pairs of the 16-bit operations) are big-endian: the most significant byte at the lowest register number or
 // CMEM address, the order the host's CIU packing writes them (high bytes,
 // then low bytes).
 #pragma once
@@ -156,8 +156,16 @@ std::string check_limits(const Instruction& instruction, unsigned registers, uns
 
 // How many consecutive bytes operand `which` ('d', 'a' or 'b') of the
 // instruction covers (3, 2 and 1 for the multiply's; the divide's dividend
-// a is 2; the lookup's index a and entry d are 2; else 1).
+// a is 2; the lookup's index a and entry d are 2; every operand of the
+// 16-bit operations is a register pair, 2; else 1).
 unsigned operand_width(Opcode opcode, char which);
+
+// The 16-bit operations on register pairs (add16, sub16, cmp16, mov16;
+// array.features.wide_ops).
+bool is_pair_op(Opcode opcode);
+// The instructions that end the innermost loop's body: endloop, and
+// endloopany, which also leaves the loop early (array.features.wired_or_loop).
+bool closes_loop(Opcode opcode);
 
 // One line of assembly for the instruction (the disassembler's format, which
 // the assembler reads back).
