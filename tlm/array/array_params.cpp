@@ -62,7 +62,8 @@ ParamGroup ArrayParams::parameters() {
               "16-bit entries of the lookup table lut reads (with array.features.lut)"),
       integer("array.lut.ports", 1, 1, 1024, "ports",
               "lookups the table serves per cycle (with array.features.lut): without skew a lut waits "
-              "ceil(CUs / ports) - 1 cycles; with skew each lut holds a port for (CUs - 1) x K + 1 cycles"),
+              "ceil(CUs / ports) - 1 cycles; with lane skew each lut holds a port for (CUs - 1) x K + 1 cycles; "
+              "with row skew a row's lookups take ceil(columns / ports) cycles, at most K"),
   };
   for (const ap::OpInfo& info : ap::all_ops())
     specs.push_back(integer("array.cycles." + std::string(info.mnemonic), info.cycles, 0, 100000, "cycles",
