@@ -332,19 +332,10 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
   m_lut_port_free.assign(m_skew_unit == IssueSkew::lane ? m_lut_ports : 0, 0);
   m_zbuf_port_free = 0;
   m_zbuf_row_free.assign(m_geometry.rows, 0);
-  bool zbuf_sent = false;
-  // Row r runs the stream row_delay x r cycles after row 0 (0 in lockstep).
-  const uint64_t row_delay = m_skew_unit == IssueSkew::row ? m_skew : 0;
-  // The AC waits before a zsend or a halt until, in every row, the port has
-  // taken that row's pixels of the earlier zsends by the time the row runs
-  // it (each CU holds one pixel until it is taken): the whole stream
-  // stalls, the rows keep their delays (counted in that word and stage).
+  // The AC waits for the z-buffer's port before a zsend or a halt (counted
+  // in that word and its stage).
   const auto wait_for_zbuf_port = [&](const Instruction& in) {
-    uint64_t stall = 0;
-    for (unsigned r = 0; r < m_geometry.rows; ++r) {
-      const uint64_t runs_at = result.cycles + row_delay * r;
-      if (m_zbuf_row_free[r] > runs_at) stall = std::max(stall, m_zbuf_row_free[r] - runs_at);
-    }
+    const uint64_t stall = zbuf_stall(result.cycles);
     if (stall == 0) return;
     result.cycles += stall;
     m_activity.zbuf_stall_cycles += stall;
@@ -417,24 +408,8 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     if (!result.ok) break;
     if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
       m_stage_changes.push_back({result.cycles, in.stage});
-    if (in.opcode == Opcode::op_zsend || (halted && zbuf_sent)) wait_for_zbuf_port(in);
-    if (in.opcode == Opcode::op_zsend) {
-      zbuf_sent = true;
-      const std::vector<SentPixel>& pixels = array.sent_pixels();
-      // Row r's pixels reach the port row_delay x r after the issue; the
-      // port takes sends in program order.
-      const SendArrival arrival{m_geometry.columns, static_cast<unsigned>(row_delay),
-                                m_zbuf_port_free > result.cycles ? m_zbuf_port_free - result.cycles : 0};
-      const SendTimes times = m_pixel_port->send(pixels, arrival);
-      for (size_t i = 0; i < pixels.size(); ++i) {
-        const uint64_t taken = result.cycles + times.cycles[i] + 1;
-        uint64_t& row_free = m_zbuf_row_free[pixels[i].lane / m_geometry.columns];
-        row_free = std::max(row_free, taken);
-        m_zbuf_port_free = std::max(m_zbuf_port_free, taken);
-      }
-      m_activity.zbuf_port_cycles += times.busy;
-      m_activity.zbuf_pixels += pixels.size();
-    }
+    if (in.opcode == Opcode::op_zsend || halted) wait_for_zbuf_port(in);
+    if (in.opcode == Opcode::op_zsend) send_to_zbuf(result.cycles, array.sent_pixels());
     if (in.opcode == Opcode::op_lut && !m_lut_port_free.empty()) {
       // The port that frees first; the AC waits for it when every one is
       // held by an earlier lut's lookups still running down the chain.
@@ -465,6 +440,39 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
   }
   fold_stage();
   return result;
+}
+
+uint64_t ArrayController::zbuf_row_delay() const {
+  return m_skew_unit == IssueSkew::row ? m_skew : 0;
+}
+
+uint64_t ArrayController::zbuf_stall(uint64_t now) const {
+  // Row r runs the stream at now + K r (lockstep: K = 0); each of its CUs
+  // holds one pixel until the port takes it, so the whole stream waits
+  // until every row's earlier pixels are taken when that row runs it (the
+  // rows keep their delays).
+  uint64_t stall = 0;
+  for (unsigned r = 0; r < m_zbuf_row_free.size(); ++r) {
+    const uint64_t runs_at = now + zbuf_row_delay() * r;
+    if (m_zbuf_row_free[r] > runs_at) stall = std::max(stall, m_zbuf_row_free[r] - runs_at);
+  }
+  return stall;
+}
+
+void ArrayController::send_to_zbuf(uint64_t now, const std::vector<SentPixel>& pixels) {
+  // Row r's pixels reach the port K r after the issue; the port takes sends
+  // in program order, so none before the previous send's last.
+  const SendArrival arrival{m_geometry.columns, static_cast<unsigned>(zbuf_row_delay()),
+                            m_zbuf_port_free > now ? m_zbuf_port_free - now : 0};
+  const SendTimes times = m_pixel_port->send(pixels, arrival);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const uint64_t taken = now + times.cycles[i] + 1;
+    uint64_t& row_free = m_zbuf_row_free[pixels[i].lane / m_geometry.columns];
+    row_free = std::max(row_free, taken);
+    m_zbuf_port_free = std::max(m_zbuf_port_free, taken);
+  }
+  m_activity.zbuf_port_cycles += times.busy;
+  m_activity.zbuf_pixels += pixels.size();
 }
 
 void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult& result) {

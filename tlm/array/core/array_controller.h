@@ -115,9 +115,11 @@ class ArrayController {
   IssueSkew issue_skew() const { return m_skew_unit; }
   // The lookup table's ports (array.lut.ports): without skew, P lanes look
   // up per cycle, so a lut takes ceil(lanes / P) - 1 cycles more than its
-  // array.cycles.lut; with skew, each lut holds one port while its lookups
-  // run down the chain, (lanes - 1) x K + 1 cycles, and a lut finding every
-  // port held waits for the first to free.
+  // array.cycles.lut; with lane skew, each lut holds one port while its
+  // lookups run down the chain, (lanes - 1) x K + 1 cycles, and a lut
+  // finding every port held waits for the first to free; with row skew, a
+  // row's lookups take ceil(columns / P) cycles, ceil(columns / P) - 1 more
+  // than array.cycles.lut.
   void set_lut_ports(unsigned ports);
   // The z-buffer unit's port that zsend sends to (tlm/zbuf), or nullptr:
   // without one, a word holding zsend is refused like a disabled one. The
@@ -282,6 +284,12 @@ class ArrayController {
   // every pixel sent, and per row every pixel of that row.
   uint64_t m_zbuf_port_free = 0;
   std::vector<uint64_t> m_zbuf_row_free;
+  // The port's reservation (tlm/zbuf/README.md, "Timing"): K under row
+  // skew, else 0; the stall before a zsend or halt due at `now`; a zsend's
+  // pixels, issued at `now`, sent and reserved.
+  uint64_t zbuf_row_delay() const;
+  uint64_t zbuf_stall(uint64_t now) const;
+  void send_to_zbuf(uint64_t now, const std::vector<SentPixel>& pixels);
   // The extra cycles of one lut without skew (folded into its slot's cost).
   unsigned lut_lockstep_stall() const;
   std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written
