@@ -4,7 +4,7 @@
 Delayed execution and the lookup table (tlm/array/README.md) come with
 parameters of their own (INERT below: the skew's K, the table's size and
 ports, the lut's cycles) that only count with their switch on
-(array.issue_skew = lane, array.features.lut = true); so does the z-buffer
+(array.issue_skew = lane or row, array.features.lut = true); so does the z-buffer
 unit (tlm/zbuf/README.md: its size, ports, pairing rule and energies, and
 zsend's cycles, with zbuf.enabled and array.features.zsend off), and so do
 the cycles of MorphoSys's 16-bit operations and wired-OR loop (with

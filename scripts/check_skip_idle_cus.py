@@ -13,6 +13,10 @@ runs. Exits 1 naming the first scene that differs, and where.
 
   check_skip_idle_cus.py --soc-sim build/default/bin/soc_sim [--frames N]
       [--backends ap-tile,ap-pixel] [--apps a,b] [--work-dir DIR] [--jobs J]
+      [--set KEY=VALUE ...]
+
+--set passes a setting to every run (both sides), e.g. array.issue_skew=row
+to check skipping under row-sequential issue.
 """
 
 import argparse
@@ -35,7 +39,7 @@ SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 CMEM_ENERGY = ["--set", "power.cu_array.cmem_bytes_read_pj=1", "--set", "power.cu_array.cmem_bytes_written_pj=3"]
 
 
-def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path) -> str:
+def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: pathlib.Path, settings: list) -> str:
     command = [
         soc_sim,
         "--backend",
@@ -54,6 +58,8 @@ def run(soc_sim: str, backend: str, app: str, frames: int, skip: bool, out: path
         f"{SWITCH}={str(skip).lower()}",
     ]
     command += SIZE + CMEM_ENERGY
+    for setting in settings:
+        command += ["--set", setting]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         return f"soc_sim exited {result.returncode}: {' '.join(command)}\n{result.stderr[-2000:]}"
@@ -86,10 +92,10 @@ def compare(on: pathlib.Path, off: pathlib.Path) -> str:
     return first_difference(stats_on, stats_off, "stats.json", ("on", "off"))
 
 
-def check(soc_sim: str, backend: str, app: str, frames: int, work: pathlib.Path) -> str:
+def check(soc_sim: str, backend: str, app: str, frames: int, work: pathlib.Path, settings: list) -> str:
     on, off = work / f"{backend}_{app}_on", work / f"{backend}_{app}_off"
     for skip, out in ((True, on), (False, off)):
-        failure = run(soc_sim, backend, app, frames, skip, out)
+        failure = run(soc_sim, backend, app, frames, skip, out, settings)
         if failure:
             return failure
     difference = compare(on, off)
@@ -107,6 +113,7 @@ def main() -> int:
     parser.add_argument("--apps", default="", help="comma-separated scenes (default: every GL scene)")
     parser.add_argument("--work-dir", default="", help="kept, with the runs that differ (default: a temporary one)")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="a setting for every run")
     args = parser.parse_args()
     apps = args.apps.split(",") if args.apps else gl_scenes(args.soc_sim)
     work = pathlib.Path(args.work_dir or tempfile.mkdtemp(prefix="check_skip_idle_cus_"))
@@ -114,7 +121,7 @@ def main() -> int:
     cases = [(backend, app) for backend in args.backends.split(",") for app in apps]
     failures = 0
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        results = pool.map(lambda case: check(args.soc_sim, case[0], case[1], args.frames, work), cases)
+        results = pool.map(lambda case: check(args.soc_sim, case[0], case[1], args.frames, work, args.set), cases)
         for (backend, app), difference in zip(cases, results):
             if difference:
                 failures += 1

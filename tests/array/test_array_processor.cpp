@@ -10,6 +10,7 @@
 #include <array>
 #include <cstring>
 #include <map>
+#include <sstream>
 #include <string>
 
 #include "array/array_processor.h"
@@ -448,16 +449,22 @@ TEST(ArrayParams, FeatureSwitchesAreOffByDefaultAndEachEnablesItsInstruction) {
   EXPECT_TRUE(g_bench->blender.core().array().row_ring());
 }
 
+constexpr const char* ROW_LUT_TOO_SLOW =
+    "array.issue_skew=row array.issue_skew_cycles=5 array.features.lut=true array.lut.ports=4";
+
 // What each bad setting was refused with ("" if accepted), worked out in
 // sc_main before the simulation: an exception thrown on sc_main's stack
 // after the kernel has switched to its processes and back confuses the
 // address sanitizer's view of the stack (the sanitize preset).
 std::map<std::string, std::string> g_refusals;
 
-std::string refusal(const std::string& setting) {
+// `settings`: one or more key=value, separated by spaces.
+std::string refusal(const std::string& settings) {
   try {
     Config config({ArrayParams::parameters()});
-    config.apply_override(setting);
+    std::istringstream words(settings);
+    for (std::string setting; words >> setting;) config.apply_override(setting);
+    config.validate();
     (void)ArrayParams::from_config(config);
   } catch (const std::exception& error) {
     return error.what();
@@ -465,8 +472,15 @@ std::string refusal(const std::string& setting) {
   return "";
 }
 
-const char* const BAD_SETTINGS[] = {"array.issue_skew=column", "array.issue_skew_cycles=0", "array.lut.entries=65537",
-                                    "array.lut.ports=0"};
+// The last: under row skew a row's 24 lookups on 4 ports take 6 cycles,
+// more than K = 5.
+const char* const BAD_SETTINGS[] = {
+    "array.issue_skew=column", "array.issue_skew_cycles=0", "array.issue_skew=row array.issue_skew_cycles=1001",
+    "array.lut.entries=65537", "array.lut.ports=0",         ROW_LUT_TOO_SLOW};
+const char* const GOOD_SETTINGS[] = {
+    "array.issue_skew=row array.issue_skew_cycles=4",
+    "array.issue_skew=row array.issue_skew_cycles=6 array.features.lut=true array.lut.ports=4",
+    "array.issue_skew=row array.issue_skew_cycles=5 array.lut.ports=4"};
 
 // The wired OR under delayed execution: each setting alone is fine, the
 // two together are refused by the group's validation.
@@ -485,6 +499,7 @@ std::string combination_refusal() {
 void work_out_refusals() {
   for (const char* bad : BAD_SETTINGS) g_refusals[bad] = refusal(bad);
   g_refusals["wired_or_loop under skew"] = combination_refusal();
+  for (const char* good : GOOD_SETTINGS) g_refusals[good] = refusal(good);
 }
 
 TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
@@ -494,8 +509,15 @@ TEST(ArrayParams, BadIssueSkewIsRefusedNamingTheKeyAndValue) {
   for (const char* bad : BAD_SETTINGS) EXPECT_NE(g_refusals.at(bad), "") << bad << " accepted";
   const std::string& wired = g_refusals.at("wired_or_loop under skew");
   EXPECT_NE(wired.find("array.features.wired_or_loop=true with array.issue_skew=lane"), std::string::npos) << wired;
+  for (const char* good : GOOD_SETTINGS) EXPECT_EQ(g_refusals.at(good), "") << good;
+  const std::string& range = g_refusals.at("array.issue_skew=row array.issue_skew_cycles=1001");
+  EXPECT_NE(range.find("array.issue_skew_cycles"), std::string::npos) << range;
+  const std::string& lut = g_refusals.at(ROW_LUT_TOO_SLOW);
+  for (const char* key : {"array.issue_skew", "array.lut.ports", "array.columns", "array.issue_skew_cycles"})
+    EXPECT_NE(lut.find(key), std::string::npos) << lut;
   const ArrayParams defaults = ArrayParams::defaults();
   EXPECT_EQ(defaults.issue_skew_cycles, 0u);
+  EXPECT_EQ(defaults.issue_skew, ap::IssueSkew::none);
   EXPECT_FALSE(defaults.lut_enabled());
 }
 

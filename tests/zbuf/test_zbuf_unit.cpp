@@ -202,6 +202,27 @@ TEST(ZbufUnit, AProgramsSendsFillThePlanesAndTheWindowWaitsForTheProgram) {
   EXPECT_EQ(energy[0].counts.at("pixels"), 96.0);
 }
 
+// The same program under row-sequential issue (K = 4, set on the core): the
+// halt waits in row r for its row's pixels (taken to 12 (r + 1)), 34 cycles
+// for row 3, and the last row halts 3 x 4 cycles after the first: 2 + 34 + 1
+// + 12 = 49, the time of the interrupt.
+TEST(ZbufUnit, UnderRowSkewTheProgramEndsWhenTheLastRowHasHalted) {
+  Bench& b = *g_bench;
+  b.array.core().set_issue_skew(ap::IssueSkew::row, 4);
+  const uint64_t stalls = b.array.core().activity().zbuf_stall_cycles;
+  test::run_thread([&] {
+    const sc_time at = sc_core::sc_time_stamp();
+    ASSERT_EQ(write32(AC + aregs::START, 1), tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(b.array.busy_until(), at + CYCLE * (1.0 + 49));
+    sc_core::wait(b.array.busy_until() - sc_core::sc_time_stamp());
+    EXPECT_EQ(read32(AC + aregs::CYCLES), 49u);
+    EXPECT_EQ(read32(ZBUF + zregs::PIXELS), 2 * 96u);
+  });
+  EXPECT_EQ(b.array.core().activity().zbuf_stall_cycles - stalls, 34u);
+  EXPECT_EQ(b.array.core().activity().skew_cycles, 12u);
+  b.array.core().set_issue_skew(ap::IssueSkew::none, 0);
+}
+
 TEST(ZbufUnit, BadColourWindowAccessesAreAddressErrors) {
   test::ReportCapture capture;
   test::run_thread([&] {
@@ -246,6 +267,7 @@ const std::vector<std::vector<std::string>> REFUSAL_CASES = {
     {"zbuf.ports=0"},
     {"array.features.zsend=true"},
     {"array.features.zsend=true", "zbuf.enabled=true", "array.issue_skew=lane"},
+    {"array.features.zsend=true", "zbuf.enabled=true", "array.issue_skew=row"},
     {"array.features.zsend=true", "zbuf.enabled=true"}};
 
 std::string refusal(const std::vector<std::string>& settings) {
@@ -262,7 +284,9 @@ TEST(ZbufParams, BadConfigurationsAreRefusedNamingTheKey) {
   const std::string no_unit = refusal({"array.features.zsend=true"});
   EXPECT_NE(no_unit.find("zbuf.enabled"), std::string::npos) << no_unit;
   const std::string skew = refusal({"array.features.zsend=true", "zbuf.enabled=true", "array.issue_skew=lane"});
-  EXPECT_NE(skew.find("array.issue_skew"), std::string::npos) << skew;
+  EXPECT_NE(skew.find("array.issue_skew=lane"), std::string::npos) << skew;
+  // Row-sequential issue has its reservation per row.
+  EXPECT_EQ(refusal({"array.features.zsend=true", "zbuf.enabled=true", "array.issue_skew=row"}), "");
   EXPECT_EQ(refusal({"array.features.zsend=true", "zbuf.enabled=true"}), "");
   // Off by default: no unit, no zsend.
   const ZbufParams defaults = ZbufParams::defaults();

@@ -8,6 +8,25 @@
 
 namespace tessera {
 
+namespace {
+
+// array.issue_skew = row: a row's lookups in the table take
+// ceil(columns / ports) cycles, which must end before the next row's begin
+// (tlm/array/README.md, "The lookup table").
+void check_row_skew(const Config& config) {
+  if (config.get_string("array.issue_skew") != "row" || !config.get_bool("array.features.lut")) return;
+  const uint64_t columns = config.get_uint("array.columns"), ports = config.get_uint("array.lut.ports");
+  const uint64_t row_cycles = (columns + ports - 1) / ports, skew = config.get_uint("array.issue_skew_cycles");
+  if (row_cycles > skew)
+    throw ConfigError(
+        "configuration: impossible combination: array.features.lut=true with array.issue_skew=row "
+        "needs a row's lookups, ceil(array.columns / array.lut.ports) = " +
+        std::to_string(row_cycles) + " cycles, within array.issue_skew_cycles (" + std::to_string(skew) +
+        "): the rows' lookups would collide on the table's ports");
+}
+
+}  // namespace
+
 ParamGroup ArrayParams::parameters() {
   using param::integer;
   std::vector<ParamSpec> specs = {
@@ -26,13 +45,15 @@ ParamGroup ArrayParams::parameters() {
                      "exactly (a simulation speed-up: results, cycles and statistics are the same either way)"),
       integer("array.cycles.cmem_operand", 1, 0, 1000, "cycles",
               "extra cycles of an instruction of form RM with an operand in CMEM (calibrated: docs/calibration.md)"),
-      param::choice("array.issue_skew", "none", {"none", "lane"},
-                    "delayed execution (the Image Blender's): none, every CU runs each instruction at once (the "
-                    "J2210); lane, CU i runs it array.issue_skew_cycles after CU i - 1, the CUs chained in "
-                    "row-major order (tlm/array/README.md, \"Delayed execution\")"),
+      param::choice("array.issue_skew", "none", {"none", "lane", "row"},
+                    "delayed execution: none, every CU runs each instruction at once (the J2210); lane (the Image "
+                    "Blender's), CU i runs it array.issue_skew_cycles after CU i - 1, the CUs chained in "
+                    "row-major order; row (MorphoSys's row-sequential issue), row r runs it "
+                    "array.issue_skew_cycles after row r - 1, the CUs of a row together (tlm/array/README.md, "
+                    "\"Delayed execution\")"),
       integer("array.issue_skew_cycles", 1, 1, 1000, "cycles",
-              "with array.issue_skew = lane: the delay K between one CU of the chain and the next; a program "
-              "takes (CUs - 1) x K cycles more"),
+              "with array.issue_skew = lane or row: the delay K between one CU of the chain (one row) and the "
+              "next; a program takes (CUs - 1) x K ((rows - 1) x K) cycles more"),
       param::boolean("array.row_ring", false,
                      "closes each CU row into a ring for the neighbour reads: column 0's left is the row's last "
                      "column and the last column's right is column 0 (tlm/array/README.md, \"The row ring\"); off, "
@@ -41,7 +62,8 @@ ParamGroup ArrayParams::parameters() {
               "16-bit entries of the lookup table lut reads (with array.features.lut)"),
       integer("array.lut.ports", 1, 1, 1024, "ports",
               "lookups the table serves per cycle (with array.features.lut): without skew a lut waits "
-              "ceil(CUs / ports) - 1 cycles; with skew each lut holds a port for (CUs - 1) x K + 1 cycles"),
+              "ceil(CUs / ports) - 1 cycles; with lane skew each lut holds a port for (CUs - 1) x K + 1 cycles; "
+              "with row skew a row's lookups take ceil(columns / ports) cycles, at most K"),
   };
   for (const ap::OpInfo& info : ap::all_ops())
     specs.push_back(integer("array.cycles." + std::string(info.mnemonic), info.cycles, 0, 100000, "cycles",
@@ -75,6 +97,7 @@ ParamGroup ArrayParams::parameters() {
                   "array.issue_skew=" +
                   config.get_string("array.issue_skew") +
                   ": endloopany's wired OR is modelled for lockstep issue only");
+            check_row_skew(config);
           }};
 }
 
@@ -88,9 +111,10 @@ ArrayParams ArrayParams::from_config(const Config& config) {
   p.max_program_cycles = config.get_uint("array.max_program_cycles");
   p.skip_idle_cus = config.get_bool("array.skip_idle_cus");
   p.cycles.cmem_operand = static_cast<unsigned>(config.get_uint("array.cycles.cmem_operand"));
-  p.issue_skew_cycles = config.get_string("array.issue_skew") == "lane"
-                            ? static_cast<unsigned>(config.get_uint("array.issue_skew_cycles"))
-                            : 0;
+  const std::string skew = config.get_string("array.issue_skew");
+  p.issue_skew = skew == "lane" ? ap::IssueSkew::lane : skew == "row" ? ap::IssueSkew::row : ap::IssueSkew::none;
+  p.issue_skew_cycles =
+      p.issue_skew != ap::IssueSkew::none ? static_cast<unsigned>(config.get_uint("array.issue_skew_cycles")) : 0;
   p.row_ring = config.get_bool("array.row_ring");
   p.lut_entries = static_cast<unsigned>(config.get_uint("array.lut.entries"));
   p.lut_ports = static_cast<unsigned>(config.get_uint("array.lut.ports"));

@@ -62,12 +62,12 @@ ArrayProcessor::ArrayProcessor(sc_core::sc_module_name name, const ArrayParams& 
     throw std::invalid_argument(std::string(this->name()) + ": impossible array geometry");
   m_core.skip_idle_cus(params.skip_idle_cus);
   m_core.enable_ops(params.enabled_ops);
-  m_core.set_issue_skew(params.issue_skew_cycles);
+  m_core.set_issue_skew(params.issue_skew, params.issue_skew_cycles);
   m_core.array().set_row_ring(params.row_ring);
   if (params.issue_skew_cycles != 0)
     m_skew_cycles = &counter("issue_skew.cycles",
                              "cycles from the first CU's halt to the last CU's, (CUs - 1) x "
-                             "array.issue_skew_cycles per program (in cycles.total)");
+                             "array.issue_skew_cycles per program ((rows - 1) x it by row; in cycles.total)");
   if (params.lut_enabled()) {
     m_core.set_lut_ports(params.lut_ports);
     m_core.array().set_lut_entries(params.lut_entries);

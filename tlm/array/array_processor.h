@@ -45,8 +45,9 @@ struct ArrayParams {
   bool skip_idle_cus = true;
   // The J2210's instructions, and those whose array.features.<feature> is on.
   ap::EnabledOps enabled_ops = ap::j2210_ops();
-  // Delayed execution's K (array.issue_skew_cycles when array.issue_skew =
-  // lane), 0 for lockstep.
+  // Delayed execution (array.issue_skew) and its K (array.issue_skew_cycles
+  // when array.issue_skew is lane or row), 0 for lockstep.
+  ap::IssueSkew issue_skew = ap::IssueSkew::none;
   unsigned issue_skew_cycles = 0;
   bool row_ring = false;  // array.row_ring
   unsigned lut_entries = 256;

@@ -59,9 +59,9 @@ ZbufUnit::ZbufUnit(sc_core::sc_module_name name, const ZbufParams& params, const
   colour_in.register_transport_dbg(this, &ZbufUnit::colour_transport_dbg);
 }
 
-uint64_t ZbufUnit::send(const std::vector<ap::SentPixel>& pixels) {
+ap::SendTimes ZbufUnit::send(const std::vector<ap::SentPixel>& pixels, const ap::SendArrival& arrival) {
   mark_used();
-  const uint64_t busy = m_core.send(pixels);
+  ap::SendTimes times = m_core.send(pixels, arrival);
   const zbuf::ZbufCounts& c = m_core.counts();
   m_sends.value = c.sends;
   m_pixels.value = c.pixels;
@@ -70,7 +70,7 @@ uint64_t ZbufUnit::send(const std::vector<ap::SentPixel>& pixels) {
   m_clipped.value = c.clipped;
   m_conflicts.value = c.conflicts;
   m_port_cycles.value = c.port_cycles;
-  return busy;
+  return times;
 }
 
 sc_time ZbufUnit::free_from(const sc_time& when) const {

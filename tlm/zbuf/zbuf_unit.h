@@ -67,7 +67,7 @@ class ZbufUnit : public Peripheral, public ap::PixelPort {
   }
 
   // ap::PixelPort: the array's zsend, during its controller's run.
-  uint64_t send(const std::vector<ap::SentPixel>& pixels) override;
+  ap::SendTimes send(const std::vector<ap::SentPixel>& pixels, const ap::SendArrival& arrival) override;
 
   // When the planes are final: the array's program and any clear done.
   sc_core::sc_time free_from(const sc_core::sc_time& when) const;

@@ -1,8 +1,8 @@
 // The z-buffer unit's core (tlm/zbuf/core) and the array's zsend
 // (tlm/array/core) against a scalar model: random sends from CUs with random
-// masks, ports 1..4, the pairing rule on and off, many pixels at one entry in
-// one cycle; the port's reservation on hand-made instruction streams; the
-// refusals.
+// masks, ports 1..4, the pairing rule on and off, lockstep and row-sequential
+// issue, many pixels at one entry in one cycle; the port's reservation on
+// hand-made instruction streams, lockstep and per row; the refusals.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -44,10 +44,10 @@ Instruction zsend(Operand a, Operand b) {
   return make(Opcode::op_zsend, {}, a, b);
 }
 
-ap::ArrayGeometry geometry() {
+ap::ArrayGeometry geometry(unsigned columns = COLUMNS, unsigned rows = ROWS) {
   ap::ArrayGeometry g;
-  g.columns = COLUMNS;
-  g.rows = ROWS;
+  g.columns = columns;
+  g.rows = rows;
   g.registers = 8;
   g.cmem_bytes = 256;
   return g;
@@ -56,9 +56,11 @@ ap::ArrayGeometry geometry() {
 // An array whose zsend goes to a z-buffer core, with a program loaded.
 struct Machine {
   ZbufCore unit;
-  ArrayController controller{geometry(), CycleTable::defaults(), 64, 1000000};
+  ArrayController controller;
 
-  explicit Machine(const ZbufCoreParams& params, const std::vector<Instruction>& program = {}) : unit(params) {
+  explicit Machine(const ZbufCoreParams& params, const std::vector<Instruction>& program = {},
+                   const ap::ArrayGeometry& shape = geometry())
+      : unit(params), controller(shape, CycleTable::defaults(), 64, 1000000) {
     ap::EnabledOps ops = ap::j2210_ops();
     ops[static_cast<unsigned>(Opcode::op_zsend)] = true;
     controller.enable_ops(ops);
@@ -143,14 +145,37 @@ TEST(ZbufCore, PixelsAtOneEntryInOneCycleAreTestedInAscendingLanes) {
   EXPECT_EQ(unit.counts().clipped, 2u);
 }
 
-TEST(ZbufCore, RandomSendsFromMaskedCusMatchTheScalarModel) {
-  std::mt19937 rng(20261203);
+// The port cycles of one send under row skew with K beyond any row's own
+// cycles (24 at most): the rows never share a cycle, each row's pixels are
+// taken from its arrival on, so the halt (at 2) waits for the row whose
+// cycles end last, and the port's cycles are the rows' own.
+struct RowsApart {
+  uint64_t port_cycles = 0, halt_stall = 0;
+};
+RowsApart rows_apart(const std::vector<unsigned>& lanes, unsigned ports, bool pairs) {
+  RowsApart r;
+  for (unsigned row = 0; row < ROWS; ++row) {
+    std::vector<unsigned> in_row;
+    for (const unsigned lane : lanes)
+      if (lane / COLUMNS == row) in_row.push_back(lane);
+    const uint64_t cycles = expected_cycles(in_row, ports, pairs);
+    r.port_cycles += cycles;
+    // Taken in [K r, K r + cycles); the row runs the halt at 2 + K r.
+    if (cycles > 2) r.halt_stall = std::max(r.halt_stall, cycles - 2);
+  }
+  return r;
+}
+
+void random_sends_match_the_scalar_model(ap::IssueSkew skew, unsigned skew_cycles) {
+  std::mt19937 rng(20261203 + skew_cycles);
   for (unsigned ports = 1; ports <= 4; ++ports) {
     for (const bool pairs : {false, true}) {
       // A small window off the origin, so that pixels collide and some fall
       // outside it.
       const unsigned ox = 3, oy = 2, width = 7, height = 5;
       Machine machine({64, ports, pairs}, {zsend(reg(0), reg(4)), make(Opcode::op_halt)});
+      machine.controller.set_issue_skew(skew, skew_cycles);
+      const uint64_t skew_total = skew == ap::IssueSkew::row ? uint64_t{ROWS - 1} * skew_cycles : 0;
       ASSERT_EQ(machine.unit.set_frame(ox, oy, width, height), "");
       machine.unit.clear(0xffff, 0);
       ScalarZbuffer model(ox, oy, width, height);
@@ -170,10 +195,26 @@ TEST(ZbufCore, RandomSendsFromMaskedCusMatchTheScalarModel) {
             model.apply(x, y, z, c);
           }
         }
+        const uint64_t port_before = machine.unit.counts().port_cycles;
         const ap::RunResult result = machine.controller.run(0);
         ASSERT_TRUE(result.ok) << result.error;
         pixels += senders.size();
-        port_cycles += expected_cycles(senders, ports, pairs);
+        const uint64_t lockstep_cycles = expected_cycles(senders, ports, pairs);
+        const RowsApart apart = rows_apart(senders, ports, pairs);
+        const uint64_t taken = machine.unit.counts().port_cycles - port_before;
+        if (skew == ap::IssueSkew::none) {
+          port_cycles += lockstep_cycles;
+          ASSERT_EQ(result.cycles, std::max<uint64_t>(lockstep_cycles, 2) + 1);
+        } else if (skew_cycles >= COLUMNS) {
+          port_cycles += apart.port_cycles;
+          ASSERT_EQ(result.cycles, 2 + apart.halt_stall + 1 + skew_total) << "send " << send;
+        } else {
+          // Rows may share a cycle when the port is still taking the row
+          // before as the next arrives: between the two counts.
+          ASSERT_GE(taken, lockstep_cycles);
+          ASSERT_LE(taken, apart.port_cycles);
+          port_cycles += taken;
+        }
         for (unsigned e = 0; e < width * height; ++e) {
           ASSERT_EQ(machine.unit.depth(e), model.depth[e])
               << "ports " << ports << " pairs " << pairs << " send " << send << " entry " << e;
@@ -194,6 +235,19 @@ TEST(ZbufCore, RandomSendsFromMaskedCusMatchTheScalarModel) {
       EXPECT_GT(machine.unit.counts().clipped, 0u);
     }
   }
+}
+
+TEST(ZbufCore, RandomSendsFromMaskedCusMatchTheScalarModel) {
+  random_sends_match_the_scalar_model(ap::IssueSkew::none, 0);
+}
+
+// Under row skew the unit's planes are those of the same order: a send's
+// pixels in ascending lanes (row by row, the order its rows arrive), sends in
+// program order.
+TEST(ZbufCore, UnderRowSkewRandomSendsMatchTheScalarModel) {
+  random_sends_match_the_scalar_model(ap::IssueSkew::row, 1);
+  random_sends_match_the_scalar_model(ap::IssueSkew::row, 4);
+  random_sends_match_the_scalar_model(ap::IssueSkew::row, 30);
 }
 
 TEST(ZbufCore, OperandsComeFromCmemBigEndianAndMaskedCusDoNotSend) {
@@ -306,6 +360,146 @@ TEST(ZbufTiming, NoSendersHoldNothing) {
   EXPECT_EQ(t.unit.counts().sends, 1u);
 }
 
+// Row-sequential issue (array.issue_skew = row, K = 4): row r runs the
+// stream 4 r cycles after row 0, its pixels of a zsend issued at t reach the
+// port at t + 4 r, the port takes sends in program order, each in ascending
+// lanes, none before it arrives; a zsend or the halt stalls the whole stream
+// until, in every row r, the row's earlier pixels are taken by the time the
+// row runs it (t + 4 r).
+struct RowTiming : Machine {
+  explicit RowTiming(unsigned ports, bool pairs, const std::vector<Instruction>& program,
+                     const ap::ArrayGeometry& shape = geometry(), unsigned skew = 4)
+      : Machine({64, ports, pairs}, program, shape) {
+    EXPECT_EQ(unit.set_frame(0, 0, 8, 8), "");
+    controller.set_issue_skew(ap::IssueSkew::row, skew);
+  }
+};
+
+TEST(ZbufTiming, UnderRowSkewEachRowsHaltWaitsForItsOwnPixels) {
+  // 4 x 24, P = 2: row r's 24 pixels arrive at 4 r and are taken in
+  // 12 r..12 r + 11 (the port is busy with the rows before), so row r's CUs
+  // hold them to 12 (r + 1). The halt, issued at 2, runs in row r at 2 + 4 r:
+  // it waits max(12 (r + 1) - 2 - 4 r) = 34 (row 3), then its cycle, then the
+  // skew 3 x 4: 2 + 34 + 1 + 12 = 49, the lockstep 49 (the port's 48 cycles
+  // bound both).
+  RowTiming t(2, false, {zsend(reg(0), reg(4)), make(Opcode::op_halt)});
+  const ap::RunResult result = t.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 49u);
+  EXPECT_EQ(t.controller.activity().zbuf_stall_cycles, 34u);
+  EXPECT_EQ(t.controller.activity().skew_cycles, 12u);
+  EXPECT_EQ(t.controller.activity().zbuf_port_cycles, 48u);
+  EXPECT_EQ(t.controller.activity().word_cycles[0], 2u);
+  EXPECT_EQ(t.controller.activity().word_cycles[1], 34u + 1 + 12);
+}
+
+TEST(ZbufTiming, UnderRowSkewASendWaitsForEachRowsPreviousPixels) {
+  // zsend 1 at 0: rows taken 0..11, 12..23, 24..35, 36..47. zsend 2, due
+  // at 2, runs in row r at 2 + 4 r + stall, which must be >= 12 (r + 1):
+  // stall 34 (row 3), issued at 36; the port is busy to 48, so its rows are
+  // taken 48..59, 60..71, 72..83, 84..95. The halt, due at 38: stall
+  // max(60 - 38, 72 - 42, 84 - 46, 96 - 50) = 46, at 84, + 1 + 12 = 97.
+  RowTiming t(2, false, {zsend(reg(0), reg(4)), zsend(reg(0), reg(4)), make(Opcode::op_halt)});
+  const ap::RunResult result = t.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 97u);
+  EXPECT_EQ(t.controller.activity().zbuf_stall_cycles, 34u + 46u);
+  EXPECT_EQ(t.controller.activity().word_cycles[1], 34u + 2);
+  EXPECT_EQ(t.controller.activity().word_cycles[2], 46u + 1 + 12);
+}
+
+TEST(ZbufTiming, UnderRowSkewWorkBetweenSendsHidesEachRowsPort) {
+  // zsend 1 at 0 (rows' pixels held to 12, 24, 36, 48), loop 1 + 20 adds:
+  // zsend 2 due at 43 runs in row r at 43 + 4 r, after every row's pixels
+  // are taken: no wait (lockstep waits 5, for row 3's). The port, busy to
+  // 48, takes its rows 48..59, ..., 84..95; the halt due at 45 waits
+  // max(60 - 45, 72 - 49, 84 - 53, 96 - 57) = 39: 45 + 39 + 1 + 12 = 97.
+  RowTiming t(2, false,
+              {zsend(reg(0), reg(4)), make(Opcode::op_loop, reg(0), reg(19), reg(1)),
+               make(Opcode::op_add, reg(0), reg(0), reg(0)), make(Opcode::op_endloop), zsend(reg(0), reg(4)),
+               make(Opcode::op_halt)});
+  const ap::RunResult result = t.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 97u);
+  EXPECT_EQ(t.controller.activity().zbuf_stall_cycles, 39u);
+  EXPECT_EQ(t.controller.activity().word_cycles[4], 2u);
+}
+
+TEST(ZbufTiming, UnderRowSkewARowWaitsForItsEarlierPixelsEvenWhenItSendsNone) {
+  // mmov z (row 0's CUs have Z), zsend: row 0's 24 pixels, issued at 1,
+  // taken 1..12 (held to 13). mmov c (row 3's have C), zsend due at 4: row
+  // 0 runs it at 4 and still holds its pixels: stall 9, issued at 13; row
+  // 3's arrive at 13 + 12 and are taken 25..36. The halt, due at 15, runs
+  // in row 3 at 27: stall 10, at 25, + 1 + 12 = 38 (lockstep: the same
+  // stalls, 26 cycles).
+  const Instruction mmov_z = make(Opcode::op_mmov, {}, reg(static_cast<unsigned>(ap::Cond::z)));
+  const Instruction mmov_c = make(Opcode::op_mmov, {}, reg(static_cast<unsigned>(ap::Cond::c)));
+  const std::vector<Instruction> program = {mmov_z, zsend(reg(0), reg(4)), mmov_c, zsend(reg(0), reg(4)),
+                                            make(Opcode::op_halt)};
+  const auto run = [&](Machine& m) {
+    for (unsigned lane = 0; lane < LANES; ++lane)
+      m.array().set_flags(lane, {lane >= 3 * COLUMNS, lane < COLUMNS, false});
+    const ap::RunResult result = m.controller.run(0);
+    EXPECT_TRUE(result.ok) << result.error;
+    EXPECT_EQ(m.unit.counts().pixels, 48u);
+    return std::pair{result.cycles, m.controller.activity().zbuf_stall_cycles};
+  };
+  RowTiming rows(2, false, program);
+  EXPECT_EQ(run(rows), std::pair(uint64_t{38}, uint64_t{19}));
+  Timing lockstep(2, false, program);
+  EXPECT_EQ(run(lockstep), std::pair(uint64_t{26}, uint64_t{19}));
+}
+
+TEST(ZbufTiming, UnderRowSkewARowOfFourPairsSendsInFourCyclesAndRowsDoNotCollide) {
+  // Davila et al.'s MorphoSys: 8 x 8 CUs, K = 4, two ports taking the two
+  // halves of one triangle (lanes 2k, 2k + 1) per cycle. A row's 8 pixels
+  // are 4 pairs, 4 cycles: row r's arrive at 4 r and are taken in 4 r ..
+  // 4 r + 3, each pair the cycle it is due, so no row waits for another.
+  const ap::ArrayGeometry morphosys = geometry(8, 8);
+  std::vector<SentPixel> pixels;
+  for (uint16_t lane = 0; lane < 64; ++lane) pixels.push_back({lane, 0, 0, 0, 0});
+  const std::vector<uint64_t> cycles = ZbufCore::schedule(pixels, 2, true, {8, 4, 0});
+  for (unsigned lane = 0; lane < 64; ++lane) EXPECT_EQ(cycles[lane], 4 * (lane / 8) + lane % 8 / 2) << lane;
+  // With K = 2 they collide: row r arrives at 2 r but is taken from 4 r.
+  const std::vector<uint64_t> close = ZbufCore::schedule(pixels, 2, true, {8, 2, 0});
+  for (unsigned lane = 0; lane < 64; ++lane) EXPECT_EQ(close[lane], 4 * (lane / 8) + lane % 8 / 2) << lane;
+  EXPECT_GT(close[63], 2u * 7 + 3);
+  // zsend; halt: the halt, due at 2, waits in row r for 4 r + 4 - (2 + 4 r)
+  // = 2 (lockstep: 32 - 2 = 30); 2 + 2 + 1 + 7 x 4 = 33.
+  RowTiming once(2, true, {zsend(reg(0), reg(4)), make(Opcode::op_halt)}, morphosys);
+  ap::RunResult result = once.controller.run(0);
+  ASSERT_TRUE(result.ok) << result.error;
+  EXPECT_EQ(result.cycles, 33u);
+  EXPECT_EQ(once.controller.activity().zbuf_stall_cycles, 2u);
+  // A send every 32 cycles (zsend 2 + 15 adds 30), 20 of them: no stall at
+  // all (every row's pixels are taken 4 cycles after they arrive, long
+  // before the row's next zsend); 1 (loop) + 20 x 32 + 1 (halt) + 7 x 4 =
+  // 670.
+  const auto every = [&](unsigned adds, bool skewed) {
+    std::vector<Instruction> program = {make(Opcode::op_loop, reg(0), reg(19), reg(1)), zsend(reg(0), reg(4))};
+    for (unsigned i = 0; i < adds; ++i) program.push_back(make(Opcode::op_add, reg(0), reg(0), reg(0)));
+    program.push_back(make(Opcode::op_endloop));
+    program.push_back(make(Opcode::op_halt));
+    RowTiming t(2, true, program, morphosys);
+    if (!skewed) t.controller.set_issue_skew(ap::IssueSkew::none, 0);
+    const ap::RunResult r = t.controller.run(0);
+    EXPECT_TRUE(r.ok) << r.error;
+    return std::pair{r.cycles, t.controller.activity().zbuf_stall_cycles};
+  };
+  EXPECT_EQ(every(15, true), std::pair(uint64_t{670}, uint64_t{0}));
+  // Every 30 cycles the port (32 a send) falls behind by 2 a send: send k's
+  // row 0 is taken 2 (k - 1) cycles after its issue, and from send 16 on a
+  // row still holds the send before's pixels when it runs the next (28 + 4
+  // > 30): sends 16..20 wait 2 each, the halt 2: 1 + 20 x 30 + 12 + 1 + 28 =
+  // 642.
+  EXPECT_EQ(every(14, true), std::pair(uint64_t{642}, uint64_t{12}));
+  // Lockstep: every send waits for the whole previous one: sends 2..20
+  // wait 2 each, the halt 2: 1 + 600 + 40 + 1 = 642 as well (the port's 32
+  // cycles a send bound both), with no stall at a period of 32 either.
+  EXPECT_EQ(every(14, false), std::pair(uint64_t{642}, uint64_t{40}));
+  EXPECT_EQ(every(15, false), std::pair(uint64_t{1 + 20 * 32 + 1}, uint64_t{0}));
+}
+
 TEST(ZbufRefusals, TheCoreRefusesImpossibleSizes) {
   EXPECT_THROW(ZbufCore({0, 2, false}), std::invalid_argument);
   EXPECT_THROW(ZbufCore({65537, 2, false}), std::invalid_argument);
@@ -317,7 +511,7 @@ TEST(ZbufRefusals, TheCoreRefusesImpossibleSizes) {
   EXPECT_EQ(unit.set_frame(0, 0, 40, 25), "");
 }
 
-TEST(ZbufRefusals, ZsendWithoutAUnitOrUnderSkewIsABadWord) {
+TEST(ZbufRefusals, ZsendWithoutAUnitOrUnderLaneSkewIsABadWord) {
   ArrayController controller{geometry(), CycleTable::defaults(), 16, 1000};
   controller.load(0, {ap::encode(zsend(reg(0), reg(4))), ap::encode(make(Opcode::op_halt))});
   ap::RunResult result = controller.run(0);
@@ -335,7 +529,10 @@ TEST(ZbufRefusals, ZsendWithoutAUnitOrUnderSkewIsABadWord) {
   controller.set_issue_skew(1);
   result = controller.run(0);
   EXPECT_EQ(result.kind, ap::RunError::bad_word);
-  EXPECT_NE(result.error.find("array.issue_skew"), std::string::npos) << result.error;
+  EXPECT_NE(result.error.find("array.issue_skew = lane"), std::string::npos) << result.error;
+  // Row-sequential issue is modelled.
+  controller.set_issue_skew(ap::IssueSkew::row, 4);
+  EXPECT_TRUE(controller.run(0).ok);
 }
 
 }  // namespace

@@ -45,26 +45,55 @@ void ArrayController::decode_slot(unsigned index) {
   if (slot.error.empty() && slot.instruction.opcode == Opcode::op_zsend) {
     if (m_pixel_port == nullptr)
       slot.error = "zsend has no z-buffer unit to send to: it needs zbuf.enabled = true";
-    else if (m_skew != 0)
-      slot.error = "zsend under delayed execution (array.issue_skew = lane) is not modelled";
+    else if (m_skew_unit == IssueSkew::lane)
+      slot.error = "zsend under delayed execution by lane (array.issue_skew = lane) is not modelled";
   }
-  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_endloopany && m_skew != 0)
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_endloopany && m_skew_unit != IssueSkew::none)
     slot.error =
-        "endloopany under delayed execution (array.issue_skew = lane) is not modelled: its wired OR would wait for "
+        "endloopany under delayed execution (array.issue_skew = lane or row) is not modelled: its wired OR would wait "
+        "for "
         "the chain's last CU";
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew_unit == IssueSkew::row &&
+      lut_lockstep_stall() + 1 > m_skew)
+    slot.error = "lut under array.issue_skew = row needs a row's lookups (" + std::to_string(m_geometry.columns) +
+                 " CUs, array.lut.ports " + std::to_string(m_lut_ports) +
+                 " a cycle: " + std::to_string(lut_lockstep_stall() + 1) +
+                 " cycles) to fit in array.issue_skew_cycles (" + std::to_string(m_skew) +
+                 "): the rows' lookups would collide on the table's ports, which is not modelled";
   slot.cost = slot.error.empty() ? m_cycles.cost(slot.instruction) : 0;
-  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew == 0) slot.cost += lut_lockstep_stall();
+  if (slot.error.empty() && slot.instruction.opcode == Opcode::op_lut && m_skew_unit != IssueSkew::lane)
+    slot.cost += lut_lockstep_stall();
 }
 
 unsigned ArrayController::lut_lockstep_stall() const {
-  const unsigned lanes = m_geometry.lanes(), ports = std::max(m_lut_ports, 1u);
+  // Under row skew the CUs of one row look up together.
+  const unsigned lanes = m_skew_unit == IssueSkew::row ? m_geometry.columns : m_geometry.lanes();
+  const unsigned ports = std::max(m_lut_ports, 1u);
   return (lanes + ports - 1) / ports - 1;
 }
 
+uint64_t ArrayController::skew_cycles() const {
+  switch (m_skew_unit) {
+    case IssueSkew::none: break;
+    case IssueSkew::lane: return uint64_t{m_geometry.lanes() - 1} * m_skew;
+    case IssueSkew::row: return uint64_t{m_geometry.rows - 1} * m_skew;
+  }
+  return 0;
+}
+
 void ArrayController::set_issue_skew(unsigned cycles) {
-  if (cycles == m_skew) return;
+  set_issue_skew(cycles != 0 ? IssueSkew::lane : IssueSkew::none, cycles);
+}
+
+void ArrayController::set_issue_skew(IssueSkew unit, unsigned cycles) {
+  if (unit == IssueSkew::none || cycles == 0) {
+    unit = IssueSkew::none;
+    cycles = 0;
+  }
+  if (cycles == m_skew && unit == m_skew_unit) return;
   m_skew = cycles;
-  m_array.set_issue_skew(cycles != 0);
+  m_skew_unit = unit;
+  m_array.set_issue_skew(unit);
   for (unsigned i = 0; i < m_slots.size(); ++i) decode_slot(i);
   m_runaways.clear();
   m_plans.clear();
@@ -307,13 +336,14 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     result.error = "program word " + std::to_string(pc) + ": " + why;
   };
   m_stage_changes.clear();
-  m_lut_port_free.assign(m_skew != 0 ? m_lut_ports : 0, 0);
+  m_lut_port_free.assign(m_skew_unit == IssueSkew::lane ? m_lut_ports : 0, 0);
   m_zbuf_port_free = 0;
+  m_zbuf_row_free.assign(m_geometry.rows, 0);
   // The AC waits for the z-buffer's port before a zsend or a halt (counted
   // in that word and its stage).
   const auto wait_for_zbuf_port = [&](const Instruction& in) {
-    if (m_zbuf_port_free <= result.cycles) return;
-    const uint64_t stall = m_zbuf_port_free - result.cycles;
+    const uint64_t stall = zbuf_stall(result.cycles);
+    if (stall == 0) return;
     result.cycles += stall;
     m_activity.zbuf_stall_cycles += stall;
     m_activity.word_cycles[pc] += stall;
@@ -395,14 +425,8 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     if (!result.ok) break;
     if (m_record_stages && (m_stage_changes.empty() || m_stage_changes.back().stage != in.stage))
       m_stage_changes.push_back({result.cycles, in.stage});
-    if (in.opcode == Opcode::op_zsend || (halted && m_zbuf_port_free != 0)) wait_for_zbuf_port(in);
-    if (in.opcode == Opcode::op_zsend) {
-      const std::vector<SentPixel>& pixels = array.sent_pixels();
-      const uint64_t busy = m_pixel_port->send(pixels);
-      m_zbuf_port_free = result.cycles + busy;
-      m_activity.zbuf_port_cycles += busy;
-      m_activity.zbuf_pixels += pixels.size();
-    }
+    if (in.opcode == Opcode::op_zsend || halted) wait_for_zbuf_port(in);
+    if (in.opcode == Opcode::op_zsend) send_to_zbuf(result.cycles, array.sent_pixels());
     if (in.opcode == Opcode::op_lut && !m_lut_port_free.empty()) {
       // The port that frees first; the AC waits for it when every one is
       // held by an earlier lut's lookups still running down the chain.
@@ -419,8 +443,9 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
     ++m_run_executions[pc];
     last_pc = std::max(last_pc, pc);
     if (halted) {
-      // The last lane of the chain halts (lanes - 1) x K cycles after the first.
-      result.cycles += uint64_t{m_geometry.lanes() - 1} * m_skew;
+      // The last lane (row) halts (lanes - 1) x K ((rows - 1) x K) cycles
+      // after the first.
+      result.cycles += skew_cycles();
       break;
     }
     if (result.cycles > m_max_cycles) {
@@ -432,6 +457,39 @@ RunResult ArrayController::interpret(unsigned entry, CuArray& array, unsigned& l
   }
   fold_stage();
   return result;
+}
+
+uint64_t ArrayController::zbuf_row_delay() const {
+  return m_skew_unit == IssueSkew::row ? m_skew : 0;
+}
+
+uint64_t ArrayController::zbuf_stall(uint64_t now) const {
+  // Row r runs the stream at now + K r (lockstep: K = 0); each of its CUs
+  // holds one pixel until the port takes it, so the whole stream waits
+  // until every row's earlier pixels are taken when that row runs it (the
+  // rows keep their delays).
+  uint64_t stall = 0;
+  for (unsigned r = 0; r < m_zbuf_row_free.size(); ++r) {
+    const uint64_t runs_at = now + zbuf_row_delay() * r;
+    if (m_zbuf_row_free[r] > runs_at) stall = std::max(stall, m_zbuf_row_free[r] - runs_at);
+  }
+  return stall;
+}
+
+void ArrayController::send_to_zbuf(uint64_t now, const std::vector<SentPixel>& pixels) {
+  // Row r's pixels reach the port K r after the issue; the port takes sends
+  // in program order, so none before the previous send's last.
+  const SendArrival arrival{m_geometry.columns, static_cast<unsigned>(zbuf_row_delay()),
+                            m_zbuf_port_free > now ? m_zbuf_port_free - now : 0};
+  const SendTimes times = m_pixel_port->send(pixels, arrival);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const uint64_t taken = now + times.cycles[i] + 1;
+    uint64_t& row_free = m_zbuf_row_free[pixels[i].lane / m_geometry.columns];
+    row_free = std::max(row_free, taken);
+    m_zbuf_port_free = std::max(m_zbuf_port_free, taken);
+  }
+  m_activity.zbuf_port_cycles += times.busy;
+  m_activity.zbuf_pixels += pixels.size();
 }
 
 void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult& result) {
@@ -454,12 +512,12 @@ void ArrayController::fold_run(unsigned entry, unsigned last_pc, const RunResult
         executions;
   }
   if (result.ok && m_skew != 0 && last_pc < m_slots.size()) {
-    const uint64_t skew = uint64_t{m_geometry.lanes() - 1} * m_skew;
+    const uint64_t skew = skew_cycles();
     m_activity.skew_cycles += skew;
     m_activity.word_cycles[last_pc] += skew;
     m_activity.stage_cycles[static_cast<unsigned>(m_slots[last_pc].instruction.stage)] += skew;
   }
-  if (m_skew == 0) {
+  if (m_skew_unit != IssueSkew::lane) {
     const unsigned lut = static_cast<unsigned>(Opcode::op_lut);
     m_activity.lut_stall_cycles += (m_activity.instruction_mix[lut] - lut_before) * lut_lockstep_stall();
   }

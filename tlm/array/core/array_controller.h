@@ -108,11 +108,22 @@ class ArrayController {
   // takes (lanes - 1) x K cycles more, and lut's stalls follow the chain
   // (README.md, "Delayed execution", "The lookup table").
   void set_issue_skew(unsigned cycles);
+  // Delayed execution by lane or by row (array.issue_skew = row: row r runs
+  // each instruction r x `cycles` after row 0, the CUs of a row together,
+  // MorphoSys's row-sequential issue): the neighbour reads follow
+  // CuArray::set_issue_skew; a program that halts takes (rows - 1) x K
+  // cycles more; zsend's reservation is per row (set_pixel_port), and a
+  // row's lookups take ceil(columns / P) cycles, which must fit in K (a lut
+  // is refused otherwise: the rows' lookups would collide).
+  void set_issue_skew(IssueSkew unit, unsigned cycles);
+  IssueSkew issue_skew() const { return m_skew_unit; }
   // The lookup table's ports (array.lut.ports): without skew, P lanes look
   // up per cycle, so a lut takes ceil(lanes / P) - 1 cycles more than its
-  // array.cycles.lut; with skew, each lut holds one port while its lookups
-  // run down the chain, (lanes - 1) x K + 1 cycles, and a lut finding every
-  // port held waits for the first to free.
+  // array.cycles.lut; with lane skew, each lut holds one port while its
+  // lookups run down the chain, (lanes - 1) x K + 1 cycles, and a lut
+  // finding every port held waits for the first to free; with row skew, a
+  // row's lookups take ceil(columns / P) cycles, ceil(columns / P) - 1 more
+  // than array.cycles.lut.
   void set_lut_ports(unsigned ports);
   // The z-buffer unit's port that zsend sends to (tlm/zbuf), or nullptr:
   // without one, a word holding zsend is refused like a disabled one. The
@@ -121,9 +132,12 @@ class ArrayController {
   // previous one (each CU holds one pixel until the unit takes it), and
   // then holds the port for the cycles the unit answers; the AC meanwhile
   // runs on. A halt waits for the port too, so the unit's planes are
-  // complete when the program's interrupt rises. Lockstep only: under
-  // delayed execution a zsend is refused (not modelled), and so is an
-  // endloopany (its wired OR would wait for the chain's last CU).
+  // complete when the program's interrupt rises. Under row skew the same
+  // per row: row r's pixels reach the port r x K after the issue, and a
+  // zsend or halt waits (the whole stream) until every row's earlier
+  // pixels are taken by the time that row runs it. Under lane skew a zsend
+  // is refused (not modelled). Under either skew an endloopany is refused
+  // (its wired OR would wait for the last CU or row).
   void set_pixel_port(PixelPort* port);
 
   // Program memory. write_word() returns false when `index` is beyond it.
@@ -269,13 +283,24 @@ class ArrayController {
   std::vector<StageChange> m_stage_changes;
   bool m_skip_idle = false;
   EnabledOps m_enabled = j2210_ops();
-  unsigned m_skew = 0;       // K, 0 for lockstep
+  unsigned m_skew = 0;  // K, 0 for lockstep
+  IssueSkew m_skew_unit = IssueSkew::none;
+  // The cycles after the first lane's (row's) halt until the last's.
+  uint64_t skew_cycles() const;
   unsigned m_lut_ports = 1;  // P
   // With skew: per port, the run's cycle from which it is free (during run()).
   std::vector<uint64_t> m_lut_port_free;
   PixelPort* m_pixel_port = nullptr;
-  // During run(): the run's cycle from which the z-buffer's port is free.
+  // During run(): the run's cycle from which the z-buffer's port has taken
+  // every pixel sent, and per row every pixel of that row.
   uint64_t m_zbuf_port_free = 0;
+  std::vector<uint64_t> m_zbuf_row_free;
+  // The port's reservation (tlm/zbuf/README.md, "Timing"): K under row
+  // skew, else 0; the stall before a zsend or halt due at `now`; a zsend's
+  // pixels, issued at `now`, sent and reserved.
+  uint64_t zbuf_row_delay() const;
+  uint64_t zbuf_stall(uint64_t now) const;
+  void send_to_zbuf(uint64_t now, const std::vector<SentPixel>& pixels);
   // The extra cycles of one lut without skew (folded into its slot's cost).
   unsigned lut_lockstep_stall() const;
   std::unordered_map<unsigned, EntryPlan> m_plans;  // until program memory is written

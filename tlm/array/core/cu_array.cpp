@@ -412,13 +412,16 @@ void CuArray::neighbour_lanes(const Instruction& in, const uint8_t* a, const uin
   const int step = m_neighbour_step[direction];
   m_activity.neighbour_transfers += m_lanes_with_neighbour[direction];
   const bool nadd = in.opcode == Opcode::op_nadd;
-  if (m_skew && step < 0 && a == d) {
-    // Delayed execution, reading an earlier lane of the chain whose
-    // operand this instruction overwrites: that lane ran it already, so
-    // the lanes go one by one in chain order, each reading its
-    // neighbour's new value (where a masked CMEM store left the old one,
-    // the old one). Reading a later lane, or an operand the instruction
-    // does not write, gives what the lockstep loops below give.
+  // Under lane skew left and up run before the reader, under row skew up.
+  const bool earlier =
+      (m_skew == IssueSkew::lane && step < 0) || (m_skew == IssueSkew::row && in.direction() == Direction::up);
+  if (earlier && a == d) {
+    // Delayed execution, reading an earlier lane (or row) whose operand
+    // this instruction overwrites: that lane ran it already, so the lanes
+    // go one by one in chain order, each reading its neighbour's new value
+    // (where a masked CMEM store left the old one, the old one). Reading a
+    // later lane, or an operand the instruction does not write, gives what
+    // the lockstep loops below give.
     const uint8_t* result = nadd ? out : neighbour;
     for (size_t l = 0; l < n; ++l) {
       uint8_t value = 0;
@@ -475,11 +478,12 @@ void CuArray::neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, 
     if (from >= 0) {
       ++transfers;
       const auto f = static_cast<size_t>(from);
-      // Under skew an earlier lane has run the instruction already: where
-      // it wrote the row read, its new byte (or, a masked CMEM store, the
-      // old one). A later lane, or a row the instruction does not write,
-      // gives the byte as it is.
-      if (m_skew && f < l && source == d)
+      // Under skew an earlier lane (row skew: a lane of an earlier row) has
+      // run the instruction already: where it wrote the row read, its new
+      // byte (or, a masked CMEM store, the old one). A later lane, one of
+      // the same row under row skew, or a row the instruction does not
+      // write, gives the byte as it is.
+      if (runs_before(f, l) && source == d)
         value = d_masked && m[f] == 0 ? d[f] : result[f];
       else
         value = source[f];

@@ -34,6 +34,12 @@ struct ArrayGeometry {
 
 using LoopVariables = std::array<int, LOOP_LEVELS>;
 
+// Delayed execution (array.issue_skew): none, every CU runs an instruction
+// in the same cycle (the J2210); lane, the CUs one after another in
+// row-major order (the Image Blender); row, the rows one after another,
+// the CUs of a row together (MorphoSys's row-sequential issue).
+enum class IssueSkew : uint8_t { none, lane, row };
+
 // What the array did, summed over every instruction it executed. Lane
 // counts are lanes x instructions; CMEM counts are bytes accessed in all
 // lanes together.
@@ -91,20 +97,25 @@ class CuArray {
   const ArrayActivity& activity() const { return m_activity; }
   void add_activity(const ArrayActivity& more);
 
-  // Delayed execution (array.issue_skew = lane; README.md, "Delayed
-  // execution"): the lanes run each instruction one after another in chain
-  // order (lane 0, 1, 2, ...: row-major), so a neighbour read from an
-  // earlier lane (left, up) sees its state after the instruction, one from
-  // a later lane (right, down) its state before it. Only nget and nadd can
-  // tell; every other instruction's result is the same either way.
-  void set_issue_skew(bool on) { m_skew = on; }
-  bool issue_skew() const { return m_skew; }
+  // Delayed execution (array.issue_skew; README.md, "Delayed execution"):
+  // lane, the lanes run each instruction one after another in chain order
+  // (lane 0, 1, 2, ...: row-major), so a neighbour read from an earlier lane
+  // (left, up) sees its state after the instruction, one from a later lane
+  // (right, down) its state before it; row, the rows run it one after
+  // another and the lanes of a row together, so up sees the state after
+  // the instruction, and down, left and right (the same row, the row ring's
+  // wrap included) before it. Only the neighbour reads can tell; every
+  // other instruction's result is the same either way.
+  void set_issue_skew(IssueSkew skew) { m_skew = skew; }
+  void set_issue_skew(bool on) { m_skew = on ? IssueSkew::lane : IssueSkew::none; }
+  IssueSkew issue_skew() const { return m_skew; }
   // The row ring (array.row_ring; README.md, "The row ring"): column 0's
   // left neighbour is the same row's last column and the last column's right
   // neighbour is column 0, for every neighbour read; up and down keep the
   // grid's edges. Under skew the wrapped link follows the read rule like any
-  // other: column 0 reads the last column, a later lane, before the
-  // instruction; the last column reads column 0 after it.
+  // other: under lane skew column 0 reads the last column, a later lane,
+  // before the instruction and the last column reads column 0 after it;
+  // under row skew both read the same row, before it.
   void set_row_ring(bool on);
   bool row_ring() const { return m_ring; }
 
@@ -225,8 +236,15 @@ class CuArray {
   // By stage, then lane.
   std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
-  bool m_skew = false;
+  IssueSkew m_skew = IssueSkew::none;
   bool m_ring = false;
+  // Under skew, whether lane `from` has run the current instruction before
+  // lane `to` reads it (an earlier lane, or a CU of an earlier row).
+  bool runs_before(size_t from, size_t to) const {
+    if (m_skew == IssueSkew::lane) return from < to;
+    if (m_skew == IssueSkew::row) return from / m_geometry.columns < to / m_geometry.columns;
+    return false;
+  }
   // Per direction and lane, the neighbour's lane, or -1 beyond the edge
   // (with the row ring, left and right wrap); for neighbour_lanes_in_order.
   std::array<std::vector<int>, 4> m_neighbour_lane;

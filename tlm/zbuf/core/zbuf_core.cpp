@@ -44,15 +44,20 @@ long ZbufCore::entry_of(uint16_t x, uint16_t y) const {
 }
 
 std::vector<uint64_t> ZbufCore::schedule(const std::vector<ap::SentPixel>& pixels, unsigned ports,
-                                         bool pair_halves_only) {
+                                         bool pair_halves_only, const ap::SendArrival& arrival) {
   std::vector<uint64_t> cycles(pixels.size());
   const unsigned per_cycle = pair_halves_only ? std::min(ports, 2u) : ports;
-  uint64_t cycle = 0;
+  uint64_t cycle = arrival.first;
   unsigned taken = 0;  // pixels in the current cycle
   for (size_t i = 0; i < pixels.size(); ++i) {
     const bool other_pair = pair_halves_only && taken > 0 && pixels[i].lane / 2 != pixels[i - 1].lane / 2;
     if (taken == per_cycle || other_pair) {
       ++cycle;
+      taken = 0;
+    }
+    // A row that has not reached the port yet: the port waits for it.
+    if (const uint64_t ready = arrival.arrival(pixels[i].lane); ready > cycle) {
+      cycle = ready;
       taken = 0;
     }
     cycles[i] = cycle;
@@ -98,20 +103,21 @@ void ZbufCore::take_cycle(const ap::SentPixel* pixels, size_t count) {
     if (ports[i].writes) set_entry(static_cast<unsigned>(ports[i].entry), pixels[i].z, pixels[i].colour);
 }
 
-uint64_t ZbufCore::send(const std::vector<ap::SentPixel>& pixels) {
+ap::SendTimes ZbufCore::send(const std::vector<ap::SentPixel>& pixels, const ap::SendArrival& arrival) {
   ++m_counts.sends;
   m_counts.pixels += pixels.size();
-  if (pixels.empty()) return 0;
-  const std::vector<uint64_t> cycles = schedule(pixels, m_params.ports, m_params.pair_halves_only);
+  ap::SendTimes times;
+  if (pixels.empty()) return times;
+  times.cycles = schedule(pixels, m_params.ports, m_params.pair_halves_only, arrival);
   size_t first = 0;
   for (size_t i = 1; i <= pixels.size(); ++i)
-    if (i == pixels.size() || cycles[i] != cycles[first]) {
+    if (i == pixels.size() || times.cycles[i] != times.cycles[first]) {
       take_cycle(pixels.data() + first, i - first);
+      ++times.busy;
       first = i;
     }
-  const uint64_t busy = cycles.back() + 1;
-  m_counts.port_cycles += busy;
-  return busy;
+  m_counts.port_cycles += times.busy;
+  return times;
 }
 
 }  // namespace tessera::zbuf

@@ -14,7 +14,10 @@
 // depth and colour, where z < the entry's depth.
 //
 // Ports and cycles: each port takes one pixel per array cycle. The pixels of
-// one send are taken in ascending lanes, `ports` per cycle; with
+// one send are taken in ascending lanes, `ports` per cycle, none before it
+// reaches the port (under row-sequential issue row r's pixels arrive r x K
+// cycles after the zsend's issue; ap::SendArrival) nor before the previous
+// send's last pixel (sends are taken in program order); with
 // pair_halves_only (the paper's rule: "we can send two pixels at times,
 // because they belong to the same triangle ... so they cannot address the
 // same pixel") a cycle takes pixels of one pair of CUs only, lanes 2k and
@@ -26,7 +29,8 @@
 // with the lower lane's result, forwarded), and a cycle sees every earlier
 // cycle's writes. The planes after a send are therefore those of its pixels
 // applied one at a time in ascending lanes, sends in program order
-// (tests/zbuf/core: the scalar model).
+// (tests/zbuf/core: the scalar model), with or without row-sequential issue:
+// ascending lanes are the order in which a send's rows arrive.
 #pragma once
 
 #include <cstdint>
@@ -81,13 +85,16 @@ class ZbufCore : public ap::PixelPort {
   // The cycles a clear of the current window takes: `ports` entries a cycle.
   uint64_t clear_cycles() const;
 
-  // PixelPort: tests and writes the pixels; returns the port cycles.
-  uint64_t send(const std::vector<ap::SentPixel>& pixels) override;
+  // PixelPort: tests and writes the pixels; the cycle each is taken in.
+  ap::SendTimes send(const std::vector<ap::SentPixel>& pixels, const ap::SendArrival& arrival) override;
+  // A lockstep send from cycle 0: the port cycles (the last one + 1).
+  uint64_t send(const std::vector<ap::SentPixel>& pixels) { return send(pixels, ap::SendArrival{}).busy; }
 
-  // The cycle (from 0) in which each pixel of a send is taken, by the rule
-  // above; the send takes the last one + 1 cycles (0 with no pixels).
-  static std::vector<uint64_t> schedule(const std::vector<ap::SentPixel>& pixels, unsigned ports,
-                                        bool pair_halves_only);
+  // The cycle (after the send's issue) in which each pixel of a send is
+  // taken, by the rule above; in lockstep from 0, the send taking the last
+  // one + 1 cycles (0 with no pixels).
+  static std::vector<uint64_t> schedule(const std::vector<ap::SentPixel>& pixels, unsigned ports, bool pair_halves_only,
+                                        const ap::SendArrival& arrival = {});
 
   uint16_t depth(unsigned entry) const { return m_depth[entry]; }
   uint16_t colour(unsigned entry) const { return m_colour[entry]; }
