@@ -56,7 +56,7 @@ ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit, ZPath zpath)
   if (zpath == ZPath::unit) {
     // The window holds whole frame rows: bands of this many (README.md).
     const uint32_t entries = m_host.read32(memory_map::zbuf_regs.base + zbuf_regs::ENTRIES);
-    m_band_rows = std::min(m_buffers.height, entries / m_buffers.width);
+    m_band_rows = std::min<unsigned>(m_buffers.height, entries / m_buffers.width);
     if (m_band_rows == 0 || m_buffers.color_format != PixelFormat::rgb565)
       throw std::invalid_argument("ap-object: ap.object.zpath=unit needs an RGB565 display at most zbuf.entries (" +
                                   std::to_string(entries) + ") pixels wide");
