@@ -62,9 +62,13 @@ INERT = {
     "power.zbuf.window_words_pj": "7",
     "power.zbuf.static_mw": "7",
 }
-# Every configuration key delayed execution and the lookup table added:
-# check_same_outputs.py --added-keys.
-ADDED = ["array.issue_skew", "array.features.lut", "array.row_ring", "array.features.zsend", "zbuf.enabled", *INERT]
+# Every configuration key delayed execution, the lookup table and the
+# z-buffer unit added (ap.object.zpath: ap-object's pixels to the unit, which
+# refuses to run with the unit off): check_same_outputs.py --added-keys.
+ADDED = [
+    "array.issue_skew", "array.features.lut", "array.row_ring", "array.features.zsend", "zbuf.enabled",
+    "ap.object.zpath", *INERT
+]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 
 
