@@ -66,8 +66,13 @@ INERT = {
 # z-buffer unit added (ap.object.zpath: ap-object's pixels to the unit, which
 # refuses to run with the unit off): check_same_outputs.py --added-keys.
 ADDED = [
-    "array.issue_skew", "array.features.lut", "array.row_ring", "array.features.zsend", "zbuf.enabled",
-    "ap.object.zpath", *INERT
+    "array.issue_skew",
+    "array.features.lut",
+    "array.row_ring",
+    "array.features.zsend",
+    "zbuf.enabled",
+    "ap.object.zpath",
+    *INERT,
 ]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]
 

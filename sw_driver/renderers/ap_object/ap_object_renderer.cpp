@@ -115,7 +115,6 @@ void ApObjectRenderer::unsupported(const std::string& what) {
 }
 
 void ApObjectRenderer::clear(const gl::ClearRequest& request) {
-  TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   if (m_zpath == ZPath::unit && !m_frame_on_host) {
     const Misfit why = unit_cannot_clear(request);
     if (why.key.empty()) {
@@ -126,8 +125,9 @@ void ApObjectRenderer::clear(const gl::ClearRequest& request) {
       m_frame_cleared = true;
       return;
     }
-    fall_back(why);
+    fall_back(why);  // outside the scope below: the draw calls time themselves
   }
+  TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   m_buffers_core->clear(request);
 }
 
