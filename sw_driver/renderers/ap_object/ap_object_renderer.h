@@ -166,7 +166,7 @@ class ApObjectRenderer : public gl::Renderer {
   unsigned m_band_rows = 0;  // frame rows the unit's window holds (zbuf.entries / width)
   std::set<std::string> m_warned;
   uint64_t m_unit_frames = 0, m_host_frames = 0, m_bands = 0, m_unit_clears = 0, m_pixels_sent = 0;
-  uint64_t m_pixels_kept = 0, m_copied_bytes = 0, m_kept_triangles = 0;
+  uint64_t m_copied_bytes = 0, m_kept_triangles = 0;
   std::map<std::string, uint64_t> m_fallbacks;
 };
 
