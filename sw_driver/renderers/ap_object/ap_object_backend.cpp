@@ -62,7 +62,7 @@ void check_configuration(const Config& config) {
                       std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
                       " pixels, but display.width x display.height = " + std::to_string(width) + " x " +
                       std::to_string(height));
-  if (config.get_string("ap.object.zpath") != "unit") return;
+  if (!config.has("ap.object.zpath") || config.get_string("ap.object.zpath") != "unit") return;
   // The z path through the unit: the unit and its instruction, an RGB565
   // frame (the unit's colour), whole frame rows in the unit's window.
   for (const char* key : {"zbuf.enabled", "array.features.zsend"})
