@@ -69,7 +69,9 @@ INERT = {
     "power.zbuf.window_words_pj": "7",
     "power.zbuf.static_mw": "7",
 }
-# Every configuration key delayed execution and the lookup table added:
+# Every configuration key delayed execution, the lookup table, the 16-bit
+# operations, the wired OR and the z-buffer unit added (ap.object.zpath:
+# ap-object's pixels to the unit, which refuses to run with the unit off):
 # check_same_outputs.py --added-keys.
 ADDED = [
     "array.issue_skew",
@@ -79,6 +81,7 @@ ADDED = [
     "zbuf.enabled",
     "array.features.wide_ops",
     "array.features.wired_or_loop",
+    "ap.object.zpath",
     *INERT,
 ]
 SIZE = ["--set", "display.width=192", "--set", "display.height=144"]

@@ -112,12 +112,16 @@ VARIANTS = {
     "ap-tile:warp_dma": ("ap-tile", ["ap.tile.texture_warp=array", "dma.enabled=true"]),
     # ap-object's records and pixels through the DMA.
     "ap-object:dma": ("ap-object", ["dma.enabled=true"]),
+    # ap-object's pixels to the z-buffer unit (the frame kept, the unit's window and clear, the colour window
+    # copied by the host; textured_quad falls back to the host path).
+    "ap-object:zunit": ("ap-object", ["zbuf.enabled=true", "array.features.zsend=true", "ap.object.zpath=unit"]),
 }
 VARIANT_SCENES = {
     "ap-tile:study": ["cubes", "teapot", "textured_quad"],
     "ap-tile:warp": ["textured_quad", "mipmap_floor", "texture_formats"],
     "ap-tile:warp_dma": ["textured_quad"],
     "ap-object:dma": ["cubes", "teapot", "textured_quad"],
+    "ap-object:zunit": ["cubes", "teapot", "textured_quad"],
 }
 TRAINING = [(scene, backend) for backend in ("arm", "raster") + ARRAY_BACKENDS for scene in TRAINING_SCENES]
 TRAINING += [(scene, variant) for variant, scenes in VARIANT_SCENES.items() for scene in scenes]
@@ -134,6 +138,7 @@ FITTED_PHASES = {
     "ap-tile:warp": PHASES + SPLIT,
     "ap-tile:warp_dma": PHASES + SPLIT,
     "ap-object:dma": PHASES + SPLIT,
+    "ap-object:zunit": PHASES + SPLIT,
 }
 # What van Sinten's chain mapping needs of the array (the Image Blender preset's switches, by key).
 CHAIN_SETTINGS = [

@@ -9,10 +9,15 @@
 ; reads the row ends and the slots of covered pixels back and does the
 ; fragment operations.
 ;
-; Assembled once per span class and unit (CMakeLists.txt): W (pixels walked
-; per row), RM (rows a region holds: RM * (4 + 7 W) <= REGION) and UNITS.
-; The host rewrites each row loop's start to the batch's longest piece
-; (ObjectLayout::loop_words) before START.
+; Assembled once per span class, unit and z path (CMakeLists.txt): W
+; (pixels walked per row), RM (rows a region holds: RM * (4 + 13 W) <=
+; REGION), UNITS and ZSEND. With ZSEND = 1 (ap.object.zpath=unit) there are
+; no slots: each CU decides per pixel whether it covers it (x not past the
+; row's right end, the row within its piece), packs z16 and RGB565 as the
+; host would and sends it with zsend to the z-buffer unit; the same pieces
+; and the same arithmetic, so the frames agree. The host rewrites each row
+; loop's start to the batch's longest piece (ObjectLayout::loop_word)
+; before START.
 ;
 ; Multi-byte values are big-endian. Formats (README.md, "Fixed point"):
 ; x: signed 16-bit pixels; u: the edge's remainder, unsigned 24-bit, biased
@@ -21,7 +26,6 @@
 ; colour: 8.8 unsigned (modulo 2^16) with half a unit of bias; s, t: texels
 ; in 16.8, signed 24-bit (modulo 2^24).
 
-.const REC 80               ; bytes of a unit's record
 .const XL 0                 ; left end: first covered pixel of the row
 .const UL 2                 ; its remainder, biased by 2^24 - D
 .const QL 5                 ; its whole step per row
@@ -46,6 +50,30 @@
 .const TROW 77
 .const SLOT_BYTES 13        ; per slot: z (top byte, z16 high, z16 low), R, G, B, A, S (3), T (3)
 .const ROW_BYTES 4          ; per row: XL, XR
+
+.if ZSEND
+; The z path through the unit (README.md, "The z path through the unit"):
+; the record goes on with the piece's column offset, its first row's y in
+; memory rows (0 at the top) and its rows left, which the walk counts down.
+.const OFS 80               ; the walk's offset from the row's left end
+.const YW 82                ; the row's y in the frame's memory rows
+.const NROWS 84             ; rows of the piece still to walk (0: none)
+.const REC 85
+; konst, written by the host when it loads these programs: 1, the colour
+; masks, and A / 256 of the rounding below.
+.const ONE 0
+.const F8 1
+.const FC 2
+.const A5 3
+.const A6 4
+.var rec 2 * REC
+.var zacc 4                 ; the span's depth accumulator (z24, top byte first)
+.var cacc 8                 ; the span's colour accumulators
+.var pos 4                  ; the pixel sent: x, y
+.var pix 4                  ; and its z16, RGB565
+.var konst 5
+.else
+.const REC 80
 .const OUT_BYTES 4096 - 2 * REC - 8 - 3
 
 .var rec 2 * REC            ; the units' records (UNITS = 1 uses the first)
@@ -58,6 +86,7 @@
 .else
 .const REGION OUT_BYTES
 .endif
+.endif
 
 ; Region h: row plane b at out + REGION h + RM b (b = 0, 1: XL; 2, 3: XR),
 ; slot plane b of pixel p at out + REGION h + RM (4 + 13 p + b); the row
@@ -65,8 +94,121 @@
 walk:
 .stage setup
   mset
+.if ZSEND
+  xor r6, r6, r6            ; r6 stays 0: the carries' other operand
+.endif
 .rept h, 0, UNITS - 1
   loop l, RM - 1, 1
+.if ZSEND
+.stage transfer
+    ; The row's walk starts at x = XL + OFS; r0:r1 counts the pixels left
+    ; to the right end (XR - x, signed): a pixel is covered while it is not
+    ; negative. A CU whose piece has no row left makes it negative.
+    add [pos + 1], [rec + REC * h + XL + 1], [rec + REC * h + OFS + 1]
+    adc [pos], [rec + REC * h + XL], [rec + REC * h + OFS]
+    mov [pos + 2], [rec + REC * h + YW]
+    mov [pos + 3], [rec + REC * h + YW + 1]
+    sub r1, [rec + REC * h + XR + 1], [pos + 1]
+    sbc r0, [rec + REC * h + XR], [pos]
+    cmp [rec + REC * h + NROWS], r6
+    mmov z
+    getm r7
+    mmov nz
+    sub [rec + REC * h + NROWS], [rec + REC * h + NROWS], [konst + ONE]
+    mset
+    or r0, r0, r7
+.stage shade
+    .rept k, 0, 3
+    mov [zacc + k], [rec + REC * h + Z + k]
+    .endr
+    .rept k, 0, 5
+    mov [cacc + k], [rec + REC * h + C + k]
+    .endr
+    loop p, W - 1, 1
+      ; z16 as the host reads it: the top byte 0x01..0x7f makes 0xffff,
+      ; 0x80..0xff makes 0.
+      mov [pix], [zacc + 1]
+      mov [pix + 1], [zacc + 2]
+      mov r2, [zacc]
+      mmov nz
+      getm r3
+      mov [pix], r3
+      mov [pix + 1], r3
+      mov r2, r2
+      mmov s
+      mov [pix], r6
+      mov [pix + 1], r6
+      mset
+      ; RGB565 as pack_pixel rounds: round(c 31 / 255) is the top five bits
+      ; of hi(256 c - 7 c + 1024), round(c 63 / 255) the top six of hi(256 c
+      ; - 3 c + 512); hi(256 c - k c + A) = c + A / 256 - ceil(k c / 256), and
+      ; ceil(k c / 256) = hi((k + 1) c + ~c).
+      shl r3, [cacc]
+      rol r4, r6
+      shl r3, r3
+      rol r4, r4
+      shl r3, r3
+      rol r4, r4
+      not r2, [cacc]
+      add r3, r3, r2
+      adc r4, r4, r6
+      sub r2, [cacc], r4
+      add r2, r2, [konst + A5]
+      and r7, r2, [konst + F8]
+      shl r3, [cacc + 2]
+      rol r4, r6
+      shl r3, r3
+      rol r4, r4
+      not r2, [cacc + 2]
+      add r3, r3, r2
+      adc r4, r4, r6
+      sub r2, [cacc + 2], r4
+      add r2, r2, [konst + A6]
+      and r2, r2, [konst + FC]
+      shl r2, r2
+      rol r5, r6
+      shl r2, r2
+      rol r5, r5
+      shl r2, r2
+      rol r5, r5
+      or [pix + 2], r7, r5
+      shl r3, [cacc + 4]
+      rol r4, r6
+      shl r3, r3
+      rol r4, r4
+      shl r3, r3
+      rol r4, r4
+      not r5, [cacc + 4]
+      add r3, r3, r5
+      adc r4, r4, r6
+      sub r5, [cacc + 4], r4
+      add r5, r5, [konst + A5]
+      shr r5, r5
+      shr r5, r5
+      shr r5, r5
+      or [pix + 3], r2, r5
+      ; Send where covered, then step x, the count, depth and colour.
+      mov r0, r0
+      mmov ns
+      zsend [pos], [pix]
+      mset
+      add [pos + 1], [pos + 1], [konst + ONE]
+      adc [pos], [pos], r6
+      sub r1, r1, [konst + ONE]
+      sbc r0, r0, r6
+      add [zacc + 3], [zacc + 3], [rec + REC * h + ZGX + 3]
+      adc [zacc + 2], [zacc + 2], [rec + REC * h + ZGX + 2]
+      adc [zacc + 1], [zacc + 1], [rec + REC * h + ZGX + 1]
+      adc [zacc], [zacc], [rec + REC * h + ZGX]
+      .rept k, 0, 2
+      add [cacc + 2 * k + 1], [cacc + 2 * k + 1], [rec + REC * h + CGX + 2 * k + 1]
+      adc [cacc + 2 * k], [cacc + 2 * k], [rec + REC * h + CGX + 2 * k]
+      .endr
+    endloop
+    ; The next row is one memory row up.
+    sub [rec + REC * h + YW + 1], [rec + REC * h + YW + 1], [konst + ONE]
+    sbc [rec + REC * h + YW], [rec + REC * h + YW], r6
+.else
 .stage transfer
     mov [out + REGION * h + l], [rec + REC * h + XL]
     mov [out + REGION * h + RM + l], [rec + REC * h + XL + 1]
@@ -114,6 +256,7 @@ walk:
     adc [tacc + 1], [tacc + 1], [rec + REC * h + TGX + 1]
     adc [tacc], [tacc], [rec + REC * h + TGX]
     .endr
+.endif
 .stage fill
     ; The left end: the remainder's carry is the row with one pixel more;
     ; those CUs also move their start values one pixel right.
@@ -133,11 +276,13 @@ walk:
     add [rec + REC * h + C + 2 * k + 1], [rec + REC * h + C + 2 * k + 1], [rec + REC * h + CGX + 2 * k + 1]
     adc [rec + REC * h + C + 2 * k], [rec + REC * h + C + 2 * k], [rec + REC * h + CGX + 2 * k]
     .endr
+.if 1 - ZSEND
     .rept v, 0, 1
     add [rec + REC * h + S + 9 * v + 2], [rec + REC * h + S + 9 * v + 2], [rec + REC * h + SGX + 9 * v + 2]
     adc [rec + REC * h + S + 9 * v + 1], [rec + REC * h + S + 9 * v + 1], [rec + REC * h + SGX + 9 * v + 1]
     adc [rec + REC * h + S + 9 * v], [rec + REC * h + S + 9 * v], [rec + REC * h + SGX + 9 * v]
     .endr
+.endif
     mset
     ; x - (0xff:0xff where the carry was) + Q: x + Q + carry.
     sub [rec + REC * h + XL + 1], [rec + REC * h + XL + 1], r7
@@ -152,11 +297,13 @@ walk:
     add [rec + REC * h + C + 2 * k + 1], [rec + REC * h + C + 2 * k + 1], [rec + REC * h + CROW + 2 * k + 1]
     adc [rec + REC * h + C + 2 * k], [rec + REC * h + C + 2 * k], [rec + REC * h + CROW + 2 * k]
     .endr
+.if 1 - ZSEND
     .rept v, 0, 1
     add [rec + REC * h + S + 9 * v + 2], [rec + REC * h + S + 9 * v + 2], [rec + REC * h + SROW + 9 * v + 2]
     adc [rec + REC * h + S + 9 * v + 1], [rec + REC * h + S + 9 * v + 1], [rec + REC * h + SROW + 9 * v + 1]
     adc [rec + REC * h + S + 9 * v], [rec + REC * h + S + 9 * v], [rec + REC * h + SROW + 9 * v]
     .endr
+.endif
     ; The right end, the same way (no values follow it).
     add [rec + REC * h + UR + 2], [rec + REC * h + UR + 2], [rec + REC * h + RR + 2]
     adc [rec + REC * h + UR + 1], [rec + REC * h + UR + 1], [rec + REC * h + RR + 1]

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iostream>
+#include <iterator>
 #include <stdexcept>
 
 #include "array/isa/ap_isa.h"
@@ -11,6 +13,8 @@
 #include "gl/runtime.h"
 #include "renderers/common/fragment_ops.h"
 #include "renderers/common/texturing.h"
+#include "soc/memory_map.h"
+#include "zbuf/zbuf_regs.h"
 
 namespace tessera::ap_object {
 
@@ -29,8 +33,15 @@ int floor_div(int n, int d) {
 
 }  // namespace
 
-ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit)
-    : m_env(env), m_host(*env.host), m_display(env), m_memory(*env.host), m_array(env), m_dma(env), m_unit(unit) {
+ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit, ZPath zpath)
+    : m_env(env),
+      m_host(*env.host),
+      m_display(env),
+      m_memory(*env.host),
+      m_array(env),
+      m_dma(env),
+      m_unit(unit),
+      m_zpath(zpath) {
   m_buffers.width = m_display.width();
   m_buffers.height = m_display.height();
   if (m_buffers.width > MAX_FRAME || m_buffers.height > MAX_FRAME)
@@ -42,10 +53,42 @@ ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit)
   m_buffers.depth_address = gl::allocate(m_buffers.width * m_buffers.height * 2);
   m_buffers.stencil_address = gl::allocate(m_buffers.width * m_buffers.height);
   m_buffers_core = std::make_unique<arm::ArmRasterizer>(m_memory, m_buffers);
-  // The unit's three span classes, one after the other in program memory.
+  if (zpath == ZPath::unit) {
+    // The window holds whole frame rows: bands of this many (README.md).
+    const uint32_t entries = m_host.read32(memory_map::zbuf_regs.base + zbuf_regs::ENTRIES);
+    m_band_rows = std::min<unsigned>(m_buffers.height, entries / m_buffers.width);
+    if (m_band_rows == 0 || m_buffers.color_format != PixelFormat::rgb565)
+      throw std::invalid_argument("ap-object: ap.object.zpath=unit needs an RGB565 display at most zbuf.entries (" +
+                                  std::to_string(entries) + ") pixels wide");
+  }
+  load_programs(zpath);
+  m_dma_use = renderers::dma_use(env, m_dma);
+  if (m_dma_use.enabled) {
+    const unsigned cus = m_array.cus();
+    unsigned ends = 0, slots = 0, descriptors = 0, record = 0;
+    for (unsigned k = 0; k < SPAN_CLASSES; ++k)
+      for (ZPath path : {ZPath::host, zpath}) {
+        const ObjectLayout layout = ObjectLayout::of(program_of(unit, k, path));
+        record = std::max(record, layout.rec_bytes);
+        if (layout.zsend) continue;
+        ends = std::max(ends, layout.row_bytes * layout.rows * cus);
+        slots = std::max(slots, layout.slot_bytes * layout.span * layout.rows * cus);
+        descriptors = std::max(descriptors, layout.slot_bytes * layout.span + layout.row_bytes + 2);
+      }
+    m_stage_records = gl::allocate(2 * record * cus);
+    m_stage_ends = gl::allocate(ends);
+    m_stage_slots = gl::allocate(slots);
+    m_chain = gl::allocate(descriptors * dma::DESCRIPTOR_BYTES);
+    m_out_channel = m_dma.channels() >= 2 ? 1 : 0;
+  }
+}
+
+// The unit's three span classes of one z path, one after the other in
+// program memory (both paths' six do not fit with unit=triangle).
+void ApObjectRenderer::load_programs(ZPath path) {
   unsigned base = 0;
   for (unsigned k = 0; k < SPAN_CLASSES; ++k) {
-    const ap::Program& program = program_of(unit, k);
+    const ap::Program& program = program_of(m_unit, k, path);
     m_layouts[k] = ObjectLayout::of(program);
     m_program_base[k] = base;
     m_array.load(program, base);
@@ -56,20 +99,14 @@ ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit)
     }
     base += static_cast<unsigned>(program.words.size());
   }
-  m_dma_use = renderers::dma_use(env, m_dma);
-  if (m_dma_use.enabled) {
-    const unsigned cus = m_array.cus();
-    unsigned ends = 0, slots = 0, descriptors = 0;
-    for (const ObjectLayout& layout : m_layouts) {
-      ends = std::max(ends, layout.row_bytes * layout.rows * cus);
-      slots = std::max(slots, layout.slot_bytes * layout.span * layout.rows * cus);
-      descriptors = std::max(descriptors, layout.slot_bytes * layout.span + layout.row_bytes + 2);
-    }
-    m_stage_records = gl::allocate(2 * m_layouts[0].rec_bytes * cus);
-    m_stage_ends = gl::allocate(ends);
-    m_stage_slots = gl::allocate(slots);
-    m_chain = gl::allocate(descriptors * dma::DESCRIPTOR_BYTES);
-    m_out_channel = m_dma.channels() >= 2 ? 1 : 0;
+  m_loaded = path;
+  if (path == ZPath::unit) {
+    // The programs' constants, and no rows left in any CU's records: a CU
+    // whose group gets no record in a run walks the rows its last record
+    // left, which the host path's runs overwrote.
+    const ObjectLayout& layout = m_layouts[0];
+    for (unsigned k = 0; k < std::size(ZSEND_KONST); ++k) m_array.fill8(layout.konst + k, ZSEND_KONST[k]);
+    for (unsigned h = 0; h < layout.units; ++h) m_array.fill8(layout.record(h) + layout.nrows, 0);
   }
 }
 
@@ -78,16 +115,164 @@ void ApObjectRenderer::unsupported(const std::string& what) {
 }
 
 void ApObjectRenderer::clear(const gl::ClearRequest& request) {
+  if (m_zpath == ZPath::unit && !m_frame_on_host) {
+    const Misfit why = unit_cannot_clear(request);
+    if (why.key.empty()) {
+      FrameOp op;
+      op.clear = true;
+      op.request = request;
+      m_frame_ops.push_back(std::move(op));
+      m_frame_cleared = true;
+      return;
+    }
+    fall_back(why);  // outside the scope below: the draw calls time themselves
+  }
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   m_buffers_core->clear(request);
 }
 
 void ApObjectRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
+  flush_unit();
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
   m_buffers_core->read_pixels(x, y, width, height, rgba);
 }
 
+// What the unit does: GL_LESS on 16-bit depth, depth and RGB565 colour
+// written, over a window of whole frame rows; a draw call needing anything
+// else is drawn on the host path.
+ApObjectRenderer::Misfit ApObjectRenderer::unit_cannot_draw(const gl::RasterState& state) const {
+  if (!state.depth_test) return {"depth_test_off", "drawing without the depth test (GL_DEPTH_TEST disabled)"};
+  if (state.depth_func != CompareFunc::less) return {"depth_func", "a depth function other than GL_LESS"};
+  if (!state.depth_write) return {"depth_mask", "glDepthMask(GL_FALSE)"};
+  for (const gl::TextureUnit& unit : state.unit)
+    if (unit.enabled) return {"texturing", "texturing"};
+  if (state.blend) return {"blend", "blending (GL_BLEND)"};
+  if (state.alpha_test) return {"alpha_test", "the alpha test (GL_ALPHA_TEST)"};
+  if (state.logic_op) return {"logic_op", "a logic op (GL_COLOR_LOGIC_OP)"};
+  if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2]) return {"color_mask", "glColorMask"};
+  if (state.stencil_test) return {"stencil", "the stencil test (GL_STENCIL_TEST)"};
+  if (state.fog) return {"fog", "fog (GL_FOG)"};
+  const auto width = static_cast<int64_t>(m_buffers.width), height = static_cast<int64_t>(m_buffers.height);
+  if (state.scissor_test &&
+      (state.scissor_x > 0 || state.scissor_y > 0 || state.scissor_x + int64_t{state.scissor_width} < width ||
+       state.scissor_y + int64_t{state.scissor_height} < height))
+    return {"scissor", "a scissor box smaller than the frame (GL_SCISSOR_TEST)"};
+  return {};
+}
+
+// The unit's clear writes depth and colour into the whole window.
+ApObjectRenderer::Misfit ApObjectRenderer::unit_cannot_clear(const gl::ClearRequest& request) const {
+  const auto width = static_cast<int64_t>(m_buffers.width), height = static_cast<int64_t>(m_buffers.height);
+  if (!request.color || !request.depth || !request.depth_write || !request.color_mask[0] || !request.color_mask[1] ||
+      !request.color_mask[2] ||
+      (request.scissor_test &&
+       (request.scissor_x > 0 || request.scissor_y > 0 || request.scissor_x + int64_t{request.scissor_width} < width ||
+        request.scissor_y + int64_t{request.scissor_height} < height)))
+    return {"clear", "a glClear other than of the whole colour and depth buffers"};
+  return {};
+}
+
+// The frame so far is drawn again on the host path, and the rest of it
+// goes there directly; one warning per reason.
+void ApObjectRenderer::fall_back(const Misfit& why) {
+  ++m_fallbacks[why.key];
+  if (m_warned.insert(why.key).second) {
+    const std::string message = "ap.object.zpath=unit: " + why.feature +
+                                " is not what the z-buffer unit does (GL_LESS on 16-bit depth, RGB565 colour): frames "
+                                "with it are drawn on the host path (reported once)";
+    if (m_env.warn)
+      m_env.warn("ap-object", message);
+    else
+      std::cerr << "warning: ap-object: " << message << "\n";
+  }
+  m_frame_on_host = true;
+  std::vector<FrameOp> ops = std::move(m_frame_ops);
+  m_frame_ops.clear();
+  m_ops_done = 0;
+  for (const FrameOp& op : ops) {
+    if (op.clear)
+      m_buffers_core->clear(op.request);
+    else
+      draw_now(op.state, op.triangles.data(), op.triangles.size());
+  }
+}
+
+// The frame's clears and draw calls not yet on the unit, band by band (all
+// of them again per band when the window holds less than the frame), each
+// band's colour copied into the back buffer.
+void ApObjectRenderer::flush_unit() {
+  if (m_zpath != ZPath::unit || m_frame_on_host || m_ops_done == m_frame_ops.size()) return;
+  if (m_loaded != ZPath::unit) load_programs(ZPath::unit);
+  m_frame_on_unit = true;
+  const uint32_t regs = memory_map::zbuf_regs.base;
+  const unsigned width = m_buffers.width, height = m_buffers.height;
+  const bool one_band = m_band_rows >= height;
+  const uint32_t pixels_before = m_host.read32(regs + zbuf_regs::PIXELS);
+  for (unsigned first = 0; first < height; first += m_band_rows) {
+    const unsigned rows = std::min(m_band_rows, height - first);
+    if (!one_band || m_ops_done == 0) {
+      TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
+      costs::charge(m_host, HostCost::ap_object_zunit_window);
+      m_host.write32(regs + zbuf_regs::FRAME_ORIGIN, first << 16);
+      m_host.write32(regs + zbuf_regs::FRAME_SIZE, width | rows << 16);
+    }
+    for (size_t i = one_band ? m_ops_done : 0; i < m_frame_ops.size(); ++i) {
+      const FrameOp& op = m_frame_ops[i];
+      if (op.clear)
+        clear_unit(op.request);
+      else
+        draw_now(op.state, op.triangles.data(), op.triangles.size());
+    }
+    copy_band(first, rows);
+    ++m_bands;
+  }
+  m_ops_done = m_frame_ops.size();
+  m_pixels_sent += m_host.read32(regs + zbuf_regs::PIXELS) - pixels_before;
+}
+
+void ApObjectRenderer::clear_unit(const gl::ClearRequest& request) {
+  TimedScope timed(m_host, m_time, renderers::HostSplit::array_write);
+  costs::charge(m_host, HostCost::ap_object_zunit_clear);
+  const uint32_t regs = memory_map::zbuf_regs.base;
+  uint32_t rgba = 0;
+  for (unsigned ch = 0; ch < 4; ++ch) rgba |= uint32_t{request.rgba[ch]} << (8 * ch);
+  // As the arm back end's clear converts them.
+  m_host.write32(regs + zbuf_regs::CLEAR_DEPTH, std::min<uint32_t>(request.depth_value, 0xffffff) >> 8);
+  m_host.write32(regs + zbuf_regs::CLEAR_COLOUR, pack_pixel(m_buffers.color_format, rgba));
+  m_host.write32(regs + zbuf_regs::CONTROL, zbuf_regs::CONTROL_CLEAR);
+  // The array's next program starts after the clear.
+  while ((m_host.read32(regs + zbuf_regs::STATUS) & zbuf_regs::STATUS_BUSY) != 0) m_host.compute_cycles(64);
+  ++m_unit_clears;
+}
+
+// The window's colour into the back buffer's rows [first, first + rows)
+// (memory rows, 0 at the top): one DMA copy, or the host's reads.
+void ApObjectRenderer::copy_band(unsigned first, unsigned rows) {
+  TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
+  const uint32_t bytes = m_buffers.width * rows * zbuf_regs::COLOUR_ENTRY_BYTES;
+  const uint32_t destination = m_buffers.color_address + first * m_buffers.width * zbuf_regs::COLOUR_ENTRY_BYTES;
+  if (m_dma_use.enabled) {
+    std::vector<dma::Descriptor> copy{DmaDriver::copy(memory_map::zbuf_colour.base, destination, bytes)};
+    run_chain(0, m_chain, copy);
+  } else {
+    const unsigned words = bytes / 4;
+    std::vector<uint32_t> colour(words);
+    costs::charge(m_host, HostCost::ap_object_zunit_copy_word, words);
+    m_host.read_words(memory_map::zbuf_colour.base, colour.data(), words);
+    std::memcpy(m_host.store_span(destination, 4, words), colour.data(), size_t{words} * 4);
+    if (bytes % 4 != 0)
+      m_host.write16(destination + bytes - 2, m_host.read16(memory_map::zbuf_colour.base + bytes - 2));
+  }
+  m_copied_bytes += bytes;
+}
+
 void ApObjectRenderer::present() {
+  flush_unit();
+  if (m_frame_on_host) ++m_host_frames;
+  if (m_frame_on_unit && !m_frame_on_host) ++m_unit_frames;
+  m_frame_ops.clear();
+  m_ops_done = 0;
+  m_frame_cleared = m_frame_on_host = m_frame_on_unit = false;
   {
     TimedScope timed(m_host, m_time, renderers::HostSplit::frame_out);
     m_display.present();
@@ -111,6 +296,28 @@ void ApObjectRenderer::present() {
 }
 
 void ApObjectRenderer::draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  if (m_zpath == ZPath::unit && !m_frame_on_host) {
+    Misfit why = unit_cannot_draw(state);
+    if (why.key.empty() && !m_frame_cleared)
+      why = {"no_clear", "a frame that does not begin with glClear of the colour and depth buffers"};
+    if (why.key.empty()) {
+      // Kept until the frame is shown or read (the bands draw it again).
+      TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
+      costs::charge(m_host, HostCost::ap_object_zunit_keep_triangle, count);
+      FrameOp op;
+      op.state = state;
+      op.triangles.assign(triangles, triangles + count);
+      m_frame_ops.push_back(std::move(op));
+      m_kept_triangles += count;
+      return;
+    }
+    fall_back(why);
+  }
+  draw_now(state, triangles, count);
+}
+
+void ApObjectRenderer::draw_now(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) {
+  if (m_frame_on_host && m_loaded != ZPath::host) load_programs(ZPath::host);
   const uint64_t start = m_host.now_cycles();
   const renderers::HostTime before = m_time;
   const renderers::CostSplit split(renderers::HostSplit::compute);
@@ -228,6 +435,15 @@ void ApObjectRenderer::run_units(const gl::RasterState& state) {
     run_jobs(state, m_jobs.data() + first, std::min<size_t>(m_array.cus(), m_jobs.size() - first), span_class);
 }
 
+// A piece's record; a ZSEND program's also takes its first row's y in
+// memory rows and its rows.
+UnitRecord ApObjectRenderer::piece_record(const Piece& piece) const {
+  UnitRecord r = m_triangles[piece.triangle].record(piece.half, piece.row, piece.offset);
+  r.y_memory = static_cast<int16_t>(static_cast<int>(m_buffers.height) - 1 - piece.row);
+  r.rows = static_cast<uint8_t>(piece.rows);
+  return r;
+}
+
 void ApObjectRenderer::patch_loop(unsigned span_class, unsigned h, unsigned rows) {
   if (m_loop_rows[span_class][h] == rows) return;
   const ObjectLayout& layout = m_layouts[span_class];
@@ -268,6 +484,7 @@ void ApObjectRenderer::run_jobs(const gl::RasterState& state, const Job* jobs, s
     for (size_t n = 0; n < count; ++n) m_walked_rows += jobs[n].pieces[h].rows;
   }
 
+  if (layout.zsend) return;  // the pixels went to the z-buffer unit
   m_fragments.resize(m_array.cus());
   for (size_t n = 0; n < count; ++n) m_fragments[n].clear();
   {
@@ -298,7 +515,7 @@ void ApObjectRenderer::write_records_ciu(const Job* jobs, size_t count, const Ob
         if (n < count && jobs[n].pieces[h].rows > 0) {
           const Piece& piece = jobs[n].pieces[h];
           costs::charge(m_host, HostCost::ap_object_record);
-          encode_record(m_triangles[piece.triangle].record(piece.half, piece.row, piece.offset), layout, bytes);
+          encode_record(piece_record(piece), layout, bytes);
           any = true;
           ++m_pieces;
         } else {
@@ -433,8 +650,7 @@ void ApObjectRenderer::write_records_dma(const Job* jobs, size_t count, const Ob
       if (piece.rows == 0) continue;
       costs::charge(m_host, HostCost::ap_object_record);
       costs::charge(m_host, HostCost::ap_object_dma_record);
-      encode_record(m_triangles[piece.triangle].record(piece.half, piece.row, piece.offset), layout,
-                    m_record_bytes.data());
+      encode_record(piece_record(piece), layout, m_record_bytes.data());
       for (unsigned b = 0; b < layout.rec_bytes; ++b) out[size_t{b} * cus + n] = m_record_bytes[b];
       ++m_pieces;
     }
@@ -600,6 +816,17 @@ void ApObjectRenderer::publish_statistics() {
   set("ciu_words_written", "CMEM words the host wrote", m_words_written);
   set("ciu_words_read", "CMEM words the host read", m_words_read);
   renderers::publish_traffic(c, "ap_object", m_traffic);
+  if (m_zpath != ZPath::unit) return;
+  set("zbuf.frames_unit", "frames drawn on the z-buffer unit (ap.object.zpath=unit)", m_unit_frames);
+  set("zbuf.frames_host", "frames drawn on the host path because a clear or draw call needs what the unit does not do",
+      m_host_frames);
+  set("zbuf.bands", "windows of frame rows drawn on the unit and copied (one per frame when the frame fits)", m_bands);
+  set("zbuf.clears", "clears done by the unit (CONTROL.CLEAR)", m_unit_clears);
+  set("zbuf.pixels_sent", "pixels the CUs sent to the unit (its PIXELS counter)", m_pixels_sent);
+  set("zbuf.copied_bytes", "bytes of the unit's colour window copied into the back buffer", m_copied_bytes);
+  set("zbuf.kept_triangles", "triangles kept for the unit until the frame is shown or read", m_kept_triangles);
+  for (const auto& [key, frames] : m_fallbacks)
+    set(("zbuf.fallback." + key).c_str(), "frames fallen back to the host path for this reason (README.md)", frames);
 }
 
 }  // namespace tessera::ap_object

@@ -6,11 +6,18 @@
 // the host reads them back through the CIU, textures them, z-tests them
 // against its depth buffer and writes the frame buffer in system memory. Clears, read-back and
 // the buffers' formats are the arm back end's (its rasterizer does them).
+// With ap.object.zpath=unit the CUs send their pixels to the z-buffer unit
+// instead; a frame is kept until it is shown or read, then drawn on the
+// unit and its colour copied into the back buffer, or drawn on the host
+// path when a clear or draw call needs what the unit does not do (README.md,
+// "The z path through the unit").
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,7 +39,7 @@ namespace tessera::ap_object {
 
 class ApObjectRenderer : public gl::Renderer {
  public:
-  ApObjectRenderer(AppEnvironment& env, Unit unit);
+  ApObjectRenderer(AppEnvironment& env, Unit unit, ZPath zpath = ZPath::host);
 
   const char* name() const override { return "tessera ap-object (array processor, a triangle or half per CU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_object::CAPABILITIES; }
@@ -46,6 +53,7 @@ class ApObjectRenderer : public gl::Renderer {
   void present() override;
 
   Unit unit() const { return m_unit; }
+  ZPath zpath() const { return m_zpath; }
 
  private:
   // A piece of a half: its rows [row, row + rows) and the walk's offset
@@ -68,6 +76,28 @@ class ApObjectRenderer : public gl::Renderer {
     int32_t st[2];  // texels, 16.8
   };
 
+  // A clear or a draw call of the frame being kept for the unit.
+  struct FrameOp {
+    bool clear = false;
+    gl::ClearRequest request;
+    gl::RasterState state;
+    std::vector<gl::Triangle> triangles;
+  };
+  // Why the unit cannot do it: a short key (the statistic's name) and the
+  // feature; an empty key when it can.
+  struct Misfit {
+    std::string key, feature;
+  };
+
+  void draw_now(const gl::RasterState& state, const gl::Triangle* triangles, size_t count);
+  void load_programs(ZPath path);
+  Misfit unit_cannot_draw(const gl::RasterState& state) const;
+  Misfit unit_cannot_clear(const gl::ClearRequest& request) const;
+  void fall_back(const Misfit& why);
+  void flush_unit();
+  void clear_unit(const gl::ClearRequest& request);
+  void copy_band(unsigned first_row, unsigned rows);
+  UnitRecord piece_record(const Piece& piece) const;
   void run_units(const gl::RasterState& state);
   void run_jobs(const gl::RasterState& state, const Job* jobs, size_t count, unsigned span_class);
   void write_records_ciu(const Job* jobs, size_t count, const ObjectLayout& layout);
@@ -99,6 +129,9 @@ class ApObjectRenderer : public gl::Renderer {
   unsigned m_out_channel = 0;
   renderers::ArrayTraffic m_traffic;
   Unit m_unit;
+  ZPath m_zpath;
+  ZPath m_loaded = ZPath::host;  // the programs in program memory
+  // The loaded programs' layouts, entries, row-loop counts and words.
   std::array<ObjectLayout, SPAN_CLASSES> m_layouts;
   std::array<unsigned, SPAN_CLASSES> m_program_base{};
   std::array<std::array<unsigned, 2>, SPAN_CLASSES> m_loop_rows{};  // each row loop's current count
@@ -123,6 +156,18 @@ class ApObjectRenderer : public gl::Renderer {
   uint64_t m_busy_lanes = 0, m_lane_rows = 0, m_walked_rows = 0, m_emitted = 0, m_written = 0;
   uint64_t m_words_written = 0, m_words_read = 0, m_loop_patches = 0;
   std::array<uint64_t, SPAN_CLASSES> m_class_runs{};
+
+  // ap.object.zpath=unit: the frame's clears and draw calls kept for the
+  // unit (m_ops_done of them drawn on it already, when the screen is one
+  // band), or the frame fallen back to the host path.
+  std::vector<FrameOp> m_frame_ops;
+  size_t m_ops_done = 0;
+  bool m_frame_cleared = false, m_frame_on_host = false, m_frame_on_unit = false;
+  unsigned m_band_rows = 0;  // frame rows the unit's window holds (zbuf.entries / width)
+  std::set<std::string> m_warned;
+  uint64_t m_unit_frames = 0, m_host_frames = 0, m_bands = 0, m_unit_clears = 0, m_pixels_sent = 0;
+  uint64_t m_copied_bytes = 0, m_kept_triangles = 0;
+  std::map<std::string, uint64_t> m_fallbacks;
 };
 
 }  // namespace tessera::ap_object

@@ -14,6 +14,12 @@
 #include "ap_programs/ap_object_w16.h"
 #include "ap_programs/ap_object_w32.h"
 #include "ap_programs/ap_object_w8.h"
+#include "ap_programs/ap_object_zs_tri_w16.h"
+#include "ap_programs/ap_object_zs_tri_w32.h"
+#include "ap_programs/ap_object_zs_tri_w8.h"
+#include "ap_programs/ap_object_zs_w16.h"
+#include "ap_programs/ap_object_zs_w32.h"
+#include "ap_programs/ap_object_zs_w8.h"
 
 namespace tessera::ap_object {
 
@@ -57,7 +63,30 @@ Unit unit_named(const std::string& name, const std::string& key) {
   throw std::invalid_argument(key + ": unknown unit '" + name + "'; allowed: " + allowed);
 }
 
-const ap::Program& program_of(Unit unit, unsigned span_class) {
+ZPath zpath_named(const std::string& name, const std::string& key) {
+  std::string allowed;
+  for (unsigned z = 0; z < std::size(ZPATH_NAMES); ++z) {
+    if (name == ZPATH_NAMES[z]) return static_cast<ZPath>(z);
+    allowed += std::string(z == 0 ? "" : " or ") + ZPATH_NAMES[z];
+  }
+  throw std::invalid_argument(key + ": unknown z path '" + name + "'; allowed: " + allowed);
+}
+
+const ap::Program& program_of(Unit unit, unsigned span_class, ZPath zpath) {
+  if (zpath == ZPath::unit && unit == Unit::triangle) {
+    switch (span_class) {
+      case 0: return ap::programs::ap_object_zs_tri_w8();
+      case 1: return ap::programs::ap_object_zs_tri_w16();
+      default: return ap::programs::ap_object_zs_tri_w32();
+    }
+  }
+  if (zpath == ZPath::unit) {
+    switch (span_class) {
+      case 0: return ap::programs::ap_object_zs_w8();
+      case 1: return ap::programs::ap_object_zs_w16();
+      default: return ap::programs::ap_object_zs_w32();
+    }
+  }
   if (unit == Unit::triangle) {
     switch (span_class) {
       case 0: return ap::programs::ap_object_tri_w8();
@@ -78,19 +107,32 @@ ObjectLayout ObjectLayout::of(const ap::Program& program) {
   m.rows = static_cast<unsigned>(ap::constant_value(program, "RM"));
   m.units = static_cast<unsigned>(ap::constant_value(program, "UNITS"));
   m.rec_bytes = static_cast<unsigned>(ap::constant_value(program, "REC"));
-  m.region = static_cast<unsigned>(ap::constant_value(program, "REGION"));
+  m.zsend = ap::constant_value(program, "ZSEND") != 0;
   m.slot_bytes = static_cast<unsigned>(ap::constant_value(program, "SLOT_BYTES"));
   m.row_bytes = static_cast<unsigned>(ap::constant_value(program, "ROW_BYTES"));
   if (m.units < 1 || m.units > 2 || m.slot_bytes != 13 || m.row_bytes != 4)
     throw std::invalid_argument(program.source_name + ": the host expects 1 or 2 units, 13-byte slots, 4-byte rows");
-  if (m.rows * (m.row_bytes + m.slot_bytes * m.span) > m.region)
-    throw std::invalid_argument(program.source_name + ": RM rows of W pixels do not fit a region");
   m.rec = ap::variable_address(program, "rec", 2 * m.rec_bytes);
   m.cacc = ap::variable_address(program, "cacc", 8);
-  m.tacc = ap::variable_address(program, "tacc", 3);
-  m.out = ap::variable_address(program, "out", static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")));
-  if (m.region * m.units > static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")))
-    throw std::invalid_argument(program.source_name + ": the regions do not fit `out`");
+  if (m.zsend) {
+    m.ofs = static_cast<unsigned>(ap::constant_value(program, "OFS"));
+    m.yw = static_cast<unsigned>(ap::constant_value(program, "YW"));
+    m.nrows = static_cast<unsigned>(ap::constant_value(program, "NROWS"));
+    if (m.rows > 255 || m.nrows + 1 > m.rec_bytes)
+      throw std::invalid_argument(program.source_name + ": RM beyond a byte, or NROWS beyond the record");
+    m.zacc = ap::variable_address(program, "zacc", 4);
+    m.pos = ap::variable_address(program, "pos", 4);
+    m.pix = ap::variable_address(program, "pix", 4);
+    m.konst = ap::variable_address(program, "konst", static_cast<unsigned>(std::size(ZSEND_KONST)));
+  } else {
+    m.region = static_cast<unsigned>(ap::constant_value(program, "REGION"));
+    if (m.rows * (m.row_bytes + m.slot_bytes * m.span) > m.region)
+      throw std::invalid_argument(program.source_name + ": RM rows of W pixels do not fit a region");
+    m.tacc = ap::variable_address(program, "tacc", 3);
+    m.out = ap::variable_address(program, "out", static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")));
+    if (m.region * m.units > static_cast<unsigned>(ap::constant_value(program, "OUT_BYTES")))
+      throw std::invalid_argument(program.source_name + ": the regions do not fit `out`");
+  }
   unsigned* fields[] = {&m.xl,  &m.ul,   &m.ql, &m.rl,  &m.nl,   &m.xr, &m.ur,  &m.qr,   &m.rr, &m.nr,  &m.z,
                         &m.zgx, &m.zrow, &m.c,  &m.cgx, &m.crow, &m.s,  &m.sgx, &m.srow, &m.t,  &m.tgx, &m.trow};
   const char* names[] = {"XL",  "UL",   "QL", "RL",  "NL",   "XR", "UR",  "QR",   "RR", "NR",  "Z",
@@ -98,11 +140,14 @@ ObjectLayout ObjectLayout::of(const ap::Program& program) {
   for (unsigned i = 0; i < std::size(fields); ++i)
     *fields[i] = static_cast<unsigned>(ap::constant_value(program, names[i]));
   m.entry = ap::entry_word(program, "walk");
-  // The row loops, in order: one per record.
-  unsigned found = 0;
+  // The row loops, in order: one per record (the outermost loops; a ZSEND
+  // program's pixel loop is inside its row loop).
+  unsigned found = 0, depth = 0;
   for (unsigned w = m.entry; w < program.words.size() && found < m.units; ++w) {
     const ap::Decoded decoded = ap::decode(program.words[w]);
-    if (decoded.error.empty() && decoded.instruction.opcode == ap::Opcode::op_loop) m.loop_word[found++] = w;
+    if (!decoded.error.empty()) continue;
+    if (decoded.instruction.opcode == ap::Opcode::op_loop && depth++ == 0) m.loop_word[found++] = w;
+    if (decoded.instruction.opcode == ap::Opcode::op_endloop) --depth;
   }
   if (found != m.units) throw std::invalid_argument(program.source_name + ": a row loop per record expected");
   for (const auto& [name, variable] : program.variables)
@@ -135,6 +180,11 @@ void encode_record(const UnitRecord& r, const ObjectLayout& m, uint8_t* bytes) {
     put(bytes, at, r.st[v], 3);
     put(bytes, gx, r.stgx[v], 3);
     put(bytes, row, r.strow[v], 3);
+  }
+  if (m.zsend) {
+    put(bytes, m.ofs, static_cast<uint16_t>(r.offset), 2);
+    put(bytes, m.yw, static_cast<uint16_t>(r.y_memory), 2);
+    bytes[m.nrows] = r.rows;
   }
 }
 
@@ -297,6 +347,7 @@ UnitRecord ObjectTriangle::record(unsigned h, int j, int offset) const {
   r.ur = (rem_r + r.nr) & 0xffffff;
   r.rl = left_edge.r;
   r.rr = right_edge.r;
+  r.offset = static_cast<int16_t>(offset);
   const int64_t px = 16 * (int64_t{xl} + offset) + 8, py = 16 * int64_t{j} + 8;
   r.z = static_cast<uint32_t>(code_at(m_z, px, py));
   r.zgx = static_cast<uint32_t>(step(m_z, 16, 0));

@@ -34,7 +34,14 @@ Unit unit_named(const std::string& name, const std::string& key = "ap.object.uni
 // into column pieces of the widest class.
 inline constexpr unsigned SPAN_CLASSES = 3;
 inline constexpr unsigned SPAN_WIDTHS[SPAN_CLASSES] = {8, 16, 32};
-const ap::Program& program_of(Unit unit, unsigned span_class);
+
+// ap.object.zpath: where the pixels go, to CMEM slots the host reads and
+// z-tests (host) or through zsend to the z-buffer unit (unit).
+enum class ZPath : unsigned { host, unit };
+inline constexpr const char* ZPATH_NAMES[] = {"host", "unit"};
+ZPath zpath_named(const std::string& name, const std::string& key = "ap.object.zpath");
+
+const ap::Program& program_of(Unit unit, unsigned span_class, ZPath zpath = ZPath::host);
 
 // Where everything lives in a CU's CMEM, read from the program's variables
 // and constants (the program's source is the one place it is written).
@@ -50,6 +57,12 @@ struct ObjectLayout {
   unsigned entry = 0;
   std::array<unsigned, 2> loop_word{};  // the row loop of each record, by word
   unsigned cmem_bytes = 0;              // the end of the last variable
+  // The z path through the unit (ZSEND programs): no slots; the record goes
+  // on with the walk's offset, the row's y in memory rows and the rows
+  // left; the span's accumulators, the pixel sent and the host's constants.
+  bool zsend = false;
+  unsigned ofs = 0, yw = 0, nrows = 0;
+  unsigned zacc = 0, pos = 0, pix = 0, konst = 0;
 
   unsigned record(unsigned h) const { return rec + rec_bytes * h; }
   // The row planes: byte b of row slot l (b 0, 1: XL; 2, 3: XR).
@@ -73,9 +86,17 @@ struct UnitRecord {
   uint32_t z = 0, zgx = 0, zrow = 0;
   std::array<uint16_t, 4> c{}, cgx{}, crow{};
   std::array<uint32_t, 2> st{}, stgx{}, strow{};  // s and t, 16.8 texels, 24-bit
+  // ZSEND programs only: the walk's offset from the left end, the first
+  // row's y in the frame's memory rows (0 at the top) and the piece's rows.
+  int16_t offset = 0, y_memory = 0;
+  uint8_t rows = 0;
 };
 // Writes the record's rec_bytes bytes, big-endian, in the program's order.
 void encode_record(const UnitRecord& record, const ObjectLayout& layout, uint8_t* bytes);
+
+// The bytes of `konst` a ZSEND program reads (ap_object.s): 1, the masks of
+// red's five and green's six bits, and A / 256 of the colour's rounding.
+inline constexpr uint8_t ZSEND_KONST[] = {1, 0xf8, 0xfc, 4, 2};
 
 // The pixels the host may draw: the frame, narrowed by a scissor box.
 struct PixelBox {

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <utility>
 #include <vector>
 
 #include "array/core/array_controller.h"
+#include "array/core/pixel_port.h"
 #include "array/isa/ap_isa.h"
+#include "common/pixel_format.h"
 #include "renderers/ap_object/object_reference.h"
 #include "renderers/ap_object/object_setup.h"
 
@@ -253,10 +256,253 @@ TEST(ApObjectSetup, EmitsExactlyTheCoveredPixels) {
   EXPECT_GT(ties, 100u);  // the rule's ties were reached
 }
 
+// The scalar model of the z-buffer unit's port: every pixel sent, by lane,
+// in the order each lane sends them.
+struct SentByLane : ap::PixelPort {
+  std::vector<std::vector<ZsendPixel>> lanes;
+  explicit SentByLane(unsigned count) : lanes(count) {}
+  uint64_t send(const std::vector<ap::SentPixel>& pixels) override {
+    for (const ap::SentPixel& p : pixels) lanes[p.lane].push_back(ZsendPixel{p.x, p.y, p.z, p.colour});
+    return 0;
+  }
+};
+
+// An array controller whose zsend goes to `port`.
+std::unique_ptr<ArrayController> zsend_controller(ap::PixelPort& port) {
+  auto controller = std::make_unique<ArrayController>(ArrayGeometry{}, CycleTable::defaults(), 4096, 1000000000);
+  ap::EnabledOps ops = ap::j2210_ops();
+  ops[static_cast<unsigned>(ap::Opcode::op_zsend)] = true;
+  controller->enable_ops(ops);
+  controller->set_pixel_port(&port);
+  return controller;
+}
+
+// Every ZSEND variant on 96 CUs against run_reference_zsend: every CMEM
+// byte and every pixel each CU sends, in order; records of random
+// triangles' pieces with random rows left (0 included) and random bytes,
+// random row counts, several runs in a row.
+TEST(ApObjectZsendProgram, MatchesTheReferenceBitForBit) {
+  std::mt19937 rng(2211);
+  for (Unit unit : {Unit::half, Unit::triangle})
+    for (unsigned span_class = 0; span_class < SPAN_CLASSES; ++span_class) {
+      const ap::Program& program = program_of(unit, span_class, ZPath::unit);
+      const ObjectLayout layout = ObjectLayout::of(program);
+      ASSERT_TRUE(layout.zsend);
+      EXPECT_EQ(layout.span, SPAN_WIDTHS[span_class]);
+      EXPECT_EQ(layout.rows, ObjectLayout::of(program_of(unit, span_class)).rows);
+      EXPECT_LE(layout.cmem_bytes, 4096u);
+      SentByLane port(96);
+      auto controller = zsend_controller(port);
+      CuArray& array = controller->array();
+      const unsigned lanes = array.lanes(), bytes = 4096;
+      std::vector<std::vector<uint8_t>> reference(lanes, std::vector<uint8_t>(bytes));
+      for (unsigned lane = 0; lane < lanes; ++lane)
+        for (unsigned a = 0; a < bytes; ++a) {
+          auto value = static_cast<uint8_t>(rng());
+          if (a >= layout.konst && a < layout.konst + std::size(ZSEND_KONST)) value = ZSEND_KONST[a - layout.konst];
+          array.set_cmem(lane, a, value);
+          reference[lane][a] = value;
+        }
+      std::vector<uint8_t> record(layout.rec_bytes);
+      unsigned sent = 0;
+      for (unsigned run = 0; run < 3; ++run) {
+        unsigned rows[2] = {1 + static_cast<unsigned>(rng() % layout.rows),
+                            1 + static_cast<unsigned>(rng() % layout.rows)};
+        if (run == 0) rows[0] = rows[1] = layout.rows;
+        for (unsigned lane = 0; lane < lanes; ++lane)
+          for (unsigned h = 0; h < layout.units; ++h) {
+            const ObjectTriangle setup(random_triangle(rng), rng() % 5 == 0, PixelBox{0, 0, FRAME_W - 1, FRAME_H - 1});
+            const unsigned half = static_cast<unsigned>(rng() % 2);
+            if (rng() % 6 != 0 && setup.valid() && !setup.empty(half)) {
+              UnitRecord r = setup.record(half, setup.first_row(half), static_cast<int>(rng() % 3) * 8);
+              r.y_memory = static_cast<int16_t>(FRAME_H - 1 - setup.first_row(half));
+              r.rows = static_cast<uint8_t>(rng() % (rows[h] + 1));
+              encode_record(r, layout, record.data());
+            } else {
+              for (uint8_t& b : record) b = static_cast<uint8_t>(rng());
+            }
+            for (unsigned b = 0; b < layout.rec_bytes; ++b) {
+              array.set_cmem(lane, layout.record(h) + b, record[b]);
+              reference[lane][layout.record(h) + b] = record[b];
+            }
+          }
+        for (auto& lane : port.lanes) lane.clear();
+        ASSERT_TRUE(controller->load(0, patched(program, layout, rows)));
+        const RunResult result = controller->run(layout.entry);
+        ASSERT_TRUE(result.ok) << result.error;
+        for (unsigned lane = 0; lane < lanes; ++lane) {
+          std::vector<ZsendPixel> expected;
+          run_reference_zsend(layout, reference[lane].data(), rows, expected);
+          ASSERT_EQ(port.lanes[lane].size(), expected.size())
+              << program.source_name << " run " << run << " CU " << lane;
+          for (size_t i = 0; i < expected.size(); ++i)
+            ASSERT_TRUE(port.lanes[lane][i] == expected[i])
+                << program.source_name << " run " << run << " CU " << lane << " pixel " << i << ": sent ("
+                << port.lanes[lane][i].x << ", " << port.lanes[lane][i].y << ", z " << port.lanes[lane][i].z
+                << ", colour " << port.lanes[lane][i].colour << "), expected (" << expected[i].x << ", "
+                << expected[i].y << ", z " << expected[i].z << ", colour " << expected[i].colour << ")";
+          sent += static_cast<unsigned>(expected.size());
+        }
+        for (unsigned lane = 0; lane < lanes; ++lane)
+          for (unsigned a = 0; a < bytes; ++a)
+            ASSERT_EQ(array.cmem(lane, a), reference[lane][a])
+                << program.source_name << " run " << run << ", CU " << lane << ", address " << a;
+      }
+      EXPECT_GT(sent, 1000u) << program.source_name;
+    }
+}
+
+// The colour's rounding on the CU: every 8-bit channel value, red, green
+// and blue, packed as pack_pixel packs it (a gradient of one code a pixel
+// from 0 to 255 across 32 CUs of 8 pixels).
+TEST(ApObjectZsendProgram, PacksEveryChannelValueAsTheHost) {
+  const ap::Program& program = program_of(Unit::half, 0, ZPath::unit);
+  const ObjectLayout layout = ObjectLayout::of(program);
+  SentByLane port(96);
+  auto controller = zsend_controller(port);
+  CuArray& array = controller->array();
+  for (unsigned lane = 0; lane < array.lanes(); ++lane) {
+    UnitRecord r;
+    r.xl = 0;
+    r.xr = 1000;
+    r.rows = lane < 32 ? 1 : 0;
+    r.y_memory = static_cast<int16_t>(lane);
+    for (unsigned k = 0; k < 3; ++k) {
+      r.c[k] = static_cast<uint16_t>(((8 * lane + 85 * k) % 256) << 8 | 0x80);
+      r.cgx[k] = 0x100;
+    }
+    std::vector<uint8_t> bytes(layout.rec_bytes);
+    encode_record(r, layout, bytes.data());
+    for (unsigned b = 0; b < layout.rec_bytes; ++b) array.set_cmem(lane, layout.record(0) + b, bytes[b]);
+    for (unsigned k = 0; k < std::size(ZSEND_KONST); ++k) array.set_cmem(lane, layout.konst + k, ZSEND_KONST[k]);
+  }
+  const unsigned rows[2] = {1, 1};
+  ASSERT_TRUE(controller->load(0, patched(program, layout, rows)));
+  ASSERT_TRUE(controller->run(layout.entry).ok);
+  std::set<unsigned> seen;
+  for (unsigned lane = 0; lane < 32; ++lane) {
+    ASSERT_EQ(port.lanes[lane].size(), 8u);
+    for (unsigned p = 0; p < 8; ++p) {
+      uint32_t rgba = 0;
+      for (unsigned k = 0; k < 3; ++k) rgba |= ((8 * lane + 85 * k + p) % 256) << (8 * k);
+      seen.insert(rgba & 0xff);
+      EXPECT_EQ(port.lanes[lane][p].colour, pack_pixel(PixelFormat::rgb565, rgba)) << "CU " << lane << " pixel " << p;
+      EXPECT_EQ(port.lanes[lane][p].x, p);
+      EXPECT_EQ(port.lanes[lane][p].y, lane);
+    }
+  }
+  EXPECT_EQ(seen.size(), 256u);
+  for (unsigned lane = 32; lane < 96; ++lane) EXPECT_TRUE(port.lanes[lane].empty()) << "CU " << lane;
+}
+
+// Random triangles cut into pieces as the renderer cuts them, run 96 at a
+// time through a ZSEND variant on the array's core: within the box's rows,
+// every covered pixel is sent exactly once (x outside the box is the
+// unit's to clip) and nothing else, each with the depth and colour the
+// host path reads from the same piece's slots (run_reference) and packs.
+TEST(ApObjectZsendProgram, SendsExactlyTheCoveredPixelsAsTheHostPathDraws) {
+  std::mt19937 rng(1999);
+  SentByLane port(96);
+  auto controller = zsend_controller(port);
+  CuArray& array = controller->array();
+  for (unsigned lane = 0; lane < array.lanes(); ++lane)
+    for (unsigned a = 0; a < 4096; ++a) array.set_cmem(lane, a, 0);
+  unsigned pixels = 0;
+  for (unsigned n = 0; n < 400; ++n) {
+    const gl::Triangle t = random_triangle(rng);
+    const PixelBox box{0, 0, FRAME_W - 1, FRAME_H - 1};
+    const ObjectTriangle setup(t, n % 11 == 0, box);
+    if (!setup.valid()) continue;
+    const unsigned span_class = n % SPAN_CLASSES;
+    const ap::Program& program = program_of(Unit::half, span_class, ZPath::unit);
+    const ObjectLayout layout = ObjectLayout::of(program), host = ObjectLayout::of(program_of(Unit::half, span_class));
+    for (unsigned k = 0; k < std::size(ZSEND_KONST); ++k)
+      for (unsigned lane = 0; lane < array.lanes(); ++lane) array.set_cmem(lane, layout.konst + k, ZSEND_KONST[k]);
+    const int w = static_cast<int>(layout.span);
+    // The pieces, and what the host path makes of each.
+    std::vector<UnitRecord> pieces;
+    std::map<std::pair<int, int>, ZsendPixel> expected;
+    std::vector<uint8_t> cmem(4096);
+    for (unsigned h = 0; h < 2; ++h) {
+      if (setup.empty(h)) continue;
+      for (int j0 = setup.first_row(h); j0 <= setup.last_row(h); j0 += static_cast<int>(layout.rows)) {
+        const int rows = std::min(static_cast<int>(layout.rows), setup.last_row(h) - j0 + 1);
+        int widest = 0;
+        for (int j = j0; j < j0 + rows; ++j) widest = std::max(widest, setup.right(h, j) - setup.left(h, j) + 1);
+        for (int offset = 0; offset < widest; offset += w) {
+          UnitRecord r = setup.record(h, j0, offset);
+          r.y_memory = static_cast<int16_t>(FRAME_H - 1 - j0);
+          r.rows = static_cast<uint8_t>(rows);
+          pieces.push_back(r);
+          encode_record(r, host, cmem.data() + host.record(0));
+          const unsigned loop_rows[2] = {static_cast<unsigned>(rows), 1};
+          run_reference(host, cmem.data(), loop_rows);
+          for (int row = 0; row < rows; ++row) {
+            const unsigned l = static_cast<unsigned>(rows - 1 - row);
+            const auto xl = static_cast<int16_t>(cmem[host.row_plane(0, 0, l)] << 8 | cmem[host.row_plane(0, 1, l)]);
+            const auto xr = static_cast<int16_t>(cmem[host.row_plane(0, 2, l)] << 8 | cmem[host.row_plane(0, 3, l)]);
+            for (int p = 0; p < w && xl + offset + p <= xr; ++p) {
+              const auto byte = [&](unsigned b) {
+                return unsigned{cmem[host.slot(0, static_cast<unsigned>(p), b, l)]};
+              };
+              const unsigned top = byte(0);
+              const auto z = static_cast<uint16_t>(top >= 0x80 ? 0 : top != 0 ? 0xffff : byte(1) << 8 | byte(2));
+              const auto colour =
+                  static_cast<uint16_t>(pack_pixel(PixelFormat::rgb565, byte(3) | byte(4) << 8 | byte(5) << 16));
+              const int x = xl + offset + p, y = FRAME_H - 1 - (j0 + row);
+              expected[{x, y}] = ZsendPixel{static_cast<uint16_t>(x), static_cast<uint16_t>(y), z, colour};
+            }
+          }
+        }
+      }
+    }
+    std::map<std::pair<int, int>, unsigned> sent;
+    for (size_t first = 0; first < pieces.size(); first += array.lanes()) {
+      const size_t count = std::min<size_t>(array.lanes(), pieces.size() - first);
+      unsigned rows[2] = {1, 1};
+      std::vector<uint8_t> bytes(layout.rec_bytes);
+      for (size_t i = 0; i < count; ++i) {
+        rows[0] = std::max<unsigned>(rows[0], pieces[first + i].rows);
+        encode_record(pieces[first + i], layout, bytes.data());
+        for (unsigned b = 0; b < layout.rec_bytes; ++b)
+          array.set_cmem(static_cast<unsigned>(i), layout.record(0) + b, bytes[b]);
+      }
+      for (auto& lane : port.lanes) lane.clear();
+      ASSERT_TRUE(controller->load(0, patched(program, layout, rows)));
+      ASSERT_TRUE(controller->run(layout.entry).ok);
+      for (const auto& lane : port.lanes)
+        for (const ZsendPixel& p : lane) {
+          const int x = static_cast<int16_t>(p.x), y = static_cast<int16_t>(p.y);
+          ++sent[{x, y}];
+          const auto it = expected.find({x, y});
+          ASSERT_TRUE(it != expected.end()) << "triangle " << n << " sent " << x << ", " << y;
+          ASSERT_TRUE(it->second == p) << "triangle " << n << " pixel " << x << ", " << y << ": z " << p.z << " vs "
+                                       << it->second.z << ", colour " << p.colour << " vs " << it->second.colour;
+        }
+    }
+    ASSERT_EQ(sent.size(), expected.size()) << "triangle " << n;
+    for (const auto& [xy, count] : sent) {
+      ASSERT_EQ(count, 1u) << "triangle " << n << " pixel " << xy.first << ", " << xy.second;
+      const int i = xy.first, j = FRAME_H - 1 - xy.second;
+      ASSERT_TRUE(covered(t, i, j)) << "triangle " << n << " pixel " << i << ", " << j;
+      if (i >= box.x0 && i <= box.x1) ++pixels;
+    }
+    for (int j = box.y0; j <= box.y1; ++j)
+      for (int i = box.x0; i <= box.x1; ++i) {
+        if (!covered(t, i, j)) continue;
+        ASSERT_EQ(sent.count({i, FRAME_H - 1 - j}), 1u) << "triangle " << n << " pixel " << i << ", " << j << " missed";
+      }
+  }
+  EXPECT_GT(pixels, 20000u);
+}
+
 TEST(ApObjectSetup, UnitNames) {
   EXPECT_EQ(unit_named("half"), Unit::half);
   EXPECT_EQ(unit_named("triangle"), Unit::triangle);
   EXPECT_THROW(unit_named("quad"), std::invalid_argument);
+  EXPECT_EQ(zpath_named("host"), ZPath::host);
+  EXPECT_EQ(zpath_named("unit"), ZPath::unit);
+  EXPECT_THROW(zpath_named("zbuf"), std::invalid_argument);
 }
 
 }  // namespace
