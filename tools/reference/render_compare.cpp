@@ -52,6 +52,7 @@ struct Options {
   bool allow_coverage_off_edges = false;
   std::string out_dir;
   std::vector<std::string> settings;           // --set key=value, passed on to soc_sim
+  std::string config;                          // --config FILE, passed on to soc_sim (before the --set)
   std::vector<std::string> scene_args;         // after --
   std::vector<std::string> scene_arg_options;  // --scene-arg, the older spelling; these come first
 };
@@ -116,6 +117,7 @@ Image render_on_soc(const Options& options, const fs::path& frames_dir) {
                                       "display.format=" + options.format, "--backend", options.backend,
                                       // DIR/ours is render_compare's: a rerun replaces the frames it holds.
                                       "--force"};
+  if (!options.config.empty()) command.insert(command.end(), {"--config", options.config});
   for (const std::string& setting : options.settings) command.insert(command.end(), {"--set", setting});
   if (!options.scene_args.empty()) {
     command.push_back("--");
@@ -229,6 +231,7 @@ static int run_main(int argc, char** argv) {
                  "write ours.png, reference.png and difference.png (and soc_sim's frames in ours/) here");
   app.add_option("--set", options.settings,
                  "soc_sim parameter key=value (repeatable), e.g. display.width=512; Mesa draws the frame's size");
+  app.add_option("--config", options.config, "a configuration file for soc_sim (a preset), applied before --set");
   app.add_option("--scene-arg", options.scene_arg_options, "argument passed to the scene's init (repeatable)");
   app.add_option("scene_args", options.scene_args, "arguments passed to the scene, after --");
   try {

@@ -257,13 +257,18 @@ TEST(ApObjectSetup, EmitsExactlyTheCoveredPixels) {
 }
 
 // The scalar model of the z-buffer unit's port: every pixel sent, by lane,
-// in the order each lane sends them.
+// in the order each lane sends them; each taken the cycle it arrives (the
+// timing is the unit's, tested in tests/zbuf).
 struct SentByLane : ap::PixelPort {
   std::vector<std::vector<ZsendPixel>> lanes;
   explicit SentByLane(unsigned count) : lanes(count) {}
-  uint64_t send(const std::vector<ap::SentPixel>& pixels) override {
-    for (const ap::SentPixel& p : pixels) lanes[p.lane].push_back(ZsendPixel{p.x, p.y, p.z, p.colour});
-    return 0;
+  ap::SendTimes send(const std::vector<ap::SentPixel>& pixels, const ap::SendArrival& arrival) override {
+    ap::SendTimes times;
+    for (const ap::SentPixel& p : pixels) {
+      lanes[p.lane].push_back(ZsendPixel{p.x, p.y, p.z, p.colour});
+      times.cycles.push_back(std::max(arrival.first, arrival.arrival(p.lane)));
+    }
+    return times;
   }
 };
 
