@@ -141,7 +141,7 @@ def main():
         parser.error(f"no soc_sim at {args.soc_sim}")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    backends = args.backend or ["arm", "raster", "ap-tile", "ap-pixel"]
+    backends = args.backend or ["arm", "raster", *ARRAY_BACKENDS]
     chosen = args.scene or scenes(args.soc_sim)
     cases = [(scene, backend) for backend in backends for scene in chosen]
     iss_from = pathlib.Path(args.iss_from) if args.iss_from else None
