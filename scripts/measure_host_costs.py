@@ -48,10 +48,13 @@ value and is listed. `--only-rows PREFIX` measures only the rows whose
 names start with PREFIX, from the runs that charge them (the cluster's
 for sort_middle_), and keeps every other row as it is: for a change to
 the driver's sources that cannot move the other rows (the node program,
-which no SoC run executes). The table's `sources:` line is the hash of the
-driver's sources (sw_driver, but the table itself): `--check` recomputes
-it and fails when the sources changed since the table was measured (the
-test host_costs_fresh). Run it again after changing the driver; a second
+which no SoC run executes). The table's sources file (SOURCES, beside it)
+holds the hash of the driver's sources (sw_driver, but the table itself):
+`--check` recomputes it and fails when the sources changed since the table
+was measured (the test host_costs_fresh). The hash has a file of its own,
+and the table is rewritten only when a figure changes, so that a change to
+the driver that moves no cost does not rebuild everything that includes
+the table. Run it again after changing the driver; a second
 run converges (the split of step 3 depends on the table only through the
 rows' own cycles).
 
@@ -78,6 +81,7 @@ from run_outputs import SCENE_ARGUMENTS
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TABLE = ROOT / "sw_driver" / "costs" / "host_costs.def"
+SOURCES = TABLE.with_name("host_costs.sources")  # the hash of the sources the table was measured for
 PHASES = ["application", "geometry", "rasterization", "presenting"]
 # The training runs: (scene, back end). The GL front end's rows (the
 # geometry phase) are the same code on every back end.
@@ -340,7 +344,7 @@ def read_table():
         match = ROW.match(line)
         if match:
             rows[match.group(1)] = float(match.group(2))
-    recorded = next((line.split(":", 1)[1].strip() for line in lines if line.startswith("// sources:")), None)
+    recorded = SOURCES.read_text().strip() if SOURCES.is_file() else None
     return lines, rows, recorded
 
 
@@ -350,10 +354,11 @@ def write_table(lines, cycles, digest):
         match = ROW.match(line)
         if match and match.group(1) in cycles:
             line = f"HOST_COST({match.group(1)}, {cycles[match.group(1)]:.6g}, {match.group(3)})"
-        elif line.startswith("// sources:"):
-            line = f"// sources: {digest}"
         out.append(line)
-    TABLE.write_text("\n".join(out) + "\n")
+    text = "\n".join(out) + "\n"
+    if TABLE.read_text() != text:
+        TABLE.write_text(text)
+    SOURCES.write_text(digest + "\n")
 
 
 def profiled(model):
