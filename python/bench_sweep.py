@@ -47,7 +47,7 @@ def sweep_spec(frames: int):
         {
             "app": "teapot",
             "frames": frames,
-            "config": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
+            "config": {"display.width": 192, "display.height": 144},
             "axes": {
                 "driver.backend": ["arm", "raster"],
                 "bus.clock_mhz": [48, 96, 144, 192],

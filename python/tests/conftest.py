@@ -22,7 +22,7 @@ def simulator():
 TINY = {
     "app": "triangle",
     "frames": 1,
-    "config": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
+    "config": {"display.width": 192, "display.height": 144},
 }
 
 

@@ -13,7 +13,7 @@ README = Path(__file__).resolve().parents[1] / "tessera_sweep" / "README.md"
 
 EXPERIMENT = {
     "title": "t",
-    "set": {"display.width": 192, "display.height": 144, "raster.width": 192, "raster.height": 144},
+    "set": {"display.width": 192, "display.height": 144},
     "runs": [
         {"label": "a", "backend": "arm", "app": "triangle"},
         {"label": "b", "backend": "raster", "app": "triangle"},

@@ -31,19 +31,21 @@ ParamGroup ArrayParams::parameters() {
   using param::integer;
   std::vector<ParamSpec> specs = {
       param::real("array.clock_mhz", 96.0, 1, 1000, "MHz", "array clock: the AC and the CUs (the J2210: 96 MHz)"),
-      integer("array.columns", 24, 4, 64, "CUs",
+      integer("array.columns", ap::J2210::COLUMNS, 4, 64, "CUs",
               "CU grid columns; a multiple of 4, the CUs one 32-bit CIU access reaches"),
-      integer("array.rows", 4, 1, 16, "CUs", "CU grid rows"),
-      integer("array.registers", 8, 3, 16, "registers",
+      integer("array.rows", ap::J2210::ROWS, 1, 16, "CUs", "CU grid rows"),
+      integer("array.registers", ap::J2210::REGISTERS, 3, ap::MAX_REGISTERS, "registers",
               "8-bit registers per CU (the multiply needs 3 for its product)"),
-      integer("array.cmem_bytes", 4096, 16, 16384, "bytes", "CMEM per CU (the J2210: 4 KB)"),
-      integer("array.program_words", 4096, 16, 8192, "words", "AC program memory, in 64-bit instruction words"),
+      integer("array.cmem_bytes", ap::J2210::CMEM_BYTES, 16, 1u << ap::ADDRESS_BITS, "bytes",
+              "CMEM per CU (the J2210: 4 KB)"),
+      integer("array.program_words", ap::J2210::PROGRAM_WORDS, 16, 8192, "words",
+              "AC program memory, in 64-bit instruction words"),
       integer("array.max_program_cycles", 1000000000, 1000, 1e15, "cycles",
               "a program running longer stops with an error (a watchdog for runaway loops)"),
       param::boolean("array.skip_idle_cus", true,
                      "the simulator skips the CUs whose run of a program would repeat their last run of it "
                      "exactly (a simulation speed-up: results, cycles and statistics are the same either way)"),
-      integer("array.cycles.cmem_operand", 1, 0, 1000, "cycles",
+      integer("array.cycles.cmem_operand", ap::CycleTable{}.cmem_operand, 0, 1000, "cycles",
               "extra cycles of an instruction of form RM with an operand in CMEM (calibrated: docs/calibration.md)"),
       param::choice("array.issue_skew", "none", {"none", "lane", "row"},
                     "delayed execution: none, every CU runs each instruction at once (the J2210); lane (the Image "

@@ -37,12 +37,14 @@
 
 namespace tessera {
 
+// Every field is read from array.* (from_config); none has a default of its
+// own (the geometry's are the J2210's, ap_isa.h, which array.* defaults to).
 struct ArrayParams {
   ap::ArrayGeometry geometry;
   ap::CycleTable cycles;
   unsigned program_words = 0;
   uint64_t max_program_cycles = 0;
-  bool skip_idle_cus = true;
+  bool skip_idle_cus = false;
   // The J2210's instructions, and those whose array.features.<feature> is on.
   ap::EnabledOps enabled_ops = ap::j2210_ops();
   // Delayed execution (array.issue_skew) and its K (array.issue_skew_cycles
@@ -50,8 +52,8 @@ struct ArrayParams {
   ap::IssueSkew issue_skew = ap::IssueSkew::none;
   unsigned issue_skew_cycles = 0;
   bool row_ring = false;  // array.row_ring
-  unsigned lut_entries = 256;
-  unsigned lut_ports = 1;
+  unsigned lut_entries = 0;
+  unsigned lut_ports = 0;
   bool lut_enabled() const { return enabled_ops[static_cast<unsigned>(ap::Opcode::op_lut)]; }
   sc_core::sc_time clock_period;
 

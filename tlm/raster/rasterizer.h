@@ -36,13 +36,15 @@
 
 namespace tessera {
 
+// Every field is read from raster.* (from_config) or, where marked, set by
+// the SoC; none has a default of its own.
 struct RasterizerParams {
-  unsigned width = 0;
-  unsigned height = 0;
+  unsigned width = 0;   // set by the SoC: the display's (display.width)
+  unsigned height = 0;  // set by the SoC: the display's (display.height)
   unsigned tile_width = 0;
   unsigned tile_height = 0;
-  raster::RecipMethod recip_method = raster::RecipMethod::method3;
-  unsigned texture_units = 2;  // texture units (sampler and combiner each), 1 .. raster::MAX_TEXTURE_UNITS
+  raster::RecipMethod recip_method{};
+  unsigned texture_units = 0;  // texture units (sampler and combiner each), 1 .. raster::MAX_TEXTURE_UNITS
   raster::CycleCosts costs;
   sc_core::sc_time clock_period;
   // Longest burst on the bus, in beats (AHB's INCR16): a long tile write

@@ -6,6 +6,13 @@
 
 namespace tessera {
 
+namespace {
+// The plain-C++ core's defaults (core/tile_rasterizer.h): the tile and the
+// cycle costs are written there once, and these keys default to them.
+const raster::RunConfig CORE;
+const raster::CycleCosts COSTS;
+}  // namespace
+
 ParamGroup RasterizerParams::parameters() {
   using param::integer;
   // The clock: the paper synthesised the reciprocal unit alone for one cycle
@@ -16,15 +23,9 @@ ParamGroup RasterizerParams::parameters() {
       "raster",
       {
           param::real("raster.clock_mhz", 100.0, 1, 1000, "MHz", "rasterizer pipeline clock"),
-          integer("raster.width", 320, 16, MAX_SCREEN_SIZE, "pixels",
-                  "screen width the rasterizer covers (must equal display.width with driver.backend=raster; at "
-                  "most 512: screen x is 9.4 fixed point)"),
-          integer("raster.height", 240, 16, MAX_SCREEN_SIZE, "lines",
-                  "screen height the rasterizer covers (must equal display.height with driver.backend=raster; at "
-                  "most 512: screen y is 9.4 fixed point)"),
-          integer("raster.tile_width", 32, 1, 256, "pixels", "tile buffer width (the paper: 32)"),
-          integer("raster.tile_height", 16, 1, 256, "lines", "tile buffer height (the paper: 16)"),
-          integer("raster.recip_method", 3, 1, 3, "",
+          integer("raster.tile_width", CORE.tile_width, 1, 256, "pixels", "tile buffer width (the paper: 32)"),
+          integer("raster.tile_height", CORE.tile_height, 1, 256, "lines", "tile buffer height (the paper: 16)"),
+          integer("raster.recip_method", static_cast<unsigned>(CORE.recip_method) + 1, 1, 3, "",
                   "reciprocal unit at reset: 1 fixed-point table, 2 floating-point table, 3 the paper's Method 3"),
           integer("raster.texture_units", 2, 1, raster::MAX_TEXTURE_UNITS, "units",
                   "texture units, each a sampler (with mipmaps) and a combiner; with driver.backend=raster, "
@@ -33,14 +34,15 @@ ParamGroup RasterizerParams::parameters() {
           integer("raster.beat_bytes", 4, 4, 16, "bytes",
                   "bytes per beat of the rasterizer's bus interface, its data width: 4, 8 or 16, at most "
                   "bus.width_bits / 8"),
-          integer("raster.cycles.command", 1, 0, 1000, "cycles", "decoding one command word"),
-          integer("raster.cycles.setup", 8, 0, 1000, "cycles", "triangle setup (gradients, one reciprocal)"),
-          integer("raster.cycles.tile_start", 4, 0, 1000, "cycles", "starting a tile"),
-          integer("raster.cycles.tile_pixel_clear", 0, 0, 1000, "cycles",
+          integer("raster.cycles.command", COSTS.command, 0, 1000, "cycles", "decoding one command word"),
+          integer("raster.cycles.setup", COSTS.setup, 0, 1000, "cycles", "triangle setup (gradients, one reciprocal)"),
+          integer("raster.cycles.tile_start", COSTS.tile_start, 0, 1000, "cycles", "starting a tile"),
+          integer("raster.cycles.tile_pixel_clear", COSTS.tile_pixel_clear, 0, 1000, "cycles",
                   "per pixel of a tile-buffer clear (0: the buffers clear in one go)"),
-          integer("raster.cycles.fragment", 1, 0, 1000, "cycles", "per fragment: one pixel pipeline, one per cycle"),
-          integer("raster.cycles.texel", 1, 0, 1000, "cycles", "per texel fetched"),
-          integer("raster.cycles.tile_write_word", 0, 0, 1000, "cycles",
+          integer("raster.cycles.fragment", COSTS.fragment, 0, 1000, "cycles",
+                  "per fragment: one pixel pipeline, one per cycle"),
+          integer("raster.cycles.texel", COSTS.texel, 0, 1000, "cycles", "per texel fetched"),
+          integer("raster.cycles.tile_write_word", COSTS.tile_write_word, 0, 1000, "cycles",
                   "per word of a finished tile written back (besides the bus time)"),
       },
       [](const Config& config) {
@@ -69,8 +71,6 @@ ParamGroup RasterizerParams::parameters() {
 
 RasterizerParams RasterizerParams::from_config(const Config& config) {
   RasterizerParams p;
-  p.width = static_cast<unsigned>(config.get_uint("raster.width"));
-  p.height = static_cast<unsigned>(config.get_uint("raster.height"));
   p.tile_width = static_cast<unsigned>(config.get_uint("raster.tile_width"));
   p.tile_height = static_cast<unsigned>(config.get_uint("raster.tile_height"));
   const uint64_t method = config.get_uint("raster.recip_method");

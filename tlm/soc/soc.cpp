@@ -38,6 +38,15 @@ DisplayDmaParams display_dma_params(const Config& config) {
   return p;
 }
 
+// The rasterizer covers the display's screen.
+RasterizerParams raster_params(const Config& config) {
+  RasterizerParams p = RasterizerParams::from_config(config);
+  const DisplayParams display = DisplayParams::from_config(config);
+  p.width = display.width;
+  p.height = display.height;
+  return p;
+}
+
 CiuParams ciu_params(const Config& config) {
   CiuParams p = CiuParams::from_config(config);
   p.clock_period = ArrayParams::from_config(config).clock_period;
@@ -111,7 +120,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       host("host", host_params(config)),
       display("display", display_params(config)),
       display_dma("display_dma", display_dma_params(config)),
-      raster("raster", RasterizerParams::from_config(config)),
+      raster("raster", raster_params(config)),
       array("array", ArrayParams::from_config(config)),
       ciu("ciu", ciu_params(config), array),
       m_recorder(this->name(), config, {m_blocks, host, bus, array}) {

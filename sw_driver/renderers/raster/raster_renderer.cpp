@@ -205,7 +205,7 @@ renderers::TileGrid read_grid(HostApi& host, const DisplayDriver& display) {
     throw std::runtime_error("raster back end: the rasterizer covers " + std::to_string(grid.width) + "x" +
                              std::to_string(grid.height) + " pixels but the display shows " +
                              std::to_string(display.width()) + "x" + std::to_string(display.height()) +
-                             " (set raster.width and raster.height to the display's)");
+                             ": it must cover the display it draws into");
   grid.tile_width = reg(regs::TILE_WIDTH);
   grid.tile_height = reg(regs::TILE_HEIGHT);
   return grid;

@@ -156,8 +156,6 @@ ParamGroup screen_parameters() {
           {
               param::integer("display.width", 320, 16, 2048, "pixels", "display width"),
               param::integer("display.height", 240, 16, 2048, "lines", "display height"),
-              param::integer("raster.width", 320, 16, 2048, "pixels", "rasterizer width"),
-              param::integer("raster.height", 240, 16, 2048, "lines", "rasterizer height"),
               param::integer("array.columns", 24, 4, 64, "CUs", "array columns"),
               param::integer("array.rows", 4, 1, 64, "CUs", "array rows"),
           },
@@ -233,18 +231,19 @@ TEST(DriverParameters, UnknownBackEndIsRejectedListingTheKnownOnes) {
 }
 
 TEST(DriverParameters, TheChosenBackEndChecksTheConfiguration) {
-  // The rasterizer draws the display's frame buffers: its size must be the display's.
-  for (const char* mismatch : {"raster.width=256", "raster.height=200", "display.width=256"}) {
+  // ap-tile draws the array's frame (24 x 8 by 4 x 36 pixels): the display's size must be it.
+  for (const char* mismatch : {"display.width=256", "display.height=200"}) {
     SCOPED_TRACE(mismatch);
-    const Config raster = configuration("raster", {mismatch});
-    EXPECT_THROW(raster.validate(), ConfigError);
-    const std::string message = what_of([&] { raster.validate(); });
+    const Config ap_tile = configuration("ap-tile", {mismatch});
+    EXPECT_THROW(ap_tile.validate(), ConfigError);
+    const std::string message = what_of([&] { ap_tile.validate(); });
     EXPECT_NE(message.find("impossible combination"), std::string::npos) << message;
-    EXPECT_NE(message.find("raster.width x raster.height"), std::string::npos) << message;
-    // The arm back end does not use the rasterizer.
+    EXPECT_NE(message.find("display.width x display.height"), std::string::npos) << message;
+    // The arm and raster back ends draw any size.
     EXPECT_NO_THROW(configuration("arm", {mismatch}).validate());
+    EXPECT_NO_THROW(configuration("raster", {mismatch}).validate());
   }
-  EXPECT_NO_THROW(configuration("raster", {"raster.width=256", "display.width=256"}).validate());
+  EXPECT_NO_THROW(configuration("ap-tile", {"display.width=192", "display.height=144"}).validate());
 }
 
 namespace {

@@ -40,15 +40,14 @@ void expect_refused(const SimResult& result, const fs::path& out, const std::str
 }
 
 // 513, 1024 and 2048 (the table's old maximum) on every back end: the
-// display's width at each, its height at the ends; the rasterizer's size on
-// raster, the back end that uses it.
+// display's width at each, its height at the ends (the rasterizer takes the
+// display's size).
 TEST_F(ScreenSize, SizesAbove512AreRejectedNamingTheKey) {
   struct Case {
     const char* key;
     std::vector<const char*> values;
   };
   const Case display_cases[] = {{"display.width", {"513", "1024", "2048"}}, {"display.height", {"513", "2048"}}};
-  const Case raster_cases[] = {{"raster.width", {"513", "2048"}}, {"raster.height", {"513", "2048"}}};
   const auto check = [&](const std::string& backend, const std::string& id, const Case& c) {
     for (const char* value : c.values) {
       SCOPED_TRACE(backend + " " + c.key + "=" + value);
@@ -60,7 +59,6 @@ TEST_F(ScreenSize, SizesAbove512AreRejectedNamingTheKey) {
   };
   for (const tessera::test::BackendEntry& backend : tessera::test::backend_table())
     for (const Case& c : display_cases) check(backend.name, backend.id, c);
-  for (const Case& c : raster_cases) check("raster", "raster", c);
 }
 
 // The smallest size the table accepts draws on the back ends that take any
@@ -68,9 +66,8 @@ TEST_F(ScreenSize, SizesAbove512AreRejectedNamingTheKey) {
 TEST_F(ScreenSize, SmallestScreenDraws) {
   for (const char* backend : {"arm", "raster"}) {
     SCOPED_TRACE(backend);
-    const SimResult result =
-        run({"--backend", backend, "--app", "fullscreen_rect", "--frames", "1", "--set", "display.width=16", "--set",
-             "display.height=16", "--set", "raster.width=16", "--set", "raster.height=16", "--out", backend});
+    const SimResult result = run({"--backend", backend, "--app", "fullscreen_rect", "--frames", "1", "--set",
+                                  "display.width=16", "--set", "display.height=16", "--out", backend});
     ASSERT_EQ(result.status, 0) << describe(result);
     EXPECT_TRUE(fs::is_regular_file(m_dir / backend / "frame_0000.png"));
   }

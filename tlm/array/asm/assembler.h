@@ -12,15 +12,17 @@
 #include <string_view>
 
 #include "array/asm/program.h"
+#include "array/isa/ap_isa.h"
 
 namespace tessera::ap {
 
 // The array configuration a program must fit (array.registers,
-// array.cmem_bytes, array.program_words).
+// array.cmem_bytes, array.program_words); by default the J2210's, as those
+// keys default to (ap_isa.h).
 struct AsmLimits {
-  unsigned registers = 8;
-  unsigned cmem_bytes = 4096;
-  unsigned program_words = 4096;
+  unsigned registers = J2210::REGISTERS;
+  unsigned cmem_bytes = J2210::CMEM_BYTES;
+  unsigned program_words = J2210::PROGRAM_WORDS;
 };
 
 // A problem in a source, as "file:line: problem" (or "file: problem" when no

@@ -7,7 +7,6 @@ namespace tessera::ap {
 CycleTable CycleTable::defaults() {
   CycleTable table;
   for (const OpInfo& info : all_ops()) table.cycles[static_cast<unsigned>(info.opcode)] = info.cycles;
-  table.cmem_operand = 1;
   return table;
 }
 

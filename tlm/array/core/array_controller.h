@@ -25,7 +25,8 @@ namespace tessera::ap {
 // cycles of an RM-form instruction with an operand in CMEM.
 struct CycleTable {
   std::array<unsigned, OPCODE_COUNT> cycles{};
-  unsigned cmem_operand = 1;
+  unsigned cmem_operand = 1;  // the default of array.cycles.cmem_operand (docs/calibration.md)
+  // Every instruction at its ap_isa.def cycles (array.cycles.*'s defaults).
   static CycleTable defaults();
   // The cost of one execution of `instruction`.
   unsigned cost(const Instruction& instruction) const;

@@ -24,11 +24,12 @@
 
 namespace tessera::ap {
 
+// The CU grid; by default the J2210's (ap_isa.h), as array.* defaults to.
 struct ArrayGeometry {
-  unsigned columns = 24;
-  unsigned rows = 4;
-  unsigned registers = 8;
-  unsigned cmem_bytes = 4096;
+  unsigned columns = J2210::COLUMNS;
+  unsigned rows = J2210::ROWS;
+  unsigned registers = J2210::REGISTERS;
+  unsigned cmem_bytes = J2210::CMEM_BYTES;
   unsigned lanes() const { return columns * rows; }
 };
 

@@ -76,6 +76,14 @@ inline constexpr unsigned ADDRESS_BITS = 14;  // CMEM operand addresses: up to 1
 inline constexpr unsigned MAX_LOOP_START = (1u << 14) - 1;
 inline constexpr unsigned MAX_REGISTERS = 16;
 
+// The J2210's array: the one place these numbers live. The defaults of
+// array.columns, array.rows, array.registers, array.cmem_bytes and
+// array.program_words (ArrayParams::parameters), of the plain-C++ core's
+// ArrayGeometry and of the assembler's AsmLimits all read them.
+struct J2210 {
+  static constexpr unsigned COLUMNS = 24, ROWS = 4, REGISTERS = 8, CMEM_BYTES = 4096, PROGRAM_WORDS = 4096;
+};
+
 struct OpInfo {
   std::string_view mnemonic;
   Opcode opcode;

@@ -15,13 +15,17 @@
 
 namespace tessera::raster {
 
-// Rasterizer clock cycles per unit of work (README.md, "Cycle costs").
+// Rasterizer clock cycles per unit of work (README.md, "Cycle costs"). The
+// defaults are raster.cycles.*'s (RasterizerParams::parameters reads them).
 struct CycleCosts {
   unsigned command = 1, setup = 8, tile_start = 4, tile_pixel_clear = 0, fragment = 1, texel = 1, tile_write_word = 0;
 };
 
+// One run's frame, from the registers. The tile's size and the reciprocal
+// method default to the paper's, raster.tile_width, raster.tile_height and
+// raster.recip_method's defaults; the screen (WIDTH, HEIGHT) is the display's.
 struct RunConfig {
-  unsigned width = 320, height = 240, tile_width = 32, tile_height = 16;
+  unsigned width = 0, height = 0, tile_width = 32, tile_height = 16;  // the screen: set from WIDTH, HEIGHT
   uint32_t tile_table = 0, color_base = 0, depth_base = 0;
   PixelFormat color_format = PixelFormat::rgb565;
   RecipMethod recip_method = RecipMethod::method3;
