@@ -1,5 +1,5 @@
 # Writes the SystemVerilog package ap_isa_pkg, the RTL's view of the array
-# processor's instruction set: the opcodes of tlm/array/isa/ap_isa.def, the
+# processor's instruction set: the opcodes of contract/array/isa/ap_isa.def, the
 # conditions of ap_cond.def and the neighbour directions of the Direction enum
 # in ap_isa.h, each as an enum type whose values are the codes the C++
 # decoder uses, so that no Verilog unit holds an encoding of its own. Run at
@@ -15,7 +15,7 @@
 if(NOT ROOT OR NOT OUT)
   message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -DOUT=<ap_isa_pkg.sv> -P ap_isa_pkg.cmake")
 endif()
-set(ISA_DIR "${ROOT}/tlm/array/isa")
+set(ISA_DIR "${ROOT}/contract/array/isa")
 
 # The instruction word's field widths (ap_isa.h): a 6-bit opcode, a 3-bit
 # condition, a 2-bit direction.
@@ -144,7 +144,7 @@ foreach(entry IN LISTS entries)
   list(APPEND direction_comments "the neighbour ${CMAKE_MATCH_1} (row 0 at the top, column 0 at the left)")
 endforeach()
 
-set(sv "// Generated from tlm/array/isa/ap_isa.def, ap_cond.def and ap_isa.h by\n")
+set(sv "// Generated from contract/array/isa/ap_isa.def, ap_cond.def and ap_isa.h by\n")
 string(APPEND sv "// cmake/ap_isa_pkg.cmake: do not edit. The array processor's opcodes,\n")
 string(APPEND sv "// conditions and neighbour directions, the same codes as the C++ decoder's.\n")
 string(APPEND sv "package ap_isa_pkg;\n\n")

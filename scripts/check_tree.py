@@ -32,8 +32,6 @@ MIRRORS = {"tlm": "tests", "rtl_models": "tests/rtl_models"}
 NO_TESTS = {
     "tlm/array/datapath": "the CU's ALU: tested through tests/array/core (test_cu_array) and bit for bit "
     "against its Verilog twin (tests/rtl_models/array)",
-    "tlm/array/isa": "the instruction set's tables: tested by tests/array/asm (the assembler on every "
-    "instruction; check_isa_table, the docs' table against ap_isa.def)",
 }
 LISTED_DEPTH = 3
 # Folders (and everything under them) the listing need not name, and why.

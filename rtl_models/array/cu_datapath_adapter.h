@@ -1,5 +1,5 @@
 // Thin adapter over the Verilated cu_datapath.sv (one CU of the array
-// processor), speaking the types of tlm/array/isa/ap_isa.h and
+// processor), speaking the types of contract/array/isa/ap_isa.h and
 // tlm/array/datapath/cu_alu.h: an ap::Instruction goes in with the CMEM and
 // neighbour bytes the array would hand the CU, the CMEM write comes out, and
 // the registers, flags and mask are read back for comparison. The Verilator
