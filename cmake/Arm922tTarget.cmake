@@ -45,5 +45,4 @@ add_compile_definitions(TESSERA_HOST_ISS)
 
 add_subdirectory(contract)
 add_subdirectory(tlm/config)
-add_subdirectory(tlm/dma/core)
 add_subdirectory(sw_driver)

@@ -128,6 +128,9 @@ function(tessera_add_array_programs)
   endforeach()
   file(MAKE_DIRECTORY ${out_dir}/include/ap_programs)
   add_library(${P_TARGET} STATIC ${generated})
-  target_include_directories(${P_TARGET} PUBLIC ${out_dir}/include ${PROJECT_SOURCE_DIR}/tlm)
-  target_link_libraries(${P_TARGET} PRIVATE tessera_warnings)
+  # The generated code includes the contract's program image only, so the
+  # program libraries put no part of tlm/ on the include path of the driver
+  # that links them.
+  target_include_directories(${P_TARGET} PUBLIC ${out_dir}/include)
+  target_link_libraries(${P_TARGET} PUBLIC tessera_contract PRIVATE tessera_warnings)
 endfunction()

@@ -22,7 +22,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "dma/core/dma_descriptor.h"
+#include "dma/core/dma_engine.h"
 #include "fuzz_support.h"
 
 namespace {

@@ -11,7 +11,7 @@ CORPUS = pathlib.Path(__file__).resolve().parent / "corpus" / "dma_descriptors"
 
 
 def desc(ctrl, src, dst, length, src_stride=0, dst_stride=0, next_address=0, mask=0):
-    """One descriptor's 8 little-endian words (tlm/dma/core/dma_descriptor.h)."""
+    """One descriptor's 8 little-endian words (contract/dma/dma_descriptor.h)."""
     return struct.pack("<8I", ctrl, src, dst, length, src_stride, dst_stride, next_address, mask)
 
 

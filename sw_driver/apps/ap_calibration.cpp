@@ -18,7 +18,7 @@
 
 #include "ap_programs/ap_calibration.h"
 #include "apps/apps.h"
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "costs/host_cost.h"
 #include "device/array_driver.h"
 #include "renderers/common/host_time.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "array/array_regs.h"
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "costs/host_cost.h"
 #include "device/app_environment.h"
 #include "soc/memory_map.h"

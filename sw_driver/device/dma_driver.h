@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "device/app_environment.h"
-#include "dma/core/dma_descriptor.h"
+#include "dma/dma_descriptor.h"
 
 namespace tessera {
 

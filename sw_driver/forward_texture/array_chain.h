@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "forward_texture/array_lines.h"
 #include "forward_texture/filter.h"
 

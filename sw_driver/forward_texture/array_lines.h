@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "forward_texture/filter.h"
 #include "forward_texture/matrix.h"
 #include "forward_texture/resample_line.h"

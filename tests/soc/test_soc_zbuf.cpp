@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "array/array_regs.h"
-#include "dma/core/dma_descriptor.h"
+#include "dma/core/dma_engine.h"
 #include "dma/dma_regs.h"
 #include "soc/memory_map.h"
 #include "soc/soc.h"

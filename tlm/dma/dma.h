@@ -24,7 +24,7 @@
 #include "common/peripheral.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
-#include "dma/core/dma_descriptor.h"
+#include "dma/core/dma_engine.h"
 
 namespace tessera {
 

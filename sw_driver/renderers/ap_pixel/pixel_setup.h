@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "gl/renderer.h"
 #include "renderers/common/divisor.h"
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "gl/renderer.h"
 #include "renderers/common/divisor.h"
 

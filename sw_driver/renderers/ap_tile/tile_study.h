@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 #include "renderers/ap_tile/tile_setup.h"
 
 namespace tessera::ap_tile {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dma/core/dma_descriptor.h"
+#include "dma/core/dma_engine.h"
 
 using namespace tessera::dma;
 

@@ -12,7 +12,7 @@
 
 #include "device/app_environment.h"
 #include "device/dma_driver.h"
-#include "dma/core/dma_descriptor.h"
+#include "dma/dma_descriptor.h"
 #include "soc/soc.h"
 #include "soc/software_layout.h"
 #include "tlm_bench/host_program_runner.h"

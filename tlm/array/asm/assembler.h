@@ -11,8 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include "array/asm/program.h"
 #include "array/isa/ap_isa.h"
+#include "array/program.h"
 
 namespace tessera::ap {
 

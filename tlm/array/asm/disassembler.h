@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 
 namespace tessera::ap {
 

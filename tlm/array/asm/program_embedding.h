@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "array/asm/program.h"
+#include "array/program.h"
 
 namespace tessera::ap {
 

@@ -1,69 +1,17 @@
-// The system/array DMA's functional core, plain C++ (no SystemC): the
-// descriptor (its eight 32-bit words, as in memory and in a channel's
-// registers), its validation against system memory and CMEM, the
-// reshuffle and broadcast address arithmetic, and execute(), which moves one
-// validated descriptor through a DmaPort. The SystemC block (dma.h) supplies
-// the port: the bus for memory, the array's direct CMEM access for CMEM,
-// with the timing. README.md walks through the layout.
+// The system/array DMA's functional core, plain C++ (no SystemC): a
+// descriptor's (contract/dma/dma_descriptor.h) validation against system
+// memory and CMEM, the reshuffle and broadcast address arithmetic, and
+// execute(), which moves one validated descriptor through a DmaPort. The
+// SystemC block (dma.h) supplies the port: the bus for memory, the array's
+// direct CMEM access for CMEM, with the timing. README.md walks through it.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
+#include "dma/dma_descriptor.h"
+
 namespace tessera::dma {
-
-enum class Kind : uint32_t {
-  mem_to_cmem = 0,  // reshuffle: a plain array in CU order lands array-ready
-  cmem_to_mem = 1,  // the reverse
-  mem_to_mem = 2,   // a plain copy
-  broadcast = 3,    // the same bytes into every CU of a mask, in one pass
-};
-
-enum class Error : uint32_t {
-#define TESSERA_DMA_ERROR(name, code, text) name = (code),
-#include "dma/core/dma_errors.def"
-#undef TESSERA_DMA_ERROR
-};
-
-const char* error_text(Error error);
-const char* kind_name(Kind kind);
-
-inline constexpr unsigned DESCRIPTOR_WORDS = 8;
-inline constexpr unsigned DESCRIPTOR_BYTES = 4 * DESCRIPTOR_WORDS;
-// CTRL word fields.
-inline constexpr uint32_t CTRL_KIND_MASK = 0x7;
-inline constexpr unsigned CTRL_ELEMENT_SHIFT = 4;
-inline constexpr uint32_t CTRL_ELEMENT_MASK = 0x3u << CTRL_ELEMENT_SHIFT;
-// The rest of CTRL is reserved: a descriptor with any of it set is refused.
-inline constexpr uint32_t CTRL_RESERVED_MASK = ~(CTRL_KIND_MASK | CTRL_ELEMENT_MASK);
-
-// Word order: the same in memory (little-endian words) and in registers.
-struct Descriptor {
-  uint32_t ctrl = 0;
-  uint32_t src = 0;
-  uint32_t dst = 0;
-  uint32_t length = 0;
-  uint32_t src_stride = 0;
-  uint32_t dst_stride = 0;
-  uint32_t next = 0;  // next descriptor in memory, 0: the end
-  uint32_t mask = 0;  // broadcast: CU mask in memory, 0: every CU
-
-  uint32_t kind_code() const { return ctrl & CTRL_KIND_MASK; }
-  Kind kind() const { return static_cast<Kind>(kind_code()); }
-  // 1 or 2 for a valid reshuffle (0 in the field reads as 1).
-  unsigned element_bytes() const;
-
-  static uint32_t make_ctrl(Kind kind, unsigned element_bytes = 1) {
-    return static_cast<uint32_t>(kind) | (element_bytes << CTRL_ELEMENT_SHIFT);
-  }
-};
-
-std::array<uint32_t, DESCRIPTOR_WORDS> encode(const Descriptor& d);
-Descriptor decode(const std::array<uint32_t, DESCRIPTOR_WORDS>& words);
-// From / to 32 bytes of memory (little-endian words, the host's order).
-Descriptor decode_bytes(const uint8_t* bytes);
-void encode_bytes(const Descriptor& d, uint8_t* bytes);
 
 // What a descriptor may address.
 struct Limits {
@@ -92,11 +40,6 @@ struct Fault {
 Fault validate(const Descriptor& d, const Limits& limits);
 // A descriptor's own address in a chain: 4-aligned, its 32 bytes in memory.
 Fault validate_descriptor_address(uint32_t address, const Limits& limits);
-
-// Bytes of the CU mask in memory: ceil(lanes / 8).
-inline unsigned mask_bytes(unsigned lanes) {
-  return (lanes + 7) / 8;
-}
 
 // The reshuffle arithmetic (mem_to_cmem, cmem_to_mem): element k of the
 // plain array is lane k mod lanes, row k / lanes.
