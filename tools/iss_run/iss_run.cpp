@@ -80,8 +80,10 @@ int run_main(int argc, char** argv) {
       }
       bool exited;
       if (timed) {
-        exited =
-            machine.run(core, limit - std::min(limit, core.instructions()), [&] { timing.step(core.last_step()); });
+        exited = machine.run(
+            core, limit - std::min(limit, core.instructions()), [&]() __attribute__((always_inline)) {
+              timing.step(core.last_step());
+            });
       } else {
         exited = machine.run(core, limit - std::min(limit, core.instructions()));
       }

@@ -297,7 +297,8 @@ class ArmCore {
     uint32_t key = ~0u;  // page number << 1 | Thumb
     Decoded* entries = nullptr;
   };
-  inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);  // inline: the step's hot path
+  // Always inline: the step's hot path (GCC left it a call in ArmCore::run).
+  __attribute__((always_inline)) inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);
   // The fetched instruction `insn` at m_current, executed (step() after its fetch and look-up).
   __attribute__((always_inline)) inline void execute(const Decoded& insn, bool thumb);
   Decoded* decoded_page(uint32_t key);
