@@ -116,10 +116,8 @@ Run run_timed(const ElfImage& image) {
   cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
   machine.load(image, core);
   const Stopwatch clock;
-  for (uint64_t i = 0; !machine.exited() && i < INSTRUCTION_LIMIT; ++i) {
-    core.step();
-    timing.step(core.last_step());
-  }
+  machine.run(
+      core, INSTRUCTION_LIMIT, [&]() __attribute__((always_inline)) { timing.step(core.last_step()); });
   Run run{clock.wall_seconds(), clock.cpu_seconds(), core.instructions(), machine.console()};
   check_exit(machine, image);
   return run;

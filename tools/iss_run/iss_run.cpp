@@ -80,9 +80,10 @@ int run_main(int argc, char** argv) {
       }
       bool exited;
       if (timed) {
-        const uint64_t steps = limit - std::min(limit, core.instructions());
-        for (uint64_t i = 0; !machine.exited() && i < steps; ++i) timed_step();
-        exited = machine.exited();
+        exited = machine.run(
+            core, limit - std::min(limit, core.instructions()), [&]() __attribute__((always_inline)) {
+              timing.step(core.last_step());
+            });
       } else {
         exited = machine.run(core, limit - std::min(limit, core.instructions()));
       }

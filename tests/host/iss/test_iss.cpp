@@ -580,4 +580,77 @@ TEST(DecodeCachePages, ProgramsRunningThroughMorePagesThanKeptRunOn) {
   EXPECT_EQ(core.decodes(), 610u);
 }
 
+// Blocks (README.md, "Blocks"): ArmCore::run goes on within a resident line
+// without the port or the decode cache's look-up, and must still see a
+// store into the line and an interrupt raised between two instructions.
+// The port grants every line it fetches from, as the bare machine does.
+struct LineMemory : Memory {
+  tessera::iss::ResidentLine resident;
+  uint64_t line_fetches = 0, port_fetches = 0;
+  bool fetch(uint32_t address, unsigned size, uint32_t& value) override {
+    ++port_fetches;
+    if (!read(address, size, value)) return false;
+    const uint32_t line = address & ~(tessera::iss::ResidentLine::BYTES - 1);
+    resident = {line, &bytes[line], &line_fetches};
+    return true;
+  }
+  tessera::iss::ResidentLine* resident_line() override { return &resident; }
+};
+
+struct Blocks : ::testing::Test {
+  LineMemory memory;
+  ArmCore core{memory};
+};
+
+TEST_F(Blocks, AStoreIntoTheBlockAheadIsExecuted) {
+  // One line, run twice; on the second pass the store replaces the
+  // instruction at 0x10c, decoded on the first, two instructions ahead.
+  memory.program(0x100, {0xe3530000,    // 0x100: cmp r3, #0
+                         0x158f1000,    // 0x104: strne r1, [pc]   @ to 0x10c
+                         0xe1a00000,    // 0x108: nop
+                         0xe3a00001,    // 0x10c: mov r0, #1       @ replaced by r1: mov r0, #2
+                         0xe2833001,    // 0x110: add r3, r3, #1
+                         0xe3530002,    // 0x114: cmp r3, #2
+                         0x1afffff8,    // 0x118: bne 0x100
+                         0xe1a00000});  // 0x11c: nop (done)
+  core.set_cpsr(SYS);
+  core.set_reg(1, 0xe3a00002);
+  core.set_reg(15, 0x100);
+  int steps = 0;
+  core.run([&] {
+    ++steps;
+    if (steps == 4) {
+      EXPECT_EQ(core.reg(0), 1u);  // the first pass: the old instruction
+    }
+    return core.reg(15) != 0x11c;
+  });
+  EXPECT_EQ(steps, 14);
+  EXPECT_EQ(core.reg(0), 2u);
+  EXPECT_EQ(memory.word(0x10c), 0xe3a00002u);
+  EXPECT_EQ(core.decodes(), 8u);  // the 7 instructions and the new one
+  // One fetch through the port (the first), the other 13 from the line.
+  EXPECT_EQ(memory.port_fetches, 1u);
+  EXPECT_EQ(memory.line_fetches, 13u);
+}
+
+TEST_F(Blocks, AnInterruptRaisedAfterAnInstructionIsTakenBeforeTheNext) {
+  memory.program(0x100, {0xe3a00001,    // 0x100: mov r0, #1
+                         0xe3a01002,    // 0x104: mov r1, #2
+                         0xe3a02003,    // 0x108: mov r2, #3   @ not run: the IRQ comes first
+                         0xe1a00000});  // 0x10c: nop
+  core.set_cpsr(SYS);                   // IRQ not masked
+  core.set_reg(15, 0x100);
+  int steps = 0;
+  core.run([&] {
+    if (++steps == 2) core.set_irq(true);
+    return steps < 3;
+  });
+  EXPECT_EQ(core.reg(1), 2u);
+  EXPECT_EQ(core.reg(2), 0u);
+  EXPECT_EQ(core.mode(), Mode::irq);
+  EXPECT_EQ(core.reg(14), 0x10cu);  // the instruction that would have run, + 4
+  EXPECT_EQ(core.reg(15), 0x18u);   // the IRQ vector
+  EXPECT_EQ(core.instructions(), 2u);
+}
+
 }  // namespace

@@ -216,6 +216,15 @@ class ArmCore {
   // launcher's loop.
   __attribute__((always_inline)) inline void step();
 
+  // Executes instructions, each exactly as step() does, calling `after()`
+  // (the caller's timing, interrupt lines and checks: anything but a step
+  // of this core) after each one, until it returns false. The instructions
+  // of a block (README.md, "Blocks"), a straight run within one resident
+  // line, go on from the decoded entry of the one before: no fetch call, no
+  // decode-cache look-up, no return to the caller's loop between them.
+  template <class After>
+  __attribute__((always_inline)) inline void run(After&& after);
+
   // Registers as the current mode sees them; r15 is the address of the
   // next instruction to execute (not the +8 an instruction reads).
   uint32_t reg(unsigned n) const { return n == 15 ? m_pc : m_r[n]; }
@@ -288,7 +297,10 @@ class ArmCore {
     uint32_t key = ~0u;  // page number << 1 | Thumb
     Decoded* entries = nullptr;
   };
-  inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);  // inline: the step's hot path
+  // Always inline: the step's hot path (GCC left it a call in ArmCore::run).
+  __attribute__((always_inline)) inline Decoded& decoded(uint32_t address, uint32_t raw, bool thumb);
+  // The fetched instruction `insn` at m_current, executed (step() after its fetch and look-up).
+  __attribute__((always_inline)) inline void execute(const Decoded& insn, bool thumb);
   Decoded* decoded_page(uint32_t key);
   void decode(Decoded& entry, uint32_t raw, bool thumb);  // an entry made or remade: out of the hot path
   void take_interrupt(uint32_t pending);
@@ -369,7 +381,10 @@ inline void ArmCore::step() {
     return;
   }
   ++m_instructions;
-  const Decoded& insn = decoded(m_current, raw, thumb);
+  execute(decoded(m_current, raw, thumb), thumb);
+}
+
+inline void ArmCore::execute(const Decoded& insn, bool thumb) {
   m_r[15] = m_current + (thumb ? 4 : 8);
   if (condition(insn.cond)) {
     m_info = insn.info;
@@ -379,6 +394,55 @@ inline void ArmCore::step() {
   }
   if (!m_branched) m_pc = m_current + (thumb ? 2 : 4);
   m_info.pc_written = m_branched && !m_info.exception;
+}
+
+template <class After>
+inline void ArmCore::run(After&& after) {
+  constexpr uint32_t LINE_MASK = ~(ResidentLine::BYTES - 1);
+  for (;;) {
+    // A block's first instruction: step(), with the entry it executed kept.
+    if (const uint32_t pending = m_interrupt_lines & ~m_cpsr) {
+      take_interrupt(pending);
+      if (!after()) return;
+      continue;
+    }
+    m_current = m_pc;
+    m_branched = false;
+    const bool thumb = (m_cpsr & psr::T) != 0;
+    uint32_t raw = 0;
+    if (m_resident != nullptr && (m_current & LINE_MASK) == m_resident->line) {
+      const uint8_t* bytes = m_resident->data + (m_current & ~LINE_MASK);
+      raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
+      ++*m_resident->fetches;
+    } else if (!m_memory.fetch(m_current, thumb ? 2 : 4, raw)) {
+      take_prefetch_abort();
+      if (!after()) return;
+      continue;
+    }
+    ++m_instructions;
+    Decoded* insn = &decoded(m_current, raw, thumb);
+    const uint32_t line = m_current & LINE_MASK;
+    for (;;) {
+      execute(*insn, thumb);
+      if (!after()) return;
+      // The block goes on while step() would fetch the next instruction
+      // from the same resident line in the same state, and take no
+      // interrupt first: its entry is then the next one of the same page
+      // (a line never crosses a page), which no look-up since has dropped
+      // (only decoded() drops pages). Without a branch the state is the
+      // same: only BX, exceptions and writes of the PC change T.
+      if (m_branched || (m_pc & LINE_MASK) != line || (m_interrupt_lines & ~m_cpsr) != 0 || m_resident == nullptr ||
+          m_resident->line != line)
+        break;
+      m_current = m_pc;
+      const uint8_t* bytes = m_resident->data + (m_current & ~LINE_MASK);
+      raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
+      ++*m_resident->fetches;
+      ++m_instructions;
+      ++insn;
+      if (__builtin_expect(insn->raw != raw, 0)) decode(*insn, raw, thumb);
+    }
+  }
 }
 
 }  // namespace tessera::iss

@@ -515,6 +515,13 @@ class StatisticsPublisher {
   std::function<nlohmann::json()> m_live;
 };
 
+// host.iss_instruction_limit reached, at `pc`: stopped as a runaway.
+[[noreturn]] void runaway(HostMemory& memory, const std::string& path, uint64_t limit, uint32_t pc) {
+  memory.flush_console();
+  throw std::runtime_error(path + ": still running after host.iss_instruction_limit=" + std::to_string(limit) +
+                           " instructions, at pc " + iss::address_text(pc) + " (a runaway program?)");
+}
+
 }  // namespace
 
 bool is_elf_app(const std::string& name) {
@@ -529,12 +536,11 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   iss::Arm922tTiming timing;
   HostMemory memory(host, core_port, timing);
   // The per-function profile: each instruction's cycles, and each host
-  // access's stalls and misses, charged to the function holding its PC.
-  // The instructions and cycles are charged a run of instructions at a
-  // time, when the PC leaves the function (the timing layer's counts then
-  // less those at the run's start: whole numbers, the same sums), so that
-  // each instruction costs a range check. stats.json lists the rows only
-  // where asked for (soc_sim --iss-profile, HostCore::profiling_program).
+  // access's stalls and misses, charged to the function holding its PC;
+  // instructions and cycles a run at a time, when the PC leaves the
+  // function (the timing layer's counts less those at the run's start:
+  // whole numbers, the same sums), so that each instruction costs a range
+  // check. stats.json lists the rows with soc_sim --iss-profile only.
   const bool profiling = core_port.profiling_program();
   iss::Profile profile(image.functions);
   iss::Profile::Entry* entry = &profile.at(image.entry);
@@ -612,24 +618,21 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   const auto exit_status = [&] {
     return semihosting.exited() ? static_cast<uint32_t>(semihosting.exit_status()) : memory.status();
   };
-  // One instruction: the run's loop below, and GDB's steps and continues.
-  // Inlined into the loop: as a call (GCC's choice, the lambda being used
-  // twice) the run took 8% more CPU time.
-  const auto step = [&]() __attribute__((always_inline)) {
-    if (core.instructions() == instruction_limit && instruction_limit != 0) {
-      memory.flush_console();
-      throw std::runtime_error(path +
-                               ": still running after host.iss_instruction_limit=" + std::to_string(instruction_limit) +
-                               " instructions, at pc " + iss::address_text(core.reg(15)) + " (a runaway program?)");
-    }
+  // Before an instruction (the limit, the profile's function) and after it
+  // (its cycles, the trace, the interrupt lines), for GDB's single steps
+  // and the run's blocks (ArmCore::run) alike. Inline: as calls (GCC's
+  // choice, each being used twice) the run took 8% more CPU time.
+  const auto before = [&]() __attribute__((always_inline)) {
+    if (instruction_limit != 0 && core.instructions() == instruction_limit)
+      runaway(memory, path, instruction_limit, core.reg(15));
     if (!profile.holds(core.reg(15))) {
       end_run();
       entry = &profile.at(core.reg(15));
       memory.set_profile_entry(entry);
     }
-    core.step();
-    // The instruction's cycles beyond the issue cycles of its host
-    // accesses (those the host has charged already).
+  };
+  const auto after = [&]() __attribute__((always_inline)) {
+    // Its cycles beyond its host accesses' issue cycles (charged by the host).
     const unsigned cycles = timing.step(core.last_step());
     const uint64_t charged = memory.take_host_charged();
     memory.charge(cycles > charged ? cycles - charged : 0);
@@ -644,17 +647,29 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
       core.set_fiq(core_port.fiq_asserted());
     }
   };
+  const auto step = [&] {
+    before();
+    core.step();
+    after();
+  };
   try {
-    // GDB (soc_sim --gdb), from before the first instruction until it
-    // leaves or the program exits, on the host's thread: it holds the
-    // kernel, so while GDB holds the program no block's time passes.
+    // GDB (soc_sim --gdb) first, until it leaves or the program exits: it
+    // holds the kernel on the host's thread, so no block's time passes.
     if (iss_host.gdb != nullptr) {
       const iss::GdbServer::End end = iss_host.gdb->serve({core, memory, step, ended, exit_status}, ~uint64_t{0});
       if (end == iss::GdbServer::End::killed)
         throw std::runtime_error(path + ": killed by GDB at pc " + iss::address_text(core.reg(15)));
       if (end == iss::GdbServer::End::disconnected) warn("GDB went away without detaching; the program runs on");
     }
-    while (!ended()) step();
+    if (!ended()) {
+      before();
+      core.run([&]() __attribute__((always_inline)) {
+        after();
+        if (ended()) return false;
+        before();
+        return true;
+      });
+    }
   } catch (const iss::IssError& error) {
     memory.flush_console();
     throw std::runtime_error(path + ": " + error.what());
