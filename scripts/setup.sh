@@ -30,7 +30,8 @@ PACKAGES=(
   python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)
   python3-dask python3-distributed  # tessera-sweep: runs a sweep's points on a Dask cluster
   python3-pandas          # tessera-sweep: the results table
-  python3-jinja2          # tessera-sweep: the HTML report
+  python3-jinja2          # tessera-sweep: the HTML report (and soc_sim --report's)
+  chromium                # headless, the test run_report_chromium loads soc_sim --report's page
   python3-yaml            # tessera-sweep: YAML sweep specs
   python3-pytest          # tessera-sweep's tests (python/tests)
   python3-hypothesis      # tessera-sweep's tests: the sweep spec fuzzed (python/tests/test_spec_fuzz.py)

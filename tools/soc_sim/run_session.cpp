@@ -19,6 +19,7 @@
 #include "common/activity_json.h"
 #include "common/log.h"
 #include "host/iss/gdb_server.h"
+#include "html_report.h"
 #include "output_file.h"
 #include "progress_line.h"
 #include "renderers/backends.h"
@@ -159,7 +160,8 @@ int RunSession::run() {
   simulate();
   close_outputs();
   judge();
-  const int status = write_statistics(m_outcome.exit_status);
+  int status = write_statistics(m_outcome.exit_status);
+  if (!m_options.report.empty()) status = write_html_page(status);
   if (!m_options.quiet) print_report();
   return flush_standard_output(status);
 }
@@ -424,6 +426,17 @@ int RunSession::write_statistics(int status) {
   return status;
 }
 
+// --report: the page is rendered from stats.json and the frames once they
+// are written; a page that cannot be fails a run that had not failed, and
+// every other output stays.
+int RunSession::write_html_page(int status) {
+  m_report_error = m_stats_written ? write_html_report({m_stats_path, m_options.out_dir, m_options.report})
+                                   : "the run report is not written: the statistics it is drawn from were not";
+  if (m_report_error.empty()) return status;
+  std::cerr << "soc_sim: " << m_report_error << " (the run's other outputs are kept)\n";
+  return status == 0 ? EXIT_SIM_FAILED : status;
+}
+
 void RunSession::print_report() {
   std::vector<std::string> outputs;
   if (m_frames_written)
@@ -437,6 +450,8 @@ void RunSession::print_report() {
     outputs.push_back(m_trace_error.empty() ? "VCD trace: " + m_options.vcd : "VCD trace: none");
   if (!m_options.fst.empty())
     outputs.push_back(m_trace_error.empty() ? "FST trace: " + m_options.fst : "FST trace: none");
+  if (!m_options.report.empty())
+    outputs.push_back(m_report_error.empty() ? "run report: " + m_options.report : "run report: none");
   if (m_cluster)
     m_cluster->print_summary(m_stats, m_wall, outputs);
   else

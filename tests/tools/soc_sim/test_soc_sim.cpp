@@ -654,6 +654,21 @@ TEST_F(SocSim, FilesSocSimDidNotWriteAreNeverOverwritten) {
   EXPECT_EQ(read_file(m_dir / "mine.html"), "<p>my page</p>\n");
 }
 
+// --report without the Python that renders it: the error names the Python,
+// the run's other outputs stay, and the status says an output is missing.
+TEST_F(SocSim, AReportWithoutItsPythonKeepsTheOtherOutputs) {
+  tessera::test::ChildCommand command = tessera::test::soc_sim_command(
+      soc_sim(), m_dir, {"--app", "pattern", "--frames", "1", "--out", "out", "--report", "out/run.html"});
+  command.environment.push_back("TESSERA_PYTHON=/no/such/python3");
+  const SimResult result = tessera::test::ChildProcess(std::move(command)).wait();
+  expect_rejected(result, EXIT_FAILED,
+                  {"cannot run Python '/no/such/python3' for the run report", "the run's other outputs are kept"});
+  EXPECT_TRUE(contains(result.out, "run report: none")) << result.out;
+  EXPECT_TRUE(fs::exists(m_dir / "out/frame_0000.png"));
+  EXPECT_EQ(read_stats(m_dir / "out/stats.json")["frames_written"], 1);
+  EXPECT_FALSE(fs::exists(m_dir / "out/run.html"));
+}
+
 // The trace's format is the option's: a name that says the other format,
 // or no .fst for --fst (no .html for --report), and a path that cannot be
 // written are refused before the run, saying why.
