@@ -66,7 +66,7 @@ std::ostream& operator<<(std::ostream& out, const Change& change) {
 
 struct ReadBack {
   uint64_t variables = 0, handles = 0, end_time = 0;
-  int timescale = 0;
+  signed char timescale = 0;  // the exponent of ten of the time unit, as fstapi gives it
   std::vector<Change> changes;
 };
 
@@ -97,7 +97,7 @@ class VcdToFstTest : public tessera::test::ScratchFolderTest {};
 void expect_translated(const ReadBack& back) {
   EXPECT_EQ(back.variables, 4u);  // the alias counts as a variable, not a handle
   EXPECT_EQ(back.handles, 3u);
-  EXPECT_EQ(back.timescale, -9);
+  EXPECT_EQ(back.timescale, static_cast<signed char>(-9));  // ns
   EXPECT_EQ(back.end_time, 35u);
   // Handles in the order of declaration: clk 1, bus 2, power 3.
   const std::vector<Change> expected = {{0, 1, "0"},  {0, 2, "0000"},  {0, 3, "0"},
