@@ -25,3 +25,30 @@ find_package(GTest REQUIRED)
 find_package(Threads REQUIRED)
 find_package(glm REQUIRED)
 find_package(verilator REQUIRED HINTS $ENV{VERILATOR_ROOT} /usr/share/verilator)
+
+# GTKWave's FST writer and reader (fstapi), the copy Verilator bundles: soc_sim
+# --fst. Debian's libfst-dev is OpenFst, an unrelated library of that name,
+# and Debian packages GTKWave's fstapi nowhere else. Its own C, built as it
+# is, without our warnings.
+find_package(ZLIB REQUIRED)
+set(TESSERA_FSTAPI_DIR ${VERILATOR_ROOT}/include/gtkwave)
+if(NOT EXISTS ${TESSERA_FSTAPI_DIR}/fstapi.c)
+  message(FATAL_ERROR "GTKWave's fstapi is not in ${TESSERA_FSTAPI_DIR}: install verilator (scripts/setup.sh)")
+endif()
+add_library(tessera_fstapi STATIC ${TESSERA_FSTAPI_DIR}/fstapi.c ${TESSERA_FSTAPI_DIR}/fastlz.c
+                                  ${TESSERA_FSTAPI_DIR}/lz4.c)
+target_include_directories(tessera_fstapi SYSTEM PUBLIC ${TESSERA_FSTAPI_DIR})
+target_compile_definitions(tessera_fstapi PRIVATE FST_CONFIG_INCLUDE="fst_config.h")
+target_link_libraries(tessera_fstapi PRIVATE ZLIB::ZLIB Threads::Threads)
+set_target_properties(tessera_fstapi PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+# The Python that runs the package under python/ (tessera-sweep, and the run
+# report soc_sim --report renders through it): the venv scripts/setup.sh
+# makes (Debian's packages plus PyPI's), else the system's python3; soc_sim
+# reports a missing package by name when it runs it.
+if(EXISTS ${PROJECT_SOURCE_DIR}/build/venv/bin/python3)
+  set(tessera_default_python ${PROJECT_SOURCE_DIR}/build/venv/bin/python3)
+else()
+  find_program(tessera_default_python python3)
+endif()
+set(TESSERA_PYTHON ${tessera_default_python} CACHE FILEPATH "Python with python/'s dependencies (scripts/setup.sh)")

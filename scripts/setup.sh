@@ -12,7 +12,8 @@ PACKAGES=(
   libopenimageio-dev      # reading images back: tests and comparison tools
   libgtest-dev            # unit and TLM tests
   libgles-dev libegl-dev  # Khronos GL ES / EGL headers: the conformance test compares ours with them
-  verilator               # Verilog reference units
+  verilator               # Verilog reference units; its copy of GTKWave's FST writer (fstapi) is soc_sim --fst's
+  zlib1g-dev              # fstapi's compression
   libosmesa6-dev          # Mesa off-screen renderer for reference images
   nlohmann-json3-dev      # configuration and statistics files
   libcli11-dev            # command-line parsing
@@ -24,12 +25,13 @@ PACKAGES=(
   yosys                   # synthesis size report of the Verilog units
   clang-format clang-tidy # the lint tests: one code dialect (tests/lint)
   clang-14 libclang-rt-14-dev  # the fuzz preset: clang with libFuzzer, ASan and UBSan (docs/fuzzing.md)
-  gtkwave                 # viewing VCD traces; its vcd2fst checks them in the tests
+  gtkwave                 # viewing VCD and FST traces; its vcd2fst and fst2vcd check them in the tests
   python3                 # helper scripts
   python3-matplotlib      # reciprocal error plots (scripts/plot_reciprocal_error.py)
   python3-dask python3-distributed  # tessera-sweep: runs a sweep's points on a Dask cluster
   python3-pandas          # tessera-sweep: the results table
-  python3-jinja2          # tessera-sweep: the HTML report
+  python3-jinja2          # tessera-sweep: the HTML report (and soc_sim --report's)
+  chromium                # headless, the test run_report_chromium loads soc_sim --report's page
   python3-yaml            # tessera-sweep: YAML sweep specs
   python3-pytest          # tessera-sweep's tests (python/tests)
   python3-hypothesis      # tessera-sweep's tests: the sweep spec fuzzed (python/tests/test_spec_fuzz.py)

@@ -4,6 +4,7 @@
     tessera-sweep run cluster_NAME ...    a cluster experiment (cluster_experiments.py: depth, speedup, soc)
     tessera-sweep list                    the experiments (experiments/*.yaml and the cluster's)
     tessera-sweep sort-middle COMMAND     Crockett and Orloff's sort-middle model: table, time, fit
+    tessera-sweep run-report STATS HTML   one run of soc_sim on one page (run_report.py; soc_sim --report)
     tessera-sweep SPEC [options]          a sweep spec, as before "run" existed
 
 A sweep spec (axes, zip groups, metrics): checks every point, runs those not
@@ -20,7 +21,7 @@ import os
 import sys
 from pathlib import Path
 
-from . import cluster_experiments, experiment, sort_middle_model, table
+from . import cluster_experiments, experiment, run_report, sort_middle_model, table
 from .report import write_report
 from .runner import run_sweep
 from .simulator import Simulator, SimulatorError
@@ -129,6 +130,8 @@ def main(argv: list[str] | None = None) -> int:
         return experiment.main(["--list", *argv[1:]], prog="tessera-sweep list")
     if argv[:1] == ["sort-middle"]:
         return sort_middle_model.main(argv[1:])
+    if argv[:1] == ["run-report"]:
+        return run_report.main(argv[1:], prog="tessera-sweep run-report")
     parser = argparse.ArgumentParser(
         prog="tessera-sweep", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )

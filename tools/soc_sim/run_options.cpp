@@ -1,5 +1,8 @@
 #include "run_options.h"
 
+#include <strings.h>
+
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string_view>
@@ -13,6 +16,8 @@
 #include "renderers/backend_parameters.h"
 #include "renderers/backends.h"
 #include "soc/soc.h"
+
+namespace fs = std::filesystem;
 
 namespace tessera {
 
@@ -53,6 +58,12 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
+  cli.add_option("--fst", opt.fst,
+                 "write the same trace as FST (GTKWave's compressed format) to FILE, which must end in .fst; with "
+                 "--vcd too, both are written");
+  cli.add_option("--report", opt.report,
+                 "after the run, write a one-page HTML report of it (frames, frame times, energy, where the time "
+                 "went) to FILE, which must end in .html; needs the Python of tessera-sweep (scripts/setup.sh)");
   cli.add_flag("--force", opt.force,
                "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
   cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");
@@ -100,8 +111,11 @@ void add_options(CLI::App& cli, Options& opt) {
 std::optional<int> reject_leftovers(const CLI::App& cli, const Options& opt) {
   // An option given with an empty value is a mistake (an unset shell
   // variable, say), not a request for the default.
-  const std::pair<const char*, const std::string*> valued_options[] = {
-      {"--app", &opt.app}, {"--backend", &opt.backend}, {"--log-level", &opt.log_level}};
+  const std::pair<const char*, const std::string*> valued_options[] = {{"--app", &opt.app},
+                                                                       {"--backend", &opt.backend},
+                                                                       {"--log-level", &opt.log_level},
+                                                                       {"--fst", &opt.fst},
+                                                                       {"--report", &opt.report}};
   for (const auto& [option, value] : valued_options)
     if (cli.count(option) > 0 && value->empty()) {
       std::cerr << "soc_sim: " << option << " was given an empty value: give one (soc_sim --help"
@@ -121,6 +135,30 @@ std::optional<int> reject_leftovers(const CLI::App& cli, const Options& opt) {
   else
     std::cerr << "choose the application with --app NAME (soc_sim --list-apps)";
   std::cerr << "; arguments for the application go after '--', e.g. soc_sim --app obj_viewer -- model.obj\n";
+  return EXIT_USAGE;
+}
+
+bool has_extension(const std::string& path, std::string_view extension) {
+  const std::string given = fs::path(path).extension().string();
+  return given.size() == extension.size() && strcasecmp(given.c_str(), extension.data()) == 0;
+}
+
+// The trace's format is the option's, never guessed from the name; a name
+// whose extension says the other format (or none the report's) is a
+// mistake, told before the run. Prints why and returns EXIT_USAGE.
+std::optional<int> check_output_names(const Options& opt) {
+  std::string problem;
+  if (!opt.vcd.empty() && has_extension(opt.vcd, ".fst"))
+    problem = "--vcd writes a VCD, but '" + opt.vcd + "' is named as an FST: use --fst " + opt.vcd + " for FST";
+  else if (!opt.fst.empty() && !has_extension(opt.fst, ".fst"))
+    problem = "--fst writes an FST, and its file must end in .fst (got '" + opt.fst + "')" +
+              (has_extension(opt.fst, ".vcd") ? ": use --vcd " + opt.fst + " for a VCD" : "");
+  else if (!opt.fst.empty() && !opt.vcd.empty() && fs::path(opt.fst) == fs::path(opt.vcd))
+    problem = "--vcd and --fst name the same file '" + opt.fst + "'";
+  else if (!opt.report.empty() && !has_extension(opt.report, ".html"))
+    problem = "--report writes an HTML page, and its file must end in .html (got '" + opt.report + "')";
+  if (problem.empty()) return std::nullopt;
+  std::cerr << "soc_sim: " << problem << "\n";
   return EXIT_USAGE;
 }
 
@@ -242,6 +280,7 @@ std::variant<RunPlan, int> read_command_line(int argc, char* argv[]) {
     return cli.exit(e) == 0 ? 0 : EXIT_USAGE;
   }
   if (const std::optional<int> status = reject_leftovers(cli, opt)) return *status;
+  if (const std::optional<int> status = check_output_names(opt)) return *status;
 
   if (opt.config_reference) {
     std::cout << Config(all_parameters()).reference_markdown();

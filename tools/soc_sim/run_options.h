@@ -26,7 +26,9 @@ struct Options {
   std::string backend;
   int frames = 0;
   std::string out_dir = "out";
-  std::string vcd;
+  std::string vcd;     // a VCD trace (any name but *.fst)
+  std::string fst;     // an FST trace (*.fst)
+  std::string report;  // the HTML run report (*.html)
   std::string stats;
   bool quiet = false;
   bool force = false;

@@ -17,6 +17,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fstapi.h"
+
 namespace fs = std::filesystem;
 
 namespace tessera {
@@ -89,6 +91,25 @@ bool is_soc_sim_trace(const fs::path& path) {
          top < soc && head.find_first_not_of(" \t\r\n", top + 26) == soc;
 }
 
+bool is_soc_sim_fst(const fs::path& path) {
+  void* reader = fstReaderOpen(path.c_str());
+  if (reader == nullptr) return false;
+  const char* version = fstReaderGetVersionString(reader);
+  const bool systemc = version != nullptr && std::strstr(version, "SystemC") != nullptr;
+  fstReaderClose(reader);
+  return systemc;
+}
+
+bool is_soc_sim_report(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::string head(TRACE_HEADER_BYTES, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head.find(std::string("<meta name=\"generator\" content=\"") + RUN_REPORT_GENERATOR + "\">") !=
+         std::string::npos;
+}
+
 EarlierOutputs find_earlier_outputs(const OutputPaths& paths) {
   EarlierOutputs outputs;
   std::error_code error;
@@ -100,7 +121,8 @@ EarlierOutputs find_earlier_outputs(const OutputPaths& paths) {
       if (is_frame_file_name(name))
         outputs.frames.push_back(path);
       else if ((name == "stats.json" && is_soc_sim_stats(path)) ||
-               (path.extension() == ".vcd" && is_soc_sim_trace(path)))
+               (path.extension() == ".vcd" && is_soc_sim_trace(path)) ||
+               (path.extension() == ".fst" && is_soc_sim_fst(path)))
         outputs.files.push_back(path);
     }
   }
@@ -108,6 +130,8 @@ EarlierOutputs find_earlier_outputs(const OutputPaths& paths) {
   std::sort(outputs.files.begin(), outputs.files.end());
   check_own_path(paths.stats, is_soc_sim_stats, outputs);
   check_own_path(paths.trace, is_soc_sim_trace, outputs);
+  check_own_path(paths.fst, is_soc_sim_fst, outputs);
+  check_own_path(paths.report, is_soc_sim_report, outputs);
   return outputs;
 }
 

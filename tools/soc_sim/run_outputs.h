@@ -21,12 +21,21 @@ bool is_soc_sim_stats(const std::filesystem::path& path);
 // A VCD trace soc_sim wrote: SystemC's header and the SoC ("soc") as the
 // first module under SystemC's top scope.
 bool is_soc_sim_trace(const std::filesystem::path& path);
+// An FST trace soc_sim wrote: an FST that GTKWave's reader opens, written
+// from SystemC's VCD.
+bool is_soc_sim_fst(const std::filesystem::path& path);
+// A run report soc_sim wrote (--report): an HTML page whose head names
+// RUN_REPORT_GENERATOR as its generator.
+constexpr const char* RUN_REPORT_GENERATOR = "tessera soc_sim --report";
+bool is_soc_sim_report(const std::filesystem::path& path);
 
 // Where this run writes.
 struct OutputPaths {
   std::filesystem::path out_dir;  // frames, and statistics unless --stats says otherwise
   std::filesystem::path stats;
-  std::filesystem::path trace;  // empty without --vcd
+  std::filesystem::path trace;   // empty without --vcd
+  std::filesystem::path fst;     // empty without --fst
+  std::filesystem::path report;  // empty without --report
 };
 
 struct EarlierOutputs {
@@ -40,7 +49,8 @@ struct EarlierOutputs {
 };
 
 // Looks in out_dir (not below it) for frames, the default stats.json and
-// traces, and at the statistics and trace paths of this run. An empty file
+// traces (VCD and FST), and at the statistics, trace and report paths of
+// this run. An empty file
 // at one of this run's paths holds nothing to lose and is not listed.
 EarlierOutputs find_earlier_outputs(const OutputPaths& paths);
 

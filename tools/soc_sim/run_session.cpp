@@ -5,6 +5,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include "common/activity_json.h"
 #include "common/log.h"
 #include "host/iss/gdb_server.h"
+#include "html_report.h"
 #include "output_file.h"
 #include "progress_line.h"
 #include "renderers/backends.h"
@@ -59,12 +61,22 @@ void clear_earlier_outputs(const OutputPaths& paths, bool force) {
   const EarlierOutputs earlier = find_earlier_outputs(paths);
   if (!earlier.foreign.empty()) {
     const fs::path& file = earlier.foreign.front();
-    const bool stats = file == paths.stats;
-    throw std::runtime_error("'" + file.string() + "' was not written by soc_sim (it is not " +
-                             (stats ? "a statistics file" : "a VCD trace") + " of soc_sim), and this run would " +
-                             "overwrite it with its " + (stats ? "statistics" : "trace") +
+    // What this run would write there, and the option that names the path.
+    struct Kind {
+      const fs::path& path;
+      const char *what, *output, *option;
+    };
+    const Kind kinds[] = {{paths.stats, "a statistics file", "statistics", "--stats or --out"},
+                          {paths.trace, "a VCD trace", "trace", "--vcd"},
+                          {paths.fst, "an FST trace", "trace", "--fst"},
+                          {paths.report, "a run report", "report", "--report"}};
+    // (The report's when none of the others'.)
+    const Kind& kind = *std::find_if(std::begin(kinds), std::end(kinds) - 1,
+                                     [&](const Kind& k) { return !k.path.empty() && file == k.path; });
+    throw std::runtime_error("'" + file.string() + "' was not written by soc_sim (it is not " + kind.what +
+                             " of soc_sim), and this run would overwrite it with its " + kind.output +
                              "; soc_sim never overwrites such a file, even with --force: move it, or choose another " +
-                             (stats ? "path with --stats or --out" : "path with --vcd"));
+                             "path with " + kind.option);
   }
   if (earlier.empty()) return;
   if (!force)
@@ -126,10 +138,12 @@ RunSession::RunSession(RunPlan plan)
       m_config(m_plan.config),
       m_frames(static_cast<unsigned>(m_config.get_uint("sim.frames"))) {
   // The trace is written under exactly the name given (TracePipe copies
-  // SystemC's output there, whatever SystemC appends to its own name).
-  m_vcd_base = m_options.vcd;
+  // SystemC's output there, whatever SystemC appends to its own name); the
+  // functions' names go beside the VCD, or beside the FST without one.
+  m_vcd_base = m_options.vcd.empty() ? m_options.fst : m_options.vcd;
   if (const fs::path extension = fs::path(m_vcd_base).extension();
-      extension.string().size() == 4 && strcasecmp(extension.c_str(), ".vcd") == 0)
+      extension.string().size() == 4 &&
+      (strcasecmp(extension.c_str(), ".vcd") == 0 || strcasecmp(extension.c_str(), ".fst") == 0))
     m_vcd_base.resize(m_vcd_base.size() - 4);
   m_stats_path = m_options.stats.empty() ? (fs::path(m_options.out_dir) / "stats.json").string() : m_options.stats;
 }
@@ -146,7 +160,8 @@ int RunSession::run() {
   simulate();
   close_outputs();
   judge();
-  const int status = write_statistics(m_outcome.exit_status);
+  int status = write_statistics(m_outcome.exit_status);
+  if (!m_options.report.empty()) status = write_html_page(status);
   if (!m_options.quiet) print_report();
   return flush_standard_output(status);
 }
@@ -156,10 +171,10 @@ std::optional<int> RunSession::claim_outputs() {
     prepare_output_dir(m_options.out_dir);
     m_folder_claim.emplace(m_options.out_dir);
     check_writable_file(m_stats_path);
-    if (!m_options.vcd.empty()) check_writable_file(m_options.vcd);
-    clear_earlier_outputs(
-        {m_options.out_dir, m_stats_path, m_options.vcd.empty() ? fs::path() : fs::path(m_options.vcd)},
-        m_options.force);
+    for (const std::string* path : {&m_options.vcd, &m_options.fst, &m_options.report})
+      if (!path->empty()) check_writable_file(*path);
+    clear_earlier_outputs({m_options.out_dir, m_stats_path, m_options.vcd, m_options.fst, m_options.report},
+                          m_options.force);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -188,7 +203,8 @@ std::optional<int> RunSession::listen_for_gdb() {
 // and the display's frames to them.
 std::optional<int> RunSession::build_soc() {
   try {
-    if (!m_options.vcd.empty()) m_trace_pipe = std::make_unique<TracePipe>(m_options.vcd);
+    if (!m_options.vcd.empty() || !m_options.fst.empty())
+      m_trace_pipe = std::make_unique<TracePipe>(m_options.vcd, m_options.fst);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
@@ -377,7 +393,7 @@ void RunSession::judge() {
     fail(RunEnd::failed, EXIT_SIM_FAILED,
          m_png_error + "; the run stopped after " + std::to_string(m_frames_shown) + " of " + std::to_string(m_frames) +
              " frames were shown, " + std::to_string(m_frames_written) + " written");
-  if (!m_trace_error.empty()) fail(RunEnd::failed, EXIT_SIM_FAILED, m_trace_error + " (the VCD trace is not kept)");
+  if (!m_trace_error.empty()) fail(RunEnd::failed, EXIT_SIM_FAILED, m_trace_error + " (the trace is not kept)");
   if (m_failures.empty() && m_frames_shown == 0)
     log::warning("soc_sim", "the application '" + m_config.get_string("sim.app") +
                                 "' finished without showing a frame (" + std::to_string(m_frames) +
@@ -410,6 +426,17 @@ int RunSession::write_statistics(int status) {
   return status;
 }
 
+// --report: the page is rendered from stats.json and the frames once they
+// are written; a page that cannot be fails a run that had not failed, and
+// every other output stays.
+int RunSession::write_html_page(int status) {
+  m_report_error = m_stats_written ? write_html_report({m_stats_path, m_options.out_dir, m_options.report})
+                                   : "the run report is not written: the statistics it is drawn from were not";
+  if (m_report_error.empty()) return status;
+  std::cerr << "soc_sim: " << m_report_error << " (the run's other outputs are kept)\n";
+  return status == 0 ? EXIT_SIM_FAILED : status;
+}
+
 void RunSession::print_report() {
   std::vector<std::string> outputs;
   if (m_frames_written)
@@ -421,6 +448,10 @@ void RunSession::print_report() {
   outputs.push_back(m_stats_written ? "statistics: " + m_stats_path : "statistics: none (" + m_stats_path + " failed)");
   if (!m_options.vcd.empty())
     outputs.push_back(m_trace_error.empty() ? "VCD trace: " + m_options.vcd : "VCD trace: none");
+  if (!m_options.fst.empty())
+    outputs.push_back(m_trace_error.empty() ? "FST trace: " + m_options.fst : "FST trace: none");
+  if (!m_options.report.empty())
+    outputs.push_back(m_report_error.empty() ? "run report: " + m_options.report : "run report: none");
   if (m_cluster)
     m_cluster->print_summary(m_stats, m_wall, outputs);
   else

@@ -55,6 +55,7 @@ class RunSession {
   void close_outputs();
   void judge();
   int write_statistics(int status);
+  int write_html_page(int status);
   void print_report();
   int flush_standard_output(int status);
 
@@ -105,6 +106,7 @@ class RunSession {
   std::vector<RunStop> m_failures;
   std::optional<RunStop> m_stopped;  // by the watch
   std::string m_trace_error;
+  std::string m_report_error;  // --report: why the page was not written
   std::string m_png_error;
   unsigned m_frames_written = 0;
   double m_wall = 0;

@@ -13,6 +13,7 @@
 
 #include "output_file.h"
 #include "soc/soc_recorder.h"
+#include "vcd_to_fst.h"
 
 namespace fs = std::filesystem;
 
@@ -28,18 +29,22 @@ std::string error_text(int error) {
 
 }  // namespace
 
-TracePipe::TracePipe(fs::path trace_path) : m_trace_path(std::move(trace_path)) {
+TracePipe::TracePipe(fs::path vcd_path, fs::path fst_path)
+    : m_trace_path(std::move(vcd_path)), m_fst_path(std::move(fst_path)) {
+  if (!m_fst_path.empty())
+    m_fst_temporary =
+        (m_fst_path.parent_path() / ("." + m_fst_path.filename().string() + ".tmp-" + std::to_string(::getpid())))
+            .string();
   std::string pattern = (fs::temp_directory_path() / "soc_sim_trace_XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr)
-    throw std::runtime_error("cannot create a temporary folder for the VCD trace (" + pattern +
-                             "): " + error_text(errno));
+    throw std::runtime_error("cannot create a temporary folder for the trace (" + pattern + "): " + error_text(errno));
   m_folder = pattern;
   m_pipe = m_folder / "trace.vcd";
   if (::mkfifo(m_pipe.c_str(), 0600) != 0) {
     const int error = errno;
     std::error_code ignored;
     fs::remove_all(m_folder, ignored);
-    throw std::runtime_error("cannot create a pipe for the VCD trace (" + m_pipe.string() + "): " + error_text(error));
+    throw std::runtime_error("cannot create a pipe for the trace (" + m_pipe.string() + "): " + error_text(error));
   }
   m_thread = std::thread([this] { copy(); });
 }
@@ -60,16 +65,20 @@ void TracePipe::copy() {
     std::lock_guard<std::mutex> lock(m_mutex);
     m_opened = true;
     if (in < 0) {
-      m_error = "cannot read the VCD trace's pipe: " + error_text(open_error);
+      m_error = "cannot read the trace's pipe: " + error_text(open_error);
       return;
     }
   }
   std::string error;
   std::unique_ptr<OutputFile> out;
+  std::unique_ptr<VcdToFst> fst;
   try {
-    out = std::make_unique<OutputFile>(m_trace_path);
-    std::lock_guard<std::mutex> lock(m_mutex);
-    m_temporary = out->temporary_path().string();
+    if (!m_trace_path.empty()) {
+      out = std::make_unique<OutputFile>(m_trace_path);
+      std::lock_guard<std::mutex> lock(m_mutex);
+      m_temporary = out->temporary_path().string();
+    }
+    if (!m_fst_path.empty()) fst = std::make_unique<VcdToFst>(m_fst_temporary);
   } catch (const std::exception& e) {
     error = e.what();
   }
@@ -79,10 +88,12 @@ void TracePipe::copy() {
   const auto write = [&](const char* bytes, size_t count) {
     if (!error.empty() || count == 0) return;
     try {
-      out->write(bytes, count);
+      if (out) out->write(bytes, count);
+      if (fst) fst->feed(std::string_view(bytes, count));
     } catch (const std::exception& e) {
       error = e.what();
       out.reset();
+      fst.reset();
     }
   };
   const auto write_head = [&] {
@@ -94,7 +105,7 @@ void TracePipe::copy() {
     const ssize_t count = ::read(in, buffer.data(), buffer.size());
     if (count < 0 && errno == EINTR) continue;
     if (count < 0) {
-      if (error.empty()) error = "cannot read the VCD trace's pipe: " + error_text(errno);
+      if (error.empty()) error = "cannot read the trace's pipe: " + error_text(errno);
       break;
     }
     if (count == 0) break;
@@ -120,15 +131,32 @@ void TracePipe::copy() {
   }
   if (error.empty() && !abandoned) {
     try {
-      out->commit();
+      // The FST first: its check fails the run before the VCD is put in place.
+      if (fst) {
+        fst->finish();
+        fst.reset();
+        if (::rename(m_fst_temporary.c_str(), m_fst_path.c_str()) != 0)
+          throw std::runtime_error("cannot put the FST trace in place as '" + m_fst_path.string() +
+                                   "': " + error_text(errno));
+      }
+      if (out) out->commit();
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
   out.reset();
+  fst.reset();
   std::lock_guard<std::mutex> lock(m_mutex);
+  if (!m_fst_temporary.empty()) remove_fst_temporary();
   m_temporary.clear();
   if (m_error.empty()) m_error = error;
+}
+
+// What of the FST is left under its temporary names (after it was put in
+// place, nothing): the file and fstapi's ".hier" beside it.
+void TracePipe::remove_fst_temporary() noexcept {
+  ::unlink(m_fst_temporary.c_str());
+  ::unlink((m_fst_temporary + ".hier").c_str());
 }
 
 void TracePipe::release_reader() noexcept {
@@ -161,6 +189,7 @@ void TracePipe::abandon_from_other_thread() noexcept {
   std::lock_guard<std::mutex> lock(m_mutex);
   m_abandoned = true;
   if (!m_temporary.empty()) ::unlink(m_temporary.c_str());
+  if (!m_fst_temporary.empty()) remove_fst_temporary();
   ::unlink(m_pipe.c_str());
   ::rmdir(m_folder.c_str());
 }

@@ -41,7 +41,7 @@ class RunOutputs : public tessera::test::ScratchFolderTest {
   }
 
   OutputPaths paths(const std::string& stats = "out/stats.json", const std::string& trace = "") const {
-    return {m_dir / "out", m_dir / stats, trace.empty() ? fs::path() : m_dir / trace};
+    return {m_dir / "out", m_dir / stats, trace.empty() ? fs::path() : m_dir / trace, {}, {}};
   }
 };
 
@@ -57,7 +57,8 @@ TEST(FrameNames, AreFrameUnderscoreFourOrMoreDigitsPng) {
 
 TEST_F(RunOutputs, AnEmptyFolderHoldsNothing) {
   EXPECT_TRUE(find_earlier_outputs(paths()).empty());
-  EXPECT_TRUE(find_earlier_outputs({m_dir / "no_such_folder", m_dir / "no_such_folder/stats.json", {}}).empty());
+  EXPECT_TRUE(
+      find_earlier_outputs({m_dir / "no_such_folder", m_dir / "no_such_folder/stats.json", {}, {}, {}}).empty());
 }
 
 TEST_F(RunOutputs, FindsFramesStatisticsAndTracesAndNothingElse) {

@@ -644,6 +644,48 @@ TEST_F(SocSim, FilesSocSimDidNotWriteAreNeverOverwritten) {
                   {"'mine.vcd'", "VCD trace", "--vcd"});
   EXPECT_EQ(read_file(m_dir / "README.md"), "# my notes\n");
   EXPECT_EQ(read_file(m_dir / "mine.vcd"), "$date\n today\n$end\n");
+  std::ofstream(m_dir / "mine.fst") << "not an FST\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--fst", "mine.fst", "--force"}), EXIT_USAGE,
+                  {"'mine.fst'", "FST trace", "--fst"});
+  EXPECT_EQ(read_file(m_dir / "mine.fst"), "not an FST\n");
+  std::ofstream(m_dir / "mine.html") << "<p>my page</p>\n";
+  expect_rejected(run({"--frames", "1", "--out", "b", "--report", "mine.html", "--force"}), EXIT_USAGE,
+                  {"'mine.html'", "run report", "--report"});
+  EXPECT_EQ(read_file(m_dir / "mine.html"), "<p>my page</p>\n");
+}
+
+// --report without the Python that renders it: the error names the Python,
+// the run's other outputs stay, and the status says an output is missing.
+TEST_F(SocSim, AReportWithoutItsPythonKeepsTheOtherOutputs) {
+  tessera::test::ChildCommand command = tessera::test::soc_sim_command(
+      soc_sim(), m_dir, {"--app", "pattern", "--frames", "1", "--out", "out", "--report", "out/run.html"});
+  command.environment.push_back("TESSERA_PYTHON=/no/such/python3");
+  const SimResult result = tessera::test::ChildProcess(std::move(command)).wait();
+  expect_rejected(result, EXIT_FAILED,
+                  {"cannot run Python '/no/such/python3' for the run report", "the run's other outputs are kept"});
+  EXPECT_TRUE(contains(result.out, "run report: none")) << result.out;
+  EXPECT_TRUE(fs::exists(m_dir / "out/frame_0000.png"));
+  EXPECT_EQ(read_stats(m_dir / "out/stats.json")["frames_written"], 1);
+  EXPECT_FALSE(fs::exists(m_dir / "out/run.html"));
+}
+
+// The trace's format is the option's: a name that says the other format,
+// or no .fst for --fst (no .html for --report), and a path that cannot be
+// written are refused before the run, saying why.
+TEST_F(SocSim, TraceAndReportNamesAreCheckedBeforeTheRun) {
+  expect_rejected(run({"--frames", "1", "--out", "out", "--vcd", "trace.fst"}), EXIT_USAGE,
+                  {"--vcd writes a VCD", "'trace.fst'", "--fst trace.fst"});
+  expect_rejected(run({"--frames", "1", "--out", "out", "--fst", "trace.vcd"}), EXIT_USAGE,
+                  {"--fst writes an FST", "must end in .fst", "--vcd trace.vcd"});
+  expect_rejected(run({"--frames", "1", "--out", "out", "--fst", "trace.wave"}), EXIT_USAGE,
+                  {"must end in .fst", "'trace.wave'"});
+  expect_rejected(run({"--frames", "1", "--out", "out", "--report", "report.pdf"}), EXIT_USAGE,
+                  {"must end in .html", "'report.pdf'"});
+  expect_rejected(run({"--frames", "1", "--out", "out", "--fst", "no_such_folder/trace.fst"}), EXIT_USAGE,
+                  {"cannot write 'no_such_folder/trace.fst'", "does not exist"});
+  expect_rejected(run({"--frames", "1", "--out", "out", "--report", "no_such_folder/run.html"}), EXIT_USAGE,
+                  {"cannot write 'no_such_folder/run.html'", "does not exist"});
+  EXPECT_FALSE(fs::exists(m_dir / "out/frame_0000.png"));
 }
 
 // The frames' records are streamed to side files in the output folder while
