@@ -28,6 +28,7 @@ struct Options {
   std::string out_dir = "out";
   std::string vcd;
   std::string stats;
+  std::string stats_schema;
   bool quiet = false;
   bool force = false;
   bool no_frames = false;

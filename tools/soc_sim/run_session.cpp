@@ -146,7 +146,7 @@ int RunSession::run() {
   simulate();
   close_outputs();
   judge();
-  const int status = write_statistics(m_outcome.exit_status);
+  const int status = write_stats_schema(write_statistics(m_outcome.exit_status));
   if (!m_options.quiet) print_report();
   return flush_standard_output(status);
 }
@@ -157,6 +157,7 @@ std::optional<int> RunSession::claim_outputs() {
     m_folder_claim.emplace(m_options.out_dir);
     check_writable_file(m_stats_path);
     if (!m_options.vcd.empty()) check_writable_file(m_options.vcd);
+    if (!m_options.stats_schema.empty()) check_writable_file(m_options.stats_schema);
     clear_earlier_outputs(
         {m_options.out_dir, m_stats_path, m_options.vcd.empty() ? fs::path() : fs::path(m_options.vcd)},
         m_options.force);
@@ -405,6 +406,20 @@ int RunSession::write_statistics(int status) {
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << " (statistics)\n";
     m_stats_written = false;
+    if (status == 0) status = EXIT_SIM_FAILED;
+  }
+  return status;
+}
+
+// --stats-schema; a failure to write it fails a run that had not failed.
+int RunSession::write_stats_schema(int status) {
+  if (m_options.stats_schema.empty()) return status;
+  try {
+    StatsSchema stats;
+    m_soc->recorder().describe_stats(stats);
+    write_file_atomically(m_options.stats_schema, statistics_document_schema(stats, m_driver_counters).dump(2) + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << " (--stats-schema)\n";
     if (status == 0) status = EXIT_SIM_FAILED;
   }
   return status;

@@ -55,6 +55,7 @@ class RunSession {
   void close_outputs();
   void judge();
   int write_statistics(int status);
+  int write_stats_schema(int status);
   void print_report();
   int flush_standard_output(int status);
 
