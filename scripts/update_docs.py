@@ -19,6 +19,7 @@ each comes from:
     apps              soc_sim --list-apps
     soc-sim-help      soc_sim --help
     config-reference  soc_sim --config-reference
+    stats-schema      docs/stats_schema.json (scripts/stats_schema.py writes it)
     calibration-array   what the array's calibration applications print
     calibration-energy  what scripts/fit_energy.py prints (the energy fit)
     experiment-NAME   scripts/experiment.py NAME --host native, for every
@@ -53,6 +54,7 @@ Standard library and PyYAML (Debian's python3-yaml: the experiment files).
 
 import argparse
 import csv
+import json
 import os
 import pathlib
 import re
@@ -78,6 +80,7 @@ FILES = [
     "tlm/soc/README.md",
     "tools/soc_sim/README.md",
     "rtl_models/README.md",
+    "docs/statistics.md",
 ]
 
 
@@ -226,6 +229,16 @@ def soc_sim_help(args):
     return "```\n" + text + "\n```"
 
 
+def stats_schema_table(_args):
+    """Every statistic of docs/stats_schema.json: key, unit, description."""
+    schema = json.loads((ROOT / "docs" / "stats_schema.json").read_text())
+    lines = ["| key | unit | description |", "| --- | --- | --- |"]
+    for key, entry in schema.items():
+        description = entry["description"].replace("|", "\\|")
+        lines.append(f"| `{key}` | {entry['unit']} | {description} |")
+    return "\n".join(lines)
+
+
 def config_reference(args):
     return run([args.soc_sim, "--config-reference"]).strip()
 
@@ -312,6 +325,7 @@ GENERATORS = {
     "apps": apps_table,
     "soc-sim-help": soc_sim_help,
     "config-reference": config_reference,
+    "stats-schema": stats_schema_table,
 }
 # One block per experiment of experiments/: experiment-<name>, with the
 # name's underscores as dashes.

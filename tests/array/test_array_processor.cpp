@@ -660,6 +660,15 @@ TEST(ArrayProcessor, StatisticsAndSummaryRows) {
   EXPECT_FALSE(stats.contains("wired_or"));
   EXPECT_GT(stats["cmem"]["bytes_written"].get<uint64_t>(), 0u);
   EXPECT_EQ(stats["programs_by_entry"]["16"]["cycles"], 26);
+  // One sample per program run, of its cycles: the program at word 16 ran
+  // once, in 26 cycles (bucket 16-31).
+  const auto& runs = stats["histograms"]["program_cycles"];
+  EXPECT_EQ(runs["count"], stats["programs"]);
+  EXPECT_EQ(runs["sum"], stats["cycles"]["total"]);
+  uint64_t in_16_to_31 = 0;
+  for (const auto& bucket : runs["buckets"])
+    if (bucket["low"] == 16) in_16_to_31 = bucket["count"].get<uint64_t>();
+  EXPECT_GE(in_16_to_31, 1u);
   // The profile names each word that ran, with its instruction.
   bool found = false;
   for (const auto& line : stats["profile"])

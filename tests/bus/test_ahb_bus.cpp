@@ -93,6 +93,7 @@ struct Bench {
 
 Bench* g_fixed = nullptr;
 Bench* g_round_robin = nullptr;
+Bench* g_histogram = nullptr;  // for the wait histogram's test alone: its counts start at 0
 
 // Cycles of one access: address phase + wait states + one per beat.
 sc_time access(unsigned wait, unsigned beats) {
@@ -397,8 +398,41 @@ TEST(AhbBus, StatisticsCountTransactionsBytesAndUtilisation) {
   EXPECT_DOUBLE_EQ(json["clock_mhz"].get<double>(), 100.0);
 }
 
+TEST(AhbBus, WaitHistogramHasEachAccessWaitInItsPowerOfTwoBucket) {
+  Bench& bench = *g_histogram;
+  const auto simultaneous = [&] {
+    for (TestInitiator* initiator : {&bench.a, &bench.b, &bench.c})
+      sc_core::sc_spawn([initiator] {
+        uint32_t v;
+        sc_core::wait(initiator->read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4).delay);
+      });
+  };
+  // Twice three single reads at once under fixed priority: each takes
+  // 1 + FAST_WAIT + 1 = 4 cycles, so a waits 0, b 4 and c 8; then c alone, 0.
+  test::run_thread(simultaneous);
+  test::run_thread(simultaneous);
+  test::run_thread([&] {
+    uint32_t v;
+    sc_core::wait(bench.c.read(FAST_BASE, reinterpret_cast<uint8_t*>(&v), 4).delay);
+  });
+  const nlohmann::json waits = bench.bus.stats_json(sc_core::sc_time_stamp())["histograms"]["wait_cycles"];
+  EXPECT_EQ(waits["a"]["count"], 2u);
+  EXPECT_EQ(waits["a"]["max"], 0u);
+  EXPECT_EQ(waits["a"]["buckets"], nlohmann::json::parse(R"([{"low": 0, "high": 0, "count": 2}])"));
+  EXPECT_EQ(waits["b"]["buckets"], nlohmann::json::parse(R"([{"low": 4, "high": 7, "count": 2}])"));
+  EXPECT_EQ(waits["b"]["min"], 4u);
+  EXPECT_EQ(waits["c"]["buckets"],
+            nlohmann::json::parse(R"([{"low": 0, "high": 0, "count": 1}, {"low": 8, "high": 15, "count": 2}])"));
+  EXPECT_EQ(waits["c"]["sum"], 16u);
+  EXPECT_EQ(waits["c"]["min"], 0u);
+  EXPECT_EQ(waits["c"]["max"], 8u);
+  // The histogram's sum is the initiator's wait_cycles.
+  EXPECT_EQ(waits["c"]["sum"], bench.bus.initiator_stats()[2].wait_cycles);
+}
+
 int sc_main(int argc, char* argv[]) {
   g_fixed = new Bench("fixed", Arbitration::fixed_priority);
+  g_histogram = new Bench("histogram", Arbitration::fixed_priority);
   g_round_robin = new Bench("rr", Arbitration::round_robin);
   return test::run_all_tests(argc, argv);
 }

@@ -205,6 +205,7 @@ TEST(Dma, AChainInMemoryRunsEveryDescriptorInOrder) {
   b.put(0x6040, second);
   b.put(0x6060, third);
   const uint64_t descriptors = b.count("ch1.descriptors");
+  const nlohmann::json sizes_before = b.dma.stats_json(sc_core::sc_time_stamp())["histograms"]["descriptor_bytes"];
   test::run_thread([&] {
     b.reg(1, regs::CH_D_NEXT, 0x6020);
     b.run(1, regs::START_GO | regs::START_CHAIN_ONLY);
@@ -212,6 +213,17 @@ TEST(Dma, AChainInMemoryRunsEveryDescriptorInOrder) {
     clear_irq(b);
   });
   EXPECT_EQ(b.count("ch1.descriptors") - descriptors, 3u);
+  // The sizes: LANES (96, bucket 64-127) twice and 8 (bucket 8-15) once.
+  const nlohmann::json sizes = b.dma.stats_json(sc_core::sc_time_stamp())["histograms"]["descriptor_bytes"];
+  const auto in_bucket = [](const nlohmann::json& histogram, uint64_t low) {
+    for (const auto& bucket : histogram["buckets"])
+      if (bucket["low"] == low) return bucket["count"].get<uint64_t>();
+    return uint64_t{0};
+  };
+  EXPECT_EQ(sizes["count"].get<uint64_t>() - sizes_before["count"].get<uint64_t>(), 3u);
+  EXPECT_EQ(sizes["sum"].get<uint64_t>() - sizes_before["sum"].get<uint64_t>(), 2u * 96 + 8);
+  EXPECT_EQ(in_bucket(sizes, 64) - in_bucket(sizes_before, 64), 2u);
+  EXPECT_EQ(in_bucket(sizes, 8) - in_bucket(sizes_before, 8), 1u);
   for (unsigned l = 0; l < LANES; ++l) {
     ASSERT_EQ(b.cmem(l, 500), l + 1);
     ASSERT_EQ(b.cmem(l, 517), 0x77);

@@ -215,6 +215,7 @@ void ArrayProcessor::start(const sc_time& access_time) {
   EntryTotals& totals = m_by_entry[entry];
   ++totals.runs;
   totals.cycles += m_current.cycles;
+  m_program_cycles.sample(m_current.cycles);
   copy_counters();
 
   if (m_tracing) {
@@ -369,7 +370,29 @@ nlohmann::json ArrayProcessor::stats_json(const sc_time& elapsed) const {
                        {"cycles", core.word_cycles[word]}});
   }
   stats["profile"] = profile;
+  stats["histograms"]["program_cycles"] = histogram_json(m_program_cycles);
   return stats;
+}
+
+void ArrayProcessor::describe_stats(StatsSchema& schema) const {
+  Peripheral::describe_stats(schema);
+  schema.add("clock_mhz", "MHz", "the array's clock frequency (array.clock_mhz)");
+  schema.add("columns", "count", "columns of CUs (array.columns)");
+  schema.add("rows", "count", "rows of CUs (array.rows)");
+  schema.add("cmem_bytes", "bytes", "CMEM of each CU (array.cmem_bytes)");
+  schema.add("registers", "count", "registers of each CU (array.registers)");
+  schema.add("busy_ns", "ns", "time the array ran programs");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("elapsed_ns", "ns", "simulated time of the run (the denominator of utilisation)");
+  schema.add("cu_utilisation", "fraction",
+             "useful lane operations over all lane operations (lanes.useful / lanes.operations)");
+  schema.add("programs_by_entry.*.runs", "count", "runs of the program that starts at this program-memory word");
+  schema.add("programs_by_entry.*.cycles", "cycles",
+             "array cycles of the runs of the program that starts at this word");
+  schema.add("profile[].word", "index", "program-memory word of the profile's row (only words that ran)");
+  schema.add("profile[].executions", "count", "times the word's instruction was issued");
+  schema.add("profile[].cycles", "cycles", "array cycles the word's instruction took, all its executions");
+  schema.add_histogram("histograms.program_cycles", "cycles", "the cycles of each program run");
 }
 
 SummaryRow ArrayProcessor::summary_row(const sc_time& elapsed) const {

@@ -113,6 +113,7 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
@@ -165,6 +166,7 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
     uint64_t cycles = 0;
   };
   std::map<unsigned, EntryTotals> m_by_entry;
+  Log2Histogram m_program_cycles;  // the cycles of each run (histograms.program_cycles)
 
   ActivityCounter& m_programs;
   ActivityCounter& m_failed_programs;

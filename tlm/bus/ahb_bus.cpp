@@ -77,6 +77,7 @@ void AhbBus::add_initiator(const std::string& initiator_name, unsigned priority,
   stats.name = initiator_name;
   stats.priority = priority;
   m_stats.push_back(stats);
+  m_wait_histograms.emplace_back();
   m_request_memo.emplace_back();
   m_binds.push_back(std::move(bind));
   // attach() runs outside the bus's constructor, so these modules land in
@@ -293,6 +294,7 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
   s.beats += beats;
   s.busy_cycles += occupancy_cycles;
   s.wait_cycles += start_cycle - request_cycle;
+  m_wait_histograms[initiator].sample(start_cycle - request_cycle);
   if (m_tracing) trace_grant(initiator, request_cycle, start_cycle, end_cycle);
   if (log::enabled(log::Level::debug)) log_grant(initiator, gp, start_cycle, occupancy_cycles);
 
@@ -398,7 +400,32 @@ nlohmann::json AhbBus::stats_json(const sc_time& elapsed) const {
   stats["arbitration"] = m_params.arbitration == Arbitration::fixed_priority ? "fixed_priority" : "round_robin";
   stats["utilisation"] = cycles > 0 ? m_busy_cycles.value / cycles : 0.0;
   stats["initiators"] = initiators;
+  nlohmann::json waits = nlohmann::json::object();
+  for (size_t i = 0; i < m_stats.size(); ++i) waits[m_stats[i].name] = histogram_json(m_wait_histograms[i]);
+  stats["histograms"]["wait_cycles"] = waits;
   return stats;
+}
+
+void AhbBus::describe_stats(StatsSchema& schema) const {
+  Block::describe_stats(schema);
+  schema.add("clock_mhz", "MHz", "the bus clock frequency (bus.clock_mhz)");
+  schema.add("width_bits", "bits", "width of the data bus (bus.width_bytes x 8)");
+  schema.add("utilisation", "fraction", "busy_cycles over the bus cycles of the run");
+  schema.add("initiators.*.priority", "count", "the initiator's priority (lower is served first under fixed_priority)");
+  schema.add("initiators.*.transactions", "count",
+             "bus transfers of the initiator (a burst of a longer access is one)");
+  schema.add("initiators.*.reads", "count", "read transfers of the initiator");
+  schema.add("initiators.*.writes", "count", "write transfers of the initiator");
+  schema.add("initiators.*.bytes", "bytes", "bytes the initiator moved");
+  schema.add("initiators.*.beats", "count", "data beats (bus words) of the initiator's transfers");
+  schema.add("initiators.*.busy_cycles", "cycles", "bus cycles the initiator's transfers occupied the bus");
+  schema.add("initiators.*.wait_cycles", "cycles", "bus cycles the initiator's requests waited for the bus");
+  schema.add("initiators.*.errors", "count", "transfers of the initiator that got an error response");
+  schema.add("initiators.*.debug_accesses", "count", "debug (transport_dbg) accesses of the initiator");
+  schema.add("initiators.*.dmi_grants", "count", "direct memory interface grants to the initiator");
+  schema.add("initiators.*.utilisation", "fraction", "the initiator's busy_cycles over the bus cycles of the run");
+  schema.add_histogram("histograms.wait_cycles.*", "cycles",
+                       "the bus cycles each access of the initiator waited for the bus (arbitration and contention)");
 }
 
 SummaryRow AhbBus::summary_row(const sc_time& elapsed) const {

@@ -43,6 +43,7 @@
 
 #include "common/block.h"
 #include "common/fixed_divider.h"
+#include "common/histogram.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -117,6 +118,7 @@ class AhbBus : public Block {
   uint64_t bytes() const;
   // Statistics as JSON, utilisation computed over `elapsed`.
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
   // Traffic per initiator.
@@ -228,6 +230,9 @@ class AhbBus : public Block {
   std::vector<sc_core::sc_time> m_cycle_times;  // [k]: k cycles
   std::vector<Region> m_regions;
   std::vector<BusInitiatorStats> m_stats;
+  // Each initiator's wait cycles per access (stats.json's
+  // histograms.wait_cycles), beside m_stats.
+  std::vector<Log2Histogram> m_wait_histograms;
   std::vector<BindInitiator> m_binds;  // per initiator, until its socket is made
   std::vector<std::unique_ptr<InitiatorPort>> m_ports;
   // Per initiator: its last request's end, which is where its next request

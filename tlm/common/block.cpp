@@ -9,6 +9,10 @@ nlohmann::json Block::stats_json(const sc_core::sc_time& elapsed) const {
   return to_json(m_counters);
 }
 
+void Block::describe_stats(StatsSchema& schema) const {
+  schema.add_counters(m_counters);
+}
+
 void Block::trace_signals(sc_core::sc_trace_file* file) {
   (void)file;
 }

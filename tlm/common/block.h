@@ -19,6 +19,7 @@
 
 #include "common/activity_counters.h"
 #include "common/energy_activity.h"
+#include "common/stats_schema.h"
 #include "common/text_format.h"
 
 namespace tessera {
@@ -44,6 +45,11 @@ class Block : public sc_core::sc_module {
   // activity counters (a dotted name nests: "bus.errors" is
   // {"bus": {"errors": n}}); blocks add what they derive from them.
   virtual nlohmann::json stats_json(const sc_core::sc_time& elapsed) const;
+  // Adds every statistic stats_json gives, with its unit and description,
+  // keys relative to the block's section (stats_schema.h): by default the
+  // activity counters; a block that adds to stats_json describes what it
+  // adds here, next to it.
+  virtual void describe_stats(StatsSchema& schema) const;
   // Adds the block's signals to a VCD file; called before the simulation
   // starts. By default the block has none.
   virtual void trace_signals(sc_core::sc_trace_file* file);

@@ -221,6 +221,16 @@ nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {
   return stats;
 }
 
+void DisplayController::describe_stats(StatsSchema& schema) const {
+  Peripheral::describe_stats(schema);
+  schema.add("width", "pixels", "width of the screen");
+  schema.add("height", "pixels", "height of the screen");
+  schema.add("achieved_fps", "Hz",
+             "frames shown per second, between the first and the last frame shown (0 below two frames)");
+  schema.add("refresh_hz", "Hz", "the panel's refresh rate in DMA mode (display.refresh_hz); 0 in port mode");
+  schema.add("elapsed_ns", "ns", "simulated time of the run");
+}
+
 SummaryRow DisplayController::summary_row(const sc_time& elapsed) const {
   const nlohmann::json stats = stats_json(elapsed);
   char notes[128];

@@ -116,6 +116,7 @@ class DisplayController : public Peripheral {
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 

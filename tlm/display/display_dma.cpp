@@ -80,6 +80,15 @@ nlohmann::json DisplayDma::stats_json(const sc_time& elapsed) const {
   return stats;
 }
 
+void DisplayDma::describe_stats(StatsSchema& schema) const {
+  Block::describe_stats(schema);
+  schema.add("burst_bytes", "bytes", "length of the DMA's bus bursts (display_dma.burst_bytes)");
+  schema.add("fifo_lines", "count", "lines the line FIFO holds (display_dma.fifo_lines)");
+  schema.add("busy_ns", "ns", "time the DMA's bus transfers took");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("elapsed_ns", "ns", "simulated time of the run");
+}
+
 SummaryRow DisplayDma::summary_row(const sc_time& elapsed) const {
   return busy_row(out.bus_time(), elapsed,
                   std::to_string(m_frames_fetched.value) + " frames fetched, " + std::to_string(m_lines_fetched.value) +

@@ -59,6 +59,7 @@ class DisplayDma : public Block {
   uint64_t underrun_lines() const { return m_underrun_lines.value; }
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 

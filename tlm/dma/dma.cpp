@@ -258,6 +258,7 @@ void Dma::step(unsigned channel) {
   *ch.bytes += moved;
   if (!fault.ok()) return fail(channel, where, fault);
   ++*ch.descriptors;
+  m_descriptor_bytes.sample(d.length);
   if (log::enabled(log::Level::debug))
     log::debug(name(), "channel " + std::to_string(channel) + ": " + dma::kind_name(d.kind()) + " of " +
                            std::to_string(d.length) + " bytes from " + log::hex(d.src) + " to " + log::hex(d.dst));
@@ -313,7 +314,23 @@ nlohmann::json Dma::stats_json(const sc_time& elapsed) const {
   stats["busy_ns"] = m_engine_busy.to_seconds() * 1e9;
   stats["utilisation"] = elapsed_s > 0 ? m_engine_busy.to_seconds() / elapsed_s : 0.0;
   stats["elapsed_ns"] = elapsed_s * 1e9;
+  stats["histograms"]["descriptor_bytes"] = histogram_json(m_descriptor_bytes);
   return stats;
+}
+
+void Dma::describe_stats(StatsSchema& schema) const {
+  Peripheral::describe_stats(schema);
+  schema.add("channels", "count", "channels of the DMA (dma.channels)");
+  schema.add("burst_bytes", "bytes", "length of the DMA's bus bursts (dma.burst_bytes)");
+  schema.add("cmem_bytes_per_cycle", "bytes",
+             "bytes the DMA moves to or from CMEM per array cycle (dma.cmem_bytes_per_cycle)");
+  schema.add("cmem_stall_ns", "ns", "time the DMA waited for the CUs to let go of CMEM");
+  schema.add("ch*.busy_ns", "ns", "time the channel ran descriptors");
+  schema.add("ch*.bus_wait_ns", "ns", "time the channel's bus transfers took");
+  schema.add("busy_ns", "ns", "time the DMA engine ran descriptors (any channel)");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("elapsed_ns", "ns", "simulated time of the run");
+  schema.add_histogram("histograms.descriptor_bytes", "bytes", "the length of each descriptor completed");
 }
 
 SummaryRow Dma::summary_row(const sc_time& elapsed) const {

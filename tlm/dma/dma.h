@@ -86,6 +86,7 @@ class Dma : public Peripheral {
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
@@ -162,6 +163,7 @@ class Dma : public Peripheral {
   ActivityCounter& m_cmem_cycles;
   ActivityCounter& m_cmem_stalls;
   ActivityCounter& m_descriptor_fetches;
+  Log2Histogram m_descriptor_bytes;  // each completed descriptor's LENGTH (histograms.descriptor_bytes)
   bool m_tracing = false;
 };
 

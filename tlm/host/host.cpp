@@ -677,6 +677,19 @@ nlohmann::json Host::stats_json(const sc_time& elapsed) const {
   return stats;
 }
 
+void Host::describe_stats(StatsSchema& schema) const {
+  Block::describe_stats(schema);
+  schema.add("clock_mhz", "MHz", "the host's clock frequency (host.clock_mhz)");
+  schema.add("busy_ns", "ns", "time the host computed (its cycles, host-compiled or on the ISS)");
+  schema.add("stalled_on_bus_ns", "ns", "time the host waited for its bus accesses");
+  schema.add("idle_ns", "ns", "simulated time neither busy nor stalled on the bus");
+  schema.add("waiting_for_irq_ns", "ns", "time the host slept waiting for an interrupt");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("dcache.hits", "count", "data cache hits");
+  schema.add("dcache.misses", "count", "data cache misses");
+  schema.add("dcache.writebacks", "count", "dirty data cache lines written back");
+}
+
 SummaryRow Host::summary_row(const sc_time& elapsed) const {
   const double elapsed_s = elapsed.to_seconds();
   const double busy_s = busy_time().to_seconds();

@@ -99,6 +99,7 @@ class Host : public Block, public HostApi, public HostCore {
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
   sc_core::sc_time busy_time() const { return m_params.clock_period * static_cast<double>(m_busy_cycles.value); }

@@ -162,6 +162,13 @@ nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
   return stats;
 }
 
+void Memory::describe_stats(StatsSchema& schema) const {
+  Block::describe_stats(schema);
+  schema.add("size_bytes", "bytes", "size of the memory");
+  schema.add("busy_ns", "ns", "time the memory served accesses");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+}
+
 SummaryRow Memory::summary_row(const sc_core::sc_time& elapsed) const {
   return busy_row(sc_core::sc_time::from_value(m_busy_ticks), elapsed,
                   std::to_string(m_reads.value) + " reads, " + std::to_string(m_writes.value) + " writes");

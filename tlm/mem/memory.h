@@ -57,6 +57,7 @@ class Memory : public Block, private tlm::tlm_fw_transport_if<> {
   sc_core::sc_time access_time(uint64_t bytes) const { return sc_core::sc_time::from_value(access_ticks(bytes)); }
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 

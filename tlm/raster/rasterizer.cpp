@@ -182,6 +182,7 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
   m_tile_cycles += result.tile_cycles;
   m_fragment_cycles += result.fragment_cycles;
   m_texel_cycles += result.texel_cycles;
+  m_span_pixels.merge(result.span_pixels);
 
   const uint64_t cycles = static_cast<uint64_t>(std::llround(elapsed / m_params.clock_period));
   ERROR_STATUS.set(static_cast<uint32_t>(result.error));
@@ -220,7 +221,25 @@ nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
   stats["waiting_for_bus_ns"] = mem_out.bus_time().to_seconds() * 1e9;
   stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
   stats["elapsed_ns"] = elapsed_s * 1e9;
+  stats["histograms"]["span_pixels"] = histogram_json(m_span_pixels);
   return stats;
+}
+
+void Rasterizer::describe_stats(StatsSchema& schema) const {
+  Peripheral::describe_stats(schema);
+  schema.add("clock_mhz", "MHz", "the rasterizer's clock frequency");
+  schema.add("width", "pixels", "width of the render target");
+  schema.add("height", "pixels", "height of the render target");
+  schema.add("tile_width", "pixels", "width of a tile");
+  schema.add("tile_height", "pixels", "height of a tile");
+  schema.add("cycles.busy", "cycles", "rasterizer cycles of every run, busy_ns in cycles");
+  schema.add("busy_ns", "ns", "time the rasterizer ran tile tables");
+  schema.add("waiting_for_bus_ns", "ns", "time the rasterizer's memory port spent on the bus");
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("elapsed_ns", "ns", "simulated time of the run");
+  schema.add_histogram(
+      "histograms.span_pixels", "pixels",
+      "the pixels of each span (a run of one row's pixels of a triangle in a tile, handed to the shader)");
 }
 
 SummaryRow Rasterizer::summary_row(const sc_time& elapsed) const {

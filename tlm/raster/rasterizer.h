@@ -93,6 +93,7 @@ class Rasterizer : public Peripheral {
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
@@ -130,6 +131,7 @@ class Rasterizer : public Peripheral {
   bool m_done = false;
   bool m_error = false;
   raster::RunResult m_last;
+  Log2Histogram m_span_pixels;  // every run's (histograms.span_pixels)
 
   // Totals over every run, for stats_json.
   ActivityCounter& m_runs;

@@ -24,6 +24,17 @@ nlohmann::json energy_json(nlohmann::json units, double total_joules, double sec
   return {{"total_j", total_joules}, {"average_w", seconds > 0 ? total_joules / seconds : 0.0}, {"units", units}};
 }
 
+// energy_json's statistics under `prefix` (with its dot), over `what`
+// (the run, a frame, a stage).
+void describe_energy(StatsSchema& schema, const std::string& prefix, const std::string& what) {
+  schema.add(prefix + "total_j", "J", "energy of every unit over " + what);
+  schema.add(prefix + "average_w", "W", "average power of every unit over " + what);
+  schema.add(prefix + "units.*.total_j", "J", "the unit's energy over " + what + " (static_j + dynamic_j)");
+  schema.add(prefix + "units.*.static_j", "J", "the unit's static (leakage) energy over " + what);
+  schema.add(prefix + "units.*.dynamic_j", "J", "the unit's dynamic energy over " + what + " (its events')");
+  schema.add(prefix + "units.*.average_w", "W", "the unit's average power over " + what);
+}
+
 }  // namespace
 
 SocRecorder::SocRecorder(const std::string& scope, const Config& config, Sources sources)
@@ -197,6 +208,29 @@ nlohmann::json SocRecorder::array_stages_energy_json() const {
     stages[stage.stage]["seconds"] = stage.seconds;
   }
   return stages;
+}
+
+void SocRecorder::describe_stats(StatsSchema& schema) const {
+  schema.add("simulated_ns", "ns", "simulated time of the run");
+  for (const Block* block : m_sources.blocks) {
+    StatsSchema own;
+    block->describe_stats(own);
+    schema.add_all(std::string(block->basename()) + ".", own);
+  }
+  describe_energy(schema, "energy.", "the run");
+  schema.add("energy.units.*.events.*.count", "count",
+             "events of the class that the unit's block counted (energy_params.def; host cycles may be fractional)");
+  schema.add("energy.units.*.events.*.j", "J", "dynamic energy of the unit's events of the class");
+  describe_energy(schema, "energy.array_stages.*.", "the array programs' instructions of the stage");
+  schema.add("energy.array_stages.*.seconds", "s", "time the array spent in instructions of the stage");
+  schema.add("frames[].index", "index", "the frame's number, from 0");
+  schema.add("frames[].time_ns", "ns", "when the frame was shown");
+  schema.add("frames[].interval_ns", "ns", "time since the frame before was shown (since the start for the first)");
+  schema.add("frames[].requested_ns", "ns", "when the software asked for the frame to be shown");
+  schema.add("frames[].render_ns", "ns", "time from the frame before's request to this one's: the frame's render time");
+  schema.add("frames[].host_busy_ns", "ns", "host busy time over the frame's render time");
+  schema.add("frames[].bus_bytes", "bytes", "bytes every initiator moved on the bus over the frame's render time");
+  describe_energy(schema, "frames[].energy.", "the frame's render time");
 }
 
 EnergyActivity SocRecorder::energy_activity(const sc_time& now) const {

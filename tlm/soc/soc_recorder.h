@@ -75,6 +75,8 @@ class SocRecorder {
   // and the host's busy time, the bus bytes and the energy over that render
   // time.
   nlohmann::json stats_json() const;
+  // Describes every statistic stats_json gives (stats_schema.h).
+  void describe_stats(StatsSchema& schema) const;
 
   // Streams `frames` instead: from now on each frame shown goes to `sink`
   // as its stats.json record, in order, and is not kept, so a long run's

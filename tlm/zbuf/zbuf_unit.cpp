@@ -180,6 +180,12 @@ nlohmann::json ZbufUnit::stats_json(const sc_time& elapsed) const {
   return stats;
 }
 
+void ZbufUnit::describe_stats(StatsSchema& schema) const {
+  Peripheral::describe_stats(schema);
+  schema.add("entries", "count", "depth entries of the unit (zbuf.entries)");
+  schema.add("ports", "count", "ports of the unit (zbuf.ports)");
+}
+
 SummaryRow ZbufUnit::summary_row(const sc_time& elapsed) const {
   return busy_row(clock_period() * static_cast<double>(m_core.counts().port_cycles), elapsed,
                   std::to_string(m_core.counts().pixels) + " pixels, " + std::to_string(m_core.counts().written) +

@@ -73,6 +73,7 @@ class ZbufUnit : public Peripheral, public ap::PixelPort {
   sc_core::sc_time free_from(const sc_core::sc_time& when) const;
 
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
+  void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 

@@ -57,6 +57,9 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--frames", opt.frames, "frames to draw (sim.frames)")->check(CLI::Range(1, 100000));
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
+  cli.add_option("--stats-schema", opt.stats_schema,
+                 "write the unit and description of every number of the run's statistics to FILE (JSON; "
+                 "docs/statistics.md)");
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
   cli.add_option("--fst", opt.fst,
                  "write the same trace as FST (GTKWave's compressed format) to FILE, which must end in .fst; with "
@@ -223,6 +226,11 @@ std::optional<int> check_iss_options(const Options& opt, const Config& config) {
   if (opt.gdb_port >= 0 && config.get_string("sim.platform") == "cluster") {
     std::cerr << "soc_sim: impossible combination: --gdb debugs the SoC's one program, and sim.platform=cluster runs "
                  "cluster.nodes of them\n";
+    return EXIT_USAGE;
+  }
+  if (!opt.stats_schema.empty() && config.get_string("sim.platform") == "cluster") {
+    std::cerr << "soc_sim: impossible combination: --stats-schema describes the SoC platform's statistics, and "
+                 "sim.platform=cluster's are not described yet (docs/statistics.md)\n";
     return EXIT_USAGE;
   }
   if (opt.gdb_port >= 0 && model != "iss") {

@@ -30,6 +30,7 @@ struct Options {
   std::string fst;     // an FST trace (*.fst)
   std::string report;  // the HTML run report (*.html)
   std::string stats;
+  std::string stats_schema;
   bool quiet = false;
   bool force = false;
   bool no_frames = false;

@@ -31,6 +31,12 @@ struct RunOutcome {
 // an indent of 2 and a final newline.
 std::string statistics_document(const RunPlan& plan, const nlohmann::json& config_json, const RunOutcome& outcome,
                                 nlohmann::json stats);
+// The description of statistics_document's numbers (--stats-schema): the
+// document's own, then `stats` (the SoC's, keys relative to "stats.") and
+// `driver_counters` (the driver's counters, stats.driver) and the back
+// ends' figures of each frame; as StatsSchema::to_json gives it, under
+// "statistics".
+nlohmann::json statistics_document_schema(const StatsSchema& stats, const ActivityCounters& driver_counters);
 
 // The summary: run, block table (each block's own row, its notes wrapped to
 // 80 columns; the blocks that did nothing named on one line instead), the

@@ -160,7 +160,7 @@ int RunSession::run() {
   simulate();
   close_outputs();
   judge();
-  int status = write_statistics(m_outcome.exit_status);
+  int status = write_stats_schema(write_statistics(m_outcome.exit_status));
   if (!m_options.report.empty()) status = write_html_page(status);
   if (!m_options.quiet) print_report();
   return flush_standard_output(status);
@@ -171,7 +171,7 @@ std::optional<int> RunSession::claim_outputs() {
     prepare_output_dir(m_options.out_dir);
     m_folder_claim.emplace(m_options.out_dir);
     check_writable_file(m_stats_path);
-    for (const std::string* path : {&m_options.vcd, &m_options.fst, &m_options.report})
+    for (const std::string* path : {&m_options.vcd, &m_options.fst, &m_options.report, &m_options.stats_schema})
       if (!path->empty()) check_writable_file(*path);
     clear_earlier_outputs({m_options.out_dir, m_stats_path, m_options.vcd, m_options.fst, m_options.report},
                           m_options.force);
@@ -435,6 +435,20 @@ int RunSession::write_html_page(int status) {
   if (m_report_error.empty()) return status;
   std::cerr << "soc_sim: " << m_report_error << " (the run's other outputs are kept)\n";
   return status == 0 ? EXIT_SIM_FAILED : status;
+}
+
+// --stats-schema; a failure to write it fails a run that had not failed.
+int RunSession::write_stats_schema(int status) {
+  if (m_options.stats_schema.empty()) return status;
+  try {
+    StatsSchema stats;
+    m_soc->recorder().describe_stats(stats);
+    write_file_atomically(m_options.stats_schema, statistics_document_schema(stats, m_driver_counters).dump(2) + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << "soc_sim: " << e.what() << " (--stats-schema)\n";
+    if (status == 0) status = EXIT_SIM_FAILED;
+  }
+  return status;
 }
 
 void RunSession::print_report() {

@@ -56,6 +56,7 @@ class RunSession {
   void judge();
   int write_statistics(int status);
   int write_html_page(int status);
+  int write_stats_schema(int status);
   void print_report();
   int flush_standard_output(int status);
 

@@ -144,6 +144,16 @@ TEST(Traversal, ASharedEdgeThroughPixelCentresIsDrawnOnce) {
     }
   // One fragment cycle per pixel of each box, covered or not.
   EXPECT_EQ(b.run.result().fragment_cycles, 2u * 25);
+  // The spans, one per row with a pixel inside: the lower triangle's rows
+  // 0..3 hold 4, 3, 2, 1 pixels, the upper's rows 1..3 hold 1, 2, 3.
+  const tessera::Log2Histogram& spans = b.run.result().span_pixels;
+  EXPECT_EQ(spans.count(), 7u);
+  EXPECT_EQ(spans.sum(), 16u);  // every fragment
+  EXPECT_EQ(spans.min(), 1u);
+  EXPECT_EQ(spans.max(), 4u);
+  EXPECT_EQ(spans.bucket(tessera::Log2Histogram::bucket_of(1)), 2u);  // 1 and 1
+  EXPECT_EQ(spans.bucket(tessera::Log2Histogram::bucket_of(2)), 4u);  // 2-3: 3, 2, 2, 3
+  EXPECT_EQ(spans.bucket(tessera::Log2Histogram::bucket_of(4)), 1u);  // 4-7: 4
 }
 
 TEST(Traversal, OnlyThePixelsOfTheBoxAreVisited) {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "common/histogram.h"
 #include "common/pixel_format.h"
 #include "raster/command_format.h"
 #include "raster/core/raster_port.h"
@@ -38,6 +39,9 @@ struct RunResult {
   uint64_t tiles = 0, commands = 0, triangles = 0, triangles_skipped = 0, fragments = 0, fragments_written = 0,
            texels = 0, bytes_read = 0, bytes_written = 0;
   uint64_t setup_cycles = 0, tile_cycles = 0, fragment_cycles = 0, texel_cycles = 0;  // sum = all cycles reported
+  // The pixels of each span: a run of one row's pixels of a triangle in a
+  // tile that the traversal hands to the shader (before the tests).
+  Log2Histogram span_pixels;
 };
 
 class TileRasterizer {

@@ -40,6 +40,7 @@ class Traversal {
   // Pixels px .. px + count - 1 of row py with their coverage (null: full);
   // false once the run has failed.
   bool add(int px, int py, unsigned count, const uint32_t* coverage) {
+    m_run.result().span_pixels.sample(count);
     while (count > 0) {
       if (m_batch.room() == 0 && !flush()) return false;
       const unsigned n = std::min(count, m_batch.room());

@@ -1,0 +1,103 @@
+// The histogram statistic (power-of-two buckets, exact count, sum, min and
+// max) and the statistics' descriptions (stats_schema.h).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "common/histogram.h"
+#include "common/stats_schema.h"
+
+namespace {
+
+using tessera::Log2Histogram;
+
+// The count of the bucket whose smallest value is `low` in histogram_json's
+// output, 0 when it is left out.
+uint64_t bucket_count(const nlohmann::json& histogram, uint64_t low) {
+  for (const auto& bucket : histogram["buckets"])
+    if (bucket["low"].get<uint64_t>() == low) return bucket["count"].get<uint64_t>();
+  return 0;
+}
+
+TEST(Log2Histogram, SamplesFallInPowerOfTwoBucketsWithExactSummaries) {
+  Log2Histogram h;
+  for (uint64_t value : {0, 1, 2, 3, 4, 7, 8, 1000, 1023, 1024}) h.sample(value);
+  const nlohmann::json json = tessera::histogram_json(h);
+  EXPECT_EQ(json["count"], 10u);
+  EXPECT_EQ(json["sum"], 0u + 1 + 2 + 3 + 4 + 7 + 8 + 1000 + 1023 + 1024);
+  EXPECT_EQ(json["min"], 0u);
+  EXPECT_EQ(json["max"], 1024u);
+  EXPECT_DOUBLE_EQ(json["mean"].get<double>(), 3072.0 / 10);
+  // 0 | 1 | 2-3 | 4-7 | 8-15 | 512-1023 | 1024-2047, the empty ones left out.
+  ASSERT_EQ(json["buckets"].size(), 7u);
+  EXPECT_EQ(bucket_count(json, 0), 1u);
+  EXPECT_EQ(bucket_count(json, 1), 1u);
+  EXPECT_EQ(bucket_count(json, 2), 2u);
+  EXPECT_EQ(bucket_count(json, 4), 2u);
+  EXPECT_EQ(bucket_count(json, 8), 1u);
+  EXPECT_EQ(bucket_count(json, 512), 2u);
+  EXPECT_EQ(bucket_count(json, 1024), 1u);
+  EXPECT_EQ(json["buckets"][5]["high"], 1023u);
+  EXPECT_EQ(json["buckets"][0]["high"], 0u);
+}
+
+TEST(Log2Histogram, TheLargestValueHasABucketAndAnEmptyHistogramIsAllZero) {
+  Log2Histogram h;
+  EXPECT_EQ(tessera::histogram_json(h)["buckets"].size(), 0u);
+  EXPECT_EQ(h.min(), 0u);
+  EXPECT_EQ(h.mean(), 0.0);
+  h.sample(~uint64_t(0));
+  const nlohmann::json json = tessera::histogram_json(h);
+  EXPECT_EQ(json["buckets"][0]["low"], uint64_t(1) << 63);
+  EXPECT_EQ(json["buckets"][0]["high"], ~uint64_t(0));
+}
+
+TEST(Log2Histogram, MergingIsSamplingBoth) {
+  Log2Histogram a, b, both;
+  for (uint64_t v : {5, 9, 9}) a.sample(v), both.sample(v);
+  for (uint64_t v : {2, 100}) b.sample(v), both.sample(v);
+  Log2Histogram empty;
+  a.merge(empty);
+  a.merge(b);
+  EXPECT_EQ(tessera::histogram_json(a), tessera::histogram_json(both));
+  EXPECT_EQ(a.min(), 2u);
+  EXPECT_EQ(a.max(), 100u);
+}
+
+TEST(StatsSchema, AKeyDescribedTwiceDifferentlyIsAnErrorNamingIt) {
+  tessera::StatsSchema schema;
+  schema.add("bus.utilisation", "fraction", "busy over elapsed");
+  schema.add("bus.utilisation", "fraction", "busy over elapsed");  // the same twice: one entry
+  EXPECT_EQ(schema.to_json().size(), 1u);
+  schema.add("bus.utilisation", "percent", "busy over elapsed");
+  try {
+    schema.to_json();
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bus.utilisation"), std::string::npos) << e.what();
+  }
+}
+
+TEST(StatsSchema, CountersTakeTheirUnitFromTheirNameAndHistogramsDescribeEveryField) {
+  tessera::ActivityCounters counters;
+  counters.counter("host_wait_ns", "waited");
+  counters.counter("cycles.fill", "fill cycles");
+  counters.counter("cmem.bytes_read", "read");
+  counters.counter("vertex_cache.hits", "hits");
+  tessera::StatsSchema schema;
+  schema.add_counters(counters, "driver.");
+  schema.add_histogram("h", "cycles", "waits");
+  const nlohmann::json json = schema.to_json();
+  EXPECT_EQ(json["driver.host_wait_ns"]["unit"], "ns");
+  EXPECT_EQ(json["driver.cycles.fill"]["unit"], "cycles");
+  EXPECT_EQ(json["driver.cmem.bytes_read"]["unit"], "bytes");
+  EXPECT_EQ(json["driver.vertex_cache.hits"]["unit"], "count");
+  EXPECT_EQ(json["driver.vertex_cache.hits"]["description"], "hits");
+  // Every number histogram_json gives is described.
+  for (const char* key :
+       {"h.count", "h.sum", "h.min", "h.max", "h.mean", "h.buckets[].low", "h.buckets[].high", "h.buckets[].count"})
+    EXPECT_TRUE(json.contains(key)) << key;
+  EXPECT_EQ(json["h.mean"]["unit"], "cycles");
+}
+
+}  // namespace
