@@ -85,6 +85,10 @@ class Dma : public Peripheral {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Per channel a track "chN": its chains (from START to the channel's
+  // end, the channel's busy time) with their descriptors nested; a
+  // descriptor that fills CMEM is a flow to the array's next program.
+  void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
@@ -123,6 +127,7 @@ class Dma : public Peripheral {
     ActivityCounter* bytes = nullptr;
     ActivityCounter* errors = nullptr;
     std::unique_ptr<TimedTrace> busy_trace;
+    unsigned timeline_track = 0;
   };
 
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
@@ -163,6 +168,8 @@ class Dma : public Peripheral {
   ActivityCounter& m_cmem_stalls;
   ActivityCounter& m_descriptor_fetches;
   bool m_tracing = false;
+  TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
+  std::string m_cmem_flow_key;
 };
 
 }  // namespace tessera

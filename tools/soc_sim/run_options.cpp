@@ -53,6 +53,14 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--out", opt.out_dir, "folder for frames and statistics")->capture_default_str();
   cli.add_option("--stats", opt.stats, "write statistics as JSON to FILE (default: <out>/stats.json)");
   cli.add_option("--vcd", opt.vcd, "write a VCD trace to FILE");
+  CLI::Option* timeline =
+      cli.add_option("--timeline", opt.timeline,
+                     "write a timeline of every block's activity to FILE (Chrome trace-event JSON, for Perfetto)");
+  cli.add_option("--timeline-detail", opt.timeline_detail,
+                 "with --timeline: frames (frames, vblanks, power and bus counters), blocks (and every block's "
+                 "runs: the default) or all (and array stages, single CIU accesses, the host's stalls apart)")
+      ->check(CLI::IsMember({"frames", "blocks", "all"}))
+      ->needs(timeline);
   cli.add_flag("--force", opt.force,
                "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
   cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");

@@ -27,6 +27,8 @@ struct Options {
   int frames = 0;
   std::string out_dir = "out";
   std::string vcd;
+  std::string timeline;                    // --timeline FILE ("": none)
+  std::string timeline_detail = "blocks";  // frames, blocks or all (timeline_writer.h)
   std::string stats;
   bool quiet = false;
   bool force = false;
