@@ -29,6 +29,7 @@ struct Options {
   std::string vcd;
   std::string timeline;                    // --timeline FILE ("": none)
   std::string timeline_detail = "blocks";  // frames, blocks or all (timeline_writer.h)
+  std::string trace_transactions;          // --trace-transactions FILE[:FILTER] ("": none)
   std::string stats;
   bool quiet = false;
   bool force = false;

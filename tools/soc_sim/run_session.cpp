@@ -164,6 +164,8 @@ std::optional<int> RunSession::claim_outputs() {
     check_writable_file(m_stats_path);
     if (!m_options.vcd.empty()) check_writable_file(m_options.vcd);
     if (!m_options.timeline.empty()) check_writable_file(m_options.timeline);
+    if (!m_options.trace_transactions.empty())
+      check_writable_file(parse_transaction_trace(m_options.trace_transactions).path);
     clear_earlier_outputs(
         {m_options.out_dir, m_stats_path, m_options.vcd.empty() ? fs::path() : fs::path(m_options.vcd)},
         m_options.force);
@@ -199,6 +201,8 @@ std::optional<int> RunSession::build_soc() {
     if (!m_options.timeline.empty())
       m_timeline =
           std::make_unique<TimelineWriter>(m_options.timeline, parse_timeline_detail(m_options.timeline_detail));
+    if (!m_options.trace_transactions.empty())
+      m_transactions = std::make_unique<TransactionWriter>(parse_transaction_trace(m_options.trace_transactions));
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
@@ -247,6 +251,9 @@ void RunSession::start_application() {
     m_cluster->start(m_plan.app, m_frames, m_options.iss_profile);
     if (m_trace_pipe) m_cluster->trace_to(m_trace_pipe->systemc_base());
     if (m_timeline) m_cluster->timeline_to(*m_timeline);
+    if (m_transactions)
+      for (unsigned i = 0; i < m_cluster->cluster().nodes(); ++i)
+        m_cluster->cluster().node(i).bus.trace_transactions_to(*m_transactions);
     m_config_json = m_config.to_json();
     return;
   }
@@ -279,6 +286,7 @@ void RunSession::start_application() {
 
   if (m_trace_pipe) soc.recorder().trace_to(m_trace_pipe->systemc_base());
   if (m_timeline) soc.recorder().timeline_to(*m_timeline);
+  if (m_transactions) soc.bus.trace_transactions_to(*m_transactions);
   m_config_json = m_soc_config->to_json();
 }
 
@@ -349,6 +357,7 @@ void RunSession::close_outputs() {
       m_soc->recorder().finish_timeline();
     m_timeline_error = m_timeline->finish();
   }
+  if (m_transactions) m_transactions_error = m_transactions->finish();
   if (m_soc && m_trace_pipe && m_trace_error.empty() && !m_soc->host.function_names().empty()) {
     std::string names;
     for (size_t i = 0; i < m_soc->host.function_names().size(); ++i)
@@ -398,6 +407,8 @@ void RunSession::judge() {
          m_png_error + "; the run stopped after " + std::to_string(m_frames_shown) + " of " + std::to_string(m_frames) +
              " frames were shown, " + std::to_string(m_frames_written) + " written");
   if (!m_trace_error.empty()) fail(RunEnd::failed, EXIT_SIM_FAILED, m_trace_error + " (the VCD trace is not kept)");
+  if (!m_transactions_error.empty())
+    fail(RunEnd::failed, EXIT_SIM_FAILED, m_transactions_error + " (the transaction trace is not kept)");
   if (!m_timeline_error.empty())
     fail(RunEnd::failed, EXIT_SIM_FAILED, m_timeline_error + " (the timeline is not kept)");
   if (m_failures.empty() && m_frames_shown == 0)
@@ -448,6 +459,11 @@ void RunSession::print_report() {
                           ? "timeline: " + m_options.timeline + " (" + std::to_string(m_timeline->events()) +
                                 " events, " + format_megabytes(m_timeline->bytes()) + ")"
                           : "timeline: none");
+  if (m_transactions)
+    outputs.push_back(m_transactions_error.empty()
+                          ? "transactions: " + parse_transaction_trace(m_options.trace_transactions).path + " (" +
+                                std::to_string(m_transactions->rows()) + " rows)"
+                          : "transactions: none");
   if (m_cluster)
     m_cluster->print_summary(m_stats, m_wall, outputs);
   else

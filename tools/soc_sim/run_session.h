@@ -25,6 +25,7 @@
 #include "soc/soc.h"
 #include "timeline_writer.h"
 #include "trace_pipe.h"
+#include "transaction_writer.h"
 
 namespace tessera {
 
@@ -86,6 +87,8 @@ class RunSession {
   std::unique_ptr<TracePipe> m_trace_pipe;
   std::unique_ptr<TimelineWriter> m_timeline;  // --timeline
   std::string m_timeline_error;
+  std::unique_ptr<TransactionWriter> m_transactions;  // --trace-transactions
+  std::string m_transactions_error;
   std::unique_ptr<Soc> m_soc;
   // With sim.platform=cluster, the cluster platform instead of the SoC.
   std::unique_ptr<ClusterRun> m_cluster;
