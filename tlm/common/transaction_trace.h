@@ -16,7 +16,7 @@ namespace tessera {
 
 struct Transaction {
   const std::string& initiator;  // the bus's name for it (host, dma, raster, display_dma)
-  const std::string& target;     // the region's name (memory, ciu, ...), "unmapped" for none
+  const std::string& target;     // the region's name (sysmem, ciu, array_regs, ...), "unmapped" for none
   bool write;
   uint64_t address;
   uint64_t bytes;

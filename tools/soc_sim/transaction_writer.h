@@ -4,7 +4,7 @@
 // whole or not at all). The filter is comma-separated key=value terms, all
 // of which a transaction must match:
 //   initiator=NAME   the bus initiator (host, dma, raster, display_dma)
-//   target=NAME      the target region (memory, ciu, array_regs, ...)
+//   target=NAME      the target region (sysmem, ciu, array_regs, ...)
 //   command=read|write
 //   addr=LO-HI       LO <= address < HI (decimal or 0x hex)
 //   time=A-B         requested from A to before B; each with a unit: ps, ns, us, ms or s
