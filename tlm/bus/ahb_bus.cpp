@@ -196,11 +196,11 @@ void AhbBus::observe(unsigned initiator, const tlm::tlm_generic_payload& gp, con
                      uint64_t request_cycle, uint64_t start_cycle, uint64_t end_cycle) {
   if (m_tracing) trace_grant(initiator, request_cycle, start_cycle, end_cycle);
   if (!m_transactions) return;
-  static const std::string UNMAPPED = "unmapped";
+  static const std::string unmapped_name = "unmapped";
   m_transactions->transaction(
-      {m_stats[initiator].name, region ? region->name : UNMAPPED, gp.is_write(), gp.get_address(), gp.get_data_length(),
-       sc_time::from_value(request_cycle * m_period_ticks), sc_time::from_value(start_cycle * m_period_ticks),
-       sc_time::from_value(end_cycle * m_period_ticks)});
+      {m_stats[initiator].name, region ? region->name : unmapped_name, gp.is_write(), gp.get_address(),
+       gp.get_data_length(), sc_time::from_value(request_cycle * m_period_ticks),
+       sc_time::from_value(start_cycle * m_period_ticks), sc_time::from_value(end_cycle * m_period_ticks)});
 }
 
 uint64_t AhbBus::unmapped(unsigned initiator, tlm::tlm_generic_payload& gp) {
