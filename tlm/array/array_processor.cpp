@@ -205,7 +205,7 @@ void ArrayProcessor::start(const sc_time& access_time) {
   m_refused = false;
   const ap::ControllerActivity& before = m_core.activity();
   const std::array<uint64_t, ap::STAGE_COUNT> stages_before = before.stage_cycles;
-  m_core.record_stages(m_tracing);
+  m_core.record_stages(m_tracing || m_timeline_stages);
   m_current = m_core.run(entry);
   for (unsigned stage = 0; stage < ap::STAGE_COUNT; ++stage)
     m_current_stages[stage] = m_core.activity().stage_cycles[stage] - stages_before[stage];
@@ -226,6 +226,7 @@ void ArrayProcessor::start(const sc_time& access_time) {
                            begin + m_params.clock_period * static_cast<double>(change.cycle));
     m_busy_trace.set_at(false, m_busy_until);
   }
+  if (m_timeline) record_program(entry, begin);
   const sc_time until_end = m_busy_until - sc_core::sc_time_stamp();
   if (m_current.ok) {
     log::info(name(), "program at word " + std::to_string(entry) + ": " + std::to_string(m_current.cycles) +
@@ -335,6 +336,32 @@ void ArrayProcessor::trace_signals(sc_core::sc_trace_file* file) {
   sc_core::sc_trace(file, m_program_trace.signal, prefix + "program");
   sc_core::sc_trace(file, m_stage_trace.signal, prefix + "stage");
   sc_core::sc_trace(file, irq, prefix + "irq");
+}
+
+void ArrayProcessor::timeline_to(TimelineSink& sink) {
+  m_timeline = &sink;
+  m_program_track = sink.track(name(), "programs");
+  m_timeline_stages = sink.records(TimelineDetail::all);
+  if (m_timeline_stages) m_stage_track = sink.track(name(), "stages");
+}
+
+void ArrayProcessor::record_program(unsigned entry, const sc_time& begin) {
+  if (!m_timeline->records(TimelineDetail::blocks)) return;
+  m_timeline->slice(m_program_track, m_current.ok ? "program" : "program (failed)", begin, m_busy_until,
+                    {{"entry", static_cast<double>(entry)},
+                     {"cycles", static_cast<double>(m_current.cycles)},
+                     {"instructions", static_cast<double>(m_current.instructions)}});
+  // What the DMA wrote into CMEM before the program started, it reads.
+  m_timeline->flow_to(cmem_flow_key(*this), m_program_track, begin);
+  if (!m_timeline_stages) return;
+  const auto& changes = m_core.stage_changes();
+  for (size_t i = 0; i < changes.size(); ++i) {
+    const sc_time from = begin + m_params.clock_period * static_cast<double>(changes[i].cycle);
+    const sc_time to = i + 1 < changes.size()
+                           ? begin + m_params.clock_period * static_cast<double>(changes[i + 1].cycle)
+                           : m_busy_until;
+    if (to > from) m_timeline->slice(m_stage_track, ap::stage_name(changes[i].stage), from, to);
+  }
 }
 
 nlohmann::json ArrayProcessor::stats_json(const sc_time& elapsed) const {

@@ -112,6 +112,9 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Programs on the track "programs", each with the CMEM-filling DMA
+  // descriptors before it as flows; stages on "stages" (detail all).
+  void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -197,6 +200,12 @@ class ArrayProcessor : public Peripheral, public CmemAccess {
   TimedWord m_program_trace;
   TimedWord m_stage_trace;
   bool m_tracing = false;
+  // timeline_to: null without a timeline.
+  TimelineSink* m_timeline = nullptr;
+  unsigned m_program_track = 0, m_stage_track = 0;
+  bool m_timeline_stages = false;
+  // The program just started, from `begin`, on the timeline.
+  void record_program(unsigned entry, const sc_core::sc_time& begin);
 };
 
 }  // namespace tessera

@@ -90,6 +90,7 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
     m_access_trace.set_at(true, start);
     m_access_trace.set_at(false, start + latency);
   }
+  if (m_timeline) record_access(sc_core::sc_time_stamp() + delay, latency);
   delay += latency;
   m_access_time += latency;
   if (gp.is_write()) {
@@ -122,6 +123,35 @@ unsigned Ciu::transport_dbg(tlm::tlm_generic_payload& gp) {
 void Ciu::trace_signals(sc_core::sc_trace_file* file) {
   m_tracing = true;
   sc_core::sc_trace(file, m_access_trace.signal, std::string(name()) + ".access");
+}
+
+void Ciu::timeline_to(TimelineSink& sink) {
+  if (!sink.records(TimelineDetail::blocks)) return;
+  m_timeline = &sink;
+  m_timeline_track = sink.track(name(), "accesses");
+}
+
+void Ciu::record_access(const sc_time& start, const sc_time& latency) {
+  if (m_timeline->records(TimelineDetail::all)) {
+    m_timeline->slice(m_timeline_track, "access", start, start + latency);
+    return;
+  }
+  if (m_burst.accesses > 0 && start <= m_burst.end + sc_time(BURST_GAP_NS, sc_core::SC_NS)) {
+    m_burst.end = start + latency;
+    m_burst.latency += latency;
+    ++m_burst.accesses;
+    return;
+  }
+  finish_timeline();
+  m_burst = {start, start + latency, latency, 1};
+}
+
+void Ciu::finish_timeline() {
+  if (!m_timeline || m_burst.accesses == 0) return;
+  m_timeline->slice(
+      m_timeline_track, "burst", m_burst.begin, m_burst.end,
+      {{"accesses", static_cast<double>(m_burst.accesses)}, {"access_ns", m_burst.latency.to_seconds() * 1e9}});
+  m_burst.accesses = 0;
 }
 
 nlohmann::json Ciu::stats_json(const sc_time& elapsed) const {

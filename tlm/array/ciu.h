@@ -47,6 +47,11 @@ class Ciu : public Block {
   uint64_t window_bytes() const;
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Track "accesses": bursts (accesses that follow each other within
+  // BURST_GAP, with their number and latency) or, at detail all, each access.
+  void timeline_to(TimelineSink& sink) override;
+  void finish_timeline() override;
+  static constexpr double BURST_GAP_NS = 1000;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -70,6 +75,16 @@ class Ciu : public Block {
   sc_core::sc_time m_stall_time;   // waiting for a running program
   TimedTrace m_access_trace;
   bool m_tracing = false;
+  TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
+  unsigned m_timeline_track = 0;
+  // The burst being extended: from its first access's start to its last
+  // access's end, and the accesses' latency.
+  struct Burst {
+    sc_core::sc_time begin, end, latency;
+    uint64_t accesses = 0;
+  };
+  Burst m_burst;
+  void record_access(const sc_core::sc_time& start, const sc_core::sc_time& latency);
 };
 
 }  // namespace tessera

@@ -114,7 +114,7 @@ const AhbBus::Region* AhbBus::decode_other(uint64_t address) const {
 }
 
 void AhbBus::trace_signals(sc_core::sc_trace_file* file) {
-  m_tracing = true;
+  m_tracing = m_observed = true;
   for (size_t i = 0; i < m_stats.size(); ++i) {
     sc_core::sc_trace(file, m_request_traces[i]->signal, std::string(name()) + "." + m_stats[i].name + "_request");
     sc_core::sc_trace(file, m_grant_traces[i]->signal, std::string(name()) + "." + m_stats[i].name + "_grant");
@@ -191,6 +191,17 @@ void AhbBus::trace_grant(unsigned initiator, uint64_t request_cycle, uint64_t st
   m_grant_traces[initiator]->set_at(true, sc_time::from_value(start_cycle * m_period_ticks));
   m_request_traces[initiator]->set_at(false, sc_time::from_value(end));
   m_grant_traces[initiator]->set_at(false, sc_time::from_value(end));
+}
+
+void AhbBus::observe(unsigned initiator, const tlm::tlm_generic_payload& gp, const Region* region,
+                     uint64_t request_cycle, uint64_t start_cycle, uint64_t end_cycle) {
+  if (m_tracing) trace_grant(initiator, request_cycle, start_cycle, end_cycle);
+  if (!m_transactions) return;
+  static const std::string unmapped_name = "unmapped";
+  m_transactions->transaction(
+      {m_stats[initiator].name, region ? region->name : unmapped_name, gp.is_write(), gp.get_address(),
+       gp.get_data_length(), sc_time::from_value(request_cycle * m_period_ticks),
+       sc_time::from_value(start_cycle * m_period_ticks), sc_time::from_value(end_cycle * m_period_ticks)});
 }
 
 uint64_t AhbBus::unmapped(unsigned initiator, tlm::tlm_generic_payload& gp) {
@@ -295,7 +306,7 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
   s.busy_cycles += occupancy_cycles;
   s.wait_cycles += start_cycle - request_cycle;
   m_wait_histograms[initiator].sample(start_cycle - request_cycle);
-  if (m_tracing) trace_grant(initiator, request_cycle, start_cycle, end_cycle);
+  if (m_observed) observe(initiator, gp, region, request_cycle, start_cycle, end_cycle);
   if (log::enabled(log::Level::debug)) log_grant(initiator, gp, start_cycle, occupancy_cycles);
 
   // The initiator's next request is usually at this one's end.

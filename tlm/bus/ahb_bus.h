@@ -45,6 +45,7 @@
 #include "common/fixed_divider.h"
 #include "common/histogram.h"
 #include "common/timed_trace.h"
+#include "common/transaction_trace.h"
 #include "config/config.h"
 
 namespace tessera {
@@ -110,6 +111,12 @@ class AhbBus : public Block {
 
   // Traces request and grant of every initiator (call before simulation).
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Hands every transaction from now on to `sink` (common/transaction_trace.h),
+  // which outlives the simulation.
+  void trace_transactions_to(TransactionSink& sink) {
+    m_transactions = &sink;
+    m_observed = true;
+  }
 
   const BusParams& params() const { return m_params; }
   const std::vector<BusInitiatorStats>& initiator_stats() const { return m_stats; }
@@ -214,6 +221,9 @@ class AhbBus : public Block {
   // The error response to an unmapped address; its occupancy.
   uint64_t unmapped(unsigned initiator, tlm::tlm_generic_payload& gp);
   void trace_grant(unsigned initiator, uint64_t request_cycle, uint64_t start_cycle, uint64_t end_cycle);
+  // A transaction served, to the VCD's signals and the transaction sink.
+  void observe(unsigned initiator, const tlm::tlm_generic_payload& gp, const Region* region, uint64_t request_cycle,
+               uint64_t start_cycle, uint64_t end_cycle);
   void log_grant(unsigned initiator, const tlm::tlm_generic_payload& gp, uint64_t start_cycle,
                  uint64_t occupancy_cycles) const;
   // Bus cycles over which utilisation is computed: `elapsed`, or up to the
@@ -261,6 +271,9 @@ class AhbBus : public Block {
   uint64_t m_pruned_end_cycle = 0;
   mutable const Region* m_last_region = nullptr;
   bool m_tracing = false;
+  TransactionSink* m_transactions = nullptr;
+  // m_tracing or m_transactions: the one test on the hot path for both.
+  bool m_observed = false;
   std::vector<std::unique_ptr<TimedTrace>> m_request_traces;
   std::vector<std::unique_ptr<TimedTrace>> m_grant_traces;
 };

@@ -17,6 +17,12 @@ void Block::trace_signals(sc_core::sc_trace_file* file) {
   (void)file;
 }
 
+void Block::timeline_to(TimelineSink& sink) {
+  (void)sink;
+}
+
+void Block::finish_timeline() {}
+
 std::vector<SummaryTable> Block::summary_tables(const sc_core::sc_time& elapsed) const {
   (void)elapsed;
   return {};

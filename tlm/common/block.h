@@ -21,6 +21,7 @@
 #include "common/energy_activity.h"
 #include "common/stats_schema.h"
 #include "common/text_format.h"
+#include "common/timeline.h"
 
 namespace tessera {
 
@@ -53,6 +54,13 @@ class Block : public sc_core::sc_module {
   // Adds the block's signals to a VCD file; called before the simulation
   // starts. By default the block has none.
   virtual void trace_signals(sc_core::sc_trace_file* file);
+  // Records the block's activity on `sink` (common/timeline.h), which
+  // outlives the simulation; called before the simulation starts. By
+  // default the block records nothing.
+  virtual void timeline_to(TimelineSink& sink);
+  // The end of the run: the block records what it still holds back (an
+  // interval it was extending). By default nothing.
+  virtual void finish_timeline();
   virtual SummaryRow summary_row(const sc_core::sc_time& elapsed) const = 0;
   // By default none.
   virtual std::vector<SummaryTable> summary_tables(const sc_core::sc_time& elapsed) const;

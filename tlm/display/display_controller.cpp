@@ -150,6 +150,10 @@ void DisplayController::show(const std::vector<uint8_t>& pixels, const sc_time& 
       for (unsigned c = 0; c < 4; ++c) frame.rgba[4 * i + c] = static_cast<uint8_t>(rgba >> (8 * c));
     }
   }
+  if (m_timeline)
+    m_timeline->slice(m_frame_track, "frame " + std::to_string(frame.index),
+                      m_frames.value == 0 ? sc_core::SC_ZERO_TIME : m_last_frame_time, when,
+                      {{"requested_ns", requested.to_seconds() * 1e9}});
   if (m_frames.value == 0) m_first_frame_time = when;
   m_last_frame_time = when;
   ++m_frames;
@@ -181,6 +185,7 @@ void DisplayController::refresh() {
     const sc_time frame_end = m_frame_start + period;
     m_vblank.set_at(true, m_frame_start);
     m_vblank.set_at(false, m_active_start);
+    if (m_timeline) m_timeline->slice(m_vblank_track, "vblank", m_frame_start, m_active_start);
     bool new_frame = false;
     if (m_swap_pending) {
       FRONT_BASE.set(BACK_BASE.get());
@@ -202,6 +207,12 @@ void DisplayController::refresh() {
     if (m_frame_in_scan) show(m_dma->frame(), m_scan_requested);
     m_frame_in_scan = false;
   }
+}
+
+void DisplayController::timeline_to(TimelineSink& sink) {
+  m_timeline = &sink;
+  m_frame_track = sink.track(name(), "frames");
+  if (m_params.dma) m_vblank_track = sink.track(name(), "vblank");
 }
 
 nlohmann::json DisplayController::stats_json(const sc_time& elapsed) const {

@@ -115,6 +115,9 @@ class DisplayController : public Peripheral {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Track "frames": each frame shown, from the frame before it (the start
+  // for the first); track "vblank" (DMA mode): the vertical blanks.
+  void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -156,7 +159,9 @@ class DisplayController : public Peripheral {
   ActivityCounter& m_frames;
   ActivityCounter& m_refreshes;
   ActivityCounter& m_port_bytes;
-  TimedTrace m_vblank;  // for the VCD; in_vblank() answers from the times below
+  TimedTrace m_vblank;                 // for the VCD; in_vblank() answers from the times below
+  TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
+  unsigned m_frame_track = 0, m_vblank_track = 0;
   sc_core::sc_time m_frame_start;
   sc_core::sc_time m_active_start;
   sc_core::sc_time m_first_frame_time;

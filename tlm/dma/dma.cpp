@@ -230,6 +230,7 @@ void Dma::engine() {
 
 void Dma::step(unsigned channel) {
   Channel& ch = m_channels[channel];
+  const sc_time begin = sc_core::sc_time_stamp();
   const dma::Limits lim = limits();
   dma::Descriptor d;
   uint32_t where = regs::ERROR_DESC_REGISTERS;
@@ -256,6 +257,14 @@ void Dma::step(unsigned channel) {
   uint64_t moved = 0;
   fault = dma::execute(d, lim, m_params.row_buffer_bytes, port, moved);
   *ch.bytes += moved;
+  if (m_timeline && m_timeline->records(TimelineDetail::blocks)) {
+    m_timeline->slice(ch.timeline_track, dma::kind_name(d.kind()), begin, sc_core::sc_time_stamp(),
+                      {{"bytes", static_cast<double>(moved)},
+                       {"src", static_cast<double>(d.src)},
+                       {"dst", static_cast<double>(d.dst)}});
+    if (d.kind() == dma::Kind::mem_to_cmem || d.kind() == dma::Kind::broadcast)
+      m_timeline->flow_from(m_cmem_flow_key, ch.timeline_track, begin);
+  }
   if (!fault.ok()) return fail(channel, where, fault);
   ++*ch.descriptors;
   m_descriptor_bytes.sample(d.length);
@@ -273,6 +282,8 @@ void Dma::finish(unsigned channel) {
   ch.done = !ch.error;
   ch.busy_time += now - ch.ready_at;
   if (m_tracing) ch.busy_trace->set_at(false, now);
+  if (m_timeline && m_timeline->records(TimelineDetail::blocks))
+    m_timeline->slice(ch.timeline_track, ch.error ? "chain (failed)" : "chain", ch.ready_at, now);
   raise_irq(ch.error ? regs::irq_error(channel) : regs::irq_done(channel));
   m_finished.notify(sc_core::SC_ZERO_TIME);
 }
@@ -297,6 +308,13 @@ void Dma::trace_signals(sc_core::sc_trace_file* file) {
   for (unsigned c = 0; c < m_channels.size(); ++c)
     sc_core::sc_trace(file, m_channels[c].busy_trace->signal, prefix + "ch" + std::to_string(c) + ".busy");
   sc_core::sc_trace(file, irq, prefix + "irq");
+}
+
+void Dma::timeline_to(TimelineSink& sink) {
+  m_timeline = &sink;
+  for (unsigned c = 0; c < m_channels.size(); ++c)
+    m_channels[c].timeline_track = sink.track(name(), "ch" + std::to_string(c));
+  if (const auto* array = dynamic_cast<const sc_core::sc_object*>(m_cmem)) m_cmem_flow_key = cmem_flow_key(*array);
 }
 
 nlohmann::json Dma::stats_json(const sc_time& elapsed) const {

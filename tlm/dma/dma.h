@@ -85,6 +85,10 @@ class Dma : public Peripheral {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Per channel a track "chN": its chains (from START to the channel's
+  // end, the channel's busy time) with their descriptors nested; a
+  // descriptor that fills CMEM is a flow to the array's next program.
+  void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -124,6 +128,7 @@ class Dma : public Peripheral {
     ActivityCounter* bytes = nullptr;
     ActivityCounter* errors = nullptr;
     std::unique_ptr<TimedTrace> busy_trace;
+    unsigned timeline_track = 0;
   };
 
   const char* write_refusal(const tlm::tlm_generic_payload& gp) const override;
@@ -165,6 +170,8 @@ class Dma : public Peripheral {
   ActivityCounter& m_descriptor_fetches;
   Log2Histogram m_descriptor_bytes;  // each completed descriptor's LENGTH (histograms.descriptor_bytes)
   bool m_tracing = false;
+  TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
+  std::string m_cmem_flow_key;
 };
 
 }  // namespace tessera

@@ -133,7 +133,7 @@ void Host::quantum_used_up() {
 void Host::stall_until(uint64_t absolute_ticks) {
   const uint64_t local = local_ticks();
   if (absolute_ticks <= local) return;
-  if (m_attribute_in_time) note_ahead(false, local, absolute_ticks);
+  if (m_note_segments) note_segment(false, local, absolute_ticks);
   m_stall_ticks += absolute_ticks - local;
   m_local_ticks += absolute_ticks - local;
   if (m_local_ticks >= m_budget_ticks) quantum_used_up();
@@ -573,6 +573,11 @@ void Host::idle_until(const Event& event, Done done) {
   while (!done()) wait(event);
   restart_quantum();
   m_idle_ticks += kernel_ticks() - start;
+  if (m_timeline && kernel_ticks() > start) {
+    finish_timeline();
+    m_timeline->slice(m_timeline_track, "waiting for interrupt", sc_time::from_value(start),
+                      sc_time::from_value(kernel_ticks()));
+  }
   if (m_tracing) m_busy_trace.set_at(true, sc_core::sc_time_stamp());
 }
 
@@ -697,6 +702,41 @@ SummaryRow Host::summary_row(const sc_time& elapsed) const {
   return busy_row(busy_time(), elapsed,
                   "stalled on bus " + format_duration(stall_s) + ", idle " +
                       format_duration(std::max(0.0, elapsed_s - busy_s - stall_s)));
+}
+
+void Host::timeline_to(TimelineSink& sink) {
+  if (!sink.records(TimelineDetail::blocks)) return;
+  m_timeline = &sink;
+  m_note_segments = true;
+  m_timeline_track = sink.track(name(), "activity");
+  m_timeline_all = sink.records(TimelineDetail::all);
+  m_timeline_slice_ticks = sc_time(TIMELINE_SLICE_US, sc_core::SC_US).value();
+}
+
+void Host::timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks) {
+  ActivitySlice& slice = m_activity;
+  const bool joins =
+      slice.end_ticks == start_ticks && slice.end_ticks > slice.start_ticks &&
+      (m_timeline_all ? slice.busy == busy : slice.end_ticks - slice.start_ticks < m_timeline_slice_ticks);
+  if (!joins) {
+    finish_timeline();
+    slice = {start_ticks, start_ticks, 0, 0, busy};
+  }
+  slice.end_ticks = end_ticks;
+  (busy ? slice.busy_ticks : slice.stalled_ticks) += end_ticks - start_ticks;
+}
+
+void Host::finish_timeline() {
+  ActivitySlice& slice = m_activity;
+  if (!m_timeline || slice.end_ticks <= slice.start_ticks) return;
+  const sc_time begin = sc_time::from_value(slice.start_ticks), end = sc_time::from_value(slice.end_ticks);
+  if (m_timeline_all)
+    m_timeline->slice(m_timeline_track, slice.busy ? "busy" : "stalled", begin, end);
+  else
+    m_timeline->slice(m_timeline_track, "running", begin, end,
+                      {{"busy_ns", sc_time::from_value(slice.busy_ticks).to_seconds() * 1e9},
+                       {"stalled_ns", sc_time::from_value(slice.stalled_ticks).to_seconds() * 1e9}});
+  slice.start_ticks = slice.end_ticks;
 }
 
 void Host::note_ahead(bool busy, uint64_t start_ticks, uint64_t end_ticks) {

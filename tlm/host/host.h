@@ -98,6 +98,13 @@ class Host : public Block, public HostApi, public HostCore {
   const std::string& failure() const { return m_failure; }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Track "activity": the time between waits for an interrupt in slices
+  // "running" of at least TIMELINE_SLICE (cut where one ends), each with
+  // its busy and stalled time (busy_ns, stalled_ns), or at detail all
+  // "busy" and "stalled" apart; and the waits, "waiting for interrupt".
+  void timeline_to(TimelineSink& sink) override;
+  void finish_timeline() override;
+  static constexpr double TIMELINE_SLICE_US = 1000;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -109,7 +116,7 @@ class Host : public Block, public HostApi, public HostCore {
   // the busy and stalled time before `now`, so each window holds the energy
   // spent in it. Off by default: the frames' and the run's energies are
   // taken where the host's time and the kernel's agree.
-  void attribute_activity_in_time() { m_attribute_in_time = true; }
+  void attribute_activity_in_time() { m_attribute_in_time = m_note_segments = true; }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
   sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
 
@@ -173,7 +180,7 @@ class Host : public Block, public HostApi, public HostCore {
   uint64_t local_ticks() const { return kernel_ticks() + m_local_ticks; }
   // Adds busy cycles; the hot path is an addition and a compare in ticks.
   void charge(uint64_t cycles) {
-    if (m_attribute_in_time) note_ahead(true, local_ticks(), local_ticks() + cycles * m_period_ticks);
+    if (m_note_segments) note_segment(true, local_ticks(), local_ticks() + cycles * m_period_ticks);
     m_busy_cycles += cycles;
     m_local_ticks += cycles * m_period_ticks;
     if (m_local_ticks >= m_budget_ticks) quantum_used_up();
@@ -292,6 +299,25 @@ class Host : public Block, public HostApi, public HostCore {
   bool m_attribute_in_time = false;
   std::deque<AheadSegment> m_ahead;
   void note_ahead(bool busy, uint64_t start_ticks, uint64_t end_ticks);
+  // Whether busy and stalled intervals are noted (note_segment): for
+  // attribute_activity_in_time or the timeline; one test on the hot path for both.
+  bool m_note_segments = false;
+  void note_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks) {
+    if (m_attribute_in_time) note_ahead(busy, start_ticks, end_ticks);
+    if (m_timeline) timeline_segment(busy, start_ticks, end_ticks);
+  }
+  // The timeline (timeline_to; null without one) and the slice being
+  // extended, in absolute ticks (empty when end == start).
+  TimelineSink* m_timeline = nullptr;
+  unsigned m_timeline_track = 0;
+  bool m_timeline_all = false;  // detail all: busy and stalled apart
+  uint64_t m_timeline_slice_ticks = 0;
+  struct ActivitySlice {
+    uint64_t start_ticks = 0, end_ticks = 0, busy_ticks = 0, stalled_ticks = 0;
+    bool busy = true;
+  };
+  ActivitySlice m_activity;
+  void timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks);
   // The busy and stalled ticks of m_ahead after `now_ticks`.
   std::pair<uint64_t, uint64_t> ticks_after(uint64_t now_ticks) const;
   uint64_t m_idle_ticks = 0;

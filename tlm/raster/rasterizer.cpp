@@ -204,7 +204,18 @@ void Rasterizer::finish_run(const raster::RunResult& result, const sc_time& star
     raise_irq(regs::IRQ_DONE);
   }
   if (m_tracing) m_busy_trace.set_at(false, sc_core::sc_time_stamp());
+  if (m_timeline)
+    m_timeline->slice(m_timeline_track, fatal(result.error) ? "run (failed)" : "run", start, sc_core::sc_time_stamp(),
+                      {{"tiles", static_cast<double>(result.tiles)},
+                       {"triangles", static_cast<double>(result.triangles)},
+                       {"fragments", static_cast<double>(result.fragments)}});
   m_run_finished.notify(sc_core::SC_ZERO_TIME);
+}
+
+void Rasterizer::timeline_to(TimelineSink& sink) {
+  if (!sink.records(TimelineDetail::blocks)) return;
+  m_timeline = &sink;
+  m_timeline_track = sink.track(name(), "runs");
 }
 
 nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {

@@ -92,6 +92,8 @@ class Rasterizer : public Peripheral {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
+  // Track "runs": each run, with its tiles, triangles and fragments.
+  void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
   SummaryRow summary_row(const sc_core::sc_time& elapsed) const override;
@@ -152,6 +154,8 @@ class Rasterizer : public Peripheral {
 
   TimedTrace m_busy_trace;
   bool m_tracing = false;
+  TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
+  unsigned m_timeline_track = 0;
 };
 
 }  // namespace tessera

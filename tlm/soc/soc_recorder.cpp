@@ -61,6 +61,46 @@ void SocRecorder::trace_to(const std::string& path_without_extension) {
   sc_core::sc_trace(m_trace, m_power_milliwatts.back(), scope + "total");
 }
 
+void SocRecorder::timeline_to(TimelineSink& sink) {
+  m_timeline = &sink;
+  for (Block* block : m_sources.blocks) block->timeline_to(sink);
+  // The counters' windows are closed from outside the simulation
+  // (sample_timeline), not by a process of their own: a process would add
+  // events to the kernel, at which the host synchronises, and the run would
+  // differ from a run without the timeline.
+  m_sources.host.attribute_activity_in_time();
+  m_counter_trace = std::make_unique<PowerTrace>(m_energy_model);
+  m_power_track = sink.track(m_scope, "power");
+  m_bus_track = sink.track(m_scope, "bus");
+}
+
+void SocRecorder::sample_timeline() {
+  const sc_time now = sc_core::sc_time_stamp();
+  if (m_counter_trace) record_counters(energy_activity(now), now);
+}
+
+void SocRecorder::finish_timeline() {
+  if (!m_timeline) return;
+  for (Block* block : m_sources.blocks) block->finish_timeline();
+  sample_timeline();
+}
+
+void SocRecorder::record_counters(const EnergyActivity& activity, const sc_time& now) {
+  if (now.to_seconds() <= m_counter_trace->last_window().end_seconds) return;
+  const PowerWindow& window = m_counter_trace->close_window(activity, now.to_seconds());
+  const sc_time begin(window.start_seconds, sc_core::SC_SEC);
+  TimelineArgs milliwatts;
+  for (const UnitEnergy& unit : window.units)
+    milliwatts.emplace_back(unit.unit, window.milliwatts(unit.total_joules()));
+  milliwatts.emplace_back("total", window.milliwatts(window.total_joules()));
+  m_timeline->counter(m_power_track, "power (mW)", begin, milliwatts);
+  const uint64_t cycles = m_sources.bus.busy_cycles();
+  const double bus_seconds =
+      static_cast<double>(cycles - m_counter_bus_cycles) * m_sources.bus.params().clock_period.to_seconds();
+  m_counter_bus_cycles = cycles;
+  m_timeline->counter(m_bus_track, "bus utilisation (%)", begin, {{"busy", 100 * bus_seconds / window.seconds()}});
+}
+
 void SocRecorder::trace_power() {
   if (!m_power_trace) return;
   for (;;) {

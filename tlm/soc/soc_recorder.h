@@ -58,6 +58,19 @@ class SocRecorder {
   void trace_to(const std::string& path_without_extension);
   void close_trace();
 
+  // Records the run on a timeline (common/timeline.h): every block's
+  // activity, and the counters "power" (each energy unit's average power
+  // and the total, in mW) and "bus" (its utilisation, in %) over windows
+  // that sample_timeline closes. Call before sc_start; `sink` outlives the
+  // simulation. The run is the same as without it.
+  void timeline_to(TimelineSink& sink);
+  // Closes the counters' window at the kernel's time (soc_sim: after every
+  // millisecond of simulated time); nothing without a timeline.
+  void sample_timeline();
+  // The end of the run on the timeline: what the blocks held back, and the
+  // counters' last window.
+  void finish_timeline();
+
   // The power trace's windows so far (null without a power trace).
   const PowerTrace* power_trace() const { return m_power_trace.get(); }
   // Closes the power trace's current window at the kernel's time, so that
@@ -136,6 +149,14 @@ class SocRecorder {
   // The traced powers in mW: one per energy unit, in the order of
   // energy_activity(), then the total. Sized once: the VCD holds their addresses.
   std::vector<double> m_power_milliwatts;
+  // The timeline's counters: a power trace of their own over the same
+  // activity, its windows closed by sample_timeline.
+  TimelineSink* m_timeline = nullptr;
+  unsigned m_power_track = 0, m_bus_track = 0;
+  std::unique_ptr<PowerTrace> m_counter_trace;
+  uint64_t m_counter_bus_cycles = 0;  // the bus's busy cycles at the last counter window's end
+  // Closes a counter window at `now`, unless it would be empty.
+  void record_counters(const EnergyActivity& activity, const sc_core::sc_time& now);
 };
 
 // SystemC writes the wall-clock date into a VCD header; this replaces it in

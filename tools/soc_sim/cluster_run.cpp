@@ -89,6 +89,18 @@ void ClusterRun::trace_to(const std::string& systemc_base) {
     for (Block* block : m_cluster->node(i).blocks()) block->trace_signals(m_trace);
 }
 
+void ClusterRun::timeline_to(TimelineSink& sink) {
+  m_cluster->network().timeline_to(sink);
+  for (unsigned i = 0; i < m_cluster->nodes(); ++i)
+    for (Block* block : m_cluster->node(i).blocks()) block->timeline_to(sink);
+}
+
+void ClusterRun::finish_timeline() {
+  m_cluster->network().finish_timeline();
+  for (unsigned i = 0; i < m_cluster->nodes(); ++i)
+    for (Block* block : m_cluster->node(i).blocks()) block->finish_timeline();
+}
+
 void ClusterRun::close_trace() {
   if (!m_trace) return;
   sc_core::sc_close_vcd_trace_file(m_trace);

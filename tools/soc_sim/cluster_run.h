@@ -33,6 +33,10 @@ class ClusterRun {
   void start(const LaunchableApp& app, unsigned frames, bool iss_profile);
   void trace_to(const std::string& systemc_base);
   void close_trace();
+  // Every node's blocks on `sink` (common/timeline.h), each node's under
+  // its own names; finish_timeline at the end of the run.
+  void timeline_to(TimelineSink& sink);
+  void finish_timeline();
 
   bool done() const { return m_cluster->done(); }
   int exit_code() const { return m_cluster->exit_code(); }

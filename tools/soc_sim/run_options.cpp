@@ -1,4 +1,5 @@
 #include "run_options.h"
+#include "transaction_writer.h"
 
 #include <strings.h>
 
@@ -67,6 +68,26 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--report", opt.report,
                  "after the run, write a one-page HTML report of it (frames, frame times, energy, where the time "
                  "went) to FILE, which must end in .html; needs the Python of tessera-sweep (scripts/setup.sh)");
+  CLI::Option* timeline =
+      cli.add_option("--timeline", opt.timeline,
+                     "write a timeline of every block's activity to FILE (Chrome trace-event JSON, for Perfetto)");
+  cli.add_option("--timeline-detail", opt.timeline_detail,
+                 "with --timeline: frames (frames, vblanks, power and bus counters), blocks (and every block's "
+                 "runs: the default) or all (and array stages, single CIU accesses, the host's stalls apart)")
+      ->check(CLI::IsMember({"frames", "blocks", "all"}))
+      ->needs(timeline);
+  cli.add_option("--trace-transactions", opt.trace_transactions,
+                 "write every bus transaction matching FILTER to FILE as CSV (FILE[:FILTER], FILTER: key=value,... "
+                 "with initiator, target, command=read|write, addr=LO-HI, time=A-B, e.g. tx.csv:initiator=dma,"
+                 "time=1ms-2ms)")
+      ->check([](const std::string& text) {
+        try {
+          parse_transaction_trace(text);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
   cli.add_flag("--force", opt.force,
                "remove the outputs of an earlier run (frames, statistics, traces) from the output folder first");
   cli.add_flag("--no-frames", opt.no_frames, "write no PNG frames (they are still counted in the statistics)");

@@ -29,6 +29,10 @@ struct Options {
   std::string vcd;     // a VCD trace (any name but *.fst)
   std::string fst;     // an FST trace (*.fst)
   std::string report;  // the HTML run report (*.html)
+
+  std::string timeline;                    // --timeline FILE ("": none)
+  std::string timeline_detail = "blocks";  // frames, blocks or all (timeline_writer.h)
+  std::string trace_transactions;          // --trace-transactions FILE[:FILTER] ("": none)
   std::string stats;
   std::string stats_schema;
   bool quiet = false;

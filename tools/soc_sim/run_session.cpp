@@ -96,6 +96,12 @@ double cpu_seconds() {
   return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
 }
 
+std::string format_megabytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return text;
+}
+
 }  // namespace
 
 // The progress line on stderr (progress_line.h): redrawn at most every
@@ -175,6 +181,9 @@ std::optional<int> RunSession::claim_outputs() {
       if (!path->empty()) check_writable_file(*path);
     clear_earlier_outputs({m_options.out_dir, m_stats_path, m_options.vcd, m_options.fst, m_options.report},
                           m_options.force);
+    if (!m_options.timeline.empty()) check_writable_file(m_options.timeline);
+    if (!m_options.trace_transactions.empty())
+      check_writable_file(parse_transaction_trace(m_options.trace_transactions).path);
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_USAGE;
@@ -205,6 +214,11 @@ std::optional<int> RunSession::build_soc() {
   try {
     if (!m_options.vcd.empty() || !m_options.fst.empty())
       m_trace_pipe = std::make_unique<TracePipe>(m_options.vcd, m_options.fst);
+    if (!m_options.timeline.empty())
+      m_timeline =
+          std::make_unique<TimelineWriter>(m_options.timeline, parse_timeline_detail(m_options.timeline_detail));
+    if (!m_options.trace_transactions.empty())
+      m_transactions = std::make_unique<TransactionWriter>(parse_transaction_trace(m_options.trace_transactions));
   } catch (const std::exception& e) {
     std::cerr << "soc_sim: " << e.what() << "\n";
     return EXIT_SIM_FAILED;
@@ -252,6 +266,10 @@ void RunSession::start_application() {
   if (m_cluster) {
     m_cluster->start(m_plan.app, m_frames, m_options.iss_profile);
     if (m_trace_pipe) m_cluster->trace_to(m_trace_pipe->systemc_base());
+    if (m_timeline) m_cluster->timeline_to(*m_timeline);
+    if (m_transactions)
+      for (unsigned i = 0; i < m_cluster->cluster().nodes(); ++i)
+        m_cluster->cluster().node(i).bus.trace_transactions_to(*m_transactions);
     m_config_json = m_config.to_json();
     return;
   }
@@ -283,6 +301,8 @@ void RunSession::start_application() {
   });
 
   if (m_trace_pipe) soc.recorder().trace_to(m_trace_pipe->systemc_base());
+  if (m_timeline) soc.recorder().timeline_to(*m_timeline);
+  if (m_transactions) soc.bus.trace_transactions_to(*m_transactions);
   m_config_json = m_soc_config->to_json();
 }
 
@@ -321,6 +341,7 @@ void RunSession::simulate() {
   try {
     while (!platform_done() && sc_core::sc_get_status() != sc_core::SC_STOPPED && sc_core::sc_time_stamp() < limit) {
       sc_core::sc_start(slice);
+      if (m_timeline && m_soc) m_soc->recorder().sample_timeline();
       m_watch->progress(static_cast<uint64_t>(sc_core::sc_time_stamp().to_seconds() * 1e12));
       m_progress->update(m_frames_shown, sc_core::sc_time_stamp().to_seconds(), wall_seconds());
       m_stopped = m_watch->stop_request();
@@ -345,6 +366,14 @@ void RunSession::close_outputs() {
   else
     m_soc->recorder().close_trace();
   m_trace_error = m_trace_pipe ? m_trace_pipe->finish() : "";
+  if (m_timeline) {
+    if (m_cluster)
+      m_cluster->finish_timeline();
+    else
+      m_soc->recorder().finish_timeline();
+    m_timeline_error = m_timeline->finish();
+  }
+  if (m_transactions) m_transactions_error = m_transactions->finish();
   if (m_soc && m_trace_pipe && m_trace_error.empty() && !m_soc->host.function_names().empty()) {
     std::string names;
     for (size_t i = 0; i < m_soc->host.function_names().size(); ++i)
@@ -394,6 +423,10 @@ void RunSession::judge() {
          m_png_error + "; the run stopped after " + std::to_string(m_frames_shown) + " of " + std::to_string(m_frames) +
              " frames were shown, " + std::to_string(m_frames_written) + " written");
   if (!m_trace_error.empty()) fail(RunEnd::failed, EXIT_SIM_FAILED, m_trace_error + " (the trace is not kept)");
+  if (!m_transactions_error.empty())
+    fail(RunEnd::failed, EXIT_SIM_FAILED, m_transactions_error + " (the transaction trace is not kept)");
+  if (!m_timeline_error.empty())
+    fail(RunEnd::failed, EXIT_SIM_FAILED, m_timeline_error + " (the timeline is not kept)");
   if (m_failures.empty() && m_frames_shown == 0)
     log::warning("soc_sim", "the application '" + m_config.get_string("sim.app") +
                                 "' finished without showing a frame (" + std::to_string(m_frames) +
@@ -466,6 +499,16 @@ void RunSession::print_report() {
     outputs.push_back(m_trace_error.empty() ? "FST trace: " + m_options.fst : "FST trace: none");
   if (!m_options.report.empty())
     outputs.push_back(m_report_error.empty() ? "run report: " + m_options.report : "run report: none");
+  if (m_timeline)
+    outputs.push_back(m_timeline_error.empty()
+                          ? "timeline: " + m_options.timeline + " (" + std::to_string(m_timeline->events()) +
+                                " events, " + format_megabytes(m_timeline->bytes()) + ")"
+                          : "timeline: none");
+  if (m_transactions)
+    outputs.push_back(m_transactions_error.empty()
+                          ? "transactions: " + parse_transaction_trace(m_options.trace_transactions).path + " (" +
+                                std::to_string(m_transactions->rows()) + " rows)"
+                          : "transactions: none");
   if (m_cluster)
     m_cluster->print_summary(m_stats, m_wall, outputs);
   else

@@ -23,7 +23,9 @@
 #include "run_report.h"
 #include "run_watch.h"
 #include "soc/soc.h"
+#include "timeline_writer.h"
 #include "trace_pipe.h"
+#include "transaction_writer.h"
 
 namespace tessera {
 
@@ -85,6 +87,10 @@ class RunSession {
   std::optional<OutputFolderClaim> m_folder_claim;
   std::unique_ptr<iss::GdbServer> m_gdb_server;
   std::unique_ptr<TracePipe> m_trace_pipe;
+  std::unique_ptr<TimelineWriter> m_timeline;  // --timeline
+  std::string m_timeline_error;
+  std::unique_ptr<TransactionWriter> m_transactions;  // --trace-transactions
+  std::string m_transactions_error;
   std::unique_ptr<Soc> m_soc;
   // With sim.platform=cluster, the cluster platform instead of the SoC.
   std::unique_ptr<ClusterRun> m_cluster;
