@@ -25,7 +25,8 @@ install(TARGETS ${tessera_installed_programs} RUNTIME DESTINATION ${CMAKE_INSTAL
 set(tessera_sdk_headers ${PROJECT_SOURCE_DIR}/sw_driver/include)
 install(DIRECTORY ${tessera_sdk_headers}/GLES ${tessera_sdk_headers}/EGL ${tessera_sdk_headers}/KHR
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-install(FILES ${tessera_sdk_headers}/tessera/app.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tessera)
+install(FILES ${tessera_sdk_headers}/tessera/app.h ${tessera_sdk_headers}/tessera/roi.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/tessera)
 
 # The ARM side (sw_driver/runtime/README.md): the built-in applications
 # cross-compiled, where soc_sim looks for them with host.model=iss (beside

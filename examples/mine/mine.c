@@ -2,10 +2,14 @@
  * --sides says otherwise) with a colour per vertex turns a few degrees each
  * frame. soc_sim decides how many frames are drawn, so the loop never ends.
  *
- *   soc_sim --app ./libmine.so --frames 10 [-- --sides N] */
+ * With --roi FIRST:LAST, frames FIRST to LAST - 1 are its region of
+ * interest (tessera/roi.h): stats.json's "roi" reports them apart.
+ *
+ *   soc_sim --app ./libmine.so --frames 10 [-- --sides N] [--roi FIRST:LAST] */
 #include <EGL/egl.h>
 #include <GLES/gl.h>
 #include <tessera/app.h>
+#include <tessera/roi.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -17,25 +21,50 @@ enum { MIN_SIDES = 3, MAX_SIDES = 64 };
 static const float DEGREES_PER_FRAME = 7.5f;
 static const float PI = 3.14159265f;
 
-/* Reads the arguments after "--": only "--sides N". */
-static int parse_sides(int argc, char** argv, int* sides) {
-  *sides = 6;
+/* What the arguments after "--" ask for. */
+struct options {
+  int sides;
+  /* The region of interest: frames roi_first to roi_last - 1 (none when equal). */
+  long roi_first, roi_last;
+};
+
+static int usage(const char* problem, const char* argument) {
+  fprintf(stderr, "mine: %s%s%s (usage: [--sides N] [--roi FIRST:LAST])\n", problem, argument ? " " : "",
+          argument ? argument : "");
+  return 0;
+}
+
+/* "--sides N" and "--roi FIRST:LAST". */
+static int parse_arguments(int argc, char** argv, struct options* options) {
+  options->sides = 6;
+  options->roi_first = options->roi_last = 0;
   for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--sides") != 0) {
-      fprintf(stderr, "mine: unknown argument '%s' (usage: --sides N)\n", argv[i]);
-      return 0;
-    }
+    const int sides = strcmp(argv[i], "--sides") == 0, roi = strcmp(argv[i], "--roi") == 0;
+    if (!sides && !roi) return usage("unknown argument", argv[i]);
     if (i + 1 == argc) {
-      fprintf(stderr, "mine: --sides needs a number from %d to %d\n", MIN_SIDES, MAX_SIDES);
-      return 0;
+      if (sides) {
+        fprintf(stderr, "mine: --sides needs a number from %d to %d\n", MIN_SIDES, MAX_SIDES);
+        return 0;
+      }
+      return usage("--roi needs two frame numbers", NULL);
     }
     char* end = NULL;
-    const long value = strtol(argv[++i], &end, 10);
-    if (*argv[i] == '\0' || *end != '\0' || value < MIN_SIDES || value > MAX_SIDES) {
-      fprintf(stderr, "mine: --sides must be a number from %d to %d, not '%s'\n", MIN_SIDES, MAX_SIDES, argv[i]);
-      return 0;
+    const char* value = argv[++i];
+    if (sides) {
+      const long n = strtol(value, &end, 10);
+      if (*value == '\0' || *end != '\0' || n < MIN_SIDES || n > MAX_SIDES) {
+        fprintf(stderr, "mine: --sides must be a number from %d to %d, not '%s'\n", MIN_SIDES, MAX_SIDES, value);
+        return 0;
+      }
+      options->sides = (int)n;
+      continue;
     }
-    *sides = (int)value;
+    options->roi_first = strtol(value, &end, 10);
+    if (end == value || *end != ':') return usage("--roi takes FIRST:LAST, not", value);
+    const char* last = end + 1;
+    options->roi_last = strtol(last, &end, 10);
+    if (*last == '\0' || *end != '\0' || options->roi_first < 0 || options->roi_last < options->roi_first)
+      return usage("--roi takes frame numbers FIRST:LAST with 0 <= FIRST <= LAST, not", value);
   }
   return 1;
 }
@@ -50,8 +79,9 @@ static void hue_to_rgb(float turns, GLubyte* rgba) {
 }
 
 int tessera_app_main(int argc, char** argv) {
-  int sides;
-  if (!parse_sides(argc, argv, &sides)) return 2;
+  struct options options;
+  if (!parse_arguments(argc, argv, &options)) return 2;
+  const int sides = options.sides;
 
   EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
   if (display == EGL_NO_DISPLAY || !eglInitialize(display, NULL, NULL)) {
@@ -100,7 +130,13 @@ int tessera_app_main(int argc, char** argv) {
   glVertexPointer(2, GL_FLOAT, 0, positions);
   glColorPointer(4, GL_UNSIGNED_BYTE, 0, colours);
 
-  for (int frame = 0;; ++frame) {
+  for (long frame = 0;; ++frame) {
+    /* The region of interest holds frames roi_first to roi_last - 1: from
+     * before the first's drawing to after the last's eglSwapBuffers. */
+    if (options.roi_first != options.roi_last) {
+      if (frame == options.roi_first) tessera_roi_begin();
+      if (frame == options.roi_last) tessera_roi_end();
+    }
     glClear(GL_COLOR_BUFFER_BIT);
     glLoadIdentity();
     glRotatef(DEGREES_PER_FRAME * (float)frame, 0.0f, 0.0f, 1.0f);

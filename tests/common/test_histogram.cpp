@@ -101,3 +101,55 @@ TEST(StatsSchema, CountersTakeTheirUnitFromTheirNameAndHistogramsDescribeEveryFi
 }
 
 }  // namespace
+
+using tessera::accumulates;
+using tessera::add_growth;
+using tessera::StatsSchema;
+
+TEST(StatsSchema, OnlyStatisticsThatGrowWithTheRunAccumulate) {
+  EXPECT_TRUE(accumulates({"host.busy_ns", "ns", "busy"}));
+  EXPECT_TRUE(accumulates({"bus.initiators.*.bytes", "bytes", "moved"}));
+  EXPECT_TRUE(accumulates({"energy.total_j", "J", "energy"}));
+  EXPECT_FALSE(accumulates({"array.columns", "count", "columns", true}));  // a setting
+  EXPECT_FALSE(accumulates({"bus.utilisation", "fraction", "a ratio"}));
+  EXPECT_FALSE(accumulates({"energy.average_w", "W", "a power"}));
+  EXPECT_FALSE(accumulates({"bus.histograms.wait_cycles.host.max", "cycles", "a maximum"}));
+  EXPECT_FALSE(accumulates({"bus.histograms.wait_cycles.host.mean", "cycles", "a mean"}));
+  EXPECT_FALSE(accumulates({"frames[].render_ns", "ns", "an element of a list"}));
+}
+
+TEST(StatsSchema, GrowthIsTheDifferenceOfTheAccumulatingNumbersSummedOverStretches) {
+  StatsSchema schema;
+  schema.add("simulated_ns", "ns", "time");
+  schema.add("bus.initiators.*.bytes", "bytes", "moved");
+  schema.add("bus.utilisation", "fraction", "a ratio");
+  schema.add_setting("array.columns", "count", "columns");
+  schema.add_histogram("bus.histograms.wait", "cycles", "waits");
+  schema.add("host.cycles.fill", "cycles", "a dotted counter name");
+  const auto at = [](double ns, uint64_t host_bytes, double utilisation, uint64_t waits, uint64_t max_wait) {
+    return nlohmann::json{
+        {"simulated_ns", ns},
+        {"bus",
+         {{"utilisation", utilisation},
+          {"initiators", {{"host", {{"bytes", host_bytes}}}}},
+          {"histograms", {{"wait", {{"count", waits}, {"sum", 3 * waits}, {"max", max_wait}, {"buckets", {}}}}}}}},
+        {"array", {{"columns", 24}}},
+        {"host", {{"cycles.fill", ns / 10}}},
+        {"frames", nlohmann::json::array({1, 2})}};
+  };
+  nlohmann::json growth;
+  add_growth(schema, at(100, 40, 0.5, 2, 7), at(300, 100, 0.25, 5, 9), growth);
+  add_growth(schema, at(1000, 500, 0.1, 10, 9), at(1500, 520, 0.2, 11, 12), growth);
+  EXPECT_DOUBLE_EQ(growth["simulated_ns"].get<double>(), 200 + 500);
+  EXPECT_EQ(growth["bus"]["initiators"]["host"]["bytes"], 60 + 20);
+  EXPECT_TRUE(growth["bus"]["initiators"]["host"]["bytes"].is_number_integer());
+  EXPECT_EQ(growth["bus"]["histograms"]["wait"]["count"], 3 + 1);
+  EXPECT_EQ(growth["bus"]["histograms"]["wait"]["sum"], 9 + 3);
+  EXPECT_DOUBLE_EQ(growth["host"]["cycles.fill"].get<double>(), 20 + 50);
+  // Not repeated: a ratio, a setting, a histogram's max and buckets, a list.
+  EXPECT_FALSE(growth["bus"].contains("utilisation"));
+  EXPECT_FALSE(growth["bus"]["histograms"]["wait"].contains("max"));
+  EXPECT_FALSE(growth["bus"]["histograms"]["wait"].contains("buckets"));
+  EXPECT_FALSE(growth.contains("array"));
+  EXPECT_FALSE(growth.contains("frames"));
+}

@@ -1,5 +1,6 @@
 # cmake -DPREFIX=... -DCONFIG=... -DEXAMPLE_DIR=... -DNAME=... -DWORK_DIR=... -DGENERATOR=...
 #       -DC_COMPILER=... -DFRAMES=... -DBACKENDS=a|b|... [-DBAD_ARGUMENTS=... -DBAD_MESSAGE=...]
+#       [-DROI_ARGUMENTS=... -DROI_FIRST=... -DROI_LAST=... -DROI_CHECK=... -DPYTHON=...]
 #       -P check_sdk_example_arm.cmake
 # Builds EXAMPLE_DIR against the SDK installed in PREFIX twice, natively
 # (lib<NAME>.so) and with the installed ARM922T toolchain file (<NAME>.elf),
@@ -86,5 +87,29 @@ if(DEFINED BAD_ARGUMENTS)
     message(FATAL_ERROR "soc_sim --app ${elf} -- ${BAD_ARGUMENTS}: status ${status} (want 2), "
                         "'${BAD_MESSAGE}' printed: ${found} (-1 = no)\n${output}")
   endif()
+endif()
+# With ROI_ARGUMENTS (the application's, separated by spaces, marking frames
+# ROI_FIRST to ROI_LAST - 1 as its region of interest) and ROI_CHECK (a
+# Python script run by PYTHON): the library and the ELF each marked it, on
+# the first back end, and stats.json's roi says so (ROI_CHECK's checks).
+if(DEFINED ROI_ARGUMENTS)
+  separate_arguments(arguments UNIX_COMMAND "${ROI_ARGUMENTS}")
+  list(GET BACKENDS 0 backend)
+  foreach(app ${library} ${elf})
+    get_filename_component(kind ${app} LAST_EXT)
+    set(out ${WORK_DIR}/out-roi${kind})
+    execute_process(COMMAND ${soc_sim} --app ${app} --backend ${backend} --frames ${FRAMES} --out ${out} --quiet
+                            -- ${arguments}
+                    RESULT_VARIABLE status OUTPUT_VARIABLE output ERROR_VARIABLE output)
+    if(NOT status EQUAL 0)
+      message(FATAL_ERROR "soc_sim --app ${app} -- ${ROI_ARGUMENTS} exited with ${status}, not 0:\n${output}")
+    endif()
+    execute_process(COMMAND ${PYTHON} ${ROI_CHECK} ${out}/stats.json ${ROI_FIRST} ${ROI_LAST}
+                    RESULT_VARIABLE status OUTPUT_VARIABLE output ERROR_VARIABLE output)
+    if(NOT status EQUAL 0)
+      message(FATAL_ERROR "the region of interest of soc_sim --app ${app} -- ${ROI_ARGUMENTS}:\n${output}")
+    endif()
+    message(STATUS "${output}")
+  endforeach()
 endif()
 message(STATUS "${elf} on the ISS drew the ${FRAMES} frames of ${library} on ${BACKENDS}")

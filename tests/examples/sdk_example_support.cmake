@@ -16,7 +16,7 @@ endfunction()
 # the toolchain file, the archive and the linker script).
 set(TESSERA_INSTALLED_FILES
     bin/soc_sim bin/arm922t/tessera_apps.elf include/GLES/gl.h include/GLES/glext.h include/KHR/khrplatform.h
-    include/EGL/egl.h include/tessera/app.h lib/cmake/tessera/tesseraConfig.cmake
+    include/EGL/egl.h include/tessera/app.h include/tessera/roi.h lib/cmake/tessera/tesseraConfig.cmake
     lib/cmake/tessera/tesseraConfigVersion.cmake lib/cmake/tessera/TesseraApp.cmake
     lib/cmake/tessera/arm922t-toolchain.cmake lib/tessera/arm922t/libtessera_arm922t.a
     lib/tessera/arm922t/tessera_arm922t.ld)

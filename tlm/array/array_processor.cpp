@@ -404,10 +404,10 @@ nlohmann::json ArrayProcessor::stats_json(const sc_time& elapsed) const {
 void ArrayProcessor::describe_stats(StatsSchema& schema) const {
   Peripheral::describe_stats(schema);
   schema.add("clock_mhz", "MHz", "the array's clock frequency (array.clock_mhz)");
-  schema.add("columns", "count", "columns of CUs (array.columns)");
-  schema.add("rows", "count", "rows of CUs (array.rows)");
-  schema.add("cmem_bytes", "bytes", "CMEM of each CU (array.cmem_bytes)");
-  schema.add("registers", "count", "registers of each CU (array.registers)");
+  schema.add_setting("columns", "count", "columns of CUs (array.columns)");
+  schema.add_setting("rows", "count", "rows of CUs (array.rows)");
+  schema.add_setting("cmem_bytes", "bytes", "CMEM of each CU (array.cmem_bytes)");
+  schema.add_setting("registers", "count", "registers of each CU (array.registers)");
   schema.add("busy_ns", "ns", "time the array ran programs");
   schema.add("utilisation", "fraction", "busy_ns over the simulated time");
   schema.add("elapsed_ns", "ns", "simulated time of the run (the denominator of utilisation)");

@@ -168,8 +168,8 @@ nlohmann::json Ciu::stats_json(const sc_time& elapsed) const {
 
 void Ciu::describe_stats(StatsSchema& schema) const {
   Block::describe_stats(schema);
-  schema.add("write_cycles", "cycles", "array cycles of a CIU write (ciu.write_cycles)");
-  schema.add("read_cycles", "cycles", "array cycles of a CIU read (ciu.read_cycles)");
+  schema.add_setting("write_cycles", "cycles", "array cycles of a CIU write (ciu.write_cycles)");
+  schema.add_setting("read_cycles", "cycles", "array cycles of a CIU read (ciu.read_cycles)");
   schema.add("access_ns", "ns", "latency of every CIU access, summed");
   schema.add("stall_ns", "ns", "time accesses stalled while the array held the CIU");
   schema.add("host_wait_ns", "ns", "what the initiators waited on the CIU: access_ns + stall_ns");

@@ -422,7 +422,8 @@ void AhbBus::describe_stats(StatsSchema& schema) const {
   schema.add("clock_mhz", "MHz", "the bus clock frequency (bus.clock_mhz)");
   schema.add("width_bits", "bits", "width of the data bus (bus.width_bytes x 8)");
   schema.add("utilisation", "fraction", "busy_cycles over the bus cycles of the run");
-  schema.add("initiators.*.priority", "count", "the initiator's priority (lower is served first under fixed_priority)");
+  schema.add_setting("initiators.*.priority", "count",
+                     "the initiator's priority (lower is served first under fixed_priority)");
   schema.add("initiators.*.transactions", "count",
              "bus transfers of the initiator (a burst of a longer access is one)");
   schema.add("initiators.*.reads", "count", "read transfers of the initiator");

@@ -1,6 +1,12 @@
 #include "common/stats_schema.h"
 
+#include <fnmatch.h>
+
+#include <cmath>
+#include <cstdint>
 #include <map>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace tessera {
@@ -21,7 +27,8 @@ void StatsSchema::add_histogram(const std::string& key, const std::string& unit,
 }
 
 void StatsSchema::add_all(const std::string& prefix, const StatsSchema& other) {
-  for (const StatDescription& d : other.entries()) add(prefix + d.key, d.unit, d.description);
+  for (const StatDescription& d : other.entries())
+    m_entries.push_back({prefix + d.key, d.unit, d.description, d.setting});
 }
 
 nlohmann::json StatsSchema::to_json() const {
@@ -49,6 +56,77 @@ std::string counter_unit(const std::string& name) {
     end = dot;
   }
   return "count";
+}
+
+bool accumulates(const StatDescription& statistic) {
+  static const std::set<std::string> units = {"count", "ns", "s", "ms", "cycles", "bytes", "words", "J"};
+  const std::string& key = statistic.key;
+  const size_t dot = key.rfind('.');
+  const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
+  return !statistic.setting && units.count(statistic.unit) != 0 && key.find("[]") == std::string::npos &&
+         last != "min" && last != "max" && last != "mean";
+}
+
+namespace {
+
+std::vector<std::string> key_parts(const std::string& key) {
+  std::vector<std::string> parts;
+  std::istringstream in(key);
+  for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
+  return parts;
+}
+
+// The schema's accumulating keys, split into parts, matched part by part
+// ("*" and names with one in them as shell patterns).
+class AccumulatingKeys {
+ public:
+  explicit AccumulatingKeys(const StatsSchema& schema) {
+    for (const StatDescription& d : schema.entries())
+      if (accumulates(d)) m_keys.push_back(key_parts(d.key));
+  }
+  bool matches(const std::vector<std::string>& path) const {
+    for (const std::vector<std::string>& key : m_keys) {
+      if (key.size() != path.size()) continue;
+      size_t i = 0;
+      while (i < key.size() && fnmatch(key[i].c_str(), path[i].c_str(), 0) == 0) ++i;
+      if (i == key.size()) return true;
+    }
+    return false;
+  }
+
+ private:
+  std::vector<std::vector<std::string>> m_keys;
+};
+
+void add_growth_at(const AccumulatingKeys& keys, std::vector<std::string>& path, const nlohmann::json* begin,
+                   const nlohmann::json& end, nlohmann::json& sum) {
+  for (const auto& [name, value] : end.items()) {
+    const nlohmann::json* before = begin && begin->is_object() && begin->contains(name) ? &(*begin)[name] : nullptr;
+    const size_t depth = path.size();
+    for (const std::string& part : key_parts(name)) path.push_back(part);  // a dotted name is a path
+    if (value.is_object()) {
+      add_growth_at(keys, path, before, value, sum[name]);
+      if (sum[name].empty()) sum.erase(name);
+    } else if (value.is_number() && keys.matches(path)) {
+      const double growth = value.get<double>() - (before && before->is_number() ? before->get<double>() : 0.0);
+      const double total = (sum.contains(name) ? sum[name].get<double>() : 0.0) + growth;
+      // A count stays a whole number.
+      if (value.is_number_integer())
+        sum[name] = static_cast<int64_t>(std::llround(total));
+      else
+        sum[name] = total;
+    }
+    path.resize(depth);
+  }
+}
+
+}  // namespace
+
+void add_growth(const StatsSchema& schema, const nlohmann::json& begin, const nlohmann::json& end,
+                nlohmann::json& sum) {
+  if (!sum.is_object()) sum = nlohmann::json::object();
+  std::vector<std::string> path;
+  add_growth_at(AccumulatingKeys(schema), path, &begin, end, sum);
 }
 
 nlohmann::json histogram_json(const Log2Histogram& histogram) {

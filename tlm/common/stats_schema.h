@@ -25,12 +25,19 @@ struct StatDescription {
   std::string key;
   std::string unit;
   std::string description;
+  // A setting the run was built with (array.columns, a burst's length), not
+  // anything that happened: it does not grow with the run (accumulates).
+  bool setting = false;
 };
 
 class StatsSchema {
  public:
   void add(const std::string& key, const std::string& unit, const std::string& description) {
     m_entries.push_back({key, unit, description});
+  }
+  // A statistic that reports a setting of the run (StatDescription::setting).
+  void add_setting(const std::string& key, const std::string& unit, const std::string& description) {
+    m_entries.push_back({key, unit, description, true});
   }
   // Every counter of `counters` under `prefix` (with its dot), its unit from
   // counter_unit().
@@ -56,6 +63,22 @@ class StatsSchema {
 // "bytes" in it bytes ("cycles.fill" counts cycles); a name with none counts
 // events.
 std::string counter_unit(const std::string& name);
+
+// Whether a statistic grows with the run, so that its growth over a stretch
+// of the run is the difference of its values at the stretch's ends (the
+// region of interest's statistics, stats.json's "roi"): a count, a time,
+// cycles, bytes, words or energy (units count, ns, s, ms, cycles, bytes,
+// words, J) that is not a setting. Settings (add_setting), levels and ratios
+// (utilisation, power, clocks), a histogram's min, max and mean, and the
+// elements of lists ("[]") do not.
+bool accumulates(const StatDescription& statistic);
+
+// Adds to `sum` the growth from `begin` to `end` (two stats documents, or
+// parts of them, of one run) of every number in `end` that `schema`
+// describes as accumulating, at the same place in `sum`; lists are left
+// out, and so is a number `schema` does not describe or `begin` lacks
+// (counted from 0 then: a block built later).
+void add_growth(const StatsSchema& schema, const nlohmann::json& begin, const nlohmann::json& end, nlohmann::json& sum);
 
 // A histogram as stats.json shows it: count, sum, min, max, mean, and the
 // buckets that hold a sample, each {"low", "high", "count"} (low and high

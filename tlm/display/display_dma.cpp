@@ -82,8 +82,8 @@ nlohmann::json DisplayDma::stats_json(const sc_time& elapsed) const {
 
 void DisplayDma::describe_stats(StatsSchema& schema) const {
   Block::describe_stats(schema);
-  schema.add("burst_bytes", "bytes", "length of the DMA's bus bursts (display_dma.burst_bytes)");
-  schema.add("fifo_lines", "count", "lines the line FIFO holds (display_dma.fifo_lines)");
+  schema.add_setting("burst_bytes", "bytes", "length of the DMA's bus bursts (display_dma.burst_bytes)");
+  schema.add_setting("fifo_lines", "count", "lines the line FIFO holds (display_dma.fifo_lines)");
   schema.add("busy_ns", "ns", "time the DMA's bus transfers took");
   schema.add("utilisation", "fraction", "busy_ns over the simulated time");
   schema.add("elapsed_ns", "ns", "simulated time of the run");

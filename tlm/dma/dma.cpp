@@ -338,10 +338,10 @@ nlohmann::json Dma::stats_json(const sc_time& elapsed) const {
 
 void Dma::describe_stats(StatsSchema& schema) const {
   Peripheral::describe_stats(schema);
-  schema.add("channels", "count", "channels of the DMA (dma.channels)");
-  schema.add("burst_bytes", "bytes", "length of the DMA's bus bursts (dma.burst_bytes)");
-  schema.add("cmem_bytes_per_cycle", "bytes",
-             "bytes the DMA moves to or from CMEM per array cycle (dma.cmem_bytes_per_cycle)");
+  schema.add_setting("channels", "count", "channels of the DMA (dma.channels)");
+  schema.add_setting("burst_bytes", "bytes", "length of the DMA's bus bursts (dma.burst_bytes)");
+  schema.add_setting("cmem_bytes_per_cycle", "bytes",
+                     "bytes the DMA moves to or from CMEM per array cycle (dma.cmem_bytes_per_cycle)");
   schema.add("cmem_stall_ns", "ns", "time the DMA waited for the CUs to let go of CMEM");
   schema.add("ch*.busy_ns", "ns", "time the channel ran descriptors");
   schema.add("ch*.bus_wait_ns", "ns", "time the channel's bus transfers took");

@@ -164,7 +164,7 @@ nlohmann::json Memory::stats_json(const sc_core::sc_time& elapsed) const {
 
 void Memory::describe_stats(StatsSchema& schema) const {
   Block::describe_stats(schema);
-  schema.add("size_bytes", "bytes", "size of the memory");
+  schema.add_setting("size_bytes", "bytes", "size of the memory");
   schema.add("busy_ns", "ns", "time the memory served accesses");
   schema.add("utilisation", "fraction", "busy_ns over the simulated time");
 }

@@ -123,7 +123,9 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
       raster("raster", raster_params(config)),
       array("array", ArrayParams::from_config(config)),
       ciu("ciu", ciu_params(config), array),
-      m_recorder(this->name(), config, {m_blocks, host, bus, array}) {
+      m_recorder(this->name(), config, {m_blocks, host, bus, array}),
+      m_roi("roi", bus.params().clock_period,
+            [this](bool begins, const sc_time& when) { m_recorder.roi_edge(begins, when); }) {
   config.validate();
   tlm_utils::tlm_quantumkeeper::set_global_quantum(
       sc_time(static_cast<double>(config.get_uint("sim.quantum_ns")), sc_core::SC_NS));
@@ -142,6 +144,7 @@ Soc::Soc(sc_core::sc_module_name name, const Config& config)
   bus.map(array.program_in, memory_map::array_program.base, memory_map::array_program.size,
           memory_map::array_program.name);
   bus.map(ciu.in, memory_map::array_cmem.base, memory_map::array_cmem.size, memory_map::array_cmem.name);
+  bus.map(m_roi.in, memory_map::sim_control.base, memory_map::sim_control.size, memory_map::sim_control.name);
 
   for (const auto& region : memory_map::ALL_REGIONS) {
     if (region.base == memory_map::dma_regs.base && !config.get_bool("dma.enabled")) continue;

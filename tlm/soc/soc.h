@@ -21,6 +21,7 @@
 #include "mem/memory.h"
 #include "raster/rasterizer.h"
 #include "soc/irq_map.h"
+#include "soc/roi_register.h"
 #include "soc/soc_recorder.h"
 #include "zbuf/zbuf_unit.h"
 
@@ -88,6 +89,9 @@ class Soc : public sc_core::sc_module {
 
   std::vector<Block*> m_blocks;
   SocRecorder m_recorder;
+  // The region of interest's register (sim_control in the memory map): the
+  // model's marker, not a block of the chip; its edges go to the recorder.
+  RoiRegister m_roi;
   std::vector<std::unique_ptr<sc_core::sc_signal<bool>>> m_irq_lines;
   std::unique_ptr<sc_core::sc_signal<bool>> m_core_irq, m_core_fiq;
   sc_core::sc_event m_host_finished;

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+
+#include "common/log.h"
 
 namespace tessera {
 
@@ -192,6 +195,9 @@ void SocRecorder::record_frame(const Frame& frame) {
   else
     record.units = m_frames.back().units;
   m_last_shown = std::move(request);
+  for (const RoiRegion& region : m_roi_regions)
+    if (region.begin_seconds <= record.requested_seconds && record.requested_seconds <= region.end_seconds)
+      m_roi_frames.push_back(m_frames.size() + m_frames_streamed);
   if (m_frame_sink) {
     const double previous = m_last_shown_seconds;
     m_last_shown_seconds = record.shown_seconds;
@@ -250,7 +256,7 @@ nlohmann::json SocRecorder::array_stages_energy_json() const {
   return stages;
 }
 
-void SocRecorder::describe_stats(StatsSchema& schema) const {
+void SocRecorder::describe_run_stats(StatsSchema& schema) const {
   schema.add("simulated_ns", "ns", "simulated time of the run");
   for (const Block* block : m_sources.blocks) {
     StatsSchema own;
@@ -273,6 +279,18 @@ void SocRecorder::describe_stats(StatsSchema& schema) const {
   describe_energy(schema, "frames[].energy.", "the frame's render time");
 }
 
+void SocRecorder::describe_stats(StatsSchema& schema) const {
+  StatsSchema run;
+  describe_run_stats(run);
+  schema.add_all("", run);
+  for (const StatDescription& d : run.entries())
+    if (accumulates(d)) schema.add("roi." + d.key, d.unit, d.description + ", over the regions of interest");
+  schema.add("roi.regions", "count", "regions of interest the software marked (tessera_roi_begin/end)");
+  schema.add("roi.begin_ns", "ns", "when the first region of interest began");
+  schema.add("roi.end_ns", "ns", "when the last region of interest ended (the run's end if still open)");
+  schema.add("roi.frames[]", "index", "a frame whose request (SWAP or PRESENT) fell in a region of interest");
+}
+
 EnergyActivity SocRecorder::energy_activity(const sc_time& now) const {
   EnergyActivity activity;
   for (const Block* block : m_sources.blocks) {
@@ -285,7 +303,47 @@ EnergyActivity SocRecorder::energy_activity(const sc_time& now) const {
 }
 
 nlohmann::json SocRecorder::stats_json() const {
-  const sc_time elapsed = sc_core::sc_time_stamp();
+  nlohmann::json stats = totals_json(sc_core::sc_time_stamp());
+  stats["frames"] = frames_json();
+  if (!m_roi_regions.empty()) stats["roi"] = roi_json();
+  return stats;
+}
+
+void SocRecorder::roi_edge(bool begins, const sc_time& when) {
+  const bool open = !m_roi_regions.empty() && std::isinf(m_roi_regions.back().end_seconds);
+  if (begins == open) return;  // the register ignores a write that changes nothing
+  if (begins) {
+    m_roi_regions.push_back({when.to_seconds(), std::numeric_limits<double>::infinity()});
+    m_roi_open_begin = totals_json(when);
+    return;
+  }
+  m_roi_regions.back().end_seconds = when.to_seconds();
+  StatsSchema schema;
+  describe_run_stats(schema);
+  add_growth(schema, m_roi_open_begin, totals_json(when), m_roi_growth);
+  m_roi_open_begin = nullptr;
+}
+
+nlohmann::json SocRecorder::roi_json() const {
+  nlohmann::json growth = m_roi_growth;
+  double end_seconds = m_roi_regions.back().end_seconds;
+  if (std::isinf(end_seconds)) {
+    const sc_time now = sc_core::sc_time_stamp();
+    log::warning("roi", "the region of interest begun at " + std::to_string(m_roi_regions.back().begin_seconds * 1e9) +
+                            " ns was still open when the run ended: it ends with the run");
+    StatsSchema schema;
+    describe_run_stats(schema);
+    add_growth(schema, m_roi_open_begin, totals_json(now), growth);
+    end_seconds = now.to_seconds();
+  }
+  growth["regions"] = m_roi_regions.size();
+  growth["begin_ns"] = m_roi_regions.front().begin_seconds * 1e9;
+  growth["end_ns"] = end_seconds * 1e9;
+  growth["frames"] = m_roi_frames;
+  return growth;
+}
+
+nlohmann::json SocRecorder::totals_json(const sc_time& elapsed) const {
   nlohmann::json stats = {{"simulated_ns", elapsed.to_seconds() * 1e9}};
   for (const Block* block : m_sources.blocks) stats[block->basename()] = block->stats_json(elapsed);
   const EnergyActivity activity = energy_activity(elapsed);
@@ -302,7 +360,6 @@ nlohmann::json SocRecorder::stats_json() const {
     for (const auto& [event, count] : unit.counts)
       stats["energy"]["units"][unit.unit]["events"][event]["count"] = count;
   stats["energy"]["array_stages"] = array_stages_energy_json();
-  stats["frames"] = frames_json();
   return stats;
 }
 

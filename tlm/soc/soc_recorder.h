@@ -87,9 +87,18 @@ class SocRecorder {
   // PRESENT), its render time (from the previous frame's request to this one)
   // and the host's busy time, the bus bytes and the energy over that render
   // time.
+  // With a region of interest marked, also `roi` (roi_json).
   nlohmann::json stats_json() const;
   // Describes every statistic stats_json gives (stats_schema.h).
   void describe_stats(StatsSchema& schema) const;
+
+  // The region of interest (roi_register.h): software began (`begins`) or
+  // ended one at `when`. Each region's statistics are the growth of the
+  // run's accumulating statistics (stats_schema.h: accumulates) from its
+  // begin to its end, summed over the regions; each end is read at the
+  // access's time, every block but the host's as the kernel has it then (at
+  // most a quantum, sim.quantum_ns, behind).
+  void roi_edge(bool begins, const sc_core::sc_time& when);
 
   // Streams `frames` instead: from now on each frame shown goes to `sink`
   // as its stats.json record, in order, and is not kept, so a long run's
@@ -107,6 +116,21 @@ class SocRecorder {
   // CIU, CUs) over the time of that stage's instructions alone.
   nlohmann::json array_stages_energy_json() const;
   nlohmann::json frames_json() const;
+  // stats_json's statistics at `elapsed` but for frames and roi.
+  nlohmann::json totals_json(const sc_core::sc_time& elapsed) const;
+  // describe_stats but for roi: what totals_json and frames give.
+  void describe_run_stats(StatsSchema& schema) const;
+  // stats.json's roi: the regions' count, the first begin and the last end,
+  // the frames whose request fell in a region, and the growth of every
+  // accumulating statistic summed over the regions; one still open ends now.
+  nlohmann::json roi_json() const;
+  struct RoiRegion {
+    double begin_seconds, end_seconds;  // end: infinite while open
+  };
+  std::vector<RoiRegion> m_roi_regions;
+  nlohmann::json m_roi_open_begin;  // totals_json at the open region's begin
+  nlohmann::json m_roi_growth;      // summed over the closed regions
+  std::vector<size_t> m_roi_frames;
   struct FrameRecord;
   // Frame `index`'s record in stats.json; `previous_shown_seconds`: when the
   // frame before was shown (0 for the first).

@@ -182,8 +182,8 @@ nlohmann::json ZbufUnit::stats_json(const sc_time& elapsed) const {
 
 void ZbufUnit::describe_stats(StatsSchema& schema) const {
   Peripheral::describe_stats(schema);
-  schema.add("entries", "count", "depth entries of the unit (zbuf.entries)");
-  schema.add("ports", "count", "ports of the unit (zbuf.ports)");
+  schema.add_setting("entries", "count", "depth entries of the unit (zbuf.entries)");
+  schema.add_setting("ports", "count", "ports of the unit (zbuf.ports)");
 }
 
 SummaryRow ZbufUnit::summary_row(const sc_time& elapsed) const {
