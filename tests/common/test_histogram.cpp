@@ -6,6 +6,7 @@
 
 #include "common/histogram.h"
 #include "common/stats_schema.h"
+#include "tlm_bench/tlm_test_support.h"
 
 namespace {
 
@@ -152,4 +153,9 @@ TEST(StatsSchema, GrowthIsTheDifferenceOfTheAccumulatingNumbersSummedOverStretch
   EXPECT_FALSE(growth["bus"]["histograms"]["wait"].contains("buckets"));
   EXPECT_FALSE(growth.contains("array"));
   EXPECT_FALSE(growth.contains("frames"));
+}
+
+// tessera_common links SystemC, whose library calls sc_main: the tests run from it.
+int sc_main(int argc, char* argv[]) {
+  return tessera::test::run_all_tests(argc, argv);
 }
