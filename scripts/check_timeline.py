@@ -3,7 +3,8 @@
 
 Runs soc_sim a few times (two frames each, well under a second apiece):
 the teapot on ap-tile with the DMA and the display DMA, at the default
-detail (blocks) and at detail all, and the rasterizer back end; and once
+detail (blocks) and at detail all, and the rasterizer back end at detail
+all; and once
 the first without --timeline. For each timeline it checks that:
 
 - the file is Chrome trace-event JSON: {"traceEvents": [...]}, each event
@@ -13,8 +14,9 @@ the first without --timeline. For each timeline it checks that:
 - the tracks the documentation names exist (process and thread names);
 - each block's slices add up to its figure in stats.json: the host's busy
   and stalled time, the array's busy time, each DMA channel's busy time,
-  the CIU's access time, the rasterizer's busy time, the display's frames
-  and refreshes; and the power counter's energy (each window's total mW
+  the CIU's access time, the rasterizer's busy time and tiles (each inside
+  a run), the GL driver's phases (to the frames' host_<phase>_ns), the
+  display's frames and refreshes; and the power counter's energy (each window's total mW
   times its length) to stats.json's total energy;
 - the run with the timeline has the same frames and stats.json (but the
   command line) as the run without.
@@ -182,6 +184,25 @@ def check_raster(events, stats):
     runs = slices_on(events, need(tracks, "soc.raster", "runs"))
     close(sum(e["dur"] for e in runs) * 1e3, stats["stats"]["raster"]["busy_ns"], "raster busy_ns")
     close(len(runs), stats["stats"]["raster"]["runs"], "raster runs")
+    # Detail all: every tile the rasterizer drew, each inside a run.
+    tiles = slices_on(events, need(tracks, "soc.raster", "tiles"))
+    close(len(tiles), stats["stats"]["raster"]["tiles"], "raster tiles")
+    for tile in tiles:
+        if not any(r["ts"] <= tile["ts"] and tile["ts"] + tile["dur"] <= r["ts"] + r["dur"] + 1e-6 for r in runs):
+            raise Failure(f"{tile['name']} at {tile['ts']} us is outside every run of the rasterizer")
+    check_driver_phases(events, tracks, stats)
+
+
+def check_driver_phases(events, tracks, stats):
+    """The driver's phases up to the last frame's hand-over (the end of its
+    presenting) add up to the frames' host_<phase>_ns."""
+    phases = slices_on(events, need(tracks, "soc.host", "driver phase"))
+    handed_over = max(e["ts"] + e["dur"] for e in phases if e["name"] == "presenting")
+    for phase in ("application", "geometry", "rasterization", "presenting"):
+        timeline = sum(e["dur"] for e in phases if e["name"] == phase and e["ts"] + e["dur"] <= handed_over + 1e-6)
+        frames = sum(f["driver"][f"host_{phase}_ns"] for f in stats["stats"]["frames"])
+        if not math.isclose(timeline * 1e3, frames, rel_tol=1e-6, abs_tol=1.0):
+            raise Failure(f"driver phase {phase}: the timeline says {timeline * 1e3} ns, the frames {frames} ns")
 
 
 def without_command_line(stats):
@@ -207,7 +228,7 @@ def check(soc_sim, work):
                 raise Failure(f"detail {detail}: {frame.name} differs from the run without --timeline")
         print(f"detail {detail}: {len(events)} events, {flows} flows: agree with stats.json")
     folder = work / "raster"
-    stats = run(soc_sim, folder, [*RASTER, "--timeline", str(folder / "t.json")])
+    stats = run(soc_sim, folder, [*RASTER, "--timeline", str(folder / "t.json"), "--timeline-detail", "all"])
     events = json.loads((folder / "t.json").read_text())["traceEvents"]
     check_format(events)
     check_raster(events, stats)

@@ -101,6 +101,11 @@ class HostApi {
   // anything): what driver code that times itself reads, in integers as
   // the ARM922T would.
   virtual uint64_t now_cycles() const { return static_cast<uint64_t>(std::llround(now_seconds() * clock_hz())); }
+
+  // The GL driver switched to `phase` (sw_driver/gl/frame_phases.h: a
+  // static name) at the host's time `seconds`, for a timeline; it costs
+  // the host nothing. Nothing by default.
+  virtual void driver_phase(const char* /*phase*/, double /*seconds*/) {}
 };
 
 #else
@@ -137,6 +142,8 @@ class HostApi {
   double clock_hz() const;
   // Cycles since the program's start (the ISS's elapsed-cycles call).
   uint64_t now_cycles() const;
+  // Nothing on the ISS: the phases are not handed out of the program.
+  void driver_phase(const char* /*phase*/, double /*seconds*/) {}
 };
 
 #endif

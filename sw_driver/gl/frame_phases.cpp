@@ -8,6 +8,9 @@ namespace {
 constexpr const char* NAMES[] = {"host_application_ns", "host_geometry_ns", "host_rasterization_ns",
                                  "host_presenting_ns"};
 static_assert(std::size(NAMES) == static_cast<size_t>(Phase::count_));
+// The same phases on a timeline (HostApi::driver_phase).
+constexpr const char* TIMELINE_NAMES[] = {"application", "geometry", "rasterization", "presenting"};
+static_assert(std::size(TIMELINE_NAMES) == static_cast<size_t>(Phase::count_));
 // The meter's first buckets are the phases, in this order (the array back
 // ends' host split follows: costs::COST_BUCKET_NAMES).
 static_assert(static_cast<size_t>(Phase::count_) == costs::PHASE_BUCKETS);
@@ -24,6 +27,7 @@ void PhaseClock::start(HostApi* host) {
   m_seconds.fill(0);
   m_clear_seconds = 0;
   m_since = host != nullptr ? host->now_seconds() : 0;
+  if (host != nullptr) host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(Phase::application)], m_since);
   costs::reset_cost_meter();
 }
 
@@ -33,6 +37,7 @@ Phase PhaseClock::switch_to(Phase phase) {
     const double now = m_host->now_seconds();
     m_seconds[static_cast<size_t>(previous)] += now - m_since;
     m_since = now;
+    m_host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(phase)], now);
   }
   m_phase = phase;
   costs::set_cost_bucket(static_cast<unsigned>(phase));

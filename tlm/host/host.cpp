@@ -574,7 +574,7 @@ void Host::idle_until(const Event& event, Done done) {
   restart_quantum();
   m_idle_ticks += kernel_ticks() - start;
   if (m_timeline && kernel_ticks() > start) {
-    finish_timeline();
+    close_activity_slice();
     m_timeline->slice(m_timeline_track, "waiting for interrupt", sc_time::from_value(start),
                       sc_time::from_value(kernel_ticks()));
   }
@@ -709,6 +709,8 @@ void Host::timeline_to(TimelineSink& sink) {
   m_timeline = &sink;
   m_note_segments = true;
   m_timeline_track = sink.track(name(), "activity");
+  // The driver's phases reach the host-compiled model only (driver_phase).
+  if (!m_params.iss) m_phase_track = sink.track(name(), "driver phase");
   m_timeline_all = sink.records(TimelineDetail::all);
   m_timeline_slice_ticks = sc_time(TIMELINE_SLICE_US, sc_core::SC_US).value();
 }
@@ -719,7 +721,7 @@ void Host::timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks)
       slice.end_ticks == start_ticks && slice.end_ticks > slice.start_ticks &&
       (m_timeline_all ? slice.busy == busy : slice.end_ticks - slice.start_ticks < m_timeline_slice_ticks);
   if (!joins) {
-    finish_timeline();
+    close_activity_slice();
     slice = {start_ticks, start_ticks, 0, 0, busy};
   }
   slice.end_ticks = end_ticks;
@@ -727,6 +729,22 @@ void Host::timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks)
 }
 
 void Host::finish_timeline() {
+  close_activity_slice();
+  const sc_time now = sc_time::from_value(local_ticks());
+  if (m_phase_name && now > m_phase_since) m_timeline->slice(m_phase_track, m_phase_name, m_phase_since, now);
+  m_phase_name = nullptr;
+}
+
+void Host::driver_phase(const char* phase, double /*seconds*/) {
+  if (!m_timeline || m_params.iss) return;
+  // The host's local time, exact in ticks (the driver's seconds are a double).
+  const sc_time now = sc_time::from_value(local_ticks());
+  if (m_phase_name && now > m_phase_since) m_timeline->slice(m_phase_track, m_phase_name, m_phase_since, now);
+  m_phase_name = phase;
+  m_phase_since = now;
+}
+
+void Host::close_activity_slice() {
   ActivitySlice& slice = m_activity;
   if (!m_timeline || slice.end_ticks <= slice.start_ticks) return;
   const sc_time begin = sc_time::from_value(slice.start_ticks), end = sc_time::from_value(slice.end_ticks);

@@ -102,8 +102,11 @@ class Host : public Block, public HostApi, public HostCore {
   // "running" of at least TIMELINE_SLICE (cut where one ends), each with
   // its busy and stalled time (busy_ns, stalled_ns), or at detail all
   // "busy" and "stalled" apart; and the waits, "waiting for interrupt".
+  // Track "driver phase" (host-compiled model only): the GL driver's phases
+  // (sw_driver/gl/frame_phases.h), each from the switch to it to the next.
   void timeline_to(TimelineSink& sink) override;
   void finish_timeline() override;
+  void driver_phase(const char* phase, double seconds) override;
   static constexpr double TIMELINE_SLICE_US = 1000;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
@@ -318,6 +321,11 @@ class Host : public Block, public HostApi, public HostCore {
   };
   ActivitySlice m_activity;
   void timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks);
+  void close_activity_slice();  // hands the slice being extended to the timeline
+  // The driver's phase since m_phase_since (null before the first).
+  unsigned m_phase_track = 0;
+  const char* m_phase_name = nullptr;
+  sc_core::sc_time m_phase_since;
   // The busy and stalled ticks of m_ahead after `now_ticks`.
   std::pair<uint64_t, uint64_t> ticks_after(uint64_t now_ticks) const;
   uint64_t m_idle_ticks = 0;

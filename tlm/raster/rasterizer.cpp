@@ -216,6 +216,21 @@ void Rasterizer::timeline_to(TimelineSink& sink) {
   if (!sink.records(TimelineDetail::blocks)) return;
   m_timeline = &sink;
   m_timeline_track = sink.track(name(), "runs");
+  if (!sink.records(TimelineDetail::all)) return;
+  m_tile_timeline = &sink;
+  m_tile_track = sink.track(name(), "tiles");
+}
+
+void Rasterizer::BusPort::tile_begins(unsigned /*x*/, unsigned /*y*/) {
+  if (m_owner.m_tile_timeline) m_tile_begin = sc_core::sc_time_stamp() + m_owner.m_qk.get_local_time();
+}
+
+void Rasterizer::BusPort::tile_ends(unsigned x, unsigned y) {
+  if (!m_owner.m_tile_timeline) return;
+  const std::string name = "tile " + std::to_string(x) + "," + std::to_string(y);
+  m_owner.m_tile_timeline->slice(m_owner.m_tile_track, name, m_tile_begin,
+                                 sc_core::sc_time_stamp() + m_owner.m_qk.get_local_time(),
+                                 {{"x", static_cast<double>(x)}, {"y", static_cast<double>(y)}});
 }
 
 nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {

@@ -92,7 +92,8 @@ class Rasterizer : public Peripheral {
   }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
-  // Track "runs": each run, with its tiles, triangles and fragments.
+  // Track "runs": each run, with its tiles, triangles and fragments; at
+  // detail all, track "tiles": each tile the run drew, named by its place.
   void timeline_to(TimelineSink& sink) override;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
@@ -108,9 +109,14 @@ class Rasterizer : public Peripheral {
     bool read(uint32_t address, void* data, unsigned bytes) override;
     bool write(uint32_t address, const void* data, unsigned bytes) override;
     void cycles(uint64_t count) override;
+    // Track "tiles" (timeline detail all): each tile from its table entry to
+    // its write-back, at the quantum keeper's local time.
+    void tile_begins(unsigned x, unsigned y) override;
+    void tile_ends(unsigned x, unsigned y) override;
 
    private:
     Rasterizer& m_owner;
+    sc_core::sc_time m_tile_begin;
   };
 
   uint32_t read_CTRL() const;
@@ -156,6 +162,8 @@ class Rasterizer : public Peripheral {
   bool m_tracing = false;
   TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
   unsigned m_timeline_track = 0;
+  TimelineSink* m_tile_timeline = nullptr;  // at detail all only
+  unsigned m_tile_track = 0;
 };
 
 }  // namespace tessera

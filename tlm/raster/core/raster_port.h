@@ -14,6 +14,10 @@ class RasterPort {
   virtual bool read(uint32_t address, void* data, unsigned bytes) = 0;         // false: bus error
   virtual bool write(uint32_t address, const void* data, unsigned bytes) = 0;  // false: bus error
   virtual void cycles(uint64_t count) = 0;  // rasterizer clock cycles of work done since the last call
+  // Tile (x, y) of the grid begins (its table entry read) and ends (written
+  // back, its cycles reported): for a timeline; nothing by default.
+  virtual void tile_begins(unsigned /*x*/, unsigned /*y*/) {}
+  virtual void tile_ends(unsigned /*x*/, unsigned /*y*/) {}
 };
 
 }  // namespace tessera::raster

@@ -121,8 +121,10 @@ RunResult TileRasterizer::run(const RunConfig& config) {
       const TileEntry entry{load_le32(raw), load_le32(raw + 4)};
       if (entry.word_count == 0) continue;
       tile.select(tx, ty);
+      m_port.tile_begins(tx, ty);
       run_tile(run, tile, entry, *work);
       run.report_cycles();
+      m_port.tile_ends(tx, ty);
     }
   }
   run.report_cycles();
