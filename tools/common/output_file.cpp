@@ -104,4 +104,16 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
   file.commit();
 }
 
+std::string commit_streamed(std::unique_ptr<OutputFile>& file, std::string error) {
+  if (error.empty() && file) {
+    try {
+      file->commit();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  file.reset();
+  return error;
+}
+
 }  // namespace tessera

@@ -20,6 +20,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -55,6 +56,12 @@ class OutputFile {
   int m_fd = -1;
   bool m_direct = false;  // a device or pipe: written in place
 };
+
+// The end of a file streamed by a writer that keeps its first error rather
+// than throwing (the timeline, the transaction trace): commits `file` when
+// there is one and `error` is empty, then releases it (an uncommitted file
+// is abandoned); returns the first error, the commit's if it failed.
+std::string commit_streamed(std::unique_ptr<OutputFile>& file, std::string error);
 
 // Writes `bytes` to `path` whole or not at all (OutputFile).
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);

@@ -179,14 +179,7 @@ void TimelineWriter::flow_to(const std::string& key, unsigned track, const sc_ti
 std::string TimelineWriter::finish() {
   m_buffer += "\n]}\n";
   flush();
-  if (m_error.empty() && m_file) {
-    try {
-      m_file->commit();
-    } catch (const std::exception& e) {
-      m_error = e.what();
-    }
-  }
-  m_file.reset();
+  m_error = commit_streamed(m_file, m_error);
   return m_error;
 }
 

@@ -143,14 +143,7 @@ void TransactionWriter::flush() {
 
 std::string TransactionWriter::finish() {
   flush();
-  if (m_error.empty() && m_file) {
-    try {
-      m_file->commit();
-    } catch (const std::exception& e) {
-      m_error = e.what();
-    }
-  }
-  m_file.reset();
+  m_error = commit_streamed(m_file, m_error);
   return m_error;
 }
 
