@@ -8,6 +8,7 @@
 // power law. See README.md for the method.
 //
 //   bench_speed [--rounds R] [--frames N] [--startup-runs S] [--no-scaling] [--only PART] [--work-dir DIR]
+//               [--baseline OTHER_SOC_SIM]
 
 #include <unistd.h>
 
@@ -44,13 +45,16 @@ struct Options {
   unsigned bus_rounds = 31;
   unsigned rtl_vectors = 200000;
   bool scaling = true;
-  std::string only;  // one part of the table alone: startup, arm, raster, array, bus, datapath
+  std::string only;  // one part of the table alone: startup, arm, raster, array, bus, datapath, options
   unsigned scaling_frames = 3;
   unsigned scaling_rounds = 3;
   std::vector<unsigned> triangles = {80, 800, 8000, 80000};
   std::vector<std::string> sizes = {"320x240", "384x288", "448x336", "512x384", "512x512"};
   std::string work_dir;
   fs::path bin;
+  // --baseline: another build's soc_sim, for the options part's rows of
+  // this build against it with every option off.
+  std::string baseline;
 };
 
 std::string format_duration(double seconds) {
@@ -157,7 +161,7 @@ class Bench {
   // soc_sim for 2N frames with --wall-clock and --no-frames (or writing PNG
   // files); the wall time per frame of frames N..2N-1.
   double soc_sim_frame(const std::vector<std::string>& args, unsigned n, bool png,
-                       const std::vector<std::string>& app_args = {});
+                       const std::vector<std::string>& app_args = {}, const fs::path& soc_sim = {});
   // Runs the commands of one round in an order rotated by `round`.
   static void in_rotation(unsigned round, const std::vector<std::function<void()>>& steps) {
     for (size_t i = 0; i < steps.size(); ++i) steps[(i + round) % steps.size()]();
@@ -168,6 +172,7 @@ class Bench {
   void bus_row();
   void datapath_rows();
   void startup_rows();
+  void option_rows();
   void scaling();
   void print_table() const;
 
@@ -204,9 +209,9 @@ class Bench {
 };
 
 double Bench::soc_sim_frame(const std::vector<std::string>& args, unsigned n, bool png,
-                            const std::vector<std::string>& app_args) {
+                            const std::vector<std::string>& app_args, const fs::path& soc_sim) {
   const fs::path out = m_work / ("soc_sim_" + std::to_string(m_runs));
-  std::vector<std::string> command = {program("soc_sim").string()};
+  std::vector<std::string> command = {soc_sim.empty() ? program("soc_sim").string() : soc_sim.string()};
   command.insert(command.end(), args.begin(), args.end());
   command.insert(command.end(),
                  {"--frames", std::to_string(2 * n), "--out", out.string(), "--quiet", "--force", "--wall-clock"});
@@ -328,6 +333,52 @@ void Bench::arm_rows() {
   m_rows.push_back(png);
   m_rows.push_back(mesa);
   m_rows.push_back(iss);
+}
+
+// What seeing a run costs (docs/usage.md, "Outputs"): with every option
+// off, this build against --baseline's (a build from before the options:
+// the goal is no cost, within the noise); and on, the teapot frame with a
+// timeline and with a transaction trace against none, in this build.
+void Bench::option_rows() {
+  const unsigned n = m_opt.frames;
+  const std::vector<std::string> arm = {"--app", "teapot", "--backend", "arm"};
+  const std::vector<std::string> tile = {"--app", "teapot", "--backend", "ap-tile", "--set", "dma.enabled=true"};
+  const fs::path timeline = m_work / "timeline.json", transactions = m_work / "transactions.csv";
+  const auto with = [](std::vector<std::string> args, std::initializer_list<std::string> more) {
+    args.insert(args.end(), more);
+    return args;
+  };
+  std::vector<Row> rows;
+  std::vector<std::function<void()>> steps;
+  const auto pair = [&](Row row, std::vector<std::string> measured_args, std::vector<std::string> reference_args,
+                        fs::path reference_program) {
+    rows.push_back(std::move(row));
+    const size_t i = rows.size() - 1;
+    steps.push_back([&, i, measured_args, reference_args, reference_program] {
+      rows[i].measured.push_back(soc_sim_frame(measured_args, n, false));
+      rows[i].cpu_measured.push_back(m_last_cpu);
+      rows[i].reference.push_back(soc_sim_frame(reference_args, n, false, {}, reference_program));
+      rows[i].cpu_reference.push_back(m_last_cpu);
+    });
+  };
+  if (!m_opt.baseline.empty()) {
+    for (const auto& [name, args] : {std::pair{"arm", arm}, std::pair{"ap-tile", tile}}) {
+      Row row{std::string("`") + name + "` teapot frame, every option off: this soc_sim / --baseline's", "<= 1.03x"};
+      row.goal_value = 1.03;
+      pair(row, args, args, m_opt.baseline);
+    }
+  }
+  pair(Row{"`arm` teapot frame: with --timeline (blocks) / without", "-"}, with(arm, {"--timeline", timeline.string()}),
+       arm, {});
+  pair(Row{"`ap-tile` teapot frame: with --trace-transactions (all) / without", "-"},
+       with(tile, {"--trace-transactions", transactions.string()}), tile, {});
+  for (unsigned r = 0; r < m_opt.rounds; ++r) {
+    std::fprintf(stderr, "bench_speed: options, round %u of %u ...\n", r + 1, m_opt.rounds);
+    in_rotation(r, steps);
+  }
+  fs::remove(timeline);
+  fs::remove(transactions);
+  for (Row& row : rows) m_rows.push_back(std::move(row));
 }
 
 void Bench::raster_row() {
@@ -809,6 +860,7 @@ void Bench::run() {
   if (part("array")) array_rows();
   if (part("bus")) bus_row();
   if (part("datapath")) datapath_rows();
+  if (part("options")) option_rows();
   if (m_opt.scaling && m_opt.only.empty()) scaling();
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_table();
@@ -836,7 +888,10 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   cli.add_flag("!--no-scaling", opt.scaling, "skip the scaling with triangles and pixels");
   cli.add_option("--only", opt.only, "one part of the table alone, no scaling")
-      ->check(CLI::IsMember({"startup", "arm", "raster", "array", "bus", "datapath"}));
+      ->check(CLI::IsMember({"startup", "arm", "raster", "array", "bus", "datapath", "options"}));
+  cli.add_option("--baseline", opt.baseline,
+                 "another build's soc_sim: the options part compares this build with every option off against it")
+      ->check(CLI::ExistingFile);
   cli.add_option("--scaling-frames", opt.scaling_frames, "N of the scaling runs")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
