@@ -15,7 +15,8 @@ the first without --timeline. For each timeline it checks that:
 - each block's slices add up to its figure in stats.json: the host's busy
   and stalled time, the array's busy time, each DMA channel's busy time,
   the CIU's access time, the rasterizer's busy time and tiles (each inside
-  a run), the GL driver's phases (to the frames' host_<phase>_ns), the
+  a run), the GL driver's phases (to the frames' host_<phase>_ns) and
+  calls (the teapot's glClear and glDrawElements among them), the
   display's frames and refreshes; and the power counter's energy (each window's total mW
   times its length) to stats.json's total energy;
 - the run with the timeline has the same frames and stats.json (but the
@@ -191,6 +192,17 @@ def check_raster(events, stats):
         if not any(r["ts"] <= tile["ts"] and tile["ts"] + tile["dur"] <= r["ts"] + r["dur"] + 1e-6 for r in runs):
             raise Failure(f"{tile['name']} at {tile['ts']} us is outside every run of the rasterizer")
     check_driver_phases(events, tracks, stats)
+    # Detail all: the application's GL calls, each inside the host's run.
+    calls = slices_on(events, need(tracks, "soc.host", "driver calls"))
+    names = {e["name"] for e in calls}
+    for wanted in ("glClear", "glDrawElements"):
+        if wanted not in names:
+            raise Failure(f"no {wanted} among the driver calls ({sorted(names)[:10]} ...)")
+    if not all(e["name"].startswith("gl") for e in calls):
+        raise Failure(f"a driver call that is not a GL entry point: {sorted(names)}")
+    last = stats["stats"]["simulated_ns"] / 1e3
+    if any(e["ts"] < 0 or e["ts"] + e["dur"] > last + 1e-6 for e in calls):
+        raise Failure("a driver call outside the run")
 
 
 def check_driver_phases(events, tracks, stats):

@@ -106,6 +106,9 @@ class HostApi {
   // static name) at the host's time `seconds`, for a timeline; it costs
   // the host nothing. Nothing by default.
   virtual void driver_phase(const char* /*phase*/, double /*seconds*/) {}
+  // A GL or EGL entry point `name` (static) begins or ends, for a timeline;
+  // it costs the host nothing. Nothing by default.
+  virtual void driver_call(const char* /*name*/, bool /*begins*/) {}
 };
 
 #else
@@ -144,6 +147,7 @@ class HostApi {
   uint64_t now_cycles() const;
   // Nothing on the ISS: the phases are not handed out of the program.
   void driver_phase(const char* /*phase*/, double /*seconds*/) {}
+  void driver_call(const char* /*name*/, bool /*begins*/) {}
 };
 
 #endif

@@ -39,6 +39,10 @@ class PhaseClock {
   // Times a clear from begin_clear to end_clear (ClearScope), on top of its phase.
   void begin_clear();
   void end_clear();
+  // An entry point begins or ends (CallScope): handed to the host.
+  void call(const char* name, bool begins) {
+    if (m_host != nullptr) m_host->driver_call(name, begins);
+  }
 
  private:
   HostApi* m_host = nullptr;
@@ -70,6 +74,30 @@ class ClearScope {
   ~ClearScope() { phase_clock().end_clear(); }
   ClearScope(const ClearScope&) = delete;
   ClearScope& operator=(const ClearScope&) = delete;
+};
+
+// A GL or EGL entry point for the life of the scope (WITH_CONTEXT opens
+// one), handed to the host for a timeline (HostApi::driver_call). Nothing
+// on the ISS: the program's code stays the board's.
+class CallScope {
+ public:
+#if defined(TESSERA_HOST_ISS)
+  explicit CallScope(const char* /*name*/) {}
+#else
+  explicit CallScope(const char* name) : m_name(name) {
+    phase_clock().call(name, true);
+  }
+  ~CallScope() {
+    phase_clock().call(m_name, false);
+  }
+#endif
+  CallScope(const CallScope&) = delete;
+  CallScope& operator=(const CallScope&) = delete;
+
+#if !defined(TESSERA_HOST_ISS)
+ private:
+  const char* m_name;
+#endif
 };
 
 }  // namespace tessera::gl

@@ -711,6 +711,8 @@ void Host::timeline_to(TimelineSink& sink) {
   m_timeline_track = sink.track(name(), "activity");
   // The driver's phases reach the host-compiled model only (driver_phase).
   if (!m_params.iss) m_phase_track = sink.track(name(), "driver phase");
+  m_call_timeline = sink.records(TimelineDetail::all) && !m_params.iss;
+  if (m_call_timeline) m_call_track = sink.track(name(), "driver calls");
   m_timeline_all = sink.records(TimelineDetail::all);
   m_timeline_slice_ticks = sc_time(TIMELINE_SLICE_US, sc_core::SC_US).value();
 }
@@ -742,6 +744,17 @@ void Host::driver_phase(const char* phase, double /*seconds*/) {
   if (m_phase_name && now > m_phase_since) m_timeline->slice(m_phase_track, m_phase_name, m_phase_since, now);
   m_phase_name = phase;
   m_phase_since = now;
+}
+
+void Host::driver_call(const char* name, bool begins) {
+  if (!m_call_timeline) return;
+  const sc_time now = sc_time::from_value(local_ticks());
+  if (begins) {
+    m_calls.emplace_back(name, now);
+  } else if (!m_calls.empty()) {
+    m_timeline->slice(m_call_track, m_calls.back().first, m_calls.back().second, now);
+    m_calls.pop_back();
+  }
 }
 
 void Host::close_activity_slice() {

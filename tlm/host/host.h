@@ -17,6 +17,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/tlm_quantumkeeper.h>
@@ -107,6 +109,9 @@ class Host : public Block, public HostApi, public HostCore {
   void timeline_to(TimelineSink& sink) override;
   void finish_timeline() override;
   void driver_phase(const char* phase, double seconds) override;
+  // Track "driver calls" (detail all, host-compiled model only): each GL
+  // call the application made, from its entry to its return.
+  void driver_call(const char* name, bool begins) override;
   static constexpr double TIMELINE_SLICE_US = 1000;
   nlohmann::json stats_json(const sc_core::sc_time& elapsed) const override;
   void describe_stats(StatsSchema& schema) const override;
@@ -326,6 +331,10 @@ class Host : public Block, public HostApi, public HostCore {
   unsigned m_phase_track = 0;
   const char* m_phase_name = nullptr;
   sc_core::sc_time m_phase_since;
+  // The calls under way (a call may make another), with their starts.
+  bool m_call_timeline = false;
+  unsigned m_call_track = 0;
+  std::vector<std::pair<const char*, sc_core::sc_time>> m_calls;
   // The busy and stalled ticks of m_ahead after `now_ticks`.
   std::pair<uint64_t, uint64_t> ticks_after(uint64_t now_ticks) const;
   uint64_t m_idle_ticks = 0;
