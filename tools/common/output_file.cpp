@@ -104,6 +104,16 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
   file.commit();
 }
 
+void write_streamed(OutputFile* file, std::string_view bytes, std::string& error) {
+  if (!file || !error.empty()) return;
+  try {
+    file->write(bytes);
+  } catch (const std::exception& e) {
+    error = e.what();
+    file->abandon();
+  }
+}
+
 std::string commit_streamed(std::unique_ptr<OutputFile>& file, std::string error) {
   if (error.empty() && file) {
     try {

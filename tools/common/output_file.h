@@ -57,6 +57,12 @@ class OutputFile {
   bool m_direct = false;  // a device or pipe: written in place
 };
 
+// A write of a file streamed by a writer that keeps its first error rather
+// than throwing: appends `bytes` to `file` (when there is one) unless
+// `error` holds an earlier error; a failed write goes into `error` and
+// abandons the file.
+void write_streamed(OutputFile* file, std::string_view bytes, std::string& error);
+
 // The end of a file streamed by a writer that keeps its first error rather
 // than throwing (the timeline, the transaction trace): commits `file` when
 // there is one and `error` is empty, then releases it (an uncommitted file

@@ -95,14 +95,7 @@ void TimelineWriter::close_event() {
 
 void TimelineWriter::flush() {
   m_bytes += m_buffer.size();
-  if (m_file && m_error.empty()) {
-    try {
-      m_file->write(m_buffer);
-    } catch (const std::exception& e) {
-      m_error = e.what();
-      m_file->abandon();
-    }
-  }
+  write_streamed(m_file.get(), m_buffer, m_error);
   m_buffer.clear();
 }
 

@@ -130,14 +130,7 @@ void TransactionWriter::transaction(const Transaction& t) {
 }
 
 void TransactionWriter::flush() {
-  if (m_file && m_error.empty()) {
-    try {
-      m_file->write(m_buffer);
-    } catch (const std::exception& e) {
-      m_error = e.what();
-      m_file->abandon();
-    }
-  }
+  write_streamed(m_file.get(), m_buffer, m_error);
   m_buffer.clear();
 }
 
