@@ -350,8 +350,8 @@ void Bench::option_rows() {
   };
   std::vector<Row> rows;
   std::vector<std::function<void()>> steps;
-  const auto pair = [&](Row row, std::vector<std::string> measured_args, std::vector<std::string> reference_args,
-                        fs::path reference_program) {
+  const auto pair = [&](Row row, const std::vector<std::string>& measured_args,
+                        const std::vector<std::string>& reference_args, const fs::path& reference_program) {
     rows.push_back(std::move(row));
     const size_t i = rows.size() - 1;
     steps.push_back([&, i, measured_args, reference_args, reference_program] {
