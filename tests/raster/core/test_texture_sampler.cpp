@@ -156,6 +156,24 @@ TEST(TextureSampler, MinificationFilterOnlyBeyondOneTexelAPixel) {
   }
 }
 
+TEST(TextureSampler, FallingCoordinatesMinifyAsRisingOnesDo) {
+  // rho is the footprint's length: s falling 4/16 a pixel keeps the
+  // magnification filter, 8/16 a pixel minifies (a texture mapped mirrored;
+  // the fuzzer's case: the difference of two coordinates is negative).
+  {
+    SamplerBench b(TexWrap::repeat, TexFilter::linear, TexFilter::nearest);
+    b.coordinates(30, -4, 6);
+    b.sample(0, 2);
+    EXPECT_EQ(b.run.result().texels, 2u);
+  }
+  {
+    SamplerBench b(TexWrap::repeat, TexFilter::linear, TexFilter::nearest);
+    b.coordinates(30, -8, 6);
+    b.sample(0, 2);
+    EXPECT_EQ(b.run.result().texels, 8u);
+  }
+}
+
 TEST(TextureSampler, ARefusedTexelStopsAtItsFragmentWithBadTexture) {
   SamplerBench b(TexWrap::repeat);
   b.coordinates(2, 4, 6);  // fragments 0..3 fetch texels (0..3, 1)

@@ -84,7 +84,10 @@ unsigned TextureSampler::sample(const TriangleSetup& ts, const int32_t* dx, cons
     const Reciprocal inv_x = inverse_of(w.q_next_x[i], method), inv_y = inverse_of(w.q_next_y[i], method);
     const q15_16 sx = over_q(w.s_next_x[i], inv_x), tx = over_q(w.t_next_x[i], inv_x);
     const q15_16 sy = over_q(w.s_next_y[i], inv_y), ty = over_q(w.t_next_y[i], inv_y);
-    const auto texel_delta = [](q15_16 a, q15_16 b, unsigned log2) { return int128(b.raw - a.raw) << log2; };
+    // Scaled by a multiply, not a shift: the difference may be negative.
+    const auto texel_delta = [](q15_16 a, q15_16 b, unsigned log2) {
+      return int128(b.raw - a.raw) * (int128{1} << log2);
+    };
     const int128 dux = texel_delta(sc, sx, texture.log2_width), dvx = texel_delta(tc, tx, texture.log2_height);
     const int128 duy = texel_delta(sc, sy, texture.log2_width), dvy = texel_delta(tc, ty, texture.log2_height);
     const int128 rho2 = std::max(dux * dux + dvx * dvx, duy * duy + dvy * dvy);
