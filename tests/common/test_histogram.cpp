@@ -2,6 +2,7 @@
 // max) and the statistics' descriptions (stats_schema.h).
 #include <gtest/gtest.h>
 
+#include <map>
 #include <stdexcept>
 
 #include "common/histogram.h"
@@ -114,9 +115,21 @@ TEST(StatsSchema, OnlyStatisticsThatGrowWithTheRunAccumulate) {
   EXPECT_FALSE(accumulates({"array.columns", "count", "columns", true}));  // a setting
   EXPECT_FALSE(accumulates({"bus.utilisation", "fraction", "a ratio"}));
   EXPECT_FALSE(accumulates({"energy.average_w", "W", "a power"}));
-  EXPECT_FALSE(accumulates({"bus.histograms.wait_cycles.host.max", "cycles", "a maximum"}));
-  EXPECT_FALSE(accumulates({"bus.histograms.wait_cycles.host.mean", "cycles", "a mean"}));
   EXPECT_FALSE(accumulates({"frames[].render_ns", "ns", "an element of a list"}));
+  // A level in cycles does not (add_level), nor does a histogram's min, max
+  // or mean, which add_histogram describes as levels; its count and sum do.
+  EXPECT_FALSE(accumulates({"host.peak_cycles", "cycles", "a level", false, true}));
+  StatsSchema histogram;
+  histogram.add_histogram("bus.histograms.wait_cycles.host", "cycles", "waits");
+  std::map<std::string, bool> grows;
+  for (const auto& d : histogram.entries()) grows[d.key] = accumulates(d);
+  EXPECT_TRUE(grows.at("bus.histograms.wait_cycles.host.count"));
+  EXPECT_TRUE(grows.at("bus.histograms.wait_cycles.host.sum"));
+  EXPECT_FALSE(grows.at("bus.histograms.wait_cycles.host.min"));
+  EXPECT_FALSE(grows.at("bus.histograms.wait_cycles.host.max"));
+  EXPECT_FALSE(grows.at("bus.histograms.wait_cycles.host.mean"));
+  // A counter that happens to be named max is no level.
+  EXPECT_TRUE(accumulates({"zbuf.max", "count", "a count named max"}));
 }
 
 TEST(StatsSchema, GrowthIsTheDifferenceOfTheAccumulatingNumbersSummedOverStretches) {

@@ -366,16 +366,12 @@ void ArrayProcessor::record_program(unsigned entry, const sc_time& begin) {
 
 nlohmann::json ArrayProcessor::stats_json(const sc_time& elapsed) const {
   nlohmann::json stats = Peripheral::stats_json(elapsed);
-  const double elapsed_s = elapsed.to_seconds();
-  const double busy_s = m_busy_time.to_seconds();
   stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
   stats["columns"] = m_params.geometry.columns;
   stats["rows"] = m_params.geometry.rows;
   stats["cmem_bytes"] = m_params.geometry.cmem_bytes;
   stats["registers"] = m_params.geometry.registers;
-  stats["busy_ns"] = busy_s * 1e9;
-  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
-  stats["elapsed_ns"] = elapsed_s * 1e9;
+  add_busy_stats(stats, m_busy_time, elapsed);
   stats["cu_utilisation"] =
       m_lane_operations.value > 0 ? static_cast<double>(m_useful_operations.value) / m_lane_operations.value : 0.0;
   nlohmann::json by_entry = nlohmann::json::object();
@@ -408,9 +404,7 @@ void ArrayProcessor::describe_stats(StatsSchema& schema) const {
   schema.add_setting("rows", "count", "rows of CUs (array.rows)");
   schema.add_setting("cmem_bytes", "bytes", "CMEM of each CU (array.cmem_bytes)");
   schema.add_setting("registers", "count", "registers of each CU (array.registers)");
-  schema.add("busy_ns", "ns", "time the array ran programs");
-  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
-  schema.add("elapsed_ns", "ns", "simulated time of the run (the denominator of utilisation)");
+  describe_busy_stats(schema, "time the array ran programs");
   schema.add("cu_utilisation", "fraction",
              "useful lane operations over all lane operations (lanes.useful / lanes.operations)");
   schema.add("programs_by_entry.*.runs", "count", "runs of the program that starts at this program-memory word");

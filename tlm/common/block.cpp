@@ -44,4 +44,17 @@ SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapse
   return {busy, elapsed_s > 0 ? busy.to_seconds() / elapsed_s : 0.0, std::move(notes)};
 }
 
+void add_busy_stats(nlohmann::json& stats, const sc_core::sc_time& busy, const sc_core::sc_time& elapsed) {
+  const double busy_s = busy.to_seconds(), elapsed_s = elapsed.to_seconds();
+  stats["busy_ns"] = busy_s * 1e9;
+  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
+  stats["elapsed_ns"] = elapsed_s * 1e9;
+}
+
+void describe_busy_stats(StatsSchema& schema, const std::string& busy_is) {
+  schema.add("busy_ns", "ns", busy_is);
+  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
+  schema.add("elapsed_ns", "ns", "simulated time of the run (the denominator of utilisation)");
+}
+
 }  // namespace tessera

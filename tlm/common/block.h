@@ -108,4 +108,10 @@ class Block : public sc_core::sc_module {
 // their ratio (0 before any time has passed).
 SummaryRow busy_row(const sc_core::sc_time& busy, const sc_core::sc_time& elapsed, std::string notes);
 
+// The statistics of a block that is busy for `busy` of `elapsed`: busy_ns,
+// utilisation (their ratio, 0 before any time has passed) and elapsed_ns,
+// added to `stats`; and their descriptions, busy_ns described as `busy_is`.
+void add_busy_stats(nlohmann::json& stats, const sc_core::sc_time& busy, const sc_core::sc_time& elapsed);
+void describe_busy_stats(StatsSchema& schema, const std::string& busy_is);
+
 }  // namespace tessera

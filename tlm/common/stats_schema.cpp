@@ -18,9 +18,9 @@ void StatsSchema::add_counters(const ActivityCounters& counters, const std::stri
 void StatsSchema::add_histogram(const std::string& key, const std::string& unit, const std::string& description) {
   add(key + ".count", "count", "samples of " + description);
   add(key + ".sum", unit, "sum of the samples of " + description);
-  add(key + ".min", unit, "smallest sample of " + description + " (0 without samples)");
-  add(key + ".max", unit, "largest sample of " + description + " (0 without samples)");
-  add(key + ".mean", unit, "mean of the samples of " + description + " (0 without samples)");
+  add_level(key + ".min", unit, "smallest sample of " + description + " (0 without samples)");
+  add_level(key + ".max", unit, "largest sample of " + description + " (0 without samples)");
+  add_level(key + ".mean", unit, "mean of the samples of " + description + " (0 without samples)");
   add(key + ".buckets[].low", unit, "smallest value of a power-of-two bucket of " + description);
   add(key + ".buckets[].high", unit, "largest value of a power-of-two bucket of " + description);
   add(key + ".buckets[].count", "count", "samples of " + description + " in the bucket (buckets without any left out)");
@@ -28,7 +28,7 @@ void StatsSchema::add_histogram(const std::string& key, const std::string& unit,
 
 void StatsSchema::add_all(const std::string& prefix, const StatsSchema& other) {
   for (const StatDescription& d : other.entries())
-    m_entries.push_back({prefix + d.key, d.unit, d.description, d.setting});
+    m_entries.push_back({prefix + d.key, d.unit, d.description, d.setting, d.level});
 }
 
 nlohmann::json StatsSchema::to_json() const {
@@ -60,11 +60,8 @@ std::string counter_unit(const std::string& name) {
 
 bool accumulates(const StatDescription& statistic) {
   static const std::set<std::string> units = {"count", "ns", "s", "ms", "cycles", "bytes", "words", "J"};
-  const std::string& key = statistic.key;
-  const size_t dot = key.rfind('.');
-  const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
-  return !statistic.setting && units.count(statistic.unit) != 0 && key.find("[]") == std::string::npos &&
-         last != "min" && last != "max" && last != "mean";
+  return !statistic.setting && !statistic.level && units.count(statistic.unit) != 0 &&
+         statistic.key.find("[]") == std::string::npos;
 }
 
 namespace {

@@ -28,6 +28,9 @@ struct StatDescription {
   // A setting the run was built with (array.columns, a burst's length), not
   // anything that happened: it does not grow with the run (accumulates).
   bool setting = false;
+  // A level of the run so far in a unit that otherwise grows (a histogram's
+  // min, max and mean): it does not grow with the run either.
+  bool level = false;
 };
 
 class StatsSchema {
@@ -37,7 +40,11 @@ class StatsSchema {
   }
   // A statistic that reports a setting of the run (StatDescription::setting).
   void add_setting(const std::string& key, const std::string& unit, const std::string& description) {
-    m_entries.push_back({key, unit, description, true});
+    m_entries.push_back({key, unit, description, true, false});
+  }
+  // A statistic that reports a level (StatDescription::level).
+  void add_level(const std::string& key, const std::string& unit, const std::string& description) {
+    m_entries.push_back({key, unit, description, false, true});
   }
   // Every counter of `counters` under `prefix` (with its dot), its unit from
   // counter_unit().
@@ -68,9 +75,9 @@ std::string counter_unit(const std::string& name);
 // of the run is the difference of its values at the stretch's ends (the
 // region of interest's statistics, stats.json's "roi"): a count, a time,
 // cycles, bytes, words or energy (units count, ns, s, ms, cycles, bytes,
-// words, J) that is not a setting. Settings (add_setting), levels and ratios
-// (utilisation, power, clocks), a histogram's min, max and mean, and the
-// elements of lists ("[]") do not.
+// words, J) that is not a setting or a level. Settings (add_setting), levels
+// (add_level: a histogram's min, max and mean), ratios and rates
+// (utilisation, power, clocks), and the elements of lists ("[]") do not.
 bool accumulates(const StatDescription& statistic);
 
 // Adds to `sum` the growth from `begin` to `end` (two stats documents, or

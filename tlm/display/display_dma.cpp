@@ -69,14 +69,10 @@ void DisplayDma::scan_out() {
 }
 
 nlohmann::json DisplayDma::stats_json(const sc_time& elapsed) const {
-  const double elapsed_s = elapsed.to_seconds();
-  const double busy_s = out.bus_time().to_seconds();
   nlohmann::json stats = Block::stats_json(elapsed);
   stats["burst_bytes"] = m_params.burst_bytes;
   stats["fifo_lines"] = m_params.fifo_lines;
-  stats["busy_ns"] = busy_s * 1e9;
-  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
-  stats["elapsed_ns"] = elapsed_s * 1e9;
+  add_busy_stats(stats, out.bus_time(), elapsed);
   return stats;
 }
 
@@ -84,9 +80,7 @@ void DisplayDma::describe_stats(StatsSchema& schema) const {
   Block::describe_stats(schema);
   schema.add_setting("burst_bytes", "bytes", "length of the DMA's bus bursts (display_dma.burst_bytes)");
   schema.add_setting("fifo_lines", "count", "lines the line FIFO holds (display_dma.fifo_lines)");
-  schema.add("busy_ns", "ns", "time the DMA's bus transfers took");
-  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
-  schema.add("elapsed_ns", "ns", "simulated time of the run");
+  describe_busy_stats(schema, "time the DMA's bus transfers took");
 }
 
 SummaryRow DisplayDma::summary_row(const sc_time& elapsed) const {

@@ -319,7 +319,6 @@ void Dma::timeline_to(TimelineSink& sink) {
 
 nlohmann::json Dma::stats_json(const sc_time& elapsed) const {
   nlohmann::json stats = Peripheral::stats_json(elapsed);
-  const double elapsed_s = elapsed.to_seconds();
   stats["channels"] = m_params.channels;
   stats["burst_bytes"] = m_params.burst_bytes;
   stats["cmem_bytes_per_cycle"] = m_params.cmem_bytes_per_cycle;
@@ -329,9 +328,7 @@ nlohmann::json Dma::stats_json(const sc_time& elapsed) const {
     ch["busy_ns"] = m_channels[c].busy_time.to_seconds() * 1e9;
     ch["bus_wait_ns"] = m_channels[c].bus_wait.to_seconds() * 1e9;
   }
-  stats["busy_ns"] = m_engine_busy.to_seconds() * 1e9;
-  stats["utilisation"] = elapsed_s > 0 ? m_engine_busy.to_seconds() / elapsed_s : 0.0;
-  stats["elapsed_ns"] = elapsed_s * 1e9;
+  add_busy_stats(stats, m_engine_busy, elapsed);
   stats["histograms"]["descriptor_bytes"] = histogram_json(m_descriptor_bytes);
   return stats;
 }
@@ -345,9 +342,7 @@ void Dma::describe_stats(StatsSchema& schema) const {
   schema.add("cmem_stall_ns", "ns", "time the DMA waited for the CUs to let go of CMEM");
   schema.add("ch*.busy_ns", "ns", "time the channel ran descriptors");
   schema.add("ch*.bus_wait_ns", "ns", "time the channel's bus transfers took");
-  schema.add("busy_ns", "ns", "time the DMA engine ran descriptors (any channel)");
-  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
-  schema.add("elapsed_ns", "ns", "simulated time of the run");
+  describe_busy_stats(schema, "time the DMA engine ran descriptors (any channel)");
   schema.add_histogram("histograms.descriptor_bytes", "bytes", "the length of each descriptor completed");
 }
 

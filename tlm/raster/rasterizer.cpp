@@ -234,8 +234,6 @@ void Rasterizer::BusPort::tile_ends(unsigned x, unsigned y) {
 }
 
 nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
-  const double elapsed_s = elapsed.to_seconds();
-  const double busy_s = m_busy_time.to_seconds();
   nlohmann::json stats = Peripheral::stats_json(elapsed);
   stats["clock_mhz"] = 1e-6 / m_params.clock_period.to_seconds();
   stats["width"] = m_params.width;
@@ -243,10 +241,8 @@ nlohmann::json Rasterizer::stats_json(const sc_time& elapsed) const {
   stats["tile_width"] = m_params.tile_width;
   stats["tile_height"] = m_params.tile_height;
   stats["cycles"]["busy"] = static_cast<uint64_t>(std::llround(m_busy_time / m_params.clock_period));
-  stats["busy_ns"] = busy_s * 1e9;
+  add_busy_stats(stats, m_busy_time, elapsed);
   stats["waiting_for_bus_ns"] = mem_out.bus_time().to_seconds() * 1e9;
-  stats["utilisation"] = elapsed_s > 0 ? busy_s / elapsed_s : 0.0;
-  stats["elapsed_ns"] = elapsed_s * 1e9;
   stats["histograms"]["span_pixels"] = histogram_json(m_span_pixels);
   return stats;
 }
@@ -259,10 +255,8 @@ void Rasterizer::describe_stats(StatsSchema& schema) const {
   schema.add("tile_width", "pixels", "width of a tile");
   schema.add("tile_height", "pixels", "height of a tile");
   schema.add("cycles.busy", "cycles", "rasterizer cycles of every run, busy_ns in cycles");
-  schema.add("busy_ns", "ns", "time the rasterizer ran tile tables");
+  describe_busy_stats(schema, "time the rasterizer ran tile tables");
   schema.add("waiting_for_bus_ns", "ns", "time the rasterizer's memory port spent on the bus");
-  schema.add("utilisation", "fraction", "busy_ns over the simulated time");
-  schema.add("elapsed_ns", "ns", "simulated time of the run");
   schema.add_histogram(
       "histograms.span_pixels", "pixels",
       "the pixels of each span (a run of one row's pixels of a triangle in a tile, handed to the shader)");
