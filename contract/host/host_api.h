@@ -102,10 +102,10 @@ class HostApi {
   // the ARM922T would.
   virtual uint64_t now_cycles() const { return static_cast<uint64_t>(std::llround(now_seconds() * clock_hz())); }
 
-  // The GL driver switched to `phase` (sw_driver/gl/frame_phases.h: a
-  // static name) at the host's time `seconds`, for a timeline; it costs
-  // the host nothing. Nothing by default.
-  virtual void driver_phase(const char* /*phase*/, double /*seconds*/) {}
+  // The GL driver switches to `phase` (sw_driver/gl/frame_phases.h: a
+  // static name) now, for a timeline; it costs the host nothing. Nothing by
+  // default.
+  virtual void driver_phase(const char* /*phase*/) {}
   // A GL or EGL entry point `name` (static) begins or ends, for a timeline;
   // it costs the host nothing. Nothing by default.
   virtual void driver_call(const char* /*name*/, bool /*begins*/) {}
@@ -146,7 +146,7 @@ class HostApi {
   // Cycles since the program's start (the ISS's elapsed-cycles call).
   uint64_t now_cycles() const;
   // Nothing on the ISS: the phases are not handed out of the program.
-  void driver_phase(const char* /*phase*/, double /*seconds*/) {}
+  void driver_phase(const char* /*phase*/) {}
   void driver_call(const char* /*name*/, bool /*begins*/) {}
 };
 

@@ -110,6 +110,34 @@ constexpr unsigned COMBINE_SOURCE_SHIFT = 4;    // CombineSource, bits 4-5, 8-9,
 constexpr unsigned COMBINE_OPERAND_SHIFT = 16;  // CombineOperand, bits 16-17, 20-21, 24-25
 constexpr unsigned COMBINE_SCALE_SHIFT = 28;    // log2 of the scale (0, 1, 2), bits 28-29
 
+// One half (RGB or alpha) of a unit's combiner: a combine word's fields
+// (TextureUnitState::combine_rgb, combine_alpha) decoded, and encoded.
+struct CombineStage {
+  CombineFunc func = CombineFunc::modulate;
+  CombineSource source[3] = {CombineSource::texture, CombineSource::previous, CombineSource::constant};
+  CombineOperand operand[3] = {CombineOperand::src_color, CombineOperand::src_color, CombineOperand::src_alpha};
+  unsigned scale_log2 = 0;  // 0 .. 3
+
+  // The word's fields cut to their codes' widths (bits between them ignored).
+  static constexpr CombineStage decode(uint32_t word) {
+    CombineStage s;
+    s.func = from_code<CombineFunc>(word >> COMBINE_FUNC_SHIFT);
+    for (unsigned k = 0; k < 3; ++k) {
+      s.source[k] = from_code<CombineSource>(word >> (COMBINE_SOURCE_SHIFT + 4 * k));
+      s.operand[k] = from_code<CombineOperand>(word >> (COMBINE_OPERAND_SHIFT + 4 * k));
+    }
+    s.scale_log2 = (word >> COMBINE_SCALE_SHIFT) & 3;
+    return s;
+  }
+  constexpr uint32_t encode() const {
+    uint32_t word = code_of(func) << COMBINE_FUNC_SHIFT | (scale_log2 & 3) << COMBINE_SCALE_SHIFT;
+    for (unsigned k = 0; k < 3; ++k)
+      word |= code_of(source[k]) << (COMBINE_SOURCE_SHIFT + 4 * k) | code_of(operand[k])
+                                                                         << (COMBINE_OPERAND_SHIFT + 4 * k);
+    return word;
+  }
+};
+
 // Levels of a 256 x 256 texture: 0 (256 x 256) to 8 (1 x 1).
 constexpr uint32_t MAX_TEXTURE_LEVEL = 8;
 

@@ -27,7 +27,7 @@ void PhaseClock::start(HostApi* host) {
   m_seconds.fill(0);
   m_clear_seconds = 0;
   m_since = host != nullptr ? host->now_seconds() : 0;
-  if (host != nullptr) host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(Phase::application)], m_since);
+  if (host != nullptr) host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(Phase::application)]);
   costs::reset_cost_meter();
 }
 
@@ -37,7 +37,7 @@ Phase PhaseClock::switch_to(Phase phase) {
     const double now = m_host->now_seconds();
     m_seconds[static_cast<size_t>(previous)] += now - m_since;
     m_since = now;
-    m_host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(phase)], now);
+    m_host->driver_phase(TIMELINE_NAMES[static_cast<size_t>(phase)]);
   }
   m_phase = phase;
   costs::set_cost_bucket(static_cast<unsigned>(phase));

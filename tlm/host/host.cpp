@@ -732,18 +732,21 @@ void Host::timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks)
 
 void Host::finish_timeline() {
   close_activity_slice();
-  const sc_time now = sc_time::from_value(local_ticks());
-  if (m_phase_name && now > m_phase_since) m_timeline->slice(m_phase_track, m_phase_name, m_phase_since, now);
+  close_phase_slice();
   m_phase_name = nullptr;
 }
 
-void Host::driver_phase(const char* phase, double /*seconds*/) {
+void Host::driver_phase(const char* phase) {
   if (!m_timeline || m_params.iss) return;
-  // The host's local time, exact in ticks (the driver's seconds are a double).
+  m_phase_since = close_phase_slice();
+  m_phase_name = phase;
+}
+
+sc_time Host::close_phase_slice() {
+  // The host's local time, exact in ticks.
   const sc_time now = sc_time::from_value(local_ticks());
   if (m_phase_name && now > m_phase_since) m_timeline->slice(m_phase_track, m_phase_name, m_phase_since, now);
-  m_phase_name = phase;
-  m_phase_since = now;
+  return now;
 }
 
 void Host::driver_call(const char* name, bool begins) {

@@ -108,7 +108,7 @@ class Host : public Block, public HostApi, public HostCore {
   // (sw_driver/gl/frame_phases.h), each from the switch to it to the next.
   void timeline_to(TimelineSink& sink) override;
   void finish_timeline() override;
-  void driver_phase(const char* phase, double seconds) override;
+  void driver_phase(const char* phase) override;
   // Track "driver calls" (detail all, host-compiled model only): each GL
   // call the application made, from its entry to its return.
   void driver_call(const char* name, bool begins) override;
@@ -326,7 +326,8 @@ class Host : public Block, public HostApi, public HostCore {
   };
   ActivitySlice m_activity;
   void timeline_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks);
-  void close_activity_slice();  // hands the slice being extended to the timeline
+  void close_activity_slice();           // hands the slice being extended to the timeline
+  sc_core::sc_time close_phase_slice();  // hands the driver's phase so far to the timeline; returns now
   // The driver's phase since m_phase_since (null before the first).
   unsigned m_phase_track = 0;
   const char* m_phase_name = nullptr;

@@ -611,29 +611,8 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
     p[0] = static_cast<uint8_t>(pixel.z);
     p[1] = static_cast<uint8_t>(pixel.z >> 8);
   }
-  const PixelFormat format = m_buffers.color_format;
-  unsigned mask4 = 0;
-  for (unsigned ch = 0; ch < 4; ++ch) mask4 |= state.color_mask[ch] ? 1u << ch : 0u;
-  const uint32_t write_mask = channel_bits(format, mask4), all = channel_bits(format, 0xf);
-  if (write_mask == 0) return;
-  const unsigned bpp = bytes_per_pixel(format);
-  const uint32_t address = m_buffers.color_address + offset * bpp;
-  uint32_t out;
-  if (state.blend || state.logic_op || write_mask != all) {
-    const uint32_t dst = load_pixel(format, m_host.load_span(address, bpp, 1));
-    costs::charge(m_host, HostCost::ap_pixel_color_read_back);
-    uint32_t src = rgba;
-    if (state.blend) {
-      src = renderers::blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
-      costs::charge(m_host, HostCost::ap_pixel_blend);
-    }
-    out = pack_pixel(format, src);
-    if (state.logic_op) out = renderers::logic_op(state.logic_op_mode, out, dst) & all;
-    out = (out & write_mask) | (dst & ~write_mask);
-  } else {
-    out = pack_pixel(format, rgba);
-  }
-  store_pixel(format, m_host.store_span(address, bpp, 1), out);
+  renderers::write_color(m_host, state, m_buffers.color_format, m_buffers.color_address, offset, rgba,
+                         {HostCost::ap_pixel_color_read_back, HostCost::ap_pixel_blend});
 }
 
 void ApPixelRenderer::publish_statistics() {

@@ -1,13 +1,18 @@
 // Per-fragment operations on RGBA8 and packed pixel words that the software
 // back ends share (arm in its span loop, ap-pixel when it writes the pixels
 // the array shaded): blending with 0.8 factors rounded to nearest exactly,
-// and logic ops.
+// and logic ops; and a pixel's colour written through them and the colour
+// mask (ap-pixel and ap-object, pixel by pixel).
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 
+#include "common/pixel_format.h"
+#include "costs/host_cost.h"
 #include "gl/renderer.h"
+#include "host/host_api.h"
 #include "renderers/common/texturing.h"
 
 namespace tessera::renderers {
@@ -74,6 +79,43 @@ inline uint32_t blend(BlendFactor src_factor, BlendFactor dst_factor, uint32_t s
     out |= std::min<uint32_t>(v, 255) << (8 * c);
   }
   return out;
+}
+
+// The host-cost rows a pixel's colour write charges: `read_back` when it
+// reads the destination (blending, a logic op or a partial mask), `blend`
+// (if any) when it blends.
+struct ColorWriteCosts {
+  costs::HostCost read_back;
+  std::optional<costs::HostCost> blend;
+};
+
+// Writes `rgba` into pixel `offset` of the colour buffer at `color_address`
+// (`format`) through the state's colour mask, blending and logic op, as
+// GL's per-fragment operations do; nothing when the mask is empty.
+inline void write_color(HostApi& host, const gl::RasterState& state, PixelFormat format, uint32_t color_address,
+                        uint32_t offset, uint32_t rgba, const ColorWriteCosts& charges) {
+  unsigned mask4 = 0;
+  for (unsigned ch = 0; ch < 4; ++ch) mask4 |= state.color_mask[ch] ? 1u << ch : 0u;
+  const uint32_t write_mask = channel_bits(format, mask4), all = channel_bits(format, 0xf);
+  if (write_mask == 0) return;
+  const unsigned bpp = bytes_per_pixel(format);
+  const uint32_t address = color_address + offset * bpp;
+  uint32_t out;
+  if (state.blend || state.logic_op || write_mask != all) {
+    const uint32_t dst = load_pixel(format, host.load_span(address, bpp, 1));
+    costs::charge(host, charges.read_back);
+    uint32_t src = rgba;
+    if (state.blend) {
+      src = blend(state.blend_src, state.blend_dst, src, unpack_pixel(format, dst));
+      if (charges.blend) costs::charge(host, *charges.blend);
+    }
+    out = pack_pixel(format, src);
+    if (state.logic_op) out = logic_op(state.logic_op_mode, out, dst) & all;
+    out = (out & write_mask) | (dst & ~write_mask);
+  } else {
+    out = pack_pixel(format, rgba);
+  }
+  store_pixel(format, host.store_span(address, bpp, 1), out);
 }
 
 }  // namespace tessera::renderers

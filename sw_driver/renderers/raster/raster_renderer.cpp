@@ -10,7 +10,7 @@
 
 #include "costs/host_cost.h"
 #include "gl/runtime.h"
-#include "raster/datapath/texture_combiner.h"
+#include "raster/command_format.h"
 #include "raster/raster_regs.h"
 #include "renderers/common/fog.h"
 #include "renderers/common/texture_units.h"

@@ -61,33 +61,6 @@
 
 namespace tessera::raster {
 
-// One half (RGB or alpha) of a unit's combiner, decoded from its word.
-struct CombineStage {
-  CombineFunc func = CombineFunc::modulate;
-  CombineSource source[3] = {CombineSource::texture, CombineSource::previous, CombineSource::constant};
-  CombineOperand operand[3] = {CombineOperand::src_color, CombineOperand::src_color, CombineOperand::src_alpha};
-  unsigned scale_log2 = 0;  // 0 .. 3
-
-  // The word's fields cut to their codes' widths (bits between them ignored).
-  static constexpr CombineStage decode(uint32_t word) {
-    CombineStage s;
-    s.func = from_code<CombineFunc>(word >> COMBINE_FUNC_SHIFT);
-    for (unsigned k = 0; k < 3; ++k) {
-      s.source[k] = from_code<CombineSource>(word >> (COMBINE_SOURCE_SHIFT + 4 * k));
-      s.operand[k] = from_code<CombineOperand>(word >> (COMBINE_OPERAND_SHIFT + 4 * k));
-    }
-    s.scale_log2 = (word >> COMBINE_SCALE_SHIFT) & 3;
-    return s;
-  }
-  constexpr uint32_t encode() const {
-    uint32_t word = code_of(func) << COMBINE_FUNC_SHIFT | (scale_log2 & 3) << COMBINE_SCALE_SHIFT;
-    for (unsigned k = 0; k < 3; ++k)
-      word |= code_of(source[k]) << (COMBINE_SOURCE_SHIFT + 4 * k) | code_of(operand[k])
-                                                                         << (COMBINE_OPERAND_SHIFT + 4 * k);
-    return word;
-  }
-};
-
 // Everything but the colours: the unit's state.
 struct TextureUnitEnv {
   TexEnv env = TexEnv::modulate;
