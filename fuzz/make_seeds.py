@@ -54,6 +54,13 @@ def raster_frame(
     return raster_header(flags, width, height, tile_w, tile_h, 0x10000, 0x30000) + bytes(image)
 
 
+def textured_frame(triangle, texture_mode=1 << 2 | 1 << 4):
+    """One triangle on a 32 x 32 screen in one tile, textured (the 4x4 texture of bytes 0..63) and flat shaded."""
+    return raster_frame(
+        0, 32, 32, 32, 32, 1 << 7 | 1 << 8, [triangle], texture=bytes(range(64)), texture_mode=texture_mode
+    )
+
+
 # --- gl: one byte per entry point (the case of fuzz_gl.cpp's switch), then its arguments.
 def gl_stream(*calls):
     return b"".join(calls)
@@ -170,27 +177,13 @@ def main():
         "raster_commands/seed-rgba-smooth-blend.bin": raster_frame(
             1 | 2, 48, 40, 16, 8, depth | 1 << 4 | 1 << 9, [tri, list(reversed(tri))]
         ),
-        "raster_commands/seed-textured.bin": raster_frame(
-            0,
-            32,
-            32,
-            32,
-            32,
-            1 << 7 | 1 << 8,
-            [[vertex(0, 0, s=0, t=0), vertex(31, 0, s=1, t=0, w=2.0), vertex(0, 31, s=0, t=1)]],
-            texture=bytes(range(64)),
+        "raster_commands/seed-textured.bin": textured_frame(
+            [vertex(0, 0, s=0, t=0), vertex(31, 0, s=1, t=0, w=2.0), vertex(0, 31, s=0, t=1)]
         ),
         # Mirrored (s falls along x) and minified with MIN LINEAR, MAG NEAREST: the footprint's
         # differences are negative (a fuzzer's find: a left shift of a negative value).
-        "raster_commands/regress-mirrored-minified.bin": raster_frame(
-            0,
-            32,
-            32,
-            32,
-            32,
-            1 << 7 | 1 << 8,
-            [[vertex(0, 0, s=8, t=0), vertex(31, 0, s=0, t=0, w=2.0), vertex(0, 31, s=8, t=8)]],
-            texture=bytes(range(64)),
+        "raster_commands/regress-mirrored-minified.bin": textured_frame(
+            [vertex(0, 0, s=8, t=0), vertex(31, 0, s=0, t=0, w=2.0), vertex(0, 31, s=8, t=8)],
             texture_mode=1 | 1 << 2 | 1 << 4,
         ),
         "gl/seed-triangles.bin": gl_stream(ENABLE_VERTEX_ARRAY, VERTEX_POINTER_FLOAT3, DRAW_TRIANGLES_6, GET_ERROR),
