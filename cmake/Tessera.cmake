@@ -5,6 +5,11 @@ add_library(tessera_warnings INTERFACE)
 target_compile_options(tessera_warnings INTERFACE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                        $<$<BOOL:${TESSERA_WERROR}>:-Werror>)
 
+set(TESSERA_SANITIZE_TIMEOUT_SCALE 5 CACHE STRING "Factor on every test's timeout in the sanitize build")
+if(NOT TESSERA_SANITIZE_TIMEOUT_SCALE MATCHES "^[1-9][0-9]*$")
+  message(FATAL_ERROR "TESSERA_SANITIZE_TIMEOUT_SCALE must be a positive integer, not '${TESSERA_SANITIZE_TIMEOUT_SCALE}'")
+endif()
+
 if(TESSERA_SANITIZE)
   # SystemC switches coroutine stacks; ASan's use-after-return check mistakes that for
   # use of freed stack memory, so it is compiled out.
@@ -39,6 +44,13 @@ function(tessera_add_test)
   endif()
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 120)
+  endif()
+  if(TESSERA_SANITIZE)
+    # A timeout is a hang guard set for the default (optimised) build. The
+    # sanitize build is a Debug build with ASan and UBSan, 5 to 20 times
+    # slower on a loaded machine, so every guard is scaled there rather than
+    # raised test by test (tests/README.md).
+    math(EXPR T_TIMEOUT "${T_TIMEOUT} * ${TESSERA_SANITIZE_TIMEOUT_SCALE}")
   endif()
   if(TESSERA_SANITIZE)
     # LeakSanitizer's tracer crashes now and then at exit on a loaded
