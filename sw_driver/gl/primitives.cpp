@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "common/little_endian.h"
 #include "gl/context_internal.h"
 #include "gl/frame_phases.h"
 #include "gl/runtime.h"
@@ -354,11 +355,8 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
   for (GLsizei i = 0; i < count; ++i) {
     if (size == 1)
       indices[i] = base[i];
-    else {
-      uint16_t x;
-      std::memcpy(&x, base + 2 * i, 2);
-      indices[i] = x;
-    }
+    else
+      indices[i] = load_le16(base + 2 * i);
   }
   charge(costs::HostCost::gl_index, static_cast<uint64_t>(count));
   draw(mode, indices, true);

@@ -2,7 +2,8 @@
 #include "gl/texture_formats.h"
 
 #include <algorithm>
-#include <cstring>
+
+#include "common/little_endian.h"
 
 namespace tessera::gl {
 
@@ -51,8 +52,7 @@ unsigned pixel_bytes(GLenum format, GLenum type) {
 
 uint32_t unpack_pixel(GLenum format, GLenum type, const uint8_t* in) {
   if (type != GL_UNSIGNED_BYTE) {
-    uint16_t p;
-    std::memcpy(&p, in, 2);
+    const uint32_t p = load_le16(in);
     switch (type) {
       case GL_UNSIGNED_SHORT_5_6_5: return rgba(widen(p >> 11, 5), widen((p >> 5) & 63, 6), widen(p & 31, 5), 255);
       case GL_UNSIGNED_SHORT_4_4_4_4:

@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "common/little_endian.h"
 #include "gl/context_internal.h"
 #include "gl/runtime.h"
 
@@ -42,18 +42,16 @@ glm::vec4 Context::read_attribute(const ArrayPointer& array, uint32_t index, con
     const uint8_t* q = p + c * component;
     float v = 0;
     switch (array.type) {
-      case GL_FLOAT: std::memcpy(&v, q, 4); break;
+      case GL_FLOAT: v = load_float(q); break;
       case GL_FIXED: {
-        int32_t x;
-        std::memcpy(&x, q, 4);
+        const auto x = static_cast<int32_t>(load_le32(q));
         v = static_cast<float>(x) / 65536.0f;
         break;
       }
       // Signed normal components map to [-1, 1] as ES 1.1 table 2.7 gives:
       // (2 c + 1) / (2^b - 1); coordinates keep their integer values.
       case GL_SHORT: {
-        int16_t x;
-        std::memcpy(&x, q, 2);
+        const auto x = static_cast<int16_t>(load_le16(q));
         v = normalized ? (2.0f * x + 1.0f) / 65535.0f : static_cast<float>(x);
         break;
       }

@@ -590,10 +590,7 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
   if (textured) {
     const gl::Texture& tex = state.unit[m_unit.index].tex;
     auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
-      std::memcpy(
-          out,
-          m_host.load_span(tex.address + (static_cast<uint32_t>(tj) * tex.width + static_cast<uint32_t>(ti)) * 4, 4, 1),
-          4);
+      copy_word(m_host.load_span(renderers::texel_address(tex, ti, tj), 4, 1), out);
     };
     uint8_t texel[4];
     costs::charge(m_host, renderers::sample_texture(tex, st[0], st[1], texel_at, texel)

@@ -9,6 +9,7 @@
 
 #include "ap_programs/ap_tile.h"
 #include "ap_programs/ap_tile_study.h"
+#include "common/little_endian.h"
 #include "common/pixel_format.h"
 #include "costs/host_cost.h"
 #include "gl/runtime.h"
@@ -633,7 +634,7 @@ void ApTileRenderer::shade_warped() {
         const gl::TextureLevel& at = tex.level[level];
         const auto u = static_cast<uint32_t>(wrap_texel(i, static_cast<int>(at.width), tex.wrap_s));
         const auto v = static_cast<uint32_t>(wrap_texel(j, static_cast<int>(at.height), tex.wrap_t));
-        std::memcpy(out, m_host.load_span(at.address + (v * at.width + u) * 4, 4, 1), 4);
+        copy_word(m_host.load_span(at.address + (v * at.width + u) * 4, 4, 1), out);
         return true;
       };
       WarpedTexture& out = warped[pixel.tid];

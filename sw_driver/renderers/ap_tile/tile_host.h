@@ -94,9 +94,7 @@ class TileBins {
 template <class Fetch>
 uint32_t texture_pixel(const TextureEntry& entry, uint32_t rgba, int16_t s, int16_t t, Fetch&& fetch) {
   const gl::Texture& tex = entry.texture;
-  auto texel_at = [&](int ti, int tj, uint8_t out[4]) {
-    std::memcpy(out, fetch(tex.address + (static_cast<uint32_t>(tj) * tex.width + static_cast<uint32_t>(ti)) * 4), 4);
-  };
+  auto texel_at = [&](int ti, int tj, uint8_t out[4]) { copy_word(fetch(renderers::texel_address(tex, ti, tj)), out); };
   uint8_t texel[4];
   renderers::sample_texture(tex, s, t, texel_at, texel);
   return renderers::apply_tex_env(entry.env, rgba, texel);

@@ -2,8 +2,8 @@
 #include "renderers/arm/span_shading.h"
 
 #include <algorithm>
-#include <cstring>
 
+#include "common/little_endian.h"
 #include "renderers/common/fixed_math.h"
 #include "renderers/common/fog.h"
 #include "renderers/common/fragment_ops.h"
@@ -28,7 +28,7 @@ void fetch_texel(PixelMemory& memory, const gl::Texture& tex, unsigned level, in
   auto address = [&](int i, int j) { return image.address + (uint32_t(j) * w + uint32_t(i)) * 4; };
   if (!linear) {
     const int i = wrap(u8 >> 8, w, tex.wrap_s), j = wrap(v8 >> 8, h, tex.wrap_t);
-    std::memcpy(out, memory.load(address(i, j), 4, 1), 4);
+    copy_word(memory.load(address(i, j), 4, 1), out);
     return;
   }
   const int um = u8 - 128, vm = v8 - 128;
@@ -39,10 +39,12 @@ void fetch_texel(PixelMemory& memory, const gl::Texture& tex, unsigned level, in
   const int rows[2] = {j0, j1};
   for (int r = 0; r < 2; ++r) {
     if (i1 == i0 + 1) {
-      std::memcpy(texel[2 * r], memory.load(address(i0, rows[r]), 4, 2), 8);
+      const uint8_t* pair = memory.load(address(i0, rows[r]), 4, 2);
+      copy_word(pair, texel[2 * r]);
+      copy_word(pair + 4, texel[2 * r + 1]);
     } else {
-      std::memcpy(texel[2 * r], memory.load(address(i0, rows[r]), 4, 1), 4);
-      std::memcpy(texel[2 * r + 1], memory.load(address(i1, rows[r]), 4, 1), 4);
+      copy_word(memory.load(address(i0, rows[r]), 4, 1), texel[2 * r]);
+      copy_word(memory.load(address(i1, rows[r]), 4, 1), texel[2 * r + 1]);
     }
   }
   renderers::bilinear(texel, fu, fv, out);

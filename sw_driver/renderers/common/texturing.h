@@ -11,6 +11,7 @@
 #include <climits>
 #include <cstdint>
 
+#include "common/little_endian.h"
 #include "gl/renderer.h"
 #include "renderers/common/fixed_math.h"
 
@@ -216,6 +217,12 @@ inline uint32_t apply_texture_unit(const gl::TextureUnit& unit, uint32_t previou
     case gl::TexEnvMode::add: return apply_add_env(previous, texel);
     default: return apply_combine(unit, previous, primary, texel);
   }
+}
+
+// The system-memory address of texel (i, j), already wrapped, of `tex`'s
+// level 0 (RGBA8, rows of `width` texels).
+inline uint32_t texel_address(const gl::Texture& tex, int i, int j) {
+  return tex.address + (static_cast<uint32_t>(j) * tex.width + static_cast<uint32_t>(i)) * 4;
 }
 
 // The colour of `tex` at texel coordinates (u8, v8) with 8 fraction bits,

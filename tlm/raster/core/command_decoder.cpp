@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "raster/core/little_endian.h"
+#include "common/little_endian.h"
 
 namespace tessera::raster {
 

@@ -5,7 +5,7 @@
 #include <array>
 #include <limits>
 
-#include "raster/core/little_endian.h"
+#include "common/little_endian.h"
 #include "raster/core/refined_reciprocal.h"
 #include "raster/datapath/lod_unit.h"
 #include "raster/datapath/texel_address.h"

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
+#include "common/little_endian.h"
 #include "common/pixel_format.h"
-#include "raster/core/little_endian.h"
 #include "raster/datapath/batch.h"
 
 namespace tessera::raster {

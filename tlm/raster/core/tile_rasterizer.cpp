@@ -12,11 +12,11 @@
 #include <cstddef>
 #include <memory>
 
+#include "common/little_endian.h"
 #include "common/screen_size.h"
 #include "raster/core/command_decoder.h"
 #include "raster/core/draw_state.h"
 #include "raster/core/fragment_shader.h"
-#include "raster/core/little_endian.h"
 #include "raster/core/run_context.h"
 #include "raster/core/tile_cache.h"
 #include "raster/core/traversal.h"
