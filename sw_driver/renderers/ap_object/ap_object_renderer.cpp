@@ -594,6 +594,7 @@ void ApObjectRenderer::read_back_ciu(const Job* jobs, size_t count, const Object
           m_words_read += slot_words;
           m_traffic.values_read += 4 * slot_words;
           costs::charge(m_host, HostCost::ap_object_slot_read);
+          costs::charge(m_host, HostCost::ap_object_slot_word, slot_words);
           for (unsigned k = 0; k < 4; ++k) {
             const size_t n = size_t{g} * 4 + k;
             if (n >= count) continue;
@@ -605,6 +606,7 @@ void ApObjectRenderer::read_back_ciu(const Job* jobs, size_t count, const Object
             m_fragments[n].push_back(fragment_of(x, piece.row + static_cast<int>(r), [&](unsigned b) {
               return static_cast<uint32_t>((slot[b] >> (8 * k)) & 0xff);
             }));
+            costs::charge(m_host, m_textured ? HostCost::ap_object_fragment_textured : HostCost::ap_object_fragment);
           }
         }
     }

@@ -1,8 +1,8 @@
 // Per-fragment operations on RGBA8 and packed pixel words that the software
 // back ends share (arm in its span loop, ap-pixel and ap-object when they
-// write the pixels the array shaded or walked): blending with 0.8 factors rounded to nearest exactly,
-// and logic ops; and a pixel's colour written through them and the colour
-// mask (ap-pixel and ap-object, pixel by pixel).
+// write the pixels the array shaded or walked): blending with 0.8 factors
+// rounded to nearest exactly, and logic ops; and a pixel's colour written
+// through them and the colour mask (ap-pixel and ap-object, pixel by pixel).
 #pragma once
 
 #include <algorithm>
