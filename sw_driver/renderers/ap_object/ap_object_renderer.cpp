@@ -354,6 +354,8 @@ void ApObjectRenderer::draw_now(const gl::RasterState& state, const gl::Triangle
     const ObjectTriangle setup(triangles[t], state.flat_shading, m_box, m_textured ? tex.width : 0,
                                m_textured ? tex.height : 0, m_textured ? static_cast<unsigned>(m_tex_unit.index) : 0);
     if (!setup.valid()) continue;
+    // Only a valid set-up reaches the texture coordinates (object_setup.cpp).
+    if (m_textured) costs::charge(m_host, HostCost::ap_object_textured_triangle);
     const auto index = static_cast<uint32_t>(m_triangles.size());
     m_triangles.push_back(setup);
     ++m_triangles_drawn;
