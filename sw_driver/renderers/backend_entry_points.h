@@ -1,5 +1,5 @@
-// What each back end's folder defines for the registry (backends.h), one
-// pair per line of backends.def, in namespace tessera::backends::<id>,
+// What each back end's folder defines for the registry (backends.h), four
+// functions per line of backends.def, in namespace tessera::backends::<id>,
 // beside CAPABILITIES, the table's depth and stencil bits, which the back
 // end's renderer also reports:
 //  - make_renderer: builds the back end's renderer for an application

@@ -29,13 +29,17 @@ check passes; 1, with each failure printed, when one does not.
 
 import json
 import os
+import pathlib
 import re
 import socket
 import struct
 import subprocess
 import sys
 import time
-import zlib
+
+# The PNG reader shared with scripts/ (scripts/png_read.py).
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "scripts"))
+import png_read  # noqa: E402
 
 TIMEOUT_S = 40  # any one process
 PORT_WAIT_S = 20  # for soc_sim to write its port file
@@ -113,41 +117,8 @@ def gdb(elf, port, commands):
 
 def read_png_rgba(path):
     """The pixels of an 8-bit RGBA PNG (what soc_sim writes), as rows of bytes."""
-    data = open(path, "rb").read()
-    position, idat = 8, b""
-    while position < len(data):
-        (length,) = struct.unpack(">I", data[position : position + 4])
-        kind = data[position + 4 : position + 8]
-        body = data[position + 8 : position + 8 + length]
-        if kind == b"IHDR":
-            width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            assert (depth, colour, interlace) == (8, 6, 0), "not an 8-bit RGBA PNG"
-        elif kind == b"IDAT":
-            idat += body
-        position += 12 + length
-    raw = zlib.decompress(idat)
-    stride = width * 4
-    rows, previous = [], bytearray(stride)
-    for y in range(height):
-        kind = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1 : (y + 1) * (stride + 1)])
-        for i in range(stride):
-            left = line[i - 4] if i >= 4 else 0
-            up = previous[i]
-            up_left = previous[i - 4] if i >= 4 else 0
-            if kind == 1:
-                line[i] = (line[i] + left) & 255
-            elif kind == 2:
-                line[i] = (line[i] + up) & 255
-            elif kind == 3:
-                line[i] = (line[i] + (left + up) // 2) & 255
-            elif kind == 4:
-                p = left + up - up_left
-                pa, pb, pc = abs(p - left), abs(p - up), abs(p - up_left)
-                predictor = left if pa <= pb and pa <= pc else up if pb <= pc else up_left
-                line[i] = (line[i] + predictor) & 255
-        rows.append(bytes(line))
-        previous = line
+    width, height, channels, rows = png_read.read_png(path)
+    assert channels == 4, f"{path}: not an RGBA PNG"
     return width, height, rows
 
 
