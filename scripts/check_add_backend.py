@@ -60,6 +60,7 @@ import sys
 import tempfile
 import time
 
+import def_table
 import png_read
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -96,11 +97,8 @@ def tail(path: pathlib.Path, lines: int = LOG_TAIL) -> str:
 
 
 def macro_arguments(line: str) -> list:
-    """The arguments of a TESSERA_BACKEND(...) line, quoted ones whole."""
-    match = re.fullmatch(r"\s*TESSERA_BACKEND\((.*)\)\s*", line)
-    if not match:
-        return []
-    return [part.strip() for part in re.findall(r'\s*("(?:[^"\\]|\\.)*"|[^,]+)\s*(?:,|$)', match.group(1))]
+    """The arguments of a TESSERA_BACKEND(...) line (scripts/def_table.py), [] for another line."""
+    return def_table.row(line.strip(), "TESSERA_BACKEND") or []
 
 
 def macro_parameters(entry_points: str) -> list:

@@ -53,7 +53,6 @@ Standard library and PyYAML (Debian's python3-yaml: the experiment files).
 """
 
 import argparse
-import csv
 import json
 import os
 import pathlib
@@ -62,6 +61,7 @@ import subprocess
 import sys
 import tempfile
 
+import def_table
 import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -85,16 +85,8 @@ FILES = [
 
 
 def read_def(path, macro):
-    """The argument lists of every `macro(...)` line of an X-macro file."""
-    rows = []
-    pattern = re.compile(r"^" + macro + r"\((.*)\)\s*$")
-    for line in (ROOT / path).read_text().splitlines():
-        match = pattern.match(line)
-        if not match:
-            continue
-        # Split on commas outside double quotes.
-        fields = next(csv.reader([match.group(1)], skipinitialspace=True))
-        rows.append([field.strip() for field in fields])
+    """The argument lists of every `macro(...)` line of an X-macro file (scripts/def_table.py)."""
+    rows = def_table.rows(ROOT / path, macro)
     if not rows:
         sys.exit(f"update_docs: no {macro} line in {path}")
     return rows
