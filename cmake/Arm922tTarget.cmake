@@ -44,5 +44,4 @@ set_target_properties(ap_asm PROPERTIES IMPORTED_LOCATION ${TESSERA_AP_ASM})
 add_compile_definitions(TESSERA_HOST_ISS)
 
 add_subdirectory(contract)
-add_subdirectory(tlm/config)
 add_subdirectory(sw_driver)

@@ -1,4 +1,4 @@
-// Fuzz target: the configuration loader (tlm/config), a JSON file through
+// Fuzz target: the configuration loader (contract/config), a JSON file through
 // Config::load_file and "key=value" overrides through apply_override, as
 // soc_sim's --config and --set take them.
 //
