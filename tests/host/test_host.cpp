@@ -556,6 +556,33 @@ TEST(Host, StatisticsSplitBusyStalledAndIdle) {
   EXPECT_NEAR(total, sc_core::sc_time_stamp().to_seconds() * 1e9, 1e-3);
 }
 
+// The ISS launcher reads the busy, stall and miss counters where the host
+// keeps them (HostCore::counter_locations), around every load and store:
+// they must be what the three calls return, and follow them as they move.
+TEST(Host, CounterLocationsReadWhatTheCallsReturn) {
+  const HostCore& core = g_bench->host;
+  const HostCore::CounterLocations at = core.counter_locations();
+  ASSERT_NE(at.busy_cycles, nullptr);
+  ASSERT_NE(at.stall_ticks, nullptr);
+  ASSERT_NE(at.data_cache_misses, nullptr);
+  const auto check = [&] {
+    EXPECT_EQ(*at.busy_cycles, core.busy_cycles());
+    EXPECT_EQ(static_cast<double>(*at.stall_ticks) / static_cast<double>(at.period_ticks), core.stalled_cycles());
+    EXPECT_EQ(*at.data_cache_misses, core.data_cache_misses());
+  };
+  check();
+  const uint64_t busy = core.busy_cycles(), misses = core.data_cache_misses();
+  const double stalled = core.stalled_cycles();
+  g_bench->run([&](HostApi& api) {
+    api.read32(0x6000);  // a line not read before: a miss, a fill it stalls for
+    for (unsigned i = 0; i < 6; ++i) api.write32(DEV_BASE + 4 * i, i);  // more stores than the buffer holds
+  });
+  EXPECT_GT(core.busy_cycles(), busy);
+  EXPECT_GT(core.data_cache_misses(), misses);
+  EXPECT_GT(core.stalled_cycles(), stalled);
+  check();
+}
+
 TEST(Host, NoProtocolViolations) {
   for (const Bench* bench : {g_bench, g_write_through})
     EXPECT_EQ(bench->check_host.violation_count() + bench->check_memory.violation_count() +

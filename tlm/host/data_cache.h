@@ -78,6 +78,8 @@ class DataCache {
 
   uint64_t hits() const { return m_hits; }
   uint64_t misses() const { return m_misses; }
+  // Where misses() is kept (HostCore::counter_locations).
+  const uint64_t* misses_location() const { return &m_misses; }
   // Dirty lines written back: evicted or cleaned.
   uint64_t writebacks() const { return m_writebacks; }
 

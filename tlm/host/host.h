@@ -159,6 +159,9 @@ class Host : public Block, public HostApi, public HostCore {
     return static_cast<double>(m_stall_ticks) / static_cast<double>(m_period_ticks);
   }
   uint64_t data_cache_misses() const override { return m_dcache.misses(); }
+  CounterLocations counter_locations() const override {
+    return {&m_busy_cycles.value, &m_stall_ticks, m_period_ticks, m_dcache.misses_location()};
+  }
   void set_data_cache_control(bool enabled, bool round_robin) override;
   void invalidate_data_cache() override { m_dcache.invalidate_all(); }
   void invalidate_data_line(uint32_t address) override { m_dcache.invalidate_line(address); }

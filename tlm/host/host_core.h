@@ -80,6 +80,20 @@ class HostCore {
   virtual uint64_t busy_cycles() const = 0;
   virtual double stalled_cycles() const = 0;
   virtual uint64_t data_cache_misses() const = 0;
+  // Where those three counters live, for a launcher that reads them around
+  // every load and store (the ISS launcher's HostMemory::Charged): loads
+  // through these pointers give the same values as the three calls, without
+  // the calls. stalled_cycles() is *stall_ticks / period_ticks, as doubles.
+  // The pointers stay valid as long as the core. A core that does not store
+  // its counters (a test's stand-in) leaves them null; the launcher then
+  // makes the calls.
+  struct CounterLocations {
+    const uint64_t* busy_cycles = nullptr;
+    const uint64_t* stall_ticks = nullptr;
+    uint64_t period_ticks = 1;
+    const uint64_t* data_cache_misses = nullptr;
+  };
+  virtual CounterLocations counter_locations() const { return {}; }
 
   // The program's own statistics (instructions, CPI, caches, its profile),
   // asked for whenever the host's are written: stats.json's host.iss.

@@ -18,6 +18,21 @@ Profile::Profile(const std::vector<ElfFunction>& functions)
 }
 
 Profile::Entry& Profile::find(uint32_t pc) {
+  Memo& memo = m_memo[(pc >> 1) % MEMO_SLOTS];
+  if (memo.valid && memo.pc == pc) {
+    m_last_index = memo.index;
+    m_last_start = memo.start;
+    m_last_size = memo.size;
+    m_last = &m_entries[m_last_index];
+    return *m_last;
+  }
+  search(pc);
+  memo = {true, pc, m_last_start, m_last_size, m_last_index};
+  m_last = &m_entries[m_last_index];
+  return *m_last;
+}
+
+void Profile::search(uint32_t pc) {
   auto it = std::upper_bound(m_functions.begin(), m_functions.end(), pc,
                              [](uint32_t address, const ElfFunction& f) { return address < f.address; });
   if (it != m_functions.begin() && pc - std::prev(it)->address < std::prev(it)->size) {
@@ -31,8 +46,6 @@ Profile::Entry& Profile::find(uint32_t pc) {
     m_last_start = pc;
     m_last_size = it == m_functions.end() ? 1 : it->address - pc;
   }
-  m_last = &m_entries[m_last_index];
-  return *m_last;
 }
 
 std::string Profile::demangle(const std::string& name) {

@@ -57,6 +57,20 @@ class Profile {
 
  private:
   Entry& find(uint32_t pc);
+  // The binary search: sets m_last_index, m_last_start and m_last_size.
+  void search(uint32_t pc);
+
+  // The model's speed, not the profile's figures: the last look-ups by the
+  // exact PC they were made for (a call's target, a return address), so that
+  // a PC leaving and re-entering the same functions over and over (calls in
+  // a loop) needs no binary search of the symbol table. A slot holds what
+  // the search gave for its PC, which the table (fixed) always gives again.
+  struct Memo {
+    bool valid = false;
+    uint32_t pc = 0, start = 0, size = 0, index = 0;
+  };
+  static constexpr unsigned MEMO_SLOTS = 1024;
+  std::vector<Memo> m_memo = std::vector<Memo>(MEMO_SLOTS);
 
   std::vector<ElfFunction> m_functions;
   std::vector<Entry> m_entries;  // one per function, then the one outside them

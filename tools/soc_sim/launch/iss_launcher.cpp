@@ -48,7 +48,8 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 // changes.
 class HostMemory : public iss::IssMemory, public iss::DebugMemory {
  public:
-  HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing) : m_host(host), m_core(core), m_timing(timing) {
+  HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing)
+      : m_host(host), m_core(core), m_timing(timing), m_counters(core.counter_locations()) {
     m_core.on_direct_memory_invalidated([this] {
       m_window_size = 0;
       m_resident.line = iss::ResidentLine::NONE;
@@ -184,27 +185,52 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
 
   // What the host's busy, stall and miss counters moved by while it lives:
   // the busy cycles are the accesses' issue cycles (not charged again), the
-  // rest goes to the profile entry.
+  // rest goes to the profile entry. Around every load and store, so the
+  // counters are read where the core keeps them (HostCore::counter_locations)
+  // rather than by three virtual calls each side, and the stall's division
+  // is made only when the stall ticks moved (most accesses do not stall:
+  // the difference is then +0.0, which leaves the entry's sum as it was).
   class Charged {
    public:
-    explicit Charged(HostMemory& memory)
-        : m_memory(memory),
-          m_busy(memory.m_core.busy_cycles()),
-          m_stalled(memory.m_core.stalled_cycles()),
-          m_misses(memory.m_core.data_cache_misses()) {}
+    explicit Charged(HostMemory& memory) : m_memory(memory) {
+      const HostCore::CounterLocations& at = memory.m_counters;
+      if (at.busy_cycles != nullptr) {
+        m_busy = *at.busy_cycles;
+        m_stall_ticks = *at.stall_ticks;
+        m_misses = *at.data_cache_misses;
+      } else {
+        m_busy = memory.m_core.busy_cycles();
+        m_stalled = memory.m_core.stalled_cycles();
+        m_misses = memory.m_core.data_cache_misses();
+      }
+    }
     ~Charged() {
-      m_memory.m_host_charged += m_memory.m_core.busy_cycles() - m_busy;
-      m_memory.m_entry->stall_cycles += m_memory.m_core.stalled_cycles() - m_stalled;
-      m_memory.m_entry->dcache_misses += m_memory.m_core.data_cache_misses() - m_misses;
+      const HostCore::CounterLocations& at = m_memory.m_counters;
+      iss::Profile::Entry& entry = *m_memory.m_entry;
+      if (at.busy_cycles != nullptr) {
+        m_memory.m_host_charged += *at.busy_cycles - m_busy;
+        if (*at.stall_ticks != m_stall_ticks) {
+          const auto period = static_cast<double>(at.period_ticks);
+          // As stalled_cycles() after less stalled_cycles() before.
+          entry.stall_cycles +=
+              static_cast<double>(*at.stall_ticks) / period - static_cast<double>(m_stall_ticks) / period;
+        }
+        entry.dcache_misses += *at.data_cache_misses - m_misses;
+      } else {
+        m_memory.m_host_charged += m_memory.m_core.busy_cycles() - m_busy;
+        entry.stall_cycles += m_memory.m_core.stalled_cycles() - m_stalled;
+        entry.dcache_misses += m_memory.m_core.data_cache_misses() - m_misses;
+      }
     }
     Charged(const Charged&) = delete;
     Charged& operator=(const Charged&) = delete;
 
    private:
     HostMemory& m_memory;
-    uint64_t m_busy;
-    double m_stalled;
-    uint64_t m_misses;
+    uint64_t m_busy = 0;
+    uint64_t m_stall_ticks = 0;  // with the counters' locations
+    double m_stalled = 0;        // without: stalled_cycles()
+    uint64_t m_misses = 0;
   };
 
   bool exited() const { return m_exited; }
@@ -241,6 +267,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   HostApi& m_host;
   HostCore& m_core;
   iss::Arm922tTiming& m_timing;
+  const HostCore::CounterLocations m_counters;
   iss::Profile::Entry* m_entry = nullptr;
   // Memory the fetches read directly (HostCore::direct_memory): system
   // memory's DMI window, size 0 until the first fetch and after the memory
