@@ -219,6 +219,28 @@ HostCore::DirectMemory Host::direct_memory(uint32_t address) {
           m_dmi.get_end_address() - m_dmi.get_start_address() + 1};
 }
 
+namespace {
+[[noreturn]] __attribute__((cold, noinline)) void misaligned(uint32_t address, unsigned bytes) {
+  throw std::invalid_argument("host: misaligned " + std::to_string(bytes * 8) + "-bit access at " + log::hex(address));
+}
+// Inline, the message out of line: as a call it was 1.3 % of an ISS-hosted
+// run (perf, compute_rounds_arm.elf).
+inline void check_alignment(uint32_t address, unsigned bytes) {
+  if (__builtin_expect(address % bytes != 0, 0)) misaligned(address, bytes);
+}
+// A load's or store's bytes (1, 2 or 4) copied by moves of their size, not a
+// call of the C library's memcpy for a length it does not know (1.8 % of an
+// ISS-hosted run).
+inline void copy_access(void* to, const void* from, unsigned bytes) {
+  switch (bytes) {
+    case 4: std::memcpy(to, from, 4); break;
+    case 2: std::memcpy(to, from, 2); break;
+    case 1: std::memcpy(to, from, 1); break;
+    default: std::memcpy(to, from, bytes); break;
+  }
+}
+}  // namespace
+
 void Host::read_data(uint32_t address, void* data, unsigned bytes) {
   ++m_loads;
   charge(m_params.load_cycles);
@@ -229,11 +251,11 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
       write_back(result.victim);
       uint8_t fill[256];
       stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(address), fill, line, 0));
-      std::memcpy(data, fill + (address - m_dcache.line_address(address)), bytes);
+      copy_access(data, fill + (address - m_dcache.line_address(address)), bytes);
       return;
     }
     if (const uint8_t* p = dmi_pointer(address, bytes)) {
-      std::memcpy(data, p, bytes);
+      copy_access(data, p, bytes);
       return;
     }
     // No DMI: fetch the data without time (the cache hit has been charged).
@@ -260,7 +282,7 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   // a miss does.
   if (cached(address, bytes) && m_dcache.write(address, !m_params.write_through) && !m_params.write_through) {
     if (uint8_t* p = dmi_pointer(address, bytes)) {
-      std::memcpy(p, data, bytes);
+      copy_access(p, data, bytes);
       return;
     }
     tlm::tlm_generic_payload request;
@@ -375,14 +397,6 @@ void Host::drain_write_buffer() {
   m_write_buffer_words = 0;
   m_write_buffer_addresses = 0;
 }
-
-namespace {
-void check_alignment(uint32_t address, unsigned bytes) {
-  if (address % bytes != 0)
-    throw std::invalid_argument("host: misaligned " + std::to_string(bytes * 8) + "-bit access at " +
-                                log::hex(address));
-}
-}  // namespace
 
 uint32_t Host::read32(uint32_t address) {
   check_alignment(address, 4);

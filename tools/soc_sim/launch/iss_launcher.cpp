@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "host/host_core.h"
@@ -63,7 +64,6 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   HostMemory(const HostMemory&) = delete;
   HostMemory& operator=(const HostMemory&) = delete;
 
-  void charge(uint64_t cycles) { m_pending += cycles; }
   void flush() {
     if (m_pending != 0) {
       m_host.compute_cycles(m_pending);
@@ -71,12 +71,16 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     }
   }
   uint64_t pending() const { return m_pending; }
-  // The cycles the host has charged as busy for the accesses since the last
-  // call (their issue cycles: host.cycles.load and .store, per word).
-  uint64_t take_host_charged() {
-    const uint64_t charged = m_host_charged;
+  // An instruction's cycles, less those the host has charged as busy for its
+  // accesses (their issue cycles: host.cycles.load and .store, per word), at
+  // least 0. Most instructions make no access: they are the first branch.
+  void charge_instruction(unsigned cycles) {
+    if (__builtin_expect(m_host_charged == 0, 1)) {
+      m_pending += cycles;
+      return;
+    }
+    m_pending += cycles > m_host_charged ? cycles - m_host_charged : 0;
     m_host_charged = 0;
-    return charged;
   }
 
   // One call per instruction: a fetch inside the direct window reads
@@ -549,6 +553,31 @@ class StatisticsPublisher {
                            " instructions, at pc " + iss::address_text(pc) + " (a runaway program?)");
 }
 
+// The core's SWI hook (a semihosting call served outside the program) and
+// exception hook (a fault with no handler stops the program; run_elf_app's
+// handler names the file).
+void attach_hooks(iss::ArmCore& arm, HostCore& host_core, HostMemory& host_memory, iss::Semihosting& host_calls) {
+  arm.on_swi([core = &arm, core_port = &host_core, memory = &host_memory, semihosting = &host_calls](uint32_t pc) {
+    uint32_t instruction = 0;
+    uint8_t bytes[4] = {};
+    const unsigned size = core->thumb() ? 2 : 4;
+    if (!core_port->debug_read(pc, bytes, size)) return false;
+    for (unsigned i = 0; i < size; ++i) instruction |= uint32_t{bytes[i]} << (8 * i);
+    if (!iss::Semihosting::is_call(instruction, core->thumb())) return false;
+    memory->flush();
+    core->set_reg(0, semihosting->serve(core->reg(0), core->reg(1)));
+    return true;
+  });
+  arm.on_exception([memory = &host_memory](iss::Exception exception, uint32_t pc) {
+    const char* fault = iss::fault_name(exception);
+    if (fault == nullptr) return;  // SWI and interrupts go to the program's vectors
+    memory->flush_console();
+    std::string text = std::string(fault) + " at pc " + iss::address_text(pc);
+    if (exception == iss::Exception::data_abort) text += ", address " + iss::address_text(memory->fault_address());
+    throw iss::ProgramFault(exception, text + " (the program has no handler: the ISS launcher stops it)");
+  });
+}
+
 }  // namespace
 
 bool is_elf_app(const std::string& name) {
@@ -608,26 +637,7 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   semihosting.warn = warn;
   offer_environment(semihosting, env, path, builtin_app);
 
-  core.on_swi([&](uint32_t pc) {
-    uint32_t instruction = 0;
-    uint8_t bytes[4] = {};
-    const unsigned size = core.thumb() ? 2 : 4;
-    if (!core_port.debug_read(pc, bytes, size)) return false;
-    for (unsigned i = 0; i < size; ++i) instruction |= uint32_t{bytes[i]} << (8 * i);
-    if (!iss::Semihosting::is_call(instruction, core.thumb())) return false;
-    memory.flush();
-    core.set_reg(0, semihosting.serve(core.reg(0), core.reg(1)));
-    return true;
-  });
-  core.on_exception([&](iss::Exception exception, uint32_t pc) {
-    const char* fault = iss::fault_name(exception);
-    if (fault == nullptr) return;  // SWI and interrupts go to the program's vectors
-    memory.flush_console();
-    std::string text = std::string(fault) + " at pc " + iss::address_text(pc);
-    if (exception == iss::Exception::data_abort) text += ", address " + iss::address_text(memory.fault_address());
-    // The loop's handler below names the file.
-    throw iss::ProgramFault(exception, text + " (the program has no handler: the ISS launcher stops it)");
-  });
+  attach_hooks(core, core_port, memory, semihosting);
   const StatisticsPublisher publisher(core_port, [&] {
     end_run();
     return program_statistics(core, timing, profile, profiling);
@@ -649,25 +659,30 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   // (its cycles, the trace, the interrupt lines), for GDB's single steps
   // and the run's blocks (ArmCore::run) alike. Inline: as calls (GCC's
   // choice, each being used twice) the run took 8% more CPU time.
-  const auto before = [&]() __attribute__((always_inline)) {
-    if (instruction_limit != 0 && core.instructions() == instruction_limit)
-      runaway(memory, path, instruction_limit, core.reg(15));
+  // `watching` (std::true_type or std::false_type): whether the checks that
+  // are off unless asked for (an instruction limit, the program's trace)
+  // are compiled in. The run's loop is made twice; the one without them
+  // runs unless one is asked for (`watched`).
+  const bool watched = tracing || instruction_limit != 0;
+  const auto before = [&](auto watching) __attribute__((always_inline)) {
+    if constexpr (decltype(watching)::value)
+      if (instruction_limit != 0 && core.instructions() == instruction_limit)
+        runaway(memory, path, instruction_limit, core.reg(15));
     if (!profile.holds(core.reg(15))) {
       end_run();
       entry = &profile.at(core.reg(15));
       memory.set_profile_entry(entry);
     }
   };
-  const auto after = [&]() __attribute__((always_inline)) {
+  const auto after = [&](auto watching) __attribute__((always_inline)) {
     // Its cycles beyond its host accesses' issue cycles (charged by the host).
-    const unsigned cycles = timing.step(core.last_step());
-    const uint64_t charged = memory.take_host_charged();
-    memory.charge(cycles > charged ? cycles - charged : 0);
-    if (tracing && profile.last_index() != traced_function) {
-      memory.flush();
-      traced_function = profile.last_index();
-      core_port.trace_program(core.reg(15), traced_function, core.cpsr());
-    }
+    memory.charge_instruction(timing.step(core.last_step()));
+    if constexpr (decltype(watching)::value)
+      if (tracing && profile.last_index() != traced_function) {
+        memory.flush();
+        traced_function = profile.last_index();
+        core_port.trace_program(core.reg(15), traced_function, core.cpsr());
+      }
     if (memory.pending() >= CHARGE_BATCH) {
       memory.flush();
       core.set_irq(core_port.irq_asserted());
@@ -675,9 +690,18 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
     }
   };
   const auto step = [&] {
-    before();
+    before(std::true_type{});
     core.step();
-    after();
+    after(std::true_type{});
+  };
+  const auto run_blocks = [&](auto watching) {
+    before(watching);
+    core.run([&]() __attribute__((always_inline)) {
+      after(watching);
+      if (ended()) return false;
+      before(watching);
+      return true;
+    });
   };
   try {
     // GDB (soc_sim --gdb) first, until it leaves or the program exits: it
@@ -689,13 +713,10 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
       if (end == iss::GdbServer::End::disconnected) warn("GDB went away without detaching; the program runs on");
     }
     if (!ended()) {
-      before();
-      core.run([&]() __attribute__((always_inline)) {
-        after();
-        if (ended()) return false;
-        before();
-        return true;
-      });
+      if (watched)
+        run_blocks(std::true_type{});
+      else
+        run_blocks(std::false_type{});
     }
   } catch (const iss::IssError& error) {
     memory.flush_console();
