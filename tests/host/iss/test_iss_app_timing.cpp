@@ -13,10 +13,12 @@
 // test_iss_timing.cpp; this checks the accounting around them.
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "config/config.h"
 #include "host/host_core.h"
 #include "host/iss/arm922t_timing.h"
 #include "host/iss/bare_machine.h"
@@ -67,12 +69,22 @@ struct LauncherFigures {
 };
 
 // What the launcher charged the host for the program, and the fills it asked for.
-LauncherFigures launcher_figures(const std::string& path) {
+// `instruction_limit` (0: none) makes the launcher run its loop with the
+// checks that are off unless asked for (iss_launcher.cpp, `watched`).
+LauncherFigures launcher_figures(const std::string& path, uint64_t instruction_limit = 0) {
   RecordingHost host(1u << 20);
   RecordingCore core(host, 1u << 20);  // fetches read the memory directly, as in the SoC
   tessera::AppEnvironment env;
   env.host = &host;
   env.memory_bytes = 1u << 20;
+  tessera::Config config({{"test",
+                           {tessera::param::integer("host.iss_instruction_limit", 0, 0, 1e18, "instructions",
+                                                    "instructions after which a program is stopped")},
+                           {}}});
+  if (instruction_limit != 0) {
+    config.set("host.iss_instruction_limit", instruction_limit, "test");
+    env.config = &config;
+  }
   EXPECT_EQ(tessera::run_elf_app(env, {core}, path), 0) << path;
   uint64_t computed = 0;
   for (int op = 0; op < static_cast<int>(tessera::Op::count_); ++op)
@@ -97,6 +109,27 @@ TEST(IssAppTiming, ThumbProgramIsChargedTheTimingLayersCycles) {
   const LauncherFigures charged = launcher_figures(g_thumb_elf);
   EXPECT_EQ(charged.cycles, expected.cycles_without_fills);
   EXPECT_EQ(charged.fetches, expected.fills);
+}
+
+// The loop with the instruction limit's check (a limit the program stays
+// below) charges the same cycles as the one without it.
+TEST(IssAppTiming, CheckedLoopIsChargedTheSameCycles) {
+  for (const std::string* path : {&g_arm_elf, &g_thumb_elf}) {
+    const BareFigures expected = bare_figures(*path);
+    const LauncherFigures charged = launcher_figures(*path, 1'000'000'000);
+    EXPECT_EQ(charged.cycles, expected.cycles_without_fills) << *path;
+    EXPECT_EQ(charged.fetches, expected.fills) << *path;
+  }
+}
+
+// A limit the program reaches stops it with an error naming the limit.
+TEST(IssAppTiming, CheckedLoopStopsAtTheLimit) {
+  try {
+    launcher_figures(g_arm_elf, 5000);
+    FAIL() << "the program ran past host.iss_instruction_limit=5000";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("host.iss_instruction_limit=5000"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace
