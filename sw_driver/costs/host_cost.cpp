@@ -93,6 +93,14 @@ std::vector<std::pair<std::string, double>> take_cost_units() {
   return figures;
 }
 
+uint64_t units_since_taken(HostCost cost) {
+  const auto index = static_cast<size_t>(cost);
+  if (index >= HOST_COST_COUNT) throw std::invalid_argument("host cost: no such row");
+  uint64_t units = 0;
+  for (unsigned b = 0; b < PHASE_BUCKETS; ++b) units += meter().units[b][index];
+  return units;
+}
+
 #endif
 
 }  // namespace tessera::costs

@@ -60,6 +60,9 @@ inline void reset_cost_meter() {}
 inline std::vector<std::pair<std::string, double>> take_cost_units() {
   return {};
 }
+inline uint64_t units_since_taken(HostCost /*cost*/) {
+  return 0;
+}
 
 #else
 
@@ -77,6 +80,9 @@ void reset_cost_meter();
 // units_<bucket name>_<row name> (COST_BUCKET_NAMES; rows with none are
 // left out).
 std::vector<std::pair<std::string, double>> take_cost_units();
+// The units of `cost` charged since the last take_cost_units (natively: in
+// a GL frame, since its swap), over the phase buckets; 0 on the ISS.
+uint64_t units_since_taken(HostCost cost);
 
 #endif
 

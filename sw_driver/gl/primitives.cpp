@@ -198,6 +198,9 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
 void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
   if (!m_vertex_array.enabled) return;  // nothing to draw without positions
   const PhaseScope phase(Phase::geometry);
+  // A frame's first draw costs the ISS more than the later ones
+  // (docs/calibration.md, "A frame's first draw"); on the ISS both are nothing.
+  if (costs::units_since_taken(costs::HostCost::gl_draw) == 0) charge(costs::HostCost::gl_draw_first);
   charge(costs::HostCost::gl_draw);
   fetch_and_transform(indices, indexed, m_vertices);
   enabled_user_planes();

@@ -476,6 +476,31 @@ TEST_F(GlApi, CollinearTrianglesReachNoBackEnd) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// A frame's first draw call is charged gl_draw_first beside gl_draw, the
+// later ones gl_draw alone; once the frame's units are taken (at the swap),
+// the next draw is a frame's first again (docs/calibration.md, "A frame's
+// first draw").
+TEST_F(GlApi, OnlyAFramesFirstDrawIsChargedAsFirst) {
+  const float triangle[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, triangle);
+  tessera::test::take_cost_units();
+  for (int draw = 0; draw < 3; ++draw) glDrawArrays(GL_TRIANGLES, 0, 3);
+  std::map<std::string, uint64_t> units = tessera::test::take_cost_units();
+  EXPECT_EQ(units["gl_draw"], 3u);
+  EXPECT_EQ(units["gl_draw_first"], 1u);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  units = tessera::test::take_cost_units();
+  EXPECT_EQ(units["gl_draw"], 1u);
+  EXPECT_EQ(units["gl_draw_first"], 1u);
+  // A call that draws nothing (no vertex array) charges neither.
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  units = tessera::test::take_cost_units();
+  EXPECT_EQ(units["gl_draw"], 0u);
+  EXPECT_EQ(units["gl_draw_first"], 0u);
+}
+
 // glDrawElements transforms each distinct vertex of a call once (the
 // post-transform vertex cache) and charges the host for those alone, and
 // draws exactly what the same triangles drawn from an unindexed array draw.
