@@ -18,9 +18,9 @@ void Context::gen_buffers(GLsizei n, GLuint* names) {
   charge_call();
   if (n < 0) return error(GL_INVALID_VALUE);
   for (GLsizei i = 0; i < n; ++i) {
-    while (m_buffers.count(m_next_buffer)) ++m_next_buffer;
-    names[i] = m_next_buffer;
-    m_buffers[m_next_buffer++] = BufferObject{};
+    while (m_buffer.objects.count(m_buffer.next_name)) ++m_buffer.next_name;
+    names[i] = m_buffer.next_name;
+    m_buffer.objects[m_buffer.next_name++] = BufferObject{};
   }
 }
 
@@ -28,22 +28,22 @@ void Context::delete_buffers(GLsizei n, const GLuint* names) {
   charge_call();
   if (n < 0) return error(GL_INVALID_VALUE);
   for (GLsizei i = 0; i < n; ++i) {
-    m_buffers.erase(names[i]);
-    if (m_array_buffer == names[i]) m_array_buffer = 0;
-    if (m_element_buffer == names[i]) m_element_buffer = 0;
+    m_buffer.objects.erase(names[i]);
+    if (m_buffer.array == names[i]) m_buffer.array = 0;
+    if (m_buffer.element == names[i]) m_buffer.element = 0;
   }
 }
 
 void Context::bind_buffer(GLenum target, GLuint name) {
   charge_call();
   if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
-  if (name != 0 && !m_buffers.count(name)) m_buffers[name] = BufferObject{};
-  (target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer) = name;
+  if (name != 0 && !m_buffer.objects.count(name)) m_buffer.objects[name] = BufferObject{};
+  (target == GL_ARRAY_BUFFER ? m_buffer.array : m_buffer.element) = name;
 }
 
 bool Context::is_buffer(GLuint name) {
   charge_call();
-  return name != 0 && m_buffers.count(name) != 0;
+  return name != 0 && m_buffer.objects.count(name) != 0;
 }
 
 void Context::buffer_data(GLenum target, GLsizeiptr size, const void* data, GLenum usage) {
@@ -51,9 +51,9 @@ void Context::buffer_data(GLenum target, GLsizeiptr size, const void* data, GLen
   if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
   if (usage != GL_STATIC_DRAW && usage != GL_DYNAMIC_DRAW) return error(GL_INVALID_ENUM);
   if (size < 0) return error(GL_INVALID_VALUE);
-  const GLuint name = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  const GLuint name = target == GL_ARRAY_BUFFER ? m_buffer.array : m_buffer.element;
   if (name == 0) return error(GL_INVALID_OPERATION);
-  BufferObject& b = m_buffers[name];
+  BufferObject& b = m_buffer.objects[name];
   b.usage = usage;
   b.data.assign(static_cast<size_t>(size), 0);
   if (data) std::memcpy(b.data.data(), data, static_cast<size_t>(size));
@@ -63,9 +63,9 @@ void Context::buffer_data(GLenum target, GLsizeiptr size, const void* data, GLen
 void Context::buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, const void* data) {
   charge_call();
   if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
-  const GLuint name = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  const GLuint name = target == GL_ARRAY_BUFFER ? m_buffer.array : m_buffer.element;
   if (name == 0) return error(GL_INVALID_OPERATION);
-  BufferObject& b = m_buffers[name];
+  BufferObject& b = m_buffer.objects[name];
   if (offset < 0 || size < 0 || static_cast<size_t>(offset) > b.data.size() ||
       static_cast<size_t>(size) > b.data.size() - static_cast<size_t>(offset))
     return error(GL_INVALID_VALUE);
@@ -75,9 +75,9 @@ void Context::buffer_sub_data(GLenum target, GLintptr offset, GLsizeiptr size, c
 void Context::get_buffer_parameter(GLenum target, GLenum name, GLint* value) {
   charge_call();
   if (target != GL_ARRAY_BUFFER && target != GL_ELEMENT_ARRAY_BUFFER) return error(GL_INVALID_ENUM);
-  const GLuint buffer = target == GL_ARRAY_BUFFER ? m_array_buffer : m_element_buffer;
+  const GLuint buffer = target == GL_ARRAY_BUFFER ? m_buffer.array : m_buffer.element;
   if (buffer == 0) return error(GL_INVALID_OPERATION);
-  const BufferObject& b = m_buffers[buffer];
+  const BufferObject& b = m_buffer.objects[buffer];
   switch (name) {
     case GL_BUFFER_SIZE: *value = static_cast<GLint>(b.data.size()); break;
     case GL_BUFFER_USAGE: *value = static_cast<GLint>(b.usage); break;

@@ -32,22 +32,22 @@ Context::Context(HostApi& host, Renderer& renderer, ActivityCounters* counters, 
       m_renderer(&renderer),
       // The configuration refuses other counts (driver.texture_units); a
       // direct caller's is brought into range.
-      m_texture_units(std::clamp(texture_units, 1u, MAX_TEXTURE_UNITS)) {
+      m_texture(std::clamp(texture_units, 1u, MAX_TEXTURE_UNITS)) {
   if (counters) {
-    m_cache_hits = &counters->counter("vertex_cache.hits",
-                                      "glDrawElements indices whose vertex was in the post-transform vertex cache");
-    m_cache_misses = &counters->counter("vertex_cache.misses",
-                                        "glDrawElements indices whose vertex had to be fetched and transformed");
-    m_vertices_transformed = &counters->counter(
+    m_counters.cache_hits = &counters->counter(
+        "vertex_cache.hits", "glDrawElements indices whose vertex was in the post-transform vertex cache");
+    m_counters.cache_misses = &counters->counter(
+        "vertex_cache.misses", "glDrawElements indices whose vertex had to be fetched and transformed");
+    m_counters.vertices_transformed = &counters->counter(
         "vertices_transformed", "vertices fetched, transformed and lit (cache misses and glDrawArrays vertices)");
   }
   m_viewport.width = static_cast<int>(m_renderer->width());
   m_viewport.height = static_cast<int>(m_renderer->height());
   m_raster.scissor_width = m_viewport.width;
   m_raster.scissor_height = m_viewport.height;
-  m_lighting_model.lights.resize(MAX_LIGHTS);
-  m_lighting_model.lights[0].diffuse = glm::vec4(1);
-  m_lighting_model.lights[0].specular = glm::vec4(1);
+  m_lighting.model.lights.resize(MAX_LIGHTS);
+  m_lighting.model.lights[0].diffuse = glm::vec4(1);
+  m_lighting.model.lights[0].specular = glm::vec4(1);
 }
 
 void Context::error(GLenum code) {

@@ -168,11 +168,11 @@ class Context {
   void tex_coord(GLenum unit, float s, float t, float r, float q);
   void array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer, bool size_ok,
                      bool type_ok);
-  ArrayPointer& vertex_array() { return m_vertex_array; }
-  ArrayPointer& color_array() { return m_color_array; }
-  ArrayPointer& normal_array() { return m_normal_array; }
+  ArrayPointer& vertex_array() { return m_attributes.vertex_array; }
+  ArrayPointer& color_array() { return m_attributes.color_array; }
+  ArrayPointer& normal_array() { return m_attributes.normal_array; }
   ArrayPointer& texcoord_array() { return client_unit().texcoord_array; }
-  ArrayPointer& point_size_array() { return m_point_size_array; }
+  ArrayPointer& point_size_array() { return m_attributes.point_size_array; }
   void active_texture(GLenum unit, bool client);
 
   // Lighting
@@ -242,7 +242,7 @@ class Context {
   // The point's size after the point-size array or glPointSize, distance
   // attenuation and clamping (GL ES 1.1 section 3.3).
   float derived_point_size(uint32_t index, const glm::vec4& eye);
-  bool two_sided_lighting() const { return m_lighting && m_two_side; }
+  bool two_sided_lighting() const { return m_enabled.lighting && m_lighting.two_side; }
   void emit_quad(const glm::vec2 corners[4], const Vertex& source, const glm::vec2* tex);
   // Adds the polygon offset to the window depth of `screen` (the clipped
   // `polygon`'s vertices); false if a vertex cannot be placed.
@@ -255,8 +255,8 @@ class Context {
   glm::vec4 read_attribute(const ArrayPointer& array, uint32_t index, const glm::vec4& defaults,
                            bool normalized = false);
   TextureObject* bound_texture();
-  TextureUnitState& active_unit() { return m_units[m_active_texture - GL_TEXTURE0]; }
-  TextureUnitState& client_unit() { return m_units[m_client_active_texture - GL_TEXTURE0]; }
+  TextureUnitState& active_unit() { return m_texture.units[m_attributes.active_texture - GL_TEXTURE0]; }
+  TextureUnitState& client_unit() { return m_texture.units[m_attributes.client_active_texture - GL_TEXTURE0]; }
   // Whether unit u draws: enabled, with a defined texture bound.
   bool unit_textured(unsigned u) const;
   // Level `level` of the bound texture as `width` x `height` RGBA8 words
@@ -266,79 +266,144 @@ class Context {
   // GL_GENERATE_MIPMAP: levels 1.. from level 0 by the box filter.
   void generate_mipmaps(TextureObject* object);
 
+  // The state, grouped by area. Each group is written by the file named
+  // beside it (the others read it). The groups, and the fields in each, lie
+  // in the order the flat fields had before they were grouped, so that a
+  // context's layout in the ARM program stayed the same
+  // (sw_driver/gl/README.md, "The context's state").
+
+  // glEnable / glDisable switches, GL_CLIP_PLANEi included (state.cpp).
+  struct EnableState {
+    bool depth_test = false, blend = false, alpha_test = false, stencil_test = false;
+    bool scissor_test = false, logic_op = false, dither = true;
+    bool cull = false, lighting = false, normalize = false, rescale_normal = false;
+    bool color_material = false, fog = false, multisample = true, polygon_offset_fill = false;
+    bool sample_alpha_to_coverage = false, sample_alpha_to_one = false, sample_coverage = false;
+    bool point_smooth = false, line_smooth = false, polygon_smooth = false;
+    std::array<bool, MAX_USER_CLIP_PLANES> clip_plane{};
+  };
+  // User clip planes in eye coordinates (glClipPlane: state.cpp), and the
+  // enabled ones gathered for a draw (primitives.cpp).
+  struct ClipPlaneState {
+    std::array<glm::vec4, MAX_USER_CLIP_PLANES> planes{};
+    std::vector<glm::vec4> enabled_user_planes;  // scratch of enabled_user_planes()
+  };
+  // Face culling and shading (glCullFace, glFrontFace, glShadeModel: state.cpp).
+  struct PrimitiveState {
+    GLenum cull_mode = GL_BACK, front_face = GL_CCW, shade_model = GL_SMOOTH;
+  };
+  // glClearColor, glClearDepth, glClearStencil (state.cpp).
+  struct ClearState {
+    float color[4] = {0, 0, 0, 0};
+    float depth = 1;
+    GLint stencil = 0;
+  };
+  // The stencil and alpha tests' reference values as the application gave
+  // them (glStencilFunc, glAlphaFunc: state.cpp); RasterState holds them as
+  // the renderers use them.
+  struct ReferenceState {
+    GLint stencil = 0;
+    float alpha = 0;
+  };
+  // Points, lines and polygon offset (glPointSize, glLineWidth,
+  // glPointParameter, OES_point_sprite, glPolygonOffset: state.cpp).
+  struct RasterizationState {
+    float point_size = 1, line_width = 1;
+    // Points: OES_point_sprite, glPointParameter (ES 1.1 table 6.10's initial values).
+    bool point_sprite = false;
+    float point_size_min = 0, point_size_max = MAX_POINT_SIZE, point_fade_threshold = 1;
+    glm::vec3 point_distance_attenuation{1, 0, 0};
+    float polygon_offset[2] = {0, 0};
+  };
+  // glPixelStorei (state.cpp).
+  struct PixelStoreState {
+    GLint pack_alignment = 4, unpack_alignment = 4;
+  };
+  // glSampleCoverage (state.cpp).
+  struct CoverageState {
+    float value = 1;
+    bool invert = false;
+  };
+  // glFog (state.cpp).
+  struct FogState {
+    GLenum mode = GL_EXP;
+    float density = 1, start = 0, end = 1, color[4] = {0, 0, 0, 0};
+  };
+  // The matrix stacks (matrices.cpp).
+  struct TransformState {
+    GLenum matrix_mode = GL_MODELVIEW;
+    std::vector<glm::mat4> modelview{glm::mat4(1)}, projection{glm::mat4(1)};
+  };
+  // Current vertex attributes (glColor, glNormal), the vertex arrays and
+  // the active units (glActiveTexture, glClientActiveTexture):
+  // vertex_arrays.cpp; the arrays' switches (glEnableClientState): state.cpp.
+  struct AttributeState {
+    glm::vec4 color{1, 1, 1, 1};
+    glm::vec3 normal{0, 0, 1};
+    ArrayPointer vertex_array, color_array, normal_array;
+    ArrayPointer point_size_array{false, 1, GL_FLOAT, 0, nullptr, 0};  // OES_point_size_array
+    GLenum active_texture = GL_TEXTURE0, client_active_texture = GL_TEXTURE0;
+  };
+  // glLight, glLightModel, glMaterial (lighting.cpp).
+  struct LightingState {
+    LightingModel model;
+    Material front_material;
+    bool two_side = false;
+  };
+  // Texture objects and units (textures.cpp; a unit's current coordinates,
+  // glMultiTexCoord: vertex_arrays.cpp).
+  struct TextureState {
+    explicit TextureState(unsigned units) : offered_units(units) {}
+    std::map<GLuint, TextureObject> objects;
+    GLuint next_name = 1;
+    // Texture units: offered_units of them are offered, the rest stay off.
+    unsigned offered_units;
+    std::array<TextureUnitState, MAX_TEXTURE_UNITS> units;
+  };
+  // Buffer objects and their bindings (buffers.cpp).
+  struct BufferState {
+    std::map<GLuint, BufferObject> objects;
+    GLuint next_name = 1;
+    GLuint array = 0, element = 0;
+  };
+  // Driver statistics, null without counters (context.cpp).
+  struct DriverCounters {
+    ActivityCounter* cache_hits = nullptr;
+    ActivityCounter* cache_misses = nullptr;
+    ActivityCounter* vertices_transformed = nullptr;
+  };
+
   HostApi& m_host;
   Renderer* m_renderer;
   GLenum m_error = GL_NO_ERROR;
 
-  // Fragment and framebuffer state
-  RasterState m_raster;
-  bool m_depth_test = false, m_blend = false, m_alpha_test = false, m_stencil_test = false;
-  bool m_scissor_test = false, m_logic_op = false, m_dither = true;
-  bool m_cull = false, m_lighting = false, m_normalize = false, m_rescale_normal = false;
-  bool m_color_material = false, m_fog = false, m_multisample = true, m_polygon_offset_fill = false;
-  bool m_sample_alpha_to_coverage = false, m_sample_alpha_to_one = false, m_sample_coverage = false;
-  bool m_point_smooth = false, m_line_smooth = false, m_polygon_smooth = false;
-  std::array<bool, MAX_USER_CLIP_PLANES> m_clip_plane_enabled{};
-  std::array<glm::vec4, MAX_USER_CLIP_PLANES> m_clip_planes{};
-  std::vector<glm::vec4> m_enabled_user_planes;  // scratch of enabled_user_planes()
-  GLenum m_cull_mode = GL_BACK, m_front_face = GL_CCW, m_shade_model = GL_SMOOTH;
-  float m_clear_color[4] = {0, 0, 0, 0};
-  float m_clear_depth = 1;
-  GLint m_clear_stencil = 0;
+  RasterState m_raster;  // fragment and framebuffer state as the renderers take it (state.cpp)
+  EnableState m_enabled;
+  ClipPlaneState m_clip;
+  PrimitiveState m_primitive;
+  ClearState m_clear;
   Viewport m_viewport;
-  GLint m_stencil_ref = 0;
-  float m_alpha_ref = 0;
-  float m_point_size = 1, m_line_width = 1;
-  // Points: OES_point_sprite, glPointParameter (ES 1.1 table 6.10's initial values).
-  bool m_point_sprite = false;
-  float m_point_size_min = 0, m_point_size_max = MAX_POINT_SIZE, m_point_fade_threshold = 1;
-  glm::vec3 m_point_distance_attenuation{1, 0, 0};
-  float m_polygon_offset[2] = {0, 0};
-  GLint m_pack_alignment = 4, m_unpack_alignment = 4;
+  ReferenceState m_references;
+  RasterizationState m_rasterization;
+  PixelStoreState m_pixel_store;
   std::map<GLenum, GLenum> m_hints;
-  float m_sample_coverage_value = 1;
-  bool m_sample_coverage_invert = false;
-  GLenum m_fog_mode = GL_EXP;
-  float m_fog_density = 1, m_fog_start = 0, m_fog_end = 1, m_fog_color[4] = {0, 0, 0, 0};
-
-  // Transform state
-  GLenum m_matrix_mode = GL_MODELVIEW;
-  std::vector<glm::mat4> m_modelview{glm::mat4(1)}, m_projection{glm::mat4(1)};
-
-  // Current vertex attributes and arrays
-  glm::vec4 m_color{1, 1, 1, 1};
-  glm::vec3 m_normal{0, 0, 1};
-  ArrayPointer m_vertex_array, m_color_array, m_normal_array;
-  ArrayPointer m_point_size_array{false, 1, GL_FLOAT, 0, nullptr, 0};  // OES_point_size_array
-  GLenum m_active_texture = GL_TEXTURE0, m_client_active_texture = GL_TEXTURE0;
-
-  // Lighting
-  LightingModel m_lighting_model;
-  Material m_front_material;
-  bool m_two_side = false;
-
-  // Textures and buffers
-  std::map<GLuint, TextureObject> m_textures;
-  GLuint m_next_texture = 1;
-  // Texture units: m_texture_units of them are offered, the rest stay off.
-  unsigned m_texture_units = DEFAULT_TEXTURE_UNITS;
-  std::array<TextureUnitState, MAX_TEXTURE_UNITS> m_units;
-  std::map<GLuint, BufferObject> m_buffers;
-  GLuint m_next_buffer = 1;
-  GLuint m_array_buffer = 0, m_element_buffer = 0;
-
+  CoverageState m_coverage;
+  FogState m_fog;
+  TransformState m_transform;
+  AttributeState m_attributes;
+  LightingState m_lighting;
+  TextureState m_texture;
+  BufferState m_buffer;
+  // Not state: a draw's working space, kept so that a triangle allocates
+  // nothing (the batch for the renderer, emit_triangle's polygon before and
+  // after clipping and in screen space: primitives.cpp; the transformed
+  // vertices and their cache: vertex_fetch.cpp).
   std::vector<Triangle> m_batch;
-  // Scratch space of emit_triangle (its polygon before and after clipping,
-  // and in screen space), kept so that a triangle allocates nothing.
   std::vector<ClipVertex> m_scratch_polygon;
   std::vector<ScreenVertex> m_scratch_screen;
   std::vector<Vertex> m_vertices;
   VertexCache<Vertex> m_vertex_cache;
-
-  // Driver statistics, null without counters.
-  ActivityCounter* m_cache_hits = nullptr;
-  ActivityCounter* m_cache_misses = nullptr;
-  ActivityCounter* m_vertices_transformed = nullptr;
+  DriverCounters m_counters;
 };
 
 // The current context (eglMakeCurrent), or nullptr.

@@ -17,7 +17,7 @@ namespace tessera::gl {
 void Context::light(GLenum which, GLenum name, const float* v, int count) {
   charge_call();
   if (which < GL_LIGHT0 || which >= GL_LIGHT0 + MAX_LIGHTS) return error(GL_INVALID_ENUM);
-  Light& l = m_lighting_model.lights[which - GL_LIGHT0];
+  Light& l = m_lighting.model.lights[which - GL_LIGHT0];
   auto need = [&](int n) {
     if (count < n) error(GL_INVALID_ENUM);
     return count >= n;
@@ -33,10 +33,10 @@ void Context::light(GLenum which, GLenum name, const float* v, int count) {
       if (need(4)) l.specular = {v[0], v[1], v[2], v[3]};
       break;
     case GL_POSITION:
-      if (need(4)) l.position = m_modelview.back() * glm::vec4(v[0], v[1], v[2], v[3]);
+      if (need(4)) l.position = m_transform.modelview.back() * glm::vec4(v[0], v[1], v[2], v[3]);
       break;
     case GL_SPOT_DIRECTION:
-      if (need(3)) l.spot_direction = glm::mat3(m_modelview.back()) * glm::vec3(v[0], v[1], v[2]);
+      if (need(3)) l.spot_direction = glm::mat3(m_transform.modelview.back()) * glm::vec3(v[0], v[1], v[2]);
       break;
     // The range checks are written to fail for NaN, which no range holds
     // (a NaN compares false both ways, and passed "< 0 || > 128").
@@ -63,7 +63,7 @@ void Context::light(GLenum which, GLenum name, const float* v, int count) {
 void Context::get_light(GLenum which, GLenum name, float* v) {
   charge_call();
   if (which < GL_LIGHT0 || which >= GL_LIGHT0 + MAX_LIGHTS) return error(GL_INVALID_ENUM);
-  const Light& l = m_lighting_model.lights[which - GL_LIGHT0];
+  const Light& l = m_lighting.model.lights[which - GL_LIGHT0];
   auto put = [&](const glm::vec4& x, int n) {
     for (int i = 0; i < n; ++i) v[i] = x[i];
   };
@@ -87,9 +87,9 @@ void Context::light_model(GLenum name, const float* v, int count) {
   switch (name) {
     case GL_LIGHT_MODEL_AMBIENT:
       if (count < 4) return error(GL_INVALID_ENUM);
-      m_lighting_model.ambient = {v[0], v[1], v[2], v[3]};
+      m_lighting.model.ambient = {v[0], v[1], v[2], v[3]};
       break;
-    case GL_LIGHT_MODEL_TWO_SIDE: m_two_side = v[0] != 0; break;
+    case GL_LIGHT_MODEL_TWO_SIDE: m_lighting.two_side = v[0] != 0; break;
     default: error(GL_INVALID_ENUM);
   }
 }
@@ -98,7 +98,7 @@ void Context::material(GLenum face, GLenum name, const float* v, int count) {
   charge_call();
   // ES 1.1 accepts only GL_FRONT_AND_BACK.
   if (face != GL_FRONT_AND_BACK) return error(GL_INVALID_ENUM);
-  Material& m = m_front_material;
+  Material& m = m_lighting.front_material;
   auto rgba = [&](glm::vec4& target) {
     if (count < 4) return error(GL_INVALID_ENUM);
     target = {v[0], v[1], v[2], v[3]};
@@ -120,7 +120,7 @@ void Context::material(GLenum face, GLenum name, const float* v, int count) {
 void Context::get_material(GLenum face, GLenum name, float* v) {
   charge_call();
   if (face != GL_FRONT && face != GL_BACK) return error(GL_INVALID_ENUM);
-  const Material& m = m_front_material;
+  const Material& m = m_lighting.front_material;
   auto put = [&](const glm::vec4& x) {
     for (int i = 0; i < 4; ++i) v[i] = x[i];
   };

@@ -17,14 +17,14 @@ namespace tessera::gl {
 void Context::matrix_mode(GLenum mode) {
   charge_call();
   if (mode != GL_MODELVIEW && mode != GL_PROJECTION && mode != GL_TEXTURE) return error(GL_INVALID_ENUM);
-  m_matrix_mode = mode;
+  m_transform.matrix_mode = mode;
 }
 
 glm::mat4& Context::current_matrix() {
-  switch (m_matrix_mode) {
-    case GL_PROJECTION: return m_projection.back();
+  switch (m_transform.matrix_mode) {
+    case GL_PROJECTION: return m_transform.projection.back();
     case GL_TEXTURE: return active_unit().matrix.back();
-    default: return m_modelview.back();
+    default: return m_transform.modelview.back();
   }
 }
 
@@ -41,21 +41,21 @@ void Context::mult_matrix(const glm::mat4& m) {
 
 void Context::push_matrix() {
   charge_call();
-  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
-                : m_matrix_mode == GL_TEXTURE  ? active_unit().matrix
-                                               : m_modelview;
-  const size_t limit = m_matrix_mode == GL_PROJECTION ? MAX_PROJECTION_DEPTH
-                       : m_matrix_mode == GL_TEXTURE  ? MAX_TEXTURE_DEPTH
-                                                      : MAX_MODELVIEW_DEPTH;
+  auto& stack = m_transform.matrix_mode == GL_PROJECTION ? m_transform.projection
+                : m_transform.matrix_mode == GL_TEXTURE  ? active_unit().matrix
+                                                         : m_transform.modelview;
+  const size_t limit = m_transform.matrix_mode == GL_PROJECTION ? MAX_PROJECTION_DEPTH
+                       : m_transform.matrix_mode == GL_TEXTURE  ? MAX_TEXTURE_DEPTH
+                                                                : MAX_MODELVIEW_DEPTH;
   if (stack.size() >= limit) return error(GL_STACK_OVERFLOW);
   stack.push_back(stack.back());
 }
 
 void Context::pop_matrix() {
   charge_call();
-  auto& stack = m_matrix_mode == GL_PROJECTION ? m_projection
-                : m_matrix_mode == GL_TEXTURE  ? active_unit().matrix
-                                               : m_modelview;
+  auto& stack = m_transform.matrix_mode == GL_PROJECTION ? m_transform.projection
+                : m_transform.matrix_mode == GL_TEXTURE  ? active_unit().matrix
+                                                         : m_transform.modelview;
   if (stack.size() <= 1) return error(GL_STACK_UNDERFLOW);
   stack.pop_back();
 }

@@ -32,7 +32,7 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     for (auto& v : polygon) v.back_color = *flat_back_color;
   // Points and lines met the user clip planes before they became triangles.
   static const std::vector<glm::vec4> no_planes;
-  const std::vector<glm::vec4>& user_planes = polygon_rules ? m_enabled_user_planes : no_planes;
+  const std::vector<glm::vec4>& user_planes = polygon_rules ? m_clip.enabled_user_planes : no_planes;
   bool inside = inside_view_volume(a.clip) && inside_view_volume(b.clip) && inside_view_volume(c.clip);
   if (!user_planes.empty()) {
     charge(costs::HostCost::gl_clip_plane_test, 3 * user_planes.size());
@@ -71,11 +71,12 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
     if (is_degenerate(window)) return;
   }
   if (area == 0) return;  // a thin polygon whose vertices snapped onto one line
-  const bool front = (area > 0) == (m_front_face == GL_CCW);
+  const bool front = (area > 0) == (m_primitive.front_face == GL_CCW);
   // Culling, two-sided lighting and polygon offset concern polygons only:
   // a point or a line is two triangles here, but neither faces anywhere.
   if (polygon_rules) {
-    if (m_cull && (m_cull_mode == GL_FRONT_AND_BACK || (m_cull_mode == GL_BACK) != front)) return;
+    if (m_enabled.cull && (m_primitive.cull_mode == GL_FRONT_AND_BACK || (m_primitive.cull_mode == GL_BACK) != front))
+      return;
     if (!front && two_sided_lighting()) {
       for (size_t i = 0; i < polygon.size(); ++i) {
         const glm::vec4& back = polygon[i].back_color;
@@ -84,7 +85,8 @@ void Context::emit_triangle(const Vertex& a, const Vertex& b, const Vertex& c, c
       }
       charge(costs::HostCost::gl_two_sided_vertex, polygon.size());
     }
-    if (m_polygon_offset_fill && (m_polygon_offset[0] != 0 || m_polygon_offset[1] != 0))
+    if (m_enabled.polygon_offset_fill &&
+        (m_rasterization.polygon_offset[0] != 0 || m_rasterization.polygon_offset[1] != 0))
       if (!apply_polygon_offset(polygon, screen)) return;
   }
   for (size_t i = 1; i + 1 < screen.size(); ++i) {
@@ -107,8 +109,8 @@ bool Context::apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::
     if (!to_window(polygon[i].position, m_viewport, &w)) return false;
     points[i] = {w.x, w.y, window_depth(polygon[i].position, m_viewport)};
   }
-  const float offset = polygon_depth_offset(depth_slope(points), m_polygon_offset[0], m_polygon_offset[1],
-                                            m_renderer->capabilities().depth_bits);
+  const float offset = polygon_depth_offset(depth_slope(points), m_rasterization.polygon_offset[0],
+                                            m_rasterization.polygon_offset[1], m_renderer->capabilities().depth_bits);
   for (size_t i = 0; i < polygon.size(); ++i) {
     ScreenVertex shifted;
     if (!to_screen(polygon[i], m_viewport, offset, &shifted)) return false;
@@ -119,16 +121,17 @@ bool Context::apply_polygon_offset(const std::vector<ClipVertex>& polygon, std::
 }
 
 const std::vector<glm::vec4>& Context::enabled_user_planes() {
-  m_enabled_user_planes.clear();
-  for (size_t i = 0; i < m_clip_planes.size(); ++i)
-    if (m_clip_plane_enabled[i]) m_enabled_user_planes.push_back(m_clip_planes[i]);
-  return m_enabled_user_planes;
+  m_clip.enabled_user_planes.clear();
+  for (size_t i = 0; i < m_clip.planes.size(); ++i)
+    if (m_enabled.clip_plane[i]) m_clip.enabled_user_planes.push_back(m_clip.planes[i]);
+  return m_clip.enabled_user_planes;
 }
 
 float Context::derived_point_size(uint32_t index, const glm::vec4& eye) {
-  float size = m_point_size;
-  if (m_point_size_array.enabled) size = read_attribute(m_point_size_array, index, {1, 0, 0, 1}).x;
-  const glm::vec3& a = m_point_distance_attenuation;
+  float size = m_rasterization.point_size;
+  if (m_attributes.point_size_array.enabled)
+    size = read_attribute(m_attributes.point_size_array, index, {1, 0, 0, 1}).x;
+  const glm::vec3& a = m_rasterization.point_distance_attenuation;
   if (a != glm::vec3(1, 0, 0)) {
     // d: the eye-coordinate distance from the eye, (0, 0, 0, 1).
     const float d = glm::length(glm::vec3(eye) / (eye.w != 0 ? eye.w : 1.0f));
@@ -137,32 +140,32 @@ float Context::derived_point_size(uint32_t index, const glm::vec4& eye) {
   }
   // Clamped to GL_POINT_SIZE_MIN/MAX, then to the sizes the driver draws.
   // A size that is not a number stays one, and the point is dropped.
-  size = std::min(std::max(size, m_point_size_min), m_point_size_max);
+  size = std::min(std::max(size, m_rasterization.point_size_min), m_rasterization.point_size_max);
   return std::min(std::max(size, MIN_POINT_SIZE), MAX_POINT_SIZE);
 }
 
 RasterState Context::raster_state() const {
   RasterState s = m_raster;
-  s.flat_shading = m_shade_model == GL_FLAT;
-  s.depth_test = m_depth_test;
-  s.alpha_test = m_alpha_test;
-  s.stencil_test = m_stencil_test;
-  s.blend = m_blend;
-  s.logic_op = m_logic_op;
-  s.scissor_test = m_scissor_test;
-  s.polygon_smooth = m_polygon_smooth;
+  s.flat_shading = m_primitive.shade_model == GL_FLAT;
+  s.depth_test = m_enabled.depth_test;
+  s.alpha_test = m_enabled.alpha_test;
+  s.stencil_test = m_enabled.stencil_test;
+  s.blend = m_enabled.blend;
+  s.logic_op = m_enabled.logic_op;
+  s.scissor_test = m_enabled.scissor_test;
+  s.polygon_smooth = m_enabled.polygon_smooth;
   for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u) {
     TextureUnit& unit = s.unit[u];
     unit.enabled = unit_textured(u);
-    if (unit.enabled) unit.tex = drawn_texture(m_textures.at(m_units[u].bound));
-    set_unit_environment(m_units[u], &unit);
+    if (unit.enabled) unit.tex = drawn_texture(m_texture.objects.at(m_texture.units[u].bound));
+    set_unit_environment(m_texture.units[u], &unit);
   }
-  s.fog = m_fog;
-  s.fog_mode = from_gl_enum<FogMode>(m_fog_mode).value_or(FogMode::exp);
-  s.fog_density = m_fog_density;
-  s.fog_start = m_fog_start;
-  s.fog_end = m_fog_end;
-  for (int i = 0; i < 4; ++i) s.fog_color[i] = to_unorm8(m_fog_color[i]);
+  s.fog = m_enabled.fog;
+  s.fog_mode = from_gl_enum<FogMode>(m_fog.mode).value_or(FogMode::exp);
+  s.fog_density = m_fog.density;
+  s.fog_start = m_fog.start;
+  s.fog_end = m_fog.end;
+  for (int i = 0; i < 4; ++i) s.fog_color[i] = to_unorm8(m_fog.color[i]);
   return s;
 }
 
@@ -189,14 +192,14 @@ void Context::emit_quad(const glm::vec2 corners[4], const Vertex& source, const 
     v[i].clip.position = {xn * p.w, yn * p.w, p.z, p.w};
     if (tex)
       for (unsigned u = 0; u < MAX_TEXTURE_UNITS; ++u)
-        if (m_units[u].coord_replace) v[i].clip.tex[u] = tex[i];
+        if (m_texture.units[u].coord_replace) v[i].clip.tex[u] = tex[i];
   }
   emit_triangle(v[0], v[1], v[2], nullptr, Primitive::point_or_line);
   emit_triangle(v[0], v[2], v[3], nullptr, Primitive::point_or_line);
 }
 
 void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool indexed) {
-  if (!m_vertex_array.enabled) return;  // nothing to draw without positions
+  if (!m_attributes.vertex_array.enabled) return;  // nothing to draw without positions
   const PhaseScope phase(Phase::geometry);
   // A frame's first draw costs the ISS more than the later ones
   // (docs/calibration.md, "A frame's first draw"); on the ISS both are nothing.
@@ -204,10 +207,10 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
   charge(costs::HostCost::gl_draw);
   fetch_and_transform(indices, indexed, m_vertices);
   enabled_user_planes();
-  const std::vector<glm::vec4>& user_planes = m_enabled_user_planes;
+  const std::vector<glm::vec4>& user_planes = m_clip.enabled_user_planes;
   const std::vector<Vertex>& v = m_vertices;
   const size_t n = v.size();
-  const bool flat = m_shade_model == GL_FLAT;
+  const bool flat = m_primitive.shade_model == GL_FLAT;
   auto triangle = [&](size_t a, size_t b, size_t c, size_t provoking) {
     const glm::vec4 color = v[provoking].clip.color, back_color = v[provoking].clip.back_color;
     emit_triangle(v[a], v[b], v[c], flat ? &color : nullptr, Primitive::polygon, flat ? &back_color : nullptr);
@@ -245,7 +248,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
     // drawn in, and by 1/8 pixel across it (up in x-major lines, right in
     // y-major ones), so that its pixels are those of GL's diamond-exit
     // rule at the ends.
-    const float half_width = m_line_width * 0.5f;
+    const float half_width = m_rasterization.line_width * 0.5f;
     const bool x_major = std::fabs(d.x) >= std::fabs(d.y);
     const glm::vec2 side = x_major ? glm::vec2(0, half_width) : glm::vec2(half_width, 0);
     constexpr float ACROSS = 0.125f, ALONG = 0.5f;
@@ -283,7 +286,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
       // 0 to 1 from the point's left to its right, t 0 to 1 from its top to
       // its bottom (y is up here), as the extension's formulas and Mesa give.
       static constexpr glm::vec2 SPRITE_TEX[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-      const glm::vec2* sprite_tex = m_point_sprite ? SPRITE_TEX : nullptr;
+      const glm::vec2* sprite_tex = m_rasterization.point_sprite ? SPRITE_TEX : nullptr;
       for (size_t i = 0; i < n; ++i) {
         if (!v[i].valid || !(v[i].clip.position.w > 0)) continue;
         // A point outside a user clip plane is discarded whole.
@@ -295,7 +298,7 @@ void Context::draw(GLenum mode, const std::vector<uint32_t>& indices, bool index
         if (!(size > 0)) continue;
         const glm::vec2 c = window(v[i]);
         float left = c.x - size * 0.5f, bottom = c.y - size * 0.5f;
-        if (!m_point_sprite) {
+        if (!m_rasterization.point_sprite) {
           // An aliased point (ES 1.1 section 3.3.1) is a square of whole
           // pixels on the pixel grid. Placed as Mesa's softpipe places it,
           // which is GL's rule (the square centred on the pixel centre or
@@ -345,8 +348,8 @@ void Context::draw_elements(GLenum mode, GLsizei count, GLenum type, const void*
   if (count < 0) return error(GL_INVALID_VALUE);
   const uint8_t* base = static_cast<const uint8_t*>(pointer);
   const size_t size = type == GL_UNSIGNED_BYTE ? 1 : 2;
-  if (m_element_buffer) {
-    const BufferObject& b = m_buffers[m_element_buffer];
+  if (m_buffer.element) {
+    const BufferObject& b = m_buffer.objects[m_buffer.element];
     const size_t offset = reinterpret_cast<size_t>(pointer);
     if (offset > b.data.size() || size * static_cast<size_t>(count) > b.data.size() - offset)
       return error(GL_INVALID_OPERATION);
@@ -379,7 +382,8 @@ void Context::read_pixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format,
   if (w == 0 || h == 0) return;
   flush_triangles();
   const size_t row = static_cast<size_t>(w) * 4;
-  const size_t stride = (row + m_pack_alignment - 1) / m_pack_alignment * m_pack_alignment;
+  const size_t stride =
+      (row + m_pixel_store.pack_alignment - 1) / m_pixel_store.pack_alignment * m_pixel_store.pack_alignment;
   // A rectangle reaching past INT_MAX (x = INT_MAX) lies outside any window,
   // where GL leaves the values undefined: they are 0, as the renderers give
   // for pixels outside, without handing the renderer an x + w that overflows.

@@ -135,7 +135,7 @@ void Context::get_floats(GLenum name, float* v) {
   };
   const PixelFormatInfo& format = pixel_format_info(m_renderer->color_format());
   switch (name) {
-    case GL_COLOR_CLEAR_VALUE: std::copy(m_clear_color, m_clear_color + 4, v); break;
+    case GL_COLOR_CLEAR_VALUE: std::copy(m_clear.color, m_clear.color + 4, v); break;
     case GL_VIEWPORT:
       v[0] = m_viewport.x, v[1] = m_viewport.y, v[2] = m_viewport.width, v[3] = m_viewport.height;
       break;
@@ -147,70 +147,70 @@ void Context::get_floats(GLenum name, float* v) {
       for (int i = 0; i < 4; ++i) v[i] = m_raster.color_mask[i];
       break;
     case GL_CURRENT_COLOR:
-      for (int i = 0; i < 4; ++i) v[i] = m_color[i];
+      for (int i = 0; i < 4; ++i) v[i] = m_attributes.color[i];
       break;
     case GL_CURRENT_TEXTURE_COORDS:
       for (int i = 0; i < 4; ++i) v[i] = active_unit().texcoord[i];
       break;
     case GL_CURRENT_NORMAL:
-      for (int i = 0; i < 3; ++i) v[i] = m_normal[i];
+      for (int i = 0; i < 3; ++i) v[i] = m_attributes.normal[i];
       break;
     case GL_LIGHT_MODEL_AMBIENT:
-      for (int i = 0; i < 4; ++i) v[i] = m_lighting_model.ambient[i];
+      for (int i = 0; i < 4; ++i) v[i] = m_lighting.model.ambient[i];
       break;
-    case GL_LIGHT_MODEL_TWO_SIDE: v[0] = m_two_side; break;
-    case GL_FOG_COLOR: std::copy(m_fog_color, m_fog_color + 4, v); break;
-    case GL_FOG_MODE: v[0] = static_cast<float>(m_fog_mode); break;
-    case GL_FOG_DENSITY: v[0] = m_fog_density; break;
-    case GL_FOG_START: v[0] = m_fog_start; break;
-    case GL_FOG_END: v[0] = m_fog_end; break;
+    case GL_LIGHT_MODEL_TWO_SIDE: v[0] = m_lighting.two_side; break;
+    case GL_FOG_COLOR: std::copy(m_fog.color, m_fog.color + 4, v); break;
+    case GL_FOG_MODE: v[0] = static_cast<float>(m_fog.mode); break;
+    case GL_FOG_DENSITY: v[0] = m_fog.density; break;
+    case GL_FOG_START: v[0] = m_fog.start; break;
+    case GL_FOG_END: v[0] = m_fog.end; break;
     case GL_DEPTH_RANGE: v[0] = m_viewport.near_depth, v[1] = m_viewport.far_depth; break;
     case GL_MAX_VIEWPORT_DIMS: v[0] = v[1] = static_cast<GLint>(MAX_SCREEN_SIZE); break;
     case GL_ALIASED_POINT_SIZE_RANGE:
     case GL_SMOOTH_POINT_SIZE_RANGE:
     case GL_ALIASED_LINE_WIDTH_RANGE:
     case GL_SMOOTH_LINE_WIDTH_RANGE: v[0] = MIN_POINT_SIZE, v[1] = MAX_POINT_SIZE; break;
-    case GL_MODELVIEW_MATRIX: mat(m_modelview.back()); break;
-    case GL_PROJECTION_MATRIX: mat(m_projection.back()); break;
+    case GL_MODELVIEW_MATRIX: mat(m_transform.modelview.back()); break;
+    case GL_PROJECTION_MATRIX: mat(m_transform.projection.back()); break;
     case GL_TEXTURE_MATRIX: mat(active_unit().matrix.back()); break;
-    case GL_DEPTH_CLEAR_VALUE: v[0] = m_clear_depth; break;
-    case GL_STENCIL_CLEAR_VALUE: v[0] = static_cast<float>(m_clear_stencil); break;
+    case GL_DEPTH_CLEAR_VALUE: v[0] = m_clear.depth; break;
+    case GL_STENCIL_CLEAR_VALUE: v[0] = static_cast<float>(m_clear.stencil); break;
     case GL_DEPTH_FUNC: v[0] = static_cast<float>(gl_value(m_raster.depth_func)); break;
     case GL_DEPTH_WRITEMASK: v[0] = m_raster.depth_write; break;
     case GL_ALPHA_TEST_FUNC: v[0] = static_cast<float>(gl_value(m_raster.alpha_func)); break;
-    case GL_ALPHA_TEST_REF: v[0] = m_alpha_ref; break;
+    case GL_ALPHA_TEST_REF: v[0] = m_references.alpha; break;
     case GL_STENCIL_FUNC: v[0] = static_cast<float>(gl_value(m_raster.stencil_func)); break;
-    case GL_STENCIL_REF: v[0] = static_cast<float>(m_stencil_ref); break;
+    case GL_STENCIL_REF: v[0] = static_cast<float>(m_references.stencil); break;
     case GL_STENCIL_VALUE_MASK: v[0] = m_raster.stencil_value_mask; break;
     case GL_STENCIL_WRITEMASK: v[0] = m_raster.stencil_write_mask; break;
-    case GL_SHADE_MODEL: v[0] = static_cast<float>(m_shade_model); break;
-    case GL_CULL_FACE_MODE: v[0] = static_cast<float>(m_cull_mode); break;
-    case GL_FRONT_FACE: v[0] = static_cast<float>(m_front_face); break;
-    case GL_MATRIX_MODE: v[0] = static_cast<float>(m_matrix_mode); break;
-    case GL_MODELVIEW_STACK_DEPTH: v[0] = static_cast<float>(m_modelview.size()); break;
-    case GL_PROJECTION_STACK_DEPTH: v[0] = static_cast<float>(m_projection.size()); break;
+    case GL_SHADE_MODEL: v[0] = static_cast<float>(m_primitive.shade_model); break;
+    case GL_CULL_FACE_MODE: v[0] = static_cast<float>(m_primitive.cull_mode); break;
+    case GL_FRONT_FACE: v[0] = static_cast<float>(m_primitive.front_face); break;
+    case GL_MATRIX_MODE: v[0] = static_cast<float>(m_transform.matrix_mode); break;
+    case GL_MODELVIEW_STACK_DEPTH: v[0] = static_cast<float>(m_transform.modelview.size()); break;
+    case GL_PROJECTION_STACK_DEPTH: v[0] = static_cast<float>(m_transform.projection.size()); break;
     case GL_TEXTURE_STACK_DEPTH: v[0] = static_cast<float>(active_unit().matrix.size()); break;
     case GL_MAX_MODELVIEW_STACK_DEPTH: v[0] = MAX_MODELVIEW_DEPTH; break;
     case GL_MAX_PROJECTION_STACK_DEPTH: v[0] = MAX_PROJECTION_DEPTH; break;
     case GL_MAX_TEXTURE_STACK_DEPTH: v[0] = MAX_TEXTURE_DEPTH; break;
     case GL_MAX_LIGHTS: v[0] = MAX_LIGHTS; break;
     case GL_MAX_TEXTURE_SIZE: v[0] = MAX_TEXTURE_SIZE; break;
-    case GL_MAX_TEXTURE_UNITS: v[0] = static_cast<float>(m_texture_units); break;
+    case GL_MAX_TEXTURE_UNITS: v[0] = static_cast<float>(m_texture.offered_units); break;
     case GL_MAX_CLIP_PLANES: v[0] = MAX_USER_CLIP_PLANES; break;
-    case GL_POINT_SIZE_MIN: v[0] = m_point_size_min; break;
-    case GL_POINT_SIZE_MAX: v[0] = m_point_size_max; break;
-    case GL_POINT_FADE_THRESHOLD_SIZE: v[0] = m_point_fade_threshold; break;
+    case GL_POINT_SIZE_MIN: v[0] = m_rasterization.point_size_min; break;
+    case GL_POINT_SIZE_MAX: v[0] = m_rasterization.point_size_max; break;
+    case GL_POINT_FADE_THRESHOLD_SIZE: v[0] = m_rasterization.point_fade_threshold; break;
     case GL_POINT_DISTANCE_ATTENUATION:
-      for (int i = 0; i < 3; ++i) v[i] = m_point_distance_attenuation[i];
+      for (int i = 0; i < 3; ++i) v[i] = m_rasterization.point_distance_attenuation[i];
       break;
-    case GL_POINT_SIZE_ARRAY_TYPE_OES: v[0] = static_cast<float>(m_point_size_array.type); break;
-    case GL_POINT_SIZE_ARRAY_STRIDE_OES: v[0] = static_cast<float>(m_point_size_array.stride); break;
-    case GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES: v[0] = static_cast<float>(m_point_size_array.buffer); break;
-    case GL_POINT_SPRITE_OES: v[0] = m_point_sprite; break;
-    case GL_POINT_SIZE_ARRAY_OES: v[0] = m_point_size_array.enabled; break;
+    case GL_POINT_SIZE_ARRAY_TYPE_OES: v[0] = static_cast<float>(m_attributes.point_size_array.type); break;
+    case GL_POINT_SIZE_ARRAY_STRIDE_OES: v[0] = static_cast<float>(m_attributes.point_size_array.stride); break;
+    case GL_POINT_SIZE_ARRAY_BUFFER_BINDING_OES: v[0] = static_cast<float>(m_attributes.point_size_array.buffer); break;
+    case GL_POINT_SPRITE_OES: v[0] = m_rasterization.point_sprite; break;
+    case GL_POINT_SIZE_ARRAY_OES: v[0] = m_attributes.point_size_array.enabled; break;
     case GL_TEXTURE_BINDING_2D: v[0] = static_cast<float>(active_unit().bound); break;
-    case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_array_buffer); break;
-    case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_element_buffer); break;
+    case GL_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_buffer.array); break;
+    case GL_ELEMENT_ARRAY_BUFFER_BINDING: v[0] = static_cast<float>(m_buffer.element); break;
     case GL_RED_BITS: v[0] = static_cast<float>(format.red_bits); break;
     case GL_GREEN_BITS: v[0] = static_cast<float>(format.green_bits); break;
     case GL_BLUE_BITS: v[0] = static_cast<float>(format.blue_bits); break;
@@ -218,20 +218,20 @@ void Context::get_floats(GLenum name, float* v) {
     case GL_DEPTH_BITS: v[0] = static_cast<float>(m_renderer->capabilities().depth_bits); break;
     case GL_STENCIL_BITS: v[0] = static_cast<float>(m_renderer->capabilities().stencil_bits); break;
     case GL_SUBPIXEL_BITS: v[0] = SUBPIXEL_BITS; break;
-    case GL_POINT_SIZE: v[0] = m_point_size; break;
-    case GL_LINE_WIDTH: v[0] = m_line_width; break;
-    case GL_PACK_ALIGNMENT: v[0] = static_cast<float>(m_pack_alignment); break;
-    case GL_UNPACK_ALIGNMENT: v[0] = static_cast<float>(m_unpack_alignment); break;
-    case GL_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_active_texture); break;
-    case GL_CLIENT_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_client_active_texture); break;
-    case GL_VERTEX_ARRAY_SIZE: v[0] = static_cast<float>(m_vertex_array.size); break;
-    case GL_VERTEX_ARRAY_TYPE: v[0] = static_cast<float>(m_vertex_array.type); break;
-    case GL_VERTEX_ARRAY_STRIDE: v[0] = static_cast<float>(m_vertex_array.stride); break;
-    case GL_COLOR_ARRAY_SIZE: v[0] = static_cast<float>(m_color_array.size); break;
-    case GL_COLOR_ARRAY_TYPE: v[0] = static_cast<float>(m_color_array.type); break;
-    case GL_COLOR_ARRAY_STRIDE: v[0] = static_cast<float>(m_color_array.stride); break;
-    case GL_NORMAL_ARRAY_TYPE: v[0] = static_cast<float>(m_normal_array.type); break;
-    case GL_NORMAL_ARRAY_STRIDE: v[0] = static_cast<float>(m_normal_array.stride); break;
+    case GL_POINT_SIZE: v[0] = m_rasterization.point_size; break;
+    case GL_LINE_WIDTH: v[0] = m_rasterization.line_width; break;
+    case GL_PACK_ALIGNMENT: v[0] = static_cast<float>(m_pixel_store.pack_alignment); break;
+    case GL_UNPACK_ALIGNMENT: v[0] = static_cast<float>(m_pixel_store.unpack_alignment); break;
+    case GL_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_attributes.active_texture); break;
+    case GL_CLIENT_ACTIVE_TEXTURE: v[0] = static_cast<float>(m_attributes.client_active_texture); break;
+    case GL_VERTEX_ARRAY_SIZE: v[0] = static_cast<float>(m_attributes.vertex_array.size); break;
+    case GL_VERTEX_ARRAY_TYPE: v[0] = static_cast<float>(m_attributes.vertex_array.type); break;
+    case GL_VERTEX_ARRAY_STRIDE: v[0] = static_cast<float>(m_attributes.vertex_array.stride); break;
+    case GL_COLOR_ARRAY_SIZE: v[0] = static_cast<float>(m_attributes.color_array.size); break;
+    case GL_COLOR_ARRAY_TYPE: v[0] = static_cast<float>(m_attributes.color_array.type); break;
+    case GL_COLOR_ARRAY_STRIDE: v[0] = static_cast<float>(m_attributes.color_array.stride); break;
+    case GL_NORMAL_ARRAY_TYPE: v[0] = static_cast<float>(m_attributes.normal_array.type); break;
+    case GL_NORMAL_ARRAY_STRIDE: v[0] = static_cast<float>(m_attributes.normal_array.stride); break;
     case GL_TEXTURE_COORD_ARRAY_SIZE: v[0] = static_cast<float>(client_unit().texcoord_array.size); break;
     case GL_TEXTURE_COORD_ARRAY_TYPE: v[0] = static_cast<float>(client_unit().texcoord_array.type); break;
     case GL_TEXTURE_COORD_ARRAY_STRIDE: v[0] = static_cast<float>(client_unit().texcoord_array.stride); break;
@@ -243,10 +243,10 @@ void Context::get_floats(GLenum name, float* v) {
       break;
     case GL_SAMPLE_BUFFERS: v[0] = 0; break;
     case GL_SAMPLES: v[0] = 0; break;
-    case GL_SAMPLE_COVERAGE_VALUE: v[0] = m_sample_coverage_value; break;
-    case GL_SAMPLE_COVERAGE_INVERT: v[0] = m_sample_coverage_invert; break;
-    case GL_POLYGON_OFFSET_FACTOR: v[0] = m_polygon_offset[0]; break;
-    case GL_POLYGON_OFFSET_UNITS: v[0] = m_polygon_offset[1]; break;
+    case GL_SAMPLE_COVERAGE_VALUE: v[0] = m_coverage.value; break;
+    case GL_SAMPLE_COVERAGE_INVERT: v[0] = m_coverage.invert; break;
+    case GL_POLYGON_OFFSET_FACTOR: v[0] = m_rasterization.polygon_offset[0]; break;
+    case GL_POLYGON_OFFSET_UNITS: v[0] = m_rasterization.polygon_offset[1]; break;
     case GL_BLEND_SRC: v[0] = static_cast<float>(gl_value(m_raster.blend_src)); break;
     case GL_BLEND_DST: v[0] = static_cast<float>(gl_value(m_raster.blend_dst)); break;
     case GL_LOGIC_OP_MODE: v[0] = static_cast<float>(gl_value(m_raster.logic_op_mode)); break;
@@ -280,11 +280,11 @@ const GLubyte* Context::get_string(GLenum name) {
 void Context::get_pointer(GLenum name, void** value) {
   charge_call();
   switch (name) {
-    case GL_VERTEX_ARRAY_POINTER: *value = const_cast<void*>(m_vertex_array.pointer); break;
-    case GL_COLOR_ARRAY_POINTER: *value = const_cast<void*>(m_color_array.pointer); break;
-    case GL_NORMAL_ARRAY_POINTER: *value = const_cast<void*>(m_normal_array.pointer); break;
+    case GL_VERTEX_ARRAY_POINTER: *value = const_cast<void*>(m_attributes.vertex_array.pointer); break;
+    case GL_COLOR_ARRAY_POINTER: *value = const_cast<void*>(m_attributes.color_array.pointer); break;
+    case GL_NORMAL_ARRAY_POINTER: *value = const_cast<void*>(m_attributes.normal_array.pointer); break;
     case GL_TEXTURE_COORD_ARRAY_POINTER: *value = const_cast<void*>(client_unit().texcoord_array.pointer); break;
-    case GL_POINT_SIZE_ARRAY_POINTER_OES: *value = const_cast<void*>(m_point_size_array.pointer); break;
+    case GL_POINT_SIZE_ARRAY_POINTER_OES: *value = const_cast<void*>(m_attributes.point_size_array.pointer); break;
     default: error(GL_INVALID_ENUM);
   }
 }

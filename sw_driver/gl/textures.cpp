@@ -21,9 +21,9 @@ void Context::gen_textures(GLsizei n, GLuint* names) {
   charge_call();
   if (n < 0) return error(GL_INVALID_VALUE);
   for (GLsizei i = 0; i < n; ++i) {
-    while (m_textures.count(m_next_texture)) ++m_next_texture;
-    names[i] = m_next_texture;
-    m_textures[m_next_texture++] = TextureObject{};
+    while (m_texture.objects.count(m_texture.next_name)) ++m_texture.next_name;
+    names[i] = m_texture.next_name;
+    m_texture.objects[m_texture.next_name++] = TextureObject{};
   }
 }
 
@@ -32,8 +32,8 @@ void Context::delete_textures(GLsizei n, const GLuint* names) {
   if (n < 0) return error(GL_INVALID_VALUE);
   for (GLsizei i = 0; i < n; ++i) {
     if (names[i] == 0) continue;
-    m_textures.erase(names[i]);  // system memory of the texels is not reused (bump allocator)
-    for (TextureUnitState& unit : m_units)
+    m_texture.objects.erase(names[i]);  // system memory of the texels is not reused (bump allocator)
+    for (TextureUnitState& unit : m_texture.units)
       if (unit.bound == names[i]) unit.bound = 0;
   }
 }
@@ -41,24 +41,24 @@ void Context::delete_textures(GLsizei n, const GLuint* names) {
 void Context::bind_texture(GLenum target, GLuint name) {
   charge_call();
   if (target != GL_TEXTURE_2D) return error(GL_INVALID_ENUM);
-  if (name != 0 && !m_textures.count(name)) m_textures[name] = TextureObject{};
+  if (name != 0 && !m_texture.objects.count(name)) m_texture.objects[name] = TextureObject{};
   active_unit().bound = name;
 }
 
 bool Context::is_texture(GLuint name) {
   charge_call();
-  return name != 0 && m_textures.count(name) != 0;
+  return name != 0 && m_texture.objects.count(name) != 0;
 }
 
 TextureObject* Context::bound_texture() {
   // Texture object 0 is the default texture, which exists like any other.
-  return &m_textures[active_unit().bound];
+  return &m_texture.objects[active_unit().bound];
 }
 
 bool Context::unit_textured(unsigned u) const {
-  if (u >= m_texture_units || !m_units[u].enabled) return false;
-  const auto it = m_textures.find(m_units[u].bound);
-  return it != m_textures.end() && texture_complete(it->second);
+  if (u >= m_texture.offered_units || !m_texture.units[u].enabled) return false;
+  const auto it = m_texture.objects.find(m_texture.units[u].bound);
+  return it != m_texture.objects.end() && texture_complete(it->second);
 }
 
 namespace {
@@ -202,7 +202,8 @@ void Context::tex_sub_image(GLenum target, GLint level, GLint x, GLint y, GLsize
   const unsigned bytes = pixel_bytes(format, type);
   const auto* in = static_cast<const uint8_t*>(pixels);
   const size_t row_bytes = static_cast<size_t>(width) * bytes;
-  const size_t stride = (row_bytes + m_unpack_alignment - 1) / m_unpack_alignment * m_unpack_alignment;
+  const size_t stride = (row_bytes + m_pixel_store.unpack_alignment - 1) / m_pixel_store.unpack_alignment *
+                        m_pixel_store.unpack_alignment;
   std::vector<uint32_t> row(static_cast<size_t>(width));
   for (GLsizei j = 0; j < height; ++j) {
     for (GLsizei i = 0; i < width; ++i) row[i] = unpack_pixel(format, type, in + j * stride + size_t{bytes} * i);

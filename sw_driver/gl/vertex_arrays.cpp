@@ -16,18 +16,18 @@ namespace tessera::gl {
 
 void Context::color(float r, float g, float b, float a) {
   charge_call();
-  m_color = {r, g, b, a};
+  m_attributes.color = {r, g, b, a};
 }
 
 void Context::normal(float x, float y, float z) {
   charge_call();
-  m_normal = {x, y, z};
+  m_attributes.normal = {x, y, z};
 }
 
 void Context::tex_coord(GLenum unit, float s, float t, float r, float q) {
   charge_call();
-  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture_units) return error(GL_INVALID_ENUM);
-  m_units[unit - GL_TEXTURE0].texcoord = {s, t, r, q};
+  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture.offered_units) return error(GL_INVALID_ENUM);
+  m_texture.units[unit - GL_TEXTURE0].texcoord = {s, t, r, q};
 }
 
 void Context::array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsizei stride, const void* pointer,
@@ -36,13 +36,13 @@ void Context::array_pointer(ArrayPointer& array, GLint size, GLenum type, GLsize
   if (!type_ok) return error(GL_INVALID_ENUM);
   if (!size_ok || stride < 0) return error(GL_INVALID_VALUE);
   array.size = size, array.type = type, array.stride = stride, array.pointer = pointer;
-  array.buffer = m_array_buffer;
+  array.buffer = m_buffer.array;
 }
 
 void Context::active_texture(GLenum unit, bool client) {
   charge_call();
-  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture_units) return error(GL_INVALID_ENUM);
-  (client ? m_client_active_texture : m_active_texture) = unit;
+  if (unit < GL_TEXTURE0 || unit >= GL_TEXTURE0 + m_texture.offered_units) return error(GL_INVALID_ENUM);
+  (client ? m_attributes.client_active_texture : m_attributes.active_texture) = unit;
 }
 
 }  // namespace tessera::gl

@@ -6,14 +6,14 @@
 
 #include "renderers/ap_object/ap_object_renderer.h"
 #include "renderers/backend_entry_points.h"
+#include "renderers/common/study_frame.h"
 
 namespace tessera::backends::ap_object {
 
 namespace {
 
-// The study's frame, as ap-pixel draws it: the array's 24 x 4 CUs as tiles
-// of 8 x 36 pixels, 192 x 144 (ap-object has no tiles either).
-constexpr unsigned TILE_WIDTH = 8, TILE_HEIGHT = 36, MAX_FRAME = 1024;
+// Frames up to 1024 x 1024 (check_configuration).
+constexpr unsigned MAX_FRAME = 1024;
 
 }  // namespace
 
@@ -45,8 +45,7 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
 
 // The display shows the study's frame unless the user chose its size.
 void adjust_configuration(Config& config) {
-  const uint64_t width = config.get_uint("array.columns") * TILE_WIDTH;
-  const uint64_t height = config.get_uint("array.rows") * TILE_HEIGHT;
+  const auto [width, height] = renderers::study_frame(config);
   if (!config.is_set("display.width"))
     config.set("display.width", std::min<uint64_t>(width, MAX_FRAME), "driver.backend=ap-object");
   if (!config.is_set("display.height"))

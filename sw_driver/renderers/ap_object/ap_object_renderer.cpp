@@ -34,30 +34,16 @@ int floor_div(int n, int d) {
 }  // namespace
 
 ApObjectRenderer::ApObjectRenderer(AppEnvironment& env, Unit unit, ZPath zpath)
-    : m_env(env),
-      m_host(*env.host),
-      m_display(env),
-      m_memory(*env.host),
-      m_array(env),
-      m_dma(env),
-      m_unit(unit),
-      m_zpath(zpath) {
-  m_buffers.width = m_display.width();
-  m_buffers.height = m_display.height();
-  if (m_buffers.width > MAX_FRAME || m_buffers.height > MAX_FRAME)
-    throw std::invalid_argument("ap-object: the display is " + std::to_string(m_buffers.width) + " x " +
-                                std::to_string(m_buffers.height) + ", but the back end draws frames of at most " +
+    : m_env(env), m_host(*env.host), m_frame(env), m_array(env), m_dma(env), m_unit(unit), m_zpath(zpath) {
+  if (m_frame.buffers.width > MAX_FRAME || m_frame.buffers.height > MAX_FRAME)
+    throw std::invalid_argument("ap-object: the display is " + std::to_string(m_frame.buffers.width) + " x " +
+                                std::to_string(m_frame.buffers.height) + ", but the back end draws frames of at most " +
                                 std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) + " pixels");
-  m_buffers.color_format = m_display.format();
-  m_buffers.color_address = m_display.back_buffer();
-  m_buffers.depth_address = gl::allocate(m_buffers.width * m_buffers.height * 2);
-  m_buffers.stencil_address = gl::allocate(m_buffers.width * m_buffers.height);
-  m_buffers_core = std::make_unique<arm::ArmRasterizer>(m_memory, m_buffers);
   if (zpath == ZPath::unit) {
     // The window holds whole frame rows: bands of this many (README.md).
     const uint32_t entries = m_host.read32(memory_map::zbuf_regs.base + zbuf_regs::ENTRIES);
-    m_band_rows = std::min<unsigned>(m_buffers.height, entries / m_buffers.width);
-    if (m_band_rows == 0 || m_buffers.color_format != PixelFormat::rgb565)
+    m_band_rows = std::min<unsigned>(m_frame.buffers.height, entries / m_frame.buffers.width);
+    if (m_band_rows == 0 || m_frame.buffers.color_format != PixelFormat::rgb565)
       throw std::invalid_argument("ap-object: ap.object.zpath=unit needs an RGB565 display at most zbuf.entries (" +
                                   std::to_string(entries) + ") pixels wide");
   }
@@ -128,13 +114,13 @@ void ApObjectRenderer::clear(const gl::ClearRequest& request) {
     fall_back(why);  // outside the scope below: the draw calls time themselves
   }
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
-  m_buffers_core->clear(request);
+  m_frame.core->clear(request);
 }
 
 void ApObjectRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
   flush_unit();
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
-  m_buffers_core->read_pixels(x, y, width, height, rgba);
+  m_frame.core->read_pixels(x, y, width, height, rgba);
 }
 
 // What the unit does: GL_LESS on 16-bit depth, depth and RGB565 colour
@@ -152,7 +138,7 @@ ApObjectRenderer::Misfit ApObjectRenderer::unit_cannot_draw(const gl::RasterStat
   if (!state.color_mask[0] || !state.color_mask[1] || !state.color_mask[2]) return {"color_mask", "glColorMask"};
   if (state.stencil_test) return {"stencil", "the stencil test (GL_STENCIL_TEST)"};
   if (state.fog) return {"fog", "fog (GL_FOG)"};
-  const auto width = static_cast<int64_t>(m_buffers.width), height = static_cast<int64_t>(m_buffers.height);
+  const auto width = static_cast<int64_t>(m_frame.buffers.width), height = static_cast<int64_t>(m_frame.buffers.height);
   if (state.scissor_test &&
       (state.scissor_x > 0 || state.scissor_y > 0 || state.scissor_x + int64_t{state.scissor_width} < width ||
        state.scissor_y + int64_t{state.scissor_height} < height))
@@ -162,7 +148,7 @@ ApObjectRenderer::Misfit ApObjectRenderer::unit_cannot_draw(const gl::RasterStat
 
 // The unit's clear writes depth and colour into the whole window.
 ApObjectRenderer::Misfit ApObjectRenderer::unit_cannot_clear(const gl::ClearRequest& request) const {
-  const auto width = static_cast<int64_t>(m_buffers.width), height = static_cast<int64_t>(m_buffers.height);
+  const auto width = static_cast<int64_t>(m_frame.buffers.width), height = static_cast<int64_t>(m_frame.buffers.height);
   if (!request.color || !request.depth || !request.depth_write || !request.color_mask[0] || !request.color_mask[1] ||
       !request.color_mask[2] ||
       (request.scissor_test &&
@@ -191,7 +177,7 @@ void ApObjectRenderer::fall_back(const Misfit& why) {
   m_ops_done = 0;
   for (const FrameOp& op : ops) {
     if (op.clear)
-      m_buffers_core->clear(op.request);
+      m_frame.core->clear(op.request);
     else
       draw_now(op.state, op.triangles.data(), op.triangles.size());
   }
@@ -205,7 +191,7 @@ void ApObjectRenderer::flush_unit() {
   if (m_loaded != ZPath::unit) load_programs(ZPath::unit);
   m_frame_on_unit = true;
   const uint32_t regs = memory_map::zbuf_regs.base;
-  const unsigned width = m_buffers.width, height = m_buffers.height;
+  const unsigned width = m_frame.buffers.width, height = m_frame.buffers.height;
   const bool one_band = m_band_rows >= height;
   const uint32_t pixels_before = m_host.read32(regs + zbuf_regs::PIXELS);
   for (unsigned first = 0; first < height; first += m_band_rows) {
@@ -238,7 +224,7 @@ void ApObjectRenderer::clear_unit(const gl::ClearRequest& request) {
   for (unsigned ch = 0; ch < 4; ++ch) rgba |= uint32_t{request.rgba[ch]} << (8 * ch);
   // As the arm back end's clear converts them.
   m_host.write32(regs + zbuf_regs::CLEAR_DEPTH, std::min<uint32_t>(request.depth_value, 0xffffff) >> 8);
-  m_host.write32(regs + zbuf_regs::CLEAR_COLOUR, pack_pixel(m_buffers.color_format, rgba));
+  m_host.write32(regs + zbuf_regs::CLEAR_COLOUR, pack_pixel(m_frame.buffers.color_format, rgba));
   m_host.write32(regs + zbuf_regs::CONTROL, zbuf_regs::CONTROL_CLEAR);
   // The array's next program starts after the clear.
   while ((m_host.read32(regs + zbuf_regs::STATUS) & zbuf_regs::STATUS_BUSY) != 0) m_host.compute_cycles(64);
@@ -249,8 +235,9 @@ void ApObjectRenderer::clear_unit(const gl::ClearRequest& request) {
 // (memory rows, 0 at the top): one DMA copy, or the host's reads.
 void ApObjectRenderer::copy_band(unsigned first, unsigned rows) {
   TimedScope timed(m_host, m_time, renderers::HostSplit::array_read);
-  const uint32_t bytes = m_buffers.width * rows * zbuf_regs::COLOUR_ENTRY_BYTES;
-  const uint32_t destination = m_buffers.color_address + first * m_buffers.width * zbuf_regs::COLOUR_ENTRY_BYTES;
+  const uint32_t bytes = m_frame.buffers.width * rows * zbuf_regs::COLOUR_ENTRY_BYTES;
+  const uint32_t destination =
+      m_frame.buffers.color_address + first * m_frame.buffers.width * zbuf_regs::COLOUR_ENTRY_BYTES;
   if (m_dma_use.enabled) {
     std::vector<dma::Descriptor> copy{DmaDriver::copy(memory_map::zbuf_colour.base, destination, bytes)};
     run_chain(0, m_chain, copy);
@@ -275,10 +262,8 @@ void ApObjectRenderer::present() {
   m_frame_cleared = m_frame_on_host = m_frame_on_unit = false;
   {
     TimedScope timed(m_host, m_time, renderers::HostSplit::frame_out);
-    m_display.present();
+    m_frame.present();
   }
-  m_buffers.color_address = m_display.back_buffer();
-  m_buffers_core->set_color_address(m_buffers.color_address);
   m_unsupported.new_frame();
   publish_statistics();
   renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles_drawn)},
@@ -339,7 +324,7 @@ void ApObjectRenderer::draw_now(const gl::RasterState& state, const gl::Triangle
     unsupported(
         "mipmaps and a minification filter other than the magnification filter (GL_TEXTURE_MIN_FILTER): level 0 "
         "sampled with the magnification filter");
-  m_box = PixelBox{0, 0, static_cast<int>(m_buffers.width) - 1, static_cast<int>(m_buffers.height) - 1};
+  m_box = PixelBox{0, 0, static_cast<int>(m_frame.buffers.width) - 1, static_cast<int>(m_frame.buffers.height) - 1};
   if (state.scissor_test) {
     m_box.x0 = std::max(m_box.x0, state.scissor_x);
     m_box.y0 = std::max(m_box.y0, state.scissor_y);
@@ -441,7 +426,7 @@ void ApObjectRenderer::run_units(const gl::RasterState& state) {
 // memory rows and its rows.
 UnitRecord ApObjectRenderer::piece_record(const Piece& piece) const {
   UnitRecord r = m_triangles[piece.triangle].record(piece.half, piece.row, piece.offset);
-  r.y_memory = static_cast<int16_t>(static_cast<int>(m_buffers.height) - 1 - piece.row);
+  r.y_memory = static_cast<int16_t>(static_cast<int>(m_frame.buffers.height) - 1 - piece.row);
   r.rows = static_cast<uint8_t>(piece.rows);
   return r;
 }
@@ -753,19 +738,19 @@ void ApObjectRenderer::write_fragment(const gl::RasterState& state, const Fragme
   }
   if (state.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) return;
   const uint32_t offset =
-      (m_buffers.height - 1 - static_cast<uint32_t>(f.y)) * m_buffers.width + static_cast<uint32_t>(f.x);
+      (m_frame.buffers.height - 1 - static_cast<uint32_t>(f.y)) * m_frame.buffers.width + static_cast<uint32_t>(f.x);
   if (state.depth_test) {
-    const uint8_t* d = m_host.load_span(m_buffers.depth_address + offset * 2, 2, 1);
+    const uint8_t* d = m_host.load_span(m_frame.buffers.depth_address + offset * 2, 2, 1);
     const auto old = static_cast<uint16_t>(d[0] | d[1] << 8);
     if (!compare_passes(state.depth_func, f.z, old)) return;
     if (state.depth_write) {
-      uint8_t* p = m_host.store_span(m_buffers.depth_address + offset * 2, 2, 1);
+      uint8_t* p = m_host.store_span(m_frame.buffers.depth_address + offset * 2, 2, 1);
       p[0] = static_cast<uint8_t>(f.z);
       p[1] = static_cast<uint8_t>(f.z >> 8);
     }
   }
   ++m_written;
-  renderers::write_color(m_host, state, m_buffers.color_format, m_buffers.color_address, offset, rgba,
+  renderers::write_color(m_host, state, m_frame.buffers.color_format, m_frame.buffers.color_address, offset, rgba,
                          {HostCost::ap_object_color_read_back, std::nullopt});
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "array/isa/ap_isa.h"
+#include "renderers/common/named_choice.h"
 #include "renderers/common/texel_fixed.h"
 
 #include "ap_programs/ap_object_tri_w16.h"
@@ -55,21 +56,11 @@ void put(uint8_t* bytes, unsigned at, uint32_t value, unsigned width) {
 }  // namespace
 
 Unit unit_named(const std::string& name, const std::string& key) {
-  std::string allowed;
-  for (unsigned u = 0; u < std::size(UNIT_NAMES); ++u) {
-    if (name == UNIT_NAMES[u]) return static_cast<Unit>(u);
-    allowed += std::string(u == 0 ? "" : " or ") + UNIT_NAMES[u];
-  }
-  throw std::invalid_argument(key + ": unknown unit '" + name + "'; allowed: " + allowed);
+  return renderers::named_choice<Unit>(name, UNIT_NAMES, key, "unit");
 }
 
 ZPath zpath_named(const std::string& name, const std::string& key) {
-  std::string allowed;
-  for (unsigned z = 0; z < std::size(ZPATH_NAMES); ++z) {
-    if (name == ZPATH_NAMES[z]) return static_cast<ZPath>(z);
-    allowed += std::string(z == 0 ? "" : " or ") + ZPATH_NAMES[z];
-  }
-  throw std::invalid_argument(key + ": unknown z path '" + name + "'; allowed: " + allowed);
+  return renderers::named_choice<ZPath>(name, ZPATH_NAMES, key, "z path");
 }
 
 const ap::Program& program_of(Unit unit, unsigned span_class, ZPath zpath) {

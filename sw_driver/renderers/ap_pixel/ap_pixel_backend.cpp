@@ -5,14 +5,14 @@
 
 #include "renderers/ap_pixel/ap_pixel_renderer.h"
 #include "renderers/backend_entry_points.h"
+#include "renderers/common/study_frame.h"
 
 namespace tessera::backends::ap_pixel {
 
 namespace {
 
-// The study's frame: the array's 24 x 4 CUs as tiles of 8 x 36 pixels,
-// 192 x 144 (ap-pixel has no tiles, but draws the frame ap-tile does).
-constexpr unsigned TILE_WIDTH = 8, TILE_HEIGHT = 36, MAX_FRAME = 256;
+// A CU's block offsets are signed bytes (check_configuration).
+constexpr unsigned MAX_FRAME = 256;
 
 }  // namespace
 
@@ -45,16 +45,16 @@ std::unique_ptr<gl::Renderer> make_renderer(AppEnvironment& env) {
 // is refused here, naming the array's keys (array.rows 15 and 16 would
 // otherwise fail display.height's range, naming a key the user never set).
 void adjust_configuration(Config& config) {
-  const uint64_t width = config.get_uint("array.columns") * TILE_WIDTH;
-  const uint64_t height = config.get_uint("array.rows") * TILE_HEIGHT;
+  const auto [width, height] = renderers::study_frame(config);
   if ((!config.is_set("display.width") && width > MAX_FRAME) ||
       (!config.is_set("display.height") && height > MAX_FRAME))
-    throw ConfigError(
-        "configuration: impossible combination: driver.backend=ap-pixel draws frames of at most " +
-        std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
-        " pixels, but the array's frame (array.columns x array.rows tiles of 8 x 36) is " + std::to_string(width) +
-        " x " + std::to_string(height) + "; set display.width and display.height, or use at most array.columns=" +
-        std::to_string(MAX_FRAME / TILE_WIDTH) + " and array.rows=" + std::to_string(MAX_FRAME / TILE_HEIGHT));
+    throw ConfigError("configuration: impossible combination: driver.backend=ap-pixel draws frames of at most " +
+                      std::to_string(MAX_FRAME) + " x " + std::to_string(MAX_FRAME) +
+                      " pixels, but the array's frame (array.columns x array.rows tiles of 8 x 36) is " +
+                      std::to_string(width) + " x " + std::to_string(height) +
+                      "; set display.width and display.height, or use at most array.columns=" +
+                      std::to_string(MAX_FRAME / renderers::STUDY_TILE_WIDTH) +
+                      " and array.rows=" + std::to_string(MAX_FRAME / renderers::STUDY_TILE_HEIGHT));
   if (!config.is_set("display.width")) config.set("display.width", width, "driver.backend=ap-pixel");
   if (!config.is_set("display.height")) config.set("display.height", height, "driver.backend=ap-pixel");
 }

@@ -28,29 +28,23 @@ constexpr unsigned MAX_FRAME = 256;
 ApPixelRenderer::ApPixelRenderer(AppEnvironment& env, unsigned block, ProgramVariant program)
     : m_env(env),
       m_host(*env.host),
-      m_display(env),
-      m_memory(*env.host),
+      m_frame(env),
       m_array(env),
       m_dma(env),
       m_layout(PixelLayout::of(program)),
       m_block(block) {
-  m_buffers.width = m_display.width();
-  m_buffers.height = m_display.height();
-  if (m_buffers.width > MAX_FRAME || m_buffers.height > MAX_FRAME)
-    throw std::invalid_argument("ap-pixel: the display is " + std::to_string(m_buffers.width) + " x " +
-                                std::to_string(m_buffers.height) + ", but a CU's block offsets are signed bytes, so " +
+  if (m_frame.buffers.width > MAX_FRAME || m_frame.buffers.height > MAX_FRAME)
+    throw std::invalid_argument("ap-pixel: the display is " + std::to_string(m_frame.buffers.width) + " x " +
+                                std::to_string(m_frame.buffers.height) +
+                                ", but a CU's block offsets are signed bytes, so " +
                                 "the back end draws frames of at most " + std::to_string(MAX_FRAME) + " x " +
                                 std::to_string(MAX_FRAME) + " pixels");
-  m_buffers.color_format = m_display.format();
-  m_buffers.color_address = m_display.back_buffer();
-  m_buffers.depth_address = gl::allocate(m_buffers.width * m_buffers.height * 2);
-  m_buffers.stencil_address = gl::allocate(m_buffers.width * m_buffers.height);
-  m_buffers_core = std::make_unique<arm::ArmRasterizer>(m_memory, m_buffers);
   if (m_block < 1 || m_block > m_layout.max_block)
     throw std::invalid_argument("ap-pixel: block size " + std::to_string(m_block) + " is outside 1.." +
                                 std::to_string(m_layout.max_block));
   m_array.load(program_of(program), m_program_base);
-  const unsigned across = (m_buffers.width + m_block - 1) / m_block, up = (m_buffers.height + m_block - 1) / m_block;
+  const unsigned across = (m_frame.buffers.width + m_block - 1) / m_block,
+                 up = (m_frame.buffers.height + m_block - 1) / m_block;
   m_block_index.assign(size_t{across} * up, -1);
 
   m_dma_use = renderers::dma_use(env, m_dma);
@@ -82,21 +76,19 @@ void ApPixelRenderer::unsupported(const std::string& what) {
 
 void ApPixelRenderer::clear(const gl::ClearRequest& request) {
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
-  m_buffers_core->clear(request);
+  m_frame.core->clear(request);
 }
 
 void ApPixelRenderer::read_pixels(int x, int y, int width, int height, uint8_t* rgba) {
   TimedScope timed(m_host, m_time, renderers::HostSplit::compute);
-  m_buffers_core->read_pixels(x, y, width, height, rgba);
+  m_frame.core->read_pixels(x, y, width, height, rgba);
 }
 
 void ApPixelRenderer::present() {
   {
     TimedScope timed(m_host, m_time, renderers::HostSplit::frame_out);
-    m_display.present();
+    m_frame.present();
   }
-  m_buffers.color_address = m_display.back_buffer();
-  m_buffers_core->set_color_address(m_buffers.color_address);
   m_unsupported.new_frame();
   publish_statistics();
   renderers::FrameFigures::Figures totals = {{"triangles", static_cast<double>(m_triangles)},
@@ -138,8 +130,9 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
         "sampled with the magnification filter");
   Reads reads;
   reads.colour = !state.flat_shading;
-  reads.alpha = reads.colour && (state.alpha_test || state.blend || m_buffers.color_format != PixelFormat::rgb565 ||
-                                 (textured && m_unit.env != gl::TexEnv::replace));
+  reads.alpha =
+      reads.colour && (state.alpha_test || state.blend || m_frame.buffers.color_format != PixelFormat::rgb565 ||
+                       (textured && m_unit.env != gl::TexEnv::replace));
   reads.texcoords = textured;
   for (size_t t = 0; t < count; ++t) draw_triangle(state, triangles[t], reads);
   const uint64_t elsewhere = (m_time.array_write - before.array_write) + (m_time.array_read - before.array_read) +
@@ -149,7 +142,7 @@ void ApPixelRenderer::draw(const gl::RasterState& state, const gl::Triangle* tri
 
 void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Triangle& triangle, const Reads& reads) {
   costs::charge(m_host, HostCost::ap_pixel_triangle);
-  PixelBox box{0, 0, static_cast<int>(m_buffers.width) - 1, static_cast<int>(m_buffers.height) - 1};
+  PixelBox box{0, 0, static_cast<int>(m_frame.buffers.width) - 1, static_cast<int>(m_frame.buffers.height) - 1};
   if (state.scissor_test) {
     box.x0 = std::max(box.x0, state.scissor_x);
     box.y0 = std::max(box.y0, state.scissor_y);
@@ -164,7 +157,7 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
   // Scan conversion and the depth test, on the host.
   m_pixels.clear();
   m_blocks.clear();
-  const unsigned b = m_block, across = (m_buffers.width + b - 1) / b;
+  const unsigned b = m_block, across = (m_frame.buffers.width + b - 1) / b;
   std::vector<uint16_t>& depth_row = m_depth_row;
   for (int j = setup.y_first(); j <= setup.y_last(); ++j) {
     costs::charge(m_host, HostCost::ap_pixel_row);
@@ -172,9 +165,10 @@ void ApPixelRenderer::draw_triangle(const gl::RasterState& state, const gl::Tria
     if (!setup.span(j, first, last)) continue;
     const auto n = static_cast<unsigned>(last - first + 1);
     costs::charge(m_host, HostCost::ap_pixel_span_pixel, n);
-    const uint32_t row = (m_buffers.height - 1 - static_cast<uint32_t>(j)) * m_buffers.width;
+    const uint32_t row = (m_frame.buffers.height - 1 - static_cast<uint32_t>(j)) * m_frame.buffers.width;
     if (state.depth_test) {
-      const uint8_t* p = m_host.load_span(m_buffers.depth_address + (row + static_cast<uint32_t>(first)) * 2, 2, n);
+      const uint8_t* p =
+          m_host.load_span(m_frame.buffers.depth_address + (row + static_cast<uint32_t>(first)) * 2, 2, n);
       depth_row.resize(n);
       for (unsigned i = 0; i < n; ++i) depth_row[i] = static_cast<uint16_t>(p[2 * i] | p[2 * i + 1] << 8);
     }
@@ -601,14 +595,14 @@ void ApPixelRenderer::write_pixel(const gl::RasterState& state, const Pixel& pix
   }
   if (state.alpha_test && !compare_passes<uint32_t>(state.alpha_func, rgba >> 24, state.alpha_ref)) return;
   costs::charge(m_host, HostCost::ap_pixel_pixel);
-  const uint32_t offset =
-      (m_buffers.height - 1 - static_cast<uint32_t>(pixel.y)) * m_buffers.width + static_cast<uint32_t>(pixel.x);
+  const uint32_t offset = (m_frame.buffers.height - 1 - static_cast<uint32_t>(pixel.y)) * m_frame.buffers.width +
+                          static_cast<uint32_t>(pixel.x);
   if (state.depth_test && state.depth_write) {
-    uint8_t* p = m_host.store_span(m_buffers.depth_address + offset * 2, 2, 1);
+    uint8_t* p = m_host.store_span(m_frame.buffers.depth_address + offset * 2, 2, 1);
     p[0] = static_cast<uint8_t>(pixel.z);
     p[1] = static_cast<uint8_t>(pixel.z >> 8);
   }
-  renderers::write_color(m_host, state, m_buffers.color_format, m_buffers.color_address, offset, rgba,
+  renderers::write_color(m_host, state, m_frame.buffers.color_format, m_frame.buffers.color_address, offset, rgba,
                          {HostCost::ap_pixel_color_read_back, HostCost::ap_pixel_blend});
 }
 

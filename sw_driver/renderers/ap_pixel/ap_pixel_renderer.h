@@ -37,9 +37,9 @@ class ApPixelRenderer : public gl::Renderer {
 
   const char* name() const override { return "tessera ap-pixel (array processor as a 96-wide ALU)"; }
   gl::RendererCapabilities capabilities() const override { return backends::ap_pixel::CAPABILITIES; }
-  unsigned width() const override { return m_buffers.width; }
-  unsigned height() const override { return m_buffers.height; }
-  PixelFormat color_format() const override { return m_buffers.color_format; }
+  unsigned width() const override { return m_frame.buffers.width; }
+  unsigned height() const override { return m_frame.buffers.height; }
+  PixelFormat color_format() const override { return m_frame.buffers.color_format; }
   void clear(const gl::ClearRequest& request) override;
   void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override;
   void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override;
@@ -95,10 +95,7 @@ class ApPixelRenderer : public gl::Renderer {
 
   AppEnvironment& m_env;
   HostApi& m_host;
-  DisplayDriver m_display;
-  arm::HostPixelMemory m_memory;
-  arm::FrameBuffers m_buffers;
-  std::unique_ptr<arm::ArmRasterizer> m_buffers_core;  // clears and read-back
+  arm::HostFrame m_frame;  // its core clears and reads back
   ArrayDriver m_array;
   DmaDriver m_dma;
   renderers::DmaUse m_dma_use;

@@ -9,6 +9,7 @@
 
 #include "ap_programs/ap_pixel.h"
 #include "ap_programs/ap_pixel_study.h"
+#include "renderers/common/named_choice.h"
 #include "renderers/common/texel_fixed.h"
 
 namespace tessera::ap_pixel {
@@ -35,12 +36,7 @@ int32_t floor16(int32_t n) {
 }  // namespace
 
 ProgramVariant program_variant(const std::string& name, const std::string& key) {
-  std::string allowed;
-  for (unsigned v = 0; v < std::size(PROGRAM_VARIANT_NAMES); ++v) {
-    if (name == PROGRAM_VARIANT_NAMES[v]) return static_cast<ProgramVariant>(v);
-    allowed += std::string(v == 0 ? "" : " or ") + PROGRAM_VARIANT_NAMES[v];
-  }
-  throw std::invalid_argument(key + ": unknown array program '" + name + "'; allowed: " + allowed);
+  return renderers::named_choice<ProgramVariant>(name, PROGRAM_VARIANT_NAMES, key, "array program");
 }
 
 const char* program_variant_name(ProgramVariant variant) {

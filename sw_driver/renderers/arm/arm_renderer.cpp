@@ -4,20 +4,22 @@
 
 namespace tessera::arm {
 
-ArmRenderer::ArmRenderer(AppEnvironment& env) : m_display(env), m_memory(*env.host) {
-  FrameBuffers buffers;
-  buffers.width = m_display.width();
-  buffers.height = m_display.height();
-  buffers.color_format = m_display.format();
-  buffers.color_address = m_display.back_buffer();
+HostFrame::HostFrame(AppEnvironment& env) : display(env), memory(*env.host) {
+  buffers.width = display.width();
+  buffers.height = display.height();
+  buffers.color_format = display.format();
+  buffers.color_address = display.back_buffer();
   buffers.depth_address = gl::allocate(buffers.width * buffers.height * 2);
   buffers.stencil_address = gl::allocate(buffers.width * buffers.height);
-  m_core = std::make_unique<ArmRasterizer>(m_memory, buffers);
+  core = std::make_unique<ArmRasterizer>(memory, buffers);
 }
 
-void ArmRenderer::present() {
-  m_display.present();
-  m_core->set_color_address(m_display.back_buffer());
+void HostFrame::present() {
+  display.present();
+  buffers.color_address = display.back_buffer();
+  core->set_color_address(buffers.color_address);
 }
+
+ArmRenderer::ArmRenderer(AppEnvironment& env) : m_frame(env) {}
 
 }  // namespace tessera::arm

@@ -33,6 +33,22 @@ class HostPixelMemory : public PixelMemory {
   HostApi& m_host;
 };
 
+// The frame as the host draws it, shared by the back ends that draw into
+// system memory (arm, ap-pixel, ap-object): the display's two colour
+// buffers, a depth (16 bits) and a stencil (8 bits) buffer allocated in
+// system memory, and the arm rasterizer on them (arm draws with it; the
+// array back ends clear and read back with it).
+struct HostFrame {
+  explicit HostFrame(AppEnvironment& env);
+  // Shows the back buffer (DisplayDriver::present) and draws into the next.
+  void present();
+
+  DisplayDriver display;
+  HostPixelMemory memory;
+  FrameBuffers buffers;
+  std::unique_ptr<ArmRasterizer> core;
+};
+
 class ArmRenderer : public gl::Renderer {
  public:
   explicit ArmRenderer(AppEnvironment& env);
@@ -41,23 +57,21 @@ class ArmRenderer : public gl::Renderer {
 
   const char* name() const override { return "tessera arm (software, ARM922T)"; }
   gl::RendererCapabilities capabilities() const override { return backends::arm::CAPABILITIES; }
-  unsigned width() const override { return m_display.width(); }
-  unsigned height() const override { return m_display.height(); }
-  PixelFormat color_format() const override { return m_display.format(); }
-  void clear(const gl::ClearRequest& request) override { m_core->clear(request); }
+  unsigned width() const override { return m_frame.buffers.width; }
+  unsigned height() const override { return m_frame.buffers.height; }
+  PixelFormat color_format() const override { return m_frame.buffers.color_format; }
+  void clear(const gl::ClearRequest& request) override { m_frame.core->clear(request); }
   void draw(const gl::RasterState& state, const gl::Triangle* triangles, size_t count) override {
-    m_core->draw(state, triangles, count);
+    m_frame.core->draw(state, triangles, count);
   }
   void read_pixels(int x, int y, int width, int height, uint8_t* rgba) override {
-    m_core->read_pixels(x, y, width, height, rgba);
+    m_frame.core->read_pixels(x, y, width, height, rgba);
   }
   void finish() override {}
-  void present() override;
+  void present() override { m_frame.present(); }
 
  private:
-  DisplayDriver m_display;
-  HostPixelMemory m_memory;
-  std::unique_ptr<ArmRasterizer> m_core;
+  HostFrame m_frame;
 };
 
 }  // namespace tessera::arm
