@@ -14,8 +14,6 @@
 //   bench_ap_tile [--frames N] [--repeat R] [--scene NAME ...] [--config FILE ...]
 //                 [--idle-cus run|skip] [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -179,9 +177,8 @@ void Bench::print_table(const std::vector<SceneResult>& results) const {
 }
 
 void Bench::run() {
-  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_ap_tile_" + std::to_string(getpid()))
-                                  : fs::path(m_opt.work_dir);
-  fs::create_directories(m_work);
+  const WorkFolder folder(m_opt.work_dir, "bench_ap_tile");
+  m_work = folder.path();
 
   std::vector<std::string> print_config = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) print_config.insert(print_config.end(), {"--config", file});
@@ -199,7 +196,6 @@ void Bench::run() {
 
   print_table(results);
   std::printf("%s\n", machine_summary(load_before, total_s).c_str());
-  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
 }
 
 }  // namespace

@@ -11,8 +11,6 @@
 //   bench_arm [--frames N] [--repeat R] [--scene NAME ...] [--config FILE ...]
 //             [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -205,9 +203,8 @@ void Bench::print_table(const std::vector<SceneResult>& results, long default_rs
 }
 
 void Bench::run() {
-  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_arm_" + std::to_string(getpid()))
-                                  : fs::path(m_opt.work_dir);
-  fs::create_directories(m_work);
+  const WorkFolder folder(m_opt.work_dir, "bench_arm");
+  m_work = folder.path();
 
   std::vector<std::string> print_config = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) print_config.insert(print_config.end(), {"--config", file});
@@ -236,7 +233,6 @@ void Bench::run() {
 
   print_table(results, default_rss_kib);
   std::printf("%s\n", machine_summary(load_before, total_s).c_str());
-  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
 }
 
 }  // namespace

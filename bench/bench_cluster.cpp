@@ -84,10 +84,10 @@ int run(int argc, char** argv) {
   cli.add_option("--frames", options.frames, "frames per run");
   cli.add_option("--rounds", options.rounds, "runs per node count");
   cli.add_option("--depth", options.depth, "cluster.buffer_depth");
-  cli.add_option("--work-dir", options.work_dir, "folder for the runs' outputs (default: a temporary one)");
+  cli.add_option("--work-dir", options.work_dir, "folder for the runs' outputs (default: a temporary one, removed)");
   CLI11_PARSE(cli, argc, argv);
-  const fs::path work =
-      options.work_dir.empty() ? fs::temp_directory_path() / "tessera_bench_cluster" : fs::path(options.work_dir);
+  const WorkFolder folder(options.work_dir, "bench_cluster");
+  const fs::path& work = folder.path();
   const std::string load_before = load_average();
   const auto start = std::chrono::steady_clock::now();
   std::printf(

@@ -33,7 +33,6 @@
 #include <vector>
 
 #include <time.h>
-#include <unistd.h>
 
 #include <unicorn/unicorn.h>
 #include <CLI/CLI.hpp>
@@ -195,9 +194,8 @@ int run_main(int argc, char** argv) {
   app.add_option("--work-dir", work_dir, "folder for soc_sim's outputs (default: a temporary one, removed)");
   CLI11_PARSE(app, argc, argv);
   try {
-    const fs::path work =
-        work_dir.empty() ? fs::temp_directory_path() / ("bench_iss_" + std::to_string(getpid())) : fs::path(work_dir);
-    fs::create_directories(work);
+    const WorkFolder folder(work_dir, "bench_iss");
+    const fs::path& work = folder.path();
     const std::string load_before = load_average();
     const auto begin = std::chrono::steady_clock::now();
 
@@ -246,7 +244,6 @@ int run_main(int argc, char** argv) {
     for (int r = 0; r < repeat; ++r)
       for (size_t i = 0; i < steps.size(); ++i) steps[(i + static_cast<size_t>(r)) % steps.size()]();
     fs::remove_all(work / "out");
-    if (work_dir.empty()) fs::remove_all(work);
 
     std::printf(
         "| program | run | instructions | wall min / median (ms) | MIPS at the min / median | CPU median (ms) | MIPS "

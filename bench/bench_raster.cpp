@@ -14,8 +14,6 @@
 //   bench_raster [--frames N] [--repeat R] [--wall-scene NAME ...] [--scene NAME ...]
 //                [--vectors V] [--config FILE ...] [--obj FILE] [--work-dir DIR] [--soc-sim PATH]
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -441,9 +439,8 @@ void Bench::print_frame_time_table() const {
 }
 
 void Bench::run() {
-  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_raster_" + std::to_string(getpid()))
-                                  : fs::path(m_opt.work_dir);
-  fs::create_directories(m_work);
+  const WorkFolder folder(m_opt.work_dir, "bench_raster");
+  m_work = folder.path();
 
   std::vector<std::string> print_config = {m_opt.soc_sim};
   for (const auto& file : m_opt.config_files) print_config.insert(print_config.end(), {"--config", file});
@@ -500,7 +497,6 @@ void Bench::run() {
       raster["tile_width"].get<unsigned>(), raster["tile_height"].get<unsigned>(),
       raster["recip_method"].get<unsigned>(), m_opt.frames, 2 * m_opt.frames - 1, m_opt.frames, m_opt.repeat);
   std::printf("%s\n", machine_summary(load_before, total_s).c_str());
-  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
 }
 
 }  // namespace
@@ -546,9 +542,8 @@ static int run_main(int argc, char** argv) {
       std::vector<std::string> print_config = {opt.soc_sim};
       for (const auto& file : opt.config_files) print_config.insert(print_config.end(), {"--config", file});
       print_config.push_back("--print-config");
-      const fs::path config_file = fs::temp_directory_path() / ("bench_raster_config_" + std::to_string(getpid()));
-      const json config = json::parse(run_child(print_config, config_file).output);
-      fs::remove(config_file);
+      const WorkFolder folder(opt.work_dir, "bench_raster");
+      const json config = json::parse(run_child(print_config, folder.path() / "config.json").output);
       const std::vector<std::string> args =
           opt.native_core == "obj_viewer" ? std::vector<std::string>{opt.obj_file} : std::vector<std::string>{};
       const CoreResult core = run_core_natively(opt.native_core, opt.frames, config, args);

@@ -10,8 +10,6 @@
 //   bench_speed [--rounds R] [--frames N] [--startup-runs S] [--no-scaling] [--only PART] [--work-dir DIR]
 //               [--baseline OTHER_SOC_SIM]
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -858,9 +856,8 @@ void Bench::print_table() const {
 }
 
 void Bench::run() {
-  m_work = m_opt.work_dir.empty() ? fs::temp_directory_path() / ("bench_speed_" + std::to_string(getpid()))
-                                  : fs::path(m_opt.work_dir);
-  fs::create_directories(m_work);
+  const WorkFolder folder(m_opt.work_dir, "bench_speed");
+  m_work = folder.path();
   m_config = json::parse(child({program("soc_sim").string(), "--print-config"}).output);
   const std::string load_before = load_average();
   const auto start = std::chrono::steady_clock::now();
@@ -876,7 +873,6 @@ void Bench::run() {
   const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_table();
   std::printf("\n%s\n", machine_summary(load_before, total_s).c_str());
-  if (m_opt.work_dir.empty()) fs::remove_all(m_work);
 }
 
 int run_main(int argc, char** argv) {

@@ -12,6 +12,16 @@
 
 namespace tessera::bench {
 
+WorkFolder::WorkFolder(const std::string& work_dir, const std::string& prefix) {
+  if (work_dir.empty()) {
+    m_scratch.emplace(prefix);
+    m_path = m_scratch->path();
+  } else {
+    m_path = work_dir;
+    std::filesystem::create_directories(m_path);
+  }
+}
+
 MinMedian min_median(std::vector<double> values) {
   if (values.empty()) throw std::invalid_argument("min_median: no measurement");
   std::sort(values.begin(), values.end());

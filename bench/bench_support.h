@@ -4,12 +4,31 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "process/scratch_folder.h"
+
 namespace tessera::bench {
+
+// Where a benchmark writes its children's outputs: --work-dir when given
+// (made if missing, kept), else a fresh folder under the temporary folder,
+// removed with everything in it when the object goes
+// (testbench/process/scratch_folder.h, the one temporary-folder idiom).
+class WorkFolder {
+ public:
+  // `work_dir`: the user's folder, or empty; `prefix`: the temporary
+  // folder's name before its unique suffix ("bench_arm").
+  WorkFolder(const std::string& work_dir, const std::string& prefix);
+  const std::filesystem::path& path() const { return m_path; }
+
+ private:
+  std::optional<test::ScratchFolder> m_scratch;
+  std::filesystem::path m_path;
+};
 
 struct ChildResult {
   double wall_s = 0;

@@ -29,6 +29,7 @@
 #include "network/network.h"
 #include "network/network_interface.h"
 #include "network/ni_regs.h"
+#include "process/scratch_folder.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
 
@@ -704,7 +705,8 @@ TEST(Network, TheTraceShowsMessagesInFlightAndEachInterfacesInterrupt) {
 
 int sc_main(int argc, char* argv[]) {
   g_bench = new Bench("bench");
-  g_trace_path = std::filesystem::temp_directory_path() / ("test_network_" + std::to_string(::getpid()));
+  const test::ScratchFolder folder("test_network");
+  g_trace_path = folder.path() / "trace";
   g_trace = sc_core::sc_create_vcd_trace_file(g_trace_path.string().c_str());
   g_bench->network.trace_signals(g_trace);
   for (auto& node : g_bench->nodes) node->ni.trace_signals(g_trace);
