@@ -205,6 +205,29 @@ TEST(Ciu, AWordLandsOneByteInEachOfFourAdjacentCusOfItsRow) {
   test::run_thread([&] { EXPECT_EQ(b.host.read32(cmem_address(2, 1, 7)), 0x44992211u); });
 }
 
+// A burst's words follow CMEM's addresses of one group of four CUs, and
+// past a group's last address the next group's first: the window is the
+// groups one after another, 4096 words each.
+TEST(Ciu, ABurstRunsOnFromAGroupsLastAddressToTheNextGroupsFirst) {
+  Bench& b = *g_bench;
+  ap::CuArray& cus = b.array.core().array();
+  const uint32_t words[3] = {0x04030201u, 0x08070605u, 0x0c0b0a09u};
+  uint32_t back[3] = {};
+  test::run_thread([&] {
+    // Group 5 is (5, 0), row 0's last; group 6 is (0, 1), row 1's first.
+    const uint64_t at = cmem_address(5, 0, 4094);
+    EXPECT_EQ(b.host.write(at, reinterpret_cast<const uint8_t*>(words), 12).status, tlm::TLM_OK_RESPONSE);
+    EXPECT_EQ(b.host.read(at, reinterpret_cast<uint8_t*>(back), 12).status, tlm::TLM_OK_RESPONSE);
+  });
+  for (unsigned k = 0; k < 4; ++k) {
+    EXPECT_EQ(cus.cmem(20 + k, 4094), 1 + k) << k;
+    EXPECT_EQ(cus.cmem(20 + k, 4095), 5 + k) << k;
+    EXPECT_EQ(cus.cmem(COLUMNS + k, 0), 9 + k) << k;
+  }
+  EXPECT_EQ(cus.cmem(COLUMNS + 4, 0), 0);
+  for (unsigned w = 0; w < 3; ++w) EXPECT_EQ(back[w], words[w]) << w;
+}
+
 TEST(Ciu, EachWordCostsItsCyclesOfTheArrayClock) {
   Bench& b = *g_bench;
   test::run_thread([&] {

@@ -1,6 +1,7 @@
 #include "array/ciu.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "array/array_regs.h"
 #include "common/log.h"
@@ -22,13 +23,18 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
       m_errors(counter("errors", "accesses answered with an error (outside CMEM, not whole aligned words)")),
       m_access_trace("access") {
   sleeps_until_used();
+  // Where each group of four CUs starts among the lanes, and CMEM's size
+  // as a shift when it is a power of two: move_words() divides by neither.
+  const ap::ArrayGeometry& g = m_array.params().geometry;
+  m_cmem_bytes = g.cmem_bytes;
+  m_window_bytes = uint64_t{g.lanes()} * g.cmem_bytes;
+  if ((g.cmem_bytes & (g.cmem_bytes - 1)) == 0)
+    while ((1u << m_cmem_shift) < g.cmem_bytes) ++m_cmem_shift;
+  const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
+  for (unsigned group = 0; group < g.lanes() / array_regs::CUS_PER_GROUP; ++group)
+    m_group_lane.push_back((group / groups_per_row) * g.columns + (group % groups_per_row) * array_regs::CUS_PER_GROUP);
   in.register_b_transport(this, &Ciu::b_transport);
   in.register_transport_dbg(this, &Ciu::transport_dbg);
-}
-
-uint64_t Ciu::window_bytes() const {
-  const ap::ArrayGeometry& g = m_array.params().geometry;
-  return uint64_t{g.lanes()} * g.cmem_bytes;
 }
 
 void Ciu::locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const {
@@ -40,6 +46,28 @@ void Ciu::locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address)
   const unsigned row = group / groups_per_row;
   const unsigned column = (group % groups_per_row) * array_regs::CUS_PER_GROUP + k;
   lane = row * g.columns + column;
+}
+
+void Ciu::move_words(uint64_t offset, uint64_t words, uint8_t* data, bool write, bool read) {
+  // A word's four bytes go to four neighbouring CUs of a row (a group), at
+  // one CMEM address: four neighbouring bytes of that address's row of
+  // lanes (what locate() says byte by byte). The next word is the next
+  // address of the same group, until CMEM's end takes it to the next group.
+  ap::CuArray& cus = m_array.core().array();
+  const uint64_t first = offset / 4;
+  uint64_t group = m_cmem_shift ? first >> m_cmem_shift : first / m_cmem_bytes;
+  auto address = static_cast<unsigned>(first - group * m_cmem_bytes);
+  for (uint64_t w = 0; w < words; ++w) {
+    uint8_t* cmem = cus.cmem_lanes(address) + m_group_lane[group];
+    if (write)
+      std::memcpy(cmem, data + 4 * w, 4);
+    else if (read)
+      std::memcpy(data + 4 * w, cmem, 4);
+    if (++address == m_cmem_bytes) {
+      address = 0;
+      ++group;
+    }
+  }
 }
 
 void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
@@ -71,20 +99,11 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
     m_stall_time += wait;
     delay += wait;
   }
-  ap::CuArray& cus = m_array.core().array();
-  uint8_t* data = gp.get_data_ptr();
   const uint64_t words = length / 4;
-  for (uint64_t w = 0; w < words; ++w)
-    for (unsigned k = 0; k < 4; ++k) {
-      unsigned lane = 0, address = 0;
-      locate(offset + 4 * w, k, lane, address);
-      if (gp.is_write())
-        cus.set_cmem(lane, address, data[4 * w + k]);
-      else if (gp.is_read())
-        data[4 * w + k] = cus.cmem(lane, address);
-    }
+  move_words(offset, words, gp.get_data_ptr(), gp.is_write(), gp.is_read());
   const unsigned cycles = gp.is_write() ? m_params.write_cycles : m_params.read_cycles;
-  const sc_time latency = m_params.clock_period * static_cast<double>(cycles * words);
+  // Whole ticks: what clock_period * double(cycles * words) gives.
+  const sc_time latency = sc_time::from_value(m_params.clock_period.value() * cycles * words);
   if (m_tracing) {
     const sc_time start = sc_core::sc_time_stamp() + delay;
     m_access_trace.set_at(true, start);

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <tlm_utils/simple_target_socket.h>
 #include <systemc>
@@ -44,7 +45,7 @@ class Ciu : public Block {
   Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& array);
 
   // Bytes of the window that map CMEM: every group's every address.
-  uint64_t window_bytes() const;
+  uint64_t window_bytes() const { return m_window_bytes; }
 
   void trace_signals(sc_core::sc_trace_file* file) override;
   // Track "accesses": bursts (accesses that follow each other within
@@ -62,6 +63,9 @@ class Ciu : public Block {
   unsigned transport_dbg(tlm::tlm_generic_payload& gp);
   // The CU lane and CMEM address of byte `k` of the word at `offset`.
   void locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const;
+  // Moves `words` whole words at `offset` between the payload's data and
+  // CMEM (to CMEM when `write`, from it when `read`).
+  void move_words(uint64_t offset, uint64_t words, uint8_t* data, bool write, bool read);
 
   CiuParams m_params;
   ArrayProcessor& m_array;
@@ -71,8 +75,12 @@ class Ciu : public Block {
   ActivityCounter& m_bytes_read;
   ActivityCounter& m_stalled;
   ActivityCounter& m_errors;
-  sc_core::sc_time m_access_time;  // latency charged, all accesses
-  sc_core::sc_time m_stall_time;   // waiting for a running program
+  uint64_t m_window_bytes = 0;  // every lane's CMEM
+  unsigned m_cmem_bytes = 0;
+  unsigned m_cmem_shift = 0;           // log2 of m_cmem_bytes when a power of two, else 0
+  std::vector<unsigned> m_group_lane;  // each group's first lane
+  sc_core::sc_time m_access_time;      // latency charged, all accesses
+  sc_core::sc_time m_stall_time;       // waiting for a running program
   TimedTrace m_access_trace;
   bool m_tracing = false;
   TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline
