@@ -125,6 +125,29 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
   }
 }
 
+// A trace's per-lane counts at a mask or stage change: the lane operations
+// and the CMEM stores since the last change, where the lane's mask is set.
+// The pointers are distinct, which the compiler cannot know of a byte row
+// and two word rows (a byte pointer may alias anything): said here, the
+// loop is a few vector operations instead of one lane at a time.
+template <size_t kLanes>
+[[gnu::always_inline]] inline void count_masked_lanes(size_t lanes, uint32_t operations, uint32_t stores,
+                                                      const uint8_t* __restrict m, uint32_t* __restrict useful,
+                                                      uint32_t* __restrict stored) {
+  const size_t n = kLanes != 0 ? kLanes : lanes;
+  for (size_t l = 0; l < n; ++l) {
+    useful[l] += operations * m[l];
+    stored[l] += stores * m[l];
+  }
+}
+
+// The mask's and or or with a condition's lanes (a row other than the mask's).
+template <bool kAnd>
+[[gnu::always_inline]] inline void combine_mask_lanes(size_t n, uint8_t* __restrict m,
+                                                      const uint8_t* __restrict holds) {
+  for (size_t l = 0; l < n; ++l) m[l] = kAnd ? m[l] & holds[l] : m[l] | holds[l];
+}
+
 // The lanes' arithmetic of one instruction, shared by the interpreter
 // (CuArray::execute) and the trace runner (run_trace_lanes): the result in
 // `out`, or a multiplication's 24-bit product in `high`, `middle`, `low`,
@@ -686,10 +709,7 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
   uint32_t* lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
   uint32_t operations = 0, stores = 0;
   const auto count = [&] {
-    for (size_t l = 0; l < n; ++l) {
-      lane_useful[l] += operations * m[l];
-      lane_stores[l] += stores * m[l];
-    }
+    count_masked_lanes<kLanes>(n, operations, stores, m, lane_useful, lane_stores);
     operations = stores = 0;
   };
   const auto operand = [&](const Operand& o, unsigned byte) {
@@ -720,9 +740,9 @@ void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
         if (in.opcode == Opcode::op_mmov)
           copy_row(m, holds);
         else if (in.opcode == Opcode::op_mand)
-          for (size_t l = 0; l < n; ++l) m[l] &= holds[l];
+          combine_mask_lanes<true>(n, m, holds);
         else
-          for (size_t l = 0; l < n; ++l) m[l] |= holds[l];
+          combine_mask_lanes<false>(n, m, holds);
         continue;
       }
       default: break;
