@@ -544,6 +544,20 @@ void accumulate_differences(size_t n, const uint8_t* __restrict now, const uint8
   for (size_t l = 0; l < n; ++l) differs[l] |= static_cast<uint8_t>(now[l] ^ then[l]);
 }
 
+// The run's k lanes between the array's rows and the work array's (lane j
+// of the work array is lane lanes[j] of the array) or a record's.
+void gather_lanes(unsigned k, const unsigned* __restrict lanes, const uint8_t* __restrict from,
+                  uint8_t* __restrict to) {
+  for (unsigned j = 0; j < k; ++j) to[j] = from[lanes[j]];
+}
+void copy_lanes(unsigned k, const unsigned* __restrict lanes, const uint8_t* __restrict from, uint8_t* __restrict to) {
+  for (unsigned j = 0; j < k; ++j) to[lanes[j]] = from[lanes[j]];
+}
+void scatter_lanes(unsigned k, const unsigned* __restrict lanes, const uint8_t* __restrict from, uint8_t* __restrict to,
+                   uint8_t* __restrict record) {
+  for (unsigned j = 0; j < k; ++j) to[lanes[j]] = record[lanes[j]] = from[j];
+}
+
 }  // namespace
 
 ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
@@ -810,26 +824,20 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     // Whole vectors of lanes: the lane loops have no scalar tail (the lanes
     // after the k-th compute on stale bytes and are never read back).
     work.set_lane_count((k + WORK_LANE_BLOCK - 1) / WORK_LANE_BLOCK * WORK_LANE_BLOCK);
-    for (const unsigned row : plan.gathered) {
-      const uint8_t* from = m_array.state_row(row);
-      uint8_t* to = work.state_row(row);
-      for (unsigned j = 0; j < k; ++j) to[j] = from[m_run_lanes[j]];
-    }
-    for (size_t i = 0; i < plan.inputs.size(); ++i) {
-      const uint8_t* from = m_array.state_row(plan.inputs[i]);
-      uint8_t* record = memo.inputs.data() + i * n;
-      for (unsigned j = 0; j < k; ++j) record[m_run_lanes[j]] = from[m_run_lanes[j]];
-    }
+    // The lanes in a local: a byte stored through a row may alias the
+    // vector's own pointer as far as the compiler knows, which would then
+    // load it again for every lane.
+    const unsigned* const lanes = m_run_lanes.data();
+    for (const unsigned row : plan.gathered) gather_lanes(k, lanes, m_array.state_row(row), work.state_row(row));
+    for (size_t i = 0; i < plan.inputs.size(); ++i)
+      copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
     work.mask_written();
     // Control flow and addresses do not depend on data: this run takes the
     // recorded run's path.
     work.run_trace(memo.trace);
     for (size_t i = 0; i < outputs; ++i) {
       const unsigned row = output_row(i);
-      const uint8_t* from = work.state_row(row);
-      uint8_t* to = m_array.state_row(row);
-      uint8_t* record = memo.outputs.data() + i * n;
-      for (unsigned j = 0; j < k; ++j) to[m_run_lanes[j]] = record[m_run_lanes[j]] = from[j];
+      scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
     }
     for (const unsigned stage : memo.lane_stages) {
       const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
