@@ -18,6 +18,7 @@
 #include "array/ciu.h"
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
+#include "common/schedule_untouched.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
 
@@ -226,6 +227,36 @@ TEST(Ciu, ABurstRunsOnFromAGroupsLastAddressToTheNextGroupsFirst) {
   }
   EXPECT_EQ(cus.cmem(COLUMNS + 4, 0), 0);
   for (unsigned w = 0; w < 3; ++w) EXPECT_EQ(back[w], words[w]) << w;
+}
+
+// The CIU says its accesses scheduled nothing (ScheduleUntouched, which
+// lets the host keep running ahead); the AC's registers, which start
+// programs, and a refused access do not.
+TEST(Ciu, SaysItsAccessesScheduleNothingAndTheAcsDoNot) {
+  Bench& b = *g_bench;
+  const auto untouched = [&](uint64_t address, unsigned length) {
+    tlm::tlm_generic_payload gp;
+    auto* extension = new ScheduleUntouched;
+    gp.set_extension(extension);
+    uint8_t data[8] = {};
+    gp.set_command(tlm::TLM_WRITE_COMMAND);
+    gp.set_address(address);
+    gp.set_data_ptr(data);
+    gp.set_data_length(length);
+    gp.set_streaming_width(length);
+    gp.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+    sc_time delay = CYCLE;
+    b.host.out->b_transport(gp, delay);
+    sc_core::wait(delay);
+    return extension->untouched;  // the payload deletes the extension
+  };
+  test::ReportCapture capture;
+  test::run_thread([&] {
+    EXPECT_TRUE(untouched(cmem_address(1, 2, 3), 4));
+    EXPECT_TRUE(untouched(cmem_address(1, 2, 3), 8));
+    EXPECT_FALSE(untouched(cmem_address(1, 2, 3) + 2, 4)) << "refused: not a whole word";
+    EXPECT_FALSE(untouched(AC + regs::ENTRY, 4));
+  });
 }
 
 TEST(Ciu, EachWordCostsItsCyclesOfTheArrayClock) {

@@ -56,6 +56,8 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
   out.register_invalidate_direct_mem_ptr(this, &Host::invalidate_direct_mem_ptr);
   m_train = new TransferTrain;
   m_payload.set_extension(m_train);
+  m_untouched = new ScheduleUntouched;
+  m_payload.set_extension(m_untouched);
   m_qk.reset();
   if (params.iss) {
     m_pc_trace = std::make_unique<TimedWord>("pc");
@@ -172,14 +174,16 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_byte_enable_length(0);
   m_payload.set_dmi_allowed(false);
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
+  m_untouched->untouched = false;
   out->b_transport(m_payload, delay);
   m_last_delay = delay;
   m_train->transfers = 1;
   m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
   // Memory (a target that grants DMI may be bypassed, so its accesses can
-  // wake no process) leaves the kernel's schedule as it was; a request
-  // without delay may have waited a delta cycle for others at the bus.
-  m_window_clear = m_window_clear && m_payload.is_dmi_allowed() && issue > now;
+  // wake no process) and a target that says so (ScheduleUntouched: the
+  // CIU's CMEM) leave the kernel's schedule as it was; a request without
+  // delay may have waited a delta cycle for others at the bus.
+  m_window_clear = m_window_clear && (m_payload.is_dmi_allowed() || m_untouched->untouched) && issue > now;
   if (m_payload.is_response_error()) {
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +

@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/schedule_untouched.h"
 #include "common/timed_trace.h"
 #include "common/transfer_train.h"
 #include "config/config.h"
@@ -275,8 +276,9 @@ class Host : public Block, public HostApi, public HostCore {
   DataCache m_dcache;
   bool m_dcache_on = true;  // CP15 c1's C bit (host.model=iss); always on for host-compiled code
   tlm::tlm_generic_payload m_payload;
-  TransferTrain* m_train;         // owned by m_payload
-  sc_core::sc_time m_last_delay;  // the delay the last transaction returned
+  TransferTrain* m_train;          // owned by m_payload
+  ScheduleUntouched* m_untouched;  // owned by m_payload
+  sc_core::sc_time m_last_delay;   // the delay the last transaction returned
 
   tlm::tlm_dmi m_dmi;
   bool m_dmi_valid = false;
