@@ -229,6 +229,22 @@ TEST(Ciu, ABurstRunsOnFromAGroupsLastAddressToTheNextGroupsFirst) {
   for (unsigned w = 0; w < 3; ++w) EXPECT_EQ(back[w], words[w]) << w;
 }
 
+// A debugger's access (transport_dbg) takes any bytes, each where the
+// word it is in puts it, across words and groups.
+TEST(Ciu, ADebugAccessPlacesEachByteAsItsWordWould) {
+  Bench& b = *g_bench;
+  ap::CuArray& cus = b.array.core().array();
+  uint8_t bytes[6] = {0xa1, 0xa2, 0xa3, 0xa4, 0xa5, 0xa6};
+  const uint64_t at = cmem_address(5, 0, 4095) + 2;  // bytes 2 and 3 of group 5's last word, then group 6's first
+  EXPECT_EQ(b.host.debug(tlm::TLM_WRITE_COMMAND, at, bytes, 6), 6u);
+  EXPECT_EQ(cus.cmem(22, 4095), 0xa1);
+  EXPECT_EQ(cus.cmem(23, 4095), 0xa2);
+  for (unsigned k = 0; k < 4; ++k) EXPECT_EQ(cus.cmem(COLUMNS + k, 0), 0xa3 + k) << k;
+  uint8_t back[6] = {};
+  EXPECT_EQ(b.host.debug(tlm::TLM_READ_COMMAND, at, back, 6), 6u);
+  for (unsigned i = 0; i < 6; ++i) EXPECT_EQ(back[i], bytes[i]) << i;
+}
+
 // The CIU says its accesses scheduled nothing (ScheduleUntouched, which
 // lets the host keep running ahead); the AC's registers, which start
 // programs, and a refused access do not.

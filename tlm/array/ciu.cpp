@@ -25,7 +25,8 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
       m_access_trace("access") {
   sleeps_until_used();
   // Where each group of four CUs starts among the lanes, and CMEM's size
-  // as a shift when it is a power of two: move_words() divides by neither.
+  // as a shift when it is a power of two: place_of() and move_words()
+  // divide by neither.
   const ap::ArrayGeometry& g = m_array.params().geometry;
   m_cmem_bytes = g.cmem_bytes;
   m_window_bytes = uint64_t{g.lanes()} * g.cmem_bytes;
@@ -38,35 +39,30 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
   in.register_transport_dbg(this, &Ciu::transport_dbg);
 }
 
-void Ciu::locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const {
-  const ap::ArrayGeometry& g = m_array.params().geometry;
+Ciu::WordPlace Ciu::place_of(uint64_t offset) const {
+  // The window is the groups one after another, each cmem_bytes words.
   const uint64_t word = offset / 4;
-  const auto group = static_cast<unsigned>(word / g.cmem_bytes);
-  address = static_cast<unsigned>(word % g.cmem_bytes);
-  const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
-  const unsigned row = group / groups_per_row;
-  const unsigned column = (group % groups_per_row) * array_regs::CUS_PER_GROUP + k;
-  lane = row * g.columns + column;
+  const uint64_t group = m_cmem_shift ? word >> m_cmem_shift : word / m_cmem_bytes;
+  return {group, static_cast<unsigned>(word - group * m_cmem_bytes)};
 }
 
 void Ciu::move_words(uint64_t offset, uint64_t words, uint8_t* data, bool write, bool read) {
   // A word's four bytes go to four neighbouring CUs of a row (a group), at
   // one CMEM address: four neighbouring bytes of that address's row of
-  // lanes (what locate() says byte by byte). The next word is the next
-  // address of the same group, until CMEM's end takes it to the next group.
+  // lanes (CMEM address a is the array's state row a). The next word is the
+  // next address of the same group, until CMEM's end takes it to the next
+  // group.
   ap::CuArray& cus = m_array.core().array();
-  const uint64_t first = offset / 4;
-  uint64_t group = m_cmem_shift ? first >> m_cmem_shift : first / m_cmem_bytes;
-  auto address = static_cast<unsigned>(first - group * m_cmem_bytes);
+  WordPlace place = place_of(offset);
   for (uint64_t w = 0; w < words; ++w) {
-    uint8_t* cmem = cus.cmem_lanes(address) + m_group_lane[group];
+    uint8_t* cmem = cus.state_row(place.address) + m_group_lane[place.group];
     if (write)
       std::memcpy(cmem, data + 4 * w, 4);
     else if (read)
       std::memcpy(data + 4 * w, cmem, 4);
-    if (++address == m_cmem_bytes) {
-      address = 0;
-      ++group;
+    if (++place.address == m_cmem_bytes) {
+      place.address = 0;
+      ++place.group;
     }
   }
 }
@@ -133,12 +129,12 @@ unsigned Ciu::transport_dbg(tlm::tlm_generic_payload& gp) {
   const uint64_t length = std::min<uint64_t>(gp.get_data_length(), size - offset);
   ap::CuArray& cus = m_array.core().array();
   for (uint64_t i = 0; i < length; ++i) {
-    unsigned lane = 0, address = 0;
-    locate((offset + i) & ~uint64_t{3}, static_cast<unsigned>((offset + i) % 4), lane, address);
+    const WordPlace place = place_of(offset + i);
+    const unsigned lane = m_group_lane[place.group] + static_cast<unsigned>((offset + i) % 4);
     if (gp.is_write())
-      cus.set_cmem(lane, address, gp.get_data_ptr()[i]);
+      cus.set_cmem(lane, place.address, gp.get_data_ptr()[i]);
     else
-      gp.get_data_ptr()[i] = cus.cmem(lane, address);
+      gp.get_data_ptr()[i] = cus.cmem(lane, place.address);
   }
   return static_cast<unsigned>(length);
 }

@@ -61,8 +61,13 @@ class Ciu : public Block {
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned transport_dbg(tlm::tlm_generic_payload& gp);
-  // The CU lane and CMEM address of byte `k` of the word at `offset`.
-  void locate(uint64_t offset, unsigned k, unsigned& lane, unsigned& address) const;
+  // The group of four CUs and the CMEM address of the word at `offset`
+  // (byte k of it is CU m_group_lane[group] + k).
+  struct WordPlace {
+    uint64_t group;
+    unsigned address;
+  };
+  WordPlace place_of(uint64_t offset) const;
   // Moves `words` whole words at `offset` between the payload's data and
   // CMEM (to CMEM when `write`, from it when `read`).
   void move_words(uint64_t offset, uint64_t words, uint8_t* data, bool write, bool read);

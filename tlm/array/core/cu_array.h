@@ -72,9 +72,6 @@ class CuArray {
 
   uint8_t cmem(unsigned lane, unsigned address) const { return m_storage[row_offset(address) + lane]; }
   void set_cmem(unsigned lane, unsigned address, uint8_t value) { m_storage[row_offset(address) + lane] = value; }
-  // CMEM address `address` of every lane, lane 0 first (lanes in
-  // row-major order): where the CIU moves a word, four lanes at once.
-  uint8_t* cmem_lanes(unsigned address) { return row(address); }
   uint8_t reg(unsigned lane, unsigned index) const { return m_storage[row_offset(m_reg_rows[index]) + lane]; }
   void set_reg(unsigned lane, unsigned index, uint8_t value) {
     m_storage[row_offset(m_reg_rows[index]) + lane] = value;
