@@ -14,19 +14,12 @@
 
 #include <tlm>
 
+#include "common/value_extension.h"
+
 namespace tessera {
 
-struct ScheduleUntouched : tlm::tlm_extension<ScheduleUntouched> {
+struct ScheduleUntouched : ValueExtension<ScheduleUntouched> {
   bool untouched = false;
-
-  tlm::tlm_extension_base* clone() const override {
-    auto* copy = new ScheduleUntouched;
-    copy->untouched = untouched;
-    return copy;
-  }
-  void copy_from(const tlm::tlm_extension_base& other) override {
-    untouched = static_cast<const ScheduleUntouched&>(other).untouched;
-  }
 };
 
 // For a target: this access scheduled nothing (no-op without the extension).

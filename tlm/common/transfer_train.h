@@ -9,19 +9,12 @@
 
 #include <tlm>
 
+#include "common/value_extension.h"
+
 namespace tessera {
 
-struct TransferTrain : tlm::tlm_extension<TransferTrain> {
+struct TransferTrain : ValueExtension<TransferTrain> {
   unsigned transfers = 1;
-
-  tlm::tlm_extension_base* clone() const override {
-    auto* copy = new TransferTrain;
-    copy->transfers = transfers;
-    return copy;
-  }
-  void copy_from(const tlm::tlm_extension_base& other) override {
-    transfers = static_cast<const TransferTrain&>(other).transfers;
-  }
 };
 
 // Transfers a payload stands for (1 without the extension).
