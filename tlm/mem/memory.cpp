@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include "common/log.h"
@@ -13,7 +14,7 @@ Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
     : Block(name),
       in("in"),
       m_params(params),
-      m_data(params.size_bytes, 0),
+      m_data(params.size_bytes),
       m_beats(std::max(1u, params.width_bytes)),  // checked below, with the memory's name in the message
       m_first_access_ticks(params.clock_period.value() * params.first_access_cycles),
       m_beat_ticks(params.clock_period.value() * params.beat_cycles),
@@ -27,6 +28,11 @@ Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
   for (size_t beats = 0; beats < m_access_times.size(); ++beats)
     m_access_times[beats] = sc_core::sc_time::from_value(m_first_access_ticks + beats * m_beat_ticks);
   in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
+}
+
+Memory::Bytes::Bytes(uint64_t size)
+    : m_bytes(static_cast<uint8_t*>(std::calloc(std::max<uint64_t>(size, 1), 1))), m_size(size) {
+  if (!m_bytes) throw std::bad_alloc();
 }
 
 namespace {
