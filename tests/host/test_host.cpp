@@ -5,6 +5,7 @@
 // operations (HostCore), interrupts and idle time, bus errors raised into
 // the software, DMI re-acquisition after invalidation, and statistics.
 #include <functional>
+#include <random>
 
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
@@ -120,6 +121,10 @@ struct FailingBench {
 
 Bench* g_bench = nullptr;
 Bench* g_write_through = nullptr;  // system memory write-through
+// Two fresh benches for DataHitLine: the same accesses made by calls, and
+// served through the granted line where it takes them.
+Bench* g_called = nullptr;
+Bench* g_served = nullptr;
 FailingBench* g_failing = nullptr;
 
 sc_time seconds(double s) {
@@ -583,8 +588,172 @@ TEST(Host, CounterLocationsReadWhatTheCallsReturn) {
   check();
 }
 
+// What the ISS launcher does with each load and store (HostCore's
+// DataHitLine): a random mix of loads, stores, LDMs and STMs over more
+// lines than the cache holds, each after some compute cycles, with the
+// cache invalidated, cleaned and switched off and on between them. Made by
+// calls on one bench and, on another, served through the granted line
+// where it takes them: every figure of the two hosts, every value loaded,
+// the time of each access and memory's contents must be the same.
+namespace {
+
+struct Traffic {
+  std::vector<uint64_t> seen;  // values loaded and local times, in order
+  unsigned served = 0;         // accesses the line took
+};
+
+Traffic random_traffic(Bench& bench, bool serve) {
+  Traffic traffic;
+  HostCore& core = bench.host;
+  DataHitLine* hit = serve ? core.data_hit_line() : nullptr;
+  bench.run([&](HostApi& api) {
+    std::mt19937 random(2026);
+    const auto pick = [&](uint32_t n) { return static_cast<uint32_t>(random() % n); };
+    // 16 KiB from 0x10000: twice the cache, so lines are replaced and dirty
+    // halves written back; as a program's, most accesses stay in the line
+    // of the one before.
+    uint32_t line = 0x10000;
+    const auto address = [&](unsigned align) {
+      if (pick(8) == 0) line = 0x10000 + pick(512) * 32;
+      return line + pick(32 / align) * align;
+    };
+    const double start = api.now_seconds();
+    for (unsigned i = 0; i < 20000; ++i) {
+      const uint64_t pending = pick(4) == 0 ? pick(400) : pick(3);
+      const auto charge = [&] {
+        if (pending != 0) api.compute_cycles(pending);
+      };
+      const unsigned what = pick(100);
+      if (what < 40) {
+        const unsigned bytes = 1u << pick(3);
+        const uint32_t at = address(bytes);
+        uint32_t value = 0;
+        if (hit != nullptr && hit->load(at, bytes, pending, value)) {
+          ++traffic.served;
+        } else {
+          charge();
+          value = bytes == 4 ? api.read32(at) : bytes == 2 ? api.read16(at) : api.read8(at);
+        }
+        traffic.seen.push_back(value);
+      } else if (what < 80) {
+        const unsigned bytes = 1u << pick(3);
+        const uint32_t at = address(bytes), value = static_cast<uint32_t>(random());
+        if (hit != nullptr && hit->store(at, bytes, pending, value)) {
+          ++traffic.served;
+        } else {
+          charge();
+          if (bytes == 4)
+            api.write32(at, value);
+          else if (bytes == 2)
+            api.write16(at, static_cast<uint16_t>(value));
+          else
+            api.write8(at, static_cast<uint8_t>(value));
+        }
+      } else if (what < 90) {
+        uint32_t words[8] = {};
+        const unsigned count = 1 + pick(8);
+        const uint32_t at = (address(4) & ~31u) + 4 * pick(9 - count);
+        if (hit != nullptr && hit->load_words(at, words, count, pending)) {
+          ++traffic.served;
+        } else {
+          charge();
+          api.read_words(at, words, count);
+        }
+        traffic.seen.insert(traffic.seen.end(), words, words + count);
+      } else if (what < 99) {
+        uint32_t words[8];
+        const unsigned count = 1 + pick(8);
+        for (uint32_t& word : words) word = static_cast<uint32_t>(random());
+        const uint32_t at = (address(4) & ~31u) + 4 * pick(9 - count);
+        if (hit != nullptr && hit->store_words(at, words, count, pending)) {
+          ++traffic.served;
+        } else {
+          charge();
+          api.write_words(at, words, count);
+        }
+      } else {
+        charge();
+        switch (pick(4)) {
+          case 0: core.invalidate_data_cache(); break;
+          case 1: core.clean_data_line(address(4), pick(2) == 0); break;
+          case 2: core.invalidate_data_line(address(4)); break;
+          default:
+            core.set_data_cache_control(false, true);
+            api.read32(address(4));
+            core.set_data_cache_control(true, true);
+        }
+      }
+      traffic.seen.push_back(core.busy_cycles());
+      traffic.seen.push_back(static_cast<uint64_t>((api.now_seconds() - start) * 1e12 + 0.5));
+    }
+    core.drain_write_buffer();
+  });
+  return traffic;
+}
+
+}  // namespace
+
+TEST(Host, LoadsAndStoresServedInTheGrantedLineAreWhatTheHostWouldDo) {
+  const Traffic called = random_traffic(*g_called, false);
+  const Traffic served = random_traffic(*g_served, true);
+  EXPECT_GT(served.served, 5000u) << "the line serves most hits";
+  EXPECT_EQ(called.seen, served.seen);
+  auto figures = [](Bench& bench) {
+    nlohmann::json stats = bench.host.stats_json(sc_core::sc_time_stamp());
+    stats.erase("idle_ns");  // the benches ran one after the other: only their idle time differs
+    return stats;
+  };
+  EXPECT_EQ(figures(*g_called), figures(*g_served));
+  EXPECT_EQ(g_called->bus.initiator_stats()[0].reads, g_served->bus.initiator_stats()[0].reads);
+  EXPECT_EQ(g_called->bus.initiator_stats()[0].writes, g_served->bus.initiator_stats()[0].writes);
+  EXPECT_TRUE(std::equal(g_called->memory.data(), g_called->memory.data() + MEM_SIZE, g_served->memory.data()));
+}
+
+// The line stops being served the moment a hit there would no longer be one,
+// or would no longer be the host's plain hit: replaced by a fill, the cache
+// off, the line or the cache invalidated (a clean with invalidate too), the
+// memory's direct window withdrawn.
+TEST(Host, TheGrantedLineIsRevokedWhenItStopsBeingAPlainHit) {
+  Bench& bench = *g_served;
+  HostCore& core = bench.host;
+  DataHitLine* hit = core.data_hit_line();
+  constexpr uint32_t A = 0x40000;  // in set 0, as A + k * 128 for every k
+  uint32_t value = 0;
+  const auto granted = [&](HostApi& api) {
+    api.read32(A);  // a miss or a hit: afterwards a hit
+    api.read32(A);  // a hit: the line granted
+    return hit->load(A, 4, 0, value);
+  };
+  const auto revoked_by = [&](const std::function<void(HostApi&)>& change) {
+    bool before = false, after = true;
+    bench.run([&](HostApi& api) {
+      before = granted(api);
+      change(api);
+      after = hit->load(A, 4, 0, value);
+    });
+    EXPECT_TRUE(before);
+    return !after;
+  };
+  EXPECT_TRUE(revoked_by([&](HostApi& api) {
+    // After 64 fills of set 0 from A on, the next fill there replaces A
+    // (round-robin: the ways in turn).
+    core.invalidate_data_cache();
+    for (uint32_t k = 0; k < 64; ++k) api.read32(A + 128 * k);
+    api.read32(A);
+    EXPECT_TRUE(hit->load(A, 4, 0, value)) << "A still resident";
+    api.read32(A + 128 * 64);
+  })) << "replaced";
+  EXPECT_TRUE(revoked_by([&](HostApi&) { core.set_data_cache_control(false, true); })) << "cache off";
+  core.set_data_cache_control(true, true);
+  EXPECT_TRUE(revoked_by([&](HostApi&) { core.invalidate_data_line(A); })) << "line invalidated";
+  EXPECT_TRUE(revoked_by([&](HostApi&) { core.invalidate_data_cache(); })) << "cache invalidated";
+  EXPECT_TRUE(revoked_by([&](HostApi&) { core.clean_data_line(A, true); })) << "cleaned and invalidated";
+  EXPECT_TRUE(revoked_by([&](HostApi&) { bench.memory.invalidate_dmi(); })) << "direct window withdrawn";
+  EXPECT_FALSE(revoked_by([&](HostApi&) { core.clean_data_line(A, false); })) << "a clean alone keeps the line";
+}
+
 TEST(Host, NoProtocolViolations) {
-  for (const Bench* bench : {g_bench, g_write_through})
+  for (const Bench* bench : {g_bench, g_write_through, g_called, g_served})
     EXPECT_EQ(bench->check_host.violation_count() + bench->check_memory.violation_count() +
                   bench->check_device.violation_count(),
               0u);
@@ -595,6 +764,8 @@ int sc_main(int argc, char* argv[]) {
   test::ReportCapture quiet;  // the failing bench's error is asserted, not printed
   g_bench = new Bench("bench");
   g_write_through = new Bench("write_through_bench", true);
+  g_called = new Bench("called_bench");
+  g_served = new Bench("served_bench");
   g_failing = new FailingBench();
   return test::run_all_tests(argc, argv);
 }

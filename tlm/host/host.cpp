@@ -212,6 +212,7 @@ uint8_t* Host::dmi_pointer_or_null(uint32_t address, unsigned bytes) {
 void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
   if (m_dmi_valid && start <= m_dmi.get_end_address() && end >= m_dmi.get_start_address()) {
     m_dmi_valid = false;
+    m_hit_line.line = DataHitLine::NONE;
     if (m_direct_memory_invalidated) m_direct_memory_invalidated();
   }
   m_dmi_denied = false;
@@ -260,6 +261,7 @@ void Host::read_data(uint32_t address, void* data, unsigned bytes) {
     }
     if (const uint8_t* p = dmi_pointer(address, bytes)) {
       copy_access(data, p, bytes);
+      grant_hit_line(address);
       return;
     }
     // No DMI: fetch the data without time (the cache hit has been charged).
@@ -287,6 +289,7 @@ void Host::write_data(uint32_t address, const void* data, unsigned bytes) {
   if (cached(address, bytes) && m_dcache.write(address, !m_params.write_through) && !m_params.write_through) {
     if (uint8_t* p = dmi_pointer(address, bytes)) {
       copy_access(p, data, bytes);
+      grant_hit_line(address);
       return;
     }
     tlm::tlm_generic_payload request;
@@ -381,7 +384,39 @@ void Host::write_back(const DataCache::WriteBack& dirty) {
   post_write(dirty.address, data, dirty.bytes);
 }
 
+DataHitLine* Host::data_hit_line() {
+  m_granting = true;
+  m_hit_line = DataHitLine{};
+  m_hit_line.line_mask = ~(m_dcache.line_bytes() - 1);
+  while ((2u << m_hit_line.half_shift) < m_dcache.line_bytes()) ++m_hit_line.half_shift;
+  m_hit_line.busy_cycles = &m_busy_cycles.value;
+  m_hit_line.measured_cycles = &m_measured_cycles.value;
+  m_hit_line.local_ticks = &m_local_ticks;
+  m_hit_line.budget_ticks = &m_budget_ticks;
+  m_hit_line.period_ticks = m_period_ticks;
+  m_hit_line.loads = &m_loads.value;
+  m_hit_line.stores = &m_stores.value;
+  m_hit_line.hits = m_dcache.hits_location();
+  m_hit_line.load_cycles = m_params.load_cycles;
+  m_hit_line.store_cycles = m_params.store_cycles;
+  m_dcache.revoke_on_change(&m_hit_line);
+  return &m_hit_line;
+}
+
+void Host::grant_line(uint32_t address) {
+  // Not while busy intervals are noted (charge's note_segment), nor for a
+  // line that is not all cacheable and in the direct window.
+  const uint32_t line = m_dcache.line_address(address);
+  const unsigned bytes = m_dcache.line_bytes();
+  uint8_t* data = m_note_segments || !cacheable(line, bytes) ? nullptr : dmi_pointer(line, bytes);
+  if (data == nullptr) return;
+  m_hit_line.line = line;
+  m_hit_line.data = data;
+  m_hit_line.dirty = m_params.write_through ? nullptr : m_dcache.dirty_bits(line);
+}
+
 void Host::set_data_cache_control(bool enabled, bool round_robin) {
+  m_hit_line.line = DataHitLine::NONE;
   m_dcache_on = enabled;
   m_dcache.set_round_robin(round_robin);
 }
@@ -726,6 +761,7 @@ void Host::timeline_to(TimelineSink& sink) {
   if (!sink.records(TimelineDetail::blocks)) return;
   m_timeline = &sink;
   m_note_segments = true;
+  m_hit_line.line = DataHitLine::NONE;
   m_timeline_track = sink.track(name(), "activity");
   // The driver's phases reach the host-compiled model only (driver_phase).
   if (!m_params.iss) m_phase_track = sink.track(name(), "driver phase");

@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/data_hit_line.h"
+
 namespace tessera {
 
 class HostCore {
@@ -94,6 +96,12 @@ class HostCore {
     const uint64_t* data_cache_misses = nullptr;
   };
   virtual CounterLocations counter_locations() const { return {}; }
+
+  // The data-cache line whose hits the launcher may serve itself
+  // (DataHitLine: the host's own charges and counts, done in place), kept
+  // up to date by the host from this call on; null from a core that grants
+  // none (a test's stand-in). Asked once, before the program runs.
+  virtual DataHitLine* data_hit_line() { return nullptr; }
 
   // The program's own statistics (instructions, CPI, caches, its profile),
   // asked for whenever the host's are written: stats.json's host.iss.

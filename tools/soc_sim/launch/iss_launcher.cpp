@@ -35,7 +35,9 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 
 // The ISS's memory port over the host. Data accesses are the host's
 // (HostApi: its data-cache tag model, write buffer and bus; each charges
-// the host's one issue cycle, host.cycles.load or .store). Instruction
+// the host's one issue cycle, host.cycles.load or .store), those that hit
+// the line the host grants served here as the host would (DataHitLine,
+// tlm/host/README.md). Instruction
 // fetches read system memory itself, directly (HostCore::direct_memory,
 // the bus's DMI), so that they see every bus master's writes: the
 // program's stores, the DMA's, a debugger's (a private copy of the code
@@ -50,7 +52,11 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 class HostMemory : public iss::IssMemory, public iss::DebugMemory {
  public:
   HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing)
-      : m_host(host), m_core(core), m_timing(timing), m_counters(core.counter_locations()) {
+      : m_host(host),
+        m_core(core),
+        m_timing(timing),
+        m_counters(core.counter_locations()),
+        m_hit(core.data_hit_line()) {
     m_core.on_direct_memory_invalidated([this] {
       m_window_size = 0;
       m_resident.line = iss::ResidentLine::NONE;
@@ -104,7 +110,13 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   }
   iss::ResidentLine* resident_line() override { return &m_resident; }
 
+  // Loads and stores: a hit in the line the host grants (DataHitLine) is
+  // served here, as the host would; any other access is the host's.
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
+    if (m_hit != nullptr && m_hit->load(address, bytes, m_pending, value)) {
+      took_hit(m_hit->load_cycles);
+      return true;
+    }
     flush();
     const Charged charged(*this);
     try {
@@ -128,6 +140,10 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     if (address == EXIT) {
       m_exited = true;
       m_status = value;
+      return true;
+    }
+    if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
+      took_hit(m_hit->store_cycles);
       return true;
     }
     flush();
@@ -157,6 +173,10 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // LDM and STM: the host's read_words and write_words, one burst where
   // the words miss the data cache.
   bool read_block(uint32_t address, uint32_t* words, unsigned count) override {
+    if (m_hit != nullptr && m_hit->load_words(address, words, count, m_pending)) {
+      took_hit(uint64_t{m_hit->load_cycles} * count);
+      return true;
+    }
     flush();
     const Charged charged(*this);
     try {
@@ -171,6 +191,10 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   bool write_block(uint32_t address, const uint32_t* words, unsigned count) override {
     if (address <= EXIT && uint64_t{address} + 4 * count > CONSOLE)
       return IssMemory::write_block(address, words, count);
+    if (m_hit != nullptr && m_hit->store_words(address, words, count, m_pending)) {
+      took_hit(uint64_t{m_hit->store_cycles} * count + 1);
+      return true;
+    }
     flush();
     const Charged charged(*this);
     try {
@@ -268,10 +292,18 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     return true;
   }
 
+  // After a hit served in the granted line: the pending cycles charged
+  // with it, its issue cycles the host's (as Charged counts them).
+  void took_hit(uint64_t issue_cycles) {
+    m_pending = 0;
+    m_host_charged += issue_cycles;
+  }
+
   HostApi& m_host;
   HostCore& m_core;
   iss::Arm922tTiming& m_timing;
   const HostCore::CounterLocations m_counters;
+  DataHitLine* const m_hit;  // the host's grant, or null
   iss::Profile::Entry* m_entry = nullptr;
   // Memory the fetches read directly (HostCore::direct_memory): system
   // memory's DMI window, size 0 until the first fetch and after the memory
