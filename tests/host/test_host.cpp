@@ -121,7 +121,7 @@ struct FailingBench {
 
 Bench* g_bench = nullptr;
 Bench* g_write_through = nullptr;  // system memory write-through
-// Two fresh benches for DataHitLine: the same accesses made by calls, and
+// Two fresh benches for DataHitLines: the same accesses made by calls, and
 // served through the granted line where it takes them.
 Bench* g_called = nullptr;
 Bench* g_served = nullptr;
@@ -589,7 +589,7 @@ TEST(Host, CounterLocationsReadWhatTheCallsReturn) {
 }
 
 // What the ISS launcher does with each load and store (HostCore's
-// DataHitLine): a random mix of loads, stores, LDMs and STMs over more
+// DataHitLines): a random mix of loads, stores, LDMs and STMs over more
 // lines than the cache holds, each after some compute cycles, with the
 // cache invalidated, cleaned and switched off and on between them. Made by
 // calls on one bench and, on another, served through the granted line
@@ -605,15 +605,16 @@ struct Traffic {
 Traffic random_traffic(Bench& bench, bool serve) {
   Traffic traffic;
   HostCore& core = bench.host;
-  DataHitLine* hit = serve ? core.data_hit_line() : nullptr;
+  DataHitLines* hit = serve ? core.data_hit_lines() : nullptr;
   bench.run([&](HostApi& api) {
     std::mt19937 random(2026);
     const auto pick = [&](uint32_t n) { return static_cast<uint32_t>(random() % n); };
     // 16 KiB from 0x10000: twice the cache, so lines are replaced and dirty
-    // halves written back; as a program's, most accesses stay in the line
-    // of the one before.
-    uint32_t line = 0x10000;
+    // halves written back; as a program's (its stack, the data it works
+    // on), most accesses stay in a few lines, which change now and then.
+    uint32_t lines[3] = {0x10000, 0x10020, 0x10040};
     const auto address = [&](unsigned align) {
+      uint32_t& line = lines[pick(3)];
       if (pick(8) == 0) line = 0x10000 + pick(512) * 32;
       return line + pick(32 / align) * align;
     };
@@ -693,7 +694,7 @@ Traffic random_traffic(Bench& bench, bool serve) {
 
 }  // namespace
 
-TEST(Host, LoadsAndStoresServedInTheGrantedLineAreWhatTheHostWouldDo) {
+TEST(Host, LoadsAndStoresServedInGrantedLinesAreWhatTheHostWouldDo) {
   const Traffic called = random_traffic(*g_called, false);
   const Traffic served = random_traffic(*g_served, true);
   EXPECT_GT(served.served, 5000u) << "the line serves most hits";
@@ -716,7 +717,7 @@ TEST(Host, LoadsAndStoresServedInTheGrantedLineAreWhatTheHostWouldDo) {
 TEST(Host, TheGrantedLineIsRevokedWhenItStopsBeingAPlainHit) {
   Bench& bench = *g_served;
   HostCore& core = bench.host;
-  DataHitLine* hit = core.data_hit_line();
+  DataHitLines* hit = core.data_hit_lines();
   constexpr uint32_t A = 0x40000;  // in set 0, as A + k * 128 for every k
   uint32_t value = 0;
   const auto granted = [&](HostApi& api) {
@@ -750,6 +751,12 @@ TEST(Host, TheGrantedLineIsRevokedWhenItStopsBeingAPlainHit) {
   EXPECT_TRUE(revoked_by([&](HostApi&) { core.clean_data_line(A, true); })) << "cleaned and invalidated";
   EXPECT_TRUE(revoked_by([&](HostApi&) { bench.memory.invalidate_dmi(); })) << "direct window withdrawn";
   EXPECT_FALSE(revoked_by([&](HostApi&) { core.clean_data_line(A, false); })) << "a clean alone keeps the line";
+  EXPECT_FALSE(revoked_by([&](HostApi& api) { api.read32(A + 128 * 65); })) << "another line's fill";
+  EXPECT_FALSE(revoked_by([&](HostApi& api) {
+    api.read32(A + 32);  // a fill or a hit,
+    api.read32(A + 32);  // then a hit
+  })) << "a hit on another line is granted beside it";
+  EXPECT_TRUE(hit->load(A + 32, 4, 0, value));
 }
 
 TEST(Host, NoProtocolViolations) {

@@ -47,7 +47,7 @@ DataCache::WriteBack DataCache::take_dirty(Line& line, bool invalidate) {
   }
   line.dirty = 0;
   if (invalidate) {
-    revoke();
+    revoke(line);
     forget(line);
     line = Line{};
   }
@@ -62,7 +62,7 @@ DataCache::Result DataCache::read_miss(uint32_t address) {
   const unsigned set_index = tag & (m_sets - 1);
   const size_t index = static_cast<size_t>(set_index) * m_ways + m_replacement.victim(set_index, m_round_robin);
   Line& victim = m_lines[index];
-  result.victim = take_dirty(victim, true);  // revokes the granted line: it may be the victim
+  result.victim = take_dirty(victim, true);  // the victim revoked
   victim = {tag, true, 0};
   remember(victim, index);
   return result;
@@ -84,14 +84,14 @@ DataCache::WriteBack DataCache::clean_index(uint32_t index, bool invalidate) {
 
 void DataCache::invalidate_line(uint32_t address) {
   if (Line* line = enabled() ? find(address) : nullptr) {
-    revoke();
+    revoke(*line);
     forget(*line);
     *line = Line{};
   }
 }
 
 void DataCache::invalidate_all() {
-  revoke();
+  if (m_granted != nullptr) m_granted->revoke_all();
   for (auto& line : m_lines) {
     forget(line);
     line = Line{};

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "host/cache_replacement.h"
-#include "host/data_hit_line.h"
+#include "host/data_hit_lines.h"
 
 namespace tessera {
 
@@ -80,15 +80,15 @@ class DataCache {
   uint64_t hits() const { return m_hits; }
   uint64_t misses() const { return m_misses; }
   // Where hits() is kept, and the dirty bits of the resident line holding
-  // `address` (null if none): for a DataHitLine.
+  // `address` (null if none): for DataHitLines.
   uint64_t* hits_location() { return &m_hits; }
   uint8_t* dirty_bits(uint32_t address) {
     Line* line = enabled() ? find(address) : nullptr;
     return line ? &line->dirty : nullptr;
   }
-  // The DataHitLine revoked whenever a line is allocated or invalidated
-  // (or null).
-  void revoke_on_change(DataHitLine* granted) { m_granted = granted; }
+  // The granted lines (or null) that a line leaving the cache, replaced or
+  // invalidated, is revoked from.
+  void revoke_on_change(DataHitLines* granted) { m_granted = granted; }
   // Where misses() is kept (HostCore::counter_locations).
   const uint64_t* misses_location() const { return &m_misses; }
   // Dirty lines written back: evicted or cleaned.
@@ -130,10 +130,10 @@ class DataCache {
   std::vector<uint32_t> m_where;
   void forget(const Line& line);
   void remember(const Line& line, size_t index);
-  void revoke() {
-    if (m_granted != nullptr) m_granted->line = DataHitLine::NONE;
+  void revoke(const Line& line) {
+    if (m_granted != nullptr && line.valid) m_granted->revoke(line.tag << m_line_shift);
   }
-  DataHitLine* m_granted = nullptr;
+  DataHitLines* m_granted = nullptr;
   uint64_t m_hits = 0;
   uint64_t m_misses = 0;
   uint64_t m_writebacks = 0;

@@ -212,7 +212,7 @@ uint8_t* Host::dmi_pointer_or_null(uint32_t address, unsigned bytes) {
 void Host::invalidate_direct_mem_ptr(sc_dt::uint64 start, sc_dt::uint64 end) {
   if (m_dmi_valid && start <= m_dmi.get_end_address() && end >= m_dmi.get_start_address()) {
     m_dmi_valid = false;
-    m_hit_line.line = DataHitLine::NONE;
+    m_hit_lines.revoke_all();
     if (m_direct_memory_invalidated) m_direct_memory_invalidated();
   }
   m_dmi_denied = false;
@@ -384,23 +384,23 @@ void Host::write_back(const DataCache::WriteBack& dirty) {
   post_write(dirty.address, data, dirty.bytes);
 }
 
-DataHitLine* Host::data_hit_line() {
+DataHitLines* Host::data_hit_lines() {
   m_granting = true;
-  m_hit_line = DataHitLine{};
-  m_hit_line.line_mask = ~(m_dcache.line_bytes() - 1);
-  while ((2u << m_hit_line.half_shift) < m_dcache.line_bytes()) ++m_hit_line.half_shift;
-  m_hit_line.busy_cycles = &m_busy_cycles.value;
-  m_hit_line.measured_cycles = &m_measured_cycles.value;
-  m_hit_line.local_ticks = &m_local_ticks;
-  m_hit_line.budget_ticks = &m_budget_ticks;
-  m_hit_line.period_ticks = m_period_ticks;
-  m_hit_line.loads = &m_loads.value;
-  m_hit_line.stores = &m_stores.value;
-  m_hit_line.hits = m_dcache.hits_location();
-  m_hit_line.load_cycles = m_params.load_cycles;
-  m_hit_line.store_cycles = m_params.store_cycles;
-  m_dcache.revoke_on_change(&m_hit_line);
-  return &m_hit_line;
+  m_hit_lines = DataHitLines{};
+  m_hit_lines.line_mask = ~(m_dcache.line_bytes() - 1);
+  while ((1u << m_hit_lines.line_shift) < m_dcache.line_bytes()) ++m_hit_lines.line_shift;
+  m_hit_lines.busy_cycles = &m_busy_cycles.value;
+  m_hit_lines.measured_cycles = &m_measured_cycles.value;
+  m_hit_lines.local_ticks = &m_local_ticks;
+  m_hit_lines.budget_ticks = &m_budget_ticks;
+  m_hit_lines.period_ticks = m_period_ticks;
+  m_hit_lines.loads = &m_loads.value;
+  m_hit_lines.stores = &m_stores.value;
+  m_hit_lines.hits = m_dcache.hits_location();
+  m_hit_lines.load_cycles = m_params.load_cycles;
+  m_hit_lines.store_cycles = m_params.store_cycles;
+  m_dcache.revoke_on_change(&m_hit_lines);
+  return &m_hit_lines;
 }
 
 void Host::grant_line(uint32_t address) {
@@ -409,14 +409,11 @@ void Host::grant_line(uint32_t address) {
   const uint32_t line = m_dcache.line_address(address);
   const unsigned bytes = m_dcache.line_bytes();
   uint8_t* data = m_note_segments || !cacheable(line, bytes) ? nullptr : dmi_pointer(line, bytes);
-  if (data == nullptr) return;
-  m_hit_line.line = line;
-  m_hit_line.data = data;
-  m_hit_line.dirty = m_params.write_through ? nullptr : m_dcache.dirty_bits(line);
+  if (data != nullptr) m_hit_lines.grant(line, data, m_params.write_through ? nullptr : m_dcache.dirty_bits(line));
 }
 
 void Host::set_data_cache_control(bool enabled, bool round_robin) {
-  m_hit_line.line = DataHitLine::NONE;
+  m_hit_lines.revoke_all();
   m_dcache_on = enabled;
   m_dcache.set_round_robin(round_robin);
 }
@@ -761,7 +758,7 @@ void Host::timeline_to(TimelineSink& sink) {
   if (!sink.records(TimelineDetail::blocks)) return;
   m_timeline = &sink;
   m_note_segments = true;
-  m_hit_line.line = DataHitLine::NONE;
+  m_hit_lines.revoke_all();
   m_timeline_track = sink.track(name(), "activity");
   // The driver's phases reach the host-compiled model only (driver_phase).
   if (!m_params.iss) m_phase_track = sink.track(name(), "driver phase");

@@ -127,7 +127,7 @@ class Host : public Block, public HostApi, public HostCore {
   // taken where the host's time and the kernel's agree.
   void attribute_activity_in_time() {
     m_attribute_in_time = m_note_segments = true;
-    m_hit_line.line = DataHitLine::NONE;
+    m_hit_lines.revoke_all();
   }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
   sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
@@ -166,7 +166,7 @@ class Host : public Block, public HostApi, public HostCore {
   CounterLocations counter_locations() const override {
     return {&m_busy_cycles.value, &m_stall_ticks, m_period_ticks, m_dcache.misses_location()};
   }
-  DataHitLine* data_hit_line() override;
+  DataHitLines* data_hit_lines() override;
   void set_data_cache_control(bool enabled, bool round_robin) override;
   void invalidate_data_cache() override { m_dcache.invalidate_all(); }
   void invalidate_data_line(uint32_t address) override { m_dcache.invalidate_line(address); }
@@ -279,13 +279,13 @@ class Host : public Block, public HostApi, public HostCore {
   bool nothing_scheduled_in_window();
   DataCache m_dcache;
   bool m_dcache_on = true;  // CP15 c1's C bit (host.model=iss); always on for host-compiled code
-  // The line granted to a core model (data_hit_line), once one asked.
-  DataHitLine m_hit_line;
+  // The lines granted to a core model (data_hit_lines), once one asked.
+  DataHitLines m_hit_lines;
   bool m_granting = false;
-  // After a hit at `address`: its line granted, where a DataHitLine may
-  // serve it (see data_hit_line.h).
+  // After a hit at `address`: its line granted, where DataHitLines may
+  // serve it (see data_hit_lines.h).
   void grant_hit_line(uint32_t address) {
-    if (m_granting && m_hit_line.line != m_dcache.line_address(address)) grant_line(address);
+    if (m_granting && !m_hit_lines.holds(m_dcache.line_address(address))) grant_line(address);
   }
   void grant_line(uint32_t address);
   tlm::tlm_generic_payload m_payload;

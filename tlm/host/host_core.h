@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "host/data_hit_line.h"
+#include "host/data_hit_lines.h"
 
 namespace tessera {
 
@@ -97,11 +97,11 @@ class HostCore {
   };
   virtual CounterLocations counter_locations() const { return {}; }
 
-  // The data-cache line whose hits the launcher may serve itself
-  // (DataHitLine: the host's own charges and counts, done in place), kept
+  // The data-cache lines whose hits the launcher may serve itself
+  // (DataHitLines: the host's own charges and counts, done in place), kept
   // up to date by the host from this call on; null from a core that grants
   // none (a test's stand-in). Asked once, before the program runs.
-  virtual DataHitLine* data_hit_line() { return nullptr; }
+  virtual DataHitLines* data_hit_lines() { return nullptr; }
 
   // The program's own statistics (instructions, CPI, caches, its profile),
   // asked for whenever the host's are written: stats.json's host.iss.

@@ -36,7 +36,7 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 // The ISS's memory port over the host. Data accesses are the host's
 // (HostApi: its data-cache tag model, write buffer and bus; each charges
 // the host's one issue cycle, host.cycles.load or .store), those that hit
-// the line the host grants served here as the host would (DataHitLine,
+// the lines the host grants served here as the host would (DataHitLines,
 // tlm/host/README.md). Instruction
 // fetches read system memory itself, directly (HostCore::direct_memory,
 // the bus's DMI), so that they see every bus master's writes: the
@@ -56,7 +56,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
         m_core(core),
         m_timing(timing),
         m_counters(core.counter_locations()),
-        m_hit(core.data_hit_line()) {
+        m_hit(core.data_hit_lines()) {
     m_core.on_direct_memory_invalidated([this] {
       m_window_size = 0;
       m_resident.line = iss::ResidentLine::NONE;
@@ -110,7 +110,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   }
   iss::ResidentLine* resident_line() override { return &m_resident; }
 
-  // Loads and stores: a hit in the line the host grants (DataHitLine) is
+  // Loads and stores: a hit in a line the host grants (DataHitLines) is
   // served here, as the host would; any other access is the host's.
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     if (m_hit != nullptr && m_hit->load(address, bytes, m_pending, value)) {
@@ -303,7 +303,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   HostCore& m_core;
   iss::Arm922tTiming& m_timing;
   const HostCore::CounterLocations m_counters;
-  DataHitLine* const m_hit;  // the host's grant, or null
+  DataHitLines* const m_hit;  // the host's grants, or null
   iss::Profile::Entry* m_entry = nullptr;
   // Memory the fetches read directly (HostCore::direct_memory): system
   // memory's DMI window, size 0 until the first fetch and after the memory

@@ -1,0 +1,133 @@
+// DataHitLines: lines of the host's data cache that a core model may serve
+// hits from without calling the host (HostCore::data_hit_lines), the data
+// side's counterpart of the ISS's ResidentLine. Taking a load or store here
+// does exactly what the host does for one that hits (Host::read_data,
+// write_data, read_words, write_words): the compute cycles pending before it
+// charged, then the access's issue cycles, the loads or stores and the
+// cache's hits counted, a write-back store's half-line dirty bits set, the
+// bytes moved in memory. An access is taken only when those charges leave
+// the host's local time short of its budget, so no quantum ends within it;
+// otherwise, and outside the granted lines, the caller calls the host.
+//
+// The host grants the line of each hit (the whole line cacheable and in its
+// direct window, no busy interval being noted for a timeline) into a small
+// direct-mapped table (a program's stack and the data it works on stay
+// granted side by side), and revokes a line whenever a hit there may stop
+// being that plain hit: the line replaced or invalidated in the cache; and
+// every line when the cache is switched or invalidated, the window
+// withdrawn or a timeline attached.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+namespace tessera {
+
+struct DataHitLines {
+  static constexpr uint32_t NONE = 1;  // line addresses are multiples of the line size: bit 0 is free
+  static constexpr unsigned SLOTS = 8;
+  struct Line {
+    uint32_t line = NONE;      // the granted line's address, or NONE
+    uint8_t* data = nullptr;   // its bytes in memory
+    uint8_t* dirty = nullptr;  // its dirty bits (bit 0: first half), or null: stores call the host
+  };
+  Line lines[SLOTS];         // by line number, modulo SLOTS
+  uint32_t line_mask = ~0u;  // ~(line bytes - 1)
+  unsigned line_shift = 0;   // log2(line bytes)
+  // The host's figures a hit moves (its own members, valid while it lives).
+  uint64_t* busy_cycles = nullptr;
+  uint64_t* measured_cycles = nullptr;  // cycles charged by compute_cycles (the pending cycles)
+  uint64_t* local_ticks = nullptr;
+  const uint64_t* budget_ticks = nullptr;
+  uint64_t period_ticks = 1;
+  uint64_t* loads = nullptr;
+  uint64_t* stores = nullptr;
+  uint64_t* hits = nullptr;
+  unsigned load_cycles = 0;
+  unsigned store_cycles = 0;
+
+  // The host's side.
+  void grant(uint32_t line, uint8_t* data, uint8_t* dirty) { slot(line) = {line, data, dirty}; }
+  void revoke(uint32_t line) {
+    Line& entry = slot(line);
+    if (entry.line == line) entry.line = NONE;
+  }
+  void revoke_all() {
+    for (Line& entry : lines) entry.line = NONE;
+  }
+  bool holds(uint32_t line) const { return lines[(line >> line_shift) % SLOTS].line == line; }
+
+  // The core model's side.
+  // A load of 1, 2 or 4 aligned bytes (little-endian into `value`) after
+  // `pending` compute cycles: true if taken (its issue cycles are
+  // load_cycles).
+  bool load(uint32_t address, unsigned bytes, uint64_t pending, uint32_t& value) {
+    const Line& entry = slot(address);
+    if ((address & line_mask) != entry.line || (address & (bytes - 1)) != 0 || !charge(pending, load_cycles))
+      return false;
+    ++*loads;
+    ++*hits;
+    const uint8_t* p = entry.data + (address - entry.line);
+    value = bytes == 4   ? uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24
+            : bytes == 2 ? uint32_t{p[0]} | uint32_t{p[1]} << 8
+                         : uint32_t{p[0]};
+    return true;
+  }
+  // A store of 1, 2 or 4 aligned bytes: true if taken (issue cycles store_cycles).
+  bool store(uint32_t address, unsigned bytes, uint64_t pending, uint32_t value) {
+    const Line& entry = slot(address);
+    if ((address & line_mask) != entry.line || entry.dirty == nullptr || (address & (bytes - 1)) != 0 ||
+        !charge(pending, store_cycles))
+      return false;
+    ++*stores;
+    ++*hits;
+    *entry.dirty = static_cast<uint8_t>(*entry.dirty | half_bit(address));
+    uint8_t* p = entry.data + (address - entry.line);
+    for (unsigned i = 0; i < bytes; ++i) p[i] = static_cast<uint8_t>(value >> (8 * i));
+    return true;
+  }
+  // LDM: `count` words from an aligned `address`, all in the line, one load
+  // each as the host counts them: true if taken (issue cycles
+  // load_cycles * count).
+  bool load_words(uint32_t address, uint32_t* words, unsigned count, uint64_t pending) {
+    const Line& entry = slot(address);
+    if (!words_in(entry, address, count) || !charge(pending, uint64_t{load_cycles} * count)) return false;
+    *loads += count;
+    *hits += count;
+    std::memcpy(words, entry.data + (address - entry.line), 4 * size_t{count});
+    return true;
+  }
+  // STM: one store of `count` words, as the host counts it: true if taken
+  // (issue cycles store_cycles * count + 1).
+  bool store_words(uint32_t address, const uint32_t* words, unsigned count, uint64_t pending) {
+    const Line& entry = slot(address);
+    if (!words_in(entry, address, count) || entry.dirty == nullptr ||
+        !charge(pending, uint64_t{store_cycles} * count + 1))
+      return false;
+    ++*stores;
+    *hits += count;
+    for (unsigned i = 0; i < count; ++i) *entry.dirty = static_cast<uint8_t>(*entry.dirty | half_bit(address + 4 * i));
+    std::memcpy(entry.data + (address - entry.line), words, 4 * size_t{count});
+    return true;
+  }
+
+ private:
+  Line& slot(uint32_t address) { return lines[(address >> line_shift) % SLOTS]; }
+  unsigned half_bit(uint32_t address) const { return 1u << ((address >> (line_shift - 1)) & 1u); }
+  bool words_in(const Line& entry, uint32_t address, unsigned count) const {
+    return count != 0 && (address & line_mask) == entry.line && (address & 3u) == 0 &&
+           uint64_t{address - entry.line} + 4 * uint64_t{count} <= ~line_mask + uint64_t{1};
+  }
+  // The host's charge of `pending` compute cycles and then `issue` busy
+  // cycles, when neither reaches its budget (else nothing: false).
+  bool charge(uint64_t pending, uint64_t issue) {
+    const uint64_t ticks = (pending + issue) * period_ticks;
+    if (*local_ticks + ticks >= *budget_ticks) return false;
+    *measured_cycles += pending;
+    *busy_cycles += pending + issue;
+    *local_ticks += ticks;
+    return true;
+  }
+};
+
+}  // namespace tessera
