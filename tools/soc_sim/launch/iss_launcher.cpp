@@ -77,6 +77,11 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     }
   }
   uint64_t pending() const { return m_pending; }
+  // Whether the run loop should look up from the program: CHARGE_BATCH
+  // cycles gathered (to charge them and sample the interrupt inputs), or
+  // the program ended (stop()). One compare per instruction for both.
+  bool needs_attention() const { return m_pending >= m_attention_at; }
+  void stop() { m_attention_at = 0; }
   // An instruction's cycles, less those the host has charged as busy for its
   // accesses (their issue cycles: host.cycles.load and .store, per word), at
   // least 0. Most instructions make no access: they are the first branch.
@@ -140,6 +145,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     if (address == EXIT) {
       m_exited = true;
       m_status = value;
+      stop();
       return true;
     }
     if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
@@ -313,6 +319,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   const uint8_t* m_window = nullptr;
   iss::ResidentLine m_resident;
   uint64_t m_pending = 0;
+  uint64_t m_attention_at = CHARGE_BATCH;  // 0 once the program has ended
   uint64_t m_host_charged = 0;
   std::string m_console;
   bool m_exited = false;
@@ -598,6 +605,7 @@ void attach_hooks(iss::ArmCore& arm, HostCore& host_core, HostMemory& host_memor
     if (!iss::Semihosting::is_call(instruction, core->thumb())) return false;
     memory->flush();
     core->set_reg(0, semihosting->serve(core->reg(0), core->reg(1)));
+    if (semihosting->exited()) memory->stop();
     return true;
   });
   arm.on_exception([memory = &host_memory](iss::Exception exception, uint32_t pc) {
@@ -715,11 +723,15 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
         traced_function = profile.last_index();
         core_port.trace_program(core.reg(15), traced_function, core.cpsr());
       }
-    if (memory.pending() >= CHARGE_BATCH) {
+    // A batch of cycles gathered, or the program ended (false: the run
+    // stops; the flush is then the one the end of the run would make).
+    if (memory.needs_attention()) {
       memory.flush();
       core.set_irq(core_port.irq_asserted());
       core.set_fiq(core_port.fiq_asserted());
+      return !ended();
     }
+    return true;
   };
   const auto step = [&] {
     before(std::true_type{});
@@ -729,8 +741,7 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   const auto run_blocks = [&](auto watching) {
     before(watching);
     core.run([&]() __attribute__((always_inline)) {
-      after(watching);
-      if (ended()) return false;
+      if (!after(watching)) return false;
       before(watching);
       return true;
     });
