@@ -4,6 +4,7 @@
 // write-back, pseudo-random replacement, CP15's C bit and c7's data-side
 // operations (HostCore), interrupts and idle time, bus errors raised into
 // the software, DMI re-acquisition after invalidation, and statistics.
+#include <cmath>
 #include <functional>
 #include <random>
 
@@ -685,7 +686,7 @@ Traffic random_traffic(Bench& bench, bool serve) {
         }
       }
       traffic.seen.push_back(core.busy_cycles());
-      traffic.seen.push_back(static_cast<uint64_t>((api.now_seconds() - start) * 1e12 + 0.5));
+      traffic.seen.push_back(static_cast<uint64_t>(std::llround((api.now_seconds() - start) * 1e12)));
     }
     core.drain_write_buffer();
   });
