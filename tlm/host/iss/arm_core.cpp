@@ -420,12 +420,13 @@ struct ArmCore::Exec {
       return c.m_r[n];
     };
     // The transfer is one block access of the port (a burst where the host
-    // makes one), the lowest register at the lowest address.
-    std::array<uint32_t, 16> words{};
+    // makes one), the lowest register at the lowest address: word i is the
+    // list's i-th register, found by its set bits in turn.
+    std::array<uint32_t, 16> words;  // the first `count` are written before they are read
     if (!load) {
       unsigned i = 0;
-      for (unsigned n = 0; n < 16; ++n) {
-        if (!(list & (1u << n))) continue;
+      for (uint32_t rest = list; rest != 0; rest &= rest - 1, ++i) {
+        const auto n = static_cast<unsigned>(__builtin_ctz(rest));
         if (n == 15)
           words[i] = c.m_current + 12;
         else if (user_registers)
@@ -434,7 +435,6 @@ struct ArmCore::Exec {
           words[i] = final_base;
         else
           words[i] = c.m_r[n];
-        ++i;
       }
     }
     if (!(load ? c.m_memory.read_block(address, words.data(), count)
@@ -442,17 +442,17 @@ struct ArmCore::Exec {
       c.enter(Exception::data_abort, c.m_current + 8);
       return;
     }
-    std::array<uint32_t, 16> loaded{};
-    if (load)
-      for (unsigned n = 0, i = 0; n < 16; ++n)
-        if (list & (1u << n)) loaded[n] = words[i++];
     if (writeback) c.m_r[rn] = final_base;  // rn == 15 is unpredictable; never the PC here
     if (load) {
-      for (unsigned n = 0; n < 15; ++n)
-        if (list & (1u << n)) (user_registers ? user_reg(n) : c.m_r[n]) = loaded[n];
-      if (loads_pc) {
+      // After the write-back: a loaded base keeps the value loaded.
+      unsigned i = 0;
+      for (uint32_t rest = list & 0x7fffu; rest != 0; rest &= rest - 1, ++i) {
+        const auto n = static_cast<unsigned>(__builtin_ctz(rest));
+        (user_registers ? user_reg(n) : c.m_r[n]) = words[i];
+      }
+      if (loads_pc) {                         // the highest register: the last word
         if (user_bank) c.set_cpsr(c.spsr());  // LDM ..^ with the PC: return from an exception
-        c.write_pc(loaded[15] & (c.thumb() ? ~1u : ~3u));
+        c.write_pc(words[count - 1] & (c.thumb() ? ~1u : ~3u));
       }
     }
   }
