@@ -236,13 +236,16 @@ class TimedFetch : public IssMemory {
   bool write(uint32_t address, unsigned bytes, uint32_t value) override {
     return m_memory.write(address, bytes, value);
   }
+  // A line of plain memory (code_line) is read here, where it is granted;
+  // any other fetch is the other port's.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     if (m_timing != nullptr) m_timing->fetch(address);
-    if (!m_memory.fetch(address, bytes, value)) return false;
     const uint32_t line = address & ~(ResidentLine::BYTES - 1);
     uint64_t* fetches = m_timing != nullptr ? m_timing->resident_hits(address) : &m_untimed_fetches;
     const uint8_t* data = fetches != nullptr ? m_memory.code_line(line) : nullptr;
-    if (data != nullptr) m_resident = {line, data, fetches};
+    if (data == nullptr) return m_memory.fetch(address, bytes, value);
+    value = load_little_endian(data + (address - line), bytes);
+    m_resident = {line, data, fetches};
     return true;
   }
   ResidentLine* resident_line() override { return &m_resident; }
