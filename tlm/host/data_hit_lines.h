@@ -31,9 +31,8 @@ struct DataHitLines {
     uint8_t* data = nullptr;   // its bytes in memory
     uint8_t* dirty = nullptr;  // its dirty bits (bit 0: first half), or null: stores call the host
   };
-  Line lines[SLOTS];         // by line number, modulo SLOTS
-  uint32_t line_mask = ~0u;  // ~(line bytes - 1)
-  unsigned line_shift = 0;   // log2(line bytes)
+  Line lines[SLOTS];        // by line number, modulo SLOTS
+  unsigned line_shift = 0;  // log2(line bytes)
   // The host's figures a hit moves (its own members, valid while it lives).
   uint64_t* busy_cycles = nullptr;
   uint64_t* measured_cycles = nullptr;  // cycles charged by compute_cycles (the pending cycles)
@@ -46,7 +45,9 @@ struct DataHitLines {
   unsigned load_cycles = 0;
   unsigned store_cycles = 0;
 
-  // The host's side.
+  // The host's side: whether a host has filled the figures in (it grants
+  // lines from then on).
+  bool attached() const { return local_ticks != nullptr; }
   void grant(uint32_t line, uint8_t* data, uint8_t* dirty) { slot(line) = {line, data, dirty}; }
   void revoke(uint32_t line) {
     Line& entry = slot(line);
@@ -57,14 +58,17 @@ struct DataHitLines {
   }
   bool holds(uint32_t line) const { return lines[(line >> line_shift) % SLOTS].line == line; }
 
-  // The core model's side.
+  // The core model's side. The issue cycles each kind of access is charged
+  // (as the host charges them: an LDM a load per word, an STM a store cycle
+  // per word and one more), for a caller that keeps account of them.
+  uint64_t load_issue(unsigned words = 1) const { return uint64_t{load_cycles} * words; }
+  uint64_t store_issue() const { return store_cycles; }
+  uint64_t store_words_issue(unsigned words) const { return uint64_t{store_cycles} * words + 1; }
   // A load of 1, 2 or 4 aligned bytes (little-endian into `value`) after
-  // `pending` compute cycles: true if taken (its issue cycles are
-  // load_cycles).
+  // `pending` compute cycles: true if taken (issue cycles load_issue()).
   bool load(uint32_t address, unsigned bytes, uint64_t pending, uint32_t& value) {
     const Line& entry = slot(address);
-    if ((address & line_mask) != entry.line || (address & (bytes - 1)) != 0 || !charge(pending, load_cycles))
-      return false;
+    if (line_of(address) != entry.line || (address & (bytes - 1)) != 0 || !charge(pending, load_issue())) return false;
     ++*loads;
     ++*hits;
     const uint8_t* p = entry.data + (address - entry.line);
@@ -73,11 +77,11 @@ struct DataHitLines {
                          : uint32_t{p[0]};
     return true;
   }
-  // A store of 1, 2 or 4 aligned bytes: true if taken (issue cycles store_cycles).
+  // A store of 1, 2 or 4 aligned bytes: true if taken (issue cycles store_issue()).
   bool store(uint32_t address, unsigned bytes, uint64_t pending, uint32_t value) {
     const Line& entry = slot(address);
-    if ((address & line_mask) != entry.line || entry.dirty == nullptr || (address & (bytes - 1)) != 0 ||
-        !charge(pending, store_cycles))
+    if (line_of(address) != entry.line || entry.dirty == nullptr || (address & (bytes - 1)) != 0 ||
+        !charge(pending, store_issue()))
       return false;
     ++*stores;
     ++*hits;
@@ -88,21 +92,20 @@ struct DataHitLines {
   }
   // LDM: `count` words from an aligned `address`, all in the line, one load
   // each as the host counts them: true if taken (issue cycles
-  // load_cycles * count).
+  // load_issue(count)).
   bool load_words(uint32_t address, uint32_t* words, unsigned count, uint64_t pending) {
     const Line& entry = slot(address);
-    if (!words_in(entry, address, count) || !charge(pending, uint64_t{load_cycles} * count)) return false;
+    if (!words_in(entry, address, count) || !charge(pending, load_issue(count))) return false;
     *loads += count;
     *hits += count;
     std::memcpy(words, entry.data + (address - entry.line), 4 * size_t{count});
     return true;
   }
   // STM: one store of `count` words, as the host counts it: true if taken
-  // (issue cycles store_cycles * count + 1).
+  // (issue cycles store_words_issue(count)).
   bool store_words(uint32_t address, const uint32_t* words, unsigned count, uint64_t pending) {
     const Line& entry = slot(address);
-    if (!words_in(entry, address, count) || entry.dirty == nullptr ||
-        !charge(pending, uint64_t{store_cycles} * count + 1))
+    if (!words_in(entry, address, count) || entry.dirty == nullptr || !charge(pending, store_words_issue(count)))
       return false;
     ++*stores;
     *hits += count;
@@ -113,10 +116,11 @@ struct DataHitLines {
 
  private:
   Line& slot(uint32_t address) { return lines[(address >> line_shift) % SLOTS]; }
+  uint32_t line_of(uint32_t address) const { return address >> line_shift << line_shift; }
   unsigned half_bit(uint32_t address) const { return 1u << ((address >> (line_shift - 1)) & 1u); }
   bool words_in(const Line& entry, uint32_t address, unsigned count) const {
-    return count != 0 && (address & line_mask) == entry.line && (address & 3u) == 0 &&
-           uint64_t{address - entry.line} + 4 * uint64_t{count} <= ~line_mask + uint64_t{1};
+    return count != 0 && line_of(address) == entry.line && (address & 3u) == 0 &&
+           uint64_t{address - entry.line} + 4 * uint64_t{count} <= uint64_t{1} << line_shift;
   }
   // The host's charge of `pending` compute cycles and then `issue` busy
   // cycles, when neither reaches its budget (else nothing: false).

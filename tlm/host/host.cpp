@@ -385,9 +385,7 @@ void Host::write_back(const DataCache::WriteBack& dirty) {
 }
 
 DataHitLines* Host::data_hit_lines() {
-  m_granting = true;
   m_hit_lines = DataHitLines{};
-  m_hit_lines.line_mask = ~(m_dcache.line_bytes() - 1);
   while ((1u << m_hit_lines.line_shift) < m_dcache.line_bytes()) ++m_hit_lines.line_shift;
   m_hit_lines.busy_cycles = &m_busy_cycles.value;
   m_hit_lines.measured_cycles = &m_measured_cycles.value;

@@ -279,13 +279,13 @@ class Host : public Block, public HostApi, public HostCore {
   bool nothing_scheduled_in_window();
   DataCache m_dcache;
   bool m_dcache_on = true;  // CP15 c1's C bit (host.model=iss); always on for host-compiled code
-  // The lines granted to a core model (data_hit_lines), once one asked.
+  // The lines granted to a core model (data_hit_lines), once one asked
+  // (then attached).
   DataHitLines m_hit_lines;
-  bool m_granting = false;
   // After a hit at `address`: its line granted, where DataHitLines may
   // serve it (see data_hit_lines.h).
   void grant_hit_line(uint32_t address) {
-    if (m_granting && !m_hit_lines.holds(m_dcache.line_address(address))) grant_line(address);
+    if (m_hit_lines.attached() && !m_hit_lines.holds(m_dcache.line_address(address))) grant_line(address);
   }
   void grant_line(uint32_t address);
   tlm::tlm_generic_payload m_payload;

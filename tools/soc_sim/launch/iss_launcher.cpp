@@ -119,7 +119,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // served here, as the host would; any other access is the host's.
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     if (m_hit != nullptr && m_hit->load(address, bytes, m_pending, value)) {
-      took_hit(m_hit->load_cycles);
+      took_hit(m_hit->load_issue());
       return true;
     }
     flush();
@@ -149,7 +149,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       return true;
     }
     if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
-      took_hit(m_hit->store_cycles);
+      took_hit(m_hit->store_issue());
       return true;
     }
     flush();
@@ -180,7 +180,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // the words miss the data cache.
   bool read_block(uint32_t address, uint32_t* words, unsigned count) override {
     if (m_hit != nullptr && m_hit->load_words(address, words, count, m_pending)) {
-      took_hit(uint64_t{m_hit->load_cycles} * count);
+      took_hit(m_hit->load_issue(count));
       return true;
     }
     flush();
@@ -198,7 +198,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     if (address <= EXIT && uint64_t{address} + 4 * count > CONSOLE)
       return IssMemory::write_block(address, words, count);
     if (m_hit != nullptr && m_hit->store_words(address, words, count, m_pending)) {
-      took_hit(uint64_t{m_hit->store_cycles} * count + 1);
+      took_hit(m_hit->store_words_issue(count));
       return true;
     }
     flush();
