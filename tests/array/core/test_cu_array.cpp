@@ -1453,8 +1453,8 @@ TEST(ArrayController, ProgramMemoryBounds) {
 // nothing changed repeats its last run and is skipped; the third is random
 // throughout (registers and flags read before written) and reads a
 // neighbour, so it always runs on every CU.
-void skipping_idle_cus_changes_nothing(IssueSkew skew) {
-  constexpr unsigned WORDS = 256, BODY = 40, RUNS = 400, LOOP_START = 3, HALF = CMEM_BYTES / 2;
+void skipping_idle_cus_changes_nothing(IssueSkew skew, const ArrayGeometry& geometry = small_cmem_geometry()) {
+  constexpr unsigned WORDS = 512, BODY = 120, RUNS = 400, LOOP_START = 3, HALF = CMEM_BYTES / 2;
   std::mt19937_64 rng(0x5c1d);
   std::vector<uint64_t> words;
   std::vector<unsigned> entries;
@@ -1488,8 +1488,8 @@ void skipping_idle_cus_changes_nothing(IssueSkew skew) {
     words.push_back(encode(make(Opcode::op_endloop)));
     words.push_back(encode(make(Opcode::op_halt)));
   }
-  ArrayController skipping{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
-  ArrayController every{small_cmem_geometry(), CycleTable::defaults(), WORDS, MAX_CYCLES};
+  ArrayController skipping{geometry, CycleTable::defaults(), WORDS, MAX_CYCLES};
+  ArrayController every{geometry, CycleTable::defaults(), WORDS, MAX_CYCLES};
   skipping.skip_idle_cus(true);
   for (ArrayController* controller : {&skipping, &every})
     controller->set_issue_skew(skew, skew == IssueSkew::none ? 0 : 3);
@@ -1505,8 +1505,11 @@ void skipping_idle_cus_changes_nothing(IssueSkew skew) {
     }
   for (unsigned run = 0; run < RUNS; ++run) {
     // A few CUs change (none in one run of three): a CMEM byte, a
-    // register, the flags and the mask.
-    for (unsigned change = static_cast<unsigned>(rng() % 6 / 2); change > 0; --change) {
+    // register, the flags and the mask; in one run of eight, up to 40 of
+    // them, so that the CUs that run fill one, two or three blocks of the
+    // trace runner's lanes.
+    const unsigned changes = rng() % 8 == 0 ? static_cast<unsigned>(rng() % 41) : static_cast<unsigned>(rng() % 6 / 2);
+    for (unsigned change = changes; change > 0; --change) {
       const auto lane = static_cast<unsigned>(rng() % a.lanes());
       const auto value = static_cast<uint8_t>(rng());
       switch (rng() % 4) {
@@ -1581,6 +1584,84 @@ TEST(ArrayController, SkippingIdleCusChangesNothing) {
 
 TEST(ArrayController, SkippingIdleCusChangesNothingUnderRowSkew) {
   skipping_idle_cus_changes_nothing(IssueSkew::row);
+}
+
+// A grid of 12 CUs: the trace runner's block of 16 lanes is wider than the
+// array.
+TEST(ArrayController, SkippingIdleCusChangesNothingOnASmallGrid) {
+  ArrayGeometry geometry = small_cmem_geometry();
+  geometry.columns = 4;
+  geometry.rows = 3;
+  skipping_idle_cus_changes_nothing(IssueSkew::none, geometry);
+}
+
+// The trace runner (CuArray::compile_trace, run_trace) against execute():
+// random traces of every lane instruction a trace may hold (their loop
+// variables added to the addresses, as ArrayController::build_trace does),
+// from random states in which C and Z are often both set (so that hi and ls
+// differ from c and nc), leave every register, flag, mask and CMEM byte and
+// every per-lane count of every stage as executing them one by one does;
+// on the full grid, on 20 lanes (more than a block of 16, not a whole
+// number of them) and on 16.
+TEST(CuArray, ACompiledTraceRunsAsExecuteDoes) {
+  constexpr unsigned TRACES = 300, LENGTH = 60;
+  std::mt19937_64 rng(0x7ace);
+  for (const unsigned lanes : {COLUMNS * ROWS, 20u, 16u}) {
+    for (unsigned t = 0; t < TRACES; ++t) {
+      std::vector<Instruction> trace;
+      while (trace.size() < LENGTH) {
+        RandomInstruction r = random_instruction(rng, REGISTERS, CMEM_BYTES);
+        Instruction in = r.instruction;
+        if (in.opcode == Opcode::op_nget || in.opcode == Opcode::op_nadd || in.opcode == Opcode::op_nadds ||
+            in.opcode == Opcode::op_nadcs)
+          continue;
+        for (Operand* operand : {&in.d, &in.a, &in.b})
+          if (operand->in_cmem && operand->loop != 0) {
+            operand->value = static_cast<uint16_t>(operand->value + r.variables[operand->loop - 1]);
+            operand->loop = 0;
+          }
+        trace.push_back(in);
+      }
+      CuArray by_execute(small_cmem_geometry()), by_trace(small_cmem_geometry());
+      for (CuArray* array : {&by_execute, &by_trace}) array->set_lane_count(lanes);
+      for (unsigned l = 0; l < lanes; ++l) {
+        const auto bits = rng();
+        const CuFlags flags{(bits & 3u) != 0, (bits & 12u) != 0, (bits & 16u) != 0};
+        for (CuArray* array : {&by_execute, &by_trace}) {
+          array->set_flags(l, flags);
+          array->set_mask(l, (bits & 32u) != 0);
+        }
+        for (unsigned r = 0; r < REGISTERS; ++r) {
+          const auto value = static_cast<uint8_t>(rng());
+          for (CuArray* array : {&by_execute, &by_trace}) array->set_reg(l, r, value);
+        }
+        for (unsigned a = 0; a < CMEM_BYTES; ++a) {
+          const auto value = static_cast<uint8_t>(rng());
+          for (CuArray* array : {&by_execute, &by_trace}) array->set_cmem(l, a, value);
+        }
+      }
+      by_execute.count_per_lane(true);
+      for (const Instruction& in : trace)
+        ASSERT_EQ(by_execute.execute(in, LoopVariables{}, 0), "") << format_instruction(in);
+      by_trace.run_trace(by_trace.compile_trace(trace));
+      const std::string where = std::to_string(lanes) + " lanes, trace " + std::to_string(t);
+      for (unsigned l = 0; l < lanes; ++l) {
+        ASSERT_EQ(by_trace.flags(l), by_execute.flags(l)) << where << ", lane " << l;
+        ASSERT_EQ(by_trace.mask(l), by_execute.mask(l)) << where << ", lane " << l;
+        for (unsigned r = 0; r < REGISTERS; ++r)
+          ASSERT_EQ(by_trace.reg(l, r), by_execute.reg(l, r)) << where << ", lane " << l << ", r" << r;
+        for (unsigned a = 0; a < CMEM_BYTES; ++a)
+          ASSERT_EQ(by_trace.cmem(l, a), by_execute.cmem(l, a)) << where << ", lane " << l << ", address " << a;
+      }
+      ASSERT_EQ(by_trace.active_lanes(), by_execute.active_lanes()) << where;
+      for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+        ASSERT_EQ(by_trace.lane_useful(static_cast<Stage>(stage)), by_execute.lane_useful(static_cast<Stage>(stage)))
+            << where << ", stage " << stage;
+        ASSERT_EQ(by_trace.lane_stores(static_cast<Stage>(stage)), by_execute.lane_stores(static_cast<Stage>(stage)))
+            << where << ", stage " << stage;
+      }
+    }
+  }
 }
 
 // A program written over another at the same entry is planned and

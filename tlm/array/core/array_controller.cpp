@@ -780,7 +780,7 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
     memo.executions.assign(m_run_executions.begin() + entry, m_run_executions.begin() + last_pc + 1);
     memo.stages_recorded = m_record_stages;
     memo.stages = m_stage_changes;
-    memo.trace = build_trace(entry);
+    memo.trace = m_array.compile_trace(build_trace(entry));
     memo.valid = true;
   }
   fold_run(entry, last_pc, result);

@@ -256,9 +256,9 @@ class ArrayController {
     std::vector<uint64_t> executions;  // per word from the entry to last_pc
     bool stages_recorded = false;
     std::vector<StageChange> stages;
-    // The run's instructions in the order they ran, loop variables added
-    // (CuArray::run_trace): what the CUs that differ run.
-    std::vector<Instruction> trace;
+    // The run's instructions in the order they ran, loop variables added,
+    // compiled (CuArray::compile_trace): what the CUs that differ run.
+    CuArray::CompiledTrace trace;
     // Back-off: after FULL_RUNS_BEFORE_BACK_OFF runs in a row with most CUs
     // differing, the next BACK_OFF_RUNS run on every CU without the record
     // (what comparing and recording would cost for nothing).

@@ -125,31 +125,8 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
   }
 }
 
-// A trace's per-lane counts at a mask or stage change: the lane operations
-// and the CMEM stores since the last change, where the lane's mask is set.
-// The pointers are distinct, which the compiler cannot know of a byte row
-// and two word rows (a byte pointer may alias anything): said here, the
-// loop is a few vector operations instead of one lane at a time.
-template <size_t kLanes>
-[[gnu::always_inline]] inline void count_masked_lanes(size_t lanes, uint32_t operations, uint32_t stores,
-                                                      const uint8_t* __restrict m, uint32_t* __restrict useful,
-                                                      uint32_t* __restrict stored) {
-  const size_t n = kLanes != 0 ? kLanes : lanes;
-  for (size_t l = 0; l < n; ++l) {
-    useful[l] += operations * m[l];
-    stored[l] += stores * m[l];
-  }
-}
-
-// The mask's and or or with a condition's lanes (a row other than the mask's).
-template <bool kAnd>
-[[gnu::always_inline]] inline void combine_mask_lanes(size_t n, uint8_t* __restrict m,
-                                                      const uint8_t* __restrict holds) {
-  for (size_t l = 0; l < n; ++l) m[l] = kAnd ? m[l] & holds[l] : m[l] | holds[l];
-}
-
 // The lanes' arithmetic of one instruction, shared by the interpreter
-// (CuArray::execute) and the trace runner (run_trace_lanes): the result in
+// (CuArray::execute) and the trace runner (trace_arithmetic): the result in
 // `out`, or a multiplication's 24-bit product in `high`, `middle`, `low`,
 // and the flags in c, z, s, or a 16-bit operation's result in `high`,
 // `middle`. `a_low` is the multiplicand's, the dividend's or a pair's low
@@ -682,111 +659,280 @@ bool CuArray::execute(const Instruction& in, const LoopVariables& loop_variables
   return true;
 }
 
-void CuArray::run_trace(const std::vector<Instruction>& trace) {
-  clear_lane_counts();
-  // The work array's usual widths with the lane count known to the
-  // compiler, which then unrolls the lane loops into a few vector operations.
-  switch (m_lanes) {
-    case 16: run_trace_lanes<16>(trace); break;
-    case 32: run_trace_lanes<32>(trace); break;
-    case 48: run_trace_lanes<48>(trace); break;
-    default: run_trace_lanes<0>(trace); break;
+namespace {
+
+// The trace runner (CuArray::run_trace): lanes in blocks of TRACE_BLOCK,
+// each block's loops unrolled into a few vector operations. Rows are
+// ROW_ALIGN bytes apart, so the lanes rounded up to a block stay within
+// their rows (the bytes past the lanes are padding, which no lane reads).
+constexpr size_t TRACE_BLOCK = 16;
+static_assert(ROW_ALIGN % TRACE_BLOCK == 0);
+
+// A step's handler: the arithmetic's by opcode and destination, then the
+// stage and mask changes.
+enum class TraceDest : unsigned { none, reg, cmem, kinds };
+constexpr unsigned TRACE_OPCODES = 64;  // the word's 6-bit field
+constexpr unsigned TRACE_STAGE = TRACE_OPCODES * static_cast<unsigned>(TraceDest::kinds);
+constexpr unsigned TRACE_MSET = TRACE_STAGE + 1, TRACE_MCLR = TRACE_STAGE + 2, TRACE_MMOV = TRACE_STAGE + 3,
+                   TRACE_MAND = TRACE_STAGE + 4, TRACE_MOR = TRACE_STAGE + 5, TRACE_HANDLERS = TRACE_STAGE + 6;
+
+// One block of lanes as a vector of the compiler's (GCC's and Clang's
+// vector extension): the block's loops written as vector operations, which
+// the compiler does not turn back into lane-by-lane code with overlap
+// checks, as it did with the loops of the lane helpers inlined here.
+using BlockBytes = uint8_t __attribute__((vector_size(TRACE_BLOCK)));
+
+inline BlockBytes load_block(const uint8_t* p) {
+  BlockBytes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline void store_block(uint8_t* p, BlockBytes v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+// store_masked_lanes for one block.
+inline void store_masked_block(const uint8_t* value, uint8_t* destination, const uint8_t* mask) {
+  const auto keep = reinterpret_cast<BlockBytes>(load_block(mask) != 0);
+  store_block(destination, (load_block(value) & keep) | (load_block(destination) & ~keep));
+}
+
+// A trace's per-lane counts at a mask or stage change, for one block: the
+// lane operations and the CMEM stores since the last change, where the
+// lane's mask is set.
+inline void count_masked_block(uint32_t operations, uint32_t stores, const uint8_t* m, uint32_t* useful,
+                               uint32_t* stored) {
+  using Halves = uint16_t __attribute__((vector_size(TRACE_BLOCK)));
+  using Words = uint32_t __attribute__((vector_size(TRACE_BLOCK)));
+  // The 0/1 mask bytes widened to words by interleaving with zeros (what
+  // the processor's unpack instructions do), four lanes to a vector.
+  const BlockBytes mask = load_block(m), zero_bytes{};
+  const Halves zero_halves{};
+  const auto low = reinterpret_cast<Halves>(
+      __builtin_shufflevector(mask, zero_bytes, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23));
+  const auto high = reinterpret_cast<Halves>(
+      __builtin_shufflevector(mask, zero_bytes, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31));
+  const auto add = [&](unsigned quarter, Words lanes) {
+    Words sum;
+    std::memcpy(&sum, useful + 4 * quarter, sizeof sum);
+    sum += -lanes & operations;
+    std::memcpy(useful + 4 * quarter, &sum, sizeof sum);
+    std::memcpy(&sum, stored + 4 * quarter, sizeof sum);
+    sum += -lanes & stores;
+    std::memcpy(stored + 4 * quarter, &sum, sizeof sum);
+  };
+  add(0, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  add(1, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+  add(2, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  add(3, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+}
+
+struct TraceRun {
+  uint8_t* base;
+  size_t lanes, blocked;  // the lanes, and rounded up to TRACE_BLOCK
+  uint8_t *c, *z, *s, *m, *out, *high, *middle, *low;
+  std::array<uint32_t*, STAGE_COUNT> useful_by_stage, stores_by_stage;
+  uint32_t *useful, *stores;  // the current stage's
+};
+
+// The counts per lane since the last change, where the lane's mask is set.
+void count_trace_lanes(TraceRun& run, uint32_t operations, uint32_t stores) {
+  if (operations == 0 && stores == 0) return;
+  size_t l = 0;
+  for (; l + TRACE_BLOCK <= run.lanes; l += TRACE_BLOCK)
+    count_masked_block(operations, stores, run.m + l, run.useful + l, run.stores + l);
+  for (; l < run.lanes; ++l) {
+    run.useful[l] += operations * run.m[l];
+    run.stores[l] += stores * run.m[l];
   }
 }
 
-template <size_t kLanes>
-void CuArray::run_trace_lanes(const std::vector<Instruction>& trace) {
-  const size_t n = kLanes != 0 ? kLanes : m_lanes;
-  uint8_t* c = row(m_flag_row + flag_c);
-  uint8_t* z = row(m_flag_row + flag_z);
-  uint8_t* s = row(m_flag_row + flag_s);
-  uint8_t* m = row(m_flag_row + flag_m);
-  // The counts per lane are taken where the mask or the stage changes: lane
-  // operations and stores since the last change, times each lane's mask,
-  // into the stage's counts.
-  Stage stage = trace.empty() ? Stage{} : trace.front().stage;
-  uint32_t* lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
-  uint32_t* lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
-  uint32_t operations = 0, stores = 0;
-  const auto count = [&] {
-    count_masked_lanes<kLanes>(n, operations, stores, m, lane_useful, lane_stores);
-    operations = stores = 0;
-  };
+template <unsigned kOpcode, TraceDest kDest>
+void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
+  constexpr auto OPCODE = static_cast<Opcode>(kOpcode);
+  uint8_t* const base = run.base;
+  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
+    const unsigned written = arithmetic_lanes<TRACE_BLOCK>(
+        OPCODE, TRACE_BLOCK, base + step.a + l, base + step.a_low + l, base + step.b + l, base + step.b_low + l,
+        run.m + l, run.out + l, run.high + l, run.middle + l, run.low + l, run.c + l, run.z + l, run.s + l);
+    if constexpr (kDest != TraceDest::none) {
+      const std::array<const uint8_t*, 3> values = written == 1
+                                                       ? std::array<const uint8_t*, 3>{run.out, nullptr, nullptr}
+                                                       : std::array<const uint8_t*, 3>{run.high, run.middle, run.low};
+      for (unsigned byte = 0; byte < written; ++byte) {
+        uint8_t* destination = base + step.d[byte] + l;
+        if constexpr (kDest == TraceDest::cmem)
+          store_masked_block(values[byte] + l, destination, run.m + l);
+        else
+          std::memcpy(destination, values[byte] + l, TRACE_BLOCK);
+      }
+    }
+  }
+}
+
+void trace_stage(const CuArray::TraceStep& step, TraceRun& run) {
+  count_trace_lanes(run, step.operations, step.stores);
+  run.useful = run.useful_by_stage[step.stage];
+  run.stores = run.stores_by_stage[step.stage];
+}
+
+// condition_lanes for one block.
+inline BlockBytes condition_block(Cond cond, const uint8_t* c, const uint8_t* z, const uint8_t* s) {
+  const BlockBytes one = load_block(c) * 0 + 1;
+  switch (cond) {
+    case Cond::c: return load_block(c);
+    case Cond::nc: return load_block(c) ^ one;
+    case Cond::z: return load_block(z);
+    case Cond::nz: return load_block(z) ^ one;
+    case Cond::s: return load_block(s);
+    case Cond::ns: return load_block(s) ^ one;
+    case Cond::hi: return load_block(c) & (load_block(z) ^ one);
+    case Cond::ls: return (load_block(c) ^ one) | load_block(z);
+  }
+  return load_block(c);
+}
+
+template <unsigned kHandler>
+void trace_mask(const CuArray::TraceStep& step, TraceRun& run) {
+  count_trace_lanes(run, step.operations, step.stores);
+  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
+    uint8_t* m = run.m + l;
+    if constexpr (kHandler == TRACE_MSET || kHandler == TRACE_MCLR) {
+      std::memset(m, kHandler == TRACE_MSET ? 1 : 0, TRACE_BLOCK);
+    } else {
+      const BlockBytes holds = condition_block(static_cast<Cond>(step.cond), run.c + l, run.z + l, run.s + l);
+      if constexpr (kHandler == TRACE_MMOV)
+        store_block(m, holds);
+      else if constexpr (kHandler == TRACE_MAND)
+        store_block(m, load_block(m) & holds);
+      else
+        store_block(m, load_block(m) | holds);
+    }
+  }
+}
+
+using TraceHandler = void (*)(const CuArray::TraceStep&, TraceRun&);
+
+template <unsigned kHandler>
+constexpr TraceHandler trace_handler() {
+  if constexpr (kHandler < TRACE_STAGE)
+    return &trace_arithmetic<kHandler / static_cast<unsigned>(TraceDest::kinds),
+                             static_cast<TraceDest>(kHandler % static_cast<unsigned>(TraceDest::kinds))>;
+  else if constexpr (kHandler == TRACE_STAGE)
+    return &trace_stage;
+  else
+    return &trace_mask<kHandler>;
+}
+
+template <unsigned... kHandlers>
+constexpr std::array<TraceHandler, sizeof...(kHandlers)> trace_handlers(std::integer_sequence<unsigned, kHandlers...>) {
+  return {trace_handler<kHandlers>()...};
+}
+
+constexpr std::array<TraceHandler, TRACE_HANDLERS> TRACE_TABLE =
+    trace_handlers(std::make_integer_sequence<unsigned, TRACE_HANDLERS>{});
+
+}  // namespace
+
+CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& trace) const {
+  CompiledTrace compiled;
+  compiled.steps.reserve(trace.size());
+  const auto offset = [&](unsigned row_index) { return static_cast<uint32_t>(row_offset(row_index)); };
+  // A register in its own row (run_trace undoes the renaming).
   const auto operand = [&](const Operand& o, unsigned byte) {
-    return o.in_cmem ? row(o.value + byte) : row(m_reg_rows[o.value + byte]);
+    return o.in_cmem ? offset(o.value + byte) : offset(m_reg_row + o.value + byte);
+  };
+  const uint32_t unused = offset(m_scratch_row + SCRATCH_NEIGHBOUR);  // a row the arithmetic never writes
+  Stage stage = trace.empty() ? Stage{} : trace.front().stage;
+  compiled.first_stage = static_cast<uint8_t>(stage);
+  uint32_t operations = 0, stores = 0;
+  const auto change = [&](unsigned handler) {
+    TraceStep step;
+    step.handler = static_cast<uint16_t>(handler);
+    step.operations = operations;
+    step.stores = stores;
+    operations = stores = 0;
+    return step;
   };
   for (const Instruction& in : trace) {
     if (in.stage != stage) {
-      count();
+      TraceStep step = change(TRACE_STAGE);
       stage = in.stage;
-      lane_useful = m_lane_useful[static_cast<unsigned>(stage)].data();
-      lane_stores = m_lane_stores[static_cast<unsigned>(stage)].data();
+      step.stage = static_cast<uint8_t>(stage);
+      compiled.steps.push_back(step);
     }
-    uint8_t* out = row(m_spare_rows[SCRATCH_RESULT]);
+    unsigned mask_handler = 0;
     switch (in.opcode) {
-      case Opcode::op_mset:
-        count();
-        std::fill_n(m, n, 1);
-        continue;
-      case Opcode::op_mclr:
-        count();
-        std::fill_n(m, n, 0);
-        continue;
-      case Opcode::op_mmov:
-      case Opcode::op_mand:
-      case Opcode::op_mor: {
-        count();
-        const uint8_t* holds = condition_lanes(in.cond(), n, c, z, s, out);
-        if (in.opcode == Opcode::op_mmov)
-          copy_row(m, holds);
-        else if (in.opcode == Opcode::op_mand)
-          combine_mask_lanes<true>(n, m, holds);
-        else
-          combine_mask_lanes<false>(n, m, holds);
-        continue;
-      }
+      case Opcode::op_mset: mask_handler = TRACE_MSET; break;
+      case Opcode::op_mclr: mask_handler = TRACE_MCLR; break;
+      case Opcode::op_mmov: mask_handler = TRACE_MMOV; break;
+      case Opcode::op_mand: mask_handler = TRACE_MAND; break;
+      case Opcode::op_mor: mask_handler = TRACE_MOR; break;
       default: break;
+    }
+    if (mask_handler != 0) {
+      TraceStep step = change(mask_handler);
+      step.cond = static_cast<uint8_t>(in.cond());
+      compiled.steps.push_back(step);
+      continue;
     }
     ++operations;
     const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
-    const uint8_t* a = op.uses_a ? operand(in.a, 0) : nullptr;
-    const uint8_t* b = op.uses_b ? operand(in.b, 0) : nullptr;
-    const uint8_t* b_low = op.uses_b && op.b_width > 1 ? operand(in.b, 1) : nullptr;
-    const auto store = [&](unsigned spare, unsigned byte) {
-      const uint8_t* value = row(m_spare_rows[spare]);
-      if (in.d.in_cmem) {
-        store_masked_lanes(n, value, row(in.d.value + byte), m);
-        ++stores;
-      } else if (const unsigned r = in.d.value + byte; r < m_geometry.registers) {
-        std::swap(m_reg_rows[r], m_spare_rows[spare]);
-      } else {
-        copy_row(row(m_reg_rows[r]), value);
-      }
-    };
-    // The spare rows move (a result renamed into a register): found anew per instruction.
-    const bool wide_a = op.a_width > 1;  // the multiplicand's, the dividend's or a pair's low byte
-    uint8_t* high = row(m_spare_rows[SCRATCH_PRODUCT]);
-    uint8_t* middle = row(m_spare_rows[SCRATCH_PRODUCT + 1]);
-    uint8_t* low = row(m_spare_rows[SCRATCH_PRODUCT + 2]);
-    const unsigned written = arithmetic_lanes<kLanes>(in.opcode, n, a, wide_a ? operand(in.a, 1) : nullptr, b, b_low, m,
-                                                      out, high, middle, low, c, z, s);
-    if (written == 0) continue;  // nothing else is in a trace
-    if (written == 2) {
-      if (op.uses_d) {
-        store(SCRATCH_PRODUCT, 0);
-        store(SCRATCH_PRODUCT + 1, 1);
-      }
-      continue;
-    }
-    if (written == 3) {
-      store(SCRATCH_PRODUCT, 0);
-      store(SCRATCH_PRODUCT + 1, 1);
-      store(SCRATCH_PRODUCT + 2, 2);
-      continue;
-    }
-    if (op.uses_d) store(SCRATCH_RESULT, 0);
+    const TraceDest dest = !op.uses_d ? TraceDest::none : in.d.in_cmem ? TraceDest::cmem : TraceDest::reg;
+    TraceStep step;
+    step.handler =
+        static_cast<uint16_t>((static_cast<unsigned>(in.opcode) & 63u) * static_cast<unsigned>(TraceDest::kinds) +
+                              static_cast<unsigned>(dest));
+    step.a = op.uses_a ? operand(in.a, 0) : unused;
+    step.a_low = op.uses_a && op.a_width > 1 ? operand(in.a, 1) : unused;
+    step.b = op.uses_b ? operand(in.b, 0) : unused;
+    step.b_low = op.uses_b && op.b_width > 1 ? operand(in.b, 1) : unused;
+    for (unsigned byte = 0; byte < step.d.size(); ++byte)
+      step.d[byte] = op.uses_d && byte < op.d_width ? operand(in.d, byte) : unused;
+    if (dest == TraceDest::cmem) stores += op.d_width;
+    compiled.steps.push_back(step);
   }
-  count();
+  compiled.tail_operations = operations;
+  compiled.tail_stores = stores;
+  return compiled;
+}
+
+void CuArray::unrename_registers() {
+  const unsigned registers = m_geometry.registers;
+  bool renamed = false;
+  for (unsigned r = 0; r < registers; ++r) renamed = renamed || m_reg_rows[r] != m_reg_row + r;
+  if (!renamed) return;
+  std::vector<uint8_t> values(size_t{registers} * m_stride);
+  for (unsigned r = 0; r < registers; ++r) std::memcpy(&values[r * m_stride], row(m_reg_rows[r]), m_stride);
+  for (unsigned r = 0; r < m_reg_rows.size(); ++r) m_reg_rows[r] = m_reg_row + r;
+  for (unsigned k = 0; k < SCRATCH_ROWS; ++k) m_spare_rows[k] = m_scratch_row + k;
+  for (unsigned r = 0; r < registers; ++r) std::memcpy(row(m_reg_row + r), &values[r * m_stride], m_stride);
+}
+
+void CuArray::run_trace(const CompiledTrace& trace) {
+  clear_lane_counts();
+  unrename_registers();
+  TraceRun run{};
+  run.base = m_storage.data();
+  run.lanes = m_lanes;
+  run.blocked = (m_lanes + TRACE_BLOCK - 1) / TRACE_BLOCK * TRACE_BLOCK;
+  run.c = row(m_flag_row + flag_c);
+  run.z = row(m_flag_row + flag_z);
+  run.s = row(m_flag_row + flag_s);
+  run.m = row(m_flag_row + flag_m);
+  run.out = row(m_scratch_row + SCRATCH_RESULT);
+  run.high = row(m_scratch_row + SCRATCH_PRODUCT);
+  run.middle = row(m_scratch_row + SCRATCH_PRODUCT + 1);
+  run.low = row(m_scratch_row + SCRATCH_PRODUCT + 2);
+  for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+    run.useful_by_stage[stage] = m_lane_useful[stage].data();
+    run.stores_by_stage[stage] = m_lane_stores[stage].data();
+  }
+  run.useful = run.useful_by_stage[trace.first_stage];
+  run.stores = run.stores_by_stage[trace.first_stage];
+  for (const TraceStep& step : trace.steps) TRACE_TABLE[step.handler](step, run);
+  count_trace_lanes(run, trace.tail_operations, trace.tail_stores);
   m_active_stale = true;
 }
 

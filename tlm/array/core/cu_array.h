@@ -159,11 +159,35 @@ class CuArray {
   void clear_lane_counts();
   const std::vector<uint32_t>& lane_useful(Stage stage) const { return m_lane_useful[static_cast<unsigned>(stage)]; }
   const std::vector<uint32_t>& lane_stores(Stage stage) const { return m_lane_stores[static_cast<unsigned>(stage)]; }
-  // Runs a program's instructions in the order a run executed them, loop
-  // variables already added to the addresses (no loop, halt, nget or nadd; every
-  // address within CMEM), as execute() would, counting per lane and stage
-  // only (lane_useful(), lane_stores(), from 0; activity() does not change).
-  void run_trace(const std::vector<Instruction>& trace);
+  // A program's instructions in the order a run executed them, loop
+  // variables already added to the addresses (no loop, halt, nget, nadd,
+  // nadds, nadcs, lut or zsend; every address within CMEM), made ready to
+  // run (compile_trace): per instruction its handler, the one for its
+  // opcode and the kind of its destination, and the byte offsets of its
+  // rows in the array's storage; the lane operations and CMEM stores
+  // between two changes of the mask or the stage, which do not depend on
+  // data, summed in advance at the change (README.md, "Skipping idle CUs").
+  struct TraceStep {
+    uint16_t handler = 0;
+    uint8_t cond = 0;                     // mmov, mand, mor
+    uint8_t stage = 0;                    // a stage change's new stage
+    uint32_t operations = 0, stores = 0;  // at a mask or stage change: since the last one
+    std::array<uint32_t, 3> d{};          // the destination's rows (its bytes)
+    uint32_t a = 0, a_low = 0, b = 0, b_low = 0;
+  };
+  struct CompiledTrace {
+    std::vector<TraceStep> steps;
+    uint8_t first_stage = 0;
+    uint32_t tail_operations = 0, tail_stores = 0;  // after the last change
+  };
+  // Valid for any array of this one's geometry.
+  CompiledTrace compile_trace(const std::vector<Instruction>& trace) const;
+  // Runs a compiled trace as execute() would run its instructions, counting
+  // per lane and stage only (lane_useful(), lane_stores(), from 0;
+  // activity() does not change). Registers are not renamed: each
+  // instruction's result is copied into its register, whose row the
+  // trace's offsets name.
+  void run_trace(const CompiledTrace& trace);
 
  private:
   size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
@@ -202,9 +226,9 @@ class CuArray {
   // `a_next` is the row of a + 1 (nadds, nadcs) or nullptr.
   void neighbour_lanes_in_order(const Instruction& in, const uint8_t* a, const uint8_t* a_next, const uint8_t* d,
                                 bool d_masked, uint8_t* neighbour, uint8_t* out);
-  // run_trace() for kLanes lanes (0: m_lanes).
-  template <size_t kLanes>
-  void run_trace_lanes(const std::vector<Instruction>& trace);
+  // Undoes the renaming of registers (each register back in its own row),
+  // for run_trace().
+  void unrename_registers();
 
   // What execute() needs of each opcode, from the ISA's tables.
   struct OpLanes {
