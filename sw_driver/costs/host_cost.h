@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -77,12 +78,6 @@ inline constexpr double ROW_CYCLES[] = {
 #undef HOST_COST
 };
 static_assert(std::size(ROW_CYCLES) == HOST_COST_COUNT);
-constexpr bool no_negative_row() {
-  for (const double cycles : ROW_CYCLES)
-    if (!(cycles >= 0)) return false;
-  return true;
-}
-static_assert(no_negative_row(), "host_costs.def: a row's cycles per unit must not be negative (charge truncates)");
 struct Meter {
   unsigned bucket = 0;
   unsigned split = NO_SPLIT;
@@ -105,12 +100,9 @@ inline void charge(HostApi& host, HostCost cost, uint64_t units = 1) {
   m.units[m.bucket][index] += units;
   if (m.split != NO_SPLIT) m.units[m.split][index] += units;
   const double cycles = m.carry + detail::ROW_CYCLES[index] * static_cast<double>(units);
-  // Never negative (detail::no_negative_row), so the truncation is the
-  // floor: std::floor without SSE4.1 (this build's baseline) is a dozen
-  // instructions, which had been a tenth of an `arm` frame's time.
-  const auto whole = static_cast<uint64_t>(cycles);
-  m.carry = cycles - static_cast<double>(whole);
-  if (whole > 0) host.compute_cycles(whole);
+  const double whole = std::floor(cycles);
+  m.carry = cycles - whole;
+  if (whole > 0) host.compute_cycles(static_cast<uint64_t>(whole));
 }
 // Counts later charges in phase bucket `bucket` (< PHASE_BUCKETS).
 void set_cost_bucket(unsigned bucket);
