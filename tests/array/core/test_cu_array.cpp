@@ -1602,7 +1602,8 @@ TEST(ArrayController, SkippingIdleCusChangesNothingOnASmallGrid) {
 // differ from c and nc), leave every register, flag, mask and CMEM byte and
 // every per-lane count of every stage as executing them one by one does;
 // on the full grid, on 20 lanes (more than a block of 16, not a whole
-// number of them) and on 16.
+// number of them) and on 16; with the registers renamed by instructions
+// executed before the trace.
 TEST(CuArray, ACompiledTraceRunsAsExecuteDoes) {
   constexpr unsigned TRACES = 300, LENGTH = 60;
   std::mt19937_64 rng(0x7ace);
@@ -1639,6 +1640,13 @@ TEST(CuArray, ACompiledTraceRunsAsExecuteDoes) {
           const auto value = static_cast<uint8_t>(rng());
           for (CuArray* array : {&by_execute, &by_trace}) array->set_cmem(l, a, value);
         }
+      }
+      // A few instructions executed on both first, so that the registers
+      // are renamed when the trace starts (run_trace undoes it).
+      for (unsigned i = 0; i < 4; ++i) {
+        const Instruction& in = trace[rng() % trace.size()];
+        for (CuArray* array : {&by_execute, &by_trace})
+          ASSERT_EQ(array->execute(in, LoopVariables{}, 0), "") << format_instruction(in);
       }
       by_execute.count_per_lane(true);
       for (const Instruction& in : trace)
