@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -1670,6 +1671,23 @@ TEST(CuArray, ACompiledTraceRunsAsExecuteDoes) {
       }
     }
   }
+}
+
+// A trace compiled for one geometry is refused by an array of another,
+// whose rows its offsets do not name.
+TEST(CuArray, ATraceCompiledForAnotherGeometryIsRefused) {
+  ArrayGeometry other = small_cmem_geometry();
+  other.cmem_bytes = CMEM_BYTES * 2;
+  const CuArray compiler(small_cmem_geometry());
+  CuArray runner(other);
+  const std::vector<Instruction> trace{make(Opcode::op_add, reg(0), reg(1), mem(3))};
+  const CuArray::CompiledTrace compiled = compiler.compile_trace(trace);
+  EXPECT_THROW(runner.run_trace(compiled), std::logic_error);
+  CuArray same(small_cmem_geometry());
+  same.set_reg(0, 1, 5);
+  same.set_cmem(0, 3, 7);
+  same.run_trace(compiled);
+  EXPECT_EQ(same.reg(0, 0), 12);
 }
 
 // A program written over another at the same entry is planned and

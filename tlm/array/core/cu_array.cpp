@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 
 namespace tessera::ap {
@@ -895,6 +896,8 @@ CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& tr
   }
   compiled.tail_operations = operations;
   compiled.tail_stores = stores;
+  compiled.storage_bytes = m_storage.size();
+  compiled.stride = m_stride;
   return compiled;
 }
 
@@ -911,6 +914,8 @@ void CuArray::unrename_registers() {
 }
 
 void CuArray::run_trace(const CompiledTrace& trace) {
+  if (trace.storage_bytes != m_storage.size() || trace.stride != m_stride)
+    throw std::logic_error("CuArray::run_trace: the trace was compiled for an array of another geometry");
   clear_lane_counts();
   unrename_registers();
   TraceRun run{};

@@ -179,8 +179,11 @@ class CuArray {
     std::vector<TraceStep> steps;
     uint8_t first_stage = 0;
     uint32_t tail_operations = 0, tail_stores = 0;  // after the last change
+    size_t storage_bytes = 0;                       // the layout the offsets are for (its size and stride)
+    size_t stride = 0;
   };
-  // Valid for any array of this one's geometry.
+  // Valid for any array of this one's geometry; run_trace() refuses one
+  // compiled for another layout (std::logic_error).
   CompiledTrace compile_trace(const std::vector<Instruction>& trace) const;
   // Runs a compiled trace as execute() would run its instructions, counting
   // per lane and stage only (lane_useful(), lane_stores(), from 0;
