@@ -282,10 +282,43 @@ TEST(Ciu, EachWordCostsItsCyclesOfTheArrayClock) {
     sc_core::wait(write.delay);
     test::TestInitiator::Result read{};
     b.host.read32(cmem_address(1, 1, 1), &read);
+    sc_core::wait(read.delay);
     // The bus's address phase (one cycle), then the CIU's latency.
     EXPECT_EQ(write.delay, CYCLE * (1.0 + WRITE_CYCLES));
     EXPECT_EQ(read.delay, CYCLE * (1.0 + READ_CYCLES));
+    // A burst of three words: three words' latency.
+    uint8_t data[12] = {};
+    const auto burst_write = b.host.write(cmem_address(1, 1, 1), data, 12);
+    sc_core::wait(burst_write.delay);
+    const auto burst_read = b.host.read(cmem_address(1, 1, 1), data, 12);
+    sc_core::wait(burst_read.delay);
+    EXPECT_EQ(burst_write.delay, CYCLE * (1.0 + 3 * WRITE_CYCLES));
+    EXPECT_EQ(burst_read.delay, CYCLE * (1.0 + 3 * READ_CYCLES));
   });
+}
+
+TEST(Ciu, GrantsNoDirectPointerAndAnswersANonBlockingCallWithACommandError) {
+  Bench& b = *g_bench;
+  test::ReportCapture capture;
+  tlm::tlm_generic_payload gp;
+  gp.set_command(tlm::TLM_READ_COMMAND);
+  gp.set_address(cmem_address(0, 0, 0));
+  tlm::tlm_dmi dmi;
+  EXPECT_FALSE(b.host.out->get_direct_mem_ptr(gp, dmi));
+  EXPECT_EQ(dmi.get_dmi_ptr(), nullptr);
+
+  const uint64_t errors = b.ciu.counters().value("errors");
+  uint32_t word = 0;
+  gp.set_address(0);
+  gp.set_data_ptr(reinterpret_cast<uint8_t*>(&word));
+  gp.set_data_length(4);
+  gp.set_streaming_width(4);
+  tlm::tlm_phase phase = tlm::BEGIN_REQ;
+  sc_time delay = sc_core::SC_ZERO_TIME;
+  EXPECT_EQ(b.ciu.in.get_base_interface().nb_transport_fw(gp, phase, delay), tlm::TLM_COMPLETED);
+  EXPECT_EQ(gp.get_response_status(), tlm::TLM_COMMAND_ERROR_RESPONSE);
+  EXPECT_EQ(b.ciu.counters().value("errors"), errors + 1);
+  EXPECT_TRUE(capture.contains("nb_transport_fw is not supported"));
 }
 
 TEST(Ciu, BadAccessesAreErrorsNamingTheAddress) {

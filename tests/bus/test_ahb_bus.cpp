@@ -1,12 +1,14 @@
 // TLM tests of the AHB-style bus: decode, wait states, bursts, arbitration
 // order, contention between initiators, error responses, DMI and debug
 // transport, statistics. A base-protocol checker sits on every socket.
+#include <cstring>
 #include <memory>
 
 #include <tlm_utils/simple_target_socket.h>
 
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
+#include "common/direct_transport.h"
 #include "mem/memory.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
@@ -91,7 +93,63 @@ struct Bench {
   }
 };
 
+// A target with two doors: its socket (the forward interface) and
+// DirectTransport (common/direct_transport.h); both serve an access alike
+// (FAST_WAIT cycles, the data copied), each counts its calls.
+struct TwoDoorTarget : sc_core::sc_module, public tlm::tlm_fw_transport_if<>, public DirectTransport {
+  tlm::tlm_target_socket<32> in;
+  uint8_t bytes[64] = {};
+  unsigned socket_calls = 0, direct_calls = 0;
+  explicit TwoDoorTarget(sc_core::sc_module_name name) : sc_core::sc_module(name), in("in") {
+    in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
+  }
+  void serve(tlm::tlm_generic_payload& gp, sc_time& delay) {
+    uint8_t* at = bytes + gp.get_address();
+    if (gp.is_write())
+      std::memcpy(at, gp.get_data_ptr(), gp.get_data_length());
+    else
+      std::memcpy(gp.get_data_ptr(), at, gp.get_data_length());
+    delay += CYCLE * static_cast<double>(FAST_WAIT);
+    gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
+    ++socket_calls;
+    serve(gp, delay);
+  }
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
+    ++direct_calls;
+    serve(gp, delay);
+  }
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase&, sc_time&) override {
+    gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+    return tlm::TLM_COMPLETED;
+  }
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
+  unsigned transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
+};
+
+// One initiator; a two-door target on the bus itself and one behind a
+// protocol checker (which has only a socket).
+struct DoorsBench {
+  AhbBus bus;
+  TestInitiator a;
+  TwoDoorTarget direct, checked;
+  ProtocolChecker<32> check;
+  DoorsBench()
+      : bus("doors_bus", Bench::params(Arbitration::fixed_priority)),
+        a("doors_a"),
+        direct("doors_direct"),
+        checked("doors_checked"),
+        check("doors_check") {
+    bus.attach(a.out, "a", 0);
+    bus.map(direct.in, 0x0, 0x40, "direct");
+    bus.map(check.in, 0x100, 0x40, "checked");
+    check.out.bind(checked.in);
+  }
+};
+
 Bench* g_fixed = nullptr;
+DoorsBench* g_doors = nullptr;
 Bench* g_round_robin = nullptr;
 Bench* g_histogram = nullptr;  // for the wait histogram's test alone: its counts start at 0
 
@@ -430,8 +488,44 @@ TEST(AhbBus, WaitHistogramHasEachAccessWaitInItsPowerOfTwoBucket) {
   EXPECT_EQ(waits["c"]["sum"], bench.bus.initiator_stats()[2].wait_cycles);
 }
 
+TEST(AhbBus, ATargetThatIsADirectTransportIsCalledThroughItAndAnyOtherThroughItsSocket) {
+  DoorsBench& bench = *g_doors;
+  const uint32_t word = 0x12345678;
+  sc_time direct_write, direct_read, checked_write, checked_read;
+  uint32_t direct_value = 0, checked_value = 0;
+  test::run_thread([&] {
+    const auto w = bench.a.write32(0x8, word);
+    sc_core::wait(w.delay);
+    direct_write = w.delay;
+    TestInitiator::Result r{};
+    direct_value = bench.a.read32(0x8, &r);
+    sc_core::wait(r.delay);
+    direct_read = r.delay;
+    const auto cw = bench.a.write32(0x108, word);
+    sc_core::wait(cw.delay);
+    checked_write = cw.delay;
+    checked_value = bench.a.read32(0x108, &r);
+    sc_core::wait(r.delay);
+    checked_read = r.delay;
+  });
+  EXPECT_EQ(bench.direct.direct_calls, 2u);
+  EXPECT_EQ(bench.direct.socket_calls, 0u);
+  EXPECT_EQ(bench.checked.direct_calls, 0u);
+  EXPECT_EQ(bench.checked.socket_calls, 2u);
+  // Either door, the same access: the data and the time.
+  EXPECT_EQ(direct_value, word);
+  EXPECT_EQ(checked_value, word);
+  // The address phase, then the target's latency (longer than the beat).
+  EXPECT_EQ(direct_write, CYCLE * (1.0 + FAST_WAIT));
+  EXPECT_EQ(direct_read, CYCLE * (1.0 + FAST_WAIT));
+  EXPECT_EQ(checked_write, direct_write);
+  EXPECT_EQ(checked_read, direct_read);
+  EXPECT_EQ(bench.check.violation_count(), 0u);
+}
+
 int sc_main(int argc, char* argv[]) {
   g_fixed = new Bench("fixed", Arbitration::fixed_priority);
+  g_doors = new DoorsBench();
   g_histogram = new Bench("histogram", Arbitration::fixed_priority);
   g_round_robin = new Bench("rr", Arbitration::round_robin);
   return test::run_all_tests(argc, argv);

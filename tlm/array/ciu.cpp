@@ -35,8 +35,9 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
   const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
   for (unsigned group = 0; group < g.lanes() / array_regs::CUS_PER_GROUP; ++group)
     m_group_lane.push_back((group / groups_per_row) * g.columns + (group % groups_per_row) * array_regs::CUS_PER_GROUP);
-  in.register_b_transport(this, &Ciu::b_transport);
-  in.register_transport_dbg(this, &Ciu::transport_dbg);
+  m_write_word_time = sc_time::from_value(m_params.clock_period.value() * m_params.write_cycles);
+  m_read_word_time = sc_time::from_value(m_params.clock_period.value() * m_params.read_cycles);
+  in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
 }
 
 Ciu::WordPlace Ciu::place_of(uint64_t offset) const {
@@ -100,7 +101,8 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   move_words(offset, words, gp.get_data_ptr(), gp.is_write(), gp.is_read());
   const unsigned cycles = gp.is_write() ? m_params.write_cycles : m_params.read_cycles;
   // Whole ticks: what clock_period * double(cycles * words) gives.
-  const sc_time latency = sc_time::from_value(m_params.clock_period.value() * cycles * words);
+  const sc_time latency = words == 1 ? (gp.is_write() ? m_write_word_time : m_read_word_time)
+                                     : sc_time::from_value(m_params.clock_period.value() * cycles * words);
   if (m_tracing) {
     const sc_time start = sc_core::sc_time_stamp() + delay;
     m_access_trace.set_at(true, start);
@@ -120,6 +122,23 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   // edge is counted apart).
   mark_schedule_untouched(gp);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+bool Ciu::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
+  (void)gp;
+  dmi.allow_read_write();
+  dmi.set_start_address(0);
+  dmi.set_end_address(~sc_dt::uint64(0));
+  return false;
+}
+
+tlm::tlm_sync_enum Ciu::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase, sc_time& delay) {
+  (void)phase;
+  (void)delay;
+  ++m_errors;
+  log::warning(name(), "nb_transport_fw is not supported (loosely timed: b_transport only)");
+  gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
+  return tlm::TLM_COMPLETED;
 }
 
 unsigned Ciu::transport_dbg(tlm::tlm_generic_payload& gp) {

@@ -10,12 +10,17 @@
 // the board's 488 ns and 830 ns, docs/calibration.md). An access that
 // arrives while the AC runs a program waits until the program has finished
 // (the CUs own CMEM while they run), and the wait is counted.
+//
+// The CIU is its own forward interface, as the memory is: on ap-pixel every
+// host access but the frame buffer's comes here, and simple_target_socket
+// would add a second virtual hop and a member-function pointer to each; the
+// bus calls it as a DirectTransport (common/direct_transport.h).
+// Loosely timed only (nb_transport_fw is a command error), no DMI.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
 
@@ -23,6 +28,7 @@
 
 #include "array/array_processor.h"
 #include "common/block.h"
+#include "common/direct_transport.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -38,9 +44,9 @@ struct CiuParams {
   static CiuParams defaults();
 };
 
-class Ciu : public Block {
+class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransport {
  public:
-  tlm_utils::simple_target_socket<Ciu, 32> in;
+  tlm::tlm_target_socket<32> in;
 
   Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& array);
 
@@ -59,8 +65,14 @@ class Ciu : public Block {
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
-  unsigned transport_dbg(tlm::tlm_generic_payload& gp);
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final;
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override { b_transport(gp, delay); }
+  unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
+  // No DMI: refused with the whole range and read-write allowed, as
+  // simple_target_socket answers for a target without it.
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override;
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
+                                     sc_core::sc_time& delay) override;
   // The group of four CUs and the CMEM address of the word at `offset`
   // (byte k of it is CU m_group_lane[group] + k).
   struct WordPlace {
@@ -84,8 +96,11 @@ class Ciu : public Block {
   unsigned m_cmem_bytes = 0;
   unsigned m_cmem_shift = 0;           // log2 of m_cmem_bytes when a power of two, else 0
   std::vector<unsigned> m_group_lane;  // each group's first lane
-  sc_core::sc_time m_access_time;      // latency charged, all accesses
-  sc_core::sc_time m_stall_time;       // waiting for a running program
+  // The latency of one word written and of one word read (most accesses):
+  // sc_time::from_value is a call into the SystemC library.
+  sc_core::sc_time m_write_word_time, m_read_word_time;
+  sc_core::sc_time m_access_time;  // latency charged, all accesses
+  sc_core::sc_time m_stall_time;   // waiting for a running program
   TimedTrace m_access_trace;
   bool m_tracing = false;
   TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline

@@ -19,8 +19,11 @@ Arbitration parse_arbitration(const std::string& name) {
 // One initiator's end of the bus: a target socket that is its own forward
 // interface and calls the bus with the initiator's index, one virtual call
 // per access (multi_passthrough_target_socket adds a binder, a functor and
-// a member-function pointer to every call).
-class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>, private tlm::tlm_fw_transport_if<> {
+// a member-function pointer to every call); or, to an initiator that looks
+// for it, one plain virtual call as a DirectTransport.
+class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
+                              public tlm::tlm_fw_transport_if<>,
+                              public DirectTransport {
  public:
   InitiatorPort(const char* name, AhbBus& bus, unsigned index)
       : tlm::tlm_target_socket<32>(name), m_bus(bus), m_index(index) {
@@ -28,7 +31,10 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>, private tlm::tl
   }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override { m_bus.b_transport(m_index, gp, delay); }
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final { m_bus.b_transport(m_index, gp, delay); }
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
+    m_bus.b_transport(m_index, gp, delay);
+  }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
     return m_bus.get_direct_mem_ptr(m_index, gp, dmi);
@@ -96,6 +102,11 @@ void AhbBus::before_end_of_elaboration() {
     m_binds[i](*m_ports.back());
   }
   m_binds.clear();
+}
+
+void AhbBus::end_of_elaboration() {
+  Block::end_of_elaboration();
+  for (auto& r : m_regions) r.direct = direct_transport_of(out[static_cast<int>(r.target_index)]);
 }
 
 void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_name) {
@@ -268,7 +279,10 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
     // its latency, which sets the data phase.
     sc_time target_delay = delay;
     target_delay += to_edge;
-    out[region->target_index]->b_transport(gp, target_delay);
+    if (region->direct)
+      region->direct->direct_b_transport(gp, target_delay);
+    else
+      out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
     target_cycles = ceil_cycles(target_delay.value() - (request_ticks - now), region->latency);
   }

@@ -42,6 +42,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/direct_transport.h"
 #include "common/fixed_divider.h"
 #include "common/histogram.h"
 #include "common/timed_trace.h"
@@ -146,6 +147,9 @@ class AhbBus : public Block {
     std::string name;
     unsigned target_index;
     mutable CycleMemo latency;  // the target's last latency in cycles
+    // The target as a DirectTransport (common/direct_transport.h), or null:
+    // found at the end of elaboration.
+    DirectTransport* direct = nullptr;
   };
   // Times in bus cycles from time 0 (cycle c is the clock edge at c
   // periods): every request is aligned to an edge and every occupancy is a
@@ -162,6 +166,7 @@ class AhbBus : public Block {
   void add_initiator(const std::string& name, unsigned priority, BindInitiator bind);
   // Makes every initiator's target socket and binds the initiator to it.
   void before_end_of_elaboration() override;
+  void end_of_elaboration() override;
   void add_region(uint64_t base, uint64_t size, const std::string& name);
   const Region* decode(uint64_t address) const {
     if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;

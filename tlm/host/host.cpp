@@ -87,6 +87,11 @@ void Host::trace_program(uint32_t pc, uint32_t function, uint32_t cpsr) {
   m_cpsr_trace->set_at(cpsr, when);
 }
 
+void Host::end_of_elaboration() {
+  Block::end_of_elaboration();
+  if (out.size() == 1) m_direct_out = direct_transport_of(out.operator->());
+}
+
 void Host::restart_quantum() {
   m_qk.reset();
   m_local_ticks = 0;
@@ -175,7 +180,10 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_dmi_allowed(false);
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   m_untouched->untouched = false;
-  out->b_transport(m_payload, delay);
+  if (m_direct_out)
+    m_direct_out->direct_b_transport(m_payload, delay);
+  else
+    out->b_transport(m_payload, delay);
   m_last_delay = delay;
   m_train->transfers = 1;
   m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
@@ -359,7 +367,7 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
   // The payload must not point into memory the target writes (a span's data
   // is already in place through DMI), so it carries a copy.
   if (m_post_data.size() < bytes) m_post_data.resize(bytes);
-  std::memcpy(m_post_data.data(), data, bytes);
+  copy_access(m_post_data.data(), data, bytes);
   const uint64_t issue = std::max(local_ticks(), m_write_buffer_free_ticks);
   m_train->transfers = transfers;
   const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);

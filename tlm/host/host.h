@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/direct_transport.h"
 #include "common/schedule_untouched.h"
 #include "common/timed_trace.h"
 #include "common/transfer_train.h"
@@ -292,6 +293,10 @@ class Host : public Block, public HostApi, public HostCore {
   TransferTrain* m_train;          // owned by m_payload
   ScheduleUntouched* m_untouched;  // owned by m_payload
   sc_core::sc_time m_last_delay;   // the delay the last transaction returned
+  // What `out` is bound to, as a DirectTransport (the bus's port), or null
+  // (common/direct_transport.h): found at the end of elaboration.
+  DirectTransport* m_direct_out = nullptr;
+  void end_of_elaboration() override;
 
   tlm::tlm_dmi m_dmi;
   bool m_dmi_valid = false;

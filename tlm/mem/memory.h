@@ -5,7 +5,9 @@
 //
 // The memory is its own forward interface: its socket calls b_transport
 // with one virtual call, where simple_target_socket adds a second hop and a
-// member-function pointer (the memory is on every bus access's path).
+// member-function pointer (the memory is on every bus access's path), and
+// a DirectTransport, which the bus calls without the virtual bases' thunks
+// (common/direct_transport.h).
 #pragma once
 
 #include <array>
@@ -20,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/block.h"
+#include "common/direct_transport.h"
 #include "common/fixed_divider.h"
 #include "config/config.h"
 
@@ -41,7 +44,7 @@ struct MemoryParams {
   static MemoryParams defaults();
 };
 
-class Memory : public Block, private tlm::tlm_fw_transport_if<> {
+class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransport {
  public:
   tlm::tlm_target_socket<32> in;
 
@@ -63,7 +66,8 @@ class Memory : public Block, private tlm::tlm_fw_transport_if<> {
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override;
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final;
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override { b_transport(gp, delay); }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override;
   // Loosely timed only: a non-blocking call is answered with a command error.

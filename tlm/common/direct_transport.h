@@ -1,0 +1,39 @@
+// A blocking transport reached by one plain virtual call.
+//
+// tlm_fw_transport_if reaches b_transport through virtual bases: a call
+// through it adjusts `this` by an offset read from the vtable, then enters a
+// thunk that adjusts it back. On the paths every host access takes (the
+// host's socket to the bus, the bus to the memory and the CIU) that is a
+// chain of dependent loads per access. A forward interface that also
+// derives from DirectTransport (publicly, as it derives from
+// tlm_fw_transport_if, so that direct_transport_of finds it) is called here
+// instead; its direct_b_transport must do exactly what its b_transport does
+// (call it: b_transport is final there, so the call is inline).
+//
+// Whoever calls looks the interface up once, after binding (end of
+// elaboration), and keeps the plain socket call for an interface without it
+// (a protocol checker in between, a test's target).
+#pragma once
+
+#include <systemc>
+#include <tlm>
+
+namespace tessera {
+
+class DirectTransport {
+ public:
+  virtual void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) = 0;
+
+ protected:
+  DirectTransport() = default;
+  DirectTransport(const DirectTransport&) = default;
+  DirectTransport& operator=(const DirectTransport&) = default;
+  ~DirectTransport() = default;
+};
+
+// The DirectTransport of a bound forward interface, or null.
+inline DirectTransport* direct_transport_of(tlm::tlm_fw_transport_if<>* fw) {
+  return dynamic_cast<DirectTransport*>(fw);
+}
+
+}  // namespace tessera
