@@ -171,6 +171,43 @@ TEST(Host, CacheMissFillsALineOverTheBusAndLaterHitsCostOneCycle) {
   EXPECT_EQ(g_bench->bus.initiator_stats()[0].reads - fills_before, 1u);
 }
 
+// loads and stores count instructions: an LDM or an STM counts once, through
+// the cache or not (its words count in the cache's hits and misses); a span
+// counts one per element, each a single access of the host-compiled code.
+TEST(Host, AnLdmOrAnStmCountsAsOneLoadOrStoreAndASpanAsOnePerElement) {
+  const auto loads = [] { return g_bench->host.counters().value("loads"); };
+  const auto stores = [] { return g_bench->host.counters().value("stores"); };
+  const auto hits = [] { return g_bench->host.stats_json(sc_core::sc_time_stamp())["dcache"]["hits"].get<uint64_t>(); };
+  uint64_t cached_ldm = 0, uncached_ldm = 0, cached_stm = 0, uncached_stm = 0, span = 0, ldm_hits = 0;
+  g_bench->run([&](HostApi& api) {
+    uint32_t words[6] = {1, 2, 3, 4, 5, 6};
+    api.read32(0x5000);  // the line resident
+    uint64_t before = loads();
+    const uint64_t hits_before = hits();
+    api.read_words(0x5000, words, 6);
+    cached_ldm = loads() - before;
+    ldm_hits = hits() - hits_before;
+    before = loads();
+    api.read_words(DEV_BASE + 0x300, words, 4);
+    uncached_ldm = loads() - before;
+    before = stores();
+    api.write_words(0x5000, words, 6);
+    cached_stm = stores() - before;
+    before = stores();
+    api.write_words(DEV_BASE + 0x300, words, 4);
+    uncached_stm = stores() - before;
+    before = loads();
+    api.load_span(0x5000, 2, 10);
+    span = loads() - before;
+  });
+  EXPECT_EQ(cached_ldm, 1u);
+  EXPECT_EQ(ldm_hits, 6u) << "each word of the LDM hits the cache";
+  EXPECT_EQ(uncached_ldm, 1u);
+  EXPECT_EQ(cached_stm, 1u);
+  EXPECT_EQ(uncached_stm, 1u);
+  EXPECT_EQ(span, 10u);
+}
+
 // The write buffer holds 4 addresses (ARM922T TRM 4.3): four single stores
 // go in without a stall, the fifth waits until the first has left. Each
 // device write takes 1 + 1 + 1 bus cycles; the first starts at the bus edge

@@ -91,12 +91,11 @@ struct DataHitLines {
     return true;
   }
   // LDM: `count` words from an aligned `address`, all in the line, one load
-  // each as the host counts them: true if taken (issue cycles
-  // load_issue(count)).
+  // as the host counts it: true if taken (issue cycles load_issue(count)).
   bool load_words(uint32_t address, uint32_t* words, unsigned count, uint64_t pending) {
     const Line& entry = slot(address);
     if (!words_in(entry, address, count) || !charge(pending, load_issue(count))) return false;
-    *loads += count;
+    ++*loads;
     *hits += count;
     std::memcpy(words, entry.data + (address - entry.line), 4 * size_t{count});
     return true;

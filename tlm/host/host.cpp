@@ -254,8 +254,8 @@ inline void copy_access(void* to, const void* from, unsigned bytes) {
 }
 }  // namespace
 
-void Host::read_data(uint32_t address, void* data, unsigned bytes) {
-  ++m_loads;
+void Host::read_data(uint32_t address, void* data, unsigned bytes, unsigned counted) {
+  m_loads += counted;
   charge(m_params.load_cycles);
   if (cached(address, bytes)) {
     const DataCache::Result result = m_dcache.read(address);
@@ -478,8 +478,9 @@ void Host::read_words(uint32_t address, uint32_t* words, unsigned count) {
   check_alignment(address, 4);
   if (count == 0) return;
   if (cached(address, count * 4)) {
-    // LDM through the cache: one load per word, a line fill per missed line.
-    for (unsigned i = 0; i < count; ++i) words[i] = read32(address + 4 * i);
+    // LDM through the cache: each word as a load (a line fill per missed
+    // line), the instruction counted once.
+    for (unsigned i = 0; i < count; ++i) read_data(address + 4 * i, &words[i], 4, i == 0 ? 1 : 0);
     return;
   }
   // LDM from an uncached address: one burst.

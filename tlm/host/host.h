@@ -215,7 +215,9 @@ class Host : public Block, public HostApi, public HostCore {
   // returns its completion time in absolute ticks. Throws BusError.
   uint64_t transact(tlm::tlm_command command, uint32_t address, uint8_t* data, unsigned bytes,
                     uint64_t not_before_ticks);
-  void read_data(uint32_t address, void* data, unsigned bytes);
+  // A load of `bytes`; `counted`: the loads it adds to the count (an LDM's
+  // words after its first add none: the instruction counts once).
+  void read_data(uint32_t address, void* data, unsigned bytes, unsigned counted = 1);
   void write_data(uint32_t address, const void* data, unsigned bytes);
   // Posts `transfers` single transfers (a train) or one burst (transfers =
   // 1) to the write buffer. A train leaves it as bus requests of at most a
