@@ -41,6 +41,7 @@ Host::Host(sc_core::sc_module_name name, const HostParams& params)
       m_run_aheads(counter("run_aheads", "quantum ends at which the host ran on (nothing else was scheduled)")),
       m_syncs(counter("synchronisations", "waits for the kernel to catch up with the host's local time")),
       m_dcache(params.dcache_bytes, params.dcache_line_bytes, params.dcache_ways, params.dcache_round_robin),
+      m_write_buffer(std::max(1u, params.write_buffer_addresses)),
       m_busy_cycles(counter("busy_cycles", "host cycles charged")),
       m_measured_cycles(
           counter("measured_cycles", "cycles charged from the ISS-measured cost table (sw_driver/costs)")),
@@ -318,6 +319,11 @@ unsigned Host::transfers_per_request(unsigned bytes_each) const {
 }
 
 void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  // One transfer always fits (the buffer holds at least one address).
+  if (transfers == 1) {
+    post_request(address, data, bytes, 1);
+    return;
+  }
   const unsigned each = bytes / transfers;
   // The buffer holds as many stores of a train as it has addresses for (each
   // store takes one) and data words: the core resumes when the train's last

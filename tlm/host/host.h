@@ -13,9 +13,9 @@
 
 #include <array>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -309,7 +309,32 @@ class Host : public Block, public HostApi, public HostCore {
     unsigned words;
     unsigned addresses;
   };
-  std::deque<PendingWrite> m_write_buffer;
+  // The buffer's requests in order: a ring of host.write_buffer.addresses
+  // entries, since each request holds at least one address (a deque's
+  // bookkeeping of its blocks was on every posted store's path).
+  class PendingWrites {
+   public:
+    explicit PendingWrites(unsigned capacity) : m_entries(capacity) {}
+    bool empty() const { return m_count == 0; }
+    const PendingWrite& front() const { return m_entries[m_first]; }
+    void pop_front() {
+      if (++m_first == m_entries.size()) m_first = 0;
+      --m_count;
+    }
+    void push_back(const PendingWrite& write) {
+      if (m_count == m_entries.size()) throw std::logic_error("host: write buffer holds more requests than addresses");
+      size_t at = m_first + m_count;
+      if (at >= m_entries.size()) at -= m_entries.size();
+      m_entries[at] = write;
+      ++m_count;
+    }
+    void clear() { m_first = m_count = 0; }
+
+   private:
+    std::vector<PendingWrite> m_entries;
+    size_t m_first = 0, m_count = 0;
+  };
+  PendingWrites m_write_buffer;
   std::vector<uint8_t> m_post_data;  // payload data of the write being posted
   unsigned m_write_buffer_words = 0;
   unsigned m_write_buffer_addresses = 0;
