@@ -5,6 +5,7 @@
 
 #include "array/array_regs.h"
 #include "common/log.h"
+#include "common/loosely_timed.h"
 #include "common/schedule_untouched.h"
 
 namespace tessera {
@@ -132,13 +133,9 @@ bool Ciu::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {
   return false;
 }
 
-tlm::tlm_sync_enum Ciu::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase, sc_time& delay) {
-  (void)phase;
-  (void)delay;
+tlm::tlm_sync_enum Ciu::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& /*phase*/, sc_time& /*delay*/) {
   ++m_errors;
-  log::warning(name(), "nb_transport_fw is not supported (loosely timed: b_transport only)");
-  gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
-  return tlm::TLM_COMPLETED;
+  return refuse_non_blocking(name(), gp);
 }
 
 unsigned Ciu::transport_dbg(tlm::tlm_generic_payload& gp) {

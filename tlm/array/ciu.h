@@ -69,7 +69,8 @@ class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransp
   void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override { b_transport(gp, delay); }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
   // No DMI: refused with the whole range and read-write allowed, as
-  // simple_target_socket answers for a target without it.
+  // simple_target_socket answers for a target without it. Non-blocking
+  // calls: refused (common/loosely_timed.h), an error counted.
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override;
   tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
                                      sc_core::sc_time& delay) override;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "common/loosely_timed.h"
 #include "common/transfer_train.h"
 
 namespace tessera {
@@ -115,14 +116,10 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
-tlm::tlm_sync_enum Memory::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
-                                           sc_core::sc_time& delay) {
-  (void)phase;
-  (void)delay;
+tlm::tlm_sync_enum Memory::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& /*phase*/,
+                                           sc_core::sc_time& /*delay*/) {
   ++m_errors;
-  log::warning(name(), "nb_transport_fw is not supported (loosely timed: b_transport only)");
-  gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
-  return tlm::TLM_COMPLETED;
+  return refuse_non_blocking(name(), gp);
 }
 
 unsigned Memory::transport_dbg(tlm::tlm_generic_payload& gp) {
