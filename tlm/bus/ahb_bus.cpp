@@ -32,9 +32,7 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final { m_bus.b_transport(m_index, gp, delay); }
-  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
-    m_bus.b_transport(m_index, gp, delay);
-  }
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override { b_transport(gp, delay); }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
     return m_bus.get_direct_mem_ptr(m_index, gp, dmi);

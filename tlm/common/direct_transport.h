@@ -8,7 +8,8 @@
 // derives from DirectTransport (publicly, as it derives from
 // tlm_fw_transport_if, so that direct_transport_of finds it) is called here
 // instead; its direct_b_transport must do exactly what its b_transport does
-// (call it: b_transport is final there, so the call is inline).
+// (call it: b_transport is final there, so the call is direct, not a second
+// dispatch).
 //
 // Whoever calls looks the interface up once, after binding (end of
 // elaboration), and keeps the plain socket call for an interface without it
