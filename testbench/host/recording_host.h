@@ -37,6 +37,10 @@ class RecordingHost : public HostApi {
 
   const std::vector<Access>& log() const { return m_log; }
   void clear_log() { m_log.clear(); }
+  // Words loaded and stored by read*, write*, read_words and write_words,
+  // since construction (clear_log leaves it): where it is kept, for a
+  // HostCore's counter locations.
+  const uint64_t* words_accessed() const { return &m_words_accessed; }
   uint64_t operations(Op op) const { return m_operations[static_cast<size_t>(op)]; }
   uint8_t* memory(uint32_t address, uint32_t bytes) { return at(address, bytes); }
 
@@ -54,10 +58,12 @@ class RecordingHost : public HostApi {
   void read_words(uint32_t address, uint32_t* words, unsigned count) override {
     for (unsigned i = 0; i < count; ++i) words[i] = value_at(address + 4 * i, 4);
     m_log.push_back({Access::Kind::read_words, address, 4, 0, std::vector<uint32_t>(words, words + count), count});
+    m_words_accessed += count;
   }
   void write_words(uint32_t address, const uint32_t* words, unsigned count) override {
     if (in_memory(address, 4 * count)) std::memcpy(at(address, 4 * count), words, 4 * count);
     m_log.push_back({Access::Kind::write_words, address, 4, 0, std::vector<uint32_t>(words, words + count), count});
+    m_words_accessed += count;
   }
 
   const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override {
@@ -94,15 +100,18 @@ class RecordingHost : public HostApi {
   uint32_t read(uint32_t address, unsigned bytes) {
     const uint32_t value = value_at(address, bytes);
     m_log.push_back({Access::Kind::read, address, bytes, value, {}, 1});
+    ++m_words_accessed;
     return value;
   }
   void write(uint32_t address, uint32_t value, unsigned bytes) {
     if (in_memory(address, bytes)) std::memcpy(at(address, bytes), &value, bytes);
     m_log.push_back({Access::Kind::write, address, bytes, value, {}, 1});
+    ++m_words_accessed;
   }
 
   std::vector<uint8_t> m_memory;
   std::vector<Access> m_log;
+  uint64_t m_words_accessed = 0;
   uint64_t m_operations[static_cast<size_t>(Op::count_)] = {};
   uint64_t m_measured_cycles = 0;
 };

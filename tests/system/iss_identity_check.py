@@ -2,10 +2,13 @@
 """Checks that the ISS's speed-ups leave every simulated result as it was.
 
 Runs soc_sim with host.model=iss on each case twice, with the ISS's
-per-function profile listed (--iss-profile) and without, and requires the
-two runs' outputs to be the same byte for byte: every frame, the console
-output, and stats.json but for the profile's own keys
+per-function profile (--iss-profile) and without it (its accounting off),
+and requires the two runs' outputs to be the same byte for byte: every
+frame, the console output, and stats.json but for the profile's own keys
 (host.iss.profile, host.iss.functions_profiled) and the run's command line.
+Where the profile lists every function (a small program), its rows must
+add up to the program's instructions and core cycles exactly, and to its
+stall cycles but for rounding.
 With --reference SOC_SIM (a soc_sim built before a change, beside its own
 arm922t/tessera_apps.elf) each case also runs there with the profile and
 must give the profiled run's outputs exactly, the profile included: the
@@ -28,6 +31,9 @@ import subprocess
 import sys
 
 DEFAULT_CASES = ["triangle:arm:1", "cubes:ap-tile:1"]
+# Relative error allowed between the rows' stall cycles, each summed access
+# by access, and the program's, summed in whole clock ticks.
+STALL_ROUNDING = 1e-9
 # Keys of stats.json that name the run rather than simulate it.
 RUN_KEYS = ("command_line", "commit")
 PROFILE_KEYS = ("profile", "functions_profiled")
@@ -75,6 +81,25 @@ def without_profile(outputs):
     for key in PROFILE_KEYS:
         iss.pop(key, None)
     return dict(outputs, stats=stats)
+
+
+def profile_sums(outputs):
+    """What is wrong with the profile's sums: they must be the program's."""
+    iss = outputs["stats"]["stats"]["host"]["iss"]
+    rows = iss.get("profile")
+    if rows is None:
+        return ["stats.json has no host.iss.profile with --iss-profile"]
+    if iss["functions_profiled"] != len(rows):
+        return []  # only the top rows are listed: their sums are not the program's
+    found = []
+    for key in ("instructions", "core_cycles"):
+        total = sum(row[key] for row in rows)
+        if total != iss[key]:
+            found.append(f"the profile's {key} add up to {total}, the program's are {iss[key]}")
+    stalls = sum(row["stall_cycles"] for row in rows)
+    if abs(stalls - iss["stall_cycles"]) > STALL_ROUNDING * max(1.0, iss["stall_cycles"]):
+        found.append(f"the profile's stall cycles add up to {stalls}, the program's are {iss['stall_cycles']}")
+    return found
 
 
 def differences(a, b, names):
@@ -129,11 +154,12 @@ def main():
     failures = []
     for case in cases:
         name = ":".join(str(part) for part in case)
-        folder = args.out / name.replace(":", "_")
+        folder = args.out / f"{pathlib.Path(case[0]).name}_{case[1]}_{case[2]}"
         try:
             profiled = run(args.soc_sim, case, folder / "profiled", ["--iss-profile"])
             plain = run(args.soc_sim, case, folder / "plain", [])
             found = differences(without_profile(profiled), plain, ("--iss-profile", "without"))
+            found += profile_sums(profiled)
             if args.reference:
                 flags = [flag for flag in args.reference_flag if flag] if args.reference_flag else ["--iss-profile"]
                 reference = run(args.reference, case, folder / "reference", flags)

@@ -86,16 +86,15 @@ class HostCore {
   // every load and store (the ISS launcher's HostMemory::Charged): loads
   // through these pointers give the same values as the three calls, without
   // the calls. stalled_cycles() is *stall_ticks / period_ticks, as doubles.
-  // The pointers stay valid as long as the core. A core that does not store
-  // its counters (a test's stand-in) leaves them null; the launcher then
-  // makes the calls.
+  // The pointers stay valid as long as the core. Every core gives them
+  // (the launcher refuses one that does not).
   struct CounterLocations {
     const uint64_t* busy_cycles = nullptr;
     const uint64_t* stall_ticks = nullptr;
     uint64_t period_ticks = 1;
     const uint64_t* data_cache_misses = nullptr;
   };
-  virtual CounterLocations counter_locations() const { return {}; }
+  virtual CounterLocations counter_locations() const = 0;
 
   // The data-cache lines whose hits the launcher may serve itself
   // (DataHitLines: the host's own charges and counts, done in place), kept

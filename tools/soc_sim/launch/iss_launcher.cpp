@@ -57,6 +57,9 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
         m_timing(timing),
         m_counters(core.counter_locations()),
         m_hit(core.data_hit_lines()) {
+    if (m_counters.busy_cycles == nullptr || m_counters.stall_ticks == nullptr ||
+        m_counters.data_cache_misses == nullptr || m_counters.period_ticks == 0)
+      throw std::logic_error("the ISS launcher: the host core does not say where its counters are");
     m_core.on_direct_memory_invalidated([this] {
       m_window_size = 0;
       m_resident.line = iss::ResidentLine::NONE;
@@ -213,58 +216,55 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   }
 
   // The profile entry of the instruction being executed: its data
-  // accesses' stalls and misses are charged to it.
+  // accesses' stalls and misses are charged to it. Null while the program
+  // is not profiled (soc_sim --iss-profile, or a VCD's function signal):
+  // then nothing is charged to functions.
   void set_profile_entry(iss::Profile::Entry* entry) { m_entry = entry; }
   iss::Profile::Entry* profile_entry() const { return m_entry; }
+  // The cycles the program's accesses and fills have stalled on the bus
+  // (the host's clock ticks summed as whole numbers, divided once: the
+  // same figure with the profile or without it).
+  double stall_cycles() const {
+    return static_cast<double>(m_stall_ticks) / static_cast<double>(m_counters.period_ticks);
+  }
 
   // What the host's busy, stall and miss counters moved by while it lives:
   // the busy cycles are the accesses' issue cycles (not charged again), the
-  // rest goes to the profile entry. Around every load and store, so the
+  // stall ticks the program's stalls, and with a profile entry the stall
+  // and the misses go to it too. Around every load and store, so the
   // counters are read where the core keeps them (HostCore::counter_locations)
-  // rather than by three virtual calls each side, and the stall's division
-  // is made only when the stall ticks moved (most accesses do not stall:
-  // the difference is then +0.0, which leaves the entry's sum as it was).
+  // rather than by virtual calls each side, and the entry's division is
+  // made only when the stall ticks moved (most accesses do not stall).
   class Charged {
    public:
-    explicit Charged(HostMemory& memory) : m_memory(memory) {
-      const HostCore::CounterLocations& at = memory.m_counters;
-      if (at.busy_cycles != nullptr) {
-        m_busy = *at.busy_cycles;
-        m_stall_ticks = *at.stall_ticks;
-        m_misses = *at.data_cache_misses;
-      } else {
-        m_busy = memory.m_core.busy_cycles();
-        m_stalled = memory.m_core.stalled_cycles();
-        m_misses = memory.m_core.data_cache_misses();
-      }
-    }
+    explicit Charged(HostMemory& memory)
+        : m_memory(memory),
+          m_busy(*memory.m_counters.busy_cycles),
+          m_stall_ticks(*memory.m_counters.stall_ticks),
+          m_misses(*memory.m_counters.data_cache_misses) {}
     ~Charged() {
       const HostCore::CounterLocations& at = m_memory.m_counters;
-      iss::Profile::Entry& entry = *m_memory.m_entry;
-      if (at.busy_cycles != nullptr) {
-        m_memory.m_host_charged += *at.busy_cycles - m_busy;
-        if (*at.stall_ticks != m_stall_ticks) {
+      m_memory.m_host_charged += *at.busy_cycles - m_busy;
+      iss::Profile::Entry* const entry = m_memory.m_entry;
+      if (*at.stall_ticks != m_stall_ticks) {
+        m_memory.m_stall_ticks += *at.stall_ticks - m_stall_ticks;
+        if (entry != nullptr) {
           const auto period = static_cast<double>(at.period_ticks);
           // As stalled_cycles() after less stalled_cycles() before.
-          entry.stall_cycles +=
+          entry->stall_cycles +=
               static_cast<double>(*at.stall_ticks) / period - static_cast<double>(m_stall_ticks) / period;
         }
-        entry.dcache_misses += *at.data_cache_misses - m_misses;
-      } else {
-        m_memory.m_host_charged += m_memory.m_core.busy_cycles() - m_busy;
-        entry.stall_cycles += m_memory.m_core.stalled_cycles() - m_stalled;
-        entry.dcache_misses += m_memory.m_core.data_cache_misses() - m_misses;
       }
+      if (entry != nullptr) entry->dcache_misses += *at.data_cache_misses - m_misses;
     }
     Charged(const Charged&) = delete;
     Charged& operator=(const Charged&) = delete;
 
    private:
     HostMemory& m_memory;
-    uint64_t m_busy = 0;
-    uint64_t m_stall_ticks = 0;  // with the counters' locations
-    double m_stalled = 0;        // without: stalled_cycles()
-    uint64_t m_misses = 0;
+    const uint64_t m_busy;
+    const uint64_t m_stall_ticks;
+    const uint64_t m_misses;
   };
 
   bool exited() const { return m_exited; }
@@ -321,10 +321,53 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   uint64_t m_pending = 0;
   uint64_t m_attention_at = CHARGE_BATCH;  // 0 once the program has ended
   uint64_t m_host_charged = 0;
+  uint64_t m_stall_ticks = 0;  // the program's (Charged)
   std::string m_console;
   bool m_exited = false;
   uint32_t m_status = 0;
   uint32_t m_fault_address = 0;
+};
+
+// The per-function profile's accounting, when asked for (soc_sim
+// --iss-profile) or needed (a VCD's function signal: the index of the
+// function holding the PC): each instruction's cycles, and each host
+// access's stalls and misses (HostMemory's profile entry), charged to the
+// function holding its PC; instructions and cycles a run at a time, when
+// the PC leaves the function (the timing layer's counts less those at the
+// run's start: whole numbers, the same sums), so that each instruction
+// costs a range check. Off, the run loop does not call before() and
+// nothing is charged to functions; every other figure is the same.
+class ProfileAccounting {
+ public:
+  ProfileAccounting(const iss::ElfImage& image, const iss::Arm922tTiming& timing, HostMemory& memory, bool on)
+      : m_timing(timing), m_memory(memory), m_on(on), m_profile(image.functions), m_entry(&m_profile.at(image.entry)) {
+    if (m_on) m_memory.set_profile_entry(m_entry);
+  }
+  bool on() const { return m_on; }
+  iss::Profile& profile() { return m_profile; }
+  // Before the instruction at `pc`: a new run when it leaves the function.
+  __attribute__((always_inline)) void before(uint32_t pc) {
+    if (m_profile.holds(pc)) return;
+    end_run();
+    m_entry = &m_profile.at(pc);
+    m_memory.set_profile_entry(m_entry);
+  }
+  // Charges the run so far to its function (on, before the rows are read).
+  void end_run() {
+    if (!m_on) return;
+    m_entry->instructions += m_timing.instructions() - m_run_steps;
+    m_entry->cycles += m_timing.cycles() - m_run_cycles;
+    m_run_steps = m_timing.instructions();
+    m_run_cycles = m_timing.cycles();
+  }
+
+ private:
+  const iss::Arm922tTiming& m_timing;
+  HostMemory& m_memory;
+  const bool m_on;
+  iss::Profile m_profile;
+  iss::Profile::Entry* m_entry;
+  uint64_t m_run_steps = 0, m_run_cycles = 0;  // the timing layer's counts when the run in m_entry began
 };
 
 // Semihosting's memory and clock: the host's debug access (no time) and its
@@ -428,19 +471,18 @@ std::string file_name(const std::string& path) {
 // Functions listed in stats.json's profile.
 constexpr size_t PROFILE_ROWS = 40;
 
-// `listed`: the profile's rows too (soc_sim --iss-profile). The stall
-// cycles are the rows' sum either way, in the rows' order: the host's
-// stalls are not whole cycles, and a sum in another order could differ in
-// its last digit.
+// `profile`: the per-function profile, listed in full (soc_sim
+// --iss-profile), or null. `stalls`: the program's stall cycles
+// (HostMemory::stall_cycles), the same with the profile or without it; the
+// rows' stall cycles, each summed access by access, add up to it but for
+// rounding in their last digits.
 nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTiming& timing,
-                                  const iss::Profile& profile, bool listed) {
+                                  const iss::Profile* profile, double stalls) {
   const uint64_t instructions = core.instructions();
-  double stalls = 0;
   nlohmann::json rows = nlohmann::json::array();
-  const std::vector<iss::Profile::Row> all = profile.rows();
-  for (const iss::Profile::Row& row : all) stalls += row.entry.stall_cycles;
+  const std::vector<iss::Profile::Row> all = profile != nullptr ? profile->rows() : std::vector<iss::Profile::Row>{};
   const double total = static_cast<double>(timing.cycles()) + stalls;
-  for (size_t i = 0; listed && i < all.size() && i < PROFILE_ROWS; ++i) {
+  for (size_t i = 0; i < all.size() && i < PROFILE_ROWS; ++i) {
     const iss::Profile::Row& row = all[i];
     const double cycles = static_cast<double>(row.entry.cycles) + row.entry.stall_cycles;
     rows.push_back({{"function", row.function},
@@ -459,7 +501,7 @@ nlohmann::json program_statistics(const iss::ArmCore& core, const iss::Arm922tTi
                                {"cpi", instructions > 0 ? total / static_cast<double>(instructions) : 0.0},
                                {"interlock_cycles", timing.interlock_cycles()},
                                {"icache", {{"hits", timing.icache().hits()}, {"misses", timing.icache().misses()}}}};
-  if (listed) {
+  if (profile != nullptr) {
     statistics["functions_profiled"] = all.size();
     statistics["profile"] = rows;
   }
@@ -631,29 +673,15 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
 
   iss::Arm922tTiming timing;
   HostMemory memory(host, core_port, timing);
-  // The per-function profile: each instruction's cycles, and each host
-  // access's stalls and misses, charged to the function holding its PC;
-  // instructions and cycles a run at a time, when the PC leaves the
-  // function (the timing layer's counts less those at the run's start:
-  // whole numbers, the same sums), so that each instruction costs a range
-  // check. stats.json lists the rows with soc_sim --iss-profile only.
   const bool profiling = core_port.profiling_program();
-  iss::Profile profile(image.functions);
-  iss::Profile::Entry* entry = &profile.at(image.entry);
-  uint64_t run_steps = 0, run_cycles = 0;  // the timing layer's counts when the run in `entry` began
-  const auto end_run = [&] {
-    entry->instructions += timing.instructions() - run_steps;
-    entry->cycles += timing.cycles() - run_cycles;
-    run_steps = timing.instructions();
-    run_cycles = timing.cycles();
-  };
-  memory.set_profile_entry(entry);
+  const bool tracing = core_port.tracing_program();
+  ProfileAccounting accounting(image, timing, memory, profiling || tracing);
   // Line fills and uncached fetches are the host's instruction-side reads,
   // at the time the instructions before them have taken.
   timing.on_fill([&memory, &core_port](uint32_t address, unsigned bytes) {
     memory.flush();
     const HostMemory::Charged charged(memory);
-    ++memory.profile_entry()->icache_misses;
+    if (iss::Profile::Entry* charged_to = memory.profile_entry()) ++charged_to->icache_misses;
     core_port.fetch(address, bytes);
   });
   iss::ArmCore core(memory);
@@ -679,8 +707,8 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
 
   attach_hooks(core, core_port, memory, semihosting);
   const StatisticsPublisher publisher(core_port, [&] {
-    end_run();
-    return program_statistics(core, timing, profile, profiling);
+    accounting.end_run();
+    return program_statistics(core, timing, profiling ? &accounting.profile() : nullptr, memory.stall_cycles());
   });
 
   core.reset();
@@ -688,8 +716,7 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   const uint64_t instruction_limit = env.config != nullptr && env.config->has("host.iss_instruction_limit")
                                          ? env.config->get_uint("host.iss_instruction_limit")
                                          : 0;
-  const bool tracing = core_port.tracing_program();
-  if (tracing) core_port.set_function_names(profile.names());
+  if (tracing) core_port.set_function_names(accounting.profile().names());
   uint32_t traced_function = ~0u;
   const auto ended = [&] { return memory.exited() || semihosting.exited(); };
   const auto exit_status = [&] {
@@ -699,28 +726,25 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
   // (its cycles, the trace, the interrupt lines), for GDB's single steps
   // and the run's blocks (ArmCore::run) alike. Inline: as calls (GCC's
   // choice, each being used twice) the run took 8% more CPU time.
-  // `watching` (std::true_type or std::false_type): whether the checks that
-  // are off unless asked for (an instruction limit, the program's trace)
-  // are compiled in. The run's loop is made twice; the one without them
-  // runs unless one is asked for (`watched`).
+  // `watching` and `profiled` (std::true_type or std::false_type): whether
+  // the checks that are off unless asked for (an instruction limit, the
+  // program's trace), and the profile's accounting, are compiled in. The
+  // run's loop is made for each pair; the one without either runs unless
+  // one is asked for.
   const bool watched = tracing || instruction_limit != 0;
-  const auto before = [&](auto watching) __attribute__((always_inline)) {
+  const auto before = [&](auto watching, auto profiled) __attribute__((always_inline)) {
     if constexpr (decltype(watching)::value)
       if (instruction_limit != 0 && core.instructions() == instruction_limit)
         runaway(memory, path, instruction_limit, core.reg(15));
-    if (!profile.holds(core.reg(15))) {
-      end_run();
-      entry = &profile.at(core.reg(15));
-      memory.set_profile_entry(entry);
-    }
+    if constexpr (decltype(profiled)::value) accounting.before(core.reg(15));
   };
   const auto after = [&](auto watching) __attribute__((always_inline)) {
     // Its cycles beyond its host accesses' issue cycles (charged by the host).
     memory.charge_instruction(timing.step(core.last_step()));
     if constexpr (decltype(watching)::value)
-      if (tracing && profile.last_index() != traced_function) {
+      if (tracing && accounting.profile().last_index() != traced_function) {
         memory.flush();
-        traced_function = profile.last_index();
+        traced_function = accounting.profile().last_index();
         core_port.trace_program(core.reg(15), traced_function, core.cpsr());
       }
     // A batch of cycles gathered, or the program ended (false: the run
@@ -734,15 +758,18 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
     return true;
   };
   const auto step = [&] {
-    before(std::true_type{});
+    if (accounting.on())
+      before(std::true_type{}, std::true_type{});
+    else
+      before(std::true_type{}, std::false_type{});
     core.step();
     after(std::true_type{});
   };
-  const auto run_blocks = [&](auto watching) {
-    before(watching);
+  const auto run_blocks = [&](auto watching, auto profiled) {
+    before(watching, profiled);
     core.run([&]() __attribute__((always_inline)) {
       if (!after(watching)) return false;
-      before(watching);
+      before(watching, profiled);
       return true;
     });
   };
@@ -756,10 +783,14 @@ int run_elf_app(AppEnvironment& env, const IssHost& iss_host, const std::string&
       if (end == iss::GdbServer::End::disconnected) warn("GDB went away without detaching; the program runs on");
     }
     if (!ended()) {
-      if (watched)
-        run_blocks(std::true_type{});
+      if (watched && accounting.on())
+        run_blocks(std::true_type{}, std::true_type{});
+      else if (watched)
+        run_blocks(std::true_type{}, std::false_type{});
+      else if (accounting.on())
+        run_blocks(std::false_type{}, std::true_type{});
       else
-        run_blocks(std::false_type{});
+        run_blocks(std::false_type{}, std::false_type{});
     }
   } catch (const iss::IssError& error) {
     memory.flush_console();
