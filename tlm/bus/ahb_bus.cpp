@@ -51,11 +51,6 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
   unsigned m_index;
 };
 
-namespace {
-// Occupancies and waits up to this many cycles get their sc_time from a table.
-constexpr unsigned CYCLE_TIME_TABLE = 256;
-}  // namespace
-
 AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
     : Block(name),
       out("out"),
@@ -69,7 +64,6 @@ AhbBus::AhbBus(sc_core::sc_module_name name, const BusParams& params)
   if (m_period_ticks == 0) throw std::invalid_argument(std::string(this->name()) + ": zero clock period");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero bus width");
   out.register_invalidate_direct_mem_ptr(this, &AhbBus::invalidate_direct_mem_ptr);
-  for (unsigned k = 0; k < CYCLE_TIME_TABLE; ++k) m_cycle_times.push_back(sc_time::from_value(k * m_period_ticks));
 }
 
 AhbBus::~AhbBus() = default;
@@ -265,7 +259,7 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
   // From the local time to the clock edge: zero for most requests (an
   // initiator's next request is usually at the end of its last one).
   sc_time to_edge;
-  if (request_ticks != local_ticks) to_edge = sc_time::from_value(request_ticks - local_ticks);
+  if (request_ticks != local_ticks) to_edge = ticks_time(request_ticks - local_ticks);
 
   const uint64_t address = gp.get_address();
   const Region* region = decode(address);

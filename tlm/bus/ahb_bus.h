@@ -45,6 +45,7 @@
 #include "common/direct_transport.h"
 #include "common/fixed_divider.h"
 #include "common/histogram.h"
+#include "common/ticks_time.h"
 #include "common/timed_trace.h"
 #include "common/transaction_trace.h"
 #include "config/config.h"
@@ -183,12 +184,8 @@ class AhbBus : public Block {
     if (ticks != memo.ticks) memo = {ticks, m_cycles.ceil(ticks)};
     return memo.cycles;
   }
-  // `cycles` bus cycles as an sc_time, from a table for the short ones
-  // (sc_time::from_value is a call into the SystemC library).
-  sc_core::sc_time cycles_time(uint64_t cycles) const {
-    return cycles < m_cycle_times.size() ? m_cycle_times[cycles]
-                                         : sc_core::sc_time::from_value(cycles * m_period_ticks);
-  }
+  // `cycles` bus cycles as an sc_time.
+  sc_core::sc_time cycles_time(uint64_t cycles) const { return ticks_time(cycles * m_period_ticks); }
   // Whether a synchronised request must wait a delta cycle for the others
   // of its instant (see b_transport).
   bool must_collect() const;
@@ -240,9 +237,8 @@ class AhbBus : public Block {
   // sc_time_stamp() function is a call into the SystemC library).
   const sc_core::sc_simcontext* m_context;
   uint64_t m_period_ticks;
-  FixedDivider m_cycles;                        // ticks to bus cycles
-  FixedDivider m_beats;                         // bytes to beats
-  std::vector<sc_core::sc_time> m_cycle_times;  // [k]: k cycles
+  FixedDivider m_cycles;  // ticks to bus cycles
+  FixedDivider m_beats;   // bytes to beats
   std::vector<Region> m_regions;
   std::vector<BusInitiatorStats> m_stats;
   // Each initiator's wait cycles per access (stats.json's

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "common/log.h"
+#include "common/ticks_time.h"
 
 namespace tessera {
 
@@ -167,10 +168,7 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
                         uint64_t not_before_ticks) {
   const uint64_t now = kernel_ticks();
   const uint64_t issue = std::max(now + m_local_ticks, not_before_ticks);
-  // A request issued where the last one ended (a train's next request, a
-  // load after its fill) is given the delay that one returned, without a
-  // call to sc_time::from_value in the SystemC library.
-  sc_time delay = issue - now == m_last_delay.value() ? m_last_delay : sc_time::from_value(issue - now);
+  sc_time delay = ticks_time(issue - now);
   m_payload.set_command(command);
   m_payload.set_address(address);
   m_payload.set_data_ptr(data);
@@ -185,7 +183,6 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
     m_direct_out->direct_b_transport(m_payload, delay);
   else
     out->b_transport(m_payload, delay);
-  m_last_delay = delay;
   m_train->transfers = 1;
   m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
   // Memory (a target that grants DMI may be bypassed, so its accesses can

@@ -294,7 +294,6 @@ class Host : public Block, public HostApi, public HostCore {
   tlm::tlm_generic_payload m_payload;
   TransferTrain* m_train;          // owned by m_payload
   ScheduleUntouched* m_untouched;  // owned by m_payload
-  sc_core::sc_time m_last_delay;   // the delay the last transaction returned
   // What `out` is bound to, as a DirectTransport (the bus's port), or null
   // (common/direct_transport.h): found at the end of elaboration.
   DirectTransport* m_direct_out = nullptr;

@@ -7,6 +7,7 @@
 
 #include "common/log.h"
 #include "common/loosely_timed.h"
+#include "common/ticks_time.h"
 #include "common/transfer_train.h"
 
 namespace tessera {
@@ -79,7 +80,7 @@ void Memory::move_enabled(tlm::tlm_generic_payload& gp) {
 const sc_core::sc_time& Memory::long_data_phase(uint64_t length, unsigned transfers) {
   // Integer ticks: every transfer of a train takes the time of one access.
   const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
-  if (ticks != m_last_access.value()) m_last_access = sc_core::sc_time::from_value(ticks);
+  if (ticks != m_last_access.value()) m_last_access = ticks_time(ticks);
   return m_last_access;
 }
 

@@ -79,9 +79,8 @@ class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTra
   // The copy of an access with byte enables.
   void move_enabled(tlm::tlm_generic_payload& gp);
   // access_time() of an access of `length` bytes as `transfers` transfers,
-  // when it is not in the table of single transfers: computed
-  // (sc_time::from_value is a call into the SystemC library) and kept while
-  // it repeats.
+  // when it is not in the table of single transfers: computed and kept (the
+  // reference returned) while it repeats.
   const sc_core::sc_time& long_data_phase(uint64_t length, unsigned transfers);
   // access_time() in ticks (the time resolution's units): integers only.
   uint64_t access_ticks(uint64_t bytes) const {
