@@ -248,22 +248,25 @@ CoreResult run_core_natively(const std::string& scene_name, unsigned n, const js
                              const std::vector<std::string>& scene_args) {
   const tessera::scenes::Scene* scene = tessera::scenes::find_scene(scene_name);
   if (!scene) throw std::runtime_error("no built-in scene " + scene_name);
-  const json& display_config = config["display"];
-  const json& raster_config = config["raster"];
+  // json::at: a key soc_sim's configuration no longer has is an error
+  // naming it (operator[] on a const json is undefined there).
+  const json& display_config = config.at("display");
+  const json& raster_config = config.at("raster");
   tessera::bench::NativeDisplay display;
-  display.width = display_config["width"].get<unsigned>();
-  display.height = display_config["height"].get<unsigned>();
-  display.format = pixel_format_from_name(display_config["format"].get<std::string>()).value_or(PixelFormat::rgb565);
-  display.dma = display_config["dma"].get<bool>();
-  const uint32_t memory_bytes = config["mem"]["size_mib"].get<uint32_t>() << 20;
+  display.width = display_config.at("width").get<unsigned>();
+  display.height = display_config.at("height").get<unsigned>();
+  display.format = pixel_format_from_name(display_config.at("format").get<std::string>()).value_or(PixelFormat::rgb565);
+  display.dma = display_config.at("dma").get<bool>();
+  const uint32_t memory_bytes = config.at("mem").at("size_mib").get<uint32_t>() << 20;
   tessera::raster::RunConfig geometry;
-  geometry.width = raster_config["width"].get<unsigned>();
-  geometry.height = raster_config["height"].get<unsigned>();
-  geometry.tile_width = raster_config["tile_width"].get<unsigned>();
-  geometry.tile_height = raster_config["tile_height"].get<unsigned>();
-  geometry.texture_units = raster_config["texture_units"].get<unsigned>();
+  // The rasterizer draws at the display's size (soc_sim has no raster.width).
+  geometry.width = display.width;
+  geometry.height = display.height;
+  geometry.tile_width = raster_config.at("tile_width").get<unsigned>();
+  geometry.tile_height = raster_config.at("tile_height").get<unsigned>();
+  geometry.texture_units = raster_config.at("texture_units").get<unsigned>();
   const auto method =
-      tessera::raster::parse_recip_method(std::to_string(raster_config["recip_method"].get<unsigned>()));
+      tessera::raster::parse_recip_method(std::to_string(raster_config.at("recip_method").get<unsigned>()));
   if (method) geometry.recip_method = *method;
 
   tessera::bench::NativeHost native(memory_bytes, display);
