@@ -453,7 +453,7 @@ TEST_F(Iss, Cp15CacheOperationsReachTheCachesAndUserModeIsRefused) {
 struct DecodeCache : ::testing::Test {
   Memory memory;
   Arm922tTiming timing;
-  tessera::iss::TimedFetch port{memory, &timing};
+  tessera::iss::TimedFetch<Memory> port{memory, &timing};
   ArmCore core{port};
   Cp15 cp15{core, &timing};
   void SetUp() override {

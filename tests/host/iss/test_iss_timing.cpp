@@ -56,7 +56,7 @@ constexpr uint32_t CODE = 0x1000;  // 32-byte aligned: a line starts here
 struct Timing : ::testing::Test {
   Memory memory;
   Arm922tTiming timing;
-  TimedFetch port{memory, &timing};
+  TimedFetch<Memory> port{memory, &timing};
   ArmCore core{port};
   Cp15 cp15{core, &timing};
 

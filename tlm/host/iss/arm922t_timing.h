@@ -221,10 +221,13 @@ class Arm922tTiming : public CacheMaintenance {
 // side is that port's, at no cost beyond the instructions' own cycles).
 // A fetch grants its line (ResidentLine) when the other port has it as
 // plain memory and the instruction cache would hit it again (or there is
-// no timing layer).
+// no timing layer). `Memory`: the other port's type, deduced from the
+// constructor's argument; where that class is final (BareMachine) the
+// forwarded calls are direct, not virtual.
+template <class Memory = IssMemory>
 class TimedFetch : public IssMemory {
  public:
-  TimedFetch(IssMemory& memory, Arm922tTiming* timing) : m_memory(memory), m_timing(timing) {
+  TimedFetch(Memory& memory, Arm922tTiming* timing) : m_memory(memory), m_timing(timing) {
     if (m_timing != nullptr) m_timing->revoke_on_change(&m_resident);
   }
   ~TimedFetch() override {
@@ -251,7 +254,7 @@ class TimedFetch : public IssMemory {
   ResidentLine* resident_line() override { return &m_resident; }
 
  private:
-  IssMemory& m_memory;
+  Memory& m_memory;
   Arm922tTiming* m_timing;
   ResidentLine m_resident;
   uint64_t m_untimed_fetches = 0;  // the count of a grant without a timing layer: nobody reads it

@@ -15,7 +15,7 @@
 
 namespace tessera::iss {
 
-class BareMachine : public IssMemory, public DebugMemory {
+class BareMachine final : public IssMemory, public DebugMemory {
  public:
   static constexpr uint32_t CONSOLE = 0xf0000000u, EXIT = 0xf0000004u;
 
