@@ -7,6 +7,7 @@
 #include "common/log.h"
 #include "common/loosely_timed.h"
 #include "common/schedule_untouched.h"
+#include "common/ticks_time.h"
 
 namespace tessera {
 
@@ -36,8 +37,6 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
   const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
   for (unsigned group = 0; group < g.lanes() / array_regs::CUS_PER_GROUP; ++group)
     m_group_lane.push_back((group / groups_per_row) * g.columns + (group % groups_per_row) * array_regs::CUS_PER_GROUP);
-  m_write_word_time = sc_time::from_value(m_params.clock_period.value() * m_params.write_cycles);
-  m_read_word_time = sc_time::from_value(m_params.clock_period.value() * m_params.read_cycles);
   in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
 }
 
@@ -102,8 +101,7 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   move_words(offset, words, gp.get_data_ptr(), gp.is_write(), gp.is_read());
   const unsigned cycles = gp.is_write() ? m_params.write_cycles : m_params.read_cycles;
   // Whole ticks: what clock_period * double(cycles * words) gives.
-  const sc_time latency = words == 1 ? (gp.is_write() ? m_write_word_time : m_read_word_time)
-                                     : sc_time::from_value(m_params.clock_period.value() * cycles * words);
+  const sc_time latency = ticks_time(m_params.clock_period.value() * cycles * words);
   if (m_tracing) {
     const sc_time start = sc_core::sc_time_stamp() + delay;
     m_access_trace.set_at(true, start);

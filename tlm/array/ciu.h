@@ -97,11 +97,8 @@ class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransp
   unsigned m_cmem_bytes = 0;
   unsigned m_cmem_shift = 0;           // log2 of m_cmem_bytes when a power of two, else 0
   std::vector<unsigned> m_group_lane;  // each group's first lane
-  // The latency of one word written and of one word read (most accesses):
-  // sc_time::from_value is a call into the SystemC library.
-  sc_core::sc_time m_write_word_time, m_read_word_time;
-  sc_core::sc_time m_access_time;  // latency charged, all accesses
-  sc_core::sc_time m_stall_time;   // waiting for a running program
+  sc_core::sc_time m_access_time;      // latency charged, all accesses
+  sc_core::sc_time m_stall_time;       // waiting for a running program
   TimedTrace m_access_trace;
   bool m_tracing = false;
   TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline

@@ -27,8 +27,6 @@ Memory::Memory(sc_core::sc_module_name name, const MemoryParams& params)
       m_errors(counter("errors", "accesses answered with an error")) {
   if (params.size_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": size 0");
   if (params.width_bytes == 0) throw std::invalid_argument(std::string(this->name()) + ": zero width");
-  for (size_t beats = 0; beats < m_access_times.size(); ++beats)
-    m_access_times[beats] = sc_core::sc_time::from_value(m_first_access_ticks + beats * m_beat_ticks);
   in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
 }
 
@@ -77,13 +75,6 @@ void Memory::move_enabled(tlm::tlm_generic_payload& gp) {
   }
 }
 
-const sc_core::sc_time& Memory::long_data_phase(uint64_t length, unsigned transfers) {
-  // Integer ticks: every transfer of a train takes the time of one access.
-  const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
-  if (ticks != m_last_access.value()) m_last_access = ticks_time(ticks);
-  return m_last_access;
-}
-
 void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
   const uint64_t address = gp.get_address();
   const uint64_t length = gp.get_data_length();
@@ -108,11 +99,10 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
     m_writes += transfers;
     m_bytes_written += length;
   }
-  const uint64_t beats = length == 0 ? 1 : m_beats.ceil(length);
-  const sc_core::sc_time& time =
-      transfers == 1 && beats < m_access_times.size() ? m_access_times[beats] : long_data_phase(length, transfers);
-  m_busy_ticks += time.value();
-  delay += time;
+  // Integer ticks: every transfer of a train takes the time of one access.
+  const uint64_t ticks = transfers == 1 ? access_ticks(length) : access_ticks(length / transfers) * transfers;
+  m_busy_ticks += ticks;
+  delay += ticks_time(ticks);
   gp.set_dmi_allowed(true);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }

@@ -10,7 +10,6 @@
 // (common/direct_transport.h).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -78,10 +77,6 @@ class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTra
   void refuse(tlm::tlm_generic_payload& gp);
   // The copy of an access with byte enables.
   void move_enabled(tlm::tlm_generic_payload& gp);
-  // access_time() of an access of `length` bytes as `transfers` transfers,
-  // when it is not in the table of single transfers: computed and kept (the
-  // reference returned) while it repeats.
-  const sc_core::sc_time& long_data_phase(uint64_t length, unsigned transfers);
   // access_time() in ticks (the time resolution's units): integers only.
   uint64_t access_ticks(uint64_t bytes) const {
     const uint64_t beats = bytes == 0 ? 1 : m_beats.ceil(bytes);
@@ -112,8 +107,6 @@ class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTra
   FixedDivider m_beats;  // bytes to beats (the width)
   uint64_t m_first_access_ticks;
   uint64_t m_beat_ticks;
-  std::array<sc_core::sc_time, 65> m_access_times;  // [beats]: access_time() of a single transfer of that many beats
-  sc_core::sc_time m_last_access;                   // the time of the last access not in the table
   ActivityCounter& m_reads;
   ActivityCounter& m_writes;
   ActivityCounter& m_bytes_read;
