@@ -689,9 +689,11 @@ Traffic random_traffic(Bench& bench, bool serve) {
             api.write8(at, static_cast<uint8_t>(value));
         }
       } else if (what < 90) {
-        uint32_t words[8] = {};
-        const unsigned count = 1 + pick(8);
-        const uint32_t at = (address(4) & ~31u) + 4 * pick(9 - count);
+        // Up to 16 words from anywhere in a line: a list may reach into
+        // the next two lines.
+        uint32_t words[16] = {};
+        const unsigned count = 1 + pick(16);
+        const uint32_t at = (address(4) & ~31u) + 4 * pick(8);
         if (hit != nullptr && hit->load_words(at, words, count, pending)) {
           ++traffic.served;
         } else {
@@ -700,10 +702,10 @@ Traffic random_traffic(Bench& bench, bool serve) {
         }
         traffic.seen.insert(traffic.seen.end(), words, words + count);
       } else if (what < 99) {
-        uint32_t words[8];
-        const unsigned count = 1 + pick(8);
+        uint32_t words[16];
+        const unsigned count = 1 + pick(16);
         for (uint32_t& word : words) word = static_cast<uint32_t>(random());
-        const uint32_t at = (address(4) & ~31u) + 4 * pick(9 - count);
+        const uint32_t at = (address(4) & ~31u) + 4 * pick(8);
         if (hit != nullptr && hit->store_words(at, words, count, pending)) {
           ++traffic.served;
         } else {
@@ -795,6 +797,37 @@ TEST(Host, TheGrantedLineIsRevokedWhenItStopsBeingAPlainHit) {
     api.read32(A + 32);  // then a hit
   })) << "a hit on another line is granted beside it";
   EXPECT_TRUE(hit->load(A + 32, 4, 0, value));
+}
+
+// An STM across a line's end, served through the two granted lines, makes
+// the second line's half dirty as the host's own write_words does: cleaning
+// that line writes it back on the bus (the random traffic above keeps its
+// few lines dirty, so it would not see a half left clean).
+TEST(Host, AListAcrossTwoGrantedLinesDirtiesBoth) {
+  Bench& bench = *g_served;
+  HostCore& core = bench.host;
+  DataHitLines* hit = core.data_hit_lines();
+  constexpr uint32_t A = 0x48000;  // two lines (A, A + 32) no other test touches
+  const uint32_t words[4] = {1, 2, 3, 4};
+  uint64_t writes_before = 0, writes_after = 0;
+  bool served = false;
+  bench.run([&](HostApi& api) {
+    core.invalidate_data_cache();
+    for (int pass = 0; pass < 2; ++pass)  // fills, then hits: both lines granted, clean
+      for (uint32_t line : {A, A + 32}) api.read32(line);
+    served = hit->store_words(A + 24, words, 4, 0);  // A + 24 .. A + 39
+    core.clean_data_line(A, false);
+    core.drain_write_buffer();
+    writes_before = bench.bus.initiator_stats()[0].writes;
+    core.clean_data_line(A + 32, false);
+    core.drain_write_buffer();
+    writes_after = bench.bus.initiator_stats()[0].writes;
+  });
+  EXPECT_TRUE(served);
+  EXPECT_GT(writes_after, writes_before) << "the second line's first half was written back";
+  uint32_t stored[4] = {};
+  bench.run([&](HostApi& api) { api.read_words(A + 24, stored, 4); });
+  EXPECT_TRUE(std::equal(words, words + 4, stored));
 }
 
 TEST(Host, NoProtocolViolations) {

@@ -1,6 +1,6 @@
 // DataHitLines: lines of the host's data cache that a core model may serve
 // hits from without calling the host (HostCore::data_hit_lines), the data
-// side's counterpart of the ISS's ResidentLine. Taking a load or store here
+// side's counterpart of the ISS's ResidentLines. Taking a load or store here
 // does exactly what the host does for one that hits (Host::read_data,
 // write_data, read_words, write_words): the compute cycles pending before it
 // charged, then the access's issue cycles, the loads or stores and the
@@ -18,6 +18,7 @@
 // withdrawn or a timeline attached.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -25,7 +26,7 @@ namespace tessera {
 
 struct DataHitLines {
   static constexpr uint32_t NONE = 1;  // line addresses are multiples of the line size: bit 0 is free
-  static constexpr unsigned SLOTS = 8;
+  static constexpr unsigned SLOTS = 64;
   struct Line {
     uint32_t line = NONE;      // the granted line's address, or NONE
     uint8_t* data = nullptr;   // its bytes in memory
@@ -90,26 +91,29 @@ struct DataHitLines {
     for (unsigned i = 0; i < bytes; ++i) p[i] = static_cast<uint8_t>(value >> (8 * i));
     return true;
   }
-  // LDM: `count` words from an aligned `address`, all in the line, one load
-  // as the host counts it: true if taken (issue cycles load_issue(count)).
+  // LDM: `count` words from an aligned `address`, every line they reach
+  // granted (a list may cross a line's end), one load as the host counts
+  // it: true if taken (issue cycles load_issue(count)).
   bool load_words(uint32_t address, uint32_t* words, unsigned count, uint64_t pending) {
-    const Line& entry = slot(address);
-    if (!words_in(entry, address, count) || !charge(pending, load_issue(count))) return false;
+    if (!words_granted(address, count, false) || !charge(pending, load_issue(count))) return false;
     ++*loads;
     *hits += count;
-    std::memcpy(words, entry.data + (address - entry.line), 4 * size_t{count});
+    for_each_piece(address, count,
+                   [&](uint8_t* p, unsigned first, unsigned n) { std::memcpy(words + first, p, 4 * size_t{n}); });
     return true;
   }
   // STM: one store of `count` words, as the host counts it: true if taken
   // (issue cycles store_words_issue(count)).
   bool store_words(uint32_t address, const uint32_t* words, unsigned count, uint64_t pending) {
-    const Line& entry = slot(address);
-    if (!words_in(entry, address, count) || entry.dirty == nullptr || !charge(pending, store_words_issue(count)))
-      return false;
+    if (!words_granted(address, count, true) || !charge(pending, store_words_issue(count))) return false;
     ++*stores;
     *hits += count;
-    for (unsigned i = 0; i < count; ++i) *entry.dirty = static_cast<uint8_t>(*entry.dirty | half_bit(address + 4 * i));
-    std::memcpy(entry.data + (address - entry.line), words, 4 * size_t{count});
+    for_each_piece(address, count, [&](uint8_t* p, unsigned first, unsigned n) {
+      const Line& entry = slot(address + 4 * first);
+      for (unsigned i = first; i < first + n; ++i)
+        *entry.dirty = static_cast<uint8_t>(*entry.dirty | half_bit(address + 4 * i));
+      std::memcpy(p, words + first, 4 * size_t{n});
+    });
     return true;
   }
 
@@ -117,9 +121,31 @@ struct DataHitLines {
   Line& slot(uint32_t address) { return lines[(address >> line_shift) % SLOTS]; }
   uint32_t line_of(uint32_t address) const { return address >> line_shift << line_shift; }
   unsigned half_bit(uint32_t address) const { return 1u << ((address >> (line_shift - 1)) & 1u); }
-  bool words_in(const Line& entry, uint32_t address, unsigned count) const {
-    return count != 0 && line_of(address) == entry.line && (address & 3u) == 0 &&
-           uint64_t{address - entry.line} + 4 * uint64_t{count} <= uint64_t{1} << line_shift;
+  // Whether `count` words from `address` (aligned) lie in granted lines
+  // (with their dirty bits, for a store).
+  bool words_granted(uint32_t address, unsigned count, bool store) {
+    if (count == 0 || (address & 3u) != 0 || uint64_t{address} + 4 * uint64_t{count} > uint64_t{1} << 32) return false;
+    const uint32_t last = address + 4 * (count - 1);
+    for (uint32_t line = line_of(address); line <= line_of(last); line += 1u << line_shift) {
+      const Line& entry = slot(line);
+      if (entry.line != line || (store && entry.dirty == nullptr)) return false;
+      if (line == line_of(last)) break;  // the last line (also where adding a line would wrap)
+    }
+    return true;
+  }
+  // `f(data, first, n)` for each granted line's piece of the words: words
+  // first .. first + n - 1, at `data` in memory.
+  template <class F>
+  void for_each_piece(uint32_t address, unsigned count, F f) {
+    unsigned first = 0;
+    while (first < count) {
+      const uint32_t at = address + 4 * first;
+      const Line& entry = slot(at);
+      const unsigned left_in_line = ((entry.line + (1u << line_shift)) - at) / 4;
+      const unsigned n = std::min(count - first, left_in_line);
+      f(entry.data + (at - entry.line), first, n);
+      first += n;
+    }
   }
   // The host's charge of `pending` compute cycles and then `issue` busy
   // cycles, when neither reaches its budget (else nothing: false).

@@ -585,16 +585,16 @@ TEST(DecodeCachePages, ProgramsRunningThroughMorePagesThanKeptRunOn) {
 // store into the line and an interrupt raised between two instructions.
 // The port grants every line it fetches from, as the bare machine does.
 struct LineMemory : Memory {
-  tessera::iss::ResidentLine resident;
+  tessera::iss::ResidentLines resident;
   uint64_t line_fetches = 0, port_fetches = 0;
   bool fetch(uint32_t address, unsigned size, uint32_t& value) override {
     ++port_fetches;
     if (!read(address, size, value)) return false;
-    const uint32_t line = address & ~(tessera::iss::ResidentLine::BYTES - 1);
-    resident = {line, &bytes[line], &line_fetches};
+    const uint32_t line = tessera::iss::ResidentLines::line_of(address);
+    resident.grant(line, &bytes[line], &line_fetches);
     return true;
   }
-  tessera::iss::ResidentLine* resident_line() override { return &resident; }
+  tessera::iss::ResidentLines* resident_lines() override { return &resident; }
 };
 
 struct Blocks : ::testing::Test {

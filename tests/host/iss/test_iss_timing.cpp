@@ -330,11 +330,11 @@ TEST(InstructionCacheModel, SixtyFourWaysPerSetThenReplacement) {
 }
 
 // A memory whose bytes the core may read directly: TimedFetch grants the
-// line of a fetch the instruction cache would hit again (ResidentLine).
+// line of a fetch the instruction cache would hit again (ResidentLines).
 class DirectMemory : public Memory {
  public:
   const uint8_t* code_line(uint32_t line) override {
-    return uint64_t{line} + tessera::iss::ResidentLine::BYTES <= bytes.size() ? &bytes[line] : nullptr;
+    return uint64_t{line} + tessera::iss::ResidentLines::BYTES <= bytes.size() ? &bytes[line] : nullptr;
   }
 };
 
@@ -395,6 +395,65 @@ Counts run_with_disturbances() {
           timing.icache().misses(),
           core.reg(0),
           core.reg(15)};
+}
+
+// A chain of branches through more lines of one set than it has ways, so
+// that fills evict lines the port has granted: each line evicted must be
+// fetched through the port again (a miss), not read from its old grant;
+// and every line after the cache is invalidated.
+template <typename MemoryType>
+Counts run_through_evictions(bool round_robin) {
+  MemoryType memory;
+  Arm922tTiming timing;
+  TimedFetch port{memory, &timing};
+  ArmCore core{port};
+  Cp15 cp15{core, &timing};
+  core.set_coprocessors(&cp15);
+  timing.attach(&cp15);
+  cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I | (round_robin ? Cp15::CONTROL_RR : 0));
+  // Line k (k = 0 .. 69, 128 bytes apart: all in set 0): add r0, r0, #1,
+  // then b to line k + 1; the last branches back to line 0. Lines 0 .. 3
+  // also run a short loop of their own, so they hit while granted.
+  constexpr unsigned LINES = InstructionCache::WAYS + 6;
+  constexpr uint32_t ADD_R0_1 = 0xe2800001u;
+  const auto branch = [](uint32_t from, uint32_t to) { return 0xea000000u | (((to - (from + 8)) >> 2) & 0x00ffffffu); };
+  for (uint32_t k = 0; k < LINES; ++k) {
+    const uint32_t at = CODE + 128 * k;
+    const uint32_t next = k + 1 < LINES ? at + 128 : CODE;
+    if (k < 4)  // subs r1, r1, #1; bne at + 4 (r1 = 3 each time: mov r1, #3 first)
+      memory.program(at, {0xe3a01003u, ADD_R0_1, 0xe2511001u, (branch(at + 12, at + 4) & 0x0fffffffu) | 0x10000000u,
+                          branch(at + 16, next)});
+    else
+      memory.program(at, {ADD_R0_1, branch(at + 4, next)});
+  }
+  core.set_cpsr(SYS);
+  core.set_reg(15, CODE);
+  for (int i = 0; i < 20000; ++i) {
+    // Now and then the whole cache invalidated, with more lines granted
+    // than the table keeps a list of (ResidentLines::revoke_all).
+    if (i % 997 == 500) timing.invalidate_instruction_cache();
+    core.step();
+    timing.step(core.last_step());
+  }
+  return {core.instructions(),
+          core.decodes(),
+          timing.cycles(),
+          timing.interlock_cycles(),
+          timing.fetch_stall_cycles(),
+          timing.icache().hits(),
+          timing.icache().misses(),
+          core.reg(0),
+          core.reg(15)};
+}
+
+TEST(ResidentLines, EvictedLinesAreFetchedAgain) {
+  for (bool round_robin : {false, true}) {
+    const Counts granted = run_through_evictions<DirectMemory>(round_robin);
+    const Counts fetched = run_through_evictions<Memory>(round_robin);
+    EXPECT_TRUE(granted == fetched) << (round_robin ? "round-robin" : "pseudo-random");
+    EXPECT_GT(granted.misses, 1000u);  // lines were evicted and fetched again
+    EXPECT_GT(granted.hits, 1000u);    // and granted lines hit in between
+  }
 }
 
 TEST(ResidentLines, ChangeNoCount) {

@@ -25,6 +25,7 @@ bool InstructionCache::access(uint32_t address, bool round_robin) {
     }
   ++m_misses;
   const unsigned victim = m_replacement.victim(set, round_robin);
+  m_evicted = ways[victim];
   if (m_resident[resident_slot(ways[victim])] == ways[victim]) m_resident[resident_slot(ways[victim])] = INVALID;
   ways[victim] = line;
   m_last_line = line;
@@ -58,6 +59,8 @@ unsigned Arm922tTiming::fetch_other_line(uint32_t address) {
   } else {
     const bool round_robin = m_cp15 != nullptr && (m_cp15->control() & Cp15::CONTROL_RR) != 0;
     if (!m_icache.access(address, round_robin)) {
+      if (m_resident != nullptr && m_icache.evicted() != InstructionCache::INVALID)
+        m_resident->revoke(m_icache.evicted());
       if (m_fill)
         m_fill(address & ~(InstructionCache::LINE_BYTES - 1), InstructionCache::LINE_BYTES);
       else

@@ -28,8 +28,11 @@ class InstructionCache {
   InstructionCache() { invalidate_all(); }
 
   // A fetch: true on a hit; on a miss the line is allocated (the caller
-  // charges the fill).
+  // charges the fill), and the line it replaced is evicted().
   bool access(uint32_t address, bool round_robin);
+  // The line the last miss replaced, or INVALID if its way was empty.
+  uint32_t evicted() const { return m_evicted; }
+  static constexpr uint32_t INVALID = 1;  // line addresses are multiples of 32: bit 0 is free
   // A fetch from the line of the last hit: a hit, counted, without a search
   // (false: not that line; nothing counted, access() decides).
   bool hit_last_line(uint32_t address) {
@@ -49,7 +52,6 @@ class InstructionCache {
   uint64_t misses() const { return m_misses; }
 
  private:
-  static constexpr uint32_t INVALID = 1;        // line addresses are multiples of 32: bit 0 is free
   std::array<uint32_t, SETS * WAYS> m_lines{};  // line address per way, set-major; INVALID if empty
   // The model's speed, not the cache's behaviour: lines known to be
   // resident, direct-mapped by line number (a slot holds a resident line or
@@ -60,6 +62,7 @@ class InstructionCache {
   static unsigned resident_slot(uint32_t line) { return (line / LINE_BYTES) % RESIDENT_SLOTS; }
   CacheReplacement m_replacement{SETS, WAYS};
   uint32_t m_last_line = INVALID;  // the line of the last hit: consecutive fetches skip the search
+  uint32_t m_evicted = INVALID;
   uint64_t m_hits = 0, m_misses = 0;
 };
 
@@ -90,14 +93,15 @@ class Arm922tTiming : public CacheMaintenance {
     return fetch_other_line(address);
   }
   // The hit counter a fetch from `address` only counts on (the cache on, the
-  // line that of the last hit), for a port's ResidentLine; else nullptr.
+  // line that of the last hit), for a port's ResidentLines; else nullptr.
   uint64_t* resident_hits(uint32_t address) {
     if (m_cp15 != nullptr && !m_cp15->instruction_cache_enabled()) return nullptr;
     return m_icache.last_line_hits(address);
   }
-  // The port's ResidentLine, cleared whenever the cache's answer may change
-  // (invalidated, the control register written).
-  void revoke_on_change(ResidentLine* line) { m_resident = line; }
+  // The port's ResidentLines, all revoked whenever the cache's answer may
+  // change (invalidated, the control register written), and a line the
+  // cache evicts revoked.
+  void revoke_on_change(ResidentLines* lines) { m_resident = lines; }
   // Makes line fills (32 bytes at the line's address) and uncached fetches
   // (the word) calls of `fill`, a bus read whose time is the caller's,
   // instead of TimingParams' cycle figures: fetch() then returns 0 for them.
@@ -161,7 +165,7 @@ class Arm922tTiming : public CacheMaintenance {
  private:
   unsigned fetch_other_line(uint32_t address);
   void revoke() {
-    if (m_resident != nullptr) m_resident->line = ResidentLine::NONE;
+    if (m_resident != nullptr) m_resident->revoke_all();
   }
   // The rules of the README's table, as a table (a switch here costs the
   // simulation a mispredicted jump per instruction): the cycles of each
@@ -205,7 +209,7 @@ class Arm922tTiming : public CacheMaintenance {
   TimingParams m_params;
   const Cp15* m_cp15 = nullptr;
   InstructionCache m_icache;
-  ResidentLine* m_resident = nullptr;
+  ResidentLines* m_resident = nullptr;
   Fill m_fill;
   // The last load's destination while it can still interlock: the next
   // instruction (age 0), or for a byte, halfword or unaligned load the one
@@ -219,7 +223,7 @@ class Arm922tTiming : public CacheMaintenance {
 // A memory port that charges each instruction fetch to a timing layer and
 // forwards every access to another port (iss_run and the tests: the data
 // side is that port's, at no cost beyond the instructions' own cycles).
-// A fetch grants its line (ResidentLine) when the other port has it as
+// A fetch grants its line (ResidentLines) when the other port has it as
 // plain memory and the instruction cache would hit it again (or there is
 // no timing layer). `Memory`: the other port's type, deduced from the
 // constructor's argument; where that class is final (BareMachine) the
@@ -243,20 +247,20 @@ class TimedFetch : public IssMemory {
   // any other fetch is the other port's.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     if (m_timing != nullptr) m_timing->fetch(address);
-    const uint32_t line = address & ~(ResidentLine::BYTES - 1);
+    const uint32_t line = ResidentLines::line_of(address);
     uint64_t* fetches = m_timing != nullptr ? m_timing->resident_hits(address) : &m_untimed_fetches;
     const uint8_t* data = fetches != nullptr ? m_memory.code_line(line) : nullptr;
     if (data == nullptr) return m_memory.fetch(address, bytes, value);
     value = load_little_endian(data + (address - line), bytes);
-    m_resident = {line, data, fetches};
+    m_resident.grant(line, data, fetches);
     return true;
   }
-  ResidentLine* resident_line() override { return &m_resident; }
+  ResidentLines* resident_lines() override { return &m_resident; }
 
  private:
   Memory& m_memory;
   Arm922tTiming* m_timing;
-  ResidentLine m_resident;
+  ResidentLines m_resident;
   uint64_t m_untimed_fetches = 0;  // the count of a grant without a timing layer: nobody reads it
 };
 

@@ -123,7 +123,7 @@ const char* fault_name(Exception exception) {
 }
 
 ArmCore::ArmCore(IssMemory& memory, Coprocessors* coprocessors)
-    : m_memory(memory), m_resident(memory.resident_line()), m_coprocessors(coprocessors) {
+    : m_memory(memory), m_resident(memory.resident_lines()), m_coprocessors(coprocessors) {
   m_cpsr = static_cast<uint32_t>(Mode::svc) | psr::I | psr::F;
 }
 
@@ -515,8 +515,8 @@ struct ArmCore::Exec {
         c.m_r[rd] = value;
     } else {
       // A write may turn the instruction cache off or invalidate it: the
-      // next fetch asks the port again (ResidentLine).
-      if (c.m_resident != nullptr) c.m_resident->line = ResidentLine::NONE;
+      // next fetch asks the port again (ResidentLines).
+      if (c.m_resident != nullptr) c.m_resident->revoke_all();
       if (!c.m_coprocessors->mcr(cp, op1, crn, crm, op2, privileged, rd == 15 ? c.m_current + 12 : c.m_r[rd]))
         c.undefined();
     }

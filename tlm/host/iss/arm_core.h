@@ -35,22 +35,60 @@ constexpr uint32_t MODE_MASK = 0x1f;
 constexpr uint32_t FLAGS = 0xf0000000u;
 }  // namespace psr
 
-// A line of code the memory port lets the core fetch from without calling
+// Lines of code the memory port lets the core fetch from without calling
 // fetch(): the fetches that the port would answer from memory with no time
-// and no effect but a count (an instruction-cache hit on the line of the
-// last hit, a plain RAM read). The port sets it after a fetch and clears it
-// (line = NONE) whenever that stops being true (the cache invalidated or
-// turned off, the memory's direct window withdrawn); the core clears it on
-// every coprocessor write too (CP15's c1 and c7), so that a port whose cache
-// operations reach it late misses none. The core still compares each word
-// with the decoded one (README.md, "The decode cache"), so a store into the
-// line is never missed.
-struct ResidentLine {
+// and no effect but a count (an instruction-cache hit on a line the cache
+// holds, a plain RAM read). The port grants a line after a fetch from it and
+// takes it back (revoke) when that stops being true: the whole table when
+// the cache's answer may change for any line (the cache invalidated or
+// turned off, the memory's direct window withdrawn), one line when the cache
+// evicts it. The core revokes them all on every coprocessor write too
+// (CP15's c1 and c7), so that a port whose cache operations reach it late
+// misses none. The core still compares each word with the decoded one
+// (README.md, "The decode cache"), so a store into a line is never missed.
+// Direct-mapped by line number: SLOTS lines, the instruction cache's 8 KB,
+// so that a loop's branches between lines it holds stay in the core.
+struct ResidentLines {
   static constexpr uint32_t BYTES = 32;  // the ARM922T's instruction-cache line
   static constexpr uint32_t NONE = 1;    // line addresses are multiples of 32: bit 0 is free
-  uint32_t line = NONE;                  // the line's address, or NONE
-  const uint8_t* data = nullptr;         // its bytes, little-endian
-  uint64_t* fetches = nullptr;           // counted once per fetch from it (the cache's hit count)
+  static constexpr unsigned SLOTS = 256;
+  struct Slot {
+    uint32_t line = NONE;           // the line's address, or NONE
+    const uint8_t* data = nullptr;  // its bytes, little-endian
+  };
+  static uint32_t line_of(uint32_t address) { return address & ~(BYTES - 1); }
+  // The slot that holds `address`'s line if it is granted.
+  Slot& slot(uint32_t address) { return m_slots[(address / BYTES) % SLOTS]; }
+  // Grants `line` (a multiple of BYTES) with its bytes; `fetches` is counted
+  // once per fetch from any granted line (the cache's hit count): one
+  // counter per port.
+  void grant(uint32_t line, const uint8_t* data, uint64_t* fetches) {
+    Slot& s = slot(line);
+    if (s.line == NONE && m_granted_count < m_granted.size()) m_granted[m_granted_count] = &s;
+    if (s.line == NONE) ++m_granted_count;
+    s = {line, data};
+    this->fetches = fetches;
+  }
+  void revoke(uint32_t line) {
+    Slot& s = slot(line);
+    if (s.line == line) s.line = NONE;
+  }
+  // Every line: the slots granted since the last revoke_all (a few, most
+  // often), or the whole table once more were.
+  void revoke_all() {
+    if (m_granted_count <= m_granted.size()) {
+      for (unsigned i = 0; i < m_granted_count; ++i) m_granted[i]->line = NONE;
+    } else {
+      for (Slot& s : m_slots) s.line = NONE;
+    }
+    m_granted_count = 0;
+  }
+  uint64_t* fetches = nullptr;
+
+ private:
+  std::array<Slot, SLOTS> m_slots{};
+  std::array<Slot*, 16> m_granted{};  // the first slots granted since revoke_all
+  unsigned m_granted_count = 0;       // slots granted since revoke_all (may pass m_granted's size)
 };
 
 // What the core reads and writes. Addresses of 2- and 4-byte accesses are
@@ -63,10 +101,10 @@ class IssMemory {
   virtual bool write(uint32_t address, unsigned bytes, uint32_t value) = 0;
   // Instruction fetch (the I side); by default the same as a read.
   virtual bool fetch(uint32_t address, unsigned bytes, uint32_t& value) { return read(address, bytes, value); }
-  // The line fetches may skip fetch() for (ResidentLine), or nullptr: asked
-  // once, when the core is made; the port keeps it up to date.
-  virtual ResidentLine* resident_line() { return nullptr; }
-  // The ResidentLine::BYTES bytes of plain memory at `line` (a multiple of
+  // The lines fetches may skip fetch() for (ResidentLines), or nullptr:
+  // asked once, when the core is made; the port keeps them up to date.
+  virtual ResidentLines* resident_lines() { return nullptr; }
+  // The ResidentLines::BYTES bytes of plain memory at `line` (a multiple of
   // 32), to be read directly while they stay where they are, or nullptr:
   // for a port that wraps this one and grants lines.
   virtual const uint8_t* code_line(uint32_t /*line*/) { return nullptr; }
@@ -327,7 +365,7 @@ class ArmCore {
   [[noreturn]] void unpredictable(const std::string& what) const;
 
   IssMemory& m_memory;
-  ResidentLine* m_resident;  // the port's, or null: asked once
+  ResidentLines* m_resident;  // the port's, or null: asked once
   Coprocessors* m_coprocessors;
   std::array<uint32_t, 16> m_r{};  // the current mode's view; m_r[15] = instruction + 8 while executing
   uint32_t m_pc = 0;               // the next instruction's address
@@ -371,9 +409,10 @@ inline void ArmCore::step() {
   m_branched = false;
   const bool thumb = (m_cpsr & psr::T) != 0;
   uint32_t raw = 0;
-  if (m_resident != nullptr && (m_current & ~(ResidentLine::BYTES - 1)) == m_resident->line) {
-    // What fetch() would do, without the call (ResidentLine).
-    const uint8_t* bytes = m_resident->data + (m_current & (ResidentLine::BYTES - 1));
+  const ResidentLines::Slot* slot = m_resident != nullptr ? &m_resident->slot(m_current) : nullptr;
+  if (slot != nullptr && ResidentLines::line_of(m_current) == slot->line) {
+    // What fetch() would do, without the call (ResidentLines).
+    const uint8_t* bytes = slot->data + (m_current & (ResidentLines::BYTES - 1));
     raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
     ++*m_resident->fetches;
   } else if (!m_memory.fetch(m_current, thumb ? 2 : 4, raw)) {
@@ -398,7 +437,7 @@ inline void ArmCore::execute(const Decoded& insn, bool thumb) {
 
 template <class After>
 inline void ArmCore::run(After&& after) {
-  constexpr uint32_t LINE_MASK = ~(ResidentLine::BYTES - 1);
+  constexpr uint32_t LINE_MASK = ~(ResidentLines::BYTES - 1);
   for (;;) {
     // A block's first instruction: step(), with the entry it executed kept.
     if (const uint32_t pending = m_interrupt_lines & ~m_cpsr) {
@@ -410,8 +449,10 @@ inline void ArmCore::run(After&& after) {
     m_branched = false;
     const bool thumb = (m_cpsr & psr::T) != 0;
     uint32_t raw = 0;
-    if (m_resident != nullptr && (m_current & LINE_MASK) == m_resident->line) {
-      const uint8_t* bytes = m_resident->data + (m_current & ~LINE_MASK);
+    const uint32_t line = m_current & LINE_MASK;
+    const ResidentLines::Slot* slot = m_resident != nullptr ? &m_resident->slot(line) : nullptr;
+    if (slot != nullptr && line == slot->line) {
+      const uint8_t* bytes = slot->data + (m_current & ~LINE_MASK);
       raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
       ++*m_resident->fetches;
     } else if (!m_memory.fetch(m_current, thumb ? 2 : 4, raw)) {
@@ -421,7 +462,6 @@ inline void ArmCore::run(After&& after) {
     }
     ++m_instructions;
     Decoded* insn = &decoded(m_current, raw, thumb);
-    const uint32_t line = m_current & LINE_MASK;
     for (;;) {
       execute(*insn, thumb);
       if (!after()) return;
@@ -430,12 +470,13 @@ inline void ArmCore::run(After&& after) {
       // interrupt first: its entry is then the next one of the same page
       // (a line never crosses a page), which no look-up since has dropped
       // (only decoded() drops pages). Without a branch the state is the
-      // same: only BX, exceptions and writes of the PC change T.
-      if (m_branched || (m_pc & LINE_MASK) != line || (m_interrupt_lines & ~m_cpsr) != 0 || m_resident == nullptr ||
-          m_resident->line != line)
+      // same: only BX, exceptions and writes of the PC change T. The
+      // line's slot is the same whether the fetch above granted it or not.
+      if (m_branched || (m_pc & LINE_MASK) != line || (m_interrupt_lines & ~m_cpsr) != 0 || slot == nullptr ||
+          slot->line != line)
         break;
       m_current = m_pc;
-      const uint8_t* bytes = m_resident->data + (m_current & ~LINE_MASK);
+      const uint8_t* bytes = slot->data + (m_current & ~LINE_MASK);
       raw = thumb ? load_little_endian(bytes, 2) : load_little_endian(bytes, 4);
       ++*m_resident->fetches;
       ++m_instructions;

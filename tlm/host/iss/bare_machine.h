@@ -69,16 +69,16 @@ class BareMachine final : public IssMemory, public DebugMemory {
     return true;
   }
   // Every line of the RAM is plain memory: a fetch grants its line
-  // (ResidentLine), counting nothing that anyone reads.
+  // (ResidentLines), counting nothing that anyone reads.
   bool fetch(uint32_t address, unsigned size, uint32_t& value) override {
     if (!BareMachine::read(address, size, value)) return false;
-    const uint32_t line = address & ~(ResidentLine::BYTES - 1);
-    if (const uint8_t* data = BareMachine::code_line(line)) m_resident = {line, data, &m_line_fetches};
+    const uint32_t line = ResidentLines::line_of(address);
+    if (const uint8_t* data = BareMachine::code_line(line)) m_resident.grant(line, data, &m_line_fetches);
     return true;
   }
-  ResidentLine* resident_line() override { return &m_resident; }
+  ResidentLines* resident_lines() override { return &m_resident; }
   const uint8_t* code_line(uint32_t line) override {
-    return uint64_t{line} + ResidentLine::BYTES <= m_ram.size() ? &m_ram[line] : nullptr;
+    return uint64_t{line} + ResidentLines::BYTES <= m_ram.size() ? &m_ram[line] : nullptr;
   }
   // A debugger's access reaches the RAM only (not the console or exit register).
   bool debug_read(uint32_t address, uint8_t* data, unsigned bytes) override {
@@ -113,7 +113,7 @@ class BareMachine final : public IssMemory, public DebugMemory {
   std::function<void(const std::string&)> m_console_sink;
   bool m_exited = false;
   uint32_t m_status = 0;
-  ResidentLine m_resident;
+  ResidentLines m_resident;
   uint64_t m_line_fetches = 0;
 };
 

@@ -46,9 +46,9 @@ constexpr size_t CONSOLE_CHUNK = 4096;
 // timing layer's instruction cache, whose line fills are the host's
 // instruction-side bus reads (HostCore::fetch). A fetch inside the window
 // that the instruction cache would hit again grants its line to the core
-// (iss::ResidentLine): the fetches after it from that line are the core's
-// pointer reads, counted as the cache's hits, until the cache or the window
-// changes.
+// (iss::ResidentLines): the fetches after it from that line are the core's
+// pointer reads, counted as the cache's hits, until the cache evicts it or
+// the cache or the window changes.
 class HostMemory : public iss::IssMemory, public iss::DebugMemory {
  public:
   HostMemory(HostApi& host, HostCore& core, iss::Arm922tTiming& timing)
@@ -62,7 +62,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       throw std::logic_error("the ISS launcher: the host core does not say where its counters are");
     m_core.on_direct_memory_invalidated([this] {
       m_window_size = 0;
-      m_resident.line = iss::ResidentLine::NONE;
+      m_resident.revoke_all();
     });
     m_timing.revoke_on_change(&m_resident);
   }
@@ -108,23 +108,28 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
     const uint32_t offset = address - m_window_base;  // wraps below the base: then past the size
     if (uint64_t{offset} + bytes <= m_window_size) {
       value = iss::load_little_endian(m_window + offset, bytes);
-      const uint32_t line = address & ~(iss::ResidentLine::BYTES - 1);
+      const uint32_t line = iss::ResidentLines::line_of(address);
       const uint32_t line_offset = line - m_window_base;  // the whole line in the window, wherever it starts
-      if (line >= m_window_base && uint64_t{line_offset} + iss::ResidentLine::BYTES <= m_window_size)
-        if (uint64_t* hits = m_timing.resident_hits(address)) m_resident = {line, m_window + line_offset, hits};
+      if (line >= m_window_base && uint64_t{line_offset} + iss::ResidentLines::BYTES <= m_window_size)
+        if (uint64_t* hits = m_timing.resident_hits(address)) m_resident.grant(line, m_window + line_offset, hits);
       return true;
     }
     return fetch_outside_window(address, bytes, value);
   }
-  iss::ResidentLine* resident_line() override { return &m_resident; }
+  iss::ResidentLines* resident_lines() override { return &m_resident; }
 
   // Loads and stores: a hit in a line the host grants (DataHitLines) is
-  // served here, as the host would; any other access is the host's.
+  // served here, as the host would; any other access is the host's, in a
+  // function of its own (the *_by_host below, never inline), so that the
+  // hit's path saves no registers for it.
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
     if (m_hit != nullptr && m_hit->load(address, bytes, m_pending, value)) {
       took_hit(m_hit->load_issue());
       return true;
     }
+    return read_by_host(address, bytes, value);
+  }
+  __attribute__((noinline)) bool read_by_host(uint32_t address, unsigned bytes, uint32_t& value) {
     flush();
     const Charged charged(*this);
     try {
@@ -137,6 +142,14 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   }
 
   bool write(uint32_t address, unsigned bytes, uint32_t value) override {
+    if (__builtin_expect(address == CONSOLE || address == EXIT, 0)) return write_console_or_exit(address, value);
+    if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
+      took_hit(m_hit->store_issue());
+      return true;
+    }
+    return write_by_host(address, bytes, value);
+  }
+  __attribute__((noinline)) bool write_console_or_exit(uint32_t address, uint32_t value) {
     if (address == CONSOLE) {
       m_console += static_cast<char>(value);
       if (static_cast<char>(value) == '\n' || m_console.size() >= CONSOLE_CHUNK) {
@@ -145,16 +158,12 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       }
       return true;
     }
-    if (address == EXIT) {
-      m_exited = true;
-      m_status = value;
-      stop();
-      return true;
-    }
-    if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
-      took_hit(m_hit->store_issue());
-      return true;
-    }
+    m_exited = true;
+    m_status = value;
+    stop();
+    return true;
+  }
+  __attribute__((noinline)) bool write_by_host(uint32_t address, unsigned bytes, uint32_t value) {
     flush();
     const Charged charged(*this);
     try {
@@ -186,6 +195,9 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       took_hit(m_hit->load_issue(count));
       return true;
     }
+    return read_block_by_host(address, words, count);
+  }
+  __attribute__((noinline)) bool read_block_by_host(uint32_t address, uint32_t* words, unsigned count) {
     flush();
     const Charged charged(*this);
     try {
@@ -204,6 +216,9 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       took_hit(m_hit->store_words_issue(count));
       return true;
     }
+    return write_block_by_host(address, words, count);
+  }
+  __attribute__((noinline)) bool write_block_by_host(uint32_t address, const uint32_t* words, unsigned count) {
     flush();
     const Charged charged(*this);
     try {
@@ -317,7 +332,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   uint32_t m_window_base = 0;
   uint64_t m_window_size = 0;
   const uint8_t* m_window = nullptr;
-  iss::ResidentLine m_resident;
+  iss::ResidentLines m_resident;
   uint64_t m_pending = 0;
   uint64_t m_attention_at = CHARGE_BATCH;  // 0 once the program has ended
   uint64_t m_host_charged = 0;
