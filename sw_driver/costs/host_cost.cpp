@@ -41,6 +41,11 @@ void detail::no_such_row() {
   throw std::invalid_argument("host cost: no such row");
 }
 
+void detail::charge_huge(HostApi& /*host*/, double cycles) {
+  throw std::overflow_error("host cost: a charge of " + std::to_string(cycles) +
+                            " cycles (2^63 or more: more than the host counts)");
+}
+
 void set_cost_bucket(unsigned bucket) {
   if (bucket >= PHASE_BUCKETS) throw std::invalid_argument("host cost: no such bucket");
   detail::meter.bucket = bucket;
