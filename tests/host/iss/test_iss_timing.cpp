@@ -351,16 +351,44 @@ struct Counts {
   }
 };
 
+// A core with ARM922T timing and CP15 on a memory of type MemoryType, the
+// instruction cache on (round-robin if asked), stepped as the run loops do.
 template <typename MemoryType>
-Counts run_with_disturbances() {
+struct TimedSystem {
   MemoryType memory;
   Arm922tTiming timing;
-  TimedFetch port{memory, &timing};
+  TimedFetch<MemoryType> port{memory, &timing};
   ArmCore core{port};
   Cp15 cp15{core, &timing};
-  core.set_coprocessors(&cp15);
-  timing.attach(&cp15);
-  cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I);
+  explicit TimedSystem(bool round_robin = false) {
+    core.set_coprocessors(&cp15);
+    timing.attach(&cp15);
+    cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I | (round_robin ? Cp15::CONTROL_RR : 0));
+  }
+  void step() {
+    core.step();
+    timing.step(core.last_step());
+  }
+  Counts counts() const {
+    return {core.instructions(),
+            core.decodes(),
+            timing.cycles(),
+            timing.interlock_cycles(),
+            timing.fetch_stall_cycles(),
+            timing.icache().hits(),
+            timing.icache().misses(),
+            core.reg(0),
+            core.reg(15)};
+  }
+};
+
+template <typename MemoryType>
+Counts run_with_disturbances() {
+  TimedSystem<MemoryType> system;
+  auto& memory = system.memory;
+  auto& timing = system.timing;
+  auto& core = system.core;
+  auto& cp15 = system.cp15;
   constexpr uint32_t NOP = 0xe1a00000u;          // mov r0, r0
   constexpr uint32_t ADD_R0_1 = 0xe2800001u;     // add r0, r0, #1
   constexpr uint32_t ADDS_R0_1 = 0xe2900001u;    // adds r0, r0, #1 (the same count, another decoding)
@@ -383,18 +411,9 @@ Counts run_with_disturbances() {
         default: cp15.mcr(15, 0, 7, 5, 0, true, 0); break;  // c7 from outside the program
       }
     }
-    core.step();
-    timing.step(core.last_step());
+    system.step();
   }
-  return {core.instructions(),
-          core.decodes(),
-          timing.cycles(),
-          timing.interlock_cycles(),
-          timing.fetch_stall_cycles(),
-          timing.icache().hits(),
-          timing.icache().misses(),
-          core.reg(0),
-          core.reg(15)};
+  return system.counts();
 }
 
 // A chain of branches through more lines of one set than it has ways, so
@@ -403,14 +422,10 @@ Counts run_with_disturbances() {
 // and every line after the cache is invalidated.
 template <typename MemoryType>
 Counts run_through_evictions(bool round_robin) {
-  MemoryType memory;
-  Arm922tTiming timing;
-  TimedFetch port{memory, &timing};
-  ArmCore core{port};
-  Cp15 cp15{core, &timing};
-  core.set_coprocessors(&cp15);
-  timing.attach(&cp15);
-  cp15.mcr(15, 0, 1, 0, 0, true, cp15.control() | Cp15::CONTROL_I | (round_robin ? Cp15::CONTROL_RR : 0));
+  TimedSystem<MemoryType> system(round_robin);
+  auto& memory = system.memory;
+  auto& timing = system.timing;
+  auto& core = system.core;
   // Line k (k = 0 .. 69, 128 bytes apart: all in set 0): add r0, r0, #1,
   // then b to line k + 1; the last branches back to line 0. Lines 0 .. 3
   // also run a short loop of their own, so they hit while granted.
@@ -432,18 +447,9 @@ Counts run_through_evictions(bool round_robin) {
     // Now and then the whole cache invalidated, with more lines granted
     // than the table keeps a list of (ResidentLines::revoke_all).
     if (i % 997 == 500) timing.invalidate_instruction_cache();
-    core.step();
-    timing.step(core.last_step());
+    system.step();
   }
-  return {core.instructions(),
-          core.decodes(),
-          timing.cycles(),
-          timing.interlock_cycles(),
-          timing.fetch_stall_cycles(),
-          timing.icache().hits(),
-          timing.icache().misses(),
-          core.reg(0),
-          core.reg(15)};
+  return system.counts();
 }
 
 TEST(ResidentLines, EvictedLinesAreFetchedAgain) {
