@@ -1,5 +1,6 @@
 #include "launch/iss_launcher.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -65,6 +66,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
       m_resident.revoke_all();
     });
     m_timing.revoke_on_change(&m_resident);
+    rebase();
   }
   ~HostMemory() override {
     m_timing.revoke_on_change(nullptr);
@@ -73,27 +75,34 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   HostMemory(const HostMemory&) = delete;
   HostMemory& operator=(const HostMemory&) = delete;
 
+  // The cycles not yet charged to the host: the timing layer's count since
+  // it was last charged (flush) or a hit charged it (took_hit), less the
+  // issue cycles the host charged for the accesses of the instructions
+  // since (charge_instruction). Kept as that count's value then (m_base),
+  // so that an instruction without an access adds nothing here: the timing
+  // layer's step has counted its cycles already.
+  uint64_t pending() const { return m_timing.cycles() - m_base; }
   void flush() {
-    if (m_pending != 0) {
-      m_host.compute_cycles(m_pending);
-      m_pending = 0;
-    }
+    if (const uint64_t cycles = pending(); cycles != 0) m_host.compute_cycles(cycles);
+    rebase();
   }
-  uint64_t pending() const { return m_pending; }
   // Whether the run loop should look up from the program: CHARGE_BATCH
   // cycles gathered (to charge them and sample the interrupt inputs), or
   // the program ended (stop()). One compare per instruction for both.
-  bool needs_attention() const { return m_pending >= m_attention_at; }
-  void stop() { m_attention_at = 0; }
-  // An instruction's cycles, less those the host has charged as busy for its
-  // accesses (their issue cycles: host.cycles.load and .store, per word), at
-  // least 0. Most instructions make no access: they are the first branch.
+  bool needs_attention() const { return m_timing.cycles() >= m_attention_cycles; }
+  void stop() {
+    m_attention_at = 0;
+    m_attention_cycles = m_base;
+  }
+  // After the timing layer's step of an instruction of `cycles` cycles: of
+  // them, those beyond the issue cycles the host charged as busy for its
+  // accesses (host.cycles.load and .store, per word) are pending, at least
+  // 0. Most instructions make no access: they are the first branch.
   void charge_instruction(unsigned cycles) {
-    if (__builtin_expect(m_host_charged == 0, 1)) {
-      m_pending += cycles;
-      return;
-    }
-    m_pending += cycles > m_host_charged ? cycles - m_host_charged : 0;
+    if (__builtin_expect(m_host_charged == 0, 1)) return;
+    const uint64_t charged = std::min<uint64_t>(cycles, m_host_charged);
+    m_base += charged;
+    m_attention_cycles += charged;
     m_host_charged = 0;
   }
 
@@ -101,7 +110,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // memory there.
   bool fetch(uint32_t address, unsigned bytes, uint32_t& value) override {
     try {
-      m_pending += m_timing.fetch(address);  // a miss's fill is the host's bus read (on_fill)
+      m_timing.fetch(address);  // a miss's fill is the host's bus read (on_fill); a stall counts in cycles()
     } catch (const BusError&) {
       return false;  // a prefetch abort
     }
@@ -123,7 +132,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // function of its own (the *_by_host below, never inline), so that the
   // hit's path saves no registers for it.
   bool read(uint32_t address, unsigned bytes, uint32_t& value) override {
-    if (m_hit != nullptr && m_hit->load(address, bytes, m_pending, value)) {
+    if (m_hit != nullptr && m_hit->load(address, bytes, pending(), value)) {
       took_hit(m_hit->load_issue());
       return true;
     }
@@ -143,7 +152,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
 
   bool write(uint32_t address, unsigned bytes, uint32_t value) override {
     if (__builtin_expect(address == CONSOLE || address == EXIT, 0)) return write_console_or_exit(address, value);
-    if (m_hit != nullptr && m_hit->store(address, bytes, m_pending, value)) {
+    if (m_hit != nullptr && m_hit->store(address, bytes, pending(), value)) {
       took_hit(m_hit->store_issue());
       return true;
     }
@@ -191,7 +200,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // LDM and STM: the host's read_words and write_words, one burst where
   // the words miss the data cache.
   bool read_block(uint32_t address, uint32_t* words, unsigned count) override {
-    if (m_hit != nullptr && m_hit->load_words(address, words, count, m_pending)) {
+    if (m_hit != nullptr && m_hit->load_words(address, words, count, pending())) {
       took_hit(m_hit->load_issue(count));
       return true;
     }
@@ -212,7 +221,7 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   bool write_block(uint32_t address, const uint32_t* words, unsigned count) override {
     if (address <= EXIT && uint64_t{address} + 4 * count > CONSOLE)
       return IssMemory::write_block(address, words, count);
-    if (m_hit != nullptr && m_hit->store_words(address, words, count, m_pending)) {
+    if (m_hit != nullptr && m_hit->store_words(address, words, count, pending())) {
       took_hit(m_hit->store_words_issue(count));
       return true;
     }
@@ -316,8 +325,13 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   // After a hit served in the granted line: the pending cycles charged
   // with it, its issue cycles the host's (as Charged counts them).
   void took_hit(uint64_t issue_cycles) {
-    m_pending = 0;
+    rebase();
     m_host_charged += issue_cycles;
+  }
+  // Nothing pending from here on.
+  void rebase() {
+    m_base = m_timing.cycles();
+    m_attention_cycles = m_base + m_attention_at;
   }
 
   HostApi& m_host;
@@ -333,8 +347,9 @@ class HostMemory : public iss::IssMemory, public iss::DebugMemory {
   uint64_t m_window_size = 0;
   const uint8_t* m_window = nullptr;
   iss::ResidentLines m_resident;
-  uint64_t m_pending = 0;
+  uint64_t m_base = 0;                     // the timing layer's cycles() when nothing was pending
   uint64_t m_attention_at = CHARGE_BATCH;  // 0 once the program has ended
+  uint64_t m_attention_cycles = 0;         // m_base + m_attention_at
   uint64_t m_host_charged = 0;
   uint64_t m_stall_ticks = 0;  // the program's (Charged)
   std::string m_console;
