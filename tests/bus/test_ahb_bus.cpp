@@ -9,6 +9,8 @@
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
 #include "common/direct_transport.h"
+#include "common/schedule_untouched.h"
+#include "common/transfer_train.h"
 #include "mem/memory.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
@@ -112,13 +114,20 @@ struct TwoDoorTarget : sc_core::sc_module, public tlm::tlm_fw_transport_if<>, pu
     delay += CYCLE * static_cast<double>(FAST_WAIT);
     gp.set_response_status(tlm::TLM_OK_RESPONSE);
   }
+  // Each door also reports the train's count it was given and says its
+  // access scheduled nothing (DirectExtras, or the payload's extensions).
+  unsigned last_transfers = 0;
   void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
     ++socket_calls;
     serve(gp, delay);
+    last_transfers = transfers_of(gp);
+    mark_schedule_untouched(gp);
   }
-  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) override {
     ++direct_calls;
     serve(gp, delay);
+    last_transfers = extras.transfers;
+    extras.untouched = true;
   }
   tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase&, sc_time&) override {
     gp.set_response_status(tlm::TLM_COMMAND_ERROR_RESPONSE);
@@ -521,6 +530,42 @@ TEST(AhbBus, ATargetThatIsADirectTransportIsCalledThroughItAndAnyOtherThroughIts
   EXPECT_EQ(checked_write, direct_write);
   EXPECT_EQ(checked_read, direct_read);
   EXPECT_EQ(bench.check.violation_count(), 0u);
+}
+
+// A payload's train count and its target's "untouched" cross the bus
+// whichever door the target has: a socket initiator's extensions become
+// DirectExtras for a direct target, and its "untouched" comes back in the
+// payload's extension; a target behind a checker reads and sets the
+// extensions themselves.
+TEST(AhbBus, TheTrainAndUntouchedCrossEitherDoor) {
+  DoorsBench& bench = *g_doors;
+  const auto access = [&](uint64_t address, unsigned transfers) {
+    uint8_t data[12] = {};
+    tlm::tlm_generic_payload gp;
+    gp.set_command(tlm::TLM_WRITE_COMMAND);
+    gp.set_address(address);
+    gp.set_data_ptr(data);
+    gp.set_data_length(sizeof data);
+    gp.set_streaming_width(sizeof data);
+    auto* train = new TransferTrain;
+    train->transfers = transfers;
+    gp.set_extension(train);
+    auto* untouched = new ScheduleUntouched;
+    gp.set_extension(untouched);
+    sc_time delay = sc_core::SC_ZERO_TIME;
+    bench.a.out->b_transport(gp, delay);
+    sc_core::wait(delay);
+    return untouched->untouched;  // the payload deletes its extensions
+  };
+  bool direct_untouched = false, checked_untouched = false;
+  test::run_thread([&] {
+    direct_untouched = access(0x10, 3);
+    checked_untouched = access(0x110, 3);
+  });
+  EXPECT_EQ(bench.direct.last_transfers, 3u);
+  EXPECT_EQ(bench.checked.last_transfers, 3u);
+  EXPECT_TRUE(direct_untouched);
+  EXPECT_TRUE(checked_untouched);
 }
 
 int sc_main(int argc, char* argv[]) {

@@ -68,7 +68,7 @@ void Ciu::move_words(uint64_t offset, uint64_t words, uint8_t* data, bool write,
   }
 }
 
-void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+bool Ciu::transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   // The CIU's access reaches CMEM: both are in use from here.
   mark_used(delay);
   m_array.mark_used(delay);
@@ -81,13 +81,13 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
     log::warning(name(), "access of " + std::to_string(length) + " bytes at offset " + log::hex(offset) +
                              ": the CIU takes whole aligned 32-bit words within the " + std::to_string(size) +
                              "-byte CMEM window");
-    return;
+    return false;
   }
   if (gp.get_byte_enable_ptr() || gp.get_streaming_width() < length) {
     ++m_errors;
     gp.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
     log::warning(name(), "access at offset " + log::hex(offset) + " with byte enables: the CIU takes whole words");
-    return;
+    return false;
   }
   // The CUs own CMEM while a program runs: wait for its end.
   const sc_time arrival = sc_core::sc_time_stamp() + delay;
@@ -119,8 +119,8 @@ void Ciu::b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   }
   // Bytes moved, counters and time added: nothing notified (a traced
   // edge is counted apart).
-  mark_schedule_untouched(gp);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  return true;
 }
 
 bool Ciu::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {

@@ -29,6 +29,7 @@
 #include "array/array_processor.h"
 #include "common/block.h"
 #include "common/direct_transport.h"
+#include "common/schedule_untouched.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 
@@ -65,8 +66,16 @@ class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransp
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final;
-  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override { b_transport(gp, delay); }
+  // Through the socket, "untouched" goes to the payload's extension;
+  // called directly, to DirectExtras.
+  void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final {
+    if (transport(gp, delay)) mark_schedule_untouched(gp);
+  }
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
+    if (transport(gp, delay)) extras.untouched = true;
+  }
+  // Both doors' access: true when it scheduled nothing (a word moved).
+  bool transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
   // No DMI: refused with the whole range and read-write allowed, as
   // simple_target_socket answers for a target without it. Non-blocking

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "common/schedule_untouched.h"
 #include "common/transfer_train.h"
 
 namespace tessera {
@@ -31,8 +32,17 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
   }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final { m_bus.b_transport(m_index, gp, delay); }
-  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override { b_transport(gp, delay); }
+  // Through the socket: the extensions' values read from the payload, and
+  // a target's "untouched" handed back in its extension.
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final {
+    DirectExtras extras;
+    extras.transfers = transfers_of(gp);
+    m_bus.b_transport(m_index, gp, delay, extras);
+    if (extras.untouched) mark_schedule_untouched(gp);
+  }
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) override {
+    m_bus.b_transport(m_index, gp, delay, extras);
+  }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
     return m_bus.get_direct_mem_ptr(m_index, gp, dmi);
@@ -249,7 +259,7 @@ uint64_t AhbBus::train_beats(uint64_t length, unsigned transfers) const {
   return transfers * std::max<uint64_t>(1, m_beats.ceil(length / transfers));
 }
 
-void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay) {
+void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
   const uint64_t now = m_context->time_stamp().value();
   const uint64_t local_ticks = now + delay.value();
   // Request time: the initiator's local time, rounded up to a clock edge.
@@ -272,13 +282,13 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
     sc_time target_delay = delay;
     target_delay += to_edge;
     if (region->direct)
-      region->direct->direct_b_transport(gp, target_delay);
+      region->direct->direct_b_transport(gp, target_delay, extras);
     else
       out[region->target_index]->b_transport(gp, target_delay);
     gp.set_address(address);
     target_cycles = ceil_cycles(target_delay.value() - (request_ticks - now), region->latency);
   }
-  const unsigned transfers = transfers_of(gp);
+  const unsigned transfers = extras.transfers > 0 ? extras.transfers : 1;
   const uint64_t length = gp.get_data_length();
   const uint64_t beats = transfers == 1 ? std::max<uint64_t>(1, m_beats.ceil(length)) : train_beats(length, transfers);
   BusInitiatorStats& s = m_stats[initiator];

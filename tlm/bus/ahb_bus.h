@@ -175,7 +175,9 @@ class AhbBus : public Block {
   }
   const Region* decode_other(uint64_t address) const;  // and remembers it
 
-  void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  // `extras`: the payload's train count and its target's "untouched"
+  // (DirectExtras), whichever door the initiator came through.
+  void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras);
   unsigned transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp);
   bool get_direct_mem_ptr(unsigned initiator, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);

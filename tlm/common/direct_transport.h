@@ -14,6 +14,15 @@
 // Whoever calls looks the interface up once, after binding (end of
 // elaboration), and keeps the plain socket call for an interface without it
 // (a protocol checker in between, a test's target).
+//
+// Beside the payload the direct call carries DirectExtras: the values of the
+// two extensions this house's blocks read or set on every access
+// (TransferTrain's count, ScheduleUntouched's flag) as plain fields, so that
+// neither side calls tlm_generic_payload::get_extension, an out-of-line call
+// into the SystemC library, per access. The payload still carries the
+// extensions themselves, with the same values, for any target reached
+// through a socket; a target sets the flag in DirectExtras when called
+// directly and in the extension when called through its socket.
 #pragma once
 
 #include <systemc>
@@ -21,9 +30,14 @@
 
 namespace tessera {
 
+struct DirectExtras {
+  unsigned transfers = 1;  // the single transfers the payload stands for (TransferTrain)
+  bool untouched = false;  // set by a target whose access scheduled nothing (ScheduleUntouched)
+};
+
 class DirectTransport {
  public:
-  virtual void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) = 0;
+  virtual void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) = 0;
 
  protected:
   DirectTransport() = default;

@@ -179,17 +179,23 @@ uint64_t Host::transact(tlm::tlm_command command, uint32_t address, uint8_t* dat
   m_payload.set_dmi_allowed(false);
   m_payload.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   m_untouched->untouched = false;
+  // Directly, the train's count and the target's "untouched" travel as
+  // DirectExtras (common/direct_transport.h); the payload's extensions
+  // carry the same for a target reached through a socket.
+  DirectExtras extras;
+  extras.transfers = m_train->transfers;
   if (m_direct_out)
-    m_direct_out->direct_b_transport(m_payload, delay);
+    m_direct_out->direct_b_transport(m_payload, delay, extras);
   else
     out->b_transport(m_payload, delay);
+  const bool untouched = extras.untouched || m_untouched->untouched;
   m_train->transfers = 1;
   m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
   // Memory (a target that grants DMI may be bypassed, so its accesses can
   // wake no process) and a target that says so (ScheduleUntouched: the
   // CIU's CMEM) leave the kernel's schedule as it was; a request without
   // delay may have waited a delta cycle for others at the bus.
-  m_window_clear = m_window_clear && (m_payload.is_dmi_allowed() || m_untouched->untouched) && issue > now;
+  m_window_clear = m_window_clear && (m_payload.is_dmi_allowed() || untouched) && issue > now;
   if (m_payload.is_response_error()) {
     ++m_bus_errors;
     const std::string message = std::string("bus error: ") + (command == tlm::TLM_WRITE_COMMAND ? "write" : "read") +

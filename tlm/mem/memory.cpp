@@ -76,6 +76,10 @@ void Memory::move_enabled(tlm::tlm_generic_payload& gp) {
 }
 
 void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) {
+  transport(gp, delay, transfers_of(gp));
+}
+
+void Memory::transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, unsigned transfers) {
   const uint64_t address = gp.get_address();
   const uint64_t length = gp.get_data_length();
   const uint64_t size = m_data.size();
@@ -83,7 +87,6 @@ void Memory::b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) 
     refuse(gp);
     return;
   }
-  const unsigned transfers = transfers_of(gp);
   if (gp.is_read()) {
     if (gp.get_byte_enable_ptr())
       move_enabled(gp);

@@ -66,7 +66,11 @@ class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTra
 
  private:
   void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final;
-  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) override { b_transport(gp, delay); }
+  // Both doors' access: `transfers` single transfers (TransferTrain).
+  void transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, unsigned transfers);
+  void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
+    transport(gp, delay, extras.transfers > 0 ? extras.transfers : 1);
+  }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override;
   // Loosely timed only: a non-blocking call is answered with a command error.
