@@ -32,14 +32,9 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
   }
 
  private:
-  // Through the socket: the extensions' values read from the payload, and
-  // a target's "untouched" handed back in its extension.
-  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final {
-    DirectExtras extras;
-    extras.transfers = transfers_of(gp);
-    m_bus.b_transport(m_index, gp, delay, extras);
-    if (extras.untouched) mark_schedule_untouched(gp);
-  }
+  // A forwarder either way (the socket's thunk jumps straight on): the
+  // bus has an entry for each door.
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) final { m_bus.b_transport(m_index, gp, delay); }
   void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) override {
     m_bus.b_transport(m_index, gp, delay, extras);
   }
@@ -259,7 +254,7 @@ uint64_t AhbBus::train_beats(uint64_t length, unsigned transfers) const {
   return transfers * std::max<uint64_t>(1, m_beats.ceil(length / transfers));
 }
 
-void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
+inline void AhbBus::serve(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
   const uint64_t now = m_context->time_stamp().value();
   const uint64_t local_ticks = now + delay.value();
   // Request time: the initiator's local time, rounded up to a clock edge.
@@ -331,6 +326,19 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
   // move it), that is the delay given, to the edge, then whole cycles.
   delay += to_edge;
   delay += cycles_time(end_cycle - request_cycle);
+}
+
+// Through the socket: the extensions' values read from the payload, and a
+// target's "untouched" handed back in its extension.
+void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay) {
+  DirectExtras extras;
+  extras.transfers = transfers_of(gp);
+  serve(initiator, gp, delay, extras);
+  if (extras.untouched) mark_schedule_untouched(gp);
+}
+
+void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
+  serve(initiator, gp, delay, extras);
 }
 
 unsigned AhbBus::transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp) {

@@ -175,9 +175,14 @@ class AhbBus : public Block {
   }
   const Region* decode_other(uint64_t address) const;  // and remembers it
 
-  // `extras`: the payload's train count and its target's "untouched"
-  // (DirectExtras), whichever door the initiator came through.
+  // An initiator's access through the bus's socket, and through its
+  // DirectTransport, whose `extras` carry the payload's train count and
+  // its target's "untouched" (DirectExtras). One body (serve), inline in
+  // both, so that each door's port is a plain forwarder.
+  void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras);
+  __attribute__((always_inline)) inline void serve(unsigned initiator, tlm::tlm_generic_payload& gp,
+                                                   sc_core::sc_time& delay, DirectExtras& extras);
   unsigned transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp);
   bool get_direct_mem_ptr(unsigned initiator, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);
