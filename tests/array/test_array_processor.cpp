@@ -19,6 +19,7 @@
 #include "bus/ahb_bus.h"
 #include "checker/protocol_checker.h"
 #include "common/schedule_untouched.h"
+#include "tlm_bench/bench_block_params.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
 
@@ -41,11 +42,7 @@ constexpr unsigned WRITE_CYCLES = 7, READ_CYCLES = 11;
 constexpr unsigned CMEM_BYTES = 4096, COLUMNS = 24;
 
 ArrayParams array_params() {
-  ArrayParams p = ArrayParams::defaults();
-  p.clock_period = CYCLE;
-  p.program_words = 256;
-  p.max_program_cycles = 100000;
-  return p;
+  return test::bench_array_params(CYCLE);
 }
 
 ArrayParams blender_params() {

@@ -19,6 +19,7 @@
 #include "dma/dma.h"
 #include "dma/dma_regs.h"
 #include "mem/memory.h"
+#include "tlm_bench/bench_block_params.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/tlm_test_support.h"
 
@@ -44,11 +45,7 @@ DmaParams dma_params() {
 }
 
 ArrayParams array_params() {
-  ArrayParams p = ArrayParams::defaults();
-  p.clock_period = CYCLE;
-  p.program_words = 256;
-  p.max_program_cycles = 100000;
-  return p;
+  return test::bench_array_params(CYCLE);
 }
 
 struct Bench : sc_core::sc_module {

@@ -12,6 +12,7 @@
 #include "checker/protocol_checker.h"
 #include "host/host.h"
 #include "mem/memory.h"
+#include "tlm_bench/bench_block_params.h"
 #include "tlm_bench/bench_params.h"
 #include "tlm_bench/host_program_runner.h"
 #include "tlm_bench/tlm_test_support.h"
@@ -31,24 +32,7 @@ constexpr uint32_t DEV_BASE = 0x40000000;
 constexpr uint32_t UNMAPPED = 0x90000000;
 
 HostParams host_params() {
-  HostParams p = HostParams::defaults();
-  p.clock_period = HOST_CYCLE;
-  p.op_cycles.fill(1);
-  p.op_cycles[static_cast<size_t>(Op::branch)] = 3;
-  p.op_cycles[static_cast<size_t>(Op::fdiv)] = 130;
-  p.load_cycles = 1;
-  p.store_cycles = 1;
-  p.dcache_bytes = 8192;
-  p.dcache_line_bytes = 32;
-  p.dcache_ways = 64;
-  p.write_buffer_words = 16;
-  p.write_buffer_addresses = 4;
-  p.dcache_round_robin = true;
-  p.write_through = false;
-  p.irq_lines = 4;
-  p.cacheable_base = 0;
-  p.cacheable_size = MEM_SIZE;
-  return p;
+  return test::bench_host_params(HOST_CYCLE, MEM_SIZE);
 }
 
 MemoryParams memory_params(uint32_t size, unsigned wait) {
