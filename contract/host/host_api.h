@@ -78,6 +78,18 @@ class HostApi {
   // LDM/STM of `count` words (one bus burst where the access misses the cache).
   virtual void read_words(uint32_t address, uint32_t* words, unsigned count) = 0;
   virtual void write_words(uint32_t address, const uint32_t* words, unsigned count) = 0;
+  // A store train: for each k < count, compute_cycles(cycles[k]) (no call
+  // when it is 0), then write32(address + k * stride, values[k]). Exactly
+  // those calls, which is what it makes by default; a host model may
+  // simulate the train as a unit, with the same times and counts
+  // (tlm/host/README.md, "Store trains").
+  virtual void write32_train(uint32_t address, uint32_t stride, const uint32_t* values, const uint64_t* cycles,
+                             unsigned count) {
+    for (unsigned k = 0; k < count; ++k) {
+      if (cycles[k] != 0) compute_cycles(cycles[k]);
+      write32(address + k * stride, values[k]);
+    }
+  }
 
   // Spans, for code that walks runs of consecutive elements (a software
   // rasterizer's spans): charged as `count` loads (stores) of `size` bytes at

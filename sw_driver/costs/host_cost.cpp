@@ -41,7 +41,7 @@ void detail::no_such_row() {
   throw std::invalid_argument("host cost: no such row");
 }
 
-void detail::charge_huge(HostApi& /*host*/, double cycles) {
+void detail::charge_huge(double cycles) {
   throw std::overflow_error("host cost: a charge of " + std::to_string(cycles) +
                             " cycles (2^63 or more: more than the host counts)");
 }

@@ -87,17 +87,22 @@ inline Meter meter;
 [[noreturn]] void no_such_row();
 // A charge of 2^63 cycles or more: an error (std::overflow_error naming it),
 // since no run reaches it (the host counts cycles in 64 bits).
-[[noreturn]] void charge_huge(HostApi& host, double cycles);
+[[noreturn]] void charge_huge(double cycles);
 }  // namespace detail
 
 // Charges `units` of `cost` to the host: the row's cycles times units, in
 // whole cycles (the fractions carry over to the next charge). Inline: the
 // driver charges at every span and access (natively, charging had been a
 // tenth of an `arm` frame's time as a call).
-inline void charge(HostApi& host, HostCost cost, uint64_t units = 1) {
+inline void charge(HostApi& host, HostCost cost, uint64_t units = 1);
+// The whole cycles charge() would give the host for `units` of `cost`,
+// counted in the meter as charge() counts them, for the caller to hand the
+// host itself (a store train's cycles before each store:
+// HostApi::write32_train).
+inline uint64_t meter_cycles(HostCost cost, uint64_t units = 1) {
   const auto index = static_cast<size_t>(cost);
   if (index >= HOST_COST_COUNT) detail::no_such_row();
-  if (units == 0) return;
+  if (units == 0) return 0;
   detail::Meter& m = detail::meter;
   m.units[m.bucket][index] += units;
   if (m.split != NO_SPLIT) m.units[m.split][index] += units;
@@ -106,10 +111,30 @@ inline void charge(HostApi& host, HostCost cost, uint64_t units = 1) {
   // an integer is its floor, exactly (one conversion each way, where
   // std::floor without SSE4.1 is a dozen instructions on the chain of
   // charges through the carry).
-  if (__builtin_expect(cycles >= 0x1p63, 0)) detail::charge_huge(host, cycles);
+  if (__builtin_expect(cycles >= 0x1p63, 0)) detail::charge_huge(cycles);
   const auto whole = static_cast<int64_t>(cycles);
   m.carry = cycles - static_cast<double>(whole);
-  if (whole > 0) host.compute_cycles(static_cast<uint64_t>(whole));
+  return static_cast<uint64_t>(whole);
+}
+// meter_cycles(cost) `count` times, into cycles[0 .. count - 1].
+inline void meter_cycles_each(HostCost cost, uint64_t* cycles, size_t count) {
+  const auto index = static_cast<size_t>(cost);
+  if (index >= HOST_COST_COUNT) detail::no_such_row();
+  detail::Meter& m = detail::meter;
+  m.units[m.bucket][index] += count;
+  if (m.split != NO_SPLIT) m.units[m.split][index] += count;
+  double carry = m.carry;
+  for (size_t k = 0; k < count; ++k) {
+    const double total = carry + detail::ROW_CYCLES[index];
+    if (__builtin_expect(total >= 0x1p63, 0)) detail::charge_huge(total);
+    const auto whole = static_cast<int64_t>(total);
+    carry = total - static_cast<double>(whole);
+    cycles[k] = static_cast<uint64_t>(whole);
+  }
+  m.carry = carry;
+}
+inline void charge(HostApi& host, HostCost cost, uint64_t units) {
+  if (const uint64_t whole = meter_cycles(cost, units)) host.compute_cycles(whole);
 }
 // Counts later charges in phase bucket `bucket` (< PHASE_BUCKETS).
 void set_cost_bucket(unsigned bucket);

@@ -103,6 +103,10 @@ class ArrayDriver {
   std::vector<uint8_t> read_all8(unsigned a, costs::HostCost row = costs::HostCost::array_unpack_word);
   std::vector<uint16_t> read_all16(unsigned a);
   // The same byte in every CU (a constant the array cannot load itself).
+  // Natively the words go to the host as one store train
+  // (HostApi::write32_train), the cycles before each the row
+  // array_write32's, as write32 charges them; on the ISS the loop of
+  // write32 calls is the instructions.
   void fill8(unsigned a, uint8_t value);
 
   // The shared lookup table of lut (tlm/array/README.md, "The lookup
@@ -133,6 +137,11 @@ class ArrayDriver {
   unsigned m_columns, m_rows, m_cmem_bytes, m_program_words, m_clock_khz;
   unsigned m_groups_per_row;
   bool m_irq_enabled = false;
+#if !defined(TESSERA_HOST_ISS)
+  // fill8's store train: each group's word and the cycles charged before it.
+  std::vector<uint32_t> m_train_values;
+  std::vector<uint64_t> m_train_cycles;
+#endif
 };
 
 }  // namespace tessera

@@ -99,9 +99,7 @@ bool Ciu::transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   }
   const uint64_t words = length / 4;
   move_words(offset, words, gp.get_data_ptr(), gp.is_write(), gp.is_read());
-  const unsigned cycles = gp.is_write() ? m_params.write_cycles : m_params.read_cycles;
-  // Whole ticks: what clock_period * double(cycles * words) gives.
-  const sc_time latency = ticks_time(m_params.clock_period.value() * cycles * words);
+  const sc_time latency = ticks_time(latency_ticks(gp.is_write(), words));
   if (m_tracing) {
     const sc_time start = sc_core::sc_time_stamp() + delay;
     m_access_trace.set_at(true, start);
@@ -109,18 +107,60 @@ bool Ciu::transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   }
   if (m_timeline) record_access(sc_core::sc_time_stamp() + delay, latency);
   delay += latency;
-  m_access_time += latency;
-  if (gp.is_write()) {
-    m_writes += words;
-    m_bytes_written += length;
-  } else {
-    m_reads += words;
-    m_bytes_read += length;
-  }
+  count_access(gp.is_write(), words, latency);
   // Bytes moved, counters and time added: nothing notified (a traced
   // edge is counted apart).
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
   return true;
+}
+
+void Ciu::count_access(bool write, uint64_t words, const sc_time& latency) {
+  m_access_time += latency;
+  if (write) {
+    m_writes += words;
+    m_bytes_written += 4 * words;
+  } else {
+    m_reads += words;
+    m_bytes_read += 4 * words;
+  }
+}
+
+bool Ciu::quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& quote) {
+  // As transport() would take each word: whole aligned words in the
+  // window, the AC idle when the first arrives (the host, the only one
+  // that starts it, is the one sending the train), and nothing traced.
+  if (m_tracing || m_timeline != nullptr || train.count == 0 || train.address % 4 != 0 || train.stride % 4 != 0)
+    return false;
+  if (train.address > m_window_bytes - 4 ||
+      (train.stride != 0 && train.count - 1 > (m_window_bytes - 4 - train.address) / train.stride))
+    return false;
+  if (m_array.busy_at(sc_time::from_value(first_ticks))) return false;
+  quote.edge_ticks = 1;
+  quote.latency_ticks = latency_ticks(true, 1);
+  quote.untouched = true;
+  return true;
+}
+
+void Ciu::direct_train(const WordTrain& train, const uint64_t* arrivals) {
+  if (train.count == 0) return;
+  const sc_time first = sc_time::from_value(arrivals[0]) - sc_core::sc_time_stamp();
+  mark_used(first);
+  m_array.mark_used(first);
+  // Word k's place from word k - 1's: the stride in groups and addresses,
+  // one division for the train.
+  ap::CuArray& cus = m_array.core().array();
+  WordPlace place = place_of(train.address);
+  const WordPlace step = place_of(train.stride);
+  for (size_t k = 0; k < train.count; ++k) {
+    std::memcpy(cus.state_row(place.address) + m_group_lane[place.group], &train.values[k], 4);
+    place.group += step.group;
+    place.address += step.address;
+    if (place.address >= m_cmem_bytes) {
+      place.address -= m_cmem_bytes;
+      ++place.group;
+    }
+  }
+  count_access(true, train.count, ticks_time(latency_ticks(true, 1) * train.count));
 }
 
 bool Ciu::get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) {

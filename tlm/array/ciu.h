@@ -76,6 +76,18 @@ class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransp
   }
   // Both doors' access: true when it scheduled nothing (a word moved).
   bool transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  // Store trains (common/direct_transport.h): writes only, each word as
+  // transport() takes it.
+  bool quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& quote) override;
+  void direct_train(const WordTrain& train, const uint64_t* arrivals) override;
+  // An access's latency in ticks, ciu.write_cycles or ciu.read_cycles of
+  // the array clock a word (whole ticks: what clock_period *
+  // double(cycles * words) gives).
+  uint64_t latency_ticks(bool write, uint64_t words) const {
+    return m_params.clock_period.value() * (write ? m_params.write_cycles : m_params.read_cycles) * words;
+  }
+  // Counts an access of `words` with its latency.
+  void count_access(bool write, uint64_t words, const sc_core::sc_time& latency);
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
   // No DMI: refused with the whole range and read-write allowed, as
   // simple_target_socket answers for a target without it. Non-blocking

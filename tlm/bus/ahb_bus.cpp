@@ -38,6 +38,12 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
   void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) override {
     m_bus.b_transport(m_index, gp, delay, extras);
   }
+  bool quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& quote) override {
+    return m_bus.quote_train(m_index, train, first_ticks, quote);
+  }
+  void direct_train(const WordTrain& train, const uint64_t* arrivals) override {
+    m_bus.direct_train(m_index, train, arrivals);
+  }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
     return m_bus.get_direct_mem_ptr(m_index, gp, dmi);
@@ -339,6 +345,79 @@ void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_ti
 
 void AhbBus::b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
   serve(initiator, gp, delay, extras);
+}
+
+bool AhbBus::quote_train(unsigned initiator, const WordTrain& train, uint64_t first_ticks, TrainQuote& quote) {
+  // Served as a unit only where serve() would do nothing but reserve each
+  // word's cycles at its request with no search, no delta cycle and
+  // nothing observed: the words in one target that quotes them, the first
+  // requested after the kernel's time (serve() collects a request at it)
+  // and at or after the last reservation's end. Each later word is
+  // requested at or after the one before ends (the caller's promise), so
+  // it follows the reservations too.
+  (void)initiator;
+  const uint64_t now = m_context->time_stamp().value();
+  if (train.count == 0 || m_observed || log::enabled(log::Level::debug) || !m_batch.empty() || first_ticks <= now)
+    return false;
+  const Region* region = decode(train.address);
+  if (region == nullptr || region->direct == nullptr || region->size < 4) return false;
+  const uint64_t offset = train.address - region->base;
+  if (offset > region->size - 4 || (train.stride != 0 && train.count - 1 > (region->size - 4 - offset) / train.stride))
+    return false;
+  const uint64_t request_cycle = m_cycles.ceil(first_ticks);
+  if (!m_reserved.empty() && m_reserved.back().end > request_cycle) return false;
+  WordTrain relative = train;
+  relative.address -= region->base;
+  TrainQuote target;
+  if (!region->direct->quote_train(relative, request_cycle * m_period_ticks, target) || target.edge_ticks != 1)
+    return false;
+  const uint64_t beats = std::max<uint64_t>(1, m_beats.ceil(4));
+  const uint64_t target_cycles = m_cycles.ceil(target.latency_ticks);
+  quote.edge_ticks = m_period_ticks;
+  quote.latency_ticks = (m_params.address_cycles + std::max(target_cycles, beats)) * m_period_ticks;
+  quote.untouched = target.untouched;
+  return true;
+}
+
+void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint64_t* arrivals) {
+  if (train.count == 0) return;
+  const uint64_t now = m_context->time_stamp().value();
+  const Region* region = decode(train.address);
+  if (region == nullptr || region->direct == nullptr)
+    throw std::logic_error(std::string(name()) + ": a train unquoted");
+  // Each word as serve() would reserve it: at its request's clock edge,
+  // arriving at the target there.
+  const uint64_t beats = std::max<uint64_t>(1, m_beats.ceil(4));
+  m_train_arrivals.resize(train.count);
+  uint64_t occupancy_cycles = 0, end_cycle = 0;
+  for (size_t k = 0; k < train.count; ++k) {
+    const uint64_t request_cycle = ceil_cycles(arrivals[k], m_request_memo[initiator]);
+    m_train_arrivals[k] = request_cycle * m_period_ticks;
+    if (k == 0) {
+      TrainQuote target;
+      WordTrain relative = train;
+      relative.address -= region->base;
+      if (!region->direct->quote_train(relative, m_train_arrivals[0], target))
+        throw std::logic_error(std::string(name()) + ": a train its target no longer quotes");
+      occupancy_cycles = m_params.address_cycles + std::max(ceil_cycles(target.latency_ticks, region->latency), beats);
+    }
+    const uint64_t start_cycle = reserve(now, request_cycle, occupancy_cycles);
+    if (start_cycle != request_cycle)
+      throw std::logic_error(std::string(name()) + ": a train's word found the bus reserved");
+    end_cycle = start_cycle + occupancy_cycles;
+    m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
+  }
+  WordTrain relative = train;
+  relative.address -= region->base;
+  region->direct->direct_train(relative, m_train_arrivals.data());
+  BusInitiatorStats& s = m_stats[initiator];
+  s.transactions += train.count;
+  s.writes += train.count;
+  s.bytes += 4 * train.count;
+  s.beats += beats * train.count;
+  s.busy_cycles += occupancy_cycles * train.count;
+  m_wait_histograms[initiator].sample(0, train.count);
+  m_last_granted = initiator;
 }
 
 unsigned AhbBus::transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp) {

@@ -183,6 +183,11 @@ class AhbBus : public Block {
   void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras);
   __attribute__((always_inline)) inline void serve(unsigned initiator, tlm::tlm_generic_payload& gp,
                                                    sc_core::sc_time& delay, DirectExtras& extras);
+  // Store trains (common/direct_transport.h): a train of single-word
+  // writes quoted and served as serve() would serve its words one by one,
+  // where it would only reserve each at its request.
+  bool quote_train(unsigned initiator, const WordTrain& train, uint64_t first_ticks, TrainQuote& quote);
+  void direct_train(unsigned initiator, const WordTrain& train, const uint64_t* arrivals);
   unsigned transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp);
   bool get_direct_mem_ptr(unsigned initiator, tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi);
   void invalidate_direct_mem_ptr(int id, sc_dt::uint64 start, sc_dt::uint64 end);
@@ -272,6 +277,7 @@ class AhbBus : public Block {
   std::vector<Interval> m_reserved;
   size_t m_prune_at = PRUNE_AT_LEAST;
   std::vector<Request*> m_batch;
+  std::vector<uint64_t> m_train_arrivals;  // direct_train's words at the target
   unsigned m_last_granted = 0;
   ActivityCounter& m_busy_cycles;
   // The latest end of a reservation dropped from the timeline; with the

@@ -25,6 +25,10 @@
 // directly and in the extension when called through its socket.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+
 #include <systemc>
 #include <tlm>
 
@@ -35,9 +39,55 @@ struct DirectExtras {
   bool untouched = false;  // set by a target whose access scheduled nothing (ScheduleUntouched)
 };
 
+// A store train as a unit (HostApi::write32_train): `count` single 32-bit
+// writes, word k of values[k] at address + k * stride, each its own
+// transfer, issued in order, each after the one before has completed (a
+// posted write leaves the write buffer when the bus has finished the last).
+struct WordTrain {
+  uint64_t address = 0;
+  uint64_t stride = 0;
+  const uint32_t* values = nullptr;
+  size_t count = 0;
+};
+
+// The timing a target or the bus promises for a train's words (quote_train):
+// a word that arrives at absolute tick t completes at done(t), the arrival
+// rounded up to a multiple of edge_ticks (the bus's clock edge) plus
+// latency_ticks (a multiple of edge_ticks); and whether the words schedule nothing in the kernel
+// (ScheduleUntouched), which the caller's quantum keeping needs.
+struct TrainQuote {
+  uint64_t edge_ticks = 1;
+  uint64_t latency_ticks = 0;
+  bool untouched = false;
+  uint64_t done(uint64_t t) const { return (t + edge_ticks - 1) / edge_ticks * edge_ticks + latency_ticks; }
+  // The latency is a whole number of edges, so a completion is on an edge:
+  // a word issued at `previous_done` (the word before's completion, as a
+  // posted write that waited for the buffer is) completes a latency later,
+  // without the division.
+  uint64_t done_after(uint64_t t, uint64_t previous_done) const {
+    return t == previous_done ? t + latency_ticks : done(t);
+  }
+};
+
 class DirectTransport {
  public:
   virtual void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) = 0;
+
+  // Store trains (WordTrain). quote_train: whether the target would serve
+  // every word of `train`, the first arriving at absolute tick `first_ticks`
+  // or later and each later one after the one before, exactly as it serves
+  // the same words one payload at a time (same data, counters, times and
+  // outcome: no error), and with what timing; false, the default: the
+  // caller sends the words one payload at a time. The answer holds while
+  // nothing else reaches the target and the kernel's time stands (the
+  // caller's quantum). direct_train: serves a quoted train, word k arriving
+  // at absolute tick arrivals[k]; only called after a true quote_train.
+  virtual bool quote_train(const WordTrain& /*train*/, uint64_t /*first_ticks*/, TrainQuote& /*quote*/) {
+    return false;
+  }
+  virtual void direct_train(const WordTrain& /*train*/, const uint64_t* /*arrivals*/) {
+    throw std::logic_error("direct_train on a target that quotes no trains");
+  }
 
  protected:
   DirectTransport() = default;

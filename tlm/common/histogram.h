@@ -34,6 +34,15 @@ class Log2Histogram {
     ++m_count;
     m_sum += value;
   }
+  // `times` samples of `value`: what as many calls of sample(value) add.
+  void sample(uint64_t value, uint64_t times) {
+    if (times == 0) return;
+    m_buckets[bucket_of(value)] += times;
+    m_min = m_count == 0 ? value : std::min(m_min, value);
+    m_max = m_count == 0 ? value : std::max(m_max, value);
+    m_count += times;
+    m_sum += value * times;
+  }
 
   // Adds every sample of `other`.
   void merge(const Log2Histogram& other) {

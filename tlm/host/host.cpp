@@ -102,6 +102,7 @@ void Host::restart_quantum() {
 }
 
 void Host::sync() {
+  flush_train();
   ++m_syncs;
   m_qk.set(sc_time::from_value(m_local_ticks));
   m_qk.sync();
@@ -350,14 +351,7 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
   post_request(address + before_last * each, data + before_last * each, held * each, held);
 }
 
-void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
-  // The ARM922T's write buffer holds 16 data words and 4 addresses (TRM
-  // 4.3): a burst (an STM, a victim or cleaned line) takes one address, each
-  // single store of a train one; the core stalls while the new request's
-  // words or addresses do not fit.
-  const unsigned words = std::max(transfers, (bytes + 3) / 4);
-  const unsigned held_words = std::min(words, m_params.write_buffer_words);
-  const unsigned held_addresses = std::min(transfers, m_params.write_buffer_addresses);
+inline void Host::make_room(unsigned held_words, unsigned held_addresses) {
   auto retire = [&] {
     const uint64_t local = local_ticks();
     while (!m_write_buffer.empty() && m_write_buffer.front().done_ticks <= local) {
@@ -373,13 +367,35 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
     stall_until(m_write_buffer.front().done_ticks);
     retire();
   }
-  // The payload must not point into memory the target writes (a span's data
-  // is already in place through DMI), so it carries a copy.
-  if (m_post_data.size() < bytes) m_post_data.resize(bytes);
-  copy_access(m_post_data.data(), data, bytes);
+}
+
+inline void Host::enter_request(uint64_t done_ticks, unsigned held_words, unsigned held_addresses) {
+  m_write_buffer.push_back({done_ticks, held_words, held_addresses});
+  m_write_buffer_words += held_words;
+  m_write_buffer_addresses += held_addresses;
+}
+
+void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers) {
+  // The ARM922T's write buffer holds 16 data words and 4 addresses (TRM
+  // 4.3): a burst (an STM, a victim or cleaned line) takes one address, each
+  // single store of a train one; the core stalls while the new request's
+  // words or addresses do not fit.
+  const unsigned words = std::max(transfers, (bytes + 3) / 4);
+  const unsigned held_words = std::min(words, m_params.write_buffer_words);
+  const unsigned held_addresses = std::min(transfers, m_params.write_buffer_addresses);
+  make_room(held_words, held_addresses);
   const uint64_t issue = std::max(local_ticks(), m_write_buffer_free_ticks);
-  m_train->transfers = transfers;
-  const uint64_t done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
+  uint64_t done;
+  if (m_store_train.running) {
+    done = train_transact(address, data, bytes, m_write_buffer_free_ticks);
+  } else {
+    // The payload must not point into memory the target writes (a span's
+    // data is already in place through DMI), so it carries a copy.
+    if (m_post_data.size() < bytes) m_post_data.resize(bytes);
+    copy_access(m_post_data.data(), data, bytes);
+    m_train->transfers = transfers;
+    done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
+  }
   m_write_buffer_free_ticks = done;
   if (words > m_params.write_buffer_words) {
     // A burst longer than the buffer (a victim line of a buffer smaller
@@ -389,9 +405,7 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
     ++m_write_buffer_stalls;
     stall_until(done - per_word * m_params.write_buffer_words);
   }
-  m_write_buffer.push_back({done, held_words, held_addresses});
-  m_write_buffer_words += held_words;
-  m_write_buffer_addresses += held_addresses;
+  enter_request(done, held_words, held_addresses);
 }
 
 void Host::write_back(const DataCache::WriteBack& dirty) {
@@ -534,6 +548,89 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
       run_start = i + 1;
     }
   }
+}
+
+void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* values, const uint64_t* cycles,
+                         unsigned count) {
+  // Every word aligned and below 2^32, nothing that notes the host's
+  // intervals (timeline, power trace) and a bus that can quote: else the
+  // calls one by one (which throw where the first bad word is).
+  const bool trainable = count > 0 && m_direct_out != nullptr && !m_note_segments && address % 4 == 0 &&
+                         stride % 4 == 0 && uint64_t{address} + uint64_t{count - 1} * stride <= 0xfffffffcu &&
+                         m_params.write_buffer_words > 0 && m_params.write_buffer_addresses > 0;
+  if (!trainable) {
+    HostApi::write32_train(address, stride, values, cycles, count);
+    return;
+  }
+  StoreTrain& t = m_store_train;
+  t.running = true;
+  t.words = {address, stride, values, count};
+  t.quoted = false;
+  t.arrivals.clear();
+  try {
+    for (t.next = 0; t.next < count; ++t.next) {
+      if (cycles[t.next] != 0) Host::compute_cycles(cycles[t.next]);
+      const uint32_t word = address + static_cast<uint32_t>(t.next) * stride;
+      if (cached(word, 4)) {
+        write_data(word, &values[t.next], 4);
+        continue;
+      }
+      // write_data's path for an uncached word, in line: the store
+      // charged, then a request of one transfer of one word (post_write,
+      // post_request; a word fits the buffer, which holds at least one).
+      ++m_stores;
+      charge(m_params.store_cycles);
+      make_room(1, 1);
+      const auto* data = reinterpret_cast<const uint8_t*>(&values[t.next]);
+      const uint64_t done = train_transact(word, data, 4, m_write_buffer_free_ticks);
+      m_write_buffer_free_ticks = done;
+      enter_request(done, 1, 1);
+    }
+    flush_train();
+  } catch (...) {
+    t.running = false;
+    throw;
+  }
+  t.running = false;
+}
+
+uint64_t Host::train_transact(uint32_t address, const uint8_t* data, unsigned bytes, uint64_t not_before_ticks) {
+  // A word of the train as transact() would send it: deferred when the
+  // quote covers it (its issue after the kernel's time, as the bus's
+  // quote requires of every word, and the quote taken at the first).
+  StoreTrain& t = m_store_train;
+  const uint64_t now = kernel_ticks();
+  const uint64_t issue = std::max(now + m_local_ticks, not_before_ticks);
+  if (bytes == 4 && issue > now && address == t.words.address + t.next * t.words.stride) {
+    if (!t.quoted) {
+      const WordTrain rest{address, t.words.stride, t.words.values + t.next, t.words.count - t.next};
+      t.quoted = m_direct_out->quote_train(rest, issue, t.quote);
+      t.first = t.next;
+    }
+    if (t.quoted) {
+      t.arrivals.push_back(issue);
+      // What transact() does to the host's quantum keeping.
+      m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
+      m_window_clear = m_window_clear && t.quote.untouched;
+      return t.quote.done_after(issue, not_before_ticks);
+    }
+  }
+  // The words deferred so far go first (a store train makes no other
+  // transaction while it runs).
+  flush_train();
+  if (m_post_data.size() < bytes) m_post_data.resize(bytes);
+  copy_access(m_post_data.data(), data, bytes);
+  m_train->transfers = 1;
+  return transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, not_before_ticks);
+}
+
+void Host::hand_over_train() {
+  StoreTrain& t = m_store_train;
+  const WordTrain deferred{t.words.address + t.first * t.words.stride, t.words.stride, t.words.values + t.first,
+                           t.arrivals.size()};
+  t.quoted = false;
+  m_direct_out->direct_train(deferred, t.arrivals.data());
+  t.arrivals.clear();
 }
 
 uint8_t* Host::span_pointer(uint32_t address, unsigned bytes) {

@@ -144,6 +144,8 @@ class Host : public Block, public HostApi, public HostCore {
   void write8(uint32_t address, uint8_t value) override;
   void read_words(uint32_t address, uint32_t* words, unsigned count) override;
   void write_words(uint32_t address, const uint32_t* words, unsigned count) override;
+  void write32_train(uint32_t address, uint32_t stride, const uint32_t* values, const uint64_t* cycles,
+                     unsigned count) override;
   const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override;
   uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override;
   void wait_irq(unsigned line) override;
@@ -225,8 +227,34 @@ class Host : public Block, public HostApi, public HostCore {
   // out first), so that arbitration can serve other initiators between them
   // (tlm/bus/README.md, "Fairness").
   void post_write(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers = 1);
-  // One bus request through the write buffer.
+  // One bus request through the write buffer: room made for its words and
+  // addresses (make_room: the finished requests retired, a stall for each
+  // the core waits for), the request issued, entered (enter_request).
   void post_request(uint32_t address, const uint8_t* data, unsigned bytes, unsigned transfers);
+  void make_room(unsigned held_words, unsigned held_addresses);
+  void enter_request(uint64_t done_ticks, unsigned held_words, unsigned held_addresses);
+  // A store train (write32_train; README.md, "Store trains"): while one
+  // runs, its words' bus requests are deferred (train_transact) where the
+  // bus and the target quote the train, and handed over as a unit
+  // (flush_train) before the train's next transaction that is not
+  // deferred (train_transact) and before the host lets the kernel run
+  // (sync): until then nothing but the host acts, so the quote holds and
+  // every time and count is what the single transactions give.
+  struct StoreTrain {
+    bool running = false;  // within write32_train
+    WordTrain words;       // the whole train
+    size_t next = 0;       // the word being stored
+    bool quoted = false;   // `quote` holds for the words from `first`
+    TrainQuote quote;
+    size_t first = 0;                // the first deferred word
+    std::vector<uint64_t> arrivals;  // the deferred words' issue times
+  };
+  StoreTrain m_store_train;
+  uint64_t train_transact(uint32_t address, const uint8_t* data, unsigned bytes, uint64_t not_before_ticks);
+  void flush_train() {
+    if (!m_store_train.arrivals.empty()) hand_over_train();
+  }
+  void hand_over_train();
   // Transfers of `bytes_each` that the buffer's data words hold.
   unsigned transfers_per_request(unsigned bytes_each) const;
   uint8_t* span_pointer(uint32_t address, unsigned bytes);

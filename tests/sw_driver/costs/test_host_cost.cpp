@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "costs/host_cost.h"
 #include "host/recording_host.h"
@@ -48,6 +49,45 @@ TEST(HostCost, AChargeBeyondTheHostsCountIsAnError) {
   EXPECT_THROW(costs::charge(host, static_cast<HostCost>(row), uint64_t{1} << 63), std::overflow_error);
   EXPECT_EQ(host.measured_cycles(), 0u);
   EXPECT_THROW(costs::charge(host, static_cast<HostCost>(costs::HOST_COST_COUNT), 1), std::invalid_argument);
+}
+
+// A store train's cycles (meter_cycles_each, ArrayDriver::fill8): what as
+// many charges of the row one by one give the host, each, with the same
+// fraction carried on and the same units counted.
+TEST(HostCost, EachWordsCyclesAreWhatChargingItAloneGives) {
+  std::mt19937_64 random(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    const auto row = static_cast<HostCost>(random() % costs::HOST_COST_COUNT);
+    const size_t count = 1 + random() % 40;
+    const uint64_t before = 1 + random() % 10000;
+    const HostCost before_row = static_cast<HostCost>(random() % costs::HOST_COST_COUNT);
+
+    costs::reset_cost_meter();
+    tessera::test::RecordingHost alone(4096);
+    costs::charge(alone, before_row, before);
+    std::vector<uint64_t> one_by_one;
+    for (size_t k = 0; k < count; ++k) {
+      const uint64_t was = alone.measured_cycles();
+      costs::charge(alone, row, 1);
+      one_by_one.push_back(alone.measured_cycles() - was);
+    }
+    costs::charge(alone, before_row, before);
+    const uint64_t after_alone = alone.measured_cycles();
+    const auto units_alone = costs::take_cost_units();
+
+    costs::reset_cost_meter();
+    tessera::test::RecordingHost train(4096);
+    costs::charge(train, before_row, before);
+    std::vector<uint64_t> each(count);
+    costs::meter_cycles_each(row, each.data(), count);
+    uint64_t sum = 0;
+    for (uint64_t c : each) sum += c;
+    train.compute_cycles(sum);
+    costs::charge(train, before_row, before);
+    ASSERT_EQ(each, one_by_one) << "trial " << trial;
+    ASSERT_EQ(train.measured_cycles(), after_alone) << "the fraction carried on";
+    ASSERT_EQ(costs::take_cost_units(), units_alone);
+  }
 }
 
 }  // namespace
