@@ -257,7 +257,7 @@ bool AhbBus::must_collect() const {
 }
 
 uint64_t AhbBus::train_beats(uint64_t length, unsigned transfers) const {
-  return transfers * std::max<uint64_t>(1, m_beats.ceil(length / transfers));
+  return transfers * single_beats(length / transfers);
 }
 
 inline void AhbBus::serve(unsigned initiator, tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) {
@@ -291,11 +291,11 @@ inline void AhbBus::serve(unsigned initiator, tlm::tlm_generic_payload& gp, sc_t
   }
   const unsigned transfers = extras.transfers > 0 ? extras.transfers : 1;
   const uint64_t length = gp.get_data_length();
-  const uint64_t beats = transfers == 1 ? std::max<uint64_t>(1, m_beats.ceil(length)) : train_beats(length, transfers);
+  const uint64_t beats = transfers == 1 ? single_beats(length) : train_beats(length, transfers);
   BusInitiatorStats& s = m_stats[initiator];
   uint64_t occupancy_cycles;
   if (region) {
-    occupancy_cycles = transfers * m_params.address_cycles + std::max(target_cycles, beats);
+    occupancy_cycles = occupancy(target_cycles, beats, transfers);
     if (gp.is_response_error()) ++s.errors;
   } else {
     occupancy_cycles = unmapped(initiator, gp);
@@ -371,10 +371,8 @@ bool AhbBus::quote_train(unsigned initiator, const WordTrain& train, uint64_t fi
   TrainQuote target;
   if (!region->direct->quote_train(relative, request_cycle * m_period_ticks, target) || target.edge_ticks != 1)
     return false;
-  const uint64_t beats = std::max<uint64_t>(1, m_beats.ceil(4));
-  const uint64_t target_cycles = m_cycles.ceil(target.latency_ticks);
   quote.edge_ticks = m_period_ticks;
-  quote.latency_ticks = (m_params.address_cycles + std::max(target_cycles, beats)) * m_period_ticks;
+  quote.latency_ticks = occupancy(m_cycles.ceil(target.latency_ticks), single_beats(4)) * m_period_ticks;
   quote.untouched = target.untouched;
   return true;
 }
@@ -387,7 +385,7 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
     throw std::logic_error(std::string(name()) + ": a train unquoted");
   // Each word as serve() would reserve it: at its request's clock edge,
   // arriving at the target there.
-  const uint64_t beats = std::max<uint64_t>(1, m_beats.ceil(4));
+  const uint64_t beats = single_beats(4);
   m_train_arrivals.resize(train.count);
   uint64_t occupancy_cycles = 0, end_cycle = 0;
   for (size_t k = 0; k < train.count; ++k) {
@@ -399,7 +397,7 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
       relative.address -= region->base;
       if (!region->direct->quote_train(relative, m_train_arrivals[0], target))
         throw std::logic_error(std::string(name()) + ": a train its target no longer quotes");
-      occupancy_cycles = m_params.address_cycles + std::max(ceil_cycles(target.latency_ticks, region->latency), beats);
+      occupancy_cycles = occupancy(ceil_cycles(target.latency_ticks, region->latency), beats);
     }
     const uint64_t start_cycle = reserve(now, request_cycle, occupancy_cycles);
     if (start_cycle != request_cycle)

@@ -226,6 +226,13 @@ class AhbBus : public Block {
   uint64_t reserve_among(uint64_t now, uint64_t request_cycle, uint64_t length_cycles);
   // Beats of a train of `transfers` transfers of length / transfers bytes.
   uint64_t train_beats(uint64_t length, unsigned transfers) const;
+  // Beats of one transfer of `length` bytes: at least one.
+  uint64_t single_beats(uint64_t length) const { return std::max<uint64_t>(1, m_beats.ceil(length)); }
+  // Cycles a request of `transfers` transfers holds the bus: an address
+  // cycle each, then the target's latency or the beats, whichever is longer.
+  uint64_t occupancy(uint64_t target_cycles, uint64_t beats, unsigned transfers = 1) const {
+    return transfers * m_params.address_cycles + std::max(target_cycles, beats);
+  }
   // Drops the reservations that ended by `now`.
   void prune(uint64_t now);
   void resolve_batch();
