@@ -11,6 +11,7 @@
 // so that the script can fit the rows to the ISS's phase times.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -128,8 +129,16 @@ inline void meter_cycles_each(HostCost cost, uint64_t* cycles, size_t count) {
     const double total = carry + detail::ROW_CYCLES[index];
     if (__builtin_expect(total >= 0x1p63, 0)) detail::charge_huge(total);
     const auto whole = static_cast<int64_t>(total);
-    carry = total - static_cast<double>(whole);
+    const double next = total - static_cast<double>(whole);
     cycles[k] = static_cast<uint64_t>(whole);
+    // Each step is a function of the carry alone: once it carries the
+    // fraction it was given (a row of whole cycles does from its second
+    // word), every later word takes the same cycles.
+    if (next == carry) {
+      std::fill(cycles + k + 1, cycles + count, cycles[k]);
+      break;
+    }
+    carry = next;
   }
   m.carry = carry;
 }
