@@ -566,9 +566,13 @@ void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* valu
   t.running = true;
   t.words = {address, stride, values, count};
   t.quoted = false;
+  t.cycles = cycles;
   t.arrivals.clear();
+  t.arrivals.reserve(count);
   try {
     for (t.next = 0; t.next < count; ++t.next) {
+      t.next = train_steady(t.next);
+      if (t.next == count) break;
       if (cycles[t.next] != 0) Host::compute_cycles(cycles[t.next]);
       const uint32_t word = address + static_cast<uint32_t>(t.next) * stride;
       if (cached(word, 4)) {
@@ -592,6 +596,163 @@ void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* valu
     throw;
   }
   t.running = false;
+}
+
+size_t Host::train_steady(size_t from) {
+  StoreTrain& t = m_store_train;
+  const size_t held = m_write_buffer.size();
+  const unsigned cap = std::min(m_params.write_buffer_words, m_params.write_buffer_addresses);
+  if (!t.quoted || cap > STEADY_BUFFER || held > cap || m_write_buffer_words != held ||
+      m_write_buffer_addresses != held)
+    return from;
+  SteadyTrain st;
+  st.cap = cap;
+  for (size_t i = 0; i < held; ++i) st.done_at[i] = m_write_buffer.at(i).done_ticks;
+  st.pending = held;
+  st.now = kernel_ticks();
+  st.edges_unchanged = m_traced_edges == timed_signal_edges();
+  st.local = m_local_ticks;
+  st.budget = m_budget_ticks;
+  st.free_ticks = m_write_buffer_free_ticks;
+  st.window_clear = m_window_clear;
+  const uint64_t period = m_period_ticks;
+  const uint64_t store_ticks = uint64_t{m_params.store_cycles} * period;
+  size_t k = from;
+  while (k < t.words.count) {
+    if (const size_t run = steady_run(st, k)) {
+      k += run;
+      continue;
+    }
+    const uint32_t word = static_cast<uint32_t>(t.words.address + k * t.words.stride);
+    if (cached(word, 4)) break;
+    // A charge or a stall that reaches the budget: quantum_used_up, here
+    // only where it runs ahead without asking the kernel (its cached
+    // answer stands); anything else leaves the word to the loop.
+    uint64_t at_budget = st.budget;
+    unsigned more_run_aheads = 0;
+    const auto reach = [&](uint64_t local_now) {
+      if (local_now < at_budget) return true;
+      if (local_now >= m_run_ahead_ticks || !st.window_clear || !st.edges_unchanged) return false;
+      ++more_run_aheads;
+      at_budget = m_run_ahead_ticks;
+      return true;
+    };
+    const uint64_t c = t.cycles[k];
+    uint64_t l = st.local + c * period;
+    if (c != 0 && !reach(l)) break;
+    l += store_ticks;
+    if (!reach(l)) break;
+    // make_room(1, 1): the finished requests retired, a stall for the
+    // oldest while the buffer is full.
+    size_t left = st.pending, first = st.head;
+    const auto retire = [&] {
+      while (left != 0 && st.done_at[first] <= st.now + l) {
+        first = first + 1 == cap ? 0 : first + 1;
+        --left;
+      }
+    };
+    retire();
+    uint64_t stalled = 0;
+    if (left == cap) {
+      stalled = st.done_at[first] - st.now - l;
+      l += stalled;
+      if (!reach(l)) break;
+      retire();
+    }
+    // train_transact's deferral.
+    const uint64_t issue = std::max(st.now + l, st.free_ticks);
+    if (issue <= st.now) break;
+    // Taken: the word's state is the host's from here.
+    const uint64_t done = t.quote.done_after(issue, st.free_ticks);
+    st.measured += c;
+    st.busy += c + m_params.store_cycles;
+    st.stalls += stalled != 0;
+    st.stall_ticks += stalled;
+    st.run_aheads += more_run_aheads;
+    st.local = l;
+    st.budget = std::min(at_budget, std::max(m_quantum_ticks, l + 1));
+    st.window_clear = st.window_clear && t.quote.untouched;
+    t.arrivals.push_back(issue);
+    st.free_ticks = done;
+    st.head = first;
+    st.pending = left;
+    st.done_at[st.slot(st.pending)] = done;
+    ++st.pending;
+    ++k;
+  }
+  if (k == from) return from;
+  m_measured_cycles += st.measured;
+  m_busy_cycles += st.busy;
+  m_stores += k - from;
+  m_write_buffer_stalls += st.stalls;
+  m_stall_ticks += st.stall_ticks;
+  m_run_aheads += st.run_aheads;
+  m_local_ticks = st.local;
+  m_budget_ticks = st.budget;
+  m_window_clear = st.window_clear;
+  m_write_buffer_free_ticks = st.free_ticks;
+  m_write_buffer.clear();
+  for (size_t i = 0; i < st.pending; ++i) m_write_buffer.push_back({st.done_at[st.slot(i)], 1, 1});
+  m_write_buffer_words = m_write_buffer_addresses = static_cast<unsigned>(st.pending);
+  return k;
+}
+
+size_t Host::steady_run(SteadyTrain& st, size_t from) {
+  // The steady state the word-by-word steps reach when the bus is the
+  // bottleneck: the buffer full, its words completing a latency L apart
+  // (each issued at the completion of the one before), the host stalling
+  // for the oldest at each store and past the quantum's end, so that each
+  // word's first charge reaches the budget (the last word's local time
+  // plus a tick) and runs ahead. Each word k of such a run then stalls to
+  // the oldest word's completion, L after the last stall, and completes L
+  // after the word before: its steps in closed form.
+  StoreTrain& t = m_store_train;
+  const uint64_t latency = t.quote.latency_ticks;
+  const unsigned cap = st.cap;
+  if (st.pending != cap || st.budget != st.local + 1 || st.local + 1 < m_quantum_ticks || !st.window_clear ||
+      !st.edges_unchanged || !t.quote.untouched || latency == 0 || st.free_ticks <= st.now)
+    return 0;
+  // The buffer's completions a latency apart, the last the buffer's free time.
+  const uint64_t front = st.done_at[st.head];
+  for (unsigned i = 0; i < cap; ++i)
+    if (st.done_at[st.slot(i)] != front + i * latency) return 0;
+  if (front + uint64_t{cap - 1} * latency != st.free_ticks || front <= st.now + st.local) return 0;
+  // The words: uncached, each with compute cycles (its first charge is then
+  // what reaches the budget) and stalling (its cycles shorter than the gap
+  // to the oldest completion: L, and for the first the gap there is now),
+  // and every local time before the run-ahead window's end.
+  const uint64_t period = m_period_ticks;
+  const uint64_t store_ticks = uint64_t{m_params.store_cycles} * period;
+  const uint64_t first_gap = front - st.now - st.local;
+  const bool may_cache = m_dcache_on && m_dcache.enabled();
+  uint64_t cycles = 0;
+  size_t m = 0;
+  // Word m's local time after its stall: the oldest completion then.
+  for (uint64_t local_after = front - st.now; from + m < t.words.count && local_after < m_run_ahead_ticks;
+       ++m, local_after += latency) {
+    const uint64_t c = t.cycles[from + m];
+    const uint64_t gap = m == 0 ? first_gap : latency;
+    uint64_t busy_ticks = 0;
+    if (c == 0 || __builtin_mul_overflow(c, period, &busy_ticks) || busy_ticks >= gap ||
+        store_ticks >= gap - busy_ticks)
+      break;
+    if (may_cache && cacheable(static_cast<uint32_t>(t.words.address + (from + m) * t.words.stride), 4)) break;
+    cycles += c;
+    t.arrivals.push_back(st.free_ticks + m * latency);
+  }
+  if (m == 0) return 0;
+  const uint64_t last_local = front - st.now + (m - 1) * latency;
+  st.measured += cycles;
+  st.busy += cycles + m * uint64_t{m_params.store_cycles};
+  st.stalls += m;
+  st.stall_ticks += last_local - st.local - cycles * period - m * store_ticks;
+  st.run_aheads += m;
+  st.local = last_local;
+  st.budget = last_local + 1;
+  st.free_ticks += m * latency;
+  st.head = 0;
+  for (unsigned i = 0; i < cap; ++i) st.done_at[i] = st.free_ticks - uint64_t{cap - 1 - i} * latency;
+  return m;
 }
 
 uint64_t Host::train_transact(uint32_t address, const uint8_t* data, unsigned bytes, uint64_t not_before_ticks) {

@@ -246,11 +246,37 @@ class Host : public Block, public HostApi, public HostCore {
     size_t next = 0;       // the word being stored
     bool quoted = false;   // `quote` holds for the words from `first`
     TrainQuote quote;
-    size_t first = 0;                // the first deferred word
-    std::vector<uint64_t> arrivals;  // the deferred words' issue times
+    const uint64_t* cycles = nullptr;  // the cycles before each word
+    size_t first = 0;                  // the first deferred word
+    std::vector<uint64_t> arrivals;    // the deferred words' issue times
   };
   StoreTrain m_store_train;
   uint64_t train_transact(uint32_t address, const uint8_t* data, unsigned bytes, uint64_t not_before_ticks);
+  // The train's words from `from` on, each exactly as the loop of
+  // write32_train would take it, with the host's state in local variables,
+  // while nothing but these steps happens: the word uncached, the quote
+  // taken, the write buffer holding single words, and every quantum end a
+  // run-ahead the kernel need not be asked about (README.md, "Store
+  // trains"). Returns the first word it left for that loop.
+  size_t train_steady(size_t from);
+  static constexpr unsigned STEADY_BUFFER = 16;  // the largest buffer train_steady holds
+  // train_steady's copy of the host's state: the write buffer's requests
+  // (single words: their completions in a ring, the oldest at `head`),
+  // the local time and budget, and what the words add to the counters.
+  struct SteadyTrain {
+    unsigned cap = 0;  // requests the buffer holds
+    uint64_t done_at[STEADY_BUFFER] = {};
+    size_t head = 0, pending = 0;
+    size_t slot(size_t i) const { return head + i < cap ? head + i : head + i - cap; }
+    uint64_t now = 0;  // the kernel's time, which stands meanwhile
+    bool edges_unchanged = false;
+    uint64_t local = 0, budget = 0, free_ticks = 0;
+    bool window_clear = false;
+    uint64_t measured = 0, busy = 0, stalls = 0, stall_ticks = 0, run_aheads = 0;
+  };
+  // A run of words from `from` in the bus-bound steady state, in closed
+  // form (README.md, "Store trains"); returns how many (0: none).
+  size_t steady_run(SteadyTrain& st, size_t from);
   void flush_train() {
     if (!m_store_train.arrivals.empty()) hand_over_train();
   }
@@ -343,7 +369,13 @@ class Host : public Block, public HostApi, public HostCore {
    public:
     explicit PendingWrites(unsigned capacity) : m_entries(capacity) {}
     bool empty() const { return m_count == 0; }
+    size_t size() const { return m_count; }
     const PendingWrite& front() const { return m_entries[m_first]; }
+    // The i-th request from the front (i < size()).
+    const PendingWrite& at(size_t i) const {
+      const size_t k = m_first + i;
+      return m_entries[k < m_entries.size() ? k : k - m_entries.size()];
+    }
     void pop_front() {
       if (++m_first == m_entries.size()) m_first = 0;
       --m_count;
