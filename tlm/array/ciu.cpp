@@ -37,6 +37,9 @@ Ciu::Ciu(sc_core::sc_module_name name, const CiuParams& params, ArrayProcessor& 
   const unsigned groups_per_row = g.columns / array_regs::CUS_PER_GROUP;
   for (unsigned group = 0; group < g.lanes() / array_regs::CUS_PER_GROUP; ++group)
     m_group_lane.push_back((group / groups_per_row) * g.columns + (group % groups_per_row) * array_regs::CUS_PER_GROUP);
+  m_groups_in_lane_order = true;
+  for (size_t group = 0; group < m_group_lane.size(); ++group)
+    m_groups_in_lane_order = m_groups_in_lane_order && m_group_lane[group] == group * array_regs::CUS_PER_GROUP;
   in.bind(static_cast<tlm::tlm_fw_transport_if<>&>(*this));
 }
 
@@ -151,7 +154,11 @@ void Ciu::direct_train(const WordTrain& train, const uint64_t* arrivals) {
   ap::CuArray& cus = m_array.core().array();
   WordPlace place = place_of(train.address);
   const WordPlace step = place_of(train.stride);
-  for (size_t k = 0; k < train.count; ++k) {
+  // A word at one CMEM address in each of consecutive groups (a fill):
+  // one run of the address's row.
+  const bool one_run = m_groups_in_lane_order && step.group == 1 && step.address == 0;
+  if (one_run) std::memcpy(cus.state_row(place.address) + m_group_lane[place.group], train.values, 4 * train.count);
+  for (size_t k = 0; k < train.count && !one_run; ++k) {
     std::memcpy(cus.state_row(place.address) + m_group_lane[place.group], &train.values[k], 4);
     place.group += step.group;
     place.address += step.address;

@@ -116,10 +116,11 @@ class Ciu : public Block, public tlm::tlm_fw_transport_if<>, public DirectTransp
   ActivityCounter& m_errors;
   uint64_t m_window_bytes = 0;  // every lane's CMEM
   unsigned m_cmem_bytes = 0;
-  unsigned m_cmem_shift = 0;           // log2 of m_cmem_bytes when a power of two, else 0
-  std::vector<unsigned> m_group_lane;  // each group's first lane
-  sc_core::sc_time m_access_time;      // latency charged, all accesses
-  sc_core::sc_time m_stall_time;       // waiting for a running program
+  unsigned m_cmem_shift = 0;            // log2 of m_cmem_bytes when a power of two, else 0
+  std::vector<unsigned> m_group_lane;   // each group's first lane
+  bool m_groups_in_lane_order = false;  // group g's first lane is 4 g: a CMEM address's words are one run of a row
+  sc_core::sc_time m_access_time;       // latency charged, all accesses
+  sc_core::sc_time m_stall_time;        // waiting for a running program
   TimedTrace m_access_trace;
   bool m_tracing = false;
   TimelineSink* m_timeline = nullptr;  // timeline_to: null without a timeline

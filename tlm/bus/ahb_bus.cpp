@@ -389,6 +389,21 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
   m_train_arrivals.resize(train.count);
   uint64_t occupancy_cycles = 0, end_cycle = 0;
   for (size_t k = 0; k < train.count; ++k) {
+    if (k > 0 && arrivals[k] == end_cycle * m_period_ticks) {
+      // Words requested each at the end of the one before: each is
+      // reserve()'s first case, joining the last reservation (the word
+      // before's) at its end.
+      const size_t first = k;
+      for (uint64_t at = arrivals[k]; k < train.count && arrivals[k] == at;
+           ++k, at += occupancy_cycles * m_period_ticks)
+        m_train_arrivals[k] = at;
+      const uint64_t cycles = occupancy_cycles * (k - first);
+      m_reserved.back().end += cycles;
+      m_busy_cycles += cycles;
+      end_cycle += cycles;
+      m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
+      if (k == train.count) break;
+    }
     const uint64_t request_cycle = ceil_cycles(arrivals[k], m_request_memo[initiator]);
     m_train_arrivals[k] = request_cycle * m_period_ticks;
     if (k == 0) {
