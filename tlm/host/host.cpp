@@ -724,7 +724,6 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
   const uint64_t period = m_period_ticks;
   const uint64_t store_ticks = uint64_t{m_params.store_cycles} * period;
   const uint64_t first_gap = front - st.now - st.local;
-  const bool may_cache = m_dcache_on && m_dcache.enabled();
   uint64_t cycles = 0;
   size_t m = 0;
   // Word m's local time after its stall: the oldest completion then.
@@ -736,7 +735,7 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
     if (c == 0 || __builtin_mul_overflow(c, period, &busy_ticks) || busy_ticks >= gap ||
         store_ticks >= gap - busy_ticks)
       break;
-    if (may_cache && cacheable(static_cast<uint32_t>(t.words.address + (from + m) * t.words.stride), 4)) break;
+    if (cached(static_cast<uint32_t>(t.words.address + (from + m) * t.words.stride), 4)) break;
     cycles += c;
     t.arrivals.push_back(st.free_ticks + m * latency);
   }
