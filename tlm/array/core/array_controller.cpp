@@ -308,6 +308,10 @@ RunResult ArrayController::run(unsigned entry) {
       if (memo.plain_runs_left == 0) return run_skipping(entry, plan->second, memo);
       --memo.plain_runs_left;
       memo.valid = false;
+      if (trace_ready(memo)) {
+        trace_every_lane(memo);
+        return finish_from_record(entry, plan->second, memo);
+      }
     }
   }
   unsigned last_pc = entry;
@@ -753,6 +757,15 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
   memo.inputs.resize(plan.inputs.size() * n);
   for (size_t i = 0; i < plan.inputs.size(); ++i)
     std::copy_n(m_array.state_row(plan.inputs[i]), n, memo.inputs.begin() + static_cast<long>(i * n));
+  if (trace_ready(memo)) {
+    // The entry's trace, compiled at an earlier record, runs every CU: the
+    // figures that do not depend on data are that record's.
+    trace_every_lane(memo);
+    RunResult result = finish_from_record(entry, plan, memo);
+    record_outputs(plan, memo);
+    memo.valid = true;
+    return result;
+  }
   const std::array<ArrayActivity, STAGE_COUNT> before = m_activity.stage_lanes;
   m_array.count_per_lane(true);
   unsigned last_pc = entry;
@@ -760,12 +773,7 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
   m_array.count_per_lane(false);
   m_lanes_run += n;
   if (result.ok && result.instructions <= MAX_TRACE && last_pc == plan.last_pc) {
-    const size_t outputs = plan.cmem_out.size() + plan.defined.size();
-    memo.outputs.resize(outputs * n);
-    for (size_t i = 0; i < outputs; ++i) {
-      const unsigned row = i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
-      std::copy_n(m_array.state_row(row), n, memo.outputs.begin() + static_cast<long>(i * n));
-    }
+    record_outputs(plan, memo);
     memo.lane_stages.clear();
     for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
       const ArrayActivity& after = m_activity.stage_lanes[stage];
@@ -781,10 +789,34 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
     memo.stages_recorded = m_record_stages;
     memo.stages = m_stage_changes;
     memo.trace = m_array.compile_trace(build_trace(entry));
+    memo.traced = true;
     memo.valid = true;
   }
   fold_run(entry, last_pc, result);
   return result;
+}
+
+void ArrayController::record_outputs(const EntryPlan& plan, EntryMemo& memo) {
+  const unsigned n = m_array.lanes();
+  const size_t outputs = plan.cmem_out.size() + plan.defined.size();
+  memo.outputs.resize(outputs * n);
+  for (size_t i = 0; i < outputs; ++i) {
+    const unsigned row = i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
+    std::copy_n(m_array.state_row(row), n, memo.outputs.begin() + static_cast<long>(i * n));
+  }
+}
+
+bool ArrayController::trace_ready(const EntryMemo& memo) const {
+  return memo.traced && (!m_record_stages || memo.stages_recorded);
+}
+
+void ArrayController::trace_every_lane(EntryMemo& memo) {
+  m_array.run_trace(memo.trace);
+  for (const unsigned stage : memo.lane_stages) {
+    memo.useful[stage] = m_array.lane_useful(static_cast<Stage>(stage));
+    memo.stores[stage] = m_array.lane_stores(static_cast<Stage>(stage));
+  }
+  m_lanes_run += m_array.lanes();
 }
 
 RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo) {
@@ -816,8 +848,6 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   const auto output_row = [&](size_t i) {
     return i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
   };
-  const unsigned last_pc = plan.last_pc;
-  RunResult result = memo.result;
   if (k > 0) {
     if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
     CuArray& work = *m_work;
@@ -848,10 +878,6 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
       }
     }
   }
-  // The run's figures are the recorded run's: they do not depend on data.
-  m_stage_changes.clear();
-  if (m_record_stages) m_stage_changes = memo.stages;
-  std::copy(memo.executions.begin(), memo.executions.end(), m_run_executions.begin() + entry);
   // The skipped CUs end with the registers and flags their last run left.
   for (size_t i = plan.cmem_out.size(); i < outputs; ++i) {
     uint8_t* to = m_array.state_row(output_row(i));
@@ -859,9 +885,20 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     for (unsigned l = 0; l < n; ++l)
       if (m_differs[l] == 0) to[l] = record[l];
   }
+  m_lanes_run += k;
+  m_lanes_skipped += n - k;
+  return finish_from_record(entry, plan, memo);
+}
+
+RunResult ArrayController::finish_from_record(unsigned entry, const EntryPlan& plan, const EntryMemo& memo) {
+  const unsigned n = m_array.lanes();
+  // The run's figures are the recorded run's: they do not depend on data.
+  m_stage_changes.clear();
+  if (m_record_stages) m_stage_changes = memo.stages;
+  std::copy(memo.executions.begin(), memo.executions.end(), m_run_executions.begin() + entry);
   m_array.mask_written();
   // The lanes' activity stage by stage, as interpret() folds it (no nget:
-  // no neighbour transfers).
+  // no neighbour transfers), from the record's counts per lane.
   ArrayActivity total;
   for (const unsigned stage : memo.lane_stages) {
     ArrayActivity counts;
@@ -875,10 +912,8 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     total += counts;
   }
   m_array.add_activity(total);
-  m_lanes_run += k;
-  m_lanes_skipped += n - k;
-  fold_run(entry, last_pc, result);
-  return result;
+  fold_run(entry, plan.last_pc, memo.result);
+  return memo.result;
 }
 
 }  // namespace tessera::ap

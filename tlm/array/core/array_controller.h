@@ -258,7 +258,12 @@ class ArrayController {
     std::vector<StageChange> stages;
     // The run's instructions in the order they ran, loop variables added,
     // compiled (CuArray::compile_trace): what the CUs that differ run.
+    // Kept while the record is taken again (valid false): it depends on the
+    // program alone. Every CU then runs it in place of the interpreter
+    // (trace_every_lane), while the run still needs every CU (back-off) or
+    // is recorded again.
     CuArray::CompiledTrace trace;
+    bool traced = false;
     // Back-off: after FULL_RUNS_BEFORE_BACK_OFF runs in a row with most CUs
     // differing, the next BACK_OFF_RUNS run on every CU without the record
     // (what comparing and recording would cost for nothing).
@@ -268,6 +273,15 @@ class ArrayController {
   std::vector<Instruction> build_trace(unsigned entry) const;
   RunResult run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
   RunResult run_and_record(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
+  void record_outputs(const EntryPlan& plan, EntryMemo& memo);
+  // The entry's compiled trace can run it: compiled, with the stage changes
+  // when they are recorded.
+  bool trace_ready(const EntryMemo& memo) const;
+  // The trace on every CU in place; their counts into the record.
+  void trace_every_lane(EntryMemo& memo);
+  // A run whose lanes have run (or were skipped) by the record: its cycles,
+  // profile, stage changes and activity from the record, folded in.
+  RunResult finish_from_record(unsigned entry, const EntryPlan& plan, const EntryMemo& memo);
 
   ArrayGeometry m_geometry;
   CycleTable m_cycles;
