@@ -726,20 +726,27 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
   const uint64_t first_gap = front - st.now - st.local;
   uint64_t cycles = 0;
   size_t m = 0;
-  // Word m's local time after its stall: the oldest completion then.
-  for (uint64_t local_after = front - st.now; from + m < t.words.count && local_after < m_run_ahead_ticks;
+  // Word m's local time after its stall: the oldest completion then. The
+  // loop stores nothing (the arrivals are written after it), so that the
+  // compiler keeps what it reads in registers.
+  const size_t words = t.words.count - from;
+  const uint64_t* const word_cycles = t.cycles + from;
+  const uint64_t first_address = t.words.address + from * uint64_t{t.words.stride};
+  for (uint64_t local_after = front - st.now, window_end = m_run_ahead_ticks; m < words && local_after < window_end;
        ++m, local_after += latency) {
-    const uint64_t c = t.cycles[from + m];
+    const uint64_t c = word_cycles[m];
     const uint64_t gap = m == 0 ? first_gap : latency;
     uint64_t busy_ticks = 0;
     if (c == 0 || __builtin_mul_overflow(c, period, &busy_ticks) || busy_ticks >= gap ||
         store_ticks >= gap - busy_ticks)
       break;
-    if (cached(static_cast<uint32_t>(t.words.address + (from + m) * t.words.stride), 4)) break;
+    if (cached(static_cast<uint32_t>(first_address + m * t.words.stride), 4)) break;
     cycles += c;
-    t.arrivals.push_back(st.free_ticks + m * latency);
   }
   if (m == 0) return 0;
+  const size_t arrived = t.arrivals.size();
+  t.arrivals.resize(arrived + m);
+  for (size_t i = 0; i < m; ++i) t.arrivals[arrived + i] = st.free_ticks + i * latency;
   const uint64_t last_local = front - st.now + (m - 1) * latency;
   st.measured += cycles;
   st.busy += cycles + m * uint64_t{m_params.store_cycles};

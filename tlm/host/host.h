@@ -265,7 +265,11 @@ class Host : public Block, public HostApi, public HostCore {
   // the local time and budget, and what the words add to the counters.
   struct SteadyTrain {
     unsigned cap = 0;  // requests the buffer holds
-    uint64_t done_at[STEADY_BUFFER] = {};
+    // The held requests' completions, a ring of `cap` slots from `head`:
+    // only the `pending` slots from `head` are read, each written before,
+    // so it is not cleared (train_steady makes one at each word that
+    // write32_train's loop takes itself).
+    uint64_t done_at[STEADY_BUFFER];
     size_t head = 0, pending = 0;
     size_t slot(size_t i) const { return head + i < cap ? head + i : head + i - cap; }
     uint64_t now = 0;  // the kernel's time, which stands meanwhile
