@@ -386,17 +386,19 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
   // Each word as serve() would reserve it: at its request's clock edge,
   // arriving at the target there.
   const uint64_t beats = single_beats(4);
-  m_train_arrivals.resize(train.count);
+  // Grown, never shrunk: a shorter train leaves the vector as it is.
+  if (m_train_arrivals.size() < train.count) m_train_arrivals.resize(train.count);
+  uint64_t* const at_target = m_train_arrivals.data();
   uint64_t occupancy_cycles = 0, end_cycle = 0;
   for (size_t k = 0; k < train.count; ++k) {
     if (k > 0 && arrivals[k] == end_cycle * m_period_ticks) {
       // Words requested each at the end of the one before: each is
       // reserve()'s first case, joining the last reservation (the word
-      // before's) at its end.
+      // before's) at its end. (The step in a local: a member would be
+      // read again after each store.)
       const size_t first = k;
-      for (uint64_t at = arrivals[k]; k < train.count && arrivals[k] == at;
-           ++k, at += occupancy_cycles * m_period_ticks)
-        m_train_arrivals[k] = at;
+      const uint64_t step = occupancy_cycles * m_period_ticks;
+      for (uint64_t at = arrivals[k]; k < train.count && arrivals[k] == at; ++k, at += step) at_target[k] = at;
       const uint64_t cycles = occupancy_cycles * (k - first);
       m_reserved.back().end += cycles;
       m_busy_cycles += cycles;
@@ -405,12 +407,12 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
       if (k == train.count) break;
     }
     const uint64_t request_cycle = ceil_cycles(arrivals[k], m_request_memo[initiator]);
-    m_train_arrivals[k] = request_cycle * m_period_ticks;
+    at_target[k] = request_cycle * m_period_ticks;
     if (k == 0) {
       TrainQuote target;
       WordTrain relative = train;
       relative.address -= region->base;
-      if (!region->direct->quote_train(relative, m_train_arrivals[0], target))
+      if (!region->direct->quote_train(relative, at_target[0], target))
         throw std::logic_error(std::string(name()) + ": a train its target no longer quotes");
       occupancy_cycles = occupancy(ceil_cycles(target.latency_ticks, region->latency), beats);
     }
@@ -422,7 +424,7 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
   }
   WordTrain relative = train;
   relative.address -= region->base;
-  region->direct->direct_train(relative, m_train_arrivals.data());
+  region->direct->direct_train(relative, at_target);
   BusInitiatorStats& s = m_stats[initiator];
   s.transactions += train.count;
   s.writes += train.count;
