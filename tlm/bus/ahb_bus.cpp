@@ -399,9 +399,11 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
       const size_t first = k;
       const uint64_t step = occupancy_cycles * m_period_ticks;
       for (uint64_t at = arrivals[k]; k < train.count && arrivals[k] == at; ++k, at += step) at_target[k] = at;
+      // The run as one request at the last reservation's end: reserve()
+      // joins it to that reservation.
       const uint64_t cycles = occupancy_cycles * (k - first);
-      m_reserved.back().end += cycles;
-      m_busy_cycles += cycles;
+      if (reserve(now, end_cycle, cycles) != end_cycle)
+        throw std::logic_error(std::string(name()) + ": a train's word found the bus reserved");
       end_cycle += cycles;
       m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
       if (k == train.count) break;

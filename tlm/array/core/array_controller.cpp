@@ -798,12 +798,9 @@ RunResult ArrayController::run_and_record(unsigned entry, const EntryPlan& plan,
 
 void ArrayController::record_outputs(const EntryPlan& plan, EntryMemo& memo) {
   const unsigned n = m_array.lanes();
-  const size_t outputs = plan.cmem_out.size() + plan.defined.size();
-  memo.outputs.resize(outputs * n);
-  for (size_t i = 0; i < outputs; ++i) {
-    const unsigned row = i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
-    std::copy_n(m_array.state_row(row), n, memo.outputs.begin() + static_cast<long>(i * n));
-  }
+  memo.outputs.resize(plan.outputs() * n);
+  for (size_t i = 0; i < plan.outputs(); ++i)
+    std::copy_n(m_array.state_row(plan.output_row(i)), n, memo.outputs.begin() + static_cast<long>(i * n));
 }
 
 bool ArrayController::trace_ready(const EntryMemo& memo) const {
@@ -844,10 +841,7 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   }
   memo.full_runs = 0;
 
-  const size_t outputs = plan.cmem_out.size() + plan.defined.size();
-  const auto output_row = [&](size_t i) {
-    return i < plan.cmem_out.size() ? plan.cmem_out[i] : plan.defined[i - plan.cmem_out.size()];
-  };
+  const size_t outputs = plan.outputs();
   if (k > 0) {
     if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
     CuArray& work = *m_work;
@@ -866,7 +860,7 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     // recorded run's path.
     work.run_trace(memo.trace);
     for (size_t i = 0; i < outputs; ++i) {
-      const unsigned row = output_row(i);
+      const unsigned row = plan.output_row(i);
       scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
     }
     for (const unsigned stage : memo.lane_stages) {
@@ -880,7 +874,7 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   }
   // The skipped CUs end with the registers and flags their last run left.
   for (size_t i = plan.cmem_out.size(); i < outputs; ++i) {
-    uint8_t* to = m_array.state_row(output_row(i));
+    uint8_t* to = m_array.state_row(plan.output_row(i));
     const uint8_t* record = memo.outputs.data() + i * n;
     for (unsigned l = 0; l < n; ++l)
       if (m_differs[l] == 0) to[l] = record[l];

@@ -238,6 +238,9 @@ class ArrayController {
     std::vector<unsigned> cmem_out;  // CMEM rows it may write
     std::vector<unsigned> defined;   // registers and flags it writes
     std::vector<unsigned> gathered;  // inputs and cmem_out, each row once: what a work array needs
+    // The record's outputs: cmem_out, then defined.
+    size_t outputs() const { return cmem_out.size() + defined.size(); }
+    unsigned output_row(size_t i) const { return i < cmem_out.size() ? cmem_out[i] : defined[i - cmem_out.size()]; }
   };
   EntryPlan plan_entry(unsigned entry) const;
   // Per entry, every CU's last run of it (lanes() bytes per row, row-major)
