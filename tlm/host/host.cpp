@@ -724,26 +724,42 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
   const uint64_t period = m_period_ticks;
   const uint64_t store_ticks = uint64_t{m_params.store_cycles} * period;
   const uint64_t first_gap = front - st.now - st.local;
-  uint64_t cycles = 0;
-  size_t m = 0;
-  // Word m's local time after its stall: the oldest completion then. The
-  // loop stores nothing (the arrivals are written after it), so that the
-  // compiler keeps what it reads in registers.
+  // Word m's local time after its stall, the oldest completion then, is
+  // start + m L: the words the run-ahead window admits.
+  const uint64_t start = front - st.now, window_end = m_run_ahead_ticks;
   const size_t words = t.words.count - from;
+  if (words == 0 || start >= window_end) return 0;
+  const size_t in_window = static_cast<size_t>(std::min<uint64_t>(words, (window_end - start - 1) / latency + 1));
   const uint64_t* const word_cycles = t.cycles + from;
-  const uint64_t first_address = t.words.address + from * uint64_t{t.words.stride};
-  for (uint64_t local_after = front - st.now, window_end = m_run_ahead_ticks; m < words && local_after < window_end;
-       ++m, local_after += latency) {
-    const uint64_t c = word_cycles[m];
-    const uint64_t gap = m == 0 ? first_gap : latency;
+  const uint64_t stride = t.words.stride;
+  const uint64_t first_address = t.words.address + from * stride;
+  const auto fits = [&](uint64_t c, uint64_t gap) {
     uint64_t busy_ticks = 0;
-    if (c == 0 || __builtin_mul_overflow(c, period, &busy_ticks) || busy_ticks >= gap ||
-        store_ticks >= gap - busy_ticks)
-      break;
-    if (cached(static_cast<uint32_t>(first_address + m * t.words.stride), 4)) break;
-    cycles += c;
+    return c != 0 && !__builtin_mul_overflow(c, period, &busy_ticks) && busy_ticks < gap &&
+           store_ticks < gap - busy_ticks;
+  };
+  // No word of the window cached (the addresses rise: the first above the
+  // cacheable range's end or the last below its base): each later word's
+  // test is then its cycles', the same for words with the same cycles.
+  const uint64_t last_address = first_address + (in_window - 1) * stride;
+  const bool none_cached = !m_dcache_on || !m_dcache.enabled() || last_address < m_params.cacheable_base ||
+                           first_address + 4 > m_cacheable_end;
+  const auto word_cached = [&](size_t m) {
+    return !none_cached && cached(static_cast<uint32_t>(first_address + m * stride), 4);
+  };
+  if (!fits(word_cycles[0], first_gap) || word_cached(0)) return 0;
+  uint64_t cycles = word_cycles[0];
+  size_t m = 1;
+  while (m < in_window) {
+    const uint64_t c = word_cycles[m];
+    if (!fits(c, latency) || word_cached(m)) break;
+    // The words after it with the same cycles pass the same test.
+    size_t end = m + 1;
+    if (none_cached)
+      while (end < in_window && word_cycles[end] == c) ++end;
+    cycles += c * (end - m);
+    m = end;
   }
-  if (m == 0) return 0;
   const size_t arrived = t.arrivals.size();
   t.arrivals.resize(arrived + m);
   for (size_t i = 0; i < m; ++i) t.arrivals[arrived + i] = st.free_ticks + i * latency;
