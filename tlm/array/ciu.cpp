@@ -137,7 +137,7 @@ bool Ciu::quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& 
   if (train.address > m_window_bytes - 4 ||
       (train.stride != 0 && train.count - 1 > (m_window_bytes - 4 - train.address) / train.stride))
     return false;
-  if (m_array.busy_at(sc_time::from_value(first_ticks))) return false;
+  if (m_array.busy_at(ticks_time(first_ticks))) return false;
   quote.edge_ticks = 1;
   quote.latency_ticks = latency_ticks(true, 1);
   quote.untouched = true;
@@ -146,7 +146,7 @@ bool Ciu::quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& 
 
 void Ciu::direct_train(const WordTrain& train, const uint64_t* arrivals) {
   if (train.count == 0) return;
-  const sc_time first = sc_time::from_value(arrivals[0]) - sc_core::sc_time_stamp();
+  const sc_time first = ticks_time(arrivals[0]) - sc_core::sc_time_stamp();
   mark_used(first);
   m_array.mark_used(first);
   // Word k's place from word k - 1's: the stride in groups and addresses,
