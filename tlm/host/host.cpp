@@ -389,12 +389,12 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
   if (m_store_train.running) {
     done = train_transact(address, data, bytes, m_write_buffer_free_ticks);
   } else {
-    // The payload must not point into memory the target writes (a span's
-    // data is already in place through DMI), so it carries a copy.
-    if (m_post_data.size() < bytes) m_post_data.resize(bytes);
-    copy_access(m_post_data.data(), data, bytes);
+    // The payload points at the caller's bytes (a write's target reads
+    // them during the call). A span's are already in place in memory
+    // through DMI: memory then moves its bytes onto themselves, which it
+    // skips (tlm/mem/README.md).
     m_train->transfers = transfers;
-    done = transact(tlm::TLM_WRITE_COMMAND, address, m_post_data.data(), bytes, m_write_buffer_free_ticks);
+    done = transact(tlm::TLM_WRITE_COMMAND, address, const_cast<uint8_t*>(data), bytes, m_write_buffer_free_ticks);
   }
   m_write_buffer_free_ticks = done;
   if (words > m_params.write_buffer_words) {
@@ -410,9 +410,14 @@ void Host::post_request(uint32_t address, const uint8_t* data, unsigned bytes, u
 
 void Host::write_back(const DataCache::WriteBack& dirty) {
   if (dirty.bytes == 0) return;
-  uint8_t data[256] = {};
-  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes)) std::memcpy(data, p, dirty.bytes);
-  post_write(dirty.address, data, dirty.bytes);
+  // The line's bytes where DMI reaches them (post_request's payload points
+  // at them), else zeros.
+  if (const uint8_t* p = dmi_pointer(dirty.address, dirty.bytes)) {
+    post_write(dirty.address, p, dirty.bytes);
+    return;
+  }
+  const uint8_t zeros[256] = {};
+  post_write(dirty.address, zeros, dirty.bytes);
 }
 
 DataHitLines* Host::data_hit_lines() {
@@ -856,8 +861,13 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     const DataCache::Result result = m_dcache.read(cursor);
     if (!result.hit) {
       write_back(result.victim);
+      // The line's bytes are the span's, already read through DMI: the
+      // fill's payload is the line itself where DMI reaches it (memory
+      // skips moving its bytes onto themselves), else a buffer.
+      const uint32_t line_address = m_dcache.line_address(cursor);
       uint8_t fill[256];
-      stall_until(transact(tlm::TLM_READ_COMMAND, m_dcache.line_address(cursor), fill, line, 0));
+      uint8_t* into = dmi_pointer(line_address, line);
+      stall_until(transact(tlm::TLM_READ_COMMAND, line_address, into != nullptr ? into : fill, line, 0));
     }
     m_dcache.count_hits(elements - 1);
     cursor = piece_end;

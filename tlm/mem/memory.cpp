@@ -39,14 +39,16 @@ namespace {
 
 // memmove (the data may overlap the memory), inline for the sizes of
 // single transfers, where a call into the C library would cost more than
-// the copy.
+// the copy. A payload that is the memory's own bytes (a host's span,
+// already in place through DMI) is not moved onto itself.
 inline void move(uint8_t* to, const uint8_t* from, uint64_t length) {
   switch (length) {
     case 1: std::memmove(to, from, 1); break;
     case 2: std::memmove(to, from, 2); break;
     case 4: std::memmove(to, from, 4); break;
     case 8: std::memmove(to, from, 8); break;
-    default: std::memmove(to, from, length);
+    default:
+      if (to != from) std::memmove(to, from, length);
   }
 }
 
