@@ -1713,5 +1713,45 @@ TEST(ArrayController, SkippingIdleCusForgetsAProgramWrittenOver) {
     EXPECT_EQ(skipping.array().cmem(l, 8), static_cast<uint8_t>(l - 3)) << "lane " << l;
 }
 
+// A CU that ran because its inputs changed is skipped at the next run
+// when they hold again: its record of inputs and of the CMEM it may write
+// was brought up to date (the run's lanes are moved by 16-lane chunks on
+// 96 CUs, a byte at a time on 12). Lanes in three chunks.
+void run_lanes_are_recorded(const ArrayGeometry& geometry, const std::vector<unsigned>& changed) {
+  ArrayController skipping{geometry, CycleTable::defaults(), PROGRAM_WORDS, MAX_CYCLES};
+  skipping.skip_idle_cus(true);
+  CuArray& cus = skipping.array();
+  for (unsigned l = 0; l < cus.lanes(); ++l) {
+    cus.set_cmem(l, 0, static_cast<uint8_t>(l));
+    cus.set_cmem(l, 1, 3);
+  }
+  ASSERT_TRUE(skipping.load(0, {encode(make(Opcode::op_mset)), encode(make(Opcode::op_mov, reg(0), mem(0))),
+                                encode(make(Opcode::op_add, mem(8), reg(0), mem(1))), encode(make(Opcode::op_halt))}));
+  ASSERT_TRUE(skipping.run(0).ok);  // recorded
+  const uint64_t recorded = skipping.lanes_run();
+  ASSERT_TRUE(skipping.run(0).ok);  // every CU skipped
+  ASSERT_EQ(skipping.lanes_run(), recorded);
+  ASSERT_EQ(skipping.lanes_skipped(), cus.lanes());
+  for (const unsigned l : changed) cus.set_cmem(l, 0, static_cast<uint8_t>(100 + l));
+  ASSERT_TRUE(skipping.run(0).ok);
+  EXPECT_EQ(skipping.lanes_run(), recorded + changed.size());
+  for (unsigned l = 0; l < cus.lanes(); ++l) {
+    const bool was_changed = std::find(changed.begin(), changed.end(), l) != changed.end();
+    EXPECT_EQ(cus.cmem(l, 8), static_cast<uint8_t>((was_changed ? 100 + l : l) + 3)) << "lane " << l;
+  }
+  ASSERT_TRUE(skipping.run(0).ok);
+  EXPECT_EQ(skipping.lanes_run(), recorded + changed.size()) << "the changed CUs ran again";
+  EXPECT_EQ(skipping.lanes_skipped(), 3 * cus.lanes() - changed.size());
+}
+
+TEST(ArrayController, ACuThatRanIsSkippedWhenItsInputsHoldAgain) {
+  ASSERT_EQ(small_cmem_geometry().lanes(), 96u);
+  run_lanes_are_recorded(small_cmem_geometry(), {3, 17, 18, 40});
+  ArrayGeometry twelve = small_cmem_geometry();
+  twelve.columns = 4;
+  twelve.rows = 3;
+  run_lanes_are_recorded(twelve, {1, 5, 11});
+}
+
 }  // namespace
 }  // namespace tessera::ap

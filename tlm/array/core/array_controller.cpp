@@ -1,6 +1,12 @@
 #include "array/core/array_controller.h"
 
 #include <algorithm>
+#include <array>
+#include <cstring>
+
+#if defined(__x86_64__)
+#include <tmmintrin.h>
+#endif
 
 namespace tessera::ap {
 
@@ -562,6 +568,100 @@ void scatter_lanes(unsigned k, const unsigned* __restrict lanes, const uint8_t* 
   for (unsigned j = 0; j < k; ++j) to[lanes[j]] = record[lanes[j]] = from[j];
 }
 
+// The same three moves on a processor with SSSE3's byte shuffle, when the
+// lanes are a whole number of 16-lane chunks (the rows, and the records'
+// rows, are then whole chunks): each chunk of a row that holds run lanes
+// is loaded whole, its run lanes picked out of it, or put back into it,
+// by one shuffle, instead of a byte at a time. The run lanes of chunk c
+// are work lanes offset[c] .. offset[c + 1] - 1.
+class LaneChunks {
+ public:
+  static constexpr unsigned CHUNK = 16;
+  // Whether the chunks can take the k lanes (ascending) of an array of n.
+  bool set(unsigned k, const unsigned* lanes, unsigned n) {
+#if defined(__x86_64__)
+    static const bool shuffles = __builtin_cpu_supports("ssse3");
+    if (!shuffles || k == 0 || 2 * k > n || n % CHUNK != 0 || n / CHUNK > MAX_CHUNKS) return false;
+    m_used = 0;
+    for (unsigned j = 0; j < k;) {
+      Chunk& chunk = m_chunks[m_used++];
+      chunk.first_lane = lanes[j] / CHUNK * CHUNK;
+      chunk.offset = j;
+      std::memset(chunk.pick, 0x80, CHUNK);  // 0x80: the shuffle gives 0
+      std::memset(chunk.put, 0x80, CHUNK);
+      std::memset(chunk.select, 0, CHUNK);
+      for (; j < k && lanes[j] < chunk.first_lane + CHUNK; ++j) {
+        const unsigned byte = lanes[j] - chunk.first_lane, at = j - chunk.offset;
+        chunk.pick[at] = static_cast<uint8_t>(byte);
+        chunk.put[byte] = static_cast<uint8_t>(at);
+        chunk.select[byte] = 0xff;
+      }
+    }
+    return true;
+#else
+    (void)k, (void)lanes, (void)n;
+    return false;
+#endif
+  }
+#if defined(__x86_64__)
+  // gather_lanes. Each chunk's store writes 16 bytes from its offset on:
+  // the next chunk's overwrites what is past its lanes, and the last
+  // writes at most 16 bytes past the k-th lane, in the work row's
+  // padding (a work array runs at most half of a row's lanes).
+  __attribute__((target("ssse3"))) void gather(const uint8_t* from, uint8_t* to) const {
+    for (unsigned c = 0; c < m_used; ++c) {
+      const Chunk& chunk = m_chunks[c];
+      store(to + chunk.offset, _mm_shuffle_epi8(load(from + chunk.first_lane), load(chunk.pick)));
+    }
+  }
+  // copy_lanes: each chunk's run lanes from `from`, its other lanes kept.
+  __attribute__((target("ssse3"))) void copy(const uint8_t* from, uint8_t* to) const {
+    for (unsigned c = 0; c < m_used; ++c) {
+      const Chunk& chunk = m_chunks[c];
+      const __m128i select = load(chunk.select);
+      uint8_t* at = to + chunk.first_lane;
+      store(at, _mm_or_si128(_mm_andnot_si128(select, load(at)), _mm_and_si128(select, load(from + chunk.first_lane))));
+    }
+  }
+  // scatter_lanes: the work lanes into each chunk's run lanes, in `to` and
+  // in `record`, the chunks' other lanes kept.
+  __attribute__((target("ssse3"))) void scatter(const uint8_t* from, uint8_t* to, uint8_t* record) const {
+    for (unsigned c = 0; c < m_used; ++c) {
+      const Chunk& chunk = m_chunks[c];
+      const __m128i put = _mm_shuffle_epi8(load(from + chunk.offset), load(chunk.put));
+      const __m128i select = load(chunk.select);
+      uint8_t* at = to + chunk.first_lane;
+      store(at, _mm_or_si128(_mm_andnot_si128(select, load(at)), put));
+      at = record + chunk.first_lane;
+      store(at, _mm_or_si128(_mm_andnot_si128(select, load(at)), put));
+    }
+  }
+
+ private:
+  static __m128i load(const uint8_t* p) {
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  }
+  static void store(uint8_t* p, __m128i v) {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v);
+  }
+#else
+  void gather(const uint8_t*, uint8_t*) const {}
+  void copy(const uint8_t*, uint8_t*) const {}
+  void scatter(const uint8_t*, uint8_t*, uint8_t*) const {}
+
+ private:
+#endif
+  static constexpr unsigned MAX_CHUNKS = 64;
+  struct Chunk {
+    alignas(16) uint8_t pick[CHUNK];    // byte at of the work lanes: the chunk's byte it takes, or 0x80
+    alignas(16) uint8_t put[CHUNK];     // the chunk's byte: the work lane (from offset) it takes, or 0x80
+    alignas(16) uint8_t select[CHUNK];  // 0xff at the chunk's run lanes
+    unsigned first_lane = 0, offset = 0;
+  };
+  std::array<Chunk, MAX_CHUNKS> m_chunks;
+  unsigned m_used = 0;
+};
+
 }  // namespace
 
 ArrayController::EntryPlan ArrayController::plan_entry(unsigned entry) const {
@@ -852,16 +952,30 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
     // vector's own pointer as far as the compiler knows, which would then
     // load it again for every lane.
     const unsigned* const lanes = m_run_lanes.data();
-    for (const unsigned row : plan.gathered) gather_lanes(k, lanes, m_array.state_row(row), work.state_row(row));
-    for (size_t i = 0; i < plan.inputs.size(); ++i)
-      copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+    LaneChunks chunks;
+    const bool chunked = chunks.set(k, lanes, n);
+    for (const unsigned row : plan.gathered) {
+      if (chunked)
+        chunks.gather(m_array.state_row(row), work.state_row(row));
+      else
+        gather_lanes(k, lanes, m_array.state_row(row), work.state_row(row));
+    }
+    for (size_t i = 0; i < plan.inputs.size(); ++i) {
+      if (chunked)
+        chunks.copy(m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+      else
+        copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+    }
     work.mask_written();
     // Control flow and addresses do not depend on data: this run takes the
     // recorded run's path.
     work.run_trace(memo.trace);
     for (size_t i = 0; i < outputs; ++i) {
       const unsigned row = plan.output_row(i);
-      scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
+      if (chunked)
+        chunks.scatter(work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
+      else
+        scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
     }
     for (const unsigned stage : memo.lane_stages) {
       const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
