@@ -1596,6 +1596,60 @@ TEST(ArrayController, SkippingIdleCusChangesNothingOnASmallGrid) {
   skipping_idle_cus_changes_nothing(IssueSkew::none, geometry);
 }
 
+// Runs `trace` on `lanes` lanes from a random state both ways, by
+// execute() and by its compiled trace, and expects the same registers,
+// flags, masks, CMEM and per-lane counts; returns the compiled trace's
+// steps.
+size_t expect_trace_runs_as_execute(std::mt19937_64& rng, unsigned lanes, const std::vector<Instruction>& trace,
+                                    const std::string& where) {
+  CuArray by_execute(small_cmem_geometry()), by_trace(small_cmem_geometry());
+  for (CuArray* array : {&by_execute, &by_trace}) array->set_lane_count(lanes);
+  for (unsigned l = 0; l < lanes; ++l) {
+    const auto bits = rng();
+    const CuFlags flags{(bits & 3u) != 0, (bits & 12u) != 0, (bits & 16u) != 0};
+    for (CuArray* array : {&by_execute, &by_trace}) {
+      array->set_flags(l, flags);
+      array->set_mask(l, (bits & 32u) != 0);
+    }
+    for (unsigned r = 0; r < REGISTERS; ++r) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : {&by_execute, &by_trace}) array->set_reg(l, r, value);
+    }
+    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : {&by_execute, &by_trace}) array->set_cmem(l, a, value);
+    }
+  }
+  // A few instructions executed on both first, so that the registers
+  // are renamed when the trace starts (run_trace undoes it).
+  for (unsigned i = 0; i < 4; ++i) {
+    const Instruction& in = trace[rng() % trace.size()];
+    for (CuArray* array : {&by_execute, &by_trace})
+      EXPECT_EQ(array->execute(in, LoopVariables{}, 0), "") << format_instruction(in);
+  }
+  by_execute.count_per_lane(true);
+  for (const Instruction& in : trace)
+    EXPECT_EQ(by_execute.execute(in, LoopVariables{}, 0), "") << format_instruction(in);
+  const CuArray::CompiledTrace compiled = by_trace.compile_trace(trace);
+  by_trace.run_trace(compiled);
+  for (unsigned l = 0; l < lanes; ++l) {
+    EXPECT_EQ(by_trace.flags(l), by_execute.flags(l)) << where << ", lane " << l;
+    EXPECT_EQ(by_trace.mask(l), by_execute.mask(l)) << where << ", lane " << l;
+    for (unsigned r = 0; r < REGISTERS; ++r)
+      EXPECT_EQ(by_trace.reg(l, r), by_execute.reg(l, r)) << where << ", lane " << l << ", r" << r;
+    for (unsigned a = 0; a < CMEM_BYTES; ++a)
+      EXPECT_EQ(by_trace.cmem(l, a), by_execute.cmem(l, a)) << where << ", lane " << l << ", address " << a;
+  }
+  EXPECT_EQ(by_trace.active_lanes(), by_execute.active_lanes()) << where;
+  for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+    EXPECT_EQ(by_trace.lane_useful(static_cast<Stage>(stage)), by_execute.lane_useful(static_cast<Stage>(stage)))
+        << where << ", stage " << stage;
+    EXPECT_EQ(by_trace.lane_stores(static_cast<Stage>(stage)), by_execute.lane_stores(static_cast<Stage>(stage)))
+        << where << ", stage " << stage;
+  }
+  return compiled.steps.size();
+}
+
 // The trace runner (CuArray::compile_trace, run_trace) against execute():
 // random traces of every lane instruction a trace may hold (their loop
 // variables added to the addresses, as ArrayController::build_trace does),
@@ -1624,53 +1678,44 @@ TEST(CuArray, ACompiledTraceRunsAsExecuteDoes) {
           }
         trace.push_back(in);
       }
-      CuArray by_execute(small_cmem_geometry()), by_trace(small_cmem_geometry());
-      for (CuArray* array : {&by_execute, &by_trace}) array->set_lane_count(lanes);
-      for (unsigned l = 0; l < lanes; ++l) {
-        const auto bits = rng();
-        const CuFlags flags{(bits & 3u) != 0, (bits & 12u) != 0, (bits & 16u) != 0};
-        for (CuArray* array : {&by_execute, &by_trace}) {
-          array->set_flags(l, flags);
-          array->set_mask(l, (bits & 32u) != 0);
-        }
-        for (unsigned r = 0; r < REGISTERS; ++r) {
-          const auto value = static_cast<uint8_t>(rng());
-          for (CuArray* array : {&by_execute, &by_trace}) array->set_reg(l, r, value);
-        }
-        for (unsigned a = 0; a < CMEM_BYTES; ++a) {
-          const auto value = static_cast<uint8_t>(rng());
-          for (CuArray* array : {&by_execute, &by_trace}) array->set_cmem(l, a, value);
-        }
-      }
-      // A few instructions executed on both first, so that the registers
-      // are renamed when the trace starts (run_trace undoes it).
-      for (unsigned i = 0; i < 4; ++i) {
-        const Instruction& in = trace[rng() % trace.size()];
-        for (CuArray* array : {&by_execute, &by_trace})
-          ASSERT_EQ(array->execute(in, LoopVariables{}, 0), "") << format_instruction(in);
-      }
-      by_execute.count_per_lane(true);
-      for (const Instruction& in : trace)
-        ASSERT_EQ(by_execute.execute(in, LoopVariables{}, 0), "") << format_instruction(in);
-      by_trace.run_trace(by_trace.compile_trace(trace));
       const std::string where = std::to_string(lanes) + " lanes, trace " + std::to_string(t);
-      for (unsigned l = 0; l < lanes; ++l) {
-        ASSERT_EQ(by_trace.flags(l), by_execute.flags(l)) << where << ", lane " << l;
-        ASSERT_EQ(by_trace.mask(l), by_execute.mask(l)) << where << ", lane " << l;
-        for (unsigned r = 0; r < REGISTERS; ++r)
-          ASSERT_EQ(by_trace.reg(l, r), by_execute.reg(l, r)) << where << ", lane " << l << ", r" << r;
-        for (unsigned a = 0; a < CMEM_BYTES; ++a)
-          ASSERT_EQ(by_trace.cmem(l, a), by_execute.cmem(l, a)) << where << ", lane " << l << ", address " << a;
-      }
-      ASSERT_EQ(by_trace.active_lanes(), by_execute.active_lanes()) << where;
-      for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
-        ASSERT_EQ(by_trace.lane_useful(static_cast<Stage>(stage)), by_execute.lane_useful(static_cast<Stage>(stage)))
-            << where << ", stage " << stage;
-        ASSERT_EQ(by_trace.lane_stores(static_cast<Stage>(stage)), by_execute.lane_stores(static_cast<Stage>(stage)))
-            << where << ", stage " << stage;
-      }
+      expect_trace_runs_as_execute(rng, lanes, trace, where);
+      ASSERT_FALSE(::testing::Test::HasFailure()) << where;
     }
   }
+}
+
+// The neighbours the compiler fuses into one step (FUSED_PAIRS in
+// cu_array.cpp: add, adc, shl, shr, mov and or, into registers and CMEM,
+// in twelve pairs): random traces of those instructions alone (about one
+// neighbour in ten a pair), run as execute() runs them, in fewer steps
+// than instructions.
+TEST(CuArray, ACompiledTraceOfFusedPairsRunsAsExecuteDoes) {
+  constexpr unsigned TRACES = 200, LENGTH = 40;
+  std::mt19937_64 rng(0xf05e);
+  const Opcode ops[] = {Opcode::op_add, Opcode::op_adc, Opcode::op_shl, Opcode::op_shr, Opcode::op_mov, Opcode::op_or};
+  const auto operand = [&](bool in_cmem) {
+    return in_cmem ? mem(static_cast<unsigned>(rng() % CMEM_BYTES)) : reg(static_cast<unsigned>(rng() % REGISTERS));
+  };
+  size_t steps = 0, instructions = 0;
+  for (const unsigned lanes : {COLUMNS * ROWS, 20u}) {
+    for (unsigned t = 0; t < TRACES; ++t) {
+      std::vector<Instruction> trace;
+      while (trace.size() < LENGTH) {
+        const Opcode opcode = ops[rng() % std::size(ops)];
+        const bool d_in_cmem = rng() % 3 == 0, a_in_cmem = !d_in_cmem && rng() % 3 == 0;
+        const Instruction in = make(opcode, operand(d_in_cmem), operand(a_in_cmem), operand(false));
+        const Decoded decoded = decode(encode(in));
+        if (!decoded.error.empty() || !check_limits(decoded.instruction, REGISTERS, CMEM_BYTES).empty()) continue;
+        trace.push_back(decoded.instruction);
+      }
+      const std::string where = std::to_string(lanes) + " lanes, trace " + std::to_string(t);
+      steps += expect_trace_runs_as_execute(rng, lanes, trace, where);
+      instructions += trace.size();
+      ASSERT_FALSE(::testing::Test::HasFailure()) << where;
+    }
+  }
+  EXPECT_LT(steps, instructions * 19 / 20) << "pairs were fused";
 }
 
 // A trace compiled for one geometry is refused by an array of another,

@@ -686,7 +686,45 @@ enum class TraceDest : unsigned { none, reg, cmem, kinds };
 constexpr unsigned TRACE_OPCODES = 64;  // the word's 6-bit field
 constexpr unsigned TRACE_STAGE = TRACE_OPCODES * static_cast<unsigned>(TraceDest::kinds);
 constexpr unsigned TRACE_MSET = TRACE_STAGE + 1, TRACE_MCLR = TRACE_STAGE + 2, TRACE_MMOV = TRACE_STAGE + 3,
-                   TRACE_MAND = TRACE_STAGE + 4, TRACE_MOR = TRACE_STAGE + 5, TRACE_HANDLERS = TRACE_STAGE + 6;
+                   TRACE_MAND = TRACE_STAGE + 4, TRACE_MOR = TRACE_STAGE + 5, TRACE_PAIRS = TRACE_STAGE + 6;
+
+// Two neighbouring instructions of one byte each that the compiler makes
+// one step (one dispatch instead of two): the neighbours most frequent in
+// `ap-tile`'s traces (add then adc of a 16-bit sum, shifts in a row, moves
+// around them). The step holds the first's operands in a, b, d[0] and the
+// second's in a_low, b_low, d[1].
+struct FusedPair {
+  Opcode first;
+  TraceDest first_dest;
+  Opcode second;
+  TraceDest second_dest;
+};
+constexpr std::array<FusedPair, 12> FUSED_PAIRS = {{
+    {Opcode::op_add, TraceDest::reg, Opcode::op_adc, TraceDest::reg},
+    {Opcode::op_shl, TraceDest::reg, Opcode::op_shl, TraceDest::reg},
+    {Opcode::op_adc, TraceDest::reg, Opcode::op_add, TraceDest::reg},
+    {Opcode::op_mov, TraceDest::cmem, Opcode::op_add, TraceDest::reg},
+    {Opcode::op_adc, TraceDest::reg, Opcode::op_mov, TraceDest::reg},
+    {Opcode::op_mov, TraceDest::reg, Opcode::op_mov, TraceDest::reg},
+    {Opcode::op_shr, TraceDest::reg, Opcode::op_shr, TraceDest::reg},
+    {Opcode::op_mov, TraceDest::reg, Opcode::op_shl, TraceDest::reg},
+    {Opcode::op_or, TraceDest::reg, Opcode::op_mov, TraceDest::cmem},
+    {Opcode::op_mov, TraceDest::cmem, Opcode::op_mov, TraceDest::cmem},
+    {Opcode::op_mov, TraceDest::cmem, Opcode::op_mov, TraceDest::reg},
+    {Opcode::op_adc, TraceDest::reg, Opcode::op_adc, TraceDest::reg},
+}};
+constexpr unsigned TRACE_HANDLERS = TRACE_PAIRS + FUSED_PAIRS.size();
+// The pair's handler for two arithmetic handlers, or 0.
+constexpr unsigned fused_handler(unsigned first, unsigned second) {
+  const auto kinds = static_cast<unsigned>(TraceDest::kinds);
+  for (unsigned i = 0; i < FUSED_PAIRS.size(); ++i) {
+    const FusedPair& pair = FUSED_PAIRS[i];
+    if (first == static_cast<unsigned>(pair.first) * kinds + static_cast<unsigned>(pair.first_dest) &&
+        second == static_cast<unsigned>(pair.second) * kinds + static_cast<unsigned>(pair.second_dest))
+      return TRACE_PAIRS + i;
+  }
+  return 0;
+}
 
 // One block of lanes as a vector of the compiler's (GCC's and Clang's
 // vector extension): the block's loops written as vector operations, which
@@ -760,6 +798,35 @@ void count_trace_lanes(TraceRun& run, uint32_t operations, uint32_t stores) {
   }
 }
 
+// One block's result row into its destination: under the mask into CMEM,
+// whole into a register's row.
+template <TraceDest kDest>
+inline void store_result_block(const uint8_t* value, uint8_t* destination, const uint8_t* m) {
+  if constexpr (kDest == TraceDest::cmem)
+    store_masked_block(value, destination, m);
+  else if constexpr (kDest == TraceDest::reg)
+    std::memcpy(destination, value, TRACE_BLOCK);
+}
+
+// One block of a one-byte instruction: its result into its destination.
+template <Opcode kOpcode, TraceDest kDest>
+[[gnu::always_inline]] inline void one_byte_block(TraceRun& run, size_t l, uint32_t a, uint32_t b, uint32_t d) {
+  uint8_t* const base = run.base;
+  arithmetic_lanes<TRACE_BLOCK>(kOpcode, TRACE_BLOCK, base + a + l, base + a + l, base + b + l, base + b + l, run.m + l,
+                                run.out + l, run.high + l, run.middle + l, run.low + l, run.c + l, run.z + l,
+                                run.s + l);
+  store_result_block<kDest>(run.out + l, base + d + l, run.m + l);
+}
+
+template <unsigned kPair>
+void trace_pair(const CuArray::TraceStep& step, TraceRun& run) {
+  constexpr FusedPair PAIR = FUSED_PAIRS[kPair];
+  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
+    one_byte_block<PAIR.first, PAIR.first_dest>(run, l, step.a, step.b, step.d[0]);
+    one_byte_block<PAIR.second, PAIR.second_dest>(run, l, step.a_low, step.b_low, step.d[1]);
+  }
+}
+
 template <unsigned kOpcode, TraceDest kDest>
 void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
   constexpr auto OPCODE = static_cast<Opcode>(kOpcode);
@@ -772,13 +839,8 @@ void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
       const std::array<const uint8_t*, 3> values = written == 1
                                                        ? std::array<const uint8_t*, 3>{run.out, nullptr, nullptr}
                                                        : std::array<const uint8_t*, 3>{run.high, run.middle, run.low};
-      for (unsigned byte = 0; byte < written; ++byte) {
-        uint8_t* destination = base + step.d[byte] + l;
-        if constexpr (kDest == TraceDest::cmem)
-          store_masked_block(values[byte] + l, destination, run.m + l);
-        else
-          std::memcpy(destination, values[byte] + l, TRACE_BLOCK);
-      }
+      for (unsigned byte = 0; byte < written; ++byte)
+        store_result_block<kDest>(values[byte] + l, base + step.d[byte] + l, run.m + l);
     }
   }
 }
@@ -833,6 +895,8 @@ constexpr TraceHandler trace_handler() {
                              static_cast<TraceDest>(kHandler % static_cast<unsigned>(TraceDest::kinds))>;
   else if constexpr (kHandler == TRACE_STAGE)
     return &trace_stage;
+  else if constexpr (kHandler >= TRACE_PAIRS)
+    return &trace_pair<kHandler - TRACE_PAIRS>;
   else
     return &trace_mask<kHandler>;
 }
@@ -903,6 +967,18 @@ CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& tr
     for (unsigned byte = 0; byte < step.d.size(); ++byte)
       step.d[byte] = op.uses_d && byte < op.d_width ? operand(in.d, byte) : unused;
     if (dest == TraceDest::cmem) stores += op.d_width;
+    // Fused with the step before when the two are a pair of FUSED_PAIRS
+    // (a stage or mask change between them is a step of its own).
+    if (!compiled.steps.empty() && compiled.steps.back().handler < TRACE_STAGE) {
+      TraceStep& before = compiled.steps.back();
+      if (const unsigned pair = fused_handler(before.handler, step.handler)) {
+        before.handler = static_cast<uint16_t>(pair);
+        before.a_low = step.a;
+        before.b_low = step.b;
+        before.d[1] = step.d[0];
+        continue;
+      }
+    }
     compiled.steps.push_back(step);
   }
   compiled.tail_operations = operations;
