@@ -572,8 +572,8 @@ void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* valu
   t.words = {address, stride, values, count};
   t.quoted = false;
   t.cycles = cycles;
-  t.arrivals.clear();
-  t.arrivals.reserve(count);
+  t.arrived = 0;
+  if (t.arrivals.size() < count) t.arrivals.resize(count);
   try {
     for (t.next = 0; t.next < count; ++t.next) {
       t.next = train_steady(t.next);
@@ -677,7 +677,7 @@ size_t Host::train_steady(size_t from) {
     st.local = l;
     st.budget = std::min(at_budget, std::max(m_quantum_ticks, l + 1));
     st.window_clear = st.window_clear && t.quote.untouched;
-    t.arrivals.push_back(issue);
+    t.arrivals[t.arrived++] = issue;
     st.free_ticks = done;
     st.head = first;
     st.pending = left;
@@ -765,9 +765,9 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
     cycles += c * (end - m);
     m = end;
   }
-  const size_t arrived = t.arrivals.size();
-  t.arrivals.resize(arrived + m);
-  for (size_t i = 0; i < m; ++i) t.arrivals[arrived + i] = st.free_ticks + i * latency;
+  uint64_t* const arrivals = t.arrivals.data() + t.arrived;
+  for (size_t i = 0; i < m; ++i) arrivals[i] = st.free_ticks + i * latency;
+  t.arrived += m;
   const uint64_t last_local = front - st.now + (m - 1) * latency;
   st.measured += cycles;
   st.busy += cycles + m * uint64_t{m_params.store_cycles};
@@ -796,7 +796,7 @@ uint64_t Host::train_transact(uint32_t address, const uint8_t* data, unsigned by
       t.first = t.next;
     }
     if (t.quoted) {
-      t.arrivals.push_back(issue);
+      t.arrivals[t.arrived++] = issue;
       // What transact() does to the host's quantum keeping.
       m_budget_ticks = std::min(m_budget_ticks, std::max(m_quantum_ticks, m_local_ticks + 1));
       m_window_clear = m_window_clear && t.quote.untouched;
@@ -815,10 +815,10 @@ uint64_t Host::train_transact(uint32_t address, const uint8_t* data, unsigned by
 void Host::hand_over_train() {
   StoreTrain& t = m_store_train;
   const WordTrain deferred{t.words.address + t.first * t.words.stride, t.words.stride, t.words.values + t.first,
-                           t.arrivals.size()};
+                           t.arrived};
   t.quoted = false;
   m_direct_out->direct_train(deferred, t.arrivals.data());
-  t.arrivals.clear();
+  t.arrived = 0;
 }
 
 uint8_t* Host::span_pointer(uint32_t address, unsigned bytes) {

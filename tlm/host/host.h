@@ -248,7 +248,10 @@ class Host : public Block, public HostApi, public HostCore {
     TrainQuote quote;
     const uint64_t* cycles = nullptr;  // the cycles before each word
     size_t first = 0;                  // the first deferred word
-    std::vector<uint64_t> arrivals;    // the deferred words' issue times
+    // The deferred words' issue times: the first `arrived` (grown to a
+    // train's words, never shrunk, so not filled again at each train).
+    std::vector<uint64_t> arrivals;
+    size_t arrived = 0;
   };
   StoreTrain m_store_train;
   uint64_t train_transact(uint32_t address, const uint8_t* data, unsigned bytes, uint64_t not_before_ticks);
@@ -282,7 +285,7 @@ class Host : public Block, public HostApi, public HostCore {
   // form (README.md, "Store trains"); returns how many (0: none).
   size_t steady_run(SteadyTrain& st, size_t from);
   void flush_train() {
-    if (!m_store_train.arrivals.empty()) hand_over_train();
+    if (m_store_train.arrived != 0) hand_over_train();
   }
   void hand_over_train();
   // Transfers of `bytes_each` that the buffer's data words hold.
