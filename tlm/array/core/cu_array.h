@@ -164,9 +164,11 @@ class CuArray {
   // nadds, nadcs, lut or zsend; every address within CMEM), made ready to
   // run (compile_trace): per instruction its handler, the one for its
   // opcode and the kind of its destination, and the byte offsets of its
-  // rows in the array's storage; the lane operations and CMEM stores
-  // between two changes of the mask or the stage, which do not depend on
-  // data, summed in advance at the change (README.md, "Skipping idle CUs").
+  // rows in the array's storage (two neighbouring one-byte instructions
+  // of a frequent pair share a step: FUSED_PAIRS); the lane operations
+  // and CMEM stores between two changes of the mask or the stage, which
+  // do not depend on data, summed in advance at the change (README.md,
+  // "Skipping idle CUs").
   struct TraceStep {
     uint16_t handler = 0;
     uint8_t cond = 0;                     // mmov, mand, mor
