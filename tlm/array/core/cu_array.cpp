@@ -687,6 +687,11 @@ constexpr unsigned TRACE_OPCODES = 64;  // the word's 6-bit field
 constexpr unsigned TRACE_STAGE = TRACE_OPCODES * static_cast<unsigned>(TraceDest::kinds);
 constexpr unsigned TRACE_MSET = TRACE_STAGE + 1, TRACE_MCLR = TRACE_STAGE + 2, TRACE_MMOV = TRACE_STAGE + 3,
                    TRACE_MAND = TRACE_STAGE + 4, TRACE_MOR = TRACE_STAGE + 5, TRACE_PAIRS = TRACE_STAGE + 6;
+// An arithmetic instruction's handler: by opcode and destination.
+constexpr unsigned arithmetic_handler(Opcode opcode, TraceDest dest) {
+  return (static_cast<unsigned>(opcode) & (TRACE_OPCODES - 1)) * static_cast<unsigned>(TraceDest::kinds) +
+         static_cast<unsigned>(dest);
+}
 
 // Two neighbouring instructions of one byte each that the compiler makes
 // one step (one dispatch instead of two): the neighbours most frequent in
@@ -716,11 +721,10 @@ constexpr std::array<FusedPair, 12> FUSED_PAIRS = {{
 constexpr unsigned TRACE_HANDLERS = TRACE_PAIRS + FUSED_PAIRS.size();
 // The pair's handler for two arithmetic handlers, or 0.
 constexpr unsigned fused_handler(unsigned first, unsigned second) {
-  const auto kinds = static_cast<unsigned>(TraceDest::kinds);
   for (unsigned i = 0; i < FUSED_PAIRS.size(); ++i) {
     const FusedPair& pair = FUSED_PAIRS[i];
-    if (first == static_cast<unsigned>(pair.first) * kinds + static_cast<unsigned>(pair.first_dest) &&
-        second == static_cast<unsigned>(pair.second) * kinds + static_cast<unsigned>(pair.second_dest))
+    if (first == arithmetic_handler(pair.first, pair.first_dest) &&
+        second == arithmetic_handler(pair.second, pair.second_dest))
       return TRACE_PAIRS + i;
   }
   return 0;
@@ -957,9 +961,7 @@ CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& tr
     const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
     const TraceDest dest = !op.uses_d ? TraceDest::none : in.d.in_cmem ? TraceDest::cmem : TraceDest::reg;
     TraceStep step;
-    step.handler =
-        static_cast<uint16_t>((static_cast<unsigned>(in.opcode) & 63u) * static_cast<unsigned>(TraceDest::kinds) +
-                              static_cast<unsigned>(dest));
+    step.handler = static_cast<uint16_t>(arithmetic_handler(in.opcode, dest));
     step.a = op.uses_a ? operand(in.a, 0) : unused;
     step.a_low = op.uses_a && op.a_width > 1 ? operand(in.a, 1) : unused;
     step.b = op.uses_b ? operand(in.b, 0) : unused;
