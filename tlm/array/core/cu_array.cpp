@@ -812,39 +812,55 @@ inline void store_result_block(const uint8_t* value, uint8_t* destination, const
     std::memcpy(destination, value, TRACE_BLOCK);
 }
 
+// The rows a block's arithmetic reads and writes, and the blocks' end,
+// read from the run once per step into locals: a byte stored through a
+// row may alias any object as far as the compiler knows, so that it would
+// load the run's pointers (and the step's offsets) again after each store.
+struct BlockRows {
+  uint8_t *base, *m, *out, *high, *middle, *low, *c, *z, *s;
+  size_t blocked;
+};
+inline BlockRows block_rows(const TraceRun& run) {
+  return {run.base, run.m, run.out, run.high, run.middle, run.low, run.c, run.z, run.s, run.blocked};
+}
+
 // One block of a one-byte instruction: its result into its destination.
 template <Opcode kOpcode, TraceDest kDest>
-[[gnu::always_inline]] inline void one_byte_block(TraceRun& run, size_t l, uint32_t a, uint32_t b, uint32_t d) {
-  uint8_t* const base = run.base;
-  arithmetic_lanes<TRACE_BLOCK>(kOpcode, TRACE_BLOCK, base + a + l, base + a + l, base + b + l, base + b + l, run.m + l,
-                                run.out + l, run.high + l, run.middle + l, run.low + l, run.c + l, run.z + l,
-                                run.s + l);
-  store_result_block<kDest>(run.out + l, base + d + l, run.m + l);
+[[gnu::always_inline]] inline void one_byte_block(const BlockRows& r, size_t l, uint32_t a, uint32_t b, uint32_t d) {
+  uint8_t* const base = r.base;
+  arithmetic_lanes<TRACE_BLOCK>(kOpcode, TRACE_BLOCK, base + a + l, base + a + l, base + b + l, base + b + l, r.m + l,
+                                r.out + l, r.high + l, r.middle + l, r.low + l, r.c + l, r.z + l, r.s + l);
+  store_result_block<kDest>(r.out + l, base + d + l, r.m + l);
 }
 
 template <unsigned kPair>
 void trace_pair(const CuArray::TraceStep& step, TraceRun& run) {
   constexpr FusedPair PAIR = FUSED_PAIRS[kPair];
-  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
-    one_byte_block<PAIR.first, PAIR.first_dest>(run, l, step.a, step.b, step.d[0]);
-    one_byte_block<PAIR.second, PAIR.second_dest>(run, l, step.a_low, step.b_low, step.d[1]);
+  const BlockRows r = block_rows(run);
+  const uint32_t a = step.a, b = step.b, d = step.d[0], a2 = step.a_low, b2 = step.b_low, d2 = step.d[1];
+  for (size_t l = 0; l < r.blocked; l += TRACE_BLOCK) {
+    one_byte_block<PAIR.first, PAIR.first_dest>(r, l, a, b, d);
+    one_byte_block<PAIR.second, PAIR.second_dest>(r, l, a2, b2, d2);
   }
 }
 
 template <unsigned kOpcode, TraceDest kDest>
 void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
   constexpr auto OPCODE = static_cast<Opcode>(kOpcode);
-  uint8_t* const base = run.base;
-  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
+  const BlockRows r = block_rows(run);
+  uint8_t* const base = r.base;
+  const uint32_t a = step.a, a_low = step.a_low, b = step.b, b_low = step.b_low;
+  const std::array<uint32_t, 3> d = step.d;
+  for (size_t l = 0; l < r.blocked; l += TRACE_BLOCK) {
     const unsigned written = arithmetic_lanes<TRACE_BLOCK>(
-        OPCODE, TRACE_BLOCK, base + step.a + l, base + step.a_low + l, base + step.b + l, base + step.b_low + l,
-        run.m + l, run.out + l, run.high + l, run.middle + l, run.low + l, run.c + l, run.z + l, run.s + l);
+        OPCODE, TRACE_BLOCK, base + a + l, base + a_low + l, base + b + l, base + b_low + l, r.m + l, r.out + l,
+        r.high + l, r.middle + l, r.low + l, r.c + l, r.z + l, r.s + l);
     if constexpr (kDest != TraceDest::none) {
       const std::array<const uint8_t*, 3> values = written == 1
-                                                       ? std::array<const uint8_t*, 3>{run.out, nullptr, nullptr}
-                                                       : std::array<const uint8_t*, 3>{run.high, run.middle, run.low};
+                                                       ? std::array<const uint8_t*, 3>{r.out, nullptr, nullptr}
+                                                       : std::array<const uint8_t*, 3>{r.high, r.middle, r.low};
       for (unsigned byte = 0; byte < written; ++byte)
-        store_result_block<kDest>(values[byte] + l, base + step.d[byte] + l, run.m + l);
+        store_result_block<kDest>(values[byte] + l, base + d[byte] + l, r.m + l);
     }
   }
 }
@@ -874,12 +890,14 @@ inline BlockBytes condition_block(Cond cond, const uint8_t* c, const uint8_t* z,
 template <unsigned kHandler>
 void trace_mask(const CuArray::TraceStep& step, TraceRun& run) {
   count_trace_lanes(run, step.operations, step.stores);
-  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
-    uint8_t* m = run.m + l;
+  const BlockRows r = block_rows(run);
+  const auto cond = static_cast<Cond>(step.cond);
+  for (size_t l = 0; l < r.blocked; l += TRACE_BLOCK) {
+    uint8_t* m = r.m + l;
     if constexpr (kHandler == TRACE_MSET || kHandler == TRACE_MCLR) {
       std::memset(m, kHandler == TRACE_MSET ? 1 : 0, TRACE_BLOCK);
     } else {
-      const BlockBytes holds = condition_block(static_cast<Cond>(step.cond), run.c + l, run.z + l, run.s + l);
+      const BlockBytes holds = condition_block(cond, r.c + l, r.z + l, r.s + l);
       if constexpr (kHandler == TRACE_MMOV)
         store_block(m, holds);
       else if constexpr (kHandler == TRACE_MAND)
