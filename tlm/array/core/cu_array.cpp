@@ -24,11 +24,17 @@ constexpr unsigned SCRATCH_RESULT = 0, SCRATCH_NEIGHBOUR = 1, SCRATCH_PRODUCT = 
 
 enum FlagRow : unsigned { flag_c = 0, flag_z = 1, flag_s = 2, flag_m = 3, flag_rows = 4 };
 
+// The flags a lane loop writes: every flag its instruction sets, or, in a
+// compiled trace, those a later instruction (or the trace's end) reads
+// before another writes them (CuArray::compile_trace). Z and S are set
+// together by every instruction that sets either.
+enum FlagWrites : unsigned { writes_none = 0, writes_c = 1, writes_zs = 2, writes_all = 3, flag_write_kinds = 4 };
+
 // The lane loops. Each writes the result into `out` (scratch, never an
-// operand) and the flags; the caller then stores `out` into the destination.
-// Keeping the destination out of these loops lets the compiler vectorise
-// them without checking for overlap with the sources.
-template <bool kInvert, bool kCarryFromFlag>
+// operand) and the flags of kWrites; the caller then stores `out` into the
+// destination. Keeping the destination out of these loops lets the
+// compiler vectorise them without checking for overlap with the sources.
+template <bool kInvert, bool kCarryFromFlag, unsigned kWrites>
 void add_lanes(size_t n, const uint8_t* a, const uint8_t* b, bool carry_in, uint8_t* __restrict out,
                uint8_t* __restrict c, uint8_t* __restrict z, uint8_t* __restrict s) {
   // In bytes throughout (the carry from two unsigned compares, the carry in
@@ -40,39 +46,48 @@ void add_lanes(size_t n, const uint8_t* a, const uint8_t* b, bool carry_in, uint
     const auto partial = static_cast<uint8_t>(x + addend);
     const auto value = static_cast<uint8_t>(partial + carry);
     out[l] = value;
-    c[l] = static_cast<uint8_t>((partial < x ? 1 : 0) | (value < partial ? 1 : 0));
-    z[l] = value == 0 ? 1 : 0;
-    s[l] = value >> 7;
+    if constexpr ((kWrites & writes_c) != 0)
+      c[l] = static_cast<uint8_t>((partial < x ? 1 : 0) | (value < partial ? 1 : 0));
+    if constexpr ((kWrites & writes_zs) != 0) {
+      z[l] = value == 0 ? 1 : 0;
+      s[l] = value >> 7;
+    }
   }
 }
 
-template <class F>
+template <unsigned kWrites, class F>
 void logic_lanes(size_t n, const uint8_t* a, const uint8_t* b, uint8_t* __restrict out, uint8_t* __restrict z,
                  uint8_t* __restrict s, F f) {
   for (size_t l = 0; l < n; ++l) {
     const uint8_t value = f(a[l], b[l]);
     out[l] = value;
-    z[l] = value == 0 ? 1 : 0;
-    s[l] = value >> 7;
+    if constexpr ((kWrites & writes_zs) != 0) {
+      z[l] = value == 0 ? 1 : 0;
+      s[l] = value >> 7;
+    }
   }
 }
 
 // F(a, carry) returns the shifted byte; the carry out is bit 7 or bit 0 of a.
-template <bool kCarryFromTop, class F>
+template <bool kCarryFromTop, unsigned kWrites, class F>
 void shift_lanes(size_t n, const uint8_t* a, uint8_t* __restrict out, uint8_t* __restrict c, uint8_t* __restrict z,
                  uint8_t* __restrict s, F f) {
   for (size_t l = 0; l < n; ++l) {
     const uint8_t value = f(a[l], c[l]);
     out[l] = value;
-    c[l] = kCarryFromTop ? static_cast<uint8_t>(a[l] >> 7) : static_cast<uint8_t>(a[l] & 1u);
-    z[l] = value == 0 ? 1 : 0;
-    s[l] = value >> 7;
+    if constexpr ((kWrites & writes_c) != 0)
+      c[l] = kCarryFromTop ? static_cast<uint8_t>(a[l] >> 7) : static_cast<uint8_t>(a[l] & 1u);
+    if constexpr ((kWrites & writes_zs) != 0) {
+      z[l] = value == 0 ? 1 : 0;
+      s[l] = value >> 7;
+    }
   }
 }
 
 // The 16-bit add and subtract on register pairs (add16, sub16, cmp16): the
 // sum of a:a_low and b:b_low (inverted, with a carry in, for a
 // subtraction) into high:low, with the flags of all 16 bits.
+template <unsigned kWrites>
 void pair_add_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint8_t* b, const uint8_t* b_low,
                     bool subtract, uint8_t* __restrict high, uint8_t* __restrict low, uint8_t* __restrict c,
                     uint8_t* __restrict z, uint8_t* __restrict s) {
@@ -83,9 +98,11 @@ void pair_add_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint
     const unsigned sum = x + y + carry_in;
     high[l] = static_cast<uint8_t>(sum >> 8);
     low[l] = static_cast<uint8_t>(sum);
-    c[l] = static_cast<uint8_t>((sum >> 16) & 1u);
-    z[l] = (sum & 0xffffu) == 0 ? 1 : 0;
-    s[l] = static_cast<uint8_t>((sum >> 15) & 1u);
+    if constexpr ((kWrites & writes_c) != 0) c[l] = static_cast<uint8_t>((sum >> 16) & 1u);
+    if constexpr ((kWrites & writes_zs) != 0) {
+      z[l] = (sum & 0xffffu) == 0 ? 1 : 0;
+      s[l] = static_cast<uint8_t>((sum >> 15) & 1u);
+    }
   }
 }
 
@@ -131,6 +148,7 @@ void store_masked_lanes(size_t n, const uint8_t* __restrict value, uint8_t* __re
 // a = ah:al, a x b = (ah x b + (al x b >> 8)) x 256 + (al x b & 0xff), both
 // partial products and their sum within 16 bits (al x b in [-32640, 32385],
 // the sum in [-16384, 16510]), the sum being bits 8..23 of the product.
+template <unsigned kWrites>
 void mul_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint8_t* b, uint8_t* __restrict high,
                uint8_t* __restrict middle, uint8_t* __restrict low, uint8_t* __restrict c, uint8_t* __restrict z,
                uint8_t* __restrict s) {
@@ -142,9 +160,11 @@ void mul_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint8_t* 
     high[l] = static_cast<uint8_t>(static_cast<uint16_t>(upper) >> 8);
     middle[l] = static_cast<uint8_t>(upper);
     low[l] = static_cast<uint8_t>(low_product);
-    c[l] = 0;
-    z[l] = (static_cast<uint16_t>(upper) | static_cast<uint8_t>(low_product)) == 0 ? 1 : 0;
-    s[l] = static_cast<uint8_t>(static_cast<uint16_t>(upper) >> 15);
+    if constexpr ((kWrites & writes_c) != 0) c[l] = 0;
+    if constexpr ((kWrites & writes_zs) != 0) {
+      z[l] = (static_cast<uint16_t>(upper) | static_cast<uint8_t>(low_product)) == 0 ? 1 : 0;
+      s[l] = static_cast<uint8_t>(static_cast<uint16_t>(upper) >> 15);
+    }
   }
 }
 
@@ -157,46 +177,47 @@ void mul_lanes(size_t n, const uint8_t* a, const uint8_t* a_low, const uint8_t* 
 // product), or 0 for an instruction that is not arithmetic (the caller's
 // own: masks, nget, nadd). With kLanes not 0 the
 // lane count is known to the compiler, which then unrolls the lane loops.
-template <size_t kLanes>
+// Only the flags of kWrites are written (FlagWrites).
+template <size_t kLanes, unsigned kWrites = writes_all>
 [[gnu::always_inline]] inline unsigned arithmetic_lanes(Opcode opcode, size_t lanes, const uint8_t* a,
                                                         const uint8_t* a_low, const uint8_t* b, const uint8_t* b_low,
                                                         const uint8_t* m, uint8_t* out, uint8_t* high, uint8_t* middle,
                                                         uint8_t* low, uint8_t* c, uint8_t* z, uint8_t* s) {
   const size_t n = kLanes != 0 ? kLanes : lanes;
   switch (opcode) {
-    case Opcode::op_add: add_lanes<false, false>(n, a, b, false, out, c, z, s); return 1;
-    case Opcode::op_adc: add_lanes<false, true>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_add: add_lanes<false, false, kWrites>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_adc: add_lanes<false, true, kWrites>(n, a, b, false, out, c, z, s); return 1;
     case Opcode::op_sub:
-    case Opcode::op_cmp: add_lanes<true, false>(n, a, b, true, out, c, z, s); return 1;
+    case Opcode::op_cmp: add_lanes<true, false, kWrites>(n, a, b, true, out, c, z, s); return 1;
     case Opcode::op_sbc:
-    case Opcode::op_cmpc: add_lanes<true, true>(n, a, b, false, out, c, z, s); return 1;
-    case Opcode::op_and: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); return 1;
-    case Opcode::op_or: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); return 1;
-    case Opcode::op_xor: logic_lanes(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); return 1;
+    case Opcode::op_cmpc: add_lanes<true, true, kWrites>(n, a, b, false, out, c, z, s); return 1;
+    case Opcode::op_and: logic_lanes<kWrites>(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x & y; }); return 1;
+    case Opcode::op_or: logic_lanes<kWrites>(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x | y; }); return 1;
+    case Opcode::op_xor: logic_lanes<kWrites>(n, a, b, out, z, s, [](uint8_t x, uint8_t y) { return x ^ y; }); return 1;
     case Opcode::op_not:
-      logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
+      logic_lanes<kWrites>(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(~x); });
       return 1;
-    case Opcode::op_mov: logic_lanes(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); return 1;
+    case Opcode::op_mov: logic_lanes<kWrites>(n, a, a, out, z, s, [](uint8_t x, uint8_t) { return x; }); return 1;
     case Opcode::op_shl:
-      shift_lanes<true>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
+      shift_lanes<true, kWrites>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x << 1); });
       return 1;
     case Opcode::op_shr:
-      shift_lanes<false>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
+      shift_lanes<false, kWrites>(n, a, out, c, z, s, [](uint8_t x, uint8_t) { return static_cast<uint8_t>(x >> 1); });
       return 1;
     case Opcode::op_asr:
-      shift_lanes<false>(n, a, out, c, z, s,
-                         [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
+      shift_lanes<false, kWrites>(n, a, out, c, z, s,
+                                  [](uint8_t x, uint8_t) { return static_cast<uint8_t>((x >> 1) | (x & 0x80u)); });
       return 1;
     case Opcode::op_rol:
-      shift_lanes<true>(n, a, out, c, z, s,
-                        [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
+      shift_lanes<true, kWrites>(n, a, out, c, z, s,
+                                 [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x << 1) | carry); });
       return 1;
     case Opcode::op_ror:
-      shift_lanes<false>(n, a, out, c, z, s,
-                         [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
+      shift_lanes<false, kWrites>(
+          n, a, out, c, z, s, [](uint8_t x, uint8_t carry) { return static_cast<uint8_t>((x >> 1) | (carry << 7)); });
       return 1;
     case Opcode::op_mul:
-    case Opcode::op_mulm: mul_lanes(n, a, a_low, b, high, middle, low, c, z, s); return 3;
+    case Opcode::op_mulm: mul_lanes<kWrites>(n, a, a_low, b, high, middle, low, c, z, s); return 3;
     case Opcode::op_getm:
       for (size_t l = 0; l < n; ++l) out[l] = m[l] != 0 ? 0xff : 0;
       return 1;
@@ -208,22 +229,26 @@ template <size_t kLanes>
         const unsigned dividend = unsigned{a[l]} << 8 | a_low[l];
         const auto value = static_cast<uint8_t>(fits ? dividend / b[l] : 0xffu);
         out[l] = value;
-        c[l] = fits ? 0 : 1;
-        z[l] = value == 0 ? 1 : 0;
-        s[l] = value >> 7;
+        if constexpr ((kWrites & writes_c) != 0) c[l] = fits ? 0 : 1;
+        if constexpr ((kWrites & writes_zs) != 0) {
+          z[l] = value == 0 ? 1 : 0;
+          s[l] = value >> 7;
+        }
       }
       return 1;
     case Opcode::op_add16:
     case Opcode::op_sub16:
     case Opcode::op_cmp16:
-      pair_add_lanes(n, a, a_low, b, b_low, opcode != Opcode::op_add16, high, middle, c, z, s);
+      pair_add_lanes<kWrites>(n, a, a_low, b, b_low, opcode != Opcode::op_add16, high, middle, c, z, s);
       return 2;
     case Opcode::op_mov16:
       for (size_t l = 0; l < n; ++l) {
         high[l] = a[l];
         middle[l] = a_low[l];
-        z[l] = (a[l] | a_low[l]) == 0 ? 1 : 0;
-        s[l] = a[l] >> 7;
+        if constexpr ((kWrites & writes_zs) != 0) {
+          z[l] = (a[l] | a_low[l]) == 0 ? 1 : 0;
+          s[l] = a[l] >> 7;
+        }
       }
       return 2;
     default: return 0;
@@ -265,6 +290,9 @@ CuArray::CuArray(const ArrayGeometry& geometry)
     op.uses_d = info.operands != OperandPattern::ab;
     op.uses_b = info.operands == OperandPattern::dab || info.operands == OperandPattern::ab;
     op.uses_a = info.operands != OperandPattern::d;
+    const auto sets = [&](char flag) { return info.flags.find(flag) != std::string_view::npos; };
+    op.writes = static_cast<uint8_t>((sets('C') ? unsigned{writes_c} : 0u) |
+                                     (sets('Z') || sets('S') ? unsigned{writes_zs} : 0u));
   }
   reset();
 }
@@ -442,13 +470,13 @@ void CuArray::neighbour_lanes(const Instruction& in, const uint8_t* a, const uin
         value = d_masked && m[from] == 0 ? d[from] : result[from];
       }
       neighbour[l] = value;
-      if (nadd) add_lanes<false, false>(1, d + l, neighbour + l, false, out + l, c + l, z + l, s + l);
+      if (nadd) add_lanes<false, false, writes_all>(1, d + l, neighbour + l, false, out + l, c + l, z + l, s + l);
     }
     return;
   }
   const uint8_t* source = a + step;
   for (size_t l = 0; l < n; ++l) neighbour[l] = source[l] & has[l];
-  if (nadd) add_lanes<false, false>(n, d, neighbour, false, out, c, z, s);
+  if (nadd) add_lanes<false, false, writes_all>(n, d, neighbour, false, out, c, z, s);
 }
 
 void CuArray::set_row_ring(bool on) {
@@ -680,17 +708,21 @@ namespace {
 constexpr size_t TRACE_BLOCK = 16;
 static_assert(ROW_ALIGN % TRACE_BLOCK == 0);
 
-// A step's handler: the arithmetic's by opcode and destination, then the
-// stage and mask changes.
+// A step's handler: the arithmetic's by opcode, destination and the flags
+// it writes, then the stage and mask changes, then the fused pairs.
 enum class TraceDest : unsigned { none, reg, cmem, kinds };
 constexpr unsigned TRACE_OPCODES = 64;  // the word's 6-bit field
-constexpr unsigned TRACE_STAGE = TRACE_OPCODES * static_cast<unsigned>(TraceDest::kinds);
+constexpr unsigned TRACE_STAGE = TRACE_OPCODES * static_cast<unsigned>(TraceDest::kinds) * flag_write_kinds;
 constexpr unsigned TRACE_MSET = TRACE_STAGE + 1, TRACE_MCLR = TRACE_STAGE + 2, TRACE_MMOV = TRACE_STAGE + 3,
                    TRACE_MAND = TRACE_STAGE + 4, TRACE_MOR = TRACE_STAGE + 5, TRACE_PAIRS = TRACE_STAGE + 6;
-// An arithmetic instruction's handler: by opcode and destination.
-constexpr unsigned arithmetic_handler(Opcode opcode, TraceDest dest) {
-  return (static_cast<unsigned>(opcode) & (TRACE_OPCODES - 1)) * static_cast<unsigned>(TraceDest::kinds) +
-         static_cast<unsigned>(dest);
+// An arithmetic instruction's handler: by opcode, destination and the flags
+// it writes (FlagWrites, the lowest digit: handler / flag_write_kinds is the
+// instruction's kind whatever it writes).
+constexpr unsigned arithmetic_handler(Opcode opcode, TraceDest dest, unsigned writes) {
+  return ((static_cast<unsigned>(opcode) & (TRACE_OPCODES - 1)) * static_cast<unsigned>(TraceDest::kinds) +
+          static_cast<unsigned>(dest)) *
+             flag_write_kinds +
+         writes;
 }
 
 // Two neighbouring instructions of one byte each that the compiler makes
@@ -718,14 +750,16 @@ constexpr std::array<FusedPair, 12> FUSED_PAIRS = {{
     {Opcode::op_mov, TraceDest::cmem, Opcode::op_mov, TraceDest::reg},
     {Opcode::op_adc, TraceDest::reg, Opcode::op_adc, TraceDest::reg},
 }};
-constexpr unsigned TRACE_HANDLERS = TRACE_PAIRS + FUSED_PAIRS.size();
+// A pair's handlers: one per pair and flags written by each of its two.
+constexpr unsigned PAIR_HANDLERS = flag_write_kinds * flag_write_kinds;
+constexpr unsigned TRACE_HANDLERS = TRACE_PAIRS + FUSED_PAIRS.size() * PAIR_HANDLERS;
 // The pair's handler for two arithmetic handlers, or 0.
 constexpr unsigned fused_handler(unsigned first, unsigned second) {
   for (unsigned i = 0; i < FUSED_PAIRS.size(); ++i) {
     const FusedPair& pair = FUSED_PAIRS[i];
-    if (first == arithmetic_handler(pair.first, pair.first_dest) &&
-        second == arithmetic_handler(pair.second, pair.second_dest))
-      return TRACE_PAIRS + i;
+    if (first / flag_write_kinds == arithmetic_handler(pair.first, pair.first_dest, 0) / flag_write_kinds &&
+        second / flag_write_kinds == arithmetic_handler(pair.second, pair.second_dest, 0) / flag_write_kinds)
+      return TRACE_PAIRS + i * PAIR_HANDLERS + first % flag_write_kinds * flag_write_kinds + second % flag_write_kinds;
   }
   return 0;
 }
@@ -825,26 +859,29 @@ inline BlockRows block_rows(const TraceRun& run) {
 }
 
 // One block of a one-byte instruction: its result into its destination.
-template <Opcode kOpcode, TraceDest kDest>
+template <Opcode kOpcode, TraceDest kDest, unsigned kWrites>
 [[gnu::always_inline]] inline void one_byte_block(const BlockRows& r, size_t l, uint32_t a, uint32_t b, uint32_t d) {
   uint8_t* const base = r.base;
-  arithmetic_lanes<TRACE_BLOCK>(kOpcode, TRACE_BLOCK, base + a + l, base + a + l, base + b + l, base + b + l, r.m + l,
-                                r.out + l, r.high + l, r.middle + l, r.low + l, r.c + l, r.z + l, r.s + l);
+  arithmetic_lanes<TRACE_BLOCK, kWrites>(kOpcode, TRACE_BLOCK, base + a + l, base + a + l, base + b + l, base + b + l,
+                                         r.m + l, r.out + l, r.high + l, r.middle + l, r.low + l, r.c + l, r.z + l,
+                                         r.s + l);
   store_result_block<kDest>(r.out + l, base + d + l, r.m + l);
 }
 
-template <unsigned kPair>
+template <unsigned kPairHandler>
 void trace_pair(const CuArray::TraceStep& step, TraceRun& run) {
-  constexpr FusedPair PAIR = FUSED_PAIRS[kPair];
+  constexpr FusedPair PAIR = FUSED_PAIRS[kPairHandler / PAIR_HANDLERS];
+  constexpr unsigned FIRST_WRITES = kPairHandler % PAIR_HANDLERS / flag_write_kinds,
+                     SECOND_WRITES = kPairHandler % flag_write_kinds;
   const BlockRows r = block_rows(run);
   const uint32_t a = step.a, b = step.b, d = step.d[0], a2 = step.a_low, b2 = step.b_low, d2 = step.d[1];
   for (size_t l = 0; l < r.blocked; l += TRACE_BLOCK) {
-    one_byte_block<PAIR.first, PAIR.first_dest>(r, l, a, b, d);
-    one_byte_block<PAIR.second, PAIR.second_dest>(r, l, a2, b2, d2);
+    one_byte_block<PAIR.first, PAIR.first_dest, FIRST_WRITES>(r, l, a, b, d);
+    one_byte_block<PAIR.second, PAIR.second_dest, SECOND_WRITES>(r, l, a2, b2, d2);
   }
 }
 
-template <unsigned kOpcode, TraceDest kDest>
+template <unsigned kOpcode, TraceDest kDest, unsigned kWrites>
 void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
   constexpr auto OPCODE = static_cast<Opcode>(kOpcode);
   const BlockRows r = block_rows(run);
@@ -852,7 +889,7 @@ void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
   const uint32_t a = step.a, a_low = step.a_low, b = step.b, b_low = step.b_low;
   const std::array<uint32_t, 3> d = step.d;
   for (size_t l = 0; l < r.blocked; l += TRACE_BLOCK) {
-    const unsigned written = arithmetic_lanes<TRACE_BLOCK>(
+    const unsigned written = arithmetic_lanes<TRACE_BLOCK, kWrites>(
         OPCODE, TRACE_BLOCK, base + a + l, base + a_low + l, base + b + l, base + b_low + l, r.m + l, r.out + l,
         r.high + l, r.middle + l, r.low + l, r.c + l, r.z + l, r.s + l);
     if constexpr (kDest != TraceDest::none) {
@@ -910,11 +947,61 @@ void trace_mask(const CuArray::TraceStep& step, TraceRun& run) {
 
 using TraceHandler = void (*)(const CuArray::TraceStep&, TraceRun&);
 
+// The flags as bits of a live set (what a later step may still read).
+constexpr unsigned LIVE_C = 1, LIVE_Z = 2, LIVE_S = 4, LIVE_ALL = 7;
+// The flags a mask condition reads (condition_block).
+constexpr unsigned condition_reads(Cond cond) {
+  switch (cond) {
+    case Cond::c:
+    case Cond::nc: return LIVE_C;
+    case Cond::z:
+    case Cond::nz: return LIVE_Z;
+    case Cond::s:
+    case Cond::ns: return LIVE_S;
+    case Cond::hi:
+    case Cond::ls: return LIVE_C | LIVE_Z;
+  }
+  return LIVE_ALL;
+}
+// The flags an instruction's lanes read (arithmetic_lanes): the carry in of
+// adc, sbc, cmpc, rol and ror; every flag for an instruction not listed.
+constexpr unsigned instruction_reads(Opcode opcode) {
+  switch (opcode) {
+    case Opcode::op_adc:
+    case Opcode::op_sbc:
+    case Opcode::op_cmpc:
+    case Opcode::op_rol:
+    case Opcode::op_ror: return LIVE_C;
+    case Opcode::op_nop:
+    case Opcode::op_add:
+    case Opcode::op_sub:
+    case Opcode::op_cmp:
+    case Opcode::op_and:
+    case Opcode::op_or:
+    case Opcode::op_xor:
+    case Opcode::op_not:
+    case Opcode::op_mov:
+    case Opcode::op_shl:
+    case Opcode::op_shr:
+    case Opcode::op_asr:
+    case Opcode::op_mul:
+    case Opcode::op_mulm:
+    case Opcode::op_getm:
+    case Opcode::op_div:
+    case Opcode::op_add16:
+    case Opcode::op_sub16:
+    case Opcode::op_cmp16:
+    case Opcode::op_mov16: return 0;
+    default: return LIVE_ALL;
+  }
+}
+
 template <unsigned kHandler>
 constexpr TraceHandler trace_handler() {
+  constexpr unsigned KINDS = static_cast<unsigned>(TraceDest::kinds);
   if constexpr (kHandler < TRACE_STAGE)
-    return &trace_arithmetic<kHandler / static_cast<unsigned>(TraceDest::kinds),
-                             static_cast<TraceDest>(kHandler % static_cast<unsigned>(TraceDest::kinds))>;
+    return &trace_arithmetic<kHandler / flag_write_kinds / KINDS,
+                             static_cast<TraceDest>(kHandler / flag_write_kinds % KINDS), kHandler % flag_write_kinds>;
   else if constexpr (kHandler == TRACE_STAGE)
     return &trace_stage;
   else if constexpr (kHandler >= TRACE_PAIRS)
@@ -932,6 +1019,38 @@ constexpr std::array<TraceHandler, TRACE_HANDLERS> TRACE_TABLE =
     trace_handlers(std::make_integer_sequence<unsigned, TRACE_HANDLERS>{});
 
 }  // namespace
+
+std::vector<uint8_t> CuArray::live_flag_writes(const std::vector<Instruction>& trace) const {
+  // Backwards from the trace's end, where every flag is live (the flags are
+  // the lanes' state after the trace): an instruction's flag is live when a
+  // later instruction or mask condition reads it before another sets it.
+  std::vector<uint8_t> writes(trace.size(), 0);
+  unsigned live = LIVE_ALL;
+  for (size_t i = trace.size(); i-- > 0;) {
+    const Instruction& in = trace[i];
+    switch (in.opcode) {
+      case Opcode::op_mset:
+      case Opcode::op_mclr: continue;
+      case Opcode::op_mmov:
+      case Opcode::op_mand:
+      case Opcode::op_mor: live |= condition_reads(in.cond()); continue;
+      default: break;
+    }
+    const unsigned sets = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u].writes;
+    unsigned kept = 0;
+    if ((sets & writes_c) != 0) {
+      if ((live & LIVE_C) != 0) kept |= writes_c;
+      live &= ~LIVE_C;
+    }
+    if ((sets & writes_zs) != 0) {
+      if ((live & (LIVE_Z | LIVE_S)) != 0) kept |= writes_zs;
+      live &= ~(LIVE_Z | LIVE_S);
+    }
+    writes[i] = static_cast<uint8_t>(kept);
+    live |= instruction_reads(in.opcode);
+  }
+  return writes;
+}
 
 CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& trace) const {
   CompiledTrace compiled;
@@ -953,7 +1072,9 @@ CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& tr
     operations = stores = 0;
     return step;
   };
-  for (const Instruction& in : trace) {
+  const std::vector<uint8_t> writes = live_flag_writes(trace);
+  for (size_t i = 0; i < trace.size(); ++i) {
+    const Instruction& in = trace[i];
     if (in.stage != stage) {
       TraceStep step = change(TRACE_STAGE);
       stage = in.stage;
@@ -979,7 +1100,7 @@ CuArray::CompiledTrace CuArray::compile_trace(const std::vector<Instruction>& tr
     const OpLanes& op = m_op_lanes[static_cast<unsigned>(in.opcode) & 63u];
     const TraceDest dest = !op.uses_d ? TraceDest::none : in.d.in_cmem ? TraceDest::cmem : TraceDest::reg;
     TraceStep step;
-    step.handler = static_cast<uint16_t>(arithmetic_handler(in.opcode, dest));
+    step.handler = static_cast<uint16_t>(arithmetic_handler(in.opcode, dest, writes[i]));
     step.a = op.uses_a ? operand(in.a, 0) : unused;
     step.a_low = op.uses_a && op.a_width > 1 ? operand(in.a, 1) : unused;
     step.b = op.uses_b ? operand(in.b, 0) : unused;

@@ -195,6 +195,10 @@ class CuArray {
   void run_trace(const CompiledTrace& trace);
 
  private:
+  // compile_trace's flags per instruction: the flags each sets that a later
+  // instruction, mask condition or the trace's end reads before another
+  // sets them (the others are not computed; FlagWrites in cu_array.cpp).
+  std::vector<uint8_t> live_flag_writes(const std::vector<Instruction>& trace) const;
   size_t row_offset(unsigned row) const { return (size_t{row} + 1) * m_stride; }  // row 0 is a guard
   uint8_t* row(unsigned index) { return m_storage.data() + row_offset(index); }
   // The row of byte `byte` of `operand`, or nullptr when it is beyond CMEM
@@ -239,6 +243,7 @@ class CuArray {
   struct OpLanes {
     uint8_t d_width = 0, a_width = 0, b_width = 0;
     bool uses_d = false, uses_a = false, uses_b = false;
+    uint8_t writes = 0;  // the flags it sets (ap_isa.def's flags), as cu_array.cpp's FlagWrites
   };
 
   ArrayGeometry m_geometry;
