@@ -1718,6 +1718,31 @@ TEST(CuArray, ACompiledTraceOfFusedPairsRunsAsExecuteDoes) {
   EXPECT_LT(steps, instructions * 19 / 20) << "pairs were fused";
 }
 
+// Long runs of instructions between two mask changes: the runner counts
+// each lane's operations and CMEM stores in a byte while their sums since
+// the last widening fit one (255), widening them into the lane's counts
+// when they would not. Runs of 100, 100 and 56 (a sum of 256, one past a
+// byte), of 300 (more than a byte in one run), of 1, 254 and 2, each
+// ended by an `mset` or an `mmov` (which leaves some lanes out), every
+// instruction a store into CMEM.
+TEST(CuArray, ACompiledTraceCountsRunsLongerThanAByteAsExecuteDoes) {
+  std::mt19937_64 rng(0xb17e);
+  for (const unsigned lanes : {COLUMNS * ROWS, 20u}) {
+    std::vector<Instruction> trace;
+    unsigned change = 0;
+    for (const unsigned run : {100u, 100u, 56u, 300u, 1u, 254u, 2u}) {
+      for (unsigned i = 0; i < run; ++i)
+        trace.push_back(make(Opcode::op_mov, mem(static_cast<unsigned>(rng() % CMEM_BYTES)),
+                             reg(static_cast<unsigned>(rng() % REGISTERS)), reg(0)));
+      Instruction mask = make(++change % 2 == 0 ? Opcode::op_mmov : Opcode::op_mset);
+      if (mask.opcode == Opcode::op_mmov) mask.a.value = static_cast<uint16_t>(Cond::s);
+      trace.push_back(mask);
+    }
+    const std::string where = std::to_string(lanes) + " lanes";
+    expect_trace_runs_as_execute(rng, lanes, trace, where);
+  }
+}
+
 // A trace compiled for one geometry is refused by an array of another,
 // whose rows its offsets do not name.
 TEST(CuArray, ATraceCompiledForAnotherGeometryIsRefused) {

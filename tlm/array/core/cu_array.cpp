@@ -816,23 +816,90 @@ inline void count_masked_block(uint32_t operations, uint32_t stores, const uint8
   add(3, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
 }
 
+// counts[l] += bytes[l] for one block: the bytes widened to words by
+// interleaving with zeros, four lanes to a vector.
+inline void add_bytes_block(const uint8_t* bytes, uint32_t* counts) {
+  using Halves = uint16_t __attribute__((vector_size(TRACE_BLOCK)));
+  using Words = uint32_t __attribute__((vector_size(TRACE_BLOCK)));
+  const BlockBytes values = load_block(bytes), zero_bytes{};
+  const Halves zero_halves{};
+  const auto low = reinterpret_cast<Halves>(
+      __builtin_shufflevector(values, zero_bytes, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23));
+  const auto high = reinterpret_cast<Halves>(
+      __builtin_shufflevector(values, zero_bytes, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31));
+  const auto add = [&](unsigned quarter, Words lanes) {
+    Words sum;
+    std::memcpy(&sum, counts + 4 * quarter, sizeof sum);
+    sum += lanes;
+    std::memcpy(counts + 4 * quarter, &sum, sizeof sum);
+  };
+  add(0, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  add(1, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+  add(2, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  add(3, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+}
+
 struct TraceRun {
   uint8_t* base;
   size_t lanes, blocked;  // the lanes, and rounded up to TRACE_BLOCK
   uint8_t *c, *z, *s, *m, *out, *high, *middle, *low;
   std::array<uint32_t*, STAGE_COUNT> useful_by_stage, stores_by_stage;
   uint32_t *useful, *stores;  // the current stage's
+  // The counts since they were last widened into useful and stores, a byte
+  // per lane (CuArray's m_trace_counts), and their sums over the changes:
+  // at most COUNT_BYTE_MAX, so that no lane's byte overflows.
+  uint8_t *useful_bytes, *stores_bytes;
+  uint32_t pending_operations, pending_stores;
 };
+constexpr uint32_t COUNT_BYTE_MAX = 255;
 
-// The counts per lane since the last change, where the lane's mask is set.
+// The byte counts added to the current stage's counts, and cleared.
+void widen_counts(TraceRun& run) {
+  if (run.pending_operations == 0 && run.pending_stores == 0) return;
+  size_t l = 0;
+  for (; l + TRACE_BLOCK <= run.lanes; l += TRACE_BLOCK) {
+    add_bytes_block(run.useful_bytes + l, run.useful + l);
+    add_bytes_block(run.stores_bytes + l, run.stores + l);
+  }
+  for (; l < run.lanes; ++l) {
+    run.useful[l] += run.useful_bytes[l];
+    run.stores[l] += run.stores_bytes[l];
+  }
+  std::memset(run.useful_bytes, 0, run.blocked);
+  std::memset(run.stores_bytes, 0, run.blocked);
+  run.pending_operations = run.pending_stores = 0;
+}
+
+// The counts per lane since the last change, where the lane's mask is set:
+// into the byte counts (a vector operation for 16 lanes) while their sums
+// stay within a byte, widened when they would not.
 void count_trace_lanes(TraceRun& run, uint32_t operations, uint32_t stores) {
   if (operations == 0 && stores == 0) return;
-  size_t l = 0;
-  for (; l + TRACE_BLOCK <= run.lanes; l += TRACE_BLOCK)
-    count_masked_block(operations, stores, run.m + l, run.useful + l, run.stores + l);
-  for (; l < run.lanes; ++l) {
-    run.useful[l] += operations * run.m[l];
-    run.stores[l] += stores * run.m[l];
+  if (operations > COUNT_BYTE_MAX - run.pending_operations || stores > COUNT_BYTE_MAX - run.pending_stores) {
+    widen_counts(run);
+    if (operations > COUNT_BYTE_MAX || stores > COUNT_BYTE_MAX) {
+      size_t l = 0;
+      for (; l + TRACE_BLOCK <= run.lanes; l += TRACE_BLOCK)
+        count_masked_block(operations, stores, run.m + l, run.useful + l, run.stores + l);
+      for (; l < run.lanes; ++l) {
+        run.useful[l] += operations * run.m[l];
+        run.stores[l] += stores * run.m[l];
+      }
+      return;
+    }
+  }
+  run.pending_operations += operations;
+  run.pending_stores += stores;
+  const BlockBytes zero{};
+  const BlockBytes added_operations = zero + static_cast<uint8_t>(operations);
+  const BlockBytes added_stores = zero + static_cast<uint8_t>(stores);
+  const uint8_t* const m = run.m;
+  uint8_t* const useful = run.useful_bytes;
+  uint8_t* const stored = run.stores_bytes;
+  for (size_t l = 0; l < run.blocked; l += TRACE_BLOCK) {
+    const BlockBytes set = zero - load_block(m + l);  // the 0/1 mask as 0x00/0xff
+    store_block(useful + l, load_block(useful + l) + (set & added_operations));
+    store_block(stored + l, load_block(stored + l) + (set & added_stores));
   }
 }
 
@@ -904,6 +971,7 @@ void trace_arithmetic(const CuArray::TraceStep& step, TraceRun& run) {
 
 void trace_stage(const CuArray::TraceStep& step, TraceRun& run) {
   count_trace_lanes(run, step.operations, step.stores);
+  widen_counts(run);
   run.useful = run.useful_by_stage[step.stage];
   run.stores = run.stores_by_stage[step.stage];
 }
@@ -1164,8 +1232,12 @@ void CuArray::run_trace(const CompiledTrace& trace) {
   }
   run.useful = run.useful_by_stage[trace.first_stage];
   run.stores = run.stores_by_stage[trace.first_stage];
+  m_trace_counts.assign(2 * run.blocked, 0);
+  run.useful_bytes = m_trace_counts.data();
+  run.stores_bytes = m_trace_counts.data() + run.blocked;
   for (const TraceStep& step : trace.steps) TRACE_TABLE[step.handler](step, run);
   count_trace_lanes(run, trace.tail_operations, trace.tail_stores);
+  widen_counts(run);
   m_active_stale = true;
 }
 

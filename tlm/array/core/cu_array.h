@@ -270,6 +270,7 @@ class CuArray {
   bool m_count_lanes = false;
   // By stage, then lane.
   std::array<std::vector<uint32_t>, STAGE_COUNT> m_lane_useful, m_lane_stores;
+  std::vector<uint8_t> m_trace_counts;   // run_trace's counts since they were last widened, a byte per lane
   std::array<OpLanes, 64> m_op_lanes{};  // by opcode: the word's 6-bit field
   IssueSkew m_skew = IssueSkew::none;
   bool m_ring = false;
