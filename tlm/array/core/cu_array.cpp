@@ -786,57 +786,48 @@ inline void store_masked_block(const uint8_t* value, uint8_t* destination, const
   store_block(destination, (load_block(value) & keep) | (load_block(destination) & ~keep));
 }
 
-// A trace's per-lane counts at a mask or stage change, for one block: the
-// lane operations and the CMEM stores since the last change, where the
-// lane's mask is set.
-inline void count_masked_block(uint32_t operations, uint32_t stores, const uint8_t* m, uint32_t* useful,
-                               uint32_t* stored) {
-  using Halves = uint16_t __attribute__((vector_size(TRACE_BLOCK)));
-  using Words = uint32_t __attribute__((vector_size(TRACE_BLOCK)));
-  // The 0/1 mask bytes widened to words by interleaving with zeros (what
-  // the processor's unpack instructions do), four lanes to a vector.
-  const BlockBytes mask = load_block(m), zero_bytes{};
-  const Halves zero_halves{};
-  const auto low = reinterpret_cast<Halves>(
-      __builtin_shufflevector(mask, zero_bytes, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23));
-  const auto high = reinterpret_cast<Halves>(
-      __builtin_shufflevector(mask, zero_bytes, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31));
-  const auto add = [&](unsigned quarter, Words lanes) {
-    Words sum;
-    std::memcpy(&sum, useful + 4 * quarter, sizeof sum);
-    sum += -lanes & operations;
-    std::memcpy(useful + 4 * quarter, &sum, sizeof sum);
-    std::memcpy(&sum, stored + 4 * quarter, sizeof sum);
-    sum += -lanes & stores;
-    std::memcpy(stored + 4 * quarter, &sum, sizeof sum);
-  };
-  add(0, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
-  add(1, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
-  add(2, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
-  add(3, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
-}
+using BlockWords = uint32_t __attribute__((vector_size(TRACE_BLOCK)));
 
-// counts[l] += bytes[l] for one block: the bytes widened to words by
-// interleaving with zeros, four lanes to a vector.
-inline void add_bytes_block(const uint8_t* bytes, uint32_t* counts) {
+// A block's 16 bytes widened to words by interleaving with zeros (what the
+// processor's unpack instructions do), four lanes to a vector:
+// f(quarter, words) for each quarter of the block.
+template <class F>
+inline void for_each_widened_quarter(const uint8_t* bytes, F f) {
   using Halves = uint16_t __attribute__((vector_size(TRACE_BLOCK)));
-  using Words = uint32_t __attribute__((vector_size(TRACE_BLOCK)));
   const BlockBytes values = load_block(bytes), zero_bytes{};
   const Halves zero_halves{};
   const auto low = reinterpret_cast<Halves>(
       __builtin_shufflevector(values, zero_bytes, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23));
   const auto high = reinterpret_cast<Halves>(
       __builtin_shufflevector(values, zero_bytes, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31));
-  const auto add = [&](unsigned quarter, Words lanes) {
-    Words sum;
-    std::memcpy(&sum, counts + 4 * quarter, sizeof sum);
-    sum += lanes;
-    std::memcpy(counts + 4 * quarter, &sum, sizeof sum);
-  };
-  add(0, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
-  add(1, reinterpret_cast<Words>(__builtin_shufflevector(low, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
-  add(2, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
-  add(3, reinterpret_cast<Words>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+  f(0, reinterpret_cast<BlockWords>(__builtin_shufflevector(low, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  f(1, reinterpret_cast<BlockWords>(__builtin_shufflevector(low, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+  f(2, reinterpret_cast<BlockWords>(__builtin_shufflevector(high, zero_halves, 0, 8, 1, 9, 2, 10, 3, 11)));
+  f(3, reinterpret_cast<BlockWords>(__builtin_shufflevector(high, zero_halves, 4, 12, 5, 13, 6, 14, 7, 15)));
+}
+
+// counts[4 quarter .. 4 quarter + 3] += words.
+inline void add_quarter(uint32_t* counts, unsigned quarter, BlockWords words) {
+  BlockWords sum;
+  std::memcpy(&sum, counts + 4 * quarter, sizeof sum);
+  sum += words;
+  std::memcpy(counts + 4 * quarter, &sum, sizeof sum);
+}
+
+// A trace's per-lane counts at a mask or stage change, for one block: the
+// lane operations and the CMEM stores since the last change, where the
+// lane's mask (0/1 bytes) is set.
+inline void count_masked_block(uint32_t operations, uint32_t stores, const uint8_t* m, uint32_t* useful,
+                               uint32_t* stored) {
+  for_each_widened_quarter(m, [&](unsigned quarter, BlockWords lanes) {
+    add_quarter(useful, quarter, -lanes & operations);
+    add_quarter(stored, quarter, -lanes & stores);
+  });
+}
+
+// counts[l] += bytes[l] for one block.
+inline void add_bytes_block(const uint8_t* bytes, uint32_t* counts) {
+  for_each_widened_quarter(bytes, [&](unsigned quarter, BlockWords values) { add_quarter(counts, quarter, values); });
 }
 
 struct TraceRun {
