@@ -24,11 +24,11 @@ constexpr unsigned SCRATCH_RESULT = 0, SCRATCH_NEIGHBOUR = 1, SCRATCH_PRODUCT = 
 
 enum FlagRow : unsigned { flag_c = 0, flag_z = 1, flag_s = 2, flag_m = 3, flag_rows = 4 };
 
-// The flags a lane loop writes: every flag its instruction sets, or, in a
-// compiled trace, those a later instruction (or the trace's end) reads
-// before another writes them (CuArray::compile_trace). Z and S are set
-// together by every instruction that sets either.
-enum FlagWrites : unsigned { writes_none = 0, writes_c = 1, writes_zs = 2, writes_all = 3, flag_write_kinds = 4 };
+// The flags a lane loop writes (bits; 0: none): every flag its instruction
+// sets, or, in a compiled trace, those a later instruction (or the trace's
+// end) reads before another writes them (CuArray::live_flag_writes). Z and
+// S are set together by every instruction that sets either.
+enum FlagWrites : unsigned { writes_c = 1, writes_zs = 2, writes_all = 3, flag_write_kinds = 4 };
 
 // The lane loops. Each writes the result into `out` (scratch, never an
 // operand) and the flags of kWrites; the caller then stores `out` into the
