@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "common/log.h"
+#include "common/loosely_timed.h"
+#include "common/ticks_time.h"
 #include "display/display_regs.h"
 
 namespace tessera {
@@ -23,8 +25,7 @@ DisplayController::DisplayController(sc_core::sc_module_name name, const Display
   if (params.width == 0 || params.height == 0) throw std::invalid_argument(std::string(this->name()) + ": empty frame");
   if (params.refresh_hz <= 0)
     throw std::invalid_argument(std::string(this->name()) + ": refresh rate must be positive");
-  port_in.register_b_transport(this, &DisplayController::port_b_transport);
-  port_in.register_transport_dbg(this, &DisplayController::port_transport_dbg);
+  port_in.bind(m_port);
 
   STATUS.on_read(this, &DisplayController::read_STATUS);
   SWAP.on_write(this, &DisplayController::write_SWAP);
@@ -94,18 +95,18 @@ bool DisplayController::frame_pending() const {
   return m_params.dma && (m_swap_pending || m_frame_in_scan);
 }
 
-void DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
+bool DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) {
   const uint64_t address = gp.get_address();
   const uint64_t length = gp.get_data_length();
   if (address >= m_port_frame.size() || length > m_port_frame.size() - address) {
     gp.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
     log::warning(name(), "display port access outside the " + std::to_string(m_port_frame.size()) +
                              "-byte frame at offset " + log::hex(address));
-    return;
+    return false;
   }
   if (gp.get_byte_enable_ptr() || gp.get_streaming_width() < length) {
     gp.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
-    return;
+    return false;
   }
   if (gp.is_write()) {
     std::memcpy(&m_port_frame[address], gp.get_data_ptr(), length);
@@ -113,9 +114,16 @@ void DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& 
   } else if (gp.is_read()) {
     std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
   }
+  // The data phase in integer ticks (the port's cycles per word).
   const uint64_t beats = (length + 3) / 4;
-  delay += m_params.clock_period * static_cast<double>(m_params.port_cycles * beats);
+  delay += ticks_time(m_params.clock_period.value() * m_params.port_cycles * beats);
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
+  return true;
+}
+
+tlm::tlm_sync_enum DisplayController::Port::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& /*phase*/,
+                                                            sc_time& /*delay*/) {
+  return refuse_non_blocking(m_display.name(), gp);
 }
 
 unsigned DisplayController::port_transport_dbg(tlm::tlm_generic_payload& gp) {

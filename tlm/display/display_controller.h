@@ -18,14 +18,15 @@
 #include <string>
 #include <vector>
 
-#include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
 
 #include <nlohmann/json.hpp>
 
+#include "common/direct_transport.h"
 #include "common/peripheral.h"
 #include "common/pixel_format.h"
+#include "common/schedule_untouched.h"
 #include "common/timed_trace.h"
 #include "config/config.h"
 #include "display/display_dma.h"
@@ -67,8 +68,9 @@ class DisplayController : public Peripheral {
  public:
   SC_HAS_PROCESS(DisplayController);
 
-  // Registers on `in` and the interrupt on `irq` (Peripheral).
-  tlm_utils::simple_target_socket<DisplayController, 32> port_in;  // display port window
+  // Registers on `in` and the interrupt on `irq` (Peripheral); the display
+  // port window on `port_in`, whose forward interface is a Port (below).
+  tlm::tlm_target_socket<32> port_in;
 
   // The registers, one member each (display_regs.def).
 #define TESSERA_REGISTER_TABLE "display/display_regs.def"
@@ -124,7 +126,33 @@ class DisplayController : public Peripheral {
   EnergyActivity energy_activity(const sc_core::sc_time& now) const override;
 
  private:
-  void port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  // The port's forward interface: its socket's one virtual call, and a
+  // DirectTransport, which the bus calls without the socket's hops. A
+  // port write moves bytes and counts them, scheduling nothing in the
+  // kernel: it says so (ScheduleUntouched), so that the host keeps its
+  // answer on what is scheduled (common/schedule_untouched.h).
+  class Port : public tlm::tlm_fw_transport_if<>, public DirectTransport {
+   public:
+    explicit Port(DisplayController& display) : m_display(display) {}
+    void b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay) final {
+      if (m_display.port_b_transport(gp, delay)) mark_schedule_untouched(gp);
+    }
+    void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
+      if (m_display.port_b_transport(gp, delay)) extras.untouched = true;
+    }
+    unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_display.port_transport_dbg(gp); }
+    bool get_direct_mem_ptr(tlm::tlm_generic_payload& /*gp*/, tlm::tlm_dmi& dmi) override {
+      dmi.allow_none();
+      return false;
+    }
+    tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& phase,
+                                       sc_core::sc_time& delay) override;
+
+   private:
+    DisplayController& m_display;
+  };
+  // Both doors' access: true when it succeeded (and so scheduled nothing).
+  bool port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
   uint32_t read_STATUS() const;
@@ -148,6 +176,7 @@ class DisplayController : public Peripheral {
   std::vector<std::function<void(const Frame&)>> m_receivers;
   bool m_keep_pixels = true;
   std::vector<std::function<void(const sc_core::sc_time&)>> m_request_receivers;
+  Port m_port{*this};
   std::vector<uint8_t> m_port_frame;
   sc_core::sc_event m_frame_shown;
 
