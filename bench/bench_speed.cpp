@@ -182,7 +182,12 @@ class Bench {
   // Bus transactions per frame of the last soc_sim_frame run, every
   // initiator's, averaged over its 2N frames (stats.json).
   double m_last_transactions = 0;
+  // Bus requests per frame of the same run: the grants (the wait
+  // histograms' counts, every initiator's), where a posted run of stores
+  // is one request of many transfers.
+  double m_last_requests = 0;
   double m_arm_transactions = 0, m_raster_transactions = 0;  // of the --no-frames runs
+  double m_arm_requests = 0;
   // Array instructions broadcast per frame of the last soc_sim_frame run,
   // averaged over its 2N frames (stats.json; 0 without the array).
   double m_last_array_instructions = 0;
@@ -191,12 +196,13 @@ class Bench {
   double floor_seconds() const { return m_floor_s.empty() ? 0 : min_median(m_floor_s).median; }
   // What a goal of `goal` times the reference frame leaves for everything
   // the simulation adds, in all and per bus transaction, against the floor.
-  std::string transaction_budget(double transactions, double reference_frame, double goal) const {
+  std::string transaction_budget(double transactions, double reference_frame, double goal,
+                                 const char* unit = "transaction") const {
     const double allowed = (goal - 1) * reference_frame;
     const double each = allowed / std::max(1.0, transactions);
     const std::string budget =
-        text_of("The goal leaves %.2g of the reference frame, %s, for all the simulation adds: %s per transaction",
-                goal - 1, format_duration(allowed).c_str(), format_duration(each).c_str());
+        text_of("The goal leaves %.2g of the reference frame, %s, for all the simulation adds: %s per %s", goal - 1,
+                format_duration(allowed).c_str(), format_duration(each).c_str(), unit);
     if (!floor_measured())
       return budget + " (the bus row's floor, a bare b_transport, was not measured: --only left the bus part out)";
     return budget + text_of(", %s one bare b_transport (%s, the floor of the bus row)", than(each, floor_seconds()),
@@ -230,6 +236,10 @@ double Bench::soc_sim_frame(const std::vector<std::string>& args, unsigned n, bo
   for (const auto& [name, initiator] : stats.at("stats").at("bus").at("initiators").items())
     transactions += initiator.at("transactions").get<double>();
   m_last_transactions = transactions / (2.0 * n);
+  double requests = 0;
+  for (const auto& [name, histogram] : stats.at("stats").at("bus").at("histograms").at("wait_cycles").items())
+    requests += histogram.at("count").get<double>();
+  m_last_requests = requests / (2.0 * n);
   m_last_cpu = positive(per_frame_seconds(stats, n, "cpu_ns"), "soc_sim CPU per frame");
   const json& array = stats.at("stats").contains("array") ? stats.at("stats").at("array") : json::object();
   m_last_array_instructions = array.contains("instructions") ? array.at("instructions").get<double>() / (2.0 * n) : 0;
@@ -262,6 +272,7 @@ void Bench::arm_rows() {
                          sim.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, false));
                          sim_cpu.push_back(m_last_cpu);
                          m_arm_transactions = m_last_transactions;
+                         m_arm_requests = m_last_requests;
                        },
                        [&] {
                          sim_png.push_back(soc_sim_frame({"--app", "teapot", "--backend", "arm"}, n, true));
@@ -313,29 +324,32 @@ void Bench::arm_rows() {
   const double native_frame = min_median(native_s).median;
   native.limit = [this, native_frame, goal = native.goal_value] {
     return text_of(
-               "the host's memory traffic: %.0f bus transactions a frame (stats.json, averaged over the run; every "
-               "cache miss and buffered store is one, as the timing model requires). ",
-               m_arm_transactions) +
-           transaction_budget(m_arm_transactions, native_frame, goal) +
-           (floor_measured() ? text_of(", at whose cost the transactions alone would take %s a frame",
-                                       format_duration(m_arm_transactions * floor_seconds()).c_str())
+               "the host's memory traffic: %.0f bus requests a frame (stats.json's bus wait histograms, averaged "
+               "over the run; %.0f transfers, a posted run of stores being one request): each cache line fill, "
+               "victim written back, run of stores posted and burst to the display port, as the timing model "
+               "requires, and each costs the host's model (cache, write buffer, quantum) and the bus's (its "
+               "reservation and figures). ",
+               m_arm_requests, m_arm_transactions) +
+           transaction_budget(m_arm_requests, native_frame, goal, "request") +
+           (floor_measured() ? text_of(", at whose cost the requests alone would take %s a frame",
+                                       format_duration(m_arm_requests * floor_seconds()).c_str())
                              : std::string());
   };
   png.limit = [] {
-    return std::string("the same traffic as the row above (its bus transactions are the same), and the PNG files");
+    return std::string("the same traffic as the row above (its bus requests are the same), and the PNG files");
   };
   const double mesa_frame = min_median(mesa_s).median;
   mesa.limit = [this, mesa_frame] {
     const double floor = floor_seconds();
     if (!floor_measured())
       return text_of(
-          "the same traffic: %.0f bus transactions a frame, against Mesa's whole frame of %s (the bus "
+          "the same traffic: %.0f bus requests a frame, against Mesa's whole frame of %s (the bus "
           "row's floor, a bare b_transport, was not measured: --only left the bus part out)",
-          m_arm_transactions, format_duration(mesa_frame).c_str());
+          m_arm_requests, format_duration(mesa_frame).c_str());
     return text_of(
-        "the same traffic: %.0f bus transactions a frame would take %s at the cost of one bare b_transport "
+        "the same traffic: %.0f bus requests a frame would take %s at the cost of one bare b_transport "
         "each (%s, the bus row's floor), against Mesa's whole frame of %s",
-        m_arm_transactions, format_duration(m_arm_transactions * floor).c_str(), format_duration(floor).c_str(),
+        m_arm_requests, format_duration(m_arm_requests * floor).c_str(), format_duration(floor).c_str(),
         format_duration(mesa_frame).c_str());
   };
   m_rows.push_back(native);
