@@ -1760,6 +1760,60 @@ TEST(CuArray, ATraceCompiledForAnotherGeometryIsRefused) {
   EXPECT_EQ(same.reg(0, 0), 12);
 }
 
+// A trace run on a window of 16 lanes (run_trace's first_lane, lanes):
+// those lanes end as executing the trace on every lane leaves them, with
+// its counts; every other lane's registers, flags, mask and CMEM are as
+// before, its counts 0. Windows that are not (not at a multiple of 16, or
+// past the lanes) are refused.
+TEST(CuArray, ACompiledTraceRunOnAWindowOfLanesLeavesTheOthers) {
+  std::mt19937_64 rng(0x3d0);
+  const std::vector<Instruction> trace{
+      make(Opcode::op_add, reg(0), reg(1), mem(3)), make(Opcode::op_mset),
+      make(Opcode::op_adc, mem(5), reg(0), reg(2)), make(Opcode::op_shl, reg(3), reg(0), reg(0)),
+      make(Opcode::op_mov, mem(9), reg(3), reg(0)), make(Opcode::op_sub, reg(4), mem(5), reg(1)),
+      make(Opcode::op_or, mem(11), reg(4), mem(3))};
+  CuArray by_execute(small_cmem_geometry()), by_window(small_cmem_geometry());
+  const unsigned lanes = by_window.lanes(), first = 16, window = 16;
+  ASSERT_GE(lanes, first + window);
+  for (unsigned l = 0; l < lanes; ++l) {
+    const auto bits = rng();
+    for (CuArray* array : {&by_execute, &by_window}) {
+      array->set_flags(l, CuFlags{(bits & 1u) != 0, (bits & 2u) != 0, (bits & 4u) != 0});
+      array->set_mask(l, (bits & 8u) != 0);
+    }
+    for (unsigned r = 0; r < REGISTERS; ++r) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : {&by_execute, &by_window}) array->set_reg(l, r, value);
+    }
+    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : {&by_execute, &by_window}) array->set_cmem(l, a, value);
+    }
+  }
+  const CuArray before = by_window;
+  by_execute.count_per_lane(true);
+  for (const Instruction& in : trace)
+    ASSERT_EQ(by_execute.execute(in, LoopVariables{}, 0), "") << format_instruction(in);
+  by_window.run_trace(by_window.compile_trace(trace), first, window);
+  for (unsigned l = 0; l < lanes; ++l) {
+    const CuArray& expected = l >= first && l < first + window ? by_execute : before;
+    EXPECT_EQ(by_window.flags(l), expected.flags(l)) << "lane " << l;
+    EXPECT_EQ(by_window.mask(l), expected.mask(l)) << "lane " << l;
+    for (unsigned r = 0; r < REGISTERS; ++r) EXPECT_EQ(by_window.reg(l, r), expected.reg(l, r)) << "lane " << l;
+    for (unsigned a = 0; a < CMEM_BYTES; ++a) EXPECT_EQ(by_window.cmem(l, a), expected.cmem(l, a)) << "lane " << l;
+    for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
+      const auto s = static_cast<Stage>(stage);
+      const bool in_window = l >= first && l < first + window;
+      EXPECT_EQ(by_window.lane_useful(s)[l], in_window ? by_execute.lane_useful(s)[l] : 0u) << "lane " << l;
+      EXPECT_EQ(by_window.lane_stores(s)[l], in_window ? by_execute.lane_stores(s)[l] : 0u) << "lane " << l;
+    }
+  }
+  const CuArray::CompiledTrace compiled = by_window.compile_trace(trace);
+  EXPECT_THROW(by_window.run_trace(compiled, 8, 16), std::logic_error);
+  EXPECT_THROW(by_window.run_trace(compiled, lanes - 16, 32), std::logic_error);
+  EXPECT_THROW(by_window.run_trace(compiled, lanes + 16, 16), std::logic_error);
+}
+
 // A program written over another at the same entry is planned and
 // recorded afresh: the CUs are not skipped on the old program's record.
 TEST(ArrayController, SkippingIdleCusForgetsAProgramWrittenOver) {

@@ -942,50 +942,10 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   memo.full_runs = 0;
 
   const size_t outputs = plan.outputs();
-  if (k > 0) {
-    if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
-    CuArray& work = *m_work;
-    // Whole vectors of lanes: the lane loops have no scalar tail (the lanes
-    // after the k-th compute on stale bytes and are never read back).
-    work.set_lane_count((k + WORK_LANE_BLOCK - 1) / WORK_LANE_BLOCK * WORK_LANE_BLOCK);
-    // The lanes in a local: a byte stored through a row may alias the
-    // vector's own pointer as far as the compiler knows, which would then
-    // load it again for every lane.
-    const unsigned* const lanes = m_run_lanes.data();
-    LaneChunks chunks;
-    const bool chunked = chunks.set(k, lanes, n);
-    for (const unsigned row : plan.gathered) {
-      if (chunked)
-        chunks.gather(m_array.state_row(row), work.state_row(row));
-      else
-        gather_lanes(k, lanes, m_array.state_row(row), work.state_row(row));
-    }
-    for (size_t i = 0; i < plan.inputs.size(); ++i) {
-      if (chunked)
-        chunks.copy(m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
-      else
-        copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
-    }
-    work.mask_written();
-    // Control flow and addresses do not depend on data: this run takes the
-    // recorded run's path.
-    work.run_trace(memo.trace);
-    for (size_t i = 0; i < outputs; ++i) {
-      const unsigned row = plan.output_row(i);
-      if (chunked)
-        chunks.scatter(work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
-      else
-        scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
-    }
-    for (const unsigned stage : memo.lane_stages) {
-      const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
-      const uint32_t* stores = work.lane_stores(static_cast<Stage>(stage)).data();
-      for (unsigned j = 0; j < k; ++j) {
-        memo.useful[stage][m_run_lanes[j]] = useful[j];
-        memo.stores[stage][m_run_lanes[j]] = stores[j];
-      }
-    }
-  }
+  if (k > 0 && n % WORK_LANE_BLOCK == 0 && m_run_lanes[0] / WORK_LANE_BLOCK == m_run_lanes[k - 1] / WORK_LANE_BLOCK)
+    run_in_place(plan, memo, m_run_lanes[0] / WORK_LANE_BLOCK * WORK_LANE_BLOCK);
+  else if (k > 0)
+    run_gathered(plan, memo);
   // The skipped CUs end with the registers and flags their last run left.
   for (size_t i = plan.cmem_out.size(); i < outputs; ++i) {
     uint8_t* to = m_array.state_row(plan.output_row(i));
@@ -996,6 +956,80 @@ RunResult ArrayController::run_skipping(unsigned entry, const EntryPlan& plan, E
   m_lanes_run += k;
   m_lanes_skipped += n - k;
   return finish_from_record(entry, plan, memo);
+}
+
+void ArrayController::run_gathered(const EntryPlan& plan, EntryMemo& memo) {
+  // The run lanes gathered into the first lanes of a work array, the trace
+  // run there, its results scattered back.
+  const unsigned n = m_array.lanes();
+  const auto k = static_cast<unsigned>(m_run_lanes.size());
+  const size_t outputs = plan.outputs();
+  if (!m_work) m_work = std::make_unique<CuArray>(m_geometry);
+  CuArray& work = *m_work;
+  // Whole vectors of lanes: the lane loops have no scalar tail (the lanes
+  // after the k-th compute on stale bytes and are never read back).
+  work.set_lane_count((k + WORK_LANE_BLOCK - 1) / WORK_LANE_BLOCK * WORK_LANE_BLOCK);
+  // The lanes in a local: a byte stored through a row may alias the
+  // vector's own pointer as far as the compiler knows, which would then
+  // load it again for every lane.
+  const unsigned* const lanes = m_run_lanes.data();
+  LaneChunks chunks;
+  const bool chunked = chunks.set(k, lanes, n);
+  for (const unsigned row : plan.gathered) {
+    if (chunked)
+      chunks.gather(m_array.state_row(row), work.state_row(row));
+    else
+      gather_lanes(k, lanes, m_array.state_row(row), work.state_row(row));
+  }
+  for (size_t i = 0; i < plan.inputs.size(); ++i) {
+    if (chunked)
+      chunks.copy(m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+    else
+      copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+  }
+  work.mask_written();
+  // Control flow and addresses do not depend on data: this run takes the
+  // recorded run's path.
+  work.run_trace(memo.trace);
+  for (size_t i = 0; i < outputs; ++i) {
+    const unsigned row = plan.output_row(i);
+    if (chunked)
+      chunks.scatter(work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
+    else
+      scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
+  }
+  for (const unsigned stage : memo.lane_stages) {
+    const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
+    const uint32_t* stores = work.lane_stores(static_cast<Stage>(stage)).data();
+    for (unsigned j = 0; j < k; ++j) {
+      memo.useful[stage][m_run_lanes[j]] = useful[j];
+      memo.stores[stage][m_run_lanes[j]] = stores[j];
+    }
+  }
+}
+
+void ArrayController::run_in_place(const EntryPlan& plan, EntryMemo& memo, unsigned first_lane) {
+  // Every run lane in the block of WORK_LANE_BLOCK lanes from first_lane:
+  // the trace runs on that block of the array itself, with nothing
+  // gathered or scattered. The block's other lanes differ in nothing from
+  // their last run (inputs and the CMEM bytes it writes), and control flow
+  // does not depend on data, so the trace writes them what they hold.
+  const unsigned n = m_array.lanes();
+  const auto k = static_cast<unsigned>(m_run_lanes.size());
+  const unsigned* const lanes = m_run_lanes.data();
+  for (size_t i = 0; i < plan.inputs.size(); ++i)
+    copy_lanes(k, lanes, m_array.state_row(plan.inputs[i]), memo.inputs.data() + i * n);
+  m_array.run_trace(memo.trace, first_lane, WORK_LANE_BLOCK);
+  for (size_t i = 0; i < plan.outputs(); ++i)
+    copy_lanes(k, lanes, m_array.state_row(plan.output_row(i)), memo.outputs.data() + i * n);
+  for (const unsigned stage : memo.lane_stages) {
+    const uint32_t* useful = m_array.lane_useful(static_cast<Stage>(stage)).data();
+    const uint32_t* stores = m_array.lane_stores(static_cast<Stage>(stage)).data();
+    for (unsigned j = 0; j < k; ++j) {
+      memo.useful[stage][lanes[j]] = useful[lanes[j]];
+      memo.stores[stage][lanes[j]] = stores[lanes[j]];
+    }
+  }
 }
 
 RunResult ArrayController::finish_from_record(unsigned entry, const EntryPlan& plan, const EntryMemo& memo) {

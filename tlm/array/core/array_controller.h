@@ -276,6 +276,12 @@ class ArrayController {
   std::vector<Instruction> build_trace(unsigned entry) const;
   RunResult run_skipping(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
   RunResult run_and_record(unsigned entry, const EntryPlan& plan, EntryMemo& memo);
+  // run_skipping's run of the lanes in m_run_lanes (at least one): gathered
+  // into a work array, or in place when they are all in one block of lanes
+  // (from first_lane); each updates the record's inputs, outputs and counts
+  // of those lanes.
+  void run_gathered(const EntryPlan& plan, EntryMemo& memo);
+  void run_in_place(const EntryPlan& plan, EntryMemo& memo, unsigned first_lane);
   void record_outputs(const EntryPlan& plan, EntryMemo& memo);
   // The entry's compiled trace can run it: compiled, with the stage changes
   // when they are recorded.

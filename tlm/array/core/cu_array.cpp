@@ -1201,25 +1201,35 @@ void CuArray::unrename_registers() {
 }
 
 void CuArray::run_trace(const CompiledTrace& trace) {
+  run_trace(trace, 0, m_lanes);
+}
+
+void CuArray::run_trace(const CompiledTrace& trace, unsigned first_lane, unsigned lanes) {
   if (trace.storage_bytes != m_storage.size() || trace.stride != m_stride)
     throw std::logic_error("CuArray::run_trace: the trace was compiled for an array of another geometry");
+  if (first_lane % TRACE_BLOCK != 0 || first_lane > m_lanes || lanes > m_lanes - first_lane)
+    throw std::logic_error("CuArray::run_trace: lanes " + std::to_string(first_lane) + " .. " +
+                           std::to_string(uint64_t{first_lane} + lanes) + " (exclusive) are no window of the " +
+                           std::to_string(m_lanes) + " lanes starting at a multiple of " + std::to_string(TRACE_BLOCK));
   clear_lane_counts();
   unrename_registers();
+  // Every row through the window's first lane: the trace's offsets are
+  // rows', and a step's lane l is the window's.
   TraceRun run{};
-  run.base = m_storage.data();
-  run.lanes = m_lanes;
-  run.blocked = (m_lanes + TRACE_BLOCK - 1) / TRACE_BLOCK * TRACE_BLOCK;
-  run.c = row(m_flag_row + flag_c);
-  run.z = row(m_flag_row + flag_z);
-  run.s = row(m_flag_row + flag_s);
-  run.m = row(m_flag_row + flag_m);
-  run.out = row(m_scratch_row + SCRATCH_RESULT);
-  run.high = row(m_scratch_row + SCRATCH_PRODUCT);
-  run.middle = row(m_scratch_row + SCRATCH_PRODUCT + 1);
-  run.low = row(m_scratch_row + SCRATCH_PRODUCT + 2);
+  run.base = m_storage.data() + first_lane;
+  run.lanes = lanes;
+  run.blocked = (lanes + TRACE_BLOCK - 1) / TRACE_BLOCK * TRACE_BLOCK;
+  run.c = row(m_flag_row + flag_c) + first_lane;
+  run.z = row(m_flag_row + flag_z) + first_lane;
+  run.s = row(m_flag_row + flag_s) + first_lane;
+  run.m = row(m_flag_row + flag_m) + first_lane;
+  run.out = row(m_scratch_row + SCRATCH_RESULT) + first_lane;
+  run.high = row(m_scratch_row + SCRATCH_PRODUCT) + first_lane;
+  run.middle = row(m_scratch_row + SCRATCH_PRODUCT + 1) + first_lane;
+  run.low = row(m_scratch_row + SCRATCH_PRODUCT + 2) + first_lane;
   for (unsigned stage = 0; stage < STAGE_COUNT; ++stage) {
-    run.useful_by_stage[stage] = m_lane_useful[stage].data();
-    run.stores_by_stage[stage] = m_lane_stores[stage].data();
+    run.useful_by_stage[stage] = m_lane_useful[stage].data() + first_lane;
+    run.stores_by_stage[stage] = m_lane_stores[stage].data() + first_lane;
   }
   run.useful = run.useful_by_stage[trace.first_stage];
   run.stores = run.stores_by_stage[trace.first_stage];

@@ -193,6 +193,11 @@ class CuArray {
   // instruction's result is copied into its register, whose row the
   // trace's offsets name.
   void run_trace(const CompiledTrace& trace);
+  // run_trace on a window of the lanes only, `lanes` from `first_lane` (a
+  // multiple of 16; the window within the array's lanes): the other lanes'
+  // rows are left as they are, and their counts at 0 (std::logic_error
+  // for a window that is not).
+  void run_trace(const CompiledTrace& trace, unsigned first_lane, unsigned lanes);
 
  private:
   // compile_trace's flags per instruction: the flags each sets that a later
