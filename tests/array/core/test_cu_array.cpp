@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <initializer_list>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -1596,6 +1597,27 @@ TEST(ArrayController, SkippingIdleCusChangesNothingOnASmallGrid) {
   skipping_idle_cus_changes_nothing(IssueSkew::none, geometry);
 }
 
+// The same random flags, mask, registers and CMEM in the first `lanes`
+// lanes of each of `arrays` (C and Z often both set).
+void set_same_random_state(std::mt19937_64& rng, unsigned lanes, std::initializer_list<CuArray*> arrays) {
+  for (unsigned l = 0; l < lanes; ++l) {
+    const auto bits = rng();
+    const CuFlags flags{(bits & 3u) != 0, (bits & 12u) != 0, (bits & 16u) != 0};
+    for (CuArray* array : arrays) {
+      array->set_flags(l, flags);
+      array->set_mask(l, (bits & 32u) != 0);
+    }
+    for (unsigned r = 0; r < REGISTERS; ++r) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : arrays) array->set_reg(l, r, value);
+    }
+    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
+      const auto value = static_cast<uint8_t>(rng());
+      for (CuArray* array : arrays) array->set_cmem(l, a, value);
+    }
+  }
+}
+
 // Runs `trace` on `lanes` lanes from a random state both ways, by
 // execute() and by its compiled trace, and expects the same registers,
 // flags, masks, CMEM and per-lane counts; returns the compiled trace's
@@ -1604,22 +1626,7 @@ size_t expect_trace_runs_as_execute(std::mt19937_64& rng, unsigned lanes, const 
                                     const std::string& where) {
   CuArray by_execute(small_cmem_geometry()), by_trace(small_cmem_geometry());
   for (CuArray* array : {&by_execute, &by_trace}) array->set_lane_count(lanes);
-  for (unsigned l = 0; l < lanes; ++l) {
-    const auto bits = rng();
-    const CuFlags flags{(bits & 3u) != 0, (bits & 12u) != 0, (bits & 16u) != 0};
-    for (CuArray* array : {&by_execute, &by_trace}) {
-      array->set_flags(l, flags);
-      array->set_mask(l, (bits & 32u) != 0);
-    }
-    for (unsigned r = 0; r < REGISTERS; ++r) {
-      const auto value = static_cast<uint8_t>(rng());
-      for (CuArray* array : {&by_execute, &by_trace}) array->set_reg(l, r, value);
-    }
-    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
-      const auto value = static_cast<uint8_t>(rng());
-      for (CuArray* array : {&by_execute, &by_trace}) array->set_cmem(l, a, value);
-    }
-  }
+  set_same_random_state(rng, lanes, {&by_execute, &by_trace});
   // A few instructions executed on both first, so that the registers
   // are renamed when the trace starts (run_trace undoes it).
   for (unsigned i = 0; i < 4; ++i) {
@@ -1775,21 +1782,7 @@ TEST(CuArray, ACompiledTraceRunOnAWindowOfLanesLeavesTheOthers) {
   CuArray by_execute(small_cmem_geometry()), by_window(small_cmem_geometry());
   const unsigned lanes = by_window.lanes(), first = 16, window = 16;
   ASSERT_GE(lanes, first + window);
-  for (unsigned l = 0; l < lanes; ++l) {
-    const auto bits = rng();
-    for (CuArray* array : {&by_execute, &by_window}) {
-      array->set_flags(l, CuFlags{(bits & 1u) != 0, (bits & 2u) != 0, (bits & 4u) != 0});
-      array->set_mask(l, (bits & 8u) != 0);
-    }
-    for (unsigned r = 0; r < REGISTERS; ++r) {
-      const auto value = static_cast<uint8_t>(rng());
-      for (CuArray* array : {&by_execute, &by_window}) array->set_reg(l, r, value);
-    }
-    for (unsigned a = 0; a < CMEM_BYTES; ++a) {
-      const auto value = static_cast<uint8_t>(rng());
-      for (CuArray* array : {&by_execute, &by_window}) array->set_cmem(l, a, value);
-    }
-  }
+  set_same_random_state(rng, lanes, {&by_execute, &by_window});
   const CuArray before = by_window;
   by_execute.count_per_lane(true);
   for (const Instruction& in : trace)
