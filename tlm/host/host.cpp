@@ -765,8 +765,12 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
     cycles += c * (end - m);
     m = end;
   }
+  // The free time in a local: a store through `arrivals` could change
+  // st.free_ticks as far as the compiler knows, which would load it again
+  // at each word.
   uint64_t* const arrivals = t.arrivals.data() + t.arrived;
-  for (size_t i = 0; i < m; ++i) arrivals[i] = st.free_ticks + i * latency;
+  const uint64_t free_ticks = st.free_ticks;
+  for (size_t i = 0; i < m; ++i) arrivals[i] = free_ticks + i * latency;
   t.arrived += m;
   const uint64_t last_local = front - st.now + (m - 1) * latency;
   st.measured += cycles;
