@@ -998,14 +998,7 @@ void ArrayController::run_gathered(const EntryPlan& plan, EntryMemo& memo) {
     else
       scatter_lanes(k, lanes, work.state_row(row), m_array.state_row(row), memo.outputs.data() + i * n);
   }
-  for (const unsigned stage : memo.lane_stages) {
-    const uint32_t* useful = work.lane_useful(static_cast<Stage>(stage)).data();
-    const uint32_t* stores = work.lane_stores(static_cast<Stage>(stage)).data();
-    for (unsigned j = 0; j < k; ++j) {
-      memo.useful[stage][m_run_lanes[j]] = useful[j];
-      memo.stores[stage][m_run_lanes[j]] = stores[j];
-    }
-  }
+  record_lane_counts<false>(memo, work);
 }
 
 void ArrayController::run_in_place(const EntryPlan& plan, EntryMemo& memo, unsigned first_lane) {
@@ -1022,12 +1015,20 @@ void ArrayController::run_in_place(const EntryPlan& plan, EntryMemo& memo, unsig
   m_array.run_trace(memo.trace, first_lane, WORK_LANE_BLOCK);
   for (size_t i = 0; i < plan.outputs(); ++i)
     copy_lanes(k, lanes, m_array.state_row(plan.output_row(i)), memo.outputs.data() + i * n);
+  record_lane_counts<true>(memo, m_array);
+}
+
+template <bool kInPlace>
+void ArrayController::record_lane_counts(EntryMemo& memo, const CuArray& ran) {
+  const unsigned* const lanes = m_run_lanes.data();
+  const auto k = static_cast<unsigned>(m_run_lanes.size());
   for (const unsigned stage : memo.lane_stages) {
-    const uint32_t* useful = m_array.lane_useful(static_cast<Stage>(stage)).data();
-    const uint32_t* stores = m_array.lane_stores(static_cast<Stage>(stage)).data();
+    const uint32_t* useful = ran.lane_useful(static_cast<Stage>(stage)).data();
+    const uint32_t* stores = ran.lane_stores(static_cast<Stage>(stage)).data();
     for (unsigned j = 0; j < k; ++j) {
-      memo.useful[stage][lanes[j]] = useful[lanes[j]];
-      memo.stores[stage][lanes[j]] = stores[lanes[j]];
+      const unsigned from = kInPlace ? lanes[j] : j;
+      memo.useful[stage][lanes[j]] = useful[from];
+      memo.stores[stage][lanes[j]] = stores[from];
     }
   }
 }

@@ -282,6 +282,11 @@ class ArrayController {
   // of those lanes.
   void run_gathered(const EntryPlan& plan, EntryMemo& memo);
   void run_in_place(const EntryPlan& plan, EntryMemo& memo, unsigned first_lane);
+  // The run lanes' counts per stage into the record, from the array `ran`
+  // ran them on: at each lane's own index (kInPlace), or at its place
+  // among the run lanes (gathered into a work array).
+  template <bool kInPlace>
+  void record_lane_counts(EntryMemo& memo, const CuArray& ran);
   void record_outputs(const EntryPlan& plan, EntryMemo& memo);
   // The entry's compiled trace can run it: compiled, with the stage changes
   // when they are recorded.
