@@ -123,7 +123,10 @@ void AhbBus::add_region(uint64_t base, uint64_t size, const std::string& target_
 
 const AhbBus::Region* AhbBus::decode_other(uint64_t address) const {
   for (const auto& r : m_regions)
-    if (address >= r.base && address - r.base < r.size) return m_last_region = &r;
+    if (address >= r.base && address - r.base < r.size) {
+      m_other_region = m_last_region;
+      return m_last_region = &r;
+    }
   return nullptr;
 }
 

@@ -33,6 +33,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tlm_utils/multi_passthrough_initiator_socket.h>
@@ -169,8 +170,15 @@ class AhbBus : public Block {
   void before_end_of_elaboration() override;
   void end_of_elaboration() override;
   void add_region(uint64_t base, uint64_t size, const std::string& name);
+  // The last two regions decoded are remembered: an initiator alternating
+  // between two targets (the host copying a frame from memory to the
+  // display port) finds both without a search.
   const Region* decode(uint64_t address) const {
     if (m_last_region && address - m_last_region->base < m_last_region->size) return m_last_region;
+    if (m_other_region && address - m_other_region->base < m_other_region->size) {
+      std::swap(m_last_region, m_other_region);
+      return m_last_region;
+    }
     return decode_other(address);
   }
   const Region* decode_other(uint64_t address) const;  // and remembers it
@@ -214,8 +222,20 @@ class AhbBus : public Block {
         m_reserved.back().end = start + length_cycles;
       } else {
         if (m_reserved.size() >= m_prune_at) prune(now);
-        m_reserved.push_back(Interval{start, start + length_cycles});
+        // Field by field: push_back of an Interval built on the stack had
+        // its two words stored apart and loaded as one, which the CPU
+        // cannot forward (a stall on the bus's hottest path).
+        Interval& added = m_reserved.emplace_back();
+        added.start = start;
+        added.end = start + length_cycles;
       }
+    } else if (request_cycle >= m_reserved.back().start) {
+      // Requested while the last reservation runs (a read behind a posted
+      // write): it joins that reservation at its end, as reserve_among's
+      // search would find (without its pruning, which only drops
+      // intervals ended before the kernel's time, that no request reaches).
+      start = m_reserved.back().end;
+      m_reserved.back().end = start + length_cycles;
     } else {
       start = reserve_among(now, request_cycle, length_cycles);
     }
@@ -291,6 +311,7 @@ class AhbBus : public Block {
   // timeline's last interval, the end of the last granted transfer.
   uint64_t m_pruned_end_cycle = 0;
   mutable const Region* m_last_region = nullptr;
+  mutable const Region* m_other_region = nullptr;
   bool m_tracing = false;
   TransactionSink* m_transactions = nullptr;
   // m_tracing or m_transactions: the one test on the hot path for both.

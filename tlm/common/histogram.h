@@ -17,11 +17,9 @@ class Log2Histogram {
   // Bucket 0 holds 0; bucket b >= 1 holds [2^(b-1), 2^b - 1]: 1, 2-3, 4-7...
   static constexpr unsigned BUCKETS = 65;
 
-  static unsigned bucket_of(uint64_t value) {
-    unsigned bits = 0;
-    while (value != 0) ++bits, value >>= 1;
-    return bits;
-  }
+  // The value's bit length, by one count of leading zeros (a loop over the
+  // bits took 30 instructions for a bus wait of a thousand cycles).
+  static unsigned bucket_of(uint64_t value) { return value == 0 ? 0 : 64 - __builtin_clzll(value); }
   static uint64_t bucket_low(unsigned bucket) { return bucket == 0 ? 0 : uint64_t(1) << (bucket - 1); }
   static uint64_t bucket_high(unsigned bucket) {
     return bucket == 0 ? 0 : bucket == 64 ? std::numeric_limits<uint64_t>::max() : (uint64_t(1) << bucket) - 1;

@@ -54,20 +54,6 @@ DataCache::WriteBack DataCache::take_dirty(Line& line, bool invalidate) {
   return write_back;
 }
 
-DataCache::Result DataCache::read_miss(uint32_t address) {
-  Result result{false, {}};
-  ++m_misses;
-  if (!enabled()) return result;
-  const uint32_t tag = address >> m_line_shift;
-  const unsigned set_index = tag & (m_sets - 1);
-  const size_t index = static_cast<size_t>(set_index) * m_ways + m_replacement.victim(set_index, m_round_robin);
-  Line& victim = m_lines[index];
-  result.victim = take_dirty(victim, true);  // the victim revoked
-  victim = {tag, true, 0};
-  remember(victim, index);
-  return result;
-}
-
 DataCache::WriteBack DataCache::clean_line(uint32_t address, bool invalidate) {
   if (!enabled()) return {};
   Line* line = find(address);

@@ -108,6 +108,8 @@ class DataCache {
     return tag < INDEXED_TAGS ? nullptr : find_in_set(tag);  // an allocated tag this low would be in the table
   }
   Line* find_in_set(uint32_t tag);
+  // Inline (below): returned from a call, the Result went through the
+  // stack as stores the load of its return registers could not forward.
   Result read_miss(uint32_t address);
   // The dirty bit of the half of its line that `address` is in.
   unsigned half_bit(uint32_t address) const { return 1u << ((address >> (m_line_shift - 1)) & 1u); }
@@ -138,5 +140,18 @@ class DataCache {
   uint64_t m_misses = 0;
   uint64_t m_writebacks = 0;
 };
+
+inline DataCache::Result DataCache::read_miss(uint32_t address) {
+  ++m_misses;
+  if (!enabled()) return {false, {}};
+  const uint32_t tag = address >> m_line_shift;
+  const unsigned set_index = tag & (m_sets - 1);
+  const size_t index = static_cast<size_t>(set_index) * m_ways + m_replacement.victim(set_index, m_round_robin);
+  Line& victim = m_lines[index];
+  const WriteBack dirty = take_dirty(victim, true);  // the victim revoked
+  victim = {tag, true, 0};
+  remember(victim, index);
+  return {false, dirty};
+}
 
 }  // namespace tessera

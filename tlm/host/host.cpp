@@ -257,6 +257,23 @@ inline void copy_access(void* to, const void* from, unsigned bytes) {
     default: std::memcpy(to, from, bytes); break;
   }
 }
+// The elements of `size` bytes that a span's piece of `bytes` touches,
+// rounded up, at least one: a shift where the size is a power of two, as
+// elements are (a division at each line of a span took about a sixth of the
+// span functions' samples in an `arm` frame).
+class PieceElements {
+ public:
+  explicit PieceElements(unsigned size)
+      : m_size(size), m_shift(size != 0 && (size & (size - 1)) == 0 ? __builtin_ctz(size) : -1) {}
+  unsigned operator()(uint32_t bytes) const {
+    const uint32_t rounded = bytes + m_size - 1;
+    return std::max(1u, m_shift >= 0 ? rounded >> m_shift : rounded / m_size);
+  }
+
+ private:
+  unsigned m_size;
+  int m_shift;
+};
 }  // namespace
 
 void Host::read_data(uint32_t address, void* data, unsigned bytes, unsigned counted) {
@@ -855,12 +872,13 @@ const uint8_t* Host::load_span(uint32_t address, unsigned size, unsigned count) 
     return data;
   }
   const unsigned line = m_dcache.line_bytes();
+  const PieceElements piece_elements(size);
   uint32_t cursor = address;
   const uint32_t end = address + bytes;
   while (cursor < end) {
     const uint32_t line_end = m_dcache.line_address(cursor) + line;
     const uint32_t piece_end = std::min(end, line_end);
-    const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
+    const unsigned elements = piece_elements(piece_end - cursor);
     charge(uint64_t{m_params.load_cycles} * elements);
     const DataCache::Result result = m_dcache.read(cursor);
     if (!result.hit) {
@@ -887,6 +905,7 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
   const bool cache = m_dcache_on && m_dcache.enabled();
   const bool write_through = m_params.write_through;
   const unsigned line = cache ? m_dcache.line_bytes() : bytes;
+  const PieceElements piece_elements(size);
   uint32_t cursor = address;
   const uint32_t end = address + bytes;
   // Runs of elements that miss the cache (or hit write-through lines) leave
@@ -900,7 +919,7 @@ uint8_t* Host::store_span(uint32_t address, unsigned size, unsigned count) {
   while (cursor < end) {
     const uint32_t line_end = cache ? m_dcache.line_address(cursor) + line : end;
     const uint32_t piece_end = std::min(end, line_end);
-    const unsigned elements = std::max(1u, (piece_end - cursor + size - 1) / size);
+    const unsigned elements = piece_elements(piece_end - cursor);
     charge(uint64_t{m_params.store_cycles} * elements);
     const bool hit = cache && m_dcache.write(cursor, !write_through, piece_end - cursor);
     if (hit) m_dcache.count_hits(elements - 1);
