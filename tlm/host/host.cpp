@@ -545,6 +545,19 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
   // write buffer.
   const bool write_through = m_params.write_through;
   unsigned run_start = 0;
+  // No word looked up in the cache (a device's, as the frame copy's to the
+  // display port; the words rise, so the last below the cacheable range's
+  // base or the first beyond its end): the runs without the words' tests.
+  const uint64_t last_word = uint64_t{address} + 4 * uint64_t{count - 1};
+  if (!m_dcache_on || !m_dcache.enabled() || last_word < m_params.cacheable_base ||
+      uint64_t{address} + 4 > m_cacheable_end) {
+    while (run_start < count) {
+      const unsigned length = std::min(count - run_start, m_params.write_buffer_words);
+      post_write(address + 4 * run_start, reinterpret_cast<const uint8_t*>(&words[run_start]), length * 4);
+      run_start += length;
+    }
+    return;
+  }
   for (unsigned i = 0; i <= count; ++i) {
     const bool hit =
         i < count && cached(address + 4 * i, 4) && m_dcache.write(address + 4 * i, !write_through) && !write_through;
