@@ -13,6 +13,7 @@
 //   (sw_driver/runtime).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -88,6 +89,22 @@ class HostApi {
     for (unsigned k = 0; k < count; ++k) {
       if (cycles[k] != 0) compute_cycles(cycles[k]);
       write32(address + k * stride, values[k]);
+    }
+  }
+
+  // A copy of `words` words from `from` (system memory, through the cache)
+  // to `to` (a device), as LDM/STM of eight registers do it: for each block
+  // k of up to eight words, load_span(from + 32 k, 4, n), write_words(to +
+  // 32 k, those words, n), then compute_cycles(cycles[k]) when it is not 0.
+  // Exactly those calls, which is what it makes by default; a host model
+  // may simulate the copy as a unit, with the same times and counts
+  // (tlm/host/README.md, "The frame copy").
+  virtual void copy_words(uint32_t to, uint32_t from, uint32_t words, const uint64_t* cycles) {
+    for (uint32_t k = 0; 8 * k < words; ++k) {
+      const unsigned count = std::min<uint32_t>(8, words - 8 * k);
+      const auto* data = reinterpret_cast<const uint32_t*>(load_span(from + 32 * k, 4, count));
+      write_words(to + 32 * k, data, count);
+      if (cycles[k] != 0) compute_cycles(cycles[k]);
     }
   }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "common/pixel_format.h"
 #include "device/app_environment.h"
@@ -38,6 +39,9 @@ class DisplayDriver {
   unsigned m_height;
   PixelFormat m_format;
   bool m_dma;
+#if !defined(TESSERA_HOST_ISS)
+  std::vector<uint64_t> m_copy_cycles;  // each copied block's cycles (HostApi::copy_words)
+#endif
 };
 
 }  // namespace tessera

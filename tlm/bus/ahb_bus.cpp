@@ -44,6 +44,11 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
   void direct_train(const WordTrain& train, const uint64_t* arrivals) override {
     m_bus.direct_train(m_index, train, arrivals);
   }
+  bool quote_copy(const CopyPlan& plan, CopyQuote& quote) override { return m_bus.quote_copy(plan, quote); }
+  void direct_copy(const CopyPlan& plan, size_t first_block, size_t blocks, const CopyRequest* requests,
+                   uint8_t* data) override {
+    m_bus.direct_copy(m_index, plan, first_block, blocks, requests, data);
+  }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
     return m_bus.get_direct_mem_ptr(m_index, gp, dmi);
@@ -438,6 +443,74 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
   s.busy_cycles += occupancy_cycles * train.count;
   m_wait_histograms[initiator].sample(0, train.count);
   m_last_granted = initiator;
+}
+
+bool AhbBus::quote_copy(const CopyPlan& plan, CopyQuote& quote) {
+  // Served as a unit only where serve() would do nothing but reserve each
+  // request (as quote_train asks), both ranges each in one target that
+  // quotes its accesses; the caller keeps every request after the kernel's
+  // time (no delta cycle) and follows reserve() from the last reservation.
+  if (plan.blocks == 0 || plan.bytes == 0 || m_observed || log::enabled(log::Level::debug) || !m_batch.empty())
+    return false;
+  const uint64_t length = uint64_t{plan.bytes} * plan.blocks;
+  const Region* fill = decode(plan.from);
+  const Region* burst = decode(plan.to);
+  if (fill == nullptr || burst == nullptr || fill == burst || fill->direct == nullptr || burst->direct == nullptr)
+    return false;
+  if (plan.from - fill->base > fill->size - length || length > fill->size ||
+      plan.to - burst->base > burst->size - length || length > burst->size)
+    return false;
+  uint64_t fill_latency = 0, burst_latency = 0;
+  bool fill_untouched = false;
+  if (!fill->direct->quote_accesses(tlm::TLM_READ_COMMAND, plan.from - fill->base, plan.bytes, plan.blocks,
+                                    fill_latency, fill_untouched) ||
+      !burst->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, plan.to - burst->base, plan.bytes, plan.blocks,
+                                     burst_latency, quote.burst_untouched))
+    return false;
+  const uint64_t beats = single_beats(plan.bytes);
+  quote.period_ticks = m_period_ticks;
+  quote.fill_cycles = occupancy(ceil_cycles(fill_latency, fill->latency), beats);
+  quote.burst_cycles = occupancy(ceil_cycles(burst_latency, burst->latency), beats);
+  quote.has_last = !m_reserved.empty();
+  quote.last_start = quote.has_last ? m_reserved.back().start : 0;
+  quote.last_end = quote.has_last ? m_reserved.back().end : 0;
+  return true;
+}
+
+void AhbBus::direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_block, size_t blocks,
+                         const CopyRequest* requests, uint8_t* data) {
+  if (blocks == 0) return;
+  const Region* fill = decode(plan.from);
+  const Region* burst = decode(plan.to);
+  if (fill == nullptr || burst == nullptr || fill->direct == nullptr || burst->direct == nullptr)
+    throw std::logic_error(std::string(name()) + ": a copy unquoted");
+  CopyQuote quote;
+  if (!quote_copy(plan, quote)) throw std::logic_error(std::string(name()) + ": a copy the bus no longer quotes");
+  // Each request as serve() would reserve it and count it.
+  const uint64_t now = m_context->time_stamp().value();
+  const uint64_t beats = single_beats(plan.bytes);
+  BusInitiatorStats& s = m_stats[initiator];
+  uint64_t end_cycle = 0;
+  for (size_t r = 0; r < 2 * blocks; ++r) {
+    const uint64_t occupancy_cycles = r % 2 == 0 ? quote.fill_cycles : quote.burst_cycles;
+    const CopyRequest& request = requests[r];
+    if (reserve(now, request.request_cycle, occupancy_cycles) != request.start_cycle)
+      throw std::logic_error(std::string(name()) + ": a copy's request granted where its quote did not say");
+    end_cycle = request.start_cycle + occupancy_cycles;
+    s.busy_cycles += occupancy_cycles;
+    s.wait_cycles += request.start_cycle - request.request_cycle;
+    m_wait_histograms[initiator].sample(request.start_cycle - request.request_cycle);
+  }
+  s.transactions += 2 * blocks;
+  s.reads += blocks;
+  s.writes += blocks;
+  s.bytes += 2 * uint64_t{plan.bytes} * blocks;
+  s.beats += 2 * beats * blocks;
+  m_last_granted = initiator;
+  m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
+  const uint64_t offset = uint64_t{plan.bytes} * first_block;
+  fill->direct->direct_accesses(tlm::TLM_READ_COMMAND, plan.from + offset - fill->base, data, plan.bytes, blocks);
+  burst->direct->direct_accesses(tlm::TLM_WRITE_COMMAND, plan.to + offset - burst->base, data, plan.bytes, blocks);
 }
 
 unsigned AhbBus::transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp) {

@@ -189,6 +189,10 @@ class AhbBus : public Block {
   // both, so that each door's port is a plain forwarder.
   void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
   void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras);
+  // A frame copy as a unit (common/direct_transport.h, CopyPlan).
+  bool quote_copy(const CopyPlan& plan, CopyQuote& quote);
+  void direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_block, size_t blocks,
+                   const CopyRequest* requests, uint8_t* data);
   __attribute__((always_inline)) inline void serve(unsigned initiator, tlm::tlm_generic_payload& gp,
                                                    sc_core::sc_time& delay, DirectExtras& extras);
   // Store trains (common/direct_transport.h): a train of single-word

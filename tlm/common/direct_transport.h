@@ -50,6 +50,37 @@ struct WordTrain {
   size_t count = 0;
 };
 
+// A frame copy as a unit (HostApi::copy_words): `blocks` blocks, block k a
+// line fill of `bytes` bytes read at from + k * bytes and a burst of them
+// written at to + k * bytes (a single transfer each). The requests go to
+// the bus in order, each after the one before has been requested.
+struct CopyPlan {
+  uint64_t from = 0;
+  uint64_t to = 0;
+  unsigned bytes = 0;
+  size_t blocks = 0;
+};
+// What the bus promises for a plan's requests (quote_copy): each holds it
+// for the cycles of its kind, once it has it; a request is granted as
+// reserve() grants it, which the caller follows from the bus's last
+// reservation (has_last, last_start, last_end, in the bus's cycles of
+// period_ticks); whether a burst left the kernel's schedule as it was.
+struct CopyQuote {
+  uint64_t period_ticks = 1;
+  uint64_t fill_cycles = 0;
+  uint64_t burst_cycles = 0;
+  bool burst_untouched = false;
+  bool has_last = false;
+  uint64_t last_start = 0;
+  uint64_t last_end = 0;
+};
+// One request of a copy handed to the bus (direct_copy): the cycle it was
+// requested at and the one the caller found it granted at.
+struct CopyRequest {
+  uint64_t request_cycle = 0;
+  uint64_t start_cycle = 0;
+};
+
 // The timing a target or the bus promises for a train's words (quote_train):
 // a word that arrives at absolute tick t completes at done(t), the arrival
 // rounded up to a multiple of edge_ticks (the bus's clock edge) plus
@@ -87,6 +118,37 @@ class DirectTransport {
   }
   virtual void direct_train(const WordTrain& /*train*/, const uint64_t* /*arrivals*/) {
     throw std::logic_error("direct_train on a target that quotes no trains");
+  }
+  // Accesses as a unit (a frame copy's fills or bursts): quote_accesses:
+  // whether the target would serve `count` accesses of `bytes` bytes, the
+  // k-th at address + k * bytes (command, no byte enables, one transfer
+  // each), exactly as direct_b_transport serves each (same data, counters,
+  // outcome: no error) with a delay of its own that does not depend on the
+  // time: latency_ticks; and whether each leaves the kernel's schedule as
+  // it was (ScheduleUntouched, or DMI granted: memory). false, the default:
+  // one payload each. direct_accesses: serves them, their bytes at `data`
+  // one after the other; only after a true quote_accesses.
+  virtual bool quote_accesses(tlm::tlm_command /*command*/, uint64_t /*address*/, unsigned /*bytes*/, size_t /*count*/,
+                              uint64_t& /*latency_ticks*/, bool& /*untouched*/) {
+    return false;
+  }
+  virtual void direct_accesses(tlm::tlm_command /*command*/, uint64_t /*address*/, uint8_t* /*data*/,
+                               unsigned /*bytes*/, size_t /*count*/) {
+    throw std::logic_error("direct_accesses on a target that quotes no accesses");
+  }
+  // A copy (CopyPlan) through the bus, from an initiator's door:
+  // quote_copy: whether the bus would serve every request of `plan` by
+  // reserve() alone (nothing observed or logged, no synchronised request
+  // waiting, both ranges in targets that quote their accesses), and how
+  // (CopyQuote); the answer holds while the kernel's time stands and no
+  // other initiator has the bus. direct_copy: serves blocks first_block ..
+  // first_block + blocks - 1 of it, fill and burst each, as requested at
+  // requests[2 k] and [2 k + 1] (k from 0), the bursts' bytes from `data`:
+  // the bus's reservations and figures, the targets' accesses.
+  virtual bool quote_copy(const CopyPlan& /*plan*/, CopyQuote& /*quote*/) { return false; }
+  virtual void direct_copy(const CopyPlan& /*plan*/, size_t /*first_block*/, size_t /*blocks*/,
+                           const CopyRequest* /*requests*/, uint8_t* /*data*/) {
+    throw std::logic_error("direct_copy through a door that quotes no copies");
   }
 
  protected:

@@ -114,11 +114,25 @@ bool DisplayController::port_b_transport(tlm::tlm_generic_payload& gp, sc_time& 
   } else if (gp.is_read()) {
     std::memcpy(gp.get_data_ptr(), &m_port_frame[address], length);
   }
-  // The data phase in integer ticks (the port's cycles per word).
-  const uint64_t beats = (length + 3) / 4;
-  delay += ticks_time(m_params.clock_period.value() * m_params.port_cycles * beats);
+  delay += ticks_time(port_ticks(length));
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
   return true;
+}
+
+bool DisplayController::port_quote(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count,
+                                   uint64_t& latency_ticks, bool& untouched) const {
+  if (command != tlm::TLM_WRITE_COMMAND || bytes == 0 || count == 0 || address >= m_port_frame.size() ||
+      count > (m_port_frame.size() - address) / bytes)
+    return false;
+  latency_ticks = port_ticks(bytes);
+  untouched = true;  // a port write schedules nothing (ScheduleUntouched)
+  return true;
+}
+
+void DisplayController::port_write_accesses(uint64_t address, const uint8_t* data, unsigned bytes, size_t count) {
+  const uint64_t length = uint64_t{bytes} * count;
+  std::memcpy(&m_port_frame[address], data, length);
+  m_port_bytes += length;
 }
 
 tlm::tlm_sync_enum DisplayController::Port::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& /*phase*/,

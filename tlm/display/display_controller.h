@@ -140,6 +140,14 @@ class DisplayController : public Peripheral {
     void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
       if (m_display.port_b_transport(gp, delay)) extras.untouched = true;
     }
+    bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count,
+                        uint64_t& latency_ticks, bool& untouched) override {
+      return m_display.port_quote(command, address, bytes, count, latency_ticks, untouched);
+    }
+    void direct_accesses(tlm::tlm_command /*command*/, uint64_t address, uint8_t* data, unsigned bytes,
+                         size_t count) override {
+      m_display.port_write_accesses(address, data, bytes, count);
+    }
     unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_display.port_transport_dbg(gp); }
     bool get_direct_mem_ptr(tlm::tlm_generic_payload& /*gp*/, tlm::tlm_dmi& dmi) override {
       dmi.allow_none();
@@ -153,6 +161,15 @@ class DisplayController : public Peripheral {
   };
   // Both doors' access: true when it succeeded (and so scheduled nothing).
   bool port_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay);
+  // Writes as a unit (DirectTransport::quote_accesses, direct_accesses).
+  bool port_quote(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count, uint64_t& latency_ticks,
+                  bool& untouched) const;
+  void port_write_accesses(uint64_t address, const uint8_t* data, unsigned bytes, size_t count);
+  // The data phase of an access of `length` bytes, in integer ticks (the
+  // port's cycles per word).
+  uint64_t port_ticks(uint64_t length) const {
+    return m_params.clock_period.value() * m_params.port_cycles * ((length + 3) / 4);
+  }
   unsigned port_transport_dbg(tlm::tlm_generic_payload& gp);
 
   uint32_t read_STATUS() const;

@@ -25,11 +25,15 @@ class CacheReplacement {
       m_next[set] = (way + 1) % m_ways;
       return way;
     }
-    m_lfsr = static_cast<uint16_t>((m_lfsr >> 1) ^ (-(m_lfsr & 1u) & 0xb400u));
+    m_lfsr = next_lfsr();
     return m_lfsr % m_ways;
   }
+  // The way victim() would return, without advancing anything.
+  unsigned peek(unsigned set, bool round_robin) const { return round_robin ? m_next[set] : next_lfsr() % m_ways; }
 
  private:
+  uint16_t next_lfsr() const { return static_cast<uint16_t>((m_lfsr >> 1) ^ (-(m_lfsr & 1u) & 0xb400u)); }
+
   std::vector<unsigned> m_next;
   unsigned m_ways;
   uint16_t m_lfsr = 0xace1u;

@@ -49,6 +49,17 @@ class DataCache {
     }
     return read_miss(address);
   }
+  // Whether read(address) would miss and replace a line that holds no
+  // dirty data, changing nothing (the frame copy's blocks taken in closed
+  // form are such misses: Host::copy_words).
+  bool clean_miss(uint32_t address) {
+    if (!enabled() || find(address) != nullptr) return false;
+    const uint32_t tag = address >> m_line_shift;
+    const unsigned set_index = tag & (m_sets - 1);
+    const Line& victim =
+        m_lines[static_cast<size_t>(set_index) * m_ways + m_replacement.peek(set_index, m_round_robin)];
+    return !victim.valid || victim.dirty == 0;
+  }
   // A write of `bytes` from `address` (within one line): true on a hit,
   // which marks the halves of the line it covers dirty if `write_back`; a
   // miss does not allocate.

@@ -259,8 +259,8 @@ inline void copy_access(void* to, const void* from, unsigned bytes) {
 }
 // The elements of `size` bytes that a span's piece of `bytes` touches,
 // rounded up, at least one: a shift where the size is a power of two, as
-// elements are (a division at each line of a span took about a sixth of the
-// span functions' samples in an `arm` frame).
+// elements are (a division at each line of a span had an eighth to a sixth
+// of the span functions' samples in an `arm` frame).
 class PieceElements {
  public:
   explicit PieceElements(unsigned size)
@@ -545,17 +545,22 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
   // write buffer.
   const bool write_through = m_params.write_through;
   unsigned run_start = 0;
-  // No word looked up in the cache (a device's, as the frame copy's to the
-  // display port; the words rise, so the last below the cacheable range's
-  // base or the first beyond its end): the runs without the words' tests.
-  const uint64_t last_word = uint64_t{address} + 4 * uint64_t{count - 1};
-  if (!m_dcache_on || !m_dcache.enabled() || last_word < m_params.cacheable_base ||
-      uint64_t{address} + 4 > m_cacheable_end) {
-    while (run_start < count) {
-      const unsigned length = std::min(count - run_start, m_params.write_buffer_words);
+  // The words from run_start up to `end` (missed), as bursts of at most a
+  // buffer's worth.
+  const auto post_run = [&](unsigned end) {
+    while (run_start < end) {
+      const unsigned length = std::min(end - run_start, m_params.write_buffer_words);
       post_write(address + 4 * run_start, reinterpret_cast<const uint8_t*>(&words[run_start]), length * 4);
       run_start += length;
     }
+  };
+  // No word looked up in the cache (a device's, as the frame copy's to the
+  // display port; the words rise, so the last below the cacheable range's
+  // base or the first beyond its end): one run, without the words' tests.
+  const uint64_t last_word = uint64_t{address} + 4 * uint64_t{count - 1};
+  if (!m_dcache_on || !m_dcache.enabled() || last_word < m_params.cacheable_base ||
+      uint64_t{address} + 4 > m_cacheable_end) {
+    post_run(count);
     return;
   }
   for (unsigned i = 0; i <= count; ++i) {
@@ -575,11 +580,7 @@ void Host::write_words(uint32_t address, const uint32_t* words, unsigned count) 
       }
     }
     if (i == count || hit) {
-      while (run_start < i) {
-        const unsigned length = std::min(i - run_start, m_params.write_buffer_words);
-        post_write(address + 4 * run_start, reinterpret_cast<const uint8_t*>(&words[run_start]), length * 4);
-        run_start += length;
-      }
+      post_run(i);
       run_start = i + 1;
     }
   }
@@ -853,6 +854,167 @@ void Host::hand_over_train() {
   t.quoted = false;
   m_direct_out->direct_train(deferred, t.arrivals.data());
   t.arrived = 0;
+}
+
+void Host::copy_words(uint32_t to, uint32_t from, uint32_t words, const uint64_t* cycles) {
+  // Whole blocks in closed form only where each is copy_steady's steps:
+  // lines of 32 bytes of system memory through the data cache and DMI,
+  // bursts of eight words to a range none of which is cacheable, a write
+  // buffer that holds a burst, nothing noting the host's intervals; else,
+  // and for a last block short of eight words, the calls.
+  const uint32_t blocks = words / 8;
+  const uint64_t bytes = 32 * uint64_t{blocks};
+  const bool unit = blocks > 0 && m_direct_out != nullptr && !m_note_segments && m_dcache_on && m_dcache.enabled() &&
+                    m_dcache.line_bytes() == 32 && from % 32 == 0 && to % 4 == 0 &&
+                    uint64_t{from} + bytes <= 1ull << 32 && uint64_t{to} + bytes <= 1ull << 32 &&
+                    cacheable(from, static_cast<unsigned>(bytes)) &&
+                    dmi_pointer(from, static_cast<unsigned>(bytes)) != nullptr &&
+                    (uint64_t{to} + bytes <= m_params.cacheable_base || to >= m_cacheable_end) &&
+                    m_params.write_buffer_words >= 8 && m_params.write_buffer_addresses >= 1;
+  if (!unit) {
+    HostApi::copy_words(to, from, words, cycles);
+    return;
+  }
+  const CopyPlan plan{from, to, 32, blocks};
+  for (uint32_t k = 0; k < blocks; ++k) {
+    k += copy_steady(plan, k, cycles);
+    if (k == blocks) break;
+    const auto* data = reinterpret_cast<const uint32_t*>(load_span(from + 32 * k, 4, 8));
+    write_words(to + 32 * k, data, 8);
+    if (cycles[k] != 0) Host::compute_cycles(cycles[k]);
+  }
+  if (const unsigned count = words % 8) {
+    const auto* data = reinterpret_cast<const uint32_t*>(load_span(from + 32 * blocks, 4, count));
+    write_words(to + 32 * blocks, data, count);
+    if (cycles[blocks] != 0) Host::compute_cycles(cycles[blocks]);
+  }
+}
+
+uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t* cycles) {
+  CopyQuote quote;
+  if (!m_direct_out->quote_copy(plan, quote)) return 0;
+  // The host's state in local variables, a block at a time: a block's
+  // steps are taken on a copy and kept only when every one is what the
+  // calls would do here (load_span's charge and line fill, its stall,
+  // write_words' charge and burst through an empty write buffer, the
+  // block's cycles; a quantum's end that only runs ahead on the kernel's
+  // cached answer). The bus grants each request as reserve() does,
+  // followed from its last reservation (the bus is the host's alone until
+  // it lets the kernel run).
+  struct State {
+    uint64_t local, budget, free;
+    bool window_clear;
+    uint64_t busy = 0, measured = 0, stall = 0, run_aheads = 0;
+    bool has_last;
+    uint64_t last_start, last_end;
+    uint64_t last_done = 0;  // the latest completion the write buffer holds
+  };
+  const uint64_t now = kernel_ticks();
+  uint64_t buffered = 0;
+  for (size_t i = 0; i < m_write_buffer.size(); ++i) buffered = std::max(buffered, m_write_buffer.at(i).done_ticks);
+  State st{m_local_ticks,
+           m_budget_ticks,
+           m_write_buffer_free_ticks,
+           m_window_clear,
+           0,
+           0,
+           0,
+           0,
+           quote.has_last,
+           quote.last_start,
+           quote.last_end,
+           buffered};
+  const bool edges_unchanged = m_traced_edges == timed_signal_edges();
+  const uint64_t period = m_period_ticks, bus = quote.period_ticks;
+  const uint64_t load_cycles = uint64_t{m_params.load_cycles} * 8;
+  const uint64_t store_cycles = uint64_t{m_params.store_cycles} * 8 + 1;
+  // quantum_used_up where it runs ahead without asking the kernel.
+  const auto reach = [&](State& s, uint64_t local) {
+    if (local < s.budget) return true;
+    if (local >= m_run_ahead_ticks || !s.window_clear || !edges_unchanged) return false;
+    ++s.run_aheads;
+    s.budget = m_run_ahead_ticks;
+    return true;
+  };
+  // A request issued at `issue`, holding the bus `hold` cycles: reserve()'s grant.
+  const auto grant = [&](State& s, uint64_t issue, uint64_t hold, CopyRequest& request) {
+    if (issue <= now) return false;  // a request at the kernel's time may wait a delta cycle
+    const uint64_t at = (issue + bus - 1) / bus;
+    uint64_t start = at;
+    if (!s.has_last || at > s.last_end) {
+      s.last_start = at;
+    } else if (at < s.last_start) {
+      return false;  // a search among the reservations
+    } else {
+      start = s.last_end;  // at or within the last reservation: joins it
+    }
+    s.has_last = true;
+    s.last_end = start + hold;
+    request = {at, start};
+    return true;
+  };
+  const size_t left = plan.blocks - first;
+  if (m_copy_requests.size() < 2 * left) m_copy_requests.resize(2 * left);
+  CopyRequest* const requests = m_copy_requests.data();
+  uint32_t taken = 0;
+  for (uint32_t k = first; k < plan.blocks; ++k) {
+    const auto source = static_cast<uint32_t>(plan.from + 32 * uint64_t{k});
+    if (!m_dcache.clean_miss(source)) break;
+    State s = st;
+    CopyRequest& fill = requests[2 * taken];
+    CopyRequest& burst = requests[2 * taken + 1];
+    // load_span: the loads' charge, the line's fill, the stall for it.
+    uint64_t local = s.local + load_cycles * period;
+    s.busy += load_cycles;
+    if (!reach(s, local) || !grant(s, now + local, quote.fill_cycles, fill)) break;
+    s.budget = std::min(s.budget, std::max(m_quantum_ticks, local + 1));
+    const uint64_t filled = (fill.start_cycle + quote.fill_cycles) * bus;
+    if (filled > now + local) {
+      s.stall += filled - now - local;
+      local = filled - now;
+      if (!reach(s, local)) break;
+    }
+    // write_words: the STM's charge, then its burst through the write
+    // buffer, every entry of which has left (make_room retires them all).
+    local += store_cycles * period;
+    s.busy += store_cycles;
+    if (!reach(s, local) || s.last_done > now + local) break;
+    if (!grant(s, std::max(now + local, s.free), quote.burst_cycles, burst)) break;
+    s.free = s.last_done = (burst.start_cycle + quote.burst_cycles) * bus;
+    s.budget = std::min(s.budget, std::max(m_quantum_ticks, local + 1));
+    s.window_clear = s.window_clear && quote.burst_untouched;
+    // The block's own cycles.
+    if (const uint64_t c = cycles[k]) {
+      s.measured += c;
+      s.busy += c;
+      local += c * period;
+      if (!reach(s, local)) break;
+    }
+    s.local = local;
+    st = s;
+    m_dcache.read(source);  // the miss, its victim clean
+    m_dcache.count_hits(7);
+    ++taken;
+  }
+  if (taken == 0) return 0;
+  m_loads += 8 * uint64_t{taken};
+  m_stores += taken;
+  m_busy_cycles += st.busy;
+  m_measured_cycles += st.measured;
+  m_stall_ticks += st.stall;
+  m_run_aheads += st.run_aheads;
+  m_local_ticks = st.local;
+  m_budget_ticks = st.budget;
+  m_window_clear = st.window_clear;
+  m_write_buffer_free_ticks = st.free;
+  // The last burst is all the write buffer holds.
+  m_write_buffer.clear();
+  m_write_buffer.push_back({st.last_done, 8, 1});
+  m_write_buffer_words = 8;
+  m_write_buffer_addresses = 1;
+  const uint32_t source = static_cast<uint32_t>(plan.from + 32 * uint64_t{first});
+  m_direct_out->direct_copy(plan, first, taken, requests, dmi_pointer(source, 32 * taken));
+  return taken;
 }
 
 uint8_t* Host::span_pointer(uint32_t address, unsigned bytes) {

@@ -148,6 +148,7 @@ class Host : public Block, public HostApi, public HostCore {
                      unsigned count) override;
   const uint8_t* load_span(uint32_t address, unsigned size, unsigned count) override;
   uint8_t* store_span(uint32_t address, unsigned size, unsigned count) override;
+  void copy_words(uint32_t to, uint32_t from, uint32_t words, const uint64_t* cycles) override;
   void wait_irq(unsigned line) override;
   bool irq_pending(unsigned line) override;
   double now_seconds() const override;
@@ -262,6 +263,10 @@ class Host : public Block, public HostApi, public HostCore {
   // run-ahead the kernel need not be asked about (README.md, "Store
   // trains"). Returns the first word it left for that loop.
   size_t train_steady(size_t from);
+  // The frame copy's whole blocks from `first` that copy_words takes in
+  // closed form (README.md, "The frame copy"), handed to the bus: how many.
+  uint32_t copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t* cycles);
+  std::vector<CopyRequest> m_copy_requests;      // copy_steady's, grown, never shrunk
   static constexpr unsigned STEADY_BUFFER = 16;  // the largest buffer train_steady holds
   // train_steady's copy of the host's state: the write buffer's requests
   // (single words: their completions in a ring, the oldest at `head`),

@@ -112,6 +112,33 @@ void Memory::transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, un
   gp.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
+bool Memory::quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count,
+                            uint64_t& latency_ticks, bool& untouched) {
+  const uint64_t size = m_data.size();
+  if ((command != tlm::TLM_READ_COMMAND && command != tlm::TLM_WRITE_COMMAND) || bytes == 0 || count == 0 ||
+      address >= size || count > (size - address) / bytes)
+    return false;
+  latency_ticks = access_ticks(bytes);
+  untouched = true;  // DMI granted (transport's set_dmi_allowed)
+  return true;
+}
+
+void Memory::direct_accesses(tlm::tlm_command command, uint64_t address, uint8_t* data, unsigned bytes, size_t count) {
+  // transport()'s steps for each access, summed: the bytes moved (none
+  // where they are the memory's own, through DMI), the counters, the time.
+  const uint64_t length = uint64_t{bytes} * count;
+  if (command == tlm::TLM_READ_COMMAND) {
+    move(data, m_data.data() + address, length);
+    m_reads += count;
+    m_bytes_read += length;
+  } else {
+    move(m_data.data() + address, data, length);
+    m_writes += count;
+    m_bytes_written += length;
+  }
+  m_busy_ticks += access_ticks(bytes) * count;
+}
+
 tlm::tlm_sync_enum Memory::nb_transport_fw(tlm::tlm_generic_payload& gp, tlm::tlm_phase& /*phase*/,
                                            sc_core::sc_time& /*delay*/) {
   ++m_errors;
