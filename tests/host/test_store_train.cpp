@@ -14,14 +14,15 @@
 // trains into cacheable memory, reads between them, a program on the array
 // that the first words wait for; copies of whole blocks, parts of a block
 // and sources off a line's start, with dirty lines for their fills to evict
-// and lines already in the cache.
+// and lines already in the cache; and copies from a memory whose reads
+// schedule something in the kernel.
 //
 // Bench: host (200 MHz) -> bus (100 MHz) -> memory at 0 (cacheable), the
 // AC's registers at 0x800000, its program memory at 0x810000, the CIU's
 // window at 0x1000000 and a second, slower memory at 0x4000000 standing
-// for the display port (each of the last two through a forwarder that
-// counts what is handed over as units); a second and a third initiator on
-// the bus.
+// for the display port (the memories and the CIU each through a forwarder
+// that counts what is handed over as units, and can make the reads touch
+// the kernel's schedule); a second and a third initiator on the bus.
 #include <cstring>
 #include <random>
 
@@ -76,6 +77,10 @@ struct UnitCounter : sc_core::sc_module, tlm::tlm_fw_transport_if<>, DirectTrans
   tlm::tlm_fw_transport_if<>* target = nullptr;
   DirectTransport* direct = nullptr;
   uint64_t trains = 0, words = 0, runs = 0, accesses = 0;
+  // While set, every read schedules an event a nanosecond on, grants no
+  // DMI and says so (a target whose reads touch the kernel's schedule).
+  bool touch_reads = false;
+  sc_core::sc_event touched;
 
   template <typename Target>
   UnitCounter(sc_core::sc_module_name name, Target& t) : sc_core::sc_module(name), in("in"), out("out") {
@@ -86,9 +91,21 @@ struct UnitCounter : sc_core::sc_module, tlm::tlm_fw_transport_if<>, DirectTrans
     target = out.operator->();
     direct = direct_transport_of(target);
   }
-  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override { target->b_transport(gp, delay); }
+  bool touch(tlm::tlm_command command) {
+    if (!touch_reads || command != tlm::TLM_READ_COMMAND) return false;
+    touched.notify(sc_time(1, SC_NS));
+    return true;
+  }
+  void b_transport(tlm::tlm_generic_payload& gp, sc_time& delay) override {
+    target->b_transport(gp, delay);
+    if (touch(gp.get_command())) gp.set_dmi_allowed(false);
+  }
   void direct_b_transport(tlm::tlm_generic_payload& gp, sc_time& delay, DirectExtras& extras) override {
     direct->direct_b_transport(gp, delay, extras);
+    if (touch(gp.get_command())) {
+      gp.set_dmi_allowed(false);
+      extras.untouched = false;
+    }
   }
   bool quote_train(const WordTrain& train, uint64_t first_ticks, TrainQuote& quote) override {
     return direct->quote_train(train, first_ticks, quote);
@@ -100,13 +117,16 @@ struct UnitCounter : sc_core::sc_module, tlm::tlm_fw_transport_if<>, DirectTrans
   }
   bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count, uint64_t& latency_ticks,
                       bool& untouched) override {
-    return direct->quote_accesses(command, address, bytes, count, latency_ticks, untouched);
+    if (!direct->quote_accesses(command, address, bytes, count, latency_ticks, untouched)) return false;
+    if (touch_reads && command == tlm::TLM_READ_COMMAND) untouched = false;
+    return true;
   }
   void direct_accesses(tlm::tlm_command command, uint64_t address, uint8_t* data, unsigned bytes,
                        size_t count) override {
     ++runs;
     accesses += count;
     direct->direct_accesses(command, address, data, bytes, count);
+    touch(command);
   }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return target->transport_dbg(gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
@@ -122,6 +142,7 @@ struct Bench : sc_core::sc_module {
   Host host;
   AhbBus bus;
   Memory memory;
+  UnitCounter memory_counter;
   ArrayProcessor array;
   Ciu ciu;
   UnitCounter counter;
@@ -139,6 +160,7 @@ struct Bench : sc_core::sc_module {
         host("host", host_params(run_ahead)),
         bus("bus", test::bench_bus_params(BUS_CYCLE)),
         memory("memory", test::bench_memory_params(MEM_SIZE, BUS_CYCLE, 3)),
+        memory_counter("memory_counter", memory),
         array("array", test::bench_array_params(ARRAY_CYCLE)),
         ciu("ciu", ciu_params(), array),
         counter("counter", ciu),
@@ -149,7 +171,7 @@ struct Bench : sc_core::sc_module {
     bus.attach(host.out, "host", 0);
     bus.attach(other.out, "other", 1);
     bus.attach(ticker.out, "ticker", 2);
-    bus.map(memory.in, 0, MEM_SIZE, "memory");
+    bus.map(memory_counter.in, 0, MEM_SIZE, "memory");
     bus.map(array.in, AC, 0x1000, "array_regs");
     bus.map(array.program_in, PROGRAM, 0x10000, "array_program");
     bus.map(counter.in, CMEM, ciu.window_bytes(), "array_cmem");
@@ -406,6 +428,24 @@ TEST(FrameCopy, GivesWhatTheCallsGiveWhileTheHostRunsAhead) {
   EXPECT_LT(g_trains_ahead->port_counter.accesses,
             g_trains_ahead->port.stats_json(sc_core::sc_time_stamp())["writes"].get<uint64_t>())
       << "and some one by one (dirty victims, lines in the cache, the bus reserved ahead, parts of blocks)";
+}
+
+TEST(FrameCopy, GivesWhatTheCallsGiveFromASourceWhoseReadsScheduleSomething) {
+  // Every read of memory schedules an event and grants no DMI: after each
+  // fill the host must ask the kernel again (which finds the event), and
+  // so stops running ahead where the calls stop. The closed form steps
+  // each block up to its fill's stall and gives it back to the calls;
+  // a closed form that took the fill as leaving the schedule untouched
+  // ran on, and fails this.
+  for (Bench* bench : {g_calls_ahead, g_trains_ahead}) bench->memory_counter.touch_reads = true;
+  const uint64_t runs = g_trains_ahead->port_counter.runs;
+  for (unsigned seed : {30u, 31u, 32u}) {
+    const Outcome calls = run_copy_program(*g_calls_ahead, false, seed);
+    const Outcome unit = run_copy_program(*g_trains_ahead, true, seed);
+    expect_same(calls, unit);
+  }
+  for (Bench* bench : {g_calls_ahead, g_trains_ahead}) bench->memory_counter.touch_reads = false;
+  EXPECT_EQ(g_trains_ahead->port_counter.runs, runs) << "no block went as a unit";
 }
 
 int sc_main(int argc, char* argv[]) {

@@ -461,9 +461,8 @@ bool AhbBus::quote_copy(const CopyPlan& plan, CopyQuote& quote) {
       plan.to - burst->base > burst->size - length || length > burst->size)
     return false;
   uint64_t fill_latency = 0, burst_latency = 0;
-  bool fill_untouched = false;
   if (!fill->direct->quote_accesses(tlm::TLM_READ_COMMAND, plan.from - fill->base, plan.bytes, plan.blocks,
-                                    fill_latency, fill_untouched) ||
+                                    fill_latency, quote.fill_untouched) ||
       !burst->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, plan.to - burst->base, plan.bytes, plan.blocks,
                                      burst_latency, quote.burst_untouched))
     return false;

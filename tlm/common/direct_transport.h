@@ -64,11 +64,13 @@ struct CopyPlan {
 // for the cycles of its kind, once it has it; a request is granted as
 // reserve() grants it, which the caller follows from the bus's last
 // reservation (has_last, last_start, last_end, in the bus's cycles of
-// period_ticks); whether a burst left the kernel's schedule as it was.
+// period_ticks); whether a fill, and a burst, left the kernel's schedule
+// as it was.
 struct CopyQuote {
   uint64_t period_ticks = 1;
   uint64_t fill_cycles = 0;
   uint64_t burst_cycles = 0;
+  bool fill_untouched = false;
   bool burst_untouched = false;
   bool has_last = false;
   uint64_t last_start = 0;

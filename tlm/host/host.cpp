@@ -968,6 +968,7 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
     s.busy += load_cycles;
     if (!reach(s, local) || !grant(s, now + local, quote.fill_cycles, fill)) break;
     s.budget = std::min(s.budget, std::max(m_quantum_ticks, local + 1));
+    s.window_clear = s.window_clear && quote.fill_untouched;
     const uint64_t filled = (fill.start_cycle + quote.fill_cycles) * bus;
     if (filled > now + local) {
       s.stall += filled - now - local;
