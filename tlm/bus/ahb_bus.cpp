@@ -45,6 +45,11 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
     m_bus.direct_train(m_index, train, arrivals);
   }
   bool quote_copy(const CopyPlan& plan, CopyQuote& quote) override { return m_bus.quote_copy(plan, quote); }
+  bool quote_posts(const PostPlan& plan, PostQuote& quote) override { return m_bus.quote_posts(plan, quote); }
+  void direct_posts(const PostPlan& plan, const PostQuote& quote, size_t first, size_t count,
+                    const CopyRequest* requests, const uint8_t* data) override {
+    m_bus.direct_posts(m_index, plan, quote, first, count, requests, data);
+  }
   void direct_copy(const CopyPlan& plan, size_t first_block, size_t blocks, const CopyRequest* requests,
                    uint8_t* data) override {
     m_bus.direct_copy(m_index, plan, first_block, blocks, requests, data);
@@ -445,13 +450,16 @@ void AhbBus::direct_train(unsigned initiator, const WordTrain& train, const uint
   m_last_granted = initiator;
 }
 
+bool AhbBus::units_served() const {
+  return !m_observed && !log::enabled(log::Level::debug) && m_batch.empty();
+}
+
 bool AhbBus::quote_copy(const CopyPlan& plan, CopyQuote& quote) {
   // Served as a unit only where serve() would do nothing but reserve each
   // request (as quote_train asks), both ranges each in one target that
   // quotes its accesses; the caller keeps every request after the kernel's
   // time (no delta cycle) and follows reserve() from the last reservation.
-  if (plan.blocks == 0 || plan.bytes == 0 || m_observed || log::enabled(log::Level::debug) || !m_batch.empty())
-    return false;
+  if (plan.blocks == 0 || plan.bytes == 0 || !units_served()) return false;
   const uint64_t length = uint64_t{plan.bytes} * plan.blocks;
   const Region* fill = decode(plan.from);
   const Region* burst = decode(plan.to);
@@ -461,18 +469,16 @@ bool AhbBus::quote_copy(const CopyPlan& plan, CopyQuote& quote) {
       plan.to - burst->base > burst->size - length || length > burst->size)
     return false;
   uint64_t fill_latency = 0, burst_latency = 0;
-  if (!fill->direct->quote_accesses(tlm::TLM_READ_COMMAND, plan.from - fill->base, plan.bytes, plan.blocks,
+  if (!fill->direct->quote_accesses(tlm::TLM_READ_COMMAND, plan.from - fill->base, plan.bytes, plan.blocks, 1,
                                     fill_latency, quote.fill_untouched) ||
-      !burst->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, plan.to - burst->base, plan.bytes, plan.blocks,
+      !burst->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, plan.to - burst->base, plan.bytes, plan.blocks, 1,
                                      burst_latency, quote.burst_untouched))
     return false;
   const uint64_t beats = single_beats(plan.bytes);
   quote.period_ticks = m_period_ticks;
   quote.fill_cycles = occupancy(ceil_cycles(fill_latency, fill->latency), beats);
   quote.burst_cycles = occupancy(ceil_cycles(burst_latency, burst->latency), beats);
-  quote.has_last = !m_reserved.empty();
-  quote.last_start = quote.has_last ? m_reserved.back().start : 0;
-  quote.last_end = quote.has_last ? m_reserved.back().end : 0;
+  quote.last = last_reservation();
   return true;
 }
 
@@ -510,6 +516,87 @@ void AhbBus::direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_
   const uint64_t offset = uint64_t{plan.bytes} * first_block;
   fill->direct->direct_accesses(tlm::TLM_READ_COMMAND, plan.from + offset - fill->base, data, plan.bytes, blocks);
   burst->direct->direct_accesses(tlm::TLM_WRITE_COMMAND, plan.to + offset - burst->base, data, plan.bytes, blocks);
+}
+
+bool AhbBus::quote_posts(const PostPlan& plan, PostQuote& quote) {
+  // As quote_copy: served as a unit only where serve() would do nothing
+  // but reserve each request, the range in one target that quotes its
+  // writes in payloads of each request's transfers.
+  if (plan.requests == 0 || plan.each == 0 || plan.first == 0 || plan.per_request == 0 || plan.last == 0 ||
+      !units_served())
+    return false;
+  const uint64_t transfers = plan.total();
+  const Region* region = decode(plan.address);
+  if (region == nullptr || region->direct == nullptr || transfers > region->size / plan.each ||
+      plan.address - region->base > region->size - transfers * plan.each)
+    return false;
+  const uint64_t address = plan.address - region->base;
+  const unsigned kinds[3] = {plan.first, plan.per_request, plan.last};
+  bool untouched = true;
+  const uint64_t beats = single_beats(plan.each);
+  for (unsigned k = 0; k < 3; ++k) {
+    if (k != 0 && kinds[k] == kinds[k - 1]) {
+      quote.cycles[k] = quote.cycles[k - 1];
+      continue;
+    }
+    uint64_t latency = 0;
+    bool each_untouched = false;
+    if (!region->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, address, plan.each, transfers, kinds[k], latency,
+                                        each_untouched))
+      return false;
+    untouched = untouched && each_untouched;
+    // serve()'s occupancy of a request of kinds[k] transfers (train_beats).
+    quote.cycles[k] = occupancy(ceil_cycles(latency, region->latency), kinds[k] * beats, kinds[k]);
+  }
+  quote.period_ticks = m_period_ticks;
+  quote.untouched = untouched;
+  quote.last = last_reservation();
+  return true;
+}
+
+void AhbBus::direct_posts(unsigned initiator, const PostPlan& plan, const PostQuote& quote, size_t first, size_t count,
+                          const CopyRequest* requests, const uint8_t* data) {
+  if (count == 0) return;
+  // The quote's conditions that a caller could have let change.
+  const Region* region = decode(plan.address);
+  if (region == nullptr || region->direct == nullptr || !units_served() || first + count > plan.requests)
+    throw std::logic_error(std::string(name()) + ": a posted train the bus no longer quotes");
+  // Each request as serve() would reserve it and count it; the waits
+  // sampled a run of equal ones at a time.
+  const uint64_t now = m_context->time_stamp().value();
+  BusInitiatorStats& s = m_stats[initiator];
+  Log2Histogram& waits = m_wait_histograms[initiator];
+  uint64_t end_cycle = 0, busy = 0, wait_sum = 0, wait = 0, same = 0;
+  for (size_t k = 0; k < count; ++k) {
+    const uint64_t occupancy_cycles = quote.cycles[plan.kind(first + k)];
+    const CopyRequest& request = requests[k];
+    if (reserve(now, request.request_cycle, occupancy_cycles) != request.start_cycle)
+      throw std::logic_error(std::string(name()) + ": a posted train's request granted where its quote did not say");
+    end_cycle = request.start_cycle + occupancy_cycles;
+    busy += occupancy_cycles;
+    const uint64_t w = request.start_cycle - request.request_cycle;
+    wait_sum += w;
+    if (w != wait && same != 0) {
+      waits.sample(wait, same);
+      same = 0;
+    }
+    wait = w;
+    ++same;
+  }
+  waits.sample(wait, same);
+  const uint64_t before = plan.before(first);
+  const uint64_t transfers = plan.before(first + count - 1) + plan.transfers(first + count - 1) - before;
+  // Every request's beats (train_beats): a single transfer's for each.
+  s.transactions += transfers;
+  s.writes += transfers;
+  s.bytes += uint64_t{plan.each} * transfers;
+  s.beats += transfers * single_beats(plan.each);
+  s.busy_cycles += busy;
+  s.wait_cycles += wait_sum;
+  m_last_granted = initiator;
+  m_request_memo[initiator] = {end_cycle * m_period_ticks, end_cycle};
+  region->direct->direct_accesses(tlm::TLM_WRITE_COMMAND, plan.address + before * plan.each - region->base,
+                                  const_cast<uint8_t*>(data), plan.each, transfers);
 }
 
 unsigned AhbBus::transport_dbg(unsigned initiator, tlm::tlm_generic_payload& gp) {

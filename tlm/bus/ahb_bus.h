@@ -193,6 +193,18 @@ class AhbBus : public Block {
   bool quote_copy(const CopyPlan& plan, CopyQuote& quote);
   void direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_block, size_t blocks,
                    const CopyRequest* requests, uint8_t* data);
+  // A posted train as a unit (common/direct_transport.h, PostPlan).
+  bool quote_posts(const PostPlan& plan, PostQuote& quote);
+  void direct_posts(unsigned initiator, const PostPlan& plan, const PostQuote& quote, size_t first, size_t count,
+                    const CopyRequest* requests, const uint8_t* data);
+  // Whether a unit's requests are served by reserve() alone: nothing
+  // observed or logged, no synchronised request waiting.
+  bool units_served() const;
+  LastReservation last_reservation() const {
+    LastReservation last;
+    if (!m_reserved.empty()) last = {true, m_reserved.back().start, m_reserved.back().end};
+    return last;
+  }
   __attribute__((always_inline)) inline void serve(unsigned initiator, tlm::tlm_generic_payload& gp,
                                                    sc_core::sc_time& delay, DirectExtras& extras);
   // Store trains (common/direct_transport.h): a train of single-word

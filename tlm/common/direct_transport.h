@@ -50,6 +50,30 @@ struct WordTrain {
   size_t count = 0;
 };
 
+// The bus's last reservation, from which a caller that holds the bus alone
+// follows reserve()'s grants (AhbBus::reserve): a request at `at` (a bus
+// cycle) holding the bus `hold` cycles starts at `at` when it is after the
+// last reservation's end (or there is none), at that end when it is at or
+// within it; before its start it would be a search among the reservations
+// (false).
+struct LastReservation {
+  bool has = false;
+  uint64_t start = 0;
+  uint64_t end = 0;
+  bool grant(uint64_t at, uint64_t hold, uint64_t& granted) {
+    if (!has || at > end) {
+      start = granted = at;
+    } else if (at < start) {
+      return false;
+    } else {
+      granted = end;
+    }
+    has = true;
+    end = granted + hold;
+    return true;
+  }
+};
+
 // A frame copy as a unit (HostApi::copy_words): `blocks` blocks, block k a
 // line fill of `bytes` bytes read at from + k * bytes and a burst of them
 // written at to + k * bytes (a single transfer each). The requests go to
@@ -63,24 +87,51 @@ struct CopyPlan {
 // What the bus promises for a plan's requests (quote_copy): each holds it
 // for the cycles of its kind, once it has it; a request is granted as
 // reserve() grants it, which the caller follows from the bus's last
-// reservation (has_last, last_start, last_end, in the bus's cycles of
-// period_ticks); whether a fill, and a burst, left the kernel's schedule
-// as it was.
+// reservation (`last`, in the bus's cycles of period_ticks); whether a
+// fill, and a burst, left the kernel's schedule as it was.
 struct CopyQuote {
   uint64_t period_ticks = 1;
   uint64_t fill_cycles = 0;
   uint64_t burst_cycles = 0;
   bool fill_untouched = false;
   bool burst_untouched = false;
-  bool has_last = false;
-  uint64_t last_start = 0;
-  uint64_t last_end = 0;
+  LastReservation last;
 };
-// One request of a copy handed to the bus (direct_copy): the cycle it was
-// requested at and the one the caller found it granted at.
+// One request of a copy or a posted train handed to the bus (direct_copy,
+// direct_posts): the cycle it was requested at and the one the caller
+// found it granted at.
 struct CopyRequest {
   uint64_t request_cycle = 0;
   uint64_t start_cycle = 0;
+};
+
+// A posted train as the write buffer's requests (the host's post_write):
+// single writes of `each` bytes back to back from `address`, in
+// `requests` requests (bus requests of several transfers), the first of
+// `first` transfers, the last of `last`, each between of `per_request`.
+struct PostPlan {
+  uint64_t address = 0;
+  unsigned each = 0;
+  unsigned first = 0;
+  unsigned per_request = 0;
+  unsigned last = 0;
+  size_t requests = 0;
+  // The kind of request r: 0 the first, 1 one between, 2 the last.
+  unsigned kind(size_t r) const { return r == 0 ? 0 : r + 1 == requests ? 2 : 1; }
+  unsigned transfers(size_t r) const { return r == 0 ? first : r + 1 == requests ? last : per_request; }
+  // The transfers before request r.
+  uint64_t before(size_t r) const { return r == 0 ? 0 : first + uint64_t{per_request} * (r - 1); }
+  uint64_t total() const { return requests == 1 ? first : before(requests - 1) + last; }
+};
+// What the bus promises for a posted train's requests (quote_posts): each
+// holds it for the cycles of its kind, granted as reserve() grants it
+// (followed from `last`); whether they leave the kernel's schedule as it
+// was.
+struct PostQuote {
+  uint64_t period_ticks = 1;
+  uint64_t cycles[3] = {0, 0, 0};
+  bool untouched = false;
+  LastReservation last;
 };
 
 // The timing a target or the bus promises for a train's words (quote_train):
@@ -121,17 +172,19 @@ class DirectTransport {
   virtual void direct_train(const WordTrain& /*train*/, const uint64_t* /*arrivals*/) {
     throw std::logic_error("direct_train on a target that quotes no trains");
   }
-  // Accesses as a unit (a frame copy's fills or bursts): quote_accesses:
-  // whether the target would serve `count` accesses of `bytes` bytes, the
-  // k-th at address + k * bytes (command, no byte enables, one transfer
-  // each), exactly as direct_b_transport serves each (same data, counters,
-  // outcome: no error) with a delay of its own that does not depend on the
-  // time: latency_ticks; and whether each leaves the kernel's schedule as
-  // it was (ScheduleUntouched, or DMI granted: memory). false, the default:
-  // one payload each. direct_accesses: serves them, their bytes at `data`
-  // one after the other; only after a true quote_accesses.
+  // Accesses as a unit (a frame copy's fills or bursts, a posted train's
+  // stores): quote_accesses: whether the target would serve `count`
+  // accesses of `bytes` bytes, the k-th at address + k * bytes (command,
+  // no byte enables, one transfer each), in payloads of `transfers` of them
+  // (DirectExtras::transfers), exactly as direct_b_transport serves each
+  // payload (same data, counters, outcome: no error) with a delay of its
+  // own that does not depend on the time: latency_ticks, per payload; and
+  // whether each leaves the kernel's schedule as it was (ScheduleUntouched,
+  // or DMI granted: memory). false, the default: one payload each.
+  // direct_accesses: serves them, their bytes at `data` one after the
+  // other; only after a true quote_accesses (of any payload size).
   virtual bool quote_accesses(tlm::tlm_command /*command*/, uint64_t /*address*/, unsigned /*bytes*/, size_t /*count*/,
-                              uint64_t& /*latency_ticks*/, bool& /*untouched*/) {
+                              unsigned /*transfers*/, uint64_t& /*latency_ticks*/, bool& /*untouched*/) {
     return false;
   }
   virtual void direct_accesses(tlm::tlm_command /*command*/, uint64_t /*address*/, uint8_t* /*data*/,
@@ -151,6 +204,18 @@ class DirectTransport {
   virtual void direct_copy(const CopyPlan& /*plan*/, size_t /*first_block*/, size_t /*blocks*/,
                            const CopyRequest* /*requests*/, uint8_t* /*data*/) {
     throw std::logic_error("direct_copy through a door that quotes no copies");
+  }
+  // A posted train (PostPlan) through the bus, from an initiator's door:
+  // quote_posts: whether the bus would serve every request of `plan` by
+  // reserve() alone (as quote_copy), its range in one target that quotes
+  // its writes; the answer holds as quote_copy's does. direct_posts: serves
+  // requests first .. first + count - 1 of it as `quote` (quote_posts's
+  // answer, while it holds) says, request k (from 0) as requested at
+  // requests[k], their bytes from `data`.
+  virtual bool quote_posts(const PostPlan& /*plan*/, PostQuote& /*quote*/) { return false; }
+  virtual void direct_posts(const PostPlan& /*plan*/, const PostQuote& /*quote*/, size_t /*first*/, size_t /*count*/,
+                            const CopyRequest* /*requests*/, const uint8_t* /*data*/) {
+    throw std::logic_error("direct_posts through a door that quotes no posted trains");
   }
 
  protected:

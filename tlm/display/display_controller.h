@@ -140,9 +140,9 @@ class DisplayController : public Peripheral {
     void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
       if (m_display.port_b_transport(gp, delay)) extras.untouched = true;
     }
-    bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count,
+    bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count, unsigned transfers,
                         uint64_t& latency_ticks, bool& untouched) override {
-      return m_display.port_quote(command, address, bytes, count, latency_ticks, untouched);
+      return transfers == 1 && m_display.port_quote(command, address, bytes, count, latency_ticks, untouched);
     }
     void direct_accesses(tlm::tlm_command /*command*/, uint64_t address, uint8_t* data, unsigned bytes,
                          size_t count) override {

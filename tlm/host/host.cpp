@@ -362,10 +362,172 @@ void Host::post_write(uint32_t address, const uint8_t* data, unsigned bytes, uns
   // posted, and the first takes the remainder of the others.
   const unsigned per_request = transfers_per_request(each);
   const unsigned before_last = transfers - held;
-  unsigned count = before_last % per_request ? before_last % per_request : per_request;
-  for (unsigned done = 0; done < before_last; done += count, count = per_request)
-    post_request(address + done * each, data + done * each, count * each, count);
-  post_request(address + before_last * each, data + before_last * each, held * each, held);
+  const unsigned first = before_last % per_request ? before_last % per_request : per_request;
+  const PostPlan plan{address, each, first, per_request, held, 2 + (before_last - first) / per_request};
+  // The requests in closed form where posts_steady can take them, the
+  // others by post_request.
+  const bool unit = m_take_units && m_direct_out != nullptr && !m_note_segments && !m_store_train.running &&
+                    m_params.write_buffer_addresses <= STEADY_BUFFER;
+  for (size_t r = 0; r < plan.requests; ++r) {
+    if (unit) r += posts_steady(plan, r, data);
+    if (r == plan.requests) break;
+    const uint64_t before = plan.before(r);
+    const unsigned count = plan.transfers(r);
+    post_request(static_cast<uint32_t>(address + before * each), data + before * each, count * each, count);
+  }
+}
+
+size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* data) {
+  PostQuote quote;
+  if (!m_direct_out->quote_posts(plan, quote) || m_write_buffer.size() > STEADY_BUFFER) return 0;
+  // post_request's steps for each request, with the host's state in local
+  // variables, kept only when every one is what the calls would do: the
+  // finished requests retired, a stall for the oldest while the new one
+  // does not fit (make_room), the request issued after the kernel's time
+  // and granted as reserve() grants it, followed from the bus's last
+  // reservation; every quantum end a run-ahead on the kernel's cached
+  // answer.
+  // The write buffer's requests, a ring from `head` (State's): a request
+  // tried is entered at the tail only once it is taken, beyond the ones
+  // held, so a request left to the calls leaves the ring as it was.
+  PendingWrite ring[STEADY_BUFFER];
+  for (size_t i = 0; i < m_write_buffer.size(); ++i) ring[i] = m_write_buffer.at(i);
+  struct State {
+    size_t head, size;
+    unsigned words, addresses;
+    uint64_t local, budget, free;
+    bool window_clear;
+    uint64_t stalls, stall, run_aheads;
+    LastReservation last;
+  } st{0,
+       m_write_buffer.size(),
+       m_write_buffer_words,
+       m_write_buffer_addresses,
+       m_local_ticks,
+       m_budget_ticks,
+       m_write_buffer_free_ticks,
+       m_window_clear,
+       0,
+       0,
+       0,
+       quote.last};
+  const uint64_t now = kernel_ticks();
+  const bool edges_unchanged = m_traced_edges == timed_signal_edges();
+  const uint64_t bus = quote.period_ticks, run_ahead = m_run_ahead_ticks, quantum = m_quantum_ticks;
+  const unsigned buffer_words = m_params.write_buffer_words, buffer_addresses = m_params.write_buffer_addresses;
+  // Each kind's words and addresses in the buffer (post_request's).
+  unsigned kind_words[3], kind_addresses[3];
+  for (unsigned k = 0; k < 3; ++k) {
+    const unsigned transfers = k == 0 ? plan.first : k == 1 ? plan.per_request : plan.last;
+    kind_words[k] = std::max(transfers, (transfers * plan.each + 3) / 4);
+    kind_addresses[k] = std::min(transfers, buffer_addresses);
+  }
+  const size_t left = plan.requests - first;
+  if (m_copy_requests.size() < left) m_copy_requests.resize(left);
+  CopyRequest* const requests = m_copy_requests.data();
+  size_t taken = 0;
+  const uint64_t between = quote.cycles[1] * bus;  // a request between's time on the bus
+  const bool between_waits = 2 * kind_words[1] > buffer_words || 2 * kind_addresses[1] > buffer_addresses;
+  for (size_t r = first; r < plan.requests; ++r) {
+    const unsigned kind = plan.kind(r);
+    const unsigned words = kind_words[kind], addresses = kind_addresses[kind];
+    if (words > buffer_words) break;  // the stall for a burst longer than the buffer
+    if (kind == 1 && between_waits && st.size == 1) {
+      // The steady state of the requests between: each waits for the one
+      // before, the buffer's only request (they do not fit together), to
+      // complete, at the end of the bus's last reservation, which it
+      // joins; the stall's end reaches the budget (the local time before
+      // plus a tick) and runs ahead on the cached answer, and the request
+      // sets the budget to its local time plus a tick again. The steps of
+      // requests j = 0, 1, .. in closed form while their stalls end
+      // before the run-ahead window's end: the stall to free + j H, the
+      // completion at free + (j + 1) H.
+      const PendingWrite& only = ring[st.head];
+      const uint64_t until = st.free - now;
+      if (only.done_ticks == st.free && st.free > now + st.local && st.free % bus == 0 && st.last.has &&
+          st.last.end * bus == st.free &&
+          (only.words + words > buffer_words || only.addresses + addresses > buffer_addresses) && st.window_clear &&
+          edges_unchanged && quote.untouched && st.budget == st.local + 1 && st.local + 1 >= quantum &&
+          until < run_ahead) {
+        const size_t steps = std::min<size_t>(plan.requests - 1 - r, (run_ahead - 1 - until) / between + 1);
+        const uint64_t at = st.free / bus;
+        for (size_t j = 0; j < steps; ++j) requests[taken + j] = {at + j * quote.cycles[1], at + j * quote.cycles[1]};
+        const uint64_t last_until = until + (steps - 1) * between;
+        st.stalls += steps;
+        st.run_aheads += steps;
+        st.stall += last_until - st.local;
+        st.local = last_until;
+        st.budget = last_until + 1;
+        st.free += steps * between;
+        st.last.end = at + steps * quote.cycles[1];
+        ring[st.head] = {st.free, words, addresses};
+        st.words = words;
+        st.addresses = addresses;
+        taken += steps;
+        r += steps - 1;
+        continue;
+      }
+    }
+    State s = st;
+    // make_room: retire the finished requests; while the new one does not
+    // fit, stall for the oldest (after the local time: retired otherwise),
+    // each stall's end a quantum end where it reaches the budget.
+    bool room = true;
+    for (;;) {
+      while (s.size != 0 && ring[s.head].done_ticks <= now + s.local) {
+        s.words -= ring[s.head].words;
+        s.addresses -= ring[s.head].addresses;
+        s.head = s.head + 1 == STEADY_BUFFER ? 0 : s.head + 1;
+        --s.size;
+      }
+      if (s.size == 0 || (s.words + words <= buffer_words && s.addresses + addresses <= buffer_addresses)) break;
+      ++s.stalls;
+      const uint64_t until = ring[s.head].done_ticks - now;
+      s.stall += until - s.local;
+      s.local = until;
+      if (until >= s.budget) {
+        if (until >= run_ahead || !s.window_clear || !edges_unchanged) {
+          room = false;
+          break;
+        }
+        ++s.run_aheads;
+        s.budget = run_ahead;
+      }
+    }
+    if (!room) break;
+    const uint64_t issue = std::max(now + s.local, s.free);
+    if (issue <= now) break;  // a request at the kernel's time may wait a delta cycle
+    CopyRequest& request = requests[taken];
+    request.request_cycle = (issue + bus - 1) / bus;
+    const uint64_t hold = quote.cycles[kind];
+    if (!s.last.grant(request.request_cycle, hold, request.start_cycle)) break;
+    const uint64_t done = (request.start_cycle + hold) * bus;
+    s.budget = std::min(s.budget, std::max(quantum, s.local + 1));
+    s.window_clear = s.window_clear && quote.untouched;
+    s.free = done;
+    const size_t tail = s.head + s.size < STEADY_BUFFER ? s.head + s.size : s.head + s.size - STEADY_BUFFER;
+    ring[tail] = {done, words, addresses};
+    ++s.size;
+    s.words += words;
+    s.addresses += addresses;
+    st = s;
+    ++taken;
+  }
+  if (taken == 0) return 0;
+  m_write_buffer_stalls += st.stalls;
+  m_stall_ticks += st.stall;
+  m_run_aheads += st.run_aheads;
+  m_local_ticks = st.local;
+  m_budget_ticks = st.budget;
+  m_window_clear = st.window_clear;
+  m_write_buffer_free_ticks = st.free;
+  m_write_buffer.clear();
+  for (size_t i = 0; i < st.size; ++i)
+    m_write_buffer.push_back(ring[st.head + i < STEADY_BUFFER ? st.head + i : st.head + i - STEADY_BUFFER]);
+  m_write_buffer_words = st.words;
+  m_write_buffer_addresses = st.addresses;
+  m_direct_out->direct_posts(plan, quote, first, taken, requests, data + plan.before(first) * plan.each);
+  return taken;
 }
 
 inline void Host::make_room(unsigned held_words, unsigned held_addresses) {
@@ -591,7 +753,7 @@ void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* valu
   // Every word aligned and below 2^32, nothing that notes the host's
   // intervals (timeline, power trace) and a bus that can quote: else the
   // calls one by one (which throw where the first bad word is).
-  const bool trainable = count > 0 && m_direct_out != nullptr && !m_note_segments && address % 4 == 0 &&
+  const bool trainable = count > 0 && m_take_units && m_direct_out != nullptr && !m_note_segments && address % 4 == 0 &&
                          stride % 4 == 0 && uint64_t{address} + uint64_t{count - 1} * stride <= 0xfffffffcu &&
                          m_params.write_buffer_words > 0 && m_params.write_buffer_addresses > 0;
   if (!trainable) {
@@ -864,8 +1026,8 @@ void Host::copy_words(uint32_t to, uint32_t from, uint32_t words, const uint64_t
   // and for a last block short of eight words, the calls.
   const uint32_t blocks = words / 8;
   const uint64_t bytes = 32 * uint64_t{blocks};
-  const bool unit = blocks > 0 && m_direct_out != nullptr && !m_note_segments && m_dcache_on && m_dcache.enabled() &&
-                    m_dcache.line_bytes() == 32 && from % 32 == 0 && to % 4 == 0 &&
+  const bool unit = blocks > 0 && m_take_units && m_direct_out != nullptr && !m_note_segments && m_dcache_on &&
+                    m_dcache.enabled() && m_dcache.line_bytes() == 32 && from % 32 == 0 && to % 4 == 0 &&
                     uint64_t{from} + bytes <= 1ull << 32 && uint64_t{to} + bytes <= 1ull << 32 &&
                     cacheable(from, static_cast<unsigned>(bytes)) &&
                     dmi_pointer(from, static_cast<unsigned>(bytes)) != nullptr &&
@@ -905,25 +1067,13 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
     uint64_t local, budget, free;
     bool window_clear;
     uint64_t busy = 0, measured = 0, stall = 0, run_aheads = 0;
-    bool has_last;
-    uint64_t last_start, last_end;
+    LastReservation last;
     uint64_t last_done = 0;  // the latest completion the write buffer holds
   };
   const uint64_t now = kernel_ticks();
   uint64_t buffered = 0;
   for (size_t i = 0; i < m_write_buffer.size(); ++i) buffered = std::max(buffered, m_write_buffer.at(i).done_ticks);
-  State st{m_local_ticks,
-           m_budget_ticks,
-           m_write_buffer_free_ticks,
-           m_window_clear,
-           0,
-           0,
-           0,
-           0,
-           quote.has_last,
-           quote.last_start,
-           quote.last_end,
-           buffered};
+  State st{m_local_ticks, m_budget_ticks, m_write_buffer_free_ticks, m_window_clear, 0, 0, 0, 0, quote.last, buffered};
   const bool edges_unchanged = m_traced_edges == timed_signal_edges();
   const uint64_t period = m_period_ticks, bus = quote.period_ticks;
   const uint64_t load_cycles = uint64_t{m_params.load_cycles} * 8;
@@ -939,19 +1089,8 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
   // A request issued at `issue`, holding the bus `hold` cycles: reserve()'s grant.
   const auto grant = [&](State& s, uint64_t issue, uint64_t hold, CopyRequest& request) {
     if (issue <= now) return false;  // a request at the kernel's time may wait a delta cycle
-    const uint64_t at = (issue + bus - 1) / bus;
-    uint64_t start = at;
-    if (!s.has_last || at > s.last_end) {
-      s.last_start = at;
-    } else if (at < s.last_start) {
-      return false;  // a search among the reservations
-    } else {
-      start = s.last_end;  // at or within the last reservation: joins it
-    }
-    s.has_last = true;
-    s.last_end = start + hold;
-    request = {at, start};
-    return true;
+    request.request_cycle = (issue + bus - 1) / bus;
+    return s.last.grant(request.request_cycle, hold, request.start_cycle);
   };
   const size_t left = plan.blocks - first;
   if (m_copy_requests.size() < 2 * left) m_copy_requests.resize(2 * left);

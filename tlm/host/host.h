@@ -130,6 +130,11 @@ class Host : public Block, public HostApi, public HostCore {
     m_attribute_in_time = m_note_segments = true;
     m_hit_lines.revoke_all();
   }
+  // Whether store trains, frame copies and posted trains may be taken in
+  // closed form (README.md: "Store trains", "The frame copy", "Posted
+  // trains"; on by default): off, every one goes by the calls, which give
+  // the same times, figures and bytes (the tests compare the two).
+  void take_units(bool on) { m_take_units = on; }
   sc_core::sc_time stall_time() const { return sc_core::sc_time::from_value(m_stall_ticks); }
   sc_core::sc_time idle_time() const { return sc_core::sc_time::from_value(m_idle_ticks); }
 
@@ -266,7 +271,10 @@ class Host : public Block, public HostApi, public HostCore {
   // The frame copy's whole blocks from `first` that copy_words takes in
   // closed form (README.md, "The frame copy"), handed to the bus: how many.
   uint32_t copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t* cycles);
-  std::vector<CopyRequest> m_copy_requests;      // copy_steady's, grown, never shrunk
+  // A posted train's requests from `first` that post_write takes in closed
+  // form (README.md, "Posted trains"), handed to the bus: how many.
+  size_t posts_steady(const PostPlan& plan, size_t first, const uint8_t* data);
+  std::vector<CopyRequest> m_copy_requests;      // copy_steady's and posts_steady's, grown, never shrunk
   static constexpr unsigned STEADY_BUFFER = 16;  // the largest buffer train_steady holds
   // train_steady's copy of the host's state: the write buffer's requests
   // (single words: their completions in a ring, the oldest at `head`),
@@ -431,6 +439,7 @@ class Host : public Block, public HostApi, public HostCore {
   // Whether busy and stalled intervals are noted (note_segment): for
   // attribute_activity_in_time or the timeline; one test on the hot path for both.
   bool m_note_segments = false;
+  bool m_take_units = true;
   void note_segment(bool busy, uint64_t start_ticks, uint64_t end_ticks) {
     if (m_attribute_in_time) note_ahead(busy, start_ticks, end_ticks);
     if (m_timeline) timeline_segment(busy, start_ticks, end_ticks);

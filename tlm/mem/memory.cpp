@@ -113,13 +113,13 @@ void Memory::transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, un
 }
 
 bool Memory::quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count,
-                            uint64_t& latency_ticks, bool& untouched) {
+                            unsigned transfers, uint64_t& latency_ticks, bool& untouched) {
   const uint64_t size = m_data.size();
   if ((command != tlm::TLM_READ_COMMAND && command != tlm::TLM_WRITE_COMMAND) || bytes == 0 || count == 0 ||
-      address >= size || count > (size - address) / bytes)
+      transfers == 0 || address >= size || count > (size - address) / bytes)
     return false;
-  latency_ticks = access_ticks(bytes);
-  untouched = true;  // DMI granted (transport's set_dmi_allowed)
+  latency_ticks = access_ticks(bytes) * transfers;  // transport()'s: each transfer the time of one access
+  untouched = true;                                 // DMI granted (transport's set_dmi_allowed)
   return true;
 }
 

@@ -71,8 +71,8 @@ class Memory : public Block, public tlm::tlm_fw_transport_if<>, public DirectTra
   void direct_b_transport(tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras) override {
     transport(gp, delay, extras.transfers > 0 ? extras.transfers : 1);
   }
-  bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count, uint64_t& latency_ticks,
-                      bool& untouched) override;
+  bool quote_accesses(tlm::tlm_command command, uint64_t address, unsigned bytes, size_t count, unsigned transfers,
+                      uint64_t& latency_ticks, bool& untouched) override;
   void direct_accesses(tlm::tlm_command command, uint64_t address, uint8_t* data, unsigned bytes,
                        size_t count) override;
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override;
