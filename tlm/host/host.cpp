@@ -392,25 +392,16 @@ size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* dat
   // held, so a request left to the calls leaves the ring as it was.
   PendingWrite ring[STEADY_BUFFER];
   for (size_t i = 0; i < m_write_buffer.size(); ++i) ring[i] = m_write_buffer.at(i);
-  struct State {
-    size_t head, size;
-    unsigned words, addresses;
-    uint64_t local, budget, free;
-    bool window_clear;
-    uint64_t stalls, stall, run_aheads;
+  struct State : SteadyHost {
+    size_t head = 0, size = 0;
+    unsigned words = 0, addresses = 0;
     LastReservation last;
-  } st{0,
-       m_write_buffer.size(),
-       m_write_buffer_words,
-       m_write_buffer_addresses,
-       m_local_ticks,
-       m_budget_ticks,
-       m_write_buffer_free_ticks,
-       m_window_clear,
-       0,
-       0,
-       0,
-       quote.last};
+  } st;
+  static_cast<SteadyHost&>(st) = steady_host();
+  st.size = m_write_buffer.size();
+  st.words = m_write_buffer_words;
+  st.addresses = m_write_buffer_addresses;
+  st.last = quote.last;
   const uint64_t now = kernel_ticks();
   const bool edges_unchanged = m_traced_edges == timed_signal_edges();
   const uint64_t bus = quote.period_ticks, run_ahead = m_run_ahead_ticks, quantum = m_quantum_ticks;
@@ -485,13 +476,9 @@ size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* dat
       const uint64_t until = ring[s.head].done_ticks - now;
       s.stall += until - s.local;
       s.local = until;
-      if (until >= s.budget) {
-        if (until >= run_ahead || !s.window_clear || !edges_unchanged) {
-          room = false;
-          break;
-        }
-        ++s.run_aheads;
-        s.budget = run_ahead;
+      if (!s.reach(until, run_ahead, edges_unchanged)) {
+        room = false;
+        break;
       }
     }
     if (!room) break;
@@ -514,13 +501,7 @@ size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* dat
     ++taken;
   }
   if (taken == 0) return 0;
-  m_write_buffer_stalls += st.stalls;
-  m_stall_ticks += st.stall;
-  m_run_aheads += st.run_aheads;
-  m_local_ticks = st.local;
-  m_budget_ticks = st.budget;
-  m_window_clear = st.window_clear;
-  m_write_buffer_free_ticks = st.free;
+  commit_steady(st);
   m_write_buffer.clear();
   for (size_t i = 0; i < st.size; ++i)
     m_write_buffer.push_back(ring[st.head + i < STEADY_BUFFER ? st.head + i : st.head + i - STEADY_BUFFER]);
@@ -796,6 +777,18 @@ void Host::write32_train(uint32_t address, uint32_t stride, const uint32_t* valu
   t.running = false;
 }
 
+void Host::commit_steady(const SteadyHost& s) {
+  m_measured_cycles += s.measured;
+  m_busy_cycles += s.busy;
+  m_write_buffer_stalls += s.stalls;
+  m_stall_ticks += s.stall;
+  m_run_aheads += s.run_aheads;
+  m_local_ticks = s.local;
+  m_budget_ticks = s.budget;
+  m_window_clear = s.window_clear;
+  m_write_buffer_free_ticks = s.free;
+}
+
 size_t Host::train_steady(size_t from) {
   StoreTrain& t = m_store_train;
   const size_t held = m_write_buffer.size();
@@ -804,15 +797,12 @@ size_t Host::train_steady(size_t from) {
       m_write_buffer_addresses != held)
     return from;
   SteadyTrain st;
+  static_cast<SteadyHost&>(st) = steady_host();
   st.cap = cap;
   for (size_t i = 0; i < held; ++i) st.done_at[i] = m_write_buffer.at(i).done_ticks;
   st.pending = held;
   st.now = kernel_ticks();
   st.edges_unchanged = m_traced_edges == timed_signal_edges();
-  st.local = m_local_ticks;
-  st.budget = m_budget_ticks;
-  st.free_ticks = m_write_buffer_free_ticks;
-  st.window_clear = m_window_clear;
   const uint64_t period = m_period_ticks;
   const uint64_t store_ticks = uint64_t{m_params.store_cycles} * period;
   size_t k = from;
@@ -858,20 +848,20 @@ size_t Host::train_steady(size_t from) {
       retire();
     }
     // train_transact's deferral.
-    const uint64_t issue = std::max(st.now + l, st.free_ticks);
+    const uint64_t issue = std::max(st.now + l, st.free);
     if (issue <= st.now) break;
     // Taken: the word's state is the host's from here.
-    const uint64_t done = t.quote.done_after(issue, st.free_ticks);
+    const uint64_t done = t.quote.done_after(issue, st.free);
     st.measured += c;
     st.busy += c + m_params.store_cycles;
     st.stalls += stalled != 0;
-    st.stall_ticks += stalled;
+    st.stall += stalled;
     st.run_aheads += more_run_aheads;
     st.local = l;
     st.budget = std::min(at_budget, std::max(m_quantum_ticks, l + 1));
     st.window_clear = st.window_clear && t.quote.untouched;
     t.arrivals[t.arrived++] = issue;
-    st.free_ticks = done;
+    st.free = done;
     st.head = first;
     st.pending = left;
     st.done_at[st.slot(st.pending)] = done;
@@ -879,16 +869,8 @@ size_t Host::train_steady(size_t from) {
     ++k;
   }
   if (k == from) return from;
-  m_measured_cycles += st.measured;
-  m_busy_cycles += st.busy;
+  commit_steady(st);
   m_stores += k - from;
-  m_write_buffer_stalls += st.stalls;
-  m_stall_ticks += st.stall_ticks;
-  m_run_aheads += st.run_aheads;
-  m_local_ticks = st.local;
-  m_budget_ticks = st.budget;
-  m_window_clear = st.window_clear;
-  m_write_buffer_free_ticks = st.free_ticks;
   m_write_buffer.clear();
   for (size_t i = 0; i < st.pending; ++i) m_write_buffer.push_back({st.done_at[st.slot(i)], 1, 1});
   m_write_buffer_words = m_write_buffer_addresses = static_cast<unsigned>(st.pending);
@@ -908,13 +890,13 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
   const uint64_t latency = t.quote.latency_ticks;
   const unsigned cap = st.cap;
   if (st.pending != cap || st.budget != st.local + 1 || st.local + 1 < m_quantum_ticks || !st.window_clear ||
-      !st.edges_unchanged || !t.quote.untouched || latency == 0 || st.free_ticks <= st.now)
+      !st.edges_unchanged || !t.quote.untouched || latency == 0 || st.free <= st.now)
     return 0;
   // The buffer's completions a latency apart, the last the buffer's free time.
   const uint64_t front = st.done_at[st.head];
   for (unsigned i = 0; i < cap; ++i)
     if (st.done_at[st.slot(i)] != front + i * latency) return 0;
-  if (front + uint64_t{cap - 1} * latency != st.free_ticks || front <= st.now + st.local) return 0;
+  if (front + uint64_t{cap - 1} * latency != st.free || front <= st.now + st.local) return 0;
   // The words: uncached, each with compute cycles (its first charge is then
   // what reaches the budget) and stalling (its cycles shorter than the gap
   // to the oldest completion: L, and for the first the gap there is now),
@@ -959,23 +941,23 @@ size_t Host::steady_run(SteadyTrain& st, size_t from) {
     m = end;
   }
   // The free time in a local: a store through `arrivals` could change
-  // st.free_ticks as far as the compiler knows, which would load it again
+  // st.free as far as the compiler knows, which would load it again
   // at each word.
   uint64_t* const arrivals = t.arrivals.data() + t.arrived;
-  const uint64_t free_ticks = st.free_ticks;
+  const uint64_t free_ticks = st.free;
   for (size_t i = 0; i < m; ++i) arrivals[i] = free_ticks + i * latency;
   t.arrived += m;
   const uint64_t last_local = front - st.now + (m - 1) * latency;
   st.measured += cycles;
   st.busy += cycles + m * uint64_t{m_params.store_cycles};
   st.stalls += m;
-  st.stall_ticks += last_local - st.local - cycles * period - m * store_ticks;
+  st.stall += last_local - st.local - cycles * period - m * store_ticks;
   st.run_aheads += m;
   st.local = last_local;
   st.budget = last_local + 1;
-  st.free_ticks += m * latency;
+  st.free += m * latency;
   st.head = 0;
-  for (unsigned i = 0; i < cap; ++i) st.done_at[i] = st.free_ticks - uint64_t{cap - 1 - i} * latency;
+  for (unsigned i = 0; i < cap; ++i) st.done_at[i] = st.free - uint64_t{cap - 1 - i} * latency;
   return m;
 }
 
@@ -1063,29 +1045,21 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
   // cached answer). The bus grants each request as reserve() does,
   // followed from its last reservation (the bus is the host's alone until
   // it lets the kernel run).
-  struct State {
-    uint64_t local, budget, free;
-    bool window_clear;
-    uint64_t busy = 0, measured = 0, stall = 0, run_aheads = 0;
+  struct State : SteadyHost {
     LastReservation last;
     uint64_t last_done = 0;  // the latest completion the write buffer holds
   };
   const uint64_t now = kernel_ticks();
-  uint64_t buffered = 0;
-  for (size_t i = 0; i < m_write_buffer.size(); ++i) buffered = std::max(buffered, m_write_buffer.at(i).done_ticks);
-  State st{m_local_ticks, m_budget_ticks, m_write_buffer_free_ticks, m_window_clear, 0, 0, 0, 0, quote.last, buffered};
+  State st;
+  static_cast<SteadyHost&>(st) = steady_host();
+  st.last = quote.last;
+  for (size_t i = 0; i < m_write_buffer.size(); ++i)
+    st.last_done = std::max(st.last_done, m_write_buffer.at(i).done_ticks);
   const bool edges_unchanged = m_traced_edges == timed_signal_edges();
   const uint64_t period = m_period_ticks, bus = quote.period_ticks;
   const uint64_t load_cycles = uint64_t{m_params.load_cycles} * 8;
   const uint64_t store_cycles = uint64_t{m_params.store_cycles} * 8 + 1;
-  // quantum_used_up where it runs ahead without asking the kernel.
-  const auto reach = [&](State& s, uint64_t local) {
-    if (local < s.budget) return true;
-    if (local >= m_run_ahead_ticks || !s.window_clear || !edges_unchanged) return false;
-    ++s.run_aheads;
-    s.budget = m_run_ahead_ticks;
-    return true;
-  };
+  const auto reach = [&](State& s, uint64_t local) { return s.reach(local, m_run_ahead_ticks, edges_unchanged); };
   // A request issued at `issue`, holding the bus `hold` cycles: reserve()'s grant.
   const auto grant = [&](State& s, uint64_t issue, uint64_t hold, CopyRequest& request) {
     if (issue <= now) return false;  // a request at the kernel's time may wait a delta cycle
@@ -1139,14 +1113,7 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
   if (taken == 0) return 0;
   m_loads += 8 * uint64_t{taken};
   m_stores += taken;
-  m_busy_cycles += st.busy;
-  m_measured_cycles += st.measured;
-  m_stall_ticks += st.stall;
-  m_run_aheads += st.run_aheads;
-  m_local_ticks = st.local;
-  m_budget_ticks = st.budget;
-  m_window_clear = st.window_clear;
-  m_write_buffer_free_ticks = st.free;
+  commit_steady(st);
   // The last burst is all the write buffer holds.
   m_write_buffer.clear();
   m_write_buffer.push_back({st.last_done, 8, 1});

@@ -275,11 +275,39 @@ class Host : public Block, public HostApi, public HostCore {
   // form (README.md, "Posted trains"), handed to the bus: how many.
   size_t posts_steady(const PostPlan& plan, size_t first, const uint8_t* data);
   std::vector<CopyRequest> m_copy_requests;      // copy_steady's and posts_steady's, grown, never shrunk
-  static constexpr unsigned STEADY_BUFFER = 16;  // the largest buffer train_steady holds
+  static constexpr unsigned STEADY_BUFFER = 16;  // the largest buffer a closed form holds
+  // The host's state that a closed form (train_steady, copy_steady,
+  // posts_steady) keeps in local variables while it steps (steady_host),
+  // and puts back with what its steps add to the counters (commit_steady;
+  // each puts back its write buffer itself).
+  struct SteadyHost {
+    uint64_t local = 0, budget = 0, free = 0;  // m_local_ticks, m_budget_ticks, m_write_buffer_free_ticks
+    bool window_clear = false;
+    uint64_t measured = 0, busy = 0, stalls = 0, stall = 0, run_aheads = 0;
+    // quantum_used_up at a local time of `local` where it only runs ahead
+    // on the kernel's cached answer: whether it does (false: the calls
+    // must take the step, to ask the kernel or synchronise).
+    bool reach(uint64_t at, uint64_t run_ahead_ticks, bool edges_unchanged) {
+      if (at < budget) return true;
+      if (at >= run_ahead_ticks || !window_clear || !edges_unchanged) return false;
+      ++run_aheads;
+      budget = run_ahead_ticks;
+      return true;
+    }
+  };
+  SteadyHost steady_host() const {
+    SteadyHost s;
+    s.local = m_local_ticks;
+    s.budget = m_budget_ticks;
+    s.free = m_write_buffer_free_ticks;
+    s.window_clear = m_window_clear;
+    return s;
+  }
+  void commit_steady(const SteadyHost& s);
   // train_steady's copy of the host's state: the write buffer's requests
   // (single words: their completions in a ring, the oldest at `head`),
-  // the local time and budget, and what the words add to the counters.
-  struct SteadyTrain {
+  // and the rest of the host's state (SteadyHost).
+  struct SteadyTrain : SteadyHost {
     unsigned cap = 0;  // requests the buffer holds
     // The held requests' completions, a ring of `cap` slots from `head`:
     // only the `pending` slots from `head` are read, each written before,
@@ -290,9 +318,6 @@ class Host : public Block, public HostApi, public HostCore {
     size_t slot(size_t i) const { return head + i < cap ? head + i : head + i - cap; }
     uint64_t now = 0;  // the kernel's time, which stands meanwhile
     bool edges_unchanged = false;
-    uint64_t local = 0, budget = 0, free_ticks = 0;
-    bool window_clear = false;
-    uint64_t measured = 0, busy = 0, stalls = 0, stall_ticks = 0, run_aheads = 0;
   };
   // A run of words from `from` in the bus-bound steady state, in closed
   // form (README.md, "Store trains"); returns how many (0: none).
