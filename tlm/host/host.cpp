@@ -397,7 +397,7 @@ size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* dat
     unsigned words = 0, addresses = 0;
     LastReservation last;
   } st;
-  static_cast<SteadyHost&>(st) = steady_host();
+  steady_host(st);
   st.size = m_write_buffer.size();
   st.words = m_write_buffer_words;
   st.addresses = m_write_buffer_addresses;
@@ -797,7 +797,7 @@ size_t Host::train_steady(size_t from) {
       m_write_buffer_addresses != held)
     return from;
   SteadyTrain st;
-  static_cast<SteadyHost&>(st) = steady_host();
+  steady_host(st);
   st.cap = cap;
   for (size_t i = 0; i < held; ++i) st.done_at[i] = m_write_buffer.at(i).done_ticks;
   st.pending = held;
@@ -1051,7 +1051,7 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
   };
   const uint64_t now = kernel_ticks();
   State st;
-  static_cast<SteadyHost&>(st) = steady_host();
+  steady_host(st);
   st.last = quote.last;
   for (size_t i = 0; i < m_write_buffer.size(); ++i)
     st.last_done = std::max(st.last_done, m_write_buffer.at(i).done_ticks);

@@ -295,13 +295,15 @@ class Host : public Block, public HostApi, public HostCore {
       return true;
     }
   };
-  SteadyHost steady_host() const {
-    SteadyHost s;
+  // Field by field into the closed form's state (its counters start at
+  // 0): a copy of a whole SteadyHost built apart was stored in pieces
+  // that its first reads spanned, a stall the processor cannot forward
+  // (a quarter of train_steady's samples in an ap-pixel frame).
+  void steady_host(SteadyHost& s) const {
     s.local = m_local_ticks;
     s.budget = m_budget_ticks;
     s.free = m_write_buffer_free_ticks;
     s.window_clear = m_window_clear;
-    return s;
   }
   void commit_steady(const SteadyHost& s);
   // train_steady's copy of the host's state: the write buffer's requests
