@@ -50,9 +50,9 @@ class AhbBus::InitiatorPort : public tlm::tlm_target_socket<32>,
                     const CopyRequest* requests, const uint8_t* data) override {
     m_bus.direct_posts(m_index, plan, quote, first, count, requests, data);
   }
-  void direct_copy(const CopyPlan& plan, size_t first_block, size_t blocks, const CopyRequest* requests,
-                   uint8_t* data) override {
-    m_bus.direct_copy(m_index, plan, first_block, blocks, requests, data);
+  void direct_copy(const CopyPlan& plan, const CopyQuote& quote, size_t first_block, size_t blocks,
+                   const CopyRequest* requests, uint8_t* data) override {
+    m_bus.direct_copy(m_index, plan, quote, first_block, blocks, requests, data);
   }
   unsigned transport_dbg(tlm::tlm_generic_payload& gp) override { return m_bus.transport_dbg(m_index, gp); }
   bool get_direct_mem_ptr(tlm::tlm_generic_payload& gp, tlm::tlm_dmi& dmi) override {
@@ -482,15 +482,15 @@ bool AhbBus::quote_copy(const CopyPlan& plan, CopyQuote& quote) {
   return true;
 }
 
-void AhbBus::direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_block, size_t blocks,
-                         const CopyRequest* requests, uint8_t* data) {
+void AhbBus::direct_copy(unsigned initiator, const CopyPlan& plan, const CopyQuote& quote, size_t first_block,
+                         size_t blocks, const CopyRequest* requests, uint8_t* data) {
   if (blocks == 0) return;
+  // The quote's conditions that a caller could have let change.
   const Region* fill = decode(plan.from);
   const Region* burst = decode(plan.to);
-  if (fill == nullptr || burst == nullptr || fill->direct == nullptr || burst->direct == nullptr)
-    throw std::logic_error(std::string(name()) + ": a copy unquoted");
-  CopyQuote quote;
-  if (!quote_copy(plan, quote)) throw std::logic_error(std::string(name()) + ": a copy the bus no longer quotes");
+  if (fill == nullptr || burst == nullptr || fill->direct == nullptr || burst->direct == nullptr || !units_served() ||
+      first_block + blocks > plan.blocks)
+    throw std::logic_error(std::string(name()) + ": a copy the bus no longer quotes");
   // Each request as serve() would reserve it and count it.
   const uint64_t now = m_context->time_stamp().value();
   const uint64_t beats = single_beats(plan.bytes);

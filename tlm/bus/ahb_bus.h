@@ -191,7 +191,7 @@ class AhbBus : public Block {
   void b_transport(unsigned initiator, tlm::tlm_generic_payload& gp, sc_core::sc_time& delay, DirectExtras& extras);
   // A frame copy as a unit (common/direct_transport.h, CopyPlan).
   bool quote_copy(const CopyPlan& plan, CopyQuote& quote);
-  void direct_copy(unsigned initiator, const CopyPlan& plan, size_t first_block, size_t blocks,
+  void direct_copy(unsigned initiator, const CopyPlan& plan, const CopyQuote& quote, size_t first_block, size_t blocks,
                    const CopyRequest* requests, uint8_t* data);
   // A posted train as a unit (common/direct_transport.h, PostPlan).
   bool quote_posts(const PostPlan& plan, PostQuote& quote);

@@ -197,12 +197,13 @@ class DirectTransport {
   // waiting, both ranges in targets that quote their accesses), and how
   // (CopyQuote); the answer holds while the kernel's time stands and no
   // other initiator has the bus. direct_copy: serves blocks first_block ..
-  // first_block + blocks - 1 of it, fill and burst each, as requested at
-  // requests[2 k] and [2 k + 1] (k from 0), the bursts' bytes from `data`:
-  // the bus's reservations and figures, the targets' accesses.
+  // first_block + blocks - 1 of it as `quote` (quote_copy's answer, while
+  // it holds) says, fill and burst each, as requested at requests[2 k] and
+  // [2 k + 1] (k from 0), the bursts' bytes from `data`: the bus's
+  // reservations and figures, the targets' accesses.
   virtual bool quote_copy(const CopyPlan& /*plan*/, CopyQuote& /*quote*/) { return false; }
-  virtual void direct_copy(const CopyPlan& /*plan*/, size_t /*first_block*/, size_t /*blocks*/,
-                           const CopyRequest* /*requests*/, uint8_t* /*data*/) {
+  virtual void direct_copy(const CopyPlan& /*plan*/, const CopyQuote& /*quote*/, size_t /*first_block*/,
+                           size_t /*blocks*/, const CopyRequest* /*requests*/, uint8_t* /*data*/) {
     throw std::logic_error("direct_copy through a door that quotes no copies");
   }
   // A posted train (PostPlan) through the bus, from an initiator's door:

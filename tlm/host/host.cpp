@@ -1120,7 +1120,7 @@ uint32_t Host::copy_steady(const CopyPlan& plan, uint32_t first, const uint64_t*
   m_write_buffer_words = 8;
   m_write_buffer_addresses = 1;
   const uint32_t source = static_cast<uint32_t>(plan.from + 32 * uint64_t{first});
-  m_direct_out->direct_copy(plan, first, taken, requests, dmi_pointer(source, 32 * taken));
+  m_direct_out->direct_copy(plan, quote, first, taken, requests, dmi_pointer(source, 32 * taken));
   return taken;
 }
 
