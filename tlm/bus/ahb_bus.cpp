@@ -531,22 +531,22 @@ bool AhbBus::quote_posts(const PostPlan& plan, PostQuote& quote) {
       plan.address - region->base > region->size - transfers * plan.each)
     return false;
   const uint64_t address = plan.address - region->base;
-  const unsigned kinds[3] = {plan.first, plan.per_request, plan.last};
   bool untouched = true;
   const uint64_t beats = single_beats(plan.each);
-  for (unsigned k = 0; k < 3; ++k) {
-    if (k != 0 && kinds[k] == kinds[k - 1]) {
+  for (unsigned k = 0; k < PostPlan::KINDS; ++k) {
+    const unsigned transfers_each = plan.kind_transfers(k);
+    if (k != 0 && transfers_each == plan.kind_transfers(k - 1)) {
       quote.cycles[k] = quote.cycles[k - 1];
       continue;
     }
     uint64_t latency = 0;
     bool each_untouched = false;
-    if (!region->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, address, plan.each, transfers, kinds[k], latency,
+    if (!region->direct->quote_accesses(tlm::TLM_WRITE_COMMAND, address, plan.each, transfers, transfers_each, latency,
                                         each_untouched))
       return false;
     untouched = untouched && each_untouched;
-    // serve()'s occupancy of a request of kinds[k] transfers (train_beats).
-    quote.cycles[k] = occupancy(ceil_cycles(latency, region->latency), kinds[k] * beats, kinds[k]);
+    // serve()'s occupancy of a request of that many transfers (train_beats).
+    quote.cycles[k] = occupancy(ceil_cycles(latency, region->latency), transfers_each * beats, transfers_each);
   }
   quote.period_ticks = m_period_ticks;
   quote.untouched = untouched;

@@ -116,9 +116,12 @@ struct PostPlan {
   unsigned per_request = 0;
   unsigned last = 0;
   size_t requests = 0;
-  // The kind of request r: 0 the first, 1 one between, 2 the last.
+  // The kind of request r: 0 the first, 1 one between, 2 the last; the
+  // transfers of a request of each kind, and of request r.
+  static constexpr unsigned KINDS = 3;
   unsigned kind(size_t r) const { return r == 0 ? 0 : r + 1 == requests ? 2 : 1; }
-  unsigned transfers(size_t r) const { return r == 0 ? first : r + 1 == requests ? last : per_request; }
+  unsigned kind_transfers(unsigned k) const { return k == 0 ? first : k == 1 ? per_request : last; }
+  unsigned transfers(size_t r) const { return kind_transfers(kind(r)); }
   // The transfers before request r.
   uint64_t before(size_t r) const { return r == 0 ? 0 : first + uint64_t{per_request} * (r - 1); }
   uint64_t total() const { return requests == 1 ? first : before(requests - 1) + last; }
@@ -129,7 +132,7 @@ struct PostPlan {
 // was.
 struct PostQuote {
   uint64_t period_ticks = 1;
-  uint64_t cycles[3] = {0, 0, 0};
+  uint64_t cycles[PostPlan::KINDS] = {0, 0, 0};
   bool untouched = false;
   LastReservation last;
 };

@@ -407,9 +407,9 @@ size_t Host::posts_steady(const PostPlan& plan, size_t first, const uint8_t* dat
   const uint64_t bus = quote.period_ticks, run_ahead = m_run_ahead_ticks, quantum = m_quantum_ticks;
   const unsigned buffer_words = m_params.write_buffer_words, buffer_addresses = m_params.write_buffer_addresses;
   // Each kind's words and addresses in the buffer (post_request's).
-  unsigned kind_words[3], kind_addresses[3];
-  for (unsigned k = 0; k < 3; ++k) {
-    const unsigned transfers = k == 0 ? plan.first : k == 1 ? plan.per_request : plan.last;
+  unsigned kind_words[PostPlan::KINDS], kind_addresses[PostPlan::KINDS];
+  for (unsigned k = 0; k < PostPlan::KINDS; ++k) {
+    const unsigned transfers = plan.kind_transfers(k);
     kind_words[k] = std::max(transfers, (transfers * plan.each + 3) / 4);
     kind_addresses[k] = std::min(transfers, buffer_addresses);
   }
